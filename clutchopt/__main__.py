@@ -1,0 +1,3 @@
+from clutchopt.cli import main
+
+raise SystemExit(main())

@@ -1,0 +1,234 @@
+"""The formulation mechanism shared by every coupling.
+
+A formulation declares, once each:
+- its *quantities*: everything a case file of the coupling may give (requirements, materials, fixed geometry,
+  the paper's printed results), each with unit, paper symbol, valid range and default;
+- its *design variables*: what the optimiser chooses, with default bounds, unit and integrality;
+- its *constraints*: named inequalities ``value <= limit`` or ``value >= limit`` with the paper's equation number;
+- its *objectives* (mass, cost) and *outputs* (derived quantities worth reporting).
+
+Constraints, objectives and outputs are written with :mod:`clutchopt.backend` math, so the same code runs on
+floats (float64 checks, closed forms) and on CasADi symbols (the NLP). No solver code lives here.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from types import SimpleNamespace
+from typing import Any, Callable, Mapping
+
+from clutchopt.errors import InputError
+from clutchopt.units import from_si, si_factor, si_unit
+
+REQUIRED = object()  # marker: a case must give this quantity
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """One declared quantity: TOML key ``section.name``, unit used for input and display, valid range (SI)."""
+
+    name: str
+    unit: str
+    description: str
+    symbol: str = ""
+    section: str = "parameters"
+    default: Any = REQUIRED  # a case value ("7850 kg/m^3", 0.15), REQUIRED, or None for optional
+    above: float | None = None  # valid range, SI: value > above
+    at_least: float | None = None  # value >= at_least
+    below: float | None = None  # value < below
+    at_most: float | None = None  # value <= at_most
+    integer: bool = False
+
+    @property
+    def key(self) -> str:
+        return f"{self.section}.{self.name}"
+
+    @property
+    def si_unit(self) -> str:
+        return si_unit(self.unit)
+
+    def show(self, value: float) -> str:
+        """An SI value written in this quantity's unit, e.g. ``15 deg``."""
+        return f"{from_si(value, self.unit):.6g} {self.unit}".rstrip()
+
+    def check(self, value: float, field_name: str | None = None) -> float:
+        """Return ``value`` (SI) if it is in the valid range, else raise InputError naming the field."""
+        name = field_name or self.key
+        tests = (
+            (self.above, lambda v, b: v > b, ">"),
+            (self.at_least, lambda v, b: v >= b, ">="),
+            (self.below, lambda v, b: v < b, "<"),
+            (self.at_most, lambda v, b: v <= b, "<="),
+        )
+        for bound, ok, word in tests:
+            if bound is not None and not ok(value, bound):
+                raise InputError(name, f"must be {word} {self.show(bound)}, got {self.show(value)}")
+        if self.integer and value != round(value):
+            raise InputError(name, f"must be a whole number, got {value:g}")
+        return value
+
+
+@dataclass(frozen=True)
+class Variable(Quantity):
+    """A design variable: a quantity with a default search box (SI) and, optionally, integrality.
+
+    ``fixed_unless_freed``: the variable stays at the case's value of the quantity of the same name unless
+    the case lists it in ``options.free`` (e.g. the flank angle of the wedge in geometry mode).
+    """
+
+    section: str = "bounds"
+    default: Any = None
+    lower: float = 0.0
+    upper: float = math.inf
+    fixed_unless_freed: bool = False
+
+
+@dataclass
+class Constraint:
+    """A named inequality ``value <= limit`` (sense "<=") or ``value >= limit`` (sense ">=").
+
+    ``scale`` (positive, defaults to the limit) normalises the constraint for the solver and gives the
+    relative margin: margin = (limit - value) / scale for "<=", (value - limit) / scale for ">=".
+    """
+
+    name: str
+    equation: str
+    value: Any
+    limit: Any
+    sense: str
+    unit: str = ""
+    scale: Any = None
+    description: str = ""
+
+    def normalised(self):
+        """g <= 0 form, O(1) near the limit: the form the NLP sees."""
+        scale = self.limit if self.scale is None else self.scale
+        return (self.value - self.limit) / scale if self.sense == "<=" else (self.limit - self.value) / scale
+
+    def margin(self) -> float:
+        return -float(self.normalised())
+
+
+def at_most(name: str, value, limit, *, equation: str, unit: str = "", scale=None, description: str = ""):
+    return Constraint(name, equation, value, limit, "<=", unit, scale, description)
+
+
+def at_least(name: str, value, limit, *, equation: str, unit: str = "", scale=None, description: str = ""):
+    return Constraint(name, equation, value, limit, ">=", unit, scale, description)
+
+
+@dataclass(frozen=True)
+class Output:
+    """A derived quantity reported beside the design (torque capability, centroid radius, ...)."""
+
+    value: Any
+    unit: str
+    description: str = ""
+
+
+@dataclass(frozen=True)
+class Objective:
+    name: str
+    unit: str
+    description: str
+    function: Callable[[SimpleNamespace, SimpleNamespace], Any]
+
+
+@dataclass
+class Formulation:
+    """One posed problem of one coupling (e.g. the wedge coupling in paper mode).
+
+    ``constraints(x, p)`` returns a list of :class:`Constraint`, ``outputs(x, p)`` a dict of :class:`Output`;
+    ``x`` holds the design variables and ``p`` the case quantities, both by attribute name.
+    """
+
+    coupling: str
+    mode: str
+    title: str
+    quantities: tuple[Quantity, ...]
+    variables: tuple[Variable, ...]
+    constraints: Callable[[SimpleNamespace, SimpleNamespace], list[Constraint]]
+    objectives: tuple[Objective, ...]
+    outputs: Callable[[SimpleNamespace, SimpleNamespace], dict[str, Output]] = lambda x, p: {}
+    notes: str = ""
+    _objective_index: dict = field(init=False, repr=False)
+
+    def __post_init__(self):
+        self._objective_index = {o.name: o for o in self.objectives}
+
+    def objective(self, name: str) -> Objective:
+        try:
+            return self._objective_index[name]
+        except KeyError:
+            raise InputError("objective", f"unknown objective {name!r}; choose from {', '.join(self._objective_index)}") from None
+
+    def variable(self, name: str) -> Variable:
+        return next(v for v in self.variables if v.name == name)
+
+
+def namespace(values: Mapping[str, Any]) -> SimpleNamespace:
+    return SimpleNamespace(**dict(values))
+
+
+def si(value: float, unit: str) -> float:
+    """``si(20, "mm")`` -> 0.02: literal bounds in formulations, written in the unit a designer thinks in."""
+    return value * si_factor(unit)
+
+
+@dataclass(frozen=True)
+class ComparisonRow:
+    name: str
+    unit: str
+    description: str
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """How ``clutchopt compare`` sets a coupling's published method beside its NLP optima.
+
+    ``references(case)`` gives the closed-form columns: ``{column: {row: SI value}}`` (paper as printed,
+    paper formulas evaluated, consistent closed form). ``solves`` lists the NLP columns as
+    ``(column, mode, objective)``; ``rows_from_design(mode, design, outputs, params)`` reads the rows off
+    an NLP solution. Relative differences are taken against ``baseline``.
+    """
+
+    rows: tuple[ComparisonRow, ...]
+    references: Callable[[SimpleNamespace], dict[str, dict[str, float]]]
+    solves: tuple[tuple[str, str, str], ...]
+    rows_from_design: Callable[[str, dict, dict, SimpleNamespace], dict[str, float]]
+    baseline: str
+    column_notes: dict[str, str] = field(default_factory=dict)
+
+
+@dataclass
+class Coupling:
+    """A coupling family: its case quantities, its posed problems by mode, its comparison."""
+
+    name: str
+    title: str
+    source: str
+    quantities: tuple[Quantity, ...]
+    formulations: dict[str, Formulation]
+    default_mode: str
+    comparison: Comparison | None = None
+    case_checks: tuple[Callable[[Any], None], ...] = ()
+
+    @property
+    def variables(self) -> tuple[Variable, ...]:
+        seen: dict[str, Variable] = {}
+        for formulation in self.formulations.values():
+            for variable in formulation.variables:
+                seen.setdefault(variable.name, variable)
+        return tuple(seen.values())
+
+    def formulation(self, mode: str | None = None) -> Formulation:
+        mode = mode or self.default_mode
+        if mode not in self.formulations:
+            raise InputError("mode", f"unknown mode {mode!r} for {self.name}; choose from {', '.join(self.formulations)}")
+        return self.formulations[mode]
+
+    def check_case(self, case) -> None:
+        """Cross-field checks (contradictory requirements) after each field passed its own check."""
+        for check in self.case_checks:
+            check(case)

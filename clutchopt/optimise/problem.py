@@ -1,0 +1,301 @@
+"""A formulation turned into a CasADi/IPOPT problem: built once, solved many times with new case data.
+
+The NLP sees scaled numbers only: each design variable is ``x = s * x_hat`` with the scale ``s`` a
+parameter (taken from the start point of each solve), every constraint is normalised by its own scale
+(relative margin), and the objective is divided by its value at the start point. Case values, variable
+scales and the objective scale are all NLP parameters, so one built problem serves every case of its
+formulation at every size.
+
+Integer variables: the continuous relaxation is solved first, then the neighbouring integers (floor and
+ceiling, each fixed through its bounds, warm-started) and the best verified-feasible one is kept.
+
+Infeasibility: when IPOPT fails, an elastic problem (min sum of slacks on the normalised constraints) names
+the requirements that cannot hold together and by how much the least relaxation misses.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import time
+from dataclasses import dataclass, field
+from types import SimpleNamespace
+
+import casadi as ca
+import numpy as np
+
+from clutchopt.cases import Case
+from clutchopt.model import Formulation, namespace
+from clutchopt.optimise.verify import (
+    FEASIBILITY_TOL,
+    ConstraintCheck,
+    check_design,
+    evaluate_objective,
+    evaluate_outputs,
+)
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    tol: float = 1e-10
+    max_iter: int = 3000
+
+    def ipopt(self) -> dict:
+        return {
+            "ipopt.tol": self.tol,
+            "ipopt.constr_viol_tol": self.tol,
+            "ipopt.acceptable_tol": self.tol * 1e2,
+            "ipopt.acceptable_constr_viol_tol": self.tol * 1e2,
+            "ipopt.max_iter": self.max_iter,
+            "ipopt.bound_relax_factor": 0.0,
+            "ipopt.print_level": 0,
+            "ipopt.sb": "yes",
+            "print_time": False,
+        }
+
+
+@dataclass
+class SolverInfo:
+    name: str
+    status: str  # IPOPT's return status of the final (kept) solve
+    iterations: int  # summed over the relaxation and integer neighbours
+    time_s: float  # wall time of all solves, without problem construction
+    solves: int = 1
+
+
+@dataclass
+class Solution:
+    coupling: str
+    mode: str
+    objective_name: str
+    objective_unit: str
+    status: str  # optimal | infeasible | solver_failed | unverified
+    objective: float
+    design: dict[str, float]
+    outputs: dict[str, float]
+    constraints: list[ConstraintCheck]
+    solver: SolverInfo
+    diagnosis: str | None = None
+    integer_search: list[dict] = field(default_factory=list)
+
+    @property
+    def feasible(self) -> bool:
+        return all(c.feasible for c in self.constraints)
+
+    @property
+    def worst_violation(self) -> float:
+        return max([0.0] + [-c.margin for c in self.constraints])
+
+    def as_dict(self) -> dict:
+        return {
+            "coupling": self.coupling,
+            "mode": self.mode,
+            "status": self.status,
+            "objective": {"name": self.objective_name, "value": self.objective, "unit": self.objective_unit},
+            "design": self.design,
+            "outputs": self.outputs,
+            "constraints": [c.as_dict() for c in self.constraints],
+            "solver": vars(self.solver),
+            "diagnosis": self.diagnosis,
+            "integer_search": self.integer_search,
+        }
+
+
+class Problem:
+    """One formulation with one objective, built as a CasADi ``nlpsol`` once."""
+
+    def __init__(self, formulation: Formulation, objective: str = "mass", options: SolverOptions = SolverOptions()):
+        self.formulation = formulation
+        self.objective = formulation.objective(objective)
+        self.options = options
+        f = formulation
+        n, m = len(f.variables), len(f.quantities)
+        x_hat = ca.SX.sym("x_hat", n)
+        p_case = ca.SX.sym("p_case", m)
+        x_scale = ca.SX.sym("x_scale", n)
+        f_scale = ca.SX.sym("f_scale")
+        x = namespace({v.name: x_hat[i] * x_scale[i] for i, v in enumerate(f.variables)})
+        p = namespace({q.name: p_case[j] for j, q in enumerate(f.quantities)})
+        constraints = f.constraints(x, p)
+        self.constraint_names = [c.name for c in constraints]
+        g = ca.vertcat(*[c.normalised() for c in constraints])
+        self._nlp = {"x": x_hat, "p": ca.vertcat(p_case, x_scale, f_scale),
+                     "f": self.objective.function(x, p) / f_scale, "g": g}
+        self._solver = ca.nlpsol(f"{f.coupling}_{f.mode}_{objective}", "ipopt", self._nlp, options.ipopt())
+        self._elastic = None
+
+    # --- data of one solve -------------------------------------------------------------------------------------
+    def _bounds_and_start(self, case: Case, start: dict[str, float] | None):
+        lower, upper, x0 = [], [], []
+        for v in self.formulation.variables:
+            if v.fixed_unless_freed and v.name not in case.free:
+                fixed = case.values[v.name]
+                lower.append(fixed), upper.append(fixed), x0.append(fixed)
+                continue
+            lo, hi = case.bounds.get(v.name, (v.lower, v.upper))
+            lower.append(lo), upper.append(hi)
+            guess = (start or {}).get(v.name, case.values.get(v.name))
+            if guess is None or not math.isfinite(guess):
+                guess = math.sqrt(lo * hi) if lo > 0 and math.isfinite(hi) else (lo + hi) / 2
+            x0.append(min(max(guess, lo), hi))
+        return np.array(lower), np.array(upper), np.array(x0)
+
+    def _case_vector(self, case: Case) -> np.ndarray:
+        params = case.params()
+        return np.array([getattr(params, q.name) for q in self.formulation.quantities], dtype=float)
+
+    # --- solving ---------------------------------------------------------------------------------------------------
+    def solve(self, case: Case, start: dict[str, float] | None = None) -> Solution:
+        lower, upper, x0 = self._bounds_and_start(case, start)
+        params = case.params()
+        scale = np.where(np.abs(x0) > 0, np.abs(x0), np.maximum(np.abs(lower), np.abs(upper)))
+        scale = np.where(np.isfinite(scale) & (scale > 0), scale, 1.0)
+        names = [v.name for v in self.formulation.variables]
+        f0 = abs(evaluate_objective(self.formulation, self.objective.name, dict(zip(names, x0)), params))
+        f_scale = f0 if math.isfinite(f0) and f0 > 0 else 1.0
+        p_vector = np.concatenate([self._case_vector(case), scale, [f_scale]])
+
+        runs = []
+        relaxed = self._run(p_vector, lower / scale, upper / scale, x0 / scale, None)
+        runs.append(relaxed)
+        integer = [i for i, v in enumerate(self.formulation.variables) if v.integer and lower[i] < upper[i]]
+        kept = relaxed
+        search = []
+        if integer and relaxed["ok"]:
+            kept = None
+            for combo in self._integer_neighbours(relaxed["x"] * scale, integer, lower, upper):
+                lo, hi = lower.copy(), upper.copy()
+                lo[integer] = hi[integer] = combo
+                run = self._run(p_vector, lo / scale, hi / scale, np.clip(relaxed["x"], lo / scale, hi / scale), relaxed)
+                runs.append(run)
+                design = dict(zip(names, run["x"] * scale))
+                feasible = all(c.feasible for c in check_design(self.formulation, design, params))
+                value = evaluate_objective(self.formulation, self.objective.name, design, params)
+                search.append({**{names[i]: int(c) for i, c in zip(integer, combo)},
+                               "status": run["status"], "feasible": feasible, "objective": value})
+                if run["ok"] and feasible and (kept is None or value < kept["value"]):
+                    kept = {**run, "value": value}
+            if kept is None:
+                kept = runs[-1]
+        return self._finish(case, kept, runs, scale, f_scale, lower, upper, search)
+
+    def _run(self, p_vector, lbx, ubx, x0, warm):
+        args = {"x0": x0, "p": p_vector, "lbx": lbx, "ubx": ubx, "lbg": -np.inf, "ubg": 0.0}
+        if warm is not None:
+            args.update(lam_x0=warm["lam_x"], lam_g0=warm["lam_g"])
+        started = time.perf_counter()
+        result = self._solver(**args)
+        elapsed = time.perf_counter() - started
+        stats = self._solver.stats()
+        return {"x": np.array(result["x"]).ravel(), "lam_g": np.array(result["lam_g"]).ravel(),
+                "lam_x": np.array(result["lam_x"]).ravel(), "f": float(result["f"]), "ok": bool(stats["success"]),
+                "status": stats["return_status"], "iterations": int(stats.get("iter_count", 0)), "time": elapsed,
+                "p": p_vector, "lbx": lbx, "ubx": ubx}
+
+    @staticmethod
+    def _integer_neighbours(x, integer, lower, upper, reach: int = 1):
+        """Floor and ceiling of each relaxed integer (within bounds), nearest combinations first."""
+        choices = []
+        for i in integer:
+            low, high = math.floor(x[i] + 1e-9), math.ceil(x[i] - 1e-9)
+            options = sorted({min(max(k, lower[i]), upper[i]) for k in range(low - reach + 1, high + reach)},
+                             key=lambda k: abs(k - x[i]))
+            choices.append(options)
+        return [np.array(combo, dtype=float) for combo in itertools.product(*choices)]
+
+    def _finish(self, case, run, runs, scale, f_scale, lower, upper, search) -> Solution:
+        f = self.formulation
+        params = case.params()
+        names = [v.name for v in f.variables]
+        design = {n: float(value) for n, value in zip(names, run["x"] * scale)}
+        for i in (i for i, v in enumerate(f.variables) if v.integer):
+            design[names[i]] = float(round(design[names[i]]))
+        checks = check_design(f, design, params)
+        objective = evaluate_objective(f, self.objective.name, design, params)
+        for check, lam in zip(checks, run["lam_g"]):
+            check.multiplier = float(lam)
+            check.elasticity = _elasticity(check, float(lam), f_scale, objective)
+        info = SolverInfo("ipopt", run["status"], sum(r["iterations"] for r in runs), sum(r["time"] for r in runs),
+                          len(runs))
+        feasible = all(c.feasible for c in checks)
+        diagnosis = None
+        if run["ok"] and feasible:
+            status = "optimal"
+        elif run["ok"]:
+            status = "unverified"
+            worst = min(checks, key=lambda c: c.margin)
+            diagnosis = (f"IPOPT reported success but the float64 check finds {worst.name} violated by "
+                         f"{-worst.margin:.3g} (relative)")
+        else:
+            status, diagnosis = self.diagnose(run["p"], lower / scale, upper / scale, run["x"], scale)
+        return Solution(f.coupling, f.mode, self.objective.name, self.objective.unit, status, objective, design,
+                        evaluate_outputs(f, design, params), checks, info, diagnosis, search)
+
+    # --- infeasibility diagnosis ------------------------------------------------------------------------------------
+    def diagnose(self, p_vector, lbx, ubx, x0, scale) -> tuple[str, str]:
+        """Elastic relaxation: min sum(s) s.t. g(x) <= s, s >= 0. Positive slacks name the conflict."""
+        if self._elastic is None:
+            n_g = self._nlp["g"].shape[0]
+            slack = ca.SX.sym("slack", n_g)
+            nlp = {"x": ca.vertcat(self._nlp["x"], slack), "p": self._nlp["p"], "f": ca.sum1(slack),
+                   "g": self._nlp["g"] - slack}
+            self._elastic = ca.nlpsol("elastic", "ipopt", nlp, self.options.ipopt())
+        n_g = len(self.constraint_names)
+        result = self._elastic(x0=np.concatenate([x0, np.ones(n_g)]), p=p_vector,
+                               lbx=np.concatenate([lbx, np.zeros(n_g)]), ubx=np.concatenate([ubx, np.full(n_g, np.inf)]),
+                               lbg=-np.inf, ubg=0.0)
+        slacks = np.array(result["x"]).ravel()[len(lbx):]
+        lam_g = np.array(result["lam_g"]).ravel()
+        x = np.array(result["x"]).ravel()[: len(lbx)]
+        if slacks.sum() <= 10 * FEASIBILITY_TOL:
+            return "solver_failed", ("IPOPT did not converge, yet a feasible point exists (elastic check); "
+                                     "try other bounds or a start point")
+        violated = [f"{name} (short by {s:.3g} of its limit)" for name, s in zip(self.constraint_names, slacks)
+                    if s > 10 * FEASIBILITY_TOL]
+        binding = [name for name, s, lam in zip(self.constraint_names, slacks, lam_g)
+                   if s <= 10 * FEASIBILITY_TOL and lam > 1e-6]
+        at_bounds = []
+        lam_x = np.array(result["lam_x"]).ravel()[: len(lbx)]
+        for i, v in enumerate(self.formulation.variables):
+            if lbx[i] < ubx[i] and abs(lam_x[i]) > 1e-6:
+                side = "upper" if lam_x[i] > 0 else "lower"
+                at_bounds.append(f"{v.name} at its {side} bound ({v.show(x[i] * scale[i])})")
+            elif lbx[i] == ubx[i] and abs(lam_x[i]) > 1e-6:
+                at_bounds.append(f"{v.name} fixed at {v.show(x[i] * scale[i])}")
+        others = binding + at_bounds
+        text = "infeasible: cannot satisfy " + ", ".join(violated)
+        if others:
+            text += " together with " + ", ".join(others)
+        return "infeasible", text
+
+
+def _elasticity(check: ConstraintCheck, lam: float, f_scale: float, objective: float) -> float | None:
+    """d ln f* / d ln(limit) from the multiplier of the normalised constraint (envelope theorem).
+
+    For "<=": g = (v - l)/s, so df*/d ln l = -lam f_s l/s; for ">=" the sign flips.
+    """
+    if objective == 0 or not math.isfinite(objective):
+        return None
+    sign = -1.0 if check.sense == "<=" else 1.0
+    return sign * lam * f_scale * check.limit / (check.scale * objective)
+
+
+_CACHE: dict[tuple, Problem] = {}
+
+
+def problem_for(formulation: Formulation, objective: str = "mass", options: SolverOptions = SolverOptions()) -> Problem:
+    """Build a problem once per (formulation, objective, options) in this process and reuse it."""
+    key = (formulation.coupling, formulation.mode, objective, options)
+    if key not in _CACHE:
+        _CACHE[key] = Problem(formulation, objective, options)
+    return _CACHE[key]
+
+
+def solve_case(case: Case, mode: str | None = None, objective: str | None = None,
+               options: SolverOptions = SolverOptions()) -> Solution:
+    """Solve a case in a mode (default: the case's option, then the coupling's default)."""
+    from clutchopt.formulations import get_coupling
+
+    coupling = get_coupling(case.coupling)
+    formulation = coupling.formulation(mode or case.options.get("mode"))
+    return problem_for(formulation, objective or case.options.get("objective", "mass"), options).solve(case)

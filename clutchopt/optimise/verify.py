@@ -1,0 +1,54 @@
+"""Float64 re-evaluation of a design, outside the solver: every constraint's value, limit, margin, activity."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+from types import SimpleNamespace
+
+from clutchopt.model import Formulation, namespace
+
+FEASIBILITY_TOL = 1e-8  # largest relative violation accepted as feasible
+ACTIVE_TOL = 1e-6  # relative margin below which a constraint is reported active
+
+
+@dataclass
+class ConstraintCheck:
+    name: str
+    equation: str
+    sense: str
+    value: float  # SI
+    limit: float  # SI
+    margin: float  # relative: (limit - value)/scale for "<=", (value - limit)/scale for ">="
+    active: bool
+    feasible: bool
+    unit: str  # display unit (values in the JSON are SI)
+    description: str
+    scale: float  # the normaliser of the margin (SI)
+    multiplier: float | None = None  # of the normalised constraint, objective normalised
+    elasticity: float | None = None  # d ln(objective) / d ln(limit)
+
+    def as_dict(self) -> dict:
+        return asdict(self)
+
+
+def check_design(formulation: Formulation, design: dict[str, float], params: SimpleNamespace) -> list[ConstraintCheck]:
+    """Evaluate every constraint of ``formulation`` at ``design`` in float64 (the same equations, no CasADi)."""
+    x = namespace({k: float(v) for k, v in design.items()})
+    checks = []
+    for c in formulation.constraints(x, params):
+        margin = c.margin()
+        checks.append(ConstraintCheck(
+            name=c.name, equation=c.equation, sense=c.sense, value=float(c.value), limit=float(c.limit),
+            margin=margin, active=abs(margin) <= ACTIVE_TOL or margin < 0, feasible=margin >= -FEASIBILITY_TOL,
+            unit=c.unit, description=c.description, scale=float(c.limit if c.scale is None else c.scale)))
+    return checks
+
+
+def evaluate_outputs(formulation: Formulation, design: dict[str, float], params: SimpleNamespace) -> dict[str, float]:
+    x = namespace({k: float(v) for k, v in design.items()})
+    return {name: float(out.value) for name, out in formulation.outputs(x, params).items()}
+
+
+def evaluate_objective(formulation: Formulation, objective: str, design: dict[str, float], params: SimpleNamespace) -> float:
+    x = namespace({k: float(v) for k, v in design.items()})
+    return float(formulation.objective(objective).function(x, params))

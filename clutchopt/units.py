@@ -1,0 +1,106 @@
+"""Quantities with units: one pint registry, parsing of case values to SI floats.
+
+A case value is either a string with units (``"1000 rpm"``, ``"4 MPa"``) or a bare number, which is taken
+as SI. Costs use the unit ``EUR`` (a dimension of its own, ``[currency]``).
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import pint
+
+from clutchopt.errors import InputError
+
+ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+ureg.define("EUR = [currency]")
+
+
+@lru_cache(maxsize=None)
+def si_factor(unit: str) -> float:
+    """Multiply a value in ``unit`` by this to get SI (``mm`` -> 1e-3, ``deg`` -> pi/180)."""
+    return float(ureg.Quantity(1.0, unit).to_base_units().magnitude)
+
+
+@lru_cache(maxsize=None)
+def si_unit(unit: str) -> str:
+    """The SI base unit of ``unit`` as text (``MPa`` -> ``kg / m / s ** 2`` is avoided: named forms kept)."""
+    base = ureg.Quantity(1.0, unit).to_base_units().units
+    return _PRETTY_SI.get(str(base), f"{base:~}") if str(base) != "dimensionless" else "1"
+
+
+_PRETTY_SI = {
+    "kilogram / meter / second ** 2": "Pa",
+    "kilogram * meter ** 2 / second ** 2": "N*m",
+    "kilogram * meter / second ** 2": "N",
+    "radian / second": "rad/s",
+    "1 / second": "1/s",
+    "radian": "rad",
+    "kilogram * meter ** 2": "kg*m^2",
+    "kilogram / meter ** 3": "kg/m^3",
+    "kilogram / second ** 2": "N/m",
+}
+
+
+_DIMENSION_NAMES = {
+    "[mass] / [length] / [time] ** 2": "a pressure or stress",
+    "[length] ** 2 * [mass] / [time] ** 2": "a torque or energy",
+    "[length] * [mass] / [time] ** 2": "a force",
+    "1 / [time]": "an angular speed",
+    "[length]": "a length",
+    "[mass]": "a mass",
+    "[time]": "a time",
+    "[length] ** 2 * [mass]": "a moment of inertia",
+    "[mass] / [length] ** 3": "a density",
+    "[currency] / [mass]": "a price per mass",
+    "[currency]": "a cost",
+    "[currency] / [length] ** 2": "a cost per area",
+    "[mass] / [time] ** 2": "a stiffness",
+    "[length] / [time] ** 2": "an acceleration",
+}
+
+
+def describe_dimension(unit: str) -> str:
+    """Plain name of the dimension of ``unit``: ``MPa`` -> ``a pressure or stress``."""
+    dim = ureg.Quantity(1.0, unit).dimensionality
+    if not dim:
+        return "dimensionless (or an angle)"
+    return _DIMENSION_NAMES.get(str(dim), str(dim))
+
+
+def to_si(field: str, raw: object, unit: str) -> float:
+    """Parse a case value for ``field`` expected in ``unit`` (any compatible unit) and return SI float.
+
+    Raises InputError naming the field for text that is no quantity, a wrong dimension, NaN or infinity.
+    """
+    if isinstance(raw, bool):
+        raise InputError(field, f"expected a quantity in {unit}, got a boolean")
+    if isinstance(raw, (int, float)):
+        value = float(raw)
+        quantity = ureg.Quantity(value, ureg.Quantity(1.0, unit).to_base_units().units)
+    elif isinstance(raw, str):
+        try:
+            quantity = ureg.Quantity(raw.strip())
+        except Exception as exc:  # pint raises several types for unparsable text
+            raise InputError(field, f"cannot read {raw!r} as a quantity ({type(exc).__name__})") from None
+        if not isinstance(quantity, pint.Quantity):
+            quantity = ureg.Quantity(float(quantity), "dimensionless")
+    else:
+        raise InputError(field, f"expected a quantity in {unit}, got {type(raw).__name__} {raw!r}")
+    expected = ureg.Quantity(1.0, unit)
+    if quantity.dimensionality != expected.dimensionality:
+        raise InputError(
+            field,
+            f"expected {describe_dimension(unit)} (e.g. in {unit or 'SI'}), "
+            f"got {raw!r}, which is {describe_dimension(str(quantity.units))}",
+        )
+    value = float(quantity.to_base_units().magnitude)
+    if not math.isfinite(value):
+        raise InputError(field, f"must be a finite number, got {raw!r}")
+    return value
+
+
+def from_si(value: float, unit: str) -> float:
+    """Convert an SI value to ``unit`` for display."""
+    return value / si_factor(unit)
