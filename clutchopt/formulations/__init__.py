@@ -9,6 +9,11 @@ from clutchopt.model import Coupling
 
 MODULES = {
     "wedge": "clutchopt.formulations.wedge",
+    # "ball": "clutchopt.formulations.ball",
+
+    # "lever": "clutchopt.formulations.lever",
+
+    # "cable": "clutchopt.formulations.cable",
 }
 
 
