@@ -65,6 +65,8 @@ QUANTITIES = (
     Q("min_top_width", "mm", "smallest width of the trapezoid's top land", "", "limits", "2 mm", at_least=0),
     Q("finger_fit_ratio", "", "finger diameter / weight width (or chord) at most", "", "limits", 0.5,
       above=0, at_most=1),
+    Q("guide_length_ratio", "", "weight height / finger diameter at least (sliding guide, no jamming)", "",
+      "limits", 1.5, above=0),
     Q("material_price", "EUR/kg", "price of weight and finger material", "", "cost", "2.5 EUR/kg", at_least=0),
     Q("part_cost", "EUR", "machining and handling per weight with its finger", "", "cost", "12 EUR", at_least=0),
     Q("flank_finish_cost", "EUR/cm^2", "grinding cost per flank area", "", "cost", "0.05 EUR/cm^2", at_least=0),
@@ -303,6 +305,8 @@ def _geometry_constraints(x, p):
                  description="inner edge r2 - h_r clears the hub"),
         at_most("finger_fits_width", x.finger_diameter, p.finger_fit_ratio * b, equation="geometry", unit="mm",
                 scale=b, description="d_n <= ratio * b"),
+        at_least("finger_guide_length", x.weight_height, p.guide_length_ratio * x.finger_diameter,
+                 equation="geometry", unit="mm", scale=r1, description="h_r >= ratio * d_n"),
         at_most("finger_fits_chord", x.finger_diameter, p.finger_fit_ratio * 2 * r_in * sin(gamma / 2),
                 equation="geometry", unit="mm", scale=r1, description="d_n <= ratio * chord at r_in"),
     ]

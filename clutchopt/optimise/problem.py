@@ -25,7 +25,7 @@ import casadi as ca
 import numpy as np
 
 from clutchopt.cases import Case
-from clutchopt.model import Formulation, namespace
+from clutchopt.model import Formulation, Output, namespace
 from clutchopt.optimise.verify import (
     FEASIBILITY_TOL,
     ConstraintCheck,
@@ -72,7 +72,7 @@ class Solution:
     status: str  # optimal | infeasible | solver_failed | unverified
     objective: float
     design: dict[str, float]
-    outputs: dict[str, float]
+    outputs: dict[str, Output]  # derived quantities (SI value, display unit, description)
     constraints: list[ConstraintCheck]
     solver: SolverInfo
     diagnosis: str | None = None
@@ -93,7 +93,7 @@ class Solution:
             "status": self.status,
             "objective": {"name": self.objective_name, "value": self.objective, "unit": self.objective_unit},
             "design": self.design,
-            "outputs": self.outputs,
+            "outputs": {name: out.value for name, out in self.outputs.items()},
             "constraints": [c.as_dict() for c in self.constraints],
             "solver": vars(self.solver),
             "diagnosis": self.diagnosis,

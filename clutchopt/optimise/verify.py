@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from types import SimpleNamespace
 
-from clutchopt.model import Formulation, namespace
+from clutchopt.model import Formulation, Output, namespace
 
 FEASIBILITY_TOL = 1e-8  # largest relative violation accepted as feasible
 ACTIVE_TOL = 1e-6  # relative margin below which a constraint is reported active
@@ -44,9 +44,10 @@ def check_design(formulation: Formulation, design: dict[str, float], params: Sim
     return checks
 
 
-def evaluate_outputs(formulation: Formulation, design: dict[str, float], params: SimpleNamespace) -> dict[str, float]:
+def evaluate_outputs(formulation: Formulation, design: dict[str, float], params: SimpleNamespace) -> dict[str, Output]:
+    """Derived quantities at ``design``, values as floats."""
     x = namespace({k: float(v) for k, v in design.items()})
-    return {name: float(out.value) for name, out in formulation.outputs(x, params).items()}
+    return {name: replace(out, value=float(out.value)) for name, out in formulation.outputs(x, params).items()}
 
 
 def evaluate_objective(formulation: Formulation, objective: str, design: dict[str, float], params: SimpleNamespace) -> float:

@@ -1,0 +1,86 @@
+"""The ``clutchopt`` command. Each sub-command is a small function; bad input ends in one line and exit code 2."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import warnings
+
+from clutchopt.errors import InputError
+
+EXIT_BAD_INPUT = 2
+
+
+def _solve(args) -> str:
+    from clutchopt.cases import load_case
+    from clutchopt.formulations import get_coupling
+    from clutchopt.optimise import SolverOptions, solve_case
+    from clutchopt.output import solution_text, to_json
+
+    case = load_case(args.case)
+    solution = solve_case(case, args.mode, args.objective, SolverOptions(tol=args.tol))
+    if args.json:
+        return to_json({"case": case.path, "title": case.title, **solution.as_dict()})
+    formulation = get_coupling(case.coupling).formulation(solution.mode)
+    return solution_text(solution, formulation, case.title)
+
+
+def _compare(args) -> str:
+    from clutchopt.cases import load_case
+    from clutchopt.optimise import SolverOptions
+    from clutchopt.optimise.compare import compare_case
+    from clutchopt.output import comparison_text, to_json
+
+    case = load_case(args.case)
+    table = compare_case(case, SolverOptions(tol=args.tol))
+    return to_json({"case": case.path, "title": case.title, **table.as_dict()}) if args.json else comparison_text(table)
+
+
+def _positive_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"must be positive: {text!r}")
+    return value
+
+
+class _Parser(argparse.ArgumentParser):
+    """Usage mistakes end like bad input: one line, exit code 2."""
+
+    def error(self, message: str):
+        self.exit(EXIT_BAD_INPUT, f"error: {message} (see clutchopt {self.prog.split()[-1]} --help)\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="clutchopt", description=__doc__.splitlines()[0])
+    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=_Parser)
+
+    solve = commands.add_parser("solve", help="optimise a case and verify the optimum in float64")
+    solve.add_argument("case", help="case file (TOML)")
+    solve.add_argument("--mode", help="problem posing, e.g. paper or geometry (default: the case's, then the coupling's)")
+    solve.add_argument("--objective", help="mass or cost (default: the case's, then mass)")
+    solve.set_defaults(run=_solve)
+
+    compare = commands.add_parser("compare", help="the paper's method and closed forms beside the NLP optima")
+    compare.add_argument("case", help="case file (TOML)")
+    compare.set_defaults(run=_compare)
+
+    for command in (solve, compare):
+        command.add_argument("--json", action="store_true", help="one JSON object, SI units")
+        command.add_argument("--tol", type=_positive_float, default=1e-10, help="IPOPT tolerance (default 1e-10)")
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    warnings.filterwarnings("ignore", category=FutureWarning, module="casadi")
+    try:
+        text = args.run(args)
+    except InputError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    print(text)
+    return 0

@@ -1,0 +1,65 @@
+"""A coupling's published method beside its NLP optima: one row per quantity, one column per method."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from clutchopt.cases import Case
+from clutchopt.errors import InputError
+from clutchopt.formulations import get_coupling
+from clutchopt.optimise.problem import Solution, SolverOptions, problem_for
+
+
+@dataclass
+class ComparisonTable:
+    coupling: str
+    columns: list[str]
+    baseline: str
+    rows: list[dict]  # {"quantity", "unit", "description", <column>: SI value, "rel_<column>": relative difference}
+    notes: dict[str, str]
+    solutions: dict[str, Solution]
+
+    def as_dict(self) -> dict:
+        return {
+            "coupling": self.coupling,
+            "columns": self.columns,
+            "baseline": self.baseline,
+            "rows": self.rows,
+            "column_notes": self.notes,
+            "solves": {column: {"status": s.status, "diagnosis": s.diagnosis, "objective": s.objective,
+                                "solver": vars(s.solver)} for column, s in self.solutions.items()},
+        }
+
+
+def relative_difference(value: float | None, reference: float | None) -> float | None:
+    if value is None or reference is None or not math.isfinite(value) or not math.isfinite(reference) or reference == 0:
+        return None
+    return (value - reference) / abs(reference)
+
+
+def compare_case(case: Case, options: SolverOptions = SolverOptions()) -> ComparisonTable:
+    coupling = get_coupling(case.coupling)
+    spec = coupling.comparison
+    if spec is None:
+        raise InputError("coupling", f"{coupling.name} has no comparison with a paper method")
+    params = case.params()
+    columns = {name: dict(values) for name, values in spec.references(params).items()}
+    solutions = {}
+    for column, mode, objective in spec.solves:
+        solution = problem_for(coupling.formulation(mode), objective, options).solve(case)
+        solutions[column] = solution
+        outputs = {name: out.value for name, out in solution.outputs.items()}
+        columns[column] = spec.rows_from_design(mode, solution.design, outputs, params)
+    names = list(columns)
+    rows = []
+    for row in spec.rows:
+        entry = {"quantity": row.name, "unit": row.unit, "description": row.description}
+        for name in names:
+            value = columns[name].get(row.name)
+            entry[name] = None if value is None or not math.isfinite(value) else float(value)
+        for name in names:
+            if name != spec.baseline:
+                entry[f"rel_{name}"] = relative_difference(entry[name], entry.get(spec.baseline))
+        rows.append(entry)
+    return ComparisonTable(coupling.name, names, spec.baseline, rows, dict(spec.column_notes), solutions)

@@ -1,0 +1,96 @@
+"""One layout for every table: design, outputs, constraints with margins and sensitivities; JSON in SI."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pandas as pd
+
+from clutchopt.model import Formulation
+from clutchopt.optimise.compare import ComparisonTable
+from clutchopt.optimise.problem import Solution
+from clutchopt.units import from_si
+
+
+def _clean(value):
+    """JSON-safe: NaN/inf become null, numpy scalars become floats."""
+    if isinstance(value, dict):
+        return {k: _clean(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_clean(v) for v in value]
+    if hasattr(value, "item") and not isinstance(value, (str, bytes)):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def to_json(data: dict) -> str:
+    return json.dumps(_clean(data), indent=2, allow_nan=False)
+
+
+def _shown(value: float | None, unit: str) -> str:
+    if value is None or not math.isfinite(value):
+        return "-"
+    return f"{from_si(value, unit):.6g}"
+
+
+def _frame(rows: list[dict]) -> str:
+    return pd.DataFrame(rows).to_string(index=False) if rows else "(none)"
+
+
+def solution_text(solution: Solution, formulation: Formulation, title: str = "") -> str:
+    lines = [f"{formulation.title}" + (f"  -  {title}" if title else ""),
+             f"status: {solution.status}"
+             f"   objective ({solution.objective_name}): {solution.objective:.6g} {solution.objective_unit}"]
+    if solution.diagnosis:
+        lines.append(f"diagnosis: {solution.diagnosis}")
+    lines += ["", "Design"]
+    lines.append(_frame([
+        {"variable": v.name, "symbol": v.symbol, "value": _shown(solution.design[v.name], v.unit), "unit": v.unit,
+         "description": v.description} for v in formulation.variables]))
+    if solution.outputs:
+        lines += ["", "Derived"]
+        lines.append(_frame([
+            {"quantity": name, "value": _shown(out.value, out.unit), "unit": out.unit, "description": out.description}
+            for name, out in solution.outputs.items()]))
+    lines += ["", "Constraints (re-evaluated in float64; margin relative; elasticity = d ln objective / d ln limit)"]
+    lines.append(_frame([
+        {"constraint": c.name, "eq.": c.equation, "value": _shown(c.value, c.unit), "sense": c.sense,
+         "limit": _shown(c.limit, c.unit), "unit": c.unit, "margin": f"{c.margin:+.2e}",
+         "active": "yes" if c.active else "no", "elasticity": "-" if c.elasticity is None else f"{c.elasticity:+.4f}"}
+        for c in solution.constraints]))
+    s = solution.solver
+    lines += ["", f"solver: {s.name}  status: {s.status}  iterations: {s.iterations}  solves: {s.solves}  "
+                  f"time: {s.time_s * 1e3:.1f} ms"]
+    if solution.integer_search:
+        lines.append("integer neighbours tried: " + "; ".join(
+            ", ".join(f"{k}={v}" for k, v in entry.items() if k not in ("status", "feasible", "objective"))
+            + (f" -> {entry['objective']:.6g}" if entry["feasible"] else " -> infeasible")
+            for entry in solution.integer_search))
+    return "\n".join(lines)
+
+
+def comparison_text(table: ComparisonTable) -> str:
+    rows = []
+    for row in table.rows:
+        entry = {"quantity": row["quantity"], "unit": row["unit"]}
+        for column in table.columns:
+            entry[column] = _shown(row[column], row["unit"])
+        rows.append(entry)
+    rel = []
+    for row in table.rows:
+        entry = {"quantity": row["quantity"]}
+        for column in table.columns:
+            if column != table.baseline:
+                value = row.get(f"rel_{column}")
+                entry[column] = "-" if value is None else f"{value:+.2%}"
+        rel.append(entry)
+    lines = [f"Comparison for the {table.coupling} coupling (values in the unit of each row)", _frame(rows), "",
+             f"Relative difference against {table.baseline}", _frame(rel), "", "Columns:"]
+    lines += [f"  {name}: {note}" for name, note in table.notes.items() if name in table.columns]
+    for column, solution in table.solutions.items():
+        lines.append(f"  {column}: status {solution.status}, {solution.solver.iterations} iterations"
+                     + (f"; {solution.diagnosis}" if solution.diagnosis else ""))
+    return "\n".join(lines)
