@@ -36,6 +36,12 @@ def _shown(value: float | None, unit: str) -> str:
     return f"{from_si(value, unit):.6g}"
 
 
+def _signed(value: float | None) -> str:
+    if value is None:
+        return "-"
+    return "0" if abs(value) < 5e-5 else f"{value:+.4f}"
+
+
 def _frame(rows: list[dict]) -> str:
     return pd.DataFrame(rows).to_string(index=False) if rows else "(none)"
 
@@ -59,7 +65,7 @@ def solution_text(solution: Solution, formulation: Formulation, title: str = "")
     lines.append(_frame([
         {"constraint": c.name, "eq.": c.equation, "value": _shown(c.value, c.unit), "sense": c.sense,
          "limit": _shown(c.limit, c.unit), "unit": c.unit, "margin": f"{c.margin:+.2e}",
-         "active": "yes" if c.active else "no", "elasticity": "-" if c.elasticity is None else f"{c.elasticity:+.4f}"}
+         "active": "yes" if c.active else "no", "elasticity": _signed(c.elasticity)}
         for c in solution.constraints]))
     s = solution.solver
     lines += ["", f"solver: {s.name}  status: {s.status}  iterations: {s.iterations}  solves: {s.solves}  "

@@ -118,6 +118,7 @@ class Problem:
         p = namespace({q.name: p_case[j] for j, q in enumerate(f.quantities)})
         constraints = f.constraints(x, p)
         self.constraint_names = [c.name for c in constraints]
+        self.constraint_senses = [c.sense for c in constraints]
         g = ca.vertcat(*[c.normalised() for c in constraints])
         self._nlp = {"x": x_hat, "p": ca.vertcat(p_case, x_scale, f_scale),
                      "f": self.objective.function(x, p) / f_scale, "g": g}
@@ -250,7 +251,8 @@ class Problem:
         if slacks.sum() <= 10 * FEASIBILITY_TOL:
             return "solver_failed", ("IPOPT did not converge, yet a feasible point exists (elastic check); "
                                      "try other bounds or a start point")
-        violated = [f"{name} (short by {s:.3g} of its limit)" for name, s in zip(self.constraint_names, slacks)
+        violated = [f"{name} ({'over' if sense == '<=' else 'short of'} its limit by {s:.3g} relative)"
+                    for name, sense, s in zip(self.constraint_names, self.constraint_senses, slacks)
                     if s > 10 * FEASIBILITY_TOL]
         binding = [name for name, s, lam in zip(self.constraint_names, slacks, lam_g)
                    if s <= 10 * FEASIBILITY_TOL and lam > 1e-6]

@@ -1,0 +1,93 @@
+"""Wedge coupling: closed forms and equations against hand calculation (numbers worked out here, not by the code)."""
+
+import math
+
+import pytest
+from scipy import integrate
+
+from clutchopt.cases import load_case
+from clutchopt.formulations import wedge
+from tests.conftest import CASES
+
+# The paper's worked example, by hand.
+W = 1000 * 2 * math.pi / 60  # 104.7197551 rad/s, eq. (1)
+T_MAX = 0.5 * W / 10 + 5  # 10.2359878 N m, eqs. (5), (17)
+R1, R2, H_R, Z, F = 0.05, 0.06, 0.02, 4, 0.15
+ALPHA, GAMMA = math.radians(15), 0.785
+R_C = R2 - 2 / 3 * H_R  # 0.0466667 m, eq. (11)
+# Torque T = z * (f m w^2 r_c / sin(alpha)) * (r1 + r2)/2  =>  m = 2 T sin(alpha) / (z f w^2 r_c (r1 + r2))
+M_R = 2 * T_MAX * math.sin(ALPHA) / (Z * F * W**2 * R_C * (R1 + R2))
+
+
+@pytest.fixture(scope="module")
+def p():
+    return load_case(CASES / "wedge_paper.toml").params()
+
+
+def test_hand_values_are_what_the_notes_say():
+    assert T_MAX == pytest.approx(10.23599, rel=1e-6)
+    assert M_R == pytest.approx(0.15687, rel=1e-4)  # MODELS.md: 0.157 kg for the first form of (27)
+
+
+def test_required_torque(p):
+    assert wedge.required_torque(p.inertia, p.speed, p.acceleration_time, p.resisting_torque) == pytest.approx(T_MAX, rel=1e-12)
+
+
+def test_closed_form_weight_mass(p):
+    assert wedge.closed_form_weight_mass(p) == pytest.approx(M_R, rel=1e-12)
+
+
+def test_closed_form_finger_diameter(p):
+    # at the closed-form mass each finger carries T_max / z at lever h_n = (r1 + r2)/2, and F_fr h_n = T_max / z:
+    d_n = (32 * T_MAX / Z / (math.pi * 160e6)) ** (1 / 3)
+    assert d_n == pytest.approx(5.4616e-3, rel=1e-4)
+    assert wedge.closed_form_finger_diameter(p, M_R) == pytest.approx(d_n, rel=1e-12)
+
+
+def test_flank_pressure_of_closed_form_design(p):
+    f_u = M_R * W**2 * R_C
+    q = f_u / math.tan(ALPHA) / (GAMMA * (R2**2 - R1**2))  # N = F_u/(2 sin a) on an area gamma(r2^2-r1^2)/(2 cos a)
+    assert q == pytest.approx(0.34697e6, rel=1e-4)
+    assert wedge.flank_pressure(f_u, p.flank_angle, p.sector_angle, R1, R2) == pytest.approx(q, rel=1e-12)
+
+
+def test_paper_forms_of_eq27(p):
+    first = 2 * T_MAX * math.sin(ALPHA) / (F * Z * 2.2 * R1 * W**2 * (1.2 * R1 - 2 / 3 * H_R))
+    second = 6 * (0.5 * W + 5 * 10) * math.sin(ALPHA) / (F * Z * 2.2 * R1 * W**2 * (3 * 1.2 * R1 - 2 * H_R))
+    assert wedge.paper_eq27_first_form(p) == pytest.approx(first, rel=1e-12)
+    assert wedge.paper_eq27_second_form(p) == pytest.approx(second, rel=1e-12)
+    assert second / first == pytest.approx(10.0, rel=1e-12)  # t_p multiplies instead of dividing (errata W2)
+    assert first == pytest.approx(0.157, abs=5e-4) and second == pytest.approx(1.57, abs=5e-3)
+
+
+def test_paper_eq28_reproduces_the_printed_3_1_mm(p):
+    # the paper's arithmetic: [p] and [sigma] in MPa, m_r = 0.235 kg, the cube root read as mm
+    number = 32 * 0.15 * 0.235 * W**2 * (3 * 1.2 * 0.05 - 2 * 0.02) * 4 * math.cos(ALPHA) / (3 * math.pi * 0.785 * 0.2 * 160)
+    assert number ** (1 / 3) == pytest.approx(3.05, abs=0.01)
+    assert wedge.paper_eq28(p, 0.235) == pytest.approx(number ** (1 / 3) * 1e-3, rel=1e-12)
+
+
+def test_weight_body_matches_numerical_integration():
+    r_in, r1, r2, b, alpha, gamma, rho = 0.04, 0.05, 0.06, 0.025, math.radians(15), 0.785, 7850.0
+
+    def width(r):
+        return b if r < r1 else b - 2 * (r - r1) * math.tan(alpha)
+
+    mass = rho * integrate.dblquad(lambda r, th: width(r) * r, -gamma / 2, gamma / 2, r_in, r2, epsabs=1e-13)[0]
+    moment = rho * integrate.dblquad(lambda r, th: width(r) * r * r * math.cos(th), -gamma / 2, gamma / 2, r_in, r2,
+                                     epsabs=1e-13)[0]
+    got_mass, got_centroid = wedge.weight_body(r_in, r1, r2, b, alpha, gamma, rho)
+    assert got_mass == pytest.approx(mass, rel=1e-9)
+    assert got_centroid == pytest.approx(moment / mass, rel=1e-9)
+
+
+def test_rectangular_sector_centroid_is_the_textbook_one():
+    # alpha = 0: plain annular sector, r_c = (2 sin(g/2) / g) * (2/3) (R^3 - r^3) / (R^2 - r^2)
+    g, r, big = 0.785, 0.04, 0.06
+    expected = 2 * math.sin(g / 2) / g * 2 / 3 * (big**3 - r**3) / (big**2 - r**2)
+    assert expected == pytest.approx(0.04937, rel=1e-3)  # the paper's r2 - 2/3 h_r gives 0.04667 (errata W5)
+    assert wedge.weight_body(r, 0.05, big, 0.02, 0.0, g, 7850.0)[1] == pytest.approx(expected, rel=1e-12)
+
+
+def test_self_locking_angle():
+    assert math.degrees(wedge.self_locking_angle(0.15)) == pytest.approx(8.530765609948133, rel=1e-12)
