@@ -55,7 +55,7 @@ def solution_text(solution: Solution, formulation: Formulation, title: str = "")
     lines += ["", "Design"]
     lines.append(_frame([
         {"variable": v.name, "symbol": v.symbol, "value": _shown(solution.design[v.name], v.unit), "unit": v.unit,
-         "description": v.description} for v in formulation.variables]))
+         "at bound": solution.at_bound(v.name) or "-", "description": v.description} for v in formulation.variables]))
     if solution.outputs:
         lines += ["", "Derived"]
         lines.append(_frame([
@@ -91,7 +91,7 @@ def comparison_text(table: ComparisonTable) -> str:
         for column in table.columns:
             if column != table.baseline:
                 value = row.get(f"rel_{column}")
-                entry[column] = "-" if value is None else f"{value:+.2%}"
+                entry[column] = "-" if value is None else ("0" if abs(value) < 5e-5 else f"{value:+.2%}")
         rel.append(entry)
     lines = [f"Comparison for the {table.coupling} coupling (values in the unit of each row)", _frame(rows), "",
              f"Relative difference against {table.baseline}", _frame(rel), "", "Columns:"]

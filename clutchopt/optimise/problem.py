@@ -77,6 +77,16 @@ class Solution:
     solver: SolverInfo
     diagnosis: str | None = None
     integer_search: list[dict] = field(default_factory=list)
+    bounds: dict[str, tuple[float, float]] = field(default_factory=dict)  # search box of each variable (SI)
+
+    def at_bound(self, name: str) -> str:
+        """"fixed", "lower", "upper" (within 1e-7 relative) or "" for a design variable."""
+        lo, hi = self.bounds[name]
+        value = self.design[name]
+        tol = 1e-7 * abs(value) if value else 1e-12
+        if lo == hi:
+            return "fixed"
+        return "lower" if value - lo <= tol else "upper" if hi - value <= tol else ""
 
     @property
     def feasible(self) -> bool:
@@ -98,6 +108,7 @@ class Solution:
             "solver": vars(self.solver),
             "diagnosis": self.diagnosis,
             "integer_search": self.integer_search,
+            "bounds": {name: list(pair) for name, pair in self.bounds.items()},
         }
 
 
@@ -229,8 +240,9 @@ class Problem:
                          f"{-worst.margin:.3g} (relative)")
         else:
             status, diagnosis = self.diagnose(run["p"], lower / scale, upper / scale, run["x"], scale)
+        bounds = {n: (float(lo), float(hi)) for n, lo, hi in zip(names, lower, upper)}
         return Solution(f.coupling, f.mode, self.objective.name, self.objective.unit, status, objective, design,
-                        evaluate_outputs(f, design, params), checks, info, diagnosis, search)
+                        evaluate_outputs(f, design, params), checks, info, diagnosis, search, bounds)
 
     # --- infeasibility diagnosis ------------------------------------------------------------------------------------
     def diagnose(self, p_vector, lbx, ubx, x0, scale) -> tuple[str, str]:
