@@ -1,0 +1,57 @@
+"""Quantities in case files: units to SI, and one clear error per bad value."""
+
+import math
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from clutchopt.errors import InputError
+from clutchopt.units import from_si, to_si
+
+
+@pytest.mark.parametrize("text, unit, si", [
+    ("1000 rpm", "rpm", 1000 * 2 * math.pi / 60),
+    ("104.72 rad/s", "rpm", 104.72),
+    ("15 deg", "deg", 15 * math.pi / 180),
+    ("0.785 rad", "deg", 0.785),
+    ("4 MPa", "MPa", 4e6),
+    ("4 N/mm^2", "MPa", 4e6),
+    ("0.5 kg*m^2", "kg*m^2", 0.5),
+    ("20 mm", "mm", 0.02),
+    ("5 N*m", "N*m", 5.0),
+    ("3 EUR/kg", "EUR/kg", 3.0),
+    ("0.05 EUR/cm^2", "EUR/cm^2", 500.0),
+    ("1.2", "", 1.2),
+])
+def test_text_to_si(text, unit, si):
+    assert to_si("field", text, unit) == pytest.approx(si, rel=1e-12)
+
+
+@pytest.mark.parametrize("raw, unit, si", [(0.5, "kg*m^2", 0.5), (10, "s", 10.0), (0.26, "deg", 0.26), (4e6, "MPa", 4e6)])
+def test_bare_numbers_are_si(raw, unit, si):
+    assert to_si("field", raw, unit) == si
+
+
+@pytest.mark.parametrize("raw, words", [
+    ("4 kg", "expected a pressure or stress"),
+    ("4 m", "which is a length"),
+    ("four MPa", "cannot read"),
+    ("nan MPa", "finite"),
+    ("inf MPa", "finite"),
+    (float("nan"), "finite"),
+    (True, "boolean"),
+    ([4], "expected"),
+])
+def test_bad_values_name_the_field(raw, words):
+    with pytest.raises(InputError) as info:
+        to_si("material.allowable_pressure", raw, "MPa")
+    message = str(info.value)
+    assert message.startswith("material.allowable_pressure: ") and words in message and "\n" not in message
+
+
+@given(st.floats(min_value=1e-6, max_value=1e6))
+def test_millimetres_round_trip(value):
+    si = to_si("x", f"{value!r} mm", "mm")
+    assert si == pytest.approx(value / 1000, rel=1e-12)
+    assert from_si(si, "mm") == pytest.approx(value, rel=1e-12)
