@@ -17,6 +17,9 @@ Two posed problems:
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
+from types import SimpleNamespace
+from typing import Any
 
 from clutchopt.backend import arctan, cbrt, cos, sin, tan
 from clutchopt.model import (
@@ -186,82 +189,104 @@ def paper_eq28(p, weight_mass):
     return cbrt(number) * 1e-3
 
 
-# --- Paper mode --------------------------------------------------------------------------------------------------
+# --- The state of a set of weights, shared by both modes ----------------------------------------------------------
+@dataclass(frozen=True)
+class WeightSet:
+    """z weights at speed: where the modes differ is only how this is obtained (given geometry or real bodies)."""
+
+    count: Any
+    r1: Any
+    r2: Any
+    flank_angle: Any
+    sector_angle: Any
+    weight_mass: Any
+    centroid_radius: Any
+    finger_diameter: Any
+    speed: Any
+    friction_coefficient: Any
+
+    @property
+    def centrifugal(self):
+        return centrifugal_force(self.weight_mass, self.speed, self.centroid_radius)
+
+    @property
+    def friction(self):
+        return friction_force(self.friction_coefficient, self.centrifugal, self.flank_angle)
+
+
+def _duty_constraints(w: WeightSet, p):
+    """Torque (15)-(16), wear (13) and finger bending (19): the paper's three requirements."""
+    return [
+        at_least("torque", friction_torque(w.count, w.friction, w.r1, w.r2),
+                 required_torque(p.inertia, p.speed, p.acceleration_time, p.resisting_torque),
+                 equation="(15)-(16)", unit="N*m", description="friction torque covers T_max"),
+        at_most("flank_pressure", flank_pressure(w.centrifugal, w.flank_angle, w.sector_angle, w.r1, w.r2),
+                p.allowable_pressure, equation="(13)", unit="MPa", description="flank pressure within [p]"),
+        at_most("finger_bending", finger_bending_stress(w.friction, mean_flank_radius(w.r1, w.r2), w.finger_diameter),
+                p.allowable_bending_stress, equation="(19)", unit="MPa", description="finger bending within [sigma]"),
+    ]
+
+
+def _total_mass(w: WeightSet, p):
+    return w.count * (w.weight_mass + finger_mass(p.density, w.finger_diameter, mean_flank_radius(w.r1, w.r2)))
+
+
+def _cost(w: WeightSet, p):
+    return cost(p, _total_mass(w, p), w.count, flank_area(w.sector_angle, w.r1, w.r2, w.flank_angle))
+
+
+def _duty_outputs(w: WeightSet, p):
+    return {
+        "required_torque": Output(required_torque(p.inertia, p.speed, p.acceleration_time, p.resisting_torque),
+                                  "N*m", "T_max, eqs. (5), (17)"),
+        "torque": Output(friction_torque(w.count, w.friction, w.r1, w.r2), "N*m", "friction torque, eq. (15)"),
+        "flank_pressure": Output(flank_pressure(w.centrifugal, w.flank_angle, w.sector_angle, w.r1, w.r2), "MPa",
+                                 "q, eq. (13)"),
+        "weight_mass": Output(w.weight_mass, "kg", "m_r, one weight"),
+        "centroid_radius": Output(w.centroid_radius, "mm", "r_c of a weight"),
+        "centrifugal_force": Output(w.centrifugal, "N", "F_u per weight, eq. (10)"),
+        "total_mass": Output(_total_mass(w, p), "kg", "z (m_r + finger)"),
+        "cost": Output(_cost(w, p), "EUR", "material + parts + flank grinding"),
+    }
+
+
+def _formulation(mode, title, variables, weight_set, extra_constraints=lambda w, x, p: [],
+                 extra_outputs=lambda w, x, p: {}):
+    """A wedge formulation from the way its mode obtains the weight set."""
+    return Formulation(
+        coupling="wedge",
+        mode=mode,
+        title=title,
+        quantities=QUANTITIES,
+        variables=variables,
+        constraints=lambda x, p: _duty_constraints(w := weight_set(x, p), p) + extra_constraints(w, x, p),
+        objectives=(
+            Objective("mass", "kg", "weights and fingers, z (m_r + m_finger)", lambda x, p: _total_mass(weight_set(x, p), p)),
+            Objective("cost", "EUR", "material, parts and flank grinding", lambda x, p: _cost(weight_set(x, p), p)),
+        ),
+        outputs=lambda x, p: {**_duty_outputs(w := weight_set(x, p), p), **extra_outputs(w, x, p)},
+    )
+
+
+# --- Paper mode: geometry given, r_c = r2 - 2/3 h_r, m_r and d_n free ----------------------------------------------
 PAPER_VARIABLES = (
     Variable("weight_mass", "kg", "mass of one weight", "m_r", lower=1e-6, upper=1e4, above=0),
     Variable("finger_diameter", "mm", "finger diameter", "d_n", lower=si(0.1, "mm"), upper=si(500, "mm"), above=0),
 )
 
 
-def _paper_state(x, p):
+def _paper_weight_set(x, p):
     r1 = p.flank_inner_radius
     r2 = p.radius_ratio * r1
-    r_c = paper_centroid_radius(r2, p.weight_height)
-    centrifugal = centrifugal_force(x.weight_mass, p.speed, r_c)
-    friction = friction_force(p.friction_coefficient, centrifugal, p.flank_angle)
-    return r1, r2, r_c, centrifugal, friction
+    return WeightSet(p.weight_count, r1, r2, p.flank_angle, p.sector_angle, x.weight_mass,
+                     paper_centroid_radius(r2, p.weight_height), x.finger_diameter, p.speed, p.friction_coefficient)
 
 
-def _duty_constraints(x, p, z, r1, r2, alpha, gamma, centrifugal, friction):
-    """Torque (15)-(16), wear (13) and finger bending (19): common to both modes."""
-    return [
-        at_least("torque", friction_torque(z, friction, r1, r2),
-                 required_torque(p.inertia, p.speed, p.acceleration_time, p.resisting_torque),
-                 equation="(15)-(16)", unit="N*m", description="friction torque covers T_max"),
-        at_most("flank_pressure", flank_pressure(centrifugal, alpha, gamma, r1, r2), p.allowable_pressure,
-                equation="(13)", unit="MPa", description="flank pressure within [p]"),
-        at_most("finger_bending", finger_bending_stress(friction, mean_flank_radius(r1, r2), x.finger_diameter),
-                p.allowable_bending_stress, equation="(19)", unit="MPa", description="finger bending within [sigma]"),
-    ]
+PAPER = _formulation("paper", "Wedge CFC, paper assumptions: geometry given, m_r and d_n free", PAPER_VARIABLES,
+                     _paper_weight_set)
 
 
-def _paper_constraints(x, p):
-    r1, r2, _, centrifugal, friction = _paper_state(x, p)
-    return _duty_constraints(x, p, p.weight_count, r1, r2, p.flank_angle, p.sector_angle, centrifugal, friction)
-
-
-def _paper_total_mass(x, p):
-    r1 = p.flank_inner_radius
-    h_n = mean_flank_radius(r1, p.radius_ratio * r1)
-    return p.weight_count * (x.weight_mass + finger_mass(p.density, x.finger_diameter, h_n))
-
-
-def _paper_cost(x, p):
-    r1 = p.flank_inner_radius
-    area = flank_area(p.sector_angle, r1, p.radius_ratio * r1, p.flank_angle)
-    return cost(p, _paper_total_mass(x, p), p.weight_count, area)
-
-
-def _paper_outputs(x, p):
-    r1, r2, r_c, centrifugal, friction = _paper_state(x, p)
-    return {
-        "required_torque": Output(required_torque(p.inertia, p.speed, p.acceleration_time, p.resisting_torque),
-                                  "N*m", "T_max, eqs. (5), (17)"),
-        "torque": Output(friction_torque(p.weight_count, friction, r1, r2), "N*m", "friction torque, eq. (15)"),
-        "flank_pressure": Output(flank_pressure(centrifugal, p.flank_angle, p.sector_angle, r1, r2), "MPa", "q, eq. (13)"),
-        "centroid_radius": Output(r_c, "mm", "r_c = r2 - 2/3 h_r, eq. (11)"),
-        "centrifugal_force": Output(centrifugal, "N", "F_u per weight, eq. (10)"),
-        "total_mass": Output(_paper_total_mass(x, p), "kg", "z (m_r + finger)"),
-        "cost": Output(_paper_cost(x, p), "EUR", "material + parts + flank grinding"),
-    }
-
-
-PAPER = Formulation(
-    coupling="wedge",
-    mode="paper",
-    title="Wedge CFC, paper assumptions: geometry given, m_r and d_n free",
-    quantities=QUANTITIES,
-    variables=PAPER_VARIABLES,
-    constraints=_paper_constraints,
-    objectives=(
-        Objective("mass", "kg", "weights and fingers, z (m_r + m_finger)", _paper_total_mass),
-        Objective("cost", "EUR", "material, parts and flank grinding", _paper_cost),
-    ),
-    outputs=_paper_outputs,
-)
-
-
-# --- Geometry mode -------------------------------------------------------------------------------------------------
+# --- Geometry mode: weights as real bodies -------------------------------------------------------------------------
 V = Variable
 GEOMETRY_VARIABLES = (
     V("flank_inner_radius", "mm", "inner radius of the flanks", "r_1", lower=si(5, "mm"), upper=si(2000, "mm"), above=0),
@@ -277,109 +302,63 @@ GEOMETRY_VARIABLES = (
 )
 
 
-def _geometry_state(x, p):
+def _geometry_weight_set(x, p):
     r1 = x.flank_inner_radius
     r2 = x.radius_ratio * r1
-    r_in = r2 - x.weight_height
-    mass, r_c = weight_body(r_in, r1, r2, x.weight_width, x.flank_angle, x.sector_angle, p.density)
-    centrifugal = centrifugal_force(mass, p.speed, r_c)
-    friction = friction_force(p.friction_coefficient, centrifugal, x.flank_angle)
-    return r1, r2, r_in, mass, r_c, centrifugal, friction
+    mass, r_c = weight_body(r2 - x.weight_height, r1, r2, x.weight_width, x.flank_angle, x.sector_angle, p.density)
+    return WeightSet(x.weight_count, r1, r2, x.flank_angle, x.sector_angle, mass, r_c, x.finger_diameter, p.speed,
+                     p.friction_coefficient)
 
 
-def _geometry_constraints(x, p):
-    r1, r2, r_in, _, _, centrifugal, friction = _geometry_state(x, p)
-    z, alpha, gamma, b = x.weight_count, x.flank_angle, x.sector_angle, x.weight_width
-    return _duty_constraints(x, p, z, r1, r2, alpha, gamma, centrifugal, friction) + [
-        at_least("weight_covers_flank", x.weight_height, r2 - r1, equation="(26)", unit="mm", scale=r1,
+def _constructive_constraints(w: WeightSet, x, p):
+    """Rules that make the optimum a part one can build: (26), fit round the shaft, release, housing, fits."""
+    r_in, b = w.r2 - x.weight_height, x.weight_width
+    return [
+        at_least("weight_covers_flank", x.weight_height, w.r2 - w.r1, equation="(26)", unit="mm", scale=w.r1,
                  description="h_r >= r2 - r1"),
-        at_most("sectors_fit", z * (gamma + p.sector_clearance), 2 * math.pi, equation="below (23)", unit="deg",
-                description="z (gamma + clearance) <= 2 pi"),
-        at_least("not_self_locking", alpha, self_locking_angle(p.friction_coefficient) + p.self_locking_margin,
+        at_most("sectors_fit", w.count * (w.sector_angle + p.sector_clearance), 2 * math.pi, equation="below (23)",
+                unit="deg", description="z (gamma + clearance) <= 2 pi"),
+        at_least("not_self_locking", w.flank_angle, self_locking_angle(p.friction_coefficient) + p.self_locking_margin,
                  equation="above (24)", unit="deg", description="alpha >= atan f + margin"),
-        at_most("outer_diameter", 2 * (r2 + p.shell_thickness), p.outer_diameter_max, equation="case", unit="mm",
+        at_most("outer_diameter", 2 * (w.r2 + p.shell_thickness), p.outer_diameter_max, equation="case", unit="mm",
                 description="2 (r2 + shell) <= D_max"),
-        at_least("top_land_width", b - 2 * (r2 - r1) * tan(alpha), p.min_top_width, equation="geometry", unit="mm",
-                 scale=b, description="trapezoid top b - 2 (r2 - r1) tan(alpha) >= min"),
-        at_least("hub_clearance", r_in, p.hub_radius, equation="fig. 2", unit="mm", scale=r1,
+        at_least("top_land_width", b - 2 * (w.r2 - w.r1) * tan(w.flank_angle), p.min_top_width, equation="geometry",
+                 unit="mm", scale=b, description="trapezoid top b - 2 (r2 - r1) tan(alpha) >= min"),
+        at_least("hub_clearance", r_in, p.hub_radius, equation="fig. 2", unit="mm", scale=w.r1,
                  description="inner edge r2 - h_r clears the hub"),
-        at_most("finger_fits_width", x.finger_diameter, p.finger_fit_ratio * b, equation="geometry", unit="mm",
+        at_most("finger_fits_width", w.finger_diameter, p.finger_fit_ratio * b, equation="geometry", unit="mm",
                 scale=b, description="d_n <= ratio * b"),
-        at_least("finger_guide_length", x.weight_height, p.guide_length_ratio * x.finger_diameter,
-                 equation="geometry", unit="mm", scale=r1, description="h_r >= ratio * d_n"),
-        at_most("finger_fits_chord", x.finger_diameter, p.finger_fit_ratio * 2 * r_in * sin(gamma / 2),
-                equation="geometry", unit="mm", scale=r1, description="d_n <= ratio * chord at r_in"),
+        at_least("finger_guide_length", x.weight_height, p.guide_length_ratio * w.finger_diameter,
+                 equation="geometry", unit="mm", scale=w.r1, description="h_r >= ratio * d_n"),
+        at_most("finger_fits_chord", w.finger_diameter, p.finger_fit_ratio * 2 * r_in * sin(w.sector_angle / 2),
+                equation="geometry", unit="mm", scale=w.r1, description="d_n <= ratio * chord at r_in"),
     ]
 
 
-def _geometry_weight_and_fingers(x, p):
-    r1, r2, _, mass, *_ = _geometry_state(x, p)
-    return mass, finger_mass(p.density, x.finger_diameter, mean_flank_radius(r1, r2))
-
-
-def _geometry_total_mass(x, p):
-    mass, finger = _geometry_weight_and_fingers(x, p)
-    return x.weight_count * (mass + finger)
-
-
-def _geometry_cost(x, p):
-    r1 = x.flank_inner_radius
-    area = flank_area(x.sector_angle, r1, x.radius_ratio * r1, x.flank_angle)
-    return cost(p, _geometry_total_mass(x, p), x.weight_count, area)
-
-
-def _geometry_outputs(x, p):
-    r1, r2, r_in, mass, r_c, centrifugal, friction = _geometry_state(x, p)
+def _geometry_outputs(w: WeightSet, x, p):
     return {
-        "required_torque": Output(required_torque(p.inertia, p.speed, p.acceleration_time, p.resisting_torque),
-                                  "N*m", "T_max, eqs. (5), (17)"),
-        "torque": Output(friction_torque(x.weight_count, friction, r1, r2), "N*m", "friction torque, eq. (15)"),
-        "flank_pressure": Output(flank_pressure(centrifugal, x.flank_angle, x.sector_angle, r1, r2), "MPa", "q, eq. (13)"),
-        "weight_mass": Output(mass, "kg", "m_r of one weight, from its geometry"),
-        "centroid_radius": Output(r_c, "mm", "exact centroid radius of a weight"),
-        "paper_centroid_radius": Output(paper_centroid_radius(r2, x.weight_height), "mm", "r2 - 2/3 h_r, eq. (11)"),
-        "outer_flank_radius": Output(r2, "mm", "r2 = lambda r1"),
-        "inner_weight_radius": Output(r_in, "mm", "r2 - h_r"),
-        "centrifugal_force": Output(centrifugal, "N", "F_u per weight, eq. (10)"),
-        "total_mass": Output(_geometry_total_mass(x, p), "kg", "z (m_r + finger)"),
-        "cost": Output(_geometry_cost(x, p), "EUR", "material + parts + flank grinding"),
+        "paper_centroid_radius": Output(paper_centroid_radius(w.r2, x.weight_height), "mm", "r2 - 2/3 h_r, eq. (11)"),
+        "outer_flank_radius": Output(w.r2, "mm", "r2 = lambda r1"),
+        "inner_weight_radius": Output(w.r2 - x.weight_height, "mm", "r2 - h_r"),
     }
 
 
-GEOMETRY = Formulation(
-    coupling="wedge",
-    mode="geometry",
-    title="Wedge CFC, weights as real bodies: geometry free",
-    quantities=QUANTITIES,
-    variables=GEOMETRY_VARIABLES,
-    constraints=_geometry_constraints,
-    objectives=(
-        Objective("mass", "kg", "weights and fingers, z (m_r + m_finger)", _geometry_total_mass),
-        Objective("cost", "EUR", "material, parts and flank grinding", _geometry_cost),
-    ),
-    outputs=_geometry_outputs,
-)
+GEOMETRY = _formulation("geometry", "Wedge CFC, weights as real bodies: geometry free", GEOMETRY_VARIABLES,
+                        _geometry_weight_set, _constructive_constraints, _geometry_outputs)
 
 
 # --- Closed forms of the consistent model (paper assumptions) -------------------------------------------------------
 def closed_form_weight_mass(p):
     """m_r = 2 T_max sin(alpha) / (f z (r1 + r2) w^2 r_c): eq. (27) from the consistent (15)-(16)."""
-    r1 = p.flank_inner_radius
-    r2 = p.radius_ratio * r1
+    per_kg = _paper_weight_set(SimpleNamespace(weight_mass=1.0, finger_diameter=math.nan), p)
     t_max = required_torque(p.inertia, p.speed, p.acceleration_time, p.resisting_torque)
-    friction_per_kg = friction_force(p.friction_coefficient, centrifugal_force(1.0, p.speed,
-                                     paper_centroid_radius(r2, p.weight_height)), p.flank_angle)
-    return t_max / friction_torque(p.weight_count, friction_per_kg, r1, r2)
+    return t_max / friction_torque(per_kg.count, per_kg.friction, per_kg.r1, per_kg.r2)
 
 
 def closed_form_finger_diameter(p, weight_mass):
     """d_n = cbrt(32 F_fr h_n / (pi [sigma])): eq. (28) from the consistent (19)."""
-    r1 = p.flank_inner_radius
-    r2 = p.radius_ratio * r1
-    friction = friction_force(p.friction_coefficient,
-                              centrifugal_force(weight_mass, p.speed, paper_centroid_radius(r2, p.weight_height)),
-                              p.flank_angle)
-    return cbrt(32.0 * friction * mean_flank_radius(r1, r2) / (math.pi * p.allowable_bending_stress))
+    w = _paper_weight_set(SimpleNamespace(weight_mass=weight_mass, finger_diameter=math.nan), p)
+    return cbrt(32.0 * w.friction * mean_flank_radius(w.r1, w.r2) / (math.pi * p.allowable_bending_stress))
 
 
 # --- Comparison: paper as printed, paper formulas, consistent closed form, NLP -------------------------------------
@@ -395,9 +374,7 @@ ROWS = (
 
 def _paper_design_rows(p, weight_mass, finger_diameter):
     """Rows for a design at the paper's geometry, evaluated with the consistent model."""
-    from types import SimpleNamespace
-
-    outputs = _paper_outputs(SimpleNamespace(weight_mass=weight_mass, finger_diameter=finger_diameter), p)
+    outputs = PAPER.outputs(SimpleNamespace(weight_mass=weight_mass, finger_diameter=finger_diameter), p)
     return {"weight_mass": weight_mass, "finger_diameter": finger_diameter,
             "flank_pressure": outputs["flank_pressure"].value, "torque": outputs["torque"].value,
             "weight_count": p.weight_count, "total_mass": outputs["total_mass"].value}
@@ -418,7 +395,7 @@ def _references(p):
 
 
 def _rows_from_design(mode, design, outputs, p):
-    return {"weight_mass": outputs.get("weight_mass", design.get("weight_mass")),
+    return {"weight_mass": outputs["weight_mass"],
             "finger_diameter": design["finger_diameter"],
             "flank_pressure": outputs["flank_pressure"], "torque": outputs["torque"],
             "weight_count": design.get("weight_count", p.weight_count), "total_mass": outputs["total_mass"]}
