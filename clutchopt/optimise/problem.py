@@ -47,7 +47,7 @@ class SolverOptions:
             "ipopt.acceptable_tol": self.tol * 1e2,
             "ipopt.acceptable_constr_viol_tol": self.tol * 1e2,
             "ipopt.max_iter": self.max_iter,
-            "ipopt.bound_relax_factor": 0.0,
+            "ipopt.bound_relax_factor": 1e-9,
             "ipopt.print_level": 0,
             "ipopt.sb": "yes",
             "print_time": False,
@@ -152,30 +152,40 @@ class Problem:
             x0.append(min(max(guess, lo), hi))
         return np.array(lower), np.array(upper), np.array(x0)
 
-    def _case_vector(self, case: Case) -> np.ndarray:
-        params = case.params()
-        return np.array([getattr(params, q.name) for q in self.formulation.quantities], dtype=float)
+    def _scaling(self, params: SimpleNamespace, x: np.ndarray, lower: np.ndarray, upper: np.ndarray):
+        """Variable scales |x| (or the bound magnitude where x = 0), objective scale |f(x)|, the NLP parameters."""
+        scale = np.where(np.abs(x) > 0, np.abs(x), np.maximum(np.abs(lower), np.abs(upper)))
+        scale = np.where(np.isfinite(scale) & (scale > 0), scale, 1.0)
+        design = dict(zip((v.name for v in self.formulation.variables), x))
+        f0 = abs(evaluate_objective(self.formulation, self.objective.name, design, params))
+        f_scale = f0 if math.isfinite(f0) and f0 > 0 else 1.0
+        return scale, f_scale, np.concatenate([list(vars(params).values()), scale, [f_scale]])
+
+    def _params(self, case: Case) -> SimpleNamespace:
+        """The case's SI values of this formulation's quantities; those the case leaves out read as NaN."""
+        return namespace({q.name: case.values.get(q.name, math.nan) for q in self.formulation.quantities})
 
     # --- solving ---------------------------------------------------------------------------------------------------
     def solve(self, case: Case, start: dict[str, float] | None = None) -> Solution:
         lower, upper, x0 = self._bounds_and_start(case, start)
-        params = case.params()
-        scale = np.where(np.abs(x0) > 0, np.abs(x0), np.maximum(np.abs(lower), np.abs(upper)))
-        scale = np.where(np.isfinite(scale) & (scale > 0), scale, 1.0)
+        params = self._params(case)
         names = [v.name for v in self.formulation.variables]
-        f0 = abs(evaluate_objective(self.formulation, self.objective.name, dict(zip(names, x0)), params))
-        f_scale = f0 if math.isfinite(f0) and f0 > 0 else 1.0
-        p_vector = np.concatenate([self._case_vector(case), scale, [f_scale]])
-
-        runs = []
-        relaxed = self._run(p_vector, lower / scale, upper / scale, x0 / scale, None)
-        runs.append(relaxed)
+        scale, f_scale, p_vector = self._scaling(params, x0, lower, upper)
+        runs = [self._run(p_vector, lower / scale, upper / scale, x0 / scale, None)]
+        x_opt = runs[-1]["x"] * scale
+        off = (np.abs(x_opt) > 0) & ((np.abs(x_opt) > 10 * scale) | (np.abs(x_opt) < 0.1 * scale))
+        if runs[-1]["ok"] and off.any():  # the start was far off: solve again, scaled by the first optimum
+            scale, f_scale, p_vector = self._scaling(params, x_opt, lower, upper)
+            runs.append(self._run(p_vector, lower / scale, upper / scale, x_opt / scale, None))
+        relaxed = runs[-1]
         integer = [i for i, v in enumerate(self.formulation.variables) if v.integer and lower[i] < upper[i]]
         kept = relaxed
         search = []
-        if integer and relaxed["ok"]:
+        for reach in (1, 2) if integer and relaxed["ok"] else ():
             kept = None
-            for combo in self._integer_neighbours(relaxed["x"] * scale, integer, lower, upper):
+            for combo in self._integer_neighbours(relaxed["x"] * scale, integer, lower, upper, reach):
+                if any(all(entry[names[i]] == c for i, c in zip(integer, combo)) for entry in search):
+                    continue
                 lo, hi = lower.copy(), upper.copy()
                 lo[integer] = hi[integer] = combo
                 run = self._run(p_vector, lo / scale, hi / scale, np.clip(relaxed["x"], lo / scale, hi / scale), relaxed)
@@ -187,8 +197,13 @@ class Problem:
                                "status": run["status"], "feasible": feasible, "objective": value})
                 if run["ok"] and feasible and (kept is None or value < kept["value"]):
                     kept = {**run, "value": value}
-            if kept is None:
-                kept = runs[-1]
+            if kept is not None:
+                break
+        if kept is None:  # the relaxation is feasible, no integer near it is
+            tried = "; ".join(", ".join(f"{k}={v}" for k, v in e.items() if k in names) for e in search)
+            return self._finish(case, runs[-1], runs, scale, f_scale, lower, upper, search,
+                                ("infeasible", f"infeasible in integers: the continuous relaxation is feasible "
+                                 f"but none of the integer neighbours is ({tried})"))
         return self._finish(case, kept, runs, scale, f_scale, lower, upper, search)
 
     def _run(self, p_vector, lbx, ubx, x0, warm):
@@ -215,9 +230,9 @@ class Problem:
             choices.append(options)
         return [np.array(combo, dtype=float) for combo in itertools.product(*choices)]
 
-    def _finish(self, case, run, runs, scale, f_scale, lower, upper, search) -> Solution:
+    def _finish(self, case, run, runs, scale, f_scale, lower, upper, search, verdict=None) -> Solution:
         f = self.formulation
-        params = case.params()
+        params = self._params(case)
         names = [v.name for v in f.variables]
         design = {n: float(value) for n, value in zip(names, run["x"] * scale)}
         for i in (i for i, v in enumerate(f.variables) if v.integer):
@@ -231,7 +246,9 @@ class Problem:
                           len(runs))
         feasible = all(c.feasible for c in checks)
         diagnosis = None
-        if run["ok"] and feasible:
+        if verdict is not None:
+            status, diagnosis = verdict
+        elif run["ok"] and feasible:
             status = "optimal"
         elif run["ok"]:
             status = "unverified"

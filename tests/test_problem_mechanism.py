@@ -1,0 +1,63 @@
+"""The solver layer on small synthetic formulations whose answers are known exactly."""
+
+import math
+
+import pytest
+
+from clutchopt.cases import Case
+from clutchopt.model import Formulation, Objective, Quantity, Variable, at_least, at_most
+from clutchopt.optimise import Problem
+
+
+def _toy(lower_n=2.2, upper_n=2.8):
+    """min a*x + n  s.t.  x*n >= demand, n in [lower_n, upper_n] by constraints, n integer."""
+    quantities = (Quantity("demand", "N*m", "required product"), Quantity("a", "", "price of x"))
+    variables = (Variable("x", "m", "continuous", lower=1e-15, upper=1e15),
+                 Variable("n", "", "integer count", lower=1, upper=10, integer=True))
+    return Formulation(
+        coupling="toy", mode="toy", title="toy", quantities=quantities, variables=variables,
+        constraints=lambda x, p: [at_least("product", x.x * x.n, p.demand, equation="-"),
+                                  at_least("n_low", x.n, lower_n, equation="-"),
+                                  at_most("n_high", x.n, upper_n, equation="-")],
+        objectives=(Objective("mass", "kg", "a x + n", lambda x, p: p.a * x.x + x.n),),
+    )
+
+
+@pytest.mark.parametrize("demand", [1e-9, 1e-6, 1.0, 1e3, 1e6, 1e9])
+def test_same_answer_at_every_scale(demand):
+    # with a = 10/demand the objective is 10/n + n at x = demand/n: best integer n = 3 (6.33 against 6.5 at n = 4),
+    # whatever the magnitude of x; the default start (geometric mean of the x bounds) is far off for most demands
+    problem = Problem(_toy(lower_n=1.0, upper_n=10.0))
+    solution = problem.solve(Case("toy", "", {"demand": demand, "a": 10.0 / demand}))
+    assert solution.status == "optimal"
+    assert solution.design["n"] == 3
+    assert solution.design["x"] == pytest.approx(demand / 3, rel=1e-8)
+    assert solution.objective == pytest.approx(10 / 3 + 3, rel=1e-10)
+    assert solution.worst_violation <= 1e-8
+
+
+def test_integer_infeasible_although_relaxation_is_feasible():
+    problem = Problem(_toy(lower_n=2.2, upper_n=2.8))
+    solution = problem.solve(Case("toy", "", {"demand": 5.0, "a": 1.0}))
+    assert solution.status == "infeasible"
+    assert "integer" in solution.diagnosis and "n=2" in solution.diagnosis and "n=3" in solution.diagnosis
+
+
+def test_conflicting_constraints_are_named():
+    problem = Problem(_toy(lower_n=3.5, upper_n=3.2))
+    solution = problem.solve(Case("toy", "", {"demand": 5.0, "a": 1.0}))
+    assert solution.status == "infeasible"
+    assert "n_low" in solution.diagnosis and "n_high" in solution.diagnosis
+    assert "product" not in solution.diagnosis.split("together with")[0]
+
+
+def test_elasticity_matches_the_analytic_one():
+    # n fixed at 4 (bounds): f = a demand / 4 + 4, so d ln f / d ln demand = (a demand/4) / f
+    problem = Problem(_toy(lower_n=1.0, upper_n=10.0))
+    case = Case("toy", "", {"demand": 100.0, "a": 3.0}, bounds={"n": (4.0, 4.0)})
+    solution = problem.solve(case)
+    product = next(c for c in solution.constraints if c.name == "product")
+    f = 3.0 * 100.0 / 4 + 4
+    assert solution.objective == pytest.approx(f, rel=1e-9)
+    assert product.active and product.elasticity == pytest.approx(75.0 / f, rel=1e-6)
+    assert math.isclose(solution.design["n"], 4.0) and solution.at_bound("n") == "fixed"
