@@ -13,7 +13,7 @@ MODULES = {
 
     # "lever": "clutchopt.formulations.lever",
 
-    # "cable": "clutchopt.formulations.cable",
+    "cable": "clutchopt.formulations.cable",
 }
 
 
