@@ -24,7 +24,7 @@ from __future__ import annotations
 import math
 from types import SimpleNamespace
 
-import numpy as np
+from scipy.optimize import brentq
 
 from clutchopt.backend import arctan, cbrt, cos, fmax, sin, sqrt, tan
 from clutchopt.errors import InputError
@@ -351,6 +351,7 @@ def _not_self_locking(name, lead_angle, c: CableCoupling, which):
 
 def _constraints(x, p):
     c = CableCoupling(x, p)
+    pull = p.longitudinal_stiffness * p.elongation
     return [
         at_least("hub_thread_drive", c.axial_force, c.load, equation="(1)-(7)", unit="N",
                  description="F_a = F_i / tan(beta + phi') covers F_nk + F_pr"),
@@ -359,6 +360,9 @@ def _constraints(x, p):
                 description="flank pressure of the hub thread within [q]"),
         at_least("hub_thread_turns", c.hub_turns, p.min_engaged_turns, equation="below (16)",
                  description="z_e = H / p turns engaged in the hub"),
+        at_least("weight_pulls_cable", c.weight_force, pull, equation="(8)-(9)", unit="N",
+                 scale=pull + 2.0 * p.torsional_stiffness * p.cable_twist / c.weight_diameter,
+                 description="F_c exceeds the cable's pull c_kn x_2: thread 16 is driven outwards"),
         at_least("weight_turns_cable", c.weight_torque, p.torsional_stiffness * p.cable_twist, equation="(8)-(9), (12)",
                  unit="N*m", description="torque thread 16 turns the weight with covers c_kk phi_1"),
         _not_self_locking("weight_thread_not_self_locking", x.weight_lead_angle, c, "weight"),
@@ -454,18 +458,29 @@ def hub_lead_angle_optimum(p, bounds=LEAD_ANGLE_BOUNDS["lead_angle"]):
 
 
 def _weight_wear_interval(p, friction_angle):
-    """tan(beta_w) interval where the weight thread's pressure at the optimum is within [q].
+    """(lowest, highest) beta_w at which the weight thread's pressure at the optimum is within [q]; None if none.
 
-    With the weight's drive active the thread carries 2 c_kk phi_1 / (d_2w tan(beta_w - phi')), so
-    q = K t^2 (1 + t u) / (t - u) with t = tan beta_w, u = tan phi', K = c_kk phi_1^3 / (2 pi x_2^2 (h/p) H_w):
-    q = [q] is the cubic K u t^3 + K t^2 - [q] t + [q] u = 0."""
+    With the weight's drive active the thread carries 2 c_kk phi_1 / (d_2w tan(beta_w - phi')) on
+    d_2w = 2 x_2 / (phi_1 tan beta_w), so with s = tan(beta_w - phi'), u = tan phi' and
+    K = c_kk phi_1^3 / (2 pi x_2^2 (h/p) H_w), eq. (16) reads q = K (u + s)^2 / (s (1 - u s)^2) on 0 < s < 1/u.
+    q <= [q] where P(s) = [q] s (1 - u s)^2 - K (u + s)^2 >= 0: a cubic, negative at both ends for u > 0, whose
+    local maximum is the smaller root of a quadratic; a root on each side of it bounds the interval.
+    """
     k = p.torsional_stiffness * p.cable_twist**3 / (2 * math.pi * p.elongation**2 * p.height_ratio * p.weight_nut_height)
     u, q = math.tan(friction_angle), p.allowable_thread_pressure
-    roots = np.roots([k * u, k, -q, q * u])
-    real = sorted(r.real for r in roots if abs(r.imag) <= 1e-12 * abs(r) and r.real > u)
-    if not real:
+
+    def excess(s):
+        return q * s * (1 - u * s) ** 2 - k * (u + s) ** 2
+
+    a, b, c = 3 * q * u**2, -2 * (2 * q * u + k), q - 2 * k * u  # P'(s) = a s^2 + b s + c
+    if c <= 0:
         return None
-    return real[0], (real[1] if len(real) > 1 else math.inf)
+    s_max = 2 * c / (-b + math.sqrt(b * b - 4 * a * c))  # the smaller root, stable as a -> 0
+    if excess(s_max) < 0:
+        return None
+    s_low = brentq(excess, 0.0, s_max, xtol=1e-300, rtol=1e-15) if u > 0 else 0.0
+    s_high = brentq(excess, s_max, 1 / u, xtol=1e-300, rtol=1e-15) if u > 0 else q / k
+    return friction_angle + math.atan(s_low), friction_angle + math.atan(s_high)
 
 
 def weight_lead_angle_optimum(p, bounds=LEAD_ANGLE_BOUNDS["weight_lead_angle"]):
@@ -477,8 +492,8 @@ def weight_lead_angle_optimum(p, bounds=LEAD_ANGLE_BOUNDS["weight_lead_angle"]):
     if wear is None:
         return None
     lead = 2 * math.pi * p.elongation / p.cable_twist
-    lower = max(bounds[0], phi + p.self_locking_margin, math.atan(wear[0]))
-    upper = min(bounds[1], math.atan(lead / (math.pi * p.min_weight_thread_diameter)), math.atan(wear[1]))
+    lower = max(bounds[0], phi + p.self_locking_margin, wear[0])
+    upper = min(bounds[1], math.atan(lead / (math.pi * p.min_weight_thread_diameter)), wear[1])
     if lower > upper:
         return None
     return min(max(math.pi / 4 + phi / 2, lower), upper)
