@@ -39,8 +39,7 @@ from typing import Any
 
 from clutchopt.backend import cbrt, cos, sin, sqrt, tan
 from clutchopt.errors import InputError
-from clutchopt.formulations.wedge import QUANTITIES as WEDGE_QUANTITIES
-from clutchopt.formulations.wedge import centrifugal_force, required_torque
+from clutchopt.formulations.duty import DUTY_QUANTITIES, GRAVITY, centrifugal_force, required_torque
 from clutchopt.model import (
     Comparison,
     ComparisonRow,
@@ -55,12 +54,9 @@ from clutchopt.model import (
     si,
 )
 
-GRAVITY = 9.80665  # m/s^2, standard gravity
-
 # --- Quantity table: what a lever case gives (TOML section.key, unit, paper symbol, meaning) -------------------
 Q = Quantity
-DUTY = tuple(q for q in WEDGE_QUANTITIES if q.section == "duty")  # I_M, n_b, t_p, T_p: the same duty as the wedge
-QUANTITIES = DUTY + (
+QUANTITIES = DUTY_QUANTITIES + (  # I_M, n_b, t_p, T_p: the same duty as the wedge
     Q("friction_coefficient", "", "friction coefficient of the linings on the housing faces", "f", "material",
       above=0, at_most=1),
     Q("allowable_pressure", "MPa", "allowable lining pressure (wear)", "[p]", "material", above=0),
