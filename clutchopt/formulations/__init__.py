@@ -11,7 +11,7 @@ MODULES = {
     "wedge": "clutchopt.formulations.wedge",
     # "ball": "clutchopt.formulations.ball",
 
-    # "lever": "clutchopt.formulations.lever",
+    "lever": "clutchopt.formulations.lever",
 
     "cable": "clutchopt.formulations.cable",
 }

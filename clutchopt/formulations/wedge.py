@@ -22,6 +22,7 @@ from types import SimpleNamespace
 from typing import Any
 
 from clutchopt.backend import arctan, cbrt, cos, sin, tan
+from clutchopt.formulations.duty import DUTY_QUANTITIES, centrifugal_force, required_torque
 from clutchopt.model import (
     Comparison,
     ComparisonRow,
@@ -38,11 +39,7 @@ from clutchopt.model import (
 
 # --- Quantity table: what a wedge case gives (TOML section.key, unit, paper symbol, meaning) -------------------
 Q = Quantity
-QUANTITIES = (
-    Q("inertia", "kg*m^2", "moment of inertia of the driven machine, reduced to the coupling", "I_n", "duty", above=0),
-    Q("speed", "rpm", "driving speed (constant, eq. 1)", "n_a", "duty", above=0),
-    Q("acceleration_time", "s", "time to accelerate the driven machine to speed", "t_p", "duty", above=0),
-    Q("resisting_torque", "N*m", "largest resisting torque of the driven machine", "T_c", "duty", at_least=0),
+QUANTITIES = DUTY_QUANTITIES + (
     Q("friction_coefficient", "", "flank friction coefficient", "f", "material", above=0, at_most=1),
     Q("allowable_pressure", "MPa", "allowable flank pressure (wear)", "[p]", "material", above=0),
     Q("allowable_bending_stress", "MPa", "allowable bending stress of the finger", "[sigma]", "material", above=0),
@@ -79,19 +76,9 @@ QUANTITIES = (
 
 
 # --- Equations ---------------------------------------------------------------------------------------------------
-def required_torque(inertia, speed, acceleration_time, resisting_torque):
-    """T_max = I_n e_max + T_c with e_max = w_a / t_p, eqs. (5), (17)."""
-    return inertia * speed / acceleration_time + resisting_torque
-
-
 def paper_centroid_radius(r2, weight_height):
     """r_c ~ r2 - 2/3 h_r, the paper's approximation below eq. (10) (see errata W5)."""
     return r2 - 2.0 / 3.0 * weight_height
-
-
-def centrifugal_force(mass, speed, centroid_radius):
-    """F_u = m_r w_a^2 r_c, eq. (10)."""
-    return mass * speed**2 * centroid_radius
 
 
 def flank_normal_force(centrifugal, flank_angle):
