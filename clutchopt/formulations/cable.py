@@ -28,6 +28,7 @@ from scipy.optimize import brentq
 
 from clutchopt.backend import arctan, cbrt, cos, fmax, sin, sqrt, tan
 from clutchopt.errors import InputError
+from clutchopt.formulations.duty import GRAVITY, centrifugal_force
 from clutchopt.model import (
     Comparison,
     ComparisonRow,
@@ -47,7 +48,7 @@ Q = Quantity
 QUANTITIES = (
     Q("torque", "N*m", "torque the coupling transmits (design value)", "T", "duty", above=0),
     Q("speed", "rpm", "largest driving speed, w_max of eq. (6)", "n", "duty", above=0),
-    Q("gravity", "m/s^2", "gravitational acceleration, eq. (1)", "g", "duty", "9.80665 m/s^2", at_least=0),
+    Q("gravity", "m/s^2", "gravitational acceleration, eq. (1)", "g", "duty", f"{GRAVITY} m/s^2", at_least=0),
     Q("cable_coefficient", "", "experimental coefficient of the cable diameter, eq. (17)", "k", "cables", above=0),
     Q("area_ratio", "", "psi_s = A_s / (0.785 d_k^2), wire area of the cable, eq. (18)", "psi_s", "cables",
       above=0, at_most=1),
@@ -112,7 +113,7 @@ QUANTITIES = (
 # --- Equations -----------------------------------------------------------------------------------------------------
 def inertia_force(mass, centroid_radius, speed, gravity):
     """F_i = m (R_m w^2 - g), eq. (1); with R_rv and m_rv also the weight's force of eq. (8) (errata C4)."""
-    return mass * (centroid_radius * speed**2 - gravity)
+    return centrifugal_force(mass, speed, centroid_radius) - mass * gravity
 
 
 def reduced_friction_angle(friction_coefficient, flank_angle):
