@@ -9,11 +9,9 @@ from clutchopt.model import Coupling
 
 MODULES = {
     "wedge": "clutchopt.formulations.wedge",
-    # "ball": "clutchopt.formulations.ball",
-
     "lever": "clutchopt.formulations.lever",
-
     "cable": "clutchopt.formulations.cable",
+    # "ball": "clutchopt.formulations.ball",
 }
 
 
