@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+
+import numpy as np
 from dataclasses import dataclass
 
 from clutchopt.cases import Case
@@ -44,7 +46,8 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions()) -> Compar
     if spec is None:
         raise InputError("coupling", f"{coupling.name} has no comparison with a paper method")
     params = case.params()
-    columns = {name: dict(values) for name, values in spec.references(params).items()}
+    with np.errstate(invalid="ignore", divide="ignore"):  # a closed form undefined at this duty reads as NaN ("-")
+        columns = {name: dict(values) for name, values in spec.references(params).items()}
     solutions = {}
     for column, mode, objective in spec.solves:
         solution = problem_for(coupling.formulation(mode), objective, options).solve(case)
