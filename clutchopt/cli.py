@@ -13,7 +13,7 @@ from clutchopt.errors import InputError
 EXIT_BAD_INPUT = 2
 
 # Further sub-commands live beside what they run; each module defines ``add_command(subparsers)``.
-COMMAND_MODULES: tuple[str, ...] = ()
+COMMAND_MODULES: tuple[str, ...] = ("clutchopt.bench.command",)
 
 
 def _solve(args) -> str:

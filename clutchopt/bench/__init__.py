@@ -1,0 +1,91 @@
+"""``clutchopt bench``: what accuracy costs in time, one table per section.
+
+Each section is one function ``rows(config) -> list[dict]`` registered in :data:`SECTIONS`; ``clutchopt bench``
+and ``benchmarks/run_full.py`` print every registered section. The simulator's transient section plugs in
+as one more entry (``Section("transient", title, transient_rows)``), nothing else changes.
+"""
+
+from __future__ import annotations
+
+import os
+import platform
+import time
+from dataclasses import asdict, dataclass
+from importlib.metadata import version
+from typing import Callable
+
+import pandas as pd
+
+from clutchopt.bench.accuracy import accuracy_rows
+from clutchopt.bench.throughput import throughput_rows
+
+
+@dataclass(frozen=True)
+class BenchConfig:
+    repeats: int = 20  # timed re-solves per method, after one warm-up
+    sweep_points: int = 1000
+    processes: int = 2
+
+    @classmethod
+    def quick(cls) -> "BenchConfig":
+        return cls(repeats=3, sweep_points=100, processes=2)
+
+
+@dataclass(frozen=True)
+class Section:
+    name: str
+    title: str
+    rows: Callable[[BenchConfig], list[dict]]
+
+
+SECTIONS: tuple[Section, ...] = (
+    Section("accuracy", "Accuracy vs time (one case per coupling; rel_error against IPOPT tol 1e-10; "
+                        "violation re-evaluated in float64, relative; times in ms)", accuracy_rows),
+    Section("throughput", "Throughput: one built problem re-solved warm over a sweep", throughput_rows),
+)
+
+
+def machine() -> dict:
+    """Where the numbers were taken."""
+    cpu = platform.processor()
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as info:
+            cpu = next(line.split(":", 1)[1].strip() for line in info if line.startswith("model name"))
+    except (OSError, StopIteration):
+        pass
+    return {"cpu": cpu, "cores": os.cpu_count(), "system": platform.platform(), "python": platform.python_version(),
+            **{package: version(package) for package in ("casadi", "cvxpy", "scipy", "numpy")}}
+
+
+def run_bench(config: BenchConfig, sections: tuple[Section, ...] = SECTIONS) -> dict:
+    report = {"machine": machine(), "config": asdict(config), "sections": {}}
+    for section in sections:
+        started = time.perf_counter()
+        rows = section.rows(config)
+        report["sections"][section.name] = {"title": section.title, "rows": rows,
+                                            "seconds": time.perf_counter() - started}
+    return report
+
+
+_MS = ("first_s", "resolve_median_s", "resolve_iqr_s")
+
+
+def _shown(row: dict) -> dict:
+    shown = {}
+    for key, value in row.items():
+        if key in _MS:
+            shown[key.replace("_s", "_ms")] = "-" if value is None or value != value else f"{value * 1e3:.3g}"
+        elif isinstance(value, float):
+            shown[key] = "-" if value != value else f"{value:.4g}" if key != "objective" else f"{value:.10g}"
+        else:
+            shown[key] = "-" if value is None or value == "" else value
+    return shown
+
+
+def bench_text(report: dict) -> str:
+    m = report["machine"]
+    lines = [f"machine: {m['cpu']}, {m['cores']} cores, {m['system']}; python {m['python']}, casadi {m['casadi']}, "
+             f"cvxpy {m['cvxpy']}, scipy {m['scipy']}", f"config: {report['config']}"]
+    for section in report["sections"].values():
+        lines += ["", section["title"], pd.DataFrame([_shown(r) for r in section["rows"]]).to_string(index=False)]
+    return "\n".join(lines)

@@ -1,0 +1,23 @@
+"""Wall-time measurement: a warm-up, then the median and spread of repeated runs."""
+
+from __future__ import annotations
+
+import time
+from typing import Callable
+
+import numpy as np
+
+
+def time_once(run: Callable[[], object]) -> tuple[float, object]:
+    started = time.perf_counter()
+    result = run()
+    return time.perf_counter() - started, result
+
+
+def repeated(run: Callable[[], object], repeats: int, warmup: int = 1) -> dict[str, float]:
+    """Median and interquartile range (seconds) of ``repeats`` runs after ``warmup`` runs not counted."""
+    for _ in range(warmup):
+        run()
+    times = np.array([time_once(run)[0] for _ in range(repeats)])
+    q25, median, q75 = np.percentile(times, [25, 50, 75])
+    return {"median_s": float(median), "iqr_s": float(q75 - q25), "runs": repeats}

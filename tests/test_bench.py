@@ -1,0 +1,67 @@
+"""``clutchopt bench --quick --json`` runs and reports what the issue asks; no timing is asserted."""
+
+import json
+from contextlib import redirect_stdout
+from io import StringIO
+
+import pytest
+
+from clutchopt.bench import SECTIONS, BenchConfig, Section, bench_text, run_bench
+from clutchopt.bench.reference import bench_cases
+from clutchopt.cli import main
+
+
+@pytest.fixture(scope="module")
+def report():
+    out = StringIO()
+    with redirect_stdout(out):
+        assert main(["bench", "--quick", "--json"]) == 0
+    return json.loads(out.getvalue())
+
+
+def _rows(report, section, coupling):
+    return {row["method"] if "method" in row else row["how"]: row
+            for row in report["sections"][section]["rows"] if row["coupling"] == coupling}
+
+
+def test_report_structure(report):
+    assert set(report) == {"machine", "config", "sections"}
+    assert report["config"] == {"repeats": 3, "sweep_points": 100, "processes": 2}
+    assert report["machine"]["cores"] >= 1 and report["machine"]["casadi"]
+    assert list(report["sections"]) == [s.name for s in SECTIONS]
+    couplings = {case.coupling for case in bench_cases()}
+    assert {r["coupling"] for r in report["sections"]["accuracy"]["rows"]} == couplings
+    assert {r["coupling"] for r in report["sections"]["throughput"]["rows"]} == couplings
+
+
+@pytest.mark.parametrize("coupling", sorted({case.coupling for case in bench_cases()}))
+def test_every_method_of_every_coupling(report, coupling):
+    rows = _rows(report, "accuracy", coupling)
+    assert set(rows) == {"closed form", "cvxpy gp", "ipopt tol 1e-04", "ipopt tol 1e-06", "ipopt tol 1e-08",
+                         "ipopt tol 1e-10", "slsqp ftol 1e-06", "slsqp ftol 1e-10"}
+    assert rows["ipopt tol 1e-10"]["rel_error"] == 0.0
+    for tol in ("1e-04", "1e-06", "1e-08", "1e-10"):
+        row = rows[f"ipopt tol {tol}"]
+        assert row["status"] == "optimal" and row["worst_violation"] <= 1e-8
+        assert row["rel_error"] <= 10 * float(tol) and row["iterations"] > 0
+        assert row["first_s"] > 0 and row["resolve_median_s"] > 0 and row["resolve_iqr_s"] >= 0
+    assert rows["closed form"]["status"] == "feasible" and rows["closed form"]["rel_error"] < 1e-8
+    assert rows["slsqp ftol 1e-10"]["status"] == "optimal" and rows["slsqp ftol 1e-10"]["rel_error"] < 1e-8
+    throughput = _rows(report, "throughput", coupling)
+    assert throughput["serial"]["points"] == throughput["process pool"]["points"] == 100
+    assert throughput["serial"]["optimal"] == throughput["process pool"]["optimal"] > 0
+
+
+def test_gp_where_posynomial(report):
+    wedge, lever = _rows(report, "accuracy", "wedge"), _rows(report, "accuracy", "lever")
+    assert wedge["cvxpy gp"]["status"] == "optimal" and wedge["cvxpy gp"]["rel_error"] < 1e-7
+    assert lever["cvxpy gp"]["status"] == "not_posynomial" and lever["cvxpy gp"]["objective"] is None
+
+
+def test_a_section_is_one_function():
+    seen = []
+    section = Section("extra", "An extra section", lambda config: seen.append(config) or [{"coupling": "x", "a": 1.5}])
+    report = run_bench(BenchConfig(repeats=1, sweep_points=2), (section,))
+    assert seen == [BenchConfig(repeats=1, sweep_points=2)]
+    assert report["sections"]["extra"]["rows"] == [{"coupling": "x", "a": 1.5}]
+    assert "An extra section" in bench_text(report) and "1.5" in bench_text(report)
