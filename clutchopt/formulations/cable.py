@@ -554,7 +554,7 @@ def _design_rows(p, design):
 def paper_design(p):
     """The paper's formulas at the case's threads: z by (18) rounded up, m by (7), m_rv by (9), d_1 by (19),
     d_n by (21), as printed."""
-    z = float(math.ceil(required_cable_count(p) - 1e-9))
+    z = float(max(math.ceil(required_cable_count(p) - 1e-9), 1))  # at least one cable, however strong
     return {"half_coupling_mass": paper_eq7(p, z), "weight_mass": paper_eq9(p), "cable_count": z,
             "finger_diameter": paper_eq21(p, z), "screw_diameter": paper_eq19(p, z), "lead_angle": p.lead_angle,
             "weight_lead_angle": p.weight_lead_angle}

@@ -1,0 +1,89 @@
+"""The torture suite: hard cases over every coupling end in a verified optimum, a named infeasibility or a
+rejected input naming its field; never a silent wrong answer or an exception."""
+
+from collections import Counter
+from dataclasses import replace
+
+import pytest
+
+from clutchopt.bench.reference import bench_cases, closed_form, coupling_cases
+from clutchopt.bench.torture import FAMILIES, TortureCase, judge_solution, torture_cases
+from clutchopt.formulations import MODULES, get_coupling
+from clutchopt.optimise import problem_for
+
+CASES = torture_cases()
+VERDICTS: dict[str, object] = {}
+
+
+@pytest.mark.parametrize("torture", CASES, ids=[tc.name for tc in CASES])
+def test_hard_case(torture):
+    verdict = torture.verdict()
+    VERDICTS[torture.name] = verdict
+    assert verdict.passed, verdict.detail
+
+
+def test_coverage():
+    assert len(CASES) >= 50 and len({tc.name for tc in CASES}) == len(CASES)
+    couplings = {tc.name.split("-")[0] for tc in CASES}
+    assert couplings == {name for name in MODULES if coupling_cases(name)} >= {"wedge", "lever", "cable"}
+    assert {tc.family for tc in CASES} == {"torque", "speed", "stress", "near", "pinned", "degenerate", "excluded"}
+    assert len(FAMILIES) == 7
+
+
+def test_outcomes_are_mixed_and_named():
+    kinds = Counter(v.kind for v in (VERDICTS.get(tc.name) or tc.verdict() for tc in CASES))
+    assert kinds["optimal"] >= 30 and kinds["infeasible"] >= 20 and kinds["rejected"] >= 3
+    assert kinds["failed"] == 0
+
+
+def _named(name):
+    return next(tc for tc in CASES if tc.name == name).verdict()
+
+
+def test_known_outcomes():
+    # within 1e-6 of the wedge's flank-pressure limit: just feasible at the same optimum, just infeasible below
+    above, below = _named("wedge-flank_pressure-limit-+1e-6"), _named("wedge-flank_pressure-limit--1e-6")
+    assert above.kind == "optimal" and below.kind == "infeasible"
+    assert "torque" in below.detail and "flank_pressure" in below.detail
+    # alpha within 1e-6 of the self-locking limit (atan f + margin), geometry mode with alpha fixed
+    assert _named("wedge-geometry-flank_angle-at-not_self_locking-+1e-6").kind == "optimal"
+    locked = _named("wedge-geometry-flank_angle-at-not_self_locking--1e-6")
+    assert locked.kind == "infeasible" and "not_self_locking" in locked.detail
+    # lambda -> 1: no flank area left
+    assert _named("wedge-radius_ratio=1.000001").kind == "infeasible"
+    # the cable's thread below its self-locking limit is refused by the case check, naming the field
+    assert _named("cable-paper-lead_angle-at-hub_thread_not_self_locking--1e-6").detail.startswith("thread.lead_angle")
+
+
+def _wedge():
+    case = bench_cases()[0]
+    formulation = get_coupling("wedge").formulation("paper")
+    return case, formulation, problem_for(formulation).solve(case), closed_form(case)
+
+
+def test_judge_catches_a_wrong_optimum():
+    case, formulation, solution, reference = _wedge()
+    assert judge_solution(solution, reference, formulation).kind == "optimal"
+    assert judge_solution(replace(solution, objective=solution.objective * (1 + 1e-5)), reference,
+                          formulation).kind == "failed"
+    assert judge_solution(replace(solution, objective=solution.objective * (1 - 1e-5)), reference,
+                          formulation).kind == "failed"
+    violated = [replace(c, margin=-1e-7) if c.name == "torque" else c for c in solution.constraints]
+    assert judge_solution(replace(solution, constraints=violated), reference, formulation).kind == "failed"
+
+
+def test_judge_catches_a_false_infeasibility():
+    case, formulation, solution, reference = _wedge()
+    false_alarm = replace(solution, status="infeasible", diagnosis="infeasible: cannot satisfy torque")
+    assert reference.feasible
+    assert judge_solution(false_alarm, reference, formulation).kind == "failed"
+    unnamed = replace(solution, status="infeasible", diagnosis="infeasible")
+    assert judge_solution(unnamed, None, formulation).kind == "failed"
+
+
+def test_an_exception_is_a_failure_not_a_crash():
+    def explode():
+        raise ZeroDivisionError("float division by zero")
+
+    verdict = TortureCase("x", "x", explode).verdict()
+    assert verdict.kind == "failed" and "ZeroDivisionError" in verdict.detail
