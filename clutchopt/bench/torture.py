@@ -118,13 +118,19 @@ def _dimension(unit: str):
 TORQUES = (1.0, 10.0, 1e2, 1e3, 1e4, 1e5, 1e6)  # N*m
 
 
-def torque_range(case: Case) -> list[TortureCase]:
-    """The required torque from 1 N*m to 1 MN*m: every duty quantity of torque or inertia dimension scaled alike
-    (T_max = I w / t_p + T_c, or T itself). Reference mode at every torque, other modes at 1, 1e3, 1e6 N*m."""
+def torque_quantities(case: Case) -> list[str]:
+    """The duty quantities (first section) of torque or inertia dimension: scaled alike, they scale the required
+    torque (T_max = I w / t_p + T_c, or T itself)."""
     coupling = get_coupling(case.coupling)
     duty = coupling.quantities[0].section
-    scaled = [q.name for q in coupling.quantities if q.section == duty and q.name in case.values
-              and _dimension(q.unit) in (_dimension("N*m"), _dimension("kg*m^2"))]
+    return [q.name for q in coupling.quantities if q.section == duty and q.name in case.values
+            and _dimension(q.unit) in (_dimension("N*m"), _dimension("kg*m^2"))]
+
+
+def torque_range(case: Case) -> list[TortureCase]:
+    """The required torque from 1 N*m to 1 MN*m (:func:`torque_quantities` scaled). Reference mode at every
+    torque, the other modes at 1, 1e3 and 1e6 N*m."""
+    scaled = torque_quantities(case)
     base = _base_solution(case, reference_mode(case.coupling))
     torque = base.outputs["required_torque"].value if "required_torque" in base.outputs else case.values.get("torque")
     if not scaled or not torque:
