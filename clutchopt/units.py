@@ -66,7 +66,8 @@ def describe_dimension(unit: str) -> str:
     dim = ureg.Quantity(1.0, unit).dimensionality
     if not dim:
         return "dimensionless (or an angle)"
-    return _DIMENSION_NAMES.get(str(dim), str(dim))
+    # compared as dimensionalities: pint's text order of the base dimensions ("[mass] * [length] ** 2") varies
+    return next((name for key, name in _DIMENSION_NAMES.items() if ureg.get_dimensionality(key) == dim), str(dim))
 
 
 def to_si(field: str, raw: object, unit: str) -> float:
