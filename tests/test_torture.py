@@ -7,7 +7,7 @@ from dataclasses import replace
 import pytest
 
 from clutchopt.bench.reference import bench_cases, closed_form, coupling_cases
-from clutchopt.bench.torture import FAMILIES, TortureCase, judge_solution, torture_cases
+from clutchopt.bench.torture import FAMILIES, TortureCase, judge_solution, torque_quantities, torture_cases
 from clutchopt.formulations import MODULES, get_coupling
 from clutchopt.optimise import problem_for
 
@@ -87,3 +87,23 @@ def test_an_exception_is_a_failure_not_a_crash():
 
     verdict = TortureCase("x", "x", explode).verdict()
     assert verdict.kind == "failed" and "ZeroDivisionError" in verdict.detail
+
+
+@pytest.mark.parametrize("k", [1e-9, 1e-6, 1e-3, 1e3, 1e6, 1e9])
+def test_ipopt_behaves_the_same_at_every_scale(k):
+    # torque, allowables and density scaled by k: every mass scales by k, every normalised constraint is unchanged,
+    # so the nondimensionalised NLP is the same one: same iterations, same optimum over k
+    case = bench_cases()[0]
+    problem = problem_for(get_coupling(case.coupling).formulation("paper"))
+
+    def solve(factor):
+        names = torque_quantities(case) + ["allowable_pressure", "allowable_bending_stress", "density"]
+        scaled = replace(case.with_values(**{n: case.values[n] * factor for n in names}),
+                         bounds={"weight_mass": (1e-6 * factor, 1e4 * factor)})
+        return problem.solve(scaled, start={"weight_mass": 0.05 * factor, "finger_diameter": 0.005})
+
+    base, scaled = solve(1.0), solve(k)
+    assert base.status == scaled.status == "optimal"
+    assert scaled.solver.iterations == base.solver.iterations
+    assert scaled.objective / k == pytest.approx(base.objective, rel=1e-12)
+    assert scaled.design["finger_diameter"] == pytest.approx(base.design["finger_diameter"], rel=1e-12)
