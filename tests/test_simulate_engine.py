@@ -115,3 +115,19 @@ def test_report_figure(wedge_paper):
     lever = load_case(CASES / "lever_centrifuge.toml")
     figure, reason = report_figure(lever, solve_case(lever))
     assert figure is None and "lever" in reason
+
+
+def test_springs_at_constant_speed_lengthen_t_p_as_the_torque_law_says():
+    import copy
+
+    from clutchopt.cases import read_toml
+    from clutchopt.simulate.scene import parse_scene
+
+    data = read_toml(SCENES / "wedge_motor_springs.toml")
+    data = copy.deepcopy(data) | {"effects": ["slip_friction", "spring_preload", "lockup"]}
+    head = run_scene(parse_scene(data, str(SCENES / "wedge_motor_springs.toml"))).headline
+    outputs = design_outputs(CASES / "designs" / "wedge_paper.json", "wedge")
+    w0 = 1000 * math.pi / 30
+    w_e2 = 12.0 / (outputs["weight_mass"] * outputs["centroid_radius"])
+    torque = outputs["torque"] * (1 - w_e2 / w0**2)  # T = c_F m_r r_c (w^2 - w_e^2)
+    assert head["start_time"] == pytest.approx(0.5 * w0 / (torque - 5.0), rel=1e-8)
