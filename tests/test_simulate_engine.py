@@ -112,9 +112,18 @@ def test_report_figure(wedge_paper):
     assert figure is not None and "t_p = 10 s" in caption and "10 s" in caption
     from clutchopt.optimise import solve_case
 
-    lever = load_case(CASES / "lever_centrifuge.toml")
-    figure, reason = report_figure(lever, solve_case(lever))
-    assert figure is None and "lever" in reason
+    cable = load_case(CASES / "cable_pump.toml")
+    figure, reason = report_figure(cable, solve_case(cable))
+    assert figure is None and "cable" in reason
+
+
+def test_lever_design_verified_too():
+    from clutchopt.optimise import solve_case
+
+    case = load_case(CASES / "lever_wedge_duty.toml")  # the wedge paper's duty: 0.5 kg m^2, 1000 rpm, 10 s, 5 N m
+    check = verify(case, solve_case(case))
+    assert check["simulated_acceleration_time"] == pytest.approx(10.0, rel=1e-8)
+    assert check["friction_work"] == pytest.approx(5359.5507, rel=1e-7)  # same duty, same L as the wedge
 
 
 def test_springs_at_constant_speed_lengthen_t_p_as_the_torque_law_says():

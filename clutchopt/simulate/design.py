@@ -1,8 +1,10 @@
 """Couplings of clutchopt as friction laws of a start-up, and designs checked against the t_p they were sized for.
 
-A centrifugal coupling's torque is proportional to the net radial force on each weight. For the wedge coupling
-(eqs. 10-15 of Ambartsumyants & Deli) T = z f r_m (m_r r_c w_a^2 - F_s) / sin(alpha), so from a solved design
-c_F = T / F_u (torque per newton of radial force) and m_r r_c are read off its outputs. Sizing assumes the
+A centrifugal coupling's torque is proportional to the net radial force on each weight: for the wedge coupling
+(eqs. 10-15 of Ambartsumyants & Deli) T = z f r_m (m_r r_c w_a^2 - F_s) / sin(alpha); for the lever coupling with
+new linings (weight at R_0, spring slack) T = i f d_cp z m R_0 w_a^2 / (4 tan gamma_0). So a solved design gives
+the torque per newton of radial force c_F = T / (m r w_d^2) from its torque T at the design speed w_d, its weight
+mass m and the weight's radius r. Sizing assumes the
 torque T_max = I_n w_a / t_p + T_c acts from the start at constant driving speed (constant angular acceleration,
 eqs. 5, 17): then the simulated start-up time is exactly I_n w_a / (T - T_c), which is t_p when the torque
 constraint is active.
@@ -19,8 +21,9 @@ from clutchopt.simulate import effects as fx
 from clutchopt.simulate.engine import Model, SimulationResult, simulate
 from clutchopt.simulate.laws import CentrifugalFriction, Load
 
-# couplings whose solved designs give a speed-dependent torque law: the outputs that define it
-SPEED_LAWS = {"wedge": ("torque", "centrifugal_force", "weight_mass", "centroid_radius")}
+# couplings whose solved designs give a speed-dependent torque law: outputs (torque, weight mass, weight radius)
+SPEED_LAWS = {"wedge": ("torque", "weight_mass", "centroid_radius"),
+              "lever": ("torque", "weight_mass", "start_radius")}
 
 
 def speed_law_missing(coupling: str) -> str | None:
@@ -50,29 +53,28 @@ def solved_outputs(solution) -> dict[str, float]:
     return {name: out.value for name, out in solution.outputs.items()}
 
 
-def centrifugal_law(coupling: str, outputs: dict[str, float], effects: tuple[str, ...],
+def centrifugal_law(coupling: str, outputs: dict[str, float], design_speed: float, effects: tuple[str, ...],
                     spring_preload: float = 0.0) -> CentrifugalFriction:
-    """The law of a solved design; spring preload and gravity enter only if listed in ``effects``."""
+    """The law of a solved design sized at ``design_speed``; spring preload and gravity enter only if listed."""
     missing = speed_law_missing(coupling)
     if missing:
         raise InputError("coupling.case", missing)
     absent = [name for name in SPEED_LAWS[coupling] if not isinstance(outputs.get(name), (int, float))]
     if absent:
         raise InputError("coupling.design", f"the design lacks the outputs {', '.join(absent)}")
+    torque, mass, radius = (outputs[name] for name in SPEED_LAWS[coupling])
     reductions = []
     if "spring_preload" in effects:
         reductions.append(lambda: fx.spring_preload(spring_preload))
     if "gravity" in effects:
-        mass = outputs["weight_mass"]
         reductions.append(lambda: fx.gravity(mass))
-    return CentrifugalFriction(outputs["torque"] / outputs["centrifugal_force"],
-                               outputs["weight_mass"] * outputs["centroid_radius"], tuple(reductions))
+    return CentrifugalFriction(torque / (mass * radius * design_speed**2), mass * radius, tuple(reductions))
 
 
-def ideal_start(case, outputs: dict[str, float], coupling: str | None = None) -> SimulationResult:
+def ideal_start(case, outputs: dict[str, float]) -> SimulationResult:
     """The start-up the sizing assumes: constant driving speed, constant resisting torque, no springs."""
     p = case.params()
-    law = centrifugal_law(coupling or case.coupling, outputs, ("slip_friction", "lockup"))
+    law = centrifugal_law(case.coupling, outputs, p.speed, ("slip_friction", "lockup"))
     return simulate(Model(law, p.inertia, Load(p.resisting_torque), ("slip_friction", "lockup"), driver_speed=p.speed))
 
 

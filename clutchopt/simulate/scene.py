@@ -172,7 +172,7 @@ def _coupling(f: _Fields, law_name: str, effects):
         source["design"] = "solved from the case"
     preload = f.quantity("coupling", "spring_preload", "N", None if "spring_preload" in effects else 0.0,
                          at_least_zero=True)
-    law = centrifugal_law(case.coupling, outputs, effects, preload)
+    law = centrifugal_law(case.coupling, outputs, case.params().speed, effects, preload)
     source["engagement_speed"] = law.engagement_speed()
     source["design_torque"] = outputs["torque"]
     return case, law, source
