@@ -3,7 +3,7 @@
 Constant driving speed w0, driven inertia J, constant resisting torque M_r, friction torque of the slip
 w_r = w0 - w (1):  M_fr = k (1 + e^{a w_r}) (6);  J dw/dt = M_fr - M_r (3).
 
-Evaluated stably: with u = a w_r, m = M_r / k and c = 1 - m, the time from slip w_r to ... is
+Evaluated stably: with u = a w_r, m = M_r / k and c = 1 - m, the time from rest (slip w0) to slip w_r is
 t = J/(k a) int du / (c + e^u), written with ``expm1``/``exprel``/``log1p`` in whichever of two equivalent forms
 cannot overflow for the sign of a, so |a w0| up to 1e3, a -> 0 and M_r close to the friction torque all work.
 """
@@ -13,7 +13,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
 from scipy.integrate import quad
 from scipy.special import expit, exprel
 
@@ -48,6 +47,8 @@ class PaperTransient:
 
     def time_to_slip(self, slip: float) -> float:
         """t(w_r) from rest (slip w0) to slip w_r, eq. (8) in an overflow-free form; inf without lock-up."""
+        if not 0.0 <= slip <= self.speed:
+            raise ValueError(f"slip {slip!r} outside 0 .. w0 = {self.speed!r}")
         if self.lockup_failure() and slip <= self._asymptotic_slip():
             return math.inf
         k, a, w0, m = self.k, self.a, self.speed, self.m
