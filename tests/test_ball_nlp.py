@@ -92,3 +92,14 @@ def test_infeasible_stress_limit_is_diagnosed():
     solution = solve_case(case, "design", "mass")
     assert solution.status == "infeasible"
     assert "contact_stress" in solution.diagnosis
+
+
+def test_dear_balls_make_the_cost_optimum_fill_less():
+    # balls at 20 EUR/kg, body at 6: fewer balls (K2 up) pay for a slightly larger drum
+    case = load_case(CASES / "ball_compressor.toml").with_values(ball_price=20.0)
+    mass, cost = solve_case(case, "design", "mass"), solve_case(case, "design", "cost")
+    assert mass.status == cost.status == "optimal"
+    assert mass.design["filling"] == pytest.approx(0.41, rel=1e-7)
+    assert 0.45 < cost.design["filling"] < 0.6
+    assert cost.objective < mass.outputs["cost"].value * (1 - 0.01)
+    assert cost.outputs["total_mass"].value > mass.objective
