@@ -103,3 +103,10 @@ def test_dear_balls_make_the_cost_optimum_fill_less():
     assert 0.45 < cost.design["filling"] < 0.6
     assert cost.objective < mass.outputs["cost"].value * (1 - 0.01)
     assert cost.outputs["total_mass"].value > mass.objective
+
+
+def test_mass_grows_as_the_torque_to_the_three_fifths_when_k5_binds():
+    # K5 and the torque active, stress not: R_a ~ M_c^(1/5) at fixed K5, K2, so the mass ~ R_a^3 ~ M_c^(3/5)
+    solution = solve_case(load_case(CASES / "ball_compressor.toml"), "design", "mass")
+    torque = next(c for c in solution.constraints if c.name == "torque")
+    assert torque.elasticity == pytest.approx(0.6, abs=1e-4)

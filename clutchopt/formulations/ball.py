@@ -382,9 +382,9 @@ PAPER = _formulation("paper", "Ball clutch, the paper's assumptions: leading-ord
 
 
 # --- Design mode: consistent torque, Hertz stress, whole ball rows --------------------------------------------------
-DESIGN_VARIABLES = (
+DESIGN_VARIABLES = (  # K2 bounds: (1) gives 0.41 to 0.60 over the paper's Psi_c = 0.6 to 1.2
     RADIUS,
-    V("filling", "", "K2 = R_1 / R_a (paper 0.46 to 0.52; (1) gives 0.41 to 0.60 for Psi_c 0.6 to 1.2)", "K2",
+    V("filling", "", "K2 = R_1 / R_a, filling of the chambers", "K2",
       lower=0.41, upper=0.60, above=0, below=1),
     V("ball_radius", "mm", "ball radius", "r_c", lower=si(4, "mm"), upper=si(20, "mm"), above=0),
     V("groove_conformity", "", "beta = r_groove / r_c", "beta", lower=1.005, upper=1.05, above=1),
