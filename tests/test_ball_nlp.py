@@ -110,3 +110,11 @@ def test_mass_grows_as_the_torque_to_the_three_fifths_when_k5_binds():
     solution = solve_case(load_case(CASES / "ball_compressor.toml"), "design", "mass")
     torque = next(c for c in solution.constraints if c.name == "torque")
     assert torque.elasticity == pytest.approx(0.6, abs=1e-4)
+
+
+def test_sensitivities_follow_the_fifth_root_scaling():
+    # K5, K2 at their bounds: M_c = k P / w = rho w^2 f R^5 h  ->  mass ~ rho R^3 ~ rho^(2/5) (k P)^(3/5) w^(-9/5) f^(-3/5)
+    s = solve_case(load_case(CASES / "ball_compressor.toml"), "design", "mass").sensitivities
+    expected = {"speed": -1.8, "power": 0.6, "service_factor": 0.6, "friction_coefficient": -0.6, "density": 0.4}
+    for name, value in expected.items():
+        assert s[name] == pytest.approx(value, abs=1e-4), name
