@@ -327,6 +327,8 @@ def _outputs(c: BallClutch, p):
         "curvature_ratio": Output(ratio, "", "B/A of the contact"),
         "ball_load": Output(ball_load(p, c.radius, c.filling, c.ball_radius), "N", "F on one outer ball"),
         "ball_mass": Output(c.balls(p), "kg", "balls, eq. (2) consistent"),
+        "ball_count": Output(c.balls(p) / (p.density * 4.0 / 3.0 * math.pi * c.ball_radius**3), "",
+                             "number of balls, m_n / (rho 4/3 pi r_c^3)"),
         "body_mass": Output(c.body(p), "kg", "G_c, eq. (13)"),
         "total_mass": Output(c.mass(p), "kg", "balls + body"),
         "cost": Output(c.cost(p), "EUR", "balls and body priced per kg"),
@@ -444,6 +446,8 @@ def paper_procedure(p, rule: str = "refill", max_passes: int = 60):
     at M_c, the excess of (8) (end faces, rounding up) only fades as K2 -> 1, and the bisection ends at a layer
     one ball thick in a drum several times larger (docs/ball.md). Returns every intermediate value and the passes.
     """
+    if rule not in ("refill", "restart"):
+        raise ValueError(f"rule must be 'refill' or 'restart', got {rule!r}")
     low, high = 0.0, 1.0
     filling = float(filling_coefficient(p.construction_density, p.packing_density))
     passes = [_procedure_pass(p, filling)]
