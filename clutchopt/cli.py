@@ -3,12 +3,17 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import warnings
+from importlib import import_module
 
 from clutchopt.errors import InputError
 
 EXIT_BAD_INPUT = 2
+
+# Further sub-commands live beside what they run; each module defines ``add_command(subparsers)``.
+COMMAND_MODULES: tuple[str, ...] = ()
 
 
 def _solve(args) -> str:
@@ -87,6 +92,8 @@ def build_parser() -> argparse.ArgumentParser:
     for command in (solve, compare):
         command.add_argument("--json", action="store_true", help="one JSON object, SI units")
         command.add_argument("--tol", type=_positive_float, default=1e-10, help="IPOPT tolerance (default 1e-10)")
+    for module in COMMAND_MODULES:
+        import_module(module).add_command(commands)
     return parser
 
 
@@ -99,5 +106,8 @@ def main(argv: list[str] | None = None) -> int:
     except InputError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return EXIT_BAD_INPUT
-    print(text)
+    try:
+        print(text, flush=True)
+    except BrokenPipeError:  # e.g. `clutchopt solve case.toml | head`: the reader left, nothing more to say
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
     return 0

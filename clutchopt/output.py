@@ -67,6 +67,9 @@ def solution_text(solution: Solution, formulation: Formulation, title: str = "")
          "limit": _shown(c.limit, c.unit), "unit": c.unit, "margin": f"{c.margin:+.2e}",
          "active": "yes" if c.active else "no", "elasticity": _signed(c.elasticity)}
         for c in solution.constraints]))
+    if solution.sensitivities:
+        lines += ["", "Most sensitive parameters (elasticity = d ln objective / d ln parameter; +1: grows in proportion)"]
+        lines.append(_frame(sensitivity_rows(solution, formulation)))
     s = solution.solver
     lines += ["", f"solver: {s.name}  status: {s.status}  iterations: {s.iterations}  solves: {s.solves}  "
                   f"time: {s.time_s * 1e3:.1f} ms"]
@@ -76,6 +79,14 @@ def solution_text(solution: Solution, formulation: Formulation, title: str = "")
             + (f" -> {entry['objective']:.6g}" if entry["feasible"] else " -> infeasible")
             for entry in solution.integer_search))
     return "\n".join(lines)
+
+
+def sensitivity_rows(solution: Solution, formulation: Formulation, count: int = 8) -> list[dict]:
+    """The ``count`` largest elasticities, largest first, with the parameter's description."""
+    described = {q.name: q.description for q in (*formulation.quantities, *formulation.variables)}
+    ranked = sorted(solution.sensitivities.items(), key=lambda item: -abs(item[1]))[:count]
+    return [{"parameter": name, "elasticity": _signed(value), "description": described.get(name, "")}
+            for name, value in ranked if abs(value) >= 5e-5]
 
 
 def comparison_text(table: ComparisonTable) -> str:

@@ -423,11 +423,11 @@ LEAD_ANGLE_BOUNDS = {"lead_angle": (si(1, "deg"), si(45, "deg")), "weight_lead_a
 
 
 def _lead_angles(fixed_unless_freed: bool):
-    return (
-        V("lead_angle", "deg", "lead angle of the hub thread 5", "beta", *LEAD_ANGLE_BOUNDS["lead_angle"],
-          above=0, below=math.pi / 2, fixed_unless_freed=fixed_unless_freed),
-        V("weight_lead_angle", "deg", "lead angle of the weight thread 16", "beta_w",
-          *LEAD_ANGLE_BOUNDS["weight_lead_angle"], above=0, below=math.pi / 2, fixed_unless_freed=fixed_unless_freed),
+    return tuple(
+        V(name, "deg", description, symbol, lower=LEAD_ANGLE_BOUNDS[name][0], upper=LEAD_ANGLE_BOUNDS[name][1],
+          above=0, below=math.pi / 2, fixed_unless_freed=fixed_unless_freed)
+        for name, description, symbol in (("lead_angle", "lead angle of the hub thread 5", "beta"),
+                                          ("weight_lead_angle", "lead angle of the weight thread 16", "beta_w"))
     )
 
 

@@ -470,9 +470,12 @@ def closed_form_characteristic_number(p):
 
 
 def closed_form_link_diameter(p, weight_mass):
-    """d_l = max((64 n_b S l_2^2 / (pi^3 E))^(1/4), (4 S / (pi [sigma]))^(1/2)) at the worn-state link force S."""
+    """d_l = max((64 n_b S l_2^2 / (pi^3 E))^(1/4), (4 S / (pi [sigma]))^(1/2)) at the worn-state link force S;
+    NaN where S <= 0 (the worn toggle does not press the linings at this duty)."""
     t = _paper_toggles(SimpleNamespace(weight_mass=weight_mass, link_diameter=math.nan), p)
     force, length = t.worn_link_force, t.lever_length
+    if not force > 0:  # at this duty the worn toggle no longer presses: the paper's sizing has no link to size
+        return math.nan
     buckling = (64.0 * p.buckling_safety_factor * force * length**2 / (math.pi**3 * p.elastic_modulus)) ** 0.25
     compression = math.sqrt(4.0 * force / (math.pi * p.allowable_link_stress))
     return max(buckling, compression)

@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
@@ -44,7 +46,8 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions()) -> Compar
     if spec is None:
         raise InputError("coupling", f"{coupling.name} has no comparison with a paper method")
     params = case.params()
-    columns = {name: dict(values) for name, values in spec.references(params).items()}
+    with np.errstate(invalid="ignore", divide="ignore"):  # a closed form undefined at this duty reads as NaN ("-")
+        columns = {name: dict(values) for name, values in spec.references(params).items()}
     solutions = {}
     for column, mode, objective in spec.solves:
         solution = problem_for(coupling.formulation(mode), objective, options).solve(case)

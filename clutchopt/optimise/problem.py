@@ -9,6 +9,11 @@ formulation at every size.
 Integer variables: the continuous relaxation is solved first, then the neighbouring integers (floor and
 ceiling, each fixed through its bounds, warm-started) and the best verified-feasible one is kept.
 
+Sensitivities: at the optimum, the elasticity of the objective to every case quantity and every fixed design
+variable, d ln f* / d ln p, from the gradient of the Lagrangian in the parameters (envelope theorem), with the
+multipliers IPOPT returns. A built problem also re-solves warm: ``solve(case, warm=previous)`` starts from a
+previous optimum and keeps its scales (the sweep's and the benchmark's re-solve path).
+
 Infeasibility: when IPOPT fails, an elastic problem (min sum of slacks on the normalised constraints) names
 the requirements that cannot hold together and by how much the least relaxation misses.
 """
@@ -64,6 +69,31 @@ class SolverInfo:
 
 
 @dataclass
+class ScaledData:
+    """The numbers one solve hands to the NLP: parameter vector, scaled bounds and start, and the scales."""
+
+    params: SimpleNamespace  # case values of the formulation's quantities (SI)
+    lower: np.ndarray  # variable bounds (SI)
+    upper: np.ndarray
+    start: np.ndarray  # start point (SI)
+    scale: np.ndarray  # x = scale * x_hat
+    f_scale: float  # objective normaliser
+    p: np.ndarray  # the NLP's parameter vector: case values, scales, objective scale
+
+    @property
+    def lbx(self) -> np.ndarray:
+        return self.lower / self.scale
+
+    @property
+    def ubx(self) -> np.ndarray:
+        return self.upper / self.scale
+
+    @property
+    def x0(self) -> np.ndarray:
+        return self.start / self.scale
+
+
+@dataclass
 class Solution:
     coupling: str
     mode: str
@@ -78,6 +108,8 @@ class Solution:
     diagnosis: str | None = None
     integer_search: list[dict] = field(default_factory=list)
     bounds: dict[str, tuple[float, float]] = field(default_factory=dict)  # search box of each variable (SI)
+    sensitivities: dict[str, float] = field(default_factory=dict)  # d ln objective / d ln parameter
+    scale: np.ndarray | None = field(default=None, repr=False)  # variable scales of the kept solve (warm starts)
 
     def at_bound(self, name: str) -> str:
         """"fixed", "lower", "upper" (within 1e-7 relative) or "" for a design variable."""
@@ -109,6 +141,7 @@ class Solution:
             "diagnosis": self.diagnosis,
             "integer_search": self.integer_search,
             "bounds": {name: list(pair) for name, pair in self.bounds.items()},
+            "sensitivities": self.sensitivities,
         }
 
 
@@ -134,7 +167,16 @@ class Problem:
         self._nlp = {"x": x_hat, "p": ca.vertcat(p_case, x_scale, f_scale),
                      "f": self.objective.function(x, p) / f_scale, "g": g}
         self._solver = ca.nlpsol(f"{f.coupling}_{f.mode}_{objective}", "ipopt", self._nlp, options.ipopt())
+        lam_g = ca.SX.sym("lam_g", g.shape[0])
+        lagrangian = self._nlp["f"] + ca.dot(lam_g, g)
+        self._dlagrangian_dcase = ca.Function("dL_dcase", [x_hat, self._nlp["p"], lam_g],
+                                              [ca.gradient(lagrangian, p_case)])
         self._elastic = None
+
+    @property
+    def nlp(self) -> dict:
+        """The scaled NLP as CasADi expressions: ``x`` (x_hat), ``p``, ``f``, ``g`` (g <= 0)."""
+        return self._nlp
 
     # --- data of one solve -------------------------------------------------------------------------------------
     def _bounds_and_start(self, case: Case, start: dict[str, float] | None):
@@ -152,10 +194,13 @@ class Problem:
             x0.append(min(max(guess, lo), hi))
         return np.array(lower), np.array(upper), np.array(x0)
 
-    def _scaling(self, params: SimpleNamespace, x: np.ndarray, lower: np.ndarray, upper: np.ndarray):
-        """Variable scales |x| (or the bound magnitude where x = 0), objective scale |f(x)|, the NLP parameters."""
-        scale = np.where(np.abs(x) > 0, np.abs(x), np.maximum(np.abs(lower), np.abs(upper)))
-        scale = np.where(np.isfinite(scale) & (scale > 0), scale, 1.0)
+    def _scaling(self, params: SimpleNamespace, x: np.ndarray, lower: np.ndarray, upper: np.ndarray,
+                 scale: np.ndarray | None = None):
+        """Variable scales |x| (or the bound magnitude where x = 0) unless given, objective scale |f(x)|,
+        the NLP parameters."""
+        if scale is None:
+            scale = np.where(np.abs(x) > 0, np.abs(x), np.maximum(np.abs(lower), np.abs(upper)))
+            scale = np.where(np.isfinite(scale) & (scale > 0), scale, 1.0)
         design = dict(zip((v.name for v in self.formulation.variables), x))
         f0 = abs(evaluate_objective(self.formulation, self.objective.name, design, params))
         f_scale = f0 if math.isfinite(f0) and f0 > 0 else 1.0
@@ -166,11 +211,25 @@ class Problem:
         return namespace({q.name: case.values.get(q.name, math.nan) for q in self.formulation.quantities})
 
     # --- solving ---------------------------------------------------------------------------------------------------
-    def solve(self, case: Case, start: dict[str, float] | None = None) -> Solution:
+    def scaled_data(self, case: Case, start: dict[str, float] | None = None,
+                    scale: np.ndarray | None = None) -> ScaledData:
+        """Bounds, start and scales of one solve (scales from the start unless given)."""
         lower, upper, x0 = self._bounds_and_start(case, start)
         params = self._params(case)
+        own_scale, f_scale, p_vector = self._scaling(params, x0, lower, upper)
+        if scale is not None:
+            own_scale, f_scale, p_vector = self._scaling(params, x0, lower, upper, scale)
+        return ScaledData(params, lower, upper, x0, own_scale, f_scale, p_vector)
+
+    def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | None = None) -> Solution:
+        """Solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one."""
+        if warm is not None and warm.status == "optimal" and warm.scale is not None:
+            data = self.scaled_data(case, warm.design, warm.scale)
+        else:
+            data = self.scaled_data(case, start)
+        lower, upper, x0, params = data.lower, data.upper, data.start, data.params
+        scale, f_scale, p_vector = data.scale, data.f_scale, data.p
         names = [v.name for v in self.formulation.variables]
-        scale, f_scale, p_vector = self._scaling(params, x0, lower, upper)
         runs = [self._run(p_vector, lower / scale, upper / scale, x0 / scale, None)]
         x_opt = runs[-1]["x"] * scale
         off = (np.abs(x_opt) > 0) & ((np.abs(x_opt) > 10 * scale) | (np.abs(x_opt) < 0.1 * scale))
@@ -258,8 +317,30 @@ class Problem:
         else:
             status, diagnosis = self.diagnose(run["p"], lower / scale, upper / scale, run["x"], scale)
         bounds = {n: (float(lo), float(hi)) for n, lo, hi in zip(names, lower, upper)}
+        sensitivities = self._sensitivities(run, params, scale, f_scale, objective) if status == "optimal" else {}
         return Solution(f.coupling, f.mode, self.objective.name, self.objective.unit, status, objective, design,
-                        evaluate_outputs(f, design, params), checks, info, diagnosis, search, bounds)
+                        evaluate_outputs(f, design, params), checks, info, diagnosis, search, bounds,
+                        sensitivities, scale)
+
+    def _sensitivities(self, run, params, scale, f_scale, objective) -> dict[str, float]:
+        """d ln f* / d ln p for every case quantity with a finite non-zero value and every fixed variable.
+
+        Case quantities: f_scale * dL/dp (L the scaled Lagrangian). A variable fixed through its bounds at b:
+        its bound multiplier gives d f_hat / d(b / scale) = -lam_x.
+        """
+        if objective == 0 or not math.isfinite(objective):
+            return {}
+        gradient = np.array(self._dlagrangian_dcase(run["x"], run["p"], run["lam_g"])).ravel()
+        result: dict[str, float] = {}
+        for q, value, dl in zip(self.formulation.quantities, vars(params).values(), gradient):
+            if math.isfinite(value) and value != 0 and math.isfinite(dl):
+                result[q.name] = value * f_scale * dl / objective
+        for i, v in enumerate(self.formulation.variables):
+            if run["lbx"][i] == run["ubx"][i] and not v.integer:
+                value = run["lbx"][i] * scale[i]
+                if value != 0:
+                    result[v.name] = result.get(v.name, 0.0) - value * f_scale * run["lam_x"][i] / (scale[i] * objective)
+        return result
 
     # --- infeasibility diagnosis ------------------------------------------------------------------------------------
     def diagnose(self, p_vector, lbx, ubx, x0, scale) -> tuple[str, str]:
