@@ -90,3 +90,13 @@ def test_scene_with_a_design_of_another_coupling(tmp_path):
     with pytest.raises(InputError, match="not a solved wedge design") as error:
         load_scene(scene)
     assert error.value.field == "coupling.design"
+
+
+def test_scene_with_a_design_solved_for_another_case(tmp_path):
+    design = json.loads((CASES / "designs" / "wedge_paper.json").read_text()) | {"case": "cases/wedge_fan.toml"}
+    (tmp_path / "design.json").write_text(json.dumps(design))
+    scene = tmp_path / "scene.toml"
+    scene.write_text(f'effects = ["slip_friction"]\n[coupling]\nlaw = "centrifugal"\n'
+                     f'case = "{(CASES / "wedge_paper.toml").as_posix()}"\ndesign = "design.json"\n')
+    with pytest.raises(InputError, match="solved for 'cases/wedge_fan.toml'"):
+        load_scene(scene)

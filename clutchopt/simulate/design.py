@@ -34,8 +34,8 @@ def speed_law_missing(coupling: str) -> str | None:
             f"(available: {', '.join(SPEED_LAWS)})")
 
 
-def design_outputs(path: str | Path, coupling: str) -> dict[str, float]:
-    """Outputs (SI) of a solved design: the JSON of ``clutchopt solve --json``."""
+def design_outputs(path: str | Path, coupling: str, case_path: str | Path | None = None) -> dict[str, float]:
+    """Outputs (SI) of a solved design: the JSON of ``clutchopt solve --json`` (of the case file ``case_path``)."""
     try:
         data = json.loads(Path(path).read_text(encoding="utf-8"))
     except FileNotFoundError:
@@ -44,6 +44,8 @@ def design_outputs(path: str | Path, coupling: str) -> dict[str, float]:
         raise InputError("coupling.design", f"cannot read {path} as the JSON of clutchopt solve ({exc})") from None
     if not isinstance(data, dict) or data.get("coupling") != coupling or not isinstance(data.get("outputs"), dict):
         raise InputError("coupling.design", f"{path} is not a solved {coupling} design (clutchopt solve --json)")
+    if case_path is not None and Path(str(data.get("case", ""))).name != Path(case_path).name:
+        raise InputError("coupling.design", f"{path} was solved for {data.get('case')!r}, not for {Path(case_path).name}")
     if data.get("status") != "optimal":
         raise InputError("coupling.design", f"{path}: the design's status is {data.get('status')!r}, not optimal")
     return data["outputs"]

@@ -160,7 +160,7 @@ def _coupling(f: _Fields, law_name: str, effects):
     source = {"law": "centrifugal", "coupling": case.coupling, "case": table["case"]}
     if "design" in table:
         design_path = f.file("design")
-        outputs = design_outputs(design_path, case.coupling)
+        outputs = design_outputs(design_path, case.coupling, case_path)
         source["design"] = table["design"]
     else:
         from clutchopt.optimise import solve_case
