@@ -17,12 +17,13 @@ def history_figure(result, title: str = "") -> Figure:
     top.plot(h["t"], h["slip"], ":", label="slip")
     top.set_ylabel("speed, rad/s")
     top.legend(loc="best")
-    bottom.plot(h["t"], h["friction_torque"], color="C3", label="clutch torque")
+    lines = bottom.plot(h["t"], h["friction_torque"], color="C3", label="clutch torque")
     bottom.set_ylabel("torque, N*m")
     bottom.set_xlabel("time, s")
     power = bottom.twinx()
-    power.plot(h["t"], h["power_lost"], color="C4", alpha=0.7, label="slip power")
+    lines += power.plot(h["t"], h["power_lost"], color="C4", alpha=0.7, label="slip power (right)")
     power.set_ylabel("slip power, W")
+    bottom.legend(handles=lines, loc="best")
     for event in result.events:
         for axis in (top, bottom):
             axis.axvline(event["time"], color="grey", lw=0.8, ls="--")
