@@ -14,7 +14,7 @@ import math
 from dataclasses import dataclass
 
 from scipy.integrate import quad
-from scipy.special import expit, exprel
+from scipy.special import exprel
 
 NO_LOCKUP = "no lock-up"
 
@@ -51,19 +51,18 @@ class PaperTransient:
             raise ValueError(f"slip {slip!r} outside 0 .. w0 = {self.speed!r}")
         if self.lockup_failure() and slip <= self._asymptotic_slip():
             return math.inf
-        k, a, w0, m = self.k, self.a, self.speed, self.m
-        c, dw, u0, u1 = 1.0 - m, w0 - slip, a * w0, a * slip
+        k, a, w0 = self.k, self.a, self.speed
+        c, c2 = (k - self.resisting_torque) / k, (2.0 * k - self.resisting_torque) / k  # 1 - m, 2 - m
+        dw, u0, u1 = w0 - slip, a * w0, a * slip
         d = u0 - u1
         if a <= 0:  # z = expm1(d) / (e^u0 + c); ln(num/den) = d + ln(e^u1 + c) - ln(e^u0 + c)
-            den = math.exp(u0) + c
+            den = _c_plus_exp(c, c2, u0)
             z_over_a = dw * exprel(d) / den
-            log_num = math.log((2.0 * k - self.resisting_torque) / k) if slip == 0 else math.log(math.exp(u1) + c)
-            log_ratio = d + log_num - math.log(den)
-        else:  # z = e^{-u1} (1 - e^{-d}) / (1 + c e^{-u0}); num/den = (1 + c e^{-u1}) / (1 + c e^{-u0})
-            den = 1.0 + c * math.exp(-u0)
+            log_ratio = d + math.log(_c_plus_exp(c, c2, u1)) - math.log(den)
+        else:  # z = e^{-u1} (1 - e^{-d}) / (1 + c e^{-u0}); 1 + c e^{-u} = -expm1(-u) + (2 - m) e^{-u}, both >= 0
+            den = -math.expm1(-u0) + c2 * math.exp(-u0)
             z_over_a = dw * math.exp(-u1) * exprel(-d) / den
-            num = (2.0 * k - self.resisting_torque) / k if slip == 0 else 1.0 + c * math.exp(-u1)
-            log_ratio = math.log(num / den)
+            log_ratio = math.log((-math.expm1(-u1) + c2 * math.exp(-u1)) / den)
         y = c * z_over_a * a  # ln(num/den) = log1p(y)
         factor = 1.0 if y == 0 else (math.log1p(y) / y if abs(y) < 0.5 else log_ratio / y)
         return self.inertia / k * z_over_a * factor
@@ -91,19 +90,26 @@ class PaperTransient:
         return self.inertia * self.speed**2 + (self.resisting_torque * self.speed * t_c if self.resisting_torque else 0.0)
 
     def friction_work(self) -> float:
-        """L, eq. (11): J int_0^w0 M_fr w_r / (M_fr - M_r) dw_r by quadrature, in s = w_r / w0 and
-        M_fr / (M_fr - M_r) = 1 / (1 - m expit(-a w_r)) for a >= 0 (no overflow). L = J w0^2 / 2 when M_r = 0 (12)."""
+        """L, eq. (11): J int_0^w0 M_fr w_r / (M_fr - M_r) dw_r by quadrature in s = w_r / w0.
+        L = J w0^2 / 2 when M_r = 0 (12)."""
         if self.lockup_failure():
             return math.inf
         m, aw0 = self.m, self.a * self.speed
         if m == 0:
             return 0.5 * self.inertia * self.speed**2
         breaks = [b for b in (1e-3 / abs(aw0), 1e-1 / abs(aw0), 1 / abs(aw0), 10 / abs(aw0)) if 0 < b < 1] if aw0 else []
-        if aw0 >= 0:
-            ratio = lambda s: 1.0 / (1.0 - m * expit(-aw0 * s))
-        else:  # (1 + e^u) / (c + e^u), c = (k - M_r) / k taken from the inputs (no cancellation near no start)
-            c = (self.k - self.resisting_torque) / self.k
-            ratio = lambda s: (1.0 + math.exp(aw0 * s)) / (c + math.exp(aw0 * s))
+        c = (self.k - self.resisting_torque) / self.k  # c and 2 - m from the inputs: no cancellation near 2k or k
+        c2 = (2.0 * self.k - self.resisting_torque) / self.k
+
+        def ratio(s):
+            """M_fr / (M_fr - M_r) at u = a w0 s, in a form that neither overflows nor cancels."""
+            u = aw0 * s
+            if u > 1.0:
+                return (1.0 + math.exp(-u)) / (1.0 - (m - 1.0) * math.exp(-u))
+            if u >= 0.0:
+                return (1.0 + math.exp(u)) / (c2 + math.expm1(u))
+            return (1.0 + math.exp(u)) / (c + math.exp(u))
+
         value, _ = quad(lambda s: s * ratio(s), 0.0, 1.0, points=breaks or None, epsabs=0.0, epsrel=1e-13, limit=500)
         return self.inertia * self.speed**2 * value
 
@@ -114,6 +120,11 @@ class PaperTransient:
                 "start_time": self.start_time(), "friction_work": self.friction_work(),
                 "source_work": self.source_work(),
                 "start_time_printed_eq9": _quiet(self.start_time_printed)}
+
+
+def _c_plus_exp(c: float, c2: float, u: float) -> float:
+    """c + e^u for u <= 0: as (2 - m) + expm1(u) near u = 0 (M_r ~ 2k), as c + e^u below (M_r ~ k)."""
+    return c2 + math.expm1(u) if u >= -1.0 else c + math.exp(u)
 
 
 def _quiet(function) -> float:
