@@ -106,9 +106,7 @@ class PaperTransient:
             u = aw0 * s
             if u > 1.0:
                 return (1.0 + math.exp(-u)) / (1.0 - (m - 1.0) * math.exp(-u))
-            if u >= 0.0:
-                return (1.0 + math.exp(u)) / (c2 + math.expm1(u))
-            return (1.0 + math.exp(u)) / (c + math.exp(u))
+            return (1.0 + math.exp(u)) / _c_plus_exp(c, c2, u)
 
         value, _ = quad(lambda s: s * ratio(s), 0.0, 1.0, points=breaks or None, epsabs=0.0, epsrel=1e-13, limit=500)
         return self.inertia * self.speed**2 * value
@@ -123,7 +121,7 @@ class PaperTransient:
 
 
 def _c_plus_exp(c: float, c2: float, u: float) -> float:
-    """c + e^u for u <= 0: as (2 - m) + expm1(u) near u = 0 (M_r ~ 2k), as c + e^u below (M_r ~ k)."""
+    """c + e^u (u <= 1): as (2 - m) + expm1(u) near u = 0 (M_r ~ 2k), as c + e^u below u = -1 (M_r ~ k)."""
     return c2 + math.expm1(u) if u >= -1.0 else c + math.exp(u)
 
 
