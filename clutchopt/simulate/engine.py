@@ -166,8 +166,7 @@ def simulate(model: Model) -> SimulationResult:
             phase = "slip"
             continue
         if event_list[-1] is steady and sol.t_events[-1].size:
-            reason = verdict or (f"no lock-up: steady slip {y[1]:.6g} rad/s at driving speed "
-                                 f"{y[0]:.6g} rad/s (friction torque balances the load)")
+            reason = verdict or _steady_reason(run, t, y)
             break
         y[1] = 0.0  # slip reached zero
         if math.isnan(start_time):
@@ -187,6 +186,15 @@ def simulate(model: Model) -> SimulationResult:
         reason = f"stopped after {MAX_SWITCHES} stick-slip switches (chatter)"
     history = pd.concat(frames, ignore_index=True) if frames else _samples(run, None, "slip", y)
     return SimulationResult(history, _headline(model, history, start_time, start_state, reason, y), events)
+
+
+def _steady_reason(run: _Run, t: float, y) -> str:
+    friction, _, load = run.torques(t, y)
+    if y[0] - y[1] <= 0.0:
+        return (f"no lock-up: the driven half stays at rest, clutch torque {friction:.6g} N*m <= load {load:.6g} N*m "
+                f"at driving speed {y[0]:.6g} rad/s")
+    return (f"no lock-up: steady slip {y[1]:.6g} rad/s at driving speed {y[0]:.6g} rad/s, clutch torque "
+            f"{friction:.6g} N*m = load")
 
 
 def _samples(run: _Run, sol, phase: str, y0=None) -> pd.DataFrame:
