@@ -140,3 +140,18 @@ def test_springs_at_constant_speed_lengthen_t_p_as_the_torque_law_says():
     w_e2 = 12.0 / (outputs["weight_mass"] * outputs["centroid_radius"])
     torque = outputs["torque"] * (1 - w_e2 / w0**2)  # T = c_F m_r r_c (w^2 - w_e^2)
     assert head["start_time"] == pytest.approx(0.5 * w0 / (torque - 5.0), rel=1e-8)
+
+
+def test_a_motor_below_the_engagement_speed_never_starts_the_machine():
+    import copy
+
+    from clutchopt.cases import read_toml
+    from clutchopt.simulate.scene import parse_scene
+
+    data = copy.deepcopy(read_toml(SCENES / "wedge_motor_springs.toml"))
+    data["driver"]["synchronous_speed"] = "300 rpm"  # engagement is at 411 rpm
+    del data["end_time"]
+    head = run_scene(parse_scene(data, str(SCENES / "wedge_motor_springs.toml"))).headline
+    assert not head["locks_up"] and head["reason"].startswith("no lock-up: the driven half stays at rest")
+    assert head["final_driven_speed"] == 0.0
+    assert head["final_driver_speed"] == pytest.approx(10 * math.pi, rel=1e-6)  # idles at synchronous speed
