@@ -100,3 +100,12 @@ def test_scene_with_a_design_solved_for_another_case(tmp_path):
                      f'case = "{(CASES / "wedge_paper.toml").as_posix()}"\ndesign = "design.json"\n')
     with pytest.raises(InputError, match="solved for 'cases/wedge_fan.toml'"):
         load_scene(scene)
+
+
+def test_scene_with_a_coupling_without_a_speed_law(tmp_path):
+    scene = tmp_path / "scene.toml"
+    scene.write_text(f'effects = ["slip_friction"]\n[coupling]\nlaw = "centrifugal"\n'
+                     f'case = "{(CASES / "ball_crusher.toml").as_posix()}"\n')
+    with pytest.raises(InputError, match="ball coupling has no speed-dependent torque law") as error:
+        load_scene(scene)
+    assert error.value.field == "coupling.case"

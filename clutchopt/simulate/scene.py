@@ -150,13 +150,16 @@ def _coupling(f: _Fields, law_name: str, effects):
     if law_name == "constant":
         return None, ConstantFriction(f.quantity("coupling", "torque", "N*m")), {"law": "constant"}
     from clutchopt.cases import load_case
-    from clutchopt.simulate.design import centrifugal_law, design_outputs, solved_outputs
+    from clutchopt.simulate.design import centrifugal_law, design_outputs, solved_outputs, speed_law_missing
 
     table = f.table("coupling")
     if "case" not in table:
         raise InputError("coupling.case", "missing: a centrifugal law needs the coupling's case file")
     case_path = f.file("case")
     case = load_case(case_path)
+    missing = speed_law_missing(case.coupling)
+    if missing:
+        raise InputError("coupling.case", missing)
     source = {"law": "centrifugal", "coupling": case.coupling, "case": table["case"]}
     if "design" in table:
         design_path = f.file("design")
