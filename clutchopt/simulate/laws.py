@@ -20,8 +20,17 @@ import numpy as np
 from clutchopt.simulate.analytic import PaperTransient
 
 
+class _Law:
+    """Defaults of a law: the net torque on the driven half is friction less load; the torque has no slip scale."""
+
+    slip_scale = math.inf
+
+    def excess(self, driver_speed, slip, load):
+        return self.kinetic(driver_speed, slip) - load
+
+
 @dataclass(frozen=True)
-class ConstantFriction:
+class ConstantFriction(_Law):
     torque: float
     name: str = "constant"
 
@@ -31,19 +40,13 @@ class ConstantFriction:
     def capacity(self, driver_speed):
         return self.torque
 
-    slip_scale = math.inf
-
-    def excess(self, driver_speed, slip, load):
-        """Friction torque less the load: what accelerates the driven half."""
-        return self.kinetic(driver_speed, slip) - load
-
     def lockup_failure(self, speed, load, inertia):
         """Closed-form verdict at constant driving speed and constant load: None if the start-up locks up."""
         return None if self.torque > load else f"no lock-up: friction torque {self.torque:.6g} N*m <= load {load:.6g} N*m"
 
 
 @dataclass(frozen=True)
-class PaperFriction:
+class PaperFriction(_Law):
     k: float
     a: float
     name: str = "paper"
@@ -71,7 +74,7 @@ class PaperFriction:
 
 
 @dataclass(frozen=True)
-class CentrifugalFriction:
+class CentrifugalFriction(_Law):
     """T = c_F (m_r r_c w_a^2 - sum of reductions)^+: c_F = z f r_m / sin(alpha) for the wedge (eqs. 10-15).
 
     ``reductions`` are the radial forces per weight that work against the centrifugal force (spring preload,
@@ -90,12 +93,6 @@ class CentrifugalFriction:
 
     def capacity(self, driver_speed):
         return self.kinetic(driver_speed, 0.0)
-
-    slip_scale = math.inf
-
-    def excess(self, driver_speed, slip, load):
-        """Friction torque less the load: what accelerates the driven half."""
-        return self.kinetic(driver_speed, slip) - load
 
     def engagement_speed(self) -> float:
         return math.sqrt(sum(r() for r in self.reductions) / self.mass_radius)
