@@ -155,3 +155,14 @@ def test_a_motor_below_the_engagement_speed_never_starts_the_machine():
     assert not head["locks_up"] and head["reason"].startswith("no lock-up: the driven half stays at rest")
     assert head["final_driven_speed"] == 0.0
     assert head["final_driver_speed"] == pytest.approx(10 * math.pi, rel=1e-6)  # idles at synchronous speed
+
+
+def test_an_infeasible_solution_is_not_started():
+    from clutchopt.optimise import solve_case
+
+    case = load_case(CASES / "wedge_paper.toml").with_values(outer_diameter_max=0.05)
+    solution = solve_case(case, "geometry")
+    assert solution.status == "infeasible"
+    assert verify(case, solution) == {"verified": False,
+                                      "reason": "the solution's status is infeasible, there is no design to start"}
+    assert report_figure(case, solution)[0] is None

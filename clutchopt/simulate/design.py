@@ -26,12 +26,14 @@ SPEED_LAWS = {"wedge": ("torque", "weight_mass", "centroid_radius"),
               "lever": ("torque", "weight_mass", "start_radius")}
 
 
-def speed_law_missing(coupling: str) -> str | None:
-    """Why a coupling has no start-up law here, or None."""
-    if coupling in SPEED_LAWS:
-        return None
-    return (f"the {coupling} coupling has no speed-dependent torque law in clutchopt.simulate yet "
-            f"(available: {', '.join(SPEED_LAWS)})")
+def speed_law_missing(coupling: str, solution=None) -> str | None:
+    """Why a coupling (or its solution) cannot be started here, or None."""
+    if coupling not in SPEED_LAWS:
+        return (f"the {coupling} coupling has no speed-dependent torque law in clutchopt.simulate yet "
+                f"(available: {', '.join(SPEED_LAWS)})")
+    if solution is not None and solution.status != "optimal":
+        return f"the solution's status is {solution.status}, there is no design to start"
+    return None
 
 
 def design_outputs(path: str | Path, coupling: str, case_path: str | Path | None = None) -> dict[str, float]:
@@ -79,7 +81,7 @@ def ideal_start(case, outputs: dict[str, float]) -> SimulationResult:
 
 def verify(case, solution) -> dict:
     """Simulate the optimised design from rest; achieved acceleration time against the sized t_p (SI)."""
-    missing = speed_law_missing(case.coupling)
+    missing = speed_law_missing(case.coupling, solution)
     if missing:
         return {"verified": False, "reason": missing}
     p = case.params()
@@ -108,7 +110,7 @@ def verify_text(check: dict) -> str:
 
 def report_figure(case, solution):
     """(Figure, caption) of a solved design's start-up at constant driving speed, or (None, reason)."""
-    missing = speed_law_missing(case.coupling)
+    missing = speed_law_missing(case.coupling, solution)
     if missing:
         return None, missing
     from clutchopt.simulate.plot import history_figure
