@@ -1,8 +1,9 @@
 """Start-up simulation: the right-hand side assembled from the listed effects, stick and slip as events.
 
 Integrator: SciPy's ``solve_ivp`` with DOP853 (explicit Runge-Kutta 8(5,3)). The phases are smooth between events
-and only mildly stiff (the paper's law with a w0 = +1000 starts at a torque of 1e304 k but relaxes within
-ns), so an explicit high-order method with error control reaches 1e-10 relative at low cost; its events
+and only mildly stiff (the paper's law with a w0 = +1000 starts at its cap of 1e130 k, but the fast part lasts
+no longer than the solver needs to resolve it), so an explicit high-order method with error control reaches
+1e-10 relative at low cost (see docs/simulate.md for what accuracy needed); its events
 locate zero slip (lock-up), the static capacity being exceeded (break loose) and a steady slip (no lock-up)
 on the 7th-order dense output. CasADi's integrators (CVODES/IDAS) would need the stick/slip switching written
 around them and bring no accuracy we lack; they remain the choice if a scene ever enters an optimisation.

@@ -75,7 +75,7 @@ class PaperFriction(_Law):
 
 @dataclass(frozen=True)
 class CentrifugalFriction(_Law):
-    """T = c_F (m_r r_c w_a^2 - sum of reductions)^+: c_F = z f r_m / sin(alpha) for the wedge (eqs. 10-15).
+    """T = c_F (m r w_a^2 - sum of reductions)^+: c_F = z f r_m / sin(alpha) for the wedge (eqs. 10-15), r = r_c.
 
     ``reductions`` are the radial forces per weight that work against the centrifugal force (spring preload,
     the weight's own weight), as callables so that only the listed effects are evaluated. The engagement speed
