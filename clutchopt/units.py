@@ -43,22 +43,32 @@ _PRETTY_SI = {
 }
 
 
-_DIMENSION_NAMES = {
-    "[mass] / [length] / [time] ** 2": "a pressure or stress",
-    "[length] ** 2 * [mass] / [time] ** 2": "a torque or energy",
-    "[length] * [mass] / [time] ** 2": "a force",
-    "1 / [time]": "an angular speed",
-    "[length]": "a length",
-    "[mass]": "a mass",
-    "[time]": "a time",
-    "[length] ** 2 * [mass]": "a moment of inertia",
-    "[mass] / [length] ** 3": "a density",
-    "[currency] / [mass]": "a price per mass",
-    "[currency]": "a cost",
-    "[currency] / [length] ** 2": "a cost per area",
-    "[mass] / [time] ** 2": "a stiffness",
-    "[length] / [time] ** 2": "an acceleration",
+_DIMENSION_EXAMPLES = {  # a unit of each dimension a case uses, and its plain name
+    "Pa": "a pressure or stress",
+    "N*m": "a torque or energy",
+    "N": "a force",
+    "1/s": "an angular speed",
+    "m": "a length",
+    "kg": "a mass",
+    "s": "a time",
+    "kg*m^2": "a moment of inertia",
+    "kg/m^3": "a density",
+    "EUR/kg": "a price per mass",
+    "EUR": "a cost",
+    "EUR/m^2": "a cost per area",
+    "N/m": "a stiffness",
+    "m/s^2": "an acceleration",
+    "W": "a power",
+    "J/K": "a heat capacity",
 }
+
+
+def _dimension_key(unit: str) -> frozenset:
+    """Order-independent key of a unit's dimensionality (pint's text form orders the base dimensions freely)."""
+    return frozenset(ureg.Quantity(1.0, unit).dimensionality.items())
+
+
+_DIMENSION_NAMES = {_dimension_key(unit): name for unit, name in _DIMENSION_EXAMPLES.items()}
 
 
 def describe_dimension(unit: str) -> str:
@@ -66,8 +76,7 @@ def describe_dimension(unit: str) -> str:
     dim = ureg.Quantity(1.0, unit).dimensionality
     if not dim:
         return "dimensionless (or an angle)"
-    # compared as dimensionalities: pint's text order of the base dimensions ("[mass] * [length] ** 2") varies
-    return next((name for key, name in _DIMENSION_NAMES.items() if ureg.get_dimensionality(key) == dim), str(dim))
+    return _DIMENSION_NAMES.get(_dimension_key(unit), str(dim))
 
 
 def to_si(field: str, raw: object, unit: str) -> float:

@@ -7,7 +7,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from clutchopt.errors import InputError
-from clutchopt.units import from_si, to_si
+from clutchopt.units import describe_dimension, from_si, to_si
 
 
 @pytest.mark.parametrize("text, unit, si", [
@@ -55,3 +55,16 @@ def test_millimetres_round_trip(value):
     si = to_si("x", f"{value!r} mm", "mm")
     assert si == pytest.approx(value / 1000, rel=1e-12)
     assert from_si(si, "mm") == pytest.approx(value, rel=1e-12)
+
+
+@pytest.mark.parametrize("unit, name", [
+    ("MPa", "a pressure or stress"), ("kN*m", "a torque or energy"), ("kg*m^2", "a moment of inertia"),
+    ("rpm", "an angular speed"), ("kW", "a power"), ("N/mm", "a stiffness"), ("EUR/kg", "a price per mass"),
+])
+def test_dimensions_are_named_whatever_order_pint_prints_them(unit, name):
+    assert describe_dimension(unit) == name
+
+
+def test_a_wrong_torque_unit_names_a_torque():
+    with pytest.raises(InputError, match="expected a torque or energy .* which is a mass"):
+        to_si("duty.resisting_torque", "5 kg", "N*m")

@@ -64,7 +64,7 @@ def coupling_rows(case: Case, repeats: int) -> list[dict]:
         first_s, _ = time_once(lambda: closed_form(case, OBJECTIVE))
         rows.append(_row(case, mode, "closed form", "feasible" if form.feasible else "infeasible", form.objective,
                          reference, form.worst_violation, None, first_s,
-                         repeated(lambda: closed_form(case, OBJECTIVE), repeats), "baseline column, float64"))
+                         repeated(lambda: closed_form(case, OBJECTIVE), repeats), "closed_form column, float64"))
 
     params = problem.scaled_data(case).params
     first_s, gp = time_once(lambda: GPModel(formulation, OBJECTIVE, params, pinned, best.bounds))

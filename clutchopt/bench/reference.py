@@ -1,8 +1,10 @@
 """What every benchmark and torture case is measured against: the coupling's cases and the closed form.
 
-Convention (generic over the registry): a coupling's ``Comparison.baseline`` column is the closed form of the
-mode of its first NLP column (``Comparison.solves[0]``), and its rows name the design variables of that mode.
-A coupling without a comparison is benchmarked in its default mode, without a closed-form row.
+Convention (generic over the registry): a coupling's comparison may have a reference column named
+``closed_form``: the closed-form optimum of the mode of its first NLP column (``Comparison.solves[0]``), its rows
+naming that mode's design variables. Benchmarks and torture cases use that mode; a coupling without the column
+(the ball clutch: the paper gives a procedure, not an optimum) is measured without a closed form, and one
+without a comparison in its default mode.
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from clutchopt.model import Formulation
 from clutchopt.optimise.verify import ConstraintCheck, check_design, evaluate_objective
 
 CASES = Path(__file__).resolve().parents[2] / "cases"
+CLOSED_FORM_COLUMN = "closed_form"
 
 
 @dataclass
@@ -65,15 +68,15 @@ def search_box(formulation: Formulation, case: Case) -> dict[str, tuple[float, f
 
 
 def closed_form(case: Case, objective: str = "mass") -> ClosedForm | None:
-    """The baseline column's design evaluated in float64 with the reference mode's own equations; None if the
-    coupling has none or it is undefined (NaN) at this case."""
+    """The ``closed_form`` column's design evaluated in float64 with the reference mode's own equations; None if
+    the coupling has none or it is undefined (NaN) at this case."""
     coupling = get_coupling(case.coupling)
     if coupling.comparison is None:
         return None
     formulation = coupling.formulation(reference_mode(case.coupling))
     params = case.params()
     with np.errstate(invalid="ignore", divide="ignore"):
-        column = coupling.comparison.references(params).get(coupling.comparison.baseline, {})
+        column = coupling.comparison.references(params).get(CLOSED_FORM_COLUMN, {})
     design = {v.name: column.get(v.name, case.values.get(v.name, math.nan)) for v in formulation.variables}
     if not all(isinstance(value, (int, float)) and math.isfinite(value) for value in design.values()):
         return None

@@ -119,12 +119,12 @@ TORQUES = (1.0, 10.0, 1e2, 1e3, 1e4, 1e5, 1e6)  # N*m
 
 
 def torque_quantities(case: Case) -> list[str]:
-    """The duty quantities (first section) of torque or inertia dimension: scaled alike, they scale the required
-    torque (T_max = I w / t_p + T_c, or T itself)."""
+    """The duty quantities (first section) of torque, inertia or power dimension: scaled alike at a fixed speed,
+    they scale the required torque (T_max = I w / t_p + T_c, T itself, or k_s P / w)."""
     coupling = get_coupling(case.coupling)
     duty = coupling.quantities[0].section
     return [q.name for q in coupling.quantities if q.section == duty and q.name in case.values
-            and _dimension(q.unit) in (_dimension("N*m"), _dimension("kg*m^2"))]
+            and _dimension(q.unit) in (_dimension("N*m"), _dimension("kg*m^2"), _dimension("W"))]
 
 
 def torque_range(case: Case) -> list[TortureCase]:
