@@ -1,6 +1,6 @@
 """Accuracy against time: one case per coupling solved by every method, each answer re-checked in float64.
 
-Methods: the paper's closed form (the coupling's baseline column); cvxpy GP where the posed problem is
+Methods: the paper's closed form (the comparison's ``closed_form`` column); cvxpy GP where the posed problem is
 posynomial; CasADi/IPOPT at several tolerances; SciPy SLSQP on the same scaled NLP. The relative error is
 taken against the tightest IPOPT solve. "first" times building the problem and solving it once; "re-solve"
 solves the already-built problem again for the same case (median and interquartile range after a warm-up).

@@ -62,6 +62,7 @@ class TortureCase:
 
 # --- Judging one solve --------------------------------------------------------------------------------------------
 def judge(case: Case, mode: str) -> Verdict:
+    """Solve ``case`` in ``mode`` and judge it; the closed form applies in the reference mode only."""
     formulation = get_coupling(case.coupling).formulation(mode)
     solution = problem_for(formulation).solve(case)
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
@@ -70,6 +71,7 @@ def judge(case: Case, mode: str) -> Verdict:
 
 
 def judge_solution(solution: Solution, reference, formulation) -> Verdict:
+    """The verdict on a solution, ``reference`` its closed form (:class:`ClosedForm`) or None."""
     if solution.status == "optimal":
         if solution.worst_violation > FEASIBILITY_TOL:
             return Verdict("failed", f"optimal but violates by {solution.worst_violation:.3g}")
