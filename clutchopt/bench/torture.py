@@ -9,8 +9,8 @@ Each :class:`TortureCase` runs to a :class:`Verdict`; a case passes when it ends
 - ``rejected``: an InputError naming the field (a contradictory case, refused before any solve).
 Anything else (solver failure, unverified, a wrong answer, an exception) is a failure.
 
-Families are functions ``(base case) -> list[TortureCase]`` in :data:`FAMILIES`, applied to the first case file
-of every coupling; a family needing no base case (the simulator's transient family) goes in
+Families are functions ``(base case) -> list[TortureCase]`` in :data:`FAMILIES`, applied to every case file of
+every registered coupling; a family needing no base case (the simulator's transient family) goes in
 :data:`STANDALONE_FAMILIES` as ``() -> list[TortureCase]``.
 """
 
@@ -18,14 +18,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from pathlib import Path
 from typing import Callable
 
 import numpy as np
 
-from clutchopt.bench.reference import bench_cases, closed_form, reference_mode, search_box
-from clutchopt.cases import Case
+from clutchopt.bench.reference import closed_form, coupling_cases, reference_mode, search_box
+from clutchopt.cases import Case, load_case
 from clutchopt.errors import InputError
-from clutchopt.formulations import get_coupling
+from clutchopt.formulations import MODULES, get_coupling
 from clutchopt.optimise.problem import Solution, problem_for
 from clutchopt.optimise.verify import FEASIBILITY_TOL
 from clutchopt.units import ureg
@@ -104,6 +105,11 @@ def _solve(case_of: Callable[[], Case], mode: str) -> Callable[[], Verdict]:
     return run
 
 
+def _label(case: Case) -> str:
+    """A case's name in torture-case names: its file's stem (``wedge_paper``)."""
+    return Path(case.path).stem
+
+
 def _other_modes(case: Case) -> list[str]:
     return [mode for mode in get_coupling(case.coupling).formulations if mode != reference_mode(case.coupling)]
 
@@ -142,7 +148,7 @@ def torque_range(case: Case) -> list[TortureCase]:
         factor = target / torque
         values = {name: case.values[name] * factor for name in scaled}
         for mode in [reference_mode(case.coupling)] + (_other_modes(case) if target in (1.0, 1e3, 1e6) else []):
-            cases.append(TortureCase(f"{case.coupling}-{mode}-torque-{target:.0e}Nm", "torque",
+            cases.append(TortureCase(f"{_label(case)}-{mode}-torque-{target:.0e}Nm", "torque",
                                      _solve(lambda v=values: case.with_values(**v), mode)))
     return cases
 
@@ -151,7 +157,7 @@ def speed_range(case: Case) -> list[TortureCase]:
     """Driving speeds 100 to 10,000 rpm, torque held (duty quantities untouched), reference mode."""
     if "speed" not in case.values:
         return []
-    return [TortureCase(f"{case.coupling}-speed-{rpm}rpm", "speed",
+    return [TortureCase(f"{_label(case)}-speed-{rpm}rpm", "speed",
                         _solve(lambda r=rpm: case.with_values(speed=r * math.pi / 30), reference_mode(case.coupling)))
             for rpm in (100, 300, 1000, 3000, 10000)]
 
@@ -160,7 +166,7 @@ def stress_extremes(case: Case) -> list[TortureCase]:
     """Every allowable stress or pressure at 1e-3 and 1e3 times its case value."""
     names = [q.name for q in get_coupling(case.coupling).quantities
              if q.name.startswith("allowable_") and q.name in case.values and _dimension(q.unit) == _dimension("Pa")]
-    return [TortureCase(f"{case.coupling}-{name}-x{factor:g}", "stress",
+    return [TortureCase(f"{_label(case)}-{name}-x{factor:g}", "stress",
                         _solve(lambda n=name, f=factor: case.with_values(**{n: case.values[n] * f}),
                                reference_mode(case.coupling)))
             for name in names for factor in (1e-3, 1e3)]
@@ -185,7 +191,7 @@ def near_limits(case: Case) -> list[TortureCase]:
     for constraint, quantity, value in _limit_quantities(case, _base_solution(case, mode)):
         for side in (+1, -1):
             limit = value * (1 + side * NEAR)
-            cases.append(TortureCase(f"{case.coupling}-{constraint}-limit-{'+' if side > 0 else '-'}1e-6", "near",
+            cases.append(TortureCase(f"{_label(case)}-{constraint}-limit-{'+' if side > 0 else '-'}1e-6", "near",
                                      _solve(lambda q=quantity, v=limit: case.with_values(**{q: v}), mode)))
     return cases
 
@@ -206,7 +212,7 @@ def pinned_angles(case: Case) -> list[TortureCase]:
                 for side in (+1, -1):
                     value = check.limit * (1 + side * NEAR)
                     cases.append(TortureCase(
-                        f"{case.coupling}-{mode}-{v.name}-at-{check.name}-{'+' if side > 0 else '-'}1e-6", "pinned",
+                        f"{_label(case)}-{mode}-{v.name}-at-{check.name}-{'+' if side > 0 else '-'}1e-6", "pinned",
                         _solve(lambda c=fixed, n=v.name, x=value: c.with_values(**{n: x}), mode)))
     return cases
 
@@ -232,7 +238,7 @@ def degenerate_geometry(case: Case) -> list[TortureCase]:
         if q.unit not in ("deg", "rad", ""):
             continue
         for value in _near_bounds(q):
-            cases.append(TortureCase(f"{case.coupling}-{q.name}={value:.9g}", "degenerate",
+            cases.append(TortureCase(f"{_label(case)}-{q.name}={value:.9g}", "degenerate",
                                      _solve(lambda n=q.name, v=value: case.with_values(**{n: v}), mode)))
     return cases
 
@@ -251,7 +257,7 @@ def excluded_optimum(case: Case) -> list[TortureCase]:
         value = reference.design[v.name]
         if lo < hi and not v.integer and lo < value / 2:
             bounded = replace(case, bounds={**case.bounds, v.name: (lo, value / 2)})
-            cases.append(TortureCase(f"{case.coupling}-{v.name}-below-half-optimum", "excluded",
+            cases.append(TortureCase(f"{_label(case)}-{v.name}-below-half-optimum", "excluded",
                                      _solve(lambda c=bounded: c, mode)))
     return cases
 
@@ -262,6 +268,7 @@ STANDALONE_FAMILIES: tuple[Callable[[], list[TortureCase]], ...] = ()
 
 
 def torture_cases() -> list[TortureCase]:
-    """Every family over the first case of every coupling, then the standalone families."""
-    cases = [tc for case in bench_cases() for family in FAMILIES for tc in family(case)]
+    """Every family over every case file of every registered coupling, then the standalone families."""
+    files = [path for name in MODULES for path in coupling_cases(name)]
+    cases = [tc for path in files for family in FAMILIES for tc in family(load_case(path))]
     return cases + [tc for family in STANDALONE_FAMILIES for tc in family()]
