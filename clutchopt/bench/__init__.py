@@ -41,7 +41,7 @@ class Section:
 SECTIONS: tuple[Section, ...] = (
     Section("accuracy", "Accuracy vs time (one case per coupling; rel_error against IPOPT tol 1e-10; "
                         "violation re-evaluated in float64, relative; times in ms)", accuracy_rows),
-    Section("throughput", "Throughput: one built problem re-solved warm over a sweep", throughput_rows),
+    Section("throughput", "Throughput: one built problem re-solved over a sweep, warm-started unless said", throughput_rows),
 )
 
 

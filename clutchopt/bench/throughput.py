@@ -1,8 +1,9 @@
 """Throughput: one built CasADi problem re-solved, warm-started, over a sweep of one case quantity.
 
-The sweep runs the first non-integer quantity of the case's first section (the duty: inertia or torque) from
-0.5x to 2x its value. Serial: one process, each point warm-started from the previous optimum. Pool: the sweep
-cut into contiguous chunks, one per worker process, each worker building its own problem (counted).
+The sweep runs the first non-integer quantity of the case's first section (the duty: inertia, torque or power)
+from 0.5x to 2x its value. Serial: one process, each point warm-started from the previous optimum (and, for
+comparison, each from the case's own start: "cold starts"). Pool: warm, the sweep cut into contiguous chunks,
+one per worker process, each worker building its own problem (counted).
 """
 
 from __future__ import annotations
@@ -23,12 +24,13 @@ def sweep_quantity(case: Case) -> str:
     return next(q.name for q in quantities if q.section == quantities[0].section)
 
 
-def warm_sweep(case: Case, name: str, values) -> tuple[int, int]:
-    """Solve the case at each value of ``name`` in turn, warm-started; (points optimal, points)."""
+def warm_sweep(case: Case, name: str, values, warm: bool = True) -> tuple[int, int]:
+    """Solve the case at each value of ``name`` in turn, warm-started from the previous optimum unless ``warm`` is
+    false (each point from the case's own start); (points optimal, points)."""
     problem = Problem(get_coupling(case.coupling).formulation(reference_mode(case.coupling)))
     previous, optimal = None, 0
     for value in values:
-        solution = problem.solve(case.with_values(**{name: float(value)}), warm=previous)
+        solution = problem.solve(case.with_values(**{name: float(value)}), warm=previous if warm else None)
         optimal += solution.status == "optimal"
         previous = solution if solution.status == "optimal" else previous
     return optimal, len(values)
@@ -45,6 +47,9 @@ def throughput_rows(config) -> list[dict]:
         optimal, points = warm_sweep(case, name, values)
         serial = time.perf_counter() - started
         rows.append(_row(case, name, "serial", 1, points, optimal, serial))
+        started = time.perf_counter()
+        optimal, points = warm_sweep(case, name, values, warm=False)
+        rows.append(_row(case, name, "serial, cold starts", 1, points, optimal, time.perf_counter() - started))
         chunks = np.array_split(values, config.processes)
         started = time.perf_counter()
         with ProcessPoolExecutor(config.processes) as pool:

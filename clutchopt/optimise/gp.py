@@ -103,8 +103,3 @@ class GPModel:
         return GPResult(status, evaluate_objective(self.formulation, self.objective, design, self.params), design,
                         checks, int(self.problem.solver_stats.num_iters or 0), self.build_s, elapsed)
 
-
-def solve_gp(formulation: Formulation, objective: str, params, fixed: dict[str, float],
-             bounds: dict[str, tuple[float, float]]) -> GPResult:
-    """Build and solve as a GP; ``fixed`` holds the variables kept at a value (fixed ones, integers)."""
-    return GPModel(formulation, objective, params, fixed, bounds).solve()
