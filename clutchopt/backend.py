@@ -36,7 +36,8 @@ fmin = _either(np.minimum, ca.fmin)
 
 
 def cbrt(x):
-    return x ** (1.0 / 3.0) if is_symbolic(x) else np.cbrt(x)
+    """Real cube root of numbers; a power of anything symbolic (CasADi, or cvxpy in ``optimise/gp.py``)."""
+    return np.cbrt(x) if isinstance(x, (int, float, np.ndarray, np.generic)) else x ** (1.0 / 3.0)
 
 
 sinh = _either(np.sinh, ca.sinh)

@@ -7,8 +7,9 @@ from io import StringIO
 import pytest
 
 from clutchopt.bench import SECTIONS, BenchConfig, Section, bench_text, run_bench
-from clutchopt.bench.reference import bench_cases, closed_form
+from clutchopt.bench.reference import bench_cases, closed_form, reference_mode
 from clutchopt.cli import main
+from clutchopt.formulations import get_coupling
 
 
 @pytest.fixture(scope="module")
@@ -19,9 +20,12 @@ def report():
     return json.loads(out.getvalue())
 
 
-def _rows(report, section, coupling):
-    return {row["method"] if "method" in row else row["how"]: row
-            for row in report["sections"][section]["rows"] if row["coupling"] == coupling}
+def _rows(report, section, coupling, mode=None):
+    return {row["method"] if "method" in row else row["how"]: row for row in report["sections"][section]["rows"]
+            if row["coupling"] == coupling and mode in (None, row["mode"])}
+
+
+MODES = [(case.coupling, mode) for case in bench_cases() for mode in get_coupling(case.coupling).formulations]
 
 
 def test_report_structure(report):
@@ -29,37 +33,49 @@ def test_report_structure(report):
     assert report["config"] == {"repeats": 3, "sweep_points": 100, "processes": 2}
     assert report["machine"]["cores"] >= 1 and report["machine"]["casadi"]
     assert list(report["sections"]) == [s.name for s in SECTIONS]
-    couplings = {case.coupling for case in bench_cases()}
-    assert {r["coupling"] for r in report["sections"]["accuracy"]["rows"]} == couplings
-    assert {r["coupling"] for r in report["sections"]["throughput"]["rows"]} == couplings
+    assert {(r["coupling"], r["mode"]) for r in report["sections"]["accuracy"]["rows"]} == set(MODES)
+    assert {r["coupling"] for r in report["sections"]["throughput"]["rows"]} == {c for c, _ in MODES}
 
 
-@pytest.mark.parametrize("coupling", sorted({case.coupling for case in bench_cases()}))
-def test_every_method_of_every_coupling(report, coupling):
-    rows = _rows(report, "accuracy", coupling)
-    with_closed_form = closed_form(next(c for c in bench_cases() if c.coupling == coupling)) is not None
-    assert with_closed_form == (coupling != "ball")  # the ball paper gives a procedure, not an optimum
+@pytest.mark.parametrize("coupling, mode", MODES)
+def test_every_method_in_every_mode(report, coupling, mode):
+    rows = _rows(report, "accuracy", coupling, mode)
+    case = next(c for c in bench_cases() if c.coupling == coupling)
+    with_closed_form = mode == reference_mode(coupling) and closed_form(case) is not None
     assert set(rows) == {"cvxpy gp", "ipopt tol 1e-04", "ipopt tol 1e-06", "ipopt tol 1e-08", "ipopt tol 1e-10",
                          "slsqp ftol 1e-06", "slsqp ftol 1e-10"} | ({"closed form"} if with_closed_form else set())
     assert rows["ipopt tol 1e-10"]["rel_error"] == 0.0
     for tol in ("1e-04", "1e-06", "1e-08", "1e-10"):
         row = rows[f"ipopt tol {tol}"]
         assert row["status"] == "optimal" and row["worst_violation"] <= 1e-8
-        assert row["rel_error"] <= 10 * float(tol) and row["iterations"] > 0
+        assert row["rel_error"] <= 20 * float(tol) and row["iterations"] > 0
         assert row["first_s"] > 0 and row["resolve_median_s"] > 0 and row["resolve_iqr_s"] >= 0
     if with_closed_form:
         assert rows["closed form"]["status"] == "feasible" and rows["closed form"]["rel_error"] < 1e-8
     assert rows["slsqp ftol 1e-10"]["status"] == "optimal" and rows["slsqp ftol 1e-10"]["rel_error"] < 1e-8
-    throughput = _rows(report, "throughput", coupling)
-    assert set(throughput) == {"serial", "serial, cold starts", "process pool"}
-    assert {row["points"] for row in throughput.values()} == {100}
-    assert len({row["optimal"] for row in throughput.values()}) == 1 and throughput["serial"]["optimal"] > 0
+
+
+def test_closed_forms_where_the_papers_have_one(report):
+    with_closed_form = {r["coupling"] for r in report["sections"]["accuracy"]["rows"] if r["method"] == "closed form"}
+    assert with_closed_form == {"wedge", "lever", "cable"}  # the ball paper gives a procedure, not an optimum
+
+
+def test_throughput(report):
+    for coupling in {c for c, _ in MODES}:
+        throughput = _rows(report, "throughput", coupling)
+        assert set(throughput) == {"serial", "serial, cold starts", "process pool"}
+        assert {row["points"] for row in throughput.values()} == {100}
+        assert len({row["optimal"] for row in throughput.values()}) == 1 and throughput["serial"]["optimal"] > 0
 
 
 def test_gp_where_posynomial(report):
-    wedge, lever = _rows(report, "accuracy", "wedge"), _rows(report, "accuracy", "lever")
-    assert wedge["cvxpy gp"]["status"] == "optimal" and wedge["cvxpy gp"]["rel_error"] < 1e-7
-    assert lever["cvxpy gp"]["status"] == "not_posynomial" and lever["cvxpy gp"]["objective"] is None
+    gp = {(r["coupling"], r["mode"]): r for r in report["sections"]["accuracy"]["rows"] if r["method"] == "cvxpy gp"}
+    assert {key for key, row in gp.items() if row["status"] == "optimal"} == {("wedge", "paper"), ("ball", "paper")}
+    assert all(gp[key]["rel_error"] < 1e-7 and gp[key]["worst_violation"] <= 1e-8
+               for key in (("wedge", "paper"), ("ball", "paper")))
+    lever = gp[("lever", "paper")]
+    assert lever["status"] == "not_posynomial" and lever["objective"] is None
+    assert lever["note"] == "not posynomial: lining_pressure, link_buckling, link_compression"
 
 
 def test_a_section_is_one_function():

@@ -5,11 +5,13 @@ positive variables for the free design variables and floats for everything else 
 integers fixed at a given value). A "<=" constraint becomes ``value / limit <= 1``, a ">=" one
 ``limit / value <= 1``; cvxpy's DGP analysis then decides whether the posed problem is a geometric programme.
 
-Which models are posynomial (checked by :func:`gp_problem`, see the bench table):
+Which models are posynomial (decided by cvxpy's DGP analysis in :func:`gp_problem`; the bench table shows it):
 - wedge ``paper`` mode: with the geometry given, the friction torque is a monomial in m_r, the flank pressure a
   monomial in m_r, the finger stress a monomial in m_r and d_n, the mass a posynomial: a GP as posed.
+- ball ``paper`` mode: the leading-order torque (4) is a monomial in R_a and l (K2 given by eq. 1), K5 = l / R_a
+  a monomial, the mass a posynomial: a GP as posed.
 - lever ``paper`` mode is not: the worn-state radial force is the centrifugal force *minus* the return-spring
-  force (a difference of monomials: signomial).
+  force (a difference of monomials: signomial) in the lining-pressure and link constraints.
 - cable ``paper`` mode is not, even with the integer cable count fixed: the weight-thread and hub-thread
   constraints subtract the cable's pull and the spring force from inertia forces (signomial).
 - the geometry/design/threads modes are not: sin, tan of free angles, differences of radii.
