@@ -109,3 +109,13 @@ def test_ipopt_behaves_the_same_at_every_scale(k):
     assert scaled.solver.iterations == base.solver.iterations
     assert scaled.objective / k == pytest.approx(base.objective, rel=1e-12)
     assert scaled.design["finger_diameter"] == pytest.approx(base.design["finger_diameter"], rel=1e-12)
+
+
+def test_a_standalone_family_plugs_in(monkeypatch):
+    import clutchopt.bench.torture as torture
+
+    extra = TortureCase("transient-a_w0=1e3", "transient", lambda: torture.Verdict("verified", "t_c matches"))
+    monkeypatch.setattr(torture, "STANDALONE_FAMILIES", (lambda: [extra],))
+    cases = torture.torture_cases()
+    assert cases[-1] is extra and len(cases) == len(CASES) + 1
+    assert extra.verdict().passed

@@ -6,7 +6,8 @@ Each :class:`TortureCase` runs to a :class:`Verdict`; a case passes when it ends
   form's design is feasible and within the bounds;
 - ``infeasible``: a diagnosis naming the conflicting constraints or bounds, and a closed form (where there is
   one) that is indeed infeasible or out of bounds (else the solver missed a feasible design);
-- ``rejected``: an InputError naming the field (a contradictory case, refused before any solve).
+- ``rejected``: an InputError naming the field (a contradictory case, refused before any solve);
+- ``verified``: for a standalone family's own check (the transient against its closed form).
 Anything else (solver failure, unverified, a wrong answer, an exception) is a failure.
 
 Families are functions ``(base case) -> list[TortureCase]`` in :data:`FAMILIES`, applied to every case file of
@@ -37,12 +38,12 @@ NEAR = 1e-6  # "within 1e-6 of the optimum"
 
 @dataclass(frozen=True)
 class Verdict:
-    kind: str  # optimal | infeasible | rejected (passes) or failed
+    kind: str  # optimal | infeasible | rejected | verified (a non-optimisation result checked) pass; failed
     detail: str
 
     @property
     def passed(self) -> bool:
-        return self.kind in ("optimal", "infeasible", "rejected")
+        return self.kind in ("optimal", "infeasible", "rejected", "verified")
 
 
 @dataclass(frozen=True)
