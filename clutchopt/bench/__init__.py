@@ -7,6 +7,7 @@ as one more entry (``Section("transient", title, transient_rows)``), nothing els
 
 from __future__ import annotations
 
+import math
 import os
 import platform
 import time
@@ -39,7 +40,7 @@ class Section:
 
 
 SECTIONS: tuple[Section, ...] = (
-    Section("accuracy", "Accuracy vs time (one case per coupling; rel_error against IPOPT tol 1e-10; "
+    Section("accuracy", "Accuracy vs time (one case per coupling, every mode; rel_error against IPOPT tol 1e-10; "
                         "violation re-evaluated in float64, relative; times in ms)", accuracy_rows),
     Section("throughput", "Throughput: one built problem re-solved over a sweep, warm-started unless said", throughput_rows),
 )
@@ -71,14 +72,18 @@ _MS = ("first_s", "resolve_median_s", "resolve_iqr_s")
 
 
 def _shown(row: dict) -> dict:
+    """A row as text: times in ms, objectives to 10 digits, other numbers to 4, missing values as "-"."""
     shown = {}
     for key, value in row.items():
+        missing = value is None or value == "" or (isinstance(value, float) and math.isnan(value))
         if key in _MS:
-            shown[key.replace("_s", "_ms")] = "-" if value is None or value != value else f"{value * 1e3:.3g}"
+            shown[key.replace("_s", "_ms")] = "-" if missing else f"{value * 1e3:.3g}"
+        elif missing:
+            shown[key] = "-"
         elif isinstance(value, float):
-            shown[key] = "-" if value != value else f"{value:.4g}" if key != "objective" else f"{value:.10g}"
+            shown[key] = f"{value:.10g}" if key == "objective" else f"{value:.4g}"
         else:
-            shown[key] = "-" if value is None or value == "" else value
+            shown[key] = value
     return shown
 
 
