@@ -25,7 +25,8 @@ def _names(coupling, test):
 
 def _allowables(coupling):
     pressure = ureg.Quantity(1, "Pa").dimensionality
-    names = _names(coupling, lambda q: q.name.startswith("allowable_") and ureg.Quantity(1, q.unit).dimensionality == pressure)
+    names = _names(coupling, lambda q: q.name.startswith("allowable_")
+                   and ureg.Quantity(1, q.unit).dimensionality == pressure)
     assert names, coupling
     return names
 

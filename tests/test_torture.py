@@ -44,7 +44,8 @@ def _named(name):
 
 def test_known_outcomes():
     # within 1e-6 of the wedge's flank-pressure limit: just feasible at the same optimum, just infeasible below
-    above, below = _named("wedge_centrifuge-flank_pressure-limit-+1e-6"), _named("wedge_centrifuge-flank_pressure-limit--1e-6")
+    above = _named("wedge_centrifuge-flank_pressure-limit-+1e-6")
+    below = _named("wedge_centrifuge-flank_pressure-limit--1e-6")
     assert above.kind == "optimal" and below.kind == "infeasible"
     assert "torque" in below.detail and "flank_pressure" in below.detail
     # alpha within 1e-6 of the self-locking limit (atan f + margin), geometry mode with alpha fixed
@@ -54,7 +55,8 @@ def test_known_outcomes():
     # lambda -> 1: no flank area left
     assert _named("wedge_centrifuge-radius_ratio=1.000001").kind == "infeasible"
     # the cable's thread below its self-locking limit is refused by the case check, naming the field
-    assert _named("cable_conveyor-paper-lead_angle-at-hub_thread_not_self_locking--1e-6").detail.startswith("thread.lead_angle")
+    refused = _named("cable_conveyor-paper-lead_angle-at-hub_thread_not_self_locking--1e-6")
+    assert refused.kind == "rejected" and refused.detail.startswith("thread.lead_angle: self-locking thread")
 
 
 def _wedge():

@@ -42,7 +42,8 @@ class Section:
 SECTIONS: tuple[Section, ...] = (
     Section("accuracy", "Accuracy vs time (one case per coupling, every mode; rel_error against IPOPT tol 1e-10; "
                         "violation re-evaluated in float64, relative; times in ms)", accuracy_rows),
-    Section("throughput", "Throughput: one built problem re-solved over a sweep, warm-started unless said", throughput_rows),
+    Section("throughput", "Throughput: one built problem re-solved over a sweep, warm-started unless said",
+            throughput_rows),
 )
 
 

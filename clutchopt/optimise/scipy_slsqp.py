@@ -61,8 +61,8 @@ class SlsqpProblem:
                        "jac": lambda x: -np.array(self._jac(x, p), dtype=float)}
         started = time.perf_counter()
         result = minimize(lambda x: float(self._f(x, p)), x0,
-                          jac=lambda x: np.array(self._grad(x, p), dtype=float).ravel(), bounds=list(zip(lbx, ubx)), constraints=[constraints], method="SLSQP",
-                          options={"ftol": ftol, "maxiter": max_iter})
+                          jac=lambda x: np.array(self._grad(x, p), dtype=float).ravel(), bounds=list(zip(lbx, ubx)),
+                          constraints=[constraints], method="SLSQP", options={"ftol": ftol, "maxiter": max_iter})
         elapsed = time.perf_counter() - started
         design = {v.name: float(value) for v, value in zip(variables, np.clip(result.x, lbx, ubx) * data.scale)}
         checks = check_design(self.problem.formulation, design, data.params)
