@@ -78,6 +78,16 @@ def test_gp_where_posynomial(report):
     assert lever["note"] == "not posynomial: lining_pressure, link_buckling, link_compression"
 
 
+def test_transient_sections(report):
+    tolerance = report["sections"]["transient_tolerance"]["rows"]
+    errors = {row["rtol"]: row["t_c_rel_error"] for row in tolerance}
+    assert errors[1e-10] < 1e-9 and errors[1e-12] < errors[1e-4]
+    assert all(row["L_rel_error"] < 1e-8 for row in tolerance if row["rtol"] <= 1e-8)
+    effects = {row["effects"].count("+"): row["start_time_s"] for row in report["sections"]["transient_effects"]["rows"]}
+    # constant speed, no springs: the design accelerates in exactly the t_p = 10 s it was sized for; springs slow it
+    assert effects[1] == pytest.approx(10.0, rel=1e-8) and effects[2] > effects[1]
+
+
 def test_a_section_is_one_function():
     seen = []
     section = Section("extra", "An extra section", lambda config: seen.append(config) or [{"coupling": "x", "a": 1.5}])

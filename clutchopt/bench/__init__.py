@@ -1,8 +1,7 @@
 """``clutchopt bench``: what accuracy costs in time, one table per section.
 
 Each section is one function ``rows(config) -> list[dict]`` registered in :data:`SECTIONS`; ``clutchopt bench``
-and ``benchmarks/run_full.py`` print every registered section. The simulator's transient section plugs in
-as one more entry (``Section("transient", title, transient_rows)``), nothing else changes.
+and ``benchmarks/run_full.py`` print every registered section.
 """
 
 from __future__ import annotations
@@ -19,6 +18,7 @@ import pandas as pd
 
 from clutchopt.bench.accuracy import accuracy_rows
 from clutchopt.bench.throughput import throughput_rows
+from clutchopt.bench.transient import effects_rows, tolerance_rows
 
 
 @dataclass(frozen=True)
@@ -44,6 +44,10 @@ SECTIONS: tuple[Section, ...] = (
                         "violation re-evaluated in float64, relative; times in ms)", accuracy_rows),
     Section("throughput", "Throughput: one built problem re-solved over a sweep, warm-started unless said",
             throughput_rows),
+    Section("transient_tolerance", "Simulator accuracy vs time: the paper scene's t_c and L against the closed "
+                                   "forms, per solve_ivp (DOP853) tolerance; times in ms", tolerance_rows),
+    Section("transient_effects", "Simulator cost per effect: the solved wedge design on a motor with springs, "
+                                 "effects added one by one; times in ms", effects_rows),
 )
 
 
@@ -69,7 +73,7 @@ def run_bench(config: BenchConfig, sections: tuple[Section, ...] = SECTIONS) -> 
     return report
 
 
-_MS = ("first_s", "resolve_median_s", "resolve_iqr_s")
+_MS = ("first_s", "resolve_median_s", "resolve_iqr_s", "median_s", "iqr_s")
 
 
 def _shown(row: dict) -> dict:

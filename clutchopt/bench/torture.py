@@ -265,7 +265,41 @@ def excluded_optimum(case: Case) -> list[TortureCase]:
 
 FAMILIES: tuple[Callable[[Case], list[TortureCase]], ...] = (
     torque_range, speed_range, stress_extremes, near_limits, pinned_angles, degenerate_geometry, excluded_optimum)
-STANDALONE_FAMILIES: tuple[Callable[[], list[TortureCase]], ...] = ()
+
+
+# --- The start-up transient: closed forms against the simulation ----------------------------------------------
+TRANSIENT_A_W0 = (0.0, 1e-6, 1.0, 30.0, 300.0, 1000.0)  # |a w0|, both signs
+TRANSIENT_LOAD_RATIOS = (0.0, 0.5, 0.999, 1.001)  # M_r / 2k: no load, half, just below and just above lock-up
+TRANSIENT_AGREEMENT = 1e-9  # relative, t_c, L and L_s
+
+
+def _transient(a_w0: float, ratio: float) -> Callable[[], Verdict]:
+    def run() -> Verdict:
+        from clutchopt.simulate.paper import paper_start_up
+
+        inertia, k, speed = 2.0, 50.0, 157.07963267948966  # the paper scene's J, k, w0 (1500 rpm)
+        both = paper_start_up(inertia, k, a_w0 / speed, ratio * 2 * k, speed)
+        exact, simulated = both["analytic"], both["simulated"]
+        if exact["locks_up"] != simulated["locks_up"]:
+            return Verdict("failed", f"lock-up: closed form {exact['locks_up']}, simulation {simulated['locks_up']}")
+        if not exact["locks_up"]:
+            named = exact["reason"].startswith("no lock-up") and simulated["reason"].startswith("no lock-up")
+            return Verdict("verified" if named else "failed", f"no lock-up: {simulated['reason']}")
+        errors = {key: abs(simulated[key] - exact[key]) / abs(exact[key])
+                  for key in ("start_time", "friction_work", "source_work")}
+        worst = max(errors, key=errors.get)
+        kind = "verified" if errors[worst] <= TRANSIENT_AGREEMENT else "failed"
+        return Verdict(kind, f"worst relative difference {errors[worst]:.1e} ({worst})")
+    return run
+
+
+def transient_family() -> list[TortureCase]:
+    """The paper's start-up over |a w0| up to 1e3 (both signs) and M_r up to just above the lock-up limit 2k."""
+    return [TortureCase(f"transient-a_w0={sign * a_w0:g}-Mr={ratio:g}x2k", "transient", _transient(sign * a_w0, ratio))
+            for a_w0 in TRANSIENT_A_W0 for sign in (1, -1) for ratio in TRANSIENT_LOAD_RATIOS]
+
+
+STANDALONE_FAMILIES: tuple[Callable[[], list[TortureCase]], ...] = (transient_family,)
 
 
 def torture_cases() -> list[TortureCase]:

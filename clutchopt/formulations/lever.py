@@ -197,8 +197,9 @@ def link_stress(force, diameter):
 
 
 def pin_diameter(force, allowable_shear):
-    """d_pin = sqrt(2 S / (pi [tau])): pin in double shear (fork joints) under the link force S."""
-    return sqrt(2.0 * force / (math.pi * allowable_shear))
+    """d_pin = sqrt(2 |S| / (pi [tau])): pin in double shear (fork joints) under the link force S, pushing or
+    pulling (a worn toggle at low speed pulls)."""
+    return sqrt(2.0 * abs(force) / (math.pi * allowable_shear))
 
 
 def rod_mass(density, diameter, length):
