@@ -2,6 +2,7 @@
 
 import math
 
+import numpy as np
 import pytest
 
 from clutchopt.cases import load_case
@@ -62,9 +63,20 @@ def test_warm_resolve_reaches_the_cold_optimum():
     formulation = get_coupling("wedge").formulation("geometry")
     problem = problem_for(formulation)
     first = problem.solve(case)
-    moved = case.with_values(speed=case.values["speed"] * 1.05)
+    moved = case.with_values(speed=case.values["speed"] * 1.01)  # a sweep's step
     cold = problem.solve(moved)
     warm = problem.solve(moved, warm=first)
     assert warm.status == cold.status == "optimal"
     assert warm.objective == pytest.approx(cold.objective, rel=1e-9)
-    assert warm.solver.iterations <= cold.solver.iterations
+    assert warm.solver.iterations < cold.solver.iterations / 2  # multipliers and a small barrier parameter reused
+
+
+def test_a_failing_warm_start_falls_back_to_the_cold_solve():
+    case = load_case(CASES / "wedge_fan.toml")
+    problem = problem_for(get_coupling("wedge").formulation("geometry"))
+    first = problem.solve(case)
+    first.multipliers = tuple(np.full_like(m, 1e12) for m in first.multipliers)  # nonsense duals
+    again = problem.solve(case.with_values(speed=case.values["speed"] * 1.05), warm=first)
+    assert again.status == "optimal"
+    assert again.objective == pytest.approx(problem.solve(case.with_values(speed=case.values["speed"] * 1.05)).objective,
+                                            rel=1e-9)

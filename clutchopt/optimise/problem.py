@@ -12,7 +12,8 @@ ceiling, each fixed through its bounds, warm-started) and the best verified-feas
 Sensitivities: at the optimum, the elasticity of the objective to every case quantity and every fixed design
 variable, d ln f* / d ln p, from the gradient of the Lagrangian in the parameters (envelope theorem), with the
 multipliers IPOPT returns. A built problem also re-solves warm: ``solve(case, warm=previous)`` starts from a
-previous optimum and keeps its scales (the sweep's and the benchmark's re-solve path).
+previous optimum, keeps its scales and hands IPOPT its multipliers (``warm_start_init_point`` with a small
+initial barrier parameter, a second solver built on first use); should that fail, the cold solve follows.
 
 Infeasibility: when IPOPT fails, an elastic problem (min sum of slacks on the normalised constraints) names
 the requirements that cannot hold together and by how much the least relaxation misses.
@@ -44,6 +45,12 @@ from clutchopt.optimise.verify import (
 class SolverOptions:
     tol: float = 1e-10
     max_iter: int = 3000
+
+    def ipopt_warm(self) -> dict:
+        """IPOPT started from a previous primal-dual point, barely pushed off the bounds."""
+        push = {f"ipopt.warm_start_{name}": 1e-9 for name in (
+            "bound_push", "bound_frac", "mult_bound_push", "slack_bound_push", "slack_bound_frac")}
+        return {**self.ipopt(), "ipopt.warm_start_init_point": "yes", "ipopt.mu_init": 1e-6, **push}
 
     def ipopt(self) -> dict:
         return {
@@ -110,6 +117,7 @@ class Solution:
     bounds: dict[str, tuple[float, float]] = field(default_factory=dict)  # search box of each variable (SI)
     sensitivities: dict[str, float] = field(default_factory=dict)  # d ln objective / d ln parameter
     scale: np.ndarray | None = field(default=None, repr=False)  # variable scales of the kept solve (warm starts)
+    multipliers: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False)  # (lam_x, lam_g), scaled
 
     def at_bound(self, name: str) -> str:
         """"fixed", "lower", "upper" (within 1e-7 relative) or "" for a design variable."""
@@ -172,6 +180,7 @@ class Problem:
         self._dlagrangian_dcase = ca.Function("dL_dcase", [x_hat, self._nlp["p"], lam_g],
                                               [ca.gradient(lagrangian, p_case)])
         self._elastic = None
+        self._warm_solver = None
 
     @property
     def nlp(self) -> dict:
@@ -223,14 +232,18 @@ class Problem:
 
     def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | None = None) -> Solution:
         """Solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one."""
-        if warm is not None and warm.status == "optimal" and warm.scale is not None:
-            data = self.scaled_data(case, warm.design, warm.scale)
-        else:
-            data = self.scaled_data(case, start)
+        warm_ok = warm is not None and warm.status == "optimal" and warm.scale is not None
+        data = self.scaled_data(case, warm.design, warm.scale) if warm_ok else self.scaled_data(case, start)
         lower, upper, x0, params = data.lower, data.upper, data.start, data.params
         scale, f_scale, p_vector = data.scale, data.f_scale, data.p
         names = [v.name for v in self.formulation.variables]
-        runs = [self._run(p_vector, lower / scale, upper / scale, x0 / scale, None)]
+        runs = []
+        if warm_ok and warm.multipliers is not None:
+            lam_x, lam_g = warm.multipliers
+            runs.append(self._run(p_vector, lower / scale, upper / scale, x0 / scale, {"lam_x": lam_x, "lam_g": lam_g},
+                                  solver=self._warm()))
+        if not runs or not runs[-1]["ok"]:
+            runs.append(self._run(p_vector, lower / scale, upper / scale, x0 / scale, None))
         x_opt = runs[-1]["x"] * scale
         off = (np.abs(x_opt) > 0) & ((np.abs(x_opt) > 10 * scale) | (np.abs(x_opt) < 0.1 * scale))
         if runs[-1]["ok"] and off.any():  # the start was far off: solve again, scaled by the first optimum
@@ -265,14 +278,23 @@ class Problem:
                                  f"but none of the integer neighbours is ({tried})"))
         return self._finish(case, kept, runs, scale, f_scale, lower, upper, search)
 
-    def _run(self, p_vector, lbx, ubx, x0, warm):
+    def _warm(self):
+        if self._warm_solver is None:
+            f = self.formulation
+            self._warm_solver = ca.nlpsol(f"{f.coupling}_{f.mode}_{self.objective.name}_warm", "ipopt", self._nlp,
+                                          self.options.ipopt_warm())
+        return self._warm_solver
+
+    def _run(self, p_vector, lbx, ubx, x0, warm, solver=None):
+        """One IPOPT solve; ``warm`` multipliers are used by the warm solver only (the cold one ignores them)."""
+        solver = solver or self._solver
         args = {"x0": x0, "p": p_vector, "lbx": lbx, "ubx": ubx, "lbg": -np.inf, "ubg": 0.0}
         if warm is not None:
             args.update(lam_x0=warm["lam_x"], lam_g0=warm["lam_g"])
         started = time.perf_counter()
-        result = self._solver(**args)
+        result = solver(**args)
         elapsed = time.perf_counter() - started
-        stats = self._solver.stats()
+        stats = solver.stats()
         return {"x": np.array(result["x"]).ravel(), "lam_g": np.array(result["lam_g"]).ravel(),
                 "lam_x": np.array(result["lam_x"]).ravel(), "f": float(result["f"]), "ok": bool(stats["success"]),
                 "status": stats["return_status"], "iterations": int(stats.get("iter_count", 0)), "time": elapsed,
@@ -320,7 +342,7 @@ class Problem:
         sensitivities = self._sensitivities(run, params, scale, f_scale, objective) if status == "optimal" else {}
         return Solution(f.coupling, f.mode, self.objective.name, self.objective.unit, status, objective, design,
                         evaluate_outputs(f, design, params), checks, info, diagnosis, search, bounds,
-                        sensitivities, scale)
+                        sensitivities, scale, (run["lam_x"], run["lam_g"]))
 
     def _sensitivities(self, run, params, scale, f_scale, objective) -> dict[str, float]:
         """d ln f* / d ln p for every case quantity with a finite non-zero value and every fixed variable.
