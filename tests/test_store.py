@@ -1,0 +1,104 @@
+"""The run store: solves recorded with inputs, outputs and versions; WAL; list/show/export; kill -9 and resume."""
+
+import json
+import os
+import signal
+import sqlite3
+import subprocess
+import sys
+import time
+
+import pandas as pd
+import pytest
+
+from clutchopt.store import RunStore
+from conftest import CASES, ROOT
+
+
+def test_solve_is_recorded_with_inputs_outputs_and_versions(cli, run_store):
+    solved = cli("solve", str(CASES / "wedge_paper.toml"), "--json")
+    assert solved.returncode == 0, solved.stderr
+    listed = cli("runs", "list")
+    assert listed.returncode == 0 and str(run_store) in listed.stdout
+    with RunStore(run_store) as store:
+        (run,) = store.runs()
+        entry = store.run(run["id"])
+    assert entry["kind"] == "solve" and entry["status"] == "optimal"
+    assert entry["objective"] == pytest.approx(0.667951, rel=1e-6)  # the worked example, paper mode
+    assert entry["inputs"]["values"]["inertia"] == 0.5
+    assert entry["outputs"]["design"] == json.loads(solved.stdout)["design"]
+    assert set(entry["versions"]) >= {"clutchopt", "casadi", "python"}
+    shown = cli("runs", "show", str(run["id"]))
+    assert json.loads(shown.stdout)["outputs"]["objective"]["value"] == pytest.approx(0.667951, rel=1e-6)
+    with sqlite3.connect(run_store) as db:
+        assert db.execute("PRAGMA journal_mode").fetchone()[0] == "wal"
+
+
+def test_no_store_and_store_path(cli, run_store, tmp_path):
+    assert cli("solve", str(CASES / "wedge_paper.toml"), "--no-store").returncode == 0
+    assert not run_store.exists()
+    other = tmp_path / "other.sqlite"
+    assert cli("solve", str(CASES / "wedge_fan.toml"), "--store", str(other)).returncode == 0
+    with RunStore(other) as store:
+        assert [run["case_path"] for run in store.runs()] == [str(CASES / "wedge_fan.toml")]
+
+
+def test_export_and_bad_store(cli, tmp_path):
+    assert cli("solve", str(CASES / "wedge_paper.toml")).returncode == 0
+    out = tmp_path / "runs.csv"
+    exported = cli("runs", "export", "-o", str(out))
+    assert exported.returncode == 0 and "1 runs written" in exported.stdout
+    assert pd.read_csv(out)["status"].tolist() == ["optimal"]
+    not_a_db = tmp_path / "notes.txt"
+    not_a_db.write_text("not a database, just text " * 100)
+    result = cli("runs", "list", "--store", str(not_a_db))
+    assert result.returncode == 2 and "cannot use" in result.stderr and result.stderr.count("\n") == 1
+    missing = cli("runs", "show", "99")
+    assert missing.returncode == 2 and "no run 99" in missing.stderr
+
+
+def test_a_sweep_point_cannot_be_recorded_twice(tmp_path):
+    with RunStore(tmp_path / "s.sqlite") as store:
+        sweep = store.new_sweep({"points": [1]}, 1)
+        store.record("sweep", {}, {}, sweep_id=sweep, point=0)
+        with pytest.raises(sqlite3.IntegrityError):
+            store.record("sweep", {}, {}, sweep_id=sweep, point=0)
+        assert store.finished_points(sweep) == {0}
+
+
+SWEEP = ["sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=500:3000:40", "--vary",
+         "allowable_pressure=2:8:25", "--quiet"]
+
+
+def _stored(path) -> list[tuple]:
+    with sqlite3.connect(path, timeout=30) as db:
+        return db.execute("SELECT id, point, created FROM runs WHERE kind = 'sweep' ORDER BY id").fetchall()
+
+
+def test_killed_sweep_resumes_without_losing_duplicating_or_recomputing(run_store, tmp_path, cli):
+    process = subprocess.Popen([sys.executable, "-m", "clutchopt", *SWEEP], cwd=ROOT, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline:
+        time.sleep(0.02)
+        try:
+            if len(_stored(run_store)) >= 150:
+                break
+        except sqlite3.OperationalError:  # the table is not there yet
+            continue
+    os.kill(process.pid, signal.SIGKILL)
+    process.wait()
+    before = _stored(run_store)
+    assert 150 <= len(before) < 1000, "the sweep was not killed half-way"
+    out = tmp_path / "resumed.csv"
+    resumed = cli(*SWEEP, "--resume", "--out", str(out))
+    assert resumed.returncode == 0, resumed.stderr
+    assert f"solved {1000 - len(before)} points" in resumed.stdout
+    assert f"{len(before)} taken from the store" in resumed.stdout
+    after = _stored(run_store)
+    assert after[:len(before)] == before  # finished points untouched, not solved again
+    assert sorted(point for _, point, _ in after) == list(range(1000))  # none lost, none twice
+    frame = pd.read_csv(out)
+    assert len(frame) == 1000 and (frame["status"] == "optimal").all()
+    with RunStore(run_store) as store:
+        assert len(store.sweeps()) == 1
