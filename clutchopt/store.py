@@ -154,6 +154,20 @@ class RunStore:
             entry[name] = json.loads(entry[name])
         return entry
 
+    def flat(self, kind: str | None = None, sweep_id: int | None = None) -> list[dict]:
+        """Runs oldest first, flattened for a table: the listed columns, ``input.<name>`` (SI case values),
+        ``design.<name>`` (SI) and the active constraints."""
+        rows = []
+        for run in reversed(self.runs(kind, sweep_id)):
+            entry = self.run(run["id"])
+            outputs = entry["outputs"]
+            row = dict(run)
+            row.update({f"input.{k}": v for k, v in entry["inputs"].get("values", {}).items()})
+            row.update({f"design.{k}": v for k, v in outputs.get("design", {}).items()})
+            row["active"] = " ".join(c["name"] for c in outputs.get("constraints", []) if c.get("active"))
+            rows.append(row)
+        return rows
+
     def sweeps(self) -> list[dict]:
         return [dict(row) for row in self._db.execute(
             "SELECT s.id, s.created, s.case_path, s.coupling, s.mode, s.objective, s.points, COUNT(r.id) AS stored "

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import argparse
+import math
+from dataclasses import replace
 
 import pandas as pd
 
@@ -82,7 +84,8 @@ def add_command(commands) -> None:
     listing.add_argument("--limit", type=int, default=20, help="at most this many runs (default 20, 0: all)")
     show = actions.add_parser("show", help="one run with its inputs, outputs and versions (JSON)")
     show.add_argument("id", type=int)
-    export = actions.add_parser("export", help="runs as a table (.csv, .parquet, .md) with objective and status")
+    export = actions.add_parser("export", help="runs as a table (.csv, .parquet, .md): status, objective, SI inputs "
+                                               "and design, active constraints")
     export.add_argument("-o", "--out", required=True, metavar="FILE")
     export.add_argument("--kind", choices=("solve", "sweep", "pareto", "simulation"))
     export.add_argument("--sweep", type=int, metavar="ID")
@@ -146,7 +149,7 @@ def sweep_text(sweep, result, store_path: str | None, out: str | None) -> str:
 def _pareto(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.optimise import SolverOptions
-    from clutchopt.optimise.pareto import pareto_front
+    from clutchopt.optimise.pareto import CAP, pareto_front
     from clutchopt.optimise.sweep import write_frame
     from clutchopt.output import to_json
 
@@ -157,8 +160,9 @@ def _pareto(args) -> str:
     store = open_store(args)
     if store is not None:
         with store:
-            for solution in front.solutions:
-                store.record_solution("pareto", case, solution)
+            for cap, solution in zip(front.caps, front.solutions):
+                capped = case if math.isnan(cap) else replace(case, values={**case.values, CAP: cap})
+                store.record_solution("pareto", capped, solution)
     if args.out:
         write_frame(front.frame, args.out)
     if args.plot:
@@ -186,7 +190,7 @@ def pareto_figure(front):
     axes.plot(frame[cost], frame[mass], "o-", color="tab:blue")
     if len(frame):
         axes.annotate("mass optimum", (frame[cost].iloc[0], frame[mass].iloc[0]), textcoords="offset points",
-                      xytext=(-10, 8), ha="right")
+                      xytext=(-4, 14), ha="right")
         axes.annotate("cost optimum", (frame[cost].iloc[-1], frame[mass].iloc[-1]), textcoords="offset points",
                       xytext=(10, -4))
     axes.set_xlabel(cost)
@@ -217,17 +221,19 @@ def _report(args) -> str:
 
 
 def _runs(args) -> str:
-    from clutchopt.optimise.sweep import write_frame
+    from clutchopt.optimise.sweep import table_format, write_frame
     from clutchopt.output import to_json
     from clutchopt.store import RunStore
 
     with RunStore(args.store) as store:
         if args.action == "show":
             return to_json(store.run(args.id))
-        runs = pd.DataFrame(store.runs(args.kind, args.sweep, getattr(args, "limit", None) or None))
         if args.action == "export":
+            table_format(args.out)
+            runs = pd.DataFrame(store.flat(args.kind, args.sweep))
             write_frame(runs, args.out)
             return f"{len(runs)} runs written to {args.out}"
+        runs = pd.DataFrame(store.runs(args.kind, args.sweep, args.limit or None))
         sweeps = pd.DataFrame(store.sweeps())
     lines = [f"Runs in {store.path} (newest first)", runs.to_string(index=False) if len(runs) else "(none)"]
     if len(sweeps) and args.sweep is None:

@@ -48,7 +48,10 @@ def test_export_and_bad_store(cli, tmp_path):
     out = tmp_path / "runs.csv"
     exported = cli("runs", "export", "-o", str(out))
     assert exported.returncode == 0 and "1 runs written" in exported.stdout
-    assert pd.read_csv(out)["status"].tolist() == ["optimal"]
+    table = pd.read_csv(out)
+    assert table["status"].tolist() == ["optimal"] and table["input.inertia"].tolist() == [0.5]
+    assert table["design.finger_diameter"].iloc[0] == pytest.approx(5.46156e-3, rel=1e-5)  # the worked example
+    assert table["active"].iloc[0] == "torque finger_bending"
     not_a_db = tmp_path / "notes.txt"
     not_a_db.write_text("not a database, just text " * 100)
     result = cli("runs", "list", "--store", str(not_a_db))

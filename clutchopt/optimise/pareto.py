@@ -44,6 +44,7 @@ class ParetoFront:
     mode: str
     frame: pd.DataFrame  # one row per point: cost cap, status, mass, cost, design
     solutions: list[Solution]
+    caps: list[float]  # the cost cap of each solution (NaN at the two ends)
     note: str = ""  # why there is no front (one end not optimal, or both ends the same design)
 
 
@@ -81,7 +82,7 @@ def pareto_front(case: Case, mode: str | None = None, points: int = 9,
                 previous = solution
             solutions.append(cost_end)
             caps.append(np.nan)
-    return ParetoFront(case, formulation.mode, _frame(formulation, case, caps, solutions), solutions, note)
+    return ParetoFront(case, formulation.mode, _frame(formulation, case, caps, solutions), solutions, caps, note)
 
 
 def _frame(formulation: Formulation, case: Case, caps: list[float], solutions: list[Solution]) -> pd.DataFrame:
