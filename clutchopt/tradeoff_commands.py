@@ -130,10 +130,12 @@ def sweep_text(sweep, result, store_path: str | None, out: str | None) -> str:
              f"solved {result.solved} points in {result.elapsed_s:.1f} s"
              + (f", {result.reused} taken from the store" if result.reused else "")]
     if len(frame) <= COLUMNS_SHOWN:
-        shown = frame.drop(columns="diagnosis").map(lambda v: f"{v:.6g}" if isinstance(v, float) else v)
+        shown = frame.drop(columns=["diagnosis", "active"]).map(lambda v: f"{v:.6g}" if isinstance(v, float) else v)
         table = shown.set_index("point").T
         table.columns = [f"point {i}" for i in table.columns]
-        lines += ["", table.to_string()]
+        lines += ["", table.to_string(), ""]
+        for active, group in frame[frame["status"] == "optimal"].groupby("active", sort=False):
+            lines.append(f"active at points {', '.join(map(str, group['point']))}: {active or '(none)'}")
         lines += [f"point {row.point}: {row.diagnosis}" for row in frame.itertuples() if row.diagnosis]
     else:
         optimal = frame[frame["status"] == "optimal"][objective]

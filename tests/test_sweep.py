@@ -100,6 +100,7 @@ def test_few_points_print_one_column_per_point(cli):
     lines = result.stdout.splitlines()
     assert any(line.split() == ["point", "0", "point", "1"] for line in lines)
     assert any(line.startswith("mass [kg]") and "0.667951" in line for line in lines)  # the worked example
+    assert "active at points 0, 1: torque finger_bending" in lines
 
 
 @pytest.mark.parametrize("args, message", [
