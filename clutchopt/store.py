@@ -104,8 +104,10 @@ class RunStore:
                                (spec_key(spec),)).fetchone()
         return None if row is None else int(row["id"])
 
-    def finished_points(self, sweep_id: int) -> set[int]:
-        return {row[0] for row in self._db.execute("SELECT point FROM runs WHERE sweep_id = ?", (sweep_id,))}
+    def sweep_outputs(self, sweep_id: int) -> dict[int, dict]:
+        """The stored solutions of a sweep by point index."""
+        return {row[0]: json.loads(row[1]) for row in
+                self._db.execute("SELECT point, outputs FROM runs WHERE sweep_id = ?", (sweep_id,))}
 
     def record(self, kind: str, inputs: dict, outputs: dict, *, status: str | None = None,
                objective: float | None = None, case_path: str = "", title: str = "", coupling: str = "",

@@ -63,10 +63,10 @@ def test_export_and_bad_store(cli, tmp_path):
 def test_a_sweep_point_cannot_be_recorded_twice(tmp_path):
     with RunStore(tmp_path / "s.sqlite") as store:
         sweep = store.new_sweep({"points": [1]}, 1)
-        store.record("sweep", {}, {}, sweep_id=sweep, point=0)
+        store.record("sweep", {}, {"objective": 1.0}, sweep_id=sweep, point=0)
         with pytest.raises(sqlite3.IntegrityError):
-            store.record("sweep", {}, {}, sweep_id=sweep, point=0)
-        assert store.finished_points(sweep) == {0}
+            store.record("sweep", {}, {"objective": 2.0}, sweep_id=sweep, point=0)
+        assert store.sweep_outputs(sweep) == {0: {"objective": 1.0}}
 
 
 SWEEP = ["sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=500:3000:40", "--vary",

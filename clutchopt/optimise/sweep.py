@@ -209,7 +209,7 @@ class Sweep:
             sweep_id = store.latest_sweep(self.spec) if resume else None
             if sweep_id is None:
                 sweep_id = store.new_sweep(self.spec, len(self.points), self.case.path)
-            stored = {run["point"]: store.run(run["id"])["outputs"] for run in store.runs(sweep_id=sweep_id)}
+            stored = store.sweep_outputs(sweep_id)
         pending = [(i, values) for i, values in enumerate(self.points) if i not in stored]
         workers = max(jobs, 1)
         size = chunk_size or max(1, min(25, math.ceil(len(pending) / (4 * workers))))
