@@ -8,7 +8,6 @@ Tables use the same columns as ``clutchopt solve`` (clutchopt.output).
 from __future__ import annotations
 
 import io
-import math
 from datetime import datetime, timezone
 from html import escape
 
@@ -18,10 +17,9 @@ import pandas as pd
 from clutchopt.cases import Case, quantity_table
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.problem import Solution
-from clutchopt.output import _signed, sensitivity_rows
+from clutchopt.output import _shown, _signed, sensitivity_rows
 from clutchopt.report.sketch import sketch
 from clutchopt.store import versions
-from clutchopt.units import from_si
 
 MAX_LINES = 6  # lines of a sweep plot, one per value of the second varied input (evenly picked)
 _CSS = """
@@ -42,10 +40,6 @@ def _table(rows: list[dict], numeric: tuple[str, ...] = ()) -> str:
     body = "".join("<tr>" + "".join(f'<td{" class=n" if c in numeric else ""}>{v if c == "margin bar" else escape(str(v))}</td>'
                                     for c, v in row.items()) + "</tr>" for row in rows)
     return f"<table><tr>{head}</tr>{body}</table>"
-
-
-def _shown(value: float | None, unit: str) -> str:
-    return "-" if value is None or not math.isfinite(value) else f"{from_si(value, unit):.6g}"
 
 
 def figure_svg(figure) -> str:
@@ -131,13 +125,13 @@ def simulation(case: Case, solution: Solution) -> str:
     return f"<figure>{figure_svg(figure)}<figcaption>{escape(caption)}</figcaption></figure>"
 
 
-def sweep_plot(frame: pd.DataFrame, objective_column: str | None = None) -> str:
+def sweep_plot(frame: pd.DataFrame) -> str:
     """The objective against the first varied input, one line per value of the second."""
     from matplotlib.figure import Figure
 
     status = list(frame.columns).index("status")
-    inputs = [c for c in frame.columns[1:status]]
-    objective = objective_column or frame.columns[status + 1]
+    inputs = list(frame.columns[1:status])
+    objective = frame.columns[status + 1]
     figure = Figure(figsize=(6.5, 4), layout="constrained")
     axes = figure.add_subplot()
     optimal = frame[frame["status"] == "optimal"]
