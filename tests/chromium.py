@@ -46,8 +46,7 @@ class _DevTools:
 
         self.process = subprocess.Popen(
             [binary, "--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--no-first-run",
-             "--disable-extensions",
-             "--remote-debugging-pipe", f"--user-data-dir={profile}", "about:blank"],
+             "--disable-extensions", "--remote-debugging-pipe", f"--user-data-dir={profile}", "about:blank"],
             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, preexec_fn=wire_descriptors, close_fds=False)
         os.close(commands_read)
         os.close(replies_write)
