@@ -105,3 +105,31 @@ def test_killed_sweep_resumes_without_losing_duplicating_or_recomputing(run_stor
     assert len(frame) == 1000 and (frame["status"] == "optimal").all()
     with RunStore(run_store) as store:
         assert len(store.sweeps()) == 1
+
+
+def test_interrupted_sweep_says_how_to_continue(run_store):
+    process = subprocess.Popen([sys.executable, "-m", "clutchopt", *SWEEP], cwd=ROOT, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True,  # Ctrl-C reaches it even if this shell ignores it
+                               preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and not (run_store.exists() and _has_points(run_store)):
+        time.sleep(0.02)
+    process.send_signal(signal.SIGINT)
+    _, stderr = process.communicate(timeout=60)
+    assert process.returncode == 1
+    assert stderr.strip().endswith(f"sweep interrupted; the points solved so far are in {run_store}, "
+                                   "continue with --resume")
+    statuses = {status for _, _, status in _stored_status(run_store)}
+    assert statuses == {"optimal"}  # the point in flight is not recorded as a failure
+
+
+def _stored_status(path) -> list[tuple]:
+    with sqlite3.connect(path, timeout=30) as db:
+        return db.execute("SELECT id, point, status FROM runs").fetchall()
+
+
+def _has_points(path) -> bool:
+    try:
+        return len(_stored(path)) > 0
+    except sqlite3.OperationalError:
+        return False

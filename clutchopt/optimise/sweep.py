@@ -14,8 +14,11 @@ from __future__ import annotations
 import itertools
 import math
 import re
+import signal
+import threading
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import partial
 from typing import Callable, Iterator
@@ -132,11 +135,34 @@ def local_runner(jobs: int) -> Callable:
             for result in solve_points(*task, pending):
                 yield [result]
             return
-        with ProcessPoolExecutor(max_workers=jobs) as pool:
+        pool = ProcessPoolExecutor(max_workers=jobs)
+        try:
             futures = [pool.submit(solve_chunk, *task, chunk) for chunk in _chunks(pending, size)]
             for future in as_completed(futures):
                 yield future.result()
+        finally:  # on Ctrl-C do not wait for the chunks not started
+            pool.shutdown(wait=False, cancel_futures=True)
     return run
+
+
+@contextmanager
+def interrupt_between_points() -> Iterator[Callable[[], None]]:
+    """Ctrl-C stops a sweep between points. Inside a solve CasADi would catch the KeyboardInterrupt and report
+    the point as failed; here the signal only sets a flag, and ``check()`` raises it before the next record."""
+    if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+        yield lambda: None
+        return
+    pressed = []
+    previous = signal.signal(signal.SIGINT, lambda *_: pressed.append(True))
+
+    def check() -> None:
+        if pressed:
+            raise KeyboardInterrupt
+
+    try:
+        yield check
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 def dask_runner(address: str) -> Callable:
@@ -218,9 +244,10 @@ class Sweep:
         bar = tqdm(total=len(self.points), initial=len(stored), unit="point", desc="sweep", disable=not progress,
                    mininterval=0.5)
         started = time.perf_counter()
-        with bar:
+        with bar, interrupt_between_points() as check:
             for results in (runner or local_runner(jobs))(task, pending, size):
                 for result in results:
+                    check()
                     solutions[result["point"]] = result["solution"]
                     if store is not None:
                         point_case = self.case.with_values(**result["values"])
