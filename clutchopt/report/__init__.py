@@ -73,7 +73,9 @@ def design(solution: Solution, formulation) -> str:
 def drawing(case: Case, solution: Solution, formulation) -> str:
     svg = sketch(case.coupling, {**case.values, **solution.design})
     if svg is not None:
-        return f"<figure>{svg}<figcaption>Dimensioned sketch of the optimum, to scale.</figcaption></figure>"
+        free = [v.symbol or v.name for v in formulation.variables if solution.at_bound(v.name) != "fixed"]
+        return (f"<figure>{svg}<figcaption>Dimensioned sketch of the optimum, to scale. Optimised: "
+                f"{escape(', '.join(free))}; every other dimension as the case gives it.</figcaption></figure>")
     rows = [{"dimension": v.name, "symbol": v.symbol, "value": _shown(solution.design[v.name], v.unit),
              "unit": v.unit} for v in formulation.variables]
     return (f'<p class="note">No sketch is drawn for the {escape(case.coupling)} coupling in this mode yet; '
