@@ -1,4 +1,4 @@
-"""Sub-commands for trade-offs and recorded runs: ``sweep``, ``pareto``, ``runs list/show/export``."""
+"""Sub-commands for trade-offs, recorded runs and reviews: ``sweep``, ``pareto``, ``report``, ``runs list/show/export``."""
 
 from __future__ import annotations
 
@@ -102,6 +102,8 @@ def _sweep(args) -> str:
     case = load_case(args.case)
     if args.jobs < 1:
         raise InputError("--jobs", f"must be at least 1, got {args.jobs}")
+    if args.resume and args.no_store:
+        raise InputError("--resume", "continues a sweep from the run store; drop --no-store")
     sweep = Sweep(case, [parse_vary(text, case.coupling) for text in args.vary], args.mode, args.objective,
                   args.tol, args.zip)
     if args.out:

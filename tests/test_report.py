@@ -81,5 +81,9 @@ def test_bad_report_input(cli, tmp_path):
     missing = cli("report", str(CASES / "wedge_paper.toml"), "-o", str(tmp_path / "r.html"), "--sweep",
                   str(tmp_path / "none.csv"))
     assert missing.returncode == 2 and "none.csv: no such file" in missing.stderr
+    other = tmp_path / "other.csv"
+    other.write_text("a,b\n1,2\n")
+    wrong = cli("report", str(CASES / "wedge_paper.toml"), "-o", str(tmp_path / "r.html"), "--sweep", str(other))
+    assert wrong.returncode == 2 and "not a sweep table" in wrong.stderr
     unwritable = cli("report", str(CASES / "wedge_paper.toml"), "-o", str(tmp_path / "no" / "r.html"))
     assert unwritable.returncode == 2 and "--out: cannot write" in unwritable.stderr

@@ -109,6 +109,8 @@ def test_few_points_print_one_column_per_point(cli):
     (["--vary", "speed=1", "--dask", "localhost"], "--dask: expected an address like tcp://host:8786"),
     (["--vary", "speed=1", "--out", "table.xlsx"], "--out: write .csv, .parquet or .md"),
     (["--vary", "speed=1", "--jobs", "0"], "--jobs: must be at least 1"),
+    (["--vary", "speed=1", "--resume", "--no-store"], "--resume: continues a sweep from the run store"),
+    (["--vary", "speed=1000", "--out", "/nonexistent/dir/t.csv", "--quiet"], "--out: cannot write"),
 ])
 def test_bad_sweep_arguments_end_in_one_line(cli, args, message):
     result = cli("sweep", str(CASES / "wedge_paper.toml"), *args)

@@ -292,26 +292,31 @@ def table_format(path: str) -> str:
 def write_frame(frame: pd.DataFrame, path: str) -> None:
     """CSV, Parquet or Markdown by the file's suffix."""
     suffix = table_format(path)
-    if suffix == "csv":
-        frame.to_csv(path, index=False)
-    elif suffix == "parquet":
-        try:
+    try:
+        if suffix == "csv":
+            frame.to_csv(path, index=False)
+        elif suffix == "parquet":
             frame.to_parquet(path, index=False)
-        except ImportError as exc:
-            raise InputError("--out", f"Parquet needs pyarrow (pip install 'clutchopt[parquet]'): {exc}") from None
-    else:
-        with open(path, "w", encoding="utf-8") as handle:
-            handle.write(markdown_table(frame) + "\n")
+        else:
+            with open(path, "w", encoding="utf-8") as handle:
+                handle.write(markdown_table(frame) + "\n")
+    except ImportError as exc:
+        raise InputError("--out", f"Parquet needs pyarrow (pip install 'clutchopt[parquet]'): {exc}") from None
+    except OSError as exc:
+        raise InputError("--out", f"cannot write {path!r} ({exc.strerror or exc})") from None
 
 
 def read_frame(path: str) -> pd.DataFrame:
     """A sweep table written by :func:`write_frame` (CSV or Parquet)."""
     try:
-        return pd.read_parquet(path) if path.lower().endswith(".parquet") else pd.read_csv(path)
+        frame = pd.read_parquet(path) if path.lower().endswith(".parquet") else pd.read_csv(path)
     except FileNotFoundError:
         raise InputError(path, "no such file") from None
     except (ValueError, OSError) as exc:
         raise InputError(path, f"cannot read a sweep table ({exc})") from None
+    if list(frame.columns[:1]) != ["point"] or "status" not in frame.columns:
+        raise InputError(path, "not a sweep table (written by clutchopt sweep --out: point, inputs, status, ...)")
+    return frame
 
 
 def markdown_table(frame: pd.DataFrame) -> str:
