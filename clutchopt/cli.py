@@ -25,11 +25,22 @@ def _solve(args) -> str:
 
     case = load_case(args.case)
     solution = solve_case(case, args.mode, args.objective, SolverOptions(tol=args.tol))
-    record_solve(args, case, solution)
+    check = None
+    if args.verify:
+        from clutchopt.simulate import verify
+
+        check = verify(case, solution)
+    record_solve(args, case, solution, check)
     if args.json:
-        return to_json({"case": case.path, "title": case.title, **solution.as_dict()})
+        return to_json({"case": case.path, "title": case.title, **solution.as_dict(),
+                        **({"verify": check} if check else {})})
     formulation = get_coupling(case.coupling).formulation(solution.mode)
-    return solution_text(solution, formulation, case.title)
+    text = solution_text(solution, formulation, case.title)
+    if check:
+        from clutchopt.simulate.design import verify_text
+
+        text += "\n" + verify_text(check)
+    return text
 
 
 def _compare(args) -> str:
@@ -71,11 +82,17 @@ def build_parser() -> argparse.ArgumentParser:
     solve.add_argument("--mode", help="problem posing, e.g. paper or geometry (default: the case's, then the coupling's)")
     solve.add_argument("--objective", help="mass or cost (default: the case's, then mass)")
     add_store_options(solve)
+    solve.add_argument("--verify", action="store_true",
+                       help="simulate the optimised design's start-up and compare its acceleration time with t_p")
     solve.set_defaults(run=_solve)
 
     compare = commands.add_parser("compare", help="the paper's method and closed forms beside the NLP optima")
     compare.add_argument("case", help="case file (TOML)")
     compare.set_defaults(run=_compare)
+
+    from clutchopt.simulate.command import add_parser as add_simulate
+
+    add_simulate(commands)
 
     for command in (solve, compare):
         command.add_argument("--json", action="store_true", help="one JSON object, SI units")

@@ -26,12 +26,31 @@ def open_store(args):
     return None if getattr(args, "no_store", False) else RunStore(args.store)
 
 
-def record_solve(args, case, solution) -> None:
-    """Record a ``solve`` in the run store unless ``--no-store``."""
+def record_solve(args, case, solution, check: dict | None = None) -> None:
+    """Record a ``solve`` (and its start-up check, a simulation) in the run store unless ``--no-store``."""
     store = open_store(args)
     if store is not None:
         with store:
             store.record_solution("solve", case, solution)
+            if check is not None:
+                store.record("simulation", {"values": case.values, "design": solution.design}, check,
+                             status="verified" if check.get("verified") else "not verified",
+                             objective=check.get("simulated_acceleration_time"), case_path=case.path,
+                             title=case.title, coupling=case.coupling, mode=solution.mode,
+                             objective_name="acceleration_time")
+
+
+def record_simulation(args, scene, result) -> None:
+    """Record a ``simulate`` run (scene file, headline, events) unless ``--no-store``."""
+    from clutchopt.cases import read_toml
+
+    store = open_store(args)
+    if store is not None:
+        with store:
+            store.record("simulation", {"scene": read_toml(scene.path), "source": scene.source}, result.as_dict(),
+                         status="locks up" if result.headline["locks_up"] else "no lock-up",
+                         objective=result.headline.get("start_time"), case_path=scene.path, title=scene.title,
+                         objective_name="start_time")
 
 
 def add_command(commands) -> None:

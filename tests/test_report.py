@@ -39,6 +39,9 @@ def test_page_is_self_contained_with_every_section(review):
     assert "<script" not in html and not re.search(r'(src|href)="(https?:|//)', html)
     assert "0.282095" in html and "r2 = 90 mm" in html and "b = 40 mm" in html  # the optimum, dimensioned
     assert "Sweep: 14 points, 14 optimal" in html
+    simulation = html[html.index('<section id="simulation">'):]
+    assert simulation.index("<svg") < simulation.index("</section>")  # the start-up plot
+    assert "Start-up of the optimised wedge design" in simulation and "reaches speed in 10 s" in simulation
     assert "outer_diameter_max" in html and "-1.5308" in html  # the largest elasticity of the worked example
 
 

@@ -133,3 +133,14 @@ def _has_points(path) -> bool:
         return len(_stored(path)) > 0
     except sqlite3.OperationalError:
         return False
+
+
+def test_simulations_are_recorded(cli, run_store):
+    assert cli("simulate", str(CASES / "scenes" / "wedge_ideal.toml")).returncode == 0
+    assert cli("solve", str(CASES / "wedge_paper.toml"), "--verify").returncode == 0
+    with RunStore(run_store) as store:
+        verify, solve, scene = (store.run(run["id"]) for run in store.runs())
+    assert (verify["kind"], solve["kind"], scene["kind"]) == ("simulation", "solve", "simulation")
+    assert scene["status"] == "locks up" and scene["inputs"]["scene"]["title"].startswith("Wedge coupling")
+    assert scene["objective"] == pytest.approx(10.0, rel=1e-6)  # reaches speed in t_p = 10 s
+    assert verify["status"] == "verified" and verify["objective"] == pytest.approx(10.0, rel=1e-6)

@@ -11,7 +11,7 @@ MODULES = {
     "wedge": "clutchopt.formulations.wedge",
     "lever": "clutchopt.formulations.lever",
     "cable": "clutchopt.formulations.cable",
-    # "ball": "clutchopt.formulations.ball",
+    "ball": "clutchopt.formulations.ball",
 }
 
 

@@ -27,3 +27,17 @@ def required_torque(inertia, speed, acceleration_time, resisting_torque):
 def centrifugal_force(mass, speed, centroid_radius):
     """F_u = m w^2 r_c: wedge paper eq. (10)."""
     return mass * speed**2 * centroid_radius
+
+
+# --- Duty given by the motor: power, speed and a service factor (the ball clutch of Tasev) ----------------------
+POWER_DUTY_QUANTITIES = (
+    Quantity("power", "kW", "rated power of the driving motor", "P", "duty", above=0),
+    next(q for q in DUTY_QUANTITIES if q.name == "speed"),
+    Quantity("service_factor", "", "torque the clutch must carry, over the rated torque P / w", "k_s", "duty", 1.0,
+             at_least=1),
+)
+
+
+def rated_torque(power, speed, service_factor=1.0):
+    """T = k_s P / w: the motor's rated torque times a service factor."""
+    return service_factor * power / speed

@@ -1,0 +1,77 @@
+"""``clutchopt simulate SCENE [--json] [--plot out.png]``."""
+
+from __future__ import annotations
+
+import math
+
+from clutchopt.errors import InputError
+
+_LINES = (
+    ("start_time", "start time t_c", "s"),
+    ("friction_work", "friction work L", "J"),
+    ("source_work", "work into the clutch L_s", "J"),
+    ("peak_slip_power", "peak slip power", "W"),
+    ("temperature_rise", "temperature rise", "K"),
+    ("total_friction_work", "friction work, whole run", "J"),
+    ("end_time", "end of the run", "s"),
+)
+
+
+def add_parser(commands) -> None:
+    from clutchopt.tradeoff_commands import add_store_options
+
+    parser = commands.add_parser("simulate", help="simulate a scene's start-up (effects, lock-up, headline figures)")
+    parser.add_argument("scene", help="scene file (TOML, e.g. cases/scenes/paper_transient.toml)")
+    parser.add_argument("--json", action="store_true", help="one JSON object, SI units")
+    parser.add_argument("--plot", metavar="PNG", help="write the time histories as a PNG")
+    add_store_options(parser)
+    parser.set_defaults(run=run)
+
+
+def run(args) -> str:
+    from clutchopt.output import to_json
+    from clutchopt.simulate import load_scene, run_scene
+    from clutchopt.simulate.analytic import PaperTransient
+    from clutchopt.tradeoff_commands import record_simulation
+
+    scene = load_scene(args.scene)
+    result = run_scene(scene)
+    record_simulation(args, scene, result)
+    if args.plot:
+        _write_plot(result, scene.title, args.plot)
+    analytic = None
+    m = scene.model
+    if m.law.name == "paper" and m.load.constant and "motor_curve" not in m.effects:
+        analytic = PaperTransient(m.inertia, m.law.k, m.law.a, m.load.torque, m.driver_speed).summary()
+    if args.json:
+        return to_json({"scene": scene.path, "title": scene.title, **result.as_dict(),
+                        **({"analytic": analytic} if analytic else {})})
+    return _text(scene, result, analytic)
+
+
+def _write_plot(result, title: str, path: str) -> None:
+    from clutchopt.simulate.plot import history_figure
+
+    try:
+        history_figure(result, title).savefig(path, dpi=120)
+    except (OSError, ValueError) as exc:
+        raise InputError("--plot", f"cannot write {path} ({exc})") from None
+
+
+def _text(scene, result, analytic) -> str:
+    h = result.headline
+    lines = [scene.title or scene.path, f"effects: {', '.join(h['effects'])}"]
+    source = h.get("source", {})
+    if source.get("law") == "centrifugal":
+        lines.append(f"coupling: {source['coupling']} design ({source['design']}), torque at design speed "
+                     f"{source['design_torque']:.6g} N*m, engagement speed {source['engagement_speed']:.6g} rad/s")
+    lines.append("lock-up: yes" if h["locks_up"] else f"lock-up: no - {h['reason']}")
+    for key, label, unit in _LINES:
+        if key in h and math.isfinite(h[key]):
+            row = f"  {label:<28} {h[key]:.10g} {unit}"
+            if analytic and key in analytic and math.isfinite(analytic[key]):
+                row += f"   (closed form {analytic[key]:.10g}, {h[key] / analytic[key] - 1:+.1e})"
+            lines.append(row)
+    for event in result.events:
+        lines.append(f"  event at {event['time']:.6g} s: {event['event']}")
+    return "\n".join(lines)

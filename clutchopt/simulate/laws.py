@@ -1,0 +1,143 @@
+"""Torque laws of a start-up: the clutch's friction torque, the driven machine's load, the driving motor.
+
+Friction laws give the magnitude of the kinetic friction torque as a function of the driving speed w_a and the
+slip w_r = w_a - w (>= 0 during a start-up), and the static capacity at zero slip that lock-up must respect:
+- ``ConstantFriction``: T (a dry plate clutch with constant pressing force);
+- ``PaperFriction``: k (1 + e^{a w_r}), Simionescu & Oproescu eq. (6);
+- ``CentrifugalFriction``: proportional to the net radial force of a weight, m_r r_c w_a^2 less spring preload
+  (and the weight's own weight, effect ``gravity``): the weights ride on the driving half, so the torque follows
+  the driving speed, not the slip, and vanishes below the engagement speed; see ``clutchopt.simulate.design``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from clutchopt.simulate.analytic import PaperTransient
+
+
+class _Law:
+    """Defaults of a law: the net torque on the driven half is friction less load; the torque has no slip scale."""
+
+    slip_scale = math.inf
+
+    def excess(self, driver_speed, slip, load):
+        return self.kinetic(driver_speed, slip) - load
+
+
+@dataclass(frozen=True)
+class ConstantFriction(_Law):
+    torque: float
+    name: str = "constant"
+
+    def kinetic(self, driver_speed, slip):
+        return self.torque
+
+    def capacity(self, driver_speed):
+        return self.torque
+
+    def lockup_failure(self, speed, load, inertia):
+        """Closed-form verdict at constant driving speed and constant load: None if the start-up locks up."""
+        return None if self.torque > load else f"no lock-up: friction torque {self.torque:.6g} N*m <= load {load:.6g} N*m"
+
+
+@dataclass(frozen=True)
+class PaperFriction(_Law):
+    k: float
+    a: float
+    name: str = "paper"
+
+    def kinetic(self, driver_speed, slip):
+        """k (1 + e^{a w_r}), eq. (6), exponent capped at 300 (1e130 k: the time spent above it is e^-300 of t_c)."""
+        return self.k * (1.0 + math.exp(min(self.a * slip, 300.0)))
+
+    def excess(self, driver_speed, slip, load):
+        """M_fr - M_r without cancellation: (2k - M_r) + k expm1(a w_r) for a > 0 (M_r ~ 2k near lock-up),
+        (k - M_r) + k e^{a w_r} for a <= 0 (M_r ~ k and e^{a w_r} << 1)."""
+        u = min(self.a * slip, 300.0)
+        return (2.0 * self.k - load) + self.k * math.expm1(u) if self.a > 0 else (self.k - load) + self.k * math.exp(u)
+
+    @property
+    def slip_scale(self) -> float:
+        """Slip over which the torque changes by a factor e: 1/|a|."""
+        return 1.0 / abs(self.a) if self.a else math.inf
+
+    def capacity(self, driver_speed):
+        return 2.0 * self.k
+
+    def lockup_failure(self, speed, load, inertia):
+        return PaperTransient(inertia, self.k, self.a, load, speed).lockup_failure()
+
+
+@dataclass(frozen=True)
+class CentrifugalFriction(_Law):
+    """T = c_F (m r w_a^2 - sum of reductions)^+: c_F = z f r_m / sin(alpha) for the wedge (eqs. 10-15), r = r_c.
+
+    ``reductions`` are the radial forces per weight that work against the centrifugal force (spring preload,
+    the weight's own weight), as callables so that only the listed effects are evaluated. The engagement speed
+    is w_e = sqrt(sum / (m_r r_c)).
+    """
+
+    torque_per_force: float  # c_F, N*m per N of net radial force on each weight
+    mass_radius: float  # m_r r_c, kg*m
+    reductions: tuple[Callable[[], float], ...] = ()
+    name: str = "centrifugal"
+
+    def kinetic(self, driver_speed, slip):
+        force = self.mass_radius * driver_speed * driver_speed - sum(r() for r in self.reductions)
+        return self.torque_per_force * max(force, 0.0)
+
+    def capacity(self, driver_speed):
+        return self.kinetic(driver_speed, 0.0)
+
+    def engagement_speed(self) -> float:
+        return math.sqrt(sum(r() for r in self.reductions) / self.mass_radius)
+
+    def lockup_failure(self, speed, load, inertia):
+        torque = self.capacity(speed)
+        return None if torque > load else (f"no lock-up: coupling torque {torque:.6g} N*m at the driving speed "
+                                           f"<= load {load:.6g} N*m")
+
+
+@dataclass(frozen=True)
+class Load:
+    """Resisting torque of the driven machine (magnitude, opposes motion): constant, or piecewise linear in the
+    driven speed (``over = "speed"``) or in time (``over = "time"``), held constant beyond the table."""
+
+    torque: float = 0.0
+    over: str = ""
+    points: tuple[float, ...] = ()
+    values: tuple[float, ...] = ()
+
+    @property
+    def constant(self) -> bool:
+        return not self.over
+
+    def __call__(self, t: float, driven_speed: float) -> float:
+        if not self.over:
+            return self.torque
+        x = t if self.over == "time" else driven_speed
+        return float(np.interp(x, self.points, self.values))
+
+    def largest(self) -> float:
+        return max(self.values) if self.over else self.torque
+
+
+@dataclass(frozen=True)
+class InductionMotor:
+    """Kloss's torque-speed curve T = 2 T_k / (s / s_k + s_k / s), slip s = (w_sync - w) / w_sync."""
+
+    synchronous_speed: float
+    breakdown_torque: float
+    breakdown_slip: float
+    inertia: float
+
+    def __call__(self, speed: float) -> float:
+        s = (self.synchronous_speed - speed) / self.synchronous_speed
+        if s == 0.0:
+            return 0.0
+        return 2.0 * self.breakdown_torque / (s / self.breakdown_slip + self.breakdown_slip / s)

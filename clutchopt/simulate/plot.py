@@ -1,0 +1,33 @@
+"""The start-up as a figure: speeds and slip above, friction torque and slip power below."""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+from matplotlib.figure import Figure  # noqa: E402
+
+
+def history_figure(result, title: str = "") -> Figure:
+    h, head = result.history, result.headline
+    fig = Figure(figsize=(7.5, 6.0), layout="constrained")
+    top, bottom = fig.subplots(2, 1, sharex=True)
+    top.plot(h["t"], h["w_driver"], label="driving half")
+    top.plot(h["t"], h["w_driven"], label="driven half")
+    top.plot(h["t"], h["slip"], ":", label="slip")
+    top.set_ylabel("speed, rad/s")
+    top.legend(loc="best")
+    lines = bottom.plot(h["t"], h["friction_torque"], color="C3", label="clutch torque")
+    bottom.set_ylabel("torque, N*m")
+    bottom.set_xlabel("time, s")
+    power = bottom.twinx()
+    lines += power.plot(h["t"], h["power_lost"], color="C4", alpha=0.7, label="slip power (right)")
+    power.set_ylabel("slip power, W")
+    bottom.legend(handles=lines, loc="best")
+    for event in result.events:
+        for axis in (top, bottom):
+            axis.axvline(event["time"], color="grey", lw=0.8, ls="--")
+    headline = (f"t_c = {head['start_time']:.4g} s, L = {head['friction_work']:.4g} J" if head["locks_up"]
+                else head["reason"])
+    fig.suptitle(f"{title}\n{headline}" if title else headline, fontsize=10)
+    return fig

@@ -1,0 +1,168 @@
+"""The simulation engine: effects evaluated only when listed, stick and slip, solved wedge designs on real drives."""
+
+import math
+
+import pytest
+
+from clutchopt.cases import load_case
+from clutchopt.formulations.duty import GRAVITY
+from clutchopt.simulate import effects as fx
+from clutchopt.simulate import load_scene, report_figure, run_scene, verify
+from clutchopt.simulate.design import design_outputs
+from clutchopt.simulate.engine import Model, simulate
+from clutchopt.simulate.laws import ConstantFriction, Load
+from tests.conftest import CASES
+
+SCENES = CASES / "scenes"
+
+
+@pytest.fixture(scope="module")
+def wedge_paper():
+    from clutchopt.optimise import solve_case
+
+    case = load_case(CASES / "wedge_paper.toml")
+    return case, solve_case(case)
+
+
+def test_only_listed_effects_are_evaluated(monkeypatch):
+    calls = {name: 0 for name in ("motor_curve", "spring_preload", "gravity", "friction_heat", "slip_friction")}
+    for name in calls:
+        original = getattr(fx, name)
+
+        def counting(*args, _name=name, _original=original):
+            calls[_name] += 1
+            return _original(*args)
+
+        monkeypatch.setattr(fx, name, counting)
+    run_scene(load_scene(SCENES / "paper_transient.toml"))  # slip_friction, lockup, friction_heat
+    assert calls["slip_friction"] > 0 and calls["friction_heat"] > 0
+    assert calls["motor_curve"] == calls["spring_preload"] == calls["gravity"] == 0
+    calls.update({name: 0 for name in calls})
+    run_scene(load_scene(SCENES / "wedge_ideal.toml"))
+    assert calls["slip_friction"] > 0 and sum(v for k, v in calls.items() if k != "slip_friction") == 0
+    run_scene(load_scene(SCENES / "wedge_motor_springs.toml"))
+    assert min(calls.values()) > 0
+
+
+def test_lockup_then_break_loose_when_the_load_exceeds_the_capacity_then_lockup_again():
+    # 10 N m clutch, J = 1 kg m^2, w0 = 10 rad/s; load 2 N m, a 15 N m peak between 3 and 4 s
+    load = Load(over="time", points=(0.0, 2.9, 3.0, 4.0, 4.1), values=(2.0, 2.0, 15.0, 15.0, 2.0))
+    result = simulate(Model(ConstantFriction(10.0), 1.0, load, ("slip_friction", "lockup"), driver_speed=10.0,
+                            end_time=8.0))
+    kinds = [e["event"] for e in result.events]
+    assert kinds == ["lock-up", "break loose", "lock-up"]
+    first, loose, again = (e["time"] for e in result.events)
+    assert first == pytest.approx(10.0 / 8.0, rel=1e-9)  # (10 - 2) N m accelerate 1 kg m^2 to 10 rad/s
+    assert loose == pytest.approx(2.9 + 0.1 * 8.0 / 13.0, rel=1e-9)  # the load ramp crosses 10 N m
+    assert result.events[1]["torque"] == pytest.approx(10.0, rel=1e-9)
+    # slipping, the driven half loses speed until the load falls again, then catches up at 8 N m net
+    h = result.history
+    slipping = h[(h.t > loose) & (h.t < again)]
+    assert (slipping.slip > 0).all() and (slipping.friction_torque == 10.0).all()
+    assert result.headline["final_driven_speed"] == pytest.approx(10.0)
+    assert (h[h.t > again + 1e-9].slip == 0).all()
+
+
+def test_without_lockup_the_run_ends_at_zero_slip():
+    result = simulate(Model(ConstantFriction(10.0), 1.0, Load(2.0), ("slip_friction",), driver_speed=10.0))
+    assert [e["event"] for e in result.events] == ["zero slip"]
+    assert result.headline["end_time"] == pytest.approx(1.25, rel=1e-12)
+    assert list(result.history.columns[:7]) == ["t", "w_driver", "w_driven", "slip", "friction_torque",
+                                                "power_lost", "friction_work"]
+
+
+def test_ideal_start_of_the_solved_wedge_design_takes_exactly_t_p(wedge_paper):
+    case, solution = wedge_paper
+    check = verify(case, solution)
+    assert check["verified"]
+    assert check["simulated_acceleration_time"] == pytest.approx(10.0, rel=1e-8)
+    # constant acceleration: L = J w0^2 / 2 + T_c (w0 t_p - w0 t_p / 2)
+    w0, inertia, t_c = 1000 * math.pi / 30, 0.5, 5.0
+    assert check["friction_work"] == pytest.approx(inertia * w0**2 / 2 + t_c * w0 * 10.0 / 2, rel=1e-8)
+
+
+def test_motor_and_springs_for_the_solved_wedge_design():
+    scene = load_scene(SCENES / "wedge_motor_springs.toml")
+    result = run_scene(scene)
+    h, head = result.history, result.headline
+    outputs = design_outputs(CASES / "designs" / "wedge_paper.json", "wedge")
+    mass_radius = outputs["weight_mass"] * outputs["centroid_radius"]
+    engagement = math.sqrt((12.0 + outputs["weight_mass"] * GRAVITY) / mass_radius)
+    assert head["source"]["engagement_speed"] == pytest.approx(engagement, rel=1e-12)
+    # the driven machine rests until the motor passes the engagement speed
+    assert (h[h.w_driver < engagement].w_driven == 0).all()
+    assert h[h.w_driver > 1.01 * engagement].w_driven.iloc[-1] > 0
+    assert head["locks_up"] and head["start_time"] > 10.0  # slower than the sized t_p = 10 s
+    assert head["start_time"] == pytest.approx(16.7685, rel=1e-4)
+    # locked, the motor carries the load at its Kloss slip: T = 5 N m
+    motor = scene.model.motor
+    assert motor(head["final_driver_speed"]) == pytest.approx(5.0, rel=1e-6)
+    assert head["final_driven_speed"] == pytest.approx(head["final_driver_speed"])
+    assert 0 < head["temperature_rise"] < head["friction_work"] / 1400.0
+
+
+def test_load_profile_scene_is_faster_than_sized():
+    head = run_scene(load_scene(SCENES / "wedge_fan_load.toml")).headline
+    assert head["locks_up"] and 0 < head["start_time"] < 20.0
+
+
+def test_report_figure(wedge_paper):
+    case, solution = wedge_paper
+    figure, caption = report_figure(case, solution)
+    assert figure is not None and "t_p = 10 s" in caption and "10 s" in caption
+    from clutchopt.optimise import solve_case
+
+    cable = load_case(CASES / "cable_pump.toml")
+    figure, reason = report_figure(cable, solve_case(cable))
+    assert figure is None and "cable" in reason
+
+
+def test_lever_design_verified_too():
+    from clutchopt.optimise import solve_case
+
+    case = load_case(CASES / "lever_wedge_duty.toml")  # the wedge paper's duty: 0.5 kg m^2, 1000 rpm, 10 s, 5 N m
+    check = verify(case, solve_case(case))
+    assert check["simulated_acceleration_time"] == pytest.approx(10.0, rel=1e-8)
+    assert check["friction_work"] == pytest.approx(5359.5507, rel=1e-7)  # same duty, same L as the wedge
+
+
+def test_springs_at_constant_speed_lengthen_t_p_as_the_torque_law_says():
+    import copy
+
+    from clutchopt.cases import read_toml
+    from clutchopt.simulate.scene import parse_scene
+
+    data = read_toml(SCENES / "wedge_motor_springs.toml")
+    data = copy.deepcopy(data) | {"effects": ["slip_friction", "spring_preload", "lockup"]}
+    head = run_scene(parse_scene(data, str(SCENES / "wedge_motor_springs.toml"))).headline
+    outputs = design_outputs(CASES / "designs" / "wedge_paper.json", "wedge")
+    w0 = 1000 * math.pi / 30
+    w_e2 = 12.0 / (outputs["weight_mass"] * outputs["centroid_radius"])
+    torque = outputs["torque"] * (1 - w_e2 / w0**2)  # T = c_F m_r r_c (w^2 - w_e^2)
+    assert head["start_time"] == pytest.approx(0.5 * w0 / (torque - 5.0), rel=1e-8)
+
+
+def test_a_motor_below_the_engagement_speed_never_starts_the_machine():
+    import copy
+
+    from clutchopt.cases import read_toml
+    from clutchopt.simulate.scene import parse_scene
+
+    data = copy.deepcopy(read_toml(SCENES / "wedge_motor_springs.toml"))
+    data["driver"]["synchronous_speed"] = "300 rpm"  # engagement is at 411 rpm
+    del data["end_time"]
+    head = run_scene(parse_scene(data, str(SCENES / "wedge_motor_springs.toml"))).headline
+    assert not head["locks_up"] and head["reason"].startswith("no lock-up: the driven half stays at rest")
+    assert head["final_driven_speed"] == 0.0
+    assert head["final_driver_speed"] == pytest.approx(10 * math.pi, rel=1e-6)  # idles at synchronous speed
+
+
+def test_an_infeasible_solution_is_not_started():
+    from clutchopt.optimise import solve_case
+
+    case = load_case(CASES / "wedge_paper.toml").with_values(outer_diameter_max=0.05)
+    solution = solve_case(case, "geometry")
+    assert solution.status == "infeasible"
+    assert verify(case, solution) == {"verified": False,
+                                      "reason": "the solution's status is infeasible, there is no design to start"}
+    assert report_figure(case, solution)[0] is None
