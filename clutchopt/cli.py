@@ -13,7 +13,7 @@ from clutchopt.errors import InputError
 EXIT_BAD_INPUT = 2
 
 # Further sub-commands live beside what they run; each module defines ``add_command(subparsers)``.
-COMMAND_MODULES: tuple[str, ...] = ("clutchopt.bench.command",)
+COMMAND_MODULES: tuple[str, ...] = ("clutchopt.tradeoff_commands", "clutchopt.bench.command")
 
 
 def _solve(args) -> str:
@@ -21,6 +21,7 @@ def _solve(args) -> str:
     from clutchopt.formulations import get_coupling
     from clutchopt.optimise import SolverOptions, solve_case
     from clutchopt.output import solution_text, to_json
+    from clutchopt.tradeoff_commands import record_solve
 
     case = load_case(args.case)
     solution = solve_case(case, args.mode, args.objective, SolverOptions(tol=args.tol))
@@ -29,6 +30,7 @@ def _solve(args) -> str:
         from clutchopt.simulate import verify
 
         check = verify(case, solution)
+    record_solve(args, case, solution, check)
     if args.json:
         return to_json({"case": case.path, "title": case.title, **solution.as_dict(),
                         **({"verify": check} if check else {})})
@@ -70,6 +72,8 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
+    from clutchopt.tradeoff_commands import add_store_options
+
     parser = _Parser(prog="clutchopt", description=__doc__.splitlines()[0])
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=_Parser)
 
@@ -77,6 +81,7 @@ def build_parser() -> argparse.ArgumentParser:
     solve.add_argument("case", help="case file (TOML)")
     solve.add_argument("--mode", help="problem posing, e.g. paper or geometry (default: the case's, then the coupling's)")
     solve.add_argument("--objective", help="mass or cost (default: the case's, then mass)")
+    add_store_options(solve)
     solve.add_argument("--verify", action="store_true",
                        help="simulate the optimised design's start-up and compare its acceleration time with t_p")
     solve.set_defaults(run=_solve)

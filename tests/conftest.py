@@ -13,6 +13,14 @@ def run_cli(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "clutchopt", *args], cwd=cwd, capture_output=True, text=True)
 
 
+@pytest.fixture(autouse=True)
+def run_store(tmp_path, monkeypatch) -> Path:
+    """Every test records into its own run store, never into the repository."""
+    path = tmp_path / "runs.sqlite"
+    monkeypatch.setenv("CLUTCHOPT_STORE", str(path))
+    return path
+
+
 @pytest.fixture
 def cli():
     return run_cli

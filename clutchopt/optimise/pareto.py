@@ -1,0 +1,101 @@
+"""Pareto front of mass against cost by the epsilon-constraint method over the NLP, for any coupling.
+
+The two ends are the mass optimum and the cost optimum. Between them, mass is minimised subject to
+``cost <= epsilon`` for evenly spaced epsilon from the cost of the mass optimum down to the cost optimum: the
+formulation gains one named constraint (``cost_cap``) and one quantity (the cap), so the same solver layer,
+float64 check and warm starts apply. Each point is warm-started from the one before.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+import pandas as pd
+
+from clutchopt.cases import Case
+from clutchopt.formulations import get_coupling
+from clutchopt.model import Formulation, Quantity, at_most
+from clutchopt.optimise.problem import Problem, Solution, SolverOptions, problem_for
+from clutchopt.optimise.sweep import column_name
+from clutchopt.optimise.verify import evaluate_objective
+from clutchopt.units import from_si
+
+CAP = "cost_cap"
+
+
+def capped(formulation: Formulation, bounded: str = "cost") -> Formulation:
+    """The formulation with ``<bounded> <= cost_cap`` added (the cap a case quantity)."""
+    objective = formulation.objective(bounded)
+    cap = Quantity(CAP, objective.unit, f"upper limit on {bounded} (epsilon-constraint)", "epsilon", "pareto")
+    return replace(
+        formulation,
+        mode=f"{formulation.mode}_capped",
+        quantities=formulation.quantities + (cap,),
+        constraints=lambda x, p: formulation.constraints(x, p) + [
+            at_most(CAP, objective.function(x, p), getattr(p, CAP), equation="epsilon", unit=objective.unit,
+                    description=f"{bounded} within the cap")],
+    )
+
+
+@dataclass
+class ParetoFront:
+    case: Case
+    mode: str
+    frame: pd.DataFrame  # one row per point: cost cap, status, mass, cost, design
+    solutions: list[Solution]
+    caps: list[float]  # the cost cap of each solution (NaN at the two ends)
+    note: str = ""  # why there is no front (one end not optimal, or both ends the same design)
+
+
+_CAPPED: dict[tuple, Problem] = {}
+
+
+def pareto_front(case: Case, mode: str | None = None, points: int = 9,
+                 options: SolverOptions = SolverOptions()) -> ParetoFront:
+    """Mass optimum, cost optimum, and ``points - 2`` epsilon-constrained mass optima between them."""
+    formulation = get_coupling(case.coupling).formulation(mode or case.options.get("mode"))
+    mass_end = problem_for(formulation, "mass", options).solve(case)
+    cost_end = problem_for(formulation, "cost", options).solve(case)
+    key = (formulation.coupling, formulation.mode, options)
+    if key not in _CAPPED:
+        _CAPPED[key] = Problem(capped(formulation), "mass", options)
+    problem = _CAPPED[key]
+    solutions, caps = [mass_end], [np.nan]
+    note = ""
+    if mass_end.status != "optimal" or cost_end.status != "optimal":
+        note = "no front: " + "; ".join(f"{s.objective_name} optimum {s.status}" for s in (mass_end, cost_end))
+    else:
+        high = evaluate_objective(formulation, "cost", mass_end.design, case.params())
+        low = cost_end.objective
+        if high - low <= 1e-7 * abs(high):
+            note = "no trade-off: the mass optimum is also the cost optimum"
+        else:
+            previous = mass_end
+            for cap in np.linspace(high, low, points)[1:-1]:
+                capped_case = replace(case, values={**case.values, CAP: float(cap)})
+                solution = problem.solve(capped_case, warm=previous if previous.status == "optimal" else None)
+                if solution.status != "optimal":
+                    solution = problem.solve(capped_case)
+                solutions.append(solution)
+                caps.append(float(cap))
+                previous = solution
+            solutions.append(cost_end)
+            caps.append(np.nan)
+    return ParetoFront(case, formulation.mode, _frame(formulation, case, caps, solutions), solutions, caps, note)
+
+
+def _frame(formulation: Formulation, case: Case, caps: list[float], solutions: list[Solution]) -> pd.DataFrame:
+    params = case.params()
+    mass, cost = formulation.objective("mass"), formulation.objective("cost")
+    rows = []
+    for cap, solution in zip(caps, solutions):
+        row = {column_name(CAP, cost.unit): cap, "status": solution.status}
+        for objective in (mass, cost):
+            row[column_name(objective.name, objective.unit)] = evaluate_objective(
+                formulation, objective.name, solution.design, params)
+        row.update({column_name(v.name, v.unit): from_si(solution.design[v.name], v.unit)
+                    for v in formulation.variables})
+        row["active"] = " ".join(c.name for c in solution.constraints if c.active and c.name != CAP)
+        rows.append(row)
+    return pd.DataFrame(rows)

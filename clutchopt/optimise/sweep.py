@@ -1,0 +1,328 @@
+"""Sweeps: one case re-solved over a grid of requirements, warm-started, recorded point by point.
+
+A sweep varies case quantities, each given in its display unit (speed in rpm, pressures in MPa, lengths in mm):
+``speed=500:3000:26`` is 26 evenly spaced values from 500 to 3000, ``speed=900,1450,3000`` a list. Several
+``--vary`` make a full-factorial grid (the last one varies fastest), or with ``zipped=True`` a listed sweep (the
+i-th point takes the i-th value of each list). Points run in chunks of neighbours; within a chunk one built
+problem is re-solved, each point warm-started from the one before (cold again if the warm start fails).
+Chunks run in this process, in a local process pool, or on a Dask cluster. Every point is stored in the run
+store in its own transaction as it arrives, so a killed sweep resumes where it stopped.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import re
+import signal
+import threading
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from contextlib import contextmanager
+from dataclasses import dataclass
+from functools import partial
+from typing import Callable, Iterator
+
+import numpy as np
+import pandas as pd
+
+from clutchopt.cases import Case
+from clutchopt.errors import InputError
+from clutchopt.formulations import get_coupling
+from clutchopt.model import Formulation, Quantity
+from clutchopt.optimise.problem import Solution, SolverOptions, problem_for
+from clutchopt.units import from_si, si_factor
+
+
+@dataclass(frozen=True)
+class Vary:
+    """One varied quantity: its declaration and its values in SI."""
+
+    quantity: Quantity
+    values: tuple[float, ...]
+
+    @property
+    def column(self) -> str:
+        return column_name(self.quantity.name, self.quantity.unit)
+
+
+def column_name(name: str, unit: str) -> str:
+    return f"{name} [{unit}]" if unit else name
+
+
+def parse_vary(text: str, coupling: str) -> Vary:
+    """``name=start:stop:count`` or ``name=v1,v2,...``, values in the quantity's display unit."""
+    field = f"--vary {text}"
+    name, sep, spec = text.partition("=")
+    declared = {q.name: q for q in get_coupling(coupling).quantities}
+    if not sep or not spec.strip():
+        raise InputError(field, "expected name=start:stop:count or name=v1,v2,...")
+    quantity = declared.get(name.strip())
+    if quantity is None:
+        raise InputError(field, f"unknown quantity {name.strip()!r}; the {coupling} coupling has "
+                                f"{', '.join(sorted(declared))}")
+    numbers = _numbers(field, spec)
+    if ":" in spec:
+        if len(numbers) != 3 or numbers[2] != int(numbers[2]) or numbers[2] < 1:
+            raise InputError(field, "a range is start:stop:count with a whole count >= 1")
+        numbers = np.linspace(numbers[0], numbers[1], int(numbers[2])).tolist()
+    factor = si_factor(quantity.unit) if quantity.unit else 1.0
+    return Vary(quantity, tuple(value * factor for value in numbers))
+
+
+def _numbers(field: str, spec: str) -> list[float]:
+    try:
+        numbers = [float(part) for part in (spec.split(":") if ":" in spec else spec.split(","))]
+    except ValueError:
+        raise InputError(field, f"not a number in {spec!r} (values are plain numbers in the quantity's "
+                                "display unit)") from None
+    if not all(math.isfinite(n) for n in numbers):
+        raise InputError(field, "values must be finite")
+    return numbers
+
+
+def grid(varies: list[Vary], zipped: bool = False) -> list[dict[str, float]]:
+    """The sweep's points as SI values by quantity name."""
+    names = [v.quantity.name for v in varies]
+    if zipped:
+        lengths = {len(v.values) for v in varies}
+        if len(lengths) > 1:
+            raise InputError("--zip", f"listed sweeps need equally many values per --vary, got {sorted(lengths)}")
+        return [dict(zip(names, values)) for values in zip(*(v.values for v in varies))]
+    return [dict(zip(names, values)) for values in itertools.product(*(v.values for v in varies))]
+
+
+def point_cases(case: Case, points: list[dict[str, float]]) -> list[Case]:
+    """Every point as a checked case; a value out of a quantity's valid range is bad input before any solve."""
+    cases = []
+    for index, values in enumerate(points):
+        try:
+            cases.append(case.with_values(**values))
+        except InputError as exc:
+            raise InputError(f"--vary (point {index})", str(exc)) from None
+    return cases
+
+
+def solve_points(case: Case, mode: str, objective: str, tol: float,
+                 points: list[tuple[int, dict[str, float]]]) -> Iterator[dict]:
+    """Solve points in order, each warm-started from the last optimum; yields each result as it is solved."""
+    problem = problem_for(get_coupling(case.coupling).formulation(mode), objective, SolverOptions(tol=tol))
+    previous: Solution | None = None
+    for index, values in points:
+        point_case = case.with_values(**values)
+        solution = problem.solve(point_case, warm=previous)
+        if previous is not None and solution.status != "optimal":
+            solution = problem.solve(point_case)  # the warm start led astray: start again from the case
+        if solution.status == "optimal":
+            previous = solution
+        yield {"point": index, "values": values, "solution": solution.as_dict()}
+
+
+def solve_chunk(case: Case, mode: str, objective: str, tol: float,
+                chunk: list[tuple[int, dict[str, float]]]) -> list[dict]:
+    """A chunk of neighbouring points solved in one worker (process pool, Dask)."""
+    return list(solve_points(case, mode, objective, tol, chunk))
+
+
+def _chunks(pending: list[tuple[int, dict]], size: int) -> list[list[tuple[int, dict]]]:
+    return [pending[i:i + size] for i in range(0, len(pending), size)]
+
+
+def local_runner(jobs: int) -> Callable:
+    """In this process (each point recorded as it is solved) or in a pool of ``jobs`` processes."""
+    def run(task: tuple, pending: list, size: int) -> Iterator[list[dict]]:
+        if jobs <= 1:
+            for result in solve_points(*task, pending):
+                yield [result]
+            return
+        pool = ProcessPoolExecutor(max_workers=jobs)
+        try:
+            futures = [pool.submit(solve_chunk, *task, chunk) for chunk in _chunks(pending, size)]
+            for future in as_completed(futures):
+                yield future.result()
+        finally:  # on Ctrl-C do not wait for the chunks not started
+            pool.shutdown(wait=False, cancel_futures=True)
+    return run
+
+
+@contextmanager
+def interrupt_between_points() -> Iterator[Callable[[], None]]:
+    """Ctrl-C stops a sweep between points. Inside a solve CasADi would catch the KeyboardInterrupt and report
+    the point as failed; here the signal only sets a flag, and ``check()`` raises it before the next record."""
+    if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+        yield lambda: None
+        return
+    pressed = []
+    previous = signal.signal(signal.SIGINT, lambda *_: pressed.append(True))
+
+    def check() -> None:
+        if pressed:
+            raise KeyboardInterrupt
+
+    try:
+        yield check
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def dask_runner(address: str) -> Callable:
+    """Run chunks on an existing Dask distributed cluster (clutchopt must be importable on its workers)."""
+    client = connect(address)
+
+    def run(task: tuple, pending: list, size: int) -> Iterator[list[dict]]:
+        from distributed import as_completed as dask_completed
+
+        try:
+            futures = client.map(partial(solve_chunk, *task), _chunks(pending, size), pure=False)
+            for future in dask_completed(futures):
+                yield future.result()
+        finally:
+            client.close()
+    return run
+
+
+def connect(address: str, timeout: float = 5.0):
+    """A Dask client for ``tcp://host:port``; a malformed or unreachable address is bad input."""
+    if not re.fullmatch(r"(tcp|tls|inproc)://[^\s:/]+(:\d{1,5})?(/\S*)?", address):
+        raise InputError("--dask", f"expected an address like tcp://host:8786, got {address!r}")
+    try:
+        from distributed import Client
+    except ImportError:
+        raise InputError("--dask", "needs dask.distributed (pip install 'clutchopt[dask]')") from None
+    try:
+        return Client(address, timeout=timeout)
+    except (OSError, TimeoutError) as exc:
+        raise InputError("--dask", f"cannot reach a Dask scheduler at {address} ({type(exc).__name__})") from None
+
+
+@dataclass
+class SweepResult:
+    sweep_id: int | None
+    frame: pd.DataFrame
+    solved: int  # points solved by this invocation
+    reused: int  # points found already stored (resume)
+    elapsed_s: float  # wall time of the solves
+
+
+class Sweep:
+    """A case, the varied quantities, mode and objective: what defines a sweep and its resume key."""
+
+    def __init__(self, case: Case, varies: list[Vary], mode: str | None = None, objective: str | None = None,
+                 tol: float = 1e-10, zipped: bool = False):
+        coupling = get_coupling(case.coupling)
+        self.case = case
+        self.varies = varies
+        self.formulation: Formulation = coupling.formulation(mode or case.options.get("mode"))
+        self.objective = self.formulation.objective(objective or case.options.get("objective", "mass"))
+        self.tol = tol
+        self.points = grid(varies, zipped)
+        point_cases(case, self.points)
+
+    @property
+    def spec(self) -> dict:
+        return {"coupling": self.case.coupling, "mode": self.formulation.mode, "objective": self.objective.name,
+                "tol": self.tol, "case": {"values": self.case.values, "free": list(self.case.free),
+                                          "bounds": self.case.bounds},
+                "points": self.points}
+
+    def run(self, store=None, resume: bool = False, jobs: int = 1, runner: Callable | None = None,
+            progress: bool = True, chunk_size: int | None = None) -> SweepResult:
+        """Solve every point not already stored; ``runner`` (e.g. :func:`dask_runner`) overrides ``jobs``."""
+        from tqdm import tqdm
+
+        sweep_id, stored = None, {}
+        if store is not None:
+            sweep_id = store.latest_sweep(self.spec) if resume else None
+            if sweep_id is None:
+                sweep_id = store.new_sweep(self.spec, len(self.points), self.case.path)
+            stored = store.sweep_outputs(sweep_id)
+        pending = [(i, values) for i, values in enumerate(self.points) if i not in stored]
+        workers = max(jobs, 1)
+        size = chunk_size or max(1, min(25, math.ceil(len(pending) / (4 * workers))))
+        task = (self.case, self.formulation.mode, self.objective.name, self.tol)
+        solutions = dict(stored)
+        bar = tqdm(total=len(self.points), initial=len(stored), unit="point", desc="sweep", disable=not progress,
+                   mininterval=0.5)
+        started = time.perf_counter()
+        with bar, interrupt_between_points() as check:
+            for results in (runner or local_runner(jobs))(task, pending, size):
+                for result in results:
+                    check()
+                    solutions[result["point"]] = result["solution"]
+                    if store is not None:
+                        point_case = self.case.with_values(**result["values"])
+                        solution = result["solution"]
+                        store.record("sweep", {"values": point_case.values, "free": list(point_case.free),
+                                               "bounds": point_case.bounds}, solution,
+                                     status=solution["status"], objective=solution["objective"]["value"],
+                                     case_path=self.case.path, title=self.case.title, coupling=self.case.coupling,
+                                     mode=self.formulation.mode, objective_name=self.objective.name,
+                                     sweep_id=sweep_id, point=result["point"])
+                bar.update(len(results))
+        frame = self.frame([solutions[i] for i in range(len(self.points))])
+        return SweepResult(sweep_id, frame, len(pending), len(stored), time.perf_counter() - started)
+
+    def frame(self, solutions: list[dict]) -> pd.DataFrame:
+        """One row per point: inputs, status, objective, design (display units), active constraints."""
+        rows = []
+        objective_column = column_name(self.objective.name, self.objective.unit)
+        for index, (values, solution) in enumerate(zip(self.points, solutions)):
+            row = {"point": index}
+            row.update({v.column: from_si(values[v.quantity.name], v.quantity.unit) for v in self.varies})
+            row["status"] = solution["status"]
+            row[objective_column] = solution["objective"]["value"]
+            for variable in self.formulation.variables:
+                row[column_name(variable.name, variable.unit)] = from_si(solution["design"][variable.name],
+                                                                         variable.unit)
+            row["active"] = " ".join(c["name"] for c in solution["constraints"] if c["active"])
+            row["diagnosis"] = solution["diagnosis"] or ""
+            row["iterations"] = solution["solver"]["iterations"]
+            rows.append(row)
+        return pd.DataFrame(rows)
+
+
+def table_format(path: str) -> str:
+    """csv, parquet or md, from the file's suffix."""
+    suffix = path.rsplit(".", 1)[-1].lower() if "." in path else ""
+    if suffix not in ("csv", "parquet", "md"):
+        raise InputError("--out", f"write .csv, .parquet or .md, got {path!r}")
+    return suffix
+
+
+def write_frame(frame: pd.DataFrame, path: str) -> None:
+    """CSV, Parquet or Markdown by the file's suffix."""
+    suffix = table_format(path)
+    try:
+        if suffix == "csv":
+            frame.to_csv(path, index=False)
+        elif suffix == "parquet":
+            frame.to_parquet(path, index=False)
+        else:
+            with open(path, "w", encoding="utf-8") as handle:
+                handle.write(markdown_table(frame) + "\n")
+    except ImportError as exc:
+        raise InputError("--out", f"Parquet needs pyarrow (pip install 'clutchopt[parquet]'): {exc}") from None
+    except OSError as exc:
+        raise InputError("--out", f"cannot write {path!r} ({exc.strerror or exc})") from None
+
+
+def read_frame(path: str) -> pd.DataFrame:
+    """A sweep table written by :func:`write_frame` (CSV or Parquet)."""
+    try:
+        frame = pd.read_parquet(path) if path.lower().endswith(".parquet") else pd.read_csv(path)
+    except FileNotFoundError:
+        raise InputError(path, "no such file") from None
+    except (ValueError, OSError) as exc:
+        raise InputError(path, f"cannot read a sweep table ({exc})") from None
+    if list(frame.columns[:1]) != ["point"] or "status" not in frame.columns:
+        raise InputError(path, "not a sweep table (written by clutchopt sweep --out: point, inputs, status, ...)")
+    return frame
+
+
+def markdown_table(frame: pd.DataFrame) -> str:
+    def cell(value) -> str:
+        return f"{value:.6g}" if isinstance(value, float) else str(value)
+
+    lines = ["| " + " | ".join(frame.columns) + " |", "|" + "---|" * len(frame.columns)]
+    lines += ["| " + " | ".join(cell(v) for v in row) + " |" for row in frame.itertuples(index=False)]
+    return "\n".join(lines)

@@ -1,0 +1,187 @@
+"""Design-review report: one self-contained HTML page (inline CSS, inline SVG figures, no scripts, no links out).
+
+Sections: requirements, the optimal design with a dimensioned sketch, constraint margins, sensitivities,
+the comparison with the paper's method, the start-up simulation, and a sweep plot when a sweep table is given.
+Tables use the same columns as ``clutchopt solve`` (clutchopt.output).
+"""
+
+from __future__ import annotations
+
+import io
+from datetime import datetime, timezone
+from html import escape
+
+import numpy as np
+import pandas as pd
+
+from clutchopt.cases import Case, quantity_table
+from clutchopt.formulations import get_coupling
+from clutchopt.optimise.problem import Solution
+from clutchopt.output import _shown, _signed, sensitivity_rows
+from clutchopt.report.sketch import sketch
+from clutchopt.store import versions
+
+MAX_LINES = 6  # lines of a sweep plot, one per value of the second varied input (evenly picked)
+_CSS = """
+body{font:14px/1.45 system-ui,sans-serif;color:#1d2733;max-width:1100px;margin:24px auto;padding:0 16px}
+h1{font-size:22px;margin-bottom:4px}h2{font-size:17px;border-bottom:1px solid #c8d0d8;margin-top:28px}
+table{border-collapse:collapse;margin:8px 0}td,th{padding:3px 9px;border-bottom:1px solid #e3e7eb;text-align:left}
+td.n{text-align:right;font-variant-numeric:tabular-nums}th{background:#f2f4f6}
+.status{display:inline-block;padding:2px 8px;border-radius:4px;color:#fff;background:#2e7d32}
+.status.bad{background:#b03a2e}.note{color:#55606b}.bar{background:#7fa7d1;height:10px;display:inline-block}
+.bar.active{background:#b03a2e}figure{margin:8px 0}figcaption{color:#55606b;font-size:13px}
+"""
+
+
+def _table(rows: list[dict], numeric: tuple[str, ...] = ()) -> str:
+    if not rows:
+        return '<p class="note">(none)</p>'
+    head = "".join(f"<th>{escape(str(c))}</th>" for c in rows[0])
+    body = "".join("<tr>" + "".join(f'<td{" class=n" if c in numeric else ""}>{v if c == "margin bar" else escape(str(v))}</td>'
+                                    for c, v in row.items()) + "</tr>" for row in rows)
+    return f"<table><tr>{head}</tr>{body}</table>"
+
+
+def figure_svg(figure) -> str:
+    """A matplotlib figure as inline SVG markup."""
+    buffer = io.StringIO()
+    figure.savefig(buffer, format="svg")
+    text = buffer.getvalue()
+    return text[text.index("<svg"):]
+
+
+def _section(title: str, body: str, anchor: str) -> str:
+    return f'<section id="{anchor}"><h2>{escape(title)}</h2>{body}</section>'
+
+
+def requirements(case: Case) -> str:
+    coupling = get_coupling(case.coupling)
+    rows = [{"key": r["key"], "symbol": r["symbol"], "value": r["value"], "description": r["description"]}
+            for r in quantity_table(coupling.quantities, case.values)]
+    return _table(rows, ("value",))
+
+
+def design(solution: Solution, formulation) -> str:
+    rows = [{"variable": v.name, "symbol": v.symbol, "value": _shown(solution.design[v.name], v.unit), "unit": v.unit,
+             "at bound": solution.at_bound(v.name) or "-", "description": v.description}
+            for v in formulation.variables]
+    derived = [{"quantity": name, "value": _shown(out.value, out.unit), "unit": out.unit,
+                "description": out.description} for name, out in solution.outputs.items()]
+    return _table(rows, ("value",)) + "<h3>Derived</h3>" + _table(derived, ("value",))
+
+
+def drawing(case: Case, solution: Solution, formulation) -> str:
+    svg = sketch(case.coupling, {**case.values, **solution.design})
+    if svg is not None:
+        free = [v.symbol or v.name for v in formulation.variables if solution.at_bound(v.name) != "fixed"]
+        return (f"<figure>{svg}<figcaption>Dimensioned sketch of the optimum, to scale. Optimised: "
+                f"{escape(', '.join(free))}; every other dimension as the case gives it.</figcaption></figure>")
+    rows = [{"dimension": v.name, "symbol": v.symbol, "value": _shown(solution.design[v.name], v.unit),
+             "unit": v.unit} for v in formulation.variables]
+    return (f'<p class="note">No sketch is drawn for the {escape(case.coupling)} coupling in this mode yet; '
+            "its dimensions are tabulated instead.</p>" + _table(rows, ("value",)))
+
+
+def margins(solution: Solution) -> str:
+    rows = []
+    for c in solution.constraints:
+        width = max(0.0, min(c.margin, 1.0)) * 200
+        rows.append({"constraint": c.name, "eq.": c.equation, "value": _shown(c.value, c.unit), "sense": c.sense,
+                     "limit": _shown(c.limit, c.unit), "unit": c.unit, "margin": f"{c.margin:+.2e}",
+                     "margin bar": f'<span class="bar{" active" if c.active else ""}" style="width:{width:.0f}px">'
+                                   "</span>",
+                     "active": "yes" if c.active else "no",
+                     "elasticity": _signed(c.elasticity)})
+    return ('<p class="note">Re-evaluated in float64; margin relative to the limit; elasticity = '
+            "d ln objective / d ln limit.</p>" + _table(rows, ("value", "limit", "margin", "elasticity")))
+
+
+def sensitivities(solution: Solution, formulation) -> str:
+    rows = sensitivity_rows(solution, formulation, count=12)
+    return ('<p class="note">Elasticity of the optimum, d ln objective / d ln parameter, from the multipliers '
+            "(+1: the objective grows in proportion).</p>" + _table(rows, ("elasticity",)))
+
+
+def comparison(case: Case) -> str:
+    from clutchopt.optimise.compare import compare_case
+
+    if get_coupling(case.coupling).comparison is None:
+        return '<p class="note">This coupling has no comparison with a paper method.</p>'
+    table = compare_case(case)
+    rows = [{"quantity": r["quantity"], "unit": r["unit"],
+             **{column: _shown(r[column], r["unit"]) for column in table.columns}} for r in table.rows]
+    notes = "".join(f"<li><b>{escape(name)}</b>: {escape(note)}</li>" for name, note in table.notes.items()
+                    if name in table.columns)
+    return _table(rows, tuple(table.columns)) + f'<ul class="note">{notes}</ul>'
+
+
+def simulation(case: Case, solution: Solution) -> str:
+    """The start-up simulation of the optimum: the one call site of the simulator."""
+    try:
+        from clutchopt.simulate import report_figure
+    except ImportError:
+        return '<p class="note">Start-up simulation: not available in this build (no clutchopt.simulate).</p>'
+    figure, caption = report_figure(case, solution)
+    if figure is None:
+        return f'<p class="note">{escape(caption)}</p>'
+    return f"<figure>{figure_svg(figure)}<figcaption>{escape(caption)}</figcaption></figure>"
+
+
+def sweep_plot(frame: pd.DataFrame) -> str:
+    """The objective against the first varied input, one line per value of the second."""
+    from matplotlib.figure import Figure
+
+    status = list(frame.columns).index("status")
+    inputs = list(frame.columns[1:status])
+    objective = frame.columns[status + 1]
+    figure = Figure(figsize=(6.5, 4), layout="constrained")
+    axes = figure.add_subplot()
+    optimal = frame[frame["status"] == "optimal"]
+    groups = [(None, optimal)]
+    if len(inputs) > 1:
+        levels = sorted(optimal[inputs[1]].unique())
+        shown = [levels[round(i)] for i in np.linspace(0, len(levels) - 1, min(len(levels), MAX_LINES))]
+        groups = [(value, optimal[optimal[inputs[1]] == value]) for value in shown]
+    for value, group in groups:
+        axes.plot(group[inputs[0]], group[objective], ".-", label=None if value is None else f"{inputs[1]} = {value:.4g}")
+    failed = frame[frame["status"] != "optimal"]
+    if len(failed):
+        axes.plot(failed[inputs[0]], [optimal[objective].min()] * len(failed) if len(optimal) else [0] * len(failed),
+                  "x", color="#b03a2e", label="not optimal")
+    if len(inputs) > 1 or len(failed):
+        axes.legend(fontsize=7, ncol=2)
+    axes.set_xlabel(inputs[0])
+    axes.set_ylabel(objective)
+    axes.grid(alpha=0.3)
+    caption = (f"Sweep: {len(frame)} points, {len(optimal)} optimal"
+               + (f", {len(failed)} not (crosses at the bottom)" if len(failed) else ""))
+    return f"<figure>{figure_svg(figure)}<figcaption>{escape(caption)}</figcaption></figure>"
+
+
+def build_report(case: Case, solution: Solution, sweep: pd.DataFrame | None = None) -> str:
+    """The HTML page for a case and its solution (and a sweep table, if given)."""
+    coupling = get_coupling(case.coupling)
+    formulation = coupling.formulation(solution.mode)
+    ok = solution.status == "optimal"
+    header = (f"<h1>Design review: {escape(case.title or case.path)}</h1>"
+              f'<p>{escape(formulation.title)}. Case <code>{escape(case.path)}</code>. '
+              f'Status <span class="status{"" if ok else " bad"}">{escape(solution.status)}</span>, '
+              f"objective ({escape(solution.objective_name)}) <b>{solution.objective:.6g} "
+              f"{escape(solution.objective_unit)}</b>.</p>"
+              + (f"<p><b>Diagnosis:</b> {escape(solution.diagnosis)}</p>" if solution.diagnosis else "")
+              + f'<p class="note">Generated {datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC; '
+              + ", ".join(f"{escape(k)} {escape(v)}" for k, v in versions().items()) + ".</p>")
+    sections = [
+        ("Requirements", requirements(case), "requirements"),
+        ("Optimal design", design(solution, formulation), "design"),
+        ("Dimensioned sketch", drawing(case, solution, formulation), "sketch"),
+        ("Constraint margins", margins(solution), "margins"),
+        ("Sensitivities", sensitivities(solution, formulation), "sensitivities"),
+        ("Comparison with the paper's method", comparison(case), "comparison"),
+        ("Start-up simulation", simulation(case, solution), "simulation"),
+    ]
+    if sweep is not None:
+        sections.append(("Sweep", sweep_plot(sweep), "sweep"))
+    body = header + "".join(_section(*s) for s in sections)
+    return (f'<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>Design review: '
+            f"{escape(case.title or case.path)}</title><style>{_CSS}</style></head><body>{body}</body></html>")

@@ -1,0 +1,146 @@
+"""The run store: solves recorded with inputs, outputs and versions; WAL; list/show/export; kill -9 and resume."""
+
+import json
+import os
+import signal
+import sqlite3
+import subprocess
+import sys
+import time
+
+import pandas as pd
+import pytest
+
+from clutchopt.store import RunStore
+from conftest import CASES, ROOT
+
+
+def test_solve_is_recorded_with_inputs_outputs_and_versions(cli, run_store):
+    solved = cli("solve", str(CASES / "wedge_paper.toml"), "--json")
+    assert solved.returncode == 0, solved.stderr
+    listed = cli("runs", "list")
+    assert listed.returncode == 0 and str(run_store) in listed.stdout
+    with RunStore(run_store) as store:
+        (run,) = store.runs()
+        entry = store.run(run["id"])
+    assert entry["kind"] == "solve" and entry["status"] == "optimal"
+    assert entry["objective"] == pytest.approx(0.667951, rel=1e-6)  # the worked example, paper mode
+    assert entry["inputs"]["values"]["inertia"] == 0.5
+    assert entry["outputs"]["design"] == json.loads(solved.stdout)["design"]
+    assert set(entry["versions"]) >= {"clutchopt", "casadi", "python"}
+    shown = cli("runs", "show", str(run["id"]))
+    assert json.loads(shown.stdout)["outputs"]["objective"]["value"] == pytest.approx(0.667951, rel=1e-6)
+    with sqlite3.connect(run_store) as db:
+        assert db.execute("PRAGMA journal_mode").fetchone()[0] == "wal"
+
+
+def test_no_store_and_store_path(cli, run_store, tmp_path):
+    assert cli("solve", str(CASES / "wedge_paper.toml"), "--no-store").returncode == 0
+    assert not run_store.exists()
+    other = tmp_path / "other.sqlite"
+    assert cli("solve", str(CASES / "wedge_fan.toml"), "--store", str(other)).returncode == 0
+    with RunStore(other) as store:
+        assert [run["case_path"] for run in store.runs()] == [str(CASES / "wedge_fan.toml")]
+
+
+def test_export_and_bad_store(cli, tmp_path):
+    assert cli("solve", str(CASES / "wedge_paper.toml")).returncode == 0
+    out = tmp_path / "runs.csv"
+    exported = cli("runs", "export", "-o", str(out))
+    assert exported.returncode == 0 and "1 runs written" in exported.stdout
+    table = pd.read_csv(out)
+    assert table["status"].tolist() == ["optimal"] and table["input.inertia"].tolist() == [0.5]
+    assert table["design.finger_diameter"].iloc[0] == pytest.approx(5.46156e-3, rel=1e-5)  # the worked example
+    assert table["active"].iloc[0] == "torque finger_bending"
+    not_a_db = tmp_path / "notes.txt"
+    not_a_db.write_text("not a database, just text " * 100)
+    result = cli("runs", "list", "--store", str(not_a_db))
+    assert result.returncode == 2 and "cannot use" in result.stderr and result.stderr.count("\n") == 1
+    missing = cli("runs", "show", "99")
+    assert missing.returncode == 2 and "no run 99" in missing.stderr
+
+
+def test_a_sweep_point_cannot_be_recorded_twice(tmp_path):
+    with RunStore(tmp_path / "s.sqlite") as store:
+        sweep = store.new_sweep({"points": [1]}, 1)
+        store.record("sweep", {}, {"objective": 1.0}, sweep_id=sweep, point=0)
+        with pytest.raises(sqlite3.IntegrityError):
+            store.record("sweep", {}, {"objective": 2.0}, sweep_id=sweep, point=0)
+        assert store.sweep_outputs(sweep) == {0: {"objective": 1.0}}
+
+
+SWEEP = ["sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=500:3000:40", "--vary",
+         "allowable_pressure=2:8:25", "--quiet"]
+
+
+def _stored(path) -> list[tuple]:
+    with sqlite3.connect(path, timeout=30) as db:
+        return db.execute("SELECT id, point, created FROM runs WHERE kind = 'sweep' ORDER BY id").fetchall()
+
+
+def test_killed_sweep_resumes_without_losing_duplicating_or_recomputing(run_store, tmp_path, cli):
+    process = subprocess.Popen([sys.executable, "-m", "clutchopt", *SWEEP], cwd=ROOT, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline:
+        time.sleep(0.02)
+        try:
+            if len(_stored(run_store)) >= 150:
+                break
+        except sqlite3.OperationalError:  # the table is not there yet
+            continue
+    os.kill(process.pid, signal.SIGKILL)
+    process.wait()
+    before = _stored(run_store)
+    assert 150 <= len(before) < 1000, "the sweep was not killed half-way"
+    out = tmp_path / "resumed.csv"
+    resumed = cli(*SWEEP, "--resume", "--out", str(out))
+    assert resumed.returncode == 0, resumed.stderr
+    assert f"solved {1000 - len(before)} points" in resumed.stdout
+    assert f"{len(before)} taken from the store" in resumed.stdout
+    after = _stored(run_store)
+    assert after[:len(before)] == before  # finished points untouched, not solved again
+    assert sorted(point for _, point, _ in after) == list(range(1000))  # none lost, none twice
+    frame = pd.read_csv(out)
+    assert len(frame) == 1000 and (frame["status"] == "optimal").all()
+    with RunStore(run_store) as store:
+        assert len(store.sweeps()) == 1
+
+
+def test_interrupted_sweep_says_how_to_continue(run_store):
+    process = subprocess.Popen([sys.executable, "-m", "clutchopt", *SWEEP], cwd=ROOT, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True,  # Ctrl-C reaches it even if this shell ignores it
+                               preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and not (run_store.exists() and _has_points(run_store)):
+        time.sleep(0.02)
+    process.send_signal(signal.SIGINT)
+    _, stderr = process.communicate(timeout=60)
+    assert process.returncode == 1
+    assert stderr.strip().endswith(f"sweep interrupted; the points solved so far are in {run_store}, "
+                                   "continue with --resume")
+    statuses = {status for _, _, status in _stored_status(run_store)}
+    assert statuses == {"optimal"}  # the point in flight is not recorded as a failure
+
+
+def _stored_status(path) -> list[tuple]:
+    with sqlite3.connect(path, timeout=30) as db:
+        return db.execute("SELECT id, point, status FROM runs").fetchall()
+
+
+def _has_points(path) -> bool:
+    try:
+        return len(_stored(path)) > 0
+    except sqlite3.OperationalError:
+        return False
+
+
+def test_simulations_are_recorded(cli, run_store):
+    assert cli("simulate", str(CASES / "scenes" / "wedge_ideal.toml")).returncode == 0
+    assert cli("solve", str(CASES / "wedge_paper.toml"), "--verify").returncode == 0
+    with RunStore(run_store) as store:
+        verify, solve, scene = (store.run(run["id"]) for run in store.runs())
+    assert (verify["kind"], solve["kind"], scene["kind"]) == ("simulation", "solve", "simulation")
+    assert scene["status"] == "locks up" and scene["inputs"]["scene"]["title"].startswith("Wedge coupling")
+    assert scene["objective"] == pytest.approx(10.0, rel=1e-6)  # reaches speed in t_p = 10 s
+    assert verify["status"] == "verified" and verify["objective"] == pytest.approx(10.0, rel=1e-6)

@@ -1,0 +1,146 @@
+"""Sweeps: grids in display units, warm re-solves equal to cold solves, failed points kept, outputs, workers."""
+
+import math
+
+import pandas as pd
+import pytest
+
+from clutchopt.cases import load_case
+from clutchopt.errors import InputError
+from clutchopt.optimise import solve_case
+from clutchopt.optimise.sweep import Sweep, dask_runner, grid, parse_vary
+from clutchopt.store import RunStore
+from conftest import CASES
+
+RPM = 2 * math.pi / 60
+
+
+def test_vary_reads_display_units_ranges_and_lists():
+    speed = parse_vary("speed=500:3000:26", "wedge")
+    assert len(speed.values) == 26
+    assert speed.values[0] == pytest.approx(500 * RPM) and speed.values[-1] == pytest.approx(3000 * RPM)
+    assert speed.values[1] == pytest.approx(600 * RPM)
+    pressure = parse_vary("allowable_pressure=2,8", "wedge")
+    assert pressure.values == pytest.approx((2e6, 8e6))
+    assert parse_vary("friction_coefficient=0.1", "wedge").values == (0.1,)
+    points = grid([speed, pressure])
+    assert len(points) == 52 and points[1] == {"speed": pytest.approx(500 * RPM), "allowable_pressure": 8e6}
+
+
+@pytest.mark.parametrize("text, message", [
+    ("speed=abc:3000:4", "not a number"), ("sped=1,2", "unknown quantity 'sped'"), ("speed=1:2:0", "count >= 1"),
+    ("speed=1:2:2.5", "count >= 1"), ("speed", "expected name="), ("speed=nan", "finite"),
+])
+def test_bad_vary_is_named(text, message):
+    with pytest.raises(InputError, match=message):
+        parse_vary(text, "wedge")
+
+
+def test_listed_sweep_pairs_values_and_needs_equal_lengths():
+    speed, pressure = parse_vary("speed=500,1000", "wedge"), parse_vary("allowable_pressure=2,8", "wedge")
+    assert [p["allowable_pressure"] for p in grid([speed, pressure], zipped=True)] == [2e6, 8e6]
+    with pytest.raises(InputError, match="equally many"):
+        grid([speed, parse_vary("allowable_pressure=2,4,8", "wedge")], zipped=True)
+
+
+def test_warm_started_points_equal_cold_solves_and_failures_stay_rows():
+    case = load_case(CASES / "wedge_paper.toml")
+    sweep = Sweep(case, [parse_vary("outer_diameter_max=100,130,160,200", "wedge"),
+                         parse_vary("speed=800,1000", "wedge")], mode="geometry")
+    frame = sweep.run(progress=False).frame
+    assert len(frame) == 8 and list(frame["point"]) == list(range(8))
+    for row in frame.itertuples():
+        cold = solve_case(case.with_values(outer_diameter_max=row[2] * 1e-3, speed=row[3] * RPM), "geometry")
+        assert row.status == cold.status
+        if cold.status == "optimal":
+            assert row[5] == pytest.approx(cold.objective, rel=1e-7)
+    failed = frame[frame["status"] != "optimal"]
+    assert len(failed) >= 1 and (failed["outer_diameter_max [mm]"] == 100).all()
+    assert failed["diagnosis"].str.contains("infeasible").all()
+    best = frame[frame["status"] == "optimal"]
+    assert (best["active"].str.contains("torque")).all()
+
+
+def test_thousand_point_sweep_with_progress_bar_csv_and_runs_list(cli, tmp_path, run_store):
+    out = tmp_path / "sweep.csv"
+    result = cli("sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=500:3000:40",
+                 "--vary", "allowable_pressure=2:8:25", "--out", str(out))
+    assert result.returncode == 0, result.stderr
+    assert "1000/1000" in result.stderr  # the progress bar
+    assert "1000 points, 1000 optimal" in result.stdout
+    frame = pd.read_csv(out)
+    assert len(frame) == 1000 and frame["point"].is_unique
+    assert frame["speed [rpm]"].min() == pytest.approx(500) and frame["allowable_pressure [MPa]"].max() == pytest.approx(8)
+    corner = frame.iloc[-25]  # the last speed (3000 rpm) at the first pressure (2 MPa)
+    assert corner["speed [rpm]"] == pytest.approx(3000) and corner["allowable_pressure [MPa]"] == pytest.approx(2)
+    cold = solve_case(load_case(CASES / "wedge_paper.toml").with_values(speed=3000 * RPM, allowable_pressure=2e6))
+    assert corner["mass [kg]"] == pytest.approx(cold.objective, rel=1e-7)
+    listed = cli("runs", "list", "--kind", "sweep", "--limit", "3")
+    assert listed.returncode == 0 and "sweep" in listed.stdout
+    with RunStore(run_store) as store:
+        assert store.sweeps()[0]["stored"] == 1000
+
+
+@pytest.mark.parametrize("suffix", ["parquet", "md"])
+def test_parquet_and_markdown_tables(cli, tmp_path, suffix):
+    out = tmp_path / f"sweep.{suffix}"
+    result = cli("sweep", str(CASES / "wedge_fan.toml"), "--vary", "speed=1000,2000", "--out", str(out), "--quiet",
+                 "--no-store")
+    assert result.returncode == 0, result.stderr
+    if suffix == "parquet":
+        assert list(pd.read_parquet(out)["speed [rpm]"]) == pytest.approx([1000, 2000])
+    else:
+        lines = out.read_text().splitlines()
+        assert lines[0].startswith("| point | speed [rpm] |") and len(lines) == 4
+
+
+def test_few_points_print_one_column_per_point(cli):
+    result = cli("sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=1000,2000", "--quiet", "--no-store")
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert any(line.split() == ["point", "0", "point", "1"] for line in lines)
+    assert any(line.startswith("mass [kg]") and "0.667951" in line for line in lines)  # the worked example
+    assert "active at points 0, 1: torque finger_bending" in lines
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--vary", "speed=abc"], "--vary speed=abc: not a number"),
+    (["--vary", "nonsense=1"], "unknown quantity 'nonsense'"),
+    (["--vary", "speed=1", "--dask", "localhost"], "--dask: expected an address like tcp://host:8786"),
+    (["--vary", "speed=1", "--out", "table.xlsx"], "--out: write .csv, .parquet or .md"),
+    (["--vary", "speed=1", "--jobs", "0"], "--jobs: must be at least 1"),
+    (["--vary", "speed=1", "--resume", "--no-store"], "--resume: continues a sweep from the run store"),
+    (["--vary", "speed=1000", "--out", "/nonexistent/dir/t.csv", "--quiet"], "--out: cannot write"),
+])
+def test_bad_sweep_arguments_end_in_one_line(cli, args, message):
+    result = cli("sweep", str(CASES / "wedge_paper.toml"), *args)
+    assert result.returncode == 2 and result.stderr.count("\n") == 1 and message in result.stderr, result.stderr
+
+
+def test_unreachable_dask_scheduler_is_bad_input(cli):
+    result = cli("sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=1000", "--dask", "tcp://127.0.0.1:9")
+    assert result.returncode == 2 and "cannot reach a Dask scheduler at tcp://127.0.0.1:9" in result.stderr
+
+
+def _sweep():
+    case = load_case(CASES / "wedge_fan.toml")
+    return Sweep(case, [parse_vary("speed=1500:3000:6", "wedge"), parse_vary("allowable_pressure=1,3", "wedge")],
+                 mode="geometry")
+
+
+def test_process_pool_gives_the_serial_table():
+    serial = _sweep().run(progress=False).frame
+    pooled = _sweep().run(jobs=2, progress=False, chunk_size=3).frame
+    pd.testing.assert_frame_equal(serial.drop(columns="iterations"), pooled.drop(columns="iterations"), rtol=1e-7)
+
+
+def test_dask_local_cluster_gives_the_serial_table(tmp_path):
+    from distributed import LocalCluster
+
+    serial = _sweep().run(progress=False).frame
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as cluster:
+        with RunStore(tmp_path / "dask.sqlite") as store:
+            result = _sweep().run(store, runner=dask_runner(cluster.scheduler_address), progress=False, chunk_size=4)
+            assert len(store.runs(sweep_id=result.sweep_id)) == 12
+    pd.testing.assert_frame_equal(serial.drop(columns="iterations"), result.frame.drop(columns="iterations"),
+                                  rtol=1e-7)
