@@ -238,8 +238,8 @@ class Problem:
         scale, f_scale, p_vector = data.scale, data.f_scale, data.p
         names = [v.name for v in self.formulation.variables]
         runs = []
-        if warm_ok and warm.multipliers is not None:
-            lam_x, lam_g = warm.multipliers
+        if warm_ok and warm.multipliers is not None and len(warm.multipliers[1]) == len(self.constraint_names):
+            lam_x, lam_g = warm.multipliers  # (a warm start from another problem, e.g. uncapped, gives its point only)
             runs.append(self._run(p_vector, lower / scale, upper / scale, x0 / scale, {"lam_x": lam_x, "lam_g": lam_g},
                                   solver=self._warm()))
         if not runs or not runs[-1]["ok"]:
