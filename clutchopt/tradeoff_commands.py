@@ -199,7 +199,7 @@ def _pareto(args) -> str:
     lines = [f"Pareto front, mass against cost (epsilon-constraint) - {case.title or case.path}, {front.mode} mode"]
     if front.note:
         lines.append(front.note)
-    lines += ["", front.frame.to_string(index=False, float_format=lambda v: f"{v:.6g}")]
+    lines += ["", front.frame.to_string(index=False, float_format=lambda v: f"{v:.6g}", na_rep="-")]
     lines += [f"figure written to {args.plot}"] if args.plot else []
     return "\n".join(lines)
 
