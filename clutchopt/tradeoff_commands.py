@@ -80,7 +80,7 @@ def add_command(commands) -> None:
     pareto.add_argument("--points", type=int, default=9, help="points on the front, both ends included (default 9)")
     pareto.add_argument("--plot", metavar="FILE", help="write the front as a figure (.png, .svg, .pdf)")
     pareto.add_argument("--out", metavar="FILE", help="write the table: .csv, .parquet or .md")
-    pareto.add_argument("--json", action="store_true", help="one JSON object, rows in display units")
+    pareto.add_argument("--json", action="store_true", help="one JSON object, SI units")
     pareto.add_argument("--tol", type=_positive_float, default=1e-10, help="IPOPT tolerance (default 1e-10)")
     add_store_options(pareto)
     pareto.set_defaults(run=_pareto)
@@ -175,14 +175,17 @@ def sweep_text(sweep, result, store_path: str | None, out: str | None) -> str:
 def _pareto(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.optimise import SolverOptions
+    from clutchopt.formulations import get_coupling
     from clutchopt.optimise.pareto import CAP, pareto_front
     from clutchopt.optimise.sweep import write_frame
+    from clutchopt.optimise.verify import evaluate_objective
     from clutchopt.output import to_json
 
     case = load_case(args.case)
     if args.points < 2:
         raise InputError("--points", f"a front needs at least 2 points, got {args.points}")
     front = pareto_front(case, args.mode, args.points, SolverOptions(tol=args.tol))
+    formulation = get_coupling(case.coupling).formulation(front.mode)
     store = open_store(args)
     if store is not None:
         with store:
@@ -194,8 +197,12 @@ def _pareto(args) -> str:
     if args.plot:
         pareto_figure(front).savefig(args.plot)
     if args.json:
-        return to_json({"case": case.path, "mode": front.mode, "note": front.note,
-                        "rows": front.frame.to_dict(orient="records")})
+        params = case.params()
+        rows = [{"cost_cap": None if math.isnan(cap) else cap, "status": solution.status,
+                 **{name: evaluate_objective(formulation, name, solution.design, params) for name in ("mass", "cost")},
+                 "design": solution.design, "active": [c.name for c in solution.constraints if c.active and c.name != CAP]}
+                for cap, solution in zip(front.caps, front.solutions)]
+        return to_json({"case": case.path, "mode": front.mode, "note": front.note, "rows": rows})
     lines = [f"Pareto front, mass against cost (epsilon-constraint) - {case.title or case.path}, {front.mode} mode"]
     if front.note:
         lines.append(front.note)

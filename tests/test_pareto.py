@@ -1,5 +1,6 @@
 """Pareto front mass against cost: ends are the two optima, caps bind, no point dominates another."""
 
+import json
 import numpy as np
 import pandas as pd
 import pytest
@@ -51,3 +52,13 @@ def test_cli_table_plot_and_store(cli, tmp_path, run_store):
     assert listed.stdout.count(" pareto ") == 5
     bad = cli("pareto", str(CASES / "wedge_centrifuge.toml"), "--points", "1")
     assert bad.returncode == 2 and "--points: a front needs at least 2 points" in bad.stderr
+
+
+def test_json_is_si(cli):
+    result = cli("pareto", str(CASES / "lever_centrifuge.toml"), "--points", "2", "--json", "--no-store")
+    assert result.returncode == 0, result.stderr
+    rows = json.loads(result.stdout)["rows"]
+    assert [row["cost_cap"] for row in rows] == [None, None]
+    lightest = rows[0]
+    assert lightest["status"] == "optimal" and lightest["mass"] == pytest.approx(1.72653, rel=1e-5)  # kg
+    assert 0.05 < lightest["design"]["weight_mass"] < 0.1  # kg, the closed form's 0.0724 kg per weight
