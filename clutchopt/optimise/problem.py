@@ -225,10 +225,8 @@ class Problem:
         """Bounds, start and scales of one solve (scales from the start unless given)."""
         lower, upper, x0 = self._bounds_and_start(case, start)
         params = self._params(case)
-        own_scale, f_scale, p_vector = self._scaling(params, x0, lower, upper)
-        if scale is not None:
-            own_scale, f_scale, p_vector = self._scaling(params, x0, lower, upper, scale)
-        return ScaledData(params, lower, upper, x0, own_scale, f_scale, p_vector)
+        scale, f_scale, p_vector = self._scaling(params, x0, lower, upper, scale)
+        return ScaledData(params, lower, upper, x0, scale, f_scale, p_vector)
 
     def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | None = None) -> Solution:
         """Solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one."""
