@@ -70,6 +70,7 @@ def add_command(commands) -> None:
                        help="continue the latest identical sweep in the store; stored points are not solved again")
     sweep.add_argument("--out", metavar="FILE", help="write the table: .csv, .parquet or .md")
     sweep.add_argument("--quiet", action="store_true", help="no progress bar")
+    sweep.add_argument("--json", action="store_true", help="one JSON object, SI units: every point's inputs and solution")
     sweep.add_argument("--tol", type=_positive_float, default=1e-10, help="IPOPT tolerance (default 1e-10)")
     add_store_options(sweep)
     sweep.set_defaults(run=_sweep)
@@ -101,6 +102,7 @@ def add_command(commands) -> None:
     listing.add_argument("--kind", choices=("solve", "sweep", "pareto", "simulation"))
     listing.add_argument("--sweep", type=int, metavar="ID", help="only the points of this sweep")
     listing.add_argument("--limit", type=int, default=20, help="at most this many runs (default 20, 0: all)")
+    listing.add_argument("--json", action="store_true", help="one JSON object, SI units")
     show = actions.add_parser("show", help="one run with its inputs, outputs and versions (JSON)")
     show.add_argument("id", type=int)
     export = actions.add_parser("export", help="runs as a table (.csv, .parquet, .md): status, objective, SI inputs "
@@ -139,6 +141,12 @@ def _sweep(args) -> str:
             store.close()
     if args.out:
         write_frame(result.frame, args.out)
+    if args.json:
+        from clutchopt.output import to_json
+
+        return to_json({"case": case.path, "mode": sweep.formulation.mode, "objective": sweep.objective.name,
+                        "sweep_id": result.sweep_id, "points": [{"point": i, "values": values, **solution}
+                        for i, (values, solution) in enumerate(zip(sweep.points, result.solutions))]})
     text = sweep_text(sweep, result, store.path if store else None, args.out)
     if args.resume and not result.reused:
         text += "\n(nothing resumed: no stored points of an identical sweep)"
@@ -266,8 +274,10 @@ def _runs(args) -> str:
             runs = pd.DataFrame(store.flat(args.kind, args.sweep))
             write_frame(runs, args.out)
             return f"{len(runs)} runs written to {args.out}"
-        runs = pd.DataFrame(store.runs(args.kind, args.sweep, args.limit or None))
-        sweeps = pd.DataFrame(store.sweeps())
+        listed, swept = store.runs(args.kind, args.sweep, args.limit or None), store.sweeps()
+        if args.json:
+            return to_json({"store": str(store.path), "runs": listed, "sweeps": swept})
+        runs, sweeps = pd.DataFrame(listed), pd.DataFrame(swept)
     lines = [f"Runs in {store.path} (newest first)", runs.to_string(index=False) if len(runs) else "(none)"]
     if len(sweeps) and args.sweep is None:
         lines += ["", "Sweeps", sweeps.to_string(index=False)]

@@ -1,5 +1,6 @@
 """Sweeps: grids in display units, warm re-solves equal to cold solves, failed points kept, outputs, workers."""
 
+import json
 import math
 
 import pandas as pd
@@ -144,3 +145,15 @@ def test_dask_local_cluster_gives_the_serial_table(tmp_path):
             assert len(store.runs(sweep_id=result.sweep_id)) == 12
     pd.testing.assert_frame_equal(serial.drop(columns="iterations"), result.frame.drop(columns="iterations"),
                                   rtol=1e-7)
+
+
+def test_json_gives_every_point_in_si(cli, run_store):
+    result = cli("sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=500,1000", "--json", "--quiet")
+    assert result.returncode == 0, result.stderr
+    sweep = json.loads(result.stdout)
+    assert [p["values"]["speed"] for p in sweep["points"]] == pytest.approx([500 * math.pi / 30, 1000 * math.pi / 30])
+    direct = solve_case(load_case(CASES / "wedge_paper.toml").with_values(speed=1000 * math.pi / 30))
+    assert sweep["points"][1]["objective"]["value"] == pytest.approx(direct.objective, rel=1e-8)  # kg
+    assert all(p["status"] == "optimal" and p["constraints"] for p in sweep["points"])
+    listed = json.loads(cli("runs", "list", "--json", "--kind", "sweep").stdout)
+    assert len(listed["runs"]) == 2 and listed["sweeps"][0]["id"] == sweep["sweep_id"]

@@ -202,6 +202,7 @@ class SweepResult:
     solved: int  # points solved by this invocation
     reused: int  # points found already stored (resume)
     elapsed_s: float  # wall time of the solves
+    solutions: list[dict]  # every point's solution (``Solution.as_dict()``, SI), in point order
 
 
 class Sweep:
@@ -259,8 +260,9 @@ class Sweep:
                                      mode=self.formulation.mode, objective_name=self.objective.name,
                                      sweep_id=sweep_id, point=result["point"])
                 bar.update(len(results))
-        frame = self.frame([solutions[i] for i in range(len(self.points))])
-        return SweepResult(sweep_id, frame, len(pending), len(stored), time.perf_counter() - started)
+        ordered = [solutions[i] for i in range(len(self.points))]
+        return SweepResult(sweep_id, self.frame(ordered), len(pending), len(stored), time.perf_counter() - started,
+                           ordered)
 
     def frame(self, solutions: list[dict]) -> pd.DataFrame:
         """One row per point: inputs, status, objective, design (display units), active constraints."""
