@@ -13,7 +13,8 @@ from clutchopt.errors import InputError
 EXIT_BAD_INPUT = 2
 
 # Further sub-commands live beside what they run; each module defines ``add_command(subparsers)``.
-COMMAND_MODULES: tuple[str, ...] = ("clutchopt.tradeoff_commands", "clutchopt.bench.command")
+COMMAND_MODULES: tuple[str, ...] = (
+    "clutchopt.simulate.command", "clutchopt.tradeoff_commands", "clutchopt.bench.command")
 
 
 def _solve(args) -> str:
@@ -64,6 +65,18 @@ def _positive_float(text: str) -> float:
     return value
 
 
+def add_problem_options(command: argparse.ArgumentParser, objective: bool = True) -> None:
+    """--mode, --objective (unless the command sets both ends itself) and --tol: how a case is posed and solved."""
+    command.add_argument("--mode", help="problem posing, e.g. paper or geometry (default: the case's, then the coupling's)")
+    if objective:
+        command.add_argument("--objective", help="mass or cost (default: the case's, then mass)")
+    add_tolerance_option(command)
+
+
+def add_tolerance_option(command: argparse.ArgumentParser) -> None:
+    command.add_argument("--tol", type=_positive_float, default=1e-10, help="IPOPT tolerance (default 1e-10)")
+
+
 class _Parser(argparse.ArgumentParser):
     """Usage mistakes end like bad input: one line, exit code 2."""
 
@@ -79,8 +92,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     solve = commands.add_parser("solve", help="optimise a case and verify the optimum in float64")
     solve.add_argument("case", help="case file (TOML)")
-    solve.add_argument("--mode", help="problem posing, e.g. paper or geometry (default: the case's, then the coupling's)")
-    solve.add_argument("--objective", help="mass or cost (default: the case's, then mass)")
+    add_problem_options(solve)
     add_store_options(solve)
     solve.add_argument("--verify", action="store_true",
                        help="simulate the optimised design's start-up and compare its acceleration time with t_p")
@@ -88,15 +100,11 @@ def build_parser() -> argparse.ArgumentParser:
 
     compare = commands.add_parser("compare", help="the paper's method and closed forms beside the NLP optima")
     compare.add_argument("case", help="case file (TOML)")
+    add_tolerance_option(compare)
     compare.set_defaults(run=_compare)
-
-    from clutchopt.simulate.command import add_parser as add_simulate
-
-    add_simulate(commands)
 
     for command in (solve, compare):
         command.add_argument("--json", action="store_true", help="one JSON object, SI units")
-        command.add_argument("--tol", type=_positive_float, default=1e-10, help="IPOPT tolerance (default 1e-10)")
     for module in COMMAND_MODULES:
         import_module(module).add_command(commands)
     return parser

@@ -54,7 +54,7 @@ def record_simulation(args, scene, result) -> None:
 
 
 def add_command(commands) -> None:
-    from clutchopt.cli import _Parser, _positive_float
+    from clutchopt.cli import _Parser, add_problem_options
 
     sweep = commands.add_parser("sweep", help="re-solve a case over a grid of requirements (warm-started, recorded)")
     sweep.add_argument("case", help="case file (TOML)")
@@ -62,8 +62,7 @@ def add_command(commands) -> None:
                        help="a case quantity in its display unit (speed in rpm, pressures in MPa, lengths in mm); "
                             "repeat for a full-factorial grid")
     sweep.add_argument("--zip", action="store_true", help="listed sweep: the i-th point takes the i-th value of each")
-    sweep.add_argument("--mode", help="problem posing (default: the case's, then the coupling's)")
-    sweep.add_argument("--objective", help="mass or cost (default: the case's, then mass)")
+    add_problem_options(sweep)
     sweep.add_argument("--jobs", type=int, default=1, help="local worker processes (default 1)")
     sweep.add_argument("--dask", metavar="ADDRESS", help="run on an existing Dask cluster, e.g. tcp://host:8786")
     sweep.add_argument("--resume", action="store_true",
@@ -71,28 +70,24 @@ def add_command(commands) -> None:
     sweep.add_argument("--out", metavar="FILE", help="write the table: .csv, .parquet or .md")
     sweep.add_argument("--quiet", action="store_true", help="no progress bar")
     sweep.add_argument("--json", action="store_true", help="one JSON object, SI units: every point's inputs and solution")
-    sweep.add_argument("--tol", type=_positive_float, default=1e-10, help="IPOPT tolerance (default 1e-10)")
     add_store_options(sweep)
     sweep.set_defaults(run=_sweep)
 
     pareto = commands.add_parser("pareto", help="mass against cost: the Pareto front by epsilon-constraint")
     pareto.add_argument("case", help="case file (TOML)")
-    pareto.add_argument("--mode", help="problem posing (default: the case's, then the coupling's)")
+    add_problem_options(pareto, objective=False)  # mass and cost are the front's two ends
     pareto.add_argument("--points", type=int, default=9, help="points on the front, both ends included (default 9)")
     pareto.add_argument("--plot", metavar="FILE", help="write the front as a figure (.png, .svg, .pdf)")
     pareto.add_argument("--out", metavar="FILE", help="write the table: .csv, .parquet or .md")
     pareto.add_argument("--json", action="store_true", help="one JSON object, SI units")
-    pareto.add_argument("--tol", type=_positive_float, default=1e-10, help="IPOPT tolerance (default 1e-10)")
     add_store_options(pareto)
     pareto.set_defaults(run=_pareto)
 
     report = commands.add_parser("report", help="a self-contained HTML design-review page for a case")
     report.add_argument("case", help="case file (TOML)")
     report.add_argument("-o", "--out", required=True, metavar="FILE", help="the HTML page to write")
-    report.add_argument("--mode", help="problem posing (default: the case's, then the coupling's)")
-    report.add_argument("--objective", help="mass or cost (default: the case's, then mass)")
+    add_problem_options(report)
     report.add_argument("--sweep", metavar="TABLE", help="a sweep table (.csv or .parquet from sweep --out) to plot")
-    report.add_argument("--tol", type=_positive_float, default=1e-10, help="IPOPT tolerance (default 1e-10)")
     add_store_options(report)
     report.set_defaults(run=_report)
 

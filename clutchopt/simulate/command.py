@@ -17,7 +17,7 @@ _LINES = (
 )
 
 
-def add_parser(commands) -> None:
+def add_command(commands) -> None:
     from clutchopt.tradeoff_commands import add_store_options
 
     parser = commands.add_parser("simulate", help="simulate a scene's start-up (effects, lock-up, headline figures)")
