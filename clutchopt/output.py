@@ -92,9 +92,9 @@ def sensitivity_rows(solution: Solution, formulation: Formulation, count: int = 
 def comparison_text(table: ComparisonTable) -> str:
     rows = []
     for row in table.rows:
-        entry = {"quantity": row["quantity"], "unit": row["unit"]}
+        entry = {"quantity": row["quantity"], "unit": row["display_unit"]}
         for column in table.columns:
-            entry[column] = _shown(row[column], row["unit"])
+            entry[column] = _shown(row[column], row["display_unit"])
         rows.append(entry)
     rel = []
     for row in table.rows:

@@ -40,6 +40,13 @@ _PRETTY_SI = {
     "kilogram * meter ** 2": "kg*m^2",
     "kilogram / meter ** 3": "kg/m^3",
     "kilogram / second ** 2": "N/m",
+    "kilogram * meter ** 2 / second ** 3": "W",
+    "kilogram * meter ** 2 / kelvin / second ** 2": "J/K",
+    "kilogram * meter ** 2 / kelvin / second ** 3": "W/K",
+    "meter ** 2": "m^2",
+    "meter / second ** 2": "m/s^2",
+    "EUR / kilogram": "EUR/kg",
+    "EUR / meter ** 2": "EUR/m^2",
 }
 
 

@@ -11,6 +11,7 @@ from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.problem import Solution, SolverOptions, problem_for
+from clutchopt.units import si_unit
 
 
 @dataclass
@@ -18,7 +19,7 @@ class ComparisonTable:
     coupling: str
     columns: list[str]
     baseline: str
-    rows: list[dict]  # {"quantity", "unit", "description", <column>: SI value, "rel_<column>": relative difference}
+    rows: list[dict]  # {"quantity", "unit" (SI), "display_unit", "description", <column>: SI value, "rel_<column>"}
     notes: dict[str, str]
     solutions: dict[str, Solution]
 
@@ -57,7 +58,8 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions()) -> Compar
     names = list(columns)
     rows = []
     for row in spec.rows:
-        entry = {"quantity": row.name, "unit": row.unit, "description": row.description}
+        entry = {"quantity": row.name, "unit": si_unit(row.unit), "display_unit": row.unit,
+                 "description": row.description}
         for name in names:
             value = columns[name].get(row.name)
             entry[name] = None if value is None or not math.isfinite(value) else float(value)

@@ -32,6 +32,7 @@ import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.model import Formulation, Output, namespace
+from clutchopt.units import si_unit
 from clutchopt.optimise.verify import (
     FEASIBILITY_TOL,
     ConstraintCheck,
@@ -118,6 +119,7 @@ class Solution:
     sensitivities: dict[str, float] = field(default_factory=dict)  # d ln objective / d ln parameter
     scale: np.ndarray | None = field(default=None, repr=False)  # variable scales of the kept solve (warm starts)
     multipliers: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False)  # (lam_x, lam_g), scaled
+    design_units: dict[str, str] = field(default_factory=dict)  # display unit of each design variable
 
     def at_bound(self, name: str) -> str:
         """"fixed", "lower", "upper" (within 1e-7 relative) or "" for a design variable."""
@@ -144,6 +146,8 @@ class Solution:
             "objective": {"name": self.objective_name, "value": self.objective, "unit": self.objective_unit},
             "design": self.design,
             "outputs": {name: out.value for name, out in self.outputs.items()},
+            "units": {"design": {name: si_unit(unit) for name, unit in self.design_units.items()},
+                      "outputs": {name: si_unit(out.unit) for name, out in self.outputs.items()}},
             "constraints": [c.as_dict() for c in self.constraints],
             "solver": vars(self.solver),
             "diagnosis": self.diagnosis,
@@ -340,7 +344,7 @@ class Problem:
         sensitivities = self._sensitivities(run, params, scale, f_scale, objective) if status == "optimal" else {}
         return Solution(f.coupling, f.mode, self.objective.name, self.objective.unit, status, objective, design,
                         evaluate_outputs(f, design, params), checks, info, diagnosis, search, bounds,
-                        sensitivities, scale, (run["lam_x"], run["lam_g"]))
+                        sensitivities, scale, (run["lam_x"], run["lam_g"]), {v.name: v.unit for v in f.variables})
 
     def _sensitivities(self, run, params, scale, f_scale, objective) -> dict[str, float]:
         """d ln f* / d ln p for every case quantity with a finite non-zero value and every fixed variable.

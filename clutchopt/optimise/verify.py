@@ -6,6 +6,7 @@ from dataclasses import asdict, dataclass, replace
 from types import SimpleNamespace
 
 from clutchopt.model import Formulation, Output, namespace
+from clutchopt.units import si_unit
 
 FEASIBILITY_TOL = 1e-8  # largest relative violation accepted as feasible
 ACTIVE_TOL = 1e-6  # relative margin below which a constraint is reported active
@@ -28,7 +29,8 @@ class ConstraintCheck:
     elasticity: float | None = None  # d ln(objective) / d ln(limit)
 
     def as_dict(self) -> dict:
-        return asdict(self)
+        """SI values; ``unit`` is their SI unit, ``display_unit`` the one the tables show them in."""
+        return {**asdict(self), "unit": si_unit(self.unit), "display_unit": self.unit}
 
 
 def check_design(formulation: Formulation, design: dict[str, float], params: SimpleNamespace) -> list[ConstraintCheck]:

@@ -108,8 +108,8 @@ def comparison(case: Case) -> str:
     if get_coupling(case.coupling).comparison is None:
         return '<p class="note">This coupling has no comparison with a paper method.</p>'
     table = compare_case(case)
-    rows = [{"quantity": r["quantity"], "unit": r["unit"],
-             **{column: _shown(r[column], r["unit"]) for column in table.columns}} for r in table.rows]
+    rows = [{"quantity": r["quantity"], "unit": r["display_unit"],
+             **{column: _shown(r[column], r["display_unit"]) for column in table.columns}} for r in table.rows]
     notes = "".join(f"<li><b>{escape(name)}</b>: {escape(note)}</li>" for name, note in table.notes.items()
                     if name in table.columns)
     return _table(rows, tuple(table.columns)) + f'<ul class="note">{notes}</ul>'
