@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+from clutchopt.cli.options import add_json_option, add_store_options, record_simulation
 from clutchopt.errors import InputError
 
 _LINES = (
@@ -18,11 +19,9 @@ _LINES = (
 
 
 def add_command(commands) -> None:
-    from clutchopt.tradeoff_commands import add_store_options
-
     parser = commands.add_parser("simulate", help="simulate a scene's start-up (effects, lock-up, headline figures)")
     parser.add_argument("scene", help="scene file (TOML, e.g. cases/scenes/paper_transient.toml)")
-    parser.add_argument("--json", action="store_true", help="one JSON object, SI units")
+    add_json_option(parser)
     parser.add_argument("--plot", metavar="PNG", help="write the time histories as a PNG")
     add_store_options(parser)
     parser.set_defaults(run=run)
@@ -32,7 +31,6 @@ def run(args) -> str:
     from clutchopt.output import to_json
     from clutchopt.simulate import load_scene, run_scene
     from clutchopt.simulate.analytic import PaperTransient
-    from clutchopt.tradeoff_commands import record_simulation
 
     scene = load_scene(args.scene)
     result = run_scene(scene)

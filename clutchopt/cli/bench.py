@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+from clutchopt.cli.options import add_json_option
 
-def _bench(args) -> str:
+
+def run(args) -> str:
     from clutchopt.bench import BenchConfig, bench_text, run_bench
     from clutchopt.output import to_json
 
@@ -14,5 +16,5 @@ def _bench(args) -> str:
 def add_command(commands) -> None:
     bench = commands.add_parser("bench", help="accuracy against time of every solver, throughput of warm sweeps")
     bench.add_argument("--quick", action="store_true", help="few repeats, a 100-point sweep (under a minute)")
-    bench.add_argument("--json", action="store_true", help="one JSON object, times in seconds")
-    bench.set_defaults(run=_bench)
+    add_json_option(bench, "one JSON object, times in seconds")
+    bench.set_defaults(run=run)

@@ -1,0 +1,24 @@
+"""``clutchopt compare CASE``: the paper's method and closed forms beside the NLP optima."""
+
+from __future__ import annotations
+
+from clutchopt.cli.options import add_case_argument, add_json_option, add_tolerance_option
+
+
+def add_command(commands) -> None:
+    compare = commands.add_parser("compare", help="the paper's method and closed forms beside the NLP optima")
+    add_case_argument(compare)
+    add_tolerance_option(compare)
+    add_json_option(compare)
+    compare.set_defaults(run=run)
+
+
+def run(args) -> str:
+    from clutchopt.cases import load_case
+    from clutchopt.optimise import SolverOptions
+    from clutchopt.optimise.compare import compare_case
+    from clutchopt.output import comparison_text, to_json
+
+    case = load_case(args.case)
+    table = compare_case(case, SolverOptions(tol=args.tol))
+    return to_json({"case": case.path, "title": case.title, **table.as_dict()}) if args.json else comparison_text(table)

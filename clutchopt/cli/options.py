@@ -1,0 +1,84 @@
+"""What several commands share: the parser class, option groups, the run store. Imports nothing heavy."""
+
+from __future__ import annotations
+
+import argparse
+
+EXIT_BAD_INPUT = 2
+
+
+class Parser(argparse.ArgumentParser):
+    """Usage mistakes end like bad input: one line, exit code 2."""
+
+    def error(self, message: str):
+        self.exit(EXIT_BAD_INPUT, f"error: {message} (see {self.prog} --help)\n")
+
+
+def positive_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"must be positive: {text!r}")
+    return value
+
+
+def add_case_argument(command: argparse.ArgumentParser) -> None:
+    command.add_argument("case", help="case file (TOML)")
+
+
+def add_json_option(command: argparse.ArgumentParser, help: str = "one JSON object, SI units") -> None:
+    command.add_argument("--json", action="store_true", help=help)
+
+
+def add_problem_options(command: argparse.ArgumentParser, objective: bool = True) -> None:
+    """--mode, --objective (unless the command sets both ends itself) and --tol: how a case is posed and solved."""
+    command.add_argument("--mode", help="problem posing, e.g. paper or geometry (default: the case's, then the coupling's)")
+    if objective:
+        command.add_argument("--objective", help="mass or cost (default: the case's, then mass)")
+    add_tolerance_option(command)
+
+
+def add_tolerance_option(command: argparse.ArgumentParser) -> None:
+    command.add_argument("--tol", type=positive_float, default=1e-10, help="IPOPT tolerance (default 1e-10)")
+
+
+def add_store_options(command: argparse.ArgumentParser) -> None:
+    command.add_argument("--store", metavar="PATH",
+                         help="run store (SQLite; default $CLUTCHOPT_STORE, then ./clutchopt-runs.sqlite)")
+    command.add_argument("--no-store", action="store_true", help="do not record this run")
+
+
+def open_store(args):
+    """The run store the arguments ask for, or None with ``--no-store``."""
+    from clutchopt.store import RunStore
+
+    return None if getattr(args, "no_store", False) else RunStore(args.store)
+
+
+def record_solve(args, case, solution, check: dict | None = None) -> None:
+    """Record a ``solve`` (and its start-up check, a simulation) in the run store unless ``--no-store``."""
+    store = open_store(args)
+    if store is not None:
+        with store:
+            store.record_solution("solve", case, solution)
+            if check is not None:
+                store.record("simulation", {"values": case.values, "design": solution.design}, check,
+                             status="verified" if check.get("verified") else "not verified",
+                             objective=check.get("simulated_acceleration_time"), case_path=case.path,
+                             title=case.title, coupling=case.coupling, mode=solution.mode,
+                             objective_name="acceleration_time")
+
+
+def record_simulation(args, scene, result) -> None:
+    """Record a ``simulate`` run (scene file, headline, events) unless ``--no-store``."""
+    from clutchopt.cases import read_toml
+
+    store = open_store(args)
+    if store is not None:
+        with store:
+            store.record("simulation", {"scene": read_toml(scene.path), "source": scene.source}, result.as_dict(),
+                         status="locks up" if result.headline["locks_up"] else "no lock-up",
+                         objective=result.headline.get("start_time"), case_path=scene.path, title=scene.title,
+                         objective_name="start_time")

@@ -1,0 +1,88 @@
+"""``clutchopt pareto CASE``: mass against cost, the Pareto front by epsilon-constraint."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+from clutchopt.cli.options import (
+    add_case_argument,
+    add_json_option,
+    add_problem_options,
+    add_store_options,
+    open_store,
+)
+from clutchopt.errors import InputError
+
+
+def add_command(commands) -> None:
+    pareto = commands.add_parser("pareto", help="mass against cost: the Pareto front by epsilon-constraint")
+    add_case_argument(pareto)
+    add_problem_options(pareto, objective=False)  # mass and cost are the front's two ends
+    pareto.add_argument("--points", type=int, default=9, help="points on the front, both ends included (default 9)")
+    pareto.add_argument("--plot", metavar="FILE", help="write the front as a figure (.png, .svg, .pdf)")
+    pareto.add_argument("--out", metavar="FILE", help="write the table: .csv, .parquet or .md")
+    add_json_option(pareto)
+    add_store_options(pareto)
+    pareto.set_defaults(run=run)
+
+
+def run(args) -> str:
+    from clutchopt.cases import load_case
+    from clutchopt.optimise import SolverOptions
+    from clutchopt.formulations import get_coupling
+    from clutchopt.optimise.pareto import CAP, pareto_front
+    from clutchopt.optimise.sweep import write_frame
+    from clutchopt.optimise.verify import evaluate_objective
+    from clutchopt.output import to_json
+
+    case = load_case(args.case)
+    if args.points < 2:
+        raise InputError("--points", f"a front needs at least 2 points, got {args.points}")
+    front = pareto_front(case, args.mode, args.points, SolverOptions(tol=args.tol))
+    formulation = get_coupling(case.coupling).formulation(front.mode)
+    store = open_store(args)
+    if store is not None:
+        with store:
+            for cap, solution in zip(front.caps, front.solutions):
+                capped = case if math.isnan(cap) else replace(case, values={**case.values, CAP: cap})
+                store.record_solution("pareto", capped, solution)
+    if args.out:
+        write_frame(front.frame, args.out)
+    if args.plot:
+        pareto_figure(front).savefig(args.plot)
+    if args.json:
+        params = case.params()
+        rows = [{"cost_cap": None if math.isnan(cap) else cap, "status": solution.status,
+                 **{name: evaluate_objective(formulation, name, solution.design, params) for name in ("mass", "cost")},
+                 "design": solution.design, "active": [c.name for c in solution.constraints if c.active and c.name != CAP]}
+                for cap, solution in zip(front.caps, front.solutions)]
+        return to_json({"case": case.path, "mode": front.mode, "note": front.note, "rows": rows})
+    lines = [f"Pareto front, mass against cost (epsilon-constraint) - {case.title or case.path}, {front.mode} mode"]
+    if front.note:
+        lines.append(front.note)
+    lines += ["", front.frame.to_string(index=False, float_format=lambda v: f"{v:.6g}", na_rep="-")]
+    lines += [f"figure written to {args.plot}"] if args.plot else []
+    return "\n".join(lines)
+
+
+def pareto_figure(front):
+    """Mass against cost, the ends marked."""
+    from matplotlib.figure import Figure
+
+    frame = front.frame[front.frame["status"] == "optimal"]
+    mass, cost = [c for c in frame.columns if c.startswith("mass")][0], [c for c in frame.columns
+                                                                        if c.startswith("cost [")][0]
+    figure = Figure(figsize=(5.5, 3.8), layout="constrained")
+    axes = figure.add_subplot()
+    axes.plot(frame[cost], frame[mass], "o-", color="tab:blue")
+    if len(frame):
+        axes.annotate("mass optimum", (frame[cost].iloc[0], frame[mass].iloc[0]), textcoords="offset points",
+                      xytext=(-4, 14), ha="right")
+        axes.annotate("cost optimum", (frame[cost].iloc[-1], frame[mass].iloc[-1]), textcoords="offset points",
+                      xytext=(10, -4))
+    axes.set_xlabel(cost)
+    axes.set_ylabel(mass)
+    axes.set_title(f"Pareto front, {front.case.title or front.case.path}", fontsize=9)
+    axes.grid(alpha=0.3)
+    return figure

@@ -1,0 +1,97 @@
+"""``clutchopt sweep CASE --vary ...``: re-solve a case over a grid of requirements (warm-started, recorded)."""
+
+from __future__ import annotations
+
+from clutchopt.cli.options import (
+    add_case_argument,
+    add_json_option,
+    add_problem_options,
+    add_store_options,
+    open_store,
+)
+from clutchopt.errors import InputError
+
+COLUMNS_SHOWN = 12  # a sweep up to this many points prints one column per point; longer ones a summary
+
+
+def add_command(commands) -> None:
+    sweep = commands.add_parser("sweep", help="re-solve a case over a grid of requirements (warm-started, recorded)")
+    add_case_argument(sweep)
+    sweep.add_argument("--vary", action="append", required=True, metavar="NAME=START:STOP:COUNT|NAME=V1,V2,...",
+                       help="a case quantity in its display unit (speed in rpm, pressures in MPa, lengths in mm); "
+                            "repeat for a full-factorial grid")
+    sweep.add_argument("--zip", action="store_true", help="listed sweep: the i-th point takes the i-th value of each")
+    add_problem_options(sweep)
+    sweep.add_argument("--jobs", type=int, default=1, help="local worker processes (default 1)")
+    sweep.add_argument("--dask", metavar="ADDRESS", help="run on an existing Dask cluster, e.g. tcp://host:8786")
+    sweep.add_argument("--resume", action="store_true",
+                       help="continue the latest identical sweep in the store; stored points are not solved again")
+    sweep.add_argument("--out", metavar="FILE", help="write the table: .csv, .parquet or .md")
+    sweep.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_json_option(sweep, "one JSON object, SI units: every point's inputs and solution")
+    add_store_options(sweep)
+    sweep.set_defaults(run=run)
+
+
+def run(args) -> str:
+    from clutchopt.cases import load_case
+    from clutchopt.optimise.sweep import Sweep, dask_runner, parse_vary, table_format, write_frame
+
+    case = load_case(args.case)
+    if args.jobs < 1:
+        raise InputError("--jobs", f"must be at least 1, got {args.jobs}")
+    if args.resume and args.no_store:
+        raise InputError("--resume", "continues a sweep from the run store; drop --no-store")
+    sweep = Sweep(case, [parse_vary(text, case.coupling) for text in args.vary], args.mode, args.objective,
+                  args.tol, args.zip)
+    if args.out:
+        table_format(args.out)  # a bad name fails before the solves, not after
+    runner = dask_runner(args.dask) if args.dask else None
+    store = open_store(args)
+    try:
+        result = sweep.run(store, args.resume, args.jobs, runner, progress=not args.quiet)
+    except KeyboardInterrupt:
+        where = f"; the points solved so far are in {store.path}, continue with --resume" if store else ""
+        raise SystemExit(f"sweep interrupted{where}") from None
+    finally:
+        if store is not None:
+            store.close()
+    if args.out:
+        write_frame(result.frame, args.out)
+    if args.json:
+        from clutchopt.output import to_json
+
+        return to_json({"case": case.path, "mode": sweep.formulation.mode, "objective": sweep.objective.name,
+                        "sweep_id": result.sweep_id, "points": [{"point": i, "values": values, **solution}
+                        for i, (values, solution) in enumerate(zip(sweep.points, result.solutions))]})
+    text = sweep_text(sweep, result, store.path if store else None, args.out)
+    if args.resume and not result.reused:
+        text += "\n(nothing resumed: no stored points of an identical sweep)"
+    return text
+
+
+def sweep_text(sweep, result, store_path: str | None, out: str | None) -> str:
+    frame = result.frame
+    counts = ", ".join(f"{count} {status}" for status, count in frame["status"].value_counts().items())
+    objective = frame.columns[len(sweep.varies) + 2]
+    lines = [f"Sweep of {sweep.case.title or sweep.case.path} ({sweep.formulation.mode} mode, "
+             f"objective {sweep.objective.name}): {len(frame)} points, {counts}",
+             f"solved {result.solved} points in {result.elapsed_s:.1f} s"
+             + (f", {result.reused} taken from the store" if result.reused else "")]
+    if len(frame) <= COLUMNS_SHOWN:
+        shown = frame.drop(columns=["diagnosis", "active"]).map(lambda v: f"{v:.6g}" if isinstance(v, float) else v)
+        table = shown.set_index("point").T
+        table.columns = [f"point {i}" for i in table.columns]
+        lines += ["", table.to_string(), ""]
+        for active, group in frame[frame["status"] == "optimal"].groupby("active", sort=False):
+            lines.append(f"active at points {', '.join(map(str, group['point']))}: {active or '(none)'}")
+        lines += [f"point {row.point}: {row.diagnosis}" for row in frame.itertuples() if row.diagnosis]
+    else:
+        optimal = frame[frame["status"] == "optimal"][objective]
+        if len(optimal):
+            lines.append(f"{objective}: {optimal.min():.6g} to {optimal.max():.6g} over the optimal points")
+    if store_path:
+        lines.append(f"recorded as sweep {result.sweep_id} in {store_path}")
+    if out:
+        lines.append(f"table written to {out}")
+    return "\n".join(lines)
