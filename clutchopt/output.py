@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import json
 import math
+from typing import TYPE_CHECKING
 
-import pandas as pd
-
-from clutchopt.model import Formulation
-from clutchopt.optimise.compare import ComparisonTable
-from clutchopt.optimise.problem import Solution
 from clutchopt.units import from_si
+
+if TYPE_CHECKING:  # JSON needs neither pandas nor the solver: ``solve --json`` starts faster without them
+    from clutchopt.model import Formulation
+    from clutchopt.optimise.compare import ComparisonTable
+    from clutchopt.optimise.problem import Solution
 
 
 def _clean(value):
@@ -43,6 +44,8 @@ def _signed(value: float | None) -> str:
 
 
 def _frame(rows: list[dict]) -> str:
+    import pandas as pd
+
     return pd.DataFrame(rows).to_string(index=False) if rows else "(none)"
 
 

@@ -2,32 +2,61 @@
 
 A case value is either a string with units (``"1000 rpm"``, ``"4 MPa"``) or a bare number, which is taken
 as SI. Costs use the unit ``EUR`` (a dimension of its own, ``[currency]``).
+
+pint is the unit library, but importing it and building its registry costs about 0.35 s, more than a whole
+solve. So the registry ``ureg`` is built on first use, and the units clutchopt declares and case files usually
+write are in a table taken from that same registry (:mod:`clutchopt.unit_table`: SI factor, SI unit,
+dimensionality; ``python -m clutchopt.units`` writes it, tests/test_units.py checks every entry against pint).
+A value written ``"<number> <unit in the table>"`` (or a bare number) is converted with the table's factor,
+which is bit for bit what pint gives; any other text, and every error message, goes through pint.
 """
 
 from __future__ import annotations
 
 import math
+import re
 from functools import lru_cache
 
-import pint
-
 from clutchopt.errors import InputError
+from clutchopt.unit_table import UNITS
 
-ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
-ureg.define("EUR = [currency]")
+
+@lru_cache(maxsize=None)
+def registry():
+    """pint's registry with ``EUR`` defined, built once on first use."""
+    import pint
+
+    units = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    units.define("EUR = [currency]")
+    return units
+
+
+def __getattr__(name: str):
+    if name == "ureg":  # ``from clutchopt.units import ureg``: the registry, built when first asked for
+        return registry()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def table_entry(unit: str) -> tuple[float, str, tuple]:
+    """What :mod:`clutchopt.unit_table` holds for ``unit``, computed with pint: SI factor, SI unit, dimensionality."""
+    one = registry().Quantity(1.0, unit)
+    base = one.to_base_units().units
+    text = _PRETTY_SI.get(str(base), f"{base:~}") if str(base) != "dimensionless" else "1"
+    dimensions = tuple(sorted((name, int(power) if power == int(power) else power)
+                              for name, power in one.dimensionality.items()))
+    return float(one.to_base_units().magnitude), text, dimensions
 
 
 @lru_cache(maxsize=None)
 def si_factor(unit: str) -> float:
     """Multiply a value in ``unit`` by this to get SI (``mm`` -> 1e-3, ``deg`` -> pi/180)."""
-    return float(ureg.Quantity(1.0, unit).to_base_units().magnitude)
+    return (UNITS.get(unit) or table_entry(unit))[0]
 
 
 @lru_cache(maxsize=None)
 def si_unit(unit: str) -> str:
     """The SI base unit of ``unit`` as text (``MPa`` -> ``kg / m / s ** 2`` is avoided: named forms kept)."""
-    base = ureg.Quantity(1.0, unit).to_base_units().units
-    return _PRETTY_SI.get(str(base), f"{base:~}") if str(base) != "dimensionless" else "1"
+    return (UNITS.get(unit) or table_entry(unit))[1]
 
 
 _PRETTY_SI = {
@@ -72,18 +101,41 @@ _DIMENSION_EXAMPLES = {  # a unit of each dimension a case uses, and its plain n
 
 def _dimension_key(unit: str) -> frozenset:
     """Order-independent key of a unit's dimensionality (pint's text form orders the base dimensions freely)."""
-    return frozenset(ureg.Quantity(1.0, unit).dimensionality.items())
+    return frozenset(registry().Quantity(1.0, unit).dimensionality.items())
 
 
-_DIMENSION_NAMES = {_dimension_key(unit): name for unit, name in _DIMENSION_EXAMPLES.items()}
+@lru_cache(maxsize=1)
+def _dimension_names() -> dict:
+    return {_dimension_key(unit): name for unit, name in _DIMENSION_EXAMPLES.items()}
 
 
 def describe_dimension(unit: str) -> str:
     """Plain name of the dimension of ``unit``: ``MPa`` -> ``a pressure or stress``."""
-    dim = ureg.Quantity(1.0, unit).dimensionality
+    dim = registry().Quantity(1.0, unit).dimensionality
     if not dim:
         return "dimensionless (or an angle)"
-    return _DIMENSION_NAMES.get(_dimension_key(unit), str(dim))
+    return _dimension_names().get(_dimension_key(unit), str(dim))
+
+
+_NUMBER_AND_UNIT = re.compile(r"\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)(?:\s+(\S+))?\s*")
+
+
+def _from_table(raw: object, unit: str) -> float | None:
+    """SI value of ``raw`` by the table when both its unit and ``unit`` are there, the dimensions agree and the
+    value is finite; None otherwise (pint decides, and words any error)."""
+    expected = UNITS.get(unit)
+    if expected is None or isinstance(raw, bool):
+        return None
+    if isinstance(raw, (int, float)):
+        value = float(raw)
+    elif isinstance(raw, str) and (match := _NUMBER_AND_UNIT.fullmatch(raw)):
+        given = UNITS.get(match[2] or "")
+        if given is None or given[2] != expected[2]:
+            return None
+        value = float(match[1]) * given[0]
+    else:
+        return None
+    return value if math.isfinite(value) else None
 
 
 def to_si(field: str, raw: object, unit: str) -> float:
@@ -91,6 +143,10 @@ def to_si(field: str, raw: object, unit: str) -> float:
 
     Raises InputError naming the field for text that is no quantity, a wrong dimension, NaN or infinity.
     """
+    fast = _from_table(raw, unit)
+    if fast is not None:
+        return fast
+    ureg = registry()
     if isinstance(raw, bool):
         raise InputError(field, f"expected a quantity in {unit}, got a boolean")
     if isinstance(raw, (int, float)):
@@ -101,7 +157,7 @@ def to_si(field: str, raw: object, unit: str) -> float:
             quantity = ureg.Quantity(raw.strip())
         except Exception as exc:  # pint raises several types for unparsable text
             raise InputError(field, f"cannot read {raw!r} as a quantity ({type(exc).__name__})") from None
-        if not isinstance(quantity, pint.Quantity):
+        if not isinstance(quantity, ureg.Quantity):
             quantity = ureg.Quantity(float(quantity), "dimensionless")
     else:
         raise InputError(field, f"expected a quantity in {unit}, got {type(raw).__name__} {raw!r}")
@@ -121,3 +177,28 @@ def to_si(field: str, raw: object, unit: str) -> float:
 def from_si(value: float, unit: str) -> float:
     """Convert an SI value to ``unit`` for display."""
     return value / si_factor(unit)
+
+
+TABLE_UNITS = (  # the units case files and scenes usually write, besides those the package declares
+    "", "mm", "cm", "m", "um", "kg", "g", "t", "s", "ms", "min", "h", "rpm", "rad/s", "1/s", "Hz", "deg", "rad",
+    "N", "kN", "N*m", "kN*m", "Pa", "kPa", "MPa", "GPa", "N/mm^2", "bar", "W", "kW", "MW", "J", "kJ", "J/K", "W/K",
+    "kg*m^2", "kg/m^3", "g/cm^3", "N/m", "N/mm", "N*m/rad", "m/s^2", "m^3/s^2", "s/rad", "EUR", "EUR/kg", "EUR/cm^2", "EUR/m^2",
+)
+
+
+def _write_table(units: list[str]) -> str:
+    """The source of :mod:`clutchopt.unit_table` for ``units``, every entry computed by pint."""
+    lines = ['"""SI factor, SI unit and dimensionality of the units clutchopt declares and case files usually write,',
+             'as pint defines them. Generated by ``python -m clutchopt.units``; tests/test_units.py checks every entry',
+             'against pint and that every unit the package declares is here."""', "", "UNITS = {"]
+    lines += [f"    {unit!r}: {table_entry(unit)!r}," for unit in units]
+    return "\n".join(lines + ["}", ""])
+
+
+if __name__ == "__main__":
+    from pathlib import Path
+
+    from clutchopt.unit_table import UNITS as CURRENT
+
+    target = Path(__file__).with_name("unit_table.py")
+    target.write_text(_write_table(sorted(set(CURRENT) | set(TABLE_UNITS))), encoding="utf-8")

@@ -52,9 +52,11 @@ def add_store_options(command: argparse.ArgumentParser) -> None:
 
 def open_store(args):
     """The run store the arguments ask for, or None with ``--no-store``."""
+    if getattr(args, "no_store", False):
+        return None
     from clutchopt.store import RunStore
 
-    return None if getattr(args, "no_store", False) else RunStore(args.store)
+    return RunStore(args.store)
 
 
 def record_solve(args, case, solution, check: dict | None = None) -> None:

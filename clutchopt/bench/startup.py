@@ -1,0 +1,49 @@
+"""What a user waits for at the command line: whole CLI runs as new processes, beside the bare imports.
+
+The baseline is ``python -c "import casadi, numpy"``, the least a process that solves with CasADi must load;
+each command's median wall time is reported as a ratio to it, all commands taking turns in one loop so that
+a busy machine slows them alike. ``solve`` records into a throw-away run store, as a user's would.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[2]
+BASELINE = ("python -c 'import casadi, numpy'", ("-c", "import casadi, numpy"))
+COMMANDS = (
+    ("clutchopt --help", ("-m", "clutchopt", "--help")),
+    ("clutchopt solve cases/wedge_paper.toml --json", ("-m", "clutchopt", "solve", "cases/wedge_paper.toml", "--json")),
+    ("clutchopt solve cases/wedge_paper.toml --json --no-store",
+     ("-m", "clutchopt", "solve", "cases/wedge_paper.toml", "--json", "--no-store")),
+    ("clutchopt solve cases/wedge_paper.toml", ("-m", "clutchopt", "solve", "cases/wedge_paper.toml")),
+)
+
+
+def _wall(args: tuple[str, ...], env: dict) -> float:
+    started = time.perf_counter()
+    subprocess.run([sys.executable, *args], cwd=ROOT, env=env, check=True, capture_output=True)
+    return time.perf_counter() - started
+
+
+def startup_rows(config) -> list[dict]:
+    runs = max(5, config.repeats // 2)
+    with tempfile.TemporaryDirectory() as scratch:
+        env = {**os.environ, "CLUTCHOPT_STORE": str(Path(scratch) / "runs.sqlite")}
+        times: dict[str, list[float]] = {name: [] for name, _ in (BASELINE, *COMMANDS)}
+        for _ in range(runs + 1):  # the first round warms the file cache and is not counted
+            for name, args in (BASELINE, *COMMANDS):
+                times[name].append(_wall(args, env))
+    base = float(np.median(times[BASELINE[0]][1:]))
+    rows = []
+    for name, _ in (BASELINE, *COMMANDS):
+        median = float(np.median(times[name][1:]))
+        rows.append({"command": name, "runs": runs, "median_s": median, "ratio_to_import": median / base})
+    return rows
