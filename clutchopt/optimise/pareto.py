@@ -75,8 +75,6 @@ def pareto_front(case: Case, mode: str | None = None, points: int = 9,
             for cap in np.linspace(high, low, points)[1:-1]:
                 capped_case = replace(case, values={**case.values, CAP: float(cap)})
                 solution = problem.solve(capped_case, warm=previous if previous.status == "optimal" else None)
-                if solution.status != "optimal":
-                    solution = problem.solve(capped_case)
                 solutions.append(solution)
                 caps.append(float(cap))
                 previous = solution

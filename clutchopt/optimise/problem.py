@@ -183,6 +183,10 @@ class Problem:
         lagrangian = self._nlp["f"] + ca.dot(lam_g, g)
         self._dlagrangian_dcase = ca.Function("dL_dcase", [x_hat, self._nlp["p"], lam_g],
                                               [ca.gradient(lagrangian, p_case)])
+        self._names = [v.name for v in f.variables]
+        self._integer = [i for i, v in enumerate(f.variables) if v.integer]
+        self._g_function = ca.Function("g", [x_hat, self._nlp["p"]], [g])
+        self._g_depends = np.array(ca.DM(ca.jacobian(g, x_hat).sparsity(), 1)) != 0  # constraint i uses variable j
         self._elastic = None
         self._warm_solver = None
 
@@ -235,50 +239,146 @@ class Problem:
     def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | None = None) -> Solution:
         """Solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one."""
         warm_ok = warm is not None and warm.status == "optimal" and warm.scale is not None
-        data = self.scaled_data(case, warm.design, warm.scale) if warm_ok else self.scaled_data(case, start)
-        lower, upper, x0, params = data.lower, data.upper, data.start, data.params
-        scale, f_scale, p_vector = data.scale, data.f_scale, data.p
-        names = [v.name for v in self.formulation.variables]
-        runs = []
-        if warm_ok and warm.multipliers is not None and len(warm.multipliers[1]) == len(self.constraint_names):
-            lam_x, lam_g = warm.multipliers  # (a warm start from another problem, e.g. uncapped, gives its point only)
-            runs.append(self._run(p_vector, lower / scale, upper / scale, x0 / scale, {"lam_x": lam_x, "lam_g": lam_g},
-                                  solver=self._warm()))
-        if not runs or not runs[-1]["ok"]:
-            runs.append(self._run(p_vector, lower / scale, upper / scale, x0 / scale, None))
-        x_opt = runs[-1]["x"] * scale
-        off = (np.abs(x_opt) > 0) & ((np.abs(x_opt) > 10 * scale) | (np.abs(x_opt) < 0.1 * scale))
-        if runs[-1]["ok"] and off.any():  # the start was far off: solve again, scaled by the first optimum
-            scale, f_scale, p_vector = self._scaling(params, x_opt, lower, upper)
-            runs.append(self._run(p_vector, lower / scale, upper / scale, x_opt / scale, None))
-        relaxed = runs[-1]
-        integer = [i for i, v in enumerate(self.formulation.variables) if v.integer and lower[i] < upper[i]]
-        kept = relaxed
-        search = []
-        for reach in (1, 2) if integer and relaxed["ok"] else ():
-            kept = None
-            for combo in self._integer_neighbours(relaxed["x"] * scale, integer, lower, upper, reach):
-                if any(all(entry[names[i]] == c for i, c in zip(integer, combo)) for entry in search):
-                    continue
-                lo, hi = lower.copy(), upper.copy()
-                lo[integer] = hi[integer] = combo
-                run = self._run(p_vector, lo / scale, hi / scale, np.clip(relaxed["x"], lo / scale, hi / scale), relaxed)
-                runs.append(run)
-                design = dict(zip(names, run["x"] * scale))
-                feasible = all(c.feasible for c in check_design(self.formulation, design, params))
-                value = evaluate_objective(self.formulation, self.objective.name, design, params)
-                search.append({**{names[i]: int(c) for i, c in zip(integer, combo)},
-                               "status": run["status"], "feasible": feasible, "objective": value})
-                if run["ok"] and feasible and (kept is None or value < kept["value"]):
-                    kept = {**run, "value": value}
+        duals = warm.multipliers if warm_ok else None
+        if duals is not None and len(duals[1]) != len(self.constraint_names):
+            duals = None  # a warm start from another problem (e.g. uncapped) gives its point only
+        runs: list[dict] = []
+        search: list[dict] = []
+        relaxed = None
+        if warm_ok:
+            data = self.scaled_data(case, warm.design, warm.scale)
+            integer = self._free_integers(data)
+            seed = {"x": data.x0, "lam_x": duals[0], "lam_g": duals[1]} if duals is not None else None
+            combo = np.array([warm.design[self.formulation.variables[i].name] for i in integer])
+            if integer and seed is not None and self._within(data, integer, combo):
+                kept = self._descend(data, integer, combo, seed, runs, search)
+                if kept is not None:
+                    return self._finish(case, kept, runs, data, search)
+                lam_x = seed["lam_x"].copy()  # the previous integers fail here: the relaxation, from the same point
+                lam_x[integer] = 0.0
+                seed = {**seed, "lam_x": lam_x}
+            run = self._run(data, data.lbx, data.ubx, data.x0, seed)
+            runs.append(run)
+            relaxed = run if run["ok"] else None
+        if relaxed is None:  # cold: from the case's own start
+            data = self.scaled_data(case, start)
+            relaxed = self._run(data, data.lbx, data.ubx, data.x0, None)
+            runs.append(relaxed)
+            x_opt = relaxed["x"] * data.scale
+            off = (np.abs(x_opt) > 0) & ((np.abs(x_opt) > 10 * data.scale) | (np.abs(x_opt) < 0.1 * data.scale))
+            if relaxed["ok"] and off.any():  # the start was far off: solve again, scaled by the first optimum
+                data = self.scaled_data(case, dict(zip(self._names, x_opt)))
+                relaxed = self._run(data, data.lbx, data.ubx, data.x0, None)
+                runs.append(relaxed)
+        integer = self._free_integers(data)
+        if not integer or not relaxed["ok"]:
+            return self._finish(case, relaxed, runs, data, search)
+        nearest = np.clip(np.round(relaxed["x"][integer] * data.scale[integer]), data.lower[integer],
+                          data.upper[integer])
+        kept = self._descend(data, integer, nearest, relaxed, runs, search, bound=relaxed["f"])
+        for reach in (1, 2) if kept is None else ():  # the nearest integers fail: floor and ceiling, then one further
+            for combo in self._integer_neighbours(relaxed["x"] * data.scale, integer, data.lower, data.upper, reach):
+                if not self._tried(search, integer, combo):
+                    run = self._try_integers(data, integer, combo, relaxed, runs, search)
+                    if run is not None and (kept is None or run["value"] < kept["value"]):
+                        kept = run
             if kept is not None:
                 break
         if kept is None:  # the relaxation is feasible, no integer near it is
-            tried = "; ".join(", ".join(f"{k}={v}" for k, v in e.items() if k in names) for e in search)
-            return self._finish(case, runs[-1], runs, scale, f_scale, lower, upper, search,
+            tried = "; ".join(", ".join(f"{k}={v}" for k, v in e.items() if k in self._names) for e in search)
+            return self._finish(case, runs[-1], runs, data, search,
                                 ("infeasible", f"infeasible in integers: the continuous relaxation is feasible "
                                  f"but none of the integer neighbours is ({tried})"))
-        return self._finish(case, kept, runs, scale, f_scale, lower, upper, search)
+        return self._finish(case, kept, runs, data, search)
+
+    # --- integer search -------------------------------------------------------------------------------------------
+    def _free_integers(self, data: ScaledData) -> list[int]:
+        return [i for i in self._integer if data.lower[i] < data.upper[i]]
+
+    @staticmethod
+    def _within(data: ScaledData, integer: list[int], combo: np.ndarray) -> bool:
+        return bool(np.all((combo >= data.lower[integer]) & (combo <= data.upper[integer])))
+
+    def _tried(self, search: list[dict], integer: list[int], combo) -> bool:
+        return any(all(entry[self._names[i]] == c for i, c in zip(integer, combo)) for entry in search)
+
+    def _descend(self, data, integer, combo, seed, runs, search, bound: float | None = None) -> dict | None:
+        """From the integers ``combo``, step to a neighbouring integer while the bound multipliers of the fixed
+        integers say the objective falls that way and the step lowers it; None if ``combo`` itself fails.
+        ``bound``: the relaxation's scaled objective; an integer point that reaches it cannot be beaten."""
+        kept, queue = None, [combo]
+        while queue:
+            combo = queue.pop(0)
+            if self._tried(search, integer, combo):
+                continue
+            run = self._try_integers(data, integer, combo, kept or seed, runs, search)
+            if run is None and kept is None:
+                return None
+            if run is not None and (kept is None or run["value"] < kept["value"]):
+                kept, queue = run, self._downhill(run, data, integer)
+                if bound is not None and run["f"] <= bound + self._negligible(bound):
+                    break
+        return kept
+
+    def _negligible(self, f_hat: float) -> float:
+        """A change of the scaled objective within the solver's tolerance of it."""
+        return 10 * self.options.tol * max(abs(f_hat), 1e-300)
+
+    def _downhill(self, run: dict, data: ScaledData, integer: list[int]) -> list[np.ndarray]:
+        """Neighbours of a fixed-integer optimum in the directions its objective falls to first order.
+
+        With integer i fixed through its bounds, d f_hat / d x_hat_i = -lam_x_i, so one unit step changes the
+        scaled objective by about -|lam_x_i| / scale_i in the direction sign(lam_x_i). Where f*(n) is convex in
+        the integers (the premise of rounding a relaxation at all), the other direction cannot win, nor can this
+        one when the first-order gain is below the solver's tolerance of the objective."""
+        lam = run["lam_x"][integer]
+        gain = np.abs(lam) / data.scale[integer]
+        steps = np.where(gain > self._negligible(run["f"]), np.sign(lam), 0.0)
+        current = np.round(run["x"][integer] * data.scale[integer])
+        choices = [sorted({c, min(max(c + s, lo), hi)}, key=lambda k: k != c + s)
+                   for c, s, lo, hi in zip(current, steps, data.lower[integer], data.upper[integer])]
+        return [np.array(combo) for combo in itertools.product(*choices) if not np.array_equal(combo, current)]
+
+    def _try_integers(self, data, integer, combo, seed, runs, search) -> dict | None:
+        """The NLP with the integers fixed at ``combo``: the run (with its float64 checks and objective) if it is a
+        verified-feasible optimum, else None. A combination that violates a constraint depending on the integers
+        and fixed variables alone is excluded without a solve."""
+        names = self._names
+        lower, upper = data.lower.copy(), data.upper.copy()
+        lower[integer] = upper[integer] = combo
+        entry = {names[i]: int(c) for i, c in zip(integer, combo)}
+        excluded = self._violated_whatever_the_rest(data, lower, upper)
+        if excluded:
+            search.append({**entry, "status": f"excluded: {', '.join(excluded)}", "feasible": False,
+                           "objective": math.nan})
+            return None
+        x0 = np.clip(seed["x"], lower / data.scale, upper / data.scale)
+        warm = seed if "lam_x" in seed else None
+        run = self._run(data, lower / data.scale, upper / data.scale, x0, warm)
+        runs.append(run)
+        if warm is not None and not run["ok"]:
+            run = self._run(data, lower / data.scale, upper / data.scale, x0, None)
+            runs.append(run)
+        design = self._design(run["x"] * data.scale)
+        checks = check_design(self.formulation, design, data.params)
+        value = evaluate_objective(self.formulation, self.objective.name, design, data.params)
+        feasible = all(c.feasible for c in checks)
+        search.append({**entry, "status": run["status"], "feasible": feasible, "objective": value})
+        return {**run, "design": design, "checks": checks, "value": value} if run["ok"] and feasible else None
+
+    def _violated_whatever_the_rest(self, data: ScaledData, lower: np.ndarray, upper: np.ndarray) -> list[str]:
+        """Constraints that depend only on fixed variables (integers included) and are violated there."""
+        fixed = lower == upper
+        rows = ~np.any(self._g_depends & ~fixed, axis=1)
+        if not rows.any():
+            return []
+        g = np.array(self._g_function(lower / data.scale, data.p)).ravel()
+        return [self.constraint_names[k] for k in np.flatnonzero(rows & (g > 10 * FEASIBILITY_TOL))]
+
+    def _design(self, x: np.ndarray) -> dict[str, float]:
+        """Design by name, integers rounded (IPOPT may leave them 1e-9 off their fixed bounds)."""
+        return {name: float(round(value)) if i in self._integer else float(value)
+                for i, (name, value) in enumerate(zip(self._names, x))}
 
     def _warm(self):
         if self._warm_solver is None:
@@ -287,10 +387,10 @@ class Problem:
                                           self.options.ipopt_warm())
         return self._warm_solver
 
-    def _run(self, p_vector, lbx, ubx, x0, warm, solver=None):
-        """One IPOPT solve; ``warm`` multipliers are used by the warm solver only (the cold one ignores them)."""
-        solver = solver or self._solver
-        args = {"x0": x0, "p": p_vector, "lbx": lbx, "ubx": ubx, "lbg": -np.inf, "ubg": 0.0}
+    def _run(self, data: ScaledData, lbx, ubx, x0, warm: dict | None) -> dict:
+        """One IPOPT solve; with ``warm`` multipliers (``lam_x``, ``lam_g``) by the warm-start solver."""
+        solver = self._solver if warm is None else self._warm()
+        args = {"x0": x0, "p": data.p, "lbx": lbx, "ubx": ubx, "lbg": -np.inf, "ubg": 0.0}
         if warm is not None:
             args.update(lam_x0=warm["lam_x"], lam_g0=warm["lam_g"])
         started = time.perf_counter()
@@ -300,7 +400,7 @@ class Problem:
         return {"x": np.array(result["x"]).ravel(), "lam_g": np.array(result["lam_g"]).ravel(),
                 "lam_x": np.array(result["lam_x"]).ravel(), "f": float(result["f"]), "ok": bool(stats["success"]),
                 "status": stats["return_status"], "iterations": int(stats.get("iter_count", 0)), "time": elapsed,
-                "p": p_vector, "lbx": lbx, "ubx": ubx}
+                "p": data.p, "lbx": lbx, "ubx": ubx}
 
     @staticmethod
     def _integer_neighbours(x, integer, lower, upper, reach: int = 1):
@@ -313,15 +413,12 @@ class Problem:
             choices.append(options)
         return [np.array(combo, dtype=float) for combo in itertools.product(*choices)]
 
-    def _finish(self, case, run, runs, scale, f_scale, lower, upper, search, verdict=None) -> Solution:
+    def _finish(self, case, run, runs, data: ScaledData, search, verdict=None) -> Solution:
         f = self.formulation
-        params = self._params(case)
-        names = [v.name for v in f.variables]
-        design = {n: float(value) for n, value in zip(names, run["x"] * scale)}
-        for i in (i for i, v in enumerate(f.variables) if v.integer):
-            design[names[i]] = float(round(design[names[i]]))
-        checks = check_design(f, design, params)
-        objective = evaluate_objective(f, self.objective.name, design, params)
+        params, scale, f_scale = data.params, data.scale, data.f_scale
+        design = run.get("design") or self._design(run["x"] * scale)
+        checks = run.get("checks") or check_design(f, design, params)
+        objective = run["value"] if "value" in run else evaluate_objective(f, self.objective.name, design, params)
         for check, lam in zip(checks, run["lam_g"]):
             check.multiplier = float(lam)
             check.elasticity = _elasticity(check, float(lam), f_scale, objective)
@@ -339,8 +436,8 @@ class Problem:
             diagnosis = (f"IPOPT reported success but the float64 check finds {worst.name} violated by "
                          f"{-worst.margin:.3g} (relative)")
         else:
-            status, diagnosis = self.diagnose(run["p"], lower / scale, upper / scale, run["x"], scale)
-        bounds = {n: (float(lo), float(hi)) for n, lo, hi in zip(names, lower, upper)}
+            status, diagnosis = self.diagnose(run["p"], data.lbx, data.ubx, run["x"], scale)
+        bounds = {n: (float(lo), float(hi)) for n, lo, hi in zip(self._names, data.lower, data.upper)}
         sensitivities = self._sensitivities(run, params, scale, f_scale, objective) if status == "optimal" else {}
         return Solution(f.coupling, f.mode, self.objective.name, self.objective.unit, status, objective, design,
                         evaluate_outputs(f, design, params), checks, info, diagnosis, search, bounds,

@@ -4,7 +4,8 @@ A sweep varies case quantities, each given in its display unit (speed in rpm, pr
 ``speed=500:3000:26`` is 26 evenly spaced values from 500 to 3000, ``speed=900,1450,3000`` a list. Several
 ``--vary`` make a full-factorial grid (the last one varies fastest), or with ``zipped=True`` a listed sweep (the
 i-th point takes the i-th value of each list). Points run in chunks of neighbours; within a chunk one built
-problem is re-solved, each point warm-started from the one before (cold again if the warm start fails).
+problem is re-solved, each point warm-started from the one before (``Problem.solve`` starts cold
+again if the warm start fails).
 Chunks run in this process, in a local process pool, or on a Dask cluster. Every point is stored in the run
 store in its own transaction as it arrives, so a killed sweep resumes where it stopped.
 """
@@ -110,11 +111,8 @@ def solve_points(case: Case, mode: str, objective: str, tol: float,
     previous: Solution | None = None
     for index, values in points:
         point_case = case.with_values(**values)
-        solution = problem.solve(point_case, warm=previous)
-        if previous is not None and solution.status != "optimal":
-            solution = problem.solve(point_case)  # the warm start led astray: start again from the case
-        if solution.status == "optimal":
-            previous = solution
+        solution = problem.solve(point_case, warm=previous)  # falls back to the case's own start by itself
+        previous = solution if solution.status == "optimal" else None  # next to a failure, start from the case
         yield {"point": index, "values": values, "solution": solution.as_dict()}
 
 
