@@ -53,6 +53,14 @@ class SolverOptions:
             "bound_push", "bound_frac", "mult_bound_push", "slack_bound_push", "slack_bound_frac")}
         return {**self.ipopt(), "ipopt.warm_start_init_point": "yes", "ipopt.mu_init": 1e-6, **push}
 
+    def sqp(self) -> dict:
+        """CasADi's SQP method with its dense active-set QP solver (qrqp), for re-solves beside a known optimum:
+        no barrier to drive down, so a small problem's re-solve costs a few QP solves."""
+        quiet = {"print_header": False, "print_iteration": False, "print_status": False, "print_time": False}
+        return {**quiet, "qpsol": "qrqp", "qpsol_options": {"print_iter": False, "print_header": False,
+                                                            "error_on_fail": False},
+                "tol_pr": self.tol, "tol_du": self.tol, "max_iter": 30, "error_on_fail": False, "calc_lam_p": False}
+
     def ipopt(self) -> dict:
         return {
             "ipopt.tol": self.tol,
@@ -183,12 +191,14 @@ class Problem:
         lagrangian = self._nlp["f"] + ca.dot(lam_g, g)
         self._dlagrangian_dcase = ca.Function("dL_dcase", [x_hat, self._nlp["p"], lam_g],
                                               [ca.gradient(lagrangian, p_case)])
+        self._dlagrangian_dx = ca.Function("dL_dx", [x_hat, self._nlp["p"], lam_g], [ca.gradient(lagrangian, x_hat)])
         self._names = [v.name for v in f.variables]
         self._integer = [i for i, v in enumerate(f.variables) if v.integer]
         self._g_function = ca.Function("g", [x_hat, self._nlp["p"]], [g])
         self._g_depends = np.array(ca.DM(ca.jacobian(g, x_hat).sparsity(), 1)) != 0  # constraint i uses variable j
         self._elastic = None
         self._warm_solver = None
+        self._sqp_solver = None
 
     @property
     def nlp(self) -> dict:
@@ -249,27 +259,25 @@ class Problem:
             data = self.scaled_data(case, warm.design, warm.scale)
             integer = self._free_integers(data)
             seed = {"x": data.x0, "lam_x": duals[0], "lam_g": duals[1]} if duals is not None else None
-            combo = np.array([warm.design[self.formulation.variables[i].name] for i in integer])
+            combo = np.array([warm.design[self._names[i]] for i in integer])
+            methods = ("sqp", "warm") if seed is not None else ("ipopt",)
             if integer and seed is not None and self._within(data, integer, combo):
-                kept = self._descend(data, integer, combo, seed, runs, search)
+                kept = self._descend(data, integer, combo, seed, runs, search, first=methods)
                 if kept is not None:
                     return self._finish(case, kept, runs, data, search)
                 lam_x = seed["lam_x"].copy()  # the previous integers fail here: the relaxation, from the same point
                 lam_x[integer] = 0.0
-                seed = {**seed, "lam_x": lam_x}
-            run = self._run(data, data.lbx, data.ubx, data.x0, seed)
-            runs.append(run)
+                seed, methods = {**seed, "lam_x": lam_x}, ("warm",)
+            run = self._attempt(data, data.lbx, data.ubx, data.x0, seed, methods, runs)
             relaxed = run if run["ok"] else None
         if relaxed is None:  # cold: from the case's own start
             data = self.scaled_data(case, start)
-            relaxed = self._run(data, data.lbx, data.ubx, data.x0, None)
-            runs.append(relaxed)
+            relaxed = self._attempt(data, data.lbx, data.ubx, data.x0, None, ("ipopt",), runs)
             x_opt = relaxed["x"] * data.scale
             off = (np.abs(x_opt) > 0) & ((np.abs(x_opt) > 10 * data.scale) | (np.abs(x_opt) < 0.1 * data.scale))
             if relaxed["ok"] and off.any():  # the start was far off: solve again, scaled by the first optimum
                 data = self.scaled_data(case, dict(zip(self._names, x_opt)))
-                relaxed = self._run(data, data.lbx, data.ubx, data.x0, None)
-                runs.append(relaxed)
+                relaxed = self._attempt(data, data.lbx, data.ubx, data.x0, None, ("ipopt",), runs)
         integer = self._free_integers(data)
         if not integer or not relaxed["ok"]:
             return self._finish(case, relaxed, runs, data, search)
@@ -302,16 +310,19 @@ class Problem:
     def _tried(self, search: list[dict], integer: list[int], combo) -> bool:
         return any(all(entry[self._names[i]] == c for i, c in zip(integer, combo)) for entry in search)
 
-    def _descend(self, data, integer, combo, seed, runs, search, bound: float | None = None) -> dict | None:
+    def _descend(self, data, integer, combo, seed, runs, search, bound: float | None = None,
+                 first: tuple[str, ...] = ("ipopt",)) -> dict | None:
         """From the integers ``combo``, step to a neighbouring integer while the bound multipliers of the fixed
         integers say the objective falls that way and the step lowers it; None if ``combo`` itself fails.
-        ``bound``: the relaxation's scaled objective; an integer point that reaches it cannot be beaten."""
-        kept, queue = None, [combo]
+        ``bound``: the relaxation's scaled objective; an integer point that reaches it cannot be beaten.
+        ``first``: the methods for ``combo``; the neighbours are solved by IPOPT from a cold start."""
+        kept, queue, methods = None, [combo], first
         while queue:
             combo = queue.pop(0)
             if self._tried(search, integer, combo):
                 continue
-            run = self._try_integers(data, integer, combo, kept or seed, runs, search)
+            run = self._try_integers(data, integer, combo, kept or seed, runs, search, methods)
+            methods = ("ipopt",)
             if run is None and kept is None:
                 return None
             if run is not None and (kept is None or run["value"] < kept["value"]):
@@ -339,32 +350,23 @@ class Problem:
                    for c, s, lo, hi in zip(current, steps, data.lower[integer], data.upper[integer])]
         return [np.array(combo) for combo in itertools.product(*choices) if not np.array_equal(combo, current)]
 
-    def _try_integers(self, data, integer, combo, seed, runs, search) -> dict | None:
-        """The NLP with the integers fixed at ``combo``: the run (with its float64 checks and objective) if it is a
-        verified-feasible optimum, else None. A combination that violates a constraint depending on the integers
-        and fixed variables alone is excluded without a solve."""
-        names = self._names
+    def _try_integers(self, data, integer, combo, seed, runs, search,
+                      methods: tuple[str, ...] = ("ipopt",)) -> dict | None:
+        """The NLP with the integers fixed at ``combo``: the run if it is a verified-feasible optimum, else None.
+        A combination that violates a constraint depending on the integers and fixed variables alone is
+        excluded without a solve."""
         lower, upper = data.lower.copy(), data.upper.copy()
         lower[integer] = upper[integer] = combo
-        entry = {names[i]: int(c) for i, c in zip(integer, combo)}
+        entry = {self._names[i]: int(c) for i, c in zip(integer, combo)}
         excluded = self._violated_whatever_the_rest(data, lower, upper)
         if excluded:
             search.append({**entry, "status": f"excluded: {', '.join(excluded)}", "feasible": False,
                            "objective": math.nan})
             return None
         x0 = np.clip(seed["x"], lower / data.scale, upper / data.scale)
-        warm = seed if "lam_x" in seed else None
-        run = self._run(data, lower / data.scale, upper / data.scale, x0, warm)
-        runs.append(run)
-        if warm is not None and not run["ok"]:
-            run = self._run(data, lower / data.scale, upper / data.scale, x0, None)
-            runs.append(run)
-        design = self._design(run["x"] * data.scale)
-        checks = check_design(self.formulation, design, data.params)
-        value = evaluate_objective(self.formulation, self.objective.name, design, data.params)
-        feasible = all(c.feasible for c in checks)
-        search.append({**entry, "status": run["status"], "feasible": feasible, "objective": value})
-        return {**run, "design": design, "checks": checks, "value": value} if run["ok"] and feasible else None
+        run = self._attempt(data, lower / data.scale, upper / data.scale, x0, seed, methods, runs)
+        search.append({**entry, "status": run["status"], "feasible": run["feasible"], "objective": run["value"]})
+        return run if run["ok"] and run["feasible"] else None
 
     def _violated_whatever_the_rest(self, data: ScaledData, lower: np.ndarray, upper: np.ndarray) -> list[str]:
         """Constraints that depend only on fixed variables (integers included) and are violated there."""
@@ -387,20 +389,60 @@ class Problem:
                                           self.options.ipopt_warm())
         return self._warm_solver
 
-    def _run(self, data: ScaledData, lbx, ubx, x0, warm: dict | None) -> dict:
-        """One IPOPT solve; with ``warm`` multipliers (``lam_x``, ``lam_g``) by the warm-start solver."""
-        solver = self._solver if warm is None else self._warm()
+    def _attempt(self, data: ScaledData, lbx, ubx, x0, seed: dict | None, methods: tuple[str, ...],
+                 runs: list[dict]) -> dict:
+        """Solve by each method in turn until one ends in a verified optimum; every run goes into ``runs``.
+        Methods: ``ipopt`` (cold), ``warm`` (IPOPT from ``seed``'s primal-dual point), ``sqp`` (CasADi's
+        sequential QP from ``seed``: for a re-solve next to a known optimum, a few Newton steps)."""
+        for method in methods:
+            run = self._run(data, lbx, ubx, x0, seed if method != "ipopt" else None, method)
+            runs.append(run)
+            if method == "sqp" and run["ok"]:
+                run["ok"] = self._first_order_optimal(run)
+            if run["ok"] and run["feasible"]:
+                break
+        return run
+
+    def _first_order_optimal(self, run: dict) -> bool:
+        """KKT conditions at a run's primal-dual point, checked apart from the solver that reports them: the
+        Lagrangian stationary, multipliers of the right sign, complementary to their constraints and bounds.
+        (CasADi's SQP can stop at the start when handed a previous point's multipliers, e.g. of a constraint
+        that has become slack.)"""
+        tol = 10 * self.options.tol
+        lam_g, lam_x, x, lbx, ubx = run["lam_g"], run["lam_x"], run["x"], run["lbx"], run["ubx"]
+        slack = np.array([max(c.margin, 0.0) for c in run["checks"]])
+        gradient = self._dlagrangian_dx(x, run["p"], lam_g).full().ravel() + lam_x
+        width = tol * np.maximum(1.0, np.abs(x))
+        wrong_bound = ((lam_x > tol) & (ubx - x > width)) | ((lam_x < -tol) & (x - lbx > width))
+        return bool(np.all(np.abs(gradient) <= tol) and np.all(lam_g >= -tol) and np.all(lam_g * slack <= tol)
+                    and not wrong_bound.any())
+
+    def _run(self, data: ScaledData, lbx, ubx, x0, seed: dict | None, method: str = "ipopt") -> dict:
+        """One solve, its design checked in float64 (``design``, ``checks``, ``value``, ``feasible``)."""
+        solver = {"ipopt": lambda: self._solver, "warm": self._warm, "sqp": self._sqp}[method]()
         args = {"x0": x0, "p": data.p, "lbx": lbx, "ubx": ubx, "lbg": -np.inf, "ubg": 0.0}
-        if warm is not None:
-            args.update(lam_x0=warm["lam_x"], lam_g0=warm["lam_g"])
+        if seed is not None:
+            args.update(lam_x0=seed["lam_x"], lam_g0=seed["lam_g"])
         started = time.perf_counter()
         result = solver(**args)
         elapsed = time.perf_counter() - started
         stats = solver.stats()
-        return {"x": np.array(result["x"]).ravel(), "lam_g": np.array(result["lam_g"]).ravel(),
-                "lam_x": np.array(result["lam_x"]).ravel(), "f": float(result["f"]), "ok": bool(stats["success"]),
-                "status": stats["return_status"], "iterations": int(stats.get("iter_count", 0)), "time": elapsed,
-                "p": data.p, "lbx": lbx, "ubx": ubx}
+        x = result["x"].full().ravel()
+        design = self._design(x * data.scale)
+        checks = check_design(self.formulation, design, data.params)
+        return {"x": x, "lam_g": result["lam_g"].full().ravel(), "lam_x": result["lam_x"].full().ravel(),
+                "f": float(result["f"]), "ok": bool(stats["success"]), "status": stats["return_status"],
+                "iterations": int(stats.get("iter_count", 0)), "time": elapsed, "p": data.p, "lbx": lbx, "ubx": ubx,
+                "solver": "sqpmethod" if method == "sqp" else "ipopt", "design": design, "checks": checks,
+                "feasible": all(c.feasible for c in checks),
+                "value": evaluate_objective(self.formulation, self.objective.name, design, data.params)}
+
+    def _sqp(self):
+        if self._sqp_solver is None:
+            f = self.formulation
+            self._sqp_solver = ca.nlpsol(f"{f.coupling}_{f.mode}_{self.objective.name}_sqp", "sqpmethod", self._nlp,
+                                         self.options.sqp())
+        return self._sqp_solver
 
     @staticmethod
     def _integer_neighbours(x, integer, lower, upper, reach: int = 1):
@@ -416,13 +458,11 @@ class Problem:
     def _finish(self, case, run, runs, data: ScaledData, search, verdict=None) -> Solution:
         f = self.formulation
         params, scale, f_scale = data.params, data.scale, data.f_scale
-        design = run.get("design") or self._design(run["x"] * scale)
-        checks = run.get("checks") or check_design(f, design, params)
-        objective = run["value"] if "value" in run else evaluate_objective(f, self.objective.name, design, params)
+        design, checks, objective = run["design"], run["checks"], run["value"]
         for check, lam in zip(checks, run["lam_g"]):
             check.multiplier = float(lam)
             check.elasticity = _elasticity(check, float(lam), f_scale, objective)
-        info = SolverInfo("ipopt", run["status"], sum(r["iterations"] for r in runs), sum(r["time"] for r in runs),
+        info = SolverInfo(run["solver"], run["status"], sum(r["iterations"] for r in runs), sum(r["time"] for r in runs),
                           len(runs))
         feasible = all(c.feasible for c in checks)
         diagnosis = None
@@ -451,11 +491,12 @@ class Problem:
         """
         if objective == 0 or not math.isfinite(objective):
             return {}
-        gradient = np.array(self._dlagrangian_dcase(run["x"], run["p"], run["lam_g"])).ravel()
-        result: dict[str, float] = {}
-        for q, value, dl in zip(self.formulation.quantities, vars(params).values(), gradient):
-            if math.isfinite(value) and value != 0 and math.isfinite(dl):
-                result[q.name] = value * f_scale * dl / objective
+        gradient = self._dlagrangian_dcase(run["x"], run["p"], run["lam_g"]).full().ravel()
+        values = run["p"][:len(gradient)]
+        with np.errstate(invalid="ignore"):
+            elasticity = values * f_scale * gradient / objective
+        result = {q.name: float(e) for q, e, ok in zip(self.formulation.quantities, elasticity,
+                                                       np.isfinite(elasticity) & (values != 0)) if ok}
         for i, v in enumerate(self.formulation.variables):
             if run["lbx"][i] == run["ubx"][i] and not v.integer:
                 value = run["lbx"][i] * scale[i]

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, replace
+from dataclasses import dataclass
 from types import SimpleNamespace
 
 from clutchopt.model import Formulation, Output, namespace
@@ -30,7 +30,7 @@ class ConstraintCheck:
 
     def as_dict(self) -> dict:
         """SI values; ``unit`` is their SI unit, ``display_unit`` the one the tables show them in."""
-        return {**asdict(self), "unit": si_unit(self.unit), "display_unit": self.unit}
+        return {**vars(self), "unit": si_unit(self.unit), "display_unit": self.unit}  # fields are plain values
 
 
 def check_design(formulation: Formulation, design: dict[str, float], params: SimpleNamespace) -> list[ConstraintCheck]:
@@ -49,7 +49,8 @@ def check_design(formulation: Formulation, design: dict[str, float], params: Sim
 def evaluate_outputs(formulation: Formulation, design: dict[str, float], params: SimpleNamespace) -> dict[str, Output]:
     """Derived quantities at ``design``, values as floats."""
     x = namespace({k: float(v) for k, v in design.items()})
-    return {name: replace(out, value=float(out.value)) for name, out in formulation.outputs(x, params).items()}
+    return {name: Output(float(out.value), out.unit, out.description)
+            for name, out in formulation.outputs(x, params).items()}
 
 
 def evaluate_objective(formulation: Formulation, objective: str, design: dict[str, float], params: SimpleNamespace) -> float:
