@@ -153,7 +153,8 @@ def test_a_motor_below_the_engagement_speed_never_starts_the_machine():
     del data["end_time"]
     head = run_scene(parse_scene(data, str(SCENES / "wedge_motor_springs.toml"))).headline
     assert not head["locks_up"] and head["reason"].startswith("no lock-up: the driven half stays at rest")
-    assert head["final_driven_speed"] == 0.0
+    # at rest to rounding: LSODA's stiff (BDF) Newton steps do not keep w_driver - slip at exactly 0.0 (300 rpm = 31 rad/s)
+    assert abs(head["final_driven_speed"]) <= 1e-12 * 31.4
     assert head["final_driver_speed"] == pytest.approx(10 * math.pi, rel=1e-6)  # idles at synchronous speed
 
 

@@ -1,12 +1,16 @@
 """Start-up simulation: the right-hand side assembled from the listed effects, stick and slip as events.
 
-Integrator: SciPy's ``solve_ivp`` with DOP853 (explicit Runge-Kutta 8(5,3)). The phases are smooth between events
-and only mildly stiff (the paper's law with a w0 = +1000 starts at its cap of 1e130 k, but the fast part lasts
-no longer than the solver needs to resolve it), so an explicit high-order method with error control reaches
-1e-10 relative at low cost (see docs/simulate.md for what accuracy needed); its events
-locate zero slip (lock-up), the static capacity being exceeded (break loose) and a steady slip (no lock-up)
-on the 7th-order dense output. CasADi's integrators (CVODES/IDAS) would need the stick/slip switching written
-around them and bring no accuracy we lack; they remain the choice if a scene ever enters an optimisation.
+Integrator: SciPy's ``solve_ivp``, chosen by the scene's stiffness. Without a motor the phases are smooth between
+events and at most mildly stiff (the paper's law with a w0 = +1000 starts at its cap of 1e130 k, but the fast
+part lasts no longer than the solver needs to resolve it), so DOP853 (explicit Runge-Kutta 8(5,3)) reaches
+1e-10 relative at low cost (see docs/simulate.md for what accuracy needed). A motor adds a fast mode, its time
+constant J_m / (dT/dw); where that is below 1 % of the start-up's time scale an explicit method's steps are set
+by stability, not accuracy, and LSODA (which switches to BDF when it detects stiffness; Radau and BDF alone fail on
+the friction torque's sign change) takes over at a tenth of the relative tolerance, which makes it at least as
+accurate as DOP853 at the full one. Events locate zero slip (lock-up), the static capacity being exceeded (break
+loose) and a steady slip (no lock-up) on the dense output. CasADi's integrators (CVODES/IDAS) would need the
+stick/slip switching written around them and bring no accuracy we lack; they remain the choice if a scene ever
+enters an optimisation.
 
 State y = [w_driver, slip w_r = w_driver - w_driven, friction work, work into the clutch from the driving half,
 temperature rise]. The slip is integrated itself, not as a difference of speeds, so that the solver controls its
@@ -33,6 +37,7 @@ from clutchopt.simulate.laws import InductionMotor, Load
 STEADY = 1e-9  # relative net acceleration below which a slipping start-up is steady (no lock-up)
 MAX_SWITCHES = 200  # stick/slip switches before a run is declared chattering
 SAMPLES = 400  # dense-output samples per phase for the history
+STIFF_RATIO = 0.01  # a mode faster than this fraction of the start-up's time scale makes the scene stiff
 
 
 @dataclass
@@ -49,6 +54,7 @@ class Model:
     conductance: float = 0.0  # W/K (friction_heat)
     end_time: float | None = None  # None: until lock-up (+25 % locked), or until a verdict of no lock-up
     rtol: float = 1e-11
+    integrator: str = "auto"  # by the scene's stiffness; "DOP853" or "LSODA" to force one (benchmarks)
 
     def has(self, effect: str) -> bool:
         return effect in self.effects
@@ -78,7 +84,10 @@ class _Run:
         energy = self.torque_scale * self.w_ref * self.time_scale
         heat = energy / model.heat_capacity if self.heat else 1.0
         speed = min(self.w_ref, model.law.slip_scale)  # the paper's law changes over 1/|a| of slip
-        self.atol = model.rtol * np.array([speed, 1e-6 * speed, energy, energy, heat])
+        stiff = self.motor is not None and self.motor.time_constant < STIFF_RATIO * self.time_scale
+        self.method = model.integrator if model.integrator != "auto" else "LSODA" if stiff else "DOP853"
+        self.rtol = model.rtol / 10 if self.method == "LSODA" else model.rtol
+        self.atol = self.rtol * np.array([speed, 1e-6 * speed, energy, energy, heat])
 
     def torques(self, t, y):
         """Friction torque on the driven half, driving torque, load."""
@@ -149,10 +158,10 @@ def simulate(model: Model) -> SimulationResult:
             break
         if phase == "slip":
             event_list = [lock] if closed_form_locks else [lock, steady]
-            sol = solve_ivp(run.slip, (t, bound), y, method="DOP853", rtol=model.rtol, atol=run.atol,
+            sol = solve_ivp(run.slip, (t, bound), y, method=run.method, rtol=run.rtol, atol=run.atol,
                             events=event_list, dense_output=True)
         else:
-            sol = solve_ivp(run.stick, (t, bound), y, method="DOP853", rtol=model.rtol, atol=run.atol,
+            sol = solve_ivp(run.stick, (t, bound), y, method=run.method, rtol=run.rtol, atol=run.atol,
                             events=[loose], dense_output=True)
         frames.append(_samples(run, sol, phase))
         t, y = sol.t[-1], sol.y[:, -1].copy()

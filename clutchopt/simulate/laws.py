@@ -136,6 +136,12 @@ class InductionMotor:
     breakdown_slip: float
     inertia: float
 
+    @property
+    def time_constant(self) -> float:
+        """J_m / (dT/dw) at synchronous speed, where the Kloss curve is steepest (dT/dw = 2 T_k / (s_k w_s)):
+        the fastest mode the motor adds to a start-up."""
+        return self.inertia * self.breakdown_slip * self.synchronous_speed / (2.0 * self.breakdown_torque)
+
     def __call__(self, speed: float) -> float:
         s = (self.synchronous_speed - speed) / self.synchronous_speed
         if s == 0.0:
