@@ -32,7 +32,7 @@ def test_report_structure(report):
     assert set(report) == {"machine", "config", "sections"}
     assert report["config"] == {"repeats": 3, "sweep_points": 100, "processes": 2}
     assert report["machine"]["cores"] >= 1 and report["machine"]["casadi"]
-    assert list(report["sections"]) == [s.name for s in SECTIONS]
+    assert list(report["sections"]) == [s.name for s in SECTIONS if s.quick]  # --quick starts no Dask cluster
     assert {(r["coupling"], r["mode"]) for r in report["sections"]["accuracy"]["rows"]} == set(MODES)
     assert {r["coupling"] for r in report["sections"]["throughput"]["rows"]} == {c for c, _ in MODES}
 
@@ -66,6 +66,33 @@ def test_throughput(report):
         assert set(throughput) == {"serial", "serial, cold starts", "process pool"}
         assert {row["points"] for row in throughput.values()} == {100}
         assert len({row["optimal"] for row in throughput.values()}) == 1 and throughput["serial"]["optimal"] > 0
+        assert 0 < throughput["serial"]["solver_share"] < 1 and throughput["process pool"]["solver_share"] is None
+    # the integer search along a sweep: the previous point's integers, a neighbour only where the objective falls
+    for coupling in ("cable", "ball"):
+        assert 1 <= _rows(report, "throughput", coupling)["serial"]["solves_per_point"] <= 1.5
+    assert _rows(report, "throughput", "wedge")["serial"]["vs_wedge_paper"] == 1.0
+
+
+def test_startup_rows_are_ratios_to_the_bare_imports(report):
+    rows = {row["command"]: row for row in report["sections"]["startup"]["rows"]}
+    assert rows["python -c 'import casadi, numpy'"]["ratio_to_import"] == 1.0
+    assert "clutchopt --help" in rows and "clutchopt solve cases/wedge_paper.toml --json" in rows
+    assert all(row["median_s"] > 0 and row["runs"] >= 3 for row in rows.values())
+
+
+def test_warm_resolves_before_and_after_reach_the_same_optima(report):
+    for coupling in {c for c, _ in MODES}:
+        rows = _rows(report, "resolve", coupling)
+        assert set(rows) == {"warm IPOPT (before)", "SQP, then warm IPOPT"}
+        assert len({row["optimal"] for row in rows.values()}) == 1
+        assert rows["SQP, then warm IPOPT"]["max_rel_diff_objective"] < 1e-7
+
+
+def test_the_stiff_scene_is_as_accurate_by_the_integrator_picked(report):
+    rows = {row["integrator"]: row for row in report["sections"]["transient_stiffness"]["rows"]}
+    dop853, picked = rows["DOP853 (before)"], rows["by stiffness (now)"]
+    assert dop853["t_c_rel_error"] < 1e-9 and picked["t_c_rel_error"] <= dop853["t_c_rel_error"]
+    assert picked["L_rel_error"] <= dop853["L_rel_error"]
 
 
 def test_gp_where_posynomial(report):

@@ -17,8 +17,11 @@ from typing import Callable
 import pandas as pd
 
 from clutchopt.bench.accuracy import accuracy_rows
+from clutchopt.bench.resolve import resolve_rows
+from clutchopt.bench.scaleout import scaleout_rows
+from clutchopt.bench.startup import startup_rows
 from clutchopt.bench.throughput import throughput_rows
-from clutchopt.bench.transient import effects_rows, tolerance_rows
+from clutchopt.bench.transient import effects_rows, stiffness_rows, tolerance_rows
 
 
 @dataclass(frozen=True)
@@ -37,15 +40,26 @@ class Section:
     name: str
     title: str
     rows: Callable[[BenchConfig], list[dict]]
+    quick: bool = True  # part of ``--quick`` (the Dask clusters are not)
 
 
 SECTIONS: tuple[Section, ...] = (
+    Section("startup", "Start-up: whole command-line runs as new processes (median wall time), against python -c "
+                       "'import casadi, numpy'", startup_rows),
     Section("accuracy", "Accuracy vs time (one case per coupling, every mode; rel_error against IPOPT tol 1e-10; "
                         "violation re-evaluated in float64, relative; times in ms)", accuracy_rows),
-    Section("throughput", "Throughput: one built problem re-solved over a sweep, warm-started unless said",
+    Section("throughput", "Throughput: one built problem re-solved over a sweep, warm-started unless said; solver "
+                          "calls per point, share of the wall time inside them, points/s against the wedge paper mode",
             throughput_rows),
+    Section("resolve", "Warm re-solves along the same sweeps: warm IPOPT alone (before) and SQP first (now); times per "
+                       "re-solve, largest relative difference of the verified optima", resolve_rows),
+    Section("scaleout", "Scale-out: the ball design sweep (clutchopt sweep's code) in this process and on a local Dask "
+                        "cluster of 1, 2 and 4 workers; cluster start-up not counted", scaleout_rows, quick=False),
     Section("transient_tolerance", "Simulator accuracy vs time: the paper scene's t_c and L against the closed "
                                    "forms, per solve_ivp (DOP853) tolerance; times in ms", tolerance_rows),
+    Section("transient_stiffness", "Simulator on a stiff scene: the motor scene by DOP853 and by the integrator "
+                                   "picked by stiffness, errors against DOP853 at rtol 1e-13; times in ms",
+            stiffness_rows),
     Section("transient_effects", "Simulator cost per effect: the solved wedge design on a motor with springs, "
                                  "effects added one by one; times in ms", effects_rows),
 )
@@ -63,9 +77,9 @@ def machine() -> dict:
             **{package: version(package) for package in ("casadi", "cvxpy", "scipy", "numpy")}}
 
 
-def run_bench(config: BenchConfig, sections: tuple[Section, ...] = SECTIONS) -> dict:
+def run_bench(config: BenchConfig, sections: tuple[Section, ...] = SECTIONS, quick: bool = False) -> dict:
     report = {"machine": machine(), "config": asdict(config), "sections": {}}
-    for section in sections:
+    for section in (s for s in sections if s.quick or not quick):
         started = time.perf_counter()
         rows = section.rows(config)
         report["sections"][section.name] = {"title": section.title, "rows": rows,
@@ -73,7 +87,7 @@ def run_bench(config: BenchConfig, sections: tuple[Section, ...] = SECTIONS) -> 
     return report
 
 
-_MS = ("first_s", "resolve_median_s", "resolve_iqr_s", "median_s", "iqr_s")
+_MS = ("first_s", "resolve_median_s", "resolve_iqr_s", "median_s", "iqr_s", "solver_per_resolve_s", "per_resolve_s")
 
 
 def _shown(row: dict) -> dict:

@@ -3,7 +3,9 @@
 The sweep runs the first non-integer quantity of the case's first section (the duty: inertia, torque or power)
 from 0.5x to 2x its value. Serial: one process, each point warm-started from the previous optimum (and, for
 comparison, each from the case's own start: "cold starts"). Pool: warm, the sweep cut into contiguous chunks,
-one per worker process, each worker building its own problem (counted).
+one per worker process, each worker building its own problem (counted). Per row: solver calls per point (IPOPT
+and SQP, integer neighbours included), the share of the wall time spent inside them (the rest: case data, scaling,
+float64 checks, sensitivities, bookkeeping) and, for serial sweeps, points/s against the wedge paper mode's.
 """
 
 from __future__ import annotations
@@ -16,7 +18,7 @@ import numpy as np
 from clutchopt.bench.reference import bench_cases, reference_mode
 from clutchopt.cases import Case
 from clutchopt.formulations import get_coupling
-from clutchopt.optimise.problem import Problem
+from clutchopt.optimise.problem import Problem, SolverOptions
 
 
 def sweep_quantity(case: Case) -> str:
@@ -24,16 +26,23 @@ def sweep_quantity(case: Case) -> str:
     return next(q.name for q in quantities if q.section == quantities[0].section)
 
 
-def warm_sweep(case: Case, name: str, values, warm: bool = True) -> tuple[int, int]:
+def warm_sweep(case: Case, name: str, values, warm: bool = True, options: SolverOptions = SolverOptions(),
+               mode: str | None = None) -> dict:
     """Solve the case at each value of ``name`` in turn, warm-started from the previous optimum unless ``warm`` is
-    false (each point from the case's own start); (points optimal, points)."""
-    problem = Problem(get_coupling(case.coupling).formulation(reference_mode(case.coupling)))
-    previous, optimal = None, 0
+    false (each point from the case's own start): points, optimal, solver calls, seconds inside them."""
+    problem = Problem(get_coupling(case.coupling).formulation(mode or reference_mode(case.coupling)), "mass", options)
+    previous, tally = None, {"points": len(values), "optimal": 0, "solves": 0, "solver_s": 0.0}
     for value in values:
         solution = problem.solve(case.with_values(**{name: float(value)}), warm=previous if warm else None)
-        optimal += solution.status == "optimal"
-        previous = solution if solution.status == "optimal" else previous
-    return optimal, len(values)
+        tally["optimal"] += solution.status == "optimal"
+        tally["solves"] += solution.solver.solves
+        tally["solver_s"] += solution.solver.time_s
+        previous = solution if solution.status == "optimal" else None
+    return tally
+
+
+def _merged(tallies: list[dict]) -> dict:
+    return {key: sum(t[key] for t in tallies) for key in tallies[0]}
 
 
 def throughput_rows(config) -> list[dict]:
@@ -41,25 +50,25 @@ def throughput_rows(config) -> list[dict]:
     for case in bench_cases():
         name = sweep_quantity(case)
         values = case.values[name] * np.geomspace(0.5, 2.0, config.sweep_points)
-        problem = Problem(get_coupling(case.coupling).formulation(reference_mode(case.coupling)))
-        problem.solve(case)  # warm-up: first solve of this process
-        started = time.perf_counter()
-        optimal, points = warm_sweep(case, name, values)
-        serial = time.perf_counter() - started
-        rows.append(_row(case, name, "serial", 1, points, optimal, serial))
-        started = time.perf_counter()
-        optimal, points = warm_sweep(case, name, values, warm=False)
-        rows.append(_row(case, name, "serial, cold starts", 1, points, optimal, time.perf_counter() - started))
+        Problem(get_coupling(case.coupling).formulation(reference_mode(case.coupling))).solve(case)  # warm-up
+        for how, warm in (("serial", True), ("serial, cold starts", False)):
+            started = time.perf_counter()
+            tally = warm_sweep(case, name, values, warm)
+            rows.append(_row(case, name, how, 1, tally, time.perf_counter() - started))
         chunks = np.array_split(values, config.processes)
         started = time.perf_counter()
         with ProcessPoolExecutor(config.processes) as pool:
-            results = list(pool.map(warm_sweep, [case] * len(chunks), [name] * len(chunks), chunks))
-        pooled = time.perf_counter() - started
-        rows.append(_row(case, name, "process pool", config.processes, points, sum(r[0] for r in results), pooled))
+            tally = _merged(list(pool.map(warm_sweep, [case] * len(chunks), [name] * len(chunks), chunks)))
+        rows.append(_row(case, name, "process pool", config.processes, tally, time.perf_counter() - started))
+    wedge = next((r for r in rows if (r["coupling"], r["how"]) == ("wedge", "serial")), None)
+    for row in rows:
+        row["vs_wedge_paper"] = row["points_per_s"] / wedge["points_per_s"] if wedge and row["processes"] == 1 else None
     return rows
 
 
-def _row(case, name, how, processes, points, optimal, seconds):
+def _row(case, name, how, processes, tally, seconds):
     return {"coupling": case.coupling, "mode": reference_mode(case.coupling), "swept": f"{name} x0.5..2",
-            "how": how, "processes": processes, "points": points, "optimal": optimal, "wall_s": seconds,
-            "points_per_s": points / seconds}
+            "how": how, "processes": processes, "points": tally["points"], "optimal": tally["optimal"],
+            "solves_per_point": tally["solves"] / tally["points"], "wall_s": seconds,
+            "points_per_s": tally["points"] / seconds,
+            "solver_share": tally["solver_s"] / seconds if processes == 1 else None}

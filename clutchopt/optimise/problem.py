@@ -46,6 +46,7 @@ from clutchopt.optimise.verify import (
 class SolverOptions:
     tol: float = 1e-10
     max_iter: int = 3000
+    warm_sqp: bool = True  # warm re-solves try SQP before warm IPOPT (False: warm IPOPT alone, for comparison)
 
     def ipopt_warm(self) -> dict:
         """IPOPT started from a previous primal-dual point, barely pushed off the bounds."""
@@ -260,7 +261,7 @@ class Problem:
             integer = self._free_integers(data)
             seed = {"x": data.x0, "lam_x": duals[0], "lam_g": duals[1]} if duals is not None else None
             combo = np.array([warm.design[self._names[i]] for i in integer])
-            methods = ("sqp", "warm") if seed is not None else ("ipopt",)
+            methods = ((("sqp",) if self.options.warm_sqp else ()) + ("warm",)) if seed is not None else ("ipopt",)
             if integer and seed is not None and self._within(data, integer, combo):
                 kept = self._descend(data, integer, combo, seed, runs, search, first=methods)
                 if kept is not None:
