@@ -25,6 +25,7 @@ loose when T exceeds its static capacity.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -86,8 +87,22 @@ class _Run:
         speed = min(self.w_ref, model.law.slip_scale)  # the paper's law changes over 1/|a| of slip
         stiff = self.motor is not None and self.motor.time_constant < STIFF_RATIO * self.time_scale
         self.method = model.integrator if model.integrator != "auto" else "LSODA" if stiff else "DOP853"
-        self.rtol = model.rtol / 10 if self.method == "LSODA" else model.rtol
-        self.atol = self.rtol * np.array([speed, 1e-6 * speed, energy, energy, heat])
+        self.state_scale = np.array([speed, 1e-6 * speed, energy, energy, heat])  # absolute tolerance per rtol
+
+    def integrate(self, rhs, t: float, bound: float, y, events, method: str | None = None):
+        """One phase by ``solve_ivp``; LSODA at a tenth of the tolerance, and should it fail (its stiff Newton
+        iterations can stall at a kink of the friction law), DOP853 takes the phase again."""
+        method = method or self.method
+        rtol = self.m.rtol / 10 if method == "LSODA" else self.m.rtol
+        with warnings.catch_warnings(record=True) as warned:  # LSODA warns of convergence failures, then fails
+            warnings.simplefilter("always")
+            sol = solve_ivp(rhs, (t, bound), y, method=method, rtol=rtol, atol=rtol * self.state_scale, events=events,
+                            dense_output=True)
+        if method == "LSODA" and (sol.status < 0 or warned):
+            return self.integrate(rhs, t, bound, y, events, "DOP853")
+        for warning in warned:
+            warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
+        return sol
 
     def torques(self, t, y):
         """Friction torque on the driven half, driving torque, load."""
@@ -158,11 +173,9 @@ def simulate(model: Model) -> SimulationResult:
             break
         if phase == "slip":
             event_list = [lock] if closed_form_locks else [lock, steady]
-            sol = solve_ivp(run.slip, (t, bound), y, method=run.method, rtol=run.rtol, atol=run.atol,
-                            events=event_list, dense_output=True)
+            sol = run.integrate(run.slip, t, bound, y, event_list)
         else:
-            sol = solve_ivp(run.stick, (t, bound), y, method=run.method, rtol=run.rtol, atol=run.atol,
-                            events=[loose], dense_output=True)
+            sol = run.integrate(run.stick, t, bound, y, [loose])
         frames.append(_samples(run, sol, phase))
         t, y = sol.t[-1], sol.y[:, -1].copy()
         if sol.status != 1:  # reached the end time (or failed)
@@ -238,6 +251,7 @@ def _headline(model, history, start_time, start_state, reason, y_end) -> dict:
         "start_time": start_time if locked else math.inf,
         "friction_work": at_start[2] if locked else math.inf,
         "source_work": at_start[3] if locked else math.inf,
+        "lock_up_speed": at_start[0] if locked else math.nan,
         "peak_slip_power": float(history["power_lost"].max()),
         "end_time": float(history["t"].iloc[-1]),
         "total_friction_work": float(y_end[2]),
