@@ -2,10 +2,12 @@
 
 import json
 import re
+import subprocess
+import sys
 
 import pytest
 
-from tests.conftest import CASES
+from tests.conftest import CASES, ROOT
 
 PAPER = (CASES / "wedge_paper.toml").read_text()
 
@@ -82,3 +84,17 @@ def test_unknown_mode_and_missing_file(cli):
                         (("solve", "cases/none.toml"), "cases/none.toml")):
         result = cli(*args)
         assert result.returncode == 2 and result.stderr.count("\n") == 1 and field in result.stderr
+
+
+@pytest.mark.parametrize("args, heavy", [
+    (["--help"], ("casadi", "numpy", "pandas", "pint", "scipy", "cvxpy", "matplotlib")),
+    (["solve", "cases/wedge_paper.toml", "--json", "--no-store"],
+     ("pandas", "pint", "scipy.optimize", "scipy.stats", "cvxpy", "matplotlib", "clutchopt.store")),
+])
+def test_a_command_imports_only_what_it_uses(args, heavy):
+    # what `clutchopt solve --json` waits for is measured in `clutchopt bench` (section startup); here: what it loads
+    code = ("import sys\nfrom clutchopt.cli import main\ntry:\n    main(%r)\nexcept SystemExit:\n    pass\n"
+            "print(sorted(m for m in sys.modules if m in %r))" % (args, heavy))
+    result = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip().splitlines()[-1] == "[]"

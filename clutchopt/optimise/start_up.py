@@ -24,7 +24,6 @@ from types import SimpleNamespace
 
 import casadi as ca
 import numpy as np
-from scipy.optimize import brentq
 
 from clutchopt.backend import sqrt
 from clutchopt.formulations import start_up as su
@@ -45,6 +44,8 @@ def graded_mesh(intervals: int, first: float = 1e-4, graded_part: float = 0.05) 
     graded = intervals // 2
     if graded == 0:
         return np.full(intervals, 1.0 / intervals)
+    from scipy.optimize import brentq  # scipy.optimize costs 0.3 s to import: only problems with a start-up pay it
+
     ratio = brentq(lambda r: first * (r**graded - 1.0) / (r - 1.0) - graded_part, 1.0 + 1e-9, 1e6)
     lengths = first * ratio ** np.arange(graded)
     uniform = np.full(intervals - graded, (1.0 - graded_part) / (intervals - graded))
