@@ -34,7 +34,7 @@ def _wall(args: tuple[str, ...], env: dict) -> float:
 
 
 def startup_rows(config) -> list[dict]:
-    runs = max(3, config.repeats // 2)
+    runs = max(2, config.repeats // 2)
     with tempfile.TemporaryDirectory() as scratch:
         env = {**os.environ, "CLUTCHOPT_STORE": str(Path(scratch) / "runs.sqlite")}
         times: dict[str, list[float]] = {name: [] for name, _ in (BASELINE, *COMMANDS)}
