@@ -101,7 +101,8 @@ _DIMENSION_EXAMPLES = {  # a unit of each dimension a case uses, and its plain n
 
 def _dimension_key(unit: str) -> frozenset:
     """Order-independent key of a unit's dimensionality (pint's text form orders the base dimensions freely)."""
-    return frozenset(registry().Quantity(1.0, unit).dimensionality.items())
+    entry = UNITS.get(unit)
+    return frozenset(entry[2] if entry else registry().Quantity(1.0, unit).dimensionality.items())
 
 
 @lru_cache(maxsize=1)
@@ -111,13 +112,24 @@ def _dimension_names() -> dict:
 
 def describe_dimension(unit: str) -> str:
     """Plain name of the dimension of ``unit``: ``MPa`` -> ``a pressure or stress``."""
-    dim = registry().Quantity(1.0, unit).dimensionality
-    if not dim:
+    key = _dimension_key(unit)
+    if not key:
         return "dimensionless (or an angle)"
-    return _dimension_names().get(_dimension_key(unit), str(dim))
+    return _dimension_names().get(key) or str(registry().Quantity(1.0, unit).dimensionality)
+
+
+def _wrong_dimension(unit: str, raw: object, given: str) -> str:
+    return (f"expected {describe_dimension(unit)} (e.g. in {unit or 'SI'}), got {raw!r}, which is "
+            f"{describe_dimension(given)}")
 
 
 _NUMBER_AND_UNIT = re.compile(r"\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)(?:\s+(\S+))?\s*")
+
+
+def _table_quantity(raw: object) -> tuple[float, str] | None:
+    """``"<number> <unit in the table>"`` (or a plain number) as (number, unit); None for any other text."""
+    match = _NUMBER_AND_UNIT.fullmatch(raw) if isinstance(raw, str) else None
+    return (float(match[1]), match[2] or "") if match and (match[2] or "") in UNITS else None
 
 
 def _from_table(raw: object, unit: str) -> float | None:
@@ -128,11 +140,8 @@ def _from_table(raw: object, unit: str) -> float | None:
         return None
     if isinstance(raw, (int, float)):
         value = float(raw)
-    elif isinstance(raw, str) and (match := _NUMBER_AND_UNIT.fullmatch(raw)):
-        given = UNITS.get(match[2] or "")
-        if given is None or given[2] != expected[2]:
-            return None
-        value = float(match[1]) * given[0]
+    elif (quantity := _table_quantity(raw)) and UNITS[quantity[1]][2] == expected[2]:
+        value = quantity[0] * UNITS[quantity[1]][0]
     else:
         return None
     return value if math.isfinite(value) else None
@@ -146,6 +155,8 @@ def to_si(field: str, raw: object, unit: str) -> float:
     fast = _from_table(raw, unit)
     if fast is not None:
         return fast
+    if unit in UNITS and (quantity := _table_quantity(raw)):  # a wrong dimension, said without pint
+        raise InputError(field, _wrong_dimension(unit, raw, quantity[1]))
     ureg = registry()
     if isinstance(raw, bool):
         raise InputError(field, f"expected a quantity in {unit}, got a boolean")
@@ -163,11 +174,7 @@ def to_si(field: str, raw: object, unit: str) -> float:
         raise InputError(field, f"expected a quantity in {unit}, got {type(raw).__name__} {raw!r}")
     expected = ureg.Quantity(1.0, unit)
     if quantity.dimensionality != expected.dimensionality:
-        raise InputError(
-            field,
-            f"expected {describe_dimension(unit)} (e.g. in {unit or 'SI'}), "
-            f"got {raw!r}, which is {describe_dimension(str(quantity.units))}",
-        )
+        raise InputError(field, _wrong_dimension(unit, raw, str(quantity.units)))
     value = float(quantity.to_base_units().magnitude)
     if not math.isfinite(value):
         raise InputError(field, f"must be a finite number, got {raw!r}")

@@ -231,9 +231,9 @@ class Problem:
         self._solver = ca.nlpsol(f"{f.coupling}_{f.mode}_{objective}", "ipopt", self._nlp, options.ipopt())
         lam_g = ca.SX.sym("lam_g", g.shape[0])
         lagrangian = self._nlp["f"] + ca.dot(lam_g, g)
-        self._dlagrangian_dcase = ca.Function("dL_dcase", [x_all, self._nlp["p"], lam_g],
-                                              [ca.gradient(lagrangian, p_case)])
-        self._kkt = ca.Function("kkt", [x_all, self._nlp["p"], lam_g], [ca.gradient(lagrangian, x_all), g[: self.n_ineq]])
+        self._lagrangian_derivatives = ca.Function(  # KKT check (SQP) and sensitivities from one evaluation
+            "dL", [x_all, self._nlp["p"], lam_g], [ca.gradient(lagrangian, x_all), g[: self.n_ineq],
+                                                   ca.gradient(lagrangian, p_case)])
         if start_up:
             self._start_up_figures = ca.Function("start_up", [x_all, self._nlp["p"]],
                                                  [ca.vertcat(*self.start_up.outputs().values()),
@@ -499,7 +499,8 @@ class Problem:
         that has become slack.)"""
         tol = 10 * self.options.tol
         lam_g, lam_x, x, lbx, ubx = run["lam_g"][: self.n_ineq], run["lam_x"], run["x"], run["lbx"], run["ubx"]
-        gradient, g = (out.full().ravel() for out in self._kkt(x, run["p"], run["lam_g"]))
+        gradient, g, run["dL_dcase"] = (out.full().ravel()
+                                        for out in self._lagrangian_derivatives(x, run["p"], run["lam_g"]))
         width = tol * np.maximum(1.0, np.abs(x))
         wrong_bound = ((lam_x > tol) & (ubx - x > width)) | ((lam_x < -tol) & (x - lbx > width))
         return bool(np.all(np.abs(gradient + lam_x) <= tol) and np.all(lam_g >= -tol)
@@ -599,7 +600,9 @@ class Problem:
         """
         if objective == 0 or not math.isfinite(objective):
             return {}
-        gradient = self._dlagrangian_dcase(run["x"], run["p"], run["lam_g"]).full().ravel()
+        if "dL_dcase" not in run:
+            run["dL_dcase"] = self._lagrangian_derivatives(run["x"], run["p"], run["lam_g"])[2].full().ravel()
+        gradient = run["dL_dcase"]
         values = run["p"][:len(gradient)]
         with np.errstate(invalid="ignore"):
             elasticity = values * f_scale * gradient / objective
