@@ -393,13 +393,13 @@ class Problem:
         if relaxed is None:  # cold: from the case's own start
             data = self.scaled_data(solved, start, mesh=mesh, checked=checked)
             relaxed = self._attempt(data, data.lbx, data.ubx, data.x0, None, ("ipopt",), runs)
-            n = len(data.scale)
-            x_opt = relaxed["x"][:n] * data.scale
-            off = (np.abs(x_opt) > 0) & ((np.abs(x_opt) > 10 * data.scale) | (np.abs(x_opt) < 0.1 * data.scale))
-            if relaxed["ok"] and off.any():  # the start was far off: solve again, scaled by the first optimum
-                data = self.scaled_data(solved, dict(zip(self._names, x_opt)), None, relaxed["x"][n:],
-                                        self._mesh_of(data.p), checked)
-                relaxed = self._attempt(data, data.lbx, data.ubx, data.x0, None, ("ipopt",), runs)
+        n = len(data.scale)
+        x_opt = relaxed["x"][:n] * data.scale
+        off = (np.abs(x_opt) > 0) & ((np.abs(x_opt) > 10 * data.scale) | (np.abs(x_opt) < 0.1 * data.scale))
+        if relaxed["ok"] and off.any():  # the start was far off: solve again, scaled by the first optimum
+            data = self.scaled_data(solved, dict(zip(self._names, x_opt)), None, relaxed["x"][n:],
+                                    self._mesh_of(data.p), checked)
+            relaxed = self._attempt(data, data.lbx, data.ubx, data.x0, None, ("ipopt",), runs)
         integer = self._free_integers(data)
         if not integer or not relaxed["ok"]:
             return self._finish(case, relaxed, runs, data, search)
