@@ -426,6 +426,7 @@ def initial_states(block: StartUpBlock, case, formulation, design: dict[str, flo
 
     model = start_up_model(case, formulation.mode, design, rtol=1e-6)
     model.end_time = 3.0 * case.values["max_start_time"]  # a start design that does not lock up: ramps to there
+    model.integrator = "DOP853"  # samples dense where the motor's knee is (see start_up_report)
     result = simulate(model)
     return block.guess(result.history, result.headline, model.law.engagement_squared,
                        case.values["max_start_time"], scales, mesh)
@@ -447,7 +448,8 @@ def start_up_report(block: StartUpBlock, case, formulation, design: dict[str, fl
     nlp = dict(zip(block.outputs(), np.array(values).ravel()))
     trajectory = {name: np.array(column).ravel() for name, column in zip(block.trajectory(), columns)}
     # DOP853 whatever the stiffness: its stability-bound steps sample the motor's knee densely, and the adapted
-    # mesh is taken from the second derivatives of these samples (LSODA's few long steps give a poorer mesh)
+    # mesh is taken from the second derivatives of these samples (LSODA's few long steps give a poorer mesh, and
+    # at 64 intervals a start guess from which IPOPT finds no feasible point)
     result = simulate(replace(start_up_model(case, formulation.mode, design), integrator="DOP853"))
     head = result.headline
     s = block.s
