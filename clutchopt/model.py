@@ -68,6 +68,13 @@ class Quantity:
             raise InputError(name, f"must be a whole number, got {value:g}")
         return value
 
+    def valid_range(self) -> str:
+        """The valid range as a reader writes it: ``> 0 MPa``, ``> 0 and <= 1``, ``a whole number >= 1``."""
+        parts = [f"{word} {self.show(bound)}" for bound, word in (
+            (self.above, ">"), (self.at_least, ">="), (self.below, "<"), (self.at_most, "<=")) if bound is not None]
+        text = " and ".join(parts) or "any value"
+        return f"a whole number {text}" if self.integer else text
+
 
 @dataclass(frozen=True)
 class Variable(Quantity):
@@ -201,6 +208,21 @@ class Comparison:
     column_notes: dict[str, str] = field(default_factory=dict)
 
 
+@dataclass(frozen=True)
+class MaterialRole:
+    """A part of a coupling a case may name a library entry for (``friction_pair = "organic_dry"``).
+
+    ``key`` is the case's top-level key, ``kind`` the library table (materials, friction_pairs, thread_pairs),
+    ``parts`` what it is for, ``fills`` which library field gives which case quantity. Values the case gives
+    explicitly win over the library's.
+    """
+
+    key: str
+    kind: str
+    parts: str
+    fills: Mapping[str, str]  # library field -> quantity name
+
+
 @dataclass
 class Coupling:
     """A coupling family: its case quantities, its posed problems by mode, its comparison."""
@@ -213,6 +235,7 @@ class Coupling:
     default_mode: str
     comparison: Comparison | None = None
     case_checks: tuple[Callable[[Any], None], ...] = ()
+    materials: tuple[MaterialRole, ...] = ()  # what a case may name from the material library
 
     @property
     def variables(self) -> tuple[Variable, ...]:
