@@ -173,6 +173,16 @@ class Formulation:
     def variable(self, name: str) -> Variable:
         return next(v for v in self.variables if v.name == name)
 
+    def frees(self) -> str:
+        """What the optimiser may change in this mode: ``weight_mass (m_r), finger_diameter (d_n)``, then the
+        variables that stay at the case's value unless ``options.free`` lists them."""
+        def named(variables):
+            return ", ".join(f"{v.name} ({v.symbol})" if v.symbol else v.name for v in variables)
+
+        text = named(v for v in self.variables if not v.fixed_unless_freed)
+        freeable = [v for v in self.variables if v.fixed_unless_freed]
+        return text + (f"; also {named(freeable)} if options.free lists them" if freeable else "")
+
 
 def namespace(values: Mapping[str, Any]) -> SimpleNamespace:
     return SimpleNamespace(**dict(values))

@@ -89,7 +89,7 @@ MATERIALS = (
                   "price": "ball_price"}),
     MaterialRole("body_material", "materials", "drum and rotor; the drum's surface sets the contact-stress limit",
                  {"elastic_modulus": "drum_modulus", "poisson": "drum_poisson",
-                  "allowable_contact": "allowable_contact_stress", "price": "body_price"}),
+                  "allowable_contact": "allowable_contact_stress"}),  # body_price is machined, not raw material
     MaterialRole("friction_pair", "friction_pairs", "balls on the drum", {"friction_coefficient": "friction_coefficient"}),
 )
 
