@@ -116,7 +116,8 @@ def parse_case(data: dict, path: str = "") -> Case:
     options = data.get("options", {})
     choose = (materials.check_choose(options["choose"], coupling.materials)
               if isinstance(options, dict) and "choose" in options else {})
-    filled = materials.fill(data.get("library", {}), coupling.materials, coupling.quantities, values, choose)
+    filled = materials.fill(data.get("library", {}), coupling.materials, coupling.quantities, values,
+                            choose)
     for quantity in coupling.quantities:
         if quantity.name in values:
             continue

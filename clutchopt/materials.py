@@ -28,19 +28,19 @@ from clutchopt.model import MaterialRole, Quantity
 from clutchopt.units import from_si, to_si
 
 Q = Quantity
-_STRESS = dict(above=0)
 FIELDS: dict[str, tuple[Quantity, ...]] = {
     "materials": (
         Q("density", "kg/m^3", "density", "rho", above=0),
         Q("elastic_modulus", "GPa", "Young's modulus", "E", above=0),
         Q("poisson", "", "Poisson's ratio", "nu", at_least=0, below=0.5),
-        Q("yield_strength", "MPa", "minimum yield strength R_e (R_p0.2), 16 < d <= 40 mm", "R_e", **_STRESS),
-        Q("tensile_strength", "MPa", "minimum tensile strength R_m", "R_m", **_STRESS),
-        Q("allowable_bending", "MPa", "allowable bending stress, R_e / 2.5 (grey iron R_m / 4)", "[sigma_b]", **_STRESS),
+        Q("yield_strength", "MPa", "minimum yield strength R_e (R_p0.2), 16 < d <= 40 mm", "R_e", above=0),
+        Q("tensile_strength", "MPa", "minimum tensile strength R_m", "R_m", above=0),
+        Q("allowable_bending", "MPa", "allowable bending stress, R_e / 2.5 (grey iron R_m / 4)", "[sigma_b]",
+          above=0),
         Q("allowable_normal", "MPa", "allowable tension or compression, R_e / 2.5 (grey iron R_m / 4)", "[sigma]",
-          **_STRESS),
-        Q("allowable_shear", "MPa", "allowable shear stress, [sigma] / sqrt(3)", "[tau]", **_STRESS),
-        Q("allowable_contact", "MPa", "allowable Hertz contact stress, S_c / 1.3", "[p_H]", **_STRESS),
+          above=0),
+        Q("allowable_shear", "MPa", "allowable shear stress, [sigma] / sqrt(3)", "[tau]", above=0),
+        Q("allowable_contact", "MPa", "allowable Hertz contact stress, S_c / 1.3", "[p_H]", above=0),
         Q("price", "EUR/kg", "price of the raw material per kg (our estimate)", "", at_least=0),
     ),
     "friction_pairs": (
@@ -48,7 +48,7 @@ FIELDS: dict[str, tuple[Quantity, ...]] = {
         Q("friction_min", "", "lowest friction coefficient of the scatter range", "f_min", above=0, at_most=1),
         Q("friction_max", "", "highest friction coefficient of the scatter range", "f_max", above=0, at_most=1),
         Q("allowable_pressure", "MPa", "allowable pressure for a coupling slipping at every start (wear)", "[p]",
-          **_STRESS),
+          above=0),
         Q("max_temperature", "degC", "largest bulk temperature of the friction material", "T_max", above=0),
         Q("density", "kg/m^3", "density of the friction material", "rho", above=0),
         Q("price", "EUR/cm^2", "price per area of friction surface (lining or grinding; our estimate)", "",
@@ -58,7 +58,7 @@ FIELDS: dict[str, tuple[Quantity, ...]] = {
         Q("friction_coefficient", "", "nominal friction coefficient of the thread", "f", above=0, at_most=1),
         Q("friction_min", "", "lowest friction coefficient of the scatter range", "f_min", above=0, at_most=1),
         Q("friction_max", "", "highest friction coefficient of the scatter range", "f_max", above=0, at_most=1),
-        Q("allowable_pressure", "MPa", "allowable flank pressure [q] of the thread", "[q]", **_STRESS),
+        Q("allowable_pressure", "MPa", "allowable flank pressure [q] of the thread", "[q]", above=0),
     ),
 }
 KIND_TITLES = {"materials": "Steels and cast irons", "friction_pairs": "Friction pairs",

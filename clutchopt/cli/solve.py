@@ -2,11 +2,20 @@
 
 from __future__ import annotations
 
-from clutchopt.cli.options import add_case_argument, add_json_option, add_problem_options, add_store_options
+from clutchopt.cli.options import add_case_argument, add_json_option, add_problem_options, add_store_options, add_parser
 
 
 def add_command(commands) -> None:
-    solve = commands.add_parser("solve", help="optimise a case and verify the optimum in float64")
+    solve = add_parser(
+        commands, "solve", "optimise a case: the design of least mass (or cost) that meets every requirement",
+        "Prints the design, the derived quantities, every constraint re-evaluated in float64 with its margin and\n"
+        "the elasticity of the optimum to its limit, then the parameters the optimum is most sensitive to.\n"
+        "status is optimal only when IPOPT converged and the float64 check passes; an infeasible case gets a\n"
+        "diagnosis naming the requirements that conflict. With options.choose in the case, every choice of\n"
+        "library entries is solved and all are listed, the best first.",
+        ("clutchopt solve cases/wedge_paper.toml",
+         "clutchopt solve cases/wedge_paper.toml --mode geometry --objective cost",
+         "clutchopt solve cases/wedge_paper.toml --verify --json > design.json"))
     add_case_argument(solve)
     add_problem_options(solve)
     add_store_options(solve)
