@@ -205,3 +205,33 @@ def rows(kind: str) -> list[dict]:
 def display(quantity: Quantity, value: float) -> float:
     """An SI value in the field's display unit (degC is an offset, not a factor, from kelvin)."""
     return value - 273.15 if quantity.unit == "degC" else from_si(value, quantity.unit)
+
+
+def solve_choices(case, mode: str | None = None, objective: str | None = None, options=None) -> list[tuple]:
+    """Solve every variant of ``options.choose``: [(choice, case, solution)], optimal ones first by objective,
+    then the others in the order listed. Without ``options.choose``: the case alone."""
+    from clutchopt.formulations import get_coupling
+    from clutchopt.optimise import SolverOptions, solve_case
+
+    options = options or SolverOptions()
+    solved = [(choice, variant, solve_case(variant, mode, objective, options))
+              for choice, variant in variants(case, get_coupling(case.coupling).materials)]
+    return sorted(solved, key=lambda item: (item[2].status != "optimal",
+                                            item[2].objective if item[2].status == "optimal" else 0.0))
+
+
+def filled_by(case) -> dict[str, dict]:
+    """What the library filled in a case, by role: entry, source and the filled values (SI), as ``solve`` reports."""
+    from clutchopt.formulations import get_coupling
+
+    coupling = get_coupling(case.coupling)
+    declared = {q.name: q for q in coupling.quantities}
+    report: dict[str, dict] = {}
+    for quantity, (key, name) in case.filled.items():
+        role = next(r for r in coupling.materials if r.key == key)
+        entry = lookup(role, name)
+        item = report.setdefault(key, {"entry": name, "source": entry.source, "values": {}})
+        item["values"][quantity] = (declared[quantity], case.values[quantity])
+        if "friction_min" in entry.values and role.fills.get("friction_coefficient") == quantity:
+            item["friction_range"] = (entry.values["friction_min"], entry.values["friction_max"])
+    return report

@@ -81,6 +81,41 @@ def solution_text(solution: Solution, formulation: Formulation, title: str = "")
     return "\n".join(lines)
 
 
+def library_text(case) -> str:
+    """The fields the material library filled, by role, with each entry's friction scatter where it has one."""
+    from clutchopt.materials import filled_by
+
+    lines = []
+    for key, item in filled_by(case).items():
+        scatter = item.get("friction_range")
+        values = ", ".join(f"{q.name} {q.show(v)}" + (f" (scatter {scatter[0]:g} to {scatter[1]:g})"
+                                                       if scatter and q.name == "friction_coefficient" else "")
+                           for q, v in item["values"].values())
+        lines.append(f"  {key} = {item['entry']}: {values}")
+    return "\n".join(["From the material library (values the case gives itself win):", *lines]) if lines else ""
+
+
+def library_json(case) -> dict:
+    """``library_text`` as JSON: per role the entry, its source and each filled value with its SI unit."""
+    from clutchopt.materials import filled_by
+
+    return {key: {"entry": item["entry"], "source": item["source"],
+                  **({"friction_range": list(item["friction_range"])} if "friction_range" in item else {}),
+                  "values": {q.name: {"value": v, "unit": q.si_unit, "display_unit": q.unit}
+                             for q, v in item["values"].values()}}
+            for key, item in filled_by(case).items()}
+
+
+def choices_text(ranked: list[tuple]) -> str:
+    """The variants of ``options.choose``, best first: choice, status, objective."""
+    rows = [{"rank": i + 1, **choice, "status": s.status,
+             f"{s.objective_name} [{s.objective_unit}]": _shown(s.objective if s.status == "optimal" else None, "")}
+            for i, (choice, _, s) in enumerate(ranked)]
+    why = [f"  {', '.join(choice.values())}: {s.diagnosis}" for choice, _, s in ranked if s.diagnosis]
+    best = ", ".join(f"{key} = {name}" for key, name in ranked[0][0].items())
+    return "\n".join(["Choices of options.choose, best first", _frame(rows), *why, "", f"Below: the best, {best}."])
+
+
 def sensitivity_rows(solution: Solution, formulation: Formulation, count: int = 8) -> list[dict]:
     """The ``count`` largest elasticities, largest first, with the parameter's description."""
     described = {q.name: q.description for q in (*formulation.quantities, *formulation.variables)}

@@ -43,7 +43,7 @@ def case_template(coupling_name: str, mode: str | None = None) -> str:
                   for line in _field(quantity, start["values"].get(quantity.name, {}), filled.get(quantity.name))]
         lines += ["", f"[{section}]", *fields[1:]]  # each field opens with a blank line; not the first
     lines += _bounds_section(formulation, start.get("bounds", {}))
-    lines += _options_section(coupling, formulation, mode)
+    lines += _options_section(coupling, formulation, mode, start)
     return "\n".join(lines) + "\n"
 
 
@@ -146,7 +146,7 @@ def _bounds_section(formulation: Formulation, start: dict) -> list[str]:
     return lines
 
 
-def _options_section(coupling: Coupling, formulation: Formulation, mode: str | None) -> list[str]:
+def _options_section(coupling: Coupling, formulation: Formulation, mode: str | None, start: dict) -> list[str]:
     lines = ["", "[options]"]
     lines += _comment(f"mode: how the case is posed ({', '.join(coupling.formulations)}; clutchopt couplings says "
                       f"what each frees). This case: {formulation.mode}, which frees {formulation.frees()}.")
@@ -158,10 +158,9 @@ def _options_section(coupling: Coupling, formulation: Formulation, mode: str | N
     if freeable:
         lines += _comment("free: variables that stay at the case's value unless listed here.")
         lines.append(f"# free = [{', '.join(_literal(name) for name in freeable)}]")
-    if coupling.materials:
-        role = coupling.materials[-1]
-        names = ", ".join(_literal(name) for name in list(materials.library()[role.kind])[:2])
+    if "choose" in start:
         lines += _comment("choose: library entries to try; each combination is solved and all are reported, the "
                           "best first.")
-        lines.append(f"# choose = {{ {role.key} = [{names}] }}")
+        lines.append("# choose = { " + ", ".join(f"{key} = [{', '.join(map(_literal, names))}]"
+                                               for key, names in start["choose"].items()) + " }")
     return lines

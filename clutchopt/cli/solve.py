@@ -29,24 +29,30 @@ def run(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.cli.options import record_solve
     from clutchopt.formulations import get_coupling
-    from clutchopt.optimise import SolverOptions, solve_case
-    from clutchopt.output import solution_text, to_json
+    from clutchopt.materials import solve_choices
+    from clutchopt.optimise import SolverOptions
+    from clutchopt.output import choices_text, library_json, library_text, solution_text, to_json
 
-    case = load_case(args.case)
-    solution = solve_case(case, args.mode, args.objective, SolverOptions(tol=args.tol))
+    ranked = solve_choices(load_case(args.case), args.mode, args.objective, SolverOptions(tol=args.tol))
+    _, case, solution = ranked[0]
     check = None
     if args.verify:
         from clutchopt.simulate import verify
 
         check = verify(case, solution)
-    record_solve(args, case, solution, check)
+    for _, variant, variant_solution in ranked:
+        record_solve(args, variant, variant_solution, check if variant_solution is solution else None)
     if args.json:
-        return to_json({"case": case.path, "title": case.title, **solution.as_dict(),
-                        **({"verify": check} if check else {})})
+        choices = [{"choice": choice, **s.as_dict()} for choice, _, s in ranked] if len(ranked) > 1 else []
+        return to_json({"case": case.path, "title": case.title, **solution.as_dict(), "library": library_json(case),
+                        **({"choices": choices} if choices else {}), **({"verify": check} if check else {})})
     formulation = get_coupling(case.coupling).formulation(solution.mode)
-    text = solution_text(solution, formulation, case.title)
+    parts = [choices_text(ranked)] if len(ranked) > 1 else []
+    parts.append(solution_text(solution, formulation, case.title))
+    if case.filled:
+        parts.append(library_text(case))
     if check:
         from clutchopt.simulate.design import verify_text
 
-        text += "\n" + verify_text(check)
-    return text
+        parts.append(verify_text(check))
+    return "\n\n".join(parts)
