@@ -145,7 +145,7 @@ def fill(table: object, roles: tuple[MaterialRole, ...], quantities: tuple[Quant
     if not isinstance(table, dict):
         raise InputError("library", f"must be a table of names, e.g. [library] {_example(roles).split('[')[0]}"
                                     f"{_example(roles, list_only=True).split(',')[0]}")
-    keys = {role.key for role in roles}
+    keys = [role.key for role in roles]
     for key in table:
         if key not in keys:
             raise InputError(f"library.{key}", f"unknown key; [library] takes {', '.join(keys) or 'nothing'} "

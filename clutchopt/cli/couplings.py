@@ -40,13 +40,18 @@ def run(args) -> str:
     lines = []
     for c in described:
         lines += [f"{c['name']}: {c['title']} ({c['source']})", "  modes:"]
-        width = max(len(m["name"]) for m in c["modes"]) + len(" (default)")
         for mode in c["modes"]:
             label = mode["name"] + (" (default)" if mode["name"] == c["default_mode"] else "")
-            lines.append(f"    {label:<{width}}  frees {mode['frees']}")
-        lines.append("  objectives: " + "; ".join(f"{o['name']} [{o['unit']}], {o['description']}"
-                                               for o in c["objectives"]))
-        lines.append("  [library]: " + "; ".join(f"{r['key']} ({r['kind']}) for the {r['parts']}"
-                                              for r in c["library"]))
+            lines += _wrapped(f"{label}: frees {mode['frees']}", "    ")
+        lines += _wrapped("objectives: " + "; ".join(f"{o['name']} [{o['unit']}], {o['description']}"
+                                                    for o in c["objectives"]), "  ")
+        lines += _wrapped("[library]: " + "; ".join(f"{r['key']} ({r['kind']}): {r['parts']}"
+                                                   for r in c["library"]), "  ")
         lines += [f"  start a case: clutchopt init {c['name']} -o my_{c['name']}.toml", ""]
     return "\n".join(lines).rstrip()
+
+
+def _wrapped(text: str, indent: str) -> list[str]:
+    import textwrap
+
+    return textwrap.wrap(text, 116, initial_indent=indent, subsequent_indent=indent + "    ")
