@@ -30,12 +30,14 @@ from typing import Any
 
 from clutchopt import materials
 from clutchopt.errors import InputError
+from clutchopt.formulations.start_up import QUANTITIES as START_UP_QUANTITIES
+from clutchopt.formulations.start_up import SPRING_PRELOAD, StartUpSpec
 from clutchopt.model import REQUIRED, Quantity
 from clutchopt.units import to_si
 
 _TOP_LEVEL = {"coupling", "title", "description"}
 _OPTION_KEYS = {"free", "objective", "mode", "choose"}
-_EXTRA_SECTIONS = ("bounds", "options", "library")
+_EXTRA_SECTIONS = ("bounds", "options", "library", "start_up")
 
 
 @dataclass(frozen=True)
@@ -49,21 +51,26 @@ class Case:
     free: tuple[str, ...] = ()
     options: dict[str, Any] = field(default_factory=dict)
     path: str = ""
+    start_up: StartUpSpec | None = None  # the drive of a [start_up] section
     filled: dict[str, tuple[str, str]] = field(default_factory=dict)  # from the library: name -> (role, entry)
+
+    @property
+    def quantities(self) -> tuple[Quantity, ...]:
+        """The coupling's quantities, and those of the start-up section if the case has one."""
+        from clutchopt.formulations import get_coupling
+
+        extra = START_UP_QUANTITIES if self.start_up else ()
+        return get_coupling(self.coupling).quantities + extra
 
     def params(self) -> SimpleNamespace:
         """Values by attribute; quantities the case leaves out (optional ones) read as NaN."""
-        from clutchopt.formulations import get_coupling
-
-        names = {q.name: math.nan for q in get_coupling(self.coupling).quantities}
+        names = {q.name: math.nan for q in self.quantities}
         names.update(self.values)
         return SimpleNamespace(**names)
 
     def with_values(self, **values: float) -> "Case":
         """A copy with some SI values replaced and re-checked (sweeps, tests)."""
-        from clutchopt.formulations import get_coupling
-
-        declared = {q.name: q for q in get_coupling(self.coupling).quantities}
+        declared = {q.name: q for q in self.quantities}
         for name, value in values.items():
             if name not in declared:
                 raise InputError(name, f"unknown quantity for coupling {self.coupling!r}")
@@ -127,14 +134,20 @@ def parse_case(data: dict, path: str = "") -> Case:
         if quantity.default is not None:
             values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
 
-    bounds = _parse_bounds(data.get("bounds", {}), coupling)
+    start_up = None
+    if "start_up" in data:
+        from clutchopt.start_up_case import parse_start_up
+
+        start_values, start_up = parse_start_up(data["start_up"], coupling, values)
+        values.update(start_values)
+    bounds = _parse_bounds(data.get("bounds", {}), coupling, start_up is not None)
     if not isinstance(options, dict):
         raise InputError("options", "must be a table")
     for name in options:
         if name not in _OPTION_KEYS:
             raise InputError(f"options.{name}", f"unknown option; options are {', '.join(sorted(_OPTION_KEYS))}")
     free = options.get("free", [])
-    freeable = {v.name for v in coupling.variables if v.fixed_unless_freed}
+    freeable = {v.name for v in coupling.variables if v.fixed_unless_freed} | ({"spring_preload"} if start_up else set())
     if not isinstance(free, list) or any(name not in freeable for name in free):
         raise InputError("options.free", f"must be a list drawn from {sorted(freeable)}, got {free!r}")
     for name in ("mode", "objective"):
@@ -142,15 +155,15 @@ def parse_case(data: dict, path: str = "") -> Case:
             raise InputError(f"options.{name}", f"must be text, got {options[name]!r}")
 
     case = Case(coupling.name, str(data.get("title", "")), values, bounds, tuple(free),
-                {**options, **({"choose": choose} if choose else {})}, path, filled)
+                {**options, **({"choose": choose} if choose else {})}, path, start_up, filled)
     coupling.check_case(case)
     return case
 
 
-def _parse_bounds(table: Any, coupling) -> dict[str, tuple[float, float]]:
+def _parse_bounds(table: Any, coupling, start_up: bool = False) -> dict[str, tuple[float, float]]:
     if not isinstance(table, dict):
         raise InputError("bounds", "must be a table of [lower, upper] pairs")
-    variables = {v.name: v for v in coupling.variables}
+    variables = {v.name: v for v in coupling.variables + ((SPRING_PRELOAD,) if start_up else ())}
     bounds = {}
     for name, pair in table.items():
         variable = variables.get(name)

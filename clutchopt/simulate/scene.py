@@ -34,9 +34,10 @@ from pathlib import Path
 
 from clutchopt.cases import read_toml
 from clutchopt.errors import InputError
-from clutchopt.simulate.effects import CENTRIFUGAL_ONLY, EFFECTS
+from clutchopt.formulations.start_up import RADIAL_EFFECTS
 from clutchopt.simulate.engine import Model, simulate
 from clutchopt.simulate.laws import ConstantFriction, InductionMotor, Load, PaperFriction
+from clutchopt.start_up_case import parse_effects, parse_load_profile
 from clutchopt.units import to_si
 
 LAWS = ("paper", "constant", "centrifugal")
@@ -103,16 +104,16 @@ def parse_scene(data: dict, path: str = "") -> Scene:
         if key not in _TOP:
             raise InputError(key, f"unknown key; a scene has {', '.join(sorted(_TOP))}")
     f = _Fields(data, path)
-    effects = _effects(data.get("effects"))
+    effects = parse_effects(data.get("effects"), "effects")
     law_name = f.table("coupling").get("law")
     if law_name not in LAWS:
         raise InputError("coupling.law", f"must be one of {', '.join(LAWS)}, got {law_name!r}")
-    for effect in CENTRIFUGAL_ONLY:
+    for effect in RADIAL_EFFECTS:
         if effect in effects and law_name != "centrifugal":
             raise InputError("effects", f"{effect} applies to centrifugal couplings (law = \"centrifugal\") only")
     case, law, source = _coupling(f, law_name, effects)
     duty = case.params() if case else None
-    inertia = f.quantity("driven", "inertia", "kg*m^2", duty.inertia if duty else None)
+    inertia = f.quantity("driven", "inertia", "kg*m^2", getattr(duty, "inertia", None))
     load = _load(f, duty)
     motor = _motor(f) if "motor_curve" in effects else None
     speed = math.nan if motor else f.quantity("driver", "speed", "rpm", duty.speed if duty else None)
@@ -130,19 +131,6 @@ def parse_scene(data: dict, path: str = "") -> Scene:
     return Scene(title, path, model, source)
 
 
-def _effects(raw) -> tuple[str, ...]:
-    if not isinstance(raw, list) or not all(isinstance(e, str) for e in raw):
-        raise InputError("effects", f"must be a list of effect names from {', '.join(EFFECTS)}")
-    unknown = [e for e in raw if e not in EFFECTS]
-    if unknown:
-        raise InputError("effects", f"unknown effect {unknown[0]!r}; effects are {', '.join(EFFECTS)}")
-    if len(set(raw)) != len(raw):
-        raise InputError("effects", "lists an effect twice")
-    if "slip_friction" not in raw:
-        raise InputError("effects", "must include slip_friction (the clutch itself)")
-    return tuple(raw)
-
-
 def _coupling(f: _Fields, law_name: str, effects):
     if law_name == "paper":
         return None, PaperFriction(f.quantity("coupling", "k", "N*m"),
@@ -150,7 +138,7 @@ def _coupling(f: _Fields, law_name: str, effects):
     if law_name == "constant":
         return None, ConstantFriction(f.quantity("coupling", "torque", "N*m")), {"law": "constant"}
     from clutchopt.cases import load_case
-    from clutchopt.simulate.design import centrifugal_law, design_outputs, solved_outputs, speed_law_missing
+    from clutchopt.simulate.design import centrifugal_law, design_from_json, speed_law_missing
 
     table = f.table("coupling")
     if "case" not in table:
@@ -162,8 +150,7 @@ def _coupling(f: _Fields, law_name: str, effects):
         raise InputError("coupling.case", missing)
     source = {"law": "centrifugal", "coupling": case.coupling, "case": table["case"]}
     if "design" in table:
-        design_path = f.file("design")
-        outputs = design_outputs(design_path, case.coupling, case_path)
+        mode, design = design_from_json(f.file("design"), case.coupling, case_path)
         source["design"] = table["design"]
     else:
         from clutchopt.optimise import solve_case
@@ -171,13 +158,13 @@ def _coupling(f: _Fields, law_name: str, effects):
         solution = solve_case(case, table.get("mode"), table.get("objective"))
         if solution.status != "optimal":
             raise InputError("coupling.case", f"the case does not solve to an optimal design ({solution.status})")
-        outputs = solved_outputs(solution)
+        mode, design = solution.mode, solution.design
         source["design"] = "solved from the case"
     preload = f.quantity("coupling", "spring_preload", "N", None if "spring_preload" in effects else 0.0,
                          at_least_zero=True)
-    law = centrifugal_law(case.coupling, outputs, case.params().speed, effects, preload)
+    law = centrifugal_law(case, mode, design, effects, preload)
     source["engagement_speed"] = law.engagement_speed()
-    source["design_torque"] = outputs["torque"]
+    source["design_torque"] = law.capacity(case.params().speed)
     return case, law, source
 
 
@@ -185,25 +172,10 @@ def _load(f: _Fields, duty) -> Load:
     table = f.table("driven")
     profile = table.get("load_profile")
     if profile is None:
-        return Load(f.quantity("driven", "resisting_torque", "N*m", duty.resisting_torque if duty else None,
+        return Load(f.quantity("driven", "resisting_torque", "N*m", getattr(duty, "resisting_torque", None),
                                at_least_zero=True))
-    key = "driven.load_profile"
-    if not isinstance(profile, dict) or set(profile) != {"over", "points", "torque"}:
-        raise InputError(key, "must be a table with over = \"speed\" or \"time\", points = [...], torque = [...]")
-    over = profile["over"]
-    if over not in ("speed", "time"):
-        raise InputError(f"{key}.over", f"must be \"speed\" or \"time\", got {over!r}")
-    points, torques = profile["points"], profile["torque"]
-    if not isinstance(points, list) or not isinstance(torques, list) or len(points) != len(torques) or len(points) < 2:
-        raise InputError(key, "points and torque must be lists of the same length (at least 2)")
-    unit = "rpm" if over == "speed" else "s"
-    xs = tuple(to_si(f"{key}.points", raw, unit) for raw in points)
-    ys = tuple(to_si(f"{key}.torque", raw, "N*m") for raw in torques)
-    if any(b <= a for a, b in zip(xs, xs[1:])):
-        raise InputError(f"{key}.points", "must increase strictly")
-    if any(y < 0 for y in ys):
-        raise InputError(f"{key}.torque", "must not be negative (the load opposes the motion)")
-    return Load(over=over, points=xs, values=ys)
+    profile = parse_load_profile(profile, "driven.load_profile")
+    return Load(over=profile.over, points=profile.points, values=profile.values)
 
 
 def _motor(f: _Fields) -> InductionMotor:
