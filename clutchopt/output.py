@@ -46,39 +46,89 @@ def _frame(rows: list[dict]) -> str:
     return pd.DataFrame(rows).to_string(index=False) if rows else "(none)"
 
 
-def solution_text(solution: Solution, formulation: Formulation, title: str = "") -> str:
+def design_rows(solution: Solution, formulation: Formulation) -> list[dict]:
+    return [{"variable": v.name, "symbol": v.symbol, "value": _shown(solution.design[v.name], v.unit), "unit": v.unit,
+             "at bound": solution.at_bound(v.name) or "-", "description": v.description}
+            for v in formulation.variables]
+
+
+def derived_rows(solution: Solution) -> list[dict]:
+    return [{"quantity": name, "value": _shown(out.value, out.unit), "unit": out.unit, "description": out.description}
+            for name, out in solution.outputs.items()]
+
+
+def constraint_rows(solution: Solution) -> list[dict]:
+    return [{"constraint": c.name, "eq.": c.equation, "value": _shown(c.value, c.unit), "sense": c.sense,
+             "limit": _shown(c.limit, c.unit), "unit": c.unit, "margin": f"{c.margin:+.2e}",
+             "active": "yes" if c.active else "no", "elasticity": _signed(c.elasticity)}
+            for c in solution.constraints]
+
+
+CONSTRAINTS_TITLE = "Constraints (re-evaluated in float64; margin relative; elasticity = d ln objective / d ln limit)"
+SENSITIVITIES_TITLE = ("Most sensitive parameters (elasticity = d ln objective / d ln parameter; +1: grows in "
+                       "proportion)")
+
+
+def headline(solution: Solution, formulation: Formulation, title: str = "") -> list[str]:
     lines = [f"{formulation.title}" + (f"  -  {title}" if title else ""),
              f"status: {solution.status}"
              f"   objective ({solution.objective_name}): {solution.objective:.6g} {solution.objective_unit}"]
-    if solution.diagnosis:
-        lines.append(f"diagnosis: {solution.diagnosis}")
-    lines += ["", "Design"]
-    lines.append(_frame([
-        {"variable": v.name, "symbol": v.symbol, "value": _shown(solution.design[v.name], v.unit), "unit": v.unit,
-         "at bound": solution.at_bound(v.name) or "-", "description": v.description} for v in formulation.variables]))
+    return lines + ([f"diagnosis: {solution.diagnosis}"] if solution.diagnosis else [])
+
+
+def solution_tables(solution: Solution, formulation: Formulation) -> list[tuple[str, list[dict]]]:
+    """The tables of a solution, titled, in the order ``clutchopt solve`` prints them."""
+    tables = [("Design", design_rows(solution, formulation))]
     if solution.outputs:
-        lines += ["", "Derived"]
-        lines.append(_frame([
-            {"quantity": name, "value": _shown(out.value, out.unit), "unit": out.unit, "description": out.description}
-            for name, out in solution.outputs.items()]))
-    lines += ["", "Constraints (re-evaluated in float64; margin relative; elasticity = d ln objective / d ln limit)"]
-    lines.append(_frame([
-        {"constraint": c.name, "eq.": c.equation, "value": _shown(c.value, c.unit), "sense": c.sense,
-         "limit": _shown(c.limit, c.unit), "unit": c.unit, "margin": f"{c.margin:+.2e}",
-         "active": "yes" if c.active else "no", "elasticity": _signed(c.elasticity)}
-        for c in solution.constraints]))
+        tables.append(("Derived", derived_rows(solution)))
+    tables.append((CONSTRAINTS_TITLE, constraint_rows(solution)))
     if solution.sensitivities:
-        lines += ["", "Most sensitive parameters (elasticity = d ln objective / d ln parameter; +1: grows in proportion)"]
-        lines.append(_frame(sensitivity_rows(solution, formulation)))
+        tables.append((SENSITIVITIES_TITLE, sensitivity_rows(solution, formulation)))
+    return tables
+
+
+def solver_line(solution: Solution) -> str:
     s = solution.solver
-    lines += ["", f"solver: {s.name}  status: {s.status}  iterations: {s.iterations}  solves: {s.solves}  "
-                  f"time: {s.time_s * 1e3:.1f} ms"]
+    return (f"solver: {s.name}  status: {s.status}  iterations: {s.iterations}  solves: {s.solves}  "
+            f"time: {s.time_s * 1e3:.1f} ms")
+
+
+def solution_text(solution: Solution, formulation: Formulation, title: str = "") -> str:
+    lines = headline(solution, formulation, title)
+    for table_title, rows in solution_tables(solution, formulation):
+        lines += ["", table_title, _frame(rows)]
+    lines += ["", solver_line(solution)]
     if solution.integer_search:
         lines.append("integer neighbours tried: " + "; ".join(
             ", ".join(f"{k}={v}" for k, v in entry.items() if k not in ("status", "feasible", "objective"))
             + (f" -> {entry['objective']:.6g}" if entry["feasible"] else " -> infeasible")
             for entry in solution.integer_search))
     return "\n".join(lines)
+
+
+def html_table(rows: list[dict], numeric: tuple[str, ...] = ("value", "limit", "margin", "elasticity")) -> str:
+    """Rows as an HTML table (values escaped; numeric columns right-aligned)."""
+    from html import escape
+
+    if not rows:
+        return "<p>(none)</p>"
+    head = "".join(f"<th>{escape(str(column))}</th>" for column in rows[0])
+    body = "".join("<tr>" + "".join(f'<td{" class=n" if column in numeric else ""}>{escape(str(value))}</td>'
+                                    for column, value in row.items()) + "</tr>" for row in rows)
+    return f"<table><tr>{head}</tr>{body}</table>"
+
+
+def solution_html(solution: Solution) -> str:
+    """A solution as Jupyter shows it: the tables of ``clutchopt solve``, as HTML."""
+    from html import escape
+
+    from clutchopt.formulations import get_coupling
+
+    formulation = get_coupling(solution.coupling).formulation(solution.mode)
+    parts = [f"<p>{'<br>'.join(escape(line) for line in headline(solution, formulation))}</p>"]
+    for title, rows in solution_tables(solution, formulation):
+        parts.append(f"<h4>{escape(title)}</h4>{html_table(rows)}")
+    return "<div>" + "".join(parts) + f"<p>{escape(solver_line(solution))}</p></div>"
 
 
 def library_text(case) -> str:
@@ -124,28 +174,48 @@ def sensitivity_rows(solution: Solution, formulation: Formulation, count: int = 
             for name, value in ranked if abs(value) >= 5e-5]
 
 
-def comparison_text(table: ComparisonTable) -> str:
-    rows = []
+def comparison_rows(table: ComparisonTable) -> tuple[list[dict], list[dict]]:
+    """The values of every column in each row's unit, and the relative differences against the baseline."""
+    rows, rel = [], []
     for row in table.rows:
-        entry = {"quantity": row["quantity"], "unit": row["display_unit"]}
-        for column in table.columns:
-            entry[column] = _shown(row[column], row["display_unit"])
-        rows.append(entry)
-    rel = []
-    for row in table.rows:
+        rows.append({"quantity": row["quantity"], "unit": row["display_unit"],
+                     **{column: _shown(row[column], row["display_unit"]) for column in table.columns}})
         entry = {"quantity": row["quantity"]}
         for column in table.columns:
             if column != table.baseline:
                 value = row.get(f"rel_{column}")
                 entry[column] = "-" if value is None else ("0" if abs(value) < 5e-5 else f"{value:+.2%}")
         rel.append(entry)
-    lines = [f"Comparison for the {table.coupling} coupling (values in the unit of each row)", _frame(rows), "",
-             f"Relative difference against {table.baseline}", _frame(rel), "", "Columns:"]
+    return rows, rel
+
+
+def comparison_titles(table: ComparisonTable) -> tuple[str, str]:
+    return (f"Comparison for the {table.coupling} coupling (values in the unit of each row)",
+            f"Relative difference against {table.baseline}")
+
+
+def comparison_text(table: ComparisonTable) -> str:
+    rows, rel = comparison_rows(table)
+    title, rel_title = comparison_titles(table)
+    lines = [title, _frame(rows), "", rel_title, _frame(rel), "", "Columns:"]
     lines += [f"  {name}: {note}" for name, note in table.notes.items() if name in table.columns]
     for column, solution in table.solutions.items():
         lines.append(f"  {column}: status {solution.status}, {solution.solver.iterations} iterations"
                      + (f"; {solution.diagnosis}" if solution.diagnosis else ""))
     return "\n".join(lines)
+
+
+def comparison_html(table: ComparisonTable) -> str:
+    """The comparison as Jupyter shows it: the tables of ``clutchopt compare``, as HTML."""
+    from html import escape
+
+    rows, rel = comparison_rows(table)
+    title, rel_title = comparison_titles(table)
+    numeric = tuple(table.columns)
+    notes = "".join(f"<li><b>{escape(name)}</b>: {escape(note)}</li>" for name, note in table.notes.items()
+                    if name in table.columns)
+    return (f"<div><h4>{escape(title)}</h4>{html_table(rows, numeric)}<h4>{escape(rel_title)}</h4>"
+            f"{html_table(rel, numeric)}<ul>{notes}</ul></div>")
 
 
 def materials_text(kind: str, title: str) -> str:

@@ -121,6 +121,12 @@ class Solution:
     multipliers: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False)  # (lam_x, lam_g), scaled
     design_units: dict[str, str] = field(default_factory=dict)  # display unit of each design variable
 
+    def _repr_html_(self) -> str:
+        """Jupyter shows a solution as the tables of ``clutchopt solve``."""
+        from clutchopt.output import solution_html
+
+        return solution_html(self)
+
     def at_bound(self, name: str) -> str:
         """"fixed", "lower", "upper" (within 1e-7 relative) or "" for a design variable."""
         lo, hi = self.bounds[name]
