@@ -51,7 +51,7 @@ def run(args) -> str:
     if args.json:
         return to_json({"scene": scene.path, "title": scene.title, **result.as_dict(),
                         **({"analytic": analytic} if analytic else {})})
-    return _text(scene, result, analytic)
+    return _text(scene, result, analytic) + (f"\nfigure written to {args.plot}" if args.plot else "")
 
 
 def _write_plot(result, title: str, path: str) -> None:

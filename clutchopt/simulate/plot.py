@@ -1,21 +1,26 @@
-"""The start-up as a figure: speeds and slip above, friction torque and slip power below."""
+"""The start-up as a figure: speeds and slip above (in rpm, as cases and sweeps give them), friction torque and
+slip power below."""
 
 from __future__ import annotations
+
+import math
 
 import matplotlib
 
 matplotlib.use("Agg")
 from matplotlib.figure import Figure  # noqa: E402
 
+RPM = 30.0 / math.pi  # rpm per rad/s
+
 
 def history_figure(result, title: str = "") -> Figure:
     h, head = result.history, result.headline
     fig = Figure(figsize=(7.5, 6.0), layout="constrained")
     top, bottom = fig.subplots(2, 1, sharex=True)
-    top.plot(h["t"], h["w_driver"], label="driving half")
-    top.plot(h["t"], h["w_driven"], label="driven half")
-    top.plot(h["t"], h["slip"], ":", label="slip")
-    top.set_ylabel("speed, rad/s")
+    top.plot(h["t"], h["w_driver"] * RPM, label="driving half")
+    top.plot(h["t"], h["w_driven"] * RPM, label="driven half")
+    top.plot(h["t"], h["slip"] * RPM, ":", label="slip")
+    top.set_ylabel("speed, rpm")
     top.legend(loc="best")
     lines = bottom.plot(h["t"], h["friction_torque"], color="C3", label="clutch torque")
     bottom.set_ylabel("torque, N*m")
