@@ -55,8 +55,11 @@ def _section(title: str, body: str, anchor: str) -> str:
 
 
 def requirements(case: Case) -> str:
+    """The case's inputs; those the material library filled name their entry."""
     coupling = get_coupling(case.coupling)
-    rows = [{"key": r["key"], "symbol": r["symbol"], "value": r["value"], "description": r["description"]}
+    names = {q.key: q.name for q in coupling.quantities}
+    rows = [{"key": r["key"], "symbol": r["symbol"], "value": r["value"],
+             "from the library": " = ".join(case.filled.get(names[r["key"]], ())), "description": r["description"]}
             for r in quantity_table(coupling.quantities, case.values)]
     return _table(rows, ("value",))
 
@@ -71,15 +74,18 @@ def design(solution: Solution, formulation) -> str:
 
 
 def drawing(case: Case, solution: Solution, formulation) -> str:
-    svg = sketch(case.coupling, {**case.values, **solution.design})
+    optimised = {v.name for v in formulation.variables if solution.at_bound(v.name) != "fixed"}
+    svg = sketch(case.coupling, {**case.values, **solution.design},
+                 {name: out.value for name, out in solution.outputs.items()}, optimised)
     if svg is not None:
-        free = [v.symbol or v.name for v in formulation.variables if solution.at_bound(v.name) != "fixed"]
-        return (f"<figure>{svg}<figcaption>Dimensioned sketch of the optimum, to scale. Optimised: "
-                f"{escape(', '.join(free))}; every other dimension as the case gives it.</figcaption></figure>")
+        chosen = [v.symbol or v.name for v in formulation.variables if v.name in optimised]
+        return (f"<figure>{svg}<figcaption>Dimensioned sketch of the optimum, to scale. Optimised "
+                f"(red): {escape(', '.join(chosen))}; every other dimension as the case gives it or as it follows "
+                "from these.</figcaption></figure>")
     rows = [{"dimension": v.name, "symbol": v.symbol, "value": _shown(solution.design[v.name], v.unit),
              "unit": v.unit} for v in formulation.variables]
-    return (f'<p class="note">No sketch is drawn for the {escape(case.coupling)} coupling in this mode yet; '
-            "its dimensions are tabulated instead.</p>" + _table(rows, ("value",)))
+    return (f'<p class="note">No sketch can be drawn for this {escape(case.coupling)} design (a dimension it needs '
+            "is not given); its dimensions are tabulated instead.</p>" + _table(rows, ("value",)))
 
 
 def margins(solution: Solution) -> str:
