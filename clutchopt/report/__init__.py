@@ -17,7 +17,7 @@ import pandas as pd
 from clutchopt.cases import Case, quantity_table
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.problem import Solution
-from clutchopt.output import _shown, _signed, sensitivity_rows
+from clutchopt.output import _shown, comparison_rows, constraint_rows, derived_rows, design_rows, sensitivity_rows
 from clutchopt.report.sketch import sketch
 from clutchopt.store import versions
 
@@ -65,12 +65,8 @@ def requirements(case: Case) -> str:
 
 
 def design(solution: Solution, formulation) -> str:
-    rows = [{"variable": v.name, "symbol": v.symbol, "value": _shown(solution.design[v.name], v.unit), "unit": v.unit,
-             "at bound": solution.at_bound(v.name) or "-", "description": v.description}
-            for v in formulation.variables]
-    derived = [{"quantity": name, "value": _shown(out.value, out.unit), "unit": out.unit,
-                "description": out.description} for name, out in solution.outputs.items()]
-    return _table(rows, ("value",)) + "<h3>Derived</h3>" + _table(derived, ("value",))
+    return (_table(design_rows(solution, formulation), ("value",)) + "<h3>Derived</h3>"
+            + _table(derived_rows(solution), ("value",)))
 
 
 def drawing(case: Case, solution: Solution, formulation) -> str:
@@ -90,14 +86,11 @@ def drawing(case: Case, solution: Solution, formulation) -> str:
 
 def margins(solution: Solution) -> str:
     rows = []
-    for c in solution.constraints:
+    for c, row in zip(solution.constraints, constraint_rows(solution)):
         width = max(0.0, min(c.margin, 1.0)) * 200
-        rows.append({"constraint": c.name, "eq.": c.equation, "value": _shown(c.value, c.unit), "sense": c.sense,
-                     "limit": _shown(c.limit, c.unit), "unit": c.unit, "margin": f"{c.margin:+.2e}",
-                     "margin bar": f'<span class="bar{" active" if c.active else ""}" style="width:{width:.0f}px">'
-                                   "</span>",
-                     "active": "yes" if c.active else "no",
-                     "elasticity": _signed(c.elasticity)})
+        bar = f'<span class="bar{" active" if c.active else ""}" style="width:{width:.0f}px"></span>'
+        rows.append({**{k: v for k, v in row.items() if k not in ("active", "elasticity")}, "margin bar": bar,
+                     "active": row["active"], "elasticity": row["elasticity"]})
     return ('<p class="note">Re-evaluated in float64; margin relative to the limit; elasticity = '
             "d ln objective / d ln limit.</p>" + _table(rows, ("value", "limit", "margin", "elasticity")))
 
@@ -114,8 +107,7 @@ def comparison(case: Case) -> str:
     if get_coupling(case.coupling).comparison is None:
         return '<p class="note">This coupling has no comparison with a paper method.</p>'
     table = compare_case(case)
-    rows = [{"quantity": r["quantity"], "unit": r["display_unit"],
-             **{column: _shown(r[column], r["display_unit"]) for column in table.columns}} for r in table.rows]
+    rows, _ = comparison_rows(table)
     notes = "".join(f"<li><b>{escape(name)}</b>: {escape(note)}</li>" for name, note in table.notes.items()
                     if name in table.columns)
     return _table(rows, tuple(table.columns)) + f'<ul class="note">{notes}</ul>'
