@@ -76,14 +76,16 @@ def headline(solution: Solution, formulation: Formulation, title: str = "") -> l
     return lines + ([f"diagnosis: {solution.diagnosis}"] if solution.diagnosis else [])
 
 
-def solution_tables(solution: Solution, formulation: Formulation) -> list[tuple[str, list[dict]]]:
-    """The tables of a solution, titled, in the order ``clutchopt solve`` prints them."""
-    tables = [("Design", design_rows(solution, formulation))]
+def solution_tables(solution: Solution, formulation: Formulation) -> list[tuple[str, list[dict], list[str]]]:
+    """The tables of a solution as (title, rows, notes below), in the order ``clutchopt solve`` prints them."""
+    tables = [("Design", design_rows(solution, formulation), [])]
     if solution.outputs:
-        tables.append(("Derived", derived_rows(solution)))
-    tables.append((CONSTRAINTS_TITLE, constraint_rows(solution)))
+        tables.append(("Derived", derived_rows(solution), []))
+    tables.append((CONSTRAINTS_TITLE, constraint_rows(solution), []))
+    if solution.start_up is not None:
+        tables.append(start_up_table(solution.start_up))
     if solution.sensitivities:
-        tables.append((SENSITIVITIES_TITLE, sensitivity_rows(solution, formulation)))
+        tables.append((SENSITIVITIES_TITLE, sensitivity_rows(solution, formulation), []))
     return tables
 
 
@@ -95,8 +97,8 @@ def solver_line(solution: Solution) -> str:
 
 def solution_text(solution: Solution, formulation: Formulation, title: str = "") -> str:
     lines = headline(solution, formulation, title)
-    for table_title, rows in solution_tables(solution, formulation):
-        lines += ["", table_title, _frame(rows)]
+    for table_title, rows, notes in solution_tables(solution, formulation):
+        lines += ["", table_title, _frame(rows), *notes]
     lines += ["", solver_line(solution)]
     if solution.integer_search:
         lines.append("integer neighbours tried: " + "; ".join(
@@ -106,14 +108,16 @@ def solution_text(solution: Solution, formulation: Formulation, title: str = "")
     return "\n".join(lines)
 
 
-def html_table(rows: list[dict], numeric: tuple[str, ...] = ("value", "limit", "margin", "elasticity")) -> str:
-    """Rows as an HTML table (values escaped; numeric columns right-aligned)."""
+def html_table(rows: list[dict], numeric: tuple[str, ...] = ("value", "limit", "margin", "elasticity"),
+               markup: tuple[str, ...] = ()) -> str:
+    """Rows as an HTML table: values escaped except in the ``markup`` columns; ``numeric`` ones right-aligned."""
     from html import escape
 
     if not rows:
-        return "<p>(none)</p>"
+        return '<p class="note">(none)</p>'
     head = "".join(f"<th>{escape(str(column))}</th>" for column in rows[0])
-    body = "".join("<tr>" + "".join(f'<td{" class=n" if column in numeric else ""}>{escape(str(value))}</td>'
+    body = "".join("<tr>" + "".join(f'<td{" class=n" if column in numeric else ""}>'
+                                    f"{value if column in markup else escape(str(value))}</td>"
                                     for column, value in row.items()) + "</tr>" for row in rows)
     return f"<table><tr>{head}</tr>{body}</table>"
 
@@ -123,11 +127,14 @@ def solution_html(solution: Solution) -> str:
     from html import escape
 
     from clutchopt.formulations import get_coupling
+    from clutchopt.formulations.start_up import with_start_up
 
     formulation = get_coupling(solution.coupling).formulation(solution.mode)
+    if solution.start_up is not None:
+        formulation = with_start_up(formulation)
     parts = [f"<p>{'<br>'.join(escape(line) for line in headline(solution, formulation))}</p>"]
-    for title, rows in solution_tables(solution, formulation):
-        parts.append(f"<h4>{escape(title)}</h4>{html_table(rows)}")
+    for title, rows, notes in solution_tables(solution, formulation):
+        parts.append(f"<h4>{escape(title)}</h4>{html_table(rows)}" + "".join(f"<p>{escape(n)}</p>" for n in notes))
     return "<div>" + "".join(parts) + f"<p>{escape(solver_line(solution))}</p></div>"
 
 
@@ -164,6 +171,32 @@ def choices_text(ranked: list[tuple]) -> str:
     why = [f"  {', '.join(choice.values())}: {s.diagnosis}" for choice, _, s in ranked if s.diagnosis]
     best = ", ".join(f"{key} = {name}" for key, name in ranked[0][0].items())
     return "\n".join(["Choices of options.choose, best first", _frame(rows), *why, "", f"Below: the best, {best}."])
+
+START_UP_ROWS = (  # figure, display unit, meaning
+    ("start_time", "s", "switch-on to lock-up"),
+    ("friction_work", "kJ", "heat released by slip"),
+    ("temperature_rise", "K", "largest temperature rise of the friction parts"),
+    ("lock_up_speed", "rpm", "speed at lock-up"),
+    ("engagement_speed", "rpm", "driving speed at which the weights engage"),
+    ("engagement_time", "s", "motor running up unloaded"),
+    ("lock_up_time", "s", "the coupling slips under load"),
+)
+
+
+def start_up_table(start_up: dict) -> tuple[str, list[dict], list[str]]:
+    """The NLP's start beside the simulator's, figure by figure: title, rows, a note if it does not lock up."""
+    rows = []
+    for name, unit, meaning in START_UP_ROWS:
+        nlp, simulated = start_up.get(name), start_up.get(f"{name}_simulated")
+        if nlp is None:
+            continue
+        difference = "-" if simulated is None or not math.isfinite(simulated) or simulated == 0 \
+            else f"{nlp / simulated - 1:+.1e}"
+        rows.append({"figure": name, "NLP": _shown(nlp, unit), "simulated": _shown(simulated, unit), "unit": unit,
+                     "NLP/sim - 1": difference if simulated is not None else "-", "meaning": meaning})
+    head = (f"Start-up on the case's drive ({', '.join(start_up['effects'])}): Radau collocation, "
+            f"{start_up['intervals']} intervals per phase ({', '.join(start_up['phases'])}), beside the simulator")
+    return head, rows, [] if start_up["locks_up"] else [f"simulated: {start_up['reason']}"]
 
 
 def sensitivity_rows(solution: Solution, formulation: Formulation, count: int = 8) -> list[dict]:

@@ -5,7 +5,7 @@ Layout (quantities with units; bare numbers are SI; the vocabulary of start-up s
     [start_up]
     effects = ["slip_friction", "motor_curve", "spring_preload", "gravity", "lockup", "friction_heat"]
     spring_preload = "12 N"          # per weight; free it with options.free = ["spring_preload"]
-    intervals = 12                   # collocation intervals per phase (optional)
+    intervals = 16                   # collocation intervals per phase (optional; doubled as the tolerance needs)
     tolerance = 1e-6                 # simulated start against the limits, relative (optional)
     [start_up.driver]                # effect motor_curve: an induction motor (else the duty's constant speed)
     synchronous_speed = "1000 rpm"
@@ -45,7 +45,7 @@ from clutchopt.units import to_si
 SECTION = "start_up"
 _TABLES = ("driver", "driven", "heat", "limits")
 _SETTINGS = ("effects", "intervals", "tolerance")
-MAX_INTERVALS = 200
+MAX_INTERVALS = 128
 DEFAULTS_FROM_DUTY = {"driven_inertia": "inertia", "load_torque": "resisting_torque",
                       "max_start_time": "acceleration_time"}
 

@@ -38,8 +38,8 @@ def add_command(commands) -> None:
 def run(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.optimise import SolverOptions
-    from clutchopt.formulations import get_coupling
     from clutchopt.optimise.pareto import CAP, pareto_front
+    from clutchopt.optimise.problem import case_formulation
     from clutchopt.optimise.sweep import write_frame
     from clutchopt.optimise.verify import evaluate_objective
     from clutchopt.output import to_json
@@ -48,7 +48,7 @@ def run(args) -> str:
     if args.points < 2:
         raise InputError("--points", f"a front needs at least 2 points, got {args.points}")
     front = pareto_front(case, args.mode, args.points, SolverOptions(tol=args.tol))
-    formulation = get_coupling(case.coupling).formulation(front.mode)
+    formulation = case_formulation(case, front.mode)
     store = open_store(args)
     if store is not None:
         with store:

@@ -28,9 +28,9 @@ def add_command(commands) -> None:
 def run(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.cli.options import record_solve
-    from clutchopt.formulations import get_coupling
     from clutchopt.materials import solve_choices
     from clutchopt.optimise import SolverOptions
+    from clutchopt.optimise.problem import case_formulation
     from clutchopt.output import choices_text, library_json, library_text, solution_text, to_json
 
     ranked = solve_choices(load_case(args.case), args.mode, args.objective, SolverOptions(tol=args.tol))
@@ -46,7 +46,7 @@ def run(args) -> str:
         choices = [{"choice": choice, **s.as_dict()} for choice, _, s in ranked] if len(ranked) > 1 else []
         return to_json({"case": case.path, "title": case.title, **solution.as_dict(), "library": library_json(case),
                         **({"choices": choices} if choices else {}), **({"verify": check} if check else {})})
-    formulation = get_coupling(case.coupling).formulation(solution.mode)
+    formulation = case_formulation(case, solution.mode)
     parts = [choices_text(ranked)] if len(ranked) > 1 else []
     parts.append(solution_text(solution, formulation, case.title))
     if case.filled:

@@ -53,7 +53,7 @@ def run(args) -> str:
         raise InputError("--jobs", f"must be at least 1, got {args.jobs}")
     if args.resume and args.no_store:
         raise InputError("--resume", "continues a sweep from the run store; drop --no-store")
-    sweep = Sweep(case, [parse_vary(text, case.coupling) for text in args.vary], args.mode, args.objective,
+    sweep = Sweep(case, [parse_vary(text, case.coupling, case.quantities) for text in args.vary], args.mode, args.objective,
                   args.tol, args.zip)
     if args.out:
         table_format(args.out)  # a bad name fails before the solves, not after

@@ -139,7 +139,7 @@ class StartUpSpec:
     effects: tuple[str, ...]
     limits: tuple[str, ...]
     load_profile: LoadProfile | None = None
-    intervals: int = 12
+    intervals: int = 16
     tolerance: float = 1e-6
 
     def has(self, effect: str) -> bool:

@@ -24,13 +24,31 @@ from types import SimpleNamespace
 
 import casadi as ca
 import numpy as np
+from scipy.optimize import brentq
 
 from clutchopt.backend import sqrt
 from clutchopt.formulations import start_up as su
 from clutchopt.model import Constraint, SpeedLaw, at_least, at_most, namespace
 
 DEGREE = 3
+MAX_INTERVALS = 128  # per phase, refining by doubling
+BACK_OFF_STEPS = 4  # defect corrections of limits the simulated start misses
+LIMIT_OF = {"start_time": "max_start_time", "friction_work": "max_friction_work",
+            "temperature_rise": "max_temperature_rise", "heat_per_hour": "heat_dissipation"}
 LOCKED_SAMPLES = 8  # speeds from lock-up to synchronous at which a locked drive must stay locked (lockup)
+
+
+def graded_mesh(intervals: int, first: float = 1e-4, graded_part: float = 0.05) -> np.ndarray:
+    """Interval lengths (fractions of a phase, summing to 1): half the intervals grow geometrically from ``first``
+    over the first ``graded_part`` of the phase, the rest are uniform. The motor's run-up to the speed where its
+    torque meets the coupling's (a knee over a few milliseconds of a start of seconds) lies in the graded part."""
+    graded = intervals // 2
+    if graded == 0:
+        return np.full(intervals, 1.0 / intervals)
+    ratio = brentq(lambda r: first * (r**graded - 1.0) / (r - 1.0) - graded_part, 1.0 + 1e-9, 1e6)
+    lengths = first * ratio ** np.arange(graded)
+    uniform = np.full(intervals - graded, (1.0 - graded_part) / (intervals - graded))
+    return np.concatenate([lengths / lengths.sum() * graded_part, uniform])
 
 
 def _collocation(degree: int):
@@ -174,8 +192,7 @@ class StartUpBlock:
         self.equalities: list = []
         self.points: list[tuple] = []  # (time, {state: value}) of every phase start and collocation point
         self.nodes: list[dict] = []  # the states at the collocation points (the phase starts excluded)
-        state = {"driver_speed": 0.0 if structure.motor else p.speed, "slip": 0.0, "friction_work": 0.0,
-                 "temperature": 0.0}
+        state = {"driver_speed": 0.0 if structure.motor else p.speed, "friction_work": 0.0, "temperature": 0.0}
         time = 0.0
         self.durations = {}
         for phase in structure.phases:
@@ -233,11 +250,15 @@ class StartUpBlock:
     def _phase(self, phase: str, state: dict, start_time):
         d, n = self.drive, self.s.intervals
         duration = self._variable(phase, "duration", d.time_ref, 0.0, 100.0)
-        step = duration / n
+        mesh = self.mesh(phase)
+        starts = np.concatenate([[0.0], np.cumsum(mesh)[:-1]])
         states = self._states(phase)
         previous = dict(state)
-        self.points.append((start_time, dict(state)))
+        if phase == "slip":  # the driven machine starts from rest: all of the driving speed is slip
+            previous["slip"] = previous["driver_speed"]
+        self.points.append((start_time, dict(previous)))
         for k in range(n):
+            step = mesh[k] * duration
             nodes = [previous]
             for j in range(1, DEGREE + 1):
                 node = dict(previous)
@@ -245,7 +266,7 @@ class StartUpBlock:
                     node[name] = self._variable(phase, name, scale, lower, upper)
                 nodes.append(node)
             for j in range(1, DEGREE + 1):
-                time = start_time + (k + self.tau[j]) * step
+                time = start_time + (starts[k] + self.tau[j] * mesh[k]) * duration
                 rates = self._rates(phase, time, nodes[j])
                 for name, (scale, _, _) in states.items():
                     slope = sum(self.c[r, j] * nodes[r][name] for r in range(DEGREE + 1))
@@ -255,6 +276,13 @@ class StartUpBlock:
             previous = nodes[DEGREE]
         self.equalities.append(self._phase_end(phase, previous, start_time + duration))
         return duration, previous
+
+    def mesh(self, phase: str) -> np.ndarray:
+        """Interval lengths of a phase as fractions of its duration: graded where the motor runs up through the
+        slip phase's start, uniform elsewhere."""
+        if phase == "slip" and self.s.motor:
+            return graded_mesh(self.s.intervals)
+        return np.full(self.s.intervals, 1.0 / self.s.intervals)
 
     def _phase_end(self, phase: str, state: dict, time):
         d = self.drive
@@ -272,6 +300,11 @@ class StartUpBlock:
     @property
     def size(self) -> int:
         return len(self._hat)
+
+    @property
+    def scales(self) -> list:
+        """Scale of each internal variable (expressions of the case quantities): value = scale * hat."""
+        return self._scale
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         lower, upper = zip(*self._bounds)
@@ -318,9 +351,94 @@ class StartUpBlock:
             begin, end = bounds[phase]
             end = max(end, begin)
             values.append(end - begin)
+            mesh = self.mesh(phase)
+            starts = np.concatenate([[0.0], np.cumsum(mesh)[:-1]])
             for k in range(d.intervals):
                 for j in range(1, DEGREE + 1):
-                    time = begin + (k + self.tau[j]) / d.intervals * (end - begin)
+                    time = begin + (starts[k] + self.tau[j] * mesh[k]) * (end - begin)
                     for name in self._states(phase):
                         values.append(float(np.interp(time, t, columns[name])))
         return np.array(values) / scales
+
+
+def initial_states(block: StartUpBlock, case, formulation, design: dict[str, float], scales: np.ndarray) -> np.ndarray:
+    """The internal variables (scaled) of the start design's simulated start: a start point on the dynamics."""
+    from clutchopt.simulate.design import start_up_model
+    from clutchopt.simulate.engine import simulate
+
+    model = start_up_model(case, formulation.mode, design, rtol=1e-6)
+    model.end_time = 3.0 * case.values["max_start_time"]  # a start design that does not lock up: ramps to there
+    result = simulate(model)
+    return block.guess(result.history, result.headline, model.law.engagement_squared,
+                       case.values["max_start_time"], scales)
+
+
+UNITS = {"start_time": "s", "friction_work": "J", "temperature_rise": "K", "engagement_speed": "rad/s",
+         "lock_up_speed": "rad/s", "engagement_time": "s", "lock_up_time": "s"}
+
+
+def start_up_report(block: StartUpBlock, case, formulation, design: dict[str, float], params, figures):
+    """The NLP's start beside the independent simulator's (solve_ivp with events, float64) at the design, and the
+    start-up constraints re-checked with the simulated figures: (summary in SI, constraint checks)."""
+    from clutchopt.optimise.verify import check_constraints
+    from clutchopt.simulate.design import start_up_model
+    from clutchopt.simulate.engine import simulate
+
+    values, *columns = figures
+    nlp = dict(zip(block.outputs(), np.array(values).ravel()))
+    trajectory = {name: np.array(column).ravel() for name, column in zip(block.trajectory(), columns)}
+    result = simulate(start_up_model(case, formulation.mode, design))
+    head = result.headline
+    s = block.s
+    simulated = SimpleNamespace(start_time=head["start_time"], friction_work=head["friction_work"],
+                                temperatures=head.get("temperature_rise", 0.0), lock_up_speed=head["lock_up_speed"])
+    drive = Drive(s, formulation.speed_law, namespace(design), params)
+    checks = check_constraints(named_constraints(s, drive, simulated), s.spec.tolerance)
+    engaged = float(nlp.get("run_up_time", 0.0))
+    summary = {
+        "start_time": float(nlp["start_time"]),
+        "start_time_simulated": head["start_time"],
+        "friction_work": float(nlp["friction_work"]),
+        "friction_work_simulated": head["friction_work"],
+        "temperature_rise": float(trajectory["temperature_rise"].max()) if s.heat else None,
+        "temperature_rise_simulated": head.get("temperature_rise"),
+        "engagement_speed": float(nlp["engagement_speed"]),
+        "engagement_time": engaged,
+        "lock_up_time": float(nlp["start_time"]) - engaged,
+        "lock_up_speed": float(nlp["lock_up_speed"]),
+        "lock_up_speed_simulated": head["lock_up_speed"],
+        "intervals": s.intervals,
+        "phases": list(s.phases),
+        "effects": list(s.spec.effects),
+        "tolerance": s.spec.tolerance,
+        "locks_up": head["locks_up"],
+        "reason": head["reason"],
+        "discretisation_error": {name: _relative(float(nlp[name]), head[name])
+                                 for name in ("start_time", "friction_work", "lock_up_speed")},
+        "units": UNITS,
+        "trajectory": {name: column.tolist() for name, column in trajectory.items()},
+    }
+    return summary, checks
+
+
+def _relative(nlp: float, simulated: float) -> float:
+    """(NLP - simulated) / |simulated|: the collocation's error against the simulator (its own error ~1e-10)."""
+    if not math.isfinite(simulated) or simulated == 0:
+        return math.nan
+    return (nlp - simulated) / abs(simulated)
+
+
+def tightened_limits(solution, nlp_case) -> dict[str, float]:
+    """Limits for the next solve where the simulated start misses the case's limit: each moved in from the one the
+    NLP last saw by what the simulation exceeds the case's limit, and half the tolerance more."""
+    summary, tolerance = solution.start_up, solution.start_up["tolerance"]
+    limits = {}
+    for check in solution.constraints:
+        name = LIMIT_OF.get(check.name)
+        if name is None or check.feasible or check.sense != "<=" or not math.isfinite(check.value):
+            continue
+        excess = check.value - check.limit
+        limits[name] = nlp_case.values[name] - excess - 0.5 * tolerance * abs(check.limit)
+        if not limits[name] > 0 or summary["locks_up"] is False:
+            return {}
+    return limits

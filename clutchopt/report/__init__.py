@@ -16,8 +16,8 @@ import pandas as pd
 
 from clutchopt.cases import Case, quantity_table
 from clutchopt.formulations import get_coupling
-from clutchopt.optimise.problem import Solution
-from clutchopt.output import _shown, comparison_rows, constraint_rows, derived_rows, design_rows, sensitivity_rows
+from clutchopt.optimise.problem import Solution, case_formulation
+from clutchopt.output import _shown, comparison_rows, html_table, constraint_rows, derived_rows, design_rows, sensitivity_rows
 from clutchopt.report.sketch import sketch
 from clutchopt.store import versions
 
@@ -34,12 +34,7 @@ td.n{text-align:right;font-variant-numeric:tabular-nums}th{background:#f2f4f6}
 
 
 def _table(rows: list[dict], numeric: tuple[str, ...] = ()) -> str:
-    if not rows:
-        return '<p class="note">(none)</p>'
-    head = "".join(f"<th>{escape(str(c))}</th>" for c in rows[0])
-    body = "".join("<tr>" + "".join(f'<td{" class=n" if c in numeric else ""}>{v if c == "margin bar" else escape(str(v))}</td>'
-                                    for c, v in row.items()) + "</tr>" for row in rows)
-    return f"<table><tr>{head}</tr>{body}</table>"
+    return html_table(rows, numeric, markup=("margin bar",))
 
 
 def figure_svg(figure) -> str:
@@ -56,11 +51,10 @@ def _section(title: str, body: str, anchor: str) -> str:
 
 def requirements(case: Case) -> str:
     """The case's inputs; those the material library filled name their entry."""
-    coupling = get_coupling(case.coupling)
-    names = {q.key: q.name for q in coupling.quantities}
+    names = {q.key: q.name for q in case.quantities}
     rows = [{"key": r["key"], "symbol": r["symbol"], "value": r["value"],
              "from the library": " = ".join(case.filled.get(names[r["key"]], ())), "description": r["description"]}
-            for r in quantity_table(coupling.quantities, case.values)]
+            for r in quantity_table(case.quantities, case.values)]
     return _table(rows, ("value",))
 
 
@@ -158,8 +152,7 @@ def sweep_plot(frame: pd.DataFrame) -> str:
 
 def build_report(case: Case, solution: Solution, sweep: pd.DataFrame | None = None) -> str:
     """The HTML page for a case and its solution (and a sweep table, if given)."""
-    coupling = get_coupling(case.coupling)
-    formulation = coupling.formulation(solution.mode)
+    formulation = case_formulation(case, solution.mode)
     ok = solution.status == "optimal"
     header = (f"<h1>Design review: {escape(case.title or case.path)}</h1>"
               f'<p>{escape(formulation.title)}. Case <code>{escape(case.path)}</code>. '
