@@ -253,13 +253,16 @@ def comparison_html(table: ComparisonTable) -> str:
 
 def materials_text(kind: str, title: str) -> str:
     """One table of the material library: values in display units, a legend, then each entry's source."""
+    from textwrap import wrap
+
     from clutchopt.materials import FIELDS, library, rows
 
     fields = FIELDS[kind]
     headers = {q.name: f"{q.symbol or q.name} [{q.unit}]" if q.unit else q.symbol or q.name for q in fields}
     frame = pd.DataFrame(rows(kind)).rename(columns=headers)
     table = frame.to_string(index=False, float_format=lambda v: f"{v:.4g}", na_rep="-")
-    legend = "; ".join(f"{q.symbol or q.name}: {q.description}" for q in fields)
-    sources = [f"  {e.name}: {e.description}. Source: {e.source}" + (f". Note: {e.notes}" if e.notes else "")
-               for e in library()[kind].values()]
-    return "\n".join([f"{title} (clutchopt/data/materials.toml)", table, "", legend, "", *sources])
+    legend = wrap("; ".join(f"{q.symbol or q.name}: {q.description}" for q in fields), 116)
+    sources = [line for e in library()[kind].values() for line in wrap(
+        f"{e.name}: {e.description}. Source: {e.source}" + (f". Note: {e.notes}" if e.notes else ""), 116,
+        initial_indent="  ", subsequent_indent="      ")]
+    return "\n".join([f"{title} (clutchopt/data/materials.toml)", table, "", *legend, "", *sources])
