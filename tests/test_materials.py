@@ -172,3 +172,11 @@ def test_a_build_ships_the_library(tmp_path):
     assert result.returncode == 0, result.stderr[-2000:]
     assert (built / "clutchopt" / "data" / "materials.toml").is_file()
     assert (built / "clutchopt" / "data" / "starting_values.toml").is_file()
+
+
+def test_commands_that_solve_one_choice_say_which(tmp_path):
+    path = tmp_path / "choose.toml"
+    path.write_text(case_template("cable").replace("# choose = ", "choose = "))
+    text = run("compare", path)
+    assert text.startswith("options.choose: this command takes the first choice (thread_pair = "
+                           "steel_bronze_greased); clutchopt solve compares them all\n")

@@ -2,7 +2,13 @@
 
 from __future__ import annotations
 
-from clutchopt.cli.options import add_case_argument, add_json_option, add_tolerance_option, add_parser
+from clutchopt.cli.options import (
+    add_case_argument,
+    add_json_option,
+    add_parser,
+    add_tolerance_option,
+    first_choice_note,
+)
 
 
 def add_command(commands) -> None:
@@ -26,4 +32,6 @@ def run(args) -> str:
 
     case = load_case(args.case)
     table = compare_case(case, SolverOptions(tol=args.tol))
-    return to_json({"case": case.path, "title": case.title, **table.as_dict()}) if args.json else comparison_text(table)
+    if args.json:
+        return to_json({"case": case.path, "title": case.title, **table.as_dict()})
+    return "\n".join(filter(None, [first_choice_note(case), comparison_text(table)]))

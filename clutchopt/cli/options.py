@@ -76,6 +76,15 @@ def add_store_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--no-store", action="store_true", help="do not record this run")
 
 
+def first_choice_note(case) -> str:
+    """For commands that solve one variant of a case with ``options.choose``: which one, said in a line."""
+    choose = case.options.get("choose")
+    if not choose:
+        return ""
+    first = ", ".join(f"{key} = {names[0]}" for key, names in choose.items())
+    return f"options.choose: this command takes the first choice ({first}); clutchopt solve compares them all"
+
+
 def open_store(args):
     """The run store the arguments ask for, or None with ``--no-store``."""
     from clutchopt.store import RunStore

@@ -6,11 +6,12 @@ import math
 from dataclasses import replace
 
 from clutchopt.cli.options import (
-    add_parser,
     add_case_argument,
     add_json_option,
+    add_parser,
     add_problem_options,
     add_store_options,
+    first_choice_note,
     open_store,
 )
 from clutchopt.errors import InputError
@@ -67,6 +68,7 @@ def run(args) -> str:
                 for cap, solution in zip(front.caps, front.solutions)]
         return to_json({"case": case.path, "mode": front.mode, "note": front.note, "rows": rows})
     lines = [f"Pareto front, mass against cost (epsilon-constraint) - {case.title or case.path}, {front.mode} mode"]
+    lines += [first_choice_note(case)] if case.options.get("choose") else []
     if front.note:
         lines.append(front.note)
     lines += ["", front.frame.to_string(index=False, float_format=lambda v: f"{v:.6g}", na_rep="-")]

@@ -2,7 +2,14 @@
 
 from __future__ import annotations
 
-from clutchopt.cli.options import add_case_argument, add_problem_options, add_store_options, record_solve, add_parser
+from clutchopt.cli.options import (
+    add_case_argument,
+    add_parser,
+    add_problem_options,
+    add_store_options,
+    first_choice_note,
+    record_solve,
+)
 from clutchopt.errors import InputError
 
 
@@ -38,5 +45,6 @@ def run(args) -> str:
             handle.write(page)
     except OSError as exc:
         raise InputError("--out", f"cannot write {args.out!r} ({exc.strerror})") from None
-    return f"design review of {case.path} ({solution.status}, {solution.objective_name} " \
+    note = first_choice_note(case)
+    return (note + "\n" if note else "") + f"design review of {case.path} ({solution.status}, {solution.objective_name} " \
            f"{solution.objective:.6g} {solution.objective_unit}) written to {args.out}"

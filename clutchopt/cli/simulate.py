@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from clutchopt.cli.options import add_json_option, add_store_options, record_simulation, add_parser
+from clutchopt.cli.options import add_json_option, add_parser, add_store_options, record_simulation
 from clutchopt.errors import InputError
 
 _LINES = (

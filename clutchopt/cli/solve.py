@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from clutchopt.cli.options import add_case_argument, add_json_option, add_problem_options, add_store_options, add_parser
+from clutchopt.cli.options import add_case_argument, add_json_option, add_parser, add_problem_options, add_store_options
 
 
 def add_command(commands) -> None:

@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 from clutchopt.cli.options import (
-    add_parser,
     add_case_argument,
     add_json_option,
+    add_parser,
     add_problem_options,
     add_store_options,
+    first_choice_note,
     open_store,
 )
 from clutchopt.errors import InputError
@@ -75,7 +76,8 @@ def run(args) -> str:
         return to_json({"case": case.path, "mode": sweep.formulation.mode, "objective": sweep.objective.name,
                         "sweep_id": result.sweep_id, "points": [{"point": i, "values": values, **solution}
                         for i, (values, solution) in enumerate(zip(sweep.points, result.solutions))]})
-    text = sweep_text(sweep, result, store.path if store else None, args.out)
+    text = "\n".join(filter(None, [first_choice_note(case),
+                                    sweep_text(sweep, result, store.path if store else None, args.out)]))
     if args.resume and not result.reused:
         text += "\n(nothing resumed: no stored points of an identical sweep)"
     return text
