@@ -34,7 +34,7 @@ def case_template(coupling_name: str, mode: str | None = None) -> str:
     entries = {role.key: materials.lookup(role, name, f"starting values: {role.key}")
                for role in coupling.materials if (name := start.get("library", {}).get(role.key))}
     lines = _header(coupling, formulation, mode) + [f'coupling = "{coupling.name}"', f'title = "{start["title"]}"', ""]
-    lines += _library_section(coupling, entries)
+    lines += _library_section(coupling, entries, start.get("unset", {}))
     filled = {quantity: (role, entries[role.key]) for role in coupling.materials if role.key in entries
               for field, quantity in role.fills.items() if field in entries[role.key].values}
     sections = list(dict.fromkeys(q.section for q in coupling.quantities))
@@ -72,7 +72,7 @@ def _header(coupling: Coupling, formulation: Formulation, mode: str | None) -> l
     return lines + [""]
 
 
-def _library_section(coupling: Coupling, entries: dict) -> list[str]:
+def _library_section(coupling: Coupling, entries: dict, unset: dict) -> list[str]:
     if not coupling.materials:
         return []
     lines = ["[library]"]
@@ -82,7 +82,7 @@ def _library_section(coupling: Coupling, entries: dict) -> list[str]:
                           f"{known}.")
         entry = entries.get(role.key)
         if entry is None:
-            lines.append(f'# {role.key} = "{next(iter(materials.library()[role.kind]))}"')
+            lines.append(f'# {role.key} = "{unset.get(role.key, next(iter(materials.library()[role.kind])))}"')
             continue
         lines += _comment(f"{entry.name}: {entry.description} ({entry.source}).")
         lines.append(f'{role.key} = "{entry.name}"')
