@@ -157,6 +157,7 @@ def parse_case(data: dict, path: str = "") -> Case:
     case = Case(coupling.name, str(data.get("title", "")), values, bounds, tuple(free),
                 {**options, **({"choose": choose} if choose else {})}, path, start_up, filled)
     coupling.check_case(case)
+    materials.variants(case, coupling)  # every choice of options.choose is checked here, before any solve
     return case
 
 

@@ -136,6 +136,12 @@ def _example(roles: tuple[MaterialRole, ...], list_only: bool = False) -> str:
     return listed if list_only else f"{role.key} = [{listed}]"
 
 
+def _named(roles: tuple[MaterialRole, ...]) -> str:
+    """``friction_pair = "organic_dry"``: how a case names an entry for the coupling's last role."""
+    role = roles[-1] if roles else MaterialRole("material", "materials", "", {})
+    return f'{role.key} = "{next(iter(library()[role.kind]))}"'
+
+
 def fill(table: object, roles: tuple[MaterialRole, ...], quantities: tuple[Quantity, ...],
          values: dict[str, float], choose: dict[str, tuple[str, ...]]) -> dict[str, tuple[str, str]]:
     """Fill ``values`` (SI, by quantity name) from the entries the case's ``[library]`` names; explicit values
@@ -143,8 +149,7 @@ def fill(table: object, roles: tuple[MaterialRole, ...], quantities: tuple[Quant
     was filled: quantity name -> (role key, entry name).
     """
     if not isinstance(table, dict):
-        raise InputError("library", f"must be a table of names, e.g. [library] {_example(roles).split('[')[0]}"
-                                    f"{_example(roles, list_only=True).split(',')[0]}")
+        raise InputError("library", f"must be a table of names, e.g. [library] {_named(roles)}")
     keys = [role.key for role in roles]
     for key in table:
         if key not in keys:
@@ -171,13 +176,15 @@ def hint(roles: tuple[MaterialRole, ...], quantity: str) -> str:
     return f"; or name a {' or '.join(keys)} (clutchopt materials)" if keys else ""
 
 
-def variants(case, roles: tuple[MaterialRole, ...]) -> list[tuple[dict[str, str], object]]:
+def variants(case, coupling) -> list[tuple[dict[str, str], object]]:
     """Every combination of ``options.choose`` as (choice, case): the chosen entries fill what the library
-    filled in the case; explicit values stay. Without ``options.choose``: the case itself, no choice."""
+    filled in the case (explicit values stay), checked as the case was. Without ``options.choose``: the case
+    itself, no choice."""
     choose = case.options.get("choose") or {}
     if not choose:
         return [({}, case)]
-    by_key = {role.key: role for role in roles}
+    by_key = {role.key: role for role in coupling.materials}
+    declared = {q.name: q for q in coupling.quantities}
     result = []
     for names in itertools.product(*choose.values()):
         choice = dict(zip(choose, names))
@@ -185,10 +192,18 @@ def variants(case, roles: tuple[MaterialRole, ...]) -> list[tuple[dict[str, str]
         for key, name in choice.items():
             role, entry = by_key[key], lookup(by_key[key], name)
             for library_field, quantity in role.fills.items():
-                if filled.get(quantity, (None,))[0] == key:
-                    if library_field in entry.values:
-                        values[quantity], filled[quantity] = entry.values[library_field], (key, name)
-        result.append((choice, replace(case, values=values, filled=filled)))
+                if filled.get(quantity, (None,))[0] != key:
+                    continue  # given by the case itself
+                if library_field not in entry.values:
+                    raise InputError(f"options.choose.{key}", f"{name} has no {library_field}, which "
+                                                              f"{declared[quantity].key} takes from the library; "
+                                                              "give that field in the case")
+                values[quantity] = declared[quantity].check(entry.values[library_field],
+                                                            f"{key} = {name}: {library_field}")
+                filled[quantity] = (key, name)
+        variant = replace(case, values=values, filled=filled)
+        coupling.check_case(variant)
+        result.append((choice, variant))
     return result
 
 
@@ -215,7 +230,7 @@ def solve_choices(case, mode: str | None = None, objective: str | None = None, o
 
     options = options or SolverOptions()
     solved = [(choice, variant, solve_case(variant, mode, objective, options))
-              for choice, variant in variants(case, get_coupling(case.coupling).materials)]
+              for choice, variant in variants(case, get_coupling(case.coupling))]
     return sorted(solved, key=lambda item: (item[2].status != "optimal",
                                             item[2].objective if item[2].status == "optimal" else 0.0))
 

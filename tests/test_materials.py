@@ -103,6 +103,18 @@ def test_bad_library_names_are_refused_naming_the_field(changes, message):
     assert message in str(error.value)
 
 
+def test_every_choice_is_checked_when_the_case_is_read():
+    """The pin's shear allowable comes from the library here; hardened 100Cr6 has none (contact only)."""
+    data = lever(options={"choose": {"material": ["C45_QT", "100Cr6_hardened"]}})
+    del data["material"]["allowable_pin_shear"]
+    with pytest.raises(InputError, match=r"options\.choose\.material: 100Cr6_hardened has no allowable_shear, "
+                                         r"which material\.allowable_pin_shear takes from the library"):
+        parse_case(data)
+    with pytest.raises(InputError, match=r'library: must be a table of names, e\.g\. \[library\] friction_pair = '
+                                         r'"organic_dry"'):
+        parse_case({**LEVER, "library": 5})
+
+
 def test_a_missing_field_the_library_could_fill_says_so():
     data = lever()
     del data["material"]["friction_coefficient"]
