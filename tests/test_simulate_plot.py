@@ -23,3 +23,15 @@ def test_simulate_plot_says_where_it_wrote(cli, tmp_path):
     result = cli("simulate", "cases/scenes/paper_transient.toml", "--plot", str(png), "--no-store")
     assert result.returncode == 0, result.stderr
     assert result.stdout.endswith(f"figure written to {png}\n") and png.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_the_nlp_start_is_marked_in_rpm_beside_the_simulated_one():
+    """A solution's start-up summary (trajectory in rad/s at the collocation points) is drawn in rpm: 100 pi rad/s
+    is 3000 rpm."""
+    result = run_scene(load_scene(CASES / "scenes" / "paper_transient.toml"))
+    nlp = {"trajectory": {"t": [0.0, 1.0], "w_driver": [100 * np.pi, 100 * np.pi], "w_driven": [0.0, 50 * np.pi]}}
+    top = history_figure(result, nlp=nlp).axes[0]
+    marked = {line.get_label(): line for line in top.get_lines()}
+    driver = marked["NLP, driving (collocation points)"]
+    assert np.allclose(driver.get_ydata(), 3000.0) and driver.get_linestyle() == "None"
+    assert np.allclose(marked["NLP, driven (collocation points)"].get_ydata(), [0.0, 1500.0])

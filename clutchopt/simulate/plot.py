@@ -13,13 +13,19 @@ from matplotlib.figure import Figure  # noqa: E402
 RPM = 30.0 / math.pi  # rpm per rad/s
 
 
-def history_figure(result, title: str = "") -> Figure:
+def history_figure(result, title: str = "", nlp: dict | None = None) -> Figure:
+    """``nlp``: a solution's start-up summary; its collocation points are marked beside the simulated speeds."""
     h, head = result.history, result.headline
     fig = Figure(figsize=(7.5, 6.0), layout="constrained")
     top, bottom = fig.subplots(2, 1, sharex=True)
     top.plot(h["t"], h["w_driver"] * RPM, label="driving half")
     top.plot(h["t"], h["w_driven"] * RPM, label="driven half")
     top.plot(h["t"], h["slip"] * RPM, ":", label="slip")
+    if nlp and nlp.get("trajectory"):
+        points = nlp["trajectory"]
+        for name, marker in (("w_driver", "x"), ("w_driven", "+")):
+            top.plot(points["t"], [w * RPM for w in points[name]], marker, color="k", ms=4, ls="none",
+                     label=f"NLP, {'driving' if name == 'w_driver' else 'driven'} (collocation points)")
     top.set_ylabel("speed, rpm")
     top.legend(loc="best")
     lines = bottom.plot(h["t"], h["friction_torque"], color="C3", label="clutch torque")
