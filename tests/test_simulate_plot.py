@@ -32,6 +32,6 @@ def test_the_nlp_start_is_marked_in_rpm_beside_the_simulated_one():
     nlp = {"trajectory": {"t": [0.0, 1.0], "w_driver": [100 * np.pi, 100 * np.pi], "w_driven": [0.0, 50 * np.pi]}}
     top = history_figure(result, nlp=nlp).axes[0]
     marked = {line.get_label(): line for line in top.get_lines()}
-    driver = marked["NLP, driving (collocation points)"]
+    driver = marked["NLP nodes, driving"]
     assert np.allclose(driver.get_ydata(), 3000.0) and driver.get_linestyle() == "None"
-    assert np.allclose(marked["NLP, driven (collocation points)"].get_ydata(), [0.0, 1500.0])
+    assert np.allclose(marked["NLP nodes, driven"].get_ydata(), [0.0, 1500.0])

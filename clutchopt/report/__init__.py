@@ -17,7 +17,16 @@ import pandas as pd
 from clutchopt.cases import Case, quantity_table
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.problem import Solution, case_formulation
-from clutchopt.output import _shown, comparison_rows, html_table, constraint_rows, derived_rows, design_rows, sensitivity_rows
+from clutchopt.output import (
+    START_UP_ROWS,
+    _shown,
+    comparison_rows,
+    constraint_rows,
+    derived_rows,
+    design_rows,
+    html_table,
+    sensitivity_rows,
+)
 from clutchopt.report.sketch import sketch
 from clutchopt.store import versions
 
@@ -116,7 +125,15 @@ def simulation(case: Case, solution: Solution) -> str:
     figure, caption = report_figure(case, solution)
     if figure is None:
         return f'<p class="note">{escape(caption)}</p>'
-    return f"<figure>{figure_svg(figure)}<figcaption>{escape(caption)}</figcaption></figure>"
+    table = ""
+    if solution.start_up is not None:
+        start = solution.start_up
+        rows = [{"figure": name, "NLP": _shown(start.get(name), unit), "simulated": _shown(start.get(f"{name}_simulated"), unit),
+                 "unit": unit, "meaning": meaning} for name, unit, meaning in START_UP_ROWS if start.get(name) is not None]
+        table = (f'<p class="note">The start designed inside the NLP (Radau collocation, {start["intervals"]} intervals '
+                 f'per phase: {", ".join(start["phases"])}; points in the figure) beside the independent simulator '
+                 "(lines).</p>" + _table(rows, ("NLP", "simulated")))
+    return f"{table}<figure>{figure_svg(figure)}<figcaption>{escape(caption)}</figcaption></figure>"
 
 
 def sweep_plot(frame: pd.DataFrame) -> str:
