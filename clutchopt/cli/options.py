@@ -101,7 +101,8 @@ def record_solve(args, case, solution, check: dict | None = None) -> None:
             if check is not None:
                 store.record("simulation", {"values": case.values, "design": solution.design}, check,
                              status="verified" if check.get("verified") else "not verified",
-                             objective=check.get("simulated_acceleration_time"), case_path=case.path,
+                             objective=check.get("simulated_acceleration_time", check.get("simulated_start_time")),
+                             case_path=case.path,
                              title=case.title, coupling=case.coupling, mode=solution.mode,
                              objective_name="acceleration_time")
 
