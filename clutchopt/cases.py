@@ -12,6 +12,10 @@ Layout of a case::
     free = ["flank_angle"]          # variables fixed at the case value unless listed here
     objective = "mass"
 
+    [library]                       # optional: entries of the material library (clutchopt materials)
+    material = "C45_QT"             # fills the fields it maps to, unless the case gives them
+    friction_pair = "organic_dry"
+
 Every problem raises :class:`~clutchopt.errors.InputError` naming the field (``duty.inertia``).
 """
 
@@ -24,6 +28,7 @@ from pathlib import Path
 from types import SimpleNamespace
 from typing import Any
 
+from clutchopt import materials
 from clutchopt.errors import InputError
 from clutchopt.formulations.start_up import QUANTITIES as START_UP_QUANTITIES
 from clutchopt.formulations.start_up import SPRING_PRELOAD, StartUpSpec
@@ -31,7 +36,8 @@ from clutchopt.model import REQUIRED, Quantity
 from clutchopt.units import to_si
 
 _TOP_LEVEL = {"coupling", "title", "description"}
-_OPTION_KEYS = {"free", "objective", "mode"}
+_OPTION_KEYS = {"free", "objective", "mode", "choose"}
+_EXTRA_SECTIONS = ("bounds", "options", "library", "start_up")
 
 
 @dataclass(frozen=True)
@@ -46,6 +52,7 @@ class Case:
     options: dict[str, Any] = field(default_factory=dict)
     path: str = ""
     start_up: StartUpSpec | None = None  # the drive of a [start_up] section
+    filled: dict[str, tuple[str, str]] = field(default_factory=dict)  # from the library: name -> (role, entry)
 
     @property
     def quantities(self) -> tuple[Quantity, ...]:
@@ -101,11 +108,11 @@ def parse_case(data: dict, path: str = "") -> Case:
 
     values: dict[str, float] = {}
     for key, table in data.items():
-        if key in _TOP_LEVEL or key in ("bounds", "options", "start_up"):
+        if key in _TOP_LEVEL or key in _EXTRA_SECTIONS:
             continue
         if key not in sections or not isinstance(table, dict):
             raise InputError(key, f"unknown section or key; this {coupling.name} case may have "
-                                  f"{', '.join(sorted(sections | {'bounds', 'options', 'start_up'}))}")
+                                  f"{', '.join(sorted(sections | set(_EXTRA_SECTIONS)))}")
         for name, raw in table.items():
             quantity = declared.get(f"{key}.{name}")
             if quantity is None:
@@ -113,11 +120,17 @@ def parse_case(data: dict, path: str = "") -> Case:
                                                   f"{', '.join(q.name for q in coupling.quantities if q.section == key)}")
             values[quantity.name] = quantity.check(to_si(quantity.key, raw, quantity.unit))
 
+    options = data.get("options", {})
+    choose = (materials.check_choose(options["choose"], coupling.materials)
+              if isinstance(options, dict) and "choose" in options else {})
+    filled = materials.fill(data.get("library", {}), coupling.materials, coupling.quantities, values,
+                            choose)
     for quantity in coupling.quantities:
         if quantity.name in values:
             continue
         if quantity.default is REQUIRED:
-            raise InputError(quantity.key, f"missing ({quantity.description}, in {quantity.unit or 'SI'})")
+            raise InputError(quantity.key, f"missing ({quantity.description}, in {quantity.unit or 'SI'})"
+                                           + materials.hint(coupling.materials, quantity.name))
         if quantity.default is not None:
             values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
 
@@ -128,7 +141,6 @@ def parse_case(data: dict, path: str = "") -> Case:
         start_values, start_up = parse_start_up(data["start_up"], coupling, values)
         values.update(start_values)
     bounds = _parse_bounds(data.get("bounds", {}), coupling, start_up is not None)
-    options = data.get("options", {})
     if not isinstance(options, dict):
         raise InputError("options", "must be a table")
     for name in options:
@@ -142,8 +154,10 @@ def parse_case(data: dict, path: str = "") -> Case:
         if name in options and not isinstance(options[name], str):
             raise InputError(f"options.{name}", f"must be text, got {options[name]!r}")
 
-    case = Case(coupling.name, str(data.get("title", "")), values, bounds, tuple(free), dict(options), path, start_up)
+    case = Case(coupling.name, str(data.get("title", "")), values, bounds, tuple(free),
+                {**options, **({"choose": choose} if choose else {})}, path, start_up, filled)
     coupling.check_case(case)
+    materials.variants(case, coupling)  # every choice of options.choose is checked here, before any solve
     return case
 
 

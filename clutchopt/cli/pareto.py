@@ -8,20 +8,29 @@ from dataclasses import replace
 from clutchopt.cli.options import (
     add_case_argument,
     add_json_option,
+    add_parser,
     add_problem_options,
     add_store_options,
+    first_choice_note,
     open_store,
 )
 from clutchopt.errors import InputError
 
 
 def add_command(commands) -> None:
-    pareto = commands.add_parser("pareto", help="mass against cost: the Pareto front by epsilon-constraint")
+    pareto = add_parser(
+        commands, "pareto", "trade mass against cost: the designs between the lightest and the cheapest",
+        "The front is traced by epsilon-constraint: the mass is minimised under a cap on the cost, the cap\n"
+        "stepped from the lightest design's cost down to the cheapest design's.",
+        ("clutchopt pareto cases/wedge_centrifuge.toml --mode geometry --points 5",
+         "clutchopt pareto cases/lever_centrifuge.toml --mode design --plot front.png --out front.csv"))
     add_case_argument(pareto)
     add_problem_options(pareto, objective=False)  # mass and cost are the front's two ends
-    pareto.add_argument("--points", type=int, default=9, help="points on the front, both ends included (default 9)")
-    pareto.add_argument("--plot", metavar="FILE", help="write the front as a figure (.png, .svg, .pdf)")
-    pareto.add_argument("--out", metavar="FILE", help="write the table: .csv, .parquet or .md")
+    pareto.add_argument("--points", type=int, default=9,
+                        help="designs on the front, the lightest and the cheapest included (default 9)")
+    pareto.add_argument("--plot", metavar="FILE",
+                        help="also draw the front, mass against cost, into FILE (.png, .svg, .pdf)")
+    pareto.add_argument("--out", metavar="FILE", help="also write the table: .csv, .parquet or .md")
     add_json_option(pareto)
     add_store_options(pareto)
     pareto.set_defaults(run=run)
@@ -59,6 +68,7 @@ def run(args) -> str:
                 for cap, solution in zip(front.caps, front.solutions)]
         return to_json({"case": case.path, "mode": front.mode, "note": front.note, "rows": rows})
     lines = [f"Pareto front, mass against cost (epsilon-constraint) - {case.title or case.path}, {front.mode} mode"]
+    lines += [first_choice_note(case)] if case.options.get("choose") else []
     if front.note:
         lines.append(front.note)
     lines += ["", front.frame.to_string(index=False, float_format=lambda v: f"{v:.6g}", na_rep="-")]

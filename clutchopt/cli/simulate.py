@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from clutchopt.cli.options import add_json_option, add_store_options, record_simulation
+from clutchopt.cli.options import add_json_option, add_parser, add_store_options, record_simulation
 from clutchopt.errors import InputError
 
 _LINES = (
@@ -19,10 +19,17 @@ _LINES = (
 
 
 def add_command(commands) -> None:
-    parser = commands.add_parser("simulate", help="simulate a scene's start-up (effects, lock-up, headline figures)")
-    parser.add_argument("scene", help="scene file (TOML, e.g. cases/scenes/paper_transient.toml)")
+    parser = add_parser(
+        commands, "simulate", "simulate a start-up: speeds, clutch torque, lock-up time and friction work",
+        "A scene (TOML) names the clutch (a design or a friction law), the driven machine and the effects to\n"
+        "include (motor curve, springs, gravity, fan load, ...); docs/simulate.md describes them. Where the\n"
+        "paper's transient has a closed form, the headline figures are printed beside it.",
+        ("clutchopt simulate cases/scenes/paper_transient.toml",
+         "clutchopt simulate cases/scenes/wedge_motor_springs.toml --plot startup.png"))
+    parser.add_argument("scene", help="the scene file (TOML, e.g. cases/scenes/paper_transient.toml)")
     add_json_option(parser)
-    parser.add_argument("--plot", metavar="PNG", help="write the time histories as a PNG")
+    parser.add_argument("--plot", metavar="PNG",
+                        help="also draw speeds (rpm), clutch torque and slip power over time into PNG")
     add_store_options(parser)
     parser.set_defaults(run=run)
 
@@ -44,7 +51,7 @@ def run(args) -> str:
     if args.json:
         return to_json({"scene": scene.path, "title": scene.title, **result.as_dict(),
                         **({"analytic": analytic} if analytic else {})})
-    return _text(scene, result, analytic)
+    return _text(scene, result, analytic) + (f"\nfigure written to {args.plot}" if args.plot else "")
 
 
 def _write_plot(result, title: str, path: str) -> None:

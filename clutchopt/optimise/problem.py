@@ -156,6 +156,12 @@ class Solution:
     internal: np.ndarray | None = field(default=None, repr=False)  # scaled start-up states of the kept solve
     mesh: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False)  # start-up mesh: used, suggested
 
+    def _repr_html_(self) -> str:
+        """Jupyter shows a solution as the tables of ``clutchopt solve``."""
+        from clutchopt.output import solution_html
+
+        return solution_html(self)
+
     def at_bound(self, name: str) -> str:
         """"fixed", "lower", "upper" (within 1e-7 relative) or "" for a design variable."""
         lo, hi = self.bounds[name]
