@@ -258,6 +258,8 @@ def materials_text(kind: str, title: str) -> str:
     """One table of the material library: values in display units, a legend, then each entry's source."""
     from textwrap import wrap
 
+    import pandas as pd
+
     from clutchopt.materials import FIELDS, library, rows
 
     fields = FIELDS[kind]
