@@ -250,8 +250,7 @@ class Problem:
                                                   *[ca.vertcat(*column) for column in self.start_up.trajectory().values()]])
             self._internal_scale = ca.Function("internal_scale", [p_case], [ca.vertcat(*self.start_up.scales)])
         self._elastic = None
-        self._warm_solver = None
-        self._sqp_solver = None
+        self._solvers = {"ipopt": self._solver}
 
     @property
     def nlp(self) -> dict:
@@ -548,7 +547,7 @@ class Problem:
 
     def _run(self, data: ScaledData, lbx, ubx, x0, seed: dict | None, method: str = "ipopt") -> dict:
         """One solve, its design checked in float64 (``design``, ``checks``, ``value``, ``feasible``)."""
-        solver = {"ipopt": lambda: self._solver, "warm": self._warm, "sqp": self._sqp}[method]()
+        solver = self._solver_for(method)
         args = {"x0": x0, "p": data.p, "lbx": lbx, "ubx": ubx, "lbg": self._lbg, "ubg": 0.0}
         if seed is not None:
             args.update(lam_x0=seed["lam_x"], lam_g0=seed["lam_g"])
@@ -567,19 +566,15 @@ class Problem:
                 "feasible": all(c.feasible for c in checks),
                 "value": evaluate_objective(self.formulation, self.objective.name, design, params)}
 
-    def _warm(self):
-        if self._warm_solver is None:
+    def _solver_for(self, method: str):
+        """The solver of a method (``ipopt`` built with the problem; ``warm``, ``sqp`` on first use)."""
+        if method not in self._solvers:
             f = self.formulation
-            self._warm_solver = ca.nlpsol(f"{f.coupling}_{f.mode}_{self.objective.name}_warm", "ipopt", self._nlp,
-                                          self.options.ipopt_warm())
-        return self._warm_solver
-
-    def _sqp(self):
-        if self._sqp_solver is None:
-            f = self.formulation
-            self._sqp_solver = ca.nlpsol(f"{f.coupling}_{f.mode}_{self.objective.name}_sqp", "sqpmethod", self._nlp,
-                                         self.options.sqp())
-        return self._sqp_solver
+            plugin, options = {"warm": ("ipopt", self.options.ipopt_warm()),
+                               "sqp": ("sqpmethod", self.options.sqp())}[method]
+            self._solvers[method] = ca.nlpsol(f"{f.coupling}_{f.mode}_{self.objective.name}_{method}", plugin,
+                                              self._nlp, options)
+        return self._solvers[method]
 
     @property
     def _mesh_size(self) -> int:
