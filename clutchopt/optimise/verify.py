@@ -46,13 +46,18 @@ def check_constraints(constraints: list[Constraint], tolerance: float = FEASIBIL
     """Float64 constraints as checks; one that holds along a path (an array of values) reports its worst point."""
     checks = []
     for c in constraints:
-        values = np.atleast_1d(np.asarray(c.value, dtype=float))
         scale = float(c.limit if c.scale is None else c.scale)
-        margins = (c.limit - values) / scale if c.sense == "<=" else (values - c.limit) / scale
-        worst = int(np.nanargmin(margins)) if not np.isnan(margins).all() else 0
-        margin = float(margins[worst])
+        if isinstance(c.value, (int, float)):  # one value (most constraints): no array work, the same arithmetic
+            value = float(c.value)
+            margin = (c.limit - value) / scale if c.sense == "<=" else (value - c.limit) / scale
+        else:
+            values = np.atleast_1d(np.asarray(c.value, dtype=float))
+            margins = (c.limit - values) / scale if c.sense == "<=" else (values - c.limit) / scale
+            worst = int(np.nanargmin(margins)) if not np.isnan(margins).all() else 0
+            value, margin = float(values[worst]), float(margins[worst])
+        margin = float(margin)
         checks.append(ConstraintCheck(
-            name=c.name, equation=c.equation, sense=c.sense, value=float(values[worst]), limit=float(c.limit),
+            name=c.name, equation=c.equation, sense=c.sense, value=value, limit=float(c.limit),
             margin=margin, active=abs(margin) <= ACTIVE_TOL or margin < 0, feasible=margin >= -tolerance,
             unit=c.unit, description=c.description, scale=scale, tolerance=tolerance))
     return checks
