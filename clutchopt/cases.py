@@ -17,6 +17,7 @@ Every problem raises :class:`~clutchopt.errors.InputError` naming the field (``d
 
 from __future__ import annotations
 
+import difflib
 import math
 import tomllib
 from dataclasses import dataclass, field, replace
@@ -24,7 +25,8 @@ from pathlib import Path
 from types import SimpleNamespace
 from typing import Any
 
-from clutchopt.errors import InputError
+from clutchopt.errors import InputError, Problems
+from clutchopt.files import CASE_BYTES, read_text
 from clutchopt.model import REQUIRED, Quantity
 from clutchopt.units import to_si
 
@@ -65,17 +67,16 @@ class Case:
 
 
 def read_toml(path: str | Path) -> dict:
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InputError(str(path), "no such file") from None
-    except OSError as exc:
-        raise InputError(str(path), f"cannot read ({exc.strerror})") from None
+    """A TOML file (case or scene): a regular UTF-8 file of at most 1 MiB, parsed; problems name the path."""
+    text = read_text(path, CASE_BYTES)
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(str(path), f"not valid TOML: {exc}") from None
+    except ValueError as exc:  # an integer of more than 4300 digits
+        raise InputError(str(path), f"not valid TOML: {str(exc).split(';')[0]}") from None
+    except RecursionError:
+        raise InputError(str(path), "not valid TOML for clutchopt: arrays or tables nested too deeply") from None
 
 
 def load_case(path: str | Path) -> Case:
@@ -84,6 +85,7 @@ def load_case(path: str | Path) -> Case:
 
 
 def parse_case(data: dict, path: str = "") -> Case:
+    """Check every field of a case; all problems found are raised together (one InputError carrying them)."""
     from clutchopt.formulations import get_coupling
 
     if "coupling" not in data:
@@ -91,65 +93,107 @@ def parse_case(data: dict, path: str = "") -> Case:
     coupling = get_coupling(data["coupling"])
     declared = {q.key: q for q in coupling.quantities}
     sections = {q.section for q in coupling.quantities}
+    problems = Problems()
 
     values: dict[str, float] = {}
     for key, table in data.items():
         if key in _TOP_LEVEL or key in ("bounds", "options"):
             continue
-        if key not in sections or not isinstance(table, dict):
-            raise InputError(key, f"unknown section or key; this {coupling.name} case may have "
-                                  f"{', '.join(sorted(sections | {'bounds', 'options'}))}")
+        if key in sections and not isinstance(table, dict):
+            problems.errors.append(InputError(key, f"must be a table [{key}] of "
+                                   f"{', '.join(q.name for q in coupling.quantities if q.section == key)}"))
+            continue
+        if key not in sections:
+            problems.errors.append(InputError(key, f"unknown section or key{_did_you_mean(key, sections)}; this "
+                                   f"{coupling.name} case may have {', '.join(sorted(sections | {'bounds', 'options'}))}"))
+            continue
         for name, raw in table.items():
             quantity = declared.get(f"{key}.{name}")
-            if quantity is None:
-                raise InputError(f"{key}.{name}", f"unknown key; [{key}] takes "
-                                                  f"{', '.join(q.name for q in coupling.quantities if q.section == key)}")
-            values[quantity.name] = quantity.check(to_si(quantity.key, raw, quantity.unit))
+            with problems.field():
+                if quantity is None:
+                    known = [q.name for q in coupling.quantities if q.section == key]
+                    raise InputError(f"{key}.{name}", f"unknown key{_did_you_mean(name, known)}; [{key}] takes "
+                                                      f"{', '.join(known)}")
+                values[quantity.name] = quantity.check(to_si(quantity.key, raw, quantity.unit))
 
+    given = {q.name for q in coupling.quantities if q.name in _table(data.get(q.section))}
     for quantity in coupling.quantities:
-        if quantity.name in values:
+        if quantity.name in given:
             continue
-        if quantity.default is REQUIRED:
-            raise InputError(quantity.key, f"missing ({quantity.description}, in {quantity.unit or 'SI'})")
-        if quantity.default is not None:
-            values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
+        with problems.field():
+            if quantity.default is REQUIRED:
+                raise InputError(quantity.key, f"missing ({quantity.description}, in {quantity.unit or 'SI'})")
+            if quantity.default is not None:
+                values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
 
-    bounds = _parse_bounds(data.get("bounds", {}), coupling)
-    options = data.get("options", {})
-    if not isinstance(options, dict):
-        raise InputError("options", "must be a table")
-    for name in options:
-        if name not in _OPTION_KEYS:
-            raise InputError(f"options.{name}", f"unknown option; options are {', '.join(sorted(_OPTION_KEYS))}")
-    free = options.get("free", [])
-    freeable = {v.name for v in coupling.variables if v.fixed_unless_freed}
-    if not isinstance(free, list) or any(name not in freeable for name in free):
-        raise InputError("options.free", f"must be a list drawn from {sorted(freeable)}, got {free!r}")
-    for name in ("mode", "objective"):
-        if name in options and not isinstance(options[name], str):
-            raise InputError(f"options.{name}", f"must be text, got {options[name]!r}")
+    bounds = _parse_bounds(data.get("bounds", {}), coupling, problems)
+    options = _parse_options(data.get("options", {}), coupling, problems)
+    for name in ("title", "description"):
+        if name in data and not isinstance(data[name], str):
+            problems.errors.append(InputError(name, f"must be text, got {type(data[name]).__name__}"))
+    problems.raise_any()
 
-    case = Case(coupling.name, str(data.get("title", "")), values, bounds, tuple(free), dict(options), path)
+    case = Case(coupling.name, data.get("title", ""), values, bounds, tuple(options.get("free", ())),
+                options, path)
     coupling.check_case(case)
     return case
 
 
-def _parse_bounds(table: Any, coupling) -> dict[str, tuple[float, float]]:
+def _parse_options(options: Any, coupling, problems: Problems) -> dict[str, Any]:
+    if not isinstance(options, dict):
+        problems.errors.append(InputError("options", "must be a table"))
+        return {}
+    for name in options:
+        if name not in _OPTION_KEYS:
+            problems.errors.append(InputError(f"options.{name}", f"unknown option; options are "
+                                                                 f"{', '.join(sorted(_OPTION_KEYS))}"))
+    free = options.get("free", [])
+    freeable = {v.name for v in coupling.variables if v.fixed_unless_freed}
+    if not isinstance(free, list) or not all(isinstance(name, str) and name in freeable for name in free):
+        problems.errors.append(InputError("options.free", f"must be a list drawn from {sorted(freeable)}, "
+                                                          f"got {_short(free)}"))
+    elif len(set(free)) != len(free):
+        problems.errors.append(InputError("options.free", f"lists a variable twice: {free!r}"))
+    for name in ("mode", "objective"):
+        if name in options and not (isinstance(options[name], str) and options[name].strip()):
+            problems.errors.append(InputError(f"options.{name}", f"must be a name (text), got {_short(options[name])}"))
+    return {name: value for name, value in options.items() if name in _OPTION_KEYS}
+
+
+def _did_you_mean(name: str, known) -> str:
+    """`` (did you mean 'duty'?)`` for a near miss, else nothing."""
+    close = difflib.get_close_matches(str(name), list(known), n=1)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def _table(value: Any) -> dict:
+    return value if isinstance(value, dict) else {}
+
+
+def _short(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 80 else text[:70] + f"... ({len(text)} characters)"
+
+
+def _parse_bounds(table: Any, coupling, problems: Problems) -> dict[str, tuple[float, float]]:
     if not isinstance(table, dict):
-        raise InputError("bounds", "must be a table of [lower, upper] pairs")
+        problems.errors.append(InputError("bounds", "must be a table of [lower, upper] pairs"))
+        return {}
     variables = {v.name: v for v in coupling.variables}
     bounds = {}
     for name, pair in table.items():
         variable = variables.get(name)
         key = f"bounds.{name}"
-        if variable is None:
-            raise InputError(key, f"unknown design variable; bounds may be set for {', '.join(variables)}")
-        if not isinstance(pair, list) or len(pair) != 2:
-            raise InputError(key, f"must be a pair [lower, upper], got {pair!r}")
-        lower, upper = (variable.check(to_si(key, raw, variable.unit), key) for raw in pair)
-        if not lower < upper:
-            raise InputError(key, f"lower bound {variable.show(lower)} must be below upper bound {variable.show(upper)}")
-        bounds[name] = (lower, upper)
+        with problems.field():
+            if variable is None:
+                raise InputError(key, f"unknown design variable; bounds may be set for {', '.join(variables)}")
+            if not isinstance(pair, list) or len(pair) != 2:
+                raise InputError(key, f"must be a pair [lower, upper], got {_short(pair)}")
+            lower, upper = (variable.check(to_si(key, raw, variable.unit), key) for raw in pair)
+            if not lower < upper:
+                raise InputError(key, f"lower bound {variable.show(lower)} must be below upper bound "
+                                      f"{variable.show(upper)}")
+            bounds[name] = (lower, upper)
     return bounds
 
 

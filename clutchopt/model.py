@@ -48,9 +48,9 @@ class Quantity:
     def si_unit(self) -> str:
         return si_unit(self.unit)
 
-    def show(self, value: float) -> str:
+    def show(self, value: float, digits: int = 6) -> str:
         """An SI value written in this quantity's unit, e.g. ``15 deg``."""
-        return f"{from_si(value, self.unit):.6g} {self.unit}".rstrip()
+        return f"{from_si(value, self.unit):.{digits}g} {self.unit}".rstrip()
 
     def check(self, value: float, field_name: str | None = None) -> float:
         """Return ``value`` (SI) if it is in the valid range, else raise InputError naming the field."""
@@ -63,9 +63,9 @@ class Quantity:
         )
         for bound, ok, word in tests:
             if bound is not None and not ok(value, bound):
-                raise InputError(name, f"must be {word} {self.show(bound)}, got {self.show(value)}")
+                raise InputError(name, f"must be {word} {self.show(bound)}, got {self.show(value, 15)}")
         if self.integer and value != round(value):
-            raise InputError(name, f"must be a whole number, got {value:g}")
+            raise InputError(name, f"must be a whole number, got {value:.15g}")
         return value
 
 

@@ -7,6 +7,7 @@ as SI. Costs use the unit ``EUR`` (a dimension of its own, ``[currency]``).
 from __future__ import annotations
 
 import math
+import re
 from functools import lru_cache
 
 import pint
@@ -15,6 +16,7 @@ from clutchopt.errors import InputError
 
 ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
 ureg.define("EUR = [currency]")
+ureg.define("@alias revolution = rev")
 
 
 @lru_cache(maxsize=None)
@@ -86,36 +88,128 @@ def describe_dimension(unit: str) -> str:
     return _DIMENSION_NAMES.get(_dimension_key(unit), str(dim))
 
 
+MAX_TEXT = 100  # characters of one quantity, e.g. "0.05 EUR/cm^2"; longer text is refused before pint sees it
+MAX_EXPONENT = 12  # |n| of a unit power m^n; with at most two levels of parentheses pint's work stays tiny
+_MINUS = "\u2212"  # the typographic minus sign, read as "-" (it can mean nothing else)
+_NUMBER = re.compile(r"\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|[+-]?(?:nan|inf|infinity))(?![\w.])\s*\*?\s*",
+                     re.IGNORECASE)
+_UNIT_TOKEN = re.compile(r"\s+|\*\*|[*/^()\u00b7]|[A-Za-z_\u00b5\u03bc\u03a9\u00b0%][A-Za-z0-9_\u00b5\u03bc\u03a9\u00b0]*"
+                         r"|[\u00b2\u00b3\u00b9\u2070\u2074-\u2079\u207b]+|[+-]?\d+(?:\.\d+)?")
+_QUANTITY_EXAMPLE = "a number and a unit, e.g. '1000 rpm', '4 MPa' or '0.5 kg*m^2'"
+_SPEED_HINT = ("an angular speed needs an angle per time: write e.g. '1000 rpm', '16.67 rps' (revolutions per second) "
+               "or '104.7 rad/s'; Hz and 1/s are refused because they do not say whether they count revolutions or "
+               "radians (a factor 2 pi)")
+
+
+def _split(field: str, text: str) -> tuple[float, str]:
+    """Split quantity text into its number and its unit expression, refusing what pint should never evaluate.
+
+    The grammar is bounded: a decimal number, then unit names joined by ``*``, ``/``, spaces and ``^``/``**`` with
+    a small integer or decimal exponent (|n| <= MAX_EXPONENT), parentheses at most two deep; digits elsewhere in the
+    unit only as the ``1`` of ``1/s``. So no text can ask pint for a large power or a long computation.
+    """
+    if len(text) > MAX_TEXT:
+        raise InputError(field, f"text of {len(text)} characters is too long for a quantity (at most {MAX_TEXT}); "
+                                f"expected {_QUANTITY_EXAMPLE}")
+    bad = next((c for c in text if not c.isprintable()), None)
+    if bad is not None:
+        raise InputError(field, f"contains the control character {bad!r}; expected {_QUANTITY_EXAMPLE}")
+    text = text.replace(_MINUS, "-")
+    number = _NUMBER.match(text)
+    if number is None:
+        raise InputError(field, f"cannot read {text.strip()!r} as a quantity: expected {_QUANTITY_EXAMPLE}")
+    unit = text[number.end():].strip()
+    depth, previous, position = 0, "", 0
+    while position < len(unit):
+        token = _UNIT_TOKEN.match(unit, position)
+        if token is None:
+            raise InputError(field, f"cannot read {text.strip()!r}: unexpected character {unit[position]!r} in its "
+                                    f"unit; expected {_QUANTITY_EXAMPLE}")
+        position, piece = token.end(), token.group()
+        if piece.isspace():
+            continue
+        if piece == "(":
+            depth += 1
+            if depth > 2:
+                raise InputError(field, f"cannot read {text.strip()!r}: parentheses nested too deeply in its unit")
+        elif piece == ")":
+            depth -= 1
+        elif piece[0] in "+-0123456789":
+            if previous in ("^", "**"):
+                if abs(float(piece)) > MAX_EXPONENT:
+                    raise InputError(field, f"cannot read {text.strip()!r}: unit power {piece} is out of range "
+                                            f"(at most {MAX_EXPONENT})")
+            elif piece != "1":
+                raise InputError(field, f"cannot read {text.strip()!r}: a number inside the unit ({piece}); "
+                                        f"expected {_QUANTITY_EXAMPLE}")
+        previous = piece
+    return float(number.group(1)), unit
+
+
+@lru_cache(maxsize=512)
+def _parse_unit(unit: str):
+    """A unit expression (already bounded by :func:`_split`) as pint units; errors pass to the caller."""
+    return ureg.parse_units(unit) if unit else ureg.dimensionless
+
+
+@lru_cache(maxsize=None)
+def _angle_power(unit) -> float:
+    """The power of radian in a unit's root form: 1 for rpm, rad/s, rps; 0 for Hz, 1/s; 1 for deg."""
+    return dict(ureg.Quantity(1.0, unit).to_root_units().unit_items()).get("radian", 0)
+
+
 def to_si(field: str, raw: object, unit: str) -> float:
     """Parse a case value for ``field`` expected in ``unit`` (any compatible unit) and return SI float.
 
-    Raises InputError naming the field for text that is no quantity, a wrong dimension, NaN or infinity.
+    Raises InputError naming the field for text that is no quantity, a wrong dimension, NaN or infinity, a value
+    beyond float64, and for a pure frequency (Hz, 1/s) where an angular speed is expected (see ``_SPEED_HINT``).
     """
+    expected = ureg.Quantity(1.0, unit)
     if isinstance(raw, bool):
         raise InputError(field, f"expected a quantity in {unit}, got a boolean")
     if isinstance(raw, (int, float)):
-        value = float(raw)
-        quantity = ureg.Quantity(value, ureg.Quantity(1.0, unit).to_base_units().units)
-    elif isinstance(raw, str):
         try:
-            quantity = ureg.Quantity(raw.strip())
+            value = float(raw)
+        except OverflowError:
+            raise InputError(field, f"{len(str(abs(raw)))}-digit number is beyond the float64 range") from None
+        quantity = ureg.Quantity(value, expected.to_base_units().units)
+    elif isinstance(raw, str):
+        number, unit_text = _split(field, raw)
+        try:
+            units = _parse_unit(unit_text)
+        except OverflowError:
+            raise InputError(field, f"cannot read {raw.strip()!r}: its unit is beyond the float64 range") from None
         except Exception as exc:  # pint raises several types for unparsable text
-            raise InputError(field, f"cannot read {raw!r} as a quantity ({type(exc).__name__})") from None
-        if not isinstance(quantity, pint.Quantity):
-            quantity = ureg.Quantity(float(quantity), "dimensionless")
+            names = getattr(exc, "unit_names", None)
+            why = f"unknown unit {', '.join(map(repr, names))}" if names else type(exc).__name__
+            raise InputError(field, f"cannot read {raw.strip()!r} as a quantity ({why}); expected "
+                                    f"{_QUANTITY_EXAMPLE}") from None
+        quantity = ureg.Quantity(number, units)
+        if unit_text and _angle_power(unit) and _angle_power(units) != _angle_power(unit) \
+                and quantity.dimensionality == expected.dimensionality:
+            raise InputError(field, f"{raw.strip()!r} is ambiguous: {_SPEED_HINT}" if expected.dimensionality
+                             else f"expected an angle (e.g. in {unit}), got {raw.strip()!r}, which is no angle")
     else:
-        raise InputError(field, f"expected a quantity in {unit}, got {type(raw).__name__} {raw!r}")
-    expected = ureg.Quantity(1.0, unit)
+        raise InputError(field, f"expected a quantity in {unit}, got {type(raw).__name__} {_short(raw)}")
     if quantity.dimensionality != expected.dimensionality:
         raise InputError(
             field,
             f"expected {describe_dimension(unit)} (e.g. in {unit or 'SI'}), "
-            f"got {raw!r}, which is {describe_dimension(str(quantity.units))}",
+            f"got {_short(raw)}, which is {describe_dimension(str(quantity.units))}",
         )
-    value = float(quantity.to_base_units().magnitude)
+    try:
+        value = float(quantity.to_base_units().magnitude)
+    except OverflowError:
+        value = math.inf
     if not math.isfinite(value):
-        raise InputError(field, f"must be a finite number, got {raw!r}")
+        raise InputError(field, f"must be a finite number within the float64 range, got {_short(raw)}")
     return value
+
+
+def _short(raw: object) -> str:
+    """``repr`` of a value for a message, cut to a readable length."""
+    text = repr(raw)
+    return text if len(text) <= 60 else text[:50] + f"... ({len(text)} characters)"
 
 
 def from_si(value: float, unit: str) -> float:

@@ -49,24 +49,25 @@ def test_export_and_bad_store(cli, tmp_path):
     exported = cli("runs", "export", "-o", str(out))
     assert exported.returncode == 0 and "1 runs written" in exported.stdout
     table = pd.read_csv(out)
-    assert table["status"].tolist() == ["optimal"] and table["input.inertia"].tolist() == [0.5]
-    assert table["design.finger_diameter"].iloc[0] == pytest.approx(5.46156e-3, rel=1e-5)  # the worked example
+    assert table["status"].tolist() == ["optimal"] and table["input.inertia [kg*m^2]"].tolist() == [0.5]
+    assert table["design.finger_diameter [m]"].iloc[0] == pytest.approx(5.46156e-3, rel=1e-5)  # the worked example
+    assert table["mass [kg]"].iloc[0] == pytest.approx(0.667951, rel=1e-6) and table["id"].dtype.kind == "i"
     assert table["active"].iloc[0] == "torque finger_bending"
     not_a_db = tmp_path / "notes.txt"
     not_a_db.write_text("not a database, just text " * 100)
     result = cli("runs", "list", "--store", str(not_a_db))
-    assert result.returncode == 2 and "cannot use" in result.stderr and result.stderr.count("\n") == 1
+    assert result.returncode == 2 and "is not an SQLite database" in result.stderr and result.stderr.count("\n") == 1
     missing = cli("runs", "show", "99")
     assert missing.returncode == 2 and "no run 99" in missing.stderr
 
 
 def test_a_sweep_point_cannot_be_recorded_twice(tmp_path):
+    """A second record of a stored point (another resume of the same sweep solved it too) keeps the first."""
     with RunStore(tmp_path / "s.sqlite") as store:
         sweep = store.new_sweep({"points": [1]}, 1)
-        store.record("sweep", {}, {"objective": 1.0}, sweep_id=sweep, point=0)
-        with pytest.raises(sqlite3.IntegrityError):
-            store.record("sweep", {}, {"objective": 2.0}, sweep_id=sweep, point=0)
-        assert store.sweep_outputs(sweep) == {0: {"objective": 1.0}}
+        assert store.record("sweep", {}, {"objective": 1.0}, sweep_id=sweep, point=0) == 1
+        assert store.record("sweep", {}, {"objective": 2.0}, sweep_id=sweep, point=0) is None
+        assert store.sweep_outputs(sweep) == {0: {"objective": 1.0}} and store.failure is None
 
 
 SWEEP = ["sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=500:3000:40", "--vary",

@@ -6,20 +6,24 @@ import math
 from dataclasses import replace
 
 from clutchopt.cli.options import (
+    FIGURE_SUFFIXES,
     add_case_argument,
     add_json_option,
     add_problem_options,
     add_store_options,
     open_store,
+    whole_number,
 )
-from clutchopt.errors import InputError
+
+MAX_FRONT_POINTS = 1000  # an epsilon-constraint solve each; a front is read from a few dozen
 
 
 def add_command(commands) -> None:
     pareto = commands.add_parser("pareto", help="mass against cost: the Pareto front by epsilon-constraint")
     add_case_argument(pareto)
     add_problem_options(pareto, objective=False)  # mass and cost are the front's two ends
-    pareto.add_argument("--points", type=int, default=9, help="points on the front, both ends included (default 9)")
+    pareto.add_argument("--points", type=whole_number(2, MAX_FRONT_POINTS), default=9,
+                        help=f"points on the front, both ends included, 2 to {MAX_FRONT_POINTS} (default 9)")
     pareto.add_argument("--plot", metavar="FILE", help="write the front as a figure (.png, .svg, .pdf)")
     pareto.add_argument("--out", metavar="FILE", help="write the table: .csv, .parquet or .md")
     add_json_option(pareto)
@@ -32,16 +36,19 @@ def run(args) -> str:
     from clutchopt.optimise import SolverOptions
     from clutchopt.formulations import get_coupling
     from clutchopt.optimise.pareto import CAP, pareto_front
-    from clutchopt.optimise.sweep import write_frame
+    from clutchopt.files import check_output, write_whole
+    from clutchopt.optimise.sweep import table_format, write_frame
     from clutchopt.optimise.verify import evaluate_objective
     from clutchopt.output import to_json
 
     case = load_case(args.case)
-    if args.points < 2:
-        raise InputError("--points", f"a front needs at least 2 points, got {args.points}")
+    if args.out:
+        table_format(args.out)  # a bad name fails before the solves, not after
+    if args.plot:
+        check_output("--plot", args.plot, FIGURE_SUFFIXES)
+    store = open_store(args)
     front = pareto_front(case, args.mode, args.points, SolverOptions(tol=args.tol))
     formulation = get_coupling(case.coupling).formulation(front.mode)
-    store = open_store(args)
     if store is not None:
         with store:
             for cap, solution in zip(front.caps, front.solutions):
@@ -50,7 +57,7 @@ def run(args) -> str:
     if args.out:
         write_frame(front.frame, args.out)
     if args.plot:
-        pareto_figure(front).savefig(args.plot)
+        write_whole("--plot", args.plot, pareto_figure(front).savefig)
     if args.json:
         params = case.params()
         rows = [{"cost_cap": None if math.isnan(cap) else cap, "status": solution.status,

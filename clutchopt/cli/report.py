@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-from clutchopt.cli.options import add_case_argument, add_problem_options, add_store_options, record_solve
-from clutchopt.errors import InputError
+from clutchopt.cli.options import add_case_argument, add_problem_options, add_store_options, open_store, record_solve
 
 
 def add_command(commands) -> None:
@@ -18,19 +17,23 @@ def add_command(commands) -> None:
 
 def run(args) -> str:
     from clutchopt.cases import load_case
+    from clutchopt.files import check_output, write_whole
     from clutchopt.optimise import SolverOptions, solve_case
     from clutchopt.optimise.sweep import read_frame
     from clutchopt.report import build_report
 
     case = load_case(args.case)
+    check_output("--out", args.out, (".html", ".htm"))
     sweep = read_frame(args.sweep) if args.sweep else None
+    store = open_store(args)
     solution = solve_case(case, args.mode, args.objective, SolverOptions(tol=args.tol))
-    record_solve(args, case, solution)
+    record_solve(store, case, solution)
     page = build_report(case, solution, sweep)
-    try:
-        with open(args.out, "w", encoding="utf-8") as handle:
+
+    def write(path: str) -> None:
+        with open(path, "w", encoding="utf-8") as handle:
             handle.write(page)
-    except OSError as exc:
-        raise InputError("--out", f"cannot write {args.out!r} ({exc.strerror})") from None
+
+    write_whole("--out", args.out, write)
     return f"design review of {case.path} ({solution.status}, {solution.objective_name} " \
            f"{solution.objective:.6g} {solution.objective_unit}) written to {args.out}"

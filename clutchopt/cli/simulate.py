@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import math
 
-from clutchopt.cli.options import add_json_option, add_store_options, record_simulation
-from clutchopt.errors import InputError
+from clutchopt.cli.options import FIGURE_SUFFIXES, add_json_option, add_store_options, open_store, record_simulation
 
 _LINES = (
     ("start_time", "start time t_c", "s"),
@@ -22,21 +21,26 @@ def add_command(commands) -> None:
     parser = commands.add_parser("simulate", help="simulate a scene's start-up (effects, lock-up, headline figures)")
     parser.add_argument("scene", help="scene file (TOML, e.g. cases/scenes/paper_transient.toml)")
     add_json_option(parser)
-    parser.add_argument("--plot", metavar="PNG", help="write the time histories as a PNG")
+    parser.add_argument("--plot", metavar="FILE", help="write the time histories as a figure (.png, .svg, .pdf)")
     add_store_options(parser)
     parser.set_defaults(run=run)
 
 
 def run(args) -> str:
+    from clutchopt.files import check_output, write_whole
     from clutchopt.output import to_json
     from clutchopt.simulate import load_scene, run_scene
     from clutchopt.simulate.analytic import PaperTransient
+    from clutchopt.simulate.plot import history_figure
 
     scene = load_scene(args.scene)
-    result = run_scene(scene)
-    record_simulation(args, scene, result)
     if args.plot:
-        _write_plot(result, scene.title, args.plot)
+        check_output("--plot", args.plot, FIGURE_SUFFIXES)
+    store = open_store(args)
+    result = run_scene(scene)
+    record_simulation(store, scene, result)
+    if args.plot:
+        write_whole("--plot", args.plot, lambda path: history_figure(result, scene.title).savefig(path, dpi=120))
     analytic = None
     m = scene.model
     if m.law.name == "paper" and m.load.constant and "motor_curve" not in m.effects:
@@ -45,15 +49,6 @@ def run(args) -> str:
         return to_json({"scene": scene.path, "title": scene.title, **result.as_dict(),
                         **({"analytic": analytic} if analytic else {})})
     return _text(scene, result, analytic)
-
-
-def _write_plot(result, title: str, path: str) -> None:
-    from clutchopt.simulate.plot import history_figure
-
-    try:
-        history_figure(result, title).savefig(path, dpi=120)
-    except (OSError, ValueError) as exc:
-        raise InputError("--plot", f"cannot write {path} ({exc})") from None
 
 
 def _text(scene, result, analytic) -> str:

@@ -18,19 +18,20 @@ def add_command(commands) -> None:
 
 def run(args) -> str:
     from clutchopt.cases import load_case
-    from clutchopt.cli.options import record_solve
+    from clutchopt.cli.options import open_store, record_solve
     from clutchopt.formulations import get_coupling
     from clutchopt.optimise import SolverOptions, solve_case
     from clutchopt.output import solution_text, to_json
 
     case = load_case(args.case)
+    store = open_store(args)
     solution = solve_case(case, args.mode, args.objective, SolverOptions(tol=args.tol))
     check = None
     if args.verify:
         from clutchopt.simulate import verify
 
         check = verify(case, solution)
-    record_solve(args, case, solution, check)
+    record_solve(store, case, solution, check)
     if args.json:
         return to_json({"case": case.path, "title": case.title, **solution.as_dict(),
                         **({"verify": check} if check else {})})

@@ -2,15 +2,19 @@
 
 from __future__ import annotations
 
+import os
+
 from clutchopt.cli.options import (
     add_case_argument,
     add_json_option,
     add_problem_options,
     add_store_options,
     open_store,
+    whole_number,
 )
-from clutchopt.errors import InputError
+from clutchopt.errors import InputError, Problems
 
+MAX_JOBS = 4 * (os.cpu_count() or 1)  # worker processes beyond this only compete for the cores
 COLUMNS_SHOWN = 12  # a sweep up to this many points prints one column per point; longer ones a summary
 
 
@@ -22,7 +26,8 @@ def add_command(commands) -> None:
                             "repeat for a full-factorial grid")
     sweep.add_argument("--zip", action="store_true", help="listed sweep: the i-th point takes the i-th value of each")
     add_problem_options(sweep)
-    sweep.add_argument("--jobs", type=int, default=1, help="local worker processes (default 1)")
+    sweep.add_argument("--jobs", type=whole_number(1, MAX_JOBS), default=1,
+                       help=f"local worker processes, 1 to {MAX_JOBS} (default 1)")
     sweep.add_argument("--dask", metavar="ADDRESS", help="run on an existing Dask cluster, e.g. tcp://host:8786")
     sweep.add_argument("--resume", action="store_true",
                        help="continue the latest identical sweep in the store; stored points are not solved again")
@@ -38,16 +43,19 @@ def run(args) -> str:
     from clutchopt.optimise.sweep import Sweep, dask_runner, parse_vary, table_format, write_frame
 
     case = load_case(args.case)
-    if args.jobs < 1:
-        raise InputError("--jobs", f"must be at least 1, got {args.jobs}")
     if args.resume and args.no_store:
         raise InputError("--resume", "continues a sweep from the run store; drop --no-store")
-    sweep = Sweep(case, [parse_vary(text, case.coupling) for text in args.vary], args.mode, args.objective,
-                  args.tol, args.zip)
+    problems = Problems()
+    varies = []
+    for text in args.vary:
+        with problems.field():
+            varies.append(parse_vary(text, case.coupling))
+    problems.raise_any()
+    sweep = Sweep(case, varies, args.mode, args.objective, args.tol, args.zip)
     if args.out:
         table_format(args.out)  # a bad name fails before the solves, not after
     runner = dask_runner(args.dask) if args.dask else None
-    store = open_store(args)
+    store = open_store(args, needed=args.resume)
     try:
         result = sweep.run(store, args.resume, args.jobs, runner, progress=not args.quiet)
     except KeyboardInterrupt:
@@ -64,13 +72,13 @@ def run(args) -> str:
         return to_json({"case": case.path, "mode": sweep.formulation.mode, "objective": sweep.objective.name,
                         "sweep_id": result.sweep_id, "points": [{"point": i, "values": values, **solution}
                         for i, (values, solution) in enumerate(zip(sweep.points, result.solutions))]})
-    text = sweep_text(sweep, result, store.path if store else None, args.out)
+    text = sweep_text(sweep, result, store, args.out)
     if args.resume and not result.reused:
         text += "\n(nothing resumed: no stored points of an identical sweep)"
     return text
 
 
-def sweep_text(sweep, result, store_path: str | None, out: str | None) -> str:
+def sweep_text(sweep, result, store, out: str | None) -> str:
     frame = result.frame
     counts = ", ".join(f"{count} {status}" for status, count in frame["status"].value_counts().items())
     objective = frame.columns[len(sweep.varies) + 2]
@@ -90,8 +98,10 @@ def sweep_text(sweep, result, store_path: str | None, out: str | None) -> str:
         optimal = frame[frame["status"] == "optimal"][objective]
         if len(optimal):
             lines.append(f"{objective}: {optimal.min():.6g} to {optimal.max():.6g} over the optimal points")
-    if store_path:
-        lines.append(f"recorded as sweep {result.sweep_id} in {store_path}")
+    if store is not None and result.sweep_id is not None:
+        lines.append(f"recorded as sweep {result.sweep_id} in {store.path}")
+    if store is not None and store.failure:
+        lines.append(f"{store.unrecorded} points not recorded: {store.failure}")
     if out:
         lines.append(f"table written to {out}")
     return "\n".join(lines)

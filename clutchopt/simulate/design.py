@@ -16,7 +16,8 @@ import json
 import math
 from pathlib import Path
 
-from clutchopt.errors import InputError
+from clutchopt.errors import InputError, Problems
+from clutchopt.files import CASE_BYTES, read_text
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.engine import Model, SimulationResult, simulate
 from clutchopt.simulate.laws import CentrifugalFriction, Load
@@ -36,21 +37,56 @@ def speed_law_missing(coupling: str, solution=None) -> str | None:
     return None
 
 
+# Valid range (SI) of each output a speed law is built from: a design JSON is a file like any other input.
+DESIGN_RANGES = {"torque": (1e-9, 1e9, "N*m"), "weight_mass": (1e-9, 1e6, "kg"),
+                 "centroid_radius": (1e-6, 1e2, "m"), "start_radius": (1e-6, 1e2, "m")}
+
+
 def design_outputs(path: str | Path, coupling: str, case_path: str | Path | None = None) -> dict[str, float]:
-    """Outputs (SI) of a solved design: the JSON of ``clutchopt solve --json`` (of the case file ``case_path``)."""
+    """Outputs (SI) of a solved design: the JSON of ``clutchopt solve --json`` (of the case file ``case_path``),
+    those the speed law needs checked to be numbers in ``DESIGN_RANGES``."""
+    field = "coupling.design"
+    text = read_text(path, CASE_BYTES, f"{field} ({Path(path).name})")
     try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise InputError("coupling.design", f"no such file: {path}") from None
-    except (OSError, json.JSONDecodeError) as exc:
-        raise InputError("coupling.design", f"cannot read {path} as the JSON of clutchopt solve ({exc})") from None
+        data = json.loads(text, parse_constant=_no_constant)
+    except json.JSONDecodeError as exc:
+        raise InputError(field, f"cannot read {path} as the JSON of clutchopt solve ({exc})") from None
+    except ValueError as exc:
+        raise InputError(field, f"{path}: {exc}") from None
+    except RecursionError:
+        raise InputError(field, f"{path}: JSON nested too deeply to be the output of clutchopt solve") from None
     if not isinstance(data, dict) or data.get("coupling") != coupling or not isinstance(data.get("outputs"), dict):
-        raise InputError("coupling.design", f"{path} is not a solved {coupling} design (clutchopt solve --json)")
+        raise InputError(field, f"{path} is not a solved {coupling} design (clutchopt solve --json)")
     if case_path is not None and Path(str(data.get("case", ""))).name != Path(case_path).name:
-        raise InputError("coupling.design", f"{path} was solved for {data.get('case')!r}, not for {Path(case_path).name}")
+        raise InputError(field, f"{path} was solved for {_short(data.get('case'))}, not for {Path(case_path).name}")
     if data.get("status") != "optimal":
-        raise InputError("coupling.design", f"{path}: the design's status is {data.get('status')!r}, not optimal")
-    return data["outputs"]
+        raise InputError(field, f"{path}: the design's status is {_short(data.get('status'))}, not optimal")
+    outputs = dict(data["outputs"])
+    problems = Problems()
+    for name in SPEED_LAWS[coupling]:
+        low, high, unit = DESIGN_RANGES[name]
+        value = outputs.get(name)
+        number = isinstance(value, (int, float)) and not isinstance(value, bool)
+        try:
+            inside = number and low <= float(value) <= high
+        except OverflowError:  # an integer beyond float64
+            inside = False
+        if not inside:
+            problems.errors.append(InputError(f"{field} outputs.{name}", f"must be a number from {low:g} to "
+                                                                         f"{high:g} {unit}, got {_short(value)}"))
+        else:
+            outputs[name] = float(value)
+    problems.raise_any()
+    return outputs
+
+
+def _no_constant(name: str):
+    raise ValueError(f"{name} is not a number a solved design can hold")
+
+
+def _short(value) -> str:
+    text = repr(value)
+    return text if len(text) <= 60 else text[:50] + "..."
 
 
 def solved_outputs(solution) -> dict[str, float]:
@@ -60,9 +96,6 @@ def solved_outputs(solution) -> dict[str, float]:
 def centrifugal_law(coupling: str, outputs: dict[str, float], design_speed: float, effects: tuple[str, ...],
                     spring_preload: float = 0.0) -> CentrifugalFriction:
     """The law of a solved design sized at ``design_speed``; spring preload and gravity enter only if listed."""
-    absent = [name for name in SPEED_LAWS[coupling] if not isinstance(outputs.get(name), (int, float))]
-    if absent:
-        raise InputError("coupling.design", f"the design lacks the outputs {', '.join(absent)}")
     torque, mass, radius = (outputs[name] for name in SPEED_LAWS[coupling])
     reductions = []
     if "spring_preload" in effects:

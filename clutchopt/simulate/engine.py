@@ -202,6 +202,8 @@ def _samples(run: _Run, sol, phase: str, y0=None) -> pd.DataFrame:
     """History rows: the solver's steps and evenly spaced dense-output samples of one phase."""
     if sol is None:
         t, y = np.array([0.0]), np.asarray(y0).reshape(-1, 1)
+    elif sol.sol is None or len(sol.t) < 2:  # the first step failed: there is no dense output to sample
+        t, y = sol.t, sol.y
     else:
         t = np.union1d(sol.t, np.linspace(sol.t[0], sol.t[-1], SAMPLES))
         y = sol.sol(t)
