@@ -129,8 +129,8 @@ def parse_case(data: dict, path: str = "") -> Case:
     bounds = _parse_bounds(data.get("bounds", {}), coupling, problems)
     options = _parse_options(data.get("options", {}), coupling, problems)
     for name in ("title", "description"):
-        if name in data and not isinstance(data[name], str):
-            problems.errors.append(InputError(name, f"must be text, got {type(data[name]).__name__}"))
+        with problems.field():
+            check_text(name, data.get(name, ""), multiline=name == "description")
     problems.raise_any()
 
     case = Case(coupling.name, data.get("title", ""), values, bounds, tuple(options.get("free", ())),
@@ -158,6 +158,24 @@ def _parse_options(options: Any, coupling, problems: Problems) -> dict[str, Any]
         if name in options and not (isinstance(options[name], str) and options[name].strip()):
             problems.errors.append(InputError(f"options.{name}", f"must be a name (text), got {_short(options[name])}"))
     return {name: value for name, value in options.items() if name in _OPTION_KEYS}
+
+
+TITLE_CHARACTERS = 200
+DESCRIPTION_CHARACTERS = 10_000
+
+
+def check_text(field: str, value: Any, multiline: bool = False) -> str:
+    """A title (one printable line, at most TITLE_CHARACTERS) or a description (lines of printable text): text
+    that is printed to a terminal must not carry control characters (escape sequences)."""
+    limit = DESCRIPTION_CHARACTERS if multiline else TITLE_CHARACTERS
+    if not isinstance(value, str):
+        raise InputError(field, f"must be text, got {type(value).__name__}")
+    if len(value) > limit:
+        raise InputError(field, f"text of {len(value)} characters is too long (at most {limit})")
+    bad = next((c for c in value if not c.isprintable() and not (multiline and c in "\n\t")), None)
+    if bad is not None:
+        raise InputError(field, f"contains the control character {bad!r}")
+    return value
 
 
 def _did_you_mean(name: str, known) -> str:

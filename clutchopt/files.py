@@ -34,17 +34,18 @@ def _kind(mode: int) -> str:
 def read_bytes(path: str | Path, limit: int, field: str | None = None) -> bytes:
     """The bytes of a regular file of at most ``limit`` bytes; anything else is an InputError naming ``field``
     (default: the path). Opened without blocking, so a FIFO is refused instead of waited on."""
-    field = field or str(path)
+    field = field or str(path) or "''"
     try:
         fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
     except FileNotFoundError:
         raise InputError(field, "no such file") from None
     except (OSError, ValueError) as exc:  # ValueError: a NUL byte in the name
         raise InputError(field, f"cannot read ({getattr(exc, 'strerror', None) or exc})") from None
+    info = os.fstat(fd)
+    if not stat.S_ISREG(info.st_mode):
+        os.close(fd)
+        raise InputError(field, f"cannot read {_kind(info.st_mode)}; expected a regular file")
     with os.fdopen(fd, "rb") as handle:
-        info = os.fstat(fd)
-        if not stat.S_ISREG(info.st_mode):
-            raise InputError(field, f"cannot read {_kind(info.st_mode)}; expected a regular file")
         if info.st_size > limit:
             raise InputError(field, f"file of {info.st_size / MiB:.1f} MiB is too large (at most {limit / MiB:g} MiB)")
         try:
@@ -62,7 +63,7 @@ _WIDE_BOMS = ((codecs.BOM_UTF32_LE, "UTF-32"), (codecs.BOM_UTF32_BE, "UTF-32"), 
 
 def read_text(path: str | Path, limit: int = CASE_BYTES, field: str | None = None) -> str:
     """A UTF-8 text file (a leading UTF-8 byte-order mark is dropped); other encodings are refused."""
-    field = field or str(path)
+    field = field or str(path) or "''"
     data = read_bytes(path, limit, field)
     for bom, name in _WIDE_BOMS:
         if data.startswith(bom):

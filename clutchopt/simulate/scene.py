@@ -32,7 +32,7 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from clutchopt.cases import read_toml
+from clutchopt.cases import check_text, read_toml
 from clutchopt.errors import InputError, Problems
 from clutchopt.simulate.effects import CENTRIFUGAL_ONLY, EFFECTS
 from clutchopt.simulate.engine import Model, simulate
@@ -158,8 +158,13 @@ def parse_scene(data: dict, path: str = "") -> Scene:
     end_time = f.quantity("", "end_time", "s", TIME, math.inf)
     tolerance = f.quantity("", "tolerance", "", TOLERANCE, 1e-11)
     title = data.get("title", "")
-    if not isinstance(title, str):
-        f.problems.errors.append(InputError("title", f"must be text, got {type(title).__name__}"))
+    for name in ("title", "description"):
+        with f.problems.field():
+            check_text(name, data.get(name, ""), multiline=name == "description")
+    for name in ("mode", "objective"):
+        value = f.table("coupling").get(name)
+        if value is not None and not (isinstance(value, str) and value.strip()):
+            f.problems.errors.append(InputError(f"coupling.{name}", f"must be a name (text), got {value!r}"))
     law, source = None, {}
     if law_name in ("paper", "constant"):
         law, source = _friction_law(f, law_name)
