@@ -27,11 +27,14 @@ from typing import Any
 
 from clutchopt.errors import InputError, Problems
 from clutchopt.files import CASE_BYTES, read_text
+from clutchopt.formulations.start_up import QUANTITIES as START_UP_QUANTITIES
+from clutchopt.formulations.start_up import SPRING_PRELOAD, StartUpSpec
 from clutchopt.model import REQUIRED, Quantity
 from clutchopt.units import to_si
 
 _TOP_LEVEL = {"coupling", "title", "description"}
 _OPTION_KEYS = {"free", "objective", "mode"}
+_EXTRA_SECTIONS = ("bounds", "options", "start_up")
 
 
 @dataclass(frozen=True)
@@ -45,20 +48,25 @@ class Case:
     free: tuple[str, ...] = ()
     options: dict[str, Any] = field(default_factory=dict)
     path: str = ""
+    start_up: StartUpSpec | None = None  # the drive of a [start_up] section
+
+    @property
+    def quantities(self) -> tuple[Quantity, ...]:
+        """The coupling's quantities, and those of the start-up section if the case has one."""
+        from clutchopt.formulations import get_coupling
+
+        extra = START_UP_QUANTITIES if self.start_up else ()
+        return get_coupling(self.coupling).quantities + extra
 
     def params(self) -> SimpleNamespace:
         """Values by attribute; quantities the case leaves out (optional ones) read as NaN."""
-        from clutchopt.formulations import get_coupling
-
-        names = {q.name: math.nan for q in get_coupling(self.coupling).quantities}
+        names = {q.name: math.nan for q in self.quantities}
         names.update(self.values)
         return SimpleNamespace(**names)
 
     def with_values(self, **values: float) -> "Case":
         """A copy with some SI values replaced and re-checked (sweeps, tests)."""
-        from clutchopt.formulations import get_coupling
-
-        declared = {q.name: q for q in get_coupling(self.coupling).quantities}
+        declared = {q.name: q for q in self.quantities}
         for name, value in values.items():
             if name not in declared:
                 raise InputError(name, f"unknown quantity for coupling {self.coupling!r}")
@@ -97,7 +105,7 @@ def parse_case(data: dict, path: str = "") -> Case:
 
     values: dict[str, float] = {}
     for key, table in data.items():
-        if key in _TOP_LEVEL or key in ("bounds", "options"):
+        if key in _TOP_LEVEL or key in _EXTRA_SECTIONS:
             continue
         if key in sections and not isinstance(table, dict):
             problems.errors.append(InputError(key, f"must be a table [{key}] of "
@@ -105,7 +113,7 @@ def parse_case(data: dict, path: str = "") -> Case:
             continue
         if key not in sections:
             problems.errors.append(InputError(key, f"unknown section or key{_did_you_mean(key, sections)}; this "
-                                   f"{coupling.name} case may have {', '.join(sorted(sections | {'bounds', 'options'}))}"))
+                                   f"{coupling.name} case may have {', '.join(sorted(sections | set(_EXTRA_SECTIONS)))}"))
             continue
         for name, raw in table.items():
             quantity = declared.get(f"{key}.{name}")
@@ -126,20 +134,27 @@ def parse_case(data: dict, path: str = "") -> Case:
             if quantity.default is not None:
                 values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
 
-    bounds = _parse_bounds(data.get("bounds", {}), coupling, problems)
-    options = _parse_options(data.get("options", {}), coupling, problems)
+    start_up = None
+    if "start_up" in data and not problems:  # its defaults come from the duty's values, so those must be sound
+        from clutchopt.start_up_case import parse_start_up
+
+        with problems.field():
+            start_values, start_up = parse_start_up(data["start_up"], coupling, values)
+            values.update(start_values)
+    bounds = _parse_bounds(data.get("bounds", {}), coupling, problems, "start_up" in data)
+    options = _parse_options(data.get("options", {}), coupling, problems, "start_up" in data)
     for name in ("title", "description"):
         with problems.field():
             check_text(name, data.get(name, ""), multiline=name == "description")
     problems.raise_any()
 
     case = Case(coupling.name, data.get("title", ""), values, bounds, tuple(options.get("free", ())),
-                options, path)
+                options, path, start_up)
     coupling.check_case(case)
     return case
 
 
-def _parse_options(options: Any, coupling, problems: Problems) -> dict[str, Any]:
+def _parse_options(options: Any, coupling, problems: Problems, start_up: bool) -> dict[str, Any]:
     if not isinstance(options, dict):
         problems.errors.append(InputError("options", "must be a table"))
         return {}
@@ -148,7 +163,7 @@ def _parse_options(options: Any, coupling, problems: Problems) -> dict[str, Any]
             problems.errors.append(InputError(f"options.{name}", f"unknown option; options are "
                                                                  f"{', '.join(sorted(_OPTION_KEYS))}"))
     free = options.get("free", [])
-    freeable = {v.name for v in coupling.variables if v.fixed_unless_freed}
+    freeable = {v.name for v in coupling.variables if v.fixed_unless_freed} | ({"spring_preload"} if start_up else set())
     if not isinstance(free, list) or not all(isinstance(name, str) and name in freeable for name in free):
         problems.errors.append(InputError("options.free", f"must be a list drawn from {sorted(freeable)}, "
                                                           f"got {_short(free)}"))
@@ -193,11 +208,11 @@ def _short(value: Any) -> str:
     return text if len(text) <= 80 else text[:70] + f"... ({len(text)} characters)"
 
 
-def _parse_bounds(table: Any, coupling, problems: Problems) -> dict[str, tuple[float, float]]:
+def _parse_bounds(table: Any, coupling, problems: Problems, start_up: bool = False) -> dict[str, tuple[float, float]]:
     if not isinstance(table, dict):
         problems.errors.append(InputError("bounds", "must be a table of [lower, upper] pairs"))
         return {}
-    variables = {v.name: v for v in coupling.variables}
+    variables = {v.name: v for v in coupling.variables + ((SPRING_PRELOAD,) if start_up else ())}
     bounds = {}
     for name, pair in table.items():
         variable = variables.get(name)

@@ -39,10 +39,11 @@ class Quantity:
     below: float | None = None  # value < below
     at_most: float | None = None  # value <= at_most
     integer: bool = False
+    toml_key: str = ""  # the key in its TOML table, where it differs from the name (``inertia`` of the motor)
 
     @property
     def key(self) -> str:
-        return f"{self.section}.{self.name}"
+        return f"{self.section}.{self.toml_key or self.name}"
 
     @property
     def si_unit(self) -> str:
@@ -100,6 +101,7 @@ class Constraint:
     unit: str = ""
     scale: Any = None
     description: str = ""
+    constant_acceleration: bool = False  # the papers' sizing assumption; a case's [start_up] model replaces it
 
     def normalised(self):
         """g <= 0 form, O(1) near the limit: the form the NLP sees."""
@@ -110,12 +112,14 @@ class Constraint:
         return -float(self.normalised())
 
 
-def at_most(name: str, value, limit, *, equation: str, unit: str = "", scale=None, description: str = ""):
-    return Constraint(name, equation, value, limit, "<=", unit, scale, description)
+def at_most(name: str, value, limit, *, equation: str, unit: str = "", scale=None, description: str = "",
+            constant_acceleration: bool = False):
+    return Constraint(name, equation, value, limit, "<=", unit, scale, description, constant_acceleration)
 
 
-def at_least(name: str, value, limit, *, equation: str, unit: str = "", scale=None, description: str = ""):
-    return Constraint(name, equation, value, limit, ">=", unit, scale, description)
+def at_least(name: str, value, limit, *, equation: str, unit: str = "", scale=None, description: str = "",
+             constant_acceleration: bool = False):
+    return Constraint(name, equation, value, limit, ">=", unit, scale, description, constant_acceleration)
 
 
 @dataclass(frozen=True)
@@ -135,6 +139,21 @@ class Objective:
     function: Callable[[SimpleNamespace, SimpleNamespace], Any]
 
 
+@dataclass(frozen=True)
+class SpeedLaw:
+    """How a centrifugal coupling's torque follows its driving speed w_a in a start-up: T = K (w_a^2 - w_e^2) once
+    engaged, each function written with the coupling's own equations and ``(x, p)`` as the constraints take them.
+
+    ``torque_coefficient``: K = dT / d(w_a^2), N*m*s^2. ``mass_radius``: m r of one weight, the radial force per
+    (rad/s)^2 that springs and gravity work against, and ``weight_mass``: m of one weight (gravity); both None
+    for a coupling without such weights (then the effects spring_preload and gravity do not apply).
+    """
+
+    torque_coefficient: Callable[[SimpleNamespace, SimpleNamespace], Any]
+    mass_radius: Callable[[SimpleNamespace, SimpleNamespace], Any] | None = None
+    weight_mass: Callable[[SimpleNamespace, SimpleNamespace], Any] | None = None
+
+
 @dataclass
 class Formulation:
     """One posed problem of one coupling (e.g. the wedge coupling in paper mode).
@@ -151,6 +170,7 @@ class Formulation:
     constraints: Callable[[SimpleNamespace, SimpleNamespace], list[Constraint]]
     objectives: tuple[Objective, ...]
     outputs: Callable[[SimpleNamespace, SimpleNamespace], dict[str, Output]] = lambda x, p: {}
+    speed_law: SpeedLaw | None = None  # the torque over the driving speed, for start-ups (None: not available)
     notes: str = ""
     _objective_index: dict = field(init=False, repr=False)
 

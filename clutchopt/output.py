@@ -67,6 +67,8 @@ def solution_text(solution: Solution, formulation: Formulation, title: str = "")
          "limit": _shown(c.limit, c.unit), "unit": c.unit, "margin": f"{c.margin:+.2e}",
          "active": "yes" if c.active else "no", "elasticity": _signed(c.elasticity)}
         for c in solution.constraints]))
+    if solution.start_up is not None:
+        lines += ["", *start_up_lines(solution.start_up)]
     if solution.sensitivities:
         lines += ["", "Most sensitive parameters (elasticity = d ln objective / d ln parameter; +1: grows in proportion)"]
         lines.append(_frame(sensitivity_rows(solution, formulation)))
@@ -79,6 +81,36 @@ def solution_text(solution: Solution, formulation: Formulation, title: str = "")
             + (f" -> {entry['objective']:.6g}" if entry["feasible"] else " -> infeasible")
             for entry in solution.integer_search))
     return "\n".join(lines)
+
+
+START_UP_ROWS = (  # figure, display unit, meaning
+    ("start_time", "s", "switch-on to lock-up"),
+    ("friction_work", "kJ", "heat released by slip"),
+    ("temperature_rise", "K", "largest temperature rise of the friction parts"),
+    ("lock_up_speed", "rpm", "speed at lock-up"),
+    ("engagement_speed", "rpm", "driving speed at which the weights engage"),
+    ("engagement_time", "s", "motor running up unloaded"),
+    ("lock_up_time", "s", "the coupling slips under load"),
+)
+
+
+def start_up_lines(start_up: dict) -> list[str]:
+    """The NLP's start beside the simulator's, figure by figure."""
+    rows = []
+    for name, unit, meaning in START_UP_ROWS:
+        nlp, simulated = start_up.get(name), start_up.get(f"{name}_simulated")
+        if nlp is None:
+            continue
+        difference = "-" if simulated is None or not math.isfinite(simulated) or simulated == 0 \
+            else f"{nlp / simulated - 1:+.1e}"
+        rows.append({"figure": name, "NLP": _shown(nlp, unit), "simulated": _shown(simulated, unit), "unit": unit,
+                     "NLP/sim - 1": difference if simulated is not None else "-", "meaning": meaning})
+    head = (f"Start-up on the case's drive ({', '.join(start_up['effects'])}): Radau collocation, "
+            f"{start_up['intervals']} intervals per phase ({', '.join(start_up['phases'])}), beside the simulator")
+    lines = [head, _frame(rows)]
+    if not start_up["locks_up"]:
+        lines.append(f"simulated: {start_up['reason']}")
+    return lines
 
 
 def sensitivity_rows(solution: Solution, formulation: Formulation, count: int = 8) -> list[dict]:

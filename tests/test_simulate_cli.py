@@ -105,7 +105,20 @@ def test_scene_with_a_design_solved_for_another_case(tmp_path):
 def test_scene_with_a_coupling_without_a_speed_law(tmp_path):
     scene = tmp_path / "scene.toml"
     scene.write_text(f'effects = ["slip_friction"]\n[coupling]\nlaw = "centrifugal"\n'
-                     f'case = "{(CASES / "ball_crusher.toml").as_posix()}"\n')
-    with pytest.raises(InputError, match="ball coupling has no speed-dependent torque law") as error:
+                     f'case = "{(CASES / "cable_pump.toml").as_posix()}"\n')
+    with pytest.raises(InputError, match="cable coupling has no speed-dependent torque law") as error:
         load_scene(scene)
     assert error.value.field == "coupling.case"
+
+
+def test_a_ball_scene_needs_the_driven_machine_and_no_springs(tmp_path):
+    scene = tmp_path / "scene.toml"
+    head = f'[coupling]\nlaw = "centrifugal"\ncase = "{(CASES / "ball_crusher.toml").as_posix()}"\n'
+    scene.write_text('effects = ["slip_friction"]\n' + head)
+    with pytest.raises(InputError, match="missing") as error:
+        load_scene(scene)
+    assert error.value.field == "driven.inertia"
+    scene.write_text('effects = ["slip_friction", "gravity"]\n' + head)
+    with pytest.raises(InputError, match="gravity does not apply to the ball coupling") as error:
+        load_scene(scene)
+    assert error.value.field == "effects"

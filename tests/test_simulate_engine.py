@@ -1,5 +1,6 @@
 """The simulation engine: effects evaluated only when listed, stick and slip, solved wedge designs on real drives."""
 
+import json
 import math
 
 import pytest
@@ -8,7 +9,6 @@ from clutchopt.cases import load_case
 from clutchopt.formulations.duty import GRAVITY
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate import load_scene, report_figure, run_scene, verify
-from clutchopt.simulate.design import design_outputs
 from clutchopt.simulate.engine import Model, simulate
 from clutchopt.simulate.laws import ConstantFriction, Load
 from tests.conftest import CASES
@@ -85,7 +85,7 @@ def test_motor_and_springs_for_the_solved_wedge_design():
     scene = load_scene(SCENES / "wedge_motor_springs.toml")
     result = run_scene(scene)
     h, head = result.history, result.headline
-    outputs = design_outputs(CASES / "designs" / "wedge_paper.json", "wedge")
+    outputs = committed_outputs()
     mass_radius = outputs["weight_mass"] * outputs["centroid_radius"]
     engagement = math.sqrt((12.0 + outputs["weight_mass"] * GRAVITY) / mass_radius)
     assert head["source"]["engagement_speed"] == pytest.approx(engagement, rel=1e-12)
@@ -135,7 +135,7 @@ def test_springs_at_constant_speed_lengthen_t_p_as_the_torque_law_says():
     data = read_toml(SCENES / "wedge_motor_springs.toml")
     data = copy.deepcopy(data) | {"effects": ["slip_friction", "spring_preload", "lockup"]}
     head = run_scene(parse_scene(data, str(SCENES / "wedge_motor_springs.toml"))).headline
-    outputs = design_outputs(CASES / "designs" / "wedge_paper.json", "wedge")
+    outputs = committed_outputs()
     w0 = 1000 * math.pi / 30
     w_e2 = 12.0 / (outputs["weight_mass"] * outputs["centroid_radius"])
     torque = outputs["torque"] * (1 - w_e2 / w0**2)  # T = c_F m_r r_c (w^2 - w_e^2)
@@ -166,3 +166,8 @@ def test_an_infeasible_solution_is_not_started():
     assert verify(case, solution) == {"verified": False,
                                       "reason": "the solution's status is infeasible, there is no design to start"}
     assert report_figure(case, solution)[0] is None
+
+
+def committed_outputs() -> dict:
+    """Outputs of the committed solved design (clutchopt solve cases/wedge_paper.toml --json)."""
+    return json.loads((CASES / "designs" / "wedge_paper.json").read_text())["outputs"]

@@ -34,9 +34,9 @@ def add_command(commands) -> None:
 def run(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.optimise import SolverOptions
-    from clutchopt.formulations import get_coupling
     from clutchopt.optimise.pareto import CAP, pareto_front
     from clutchopt.files import check_output, write_whole
+    from clutchopt.optimise.problem import case_formulation
     from clutchopt.optimise.sweep import table_format, write_frame
     from clutchopt.optimise.verify import evaluate_objective
     from clutchopt.output import to_json
@@ -48,7 +48,7 @@ def run(args) -> str:
         check_output("--plot", args.plot, FIGURE_SUFFIXES)
     store = open_store(args)
     front = pareto_front(case, args.mode, args.points, SolverOptions(tol=args.tol))
-    formulation = get_coupling(case.coupling).formulation(front.mode)
+    formulation = case_formulation(case, front.mode)
     if store is not None:
         with store:
             for cap, solution in zip(front.caps, front.solutions):

@@ -19,8 +19,8 @@ def add_command(commands) -> None:
 def run(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.cli.options import open_store, record_solve
-    from clutchopt.formulations import get_coupling
     from clutchopt.optimise import SolverOptions, solve_case
+    from clutchopt.optimise.problem import case_formulation
     from clutchopt.output import solution_text, to_json
 
     case = load_case(args.case)
@@ -35,7 +35,7 @@ def run(args) -> str:
     if args.json:
         return to_json({"case": case.path, "title": case.title, **solution.as_dict(),
                         **({"verify": check} if check else {})})
-    formulation = get_coupling(case.coupling).formulation(solution.mode)
+    formulation = case_formulation(case, solution.mode)
     text = solution_text(solution, formulation, case.title)
     if check:
         from clutchopt.simulate.design import verify_text

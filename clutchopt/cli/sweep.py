@@ -49,7 +49,7 @@ def run(args) -> str:
     varies = []
     for text in args.vary:
         with problems.field():
-            varies.append(parse_vary(text, case.coupling))
+            varies.append(parse_vary(text, case.coupling, case.quantities))
     problems.raise_any()
     sweep = Sweep(case, varies, args.mode, args.objective, args.tol, args.zip)
     if args.out:

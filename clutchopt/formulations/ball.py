@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from types import SimpleNamespace
 from typing import Any
 
 from scipy.optimize import brentq
@@ -35,6 +36,7 @@ from clutchopt.model import (
     Objective,
     Output,
     Quantity,
+    SpeedLaw,
     Variable,
     at_least,
     at_most,
@@ -336,6 +338,15 @@ def _outputs(c: BallClutch, p):
     }
 
 
+def _speed_law(clutch_of) -> SpeedLaw:
+    """T = K w_a^2: the torque (8) of the ball layer, which rides on the driving rotor, at 1 rad/s. The balls have
+    no springs, and their weight does not hold the layer in once it has formed, so neither effect applies."""
+    def torque_coefficient(x, p):
+        return clutch_of(x, p).torque(SimpleNamespace(**{**vars(p), "speed": 1.0}))
+
+    return SpeedLaw(torque_coefficient)
+
+
 def _formulation(mode, title, variables, clutch_of, constraints_of):
     return Formulation(
         coupling="ball",
@@ -349,6 +360,7 @@ def _formulation(mode, title, variables, clutch_of, constraints_of):
             Objective("cost", "EUR", "balls and body priced per kg", lambda x, p: clutch_of(x, p).cost(p)),
         ),
         outputs=lambda x, p: _outputs(clutch_of(x, p), p),
+        speed_law=_speed_law(clutch_of),
     )
 
 

@@ -48,6 +48,7 @@ from clutchopt.model import (
     Objective,
     Output,
     Quantity,
+    SpeedLaw,
     Variable,
     at_least,
     at_most,
@@ -323,7 +324,7 @@ def _duty_constraints(t: Toggles):
     p = t.p
     return [
         at_least("torque", t.torque(t.new_push), _t_max(p), equation="m z (statics)", unit="N*m",
-                 description="friction torque at gamma_0, new linings, covers T_max"),
+                 description="friction torque at gamma_0, new linings, covers T_max", constant_acceleration=True),
         at_most("lining_pressure", lining_pressure(t.worn_push, t.mean_diameter, t.lining_width),
                 p.allowable_pressure, equation="B_cp, statics", unit="MPa",
                 description="lining pressure at gamma_pr (worn: largest push) within [p]"),
@@ -376,6 +377,23 @@ def _duty_outputs(t: Toggles):
     }
 
 
+def _speed_law(toggles) -> SpeedLaw:
+    """T = K w_a^2, K the friction torque with new linings (gamma_0, weight at R_0, spring slack) at 1 rad/s; each
+    weight's centrifugal force is m R_0 w_a^2, against which a spring preload and gravity act."""
+    def at_one_radian_per_second(x, p):
+        return toggles(x, SimpleNamespace(**{**vars(p), "speed": 1.0}))
+
+    def torque_coefficient(x, p):
+        t = at_one_radian_per_second(x, p)
+        return t.torque(t.new_push)
+
+    def mass_radius(x, p):
+        t = toggles(x, p)
+        return t.weight_mass * t.start_radius
+
+    return SpeedLaw(torque_coefficient, mass_radius, lambda x, p: toggles(x, p).weight_mass)
+
+
 def _formulation(mode, title, variables, toggles, extra_constraints=lambda t: []):
     """A lever formulation from the way its mode obtains the toggles."""
     return Formulation(
@@ -390,6 +408,7 @@ def _formulation(mode, title, variables, toggles, extra_constraints=lambda t: []
             Objective("cost", "EUR", "material, parts per toggle, linings", lambda x, p: toggles(x, p).cost),
         ),
         outputs=lambda x, p: _duty_outputs(toggles(x, p)),
+        speed_law=_speed_law(toggles),
     )
 
 

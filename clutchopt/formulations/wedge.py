@@ -17,7 +17,7 @@ Two posed problems:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from types import SimpleNamespace
 from typing import Any
 
@@ -31,6 +31,7 @@ from clutchopt.model import (
     Objective,
     Output,
     Quantity,
+    SpeedLaw,
     Variable,
     at_least,
     at_most,
@@ -206,7 +207,8 @@ def _duty_constraints(w: WeightSet, p):
     return [
         at_least("torque", friction_torque(w.count, w.friction, w.r1, w.r2),
                  required_torque(p.inertia, p.speed, p.acceleration_time, p.resisting_torque),
-                 equation="(15)-(16)", unit="N*m", description="friction torque covers T_max"),
+                 equation="(15)-(16)", unit="N*m", description="friction torque covers T_max",
+                 constant_acceleration=True),
         at_most("flank_pressure", flank_pressure(w.centrifugal, w.flank_angle, w.sector_angle, w.r1, w.r2),
                 p.allowable_pressure, equation="(13)", unit="MPa", description="flank pressure within [p]"),
         at_most("finger_bending", finger_bending_stress(w.friction, mean_flank_radius(w.r1, w.r2), w.finger_diameter),
@@ -237,6 +239,20 @@ def _duty_outputs(w: WeightSet, p):
     }
 
 
+def _speed_law(weight_set) -> SpeedLaw:
+    """T = K w_a^2 with K the friction torque (15) of the weights at 1 rad/s; each weight's centrifugal force is
+    m_r r_c w_a^2 (10), against which springs and gravity act."""
+    def torque_coefficient(x, p):
+        w = replace(weight_set(x, p), speed=1.0)
+        return friction_torque(w.count, w.friction, w.r1, w.r2)
+
+    def mass_radius(x, p):
+        w = weight_set(x, p)
+        return w.weight_mass * w.centroid_radius
+
+    return SpeedLaw(torque_coefficient, mass_radius, lambda x, p: weight_set(x, p).weight_mass)
+
+
 def _formulation(mode, title, variables, weight_set, extra_constraints=lambda w, x, p: [],
                  extra_outputs=lambda w, x, p: {}):
     """A wedge formulation from the way its mode obtains the weight set."""
@@ -252,6 +268,7 @@ def _formulation(mode, title, variables, weight_set, extra_constraints=lambda w,
             Objective("cost", "EUR", "material, parts and flank grinding", lambda x, p: _cost(weight_set(x, p), p)),
         ),
         outputs=lambda x, p: {**_duty_outputs(w := weight_set(x, p), p), **extra_outputs(w, x, p)},
+        speed_law=_speed_law(weight_set),
     )
 
 

@@ -16,7 +16,8 @@ import pandas as pd
 from clutchopt.cases import Case
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Formulation, Quantity, at_most
-from clutchopt.optimise.problem import Problem, Solution, SolverOptions, problem_for
+from clutchopt.optimise.problem import Problem, Solution, SolverOptions, case_formulation, case_problem
+from clutchopt.optimise.start_up import Structure
 from clutchopt.optimise.sweep import column_name
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_objective
 from clutchopt.store import CAPPED_SUFFIX
@@ -55,12 +56,14 @@ _CAPPED: dict[tuple, Problem] = {}
 def pareto_front(case: Case, mode: str | None = None, points: int = 9,
                  options: SolverOptions = SolverOptions()) -> ParetoFront:
     """Mass optimum, cost optimum, and ``points - 2`` epsilon-constrained mass optima between them."""
-    formulation = get_coupling(case.coupling).formulation(mode or case.options.get("mode"))
-    mass_end = problem_for(formulation, "mass", options).solve(case)
-    cost_end = problem_for(formulation, "cost", options).solve(case)
-    key = (formulation.coupling, formulation.mode, options)
+    mass_end = case_problem(case, mode, "mass", options).solve(case)
+    cost_end = case_problem(case, mode, "cost", options).solve(case)
+    formulation = case_formulation(case, mode)
+    structure = Structure.of(case) if case.start_up is not None else None
+    key = (formulation.coupling, formulation.mode, options, structure)
     if key not in _CAPPED:
-        _CAPPED[key] = Problem(capped(formulation), "mass", options)
+        base = get_coupling(case.coupling).formulation(mode or case.options.get("mode"))
+        _CAPPED[key] = Problem(capped(base), "mass", options, structure)
     problem = _CAPPED[key]
     solutions, caps = [mass_end], [np.nan]
     note = ""

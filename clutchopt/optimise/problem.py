@@ -24,14 +24,24 @@ from __future__ import annotations
 import itertools
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from types import SimpleNamespace
 
 import casadi as ca
 import numpy as np
 
 from clutchopt.cases import Case
+from clutchopt.formulations.start_up import with_start_up
 from clutchopt.model import Formulation, Output, namespace
+from clutchopt.optimise.start_up import (
+    BACK_OFF_STEPS,
+    MAX_INTERVALS,
+    StartUpBlock,
+    Structure,
+    initial_states,
+    start_up_report,
+    tightened_limits,
+)
 from clutchopt.units import si_unit
 from clutchopt.optimise.verify import (
     FEASIBILITY_TOL,
@@ -87,18 +97,21 @@ class ScaledData:
     scale: np.ndarray  # x = scale * x_hat
     f_scale: float  # objective normaliser
     p: np.ndarray  # the NLP's parameter vector: case values, scales, objective scale
+    internal_lower: np.ndarray = field(default_factory=lambda: np.zeros(0))  # start-up states, already scaled
+    internal_upper: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    internal_start: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     @property
     def lbx(self) -> np.ndarray:
-        return self.lower / self.scale
+        return np.concatenate([self.lower / self.scale, self.internal_lower])
 
     @property
     def ubx(self) -> np.ndarray:
-        return self.upper / self.scale
+        return np.concatenate([self.upper / self.scale, self.internal_upper])
 
     @property
     def x0(self) -> np.ndarray:
-        return self.start / self.scale
+        return np.concatenate([self.start / self.scale, self.internal_start])
 
 
 @dataclass
@@ -120,6 +133,8 @@ class Solution:
     scale: np.ndarray | None = field(default=None, repr=False)  # variable scales of the kept solve (warm starts)
     multipliers: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False)  # (lam_x, lam_g), scaled
     design_units: dict[str, str] = field(default_factory=dict)  # display unit of each design variable
+    start_up: dict | None = None  # the NLP's start-up beside the simulated one (cases with [start_up])
+    internal: np.ndarray | None = field(default=None, repr=False)  # scaled start-up states of the kept solve
 
     def at_bound(self, name: str) -> str:
         """"fixed", "lower", "upper" (within 1e-7 relative) or "" for a design variable."""
@@ -154,17 +169,19 @@ class Solution:
             "integer_search": self.integer_search,
             "bounds": {name: list(pair) for name, pair in self.bounds.items()},
             "sensitivities": self.sensitivities,
+            **({"start_up": self.start_up} if self.start_up is not None else {}),
         }
 
 
 class Problem:
     """One formulation with one objective, built as a CasADi ``nlpsol`` once."""
 
-    def __init__(self, formulation: Formulation, objective: str = "mass", options: SolverOptions = SolverOptions()):
-        self.formulation = formulation
+    def __init__(self, formulation: Formulation, objective: str = "mass", options: SolverOptions = SolverOptions(),
+                 start_up: Structure | None = None):
+        self._base = formulation
+        self.formulation = f = with_start_up(formulation) if start_up else formulation
         self.objective = formulation.objective(objective)
         self.options = options
-        f = formulation
         n, m = len(f.variables), len(f.quantities)
         x_hat = ca.SX.sym("x_hat", n)
         p_case = ca.SX.sym("p_case", m)
@@ -173,16 +190,33 @@ class Problem:
         x = namespace({v.name: x_hat[i] * x_scale[i] for i, v in enumerate(f.variables)})
         p = namespace({q.name: p_case[j] for j, q in enumerate(f.quantities)})
         constraints = f.constraints(x, p)
+        self.n_checked = len(constraints)  # the formulation's own constraints, re-evaluated by check_design
+        self.start_up = StartUpBlock(start_up, f.speed_law, x, p) if start_up else None
+        internal, equalities = (self.start_up.hat, self.start_up.equalities) if start_up else (ca.SX(0, 1), [])
+        constraints += self.start_up.constraints if start_up else []
+        rows = [ca.SX(c.normalised()) for c in constraints]
         self.constraint_names = [c.name for c in constraints]
-        self.constraint_senses = [c.sense for c in constraints]
-        g = ca.vertcat(*[c.normalised() for c in constraints])
-        self._nlp = {"x": x_hat, "p": ca.vertcat(p_case, x_scale, f_scale),
+        self.constraint_rows = [row.shape[0] for row in rows]  # a start-up constraint may hold along a path
+        self.row_names = [c.name for c, row in zip(constraints, rows) for _ in range(row.shape[0])]
+        self.row_senses = [c.sense for c, row in zip(constraints, rows) for _ in range(row.shape[0])]
+        g = ca.vertcat(*rows, *equalities)
+        self.n_ineq = len(self.row_names)
+        self._lbg = np.concatenate([np.full(self.n_ineq, -np.inf), np.zeros(len(equalities))])
+        x_all = ca.vertcat(x_hat, internal)
+        self._fixed_rows = [i for i in range(self.n_ineq) if not ca.depends_on(g[i], x_all)]  # no design enters
+        self._constraint_values = ca.Function("g", [x_all, ca.vertcat(p_case, x_scale, f_scale)], [g[: self.n_ineq]])
+        self._nlp = {"x": x_all, "p": ca.vertcat(p_case, x_scale, f_scale),
                      "f": self.objective.function(x, p) / f_scale, "g": g}
         self._solver = ca.nlpsol(f"{f.coupling}_{f.mode}_{objective}", "ipopt", self._nlp, options.ipopt())
         lam_g = ca.SX.sym("lam_g", g.shape[0])
         lagrangian = self._nlp["f"] + ca.dot(lam_g, g)
-        self._dlagrangian_dcase = ca.Function("dL_dcase", [x_hat, self._nlp["p"], lam_g],
+        self._dlagrangian_dcase = ca.Function("dL_dcase", [x_all, self._nlp["p"], lam_g],
                                               [ca.gradient(lagrangian, p_case)])
+        if start_up:
+            self._start_up_figures = ca.Function("start_up", [x_all, self._nlp["p"]],
+                                                 [ca.vertcat(*self.start_up.outputs().values()),
+                                                  *[ca.vertcat(*column) for column in self.start_up.trajectory().values()]])
+            self._internal_scale = ca.Function("internal_scale", [p_case], [ca.vertcat(*self.start_up.scales)])
         self._elastic = None
         self._warm_solver = None
 
@@ -225,46 +259,94 @@ class Problem:
 
     # --- solving ---------------------------------------------------------------------------------------------------
     def scaled_data(self, case: Case, start: dict[str, float] | None = None,
-                    scale: np.ndarray | None = None) -> ScaledData:
-        """Bounds, start and scales of one solve (scales from the start unless given)."""
+                    scale: np.ndarray | None = None, internal: np.ndarray | None = None) -> ScaledData:
+        """Bounds, start and scales of one solve (scales from the start unless given); with a start-up, its states
+        start from ``internal`` (a previous solve's) or from a simulation of the start design."""
         lower, upper, x0 = self._bounds_and_start(case, start)
         params = self._params(case)
         scale, f_scale, p_vector = self._scaling(params, x0, lower, upper, scale)
-        return ScaledData(params, lower, upper, x0, scale, f_scale, p_vector)
+        data = ScaledData(params, lower, upper, x0, scale, f_scale, p_vector)
+        if self.start_up is not None:
+            data.internal_lower, data.internal_upper = self.start_up.bounds()
+            if internal is None or len(internal) != self.start_up.size:
+                internal = initial_states(self.start_up, case, self.formulation, self._design(x0 / scale, scale),
+                                          np.array(self._internal_scale(p_vector[: len(params.__dict__)])).ravel())
+            data.internal_start = np.clip(internal, data.internal_lower, data.internal_upper)
+        return data
+
+    def _design(self, x: np.ndarray, scale: np.ndarray) -> dict[str, float]:
+        """Design variables by name (SI) from the NLP's (scaled) x, internal variables left out."""
+        return {v.name: float(value) for v, value in zip(self.formulation.variables, x[: len(scale)] * scale)}
 
     def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | None = None) -> Solution:
-        """Solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one."""
-        warm_ok = warm is not None and warm.status == "optimal" and warm.scale is not None
-        data = self.scaled_data(case, warm.design, warm.scale) if warm_ok else self.scaled_data(case, start)
-        lower, upper, x0, params = data.lower, data.upper, data.start, data.params
+        """Solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one.
+
+        With a start-up, the simulated start is what the limits are checked against. Should it miss one by more
+        than the case's tolerance: if the collocation's own error in the start time exceeds the tolerance, the
+        problem with twice the intervals solves again from this design (up to MAX_INTERVALS); otherwise the
+        missed limits are moved in by what the simulation adds to the NLP's figure (defect correction) and the
+        problem re-solves warm, at most BACK_OFF_STEPS times. Limits are always reported as the case gives them."""
+        solution = self._solve(case, start, warm)
+        nlp_case = case
+        for _ in range(BACK_OFF_STEPS if self.start_up is not None else 0):
+            if solution.status != "unverified":
+                break
+            structure = self.start_up.s
+            error = solution.start_up["discretisation_error"]["start_time"]
+            if abs(error) > structure.spec.tolerance and 2 * structure.intervals <= MAX_INTERVALS:
+                finer = replace(structure, intervals=2 * structure.intervals)
+                return problem_for(self._base, self.objective.name, self.options, finer).solve(case, solution.design)
+            limits = tightened_limits(solution, nlp_case)
+            if not limits:
+                break
+            nlp_case = nlp_case.with_values(**limits)
+            previous = solution.solver
+            solution = self._solve(case, warm=solution, nlp_case=nlp_case)
+            solution.solver = SolverInfo(previous.name, solution.solver.status,
+                                         previous.iterations + solution.solver.iterations,
+                                         previous.time_s + solution.solver.time_s, previous.solves + solution.solver.solves)
+        return solution
+
+    def _solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | None = None,
+               nlp_case: Case | None = None) -> Solution:
+        """One solve (with its integer search); the NLP sees ``nlp_case`` (moved limits), the checks ``case``."""
+        warm_ok = warm is not None and warm.status in ("optimal", "unverified") and warm.scale is not None
+        solved = nlp_case or case
+        data = (self.scaled_data(solved, warm.design, warm.scale, warm.internal) if warm_ok
+                else self.scaled_data(solved, start))
+        lower, upper, params = data.lower, data.upper, data.params
         scale, f_scale, p_vector = data.scale, data.f_scale, data.p
+        internal_bounds = data.internal_lower, data.internal_upper
+        n = len(scale)
         names = [v.name for v in self.formulation.variables]
         runs = []
-        if warm_ok and warm.multipliers is not None and len(warm.multipliers[1]) == len(self.constraint_names):
+        if warm_ok and warm.multipliers is not None and len(warm.multipliers[1]) == len(self._lbg):
             lam_x, lam_g = warm.multipliers  # (a warm start from another problem, e.g. uncapped, gives its point only)
-            runs.append(self._run(p_vector, lower / scale, upper / scale, x0 / scale, {"lam_x": lam_x, "lam_g": lam_g},
+            runs.append(self._run(p_vector, data.lbx, data.ubx, data.x0, {"lam_x": lam_x, "lam_g": lam_g},
                                   solver=self._warm()))
         if not runs or not runs[-1]["ok"]:
-            runs.append(self._run(p_vector, lower / scale, upper / scale, x0 / scale, None))
-        x_opt = runs[-1]["x"] * scale
+            runs.append(self._run(p_vector, data.lbx, data.ubx, data.x0, None))
+        x_opt = runs[-1]["x"][:n] * scale
         off = (np.abs(x_opt) > 0) & ((np.abs(x_opt) > 10 * scale) | (np.abs(x_opt) < 0.1 * scale))
         if runs[-1]["ok"] and off.any():  # the start was far off: solve again, scaled by the first optimum
             scale, f_scale, p_vector = self._scaling(params, x_opt, lower, upper)
-            runs.append(self._run(p_vector, lower / scale, upper / scale, x_opt / scale, None))
+            runs.append(self._run(p_vector, *self._scaled_box(lower, upper, scale, internal_bounds),
+                                  np.concatenate([x_opt / scale, runs[-1]["x"][n:]]), None))
         relaxed = runs[-1]
         integer = [i for i, v in enumerate(self.formulation.variables) if v.integer and lower[i] < upper[i]]
         kept = relaxed
         search = []
         for reach in (1, 2) if integer and relaxed["ok"] else ():
             kept = None
-            for combo in self._integer_neighbours(relaxed["x"] * scale, integer, lower, upper, reach):
+            for combo in self._integer_neighbours(relaxed["x"][:n] * scale, integer, lower, upper, reach):
                 if any(all(entry[names[i]] == c for i, c in zip(integer, combo)) for entry in search):
                     continue
                 lo, hi = lower.copy(), upper.copy()
                 lo[integer] = hi[integer] = combo
-                run = self._run(p_vector, lo / scale, hi / scale, np.clip(relaxed["x"], lo / scale, hi / scale), relaxed)
+                lbx, ubx = self._scaled_box(lo, hi, scale, internal_bounds)
+                run = self._run(p_vector, lbx, ubx, np.clip(relaxed["x"], lbx, ubx), relaxed)
                 runs.append(run)
-                design = dict(zip(names, run["x"] * scale))
+                design = self._design(run["x"], scale)
                 feasible = all(c.feasible for c in check_design(self.formulation, design, params))
                 value = evaluate_objective(self.formulation, self.objective.name, design, params)
                 search.append({**{names[i]: int(c) for i, c in zip(integer, combo)},
@@ -280,6 +362,11 @@ class Problem:
                                  f"but none of the integer neighbours is ({tried})"))
         return self._finish(case, kept, runs, scale, f_scale, lower, upper, search)
 
+    @staticmethod
+    def _scaled_box(lower, upper, scale, internal_bounds) -> tuple[np.ndarray, np.ndarray]:
+        """The NLP's variable bounds: design bounds scaled, then the (already scaled) internal ones."""
+        return (np.concatenate([lower / scale, internal_bounds[0]]), np.concatenate([upper / scale, internal_bounds[1]]))
+
     def _warm(self):
         if self._warm_solver is None:
             f = self.formulation
@@ -290,7 +377,7 @@ class Problem:
     def _run(self, p_vector, lbx, ubx, x0, warm, solver=None):
         """One IPOPT solve; ``warm`` multipliers are used by the warm solver only (the cold one ignores them)."""
         solver = solver or self._solver
-        args = {"x0": x0, "p": p_vector, "lbx": lbx, "ubx": ubx, "lbg": -np.inf, "ubg": 0.0}
+        args = {"x0": x0, "p": p_vector, "lbx": lbx, "ubx": ubx, "lbg": self._lbg, "ubg": 0.0}
         if warm is not None:
             args.update(lam_x0=warm["lam_x"], lam_g0=warm["lam_g"])
         started = time.perf_counter()
@@ -317,14 +404,19 @@ class Problem:
         f = self.formulation
         params = self._params(case)
         names = [v.name for v in f.variables]
-        design = {n: float(value) for n, value in zip(names, run["x"] * scale)}
+        design = self._design(run["x"], scale)
         for i in (i for i, v in enumerate(f.variables) if v.integer):
             design[names[i]] = float(round(design[names[i]]))
         checks = check_design(f, design, params)
+        start_up = None
+        if self.start_up is not None:  # re-checked by the independent simulator
+            start_up, simulated = start_up_report(self.start_up, case, f, design, params,
+                                                  self._start_up_figures(run["x"], run["p"]))
+            checks += simulated
         objective = evaluate_objective(f, self.objective.name, design, params)
-        for check, lam in zip(checks, run["lam_g"]):
-            check.multiplier = float(lam)
-            check.elasticity = _elasticity(check, float(lam), f_scale, objective)
+        for check, lam in zip(checks, self._named_multipliers(run["lam_g"])):
+            check.multiplier = lam
+            check.elasticity = _elasticity(check, lam, f_scale, objective)
         info = SolverInfo("ipopt", run["status"], sum(r["iterations"] for r in runs), sum(r["time"] for r in runs),
                           len(runs))
         feasible = all(c.feasible for c in checks)
@@ -335,16 +427,23 @@ class Problem:
             status = "optimal"
         elif run["ok"]:
             status = "unverified"
-            worst = min(checks, key=lambda c: c.margin)
-            diagnosis = (f"IPOPT reported success but the float64 check finds {worst.name} violated by "
+            worst = min(checks, key=lambda c: c.margin if math.isfinite(c.margin) else -math.inf)
+            check = "the simulated start-up" if worst in checks[self.n_checked:] else "the float64 check"
+            diagnosis = (f"IPOPT reported success but {check} finds {worst.name} violated by "
                          f"{-worst.margin:.3g} (relative)")
         else:
-            status, diagnosis = self.diagnose(run["p"], lower / scale, upper / scale, run["x"], scale)
+            status, diagnosis = self.diagnose(run["p"], run["lbx"], run["ubx"], run["x"], scale)
         bounds = {n: (float(lo), float(hi)) for n, lo, hi in zip(names, lower, upper)}
         sensitivities = self._sensitivities(run, params, scale, f_scale, objective) if status == "optimal" else {}
         return Solution(f.coupling, f.mode, self.objective.name, self.objective.unit, status, objective, design,
                         evaluate_outputs(f, design, params), checks, info, diagnosis, search, bounds,
-                        sensitivities, scale, (run["lam_x"], run["lam_g"]), {v.name: v.unit for v in f.variables})
+                        sensitivities, scale, (run["lam_x"], run["lam_g"]), {v.name: v.unit for v in f.variables},
+                        start_up, run["x"][len(scale):] if self.start_up is not None else None)
+
+    def _named_multipliers(self, lam_g: np.ndarray) -> list[float]:
+        """The multiplier of each named constraint: the sum over its rows (one row, or the points of a path)."""
+        ends = np.cumsum(self.constraint_rows)
+        return [float(lam_g[end - rows:end].sum()) for rows, end in zip(self.constraint_rows, ends)]
 
     def _sensitivities(self, run, params, scale, f_scale, objective) -> dict[str, float]:
         """d ln f* / d ln p for every case quantity with a finite non-zero value and every fixed variable.
@@ -368,28 +467,41 @@ class Problem:
 
     # --- infeasibility diagnosis ------------------------------------------------------------------------------------
     def diagnose(self, p_vector, lbx, ubx, x0, scale) -> tuple[str, str]:
-        """Elastic relaxation: min sum(s) s.t. g(x) <= s, s >= 0. Positive slacks name the conflict."""
+        """Elastic relaxation: min sum(s) s.t. g(x) <= s, s >= 0 on the inequalities (the start-up's dynamics stay
+        equalities). Positive slacks name the conflict."""
+        n_g = self.n_ineq
+        g0 = np.array(self._constraint_values(x0, p_vector)).ravel()
+        given = sorted({self.row_names[i] for i in self._fixed_rows if g0[i] > FEASIBILITY_TOL},
+                       key=self.row_names.index)
+        if given:  # requirements that no design variable enters: nothing to relax but the case itself
+            return "infeasible", ("infeasible whatever the design: " + ", ".join(
+                f"{name} ({'over' if self.row_senses[self.row_names.index(name)] == '<=' else 'short of'} its limit by "
+                f"{g0[self.row_names.index(name)]:.3g} relative)" for name in given))
         if self._elastic is None:
-            n_g = self._nlp["g"].shape[0]
             slack = ca.SX.sym("slack", n_g)
+            g = self._nlp["g"]
             nlp = {"x": ca.vertcat(self._nlp["x"], slack), "p": self._nlp["p"], "f": ca.sum1(slack),
-                   "g": self._nlp["g"] - slack}
+                   "g": ca.vertcat(g[:n_g] - slack, g[n_g:])}
             self._elastic = ca.nlpsol("elastic", "ipopt", nlp, self.options.ipopt())
-        n_g = len(self.constraint_names)
         result = self._elastic(x0=np.concatenate([x0, np.ones(n_g)]), p=p_vector,
                                lbx=np.concatenate([lbx, np.zeros(n_g)]), ubx=np.concatenate([ubx, np.full(n_g, np.inf)]),
-                               lbg=-np.inf, ubg=0.0)
+                               lbg=self._lbg, ubg=0.0)
         slacks = np.array(result["x"]).ravel()[len(lbx):]
-        lam_g = np.array(result["lam_g"]).ravel()
+        lam_g = np.array(result["lam_g"]).ravel()[:n_g]
         x = np.array(result["x"]).ravel()[: len(lbx)]
         if slacks.sum() <= 10 * FEASIBILITY_TOL:
             return "solver_failed", ("IPOPT did not converge, yet a feasible point exists (elastic check); "
                                      "try other bounds or a start point")
-        violated = [f"{name} ({'over' if sense == '<=' else 'short of'} its limit by {s:.3g} relative)"
-                    for name, sense, s in zip(self.constraint_names, self.constraint_senses, slacks)
-                    if s > 10 * FEASIBILITY_TOL]
-        binding = [name for name, s, lam in zip(self.constraint_names, slacks, lam_g)
-                   if s <= 10 * FEASIBILITY_TOL and lam > 1e-6]
+        worst: dict[str, float] = {}
+        binding: list[str] = []
+        for name, s, lam in zip(self.row_names, slacks, lam_g):
+            worst[name] = max(worst.get(name, 0.0), s)
+            if s <= 10 * FEASIBILITY_TOL and lam > 1e-6 and name not in binding:
+                binding.append(name)
+        senses = dict(zip(self.row_names, self.row_senses))
+        violated = [f"{name} ({'over' if senses[name] == '<=' else 'short of'} its limit by {s:.3g} relative)"
+                    for name, s in worst.items() if s > 10 * FEASIBILITY_TOL]
+        binding = [name for name in binding if worst[name] <= 10 * FEASIBILITY_TOL]
         at_bounds = []
         lam_x = np.array(result["lam_x"]).ravel()[: len(lbx)]
         for i, v in enumerate(self.formulation.variables):
@@ -419,19 +531,35 @@ def _elasticity(check: ConstraintCheck, lam: float, f_scale: float, objective: f
 _CACHE: dict[tuple, Problem] = {}
 
 
-def problem_for(formulation: Formulation, objective: str = "mass", options: SolverOptions = SolverOptions()) -> Problem:
-    """Build a problem once per (formulation, objective, options) in this process and reuse it."""
-    key = (formulation.coupling, formulation.mode, objective, options)
+def problem_for(formulation: Formulation, objective: str = "mass", options: SolverOptions = SolverOptions(),
+                start_up: Structure | None = None) -> Problem:
+    """Build a problem once per (formulation, objective, options, start-up structure) in this process and reuse it."""
+    key = (formulation.coupling, formulation.mode, objective, options, start_up)
     if key not in _CACHE:
-        _CACHE[key] = Problem(formulation, objective, options)
+        _CACHE[key] = Problem(formulation, objective, options, start_up)
     return _CACHE[key]
+
+
+def case_formulation(case: Case, mode: str | None = None) -> Formulation:
+    """The formulation a case is solved with, as shown: the coupling's in ``mode`` (default: the case's option,
+    then the coupling's), with the start-up's quantities and spring preload if the case has a [start_up] section."""
+    from clutchopt.formulations import get_coupling
+
+    formulation = get_coupling(case.coupling).formulation(mode or case.options.get("mode"))
+    return with_start_up(formulation) if case.start_up is not None else formulation
+
+
+def case_problem(case: Case, mode: str | None = None, objective: str | None = None,
+                 options: SolverOptions = SolverOptions()) -> Problem:
+    """The built problem that solves ``case`` in ``mode`` (default: the case's option, then the coupling's)."""
+    from clutchopt.formulations import get_coupling
+
+    formulation = get_coupling(case.coupling).formulation(mode or case.options.get("mode"))
+    structure = Structure.of(case) if case.start_up is not None else None
+    return problem_for(formulation, objective or case.options.get("objective", "mass"), options, structure)
 
 
 def solve_case(case: Case, mode: str | None = None, objective: str | None = None,
                options: SolverOptions = SolverOptions()) -> Solution:
     """Solve a case in a mode (default: the case's option, then the coupling's default)."""
-    from clutchopt.formulations import get_coupling
-
-    coupling = get_coupling(case.coupling)
-    formulation = coupling.formulation(mode or case.options.get("mode"))
-    return problem_for(formulation, objective or case.options.get("objective", "mass"), options).solve(case)
+    return case_problem(case, mode, objective, options).solve(case)

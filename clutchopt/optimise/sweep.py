@@ -34,7 +34,7 @@ from clutchopt.errors import InputError, Problems
 from clutchopt.files import TABLE_BYTES, check_output, read_bytes, write_whole
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Formulation, Quantity
-from clutchopt.optimise.problem import Solution, SolverOptions, problem_for
+from clutchopt.optimise.problem import Solution, SolverOptions, case_formulation, case_problem
 from clutchopt.optimise.verify import DESIGN_STATUSES
 from clutchopt.units import from_si, si_factor
 
@@ -57,11 +57,12 @@ def column_name(name: str, unit: str) -> str:
     return f"{name} [{unit}]" if unit else name
 
 
-def parse_vary(text: str, coupling: str) -> Vary:
-    """``name=start:stop:count`` or ``name=v1,v2,...``, values in the quantity's display unit."""
+def parse_vary(text: str, coupling: str, quantities: tuple[Quantity, ...] | None = None) -> Vary:
+    """``name=start:stop:count`` or ``name=v1,v2,...``, values in the quantity's display unit; ``quantities``:
+    those a case may vary (default: the coupling's; ``Case.quantities`` adds a start-up's)."""
     field = f"--vary {text}"
     name, sep, spec = text.partition("=")
-    declared = {q.name: q for q in get_coupling(coupling).quantities}
+    declared = {q.name: q for q in quantities or get_coupling(coupling).quantities}
     if not sep or not spec.strip():
         raise InputError(field, "expected name=start:stop:count or name=v1,v2,...")
     quantity = declared.get(name.strip())
@@ -127,7 +128,7 @@ def point_cases(case: Case, points: list[dict[str, float]]) -> list[Case]:
 def solve_points(case: Case, mode: str, objective: str, tol: float,
                  points: list[tuple[int, dict[str, float]]]) -> Iterator[dict]:
     """Solve points in order, each warm-started from the last optimum; yields each result as it is solved."""
-    problem = problem_for(get_coupling(case.coupling).formulation(mode), objective, SolverOptions(tol=tol))
+    problem = case_problem(case, mode, objective, SolverOptions(tol=tol))
     previous: Solution | None = None
     for index, values in points:
         point_case = case.with_values(**values)
@@ -294,10 +295,9 @@ class Sweep:
 
     def __init__(self, case: Case, varies: list[Vary], mode: str | None = None, objective: str | None = None,
                  tol: float = 1e-10, zipped: bool = False):
-        coupling = get_coupling(case.coupling)
         self.case = case
         self.varies = varies
-        self.formulation: Formulation = coupling.formulation(mode or case.options.get("mode"))
+        self.formulation: Formulation = case_formulation(case, mode)
         self.objective = self.formulation.objective(objective or case.options.get("objective", "mass"))
         self.tol = tol
         self.points = grid(varies, zipped)

@@ -5,7 +5,9 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, replace
 from types import SimpleNamespace
 
-from clutchopt.model import Formulation, Output, namespace
+import numpy as np
+
+from clutchopt.model import Constraint, Formulation, Output, namespace
 from clutchopt.units import si_unit
 
 FEASIBILITY_TOL = 1e-8  # largest relative violation accepted as feasible
@@ -37,13 +39,22 @@ class ConstraintCheck:
 def check_design(formulation: Formulation, design: dict[str, float], params: SimpleNamespace) -> list[ConstraintCheck]:
     """Evaluate every constraint of ``formulation`` at ``design`` in float64 (the same equations, no CasADi)."""
     x = namespace({k: float(v) for k, v in design.items()})
+    return check_constraints(formulation.constraints(x, params))
+
+
+def check_constraints(constraints: list[Constraint], tolerance: float = FEASIBILITY_TOL) -> list[ConstraintCheck]:
+    """Float64 constraints as checks; one that holds along a path (an array of values) reports its worst point."""
     checks = []
-    for c in formulation.constraints(x, params):
-        margin = c.margin()
+    for c in constraints:
+        values = np.atleast_1d(np.asarray(c.value, dtype=float))
+        scale = float(c.limit if c.scale is None else c.scale)
+        margins = (c.limit - values) / scale if c.sense == "<=" else (values - c.limit) / scale
+        worst = int(np.nanargmin(margins)) if not np.isnan(margins).all() else 0
+        margin = float(margins[worst])
         checks.append(ConstraintCheck(
-            name=c.name, equation=c.equation, sense=c.sense, value=float(c.value), limit=float(c.limit),
-            margin=margin, active=abs(margin) <= ACTIVE_TOL or margin < 0, feasible=margin >= -FEASIBILITY_TOL,
-            unit=c.unit, description=c.description, scale=float(c.limit if c.scale is None else c.scale)))
+            name=c.name, equation=c.equation, sense=c.sense, value=float(values[worst]), limit=float(c.limit),
+            margin=margin, active=abs(margin) <= ACTIVE_TOL or margin < 0, feasible=margin >= -tolerance,
+            unit=c.unit, description=c.description, scale=scale))
     return checks
 
 

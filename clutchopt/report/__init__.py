@@ -16,7 +16,7 @@ import pandas as pd
 
 from clutchopt.cases import Case, quantity_table
 from clutchopt.formulations import get_coupling
-from clutchopt.optimise.problem import Solution
+from clutchopt.optimise.problem import Solution, case_formulation
 from clutchopt.output import _shown, _signed, sensitivity_rows
 from clutchopt.report.sketch import sketch
 from clutchopt.store import versions
@@ -55,9 +55,8 @@ def _section(title: str, body: str, anchor: str) -> str:
 
 
 def requirements(case: Case) -> str:
-    coupling = get_coupling(case.coupling)
     rows = [{"key": r["key"], "symbol": r["symbol"], "value": r["value"], "description": r["description"]}
-            for r in quantity_table(coupling.quantities, case.values)]
+            for r in quantity_table(case.quantities, case.values)]
     return _table(rows, ("value",))
 
 
@@ -160,8 +159,7 @@ def sweep_plot(frame: pd.DataFrame) -> str:
 
 def build_report(case: Case, solution: Solution, sweep: pd.DataFrame | None = None) -> str:
     """The HTML page for a case and its solution (and a sweep table, if given)."""
-    coupling = get_coupling(case.coupling)
-    formulation = coupling.formulation(solution.mode)
+    formulation = case_formulation(case, solution.mode)
     ok = solution.status == "optimal"
     header = (f"<h1>Design review: {escape(case.title or case.path)}</h1>"
               f'<p>{escape(formulation.title)}. Case <code>{escape(case.path)}</code>. '

@@ -1,13 +1,12 @@
-"""Couplings of clutchopt as friction laws of a start-up, and designs checked against the t_p they were sized for.
+"""Couplings of clutchopt as friction laws of a start-up, and designs checked against what they were sized for.
 
-A centrifugal coupling's torque is proportional to the net radial force on each weight: for the wedge coupling
-(eqs. 10-15 of Ambartsumyants & Deli) T = z f r_m (m_r r_c w_a^2 - F_s) / sin(alpha); for the lever coupling with
-new linings (weight at R_0, spring slack) T = i f d_cp z m R_0 w_a^2 / (4 tan gamma_0). So a solved design gives
-the torque per newton of radial force c_F = T / (m r w_d^2) from its torque T at the design speed w_d, its weight
-mass m and the weight's radius r. Sizing assumes the
-torque T_max = I_n w_a / t_p + T_c acts from the start at constant driving speed (constant angular acceleration,
-eqs. 5, 17): then the simulated start-up time is exactly I_n w_a / (T - T_c), which is t_p when the torque
-constraint is active.
+A centrifugal coupling's torque follows its driving speed: T = K (w_a^2 - w_e^2)^+, K = dT/d(w_a^2) from the
+coupling's own torque equation at the design (its formulation's :class:`~clutchopt.model.SpeedLaw`: wedge eqs.
+10-15, lever statics with new linings, ball eq. 8), w_e the engagement speed that spring preload and gravity set.
+Sizing assumes the torque T_max = I_n w_a / t_p + T_c acts from the start at constant driving speed (constant
+angular acceleration, wedge eqs. 5, 17): then the simulated start-up time is exactly I_n w_a / (T - T_c), which is
+t_p when the torque constraint is active. A case with a ``[start_up]`` section is started on the drive it describes
+(:func:`start_up_model`): that is the independent float64 check of the NLP's start-up.
 """
 
 from __future__ import annotations
@@ -15,36 +14,43 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
+from types import SimpleNamespace
 
 from clutchopt.errors import InputError, Problems
 from clutchopt.files import CASE_BYTES, read_text
+from clutchopt.formulations.start_up import RADIAL_EFFECTS, engagement_speed_squared
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.engine import Model, SimulationResult, simulate
-from clutchopt.simulate.laws import CentrifugalFriction, Load
+from clutchopt.simulate.laws import CentrifugalFriction, InductionMotor, Load
 
-# couplings whose solved designs give a speed-dependent torque law: outputs (torque, weight mass, weight radius)
-SPEED_LAWS = {"wedge": ("torque", "weight_mass", "centroid_radius"),
-              "lever": ("torque", "weight_mass", "start_radius")}
+
+MAX_TORQUE = 1e9  # N*m: the largest torque the simulator is tested with (clutchopt.simulate.scene.TORQUE)
+
+
+def _formulation(coupling: str, mode: str | None):
+    from clutchopt.formulations import get_coupling
+
+    return get_coupling(coupling).formulation(mode)
 
 
 def speed_law_missing(coupling: str, solution=None) -> str | None:
     """Why a coupling (or its solution) cannot be started here, or None."""
-    if coupling not in SPEED_LAWS:
+    from clutchopt.formulations import MODULES, get_coupling
+
+    if get_coupling(coupling).formulation().speed_law is None:
+        available = [name for name in MODULES if get_coupling(name).formulation().speed_law is not None]
         return (f"the {coupling} coupling has no speed-dependent torque law in clutchopt.simulate yet "
-                f"(available: {', '.join(SPEED_LAWS)})")
+                f"(available: {', '.join(available)})")
     if solution is not None and solution.status != "optimal":
         return f"the solution's status is {solution.status}, there is no design to start"
     return None
 
 
-# Valid range (SI) of each output a speed law is built from: a design JSON is a file like any other input.
-DESIGN_RANGES = {"torque": (1e-9, 1e9, "N*m"), "weight_mass": (1e-9, 1e6, "kg"),
-                 "centroid_radius": (1e-6, 1e2, "m"), "start_radius": (1e-6, 1e2, "m")}
+def design_from_json(path: str | Path, coupling: str, case_path: str | Path | None = None) -> tuple[str, dict]:
+    """(mode, design in SI) of a solved design: the JSON of ``clutchopt solve --json`` (of the case ``case_path``).
 
-
-def design_outputs(path: str | Path, coupling: str, case_path: str | Path | None = None) -> dict[str, float]:
-    """Outputs (SI) of a solved design: the JSON of ``clutchopt solve --json`` (of the case file ``case_path``),
-    those the speed law needs checked to be numbers in ``DESIGN_RANGES``."""
+    A design file is input like any other: a regular UTF-8 file, JSON without NaN or Infinity, every design
+    variable a number within the variable's valid range (a design the solver could have returned)."""
     field = "coupling.design"
     text = read_text(path, CASE_BYTES, f"{field} ({Path(path).name})")
     try:
@@ -55,29 +61,29 @@ def design_outputs(path: str | Path, coupling: str, case_path: str | Path | None
         raise InputError(field, f"{path}: {exc}") from None
     except RecursionError:
         raise InputError(field, f"{path}: JSON nested too deeply to be the output of clutchopt solve") from None
-    if not isinstance(data, dict) or data.get("coupling") != coupling or not isinstance(data.get("outputs"), dict):
+    if not isinstance(data, dict) or data.get("coupling") != coupling or not isinstance(data.get("design"), dict):
         raise InputError(field, f"{path} is not a solved {coupling} design (clutchopt solve --json)")
     if case_path is not None and Path(str(data.get("case", ""))).name != Path(case_path).name:
         raise InputError(field, f"{path} was solved for {_short(data.get('case'))}, not for {Path(case_path).name}")
     if data.get("status") != "optimal":
         raise InputError(field, f"{path}: the design's status is {_short(data.get('status'))}, not optimal")
-    outputs = dict(data["outputs"])
+    formulation = _formulation(coupling, str(data.get("mode")))
+    design, checked = data["design"], {}
     problems = Problems()
-    for name in SPEED_LAWS[coupling]:
-        low, high, unit = DESIGN_RANGES[name]
-        value = outputs.get(name)
-        number = isinstance(value, (int, float)) and not isinstance(value, bool)
-        try:
-            inside = number and low <= float(value) <= high
-        except OverflowError:  # an integer beyond float64
-            inside = False
-        if not inside:
-            problems.errors.append(InputError(f"{field} outputs.{name}", f"must be a number from {low:g} to "
-                                                                         f"{high:g} {unit}, got {_short(value)}"))
-        else:
-            outputs[name] = float(value)
+    for variable in formulation.variables:
+        value = design.get(variable.name)
+        with problems.field():
+            number = isinstance(value, (int, float)) and not isinstance(value, bool)
+            try:
+                value = float(value) if number else math.nan
+            except OverflowError:  # an integer beyond float64
+                value = math.nan
+            if not math.isfinite(value):
+                raise InputError(f"{field} design.{variable.name}", f"must be a finite number (SI), got "
+                                                                    f"{_short(design.get(variable.name))}")
+            checked[variable.name] = variable.check(value, f"{field} design.{variable.name}")
     problems.raise_any()
-    return outputs
+    return formulation.mode, checked
 
 
 def _no_constant(name: str):
@@ -89,27 +95,49 @@ def _short(value) -> str:
     return text if len(text) <= 60 else text[:50] + "..."
 
 
-def solved_outputs(solution) -> dict[str, float]:
-    return {name: out.value for name, out in solution.outputs.items()}
-
-
-def centrifugal_law(coupling: str, outputs: dict[str, float], design_speed: float, effects: tuple[str, ...],
+def centrifugal_law(case, mode: str, design: dict[str, float], effects: tuple[str, ...],
                     spring_preload: float = 0.0) -> CentrifugalFriction:
-    """The law of a solved design sized at ``design_speed``; spring preload and gravity enter only if listed."""
-    torque, mass, radius = (outputs[name] for name in SPEED_LAWS[coupling])
-    reductions = []
+    """The law of a design of ``case`` (solved in ``mode``); spring preload and gravity enter only if listed."""
+    law = _formulation(case.coupling, mode).speed_law
+    x, p = SimpleNamespace(**design), case.params()
+    radial = [effect for effect in effects if effect in RADIAL_EFFECTS]
+    if radial and law.mass_radius is None:
+        raise InputError("effects", f"{radial[0]} does not apply to the {case.coupling} coupling (no weights held "
+                                    "in by springs or their own weight)")
+    force = 0.0
     if "spring_preload" in effects:
-        reductions.append(lambda: fx.spring_preload(spring_preload))
+        force += fx.spring_preload(spring_preload)
     if "gravity" in effects:
-        reductions.append(lambda: fx.gravity(mass))
-    return CentrifugalFriction(torque / (mass * radius * design_speed**2), mass * radius, tuple(reductions))
+        force += fx.gravity(law.weight_mass(x, p))
+    squared = engagement_speed_squared(force, law.mass_radius(x, p)) if force else 0.0
+    coefficient = float(law.torque_coefficient(x, p))
+    if not (math.isfinite(coefficient) and coefficient > 0 and math.isfinite(squared)
+            and coefficient * p.speed**2 <= MAX_TORQUE):
+        raise InputError("coupling.design", f"the design gives no usable torque law (dT/d(w^2) = {coefficient:.6g} "
+                                            f"N*m*s^2, engagement at {math.sqrt(max(squared, 0.0)):.6g} rad/s): "
+                                            f"torque at design speed must be positive and at most {MAX_TORQUE:g} N*m")
+    return CentrifugalFriction(coefficient, float(squared))
 
 
-def ideal_start(case, outputs: dict[str, float]) -> SimulationResult:
+def ideal_start(case, mode: str, design: dict[str, float]) -> SimulationResult:
     """The start-up the sizing assumes: constant driving speed, constant resisting torque, no springs."""
     p = case.params()
-    law = centrifugal_law(case.coupling, outputs, p.speed, ("slip_friction", "lockup"))
+    law = centrifugal_law(case, mode, design, ("slip_friction", "lockup"))
     return simulate(Model(law, p.inertia, Load(p.resisting_torque), ("slip_friction", "lockup"), driver_speed=p.speed))
+
+
+def start_up_model(case, mode: str, design: dict[str, float], rtol: float = 1e-11) -> Model:
+    """The start-up a case's [start_up] section describes, for a design (with its spring preload) of the case."""
+    spec, p = case.start_up, case.params()
+    preload = design.get("spring_preload", p.spring_preload)
+    law = centrifugal_law(case, mode, design, spec.effects, preload)
+    profile = spec.load_profile
+    load = Load(over=profile.over, points=profile.points, values=profile.values) if profile else Load(p.load_torque)
+    motor = (InductionMotor(p.synchronous_speed, p.breakdown_torque, p.breakdown_slip, p.motor_inertia)
+             if spec.has("motor_curve") else None)
+    heat = spec.has("friction_heat")
+    return Model(law, p.driven_inertia, load, spec.effects, math.nan if motor else p.speed, motor,
+                 p.heat_capacity if heat else math.nan, p.heat_conductance if heat else 0.0, rtol=rtol)
 
 
 def verify(case, solution) -> dict:
@@ -117,8 +145,11 @@ def verify(case, solution) -> dict:
     missing = speed_law_missing(case.coupling, solution)
     if missing:
         return {"verified": False, "reason": missing}
+    if "acceleration_time" not in case.values:
+        return {"verified": False, "reason": f"the {case.coupling} case is sized without an acceleration time "
+                                             "(give it a [start_up] section to design for a start)"}
     p = case.params()
-    result = ideal_start(case, solved_outputs(solution))
+    result = ideal_start(case, solution.mode, solution.design)
     achieved = result.headline["start_time"]
     return {
         "verified": result.headline["locks_up"],
@@ -146,10 +177,20 @@ def report_figure(case, solution):
     missing = speed_law_missing(case.coupling, solution)
     if missing:
         return None, missing
+    if "acceleration_time" not in case.values and case.start_up is None:
+        return None, f"the {case.coupling} case defines no start-up (no driven inertia, no acceleration time)"
     from clutchopt.simulate.plot import history_figure
 
+    if case.start_up is not None:
+        result = simulate(start_up_model(case, solution.mode, solution.design))
+        h = result.headline
+        caption = (f"Start-up of the optimised {case.coupling} design on the case's drive "
+                   f"({', '.join(case.start_up.effects)}): "
+                   + (f"lock-up after {h['start_time']:.4g} s, friction work {h['friction_work']:.4g} J."
+                      if h["locks_up"] else f"{h['reason']}."))
+        return history_figure(result, case.title, nlp=solution.start_up), caption
     p = case.params()
-    result = ideal_start(case, solved_outputs(solution))
+    result = ideal_start(case, solution.mode, solution.design)
     h = result.headline
     if not h["locks_up"]:
         return history_figure(result, case.title), f"Start-up of the optimised design: {h['reason']}."

@@ -12,9 +12,7 @@
 from __future__ import annotations
 
 from clutchopt.formulations.duty import GRAVITY
-
-EFFECTS = ("slip_friction", "motor_curve", "spring_preload", "gravity", "lockup", "friction_heat")
-CENTRIFUGAL_ONLY = ("spring_preload", "gravity")
+from clutchopt.formulations.start_up import heat_rate
 
 
 def slip_friction(law, driver_speed: float, slip: float) -> float:
@@ -40,4 +38,4 @@ def gravity(weight_mass: float) -> float:
 
 def friction_heat(power: float, temperature_rise: float, heat_capacity: float, conductance: float) -> float:
     """dT/dt = (P_fr - G T) / C, T the temperature rise over ambient."""
-    return (power - conductance * temperature_rise) / heat_capacity
+    return heat_rate(power, temperature_rise, heat_capacity, conductance)

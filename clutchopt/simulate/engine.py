@@ -231,6 +231,7 @@ def _headline(model, history, start_time, start_state, reason, y_end) -> dict:
         "start_time": start_time if locked else math.inf,
         "friction_work": at_start[2] if locked else math.inf,
         "source_work": at_start[3] if locked else math.inf,
+        "lock_up_speed": at_start[0] if locked else math.nan,
         "peak_slip_power": float(history["power_lost"].max()),
         "end_time": float(history["t"].iloc[-1]),
         "total_friction_work": float(y_end[2]),

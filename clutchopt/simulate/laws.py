@@ -4,19 +4,16 @@ Friction laws give the magnitude of the kinetic friction torque as a function of
 slip w_r = w_a - w (>= 0 during a start-up), and the static capacity at zero slip that lock-up must respect:
 - ``ConstantFriction``: T (a dry plate clutch with constant pressing force);
 - ``PaperFriction``: k (1 + e^{a w_r}), Simionescu & Oproescu eq. (6);
-- ``CentrifugalFriction``: proportional to the net radial force of a weight, m_r r_c w_a^2 less spring preload
-  (and the weight's own weight, effect ``gravity``): the weights ride on the driving half, so the torque follows
-  the driving speed, not the slip, and vanishes below the engagement speed; see ``clutchopt.simulate.design``.
+- ``CentrifugalFriction``: K (w_a^2 - w_e^2)^+, proportional to the net radial force of a weight (centrifugal less
+  spring preload and, effect ``gravity``, its own weight): the weights ride on the driving half, so the torque
+  follows the driving speed, not the slip, and vanishes below the engagement speed; see ``clutchopt.simulate.design``.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable
-
-import numpy as np
-
+from clutchopt.formulations.start_up import coupling_torque, kloss_torque, piecewise_linear
 from clutchopt.simulate.analytic import PaperTransient
 
 
@@ -75,27 +72,23 @@ class PaperFriction(_Law):
 
 @dataclass(frozen=True)
 class CentrifugalFriction(_Law):
-    """T = c_F (m r w_a^2 - sum of reductions)^+: c_F = z f r_m / sin(alpha) for the wedge (eqs. 10-15), r = r_c.
+    """T = K (w_a^2 - w_e^2)^+: a centrifugal coupling's torque follows its driving speed (clutchopt.formulations.
+    start_up). K = dT/d(w_a^2) comes from the coupling's own torque equation (wedge eqs. 10-15, lever statics,
+    ball eq. 8); w_e^2 = (F_s + m g) / (m r) holds the listed spring preload and gravity (zero without them)."""
 
-    ``reductions`` are the radial forces per weight that work against the centrifugal force (spring preload,
-    the weight's own weight), as callables so that only the listed effects are evaluated. The engagement speed
-    is w_e = sqrt(sum / (m_r r_c)).
-    """
-
-    torque_per_force: float  # c_F, N*m per N of net radial force on each weight
-    mass_radius: float  # m_r r_c, kg*m
-    reductions: tuple[Callable[[], float], ...] = ()
+    torque_coefficient: float  # K, N*m*s^2
+    engagement_squared: float = 0.0  # w_e^2, (rad/s)^2
     name: str = "centrifugal"
 
     def kinetic(self, driver_speed, slip):
-        force = self.mass_radius * driver_speed * driver_speed - sum(r() for r in self.reductions)
-        return self.torque_per_force * max(force, 0.0)
+        return coupling_torque(self.torque_coefficient, driver_speed, self.engagement_squared) \
+            if driver_speed * driver_speed > self.engagement_squared else 0.0
 
     def capacity(self, driver_speed):
         return self.kinetic(driver_speed, 0.0)
 
     def engagement_speed(self) -> float:
-        return math.sqrt(sum(r() for r in self.reductions) / self.mass_radius)
+        return math.sqrt(self.engagement_squared)
 
     def lockup_failure(self, speed, load, inertia):
         torque = self.capacity(speed)
@@ -120,8 +113,7 @@ class Load:
     def __call__(self, t: float, driven_speed: float) -> float:
         if not self.over:
             return self.torque
-        x = t if self.over == "time" else driven_speed
-        return float(np.interp(x, self.points, self.values))
+        return float(piecewise_linear(t if self.over == "time" else driven_speed, self.points, self.values))
 
     def largest(self) -> float:
         return max(self.values) if self.over else self.torque
@@ -137,7 +129,4 @@ class InductionMotor:
     inertia: float
 
     def __call__(self, speed: float) -> float:
-        s = (self.synchronous_speed - speed) / self.synchronous_speed
-        if s == 0.0:
-            return 0.0
-        return 2.0 * self.breakdown_torque / (s / self.breakdown_slip + self.breakdown_slip / s)
+        return kloss_torque(speed, self.synchronous_speed, self.breakdown_torque, self.breakdown_slip)

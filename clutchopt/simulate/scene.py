@@ -34,9 +34,10 @@ from pathlib import Path
 
 from clutchopt.cases import check_text, read_toml
 from clutchopt.errors import InputError, Problems
-from clutchopt.simulate.effects import CENTRIFUGAL_ONLY, EFFECTS
+from clutchopt.formulations.start_up import RADIAL_EFFECTS
 from clutchopt.simulate.engine import Model, simulate
 from clutchopt.simulate.laws import ConstantFriction, InductionMotor, Load, PaperFriction
+from clutchopt.start_up_case import parse_effects, parse_load_profile
 from clutchopt.units import to_si
 
 LAWS = ("paper", "constant", "centrifugal")
@@ -62,7 +63,6 @@ HEAT_CAPACITY = (1e-6, 1e12, "J/K")
 CONDUCTANCE = (0.0, 1e12, "W/K")
 BREAKDOWN_SLIP = (1e-6, 0.99, "")
 TOLERANCE = (1e-14, 1e-3, "")
-MAX_PROFILE_POINTS = 1000
 
 
 @dataclass
@@ -138,17 +138,17 @@ def parse_scene(data: dict, path: str = "") -> Scene:
     f.check_tables()
     effects = ()
     with f.problems.field():
-        effects = _effects(data.get("effects"))
+        effects = parse_effects(data.get("effects"), "effects")
     law_name = f.table("coupling").get("law")
     if law_name not in LAWS:
         f.problems.errors.append(InputError("coupling.law", f"must be one of {', '.join(LAWS)}, got {law_name!r}"))
-    for effect in CENTRIFUGAL_ONLY:
+    for effect in RADIAL_EFFECTS:
         if effect in effects and law_name != "centrifugal":
             f.problems.errors.append(InputError("effects", f"{effect} applies to centrifugal couplings "
                                                            "(law = \"centrifugal\") only"))
     case = _case(f) if law_name == "centrifugal" else None
     duty = case.params() if case else None
-    inertia = f.quantity("driven", "inertia", "kg*m^2", INERTIA, duty.inertia if duty else None)
+    inertia = f.quantity("driven", "inertia", "kg*m^2", INERTIA, getattr(duty, "inertia", None))
     load = _load(f, duty)
     motor = _motor(f) if "motor_curve" in effects else None
     speed = math.nan if motor else f.quantity("driver", "speed", "rpm", SPEED, duty.speed if duty else None)
@@ -176,19 +176,6 @@ def parse_scene(data: dict, path: str = "") -> Scene:
     model = Model(law, inertia, load, effects, speed, motor, heat[0], heat[1],
                   None if math.isinf(end_time) else end_time, tolerance)
     return Scene(title, path, model, source, data)
-
-
-def _effects(raw) -> tuple[str, ...]:
-    if not isinstance(raw, list) or not all(isinstance(e, str) for e in raw):
-        raise InputError("effects", f"must be a list of effect names from {', '.join(EFFECTS)}")
-    unknown = [e for e in raw if e not in EFFECTS]
-    if unknown:
-        raise InputError("effects", f"unknown effect {unknown[0]!r}; effects are {', '.join(EFFECTS)}")
-    if len(set(raw)) != len(raw):
-        raise InputError("effects", "lists an effect twice")
-    if "slip_friction" not in raw:
-        raise InputError("effects", "must include slip_friction (the clutch itself)")
-    return tuple(raw)
 
 
 def _friction_law(f: _Fields, law_name: str):
@@ -224,14 +211,14 @@ def _case(f: _Fields):
 
 
 def _centrifugal(f: _Fields, case, effects, preload: float):
-    from clutchopt.simulate.design import centrifugal_law, design_outputs, solved_outputs
+    from clutchopt.simulate.design import centrifugal_law, design_from_json
 
     table = f.table("coupling")
     source = {"law": "centrifugal", "coupling": case.coupling, "case": table["case"]}
     if "design" in table:
         design_path = f.file("design")
         f.problems.raise_any()
-        outputs = design_outputs(design_path, case.coupling, case.path)
+        mode, design = design_from_json(design_path, case.coupling, case.path)
         source["design"] = table["design"]
     else:
         from clutchopt.optimise import solve_case
@@ -239,54 +226,22 @@ def _centrifugal(f: _Fields, case, effects, preload: float):
         solution = solve_case(case, table.get("mode"), table.get("objective"))
         if solution.status != "optimal":
             raise InputError("coupling.case", f"the case does not solve to an optimal design ({solution.status})")
-        outputs = solved_outputs(solution)
+        mode, design = solution.mode, solution.design
         source["design"] = "solved from the case"
-    law = centrifugal_law(case.coupling, outputs, case.params().speed, effects, preload)
+    law = centrifugal_law(case, mode, design, effects, preload)
     source["engagement_speed"] = law.engagement_speed()
-    source["design_torque"] = outputs["torque"]
+    source["design_torque"] = law.capacity(case.params().speed)
     return law, source
 
 
 def _load(f: _Fields, duty) -> Load:
     profile = f.table("driven").get("load_profile")
     if profile is None:
-        return Load(f.quantity("driven", "resisting_torque", "N*m", LOAD, duty.resisting_torque if duty else None))
-    key = "driven.load_profile"
-    if not isinstance(profile, dict) or set(profile) != {"over", "points", "torque"}:
-        f.problems.errors.append(InputError(key, "must be a table with over = \"speed\" or \"time\", "
-                                                 "points = [...], torque = [...]"))
-        return Load()
-    over, points, torques = profile["over"], profile["points"], profile["torque"]
-    if over not in ("speed", "time"):
-        f.problems.errors.append(InputError(f"{key}.over", f"must be \"speed\" or \"time\", got {over!r}"))
-        return Load()
-    if not isinstance(points, list) or not isinstance(torques, list) or len(points) != len(torques) \
-            or not 2 <= len(points) <= MAX_PROFILE_POINTS:
-        f.problems.errors.append(InputError(key, f"points and torque must be lists of the same length "
-                                                 f"(2 to {MAX_PROFILE_POINTS})"))
-        return Load()
-    unit, valid = ("rpm", (0.0, SPEED[1], "rad/s")) if over == "speed" else ("s", (0.0, TIME[1], "s"))
-    found = len(f.problems.errors)
-    xs = tuple(_listed(f.problems, f"{key}.points", points, unit, valid))
-    ys = tuple(_listed(f.problems, f"{key}.torque", torques, "N*m", LOAD))
-    if len(f.problems.errors) > found:
-        return Load()
-    if any(b <= a for a, b in zip(xs, xs[1:])):
-        f.problems.errors.append(InputError(f"{key}.points", "must increase strictly"))
-        return Load()
-    return Load(over=over, points=xs, values=ys)
-
-
-def _listed(problems: Problems, name: str, raws: list, unit: str, valid: tuple) -> list[float]:
-    """Each entry of a list checked like a field, named ``name[i]``; stops at the first bad entry."""
-    values = []
-    for i, raw in enumerate(raws):
-        entry = _Fields({f"{name}[{i}]": raw}, "")
-        values.append(entry.quantity("", f"{name}[{i}]", unit, valid))
-        if entry.problems:
-            problems.errors += entry.problems.errors
-            break
-    return values
+        return Load(f.quantity("driven", "resisting_torque", "N*m", LOAD, getattr(duty, "resisting_torque", None)))
+    with f.problems.field():
+        profile = parse_load_profile(profile, "driven.load_profile")
+        return Load(over=profile.over, points=profile.points, values=profile.values)
+    return Load()
 
 
 def _motor(f: _Fields) -> InductionMotor:

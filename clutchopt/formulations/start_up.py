@@ -1,0 +1,164 @@
+"""The start-up of a centrifugal coupling on its real drive: the ``[start_up]`` section of a case, its equations.
+
+Every sizing method of the papers assumes a constant driving speed and a constant angular acceleration
+(T_max = I_n w_a / t_p + T_c, wedge eqs. 5, 17). A case with a ``[start_up]`` section describes the drive instead:
+the effects to model (the vocabulary of start-up scenes, ``clutchopt.simulate``), an induction motor or a constant
+driving speed, return-spring preload, the weights' own weight, the driven machine's load, the heat capacity of the
+friction parts, and the limits the start-up must meet. The same equations serve the NLP (``clutchopt.optimise.
+start_up``, collocation) and the simulator (``clutchopt.simulate``, solve_ivp), through ``clutchopt.backend``.
+
+The torque of a centrifugal coupling follows its *driving* speed w_a, since the weights ride on the driving half:
+T = K (w_a^2 - w_e^2) once engaged, K = dT/d(w_a^2) of the coupling's own torque equation (a
+:class:`~clutchopt.model.SpeedLaw`), w_e the engagement speed at which the centrifugal force m r w_e^2 of a weight
+equals what holds it in, spring preload F_s and (effect ``gravity``) its own weight m g at its worst position.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from clutchopt.backend import fmax, fmin, sqrt
+from clutchopt.formulations.duty import GRAVITY
+from clutchopt.model import Formulation, Quantity, Variable
+
+EFFECTS = ("slip_friction", "motor_curve", "spring_preload", "gravity", "lockup", "friction_heat")
+RADIAL_EFFECTS = ("spring_preload", "gravity")  # effects that take radial force from the weights
+
+Q = Quantity
+SECTION = "start_up"
+QUANTITIES = (
+    Q("spring_preload", "N", "return-spring preload on each weight (effect spring_preload; may be freed)", "F_s",
+      SECTION, "0 N", at_least=0),
+    Q("driven_inertia", "kg*m^2", "moment of inertia of the driven machine (default: duty.inertia)", "J",
+      f"{SECTION}.driven", None, above=0, toml_key="inertia"),
+    Q("load_torque", "N*m", "resisting torque of the driven machine, constant (default: duty.resisting_torque)",
+      "T_c", f"{SECTION}.driven", None, at_least=0, toml_key="resisting_torque"),
+    Q("synchronous_speed", "rpm", "synchronous speed of the induction motor (effect motor_curve)", "w_s",
+      f"{SECTION}.driver", None, above=0),
+    Q("breakdown_torque", "N*m", "breakdown (pull-out) torque of the motor, Kloss curve", "T_k",
+      f"{SECTION}.driver", None, above=0),
+    Q("breakdown_slip", "", "slip at the breakdown torque, Kloss curve", "s_k", f"{SECTION}.driver", None,
+      above=0, below=1),
+    Q("motor_inertia", "kg*m^2", "rotor inertia of the motor with the driving half-coupling", "J_m",
+      f"{SECTION}.driver", None, above=0, toml_key="inertia"),
+    Q("heat_capacity", "J/K", "heat capacity of the parts the friction heat goes into (effect friction_heat)", "C",
+      f"{SECTION}.heat", None, above=0, toml_key="capacity"),
+    Q("heat_conductance", "W/K", "heat the housing sheds per kelvin of temperature rise", "G",
+      f"{SECTION}.heat", "0 W/K", at_least=0, toml_key="conductance"),
+    Q("max_start_time", "s", "switch-on to lock-up at most (default: duty.acceleration_time)", "t_max",
+      f"{SECTION}.limits", None, above=0),
+    Q("max_friction_work", "kJ", "heat released by slip in one start at most", "L_max", f"{SECTION}.limits",
+      None, above=0),
+    Q("max_temperature_rise", "K", "temperature rise of the friction parts at most (effect friction_heat)",
+      "dT_max", f"{SECTION}.limits", None, above=0),
+    Q("min_engagement_speed", "rpm", "engagement speed at least (the motor runs up unloaded first)", "w_e,min",
+      f"{SECTION}.limits", None, at_least=0),
+    Q("max_engagement_speed", "rpm", "engagement speed at most", "w_e,max", f"{SECTION}.limits", None, above=0),
+    Q("starts_per_hour", "1/hour", "starts per hour (with heat_dissipation: the heat balance over an hour)", "n_h",
+      f"{SECTION}.limits", None, above=0),
+    Q("heat_dissipation", "W", "mean heat the housing can shed (e.g. '180 kJ/hour')", "P_d",
+      f"{SECTION}.limits", None, above=0),
+)
+
+
+# --- Equations ---------------------------------------------------------------------------------------------------
+def engagement_speed_squared(radial_reduction, mass_radius):
+    """w_e^2 = (F_s + m g) / (m r): the centrifugal force m r w^2 of a weight first exceeds what holds it in."""
+    return radial_reduction / mass_radius
+
+
+def radial_reduction(effects, spring_preload, weight_mass):
+    """Radial force per weight that works against the centrifugal force: F_s (spring_preload) + m g (gravity)."""
+    force = 0.0
+    if "spring_preload" in effects:
+        force = force + spring_preload
+    if "gravity" in effects:
+        force = force + weight_mass * GRAVITY
+    return force
+
+
+def coupling_torque(torque_coefficient, driving_speed, engagement_squared):
+    """T = K (w_a^2 - w_e^2), engaged (w_a >= w_e): the coupling's torque equation at the driving speed."""
+    return torque_coefficient * (driving_speed**2 - engagement_squared)
+
+
+def kloss_torque(speed, synchronous_speed, breakdown_torque, breakdown_slip):
+    """Induction motor, Kloss: T = 2 T_k / (s / s_k + s_k / s) = 2 T_k s s_k / (s^2 + s_k^2), s = 1 - w / w_s.
+
+    The second form has no division by s, so it is smooth (and zero) at synchronous speed.
+    """
+    s = 1.0 - speed / synchronous_speed
+    return 2.0 * breakdown_torque * s * breakdown_slip / (s * s + breakdown_slip * breakdown_slip)
+
+
+def piecewise_linear(x, points, values):
+    """y(x) through (points, values), held constant beyond both ends (as numpy.interp): y_0 + sum of slopes times
+    the part of [x_i, x_i+1] below x. Written with min/max so that CasADi differentiates it."""
+    y = values[0]
+    for (x0, y0), (x1, y1) in zip(zip(points, values), zip(points[1:], values[1:])):
+        y = y + (y1 - y0) / (x1 - x0) * (fmin(fmax(x, x0), x1) - x0)
+    return y
+
+
+def heat_rate(power, temperature_rise, heat_capacity, conductance):
+    """dT/dt = (P_fr - G T) / C: the lumped temperature rise T of the friction parts over ambient."""
+    return (power - conductance * temperature_rise) / heat_capacity
+
+
+def carried_torque(motor_torque, load, driven_inertia, motor_inertia):
+    """Torque a locked coupling carries while motor and machine run up together:
+    (J + J_m) dw/dt = T_m - T_c, so the coupling gives the machine T_c + J dw/dt = (J_m T_c + J T_m) / (J + J_m)."""
+    return (motor_inertia * load + driven_inertia * motor_torque) / (driven_inertia + motor_inertia)
+
+
+def engagement_speed(radial_force, mass_radius):
+    """w_e = sqrt((F_s + m g) / (m r))."""
+    return sqrt(engagement_speed_squared(radial_force, mass_radius))
+
+
+# --- What a case's [start_up] section fixes beyond its quantities -------------------------------------------------
+@dataclass(frozen=True)
+class LoadProfile:
+    """Resisting torque of the driven machine, piecewise linear over its speed (``over = "speed"``) or over time
+    (``"time"``), held constant beyond the table (SI)."""
+
+    over: str
+    points: tuple[float, ...]
+    values: tuple[float, ...]
+
+    def at(self, speed, time):
+        return piecewise_linear(speed if self.over == "speed" else time, self.points, self.values)
+
+
+@dataclass(frozen=True)
+class StartUpSpec:
+    """The start-up a case asks for: effects (only these are modelled, in the NLP and the simulator), the load
+    profile if not constant, the limits given (names of QUANTITIES), the collocation intervals per phase and the
+    relative tolerance within which the simulated start must meet the limits."""
+
+    effects: tuple[str, ...]
+    limits: tuple[str, ...]
+    load_profile: LoadProfile | None = None
+    intervals: int = 16
+    tolerance: float = 1e-6
+
+    def has(self, effect: str) -> bool:
+        return effect in self.effects
+
+
+LIMITS = ("max_start_time", "max_friction_work", "max_temperature_rise", "min_engagement_speed",
+          "max_engagement_speed", "starts_per_hour", "heat_dissipation")
+
+SPRING_PRELOAD = Variable("spring_preload", "N", "return-spring preload on each weight", "F_s", lower=0.0,
+                          upper=1e6, at_least=0, fixed_unless_freed=True)
+
+
+def with_start_up(formulation: Formulation) -> Formulation:
+    """The formulation of a case with a [start_up] section: its quantities and the spring preload (a design
+    variable when freed) added, the papers' constant-acceleration torque requirement left to the start-up model."""
+    return replace(
+        formulation,
+        quantities=formulation.quantities + QUANTITIES,
+        variables=formulation.variables + (SPRING_PRELOAD,),
+        constraints=lambda x, p: [c for c in formulation.constraints(x, p) if not c.constant_acceleration],
+    )

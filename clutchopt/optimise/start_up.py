@@ -1,0 +1,444 @@
+"""The start-up inside the NLP: a centrifugal coupling's start on its drive, transcribed by Radau collocation.
+
+A start from rest has up to three phases, each with its own free duration (docs/start_up.md):
+- ``run_up``: the motor runs up unloaded until its speed reaches the engagement speed w_e (motor_curve with spring
+  preload or gravity): J_m dw_a/dt = T_m(w_a);
+- ``breakaway``: the weights press, but the coupling's torque is still below the load at rest, so the driven
+  machine stands while the coupling slips (motor_curve with a load at rest): J_m dw_a/dt = T_m - T;
+- ``slip``: both halves turn until the slip s = w_a - w falls to zero (lock-up): J dw/dt = T - T_c(w, t),
+  J_m dw_a/dt = T_m - T (constant w_a without motor_curve).
+Friction work L (dL/dt = T s) and, with friction_heat, the temperature rise (C dT/dt = T s - G T) are states too.
+Each phase has ``intervals`` intervals of Radau IIA collocation of degree 3 (order 5 at the interval ends,
+L-stable, so the motor's fast electrical-mechanical mode costs nothing); the phase ends are equalities (w_a = w_e,
+T(w_a) = T_c at rest, s = 0) and the lock-up is the first zero of a falling slip (T >= the torque the locked
+drive needs). Start time, friction work, temperature rise and engagement speed are then NLP expressions with exact
+derivatives and become named constraints. Every optimum is started again by the independent simulator
+(``clutchopt.simulate``, solve_ivp with events): the simulated figures are the constraint values reported.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from types import SimpleNamespace
+
+import casadi as ca
+import numpy as np
+from scipy.optimize import brentq
+
+from clutchopt.backend import sqrt
+from clutchopt.formulations import start_up as su
+from clutchopt.model import Constraint, SpeedLaw, at_least, at_most, namespace
+
+DEGREE = 3
+MAX_INTERVALS = 128  # per phase, refining by doubling
+BACK_OFF_STEPS = 4  # defect corrections of limits the simulated start misses
+LIMIT_OF = {"start_time": "max_start_time", "friction_work": "max_friction_work",
+            "temperature_rise": "max_temperature_rise", "heat_per_hour": "heat_dissipation"}
+LOCKED_SAMPLES = 8  # speeds from lock-up to synchronous at which a locked drive must stay locked (lockup)
+
+
+def graded_mesh(intervals: int, first: float = 1e-4, graded_part: float = 0.05) -> np.ndarray:
+    """Interval lengths (fractions of a phase, summing to 1): half the intervals grow geometrically from ``first``
+    over the first ``graded_part`` of the phase, the rest are uniform. The motor's run-up to the speed where its
+    torque meets the coupling's (a knee over a few milliseconds of a start of seconds) lies in the graded part."""
+    graded = intervals // 2
+    if graded == 0:
+        return np.full(intervals, 1.0 / intervals)
+    ratio = brentq(lambda r: first * (r**graded - 1.0) / (r - 1.0) - graded_part, 1.0 + 1e-9, 1e6)
+    lengths = first * ratio ** np.arange(graded)
+    uniform = np.full(intervals - graded, (1.0 - graded_part) / (intervals - graded))
+    return np.concatenate([lengths / lengths.sum() * graded_part, uniform])
+
+
+def _collocation(degree: int):
+    """Radau points tau_0 = 0 < tau_1 .. tau_d = 1 and C[r, j] = l_r'(tau_j) of the Lagrange basis."""
+    tau = np.append(0.0, ca.collocation_points(degree, "radau"))
+    c = np.zeros((degree + 1, degree + 1))
+    for r in range(degree + 1):
+        basis = np.poly1d([1.0])
+        for q in range(degree + 1):
+            if q != r:
+                basis *= np.poly1d([1.0, -tau[q]]) / (tau[r] - tau[q])
+        derivative = np.polyder(basis)
+        c[r] = [derivative(t) for t in tau]
+    return tau, c
+
+
+@dataclass(frozen=True)
+class Structure:
+    """What fixes the shape of a start-up NLP (part of the problem cache key)."""
+
+    spec: su.StartUpSpec
+    load_at_rest: bool  # the driven machine needs torque to break away: a breakaway phase (motor_curve)
+    intervals: int
+
+    @classmethod
+    def of(cls, case, intervals: int | None = None) -> "Structure":
+        spec = case.start_up
+        rest = spec.load_profile.at(0.0, 0.0) if spec.load_profile else case.values["load_torque"]
+        return cls(spec, spec.has("motor_curve") and rest > 0, intervals or spec.intervals)
+
+    @property
+    def motor(self) -> bool:
+        return self.spec.has("motor_curve")
+
+    @property
+    def radial(self) -> bool:
+        return any(self.spec.has(e) for e in su.RADIAL_EFFECTS)
+
+    @property
+    def heat(self) -> bool:
+        return self.spec.has("friction_heat")
+
+    @property
+    def phases(self) -> tuple[str, ...]:
+        names = ("run_up",) if self.motor and self.radial else ()
+        return names + (("breakaway",) if self.load_at_rest else ()) + ("slip",)
+
+
+class Drive:
+    """The drive's equations at given design and case values (CasADi symbols or floats)."""
+
+    def __init__(self, structure: Structure, law: SpeedLaw, x, p):
+        self.s, self.p = structure, p
+        spec = structure.spec
+        self.coefficient = law.torque_coefficient(x, p)
+        if structure.radial:
+            force = su.radial_reduction(spec.effects, x.spring_preload, law.weight_mass(x, p))
+            self.engagement_squared = su.engagement_speed_squared(force, law.mass_radius(x, p))
+        else:
+            self.engagement_squared = 0.0
+        self.speed_ref = p.synchronous_speed if structure.motor else p.speed
+        self.time_ref = p.max_start_time
+        self.energy_ref = p.driven_inertia * self.speed_ref**2
+        self.torque_ref = p.driven_inertia * self.speed_ref / p.max_start_time + p.load_torque
+        self.temperature_ref = self.energy_ref / p.heat_capacity if structure.heat else 1.0
+
+    def torque(self, driving_speed):
+        return su.coupling_torque(self.coefficient, driving_speed, self.engagement_squared)
+
+    def motor(self, speed):
+        p = self.p
+        return su.kloss_torque(speed, p.synchronous_speed, p.breakdown_torque, p.breakdown_slip)
+
+    def load(self, driven_speed, time):
+        profile = self.s.spec.load_profile
+        return profile.at(driven_speed, time) if profile else self.p.load_torque
+
+    def carried(self, speed, time):
+        """Torque the coupling must carry at lock-up and after: the locked drive's share of the load."""
+        if not self.s.motor:
+            return self.load(speed, time)
+        return su.carried_torque(self.motor(speed), self.load(speed, time), self.p.driven_inertia,
+                                 self.p.motor_inertia)
+
+    def heat_rate(self, power, temperature):
+        return su.heat_rate(power, temperature, self.p.heat_capacity, self.p.heat_conductance)
+
+
+def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
+    """The start-up's requirements as named constraints, of the figures ``q`` (start_time, friction_work,
+    temperatures, lock_up_speed, lock_up_time): NLP expressions, or the simulator's figures for the float64 check."""
+    p, limits = drive.p, s.spec.limits
+    engagement = sqrt(drive.engagement_squared)
+    out = [at_most("start_time", q.start_time, p.max_start_time, equation="start-up", unit="s",
+                   description="switch-on to lock-up within max_start_time")]
+    if "max_friction_work" in limits:
+        out.append(at_most("friction_work", q.friction_work, p.max_friction_work, equation="start-up", unit="kJ",
+                           description="heat released by slip in one start"))
+    if "max_temperature_rise" in limits:
+        out.append(at_most("temperature_rise", q.temperatures, p.max_temperature_rise, equation="C dT/dt = P - G T",
+                           unit="K", description="temperature rise of the friction parts, all along the start"))
+    if "min_engagement_speed" in limits:
+        out.append(at_least("min_engagement_speed", engagement, p.min_engagement_speed, equation="w_e",
+                            unit="rpm", description="the motor runs up unloaded to at least this speed"))
+    if "max_engagement_speed" in limits:
+        out.append(at_most("max_engagement_speed", engagement, p.max_engagement_speed, equation="w_e", unit="rpm",
+                           description="the weights engage by this driving speed"))
+    if "starts_per_hour" in limits:
+        out.append(at_most("heat_per_hour", p.starts_per_hour * q.friction_work, p.heat_dissipation,
+                           equation="n_h L <= P_d", unit="W", description="mean friction heat within what the "
+                                                                          "housing sheds"))
+    if s.motor:
+        out.append(at_least("motor_breakdown_torque", p.breakdown_torque, p.load_torque, equation="Kloss",
+                            unit="N*m", description="the motor's breakdown torque exceeds the largest load"))
+    lock_speed = q.lock_up_speed
+    out.append(at_least("lock_up", drive.torque(lock_speed), drive.carried(lock_speed, q.start_time),
+                        equation="s' <= 0 at s = 0", unit="N*m",
+                        description="at lock-up the coupling covers the torque of the locked drive"))
+    if s.motor and s.spec.has("lockup"):
+        fractions = np.arange(1, LOCKED_SAMPLES + 1) / LOCKED_SAMPLES
+        speeds = lock_speed + (p.synchronous_speed - lock_speed) * fractions
+        if isinstance(lock_speed, ca.SX):
+            speeds = ca.vertcat(*[lock_speed + (p.synchronous_speed - lock_speed) * f for f in fractions])
+        out.append(at_least("stays_locked", drive.torque(speeds) - drive.carried(speeds, q.start_time), 0.0,
+                            equation="lockup", unit="N*m", scale=drive.torque_ref,
+                            description="torque margin over the locked run-up to synchronous speed"))
+    return out
+
+
+class StartUpBlock:
+    """One start-up transcribed for one problem: internal variables (scaled), equalities, named constraints."""
+
+    def __init__(self, structure: Structure, law: SpeedLaw, x, p):
+        self.s = structure
+        self.drive = d = Drive(structure, law, x, p)
+        self.tau, self.c = _collocation(DEGREE)
+        self._hat: list[ca.SX] = []
+        self._scale: list = []
+        self._bounds: list[tuple[float, float]] = []
+        self.kinds: list[tuple[str, str]] = []  # (phase, state or "duration") of each internal variable
+        self.equalities: list = []
+        self.points: list[tuple] = []  # (time, {state: value}) of every phase start and collocation point
+        self.nodes: list[dict] = []  # the states at the collocation points (the phase starts excluded)
+        state = {"driver_speed": 0.0 if structure.motor else p.speed, "friction_work": 0.0, "temperature": 0.0}
+        time = 0.0
+        self.durations = {}
+        for phase in structure.phases:
+            duration, state = self._phase(phase, state, time)
+            self.durations[phase] = duration
+            time = time + duration
+        self.start_time = time
+        self.end_state = state
+        temperatures = [node["temperature"] for node in self.nodes if isinstance(node["temperature"], ca.SX)]
+        self.figures = SimpleNamespace(
+            start_time=time, friction_work=state["friction_work"], lock_up_speed=state["driver_speed"],
+            temperatures=ca.vertcat(*temperatures) if temperatures else 0.0)
+        self.constraints = named_constraints(structure, d, self.figures)
+
+    # --- variables and phases ----------------------------------------------------------------------------------
+    def _variable(self, phase: str, kind: str, scale, lower: float, upper: float):
+        hat = ca.SX.sym(f"{phase}_{kind}")
+        self._hat.append(hat)
+        self._scale.append(scale)
+        self._bounds.append((lower, upper))
+        self.kinds.append((phase, kind))
+        return hat * scale
+
+    def _states(self, phase: str) -> dict[str, tuple]:
+        """State -> (scale, lower, upper) in scaled units, of one phase."""
+        d, s = self.drive, self.s
+        states = {}
+        if s.motor:
+            states["driver_speed"] = (d.speed_ref, 0.0, 1.0)
+        if phase == "slip":
+            states["slip"] = (d.speed_ref, 0.0, 2.0)
+        if phase != "run_up":
+            states["friction_work"] = (d.energy_ref, 0.0, math.inf)
+            if s.heat:
+                states["temperature"] = (d.temperature_ref, -math.inf, math.inf)
+        return states
+
+    def _rates(self, phase: str, time, state: dict) -> dict:
+        d = self.drive
+        speed = state["driver_speed"]
+        if phase == "run_up":
+            return {"driver_speed": d.motor(speed) / d.p.motor_inertia}
+        torque = d.torque(speed)
+        slip = state["slip"] if phase == "slip" else speed
+        rates = {"friction_work": torque * slip}
+        if self.s.motor:
+            rates["driver_speed"] = (d.motor(speed) - torque) / d.p.motor_inertia
+        if phase == "slip":
+            driven = speed - slip
+            rates["slip"] = rates.get("driver_speed", 0.0) - (torque - d.load(driven, time)) / d.p.driven_inertia
+        if self.s.heat:
+            rates["temperature"] = d.heat_rate(torque * slip, state["temperature"])
+        return rates
+
+    def _phase(self, phase: str, state: dict, start_time):
+        d, n = self.drive, self.s.intervals
+        duration = self._variable(phase, "duration", d.time_ref, 0.0, 100.0)
+        mesh = self.mesh(phase)
+        starts = np.concatenate([[0.0], np.cumsum(mesh)[:-1]])
+        states = self._states(phase)
+        previous = dict(state)
+        if phase == "slip":  # the driven machine starts from rest: all of the driving speed is slip
+            previous["slip"] = previous["driver_speed"]
+        self.points.append((start_time, dict(previous)))
+        for k in range(n):
+            step = mesh[k] * duration
+            nodes = [previous]
+            for j in range(1, DEGREE + 1):
+                node = dict(previous)
+                for name, (scale, lower, upper) in states.items():
+                    node[name] = self._variable(phase, name, scale, lower, upper)
+                nodes.append(node)
+            for j in range(1, DEGREE + 1):
+                time = start_time + (starts[k] + self.tau[j] * mesh[k]) * duration
+                rates = self._rates(phase, time, nodes[j])
+                for name, (scale, _, _) in states.items():
+                    slope = sum(self.c[r, j] * nodes[r][name] for r in range(DEGREE + 1))
+                    self.equalities.append((slope - step * rates[name]) / scale)
+                self.points.append((time, nodes[j]))
+                self.nodes.append(nodes[j])
+            previous = nodes[DEGREE]
+        self.equalities.append(self._phase_end(phase, previous, start_time + duration))
+        return duration, previous
+
+    def mesh(self, phase: str) -> np.ndarray:
+        """Interval lengths of a phase as fractions of its duration: graded where the motor runs up through the
+        slip phase's start, uniform elsewhere."""
+        if phase == "slip" and self.s.motor:
+            return graded_mesh(self.s.intervals)
+        return np.full(self.s.intervals, 1.0 / self.s.intervals)
+
+    def _phase_end(self, phase: str, state: dict, time):
+        d = self.drive
+        if phase == "run_up":
+            return (state["driver_speed"] ** 2 - d.engagement_squared) / d.speed_ref**2
+        if phase == "breakaway":
+            return (d.torque(state["driver_speed"]) - d.load(0.0, time)) / d.torque_ref
+        return state["slip"] / d.speed_ref
+
+    # --- what the problem needs -----------------------------------------------------------------------------------
+    @property
+    def hat(self):
+        return ca.vertcat(*self._hat)
+
+    @property
+    def size(self) -> int:
+        return len(self._hat)
+
+    @property
+    def scales(self) -> list:
+        """Scale of each internal variable (expressions of the case quantities): value = scale * hat."""
+        return self._scale
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        lower, upper = zip(*self._bounds)
+        return np.array(lower), np.array(upper)
+
+    def outputs(self) -> dict:
+        """Figures of the NLP's start (expressions): for the start_up report and the trajectory."""
+        d = self.drive
+        figures = {"start_time": self.start_time, "friction_work": self.figures.friction_work,
+                   "engagement_speed": ca.sqrt(d.engagement_squared) if self.s.radial else 0.0,
+                   "lock_up_speed": self.figures.lock_up_speed}
+        for phase, duration in self.durations.items():
+            figures[f"{phase}_time"] = duration
+        return figures
+
+    def trajectory(self) -> dict:
+        """Time, driving speed, driven speed, friction work, temperature at every collocation point."""
+        times, driver, driven, work, heat = [], [], [], [], []
+        for time, state in self.points:
+            times.append(time)
+            driver.append(state["driver_speed"])
+            driven.append(state["driver_speed"] - state["slip"] if "slip" in state else 0.0)
+            work.append(state["friction_work"])
+            heat.append(state["temperature"])
+        return {"t": times, "w_driver": driver, "w_driven": driven, "friction_work": work, "temperature_rise": heat}
+
+    def guess(self, history, headline, engagement_squared: float, time_ref: float, scales: np.ndarray) -> np.ndarray:
+        """Internal variables (scaled by ``scales``) from a simulation of the start design, which ends at its
+        lock-up, or at ``time_ref`` if it does not lock up."""
+        d = self.s
+        locked = headline.get("locks_up") and math.isfinite(headline.get("start_time", math.inf))
+        t_end = headline["start_time"] if locked else time_ref
+        t = history["t"].to_numpy()
+        driver = history["w_driver"].to_numpy()
+        driven = history["w_driven"].to_numpy()
+        engage = t[np.argmax(driver >= math.sqrt(engagement_squared))] if d.motor and d.radial else 0.0
+        moving = driven > 1e-9 * max(driver.max(), 1e-300)
+        breakaway = t[np.argmax(moving)] if d.load_at_rest and moving.any() else engage
+        bounds = {"run_up": (0.0, engage), "breakaway": (engage, breakaway), "slip": (breakaway, t_end)}
+        columns = {"driver_speed": driver, "slip": driver - driven, "friction_work": history["friction_work"].to_numpy(),
+                   "temperature": history["temperature_rise"].to_numpy()}
+        values = []
+        for phase in d.phases:
+            begin, end = bounds[phase]
+            end = max(end, begin)
+            values.append(end - begin)
+            mesh = self.mesh(phase)
+            starts = np.concatenate([[0.0], np.cumsum(mesh)[:-1]])
+            for k in range(d.intervals):
+                for j in range(1, DEGREE + 1):
+                    time = begin + (starts[k] + self.tau[j] * mesh[k]) * (end - begin)
+                    for name in self._states(phase):
+                        values.append(float(np.interp(time, t, columns[name])))
+        return np.array(values) / scales
+
+
+def initial_states(block: StartUpBlock, case, formulation, design: dict[str, float], scales: np.ndarray) -> np.ndarray:
+    """The internal variables (scaled) of the start design's simulated start: a start point on the dynamics."""
+    from clutchopt.simulate.design import start_up_model
+    from clutchopt.simulate.engine import simulate
+
+    model = start_up_model(case, formulation.mode, design, rtol=1e-6)
+    model.end_time = 3.0 * case.values["max_start_time"]  # a start design that does not lock up: ramps to there
+    result = simulate(model)
+    return block.guess(result.history, result.headline, model.law.engagement_squared,
+                       case.values["max_start_time"], scales)
+
+
+UNITS = {"start_time": "s", "friction_work": "J", "temperature_rise": "K", "engagement_speed": "rad/s",
+         "lock_up_speed": "rad/s", "engagement_time": "s", "lock_up_time": "s"}
+
+
+def start_up_report(block: StartUpBlock, case, formulation, design: dict[str, float], params, figures):
+    """The NLP's start beside the independent simulator's (solve_ivp with events, float64) at the design, and the
+    start-up constraints re-checked with the simulated figures: (summary in SI, constraint checks)."""
+    from clutchopt.optimise.verify import check_constraints
+    from clutchopt.simulate.design import start_up_model
+    from clutchopt.simulate.engine import simulate
+
+    values, *columns = figures
+    nlp = dict(zip(block.outputs(), np.array(values).ravel()))
+    trajectory = {name: np.array(column).ravel() for name, column in zip(block.trajectory(), columns)}
+    result = simulate(start_up_model(case, formulation.mode, design))
+    head = result.headline
+    s = block.s
+    simulated = SimpleNamespace(start_time=head["start_time"], friction_work=head["friction_work"],
+                                temperatures=head.get("temperature_rise", 0.0), lock_up_speed=head["lock_up_speed"])
+    drive = Drive(s, formulation.speed_law, namespace(design), params)
+    checks = check_constraints(named_constraints(s, drive, simulated), s.spec.tolerance)
+    engaged = float(nlp.get("run_up_time", 0.0))
+    summary = {
+        "start_time": float(nlp["start_time"]),
+        "start_time_simulated": head["start_time"],
+        "friction_work": float(nlp["friction_work"]),
+        "friction_work_simulated": head["friction_work"],
+        "temperature_rise": float(trajectory["temperature_rise"].max()) if s.heat else None,
+        "temperature_rise_simulated": head.get("temperature_rise"),
+        "engagement_speed": float(nlp["engagement_speed"]),
+        "engagement_time": engaged,
+        "lock_up_time": float(nlp["start_time"]) - engaged,
+        "lock_up_speed": float(nlp["lock_up_speed"]),
+        "lock_up_speed_simulated": head["lock_up_speed"],
+        "intervals": s.intervals,
+        "phases": list(s.phases),
+        "effects": list(s.spec.effects),
+        "tolerance": s.spec.tolerance,
+        "locks_up": head["locks_up"],
+        "reason": head["reason"],
+        "discretisation_error": {name: _relative(float(nlp[name]), head[name])
+                                 for name in ("start_time", "friction_work", "lock_up_speed")},
+        "units": UNITS,
+        "trajectory": {name: column.tolist() for name, column in trajectory.items()},
+    }
+    return summary, checks
+
+
+def _relative(nlp: float, simulated: float) -> float:
+    """(NLP - simulated) / |simulated|: the collocation's error against the simulator (its own error ~1e-10)."""
+    if not math.isfinite(simulated) or simulated == 0:
+        return math.nan
+    return (nlp - simulated) / abs(simulated)
+
+
+def tightened_limits(solution, nlp_case) -> dict[str, float]:
+    """Limits for the next solve where the simulated start misses the case's limit: each moved in from the one the
+    NLP last saw by what the simulation exceeds the case's limit, and half the tolerance more."""
+    summary, tolerance = solution.start_up, solution.start_up["tolerance"]
+    limits = {}
+    for check in solution.constraints:
+        name = LIMIT_OF.get(check.name)
+        if name is None or check.feasible or check.sense != "<=" or not math.isfinite(check.value):
+            continue
+        excess = check.value - check.limit
+        limits[name] = nlp_case.values[name] - excess - 0.5 * tolerance * abs(check.limit)
+        if not limits[name] > 0 or summary["locks_up"] is False:
+            return {}
+    return limits

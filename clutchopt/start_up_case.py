@@ -1,0 +1,200 @@
+"""The ``[start_up]`` section of a case file: the drive a coupling is designed for, read into SI and checked.
+
+Layout (quantities with units; bare numbers are SI; the vocabulary of start-up scenes)::
+
+    [start_up]
+    effects = ["slip_friction", "motor_curve", "spring_preload", "gravity", "lockup", "friction_heat"]
+    spring_preload = "12 N"          # per weight; free it with options.free = ["spring_preload"]
+    intervals = 16                   # collocation intervals per phase (optional; doubled as the tolerance needs)
+    tolerance = 1e-6                 # simulated start against the limits, relative (optional)
+    [start_up.driver]                # effect motor_curve: an induction motor (else the duty's constant speed)
+    synchronous_speed = "1000 rpm"
+    breakdown_torque = "37 N*m"
+    breakdown_slip = 0.2
+    inertia = "0.012 kg*m^2"
+    [start_up.driven]                # defaults: the duty's inertia and resisting torque
+    inertia = "0.5 kg*m^2"
+    resisting_torque = "5 N*m"       # or [start_up.driven.load_profile] over = "speed"|"time", points, torque
+    [start_up.heat]                  # effect friction_heat
+    capacity = "1400 J/K"
+    conductance = "4 W/K"
+    [start_up.limits]                # max_start_time defaults to duty.acceleration_time
+    max_start_time = "10 s"
+    max_friction_work = "8 kJ"
+    max_temperature_rise = "15 K"
+    min_engagement_speed = "300 rpm"
+    max_engagement_speed = "600 rpm"
+    starts_per_hour = "6 1/hour"
+    heat_dissipation = "40 W"
+"""
+
+from __future__ import annotations
+
+from clutchopt.errors import InputError
+from clutchopt.formulations.start_up import (
+    EFFECTS,
+    LIMITS,
+    QUANTITIES,
+    RADIAL_EFFECTS,
+    LoadProfile,
+    StartUpSpec,
+)
+from clutchopt.model import REQUIRED
+from clutchopt.units import to_si
+
+SECTION = "start_up"
+_TABLES = ("driver", "driven", "heat", "limits")
+_SETTINGS = ("effects", "intervals", "tolerance")
+MAX_INTERVALS = 128
+MAX_PROFILE_POINTS = 1000  # a load profile is a curve of a few dozen points; each point costs every evaluation
+PROFILE_SPEED_MAX, PROFILE_TIME_MAX, PROFILE_TORQUE_MAX = 1e5, 1e9, 1e9  # rad/s, s, N*m (the simulator's ranges)
+DEFAULTS_FROM_DUTY = {"driven_inertia": "inertia", "load_torque": "resisting_torque",
+                      "max_start_time": "acceleration_time"}
+
+
+def parse_start_up(table, coupling, duty: dict[str, float]) -> tuple[dict[str, float], StartUpSpec]:
+    """SI values of the start-up quantities and the spec of a ``[start_up]`` table of a case of ``coupling``."""
+    if not isinstance(table, dict):
+        raise InputError(SECTION, "must be a table")
+    laws = [f.speed_law for f in coupling.formulations.values()]
+    if not all(laws):
+        raise InputError(SECTION, f"the {coupling.name} coupling has no start-up law in clutchopt yet")
+    declared = {q.key: q for q in QUANTITIES}
+    allowed = set(_SETTINGS) | set(_TABLES) | {q.key.split(".")[1] for q in QUANTITIES if q.section == SECTION}
+    for key in table:
+        if key not in allowed:
+            raise InputError(f"{SECTION}.{key}", f"unknown key; [{SECTION}] takes {', '.join(sorted(allowed))}")
+    effects = parse_effects(table.get("effects"), f"{SECTION}.effects")
+    values: dict[str, float] = {}
+    profile = None
+    for name in _TABLES:
+        sub = table.get(name, {})
+        if not isinstance(sub, dict):
+            raise InputError(f"{SECTION}.{name}", "must be a table")
+        for key, raw in sub.items():
+            field = f"{SECTION}.{name}.{key}"
+            if name == "driven" and key == "load_profile":
+                profile = parse_load_profile(raw, field)
+                continue
+            quantity = declared.get(field)
+            if quantity is None:
+                known = [q.key.rsplit(".", 1)[1] for q in QUANTITIES if q.section == f"{SECTION}.{name}"]
+                raise InputError(field, f"unknown key; [{SECTION}.{name}] takes {', '.join(known)}"
+                                        + (", load_profile" if name == "driven" else ""))
+            values[quantity.name] = quantity.check(to_si(field, raw, quantity.unit))
+    if "spring_preload" in table:
+        quantity = declared[f"{SECTION}.spring_preload"]
+        values["spring_preload"] = quantity.check(to_si(quantity.key, table["spring_preload"], quantity.unit))
+    for quantity in QUANTITIES:
+        if quantity.name not in values and quantity.name in DEFAULTS_FROM_DUTY:
+            if DEFAULTS_FROM_DUTY[quantity.name] in duty:
+                values[quantity.name] = duty[DEFAULTS_FROM_DUTY[quantity.name]]
+        if quantity.name not in values and quantity.default not in (None, REQUIRED):
+            values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
+    if profile is not None and "resisting_torque" in table.get("driven", {}):
+        raise InputError(f"{SECTION}.driven", "give either resisting_torque or load_profile, not both")
+    if profile is not None:
+        values["load_torque"] = max(profile.values)
+    _check(values, effects, coupling, laws, profile)
+    spec = StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile,
+                       _intervals(table.get("intervals", StartUpSpec.intervals)),
+                       _tolerance(table.get("tolerance", StartUpSpec.tolerance)))
+    return values, spec
+
+
+def parse_effects(raw, field: str) -> tuple[str, ...]:
+    """A list of effect names (shared by cases and scenes)."""
+    if raw is None:
+        raise InputError(field, f"missing: list the effects to model, from {', '.join(EFFECTS)}")
+    if not isinstance(raw, list) or not all(isinstance(e, str) for e in raw):
+        raise InputError(field, f"must be a list of effect names from {', '.join(EFFECTS)}")
+    unknown = [e for e in raw if e not in EFFECTS]
+    if unknown:
+        raise InputError(field, f"unknown effect {unknown[0]!r}; effects are {', '.join(EFFECTS)}")
+    if len(set(raw)) != len(raw):
+        raise InputError(field, "lists an effect twice")
+    if "slip_friction" not in raw:
+        raise InputError(field, "must include slip_friction (the coupling itself)")
+    return tuple(raw)
+
+
+def _check(values, effects, coupling, laws, profile) -> None:
+    """What one field cannot show: what an effect needs, and what is given for an effect not listed."""
+    def given(*names):
+        return [n for n in names if n in values]
+
+    def key(name):
+        return next(q.key for q in QUANTITIES if q.name == name)
+
+    for name in ("driven_inertia", "load_torque"):
+        if name not in values:
+            raise InputError(key(name), f"missing (the {coupling.name} case has no duty value to take it from)")
+    if "max_start_time" not in values:
+        raise InputError(key("max_start_time"), "missing (the case has no duty.acceleration_time to take it from)")
+    motor = ("synchronous_speed", "breakdown_torque", "breakdown_slip", "motor_inertia")
+    if "motor_curve" in effects:
+        for name in motor:
+            if name not in values:
+                raise InputError(key(name), "missing (effect motor_curve lists an induction motor)")
+    elif given(*motor):
+        raise InputError(key(given(*motor)[0]), "given, but effects do not list motor_curve (the driver then turns "
+                                                "at the duty's constant speed)")
+    if "friction_heat" in effects and "heat_capacity" not in values:
+        raise InputError(key("heat_capacity"), "missing (effect friction_heat)")
+    if "friction_heat" not in effects and given("heat_capacity", "max_temperature_rise"):
+        raise InputError(key(given("heat_capacity", "max_temperature_rise")[0]),
+                         "given, but effects do not list friction_heat")
+    if values.get("spring_preload", 0.0) > 0 and "spring_preload" not in effects:
+        raise InputError(key("spring_preload"), "given, but effects do not list spring_preload")
+    radial = [e for e in effects if e in RADIAL_EFFECTS]
+    if radial and not all(law.mass_radius for law in laws):
+        raise InputError(f"{SECTION}.effects", f"{radial[0]} does not apply to the {coupling.name} coupling "
+                                               "(it has no weights held in by springs or their own weight)")
+    window = given("min_engagement_speed", "max_engagement_speed")
+    if window and not radial:
+        raise InputError(key(window[0]), "needs spring_preload or gravity in effects (else the coupling engages "
+                                         "at standstill)")
+    if len(window) == 2 and not values["min_engagement_speed"] < values["max_engagement_speed"]:
+        raise InputError(key("min_engagement_speed"), "must be below max_engagement_speed")
+    heat_balance = given("starts_per_hour", "heat_dissipation")
+    if len(heat_balance) == 1:
+        other = ({"starts_per_hour", "heat_dissipation"} - set(heat_balance)).pop()
+        raise InputError(key(other), f"missing (given {heat_balance[0]}: the heat balance over an hour needs both)")
+
+
+def _intervals(raw) -> int:
+    if isinstance(raw, bool) or not isinstance(raw, int) or not 2 <= raw <= MAX_INTERVALS:
+        raise InputError(f"{SECTION}.intervals", f"must be a whole number from 2 to {MAX_INTERVALS}, got {raw!r}")
+    return raw
+
+
+def _tolerance(raw) -> float:
+    value = to_si(f"{SECTION}.tolerance", raw, "")
+    if not 1e-12 <= value <= 1e-2:
+        raise InputError(f"{SECTION}.tolerance", f"must be between 1e-12 and 1e-2 (relative), got {raw!r}")
+    return value
+
+
+def parse_load_profile(profile, key: str) -> LoadProfile:
+    """``{over = "speed"|"time", points = [...], torque = [...]}`` into SI (shared by cases and scenes)."""
+    if not isinstance(profile, dict) or set(profile) != {"over", "points", "torque"}:
+        raise InputError(key, "must be a table with over = \"speed\" or \"time\", points = [...], torque = [...]")
+    over = profile["over"]
+    if over not in ("speed", "time"):
+        raise InputError(f"{key}.over", f"must be \"speed\" or \"time\", got {over!r}")
+    points, torques = profile["points"], profile["torque"]
+    if not isinstance(points, list) or not isinstance(torques, list) or len(points) != len(torques) \
+            or not 2 <= len(points) <= MAX_PROFILE_POINTS:
+        raise InputError(key, f"points and torque must be lists of the same length (2 to {MAX_PROFILE_POINTS})")
+    unit, largest = ("rpm", PROFILE_SPEED_MAX) if over == "speed" else ("s", PROFILE_TIME_MAX)
+    xs = tuple(to_si(f"{key}.points[{i}]", raw, unit) for i, raw in enumerate(points))
+    ys = tuple(to_si(f"{key}.torque[{i}]", raw, "N*m") for i, raw in enumerate(torques))
+    if any(b <= a for a, b in zip(xs, xs[1:])):
+        raise InputError(f"{key}.points", "must increase strictly")
+    if xs[0] < 0 or xs[-1] > largest:
+        raise InputError(f"{key}.points", f"must lie from 0 to {largest:g} {'rad/s' if over == 'speed' else 's'}")
+    if any(y < 0 for y in ys):
+        raise InputError(f"{key}.torque", "must not be negative (the load opposes the motion)")
+    if max(ys) > PROFILE_TORQUE_MAX:
+        raise InputError(f"{key}.torque", f"must be at most {PROFILE_TORQUE_MAX:g} N*m")
+    return LoadProfile(over, xs, ys)
