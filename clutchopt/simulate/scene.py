@@ -146,7 +146,7 @@ def parse_scene(data: dict, path: str = "") -> Scene:
         if effect in effects and law_name != "centrifugal":
             f.problems.errors.append(InputError("effects", f"{effect} applies to centrifugal couplings "
                                                            "(law = \"centrifugal\") only"))
-    case = _case(f) if law_name == "centrifugal" else None
+    case = _case(f, effects) if law_name == "centrifugal" else None
     duty = case.params() if case else None
     inertia = f.quantity("driven", "inertia", "kg*m^2", INERTIA, getattr(duty, "inertia", None))
     load = _load(f, duty)
@@ -185,9 +185,10 @@ def _friction_law(f: _Fields, law_name: str):
     return ConstantFriction(f.quantity("coupling", "torque", "N*m", TORQUE)), {"law": "constant"}
 
 
-def _case(f: _Fields):
+def _case(f: _Fields, effects: tuple[str, ...]):
     """The centrifugal coupling's case (checked; its problems named inside ``coupling.case``), or None."""
     from clutchopt.cases import load_case
+    from clutchopt.formulations import get_coupling
     from clutchopt.simulate.design import speed_law_missing
 
     if "case" not in f.table("coupling"):
@@ -207,6 +208,11 @@ def _case(f: _Fields):
     if missing:
         f.problems.errors.append(InputError("coupling.case", missing))
         return None
+    radial = [effect for effect in effects if effect in RADIAL_EFFECTS]
+    laws = [formulation.speed_law for formulation in get_coupling(case.coupling).formulations.values()]
+    if radial and not all(law is not None and law.mass_radius is not None for law in laws):
+        f.problems.errors.append(InputError("effects", f"{radial[0]} does not apply to the {case.coupling} coupling "
+                                                       "(no weights held in by springs or their own weight)"))
     return case
 
 
