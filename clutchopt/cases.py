@@ -112,7 +112,8 @@ def parse_case(data: dict, path: str = "") -> Case:
                                    f"{', '.join(q.name for q in coupling.quantities if q.section == key)}"))
             continue
         if key not in sections:
-            problems.errors.append(InputError(key, f"unknown section or key{_did_you_mean(key, sections)}; this "
+            problems.errors.append(InputError(key, f"unknown section or key"
+                                                   f"{_did_you_mean(key, sections | set(_EXTRA_SECTIONS))}; this "
                                    f"{coupling.name} case may have {', '.join(sorted(sections | set(_EXTRA_SECTIONS)))}"))
             continue
         for name, raw in table.items():

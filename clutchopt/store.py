@@ -163,7 +163,7 @@ class RunStore:
         except sqlite3.OperationalError as exc:
             if db is not None:
                 db.close()
-            if self.writable or "unable to open" not in str(exc):
+            if self.writable or not ("unable to open" in str(exc) or "readonly" in str(exc)):
                 raise self._damaged(exc) from None
         except sqlite3.DatabaseError as exc:
             if db is not None:
@@ -182,6 +182,8 @@ class RunStore:
                 raise StoreError(self.path, f"is an SQLite database but not a clutchopt run store (its tables: "
                                             f"{', '.join(sorted(tables))})", "give a run store with --store")
             if not self.writable:
+                if not tables:
+                    raise StoreError(self.path, "is empty: nothing has been recorded in it yet")
                 return
             self._db.execute("PRAGMA journal_mode=WAL")
             self._db.execute("PRAGMA synchronous=NORMAL")

@@ -145,3 +145,35 @@ def test_simulations_are_recorded(cli, run_store):
     assert scene["status"] == "locks up" and scene["inputs"]["scene"]["title"].startswith("Wedge coupling")
     assert scene["objective"] == pytest.approx(10.0, rel=1e-6)  # reaches speed in t_p = 10 s
     assert verify["status"] == "verified" and verify["objective"] == pytest.approx(10.0, rel=1e-6)
+
+
+def test_runs_are_listed_and_exported_for_a_person(tmp_path, capsys):
+    """Whole-number ids, the objective with its unit, the mode as asked (a Pareto point's cost cap named), no
+    objective or design for an infeasible point (its diagnosis kept), export columns with their SI units."""
+    from clutchopt.cli import main
+
+    store = str(tmp_path / "runs.sqlite")
+    assert main(["solve", str(CASES / "wedge_paper.toml"), "--store", store]) == 0
+    assert main(["sweep", str(CASES / "wedge_paper.toml"), "--mode", "geometry", "--vary", "speed=800,1000",
+                 "--vary", "outer_diameter_max=100", "--quiet", "--store", store]) == 0  # both infeasible
+    assert main(["pareto", str(CASES / "wedge_centrifuge.toml"), "--mode", "geometry", "--points", "3",
+                 "--store", store]) == 0
+    capsys.readouterr()
+    assert main(["runs", "list", "--store", store]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    rows = {int(line.split()[0]): line for line in lines[2:8]}  # ids are whole numbers
+    assert sorted(rows) == [1, 2, 3, 4, 5, 6]
+    assert rows[1].split()[1:4] == ["solve", "-", "-"] and "mass 0.667951 kg" in rows[1]  # the worked example
+    assert rows[2].split()[1:4] == ["sweep", "1", "0"] and rows[2].split()[8:10] == ["infeasible", "-"]
+X
+    assert "geometry (cost cap)" not in rows[6] and "cost 39.1863 EUR" in rows[6]  # the cost end
+    out = tmp_path / "runs.csv"
+    assert main(["runs", "export", "-o", str(out), "--store", store]) == 0
+    table = pd.read_csv(out)
+    assert table["id"].tolist() == [1, 2, 3, 4, 5, 6] and table["sweep"].dtype.kind in "if"
+    assert table.loc[0, "input.speed [rad/s]"] == pytest.approx(1000 * 2 * 3.141592653589793 / 60, rel=1e-12)
+    assert table.loc[0, "design.finger_diameter [m]"] == pytest.approx(5.46156e-3, rel=1e-5)
+    infeasible = table[table["status"] == "infeasible"]
+    assert len(infeasible) == 2 and infeasible["design.finger_diameter [m]"].isna().all()
+    assert infeasible["mass [kg]"].isna().all() and infeasible["diagnosis"].str.startswith("infeasible:").all()
+    assert table.loc[5, "cost [EUR]"] == pytest.approx(39.1863, rel=1e-5) and pd.isna(table.loc[5, "mass [kg]"])

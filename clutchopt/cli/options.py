@@ -84,6 +84,16 @@ def add_store_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--no-store", action="store_true", help="do not record this run")
 
 
+def resolve_problem(case, args, objective: bool = True) -> None:
+    """Check the mode and objective the arguments ask for (an unknown name is bad input) before any store is
+    opened or file written."""
+    from clutchopt.optimise.problem import case_formulation
+
+    formulation = case_formulation(case, args.mode)
+    if objective:
+        formulation.objective(args.objective or case.options.get("objective", "mass"))
+
+
 def warn(text: str) -> None:
     """A warning for the user: one line on stderr; the command goes on."""
     print(f"warning: {text}", file=sys.stderr, flush=True)

@@ -12,6 +12,7 @@ from clutchopt.cli.options import (
     add_problem_options,
     add_store_options,
     open_store,
+    resolve_problem,
     whole_number,
 )
 
@@ -46,6 +47,7 @@ def run(args) -> str:
         table_format(args.out)  # a bad name fails before the solves, not after
     if args.plot:
         check_output("--plot", args.plot, FIGURE_SUFFIXES)
+    resolve_problem(case, args, objective=False)
     store = open_store(args)
     front = pareto_front(case, args.mode, args.points, SolverOptions(tol=args.tol))
     formulation = case_formulation(case, front.mode)

@@ -2,7 +2,14 @@
 
 from __future__ import annotations
 
-from clutchopt.cli.options import add_case_argument, add_problem_options, add_store_options, open_store, record_solve
+from clutchopt.cli.options import (
+    add_case_argument,
+    add_problem_options,
+    add_store_options,
+    open_store,
+    record_solve,
+    resolve_problem,
+)
 
 
 def add_command(commands) -> None:
@@ -25,6 +32,7 @@ def run(args) -> str:
     case = load_case(args.case)
     check_output("--out", args.out, (".html", ".htm"))
     sweep = read_frame(args.sweep) if args.sweep else None
+    resolve_problem(case, args)
     store = open_store(args)
     solution = solve_case(case, args.mode, args.objective, SolverOptions(tol=args.tol))
     record_solve(store, case, solution)

@@ -99,6 +99,9 @@ def export(args) -> str:
     with RunStore(args.store, writable=False, check=False) as store:
         entries, lost = store.readable_runs(args.kind, args.sweep)
     frame = pd.DataFrame([export_row(entry) for entry in entries])
+    for column in ("sweep", "point"):  # whole numbers, blank for a run that is no sweep point
+        if column in frame:
+            frame[column] = frame[column].astype("Int64")
     write_frame(frame, args.out)
     text = f"{len(frame)} runs written to {args.out}"
     if lost:

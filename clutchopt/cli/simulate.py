@@ -4,7 +4,13 @@ from __future__ import annotations
 
 import math
 
-from clutchopt.cli.options import FIGURE_SUFFIXES, add_json_option, add_store_options, open_store, record_simulation
+from clutchopt.cli.options import (
+    FIGURE_SUFFIXES,
+    add_json_option,
+    add_store_options,
+    open_store,
+    record_simulation,
+)
 
 _LINES = (
     ("start_time", "start time t_c", "s"),

@@ -18,12 +18,13 @@ def add_command(commands) -> None:
 
 def run(args) -> str:
     from clutchopt.cases import load_case
-    from clutchopt.cli.options import open_store, record_solve
+    from clutchopt.cli.options import open_store, record_solve, resolve_problem
     from clutchopt.optimise import SolverOptions, solve_case
     from clutchopt.optimise.problem import case_formulation
     from clutchopt.output import solution_text, to_json
 
     case = load_case(args.case)
+    resolve_problem(case, args)
     store = open_store(args)
     solution = solve_case(case, args.mode, args.objective, SolverOptions(tol=args.tol))
     check = None
