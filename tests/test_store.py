@@ -165,7 +165,7 @@ def test_runs_are_listed_and_exported_for_a_person(tmp_path, capsys):
     assert sorted(rows) == [1, 2, 3, 4, 5, 6]
     assert rows[1].split()[1:4] == ["solve", "-", "-"] and "mass 0.667951 kg" in rows[1]  # the worked example
     assert rows[2].split()[1:4] == ["sweep", "1", "0"] and rows[2].split()[8:10] == ["infeasible", "-"]
-X
+    assert "geometry (cost cap)" in rows[5] and "mass 0.689202 kg" in rows[5]  # README's front, cap 39.3164 EUR
     assert "geometry (cost cap)" not in rows[6] and "cost 39.1863 EUR" in rows[6]  # the cost end
     out = tmp_path / "runs.csv"
     assert main(["runs", "export", "-o", str(out), "--store", store]) == 0
