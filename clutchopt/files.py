@@ -78,6 +78,17 @@ def read_text(path: str | Path, limit: int = CASE_BYTES, field: str | None = Non
                                 "save it as UTF-8") from None
 
 
+def status(path: str | Path, field: str) -> os.stat_result | None:
+    """``os.stat`` of a path the user named: None if nothing is there; any other failure (a name too long, a
+    folder that may not be searched, a NUL byte) is an InputError naming ``field``."""
+    try:
+        return os.stat(path)
+    except (FileNotFoundError, NotADirectoryError):
+        return None
+    except (OSError, ValueError) as exc:
+        raise InputError(field, f"cannot use {str(path)[:200]!r} ({getattr(exc, 'strerror', None) or exc})") from None
+
+
 def check_output(option: str, path: str, suffixes: tuple[str, ...]) -> str:
     """Refuse an output path before any work: a suffix not in ``suffixes`` (e.g. ``(".csv", ".md")``), a folder
     that does not exist or cannot be written, a path that is a folder or a FIFO. Returns the suffix, without dot."""
@@ -85,17 +96,16 @@ def check_output(option: str, path: str, suffixes: tuple[str, ...]) -> str:
     if suffix not in suffixes:
         raise InputError(option, f"write {', '.join(suffixes[:-1])} or {suffixes[-1]}, got {path!r}"
                          if len(suffixes) > 1 else f"write {suffixes[0]}, got {path!r}")
-    if "\x00" in path:
-        raise InputError(option, "the file name contains a NUL byte")
     target = Path(path)
     folder = target.parent
-    if not folder.is_dir():
+    found = status(folder, option)
+    if found is None or not stat.S_ISDIR(found.st_mode):
         raise InputError(option, f"cannot write {path!r}: the folder {str(folder)!r} does not exist")
-    if target.exists():
-        mode = target.stat().st_mode
-        if stat.S_ISDIR(mode) or stat.S_ISFIFO(mode) or stat.S_ISSOCK(mode):
-            raise InputError(option, f"cannot write {path!r}: it is {_kind(mode)}")
-        if stat.S_ISREG(mode) and not os.access(target, os.W_OK):
+    found = status(target, option)
+    if found is not None:
+        if stat.S_ISDIR(found.st_mode) or stat.S_ISFIFO(found.st_mode) or stat.S_ISSOCK(found.st_mode):
+            raise InputError(option, f"cannot write {path!r}: it is {_kind(found.st_mode)}")
+        if stat.S_ISREG(found.st_mode) and not os.access(target, os.W_OK):
             raise InputError(option, f"cannot write {path!r}: the file is read-only")
     if not os.access(folder, os.W_OK):
         raise InputError(option, f"cannot write {path!r}: the folder {str(folder)!r} is not writable")
@@ -108,7 +118,8 @@ def write_whole(option: str, path: str, write: Callable[[str], None]) -> None:
     A device (``/dev/null``) is written directly. Errors of the file system are InputErrors naming ``option``."""
     target = Path(path)
     try:
-        if target.exists() and not target.is_file():
+        found = status(target, option)
+        if found is not None and not stat.S_ISREG(found.st_mode):  # a device such as /dev/null
             write(path)
             return
         handle, temporary = tempfile.mkstemp(prefix=f".{target.name}.", suffix=target.suffix,

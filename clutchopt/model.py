@@ -22,6 +22,9 @@ from clutchopt.errors import InputError
 from clutchopt.units import from_si, si_factor, si_unit
 
 REQUIRED = object()  # marker: a case must give this quantity
+# Every case value (SI) is 0 or of a magnitude within these: 1e-9 to 1e9 times any real coupling's numbers (7850
+# kg/m^3, 2e11 Pa, 1e-3 m), so that products like m w^2 r stay well inside float64 in every formulation.
+MAGNITUDES = (1e-15, 1e15)
 
 
 @dataclass(frozen=True)
@@ -67,6 +70,9 @@ class Quantity:
                 raise InputError(name, f"must be {word} {self.show(bound)}, got {self.show(value, 15)}")
         if self.integer and value != round(value):
             raise InputError(name, f"must be a whole number, got {value:.15g}")
+        if value != 0 and not MAGNITUDES[0] <= abs(value) <= MAGNITUDES[1]:
+            raise InputError(name, f"{value:.6g} {self.si_unit} (SI) is outside the magnitudes clutchopt works with, "
+                                   f"{MAGNITUDES[0]:g} to {MAGNITUDES[1]:g} in SI units".replace(" 1 (SI)", " (SI)"))
         return value
 
 

@@ -95,6 +95,7 @@ def parse_start_up(table, coupling, duty: dict[str, float]) -> tuple[dict[str, f
         raise InputError(f"{SECTION}.driven", "give either resisting_torque or load_profile, not both")
     if profile is not None:
         values["load_torque"] = max(profile.values)
+    _check_ranges(values, duty)
     _check(values, effects, coupling, laws, profile)
     spec = StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile,
                        _intervals(table.get("intervals", StartUpSpec.intervals)),
@@ -160,6 +161,24 @@ def _check(values, effects, coupling, laws, profile) -> None:
     if len(heat_balance) == 1:
         other = ({"starts_per_hour", "heat_dissipation"} - set(heat_balance)).pop()
         raise InputError(key(other), f"missing (given {heat_balance[0]}: the heat balance over an hour needs both)")
+
+
+def _check_ranges(values: dict[str, float], duty: dict[str, float]) -> None:
+    """The drive's quantities within the ranges the simulator is tested over (it starts every optimum again)."""
+    from clutchopt.simulate import engine
+
+    ranges = {"driven_inertia": engine.INERTIA, "load_torque": engine.LOAD, "synchronous_speed": engine.SPEED,
+              "breakdown_torque": engine.TORQUE, "breakdown_slip": engine.BREAKDOWN_SLIP,
+              "motor_inertia": engine.INERTIA, "heat_capacity": engine.HEAT_CAPACITY,
+              "heat_conductance": engine.CONDUCTANCE, "max_start_time": engine.TIME, "spring_preload": engine.FORCE}
+    keys = {q.name: q.key for q in QUANTITIES}
+    for name, (low, high, unit) in ranges.items():
+        if name in values and not low <= values[name] <= high:
+            raise InputError(keys[name], f"must be from {low:g} to {high:g} {unit} (the range the simulator is "
+                                         f"tested over), got {values[name]:.6g} {unit}".replace("  ", " "))
+    if "speed" in duty and not engine.SPEED[0] <= duty["speed"] <= engine.SPEED[1]:
+        raise InputError("duty.speed", f"must be from {engine.SPEED[0]:g} to {engine.SPEED[1]:g} rad/s for a case "
+                                       f"with a [start_up] section (the simulator's range), got {duty['speed']:.6g}")
 
 
 def _intervals(raw) -> int:

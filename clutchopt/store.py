@@ -31,6 +31,7 @@ from pathlib import Path
 from typing import Callable
 
 from clutchopt.errors import InputError
+from clutchopt.files import status
 
 DEFAULT_STORE = "clutchopt-runs.sqlite"
 STORE_ENV = "CLUTCHOPT_STORE"
@@ -129,10 +130,12 @@ class RunStore:
     def _check_file(self) -> None:
         """What can be said before SQLite opens the file: its kind, its header, whether it may be written."""
         path = Path(self.path)
-        if "\x00" in self.path:
-            raise StoreError(repr(self.path), "a file name cannot contain a NUL byte")
-        if path.exists():
-            mode = path.stat().st_mode
+        try:
+            found = status(path, "--store")
+        except InputError as exc:
+            raise StoreError(self.path[:200], exc.problem, "give another file name with --store") from None
+        if found is not None:
+            mode = found.st_mode
             if not stat.S_ISREG(mode):
                 raise StoreError(self.path, "is not a regular file (a folder or a device)",
                                  "give a file name with --store")

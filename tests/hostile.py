@@ -132,6 +132,17 @@ def table(name: str, content: str | bytes | Special, expect: str | None, file: s
                    expect, ("case.toml", WEDGE), (file, content))
 
 
+START_UP = """
+[start_up]
+effects = ["slip_friction", "motor_curve", "lockup", "friction_heat"]
+[start_up.driver]
+synchronous_speed = "1000 rpm"
+breakdown_torque = "37 N*m"
+breakdown_slip = 0.2
+inertia = "0.012 kg*m^2"
+[start_up.heat]
+capacity = "1400 J/K"
+"""
 SWEEP_TABLE = "point,speed [rpm],status,mass [kg],weight_mass [kg]\n0,900,optimal,0.8,0.2\n1,1000,infeasible,,\n"
 MISSING_DUTY = edit(edit(edit(edit(WEDGE, 'inertia = "0.5 kg*m^2"\n', ""), 'speed = "1000 rpm"\n', ""),
                          'acceleration_time = "10 s"\n', ""), 'resisting_torque = "5 N*m"\n', "")
@@ -193,7 +204,8 @@ HOSTILE: list[Hostile] = [
     quantity("angle-in-percent", '"15 deg"', '"15 %"', "geometry.flank_angle: expected an angle"),
     quantity("count-nearly-whole", "weight_count = 4", "weight_count = 4.0000001",
              "geometry.weight_count: must be a whole number, got 4.0000001"),
-    quantity("count-huge", "weight_count = 4", "weight_count = 1e300", "geometry.sector_angle"),
+    quantity("count-huge", "weight_count = 4", "weight_count = 1e300", "geometry.weight_count: 1e+300 (SI) is"),
+    quantity("count-too-many", "weight_count = 4", "weight_count = 1000", "geometry.sector_angle"),
     quantity("ratio-nearly-one", "radius_ratio = 1.2", "radius_ratio = 0.99999999999", "got 0.99999999999"),
     # --- files ---------------------------------------------------------------------------------------------------
     case("utf-16-with-bom", WEDGE.encode("utf-16"), "is UTF-16 text; save it as UTF-8"),
@@ -235,7 +247,12 @@ HOSTILE: list[Hostile] = [
     case("bounds-three-values", edit(WEDGE, '["5 mm", "40 mm"]', '["5 mm", "20 mm", "40 mm"]'),
          "bounds.weight_width: must be a pair"),
     case("bounds-nan", edit(WEDGE, '["5 mm", "40 mm"]', '["nan mm", "40 mm"]'), "bounds.weight_width: must be a finite"),
-    case("bounds-huge", edit(WEDGE, '["5 mm", "40 mm"]', '["1e-300 mm", "1e300 mm"]'), None),
+    case("bounds-huge", edit(WEDGE, '["5 mm", "40 mm"]', '["1e-300 mm", "1e300 mm"]'),
+         "bounds.weight_width: 1e-303 m (SI) is outside the magnitudes clutchopt works with"),
+    case("bounds-wide", edit(WEDGE, '["5 mm", "40 mm"]', '["1e-6 mm", "1e6 mm"]'), None),
+    speed("speed-beyond-magnitudes", '"1e300 rpm"', "duty.speed: 1.0472e+299 rad/s (SI) is outside the magnitudes"),
+    inertia("inertia-beyond-magnitudes", '"1e-300 kg*m^2"', "duty.inertia: 1e-300 kg*m^2 (SI) is outside"),
+    quantity("density-at-magnitude-limit", '"7850 kg/m^3"', '"1e15 kg/m^3"', None),
     case("section-not-a-table", edit(WEDGE, "[duty]\n", "duty = 5\n[duty2]\n"), "duty: must be a table [duty]"),
     case("section-misspelt", edit(WEDGE, "[material]", "[materials]"), "(did you mean 'material'?)"),
     case("key-misspelt", edit(WEDGE, "friction_coefficient", "friction_coeficient"),
@@ -249,6 +266,14 @@ HOSTILE: list[Hostile] = [
     case("coupling-list", edit(WEDGE, 'coupling = "wedge"', 'coupling = ["wedge"]'), "coupling: unknown coupling"),
     case("many-unknown-keys", edit(WEDGE, "[duty]\n", "[duty]\n" + "".join(f"k{i} = 1\n" for i in range(2000))),
          "... and 1950 more problems"),
+    case("start-up-motor-too-fast", WEDGE + START_UP.replace('"1000 rpm"', '"1e7 rpm"'),
+         "start_up.driver.synchronous_speed: must be from 0.001 to 100000 rad/s"),
+    case("start-up-no-breakdown-slip", WEDGE + START_UP.replace("breakdown_slip = 0.2", "breakdown_slip = 0"),
+         "start_up.driver.breakdown_slip: must be > 0"),
+    case("start-up-tiny-heat-capacity", WEDGE + START_UP.replace('"1400 J/K"', '"1e-9 J/K"'),
+         "start_up.heat.capacity: must be from 1e-06 to 1e+12 J/K"),
+    case("start-up-profile-in-hz", WEDGE + START_UP + '[start_up.driven.load_profile]\nover = "speed"\n'
+         'points = ["0 Hz", "10 Hz"]\ntorque = [0, 5]\n', "start_up.driven.load_profile.points[0]: '0 Hz' is"),
     case("lever-limit-above-engagement", edit(LEVER, 'engagement_angle = "15 deg"', 'engagement_angle = "2 deg"'),
          "geometry.engagement_angle: must exceed the limit angle"),
     # --- scenes --------------------------------------------------------------------------------------------------
@@ -320,7 +345,8 @@ HOSTILE: list[Hostile] = [
     design("design-boolean", designed(weight_mass=True), "design.weight_mass: must be a finite number (SI), got True"),
     design("design-negative", designed(weight_mass=-0.15), "design.weight_mass: must be > 0 kg"),
     design("design-zero-mass", designed(weight_mass=0), "design.weight_mass: must be > 0 kg"),
-    design("design-huge", designed(weight_mass=1e308), "the design gives no usable torque law"),
+    design("design-huge", designed(weight_mass=1e308), "design.weight_mass: 1e+308 kg (SI) is outside"),
+    design("design-no-usable-law", designed(weight_mass=1e14), "the design gives no usable torque law"),
     design("design-big-integer", designed(weight_mass=10**400), "design.weight_mass: must be a finite number"),
     design("design-text-value", designed(finger_diameter="5 mm"), "design.finger_diameter: must be a finite number"),
     design("design-missing-value", {**DESIGN, "design": {}}, "design.weight_mass: must be a finite number"),
@@ -453,6 +479,15 @@ HOSTILE: list[Hostile] = [
     command("runs-export-unknown-suffix", ("runs", "export", "-o", "{dir}/runs.xls"), "--out: write .csv, .parquet"),
     command("runs-export-missing-folder", ("runs", "export", "-o", "{dir}/no/runs.csv"), "--out: cannot write"),
     command("runs-without-action", ("runs",), "the following arguments are required: ACTION"),
+    # --- file names the system refuses ---------------------------------------------------------------------------
+    command("case-name-too-long", ("solve", "{dir}/" + "c" * 5000 + ".toml"), "cannot read (File name too long)"),
+    command("out-name-too-long", ("sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=900", "--out",
+                                  "{dir}/" + "t" * 5000 + ".csv"), "--out: cannot use"),
+    command("plot-name-too-long", ("pareto", str(CASES / "wedge_paper.toml"), "--plot", "{dir}/" + "p" * 5000 + ".png"),
+            "--plot: cannot use"),
+    command("store-name-too-long", ("runs", "list", "--store", "{dir}/" + "s" * 5000), "--store: "),
+    command("solve-with-store-name-too-long", ("solve", str(CASES / "wedge_paper.toml"), "--store",
+                                               "{dir}/" + "s" * 5000), None),
     # --- bench and the top level ---------------------------------------------------------------------------------
     command("bench-unknown-flag", ("bench", "--quick", "--repeats", "3"), "unrecognized arguments: --repeats"),
     command("no-command", (), "the following arguments are required: COMMAND", subprocess=True),

@@ -149,7 +149,10 @@ def verify(case, solution) -> dict:
         return {"verified": False, "reason": f"the {case.coupling} case is sized without an acceleration time "
                                              "(give it a [start_up] section to design for a start)"}
     p = case.params()
-    result = ideal_start(case, solution.mode, solution.design)
+    try:
+        result = ideal_start(case, solution.mode, solution.design)
+    except InputError as exc:  # a case beyond the simulator's ranges: the solution stands, unverified
+        return {"verified": False, "reason": exc.problem}
     achieved = result.headline["start_time"]
     return {
         "verified": result.headline["locks_up"],
@@ -179,6 +182,13 @@ def report_figure(case, solution):
         return None, missing
     if "acceleration_time" not in case.values and case.start_up is None:
         return None, f"the {case.coupling} case defines no start-up (no driven inertia, no acceleration time)"
+    try:
+        return _start_figure(case, solution)
+    except InputError as exc:  # a case beyond the simulator's ranges: the page shows why there is no figure
+        return None, f"Start-up not simulated: {exc.problem}"
+
+
+def _start_figure(case, solution):
     from clutchopt.simulate.plot import history_figure
 
     if case.start_up is not None:

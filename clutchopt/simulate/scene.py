@@ -35,7 +35,21 @@ from pathlib import Path
 from clutchopt.cases import check_text, read_toml
 from clutchopt.errors import InputError, Problems
 from clutchopt.formulations.start_up import RADIAL_EFFECTS
-from clutchopt.simulate.engine import Model, simulate
+from clutchopt.simulate.engine import (
+    BREAKDOWN_SLIP,
+    CONDUCTANCE,
+    FORCE,
+    HEAT_CAPACITY,
+    INERTIA,
+    LOAD,
+    SLIP_SCALE,
+    SPEED,
+    TIME,
+    TOLERANCE,
+    TORQUE,
+    Model,
+    simulate,
+)
 from clutchopt.simulate.laws import ConstantFriction, InductionMotor, Load, PaperFriction
 from clutchopt.start_up_case import parse_effects, parse_load_profile
 from clutchopt.units import to_si
@@ -50,19 +64,6 @@ _KEYS = {
 }
 
 
-# The range of every scene quantity (SI): the simulator is tested at the corners of these ranges
-# (tests/test_hostile.py); far outside them float64 products such as J w^2 or k e^{a w} stop meaning anything.
-INERTIA = (1e-9, 1e9, "kg*m^2")
-TORQUE = (1e-9, 1e9, "N*m")
-LOAD = (0.0, 1e9, "N*m")
-SPEED = (1e-3, 1e5, "rad/s")
-TIME = (1e-9, 1e9, "s")
-SLIP_SCALE = (-1e6, 1e6, "s/rad")
-FORCE = (0.0, 1e9, "N")
-HEAT_CAPACITY = (1e-6, 1e12, "J/K")
-CONDUCTANCE = (0.0, 1e12, "W/K")
-BREAKDOWN_SLIP = (1e-6, 0.99, "")
-TOLERANCE = (1e-14, 1e-3, "")
 
 
 @dataclass
