@@ -26,7 +26,7 @@ from types import SimpleNamespace
 from typing import Any
 
 from clutchopt.errors import InputError, Problems
-from clutchopt.files import CASE_BYTES, read_text
+from clutchopt.files import CASE_BYTES, read_text, shown
 from clutchopt.formulations.start_up import QUANTITIES as START_UP_QUANTITIES
 from clutchopt.formulations.start_up import SPRING_PRELOAD, StartUpSpec
 from clutchopt.model import REQUIRED, Quantity
@@ -80,11 +80,11 @@ def read_toml(path: str | Path) -> dict:
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise InputError(str(path), f"not valid TOML: {exc}") from None
+        raise InputError(shown(path), f"not valid TOML: {exc}") from None
     except ValueError as exc:  # an integer of more than 4300 digits
-        raise InputError(str(path), f"not valid TOML: {str(exc).split(';')[0]}") from None
+        raise InputError(shown(path), f"not valid TOML: {str(exc).split(';')[0]}") from None
     except RecursionError:
-        raise InputError(str(path), "not valid TOML for clutchopt: arrays or tables nested too deeply") from None
+        raise InputError(shown(path), "not valid TOML for clutchopt: arrays or tables nested too deeply") from None
 
 
 def load_case(path: str | Path) -> Case:

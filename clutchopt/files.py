@@ -22,6 +22,12 @@ CASE_BYTES = MiB  # a case or scene file is a few kB
 TABLE_BYTES = 256 * MiB  # a sweep table of 100,000 points is about 50 MB
 
 
+def shown(path: str | Path) -> str:
+    """A path as a message names it: ``''`` for an empty one, the ends of a very long one."""
+    text = str(path)
+    return "''" if not text else text if len(text) <= 200 else f"{text[:120]}...{text[-60:]}"
+
+
 def _kind(mode: int) -> str:
     for test, name in ((stat.S_ISDIR, "a folder"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
                        (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
@@ -34,7 +40,7 @@ def _kind(mode: int) -> str:
 def read_bytes(path: str | Path, limit: int, field: str | None = None) -> bytes:
     """The bytes of a regular file of at most ``limit`` bytes; anything else is an InputError naming ``field``
     (default: the path). Opened without blocking, so a FIFO is refused instead of waited on."""
-    field = field or str(path) or "''"
+    field = field or shown(path)
     try:
         fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
     except FileNotFoundError:
@@ -63,7 +69,7 @@ _WIDE_BOMS = ((codecs.BOM_UTF32_LE, "UTF-32"), (codecs.BOM_UTF32_BE, "UTF-32"), 
 
 def read_text(path: str | Path, limit: int = CASE_BYTES, field: str | None = None) -> str:
     """A UTF-8 text file (a leading UTF-8 byte-order mark is dropped); other encodings are refused."""
-    field = field or str(path) or "''"
+    field = field or shown(path)
     data = read_bytes(path, limit, field)
     for bom, name in _WIDE_BOMS:
         if data.startswith(bom):
@@ -86,7 +92,7 @@ def status(path: str | Path, field: str) -> os.stat_result | None:
     except (FileNotFoundError, NotADirectoryError):
         return None
     except (OSError, ValueError) as exc:
-        raise InputError(field, f"cannot use {str(path)[:200]!r} ({getattr(exc, 'strerror', None) or exc})") from None
+        raise InputError(field, f"cannot use {shown(path)!r} ({getattr(exc, 'strerror', None) or exc})") from None
 
 
 def check_output(option: str, path: str, suffixes: tuple[str, ...]) -> str:
