@@ -38,8 +38,8 @@ def main(argv: list[str] | None = None) -> int:
             stream.reconfigure(errors="backslashreplace")
     try:
         return _run(argv)
-    except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
+    except KeyboardInterrupt as stop:  # Ctrl-C; a command may say what was kept (a sweep: how to resume)
+        print(str(stop) or "interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
     except Exception as exc:  # the last resort: every foreseeable failure is an InputError raised at the boundary
         from clutchopt.crash import write_crash_report

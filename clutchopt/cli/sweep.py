@@ -61,7 +61,7 @@ def run(args) -> str:
         result = sweep.run(store, args.resume, args.jobs, runner, progress=not args.quiet)
     except KeyboardInterrupt:
         where = f"; the points solved so far are in {store.path}, continue with --resume" if store else ""
-        raise SystemExit(f"sweep interrupted{where}") from None
+        raise KeyboardInterrupt(f"sweep interrupted{where}") from None
     finally:
         if store is not None:
             store.close()
