@@ -34,6 +34,7 @@ from clutchopt.errors import InputError
 from clutchopt.formulations.start_up import (
     EFFECTS,
     LIMITS,
+    LOCK_UP_SHARE,
     QUANTITIES,
     RADIAL_EFFECTS,
     LoadProfile,
@@ -91,6 +92,8 @@ def parse_start_up(table, coupling, duty: dict[str, float]) -> tuple[dict[str, f
                 values[quantity.name] = duty[DEFAULTS_FROM_DUTY[quantity.name]]
         if quantity.name not in values and quantity.default not in (None, REQUIRED):
             values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
+    if "motor_curve" in effects and "min_lock_up_speed" not in values and "synchronous_speed" in values:
+        values["min_lock_up_speed"] = LOCK_UP_SHARE * values["synchronous_speed"]
     if profile is not None and "resisting_torque" in table.get("driven", {}):
         raise InputError(f"{SECTION}.driven", "give either resisting_torque or load_profile, not both")
     if profile is not None:
@@ -137,9 +140,10 @@ def _check(values, effects, coupling, laws, profile) -> None:
         for name in motor:
             if name not in values:
                 raise InputError(key(name), "missing (effect motor_curve lists an induction motor)")
-    elif given(*motor):
-        raise InputError(key(given(*motor)[0]), "given, but effects do not list motor_curve (the driver then turns "
-                                                "at the duty's constant speed)")
+    elif given(*motor, "min_lock_up_speed"):
+        raise InputError(key(given(*motor, "min_lock_up_speed")[0]), "given, but effects do not list motor_curve "
+                                                                     "(the driver then turns at the duty's constant "
+                                                                     "speed)")
     if "friction_heat" in effects and "heat_capacity" not in values:
         raise InputError(key("heat_capacity"), "missing (effect friction_heat)")
     if "friction_heat" not in effects and given("heat_capacity", "max_temperature_rise"):

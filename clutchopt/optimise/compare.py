@@ -10,7 +10,8 @@ import numpy as np
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
-from clutchopt.optimise.problem import Solution, SolverOptions, problem_for
+from clutchopt.model import ComparisonRow
+from clutchopt.optimise.problem import Solution, SolverOptions, case_problem, problem_for
 from clutchopt.units import si_unit
 
 
@@ -55,9 +56,17 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions()) -> Compar
         solutions[column] = solution
         outputs = {name: out.value for name, out in solution.outputs.items()}
         columns[column] = spec.rows_from_design(mode, solution.design, outputs, params)
+    rows_shown, notes = spec.rows, dict(spec.column_notes)
+    if case.start_up is not None:
+        start_columns = _start_up_columns(case, coupling, spec, options)
+        for column, (solution, values) in start_columns.items():
+            solutions[column] = solution
+            columns[column] = values
+        rows_shown = spec.rows + START_UP_ROWS
+        notes.update(START_UP_NOTES)
     names = list(columns)
     rows = []
-    for row in spec.rows:
+    for row in rows_shown:
         entry = {"quantity": row.name, "unit": si_unit(row.unit), "display_unit": row.unit,
                  "description": row.description}
         for name in names:
@@ -67,4 +76,39 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions()) -> Compar
             if name != spec.baseline:
                 entry[f"rel_{name}"] = relative_difference(entry[name], entry.get(spec.baseline))
         rows.append(entry)
-    return ComparisonTable(coupling.name, names, spec.baseline, rows, dict(spec.column_notes), solutions)
+    return ComparisonTable(coupling.name, names, spec.baseline, rows, notes, solutions)
+
+
+START_UP_ROWS = (
+    ComparisonRow("start_time_simulated", "s", "switch-on to lock-up on the case's drive, simulated"),
+    ComparisonRow("friction_work_simulated", "kJ", "heat released by slip in that start, simulated"),
+    ComparisonRow("temperature_rise_simulated", "K", "largest temperature rise in that start, simulated"),
+)
+START_UP_NOTES = {
+    "constant_acceleration": "the case's mode optimised as the papers size (constant acceleration), started on "
+                             "the case's drive",
+    "nlp_start_up": "the case's mode optimised with the start-up on the case's drive inside the NLP",
+}
+
+
+def _start_up_columns(case: Case, coupling, spec, options: SolverOptions) -> dict:
+    """The case's mode and objective optimised without and with the start-up; both designs started on the case's
+    drive by the simulator."""
+    from clutchopt.simulate.design import start_up_model
+    from clutchopt.simulate.engine import simulate
+
+    mode = case.options.get("mode") or coupling.default_mode
+    objective = case.options.get("objective", "mass")
+    params = case.params()
+    columns = {}
+    for column, problem in (("constant_acceleration", problem_for(coupling.formulation(mode), objective, options)),
+                            ("nlp_start_up", case_problem(case, mode, objective, options))):
+        solution = problem.solve(case)
+        outputs = {name: out.value for name, out in solution.outputs.items()}
+        values = spec.rows_from_design(mode, solution.design, outputs, params)
+        if solution.status in ("optimal", "unverified"):
+            head = simulate(start_up_model(case, mode, solution.design)).headline
+            values.update(start_time_simulated=head["start_time"], friction_work_simulated=head["friction_work"],
+                          temperature_rise_simulated=head.get("temperature_rise", math.nan))
+        columns[column] = (solution, values)
+    return columns

@@ -36,6 +36,7 @@ from clutchopt.model import Formulation, Output, namespace
 from clutchopt.optimise.start_up import (
     BACK_OFF_STEPS,
     MAX_INTERVALS,
+    MESH_STEPS,
     StartUpBlock,
     Structure,
     initial_states,
@@ -135,6 +136,7 @@ class Solution:
     design_units: dict[str, str] = field(default_factory=dict)  # display unit of each design variable
     start_up: dict | None = None  # the NLP's start-up beside the simulated one (cases with [start_up])
     internal: np.ndarray | None = field(default=None, repr=False)  # scaled start-up states of the kept solve
+    mesh: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False)  # start-up mesh: used, suggested
 
     def at_bound(self, name: str) -> str:
         """"fixed", "lower", "upper" (within 1e-7 relative) or "" for a design variable."""
@@ -203,9 +205,11 @@ class Problem:
         self.n_ineq = len(self.row_names)
         self._lbg = np.concatenate([np.full(self.n_ineq, -np.inf), np.zeros(len(equalities))])
         x_all = ca.vertcat(x_hat, internal)
+        mesh = self.start_up.mesh_parameters if start_up else ca.SX(0, 1)
         self._fixed_rows = [i for i in range(self.n_ineq) if not ca.depends_on(g[i], x_all)]  # no design enters
-        self._constraint_values = ca.Function("g", [x_all, ca.vertcat(p_case, x_scale, f_scale)], [g[: self.n_ineq]])
-        self._nlp = {"x": x_all, "p": ca.vertcat(p_case, x_scale, f_scale),
+        self._constraint_values = ca.Function("g", [x_all, ca.vertcat(p_case, x_scale, f_scale, mesh)],
+                                              [g[: self.n_ineq]])
+        self._nlp = {"x": x_all, "p": ca.vertcat(p_case, x_scale, f_scale, mesh),
                      "f": self.objective.function(x, p) / f_scale, "g": g}
         self._solver = ca.nlpsol(f"{f.coupling}_{f.mode}_{objective}", "ipopt", self._nlp, options.ipopt())
         lam_g = ca.SX.sym("lam_g", g.shape[0])
@@ -242,35 +246,39 @@ class Problem:
         return np.array(lower), np.array(upper), np.array(x0)
 
     def _scaling(self, params: SimpleNamespace, x: np.ndarray, lower: np.ndarray, upper: np.ndarray,
-                 scale: np.ndarray | None = None):
+                 scale: np.ndarray | None = None, mesh: np.ndarray | None = None):
         """Variable scales |x| (or the bound magnitude where x = 0) unless given, objective scale |f(x)|,
-        the NLP parameters."""
+        the NLP parameters (a start-up's collocation mesh last: ``mesh``, or its first one)."""
         if scale is None:
             scale = np.where(np.abs(x) > 0, np.abs(x), np.maximum(np.abs(lower), np.abs(upper)))
             scale = np.where(np.isfinite(scale) & (scale > 0), scale, 1.0)
         design = dict(zip((v.name for v in self.formulation.variables), x))
         f0 = abs(evaluate_objective(self.formulation, self.objective.name, design, params))
         f_scale = f0 if math.isfinite(f0) and f0 > 0 else 1.0
-        return scale, f_scale, np.concatenate([list(vars(params).values()), scale, [f_scale]])
+        if self.start_up is not None and mesh is None:
+            mesh = self.start_up.initial_mesh()
+        return scale, f_scale, np.concatenate([list(vars(params).values()), scale, [f_scale],
+                                               mesh if mesh is not None else []])
 
     def _params(self, case: Case) -> SimpleNamespace:
         """The case's SI values of this formulation's quantities; those the case leaves out read as NaN."""
         return namespace({q.name: case.values.get(q.name, math.nan) for q in self.formulation.quantities})
 
     # --- solving ---------------------------------------------------------------------------------------------------
-    def scaled_data(self, case: Case, start: dict[str, float] | None = None,
-                    scale: np.ndarray | None = None, internal: np.ndarray | None = None) -> ScaledData:
+    def scaled_data(self, case: Case, start: dict[str, float] | None = None, scale: np.ndarray | None = None,
+                    internal: np.ndarray | None = None, mesh: np.ndarray | None = None) -> ScaledData:
         """Bounds, start and scales of one solve (scales from the start unless given); with a start-up, its states
-        start from ``internal`` (a previous solve's) or from a simulation of the start design."""
+        start from ``internal`` (a previous solve's) or from a simulation of the start design, on ``mesh``."""
         lower, upper, x0 = self._bounds_and_start(case, start)
         params = self._params(case)
-        scale, f_scale, p_vector = self._scaling(params, x0, lower, upper, scale)
+        scale, f_scale, p_vector = self._scaling(params, x0, lower, upper, scale, mesh)
         data = ScaledData(params, lower, upper, x0, scale, f_scale, p_vector)
         if self.start_up is not None:
             data.internal_lower, data.internal_upper = self.start_up.bounds()
             if internal is None or len(internal) != self.start_up.size:
                 internal = initial_states(self.start_up, case, self.formulation, self._design(x0 / scale, scale),
-                                          np.array(self._internal_scale(p_vector[: len(params.__dict__)])).ravel())
+                                          np.array(self._internal_scale(p_vector[: len(params.__dict__)])).ravel(),
+                                          p_vector[-self.start_up.mesh_parameters.shape[0]:])
             data.internal_start = np.clip(internal, data.internal_lower, data.internal_upper)
         return data
 
@@ -278,42 +286,64 @@ class Problem:
         """Design variables by name (SI) from the NLP's (scaled) x, internal variables left out."""
         return {v.name: float(value) for v, value in zip(self.formulation.variables, x[: len(scale)] * scale)}
 
-    def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | None = None) -> Solution:
+    def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | None = None,
+              mesh: np.ndarray | None = None) -> Solution:
         """Solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one.
 
-        With a start-up, the simulated start is what the limits are checked against. Should it miss one by more
-        than the case's tolerance: if the collocation's own error in the start time exceeds the tolerance, the
-        problem with twice the intervals solves again from this design (up to MAX_INTERVALS); otherwise the
-        missed limits are moved in by what the simulation adds to the NLP's figure (defect correction) and the
-        problem re-solves warm, at most BACK_OFF_STEPS times. Limits are always reported as the case gives them."""
-        solution = self._solve(case, start, warm)
-        nlp_case = case
-        for _ in range(BACK_OFF_STEPS if self.start_up is not None else 0):
-            if solution.status != "unverified":
+        With a start-up, the simulated start is what the limits are checked against, and the collocation's own
+        error is the NLP's start time against the simulated one. While that error exceeds the case's tolerance,
+        the mesh is adapted to the simulated start (MESH_STEPS times, or until an adaptation no longer halves the
+        error), then the intervals doubled (up to
+        MAX_INTERVALS). Should the simulated start still miss a limit, the missed limits are moved in by what the
+        simulation adds to the NLP's figure (defect correction) and the problem re-solves warm. Limits are always
+        reported as the case gives them. A start-up problem without a start point starts from the optimum the
+        papers' sizing gives (the same mode without the start-up), a design the start-up changes but does not
+        overturn. Integer variables keep their values while limits are moved in."""
+        if self.start_up is None:
+            return self._solve(case, start, warm)
+        if start is None and warm is None:
+            sized = problem_for(self._base, self.objective.name, self.options).solve(case)
+            start = sized.design if sized.status == "optimal" else None
+        solution = self._solve(case, start, warm, mesh=mesh)
+        nlp_case, adapted, last_error, solves = case, 0, math.inf, [solution.solver]
+        structure = self.start_up.s
+        for _ in range(MESH_STEPS + BACK_OFF_STEPS):
+            if solution.status not in ("optimal", "unverified"):
                 break
-            structure = self.start_up.s
-            error = solution.start_up["discretisation_error"]["start_time"]
-            if abs(error) > structure.spec.tolerance and 2 * structure.intervals <= MAX_INTERVALS:
-                finer = replace(structure, intervals=2 * structure.intervals)
-                return problem_for(self._base, self.objective.name, self.options, finer).solve(case, solution.design)
-            limits = tightened_limits(solution, nlp_case)
-            if not limits:
+            error = abs(solution.start_up["discretisation_error"]["start_time"])
+            if error > structure.spec.tolerance:
+                if adapted == MESH_STEPS or error > 0.5 * last_error:  # adapting no longer pays: more intervals
+                    if 2 * structure.intervals > MAX_INTERVALS:
+                        break
+                    finer = replace(structure, intervals=2 * structure.intervals)
+                    halved = np.repeat(solution.mesh[1], 2) / 2.0  # each interval of each phase split in two
+                    solution = problem_for(self._base, self.objective.name, self.options, finer).solve(
+                        case, solution.design, mesh=halved)
+                    solves.append(solution.solver)
+                    break
+                adapted, last_error = adapted + 1, error
+                solution = self._solve(case, warm=solution, nlp_case=nlp_case, mesh=solution.mesh[1])
+            elif solution.status == "unverified" and (limits := tightened_limits(solution, nlp_case)):
+                integers = {v.name: (solution.design[v.name],) * 2 for v in self.formulation.variables if v.integer}
+                nlp_case = replace(nlp_case.with_values(**limits), bounds={**nlp_case.bounds, **integers})
+                solution = self._solve(case, warm=solution, nlp_case=nlp_case)
+            else:
                 break
-            nlp_case = nlp_case.with_values(**limits)
-            previous = solution.solver
-            solution = self._solve(case, warm=solution, nlp_case=nlp_case)
-            solution.solver = SolverInfo(previous.name, solution.solver.status,
-                                         previous.iterations + solution.solver.iterations,
-                                         previous.time_s + solution.solver.time_s, previous.solves + solution.solver.solves)
+            solves.append(solution.solver)
+        solution.solver = SolverInfo(solution.solver.name, solution.solver.status, sum(s.iterations for s in solves),
+                                     sum(s.time_s for s in solves), sum(s.solves for s in solves))
         return solution
 
     def _solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | None = None,
-               nlp_case: Case | None = None) -> Solution:
-        """One solve (with its integer search); the NLP sees ``nlp_case`` (moved limits), the checks ``case``."""
+               nlp_case: Case | None = None, mesh: np.ndarray | None = None) -> Solution:
+        """One solve (with its integer search); the NLP sees ``nlp_case`` (moved limits), the checks ``case``;
+        a start-up's mesh is ``mesh``, else the warm solution's, else the first one."""
         warm_ok = warm is not None and warm.status in ("optimal", "unverified") and warm.scale is not None
         solved = nlp_case or case
-        data = (self.scaled_data(solved, warm.design, warm.scale, warm.internal) if warm_ok
-                else self.scaled_data(solved, start))
+        if mesh is None and warm_ok and warm.mesh is not None and len(warm.mesh[0]) == self._mesh_size:
+            mesh = warm.mesh[0]
+        data = (self.scaled_data(solved, warm.design, warm.scale, warm.internal, mesh) if warm_ok
+                else self.scaled_data(solved, start, mesh=mesh))
         lower, upper, params = data.lower, data.upper, data.params
         scale, f_scale, p_vector = data.scale, data.f_scale, data.p
         internal_bounds = data.internal_lower, data.internal_upper
@@ -329,7 +359,7 @@ class Problem:
         x_opt = runs[-1]["x"][:n] * scale
         off = (np.abs(x_opt) > 0) & ((np.abs(x_opt) > 10 * scale) | (np.abs(x_opt) < 0.1 * scale))
         if runs[-1]["ok"] and off.any():  # the start was far off: solve again, scaled by the first optimum
-            scale, f_scale, p_vector = self._scaling(params, x_opt, lower, upper)
+            scale, f_scale, p_vector = self._scaling(params, x_opt, lower, upper, mesh=self._mesh_of(p_vector))
             runs.append(self._run(p_vector, *self._scaled_box(lower, upper, scale, internal_bounds),
                                   np.concatenate([x_opt / scale, runs[-1]["x"][n:]]), None))
         relaxed = runs[-1]
@@ -361,6 +391,13 @@ class Problem:
                                 ("infeasible", f"infeasible in integers: the continuous relaxation is feasible "
                                  f"but none of the integer neighbours is ({tried})"))
         return self._finish(case, kept, runs, scale, f_scale, lower, upper, search)
+
+    @property
+    def _mesh_size(self) -> int:
+        return self.start_up.mesh_parameters.shape[0] if self.start_up is not None else 0
+
+    def _mesh_of(self, p_vector: np.ndarray) -> np.ndarray | None:
+        return p_vector[len(p_vector) - self._mesh_size:] if self.start_up is not None else None
 
     @staticmethod
     def _scaled_box(lower, upper, scale, internal_bounds) -> tuple[np.ndarray, np.ndarray]:
@@ -408,11 +445,12 @@ class Problem:
         for i in (i for i, v in enumerate(f.variables) if v.integer):
             design[names[i]] = float(round(design[names[i]]))
         checks = check_design(f, design, params)
-        start_up = None
+        start_up = mesh = None
         if self.start_up is not None:  # re-checked by the independent simulator
-            start_up, simulated = start_up_report(self.start_up, case, f, design, params,
-                                                  self._start_up_figures(run["x"], run["p"]))
+            start_up, simulated, suggested = start_up_report(self.start_up, case, f, design, params,
+                                                             self._start_up_figures(run["x"], run["p"]))
             checks += simulated
+            mesh = (self._mesh_of(run["p"]), suggested)
         objective = evaluate_objective(f, self.objective.name, design, params)
         for check, lam in zip(checks, self._named_multipliers(run["lam_g"])):
             check.multiplier = lam
@@ -438,7 +476,7 @@ class Problem:
         return Solution(f.coupling, f.mode, self.objective.name, self.objective.unit, status, objective, design,
                         evaluate_outputs(f, design, params), checks, info, diagnosis, search, bounds,
                         sensitivities, scale, (run["lam_x"], run["lam_g"]), {v.name: v.unit for v in f.variables},
-                        start_up, run["x"][len(scale):] if self.start_up is not None else None)
+                        start_up, run["x"][len(scale):] if self.start_up is not None else None, mesh)
 
     def _named_multipliers(self, lam_g: np.ndarray) -> list[float]:
         """The multiplier of each named constraint: the sum over its rows (one row, or the points of a path)."""

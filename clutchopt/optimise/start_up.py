@@ -33,19 +33,25 @@ from clutchopt.model import Constraint, SpeedLaw, at_least, at_most, namespace
 DEGREE = 3
 MAX_INTERVALS = 128  # per phase, refining by doubling
 BACK_OFF_STEPS = 4  # defect corrections of limits the simulated start misses
+MESH_STEPS = 3  # adaptations of the mesh to the simulated start before the intervals are doubled
+MONITOR_FLOOR = 0.2  # of the mean error monitor, added everywhere: no interval grows without bound
 LIMIT_OF = {"start_time": "max_start_time", "friction_work": "max_friction_work",
             "temperature_rise": "max_temperature_rise", "heat_per_hour": "heat_dissipation"}
 LOCKED_SAMPLES = 8  # speeds from lock-up to synchronous at which a locked drive must stay locked (lockup)
 
 
-def graded_mesh(intervals: int, first: float = 1e-4, graded_part: float = 0.05) -> np.ndarray:
+GRADED_PARTS = (0.05, 0.1, 0.2, 0.4)  # share of the slip phase graded: the motor's knee times 20, rounded up
+
+
+def graded_mesh(intervals: int, graded_part: float = 0.05, first: float = 1e-4) -> np.ndarray:
     """Interval lengths (fractions of a phase, summing to 1): half the intervals grow geometrically from ``first``
     over the first ``graded_part`` of the phase, the rest are uniform. The motor's run-up to the speed where its
-    torque meets the coupling's (a knee over a few milliseconds of a start of seconds) lies in the graded part."""
+    torque meets the coupling's (a knee over a small part of the start) lies in the graded part."""
     graded = intervals // 2
-    if graded == 0:
+    if graded < 2:
         return np.full(intervals, 1.0 / intervals)
-    ratio = brentq(lambda r: first * (r**graded - 1.0) / (r - 1.0) - graded_part, 1.0 + 1e-9, 1e6)
+    largest = (graded_part / first) ** (1.0 / (graded - 1))  # the last term alone reaches the graded part
+    ratio = brentq(lambda r: first * (r**graded - 1.0) / (r - 1.0) - graded_part, 1.0 + 1e-12, largest)
     lengths = first * ratio ** np.arange(graded)
     uniform = np.full(intervals - graded, (1.0 - graded_part) / (intervals - graded))
     return np.concatenate([lengths / lengths.sum() * graded_part, uniform])
@@ -72,12 +78,19 @@ class Structure:
     spec: su.StartUpSpec
     load_at_rest: bool  # the driven machine needs torque to break away: a breakaway phase (motor_curve)
     intervals: int
+    graded_part: float = GRADED_PARTS[0]  # of the slip phase, where the motor runs up to meet the coupling
 
     @classmethod
     def of(cls, case, intervals: int | None = None) -> "Structure":
-        spec = case.start_up
-        rest = spec.load_profile.at(0.0, 0.0) if spec.load_profile else case.values["load_torque"]
-        return cls(spec, spec.has("motor_curve") and rest > 0, intervals or spec.intervals)
+        """The structure of a case: the motor's knee time J_m w_s / T_k (its run-up at breakdown torque), 20 times
+        over, rounded up to one of GRADED_PARTS of the start time, sets the graded part of the slip phase."""
+        spec, v = case.start_up, case.values
+        rest = spec.load_profile.at(0.0, 0.0) if spec.load_profile else v["load_torque"]
+        graded = GRADED_PARTS[0]
+        if spec.has("motor_curve"):
+            knee = 20.0 * v["motor_inertia"] * v["synchronous_speed"] / v["breakdown_torque"] / v["max_start_time"]
+            graded = next((part for part in GRADED_PARTS if part >= knee), GRADED_PARTS[-1])
+        return cls(spec, spec.has("motor_curve") and rest > 0, intervals or spec.intervals, graded)
 
     @property
     def motor(self) -> bool:
@@ -158,14 +171,17 @@ def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
                            description="the weights engage by this driving speed"))
     if "starts_per_hour" in limits:
         out.append(at_most("heat_per_hour", p.starts_per_hour * q.friction_work, p.heat_dissipation,
-                           equation="n_h L <= P_d", unit="W", description="mean friction heat within what the "
+                           equation="heat balance", unit="W", description="mean friction heat within what the "
                                                                           "housing sheds"))
+    if "min_lock_up_speed" in limits:
+        out.append(at_least("lock_up_speed", q.lock_up_speed, p.min_lock_up_speed, equation="start-up", unit="rpm",
+                            description="the machine is nearly up to speed when the coupling locks"))
     if s.motor:
         out.append(at_least("motor_breakdown_torque", p.breakdown_torque, p.load_torque, equation="Kloss",
                             unit="N*m", description="the motor's breakdown torque exceeds the largest load"))
     lock_speed = q.lock_up_speed
     out.append(at_least("lock_up", drive.torque(lock_speed), drive.carried(lock_speed, q.start_time),
-                        equation="s' <= 0 at s = 0", unit="N*m",
+                        equation="slip falls to 0", unit="N*m",
                         description="at lock-up the coupling covers the torque of the locked drive"))
     if s.motor and s.spec.has("lockup"):
         fractions = np.arange(1, LOCKED_SAMPLES + 1) / LOCKED_SAMPLES
@@ -189,6 +205,7 @@ class StartUpBlock:
         self._scale: list = []
         self._bounds: list[tuple[float, float]] = []
         self.kinds: list[tuple[str, str]] = []  # (phase, state or "duration") of each internal variable
+        self._mesh: list = []
         self.equalities: list = []
         self.points: list[tuple] = []  # (time, {state: value}) of every phase start and collocation point
         self.nodes: list[dict] = []  # the states at the collocation points (the phase starts excluded)
@@ -250,8 +267,9 @@ class StartUpBlock:
     def _phase(self, phase: str, state: dict, start_time):
         d, n = self.drive, self.s.intervals
         duration = self._variable(phase, "duration", d.time_ref, 0.0, 100.0)
-        mesh = self.mesh(phase)
-        starts = np.concatenate([[0.0], np.cumsum(mesh)[:-1]])
+        mesh = ca.SX.sym(f"{phase}_mesh", n)  # interval lengths over the duration: NLP parameters
+        self._mesh.append(mesh)
+        starts = [sum(mesh[i] for i in range(k)) for k in range(n)]
         states = self._states(phase)
         previous = dict(state)
         if phase == "slip":  # the driven machine starts from rest: all of the driving speed is slip
@@ -277,12 +295,49 @@ class StartUpBlock:
         self.equalities.append(self._phase_end(phase, previous, start_time + duration))
         return duration, previous
 
-    def mesh(self, phase: str) -> np.ndarray:
-        """Interval lengths of a phase as fractions of its duration: graded where the motor runs up through the
-        slip phase's start, uniform elsewhere."""
+    def first_mesh(self, phase: str) -> np.ndarray:
+        """Interval lengths of a phase as fractions of its duration before any adaptation: graded where the motor
+        runs up through the slip phase's start, uniform elsewhere."""
         if phase == "slip" and self.s.motor:
-            return graded_mesh(self.s.intervals)
+            return graded_mesh(self.s.intervals, self.s.graded_part)
         return np.full(self.s.intervals, 1.0 / self.s.intervals)
+
+    @property
+    def mesh_parameters(self):
+        return ca.vertcat(*self._mesh)
+
+    def initial_mesh(self) -> np.ndarray:
+        return np.concatenate([self.first_mesh(phase) for phase in self.s.phases])
+
+    def adapted_mesh(self, history, phase_times: list[float]) -> np.ndarray:
+        """A mesh for the next solve from the simulated start, over the NLP's phase timing: each phase's intervals
+        equidistribute sqrt|x''| of the states (each scaled by its range and the phase duration), the error
+        monitor of a corner (the motor's knee), with a fifth of its mean added everywhere."""
+        t_all = history["t"].to_numpy()
+        columns = [history[name].to_numpy() for name in ("w_driver", "w_driven", "friction_work", "temperature_rise")]
+        meshes, begin = [], 0.0
+        for phase, end in zip(self.s.phases, np.cumsum(phase_times)):
+            inside = (t_all >= begin) & (t_all <= end)
+            t, first = np.unique(t_all[inside], return_index=True)
+            if not end > begin or len(t) < 5:
+                meshes.append(self.first_mesh(phase))
+                begin = end
+                continue
+            span = end - begin
+            monitor = np.zeros(len(t))
+            for column in columns:
+                values = column[inside][first]
+                spread = values.max() - values.min()
+                if spread > 0:
+                    monitor += np.abs(np.gradient(np.gradient(values, t), t)) * span * span / spread
+            monitor = np.sqrt(monitor)
+            monitor = MONITOR_FLOOR * monitor.mean() + monitor if monitor.mean() > 0 else np.ones_like(monitor)
+            weight = np.concatenate([[0.0], np.cumsum(0.5 * (monitor[1:] + monitor[:-1]) * np.diff(t))])
+            edges = np.interp(np.linspace(0.0, weight[-1], self.s.intervals + 1), weight, (t - begin) / span)
+            edges[0], edges[-1] = 0.0, 1.0
+            meshes.append(np.diff(edges))
+            begin = end
+        return np.concatenate(meshes)
 
     def _phase_end(self, phase: str, state: dict, time):
         d = self.drive
@@ -331,7 +386,8 @@ class StartUpBlock:
             heat.append(state["temperature"])
         return {"t": times, "w_driver": driver, "w_driven": driven, "friction_work": work, "temperature_rise": heat}
 
-    def guess(self, history, headline, engagement_squared: float, time_ref: float, scales: np.ndarray) -> np.ndarray:
+    def guess(self, history, headline, engagement_squared: float, time_ref: float, scales: np.ndarray,
+              mesh: np.ndarray) -> np.ndarray:
         """Internal variables (scaled by ``scales``) from a simulation of the start design, which ends at its
         lock-up, or at ``time_ref`` if it does not lock up."""
         d = self.s
@@ -347,21 +403,22 @@ class StartUpBlock:
         columns = {"driver_speed": driver, "slip": driver - driven, "friction_work": history["friction_work"].to_numpy(),
                    "temperature": history["temperature_rise"].to_numpy()}
         values = []
-        for phase in d.phases:
+        for index, phase in enumerate(d.phases):
             begin, end = bounds[phase]
             end = max(end, begin)
             values.append(end - begin)
-            mesh = self.mesh(phase)
-            starts = np.concatenate([[0.0], np.cumsum(mesh)[:-1]])
+            lengths = mesh[index * d.intervals:(index + 1) * d.intervals]
+            starts = np.concatenate([[0.0], np.cumsum(lengths)[:-1]])
             for k in range(d.intervals):
                 for j in range(1, DEGREE + 1):
-                    time = begin + (starts[k] + self.tau[j] * mesh[k]) * (end - begin)
+                    time = begin + (starts[k] + self.tau[j] * lengths[k]) * (end - begin)
                     for name in self._states(phase):
                         values.append(float(np.interp(time, t, columns[name])))
         return np.array(values) / scales
 
 
-def initial_states(block: StartUpBlock, case, formulation, design: dict[str, float], scales: np.ndarray) -> np.ndarray:
+def initial_states(block: StartUpBlock, case, formulation, design: dict[str, float], scales: np.ndarray,
+                   mesh: np.ndarray) -> np.ndarray:
     """The internal variables (scaled) of the start design's simulated start: a start point on the dynamics."""
     from clutchopt.simulate.design import start_up_model
     from clutchopt.simulate.engine import simulate
@@ -370,7 +427,7 @@ def initial_states(block: StartUpBlock, case, formulation, design: dict[str, flo
     model.end_time = 3.0 * case.values["max_start_time"]  # a start design that does not lock up: ramps to there
     result = simulate(model)
     return block.guess(result.history, result.headline, model.law.engagement_squared,
-                       case.values["max_start_time"], scales)
+                       case.values["max_start_time"], scales, mesh)
 
 
 UNITS = {"start_time": "s", "friction_work": "J", "temperature_rise": "K", "engagement_speed": "rad/s",
@@ -379,7 +436,8 @@ UNITS = {"start_time": "s", "friction_work": "J", "temperature_rise": "K", "enga
 
 def start_up_report(block: StartUpBlock, case, formulation, design: dict[str, float], params, figures):
     """The NLP's start beside the independent simulator's (solve_ivp with events, float64) at the design, and the
-    start-up constraints re-checked with the simulated figures: (summary in SI, constraint checks)."""
+    start-up constraints re-checked with the simulated figures: (summary in SI, constraint checks, the mesh the
+    simulated start suggests for the next solve)."""
     from clutchopt.optimise.verify import check_constraints
     from clutchopt.simulate.design import start_up_model
     from clutchopt.simulate.engine import simulate
@@ -418,7 +476,8 @@ def start_up_report(block: StartUpBlock, case, formulation, design: dict[str, fl
         "units": UNITS,
         "trajectory": {name: column.tolist() for name, column in trajectory.items()},
     }
-    return summary, checks
+    times = [float(nlp[f"{phase}_time"]) for phase in s.phases]
+    return summary, checks, block.adapted_mesh(result.history, times)
 
 
 def _relative(nlp: float, simulated: float) -> float:
