@@ -252,7 +252,7 @@ HOSTILE: list[Hostile] = [
     case("bounds-wide", edit(WEDGE, '["5 mm", "40 mm"]', '["1e-6 mm", "1e6 mm"]'), None),
     speed("speed-beyond-magnitudes", '"1e300 rpm"', "duty.speed: 1.0472e+299 rad/s (SI) is outside the magnitudes"),
     inertia("inertia-beyond-magnitudes", '"1e-300 kg*m^2"', "duty.inertia: 1e-300 kg*m^2 (SI) is outside"),
-    quantity("density-at-magnitude-limit", '"7850 kg/m^3"', '"1e15 kg/m^3"', None),
+    quantity("density-at-magnitude-limit", '"7850 kg/m^3"', '"1e18 kg/m^3"', None),
     case("section-not-a-table", edit(WEDGE, "[duty]\n", "duty = 5\n[duty2]\n"), "duty: must be a table [duty]"),
     case("section-misspelt", edit(WEDGE, "[material]", "[materials]"), "(did you mean 'material'?)"),
     case("key-misspelt", edit(WEDGE, "friction_coefficient", "friction_coeficient"),
