@@ -112,9 +112,9 @@ def parse_case(data: dict, path: str = "") -> Case:
                                    f"{', '.join(q.name for q in coupling.quantities if q.section == key)}"))
             continue
         if key not in sections:
-            problems.errors.append(InputError(key, f"unknown section or key"
-                                                   f"{_did_you_mean(key, sections | set(_EXTRA_SECTIONS))}; this "
-                                   f"{coupling.name} case may have {', '.join(sorted(sections | set(_EXTRA_SECTIONS)))}"))
+            known = sections | set(_EXTRA_SECTIONS)
+            problems.errors.append(InputError(key, f"unknown section or key{_did_you_mean(key, known)}; this "
+                                                   f"{coupling.name} case may have {', '.join(sorted(known))}"))
             continue
         for name, raw in table.items():
             quantity = declared.get(f"{key}.{name}")
@@ -164,7 +164,8 @@ def _parse_options(options: Any, coupling, problems: Problems, start_up: bool) -
             problems.errors.append(InputError(f"options.{name}", f"unknown option; options are "
                                                                  f"{', '.join(sorted(_OPTION_KEYS))}"))
     free = options.get("free", [])
-    freeable = {v.name for v in coupling.variables if v.fixed_unless_freed} | ({"spring_preload"} if start_up else set())
+    freeable = ({v.name for v in coupling.variables if v.fixed_unless_freed}
+                | ({"spring_preload"} if start_up else set()))
     if not isinstance(free, list) or not all(isinstance(name, str) and name in freeable for name in free):
         problems.errors.append(InputError("options.free", f"must be a list drawn from {sorted(freeable)}, "
                                                           f"got {_short(free)}"))

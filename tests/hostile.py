@@ -122,6 +122,11 @@ def command(name: str, argv: tuple[str, ...], expect: str | None, *files: tuple[
     return Hostile(name, argv, expect, files, subprocess)
 
 
+def paper(name: str, command_name: str, *extra: str, expect: str | None) -> Hostile:
+    """A command on the paper's worked example (cases/wedge_paper.toml)."""
+    return command(name, (command_name, str(CASES / "wedge_paper.toml"), *extra), expect)
+
+
 def sweep(name: str, *extra: str, expect: str | None) -> Hostile:
     return command(name, ("sweep", "{dir}/case.toml", "--quiet", *extra), expect, ("case.toml", WEDGE))
 
@@ -192,7 +197,8 @@ HOSTILE: list[Hostile] = [
     inertia("table", "{ value = 0.5 }", "duty.inertia: expected a quantity in kg*m^2, got dict"),
     inertia("long-list", "[" + ", ".join(["1"] * 20000) + "]", "duty.inertia: expected a quantity in kg*m^2, got list"),
     inertia("superscripts", '"0.5 kg\u00b7m\u00b2"', None),
-    quantity("unicode-minus-read-as-minus", '"10 s"', '"\u221210 s"', "duty.acceleration_time: must be > 0 s, got -10 s"),
+    quantity("unicode-minus-read-as-minus", '"10 s"', '"\u221210 s"',
+             "duty.acceleration_time: must be > 0 s, got -10 s"),
     speed("speed-in-hz", '"16.6667 Hz"', "duty.speed: '16.6667 Hz' is ambiguous"),
     speed("speed-in-per-second", '"104.7 1/s"', "duty.speed: '104.7 1/s' is ambiguous"),
     speed("speed-in-khz", '"0.0167 kHz"', "is ambiguous"),
@@ -246,7 +252,8 @@ HOSTILE: list[Hostile] = [
          "bounds2: unknown section or key (did you mean 'bounds'?)"),
     case("bounds-three-values", edit(WEDGE, '["5 mm", "40 mm"]', '["5 mm", "20 mm", "40 mm"]'),
          "bounds.weight_width: must be a pair"),
-    case("bounds-nan", edit(WEDGE, '["5 mm", "40 mm"]', '["nan mm", "40 mm"]'), "bounds.weight_width: must be a finite"),
+    case("bounds-nan", edit(WEDGE, '["5 mm", "40 mm"]', '["nan mm", "40 mm"]'),
+         "bounds.weight_width: must be a finite"),
     case("bounds-huge", edit(WEDGE, '["5 mm", "40 mm"]', '["1e-300 mm", "1e300 mm"]'),
          "bounds.weight_width: 1e-303 m (SI) is outside the magnitudes clutchopt works with"),
     case("bounds-wide", edit(WEDGE, '["5 mm", "40 mm"]', '["1e-6 mm", "1e6 mm"]'), None),
@@ -303,7 +310,8 @@ HOSTILE: list[Hostile] = [
     scene("scene-profile-decreasing", edit(SCENE, 'resisting_torque = "20 N*m"', 'load_profile = {over = "speed", '
                                            'points = [2, 1], torque = [1, 2]}'), "load_profile.points: must increase"),
     scene("scene-profile-huge-torque", edit(SCENE, 'resisting_torque = "20 N*m"', 'load_profile = {over = "speed", '
-                                            'points = [0, 1], torque = [0, 1e300]}'), "load_profile.torque: must be at"),
+                                            'points = [0, 1], torque = [0, 1e300]}'),
+          "load_profile.torque: must be at"),
     scene("scene-profile-over-what", edit(SCENE, 'resisting_torque = "20 N*m"', 'load_profile = {over = "mood", '
                                           'points = [0, 1], torque = [0, 1]}'), "load_profile.over"),
     scene("scene-effects-nested", edit(SCENE, 'effects = ["slip_friction"', 'effects = [["slip_friction"]'),
@@ -329,7 +337,8 @@ HOSTILE: list[Hostile] = [
                                    'synchronous_speed = "1500 rpm"\nbreakdown_torque = "1e-300 N*m"\n'
                                    'breakdown_slip = 0.2\ninertia = "1e-300 kg*m^2"'),
           "driver.breakdown_torque: must be from 1e-09 to 1e+09 N*m"),
-    scene("scene-case-missing", 'effects = ["slip_friction"]\n[coupling]\nlaw = "centrifugal"\n', "coupling.case: missing"),
+    scene("scene-case-missing", 'effects = ["slip_friction"]\n[coupling]\nlaw = "centrifugal"\n',
+          "coupling.case: missing"),
     scene("scene-case-fifo", 'effects = ["slip_friction"]\n[coupling]\nlaw = "centrifugal"\ncase = "pipe.toml"\n',
           "cannot read a FIFO", ("pipe.toml", FIFO)),
     scene("scene-case-not-text", 'effects = ["slip_friction"]\n[coupling]\nlaw = "centrifugal"\ncase = 5\n',
@@ -358,24 +367,21 @@ HOSTILE: list[Hostile] = [
     design("design-broken", '{"coupling": "wedge", ', "cannot read"),
     design("design-utf-16", json.dumps(DESIGN).encode("utf-16"), "is UTF-16 text"),
     # --- command lines: solve, compare -----------------------------------------------------------------------------
-    command("solve-mode-empty", ("solve", str(CASES / "wedge_paper.toml"), "--mode", ""), "argument --mode"),
-    command("solve-mode-blank", ("solve", str(CASES / "wedge_paper.toml"), "--mode", "  "), "argument --mode"),
-    command("solve-mode-unknown", ("solve", str(CASES / "wedge_paper.toml"), "--mode", "fancy"),
-            "mode: unknown mode 'fancy'"),
-    command("solve-objective-empty", ("solve", str(CASES / "wedge_paper.toml"), "--objective", ""),
-            "argument --objective"),
-    command("solve-objective-unknown", ("solve", str(CASES / "wedge_paper.toml"), "--objective", "beauty"),
-            "objective: unknown objective 'beauty'"),
-    command("solve-tol-inf", ("solve", str(CASES / "wedge_paper.toml"), "--tol", "inf"), "argument --tol: must be"),
-    command("solve-tol-nan", ("solve", str(CASES / "wedge_paper.toml"), "--tol", "nan"), "argument --tol: must be"),
-    command("solve-tol-zero", ("solve", str(CASES / "wedge_paper.toml"), "--tol", "0"), "argument --tol: must be"),
-    command("solve-tol-tiny", ("solve", str(CASES / "wedge_paper.toml"), "--tol", "1e-300"), "argument --tol"),
-    command("solve-tol-one", ("solve", str(CASES / "wedge_paper.toml"), "--tol", "1"), "argument --tol"),
-    command("solve-tol-word", ("solve", str(CASES / "wedge_paper.toml"), "--tol", "tight"), "not a number: 'tight'"),
-    command("solve-unknown-flag", ("solve", str(CASES / "wedge_paper.toml"), "--fast"), "unrecognized arguments"),
+    paper("solve-mode-empty", "solve", "--mode", "", expect="argument --mode"),
+    paper("solve-mode-blank", "solve", "--mode", " ", expect="argument --mode"),
+    paper("solve-mode-unknown", "solve", "--mode", "fancy", expect="mode: unknown mode 'fancy'"),
+    paper("solve-objective-empty", "solve", "--objective", "", expect="argument --objective"),
+    paper("solve-objective-unknown", "solve", "--objective", "beauty", expect="objective: unknown objective 'beauty'"),
+    paper("solve-tol-inf", "solve", "--tol", "inf", expect="argument --tol: must be"),
+    paper("solve-tol-nan", "solve", "--tol", "nan", expect="argument --tol: must be"),
+    paper("solve-tol-zero", "solve", "--tol", "0", expect="argument --tol: must be"),
+    paper("solve-tol-tiny", "solve", "--tol", "1e-300", expect="argument --tol"),
+    paper("solve-tol-one", "solve", "--tol", "1", expect="argument --tol"),
+    paper("solve-tol-word", "solve", "--tol", "tight", expect="not a number: 'tight'"),
+    paper("solve-unknown-flag", "solve", "--fast", expect="unrecognized arguments"),
     command("solve-no-case", ("solve",), "the following arguments are required: case"),
-    command("solve-store-is-a-folder", ("solve", str(CASES / "wedge_paper.toml"), "--store", "{dir}"), None),
-    command("compare-tol-inf", ("compare", str(CASES / "wedge_paper.toml"), "--tol", "inf"), "argument --tol"),
+    paper("solve-store-is-a-folder", "solve", "--store", "{dir}", expect=None),
+    paper("compare-tol-inf", "compare", "--tol", "inf", expect="argument --tol"),
     command("compare-folder", ("compare", "{dir}"), "cannot read a folder"),
     # --- simulate ------------------------------------------------------------------------------------------------
     command("simulate-plot-missing-folder", ("simulate", str(CASES / "scenes" / "paper_transient.toml"), "--plot",
@@ -427,22 +433,18 @@ HOSTILE: list[Hostile] = [
     sweep("sweep-mode-empty", "--vary", "speed=800", "--mode", "", expect="argument --mode"),
     sweep("sweep-two-points", "--vary", "speed=800,1200", expect=None),
     # --- pareto --------------------------------------------------------------------------------------------------
-    command("pareto-one-point", ("pareto", str(CASES / "wedge_paper.toml"), "--points", "1"), "argument --points"),
-    command("pareto-negative-points", ("pareto", str(CASES / "wedge_paper.toml"), "--points", "-5"),
-            "argument --points"),
-    command("pareto-1e11-points", ("pareto", str(CASES / "wedge_paper.toml"), "--points", "100000000000"),
-            "argument --points: must be from 2 to 1000"),
-    command("pareto-plot-missing-folder", ("pareto", str(CASES / "wedge_paper.toml"), "--plot", "{dir}/no/front.png"),
-            "--plot: cannot write"),
-    command("pareto-plot-unknown-suffix", ("pareto", str(CASES / "wedge_paper.toml"), "--plot", "{dir}/front.bmpx"),
-            "--plot: write .png, .svg or .pdf"),
-    command("pareto-out-unknown-suffix", ("pareto", str(CASES / "wedge_paper.toml"), "--out", "{dir}/front.txt"),
-            "--out: write .csv, .parquet or .md"),
+    paper("pareto-one-point", "pareto", "--points", "1", expect="argument --points"),
+    paper("pareto-negative-points", "pareto", "--points", "-5", expect="argument --points"),
+    paper("pareto-1e11-points", "pareto", "--points", "100000000000",
+          expect="argument --points: must be from 2 to 1000"),
+    paper("pareto-plot-missing-folder", "pareto", "--plot", "{dir}/no/front.png", expect="--plot: cannot write"),
+    paper("pareto-plot-unknown-suffix", "pareto", "--plot", "{dir}/front.bmpx",
+          expect="--plot: write .png, .svg or .pdf"),
+    paper("pareto-out-unknown-suffix", "pareto", "--out", "{dir}/front.txt",
+          expect="--out: write .csv, .parquet or .md"),
     # --- report and its sweep table ------------------------------------------------------------------------------
-    command("report-out-missing-folder", ("report", str(CASES / "wedge_paper.toml"), "-o", "{dir}/no/review.html"),
-            "--out: cannot write"),
-    command("report-out-not-html", ("report", str(CASES / "wedge_paper.toml"), "-o", "{dir}/review.pdf"),
-            "--out: write .html or .htm"),
+    paper("report-out-missing-folder", "report", "-o", "{dir}/no/review.html", expect="--out: cannot write"),
+    paper("report-out-not-html", "report", "-o", "{dir}/review.pdf", expect="--out: write .html or .htm"),
     table("table-as-written", SWEEP_TABLE, None),
     table("table-empty", "", "cannot read a sweep table"),
     table("table-header-only", "point,speed [rpm],status,mass [kg]\n", "a sweep table has 1 to 100,000 rows"),
@@ -481,13 +483,11 @@ HOSTILE: list[Hostile] = [
     command("runs-without-action", ("runs",), "the following arguments are required: ACTION"),
     # --- file names the system refuses ---------------------------------------------------------------------------
     command("case-name-too-long", ("solve", "{dir}/" + "c" * 5000 + ".toml"), "cannot read (File name too long)"),
-    command("out-name-too-long", ("sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=900", "--out",
-                                  "{dir}/" + "t" * 5000 + ".csv"), "--out: cannot use"),
-    command("plot-name-too-long", ("pareto", str(CASES / "wedge_paper.toml"), "--plot", "{dir}/" + "p" * 5000 + ".png"),
-            "--plot: cannot use"),
+    paper("out-name-too-long", "sweep", "--vary", "speed=900", "--out", "{dir}/" + "t" * 5000 + ".csv",
+          expect="--out: cannot use"),
+    paper("plot-name-too-long", "pareto", "--plot", "{dir}/" + "p" * 5000 + ".png", expect="--plot: cannot use"),
     command("store-name-too-long", ("runs", "list", "--store", "{dir}/" + "s" * 5000), "--store: "),
-    command("solve-with-store-name-too-long", ("solve", str(CASES / "wedge_paper.toml"), "--store",
-                                               "{dir}/" + "s" * 5000), None),
+    paper("solve-with-store-name-too-long", "solve", "--store", "{dir}/" + "s" * 5000, expect=None),
     # --- bench and the top level ---------------------------------------------------------------------------------
     command("bench-unknown-flag", ("bench", "--quick", "--repeats", "3"), "unrecognized arguments: --repeats"),
     command("no-command", (), "the following arguments are required: COMMAND", subprocess=True),

@@ -214,7 +214,7 @@ def test_readers_while_a_sweep_writes(tmp_path):
     writer.kill()
 
 
-# --- damaged files ---------------------------------------------------------------------------------------------------
+# --- damaged files -------------------------------------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def good_store(tmp_path_factory) -> Path:
     """A store with a solve and a 20-point sweep, closed (its WAL checkpointed into the file)."""
@@ -285,7 +285,7 @@ def test_damaged_store(name, good_store, tmp_path, capsys):
     assert err == "" or err.startswith("warning: this run will not be recorded"), err
 
 
-# --- read-only files and folders ---------------------------------------------------------------------------------------
+# --- read-only files and folders ------------------------------------------------------------------------------------
 @pytest.fixture
 def shared_folder():
     """A folder another user may enter (pytest's own temporary folders are private to their owner)."""

@@ -62,6 +62,10 @@ def _run(argv: list[str] | None) -> int:
         print(text, flush=True)
     except BrokenPipeError:  # e.g. `clutchopt solve case.toml | head`: the reader left, nothing more to say
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    except OSError as exc:  # e.g. `> /dev/full`: the output went where it cannot be written, like a bad --out
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        print_errors(InputError("standard output", f"cannot write the result ({exc.strerror or exc})"))
+        return EXIT_BAD_INPUT
     return 0
 
 
