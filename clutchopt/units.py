@@ -95,8 +95,9 @@ MAX_EXPONENT = 12  # |n| of a unit power m^n; with at most two levels of parenth
 _MINUS = "\u2212"  # the typographic minus sign, read as "-" (it can mean nothing else)
 _NUMBER = re.compile(r"\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|[+-]?(?:nan|inf|infinity))(?![\w.])\s*\*?\s*",
                      re.IGNORECASE | re.ASCII)  # ASCII digits only: no number in another script is read silently
-_UNIT_TOKEN = re.compile(r"\s+|\*\*|[*/^()\u00b7]|[A-Za-z_\u00b5\u03bc\u03a9\u00b0%][A-Za-z0-9_\u00b5\u03bc\u03a9\u00b0]*"
-                         r"|[\u00b2\u00b3\u00b9\u2070\u2074-\u2079\u207b]+|[+-]?[0-9]+(?:\.[0-9]+)?")
+_UNIT_TOKEN = re.compile(r"\s+|\*\*|[*/^()\u00b7]"  # space, powers, products, quotients, parentheses
+                         r"|[A-Za-z_\u00b5\u03bc\u03a9\u00b0%][A-Za-z0-9_\u00b5\u03bc\u03a9\u00b0]*"  # unit names
+                         r"|[\u00b2\u00b3\u00b9\u2070\u2074-\u2079\u207b]+|[+-]?[0-9]+(?:\.[0-9]+)?")  # powers
 _QUANTITY_EXAMPLE = "a number and a unit, e.g. '1000 rpm', '4 MPa' or '0.5 kg*m^2'"
 _SPEED_HINT = ("an angular speed needs an angle per time: write e.g. '1000 rpm', '16.67 rps' (revolutions per second) "
                "or '104.7 rad/s'; Hz and 1/s are refused because they do not say whether they count revolutions or "

@@ -68,3 +68,44 @@ def test_dimensions_are_named_whatever_order_pint_prints_them(unit, name):
 def test_a_wrong_torque_unit_names_a_torque():
     with pytest.raises(InputError, match="expected a torque or energy .* which is a mass"):
         to_si("duty.resisting_torque", "5 kg", "N*m")
+
+
+@pytest.mark.parametrize("text, si", [
+    ("1000 rpm", 1000 * 2 * math.pi / 60),
+    ("1000 rev/min", 1000 * 2 * math.pi / 60),
+    ("16.5 rps", 16.5 * 2 * math.pi),  # revolutions per second
+    ("6000 deg/s", 6000 * math.pi / 180),
+    ("104.7 rad/s", 104.7),
+])
+def test_an_angular_speed_says_it_counts_an_angle(text, si):
+    assert to_si("duty.speed", text, "rpm") == pytest.approx(si, rel=1e-14)
+
+
+@pytest.mark.parametrize("text", ["16.67 Hz", "104.7 1/s", "104.7 s^-1", "1000 1/min", "0.0167 kHz"])
+def test_a_pure_frequency_is_refused_for_an_angular_speed(text):
+    """Hz and 1/s count revolutions or radians: read as rad/s (pint's reading) 16.67 Hz would be 2 pi too slow."""
+    with pytest.raises(InputError, match=r"is ambiguous: an angular speed needs an angle per time"):
+        to_si("duty.speed", text, "rpm")
+
+
+def test_the_typographic_minus_is_a_minus():
+    assert to_si("coupling.a", "\u22120.01 s/rad", "s") == -0.01
+
+
+@pytest.mark.parametrize("text, words", [
+    ("1 m**99999999", "unit power 99999999 is out of range"),
+    ("2**99999999 m", "a number inside the unit"),
+    ("1 (((m)))", "parentheses nested too deeply"),
+    ("1" + "0" * 400 + " m", "too long for a quantity"),
+    ("1e400 m", "finite number within the float64 range"),
+    ("10\x00 m", "control character"),
+    ("\uff11 m", "cannot read"),  # a full-width digit: only ASCII digits are numbers
+])
+def test_text_pint_should_never_evaluate_is_refused(text, words):
+    with pytest.raises(InputError, match=words):
+        to_si("geometry.flank_inner_radius", text, "mm")
+
+
+def test_a_huge_integer_is_beyond_float64():
+    with pytest.raises(InputError, match="401-digit number is beyond the float64 range"):
+        to_si("duty.inertia", 10**400, "kg*m^2")
