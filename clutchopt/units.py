@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 import re
 from functools import lru_cache
+from typing import NamedTuple
 
 import pint
 
@@ -149,37 +150,47 @@ def _split(field: str, text: str) -> tuple[float, str]:
     return float(number.group(1)), unit
 
 
+class UnitInfo(NamedTuple):
+    """What a unit expression means, multiplicatively: SI factor, dimensionality, power of radian, and whether it
+    is an offset unit (degC, degF: a temperature, not a temperature difference)."""
+
+    factor: float
+    dimensions: frozenset
+    angle: float
+    offset: bool
+
+
 @lru_cache(maxsize=512)
-def _parse_unit(unit: str):
-    """A unit expression (already bounded by :func:`_split`) as pint units; errors pass to the caller."""
-    return ureg.parse_units(unit) if unit else ureg.dimensionless
-
-
-@lru_cache(maxsize=None)
-def _angle_power(unit) -> float:
-    """The power of radian in a unit's root form: 1 for rpm, rad/s, rps; 0 for Hz, 1/s; 1 for deg."""
-    return dict(ureg.Quantity(1.0, unit).to_root_units().unit_items()).get("radian", 0)
+def unit_info(unit: str) -> UnitInfo:
+    """:class:`UnitInfo` of a unit expression (bounded by :func:`_split` for text from a file); pint's errors and
+    OverflowError (e.g. ``Ym^12``) pass to the caller."""
+    units = ureg.parse_units(unit) if unit else ureg.dimensionless
+    one = ureg.Quantity(1.0, units)
+    root = dict(one.to_root_units().unit_items())
+    offset = ureg.Quantity(0.0, units).to_base_units().magnitude != 0
+    return UnitInfo(float(one.to_base_units().magnitude), frozenset(one.dimensionality.items()),
+                    root.get("radian", 0), offset)
 
 
 def to_si(field: str, raw: object, unit: str) -> float:
     """Parse a case value for ``field`` expected in ``unit`` (any compatible unit) and return SI float.
 
     Raises InputError naming the field for text that is no quantity, a wrong dimension, NaN or infinity, a value
-    beyond float64, and for a pure frequency (Hz, 1/s) where an angular speed is expected (see ``_SPEED_HINT``).
+    beyond float64, a pure frequency (Hz, 1/s) where an angular speed is expected (see ``_SPEED_HINT``), and an
+    offset temperature (degC), which clutchopt's temperature rises cannot mean.
     """
-    expected = ureg.Quantity(1.0, unit)
+    expected = unit_info(unit)
     if isinstance(raw, bool):
         raise InputError(field, f"expected a quantity in {unit}, got a boolean")
-    if isinstance(raw, (int, float)):
+    if isinstance(raw, (int, float)):  # a bare number is SI
         try:
-            value = float(raw)
+            value, given = float(raw), expected._replace(factor=1.0)
         except OverflowError:
             raise InputError(field, f"{len(str(abs(raw)))}-digit number is beyond the float64 range") from None
-        quantity = ureg.Quantity(value, expected.to_base_units().units)
     elif isinstance(raw, str):
         number, unit_text = _split(field, raw)
         try:
-            units = _parse_unit(unit_text)
+            given = unit_info(unit_text)
         except OverflowError:
             raise InputError(field, f"cannot read {raw.strip()!r}: its unit is beyond the float64 range") from None
         except Exception as exc:  # pint raises several types for unparsable text
@@ -187,23 +198,18 @@ def to_si(field: str, raw: object, unit: str) -> float:
             why = f"unknown unit {', '.join(map(repr, names))}" if names else type(exc).__name__
             raise InputError(field, f"cannot read {raw.strip()!r} as a quantity ({why}); expected "
                                     f"{_QUANTITY_EXAMPLE}") from None
-        quantity = ureg.Quantity(number, units)
-        if unit_text and _angle_power(unit) and _angle_power(units) != _angle_power(unit) \
-                and quantity.dimensionality == expected.dimensionality:
-            raise InputError(field, f"{raw.strip()!r} is ambiguous: {_SPEED_HINT}" if expected.dimensionality
+        if given.offset:
+            raise InputError(field, f"{raw.strip()!r} is a temperature on a scale with an offset; write a "
+                                    "temperature difference in K (or delta_degC)")
+        if unit_text and expected.angle and given.angle != expected.angle and given.dimensions == expected.dimensions:
+            raise InputError(field, f"{raw.strip()!r} is ambiguous: {_SPEED_HINT}" if expected.dimensions
                              else f"expected an angle (e.g. in {unit}), got {raw.strip()!r}, which is no angle")
+        value = number * given.factor if number else 0.0  # 0 * inf would be nan; inf is refused below
     else:
         raise InputError(field, f"expected a quantity in {unit}, got {type(raw).__name__} {_short(raw)}")
-    if quantity.dimensionality != expected.dimensionality:
-        raise InputError(
-            field,
-            f"expected {describe_dimension(unit)} (e.g. in {unit or 'SI'}), "
-            f"got {_short(raw)}, which is {describe_dimension(str(quantity.units))}",
-        )
-    try:
-        value = float(quantity.to_base_units().magnitude)
-    except OverflowError:
-        value = math.inf
+    if given.dimensions != expected.dimensions:
+        raise InputError(field, f"expected {describe_dimension(unit)} (e.g. in {unit or 'SI'}), got {_short(raw)}, "
+                                f"which is {describe_dimension(unit_text)}")
     if not math.isfinite(value):
         raise InputError(field, f"must be a finite number within the float64 range, got {_short(raw)}")
     return value

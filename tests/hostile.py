@@ -281,6 +281,8 @@ HOSTILE: list[Hostile] = [
          "start_up.heat.capacity: must be from 1e-06 to 1e+12 J/K"),
     case("start-up-profile-in-hz", WEDGE + START_UP + '[start_up.driven.load_profile]\nover = "speed"\n'
          'points = ["0 Hz", "10 Hz"]\ntorque = [0, 5]\n', "start_up.driven.load_profile.points[0]: '0 Hz' is"),
+    case("start-up-rise-in-celsius", WEDGE + START_UP + '[start_up.limits]\nmax_temperature_rise = "15 degC"\n',
+         "start_up.limits.max_temperature_rise: '15 degC' is a temperature on a scale with an offset"),
     case("lever-limit-above-engagement", edit(LEVER, 'engagement_angle = "15 deg"', 'engagement_angle = "2 deg"'),
          "geometry.engagement_angle: must exceed the limit angle"),
     # --- scenes --------------------------------------------------------------------------------------------------

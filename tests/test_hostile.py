@@ -93,7 +93,8 @@ def test_an_unexpected_exception_is_one_line_and_a_crash_file(monkeypatch, capsy
     assert out == "" and err.count("\n") == 1 and "Traceback" not in err, err
     assert err.startswith("internal error: ZeroDivisionError: float division by zero (details in ")
     crash = err.rsplit("(details in ", 1)[1].rstrip(")\n")
-    report = open(crash, encoding="utf-8").read()
+    with open(crash, encoding="utf-8") as handle:
+        report = handle.read()
     assert "Traceback (most recent call last)" in report and "in broken" in report and "'solve'" in report
     os.unlink(crash)
 

@@ -109,3 +109,10 @@ def test_text_pint_should_never_evaluate_is_refused(text, words):
 def test_a_huge_integer_is_beyond_float64():
     with pytest.raises(InputError, match="401-digit number is beyond the float64 range"):
         to_si("duty.inertia", 10**400, "kg*m^2")
+
+
+def test_a_temperature_rise_is_no_temperature():
+    """A rise of "15 degC" read by pint is 288.15 K; a temperature difference is written in K (or delta_degC)."""
+    assert to_si("start_up.limits.max_temperature_rise", "15 delta_degC", "K") == 15.0
+    with pytest.raises(InputError, match="a temperature on a scale with an offset"):
+        to_si("start_up.limits.max_temperature_rise", "15 degC", "K")
