@@ -11,6 +11,9 @@ Layout of a case::
     [options]                       # optional
     free = ["flank_angle"]          # variables fixed at the case value unless listed here
     objective = "mass"
+    [library]                       # optional: entries of the material library (clutchopt materials)
+    material = "C45_QT"             # fills the fields it maps to, unless the case gives them
+    friction_pair = "organic_dry"
 
 Every problem raises :class:`~clutchopt.errors.InputError` naming the field (``duty.inertia``).
 """
@@ -25,6 +28,7 @@ from pathlib import Path
 from types import SimpleNamespace
 from typing import Any
 
+from clutchopt import materials
 from clutchopt.errors import InputError, Problems
 from clutchopt.files import CASE_BYTES, read_text, shown
 from clutchopt.formulations.start_up import QUANTITIES as START_UP_QUANTITIES
@@ -33,8 +37,8 @@ from clutchopt.model import REQUIRED, Quantity
 from clutchopt.units import to_si
 
 _TOP_LEVEL = {"coupling", "title", "description"}
-_OPTION_KEYS = {"free", "objective", "mode"}
-_EXTRA_SECTIONS = ("bounds", "options", "start_up")
+_OPTION_KEYS = {"free", "objective", "mode", "choose"}
+_EXTRA_SECTIONS = ("bounds", "options", "library", "start_up")
 
 
 @dataclass(frozen=True)
@@ -49,6 +53,7 @@ class Case:
     options: dict[str, Any] = field(default_factory=dict)
     path: str = ""
     start_up: StartUpSpec | None = None  # the drive of a [start_up] section
+    filled: dict[str, tuple[str, str]] = field(default_factory=dict)  # from the library: name -> (role, entry)
 
     @property
     def quantities(self) -> tuple[Quantity, ...]:
@@ -125,13 +130,21 @@ def parse_case(data: dict, path: str = "") -> Case:
                                                       f"{', '.join(known)}")
                 values[quantity.name] = quantity.check(to_si(quantity.key, raw, quantity.unit))
 
+    options = data.get("options", {})
+    choose, filled = {}, {}
+    with problems.field():
+        choose = (materials.check_choose(options["choose"], coupling.materials)
+                  if isinstance(options, dict) and "choose" in options else {})
+    with problems.field():
+        filled = materials.fill(data.get("library", {}), coupling.materials, coupling.quantities, values, choose)
     given = {q.name for q in coupling.quantities if q.name in _table(data.get(q.section))}
     for quantity in coupling.quantities:
-        if quantity.name in given:
+        if quantity.name in given or quantity.name in values:
             continue
         with problems.field():
             if quantity.default is REQUIRED:
-                raise InputError(quantity.key, f"missing ({quantity.description}, in {quantity.unit or 'SI'})")
+                raise InputError(quantity.key, f"missing ({quantity.description}, in {quantity.unit or 'SI'})"
+                                               + materials.hint(coupling.materials, quantity.name))
             if quantity.default is not None:
                 values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
 
@@ -143,15 +156,16 @@ def parse_case(data: dict, path: str = "") -> Case:
             start_values, start_up = parse_start_up(data["start_up"], coupling, values)
             values.update(start_values)
     bounds = _parse_bounds(data.get("bounds", {}), coupling, problems, "start_up" in data)
-    options = _parse_options(data.get("options", {}), coupling, problems, "start_up" in data)
+    options = _parse_options(options, coupling, problems, "start_up" in data)
     for name in ("title", "description"):
         with problems.field():
             check_text(name, data.get(name, ""), multiline=name == "description")
     problems.raise_any()
 
     case = Case(coupling.name, data.get("title", ""), values, bounds, tuple(options.get("free", ())),
-                options, path, start_up)
+                {**options, **({"choose": choose} if choose else {})}, path, start_up, filled)
     coupling.check_case(case)
+    materials.variants(case, coupling)  # every choice of options.choose is checked here, before any solve
     return case
 
 

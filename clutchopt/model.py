@@ -76,6 +76,13 @@ class Quantity:
                                    f"{MAGNITUDES[0]:g} to {MAGNITUDES[1]:g} in SI units".replace(" 1 (SI)", " (SI)"))
         return value
 
+    def valid_range(self) -> str:
+        """The valid range as a reader writes it: ``> 0 MPa``, ``> 0 and <= 1``, ``a whole number >= 1``."""
+        parts = [f"{word} {self.show(bound)}" for bound, word in (
+            (self.above, ">"), (self.at_least, ">="), (self.below, "<"), (self.at_most, "<=")) if bound is not None]
+        text = " and ".join(parts) or "any value"
+        return f"a whole number {text}" if self.integer else text
+
 
 @dataclass(frozen=True)
 class Variable(Quantity):
@@ -193,6 +200,16 @@ class Formulation:
     def variable(self, name: str) -> Variable:
         return next(v for v in self.variables if v.name == name)
 
+    def frees(self) -> str:
+        """What the optimiser may change in this mode: ``weight_mass (m_r), finger_diameter (d_n)``, then the
+        variables that stay at the case's value unless ``options.free`` lists them."""
+        def named(variables):
+            return ", ".join(f"{v.name} ({v.symbol})" if v.symbol else v.name for v in variables)
+
+        text = named(v for v in self.variables if not v.fixed_unless_freed)
+        freeable = [v for v in self.variables if v.fixed_unless_freed]
+        return text + (f"; also {named(freeable)} if options.free lists them" if freeable else "")
+
 
 def namespace(values: Mapping[str, Any]) -> SimpleNamespace:
     return SimpleNamespace(**dict(values))
@@ -228,6 +245,21 @@ class Comparison:
     column_notes: dict[str, str] = field(default_factory=dict)
 
 
+@dataclass(frozen=True)
+class MaterialRole:
+    """A part of a coupling a case may name a library entry for (``friction_pair = "organic_dry"``).
+
+    ``key`` is the case's top-level key, ``kind`` the library table (materials, friction_pairs, thread_pairs),
+    ``parts`` what it is for, ``fills`` which library field gives which case quantity. Values the case gives
+    explicitly win over the library's.
+    """
+
+    key: str
+    kind: str
+    parts: str
+    fills: Mapping[str, str]  # library field -> quantity name
+
+
 @dataclass
 class Coupling:
     """A coupling family: its case quantities, its posed problems by mode, its comparison."""
@@ -240,6 +272,7 @@ class Coupling:
     default_mode: str
     comparison: Comparison | None = None
     case_checks: tuple[Callable[[Any], None], ...] = ()
+    materials: tuple[MaterialRole, ...] = ()  # what a case may name from the material library
 
     @property
     def variables(self) -> tuple[Variable, ...]:

@@ -46,35 +46,60 @@ def _frame(rows: list[dict]) -> str:
     return pd.DataFrame(rows).to_string(index=False) if rows else "(none)"
 
 
-def solution_text(solution: Solution, formulation: Formulation, title: str = "") -> str:
+def design_rows(solution: Solution, formulation: Formulation) -> list[dict]:
+    return [{"variable": v.name, "symbol": v.symbol, "value": _shown(solution.design[v.name], v.unit), "unit": v.unit,
+             "at bound": solution.at_bound(v.name) or "-", "description": v.description}
+            for v in formulation.variables]
+
+
+def derived_rows(solution: Solution) -> list[dict]:
+    return [{"quantity": name, "value": _shown(out.value, out.unit), "unit": out.unit, "description": out.description}
+            for name, out in solution.outputs.items()]
+
+
+def constraint_rows(solution: Solution) -> list[dict]:
+    return [{"constraint": c.name, "eq.": c.equation, "value": _shown(c.value, c.unit), "sense": c.sense,
+             "limit": _shown(c.limit, c.unit), "unit": c.unit, "margin": f"{c.margin:+.2e}",
+             "active": "yes" if c.active else "no", "elasticity": _signed(c.elasticity)}
+            for c in solution.constraints]
+
+
+CONSTRAINTS_TITLE = "Constraints (re-evaluated in float64; margin relative; elasticity = d ln objective / d ln limit)"
+SENSITIVITIES_TITLE = ("Most sensitive parameters (elasticity = d ln objective / d ln parameter; +1: grows in "
+                       "proportion)")
+
+
+def headline(solution: Solution, formulation: Formulation, title: str = "") -> list[str]:
     lines = [f"{formulation.title}" + (f"  -  {title}" if title else ""),
              f"status: {solution.status}"
              f"   objective ({solution.objective_name}): {solution.objective:.6g} {solution.objective_unit}"]
-    if solution.diagnosis:
-        lines.append(f"diagnosis: {solution.diagnosis}")
-    lines += ["", "Design"]
-    lines.append(_frame([
-        {"variable": v.name, "symbol": v.symbol, "value": _shown(solution.design[v.name], v.unit), "unit": v.unit,
-         "at bound": solution.at_bound(v.name) or "-", "description": v.description} for v in formulation.variables]))
+    return lines + ([f"diagnosis: {solution.diagnosis}"] if solution.diagnosis else [])
+
+
+def solution_tables(solution: Solution, formulation: Formulation) -> list[tuple[str, list[dict], list[str]]]:
+    """The tables of a solution as (title, rows, notes below), in the order ``clutchopt solve`` prints them."""
+    tables = [("Design", design_rows(solution, formulation), [])]
     if solution.outputs:
-        lines += ["", "Derived"]
-        lines.append(_frame([
-            {"quantity": name, "value": _shown(out.value, out.unit), "unit": out.unit, "description": out.description}
-            for name, out in solution.outputs.items()]))
-    lines += ["", "Constraints (re-evaluated in float64; margin relative; elasticity = d ln objective / d ln limit)"]
-    lines.append(_frame([
-        {"constraint": c.name, "eq.": c.equation, "value": _shown(c.value, c.unit), "sense": c.sense,
-         "limit": _shown(c.limit, c.unit), "unit": c.unit, "margin": f"{c.margin:+.2e}",
-         "active": "yes" if c.active else "no", "elasticity": _signed(c.elasticity)}
-        for c in solution.constraints]))
+        tables.append(("Derived", derived_rows(solution), []))
+    tables.append((CONSTRAINTS_TITLE, constraint_rows(solution), []))
     if solution.start_up is not None:
-        lines += ["", *start_up_lines(solution.start_up)]
+        tables.append(start_up_table(solution.start_up))
     if solution.sensitivities:
-        lines += ["", "Most sensitive parameters (elasticity = d ln objective / d ln parameter; +1: grows in proportion)"]
-        lines.append(_frame(sensitivity_rows(solution, formulation)))
+        tables.append((SENSITIVITIES_TITLE, sensitivity_rows(solution, formulation), []))
+    return tables
+
+
+def solver_line(solution: Solution) -> str:
     s = solution.solver
-    lines += ["", f"solver: {s.name}  status: {s.status}  iterations: {s.iterations}  solves: {s.solves}  "
-                  f"time: {s.time_s * 1e3:.1f} ms"]
+    return (f"solver: {s.name}  status: {s.status}  iterations: {s.iterations}  solves: {s.solves}  "
+            f"time: {s.time_s * 1e3:.1f} ms")
+
+
+def solution_text(solution: Solution, formulation: Formulation, title: str = "") -> str:
+    lines = headline(solution, formulation, title)
+    for table_title, rows, notes in solution_tables(solution, formulation):
+        lines += ["", table_title, _frame(rows), *notes]
+    lines += ["", solver_line(solution)]
     if solution.integer_search:
         lines.append("integer neighbours tried: " + "; ".join(
             ", ".join(f"{k}={v}" for k, v in entry.items() if k not in ("status", "feasible", "objective"))
@@ -82,6 +107,70 @@ def solution_text(solution: Solution, formulation: Formulation, title: str = "")
             for entry in solution.integer_search))
     return "\n".join(lines)
 
+
+def html_table(rows: list[dict], numeric: tuple[str, ...] = ("value", "limit", "margin", "elasticity"),
+               markup: tuple[str, ...] = ()) -> str:
+    """Rows as an HTML table: values escaped except in the ``markup`` columns; ``numeric`` ones right-aligned."""
+    from html import escape
+
+    if not rows:
+        return '<p class="note">(none)</p>'
+    head = "".join(f"<th>{escape(str(column))}</th>" for column in rows[0])
+    body = "".join("<tr>" + "".join(f'<td{" class=n" if column in numeric else ""}>'
+                                    f"{value if column in markup else escape(str(value))}</td>"
+                                    for column, value in row.items()) + "</tr>" for row in rows)
+    return f"<table><tr>{head}</tr>{body}</table>"
+
+
+def solution_html(solution: Solution) -> str:
+    """A solution as Jupyter shows it: the tables of ``clutchopt solve``, as HTML."""
+    from html import escape
+
+    from clutchopt.formulations import get_coupling
+    from clutchopt.formulations.start_up import with_start_up
+
+    formulation = get_coupling(solution.coupling).formulation(solution.mode)
+    if solution.start_up is not None:
+        formulation = with_start_up(formulation)
+    parts = [f"<p>{'<br>'.join(escape(line) for line in headline(solution, formulation))}</p>"]
+    for title, rows, notes in solution_tables(solution, formulation):
+        parts.append(f"<h4>{escape(title)}</h4>{html_table(rows)}" + "".join(f"<p>{escape(n)}</p>" for n in notes))
+    return "<div>" + "".join(parts) + f"<p>{escape(solver_line(solution))}</p></div>"
+
+
+def library_text(case) -> str:
+    """The fields the material library filled, by role, with each entry's friction scatter where it has one."""
+    from clutchopt.materials import filled_by
+
+    lines = []
+    for key, item in filled_by(case).items():
+        scatter = item.get("friction_range")
+        values = ", ".join(f"{q.name} {q.show(v)}" + (f" (scatter {scatter[0]:g} to {scatter[1]:g})"
+                                                       if scatter and q.name == "friction_coefficient" else "")
+                           for q, v in item["values"].values())
+        lines.append(f"  {key} = {item['entry']}: {values}")
+    return "\n".join(["From the material library (values the case gives itself win):", *lines]) if lines else ""
+
+
+def library_json(case) -> dict:
+    """``library_text`` as JSON: per role the entry, its source and each filled value with its SI unit."""
+    from clutchopt.materials import filled_by
+
+    return {key: {"entry": item["entry"], "source": item["source"],
+                  **({"friction_range": list(item["friction_range"])} if "friction_range" in item else {}),
+                  "values": {q.name: {"value": v, "unit": q.si_unit, "display_unit": q.unit}
+                             for q, v in item["values"].values()}}
+            for key, item in filled_by(case).items()}
+
+
+def choices_text(ranked: list[tuple]) -> str:
+    """The variants of ``options.choose``, best first: choice, status, objective."""
+    rows = [{"rank": i + 1, **choice, "status": s.status,
+             f"{s.objective_name} [{s.objective_unit}]": _shown(s.objective if s.status == "optimal" else None, "")}
+            for i, (choice, _, s) in enumerate(ranked)]
+    why = [f"  {', '.join(choice.values())}: {s.diagnosis}" for choice, _, s in ranked if s.diagnosis]
+    best = ", ".join(f"{key} = {name}" for key, name in ranked[0][0].items())
+    return "\n".join(["Choices of options.choose, best first", _frame(rows), *why, "", f"Below: the best, {best}."])
 
 START_UP_ROWS = (  # figure, display unit, meaning
     ("start_time", "s", "switch-on to lock-up"),
@@ -94,8 +183,8 @@ START_UP_ROWS = (  # figure, display unit, meaning
 )
 
 
-def start_up_lines(start_up: dict) -> list[str]:
-    """The NLP's start beside the simulator's, figure by figure."""
+def start_up_table(start_up: dict) -> tuple[str, list[dict], list[str]]:
+    """The NLP's start beside the simulator's, figure by figure: title, rows, a note if it does not lock up."""
     rows = []
     for name, unit, meaning in START_UP_ROWS:
         nlp, simulated = start_up.get(name), start_up.get(f"{name}_simulated")
@@ -107,10 +196,7 @@ def start_up_lines(start_up: dict) -> list[str]:
                      "NLP/sim - 1": difference if simulated is not None else "-", "meaning": meaning})
     head = (f"Start-up on the case's drive ({', '.join(start_up['effects'])}): Radau collocation, "
             f"{start_up['intervals']} intervals per phase ({', '.join(start_up['phases'])}), beside the simulator")
-    lines = [head, _frame(rows)]
-    if not start_up["locks_up"]:
-        lines.append(f"simulated: {start_up['reason']}")
-    return lines
+    return head, rows, [] if start_up["locks_up"] else [f"simulated: {start_up['reason']}"]
 
 
 def sensitivity_rows(solution: Solution, formulation: Formulation, count: int = 8) -> list[dict]:
@@ -121,25 +207,62 @@ def sensitivity_rows(solution: Solution, formulation: Formulation, count: int = 
             for name, value in ranked if abs(value) >= 5e-5]
 
 
-def comparison_text(table: ComparisonTable) -> str:
-    rows = []
+def comparison_rows(table: ComparisonTable) -> tuple[list[dict], list[dict]]:
+    """The values of every column in each row's unit, and the relative differences against the baseline."""
+    rows, rel = [], []
     for row in table.rows:
-        entry = {"quantity": row["quantity"], "unit": row["display_unit"]}
-        for column in table.columns:
-            entry[column] = _shown(row[column], row["display_unit"])
-        rows.append(entry)
-    rel = []
-    for row in table.rows:
+        rows.append({"quantity": row["quantity"], "unit": row["display_unit"],
+                     **{column: _shown(row[column], row["display_unit"]) for column in table.columns}})
         entry = {"quantity": row["quantity"]}
         for column in table.columns:
             if column != table.baseline:
                 value = row.get(f"rel_{column}")
                 entry[column] = "-" if value is None else ("0" if abs(value) < 5e-5 else f"{value:+.2%}")
         rel.append(entry)
-    lines = [f"Comparison for the {table.coupling} coupling (values in the unit of each row)", _frame(rows), "",
-             f"Relative difference against {table.baseline}", _frame(rel), "", "Columns:"]
+    return rows, rel
+
+
+def comparison_titles(table: ComparisonTable) -> tuple[str, str]:
+    return (f"Comparison for the {table.coupling} coupling (values in the unit of each row)",
+            f"Relative difference against {table.baseline}")
+
+
+def comparison_text(table: ComparisonTable) -> str:
+    rows, rel = comparison_rows(table)
+    title, rel_title = comparison_titles(table)
+    lines = [title, _frame(rows), "", rel_title, _frame(rel), "", "Columns:"]
     lines += [f"  {name}: {note}" for name, note in table.notes.items() if name in table.columns]
     for column, solution in table.solutions.items():
         lines.append(f"  {column}: status {solution.status}, {solution.solver.iterations} iterations"
                      + (f"; {solution.diagnosis}" if solution.diagnosis else ""))
     return "\n".join(lines)
+
+
+def comparison_html(table: ComparisonTable) -> str:
+    """The comparison as Jupyter shows it: the tables of ``clutchopt compare``, as HTML."""
+    from html import escape
+
+    rows, rel = comparison_rows(table)
+    title, rel_title = comparison_titles(table)
+    numeric = tuple(table.columns)
+    notes = "".join(f"<li><b>{escape(name)}</b>: {escape(note)}</li>" for name, note in table.notes.items()
+                    if name in table.columns)
+    return (f"<div><h4>{escape(title)}</h4>{html_table(rows, numeric)}<h4>{escape(rel_title)}</h4>"
+            f"{html_table(rel, numeric)}<ul>{notes}</ul></div>")
+
+
+def materials_text(kind: str, title: str) -> str:
+    """One table of the material library: values in display units, a legend, then each entry's source."""
+    from textwrap import wrap
+
+    from clutchopt.materials import FIELDS, library, rows
+
+    fields = FIELDS[kind]
+    headers = {q.name: f"{q.symbol or q.name} [{q.unit}]" if q.unit else q.symbol or q.name for q in fields}
+    frame = pd.DataFrame(rows(kind)).rename(columns=headers)
+    table = frame.to_string(index=False, float_format=lambda v: f"{v:.4g}", na_rep="-")
+    legend = wrap("; ".join(f"{q.symbol or q.name}: {q.description}" for q in fields), 116)
+    sources = [line for e in library()[kind].values() for line in wrap(
+        f"{e.name}: {e.description}. Source: {e.source}" + (f". Note: {e.notes}" if e.notes else ""), 116,
+        initial_indent="  ", subsequent_indent="      ")]
+    return "\n".join([f"{title} (clutchopt/data/materials.toml)", table, "", *legend, "", *sources])

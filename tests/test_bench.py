@@ -30,7 +30,7 @@ MODES = [(case.coupling, mode) for case in bench_cases() for mode in get_couplin
 
 def test_report_structure(report):
     assert set(report) == {"machine", "config", "sections"}
-    assert report["config"] == {"repeats": 3, "sweep_points": 100, "processes": 2}
+    assert report["config"] == {"repeats": 3, "sweep_points": 100, "processes": 2, "start_up_intervals": [16]}
     assert report["machine"]["cores"] >= 1 and report["machine"]["casadi"]
     assert list(report["sections"]) == [s.name for s in SECTIONS]
     assert {(r["coupling"], r["mode"]) for r in report["sections"]["accuracy"]["rows"]} == set(MODES)
@@ -86,6 +86,18 @@ def test_transient_sections(report):
     effects = {row["effects"].count("+"): row["start_time_s"] for row in report["sections"]["transient_effects"]["rows"]}
     # constant speed, no springs: the design accelerates in exactly the t_p = 10 s it was sized for; springs slow it
     assert effects[1] == pytest.approx(10.0, rel=1e-8) and effects[2] > effects[1]
+
+
+def test_start_up_accuracy_section(report):
+    rows = report["sections"]["start_up_accuracy"]["rows"]
+    cases = {row["case"] for row in rows}
+    assert {"wedge_motor_start", "lever_motor_start", "ball_motor_start"} <= cases
+    for case in cases:
+        graded, *adapted = [r for r in rows if r["case"] == case and r["intervals"] == 16 and r["mesh"] != "default (adaptive)"]
+        default = next(r for r in rows if r["case"] == case and r["mesh"] == "default (adaptive)")
+        assert graded["mesh"] == "graded" and adapted[0]["mesh"] == "adapted x1"
+        assert default["status"] == "optimal" and default["start_time_rel_error"] <= 1e-6
+        assert min(r["start_time_rel_error"] for r in adapted) <= graded["start_time_rel_error"]
 
 
 def test_a_section_is_one_function():

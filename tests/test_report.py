@@ -1,5 +1,6 @@
 """Design-review report: self-contained page with the key numbers, sketch or dimension table, checked in Chromium."""
 
+import math
 import re
 
 import pandas as pd
@@ -45,10 +46,95 @@ def test_page_is_self_contained_with_every_section(review):
     assert "outer_diameter_max" in html and "-1.5308" in html  # the largest elasticity of the worked example
 
 
-def test_a_coupling_without_a_sketch_gets_a_dimension_table():
+@pytest.fixture(scope="module")
+def other_couplings(tmp_path_factory):
+    """Design-review pages of the lever (design mode), the cable (threads mode) and the ball clutch (design mode)."""
+    folder = tmp_path_factory.mktemp("sketches")
+    pages = {}
+    for name, mode in (("lever_centrifuge", "design"), ("cable_pump", "threads"), ("ball_crusher", "design")):
+        case = load_case(CASES / f"{name}.toml")
+        solution = solve_case(case, mode)
+        page = folder / f"{name}.html"
+        page.write_text(build_report(case, solution))
+        pages[case.coupling] = (page, solution)
+    return pages
+
+
+def sketch_of(page) -> str:
+    html = page.read_text()
+    section = html[html.index('<section id="sketch">'):]
+    return section[:section.index("</section>")]
+
+
+def length(line: str) -> float:
+    x1, y1, x2, y2 = (float(re.search(f' {a}="([-0-9.]+)"', line).group(1)) for a in ("x1", "y1", "x2", "y2"))
+    return math.hypot(x2 - x1, y2 - y1)
+
+
+def polygon_height(polygon: str) -> float:
+    ys = [float(point.split(",")[1]) for point in re.search(r'points="([^"]+)"', polygon).group(1).split()]
+    return max(ys) - min(ys)
+
+
+def test_every_coupling_gets_a_sketch_with_its_optimised_dimensions_in_red(other_couplings):
+    expected = {"lever": ("l_2 = {lever_length}", "b = {lining_width}", "D = {outer_diameter}"),
+                "cable": ("D = 160 mm", "l = 80 mm", "R_rv = 100 mm"),
+                "ball": ("R_a = {active_radius}", "l_a = {active_width}", "R_1 = {filling_radius}")}
+    for coupling, (page, solution) in other_couplings.items():
+        svg = sketch_of(page)
+        assert "<svg" in svg and "Optimised (red)" in svg
+        values = {**{k: o.value for k, o in solution.outputs.items()}, **solution.design}
+        for label in expected[coupling]:
+            text = label.format(**{k: f"{v * 1e3:.4g} mm" for k, v in values.items()})
+            assert f">{text}</text>" in svg, (coupling, text)
+    lever = sketch_of(other_couplings["lever"][0])
+    assert re.search(r'class="dimtext opt"[^>]*>l_2 = ', lever)  # design mode chose the lever length
+    cable = sketch_of(other_couplings["cable"][0])
+    assert re.search(r'class="dimtext"[^>]*>D = 160 mm', cable)  # the finger circle is the case's: grey
+    assert re.search(r'class="dimtext opt"[^>]*>lead angles', cable)  # threads mode chose them: red
+
+
+def test_the_sketches_are_to_scale(other_couplings):
+    """Ratios of drawn lengths equal ratios of the design's: link / lining width = l_2 / b (lever), finger /
+    finger circle = d_n / D (cable), ball / layer depth = r_c / (R_a - R_1) (ball)."""
+    page, solution = other_couplings["lever"]
+    svg, out = sketch_of(page), {k: o.value for k, o in solution.outputs.items()}
+    link = re.search(r'<line class="dark"[^>]*/>', svg).group(0)
+    lining = re.search(r'<polygon class="lining"[^>]*/>', svg).group(0)
+    assert length(link) / polygon_height(lining) == pytest.approx(out["lever_length"] / out["lining_width"], rel=1e-3)
+
+    page, solution = other_couplings["cable"]
+    svg = sketch_of(page)
+    finger = float(re.search(r'<circle class="lining"[^>]* r="([0-9.]+)"', svg).group(1))
+    circle = float(re.search(r'<circle class="ref"[^>]* r="([0-9.]+)"', svg).group(1))
+    assert finger / circle == pytest.approx(solution.design["finger_diameter"] / 0.160, rel=1e-3)
+
+    page, solution = other_couplings["ball"]
+    svg, out = sketch_of(page), {k: o.value for k, o in solution.outputs.items()}
+    ball = float(re.search(r'<circle class="ball"[^>]* r="([0-9.]+)"', svg).group(1))
+    layer = re.findall(r'<polygon class="layer"[^>]*/>', svg)[-1]  # the section's layer, R_1 to R_a
+    depth = solution.design["active_radius"] - out["filling_radius"]
+    assert ball / polygon_height(layer) == pytest.approx(solution.design["ball_radius"] / depth, rel=1e-3)
+
+
+@pytest.mark.skipif(find_chromium() is None, reason=NO_CHROMIUM)
+def test_the_other_sketches_render_in_headless_chromium(other_couplings, tmp_path):
+    for coupling, (page, solution) in other_couplings.items():
+        rendered = render(page, tmp_path / f"{coupling}.png")
+        assert rendered.errors == [], coupling
+        assert "red, bold: chosen by the optimiser" in rendered.text
+        assert f"{solution.objective:.6g}" in rendered.text
+
+
+def test_a_design_without_a_needed_dimension_gets_a_dimension_table():
+    """Paper mode of the wedge with no weight width still gets its front view; a sketch that cannot be drawn
+    (here: a lever design with its lining width removed) falls back to the table."""
+    from clutchopt.report.sketch import sketch
+
     case = load_case(CASES / "lever_centrifuge.toml")
-    html = build_report(case, solve_case(case))
-    assert "No sketch is drawn for the lever coupling" in html and "<th>dimension</th>" in html
+    solution = solve_case(case)
+    outputs = {k: o.value for k, o in solution.outputs.items() if k != "lining_width"}
+    assert sketch("lever", {**case.values, **solution.design}, outputs, set()) is None
 
 
 @pytest.mark.skipif(find_chromium() is None, reason=NO_CHROMIUM)

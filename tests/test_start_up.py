@@ -204,3 +204,22 @@ def test_a_ball_case_refuses_springs():
     with pytest.raises(InputError, match="spring_preload does not apply to the ball coupling"):
         case_from("ball_motor_start.toml",
                   start_up__effects=["slip_friction", "motor_curve", "spring_preload", "friction_heat"])
+
+
+def test_sweep_pareto_and_report_take_start_up_cases():
+    from clutchopt.optimise.pareto import pareto_front
+    from clutchopt.optimise.sweep import Sweep, parse_vary
+    from clutchopt.report import build_report
+
+    case = case_from("wedge_motor_start.toml")
+    sweep = Sweep(case, [parse_vary("max_start_time=10,12", case.coupling, case.quantities)])
+    result = sweep.run(progress=False)
+    frame = result.frame
+    assert list(frame["status"]) == ["optimal", "optimal"]
+    mass = frame[[c for c in frame.columns if c.startswith("mass")][0]].tolist()
+    assert mass[1] < mass[0]  # a longer start allowed, a lighter coupling
+    assert "spring_preload [N]" in frame.columns
+    front = pareto_front(case, points=3)
+    assert all(s.status == "optimal" for s in front.solutions)
+    page = build_report(case, solve_case(case))
+    assert "Radau collocation" in page and "start_time" in page and "simulated" in page

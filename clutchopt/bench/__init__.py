@@ -17,6 +17,7 @@ from typing import Callable
 import pandas as pd
 
 from clutchopt.bench.accuracy import accuracy_rows
+from clutchopt.bench.start_up import start_up_rows
 from clutchopt.bench.throughput import throughput_rows
 from clutchopt.bench.transient import effects_rows, tolerance_rows
 
@@ -26,10 +27,11 @@ class BenchConfig:
     repeats: int = 20  # timed re-solves per method, after one warm-up
     sweep_points: int = 1000
     processes: int = 2
+    start_up_intervals: tuple[int, ...] = (8, 16, 32, 64)  # collocation intervals per phase measured
 
     @classmethod
     def quick(cls) -> "BenchConfig":
-        return cls(repeats=3, sweep_points=100, processes=2)
+        return cls(repeats=3, sweep_points=100, processes=2, start_up_intervals=(16,))
 
 
 @dataclass(frozen=True)
@@ -48,6 +50,10 @@ SECTIONS: tuple[Section, ...] = (
                                    "forms, per solve_ivp (DOP853) tolerance; times in ms", tolerance_rows),
     Section("transient_effects", "Simulator cost per effect: the solved wedge design on a motor with springs, "
                                  "effects added one by one; times in ms", effects_rows),
+    Section("start_up_accuracy", "Start-up inside the NLP: start time against the simulator per collocation "
+                                 "intervals (per phase) and mesh; the default adapts, then doubles, to the case's "
+                                 "tolerance; one run each, in ms, with the problem's build (first row of an "
+                                 "interval count) and the re-simulation", start_up_rows),
 )
 
 
@@ -73,7 +79,7 @@ def run_bench(config: BenchConfig, sections: tuple[Section, ...] = SECTIONS) -> 
     return report
 
 
-_MS = ("first_s", "resolve_median_s", "resolve_iqr_s", "median_s", "iqr_s")
+_MS = ("first_s", "resolve_median_s", "resolve_iqr_s", "median_s", "iqr_s", "time_s")
 
 
 def _shown(row: dict) -> dict:

@@ -75,7 +75,7 @@ def judge(case: Case, mode: str) -> Verdict:
 def judge_solution(solution: Solution, reference, formulation) -> Verdict:
     """The verdict on a solution, ``reference`` its closed form (:class:`ClosedForm`) or None."""
     if solution.status == "optimal":
-        if solution.worst_violation > FEASIBILITY_TOL:
+        if any(-c.margin > c.tolerance for c in solution.constraints):  # 1e-8; a start-up's: its case's tolerance
             return Verdict("failed", f"optimal but violates by {solution.worst_violation:.3g}")
         if reference is not None and math.isfinite(reference.objective):
             gap = (solution.objective - reference.objective) / abs(reference.objective)
@@ -263,8 +263,52 @@ def excluded_optimum(case: Case) -> list[TortureCase]:
     return cases
 
 
+def _start_up_solve(case_of: Callable[[], Case]) -> Callable[[], Verdict]:
+    def run() -> Verdict:
+        from clutchopt.optimise.problem import case_problem
+
+        case = case_of()
+        problem = case_problem(case)
+        return judge_solution(problem.solve(case), None, problem.formulation)
+
+    return run
+
+
+def start_up_limits(case: Case) -> list[TortureCase]:
+    """Cases with a [start_up]: engagement windows 1e-3 and 1e-6 wide (relative) at 1.1 times the optimum's
+    engagement speed, heat limits binding at 0.99 and 0.9 of the optimum's friction work and temperature rise, the
+    start time 1e-6 either side of the optimum's, a motor whose breakdown torque is below the load."""
+    if case.start_up is None:
+        return []
+    from clutchopt.optimise.problem import solve_case
+
+    start = solve_case(case).start_up
+    variants: dict[str, dict[str, float]] = {}
+    if start["engagement_speed"] > 0:
+        for width in (1e-3, 1e-6):
+            centre = 1.1 * start["engagement_speed"]
+            variants[f"engagement-window-{width:g}"] = {"min_engagement_speed": centre * (1 - width / 2),
+                                                       "max_engagement_speed": centre * (1 + width / 2)}
+    for share in (0.99, 0.9):
+        variants[f"friction-work-x{share:g}"] = {"max_friction_work": share * start["friction_work_simulated"]}
+        if start["temperature_rise"] is not None:
+            variants[f"temperature-x{share:g}"] = {"max_temperature_rise": share * start["temperature_rise_simulated"]}
+    for side in (+1, -1):
+        variants[f"start-time-{'+' if side > 0 else '-'}1e-6"] = {"max_start_time": start["start_time"] * (1 + side * NEAR)}
+    if case.start_up.has("motor_curve"):
+        variants["motor-below-load"] = {"breakdown_torque": 0.9 * case.values["load_torque"]}
+    cases = []
+    for name, values in variants.items():
+        limits = tuple(sorted(set(case.start_up.limits) | {n for n in values if n.startswith(("max_", "min_"))}))
+        edited = replace(case, start_up=replace(case.start_up, limits=limits))
+        cases.append(TortureCase(f"{_label(case)}-{name}", "start_up",
+                                 _start_up_solve(lambda c=edited, v=values: c.with_values(**v))))
+    return cases
+
+
 FAMILIES: tuple[Callable[[Case], list[TortureCase]], ...] = (
-    torque_range, speed_range, stress_extremes, near_limits, pinned_angles, degenerate_geometry, excluded_optimum)
+    torque_range, speed_range, stress_extremes, near_limits, pinned_angles, degenerate_geometry, excluded_optimum,
+    start_up_limits)
 
 
 # --- The start-up transient: closed forms against the simulation ----------------------------------------------

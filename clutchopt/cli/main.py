@@ -17,16 +17,32 @@ import sys
 import warnings
 from importlib import import_module
 
+from clutchopt import __version__
 from clutchopt.cli.options import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, Parser
 from clutchopt.errors import InputError
 
-COMMANDS = ("solve", "compare", "simulate", "sweep", "pareto", "report", "runs", "bench")
+COMMANDS = ("init", "couplings", "materials", "solve", "compare", "simulate", "sweep", "pareto", "report", "runs",
+            "bench")
 MAX_ERROR_LINES = 50  # a file with thousands of bad fields still gives a readable answer
+DESCRIPTION = """\
+Size centrifugal clutches and couplings by constrained optimisation (CasADi/IPOPT): the design of least mass or
+cost that carries the torque within the allowable pressures and stresses. Every optimum is re-checked in float64
+and set beside the published hand method.
+
+start here:
+  clutchopt couplings                   the couplings, what each mode lets the optimiser change, the objectives
+  clutchopt init lever -o mine.toml     a new case to edit: every field with its unit, meaning and typical range
+  clutchopt solve mine.toml             the optimum, every constraint with its margin, the sensitivities
+  clutchopt materials                   the material library a case can name ([library] friction_pair = ...)
+
+Every command explains itself: clutchopt solve --help."""
 
 
 def build_parser() -> Parser:
-    parser = Parser(prog="clutchopt", description="Size centrifugal clutches and couplings by constrained optimisation.")
-    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=Parser)
+    parser = Parser(prog="clutchopt", description=DESCRIPTION)
+    parser.add_argument("--version", action="version", version=f"clutchopt {__version__}")
+    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=Parser,
+                                     title="commands")
     for name in COMMANDS:
         import_module(f"clutchopt.cli.{name}").add_command(commands)
     return parser

@@ -9,9 +9,11 @@ from clutchopt.cli.options import (
     FIGURE_SUFFIXES,
     add_case_argument,
     add_json_option,
+    add_parser,
     add_problem_options,
     add_store_options,
-    open_store,
+    first_choice_note,
+    recording,
     resolve_problem,
     whole_number,
 )
@@ -20,13 +22,20 @@ MAX_FRONT_POINTS = 1000  # an epsilon-constraint solve each; a front is read fro
 
 
 def add_command(commands) -> None:
-    pareto = commands.add_parser("pareto", help="mass against cost: the Pareto front by epsilon-constraint")
+    pareto = add_parser(
+        commands, "pareto", "trade mass against cost: the designs between the lightest and the cheapest",
+        "The front is traced by epsilon-constraint: the mass is minimised under a cap on the cost, the cap\n"
+        "stepped from the lightest design's cost down to the cheapest design's.",
+        ("clutchopt pareto cases/wedge_centrifuge.toml --mode geometry --points 5",
+         "clutchopt pareto cases/lever_centrifuge.toml --mode design --plot front.png --out front.csv"))
     add_case_argument(pareto)
     add_problem_options(pareto, objective=False)  # mass and cost are the front's two ends
     pareto.add_argument("--points", type=whole_number(2, MAX_FRONT_POINTS), default=9,
-                        help=f"points on the front, both ends included, 2 to {MAX_FRONT_POINTS} (default 9)")
-    pareto.add_argument("--plot", metavar="FILE", help="write the front as a figure (.png, .svg, .pdf)")
-    pareto.add_argument("--out", metavar="FILE", help="write the table: .csv, .parquet or .md")
+                        help=f"designs on the front, the lightest and the cheapest included, 2 to {MAX_FRONT_POINTS} "
+                             "(default 9)")
+    pareto.add_argument("--plot", metavar="FILE",
+                        help="also draw the front, mass against cost, into FILE (.png, .svg, .pdf)")
+    pareto.add_argument("--out", metavar="FILE", help="also write the table: .csv, .parquet or .md")
     add_json_option(pareto)
     add_store_options(pareto)
     pareto.set_defaults(run=run)
@@ -36,8 +45,8 @@ def run(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.pareto import CAP, pareto_front
-    from clutchopt.files import check_output, write_whole
     from clutchopt.optimise.problem import case_formulation
+    from clutchopt.files import check_output, write_whole
     from clutchopt.optimise.sweep import table_format, write_frame
     from clutchopt.optimise.verify import evaluate_objective
     from clutchopt.output import to_json
@@ -48,14 +57,12 @@ def run(args) -> str:
     if args.plot:
         check_output("--plot", args.plot, FIGURE_SUFFIXES)
     resolve_problem(case, args, objective=False)
-    store = open_store(args)
-    front = pareto_front(case, args.mode, args.points, SolverOptions(tol=args.tol))
+    with recording(args) as store:
+        front = pareto_front(case, args.mode, args.points, SolverOptions(tol=args.tol))
+        for cap, solution in zip(front.caps, front.solutions) if store is not None else ():
+            capped = case if math.isnan(cap) else replace(case, values={**case.values, CAP: cap})
+            store.record_solution("pareto", capped, solution)
     formulation = case_formulation(case, front.mode)
-    if store is not None:
-        with store:
-            for cap, solution in zip(front.caps, front.solutions):
-                capped = case if math.isnan(cap) else replace(case, values={**case.values, CAP: cap})
-                store.record_solution("pareto", capped, solution)
     if args.out:
         write_frame(front.frame, args.out)
     if args.plot:
@@ -68,6 +75,7 @@ def run(args) -> str:
                 for cap, solution in zip(front.caps, front.solutions)]
         return to_json({"case": case.path, "mode": front.mode, "note": front.note, "rows": rows})
     lines = [f"Pareto front, mass against cost (epsilon-constraint) - {case.title or case.path}, {front.mode} mode"]
+    lines += [first_choice_note(case)] if case.options.get("choose") else []
     if front.note:
         lines.append(front.note)
     lines += ["", front.frame.to_string(index=False, float_format=lambda v: f"{v:.6g}", na_rep="-")]

@@ -4,20 +4,28 @@ from __future__ import annotations
 
 from clutchopt.cli.options import (
     add_case_argument,
+    add_parser,
     add_problem_options,
     add_store_options,
-    open_store,
+    first_choice_note,
     record_solve,
+    recording,
     resolve_problem,
 )
 
 
 def add_command(commands) -> None:
-    report = commands.add_parser("report", help="a self-contained HTML design-review page for a case")
+    report = add_parser(
+        commands, "report", "write a design-review page (one HTML file, no links out) for a case",
+        "Requirements, the optimal design with a dimensioned sketch to scale, constraint margins, sensitivities,\n"
+        "the comparison with the paper's method, the start-up simulation, and a sweep plot if --sweep is given.",
+        ("clutchopt report cases/wedge_paper.toml --mode geometry -o review.html",
+         "clutchopt report cases/wedge_paper.toml --sweep sweep.csv -o review.html"))
     add_case_argument(report)
-    report.add_argument("-o", "--out", required=True, metavar="FILE", help="the HTML page to write")
+    report.add_argument("-o", "--out", required=True, metavar="FILE", help="the HTML page to write, e.g. review.html")
     add_problem_options(report)
-    report.add_argument("--sweep", metavar="TABLE", help="a sweep table (.csv or .parquet from sweep --out) to plot")
+    report.add_argument("--sweep", metavar="TABLE",
+                        help="add a plot of this sweep table (.csv or .parquet written by clutchopt sweep --out)")
     add_store_options(report)
     report.set_defaults(run=run)
 
@@ -33,9 +41,9 @@ def run(args) -> str:
     check_output("--out", args.out, (".html", ".htm"))
     sweep = read_frame(args.sweep) if args.sweep else None
     resolve_problem(case, args)
-    store = open_store(args)
-    solution = solve_case(case, args.mode, args.objective, SolverOptions(tol=args.tol))
-    record_solve(store, case, solution)
+    with recording(args) as store:
+        solution = solve_case(case, args.mode, args.objective, SolverOptions(tol=args.tol))
+        record_solve(store, case, solution)
     page = build_report(case, solution, sweep)
 
     def write(path: str) -> None:
@@ -43,5 +51,6 @@ def run(args) -> str:
             handle.write(page)
 
     write_whole("--out", args.out, write)
-    return f"design review of {case.path} ({solution.status}, {solution.objective_name} " \
+    note = first_choice_note(case)
+    return (note + "\n" if note else "") + f"design review of {case.path} ({solution.status}, {solution.objective_name} " \
            f"{solution.objective:.6g} {solution.objective_unit}) written to {args.out}"

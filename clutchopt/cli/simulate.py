@@ -4,13 +4,8 @@ from __future__ import annotations
 
 import math
 
-from clutchopt.cli.options import (
-    FIGURE_SUFFIXES,
-    add_json_option,
-    add_store_options,
-    open_store,
-    record_simulation,
-)
+from clutchopt.cli.options import FIGURE_SUFFIXES, add_json_option, add_parser, add_store_options, record_simulation, \
+    recording
 
 _LINES = (
     ("start_time", "start time t_c", "s"),
@@ -24,10 +19,18 @@ _LINES = (
 
 
 def add_command(commands) -> None:
-    parser = commands.add_parser("simulate", help="simulate a scene's start-up (effects, lock-up, headline figures)")
-    parser.add_argument("scene", help="scene file (TOML, e.g. cases/scenes/paper_transient.toml)")
+    parser = add_parser(
+        commands, "simulate", "simulate a start-up: speeds, clutch torque, lock-up time and friction work",
+        "A scene (TOML) names the clutch (a design or a friction law), the driven machine and the effects to\n"
+        "include (motor curve, springs, gravity, fan load, ...); docs/simulate.md describes them. Where the\n"
+        "paper's transient has a closed form, the headline figures are printed beside it.",
+        ("clutchopt simulate cases/scenes/paper_transient.toml",
+         "clutchopt simulate cases/scenes/wedge_motor_springs.toml --plot startup.png"))
+    parser.add_argument("scene", help="the scene file (TOML, e.g. cases/scenes/paper_transient.toml)")
     add_json_option(parser)
-    parser.add_argument("--plot", metavar="FILE", help="write the time histories as a figure (.png, .svg, .pdf)")
+    parser.add_argument("--plot", metavar="FILE",
+                        help="also draw speeds (rpm), clutch torque and slip power over time into FILE (.png, .svg, "
+                             ".pdf)")
     add_store_options(parser)
     parser.set_defaults(run=run)
 
@@ -42,9 +45,9 @@ def run(args) -> str:
     scene = load_scene(args.scene)
     if args.plot:
         check_output("--plot", args.plot, FIGURE_SUFFIXES)
-    store = open_store(args)
-    result = run_scene(scene)
-    record_simulation(store, scene, result)
+    with recording(args) as store:
+        result = run_scene(scene)
+        record_simulation(store, scene, result)
     if args.plot:
         write_whole("--plot", args.plot, lambda path: history_figure(result, scene.title).savefig(path, dpi=120))
     analytic = None
@@ -54,7 +57,7 @@ def run(args) -> str:
     if args.json:
         return to_json({"scene": scene.path, "title": scene.title, **result.as_dict(),
                         **({"analytic": analytic} if analytic else {})})
-    return _text(scene, result, analytic)
+    return _text(scene, result, analytic) + (f"\nfigure written to {args.plot}" if args.plot else "")
 
 
 def _text(scene, result, analytic) -> str:

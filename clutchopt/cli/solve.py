@@ -2,11 +2,20 @@
 
 from __future__ import annotations
 
-from clutchopt.cli.options import add_case_argument, add_json_option, add_problem_options, add_store_options
+from clutchopt.cli.options import add_case_argument, add_json_option, add_parser, add_problem_options, add_store_options
 
 
 def add_command(commands) -> None:
-    solve = commands.add_parser("solve", help="optimise a case and verify the optimum in float64")
+    solve = add_parser(
+        commands, "solve", "optimise a case: the design of least mass (or cost) that meets every requirement",
+        "Prints the design, the derived quantities, every constraint re-evaluated in float64 with its margin and\n"
+        "the elasticity of the optimum to its limit, then the parameters the optimum is most sensitive to.\n"
+        "status is optimal only when IPOPT converged and the float64 check passes; an infeasible case gets a\n"
+        "diagnosis naming the requirements that conflict. With options.choose in the case, every choice of\n"
+        "library entries is solved and all are listed, the best first.",
+        ("clutchopt solve cases/wedge_paper.toml",
+         "clutchopt solve cases/wedge_paper.toml --mode geometry --objective cost",
+         "clutchopt solve cases/wedge_paper.toml --verify --json > design.json"))
     add_case_argument(solve)
     add_problem_options(solve)
     add_store_options(solve)
@@ -18,28 +27,35 @@ def add_command(commands) -> None:
 
 def run(args) -> str:
     from clutchopt.cases import load_case
-    from clutchopt.cli.options import open_store, record_solve, resolve_problem
-    from clutchopt.optimise import SolverOptions, solve_case
+    from clutchopt.cli.options import record_solve, recording, resolve_problem
+    from clutchopt.materials import solve_choices
+    from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.problem import case_formulation
-    from clutchopt.output import solution_text, to_json
+    from clutchopt.output import choices_text, library_json, library_text, solution_text, to_json
 
     case = load_case(args.case)
     resolve_problem(case, args)
-    store = open_store(args)
-    solution = solve_case(case, args.mode, args.objective, SolverOptions(tol=args.tol))
-    check = None
-    if args.verify:
-        from clutchopt.simulate import verify
+    with recording(args) as store:
+        ranked = solve_choices(case, args.mode, args.objective, SolverOptions(tol=args.tol))
+        _, case, solution = ranked[0]
+        check = None
+        if args.verify:
+            from clutchopt.simulate import verify
 
-        check = verify(case, solution)
-    record_solve(store, case, solution, check)
+            check = verify(case, solution)
+        for _, variant, variant_solution in ranked:
+            record_solve(store, variant, variant_solution, check if variant_solution is solution else None)
     if args.json:
-        return to_json({"case": case.path, "title": case.title, **solution.as_dict(),
-                        **({"verify": check} if check else {})})
+        choices = [{"choice": choice, **s.as_dict()} for choice, _, s in ranked] if len(ranked) > 1 else []
+        return to_json({"case": case.path, "title": case.title, **solution.as_dict(), "library": library_json(case),
+                        **({"choices": choices} if choices else {}), **({"verify": check} if check else {})})
     formulation = case_formulation(case, solution.mode)
-    text = solution_text(solution, formulation, case.title)
+    parts = [choices_text(ranked)] if len(ranked) > 1 else []
+    parts.append(solution_text(solution, formulation, case.title))
+    if case.filled:
+        parts.append(library_text(case))
     if check:
         from clutchopt.simulate.design import verify_text
 
-        text += "\n" + verify_text(check)
-    return text
+        parts.append(verify_text(check))
+    return "\n\n".join(parts)

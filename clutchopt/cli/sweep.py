@@ -8,8 +8,10 @@ import os
 from clutchopt.cli.options import (
     add_case_argument,
     add_json_option,
+    add_parser,
     add_problem_options,
     add_store_options,
+    first_choice_note,
     open_store,
     whole_number,
 )
@@ -20,21 +22,31 @@ COLUMNS_SHOWN = 12  # a sweep up to this many points prints one column per point
 
 
 def add_command(commands) -> None:
-    sweep = commands.add_parser("sweep", help="re-solve a case over a grid of requirements (warm-started, recorded)")
+    sweep = add_parser(
+        commands, "sweep", "re-solve a case over a grid of requirements: how the optimum moves with speed, sizes, ...",
+        "Each --vary names a case quantity and its values in the quantity's display unit (speed in rpm, pressures\n"
+        "in MPa, lengths in mm); several make a full-factorial grid. Each point starts from the last optimum;\n"
+        "every point is recorded in the run store, so a sweep stopped half-way continues with --resume.",
+        ("clutchopt sweep cases/wedge_paper.toml --vary speed=800,1000,1200",
+         "clutchopt sweep cases/wedge_paper.toml --mode geometry --vary speed=500:3000:26 --out sweep.csv",
+         "clutchopt sweep cases/wedge_paper.toml --vary speed=500:3000:40 --vary allowable_pressure=2:8:25 --jobs 2"))
     add_case_argument(sweep)
     sweep.add_argument("--vary", action="append", required=True, metavar="NAME=START:STOP:COUNT|NAME=V1,V2,...",
                        help="a case quantity in its display unit (speed in rpm, pressures in MPa, lengths in mm); "
                             "repeat for a full-factorial grid")
-    sweep.add_argument("--zip", action="store_true", help="listed sweep: the i-th point takes the i-th value of each")
+    sweep.add_argument("--zip", action="store_true",
+                       help="pair the lists instead of crossing them: point i takes the i-th value of each --vary")
     add_problem_options(sweep)
     sweep.add_argument("--jobs", type=whole_number(1, MAX_JOBS), default=1,
-                       help=f"local worker processes, 1 to {MAX_JOBS} (default 1)")
-    sweep.add_argument("--dask", metavar="ADDRESS", help="run on an existing Dask cluster, e.g. tcp://host:8786")
+                       help=f"solve on N local processes, 1 to {MAX_JOBS} (default 1)")
+    sweep.add_argument("--dask", metavar="ADDRESS",
+                       help="solve on an existing Dask cluster, e.g. tcp://host:8786 (pip install 'clutchopt[dask]')")
     sweep.add_argument("--resume", action="store_true",
                        help="continue the latest identical sweep in the store; stored points are not solved again")
-    sweep.add_argument("--out", metavar="FILE", help="write the table: .csv, .parquet or .md")
+    sweep.add_argument("--out", metavar="FILE", help="also write the table, one row per point: .csv, .parquet or .md")
     sweep.add_argument("--quiet", action="store_true", help="no progress bar")
-    add_json_option(sweep, "one JSON object, SI units: every point's inputs and solution")
+    add_json_option(sweep, "print one JSON object instead of tables: every point's inputs and solution, SI values "
+                           "beside SI units")
     add_store_options(sweep)
     sweep.set_defaults(run=run)
 
@@ -73,7 +85,7 @@ def run(args) -> str:
         return to_json({"case": case.path, "mode": sweep.formulation.mode, "objective": sweep.objective.name,
                         "sweep_id": result.sweep_id, "points": [{"point": i, "values": values, **solution}
                         for i, (values, solution) in enumerate(zip(sweep.points, result.solutions))]})
-    text = sweep_text(sweep, result, store, args.out)
+    text = "\n".join(filter(None, [first_choice_note(case), sweep_text(sweep, result, store, args.out)]))
     if args.resume and not result.reused:
         text += "\n(nothing resumed: no stored points of an identical sweep)"
     return text

@@ -33,6 +33,7 @@ from clutchopt.model import (
     ComparisonRow,
     Coupling,
     Formulation,
+    MaterialRole,
     Objective,
     Output,
     Quantity,
@@ -81,6 +82,17 @@ QUANTITIES = POWER_DUTY_QUANTITIES + (
       "limits", 3.0, above=0),
     Q("ball_price", "EUR/kg", "price of the balls", "", "cost", above=0),
     Q("body_price", "EUR/kg", "price of the clutch body (drum, rotor), machined", "", "cost", above=0),
+)
+
+# --- What a case may take from the material library (clutchopt materials) ----------------------------------------
+MATERIALS = (
+    MaterialRole("ball_material", "materials", "balls; their density is the body's too (the model has one density)",
+                 {"density": "density", "elastic_modulus": "ball_modulus", "poisson": "ball_poisson",
+                  "price": "ball_price"}),
+    MaterialRole("body_material", "materials", "drum and rotor; the drum's surface sets the contact-stress limit",
+                 {"elastic_modulus": "drum_modulus", "poisson": "drum_poisson",
+                  "allowable_contact": "allowable_contact_stress"}),  # body_price is machined, not raw material
+    MaterialRole("friction_pair", "friction_pairs", "balls on the drum", {"friction_coefficient": "friction_coefficient"}),
 )
 
 
@@ -564,4 +576,5 @@ COUPLING = Coupling(
     default_mode="design",
     comparison=COMPARISON,
     case_checks=(_check_ranges,),
+    materials=MATERIALS,
 )

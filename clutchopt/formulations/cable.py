@@ -34,6 +34,7 @@ from clutchopt.model import (
     ComparisonRow,
     Coupling,
     Formulation,
+    MaterialRole,
     Objective,
     Output,
     Quantity,
@@ -107,6 +108,14 @@ QUANTITIES = (
       "2.5 EUR/kg", at_least=0),
     Q("cable_set_cost", "EUR", "per cable: rope, two clamps, weight and finger machining", "", "cost", "15 EUR",
       at_least=0),
+)
+
+# --- What a case may take from the material library (clutchopt materials) ----------------------------------------
+MATERIALS = (
+    MaterialRole("material", "materials", "fingers and clamp screws; its price is the half-coupling's and weights' too",
+                 {"density": "density", "allowable_bending": "allowable_finger_stress", "price": "material_price"}),
+    MaterialRole("thread_pair", "thread_pairs", "hub thread 5 and weight threads 16",
+                 {"friction_coefficient": "friction_coefficient", "allowable_pressure": "allowable_thread_pressure"}),
 )
 
 
@@ -621,4 +630,5 @@ COUPLING = Coupling(
     default_mode="paper",
     comparison=COMPARISON,
     case_checks=(_check_drives, _check_threads),
+    materials=MATERIALS,
 )

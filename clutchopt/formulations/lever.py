@@ -45,6 +45,7 @@ from clutchopt.model import (
     ComparisonRow,
     Coupling,
     Formulation,
+    MaterialRole,
     Objective,
     Output,
     Quantity,
@@ -96,6 +97,17 @@ QUANTITIES = DUTY_QUANTITIES + (  # I_M, n_b, t_p, T_p: the same duty as the wed
     Q("material_price", "EUR/kg", "price of weight and link material", "", "cost", "2.5 EUR/kg", at_least=0),
     Q("part_cost", "EUR", "machining per toggle: weight, two links, three pins", "", "cost", "15 EUR", at_least=0),
     Q("lining_price", "EUR/cm^2", "friction lining, bonded, per area", "", "cost", "0.02 EUR/cm^2", at_least=0),
+)
+
+# --- What a case may take from the material library (clutchopt materials) ----------------------------------------
+MATERIALS = (
+    MaterialRole("material", "materials", "weights, links, pins and spring flange",
+                 {"density": "density", "elastic_modulus": "elastic_modulus",
+                  "allowable_normal": "allowable_link_stress", "allowable_shear": "allowable_pin_shear",
+                  "price": "material_price"}),
+    MaterialRole("friction_pair", "friction_pairs", "linings of the pressure discs on the housing faces",
+                 {"friction_coefficient": "friction_coefficient", "allowable_pressure": "allowable_pressure",
+                  "density": "lining_density", "price": "lining_price"}),
 )
 
 
@@ -586,4 +598,5 @@ COUPLING = Coupling(
     default_mode="paper",
     comparison=COMPARISON,
     case_checks=(_check_case,),
+    materials=MATERIALS,
 )

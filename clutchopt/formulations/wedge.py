@@ -28,6 +28,7 @@ from clutchopt.model import (
     ComparisonRow,
     Coupling,
     Formulation,
+    MaterialRole,
     Objective,
     Output,
     Quantity,
@@ -73,6 +74,15 @@ QUANTITIES = DUTY_QUANTITIES + (
     Q("flank_finish_cost", "EUR/cm^2", "grinding cost per flank area", "", "cost", "0.05 EUR/cm^2", at_least=0),
     Q("printed_weight_mass", "kg", "m_r as printed in the paper's example", "m_r", "paper", None, above=0),
     Q("printed_finger_diameter", "mm", "d_n as printed in the paper's example", "d_n", "paper", None, above=0),
+)
+
+# --- What a case may take from the material library (clutchopt materials) ----------------------------------------
+MATERIALS = (
+    MaterialRole("material", "materials", "weights and fingers",
+                 {"density": "density", "allowable_bending": "allowable_bending_stress", "price": "material_price"}),
+    MaterialRole("friction_pair", "friction_pairs", "flanks of the weights in the groove of the driven half",
+                 {"friction_coefficient": "friction_coefficient", "allowable_pressure": "allowable_pressure",
+                  "price": "flank_finish_cost"}),
 )
 
 
@@ -445,4 +455,5 @@ COUPLING = Coupling(
     default_mode="paper",
     comparison=COMPARISON,
     case_checks=(_check_case,),
+    materials=MATERIALS,
 )

@@ -24,6 +24,12 @@ class ComparisonTable:
     notes: dict[str, str]
     solutions: dict[str, Solution]
 
+    def _repr_html_(self) -> str:
+        """Jupyter shows the comparison as the tables of ``clutchopt compare``."""
+        from clutchopt.output import comparison_html
+
+        return comparison_html(self)
+
     def as_dict(self) -> dict:
         return {
             "coupling": self.coupling,

@@ -138,6 +138,12 @@ class Solution:
     internal: np.ndarray | None = field(default=None, repr=False)  # scaled start-up states of the kept solve
     mesh: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False)  # start-up mesh: used, suggested
 
+    def _repr_html_(self) -> str:
+        """Jupyter shows a solution as the tables of ``clutchopt solve``."""
+        from clutchopt.output import solution_html
+
+        return solution_html(self)
+
     def at_bound(self, name: str) -> str:
         """"fixed", "lower", "upper" (within 1e-7 relative) or "" for a design variable."""
         lo, hi = self.bounds[name]
@@ -287,7 +293,7 @@ class Problem:
         return {v.name: float(value) for v, value in zip(self.formulation.variables, x[: len(scale)] * scale)}
 
     def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | None = None,
-              mesh: np.ndarray | None = None) -> Solution:
+              mesh: np.ndarray | None = None, refine: bool = True) -> Solution:
         """Solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one.
 
         With a start-up, the simulated start is what the limits are checked against, and the collocation's own
@@ -298,9 +304,10 @@ class Problem:
         simulation adds to the NLP's figure (defect correction) and the problem re-solves warm. Limits are always
         reported as the case gives them. A start-up problem without a start point starts from the optimum the
         papers' sizing gives (the same mode without the start-up), a design the start-up changes but does not
-        overturn. Integer variables keep their values while limits are moved in."""
-        if self.start_up is None:
-            return self._solve(case, start, warm)
+        overturn. Integer variables keep their values while limits are moved in. ``refine=False``: one solve on
+        ``mesh`` (or the warm solution's, or the first one), as it comes (for measuring what accuracy costs)."""
+        if self.start_up is None or not refine:
+            return self._solve(case, start, warm, mesh=mesh)
         if start is None and warm is None:
             sized = problem_for(self._base, self.objective.name, self.options).solve(case)
             start = sized.design if sized.status == "optimal" else None

@@ -289,6 +289,14 @@ class SweepResult:
     elapsed_s: float  # wall time of the solves
     solutions: list[dict]  # every point's solution (``Solution.as_dict()``, SI), in point order
 
+    def _repr_html_(self) -> str:
+        """Jupyter shows a sweep as its table, one row per point (the columns of ``clutchopt sweep --out``)."""
+        from html import escape
+
+        counts = ", ".join(f"{count} {status}" for status, count in self.frame["status"].value_counts().items())
+        table = self.frame.to_html(index=False, float_format=lambda v: f"{v:.6g}", na_rep="-")
+        return f"<div><p>{escape(f'Sweep: {len(self.frame)} points, {counts}')}</p>{table}</div>"
+
 
 class Sweep:
     """A case, the varied quantities, mode and objective: what defines a sweep and its resume key."""

@@ -30,6 +30,7 @@ class ConstraintCheck:
     scale: float  # the normaliser of the margin (SI)
     multiplier: float | None = None  # of the normalised constraint, objective normalised
     elasticity: float | None = None  # d ln(objective) / d ln(limit)
+    tolerance: float = FEASIBILITY_TOL  # largest relative violation that is feasible (a start-up's: its case's)
 
     def as_dict(self) -> dict:
         """SI values; ``unit`` is their SI unit, ``display_unit`` the one the tables show them in."""
@@ -54,7 +55,7 @@ def check_constraints(constraints: list[Constraint], tolerance: float = FEASIBIL
         checks.append(ConstraintCheck(
             name=c.name, equation=c.equation, sense=c.sense, value=float(values[worst]), limit=float(c.limit),
             margin=margin, active=abs(margin) <= ACTIVE_TOL or margin < 0, feasible=margin >= -tolerance,
-            unit=c.unit, description=c.description, scale=scale))
+            unit=c.unit, description=c.description, scale=scale, tolerance=tolerance))
     return checks
 
 

@@ -17,7 +17,16 @@ import pandas as pd
 from clutchopt.cases import Case, quantity_table
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.problem import Solution, case_formulation
-from clutchopt.output import _shown, _signed, sensitivity_rows
+from clutchopt.output import (
+    START_UP_ROWS,
+    _shown,
+    comparison_rows,
+    constraint_rows,
+    derived_rows,
+    design_rows,
+    html_table,
+    sensitivity_rows,
+)
 from clutchopt.report.sketch import sketch
 from clutchopt.store import versions
 
@@ -34,12 +43,7 @@ td.n{text-align:right;font-variant-numeric:tabular-nums}th{background:#f2f4f6}
 
 
 def _table(rows: list[dict], numeric: tuple[str, ...] = ()) -> str:
-    if not rows:
-        return '<p class="note">(none)</p>'
-    head = "".join(f"<th>{escape(str(c))}</th>" for c in rows[0])
-    body = "".join("<tr>" + "".join(f'<td{" class=n" if c in numeric else ""}>{v if c == "margin bar" else escape(str(v))}</td>'
-                                    for c, v in row.items()) + "</tr>" for row in rows)
-    return f"<table><tr>{head}</tr>{body}</table>"
+    return html_table(rows, numeric, markup=("margin bar",))
 
 
 def figure_svg(figure) -> str:
@@ -55,42 +59,41 @@ def _section(title: str, body: str, anchor: str) -> str:
 
 
 def requirements(case: Case) -> str:
-    rows = [{"key": r["key"], "symbol": r["symbol"], "value": r["value"], "description": r["description"]}
+    """The case's inputs; those the material library filled name their entry."""
+    names = {q.key: q.name for q in case.quantities}
+    rows = [{"key": r["key"], "symbol": r["symbol"], "value": r["value"],
+             "from the library": " = ".join(case.filled.get(names[r["key"]], ())), "description": r["description"]}
             for r in quantity_table(case.quantities, case.values)]
     return _table(rows, ("value",))
 
 
 def design(solution: Solution, formulation) -> str:
-    rows = [{"variable": v.name, "symbol": v.symbol, "value": _shown(solution.design[v.name], v.unit), "unit": v.unit,
-             "at bound": solution.at_bound(v.name) or "-", "description": v.description}
-            for v in formulation.variables]
-    derived = [{"quantity": name, "value": _shown(out.value, out.unit), "unit": out.unit,
-                "description": out.description} for name, out in solution.outputs.items()]
-    return _table(rows, ("value",)) + "<h3>Derived</h3>" + _table(derived, ("value",))
+    return (_table(design_rows(solution, formulation), ("value",)) + "<h3>Derived</h3>"
+            + _table(derived_rows(solution), ("value",)))
 
 
 def drawing(case: Case, solution: Solution, formulation) -> str:
-    svg = sketch(case.coupling, {**case.values, **solution.design})
+    optimised = {v.name for v in formulation.variables if solution.at_bound(v.name) != "fixed"}
+    svg = sketch(case.coupling, {**case.values, **solution.design},
+                 {name: out.value for name, out in solution.outputs.items()}, optimised)
     if svg is not None:
-        free = [v.symbol or v.name for v in formulation.variables if solution.at_bound(v.name) != "fixed"]
-        return (f"<figure>{svg}<figcaption>Dimensioned sketch of the optimum, to scale. Optimised: "
-                f"{escape(', '.join(free))}; every other dimension as the case gives it.</figcaption></figure>")
+        chosen = [v.symbol or v.name for v in formulation.variables if v.name in optimised]
+        return (f"<figure>{svg}<figcaption>Dimensioned sketch of the optimum, to scale. Optimised "
+                f"(red): {escape(', '.join(chosen))}; every other dimension as the case gives it or as it follows "
+                "from these.</figcaption></figure>")
     rows = [{"dimension": v.name, "symbol": v.symbol, "value": _shown(solution.design[v.name], v.unit),
              "unit": v.unit} for v in formulation.variables]
-    return (f'<p class="note">No sketch is drawn for the {escape(case.coupling)} coupling in this mode yet; '
-            "its dimensions are tabulated instead.</p>" + _table(rows, ("value",)))
+    return (f'<p class="note">No sketch can be drawn for this {escape(case.coupling)} design (a dimension it needs '
+            "is not given); its dimensions are tabulated instead.</p>" + _table(rows, ("value",)))
 
 
 def margins(solution: Solution) -> str:
     rows = []
-    for c in solution.constraints:
+    for c, row in zip(solution.constraints, constraint_rows(solution)):
         width = max(0.0, min(c.margin, 1.0)) * 200
-        rows.append({"constraint": c.name, "eq.": c.equation, "value": _shown(c.value, c.unit), "sense": c.sense,
-                     "limit": _shown(c.limit, c.unit), "unit": c.unit, "margin": f"{c.margin:+.2e}",
-                     "margin bar": f'<span class="bar{" active" if c.active else ""}" style="width:{width:.0f}px">'
-                                   "</span>",
-                     "active": "yes" if c.active else "no",
-                     "elasticity": _signed(c.elasticity)})
+        bar = f'<span class="bar{" active" if c.active else ""}" style="width:{width:.0f}px"></span>'
+        rows.append({**{k: v for k, v in row.items() if k not in ("active", "elasticity")}, "margin bar": bar,
+                     "active": row["active"], "elasticity": row["elasticity"]})
     return ('<p class="note">Re-evaluated in float64; margin relative to the limit; elasticity = '
             "d ln objective / d ln limit.</p>" + _table(rows, ("value", "limit", "margin", "elasticity")))
 
@@ -107,8 +110,7 @@ def comparison(case: Case) -> str:
     if get_coupling(case.coupling).comparison is None:
         return '<p class="note">This coupling has no comparison with a paper method.</p>'
     table = compare_case(case)
-    rows = [{"quantity": r["quantity"], "unit": r["display_unit"],
-             **{column: _shown(r[column], r["display_unit"]) for column in table.columns}} for r in table.rows]
+    rows, _ = comparison_rows(table)
     notes = "".join(f"<li><b>{escape(name)}</b>: {escape(note)}</li>" for name, note in table.notes.items()
                     if name in table.columns)
     return _table(rows, tuple(table.columns)) + f'<ul class="note">{notes}</ul>'
@@ -123,7 +125,15 @@ def simulation(case: Case, solution: Solution) -> str:
     figure, caption = report_figure(case, solution)
     if figure is None:
         return f'<p class="note">{escape(caption)}</p>'
-    return f"<figure>{figure_svg(figure)}<figcaption>{escape(caption)}</figcaption></figure>"
+    table = ""
+    if solution.start_up is not None:
+        start = solution.start_up
+        rows = [{"figure": name, "NLP": _shown(start.get(name), unit), "simulated": _shown(start.get(f"{name}_simulated"), unit),
+                 "unit": unit, "meaning": meaning} for name, unit, meaning in START_UP_ROWS if start.get(name) is not None]
+        table = (f'<p class="note">The start designed inside the NLP (Radau collocation, {start["intervals"]} intervals '
+                 f'per phase: {", ".join(start["phases"])}; points in the figure) beside the independent simulator '
+                 "(lines).</p>" + _table(rows, ("NLP", "simulated")))
+    return f"{table}<figure>{figure_svg(figure)}<figcaption>{escape(caption)}</figcaption></figure>"
 
 
 def sweep_plot(frame: pd.DataFrame) -> str:

@@ -145,6 +145,12 @@ def verify(case, solution) -> dict:
     missing = speed_law_missing(case.coupling, solution)
     if missing:
         return {"verified": False, "reason": missing}
+    if solution.start_up is not None:  # already started on the case's drive by the solve itself
+        start = solution.start_up
+        return {"verified": solution.status == "optimal", "reason": start["reason"],
+                "simulated_start_time": start["start_time_simulated"], "max_start_time": case.values["max_start_time"],
+                "friction_work": start["friction_work_simulated"],
+                "assumption": f"the case's [start_up] drive ({', '.join(start['effects'])})"}
     if "acceleration_time" not in case.values:
         return {"verified": False, "reason": f"the {case.coupling} case is sized without an acceleration time "
                                              "(give it a [start_up] section to design for a start)"}
@@ -166,6 +172,10 @@ def verify(case, solution) -> dict:
 
 
 def verify_text(check: dict) -> str:
+    if "max_start_time" in check:
+        return (f"verify: started on {check['assumption']}: lock-up after {check['simulated_start_time']:.6g} s "
+                f"against max_start_time {check['max_start_time']:.6g} s; friction work {check['friction_work']:.6g} J"
+                if math.isfinite(check["simulated_start_time"]) else f"verify: no lock-up - {check['reason']}")
     if "sized_acceleration_time" not in check:
         return f"verify: not simulated - {check['reason']}"
     if not check["verified"]:

@@ -1,21 +1,33 @@
-"""The start-up as a figure: speeds and slip above, friction torque and slip power below."""
+"""The start-up as a figure: speeds and slip above (in rpm, as cases and sweeps give them), friction torque and
+slip power below."""
 
 from __future__ import annotations
 
+import math
+
 import matplotlib
+import numpy as np
 
 matplotlib.use("Agg")
 from matplotlib.figure import Figure  # noqa: E402
 
+RPM = 30.0 / math.pi  # rpm per rad/s
 
-def history_figure(result, title: str = "") -> Figure:
+
+def history_figure(result, title: str = "", nlp: dict | None = None) -> Figure:
+    """Speeds and slip above, clutch torque and slip power below; ``nlp``: a solution's ``start_up`` (its NLP
+    trajectory, collocation nodes drawn as points over the simulated lines)."""
     h, head = result.history, result.headline
     fig = Figure(figsize=(7.5, 6.0), layout="constrained")
     top, bottom = fig.subplots(2, 1, sharex=True)
-    top.plot(h["t"], h["w_driver"], label="driving half")
-    top.plot(h["t"], h["w_driven"], label="driven half")
-    top.plot(h["t"], h["slip"], ":", label="slip")
-    top.set_ylabel("speed, rad/s")
+    top.plot(h["t"], h["w_driver"] * RPM, label="driving half")
+    top.plot(h["t"], h["w_driven"] * RPM, label="driven half")
+    top.plot(h["t"], h["slip"] * RPM, ":", label="slip")
+    if nlp is not None:
+        path = nlp["trajectory"]
+        top.plot(path["t"], np.asarray(path["w_driver"]) * RPM, ".", color="C0", ms=3, label="NLP nodes, driving")
+        top.plot(path["t"], np.asarray(path["w_driven"]) * RPM, ".", color="C1", ms=3, label="NLP nodes, driven")
+    top.set_ylabel("speed, rpm")
     top.legend(loc="best")
     lines = bottom.plot(h["t"], h["friction_torque"], color="C3", label="clutch torque")
     bottom.set_ylabel("torque, N*m")

@@ -1,0 +1,52 @@
+"""What the accuracy of the start time costs: the start-up cases solved at fixed collocation intervals, on the
+first (graded) mesh and on meshes adapted to the simulated start, against the independent simulator; and the
+default adaptive solve (mesh adaptation, then doubling, until the case's tolerance)."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import replace
+from pathlib import Path
+
+from clutchopt.cases import load_case
+from clutchopt.formulations import get_coupling
+from clutchopt.optimise.problem import SolverOptions, problem_for, solve_case
+from clutchopt.optimise.start_up import MESH_STEPS, Structure
+
+CASES = Path(__file__).resolve().parents[2] / "cases"
+
+
+def _row(case, label: str, intervals, mesh: str, solution, seconds: float) -> dict:
+    start = solution.start_up or {}
+    return {"case": label, "intervals": intervals, "mesh": mesh, "status": solution.status,
+            "objective": solution.objective, "start_time_s": start.get("start_time"),
+            "start_time_rel_error": abs(start["discretisation_error"]["start_time"]) if start else None,
+            "solves": solution.solver.solves, "time_s": seconds}
+
+
+def start_up_rows(config) -> list[dict]:
+    """One row per case, interval count (``config.start_up_intervals``) and mesh (first, then each adaptation),
+    and the default solve; the time of a solve includes its re-simulation. The error is the NLP's start time
+    against the simulated one."""
+    rows = []
+    for path in sorted(CASES.glob("*_motor_start.toml")):
+        case = load_case(path)
+        formulation = get_coupling(case.coupling).formulation(case.options.get("mode"))
+        objective = case.options.get("objective", "mass")
+        start = problem_for(formulation, objective).solve(case).design
+        for count in config.start_up_intervals:
+            problem = problem_for(formulation, objective, SolverOptions(), replace(Structure.of(case), intervals=count))
+            started = time.perf_counter()
+            solution = problem.solve(case, start, refine=False)
+            rows.append(_row(case, path.stem, count, "graded", solution, time.perf_counter() - started))
+            for step in range(1, MESH_STEPS + 1):
+                if solution.mesh is None:
+                    break
+                started = time.perf_counter()
+                solution = problem.solve(case, warm=solution, mesh=solution.mesh[1], refine=False)
+                rows.append(_row(case, path.stem, count, f"adapted x{step}", solution, time.perf_counter() - started))
+        started = time.perf_counter()
+        solution = solve_case(case)
+        rows.append(_row(case, path.stem, solution.start_up["intervals"] if solution.start_up else None,
+                         "default (adaptive)", solution, time.perf_counter() - started))
+    return rows

@@ -1,0 +1,42 @@
+"""``clutchopt init COUPLING [--mode M] [-o case.toml]``: a new case to start from, complete and commented."""
+
+from __future__ import annotations
+
+from clutchopt.cli.options import COUPLING_MODES, MODE_HELP, add_parser
+from clutchopt.errors import InputError
+
+
+def add_command(commands) -> None:
+    init = add_parser(
+        commands, "init",
+        "write a new case to start from: every field with its unit, meaning, typical range and source",
+        "The case solves as written. Edit the numbers of your duty, pick materials by name in [library]\n"
+        "(clutchopt materials lists them), then solve it. Without -o the case is printed.",
+        ("clutchopt init lever -o mine.toml              then: clutchopt solve mine.toml",
+         "clutchopt init wedge --mode geometry -o w.toml  free geometry, not the paper's",
+         "clutchopt init ball | less                      read it first"))
+    init.add_argument("coupling", choices=tuple(COUPLING_MODES), metavar="COUPLING",
+                      help=f"which coupling: {', '.join(COUPLING_MODES)} (clutchopt couplings describes them)")
+    init.add_argument("--mode", metavar="MODE", help=MODE_HELP.replace("Default: the case's [options] mode, then",
+                                                                       "Written into [options]; default:"))
+    init.add_argument("-o", "--out", metavar="FILE", help="write the case to FILE (default: print it)")
+    init.add_argument("--force", action="store_true", help="overwrite FILE if it exists")
+    init.set_defaults(run=run)
+
+
+def run(args) -> str:
+    from pathlib import Path
+
+    from clutchopt.template import case_template
+
+    text = case_template(args.coupling, args.mode)
+    if not args.out:
+        return text.rstrip("\n")
+    path = Path(args.out)
+    if path.exists() and not args.force:
+        raise InputError("--out", f"{path} exists; give another name, or --force to overwrite it")
+    try:
+        path.write_text(text, encoding="utf-8")
+    except OSError as exc:
+        raise InputError("--out", f"cannot write {path} ({exc.strerror or exc})") from None
+    return f"wrote {path}: a new {args.coupling} case; solve it with: clutchopt solve {path}"

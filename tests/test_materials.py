@@ -1,0 +1,194 @@
+"""The material library: each entry sourced and consistent with the rules it states; cases take its values where
+they give none; options.choose solves every choice, best first; bad names are refused naming the field."""
+
+import json
+import math
+import shutil
+import subprocess
+import sys
+import tomllib
+
+import pytest
+
+from clutchopt.cases import parse_case, read_toml
+from clutchopt.errors import InputError
+from clutchopt.formulations import MODULES, get_coupling
+from clutchopt.materials import FIELDS, library, solve_choices
+from clutchopt.template import case_template
+from clutchopt.units import ureg
+from tests.conftest import CASES, ROOT
+from tests.test_json_units import assert_si_units, run
+
+STEELS_AND_IRONS = list(library()["materials"].values())
+
+
+def test_every_entry_names_its_source_and_describes_itself():
+    assert {kind: len(entries) for kind, entries in library().items()} == {
+        "materials": 9, "friction_pairs": 7, "thread_pairs": 3}
+    for entries in library().values():
+        for entry in entries.values():
+            assert len(entry.source) > 20 and entry.description, entry.name
+
+
+@pytest.mark.parametrize("entry", STEELS_AND_IRONS, ids=lambda e: e.name)
+def test_allowable_stresses_follow_the_stated_rules(entry):
+    """materials.toml: [sigma_b] = [sigma] = R_e / 2.5 (grey iron R_m / 4), [tau] = [sigma] / sqrt(3), to 1 MPa."""
+    v = entry.values
+    if "allowable_normal" not in v:  # hardened steels: contact only
+        assert "allowable_contact" in v and "yield_strength" not in v
+        return
+    expected = v["yield_strength"] / 2.5 if "yield_strength" in v else v["tensile_strength"] / 4
+    assert v["allowable_bending"] == v["allowable_normal"] == pytest.approx(expected, abs=1e6)
+    assert v["allowable_shear"] == pytest.approx(v["allowable_normal"] / math.sqrt(3), abs=1e6)
+    assert v["allowable_contact"] < 1.3e9  # S_c / 1.3 <= 1240 MPa / 1.3 (hardened surfaces) plus rounding
+
+
+@pytest.mark.parametrize("kind", ["friction_pairs", "thread_pairs"])
+def test_nominal_friction_lies_in_its_scatter_range(kind):
+    for entry in library()[kind].values():
+        v = entry.values
+        assert v["friction_min"] <= v["friction_coefficient"] <= v["friction_max"], entry.name
+
+
+@pytest.mark.parametrize("coupling", MODULES)
+def test_each_role_maps_library_fields_onto_quantities_of_the_same_dimension(coupling):
+    c = get_coupling(coupling)
+    quantities = {q.name: q for q in c.quantities}
+    assert c.materials
+    for role in c.materials:
+        fields = {q.name: q for q in FIELDS[role.kind]}
+        for field, quantity in role.fills.items():
+            assert ureg.Quantity(1, fields[field].unit).dimensionality == \
+                ureg.Quantity(1, quantities[quantity].unit).dimensionality, (role.key, field)
+
+
+LEVER = read_toml(CASES / "lever_centrifuge.toml")
+
+
+def lever(**changes):
+    data = {**LEVER, "material": dict(LEVER["material"])}
+    for section, values in changes.items():
+        data[section] = {**data.get(section, {}), **values}
+    return data
+
+
+def test_the_library_fills_what_the_case_leaves_out_and_explicit_values_win():
+    data = lever(library={"friction_pair": "sintered_bronze_dry", "material": "41Cr4_QT"})
+    del data["material"]["friction_coefficient"], data["material"]["allowable_link_stress"]
+    case = parse_case(data)
+    v = case.values
+    assert v["friction_coefficient"] == 0.3 and v["lining_density"] == 5500 and v["lining_price"] == 800  # EUR/m^2
+    assert v["allowable_link_stress"] == 264e6 and v["elastic_modulus"] == 210e9
+    assert v["allowable_pressure"] == 0.25e6 and v["allowable_pin_shear"] == 80e6  # the case's own, not 0.3, 152
+    assert case.filled["friction_coefficient"] == ("friction_pair", "sintered_bronze_dry")
+    assert "allowable_pressure" not in case.filled and "allowable_pin_shear" not in case.filled
+
+
+@pytest.mark.parametrize(("changes", "message"), [
+    ({"library": {"friction_pair": "sintered_brnze"}},
+     "library.friction_pair: unknown friction pair 'sintered_brnze'; known: organic_dry, organic_oiled, "),
+    ({"library": {"material": "C45"}}, "library.material: unknown material 'C45'; known: S235JR, C45_N, C45_QT"),
+    ({"library": {"thread_pair": "steel_bronze_greased"}}, "library.thread_pair: unknown key; [library] takes "
+                                                           "material, friction_pair for this coupling"),
+    ({"options": {"choose": {"friction_pair": []}}}, "options.choose.friction_pair: must be a list of different"),
+    ({"options": {"choose": {"friction_pair": ["organic_dry", "organic_dry"]}}}, "options.choose.friction_pair"),
+    ({"options": {"choose": {"friction_pair": ["organic_dry", "felt"]}}},
+     "options.choose.friction_pair: unknown friction pair 'felt'"),
+    ({"options": {"choose": {"lining": ["organic_dry"]}}}, "options.choose.lining: unknown role"),
+    ({"options": {"choose": "organic_dry"}}, "options.choose: must be a table of lists"),
+])
+def test_bad_library_names_are_refused_naming_the_field(changes, message):
+    with pytest.raises(InputError) as error:
+        parse_case(lever(**changes))
+    assert message in str(error.value)
+
+
+def test_every_choice_is_checked_when_the_case_is_read():
+    """The pin's shear allowable comes from the library here; hardened 100Cr6 has none (contact only)."""
+    data = lever(options={"choose": {"material": ["C45_QT", "100Cr6_hardened"]}})
+    del data["material"]["allowable_pin_shear"]
+    with pytest.raises(InputError, match=r"options\.choose\.material: 100Cr6_hardened has no allowable_shear, "
+                                         r"which material\.allowable_pin_shear takes from the library"):
+        parse_case(data)
+    with pytest.raises(InputError, match=r'library: must be a table of names, e\.g\. \[library\] friction_pair = '
+                                         r'"organic_dry"'):
+        parse_case({**LEVER, "library": 5})
+
+
+def test_a_missing_field_the_library_could_fill_says_so():
+    data = lever()
+    del data["material"]["friction_coefficient"]
+    with pytest.raises(InputError, match=r"material\.friction_coefficient: missing .*; or name a friction_pair"):
+        parse_case(data)
+
+
+def test_choose_solves_every_pair_and_ranks_them_by_the_closed_form():
+    """Wedge, paper mode: m_r = 2 T_max sin(alpha) / (f z (r1 + r2) w^2 r_c) (eq. 27, consistent), so the weight
+    mass goes as 1/f and the finger, sized by F_fr = T_max / (z (r1 + r2)/2), not at all: the steel pair
+    (f = 0.18) needs 0.07 / 0.18 of the weight the oiled bronze (f = 0.07) needs, and comes first."""
+    data = tomllib.loads(case_template("wedge"))  # the paper's duty on 70 mm flanks (steel: q within 0.25 MPa)
+    data["options"] = {"choose": {"friction_pair": ["sintered_bronze_oiled", "steel_steel_dry"]}}
+    ranked = solve_choices(parse_case(data))
+    assert [choice["friction_pair"] for choice, _, _ in ranked] == ["steel_steel_dry", "sintered_bronze_oiled"]
+    (_, _, steel), (_, _, bronze) = ranked
+    assert steel.status == bronze.status == "optimal"
+    assert steel.outputs["weight_mass"].value / bronze.outputs["weight_mass"].value == pytest.approx(0.07 / 0.18,
+                                                                                                     rel=1e-8)
+    assert steel.design["finger_diameter"] == pytest.approx(bronze.design["finger_diameter"], rel=1e-8)
+
+
+def test_solve_reports_the_choices_and_the_library_in_text_and_json(tmp_path):
+    path = tmp_path / "choose.toml"
+    path.write_text(case_template("lever").replace("# choose = ", "choose = "))
+    text = run("solve", path, "--no-store")
+    assert text.startswith("Choices of options.choose, best first\n")
+    assert "From the material library (values the case gives itself win):" in text
+    assert "friction_pair = organic_dry: friction_coefficient 0.3 (scatter 0.25 to 0.45)" in text
+    data = json.loads(run("solve", path, "--json", "--no-store"))
+    assert [c["choice"]["friction_pair"] for c in data["choices"]] == ["organic_dry", "cermet_dry",
+                                                                       "sintered_bronze_dry"]
+    masses = [c["objective"]["value"] for c in data["choices"]]
+    assert masses == sorted(masses) and data["objective"]["value"] == masses[0]
+    assert data["library"]["friction_pair"]["values"]["allowable_pressure"] == {
+        "value": 250000.0, "unit": "Pa", "display_unit": "MPa"}
+    assert_si_units(data)
+
+
+def test_materials_lists_every_entry_in_text_and_si_json():
+    text = run("materials")
+    for entries in library().values():
+        for name in entries:
+            assert f"\n  {name}: " in text
+    data = json.loads(run("materials", "--json"))
+    assert assert_si_units(data) > 100
+    c45 = next(e for e in data["materials"] if e["name"] == "C45_QT")
+    assert c45["values"]["allowable_bending"] == {"value": 172e6, "unit": "Pa", "display_unit": "MPa"}
+    organic = next(e for e in data["friction_pairs"] if e["name"] == "organic_dry")
+    assert organic["values"]["max_temperature"]["value"] == pytest.approx(523.15)  # 250 degC in kelvin
+    assert organic["values"]["price"] == {"value": 200.0, "unit": "EUR/m^2", "display_unit": "EUR/cm^2"}
+
+
+def test_a_build_ships_the_library(tmp_path):
+    """A non-editable install has the data files: build the package from the tracked files (setuptools'
+    build_py, the step a wheel is made of) and look for them."""
+    source, built = tmp_path / "src", tmp_path / "lib"
+    tracked = subprocess.run(["git", "ls-files"], cwd=ROOT, capture_output=True, text=True).stdout.split()
+    if not tracked:
+        pytest.skip("not a git checkout")
+    for name in tracked + [str(p.relative_to(ROOT)) for p in (ROOT / "clutchopt" / "data").iterdir()]:
+        if (ROOT / name).is_file():
+            (source / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy(ROOT / name, source / name)
+    result = subprocess.run([sys.executable, "-c", "from setuptools import setup; setup()", "-q", "build_py",
+                             "--build-lib", str(built)], cwd=source, capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr[-2000:]
+    assert (built / "clutchopt" / "data" / "materials.toml").is_file()
+    assert (built / "clutchopt" / "data" / "starting_values.toml").is_file()
+
+
+def test_commands_that_solve_one_choice_say_which(tmp_path):
+    path = tmp_path / "choose.toml"
+    path.write_text(case_template("cable").replace("# choose = ", "choose = "))
+    text = run("compare", path)
+    assert text.startswith("options.choose: this command takes the first choice (thread_pair = "
+                           "steel_bronze_greased); clutchopt solve compares them all\n")
