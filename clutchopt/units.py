@@ -198,13 +198,16 @@ def to_si(field: str, raw: object, unit: str) -> float:
             why = f"unknown unit {', '.join(map(repr, names))}" if names else type(exc).__name__
             raise InputError(field, f"cannot read {raw.strip()!r} as a quantity ({why}); expected "
                                     f"{_QUANTITY_EXAMPLE}") from None
-        if given.offset:
+        if given.offset and not expected.offset:
             raise InputError(field, f"{raw.strip()!r} is a temperature on a scale with an offset; write a "
                                     "temperature difference in K (or delta_degC)")
         if unit_text and expected.angle and given.angle != expected.angle and given.dimensions == expected.dimensions:
             raise InputError(field, f"{raw.strip()!r} is ambiguous: {_SPEED_HINT}" if expected.dimensions
                              else f"expected an angle (e.g. in {unit}), got {raw.strip()!r}, which is no angle")
-        value = number * given.factor if number else 0.0  # 0 * inf would be nan; inf is refused below
+        if given.offset:  # an absolute temperature (the field is one too): pint adds the offset
+            value = float(ureg.Quantity(number, unit_text).to_base_units().magnitude)
+        else:
+            value = number * given.factor if number else 0.0  # 0 * inf would be nan; inf is refused below
     else:
         raise InputError(field, f"expected a quantity in {unit}, got {type(raw).__name__} {_short(raw)}")
     if given.dimensions != expected.dimensions:

@@ -42,7 +42,8 @@ def time_limit(seconds: int):
 def test_at_least_150_distinct_hostile_inputs():
     assert len(HOSTILE) >= 150 and len({h.name for h in HOSTILE}) == len(HOSTILE)
     commands = {h.argv[0] for h in HOSTILE if h.argv}
-    assert commands >= {"solve", "compare", "simulate", "sweep", "pareto", "report", "runs", "bench"}
+    assert commands >= {"init", "couplings", "materials", "solve", "compare", "simulate", "sweep", "pareto", "report",
+                        "runs", "bench"}
 
 
 def check(hostile: Hostile, code: int, out: str, err: str, store_exists: bool) -> None:

@@ -116,3 +116,8 @@ def test_a_temperature_rise_is_no_temperature():
     assert to_si("start_up.limits.max_temperature_rise", "15 delta_degC", "K") == 15.0
     with pytest.raises(InputError, match="a temperature on a scale with an offset"):
         to_si("start_up.limits.max_temperature_rise", "15 degC", "K")
+
+
+def test_an_absolute_temperature_takes_celsius():
+    assert to_si("friction_pairs.x.max_temperature", "250 degC", "degC") == pytest.approx(523.15, rel=1e-15)
+    assert to_si("friction_pairs.x.max_temperature", "523.15 K", "degC") == 523.15
