@@ -29,7 +29,7 @@ from types import SimpleNamespace
 from typing import Any
 
 from clutchopt import materials
-from clutchopt.errors import InputError, Problems
+from clutchopt.errors import InputError, Problems, shown_value
 from clutchopt.files import CASE_BYTES, read_text, shown
 from clutchopt.formulations.start_up import QUANTITIES as START_UP_QUANTITIES
 from clutchopt.formulations.start_up import SPRING_PRELOAD, StartUpSpec
@@ -182,12 +182,13 @@ def _parse_options(options: Any, coupling, problems: Problems, start_up: bool) -
                 | ({"spring_preload"} if start_up else set()))
     if not isinstance(free, list) or not all(isinstance(name, str) and name in freeable for name in free):
         problems.errors.append(InputError("options.free", f"must be a list drawn from {sorted(freeable)}, "
-                                                          f"got {_short(free)}"))
+                                                          f"got {shown_value(free)}"))
     elif len(set(free)) != len(free):
         problems.errors.append(InputError("options.free", f"lists a variable twice: {free!r}"))
     for name in ("mode", "objective"):
         if name in options and not (isinstance(options[name], str) and options[name].strip()):
-            problems.errors.append(InputError(f"options.{name}", f"must be a name (text), got {_short(options[name])}"))
+            problems.errors.append(InputError(f"options.{name}",
+                                              f"must be a name (text), got {shown_value(options[name])}"))
     return {name: value for name, value in options.items() if name in _OPTION_KEYS}
 
 
@@ -219,11 +220,6 @@ def _table(value: Any) -> dict:
     return value if isinstance(value, dict) else {}
 
 
-def _short(value: Any) -> str:
-    text = repr(value)
-    return text if len(text) <= 80 else text[:70] + f"... ({len(text)} characters)"
-
-
 def _parse_bounds(table: Any, coupling, problems: Problems, start_up: bool = False) -> dict[str, tuple[float, float]]:
     if not isinstance(table, dict):
         problems.errors.append(InputError("bounds", "must be a table of [lower, upper] pairs"))
@@ -237,7 +233,7 @@ def _parse_bounds(table: Any, coupling, problems: Problems, start_up: bool = Fal
             if variable is None:
                 raise InputError(key, f"unknown design variable; bounds may be set for {', '.join(variables)}")
             if not isinstance(pair, list) or len(pair) != 2:
-                raise InputError(key, f"must be a pair [lower, upper], got {_short(pair)}")
+                raise InputError(key, f"must be a pair [lower, upper], got {shown_value(pair)}")
             lower, upper = (variable.check(to_si(key, raw, variable.unit), key) for raw in pair)
             if not lower < upper:
                 raise InputError(key, f"lower bound {variable.show(lower)} must be below upper bound "

@@ -28,6 +28,15 @@ class InputError(ValueError):
         return combined
 
 
+def shown_value(value: object, limit: int = 60) -> str:
+    """``repr`` of a value for a message, cut to a readable length (a 20,000-element list is not printed)."""
+    try:
+        text = repr(value)
+    except RecursionError:  # a structure nested deeper than repr goes
+        return f"a deeply nested {type(value).__name__}"
+    return text if len(text) <= limit else f"{text[:limit - 10]}... ({len(text)} characters)"
+
+
 class Problems:
     """Collects the problems of an input field by field, so that one run reports them all.
 

@@ -13,7 +13,7 @@ from typing import NamedTuple
 
 import pint
 
-from clutchopt.errors import InputError
+from clutchopt.errors import InputError, shown_value
 
 ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
 ureg.define("EUR = [currency]")
@@ -209,19 +209,13 @@ def to_si(field: str, raw: object, unit: str) -> float:
         else:
             value = number * given.factor if number else 0.0  # 0 * inf would be nan; inf is refused below
     else:
-        raise InputError(field, f"expected a quantity in {unit}, got {type(raw).__name__} {_short(raw)}")
+        raise InputError(field, f"expected a quantity in {unit}, got {type(raw).__name__} {shown_value(raw)}")
     if given.dimensions != expected.dimensions:
-        raise InputError(field, f"expected {describe_dimension(unit)} (e.g. in {unit or 'SI'}), got {_short(raw)}, "
-                                f"which is {describe_dimension(unit_text)}")
+        raise InputError(field, f"expected {describe_dimension(unit)} (e.g. in {unit or 'SI'}), got "
+                                f"{shown_value(raw)}, which is {describe_dimension(unit_text)}")
     if not math.isfinite(value):
-        raise InputError(field, f"must be a finite number within the float64 range, got {_short(raw)}")
+        raise InputError(field, f"must be a finite number within the float64 range, got {shown_value(raw)}")
     return value
-
-
-def _short(raw: object) -> str:
-    """``repr`` of a value for a message, cut to a readable length."""
-    text = repr(raw)
-    return text if len(text) <= 60 else text[:50] + f"... ({len(text)} characters)"
 
 
 def from_si(value: float, unit: str) -> float:

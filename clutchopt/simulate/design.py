@@ -16,7 +16,7 @@ import math
 from pathlib import Path
 from types import SimpleNamespace
 
-from clutchopt.errors import InputError, Problems
+from clutchopt.errors import InputError, Problems, shown_value
 from clutchopt.files import CASE_BYTES, read_text
 from clutchopt.formulations.start_up import RADIAL_EFFECTS, engagement_speed_squared
 from clutchopt.simulate import effects as fx
@@ -64,9 +64,10 @@ def design_from_json(path: str | Path, coupling: str, case_path: str | Path | No
     if not isinstance(data, dict) or data.get("coupling") != coupling or not isinstance(data.get("design"), dict):
         raise InputError(field, f"{path} is not a solved {coupling} design (clutchopt solve --json)")
     if case_path is not None and Path(str(data.get("case", ""))).name != Path(case_path).name:
-        raise InputError(field, f"{path} was solved for {_short(data.get('case'))}, not for {Path(case_path).name}")
+        raise InputError(field, f"{path} was solved for {shown_value(data.get('case'))}, "
+                                f"not for {Path(case_path).name}")
     if data.get("status") != "optimal":
-        raise InputError(field, f"{path}: the design's status is {_short(data.get('status'))}, not optimal")
+        raise InputError(field, f"{path}: the design's status is {shown_value(data.get('status'))}, not optimal")
     formulation = _formulation(coupling, str(data.get("mode")))
     design, checked = data["design"], {}
     problems = Problems()
@@ -80,7 +81,7 @@ def design_from_json(path: str | Path, coupling: str, case_path: str | Path | No
                 value = math.nan
             if not math.isfinite(value):
                 raise InputError(f"{field} design.{variable.name}", f"must be a finite number (SI), got "
-                                                                    f"{_short(design.get(variable.name))}")
+                                                                    f"{shown_value(design.get(variable.name))}")
             checked[variable.name] = variable.check(value, f"{field} design.{variable.name}")
     problems.raise_any()
     return formulation.mode, checked
@@ -88,11 +89,6 @@ def design_from_json(path: str | Path, coupling: str, case_path: str | Path | No
 
 def _no_constant(name: str):
     raise ValueError(f"{name} is not a number a solved design can hold")
-
-
-def _short(value) -> str:
-    text = repr(value)
-    return text if len(text) <= 60 else text[:50] + "..."
 
 
 def centrifugal_law(case, mode: str, design: dict[str, float], effects: tuple[str, ...],

@@ -139,7 +139,8 @@ def range_problems(model: Model) -> list[str]:
               ("load torque", model.load.largest(), LOAD),
               ("clutch torque at the driving speed", model.law.capacity(speed), (0.0, 2 * TORQUE[1], "N*m"))]  # 2k
     if motor:
-        checks += [("motor breakdown torque", motor.breakdown_torque, TORQUE), ("motor inertia", motor.inertia, INERTIA),
+        checks += [("motor breakdown torque", motor.breakdown_torque, TORQUE),
+                   ("motor inertia", motor.inertia, INERTIA),
                    ("motor breakdown slip", motor.breakdown_slip, BREAKDOWN_SLIP)]
     if model.has("friction_heat"):
         checks += [("heat capacity", model.heat_capacity, HEAT_CAPACITY),
