@@ -11,7 +11,6 @@ Layout of a case::
     [options]                       # optional
     free = ["flank_angle"]          # variables fixed at the case value unless listed here
     objective = "mass"
-
     [library]                       # optional: entries of the material library (clutchopt materials)
     material = "C45_QT"             # fills the fields it maps to, unless the case gives them
     friction_pair = "organic_dry"
@@ -21,6 +20,7 @@ Every problem raises :class:`~clutchopt.errors.InputError` naming the field (``d
 
 from __future__ import annotations
 
+import difflib
 import math
 import tomllib
 from dataclasses import dataclass, field, replace
@@ -29,7 +29,8 @@ from types import SimpleNamespace
 from typing import Any
 
 from clutchopt import materials
-from clutchopt.errors import InputError
+from clutchopt.errors import InputError, Problems, shown_value
+from clutchopt.files import CASE_BYTES, read_text, shown
 from clutchopt.formulations.start_up import QUANTITIES as START_UP_QUANTITIES
 from clutchopt.formulations.start_up import SPRING_PRELOAD, StartUpSpec
 from clutchopt.model import REQUIRED, Quantity
@@ -79,17 +80,16 @@ class Case:
 
 
 def read_toml(path: str | Path) -> dict:
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InputError(str(path), "no such file") from None
-    except OSError as exc:
-        raise InputError(str(path), f"cannot read ({exc.strerror})") from None
+    """A TOML file (case or scene): a regular UTF-8 file of at most 1 MiB, parsed; problems name the path."""
+    text = read_text(path, CASE_BYTES)
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise InputError(str(path), f"not valid TOML: {exc}") from None
+        raise InputError(shown(path), f"not valid TOML: {exc}") from None
+    except ValueError as exc:  # an integer of more than 4300 digits
+        raise InputError(shown(path), f"not valid TOML: {str(exc).split(';')[0]}") from None
+    except RecursionError:
+        raise InputError(shown(path), "not valid TOML for clutchopt: arrays or tables nested too deeply") from None
 
 
 def load_case(path: str | Path) -> Case:
@@ -98,6 +98,7 @@ def load_case(path: str | Path) -> Case:
 
 
 def parse_case(data: dict, path: str = "") -> Case:
+    """Check every field of a case; all problems found are raised together (one InputError carrying them)."""
     from clutchopt.formulations import get_coupling
 
     if "coupling" not in data:
@@ -105,78 +106,139 @@ def parse_case(data: dict, path: str = "") -> Case:
     coupling = get_coupling(data["coupling"])
     declared = {q.key: q for q in coupling.quantities}
     sections = {q.section for q in coupling.quantities}
+    problems = Problems()
 
     values: dict[str, float] = {}
     for key, table in data.items():
         if key in _TOP_LEVEL or key in _EXTRA_SECTIONS:
             continue
-        if key not in sections or not isinstance(table, dict):
-            raise InputError(key, f"unknown section or key; this {coupling.name} case may have "
-                                  f"{', '.join(sorted(sections | set(_EXTRA_SECTIONS)))}")
+        if key in sections and not isinstance(table, dict):
+            problems.errors.append(InputError(key, f"must be a table [{key}] of "
+                                   f"{', '.join(q.name for q in coupling.quantities if q.section == key)}"))
+            continue
+        if key not in sections:
+            known = sections | set(_EXTRA_SECTIONS)
+            problems.errors.append(InputError(key, f"unknown section or key{_did_you_mean(key, known)}; this "
+                                                   f"{coupling.name} case may have {', '.join(sorted(known))}"))
+            continue
         for name, raw in table.items():
             quantity = declared.get(f"{key}.{name}")
-            if quantity is None:
-                raise InputError(f"{key}.{name}", f"unknown key; [{key}] takes "
-                                                  f"{', '.join(q.name for q in coupling.quantities if q.section == key)}")
-            values[quantity.name] = quantity.check(to_si(quantity.key, raw, quantity.unit))
+            with problems.field():
+                if quantity is None:
+                    known = [q.name for q in coupling.quantities if q.section == key]
+                    raise InputError(f"{key}.{name}", f"unknown key{_did_you_mean(name, known)}; [{key}] takes "
+                                                      f"{', '.join(known)}")
+                values[quantity.name] = quantity.check(to_si(quantity.key, raw, quantity.unit))
 
     options = data.get("options", {})
-    choose = (materials.check_choose(options["choose"], coupling.materials)
-              if isinstance(options, dict) and "choose" in options else {})
-    filled = materials.fill(data.get("library", {}), coupling.materials, coupling.quantities, values,
-                            choose)
+    choose, filled = {}, {}
+    with problems.field():
+        choose = (materials.check_choose(options["choose"], coupling.materials)
+                  if isinstance(options, dict) and "choose" in options else {})
+    with problems.field():
+        filled = materials.fill(data.get("library", {}), coupling.materials, coupling.quantities, values, choose)
+    given = {q.name for q in coupling.quantities if q.name in _table(data.get(q.section))}
     for quantity in coupling.quantities:
-        if quantity.name in values:
+        if quantity.name in given or quantity.name in values:
             continue
-        if quantity.default is REQUIRED:
-            raise InputError(quantity.key, f"missing ({quantity.description}, in {quantity.unit or 'SI'})"
-                                           + materials.hint(coupling.materials, quantity.name))
-        if quantity.default is not None:
-            values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
+        with problems.field():
+            if quantity.default is REQUIRED:
+                raise InputError(quantity.key, f"missing ({quantity.description}, in {quantity.unit or 'SI'})"
+                                               + materials.hint(coupling.materials, quantity.name))
+            if quantity.default is not None:
+                values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
 
     start_up = None
-    if "start_up" in data:
+    if "start_up" in data and not problems:  # its defaults come from the duty's values, so those must be sound
         from clutchopt.start_up_case import parse_start_up
 
-        start_values, start_up = parse_start_up(data["start_up"], coupling, values)
-        values.update(start_values)
-    bounds = _parse_bounds(data.get("bounds", {}), coupling, start_up is not None)
-    if not isinstance(options, dict):
-        raise InputError("options", "must be a table")
-    for name in options:
-        if name not in _OPTION_KEYS:
-            raise InputError(f"options.{name}", f"unknown option; options are {', '.join(sorted(_OPTION_KEYS))}")
-    free = options.get("free", [])
-    freeable = {v.name for v in coupling.variables if v.fixed_unless_freed} | ({"spring_preload"} if start_up else set())
-    if not isinstance(free, list) or any(name not in freeable for name in free):
-        raise InputError("options.free", f"must be a list drawn from {sorted(freeable)}, got {free!r}")
-    for name in ("mode", "objective"):
-        if name in options and not isinstance(options[name], str):
-            raise InputError(f"options.{name}", f"must be text, got {options[name]!r}")
+        with problems.field():
+            start_values, start_up = parse_start_up(data["start_up"], coupling, values)
+            values.update(start_values)
+    bounds = _parse_bounds(data.get("bounds", {}), coupling, problems, "start_up" in data)
+    options = _parse_options(options, coupling, problems, "start_up" in data)
+    for name in ("title", "description"):
+        with problems.field():
+            check_text(name, data.get(name, ""), multiline=name == "description")
+    problems.raise_any()
 
-    case = Case(coupling.name, str(data.get("title", "")), values, bounds, tuple(free),
+    case = Case(coupling.name, data.get("title", ""), values, bounds, tuple(options.get("free", ())),
                 {**options, **({"choose": choose} if choose else {})}, path, start_up, filled)
     coupling.check_case(case)
     materials.variants(case, coupling)  # every choice of options.choose is checked here, before any solve
     return case
 
 
-def _parse_bounds(table: Any, coupling, start_up: bool = False) -> dict[str, tuple[float, float]]:
+def _parse_options(options: Any, coupling, problems: Problems, start_up: bool) -> dict[str, Any]:
+    if not isinstance(options, dict):
+        problems.errors.append(InputError("options", "must be a table"))
+        return {}
+    for name in options:
+        if name not in _OPTION_KEYS:
+            problems.errors.append(InputError(f"options.{name}", f"unknown option; options are "
+                                                                 f"{', '.join(sorted(_OPTION_KEYS))}"))
+    free = options.get("free", [])
+    freeable = ({v.name for v in coupling.variables if v.fixed_unless_freed}
+                | ({"spring_preload"} if start_up else set()))
+    if not isinstance(free, list) or not all(isinstance(name, str) and name in freeable for name in free):
+        problems.errors.append(InputError("options.free", f"must be a list drawn from {sorted(freeable)}, "
+                                                          f"got {shown_value(free)}"))
+    elif len(set(free)) != len(free):
+        problems.errors.append(InputError("options.free", f"lists a variable twice: {free!r}"))
+    for name in ("mode", "objective"):
+        if name in options and not (isinstance(options[name], str) and options[name].strip()):
+            problems.errors.append(InputError(f"options.{name}",
+                                              f"must be a name (text), got {shown_value(options[name])}"))
+    return {name: value for name, value in options.items() if name in _OPTION_KEYS}
+
+
+TITLE_CHARACTERS = 200
+DESCRIPTION_CHARACTERS = 10_000
+
+
+def check_text(field: str, value: Any, multiline: bool = False) -> str:
+    """A title (one printable line, at most TITLE_CHARACTERS) or a description (lines of printable text): text
+    that is printed to a terminal must not carry control characters (escape sequences)."""
+    limit = DESCRIPTION_CHARACTERS if multiline else TITLE_CHARACTERS
+    if not isinstance(value, str):
+        raise InputError(field, f"must be text, got {type(value).__name__}")
+    if len(value) > limit:
+        raise InputError(field, f"text of {len(value)} characters is too long (at most {limit})")
+    bad = next((c for c in value if not c.isprintable() and not (multiline and c in "\n\t")), None)
+    if bad is not None:
+        raise InputError(field, f"contains the control character {bad!r}")
+    return value
+
+
+def _did_you_mean(name: str, known) -> str:
+    """`` (did you mean 'duty'?)`` for a near miss, else nothing."""
+    close = difflib.get_close_matches(str(name), list(known), n=1)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def _table(value: Any) -> dict:
+    return value if isinstance(value, dict) else {}
+
+
+def _parse_bounds(table: Any, coupling, problems: Problems, start_up: bool = False) -> dict[str, tuple[float, float]]:
     if not isinstance(table, dict):
-        raise InputError("bounds", "must be a table of [lower, upper] pairs")
+        problems.errors.append(InputError("bounds", "must be a table of [lower, upper] pairs"))
+        return {}
     variables = {v.name: v for v in coupling.variables + ((SPRING_PRELOAD,) if start_up else ())}
     bounds = {}
     for name, pair in table.items():
         variable = variables.get(name)
         key = f"bounds.{name}"
-        if variable is None:
-            raise InputError(key, f"unknown design variable; bounds may be set for {', '.join(variables)}")
-        if not isinstance(pair, list) or len(pair) != 2:
-            raise InputError(key, f"must be a pair [lower, upper], got {pair!r}")
-        lower, upper = (variable.check(to_si(key, raw, variable.unit), key) for raw in pair)
-        if not lower < upper:
-            raise InputError(key, f"lower bound {variable.show(lower)} must be below upper bound {variable.show(upper)}")
-        bounds[name] = (lower, upper)
+        with problems.field():
+            if variable is None:
+                raise InputError(key, f"unknown design variable; bounds may be set for {', '.join(variables)}")
+            if not isinstance(pair, list) or len(pair) != 2:
+                raise InputError(key, f"must be a pair [lower, upper], got {shown_value(pair)}")
+            lower, upper = (variable.check(to_si(key, raw, variable.unit), key) for raw in pair)
+            if not lower < upper:
+                raise InputError(key, f"lower bound {variable.show(lower)} must be below upper bound "
+                                      f"{variable.show(upper)}")
+            bounds[name] = (lower, upper)
     return bounds
 
 

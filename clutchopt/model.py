@@ -22,6 +22,10 @@ from clutchopt.errors import InputError
 from clutchopt.units import from_si, si_factor, si_unit
 
 REQUIRED = object()  # marker: a case must give this quantity
+# Every case value (SI) is 0 or of a magnitude within these: beyond 1e-9 to 1e9 times any real coupling's numbers
+# (7850 kg/m^3, 1.6e8 Pa, 1e-3 m; tests/test_torture.py scales cases by 1e-9 to 1e9), and small enough that
+# products like m w^2 r, even powers up to the 12th, stay inside float64 in every formulation.
+MAGNITUDES = (1e-18, 1e18)
 
 
 @dataclass(frozen=True)
@@ -49,9 +53,9 @@ class Quantity:
     def si_unit(self) -> str:
         return si_unit(self.unit)
 
-    def show(self, value: float) -> str:
+    def show(self, value: float, digits: int = 6) -> str:
         """An SI value written in this quantity's unit, e.g. ``15 deg``."""
-        return f"{from_si(value, self.unit):.6g} {self.unit}".rstrip()
+        return f"{from_si(value, self.unit):.{digits}g} {self.unit}".rstrip()
 
     def check(self, value: float, field_name: str | None = None) -> float:
         """Return ``value`` (SI) if it is in the valid range, else raise InputError naming the field."""
@@ -64,9 +68,12 @@ class Quantity:
         )
         for bound, ok, word in tests:
             if bound is not None and not ok(value, bound):
-                raise InputError(name, f"must be {word} {self.show(bound)}, got {self.show(value)}")
+                raise InputError(name, f"must be {word} {self.show(bound)}, got {self.show(value, 15)}")
         if self.integer and value != round(value):
-            raise InputError(name, f"must be a whole number, got {value:g}")
+            raise InputError(name, f"must be a whole number, got {value:.15g}")
+        if value != 0 and not MAGNITUDES[0] <= abs(value) <= MAGNITUDES[1]:
+            raise InputError(name, f"{value:.6g} {self.si_unit} (SI) is outside the magnitudes clutchopt works with, "
+                                   f"{MAGNITUDES[0]:g} to {MAGNITUDES[1]:g} in SI units".replace(" 1 (SI)", " (SI)"))
         return value
 
     def valid_range(self) -> str:

@@ -47,6 +47,8 @@ SECTION = "start_up"
 _TABLES = ("driver", "driven", "heat", "limits")
 _SETTINGS = ("effects", "intervals", "tolerance")
 MAX_INTERVALS = 128
+MAX_PROFILE_POINTS = 1000  # a load profile is a curve of a few dozen points; each point costs every evaluation
+PROFILE_SPEED_MAX, PROFILE_TIME_MAX, PROFILE_TORQUE_MAX = 1e5, 1e9, 1e9  # rad/s, s, N*m (the simulator's ranges)
 DEFAULTS_FROM_DUTY = {"driven_inertia": "inertia", "load_torque": "resisting_torque",
                       "max_start_time": "acceleration_time"}
 
@@ -96,6 +98,7 @@ def parse_start_up(table, coupling, duty: dict[str, float]) -> tuple[dict[str, f
         raise InputError(f"{SECTION}.driven", "give either resisting_torque or load_profile, not both")
     if profile is not None:
         values["load_torque"] = max(profile.values)
+    _check_ranges(values, duty)
     _check(values, effects, coupling, laws, profile)
     spec = StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile,
                        _intervals(table.get("intervals", StartUpSpec.intervals)),
@@ -164,6 +167,24 @@ def _check(values, effects, coupling, laws, profile) -> None:
         raise InputError(key(other), f"missing (given {heat_balance[0]}: the heat balance over an hour needs both)")
 
 
+def _check_ranges(values: dict[str, float], duty: dict[str, float]) -> None:
+    """The drive's quantities within the ranges the simulator is tested over (it starts every optimum again)."""
+    from clutchopt.simulate import engine
+
+    ranges = {"driven_inertia": engine.INERTIA, "load_torque": engine.LOAD, "synchronous_speed": engine.SPEED,
+              "breakdown_torque": engine.TORQUE, "breakdown_slip": engine.BREAKDOWN_SLIP,
+              "motor_inertia": engine.INERTIA, "heat_capacity": engine.HEAT_CAPACITY,
+              "heat_conductance": engine.CONDUCTANCE, "max_start_time": engine.TIME, "spring_preload": engine.FORCE}
+    keys = {q.name: q.key for q in QUANTITIES}
+    for name, (low, high, unit) in ranges.items():
+        if name in values and not low <= values[name] <= high:
+            raise InputError(keys[name], f"must be from {low:g} to {high:g} {unit} (the range the simulator is "
+                                         f"tested over), got {values[name]:.6g} {unit}".replace("  ", " "))
+    if "speed" in duty and not engine.SPEED[0] <= duty["speed"] <= engine.SPEED[1]:
+        raise InputError("duty.speed", f"must be from {engine.SPEED[0]:g} to {engine.SPEED[1]:g} rad/s for a case "
+                                       f"with a [start_up] section (the simulator's range), got {duty['speed']:.6g}")
+
+
 def _intervals(raw) -> int:
     if isinstance(raw, bool) or not isinstance(raw, int) or not 2 <= raw <= MAX_INTERVALS:
         raise InputError(f"{SECTION}.intervals", f"must be a whole number from 2 to {MAX_INTERVALS}, got {raw!r}")
@@ -185,13 +206,18 @@ def parse_load_profile(profile, key: str) -> LoadProfile:
     if over not in ("speed", "time"):
         raise InputError(f"{key}.over", f"must be \"speed\" or \"time\", got {over!r}")
     points, torques = profile["points"], profile["torque"]
-    if not isinstance(points, list) or not isinstance(torques, list) or len(points) != len(torques) or len(points) < 2:
-        raise InputError(key, "points and torque must be lists of the same length (at least 2)")
-    unit = "rpm" if over == "speed" else "s"
-    xs = tuple(to_si(f"{key}.points", raw, unit) for raw in points)
-    ys = tuple(to_si(f"{key}.torque", raw, "N*m") for raw in torques)
+    if not isinstance(points, list) or not isinstance(torques, list) or len(points) != len(torques) \
+            or not 2 <= len(points) <= MAX_PROFILE_POINTS:
+        raise InputError(key, f"points and torque must be lists of the same length (2 to {MAX_PROFILE_POINTS})")
+    unit, largest = ("rpm", PROFILE_SPEED_MAX) if over == "speed" else ("s", PROFILE_TIME_MAX)
+    xs = tuple(to_si(f"{key}.points[{i}]", raw, unit) for i, raw in enumerate(points))
+    ys = tuple(to_si(f"{key}.torque[{i}]", raw, "N*m") for i, raw in enumerate(torques))
     if any(b <= a for a, b in zip(xs, xs[1:])):
         raise InputError(f"{key}.points", "must increase strictly")
+    if xs[0] < 0 or xs[-1] > largest:
+        raise InputError(f"{key}.points", f"must lie from 0 to {largest:g} {'rad/s' if over == 'speed' else 's'}")
     if any(y < 0 for y in ys):
         raise InputError(f"{key}.torque", "must not be negative (the load opposes the motion)")
+    if max(ys) > PROFILE_TORQUE_MAX:
+        raise InputError(f"{key}.torque", f"must be at most {PROFILE_TORQUE_MAX:g} N*m")
     return LoadProfile(over, xs, ys)

@@ -2,9 +2,17 @@
 
 One database file (default ``./clutchopt-runs.sqlite``, or ``$CLUTCHOPT_STORE``), WAL mode so readers never
 block the writer, one transaction per recorded run so a killed sweep loses at most the point in flight. Each
-run keeps its inputs (all case values, SI), its outputs (the solution as JSON), status, objective and the
-versions of clutchopt and its solvers. A sweep is a row in ``sweeps``; its points are runs with a point index,
-unique per sweep, so a resumed sweep cannot record a point twice.
+run keeps its inputs (all case values, SI), its outputs (the solution as JSON), status, objective with its unit
+and the versions of clutchopt and its solvers. A sweep is a row in ``sweeps``; its points are runs with a point
+index, unique per sweep, so a resumed sweep cannot record a point twice (two resumes of one sweep running at
+once both finish; the point solved twice is stored once).
+
+What can go wrong with the file, and what happens:
+- another process is writing: each write waits for the lock (up to ``BUSY_TIMEOUT_S``), then succeeds;
+- the file or its folder cannot be written, the disk is full, the lock never comes: the run's result is still
+  printed, and one warning says what was not recorded (``RunStore.failure``); nothing is lost half-written;
+- the file is damaged (``PRAGMA quick_check`` on open) or is not a run store: one ``StoreError`` line with the
+  way out (another ``--store``; ``clutchopt runs export`` saves what can still be read).
 """
 
 from __future__ import annotations
@@ -14,15 +22,22 @@ import json
 import os
 import platform
 import sqlite3
+import stat
+import warnings
 from datetime import datetime, timezone
 from functools import lru_cache
 from importlib import metadata
 from pathlib import Path
+from typing import Callable
 
 from clutchopt.errors import InputError
+from clutchopt.files import status
 
 DEFAULT_STORE = "clutchopt-runs.sqlite"
 STORE_ENV = "CLUTCHOPT_STORE"
+BUSY_TIMEOUT_S = 60.0  # a write waits this long for another writer's lock (each holds it for one point)
+LARGEST_ID = 2**63 - 1  # SQLite's INTEGER
+CAPPED_SUFFIX = "_capped"  # the mode of a Pareto point's formulation: the user's mode with a cost cap
 
 _SCHEMA = """
 CREATE TABLE IF NOT EXISTS sweeps (
@@ -32,16 +47,23 @@ CREATE TABLE IF NOT EXISTS runs (
     id INTEGER PRIMARY KEY, kind TEXT NOT NULL, sweep_id INTEGER REFERENCES sweeps(id), point INTEGER,
     case_path TEXT, title TEXT, coupling TEXT, mode TEXT, objective_name TEXT, status TEXT, objective REAL,
     inputs TEXT NOT NULL, outputs TEXT NOT NULL, versions TEXT NOT NULL, created TEXT NOT NULL,
-    UNIQUE (sweep_id, point));
+    objective_unit TEXT, UNIQUE (sweep_id, point));
 CREATE INDEX IF NOT EXISTS runs_by_kind ON runs (kind);
 """
 
 LIST_COLUMNS = ("id", "kind", "sweep_id", "point", "created", "coupling", "mode", "objective_name", "status",
-                "objective", "case_path")
+                "objective", "objective_unit", "case_path")
+_SQLITE_HEADER = b"SQLite format 3\x00"
 
 
 def default_path() -> str:
     return os.environ.get(STORE_ENV) or DEFAULT_STORE
+
+
+def shown_mode(mode: str | None) -> str:
+    """The mode as the user asked for it: ``geometry_capped`` (a Pareto point) is ``geometry (cost cap)``."""
+    mode = mode or ""
+    return f"{mode.removesuffix(CAPPED_SUFFIX)} (cost cap)" if mode.endswith(CAPPED_SUFFIX) else mode
 
 
 @lru_cache(maxsize=1)
@@ -65,19 +87,137 @@ def spec_key(spec: dict) -> str:
     return hashlib.sha256(json.dumps(spec, sort_keys=True, default=str).encode()).hexdigest()
 
 
-class RunStore:
-    """An open store. ``with RunStore(path) as store:`` closes it afterwards."""
+class StoreError(InputError):
+    """The run store cannot be used as asked; the message says why and what to do instead."""
 
-    def __init__(self, path: str | Path | None = None):
+    def __init__(self, path: str, problem: str, way_out: str = ""):
+        super().__init__("--store", f"{path}: {problem}" + (f"; {way_out}" if way_out else ""))
+
+
+def _rescue(path: str) -> str:
+    return (f"record elsewhere with --store OTHER.sqlite, and save what can still be read with "
+            f"'clutchopt runs export --store {path} -o rescued.csv'")
+
+
+class RunStore:
+    """An open store. ``with RunStore(path) as store:`` closes it afterwards.
+
+    ``writable``: the store is for recording (created if missing, its folder and file must be writable);
+    otherwise it is only read (never created, read-only files and folders are fine). ``check``: run SQLite's
+    ``quick_check`` on open and refuse a damaged file (``runs export`` opens without it to rescue what it can).
+    ``warn`` receives the one message about runs that could not be recorded (default: a Python warning).
+    """
+
+    def __init__(self, path: str | Path | None = None, *, writable: bool = True, check: bool = True,
+                 warn: Callable[[str], None] | None = None):
         self.path = str(path or default_path())
+        self.writable = writable
+        self.failure: str | None = None  # why recording stopped; runs after it were not recorded
+        self.unrecorded = 0
+        self._warn = warn or (lambda text: warnings.warn(text, RuntimeWarning, stacklevel=3))
+        self._check_file()
+        self._db = self._connect()
         try:
-            self._db = sqlite3.connect(self.path, timeout=30)
+            self._prepare()
+            if check:
+                self._quick_check()
+        except BaseException:
+            self._db.close()
+            raise
+        self._db.row_factory = sqlite3.Row
+
+    # --- opening ------------------------------------------------------------------------------------------------
+    def _check_file(self) -> None:
+        """What can be said before SQLite opens the file: its kind, its header, whether it may be written."""
+        path = Path(self.path)
+        try:
+            found = status(path, "--store")
+        except InputError as exc:
+            raise StoreError(self.path[:200], exc.problem, "give another file name with --store") from None
+        if found is not None:
+            mode = found.st_mode
+            if not stat.S_ISREG(mode):
+                raise StoreError(self.path, "is not a regular file (a folder or a device)",
+                                 "give a file name with --store")
+            with open(path, "rb") as handle:
+                header = handle.read(len(_SQLITE_HEADER))
+            if header and header != _SQLITE_HEADER[:len(header)]:
+                raise StoreError(self.path, "is not an SQLite database (perhaps another file given as --store)",
+                                 "give a run store with --store, or a new file name to start one")
+            if self.writable and not os.access(path, os.W_OK):
+                raise StoreError(self.path, "the file is read-only", "record elsewhere with --store OTHER.sqlite")
+        elif not self.writable:
+            raise StoreError(self.path, "no such run store (nothing has been recorded here yet)",
+                             "name the store with --store or $CLUTCHOPT_STORE")
+        folder = path.parent if str(path.parent) else Path(".")
+        if self.writable and not folder.is_dir():
+            raise StoreError(self.path, f"the folder {str(folder)!r} does not exist",
+                             "record elsewhere with --store OTHER.sqlite")
+        if self.writable and not os.access(folder, os.W_OK | os.X_OK):
+            raise StoreError(self.path, f"the folder {str(folder)!r} is not writable (SQLite keeps its journal "
+                                        "beside the store)", "record elsewhere with --store OTHER.sqlite")
+
+    def _connect(self) -> sqlite3.Connection:
+        db = None
+        try:
+            db = sqlite3.connect(self.path, timeout=BUSY_TIMEOUT_S)
+            db.execute("SELECT COUNT(*) FROM sqlite_master").fetchone()
+            return db
+        except sqlite3.OperationalError as exc:
+            if db is not None:
+                db.close()
+            if self.writable or not ("unable to open" in str(exc) or "readonly" in str(exc)):
+                raise self._damaged(exc) from None
+        except sqlite3.DatabaseError as exc:
+            if db is not None:
+                db.close()
+            raise self._damaged(exc) from None
+        # read only: a WAL store in a read-only folder cannot get its shared-memory file; read it as immutable
+        uri = Path(self.path).resolve().as_uri() + "?immutable=1"
+        return sqlite3.connect(uri, uri=True, timeout=BUSY_TIMEOUT_S)
+
+    def _prepare(self) -> None:
+        """WAL mode, the schema (new store) and its newer columns (store of an older clutchopt), when writable;
+        refuse an SQLite database of another program."""
+        try:
+            tables = {row[0] for row in self._db.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
+            if tables and not {"runs", "sweeps"} <= tables:
+                raise StoreError(self.path, f"is an SQLite database but not a clutchopt run store (its tables: "
+                                            f"{', '.join(sorted(tables))})", "give a run store with --store")
+            if not self.writable:
+                if not tables:
+                    raise StoreError(self.path, "is empty: nothing has been recorded in it yet")
+                return
             self._db.execute("PRAGMA journal_mode=WAL")
             self._db.execute("PRAGMA synchronous=NORMAL")
-            self._db.executescript(_SCHEMA)
+            if not tables:
+                self._db.executescript(_SCHEMA)
+            elif "objective_unit" not in self._columns():
+                with self._db:
+                    self._db.execute("ALTER TABLE runs ADD COLUMN objective_unit TEXT")
         except sqlite3.DatabaseError as exc:
-            raise InputError("--store", f"cannot use {self.path!r} as a run store ({exc})") from None
-        self._db.row_factory = sqlite3.Row
+            raise self._damaged(exc) from None
+
+    def _columns(self) -> set[str]:
+        return {row[1] for row in self._db.execute("PRAGMA table_info(runs)")}
+
+    def _quick_check(self) -> None:
+        try:
+            found = [row[0] for row in self._db.execute("PRAGMA quick_check")]
+        except sqlite3.DatabaseError as exc:
+            raise self._damaged(exc) from None
+        if found != ["ok"]:
+            raise self._damaged(found[0])
+
+    def _damaged(self, detail: object) -> StoreError:
+        text = str(detail)
+        if "locked" in text or "busy" in text:
+            return StoreError(self.path, f"stayed locked by another process for {BUSY_TIMEOUT_S:g} s ({text})",
+                              "try again when the other clutchopt has finished, or record elsewhere with --store")
+        if "readonly" in text or "unable to open" in text:
+            return StoreError(self.path, f"cannot be opened for writing ({text})",
+                              "record elsewhere with --store OTHER.sqlite")
+        return StoreError(self.path, f"the run store is damaged ({text})", _rescue(self.path))
 
     def __enter__(self) -> "RunStore":
         return self
@@ -88,53 +228,81 @@ class RunStore:
     def close(self) -> None:
         self._db.close()
 
-    # --- writing: one transaction each ---------------------------------------------------------------------------
-    def new_sweep(self, spec: dict, points: int, case_path: str = "") -> int:
-        with self._db:
-            cursor = self._db.execute(
-                "INSERT INTO sweeps (key, case_path, coupling, mode, objective, spec, points, created) "
-                "VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
-                (spec_key(spec), case_path, spec.get("coupling"), spec.get("mode"), spec.get("objective"),
-                 json.dumps(spec, default=str), points, _now()))
-        return int(cursor.lastrowid)
+    # --- writing: one transaction each; a failing store is reported once and the run goes on --------------------
+    def _write(self, sql: str, args: tuple) -> int | None:
+        """Execute one INSERT in its own transaction; the new row's id, or None if it was not recorded."""
+        if self.failure is None:
+            try:
+                with self._db:
+                    cursor = self._db.execute(sql, args)
+                return int(cursor.lastrowid) if cursor.rowcount else None
+            except sqlite3.Error as exc:
+                self.failure = str(self._damaged(exc)).removeprefix("--store: ")
+                self._warn(f"not recorded: {self.failure}")
+        self.unrecorded += 1
+        return None
 
-    def latest_sweep(self, spec: dict) -> int | None:
-        """The most recent sweep with exactly this specification (for ``--resume``)."""
-        row = self._db.execute("SELECT id FROM sweeps WHERE key = ? ORDER BY id DESC LIMIT 1",
-                               (spec_key(spec),)).fetchone()
-        return None if row is None else int(row["id"])
-
-    def sweep_outputs(self, sweep_id: int) -> dict[int, dict]:
-        """The stored solutions of a sweep by point index."""
-        return {row[0]: json.loads(row[1]) for row in
-                self._db.execute("SELECT point, outputs FROM runs WHERE sweep_id = ?", (sweep_id,))}
+    def new_sweep(self, spec: dict, points: int, case_path: str = "") -> int | None:
+        return self._write(
+            "INSERT INTO sweeps (key, case_path, coupling, mode, objective, spec, points, created) "
+            "VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
+            (spec_key(spec), case_path, spec.get("coupling"), spec.get("mode"), spec.get("objective"),
+             json.dumps(spec, default=str), points, _now()))
 
     def record(self, kind: str, inputs: dict, outputs: dict, *, status: str | None = None,
-               objective: float | None = None, case_path: str = "", title: str = "", coupling: str = "",
-               mode: str = "", objective_name: str = "", sweep_id: int | None = None,
-               point: int | None = None) -> int:
-        """Record one run (solve, sweep point, pareto point, simulation) in its own transaction."""
+               objective: float | None = None, objective_unit: str = "", case_path: str = "", title: str = "",
+               coupling: str = "", mode: str = "", objective_name: str = "", sweep_id: int | None = None,
+               point: int | None = None) -> int | None:
+        """Record one run (solve, sweep point, pareto point, simulation) in its own transaction.
+
+        A sweep point already stored (another process resuming the same sweep solved it too) is kept as it is.
+        Returns the run's id, or None if it was not recorded (already there, or the store failed: ``failure``)."""
         from clutchopt.output import to_json
 
-        with self._db:
-            cursor = self._db.execute(
-                "INSERT INTO runs (kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status,"
-                " objective, inputs, outputs, versions, created) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-                (kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status, objective,
-                 to_json(inputs), to_json(outputs), json.dumps(versions()), _now()))
-        return int(cursor.lastrowid)
+        return self._write(
+            "INSERT INTO runs (kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status,"
+            " objective, objective_unit, inputs, outputs, versions, created)"
+            " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (sweep_id, point) DO NOTHING",
+            (kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status, objective,
+             objective_unit, to_json(inputs), to_json(outputs), json.dumps(versions()), _now()))
 
-    def record_solution(self, kind: str, case, solution, **where) -> int:
+    def record_solution(self, kind: str, case, solution, **where) -> int | None:
         """Record a solved case: inputs are all its SI values, outputs the solution's JSON."""
         return self.record(kind, {"values": case.values, "free": list(case.free), "bounds": case.bounds},
                            solution.as_dict(), status=solution.status, objective=solution.objective,
-                           case_path=case.path, title=case.title, coupling=case.coupling, mode=solution.mode,
-                           objective_name=solution.objective_name, **where)
+                           objective_unit=solution.objective_unit, case_path=case.path, title=case.title,
+                           coupling=case.coupling, mode=solution.mode, objective_name=solution.objective_name,
+                           **where)
 
-    # --- reading -------------------------------------------------------------------------------------------------
+    # --- reading: a damaged file is a StoreError with the way out -------------------------------------------------
+    def _read(self, sql: str, args: tuple | list = ()) -> list[sqlite3.Row]:
+        try:
+            return self._db.execute(sql, args).fetchall()
+        except sqlite3.DatabaseError as exc:
+            raise self._damaged(exc) from None
+
+    def latest_sweep(self, spec: dict) -> int | None:
+        """The most recent sweep with exactly this specification (for ``--resume``)."""
+        rows = self._read("SELECT id FROM sweeps WHERE key = ? ORDER BY id DESC LIMIT 1", (spec_key(spec),))
+        return int(rows[0]["id"]) if rows else None
+
+    def sweep_outputs(self, sweep_id: int) -> dict[int, dict]:
+        """The stored solutions of a sweep by point index."""
+        return {row[0]: self._json(row[2], row[1], "outputs") for row in
+                self._read("SELECT point, id, outputs FROM runs WHERE sweep_id = ?", (sweep_id,))}
+
+    def _json(self, text: str, run_id: int, column: str):
+        try:
+            return json.loads(text)
+        except (TypeError, ValueError, RecursionError):
+            raise StoreError(self.path, f"run {run_id} is damaged (its {column} are not JSON)",
+                             _rescue(self.path)) from None
+
     def runs(self, kind: str | None = None, sweep_id: int | None = None, limit: int | None = None) -> list[dict]:
-        """Runs, newest first, without their JSON bodies."""
-        query = f"SELECT {', '.join(LIST_COLUMNS)} FROM runs"
+        """Runs, newest first, without their JSON bodies; ``objective_unit`` filled for stores of older versions."""
+        columns = [c if c != "objective_unit" or c in self._columns() else "NULL AS objective_unit"
+                   for c in LIST_COLUMNS]
+        query = f"SELECT {', '.join(columns)} FROM runs"
         where, args = [], []
         if kind:
             where.append("kind = ?"), args.append(kind)
@@ -145,32 +313,54 @@ class RunStore:
         query += " ORDER BY id DESC" + (" LIMIT ?" if limit else "")
         if limit:
             args.append(limit)
-        return [dict(row) for row in self._db.execute(query, args)]
+        listed = [dict(row) for row in self._read(query, args)]
+        for run in listed:
+            if run["objective_unit"] is None and run["objective"] is not None:
+                run["objective_unit"] = self._older_unit(run)
+        return listed
+
+    def _older_unit(self, run: dict) -> str:
+        """The objective's unit of a run recorded before the store had the column: from its outputs."""
+        if run["kind"] == "simulation":
+            return "s"
+        rows = self._read("SELECT outputs FROM runs WHERE id = ?", (run["id"],))
+        try:
+            return json.loads(rows[0][0])["objective"]["unit"]
+        except (ValueError, KeyError, TypeError, IndexError):
+            return ""
 
     def run(self, run_id: int) -> dict:
-        row = self._db.execute("SELECT * FROM runs WHERE id = ?", (run_id,)).fetchone()
-        if row is None:
+        if not 0 < run_id <= LARGEST_ID:
+            raise InputError("run", f"run ids are whole numbers from 1, got {run_id}")
+        rows = self._read("SELECT * FROM runs WHERE id = ?", (run_id,))
+        if not rows:
             raise InputError("run", f"no run {run_id} in {self.path}")
-        entry = dict(row)
+        entry = dict(rows[0])
         for name in ("inputs", "outputs", "versions"):
-            entry[name] = json.loads(entry[name])
+            entry[name] = self._json(entry[name], run_id, name)
         return entry
 
-    def flat(self, kind: str | None = None, sweep_id: int | None = None) -> list[dict]:
-        """Runs oldest first, flattened for a table: the listed columns, ``input.<name>`` (SI case values),
-        ``design.<name>`` (SI) and the active constraints."""
-        rows = []
-        for run in reversed(self.runs(kind, sweep_id)):
-            entry = self.run(run["id"])
-            outputs = entry["outputs"]
-            row = dict(run)
-            row.update({f"input.{k}": v for k, v in entry["inputs"].get("values", {}).items()})
-            row.update({f"design.{k}": v for k, v in outputs.get("design", {}).items()})
-            row["active"] = " ".join(c["name"] for c in outputs.get("constraints", []) if c.get("active"))
-            rows.append(row)
-        return rows
+    def readable_runs(self, kind: str | None = None, sweep_id: int | None = None) -> tuple[list[dict], int]:
+        """Every run that can still be read, oldest first, and how many could not (a damaged store): each run is
+        read on its own, so one damaged page loses only the runs on it."""
+        try:
+            largest = self._db.execute("SELECT MAX(id) FROM runs").fetchone()[0] or 0
+        except sqlite3.DatabaseError as exc:
+            raise StoreError(self.path, f"nothing can be read ({exc})", "record elsewhere with --store") from None
+        runs, lost = [], 0
+        for run_id in range(1, largest + 1):
+            try:
+                entry = self.run(run_id)
+            except StoreError:
+                lost += 1
+                continue
+            except InputError:  # no run with this id (ids are not reused, but a damaged page hides them too)
+                continue
+            if (kind is None or entry["kind"] == kind) and (sweep_id is None or entry["sweep_id"] == sweep_id):
+                runs.append(entry)
+        return runs, lost
 
     def sweeps(self) -> list[dict]:
-        return [dict(row) for row in self._db.execute(
+        return [dict(row) for row in self._read(
             "SELECT s.id, s.created, s.case_path, s.coupling, s.mode, s.objective, s.points, COUNT(r.id) AS stored "
             "FROM sweeps s LEFT JOIN runs r ON r.sweep_id = s.id GROUP BY s.id ORDER BY s.id DESC")]

@@ -4,11 +4,11 @@ A case value is either a string with units (``"1000 rpm"``, ``"4 MPa"``) or a ba
 as SI. Costs use the unit ``EUR`` (a dimension of its own, ``[currency]``).
 
 pint is the unit library, but importing it and building its registry costs about 0.35 s, more than a whole
-solve. So the registry ``ureg`` is built on first use, and the units clutchopt declares and case files usually
-write are in a table taken from that same registry (:mod:`clutchopt.unit_table`: SI factor, SI unit,
-dimensionality; ``python -m clutchopt.units`` writes it, tests/test_units.py checks every entry against pint).
-A value written ``"<number> <unit in the table>"`` (or a bare number) is converted with the table's factor,
-which is bit for bit what pint gives; any other text, and every error message, goes through pint.
+solve. So the registry ``ureg`` is built on first use, and what :func:`unit_info`, :func:`si_factor` and
+:func:`si_unit` say of the units clutchopt declares and case files usually write is in a table taken from that
+same registry (:mod:`clutchopt.unit_table`: SI factor, SI unit, dimensionality, power of radian; ``python -m
+clutchopt.units`` writes it, tests/test_units.py checks every entry against pint). A value such as ``"4 MPa"`` is
+read without pint (the factor is pint's, so is the value, to the last bit); any other unit goes through pint.
 """
 
 from __future__ import annotations
@@ -16,18 +16,20 @@ from __future__ import annotations
 import math
 import re
 from functools import lru_cache
+from typing import NamedTuple
 
-from clutchopt.errors import InputError
+from clutchopt.errors import InputError, shown_value
 from clutchopt.unit_table import UNITS
 
 
 @lru_cache(maxsize=None)
 def registry():
-    """pint's registry with ``EUR`` defined, built once on first use."""
+    """pint's registry with ``EUR`` and ``rev`` defined, built once on first use."""
     import pint
 
     units = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
     units.define("EUR = [currency]")
+    units.define("@alias revolution = rev")
     return units
 
 
@@ -37,14 +39,16 @@ def __getattr__(name: str):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-def table_entry(unit: str) -> tuple[float, str, tuple]:
-    """What :mod:`clutchopt.unit_table` holds for ``unit``, computed with pint: SI factor, SI unit, dimensionality."""
-    one = registry().Quantity(1.0, unit)
-    base = one.to_base_units().units
+def table_entry(unit: str) -> tuple[float, str, tuple, float]:
+    """What :mod:`clutchopt.unit_table` holds for ``unit``, computed with pint: SI factor, SI unit, dimensionality,
+    power of radian (as :func:`unit_info` reads them)."""
+    info = _pint_unit_info(unit)
+    if info.offset:
+        raise ValueError(f"{unit!r} has an offset; the table holds multiplicative units only")
+    base = registry().Quantity(1.0, unit).to_base_units().units
     text = _PRETTY_SI.get(str(base), f"{base:~}") if str(base) != "dimensionless" else "1"
-    dimensions = tuple(sorted((name, int(power) if power == int(power) else power)
-                              for name, power in one.dimensionality.items()))
-    return float(one.to_base_units().magnitude), text, dimensions
+    dimensions = tuple(sorted((name, int(power) if power == int(power) else power) for name, power in info.dimensions))
+    return info.factor, text, dimensions, info.angle
 
 
 @lru_cache(maxsize=None)
@@ -85,6 +89,8 @@ _DIMENSION_EXAMPLES = {  # a unit of each dimension a case uses, and its plain n
     "N": "a force",
     "1/s": "an angular speed",
     "m": "a length",
+    "m^2": "an area",
+    "m^3": "a volume",
     "kg": "a mass",
     "s": "a time",
     "kg*m^2": "a moment of inertia",
@@ -101,8 +107,7 @@ _DIMENSION_EXAMPLES = {  # a unit of each dimension a case uses, and its plain n
 
 def _dimension_key(unit: str) -> frozenset:
     """Order-independent key of a unit's dimensionality (pint's text form orders the base dimensions freely)."""
-    entry = UNITS.get(unit)
-    return frozenset(entry[2] if entry else registry().Quantity(1.0, unit).dimensionality.items())
+    return unit_info(unit).dimensions
 
 
 @lru_cache(maxsize=1)
@@ -118,66 +123,139 @@ def describe_dimension(unit: str) -> str:
     return _dimension_names().get(key) or str(registry().Quantity(1.0, unit).dimensionality)
 
 
-def _wrong_dimension(unit: str, raw: object, given: str) -> str:
-    return (f"expected {describe_dimension(unit)} (e.g. in {unit or 'SI'}), got {raw!r}, which is "
-            f"{describe_dimension(given)}")
+MAX_TEXT = 100  # characters of one quantity, e.g. "0.05 EUR/cm^2"; longer text is refused before pint sees it
+MAX_EXPONENT = 12  # |n| of a unit power m^n; with at most two levels of parentheses pint's work stays tiny
+_MINUS = "\u2212"  # the typographic minus sign, read as "-" (it can mean nothing else)
+_NUMBER = re.compile(r"\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|[+-]?(?:nan|inf|infinity))(?![\w.])\s*\*?\s*",
+                     re.IGNORECASE | re.ASCII)  # ASCII digits only: no number in another script is read silently
+_UNIT_TOKEN = re.compile(r"\s+|\*\*|[*/^()\u00b7]"  # space, powers, products, quotients, parentheses
+                         r"|[A-Za-z_\u00b5\u03bc\u03a9\u00b0%][A-Za-z0-9_\u00b5\u03bc\u03a9\u00b0]*"  # unit names
+                         r"|[\u00b2\u00b3\u00b9\u2070\u2074-\u2079\u207b]+|[+-]?[0-9]+(?:\.[0-9]+)?")  # powers
+_QUANTITY_EXAMPLE = "a number and a unit, e.g. '1000 rpm', '4 MPa' or '0.5 kg*m^2'"
+_SPEED_HINT = ("an angular speed needs an angle per time: write e.g. '1000 rpm', '16.67 rps' (revolutions per second) "
+               "or '104.7 rad/s'; Hz and 1/s are refused because they do not say whether they count revolutions or "
+               "radians (a factor 2 pi)")
 
 
-_NUMBER_AND_UNIT = re.compile(r"\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)(?:\s+(\S+))?\s*")
+def _split(field: str, text: str) -> tuple[float, str]:
+    """Split quantity text into its number and its unit expression, refusing what pint should never evaluate.
+
+    The grammar is bounded: a decimal number, then unit names joined by ``*``, ``/``, spaces and ``^``/``**`` with
+    a small integer or decimal exponent (|n| <= MAX_EXPONENT), parentheses at most two deep; digits elsewhere in the
+    unit only as the ``1`` of ``1/s``. So no text can ask pint for a large power or a long computation.
+    """
+    if len(text) > MAX_TEXT:
+        raise InputError(field, f"text of {len(text)} characters is too long for a quantity (at most {MAX_TEXT}); "
+                                f"expected {_QUANTITY_EXAMPLE}")
+    bad = next((c for c in text if not c.isprintable()), None)
+    if bad is not None:
+        raise InputError(field, f"contains the control character {bad!r}; expected {_QUANTITY_EXAMPLE}")
+    text = text.replace(_MINUS, "-")
+    number = _NUMBER.match(text)
+    if number is None:
+        raise InputError(field, f"cannot read {text.strip()!r} as a quantity: expected {_QUANTITY_EXAMPLE}")
+    unit = text[number.end():].strip()
+    depth, previous, position = 0, "", 0
+    while position < len(unit):
+        token = _UNIT_TOKEN.match(unit, position)
+        if token is None:
+            raise InputError(field, f"cannot read {text.strip()!r}: unexpected character {unit[position]!r} in its "
+                                    f"unit; expected {_QUANTITY_EXAMPLE}")
+        position, piece = token.end(), token.group()
+        if piece.isspace():
+            continue
+        if piece == "(":
+            depth += 1
+            if depth > 2:
+                raise InputError(field, f"cannot read {text.strip()!r}: parentheses nested too deeply in its unit")
+        elif piece == ")":
+            depth -= 1
+        elif piece[0] in "+-0123456789":
+            if previous in ("^", "**"):
+                if abs(float(piece)) > MAX_EXPONENT:
+                    raise InputError(field, f"cannot read {text.strip()!r}: unit power {piece} is out of range "
+                                            f"(at most {MAX_EXPONENT})")
+            elif piece != "1":
+                raise InputError(field, f"cannot read {text.strip()!r}: a number inside the unit ({piece}); "
+                                        f"expected {_QUANTITY_EXAMPLE}")
+        previous = piece
+    return float(number.group(1)), unit
 
 
-def _table_quantity(raw: object) -> tuple[float, str] | None:
-    """``"<number> <unit in the table>"`` (or a plain number) as (number, unit); None for any other text."""
-    match = _NUMBER_AND_UNIT.fullmatch(raw) if isinstance(raw, str) else None
-    return (float(match[1]), match[2] or "") if match and (match[2] or "") in UNITS else None
+class UnitInfo(NamedTuple):
+    """What a unit expression means, multiplicatively: SI factor, dimensionality, power of radian, and whether it
+    is an offset unit (degC, degF: a temperature, not a temperature difference)."""
+
+    factor: float
+    dimensions: frozenset
+    angle: float
+    offset: bool
 
 
-def _from_table(raw: object, unit: str) -> float | None:
-    """SI value of ``raw`` by the table when both its unit and ``unit`` are there, the dimensions agree and the
-    value is finite; None otherwise (pint decides, and words any error)."""
-    expected = UNITS.get(unit)
-    if expected is None or isinstance(raw, bool):
-        return None
-    if isinstance(raw, (int, float)):
-        value = float(raw)
-    elif (quantity := _table_quantity(raw)) and UNITS[quantity[1]][2] == expected[2]:
-        value = quantity[0] * UNITS[quantity[1]][0]
-    else:
-        return None
-    return value if math.isfinite(value) else None
+@lru_cache(maxsize=512)
+def unit_info(unit: str) -> UnitInfo:
+    """:class:`UnitInfo` of a unit expression (bounded by :func:`_split` for text from a file), from the table where
+    it is there (multiplicative units only), else from pint, whose errors and OverflowError (e.g. ``Ym^12``) pass
+    to the caller."""
+    entry = UNITS.get(unit)
+    if entry is not None:
+        return UnitInfo(entry[0], frozenset(entry[2]), entry[3], False)
+    return _pint_unit_info(unit)
+
+
+def _pint_unit_info(unit: str) -> UnitInfo:
+    ureg = registry()
+    units = ureg.parse_units(unit) if unit else ureg.dimensionless
+    one = ureg.Quantity(1.0, units)
+    root = dict(one.to_root_units().unit_items())
+    offset = ureg.Quantity(0.0, units).to_base_units().magnitude != 0
+    return UnitInfo(float(one.to_base_units().magnitude), frozenset(one.dimensionality.items()),
+                    root.get("radian", 0), offset)
 
 
 def to_si(field: str, raw: object, unit: str) -> float:
     """Parse a case value for ``field`` expected in ``unit`` (any compatible unit) and return SI float.
 
-    Raises InputError naming the field for text that is no quantity, a wrong dimension, NaN or infinity.
+    Raises InputError naming the field for text that is no quantity, a wrong dimension, NaN or infinity, a value
+    beyond float64, a pure frequency (Hz, 1/s) where an angular speed is expected (see ``_SPEED_HINT``), and an
+    offset temperature (degC), which clutchopt's temperature rises cannot mean.
     """
-    fast = _from_table(raw, unit)
-    if fast is not None:
-        return fast
-    if unit in UNITS and (quantity := _table_quantity(raw)):  # a wrong dimension, said without pint
-        raise InputError(field, _wrong_dimension(unit, raw, quantity[1]))
-    ureg = registry()
+    expected = unit_info(unit)
     if isinstance(raw, bool):
         raise InputError(field, f"expected a quantity in {unit}, got a boolean")
-    if isinstance(raw, (int, float)):
-        value = float(raw)
-        quantity = ureg.Quantity(value, ureg.Quantity(1.0, unit).to_base_units().units)
-    elif isinstance(raw, str):
+    if isinstance(raw, (int, float)):  # a bare number is SI
         try:
-            quantity = ureg.Quantity(raw.strip())
+            value, given = float(raw), expected._replace(factor=1.0)
+        except OverflowError:
+            raise InputError(field, f"{len(str(abs(raw)))}-digit number is beyond the float64 range") from None
+    elif isinstance(raw, str):
+        number, unit_text = _split(field, raw)
+        try:
+            given = unit_info(unit_text)
+        except OverflowError:
+            raise InputError(field, f"cannot read {raw.strip()!r}: its unit is beyond the float64 range") from None
         except Exception as exc:  # pint raises several types for unparsable text
-            raise InputError(field, f"cannot read {raw!r} as a quantity ({type(exc).__name__})") from None
-        if not isinstance(quantity, ureg.Quantity):
-            quantity = ureg.Quantity(float(quantity), "dimensionless")
+            names = getattr(exc, "unit_names", None)
+            why = f"unknown unit {', '.join(map(repr, names))}" if names else type(exc).__name__
+            raise InputError(field, f"cannot read {raw.strip()!r} as a quantity ({why}); expected "
+                                    f"{_QUANTITY_EXAMPLE}") from None
+        if given.offset and not expected.offset:
+            raise InputError(field, f"{raw.strip()!r} is a temperature on a scale with an offset; write a "
+                                    "temperature difference in K (or delta_degC)")
+        if unit_text and expected.angle and given.angle != expected.angle and given.dimensions == expected.dimensions:
+            raise InputError(field, f"{raw.strip()!r} is ambiguous: {_SPEED_HINT}" if expected.dimensions
+                             else f"expected an angle (e.g. in {unit}), got {raw.strip()!r}, which is no angle")
+        if given.offset:  # an absolute temperature (the field is one too): pint adds the offset
+            value = float(registry().Quantity(number, unit_text).to_base_units().magnitude)
+        else:
+            value = number * given.factor if number else 0.0  # 0 * inf would be nan; inf is refused below
     else:
-        raise InputError(field, f"expected a quantity in {unit}, got {type(raw).__name__} {raw!r}")
-    expected = ureg.Quantity(1.0, unit)
-    if quantity.dimensionality != expected.dimensionality:
-        raise InputError(field, _wrong_dimension(unit, raw, str(quantity.units)))
-    value = float(quantity.to_base_units().magnitude)
+        raise InputError(field, f"expected a quantity in {unit}, got {type(raw).__name__} {shown_value(raw)}")
+    if given.dimensions != expected.dimensions:
+        raise InputError(field, f"expected {describe_dimension(unit)} (e.g. in {unit or 'SI'}), got "
+                                f"{shown_value(raw)}, which is {describe_dimension(unit_text)}")
     if not math.isfinite(value):
-        raise InputError(field, f"must be a finite number, got {raw!r}")
+        raise InputError(field, f"must be a finite number within the float64 range, got {shown_value(raw)}")
     return value
 
 
@@ -187,17 +265,19 @@ def from_si(value: float, unit: str) -> float:
 
 
 TABLE_UNITS = (  # the units case files and scenes usually write, besides those the package declares
-    "", "mm", "cm", "m", "um", "kg", "g", "t", "s", "ms", "min", "h", "rpm", "rad/s", "1/s", "Hz", "deg", "rad",
-    "N", "kN", "N*m", "kN*m", "Pa", "kPa", "MPa", "GPa", "N/mm^2", "bar", "W", "kW", "MW", "J", "kJ", "J/K", "W/K",
-    "kg*m^2", "kg/m^3", "g/cm^3", "N/m", "N/mm", "N*m/rad", "m/s^2", "m^3/s^2", "s/rad", "EUR", "EUR/kg", "EUR/cm^2", "EUR/m^2",
+    "", "mm", "cm", "m", "um", "m^2", "m^3", "kg", "g", "t", "s", "ms", "min", "h", "rpm", "rps", "rad/s", "1/s",
+    "Hz", "deg", "rad", "N", "kN", "N*m", "kN*m", "Pa", "kPa", "MPa", "GPa", "N/mm^2", "bar", "W", "kW", "MW", "J",
+    "kJ", "J/K", "W/K", "kg*m^2", "kg/m^3", "g/cm^3", "N/m", "N/mm", "N*m/rad", "m/s^2", "m^3/s^2", "s/rad", "EUR",
+    "EUR/kg", "EUR/cm^2", "EUR/m^2",
 )
 
 
 def _write_table(units: list[str]) -> str:
     """The source of :mod:`clutchopt.unit_table` for ``units``, every entry computed by pint."""
-    lines = ['"""SI factor, SI unit and dimensionality of the units clutchopt declares and case files usually write,',
-             'as pint defines them. Generated by ``python -m clutchopt.units``; tests/test_units.py checks every entry',
-             'against pint and that every unit the package declares is here."""', "", "UNITS = {"]
+    lines = ['"""SI factor, SI unit, dimensionality and power of radian of the units clutchopt declares and case files',
+             'usually write, as pint defines them. Generated by ``python -m clutchopt.units``; tests/test_units.py',
+             'checks every entry against pint and that every unit the package declares is here."""', "",
+             "UNITS = {"]
     lines += [f"    {unit!r}: {table_entry(unit)!r}," for unit in units]
     return "\n".join(lines + ["}", ""])
 

@@ -8,9 +8,10 @@ ROOT = Path(__file__).resolve().parents[1]
 CASES = ROOT / "cases"
 
 
-def run_cli(*args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess:
-    """The CLI as a user runs it, from the repository root."""
-    return subprocess.run([sys.executable, "-m", "clutchopt", *args], cwd=cwd, capture_output=True, text=True)
+def run_cli(*args: str, cwd: Path = ROOT, timeout: float | None = None) -> subprocess.CompletedProcess:
+    """The CLI as a user runs it, from the repository root (a hang beyond ``timeout`` seconds fails the test)."""
+    return subprocess.run([sys.executable, "-m", "clutchopt", *args], cwd=cwd, capture_output=True, text=True,
+                          timeout=timeout)
 
 
 @pytest.fixture(autouse=True)

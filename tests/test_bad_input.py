@@ -84,7 +84,9 @@ def test_bad_case_file(tmp_path, capsys, text, extra, field):
     assert main(["solve", str(path), *extra]) == EXIT_BAD_INPUT
     out, err = capsys.readouterr()
     assert out == ""
-    assert err.startswith("error: ") and err.endswith("\n") and err.count("\n") == 1, err
+    lines = err.splitlines()
+    assert err.endswith("\n") and lines and all(line.startswith("error: ") for line in lines), err
+    assert len(lines) == (5 if field == "dutyy" else 1), err  # [dutyy]: unknown, and its four duty fields missing
     assert field in err, err
 
 

@@ -51,7 +51,7 @@ def test_cli_table_plot_and_store(cli, tmp_path, run_store):
     listed = cli("runs", "list", "--kind", "pareto")
     assert listed.stdout.count(" pareto ") == 5
     bad = cli("pareto", str(CASES / "wedge_centrifuge.toml"), "--points", "1")
-    assert bad.returncode == 2 and "--points: a front needs at least 2 points" in bad.stderr
+    assert bad.returncode == 2 and "--points: must be from 2 to 1000, got 1" in bad.stderr
 
 
 def test_json_is_si(cli):

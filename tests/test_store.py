@@ -49,24 +49,25 @@ def test_export_and_bad_store(cli, tmp_path):
     exported = cli("runs", "export", "-o", str(out))
     assert exported.returncode == 0 and "1 runs written" in exported.stdout
     table = pd.read_csv(out)
-    assert table["status"].tolist() == ["optimal"] and table["input.inertia"].tolist() == [0.5]
-    assert table["design.finger_diameter"].iloc[0] == pytest.approx(5.46156e-3, rel=1e-5)  # the worked example
+    assert table["status"].tolist() == ["optimal"] and table["input.inertia [kg*m^2]"].tolist() == [0.5]
+    assert table["design.finger_diameter [m]"].iloc[0] == pytest.approx(5.46156e-3, rel=1e-5)  # the worked example
+    assert table["mass [kg]"].iloc[0] == pytest.approx(0.667951, rel=1e-6) and table["id"].dtype.kind == "i"
     assert table["active"].iloc[0] == "torque finger_bending"
     not_a_db = tmp_path / "notes.txt"
     not_a_db.write_text("not a database, just text " * 100)
     result = cli("runs", "list", "--store", str(not_a_db))
-    assert result.returncode == 2 and "cannot use" in result.stderr and result.stderr.count("\n") == 1
+    assert result.returncode == 2 and "is not an SQLite database" in result.stderr and result.stderr.count("\n") == 1
     missing = cli("runs", "show", "99")
     assert missing.returncode == 2 and "no run 99" in missing.stderr
 
 
 def test_a_sweep_point_cannot_be_recorded_twice(tmp_path):
+    """A second record of a stored point (another resume of the same sweep solved it too) keeps the first."""
     with RunStore(tmp_path / "s.sqlite") as store:
         sweep = store.new_sweep({"points": [1]}, 1)
-        store.record("sweep", {}, {"objective": 1.0}, sweep_id=sweep, point=0)
-        with pytest.raises(sqlite3.IntegrityError):
-            store.record("sweep", {}, {"objective": 2.0}, sweep_id=sweep, point=0)
-        assert store.sweep_outputs(sweep) == {0: {"objective": 1.0}}
+        assert store.record("sweep", {}, {"objective": 1.0}, sweep_id=sweep, point=0) == 1
+        assert store.record("sweep", {}, {"objective": 2.0}, sweep_id=sweep, point=0) is None
+        assert store.sweep_outputs(sweep) == {0: {"objective": 1.0}} and store.failure is None
 
 
 SWEEP = ["sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=500:3000:40", "--vary",
@@ -116,7 +117,7 @@ def test_interrupted_sweep_says_how_to_continue(run_store):
         time.sleep(0.02)
     process.send_signal(signal.SIGINT)
     _, stderr = process.communicate(timeout=60)
-    assert process.returncode == 1
+    assert process.returncode == 130  # as a shell reports SIGINT
     assert stderr.strip().endswith(f"sweep interrupted; the points solved so far are in {run_store}, "
                                    "continue with --resume")
     statuses = {status for _, _, status in _stored_status(run_store)}
@@ -144,3 +145,35 @@ def test_simulations_are_recorded(cli, run_store):
     assert scene["status"] == "locks up" and scene["inputs"]["scene"]["title"].startswith("Wedge coupling")
     assert scene["objective"] == pytest.approx(10.0, rel=1e-6)  # reaches speed in t_p = 10 s
     assert verify["status"] == "verified" and verify["objective"] == pytest.approx(10.0, rel=1e-6)
+
+
+def test_runs_are_listed_and_exported_for_a_person(tmp_path, capsys):
+    """Whole-number ids, the objective with its unit, the mode as asked (a Pareto point's cost cap named), no
+    objective or design for an infeasible point (its diagnosis kept), export columns with their SI units."""
+    from clutchopt.cli import main
+
+    store = str(tmp_path / "runs.sqlite")
+    assert main(["solve", str(CASES / "wedge_paper.toml"), "--store", store]) == 0
+    assert main(["sweep", str(CASES / "wedge_paper.toml"), "--mode", "geometry", "--vary", "speed=800,1000",
+                 "--vary", "outer_diameter_max=100", "--quiet", "--store", store]) == 0  # both infeasible
+    assert main(["pareto", str(CASES / "wedge_centrifuge.toml"), "--mode", "geometry", "--points", "3",
+                 "--store", store]) == 0
+    capsys.readouterr()
+    assert main(["runs", "list", "--store", store]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    rows = {int(line.split()[0]): line for line in lines[2:8]}  # ids are whole numbers
+    assert sorted(rows) == [1, 2, 3, 4, 5, 6]
+    assert rows[1].split()[1:4] == ["solve", "-", "-"] and "mass 0.667951 kg" in rows[1]  # the worked example
+    assert rows[2].split()[1:4] == ["sweep", "1", "0"] and rows[2].split()[8:10] == ["infeasible", "-"]
+    assert "geometry (cost cap)" in rows[5] and "mass 0.689202 kg" in rows[5]  # README's front, cap 39.3164 EUR
+    assert "geometry (cost cap)" not in rows[6] and "cost 39.1863 EUR" in rows[6]  # the cost end
+    out = tmp_path / "runs.csv"
+    assert main(["runs", "export", "-o", str(out), "--store", store]) == 0
+    table = pd.read_csv(out)
+    assert table["id"].tolist() == [1, 2, 3, 4, 5, 6] and table["sweep"].dtype.kind in "if"
+    assert table.loc[0, "input.speed [rad/s]"] == pytest.approx(1000 * 2 * 3.141592653589793 / 60, rel=1e-12)
+    assert table.loc[0, "design.finger_diameter [m]"] == pytest.approx(5.46156e-3, rel=1e-5)
+    infeasible = table[table["status"] == "infeasible"]
+    assert len(infeasible) == 2 and infeasible["design.finger_diameter [m]"].isna().all()
+    assert infeasible["mass [kg]"].isna().all() and infeasible["diagnosis"].str.startswith("infeasible:").all()
+    assert table.loc[5, "cost [EUR]"] == pytest.approx(39.1863, rel=1e-5) and pd.isna(table.loc[5, "mass [kg]"])

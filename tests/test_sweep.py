@@ -109,7 +109,7 @@ def test_few_points_print_one_column_per_point(cli):
     (["--vary", "nonsense=1"], "unknown quantity 'nonsense'"),
     (["--vary", "speed=1", "--dask", "localhost"], "--dask: expected an address like tcp://host:8786"),
     (["--vary", "speed=1", "--out", "table.xlsx"], "--out: write .csv, .parquet or .md"),
-    (["--vary", "speed=1", "--jobs", "0"], "--jobs: must be at least 1"),
+    (["--vary", "speed=1", "--jobs", "0"], "argument --jobs: must be from 1"),
     (["--vary", "speed=1", "--resume", "--no-store"], "--resume: continues a sweep from the run store"),
     (["--vary", "speed=1000", "--out", "/nonexistent/dir/t.csv", "--quiet"], "--out: cannot write"),
 ])

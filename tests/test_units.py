@@ -109,16 +109,71 @@ def test_the_table_is_what_pint_says():
        st.sampled_from(["mm", "MPa", "deg", "rpm", "N*m", "kg*m^2", "EUR/cm^2", "kW", "N*m/rad", "kg/m^3", "GPa"]),
        st.sampled_from(["{!r}", "{:.6g}", "{:.3e}", "{:.0f}"]))
 def test_the_table_gives_pints_value_to_the_last_bit(value, unit, form):
-    from clutchopt.units import _from_table, ureg
+    from clutchopt.units import ureg
 
     text = f"{form.format(value)} {unit}"
-    assert _from_table(text, unit) == float(ureg.Quantity(text).to_base_units().magnitude)
-    assert to_si("field", text, unit) == _from_table(text, unit)
+    assert to_si("field", text, unit) == float(ureg.Quantity(text).to_base_units().magnitude)
 
 
-@pytest.mark.parametrize("text, unit", [("20mm", "mm"), ("20 N * m", "N*m"), ("1_000 mm", "mm"), ("4 kg", "MPa"),
-                                        ("20 mm", "furlong"), ("1e400 mm", "mm"), (True, "")])
-def test_text_outside_the_table_goes_to_pint(text, unit):
-    from clutchopt.units import _from_table
+def test_a_case_in_table_units_is_read_without_pint():
+    import subprocess
+    import sys
 
-    assert _from_table(text, unit) is None
+    from tests.conftest import CASES, ROOT
+
+    code = (f"import sys\nfrom clutchopt.cases import load_case\nload_case({str(CASES / 'wedge_paper.toml')!r})\n"
+            "print('pint' in sys.modules)")
+    result = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == "False"
+@pytest.mark.parametrize("text, si", [
+    ("1000 rpm", 1000 * 2 * math.pi / 60),
+    ("1000 rev/min", 1000 * 2 * math.pi / 60),
+    ("16.5 rps", 16.5 * 2 * math.pi),  # revolutions per second
+    ("6000 deg/s", 6000 * math.pi / 180),
+    ("104.7 rad/s", 104.7),
+])
+def test_an_angular_speed_says_it_counts_an_angle(text, si):
+    assert to_si("duty.speed", text, "rpm") == pytest.approx(si, rel=1e-14)
+
+
+@pytest.mark.parametrize("text", ["16.67 Hz", "104.7 1/s", "104.7 s^-1", "1000 1/min", "0.0167 kHz"])
+def test_a_pure_frequency_is_refused_for_an_angular_speed(text):
+    """Hz and 1/s count revolutions or radians: read as rad/s (pint's reading) 16.67 Hz would be 2 pi too slow."""
+    with pytest.raises(InputError, match=r"is ambiguous: an angular speed needs an angle per time"):
+        to_si("duty.speed", text, "rpm")
+
+
+def test_the_typographic_minus_is_a_minus():
+    assert to_si("coupling.a", "\u22120.01 s/rad", "s") == -0.01
+
+
+@pytest.mark.parametrize("text, words", [
+    ("1 m**99999999", "unit power 99999999 is out of range"),
+    ("2**99999999 m", "a number inside the unit"),
+    ("1 (((m)))", "parentheses nested too deeply"),
+    ("1" + "0" * 400 + " m", "too long for a quantity"),
+    ("1e400 m", "finite number within the float64 range"),
+    ("10\x00 m", "control character"),
+    ("\uff11 m", "cannot read"),  # a full-width digit: only ASCII digits are numbers
+])
+def test_text_pint_should_never_evaluate_is_refused(text, words):
+    with pytest.raises(InputError, match=words):
+        to_si("geometry.flank_inner_radius", text, "mm")
+
+
+def test_a_huge_integer_is_beyond_float64():
+    with pytest.raises(InputError, match="401-digit number is beyond the float64 range"):
+        to_si("duty.inertia", 10**400, "kg*m^2")
+
+
+def test_a_temperature_rise_is_no_temperature():
+    """A rise of "15 degC" read by pint is 288.15 K; a temperature difference is written in K (or delta_degC)."""
+    assert to_si("start_up.limits.max_temperature_rise", "15 delta_degC", "K") == 15.0
+    with pytest.raises(InputError, match="a temperature on a scale with an offset"):
+        to_si("start_up.limits.max_temperature_rise", "15 degC", "K")
+
+
+def test_an_absolute_temperature_takes_celsius():
+    assert to_si("friction_pairs.x.max_temperature", "250 degC", "degC") == pytest.approx(523.15, rel=1e-15)
+    assert to_si("friction_pairs.x.max_temperature", "523.15 K", "degC") == 523.15

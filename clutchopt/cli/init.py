@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from clutchopt.cli.options import COUPLING_MODES, MODE_HELP, add_parser
+from clutchopt.cli.options import COUPLING_MODES, MODE_HELP, add_parser, name
 from clutchopt.errors import InputError
 
 
@@ -17,7 +17,7 @@ def add_command(commands) -> None:
          "clutchopt init ball | less                      read it first"))
     init.add_argument("coupling", choices=tuple(COUPLING_MODES), metavar="COUPLING",
                       help=f"which coupling: {', '.join(COUPLING_MODES)} (clutchopt couplings describes them)")
-    init.add_argument("--mode", metavar="MODE", help=MODE_HELP.replace("Default: the case's [options] mode, then",
+    init.add_argument("--mode", metavar="MODE", type=name, help=MODE_HELP.replace("Default: the case's [options] mode, then",
                                                                        "Written into [options]; default:"))
     init.add_argument("-o", "--out", metavar="FILE", help="write the case to FILE (default: print it)")
     init.add_argument("--force", action="store_true", help="overwrite FILE if it exists")
@@ -25,18 +25,20 @@ def add_command(commands) -> None:
 
 
 def run(args) -> str:
-    from pathlib import Path
-
+    from clutchopt.files import check_output, status, write_whole
     from clutchopt.template import case_template
 
     text = case_template(args.coupling, args.mode)
     if not args.out:
         return text.rstrip("\n")
-    path = Path(args.out)
-    if path.exists() and not args.force:
+    path = args.out
+    check_output("--out", path, (".toml",))
+    if status(path, "--out") is not None and not args.force:
         raise InputError("--out", f"{path} exists; give another name, or --force to overwrite it")
-    try:
-        path.write_text(text, encoding="utf-8")
-    except OSError as exc:
-        raise InputError("--out", f"cannot write {path} ({exc.strerror or exc})") from None
+
+    def write(target: str) -> None:
+        with open(target, "w", encoding="utf-8") as handle:
+            handle.write(text)
+
+    write_whole("--out", path, write)
     return f"wrote {path}: a new {args.coupling} case; solve it with: clutchopt solve {path}"

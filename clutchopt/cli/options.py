@@ -3,8 +3,14 @@
 from __future__ import annotations
 
 import argparse
+import sys
+from contextlib import contextmanager
+from typing import Iterator
 
 EXIT_BAD_INPUT = 2
+EXIT_INTERNAL = 3  # a bug: one line and a crash file (clutchopt.crash)
+EXIT_INTERRUPTED = 130  # Ctrl-C, as a shell reports SIGINT
+
 
 # The modes of each coupling, its default first: the --mode help lists them without importing the formulations
 # (tests/test_init.py checks this index against them).
@@ -34,14 +40,43 @@ def add_parser(commands, name: str, summary: str, details: str = "", examples: t
     return commands.add_parser(name, help=summary, description=description, epilog=epilog)
 
 
-def positive_float(text: str) -> float:
+TOLERANCE_RANGE = (1e-14, 1e-2)  # IPOPT's tol: below 1e-14 float64 cannot follow, above 1e-2 is no optimum
+LARGEST_ID = 2**63 - 1  # SQLite's INTEGER
+FIGURE_SUFFIXES = (".png", ".svg", ".pdf")
+
+
+def tolerance(text: str) -> float:
+    """A solver tolerance: a finite number within TOLERANCE_RANGE."""
+    low, high = TOLERANCE_RANGE
     try:
         value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"must be positive: {text!r}")
+        raise argparse.ArgumentTypeError(f"not a number: {text!r} (e.g. 1e-8)") from None
+    if not low <= value <= high:  # also refuses nan and inf
+        raise argparse.ArgumentTypeError(f"must be between {low:g} and {high:g}, got {text!r}")
     return value
+
+
+def whole_number(low: int, high: int):
+    """An argparse type: a whole number within [low, high]."""
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"not a whole number: {text[:40]!r}") from None
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"must be from {low} to {high}, got {text[:40]}")
+        return value
+
+    parse.__name__ = "whole number"
+    return parse
+
+
+def name(text: str) -> str:
+    """A name on the command line (mode, objective): not empty, printable, short."""
+    if not text.strip() or not text.isprintable() or len(text) > 40:
+        raise argparse.ArgumentTypeError(f"expected a name such as paper or geometry, got {text[:40]!r}")
+    return text.strip()
 
 
 def add_case_argument(command: argparse.ArgumentParser) -> None:
@@ -55,18 +90,18 @@ def add_json_option(command: argparse.ArgumentParser,
 
 def add_problem_options(command: argparse.ArgumentParser, objective: bool = True) -> None:
     """--mode, --objective (unless the command sets both ends itself) and --tol: how a case is posed and solved."""
-    command.add_argument("--mode", metavar="MODE", help=MODE_HELP)
+    command.add_argument("--mode", metavar="MODE", type=name, help=MODE_HELP)
     if objective:
-        command.add_argument("--objective", metavar="NAME",
+        command.add_argument("--objective", metavar="NAME", type=name,
                              help="what the optimum minimises: mass (kg) or cost (EUR) (default: the case's "
                                   "[options] objective, then mass)")
     add_tolerance_option(command)
 
 
 def add_tolerance_option(command: argparse.ArgumentParser) -> None:
-    command.add_argument("--tol", type=positive_float, default=1e-10,
-                         help="IPOPT's convergence tolerance (default 1e-10; 1e-6 is faster and good to about 1e-6 "
-                              "relative)")
+    command.add_argument("--tol", type=tolerance, default=1e-10,
+                         help=f"IPOPT's convergence tolerance, {TOLERANCE_RANGE[0]:g} to {TOLERANCE_RANGE[1]:g} "
+                              "(default 1e-10; 1e-6 is faster and good to about 1e-6 relative)")
 
 
 def add_store_options(command: argparse.ArgumentParser) -> None:
@@ -85,38 +120,69 @@ def first_choice_note(case) -> str:
     return f"options.choose: this command takes the first choice ({first}); clutchopt solve compares them all"
 
 
-def open_store(args):
-    """The run store the arguments ask for, or None with ``--no-store``."""
+def resolve_problem(case, args, objective: bool = True) -> None:
+    """Check the mode and objective the arguments ask for (an unknown name is bad input) before any store is
+    opened or file written."""
+    from clutchopt.optimise.problem import case_formulation
+
+    formulation = case_formulation(case, args.mode)
+    if objective:
+        formulation.objective(args.objective or case.options.get("objective", "mass"))
+
+
+def warn(text: str) -> None:
+    """A warning for the user: one line on stderr; the command goes on."""
+    print(f"warning: {text}", file=sys.stderr, flush=True)
+
+
+def open_store(args, needed: bool = False):
+    """The run store the arguments ask for, opened before any work; None with ``--no-store``.
+
+    A store that cannot be used (read-only, damaged, not a store) does not stop the command: one warning says
+    what will not be recorded and why, and the result is printed as usual. With ``needed`` (``--resume``, which
+    reads the store) it is an error instead. Writes that fail later are reported the same way, once."""
     if getattr(args, "no_store", False):
         return None
-    from clutchopt.store import RunStore
+    from clutchopt.store import RunStore, StoreError
 
-    return RunStore(args.store)
-
-
-def record_solve(args, case, solution, check: dict | None = None) -> None:
-    """Record a ``solve`` (and its start-up check, a simulation) in the run store unless ``--no-store``."""
-    store = open_store(args)
-    if store is not None:
-        with store:
-            store.record_solution("solve", case, solution)
-            if check is not None:
-                store.record("simulation", {"values": case.values, "design": solution.design}, check,
-                             status="verified" if check.get("verified") else "not verified",
-                             objective=check.get("simulated_acceleration_time", check.get("simulated_start_time")),
-                             case_path=case.path,
-                             title=case.title, coupling=case.coupling, mode=solution.mode,
-                             objective_name="acceleration_time")
+    try:
+        return RunStore(args.store, warn=warn)
+    except StoreError as exc:
+        if needed:
+            raise
+        warn(f"this run will not be recorded: {exc.problem}")
+        return None
 
 
-def record_simulation(args, scene, result) -> None:
-    """Record a ``simulate`` run (scene file, headline, events) unless ``--no-store``."""
-    from clutchopt.cases import read_toml
+@contextmanager
+def recording(args, needed: bool = False) -> Iterator:
+    """``with recording(args) as store:`` the store of :func:`open_store` (or None), closed afterwards."""
+    store = open_store(args, needed)
+    try:
+        yield store
+    finally:
+        if store is not None:
+            store.close()
 
-    store = open_store(args)
-    if store is not None:
-        with store:
-            store.record("simulation", {"scene": read_toml(scene.path), "source": scene.source}, result.as_dict(),
-                         status="locks up" if result.headline["locks_up"] else "no lock-up",
-                         objective=result.headline.get("start_time"), case_path=scene.path, title=scene.title,
-                         objective_name="start_time")
+
+def record_solve(store, case, solution, check: dict | None = None) -> None:
+    """Record a ``solve`` (and its start-up check, a simulation) in an open store (or nothing for None)."""
+    if store is None:
+        return
+    store.record_solution("solve", case, solution)
+    if check is not None:
+        store.record("simulation", {"values": case.values, "design": solution.design}, check,
+                     status="verified" if check.get("verified") else "not verified",
+                     objective=check.get("simulated_acceleration_time", check.get("simulated_start_time")),
+                     objective_unit="s", case_path=case.path, title=case.title, coupling=case.coupling,
+                     mode=solution.mode, objective_name="acceleration_time")
+
+
+def record_simulation(store, scene, result) -> None:
+    """Record a ``simulate`` run (scene file, headline, events) in an open store (or nothing for None)."""
+    if store is None:
+        return
+    store.record("simulation", {"scene": scene.data, "source": scene.source}, result.as_dict(),
+                 status="locks up" if result.headline["locks_up"] else "no lock-up",
+                 objective=result.headline.get("start_time"), objective_unit="s", case_path=scene.path,
+                 title=scene.title, objective_name="start_time")

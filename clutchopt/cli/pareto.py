@@ -6,15 +6,19 @@ import math
 from dataclasses import replace
 
 from clutchopt.cli.options import (
+    FIGURE_SUFFIXES,
     add_case_argument,
     add_json_option,
     add_parser,
     add_problem_options,
     add_store_options,
     first_choice_note,
-    open_store,
+    recording,
+    resolve_problem,
+    whole_number,
 )
-from clutchopt.errors import InputError
+
+MAX_FRONT_POINTS = 1000  # an epsilon-constraint solve each; a front is read from a few dozen
 
 
 def add_command(commands) -> None:
@@ -26,8 +30,9 @@ def add_command(commands) -> None:
          "clutchopt pareto cases/lever_centrifuge.toml --mode design --plot front.png --out front.csv"))
     add_case_argument(pareto)
     add_problem_options(pareto, objective=False)  # mass and cost are the front's two ends
-    pareto.add_argument("--points", type=int, default=9,
-                        help="designs on the front, the lightest and the cheapest included (default 9)")
+    pareto.add_argument("--points", type=whole_number(2, MAX_FRONT_POINTS), default=9,
+                        help=f"designs on the front, the lightest and the cheapest included, 2 to {MAX_FRONT_POINTS} "
+                             "(default 9)")
     pareto.add_argument("--plot", metavar="FILE",
                         help="also draw the front, mass against cost, into FILE (.png, .svg, .pdf)")
     pareto.add_argument("--out", metavar="FILE", help="also write the table: .csv, .parquet or .md")
@@ -41,25 +46,27 @@ def run(args) -> str:
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.pareto import CAP, pareto_front
     from clutchopt.optimise.problem import case_formulation
-    from clutchopt.optimise.sweep import write_frame
+    from clutchopt.files import check_output, write_whole
+    from clutchopt.optimise.sweep import table_format, write_frame
     from clutchopt.optimise.verify import evaluate_objective
     from clutchopt.output import to_json
 
     case = load_case(args.case)
-    if args.points < 2:
-        raise InputError("--points", f"a front needs at least 2 points, got {args.points}")
-    front = pareto_front(case, args.mode, args.points, SolverOptions(tol=args.tol))
+    if args.out:
+        table_format(args.out)  # a bad name fails before the solves, not after
+    if args.plot:
+        check_output("--plot", args.plot, FIGURE_SUFFIXES)
+    resolve_problem(case, args, objective=False)
+    with recording(args) as store:
+        front = pareto_front(case, args.mode, args.points, SolverOptions(tol=args.tol))
+        for cap, solution in zip(front.caps, front.solutions) if store is not None else ():
+            capped = case if math.isnan(cap) else replace(case, values={**case.values, CAP: cap})
+            store.record_solution("pareto", capped, solution)
     formulation = case_formulation(case, front.mode)
-    store = open_store(args)
-    if store is not None:
-        with store:
-            for cap, solution in zip(front.caps, front.solutions):
-                capped = case if math.isnan(cap) else replace(case, values={**case.values, CAP: cap})
-                store.record_solution("pareto", capped, solution)
     if args.out:
         write_frame(front.frame, args.out)
     if args.plot:
-        pareto_figure(front).savefig(args.plot)
+        write_whole("--plot", args.plot, pareto_figure(front).savefig)
     if args.json:
         params = case.params()
         rows = [{"cost_cap": None if math.isnan(cap) else cap, "status": solution.status,

@@ -9,8 +9,9 @@ from clutchopt.cli.options import (
     add_store_options,
     first_choice_note,
     record_solve,
+    recording,
+    resolve_problem,
 )
-from clutchopt.errors import InputError
 
 
 def add_command(commands) -> None:
@@ -31,20 +32,25 @@ def add_command(commands) -> None:
 
 def run(args) -> str:
     from clutchopt.cases import load_case
+    from clutchopt.files import check_output, write_whole
     from clutchopt.optimise import SolverOptions, solve_case
     from clutchopt.optimise.sweep import read_frame
     from clutchopt.report import build_report
 
     case = load_case(args.case)
+    check_output("--out", args.out, (".html", ".htm"))
     sweep = read_frame(args.sweep) if args.sweep else None
-    solution = solve_case(case, args.mode, args.objective, SolverOptions(tol=args.tol))
-    record_solve(args, case, solution)
+    resolve_problem(case, args)
+    with recording(args) as store:
+        solution = solve_case(case, args.mode, args.objective, SolverOptions(tol=args.tol))
+        record_solve(store, case, solution)
     page = build_report(case, solution, sweep)
-    try:
-        with open(args.out, "w", encoding="utf-8") as handle:
+
+    def write(path: str) -> None:
+        with open(path, "w", encoding="utf-8") as handle:
             handle.write(page)
-    except OSError as exc:
-        raise InputError("--out", f"cannot write {args.out!r} ({exc.strerror})") from None
+
+    write_whole("--out", args.out, write)
     note = first_choice_note(case)
     return (note + "\n" if note else "") + f"design review of {case.path} ({solution.status}, {solution.objective_name} " \
            f"{solution.objective:.6g} {solution.objective_unit}) written to {args.out}"

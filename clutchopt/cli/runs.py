@@ -1,10 +1,19 @@
-"""``clutchopt runs list|show|export``: the run store."""
+"""``clutchopt runs list|show|export``: the run store.
+
+Tables for a person: whole-number ids, the mode as the user asked for it, the objective with its unit, no
+objective for a run without a design (infeasible; its diagnosis stays). ``export`` columns carry their SI unit
+(``input.speed [rad/s]``, ``design.weight_mass [kg]``, one objective column per objective, ``mass [kg]``).
+A damaged store: ``list`` and ``show`` refuse it in one line; ``export`` saves every run that can still be read.
+"""
 
 from __future__ import annotations
 
-from clutchopt.cli.options import Parser, add_json_option, add_parser
+import math
+
+from clutchopt.cli.options import LARGEST_ID, Parser, add_json_option, add_parser, whole_number
 
 KINDS = ("solve", "sweep", "pareto", "simulation")
+NO_DESIGN = ("infeasible", "solver_failed")  # statuses whose objective value belongs to no design
 
 
 def add_command(commands) -> None:
@@ -14,20 +23,22 @@ def add_command(commands) -> None:
         "--store or $CLUTCHOPT_STORE says otherwise), with its inputs, outputs, status and versions.",
         ("clutchopt runs list", "clutchopt runs show 3", "clutchopt runs export -o runs.csv --kind sweep"))
     actions = runs.add_subparsers(dest="action", required=True, metavar="ACTION", parser_class=Parser)
+    run_id = whole_number(1, LARGEST_ID)
     listing = actions.add_parser("list", help="recorded runs, newest first, and the sweeps")
     listing.add_argument("--kind", choices=KINDS, help="only runs of this kind")
-    listing.add_argument("--sweep", type=int, metavar="ID",
+    listing.add_argument("--sweep", type=run_id, metavar="ID",
                          help="only the points of sweep ID (clutchopt runs list shows the sweeps)")
-    listing.add_argument("--limit", type=int, default=20,
+    listing.add_argument("--limit", type=whole_number(0, LARGEST_ID), default=20,
                          help="show at most this many runs, newest first (default 20; 0: all)")
     add_json_option(listing)
     show = actions.add_parser("show", help="one run with its inputs, outputs and versions (JSON)")
-    show.add_argument("id", type=int, help="the run's id, as runs list shows it")
+    show.add_argument("id", type=run_id, help="the run's id, as runs list shows it")
     export = actions.add_parser("export", help="runs as a table (.csv, .parquet, .md): status, objective, SI inputs "
-                                               "and design, active constraints")
+                                               "and design with their units, active constraints; from a damaged "
+                                               "store, every run that can still be read")
     export.add_argument("-o", "--out", required=True, metavar="FILE", help="the table to write: .csv, .parquet or .md")
     export.add_argument("--kind", choices=KINDS, help="only runs of this kind")
-    export.add_argument("--sweep", type=int, metavar="ID", help="only the points of sweep ID")
+    export.add_argument("--sweep", type=run_id, metavar="ID", help="only the points of sweep ID")
     for action in (listing, show, export):
         action.add_argument("--store", metavar="PATH", help="run store (default $CLUTCHOPT_STORE, then "
                                                             "./clutchopt-runs.sqlite)")
@@ -35,25 +46,128 @@ def add_command(commands) -> None:
 
 
 def run(args) -> str:
-    import pandas as pd
-
-    from clutchopt.optimise.sweep import table_format, write_frame
     from clutchopt.output import to_json
     from clutchopt.store import RunStore
 
-    with RunStore(args.store) as store:
+    if args.action == "export":
+        return export(args)
+    with RunStore(args.store, writable=False) as store:
         if args.action == "show":
             return to_json(store.run(args.id))
-        if args.action == "export":
-            table_format(args.out)
-            runs = pd.DataFrame(store.flat(args.kind, args.sweep))
-            write_frame(runs, args.out)
-            return f"{len(runs)} runs written to {args.out}"
         listed, swept = store.runs(args.kind, args.sweep, args.limit or None), store.sweeps()
-        if args.json:
-            return to_json({"store": str(store.path), "runs": listed, "sweeps": swept})
-        runs, sweeps = pd.DataFrame(listed), pd.DataFrame(swept)
-    lines = [f"Runs in {store.path} (newest first)", runs.to_string(index=False) if len(runs) else "(none)"]
-    if len(sweeps) and args.sweep is None:
-        lines += ["", "Sweeps", sweeps.to_string(index=False)]
+    if args.json:
+        return to_json({"store": str(store.path), "runs": listed, "sweeps": swept})
+    return listing_text(store.path, listed, swept if args.sweep is None else [])
+
+
+def listing_text(path: str, listed: list[dict], swept: list[dict]) -> str:
+    import pandas as pd
+
+    from clutchopt.store import shown_mode
+
+    rows = [{"id": run["id"], "kind": run["kind"], "sweep": _whole(run["sweep_id"]), "point": _whole(run["point"]),
+             "created (UTC)": _created(run["created"]), "coupling": run["coupling"] or "-",
+             "mode": shown_mode(run["mode"]) or "-", "status": run["status"] or "-", "objective": _objective(run),
+             "case": run["case_path"] or "-"} for run in listed]
+    lines = [f"Runs in {path} (newest first)", pd.DataFrame(rows).to_string(index=False) if rows else "(none)"]
+    if swept:
+        sweeps = [{"sweep": s["id"], "created (UTC)": _created(s["created"]), "case": s["case_path"] or "-",
+                   "coupling": s["coupling"], "mode": shown_mode(s["mode"]), "objective": s["objective"],
+                   "points": s["points"], "stored": s["stored"]} for s in swept]
+        lines += ["", "Sweeps", pd.DataFrame(sweeps).to_string(index=False)]
     return "\n".join(lines)
+
+
+def _whole(value) -> str:
+    return "-" if value is None else str(int(value))
+
+
+def _created(stamp: str | None) -> str:
+    return (stamp or "-")[:19].replace("T", " ")
+
+
+def _objective(run: dict) -> str:
+    """``mass 0.282095 kg``; ``-`` where the run has no design (its objective value would mean nothing)."""
+    value = run["objective"]
+    if value is None or not math.isfinite(value) or run["status"] in NO_DESIGN:
+        return "-"
+    return f"{run['objective_name']} {value:.6g} {run['objective_unit'] or ''}".rstrip()
+
+
+def export(args) -> str:
+    import pandas as pd
+
+    from clutchopt.optimise.sweep import table_format, write_frame
+    from clutchopt.store import RunStore
+
+    table_format(args.out)
+    with RunStore(args.store, writable=False, check=False) as store:
+        entries, lost = store.readable_runs(args.kind, args.sweep)
+    frame = pd.DataFrame([export_row(entry) for entry in entries])
+    for column in ("sweep", "point"):  # whole numbers, blank for a run that is no sweep point
+        if column in frame:
+            frame[column] = frame[column].astype("Int64")
+    write_frame(frame, args.out)
+    text = f"{len(frame)} runs written to {args.out}"
+    if lost:
+        text += f"; {lost} damaged runs could not be read from {store.path}"
+    return text
+
+
+def export_row(entry: dict) -> dict:
+    """One run as a flat row, every quantity's column named with its SI unit."""
+    from clutchopt.store import shown_mode
+
+    outputs = entry["outputs"] if isinstance(entry["outputs"], dict) else {}
+    designed = entry["status"] not in NO_DESIGN
+    row = {"id": entry["id"], "kind": entry["kind"], "sweep": entry["sweep_id"], "point": entry["point"],
+           "created": entry["created"], "coupling": entry["coupling"], "mode": shown_mode(entry["mode"]),
+           "status": entry["status"], "case": entry["case_path"], "title": entry["title"]}
+    unit = entry.get("objective_unit") or _nested(outputs, "objective", "unit") or ("s" if entry["kind"] ==
+                                                                                     "simulation" else "")
+    if entry["objective_name"]:
+        value = entry["objective"]
+        row[_column(entry["objective_name"], unit)] = value if designed and value is not None else None
+    units = _input_units(entry["coupling"])
+    inputs = entry["inputs"].get("values", {}) if isinstance(entry["inputs"], dict) else {}
+    row.update({_column(f"input.{name}", units.get(name, "")): value for name, value in inputs.items()})
+    design_units = _nested(outputs, "units", "design") or {}
+    for name, value in (outputs.get("design") or {}).items():
+        row[_column(f"design.{name}", design_units.get(name) or units.get(name, ""))] = value if designed else None
+    row["active"] = " ".join(c.get("name", "") for c in outputs.get("constraints") or []
+                             if isinstance(c, dict) and c.get("active")) if designed else ""
+    row["diagnosis"] = outputs.get("diagnosis") or ""
+    return row
+
+
+def _nested(data: dict, *keys):
+    for key in keys:
+        data = data.get(key) if isinstance(data, dict) else None
+    return data
+
+
+def _column(name: str, unit: str) -> str:
+    return f"{name} [{unit}]" if unit and unit != "1" else name
+
+
+_UNITS: dict[str, dict[str, str]] = {}
+
+
+def _input_units(coupling: str | None) -> dict[str, str]:
+    """SI unit of each quantity and design variable of a coupling (and of a Pareto point's cost cap)."""
+    from clutchopt.errors import InputError
+    from clutchopt.formulations import get_coupling
+    from clutchopt.optimise.pareto import CAP
+    from clutchopt.units import si_unit
+
+    if coupling not in _UNITS:
+        try:
+            declared = get_coupling(coupling)
+        except InputError:  # a simulation (no coupling), or a store of a newer clutchopt
+            _UNITS[coupling] = {}
+        else:
+            _UNITS[coupling] = {q.name: q.si_unit for q in (*declared.quantities, *declared.variables)}
+            objectives = {o.name: o for f in declared.formulations.values() for o in f.objectives}
+            if "cost" in objectives:
+                _UNITS[coupling][CAP] = si_unit(objectives["cost"].unit)
+    return _UNITS[coupling]

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import math
 
-from clutchopt.cli.options import add_json_option, add_parser, add_store_options, record_simulation
-from clutchopt.errors import InputError
+from clutchopt.cli.options import FIGURE_SUFFIXES, add_json_option, add_parser, add_store_options, record_simulation, \
+    recording
 
 _LINES = (
     ("start_time", "start time t_c", "s"),
@@ -28,22 +28,28 @@ def add_command(commands) -> None:
          "clutchopt simulate cases/scenes/wedge_motor_springs.toml --plot startup.png"))
     parser.add_argument("scene", help="the scene file (TOML, e.g. cases/scenes/paper_transient.toml)")
     add_json_option(parser)
-    parser.add_argument("--plot", metavar="PNG",
-                        help="also draw speeds (rpm), clutch torque and slip power over time into PNG")
+    parser.add_argument("--plot", metavar="FILE",
+                        help="also draw speeds (rpm), clutch torque and slip power over time into FILE (.png, .svg, "
+                             ".pdf)")
     add_store_options(parser)
     parser.set_defaults(run=run)
 
 
 def run(args) -> str:
+    from clutchopt.files import check_output, write_whole
     from clutchopt.output import to_json
     from clutchopt.simulate import load_scene, run_scene
     from clutchopt.simulate.analytic import PaperTransient
+    from clutchopt.simulate.plot import history_figure
 
     scene = load_scene(args.scene)
-    result = run_scene(scene)
-    record_simulation(args, scene, result)
     if args.plot:
-        _write_plot(result, scene.title, args.plot)
+        check_output("--plot", args.plot, FIGURE_SUFFIXES)
+    with recording(args) as store:
+        result = run_scene(scene)
+        record_simulation(store, scene, result)
+    if args.plot:
+        write_whole("--plot", args.plot, lambda path: history_figure(result, scene.title).savefig(path, dpi=120))
     analytic = None
     m = scene.model
     if m.law.name == "paper" and m.load.constant and "motor_curve" not in m.effects:
@@ -52,15 +58,6 @@ def run(args) -> str:
         return to_json({"scene": scene.path, "title": scene.title, **result.as_dict(),
                         **({"analytic": analytic} if analytic else {})})
     return _text(scene, result, analytic) + (f"\nfigure written to {args.plot}" if args.plot else "")
-
-
-def _write_plot(result, title: str, path: str) -> None:
-    from clutchopt.simulate.plot import history_figure
-
-    try:
-        history_figure(result, title).savefig(path, dpi=120)
-    except (OSError, ValueError) as exc:
-        raise InputError("--plot", f"cannot write {path} ({exc})") from None
 
 
 def _text(scene, result, analytic) -> str:

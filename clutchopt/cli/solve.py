@@ -27,21 +27,24 @@ def add_command(commands) -> None:
 
 def run(args) -> str:
     from clutchopt.cases import load_case
-    from clutchopt.cli.options import record_solve
+    from clutchopt.cli.options import record_solve, recording, resolve_problem
     from clutchopt.materials import solve_choices
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.problem import case_formulation
     from clutchopt.output import choices_text, library_json, library_text, solution_text, to_json
 
-    ranked = solve_choices(load_case(args.case), args.mode, args.objective, SolverOptions(tol=args.tol))
-    _, case, solution = ranked[0]
-    check = None
-    if args.verify:
-        from clutchopt.simulate import verify
+    case = load_case(args.case)
+    resolve_problem(case, args)
+    with recording(args) as store:
+        ranked = solve_choices(case, args.mode, args.objective, SolverOptions(tol=args.tol))
+        _, case, solution = ranked[0]
+        check = None
+        if args.verify:
+            from clutchopt.simulate import verify
 
-        check = verify(case, solution)
-    for _, variant, variant_solution in ranked:
-        record_solve(args, variant, variant_solution, check if variant_solution is solution else None)
+            check = verify(case, solution)
+        for _, variant, variant_solution in ranked:
+            record_solve(store, variant, variant_solution, check if variant_solution is solution else None)
     if args.json:
         choices = [{"choice": choice, **s.as_dict()} for choice, _, s in ranked] if len(ranked) > 1 else []
         return to_json({"case": case.path, "title": case.title, **solution.as_dict(), "library": library_json(case),

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import math
+import os
+
 from clutchopt.cli.options import (
     add_case_argument,
     add_json_option,
@@ -10,9 +13,11 @@ from clutchopt.cli.options import (
     add_store_options,
     first_choice_note,
     open_store,
+    whole_number,
 )
-from clutchopt.errors import InputError
+from clutchopt.errors import InputError, Problems
 
+MAX_JOBS = 4 * (os.cpu_count() or 1)  # worker processes beyond this only compete for the cores
 COLUMNS_SHOWN = 12  # a sweep up to this many points prints one column per point; longer ones a summary
 
 
@@ -32,7 +37,8 @@ def add_command(commands) -> None:
     sweep.add_argument("--zip", action="store_true",
                        help="pair the lists instead of crossing them: point i takes the i-th value of each --vary")
     add_problem_options(sweep)
-    sweep.add_argument("--jobs", type=int, default=1, help="solve on N local processes (default 1)")
+    sweep.add_argument("--jobs", type=whole_number(1, MAX_JOBS), default=1,
+                       help=f"solve on N local processes, 1 to {MAX_JOBS} (default 1)")
     sweep.add_argument("--dask", metavar="ADDRESS",
                        help="solve on an existing Dask cluster, e.g. tcp://host:8786 (pip install 'clutchopt[dask]')")
     sweep.add_argument("--resume", action="store_true",
@@ -50,21 +56,24 @@ def run(args) -> str:
     from clutchopt.optimise.sweep import Sweep, dask_runner, parse_vary, table_format, write_frame
 
     case = load_case(args.case)
-    if args.jobs < 1:
-        raise InputError("--jobs", f"must be at least 1, got {args.jobs}")
     if args.resume and args.no_store:
         raise InputError("--resume", "continues a sweep from the run store; drop --no-store")
-    sweep = Sweep(case, [parse_vary(text, case.coupling, case.quantities) for text in args.vary], args.mode, args.objective,
-                  args.tol, args.zip)
+    problems = Problems()
+    varies = []
+    for text in args.vary:
+        with problems.field():
+            varies.append(parse_vary(text, case.coupling, case.quantities))
+    problems.raise_any()
+    sweep = Sweep(case, varies, args.mode, args.objective, args.tol, args.zip)
     if args.out:
         table_format(args.out)  # a bad name fails before the solves, not after
     runner = dask_runner(args.dask) if args.dask else None
-    store = open_store(args)
+    store = open_store(args, needed=args.resume)
     try:
         result = sweep.run(store, args.resume, args.jobs, runner, progress=not args.quiet)
     except KeyboardInterrupt:
         where = f"; the points solved so far are in {store.path}, continue with --resume" if store else ""
-        raise SystemExit(f"sweep interrupted{where}") from None
+        raise KeyboardInterrupt(f"sweep interrupted{where}") from None
     finally:
         if store is not None:
             store.close()
@@ -76,14 +85,20 @@ def run(args) -> str:
         return to_json({"case": case.path, "mode": sweep.formulation.mode, "objective": sweep.objective.name,
                         "sweep_id": result.sweep_id, "points": [{"point": i, "values": values, **solution}
                         for i, (values, solution) in enumerate(zip(sweep.points, result.solutions))]})
-    text = "\n".join(filter(None, [first_choice_note(case),
-                                    sweep_text(sweep, result, store.path if store else None, args.out)]))
+    text = "\n".join(filter(None, [first_choice_note(case), sweep_text(sweep, result, store, args.out)]))
     if args.resume and not result.reused:
         text += "\n(nothing resumed: no stored points of an identical sweep)"
     return text
 
 
-def sweep_text(sweep, result, store_path: str | None, out: str | None) -> str:
+def _cell(value):
+    """A table cell: numbers to 6 digits, ``-`` where a point has no value (no design)."""
+    if isinstance(value, float):
+        return "-" if math.isnan(value) else f"{value:.6g}"
+    return value
+
+
+def sweep_text(sweep, result, store, out: str | None) -> str:
     frame = result.frame
     counts = ", ".join(f"{count} {status}" for status, count in frame["status"].value_counts().items())
     objective = frame.columns[len(sweep.varies) + 2]
@@ -92,7 +107,7 @@ def sweep_text(sweep, result, store_path: str | None, out: str | None) -> str:
              f"solved {result.solved} points in {result.elapsed_s:.1f} s"
              + (f", {result.reused} taken from the store" if result.reused else "")]
     if len(frame) <= COLUMNS_SHOWN:
-        shown = frame.drop(columns=["diagnosis", "active"]).map(lambda v: f"{v:.6g}" if isinstance(v, float) else v)
+        shown = frame.drop(columns=["diagnosis", "active"]).map(_cell)
         table = shown.set_index("point").T
         table.columns = [f"point {i}" for i in table.columns]
         lines += ["", table.to_string(), ""]
@@ -103,8 +118,10 @@ def sweep_text(sweep, result, store_path: str | None, out: str | None) -> str:
         optimal = frame[frame["status"] == "optimal"][objective]
         if len(optimal):
             lines.append(f"{objective}: {optimal.min():.6g} to {optimal.max():.6g} over the optimal points")
-    if store_path:
-        lines.append(f"recorded as sweep {result.sweep_id} in {store_path}")
+    if store is not None and result.sweep_id is not None:
+        lines.append(f"recorded as sweep {result.sweep_id} in {store.path}")
+    if store is not None and store.failure:
+        lines.append(f"{store.unrecorded} points not recorded: {store.failure}")
     if out:
         lines.append(f"table written to {out}")
     return "\n".join(lines)

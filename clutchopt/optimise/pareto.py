@@ -19,7 +19,8 @@ from clutchopt.model import Formulation, Quantity, at_most
 from clutchopt.optimise.problem import Problem, Solution, SolverOptions, case_formulation, case_problem
 from clutchopt.optimise.start_up import Structure
 from clutchopt.optimise.sweep import column_name
-from clutchopt.optimise.verify import evaluate_objective
+from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_objective
+from clutchopt.store import CAPPED_SUFFIX
 from clutchopt.units import from_si
 
 CAP = "cost_cap"
@@ -31,7 +32,7 @@ def capped(formulation: Formulation, bounded: str = "cost") -> Formulation:
     cap = Quantity(CAP, objective.unit, f"upper limit on {bounded} (epsilon-constraint)", "epsilon", "pareto")
     return replace(
         formulation,
-        mode=f"{formulation.mode}_capped",
+        mode=f"{formulation.mode}{CAPPED_SUFFIX}",
         quantities=formulation.quantities + (cap,),
         constraints=lambda x, p: formulation.constraints(x, p) + [
             at_most(CAP, objective.function(x, p), getattr(p, CAP), equation="epsilon", unit=objective.unit,
@@ -92,11 +93,12 @@ def _frame(formulation: Formulation, case: Case, caps: list[float], solutions: l
     rows = []
     for cap, solution in zip(caps, solutions):
         row = {column_name(CAP, cost.unit): cap, "status": solution.status}
+        designed = solution.status in DESIGN_STATUSES  # no design values for a point that has none
         for objective in (mass, cost):
             row[column_name(objective.name, objective.unit)] = evaluate_objective(
-                formulation, objective.name, solution.design, params)
-        row.update({column_name(v.name, v.unit): from_si(solution.design[v.name], v.unit)
+                formulation, objective.name, solution.design, params) if designed else np.nan
+        row.update({column_name(v.name, v.unit): from_si(solution.design[v.name], v.unit) if designed else np.nan
                     for v in formulation.variables})
-        row["active"] = " ".join(c.name for c in solution.constraints if c.active and c.name != CAP)
+        row["active"] = " ".join(c.name for c in solution.constraints if c.active and c.name != CAP) if designed else ""
         rows.append(row)
     return pd.DataFrame(rows)

@@ -14,8 +14,11 @@ from __future__ import annotations
 
 import itertools
 import math
+import os
 import re
 import signal
+import socket
+import struct
 import threading
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -28,11 +31,15 @@ import numpy as np
 import pandas as pd
 
 from clutchopt.cases import Case
-from clutchopt.errors import InputError
+from clutchopt.errors import InputError, Problems
+from clutchopt.files import TABLE_BYTES, check_output, read_bytes, write_whole
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Formulation, Quantity
 from clutchopt.optimise.problem import Solution, SolverOptions, case_formulation, case_problem
+from clutchopt.optimise.verify import DESIGN_STATUSES
 from clutchopt.units import from_si, si_factor
+
+MAX_POINTS = 100_000  # points of one sweep: hours of solving; more is a mistake (1e12 would not fit in memory)
 
 
 @dataclass(frozen=True)
@@ -67,9 +74,16 @@ def parse_vary(text: str, coupling: str, quantities: tuple[Quantity, ...] | None
     if ":" in spec:
         if len(numbers) != 3 or numbers[2] != int(numbers[2]) or numbers[2] < 1:
             raise InputError(field, "a range is start:stop:count with a whole count >= 1")
+        if numbers[2] > MAX_POINTS:
+            raise InputError(field, f"{numbers[2]:.15g} values; a sweep has at most {MAX_POINTS:,} points")
         numbers = np.linspace(numbers[0], numbers[1], int(numbers[2])).tolist()
+    elif len(numbers) > MAX_POINTS:
+        raise InputError(field, f"{len(numbers)} values; a sweep has at most {MAX_POINTS:,} points")
     factor = si_factor(quantity.unit) if quantity.unit else 1.0
-    return Vary(quantity, tuple(value * factor for value in numbers))
+    values = tuple(value * factor for value in numbers)
+    if not all(math.isfinite(value) for value in values):
+        raise InputError(field, "values beyond the float64 range once converted to SI")
+    return Vary(quantity, values)
 
 
 def _numbers(field: str, spec: str) -> list[float]:
@@ -84,8 +98,15 @@ def _numbers(field: str, spec: str) -> list[float]:
 
 
 def grid(varies: list[Vary], zipped: bool = False) -> list[dict[str, float]]:
-    """The sweep's points as SI values by quantity name."""
+    """The sweep's points as SI values by quantity name (at most MAX_POINTS; each quantity varied once)."""
     names = [v.quantity.name for v in varies]
+    twice = sorted({name for name in names if names.count(name) > 1})
+    if twice:
+        raise InputError("--vary", f"{', '.join(twice)} varied twice; give all its values in one --vary")
+    count = len(varies[0].values) if zipped and varies else math.prod(len(v.values) for v in varies)
+    if count > MAX_POINTS:
+        raise InputError("--vary", f"the grid has {count:,} points; a sweep has at most {MAX_POINTS:,} "
+                                   "(split it, or use fewer values)")
     if zipped:
         lengths = {len(v.values) for v in varies}
         if len(lengths) > 1:
@@ -134,7 +155,7 @@ def local_runner(jobs: int) -> Callable:
             for result in solve_points(*task, pending):
                 yield [result]
             return
-        pool = ProcessPoolExecutor(max_workers=jobs)
+        pool = ProcessPoolExecutor(max_workers=jobs, initializer=die_with_parent)
         try:
             futures = [pool.submit(solve_chunk, *task, chunk) for chunk in _chunks(pending, size)]
             for future in as_completed(futures):
@@ -142,6 +163,21 @@ def local_runner(jobs: int) -> Callable:
         finally:  # on Ctrl-C do not wait for the chunks not started
             pool.shutdown(wait=False, cancel_futures=True)
     return run
+
+
+def die_with_parent(poll_s: float = 0.5) -> None:
+    """Pool-worker initializer: a watchdog thread ends this worker once the process that started it is gone.
+
+    A sweep killed with ``kill -9`` cannot shut its pool down; without this its workers would wait forever for
+    work. The parent's death shows as a change of ``os.getppid()`` (the worker is re-parented)."""
+    parent = os.getppid()
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(poll_s)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="clutchopt-parent-watchdog", daemon=True).start()
 
 
 @contextmanager
@@ -180,18 +216,66 @@ def dask_runner(address: str) -> Callable:
     return run
 
 
-def connect(address: str, timeout: float = 5.0):
-    """A Dask client for ``tcp://host:port``; a malformed or unreachable address is bad input."""
+def connect(address: str, timeout: float = 4.0):
+    """A Dask client for ``tcp://host:port``; a malformed or unreachable address, or one where something other than
+    a Dask scheduler answers, is bad input, reported within about 10 s (see :func:`probe_scheduler`)."""
     if not re.fullmatch(r"(tcp|tls|inproc)://[^\s:/]+(:\d{1,5})?(/\S*)?", address):
         raise InputError("--dask", f"expected an address like tcp://host:8786, got {address!r}")
     try:
         from distributed import Client
     except ImportError:
         raise InputError("--dask", "needs dask.distributed (pip install 'clutchopt[dask]')") from None
+    if address.startswith("tcp://"):
+        probe_scheduler(address, timeout)
     try:
         return Client(address, timeout=timeout)
     except (OSError, TimeoutError) as exc:
         raise InputError("--dask", f"cannot reach a Dask scheduler at {address} ({type(exc).__name__})") from None
+
+
+DASK_GREETING_BYTES = 1 << 20  # a scheduler's handshake is a few hundred bytes
+
+
+def probe_scheduler(address: str, timeout: float) -> None:
+    """Check that a Dask scheduler answers at ``tcp://host:port`` before ``distributed`` connects.
+
+    A scheduler greets each new connection first: 8 bytes (native ``Q``, as distributed writes them) giving the
+    length of its handshake, then the handshake. A web server says nothing until asked (``distributed`` would then
+    wait), other servers greet with text whose first 8 bytes read as an absurd length (``distributed`` would try
+    to allocate it). Both are refused here in one line, each wait bounded by ``timeout``."""
+    host, port = re.match(r"tcp://([^\s:/]+)(?::(\d+))?", address).groups(default="8786")
+    if not 0 < int(port) < 65536:
+        raise InputError("--dask", f"port {port} is out of range (1 to 65535)")
+    try:
+        connection = socket.create_connection((host, int(port)), timeout=timeout)
+    except TimeoutError:
+        raise InputError("--dask", f"cannot reach a Dask scheduler at {address}: no answer within {timeout:g} s") \
+            from None
+    except OSError as exc:
+        raise InputError("--dask", f"cannot reach a Dask scheduler at {address} ({exc.strerror or exc})") from None
+    with connection:
+        connection.settimeout(timeout)
+        try:
+            head = _receive(connection, 8)
+        except TimeoutError:
+            raise InputError("--dask", f"{address} is not a Dask scheduler: it accepted the connection but sent "
+                                       f"no Dask greeting within {timeout:g} s (a web server?)") from None
+        except OSError as exc:
+            raise InputError("--dask", f"{address} closed the connection ({exc.strerror or exc}): not a Dask "
+                                       "scheduler") from None
+        (length,) = struct.unpack("Q", head)
+        if not 0 < length <= DASK_GREETING_BYTES:
+            raise InputError("--dask", f"{address} is not a Dask scheduler: it greets with {head!r}")
+
+
+def _receive(connection: socket.socket, count: int) -> bytes:
+    data = b""
+    while len(data) < count:
+        chunk = connection.recv(count - len(data))
+        if not chunk:
+            raise ConnectionError("the connection closed")
+        data += chunk
+    return data
 
 
 @dataclass
@@ -241,8 +325,8 @@ class Sweep:
         if store is not None:
             sweep_id = store.latest_sweep(self.spec) if resume else None
             if sweep_id is None:
-                sweep_id = store.new_sweep(self.spec, len(self.points), self.case.path)
-            stored = store.sweep_outputs(sweep_id)
+                sweep_id = store.new_sweep(self.spec, len(self.points), self.case.path)  # None: store failed
+            stored = store.sweep_outputs(sweep_id) if sweep_id is not None else {}
         pending = [(i, values) for i, values in enumerate(self.points) if i not in stored]
         workers = max(jobs, 1)
         size = chunk_size or max(1, min(25, math.ceil(len(pending) / (4 * workers))))
@@ -256,12 +340,13 @@ class Sweep:
                 for result in results:
                     check()
                     solutions[result["point"]] = result["solution"]
-                    if store is not None:
+                    if store is not None and sweep_id is not None:
                         point_case = self.case.with_values(**result["values"])
                         solution = result["solution"]
                         store.record("sweep", {"values": point_case.values, "free": list(point_case.free),
                                                "bounds": point_case.bounds}, solution,
                                      status=solution["status"], objective=solution["objective"]["value"],
+                                     objective_unit=self.objective.unit,
                                      case_path=self.case.path, title=self.case.title, coupling=self.case.coupling,
                                      mode=self.formulation.mode, objective_name=self.objective.name,
                                      sweep_id=sweep_id, point=result["point"])
@@ -271,60 +356,102 @@ class Sweep:
                            ordered)
 
     def frame(self, solutions: list[dict]) -> pd.DataFrame:
-        """One row per point: inputs, status, objective, design (display units), active constraints."""
+        """One row per point: inputs, status, objective, design (display units), active constraints; a point without
+        a design (infeasible, solver failed) has its status and diagnosis, and blanks for objective and design."""
         rows = []
         objective_column = column_name(self.objective.name, self.objective.unit)
         for index, (values, solution) in enumerate(zip(self.points, solutions)):
             row = {"point": index}
             row.update({v.column: from_si(values[v.quantity.name], v.quantity.unit) for v in self.varies})
             row["status"] = solution["status"]
-            row[objective_column] = solution["objective"]["value"]
+            designed = solution["status"] in DESIGN_STATUSES  # an infeasible point has a diagnosis, no design
+            row[objective_column] = solution["objective"]["value"] if designed else math.nan
             for variable in self.formulation.variables:
-                row[column_name(variable.name, variable.unit)] = from_si(solution["design"][variable.name],
-                                                                         variable.unit)
-            row["active"] = " ".join(c["name"] for c in solution["constraints"] if c["active"])
+                row[column_name(variable.name, variable.unit)] = (
+                    from_si(solution["design"][variable.name], variable.unit) if designed else math.nan)
+            row["active"] = " ".join(c["name"] for c in solution["constraints"] if c["active"]) if designed else ""
             row["diagnosis"] = solution["diagnosis"] or ""
             row["iterations"] = solution["solver"]["iterations"]
             rows.append(row)
         return pd.DataFrame(rows)
 
 
-def table_format(path: str) -> str:
-    """csv, parquet or md, from the file's suffix."""
-    suffix = path.rsplit(".", 1)[-1].lower() if "." in path else ""
-    if suffix not in ("csv", "parquet", "md"):
-        raise InputError("--out", f"write .csv, .parquet or .md, got {path!r}")
-    return suffix
+TABLE_SUFFIXES = (".csv", ".parquet", ".md")
 
 
-def write_frame(frame: pd.DataFrame, path: str) -> None:
-    """CSV, Parquet or Markdown by the file's suffix."""
-    suffix = table_format(path)
-    try:
+def table_format(path: str, option: str = "--out") -> str:
+    """csv, parquet or md, from the file's suffix; the folder must exist and be writable (checked before any
+    solve, so that a long sweep does not end in a table it cannot write)."""
+    return check_output(option, path, TABLE_SUFFIXES)
+
+
+def write_frame(frame: pd.DataFrame, path: str, option: str = "--out") -> None:
+    """CSV, Parquet or Markdown by the file's suffix, written whole or not at all."""
+    suffix = table_format(path, option)
+
+    def write(target: str) -> None:
         if suffix == "csv":
-            frame.to_csv(path, index=False)
+            frame.to_csv(target, index=False)
         elif suffix == "parquet":
-            frame.to_parquet(path, index=False)
+            frame.to_parquet(target, index=False)
         else:
-            with open(path, "w", encoding="utf-8") as handle:
+            with open(target, "w", encoding="utf-8") as handle:
                 handle.write(markdown_table(frame) + "\n")
+
+    try:
+        write_whole(option, path, write)
     except ImportError as exc:
-        raise InputError("--out", f"Parquet needs pyarrow (pip install 'clutchopt[parquet]'): {exc}") from None
-    except OSError as exc:
-        raise InputError("--out", f"cannot write {path!r} ({exc.strerror or exc})") from None
+        raise InputError(option, f"Parquet needs pyarrow (pip install 'clutchopt[parquet]'): {exc}") from None
+
+
+SWEEP_STATUSES = ("optimal", "unverified", "infeasible", "solver_failed")
 
 
 def read_frame(path: str) -> pd.DataFrame:
-    """A sweep table written by :func:`write_frame` (CSV or Parquet)."""
+    """A sweep table written by :func:`write_frame` (CSV or Parquet), checked column by column: ``point``, the
+    varied inputs (numbers), ``status``, the objective (numbers, empty where there is no design)."""
+    import io
+
+    if not path.lower().endswith((".csv", ".parquet")):
+        raise InputError(path, "a sweep table is read from .csv or .parquet (written by clutchopt sweep --out)")
+    data = io.BytesIO(read_bytes(path, TABLE_BYTES))
     try:
-        frame = pd.read_parquet(path) if path.lower().endswith(".parquet") else pd.read_csv(path)
-    except FileNotFoundError:
-        raise InputError(path, "no such file") from None
-    except (ValueError, OSError) as exc:
-        raise InputError(path, f"cannot read a sweep table ({exc})") from None
-    if list(frame.columns[:1]) != ["point"] or "status" not in frame.columns:
-        raise InputError(path, "not a sweep table (written by clutchopt sweep --out: point, inputs, status, ...)")
+        frame = pd.read_parquet(data) if path.lower().endswith(".parquet") else pd.read_csv(data)
+    except ImportError as exc:
+        raise InputError(path, f"Parquet needs pyarrow (pip install 'clutchopt[parquet]'): {exc}") from None
+    except (ValueError, OSError, UnicodeDecodeError) as exc:  # pandas' and pyarrow's parse errors
+        raise InputError(path, f"cannot read a sweep table ({_first_line(exc)})") from None
+    _check_sweep_table(frame, path)
     return frame
+
+
+def _first_line(exc: Exception) -> str:
+    return (str(exc).strip().splitlines() or [type(exc).__name__])[0][:200]
+
+
+def _check_sweep_table(frame: pd.DataFrame, path: str) -> None:
+    columns = [str(c) for c in frame.columns]
+    layout = "written by clutchopt sweep --out: point, the varied inputs, status, the objective, ..."
+    if columns[:1] != ["point"] or "status" not in columns:
+        raise InputError(path, f"not a sweep table ({layout})")
+    status = columns.index("status")
+    if status < 2 or status + 1 >= len(columns):
+        raise InputError(path, f"not a sweep table: no varied input before status or no objective after it ({layout})")
+    if not 0 < len(frame) <= MAX_POINTS:
+        raise InputError(path, f"a sweep table has 1 to {MAX_POINTS:,} rows, this one {len(frame):,}")
+    problems = Problems()
+    for column in columns[:status] + [columns[status + 1]]:
+        values = pd.to_numeric(frame[column], errors="coerce")
+        blank = frame[column].isna()
+        if (values.isna() & ~blank).any() or (column != columns[status + 1] and blank.any()):
+            problems.errors.append(InputError(f"{path}: column {column!r}", "must hold numbers in every row"))
+        elif not np.isfinite(values[~blank]).all():
+            problems.errors.append(InputError(f"{path}: column {column!r}", "must hold finite numbers"))
+    unknown = sorted(set(map(str, frame["status"].dropna())) - set(SWEEP_STATUSES))
+    if unknown or frame["status"].isna().any():
+        problems.errors.append(InputError(f"{path}: column 'status'", f"must be one of {', '.join(SWEEP_STATUSES)} "
+                                                                      f"in every row, got {unknown[:3] or 'blanks'}"))
+    problems.raise_any()
 
 
 def markdown_table(frame: pd.DataFrame) -> str:

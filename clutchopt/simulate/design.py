@@ -16,11 +16,15 @@ import math
 from pathlib import Path
 from types import SimpleNamespace
 
-from clutchopt.errors import InputError
+from clutchopt.errors import InputError, Problems, shown_value
+from clutchopt.files import CASE_BYTES, read_text
 from clutchopt.formulations.start_up import RADIAL_EFFECTS, engagement_speed_squared
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.engine import Model, SimulationResult, simulate
 from clutchopt.simulate.laws import CentrifugalFriction, InductionMotor, Load
+
+
+MAX_TORQUE = 1e9  # N*m: the largest torque the simulator is tested with (clutchopt.simulate.scene.TORQUE)
 
 
 def _formulation(coupling: str, mode: str | None):
@@ -43,27 +47,48 @@ def speed_law_missing(coupling: str, solution=None) -> str | None:
 
 
 def design_from_json(path: str | Path, coupling: str, case_path: str | Path | None = None) -> tuple[str, dict]:
-    """(mode, design in SI) of a solved design: the JSON of ``clutchopt solve --json`` (of the case ``case_path``)."""
+    """(mode, design in SI) of a solved design: the JSON of ``clutchopt solve --json`` (of the case ``case_path``).
+
+    A design file is input like any other: a regular UTF-8 file, JSON without NaN or Infinity, every design
+    variable a number within the variable's valid range (a design the solver could have returned)."""
+    field = "coupling.design"
+    text = read_text(path, CASE_BYTES, f"{field} ({Path(path).name})")
     try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise InputError("coupling.design", f"no such file: {path}") from None
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise InputError("coupling.design", f"cannot read {path} as the JSON of clutchopt solve ({exc})") from None
+        data = json.loads(text, parse_constant=_no_constant)
+    except json.JSONDecodeError as exc:
+        raise InputError(field, f"cannot read {path} as the JSON of clutchopt solve ({exc})") from None
+    except ValueError as exc:
+        raise InputError(field, f"{path}: {exc}") from None
+    except RecursionError:
+        raise InputError(field, f"{path}: JSON nested too deeply to be the output of clutchopt solve") from None
     if not isinstance(data, dict) or data.get("coupling") != coupling or not isinstance(data.get("design"), dict):
-        raise InputError("coupling.design", f"{path} is not a solved {coupling} design (clutchopt solve --json)")
+        raise InputError(field, f"{path} is not a solved {coupling} design (clutchopt solve --json)")
     if case_path is not None and Path(str(data.get("case", ""))).name != Path(case_path).name:
-        raise InputError("coupling.design", f"{path} was solved for {data.get('case')!r}, not for {Path(case_path).name}")
+        raise InputError(field, f"{path} was solved for {shown_value(data.get('case'))}, "
+                                f"not for {Path(case_path).name}")
     if data.get("status") != "optimal":
-        raise InputError("coupling.design", f"{path}: the design's status is {data.get('status')!r}, not optimal")
+        raise InputError(field, f"{path}: the design's status is {shown_value(data.get('status'))}, not optimal")
     formulation = _formulation(coupling, str(data.get("mode")))
-    design = data["design"]
-    wanted = [v.name for v in formulation.variables]
-    bad = [name for name in wanted if not isinstance(design.get(name), (int, float)) or isinstance(design.get(name), bool)
-           or not math.isfinite(design[name])]
-    if bad:
-        raise InputError("coupling.design", f"{path}: the design lacks finite values of {', '.join(bad)}")
-    return formulation.mode, {name: float(design[name]) for name in wanted}
+    design, checked = data["design"], {}
+    problems = Problems()
+    for variable in formulation.variables:
+        value = design.get(variable.name)
+        with problems.field():
+            number = isinstance(value, (int, float)) and not isinstance(value, bool)
+            try:
+                value = float(value) if number else math.nan
+            except OverflowError:  # an integer beyond float64
+                value = math.nan
+            if not math.isfinite(value):
+                raise InputError(f"{field} design.{variable.name}", f"must be a finite number (SI), got "
+                                                                    f"{shown_value(design.get(variable.name))}")
+            checked[variable.name] = variable.check(value, f"{field} design.{variable.name}")
+    problems.raise_any()
+    return formulation.mode, checked
+
+
+def _no_constant(name: str):
+    raise ValueError(f"{name} is not a number a solved design can hold")
 
 
 def centrifugal_law(case, mode: str, design: dict[str, float], effects: tuple[str, ...],
@@ -81,7 +106,13 @@ def centrifugal_law(case, mode: str, design: dict[str, float], effects: tuple[st
     if "gravity" in effects:
         force += fx.gravity(law.weight_mass(x, p))
     squared = engagement_speed_squared(force, law.mass_radius(x, p)) if force else 0.0
-    return CentrifugalFriction(float(law.torque_coefficient(x, p)), float(squared))
+    coefficient = float(law.torque_coefficient(x, p))
+    if not (math.isfinite(coefficient) and coefficient > 0 and math.isfinite(squared)
+            and coefficient * p.speed**2 <= MAX_TORQUE):
+        raise InputError("coupling.design", f"the design gives no usable torque law (dT/d(w^2) = {coefficient:.6g} "
+                                            f"N*m*s^2, engagement at {math.sqrt(max(squared, 0.0)):.6g} rad/s): "
+                                            f"torque at design speed must be positive and at most {MAX_TORQUE:g} N*m")
+    return CentrifugalFriction(coefficient, float(squared))
 
 
 def ideal_start(case, mode: str, design: dict[str, float]) -> SimulationResult:
@@ -120,7 +151,10 @@ def verify(case, solution) -> dict:
         return {"verified": False, "reason": f"the {case.coupling} case is sized without an acceleration time "
                                              "(give it a [start_up] section to design for a start)"}
     p = case.params()
-    result = ideal_start(case, solution.mode, solution.design)
+    try:
+        result = ideal_start(case, solution.mode, solution.design)
+    except InputError as exc:  # a case beyond the simulator's ranges: the solution stands, unverified
+        return {"verified": False, "reason": exc.problem}
     achieved = result.headline["start_time"]
     return {
         "verified": result.headline["locks_up"],
@@ -154,6 +188,13 @@ def report_figure(case, solution):
         return None, missing
     if "acceleration_time" not in case.values and case.start_up is None:
         return None, f"the {case.coupling} case defines no start-up (no driven inertia, no acceleration time)"
+    try:
+        return _start_figure(case, solution)
+    except InputError as exc:  # a case beyond the simulator's ranges: the page shows why there is no figure
+        return None, f"Start-up not simulated: {exc.problem}"
+
+
+def _start_figure(case, solution):
     from clutchopt.simulate.plot import history_figure
 
     if case.start_up is not None:

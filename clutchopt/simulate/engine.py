@@ -32,8 +32,25 @@ import numpy as np
 import pandas as pd
 from scipy.integrate import solve_ivp
 
+from clutchopt.errors import InputError
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.laws import InductionMotor, Load
+
+# The range of every quantity of a start-up (SI, low, high, unit shown): the simulator is tested at the corners of
+# these ranges (tests/test_hostile.py); far outside them float64 products such as J w^2 or k e^{a w} stop meaning
+# anything and the integrator may never finish. Scenes refuse values outside them field by field; a model built
+# otherwise (a case's start-up) is refused by :func:`simulate` as a whole.
+INERTIA = (1e-9, 1e9, "kg*m^2")
+TORQUE = (1e-9, 1e9, "N*m")
+LOAD = (0.0, 1e9, "N*m")
+SPEED = (1e-3, 1e5, "rad/s")
+TIME = (1e-9, 1e9, "s")
+SLIP_SCALE = (-1e6, 1e6, "s/rad")
+FORCE = (0.0, 1e9, "N")
+HEAT_CAPACITY = (1e-6, 1e12, "J/K")
+CONDUCTANCE = (0.0, 1e12, "W/K")
+BREAKDOWN_SLIP = (1e-6, 0.99, "")
+TOLERANCE = (1e-14, 1e-3, "")
 
 STEADY = 1e-9  # relative net acceleration below which a slipping start-up is steady (no lock-up)
 MAX_SWITCHES = 200  # stick/slip switches before a run is declared chattering
@@ -138,8 +155,33 @@ class _Run:
         return (abs(d[0]) + abs(d[0] - d[1])) * self.time_scale / self.w_ref
 
 
+def range_problems(model: Model) -> list[str]:
+    """What of a model lies outside the ranges the simulator is tested over (empty if nothing)."""
+    motor = model.motor if model.has("motor_curve") else None
+    speed = motor.synchronous_speed if motor else model.driver_speed
+    checks = [("driven inertia", model.inertia, INERTIA), ("driving speed", speed, SPEED),
+              ("load torque", model.load.largest(), LOAD),
+              ("clutch torque at the driving speed", model.law.capacity(speed), (0.0, 2 * TORQUE[1], "N*m"))]  # 2k
+    if motor:
+        checks += [("motor breakdown torque", motor.breakdown_torque, TORQUE),
+                   ("motor inertia", motor.inertia, INERTIA),
+                   ("motor breakdown slip", motor.breakdown_slip, BREAKDOWN_SLIP)]
+    if model.has("friction_heat"):
+        checks += [("heat capacity", model.heat_capacity, HEAT_CAPACITY),
+                   ("heat conductance", model.conductance, CONDUCTANCE)]
+    if model.end_time is not None:
+        checks.append(("end time", model.end_time, TIME))
+    return [f"{name} {value:.6g} {unit} is outside {low:g} to {high:g} {unit}".replace("  ", " ")
+            for name, value, (low, high, unit) in checks if not low <= value <= high]
+
+
 def simulate(model: Model) -> SimulationResult:
-    """Run the start-up from rest of the driven half (and of the motor, with motor_curve)."""
+    """Run the start-up from rest of the driven half (and of the motor, with motor_curve); a model outside the
+    simulator's ranges is an InputError (``start-up: ...``) instead of a run that may never end."""
+    problems = range_problems(model)
+    if problems:
+        raise InputError("start-up", f"not simulated: {'; '.join(problems)} (the ranges the simulator is tested "
+                                     "over)")
     run = _Run(model)
     verdict = None
     if not run.motor and model.load.constant:  # closed-form verdict: does the start-up lock up at all?
@@ -224,6 +266,8 @@ def _samples(run: _Run, sol, phase: str, y0=None) -> pd.DataFrame:
     """History rows: the solver's steps and evenly spaced dense-output samples of one phase."""
     if sol is None:
         t, y = np.array([0.0]), np.asarray(y0).reshape(-1, 1)
+    elif sol.sol is None or len(sol.t) < 2:  # the first step failed: there is no dense output to sample
+        t, y = sol.t, sol.y
     else:
         t = np.union1d(sol.t, np.linspace(sol.t[0], sol.t[-1], SAMPLES))
         y = sol.sol(t)

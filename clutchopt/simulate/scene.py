@@ -29,13 +29,27 @@ Layout (quantities with units as in case files; bare numbers are SI; paths relat
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
-from clutchopt.cases import read_toml
-from clutchopt.errors import InputError
+from clutchopt.cases import check_text, read_toml
+from clutchopt.errors import InputError, Problems
 from clutchopt.formulations.start_up import RADIAL_EFFECTS
-from clutchopt.simulate.engine import Model, simulate
+from clutchopt.simulate.engine import (
+    BREAKDOWN_SLIP,
+    CONDUCTANCE,
+    FORCE,
+    HEAT_CAPACITY,
+    INERTIA,
+    LOAD,
+    SLIP_SCALE,
+    SPEED,
+    TIME,
+    TOLERANCE,
+    TORQUE,
+    Model,
+    simulate,
+)
 from clutchopt.simulate.laws import ConstantFriction, InductionMotor, Load, PaperFriction
 from clutchopt.start_up_case import parse_effects, parse_load_profile
 from clutchopt.units import to_si
@@ -50,107 +64,168 @@ _KEYS = {
 }
 
 
+
+
 @dataclass
 class Scene:
     title: str
     path: str
     model: Model
     source: dict  # where the coupling came from: law and case/design, engagement speed if any
+    data: dict = field(default_factory=dict)  # the scene file as read (recorded in the run store)
 
 
 class _Fields:
-    """Reads one scene's fields with units; every problem names the field."""
+    """Reads one scene's fields with units; every problem names the field and is collected in ``problems``."""
 
     def __init__(self, data: dict, path: str):
         self.data, self.path = data, path
+        self.problems = Problems()
 
     def table(self, name: str) -> dict:
         table = self.data.get(name, {})
         if not isinstance(table, dict):
-            raise InputError(name, "must be a table")
-        for key in table:
-            if key not in _KEYS[name]:
-                raise InputError(f"{name}.{key}", f"unknown key; [{name}] takes {', '.join(sorted(_KEYS[name]))}")
+            return {}
         return table
 
-    def quantity(self, section: str, key: str, unit: str, default=None, *, positive=True, at_least_zero=False):
-        raw = self.table(section).get(key) if section else self.data.get(key)
-        field = f"{section}.{key}" if section else key
-        if raw is None:
-            if default is None:
-                raise InputError(field, f"missing (in {unit or 'SI'})")
-            return default
-        value = to_si(field, raw, unit)
-        if positive and not at_least_zero and not value > 0:
-            raise InputError(field, f"must be positive, got {raw!r}")
-        if at_least_zero and value < 0:
-            raise InputError(field, f"must not be negative, got {raw!r}")
-        return value
+    def check_tables(self) -> None:
+        for name, keys in _KEYS.items():
+            table = self.data.get(name, {})
+            if not isinstance(table, dict):
+                self.problems.errors.append(InputError(name, f"must be a table [{name}] of {', '.join(sorted(keys))}"))
+                continue
+            for key in table:
+                if key not in keys:
+                    self.problems.errors.append(InputError(f"{name}.{key}", f"unknown key; [{name}] takes "
+                                                                            f"{', '.join(sorted(keys))}"))
 
-    def file(self, key: str) -> Path:
+    def quantity(self, section: str, key: str, unit: str, valid: tuple, default=None) -> float:
+        """The field in SI, checked against ``valid`` (low, high, unit shown); NaN after a recorded problem."""
+        raw = self.table(section).get(key) if section else self.data.get(key)
+        field_name = f"{section}.{key}" if section else key
+        with self.problems.field():
+            if raw is None:
+                if default is None:
+                    raise InputError(field_name, f"missing (in {unit or 'SI'})")
+                return default
+            value = to_si(field_name, raw, unit)
+            low, high, shown = valid
+            if not low <= value <= high:
+                raise InputError(field_name, f"must be from {low:g} to {high:g} {shown} (the range the simulator "
+                                             f"is tested over), got {raw!r}".replace("  ", " "))
+            return value
+        return math.nan
+
+    def file(self, key: str) -> Path | None:
         raw = self.table("coupling").get(key)
-        if not isinstance(raw, str):
-            raise InputError(f"coupling.{key}", f"must be a path (text), got {raw!r}")
+        if not isinstance(raw, str) or not raw.strip() or "\x00" in raw or len(raw) > 4096:
+            self.problems.errors.append(InputError(f"coupling.{key}", f"must be a file path (text), got {raw!r}"))
+            return None
         return (Path(self.path).parent / raw).resolve()
 
 
 def load_scene(path: str | Path) -> Scene:
-    """Read and check a scene file (InputError naming the field for bad input)."""
+    """Read and check a scene file (InputError naming each bad field)."""
     return parse_scene(read_toml(path), str(path))
 
 
 def parse_scene(data: dict, path: str = "") -> Scene:
+    """Check every field of a scene (all problems raised together), then build its model; a centrifugal
+    coupling's case is solved (or its design read) only once the rest of the scene is sound."""
+    f = _Fields(data, path)
     for key in data:
         if key not in _TOP:
-            raise InputError(key, f"unknown key; a scene has {', '.join(sorted(_TOP))}")
-    f = _Fields(data, path)
-    effects = parse_effects(data.get("effects"), "effects")
+            f.problems.errors.append(InputError(key, f"unknown key; a scene has {', '.join(sorted(_TOP))}"))
+    f.check_tables()
+    effects = ()
+    with f.problems.field():
+        effects = parse_effects(data.get("effects"), "effects")
     law_name = f.table("coupling").get("law")
     if law_name not in LAWS:
-        raise InputError("coupling.law", f"must be one of {', '.join(LAWS)}, got {law_name!r}")
+        f.problems.errors.append(InputError("coupling.law", f"must be one of {', '.join(LAWS)}, got {law_name!r}"))
     for effect in RADIAL_EFFECTS:
         if effect in effects and law_name != "centrifugal":
-            raise InputError("effects", f"{effect} applies to centrifugal couplings (law = \"centrifugal\") only")
-    case, law, source = _coupling(f, law_name, effects)
+            f.problems.errors.append(InputError("effects", f"{effect} applies to centrifugal couplings "
+                                                           "(law = \"centrifugal\") only"))
+    case = _case(f, effects) if law_name == "centrifugal" else None
     duty = case.params() if case else None
-    inertia = f.quantity("driven", "inertia", "kg*m^2", getattr(duty, "inertia", None))
+    inertia = f.quantity("driven", "inertia", "kg*m^2", INERTIA, getattr(duty, "inertia", None))
     load = _load(f, duty)
     motor = _motor(f) if "motor_curve" in effects else None
-    speed = math.nan if motor else f.quantity("driver", "speed", "rpm", duty.speed if duty else None)
-    heat = ((f.quantity("heat", "capacity", "J/K"), f.quantity("heat", "conductance", "W/K", 0.0, at_least_zero=True))
+    speed = math.nan if motor else f.quantity("driver", "speed", "rpm", SPEED, duty.speed if duty else None)
+    heat = ((f.quantity("heat", "capacity", "J/K", HEAT_CAPACITY),
+             f.quantity("heat", "conductance", "W/K", CONDUCTANCE, 0.0))
             if "friction_heat" in effects else (math.nan, 0.0))
-    end_time = f.quantity("", "end_time", "s", math.inf)
-    tolerance = f.quantity("", "tolerance", "", 1e-11)
-    if not tolerance < 1e-3:
-        raise InputError("tolerance", f"must be below 1e-3 (relative), got {tolerance:g}")
+    end_time = f.quantity("", "end_time", "s", TIME, math.inf)
+    tolerance = f.quantity("", "tolerance", "", TOLERANCE, 1e-11)
+    title = data.get("title", "")
+    for name in ("title", "description"):
+        with f.problems.field():
+            check_text(name, data.get(name, ""), multiline=name == "description")
+    for name in ("mode", "objective"):
+        value = f.table("coupling").get(name)
+        if value is not None and not (isinstance(value, str) and value.strip()):
+            f.problems.errors.append(InputError(f"coupling.{name}", f"must be a name (text), got {value!r}"))
+    law, source = None, {}
+    if law_name in ("paper", "constant"):
+        law, source = _friction_law(f, law_name)
+    elif case is not None:
+        preload = f.quantity("coupling", "spring_preload", "N", FORCE, None if "spring_preload" in effects else 0.0)
+        f.problems.raise_any()
+        law, source = _centrifugal(f, case, effects, preload)
+    f.problems.raise_any()
     model = Model(law, inertia, load, effects, speed, motor, heat[0], heat[1],
                   None if math.isinf(end_time) else end_time, tolerance)
-    title = data.get("title", "")
-    if not isinstance(title, str):
-        raise InputError("title", "must be text")
-    return Scene(title, path, model, source)
+    return Scene(title, path, model, source, data)
 
 
-def _coupling(f: _Fields, law_name: str, effects):
+def _friction_law(f: _Fields, law_name: str):
     if law_name == "paper":
-        return None, PaperFriction(f.quantity("coupling", "k", "N*m"),
-                                   f.quantity("coupling", "a", "s", positive=False)), {"law": "paper"}
-    if law_name == "constant":
-        return None, ConstantFriction(f.quantity("coupling", "torque", "N*m")), {"law": "constant"}
-    from clutchopt.cases import load_case
-    from clutchopt.simulate.design import centrifugal_law, design_from_json, speed_law_missing
+        return PaperFriction(f.quantity("coupling", "k", "N*m", TORQUE),
+                             f.quantity("coupling", "a", "s", SLIP_SCALE)), {"law": "paper"}
+    return ConstantFriction(f.quantity("coupling", "torque", "N*m", TORQUE)), {"law": "constant"}
 
-    table = f.table("coupling")
-    if "case" not in table:
-        raise InputError("coupling.case", "missing: a centrifugal law needs the coupling's case file")
+
+def _case(f: _Fields, effects: tuple[str, ...]):
+    """The centrifugal coupling's case (checked; its problems named inside ``coupling.case``), or None."""
+    from clutchopt.cases import load_case
+    from clutchopt.formulations import get_coupling
+    from clutchopt.simulate.design import speed_law_missing
+
+    if "case" not in f.table("coupling"):
+        f.problems.errors.append(InputError("coupling.case", "missing: a centrifugal law needs the coupling's "
+                                                             "case file"))
+        return None
     case_path = f.file("case")
-    case = load_case(case_path)
+    if case_path is None:
+        return None
+    try:
+        case = load_case(case_path)
+    except InputError as exc:
+        f.problems.errors += [InputError(f"coupling.case ({case_path.name})", str(problem))
+                              for problem in exc.problems]
+        return None
     missing = speed_law_missing(case.coupling)
     if missing:
-        raise InputError("coupling.case", missing)
+        f.problems.errors.append(InputError("coupling.case", missing))
+        return None
+    radial = [effect for effect in effects if effect in RADIAL_EFFECTS]
+    laws = [formulation.speed_law for formulation in get_coupling(case.coupling).formulations.values()]
+    if radial and not all(law is not None and law.mass_radius is not None for law in laws):
+        f.problems.errors.append(InputError("effects", f"{radial[0]} does not apply to the {case.coupling} coupling "
+                                                       "(no weights held in by springs or their own weight)"))
+    return case
+
+
+def _centrifugal(f: _Fields, case, effects, preload: float):
+    from clutchopt.simulate.design import centrifugal_law, design_from_json
+
+    table = f.table("coupling")
     source = {"law": "centrifugal", "coupling": case.coupling, "case": table["case"]}
     if "design" in table:
-        mode, design = design_from_json(f.file("design"), case.coupling, case_path)
+        design_path = f.file("design")
+        f.problems.raise_any()
+        mode, design = design_from_json(design_path, case.coupling, case.path)
         source["design"] = table["design"]
     else:
         from clutchopt.optimise import solve_case
@@ -160,30 +235,27 @@ def _coupling(f: _Fields, law_name: str, effects):
             raise InputError("coupling.case", f"the case does not solve to an optimal design ({solution.status})")
         mode, design = solution.mode, solution.design
         source["design"] = "solved from the case"
-    preload = f.quantity("coupling", "spring_preload", "N", None if "spring_preload" in effects else 0.0,
-                         at_least_zero=True)
     law = centrifugal_law(case, mode, design, effects, preload)
     source["engagement_speed"] = law.engagement_speed()
     source["design_torque"] = law.capacity(case.params().speed)
-    return case, law, source
+    return law, source
 
 
 def _load(f: _Fields, duty) -> Load:
-    table = f.table("driven")
-    profile = table.get("load_profile")
+    profile = f.table("driven").get("load_profile")
     if profile is None:
-        return Load(f.quantity("driven", "resisting_torque", "N*m", getattr(duty, "resisting_torque", None),
-                               at_least_zero=True))
-    profile = parse_load_profile(profile, "driven.load_profile")
-    return Load(over=profile.over, points=profile.points, values=profile.values)
+        return Load(f.quantity("driven", "resisting_torque", "N*m", LOAD, getattr(duty, "resisting_torque", None)))
+    with f.problems.field():
+        profile = parse_load_profile(profile, "driven.load_profile")
+        return Load(over=profile.over, points=profile.points, values=profile.values)
+    return Load()
 
 
 def _motor(f: _Fields) -> InductionMotor:
-    slip = f.quantity("driver", "breakdown_slip", "")
-    if not slip < 1:
-        raise InputError("driver.breakdown_slip", f"must be between 0 and 1, got {slip:g}")
-    return InductionMotor(f.quantity("driver", "synchronous_speed", "rpm"), f.quantity("driver", "breakdown_torque", "N*m"),
-                          slip, f.quantity("driver", "inertia", "kg*m^2"))
+    return InductionMotor(f.quantity("driver", "synchronous_speed", "rpm", SPEED),
+                          f.quantity("driver", "breakdown_torque", "N*m", TORQUE),
+                          f.quantity("driver", "breakdown_slip", "", BREAKDOWN_SLIP),
+                          f.quantity("driver", "inertia", "kg*m^2", INERTIA))
 
 
 def run_scene(scene: Scene):

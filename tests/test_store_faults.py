@@ -1,0 +1,358 @@
+"""Faults of the run store and of the processes writing it: kill -9 at random moments of a sweep, concurrent
+writers, damaged files, read-only files and folders; the pool workers of a killed sweep.
+
+The writers are forked from this process (``multiprocessing`` with ``fork``) and run ``clutchopt.cli.main`` as
+the command line would, so each starts in milliseconds with the solver stack already imported; ``kill -9`` is
+a real SIGKILL of that process, in the middle of a solve or of an SQLite transaction."""
+
+import multiprocessing
+import os
+import random
+import shutil
+import signal
+import sqlite3
+import stat
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from clutchopt.cli import main
+from clutchopt.store import RunStore
+from conftest import CASES
+
+FORK = multiprocessing.get_context("fork")
+CASE = str(CASES / "wedge_paper.toml")
+GRID = ["--vary", "speed=500:3000:40", "--vary", "allowable_pressure=2:8:25"]  # 1000 points, about 2 s
+SMALL = ["--vary", "speed=500:3000:15", "--vary", "allowable_pressure=2:8:10"]  # 150 points
+NOBODY = 65534
+
+
+def _child(argv: list[str], output: str, user: int | None) -> None:
+    """Run the CLI in a forked process: its streams to ``output``, optionally as another user; never returns."""
+    code = 70
+    try:
+        handle = os.open(output, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o666)
+        os.dup2(handle, 1), os.dup2(handle, 2)
+        sys.stdout, sys.stderr = open(1, "w", closefd=False), open(2, "w", closefd=False)
+        if user is not None:
+            os.setgid(user), os.setuid(user)
+        code = main(argv)
+    except SystemExit as stop:
+        code = stop.code if isinstance(stop.code, int) else 1
+    finally:
+        sys.stdout.flush(), sys.stderr.flush()
+        os._exit(code)
+
+
+class Writer:
+    """One forked ``clutchopt`` command."""
+
+    def __init__(self, argv: list[str], folder: Path, user: int | None = None):
+        self.output = folder / f"out-{time.monotonic_ns()}.txt"
+        self.process = FORK.Process(target=_child, args=(argv, str(self.output), user))
+        self.process.start()
+
+    def kill(self) -> None:
+        if self.process.is_alive():
+            os.kill(self.process.pid, signal.SIGKILL)
+        self.process.join()
+
+    def finish(self, timeout: float = 120) -> tuple[int, str]:
+        self.process.join(timeout)
+        assert not self.process.is_alive(), "the command hangs"
+        return self.process.exitcode, self.output.read_text()
+
+
+@pytest.fixture(scope="module", autouse=True)
+def built_problems():
+    """Build the problems once here, so that every forked writer starts solving at once."""
+    main(["sweep", CASE, "--vary", "speed=900,1000", "--no-store", "--quiet"])
+
+
+def _points(store: Path) -> list[int]:
+    with sqlite3.connect(store, timeout=60) as db:
+        return [row[0] for row in db.execute("SELECT point FROM runs WHERE kind = 'sweep' ORDER BY point")]
+
+
+def _reference(grid: list[str]) -> pd.DataFrame:
+    from clutchopt.cases import load_case
+    from clutchopt.optimise.sweep import Sweep, parse_vary
+
+    case = load_case(CASE)
+    return Sweep(case, [parse_vary(text, "wedge") for text in grid[1::2]]).run(progress=False).frame
+
+
+# --- kill -9 ---------------------------------------------------------------------------------------------------------
+def test_kill_9_at_20_random_moments_then_resume_loses_and_duplicates_nothing(tmp_path):
+    store, out = tmp_path / "runs.sqlite", tmp_path / "sweep.csv"
+    argv = ["sweep", CASE, *GRID, "--resume", "--quiet", "--store", str(store)]
+    moments = random.Random(12).sample(range(20, 300), 20)  # ms after the start; reproducible
+    seen = []
+    for moment in moments:
+        writer = Writer(argv, tmp_path)
+        time.sleep(moment / 1000)
+        writer.kill()
+        seen.append(len(_points(store)) if store.exists() else 0)
+    assert any(0 < count < 1000 for count in seen), f"no kill landed inside the sweep: {seen}"
+    code, text = Writer([*argv, "--out", str(out)], tmp_path).finish()
+    assert code == 0, text
+    assert _points(store) == list(range(1000))  # none lost, none twice
+    with RunStore(store, writable=False) as opened:
+        assert len(opened.sweeps()) == 1  # every resume continued the same sweep
+    with sqlite3.connect(store) as db:
+        assert db.execute("PRAGMA integrity_check").fetchone()[0] == "ok"
+    resumed, reference = pd.read_csv(out), _reference(GRID)
+    assert (resumed["status"] == "optimal").all()
+    pd.testing.assert_series_equal(resumed["mass [kg]"], reference["mass [kg]"], rtol=1e-7)
+
+
+def _children(pid: int) -> list[int]:
+    found = []
+    for entry in Path("/proc").iterdir():
+        try:
+            fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
+        except (OSError, IndexError):
+            continue
+        if int(fields[1]) == pid:
+            found.append(int(entry.name))
+    return found
+
+
+def _alive(pid: int) -> bool:
+    try:
+        return (Path("/proc") / str(pid) / "stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads the process table from /proc (Linux)")
+def test_pool_workers_die_with_a_killed_sweep(tmp_path):
+    writer = Writer(["sweep", CASE, *GRID, "--jobs", "2", "--quiet", "--no-store"], tmp_path)
+    deadline, workers = time.monotonic() + 30, []
+    while time.monotonic() < deadline and len(workers) < 2:
+        time.sleep(0.05)
+        workers = _children(writer.process.pid)
+    assert len(workers) >= 2, "the pool did not start"
+    writer.kill()
+    deadline = time.monotonic() + 10
+    while time.monotonic() < deadline and any(_alive(pid) for pid in workers):
+        time.sleep(0.1)
+    assert not any(_alive(pid) for pid in workers), "pool workers outlived the killed sweep"
+
+
+# --- concurrent writers ----------------------------------------------------------------------------------------------
+def _sweep(store: Path, grid: list[str], *extra: str) -> list[str]:
+    return ["sweep", CASE, *grid, "--quiet", "--store", str(store), *extra]
+
+
+def test_two_resumes_of_one_sweep_at_once(tmp_path):
+    store = tmp_path / "runs.sqlite"
+    first = Writer(_sweep(store, SMALL), tmp_path)
+    while not (store.exists() and _points_or_none(store)):
+        time.sleep(0.01)
+    first.kill()
+    racing = [Writer(_sweep(store, SMALL, "--resume"), tmp_path) for _ in range(2)]
+    for writer in racing:
+        code, text = writer.finish()
+        assert code == 0 and "150 points" in text, text
+    assert _points(store) == list(range(150))
+    with RunStore(store, writable=False) as opened:
+        assert len(opened.sweeps()) == 1
+
+
+def _points_or_none(store: Path) -> list[int]:
+    try:
+        return _points(store)
+    except sqlite3.OperationalError:  # no table yet
+        return []
+
+
+def test_two_different_sweeps_at_once(tmp_path):
+    store = tmp_path / "runs.sqlite"
+    other = ["--vary", "speed=600:2000:15", "--vary", "density=7000:8000:10"]
+    writers = [Writer(_sweep(store, SMALL), tmp_path), Writer(_sweep(store, other), tmp_path)]
+    assert all(writer.finish()[0] == 0 for writer in writers)
+    with RunStore(store, writable=False) as opened:
+        assert sorted(sweep["stored"] for sweep in opened.sweeps()) == [150, 150]
+
+
+def test_a_sweep_and_three_solves_at_once(tmp_path):
+    store = tmp_path / "runs.sqlite"
+    writers = [Writer(_sweep(store, SMALL), tmp_path)]
+    writers += [Writer(["solve", CASE, "--store", str(store)], tmp_path) for _ in range(3)]
+    for writer in writers:
+        code, text = writer.finish()
+        assert code == 0 and "warning" not in text, text
+    with RunStore(store, writable=False) as opened:
+        kinds = [run["kind"] for run in opened.runs()]
+    assert kinds.count("sweep") == 150 and kinds.count("solve") == 3
+
+
+def test_six_solves_at_once(tmp_path):
+    store = tmp_path / "runs.sqlite"
+    writers = [Writer(["solve", str(CASES / name), "--store", str(store)], tmp_path)
+               for name in ("wedge_paper.toml", "wedge_fan.toml", "lever_centrifuge.toml") * 2]
+    assert [writer.finish()[0] for writer in writers] == [0] * 6
+    with RunStore(store, writable=False) as opened:
+        assert len(opened.runs()) == 6
+
+
+def test_readers_while_a_sweep_writes(tmp_path):
+    store = tmp_path / "runs.sqlite"
+    assert main(["solve", CASE, "--store", str(store)]) == 0
+    writer = Writer(_sweep(store, GRID), tmp_path)
+    readers = [Writer(["runs", "list", "--store", str(store)], tmp_path),
+               Writer(["runs", "export", "-o", str(tmp_path / "runs.csv"), "--store", str(store)], tmp_path),
+               Writer(["runs", "show", "1", "--store", str(store)], tmp_path)]
+    for reader in readers:
+        code, text = reader.finish()
+        assert code == 0, text
+    writer.kill()
+
+
+# --- damaged files -------------------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def good_store(tmp_path_factory) -> Path:
+    """A store with a solve and a 20-point sweep, closed (its WAL checkpointed into the file)."""
+    path = tmp_path_factory.mktemp("good") / "runs.sqlite"
+    assert main(["solve", CASE, "--store", str(path)]) == 0
+    assert main(["sweep", CASE, "--vary", "speed=500:3000:20", "--quiet", "--store", str(path)]) == 0
+    return path
+
+
+def _overwrite(offset, count: int, byte: int = 0xA5):
+    def damage(data: bytearray) -> bytearray:
+        start = offset(data) if callable(offset) else offset
+        data[start:start + count] = bytes([byte]) * count
+        return data
+    return damage
+
+
+def _truncate(fraction: float):
+    return lambda data: data[:int(len(data) * fraction)]
+
+
+def _inside_a_run(data: bytearray) -> int:
+    return data.index(b'"outputs"' if b'"outputs"' in data else b'"design"') + 20
+
+
+DAMAGE = {  # (damage, whether opening must already refuse the file)
+    "header-zeroed": (_overwrite(0, 16, 0), True),
+    "page-size-field": (_overwrite(16, 2, 0x03), True),
+    "schema-page-b-tree-header": (_overwrite(100, 12), True),
+    "second-page": (_overwrite(4096, 512), True),
+    "middle-page": (_overwrite(lambda d: len(d) // 2 // 4096 * 4096, 4096), True),
+    "last-page": (_overwrite(lambda d: len(d) - 4096, 4096), True),
+    "inside-a-run's-json": (_overwrite(_inside_a_run, 8, ord("}")), False),
+    "truncated-to-half": (_truncate(0.5), True),
+    "truncated-to-1000-bytes": (lambda data: data[:1000], True),
+    "truncated-to-nothing": (_truncate(0.0), True),
+}
+
+
+@pytest.mark.parametrize("name", DAMAGE)
+def test_damaged_store(name, good_store, tmp_path, capsys):
+    damage, refused = DAMAGE[name]
+    store = tmp_path / "runs.sqlite"
+    store.write_bytes(bytes(damage(bytearray(good_store.read_bytes()))))
+
+    def run(*argv: str) -> tuple[int, str, str]:
+        try:
+            code = main([*argv, "--store", str(store)])
+        except SystemExit as stop:
+            code = stop.code
+        out, err = capsys.readouterr()
+        assert "Traceback" not in err and code in (0, 2), (code, err)
+        return code, out, err
+
+    code, _, err = run("runs", "list")
+    if refused:
+        assert code == 2 and err.count("\n") == 1 and "--store" in err, err
+        assert ("runs export" in err or "not an SQLite database" in err or "empty" in err), err
+    for argv in (("runs", "show", "1"), ("runs", "show", "2")):
+        code, _, err = run(*argv)
+        assert code == 0 or (err.count("\n") == 1 and "--store" in err), err
+    code, out, err = run("runs", "export", "-o", str(tmp_path / "rescued.csv"))
+    if code == 0:
+        rescued = pd.read_csv(tmp_path / "rescued.csv") if "0 runs written" not in out else pd.DataFrame()
+        assert len(rescued) <= 21 and "runs written" in out
+    code, out, err = run("solve", CASE)
+    assert code == 0 and "status: optimal" in out, err  # the result is never lost
+    assert err == "" or err.startswith("warning: this run will not be recorded"), err
+
+
+# --- read-only files and folders ------------------------------------------------------------------------------------
+@pytest.fixture
+def shared_folder():
+    """A folder another user may enter (pytest's own temporary folders are private to their owner)."""
+    folder = Path(tempfile.mkdtemp(prefix="clutchopt-readonly-"))
+    folder.chmod(0o755)
+    yield folder
+    for path in [folder, *folder.rglob("*")]:
+        path.chmod(0o777) if path.is_dir() else None
+    shutil.rmtree(folder)
+
+
+def _others_may_run_clutchopt() -> bool:
+    """Whether a user other than root can read Python, clutchopt and the cases (each folder on the way enterable)."""
+    import clutchopt
+
+    for target in (Path(sys.prefix).resolve(), Path(clutchopt.__file__).resolve().parent, CASES.resolve()):
+        for folder in (target, *target.parents):
+            if not folder.stat().st_mode & stat.S_IXOTH:
+                return False
+    return True
+
+
+@pytest.fixture(autouse=True)
+def _unprivileged_user_possible(request):
+    if "shared_folder" in request.fixturenames and os.geteuid() == 0 and not _others_may_run_clutchopt():
+        pytest.skip("run as root from a folder other users cannot enter: no user without write rights to test with")
+
+
+def _as_a_user(argv: list[str], output: Path) -> tuple[int, str]:
+    """Run a command as a user without the right to write what root owns (root writes any file); its output goes
+    to a file in ``output``, opened before it becomes that user."""
+    return Writer(argv, output, NOBODY if os.geteuid() == 0 else None).finish()
+
+
+def _prepare_store(folder: Path) -> Path:
+    store = folder / "runs.sqlite"
+    assert main(["solve", CASE, "--store", str(store)]) == 0
+    return store
+
+
+def test_read_only_store_file(shared_folder, tmp_path):
+    work = shared_folder / "work"
+    work.mkdir()
+    work.chmod(0o777)
+    store = _prepare_store(work)
+    store.chmod(0o444)
+    before = store.read_bytes()
+    code, text = _as_a_user(["solve", CASE, "--store", str(store)], tmp_path)
+    assert code == 0 and "status: optimal" in text, text
+    warnings = [line for line in text.splitlines() if line.startswith("warning:")]
+    assert warnings == [f"warning: this run will not be recorded: {store}: the file is read-only; record "
+                        "elsewhere with --store OTHER.sqlite"], text
+    code, text = _as_a_user(["sweep", CASE, *SMALL, "--quiet", "--store", str(store)], tmp_path)
+    assert code == 0 and "150 optimal" in text and "recorded as sweep" not in text, text
+    code, text = _as_a_user(["runs", "list", "--store", str(store)], tmp_path)
+    assert code == 0 and " solve " in text, text
+    assert store.read_bytes() == before
+
+
+def test_read_only_store_folder(shared_folder, tmp_path):
+    store = _prepare_store(shared_folder)
+    shared_folder.chmod(0o555)
+    code, text = _as_a_user(["solve", CASE, "--store", str(store)], tmp_path)
+    assert code == 0 and "status: optimal" in text and "warning: this run will not be recorded" in text, text
+    code, text = _as_a_user(["solve", CASE, "--store", str(shared_folder / "new.sqlite")], tmp_path)
+    assert code == 0 and "status: optimal" in text and "is not writable" in text, text
+    assert not (shared_folder / "new.sqlite").exists()
+    code, text = _as_a_user(["runs", "list", "--store", str(store)], tmp_path)
+    assert code == 0 and " solve " in text, text
+    assert stat.S_IMODE(shared_folder.stat().st_mode) == 0o555
