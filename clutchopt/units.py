@@ -45,22 +45,26 @@ def table_entry(unit: str) -> tuple[float, str, tuple, float]:
     info = _pint_unit_info(unit)
     if info.offset:
         raise ValueError(f"{unit!r} has an offset; the table holds multiplicative units only")
-    base = registry().Quantity(1.0, unit).to_base_units().units
-    text = _PRETTY_SI.get(str(base), f"{base:~}") if str(base) != "dimensionless" else "1"
     dimensions = tuple(sorted((name, int(power) if power == int(power) else power) for name, power in info.dimensions))
-    return info.factor, text, dimensions, info.angle
+    return info.factor, _pint_si(unit)[1], dimensions, info.angle
+
+
+def _pint_si(unit: str) -> tuple[float, str]:
+    base = registry().Quantity(1.0, unit).to_base_units()
+    text = _PRETTY_SI.get(str(base.units), f"{base.units:~}") if str(base.units) != "dimensionless" else "1"
+    return float(base.magnitude), text
 
 
 @lru_cache(maxsize=None)
 def si_factor(unit: str) -> float:
     """Multiply a value in ``unit`` by this to get SI (``mm`` -> 1e-3, ``deg`` -> pi/180)."""
-    return (UNITS.get(unit) or table_entry(unit))[0]
+    return (UNITS.get(unit) or _pint_si(unit))[0]
 
 
 @lru_cache(maxsize=None)
 def si_unit(unit: str) -> str:
     """The SI base unit of ``unit`` as text (``MPa`` -> ``kg / m / s ** 2`` is avoided: named forms kept)."""
-    return (UNITS.get(unit) or table_entry(unit))[1]
+    return (UNITS.get(unit) or _pint_si(unit))[1]
 
 
 _PRETTY_SI = {
