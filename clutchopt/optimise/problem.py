@@ -19,7 +19,7 @@ Sensitivities: at the optimum, the elasticity of the objective to every case qua
 variable, d ln f* / d ln p, from the gradient of the Lagrangian in the parameters (envelope theorem), with the
 multipliers the solver returns. A built problem also re-solves warm: ``solve(case, warm=previous)`` starts from a
 previous optimum, keeps its scales and hands its multipliers to CasADi's SQP method (dense active-set QPs,
-``qrqp``: next to a known optimum a few Newton steps; 1.3-3.7x faster than warm IPOPT on these small NLPs), whose KKT
+``qrqp``: next to a known optimum a few Newton steps; 1.5-3.7x faster than warm IPOPT on these small NLPs), whose KKT
 point is checked apart from it; then to IPOPT (``warm_start_init_point``, small initial barrier parameter); should
 both fail, the cold solve from the case's own start follows. Each solver is built on first use.
 
