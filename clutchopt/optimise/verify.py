@@ -44,18 +44,19 @@ def check_design(formulation: Formulation, design: dict[str, float], params: Sim
 
 
 def check_constraints(constraints: list[Constraint], tolerance: float = FEASIBILITY_TOL) -> list[ConstraintCheck]:
-    """Float64 constraints as checks; one that holds along a path (an array of values) reports its worst point."""
+    """Float64 constraints as checks; one evaluated at several points (arrays: a start-up's path, the corners of a
+    scatter) reports its worst point."""
     checks = []
     for c in constraints:
-        values = np.atleast_1d(np.asarray(c.value, dtype=float))
-        scale = float(c.limit if c.scale is None else c.scale)
-        margins = (c.limit - values) / scale if c.sense == "<=" else (values - c.limit) / scale
+        values, limits, scales = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, dtype=float)) for v in
+                                                       (c.value, c.limit, c.limit if c.scale is None else c.scale)))
+        margins = (limits - values) / scales if c.sense == "<=" else (values - limits) / scales
         worst = int(np.nanargmin(margins)) if not np.isnan(margins).all() else 0
         margin = float(margins[worst])
         checks.append(ConstraintCheck(
-            name=c.name, equation=c.equation, sense=c.sense, value=float(values[worst]), limit=float(c.limit),
+            name=c.name, equation=c.equation, sense=c.sense, value=float(values[worst]), limit=float(limits[worst]),
             margin=margin, active=abs(margin) <= ACTIVE_TOL or margin < 0, feasible=margin >= -tolerance,
-            unit=c.unit, description=c.description, scale=scale, tolerance=tolerance))
+            unit=c.unit, description=c.description, scale=float(scales[worst]), tolerance=tolerance))
     return checks
 
 
