@@ -33,12 +33,13 @@ from clutchopt.errors import InputError, Problems, shown_value
 from clutchopt.files import CASE_BYTES, read_text, shown
 from clutchopt.formulations.start_up import QUANTITIES as START_UP_QUANTITIES
 from clutchopt.formulations.start_up import SPRING_PRELOAD, StartUpSpec
+from clutchopt.scatter import Scatter, parse_scatter
 from clutchopt.model import REQUIRED, Quantity
 from clutchopt.units import to_si
 
 _TOP_LEVEL = {"coupling", "title", "description"}
 _OPTION_KEYS = {"free", "objective", "mode", "choose"}
-_EXTRA_SECTIONS = ("bounds", "options", "library", "start_up")
+_EXTRA_SECTIONS = ("bounds", "options", "library", "start_up", "scatter")
 
 
 @dataclass(frozen=True)
@@ -54,6 +55,7 @@ class Case:
     path: str = ""
     start_up: StartUpSpec | None = None  # the drive of a [start_up] section
     filled: dict[str, tuple[str, str]] = field(default_factory=dict)  # from the library: name -> (role, entry)
+    scatter: tuple[Scatter, ...] = ()  # the [scatter] section: ranges and distributions of case quantities
 
     @property
     def quantities(self) -> tuple[Quantity, ...]:
@@ -155,6 +157,11 @@ def parse_case(data: dict, path: str = "") -> Case:
         with problems.field():
             start_values, start_up = parse_start_up(data["start_up"], coupling, values)
             values.update(start_values)
+    scatter = ()
+    if "scatter" in data and not problems:  # scattered around the case's values, so those must be sound
+        with problems.field():
+            quantities = coupling.quantities + (START_UP_QUANTITIES if start_up else ())
+            scatter = parse_scatter(data["scatter"], quantities, values)
     bounds = _parse_bounds(data.get("bounds", {}), coupling, problems, "start_up" in data)
     options = _parse_options(options, coupling, problems, "start_up" in data)
     for name in ("title", "description"):
@@ -163,7 +170,7 @@ def parse_case(data: dict, path: str = "") -> Case:
     problems.raise_any()
 
     case = Case(coupling.name, data.get("title", ""), values, bounds, tuple(options.get("free", ())),
-                {**options, **({"choose": choose} if choose else {})}, path, start_up, filled)
+                {**options, **({"choose": choose} if choose else {})}, path, start_up, filled, scatter)
     coupling.check_case(case)
     materials.variants(case, coupling)  # every choice of options.choose is checked here, before any solve
     return case

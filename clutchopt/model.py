@@ -185,6 +185,7 @@ class Formulation:
     objectives: tuple[Objective, ...]
     outputs: Callable[[SimpleNamespace, SimpleNamespace], dict[str, Output]] = lambda x, p: {}
     speed_law: SpeedLaw | None = None  # the torque over the driving speed, for start-ups (None: not available)
+    variant: str = ""  # a formulation derived from the mode's (robust designs): part of what identifies it
     notes: str = ""
     _objective_index: dict = field(init=False, repr=False)
 

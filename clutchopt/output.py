@@ -271,3 +271,43 @@ def materials_text(kind: str, title: str) -> str:
         f"{e.name}: {e.description}. Source: {e.source}" + (f". Note: {e.notes}" if e.notes else ""), 116,
         initial_indent="  ", subsequent_indent="      ")]
     return "\n".join([f"{title} (clutchopt/data/materials.toml)", table, "", *legend, "", *sources])
+
+
+def _probability(triple: list[float]) -> str:
+    p, low, high = triple
+    return "0 (<{:.2g})".format(high) if p == 0 else f"{p:.3g} ({low:.2g}-{high:.2g})"
+
+
+def robust_text(result, case) -> str:
+    """The robust design beside the nominal one: the scatter, what robustness costs, each constraint at its worst
+    (corner or back-off) and its Monte Carlo failure probability, and what drives it (tornado rows)."""
+    quantities = {q.name: q for q in case.quantities}
+    scatter = [{"quantity": s.name, "scatter": s.describe(quantities[s.name].show),
+                "nominal": quantities[s.name].show(case.values[s.name])} for s in case.scatter]
+    how = ("worst case: every constraint at its own worst corner of the ranges (a normal quantity: mean +- 3 sd), "
+           "all 2^n corners checked" if result.method == "worst-case" else
+           f"chance {result.target:g}: each constraint holds with that probability to first order (limit backed "
+           "off by z sigma of the linearised constraint)")
+    robust, nominal = result.solution, result.nominal
+    change = robust.objective / nominal.objective - 1 if nominal.objective else float("nan")
+    nominal_checks = {c.name: c for c in result.nominal_checks}
+    rows = [{"constraint": c.name, "robust margin": f"{c.margin:+.2e}",
+             "nominal margin": f"{nominal_checks[c.name].margin:+.2e}" if c.name in nominal_checks else "-",
+             "robust P(fail)": _probability(result.failure[c.name]) if c.name in result.failure else "-",
+             "nominal P(fail)": _probability(result.nominal_failure[c.name]) if c.name in result.nominal_failure
+             else "-"} for c in result.checks]
+    names = [s.name for s in case.scatter]
+    bars = [{"constraint": name, **{q: f"{effects.get(q, 0.0):+.3g}" for q in names}}
+            for name, effects in result.bars.items() if any(abs(v) > 1e-12 for v in effects.values())]
+    lines = [f"Robust design ({how}): status {result.status}"
+             + (f" - {result.diagnosis}" if result.diagnosis else ""),
+             _frame(scatter), "",
+             f"{robust.objective_name}: robust {robust.objective:.6g} {robust.objective_unit}, nominal "
+             f"{nominal.objective:.6g} {nominal.objective_unit} ({change:+.1%})", "",
+             f"Constraints under scatter: margin at the worst corner{'' if result.method == 'worst-case' else ' (backed off)'}"
+             f", and the failure probability from {result.samples} Monte Carlo samples ({result.as_dict()['confidence']:.0%} "
+             "Clopper-Pearson interval)", _frame(rows)]
+    if bars:
+        lines += ["", "What drives it: change of each relative margin as a quantity goes from low to high, the "
+                      "others nominal (robust design)", _frame(bars)]
+    return "\n".join(lines)

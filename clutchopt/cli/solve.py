@@ -21,6 +21,12 @@ def add_command(commands) -> None:
     add_store_options(solve)
     solve.add_argument("--verify", action="store_true",
                        help="simulate the optimised design's start-up and compare its acceleration time with t_p")
+    solve.add_argument("--robust", metavar="METHOD",
+                       help="a design that holds under the case's [scatter]: worst-case (every constraint at its own "
+                            "worst corner of the ranges) or chance=P (each holds with probability P, to first "
+                            "order), checked by Monte Carlo beside the nominal design; e.g. --robust chance=0.999")
+    solve.add_argument("--samples", type=int, default=10_000, metavar="N",
+                       help="Monte Carlo samples of the scatter for --robust (default 10000)")
     add_json_option(solve)
     solve.set_defaults(run=run)
 
@@ -35,6 +41,8 @@ def run(args) -> str:
 
     case = load_case(args.case)
     resolve_problem(case, args)
+    if args.robust is not None:
+        return _robust(case, args)
     with recording(args) as store:
         ranked = solve_choices(case, args.mode, args.objective, SolverOptions(tol=args.tol))
         _, case, solution = ranked[0]
@@ -59,3 +67,28 @@ def run(args) -> str:
 
         parts.append(verify_text(check))
     return "\n\n".join(parts)
+
+
+def _robust(case, args) -> str:
+    from clutchopt.cli.options import record_solve, recording
+    from clutchopt.errors import InputError
+    from clutchopt.optimise import SolverOptions
+    from clutchopt.optimise.problem import case_formulation
+    from clutchopt.optimise.robust import MAX_SAMPLES, parse_method, solve_robust
+    from clutchopt.output import robust_text, solution_text, to_json
+
+    method, target = parse_method(args.robust)
+    if not 100 <= args.samples <= MAX_SAMPLES:
+        raise InputError("--samples", f"must be a whole number from 100 to {MAX_SAMPLES}, got {args.samples}")
+    if case.options.get("choose"):
+        raise InputError("--robust", "the case lets the optimiser choose library entries (options.choose): name one "
+                                     "entry each for a robust design")
+    with recording(args) as store:
+        result = solve_robust(case, method, target, args.mode, args.objective, SolverOptions(tol=args.tol),
+                              args.samples)
+        record_solve(store, case, result.solution)
+    if args.json:
+        return to_json({"case": case.path, "title": case.title, **result.solution.as_dict(),
+                        "status": result.status, "diagnosis": result.diagnosis, "robust": result.as_dict()})
+    formulation = case_formulation(case, result.solution.mode)
+    return "\n\n".join([solution_text(result.solution, formulation, case.title), robust_text(result, case)])

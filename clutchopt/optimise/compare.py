@@ -70,6 +70,12 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions()) -> Compar
             columns[column] = values
         rows_shown = spec.rows + START_UP_ROWS
         notes.update(START_UP_NOTES)
+    if case.scatter:
+        for column, (solution, values) in _scatter_columns(case, coupling, spec, options).items():
+            solutions[column] = solution
+            columns[column] = values
+        rows_shown = rows_shown + SCATTER_ROWS
+        notes.update(SCATTER_NOTES)
     names = list(columns)
     rows = []
     for row in rows_shown:
@@ -95,6 +101,43 @@ START_UP_NOTES = {
                              "the case's drive",
     "nlp_start_up": "the case's mode optimised with the start-up on the case's drive inside the NLP",
 }
+
+
+SCATTER_ROWS = (
+    ComparisonRow("worst_corner_margin", "", "smallest relative margin of any constraint over the corners of the "
+                                             "[scatter] ranges"),
+    ComparisonRow("failure_probability", "", "largest failure probability of any constraint, Monte Carlo over the "
+                                             "[scatter] distributions"),
+)
+CHANCE_SHOWN = 0.999  # the chance-constrained column of compare
+SCATTER_NOTES = {
+    "nominal": "the case's mode optimised at the nominal values",
+    "worst_case": "every constraint at its own worst corner of the [scatter] ranges",
+    f"chance_{CHANCE_SHOWN:g}": f"each constraint holds with probability {CHANCE_SHOWN:g} to first order",
+}
+
+
+def _scatter_columns(case: Case, coupling, spec, options: SolverOptions) -> dict:
+    """The case's mode and objective: nominal, worst-case and chance-constrained designs, each checked at every
+    corner of the ranges and by Monte Carlo over the distributions."""
+    from clutchopt.optimise.robust import CHANCE, WORST_CASE, corner_checks, failure_probabilities, solve_robust
+
+    mode = case.options.get("mode") or coupling.default_mode
+    worst = solve_robust(case, WORST_CASE, None, mode, None, options)
+    chance = solve_robust(case, CHANCE, CHANCE_SHOWN, mode, None, options)
+    params = case.params()
+    columns = {}
+    for column, solution in (("nominal", worst.nominal), ("worst_case", worst.solution),
+                             (f"chance_{CHANCE_SHOWN:g}", chance.solution)):
+        outputs = {name: out.value for name, out in solution.outputs.items()}
+        values = spec.rows_from_design(mode, solution.design, outputs, params)
+        if solution.status in ("optimal", "unverified"):
+            checks = corner_checks(worst.formulation, solution.design, params, case.scatter)
+            failure = failure_probabilities(worst.formulation, solution.design, params, case.scatter)
+            values.update(worst_corner_margin=min(c.margin for c in checks),
+                          failure_probability=max(p for p, _, _ in failure.values()))
+        columns[column] = (solution, values)
+    return columns
 
 
 def _start_up_columns(case: Case, coupling, spec, options: SolverOptions) -> dict:

@@ -727,7 +727,7 @@ _CACHE: dict[tuple, Problem] = {}
 def problem_for(formulation: Formulation, objective: str = "mass", options: SolverOptions = SolverOptions(),
                 start_up: Structure | None = None) -> Problem:
     """Build a problem once per (formulation, objective, options, start-up structure) in this process and reuse it."""
-    key = (formulation.coupling, formulation.mode, objective, options, start_up)
+    key = (formulation.coupling, formulation.mode, formulation.variant, objective, options, start_up)
     if key not in _CACHE:
         _CACHE[key] = Problem(formulation, objective, options, start_up)
     return _CACHE[key]

@@ -44,21 +44,22 @@ def check_design(formulation: Formulation, design: dict[str, float], params: Sim
 
 
 def check_constraints(constraints: list[Constraint], tolerance: float = FEASIBILITY_TOL) -> list[ConstraintCheck]:
-    """Float64 constraints as checks; one that holds along a path (an array of values) reports its worst point."""
+    """Float64 constraints as checks; one evaluated at several points (arrays: a start-up's path, the corners of a
+    scatter) reports its worst point."""
     checks = []
     for c in constraints:
-        scale = float(c.limit if c.scale is None else c.scale)
-        if isinstance(c.value, (int, float)):  # one value (most constraints): no array work, the same arithmetic
-            value = float(c.value)
-            margin = (c.limit - value) / scale if c.sense == "<=" else (value - c.limit) / scale
+        raw_scale = c.limit if c.scale is None else c.scale
+        if all(isinstance(v, (int, float)) for v in (c.value, c.limit, raw_scale)):  # one point (most constraints):
+            value, limit, scale = float(c.value), float(c.limit), float(raw_scale)  # no array work, same arithmetic
+            margin = (limit - value) / scale if c.sense == "<=" else (value - limit) / scale
         else:
-            values = np.atleast_1d(np.asarray(c.value, dtype=float))
-            margins = (c.limit - values) / scale if c.sense == "<=" else (values - c.limit) / scale
+            values, limits, scales = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, dtype=float))
+                                                           for v in (c.value, c.limit, raw_scale)))
+            margins = (limits - values) / scales if c.sense == "<=" else (values - limits) / scales
             worst = int(np.nanargmin(margins)) if not np.isnan(margins).all() else 0
-            value, margin = float(values[worst]), float(margins[worst])
-        margin = float(margin)
+            value, limit, scale, margin = (float(a[worst]) for a in (values, limits, scales, margins))
         checks.append(ConstraintCheck(
-            name=c.name, equation=c.equation, sense=c.sense, value=value, limit=float(c.limit),
+            name=c.name, equation=c.equation, sense=c.sense, value=value, limit=limit,
             margin=margin, active=abs(margin) <= ACTIVE_TOL or margin < 0, feasible=margin >= -tolerance,
             unit=c.unit, description=c.description, scale=scale, tolerance=tolerance))
     return checks

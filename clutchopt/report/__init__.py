@@ -136,6 +136,47 @@ def simulation(case: Case, solution: Solution) -> str:
     return f"{table}<figure>{figure_svg(figure)}<figcaption>{escape(caption)}</figcaption></figure>"
 
 
+def scatter(case: Case) -> str:
+    """Nominal, worst-case and chance-constrained designs side by side, and a tornado chart: how far each scattered
+    quantity moves each constraint's margin over its range at the nominal design."""
+    from matplotlib.figure import Figure
+
+    from clutchopt.optimise.robust import CHANCE, WORST_CASE, failure_probabilities, solve_robust, tornado
+
+    worst = solve_robust(case, WORST_CASE)
+    chance = solve_robust(case, CHANCE, 0.999)
+    params = case.params()
+    rows = []
+    for label, result_solution, checks, failure in (
+            ("nominal", worst.nominal, worst.nominal_checks, worst.nominal_failure),
+            ("worst case", worst.solution, worst.checks, worst.failure),
+            ("chance 0.999", chance.solution, None, failure_probabilities(worst.formulation, chance.solution.design,
+                                                                          params, case.scatter))):
+        rows.append({"design": label, "status": result_solution.status,
+                     result_solution.objective_name: f"{result_solution.objective:.6g} {result_solution.objective_unit}",
+                     "change": f"{result_solution.objective / worst.nominal.objective - 1:+.1%}",
+                     "largest P(fail)": f"{max(p for p, _, _ in failure.values()):.3g}"})
+    bars = tornado(worst.formulation, worst.nominal.design, params, case.scatter)
+    shown = {name: effects for name, effects in bars.items() if any(abs(v) > 1e-9 for v in effects.values())}
+    figure = Figure(figsize=(6.5, 0.5 + 0.45 * max(1, len(shown) * len(case.scatter))), layout="constrained")
+    axes = figure.add_subplot()
+    labels, values = [], []
+    for name, effects in shown.items():
+        for quantity, change in effects.items():
+            labels.append(f"{name}: {quantity}")
+            values.append(change)
+    axes.barh(range(len(values)), values, color=["#b03a2e" if v < 0 else "#2e86c1" for v in values])
+    axes.set_yticks(range(len(values)), labels, fontsize=8)
+    axes.axvline(0.0, color="black", lw=0.8)
+    axes.set_xlabel("relative margin change, low to high end of the range")
+    axes.invert_yaxis()
+    axes.grid(axis="x", alpha=0.3)
+    caption = (f"Nominal design: how each scattered quantity moves each constraint's margin over its range "
+               f"(red: the margin shrinks as the quantity rises). Monte Carlo with {worst.samples} samples.")
+    return (_table(rows, ("change", "largest P(fail)")) +
+            f"<figure>{figure_svg(figure)}<figcaption>{escape(caption)}</figcaption></figure>")
+
+
 def sweep_plot(frame: pd.DataFrame) -> str:
     """The objective against the first varied input, one line per value of the second."""
     from matplotlib.figure import Figure
@@ -188,6 +229,8 @@ def build_report(case: Case, solution: Solution, sweep: pd.DataFrame | None = No
         ("Comparison with the paper's method", comparison(case), "comparison"),
         ("Start-up simulation", simulation(case, solution), "simulation"),
     ]
+    if case.scatter:
+        sections.append(("Scatter", scatter(case), "scatter"))
     if sweep is not None:
         sections.append(("Sweep", sweep_plot(sweep), "sweep"))
     body = header + "".join(_section(*s) for s in sections)
