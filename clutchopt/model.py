@@ -186,6 +186,7 @@ class Formulation:
     outputs: Callable[[SimpleNamespace, SimpleNamespace], dict[str, Output]] = lambda x, p: {}
     speed_law: SpeedLaw | None = None  # the torque over the driving speed, for start-ups (None: not available)
     variant: str = ""  # a formulation derived from the mode's (robust designs): part of what identifies it
+    start_up_view: Callable[[dict], dict] | None = None  # the case values a [start_up] sees (robust: its corner)
     notes: str = ""
     _objective_index: dict = field(init=False, repr=False)
 

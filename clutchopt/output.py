@@ -291,7 +291,15 @@ def robust_text(result, case) -> str:
     robust, nominal = result.solution, result.nominal
     change = robust.objective / nominal.objective - 1 if nominal.objective else float("nan")
     nominal_checks = {c.name: c for c in result.nominal_checks}
-    rows = [{"constraint": c.name, "robust margin": f"{c.margin:+.2e}",
+
+    def corner(name: str) -> str:
+        """The quantities that move the constraint, at its worst corner (the others do not matter)."""
+        values, effects = result.corners.get(name, {}), result.bars.get(name, {})
+        shown = [f"{q} {quantities[q].show(v)}" for q, v in values.items() if abs(effects.get(q, 1.0)) > 1e-12]
+        return ", ".join(shown) or ("any" if values else "-")
+
+    rows = [{"constraint": c.name, **({"worst corner": corner(c.name)} if result.method == "worst-case" else {}),
+             "robust margin": f"{c.margin:+.2e}",
              "nominal margin": f"{nominal_checks[c.name].margin:+.2e}" if c.name in nominal_checks else "-",
              "robust P(fail)": _probability(result.failure[c.name]) if c.name in result.failure else "-",
              "nominal P(fail)": _probability(result.nominal_failure[c.name]) if c.name in result.nominal_failure
@@ -304,9 +312,10 @@ def robust_text(result, case) -> str:
              _frame(scatter), "",
              f"{robust.objective_name}: robust {robust.objective:.6g} {robust.objective_unit}, nominal "
              f"{nominal.objective:.6g} {nominal.objective_unit} ({change:+.1%})", "",
-             f"Constraints under scatter: margin at the worst corner{'' if result.method == 'worst-case' else ' (backed off)'}"
-             f", and the failure probability from {result.samples} Monte Carlo samples ({result.as_dict()['confidence']:.0%} "
-             "Clopper-Pearson interval)", _frame(rows)]
+             ("Constraints under scatter: margin at the worst corner of the ranges" if result.method == "worst-case"
+              else "Constraints under scatter: margin with the back-off")
+             + f", and the failure probability from {result.samples} Monte Carlo samples "
+               f"({result.as_dict()['confidence']:.0%} Clopper-Pearson interval)", _frame(rows)]
     if bars:
         lines += ["", "What drives it: change of each relative margin as a quantity goes from low to high, the "
                       "others nominal (robust design)", _frame(bars)]

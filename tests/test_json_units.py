@@ -119,3 +119,11 @@ def test_sweep_pareto_and_runs_json_units(tmp_path):
     assert_si_units(listed)
     shown = json.loads(run("runs", "show", str(listed["runs"][0]["id"]), "--store", store))
     assert_si_units(shown)
+
+
+def test_robust_json_units():
+    data = json.loads(run("solve", CASES / "wedge_centrifuge.toml", "--robust", "chance=0.99", "--json", "--no-store",
+                          "--samples", "1000"))
+    assert assert_si_units(data) >= 2 * 3  # the robust and the nominal design's constraint checks
+    pressure = next(c for c in data["robust"]["checks"] if c["name"] == "flank_pressure")
+    assert pressure["unit"] == "Pa" and pressure["value"] > 1e4

@@ -217,7 +217,8 @@ class Problem:
         p = namespace({q.name: p_case[j] for j, q in enumerate(f.quantities)})
         constraints = f.constraints(x, p)
         self.n_checked = len(constraints)  # the formulation's own constraints, re-evaluated by check_design
-        self.start_up = StartUpBlock(start_up, f.speed_law, x, p) if start_up else None
+        at_start = namespace(f.start_up_view(vars(p))) if f.start_up_view else p
+        self.start_up = StartUpBlock(start_up, f.speed_law, x, at_start) if start_up else None
         internal, equalities = (self.start_up.hat, self.start_up.equalities) if start_up else (ca.SX(0, 1), [])
         constraints += self.start_up.constraints if start_up else []
         rows = [ca.SX(c.normalised()) for c in constraints]
@@ -306,7 +307,8 @@ class Problem:
         if self.start_up is not None:
             data.internal_lower, data.internal_upper = self.start_up.bounds()
             if internal is None or len(internal) != self.start_up.size:
-                internal = initial_states(self.start_up, case, self.formulation, self._design(x0 / scale, scale),
+                internal = initial_states(self.start_up, self._start_up_case(case), self.formulation,
+                                          self._design(x0 / scale, scale),
                                           np.array(self._internal_scale(p_vector[: len(params.__dict__)])).ravel(),
                                           p_vector[-self.start_up.mesh_parameters.shape[0]:])
             data.internal_start = np.clip(internal, data.internal_lower, data.internal_upper)
@@ -576,6 +578,11 @@ class Problem:
                                               self._nlp, options)
         return self._solvers[method]
 
+    def _start_up_case(self, case: Case) -> Case:
+        """The case as the start-up sees it (a robust design's: its corner)."""
+        view = self.formulation.start_up_view
+        return replace(case, values=view(case.values)) if view else case
+
     @property
     def _mesh_size(self) -> int:
         return self.start_up.mesh_parameters.shape[0] if self.start_up is not None else 0
@@ -600,7 +607,8 @@ class Problem:
         design, objective, checks = run["design"], run["value"], list(run["checks"])
         start_up = mesh = None
         if self.start_up is not None:  # re-checked by the independent simulator
-            start_up, simulated, suggested = start_up_report(self.start_up, case, f, design, params,
+            seen = self._start_up_case(case)
+            start_up, simulated, suggested = start_up_report(self.start_up, seen, f, design, self._params(seen),
                                                              self._start_up_figures(run["x"], run["p"]))
             checks += simulated
             mesh = (self._mesh_of(run["p"]), suggested)

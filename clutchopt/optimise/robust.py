@@ -62,12 +62,20 @@ def corner_name(quantity: str, constraint: str) -> str:
     return f"{quantity}@{constraint}"
 
 
-def worst_case_formulation(base: Formulation, scattered: tuple[str, ...], names: tuple[str, ...]) -> Formulation:
+START_UP = "start_up"  # the corner a [start_up] is designed at: where the start takes longest
+
+
+def worst_case_formulation(base: Formulation, scattered: tuple[str, ...], names: tuple[str, ...],
+                           declared: dict) -> Formulation:
     """``base`` with constraint ``names[i]`` evaluated where each scattered quantity q takes the value of the case
-    quantity ``q@names[i]`` (its corner); objective and outputs at the nominal values."""
-    declared = {q.name: q for q in base.quantities}
+    quantity ``q@names[i]`` (its corner), a start-up at ``q@start_up``; objective and outputs at the nominal values.
+    ``declared``: the case's quantities by name (a start-up's may scatter too)."""
     corners = tuple(replace(declared[q], name=corner_name(q, c), section="scatter", default=None,
-                            description=f"{q} at the worst corner of {c}") for c in names for q in scattered)
+                            description=f"{q} at the worst corner of {c}") for c in names + (START_UP,)
+                    for q in scattered)
+
+    def at_start_up(values: dict) -> dict:
+        return {**values, **{q: values.get(corner_name(q, START_UP), values.get(q)) for q in scattered}}
 
     def constraints(x, p):
         out = []
@@ -77,7 +85,7 @@ def worst_case_formulation(base: Formulation, scattered: tuple[str, ...], names:
         return out
 
     return replace(base, quantities=base.quantities + corners, constraints=constraints,
-                   variant=f"worst case over {', '.join(scattered)}")
+                   variant=f"worst case over {', '.join(scattered)}", start_up_view=at_start_up)
 
 
 def mean_name(quantity: str) -> str:
@@ -91,9 +99,10 @@ def sd_name(quantity: str) -> str:
 CHANCE_Z = "chance_z"
 
 
-def chance_formulation(base: Formulation, scattered: tuple[str, ...]) -> Formulation:
-    """``base`` at the scattered quantities' means, each constraint backed off by z sigma_h (to first order)."""
-    declared = {q.name: q for q in base.quantities}
+def chance_formulation(base: Formulation, scattered: tuple[str, ...], declared: dict) -> Formulation:
+    """``base`` at the scattered quantities' means, each constraint backed off by z sigma_h (to first order).
+    ``declared``: the case's quantities by name (a start-up's scatter only where the formulation uses them)."""
+    own = [q.name for q in base.quantities]
     extra = tuple(replace(declared[q], name=mean_name(q), section="scatter", default=None, description=f"mean of {q}")
                   for q in scattered)
     extra += tuple(replace(declared[q], name=sd_name(q), section="scatter", default=None, above=None, at_least=0,
@@ -113,10 +122,12 @@ def chance_formulation(base: Formulation, scattered: tuple[str, ...]) -> Formula
             terms = []
             for q in scattered:
                 sd = getattr(p, sd_name(q))
+                if q not in own:  # a start-up's quantity: the formulation's constraints do not depend on it
+                    continue
                 if symbolic:
                     slope = ca.jacobian(ca.SX(violation), getattr(mean, q))
                 else:
-                    slope = matrix[row, [v.name for v in base.quantities].index(q)]
+                    slope = matrix[row, own.index(q)]
                 terms.append((slope * sd) ** 2)
             sigma = (sum(terms) + 1e-24) ** 0.5
             shift = p.chance_z * sigma * (c.limit if c.scale is None else c.scale)
@@ -245,12 +256,46 @@ class RobustResult:
 _DERIVED: dict[tuple, Formulation] = {}
 
 
-def _derived(kind: str, base: Formulation, scattered: tuple[str, ...], names: tuple[str, ...]) -> Formulation:
-    key = (kind, base.coupling, base.mode, scattered, names)
+def _derived(kind: str, base: Formulation, case: Case, names: tuple[str, ...]) -> Formulation:
+    scattered = tuple(s.name for s in case.scatter)
+    key = (kind, base.coupling, base.mode, scattered, names, case.start_up is not None)
     if key not in _DERIVED:
-        _DERIVED[key] = (worst_case_formulation(base, scattered, names) if kind == WORST_CASE
-                         else chance_formulation(base, scattered))
+        _DERIVED[key] = (worst_case_formulation(base, scattered, names, {q.name: q for q in case.quantities})
+                         if kind == WORST_CASE else chance_formulation(base, scattered,
+                                                                       {q.name: q for q in case.quantities}))
     return _DERIVED[key]
+
+
+def start_up_corner(case: Case, mode: str, design: dict, scatter) -> dict[str, float]:
+    """The corner a start-up is designed at: each scattered quantity at the end of its range where the simulated
+    start, the others nominal, takes longer (no lock-up counts as longest)."""
+    from clutchopt.simulate.design import start_up_model
+    from clutchopt.simulate.engine import simulate
+
+    corner = {}
+    for s in scatter:
+        times = [simulate(start_up_model(replace(case, values={**case.values, s.name: end}), mode, design,
+                                         rtol=1e-9)).headline["start_time"] for end in (s.low, s.high)]
+        corner[s.name] = s.low if times[0] > times[1] else s.high
+    return corner
+
+
+def start_up_checks(case: Case, mode: str, design: dict, scatter, corner: dict) -> list[ConstraintCheck]:
+    """The start-up's limits checked by simulation at every corner of the ranges (up to 16 corners; with more, at
+    the start-up's corner), each at its worst."""
+    from clutchopt.simulate.design import start_up_model
+    from clutchopt.simulate.engine import simulate
+
+    table = corner_table(scatter) if len(scatter) <= 4 else {q: np.array([v]) for q, v in corner.items()}
+    heads = [simulate(start_up_model(replace(case, values={**case.values, **{q: float(v[i]) for q, v in table.items()}}),
+                                     mode, design)).headline for i in range(len(next(iter(table.values()))))]
+    v, limits = case.values, case.start_up.limits
+    figures = [("start_time", "max_start_time", "s"), ("friction_work", "max_friction_work", "kJ"),
+               ("temperature_rise", "max_temperature_rise", "K")]
+    return check_constraints([Constraint(name, "start-up, every corner", np.array([h.get(name, math.inf) for h in heads]),
+                                         v[limit], "<=", unit, None, f"simulated at the {len(heads)} corner(s)")
+                              for name, limit, unit in figures if limit in limits or limit == "max_start_time"],
+                             case.start_up.tolerance)
 
 
 def solve_robust(case: Case, method: str, target: float | None = None, mode: str | None = None,
@@ -269,33 +314,40 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
     scattered = tuple(s.name for s in case.scatter)
     names = tuple(c.name for c in base.constraints(namespace(nominal.design), params))
     if method == WORST_CASE:
-        problem = problem_for(_derived(WORST_CASE, base, scattered, names), objective, options, structure)
+        problem = problem_for(_derived(WORST_CASE, base, case, names), objective, options, structure)
         corners, _ = worst_corners(shown, nominal.design, params, case.scatter)
+        if case.start_up is not None:
+            corners[START_UP] = start_up_corner(case, base.mode, nominal.design, case.scatter)
         solution, settled = None, False
         for _ in range(CORNER_STEPS):
-            values = {corner_name(q, c): v for c, corner in corners.items() if c in names for q, v in corner.items()}
+            values = {corner_name(q, c): v for c, corner in corners.items() for q, v in corner.items()}
             solved = replace(case, values={**case.values, **values})
             solution = problem.solve(solved, warm=solution) if solution else problem.solve(solved, start=nominal.design)
             if solution.status not in ("optimal", "unverified"):
                 break
             moved, _ = worst_corners(shown, solution.design, params, case.scatter)
+            if case.start_up is not None:
+                moved[START_UP] = start_up_corner(case, base.mode, solution.design, case.scatter)
             settled = moved == corners
             corners = moved
             if settled:
                 break
         checks = corner_checks(shown, solution.design, params, case.scatter)
         nominal_checks = corner_checks(shown, nominal.design, params, case.scatter)
+        if case.start_up is not None:
+            checks += start_up_checks(case, base.mode, solution.design, case.scatter, corners[START_UP])
+            nominal_checks += start_up_checks(case, base.mode, nominal.design, case.scatter, corners[START_UP])
     else:
         from scipy.special import ndtri
 
-        derived = _derived(CHANCE, base, scattered, names)
+        derived = _derived(CHANCE, base, case, names)
         problem = problem_for(derived, objective, options, structure)
         values = {CHANCE_Z: float(ndtri(target)), **{mean_name(s.name): s.mean for s in case.scatter},
                   **{sd_name(s.name): s.sd for s in case.scatter}}
         solution = problem.solve(replace(case, values={**case.values, **values}), start=nominal.design)
         settled, corners = True, {}
         kept = {c.name for c in shown.constraints(namespace(nominal.design), params)}
-        checks = [c for c in solution.constraints if c.name in kept]
+        checks = list(solution.constraints)  # backed off; a start-up's at the means
         nominal_checks = [c for c in check_constraints(derived.constraints(namespace(nominal.design),
                                                                            _at(params, values))) if c.name in kept]
     failure = failure_probabilities(shown, solution.design, params, case.scatter, samples)

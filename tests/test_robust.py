@@ -1,0 +1,179 @@
+"""Designs that hold under scatter (issue 15): zero scatter gives the nominal optimum, worst-case optima hold at every
+corner, the Monte Carlo estimate agrees with the target where first order is exact and says so where it is not."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from clutchopt.cases import parse_case, read_toml
+from clutchopt.errors import InputError
+from clutchopt.optimise import solve_case
+from clutchopt.optimise.robust import (
+    CHANCE,
+    WORST_CASE,
+    corner_checks,
+    failure_probabilities,
+    parse_method,
+    solve_robust,
+)
+from tests.conftest import CASES
+
+
+def centrifuge(scatter=None, **edits):
+    data = read_toml(CASES / "wedge_centrifuge.toml")
+    if scatter is not None:
+        data["scatter"] = scatter
+    data.update(edits)
+    return parse_case(data, str(CASES / "wedge_centrifuge.toml"))
+
+
+@pytest.mark.parametrize("mode", ["paper", "geometry"])
+def test_zero_scatter_gives_the_nominal_optimum(mode):
+    tiny = {"friction_coefficient": [0.15 * (1 - 1e-12), 0.15 * (1 + 1e-12)],
+            "inertia": {"normal": ["12 kg*m^2", "1e-12 kg*m^2"]}}
+    case = centrifuge(tiny)
+    nominal = solve_case(case, mode)
+    for method, target in ((WORST_CASE, None), (CHANCE, 0.999)):
+        result = solve_robust(case, method, target, mode)
+        assert result.status == "optimal"
+        assert result.solution.objective == pytest.approx(nominal.objective, rel=1e-8)
+
+
+@pytest.mark.parametrize("mode", ["paper", "geometry"])
+def test_worst_case_optima_hold_at_every_corner(mode):
+    case = centrifuge()
+    result = solve_robust(case, WORST_CASE, None, mode)
+    assert result.status == "optimal"
+    checks = corner_checks(result.formulation, result.solution.design, case.params(), case.scatter)
+    assert all(c.feasible for c in checks)
+    assert any(c.active for c in checks)  # the corners bind: robustness costs mass
+    assert result.solution.objective > result.nominal.objective
+    # the nominal design fails at f_min, large inertia and load: torque short at that corner
+    nominal = {c.name: c for c in result.nominal_checks}
+    assert nominal["torque"].margin < -0.1
+    assert result.corners["torque"] == {"friction_coefficient": 0.12, "inertia": pytest.approx(12 + 3 * 0.6),
+                                        "resisting_torque": 25.0}
+    p, low, high = result.nominal_failure["torque"]
+    assert 0.45 < low <= p <= high < 0.55  # half the f range is below the nominal 0.15
+
+
+def test_worst_case_at_f_min_by_hand():
+    """Only f scatters (0.12 to 0.18), paper mode: torque ~ f m, so the worst corner needs m = m_nominal * 0.15 / 0.12,
+    and the finger, loaded by the friction force at f_max with that mass, sees 0.18/0.15 * 0.15/0.12 = 1.5 times
+    the nominal finger's force: d_n = d_n,nominal * 1.5^(1/3) (bending ~ F / d^3)."""
+    case = centrifuge({"friction_coefficient": [0.12, 0.18]})
+    nominal = solve_case(case, "paper")
+    result = solve_robust(case, WORST_CASE, None, "paper")
+    assert result.solution.design["weight_mass"] == pytest.approx(nominal.design["weight_mass"] * 0.15 / 0.12, rel=1e-8)
+    assert result.solution.design["finger_diameter"] == pytest.approx(
+        nominal.design["finger_diameter"] * 1.5 ** (1 / 3), rel=1e-8)
+
+
+@pytest.mark.parametrize("target", [0.99, 0.999])
+def test_chance_matches_monte_carlo_where_first_order_is_exact(target):
+    """f normal, paper mode: torque and finger force are linear in f, so the back-off z sigma is exact and each
+    constraint fails with probability 1 - target; the Monte Carlo interval must contain it."""
+    case = centrifuge({"friction_coefficient": {"normal": [0.15, 0.01]}})
+    result = solve_robust(case, CHANCE, target, "paper", samples=200_000)
+    assert result.status == "optimal"
+    for name in ("torque", "finger_bending"):
+        p, low, high = result.failure[name]
+        assert low <= 1 - target <= high, (name, p, low, high)
+
+
+def test_chance_reports_honestly_where_first_order_is_not_exact():
+    """A uniform f over 0.10 to 0.20 (sd 0.0289): the normal quantile backs off 3.09 sd = 0.089, below the end of the
+    range 0.05 away, so the design never fails; the nominal one fails half the time. Both are reported as they are."""
+    case = centrifuge({"friction_coefficient": [0.10, 0.20]})
+    result = solve_robust(case, CHANCE, 0.999, "paper")
+    assert result.failure["torque"][0] == 0.0 and result.status == "optimal"
+    assert result.nominal_failure["torque"][0] == pytest.approx(0.5, abs=0.02)
+    worst = solve_robust(case, WORST_CASE, None, "paper")
+    assert worst.solution.objective < result.solution.objective  # the first-order design is the more conservative
+
+
+def test_a_nonlinear_scatter_that_first_order_underestimates_is_flagged():
+    """[sigma] normal (120 MPa, sd 12 MPa): the violation sigma/[sigma] - 1 is convex in [sigma], so the first-order
+    back-off allows sigma <= mu / (1 + z sd / mu) = 0.764 mu where the exact 0.999 quantile is mu - z sd = 0.691 mu:
+    the finger fails with P = Phi((0.764 - 1) / 0.1) = Phi(-2.36) = 0.0091, nine times the target, and says so."""
+    case = centrifuge({"allowable_bending_stress": {"normal": ["120 MPa", "12 MPa"]}})
+    result = solve_robust(case, CHANCE, 0.999, "paper", samples=100_000)
+    p, low, high = result.failure["finger_bending"]
+    assert low <= 0.0091 <= high
+    assert result.status == "unverified" and "finger_bending fails with probability" in result.diagnosis
+    assert "first order is not enough" in result.diagnosis
+
+
+def test_monte_carlo_is_vectorised_and_reproducible():
+    case = centrifuge()
+    design = solve_case(case, "paper").design
+    first = failure_probabilities(solve_robust(case, WORST_CASE).formulation, design, case.params(), case.scatter, 1000)
+    again = failure_probabilities(solve_robust(case, WORST_CASE).formulation, design, case.params(), case.scatter, 1000)
+    assert first == again and set(first) == {"torque", "flank_pressure", "finger_bending"}
+
+
+def test_start_up_carries_the_scatter_to_its_worst_corner():
+    data = read_toml(CASES / "wedge_motor_start.toml")
+    data["scatter"] = {"friction_coefficient": [0.13, 0.17], "driven_inertia": {"normal": ["0.5 kg*m^2", "0.02 kg*m^2"]}}
+    case = parse_case(data, str(CASES / "wedge_motor_start.toml"))
+    result = solve_robust(case, WORST_CASE)
+    assert result.status == "optimal"
+    assert result.corners["start_up"] == {"friction_coefficient": 0.13, "driven_inertia": pytest.approx(0.56)}
+    start = {c.name: c for c in result.checks}
+    assert start["start_time"].value <= 10.0 * (1 + 1e-6) and start["start_time"].active
+    nominal = {c.name: c for c in result.nominal_checks}
+    assert nominal["start_time"].value > 12.0  # the nominal design on the slow corner of the drive
+    assert result.solution.objective > 1.2 * result.nominal.objective
+
+
+def test_solve_robust_json(cli):
+    result = cli("solve", "cases/wedge_centrifuge.toml", "--robust", "worst-case", "--json", "--no-store")
+    assert result.returncode == 0, result.stderr
+    data = json.loads(result.stdout)
+    assert data["status"] == "optimal" and data["robust"]["method"] == "worst-case"
+    robust = data["robust"]
+    assert set(robust["failure_probability"]) == {"torque", "flank_pressure", "finger_bending"}
+    p, low, high = robust["nominal_failure_probability"]["torque"]
+    assert low <= p <= high and p > 0.4
+    assert robust["corners"]["torque"]["friction_coefficient"] == 0.12  # the nominal design fails at f_min
+    assert data["objective"]["value"] > robust["nominal_objective"]["value"]
+
+
+@pytest.mark.parametrize("text, ok", [("worst-case", True), ("chance=0.999", True), ("chance=0.5", False),
+                                      ("chance=1", False), ("chance=x", False), ("best-case", False)])
+def test_parse_method(text, ok):
+    if ok:
+        assert parse_method(text)[0] in (WORST_CASE, CHANCE)
+    else:
+        with pytest.raises(InputError):
+            parse_method(text)
+
+
+@pytest.mark.parametrize("scatter, field", [
+    ({"friction_coefficient": [0.18, 0.12]}, "scatter.friction_coefficient"),
+    ({"friction_coefficient": [0.16, 0.18]}, "scatter.friction_coefficient"),  # the case's 0.15 lies outside
+    ({"speedd": [1, 2]}, "scatter.speedd"),
+    ({"weight_count": [3, 4]}, "scatter.weight_count"),
+    ({"inertia": {"normal": ["12 kg*m^2", "-1 kg*m^2"]}}, "scatter.inertia.normal"),
+    ({"inertia": {"lognormal": [1, 2]}}, "scatter.inertia"),
+    ({"inertia": ["12 kg", "13 kg"]}, "scatter.inertia"),
+    ({f"q{i}": [0, 1] for i in range(13)}, "scatter"),
+])
+def test_bad_scatter_names_the_field(scatter, field):
+    with pytest.raises(InputError) as error:
+        centrifuge(scatter)
+    assert any(problem.field == field for problem in error.value.problems), [p.field for p in error.value.problems]
+
+
+def test_robust_without_scatter_is_bad_input(cli):
+    result = cli("solve", "cases/wedge_paper.toml", "--robust", "worst-case", "--no-store")
+    assert result.returncode == 2 and "no [scatter] section" in result.stderr
+
+
+def test_normal_range_is_cut_at_the_valid_range():
+    case = centrifuge({"friction_coefficient": {"normal": [0.15, 0.1]}})  # mean - 3 sd < 0
+    (item,) = case.scatter
+    assert item.low > 0 and item.low < 1e-6 and item.high == pytest.approx(0.45)
+    assert math.isclose(item.sample(np.random.default_rng(1), 100_000).std(), 0.1, rel_tol=0.02)
