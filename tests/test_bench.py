@@ -77,7 +77,7 @@ def test_startup_rows_are_ratios_to_the_bare_imports(report):
     rows = {row["command"]: row for row in report["sections"]["startup"]["rows"]}
     assert rows["python -c 'import casadi, numpy'"]["ratio_to_import"] == 1.0
     assert "clutchopt --help" in rows and "clutchopt solve cases/wedge_paper.toml --json" in rows
-    assert all(row["median_s"] > 0 and row["runs"] >= 2 for row in rows.values())
+    assert all(row["median_s"] > 0 and row["runs"] >= 1 for row in rows.values())
 
 
 def test_warm_resolves_before_and_after_reach_the_same_optima(report):

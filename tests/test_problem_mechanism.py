@@ -82,7 +82,7 @@ def test_the_integer_search_along_a_sweep_keeps_the_best_integer(case_file, mode
     case = load_case(CASES / case_file)
     formulation = get_coupling(case.coupling).formulation(mode)
     name = next(v.name for v in formulation.variables if v.integer)
-    values = case.values[quantity] * np.geomspace(0.6, 1.1, 6)
+    values = case.values[quantity] * np.geomspace(0.6, 1.1, 4)
     problem = problem_for(formulation)
     for result, value in zip(solve_points(case, mode, "mass", 1e-10, [(i, {quantity: v}) for i, v in enumerate(values)]),
                              values):

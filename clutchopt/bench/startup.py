@@ -34,16 +34,17 @@ def _wall(args: tuple[str, ...], env: dict) -> float:
 
 
 def startup_rows(config) -> list[dict]:
-    runs = max(2, config.repeats // 2)
+    runs = max(1, config.repeats // 2)
+    warm_up = 1 if runs > 1 else 0  # a first round warms the file cache and is not counted (not in --quick)
     with tempfile.TemporaryDirectory() as scratch:
         env = {**os.environ, "CLUTCHOPT_STORE": str(Path(scratch) / "runs.sqlite")}
         times: dict[str, list[float]] = {name: [] for name, _ in (BASELINE, *COMMANDS)}
-        for _ in range(runs + 1):  # the first round warms the file cache and is not counted
+        for _ in range(runs + warm_up):
             for name, args in (BASELINE, *COMMANDS):
                 times[name].append(_wall(args, env))
-    base = float(np.median(times[BASELINE[0]][1:]))
+    base = float(np.median(times[BASELINE[0]][warm_up:]))
     rows = []
     for name, _ in (BASELINE, *COMMANDS):
-        median = float(np.median(times[name][1:]))
+        median = float(np.median(times[name][warm_up:]))
         rows.append({"command": name, "runs": runs, "median_s": median, "ratio_to_import": median / base})
     return rows
