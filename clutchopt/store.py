@@ -23,6 +23,7 @@ import os
 import platform
 import sqlite3
 import stat
+import time
 import warnings
 from datetime import datetime, timezone
 from functools import lru_cache
@@ -178,7 +179,19 @@ class RunStore:
 
     def _prepare(self) -> None:
         """WAL mode, the schema (new store) and its newer columns (store of an older clutchopt), when writable;
-        refuse an SQLite database of another program."""
+        refuse an SQLite database of another program. Two processes opening a new store at once can meet SQLite's
+        immediate 'database is locked' (switching to WAL takes the file alone, without the busy handler): wait and
+        try again, up to BUSY_TIMEOUT_S."""
+        deadline = time.monotonic() + BUSY_TIMEOUT_S
+        while True:
+            try:
+                return self._prepare_once()
+            except StoreError as error:
+                if "stayed locked" not in str(error) or time.monotonic() > deadline:
+                    raise
+                time.sleep(0.05)
+
+    def _prepare_once(self) -> None:
         try:
             tables = {row[0] for row in self._db.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
             if tables and not {"runs", "sweeps"} <= tables:

@@ -175,7 +175,9 @@ def test_two_different_sweeps_at_once(tmp_path):
     store = tmp_path / "runs.sqlite"
     other = ["--vary", "speed=600:2000:15", "--vary", "density=7000:8000:10"]
     writers = [Writer(_sweep(store, SMALL), tmp_path), Writer(_sweep(store, other), tmp_path)]
-    assert all(writer.finish()[0] == 0 for writer in writers)
+    for writer in writers:
+        code, text = writer.finish()
+        assert code == 0 and "warning" not in text, text
     with RunStore(store, writable=False) as opened:
         assert sorted(sweep["stored"] for sweep in opened.sweeps()) == [150, 150]
 
