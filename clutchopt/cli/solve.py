@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from clutchopt.cli.options import add_case_argument, add_json_option, add_parser, add_problem_options, add_store_options
+from clutchopt.errors import InputError
 
 
 def add_command(commands) -> None:
@@ -25,7 +26,7 @@ def add_command(commands) -> None:
                        help="a design that holds under the case's [scatter]: worst-case (every constraint at its own "
                             "worst corner of the ranges) or chance=P (each holds with probability P, to first "
                             "order), checked by Monte Carlo beside the nominal design; e.g. --robust chance=0.999")
-    solve.add_argument("--samples", type=int, default=10_000, metavar="N",
+    solve.add_argument("--samples", type=int, metavar="N",
                        help="Monte Carlo samples of the scatter for --robust (default 10000)")
     add_json_option(solve)
     solve.set_defaults(run=run)
@@ -43,6 +44,8 @@ def run(args) -> str:
     resolve_problem(case, args)
     if args.robust is not None:
         return _robust(case, args)
+    if args.samples is not None:
+        raise InputError("--samples", "counts the Monte Carlo samples of --robust; give --robust too")
     with recording(args) as store:
         ranked = solve_choices(case, args.mode, args.objective, SolverOptions(tol=args.tol))
         _, case, solution = ranked[0]
@@ -74,18 +77,18 @@ def _robust(case, args) -> str:
     from clutchopt.errors import InputError
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.problem import case_formulation
-    from clutchopt.optimise.robust import MAX_SAMPLES, parse_method, solve_robust
+    from clutchopt.optimise.robust import MAX_SAMPLES, SAMPLES, parse_method, solve_robust
     from clutchopt.output import robust_text, solution_text, to_json
 
     method, target = parse_method(args.robust)
-    if not 100 <= args.samples <= MAX_SAMPLES:
-        raise InputError("--samples", f"must be a whole number from 100 to {MAX_SAMPLES}, got {args.samples}")
+    samples = SAMPLES if args.samples is None else args.samples
+    if not 100 <= samples <= MAX_SAMPLES:
+        raise InputError("--samples", f"must be a whole number from 100 to {MAX_SAMPLES}, got {samples}")
     if case.options.get("choose"):
         raise InputError("--robust", "the case lets the optimiser choose library entries (options.choose): name one "
                                      "entry each for a robust design")
     with recording(args) as store:
-        result = solve_robust(case, method, target, args.mode, args.objective, SolverOptions(tol=args.tol),
-                              args.samples)
+        result = solve_robust(case, method, target, args.mode, args.objective, SolverOptions(tol=args.tol), samples)
         record_solve(store, case, result.solution)
     if args.json:
         return to_json({"case": case.path, "title": case.title, **result.solution.as_dict(),
