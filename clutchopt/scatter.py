@@ -92,6 +92,7 @@ def _item(field: str, quantity, raw, nominal: float | None) -> Scatter:
                 raise InputError(f"{field}.normal", f"the standard deviation must be positive, got {quantity.show(second)}")
             quantity.check(first, f"{field}.normal")
             low, high = _within(quantity, first - NORMAL_RANGE * second), _within(quantity, first + NORMAL_RANGE * second)
+            quantity.check(low, f"{field}.normal"), quantity.check(high, f"{field}.normal")
             return Scatter(quantity.name, kind, low, high, first, second)
         low, high = first, second
     else:

@@ -87,6 +87,9 @@ def _robust(case, args) -> str:
     if case.options.get("choose"):
         raise InputError("--robust", "the case lets the optimiser choose library entries (options.choose): name one "
                                      "entry each for a robust design")
+    if not case.scatter:
+        raise InputError("--robust", "the case has no [scatter] section: say which quantities scatter and how "
+                                     "(docs/robust.md)")
     with recording(args) as store:
         result = solve_robust(case, method, target, args.mode, args.objective, SolverOptions(tol=args.tol), samples)
         record_solve(store, case, result.solution)
