@@ -168,6 +168,26 @@ class SpeedLaw:
     weight_mass: Callable[[SimpleNamespace, SimpleNamespace], Any] | None = None
 
 
+@dataclass(frozen=True)
+class ElasticLaw:
+    """How a coupling that transmits torque through an elastic, speed-stiffened link (the cable coupling) behaves in
+    a start-up: the torque and the stress of the link at a driving speed w_a and a relative twist theta of the
+    halves, written with the coupling's own equations and ``(x, p, w_a, theta)``.
+
+    ``torque``: torque through the link, N*m; ``stress``: the most loaded element's stress, Pa, checked against
+    ``stress_limit`` (the name of the case quantity that bounds it in a start); ``stiffness``: dT/dtheta at
+    theta = 0 and w_a, N*m/rad (the reference of the link's damping); ``damping_ratio``: (x, p) -> its equivalent
+    viscous damping ratio; ``largest_twist``: (x, p) -> the twist up to which the torque grows with it.
+    """
+
+    torque: Callable[..., Any]
+    stress: Callable[..., Any]
+    stiffness: Callable[..., Any]
+    damping_ratio: Callable[[SimpleNamespace, SimpleNamespace], Any]
+    largest_twist: Callable[[SimpleNamespace, SimpleNamespace], Any]
+    stress_limit: str
+
+
 @dataclass
 class Formulation:
     """One posed problem of one coupling (e.g. the wedge coupling in paper mode).
@@ -184,7 +204,7 @@ class Formulation:
     constraints: Callable[[SimpleNamespace, SimpleNamespace], list[Constraint]]
     objectives: tuple[Objective, ...]
     outputs: Callable[[SimpleNamespace, SimpleNamespace], dict[str, Output]] = lambda x, p: {}
-    speed_law: SpeedLaw | None = None  # the torque over the driving speed, for start-ups (None: not available)
+    speed_law: SpeedLaw | ElasticLaw | None = None  # its torque in a start-up (None: not available)
     variant: str = ""  # a formulation derived from the mode's (robust designs): part of what identifies it
     start_up_view: Callable[[dict], dict] | None = None  # the case values a [start_up] sees (robust: its corner)
     notes: str = ""

@@ -184,12 +184,20 @@ START_UP_ROWS = (  # figure, display unit, meaning
     ("engagement_time", "s", "motor running up unloaded"),
     ("lock_up_time", "s", "the coupling slips under load"),
 )
+ELASTIC_START_UP_ROWS = (  # an elastic link (the cable coupling): the NLP's link quasi-static, the simulator's dynamic
+    ("start_time", "s", "switch-on until the machine runs at the start speed"),
+    ("lock_up_speed", "rpm", "the start speed (min_lock_up_speed)"),
+    ("peak_link_stress", "MPa", "largest stress of the link during the start"),
+    ("peak_twist", "deg", "largest twist of the halves during the start"),
+    ("friction_work", "J", "energy the link's damping takes (none in the quasi-static NLP)"),
+)
 
 
 def start_up_table(start_up: dict) -> tuple[str, list[dict], list[str]]:
     """The NLP's start beside the simulator's, figure by figure: title, rows, a note if it does not lock up."""
     rows = []
-    for name, unit, meaning in START_UP_ROWS:
+    elastic = "locked" in start_up["phases"]
+    for name, unit, meaning in ELASTIC_START_UP_ROWS if elastic else START_UP_ROWS:
         nlp, simulated = start_up.get(name), start_up.get(f"{name}_simulated")
         if nlp is None:
             continue
@@ -198,7 +206,9 @@ def start_up_table(start_up: dict) -> tuple[str, list[dict], list[str]]:
         rows.append({"figure": name, "NLP": _shown(nlp, unit), "simulated": _shown(simulated, unit), "unit": unit,
                      "NLP/sim - 1": difference if simulated is not None else "-", "meaning": meaning})
     head = (f"Start-up on the case's drive ({', '.join(start_up['effects'])}): Radau collocation, "
-            f"{start_up['intervals']} intervals per phase ({', '.join(start_up['phases'])}), beside the simulator")
+            f"{start_up['intervals']} intervals per phase ({', '.join(start_up['phases'])}), beside the simulator"
+            + (" (the NLP takes the elastic link as quasi-static, the simulator follows its dynamics)" if elastic
+               else ""))
     return head, rows, [] if start_up["locks_up"] else [f"simulated: {start_up['reason']}"]
 
 

@@ -40,7 +40,7 @@ from clutchopt.formulations.start_up import (
     LoadProfile,
     StartUpSpec,
 )
-from clutchopt.model import REQUIRED
+from clutchopt.model import REQUIRED, ElasticLaw
 from clutchopt.units import to_si
 
 SECTION = "start_up"
@@ -94,6 +94,9 @@ def parse_start_up(table, coupling, duty: dict[str, float]) -> tuple[dict[str, f
             values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
     if "motor_curve" in effects and "min_lock_up_speed" not in values and "synchronous_speed" in values:
         values["min_lock_up_speed"] = LOCK_UP_SHARE * values["synchronous_speed"]
+    elastic = [law for law in laws if isinstance(law, ElasticLaw)]
+    if elastic and "max_link_stress" not in values and elastic[0].stress_limit in duty:
+        values["max_link_stress"] = duty[elastic[0].stress_limit]
     if profile is not None and "resisting_torque" in table.get("driven", {}):
         raise InputError(f"{SECTION}.driven", "give either resisting_torque or load_profile, not both")
     if profile is not None:
@@ -151,8 +154,13 @@ def _check(values, effects, coupling, laws, profile) -> None:
                          "given, but effects do not list friction_heat")
     if values.get("spring_preload", 0.0) > 0 and "spring_preload" not in effects:
         raise InputError(key("spring_preload"), "given, but effects do not list spring_preload")
+    if any(isinstance(law, ElasticLaw) for law in laws):
+        _check_elastic(values, effects, coupling, key)
+    elif "max_link_stress" in values:
+        raise InputError(key("max_link_stress"), f"applies to couplings with an elastic link (the cable coupling), "
+                                                 f"not to the {coupling.name} coupling")
     radial = [e for e in effects if e in RADIAL_EFFECTS]
-    if radial and not all(law.mass_radius for law in laws):
+    if radial and not all(getattr(law, "mass_radius", None) for law in laws):
         raise InputError(f"{SECTION}.effects", f"{radial[0]} does not apply to the {coupling.name} coupling "
                                                "(it has no weights held in by springs or their own weight)")
     window = given("min_engagement_speed", "max_engagement_speed")
@@ -165,6 +173,26 @@ def _check(values, effects, coupling, laws, profile) -> None:
     if len(heat_balance) == 1:
         other = ({"starts_per_hour", "heat_dissipation"} - set(heat_balance)).pop()
         raise InputError(key(other), f"missing (given {heat_balance[0]}: the heat balance over an hour needs both)")
+
+
+def _check_elastic(values, effects, coupling, key) -> None:
+    """A coupling with an elastic link (the cable coupling) starts on a motor; springs, the weights' weight (its
+    equations hold g already, eq. 1) and friction heat are not its effects."""
+    if "motor_curve" not in effects:
+        raise InputError(f"{SECTION}.effects", f"the {coupling.name} coupling is an elastic link: its start needs the "
+                                               "motor that drives it (list motor_curve)")
+    for effect in ("spring_preload", "gravity", "friction_heat"):
+        if effect in effects:
+            raise InputError(f"{SECTION}.effects", f"{effect} does not apply to the {coupling.name} coupling (an "
+                                                   "elastic link: no friction surfaces, no springs on its weights; "
+                                                   "its own gravity is in its equations, eq. 1)")
+    if "max_link_stress" not in values:
+        raise InputError(key("max_link_stress"), "missing (the largest cable stress during the start)")
+    for name in ("max_friction_work", "starts_per_hour", "heat_dissipation"):
+        if name in values:
+            raise InputError(key(name), f"does not apply to the {coupling.name} coupling: an elastic link releases "
+                                        "no friction heat (only its damping's few joules, which the simulator "
+                                        "reports)")
 
 
 def _check_ranges(values: dict[str, float], duty: dict[str, float]) -> None:

@@ -106,7 +106,7 @@ def test_scene_with_a_coupling_without_a_speed_law(tmp_path):
     scene = tmp_path / "scene.toml"
     scene.write_text(f'effects = ["slip_friction"]\n[coupling]\nlaw = "centrifugal"\n'
                      f'case = "{(CASES / "cable_pump.toml").as_posix()}"\n')
-    with pytest.raises(InputError, match="cable coupling has no speed-dependent torque law") as error:
+    with pytest.raises(InputError, match="cable coupling is an elastic link, not a slipping one") as error:
         load_scene(scene)
     assert error.value.field == "coupling.case"
 

@@ -277,7 +277,8 @@ def _start_up_solve(case_of: Callable[[], Case]) -> Callable[[], Verdict]:
 def start_up_limits(case: Case) -> list[TortureCase]:
     """Cases with a [start_up]: engagement windows 1e-3 and 1e-6 wide (relative) at 1.1 times the optimum's
     engagement speed, heat limits binding at 0.99 and 0.9 of the optimum's friction work and temperature rise, the
-    start time 1e-6 either side of the optimum's, a motor whose breakdown torque is below the load."""
+    start time 1e-6 either side of the optimum's, a motor whose breakdown torque is below the load; an elastic link's
+    stress limit at 0.9 and 1.1 of the optimum's."""
     if case.start_up is None:
         return []
     from clutchopt.optimise.problem import solve_case
@@ -289,10 +290,13 @@ def start_up_limits(case: Case) -> list[TortureCase]:
             centre = 1.1 * start["engagement_speed"]
             variants[f"engagement-window-{width:g}"] = {"min_engagement_speed": centre * (1 - width / 2),
                                                        "max_engagement_speed": centre * (1 + width / 2)}
-    for share in (0.99, 0.9):
+    for share in (0.99, 0.9) if "locked" not in start["phases"] else ():  # an elastic link has no friction heat
         variants[f"friction-work-x{share:g}"] = {"max_friction_work": share * start["friction_work_simulated"]}
         if start["temperature_rise"] is not None:
             variants[f"temperature-x{share:g}"] = {"max_temperature_rise": share * start["temperature_rise_simulated"]}
+    if "peak_link_stress_simulated" in start:  # an elastic link: its stress binding below and above the optimum's
+        for share in (0.9, 1.1):
+            variants[f"link-stress-x{share:g}"] = {"max_link_stress": share * start["peak_link_stress_simulated"]}
     for side in (+1, -1):
         variants[f"start-time-{'+' if side > 0 else '-'}1e-6"] = {"max_start_time": start["start_time"] * (1 + side * NEAR)}
     if case.start_up.has("motor_curve"):

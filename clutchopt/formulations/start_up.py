@@ -53,6 +53,8 @@ QUANTITIES = (
       "dT_max", f"{SECTION}.limits", None, above=0),
     Q("min_lock_up_speed", "rpm", "lock-up at least at this speed, the machine nearly up to speed (motor_curve; "
       "default: 90 % of synchronous speed)", "w_L,min", f"{SECTION}.limits", None, above=0),
+    Q("max_link_stress", "MPa", "largest stress of an elastic link during the start (cable coupling; default: its "
+      "allowable, allowable_cable_stress)", "sigma_max", f"{SECTION}.limits", None, above=0),
     Q("min_engagement_speed", "rpm", "engagement speed at least (the motor runs up unloaded first)", "w_e,min",
       f"{SECTION}.limits", None, at_least=0),
     Q("max_engagement_speed", "rpm", "engagement speed at most", "w_e,max", f"{SECTION}.limits", None, above=0),
@@ -148,8 +150,8 @@ class StartUpSpec:
         return effect in self.effects
 
 
-LIMITS = ("max_start_time", "max_friction_work", "max_temperature_rise", "min_lock_up_speed", "min_engagement_speed",
-          "max_engagement_speed", "starts_per_hour", "heat_dissipation")
+LIMITS = ("max_start_time", "max_friction_work", "max_temperature_rise", "min_lock_up_speed", "max_link_stress",
+          "min_engagement_speed", "max_engagement_speed", "starts_per_hour", "heat_dissipation")
 LOCK_UP_SHARE = 0.9  # default min_lock_up_speed over the synchronous speed
 
 SPRING_PRELOAD = Variable("spring_preload", "N", "return-spring preload on each weight", "F_s", lower=0.0,

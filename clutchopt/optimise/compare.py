@@ -95,6 +95,8 @@ START_UP_ROWS = (
     ComparisonRow("start_time_simulated", "s", "switch-on to lock-up on the case's drive, simulated"),
     ComparisonRow("friction_work_simulated", "kJ", "heat released by slip in that start, simulated"),
     ComparisonRow("temperature_rise_simulated", "K", "largest temperature rise in that start, simulated"),
+    ComparisonRow("link_stress_simulated", "MPa", "largest stress of an elastic link (cables) in that start, "
+                                                  "simulated"),
 )
 START_UP_NOTES = {
     "constant_acceleration": "the case's mode optimised as the papers size (constant acceleration), started on "
@@ -143,8 +145,7 @@ def _scatter_columns(case: Case, coupling, spec, options: SolverOptions) -> dict
 def _start_up_columns(case: Case, coupling, spec, options: SolverOptions) -> dict:
     """The case's mode and objective optimised without and with the start-up; both designs started on the case's
     drive by the simulator."""
-    from clutchopt.simulate.design import start_up_model
-    from clutchopt.simulate.engine import simulate
+    from clutchopt.simulate.design import run_start_up, start_up_model
 
     mode = case.options.get("mode") or coupling.default_mode
     objective = case.options.get("objective", "mass")
@@ -156,8 +157,9 @@ def _start_up_columns(case: Case, coupling, spec, options: SolverOptions) -> dic
         outputs = {name: out.value for name, out in solution.outputs.items()}
         values = spec.rows_from_design(mode, solution.design, outputs, params)
         if solution.status in ("optimal", "unverified"):
-            head = simulate(start_up_model(case, mode, solution.design)).headline
+            head = run_start_up(start_up_model(case, mode, solution.design)).headline
             values.update(start_time_simulated=head["start_time"], friction_work_simulated=head["friction_work"],
-                          temperature_rise_simulated=head.get("temperature_rise", math.nan))
+                          temperature_rise_simulated=head.get("temperature_rise", math.nan),
+                          link_stress_simulated=head.get("peak_stress", math.nan))
         columns[column] = (solution, values)
     return columns

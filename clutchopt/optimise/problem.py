@@ -330,7 +330,7 @@ class Problem:
         simulation adds to the NLP's figure (defect correction) and the problem re-solves warm. Limits are always
         reported as the case gives them. A start-up problem without a start point starts from the optimum the
         papers' sizing gives (the same mode without the start-up), a design the start-up changes but does not
-        overturn. Integer variables keep their values while limits are moved in. ``refine=False``: one solve on
+        overturn. Integer variables keep their values while limits are moved in (an elastic link's excepted). ``refine=False``: one solve on
         ``mesh`` (or the warm solution's, or the first one), as it comes (for measuring what accuracy costs)."""
         if self.start_up is None or not refine:
             return self._solve(case, start, warm, mesh=mesh)
@@ -344,7 +344,8 @@ class Problem:
             if solution.status not in ("optimal", "unverified"):
                 break
             error = abs(solution.start_up["discretisation_error"]["start_time"])
-            if error > structure.spec.tolerance:
+            if error > structure.spec.tolerance and not structure.elastic:  # an elastic link: its quasi-static
+                # NLP differs from the simulated dynamics by the model, not by the mesh
                 if adapted == MESH_STEPS or error > 0.5 * last_error:  # adapting no longer pays: more intervals
                     if 2 * structure.intervals > MAX_INTERVALS:
                         break
@@ -357,7 +358,9 @@ class Problem:
                 adapted, last_error = adapted + 1, error
                 solution = self._solve(case, warm=solution, nlp_case=nlp_case, mesh=solution.mesh[1])
             elif solution.status == "unverified" and (limits := tightened_limits(solution, nlp_case)):
-                integers = {v.name: (solution.design[v.name],) * 2 for v in self.formulation.variables if v.integer}
+                # integers kept, unless the difference is the model's (an elastic link's dynamics), not a small one
+                integers = {v.name: (solution.design[v.name],) * 2 for v in self.formulation.variables
+                            if v.integer and not structure.elastic}
                 nlp_case = replace(nlp_case.with_values(**limits), bounds={**nlp_case.bounds, **integers})
                 solution = self._solve(case, warm=solution, nlp_case=nlp_case)
             else:

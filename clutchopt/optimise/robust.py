@@ -269,12 +269,11 @@ def _derived(kind: str, base: Formulation, case: Case, names: tuple[str, ...]) -
 def start_up_corner(case: Case, mode: str, design: dict, scatter) -> dict[str, float]:
     """The corner a start-up is designed at: each scattered quantity at the end of its range where the simulated
     start, the others nominal, takes longer (no lock-up counts as longest)."""
-    from clutchopt.simulate.design import start_up_model
-    from clutchopt.simulate.engine import simulate
+    from clutchopt.simulate.design import run_start_up, start_up_model
 
     corner = {}
     for s in scatter:
-        times = [simulate(start_up_model(replace(case, values={**case.values, s.name: end}), mode, design,
+        times = [run_start_up(start_up_model(replace(case, values={**case.values, s.name: end}), mode, design,
                                          rtol=1e-9)).headline["start_time"] for end in (s.low, s.high)]
         corner[s.name] = s.low if times[0] > times[1] else s.high
     return corner
@@ -283,11 +282,10 @@ def start_up_corner(case: Case, mode: str, design: dict, scatter) -> dict[str, f
 def start_up_checks(case: Case, mode: str, design: dict, scatter, corner: dict) -> list[ConstraintCheck]:
     """The start-up's limits checked by simulation at every corner of the ranges (up to 16 corners; with more, at
     the start-up's corner), each at its worst."""
-    from clutchopt.simulate.design import start_up_model
-    from clutchopt.simulate.engine import simulate
+    from clutchopt.simulate.design import run_start_up, start_up_model
 
     table = corner_table(scatter) if len(scatter) <= 4 else {q: np.array([v]) for q, v in corner.items()}
-    heads = [simulate(start_up_model(replace(case, values={**case.values, **{q: float(v[i]) for q, v in table.items()}}),
+    heads = [run_start_up(start_up_model(replace(case, values={**case.values, **{q: float(v[i]) for q, v in table.items()}}),
                                      mode, design)).headline for i in range(len(next(iter(table.values()))))]
     v, limits = case.values, case.start_up.limits
     figures = [("start_time", "max_start_time", "s"), ("friction_work", "max_friction_work", "kJ"),

@@ -27,7 +27,7 @@ import numpy as np
 
 from clutchopt.backend import sqrt
 from clutchopt.formulations import start_up as su
-from clutchopt.model import Constraint, SpeedLaw, at_least, at_most, namespace
+from clutchopt.model import Constraint, ElasticLaw, SpeedLaw, at_least, at_most, namespace
 
 DEGREE = 3
 MAX_INTERVALS = 128  # per phase, refining by doubling
@@ -35,7 +35,8 @@ BACK_OFF_STEPS = 4  # defect corrections of limits the simulated start misses
 MESH_STEPS = 3  # adaptations of the mesh to the simulated start before the intervals are doubled
 MONITOR_FLOOR = 0.2  # of the mean error monitor, added everywhere: no interval grows without bound
 LIMIT_OF = {"start_time": "max_start_time", "friction_work": "max_friction_work",
-            "temperature_rise": "max_temperature_rise", "heat_per_hour": "heat_dissipation"}
+            "temperature_rise": "max_temperature_rise", "heat_per_hour": "heat_dissipation",
+            "link_stress": "max_link_stress"}
 LOCKED_SAMPLES = 8  # speeds from lock-up to synchronous at which a locked drive must stay locked (lockup)
 
 
@@ -80,6 +81,7 @@ class Structure:
     load_at_rest: bool  # the driven machine needs torque to break away: a breakaway phase (motor_curve)
     intervals: int
     graded_part: float = GRADED_PARTS[0]  # of the slip phase, where the motor runs up to meet the coupling
+    elastic: bool = False  # an elastic link (the cable coupling): one locked phase, the link quasi-static
 
     @classmethod
     def of(cls, case, intervals: int | None = None) -> "Structure":
@@ -91,7 +93,11 @@ class Structure:
         if spec.has("motor_curve"):
             knee = 20.0 * v["motor_inertia"] * v["synchronous_speed"] / v["breakdown_torque"] / v["max_start_time"]
             graded = next((part for part in GRADED_PARTS if part >= knee), GRADED_PARTS[-1])
-        return cls(spec, spec.has("motor_curve") and rest > 0, intervals or spec.intervals, graded)
+        from clutchopt.formulations import get_coupling
+
+        elastic = isinstance(get_coupling(case.coupling).formulation().speed_law, ElasticLaw)
+        return cls(spec, spec.has("motor_curve") and rest > 0 and not elastic, intervals or spec.intervals, graded,
+                   elastic)
 
     @property
     def motor(self) -> bool:
@@ -107,6 +113,8 @@ class Structure:
 
     @property
     def phases(self) -> tuple[str, ...]:
+        if self.elastic:
+            return ("locked",)
         names = ("run_up",) if self.motor and self.radial else ()
         return names + (("breakaway",) if self.load_at_rest else ()) + ("slip",)
 
@@ -114,10 +122,10 @@ class Structure:
 class Drive:
     """The drive's equations at given design and case values (CasADi symbols or floats)."""
 
-    def __init__(self, structure: Structure, law: SpeedLaw, x, p):
-        self.s, self.p = structure, p
+    def __init__(self, structure: Structure, law: SpeedLaw | ElasticLaw, x, p):
+        self.s, self.p, self.law, self.x = structure, p, law, x
         spec = structure.spec
-        self.coefficient = law.torque_coefficient(x, p)
+        self.coefficient = None if structure.elastic else law.torque_coefficient(x, p)
         if structure.radial:
             force = su.radial_reduction(spec.effects, x.spring_preload, law.weight_mass(x, p))
             self.engagement_squared = su.engagement_speed_squared(force, law.mass_radius(x, p))
@@ -128,6 +136,14 @@ class Drive:
         self.energy_ref = p.driven_inertia * self.speed_ref**2
         self.torque_ref = p.driven_inertia * self.speed_ref / p.max_start_time + p.load_torque
         self.temperature_ref = self.energy_ref / p.heat_capacity if structure.heat else 1.0
+        self.twist_ref = law.largest_twist(x, p) / 2.0 if structure.elastic else 1.0
+
+    def link(self, speed, twist):
+        """An elastic link's torque at the driving speed and twist."""
+        return self.law.torque(self.x, self.p, speed, twist)
+
+    def link_stress(self, speed, twist):
+        return self.law.stress(self.x, self.p, speed, twist)
 
     def torque(self, driving_speed):
         return su.coupling_torque(self.coefficient, driving_speed, self.engagement_squared)
@@ -155,6 +171,8 @@ def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
     """The start-up's requirements as named constraints, of the figures ``q`` (start_time, friction_work,
     temperatures, lock_up_speed, lock_up_time): NLP expressions, or the simulator's figures for the float64 check."""
     p, limits = drive.p, s.spec.limits
+    if s.elastic:
+        return _elastic_constraints(s, drive, q)
     engagement = sqrt(drive.engagement_squared)
     out = [at_most("start_time", q.start_time, p.max_start_time, equation="start-up", unit="s",
                    description="switch-on to lock-up within max_start_time")]
@@ -195,6 +213,28 @@ def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
     return out
 
 
+def _elastic_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
+    """An elastic link's start: its time to the start speed, the stress of the link all along it (``q.stresses``),
+    the damping's heat if limited, and a motor that can start the machine at all."""
+    p, limits = drive.p, s.spec.limits
+    out = [at_most("start_time", q.start_time, p.max_start_time, equation="start-up", unit="s",
+                   description="switch-on until the machine runs at the start speed (min_lock_up_speed)"),
+           at_most("link_stress", q.stresses, p.max_link_stress, equation="(18), start-up", unit="MPa",
+                   description="stress of the link all along the start")]
+    if "max_friction_work" in limits:
+        out.append(at_most("friction_work", q.friction_work, p.max_friction_work, equation="start-up", unit="kJ",
+                           description="energy the link's damping takes in one start"))
+    if "starts_per_hour" in limits:
+        out.append(at_most("heat_per_hour", p.starts_per_hour * q.friction_work, p.heat_dissipation,
+                           equation="heat balance", unit="W", description="mean heat within what the housing sheds"))
+    out.append(at_least("motor_breakdown_torque", p.breakdown_torque, p.load_torque, equation="Kloss", unit="N*m",
+                        description="the motor's breakdown torque exceeds the largest load"))
+    out.append(at_least("motor_starting_torque", drive.motor(0.0), drive.load(0.0, 0.0), equation="Kloss",
+                        unit="N*m", scale=p.breakdown_torque,
+                        description="the motor's torque at rest exceeds the load at rest"))
+    return out
+
+
 class StartUpBlock:
     """One start-up transcribed for one problem: internal variables (scaled), equalities, named constraints."""
 
@@ -220,9 +260,11 @@ class StartUpBlock:
         self.start_time = time
         self.end_state = state
         temperatures = [node["temperature"] for node in self.nodes if isinstance(node["temperature"], ca.SX)]
+        stresses = [d.link_stress(node["driver_speed"], node["twist"]) for node in self.nodes if "twist" in node]
         self.figures = SimpleNamespace(
             start_time=time, friction_work=state["friction_work"], lock_up_speed=state["driver_speed"],
-            temperatures=ca.vertcat(*temperatures) if temperatures else 0.0)
+            temperatures=ca.vertcat(*temperatures) if temperatures else 0.0,
+            stresses=ca.vertcat(*stresses) if stresses else 0.0)
         self.constraints = named_constraints(structure, d, self.figures)
 
     # --- variables and phases ----------------------------------------------------------------------------------
@@ -240,6 +282,8 @@ class StartUpBlock:
         states = {}
         if s.motor:
             states["driver_speed"] = (d.speed_ref, 0.0, 1.0)
+        if phase == "locked":  # motor and machine as one: the speed of both
+            return states
         if phase == "slip":
             states["slip"] = (d.speed_ref, 0.0, 2.0)
         if phase != "run_up":
@@ -253,6 +297,8 @@ class StartUpBlock:
         speed = state["driver_speed"]
         if phase == "run_up":
             return {"driver_speed": d.motor(speed) / d.p.motor_inertia}
+        if phase == "locked":
+            return {"driver_speed": (d.motor(speed) - d.load(speed, time)) / (d.p.motor_inertia + d.p.driven_inertia)}
         torque = d.torque(speed)
         slip = state["slip"] if phase == "slip" else speed
         rates = {"friction_work": torque * slip}
@@ -275,6 +321,8 @@ class StartUpBlock:
         previous = dict(state)
         if phase == "slip":  # the driven machine starts from rest: all of the driving speed is slip
             previous["slip"] = previous["driver_speed"]
+        if phase == "locked":  # both halves at rest, nothing twisted yet
+            previous.update(slip=0.0, twist=0.0)
         self.points.append((start_time, dict(previous)))
         for k in range(n):
             step = mesh[k] * duration
@@ -286,6 +334,10 @@ class StartUpBlock:
                 nodes.append(node)
             for j in range(1, DEGREE + 1):
                 time = start_time + (starts[k] + self.tau[j] * mesh[k]) * duration
+                if phase == "locked":  # the link's twist where its torque meets the locked drive's
+                    twist = nodes[j]["twist"] = self._variable(phase, "twist", d.twist_ref, 0.0, 2.0)
+                    self.equalities.append((d.link(nodes[j]["driver_speed"], twist)
+                                            - d.carried(nodes[j]["driver_speed"], time)) / d.torque_ref)
                 rates = self._rates(phase, time, nodes[j])
                 for name, (scale, _, _) in states.items():
                     slope = sum(self.c[r, j] * nodes[r][name] for r in range(DEGREE + 1))
@@ -346,6 +398,8 @@ class StartUpBlock:
             return (state["driver_speed"] ** 2 - d.engagement_squared) / d.speed_ref**2
         if phase == "breakaway":
             return (d.torque(state["driver_speed"]) - d.load(0.0, time)) / d.torque_ref
+        if phase == "locked":
+            return (state["driver_speed"] - d.p.min_lock_up_speed) / d.speed_ref
         return state["slip"] / d.speed_ref
 
     # --- what the problem needs -----------------------------------------------------------------------------------
@@ -378,14 +432,16 @@ class StartUpBlock:
 
     def trajectory(self) -> dict:
         """Time, driving speed, driven speed, friction work, temperature at every collocation point."""
-        times, driver, driven, work, heat = [], [], [], [], []
+        times, driver, driven, work, heat, twist = [], [], [], [], [], []
         for time, state in self.points:
             times.append(time)
             driver.append(state["driver_speed"])
             driven.append(state["driver_speed"] - state["slip"] if "slip" in state else 0.0)
             work.append(state["friction_work"])
             heat.append(state["temperature"])
-        return {"t": times, "w_driver": driver, "w_driven": driven, "friction_work": work, "temperature_rise": heat}
+            twist.append(state.get("twist", 0.0))
+        return {"t": times, "w_driver": driver, "w_driven": driven, "friction_work": work, "temperature_rise": heat,
+                "twist": twist}
 
     def guess(self, history, headline, engagement_squared: float, time_ref: float, scales: np.ndarray,
               mesh: np.ndarray) -> np.ndarray:
@@ -400,9 +456,12 @@ class StartUpBlock:
         engage = t[np.argmax(driver >= math.sqrt(engagement_squared))] if d.motor and d.radial else 0.0
         moving = driven > 1e-9 * max(driver.max(), 1e-300)
         breakaway = t[np.argmax(moving)] if d.load_at_rest and moving.any() else engage
-        bounds = {"run_up": (0.0, engage), "breakaway": (engage, breakaway), "slip": (breakaway, t_end)}
-        columns = {"driver_speed": driver, "slip": driver - driven, "friction_work": history["friction_work"].to_numpy(),
-                   "temperature": history["temperature_rise"].to_numpy()}
+        bounds = {"run_up": (0.0, engage), "breakaway": (engage, breakaway), "slip": (breakaway, t_end),
+                  "locked": (0.0, t_end)}
+        columns = {"driver_speed": driven if d.elastic else driver, "slip": driver - driven,
+                   "friction_work": history["friction_work"].to_numpy(),
+                   "temperature": history["temperature_rise"].to_numpy(),
+                   "twist": history["twist"].to_numpy() if "twist" in history else np.zeros_like(t)}
         values = []
         for index, phase in enumerate(d.phases):
             begin, end = bounds[phase]
@@ -415,25 +474,39 @@ class StartUpBlock:
                     time = begin + (starts[k] + self.tau[j] * lengths[k]) * (end - begin)
                     for name in self._states(phase):
                         values.append(float(np.interp(time, t, columns[name])))
+                    if phase == "locked":
+                        values.append(float(np.interp(time, t, columns["twist"])))
         return np.array(values) / scales
 
 
 def initial_states(block: StartUpBlock, case, formulation, design: dict[str, float], scales: np.ndarray,
                    mesh: np.ndarray) -> np.ndarray:
     """The internal variables (scaled) of the start design's simulated start: a start point on the dynamics."""
-    from clutchopt.simulate.design import start_up_model
-    from clutchopt.simulate.engine import simulate
+    from clutchopt.simulate.design import run_start_up
 
-    model = start_up_model(case, formulation.mode, design, rtol=1e-6)
-    model.end_time = 3.0 * case.values["max_start_time"]  # a start design that does not lock up: ramps to there
-    model.integrator = "DOP853"  # samples dense where the motor's knee is (see start_up_report)
-    result = simulate(model)
-    return block.guess(result.history, result.headline, model.law.engagement_squared,
-                       case.values["max_start_time"], scales, mesh)
+    model = _dense(case, formulation, design, rtol=1e-6, end_time=3.0 * case.values["max_start_time"])
+    result = run_start_up(model)
+    squared = 0.0 if block.s.elastic else model.law.engagement_squared
+    return block.guess(result.history, result.headline, squared, case.values["max_start_time"], scales, mesh)
+
+
+def _dense(case, formulation, design, rtol: float = 1e-11, end_time: float | None = None):
+    """The start-up model of a design, simulated with DOP853 whatever the stiffness for a slipping coupling: its
+    stability-bound steps sample the motor's knee densely, and the adapted mesh is taken from the second
+    derivatives of these samples (LSODA's few long steps give a poorer mesh, and at 64 intervals a start guess
+    from which IPOPT finds no feasible point). ``end_time``: cut a start that does not finish there."""
+    from clutchopt.simulate.design import start_up_model
+    from clutchopt.simulate.engine import Model
+
+    model = start_up_model(case, formulation.mode, design, rtol=rtol)
+    if isinstance(model, Model):
+        model = replace(model, integrator="DOP853")
+    return replace(model, end_time=end_time) if end_time is not None else model
 
 
 UNITS = {"start_time": "s", "friction_work": "J", "temperature_rise": "K", "engagement_speed": "rad/s",
-         "lock_up_speed": "rad/s", "engagement_time": "s", "lock_up_time": "s"}
+         "lock_up_speed": "rad/s", "engagement_time": "s", "lock_up_time": "s", "peak_link_stress": "Pa",
+         "peak_twist": "rad"}
 
 
 def start_up_report(block: StartUpBlock, case, formulation, design: dict[str, float], params, figures):
@@ -441,20 +514,18 @@ def start_up_report(block: StartUpBlock, case, formulation, design: dict[str, fl
     start-up constraints re-checked with the simulated figures: (summary in SI, constraint checks, the mesh the
     simulated start suggests for the next solve)."""
     from clutchopt.optimise.verify import check_constraints
-    from clutchopt.simulate.design import start_up_model
-    from clutchopt.simulate.engine import simulate
+    from clutchopt.simulate.design import run_start_up
 
     values, *columns = figures
     nlp = dict(zip(block.outputs(), np.array(values).ravel()))
     trajectory = {name: np.array(column).ravel() for name, column in zip(block.trajectory(), columns)}
-    # DOP853 whatever the stiffness: its stability-bound steps sample the motor's knee densely, and the adapted
-    # mesh is taken from the second derivatives of these samples (LSODA's few long steps give a poorer mesh, and
-    # at 64 intervals a start guess from which IPOPT finds no feasible point)
-    result = simulate(replace(start_up_model(case, formulation.mode, design), integrator="DOP853"))
+    result = run_start_up(_dense(case, formulation, design))
     head = result.headline
     s = block.s
+    stresses = result.history["stress"].to_numpy() if s.elastic else 0.0
     simulated = SimpleNamespace(start_time=head["start_time"], friction_work=head["friction_work"],
-                                temperatures=head.get("temperature_rise", 0.0), lock_up_speed=head["lock_up_speed"])
+                                temperatures=head.get("temperature_rise", 0.0), lock_up_speed=head["lock_up_speed"],
+                                stresses=stresses if head["locks_up"] else math.inf)
     drive = Drive(s, formulation.speed_law, namespace(design), params)
     checks = check_constraints(named_constraints(s, drive, simulated), s.spec.tolerance)
     engaged = float(nlp.get("run_up_time", 0.0))
@@ -481,6 +552,11 @@ def start_up_report(block: StartUpBlock, case, formulation, design: dict[str, fl
         "units": UNITS,
         "trajectory": {name: column.tolist() for name, column in trajectory.items()},
     }
+    if s.elastic:  # the link's stress and twist: the NLP's quasi-static link beside the simulated dynamic one
+        nodes = zip(trajectory["w_driver"], trajectory["twist"])
+        summary.update(peak_link_stress=max(float(drive.link_stress(w, theta)) for w, theta in nodes),
+                       peak_link_stress_simulated=head["peak_stress"], peak_twist=float(trajectory["twist"].max()),
+                       peak_twist_simulated=head["peak_twist"])
     times = [float(nlp[f"{phase}_time"]) for phase in s.phases]
     return summary, checks, block.adapted_mesh(result.history, times)
 

@@ -18,7 +18,6 @@ from clutchopt.cases import Case, quantity_table
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.problem import Solution, case_formulation
 from clutchopt.output import (
-    START_UP_ROWS,
     _shown,
     comparison_rows,
     constraint_rows,
@@ -26,6 +25,7 @@ from clutchopt.output import (
     design_rows,
     html_table,
     sensitivity_rows,
+    start_up_table,
 )
 from clutchopt.report.sketch import sketch
 from clutchopt.store import versions
@@ -128,8 +128,7 @@ def simulation(case: Case, solution: Solution) -> str:
     table = ""
     if solution.start_up is not None:
         start = solution.start_up
-        rows = [{"figure": name, "NLP": _shown(start.get(name), unit), "simulated": _shown(start.get(f"{name}_simulated"), unit),
-                 "unit": unit, "meaning": meaning} for name, unit, meaning in START_UP_ROWS if start.get(name) is not None]
+        _, rows, _ = start_up_table(start)
         table = (f'<p class="note">The start designed inside the NLP (Radau collocation, {start["intervals"]} intervals '
                  f'per phase: {", ".join(start["phases"])}; points in the figure) beside the independent simulator '
                  "(lines).</p>" + _table(rows, ("NLP", "simulated")))

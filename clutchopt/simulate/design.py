@@ -19,6 +19,7 @@ from types import SimpleNamespace
 from clutchopt.errors import InputError, Problems, shown_value
 from clutchopt.files import CASE_BYTES, read_text
 from clutchopt.formulations.start_up import RADIAL_EFFECTS, engagement_speed_squared
+from clutchopt.model import ElasticLaw
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.engine import Model, SimulationResult, simulate
 from clutchopt.simulate.laws import CentrifugalFriction, InductionMotor, Load
@@ -33,11 +34,16 @@ def _formulation(coupling: str, mode: str | None):
     return get_coupling(coupling).formulation(mode)
 
 
-def speed_law_missing(coupling: str, solution=None) -> str | None:
-    """Why a coupling (or its solution) cannot be started here, or None."""
+def speed_law_missing(coupling: str, solution=None, slipping: bool = False) -> str | None:
+    """Why a coupling (or its solution) cannot be started here, or None; ``slipping``: as a friction law of a
+    scene (an elastic link starts through a case's [start_up] section only)."""
     from clutchopt.formulations import MODULES, get_coupling
 
-    if get_coupling(coupling).formulation().speed_law is None:
+    law = get_coupling(coupling).formulation().speed_law
+    if slipping and isinstance(law, ElasticLaw):
+        return (f"the {coupling} coupling is an elastic link, not a slipping one: start it through a case's "
+                "[start_up] section (clutchopt solve; docs/start_up.md)")
+    if law is None:
         available = [name for name in MODULES if get_coupling(name).formulation().speed_law is not None]
         return (f"the {coupling} coupling has no speed-dependent torque law in clutchopt.simulate yet "
                 f"(available: {', '.join(available)})")
@@ -122,9 +128,14 @@ def ideal_start(case, mode: str, design: dict[str, float]) -> SimulationResult:
     return simulate(Model(law, p.inertia, Load(p.resisting_torque), ("slip_friction", "lockup"), driver_speed=p.speed))
 
 
-def start_up_model(case, mode: str, design: dict[str, float], rtol: float = 1e-11) -> Model:
-    """The start-up a case's [start_up] section describes, for a design (with its spring preload) of the case."""
+def start_up_model(case, mode: str, design: dict[str, float], rtol: float = 1e-11):
+    """The start-up a case's [start_up] section describes, for a design (with its spring preload) of the case: a
+    :class:`~clutchopt.simulate.engine.Model` of a slipping coupling, or an elastic link's
+    :class:`~clutchopt.simulate.elastic.ElasticModel`; :func:`run_start_up` simulates either."""
     spec, p = case.start_up, case.params()
+    law = _formulation(case.coupling, mode).speed_law
+    if isinstance(law, ElasticLaw):
+        return _elastic_model(case, law, design, rtol)
     preload = design.get("spring_preload", p.spring_preload)
     law = centrifugal_law(case, mode, design, spec.effects, preload)
     profile = spec.load_profile
@@ -134,6 +145,28 @@ def start_up_model(case, mode: str, design: dict[str, float], rtol: float = 1e-1
     heat = spec.has("friction_heat")
     return Model(law, p.driven_inertia, load, spec.effects, math.nan if motor else p.speed, motor,
                  p.heat_capacity if heat else math.nan, p.heat_conductance if heat else 0.0, rtol=rtol)
+
+
+def _elastic_model(case, law: ElasticLaw, design: dict[str, float], rtol: float):
+    from clutchopt.simulate.elastic import ElasticModel
+
+    spec, p = case.start_up, case.params()
+    x = SimpleNamespace(**design)
+    motor = InductionMotor(p.synchronous_speed, p.breakdown_torque, p.breakdown_slip, p.motor_inertia)
+    reduced = p.driven_inertia * p.motor_inertia / (p.driven_inertia + p.motor_inertia)
+    damping = 2.0 * float(law.damping_ratio(x, p)) * math.sqrt(float(law.stiffness(x, p, p.speed)) * reduced)
+    profile = spec.load_profile
+    load = Load(over=profile.over, points=profile.points, values=profile.values) if profile else Load(p.load_torque)
+    return ElasticModel(lambda w, theta: float(law.torque(x, p, w, theta)),
+                        lambda w, theta: float(law.stress(x, p, w, theta)), damping, p.driven_inertia, load, motor,
+                        p.min_lock_up_speed, float(law.largest_twist(x, p)), spec.effects, rtol=max(rtol, 1e-10))
+
+
+def run_start_up(model) -> SimulationResult:
+    """Simulate a start-up model of either kind."""
+    from clutchopt.simulate.elastic import ElasticModel, simulate_elastic
+
+    return simulate_elastic(model) if isinstance(model, ElasticModel) else simulate(model)
 
 
 def verify(case, solution) -> dict:
@@ -169,7 +202,7 @@ def verify(case, solution) -> dict:
 
 def verify_text(check: dict) -> str:
     if "max_start_time" in check:
-        return (f"verify: started on {check['assumption']}: lock-up after {check['simulated_start_time']:.6g} s "
+        return (f"verify: started on {check['assumption']}: the start is over after {check['simulated_start_time']:.6g} s "
                 f"against max_start_time {check['max_start_time']:.6g} s; friction work {check['friction_work']:.6g} J"
                 if math.isfinite(check["simulated_start_time"]) else f"verify: no lock-up - {check['reason']}")
     if "sized_acceleration_time" not in check:
@@ -198,11 +231,13 @@ def _start_figure(case, solution):
     from clutchopt.simulate.plot import history_figure
 
     if case.start_up is not None:
-        result = simulate(start_up_model(case, solution.mode, solution.design))
+        result = run_start_up(start_up_model(case, solution.mode, solution.design))
         h = result.headline
         caption = (f"Start-up of the optimised {case.coupling} design on the case's drive "
                    f"({', '.join(case.start_up.effects)}): "
-                   + (f"lock-up after {h['start_time']:.4g} s, friction work {h['friction_work']:.4g} J."
+                   + ((f"the machine at its start speed after {h['start_time']:.4g} s, the cables' stress at most "
+                       f"{h['peak_stress'] / 1e6:.4g} MPa." if "peak_stress" in h else
+                       f"lock-up after {h['start_time']:.4g} s, friction work {h['friction_work']:.4g} J.")
                       if h["locks_up"] else f"{h['reason']}."))
         return history_figure(result, case.title, nlp=solution.start_up), caption
     p = case.params()

@@ -205,7 +205,7 @@ def _case(f: _Fields, effects: tuple[str, ...]):
         f.problems.errors += [InputError(f"coupling.case ({case_path.name})", str(problem))
                               for problem in exc.problems]
         return None
-    missing = speed_law_missing(case.coupling)
+    missing = speed_law_missing(case.coupling, slipping=True)
     if missing:
         f.problems.errors.append(InputError("coupling.case", missing))
         return None

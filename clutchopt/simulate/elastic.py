@@ -1,0 +1,111 @@
+"""The start-up of a coupling that is an elastic link (the cable coupling), simulated with its dynamics.
+
+An induction motor (rotor J_m) drives the machine (J, load T_c) through a link whose torque T(w_a, theta) depends
+on the driving speed and the relative twist theta of the halves (``clutchopt.model.ElasticLaw``), with an
+equivalent viscous damping c = 2 zeta sqrt(k J_red) (k the link's stiffness at zero twist and the driving speed of
+the design, J_red = J J_m / (J + J_m)):
+
+    J_m dw_a/dt = T_m(w_a) - T(w_a, theta) - c (w_a - w)
+    J   dw/dt   = T(w_a, theta) + c (w_a - w) - T_c(w, t)      (the machine rests while that is <= 0 at w = 0)
+    dtheta/dt   = w_a - w,    dL/dt = c (w_a - w)^2             (L: the energy the link's damping takes)
+
+The start ends when the machine reaches the start speed (the case's min_lock_up_speed). This is the independent
+check of the NLP's start, which takes the link as quasi-static (the twist where T meets the locked drive's torque).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+import pandas as pd
+from scipy.integrate import solve_ivp
+
+from clutchopt.simulate.engine import SimulationResult
+from clutchopt.simulate.laws import InductionMotor, Load
+
+SAMPLES = 2000
+
+
+@dataclass
+class ElasticModel:
+    """One start of an elastic link, SI."""
+
+    torque: Callable[[float, float], float]  # (driving speed, twist) -> torque through the link
+    stress: Callable[[float, float], float]  # (driving speed, twist) -> stress of its most loaded element
+    damping: float  # c, N*m*s/rad
+    inertia: float  # J of the machine
+    load: Load
+    motor: InductionMotor
+    target: float  # start speed of the machine, rad/s
+    largest_twist: float  # where the link's torque stops growing: beyond it the cables overturn
+    effects: tuple[str, ...] = ()
+    rtol: float = 1e-10
+    end_time: float | None = None
+
+
+def simulate_elastic(model: ElasticModel) -> SimulationResult:
+    m = model
+    motor = m.motor
+    time_scale = (m.inertia + motor.inertia) * m.target / max(motor.breakdown_torque, 1e-300)
+
+    def rates(t, y):
+        wa, w, theta, _ = y
+        link = m.torque(wa, theta) + m.damping * (wa - w)
+        net = link - m.load(t, w)
+        if w <= 0.0 and net < 0.0:
+            net = 0.0  # at rest the load is a reaction up to its value
+        return [(motor(wa) - link) / motor.inertia, net / m.inertia, wa - w, m.damping * (wa - w) ** 2]
+
+    def started(t, y):
+        return y[1] - m.target
+
+    started.terminal, started.direction = True, 1
+
+    def overturned(t, y):
+        return abs(y[2]) - m.largest_twist
+
+    overturned.terminal, overturned.direction = True, 1
+    bound = m.end_time if m.end_time is not None else 1e3 * time_scale
+    speed_scale = motor.synchronous_speed
+    sol = solve_ivp(rates, (0.0, bound), [0.0, 0.0, 0.0, 0.0], method="LSODA", rtol=m.rtol,
+                    atol=m.rtol * np.array([speed_scale, speed_scale, m.largest_twist, 1.0 + m.inertia * speed_scale**2]),
+                    events=[started, overturned], dense_output=True)
+    t = np.union1d(sol.t, np.linspace(0.0, sol.t[-1], SAMPLES))
+    y = sol.sol(t)
+    torque = np.array([m.torque(a, b) for a, b in zip(y[0], y[2])]) + m.damping * (y[0] - y[1])
+    stress = np.array([m.stress(a, b) for a, b in zip(y[0], y[2])])
+    history = pd.DataFrame({"t": t, "w_driver": y[0], "w_driven": y[1], "slip": y[0] - y[1], "twist": y[2],
+                            "friction_torque": torque, "power_lost": m.damping * (y[0] - y[1]) ** 2,
+                            "friction_work": y[3], "temperature_rise": np.zeros_like(t), "stress": stress,
+                            "phase": "elastic"})
+    done = sol.status == 1 and sol.t_events[0].size > 0
+    if done:
+        reason = ""
+    elif sol.status == 1:
+        reason = (f"no start: the link twisted past {m.largest_twist:.4g} rad at {sol.t[-1]:.4g} s, where its "
+                  "torque stops growing (the cables overturn)")
+    elif sol.status < 0:
+        reason = f"integration failed: {sol.message}"
+    else:
+        reason = f"no start: the machine did not reach {m.target:.6g} rad/s by {bound:.6g} s"
+    end = sol.t[-1]
+    headline = {
+        "locks_up": done, "reason": reason,
+        "start_time": end if done else math.inf,
+        "friction_work": float(sol.y[3, -1]) if done else math.inf,
+        "source_work": math.nan,
+        "lock_up_speed": m.target if done else math.nan,
+        "peak_slip_power": float(history["power_lost"].max()),
+        "peak_twist": float(np.abs(y[2]).max()),
+        "peak_stress": float(stress.max()),
+        "end_time": float(end),
+        "total_friction_work": float(sol.y[3, -1]),
+        "final_driver_speed": float(sol.y[0, -1]),
+        "final_driven_speed": float(sol.y[1, -1]),
+        "effects": list(m.effects),
+    }
+    events = [{"time": end, "event": "start speed reached" if done else "stopped", "torque": float(torque[-1])}]
+    return SimulationResult(history, headline, events)
