@@ -29,7 +29,6 @@ from clutchopt.cases import Case, load_case
 from clutchopt.errors import InputError
 from clutchopt.formulations import MODULES, get_coupling
 from clutchopt.optimise.problem import Solution, problem_for
-from clutchopt.optimise.verify import FEASIBILITY_TOL
 from clutchopt.units import ureg
 
 MATCH_TOL = 1e-7  # objective against the closed form, relative

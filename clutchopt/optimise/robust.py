@@ -309,7 +309,6 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
     shown = problem_for(base, objective, options, structure).formulation  # with the start-up's, if any
     nominal = solve_case(case, base.mode, objective, options)
     params = case.params()
-    scattered = tuple(s.name for s in case.scatter)
     names = tuple(c.name for c in base.constraints(namespace(nominal.design), params))
     if method == WORST_CASE:
         problem = problem_for(_derived(WORST_CASE, base, case, names), objective, options, structure)
