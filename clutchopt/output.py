@@ -94,7 +94,8 @@ def solution_tables(solution: Solution, formulation: Formulation) -> list[tuple[
 
 def solver_line(solution: Solution) -> str:
     s = solution.solver
-    return (f"solver: {s.name}  status: {s.status}  iterations: {s.iterations}  solves: {s.solves}  "
+    iterations = "-" if s.iterations is None else s.iterations
+    return (f"solver: {s.name}  status: {s.status}  iterations: {iterations}  solves: {s.solves}  "
             f"time: {s.time_s * 1e3:.1f} ms")
 
 

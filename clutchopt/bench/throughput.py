@@ -1,11 +1,15 @@
 """Throughput: one built CasADi problem re-solved, warm-started, over a sweep of one case quantity.
 
 The sweep runs the first non-integer quantity of the case's first section (the duty: inertia, torque or power)
-from 0.5x to 2x its value. Serial: one process, each point warm-started from the previous optimum (and, for
-comparison, each from the case's own start: "cold starts"). Pool: warm, the sweep cut into contiguous chunks,
-one per worker process, each worker building its own problem (counted). Per row: solver calls per point (IPOPT
-and SQP, integer neighbours included), the share of the wall time spent inside them (the rest: case data, scaling,
-float64 checks, sensitivities, bookkeeping) and, for serial sweeps, points/s against the wedge paper mode's.
+from 0.5x to 2x its value. Serial, in one process: in batches (``clutchopt.optimise.batch``, what ``clutchopt
+sweep`` runs: chained SQP re-solves in one CasADi call, checked together), point by point (``Problem.solve`` warm
+from the previous optimum, as sweeps ran before) and point by point from the case's own start ("cold starts").
+Pool: batched, the sweep cut into contiguous chunks, one per worker process, each worker building its own problem
+(counted). Per row: solver calls per point (IPOPT and SQP, integer neighbours and the chained attempts a failed
+batch wastes included), the shares of the wall time inside the solver calls (an infeasibility diagnosis's IPOPT
+call included), in the batches' KKT checks (compiled CasADi evaluations) and in Python (the rest: case data,
+scaling, the float64 checks, outputs, sensitivities, bookkeeping), and for serial sweeps points/s against the
+same sweep point by point and against the wedge paper mode's batched sweep.
 """
 
 from __future__ import annotations
@@ -18,6 +22,7 @@ import numpy as np
 from clutchopt.bench.reference import bench_cases, reference_mode
 from clutchopt.cases import Case
 from clutchopt.formulations import get_coupling
+from clutchopt.optimise.batch import BatchSweep
 from clutchopt.optimise.problem import Problem, SolverOptions
 
 
@@ -26,12 +31,27 @@ def sweep_quantity(case: Case) -> str:
     return next(q.name for q in quantities if q.section == quantities[0].section)
 
 
+def _problem(case: Case, options: SolverOptions, mode: str | None) -> Problem:
+    return Problem(get_coupling(case.coupling).formulation(mode or reference_mode(case.coupling)), "mass", options)
+
+
+def batched_sweep(case: Case, name: str, values, options: SolverOptions = SolverOptions(),
+                  mode: str | None = None) -> dict:
+    """The case solved at each value of ``name`` in batches: points, optimal, solver calls, seconds inside them
+    and in the batches' KKT checks."""
+    sweep = BatchSweep(_problem(case, options, mode), case, {name: values})
+    optimal = sum(statuses.count("optimal") for statuses in (window.statuses for window in sweep.run()))
+    return {"points": len(values), "optimal": optimal, "solves": sweep.solves, "solver_s": sweep.solver_s,
+            "check_s": sweep.check_s}
+
+
 def warm_sweep(case: Case, name: str, values, warm: bool = True, options: SolverOptions = SolverOptions(),
                mode: str | None = None) -> dict:
-    """Solve the case at each value of ``name`` in turn, warm-started from the previous optimum unless ``warm`` is
-    false (each point from the case's own start): points, optimal, solver calls, seconds inside them."""
-    problem = Problem(get_coupling(case.coupling).formulation(mode or reference_mode(case.coupling)), "mass", options)
-    previous, tally = None, {"points": len(values), "optimal": 0, "solves": 0, "solver_s": 0.0}
+    """Solve the case at each value of ``name`` in turn by ``Problem.solve``, warm-started from the previous optimum
+    unless ``warm`` is false (each point from the case's own start): points, optimal, solver calls, seconds inside
+    them."""
+    problem = _problem(case, options, mode)
+    previous, tally = None, {"points": len(values), "optimal": 0, "solves": 0, "solver_s": 0.0, "check_s": 0.0}
     for value in values:
         solution = problem.solve(case.with_values(**{name: float(value)}), warm=previous if warm else None)
         tally["optimal"] += solution.status == "optimal"
@@ -45,30 +65,39 @@ def _merged(tallies: list[dict]) -> dict:
     return {key: sum(t[key] for t in tallies) for key in tallies[0]}
 
 
+HOWS = (("batched", batched_sweep, {}), ("point by point", warm_sweep, {}),
+        ("point by point, cold starts", warm_sweep, {"warm": False}))
+
+
 def throughput_rows(config) -> list[dict]:
     rows = []
     for case in bench_cases():
         name = sweep_quantity(case)
         values = case.values[name] * np.geomspace(0.5, 2.0, config.sweep_points)
-        Problem(get_coupling(case.coupling).formulation(reference_mode(case.coupling))).solve(case)  # warm-up
-        for how, warm in (("serial", True), ("serial, cold starts", False)):
+        batched_sweep(case, name, values[:20])  # warm-up: the problem, its SQP solver, the chained functions
+        for how, run, keywords in HOWS:
             started = time.perf_counter()
-            tally = warm_sweep(case, name, values, warm)
+            tally = run(case, name, values, **keywords)
             rows.append(_row(case, name, how, 1, tally, time.perf_counter() - started))
         chunks = np.array_split(values, config.processes)
         started = time.perf_counter()
         with ProcessPoolExecutor(config.processes) as pool:
-            tally = _merged(list(pool.map(warm_sweep, [case] * len(chunks), [name] * len(chunks), chunks)))
-        rows.append(_row(case, name, "process pool", config.processes, tally, time.perf_counter() - started))
-    wedge = next((r for r in rows if (r["coupling"], r["how"]) == ("wedge", "serial")), None)
+            tally = _merged(list(pool.map(batched_sweep, [case] * len(chunks), [name] * len(chunks), chunks)))
+        rows.append(_row(case, name, "batched, process pool", config.processes, tally, time.perf_counter() - started))
+    wedge = next((r for r in rows if (r["coupling"], r["how"]) == ("wedge", "batched")), None)
     for row in rows:
-        row["vs_wedge_paper"] = row["points_per_s"] / wedge["points_per_s"] if wedge and row["processes"] == 1 else None
+        alone = next(r for r in rows if (r["coupling"], r["how"]) == (row["coupling"], "point by point"))
+        serial = row["processes"] == 1
+        row["vs_point_by_point"] = row["points_per_s"] / alone["points_per_s"]
+        row["vs_wedge_paper"] = row["points_per_s"] / wedge["points_per_s"] if wedge and serial else None
     return rows
 
 
 def _row(case, name, how, processes, tally, seconds):
+    serial = processes == 1
+    solver, check = (tally["solver_s"] / seconds, tally["check_s"] / seconds) if serial else (None, None)
     return {"coupling": case.coupling, "mode": reference_mode(case.coupling), "swept": f"{name} x0.5..2",
             "how": how, "processes": processes, "points": tally["points"], "optimal": tally["optimal"],
             "solves_per_point": tally["solves"] / tally["points"], "wall_s": seconds,
-            "points_per_s": tally["points"] / seconds,
-            "solver_share": tally["solver_s"] / seconds if processes == 1 else None}
+            "points_per_s": tally["points"] / seconds, "solver_share": solver, "check_share": check,
+            "python_share": 1 - solver - check if serial else None}

@@ -17,9 +17,9 @@ def add_command(commands) -> None:
     bench = add_parser(
         commands, "bench", "time every solver against its accuracy, on every coupling and mode",
         "IPOPT at several tolerances, the closed forms, cvxpy's geometric programme and SciPy's SLSQP against\n"
-        "IPOPT at 1e-10; the time to build and re-solve a problem; sweep throughput warm, cold and in parallel;\n"
-        "warm re-solves by SQP against warm IPOPT; command start-up against the bare imports; the simulator on a\n"
-        "stiff scene; a sweep on a local Dask cluster (not with --quick).",
+        "IPOPT at 1e-10; the time to build and re-solve a problem; sweep throughput batched, point by point, cold\n"
+        "and in parallel; warm re-solves by SQP against warm IPOPT; command start-up against the bare imports; the\n"
+        "simulator on a stiff scene; a sweep on a local Dask cluster (not with --quick).",
         ("clutchopt bench --quick", "clutchopt bench --json > bench.json"))
     bench.add_argument("--quick", action="store_true",
                        help="fewer repeats, 100-point sweeps, no Dask clusters: about a minute")

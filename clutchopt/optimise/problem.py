@@ -99,9 +99,9 @@ class SolverOptions:
 class SolverInfo:
     name: str
     status: str  # IPOPT's return status of the final (kept) solve
-    iterations: int  # summed over the relaxation and integer neighbours
-    time_s: float  # wall time of all solves, without problem construction
-    solves: int = 1
+    iterations: int | None  # summed over the relaxation and integer neighbours (None: solved in a chained batch)
+    time_s: float  # wall time of all solver calls (an infeasibility diagnosis included), without problem construction
+    solves: int = 1  # design solves (the diagnosis not counted)
 
 
 @dataclass
@@ -242,9 +242,10 @@ class Problem:
         self._solver = ca.nlpsol(f"{f.coupling}_{f.mode}_{objective}", "ipopt", self._nlp, options.ipopt())
         lam_g = ca.SX.sym("lam_g", g.shape[0])
         lagrangian = self._nlp["f"] + ca.dot(lam_g, g)
-        self._lagrangian_derivatives = ca.Function(  # KKT check (SQP) and sensitivities from one evaluation
-            "dL", [x_all, self._nlp["p"], lam_g], [ca.gradient(lagrangian, x_all), g[: self.n_ineq],
-                                                   ca.gradient(lagrangian, p_case)])
+        self._kkt_terms = ca.Function("kkt", [x_all, self._nlp["p"], lam_g],  # the KKT check of SQP's points
+                                      [ca.gradient(lagrangian, x_all), g[: self.n_ineq]])
+        self._case_gradient = ca.Function("dL_dcase", [x_all, self._nlp["p"], lam_g],  # sensitivities
+                                          [ca.gradient(lagrangian, p_case)])
         if start_up:
             self._start_up_figures = ca.Function("start_up", [x_all, self._nlp["p"]],
                                                  [ca.vertcat(*self.start_up.outputs().values()),
@@ -252,6 +253,8 @@ class Problem:
             self._internal_scale = ca.Function("internal_scale", [p_case], [ca.vertcat(*self.start_up.scales)])
         self._elastic = None
         self._solvers = {"ipopt": self._solver}
+        self._maps: dict[tuple[str, int], ca.Function] = {}
+        self._chains: dict[int, ca.Function] = {}
 
     @property
     def nlp(self) -> dict:
@@ -460,13 +463,13 @@ class Problem:
                 return None
             if run is not None and (kept is None or run["value"] < kept["value"]):
                 kept, queue = run, self._downhill(run, data, integer)
-                if bound is not None and run["f"] <= bound + self._negligible(bound):
+                if bound is not None and run["f"] <= bound + self.negligible(bound):
                     break
         return kept
 
-    def _negligible(self, f_hat: float) -> float:
-        """A change of the scaled objective within the solver's tolerance of it."""
-        return 10 * self.options.tol * max(abs(f_hat), 1e-300)
+    def negligible(self, f_hat):
+        """A change of the scaled objective within the solver's tolerance of it (elementwise for arrays)."""
+        return 10 * self.options.tol * np.maximum(np.abs(f_hat), 1e-300)
 
     def _downhill(self, run: dict, data: ScaledData, integer: list[int]) -> list[np.ndarray]:
         """Neighbours of a fixed-integer optimum in the directions its objective falls to first order.
@@ -477,7 +480,7 @@ class Problem:
         one when the first-order gain is below the solver's tolerance of the objective."""
         lam = run["lam_x"][integer]
         gain = np.abs(lam) / data.scale[integer]
-        steps = np.where(gain > self._negligible(run["f"]), np.sign(lam), 0.0)
+        steps = np.where(gain > self.negligible(run["f"]), np.sign(lam), 0.0)
         current = np.round(run["x"][integer] * data.scale[integer])
         choices = [sorted({c, min(max(c + s, lo), hi)}, key=lambda k: k != c + s)
                    for c, s, lo, hi in zip(current, steps, data.lower[integer], data.upper[integer])]
@@ -504,11 +507,16 @@ class Problem:
 
     def _violated_whatever_the_rest(self, data: ScaledData, lbx, ubx, x0) -> list[str]:
         """Constraints that depend only on fixed variables (integers included) and are violated there."""
-        rows = ~np.any(self._row_depends & ~(lbx == ubx), axis=1)
-        if not rows.any():
+        rows = self.fixed_only_rows(lbx == ubx)
+        if not len(rows):
             return []
         g = self._constraint_values(x0, data.p).full().ravel()
-        return list(dict.fromkeys(self.row_names[k] for k in np.flatnonzero(rows & (g > 10 * FEASIBILITY_TOL))))
+        return list(dict.fromkeys(self.row_names[k] for k in rows if g[k] > 10 * FEASIBILITY_TOL))
+
+    def fixed_only_rows(self, fixed: np.ndarray) -> np.ndarray:
+        """The constraint rows that no variable outside ``fixed`` (a mask over x) enters."""
+        return np.flatnonzero(~np.any(self._row_depends[:, : len(fixed)] & ~fixed, axis=1)
+                              & ~np.any(self._row_depends[:, len(fixed):], axis=1))
 
     def _rounded(self, design: dict[str, float]) -> dict[str, float]:
         """Integers rounded (IPOPT may leave them 1e-9 off their fixed bounds)."""
@@ -537,18 +545,45 @@ class Problem:
         return run
 
     def _first_order_optimal(self, run: dict) -> bool:
-        """KKT conditions at a run's primal-dual point, checked apart from the solver that reports them: the
-        Lagrangian stationary, multipliers of the right sign, complementary to their constraints and bounds.
-        (CasADi's SQP can stop at the start when handed a previous point's multipliers, e.g. of a constraint
-        that has become slack.)"""
+        """The KKT check of one run (see :meth:`first_order_optimal`)."""
+        return bool(self.first_order_optimal(*(np.asarray(run[k])[:, None] for k in (
+            "x", "p", "lam_x", "lam_g", "lbx", "ubx")))[0])
+
+    def first_order_optimal(self, x, p, lam_x, lam_g, lbx, ubx) -> np.ndarray:
+        """KKT conditions at primal-dual points (one per column), checked apart from the solver that reports them:
+        the Lagrangian stationary, multipliers of the right sign, complementary to their constraints and bounds,
+        the constraints held (CasADi's SQP can stop at the start when handed a previous point's multipliers, e.g. of
+        a constraint that has become slack). The verdict per column."""
         tol = 10 * self.options.tol
-        lam_g, lam_x, x, lbx, ubx = run["lam_g"][: self.n_ineq], run["lam_x"], run["x"], run["lbx"], run["ubx"]
-        gradient, g, run["dL_dcase"] = (out.full().ravel()
-                                        for out in self._lagrangian_derivatives(x, run["p"], run["lam_g"]))
+        gradient, g = (np.asarray(out) for out in self._mapped(self._kkt_terms, x.shape[1])(x, p, lam_g))
+        ineq = lam_g[: self.n_ineq]
         width = tol * np.maximum(1.0, np.abs(x))
         wrong_bound = ((lam_x > tol) & (ubx - x > width)) | ((lam_x < -tol) & (x - lbx > width))
-        return bool(np.all(np.abs(gradient + lam_x) <= tol) and np.all(lam_g >= -tol)
-                    and np.all(lam_g * np.maximum(-g, 0.0) <= tol) and not wrong_bound.any())
+        return (np.all(np.abs(gradient + lam_x) <= tol, axis=0) & np.all(ineq >= -tol, axis=0)
+                & np.all(ineq * np.maximum(-g, 0.0) <= tol, axis=0) & ~wrong_bound.any(axis=0)
+                & np.all(g <= FEASIBILITY_TOL, axis=0))
+
+    def _mapped(self, function: ca.Function, count: int) -> ca.Function:
+        """``function`` evaluated at ``count`` points at once (columns), built once per count."""
+        key = (function.name(), count)
+        if key not in self._maps:
+            self._maps[key] = function if count == 1 else function.map(count)
+        return self._maps[key]
+
+    def chained_sqp(self, count: int) -> ca.Function:
+        """``count`` SQP re-solves in one CasADi call, each started from the primal-dual optimum of the one before:
+        (x0, lam_x0, lam_g0, p, lbx, ubx) -> (x, lam_x, lam_g, f), one column per point (``p``, ``lbx``, ``ubx``:
+        a column per point, or one for all; ``f`` the scaled objective). Built once per count."""
+        if count not in self._chains:
+            x0, lam_x0 = (ca.MX.sym(name, self._nlp["x"].shape[0]) for name in ("x0", "lam_x0"))
+            lam_g0, p = ca.MX.sym("lam_g0", self._nlp["g"].shape[0]), ca.MX.sym("p", self._nlp["p"].shape[0])
+            lbx, ubx = (ca.MX.sym(name, self._nlp["x"].shape[0]) for name in ("lbx", "ubx"))
+            out = self._solver_for("sqp")(x0=x0, lam_x0=lam_x0, lam_g0=lam_g0, p=p, lbx=lbx, ubx=ubx, lbg=self._lbg,
+                                          ubg=0.0)
+            step = ca.Function("sqp_step", [x0, lam_x0, lam_g0, p, lbx, ubx],
+                               [out["x"], out["lam_x"], out["lam_g"], out["f"]])
+            self._chains[count] = step.mapaccum("sqp_chain", count, [0, 1, 2], [0, 1, 2])
+        return self._chains[count]
 
     def _run(self, data: ScaledData, lbx, ubx, x0, seed: dict | None, method: str = "ipopt") -> dict:
         """One solve, its design checked in float64 (``design``, ``checks``, ``value``, ``feasible``)."""
@@ -618,10 +653,8 @@ class Problem:
         for check, lam in zip(checks, self._named_multipliers(run["lam_g"])):
             check.multiplier = lam
             check.elasticity = _elasticity(check, lam, f_scale, objective)
-        info = SolverInfo(run["solver"], run["status"], sum(r["iterations"] for r in runs), sum(r["time"] for r in runs),
-                          len(runs))
         feasible = all(c.feasible for c in checks)
-        diagnosis = None
+        diagnosis, diagnosis_s = None, 0.0
         if verdict is not None:
             status, diagnosis = verdict
         elif run["ok"] and feasible:
@@ -633,9 +666,11 @@ class Problem:
             diagnosis = (f"{'IPOPT' if run['solver'] == 'ipopt' else 'SQP'} reported success but {check} finds "
                          f"{worst.name} violated by {-worst.margin:.3g} (relative)")
         else:
-            status, diagnosis = self.diagnose(run["p"], run["lbx"], run["ubx"], run["x"], scale)
+            status, diagnosis, diagnosis_s = self.diagnose(run["p"], run["lbx"], run["ubx"], run["x"], scale)
+        info = SolverInfo(run["solver"], run["status"], sum(r["iterations"] for r in runs),
+                          sum(r["time"] for r in runs) + diagnosis_s, len(runs))
         bounds = {n: (float(lo), float(hi)) for n, lo, hi in zip(self._names, data.lower, data.upper)}
-        sensitivities = self._sensitivities(run, params, scale, f_scale, objective) if status == "optimal" else {}
+        sensitivities = self.sensitivities(run, objective) if status == "optimal" else {}
         return Solution(f.coupling, f.mode, self.objective.name, self.objective.unit, status, objective, design,
                         evaluate_outputs(f, design, params), checks, info, diagnosis, search, bounds,
                         sensitivities, scale, (run["lam_x"], run["lam_g"]), {v.name: v.unit for v in f.variables},
@@ -646,18 +681,18 @@ class Problem:
         ends = np.cumsum(self.constraint_rows)
         return [float(lam_g[end - rows:end].sum()) for rows, end in zip(self.constraint_rows, ends)]
 
-    def _sensitivities(self, run, params, scale, f_scale, objective) -> dict[str, float]:
-        """d ln f* / d ln p for every case quantity with a finite non-zero value and every fixed variable.
+    def sensitivities(self, run: dict, objective: float) -> dict[str, float]:
+        """d ln f* / d ln p for every case quantity with a finite non-zero value and every fixed variable, at a
+        run's primal-dual point (``x``, ``p``, ``lam_x``, ``lam_g``, ``lbx``, ``ubx``).
 
         Case quantities: f_scale * dL/dp (L the scaled Lagrangian). A variable fixed through its bounds at b:
         its bound multiplier gives d f_hat / d(b / scale) = -lam_x.
         """
         if objective == 0 or not math.isfinite(objective):
             return {}
-        if "dL_dcase" not in run:
-            run["dL_dcase"] = self._lagrangian_derivatives(run["x"], run["p"], run["lam_g"])[2].full().ravel()
-        gradient = run["dL_dcase"]
-        values = run["p"][:len(gradient)]
+        m, n = len(self.formulation.quantities), len(self.formulation.variables)
+        gradient = self._case_gradient(run["x"], run["p"], run["lam_g"]).full().ravel()
+        values, scale, f_scale = run["p"][:m], run["p"][m:m + n], run["p"][m + n]
         with np.errstate(invalid="ignore"):
             elasticity = values * f_scale * gradient / objective
         result = {q.name: float(e) for q, e, ok in zip(self.formulation.quantities, elasticity,
@@ -666,13 +701,15 @@ class Problem:
             if run["lbx"][i] == run["ubx"][i] and not v.integer:
                 value = run["lbx"][i] * scale[i]
                 if value != 0:
-                    result[v.name] = result.get(v.name, 0.0) - value * f_scale * run["lam_x"][i] / (scale[i] * objective)
+                    result[v.name] = (result.get(v.name, 0.0)
+                                      - value * f_scale * run["lam_x"][i] / (scale[i] * objective))
         return result
 
     # --- infeasibility diagnosis ------------------------------------------------------------------------------------
-    def diagnose(self, p_vector, lbx, ubx, x0, scale) -> tuple[str, str]:
+    def diagnose(self, p_vector, lbx, ubx, x0, scale) -> tuple[str, str, float]:
         """Elastic relaxation: min sum(s) s.t. g(x) <= s, s >= 0 on the inequalities (the start-up's dynamics stay
-        equalities). Positive slacks name the conflict."""
+        equalities). Positive slacks name the conflict. Returns status, diagnosis and the time of the IPOPT call on
+        the elastic problem (a solver call, not a design solve)."""
         n_g = self.n_ineq
         g0 = np.array(self._constraint_values(x0, p_vector)).ravel()
         given = sorted({self.row_names[i] for i in self._fixed_rows if g0[i] > FEASIBILITY_TOL},
@@ -680,22 +717,24 @@ class Problem:
         if given:  # requirements that no design variable enters: nothing to relax but the case itself
             return "infeasible", ("infeasible whatever the design: " + ", ".join(
                 f"{name} ({'over' if self.row_senses[self.row_names.index(name)] == '<=' else 'short of'} its limit by "
-                f"{g0[self.row_names.index(name)]:.3g} relative)" for name in given))
+                f"{g0[self.row_names.index(name)]:.3g} relative)" for name in given)), 0.0
         if self._elastic is None:
             slack = ca.SX.sym("slack", n_g)
             g = self._nlp["g"]
             nlp = {"x": ca.vertcat(self._nlp["x"], slack), "p": self._nlp["p"], "f": ca.sum1(slack),
                    "g": ca.vertcat(g[:n_g] - slack, g[n_g:])}
             self._elastic = ca.nlpsol("elastic", "ipopt", nlp, self.options.ipopt())
+        started = time.perf_counter()
         result = self._elastic(x0=np.concatenate([x0, np.ones(n_g)]), p=p_vector,
                                lbx=np.concatenate([lbx, np.zeros(n_g)]), ubx=np.concatenate([ubx, np.full(n_g, np.inf)]),
                                lbg=self._lbg, ubg=0.0)
+        seconds = time.perf_counter() - started
         slacks = np.array(result["x"]).ravel()[len(lbx):]
         lam_g = np.array(result["lam_g"]).ravel()[:n_g]
         x = np.array(result["x"]).ravel()[: len(lbx)]
         if slacks.sum() <= 10 * FEASIBILITY_TOL:
             return "solver_failed", ("IPOPT did not converge, yet a feasible point exists (elastic check); "
-                                     "try other bounds or a start point")
+                                     "try other bounds or a start point"), seconds
         worst: dict[str, float] = {}
         binding: list[str] = []
         for name, s, lam in zip(self.row_names, slacks, lam_g):
@@ -718,7 +757,7 @@ class Problem:
         text = "infeasible: cannot satisfy " + ", ".join(violated)
         if others:
             text += " together with " + ", ".join(others)
-        return "infeasible", text
+        return "infeasible", text, seconds
 
 
 def _elasticity(check: ConstraintCheck, lam: float, f_scale: float, objective: float) -> float | None:

@@ -4,8 +4,9 @@ A sweep varies case quantities, each given in its display unit (speed in rpm, pr
 ``speed=500:3000:26`` is 26 evenly spaced values from 500 to 3000, ``speed=900,1450,3000`` a list. Several
 ``--vary`` make a full-factorial grid (the last one varies fastest), or with ``zipped=True`` a listed sweep (the
 i-th point takes the i-th value of each list). Points run in chunks of neighbours; within a chunk one built
-problem is re-solved, each point warm-started from the one before (``Problem.solve`` starts cold
-again if the warm start fails).
+problem is re-solved, each point warm-started from the one before: in batches of chained SQP re-solves checked
+together (``clutchopt.optimise.batch``), by ``Problem.solve`` where a batch stops and for problems with a start-up
+(``Problem.solve`` starts cold again if the warm start fails).
 Chunks run in this process, in a local process pool, or on a Dask cluster. Every point is stored in the run
 store in its own transaction as it arrives, so a killed sweep resumes where it stopped.
 """
@@ -35,6 +36,7 @@ from clutchopt.errors import InputError, Problems
 from clutchopt.files import TABLE_BYTES, check_output, read_bytes, write_whole
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Formulation, Quantity
+from clutchopt.optimise.batch import BatchSweep, batchable
 from clutchopt.optimise.problem import Solution, SolverOptions, case_formulation, case_problem
 from clutchopt.optimise.verify import DESIGN_STATUSES
 from clutchopt.units import from_si, si_factor
@@ -128,8 +130,16 @@ def point_cases(case: Case, points: list[dict[str, float]]) -> list[Case]:
 
 def solve_points(case: Case, mode: str, objective: str, tol: float,
                  points: list[tuple[int, dict[str, float]]]) -> Iterator[dict]:
-    """Solve points in order, each warm-started from the last optimum; yields each result as it is solved."""
+    """Solve points in order, each warm-started from the last optimum; yields each result as it is solved (in
+    batches where the problem allows: ``clutchopt.optimise.batch``, the results of a window of points at once)."""
     problem = case_problem(case, mode, objective, SolverOptions(tol=tol))
+    names = list(points[0][1]) if points else []
+    if points and batchable(problem, names):
+        varied = {name: np.array([values[name] for _, values in points]) for name in names}
+        solutions = itertools.chain.from_iterable(BatchSweep(problem, case, varied).run())
+        for (index, values), solution in zip(points, solutions):
+            yield {"point": index, "values": values, "solution": solution.as_dict()}
+        return
     previous: Solution | None = None
     for index, values in points:
         point_case = case.with_values(**values)

@@ -1,0 +1,354 @@
+"""Sweeps solved in batches: neighbouring points re-solved in one compiled call, then verified together.
+
+Along a sweep each point is re-solved next to the optimum of the one before. ``Problem.solve`` does that one point
+at a time, and there a 20-40 us SQP re-solve sits inside about 0.3 ms of Python (argument conversion, the float64
+check, outputs, sensitivities, bookkeeping). Here a batch of consecutive points goes to one CasADi function that
+chains the SQP re-solves inside CasADi (``Problem.chained_sqp``: ``mapaccum`` over the ``sqpmethod`` solver, each
+point started from the primal-dual optimum of the one before), and the tests of ``Problem.solve`` run afterwards
+on all points of the batch at once:
+
+- the KKT conditions of every point, apart from the solver (``Problem.first_order_optimal``);
+- the integer test of the warm integer search: a point whose fixed integers' bound multipliers point to a
+  neighbouring integer ends the chain, for the search decides there;
+- without integers, a point whose optimum has moved more than tenfold from the variable scales ends it (the
+  solve is repeated with new scales there);
+- at the end of a window of points, the float64 re-evaluation of every constraint by the formulation's own
+  equations (``verify``), vectorised over the points, with objective, outputs and sensitivities.
+
+A batch is kept up to its first point that fails a test. That point is solved by ``Problem.solve``, warm from the
+last kept point (SQP, warm IPOPT, the integer search, the cold solve and the infeasibility diagnosis), and the next
+batch starts after it, 8 points long, doubling while batches pass (up to 128). After a point without a design the
+points are solved cold, one by one, until one is optimal. A point that passes the KKT test but not the float64
+check (rare) is solved again by ``Problem.solve`` at the end of its window.
+
+The optima equal ``Problem.solve``'s to the solver's tolerance: a batch keeps the variable scales of the point it
+starts from and normalises the objective by that point's objective, where ``Problem.solve`` takes both afresh from
+each previous point. A point solved in a batch reports ``sqpmethod`` with the status ``batched, KKT verified``,
+its share of the batch's time, and no iteration count (the chained solver reports none per point).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import time
+from collections.abc import Sequence
+from typing import Iterator
+
+import numpy as np
+
+from clutchopt.cases import Case
+from clutchopt.model import MAGNITUDES, Output, namespace
+from clutchopt.optimise.problem import Problem, Solution, SolverInfo, _elasticity
+from clutchopt.optimise.verify import ACTIVE_TOL, FEASIBILITY_TOL, ConstraintCheck
+
+FIRST_BATCH = 8  # points in the batch after a point solved one by one
+LONGEST_BATCH = 256  # doubling stops here: a longer batch saves little call overhead and risks more waste
+WINDOW = 1024  # points whose float64 checks run together (results are handed on per window)
+EXCLUSION_SPAN = 1024  # points ahead whose exclusion of an integer combination is evaluated at once
+BATCHED = "batched, KKT verified"
+
+
+def batchable(problem: Problem, names) -> bool:
+    """Batches serve problems without a start-up (its refinement loop is per point), whose warm re-solves try SQP,
+    along case quantities (a varied fixed design variable would move the bounds)."""
+    quantities = {q.name for q in problem.formulation.quantities}
+    return problem.start_up is None and problem.options.warm_sqp and set(names) <= quantities
+
+
+class _Block:
+    """Batched points, one column each: the solver's primal-dual points, parameters, bounds, derivatives."""
+
+    KEYS = ("x", "lam_x", "lam_g", "f", "p", "lbx", "ubx", "time")
+
+    def __init__(self, index: np.ndarray, **arrays: np.ndarray):
+        self.index, self.arrays = index, arrays
+
+    @classmethod
+    def joined(cls, blocks: list["_Block"]) -> "_Block":
+        return cls(np.concatenate([b.index for b in blocks]),
+                   **{key: np.concatenate([b.arrays[key] for b in blocks], axis=-1) for key in cls.KEYS})
+
+    def column(self, j: int) -> "_Block":
+        j = j % len(self.index)
+        return _Block(self.index[j:j + 1], **{key: value[..., j:j + 1] for key, value in self.arrays.items()})
+
+
+class _Start:
+    """Where a batch starts: a verified primal-dual point in its own scaling, and how to get its Solution."""
+
+    def __init__(self, sweep: "BatchSweep", solution: Solution | None = None, block: _Block | None = None):
+        self.sweep, self._solution, self.block = sweep, solution, block
+        n, m = len(sweep.names), len(sweep.problem.formulation.quantities)
+        if solution is not None:
+            self.scale = solution.scale
+            self.x = np.array([solution.design[name] for name in sweep.names]) / self.scale
+            self.lam_x, self.lam_g = solution.multipliers
+            self.objective = solution.objective
+        else:
+            a = {key: value[..., 0] for key, value in block.arrays.items()}
+            self.scale, self.x, self.lam_x, self.lam_g = a["p"][m:m + n], a["x"], a["lam_x"], a["lam_g"]
+            self.objective = float(a["f"][0] * a["p"][m + n])  # the scaled objective times its normaliser
+
+    @property
+    def solution(self) -> Solution:
+        if self._solution is None:
+            self._solution = _Checked(self.sweep, self.block)[0]
+        return self._solution
+
+
+class BatchSweep:
+    """A built problem solved at every point of a sweep of case quantities, in batches (see the module text).
+
+    ``varied``: SI values by quantity name, one per point (all the same length); the case gives the rest. Every
+    value is checked against its quantity's valid range first. ``solves`` and ``solver_s`` count the solver calls
+    and the time inside them, ``check_s`` the time of the batches' KKT checks (compiled CasADi evaluations)."""
+
+    def __init__(self, problem: Problem, case: Case, varied: dict[str, np.ndarray]):
+        if not batchable(problem, varied):
+            raise ValueError("this problem and sweep are solved point by point (Problem.solve)")
+        self.problem, self.case = problem, case
+        self.varied = {name: np.asarray(values, dtype=float).ravel() for name, values in varied.items()}
+        self.count = len(next(iter(self.varied.values()))) if self.varied else 1
+        declared = {q.name: q for q in case.quantities}
+        for name, values in self.varied.items():
+            if len(values) != self.count:
+                raise ValueError("every varied quantity needs one value per point")
+            check_values(declared[name], values)
+        f = problem.formulation
+        base = problem._params(case)
+        self.values = np.array([self.varied.get(q.name, np.full(self.count, getattr(base, q.name)))
+                                for q in f.quantities], dtype=float).reshape(len(f.quantities), self.count)
+        self.names = [v.name for v in f.variables]
+        self.lower, self.upper, _ = problem._bounds_and_start(case, None)
+        self.integer = [i for i in problem._integer if self.lower[i] < self.upper[i]]
+        fixed = self.lower == self.upper
+        fixed[self.integer] = True
+        self.fixed_rows = problem.fixed_only_rows(fixed)  # constraints of fixed variables alone, in a batch
+        self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
+        self.solves, self.solver_s, self.check_s = 0, 0.0, 0.0
+
+    def point_case(self, k: int) -> Case:
+        return self.case.with_values(**{name: float(values[k]) for name, values in self.varied.items()})
+
+    def run(self, window: int = WINDOW) -> Iterator["Solutions"]:
+        """Solve every point in order; yields the solutions window by window, each window checked in float64."""
+        start: _Start | None = None  # where the next batch starts; None: after a point without a design
+        size, k = FIRST_BATCH, 0
+        while k < self.count:
+            end = min(k + window, self.count)
+            blocks: list[_Block] = []
+            alone: dict[int, Solution] = {}
+            while k < end:  # each turn solves at least one point
+                count = 1 << (min(size, end - k).bit_length() - 1)  # a power of two: few chained functions
+                block, chained = self._batch(start, k, count) if start is not None else (None, 0)
+                passed = 0 if block is None else len(block.index)
+                if passed:
+                    blocks.append(block)
+                    start, k = _Start(self, block=block.column(-1)), k + passed
+                if chained and passed == chained:
+                    size = min(2 * size, LONGEST_BATCH)
+                    continue
+                if chained:  # point k failed a test in the batch: the next batch starts short
+                    size = FIRST_BATCH
+                alone[k] = self._solve_alone(k, start.solution if start is not None else None)
+                start, k = self._start_of(alone[k]), k + 1
+            yield self._window(blocks, alone)
+
+    def _start_of(self, solution: Solution) -> _Start | None:
+        return _Start(self, solution) if solution.status == "optimal" else None
+
+    def _solve_alone(self, k: int, warm: Solution | None) -> Solution:
+        solution = self.problem.solve(self.point_case(k), warm=warm)
+        self.solves += solution.solver.solves
+        self.solver_s += solution.solver.time_s
+        return solution
+
+    def _batch(self, start: _Start, k: int, count: int) -> tuple[_Block | None, int]:
+        """Chain up to ``count`` points from ``start``: the columns up to the first that fails a test (None if it is
+        the first), and how many were chained (fewer than asked where the batch's integers are excluded ahead, none
+        if they are at ``k``)."""
+        lower, upper = self.lower.copy(), self.upper.copy()
+        lower[self.integer] = upper[self.integer] = np.round(start.x[self.integer] * start.scale[self.integer])
+        lbx, ubx = lower / start.scale, upper / start.scale
+        f_scale = abs(start.objective) if math.isfinite(start.objective) and start.objective != 0 else 1.0
+        p = np.vstack([self.values[:, k:k + count], np.repeat(start.scale[:, None], count, axis=1),
+                       np.full((1, count), f_scale)])
+        x0 = np.clip(start.x, lbx, ubx)
+        if self.integer:  # the batch stops short of a point its integers cannot serve whatever the rest (the search
+            # excludes them there without a solve)
+            excluded = self._excluded(lower, k, count)
+            if excluded.any():
+                first = int(np.argmax(excluded))
+                if first == 0:
+                    return None, 0  # foreseen: nothing chained
+                count = 1 << (first.bit_length() - 1)
+                p = p[:, :count]
+        began = time.perf_counter()
+        x, lam_x, lam_g, f = (np.asarray(out) for out in self.problem.chained_sqp(count)(
+            x0, start.lam_x, start.lam_g, p, lbx, ubx))
+        seconds = time.perf_counter() - began
+        self.solves, self.solver_s = self.solves + count, self.solver_s + seconds
+        lbx, ubx = np.repeat(lbx[:, None], count, axis=1), np.repeat(ubx[:, None], count, axis=1)
+        finite = np.isfinite(f[0]) & np.all(np.isfinite(x), axis=0) & np.all(np.isfinite(lam_g), axis=0)
+        if not finite.all():  # a failed point: its numbers must not poison the others' checks
+            x, lam_x, lam_g = np.nan_to_num(x), np.nan_to_num(lam_x), np.nan_to_num(lam_g)
+        began = time.perf_counter()
+        ok = finite & self.problem.first_order_optimal(x, p, lam_x, lam_g, lbx, ubx)
+        self.check_s += time.perf_counter() - began
+        ok &= ~self._ends_batch(x, lam_x, f[0], p, k)
+        passed = int(np.argmin(ok)) if not ok.all() else count
+        if not passed:
+            return None, count
+        keep = slice(0, passed)
+        return _Block(np.arange(k, k + passed), x=x[:, keep], lam_x=lam_x[:, keep], lam_g=lam_g[:, keep],
+                      f=f[:, keep], p=p[:, keep], lbx=lbx[:, keep], ubx=ubx[:, keep],
+                      time=np.full((1, passed), seconds / count)), count
+
+    def _ends_batch(self, x, lam_x, f_hat, p, k: int) -> np.ndarray:
+        """Per column: a neighbouring integer combination the warm search would solve or, without free integers, an
+        optimum more than tenfold off the scales (``Problem._solve`` re-scales there). The search
+        (``Problem._downhill``) steps each integer whose bound multiplier promises a first-order gain beyond the
+        solver's tolerance of the objective, one unit in that direction inside the bounds, and solves every such
+        combination that breaks no constraint of fixed variables alone."""
+        if not self.integer:
+            moved = np.abs(x[: len(self.names)])
+            return np.any((moved > 0) & ((moved > 10) | (moved < 0.1)), axis=0)
+        integer, scale = self.integer, p[len(self.problem.formulation.quantities):][: len(self.names), 0]
+        combo = np.round(x[integer, 0] * scale[integer])  # the batch's integers, fixed through their bounds
+        moves = np.abs(lam_x[integer]) / scale[integer, None] > self.problem.negligible(f_hat)
+        direction = np.sign(lam_x[integer])
+        ends = np.zeros(x.shape[1], dtype=bool)
+        for step in itertools.product((-1.0, 0.0, 1.0), repeat=len(integer)):  # each neighbouring combination
+            neighbour = np.clip(combo + step, self.lower[integer], self.upper[integer])
+            if np.array_equal(neighbour, combo):
+                continue
+            stays = (neighbour == combo)[:, None]
+            columns = np.all(stays | (moves & (direction == np.array(step)[:, None])), axis=0)
+            if columns.any():
+                design = self.lower.copy()
+                design[integer] = neighbour
+                ends |= columns & ~self._excluded(design, k, len(ends))
+        return ends
+
+    def _excluded(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
+        """Per point k .. k + count - 1: the fixed variables of ``design`` (SI; integers and variables fixed by the
+        case) break a constraint that depends on them alone there, so the integer search would exclude them without a
+        solve. Evaluated in float64 by the formulation's equations, EXCLUSION_SPAN points ahead at once, per integer
+        combination."""
+        key = tuple(design[self.integer])
+        first, table = self._exclusions.get(key, (0, np.zeros(0, dtype=bool)))
+        if not first <= k <= k + count <= first + len(table):
+            first, stop = k, min(self.count, k + max(count, EXCLUSION_SPAN))
+            margin = _Float64(self, np.repeat(design[:, None], stop - k, axis=1), np.arange(k, stop)).margin
+            table = np.any(margin[self.fixed_rows] < -10 * FEASIBILITY_TOL, axis=0)
+            self._exclusions[key] = (first, table)
+        return table[k - first:k - first + count]
+
+    def _window(self, blocks: list[_Block], alone: dict[int, Solution]) -> "Solutions":
+        """The window's solutions in point order: batched points checked in float64 together; one that fails the
+        check is solved again by ``Problem.solve``, warm from the point before."""
+        entries: dict[int, Solution | tuple[_Checked, int]] = dict(alone)
+        if blocks:
+            checked = _Checked(self, _Block.joined(blocks))
+            entries.update({int(k): (checked, j) for j, k in enumerate(checked.block.index)})
+            for j in np.flatnonzero(~checked.feasible):
+                k = int(checked.block.index[j])
+                before = entries.get(k - 1)
+                warm = before[0][before[1]] if isinstance(before, tuple) else before
+                entries[k] = self._solve_alone(k, warm if warm is not None and warm.status == "optimal" else None)
+        return Solutions([entries[k] for k in sorted(entries)])
+
+
+class Solutions(Sequence):
+    """A window's solutions in point order, each built as a :class:`Solution` when first read."""
+
+    def __init__(self, entries: list):
+        self._entries = entries
+
+    def __len__(self) -> int:
+        return len(self._entries)
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[j] for j in range(*i.indices(len(self)))]
+        entry = self._entries[i]
+        return entry[0][entry[1]] if isinstance(entry, tuple) else entry
+
+    @property
+    def statuses(self) -> list[str]:
+        """Each point's status, without building its Solution (a batched point left in the window is optimal)."""
+        return ["optimal" if isinstance(e, tuple) else e.status for e in self._entries]
+
+
+def check_values(quantity, values: np.ndarray) -> None:
+    """Every value valid for ``quantity``: checked as arrays, the first bad one raising the quantity's own error."""
+    good = np.isfinite(values)
+    for bound, test in ((quantity.above, np.greater), (quantity.at_least, np.greater_equal),
+                        (quantity.below, np.less), (quantity.at_most, np.less_equal)):
+        if bound is not None:
+            good &= test(values, bound)
+    if quantity.integer:
+        good &= values == np.round(values)
+    magnitude = np.abs(values)
+    good &= (values == 0) | ((magnitude >= MAGNITUDES[0]) & (magnitude <= MAGNITUDES[1]))
+    if not good.all():
+        quantity.check(float(values[np.argmin(good)]))  # raises, naming the quantity
+
+
+class _Float64:
+    """The formulation's constraints evaluated in float64 at designs (SI, one column each) and sweep points."""
+
+    def __init__(self, sweep: BatchSweep, design: np.ndarray, points: np.ndarray):
+        f, count = sweep.problem.formulation, len(points)
+        self.x = namespace(dict(zip(sweep.names, design)))
+        self.params = namespace({q.name: row for q, row in zip(f.quantities, sweep.values[:, points])})
+        with np.errstate(all="ignore"):
+            self.constraints = f.constraints(self.x, self.params)
+            rows = [[np.broadcast_to(np.asarray(v, dtype=float), (count,))
+                     for v in (c.value, c.limit, c.limit if c.scale is None else c.scale)] for c in self.constraints]
+            self.value, self.limit, self.scale = np.array(rows, dtype=float).reshape(-1, 3, count).transpose(1, 0, 2)
+            at_most = np.array([c.sense == "<=" for c in self.constraints])[:, None]
+            self.margin = np.where(at_most, self.limit - self.value, self.value - self.limit) / self.scale
+
+
+class _Checked(_Float64):
+    """Batched points checked in float64 at once by the formulation's own equations: constraints, objective and
+    outputs, one column per point."""
+
+    def __init__(self, sweep: BatchSweep, block: _Block):
+        problem, f = sweep.problem, sweep.problem.formulation
+        self.sweep, self.block, a = sweep, block, block.arrays
+        m, n, count = len(f.quantities), len(sweep.names), len(block.index)
+        self.design = a["x"][:n] * a["p"][m:m + n]
+        self.design[problem._integer] = np.round(self.design[problem._integer])
+        super().__init__(sweep, self.design, block.index)
+        self.feasible = np.all(self.margin >= -FEASIBILITY_TOL, axis=0)
+        self.objective = np.broadcast_to(np.asarray(problem.objective.function(self.x, self.params), dtype=float),
+                                         (count,))
+        self.outputs = {name: (np.broadcast_to(np.asarray(out.value, dtype=float), (count,)), out)
+                        for name, out in f.outputs(self.x, self.params).items()}
+
+    def __getitem__(self, j: int) -> Solution:
+        """Point ``j`` as the Solution ``Problem.solve`` returns."""
+        sweep, problem, f = self.sweep, self.sweep.problem, self.sweep.problem.formulation
+        a = {key: value[..., j] for key, value in self.block.arrays.items()}
+        m, n = len(f.quantities), len(sweep.names)
+        objective, f_scale, feasible = float(self.objective[j]), float(a["p"][m + n]), bool(self.feasible[j])
+        checks = []
+        for i, c in enumerate(self.constraints):
+            margin = float(self.margin[i, j])
+            check = ConstraintCheck(c.name, c.equation, c.sense, float(self.value[i, j]), float(self.limit[i, j]),
+                                    margin, abs(margin) <= ACTIVE_TOL or margin < 0, margin >= -FEASIBILITY_TOL,
+                                    c.unit, c.description, float(self.scale[i, j]), multiplier=float(a["lam_g"][i]))
+            check.elasticity = _elasticity(check, check.multiplier, f_scale, objective)
+            checks.append(check)
+        return Solution(
+            f.coupling, f.mode, problem.objective.name, problem.objective.unit,
+            "optimal" if feasible else "unverified", objective, dict(zip(sweep.names, map(float, self.design[:, j]))),
+            {name: Output(float(values[j]), out.unit, out.description) for name, (values, out) in self.outputs.items()},
+            checks, SolverInfo("sqpmethod", BATCHED, None, float(a["time"][0]), 1),
+            None if feasible else "SQP reported a KKT point but the float64 check finds a constraint violated",
+            [], {name: (float(lo), float(hi)) for name, lo, hi in zip(sweep.names, sweep.lower, sweep.upper)},
+            problem.sensitivities(a, objective) if feasible else {},
+            a["p"][m:m + n].copy(), (a["lam_x"].copy(), a["lam_g"].copy()), {v.name: v.unit for v in f.variables})
