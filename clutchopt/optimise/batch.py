@@ -51,8 +51,10 @@ BATCHED = "batched, KKT verified"
 
 def batchable(problem: Problem, names) -> bool:
     """Batches serve problems without a start-up (its refinement loop is per point), whose warm re-solves try SQP,
-    along case quantities (a varied fixed design variable would move the bounds)."""
-    quantities = {q.name for q in problem.formulation.quantities}
+    along case quantities that are not design variables (a varied fixed variable, e.g. the cable's lead angle,
+    moves the bounds)."""
+    f = problem.formulation
+    quantities = {q.name for q in f.quantities} - {v.name for v in f.variables}
     return problem.start_up is None and problem.options.warm_sqp and set(names) <= quantities
 
 
