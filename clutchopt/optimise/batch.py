@@ -44,7 +44,7 @@ from clutchopt.optimise.verify import ACTIVE_TOL, FEASIBILITY_TOL, ConstraintChe
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
 LONGEST_BATCH = 256  # doubling stops here: a longer batch saves little call overhead and risks more waste
-WINDOW = 1024  # points whose float64 checks run together (results are handed on per window)
+WINDOW = 256  # points whose float64 checks run together; results are handed on (and recorded) per window
 EXCLUSION_SPAN = 1024  # points ahead whose exclusion of an integer combination is evaluated at once
 BATCHED = "batched, KKT verified"
 
