@@ -23,7 +23,7 @@ from clutchopt.bench.reference import bench_cases, reference_mode
 from clutchopt.cases import Case
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.batch import BatchSweep
-from clutchopt.optimise.problem import Problem, SolverOptions
+from clutchopt.optimise.problem import Problem, SolverOptions, problem_for
 
 
 def sweep_quantity(case: Case) -> str:
@@ -32,7 +32,8 @@ def sweep_quantity(case: Case) -> str:
 
 
 def _problem(case: Case, options: SolverOptions, mode: str | None) -> Problem:
-    return Problem(get_coupling(case.coupling).formulation(mode or reference_mode(case.coupling)), "mass", options)
+    """The process's built problem (built on first use: in the warm-up, or once in each pool worker)."""
+    return problem_for(get_coupling(case.coupling).formulation(mode or reference_mode(case.coupling)), "mass", options)
 
 
 def batched_sweep(case: Case, name: str, values, options: SolverOptions = SolverOptions(),
@@ -74,7 +75,7 @@ def throughput_rows(config) -> list[dict]:
     for case in bench_cases():
         name = sweep_quantity(case)
         values = case.values[name] * np.geomspace(0.5, 2.0, config.sweep_points)
-        batched_sweep(case, name, values[:20])  # warm-up: the problem, its SQP solver, the chained functions
+        batched_sweep(case, name, values)  # warm-up: the problem, its solvers, the chained and mapped functions
         for how, run, keywords in HOWS:
             started = time.perf_counter()
             tally = run(case, name, values, **keywords)

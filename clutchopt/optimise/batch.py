@@ -38,8 +38,8 @@ from typing import Iterator
 import numpy as np
 
 from clutchopt.cases import Case
-from clutchopt.model import MAGNITUDES, Output, namespace
-from clutchopt.optimise.problem import Problem, Solution, SolverInfo, _elasticity
+from clutchopt.model import MAGNITUDES, Output, Quantity, namespace
+from clutchopt.optimise.problem import Problem, Solution, SolverInfo, WarmStart, limit_elasticity
 from clutchopt.optimise.verify import ACTIVE_TOL, FEASIBILITY_TOL, ConstraintCheck
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
@@ -59,7 +59,8 @@ def batchable(problem: Problem, names) -> bool:
 
 
 class _Block:
-    """Batched points, one column each: the solver's primal-dual points, parameters, bounds, derivatives."""
+    """Batched points, one column each: the solver's primal-dual points and scaled objectives, the NLP parameters and
+    bounds, each point's share of its batch's time."""
 
     KEYS = ("x", "lam_x", "lam_g", "f", "p", "lbx", "ubx", "time")
 
@@ -77,10 +78,10 @@ class _Block:
 
 
 class _Start:
-    """Where a batch starts: a verified primal-dual point in its own scaling, and how to get its Solution."""
+    """Where a batch starts: a primal-dual point that passed the tests, in its own scaling, and the same as the warm
+    start of a point solved by ``Problem.solve``."""
 
     def __init__(self, sweep: "BatchSweep", solution: Solution | None = None, block: _Block | None = None):
-        self.sweep, self._solution, self.block = sweep, solution, block
         n, m = len(sweep.names), len(sweep.problem.formulation.quantities)
         if solution is not None:
             self.scale = solution.scale
@@ -91,12 +92,13 @@ class _Start:
             a = {key: value[..., 0] for key, value in block.arrays.items()}
             self.scale, self.x, self.lam_x, self.lam_g = a["p"][m:m + n], a["x"], a["lam_x"], a["lam_g"]
             self.objective = float(a["f"][0] * a["p"][m + n])  # the scaled objective times its normaliser
+        self.names, self.integer = sweep.names, sweep.problem._integer
 
     @property
-    def solution(self) -> Solution:
-        if self._solution is None:
-            self._solution = _Checked(self.sweep, self.block)[0]
-        return self._solution
+    def warm(self) -> WarmStart:
+        design = self.x[: len(self.names)] * self.scale
+        design[self.integer] = np.round(design[self.integer])
+        return WarmStart(dict(zip(self.names, map(float, design))), self.scale, (self.lam_x, self.lam_g))
 
 
 class BatchSweep:
@@ -153,14 +155,14 @@ class BatchSweep:
                     continue
                 if chained:  # point k failed a test in the batch: the next batch starts short
                     size = FIRST_BATCH
-                alone[k] = self._solve_alone(k, start.solution if start is not None else None)
+                alone[k] = self._solve_alone(k, start.warm if start is not None else None)
                 start, k = self._start_of(alone[k]), k + 1
             yield self._window(blocks, alone)
 
     def _start_of(self, solution: Solution) -> _Start | None:
         return _Start(self, solution) if solution.status == "optimal" else None
 
-    def _solve_alone(self, k: int, warm: Solution | None) -> Solution:
+    def _solve_alone(self, k: int, warm: Solution | WarmStart | None) -> Solution:
         solution = self.problem.solve(self.point_case(k), warm=warm)
         self.solves += solution.solver.solves
         self.solver_s += solution.solver.time_s
@@ -274,8 +276,10 @@ class Solutions(Sequence):
     def __getitem__(self, i):
         if isinstance(i, slice):
             return [self[j] for j in range(*i.indices(len(self)))]
-        entry = self._entries[i]
-        return entry[0][entry[1]] if isinstance(entry, tuple) else entry
+        if isinstance(self._entries[i], tuple):
+            checked, column = self._entries[i]
+            self._entries[i] = checked[column]
+        return self._entries[i]
 
     @property
     def statuses(self) -> list[str]:
@@ -283,7 +287,7 @@ class Solutions(Sequence):
         return ["optimal" if isinstance(e, tuple) else e.status for e in self._entries]
 
 
-def check_values(quantity, values: np.ndarray) -> None:
+def check_values(quantity: Quantity, values: np.ndarray) -> None:
     """Every value valid for ``quantity``: checked as arrays, the first bad one raising the quantity's own error."""
     good = np.isfinite(values)
     for bound, test in ((quantity.above, np.greater), (quantity.at_least, np.greater_equal),
@@ -315,8 +319,8 @@ class _Float64:
 
 
 class _Checked(_Float64):
-    """Batched points checked in float64 at once by the formulation's own equations: constraints, objective and
-    outputs, one column per point."""
+    """Batched points checked in float64 at once by the formulation's own equations (constraints, objective), one
+    column per point; their outputs and Solutions are built when read."""
 
     def __init__(self, sweep: BatchSweep, block: _Block):
         problem, f = sweep.problem, sweep.problem.formulation
@@ -328,8 +332,17 @@ class _Checked(_Float64):
         self.feasible = np.all(self.margin >= -FEASIBILITY_TOL, axis=0)
         self.objective = np.broadcast_to(np.asarray(problem.objective.function(self.x, self.params), dtype=float),
                                          (count,))
-        self.outputs = {name: (np.broadcast_to(np.asarray(out.value, dtype=float), (count,)), out)
-                        for name, out in f.outputs(self.x, self.params).items()}
+        self._outputs = None
+
+    @property
+    def outputs(self) -> dict[str, tuple[np.ndarray, Output]]:
+        """The derived quantities of every point (evaluated together when a first point is read)."""
+        if self._outputs is None:
+            count = len(self.block.index)
+            with np.errstate(all="ignore"):
+                self._outputs = {name: (np.broadcast_to(np.asarray(out.value, dtype=float), (count,)), out)
+                                 for name, out in self.sweep.problem.formulation.outputs(self.x, self.params).items()}
+        return self._outputs
 
     def __getitem__(self, j: int) -> Solution:
         """Point ``j`` as the Solution ``Problem.solve`` returns."""
@@ -343,7 +356,7 @@ class _Checked(_Float64):
             check = ConstraintCheck(c.name, c.equation, c.sense, float(self.value[i, j]), float(self.limit[i, j]),
                                     margin, abs(margin) <= ACTIVE_TOL or margin < 0, margin >= -FEASIBILITY_TOL,
                                     c.unit, c.description, float(self.scale[i, j]), multiplier=float(a["lam_g"][i]))
-            check.elasticity = _elasticity(check, check.multiplier, f_scale, objective)
+            check.elasticity = limit_elasticity(check, check.multiplier, f_scale, objective)
             checks.append(check)
         return Solution(
             f.coupling, f.mode, problem.objective.name, problem.objective.unit,

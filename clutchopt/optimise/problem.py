@@ -199,6 +199,19 @@ class Solution:
         }
 
 
+@dataclass
+class WarmStart:
+    """What a warm re-solve takes from a previous solve (a :class:`Solution` has these too): its design (SI),
+    variable scales and multipliers (lam_x, lam_g, scaled)."""
+
+    design: dict[str, float]
+    scale: np.ndarray
+    multipliers: tuple[np.ndarray, np.ndarray]
+    status: str = "optimal"
+    mesh: None = None  # no start-up
+    internal: None = None
+
+
 class Problem:
     """One formulation with one objective, built as a CasADi ``nlpsol`` once."""
 
@@ -321,7 +334,7 @@ class Problem:
         """Design variables by name (SI) from the NLP's (scaled) x, internal variables left out."""
         return {v.name: float(value) for v, value in zip(self.formulation.variables, x[: len(scale)] * scale)}
 
-    def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | None = None,
+    def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
               mesh: np.ndarray | None = None, refine: bool = True) -> Solution:
         """Solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one.
 
@@ -373,7 +386,7 @@ class Problem:
                                      sum(s.time_s for s in solves), sum(s.solves for s in solves))
         return solution
 
-    def _solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | None = None,
+    def _solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
                nlp_case: Case | None = None, mesh: np.ndarray | None = None) -> Solution:
         """One solve (with its integer search); the NLP sees ``nlp_case`` (moved limits), the checks ``case``;
         a start-up's mesh is ``mesh``, else the warm solution's, else the first one."""
@@ -652,7 +665,7 @@ class Problem:
             mesh = (self._mesh_of(run["p"]), suggested)
         for check, lam in zip(checks, self._named_multipliers(run["lam_g"])):
             check.multiplier = lam
-            check.elasticity = _elasticity(check, lam, f_scale, objective)
+            check.elasticity = limit_elasticity(check, lam, f_scale, objective)
         feasible = all(c.feasible for c in checks)
         diagnosis, diagnosis_s = None, 0.0
         if verdict is not None:
@@ -760,7 +773,7 @@ class Problem:
         return "infeasible", text, seconds
 
 
-def _elasticity(check: ConstraintCheck, lam: float, f_scale: float, objective: float) -> float | None:
+def limit_elasticity(check: ConstraintCheck, lam: float, f_scale: float, objective: float) -> float | None:
     """d ln f* / d ln(limit) from the multiplier of the normalised constraint (envelope theorem).
 
     For "<=": g = (v - l)/s, so df*/d ln l = -lam f_s l/s; for ">=" the sign flips.
