@@ -44,10 +44,11 @@ sinh = _either(np.sinh, ca.sinh)
 arcsinh = _either(np.arcsinh, ca.asinh)
 
 
-def ellipke(m, iterations: int = 10):
+def ellipke(m, iterations: int = 7):
     """Complete elliptic integrals K(m), E(m) (parameter m = k^2, as scipy.special.ellipk/ellipe) by the
     arithmetic-geometric mean: a fixed number of steps, so CasADi can differentiate it. Converges
-    quadratically; 10 steps give float64 accuracy for 0 <= m <= 1 - 1e-12.
+    quadratically; 7 steps give float64 accuracy for 0 <= m <= 1 - 1e-12 (within 4e-16 of SciPy's K, 3e-15 of
+    its E, as 10 steps; 6 steps miss by 4e-9 at m = 1 - 1e-12). Each step more grows the ball clutch's Hessian.
 
     K = pi / (2 AGM(1, sqrt(1 - m))),  E = K (1 - sum_n 2^(n-1) c_n^2),  c_0^2 = m, c_(n+1) = (a_n - b_n) / 2.
     """
