@@ -152,7 +152,7 @@ def test_differentiable_hertz_coefficients_are_the_exact_ones():
     for ratio in np.logspace(np.log10(1.01), 5, 60):
         n_a, n_b = ball.hertz_coefficients(ratio)
         e_a, e_b = ball.hertz_coefficients_exact(ratio)
-        assert n_a == pytest.approx(e_a, rel=1e-10) and n_b == pytest.approx(e_b, rel=1e-10)  # 3 Newton steps
+        assert n_a == pytest.approx(e_a, rel=1e-10) and n_b == pytest.approx(e_b, rel=1e-10)
 
 
 def test_hertz_sphere_on_flat_is_johnsons():

@@ -186,7 +186,8 @@ def curvatures(radius, ball_radius, conformity):
 
 
 HAMROCK_BREWE = (1.0339, 0.636)  # a/b ~ 1.0339 (B/A)^0.636, Hamrock & Brewe (1983): the Newton start
-NEWTON_STEPS = 3  # quadratic convergence: 3 steps reach 8e-11 of the exact n_a, n_b (2 steps: 2e-8)
+NEWTON_STEPS = 4  # 3 steps reach the same 8e-11 of the exact n_a, n_b, but the start-up NLP of ball_motor_start
+# then stops at a local infeasibility: its derivatives are those of a less converged iteration
 
 
 def _curvature_ratio(m):
