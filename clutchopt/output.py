@@ -14,8 +14,16 @@ if TYPE_CHECKING:  # JSON needs neither pandas nor the solver: ``solve --json`` 
     from clutchopt.optimise.problem import Solution
 
 
+_PLAIN = (str, int, bool, type(None))
+
+
 def _clean(value):
     """JSON-safe: NaN/inf become null, numpy scalars become floats."""
+    kind = type(value)
+    if kind is float:  # most values: the common cases first
+        return value if math.isfinite(value) else None
+    if kind in _PLAIN:
+        return value
     if isinstance(value, dict):
         return {k: _clean(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
@@ -27,8 +35,9 @@ def _clean(value):
     return value
 
 
-def to_json(data: dict) -> str:
-    return json.dumps(_clean(data), indent=2, allow_nan=False)
+def to_json(data: dict, indent: int | None = 2) -> str:
+    """JSON for people (indented) or, with ``indent=None``, compact for the run store (CPython's C encoder)."""
+    return json.dumps(_clean(data), indent=indent, allow_nan=False)
 
 
 def _shown(value: float | None, unit: str) -> str:

@@ -277,7 +277,7 @@ class RunStore:
             " objective, objective_unit, inputs, outputs, versions, created)"
             " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (sweep_id, point) DO NOTHING",
             (kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status, objective,
-             objective_unit, to_json(inputs), to_json(outputs), json.dumps(versions()), _now()))
+             objective_unit, to_json(inputs, None), to_json(outputs, None), json.dumps(versions()), _now()))
 
     def record_solution(self, kind: str, case, solution, **where) -> int | None:
         """Record a solved case: inputs are all its SI values, outputs the solution's JSON."""
