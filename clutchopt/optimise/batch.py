@@ -9,17 +9,20 @@ on all points of the batch at once:
 
 - the KKT conditions of every point, apart from the solver (``Problem.first_order_optimal``);
 - the integer test of the warm integer search: a point whose fixed integers' bound multipliers point to a
-  neighbouring integer ends the chain, for the search decides there;
+  neighbouring integer the search would solve ends the chain, for the search decides there; and a batch stops
+  short of the point where its integers break a constraint of fixed variables alone (the search excludes them
+  there without a solve), found in float64 ahead of the batch;
 - without integers, a point whose optimum has moved more than tenfold from the variable scales ends it (the
   solve is repeated with new scales there);
-- at the end of a window of points, the float64 re-evaluation of every constraint by the formulation's own
-  equations (``verify``), vectorised over the points, with objective, outputs and sensitivities.
+- at the end of a window of points (up to 256), the float64 re-evaluation of every constraint and the objective
+  by the formulation's own equations (``verify``'s arithmetic), vectorised over the points.
 
 A batch is kept up to its first point that fails a test. That point is solved by ``Problem.solve``, warm from the
 last kept point (SQP, warm IPOPT, the integer search, the cold solve and the infeasibility diagnosis), and the next
-batch starts after it, 8 points long, doubling while batches pass (up to 128). After a point without a design the
+batch starts after it, 8 points long, doubling while batches pass (up to 256). After a point without a design the
 points are solved cold, one by one, until one is optimal. A point that passes the KKT test but not the float64
-check (rare) is solved again by ``Problem.solve`` at the end of its window.
+check (rare) is solved again by ``Problem.solve`` at the end of its window. A window's outputs, each point's
+sensitivities and its :class:`Solution` are built when the point is read.
 
 The optima equal ``Problem.solve``'s to the solver's tolerance: a batch keeps the variable scales of the point it
 starts from and normalises the objective by that point's objective, where ``Problem.solve`` takes both afresh from

@@ -260,9 +260,9 @@ class Problem:
         self._case_gradient = ca.Function("dL_dcase", [x_all, self._nlp["p"], lam_g],  # sensitivities
                                           [ca.gradient(lagrangian, p_case)])
         if start_up:
+            paths = [ca.vertcat(*column) for column in self.start_up.trajectory().values()]
             self._start_up_figures = ca.Function("start_up", [x_all, self._nlp["p"]],
-                                                 [ca.vertcat(*self.start_up.outputs().values()),
-                                                  *[ca.vertcat(*column) for column in self.start_up.trajectory().values()]])
+                                                 [ca.vertcat(*self.start_up.outputs().values()), *paths])
             self._internal_scale = ca.Function("internal_scale", [p_case], [ca.vertcat(*self.start_up.scales)])
         self._elastic = None
         self._solvers = {"ipopt": self._solver}
@@ -346,8 +346,9 @@ class Problem:
         simulation adds to the NLP's figure (defect correction) and the problem re-solves warm. Limits are always
         reported as the case gives them. A start-up problem without a start point starts from the optimum the
         papers' sizing gives (the same mode without the start-up), a design the start-up changes but does not
-        overturn. Integer variables keep their values while limits are moved in (an elastic link's excepted). ``refine=False``: one solve on
-        ``mesh`` (or the warm solution's, or the first one), as it comes (for measuring what accuracy costs)."""
+        overturn. Integer variables keep their values while limits are moved in (an elastic link's excepted).
+        ``refine=False``: one solve on ``mesh`` (or the warm solution's, or the first one), as it comes (for
+        measuring what accuracy costs)."""
         if self.start_up is None or not refine:
             return self._solve(case, start, warm, mesh=mesh)
         if start is None and warm is None:
@@ -540,7 +541,8 @@ class Problem:
     @staticmethod
     def _scaled_box(lower, upper, scale, internal_bounds) -> tuple[np.ndarray, np.ndarray]:
         """The NLP's variable bounds: design bounds scaled, then the (already scaled) internal ones."""
-        return (np.concatenate([lower / scale, internal_bounds[0]]), np.concatenate([upper / scale, internal_bounds[1]]))
+        return (np.concatenate([lower / scale, internal_bounds[0]]),
+                np.concatenate([upper / scale, internal_bounds[1]]))
 
     # --- one solve ------------------------------------------------------------------------------------------------
     def _attempt(self, data: ScaledData, lbx, ubx, x0, seed: dict | None, methods: tuple[str, ...],
@@ -738,9 +740,9 @@ class Problem:
                    "g": ca.vertcat(g[:n_g] - slack, g[n_g:])}
             self._elastic = ca.nlpsol("elastic", "ipopt", nlp, self.options.ipopt())
         started = time.perf_counter()
-        result = self._elastic(x0=np.concatenate([x0, np.ones(n_g)]), p=p_vector,
-                               lbx=np.concatenate([lbx, np.zeros(n_g)]), ubx=np.concatenate([ubx, np.full(n_g, np.inf)]),
-                               lbg=self._lbg, ubg=0.0)
+        slack_bounds = np.zeros(n_g), np.full(n_g, np.inf)
+        result = self._elastic(x0=np.concatenate([x0, np.ones(n_g)]), p=p_vector, lbg=self._lbg, ubg=0.0,
+                               lbx=np.concatenate([lbx, slack_bounds[0]]), ubx=np.concatenate([ubx, slack_bounds[1]]))
         seconds = time.perf_counter() - started
         slacks = np.array(result["x"]).ravel()[len(lbx):]
         lam_g = np.array(result["lam_g"]).ravel()[:n_g]
