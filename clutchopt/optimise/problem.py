@@ -81,6 +81,11 @@ class SolverOptions:
                                                             "error_on_fail": False},
                 "tol_pr": self.tol, "tol_du": self.tol, "max_iter": 30, "error_on_fail": False, "calc_lam_p": False}
 
+    def sqp_chain(self) -> dict:
+        """SQP in a chained batch: at most 10 iterations (a warm re-solve takes 2 or 3; one that does not converge
+        leaves the batch for ``Problem.solve``), so that the points after a failed one cost little."""
+        return {**self.sqp(), "max_iter": 10}
+
     def ipopt(self) -> dict:
         return {
             "ipopt.tol": self.tol,
@@ -593,8 +598,8 @@ class Problem:
             x0, lam_x0 = (ca.MX.sym(name, self._nlp["x"].shape[0]) for name in ("x0", "lam_x0"))
             lam_g0, p = ca.MX.sym("lam_g0", self._nlp["g"].shape[0]), ca.MX.sym("p", self._nlp["p"].shape[0])
             lbx, ubx = (ca.MX.sym(name, self._nlp["x"].shape[0]) for name in ("lbx", "ubx"))
-            out = self._solver_for("sqp")(x0=x0, lam_x0=lam_x0, lam_g0=lam_g0, p=p, lbx=lbx, ubx=ubx, lbg=self._lbg,
-                                          ubg=0.0)
+            out = self._solver_for("sqp_chain")(x0=x0, lam_x0=lam_x0, lam_g0=lam_g0, p=p, lbx=lbx, ubx=ubx,
+                                                lbg=self._lbg, ubg=0.0)
             step = ca.Function("sqp_step", [x0, lam_x0, lam_g0, p, lbx, ubx],
                                [out["x"], out["lam_x"], out["lam_g"], out["f"]])
             self._chains[count] = step.mapaccum("sqp_chain", count, [0, 1, 2], [0, 1, 2])
@@ -626,7 +631,8 @@ class Problem:
         if method not in self._solvers:
             f = self.formulation
             plugin, options = {"warm": ("ipopt", self.options.ipopt_warm()),
-                               "sqp": ("sqpmethod", self.options.sqp())}[method]
+                               "sqp": ("sqpmethod", self.options.sqp()),
+                               "sqp_chain": ("sqpmethod", self.options.sqp_chain())}[method]
             self._solvers[method] = ca.nlpsol(f"{f.coupling}_{f.mode}_{self.objective.name}_{method}", plugin,
                                               self._nlp, options)
         return self._solvers[method]
