@@ -26,7 +26,7 @@ from conftest import CASES
 
 FORK = multiprocessing.get_context("fork")
 CASE = str(CASES / "wedge_paper.toml")
-GRID = ["--vary", "speed=500:3000:40", "--vary", "allowable_pressure=2:8:25"]  # 1000 points, about 2 s
+GRID = ["--vary", "speed=500:3000:40", "--vary", "allowable_pressure=2:8:25"]  # 1000 points, a quarter second
 SMALL = ["--vary", "speed=500:3000:15", "--vary", "allowable_pressure=2:8:10"]  # 150 points
 NOBODY = 65534
 
@@ -90,11 +90,15 @@ def _reference(grid: list[str]) -> pd.DataFrame:
 def test_kill_9_at_20_random_moments_then_resume_loses_and_duplicates_nothing(tmp_path):
     store, out = tmp_path / "runs.sqlite", tmp_path / "sweep.csv"
     argv = ["sweep", CASE, *GRID, "--resume", "--quiet", "--store", str(store)]
-    moments = random.Random(12).sample(range(20, 300), 20)  # ms after the start; reproducible
+    started = time.monotonic()  # how long the whole sweep takes here, recorded into a store of its own
+    timing = Writer(["sweep", CASE, *GRID, "--quiet", "--store", str(tmp_path / "timing.sqlite")], tmp_path)
+    assert timing.finish()[0] == 0
+    duration = time.monotonic() - started
+    moments = [duration * random.Random(12 + i).uniform(0.05, 0.9) for i in range(20)]  # reproducible fractions
     seen = []
     for moment in moments:
         writer = Writer(argv, tmp_path)
-        time.sleep(moment / 1000)
+        time.sleep(moment)
         writer.kill()
         seen.append(len(_points(store)) if store.exists() else 0)
     assert any(0 < count < 1000 for count in seen), f"no kill landed inside the sweep: {seen}"

@@ -7,15 +7,17 @@ chains the SQP re-solves inside CasADi (``Problem.chained_sqp``: ``mapaccum`` ov
 point started from the primal-dual optimum of the one before), and the tests of ``Problem.solve`` run afterwards
 on all points of the batch at once:
 
-- the KKT conditions of every point, apart from the solver (``Problem.first_order_optimal``);
+- the KKT conditions of every point, apart from the solver (``Problem.kkt_terms``, one mapped CasADi evaluation,
+  and ``Problem.first_order_optimal``);
 - the integer test of the warm integer search: a point whose fixed integers' bound multipliers point to a
   neighbouring integer the search would solve ends the chain, for the search decides there; and a batch stops
   short of the point where its integers break a constraint of fixed variables alone (the search excludes them
   there without a solve), found in float64 ahead of the batch;
 - without integers, a point whose optimum has moved more than tenfold from the variable scales ends it (the
   solve is repeated with new scales there);
-- at the end of a window of points (up to 256), the float64 re-evaluation of every constraint and the objective
-  by the formulation's own equations (``verify``'s arithmetic), vectorised over the points.
+- at the end of a window of points (up to 1024, or a quarter of a second of solving), the float64 re-evaluation
+  of every constraint and the objective by the formulation's own equations (``verify``'s arithmetic), vectorised
+  over the points.
 
 A batch is kept up to its first point that fails a test. That point is solved by ``Problem.solve``, warm from the
 last kept point (SQP, warm IPOPT, the integer search, the cold solve and the infeasibility diagnosis), and the next
@@ -47,7 +49,8 @@ from clutchopt.optimise.verify import ACTIVE_TOL, FEASIBILITY_TOL, ConstraintChe
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
 LONGEST_BATCH = 256  # doubling stops here: a longer batch saves little call overhead and risks more waste
-WINDOW = 256  # points whose float64 checks run together; results are handed on (and recorded) per window
+WINDOW = 1024  # points whose float64 checks run together; results are handed on (and recorded) per window,
+WINDOW_S = 0.25  # or after this many seconds of solving, whichever comes first (a progress bar moves on)
 EXCLUSION_SPAN = 1024  # points ahead whose exclusion of an integer combination is evaluated at once
 BATCHED = "batched, KKT verified"
 
@@ -109,7 +112,7 @@ class BatchSweep:
 
     ``varied``: SI values by quantity name, one per point (all the same length); the case gives the rest. Every
     value is checked against its quantity's valid range first. ``solves`` and ``solver_s`` count the solver calls
-    and the time inside them, ``check_s`` the time of the batches' KKT checks (compiled CasADi evaluations)."""
+    and the time inside them, ``check_s`` the time of the batches' CasADi evaluations for the KKT checks."""
 
     def __init__(self, problem: Problem, case: Case, varied: dict[str, np.ndarray]):
         if not batchable(problem, varied):
@@ -143,10 +146,10 @@ class BatchSweep:
         start: _Start | None = None  # where the next batch starts; None: after a point without a design
         size, k = FIRST_BATCH, 0
         while k < self.count:
-            end = min(k + window, self.count)
+            end, deadline = min(k + window, self.count), time.perf_counter() + WINDOW_S
             blocks: list[_Block] = []
             alone: dict[int, Solution] = {}
-            while k < end:  # each turn solves at least one point
+            while k < end and time.perf_counter() < deadline:  # each turn solves at least one point
                 count = 1 << (min(size, end - k).bit_length() - 1)  # a power of two: few chained functions
                 block, chained = self._batch(start, k, count) if start is not None else (None, 0)
                 passed = 0 if block is None else len(block.index)
@@ -201,8 +204,9 @@ class BatchSweep:
         if not finite.all():  # a failed point: its numbers must not poison the others' checks
             x, lam_x, lam_g = np.nan_to_num(x), np.nan_to_num(lam_x), np.nan_to_num(lam_g)
         began = time.perf_counter()
-        ok = finite & self.problem.first_order_optimal(x, p, lam_x, lam_g, lbx, ubx)
+        gradient, g = self.problem.kkt_terms(x, p, lam_g)
         self.check_s += time.perf_counter() - began
+        ok = finite & self.problem.first_order_optimal(x, lam_x, lam_g, lbx, ubx, gradient, g)
         ok &= ~self._ends_batch(x, lam_x, f[0], p, k)
         passed = int(np.argmin(ok)) if not ok.all() else count
         if not passed:

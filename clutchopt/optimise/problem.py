@@ -566,16 +566,20 @@ class Problem:
 
     def _first_order_optimal(self, run: dict) -> bool:
         """The KKT check of one run (see :meth:`first_order_optimal`)."""
-        return bool(self.first_order_optimal(*(np.asarray(run[k])[:, None] for k in (
-            "x", "p", "lam_x", "lam_g", "lbx", "ubx")))[0])
+        x, p, lam_x, lam_g, lbx, ubx = (np.asarray(run[k])[:, None] for k in ("x", "p", "lam_x", "lam_g", "lbx", "ubx"))
+        return bool(self.first_order_optimal(x, lam_x, lam_g, lbx, ubx, *self.kkt_terms(x, p, lam_g))[0])
 
-    def first_order_optimal(self, x, p, lam_x, lam_g, lbx, ubx) -> np.ndarray:
-        """KKT conditions at primal-dual points (one per column), checked apart from the solver that reports them:
-        the Lagrangian stationary, multipliers of the right sign, complementary to their constraints and bounds,
-        the constraints held (CasADi's SQP can stop at the start when handed a previous point's multipliers, e.g. of
-        a constraint that has become slack). The verdict per column."""
+    def kkt_terms(self, x, p, lam_g) -> tuple[np.ndarray, np.ndarray]:
+        """The Lagrangian's gradient in x and the inequality constraints at points (columns), by CasADi."""
+        gradient, g = self._mapped(self._kkt_terms, x.shape[1])(x, p, lam_g)
+        return np.asarray(gradient), np.asarray(g)
+
+    def first_order_optimal(self, x, lam_x, lam_g, lbx, ubx, gradient, g) -> np.ndarray:
+        """KKT conditions at primal-dual points (one per column; ``gradient``, ``g`` from :meth:`kkt_terms`),
+        checked apart from the solver that reports them: the Lagrangian stationary, multipliers of the right sign,
+        complementary to their constraints and bounds, the constraints held (CasADi's SQP can stop at the start when
+        handed a previous point's multipliers, e.g. of a constraint that has become slack). The verdict per column."""
         tol = 10 * self.options.tol
-        gradient, g = (np.asarray(out) for out in self._mapped(self._kkt_terms, x.shape[1])(x, p, lam_g))
         ineq = lam_g[: self.n_ineq]
         width = tol * np.maximum(1.0, np.abs(x))
         wrong_bound = ((lam_x > tol) & (ubx - x > width)) | ((lam_x < -tol) & (x - lbx > width))
