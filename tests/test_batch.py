@@ -144,3 +144,21 @@ def test_start_ups_and_fixed_variables_go_point_by_point():
     assert batchable(case_problem(case, "paper"), ["torque"])
     fixed = next(v.name for v in case_problem(case, "paper").formulation.variables if v.fixed_unless_freed)
     assert not batchable(case_problem(case, "paper"), [fixed])
+
+
+def test_an_error_inside_the_chained_call_sends_the_points_to_problem_solve(monkeypatch):
+    case = load_case(CASES / "wedge_paper.toml")
+    problem = Problem(get_coupling("wedge").formulation("paper"))
+    values = case.values["inertia"] * np.geomspace(0.8, 1.2, 12)
+
+    def failing(count):
+        raise RuntimeError("Error in Function::call for 'sqp_chain': NaN detected")
+
+    monkeypatch.setattr(problem, "chained_sqp", failing)
+    sweep = BatchSweep(problem, case, {"inertia": values})
+    solutions = [s for window in sweep.run() for s in window]
+    assert [s.status for s in solutions] == ["optimal"] * 12
+    assert all(s.solver.status != BATCHED for s in solutions)
+    for value, solution in zip(values, solutions):
+        assert solution.objective == pytest.approx(closed_form(case.with_values(inertia=float(value))).objective,
+                                                   rel=1e-8)

@@ -23,8 +23,9 @@ A batch is kept up to its first point that fails a test. That point is solved by
 last kept point (SQP, warm IPOPT, the integer search, the cold solve and the infeasibility diagnosis), and the next
 batch starts after it, 8 points long, doubling while batches pass (up to 256). After a point without a design the
 points are solved cold, one by one, until one is optimal. A point that passes the KKT test but not the float64
-check (rare) is solved again by ``Problem.solve`` at the end of its window. A window's outputs, each point's
-sensitivities and its :class:`Solution` are built when the point is read.
+check (rare) is solved again by ``Problem.solve`` at the end of its window. A chained call that CasADi ends with
+an evaluation error counts as a batch whose first point failed. A window's outputs, each point's sensitivities
+and its :class:`Solution` are built when the point is read.
 
 The optima equal ``Problem.solve``'s to the solver's tolerance: a batch keeps the variable scales of the point it
 starts from and normalises the objective by that point's objective, where ``Problem.solve`` takes both afresh from
@@ -195,10 +196,15 @@ class BatchSweep:
                 count = 1 << (first.bit_length() - 1)
                 p = p[:, :count]
         began = time.perf_counter()
-        x, lam_x, lam_g, f = (np.asarray(out) for out in self.problem.chained_sqp(count)(
-            x0, start.lam_x, start.lam_g, p, lbx, ubx))
+        try:
+            x, lam_x, lam_g, f = (np.asarray(out) for out in self.problem.chained_sqp(count)(
+                x0, start.lam_x, start.lam_g, p, lbx, ubx))
+        except RuntimeError:  # an evaluation error inside CasADi: the points go to Problem.solve, which reports it
+            x = None
         seconds = time.perf_counter() - began
         self.solves, self.solver_s = self.solves + count, self.solver_s + seconds
+        if x is None:
+            return None, count
         lbx, ubx = np.repeat(lbx[:, None], count, axis=1), np.repeat(ubx[:, None], count, axis=1)
         finite = np.isfinite(f[0]) & np.all(np.isfinite(x), axis=0) & np.all(np.isfinite(lam_g), axis=0)
         if not finite.all():  # a failed point: its numbers must not poison the others' checks
