@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 import os
 
 from clutchopt.cli.options import (
@@ -91,14 +90,9 @@ def run(args) -> str:
     return text
 
 
-def _cell(value):
-    """A table cell: numbers to 6 digits, ``-`` where a point has no value (no design)."""
-    if isinstance(value, float):
-        return "-" if math.isnan(value) else f"{value:.6g}"
-    return value
-
-
 def sweep_text(sweep, result, store, out: str | None) -> str:
+    from clutchopt.optimise.sweep import table_cell
+
     frame = result.frame
     counts = ", ".join(f"{count} {status}" for status, count in frame["status"].value_counts().items())
     objective = frame.columns[len(sweep.varies) + 2]
@@ -107,7 +101,7 @@ def sweep_text(sweep, result, store, out: str | None) -> str:
              f"solved {result.solved} points in {result.elapsed_s:.1f} s"
              + (f", {result.reused} taken from the store" if result.reused else "")]
     if len(frame) <= COLUMNS_SHOWN:
-        shown = frame.drop(columns=["diagnosis", "active"]).map(_cell)
+        shown = frame.drop(columns=["diagnosis", "active"]).map(table_cell)
         table = shown.set_index("point").T
         table.columns = [f"point {i}" for i in table.columns]
         lines += ["", table.to_string(), ""]

@@ -381,9 +381,11 @@ class Sweep:
                     from_si(solution["design"][variable.name], variable.unit) if designed else math.nan)
             row["active"] = " ".join(c["name"] for c in solution["constraints"] if c["active"]) if designed else ""
             row["diagnosis"] = solution["diagnosis"] or ""
-            row["iterations"] = solution["solver"]["iterations"]
+            row["iterations"] = solution["solver"]["iterations"]  # None for a point solved in a batch
             rows.append(row)
-        return pd.DataFrame(rows)
+        frame = pd.DataFrame(rows)
+        frame["iterations"] = frame["iterations"].astype("Int64")  # whole numbers, blank where there are none
+        return frame
 
 
 TABLE_SUFFIXES = (".csv", ".parquet", ".md")
@@ -464,10 +466,15 @@ def _check_sweep_table(frame: pd.DataFrame, path: str) -> None:
     problems.raise_any()
 
 
-def markdown_table(frame: pd.DataFrame) -> str:
-    def cell(value) -> str:
-        return f"{value:.6g}" if isinstance(value, float) else str(value)
+def table_cell(value) -> str:
+    """A sweep table's cell: numbers to 6 digits, ``-`` where a point has no value (no design: an infeasible point;
+    no iteration count: a point solved in a batch)."""
+    if value is pd.NA or (isinstance(value, float) and math.isnan(value)):
+        return "-"
+    return f"{value:.6g}" if isinstance(value, float) else str(value)
 
+
+def markdown_table(frame: pd.DataFrame) -> str:
     lines = ["| " + " | ".join(frame.columns) + " |", "|" + "---|" * len(frame.columns)]
-    lines += ["| " + " | ".join(cell(v) for v in row) + " |" for row in frame.itertuples(index=False)]
+    lines += ["| " + " | ".join(table_cell(v) for v in row) + " |" for row in frame.itertuples(index=False)]
     return "\n".join(lines)
