@@ -164,3 +164,13 @@ def test_an_error_inside_the_chained_call_sends_the_points_to_problem_solve(monk
     for value, solution in zip(values, solutions):
         assert solution.objective == pytest.approx(closed_form(case.with_values(inertia=float(value))).objective,
                                                    rel=1e-8)
+
+
+def test_a_sweep_table_says_where_a_point_was_batched():
+    from clutchopt.optimise.sweep import Sweep, markdown_table, parse_vary
+
+    case = load_case(CASES / "wedge_paper.toml")
+    frame = Sweep(case, [parse_vary("speed=800:1200:12", "wedge")]).run(progress=False).frame
+    assert str(frame["iterations"].dtype) == "Int64"
+    assert frame["iterations"][0] > 0 and frame["iterations"][1:].isna().all()  # the first point starts cold
+    assert markdown_table(frame).splitlines()[3].endswith("| - |")
