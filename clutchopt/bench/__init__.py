@@ -29,12 +29,13 @@ from clutchopt.bench.transient import effects_rows, stiffness_rows, tolerance_ro
 class BenchConfig:
     repeats: int = 20  # timed re-solves per method, after one warm-up
     sweep_points: int = 1000
+    sweep_repeats: int = 5  # timed runs of each throughput sweep (the median is reported)
     processes: int = 2
     start_up_intervals: tuple[int, ...] = (8, 16, 32, 64)  # collocation intervals per phase measured
 
     @classmethod
     def quick(cls) -> "BenchConfig":
-        return cls(repeats=3, sweep_points=100, processes=2, start_up_intervals=(16,))
+        return cls(repeats=3, sweep_points=100, sweep_repeats=3, processes=2, start_up_intervals=(16,))
 
 
 @dataclass(frozen=True)

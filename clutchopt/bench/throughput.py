@@ -5,11 +5,12 @@ from 0.5x to 2x its value. Serial, in one process: in batches (``clutchopt.optim
 sweep`` runs: chained SQP re-solves in one CasADi call, checked together), point by point (``Problem.solve`` warm
 from the previous optimum, as sweeps ran before) and point by point from the case's own start ("cold starts").
 Pool: batched, the sweep cut into contiguous chunks, one per worker process, each worker building its own problem
-(counted). Per row: solver calls per point (IPOPT and SQP, integer neighbours and the chained attempts a failed
-batch wastes included), the shares of the wall time inside the solver calls (an infeasibility diagnosis's IPOPT
-call included), in the batches' KKT checks (compiled CasADi evaluations) and in Python (the rest: case data,
-scaling, the float64 checks, outputs, sensitivities, bookkeeping), and for serial sweeps points/s against the
-same sweep point by point and against the wedge paper mode's batched sweep.
+(counted). Each row is the run of median wall time among ``sweep_repeats`` runs. Per row: solver calls per point
+(IPOPT and SQP, integer neighbours and the chained attempts a failed batch wastes included), the shares of the
+wall time inside the solver calls (an infeasibility diagnosis's IPOPT call included), in the batches' KKT checks
+(compiled CasADi evaluations) and in Python (the rest: case data, scaling, the float64 checks, outputs,
+sensitivities, bookkeeping), and for serial sweeps points/s against the same sweep point by point and against the
+wedge paper mode's batched sweep.
 """
 
 from __future__ import annotations
@@ -77,14 +78,16 @@ def throughput_rows(config) -> list[dict]:
         values = case.values[name] * np.geomspace(0.5, 2.0, config.sweep_points)
         batched_sweep(case, name, values)  # warm-up: the problem, its solvers, the chained and mapped functions
         for how, run, keywords in HOWS:
-            started = time.perf_counter()
-            tally = run(case, name, values, **keywords)
-            rows.append(_row(case, name, how, 1, tally, time.perf_counter() - started))
+            tally, seconds = _median(lambda: run(case, name, values, **keywords), config.sweep_repeats)
+            rows.append(_row(case, name, how, 1, tally, seconds, config.sweep_repeats))
         chunks = np.array_split(values, config.processes)
-        started = time.perf_counter()
-        with ProcessPoolExecutor(config.processes) as pool:
-            tally = _merged(list(pool.map(batched_sweep, [case] * len(chunks), [name] * len(chunks), chunks)))
-        rows.append(_row(case, name, "batched, process pool", config.processes, tally, time.perf_counter() - started))
+
+        def pooled() -> dict:
+            with ProcessPoolExecutor(config.processes) as pool:
+                return _merged(list(pool.map(batched_sweep, [case] * len(chunks), [name] * len(chunks), chunks)))
+
+        tally, seconds = _median(pooled, config.sweep_repeats)
+        rows.append(_row(case, name, "batched, process pool", config.processes, tally, seconds, config.sweep_repeats))
     wedge = next((r for r in rows if (r["coupling"], r["how"]) == ("wedge", "batched")), None)
     for row in rows:
         alone = next(r for r in rows if (r["coupling"], r["how"]) == (row["coupling"], "point by point"))
@@ -94,11 +97,22 @@ def throughput_rows(config) -> list[dict]:
     return rows
 
 
-def _row(case, name, how, processes, tally, seconds):
+def _median(run, repeats: int) -> tuple[dict, float]:
+    """``run()`` timed ``repeats`` times: the tally and wall time of the run of median wall time."""
+    timed = []
+    for _ in range(repeats):
+        started = time.perf_counter()
+        tally = run()
+        timed.append((time.perf_counter() - started, tally))
+    seconds, tally = sorted(timed, key=lambda pair: pair[0])[len(timed) // 2]
+    return tally, seconds
+
+
+def _row(case, name, how, processes, tally, seconds, runs):
     serial = processes == 1
     solver, check = (tally["solver_s"] / seconds, tally["check_s"] / seconds) if serial else (None, None)
     return {"coupling": case.coupling, "mode": reference_mode(case.coupling), "swept": f"{name} x0.5..2",
-            "how": how, "processes": processes, "points": tally["points"], "optimal": tally["optimal"],
+            "how": how, "processes": processes, "runs": runs, "points": tally["points"], "optimal": tally["optimal"],
             "solves_per_point": tally["solves"] / tally["points"], "wall_s": seconds,
             "points_per_s": tally["points"] / seconds, "solver_share": solver, "check_share": check,
             "python_share": 1 - solver - check if serial else None}
