@@ -21,7 +21,8 @@ multipliers the solver returns. A built problem also re-solves warm: ``solve(cas
 previous optimum, keeps its scales and hands its multipliers to CasADi's SQP method (dense active-set QPs,
 ``qrqp``: next to a known optimum a few Newton steps; 1.5-3.7x faster than warm IPOPT on these small NLPs), whose KKT
 point is checked apart from it; then to IPOPT (``warm_start_init_point``, small initial barrier parameter); should
-both fail, the cold solve from the case's own start follows. Each solver is built on first use.
+both fail, the cold solve from the case's own start follows. Each solver is built on first use. Sweeps chain such
+SQP re-solves in one CasADi call (``chained_sqp``) and check them together (``clutchopt.optimise.batch``).
 
 Infeasibility: when IPOPT fails, an elastic problem (min sum of slacks on the normalised constraints) names
 the requirements that cannot hold together and by how much the least relaxation misses.
