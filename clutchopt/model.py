@@ -14,6 +14,7 @@ floats (float64 checks, closed forms) and on CasADi symbols (the NLP). No solver
 from __future__ import annotations
 
 import math
+import operator
 from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import Any, Callable, Mapping
@@ -57,17 +58,17 @@ class Quantity:
         """An SI value written in this quantity's unit, e.g. ``15 deg``."""
         return f"{from_si(value, self.unit):.{digits}g} {self.unit}".rstrip()
 
+    def _range_tests(self) -> list[tuple[float, Callable, str]]:
+        """(bound, test, word) of each limit the valid range has; the tests take numbers or arrays."""
+        limits = ((self.above, operator.gt, ">"), (self.at_least, operator.ge, ">="),
+                  (self.below, operator.lt, "<"), (self.at_most, operator.le, "<="))
+        return [(bound, test, word) for bound, test, word in limits if bound is not None]
+
     def check(self, value: float, field_name: str | None = None) -> float:
         """Return ``value`` (SI) if it is in the valid range, else raise InputError naming the field."""
         name = field_name or self.key
-        tests = (
-            (self.above, lambda v, b: v > b, ">"),
-            (self.at_least, lambda v, b: v >= b, ">="),
-            (self.below, lambda v, b: v < b, "<"),
-            (self.at_most, lambda v, b: v <= b, "<="),
-        )
-        for bound, ok, word in tests:
-            if bound is not None and not ok(value, bound):
+        for bound, ok, word in self._range_tests():
+            if not ok(value, bound):
                 raise InputError(name, f"must be {word} {self.show(bound)}, got {self.show(value, 15)}")
         if self.integer and value != round(value):
             raise InputError(name, f"must be a whole number, got {value:.15g}")
@@ -76,10 +77,21 @@ class Quantity:
                                    f"{MAGNITUDES[0]:g} to {MAGNITUDES[1]:g} in SI units".replace(" 1 (SI)", " (SI)"))
         return value
 
+    def check_all(self, values, field_name: str | None = None) -> None:
+        """Every value of a NumPy array valid, tested as arrays (a sweep's values); the first bad one raises as
+        :meth:`check` does."""
+        size = abs(values)
+        good = (values == 0) | ((size >= MAGNITUDES[0]) & (size <= MAGNITUDES[1]))  # NaN and inf fail here
+        for bound, ok, _ in self._range_tests():
+            good = good & ok(values, bound)
+        if self.integer:
+            good = good & (values == values.round())
+        if not good.all():
+            self.check(float(values[good.argmin()]), field_name)
+
     def valid_range(self) -> str:
         """The valid range as a reader writes it: ``> 0 MPa``, ``> 0 and <= 1``, ``a whole number >= 1``."""
-        parts = [f"{word} {self.show(bound)}" for bound, word in (
-            (self.above, ">"), (self.at_least, ">="), (self.below, "<"), (self.at_most, "<=")) if bound is not None]
+        parts = [f"{word} {self.show(bound)}" for bound, _, word in self._range_tests()]
         text = " and ".join(parts) or "any value"
         return f"a whole number {text}" if self.integer else text
 

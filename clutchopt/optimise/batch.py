@@ -44,7 +44,7 @@ from typing import Iterator
 import numpy as np
 
 from clutchopt.cases import Case
-from clutchopt.model import MAGNITUDES, Output, Quantity, namespace
+from clutchopt.model import Output, namespace
 from clutchopt.optimise.problem import Problem, Solution, SolverInfo, WarmStart, limit_elasticity
 from clutchopt.optimise.verify import ACTIVE_TOL, FEASIBILITY_TOL, ConstraintCheck
 
@@ -125,7 +125,7 @@ class BatchSweep:
         for name, values in self.varied.items():
             if len(values) != self.count:
                 raise ValueError("every varied quantity needs one value per point")
-            check_values(declared[name], values)
+            declared[name].check_all(values)
         f = problem.formulation
         base = problem._params(case)
         self.values = np.array([self.varied.get(q.name, np.full(self.count, getattr(base, q.name)))
@@ -298,21 +298,6 @@ class Solutions(Sequence):
     def statuses(self) -> list[str]:
         """Each point's status, without building its Solution (a batched point left in the window is optimal)."""
         return ["optimal" if isinstance(e, tuple) else e.status for e in self._entries]
-
-
-def check_values(quantity: Quantity, values: np.ndarray) -> None:
-    """Every value valid for ``quantity``: checked as arrays, the first bad one raising the quantity's own error."""
-    good = np.isfinite(values)
-    for bound, test in ((quantity.above, np.greater), (quantity.at_least, np.greater_equal),
-                        (quantity.below, np.less), (quantity.at_most, np.less_equal)):
-        if bound is not None:
-            good &= test(values, bound)
-    if quantity.integer:
-        good &= values == np.round(values)
-    magnitude = np.abs(values)
-    good &= (values == 0) | ((magnitude >= MAGNITUDES[0]) & (magnitude <= MAGNITUDES[1]))
-    if not good.all():
-        quantity.check(float(values[np.argmin(good)]))  # raises, naming the quantity
 
 
 class _Float64:
