@@ -46,7 +46,7 @@ import numpy as np
 from clutchopt.cases import Case
 from clutchopt.model import Output, namespace
 from clutchopt.optimise.problem import Problem, Solution, SolverInfo, WarmStart, limit_elasticity
-from clutchopt.optimise.verify import ACTIVE_TOL, FEASIBILITY_TOL, ConstraintCheck
+from clutchopt.optimise.verify import FEASIBILITY_TOL, constraint_check, constraint_table
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
 LONGEST_BATCH = 256  # doubling stops here: a longer batch saves little call overhead and risks more waste
@@ -309,11 +309,7 @@ class _Float64:
         self.params = namespace({q.name: row for q, row in zip(f.quantities, sweep.values[:, points])})
         with np.errstate(all="ignore"):
             self.constraints = f.constraints(self.x, self.params)
-            rows = [[np.broadcast_to(np.asarray(v, dtype=float), (count,))
-                     for v in (c.value, c.limit, c.limit if c.scale is None else c.scale)] for c in self.constraints]
-            self.value, self.limit, self.scale = np.array(rows, dtype=float).reshape(-1, 3, count).transpose(1, 0, 2)
-            at_most = np.array([c.sense == "<=" for c in self.constraints])[:, None]
-            self.margin = np.where(at_most, self.limit - self.value, self.value - self.limit) / self.scale
+        self.value, self.limit, self.scale, self.margin = constraint_table(self.constraints, count)
 
 
 class _Checked(_Float64):
@@ -350,10 +346,8 @@ class _Checked(_Float64):
         objective, f_scale, feasible = float(self.objective[j]), float(a["p"][m + n]), bool(self.feasible[j])
         checks = []
         for i, c in enumerate(self.constraints):
-            margin = float(self.margin[i, j])
-            check = ConstraintCheck(c.name, c.equation, c.sense, float(self.value[i, j]), float(self.limit[i, j]),
-                                    margin, abs(margin) <= ACTIVE_TOL or margin < 0, margin >= -FEASIBILITY_TOL,
-                                    c.unit, c.description, float(self.scale[i, j]), multiplier=float(a["lam_g"][i]))
+            figures = (float(table[i, j]) for table in (self.value, self.limit, self.scale, self.margin))
+            check = constraint_check(c, *figures, multiplier=float(a["lam_g"][i]))
             check.elasticity = limit_elasticity(check, check.multiplier, f_scale, objective)
             checks.append(check)
         return Solution(

@@ -30,7 +30,7 @@ from clutchopt.formulations import get_coupling
 from clutchopt.model import Constraint, Formulation, Quantity, namespace
 from clutchopt.optimise.problem import Solution, SolverOptions, problem_for, solve_case
 from clutchopt.optimise.start_up import Structure
-from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, check_constraints
+from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, check_constraints, constraint_table
 
 WORST_CASE = "worst-case"
 CHANCE = "chance"
@@ -164,13 +164,7 @@ def _at(params: SimpleNamespace, values: dict) -> SimpleNamespace:
 
 def _margins(constraints: list[Constraint], count: int) -> np.ndarray:
     """Relative margins, one row per constraint, one column per point (broadcast)."""
-    rows = []
-    for c in constraints:
-        value, limit = np.asarray(c.value, dtype=float), np.asarray(c.limit, dtype=float)
-        scale = np.asarray(c.limit if c.scale is None else c.scale, dtype=float)
-        margin = (limit - value) / scale if c.sense == "<=" else (value - limit) / scale
-        rows.append(np.broadcast_to(margin, (count,)))
-    return np.array(rows)
+    return constraint_table(constraints, count)[3]
 
 
 def corner_table(scatter) -> dict[str, np.ndarray]:

@@ -58,11 +58,30 @@ def check_constraints(constraints: list[Constraint], tolerance: float = FEASIBIL
             margins = (limits - values) / scales if c.sense == "<=" else (values - limits) / scales
             worst = int(np.nanargmin(margins)) if not np.isnan(margins).all() else 0
             value, limit, scale, margin = (float(a[worst]) for a in (values, limits, scales, margins))
-        checks.append(ConstraintCheck(
-            name=c.name, equation=c.equation, sense=c.sense, value=value, limit=limit,
-            margin=margin, active=abs(margin) <= ACTIVE_TOL or margin < 0, feasible=margin >= -tolerance,
-            unit=c.unit, description=c.description, scale=scale, tolerance=tolerance))
+        checks.append(constraint_check(c, value, limit, scale, margin, tolerance))
     return checks
+
+
+def constraint_check(c: Constraint, value: float, limit: float, scale: float, margin: float,
+                     tolerance: float = FEASIBILITY_TOL, multiplier: float | None = None) -> ConstraintCheck:
+    """A constraint's float64 figures as a check: active within ACTIVE_TOL (or violated), feasible within
+    ``tolerance``."""
+    return ConstraintCheck(
+        name=c.name, equation=c.equation, sense=c.sense, value=value, limit=limit,
+        margin=margin, active=abs(margin) <= ACTIVE_TOL or margin < 0, feasible=margin >= -tolerance,
+        unit=c.unit, description=c.description, scale=scale, multiplier=multiplier, tolerance=tolerance)
+
+
+def constraint_table(constraints: list[Constraint], count: int) -> tuple[np.ndarray, ...]:
+    """Value, limit, scale and relative margin of each float64 constraint (rows) at ``count`` points (columns; a
+    constraint that does not vary is broadcast)."""
+    rows = [[np.broadcast_to(np.asarray(v, dtype=float), (count,))
+             for v in (c.value, c.limit, c.limit if c.scale is None else c.scale)] for c in constraints]
+    value, limit, scale = np.array(rows, dtype=float).reshape(-1, 3, count).transpose(1, 0, 2)
+    at_most = np.array([c.sense == "<=" for c in constraints], dtype=bool)[:, None]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        margin = np.where(at_most, limit - value, value - limit) / scale
+    return value, limit, scale, margin
 
 
 def evaluate_outputs(formulation: Formulation, design: dict[str, float], params: SimpleNamespace) -> dict[str, Output]:
