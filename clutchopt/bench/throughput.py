@@ -15,12 +15,12 @@ wedge paper mode's batched sweep.
 
 from __future__ import annotations
 
-import time
 from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
 from clutchopt.bench.reference import bench_cases, reference_mode
+from clutchopt.bench.timing import time_once
 from clutchopt.cases import Case
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.batch import BatchSweep
@@ -99,12 +99,8 @@ def throughput_rows(config) -> list[dict]:
 
 def _median(run, repeats: int) -> tuple[dict, float]:
     """``run()`` timed ``repeats`` times: the tally and wall time of the run of median wall time."""
-    timed = []
-    for _ in range(repeats):
-        started = time.perf_counter()
-        tally = run()
-        timed.append((time.perf_counter() - started, tally))
-    seconds, tally = sorted(timed, key=lambda pair: pair[0])[len(timed) // 2]
+    timed = sorted((time_once(run) for _ in range(repeats)), key=lambda pair: pair[0])
+    seconds, tally = timed[len(timed) // 2]
     return tally, seconds
 
 
