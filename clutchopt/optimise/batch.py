@@ -45,7 +45,8 @@ import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.model import Output, namespace
-from clutchopt.optimise.problem import Problem, Solution, SolverInfo, WarmStart, limit_elasticity
+from clutchopt.optimise.in_place import evaluate
+from clutchopt.optimise.problem import Box, Problem, Solution, SolverInfo, WarmStart, limit_elasticity
 from clutchopt.optimise.verify import FEASIBILITY_TOL, constraint_check, constraint_table
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
@@ -67,9 +68,9 @@ def batchable(problem: Problem, names) -> bool:
 
 class _Block:
     """Batched points, one column each: the solver's primal-dual points and scaled objectives, the NLP parameters and
-    bounds, each point's share of its batch's time."""
+    bounds, each point's share of its batch's time and its solver calls."""
 
-    KEYS = ("x", "lam_x", "lam_g", "f", "p", "lbx", "ubx", "time")
+    KEYS = ("x", "lam_x", "lam_g", "f", "p", "lbx", "ubx", "time", "solves")
 
     def __init__(self, index: np.ndarray, **arrays: np.ndarray):
         self.index, self.arrays = index, arrays
@@ -82,6 +83,28 @@ class _Block:
     def column(self, j: int) -> "_Block":
         j = j % len(self.index)
         return _Block(self.index[j:j + 1], **{key: value[..., j:j + 1] for key, value in self.arrays.items()})
+
+
+class _Chain(_Block):
+    """Chained points with their KKT verdicts (``ok``)."""
+
+    def __init__(self, index: np.ndarray, ok: np.ndarray, **arrays: np.ndarray):
+        super().__init__(index, **arrays)
+        self.ok = ok
+
+    def __getattr__(self, key: str) -> np.ndarray:
+        try:
+            return self.arrays[key]
+        except KeyError:
+            raise AttributeError(key) from None
+
+    def block(self, passed: int) -> _Block:
+        """The first ``passed`` points."""
+        return _Block(self.index[:passed], **{key: value[:, :passed] for key, value in self.arrays.items()})
+
+
+class _Unsettled(Exception):
+    """A re-solve of the batched integer search that did not pass its check: ``Problem.solve`` decides the point."""
 
 
 class _Start:
@@ -100,6 +123,13 @@ class _Start:
             self.scale, self.x, self.lam_x, self.lam_g = a["p"][m:m + n], a["x"], a["lam_x"], a["lam_g"]
             self.objective = float(a["f"][0] * a["p"][m + n])  # the scaled objective times its normaliser
         self.names, self.integer = sweep.names, sweep.problem._integer
+        self.combo = np.round(self.x[sweep.integer] * self.scale[sweep.integer])  # the free integers (SI)
+        objective = self.objective
+        self.f_scale = abs(objective) if math.isfinite(objective) and objective != 0 else 1.0  # the batch's normaliser
+
+    @property
+    def seed(self) -> dict:
+        return {"x": self.x, "lam_x": self.lam_x, "lam_g": self.lam_g}
 
     @property
     def warm(self) -> WarmStart:
@@ -135,8 +165,9 @@ class BatchSweep:
         self.integer = [i for i in problem._integer if self.lower[i] < self.upper[i]]
         fixed = self.lower == self.upper
         fixed[self.integer] = True
-        self.fixed_rows = problem.fixed_only_rows(fixed)  # constraints of fixed variables alone, in a batch
+        _, self._fixed_values = problem.fixed_only(fixed)  # constraints of fixed variables alone, in a batch
         self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
+        self._searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
         self.solves, self.solver_s, self.check_s = 0, 0.0, 0.0
 
     def point_case(self, k: int) -> Case:
@@ -152,13 +183,18 @@ class BatchSweep:
             alone: dict[int, Solution] = {}
             while k < end and time.perf_counter() < deadline:  # each turn solves at least one point
                 count = 1 << (min(size, end - k).bit_length() - 1)  # a power of two: few chained functions
-                block, chained = self._batch(start, k, count) if start is not None else (None, 0)
+                block, chained, searching = self._batch(start, k, count) if start is not None else (None, 0, False)
                 passed = 0 if block is None else len(block.index)
                 if passed:
                     blocks.append(block)
                     start, k = _Start(self, block=block.column(-1)), k + passed
                 if chained and passed == chained:
                     size = min(2 * size, LONGEST_BATCH)
+                    continue
+                settled = self._settle(start, k) if searching else None
+                if settled is not None:  # the integer search decided point k in the batch
+                    blocks.append(settled)
+                    start, k = _Start(self, block=settled), k + 1
                     continue
                 if chained:  # point k failed a test in the batch: the next batch starts short
                     size = FIRST_BATCH
@@ -175,36 +211,47 @@ class BatchSweep:
         self.solver_s += solution.solver.time_s
         return solution
 
-    def _batch(self, start: _Start, k: int, count: int) -> tuple[_Block | None, int]:
+    def _batch(self, start: _Start, k: int, count: int) -> tuple[_Block | None, int, bool]:
         """Chain up to ``count`` points from ``start``: the columns up to the first that fails a test (None if it is
-        the first), and how many were chained (fewer than asked where the batch's integers are excluded ahead, none
-        if they are at ``k``)."""
+        the first), how many were chained (fewer than asked where the batch's integers are excluded ahead, none
+        if they are at ``k``), and whether the first point left is the integer search's to decide (its integers
+        excluded there, or a neighbouring combination to try)."""
         lower, upper = self.lower.copy(), self.upper.copy()
-        lower[self.integer] = upper[self.integer] = np.round(start.x[self.integer] * start.scale[self.integer])
-        lbx, ubx = lower / start.scale, upper / start.scale
-        f_scale = abs(start.objective) if math.isfinite(start.objective) and start.objective != 0 else 1.0
-        p = np.vstack([self.values[:, k:k + count], np.repeat(start.scale[:, None], count, axis=1),
-                       np.full((1, count), f_scale)])
-        x0 = np.clip(start.x, lbx, ubx)
+        lower[self.integer] = upper[self.integer] = start.combo
         if self.integer:  # the batch stops short of a point its integers cannot serve whatever the rest (the search
             # excludes them there without a solve)
             excluded = self._excluded(lower, k, count)
             if excluded.any():
                 first = int(np.argmax(excluded))
                 if first == 0:
-                    return None, 0  # foreseen: nothing chained
+                    return None, 0, True  # foreseen: nothing chained
                 count = 1 << (first.bit_length() - 1)
-                p = p[:, :count]
+        chain = self._chain(start, k, count, lower, upper, start.seed)
+        if chain is None:
+            return None, count, False
+        ends = self._ends_batch(chain.x, chain.lam_x, chain.f[0], chain.p, k)
+        ok = chain.ok & ~ends
+        passed = int(np.argmin(ok)) if not ok.all() else count
+        return (chain.block(passed) if passed else None), count, passed < count and bool(chain.ok[passed])
+
+    def _chain(self, start: _Start, k: int, count: int, lower: np.ndarray, upper: np.ndarray,
+               seed: dict, method: str = "sqp_chain") -> "_Chain | None":
+        """Points k .. k + count - 1 re-solved by the chained SQP from ``seed``'s primal-dual point (``x``, ``lam_x``,
+        ``lam_g``), scaled as ``start``, in the box ``lower``, ``upper`` (SI), each point's KKT conditions checked;
+        None after an evaluation error inside CasADi (the points go to Problem.solve, which reports it)."""
+        lbx, ubx = lower / start.scale, upper / start.scale
+        p = np.vstack([self.values[:, k:k + count], np.repeat(start.scale[:, None], count, axis=1),
+                       np.full((1, count), start.f_scale)])
         began = time.perf_counter()
         try:
-            x, lam_x, lam_g, f = (np.asarray(out) for out in self.problem.chained_sqp(count)(
-                x0, start.lam_x, start.lam_g, p, lbx, ubx))
-        except RuntimeError:  # an evaluation error inside CasADi: the points go to Problem.solve, which reports it
+            x, lam_x, lam_g, f = evaluate(self.problem.chained_sqp(count, method), np.clip(seed["x"], lbx, ubx),
+                                          seed["lam_x"], seed["lam_g"], p, lbx, ubx)
+        except RuntimeError:
             x = None
         seconds = time.perf_counter() - began
         self.solves, self.solver_s = self.solves + count, self.solver_s + seconds
         if x is None:
-            return None, count
+            return None
         lbx, ubx = np.repeat(lbx[:, None], count, axis=1), np.repeat(ubx[:, None], count, axis=1)
         finite = np.isfinite(f[0]) & np.all(np.isfinite(x), axis=0) & np.all(np.isfinite(lam_g), axis=0)
         if not finite.all():  # a failed point: its numbers must not poison the others' checks
@@ -213,14 +260,61 @@ class BatchSweep:
         gradient, g = self.problem.kkt_terms(x, p, lam_g)
         self.check_s += time.perf_counter() - began
         ok = finite & self.problem.first_order_optimal(x, lam_x, lam_g, lbx, ubx, gradient, g)
-        ok &= ~self._ends_batch(x, lam_x, f[0], p, k)
-        passed = int(np.argmin(ok)) if not ok.all() else count
-        if not passed:
-            return None, count
-        keep = slice(0, passed)
-        return _Block(np.arange(k, k + passed), x=x[:, keep], lam_x=lam_x[:, keep], lam_g=lam_g[:, keep],
-                      f=f[:, keep], p=p[:, keep], lbx=lbx[:, keep], ubx=ubx[:, keep],
-                      time=np.full((1, passed), seconds / count)), count
+        return _Chain(np.arange(k, k + count), ok, x=x, lam_x=lam_x, lam_g=lam_g, f=f, p=p, lbx=lbx, ubx=ubx,
+                      time=np.full((1, count), seconds / count), solves=np.ones((1, count)))
+
+    def _settle(self, start: _Start, k: int) -> _Block | None:
+        """Point k, where a batch ended for the integer search: ``Problem.solve``'s warm search (``Problem.descend``
+        from the batch's integers; should they fail, the relaxation and ``Problem.nearest_integers``), each
+        combination re-solved by a one-point chained SQP from the previous point's optimum and KKT-checked, its
+        exclusion tested by ``Problem.violated_whatever_the_rest``. None where a re-solve does not pass its check
+        or no integer point is found (``Problem.solve`` decides the point); the search is kept for the point's
+        Solution."""
+        search: list[dict] = []
+        box, seed = Box(start.scale, self.lower, self.upper), start.seed
+        p = np.concatenate([self.values[:, k], start.scale, [start.f_scale]])
+        runs: list[_Chain] = []
+
+        def attempt(combo, seed, methods=None) -> dict | None:
+            lower, upper = self.lower.copy(), self.upper.copy()
+            lower[self.integer] = upper[self.integer] = combo
+            entry = self.problem.integer_entry(self.integer, combo)
+            lbx, ubx = lower / start.scale, upper / start.scale
+            excluded = self.problem.violated_whatever_the_rest(p, lbx, ubx, np.clip(seed["x"], lbx, ubx))
+            if excluded:
+                search.append({**entry, "status": f"excluded: {', '.join(excluded)}", "feasible": False,
+                               "objective": math.nan})
+                return None
+            run = solved(lower, upper, seed, "sqp_chain")
+            search.append({**entry, "status": BATCHED, "feasible": True, "objective": run["value"]})
+            return run
+
+        def solved(lower, upper, seed, method) -> dict:
+            chain = self._chain(start, k, 1, lower, upper, seed, method)
+            if chain is None or not chain.ok[0]:
+                raise _Unsettled
+            runs.append(chain)
+            return {key: value[:, 0] for key, value in chain.arrays.items()} | {
+                "f": float(chain.f[0, 0]), "value": float(chain.f[0, 0]) * start.f_scale, "chain": chain}
+
+        try:
+            kept = self.problem.descend(box, self.integer, start.combo, seed, search, attempt)
+            if kept is None:  # the batch's integers fail here: the relaxation, from the same point
+                lam_x = start.lam_x.copy()
+                lam_x[self.integer] = 0.0
+                relaxed = solved(self.lower, self.upper, {**seed, "lam_x": lam_x}, "sqp_search")
+                if self.problem.off_scale(relaxed["x"][: len(self.names)]):
+                    return None
+                kept = self.problem.nearest_integers(box, self.integer, relaxed, search, attempt)
+        except _Unsettled:
+            return None
+        if kept is None:
+            return None
+        block = kept["chain"].block(1)
+        block.arrays["time"][:] = sum(float(run.arrays["time"][0, 0]) for run in runs)
+        block.arrays["solves"][:] = len(runs)
+        self._searches[k] = search
+        return block
 
     def _ends_batch(self, x, lam_x, f_hat, p, k: int) -> np.ndarray:
         """Per column: a neighbouring integer combination the warm search would solve or, without free integers, an
@@ -229,8 +323,7 @@ class BatchSweep:
         solver's tolerance of the objective, one unit in that direction inside the bounds, and solves every such
         combination that breaks no constraint of fixed variables alone."""
         if not self.integer:
-            moved = np.abs(x[: len(self.names)])
-            return np.any((moved > 0) & ((moved > 10) | (moved < 0.1)), axis=0)
+            return self.problem.off_scale(x[: len(self.names)])
         integer, scale = self.integer, p[len(self.problem.formulation.quantities):][: len(self.names), 0]
         combo = np.round(x[integer, 0] * scale[integer])  # the batch's integers, fixed through their bounds
         moves = np.abs(lam_x[integer]) / scale[integer, None] > self.problem.negligible(f_hat)
@@ -251,14 +344,15 @@ class BatchSweep:
     def _excluded(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
         """Per point k .. k + count - 1: the fixed variables of ``design`` (SI; integers and variables fixed by the
         case) break a constraint that depends on them alone there, so the integer search would exclude them without a
-        solve. Evaluated in float64 by the formulation's equations, EXCLUSION_SPAN points ahead at once, per integer
-        combination."""
+        solve (the test of ``Problem.violated_whatever_the_rest``). Evaluated EXCLUSION_SPAN points ahead at once,
+        per integer combination."""
         key = tuple(design[self.integer])
         first, table = self._exclusions.get(key, (0, np.zeros(0, dtype=bool)))
         if not first <= k <= k + count <= first + len(table):
             first, stop = k, min(self.count, k + max(count, EXCLUSION_SPAN))
-            margin = _Float64(self, np.repeat(design[:, None], stop - k, axis=1), np.arange(k, stop)).margin
-            table = np.any(margin[self.fixed_rows] < -10 * FEASIBILITY_TOL, axis=0)
+            p = np.vstack([self.values[:, k:stop], np.ones((len(design) + 1, stop - k))])  # unit scales: x is SI
+            g, = evaluate(self.problem._mapped(self._fixed_values, stop - k), design, p)
+            table = np.any(g > 10 * FEASIBILITY_TOL, axis=0)
             self._exclusions[key] = (first, table)
         return table[k - first:k - first + count]
 
@@ -300,19 +394,7 @@ class Solutions(Sequence):
         return ["optimal" if isinstance(e, tuple) else e.status for e in self._entries]
 
 
-class _Float64:
-    """The formulation's constraints evaluated in float64 at designs (SI, one column each) and sweep points."""
-
-    def __init__(self, sweep: BatchSweep, design: np.ndarray, points: np.ndarray):
-        f, count = sweep.problem.formulation, len(points)
-        self.x = namespace(dict(zip(sweep.names, design)))
-        self.params = namespace({q.name: row for q, row in zip(f.quantities, sweep.values[:, points])})
-        with np.errstate(all="ignore"):
-            self.constraints = f.constraints(self.x, self.params)
-        self.value, self.limit, self.scale, self.margin = constraint_table(self.constraints, count)
-
-
-class _Checked(_Float64):
+class _Checked:
     """Batched points checked in float64 at once by the formulation's own equations (constraints, objective), one
     column per point; their outputs and Solutions are built when read."""
 
@@ -322,7 +404,11 @@ class _Checked(_Float64):
         m, n, count = len(f.quantities), len(sweep.names), len(block.index)
         self.design = a["x"][:n] * a["p"][m:m + n]
         self.design[problem._integer] = np.round(self.design[problem._integer])
-        super().__init__(sweep, self.design, block.index)
+        self.x = namespace(dict(zip(sweep.names, self.design)))
+        self.params = namespace({q.name: row for q, row in zip(f.quantities, sweep.values[:, block.index])})
+        with np.errstate(all="ignore"):
+            self.constraints = f.constraints(self.x, self.params)
+        self.value, self.limit, self.scale, self.margin = constraint_table(self.constraints, count)
         self.feasible = np.all(self.margin >= -FEASIBILITY_TOL, axis=0)
         self.objective = np.broadcast_to(np.asarray(problem.objective.function(self.x, self.params), dtype=float),
                                          (count,))
@@ -354,8 +440,9 @@ class _Checked(_Float64):
             f.coupling, f.mode, problem.objective.name, problem.objective.unit,
             "optimal" if feasible else "unverified", objective, dict(zip(sweep.names, map(float, self.design[:, j]))),
             {name: Output(float(values[j]), out.unit, out.description) for name, (values, out) in self.outputs.items()},
-            checks, SolverInfo("sqpmethod", BATCHED, None, float(a["time"][0]), 1),
+            checks, SolverInfo("sqpmethod", BATCHED, None, float(a["time"][0]), int(a["solves"][0])),
             None if feasible else "SQP reported a KKT point but the float64 check finds a constraint violated",
-            [], {name: (float(lo), float(hi)) for name, lo, hi in zip(sweep.names, sweep.lower, sweep.upper)},
+            sweep._searches.get(int(self.block.index[j]), []),
+            {name: (float(lo), float(hi)) for name, lo, hi in zip(sweep.names, sweep.lower, sweep.upper)},
             problem.sensitivities(a, objective) if feasible else {},
             a["p"][m:m + n].copy(), (a["lam_x"].copy(), a["lam_g"].copy()), {v.name: v.unit for v in f.variables})

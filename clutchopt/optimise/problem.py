@@ -35,6 +35,7 @@ import math
 import time
 from dataclasses import dataclass, field, replace
 from types import SimpleNamespace
+from typing import NamedTuple
 
 import casadi as ca
 import numpy as np
@@ -42,6 +43,7 @@ import numpy as np
 from clutchopt.cases import Case
 from clutchopt.formulations.start_up import with_start_up
 from clutchopt.model import Formulation, Output, namespace
+from clutchopt.optimise.in_place import evaluate
 from clutchopt.optimise.start_up import (
     BACK_OFF_STEPS,
     MAX_INTERVALS,
@@ -87,6 +89,12 @@ class SolverOptions:
         leaves the batch for ``Problem.solve``), so that the points after a failed one cost little."""
         return {**self.sqp(), "max_iter": 10}
 
+    def sqp_search(self) -> dict:
+        """SQP for the integer search in a batch, whose start may be off the optimum (a relaxation from the
+        previous integers, a neighbouring integer): the Hessian regularised where it is not positive definite,
+        so that a first step does not overshoot (3 iterations instead of 10 on the cable's relaxation)."""
+        return {**self.sqp_chain(), "convexify_strategy": "regularize"}
+
     def ipopt(self) -> dict:
         return {
             "ipopt.tol": self.tol,
@@ -108,6 +116,14 @@ class SolverInfo:
     iterations: int | None  # summed over the relaxation and integer neighbours (None: solved in a chained batch)
     time_s: float  # wall time of all solver calls (an infeasibility diagnosis included), without problem construction
     solves: int = 1  # design solves (the diagnosis not counted)
+
+
+class Box(NamedTuple):
+    """The design's box in one solve: variable scales and bounds (SI)."""
+
+    scale: np.ndarray
+    lower: np.ndarray
+    upper: np.ndarray
 
 
 @dataclass
@@ -133,6 +149,10 @@ class ScaledData:
     @property
     def ubx(self) -> np.ndarray:
         return np.concatenate([self.upper / self.scale, self.internal_upper])
+
+    @property
+    def box(self) -> Box:
+        return Box(self.scale, self.lower, self.upper)
 
     @property
     def x0(self) -> np.ndarray:
@@ -262,7 +282,7 @@ class Problem:
         lam_g = ca.SX.sym("lam_g", g.shape[0])
         lagrangian = self._nlp["f"] + ca.dot(lam_g, g)
         self._kkt_terms = ca.Function("kkt", [x_all, self._nlp["p"], lam_g],  # the KKT check of SQP's points
-                                      [ca.gradient(lagrangian, x_all), g[: self.n_ineq]])
+                                      [ca.densify(ca.gradient(lagrangian, x_all)), ca.densify(g[: self.n_ineq])])
         self._case_gradient = ca.Function("dL_dcase", [x_all, self._nlp["p"], lam_g],  # sensitivities
                                           [ca.gradient(lagrangian, p_case)])
         if start_up:
@@ -273,7 +293,8 @@ class Problem:
         self._elastic = None
         self._solvers = {"ipopt": self._solver}
         self._maps: dict[tuple[str, int], ca.Function] = {}
-        self._chains: dict[int, ca.Function] = {}
+        self._fixed_only: dict[bytes, tuple[np.ndarray, ca.Function]] = {}
+        self._chains: dict[tuple[str, int], ca.Function] = {}
 
     @property
     def nlp(self) -> dict:
@@ -415,7 +436,8 @@ class Problem:
             sqp = ("sqp",) if self.options.warm_sqp and self.start_up is None else ()  # small dense NLPs only
             methods = sqp + ("warm",) if seed is not None else ("ipopt",)
             if integer and seed is not None and self._within(data, integer, combo):
-                kept = self._descend(data, integer, combo, seed, runs, search, first=methods)
+                kept = self.descend(data.box, integer, combo, seed, search, self._fixing(data, runs, search),
+                                     first=methods)
                 if kept is not None:
                     return self._finish(case, kept, runs, data, search)
                 lam_x = seed["lam_x"].copy()  # the previous integers fail here: the relaxation, from the same point
@@ -428,26 +450,15 @@ class Problem:
             relaxed = self._attempt(data, data.lbx, data.ubx, data.x0, None, ("ipopt",), runs)
         n = len(data.scale)
         x_opt = relaxed["x"][:n] * data.scale
-        off = (np.abs(x_opt) > 0) & ((np.abs(x_opt) > 10 * data.scale) | (np.abs(x_opt) < 0.1 * data.scale))
-        if relaxed["ok"] and off.any():  # the start was far off: solve again, scaled by the first optimum
+        if relaxed["ok"] and self.off_scale(relaxed["x"][:n]):  # the start was far off: solve again, scaled by the
+            # first optimum
             data = self.scaled_data(solved, dict(zip(self._names, x_opt)), None, relaxed["x"][n:],
                                     self._mesh_of(data.p), checked)
             relaxed = self._attempt(data, data.lbx, data.ubx, data.x0, None, ("ipopt",), runs)
         integer = self._free_integers(data)
         if not integer or not relaxed["ok"]:
             return self._finish(case, relaxed, runs, data, search)
-        nearest = np.clip(np.round(relaxed["x"][integer] * data.scale[integer]), data.lower[integer],
-                          data.upper[integer])
-        kept = self._descend(data, integer, nearest, relaxed, runs, search, bound=relaxed["f"])
-        for reach in (1, 2) if kept is None else ():  # the nearest integers fail: floor and ceiling, then one further
-            x_relaxed = relaxed["x"][: len(data.scale)] * data.scale
-            for combo in self._integer_neighbours(x_relaxed, integer, data.lower, data.upper, reach):
-                if not self._tried(search, integer, combo):
-                    run = self._try_integers(data, integer, combo, relaxed, runs, search)
-                    if run is not None and (kept is None or run["value"] < kept["value"]):
-                        kept = run
-            if kept is not None:
-                break
+        kept = self.nearest_integers(data.box, integer, relaxed, search, self._fixing(data, runs, search))
         if kept is None:  # the relaxation is feasible, no integer near it is
             tried = "; ".join(", ".join(f"{k}={v}" for k, v in e.items() if k in self._names) for e in search)
             return self._finish(case, runs[-1], runs, data, search,
@@ -466,10 +477,12 @@ class Problem:
     def _tried(self, search: list[dict], integer: list[int], combo) -> bool:
         return any(all(entry[self._names[i]] == c for i, c in zip(integer, combo)) for entry in search)
 
-    def _descend(self, data, integer, combo, seed, runs, search, bound: float | None = None,
-                 first: tuple[str, ...] = ("ipopt",)) -> dict | None:
+    def descend(self, box: Box, integer, combo, seed, search, attempt, bound: float | None = None,
+                first: tuple[str, ...] = ("ipopt",)) -> dict | None:
         """From the integers ``combo``, step to a neighbouring integer while the bound multipliers of the fixed
         integers say the objective falls that way and the step lowers it; None if ``combo`` itself fails.
+        ``attempt(combo, seed, methods)``: the run with the integers fixed at ``combo`` if it is a verified optimum,
+        else None, logged in ``search`` (``Problem.solve``: :meth:`_try_integers`; a batched sweep: one-point SQP).
         ``bound``: the relaxation's scaled objective; an integer point that reaches it cannot be beaten.
         ``first``: the methods for ``combo``; the neighbours are solved by IPOPT from a cold start."""
         kept, queue, methods = None, [combo], first
@@ -477,21 +490,45 @@ class Problem:
             combo = queue.pop(0)
             if self._tried(search, integer, combo):
                 continue
-            run = self._try_integers(data, integer, combo, kept or seed, runs, search, methods)
+            run = attempt(combo, kept or seed, methods)
             methods = ("ipopt",)
             if run is None and kept is None:
                 return None
             if run is not None and (kept is None or run["value"] < kept["value"]):
-                kept, queue = run, self._downhill(run, data, integer)
+                kept, queue = run, self._downhill(run, box, integer)
                 if bound is not None and run["f"] <= bound + self.negligible(bound):
                     break
+        return kept
+
+    def nearest_integers(self, box: Box, integer, relaxed: dict, search, attempt) -> dict | None:
+        """The integer point of a relaxation's optimum ``relaxed``: :meth:`descend` from its rounded integers, bounded
+        by its objective; should they fail, the best of its floor and ceiling, then one further (``attempt`` as for
+        :meth:`descend`). None: no integer point near the relaxation is feasible."""
+        nearest = np.clip(np.round(relaxed["x"][integer] * box.scale[integer]), box.lower[integer], box.upper[integer])
+        kept = self.descend(box, integer, nearest, relaxed, search, attempt, bound=relaxed["f"])
+        for reach in (1, 2) if kept is None else ():
+            x_relaxed = relaxed["x"][: len(box.scale)] * box.scale
+            for combo in self._integer_neighbours(x_relaxed, integer, box.lower, box.upper, reach):
+                if not self._tried(search, integer, combo):
+                    run = attempt(combo, relaxed, ("ipopt",))
+                    if run is not None and (kept is None or run["value"] < kept["value"]):
+                        kept = run
+            if kept is not None:
+                break
         return kept
 
     def negligible(self, f_hat):
         """A change of the scaled objective within the solver's tolerance of it (elementwise for arrays)."""
         return 10 * self.options.tol * np.maximum(np.abs(f_hat), 1e-300)
 
-    def _downhill(self, run: dict, data: ScaledData, integer: list[int]) -> list[np.ndarray]:
+    @staticmethod
+    def off_scale(x_hat: np.ndarray) -> np.ndarray:
+        """An optimum more than tenfold off its variable scales (per column for a 2-D ``x_hat``): solved again,
+        scaled by it."""
+        moved = np.abs(x_hat)
+        return np.any((moved > 0) & ((moved > 10) | (moved < 0.1)), axis=0)
+
+    def _downhill(self, run: dict, box: Box, integer: list[int]) -> list[np.ndarray]:
         """Neighbours of a fixed-integer optimum in the directions its objective falls to first order.
 
         With integer i fixed through its bounds, d f_hat / d x_hat_i = -lam_x_i, so one unit step changes the
@@ -499,12 +536,17 @@ class Problem:
         the integers (the premise of rounding a relaxation at all), the other direction cannot win, nor can this
         one when the first-order gain is below the solver's tolerance of the objective."""
         lam = run["lam_x"][integer]
-        gain = np.abs(lam) / data.scale[integer]
+        gain = np.abs(lam) / box.scale[integer]
         steps = np.where(gain > self.negligible(run["f"]), np.sign(lam), 0.0)
-        current = np.round(run["x"][integer] * data.scale[integer])
+        current = np.round(run["x"][integer] * box.scale[integer])
         choices = [sorted({c, min(max(c + s, lo), hi)}, key=lambda k: k != c + s)
-                   for c, s, lo, hi in zip(current, steps, data.lower[integer], data.upper[integer])]
+                   for c, s, lo, hi in zip(current, steps, box.lower[integer], box.upper[integer])]
         return [np.array(combo) for combo in itertools.product(*choices) if not np.array_equal(combo, current)]
+
+    def _fixing(self, data: ScaledData, runs: list[dict], search: list[dict]):
+        """``Problem.solve``'s ``attempt`` for :meth:`descend`: :meth:`_try_integers` on ``data``."""
+        integer = self._free_integers(data)
+        return lambda combo, seed, methods: self._try_integers(data, integer, combo, seed, runs, search, methods)
 
     def _try_integers(self, data, integer, combo, seed, runs, search,
                       methods: tuple[str, ...] = ("ipopt",)) -> dict | None:
@@ -515,8 +557,8 @@ class Problem:
         lower[integer] = upper[integer] = combo
         lbx, ubx = self._scaled_box(lower, upper, data.scale, (data.internal_lower, data.internal_upper))
         x0 = np.clip(seed["x"], lbx, ubx)
-        entry = {self._names[i]: int(c) for i, c in zip(integer, combo)}
-        excluded = self._violated_whatever_the_rest(data, lbx, ubx, x0)
+        entry = self.integer_entry(integer, combo)
+        excluded = self.violated_whatever_the_rest(data.p, lbx, ubx, x0)
         if excluded:
             search.append({**entry, "status": f"excluded: {', '.join(excluded)}", "feasible": False,
                            "objective": math.nan})
@@ -525,18 +567,30 @@ class Problem:
         search.append({**entry, "status": run["status"], "feasible": run["feasible"], "objective": run["value"]})
         return run if run["ok"] and run["feasible"] else None
 
-    def _violated_whatever_the_rest(self, data: ScaledData, lbx, ubx, x0) -> list[str]:
-        """Constraints that depend only on fixed variables (integers included) and are violated there."""
-        rows = self.fixed_only_rows(lbx == ubx)
+    def integer_entry(self, integer: list[int], combo) -> dict[str, int]:
+        """The integer choice ``combo`` by name (the start of an ``integer_search`` entry)."""
+        return {self._names[i]: int(c) for i, c in zip(integer, combo)}
+
+    def violated_whatever_the_rest(self, p, lbx, ubx, x0) -> list[str]:
+        """Constraints that depend only on fixed variables (integers included) and are violated at ``x0`` (scaled;
+        the fixed variables at their bounds)."""
+        rows, values = self.fixed_only(lbx == ubx)
         if not len(rows):
             return []
-        g = self._constraint_values(x0, data.p).full().ravel()
-        return list(dict.fromkeys(self.row_names[k] for k in rows if g[k] > 10 * FEASIBILITY_TOL))
+        g = evaluate(values, x0, p)[0].ravel()
+        return list(dict.fromkeys(self.row_names[k] for k, gk in zip(rows, g) if gk > 10 * FEASIBILITY_TOL))
 
-    def fixed_only_rows(self, fixed: np.ndarray) -> np.ndarray:
-        """The constraint rows that no variable outside ``fixed`` (a mask over x) enters."""
-        return np.flatnonzero(~np.any(self._row_depends[:, : len(fixed)] & ~fixed, axis=1)
-                              & ~np.any(self._row_depends[:, len(fixed):], axis=1))
+    def fixed_only(self, fixed: np.ndarray) -> tuple[np.ndarray, ca.Function]:
+        """The constraint rows that no variable outside ``fixed`` (a mask over x) enters, and their normalised values
+        as a CasADi function of (x, p) (built once per mask)."""
+        key = np.asarray(fixed, dtype=bool).tobytes()
+        if key not in self._fixed_only:
+            rows = np.flatnonzero(~np.any(self._row_depends[:, : len(fixed)] & ~fixed, axis=1)
+                                  & ~np.any(self._row_depends[:, len(fixed):], axis=1))
+            x, p = self._nlp["x"], self._nlp["p"]
+            name = f"g_fixed_{len(self._fixed_only)}"  # one name per mask: mapped functions are cached by name
+            self._fixed_only[key] = rows, ca.Function(name, [x, p], [ca.densify(self._nlp["g"][[int(r) for r in rows]])])
+        return self._fixed_only[key]
 
     def _rounded(self, design: dict[str, float]) -> dict[str, float]:
         """Integers rounded (IPOPT may leave them 1e-9 off their fixed bounds)."""
@@ -572,8 +626,7 @@ class Problem:
 
     def kkt_terms(self, x, p, lam_g) -> tuple[np.ndarray, np.ndarray]:
         """The Lagrangian's gradient in x and the inequality constraints at points (columns), by CasADi."""
-        gradient, g = self._mapped(self._kkt_terms, x.shape[1])(x, p, lam_g)
-        return np.asarray(gradient), np.asarray(g)
+        return evaluate(self._mapped(self._kkt_terms, x.shape[1]), x, p, lam_g)
 
     def first_order_optimal(self, x, lam_x, lam_g, lbx, ubx, gradient, g) -> np.ndarray:
         """KKT conditions at primal-dual points (one per column; ``gradient``, ``g`` from :meth:`kkt_terms`),
@@ -595,20 +648,21 @@ class Problem:
             self._maps[key] = function if count == 1 else function.map(count)
         return self._maps[key]
 
-    def chained_sqp(self, count: int) -> ca.Function:
+    def chained_sqp(self, count: int, method: str = "sqp_chain") -> ca.Function:
         """``count`` SQP re-solves in one CasADi call, each started from the primal-dual optimum of the one before:
         (x0, lam_x0, lam_g0, p, lbx, ubx) -> (x, lam_x, lam_g, f), one column per point (``p``, ``lbx``, ``ubx``:
-        a column per point, or one for all; ``f`` the scaled objective). Built once per count."""
-        if count not in self._chains:
+        a column per point, or one for all; ``f`` the scaled objective). ``method``: ``sqp_chain``, or ``sqp_search``
+        (regularised). Built once per method and count."""
+        if (method, count) not in self._chains:
             x0, lam_x0 = (ca.MX.sym(name, self._nlp["x"].shape[0]) for name in ("x0", "lam_x0"))
             lam_g0, p = ca.MX.sym("lam_g0", self._nlp["g"].shape[0]), ca.MX.sym("p", self._nlp["p"].shape[0])
             lbx, ubx = (ca.MX.sym(name, self._nlp["x"].shape[0]) for name in ("lbx", "ubx"))
-            out = self._solver_for("sqp_chain")(x0=x0, lam_x0=lam_x0, lam_g0=lam_g0, p=p, lbx=lbx, ubx=ubx,
+            out = self._solver_for(method)(x0=x0, lam_x0=lam_x0, lam_g0=lam_g0, p=p, lbx=lbx, ubx=ubx,
                                                 lbg=self._lbg, ubg=0.0)
             step = ca.Function("sqp_step", [x0, lam_x0, lam_g0, p, lbx, ubx],
                                [out["x"], out["lam_x"], out["lam_g"], out["f"]])
-            self._chains[count] = step.mapaccum("sqp_chain", count, [0, 1, 2], [0, 1, 2])
-        return self._chains[count]
+            self._chains[method, count] = step.mapaccum(method, count, [0, 1, 2], [0, 1, 2])
+        return self._chains[method, count]
 
     def _run(self, data: ScaledData, lbx, ubx, x0, seed: dict | None, method: str = "ipopt") -> dict:
         """One solve, its design checked in float64 (``design``, ``checks``, ``value``, ``feasible``)."""
@@ -637,7 +691,8 @@ class Problem:
             f = self.formulation
             plugin, options = {"warm": ("ipopt", self.options.ipopt_warm()),
                                "sqp": ("sqpmethod", self.options.sqp()),
-                               "sqp_chain": ("sqpmethod", self.options.sqp_chain())}[method]
+                               "sqp_chain": ("sqpmethod", self.options.sqp_chain()),
+                               "sqp_search": ("sqpmethod", self.options.sqp_search())}[method]
             self._solvers[method] = ca.nlpsol(f"{f.coupling}_{f.mode}_{self.objective.name}_{method}", plugin,
                                               self._nlp, options)
         return self._solvers[method]
