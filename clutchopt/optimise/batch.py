@@ -7,8 +7,8 @@ chains the SQP re-solves inside CasADi (``Problem.chained_sqp``: ``mapaccum`` ov
 point started from the primal-dual optimum of the one before), and the tests of ``Problem.solve`` run afterwards
 on all points of the batch at once:
 
-- the KKT conditions of every point, apart from the solver (``Problem.kkt_terms``, one mapped CasADi evaluation,
-  and ``Problem.first_order_optimal``);
+- the KKT conditions of every point, apart from the solver (``Problem.first_order_optimal``, one mapped CasADi
+  evaluation);
 - the integer test of the warm integer search: a point whose fixed integers' bound multipliers point to a
   neighbouring integer the search would solve ends the chain, for the search decides there; and a batch stops
   short of the point where its integers break a constraint of fixed variables alone (the search excludes them
@@ -45,7 +45,6 @@ import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.model import Output, namespace
-from clutchopt.optimise.in_place import evaluate
 from clutchopt.optimise.problem import Box, Problem, Solution, SolverInfo, WarmStart, limit_elasticity
 from clutchopt.optimise.verify import FEASIBILITY_TOL, constraint_check, constraint_table
 
@@ -53,8 +52,18 @@ FIRST_BATCH = 8  # points in the batch after a point solved one by one
 LONGEST_BATCH = 256  # doubling stops here: a longer batch saves little call overhead and risks more waste
 WINDOW = 1024  # points whose float64 checks run together; results are handed on (and recorded) per window,
 WINDOW_S = 0.25  # or after this many seconds of solving, whichever comes first (a progress bar moves on)
-EXCLUSION_SPAN = 1024  # points ahead whose exclusion of an integer combination is evaluated at once
+EXCLUSION_SPAN = LONGEST_BATCH  # points ahead whose exclusion of an integer combination is evaluated at once (a batch's
+# points at least; fewer cost less where the integers change often, since each table is a mapped CasADi call)
+PADDING = 32  # a chain may repeat its last point this many times to save a call (about 4 us a repeated point
+# against 0.2 ms a call, on the cable)
 BATCHED = "batched, KKT verified"
+
+
+def chain_length(count: int) -> int:
+    """The chained function for ``count`` points: a power of two (few functions to build), ``count`` rounded up
+    where that repeats the last point at most PADDING times, else down (the rest go to the next batch)."""
+    up = 1 << (count - 1).bit_length()
+    return up if up - count <= PADDING else up >> 1
 
 
 def batchable(problem: Problem, names) -> bool:
@@ -165,9 +174,19 @@ class BatchSweep:
         self.integer = [i for i in problem._integer if self.lower[i] < self.upper[i]]
         fixed = self.lower == self.upper
         fixed[self.integer] = True
-        _, self._fixed_values = problem.fixed_only(fixed)  # constraints of fixed variables alone, in a batch
+        # the constraints of fixed variables alone that the batch's integers enter (one of the case alone that breaks
+        # at a point stops a batch there by its KKT check, and Problem.solve diagnoses it)
+        entered = np.isin(np.arange(len(fixed)), self.integer)
+        rows, self._fixed_values = problem.fixed_only(fixed, entered)
+        self._fixed_names = np.array([problem.row_names[row] for row in rows])
+        self._span = min(EXCLUSION_SPAN, self.count)
+        unit = np.vstack([self.values, np.ones((len(fixed) + 1, self.count))]).T  # unit scales: x is SI
+        self._unit_p = np.concatenate([unit, np.repeat(unit[-1:], self._span, axis=0)])  # a point a row, then padding:
+        # the memory of the parameter columns of any span of points, past the sweep's end the last one repeated
         self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
         self._searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
+        steps = [step for step in itertools.product((-1.0, 0.0, 1.0), repeat=len(self.integer)) if any(step)]
+        self._steps = np.array(steps) if steps else None  # to each neighbouring integer combination, a row each
         self.solves, self.solver_s, self.check_s = 0, 0.0, 0.0
 
     def point_case(self, k: int) -> Case:
@@ -182,8 +201,8 @@ class BatchSweep:
             blocks: list[_Block] = []
             alone: dict[int, Solution] = {}
             while k < end and time.perf_counter() < deadline:  # each turn solves at least one point
-                count = 1 << (min(size, end - k).bit_length() - 1)  # a power of two: few chained functions
-                block, chained, searching = self._batch(start, k, count) if start is not None else (None, 0, False)
+                wanted = min(size, end - k)
+                block, chained, searching = self._batch(start, k, wanted) if start is not None else (None, 0, False)
                 passed = 0 if block is None else len(block.index)
                 if passed:
                     blocks.append(block)
@@ -214,8 +233,8 @@ class BatchSweep:
     def _batch(self, start: _Start, k: int, count: int) -> tuple[_Block | None, int, bool]:
         """Chain up to ``count`` points from ``start``: the columns up to the first that fails a test (None if it is
         the first), how many were chained (fewer than asked where the batch's integers are excluded ahead, none
-        if they are at ``k``), and whether the first point left is the integer search's to decide (its integers
-        excluded there, or a neighbouring combination to try)."""
+        if they are at ``k``, see :func:`chain_length`), and whether the first point left is the integer search's
+        to decide (its integers excluded there, or a neighbouring combination to try)."""
         lower, upper = self.lower.copy(), self.upper.copy()
         lower[self.integer] = upper[self.integer] = start.combo
         if self.integer:  # the batch stops short of a point its integers cannot serve whatever the rest (the search
@@ -225,10 +244,11 @@ class BatchSweep:
                 first = int(np.argmax(excluded))
                 if first == 0:
                     return None, 0, True  # foreseen: nothing chained
-                count = 1 << (first.bit_length() - 1)
+                count = first
         chain = self._chain(start, k, count, lower, upper, start.seed)
         if chain is None:
-            return None, count, False
+            return None, min(count, chain_length(count)), False
+        count = len(chain.index)
         ends = self._ends_batch(chain.x, chain.lam_x, chain.f[0], chain.p, k)
         ok = chain.ok & ~ends
         passed = int(np.argmin(ok)) if not ok.all() else count
@@ -236,51 +256,51 @@ class BatchSweep:
 
     def _chain(self, start: _Start, k: int, count: int, lower: np.ndarray, upper: np.ndarray,
                seed: dict, method: str = "sqp_chain") -> "_Chain | None":
-        """Points k .. k + count - 1 re-solved by the chained SQP from ``seed``'s primal-dual point (``x``, ``lam_x``,
-        ``lam_g``), scaled as ``start``, in the box ``lower``, ``upper`` (SI), each point's KKT conditions checked;
-        None after an evaluation error inside CasADi (the points go to Problem.solve, which reports it)."""
+        """Points k .. k + count - 1 (fewer: :func:`chain_length`) re-solved by the chained SQP from ``seed``'s
+        primal-dual point (``x``, ``lam_x``, ``lam_g``), scaled as ``start``, in the box ``lower``, ``upper`` (SI),
+        each point's KKT conditions checked; None after an evaluation error inside CasADi (the points go to
+        Problem.solve, which reports it)."""
+        length = chain_length(count)
+        count = min(count, length)
+        points = np.minimum(np.arange(k, k + length), k + count - 1)  # padded with the last point
         lbx, ubx = lower / start.scale, upper / start.scale
-        p = np.vstack([self.values[:, k:k + count], np.repeat(start.scale[:, None], count, axis=1),
-                       np.full((1, count), start.f_scale)])
+        p = np.vstack([self.values[:, points], np.repeat(start.scale[:, None], length, axis=1),
+                       np.full((1, length), start.f_scale)])
         began = time.perf_counter()
         try:
-            x, lam_x, lam_g, f = evaluate(self.problem.chained_sqp(count, method), np.clip(seed["x"], lbx, ubx),
-                                          seed["lam_x"], seed["lam_g"], p, lbx, ubx)
+            x, lam_x, lam_g, f = self.problem.chained_sqp(length, method)(np.clip(seed["x"], lbx, ubx),
+                                                                           seed["lam_x"], seed["lam_g"], p, lbx, ubx)
         except RuntimeError:
             x = None
         seconds = time.perf_counter() - began
-        self.solves, self.solver_s = self.solves + count, self.solver_s + seconds
+        self.solves, self.solver_s = self.solves + length, self.solver_s + seconds
         if x is None:
             return None
-        lbx, ubx = np.repeat(lbx[:, None], count, axis=1), np.repeat(ubx[:, None], count, axis=1)
-        finite = np.isfinite(f[0]) & np.all(np.isfinite(x), axis=0) & np.all(np.isfinite(lam_g), axis=0)
-        if not finite.all():  # a failed point: its numbers must not poison the others' checks
-            x, lam_x, lam_g = np.nan_to_num(x), np.nan_to_num(lam_x), np.nan_to_num(lam_g)
         began = time.perf_counter()
-        gradient, g = self.problem.kkt_terms(x, p, lam_g)
+        ok = self.problem.first_order_optimal(x, p, lam_x, lam_g, lbx, ubx)[:count]
         self.check_s += time.perf_counter() - began
-        ok = finite & self.problem.first_order_optimal(x, lam_x, lam_g, lbx, ubx, gradient, g)
-        return _Chain(np.arange(k, k + count), ok, x=x, lam_x=lam_x, lam_g=lam_g, f=f, p=p, lbx=lbx, ubx=ubx,
-                      time=np.full((1, count), seconds / count), solves=np.ones((1, count)))
+        used = slice(0, count)
+        lbx, ubx = np.repeat(lbx[:, None], count, axis=1), np.repeat(ubx[:, None], count, axis=1)
+        return _Chain(np.arange(k, k + count), ok, x=x[:, used], lam_x=lam_x[:, used], lam_g=lam_g[:, used],
+                      f=f[:, used], p=p[:, used], lbx=lbx, ubx=ubx, time=np.full((1, count), seconds / count),
+                      solves=np.full((1, count), length / count))
 
     def _settle(self, start: _Start, k: int) -> _Block | None:
         """Point k, where a batch ended for the integer search: ``Problem.solve``'s warm search (``Problem.descend``
         from the batch's integers; should they fail, the relaxation and ``Problem.nearest_integers``), each
-        combination re-solved by a one-point chained SQP from the previous point's optimum and KKT-checked, its
-        exclusion tested by ``Problem.violated_whatever_the_rest``. None where a re-solve does not pass its check
-        or no integer point is found (``Problem.solve`` decides the point); the search is kept for the point's
-        Solution."""
+        combination excluded by the batch's tables or re-solved by a one-point chained SQP from the previous point's
+        optimum and KKT-checked. None where a re-solve does not pass its check or no integer point is found
+        (``Problem.solve`` decides the point; also where a constraint of the case alone breaks, which fails the
+        relaxation); the search is kept for the point's Solution."""
         search: list[dict] = []
         box, seed = Box(start.scale, self.lower, self.upper), start.seed
-        p = np.concatenate([self.values[:, k], start.scale, [start.f_scale]])
         runs: list[_Chain] = []
 
         def attempt(combo, seed, methods=None) -> dict | None:
             lower, upper = self.lower.copy(), self.upper.copy()
             lower[self.integer] = upper[self.integer] = combo
             entry = self.problem.integer_entry(self.integer, combo)
-            lbx, ubx = lower / start.scale, upper / start.scale
-            excluded = self.problem.violated_whatever_the_rest(p, lbx, ubx, np.clip(seed["x"], lbx, ubx))
+            excluded = list(dict.fromkeys(self._fixed_names[self._broken(lower, k, 1)[:, 0]]))
             if excluded:
                 search.append({**entry, "status": f"excluded: {', '.join(excluded)}", "feasible": False,
                                "objective": math.nan})
@@ -328,13 +348,12 @@ class BatchSweep:
         combo = np.round(x[integer, 0] * scale[integer])  # the batch's integers, fixed through their bounds
         moves = np.abs(lam_x[integer]) / scale[integer, None] > self.problem.negligible(f_hat)
         direction = np.sign(lam_x[integer])
+        neighbours = np.clip(combo + self._steps, self.lower[integer], self.upper[integer])  # a row per step
+        stays = neighbours == combo
+        tried = np.all(stays[:, :, None] | (moves & (direction == self._steps[:, :, None])), axis=1)
+        tried &= ~np.all(stays, axis=1)[:, None]  # a step against a bound goes nowhere
         ends = np.zeros(x.shape[1], dtype=bool)
-        for step in itertools.product((-1.0, 0.0, 1.0), repeat=len(integer)):  # each neighbouring combination
-            neighbour = np.clip(combo + step, self.lower[integer], self.upper[integer])
-            if np.array_equal(neighbour, combo):
-                continue
-            stays = (neighbour == combo)[:, None]
-            columns = np.all(stays | (moves & (direction == np.array(step)[:, None])), axis=0)
+        for neighbour, columns in zip(neighbours, tried):
             if columns.any():
                 design = self.lower.copy()
                 design[integer] = neighbour
@@ -344,17 +363,20 @@ class BatchSweep:
     def _excluded(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
         """Per point k .. k + count - 1: the fixed variables of ``design`` (SI; integers and variables fixed by the
         case) break a constraint that depends on them alone there, so the integer search would exclude them without a
-        solve (the test of ``Problem.violated_whatever_the_rest``). Evaluated EXCLUSION_SPAN points ahead at once,
-        per integer combination."""
+        solve (the test of ``Problem.violated_whatever_the_rest``)."""
+        return self._broken(design, k, count).any(axis=0)
+
+    def _broken(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
+        """Which of those constraints break at points k .. k + count - 1 (a row per constraint, a column per point);
+        evaluated EXCLUSION_SPAN points ahead at once, per integer combination."""
         key = tuple(design[self.integer])
-        first, table = self._exclusions.get(key, (0, np.zeros(0, dtype=bool)))
-        if not first <= k <= k + count <= first + len(table):
-            first, stop = k, min(self.count, k + max(count, EXCLUSION_SPAN))
-            p = np.vstack([self.values[:, k:stop], np.ones((len(design) + 1, stop - k))])  # unit scales: x is SI
-            g, = evaluate(self.problem._mapped(self._fixed_values, stop - k), design, p)
-            table = np.any(g > 10 * FEASIBILITY_TOL, axis=0)
+        first, table = self._exclusions.get(key, (0, np.zeros((0, 0), dtype=bool)))
+        if not first <= k <= k + count <= first + table.shape[1]:
+            first = k
+            g, = self.problem.mapped(self._fixed_values, self._span)(design, self._unit_p[k:k + self._span].T)
+            table = g > 10 * FEASIBILITY_TOL
             self._exclusions[key] = (first, table)
-        return table[k - first:k - first + count]
+        return table[:, k - first:k - first + count]
 
     def _window(self, blocks: list[_Block], alone: dict[int, Solution]) -> "Solutions":
         """The window's solutions in point order: batched points checked in float64 together; one that fails the

@@ -43,7 +43,7 @@ import numpy as np
 from clutchopt.cases import Case
 from clutchopt.formulations.start_up import with_start_up
 from clutchopt.model import Formulation, Output, namespace
-from clutchopt.optimise.in_place import evaluate
+from clutchopt.optimise.in_place import InPlace
 from clutchopt.optimise.start_up import (
     BACK_OFF_STEPS,
     MAX_INTERVALS,
@@ -91,9 +91,9 @@ class SolverOptions:
 
     def sqp_search(self) -> dict:
         """SQP for the integer search in a batch, whose start may be off the optimum (a relaxation from the
-        previous integers, a neighbouring integer): the Hessian regularised where it is not positive definite,
-        so that a first step does not overshoot (3 iterations instead of 10 on the cable's relaxation)."""
-        return {**self.sqp_chain(), "convexify_strategy": "regularize"}
+        previous integers): the Hessian's negative eigenvalues clipped, so that a first step does not overshoot (3
+        iterations instead of 10 on the cable's relaxations; a regularised Hessian stalled at one of them)."""
+        return {**self.sqp_chain(), "convexify_strategy": "eigen-clip"}
 
     def ipopt(self) -> dict:
         return {
@@ -281,8 +281,7 @@ class Problem:
         self._solver = ca.nlpsol(f"{f.coupling}_{f.mode}_{objective}", "ipopt", self._nlp, options.ipopt())
         lam_g = ca.SX.sym("lam_g", g.shape[0])
         lagrangian = self._nlp["f"] + ca.dot(lam_g, g)
-        self._kkt_terms = ca.Function("kkt", [x_all, self._nlp["p"], lam_g],  # the KKT check of SQP's points
-                                      [ca.densify(ca.gradient(lagrangian, x_all)), ca.densify(g[: self.n_ineq])])
+        self._kkt = self._kkt_verdict(x_all, lam_g, ca.gradient(lagrangian, x_all), g[: self.n_ineq])
         self._case_gradient = ca.Function("dL_dcase", [x_all, self._nlp["p"], lam_g],  # sensitivities
                                           [ca.gradient(lagrangian, p_case)])
         if start_up:
@@ -294,7 +293,7 @@ class Problem:
         self._solvers = {"ipopt": self._solver}
         self._maps: dict[tuple[str, int], ca.Function] = {}
         self._fixed_only: dict[bytes, tuple[np.ndarray, ca.Function]] = {}
-        self._chains: dict[tuple[str, int], ca.Function] = {}
+        self._chains: dict[tuple[str, int], InPlace] = {}
 
     @property
     def nlp(self) -> dict:
@@ -577,19 +576,20 @@ class Problem:
         rows, values = self.fixed_only(lbx == ubx)
         if not len(rows):
             return []
-        g = evaluate(values, x0, p)[0].ravel()
+        g = self.mapped(values, 1)(x0, p)[0].ravel()
         return list(dict.fromkeys(self.row_names[k] for k, gk in zip(rows, g) if gk > 10 * FEASIBILITY_TOL))
 
-    def fixed_only(self, fixed: np.ndarray) -> tuple[np.ndarray, ca.Function]:
-        """The constraint rows that no variable outside ``fixed`` (a mask over x) enters, and their normalised values
-        as a CasADi function of (x, p) (built once per mask)."""
-        key = np.asarray(fixed, dtype=bool).tobytes()
+    def fixed_only(self, fixed: np.ndarray, entered: np.ndarray | None = None) -> tuple[np.ndarray, ca.Function]:
+        """The constraint rows that no variable outside ``fixed`` (a mask over x) enters (and, if given, some variable
+        of ``entered`` does), and their normalised values as a CasADi function of (x, p), built once per masks."""
+        key = np.asarray(fixed, dtype=bool).tobytes() + (b"" if entered is None else b"|" + entered.tobytes())
         if key not in self._fixed_only:
-            rows = np.flatnonzero(~np.any(self._row_depends[:, : len(fixed)] & ~fixed, axis=1)
-                                  & ~np.any(self._row_depends[:, len(fixed):], axis=1))
-            x, p = self._nlp["x"], self._nlp["p"]
+            depends, internal = self._row_depends[:, : len(fixed)], self._row_depends[:, len(fixed):]
+            outside = np.any(depends & ~fixed, axis=1) | np.any(internal, axis=1)
+            rows = np.flatnonzero(~outside & (True if entered is None else np.any(depends & entered, axis=1)))
             name = f"g_fixed_{len(self._fixed_only)}"  # one name per mask: mapped functions are cached by name
-            self._fixed_only[key] = rows, ca.Function(name, [x, p], [ca.densify(self._nlp["g"][[int(r) for r in rows]])])
+            g = ca.densify(self._nlp["g"][[int(r) for r in rows]])
+            self._fixed_only[key] = rows, ca.Function(name, [self._nlp["x"], self._nlp["p"]], [g])
         return self._fixed_only[key]
 
     def _rounded(self, design: dict[str, float]) -> dict[str, float]:
@@ -621,38 +621,41 @@ class Problem:
 
     def _first_order_optimal(self, run: dict) -> bool:
         """The KKT check of one run (see :meth:`first_order_optimal`)."""
-        x, p, lam_x, lam_g, lbx, ubx = (np.asarray(run[k])[:, None] for k in ("x", "p", "lam_x", "lam_g", "lbx", "ubx"))
-        return bool(self.first_order_optimal(x, lam_x, lam_g, lbx, ubx, *self.kkt_terms(x, p, lam_g))[0])
+        return bool(self.first_order_optimal(*(run[k] for k in ("x", "p", "lam_x", "lam_g", "lbx", "ubx")))[0])
 
-    def kkt_terms(self, x, p, lam_g) -> tuple[np.ndarray, np.ndarray]:
-        """The Lagrangian's gradient in x and the inequality constraints at points (columns), by CasADi."""
-        return evaluate(self._mapped(self._kkt_terms, x.shape[1]), x, p, lam_g)
+    def first_order_optimal(self, x, p, lam_x, lam_g, lbx, ubx) -> np.ndarray:
+        """The KKT verdict at primal-dual points (one per column; a 1-D argument serves every column), by one mapped
+        CasADi evaluation (see :meth:`_kkt_verdict`)."""
+        count = max(np.shape(a)[1] if np.ndim(a) == 2 else 1 for a in (x, p, lam_x, lam_g, lbx, ubx))
+        return self.mapped(self._kkt, count)(x, p, lam_x, lam_g, lbx, ubx)[0][0] > 0.5
 
-    def first_order_optimal(self, x, lam_x, lam_g, lbx, ubx, gradient, g) -> np.ndarray:
-        """KKT conditions at primal-dual points (one per column; ``gradient``, ``g`` from :meth:`kkt_terms`),
-        checked apart from the solver that reports them: the Lagrangian stationary, multipliers of the right sign,
-        complementary to their constraints and bounds, the constraints held (CasADi's SQP can stop at the start when
-        handed a previous point's multipliers, e.g. of a constraint that has become slack). The verdict per column."""
+    def _kkt_verdict(self, x, lam_g, gradient, g) -> ca.Function:
+        """KKT conditions checked apart from the solver that reports them: the Lagrangian stationary, multipliers of
+        the right sign, complementary to their constraints and bounds, the constraints held (CasADi's SQP can stop at
+        the start when handed a previous point's multipliers, e.g. of a constraint that has become slack). A function
+        (x, p, lam_x, lam_g, lbx, ubx) -> 1 where all hold, else 0 (also where a number is NaN)."""
+        lam_x, lbx, ubx = (ca.SX.sym(name, x.shape[0]) for name in ("lam_x", "lbx", "ubx"))
         tol = 10 * self.options.tol
         ineq = lam_g[: self.n_ineq]
-        width = tol * np.maximum(1.0, np.abs(x))
-        wrong_bound = ((lam_x > tol) & (ubx - x > width)) | ((lam_x < -tol) & (x - lbx > width))
-        return (np.all(np.abs(gradient + lam_x) <= tol, axis=0) & np.all(ineq >= -tol, axis=0)
-                & np.all(ineq * np.maximum(-g, 0.0) <= tol, axis=0) & ~wrong_bound.any(axis=0)
-                & np.all(g <= FEASIBILITY_TOL, axis=0))
+        width = tol * ca.fmax(1.0, ca.fabs(x))
+        wrong_bound = ca.logic_or(ca.logic_and(lam_x > tol, ubx - x > width), ca.logic_and(lam_x < -tol, x - lbx > width))
+        holds = [ca.fabs(gradient + lam_x) <= tol, ineq >= -tol, ineq * ca.fmax(-g, 0.0) <= tol,
+                 ca.logic_not(wrong_bound), g <= FEASIBILITY_TOL]
+        failures = sum(ca.sum1(1 - condition) for condition in holds)  # a comparison with NaN fails
+        return ca.Function("kkt", [x, self._nlp["p"], lam_x, lam_g, lbx, ubx], [failures == 0])
 
-    def _mapped(self, function: ca.Function, count: int) -> ca.Function:
-        """``function`` evaluated at ``count`` points at once (columns), built once per count."""
+    def mapped(self, function: ca.Function, count: int) -> InPlace:
+        """``function`` evaluated at ``count`` points at once (columns) on NumPy arrays, built once per count."""
         key = (function.name(), count)
         if key not in self._maps:
-            self._maps[key] = function if count == 1 else function.map(count)
+            self._maps[key] = InPlace(function if count == 1 else function.map(count))
         return self._maps[key]
 
-    def chained_sqp(self, count: int, method: str = "sqp_chain") -> ca.Function:
+    def chained_sqp(self, count: int, method: str = "sqp_chain") -> InPlace:
         """``count`` SQP re-solves in one CasADi call, each started from the primal-dual optimum of the one before:
         (x0, lam_x0, lam_g0, p, lbx, ubx) -> (x, lam_x, lam_g, f), one column per point (``p``, ``lbx``, ``ubx``:
         a column per point, or one for all; ``f`` the scaled objective). ``method``: ``sqp_chain``, or ``sqp_search``
-        (regularised). Built once per method and count."""
+        (its Hessian convexified). Built once per method and count, called on NumPy arrays."""
         if (method, count) not in self._chains:
             x0, lam_x0 = (ca.MX.sym(name, self._nlp["x"].shape[0]) for name in ("x0", "lam_x0"))
             lam_g0, p = ca.MX.sym("lam_g0", self._nlp["g"].shape[0]), ca.MX.sym("p", self._nlp["p"].shape[0])
@@ -661,7 +664,7 @@ class Problem:
                                                 lbg=self._lbg, ubg=0.0)
             step = ca.Function("sqp_step", [x0, lam_x0, lam_g0, p, lbx, ubx],
                                [out["x"], out["lam_x"], out["lam_g"], out["f"]])
-            self._chains[method, count] = step.mapaccum(method, count, [0, 1, 2], [0, 1, 2])
+            self._chains[method, count] = InPlace(step.mapaccum(method, count, [0, 1, 2], [0, 1, 2]))
         return self._chains[method, count]
 
     def _run(self, data: ScaledData, lbx, ubx, x0, seed: dict | None, method: str = "ipopt") -> dict:
