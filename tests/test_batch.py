@@ -193,6 +193,27 @@ def test_an_error_inside_the_chained_call_sends_the_points_to_problem_solve(monk
                                                    rel=1e-8)
 
 
+def test_a_point_that_fails_the_float64_check_is_solved_again(monkeypatch):
+    # a batched point whose float64 re-evaluation finds a constraint violated is not reported as optimal: the
+    # window solves it again by Problem.solve, warm from the point before (here every batched point fails the check)
+    import clutchopt.optimise.batch as batch
+
+    case = load_case(CASES / "wedge_paper.toml")
+    problem = Problem(get_coupling("wedge").formulation("paper"))
+    values = case.values["inertia"] * np.geomspace(0.8, 1.2, 20)
+    monkeypatch.setattr(batch, "FEASIBILITY_TOL", -1.0)
+    sweep = BatchSweep(problem, case, {"inertia": values})
+    windows = list(sweep.run(window=8))
+    assert [len(w) for w in windows] == [8, 8, 4]
+    assert all(status == "optimal" for w in windows for status in w.statuses)
+    solutions = [s for w in windows for s in w]
+    assert all(s.solver.status != BATCHED for s in solutions)
+    assert sweep.solves >= 2 * len(values) - 1  # all but the first point batched, then solved again
+    for value, solution in zip(values, solutions):
+        assert solution.objective == pytest.approx(closed_form(case.with_values(inertia=float(value))).objective,
+                                                   rel=1e-8)
+
+
 def test_a_sweep_table_says_where_a_point_was_batched():
     from clutchopt.optimise.sweep import Sweep, markdown_table, parse_vary
 

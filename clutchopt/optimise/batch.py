@@ -176,7 +176,8 @@ class BatchSweep:
         fixed[self.integer] = True
         # the constraints of fixed variables alone that the batch's integers enter (one of the case alone that breaks
         # at a point stops a batch there by its KKT check, and Problem.solve diagnoses it)
-        entered = np.isin(np.arange(len(fixed)), self.integer)
+        entered = np.zeros_like(fixed)
+        entered[self.integer] = True
         rows, self._fixed_values = problem.fixed_only(fixed, entered)
         self._fixed_names = np.array([problem.row_names[row] for row in rows])
         self._span = min(EXCLUSION_SPAN, self.count)
@@ -197,7 +198,7 @@ class BatchSweep:
         start: _Start | None = None  # where the next batch starts; None: after a point without a design
         size, k = FIRST_BATCH, 0
         while k < self.count:
-            end, deadline = min(k + window, self.count), time.perf_counter() + WINDOW_S
+            first, end, deadline = k, min(k + window, self.count), time.perf_counter() + WINDOW_S
             blocks: list[_Block] = []
             alone: dict[int, Solution] = {}
             while k < end and time.perf_counter() < deadline:  # each turn solves at least one point
@@ -219,7 +220,7 @@ class BatchSweep:
                     size = FIRST_BATCH
                 alone[k] = self._solve_alone(k, start.warm if start is not None else None)
                 start, k = self._start_of(alone[k]), k + 1
-            yield self._window(blocks, alone)
+            yield self._window(blocks, alone, first, k - first)
 
     def _start_of(self, solution: Solution) -> _Start | None:
         return _Start(self, solution) if solution.status == "optimal" else None
@@ -378,42 +379,49 @@ class BatchSweep:
             self._exclusions[key] = (first, table)
         return table[:, k - first:k - first + count]
 
-    def _window(self, blocks: list[_Block], alone: dict[int, Solution]) -> "Solutions":
-        """The window's solutions in point order: batched points checked in float64 together; one that fails the
-        check is solved again by ``Problem.solve``, warm from the point before."""
-        entries: dict[int, Solution | tuple[_Checked, int]] = dict(alone)
-        if blocks:
-            checked = _Checked(self, _Block.joined(blocks))
-            entries.update({int(k): (checked, j) for j, k in enumerate(checked.block.index)})
-            for j in np.flatnonzero(~checked.feasible):
-                k = int(checked.block.index[j])
-                before = entries.get(k - 1)
-                warm = before[0][before[1]] if isinstance(before, tuple) else before
-                entries[k] = self._solve_alone(k, warm if warm is not None and warm.status == "optimal" else None)
-        return Solutions([entries[k] for k in sorted(entries)])
+    def _window(self, blocks: list[_Block], alone: dict[int, Solution], first: int, count: int) -> "Solutions":
+        """The solutions of points first .. first + count - 1: batched points checked in float64 together; one that
+        fails the check is solved again by ``Problem.solve``, warm from the point before."""
+        solutions = Solutions(first, count, alone, _Checked(self, _Block.joined(blocks)) if blocks else None)
+        for k in solutions.unverified:
+            before = solutions[k - first - 1] if k > first else None
+            warm = before if before is not None and before.status == "optimal" else None
+            solutions.replace(k - first, self._solve_alone(k, warm))
+        return solutions
 
 
 class Solutions(Sequence):
-    """A window's solutions in point order, each built as a :class:`Solution` when first read."""
+    """A window's solutions in point order, each batched point built as a :class:`Solution` when first read."""
 
-    def __init__(self, entries: list):
-        self._entries = entries
+    def __init__(self, first: int, count: int, alone: dict[int, Solution], checked: "_Checked | None"):
+        self._solutions = {k - first: solution for k, solution in alone.items()}  # by position in the window
+        self._checked, self._column = checked, np.full(count, -1)
+        if checked is not None:
+            self._column[checked.block.index - first] = np.arange(len(checked.block.index))
+        self.unverified = [] if checked is None else checked.block.index[~checked.feasible].tolist()
 
     def __len__(self) -> int:
-        return len(self._entries)
+        return len(self._column)
 
     def __getitem__(self, i):
         if isinstance(i, slice):
             return [self[j] for j in range(*i.indices(len(self)))]
-        if isinstance(self._entries[i], tuple):
-            checked, column = self._entries[i]
-            self._entries[i] = checked[column]
-        return self._entries[i]
+        i = range(len(self))[i]
+        if i not in self._solutions:
+            self._solutions[i] = self._checked[int(self._column[i])]
+        return self._solutions[i]
+
+    def replace(self, i: int, solution: Solution) -> None:
+        self._solutions[i] = solution
 
     @property
     def statuses(self) -> list[str]:
-        """Each point's status, without building its Solution (a batched point left in the window is optimal)."""
-        return ["optimal" if isinstance(e, tuple) else e.status for e in self._entries]
+        """Each point's status, without building the Solutions of batched points (optimal unless one failed its
+        float64 check and was solved again)."""
+        statuses = ["optimal"] * len(self)
+        for i, solution in self._solutions.items():
+            statuses[i] = solution.status
+        return statuses
 
 
 class _Checked:
