@@ -76,10 +76,11 @@ def batchable(problem: Problem, names) -> bool:
 
 
 class _Block:
-    """Batched points, one column each: the solver's primal-dual points and scaled objectives, the NLP parameters and
-    bounds, each point's share of its batch's time and its solver calls."""
+    """Batched points, one column each: the solver's primal-dual points, their steps from the point before (the
+    predictor's, see ``Problem.chained_sqp``) and scaled objectives, the NLP parameters and bounds, each point's
+    share of its batch's time and its solver calls."""
 
-    KEYS = ("x", "lam_x", "lam_g", "f", "p", "lbx", "ubx", "time", "solves")
+    KEYS = ("x", "lam_x", "lam_g", "dx", "dlam_x", "dlam_g", "f", "p", "lbx", "ubx", "time", "solves")
 
     def __init__(self, index: np.ndarray, **arrays: np.ndarray):
         self.index, self.arrays = index, arrays
@@ -127,10 +128,13 @@ class _Start:
             self.x = np.array([solution.design[name] for name in sweep.names]) / self.scale
             self.lam_x, self.lam_g = solution.multipliers
             self.objective = solution.objective
+            self.step = {"dx": np.zeros_like(self.x), "dlam_x": np.zeros_like(self.lam_x),
+                         "dlam_g": np.zeros_like(self.lam_g)}  # nothing to predict from
         else:
-            a = {key: value[..., 0] for key, value in block.arrays.items()}
+            a = {key: value[..., -1] for key, value in block.arrays.items()}
             self.scale, self.x, self.lam_x, self.lam_g = a["p"][m:m + n], a["x"], a["lam_x"], a["lam_g"]
             self.objective = float(a["f"][0] * a["p"][m + n])  # the scaled objective times its normaliser
+            self.step = {key: a[key] for key in ("dx", "dlam_x", "dlam_g")}
         self.names, self.integer = sweep.names, sweep.problem._integer
         self.combo = np.round(self.x[sweep.integer] * self.scale[sweep.integer])  # the free integers (SI)
         objective = self.objective
@@ -138,7 +142,8 @@ class _Start:
 
     @property
     def seed(self) -> dict:
-        return {"x": self.x, "lam_x": self.lam_x, "lam_g": self.lam_g}
+        """The primal-dual point and the step that led to it."""
+        return {"x": self.x, "lam_x": self.lam_x, "lam_g": self.lam_g, **self.step}
 
     @property
     def warm(self) -> WarmStart:
@@ -186,6 +191,9 @@ class BatchSweep:
         # the memory of the parameter columns of any span of points, past the sweep's end the last one repeated
         self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
         self._searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
+        with np.errstate(all="ignore"):  # each point's step in the case from the one before, relative
+            moves = np.diff(self.values, axis=1) / np.abs(self.values[:, 1:])
+        self._moves = np.hstack([np.zeros((len(self.values), 1)), np.nan_to_num(moves, posinf=0.0, neginf=0.0)])
         steps = [step for step in itertools.product((-1.0, 0.0, 1.0), repeat=len(self.integer)) if any(step)]
         self._steps = np.array(steps) if steps else None  # to each neighbouring integer combination, a row each
         self.solves, self.solver_s, self.check_s = 0, 0.0, 0.0
@@ -207,7 +215,7 @@ class BatchSweep:
                 passed = 0 if block is None else len(block.index)
                 if passed:
                     blocks.append(block)
-                    start, k = _Start(self, block=block.column(-1)), k + passed
+                    start, k = _Start(self, block=block), k + passed
                 if chained and passed == chained:
                     size = min(2 * size, LONGEST_BATCH)
                     continue
@@ -256,21 +264,23 @@ class BatchSweep:
         return (chain.block(passed) if passed else None), count, passed < count and bool(chain.ok[passed])
 
     def _chain(self, start: _Start, k: int, count: int, lower: np.ndarray, upper: np.ndarray,
-               seed: dict, method: str = "sqp_chain") -> "_Chain | None":
+               seed: dict, method: str = "sqp_chain", predict: bool = True) -> "_Chain | None":
         """Points k .. k + count - 1 (fewer: :func:`chain_length`) re-solved by the chained SQP from ``seed``'s
-        primal-dual point (``x``, ``lam_x``, ``lam_g``), scaled as ``start``, in the box ``lower``, ``upper`` (SI),
-        each point's KKT conditions checked; None after an evaluation error inside CasADi (the points go to
-        Problem.solve, which reports it)."""
+        primal-dual point (``x``, ``lam_x``, ``lam_g``) and the step that led to it (``dx``, ``dlam_x``,
+        ``dlam_g``, for the predictor unless ``predict`` is false), scaled as ``start``, in the box ``lower``,
+        ``upper`` (SI), each point's KKT conditions checked; None after an evaluation error inside CasADi (the points
+        go to Problem.solve, which reports it)."""
         length = chain_length(count)
         count = min(count, length)
         points = np.minimum(np.arange(k, k + length), k + count - 1)  # padded with the last point
         lbx, ubx = lower / start.scale, upper / start.scale
         p = np.vstack([self.values[:, points], np.repeat(start.scale[:, None], length, axis=1),
                        np.full((1, length), start.f_scale)])
+        ratio = self._ratios(points) if predict else 0.0
         began = time.perf_counter()
         try:
-            x, lam_x, lam_g, f = self.problem.chained_sqp(length, method)(np.clip(seed["x"], lbx, ubx),
-                                                                           seed["lam_x"], seed["lam_g"], p, lbx, ubx)
+            x, lam_x, lam_g, dx, dlam_x, dlam_g, f = self.problem.chained_sqp(length, method)(
+                *(seed[key] for key in ("x", "lam_x", "lam_g", "dx", "dlam_x", "dlam_g")), ratio, p, lbx, ubx)
         except RuntimeError:
             x = None
         seconds = time.perf_counter() - began
@@ -280,11 +290,21 @@ class BatchSweep:
         began = time.perf_counter()
         ok = self.problem.first_order_optimal(x, p, lam_x, lam_g, lbx, ubx)[:count]
         self.check_s += time.perf_counter() - began
-        used = slice(0, count)
         lbx, ubx = np.repeat(lbx[:, None], count, axis=1), np.repeat(ubx[:, None], count, axis=1)
-        return _Chain(np.arange(k, k + count), ok, x=x[:, used], lam_x=lam_x[:, used], lam_g=lam_g[:, used],
-                      f=f[:, used], p=p[:, used], lbx=lbx, ubx=ubx, time=np.full((1, count), seconds / count),
+        arrays = dict(x=x, lam_x=lam_x, lam_g=lam_g, dx=dx, dlam_x=dlam_x, dlam_g=dlam_g, f=f, p=p)
+        return _Chain(np.arange(k, k + count), ok, **{key: value[:, :count] for key, value in arrays.items()},
+                      lbx=lbx, ubx=ubx, time=np.full((1, count), seconds / count),
                       solves=np.full((1, count), length / count))
+
+    def _ratios(self, points: np.ndarray) -> np.ndarray:
+        """Per chained point, its step in the case against the step before it (the predictor's ratio; 0 after a
+        repeated point, and where the steps differ more than fourfold)."""
+        moves = self._moves[:, points]
+        moves[:, 1:][:, points[1:] == points[:-1]] = 0.0  # a repeated point does not move
+        before = np.hstack([self._moves[:, points[:1] - 1], moves[:, :-1]]) if points[0] else np.zeros_like(moves)
+        norm = np.sum(before * before, axis=0)
+        ratio = np.sum(moves * before, axis=0) / np.where(norm > 0, norm, 1.0)
+        return np.where(np.abs(ratio) <= 4.0, ratio, 0.0)
 
     def _settle(self, start: _Start, k: int) -> _Block | None:
         """Point k, where a batch ended for the integer search: ``Problem.solve``'s warm search (``Problem.descend``
@@ -311,7 +331,7 @@ class BatchSweep:
             return run
 
         def solved(lower, upper, seed, method) -> dict:
-            chain = self._chain(start, k, 1, lower, upper, seed, method)
+            chain = self._chain(start, k, 1, lower, upper, seed, method, predict=False)
             if chain is None or not chain.ok[0]:
                 raise _Unsettled
             runs.append(chain)

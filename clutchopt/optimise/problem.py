@@ -652,19 +652,34 @@ class Problem:
         return self._maps[key]
 
     def chained_sqp(self, count: int, method: str = "sqp_chain") -> InPlace:
-        """``count`` SQP re-solves in one CasADi call, each started from the primal-dual optimum of the one before:
-        (x0, lam_x0, lam_g0, p, lbx, ubx) -> (x, lam_x, lam_g, f), one column per point (``p``, ``lbx``, ``ubx``:
-        a column per point, or one for all; ``f`` the scaled objective). ``method``: ``sqp_chain``, or ``sqp_search``
-        (its Hessian convexified). Built once per method and count, called on NumPy arrays."""
+        """``count`` SQP re-solves in one CasADi call, each started from the optimum of the one before, moved on by
+        the secant predictor: (x, lam_x, lam_g, dx, dlam_x, dlam_g, ratio, p, lbx, ubx) -> (x, lam_x, lam_g, dx,
+        dlam_x, dlam_g, f), one column per point (``ratio``, ``p``, ``lbx``, ``ubx``: a column per point, or one
+        for all; ``f`` the scaled objective). A point starts at x + ratio * dx, with dx the step between the two
+        optima before it and ``ratio`` this point's step in the case against that one (0: no prediction), clipped
+        to the bounds; its multipliers likewise, where that keeps their sign. Beside a smooth path this halves the
+        SQP iterations (2 to 1, each with an exact Hessian: most of a re-solve on the ball clutch). ``method``:
+        ``sqp_chain``, or ``sqp_search`` (its Hessian convexified). Built once per method and count, called on NumPy
+        arrays."""
         if (method, count) not in self._chains:
-            x0, lam_x0 = (ca.MX.sym(name, self._nlp["x"].shape[0]) for name in ("x0", "lam_x0"))
-            lam_g0, p = ca.MX.sym("lam_g0", self._nlp["g"].shape[0]), ca.MX.sym("p", self._nlp["p"].shape[0])
-            lbx, ubx = (ca.MX.sym(name, self._nlp["x"].shape[0]) for name in ("lbx", "ubx"))
-            out = self._solver_for(method)(x0=x0, lam_x0=lam_x0, lam_g0=lam_g0, p=p, lbx=lbx, ubx=ubx,
-                                                lbg=self._lbg, ubg=0.0)
-            step = ca.Function("sqp_step", [x0, lam_x0, lam_g0, p, lbx, ubx],
-                               [out["x"], out["lam_x"], out["lam_g"], out["f"]])
-            self._chains[method, count] = InPlace(step.mapaccum(method, count, [0, 1, 2], [0, 1, 2]))
+            n_x, n_g = self._nlp["x"].shape[0], self._nlp["g"].shape[0]
+            x, lam_x, dx, dlam_x, lbx, ubx = (ca.MX.sym(name, n_x) for name in (
+                "x", "lam_x", "dx", "dlam_x", "lbx", "ubx"))
+            lam_g, dlam_g = ca.MX.sym("lam_g", n_g), ca.MX.sym("dlam_g", n_g)
+            ratio, p = ca.MX.sym("ratio"), ca.MX.sym("p", self._nlp["p"].shape[0])
+
+            def predicted(lam, step):  # a multiplier keeps its sign or starts at 0
+                guess = lam + ratio * step
+                return ca.if_else(lam * guess > 0, guess, 0)
+
+            out = self._solver_for(method)(x0=ca.fmin(ca.fmax(x + ratio * dx, lbx), ubx), lam_x0=predicted(lam_x, dlam_x),
+                                           lam_g0=predicted(lam_g, dlam_g), p=p, lbx=lbx, ubx=ubx, lbg=self._lbg,
+                                           ubg=0.0)
+            step = ca.Function("sqp_step", [x, lam_x, lam_g, dx, dlam_x, dlam_g, ratio, p, lbx, ubx],
+                               [out["x"], out["lam_x"], out["lam_g"], out["x"] - x, out["lam_x"] - lam_x,
+                                out["lam_g"] - lam_g, out["f"]])
+            accumulated = list(range(6))
+            self._chains[method, count] = InPlace(step.mapaccum(method, count, accumulated, accumulated))
         return self._chains[method, count]
 
     def _run(self, data: ScaledData, lbx, ubx, x0, seed: dict | None, method: str = "ipopt") -> dict:
