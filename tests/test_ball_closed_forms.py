@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 from scipy.integrate import quad
+from scipy.optimize import brentq
 from scipy.special import ellipe, ellipk
 
 from clutchopt.backend import ellipke
@@ -153,6 +154,26 @@ def test_differentiable_hertz_coefficients_are_the_exact_ones():
         n_a, n_b = ball.hertz_coefficients(ratio)
         e_a, e_b = ball.hertz_coefficients_exact(ratio)
         assert n_a == pytest.approx(e_a, rel=1e-10) and n_b == pytest.approx(e_b, rel=1e-10)
+
+
+def _exact_kappa(ratio):
+    m = brentq(lambda m: (ellipe(m) / (1 - m) - ellipk(m)) / (ellipk(m) - ellipe(m)) - ratio, 1e-9, 1 - 1e-15,
+               xtol=1e-300, rtol=1e-15)
+    return -0.5 * math.log(1 - m)
+
+
+def test_the_newton_start_is_the_fit_it_says_and_within_its_error():
+    # KAPPA_START: the degree-6 Chebyshev fit of ln(a/b) / ln(B/A) at 400 Chebyshev points of KAPPA_RANGE, as a
+    # power series in the mapped variable; refitted here, and within 2.3e-4 of ln(a/b) (2 Newton steps then give
+    # float64 accuracy: the test above)
+    lo, hi = ball.KAPPA_RANGE
+    nodes = lo + (hi - lo) * (1 - np.cos(np.linspace(0, math.pi, 400))) / 2
+    kappa = np.array([_exact_kappa(math.exp(x)) for x in nodes])
+    fit = np.polynomial.chebyshev.Chebyshev.fit(nodes, kappa / nodes, 6, domain=[lo, hi])
+    assert np.polynomial.chebyshev.cheb2poly(fit.coef) == pytest.approx(ball.KAPPA_START, rel=1e-9, abs=1e-15)
+    ratios = np.logspace(math.log10(1.01), 5, 200)
+    error = max(abs(ball.kappa_start(r) - _exact_kappa(r)) for r in ratios)
+    assert 1e-4 < error < 2.3e-4
 
 
 def test_hertz_sphere_on_flat_is_johnsons():

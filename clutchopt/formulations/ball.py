@@ -25,7 +25,7 @@ from typing import Any
 from scipy.optimize import brentq
 from scipy.special import ellipe, ellipk
 
-from clutchopt.backend import arcsinh, cbrt, ellipke, exp, log, sinh, sqrt
+from clutchopt.backend import arcsinh, cbrt, ellipke, exp, fmax, fmin, log, sinh, sqrt
 from clutchopt.errors import InputError
 from clutchopt.formulations.duty import POWER_DUTY_QUANTITIES, rated_torque
 from clutchopt.model import (
@@ -185,9 +185,24 @@ def curvatures(radius, ball_radius, conformity):
     return around + across, around / across
 
 
-HAMROCK_BREWE = (1.0339, 0.636)  # a/b ~ 1.0339 (B/A)^0.636, Hamrock & Brewe (1983): the Newton start
-NEWTON_STEPS = 4  # 3 steps reach the same 8e-11 of the exact n_a, n_b, but the start-up NLP of ball_motor_start
-# then stops at a local infeasibility: its derivatives are those of a less converged iteration
+KAPPA_RANGE = (math.log(1.01), math.log(1e5))  # ln(B/A) over which the Newton start is fitted
+KAPPA_START = (6.1947782911625193e-01, -4.8363258124259768e-02, 1.7952801238162910e-02, -1.5721148792667387e-04,
+               -9.7162885139908360e-03, 7.8719713369345135e-03, -1.7723920504200213e-03)
+# ln(a/b) / ln(B/A) as a polynomial in t = (2 ln(B/A) - lo - hi) / (hi - lo): the degree-6 Chebyshev fit to the exact
+# solution at 400 Chebyshev points of KAPPA_RANGE (scipy ellipk/ellipe and brentq); within 2.3e-4 of ln(a/b) there
+# (tests/test_ball_closed_forms.py refits it)
+NEWTON_STEPS = 2  # from the fitted start (2.3e-4): 1e-8, then float64 accuracy, value and derivatives alike
+
+
+def kappa_start(ratio):
+    """ln(a/b) of the contact ellipse to 2.3e-4 for 1.01 <= B/A <= 1e5 (KAPPA_START); beyond, the fit at its ends."""
+    lo, hi = KAPPA_RANGE
+    big_l = log(ratio)
+    t = fmin(fmax((2.0 * big_l - lo - hi) / (hi - lo), -1.0), 1.0)
+    value = 0.0
+    for coefficient in reversed(KAPPA_START):
+        value = value * t + coefficient
+    return big_l * value
 
 
 def _curvature_ratio(m):
@@ -203,12 +218,12 @@ def hertz_coefficients(ratio):
     """Hertz's n_a, n_b (Timoshenko's m, n) of an elliptic contact with curvature ratio B/A = ``ratio`` >= 1.01:
     a = n_a (3F / (2 E* sum rho))^(1/3), b = n_b (...)^(1/3).
 
-    Solves B/A = ((a/b)^2 E(e) - K(e)) / (K(e) - E(e)) for kappa = ln(a/b) by Newton from the Hamrock-Brewe
-    estimate (NEWTON_STEPS) with K, E by the AGM (:func:`clutchopt.backend.ellipke`); then
+    Solves B/A = ((a/b)^2 E(e) - K(e)) / (K(e) - E(e)) for kappa = ln(a/b) by Newton (NEWTON_STEPS) from a
+    fitted start (:func:`kappa_start`) with K, E by the AGM (:func:`clutchopt.backend.ellipke`); then
     n_a^3 = 2 (K - E) (1 + B/A) / (pi e^2), n_b = n_a b/a. Differentiable in CasADi; agrees with the exact
     solution (:func:`hertz_coefficients_exact`) to 1e-10 for 1.01 <= B/A <= 1e5 (tested).
     """
-    kappa = math.log(HAMROCK_BREWE[0]) + HAMROCK_BREWE[1] * log(ratio)
+    kappa = kappa_start(ratio)
     for _ in range(NEWTON_STEPS):
         m = 1.0 - exp(-2.0 * kappa)
         r, dr, _, _ = _curvature_ratio(m)
