@@ -185,15 +185,23 @@ class BatchSweep:
         entered[self.integer] = True
         rows, self._fixed_values = problem.fixed_only(fixed, entered)
         self._fixed_names = np.array([problem.row_names[row] for row in rows])
+        self._by_point = np.ascontiguousarray(self.values.T)  # a point's case values, a row each
         self._span = min(EXCLUSION_SPAN, self.count)
-        unit = np.vstack([self.values, np.ones((len(fixed) + 1, self.count))]).T  # unit scales: x is SI
-        self._unit_p = np.concatenate([unit, np.repeat(unit[-1:], self._span, axis=0)])  # a point a row, then padding:
-        # the memory of the parameter columns of any span of points, past the sweep's end the last one repeated
+        if self.integer:  # the NLP parameters of the exclusion tables, a point a row (CasADi's memory of their
+            # columns), unit scales (x is SI), past the sweep's end its last point repeated
+            self._unit_p = np.ones((self.count + self._span, len(self.values) + len(fixed) + 1))
+            self._unit_p[:, : len(self.values)] = self._by_point[np.minimum(np.arange(len(self._unit_p)),
+                                                                            self.count - 1)]
         self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
         self._searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
+        varied = self.values[[q.name in self.varied for q in f.quantities]]
         with np.errstate(all="ignore"):  # each point's step in the case from the one before, relative
-            moves = np.diff(self.values, axis=1) / np.abs(self.values[:, 1:])
-        self._moves = np.hstack([np.zeros((len(self.values), 1)), np.nan_to_num(moves, posinf=0.0, neginf=0.0)])
+            moves = np.nan_to_num(np.diff(varied, axis=1) / np.abs(varied[:, 1:]), posinf=0.0, neginf=0.0)
+        norm = np.sum(moves[:, :-1] ** 2, axis=0)
+        ratio = np.sum(moves[:, 1:] * moves[:, :-1], axis=0) / np.where(norm > 0, norm, 1.0)
+        self._ratio = np.concatenate([[0.0, 0.0], np.where(np.abs(ratio) <= 4.0, ratio, 0.0)])[: self.count]
+        # the predictor's ratio of each point: its step in the case against the step before it, projected on it (0
+        # where there is none, and where the steps differ more than fourfold)
         steps = [step for step in itertools.product((-1.0, 0.0, 1.0), repeat=len(self.integer)) if any(step)]
         self._steps = np.array(steps) if steps else None  # to each neighbouring integer combination, a row each
         self.solves, self.solver_s, self.check_s = 0, 0.0, 0.0
@@ -274,8 +282,10 @@ class BatchSweep:
         count = min(count, length)
         points = np.minimum(np.arange(k, k + length), k + count - 1)  # padded with the last point
         lbx, ubx = lower / start.scale, upper / start.scale
-        p = np.vstack([self.values[:, points], np.repeat(start.scale[:, None], length, axis=1),
-                       np.full((1, length), start.f_scale)])
+        m, n = len(self.values), len(start.scale)
+        p_rows = np.empty((length, m + n + 1))  # the NLP parameters, a point a row: CasADi's memory of the columns
+        p_rows[:, :m], p_rows[:, m:m + n], p_rows[:, -1] = self._by_point[points], start.scale, start.f_scale
+        p = p_rows.T
         ratio = self._ratios(points) if predict else 0.0
         began = time.perf_counter()
         try:
@@ -297,14 +307,10 @@ class BatchSweep:
                       solves=np.full((1, count), length / count))
 
     def _ratios(self, points: np.ndarray) -> np.ndarray:
-        """Per chained point, its step in the case against the step before it (the predictor's ratio; 0 after a
-        repeated point, and where the steps differ more than fourfold)."""
-        moves = self._moves[:, points]
-        moves[:, 1:][:, points[1:] == points[:-1]] = 0.0  # a repeated point does not move
-        before = np.hstack([self._moves[:, points[:1] - 1], moves[:, :-1]]) if points[0] else np.zeros_like(moves)
-        norm = np.sum(before * before, axis=0)
-        ratio = np.sum(moves * before, axis=0) / np.where(norm > 0, norm, 1.0)
-        return np.where(np.abs(ratio) <= 4.0, ratio, 0.0)
+        """Per chained point, the predictor's ratio (0 for a repeated point)."""
+        ratio = self._ratio[points]
+        ratio[1:][points[1:] == points[:-1]] = 0.0
+        return ratio
 
     def _settle(self, start: _Start, k: int) -> _Block | None:
         """Point k, where a batch ended for the integer search: ``Problem.solve``'s warm search (``Problem.descend``

@@ -31,7 +31,9 @@ class InPlace:
         memory = []  # the buffer holds pointers only: the arrays live until the call returns
         for i, (shape, arg) in enumerate(zip(self.inputs, args)):
             array = np.asarray(arg, dtype=float)
-            if array.shape != shape:
+            if array.size == shape[0] and shape[1] == 1:
+                array = array.ravel()
+            elif array.shape != shape:
                 array = np.broadcast_to(array.reshape(shape[0], -1), shape)
             memory.append(np.ascontiguousarray(array.T))
             buffer.set_arg(i, memoryview(memory[-1]))
