@@ -157,7 +157,8 @@ class BatchSweep:
 
     ``varied``: SI values by quantity name, one per point (all the same length); the case gives the rest. Every
     value is checked against its quantity's valid range first. ``solves`` and ``solver_s`` count the solver calls
-    and the time inside them, ``check_s`` the time of the batches' CasADi evaluations for the KKT checks."""
+    and the time inside them, ``check_s`` the time of the batches' CasADi evaluations of their tests (the KKT
+    verdicts, the exclusion tables)."""
 
     def __init__(self, problem: Problem, case: Case, varied: dict[str, np.ndarray]):
         if not batchable(problem, varied):
@@ -399,8 +400,9 @@ class BatchSweep:
         key = tuple(design[self.integer])
         first, table = self._exclusions.get(key, (0, np.zeros((0, 0), dtype=bool)))
         if not first <= k <= k + count <= first + table.shape[1]:
-            first = k
+            first, began = k, time.perf_counter()
             g, = self.problem.mapped(self._fixed_values, self._span)(design, self._unit_p[k:k + self._span].T)
+            self.check_s += time.perf_counter() - began
             table = g > 10 * FEASIBILITY_TOL
             self._exclusions[key] = (first, table)
         return table[:, k - first:k - first + count]
