@@ -3,34 +3,45 @@
 Along a sweep each point is re-solved next to the optimum of the one before. ``Problem.solve`` does that one point
 at a time, and there a 20-40 us SQP re-solve sits inside about 0.3 ms of Python (argument conversion, the float64
 check, outputs, sensitivities, bookkeeping). Here a batch of consecutive points goes to one CasADi function that
-chains the SQP re-solves inside CasADi (``Problem.chained_sqp``: ``mapaccum`` over the ``sqpmethod`` solver, each
-point started from the primal-dual optimum of the one before), and the tests of ``Problem.solve`` run afterwards
-on all points of the batch at once:
+chains the SQP re-solves inside CasADi (``Problem.chained_sqp``: ``mapaccum`` over the ``sqpmethod`` solver; each
+point starts from the primal-dual optimum of the one before, moved on by a secant predictor, so that one SQP
+iteration usually does), its NumPy arrays read and written in place (``clutchopt.optimise.in_place``), and the
+tests of ``Problem.solve`` run afterwards on all points of the batch at once:
 
 - the KKT conditions of every point, apart from the solver (``Problem.first_order_optimal``, one mapped CasADi
   evaluation);
 - the integer test of the warm integer search: a point whose fixed integers' bound multipliers point to a
-  neighbouring integer the search would solve ends the chain, for the search decides there; and a batch stops
-  short of the point where its integers break a constraint of fixed variables alone (the search excludes them
-  there without a solve), found in float64 ahead of the batch;
+  neighbouring integer the search would solve ends the chain; and a batch stops short of the point where its
+  integers break a constraint of fixed variables alone that they enter (the search excludes them there without a
+  solve), found ahead of the batch by a mapped CasADi evaluation (the exclusion tables);
 - without integers, a point whose optimum has moved more than tenfold from the variable scales ends it (the
   solve is repeated with new scales there);
 - at the end of a window of points (up to 1024, or a quarter of a second of solving), the float64 re-evaluation
   of every constraint and the objective by the formulation's own equations (``verify``'s arithmetic), vectorised
   over the points.
 
-A batch is kept up to its first point that fails a test. That point is solved by ``Problem.solve``, warm from the
-last kept point (SQP, warm IPOPT, the integer search, the cold solve and the infeasibility diagnosis), and the next
-batch starts after it, 8 points long, doubling while batches pass (up to 256). After a point without a design the
-points are solved cold, one by one, until one is optimal. A point that passes the KKT test but not the float64
-check (rare) is solved again by ``Problem.solve`` at the end of its window. A chained call that CasADi ends with
-an evaluation error counts as a batch whose first point failed. A window's outputs, each point's sensitivities
-and its :class:`Solution` are built when the point is read.
+A batch is kept up to its first point that fails a test. Where the integer search decides that point (its
+integers excluded there, or a neighbour to try), the batch runs the search itself, with ``Problem.solve``'s steps
+(``Problem.descend``, then the relaxation and ``Problem.nearest_integers``): each integer combination is excluded
+by the tables or re-solved by a one-point chained SQP and KKT-checked (the relaxation with its Hessian
+convexified). Otherwise, and where a re-solve of that search fails its check, the point is solved by
+``Problem.solve``, warm from the last kept point (SQP, warm IPOPT, the integer search, the cold solve and the
+infeasibility diagnosis), and the next batch starts after it, 8 points long, doubling while batches pass (up to
+256). A chain's length is a power of two (few functions to build): rather than leave a remainder of up to PADDING
+points to another call, it repeats its last point. After a point without a design the points are solved cold, one
+by one, until one is optimal. A point that passes the KKT test but not the float64 check (rare) is solved again by
+``Problem.solve`` at the end of its window. A chained call that CasADi ends with an evaluation error counts as a
+batch whose first point failed. A window's outputs, each point's sensitivities and its :class:`Solution` are built
+when the point is read.
 
 The optima equal ``Problem.solve``'s to the solver's tolerance: a batch keeps the variable scales of the point it
 starts from and normalises the objective by that point's objective, where ``Problem.solve`` takes both afresh from
-each previous point. A point solved in a batch reports ``sqpmethod`` with the status ``batched, KKT verified``,
-its share of the batch's time, and no iteration count (the chained solver reports none per point).
+each previous point. A design variable that the objective does not price at the optimum (the ball clutch's groove
+conformity where the contact stress does not bind) may be left elsewhere by the batch's SQP than by
+``Problem.solve``'s IPOPT, both verified optimal. A point solved in a batch reports ``sqpmethod`` with the status
+``batched, KKT verified``, its share of the batch's time, its solver calls (its integer search's re-solves; a
+padded chain's repeats shared out), the integer search where the batch ran one, and no iteration count (the
+chained solver reports none per point).
 """
 
 from __future__ import annotations
