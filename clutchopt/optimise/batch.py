@@ -65,8 +65,8 @@ WINDOW = 1024  # points whose float64 checks run together; results are handed on
 WINDOW_S = 0.25  # or after this many seconds of solving, whichever comes first (a progress bar moves on)
 EXCLUSION_SPAN = LONGEST_BATCH  # points ahead whose exclusion of an integer combination is evaluated at once (a batch's
 # points at least; fewer cost less where the integers change often, since each table is a mapped CasADi call)
-PADDING = 32  # a chain may repeat its last point this many times to save a call (about 4 us a repeated point
-# against 0.2 ms a call, on the cable)
+PADDING = 64  # a chain may repeat its last point this many times to save a call (about 4 us a repeated point,
+# against 0.2 ms of a call and its checks, on the cable: 64 cost about as much as the call they save)
 BATCHED = "batched, KKT verified"
 
 
