@@ -101,10 +101,6 @@ class _Block:
         return cls(np.concatenate([b.index for b in blocks]),
                    **{key: np.concatenate([b.arrays[key] for b in blocks], axis=-1) for key in cls.KEYS})
 
-    def column(self, j: int) -> "_Block":
-        j = j % len(self.index)
-        return _Block(self.index[j:j + 1], **{key: value[..., j:j + 1] for key, value in self.arrays.items()})
-
 
 class _Chain(_Block):
     """Chained points with their KKT verdicts (``ok``)."""
@@ -372,6 +368,8 @@ class BatchSweep:
         block = kept["chain"].block(1)
         block.arrays["time"][:] = sum(float(run.arrays["time"][0, 0]) for run in runs)
         block.arrays["solves"][:] = len(runs)
+        for key in ("dx", "dlam_x", "dlam_g"):  # no step to predict from across a change of the integers
+            block.arrays[key] = np.zeros_like(block.arrays[key])
         self._searches[k] = search
         return block
 

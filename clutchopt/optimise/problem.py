@@ -291,7 +291,7 @@ class Problem:
             self._internal_scale = ca.Function("internal_scale", [p_case], [ca.vertcat(*self.start_up.scales)])
         self._elastic = None
         self._solvers = {"ipopt": self._solver}
-        self._maps: dict[tuple[str, int], ca.Function] = {}
+        self._maps: dict[tuple[str, int], InPlace] = {}
         self._fixed_only: dict[bytes, tuple[np.ndarray, ca.Function]] = {}
         self._chains: dict[tuple[str, int], InPlace] = {}
 
@@ -638,7 +638,8 @@ class Problem:
         tol = 10 * self.options.tol
         ineq = lam_g[: self.n_ineq]
         width = tol * ca.fmax(1.0, ca.fabs(x))
-        wrong_bound = ca.logic_or(ca.logic_and(lam_x > tol, ubx - x > width), ca.logic_and(lam_x < -tol, x - lbx > width))
+        wrong_bound = ca.logic_or(ca.logic_and(lam_x > tol, ubx - x > width),
+                                  ca.logic_and(lam_x < -tol, x - lbx > width))
         holds = [ca.fabs(gradient + lam_x) <= tol, ineq >= -tol, ineq * ca.fmax(-g, 0.0) <= tol,
                  ca.logic_not(wrong_bound), g <= FEASIBILITY_TOL]
         failures = sum(ca.sum1(1 - condition) for condition in holds)  # a comparison with NaN fails
@@ -672,9 +673,9 @@ class Problem:
                 guess = lam + ratio * step
                 return ca.if_else(lam * guess > 0, guess, 0)
 
-            out = self._solver_for(method)(x0=ca.fmin(ca.fmax(x + ratio * dx, lbx), ubx), lam_x0=predicted(lam_x, dlam_x),
-                                           lam_g0=predicted(lam_g, dlam_g), p=p, lbx=lbx, ubx=ubx, lbg=self._lbg,
-                                           ubg=0.0)
+            out = self._solver_for(method)(x0=ca.fmin(ca.fmax(x + ratio * dx, lbx), ubx),
+                                           lam_x0=predicted(lam_x, dlam_x), lam_g0=predicted(lam_g, dlam_g), p=p,
+                                           lbx=lbx, ubx=ubx, lbg=self._lbg, ubg=0.0)
             step = ca.Function("sqp_step", [x, lam_x, lam_g, dx, dlam_x, dlam_g, ratio, p, lbx, ubx],
                                [out["x"], out["lam_x"], out["lam_g"], out["x"] - x, out["lam_x"] - lam_x,
                                 out["lam_g"] - lam_g, out["f"]])
