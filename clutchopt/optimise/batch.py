@@ -308,10 +308,11 @@ class BatchSweep:
         began = time.perf_counter()
         ok = self.problem.first_order_optimal(x, p, lam_x, lam_g, lbx, ubx)[:count]
         self.check_s += time.perf_counter() - began
-        lbx, ubx = np.repeat(lbx[:, None], count, axis=1), np.repeat(ubx[:, None], count, axis=1)
         arrays = dict(x=x, lam_x=lam_x, lam_g=lam_g, dx=dx, dlam_x=dlam_x, dlam_g=dlam_g, f=f, p=p)
-        return _Chain(np.arange(k, k + count), ok, **{key: value[:, :count] for key, value in arrays.items()},
-                      lbx=lbx, ubx=ubx, time=np.full((1, count), seconds / count),
+        if count < length:
+            arrays = {key: value[:, :count] for key, value in arrays.items()}
+        return _Chain(np.arange(k, k + count), ok, **arrays, lbx=np.broadcast_to(lbx[:, None], (len(lbx), count)),
+                      ubx=np.broadcast_to(ubx[:, None], (len(ubx), count)), time=np.full((1, count), seconds / count),
                       solves=np.full((1, count), length / count))
 
     def _ratios(self, points: np.ndarray) -> np.ndarray:
