@@ -7,8 +7,8 @@ from the previous optimum, as sweeps ran before) and point by point from the cas
 Pool: batched, the sweep cut into contiguous chunks, one per worker process, each worker building its own problem
 (counted). Each row is the run of median wall time among ``sweep_repeats`` runs. Per row: solver calls per point
 (IPOPT and SQP, integer neighbours and the chained attempts a failed batch wastes included), the shares of the
-wall time inside the solver calls (an infeasibility diagnosis's IPOPT call included), in the batches' KKT checks
-(compiled CasADi evaluations) and in Python (the rest: case data, scaling, the float64 checks, outputs,
+wall time inside the solver calls (an infeasibility diagnosis's IPOPT call included), in the batches' compiled
+checks (mapped CasADi evaluations of the KKT verdicts and the exclusion tables) and in Python (the rest: case data, scaling, the float64 checks, outputs,
 sensitivities, bookkeeping), and for serial sweeps points/s against the same sweep point by point and against the
 wedge paper mode's batched sweep.
 """
@@ -40,7 +40,7 @@ def _problem(case: Case, options: SolverOptions, mode: str | None) -> Problem:
 def batched_sweep(case: Case, name: str, values, options: SolverOptions = SolverOptions(),
                   mode: str | None = None) -> dict:
     """The case solved at each value of ``name`` in batches: points, optimal, solver calls, seconds inside them
-    and in the batches' KKT checks."""
+    and in the batches' compiled checks."""
     sweep = BatchSweep(_problem(case, options, mode), case, {name: values})
     optimal = sum(statuses.count("optimal") for statuses in (window.statuses for window in sweep.run()))
     return {"points": len(values), "optimal": optimal, "solves": sweep.solves, "solver_s": sweep.solver_s,
