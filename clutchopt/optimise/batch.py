@@ -137,11 +137,11 @@ class _Start:
             self.objective = solution.objective
             self.step = {"dx": np.zeros_like(self.x), "dlam_x": np.zeros_like(self.lam_x),
                          "dlam_g": np.zeros_like(self.lam_g)}  # nothing to predict from
-        else:
-            a = {key: value[..., -1] for key, value in block.arrays.items()}
-            self.scale, self.x, self.lam_x, self.lam_g = a["p"][m:m + n], a["x"], a["lam_x"], a["lam_g"]
-            self.objective = float(a["f"][0] * a["p"][m + n])  # the scaled objective times its normaliser
-            self.step = {key: a[key] for key in ("dx", "dlam_x", "dlam_g")}
+        else:  # its last point
+            a, p = block.arrays, block.arrays["p"][:, -1]
+            self.scale, self.x, self.lam_x, self.lam_g = p[m:m + n], a["x"][:, -1], a["lam_x"][:, -1], a["lam_g"][:, -1]
+            self.objective = float(a["f"][0, -1] * p[m + n])  # the scaled objective times its normaliser
+            self.step = {key: a[key][:, -1] for key in ("dx", "dlam_x", "dlam_g")}
         self.names, self.integer = sweep.names, sweep.problem._integer
         self.combo = np.round(self.x[sweep.integer] * self.scale[sweep.integer])  # the free integers (SI)
         objective = self.objective
@@ -274,7 +274,7 @@ class BatchSweep:
         if chain is None:
             return None, min(count, chain_length(count)), False
         count = len(chain.index)
-        ends = self._ends_batch(chain.x, chain.lam_x, chain.f[0], chain.p, k)
+        ends = self._ends_batch(chain.x, chain.lam_x, chain.f[0], start.scale, k)
         ok = chain.ok & ~ends
         passed = int(np.argmin(ok)) if not ok.all() else count
         return (chain.block(passed) if passed else None), count, passed < count and bool(chain.ok[passed])
@@ -374,7 +374,7 @@ class BatchSweep:
         self._searches[k] = search
         return block
 
-    def _ends_batch(self, x, lam_x, f_hat, p, k: int) -> np.ndarray:
+    def _ends_batch(self, x, lam_x, f_hat, scale, k: int) -> np.ndarray:
         """Per column: a neighbouring integer combination the warm search would solve or, without free integers, an
         optimum more than tenfold off the scales (``Problem._solve`` re-scales there). The search
         (``Problem._downhill``) steps each integer whose bound multiplier promises a first-order gain beyond the
@@ -382,13 +382,13 @@ class BatchSweep:
         combination that breaks no constraint of fixed variables alone."""
         if not self.integer:
             return self.problem.off_scale(x[: len(self.names)])
-        integer, scale = self.integer, p[len(self.problem.formulation.quantities):][: len(self.names), 0]
-        combo = np.round(x[integer, 0] * scale[integer])  # the batch's integers, fixed through their bounds
-        moves = np.abs(lam_x[integer]) / scale[integer, None] > self.problem.negligible(f_hat)
-        direction = np.sign(lam_x[integer])
+        integer, scale = self.integer, scale[self.integer, None]
+        combo = np.round(x[integer, 0] * scale[:, 0])  # the batch's integers, fixed through their bounds
+        lam = lam_x[integer]
+        moves = np.abs(lam) / scale > self.problem.negligible(f_hat)
         neighbours = np.clip(combo + self._steps, self.lower[integer], self.upper[integer])  # a row per step
         stays = neighbours == combo
-        tried = np.all(stays[:, :, None] | (moves & (direction == self._steps[:, :, None])), axis=1)
+        tried = np.all(stays[:, :, None] | (moves & (np.sign(lam) == self._steps[:, :, None])), axis=1)
         tried &= ~np.all(stays, axis=1)[:, None]  # a step against a bound goes nowhere
         ends = np.zeros(x.shape[1], dtype=bool)
         for neighbour, columns in zip(neighbours, tried):
