@@ -30,7 +30,7 @@ MODES = [(case.coupling, mode) for case in bench_cases() for mode in get_couplin
 
 def test_report_structure(report):
     assert set(report) == {"machine", "config", "sections"}
-    assert report["config"] == {"repeats": 3, "sweep_points": 100, "sweep_repeats": 3, "processes": 2,
+    assert report["config"] == {"repeats": 3, "sweep_points": 50, "sweep_repeats": 3, "processes": 2,
                                 "start_up_intervals": [16]}
     assert report["machine"]["cores"] >= 1 and report["machine"]["casadi"]
     assert list(report["sections"]) == [s.name for s in SECTIONS if s.quick]  # --quick starts no Dask cluster
@@ -65,7 +65,7 @@ def test_throughput(report):
     for coupling in {c for c, _ in MODES}:
         throughput = _rows(report, "throughput", coupling)
         assert set(throughput) == {"batched", "point by point", "point by point, cold starts", "batched, process pool"}
-        assert {row["points"] for row in throughput.values()} == {100}
+        assert {row["points"] for row in throughput.values()} == {50}
         assert {row["runs"] for row in throughput.values()} == {3}  # the median of three runs each
         assert len({row["optimal"] for row in throughput.values()}) == 1 and throughput["batched"]["optimal"] > 0
         for how in ("batched", "point by point"):

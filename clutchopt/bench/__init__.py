@@ -35,7 +35,7 @@ class BenchConfig:
 
     @classmethod
     def quick(cls) -> "BenchConfig":
-        return cls(repeats=3, sweep_points=100, sweep_repeats=3, processes=2, start_up_intervals=(16,))
+        return cls(repeats=3, sweep_points=50, sweep_repeats=3, processes=2, start_up_intervals=(16,))
 
 
 @dataclass(frozen=True)

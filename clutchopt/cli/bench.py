@@ -22,6 +22,6 @@ def add_command(commands) -> None:
         "simulator on a stiff scene; a sweep on a local Dask cluster (not with --quick).",
         ("clutchopt bench --quick", "clutchopt bench --json > bench.json"))
     bench.add_argument("--quick", action="store_true",
-                       help="fewer repeats, 100-point sweeps, no Dask clusters: about a minute")
+                       help="fewer repeats, 50-point sweeps, no Dask clusters: about half a minute")
     add_json_option(bench, "one JSON object, times in seconds")
     bench.set_defaults(run=run)
