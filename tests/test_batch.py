@@ -222,3 +222,18 @@ def test_a_sweep_table_says_where_a_point_was_batched():
     assert str(frame["iterations"].dtype) == "Int64"
     assert frame["iterations"][0] > 0 and frame["iterations"][1:].isna().all()  # the first point starts cold
     assert markdown_table(frame).splitlines()[3].endswith("| - |")
+
+
+def test_the_predictor_ratio_of_each_point():
+    # a point's step in the case against the step before it: 1 along a geometric sweep, -1 where it turns back,
+    # 0 where there is no step before it, after a repeated point, and where the steps differ more than fourfold
+    case = load_case(CASES / "wedge_paper.toml")
+    problem = Problem(get_coupling("wedge").formulation("paper"))
+    base = case.values["inertia"]
+    factors = np.array([1.0, 1.01, 1.0201, 1.030301, 1.0201, 1.0201, 1.01, 1.5, 1.515])
+    sweep = BatchSweep(problem, case, {"inertia": base * factors})
+    moves = np.diff(factors) / factors[1:]
+    expected = [0.0, 0.0, 1.0, 1.0, moves[3] / moves[2], 0.0, 0.0, 0.0, moves[7] / moves[6]]
+    assert expected[4] == pytest.approx(-1.0, rel=0.03) and abs(moves[6] / moves[5]) > 4  # turns back; a jump
+    assert sweep._ratio == pytest.approx(expected, rel=1e-12, abs=1e-12)
+    assert sweep._ratios(np.array([6, 7, 8, 8, 8])) == pytest.approx([0.0, 0.0, expected[8], 0.0, 0.0])
