@@ -180,8 +180,12 @@ class BatchSweep:
             declared[name].check_all(values)
         f = problem.formulation
         base = problem._params(case)
-        self.values = np.array([self.varied.get(q.name, np.full(self.count, getattr(base, q.name)))
-                                for q in f.quantities], dtype=float).reshape(len(f.quantities), self.count)
+        self._by_point = np.tile(np.array([getattr(base, q.name) for q in f.quantities], dtype=float),
+                                 (self.count, 1))  # a point's case values, a row each (CasADi's memory of columns)
+        for j, q in enumerate(f.quantities):
+            if q.name in self.varied:
+                self._by_point[:, j] = self.varied[q.name]
+        self.values = self._by_point.T  # a quantity a row
         self.names = [v.name for v in f.variables]
         self.lower, self.upper, _ = problem._bounds_and_start(case, None)
         self.integer = [i for i in problem._integer if self.lower[i] < self.upper[i]]
@@ -193,13 +197,7 @@ class BatchSweep:
         entered[self.integer] = True
         rows, self._fixed_values = problem.fixed_only(fixed, entered)
         self._fixed_names = np.array([problem.row_names[row] for row in rows])
-        self._by_point = np.ascontiguousarray(self.values.T)  # a point's case values, a row each
         self._span = min(EXCLUSION_SPAN, self.count)
-        if self.integer:  # the NLP parameters of the exclusion tables, a point a row (CasADi's memory of their
-            # columns), unit scales (x is SI), past the sweep's end its last point repeated
-            self._unit_p = np.ones((self.count + self._span, len(self.values) + len(fixed) + 1))
-            self._unit_p[:, : len(self.values)] = self._by_point[np.minimum(np.arange(len(self._unit_p)),
-                                                                            self.count - 1)]
         self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
         self._searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
         varied = self.values[[q.name in self.varied for q in f.quantities]]
@@ -411,7 +409,9 @@ class BatchSweep:
         first, table = self._exclusions.get(key, (0, np.zeros((0, 0), dtype=bool)))
         if not first <= k <= k + count <= first + table.shape[1]:
             first, began = k, time.perf_counter()
-            g, = self.problem.mapped(self._fixed_values, self._span)(design, self._unit_p[k:k + self._span].T)
+            p_rows = np.ones((self._span, len(self.values) + len(design) + 1))  # unit scales: x is SI
+            p_rows[:, : len(self.values)] = self._by_point[np.minimum(np.arange(k, k + self._span), self.count - 1)]
+            g, = self.problem.mapped(self._fixed_values, self._span)(design, p_rows.T)  # past the end: the last point
             self.check_s += time.perf_counter() - began
             table = g > 10 * FEASIBILITY_TOL
             self._exclusions[key] = (first, table)
