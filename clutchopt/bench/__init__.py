@@ -54,7 +54,8 @@ SECTIONS: tuple[Section, ...] = (
     Section("throughput", "Throughput: one built problem re-solved over a sweep, warm-started unless said (batched: "
                           "chained SQP re-solves checked together, as clutchopt sweep runs); solver calls per point, "
                           "shares of the wall time in the solver calls, in the batches' compiled checks (KKT "
-                          "verdicts, exclusion tables) and in Python; points/s against the same sweep point by point and the wedge paper mode's",
+                          "verdicts, exclusion tables) and in Python; points/s against the same sweep point by "
+                          "point and the wedge paper mode's",
             throughput_rows),
     Section("resolve", "Warm re-solves along the same sweeps: warm IPOPT alone (before) and SQP first (now); times per "
                        "re-solve, largest relative difference of the verified optima", resolve_rows),

@@ -8,9 +8,9 @@ Pool: batched, the sweep cut into contiguous chunks, one per worker process, eac
 (counted). Each row is the run of median wall time among ``sweep_repeats`` runs. Per row: solver calls per point
 (IPOPT and SQP, integer neighbours and the chained attempts a failed batch wastes included), the shares of the
 wall time inside the solver calls (an infeasibility diagnosis's IPOPT call included), in the batches' compiled
-checks (mapped CasADi evaluations of the KKT verdicts and the exclusion tables) and in Python (the rest: case data, scaling, the float64 checks, outputs,
-sensitivities, bookkeeping), and for serial sweeps points/s against the same sweep point by point and against the
-wedge paper mode's batched sweep.
+checks (mapped CasADi evaluations of the KKT verdicts and the exclusion tables) and in Python (the rest: case data,
+scaling, the float64 checks, outputs, sensitivities, bookkeeping), and for serial sweeps points/s against the same
+sweep point by point and against the wedge paper mode's batched sweep.
 """
 
 from __future__ import annotations

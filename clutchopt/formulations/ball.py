@@ -189,21 +189,21 @@ KAPPA_RANGE = (math.log(1.01), math.log(1e5))  # ln(B/A) over which the Newton s
 KAPPA_START = (0.6195049581568469, -0.04819203413574859, 0.017114963528664155, -0.0010213762429290012,
                -0.005777536213994348, 0.0075816120696768595, -0.0072777845352428585, 0.003622163387927758,
                0.0015625642464741274, -0.002686491922902393, 0.0008446148249083446)
-# ln(a/b) / ln(B/A) as a polynomial in t = (2 ln(B/A) - lo - hi) / (hi - lo): the degree-10 Chebyshev fit to the exact
-# solution at 400 Chebyshev points of KAPPA_RANGE (scipy ellipk/ellipe and brentq); within 4e-6 of ln(a/b) there
-# (tests/test_ball_closed_forms.py refits it)
+# ln(a/b) / ln(B/A) as a polynomial in t = (2 ln(B/A) - lo - hi) / (hi - lo): the degree-10 Chebyshev fit to the
+# exact solution at 400 Chebyshev points of KAPPA_RANGE (scipy ellipk/ellipe and brentq); within 4e-6 of ln(a/b)
+# there (tests/test_ball_closed_forms.py refits it)
 NEWTON_STEPS = 1  # from the fitted start (4e-6): float64 accuracy, value and derivatives alike
 
 
 def kappa_start(ratio):
     """ln(a/b) of the contact ellipse to 4e-6 for 1.01 <= B/A <= 1e5 (KAPPA_START); beyond, the fit at its ends."""
     lo, hi = KAPPA_RANGE
-    big_l = log(ratio)
-    t = fmin(fmax((2.0 * big_l - lo - hi) / (hi - lo), -1.0), 1.0)
+    log_ratio = log(ratio)
+    t = fmin(fmax((2.0 * log_ratio - lo - hi) / (hi - lo), -1.0), 1.0)
     value = 0.0
-    for coefficient in reversed(KAPPA_START):
+    for coefficient in reversed(KAPPA_START):  # Horner
         value = value * t + coefficient
-    return big_l * value
+    return log_ratio * value
 
 
 def _curvature_ratio(m):
