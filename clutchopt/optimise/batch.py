@@ -333,14 +333,12 @@ class BatchSweep:
         def attempt(combo, seed, methods=None) -> dict | None:
             lower, upper = self.lower.copy(), self.upper.copy()
             lower[self.integer] = upper[self.integer] = combo
-            entry = self.problem.integer_entry(self.integer, combo)
             excluded = list(dict.fromkeys(self._fixed_names[self._broken(lower, k, 1)[:, 0]]))
             if excluded:
-                search.append({**entry, "status": f"excluded: {', '.join(excluded)}", "feasible": False,
-                               "objective": math.nan})
+                search.append(self.problem.excluded_entry(self.integer, combo, excluded))
                 return None
             run = solved(lower, upper, seed, "sqp_chain")
-            search.append({**entry, "status": BATCHED, "feasible": True, "objective": run["value"]})
+            search.append(self.problem.search_entry(self.integer, combo, BATCHED, True, run["value"]))
             return run
 
         def solved(lower, upper, seed, method) -> dict:
@@ -354,9 +352,7 @@ class BatchSweep:
         try:
             kept = self.problem.descend(box, self.integer, start.combo, seed, search, attempt)
             if kept is None:  # the batch's integers fail here: the relaxation, from the same point
-                lam_x = start.lam_x.copy()
-                lam_x[self.integer] = 0.0
-                relaxed = solved(self.lower, self.upper, {**seed, "lam_x": lam_x}, "sqp_search")
+                relaxed = solved(self.lower, self.upper, self.problem.relaxation_seed(seed, self.integer), "sqp_search")
                 if self.problem.off_scale(relaxed["x"][: len(self.names)]):
                     return None
                 kept = self.problem.nearest_integers(box, self.integer, relaxed, search, attempt)

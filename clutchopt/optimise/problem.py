@@ -439,9 +439,7 @@ class Problem:
                                      first=methods)
                 if kept is not None:
                     return self._finish(case, kept, runs, data, search)
-                lam_x = seed["lam_x"].copy()  # the previous integers fail here: the relaxation, from the same point
-                lam_x[integer] = 0.0
-                seed, methods = {**seed, "lam_x": lam_x}, ("warm",)
+                seed, methods = self.relaxation_seed(seed, integer), ("warm",)  # the previous integers fail here
             run = self._attempt(data, data.lbx, data.ubx, data.x0, seed, methods, runs)
             relaxed = run if run["ok"] else None
         if relaxed is None:  # cold: from the case's own start
@@ -556,19 +554,30 @@ class Problem:
         lower[integer] = upper[integer] = combo
         lbx, ubx = self._scaled_box(lower, upper, data.scale, (data.internal_lower, data.internal_upper))
         x0 = np.clip(seed["x"], lbx, ubx)
-        entry = self.integer_entry(integer, combo)
         excluded = self.violated_whatever_the_rest(data.p, lbx, ubx, x0)
         if excluded:
-            search.append({**entry, "status": f"excluded: {', '.join(excluded)}", "feasible": False,
-                           "objective": math.nan})
+            search.append(self.excluded_entry(integer, combo, excluded))
             return None
         run = self._attempt(data, lbx, ubx, x0, seed, methods, runs)
-        search.append({**entry, "status": run["status"], "feasible": run["feasible"], "objective": run["value"]})
+        search.append(self.search_entry(integer, combo, run["status"], run["feasible"], run["value"]))
         return run if run["ok"] and run["feasible"] else None
 
-    def integer_entry(self, integer: list[int], combo) -> dict[str, int]:
-        """The integer choice ``combo`` by name (the start of an ``integer_search`` entry)."""
-        return {self._names[i]: int(c) for i, c in zip(integer, combo)}
+    def search_entry(self, integer: list[int], combo, status: str, feasible: bool, objective: float) -> dict:
+        """An ``integer_search`` entry: the integer choice ``combo`` by name, how its solve ended, its objective."""
+        return {**{self._names[i]: int(c) for i, c in zip(integer, combo)}, "status": status, "feasible": feasible,
+                "objective": objective}
+
+    def excluded_entry(self, integer: list[int], combo, violated: list[str]) -> dict:
+        """The ``integer_search`` entry of a choice excluded without a solve: the constraints it breaks."""
+        return self.search_entry(integer, combo, f"excluded: {', '.join(violated)}", False, math.nan)
+
+    @staticmethod
+    def relaxation_seed(seed: dict, integer: list[int]) -> dict:
+        """A warm start for the relaxation from a fixed-integer optimum: the same point, the integers' bound
+        multipliers dropped (their bounds are opened)."""
+        lam_x = seed["lam_x"].copy()
+        lam_x[integer] = 0.0
+        return {**seed, "lam_x": lam_x}
 
     def violated_whatever_the_rest(self, p, lbx, ubx, x0) -> list[str]:
         """Constraints that depend only on fixed variables (integers included) and are violated at ``x0`` (scaled;
