@@ -13,7 +13,7 @@ from clutchopt.cases import load_case
 from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.batch import BATCHED, BatchSweep, batchable
-from clutchopt.optimise.problem import Problem, case_problem
+from clutchopt.optimise.problem import Box, Problem, case_problem
 from clutchopt.optimise.verify import evaluate_objective
 from conftest import CASES
 
@@ -237,3 +237,45 @@ def test_the_predictor_ratio_of_each_point():
     assert expected[4] == pytest.approx(-1.0, rel=0.03) and abs(moves[6] / moves[5]) > 4  # turns back; a jump
     assert sweep._ratio == pytest.approx(expected, rel=1e-12, abs=1e-12)
     assert sweep._ratios(np.array([6, 7, 8, 8, 8])) == pytest.approx([0.0, 0.0, expected[8], 0.0, 0.0])
+
+
+@pytest.mark.parametrize("name, cases", [("cable", {"none", "all excluded"}), ("ball_speed", {"none", "open"}),
+                                         ("wedge", {"on scale"})])
+def test_the_compiled_verdict_says_what_the_warm_search_would_do(name, cases, monkeypatch):
+    # Problem.chain_verdict's `moves` at every chained point against Problem.solve's own rule in Python: a neighbour
+    # that Problem._downhill steps to and that breaks no constraint of fixed variables alone; without integers, an
+    # optimum off its scales (Problem.off_scale). Along the cable's sweep every neighbour the multipliers point to is
+    # excluded (its count breaks the cable stress); along the ball's speed sweep the search steps to a neighbour.
+    import clutchopt.optimise.batch as batch
+
+    chains = []
+    chain = batch.BatchSweep._chain
+
+    def kept(self, *args, **kwargs):
+        result = chain(self, *args, **kwargs)
+        chains.append((self, result))
+        return result
+
+    monkeypatch.setattr(batch.BatchSweep, "_chain", kept)
+    case, problem, quantity, values, sweep, solutions = _sweep(name)
+    seen = set()
+    for sweep, result in chains:
+        m, n = len(sweep.values), len(sweep.names)
+        for j in range(len(result.index)):
+            x, scale = result.x[:, j], result.p[m:m + n, j]
+            if not sweep.integer:
+                assert result.moves[j] == bool(problem.off_scale(x))
+                seen.add("off scale" if result.moves[j] else "on scale")
+                continue
+            run = {"x": x, "lam_x": result.lam_x[:, j], "f": float(result.f[0, j])}
+            box = Box(scale, sweep.lower, sweep.upper)
+            p = np.concatenate([result.p[:m, j], np.ones(n + 1)])  # unit scales: x in SI
+            neighbours, open_neighbours = problem._downhill(run, box, sweep.integer), []
+            for combo in neighbours:
+                lower, upper = sweep.lower.copy(), sweep.upper.copy()
+                lower[sweep.integer] = upper[sweep.integer] = combo
+                if not problem.violated_whatever_the_rest(p, lower, upper, np.clip(x * scale, lower, upper)):
+                    open_neighbours.append(combo)
+            assert bool(result.moves[j]) == bool(open_neighbours), (sweep.integer, x * scale, open_neighbours)
+            seen.add("open" if open_neighbours else "all excluded" if neighbours else "none")
+    assert seen == cases

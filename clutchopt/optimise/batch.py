@@ -8,14 +8,13 @@ point starts from the primal-dual optimum of the one before, moved on by a secan
 iteration usually does), its NumPy arrays read and written in place (``clutchopt.optimise.in_place``), and the
 tests of ``Problem.solve`` run afterwards on all points of the batch at once:
 
-- the KKT conditions of every point, apart from the solver (``Problem.first_order_optimal``, one mapped CasADi
-  evaluation);
-- the integer test of the warm integer search: a point whose fixed integers' bound multipliers point to a
-  neighbouring integer the search would solve ends the chain; and a batch stops short of the point where its
-  integers break a constraint of fixed variables alone that they enter (the search excludes them there without a
-  solve), found ahead of the batch by a mapped CasADi evaluation (the exclusion tables);
-- without integers, a point whose optimum has moved more than tenfold from the variable scales ends it (the
-  solve is repeated with new scales there);
+- in one mapped CasADi evaluation (``Problem.chain_verdict``): the KKT conditions of every point, apart from the
+  solver; the integer test of the warm integer search (a point whose fixed integers' bound multipliers point to a
+  neighbouring integer the search would solve ends the chain); without integers, whether the optimum has moved
+  more than tenfold from the variable scales (the solve is repeated with new scales there);
+- a batch stops short of the point where its integers break a constraint of fixed variables alone that they enter
+  (the search excludes them there without a solve), found ahead of the batch by a mapped CasADi evaluation (the
+  exclusion tables);
 - at the end of a window of points (up to 1024, or a quarter of a second of solving), the float64 re-evaluation
   of every constraint and the objective by the formulation's own equations (``verify``'s arithmetic), vectorised
   over the points.
@@ -46,7 +45,6 @@ chained solver reports none per point).
 
 from __future__ import annotations
 
-import itertools
 import math
 import time
 from collections.abc import Sequence
@@ -103,11 +101,12 @@ class _Block:
 
 
 class _Chain(_Block):
-    """Chained points with their KKT verdicts (``ok``)."""
+    """Chained points with their KKT verdicts (``ok``) and whether the warm integer search would go on from them, or
+    without integers re-scale (``moves``, see ``Problem.chain_verdict``)."""
 
-    def __init__(self, index: np.ndarray, ok: np.ndarray, **arrays: np.ndarray):
+    def __init__(self, index: np.ndarray, ok: np.ndarray, moves: np.ndarray, **arrays: np.ndarray):
         super().__init__(index, **arrays)
-        self.ok = ok
+        self.ok, self.moves = ok, moves
 
     def __getattr__(self, key: str) -> np.ndarray:
         try:
@@ -196,6 +195,7 @@ class BatchSweep:
         entered = np.zeros_like(fixed)
         entered[self.integer] = True
         rows, self._fixed_values = problem.fixed_only(fixed, entered)
+        self._verdict = problem.chain_verdict(self.integer, fixed)
         self._fixed_names = np.array([problem.row_names[row] for row in rows])
         self._span = min(EXCLUSION_SPAN, self.count)
         self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
@@ -208,8 +208,6 @@ class BatchSweep:
         self._ratio = np.concatenate([[0.0, 0.0], np.where(np.abs(ratio) <= 4.0, ratio, 0.0)])[: self.count]
         # the predictor's ratio of each point: its step in the case against the step before it, projected on it (0
         # where there is none, and where the steps differ more than fourfold)
-        steps = [step for step in itertools.product((-1.0, 0.0, 1.0), repeat=len(self.integer)) if any(step)]
-        self._steps = np.array(steps) if steps else None  # to each neighbouring integer combination, a row each
         self.solves, self.solver_s, self.check_s = 0, 0.0, 0.0
 
     def point_case(self, k: int) -> Case:
@@ -232,13 +230,14 @@ class BatchSweep:
                     start, k = _Start(self, block=block), k + passed
                 if chained and passed == chained:
                     size = min(2 * size, LONGEST_BATCH)
-                    continue
+                    if not searching or k == end:  # (a batch that passes up to its integers' exclusion hands the
+                        continue  # next point to the search)
                 settled = self._settle(start, k) if searching else None
                 if settled is not None:  # the integer search decided point k in the batch
                     blocks.append(settled)
                     start, k = _Start(self, block=settled), k + 1
                     continue
-                if chained:  # point k failed a test in the batch: the next batch starts short
+                if passed < chained:  # point k failed a test in the batch: the next batch starts short
                     size = FIRST_BATCH
                 alone[k] = self._solve_alone(k, start.warm if start is not None else None)
                 start, k = self._start_of(alone[k]), k + 1
@@ -257,9 +256,11 @@ class BatchSweep:
         """Chain up to ``count`` points from ``start``: the columns up to the first that fails a test (None if it is
         the first), how many were chained (fewer than asked where the batch's integers are excluded ahead, none
         if they are at ``k``, see :func:`chain_length`), and whether the first point left is the integer search's
-        to decide (its integers excluded there, or a neighbouring combination to try)."""
+        to decide (its integers excluded there, or a neighbouring combination to try; also where every chained point
+        passed and the next one excludes them)."""
         lower, upper = self.lower.copy(), self.upper.copy()
         lower[self.integer] = upper[self.integer] = start.combo
+        first = -1  # the first point ahead where the batch's integers are excluded
         if self.integer:  # the batch stops short of a point its integers cannot serve whatever the rest (the search
             # excludes them there without a solve)
             excluded = self._excluded(lower, k, count)
@@ -272,10 +273,10 @@ class BatchSweep:
         if chain is None:
             return None, min(count, chain_length(count)), False
         count = len(chain.index)
-        ends = self._ends_batch(chain.x, chain.lam_x, chain.f[0], start.scale, k)
-        ok = chain.ok & ~ends
+        ok = chain.ok & ~chain.moves
         passed = int(np.argmin(ok)) if not ok.all() else count
-        return (chain.block(passed) if passed else None), count, passed < count and bool(chain.ok[passed])
+        searching = bool(chain.ok[passed]) if passed < count else count == first  # passed up to the exclusion
+        return (chain.block(passed) if passed else None), count, searching
 
     def _chain(self, start: _Start, k: int, count: int, lower: np.ndarray, upper: np.ndarray,
                seed: dict, method: str = "sqp_chain", predict: bool = True) -> "_Chain | None":
@@ -304,12 +305,13 @@ class BatchSweep:
         if x is None:
             return None
         began = time.perf_counter()
-        ok = self.problem.first_order_optimal(x, p, lam_x, lam_g, lbx, ubx)[:count]
+        kkt, moves = self.problem.mapped(self._verdict, length)(x, p, lam_x, lam_g, lbx, ubx, f, self.lower,
+                                                                 self.upper)
         self.check_s += time.perf_counter() - began
         arrays = dict(x=x, lam_x=lam_x, lam_g=lam_g, dx=dx, dlam_x=dlam_x, dlam_g=dlam_g, f=f, p=p)
         if count < length:
             arrays = {key: value[:, :count] for key, value in arrays.items()}
-        return _Chain(np.arange(k, k + count), ok, **arrays, lbx=np.broadcast_to(lbx[:, None], (len(lbx), count)),
+        return _Chain(np.arange(k, k + count), kkt[0, :count] > 0.5, moves[0, :count] > 0.5, **arrays, lbx=np.broadcast_to(lbx[:, None], (len(lbx), count)),
                       ubx=np.broadcast_to(ubx[:, None], (len(ubx), count)), time=np.full((1, count), seconds / count),
                       solves=np.full((1, count), length / count))
 
@@ -368,30 +370,6 @@ class BatchSweep:
         self._searches[k] = search
         return block
 
-    def _ends_batch(self, x, lam_x, f_hat, scale, k: int) -> np.ndarray:
-        """Per column: a neighbouring integer combination the warm search would solve or, without free integers, an
-        optimum more than tenfold off the scales (``Problem._solve`` re-scales there). The search
-        (``Problem._downhill``) steps each integer whose bound multiplier promises a first-order gain beyond the
-        solver's tolerance of the objective, one unit in that direction inside the bounds, and solves every such
-        combination that breaks no constraint of fixed variables alone."""
-        if not self.integer:
-            return self.problem.off_scale(x[: len(self.names)])
-        integer, scale = self.integer, scale[self.integer, None]
-        combo = np.round(x[integer, 0] * scale[:, 0])  # the batch's integers, fixed through their bounds
-        lam = lam_x[integer]
-        moves = np.abs(lam) / scale > self.problem.negligible(f_hat)
-        neighbours = np.clip(combo + self._steps, self.lower[integer], self.upper[integer])  # a row per step
-        stays = neighbours == combo
-        tried = np.all(stays[:, :, None] | (moves & (np.sign(lam) == self._steps[:, :, None])), axis=1)
-        tried &= ~np.all(stays, axis=1)[:, None]  # a step against a bound goes nowhere
-        ends = np.zeros(x.shape[1], dtype=bool)
-        for neighbour, columns in zip(neighbours, tried):
-            if columns.any():
-                design = self.lower.copy()
-                design[integer] = neighbour
-                ends |= columns & ~self._excluded(design, k, len(ends))
-        return ends
-
     def _excluded(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
         """Per point k .. k + count - 1: the fixed variables of ``design`` (SI; integers and variables fixed by the
         case) break a constraint that depends on them alone there, so the integer search would exclude them without a
@@ -401,7 +379,7 @@ class BatchSweep:
     def _broken(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
         """Which of those constraints break at points k .. k + count - 1 (a row per constraint, a column per point);
         evaluated EXCLUSION_SPAN points ahead at once, per integer combination."""
-        key = tuple(design[self.integer])
+        key = tuple(design[self.integer].tolist())
         first, table = self._exclusions.get(key, (0, np.zeros((0, 0), dtype=bool)))
         if not first <= k <= k + count <= first + table.shape[1]:
             first, began = k, time.perf_counter()

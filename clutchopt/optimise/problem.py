@@ -30,6 +30,7 @@ the requirements that cannot hold together and by how much the least relaxation 
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 import time
@@ -294,6 +295,7 @@ class Problem:
         self._maps: dict[tuple[str, int], InPlace] = {}
         self._fixed_only: dict[bytes, tuple[np.ndarray, ca.Function]] = {}
         self._chains: dict[tuple[str, int], InPlace] = {}
+        self._verdicts: dict[bytes, ca.Function] = {}
 
     @property
     def nlp(self) -> dict:
@@ -653,6 +655,60 @@ class Problem:
                  ca.logic_not(wrong_bound), g <= FEASIBILITY_TOL]
         failures = sum(ca.sum1(1 - condition) for condition in holds)  # a comparison with NaN fails
         return ca.Function("kkt", [x, self._nlp["p"], lam_x, lam_g, lbx, ubx], [failures == 0])
+
+    def chain_verdict(self, integer: list[int], fixed: np.ndarray) -> ca.Function:
+        """The tests of a re-solve along a sweep as one CasADi function (x, p, lam_x, lam_g, lbx, ubx, f, lower, upper)
+        -> (kkt, moves): ``kkt`` its KKT verdict (:meth:`_kkt_verdict`); ``moves`` 1 where ``Problem.solve``'s warm
+        search would go on from this point. With free integers ``integer`` (fixed through their bounds in the
+        re-solve; ``f`` its scaled objective, ``lower``, ``upper`` the case's bounds, SI): a neighbouring
+        combination that :meth:`_downhill` steps to (each integer whose bound multiplier promises a gain beyond
+        :meth:`negligible`, one unit that way inside the bounds) and that breaks no constraint of the variables
+        ``fixed`` (a mask, integers included) alone (:meth:`violated_whatever_the_rest`); without, an optimum
+        :meth:`off_scale`. Built once per integers and mask; no start-up."""
+        key = np.asarray(integer, dtype=np.int64).tobytes() + b"|" + np.asarray(fixed, dtype=bool).tobytes()
+        if key not in self._verdicts:
+            x, p, lam_x, lam_g, lbx, ubx, f_hat = (ca.SX.sym(name, *shape) for name, shape in (
+                ("x", self._nlp["x"].shape), ("p", self._nlp["p"].shape), ("lam_x", self._nlp["x"].shape),
+                ("lam_g", self._nlp["g"].shape), ("lbx", self._nlp["x"].shape), ("ubx", self._nlp["x"].shape),
+                ("f", (1, 1))))
+            n, m = len(self._names), self._nlp["p"].shape[0] - len(self._names) - 1
+            lower, upper = ca.SX.sym("lower", n), ca.SX.sym("upper", n)
+            kkt = self._kkt(x, p, lam_x, lam_g, lbx, ubx)
+            if integer:
+                moves = self._search_moves(integer, fixed, x, p, lam_x, f_hat, lower, upper, n, m)
+            else:
+                moved = ca.fabs(x[:n])
+                moves = ca.sum1((moved > 0) * ca.logic_or(moved > 10, moved < 0.1)) > 0
+            self._verdicts[key] = ca.Function(f"chain_verdict_{len(self._verdicts)}",
+                                              [x, p, lam_x, lam_g, lbx, ubx, f_hat, lower, upper], [kkt, moves])
+        return self._verdicts[key]
+
+    def _search_moves(self, integer, fixed, x, p, lam_x, f_hat, lower, upper, n: int, m: int) -> ca.SX:
+        """:meth:`chain_verdict`'s test with integers, symbolic (see :meth:`_downhill`)."""
+        entered = np.zeros_like(fixed)
+        entered[integer] = True
+        _, fixed_values = self.fixed_only(fixed, entered)
+        scale = p[m:m + n]
+        combo = [ca.floor(x[i] * scale[i] + 0.5) for i in integer]
+        negligible = 10 * self.options.tol * ca.fmax(ca.fabs(f_hat), 1e-300)
+        direction = [ca.if_else(ca.fabs(lam_x[i]) / scale[i] > negligible, ca.sign(lam_x[i]), 0) for i in integer]
+        unit = ca.vertcat(p[:m], ca.DM.ones(n + 1))  # unit scales: x in SI
+        moves = ca.SX(0)
+        for step in itertools.product((-1.0, 0.0, 1.0), repeat=len(integer)):
+            if not any(step):
+                continue
+            neighbour = [ca.fmin(ca.fmax(c + s, lower[i]), upper[i]) for c, s, i in zip(combo, step, integer)]
+            stays = [nb == c for nb, c in zip(neighbour, combo)]  # no step, or one against a bound
+            tried = functools.reduce(ca.logic_and, [ca.logic_or(stay, d == s) for stay, d, s in
+                                                    zip(stays, direction, step)],
+                                     ca.logic_not(functools.reduce(ca.logic_and, stays)))
+            design = [lower[i] for i in range(n)]
+            for i, nb in zip(integer, neighbour):
+                design[i] = nb
+            g = fixed_values(ca.vertcat(*design), unit)
+            excluded = ca.sum1(g > 10 * FEASIBILITY_TOL) > 0
+            moves = ca.logic_or(moves, ca.logic_and(tried, ca.logic_not(excluded)))
+        return moves
 
     def mapped(self, function: ca.Function, count: int) -> InPlace:
         """``function`` evaluated at ``count`` points at once (columns) on NumPy arrays, built once per count."""

@@ -75,9 +75,11 @@ def constraint_check(c: Constraint, value: float, limit: float, scale: float, ma
 def constraint_table(constraints: list[Constraint], count: int) -> tuple[np.ndarray, ...]:
     """Value, limit, scale and relative margin of each float64 constraint (rows) at ``count`` points (columns; a
     constraint that does not vary is broadcast)."""
-    rows = [[np.broadcast_to(np.asarray(v, dtype=float), (count,))
-             for v in (c.value, c.limit, c.limit if c.scale is None else c.scale)] for c in constraints]
-    value, limit, scale = np.array(rows, dtype=float).reshape(-1, 3, count).transpose(1, 0, 2)
+    table = np.empty((3, len(constraints), count))
+    for i, c in enumerate(constraints):
+        table[0, i], table[1, i] = c.value, c.limit
+        table[2, i] = c.limit if c.scale is None else c.scale
+    value, limit, scale = table
     at_most = np.array([c.sense == "<=" for c in constraints], dtype=bool)[:, None]
     with np.errstate(invalid="ignore", divide="ignore"):
         margin = np.where(at_most, limit - value, value - limit) / scale
