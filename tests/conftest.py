@@ -1,3 +1,4 @@
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -12,6 +13,12 @@ def run_cli(*args: str, cwd: Path = ROOT, timeout: float | None = None) -> subpr
     """The CLI as a user runs it, from the repository root (a hang beyond ``timeout`` seconds fails the test)."""
     return subprocess.run([sys.executable, "-m", "clutchopt", *args], cwd=cwd, capture_output=True, text=True,
                           timeout=timeout)
+
+
+def pytest_xdist_auto_num_workers(config) -> int:
+    """``-n auto``: a worker per core this process may use, at most 4 (each holds CasADi, pandas and its own built
+    problems, about 0.3 GB; several tests start process pools of their own)."""
+    return min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
 
 
 @pytest.fixture(autouse=True)
