@@ -311,9 +311,9 @@ class BatchSweep:
         arrays = dict(x=x, lam_x=lam_x, lam_g=lam_g, dx=dx, dlam_x=dlam_x, dlam_g=dlam_g, f=f, p=p)
         if count < length:
             arrays = {key: value[:, :count] for key, value in arrays.items()}
-        return _Chain(np.arange(k, k + count), kkt[0, :count] > 0.5, moves[0, :count] > 0.5, **arrays, lbx=np.broadcast_to(lbx[:, None], (len(lbx), count)),
-                      ubx=np.broadcast_to(ubx[:, None], (len(ubx), count)), time=np.full((1, count), seconds / count),
-                      solves=np.full((1, count), length / count))
+        return _Chain(np.arange(k, k + count), kkt[0, :count] > 0.5, moves[0, :count] > 0.5, **arrays,
+                      lbx=lbx[:, None].repeat(count, axis=1), ubx=ubx[:, None].repeat(count, axis=1),
+                      time=np.full((1, count), seconds / count), solves=np.full((1, count), length / count))
 
     def _ratios(self, points: np.ndarray) -> np.ndarray:
         """Per chained point, the predictor's ratio (0 for a repeated point)."""
