@@ -119,6 +119,20 @@ class SolverInfo:
     solves: int = 1  # design solves (the diagnosis not counted)
 
 
+class _Run(dict):
+    """One solve's figures (``x``, ``lam_x``, ``lam_g``, ``f``, ``ok``, ``status``, ``design``, ...). Its float64
+    check (``checks``, ``feasible``, ``value``) is made when one of them is first read: a relaxation whose integers
+    are searched next needs none."""
+
+    check = None  # design -> the check's figures
+
+    def __missing__(self, key):
+        if key not in ("checks", "feasible", "value") or self.check is None:
+            raise KeyError(key)
+        self.update(self.check(self["design"]))
+        return self[key]
+
+
 class Box(NamedTuple):
     """The design's box in one solve: variable scales and bounds (SI)."""
 
@@ -621,12 +635,12 @@ class Problem:
         """Solve by each method in turn until one ends in a verified optimum; every run goes into ``runs``.
         Methods: ``ipopt`` (cold), ``warm`` (IPOPT from ``seed``'s primal-dual point), ``sqp`` (CasADi's
         sequential QP from ``seed``: for a re-solve next to a known optimum, a few Newton steps)."""
-        for method in methods:
+        for i, method in enumerate(methods):
             run = self._run(data, lbx, ubx, x0, seed if method != "ipopt" else None, method)
             runs.append(run)
             if method == "sqp" and run["ok"]:
                 run["ok"] = self._first_order_optimal(run)
-            if run["ok"] and run["feasible"]:
+            if i == len(methods) - 1 or run["ok"] and run["feasible"]:
                 break
         return run
 
@@ -759,14 +773,18 @@ class Problem:
         elapsed = time.perf_counter() - started
         stats = solver.stats()
         x = result["x"].full().ravel()
-        params = data.checked or data.params
-        design = self._rounded(self._design(x, data.scale))
+        run = _Run(x=x, lam_g=result["lam_g"].full().ravel(), lam_x=result["lam_x"].full().ravel(),
+                   f=float(result["f"]), ok=bool(stats["success"]), status=stats["return_status"],
+                   iterations=int(stats.get("iter_count", 0)), time=elapsed, p=data.p, lbx=lbx, ubx=ubx,
+                   solver="sqpmethod" if method == "sqp" else "ipopt",
+                   design=self._rounded(self._design(x, data.scale)))
+        run.check = lambda design, params=data.checked or data.params: self._checked(design, params)
+        return run
+
+    def _checked(self, design: dict[str, float], params: SimpleNamespace) -> dict:
+        """A design's float64 check: ``checks``, ``feasible``, ``value`` (the objective)."""
         checks = check_design(self.formulation, design, params)
-        return {"x": x, "lam_g": result["lam_g"].full().ravel(), "lam_x": result["lam_x"].full().ravel(),
-                "f": float(result["f"]), "ok": bool(stats["success"]), "status": stats["return_status"],
-                "iterations": int(stats.get("iter_count", 0)), "time": elapsed, "p": data.p, "lbx": lbx, "ubx": ubx,
-                "solver": "sqpmethod" if method == "sqp" else "ipopt", "design": design, "checks": checks,
-                "feasible": all(c.feasible for c in checks),
+        return {"checks": checks, "feasible": all(c.feasible for c in checks),
                 "value": evaluate_objective(self.formulation, self.objective.name, design, params)}
 
     def _solver_for(self, method: str):
@@ -856,7 +874,7 @@ class Problem:
         if objective == 0 or not math.isfinite(objective):
             return {}
         m, n = len(self.formulation.quantities), len(self.formulation.variables)
-        gradient = self._case_gradient(run["x"], run["p"], run["lam_g"]).full().ravel()
+        gradient = self.mapped(self._case_gradient, 1)(run["x"], run["p"], run["lam_g"])[0].ravel()
         values, scale, f_scale = run["p"][:m], run["p"][m:m + n], run["p"][m + n]
         with np.errstate(invalid="ignore"):
             elasticity = values * f_scale * gradient / objective
