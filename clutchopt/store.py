@@ -79,6 +79,16 @@ def versions() -> dict[str, str]:
     return found
 
 
+@lru_cache(maxsize=1)
+def _versions_json() -> str:
+    return json.dumps(versions())
+
+
+RECORD = ("INSERT INTO runs (kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status,"
+          " objective, objective_unit, inputs, outputs, versions, created)"
+          " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (sweep_id, point) DO NOTHING")
+
+
 def _now() -> str:
     return datetime.now(timezone.utc).isoformat(timespec="milliseconds")
 
@@ -255,6 +265,19 @@ class RunStore:
         self.unrecorded += 1
         return None
 
+    def _write_many(self, sql: str, rows: list[tuple]) -> int:
+        """Execute one INSERT per row, all in one transaction; how many rows it inserted."""
+        if self.failure is None:
+            try:
+                with self._db:
+                    cursor = self._db.executemany(sql, rows)
+                return max(cursor.rowcount, 0)
+            except sqlite3.Error as exc:
+                self.failure = str(self._damaged(exc)).removeprefix("--store: ")
+                self._warn(f"not recorded: {self.failure}")
+        self.unrecorded += len(rows)
+        return 0
+
     def new_sweep(self, spec: dict, points: int, case_path: str = "") -> int | None:
         return self._write(
             "INSERT INTO sweeps (key, case_path, coupling, mode, objective, spec, points, created) "
@@ -262,22 +285,28 @@ class RunStore:
             (spec_key(spec), case_path, spec.get("coupling"), spec.get("mode"), spec.get("objective"),
              json.dumps(spec, default=str), points, _now()))
 
-    def record(self, kind: str, inputs: dict, outputs: dict, *, status: str | None = None,
-               objective: float | None = None, objective_unit: str = "", case_path: str = "", title: str = "",
-               coupling: str = "", mode: str = "", objective_name: str = "", sweep_id: int | None = None,
-               point: int | None = None) -> int | None:
-        """Record one run (solve, sweep point, pareto point, simulation) in its own transaction.
+    def record(self, kind: str, inputs: dict, outputs: dict, **where) -> int | None:
+        """Record one run (solve, sweep point, pareto point, simulation) in its own transaction (see
+        :meth:`record_many` for ``where``). Returns the run's id, or None if it was not recorded (already there, or
+        the store failed: ``failure``)."""
+        return self._write(RECORD, self._row(kind, inputs, outputs, **where))
 
-        A sweep point already stored (another process resuming the same sweep solved it too) is kept as it is.
-        Returns the run's id, or None if it was not recorded (already there, or the store failed: ``failure``)."""
+    def record_many(self, runs: list[tuple[str, dict, dict, dict]]) -> int:
+        """Record runs ``(kind, inputs, outputs, where)`` in one transaction (a window of sweep points: all land or
+        none). ``where``: status, objective, objective_unit, case_path, title, coupling, mode, objective_name,
+        sweep_id, point. A sweep point already stored (another process resuming the same sweep solved it too) is
+        kept as it is. Returns how many were recorded."""
+        return self._write_many(RECORD, [self._row(kind, inputs, outputs, **where) for kind, inputs, outputs, where
+                                         in runs])
+
+    @staticmethod
+    def _row(kind: str, inputs: dict, outputs: dict, *, status: str | None = None, objective: float | None = None,
+             objective_unit: str = "", case_path: str = "", title: str = "", coupling: str = "", mode: str = "",
+             objective_name: str = "", sweep_id: int | None = None, point: int | None = None) -> tuple:
         from clutchopt.output import to_json
 
-        return self._write(
-            "INSERT INTO runs (kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status,"
-            " objective, objective_unit, inputs, outputs, versions, created)"
-            " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (sweep_id, point) DO NOTHING",
-            (kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status, objective,
-             objective_unit, to_json(inputs, None), to_json(outputs, None), json.dumps(versions()), _now()))
+        return (kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status, objective,
+                objective_unit, to_json(inputs, None), to_json(outputs, None), _versions_json(), _now())
 
     def record_solution(self, kind: str, case, solution, **where) -> int | None:
         """Record a solved case: inputs are all its SI values, outputs the solution's JSON."""

@@ -279,3 +279,25 @@ def test_the_compiled_verdict_says_what_the_warm_search_would_do(name, cases, mo
             assert bool(result.moves[j]) == bool(open_neighbours), (sweep.integer, x * scale, open_neighbours)
             seen.add("open" if open_neighbours else "all excluded" if neighbours else "none")
     assert seen == cases
+
+
+@pytest.mark.parametrize("name", sorted(SWEEPS))
+def test_a_windows_records_are_its_solutions_as_dicts(name):
+    # the records built column-wise (what clutchopt sweep stores and tabulates) are each point's Solution.as_dict(),
+    # the same JSON text, key order and floats included; batched points, points solved alone (the first, the
+    # lever's infeasible ones) and integer searches among them
+    import json
+
+    file, mode, quantity, factors = SWEEPS[name]
+    case = load_case(CASES / file)
+    problem = Problem(get_coupling(case.coupling).formulation(mode))
+    sweep = BatchSweep(problem, case, {quantity: case.values[quantity] * factors})
+    kinds = set()
+    for window in sweep.run(window=16):
+        records = window.records()
+        solutions = list(window)
+        assert len(records) == len(solutions)
+        for record, solution in zip(records, solutions):
+            assert json.dumps(record) == json.dumps(solution.as_dict())
+            kinds.add((solution.solver.status == BATCHED, solution.status, bool(solution.integer_search)))
+    assert (True, "optimal", False) in kinds and (False, "optimal", bool(problem._integer)) in kinds

@@ -71,7 +71,7 @@ def test_a_sweep_point_cannot_be_recorded_twice(tmp_path):
 
 
 SWEEP = ["sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=500:3000:40", "--vary",
-         "allowable_pressure=2:8:25", "--quiet"]
+         "allowable_pressure=2:8:125", "--quiet"]  # 5000 points: 5 windows, each recorded in one transaction
 
 
 def _stored(path) -> list[tuple]:
@@ -93,17 +93,17 @@ def test_killed_sweep_resumes_without_losing_duplicating_or_recomputing(run_stor
     os.kill(process.pid, signal.SIGKILL)
     process.wait()
     before = _stored(run_store)
-    assert 150 <= len(before) < 1000, "the sweep was not killed half-way"
+    assert 150 <= len(before) < 5000, "the sweep was not killed half-way"
     out = tmp_path / "resumed.csv"
     resumed = cli(*SWEEP, "--resume", "--out", str(out))
     assert resumed.returncode == 0, resumed.stderr
-    assert f"solved {1000 - len(before)} points" in resumed.stdout
+    assert f"solved {5000 - len(before)} points" in resumed.stdout
     assert f"{len(before)} taken from the store" in resumed.stdout
     after = _stored(run_store)
     assert after[:len(before)] == before  # finished points untouched, not solved again
-    assert sorted(point for _, point, _ in after) == list(range(1000))  # none lost, none twice
+    assert sorted(point for _, point, _ in after) == list(range(5000))  # none lost, none twice
     frame = pd.read_csv(out)
-    assert len(frame) == 1000 and (frame["status"] == "optimal").all()
+    assert len(frame) == 5000 and (frame["status"] == "optimal").all()
     with RunStore(run_store) as store:
         assert len(store.sweeps()) == 1
 

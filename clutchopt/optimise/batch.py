@@ -55,7 +55,8 @@ import numpy as np
 from clutchopt.cases import Case
 from clutchopt.model import Output, namespace
 from clutchopt.optimise.problem import Box, Problem, Solution, SolverInfo, WarmStart, limit_elasticity
-from clutchopt.optimise.verify import FEASIBILITY_TOL, constraint_check, constraint_table
+from clutchopt.optimise.verify import ACTIVE_TOL, FEASIBILITY_TOL, constraint_check, constraint_table
+from clutchopt.units import si_unit
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
 LONGEST_BATCH = 256  # doubling stops here: a longer batch saves little call overhead and risks more waste
@@ -66,6 +67,7 @@ EXCLUSION_SPAN = LONGEST_BATCH  # points ahead whose exclusion of an integer com
 PADDING = 64  # a chain may repeat its last point this many times to save a call (about 4 us a repeated point,
 # against 0.2 ms of a call and its checks, on the cable: 64 cost about as much as the call they save)
 BATCHED = "batched, KKT verified"
+UNVERIFIED = "SQP reported a KKT point but the float64 check finds a constraint violated"
 
 
 def chain_length(count: int) -> int:
@@ -426,6 +428,13 @@ class Solutions(Sequence):
     def replace(self, i: int, solution: Solution) -> None:
         self._solutions[i] = solution
 
+    def records(self) -> list[dict]:
+        """Every point's ``Solution.as_dict()``, those of the batched points built together from the window's arrays
+        (no Solution objects: what ``clutchopt sweep`` records and tabulates)."""
+        batched = self._checked.records() if self._checked is not None else []
+        return [self._solutions[i].as_dict() if i in self._solutions else batched[column]
+                for i, column in enumerate(self._column.tolist())]
+
     @property
     def statuses(self) -> list[str]:
         """Each point's status, without building the Solutions of batched points (optimal unless one failed its
@@ -466,6 +475,60 @@ class _Checked:
                                  for name, out in self.sweep.problem.formulation.outputs(self.x, self.params).items()}
         return self._outputs
 
+    def records(self) -> list[dict]:
+        """Every point's ``Solution.as_dict()`` (as :meth:`__getitem__` would give it), built column by column: the
+        figures of all points converted to Python floats at once, then one dict per point and constraint."""
+        sweep, problem, f = self.sweep, self.sweep.problem, self.sweep.problem.formulation
+        a, count = self.block.arrays, len(self.block.index)
+        m, n, n_c = len(f.quantities), len(sweep.names), len(self.constraints)
+        objective, f_scale, feasible = self.objective, a["p"][m + n], self.feasible
+        with np.errstate(invalid="ignore", divide="ignore"):
+            sign = np.array([-1.0 if c.sense == "<=" else 1.0 for c in self.constraints])[:, None]
+            lam = a["lam_g"][:n_c]
+            elasticity = sign * lam * f_scale * self.limit / (self.scale * objective)  # as limit_elasticity
+        priced = ((objective != 0) & np.isfinite(objective)).tolist()
+        active = ((np.abs(self.margin) <= ACTIVE_TOL) | (self.margin < 0)).T.tolist()
+        fits = (self.margin >= -FEASIBILITY_TOL).T.tolist()
+        tables = [t.T.tolist() for t in (self.value, self.limit, self.margin, self.scale, lam, elasticity)]
+        static = [(c.name, c.equation, c.sense, si_unit(c.unit), c.description, c.unit) for c in self.constraints]
+        outputs = self.outputs
+        out_names = list(outputs)
+        out_values = np.array([values for values, _ in outputs.values()]).reshape(len(out_names), count).T.tolist()
+        units = {"design": {v.name: si_unit(v.unit) for v in f.variables},
+                 "outputs": {name: si_unit(out.unit) for name, (_, out) in outputs.items()}}
+        bounds = {name: [float(lo), float(hi)] for name, lo, hi in zip(sweep.names, sweep.lower, sweep.upper)}
+        feasible_list, objectives = feasible.tolist(), objective.tolist()
+        sensitivities = problem.sensitivity_columns(*(a[key] for key in ("x", "p", "lam_x", "lam_g", "lbx", "ubx")),
+                                                    np.where(feasible, objective, np.nan))
+        times, solves = a["time"][0].tolist(), a["solves"][0].tolist()
+        records = []
+        for j, (design, point_outputs, values, limits, margins, scales, lams, elasticities) in enumerate(zip(
+                self.design.T.tolist(), out_values, *tables)):
+            if not priced[j]:
+                elasticities = [None] * n_c
+            ok = feasible_list[j]
+            records.append({
+                "coupling": f.coupling, "mode": f.mode, "status": "optimal" if ok else "unverified",
+                "objective": {"name": problem.objective.name, "value": objectives[j], "unit": problem.objective.unit},
+                "design": dict(zip(sweep.names, design)), "outputs": dict(zip(out_names, point_outputs)),
+                "units": units,
+                "constraints": [
+                    {"name": name, "equation": equation, "sense": sense, "value": value, "limit": limit,
+                     "margin": margin, "active": is_active, "feasible": fit, "unit": unit, "description": description,
+                     "scale": scale, "multiplier": multiplier, "elasticity": e, "tolerance": FEASIBILITY_TOL,
+                     "display_unit": display}
+                    for (name, equation, sense, unit, description, display), value, limit, margin, scale, multiplier, e,
+                    is_active, fit in zip(static, values, limits, margins, scales, lams, elasticities, active[j],
+                                          fits[j])],
+                "solver": {"name": "sqpmethod", "status": BATCHED, "iterations": None, "time_s": times[j],
+                           "solves": int(solves[j])},
+                "diagnosis": None if ok else UNVERIFIED,
+                "integer_search": sweep._searches.get(int(self.block.index[j]), []),
+                "bounds": bounds,
+                "sensitivities": sensitivities[j],
+            })
+        return records
+
     def __getitem__(self, j: int) -> Solution:
         """Point ``j`` as the Solution ``Problem.solve`` returns."""
         sweep, problem, f = self.sweep, self.sweep.problem, self.sweep.problem.formulation
@@ -483,7 +546,7 @@ class _Checked:
             "optimal" if feasible else "unverified", objective, dict(zip(sweep.names, map(float, self.design[:, j]))),
             {name: Output(float(values[j]), out.unit, out.description) for name, (values, out) in self.outputs.items()},
             checks, SolverInfo("sqpmethod", BATCHED, None, float(a["time"][0]), int(a["solves"][0])),
-            None if feasible else "SQP reported a KKT point but the float64 check finds a constraint violated",
+            None if feasible else UNVERIFIED,
             sweep._searches.get(int(self.block.index[j]), []),
             {name: (float(lo), float(hi)) for name, lo, hi in zip(sweep.names, sweep.lower, sweep.upper)},
             problem.sensitivities(a, objective) if feasible else {},

@@ -866,26 +866,42 @@ class Problem:
 
     def sensitivities(self, run: dict, objective: float) -> dict[str, float]:
         """d ln f* / d ln p for every case quantity with a finite non-zero value and every fixed variable, at a
-        run's primal-dual point (``x``, ``p``, ``lam_x``, ``lam_g``, ``lbx``, ``ubx``).
+        run's primal-dual point (``x``, ``p``, ``lam_x``, ``lam_g``, ``lbx``, ``ubx``); see
+        :meth:`sensitivity_columns`."""
+        column = (np.reshape(run[key], (-1, 1)) for key in ("x", "p", "lam_x", "lam_g", "lbx", "ubx"))
+        return self.sensitivity_columns(*column, np.array([objective]))[0]
+
+    def sensitivity_columns(self, x, p, lam_x, lam_g, lbx, ubx, objective: np.ndarray) -> list[dict[str, float]]:
+        """:meth:`sensitivities` of primal-dual points given as columns (their objectives in ``objective``), the case
+        gradients by one mapped CasADi evaluation (columns padded to a power of two).
 
         Case quantities: f_scale * dL/dp (L the scaled Lagrangian). A variable fixed through its bounds at b:
-        its bound multiplier gives d f_hat / d(b / scale) = -lam_x.
+        its bound multiplier gives d f_hat / d(b / scale) = -lam_x. None where the objective is 0 or not finite.
         """
-        if objective == 0 or not math.isfinite(objective):
-            return {}
+        count = len(objective)
+        width = 1 << (count - 1).bit_length()
+        padded = [np.pad(a, ((0, 0), (0, width - count)), mode="edge") for a in (x, p, lam_g)]
         m, n = len(self.formulation.quantities), len(self.formulation.variables)
-        gradient = self.mapped(self._case_gradient, 1)(run["x"], run["p"], run["lam_g"])[0].ravel()
-        values, scale, f_scale = run["p"][:m], run["p"][m:m + n], run["p"][m + n]
-        with np.errstate(invalid="ignore"):
+        gradient = self.mapped(self._case_gradient, width)(*padded)[0][:, :count]
+        values, scale, f_scale = p[:m], p[m:m + n], p[m + n]
+        with np.errstate(invalid="ignore", divide="ignore"):
             elasticity = values * f_scale * gradient / objective
-        result = {q.name: float(e) for q, e, ok in zip(self.formulation.quantities, elasticity,
-                                                       np.isfinite(elasticity) & (values != 0)) if ok}
-        for i, v in enumerate(self.formulation.variables):
-            if run["lbx"][i] == run["ubx"][i] and not v.integer:
-                value = run["lbx"][i] * scale[i]
-                if value != 0:
-                    result[v.name] = (result.get(v.name, 0.0)
-                                      - value * f_scale * run["lam_x"][i] / (scale[i] * objective))
+            fixed = []  # (name, where it applies, its term) of each continuous variable fixed through its bounds
+            for i, v in enumerate(self.formulation.variables):
+                value = lbx[i] * scale[i]
+                if not v.integer:
+                    fixed.append((v.name, ((lbx[i] == ubx[i]) & (value != 0)).tolist(),
+                                  (value * f_scale * lam_x[i] / (scale[i] * objective)).tolist()))
+        names = [q.name for q in self.formulation.quantities]
+        kept = (np.isfinite(elasticity) & (values != 0)).T.tolist()
+        valid = ((objective != 0) & np.isfinite(objective)).tolist()
+        result = []
+        for j, (row, keep) in enumerate(zip(elasticity.T.tolist(), kept)):
+            point = {name: e for name, e, ok in zip(names, row, keep) if ok} if valid[j] else {}
+            for name, applies, term in fixed if valid[j] else ():
+                if applies[j]:
+                    point[name] = point.get(name, 0.0) - term[j]
+            result.append(point)
         return result
 
     # --- infeasibility diagnosis ------------------------------------------------------------------------------------

@@ -129,29 +129,33 @@ def point_cases(case: Case, points: list[dict[str, float]]) -> list[Case]:
 
 
 def solve_points(case: Case, mode: str, objective: str, tol: float,
-                 points: list[tuple[int, dict[str, float]]]) -> Iterator[dict]:
-    """Solve points in order, each warm-started from the last optimum; yields each result as it is solved (in
-    batches where the problem allows: ``clutchopt.optimise.batch``, the results of a window of points at once)."""
+                 points: list[tuple[int, dict[str, float]]]) -> Iterator[list[dict]]:
+    """Solve points in order, each warm-started from the last optimum; yields the results as they are solved, in
+    lists: a window of points at once where the problem allows batches (``clutchopt.optimise.batch``), else one
+    point each."""
     problem = case_problem(case, mode, objective, SolverOptions(tol=tol))
     names = list(points[0][1]) if points else []
     if points and batchable(problem, names):
         varied = {name: np.array([values[name] for _, values in points]) for name in names}
-        solutions = itertools.chain.from_iterable(BatchSweep(problem, case, varied).run())
-        for (index, values), solution in zip(points, solutions):
-            yield {"point": index, "values": values, "solution": solution.as_dict()}
+        first = 0
+        for window in BatchSweep(problem, case, varied).run():
+            records = window.records()
+            yield [{"point": index, "values": values, "solution": record}
+                   for (index, values), record in zip(points[first:first + len(records)], records)]
+            first += len(records)
         return
     previous: Solution | None = None
     for index, values in points:
         point_case = case.with_values(**values)
         solution = problem.solve(point_case, warm=previous)  # falls back to the case's own start by itself
         previous = solution if solution.status == "optimal" else None  # next to a failure, start from the case
-        yield {"point": index, "values": values, "solution": solution.as_dict()}
+        yield [{"point": index, "values": values, "solution": solution.as_dict()}]
 
 
 def solve_chunk(case: Case, mode: str, objective: str, tol: float,
                 chunk: list[tuple[int, dict[str, float]]]) -> list[dict]:
     """A chunk of neighbouring points solved in one worker (process pool, Dask)."""
-    return list(solve_points(case, mode, objective, tol, chunk))
+    return [result for results in solve_points(case, mode, objective, tol, chunk) for result in results]
 
 
 def _chunks(pending: list[tuple[int, dict]], size: int) -> list[list[tuple[int, dict]]]:
@@ -162,8 +166,7 @@ def local_runner(jobs: int) -> Callable:
     """In this process (each point recorded as it is solved) or in a pool of ``jobs`` processes."""
     def run(task: tuple, pending: list, size: int) -> Iterator[list[dict]]:
         if jobs <= 1:
-            for result in solve_points(*task, pending):
-                yield [result]
+            yield from solve_points(*task, pending)
             return
         pool = ProcessPoolExecutor(max_workers=jobs, initializer=die_with_parent)
         try:
@@ -348,22 +351,28 @@ class Sweep:
         with bar, interrupt_between_points() as check:
             for results in (runner or local_runner(jobs))(task, pending, size):
                 for result in results:
-                    check()
                     solutions[result["point"]] = result["solution"]
-                    if store is not None and sweep_id is not None:
-                        point_case = self.case.with_values(**result["values"])
-                        solution = result["solution"]
-                        store.record("sweep", {"values": point_case.values, "free": list(point_case.free),
-                                               "bounds": point_case.bounds}, solution,
-                                     status=solution["status"], objective=solution["objective"]["value"],
-                                     objective_unit=self.objective.unit,
-                                     case_path=self.case.path, title=self.case.title, coupling=self.case.coupling,
-                                     mode=self.formulation.mode, objective_name=self.objective.name,
-                                     sweep_id=sweep_id, point=result["point"])
+                if store is not None and sweep_id is not None:  # the results in hand in one transaction
+                    store.record_many([("sweep", self._inputs(result["values"]), result["solution"],
+                                        self._where(result, sweep_id)) for result in results])
                 bar.update(len(results))
+                check()
         ordered = [solutions[i] for i in range(len(self.points))]
         return SweepResult(sweep_id, self.frame(ordered), len(pending), len(stored), time.perf_counter() - started,
                            ordered)
+
+    def _inputs(self, values: dict[str, float]) -> dict:
+        """A point's inputs as the store keeps them: the case's SI values with the point's (checked when the sweep
+        was made), its free variables and bounds."""
+        values = {**self.case.values, **{name: float(value) for name, value in values.items()}}
+        return {"values": values, "free": list(self.case.free), "bounds": self.case.bounds}
+
+    def _where(self, result: dict, sweep_id: int) -> dict:
+        solution = result["solution"]
+        return {"status": solution["status"], "objective": solution["objective"]["value"],
+                "objective_unit": self.objective.unit, "case_path": self.case.path, "title": self.case.title,
+                "coupling": self.case.coupling, "mode": self.formulation.mode, "objective_name": self.objective.name,
+                "sweep_id": sweep_id, "point": result["point"]}
 
     def frame(self, solutions: list[dict]) -> pd.DataFrame:
         """One row per point: inputs, status, objective, design (display units), active constraints; a point without
