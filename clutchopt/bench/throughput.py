@@ -4,13 +4,17 @@ The sweep runs the first non-integer quantity of the case's first section (the d
 from 0.5x to 2x its value. Serial, in one process: in batches (``clutchopt.optimise.batch``, what ``clutchopt
 sweep`` runs: chained SQP re-solves in one CasADi call, checked together), point by point (``Problem.solve`` warm
 from the previous optimum, as sweeps ran before) and point by point from the case's own start ("cold starts").
+Batched "with records": each point's record built as well (``Solution.as_dict()``, the JSON that ``clutchopt sweep``
+tabulates and stores; a window's records are built together from its arrays); the other rows stop at the solve
+(batched: a status per point; point by point: a Solution per point, which ``Problem.solve`` builds).
 Pool: batched, the sweep cut into contiguous chunks, one per worker process, each worker building its own problem
 (counted). Each row is the run of median wall time among ``sweep_repeats`` runs. Per row: solver calls per point
 (IPOPT and SQP, integer neighbours and the chained attempts a failed batch wastes included), the shares of the
 wall time inside the solver calls (an infeasibility diagnosis's IPOPT call included), in the batches' compiled
 checks (mapped CasADi evaluations of the KKT verdicts and the exclusion tables) and in Python (the rest: case data,
-scaling, the float64 checks, outputs, sensitivities, bookkeeping), and for serial sweeps points/s against the same
-sweep point by point and against the wedge paper mode's batched sweep.
+scaling, the float64 checks, bookkeeping; point by point, and batched with records, also outputs and
+sensitivities), and for serial sweeps points/s against the same sweep point by point and against the wedge paper
+mode's batched sweep.
 """
 
 from __future__ import annotations
@@ -38,11 +42,15 @@ def _problem(case: Case, options: SolverOptions, mode: str | None) -> Problem:
 
 
 def batched_sweep(case: Case, name: str, values, options: SolverOptions = SolverOptions(),
-                  mode: str | None = None) -> dict:
+                  mode: str | None = None, records: bool = False) -> dict:
     """The case solved at each value of ``name`` in batches: points, optimal, solver calls, seconds inside them
-    and in the batches' compiled checks."""
+    and in the batches' compiled checks. ``records``: each point's record built too (``Solution.as_dict()``: what
+    ``clutchopt sweep`` hands to its table and run store)."""
     sweep = BatchSweep(_problem(case, options, mode), case, {name: values})
-    optimal = sum(statuses.count("optimal") for statuses in (window.statuses for window in sweep.run()))
+    if records:
+        optimal = sum(record["status"] == "optimal" for window in sweep.run() for record in window.records())
+    else:
+        optimal = sum(statuses.count("optimal") for statuses in (window.statuses for window in sweep.run()))
     return {"points": len(values), "optimal": optimal, "solves": sweep.solves, "solver_s": sweep.solver_s,
             "check_s": sweep.check_s}
 
@@ -67,7 +75,8 @@ def _merged(tallies: list[dict]) -> dict:
     return {key: sum(t[key] for t in tallies) for key in tallies[0]}
 
 
-HOWS = (("batched", batched_sweep, {}), ("point by point", warm_sweep, {}),
+HOWS = (("batched", batched_sweep, {}), ("batched, with records", batched_sweep, {"records": True}),
+        ("point by point", warm_sweep, {}),
         ("point by point, cold starts", warm_sweep, {"warm": False}))
 
 
