@@ -493,7 +493,10 @@ class _Checked:
         static = [(c.name, c.equation, c.sense, si_unit(c.unit), c.description, c.unit) for c in self.constraints]
         outputs = self.outputs
         out_names = list(outputs)
-        out_values = np.array([values for values, _ in outputs.values()]).reshape(len(out_names), count).T.tolist()
+        out_values = np.empty((len(out_names), count))
+        for row, (values, _) in zip(out_values, outputs.values()):
+            row[:] = values
+        out_values = out_values.T.tolist()
         units = {"design": {v.name: si_unit(v.unit) for v in f.variables},
                  "outputs": {name: si_unit(out.unit) for name, (_, out) in outputs.items()}}
         bounds = {name: [float(lo), float(hi)] for name, lo, hi in zip(sweep.names, sweep.lower, sweep.upper)}

@@ -897,7 +897,7 @@ class Problem:
         valid = ((objective != 0) & np.isfinite(objective)).tolist()
         result = []
         for j, (row, keep) in enumerate(zip(elasticity.T.tolist(), kept)):
-            point = {name: e for name, e, ok in zip(names, row, keep) if ok} if valid[j] else {}
+            point = dict(itertools.compress(zip(names, row), keep)) if valid[j] else {}
             for name, applies, term in fixed if valid[j] else ():
                 if applies[j]:
                     point[name] = point.get(name, 0.0) - term[j]
