@@ -301,3 +301,19 @@ def test_a_windows_records_are_its_solutions_as_dicts(name):
             assert json.dumps(record) == json.dumps(solution.as_dict())
             kinds.add((solution.solver.status == BATCHED, solution.status, bool(solution.integer_search)))
     assert (True, "optimal", False) in kinds and (False, "optimal", bool(problem._integer)) in kinds
+
+
+def test_the_first_re_solve_after_a_cold_ipopt_optimum_goes_by_sqp():
+    # IPOPT leaves about 1e-11 on inactive bounds; CasADi's SQP (qrqp) would read them as active bounds and stop
+    # where it started. Problem.warm_multipliers drops them: the next point is one SQP re-solve, point by point and
+    # in a batch (whose first point used to fail its KKT test and go to Problem.solve)
+    case = load_case(CASES / "wedge_centrifuge.toml")
+    problem = Problem(get_coupling("wedge").formulation("paper"))
+    values = case.values["inertia"] * np.geomspace(0.5, 2.0, 1000)[:3]
+    first = problem.solve(case.with_values(inertia=float(values[0])))
+    assert first.solver.name == "ipopt" and np.any((np.abs(first.multipliers[0]) > 0)
+                                                  & (np.abs(first.multipliers[0]) < 1e-9))
+    second = problem.solve(case.with_values(inertia=float(values[1])), warm=first)
+    assert (second.status, second.solver.name, second.solver.solves) == ("optimal", "sqpmethod", 1)
+    solutions = [s for part in BatchSweep(problem, case, {"inertia": values}).run() for s in part]
+    assert [s.solver.status for s in solutions[1:]] == [BATCHED, BATCHED]

@@ -134,7 +134,7 @@ class _Start:
         if solution is not None:
             self.scale = solution.scale
             self.x = np.array([solution.design[name] for name in sweep.names]) / self.scale
-            self.lam_x, self.lam_g = solution.multipliers
+            self.lam_x, self.lam_g = sweep.problem.warm_multipliers(*solution.multipliers)
             self.objective = solution.objective
             self.step = {"dx": np.zeros_like(self.x), "dlam_x": np.zeros_like(self.lam_x),
                          "dlam_g": np.zeros_like(self.lam_g)}  # nothing to predict from
@@ -204,7 +204,8 @@ class BatchSweep:
         self._searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
         varied = self.values[[q.name in self.varied for q in f.quantities]]
         with np.errstate(all="ignore"):  # each point's step in the case from the one before, relative
-            moves = np.nan_to_num(np.diff(varied, axis=1) / np.abs(varied[:, 1:]), posinf=0.0, neginf=0.0)
+            moves = np.diff(varied, axis=1) / np.abs(varied[:, 1:])
+        moves[~np.isfinite(moves)] = 0.0
         norm = np.sum(moves[:, :-1] ** 2, axis=0)
         ratio = np.sum(moves[:, 1:] * moves[:, :-1], axis=0) / np.where(norm > 0, norm, 1.0)
         self._ratio = np.concatenate([[0.0, 0.0], np.where(np.abs(ratio) <= 4.0, ratio, 0.0)])[: self.count]

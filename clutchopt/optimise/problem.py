@@ -437,7 +437,7 @@ class Problem:
         if mesh is None and warm_ok and warm.mesh is not None and len(warm.mesh[0]) == self._mesh_size:
             mesh = warm.mesh[0]
         solved, checked = nlp_case or case, self._params(case)
-        duals = warm.multipliers if warm_ok else None
+        duals = self.warm_multipliers(*warm.multipliers) if warm_ok else None
         if duals is not None and len(duals[1]) != len(self._lbg):
             duals = None  # a warm start from another problem (e.g. uncapped) gives its point only
         runs: list[dict] = []
@@ -643,6 +643,14 @@ class Problem:
             if i == len(methods) - 1 or run["ok"] and run["feasible"]:
                 break
         return run
+
+    def warm_multipliers(self, lam_x: np.ndarray, lam_g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Multipliers to warm-start from: those within the KKT verdict's tolerance (10 tol) set to 0. IPOPT leaves
+        about 1e-11 on inactive bounds and constraints (an interior point); CasADi's SQP (qrqp) reads any non-zero
+        multiplier as an active bound, fixes the variable there and stops on a search direction too small (the
+        wedge's first re-solve after a cold IPOPT solve did)."""
+        tol = 10 * self.options.tol
+        return tuple(np.where(np.abs(lam) > tol, lam, 0.0) for lam in (lam_x, lam_g))
 
     def _first_order_optimal(self, run: dict) -> bool:
         """The KKT check of one run (see :meth:`first_order_optimal`)."""
