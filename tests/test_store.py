@@ -1,6 +1,7 @@
 """The run store: solves recorded with inputs, outputs and versions; WAL; list/show/export; kill -9 and resume."""
 
 import json
+import math
 import os
 import signal
 import sqlite3
@@ -177,3 +178,22 @@ def test_runs_are_listed_and_exported_for_a_person(tmp_path, capsys):
     assert len(infeasible) == 2 and infeasible["design.finger_diameter [m]"].isna().all()
     assert infeasible["mass [kg]"].isna().all() and infeasible["diagnosis"].str.startswith("infeasible:").all()
     assert table.loc[5, "cost [EUR]"] == pytest.approx(39.1863, rel=1e-5) and pd.isna(table.loc[5, "mass [kg]"])
+
+
+def test_the_stores_json_reads_back_as_the_standard_librarys():
+    # the run store's compact JSON (orjson) and the indented JSON of --json (the standard library) hold the same
+    # values: NaN and infinities as null, NumPy scalars as plain numbers, tuples as lists, integer keys as text;
+    # what orjson refuses (an integer beyond 64 bits, nesting deeper than 254) goes through the standard library
+    import numpy as np
+
+    from clutchopt.output import to_json
+
+    data = {"a": [1e-05, 1e16, math.nan, -math.inf, np.float64(0.1), np.int64(3), np.bool_(True), (1, 2)], 7: "x",
+            "big": 10 ** 30, "nested": {"deep": [0.1, None]}}
+    assert json.loads(to_json(data, None)) == json.loads(to_json(data))
+    assert json.loads(to_json(data, None)) == {"a": [1e-05, 1e16, None, None, 0.1, 3, True, [1, 2]], "7": "x",
+                                               "big": 10 ** 30, "nested": {"deep": [0.1, None]}}
+    deep = [0.5]
+    for _ in range(300):
+        deep = [deep]
+    assert json.loads(to_json({"deep": deep}, None)) == {"deep": deep}
