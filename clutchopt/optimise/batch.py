@@ -30,8 +30,9 @@ infeasibility diagnosis), and the next batch starts after it, 8 points long, dou
 points to another call, it repeats its last point. After a point without a design the points are solved cold, one
 by one, until one is optimal. A point that passes the KKT test but not the float64 check (rare) is solved again by
 ``Problem.solve`` at the end of its window. A chained call that CasADi ends with an evaluation error counts as a
-batch whose first point failed. A window's outputs, each point's sensitivities and its :class:`Solution` are built
-when the point is read.
+batch whose first point failed. A window's records (each point's ``Solution.as_dict()``, what ``clutchopt sweep``
+tabulates and stores) are built together when asked for (``Solutions.records``), from the window's arrays; a
+point's :class:`Solution` is built from its record when the point is read.
 
 The optima equal ``Problem.solve``'s to the solver's tolerance: a batch keeps the variable scales of the point it
 starts from and normalises the objective by that point's objective, where ``Problem.solve`` takes both afresh from
@@ -54,8 +55,8 @@ import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.model import Output, namespace
-from clutchopt.optimise.problem import Box, Problem, Solution, SolverInfo, WarmStart, limit_elasticity
-from clutchopt.optimise.verify import ACTIVE_TOL, FEASIBILITY_TOL, constraint_check, constraint_table
+from clutchopt.optimise.problem import Box, Problem, Solution, SolverInfo, WarmStart
+from clutchopt.optimise.verify import ACTIVE_TOL, FEASIBILITY_TOL, ConstraintCheck, constraint_table
 from clutchopt.units import si_unit
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
@@ -476,28 +477,29 @@ class _Checked:
                                  for name, out in self.sweep.problem.formulation.outputs(self.x, self.params).items()}
         return self._outputs
 
-    def records(self) -> list[dict]:
-        """Every point's ``Solution.as_dict()`` (as :meth:`__getitem__` would give it), built column by column: the
-        figures of all points converted to Python floats at once, then one dict per point and constraint."""
+    def records(self, columns: list[int] | None = None) -> list[dict]:
+        """Every point's ``Solution.as_dict()`` (of the points ``columns`` only, if given), built column by column:
+        the figures of all points converted to Python floats at once, then one dict per point and constraint."""
         sweep, problem, f = self.sweep, self.sweep.problem, self.sweep.problem.formulation
-        a, count = self.block.arrays, len(self.block.index)
+        cols = slice(None) if columns is None else np.asarray(columns, dtype=int)
+        a = {key: value[:, cols] for key, value in self.block.arrays.items()}
+        value, limit, margin, scale = (table[:, cols] for table in (self.value, self.limit, self.margin, self.scale))
+        objective, feasible, index = self.objective[cols], self.feasible[cols], self.block.index[cols]
         m, n, n_c = len(f.quantities), len(sweep.names), len(self.constraints)
-        objective, f_scale, feasible = self.objective, a["p"][m + n], self.feasible
         with np.errstate(invalid="ignore", divide="ignore"):
             sign = np.array([-1.0 if c.sense == "<=" else 1.0 for c in self.constraints])[:, None]
             lam = a["lam_g"][:n_c]
-            elasticity = sign * lam * f_scale * self.limit / (self.scale * objective)  # as limit_elasticity
+            elasticity = sign * lam * a["p"][m + n] * limit / (scale * objective)  # as limit_elasticity
         priced = ((objective != 0) & np.isfinite(objective)).tolist()
-        active = ((np.abs(self.margin) <= ACTIVE_TOL) | (self.margin < 0)).T.tolist()
-        fits = (self.margin >= -FEASIBILITY_TOL).T.tolist()
-        tables = [t.T.tolist() for t in (self.value, self.limit, self.margin, self.scale, lam, elasticity)]
+        active = ((np.abs(margin) <= ACTIVE_TOL) | (margin < 0)).T.tolist()
+        fits = (margin >= -FEASIBILITY_TOL).T.tolist()
+        tables = [t.T.tolist() for t in (value, limit, margin, scale, lam, elasticity)]
         static = [(c.name, c.equation, c.sense, si_unit(c.unit), c.description, c.unit) for c in self.constraints]
         outputs = self.outputs
         out_names = list(outputs)
-        out_values = np.empty((len(out_names), count))
+        out_values = np.empty((len(out_names), len(objective)))
         for row, (values, _) in zip(out_values, outputs.values()):
-            row[:] = values
-        out_values = out_values.T.tolist()
+            row[:] = values[cols]
         units = {"design": {v.name: si_unit(v.unit) for v in f.variables},
                  "outputs": {name: si_unit(out.unit) for name, (_, out) in outputs.items()}}
         bounds = {name: [float(lo), float(hi)] for name, lo, hi in zip(sweep.names, sweep.lower, sweep.upper)}
@@ -507,7 +509,7 @@ class _Checked:
         times, solves = a["time"][0].tolist(), a["solves"][0].tolist()
         records = []
         for j, (design, point_outputs, values, limits, margins, scales, lams, elasticities) in enumerate(zip(
-                self.design.T.tolist(), out_values, *tables)):
+                self.design[:, cols].T.tolist(), out_values.T.tolist(), *tables)):
             if not priced[j]:
                 elasticities = [None] * n_c
             ok = feasible_list[j]
@@ -527,31 +529,25 @@ class _Checked:
                 "solver": {"name": "sqpmethod", "status": BATCHED, "iterations": None, "time_s": times[j],
                            "solves": int(solves[j])},
                 "diagnosis": None if ok else UNVERIFIED,
-                "integer_search": sweep._searches.get(int(self.block.index[j]), []),
+                "integer_search": sweep._searches.get(int(index[j]), []),
                 "bounds": bounds,
                 "sensitivities": sensitivities[j],
             })
         return records
 
     def __getitem__(self, j: int) -> Solution:
-        """Point ``j`` as the Solution ``Problem.solve`` returns."""
-        sweep, problem, f = self.sweep, self.sweep.problem, self.sweep.problem.formulation
-        a = {key: value[..., j] for key, value in self.block.arrays.items()}
-        m, n = len(f.quantities), len(sweep.names)
-        objective, f_scale, feasible = float(self.objective[j]), float(a["p"][m + n]), bool(self.feasible[j])
-        checks = []
-        for i, c in enumerate(self.constraints):
-            figures = (float(table[i, j]) for table in (self.value, self.limit, self.scale, self.margin))
-            check = constraint_check(c, *figures, multiplier=float(a["lam_g"][i]))
-            check.elasticity = limit_elasticity(check, check.multiplier, f_scale, objective)
-            checks.append(check)
+        """Point ``j`` as the Solution ``Problem.solve`` returns (its record as objects, the display units of its
+        outputs and constraints, its scales and multipliers for warm starts)."""
+        record, f = self.records([j])[0], self.sweep.problem.formulation
+        m, n = len(f.quantities), len(self.sweep.names)
+        a = {key: value[:, j] for key, value in self.block.arrays.items()}
+        checks = [ConstraintCheck(**{key: value for key, value in c.items() if key != "display_unit"}
+                                  | {"unit": c["display_unit"]}) for c in record["constraints"]]
+        outputs = {name: Output(value, out.unit, out.description)
+                   for (name, value), (_, out) in zip(record["outputs"].items(), self.outputs.values())}
         return Solution(
-            f.coupling, f.mode, problem.objective.name, problem.objective.unit,
-            "optimal" if feasible else "unverified", objective, dict(zip(sweep.names, map(float, self.design[:, j]))),
-            {name: Output(float(values[j]), out.unit, out.description) for name, (values, out) in self.outputs.items()},
-            checks, SolverInfo("sqpmethod", BATCHED, None, float(a["time"][0]), int(a["solves"][0])),
-            None if feasible else UNVERIFIED,
-            sweep._searches.get(int(self.block.index[j]), []),
-            {name: (float(lo), float(hi)) for name, lo, hi in zip(sweep.names, sweep.lower, sweep.upper)},
-            problem.sensitivities(a, objective) if feasible else {},
+            record["coupling"], record["mode"], record["objective"]["name"], record["objective"]["unit"],
+            record["status"], record["objective"]["value"], record["design"], outputs, checks,
+            SolverInfo(**record["solver"]), record["diagnosis"], record["integer_search"],
+            {name: tuple(pair) for name, pair in record["bounds"].items()}, record["sensitivities"],
             a["p"][m:m + n].copy(), (a["lam_x"].copy(), a["lam_g"].copy()), {v.name: v.unit for v in f.variables})

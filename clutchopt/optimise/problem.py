@@ -884,7 +884,8 @@ class Problem:
         gradients by one mapped CasADi evaluation (columns padded to a power of two).
 
         Case quantities: f_scale * dL/dp (L the scaled Lagrangian). A variable fixed through its bounds at b:
-        its bound multiplier gives d f_hat / d(b / scale) = -lam_x. None where the objective is 0 or not finite.
+        its bound multiplier gives d f_hat / d(b / scale) = -lam_x. None (an empty dict) where the objective is 0 or
+        not finite.
         """
         count = len(objective)
         width = 1 << (count - 1).bit_length()

@@ -163,7 +163,8 @@ def _chunks(pending: list[tuple[int, dict]], size: int) -> list[list[tuple[int, 
 
 
 def local_runner(jobs: int) -> Callable:
-    """In this process (each point recorded as it is solved) or in a pool of ``jobs`` processes."""
+    """In this process (the points recorded as they are solved: a window of batched points at a time) or in a pool
+    of ``jobs`` processes."""
     def run(task: tuple, pending: list, size: int) -> Iterator[list[dict]]:
         if jobs <= 1:
             yield from solve_points(*task, pending)
