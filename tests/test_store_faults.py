@@ -155,16 +155,20 @@ def _sweep(store: Path, grid: list[str], *extra: str) -> list[str]:
 
 
 def test_two_resumes_of_one_sweep_at_once(tmp_path):
+    # the first writer is killed once its first window is stored; both resumes then solve the missing points at
+    # once, and each point is stored once
     store = tmp_path / "runs.sqlite"
-    first = Writer(_sweep(store, SMALL), tmp_path)
+    first = Writer(_sweep(store, GRID), tmp_path)
     while not (store.exists() and _points_or_none(store)):
         time.sleep(0.01)
     first.kill()
-    racing = [Writer(_sweep(store, SMALL, "--resume"), tmp_path) for _ in range(2)]
+    stored = len(_points(store))
+    assert 0 < stored < 5000, "the first sweep was not killed half-way"
+    racing = [Writer(_sweep(store, GRID, "--resume"), tmp_path) for _ in range(2)]
     for writer in racing:
         code, text = writer.finish()
-        assert code == 0 and "150 points" in text, text
-    assert _points(store) == list(range(150))
+        assert code == 0 and "5000 points" in text, text
+    assert _points(store) == list(range(5000))
     with RunStore(store, writable=False) as opened:
         assert len(opened.sweeps()) == 1
 
