@@ -9,12 +9,12 @@ tabulates and stores; a window's records are built together from its arrays); th
 (batched: a status per point; point by point: a Solution per point, which ``Problem.solve`` builds).
 Pool: batched, the sweep cut into contiguous chunks, one per worker process, each worker building its own problem
 (counted). Each row is the run of median wall time among ``sweep_repeats`` runs. Per row: solver calls per point
-(IPOPT and SQP, integer neighbours and the chained attempts a failed batch wastes included), the shares of the
-wall time inside the solver calls (an infeasibility diagnosis's IPOPT call included), in the batches' compiled
-checks (mapped CasADi evaluations of the KKT verdicts and the exclusion tables) and in Python (the rest: case data,
-scaling, the float64 checks, bookkeeping; point by point, and batched with records, also outputs and
-sensitivities), and for serial sweeps points/s against the same sweep point by point and against the wedge paper
-mode's batched sweep.
+(IPOPT and SQP, integer neighbours and the chained attempts a failed batch wastes included), the shares of the wall
+time inside the solver calls (an infeasibility diagnosis's IPOPT call included), in the batches' compiled checks
+(mapped CasADi evaluations of the KKT verdicts with the integer test, and of the exclusion tables) and in Python
+(the rest: case data, scaling, the float64 checks, bookkeeping; point by point, and batched with records, also
+outputs and sensitivities), and for serial sweeps points/s against the same sweep point by point and against the
+wedge paper mode's batched sweep.
 """
 
 from __future__ import annotations
