@@ -21,6 +21,14 @@ def pytest_xdist_auto_num_workers(config) -> int:
     return min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
 
 
+@pytest.fixture(scope="session", autouse=True)
+def compiled_code_cache(tmp_path_factory):
+    """Compiled NLP functions (clutchopt.optimise.compiled) go to a cache of this test session, not the user's."""
+    os.environ["CLUTCHOPT_CACHE"] = str(tmp_path_factory.mktemp("compiled"))
+    yield
+    os.environ.pop("CLUTCHOPT_CACHE", None)
+
+
 @pytest.fixture(autouse=True)
 def run_store(tmp_path, monkeypatch) -> Path:
     """Every test records into its own run store, never into the repository."""

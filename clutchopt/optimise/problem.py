@@ -44,6 +44,7 @@ import numpy as np
 from clutchopt.cases import Case
 from clutchopt.formulations.start_up import with_start_up
 from clutchopt.model import Formulation, Output, namespace
+from clutchopt.optimise.compiled import compiled_solver
 from clutchopt.optimise.in_place import InPlace
 from clutchopt.optimise.start_up import (
     BACK_OFF_STEPS,
@@ -803,8 +804,10 @@ class Problem:
                                "sqp": ("sqpmethod", self.options.sqp()),
                                "sqp_chain": ("sqpmethod", self.options.sqp_chain()),
                                "sqp_search": ("sqpmethod", self.options.sqp_search())}[method]
-            self._solvers[method] = ca.nlpsol(f"{f.coupling}_{f.mode}_{self.objective.name}_{method}", plugin,
-                                              self._nlp, options)
+            name = f"{f.coupling}_{f.mode}_{self.objective.name}_{method}"
+            self._solvers[method] = ca.nlpsol(name, plugin, self._nlp, options)
+            if method in ("sqp_chain", "sqp_search"):  # a batched sweep's: compiled where that pays
+                self._solvers[method] = compiled_solver(name, self._solvers[method], options)
         return self._solvers[method]
 
     def _start_up_case(self, case: Case) -> Case:
