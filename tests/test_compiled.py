@@ -43,7 +43,8 @@ def test_small_hessians_stay_on_the_virtual_machine():
     assert not _is_compiled(problem)
 
 
-@pytest.mark.parametrize("fault", ["no compiler", "cache under a file", "damaged library", "failing build"])
+@pytest.mark.parametrize("fault", ["no compiler", "cache under a file", "damaged library", "failing build",
+                                   "library others may write"])
 def test_without_a_library_the_sweep_runs_on_the_virtual_machine(fault, monkeypatch, tmp_path):
     monkeypatch.setenv(compiled.CACHE_ENV, str(tmp_path / "cache"))
     if fault == "no compiler":
@@ -51,13 +52,16 @@ def test_without_a_library_the_sweep_runs_on_the_virtual_machine(fault, monkeypa
     elif fault == "cache under a file":
         (tmp_path / "file").write_text("")
         monkeypatch.setenv(compiled.CACHE_ENV, str(tmp_path / "file" / "cache"))
-    elif fault == "damaged library":
+    elif fault in ("damaged library", "library others may write"):
         problem = Problem(get_coupling("ball").formulation("design"))
         plain = ca.nlpsol("plain", "sqpmethod", problem.nlp, problem.options.sqp_chain())
         library = Path(compiled.compiled_library(plain))  # built, not loaded (a process keeps what it loaded)
-        damaged = tmp_path / "damaged.so"
-        damaged.write_bytes(b"\x7fELF not a library")
-        damaged.replace(library)  # a new file in its place: this process has the old one mapped
+        if fault == "damaged library":
+            damaged = tmp_path / "damaged.so"
+            damaged.write_bytes(b"\x7fELF not a library")
+            damaged.replace(library)  # a new file in its place: this process has the old one mapped
+        else:
+            library.chmod(0o777)
     else:
         monkeypatch.setattr(compiled, "BUILD_TIMEOUT_S", 1e-6)
     problem, solutions = _ball_sweep(12)

@@ -5,9 +5,9 @@ large (the ball clutch's: Hertz's elliptic integrals, 4,400 instructions, 50 us 
 compiled) it is most of an SQP iteration. Compiling CasADi's generated C takes about 0.6 s, more than a
 1000-point sweep saves, so the library is kept in a cache folder (``$CLUTCHOPT_CACHE``, else the user's cache
 folder), named by a hash of its C source, the CasADi version and the compiler: built by the first sweep of a
-problem on a machine, loaded by the next ones. Without a C compiler, with a cache folder that cannot be written,
-or where a build or load fails, the functions stay on CasADi's virtual machine (same numbers: the compiled code
-does the same operations in the same order).
+problem on a machine, loaded by the next ones (only a library of this user's that no one else may write). Without a
+C compiler, with a cache folder that cannot be written, or where a build or load fails, the functions stay on
+CasADi's virtual machine (same numbers: the compiled code does the same operations in the same order).
 """
 
 from __future__ import annotations
@@ -56,8 +56,8 @@ def compiled_library(solver: ca.Function) -> str | None:
         key = hashlib.sha256(source + ca.__version__.encode() + cc.encode()).hexdigest()[:32]
         library = folder / f"nlp-{key}.so"
         if library.is_file():
-            return str(library)
-        folder.mkdir(parents=True, exist_ok=True)
+            return str(library) if _trusted(library) else None
+        folder.mkdir(mode=0o700, parents=True, exist_ok=True)
         with tempfile.TemporaryDirectory(dir=folder) as build:  # built beside its place, then moved in at once
             Path(build, "nlp.c").write_bytes(source)
             subprocess.run([cc, "-O1", "-fPIC", "-shared", "nlp.c", "-o", "nlp.so", "-lm"], cwd=build, check=True,
@@ -66,6 +66,12 @@ def compiled_library(solver: ca.Function) -> str | None:
         return str(library)
     except (OSError, subprocess.SubprocessError, RuntimeError):
         return None
+
+
+def _trusted(library: Path) -> bool:
+    """A library to load: this user's, writable by no one else (code in a shared folder is not run)."""
+    info = library.stat()
+    return info.st_uid == os.getuid() and not info.st_mode & 0o022
 
 
 def compiled_solver(name: str, solver: ca.Function, options: dict) -> ca.Function:
