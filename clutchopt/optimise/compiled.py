@@ -69,9 +69,10 @@ def compiled_library(solver: ca.Function) -> str | None:
 
 
 def _trusted(library: Path) -> bool:
-    """A library to load: this user's, writable by no one else (code in a shared folder is not run)."""
+    """A library to load: this user's, writable by no one else (code in a shared folder is not run; where the
+    system has no user ids, none is)."""
     info = library.stat()
-    return info.st_uid == os.getuid() and not info.st_mode & 0o022
+    return hasattr(os, "getuid") and info.st_uid == os.getuid() and not info.st_mode & 0o022
 
 
 def compiled_solver(name: str, solver: ca.Function, options: dict) -> ca.Function:
