@@ -1,13 +1,13 @@
 """An NLP's functions compiled to machine code once per machine, for the SQP re-solves of batched sweeps.
 
 CasADi evaluates its functions on a virtual machine, a few ns an instruction. Where the Hessian of the Lagrangian is
-large (the ball clutch's: Hertz's elliptic integrals, 4,400 instructions, 50 us an evaluation against 6 us
-compiled) it is most of an SQP iteration. Compiling CasADi's generated C takes about 0.6 s, more than a
-1000-point sweep saves, so the library is kept in a cache folder (``$CLUTCHOPT_CACHE``, else the user's cache
-folder), named by a hash of its C source, the CasADi version and the compiler: built by the first sweep of a
-problem on a machine, loaded by the next ones (only a library of this user's that no one else may write). Without a
-C compiler, with a cache folder that cannot be written, or where a build or load fails, the functions stay on
-CasADi's virtual machine (same numbers: the compiled code does the same operations in the same order).
+large (the ball clutch's: Hertz's elliptic integrals, 4,400 instructions, 50 us an evaluation against 6 us compiled)
+it is most of an SQP iteration. Compiling CasADi's generated C takes about 0.6 s, more than a 1000-point sweep
+saves, so the library is kept in a cache folder (``$CLUTCHOPT_CACHE``, else the user's cache folder), named by a
+hash of its C source, the CasADi version, the compiler and its flags: built by the first sweep of a problem on a
+machine, loaded by the next ones (only a library of this user's that no one else may write). Without a C compiler,
+with a cache folder that cannot be written, or where a build or load fails, the functions stay on CasADi's virtual
+machine (same numbers: the compiled code does the same operations in the same order).
 """
 
 from __future__ import annotations
@@ -24,6 +24,7 @@ import casadi as ca
 CACHE_ENV = "CLUTCHOPT_CACHE"  # the cache folder; empty: no compiled code
 COMPILE_ABOVE = 2000  # Hessian instructions above which compiling pays (ball 4,447; cable 681, lever 238, wedge 105)
 BUILD_TIMEOUT_S = 120
+FLAGS = ("-O1", "-fPIC", "-shared")  # no fast-math: the compiled code keeps IEEE arithmetic, operation by operation
 
 
 def cache_folder() -> Path | None:
@@ -53,15 +54,15 @@ def compiled_library(solver: ca.Function) -> str | None:
         with tempfile.TemporaryDirectory() as scratch:
             generator.generate(scratch + os.sep)
             source = Path(scratch, "clutchopt_nlp.c").read_bytes()
-        key = hashlib.sha256(source + ca.__version__.encode() + cc.encode()).hexdigest()[:32]
+        key = hashlib.sha256(source + " ".join((ca.__version__, cc, *FLAGS)).encode()).hexdigest()[:32]
         library = folder / f"nlp-{key}.so"
         if library.is_file():
             return str(library) if _trusted(library) else None
         folder.mkdir(mode=0o700, parents=True, exist_ok=True)
         with tempfile.TemporaryDirectory(dir=folder) as build:  # built beside its place, then moved in at once
             Path(build, "nlp.c").write_bytes(source)
-            subprocess.run([cc, "-O1", "-fPIC", "-shared", "nlp.c", "-o", "nlp.so", "-lm"], cwd=build, check=True,
-                           capture_output=True, timeout=BUILD_TIMEOUT_S)
+            subprocess.run([cc, *FLAGS, "nlp.c", "-o", "nlp.so", "-lm"], cwd=build, check=True, capture_output=True,
+                           timeout=BUILD_TIMEOUT_S)
             os.replace(Path(build, "nlp.so"), library)
         return str(library)
     except (OSError, subprocess.SubprocessError, RuntimeError):
