@@ -254,29 +254,26 @@ class RunStore:
     # --- writing: one transaction each; a failing store is reported once and the run goes on --------------------
     def _write(self, sql: str, args: tuple) -> int | None:
         """Execute one INSERT in its own transaction; the new row's id, or None if it was not recorded."""
-        if self.failure is None:
-            try:
-                with self._db:
-                    cursor = self._db.execute(sql, args)
-                return int(cursor.lastrowid) if cursor.rowcount else None
-            except sqlite3.Error as exc:
-                self.failure = str(self._damaged(exc)).removeprefix("--store: ")
-                self._warn(f"not recorded: {self.failure}")
-        self.unrecorded += 1
-        return None
+        cursor = self._transaction(lambda db: db.execute(sql, args), 1)
+        return int(cursor.lastrowid) if cursor is not None and cursor.rowcount else None
 
     def _write_many(self, sql: str, rows: list[tuple]) -> int:
         """Execute one INSERT per row, all in one transaction; how many rows it inserted."""
+        cursor = self._transaction(lambda db: db.executemany(sql, rows), len(rows))
+        return max(cursor.rowcount, 0) if cursor is not None else 0
+
+    def _transaction(self, execute, rows: int) -> sqlite3.Cursor | None:
+        """``execute(connection)`` in one transaction; None if the store has failed, now (reported once) or before,
+        and ``rows`` more runs were not recorded."""
         if self.failure is None:
             try:
                 with self._db:
-                    cursor = self._db.executemany(sql, rows)
-                return max(cursor.rowcount, 0)
+                    return execute(self._db)
             except sqlite3.Error as exc:
                 self.failure = str(self._damaged(exc)).removeprefix("--store: ")
                 self._warn(f"not recorded: {self.failure}")
-        self.unrecorded += len(rows)
-        return 0
+        self.unrecorded += rows
+        return None
 
     def new_sweep(self, spec: dict, points: int, case_path: str = "") -> int | None:
         return self._write(
