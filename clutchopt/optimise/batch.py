@@ -55,8 +55,9 @@ import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.model import Output, namespace
-from clutchopt.optimise.problem import Box, Problem, Solution, SolverInfo, WarmStart
-from clutchopt.optimise.verify import ACTIVE_TOL, FEASIBILITY_TOL, ConstraintCheck, constraint_table
+from clutchopt.optimise.problem import (Box, Problem, Solution, SolverInfo, WarmStart, limit_elasticities,
+                                       sense_sign)
+from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, constraint_table, margin_flags
 from clutchopt.units import si_unit
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
@@ -487,12 +488,11 @@ class _Checked:
         objective, feasible, index = self.objective[cols], self.feasible[cols], self.block.index[cols]
         m, n, n_c = len(f.quantities), len(sweep.names), len(self.constraints)
         with np.errstate(invalid="ignore", divide="ignore"):
-            sign = np.array([-1.0 if c.sense == "<=" else 1.0 for c in self.constraints])[:, None]
+            sign = np.array([sense_sign(c.sense) for c in self.constraints])[:, None]
             lam = a["lam_g"][:n_c]
-            elasticity = sign * lam * a["p"][m + n] * limit / (scale * objective)  # as limit_elasticity
+            elasticity = limit_elasticities(sign, lam, a["p"][m + n], limit, scale, objective)
         priced = ((objective != 0) & np.isfinite(objective)).tolist()
-        active = ((np.abs(margin) <= ACTIVE_TOL) | (margin < 0)).T.tolist()
-        fits = (margin >= -FEASIBILITY_TOL).T.tolist()
+        active, fits = (flags.T.tolist() for flags in margin_flags(margin, FEASIBILITY_TOL))
         tables = [t.T.tolist() for t in (value, limit, margin, scale, lam, elasticity)]
         static = [(c.name, c.equation, c.sense, si_unit(c.unit), c.description, c.unit) for c in self.constraints]
         outputs = self.outputs

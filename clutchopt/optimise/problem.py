@@ -978,8 +978,17 @@ def limit_elasticity(check: ConstraintCheck, lam: float, f_scale: float, objecti
     """
     if objective == 0 or not math.isfinite(objective):
         return None
-    sign = -1.0 if check.sense == "<=" else 1.0
-    return sign * lam * f_scale * check.limit / (check.scale * objective)
+    return limit_elasticities(sense_sign(check.sense), lam, f_scale, check.limit, check.scale, objective)
+
+
+def sense_sign(sense: str) -> float:
+    """-1 for a "<=" constraint, 1 for ">=": the sign of d f* / d ln(limit) per unit multiplier."""
+    return -1.0 if sense == "<=" else 1.0
+
+
+def limit_elasticities(sign, lam, f_scale, limit, scale, objective):
+    """:func:`limit_elasticity`'s formula, sign * lam f_s l / (s f*), on floats or arrays alike."""
+    return sign * lam * f_scale * limit / (scale * objective)
 
 
 _CACHE: dict[tuple, Problem] = {}

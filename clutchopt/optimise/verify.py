@@ -66,10 +66,17 @@ def constraint_check(c: Constraint, value: float, limit: float, scale: float, ma
                      tolerance: float = FEASIBILITY_TOL, multiplier: float | None = None) -> ConstraintCheck:
     """A constraint's float64 figures as a check: active within ACTIVE_TOL (or violated), feasible within
     ``tolerance``."""
+    active, feasible = margin_flags(margin, tolerance)
     return ConstraintCheck(
         name=c.name, equation=c.equation, sense=c.sense, value=value, limit=limit,
-        margin=margin, active=abs(margin) <= ACTIVE_TOL or margin < 0, feasible=margin >= -tolerance,
+        margin=margin, active=active, feasible=feasible,
         unit=c.unit, description=c.description, scale=scale, multiplier=multiplier, tolerance=tolerance)
+
+
+def margin_flags(margin, tolerance: float = FEASIBILITY_TOL):
+    """Whether a constraint with this relative margin is active (within ACTIVE_TOL, or violated) and feasible
+    (within ``tolerance``): booleans for a float, arrays for an array (a NaN margin is neither)."""
+    return (abs(margin) <= ACTIVE_TOL) | (margin < 0), margin >= -tolerance
 
 
 def constraint_table(constraints: list[Constraint], count: int) -> tuple[np.ndarray, ...]:
