@@ -42,6 +42,7 @@ import casadi as ca
 import numpy as np
 
 from clutchopt.cases import Case
+from clutchopt.backend import fmax
 from clutchopt.formulations.start_up import with_start_up
 from clutchopt.model import Formulation, Output, namespace
 from clutchopt.optimise.compiled import compiled_solver
@@ -532,15 +533,21 @@ class Problem:
         return kept
 
     def negligible(self, f_hat):
-        """A change of the scaled objective within the solver's tolerance of it (elementwise for arrays)."""
-        return 10 * self.options.tol * np.maximum(np.abs(f_hat), 1e-300)
+        """A change of the scaled objective within the solver's tolerance of it (elementwise for arrays; symbolic
+        for CasADi)."""
+        return 10 * self.options.tol * fmax(abs(f_hat), 1e-300)
 
     @staticmethod
     def off_scale(x_hat: np.ndarray) -> np.ndarray:
         """An optimum more than tenfold off its variable scales (per column for a 2-D ``x_hat``): solved again,
         scaled by it."""
-        moved = np.abs(x_hat)
-        return np.any((moved > 0) & ((moved > 10) | (moved < 0.1)), axis=0)
+        return np.any(Problem._off_scale_entries(x_hat), axis=0)
+
+    @staticmethod
+    def _off_scale_entries(x_hat):
+        """Per variable: 1 (true) where it has moved more than tenfold from its scale; floats, arrays or CasADi."""
+        moved = abs(x_hat)
+        return (moved > 0) * ((moved > 10) + (moved < 0.1)) > 0
 
     def _downhill(self, run: dict, box: Box, integer: list[int]) -> list[np.ndarray]:
         """Neighbours of a fixed-integer optimum in the directions its objective falls to first order.
@@ -700,8 +707,7 @@ class Problem:
             if integer:
                 moves = self._search_moves(integer, fixed, x, p, lam_x, f_hat, lower, upper, n, m)
             else:
-                moved = ca.fabs(x[:n])
-                moves = ca.sum1((moved > 0) * ca.logic_or(moved > 10, moved < 0.1)) > 0
+                moves = ca.sum1(self._off_scale_entries(x[:n])) > 0
             self._verdicts[key] = ca.Function(f"chain_verdict_{len(self._verdicts)}",
                                               [x, p, lam_x, lam_g, lbx, ubx, f_hat, lower, upper], [kkt, moves])
         return self._verdicts[key]
@@ -713,7 +719,7 @@ class Problem:
         _, fixed_values = self.fixed_only(fixed, entered)
         scale = p[m:m + n]
         combo = [ca.floor(x[i] * scale[i] + 0.5) for i in integer]
-        negligible = 10 * self.options.tol * ca.fmax(ca.fabs(f_hat), 1e-300)
+        negligible = self.negligible(f_hat)
         direction = [ca.if_else(ca.fabs(lam_x[i]) / scale[i] > negligible, ca.sign(lam_x[i]), 0) for i in integer]
         unit = ca.vertcat(p[:m], ca.DM.ones(n + 1))  # unit scales: x in SI
         moves = ca.SX(0)
@@ -900,8 +906,8 @@ class Problem:
             elasticity = values * f_scale * gradient / objective
             fixed = []  # (name, where it applies, its term) of each continuous variable fixed through its bounds
             for i, v in enumerate(self.formulation.variables):
-                value = lbx[i] * scale[i]
                 if not v.integer:
+                    value = lbx[i] * scale[i]
                     fixed.append((v.name, ((lbx[i] == ubx[i]) & (value != 0)).tolist(),
                                   (value * f_scale * lam_x[i] / (scale[i] * objective)).tolist()))
         names = [q.name for q in self.formulation.quantities]
