@@ -84,9 +84,9 @@ def test_the_integer_search_along_a_sweep_keeps_the_best_integer(case_file, mode
     name = next(v.name for v in formulation.variables if v.integer)
     values = case.values[quantity] * np.geomspace(0.6, 1.1, 4)
     problem = problem_for(formulation)
-    for result, value in zip(solve_chunk(case, mode, "mass", 1e-10, [(i, {quantity: v}) for i, v in enumerate(values)]),
-                             values):
-        kept = result["solution"]
+    chunk = solve_chunk(case, mode, "mass", 1e-10, [(i, {quantity: v}) for i, v in enumerate(values)])
+    assert len(chunk.records()) == len(values)
+    for kept, value in zip(chunk.records(), values):
         assert kept["status"] == "optimal"
         point = case.with_values(**{quantity: float(value)})
         low, high = point.bounds.get(name, (formulation.variable(name).lower, formulation.variable(name).upper))

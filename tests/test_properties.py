@@ -124,3 +124,17 @@ def test_wedge_closed_forms_follow_the_physics(inertia, speed, friction):
     stronger = base.with_values(**point, allowable_bending_stress=p.allowable_bending_stress * 2).params()
     assert closed_form_finger_diameter(stronger, mass) == pytest.approx(finger / 2 ** (1 / 3), rel=1e-12)
     assert math.isfinite(finger)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.lists(st.booleans(), min_size=4, max_size=4), max_size=30))
+def test_active_names_join_each_points_active_constraints(columns):
+    # one join per run of equal columns, spread back over the run: equal to joining each column on its own
+    import numpy as np
+
+    from clutchopt.optimise.table import active_names
+
+    names = ["torque", "wear", "bending", "stress"]
+    active = np.array(columns, dtype=bool).reshape(len(columns), 4).T
+    expected = [" ".join(n for n, on in zip(names, column) if on) for column in columns]
+    assert active_names(active, names).tolist() == expected

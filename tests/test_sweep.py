@@ -157,3 +157,46 @@ def test_json_gives_every_point_in_si(cli, run_store):
     assert all(p["status"] == "optimal" and p["constraints"] for p in sweep["points"])
     listed = json.loads(cli("runs", "list", "--json", "--kind", "sweep").stdout)
     assert len(listed["runs"]) == 2 and listed["sweeps"][0]["id"] == sweep["sweep_id"]
+
+
+@pytest.mark.parametrize("case_file, varies, mode", [
+    ("wedge_paper.toml", ["outer_diameter_max=100,130,160,200", "speed=800:1000:8"], "geometry"),
+    ("cable_conveyor.toml", ["torque=220:880:60"], None),
+    ("ball_compressor.toml", ["power=600:2400:60"], None),
+])
+def test_the_table_read_from_a_window_is_the_table_of_its_records(case_file, varies, mode, tmp_path):
+    # batched points are tabulated from their window's arrays, their records built only when read; both must give
+    # the same table, cell for cell, next to points solved alone (the first, infeasible ones) and stored ones
+    import sqlite3
+
+    from clutchopt.optimise.batch import BATCHED
+    from clutchopt.optimise.table import record_table
+
+    case = load_case(CASES / case_file)
+    sweep = Sweep(case, [parse_vary(text, case.coupling) for text in varies], mode=mode)
+    names = [v.name for v in sweep.formulation.variables]
+    with RunStore(tmp_path / "runs.sqlite") as store:
+        result = sweep.run(store, progress=False)
+    records = list(result.solutions)
+    batched = [r["solver"]["status"] == BATCHED for r in records]
+    assert any(batched) and not all(batched)
+    pd.testing.assert_frame_equal(result.frame, sweep.frame(record_table(records, names)), check_exact=True)
+    connection = sqlite3.connect(tmp_path / "runs.sqlite")  # forget every other stored point, then resume
+    with connection:
+        connection.execute("DELETE FROM runs WHERE point % 2 = 1")
+    connection.close()
+    with RunStore(tmp_path / "runs.sqlite") as store:
+        resumed = sweep.run(store, resume=True, progress=False)
+    assert resumed.reused == len(records) - len(records) // 2 and resumed.solved == len(records) // 2
+    assert [r["status"] for r in resumed.solutions] == [r["status"] for r in records]
+    shown = list(result.frame.columns[:len(varies) + 3])  # point, the varied inputs, status, objective (the ball's
+    # design is not unique where the objective does not price a variable: docs/tradeoffs.md)
+    pd.testing.assert_frame_equal(resumed.frame[shown], result.frame[shown], rtol=1e-7)
+    assert resumed.frame.iloc[::2].equals(result.frame.iloc[::2])  # the stored points, as they were
+
+
+def test_a_bad_value_names_the_first_point_that_has_it():
+    case = load_case(CASES / "wedge_paper.toml")
+    varies = [parse_vary("speed=800,1000", "wedge"), parse_vary("allowable_pressure=2,-1,3", "wedge")]
+    with pytest.raises(InputError, match=r"--vary \(point 1\): material.allowable_pressure: must be > 0"):
+        Sweep(case, varies)

@@ -57,6 +57,7 @@ from clutchopt.cases import Case
 from clutchopt.model import Output, namespace
 from clutchopt.optimise.problem import (Box, Problem, Solution, SolverInfo, WarmStart, limit_elasticities,
                                        sense_sign)
+from clutchopt.optimise.table import active_names, placed, record_table
 from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, constraint_table, margin_flags
 from clutchopt.units import si_unit
 
@@ -399,7 +400,8 @@ class BatchSweep:
     def _window(self, blocks: list[_Block], alone: dict[int, Solution], first: int, count: int) -> "Solutions":
         """The solutions of points first .. first + count - 1: batched points checked in float64 together; one that
         fails the check is solved again by ``Problem.solve``, warm from the point before."""
-        solutions = Solutions(first, count, alone, _Checked(self, _Block.joined(blocks)) if blocks else None)
+        solutions = Solutions(first, count, alone, _Checked(self, _Block.joined(blocks)) if blocks else None,
+                              self.names)
         for k in solutions.unverified:
             before = solutions[k - first - 1] if k > first else None
             warm = before if before is not None and before.status == "optimal" else None
@@ -410,8 +412,10 @@ class BatchSweep:
 class Solutions(Sequence):
     """A window's solutions in point order, each batched point built as a :class:`Solution` when first read."""
 
-    def __init__(self, first: int, count: int, alone: dict[int, Solution], checked: "_Checked | None"):
+    def __init__(self, first: int, count: int, alone: dict[int, Solution], checked: "_Checked | None",
+                 names: list[str]):
         self._solutions = {k - first: solution for k, solution in alone.items()}  # by position in the window
+        self._names = names  # the design variables
         self._checked, self._column = checked, np.full(count, -1)
         if checked is not None:
             self._column[checked.block.index - first] = np.arange(len(checked.block.index))
@@ -437,6 +441,19 @@ class Solutions(Sequence):
         batched = self._checked.records() if self._checked is not None else []
         return [self._solutions[i].as_dict() if i in self._solutions else batched[column]
                 for i, column in enumerate(self._column.tolist())]
+
+    def table(self) -> dict[str, np.ndarray]:
+        """Every point's row of a sweep table (``clutchopt.optimise.table``), those of the batched points read from
+        the window's arrays without building their records."""
+        names = self._names
+        if self._checked is None:
+            return record_table([self._solutions[i].as_dict() for i in range(len(self))], names)
+        table = self._checked.table()
+        table = {key: column[..., self._column] for key, column in table.items()}
+        alone = sorted(self._solutions)
+        if alone:
+            placed(record_table([self._solutions[i].as_dict() for i in alone], names), alone, table)
+        return table
 
     @property
     def statuses(self) -> list[str]:
@@ -477,6 +494,15 @@ class _Checked:
                 self._outputs = {name: (np.broadcast_to(np.asarray(out.value, dtype=float), (count,)), out)
                                  for name, out in self.sweep.problem.formulation.outputs(self.x, self.params).items()}
         return self._outputs
+
+    def table(self) -> dict[str, np.ndarray]:
+        """Every point's row of a sweep table (``clutchopt.optimise.table``), from the arrays: statuses and
+        diagnoses by the float64 check, the names of the active constraints joined once per pattern."""
+        count, ok = len(self.block.index), self.feasible
+        active, _ = margin_flags(self.margin, FEASIBILITY_TOL)
+        return {"status": np.where(ok, "optimal", "unverified").astype(object), "objective": self.objective.copy(),
+                "design": self.design.copy(), "active": active_names(active, [c.name for c in self.constraints]),
+                "diagnosis": np.where(ok, None, UNVERIFIED), "iterations": np.full(count, None)}
 
     def records(self, columns: list[int] | None = None) -> list[dict]:
         """Every point's ``Solution.as_dict()`` (of the points ``columns`` only, if given), built column by column:

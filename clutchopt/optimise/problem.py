@@ -898,7 +898,7 @@ class Problem:
         """
         count = len(objective)
         width = 1 << (count - 1).bit_length()
-        padded = [np.pad(a, ((0, 0), (0, width - count)), mode="edge") for a in (x, p, lam_g)]
+        padded = [np.pad(a, ((0, 0), (0, width - count)), mode="edge") if width > count else a for a in (x, p, lam_g)]
         m, n = len(self.formulation.quantities), len(self.formulation.variables)
         gradient = self.mapped(self._case_gradient, width)(*padded)[0][:, :count]
         values, scale, f_scale = p[:m], p[m:m + n], p[m + n]

@@ -26,6 +26,7 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import partial
+from collections.abc import Sequence
 from typing import Callable, Iterator
 
 import numpy as np
@@ -36,8 +37,9 @@ from clutchopt.errors import InputError, Problems
 from clutchopt.files import TABLE_BYTES, check_output, read_bytes, write_whole
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Formulation, Quantity
-from clutchopt.optimise.batch import BatchSweep, batchable
+from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
 from clutchopt.optimise.problem import Solution, SolverOptions, case_formulation, case_problem
+from clutchopt.optimise.table import joined_tables, record_table
 from clutchopt.optimise.verify import DESIGN_STATUSES
 from clutchopt.units import from_si, si_factor
 
@@ -113,49 +115,89 @@ def grid(varies: list[Vary], zipped: bool = False) -> list[dict[str, float]]:
         lengths = {len(v.values) for v in varies}
         if len(lengths) > 1:
             raise InputError("--zip", f"listed sweeps need equally many values per --vary, got {sorted(lengths)}")
-        return [dict(zip(names, values)) for values in zip(*(v.values for v in varies))]
-    return [dict(zip(names, values)) for values in itertools.product(*(v.values for v in varies))]
+    if len(varies) == 1:  # the common case, without a tuple per point
+        return [{names[0]: value} for value in varies[0].values]
+    rows = zip(*(v.values for v in varies)) if zipped else itertools.product(*(v.values for v in varies))
+    return [dict(zip(names, values)) for values in rows]
 
 
-def point_cases(case: Case, points: list[dict[str, float]]) -> list[Case]:
-    """Every point as a checked case; a value out of a quantity's valid range is bad input before any solve."""
-    cases = []
-    for index, values in enumerate(points):
-        try:
-            cases.append(case.with_values(**values))
-        except InputError as exc:
-            raise InputError(f"--vary (point {index})", str(exc)) from None
-    return cases
+def grid_columns(varies: list[Vary], zipped: bool = False) -> list[np.ndarray]:
+    """Each varied quantity's value at every point of :func:`grid`, as arrays (SI)."""
+    arrays = [np.array(v.values, dtype=float) for v in varies]
+    return arrays if zipped or len(arrays) == 1 else [a.ravel() for a in np.meshgrid(*arrays, indexing="ij")]
+
+
+def check_points(case: Case, varies: list[Vary], points: list[dict[str, float]]) -> None:
+    """A value out of a quantity's valid range is bad input before any solve: each varied quantity's values are
+    checked as an array; where one fails, the error names the first point that fails."""
+    try:
+        for vary in varies:
+            vary.quantity.check_all(np.array(vary.values))
+    except InputError:
+        for index, values in enumerate(points):
+            try:
+                case.with_values(**values)
+            except InputError as exc:
+                raise InputError(f"--vary (point {index})", str(exc)) from None
+        raise
+
+
+class PointResults:
+    """Solved points of a sweep, in point order: their indices and values, their rows of the sweep table (a batched
+    window's read from its arrays), and their records (``Solution.as_dict()``), built when first asked for (the run
+    store, ``--json``). ``solver_s``: seconds in solver calls and in the batches' compiled checks."""
+
+    def __init__(self, points: list[tuple[int, dict[str, float]]], names: list[str],
+                 records: list[dict] | None = None, solutions: Solutions | None = None, solver_s: float = 0.0):
+        self.points, self.names, self.solver_s = points, names, solver_s
+        self._records, self._solutions = records, solutions
+
+    def __len__(self) -> int:
+        return len(self.points)
+
+    def records(self) -> list[dict]:
+        if self._records is None:
+            self._records = self._solutions.records()
+        return self._records
+
+    def table(self) -> dict[str, np.ndarray]:
+        return self._solutions.table() if self._solutions is not None else record_table(self.records(), self.names)
+
+    @classmethod
+    def joined(cls, parts: list["PointResults"], names: list[str]) -> "PointResults":
+        """Consecutive results as one, with their records (what a worker process sends back)."""
+        return cls([point for part in parts for point in part.points], names,
+                   [record for part in parts for record in part.records()], solver_s=sum(p.solver_s for p in parts))
 
 
 def solve_points(case: Case, mode: str, objective: str, tol: float,
-                 points: list[tuple[int, dict[str, float]]]) -> Iterator[list[dict]]:
-    """Solve points in order, each warm-started from the last optimum; yields the results as they are solved, in
-    lists: a window of points at once where the problem allows batches (``clutchopt.optimise.batch``), else one
-    point each."""
+                 points: list[tuple[int, dict[str, float]]]) -> Iterator[PointResults]:
+    """Solve points in order, each warm-started from the last optimum; yields the results as they are solved: a
+    window of points at once where the problem allows batches (``clutchopt.optimise.batch``), else one point each."""
     problem = case_problem(case, mode, objective, SolverOptions(tol=tol))
-    names = list(points[0][1]) if points else []
-    if points and batchable(problem, names):
-        varied = {name: np.array([values[name] for _, values in points]) for name in names}
-        first = 0
-        for window in BatchSweep(problem, case, varied).run():
-            records = window.records()
-            yield [{"point": index, "values": values, "solution": record}
-                   for (index, values), record in zip(points[first:first + len(records)], records)]
-            first += len(records)
+    names = [v.name for v in problem.formulation.variables]
+    varied = list(points[0][1]) if points else []
+    if points and batchable(problem, varied):
+        sweep = BatchSweep(problem, case, {name: np.array([values[name] for _, values in points]) for name in varied})
+        first, spent = 0, 0.0
+        for window in sweep.run():
+            seconds = sweep.solver_s + sweep.check_s
+            yield PointResults(points[first:first + len(window)], names, solutions=window, solver_s=seconds - spent)
+            first, spent = first + len(window), seconds
         return
     previous: Solution | None = None
     for index, values in points:
         point_case = case.with_values(**values)
         solution = problem.solve(point_case, warm=previous)  # falls back to the case's own start by itself
         previous = solution if solution.status == "optimal" else None  # next to a failure, start from the case
-        yield [{"point": index, "values": values, "solution": solution.as_dict()}]
+        yield PointResults([(index, values)], names, [solution.as_dict()], solver_s=solution.solver.time_s)
 
 
 def solve_chunk(case: Case, mode: str, objective: str, tol: float,
-                chunk: list[tuple[int, dict[str, float]]]) -> list[dict]:
-    """A chunk of neighbouring points solved in one worker (process pool, Dask)."""
-    return [result for results in solve_points(case, mode, objective, tol, chunk) for result in results]
+                chunk: list[tuple[int, dict[str, float]]]) -> PointResults:
+    """A chunk of neighbouring points solved in one worker (process pool, Dask), with its records."""
+    names = [v.name for v in case_formulation(case, mode).variables]
+    return PointResults.joined(list(solve_points(case, mode, objective, tol, chunk)), names)
 
 
 def _chunks(pending: list[tuple[int, dict]], size: int) -> list[list[tuple[int, dict]]]:
@@ -165,7 +207,7 @@ def _chunks(pending: list[tuple[int, dict]], size: int) -> list[list[tuple[int, 
 def local_runner(jobs: int) -> Callable:
     """In this process (the points recorded as they are solved: a window of batched points at a time) or in a pool
     of ``jobs`` processes."""
-    def run(task: tuple, pending: list, size: int) -> Iterator[list[dict]]:
+    def run(task: tuple, pending: list, size: int) -> Iterator[PointResults]:
         if jobs <= 1:
             yield from solve_points(*task, pending)
             return
@@ -218,7 +260,7 @@ def dask_runner(address: str) -> Callable:
     """Run chunks on an existing Dask distributed cluster (clutchopt must be importable on its workers)."""
     client = connect(address)
 
-    def run(task: tuple, pending: list, size: int) -> Iterator[list[dict]]:
+    def run(task: tuple, pending: list, size: int) -> Iterator[PointResults]:
         from distributed import as_completed as dask_completed
 
         try:
@@ -299,7 +341,8 @@ class SweepResult:
     solved: int  # points solved by this invocation
     reused: int  # points found already stored (resume)
     elapsed_s: float  # wall time of the solves
-    solutions: list[dict]  # every point's solution (``Solution.as_dict()``, SI), in point order
+    solutions: Sequence[dict]  # every point's solution (``Solution.as_dict()``, SI), in point order
+    solver_s: float = 0.0  # of elapsed_s, in solver calls and batch checks (in this process; a pool's: its workers')
 
     def _repr_html_(self) -> str:
         """Jupyter shows a sweep as its table, one row per point (the columns of ``clutchopt sweep --out``)."""
@@ -308,6 +351,25 @@ class SweepResult:
         counts = ", ".join(f"{count} {status}" for status, count in self.frame["status"].value_counts().items())
         table = self.frame.to_html(index=False, float_format=lambda v: f"{v:.6g}", na_rep="-")
         return f"<div><p>{escape(f'Sweep: {len(self.frame)} points, {counts}')}</p>{table}</div>"
+
+
+class SweepRecords(Sequence):
+    """Every point's record (``Solution.as_dict()``) in point order; the records of a window of batched points are
+    built when one of its points is first read."""
+
+    def __init__(self, parts: list[PointResults], order: np.ndarray):
+        self._parts = parts
+        part = np.repeat(np.arange(len(parts)), [len(p) for p in parts])
+        position = np.concatenate([np.arange(len(p)) for p in parts]) if parts else part
+        self._part, self._position = part[order].tolist(), position[order].tolist()
+
+    def __len__(self) -> int:
+        return len(self._part)
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[j] for j in range(*i.indices(len(self)))]
+        return self._parts[self._part[i]].records()[self._position[i]]
 
 
 class Sweep:
@@ -320,8 +382,8 @@ class Sweep:
         self.formulation: Formulation = case_formulation(case, mode)
         self.objective = self.formulation.objective(objective or case.options.get("objective", "mass"))
         self.tol = tol
-        self.points = grid(varies, zipped)
-        point_cases(case, self.points)
+        self.points, self.zipped = grid(varies, zipped), zipped
+        check_points(case, varies, self.points)
 
     @property
     def spec(self) -> dict:
@@ -341,26 +403,29 @@ class Sweep:
             if sweep_id is None:
                 sweep_id = store.new_sweep(self.spec, len(self.points), self.case.path)  # None: store failed
             stored = store.sweep_outputs(sweep_id) if sweep_id is not None else {}
-        pending = [(i, values) for i, values in enumerate(self.points) if i not in stored]
+        pending = [(i, values) for i, values in enumerate(self.points) if i not in stored] if stored else \
+            list(enumerate(self.points))
         workers = max(jobs, 1)
         size = chunk_size or max(1, min(25, math.ceil(len(pending) / (4 * workers))))
         task = (self.case, self.formulation.mode, self.objective.name, self.tol)
-        solutions = dict(stored)
+        names = [v.name for v in self.formulation.variables]
+        parts = [PointResults([(i, self.points[i]) for i in sorted(stored)], names, [stored[i] for i in sorted(stored)])]
         bar = tqdm(total=len(self.points), initial=len(stored), unit="point", desc="sweep", disable=not progress,
                    mininterval=0.5)
         started = time.perf_counter()
         with bar, interrupt_between_points() as check:
             for results in (runner or local_runner(jobs))(task, pending, size):
-                for result in results:
-                    solutions[result["point"]] = result["solution"]
                 if store is not None and sweep_id is not None:  # the results in hand in one transaction
-                    store.record_many([("sweep", self._inputs(result["values"]), result["solution"],
-                                        self._where(result, sweep_id)) for result in results])
+                    store.record_many([("sweep", self._inputs(values), record, self._where(index, record, sweep_id))
+                                       for (index, values), record in zip(results.points, results.records())])
+                parts.append(results)
                 bar.update(len(results))
                 check()
-        ordered = [solutions[i] for i in range(len(self.points))]
-        return SweepResult(sweep_id, self.frame(ordered), len(pending), len(stored), time.perf_counter() - started,
-                           ordered)
+        elapsed = time.perf_counter() - started
+        order = np.argsort([index for part in parts for index, _ in part.points], kind="stable")  # pool: any order
+        return SweepResult(sweep_id, self.frame(joined_tables([part.table() for part in parts]), order),
+                           len(pending), len(stored), elapsed, SweepRecords(parts, order),
+                           sum(part.solver_s for part in parts))
 
     def _inputs(self, values: dict[str, float]) -> dict:
         """A point's inputs as the store keeps them: the case's SI values with the point's (checked when the sweep
@@ -368,34 +433,33 @@ class Sweep:
         values = {**self.case.values, **{name: float(value) for name, value in values.items()}}
         return {"values": values, "free": list(self.case.free), "bounds": self.case.bounds}
 
-    def _where(self, result: dict, sweep_id: int) -> dict:
-        solution = result["solution"]
+    def _where(self, point: int, solution: dict, sweep_id: int) -> dict:
         return {"status": solution["status"], "objective": solution["objective"]["value"],
                 "objective_unit": self.objective.unit, "case_path": self.case.path, "title": self.case.title,
                 "coupling": self.case.coupling, "mode": self.formulation.mode, "objective_name": self.objective.name,
-                "sweep_id": sweep_id, "point": result["point"]}
+                "sweep_id": sweep_id, "point": point}
 
-    def frame(self, solutions: list[dict]) -> pd.DataFrame:
-        """One row per point: inputs, status, objective, design (display units), active constraints; a point without
-        a design (infeasible, solver failed) has its status and diagnosis, and blanks for objective and design."""
-        rows = []
-        objective_column = column_name(self.objective.name, self.objective.unit)
-        for index, (values, solution) in enumerate(zip(self.points, solutions)):
-            row = {"point": index}
-            row.update({v.column: from_si(values[v.quantity.name], v.quantity.unit) for v in self.varies})
-            row["status"] = solution["status"]
-            designed = solution["status"] in DESIGN_STATUSES  # an infeasible point has a diagnosis, no design
-            row[objective_column] = solution["objective"]["value"] if designed else math.nan
-            for variable in self.formulation.variables:
-                row[column_name(variable.name, variable.unit)] = (
-                    from_si(solution["design"][variable.name], variable.unit) if designed else math.nan)
-            row["active"] = " ".join(c["name"] for c in solution["constraints"] if c["active"]) if designed else ""
-            row["diagnosis"] = solution["diagnosis"] or ""
-            row["iterations"] = solution["solver"]["iterations"]  # None for a point solved in a batch
-            rows.append(row)
-        frame = pd.DataFrame(rows)
-        frame["iterations"] = frame["iterations"].astype("Int64")  # whole numbers, blank where there are none
-        return frame
+    def frame(self, table: dict[str, np.ndarray], order: np.ndarray | None = None) -> pd.DataFrame:
+        """One row per point (``table``'s points taken in ``order``): inputs, status, objective, design (display
+        units), active constraints; a point without a design (infeasible, solver failed) has its status and
+        diagnosis, and blanks for objective and design."""
+        if order is not None:
+            table = {key: column[..., order] for key, column in table.items()}
+        status = table["status"]
+        designed = np.any([status == design for design in DESIGN_STATUSES], axis=0)  # infeasible: a diagnosis only
+        columns = {"point": np.arange(len(self.points))}
+        for v, values in zip(self.varies, grid_columns(self.varies, self.zipped)):
+            columns[v.column] = from_si(values, v.quantity.unit)
+        columns["status"] = status
+        columns[column_name(self.objective.name, self.objective.unit)] = np.where(designed, table["objective"], np.nan)
+        for variable, design in zip(self.formulation.variables, table["design"]):
+            columns[column_name(variable.name, variable.unit)] = np.where(designed, from_si(design, variable.unit),
+                                                                          np.nan)
+        columns["active"] = np.where(designed, table["active"], "")
+        columns["diagnosis"] = np.where(np.equal(table["diagnosis"], None), "", table["diagnosis"])
+        blank = np.equal(table["iterations"], None)  # solved in a batch
+        columns["iterations"] = pd.arrays.IntegerArray(np.where(blank, 0, table["iterations"]).astype(np.int64), blank)
+        return pd.DataFrame(columns)
 
 
 TABLE_SUFFIXES = (".csv", ".parquet", ".md")
