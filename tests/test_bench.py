@@ -64,19 +64,20 @@ def test_closed_forms_where_the_papers_have_one(report):
 def test_throughput(report):
     for coupling in {c for c, _ in MODES}:
         throughput = _rows(report, "throughput", coupling)
-        assert set(throughput) == {"batched", "batched, with records", "point by point", "point by point, cold starts",
-                                   "batched, process pool"}
+        assert set(throughput) == {"batched", "sweep, tabulated", "sweep, tabulated and stored", "point by point",
+                                   "point by point, cold starts", "batched, process pool"}
         assert {row["points"] for row in throughput.values()} == {50}
         assert {row["runs"] for row in throughput.values()} == {3}  # the median of three runs each
         assert len({row["optimal"] for row in throughput.values()}) == 1 and throughput["batched"]["optimal"] > 0
-        for how in ("batched", "batched, with records", "point by point"):
+        for how in ("batched", "sweep, tabulated", "sweep, tabulated and stored", "point by point"):
             row = throughput[how]
             assert 0 < row["solver_share"] < 1 and 0 <= row["check_share"] < 1
             assert row["solver_share"] + row["check_share"] + row["python_share"] == pytest.approx(1.0)
         assert throughput["point by point"]["check_share"] == 0  # its KKT checks are inside Problem.solve
         assert throughput["batched, process pool"]["solver_share"] is None
         assert throughput["point by point"]["vs_point_by_point"] == 1.0
-        assert throughput["batched, with records"]["solves_per_point"] == throughput["batched"]["solves_per_point"]
+        for how in ("sweep, tabulated", "sweep, tabulated and stored"):  # the batches of Sweep.run, as they were
+            assert throughput[how]["solves_per_point"] == throughput["batched"]["solves_per_point"]
     # the integer search along a sweep: the previous point's integers, a neighbour only where the objective falls;
     # a batch stops short of the point where its integers are excluded
     for coupling in ("cable", "ball"):

@@ -4,21 +4,25 @@ The sweep runs the first non-integer quantity of the case's first section (the d
 from 0.5x to 2x its value. Serial, in one process: in batches (``clutchopt.optimise.batch``, what ``clutchopt
 sweep`` runs: chained SQP re-solves in one CasADi call, checked together), point by point (``Problem.solve`` warm
 from the previous optimum, as sweeps ran before) and point by point from the case's own start ("cold starts").
-Batched "with records": each point's record built as well (``Solution.as_dict()``, the JSON that ``clutchopt sweep``
-tabulates and stores; a window's records are built together from its arrays); the other rows stop at the solve
-(batched: a status per point; point by point: a Solution per point, which ``Problem.solve`` builds).
+"Sweep, tabulated": the whole ``Sweep(...).run()`` of the Python API, which ``clutchopt sweep --no-store`` runs (the
+points checked, solved in batches, and the table built, the batched points' rows from their windows' arrays);
+"sweep, tabulated and stored" records each point in a run store as well (its record, ``Solution.as_dict()``, built
+and written as JSON: ``clutchopt sweep``'s default). The batched row stops at the solve (a status per point), point
+by point at a Solution per point (which ``Problem.solve`` builds).
 Pool: batched, the sweep cut into contiguous chunks, one per worker process, each worker building its own problem
 (counted). Each row is the run of median wall time among ``sweep_repeats`` runs. Per row: solver calls per point
 (IPOPT and SQP, integer neighbours and the chained attempts a failed batch wastes included), the shares of the wall
 time inside the solver calls (an infeasibility diagnosis's IPOPT call included), in the batches' compiled checks
 (mapped CasADi evaluations of the KKT verdicts with the integer test, and of the exclusion tables) and in Python
-(the rest: case data, scaling, the float64 checks, bookkeeping; point by point, and batched with records, also
-outputs and sensitivities), and for serial sweeps points/s against the same sweep point by point and against the
+(the rest: case data, scaling, the float64 checks, bookkeeping; point by point also outputs and sensitivities; the
+sweeps also the table, and with a store the records and their writing), and for serial sweeps points/s against the same sweep point by point and against the
 wedge paper mode's batched sweep.
 """
 
 from __future__ import annotations
 
+import os
+import tempfile
 from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
@@ -42,17 +46,30 @@ def _problem(case: Case, options: SolverOptions, mode: str | None) -> Problem:
 
 
 def batched_sweep(case: Case, name: str, values, options: SolverOptions = SolverOptions(),
-                  mode: str | None = None, records: bool = False) -> dict:
+                  mode: str | None = None) -> dict:
     """The case solved at each value of ``name`` in batches: points, optimal, solver calls, seconds inside them
-    and in the batches' compiled checks. ``records``: each point's record built too (``Solution.as_dict()``: what
-    ``clutchopt sweep`` hands to its table and run store)."""
+    and in the batches' compiled checks."""
     sweep = BatchSweep(_problem(case, options, mode), case, {name: values})
-    if records:
-        optimal = sum(record["status"] == "optimal" for window in sweep.run() for record in window.records())
-    else:
-        optimal = sum(statuses.count("optimal") for statuses in (window.statuses for window in sweep.run()))
+    optimal = sum(statuses.count("optimal") for statuses in (window.statuses for window in sweep.run()))
     return {"points": len(values), "optimal": optimal, "solves": sweep.solves, "solver_s": sweep.solver_s,
             "check_s": sweep.check_s}
+
+
+def tabulated_sweep(case: Case, name: str, values, store_path: str | None = None) -> dict:
+    """``Sweep(case, ...).run()`` over the values of ``name`` (the default mode and objective): the table, and with
+    ``store_path`` each point recorded in that run store; the tally of :func:`batched_sweep`."""
+    from clutchopt.optimise.sweep import Sweep, Vary
+    from clutchopt.store import RunStore
+
+    quantity = next(q for q in case.quantities if q.name == name)
+    sweep = Sweep(case, [Vary(quantity, tuple(map(float, values)))], mode=reference_mode(case.coupling))
+    if store_path is None:
+        result = sweep.run(progress=False)
+    else:
+        with RunStore(store_path) as store:
+            result = sweep.run(store, progress=False)
+    return {"points": len(values), "optimal": int((result.frame["status"].to_numpy() == "optimal").sum()),
+            **result.spent}
 
 
 def warm_sweep(case: Case, name: str, values, warm: bool = True, options: SolverOptions = SolverOptions(),
@@ -75,18 +92,27 @@ def _merged(tallies: list[dict]) -> dict:
     return {key: sum(t[key] for t in tallies) for key in tallies[0]}
 
 
-HOWS = (("batched", batched_sweep, {}), ("batched, with records", batched_sweep, {"records": True}),
+STORE = "bench-runs.sqlite"  # in a throw-away folder: the stored sweeps' run store
+
+HOWS = (("batched", batched_sweep, {}), ("sweep, tabulated", tabulated_sweep, {}),
+        ("sweep, tabulated and stored", tabulated_sweep, {"store_path": STORE}),
         ("point by point", warm_sweep, {}),
         ("point by point, cold starts", warm_sweep, {"warm": False}))
 
 
 def throughput_rows(config) -> list[dict]:
+    with tempfile.TemporaryDirectory(prefix="clutchopt-bench-") as folder:
+        return _throughput_rows(config, os.path.join(folder, STORE))
+
+
+def _throughput_rows(config, store: str) -> list[dict]:
     rows = []
     for case in bench_cases():
         name = sweep_quantity(case)
         values = case.values[name] * np.geomspace(0.5, 2.0, config.sweep_points)
-        batched_sweep(case, name, values)  # warm-up: the problem, its solvers, the chained and mapped functions
+        tabulated_sweep(case, name, values, store)  # warm-up: the problem, its solvers, chained and mapped functions
         for how, run, keywords in HOWS:
+            keywords = {key: store if value is STORE else value for key, value in keywords.items()}
             tally, seconds = _median(lambda: run(case, name, values, **keywords), config.sweep_repeats)
             rows.append(_row(case, name, how, 1, tally, seconds, config.sweep_repeats))
         chunks = np.array_split(values, config.processes)

@@ -448,8 +448,7 @@ class Solutions(Sequence):
         names = self._names
         if self._checked is None:
             return record_table([self._solutions[i].as_dict() for i in range(len(self))], names)
-        table = self._checked.table()
-        table = {key: column[..., self._column] for key, column in table.items()}
+        table = {key: column[..., self._column] for key, column in self._checked.table().items()}  # copies
         alone = sorted(self._solutions)
         if alone:
             placed(record_table([self._solutions[i].as_dict() for i in alone], names), alone, table)
@@ -500,8 +499,8 @@ class _Checked:
         diagnoses by the float64 check, the names of the active constraints joined once per pattern."""
         count, ok = len(self.block.index), self.feasible
         active, _ = margin_flags(self.margin, FEASIBILITY_TOL)
-        return {"status": np.where(ok, "optimal", "unverified").astype(object), "objective": self.objective.copy(),
-                "design": self.design.copy(), "active": active_names(active, [c.name for c in self.constraints]),
+        return {"status": np.where(ok, "optimal", "unverified").astype(object), "objective": self.objective,
+                "design": self.design, "active": active_names(active, [c.name for c in self.constraints]),
                 "diagnosis": np.where(ok, None, UNVERIFIED), "iterations": np.full(count, None)}
 
     def records(self, columns: list[int] | None = None) -> list[dict]:

@@ -24,7 +24,7 @@ import threading
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import partial
 from collections.abc import Sequence
 from typing import Callable, Iterator
@@ -142,14 +142,22 @@ def check_points(case: Case, varies: list[Vary], points: list[dict[str, float]])
         raise
 
 
+SPENT = ("solves", "solver_s", "check_s")  # what solving points costs: solver calls, seconds in them and in checks
+
+
+def total_spent(parts: list["PointResults"]) -> dict:
+    return {key: sum(part.spent[key] for part in parts) for key in SPENT}
+
+
 class PointResults:
     """Solved points of a sweep, in point order: their indices and values, their rows of the sweep table (a batched
     window's read from its arrays), and their records (``Solution.as_dict()``), built when first asked for (the run
-    store, ``--json``). ``solver_s``: seconds in solver calls and in the batches' compiled checks."""
+    store, ``--json``). ``spent``: their solver calls (``solves``) and seconds in them (``solver_s``) and in the
+    batches' compiled checks (``check_s``)."""
 
     def __init__(self, points: list[tuple[int, dict[str, float]]], names: list[str],
-                 records: list[dict] | None = None, solutions: Solutions | None = None, solver_s: float = 0.0):
-        self.points, self.names, self.solver_s = points, names, solver_s
+                 records: list[dict] | None = None, solutions: Solutions | None = None, spent: dict | None = None):
+        self.points, self.names, self.spent = points, names, spent or dict.fromkeys(SPENT, 0)
         self._records, self._solutions = records, solutions
 
     def __len__(self) -> int:
@@ -167,7 +175,7 @@ class PointResults:
     def joined(cls, parts: list["PointResults"], names: list[str]) -> "PointResults":
         """Consecutive results as one, with their records (what a worker process sends back)."""
         return cls([point for part in parts for point in part.points], names,
-                   [record for part in parts for record in part.records()], solver_s=sum(p.solver_s for p in parts))
+                   [record for part in parts for record in part.records()], spent=total_spent(parts))
 
 
 def solve_points(case: Case, mode: str, objective: str, tol: float,
@@ -179,18 +187,20 @@ def solve_points(case: Case, mode: str, objective: str, tol: float,
     varied = list(points[0][1]) if points else []
     if points and batchable(problem, varied):
         sweep = BatchSweep(problem, case, {name: np.array([values[name] for _, values in points]) for name in varied})
-        first, spent = 0, 0.0
+        first, before = 0, dict.fromkeys(SPENT, 0)
         for window in sweep.run():
-            seconds = sweep.solver_s + sweep.check_s
-            yield PointResults(points[first:first + len(window)], names, solutions=window, solver_s=seconds - spent)
-            first, spent = first + len(window), seconds
+            now = {key: getattr(sweep, key) for key in SPENT}
+            yield PointResults(points[first:first + len(window)], names, solutions=window,
+                               spent={key: now[key] - before[key] for key in SPENT})
+            first, before = first + len(window), now
         return
     previous: Solution | None = None
     for index, values in points:
         point_case = case.with_values(**values)
         solution = problem.solve(point_case, warm=previous)  # falls back to the case's own start by itself
         previous = solution if solution.status == "optimal" else None  # next to a failure, start from the case
-        yield PointResults([(index, values)], names, [solution.as_dict()], solver_s=solution.solver.time_s)
+        yield PointResults([(index, values)], names, [solution.as_dict()],
+                           spent={"solves": solution.solver.solves, "solver_s": solution.solver.time_s, "check_s": 0})
 
 
 def solve_chunk(case: Case, mode: str, objective: str, tol: float,
@@ -342,7 +352,8 @@ class SweepResult:
     reused: int  # points found already stored (resume)
     elapsed_s: float  # wall time of the solves
     solutions: Sequence[dict]  # every point's solution (``Solution.as_dict()``, SI), in point order
-    solver_s: float = 0.0  # of elapsed_s, in solver calls and batch checks (in this process; a pool's: its workers')
+    spent: dict = field(default_factory=dict)  # solver calls and seconds in them and in batch checks (:data:`SPENT`;
+    # a pool's or Dask's are its workers')
 
     def _repr_html_(self) -> str:
         """Jupyter shows a sweep as its table, one row per point (the columns of ``clutchopt sweep --out``)."""
@@ -422,10 +433,11 @@ class Sweep:
                 bar.update(len(results))
                 check()
         elapsed = time.perf_counter() - started
+        parts = [part for part in parts if len(part)]
         order = np.argsort([index for part in parts for index, _ in part.points], kind="stable")  # pool: any order
         return SweepResult(sweep_id, self.frame(joined_tables([part.table() for part in parts]), order),
                            len(pending), len(stored), elapsed, SweepRecords(parts, order),
-                           sum(part.solver_s for part in parts))
+                           total_spent(parts))
 
     def _inputs(self, values: dict[str, float]) -> dict:
         """A point's inputs as the store keeps them: the case's SI values with the point's (checked when the sweep
@@ -443,7 +455,7 @@ class Sweep:
         """One row per point (``table``'s points taken in ``order``): inputs, status, objective, design (display
         units), active constraints; a point without a design (infeasible, solver failed) has its status and
         diagnosis, and blanks for objective and design."""
-        if order is not None:
+        if order is not None and (order[1:] < order[:-1]).any():  # out of point order (a pool's chunks)
             table = {key: column[..., order] for key, column in table.items()}
         status = table["status"]
         designed = np.any([status == design for design in DESIGN_STATUSES], axis=0)  # infeasible: a diagnosis only

@@ -38,6 +38,8 @@ def active_names(active: np.ndarray, names: list[str]) -> np.ndarray:
 
 def joined_tables(tables: list[dict[str, np.ndarray]]) -> dict[str, np.ndarray]:
     """Tables of consecutive points as one."""
+    if len(tables) == 1:
+        return tables[0]
     return {key: np.concatenate([t[key] for t in tables], axis=-1) for key in KEYS}
 
 
