@@ -33,11 +33,14 @@ from typing import Callable
 
 from clutchopt.errors import InputError
 from clutchopt.files import status
+from clutchopt.records import TEMPLATE, expand, is_compact
 
 DEFAULT_STORE = "clutchopt-runs.sqlite"
 STORE_ENV = "CLUTCHOPT_STORE"
 BUSY_TIMEOUT_S = 60.0  # a write waits this long for another writer's lock (each holds it for one point)
 LARGEST_ID = 2**63 - 1  # SQLite's INTEGER
+PAGE_BYTES = 16384  # a new store's page: a run's row (2-8 kB) in one page, where 4 kB pages chained overflow pages
+# (inserting a window of 1000 sweep points took 3x as long)
 CAPPED_SUFFIX = "_capped"  # the mode of a Pareto point's formulation: the user's mode with a cost cap
 
 _SCHEMA = """
@@ -50,7 +53,9 @@ CREATE TABLE IF NOT EXISTS runs (
     inputs TEXT NOT NULL, outputs TEXT NOT NULL, versions TEXT NOT NULL, created TEXT NOT NULL,
     objective_unit TEXT, UNIQUE (sweep_id, point));
 CREATE INDEX IF NOT EXISTS runs_by_kind ON runs (kind);
+CREATE TABLE IF NOT EXISTS templates (key TEXT PRIMARY KEY, body TEXT NOT NULL);
 """
+TEMPLATES = "CREATE TABLE IF NOT EXISTS templates (key TEXT PRIMARY KEY, body TEXT NOT NULL)"
 
 LIST_COLUMNS = ("id", "kind", "sweep_id", "point", "created", "coupling", "mode", "objective_name", "status",
                 "objective", "objective_unit", "case_path")
@@ -89,6 +94,12 @@ RECORD = ("INSERT INTO runs (kind, sweep_id, point, case_path, title, coupling, 
           " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (sweep_id, point) DO NOTHING")
 
 
+def _to_json(value) -> str:
+    from clutchopt.output import to_json
+
+    return to_json(value, None)
+
+
 def _now() -> str:
     return datetime.now(timezone.utc).isoformat(timespec="milliseconds")
 
@@ -125,6 +136,7 @@ class RunStore:
         self.writable = writable
         self.failure: str | None = None  # why recording stopped; runs after it were not recorded
         self.unrecorded = 0
+        self._templates: dict[str, dict | None] = {}  # read so far, by key (None: missing)
         self._warn = warn or (lambda text: warnings.warn(text, RuntimeWarning, stacklevel=3))
         self._check_file()
         self._db = self._connect()
@@ -211,13 +223,19 @@ class RunStore:
                 if not tables:
                     raise StoreError(self.path, "is empty: nothing has been recorded in it yet")
                 return
+            if not tables:  # set before the first write; a store of an older clutchopt keeps its pages
+                self._db.execute(f"PRAGMA page_size={PAGE_BYTES}")
             self._db.execute("PRAGMA journal_mode=WAL")
             self._db.execute("PRAGMA synchronous=NORMAL")
             if not tables:
                 self._db.executescript(_SCHEMA)
-            elif "objective_unit" not in self._columns():
-                with self._db:
-                    self._db.execute("ALTER TABLE runs ADD COLUMN objective_unit TEXT")
+            else:
+                if "objective_unit" not in self._columns():
+                    with self._db:
+                        self._db.execute("ALTER TABLE runs ADD COLUMN objective_unit TEXT")
+                if "templates" not in tables:
+                    with self._db:
+                        self._db.execute(TEMPLATES)
         except sqlite3.DatabaseError as exc:
             raise self._damaged(exc) from None
 
@@ -257,9 +275,16 @@ class RunStore:
         cursor = self._transaction(lambda db: db.execute(sql, args), 1)
         return int(cursor.lastrowid) if cursor is not None and cursor.rowcount else None
 
-    def _write_many(self, sql: str, rows: list[tuple]) -> int:
-        """Execute one INSERT per row, all in one transaction; how many rows it inserted."""
-        cursor = self._transaction(lambda db: db.executemany(sql, rows), len(rows))
+    def _write_many(self, sql: str, rows: list[tuple], templates: dict[str, dict]) -> int:
+        """Execute one INSERT per row, all in one transaction with the templates they use (those not yet stored);
+        how many rows it inserted."""
+        def execute(db: sqlite3.Connection) -> sqlite3.Cursor:
+            if templates:
+                db.executemany("INSERT OR IGNORE INTO templates (key, body) VALUES (?, ?)",
+                               [(key, _to_json(body)) for key, body in templates.items()])
+            return db.executemany(sql, rows)
+
+        cursor = self._transaction(execute, len(rows))
         return max(cursor.rowcount, 0) if cursor is not None else 0
 
     def _transaction(self, execute, rows: int) -> sqlite3.Cursor | None:
@@ -286,24 +311,24 @@ class RunStore:
         """Record one run (solve, sweep point, pareto point, simulation) in its own transaction (see
         :meth:`record_many` for ``where``). Returns the run's id, or None if it was not recorded (already there, or
         the store failed: ``failure``)."""
-        return self._write(RECORD, self._row(kind, inputs, outputs, **where))
+        return self._write(RECORD, self._row(kind, inputs, outputs, _now(), **where))
 
-    def record_many(self, runs: list[tuple[str, dict, dict, dict]]) -> int:
+    def record_many(self, runs: list[tuple[str, dict, dict, dict]], templates: dict[str, dict] | None = None) -> int:
         """Record runs ``(kind, inputs, outputs, where)`` in one transaction (a window of sweep points: all land or
         none). ``where``: status, objective, objective_unit, case_path, title, coupling, mode, objective_name,
-        sweep_id, point. A sweep point already stored (another process resuming the same sweep solved it too) is
-        kept as it is. Returns how many were recorded."""
-        return self._write_many(RECORD, [self._row(kind, inputs, outputs, **where) for kind, inputs, outputs, where
-                                         in runs])
+        sweep_id, point. Outputs may be compact records (``clutchopt.records``) whose ``templates`` are given by key;
+        they are read back in full. A sweep point already stored (another process resuming the same sweep solved it
+        too) is kept as it is. Returns how many were recorded."""
+        created = _now()  # one transaction: one moment
+        return self._write_many(RECORD, [self._row(kind, inputs, outputs, created, **where)
+                                         for kind, inputs, outputs, where in runs], templates or {})
 
     @staticmethod
-    def _row(kind: str, inputs: dict, outputs: dict, *, status: str | None = None, objective: float | None = None,
+    def _row(kind: str, inputs: dict, outputs: dict, created: str, *, status: str | None = None, objective: float | None = None,
              objective_unit: str = "", case_path: str = "", title: str = "", coupling: str = "", mode: str = "",
              objective_name: str = "", sweep_id: int | None = None, point: int | None = None) -> tuple:
-        from clutchopt.output import to_json
-
         return (kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status, objective,
-                objective_unit, to_json(inputs, None), to_json(outputs, None), _versions_json(), _now())
+                objective_unit, _to_json(inputs), _to_json(outputs), _versions_json(), created)
 
     def record_solution(self, kind: str, case, solution, **where) -> int | None:
         """Record a solved case: inputs are all its SI values, outputs the solution's JSON."""
@@ -327,7 +352,7 @@ class RunStore:
 
     def sweep_outputs(self, sweep_id: int) -> dict[int, dict]:
         """The stored solutions of a sweep by point index."""
-        return {row[0]: self._json(row[2], row[1], "outputs") for row in
+        return {row[0]: self._outputs(row[2], row[1]) for row in
                 self._read("SELECT point, id, outputs FROM runs WHERE sweep_id = ?", (sweep_id,))}
 
     def _json(self, text: str, run_id: int, column: str):
@@ -336,6 +361,24 @@ class RunStore:
         except (TypeError, ValueError, RecursionError):
             raise StoreError(self.path, f"run {run_id} is damaged (its {column} are not JSON)",
                              _rescue(self.path)) from None
+
+    def _outputs(self, text: str, run_id: int) -> dict:
+        """A run's outputs in full: a compact sweep point's expanded with its template."""
+        outputs = self._json(text, run_id, "outputs")
+        if not is_compact(outputs):
+            return outputs
+        key = str(outputs[TEMPLATE])
+        if key not in self._templates:
+            rows = self._read("SELECT body FROM templates WHERE key = ?", (key,)) if self._has_templates() else []
+            self._templates[key] = self._json(rows[0][0], run_id, "template") if rows else None
+        try:
+            return expand(outputs, self._templates[key])
+        except (KeyError, IndexError, TypeError, ValueError, AttributeError):
+            raise StoreError(self.path, f"run {run_id} is damaged (its outputs do not fit their template)",
+                             _rescue(self.path)) from None
+
+    def _has_templates(self) -> bool:
+        return bool(self._read("SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = 'templates'"))
 
     def runs(self, kind: str | None = None, sweep_id: int | None = None, limit: int | None = None) -> list[dict]:
         """Runs, newest first, without their JSON bodies; ``objective_unit`` filled for stores of older versions."""
@@ -375,8 +418,9 @@ class RunStore:
         if not rows:
             raise InputError("run", f"no run {run_id} in {self.path}")
         entry = dict(rows[0])
-        for name in ("inputs", "outputs", "versions"):
+        for name in ("inputs", "versions"):
             entry[name] = self._json(entry[name], run_id, name)
+        entry["outputs"] = self._outputs(entry["outputs"], run_id)
         return entry
 
     def readable_runs(self, kind: str | None = None, sweep_id: int | None = None) -> tuple[list[dict], int]:

