@@ -1,9 +1,10 @@
 """The run store: every solve, sweep point and simulation recorded in SQLite (an OpenMDAO-like recorder).
 
 One database file (default ``./clutchopt-runs.sqlite``, or ``$CLUTCHOPT_STORE``), WAL mode so readers never
-block the writer, one transaction per recorded run so a killed sweep loses at most the point in flight. Each
-run keeps its inputs (all case values, SI), its outputs (the solution as JSON), status, objective with its unit
-and the versions of clutchopt and its solvers. A sweep is a row in ``sweeps``; its points are runs with a point
+block the writer, one transaction per recorded run (a window of sweep points in one) so a killed sweep loses at most
+the points in flight. Each run keeps its inputs (all case values, SI), its outputs (the solution as JSON; a batched
+sweep point's compact, beside its window's template: ``clutchopt.records``), status, objective with its unit and
+the versions of clutchopt and its solvers. A sweep is a row in ``sweeps``; its points are runs with a point
 index, unique per sweep, so a resumed sweep cannot record a point twice (two resumes of one sweep running at
 once both finish; the point solved twice is stored once).
 

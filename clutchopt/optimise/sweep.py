@@ -7,8 +7,9 @@ i-th point takes the i-th value of each list). Points run in chunks of neighbour
 problem is re-solved, each point warm-started from the one before: in batches of chained SQP re-solves checked
 together (``clutchopt.optimise.batch``), by ``Problem.solve`` where a batch stops and for problems with a start-up
 (``Problem.solve`` starts cold again if the warm start fails).
-Chunks run in this process, in a local process pool, or on a Dask cluster. Every point is stored in the run
-store in its own transaction as it arrives, so a killed sweep resumes where it stopped.
+Chunks run in this process, in a local process pool, or on a Dask cluster. The points are stored in the run store
+as they arrive, a window of them in one transaction, so a killed sweep resumes where it stopped. The table is built
+from the windows' arrays; each point's record only when read (``SweepResult.solutions``) or stored.
 """
 
 from __future__ import annotations
@@ -381,22 +382,19 @@ class SweepResult:
 
 
 class SweepRecords(Sequence):
-    """Every point's record (``Solution.as_dict()``) in point order; the records of a window of batched points are
-    built when one of its points is first read."""
+    """Every point's record (``Solution.as_dict()``) in point order, built when a first one is read."""
 
     def __init__(self, parts: list[PointResults], order: np.ndarray):
-        self._parts = parts
-        part = np.repeat(np.arange(len(parts)), [len(p) for p in parts])
-        position = np.concatenate([np.arange(len(p)) for p in parts]) if parts else part
-        self._part, self._position = part[order].tolist(), position[order].tolist()
+        self._parts, self._order, self._records = parts, order, None
 
     def __len__(self) -> int:
-        return len(self._part)
+        return len(self._order)
 
     def __getitem__(self, i):
-        if isinstance(i, slice):
-            return [self[j] for j in range(*i.indices(len(self)))]
-        return self._parts[self._part[i]].records()[self._position[i]]
+        if self._records is None:
+            solved = [record for part in self._parts for record in part.records()]
+            self._records = [solved[k] for k in self._order.tolist()]
+        return self._records[i]
 
 
 class Sweep:
