@@ -38,7 +38,7 @@ from clutchopt.records import TEMPLATE, expand, is_compact
 
 DEFAULT_STORE = "clutchopt-runs.sqlite"
 STORE_ENV = "CLUTCHOPT_STORE"
-BUSY_TIMEOUT_S = 60.0  # a write waits this long for another writer's lock (each holds it for one point)
+BUSY_TIMEOUT_S = 60.0  # a write waits this long for another writer's lock (each holds it for one run or window)
 LARGEST_ID = 2**63 - 1  # SQLite's INTEGER
 PAGE_BYTES = 16384  # a new store's page: a run's row (2-8 kB) in one page, where 4 kB pages chained overflow pages
 # (inserting a window of 1000 sweep points took 3x as long)
@@ -54,9 +54,8 @@ CREATE TABLE IF NOT EXISTS runs (
     inputs TEXT NOT NULL, outputs TEXT NOT NULL, versions TEXT NOT NULL, created TEXT NOT NULL,
     objective_unit TEXT, UNIQUE (sweep_id, point));
 CREATE INDEX IF NOT EXISTS runs_by_kind ON runs (kind);
-CREATE TABLE IF NOT EXISTS templates (key TEXT PRIMARY KEY, body TEXT NOT NULL);
 """
-TEMPLATES = "CREATE TABLE IF NOT EXISTS templates (key TEXT PRIMARY KEY, body TEXT NOT NULL)"
+TEMPLATES = "CREATE TABLE IF NOT EXISTS templates (key TEXT PRIMARY KEY, body TEXT NOT NULL)"  # clutchopt.records
 
 LIST_COLUMNS = ("id", "kind", "sweep_id", "point", "created", "coupling", "mode", "objective_name", "status",
                 "objective", "objective_unit", "case_path")
@@ -229,7 +228,7 @@ class RunStore:
             self._db.execute("PRAGMA journal_mode=WAL")
             self._db.execute("PRAGMA synchronous=NORMAL")
             if not tables:
-                self._db.executescript(_SCHEMA)
+                self._db.executescript(f"{_SCHEMA}{TEMPLATES};")
             else:
                 if "objective_unit" not in self._columns():
                     with self._db:
@@ -325,8 +324,8 @@ class RunStore:
                                          for kind, inputs, outputs, where in runs], templates or {})
 
     @staticmethod
-    def _row(kind: str, inputs: dict, outputs: dict, created: str, *, status: str | None = None, objective: float | None = None,
-             objective_unit: str = "", case_path: str = "", title: str = "", coupling: str = "", mode: str = "",
+    def _row(kind: str, inputs: dict, outputs: dict, created: str, *, status: str | None = None,
+             objective: float | None = None, objective_unit: str = "", case_path: str = "", title: str = "", coupling: str = "", mode: str = "",
              objective_name: str = "", sweep_id: int | None = None, point: int | None = None) -> tuple:
         return (kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status, objective,
                 objective_unit, _to_json(inputs), _to_json(outputs), _versions_json(), created)

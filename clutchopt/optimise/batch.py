@@ -30,9 +30,10 @@ infeasibility diagnosis), and the next batch starts after it, 8 points long, dou
 points to another call, it repeats its last point. After a point without a design the points are solved cold, one
 by one, until one is optimal. A point that passes the KKT test but not the float64 check (rare) is solved again by
 ``Problem.solve`` at the end of its window. A chained call that CasADi ends with an evaluation error counts as a
-batch whose first point failed. A window's table rows (``Solutions.table``) and records (each point's ``Solution.as_dict()``,
-``Solutions.records``; compact, as the run store keeps them, ``Solutions.compact_records``) are built together when
-asked for, from the window's arrays; a point's :class:`Solution` is built from its record when the point is read.
+batch whose first point failed. A window's table rows (``Solutions.table``) and records (each point's
+``Solution.as_dict()``, ``Solutions.records``; compact, as the run store keeps them, ``Solutions.compact_records``)
+are built together when asked for, from the window's arrays; a point's :class:`Solution` is built from its record
+when the point is read.
 
 The optima equal ``Problem.solve``'s to the solver's tolerance: a batch keeps the variable scales of the point it
 starts from and normalises the objective by that point's objective, where ``Problem.solve`` takes both afresh from
@@ -58,8 +59,8 @@ from clutchopt.model import Output, namespace
 from clutchopt.optimise.problem import (Box, Problem, Solution, SolverInfo, WarmStart, limit_elasticities,
                                        sense_sign)
 from clutchopt.optimise.table import active_names, placed, record_table
-from clutchopt.records import CONSTRAINT_COLUMNS, TEMPLATE, expand, template_key
 from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, constraint_table, margin_flags
+from clutchopt.records import CONSTRAINT_COLUMNS, TEMPLATE, expand, template_key
 from clutchopt.units import si_unit
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one

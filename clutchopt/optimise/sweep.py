@@ -23,11 +23,11 @@ import socket
 import struct
 import threading
 import time
+from collections.abc import Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from functools import partial
-from collections.abc import Sequence
 from typing import Callable, Iterator
 
 import numpy as np
@@ -428,14 +428,13 @@ class Sweep:
             if sweep_id is None:
                 sweep_id = store.new_sweep(self.spec, len(self.points), self.case.path)  # None: store failed
             stored = store.sweep_outputs(sweep_id) if sweep_id is not None else {}
-        pending = [(i, values) for i, values in enumerate(self.points) if i not in stored] if stored else \
-            list(enumerate(self.points))
+        pending = [(i, values) for i, values in enumerate(self.points) if i not in stored]
         workers = max(jobs, 1)
         size = chunk_size or max(1, min(25, math.ceil(len(pending) / (4 * workers))))
         task = (self.case, self.formulation.mode, self.objective.name, self.tol)
         names = [v.name for v in self.formulation.variables]
-        parts = [PointResults([(i, self.points[i]) for i in sorted(stored)], names,
-                              ([stored[i] for i in sorted(stored)], {}))]
+        kept = sorted(stored)
+        parts = [PointResults([(i, self.points[i]) for i in kept], names, ([stored[i] for i in kept], {}))]
         bar = tqdm(total=len(self.points), initial=len(stored), unit="point", desc="sweep", disable=not progress,
                    mininterval=0.5)
         started = time.perf_counter()
