@@ -34,7 +34,7 @@ from typing import Callable
 
 from clutchopt.errors import InputError
 from clutchopt.files import status
-from clutchopt.records import TEMPLATE, expand, is_compact
+from clutchopt.records import TEMPLATE, check_solution, expand, is_compact
 
 DEFAULT_STORE = "clutchopt-runs.sqlite"
 STORE_ENV = "CLUTCHOPT_STORE"
@@ -42,6 +42,7 @@ BUSY_TIMEOUT_S = 60.0  # a write waits this long for another writer's lock (each
 LARGEST_ID = 2**63 - 1  # SQLite's INTEGER
 PAGE_BYTES = 16384  # a new store's page: a run's row (2-8 kB) in one page, where 4 kB pages chained overflow pages
 # (inserting a window of 1000 sweep points took 3x as long)
+TEMPLATES_KEPT = 64  # templates a store keeps in memory once read (a window's is a few kB; a damaged one may be huge)
 CAPPED_SUFFIX = "_capped"  # the mode of a Pareto point's formulation: the user's mode with a cost cap
 
 _SCHEMA = """
@@ -352,7 +353,7 @@ class RunStore:
 
     def sweep_outputs(self, sweep_id: int) -> dict[int, dict]:
         """The stored solutions of a sweep by point index."""
-        return {row[0]: self._outputs(row[2], row[1]) for row in
+        return {row[0]: self._outputs(row[2], row[1], "sweep") for row in
                 self._read("SELECT point, id, outputs FROM runs WHERE sweep_id = ?", (sweep_id,))}
 
     def _json(self, text: str, run_id: int, column: str):
@@ -362,20 +363,34 @@ class RunStore:
             raise StoreError(self.path, f"run {run_id} is damaged (its {column} are not JSON)",
                              _rescue(self.path)) from None
 
-    def _outputs(self, text: str, run_id: int) -> dict:
-        """A run's outputs in full: a compact sweep point's expanded with its template."""
+    def _outputs(self, text: str, run_id: int, kind: str) -> dict:
+        """A run's outputs in full (a compact sweep point's expanded with its template), a solution's checked for
+        the shape that tables and exports read."""
         outputs = self._json(text, run_id, "outputs")
-        if not is_compact(outputs):
-            return outputs
-        key = str(outputs[TEMPLATE])
+        try:
+            if is_compact(outputs):
+                template = self._template(str(outputs[TEMPLATE]))
+                if template is None:
+                    raise ValueError("its template is missing or not JSON")
+                outputs = expand(outputs, template)
+            return outputs if kind == "simulation" else check_solution(outputs)
+        except (KeyError, IndexError, TypeError, ValueError, AttributeError) as exc:
+            problem = str(exc) if isinstance(exc, ValueError) and str(exc).startswith("its ") else \
+                "its outputs do not fit their template"
+            raise StoreError(self.path, f"run {run_id} is damaged ({problem})", _rescue(self.path)) from None
+
+    def _template(self, key: str) -> dict | None:
+        """A compact record's template (None if missing or not JSON), read once: the last TEMPLATES_KEPT are kept."""
         if key not in self._templates:
             rows = self._read("SELECT body FROM templates WHERE key = ?", (key,)) if self._has_templates() else []
-            self._templates[key] = self._json(rows[0][0], run_id, "template") if rows else None
-        try:
-            return expand(outputs, self._templates[key])
-        except (KeyError, IndexError, TypeError, ValueError, AttributeError):
-            raise StoreError(self.path, f"run {run_id} is damaged (its outputs do not fit their template)",
-                             _rescue(self.path)) from None
+            try:
+                template = json.loads(rows[0][0]) if rows else None
+            except (TypeError, ValueError, RecursionError):
+                template = None
+            if len(self._templates) >= TEMPLATES_KEPT:
+                self._templates.pop(next(iter(self._templates)))
+            self._templates[key] = template
+        return self._templates[key]
 
     def _has_templates(self) -> bool:
         return bool(self._read("SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = 'templates'"))
@@ -420,7 +435,7 @@ class RunStore:
         entry = dict(rows[0])
         for name in ("inputs", "versions"):
             entry[name] = self._json(entry[name], run_id, name)
-        entry["outputs"] = self._outputs(entry["outputs"], run_id)
+        entry["outputs"] = self._outputs(entry["outputs"], run_id, entry["kind"])
         return entry
 
     def readable_runs(self, kind: str | None = None, sweep_id: int | None = None) -> tuple[list[dict], int]:

@@ -64,11 +64,15 @@ def test_export_and_bad_store(cli, tmp_path):
 
 def test_a_sweep_point_cannot_be_recorded_twice(tmp_path):
     """A second record of a stored point (another resume of the same sweep solved it too) keeps the first."""
+    def solution(mass: float) -> dict:  # the least a solution has
+        return {"status": "optimal", "objective": {"value": mass}, "design": {}, "constraints": [],
+                "solver": {"iterations": 1, "time_s": 0.0}, "diagnosis": None}
+
     with RunStore(tmp_path / "s.sqlite") as store:
         sweep = store.new_sweep({"points": [1]}, 1)
-        assert store.record("sweep", {}, {"objective": 1.0}, sweep_id=sweep, point=0) == 1
-        assert store.record("sweep", {}, {"objective": 2.0}, sweep_id=sweep, point=0) is None
-        assert store.sweep_outputs(sweep) == {0: {"objective": 1.0}} and store.failure is None
+        assert store.record("sweep", {}, solution(1.0), sweep_id=sweep, point=0) == 1
+        assert store.record("sweep", {}, solution(2.0), sweep_id=sweep, point=0) is None
+        assert store.sweep_outputs(sweep) == {0: solution(1.0)} and store.failure is None
 
 
 SWEEP = ["sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=500:3000:40", "--vary",

@@ -380,29 +380,65 @@ def test_read_only_store_folder(shared_folder, tmp_path):
     assert stat.S_IMODE(shared_folder.stat().st_mode) == 0o555
 
 
-@pytest.mark.parametrize("damage", ["template deleted", "template not JSON", "template of another window"])
-def test_a_compact_point_without_its_template_is_a_damaged_run(damage, good_store, tmp_path, capsys):
-    # the sweep's batched points need their template; without it each is one damaged run, named, and the export
-    # rescues the rest (the solve, the points stored in full)
-    import shutil
-    import sqlite3
+TAMPER = {  # SQL on a copy of the good store: each makes the sweep's compact points (or one full run) unreadable
+    "template deleted": "DELETE FROM templates",
+    "template not JSON": "UPDATE templates SET body = '{not json'",
+    "template of another window": "UPDATE templates SET body = json_set(body, '$.constraints', json_array())",
+    "a constraint's name a number": "UPDATE templates SET body = json_set(body, '$.constraints[0].name', 5)",
+    "design units a list": "UPDATE templates SET body = json_set(body, '$.units.design', json_array('kg'))",
+    "design names numbers": "UPDATE templates SET body = json_set(body, '$.design', json_array(1, 2))",
+    "values as characters": "UPDATE runs SET outputs = json_set(outputs, '$.constraints.value', "
+                            "substr('abcdefghijklmnopqrstuvwxyz', 1, json_array_length(outputs, '$.constraints.value')))"
+                            " WHERE outputs LIKE '{\"template\"%'",
+    "design an object": "UPDATE runs SET outputs = json_set(outputs, '$.design', json_object('weight_mass', 1, "
+                        "'finger_diameter', 2)) WHERE outputs LIKE '{\"template\"%'",
+    "objective text": "UPDATE runs SET outputs = json_set(outputs, '$.objective', 'heavy') "
+                      "WHERE outputs LIKE '{\"template\"%'",
+    "status unknown": "UPDATE runs SET outputs = json_set(outputs, '$.status', 'exploded') "
+                      "WHERE outputs LIKE '{\"template\"%'",
+    "full solutions a list": "UPDATE runs SET outputs = '[1, 2]' WHERE outputs NOT LIKE '{\"template\"%'",
+}
 
+
+@pytest.mark.parametrize("damage", TAMPER)
+def test_a_tampered_solution_is_a_damaged_run(damage, good_store, tmp_path, capsys):
+    # what a compact point needs (its template, the types of its numbers, flags and names) and what a full solution
+    # needs (its shape) is checked when read: each run that fails is one damaged run, named by `runs show`, skipped
+    # and counted by `runs export`, and a resumed sweep stops at it with one line
     store = tmp_path / "runs.sqlite"
     shutil.copy(good_store, store)
     with sqlite3.connect(store) as db:
-        if damage == "template deleted":
-            db.execute("DELETE FROM templates")
-        elif damage == "template not JSON":
-            db.execute("UPDATE templates SET body = '{not json'")
-        else:
-            db.execute("UPDATE templates SET body = json_set(body, '$.constraints', json_array())")
-        compact = [row[0] for row in db.execute("SELECT id FROM runs WHERE outputs LIKE '{\"template\"%'")]
-        (runs,) = db.execute("SELECT COUNT(*) FROM runs").fetchone()
-    assert len(compact) >= 10
-    code = main(["runs", "show", str(compact[0]), "--store", str(store)])
+        before = dict(db.execute("SELECT id, outputs FROM runs"))
+        db.execute(TAMPER[damage])
+        after = dict(db.execute("SELECT id, outputs FROM runs"))
+    compact = [run for run, outputs in after.items() if outputs.startswith('{"template"')]
+    damaged = compact if "templates" in TAMPER[damage] else [run for run in after if after[run] != before[run]]
+    assert damaged and set(damaged) & set(_sweep_runs(store))
+    code = main(["runs", "show", str(damaged[0]), "--store", str(store)])
     _, err = capsys.readouterr()
-    assert code == 2 and err.count("\n") == 1 and f"run {compact[0]} is damaged" in err, err
+    assert code == 2 and err.count("\n") == 1 and f"run {damaged[0]} is damaged" in err, err
     assert main(["runs", "export", "-o", str(tmp_path / "rescued.csv"), "--store", str(store)]) == 0
     out, _ = capsys.readouterr()
-    assert len(pd.read_csv(tmp_path / "rescued.csv")) == runs - len(compact)
-    assert f"{len(compact)} damaged runs could not be read" in out, out
+    assert f"; {len(damaged)} damaged runs could not be read" in out, out
+    code = main(["sweep", CASE, "--vary", "speed=500:3000:20", "--quiet", "--resume", "--store", str(store)])
+    _, err = capsys.readouterr()
+    assert code == 2 and err.count("\n") == 1 and "is damaged" in err, err
+
+
+def _sweep_runs(store: Path) -> list[int]:
+    with sqlite3.connect(store) as db:
+        return [row[0] for row in db.execute("SELECT id FROM runs WHERE kind = 'sweep'")]
+
+
+def test_a_broken_template_is_read_once(good_store, tmp_path, monkeypatch):
+    # an export of many points of one unreadable template (50 MB in a hostile store) reads and parses it once
+    store = tmp_path / "runs.sqlite"
+    shutil.copy(good_store, store)
+    with sqlite3.connect(store) as db:
+        db.execute("UPDATE templates SET body = '[' || body")
+    reads = []
+    original = RunStore._read
+    monkeypatch.setattr(RunStore, "_read", lambda self, sql, args=(): reads.append(sql) or original(self, sql, args))
+    with RunStore(store, writable=False, check=False) as opened:
+        runs, lost = opened.readable_runs()
+    assert lost >= 10 and sum("FROM templates" in sql for sql in reads) == 1
