@@ -1,7 +1,6 @@
 """``clutchopt bench --quick --json`` runs and reports what the issue asks; no timing is asserted."""
 
 import json
-import math
 from contextlib import redirect_stdout
 from io import StringIO
 
@@ -79,12 +78,6 @@ def test_throughput(report):
         assert throughput["point by point"]["vs_point_by_point"] == 1.0
         for how in ("sweep, tabulated", "sweep, tabulated and stored"):  # the batches of Sweep.run, as they were
             assert throughput[how]["solves_per_point"] == throughput["batched"]["solves_per_point"]
-        split = throughput["sweep, tabulated"]  # its Python per point and per sweep, from a sweep of twice the points
-        per_point = split["python_per_point_us"] * 1e-6
-        assert math.isfinite(per_point) and split["python_fixed_ms"] * 1e-3 + per_point * 50 == pytest.approx(
-            split["python_share"] * split["wall_s"])
-        assert split["per_point_python_share"] == pytest.approx(per_point * 50 / split["wall_s"])
-        assert "python_per_point_us" not in throughput["batched"]
     # the integer search along a sweep: the previous point's integers, a neighbour only where the objective falls;
     # a batch stops short of the point where its integers are excluded
     for coupling in ("cable", "ball"):

@@ -55,8 +55,7 @@ SECTIONS: tuple[Section, ...] = (
                           "chained SQP re-solves checked together, as clutchopt sweep runs; sweep: Sweep.run, with "
                           "its table, and with a run store); solver calls per point, shares of the wall time in the "
                           "solver calls, in the batches' compiled checks (KKT verdicts, exclusion tables) and in "
-                          "Python; points/s against the same sweep point by point and the wedge paper mode's; for "
-                          "the tabulated sweep its Python per point and per sweep, and the per-point Python's share",
+                          "Python; points/s against the same sweep point by point and the wedge paper mode's",
             throughput_rows),
     Section("resolve", "Warm re-solves along the same sweeps: warm IPOPT alone (before) and SQP first (now); times per "
                        "re-solve, largest relative difference of the verified optima", resolve_rows),

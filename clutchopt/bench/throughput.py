@@ -15,10 +15,8 @@ Pool: batched, the sweep cut into contiguous chunks, one per worker process, eac
 time inside the solver calls (an infeasibility diagnosis's IPOPT call included), in the batches' compiled checks
 (mapped CasADi evaluations of the KKT verdicts with the integer test, and of the exclusion tables) and in Python
 (the rest: case data, scaling, the float64 checks, bookkeeping; point by point also outputs and sensitivities; the
-sweeps also the table, and with a store the records and their writing), for the tabulated sweep its Python split
-into per point and per sweep (the table's construction, the set-up, the first point's cold solve) by a second sweep
-of twice the points over the same range, and for serial sweeps points/s against the same sweep point by point and
-against the wedge paper mode's batched sweep.
+sweeps also the table, and with a store the records and their writing), and for serial sweeps points/s against the
+same sweep point by point and against the wedge paper mode's batched sweep.
 """
 
 from __future__ import annotations
@@ -117,9 +115,6 @@ def _throughput_rows(config, store: str) -> list[dict]:
             keywords = {key: store if value is STORE else value for key, value in keywords.items()}
             tally, seconds = _median(lambda: run(case, name, values, **keywords), config.sweep_repeats)
             rows.append(_row(case, name, how, 1, tally, seconds, config.sweep_repeats))
-        dense = case.values[name] * np.geomspace(0.5, 2.0, 2 * config.sweep_points)
-        tally, seconds = _median(lambda: tabulated_sweep(case, name, dense), config.sweep_repeats)
-        _python_per_point(next(r for r in rows[::-1] if r["how"] == "sweep, tabulated"), tally, seconds)
         chunks = np.array_split(values, config.processes)
 
         def pooled() -> dict:
@@ -135,17 +130,6 @@ def _throughput_rows(config, store: str) -> list[dict]:
         row["vs_point_by_point"] = row["points_per_s"] / alone["points_per_s"]
         row["vs_wedge_paper"] = row["points_per_s"] / wedge["points_per_s"] if wedge and serial else None
     return rows
-
-
-def _python_per_point(row: dict, tally: dict, seconds: float) -> None:
-    """Split a tabulated sweep's Python time into per point and per sweep, by a second sweep over the same range with
-    twice the points (``tally``, ``seconds``): the added points' Python is the difference. Adds
-    ``python_per_point_us``, ``python_fixed_ms`` and ``per_point_python_share`` (the per-point Python of all the
-    row's points over its wall time)."""
-    points, python = row["points"], row["python_share"] * row["wall_s"]
-    per_point = (seconds - tally["solver_s"] - tally["check_s"] - python) / (tally["points"] - points)
-    row.update(python_per_point_us=per_point * 1e6, python_fixed_ms=(python - per_point * points) * 1e3,
-               per_point_python_share=per_point * points / row["wall_s"])
 
 
 def _median(run, repeats: int) -> tuple[dict, float]:
