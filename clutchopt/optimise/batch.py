@@ -495,7 +495,7 @@ class _Checked:
         self.feasible = np.all(self.margin >= -FEASIBILITY_TOL, axis=0)
         self.objective = np.broadcast_to(np.asarray(problem.objective.function(self.x, self.params), dtype=float),
                                          (count,))
-        self._outputs = self._compact = None
+        self._outputs = None
 
     @property
     def outputs(self) -> dict[str, tuple[np.ndarray, Output]]:
@@ -519,8 +519,6 @@ class _Checked:
     def compact_records(self, columns: list[int] | None = None) -> tuple[dict, list[dict]]:
         """Every point's record (of the points ``columns`` only, if given) in two parts (``clutchopt.records``): the
         template the points share, and each point's own numbers, converted to Python floats a table at a time."""
-        if columns is None and self._compact is not None:
-            return self._compact
         sweep, problem, f = self.sweep, self.sweep.problem, self.sweep.problem.formulation
         cols = slice(None) if columns is None else np.asarray(columns, dtype=int)
         a = {key: value[:, cols] for key, value in self.block.arrays.items()}
@@ -569,8 +567,6 @@ class _Checked:
                 "integer_search": sweep._searches.get(int(index[j]), []),
                 "sensitivities": sensitivities[j],
             })
-        if columns is None:
-            self._compact = template, compact
         return template, compact
 
     def records(self, columns: list[int] | None = None) -> list[dict]:

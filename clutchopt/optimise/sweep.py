@@ -153,9 +153,9 @@ def total_spent(parts: list["PointResults"]) -> dict:
 
 class PointResults:
     """Solved points of a sweep, in point order: their indices and values, their rows of the sweep table (a batched
-    window's read from its arrays), and their records, built when first asked for: as the run store keeps them (a
-    batched point's compact, with its template: ``clutchopt.records``) and in full (``Solution.as_dict()``: ``--json``,
-    ``SweepResult.solutions``). ``spent``: their solver calls (``solves``) and seconds in them (``solver_s``) and in
+    window's read from its arrays), and their records, built when asked for: as the run store keeps them (a batched
+    point's compact, with its template: ``clutchopt.records``) and in full (``Solution.as_dict()``: ``--json``,
+    ``SweepResult.solutions``; kept once built). ``spent``: their solver calls (``solves``) and seconds in them (``solver_s``) and in
     the batches' compiled checks (``check_s``)."""
 
     def __init__(self, points: list[tuple[int, dict[str, float]]], names: list[str],
@@ -168,10 +168,9 @@ class PointResults:
         return len(self.points)
 
     def stored(self) -> tuple[list[dict], dict[str, dict]]:
-        """Each point's record as the run store keeps it, and the templates of the compact ones by key."""
-        if self._stored is None:
-            self._stored = self._solutions.compact_records()
-        return self._stored
+        """Each point's record as the run store keeps it, and the templates of the compact ones by key (a window's
+        built afresh from its arrays each time: not kept once written)."""
+        return self._stored if self._solutions is None else self._solutions.compact_records()
 
     def records(self) -> list[dict]:
         """Each point's ``Solution.as_dict()``."""
