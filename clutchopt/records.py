@@ -13,13 +13,13 @@ import hashlib
 import json
 
 TEMPLATE = "template"  # the key that marks a compact record, holding its template's key
-STATUSES = ("optimal", "unverified", "infeasible", "solver_failed")
+STATUSES = ("optimal", "unverified", "infeasible", "solver_failed")  # how a solve ends
 CONSTRAINT_COLUMNS = ("value", "limit", "margin", "active", "feasible", "scale", "multiplier", "elasticity")
 
 
 def template_key(template: dict) -> str:
     """A template's key: a hash of its canonical JSON (equal templates share one key)."""
-    text = json.dumps(template, sort_keys=True, separators=(",", ":"), allow_nan=False)
+    text = json.dumps(template, sort_keys=True, separators=(",", ":"))  # an infinite bound hashes as Infinity
     return hashlib.sha256(text.encode()).hexdigest()[:32]
 
 

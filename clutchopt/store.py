@@ -137,7 +137,7 @@ class RunStore:
         self.writable = writable
         self.failure: str | None = None  # why recording stopped; runs after it were not recorded
         self.unrecorded = 0
-        self._templates: dict[str, dict | None] = {}  # read so far, by key (None: missing)
+        self._templates: dict[str, dict | None] = {}  # read so far, by key (None: missing or not JSON)
         self._warn = warn or (lambda text: warnings.warn(text, RuntimeWarning, stacklevel=3))
         self._check_file()
         self._db = self._connect()
@@ -326,8 +326,9 @@ class RunStore:
 
     @staticmethod
     def _row(kind: str, inputs: dict, outputs: dict, created: str, *, status: str | None = None,
-             objective: float | None = None, objective_unit: str = "", case_path: str = "", title: str = "", coupling: str = "", mode: str = "",
-             objective_name: str = "", sweep_id: int | None = None, point: int | None = None) -> tuple:
+             objective: float | None = None, objective_unit: str = "", case_path: str = "", title: str = "",
+             coupling: str = "", mode: str = "", objective_name: str = "", sweep_id: int | None = None,
+             point: int | None = None) -> tuple:
         return (kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status, objective,
                 objective_unit, _to_json(inputs), _to_json(outputs), _versions_json(), created)
 

@@ -387,9 +387,9 @@ TAMPER = {  # SQL on a copy of the good store: each makes the sweep's compact po
     "a constraint's name a number": "UPDATE templates SET body = json_set(body, '$.constraints[0].name', 5)",
     "design units a list": "UPDATE templates SET body = json_set(body, '$.units.design', json_array('kg'))",
     "design names numbers": "UPDATE templates SET body = json_set(body, '$.design', json_array(1, 2))",
-    "values as characters": "UPDATE runs SET outputs = json_set(outputs, '$.constraints.value', "
-                            "substr('abcdefghijklmnopqrstuvwxyz', 1, json_array_length(outputs, '$.constraints.value')))"
-                            " WHERE outputs LIKE '{\"template\"%'",
+    "values as characters": "UPDATE runs SET outputs = json_set(outputs, '$.constraints.value', substr("
+                            "'abcdefghijklmnopqrstuvwxyz', 1, json_array_length(outputs, '$.constraints.value'))) "
+                            "WHERE outputs LIKE '{\"template\"%'",
     "design an object": "UPDATE runs SET outputs = json_set(outputs, '$.design', json_object('weight_mass', 1, "
                         "'finger_diameter', 2)) WHERE outputs LIKE '{\"template\"%'",
     "objective text": "UPDATE runs SET outputs = json_set(outputs, '$.objective', 'heavy') "

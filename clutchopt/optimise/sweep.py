@@ -42,7 +42,7 @@ from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
 from clutchopt.optimise.problem import Solution, SolverOptions, case_formulation, case_problem
 from clutchopt.optimise.table import joined_tables, record_table
 from clutchopt.optimise.verify import DESIGN_STATUSES
-from clutchopt.records import TEMPLATE, expand, is_compact, status_and_objective
+from clutchopt.records import STATUSES, TEMPLATE, expand, is_compact, status_and_objective
 from clutchopt.units import from_si, si_factor
 
 MAX_POINTS = 100_000  # points of one sweep: hours of solving; more is a mistake (1e12 would not fit in memory)
@@ -155,8 +155,8 @@ class PointResults:
     """Solved points of a sweep, in point order: their indices and values, their rows of the sweep table (a batched
     window's read from its arrays), and their records, built when asked for: as the run store keeps them (a batched
     point's compact, with its template: ``clutchopt.records``) and in full (``Solution.as_dict()``: ``--json``,
-    ``SweepResult.solutions``; kept once built). ``spent``: their solver calls (``solves``) and seconds in them (``solver_s``) and in
-    the batches' compiled checks (``check_s``)."""
+    ``SweepResult.solutions``; kept once built). ``spent``: their solver calls (``solves``) and seconds in them
+    (``solver_s``) and in the batches' compiled checks (``check_s``)."""
 
     def __init__(self, points: list[tuple[int, dict[str, float]]], names: list[str],
                  stored: tuple[list[dict], dict[str, dict]] | None = None, solutions: Solutions | None = None,
@@ -517,7 +517,6 @@ def write_frame(frame: pd.DataFrame, path: str, option: str = "--out") -> None:
         raise InputError(option, f"Parquet needs pyarrow (pip install 'clutchopt[parquet]'): {exc}") from None
 
 
-SWEEP_STATUSES = ("optimal", "unverified", "infeasible", "solver_failed")
 
 
 def read_frame(path: str) -> pd.DataFrame:
@@ -560,9 +559,9 @@ def _check_sweep_table(frame: pd.DataFrame, path: str) -> None:
             problems.errors.append(InputError(f"{path}: column {column!r}", "must hold numbers in every row"))
         elif not np.isfinite(values[~blank]).all():
             problems.errors.append(InputError(f"{path}: column {column!r}", "must hold finite numbers"))
-    unknown = sorted(set(map(str, frame["status"].dropna())) - set(SWEEP_STATUSES))
+    unknown = sorted(set(map(str, frame["status"].dropna())) - set(STATUSES))
     if unknown or frame["status"].isna().any():
-        problems.errors.append(InputError(f"{path}: column 'status'", f"must be one of {', '.join(SWEEP_STATUSES)} "
+        problems.errors.append(InputError(f"{path}: column 'status'", f"must be one of {', '.join(STATUSES)} "
                                                                       f"in every row, got {unknown[:3] or 'blanks'}"))
     problems.raise_any()
 
