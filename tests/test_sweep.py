@@ -190,7 +190,8 @@ def test_the_table_read_from_a_window_is_the_table_of_its_records(case_file, var
     assert resumed.reused == len(records) - len(records) // 2 and resumed.solved == len(records) // 2
     assert [r["status"] for r in resumed.solutions] == [r["status"] for r in records]
     shown = list(result.frame.columns[:len(varies) + 3])  # point, the varied inputs, status, objective (the ball's
-    # design is not unique where the objective does not price a variable: docs/tradeoffs.md)
+    # design is not unique: 6 or 7 ball rows give the same mass to 1e-9 at some powers, and a resumed sweep that
+    # starts cold at a point may take the other)
     pd.testing.assert_frame_equal(resumed.frame[shown], result.frame[shown], rtol=1e-7)
     assert resumed.frame.iloc[::2].equals(result.frame.iloc[::2])  # the stored points, as they were
 
