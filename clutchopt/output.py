@@ -53,6 +53,18 @@ def to_json(data: dict, indent: int | None = 2) -> str:
         return json.dumps(_clean(data), indent=indent, allow_nan=False)
 
 
+def from_json(text: str | bytes):
+    """The value of a JSON text: by orjson (about 3x faster on a stored solution), else by the standard library,
+    which reads what orjson refuses (NaN and Infinity tokens of older stores, integers beyond 64 bits, nesting deeper
+    than 1024) or raises ValueError or RecursionError."""
+    import orjson
+
+    try:
+        return orjson.loads(text)
+    except orjson.JSONDecodeError:
+        return json.loads(text)
+
+
 def _shown(value: float | None, unit: str) -> str:
     if value is None or not math.isfinite(value):
         return "-"

@@ -101,6 +101,12 @@ def _to_json(value) -> str:
     return to_json(value, None)
 
 
+def _from_json(text: str):
+    from clutchopt.output import from_json
+
+    return from_json(text)
+
+
 def _now() -> str:
     return datetime.now(timezone.utc).isoformat(timespec="milliseconds")
 
@@ -359,7 +365,7 @@ class RunStore:
 
     def _json(self, text: str, run_id: int, column: str):
         try:
-            return json.loads(text)
+            return _from_json(text)
         except (TypeError, ValueError, RecursionError):
             raise StoreError(self.path, f"run {run_id} is damaged (its {column} are not JSON)",
                              _rescue(self.path)) from None
@@ -385,7 +391,7 @@ class RunStore:
         if key not in self._templates:
             rows = self._read("SELECT body FROM templates WHERE key = ?", (key,)) if self._has_templates() else []
             try:
-                template = json.loads(rows[0][0]) if rows else None
+                template = _from_json(rows[0][0]) if rows else None
             except (TypeError, ValueError, RecursionError):
                 template = None
             if len(self._templates) >= TEMPLATES_KEPT:

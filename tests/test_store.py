@@ -243,3 +243,16 @@ def test_a_store_of_an_older_clutchopt_gets_the_templates_table(tmp_path):
     RunStore(path).close()
     with sqlite3.connect(path) as db:
         assert db.execute("SELECT 1 FROM sqlite_master WHERE name = 'templates'").fetchall()
+
+
+def test_stored_json_is_read_by_orjson_and_else_by_the_standard_library():
+    # what orjson refuses (NaN and Infinity tokens an older clutchopt wrote, integers beyond 64 bits) the standard
+    # library reads; what neither reads raises ValueError, which the store reports as a damaged run
+    from clutchopt.output import from_json
+
+    assert from_json('{"a": [1.5, null], "b": "x"}') == {"a": [1.5, None], "b": "x"}
+    nan, infinite = from_json('[NaN, -Infinity]')
+    assert math.isnan(nan) and infinite == -math.inf
+    assert from_json(str(10 ** 30)) == 10 ** 30
+    with pytest.raises(ValueError):
+        from_json('{"a": ')
