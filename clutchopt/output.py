@@ -54,9 +54,9 @@ def to_json(data: dict, indent: int | None = 2) -> str:
 
 
 def from_json(text: str | bytes):
-    """The value of a JSON text: by orjson (about 3x faster on a stored solution), else by the standard library,
-    which reads what orjson refuses (NaN and Infinity tokens of older stores, integers beyond 64 bits, nesting deeper
-    than 1024) or raises ValueError or RecursionError."""
+    """The value of a JSON text: by orjson (about 3x faster on a stored solution; an integer beyond 64 bits becomes a
+    float), else by the standard library, which reads what orjson refuses (NaN and Infinity tokens of older stores)
+    or raises ValueError or RecursionError (nesting deeper than about 1000)."""
     import orjson
 
     try:
