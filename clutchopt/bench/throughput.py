@@ -6,8 +6,8 @@ sweep`` runs: chained SQP re-solves in one CasADi call, checked together), point
 from the previous optimum, as sweeps ran before) and point by point from the case's own start ("cold starts").
 "Sweep, tabulated": the whole ``Sweep(...).run()`` of the Python API, which ``clutchopt sweep --no-store`` runs (the
 points checked, solved in batches, and the table built, the batched points' rows from their windows' arrays);
-"sweep, tabulated and stored" records each point in a run store as well (its record, ``Solution.as_dict()``, built
-and written as JSON: ``clutchopt sweep``'s default). The batched row stops at the solve (a status per point), point
+"sweep, tabulated and stored" records each point in a run store as well (its record built and written as JSON, a
+batched point's compact: ``clutchopt sweep``'s default). The batched row stops at the solve (a status per point), point
 by point at a Solution per point (which ``Problem.solve`` builds).
 Pool: batched, the sweep cut into contiguous chunks, one per worker process, each worker building its own problem
 (counted). Each row is the run of median wall time among ``sweep_repeats`` runs. Per row: solver calls per point
