@@ -63,6 +63,11 @@ def expand(compact: dict, template: dict) -> dict:
     }
 
 
+def expanded(records: list[dict], templates: dict[str, dict]) -> list[dict]:
+    """Records in full: each compact one expanded with its template (``templates`` by key)."""
+    return [expand(r, templates[r[TEMPLATE]]) if is_compact(r) else r for r in records]
+
+
 def _named(names: list[str], values: list) -> dict:
     if len(names) != len(values):
         raise ValueError("the values do not fit the template's names")

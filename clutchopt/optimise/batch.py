@@ -60,7 +60,7 @@ from clutchopt.optimise.problem import (Box, Problem, Solution, SolverInfo, Warm
                                        sense_sign)
 from clutchopt.optimise.table import active_names, placed, record_table
 from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, constraint_table, margin_flags
-from clutchopt.records import CONSTRAINT_COLUMNS, TEMPLATE, expand, template_key
+from clutchopt.records import CONSTRAINT_COLUMNS, TEMPLATE, expand, expanded, template_key
 from clutchopt.units import si_unit
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
@@ -440,8 +440,7 @@ class Solutions(Sequence):
     def records(self) -> list[dict]:
         """Every point's ``Solution.as_dict()``, those of the batched points built together from the window's arrays
         (no Solution objects)."""
-        batched = self._checked.records() if self._checked is not None else []
-        return self._by_position(batched)
+        return expanded(*self.compact_records())
 
     def compact_records(self) -> tuple[list[dict], dict[str, dict]]:
         """Every point's record as the run store keeps it, a batched point's compact (``clutchopt.records``), and the

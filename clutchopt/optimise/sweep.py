@@ -42,7 +42,7 @@ from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
 from clutchopt.optimise.problem import Solution, SolverOptions, case_formulation, case_problem
 from clutchopt.optimise.table import joined_tables, record_table
 from clutchopt.optimise.verify import DESIGN_STATUSES
-from clutchopt.records import STATUSES, TEMPLATE, expand, is_compact, status_and_objective
+from clutchopt.records import STATUSES, expanded, status_and_objective
 from clutchopt.units import from_si, si_factor
 
 MAX_POINTS = 100_000  # points of one sweep: hours of solving; more is a mistake (1e12 would not fit in memory)
@@ -175,8 +175,7 @@ class PointResults:
     def records(self) -> list[dict]:
         """Each point's ``Solution.as_dict()``."""
         if self._records is None:
-            records, templates = self.stored()
-            self._records = [expand(r, templates[r[TEMPLATE]]) if is_compact(r) else r for r in records]
+            self._records = expanded(*self.stored())
         return self._records
 
     def table(self) -> dict[str, np.ndarray]:
