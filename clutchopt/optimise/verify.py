@@ -51,11 +51,11 @@ def check_constraints(constraints: list[Constraint], tolerance: float = FEASIBIL
         raw_scale = c.limit if c.scale is None else c.scale
         if all(isinstance(v, (int, float)) for v in (c.value, c.limit, raw_scale)):  # one point (most constraints):
             value, limit, scale = float(c.value), float(c.limit), float(raw_scale)  # no array work, same arithmetic
-            margin = (limit - value) / scale if c.sense == "<=" else (value - limit) / scale
+            margin = relative_margin(c.sense == "<=", value, limit, scale)
         else:
             values, limits, scales = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, dtype=float))
                                                            for v in (c.value, c.limit, raw_scale)))
-            margins = (limits - values) / scales if c.sense == "<=" else (values - limits) / scales
+            margins = relative_margin(c.sense == "<=", values, limits, scales)
             worst = int(np.nanargmin(margins)) if not np.isnan(margins).all() else 0
             value, limit, scale, margin = (float(a[worst]) for a in (values, limits, scales, margins))
         checks.append(constraint_check(c, value, limit, scale, margin, tolerance))
@@ -89,8 +89,16 @@ def constraint_table(constraints: list[Constraint], count: int) -> tuple[np.ndar
     value, limit, scale = table
     at_most = np.array([c.sense == "<=" for c in constraints], dtype=bool)[:, None]
     with np.errstate(invalid="ignore", divide="ignore"):
-        margin = np.where(at_most, limit - value, value - limit) / scale
+        margin = relative_margin(at_most, value, limit, scale)
     return value, limit, scale, margin
+
+
+def relative_margin(at_most, value, limit, scale):
+    """(limit - value) / scale where the constraint is "<=" (``at_most``), (value - limit) / scale where ">=": on
+    floats, or on arrays with ``at_most`` a boolean array (one per row). The same bits either way: a - b is
+    exactly -(b - a)."""
+    sign = np.where(at_most, 1.0, -1.0) if isinstance(at_most, np.ndarray) else (1.0 if at_most else -1.0)
+    return sign * (limit - value) / scale
 
 
 def evaluate_outputs(formulation: Formulation, design: dict[str, float], params: SimpleNamespace) -> dict[str, Output]:
