@@ -76,7 +76,7 @@ def test_the_integer_search_along_a_sweep_keeps_the_best_integer(case_file, mode
     from clutchopt.cases import load_case
     from clutchopt.formulations import get_coupling
     from clutchopt.optimise import problem_for
-    from clutchopt.optimise.sweep import solve_chunk
+    from clutchopt.optimise.sweep import Points, solve_chunk
     from conftest import CASES
 
     case = load_case(CASES / case_file)
@@ -84,7 +84,7 @@ def test_the_integer_search_along_a_sweep_keeps_the_best_integer(case_file, mode
     name = next(v.name for v in formulation.variables if v.integer)
     values = case.values[quantity] * np.geomspace(0.6, 1.1, 4)
     problem = problem_for(formulation)
-    chunk = solve_chunk(case, mode, "mass", 1e-10, [(i, {quantity: v}) for i, v in enumerate(values)])
+    chunk = solve_chunk(case, mode, "mass", 1e-10, Points(np.arange(len(values)), {quantity: values}))
     assert len(chunk.records()) == len(values)
     for kept, value in zip(chunk.records(), values):
         assert kept["status"] == "optimal"

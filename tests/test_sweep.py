@@ -9,7 +9,7 @@ import pytest
 from clutchopt.cases import load_case
 from clutchopt.errors import InputError
 from clutchopt.optimise import solve_case
-from clutchopt.optimise.sweep import Sweep, dask_runner, grid, parse_vary
+from clutchopt.optimise.sweep import Sweep, dask_runner, grid_points, parse_vary
 from clutchopt.store import RunStore
 from conftest import CASES
 
@@ -24,8 +24,9 @@ def test_vary_reads_display_units_ranges_and_lists():
     pressure = parse_vary("allowable_pressure=2,8", "wedge")
     assert pressure.values == pytest.approx((2e6, 8e6))
     assert parse_vary("friction_coefficient=0.1", "wedge").values == (0.1,)
-    points = grid([speed, pressure])
+    points = grid_points([speed, pressure]).values()
     assert len(points) == 52 and points[1] == {"speed": pytest.approx(500 * RPM), "allowable_pressure": 8e6}
+    assert points[2] == {"speed": pytest.approx(600 * RPM), "allowable_pressure": 2e6}  # the last varies fastest
 
 
 @pytest.mark.parametrize("text, message", [
@@ -39,9 +40,9 @@ def test_bad_vary_is_named(text, message):
 
 def test_listed_sweep_pairs_values_and_needs_equal_lengths():
     speed, pressure = parse_vary("speed=500,1000", "wedge"), parse_vary("allowable_pressure=2,8", "wedge")
-    assert [p["allowable_pressure"] for p in grid([speed, pressure], zipped=True)] == [2e6, 8e6]
+    assert [p["allowable_pressure"] for p in grid_points([speed, pressure], zipped=True).values()] == [2e6, 8e6]
     with pytest.raises(InputError, match="equally many"):
-        grid([speed, parse_vary("allowable_pressure=2,4,8", "wedge")], zipped=True)
+        grid_points([speed, parse_vary("allowable_pressure=2,4,8", "wedge")], zipped=True)
 
 
 def test_warm_started_points_equal_cold_solves_and_failures_stay_rows():

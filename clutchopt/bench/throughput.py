@@ -16,7 +16,11 @@ time inside the solver calls (an infeasibility diagnosis's IPOPT call included),
 (mapped CasADi evaluations of the KKT verdicts with the integer test, and of the exclusion tables) and in Python
 (the rest: case data, scaling, the float64 checks, bookkeeping; point by point also outputs and sensitivities; the
 sweeps also the table, and with a store the records and their writing), and for serial sweeps points/s against the
-same sweep point by point and against the wedge paper mode's batched sweep.
+same sweep point by point and against the wedge paper mode's batched sweep. Serial rows also split the Python in
+two: what the same run spends over the sweep's first point alone (``python_fixed_ms``, the median of
+``ONE_POINT_REPEATS`` one-point runs: set-up, the first point's cold solve, a window's checks, the table), which a
+sweep pays whatever its size, and the share of the wall time in Python beyond that (``python_per_point_share``:
+the overhead that grows with the points).
 """
 
 from __future__ import annotations
@@ -114,7 +118,11 @@ def _throughput_rows(config, store: str) -> list[dict]:
         for how, run, keywords in HOWS:
             keywords = {key: store if value is STORE else value for key, value in keywords.items()}
             tally, seconds = _median(lambda: run(case, name, values, **keywords), config.sweep_repeats)
-            rows.append(_row(case, name, how, 1, tally, seconds, config.sweep_repeats))
+            row = _row(case, name, how, 1, tally, seconds, config.sweep_repeats)
+            one, one_s = _median(lambda: run(case, name, values[:1], **keywords), ONE_POINT_REPEATS)
+            row["python_fixed_ms"] = 1e3 * _python_s(one, one_s)
+            row["python_per_point_share"] = (_python_s(tally, seconds) - _python_s(one, one_s)) / seconds
+            rows.append(row)
         chunks = np.array_split(values, config.processes)
 
         def pooled() -> dict:
@@ -132,6 +140,14 @@ def _throughput_rows(config, store: str) -> list[dict]:
     return rows
 
 
+ONE_POINT_REPEATS = 15  # runs of the one-point sweep that measures the Python a sweep spends whatever its size
+
+
+def _python_s(tally: dict, seconds: float) -> float:
+    """A run's seconds outside the solver calls and the batches' compiled checks."""
+    return seconds - tally["solver_s"] - tally["check_s"]
+
+
 def _median(run, repeats: int) -> tuple[dict, float]:
     """``run()`` timed ``repeats`` times: the tally and wall time of the run of median wall time."""
     timed = sorted((time_once(run) for _ in range(repeats)), key=lambda pair: pair[0])
@@ -146,4 +162,5 @@ def _row(case, name, how, processes, tally, seconds, runs):
             "how": how, "processes": processes, "runs": runs, "points": tally["points"], "optimal": tally["optimal"],
             "solves_per_point": tally["solves"] / tally["points"], "wall_s": seconds,
             "points_per_s": tally["points"] / seconds, "solver_share": solver, "check_share": check,
-            "python_share": 1 - solver - check if serial else None}
+            "python_share": 1 - solver - check if serial else None, "python_fixed_ms": None,
+            "python_per_point_share": None}

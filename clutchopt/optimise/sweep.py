@@ -14,7 +14,6 @@ from the windows' arrays; each point's record only when read (``SweepResult.solu
 
 from __future__ import annotations
 
-import itertools
 import math
 import os
 import re
@@ -27,7 +26,7 @@ from collections.abc import Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from functools import partial
+from functools import cached_property, partial
 from typing import Callable, Iterator
 
 import numpy as np
@@ -103,8 +102,9 @@ def _numbers(field: str, spec: str) -> list[float]:
     return numbers
 
 
-def grid(varies: list[Vary], zipped: bool = False) -> list[dict[str, float]]:
-    """The sweep's points as SI values by quantity name (at most MAX_POINTS; each quantity varied once)."""
+def check_grid(varies: list[Vary], zipped: bool = False) -> int:
+    """The number of points of the sweep's grid (at most MAX_POINTS; each quantity varied once; a listed sweep's
+    lists equally long)."""
     names = [v.quantity.name for v in varies]
     twice = sorted({name for name in names if names.count(name) > 1})
     if twice:
@@ -117,31 +117,62 @@ def grid(varies: list[Vary], zipped: bool = False) -> list[dict[str, float]]:
         lengths = {len(v.values) for v in varies}
         if len(lengths) > 1:
             raise InputError("--zip", f"listed sweeps need equally many values per --vary, got {sorted(lengths)}")
-    if len(varies) == 1:  # the common case, without a tuple per point
-        return [{names[0]: value} for value in varies[0].values]
-    rows = zip(*(v.values for v in varies)) if zipped else itertools.product(*(v.values for v in varies))
-    return [dict(zip(names, values)) for values in rows]
+    return count
 
 
-def grid_columns(varies: list[Vary], zipped: bool = False) -> list[np.ndarray]:
-    """Each varied quantity's value at every point of :func:`grid`, as arrays (SI)."""
+def grid_points(varies: list[Vary], zipped: bool = False) -> "Points":
+    """The sweep's points (see :func:`check_grid`), each varied quantity's values as an array (SI)."""
+    count = check_grid(varies, zipped)
     arrays = [np.array(v.values, dtype=float) for v in varies]
-    return arrays if zipped or len(arrays) == 1 else [a.ravel() for a in np.meshgrid(*arrays, indexing="ij")]
+    if not zipped and len(arrays) > 1:
+        arrays = [a.ravel() for a in np.meshgrid(*arrays, indexing="ij")]
+    return Points(np.arange(count), {v.quantity.name: a for v, a in zip(varies, arrays)})
 
 
-def check_points(case: Case, varies: list[Vary], points: list[dict[str, float]]) -> None:
+def check_points(case: Case, varies: list[Vary], points: "Points") -> None:
     """A value out of a quantity's valid range is bad input before any solve: each varied quantity's values are
     checked as an array; where one fails, the error names the first point that fails."""
     try:
         for vary in varies:
             vary.quantity.check_all(np.array(vary.values))
     except InputError:
-        for index, values in enumerate(points):
+        for index, values in points.pairs():
             try:
                 case.with_values(**values)
             except InputError as exc:
                 raise InputError(f"--vary (point {index})", str(exc)) from None
         raise
+
+
+@dataclass(frozen=True)
+class Points:
+    """Points of a sweep: their indices, and each varied quantity's SI values at them (an array by name)."""
+
+    index: np.ndarray
+    columns: dict[str, np.ndarray]
+
+    def __len__(self) -> int:
+        return len(self.index)
+
+    def __getitem__(self, part: slice | np.ndarray) -> "Points":
+        return Points(self.index[part], {name: column[part] for name, column in self.columns.items()})
+
+    def values(self) -> list[dict[str, float]]:
+        """Each point's values by quantity name."""
+        names = list(self.columns)
+        if len(names) == 1:  # the common case, without a tuple per point
+            return [{names[0]: value} for value in self.columns[names[0]].tolist()]
+        rows = zip(*(column.tolist() for column in self.columns.values())) if names else [()] * len(self)
+        return [dict(zip(names, row)) for row in rows]
+
+    def pairs(self) -> Iterator[tuple[int, dict[str, float]]]:
+        """Each point's index and values."""
+        return zip(self.index.tolist(), self.values())
+
+    @classmethod
+    def joined(cls, parts: list["Points"]) -> "Points":
+        return cls(np.concatenate([p.index for p in parts]),
+                   {name: np.concatenate([p.columns[name] for p in parts]) for name in parts[0].columns})
 
 
 SPENT = ("solves", "solver_s", "check_s")  # what solving points costs: solver calls, seconds in them and in checks
@@ -158,7 +189,7 @@ class PointResults:
     ``SweepResult.solutions``; kept once built). ``spent``: their solver calls (``solves``) and seconds in them
     (``solver_s``) and in the batches' compiled checks (``check_s``)."""
 
-    def __init__(self, points: list[tuple[int, dict[str, float]]], names: list[str],
+    def __init__(self, points: Points, names: list[str],
                  stored: tuple[list[dict], dict[str, dict]] | None = None, solutions: Solutions | None = None,
                  spent: dict | None = None):
         self.points, self.names, self.spent = points, names, spent or dict.fromkeys(SPENT, 0)
@@ -189,19 +220,18 @@ class PointResults:
             stored, used = part.stored()
             records += stored
             templates.update(used)
-        return cls([point for part in parts for point in part.points], names, (records, templates),
+        return cls(Points.joined([part.points for part in parts]), names, (records, templates),
                    spent=total_spent(parts))
 
 
 def solve_points(case: Case, mode: str, objective: str, tol: float,
-                 points: list[tuple[int, dict[str, float]]]) -> Iterator[PointResults]:
+                 points: Points) -> Iterator[PointResults]:
     """Solve points in order, each warm-started from the last optimum; yields the results as they are solved: a
     window of points at once where the problem allows batches (``clutchopt.optimise.batch``), else one point each."""
     problem = case_problem(case, mode, objective, SolverOptions(tol=tol))
     names = [v.name for v in problem.formulation.variables]
-    varied = list(points[0][1]) if points else []
-    if points and batchable(problem, varied):
-        sweep = BatchSweep(problem, case, {name: np.array([values[name] for _, values in points]) for name in varied})
+    if len(points) and batchable(problem, points.columns):
+        sweep = BatchSweep(problem, case, points.columns)
         first, before = 0, dict.fromkeys(SPENT, 0)
         for window in sweep.run():
             now = {key: getattr(sweep, key) for key in SPENT}
@@ -210,29 +240,29 @@ def solve_points(case: Case, mode: str, objective: str, tol: float,
             first, before = first + len(window), now
         return
     previous: Solution | None = None
-    for index, values in points:
+    for j, (index, values) in enumerate(points.pairs()):
         point_case = case.with_values(**values)
         solution = problem.solve(point_case, warm=previous)  # falls back to the case's own start by itself
         previous = solution if solution.status == "optimal" else None  # next to a failure, start from the case
-        yield PointResults([(index, values)], names, ([solution.as_dict()], {}),
+        yield PointResults(points[j:j + 1], names, ([solution.as_dict()], {}),
                            spent={"solves": solution.solver.solves, "solver_s": solution.solver.time_s, "check_s": 0})
 
 
 def solve_chunk(case: Case, mode: str, objective: str, tol: float,
-                chunk: list[tuple[int, dict[str, float]]]) -> PointResults:
+                chunk: Points) -> PointResults:
     """A chunk of neighbouring points solved in one worker (process pool, Dask), with its records."""
     names = [v.name for v in case_formulation(case, mode).variables]
     return PointResults.joined(list(solve_points(case, mode, objective, tol, chunk)), names)
 
 
-def _chunks(pending: list[tuple[int, dict]], size: int) -> list[list[tuple[int, dict]]]:
+def _chunks(pending: Points, size: int) -> list[Points]:
     return [pending[i:i + size] for i in range(0, len(pending), size)]
 
 
 def local_runner(jobs: int) -> Callable:
     """In this process (the points recorded as they are solved: a window of batched points at a time) or in a pool
     of ``jobs`` processes."""
-    def run(task: tuple, pending: list, size: int) -> Iterator[PointResults]:
+    def run(task: tuple, pending: Points, size: int) -> Iterator[PointResults]:
         if jobs <= 1:
             yield from solve_points(*task, pending)
             return
@@ -285,7 +315,7 @@ def dask_runner(address: str) -> Callable:
     """Run chunks on an existing Dask distributed cluster (clutchopt must be importable on its workers)."""
     client = connect(address)
 
-    def run(task: tuple, pending: list, size: int) -> Iterator[PointResults]:
+    def run(task: tuple, pending: Points, size: int) -> Iterator[PointResults]:
         from distributed import as_completed as dask_completed
 
         try:
@@ -405,8 +435,13 @@ class Sweep:
         self.formulation: Formulation = case_formulation(case, mode)
         self.objective = self.formulation.objective(objective or case.options.get("objective", "mass"))
         self.tol = tol
-        self.points, self.zipped = grid(varies, zipped), zipped
-        check_points(case, varies, self.points)
+        self.grid = grid_points(varies, zipped)
+        check_points(case, varies, self.grid)
+
+    @cached_property
+    def points(self) -> list[dict[str, float]]:
+        """Each point's varied values (SI) by quantity name."""
+        return self.grid.values()
 
     @property
     def spec(self) -> dict:
@@ -424,16 +459,16 @@ class Sweep:
         if store is not None:
             sweep_id = store.latest_sweep(self.spec) if resume else None
             if sweep_id is None:
-                sweep_id = store.new_sweep(self.spec, len(self.points), self.case.path)  # None: store failed
+                sweep_id = store.new_sweep(self.spec, len(self.grid), self.case.path)  # None: store failed
             stored = store.sweep_outputs(sweep_id) if sweep_id is not None else {}
-        pending = [(i, values) for i, values in enumerate(self.points) if i not in stored]
+        kept = np.array(sorted(stored), dtype=int)
+        pending = self.grid[np.isin(self.grid.index, kept, invert=True)] if stored else self.grid
         workers = max(jobs, 1)
         size = chunk_size or max(1, min(25, math.ceil(len(pending) / (4 * workers))))
         task = (self.case, self.formulation.mode, self.objective.name, self.tol)
         names = [v.name for v in self.formulation.variables]
-        kept = sorted(stored)
-        parts = [PointResults([(i, self.points[i]) for i in kept], names, ([stored[i] for i in kept], {}))]
-        bar = tqdm(total=len(self.points), initial=len(stored), unit="point", desc="sweep", disable=not progress,
+        parts = [PointResults(self.grid[kept], names, ([stored[i] for i in kept.tolist()], {}))]
+        bar = tqdm(total=len(self.grid), initial=len(stored), unit="point", desc="sweep", disable=not progress,
                    mininterval=0.5)
         started = time.perf_counter()
         with bar, interrupt_between_points() as check:
@@ -441,13 +476,14 @@ class Sweep:
                 if store is not None and sweep_id is not None:  # the results in hand in one transaction
                     records, templates = results.stored()
                     store.record_many([("sweep", self._inputs(values), record, self._where(index, record, sweep_id))
-                                       for (index, values), record in zip(results.points, records)], templates)
+                                       for (index, values), record in zip(results.points.pairs(), records)],
+                                      templates)
                 parts.append(results)
                 bar.update(len(results))
                 check()
         elapsed = time.perf_counter() - started
+        order = np.argsort(np.concatenate([part.points.index for part in parts]), kind="stable")  # pool: any order
         parts = [part for part in parts if len(part)]
-        order = np.argsort([index for part in parts for index, _ in part.points], kind="stable")  # pool: any order
         return SweepResult(sweep_id, self.frame(joined_tables([part.table() for part in parts]), order),
                            len(pending), len(stored), elapsed, SweepRecords(parts, order),
                            total_spent(parts))
@@ -473,9 +509,9 @@ class Sweep:
             table = {key: column[..., order] for key, column in table.items()}
         status = table["status"]
         designed = np.any([status == design for design in DESIGN_STATUSES], axis=0)  # infeasible: a diagnosis only
-        columns = {"point": np.arange(len(self.points))}
-        for v, values in zip(self.varies, grid_columns(self.varies, self.zipped)):
-            columns[v.column] = from_si(values, v.quantity.unit)
+        columns = {"point": self.grid.index}
+        for v in self.varies:
+            columns[v.column] = from_si(self.grid.columns[v.quantity.name], v.quantity.unit)
         columns["status"] = status
         columns[column_name(self.objective.name, self.objective.unit)] = np.where(designed, table["objective"], np.nan)
         for variable, design in zip(self.formulation.variables, table["design"]):
