@@ -13,7 +13,10 @@ What can go wrong with the file, and what happens:
 - the file or its folder cannot be written, the disk is full, the lock never comes: the run's result is still
   printed, and one warning says what was not recorded (``RunStore.failure``); nothing is lost half-written;
 - the file is damaged (``PRAGMA quick_check`` on open) or is not a run store: one ``StoreError`` line with the
-  way out (another ``--store``; ``clutchopt runs export`` saves what can still be read).
+  way out (another ``--store``; ``clutchopt runs export`` saves what can still be read). The check reads the whole
+  file (about 0.25 ms a MB), so a store opened for recording is checked only up to ``QUICK_CHECK_BYTES``; a larger
+  one is checked when read (``runs list``, ``runs show``), and a write that meets damage is not recorded (the
+  warning above).
 """
 
 from __future__ import annotations
@@ -42,6 +45,7 @@ BUSY_TIMEOUT_S = 60.0  # a write waits this long for another writer's lock (each
 LARGEST_ID = 2**63 - 1  # SQLite's INTEGER
 PAGE_BYTES = 16384  # a new store's page: a run's row (2-8 kB) in one page, where 4 kB pages chained overflow pages
 # (inserting a window of 1000 sweep points took 3x as long)
+QUICK_CHECK_BYTES = 32 << 20  # stores opened for recording are checked on open up to this size (8 ms)
 TEMPLATES_KEPT = 64  # templates a store keeps in memory once read (a window's is a few kB; a damaged one may be huge)
 CAPPED_SUFFIX = "_capped"  # the mode of a Pareto point's formulation: the user's mode with a cost cap
 
@@ -133,7 +137,8 @@ class RunStore:
 
     ``writable``: the store is for recording (created if missing, its folder and file must be writable);
     otherwise it is only read (never created, read-only files and folders are fine). ``check``: run SQLite's
-    ``quick_check`` on open and refuse a damaged file (``runs export`` opens without it to rescue what it can).
+    ``quick_check`` on open and refuse a damaged file (``runs export`` opens without it to rescue what it can; a
+    store for recording larger than QUICK_CHECK_BYTES is not checked).
     ``warn`` receives the one message about runs that could not be recorded (default: a Python warning).
     """
 
@@ -145,11 +150,11 @@ class RunStore:
         self.unrecorded = 0
         self._templates: dict[str, dict | None] = {}  # read so far, by key (None: missing or not JSON)
         self._warn = warn or (lambda text: warnings.warn(text, RuntimeWarning, stacklevel=3))
-        self._check_file()
+        size = self._check_file()
         self._db = self._connect()
         try:
             self._prepare()
-            if check:
+            if check and (not writable or size <= QUICK_CHECK_BYTES):
                 self._quick_check()
         except BaseException:
             self._db.close()
@@ -157,8 +162,9 @@ class RunStore:
         self._db.row_factory = sqlite3.Row
 
     # --- opening ------------------------------------------------------------------------------------------------
-    def _check_file(self) -> None:
-        """What can be said before SQLite opens the file: its kind, its header, whether it may be written."""
+    def _check_file(self) -> int:
+        """What can be said before SQLite opens the file: its kind, its header, whether it may be written; its size
+        in bytes (0 if there is none yet)."""
         path = Path(self.path)
         try:
             found = status(path, "--store")
@@ -186,6 +192,7 @@ class RunStore:
         if self.writable and not os.access(folder, os.W_OK | os.X_OK):
             raise StoreError(self.path, f"the folder {str(folder)!r} is not writable (SQLite keeps its journal "
                                         "beside the store)", "record elsewhere with --store OTHER.sqlite")
+        return found.st_size if found is not None else 0
 
     def _connect(self) -> sqlite3.Connection:
         db = None

@@ -307,6 +307,26 @@ def test_damaged_store(name, good_store, tmp_path, capsys):
     assert err == "" or err.startswith("warning: this run will not be recorded"), err
 
 
+def test_a_large_store_is_checked_when_read_not_when_recording(good_store, tmp_path, monkeypatch, capsys):
+    # the check reads the whole file (0.25 ms a MB): a store larger than QUICK_CHECK_BYTES opened for recording is
+    # not checked, a damaged one still refused when read, and a solve still prints its result
+    import clutchopt.store
+
+    store = tmp_path / "runs.sqlite"
+    store.write_bytes(bytes(DAMAGE["middle-page"][0](bytearray(good_store.read_bytes()))))
+    with pytest.raises(clutchopt.store.StoreError, match="runs export"):
+        RunStore(store)  # small: checked
+    monkeypatch.setattr(clutchopt.store, "QUICK_CHECK_BYTES", store.stat().st_size - 1)
+    RunStore(store).close()  # large: opened for recording unchecked
+    with pytest.raises(clutchopt.store.StoreError, match="runs export"):
+        RunStore(store, writable=False)
+    assert main(["runs", "list", "--store", str(store)]) == 2
+    assert main(["solve", CASE, "--store", str(store)]) == 0
+    out, err = capsys.readouterr()
+    assert "status: optimal" in out
+    assert err.count("warning:") <= 1 and "Traceback" not in err, err
+
+
 # --- read-only files and folders ------------------------------------------------------------------------------------
 @pytest.fixture
 def shared_folder():
