@@ -506,14 +506,18 @@ class _Checked:
                                  for name, out in self.sweep.problem.formulation.outputs(self.x, self.params).items()}
         return self._outputs
 
+    def verdicts(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each point's status and diagnosis by the float64 check: optimal, or unverified with its diagnosis."""
+        ok = self.feasible
+        return np.where(ok, "optimal", "unverified").astype(object), np.where(ok, None, UNVERIFIED)
+
     def table(self) -> dict[str, np.ndarray]:
         """Every point's row of a sweep table (``clutchopt.optimise.table``), from the arrays: statuses and
         diagnoses by the float64 check, the names of the active constraints joined once per pattern."""
-        count, ok = len(self.block.index), self.feasible
-        active, _ = margin_flags(self.margin, FEASIBILITY_TOL)
-        return {"status": np.where(ok, "optimal", "unverified").astype(object), "objective": self.objective,
-                "design": self.design, "active": active_names(active, [c.name for c in self.constraints]),
-                "diagnosis": np.where(ok, None, UNVERIFIED), "iterations": np.full(count, None)}
+        (status, diagnosis), (active, _) = self.verdicts(), margin_flags(self.margin, FEASIBILITY_TOL)
+        return {"status": status, "objective": self.objective, "design": self.design,
+                "active": active_names(active, [c.name for c in self.constraints]), "diagnosis": diagnosis,
+                "iterations": np.full(len(self.block.index), None)}
 
     def compact_records(self, columns: list[int] | None = None) -> tuple[dict, list[dict]]:
         """Every point's record (of the points ``columns`` only, if given) in two parts (``clutchopt.records``): the
@@ -548,21 +552,20 @@ class _Checked:
             "bounds": {name: [float(lo), float(hi)] for name, lo, hi in zip(sweep.names, sweep.lower, sweep.upper)},
         }
         key, unpriced = template_key(template), [None] * n_c
-        feasible_list, objectives = feasible.tolist(), objective.tolist()
+        (statuses, diagnoses), objectives = (v[cols].tolist() for v in self.verdicts()), objective.tolist()
         sensitivities = problem.sensitivity_columns(*(a[key] for key in ("x", "p", "lam_x", "lam_g", "lbx", "ubx")),
                                                     np.where(feasible, objective, np.nan))
         times, solves = a["time"][0].tolist(), a["solves"][0].tolist()
         compact = []
         for j, (design, point_outputs, values, limits, margins, scales, lams, elasticities) in enumerate(zip(
                 self.design[:, cols].T.tolist(), out_values.T.tolist(), *tables)):
-            ok = feasible_list[j]
             compact.append({
-                TEMPLATE: key, "status": "optimal" if ok else "unverified", "objective": objectives[j],
+                TEMPLATE: key, "status": statuses[j], "objective": objectives[j],
                 "design": design, "outputs": point_outputs,
                 "constraints": dict(zip(CONSTRAINT_COLUMNS, (values, limits, margins, active[j], fits[j], scales, lams,
                                                              elasticities if priced[j] else unpriced))),
                 "solver": {"time_s": times[j], "solves": int(solves[j])},
-                "diagnosis": None if ok else UNVERIFIED,
+                "diagnosis": diagnoses[j],
                 "integer_search": sweep._searches.get(int(index[j]), []),
                 "sensitivities": sensitivities[j],
             })
