@@ -18,9 +18,9 @@ time inside the solver calls (an infeasibility diagnosis's IPOPT call included),
 sweeps also the table, and with a store the records and their writing), and for serial sweeps points/s against the
 same sweep point by point and against the wedge paper mode's batched sweep. Serial rows also split the Python in
 two: what the same run spends over the sweep's first point alone (``python_fixed_ms``, the median of
-``ONE_POINT_REPEATS`` one-point runs: set-up, the first point's cold solve, a window's checks, the table), which a
-sweep pays whatever its size, and the share of the wall time in Python beyond that (``python_per_point_share``:
-the overhead that grows with the points).
+``ONE_POINT_RUNS * sweep_repeats`` one-point runs: set-up, the first point's cold solve, a window's checks, the
+table; with a store, opening and closing it), which a sweep pays whatever its size, and the share of the wall time
+in Python beyond that (``python_per_point_share``: the overhead that grows with the points).
 """
 
 from __future__ import annotations
@@ -97,6 +97,7 @@ def _merged(tallies: list[dict]) -> dict:
 
 
 STORE = "bench-runs.sqlite"  # in a throw-away folder: the stored sweeps' run store
+ONE_POINT_RUNS = 3  # one-point runs per timed sweep run: they measure the Python a sweep spends whatever its size
 
 HOWS = (("batched", batched_sweep, {}), ("sweep, tabulated", tabulated_sweep, {}),
         ("sweep, tabulated and stored", tabulated_sweep, {"store_path": STORE}),
@@ -119,7 +120,8 @@ def _throughput_rows(config, store: str) -> list[dict]:
             keywords = {key: store if value is STORE else value for key, value in keywords.items()}
             tally, seconds = _median(lambda: run(case, name, values, **keywords), config.sweep_repeats)
             row = _row(case, name, how, 1, tally, seconds, config.sweep_repeats)
-            one, one_s = _median(lambda: run(case, name, values[:1], **keywords), ONE_POINT_REPEATS)
+            one, one_s = _median(lambda: run(case, name, values[:1], **keywords),
+                                 ONE_POINT_RUNS * config.sweep_repeats)
             row["python_fixed_ms"] = 1e3 * _python_s(one, one_s)
             row["python_per_point_share"] = (_python_s(tally, seconds) - _python_s(one, one_s)) / seconds
             rows.append(row)
@@ -138,9 +140,6 @@ def _throughput_rows(config, store: str) -> list[dict]:
         row["vs_point_by_point"] = row["points_per_s"] / alone["points_per_s"]
         row["vs_wedge_paper"] = row["points_per_s"] / wedge["points_per_s"] if wedge and serial else None
     return rows
-
-
-ONE_POINT_REPEATS = 15  # runs of the one-point sweep that measures the Python a sweep spends whatever its size
 
 
 def _python_s(tally: dict, seconds: float) -> float:
