@@ -66,7 +66,7 @@ def tabulated_sweep(case: Case, name: str, values, store_path: str | None = None
     from clutchopt.store import RunStore
 
     quantity = next(q for q in case.quantities if q.name == name)
-    sweep = Sweep(case, [Vary(quantity, tuple(map(float, values)))], mode=reference_mode(case.coupling))
+    sweep = Sweep(case, [Vary(quantity, tuple(values.tolist()))], mode=reference_mode(case.coupling))
     if store_path is None:
         result = sweep.run(progress=False)
     else:

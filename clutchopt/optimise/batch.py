@@ -508,8 +508,8 @@ class _Checked:
 
     def verdicts(self) -> tuple[np.ndarray, np.ndarray]:
         """Each point's status and diagnosis by the float64 check: optimal, or unverified with its diagnosis."""
-        ok = self.feasible
-        return np.where(ok, "optimal", "unverified").astype(object), np.where(ok, None, UNVERIFIED)
+        ok = self.feasible.astype(int)
+        return np.array(["unverified", "optimal"], dtype=object)[ok], np.array([UNVERIFIED, None], dtype=object)[ok]
 
     def table(self) -> dict[str, np.ndarray]:
         """Every point's row of a sweep table (``clutchopt.optimise.table``), from the arrays: statuses and

@@ -134,7 +134,7 @@ def check_points(case: Case, varies: list[Vary], points: "Points") -> None:
     checked as an array; where one fails, the error names the first point that fails."""
     try:
         for vary in varies:
-            vary.quantity.check_all(np.array(vary.values))
+            vary.quantity.check_all(points.columns[vary.quantity.name])
     except InputError:
         for index, values in points.pairs():
             try:
@@ -521,7 +521,9 @@ class Sweep:
         columns["diagnosis"] = np.where(np.equal(table["diagnosis"], None), "", table["diagnosis"])
         blank = np.equal(table["iterations"], None)  # solved in a batch
         columns["iterations"] = pd.arrays.IntegerArray(np.where(blank, 0, table["iterations"]).astype(np.int64), blank)
-        return pd.DataFrame(columns)
+        for key in ("status", "active", "diagnosis"):  # Python strings: pandas 3 would convert each to an Arrow
+            columns[key] = pd.Series(columns[key], dtype=object, copy=False)  # string (a third of the table's time)
+        return pd.DataFrame(columns, copy=False)
 
 
 TABLE_SUFFIXES = (".csv", ".parquet", ".md")
