@@ -49,10 +49,12 @@ MAX_POINTS = 100_000  # points of one sweep: hours of solving; more is a mistake
 
 @dataclass(frozen=True)
 class Vary:
-    """One varied quantity: its declaration and its values in SI."""
+    """One varied quantity: its declaration, its values in SI and, as given in its display unit, the same values (by
+    :func:`parse_vary`; without them the table converts the SI values back, e.g. 3000 rpm to 3000.0000000000005)."""
 
     quantity: Quantity
     values: tuple[float, ...]
+    shown: tuple[float, ...] | None = None
 
     @property
     def column(self) -> str:
@@ -88,7 +90,7 @@ def parse_vary(text: str, coupling: str, quantities: tuple[Quantity, ...] | None
     values = tuple(value * factor for value in numbers)
     if not all(math.isfinite(value) for value in values):
         raise InputError(field, "values beyond the float64 range once converted to SI")
-    return Vary(quantity, values)
+    return Vary(quantity, values, tuple(numbers))
 
 
 def _numbers(field: str, spec: str) -> list[float]:
@@ -123,10 +125,16 @@ def check_grid(varies: list[Vary], zipped: bool = False) -> int:
 def grid_points(varies: list[Vary], zipped: bool = False) -> "Points":
     """The sweep's points (see :func:`check_grid`), each varied quantity's values as an array (SI)."""
     count = check_grid(varies, zipped)
-    arrays = [np.array(v.values, dtype=float) for v in varies]
-    if not zipped and len(arrays) > 1:
-        arrays = [a.ravel() for a in np.meshgrid(*arrays, indexing="ij")]
-    return Points(np.arange(count), {v.quantity.name: a for v, a in zip(varies, arrays)})
+    return Points(np.arange(count), {v.quantity.name: np.array(v.values, dtype=float)[taken]
+                                     for v, taken in zip(varies, grid_positions(varies, zipped))})
+
+
+def grid_positions(varies: list[Vary], zipped: bool = False) -> list[np.ndarray | slice]:
+    """Which of its values each varied quantity takes at each point of the grid (all of them in order for one
+    quantity or a listed sweep)."""
+    if zipped or len(varies) < 2:
+        return [slice(None)] * len(varies)
+    return [a.ravel() for a in np.meshgrid(*(np.arange(len(v.values)) for v in varies), indexing="ij")]
 
 
 def check_points(case: Case, varies: list[Vary], points: "Points") -> None:
@@ -435,7 +443,7 @@ class Sweep:
         self.formulation: Formulation = case_formulation(case, mode)
         self.objective = self.formulation.objective(objective or case.options.get("objective", "mass"))
         self.tol = tol
-        self.grid = grid_points(varies, zipped)
+        self.grid, self.zipped = grid_points(varies, zipped), zipped
         check_points(case, varies, self.grid)
 
     @cached_property
@@ -502,16 +510,17 @@ class Sweep:
                 "sweep_id": sweep_id, "point": point}
 
     def frame(self, table: dict[str, np.ndarray], order: np.ndarray | None = None) -> pd.DataFrame:
-        """One row per point (``table``'s points taken in ``order``): inputs, status, objective, design (display
-        units), active constraints; a point without a design (infeasible, solver failed) has its status and
-        diagnosis, and blanks for objective and design."""
+        """One row per point (``table``'s points taken in ``order``): inputs (as given: :class:`Vary`), status,
+        objective, design (display units), active constraints; a point without a design (infeasible, solver failed)
+        has its status and diagnosis, and blanks for objective and design."""
         if order is not None and (order[1:] < order[:-1]).any():  # out of point order (a pool's chunks)
             table = {key: column[..., order] for key, column in table.items()}
         status = table["status"]
         designed = np.any([status == design for design in DESIGN_STATUSES], axis=0)  # infeasible: a diagnosis only
         columns = {"point": self.grid.index}
-        for v in self.varies:
-            columns[v.column] = from_si(self.grid.columns[v.quantity.name], v.quantity.unit)
+        for v, taken in zip(self.varies, grid_positions(self.varies, self.zipped)):  # as given, where they were
+            columns[v.column] = (np.array(v.shown, dtype=float)[taken] if v.shown is not None
+                                 else from_si(self.grid.columns[v.quantity.name], v.quantity.unit))
         columns["status"] = status
         columns[column_name(self.objective.name, self.objective.unit)] = np.where(designed, table["objective"], np.nan)
         for variable, design in zip(self.formulation.variables, table["design"]):
