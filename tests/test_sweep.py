@@ -204,3 +204,15 @@ def test_a_bad_value_names_the_first_point_that_has_it():
     varies = [parse_vary("speed=800,1000", "wedge"), parse_vary("allowable_pressure=2,-1,3", "wedge")]
     with pytest.raises(InputError, match=r"--vary \(point 1\): material.allowable_pressure: must be > 0"):
         Sweep(case, varies)
+
+
+def test_a_varied_design_variable_keeps_its_input_column():
+    # the cable's lead angle is a case value and a (fixed) design variable: the input column holds the values as
+    # given at every point, infeasible ones too, and the design has its own column
+    case = load_case(CASES / "cable_conveyor.toml")
+    varies = [parse_vary("lead_angle=10.38,12.7", "cable"), parse_vary("torque=440,100000", "cable")]
+    frame = Sweep(case, varies).run(progress=False).frame
+    assert frame["lead_angle [deg]"].tolist() == [10.38, 10.38, 12.7, 12.7]
+    assert frame["status"].tolist() == ["optimal", "infeasible", "optimal", "infeasible"]
+    assert frame["design.lead_angle [deg]"].iloc[[0, 2]].tolist() == pytest.approx([10.38, 12.7])
+    assert frame["design.lead_angle [deg]"].iloc[[1, 3]].isna().all()

@@ -511,8 +511,9 @@ class Sweep:
 
     def frame(self, table: dict[str, np.ndarray], order: np.ndarray | None = None) -> pd.DataFrame:
         """One row per point (``table``'s points taken in ``order``): inputs (as given: :class:`Vary`), status,
-        objective, design (display units), active constraints; a point without a design (infeasible, solver failed)
-        has its status and diagnosis, and blanks for objective and design."""
+        objective, design (display units; ``design.NAME [unit]`` where a varied input has its name), active
+        constraints; a point without a design (infeasible, solver failed) has its status and diagnosis, and blanks
+        for objective and design."""
         if order is not None and (order[1:] < order[:-1]).any():  # out of point order (a pool's chunks)
             table = {key: column[..., order] for key, column in table.items()}
         status = table["status"]
@@ -524,8 +525,9 @@ class Sweep:
         columns["status"] = status
         columns[column_name(self.objective.name, self.objective.unit)] = np.where(designed, table["objective"], np.nan)
         for variable, design in zip(self.formulation.variables, table["design"]):
-            columns[column_name(variable.name, variable.unit)] = np.where(designed, from_si(design, variable.unit),
-                                                                          np.nan)
+            name = column_name(variable.name, variable.unit)  # a varied quantity may be a design variable too
+            columns[f"design.{name}" if name in columns else name] = np.where(designed, from_si(design, variable.unit),
+                                                                              np.nan)
         columns["active"] = np.where(designed, table["active"], "")
         columns["diagnosis"] = np.where(np.equal(table["diagnosis"], None), "", table["diagnosis"])
         blank = np.equal(table["iterations"], None)  # solved in a batch
