@@ -365,10 +365,21 @@ class RunStore:
         rows = self._read("SELECT id FROM sweeps WHERE key = ? ORDER BY id DESC LIMIT 1", (spec_key(spec),))
         return int(rows[0]["id"]) if rows else None
 
-    def sweep_outputs(self, sweep_id: int) -> dict[int, dict]:
-        """The stored solutions of a sweep by point index."""
-        return {row[0]: self._outputs(row[2], row[1], "sweep") for row in
-                self._read("SELECT point, id, outputs FROM runs WHERE sweep_id = ?", (sweep_id,))}
+    def sweep_outputs(self, sweep_id: int, points: list[dict[str, float]]) -> dict[int, dict]:
+        """The stored solutions of a sweep by point index; ``points``: the sweep's varied values (SI) at each point.
+        A run that is not one of these points with these values (a damaged point number or index, which
+        ``quick_check`` does not see) is damaged: StoreError."""
+        stored = {}
+        for point, run_id, outputs, inputs in self._read(
+                "SELECT point, id, outputs, inputs FROM runs WHERE sweep_id = ?", (sweep_id,)):
+            values = self._json(inputs, run_id, "inputs")
+            values = values.get("values") if isinstance(values, dict) else None
+            if not (type(point) is int and 0 <= point < len(points) and isinstance(values, dict)
+                    and all(values.get(name) == value for name, value in points[point].items())):
+                raise StoreError(self.path, f"run {run_id} is damaged (its point number or inputs are not one of its "
+                                            "sweep's points)", _rescue(self.path))
+            stored[point] = self._outputs(outputs, run_id, "sweep")
+        return stored
 
     def _json(self, text: str, run_id: int, column: str):
         try:

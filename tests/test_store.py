@@ -69,10 +69,11 @@ def test_a_sweep_point_cannot_be_recorded_twice(tmp_path):
                 "solver": {"iterations": 1, "time_s": 0.0}, "diagnosis": None}
 
     with RunStore(tmp_path / "s.sqlite") as store:
-        sweep = store.new_sweep({"points": [1]}, 1)
-        assert store.record("sweep", {}, solution(1.0), sweep_id=sweep, point=0) == 1
-        assert store.record("sweep", {}, solution(2.0), sweep_id=sweep, point=0) is None
-        assert store.sweep_outputs(sweep) == {0: solution(1.0)} and store.failure is None
+        sweep = store.new_sweep({"points": [{"speed": 100.0}]}, 1)
+        inputs = {"values": {"speed": 100.0}}
+        assert store.record("sweep", inputs, solution(1.0), sweep_id=sweep, point=0) == 1
+        assert store.record("sweep", inputs, solution(2.0), sweep_id=sweep, point=0) is None
+        assert store.sweep_outputs(sweep, [{"speed": 100.0}]) == {0: solution(1.0)} and store.failure is None
 
 
 SWEEP = ["sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=500:3000:40", "--vary",
@@ -215,7 +216,7 @@ def test_batched_sweep_points_are_stored_compact_and_read_back_in_full(tmp_path)
     sweep = Sweep(case, [parse_vary("torque=220:880:40", "cable")])
     with RunStore(tmp_path / "runs.sqlite") as store:
         result = sweep.run(store, progress=False)
-        stored = store.sweep_outputs(result.sweep_id)
+        stored = store.sweep_outputs(result.sweep_id, sweep.points)
         shown = [store.run(run["id"]) for run in store.runs(sweep_id=result.sweep_id)]
     full = json.loads(to_json(list(result.solutions), None))
     assert [stored[i] for i in range(40)] == full

@@ -462,3 +462,28 @@ def test_a_broken_template_is_read_once(good_store, tmp_path, monkeypatch):
     with RunStore(store, writable=False, check=False) as opened:
         runs, lost = opened.readable_runs()
     assert lost >= 10 and sum("FROM templates" in sql for sql in reads) == 1
+
+
+MISPLACED = {  # SQL on a copy of the good store: a sweep run that is not the point it claims (quick_check passes)
+    "point beyond the sweep": "UPDATE runs SET point = 500 WHERE point = 5",
+    "point negative": "UPDATE runs SET point = -1 WHERE point = 5",
+    "point missing": "UPDATE runs SET point = NULL WHERE point = 5",
+    "point text": "UPDATE runs SET point = 'x' WHERE point = 5",
+    "two points swapped": "UPDATE runs SET point = 1000 WHERE point = 3; UPDATE runs SET point = 3 WHERE point = 17; "
+                          "UPDATE runs SET point = 17 WHERE point = 1000",
+    "inputs of another point": "UPDATE runs SET inputs = (SELECT inputs FROM runs WHERE point = 2) WHERE point = 9",
+}
+
+
+@pytest.mark.parametrize("damage", MISPLACED)
+def test_a_resumed_sweep_takes_no_point_for_another(damage, good_store, tmp_path, capsys):
+    # a damaged point number, or an index that maps a point to another run, would give a point another's design:
+    # each stored run's inputs must be those of the point it stands for, else the resume stops in one line
+    store = tmp_path / "runs.sqlite"
+    shutil.copy(good_store, store)
+    with sqlite3.connect(store) as db:
+        db.executescript(MISPLACED[damage])
+        assert db.execute("PRAGMA quick_check").fetchone()[0] == "ok"
+    code = main(["sweep", CASE, "--vary", "speed=500:3000:20", "--quiet", "--resume", "--store", str(store)])
+    _, err = capsys.readouterr()
+    assert code == 2 and err.count("\n") == 1 and "is damaged (its point number or inputs" in err, err

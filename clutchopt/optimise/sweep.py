@@ -468,7 +468,7 @@ class Sweep:
             sweep_id = store.latest_sweep(self.spec) if resume else None
             if sweep_id is None:
                 sweep_id = store.new_sweep(self.spec, len(self.grid), self.case.path)  # None: store failed
-            stored = store.sweep_outputs(sweep_id) if sweep_id is not None else {}
+            stored = store.sweep_outputs(sweep_id, self.points) if sweep_id is not None else {}
         kept = np.array(sorted(stored), dtype=int)
         pending = self.grid[np.isin(self.grid.index, kept, invert=True)] if stored else self.grid
         workers = max(jobs, 1)
