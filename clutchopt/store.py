@@ -46,6 +46,8 @@ LARGEST_ID = 2**63 - 1  # SQLite's INTEGER
 PAGE_BYTES = 16384  # a new store's page: a run's row (2-8 kB) in one page, where 4 kB pages chained overflow pages
 # (inserting a window of 1000 sweep points took 3x as long)
 QUICK_CHECK_BYTES = 32 << 20  # stores opened for recording are checked on open up to this size (8 ms)
+ROW_BYTES = 64  # fewer than any run's row takes in the file (its versions alone take more)
+RESCUE_PROBE = 1000  # ids tried past the largest known before a rescue stops (a damaged last page hides it)
 TEMPLATES_KEPT = 64  # templates a store keeps in memory once read (a window's is a few kB; a damaged one may be huge)
 CAPPED_SUFFIX = "_capped"  # the mode of a Pareto point's formulation: the user's mode with a cost cap
 
@@ -132,6 +134,17 @@ def _rescue(path: str) -> str:
             f"'clutchopt runs export --store {path} -o rescued.csv'")
 
 
+def _text(data: bytes) -> str:
+    return data.decode("utf-8", "replace")
+
+
+def _printable(detail: object, limit: int = 160) -> str:
+    """SQLite's message, as one short line of printable text (it may quote a damaged cell: control characters,
+    terminal escapes, kilobytes of it)."""
+    text = "".join(c if c.isprintable() else "?" for c in str(detail).strip().split("\n")[0])
+    return text if len(text) <= limit else text[:limit] + "..."
+
+
 class RunStore:
     """An open store. ``with RunStore(path) as store:`` closes it afterwards.
 
@@ -145,13 +158,14 @@ class RunStore:
     def __init__(self, path: str | Path | None = None, *, writable: bool = True, check: bool = True,
                  warn: Callable[[str], None] | None = None):
         self.path = str(path or default_path())
-        self.writable = writable
+        self.writable, self.checked = writable, check
         self.failure: str | None = None  # why recording stopped; runs after it were not recorded
         self.unrecorded = 0
         self._templates: dict[str, dict | None] = {}  # read so far, by key (None: missing or not JSON)
         self._warn = warn or (lambda text: warnings.warn(text, RuntimeWarning, stacklevel=3))
         size = self._check_file()
         self._db = self._connect()
+        self._db.text_factory = _text  # a damaged cell's bytes are no UTF-8: its JSON fails, named by its run
         try:
             self._prepare()
             if check and (not writable or size <= QUICK_CHECK_BYTES):
@@ -265,13 +279,15 @@ class RunStore:
             raise self._damaged(found[0])
 
     def _damaged(self, detail: object) -> StoreError:
-        text = str(detail)
+        text = _printable(detail)
         if "locked" in text or "busy" in text:
             return StoreError(self.path, f"stayed locked by another process for {BUSY_TIMEOUT_S:g} s ({text})",
                               "try again when the other clutchopt has finished, or record elsewhere with --store")
         if "readonly" in text or "unable to open" in text:
             return StoreError(self.path, f"cannot be opened for writing ({text})",
                               "record elsewhere with --store OTHER.sqlite")
+        if not self.checked:  # opened to rescue what it can (runs export)
+            return StoreError(self.path, f"nothing can be read ({text})", "record elsewhere with --store")
         return StoreError(self.path, f"the run store is damaged ({text})", _rescue(self.path))
 
     def __enter__(self) -> "RunStore":
@@ -463,25 +479,32 @@ class RunStore:
         entry["outputs"] = self._outputs(entry["outputs"], run_id, entry["kind"])
         return entry
 
-    def readable_runs(self, kind: str | None = None, sweep_id: int | None = None) -> tuple[list[dict], int]:
-        """Every run that can still be read, oldest first, and how many could not (a damaged store): each run is
-        read on its own, so one damaged page loses only the runs on it."""
+    def readable_runs(self, kind: str | None = None,
+                      sweep_id: int | None = None) -> tuple[list[dict], int, int | None]:
+        """Every run that can still be read, oldest first, how many could not (a damaged store), and the id after
+        which none could be read where the damage hides how many there were (else None). Each run is read on its
+        own, so one damaged page loses only the runs on it. The ids are tried up to the largest the table names and
+        on until RESCUE_PROBE in a row cannot be read (a damaged or missing last page hides the largest)."""
         try:
             largest = self._db.execute("SELECT MAX(id) FROM runs").fetchone()[0] or 0
-        except sqlite3.DatabaseError as exc:
-            raise StoreError(self.path, f"nothing can be read ({exc})", "record elsewhere with --store") from None
-        runs, lost = [], 0
-        for run_id in range(1, largest + 1):
+        except sqlite3.DatabaseError:
+            largest = 0
+        files = [Path(self.path), Path(f"{self.path}-wal")]  # a damaged largest id cannot set off billions of reads:
+        largest = min(largest, sum(f.stat().st_size for f in files if f.exists()) // ROW_BYTES)  # no row is smaller
+        runs, damaged, run_id, missed = [], [], 0, 0
+        while run_id < largest or missed < RESCUE_PROBE:
+            run_id += 1
             try:
                 entry = self.run(run_id)
-            except StoreError:
-                lost += 1
+            except (StoreError, InputError) as exc:  # damaged, or no run with this id (ids are not reused)
+                damaged += [run_id] if isinstance(exc, StoreError) else []
+                missed += run_id > largest
                 continue
-            except InputError:  # no run with this id (ids are not reused, but a damaged page hides them too)
-                continue
+            largest, missed = max(largest, run_id), 0
             if (kind is None or entry["kind"] == kind) and (sweep_id is None or entry["sweep_id"] == sweep_id):
                 runs.append(entry)
-        return runs, lost
+        open_end = largest if damaged and damaged[-1] > largest else None
+        return runs, sum(run_id <= largest for run_id in damaged), open_end
 
     def sweeps(self) -> list[dict]:
         return [dict(row) for row in self._read(

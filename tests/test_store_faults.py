@@ -460,7 +460,7 @@ def test_a_broken_template_is_read_once(good_store, tmp_path, monkeypatch):
     original = RunStore._read
     monkeypatch.setattr(RunStore, "_read", lambda self, sql, args=(): reads.append(sql) or original(self, sql, args))
     with RunStore(store, writable=False, check=False) as opened:
-        runs, lost = opened.readable_runs()
+        runs, lost, _ = opened.readable_runs()
     assert lost >= 10 and sum("FROM templates" in sql for sql in reads) == 1
 
 
@@ -487,3 +487,36 @@ def test_a_resumed_sweep_takes_no_point_for_another(damage, good_store, tmp_path
     code = main(["sweep", CASE, "--vary", "speed=500:3000:20", "--quiet", "--resume", "--store", str(store)])
     _, err = capsys.readouterr()
     assert code == 2 and err.count("\n") == 1 and "is damaged (its point number or inputs" in err, err
+
+
+def test_export_rescues_runs_when_the_last_page_is_gone(good_store, tmp_path, capsys):
+    # the largest id lives on the table's last page: with it zeroed, SELECT MAX(id) fails and the export used to
+    # read nothing; it now tries the ids on, says where reading stopped, and writes what it read
+    store = tmp_path / "runs.sqlite"
+    data = bytearray(good_store.read_bytes())
+    data[-_page(data):] = bytes(_page(data))
+    store.write_bytes(bytes(data))
+    assert main(["runs", "export", "-o", str(tmp_path / "rescued.csv"), "--store", str(store)]) == 0
+    out, err = capsys.readouterr()
+    rescued = pd.read_csv(tmp_path / "rescued.csv")
+    assert 0 < len(rescued) < 21 and rescued["id"].tolist() == list(range(1, len(rescued) + 1)), out
+    assert f"nothing after run {len(rescued)} could be read" in out and err == "", (out, err)
+    assert main(["runs", "export", "-o", str(tmp_path / "all.csv"), "--store", str(good_store)]) == 0
+    assert capsys.readouterr().out.strip().endswith("21 runs written to " + str(tmp_path / "all.csv"))
+
+
+def test_a_run_whose_text_is_no_utf8_is_named_and_nothing_of_it_printed(good_store, tmp_path, capsys):
+    # damaged bytes (a terminal escape, a byte no UTF-8 text has) in a run's outputs: the run is named as damaged
+    # in one printable line, skipped by the export, and a resume stops at it
+    store = tmp_path / "runs.sqlite"
+    shutil.copy(good_store, store)
+    with sqlite3.connect(store) as db:
+        (run,) = db.execute("SELECT id FROM runs WHERE point = 1").fetchone()
+        db.execute("UPDATE runs SET outputs = CAST(x'7b0a1b5b33316d4641494c0d0aff' AS TEXT) WHERE id = ?", (run,))
+    for argv, code in ((["runs", "show", str(run)], 2), (["runs", "export", "-o", str(tmp_path / "r.csv")], 0),
+                       (["sweep", CASE, "--vary", "speed=500:3000:20", "--quiet", "--resume"], 2)):
+        assert main([*argv, "--store", str(store)]) == code
+        out, err = capsys.readouterr()
+        text = out + err
+        assert "\x1b" not in text and "\r" not in text and text.count("\n") == 1, text
+        assert (f"run {run} is damaged (its outputs are not JSON)" in err) if code else "1 damaged runs" in out, text

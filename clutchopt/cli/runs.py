@@ -102,7 +102,7 @@ def export(args) -> str:
 
     table_format(args.out)
     with RunStore(args.store, writable=False, check=False) as store:
-        entries, lost = store.readable_runs(args.kind, args.sweep)
+        entries, lost, open_end = store.readable_runs(args.kind, args.sweep)
     frame = pd.DataFrame([export_row(entry) for entry in entries])
     for column in ("sweep", "point"):  # whole numbers, blank for a run that is no sweep point
         if column in frame:
@@ -111,6 +111,8 @@ def export(args) -> str:
     text = f"{len(frame)} runs written to {args.out}"
     if lost:
         text += f"; {lost} damaged runs could not be read from {store.path}"
+    if open_end is not None:
+        text += f"; nothing after run {open_end} could be read (a damaged page: runs after it may be lost)"
     return text
 
 
