@@ -300,9 +300,10 @@ class RunStore:
         self._db.close()
 
     # --- writing: one transaction each; a failing store is reported once and the run goes on --------------------
-    def _write(self, sql: str, args: tuple) -> int | None:
-        """Execute one INSERT in its own transaction; the new row's id, or None if it was not recorded."""
-        cursor = self._transaction(lambda db: db.execute(sql, args), 1)
+    def _write(self, sql: str, args: tuple, runs: int = 1) -> int | None:
+        """Execute one INSERT (of ``runs`` runs) in its own transaction; the new row's id, or None if it was not
+        recorded."""
+        cursor = self._transaction(lambda db: db.execute(sql, args), runs)
         return int(cursor.lastrowid) if cursor is not None and cursor.rowcount else None
 
     def _write_many(self, sql: str, rows: list[tuple], templates: dict[str, dict]) -> int:
@@ -331,11 +332,12 @@ class RunStore:
         return None
 
     def new_sweep(self, spec: dict, points: int, case_path: str = "") -> int | None:
+        """The new sweep's id (None if it was not recorded: its points will not be, and count as not recorded)."""
         return self._write(
             "INSERT INTO sweeps (key, case_path, coupling, mode, objective, spec, points, created) "
             "VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
             (spec_key(spec), case_path, spec.get("coupling"), spec.get("mode"), spec.get("objective"),
-             json.dumps(spec, default=str), points, _now()))
+             json.dumps(spec, default=str), points, _now()), runs=0)
 
     def record(self, kind: str, inputs: dict, outputs: dict, **where) -> int | None:
         """Record one run (solve, sweep point, pareto point, simulation) in its own transaction (see

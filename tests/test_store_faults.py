@@ -520,3 +520,17 @@ def test_a_run_whose_text_is_no_utf8_is_named_and_nothing_of_it_printed(good_sto
         text = out + err
         assert "\x1b" not in text and "\r" not in text and text.count("\n") == 1, text
         assert (f"run {run} is damaged (its outputs are not JSON)" in err) if code else "1 damaged runs" in out, text
+
+
+@pytest.mark.parametrize("table, held", [("sweeps", None), ("runs", 0)])
+def test_a_sweep_the_store_refuses_counts_every_point_not_recorded(table, held, tmp_path, capsys):
+    # a write that fails (here a trigger): the sweep's own row, or its points; the summary counts the points
+    store = tmp_path / "runs.sqlite"
+    assert main(["solve", CASE, "--store", str(store)]) == 0
+    with sqlite3.connect(store) as db:
+        db.execute(f"CREATE TRIGGER refuse BEFORE INSERT ON {table} BEGIN SELECT RAISE(ABORT, 'refused'); END")
+    capsys.readouterr()
+    assert main(["sweep", CASE, "--vary", "speed=500:3000:20", "--quiet", "--store", str(store)]) == 0
+    out, err = capsys.readouterr()
+    assert "20 points not recorded" in out and err.count("warning: not recorded") == 1, (out, err)
+    assert ("recorded as sweep" not in out) and ((f"holds {held} of its 20 points" in out) == (held is not None))

@@ -33,6 +33,7 @@ def test_vary_reads_display_units_ranges_and_lists():
 @pytest.mark.parametrize("text, message", [
     ("speed=abc:3000:4", "not a number"), ("sped=1,2", "unknown quantity 'sped'"), ("speed=1:2:0", "count >= 1"),
     ("speed=1:2:2.5", "count >= 1"), ("speed", "expected name="), ("speed=nan", "finite"),
+    ("speed=1e308:-1e308:3", "span is beyond the float64 range"),
 ])
 def test_bad_vary_is_named(text, message):
     with pytest.raises(InputError, match=message):

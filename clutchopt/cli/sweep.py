@@ -118,7 +118,9 @@ def sweep_text(sweep, result, store, out: str | None) -> str:
         if len(optimal):
             lines.append(f"{objective}: {optimal.min():.6g} to {optimal.max():.6g} over the optimal points")
     if store is not None and result.sweep_id is not None:
-        lines.append(f"recorded as sweep {result.sweep_id} in {store.path}")
+        held = len(frame) - store.unrecorded
+        lines.append(f"recorded as sweep {result.sweep_id} in {store.path}" if held == len(frame) else
+                     f"sweep {result.sweep_id} in {store.path} holds {held} of its {len(frame)} points")
     if store is not None and store.failure:
         lines.append(f"{store.unrecorded} points not recorded: {store.failure}")
     if out:

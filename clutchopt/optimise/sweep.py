@@ -83,7 +83,10 @@ def parse_vary(text: str, coupling: str, quantities: tuple[Quantity, ...] | None
             raise InputError(field, "a range is start:stop:count with a whole count >= 1")
         if numbers[2] > MAX_POINTS:
             raise InputError(field, f"{numbers[2]:.15g} values; a sweep has at most {MAX_POINTS:,} points")
-        numbers = np.linspace(numbers[0], numbers[1], int(numbers[2])).tolist()
+        with np.errstate(all="ignore"):
+            numbers = np.linspace(numbers[0], numbers[1], int(numbers[2])).tolist()
+        if not all(math.isfinite(n) for n in numbers):
+            raise InputError(field, "the range's span is beyond the float64 range")
     elif len(numbers) > MAX_POINTS:
         raise InputError(field, f"{len(numbers)} values; a sweep has at most {MAX_POINTS:,} points")
     factor = si_factor(quantity.unit) if quantity.unit else 1.0
@@ -486,6 +489,8 @@ class Sweep:
                     store.record_many([("sweep", self._inputs(values), record, self._where(index, record, sweep_id))
                                        for (index, values), record in zip(results.points.pairs(), records)],
                                       templates)
+                elif store is not None:  # the sweep itself could not be recorded
+                    store.unrecorded += len(results)
                 parts.append(results)
                 bar.update(len(results))
                 check()
