@@ -134,6 +134,13 @@ def _rescue(path: str) -> str:
             f"'clutchopt runs export --store {path} -o rescued.csv'")
 
 
+def _size(path: str) -> int:
+    try:
+        return os.path.getsize(path)
+    except OSError:
+        return 0
+
+
 def _text(data: bytes) -> str:
     return data.decode("utf-8", "replace")
 
@@ -491,8 +498,8 @@ class RunStore:
             largest = self._db.execute("SELECT MAX(id) FROM runs").fetchone()[0] or 0
         except sqlite3.DatabaseError:
             largest = 0
-        files = [Path(self.path), Path(f"{self.path}-wal")]  # a damaged largest id cannot set off billions of reads:
-        largest = min(largest, sum(f.stat().st_size for f in files if f.exists()) // ROW_BYTES)  # no row is smaller
+        largest = min(largest, (_size(self.path) + _size(f"{self.path}-wal")) // ROW_BYTES)  # a damaged largest id
+        # cannot set off billions of reads: no row is smaller
         runs, damaged, run_id, missed = [], [], 0, 0
         while run_id < largest or missed < RESCUE_PROBE:
             run_id += 1
