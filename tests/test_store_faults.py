@@ -231,13 +231,33 @@ def test_readers_while_a_sweep_writes(tmp_path):
 
 
 # --- damaged files -------------------------------------------------------------------------------------------------
+SWEEP = ["sweep", CASE, "--vary", "speed=500:3000:20", "--quiet"]  # the good store's sweep
+RESUME = [*SWEEP, "--resume"]
+
+
 @pytest.fixture(scope="module")
 def good_store(tmp_path_factory) -> Path:
     """A store with a solve and a 20-point sweep, closed (its WAL checkpointed into the file)."""
     path = tmp_path_factory.mktemp("good") / "runs.sqlite"
     assert main(["solve", CASE, "--store", str(path)]) == 0
-    assert main(["sweep", CASE, "--vary", "speed=500:3000:20", "--quiet", "--store", str(path)]) == 0
+    assert main([*SWEEP, "--store", str(path)]) == 0
     return path
+
+
+def _tampered(good_store: Path, folder: Path, sql: str) -> Path:
+    """A copy of the good store in ``folder`` with the SQL statements ``sql`` run on it."""
+    store = folder / "runs.sqlite"
+    shutil.copy(good_store, store)
+    with sqlite3.connect(store) as db:
+        db.executescript(sql)
+    return store
+
+
+def _command(capsys, argv: list[str], store: Path) -> tuple[int, str, str]:
+    """``clutchopt ARGV --store STORE`` in this process: its exit code, output and errors."""
+    code = main([*argv, "--store", str(store)])
+    out, err = capsys.readouterr()
+    return code, out, err
 
 
 def _overwrite(offset, count: int, byte: int = 0xA5):
@@ -425,24 +445,22 @@ def test_a_tampered_solution_is_a_damaged_run(damage, good_store, tmp_path, caps
     # what a compact point needs (its template, the types of its numbers, flags and names) and what a full solution
     # needs (its shape) is checked when read: each run that fails is one damaged run, named by `runs show`, skipped
     # and counted by `runs export`, and a resumed sweep stops at it with one line
-    store = tmp_path / "runs.sqlite"
-    shutil.copy(good_store, store)
-    with sqlite3.connect(store) as db:
-        before = dict(db.execute("SELECT id, outputs FROM runs"))
-        db.execute(TAMPER[damage])
-        after = dict(db.execute("SELECT id, outputs FROM runs"))
+    store = _tampered(good_store, tmp_path, TAMPER[damage])
+    before, after = _outputs(good_store), _outputs(store)
     compact = [run for run, outputs in after.items() if outputs.startswith('{"template"')]
     damaged = compact if "templates" in TAMPER[damage] else [run for run in after if after[run] != before[run]]
     assert damaged and set(damaged) & set(_sweep_runs(store))
-    code = main(["runs", "show", str(damaged[0]), "--store", str(store)])
-    _, err = capsys.readouterr()
+    code, _, err = _command(capsys, ["runs", "show", str(damaged[0])], store)
     assert code == 2 and err.count("\n") == 1 and f"run {damaged[0]} is damaged" in err, err
-    assert main(["runs", "export", "-o", str(tmp_path / "rescued.csv"), "--store", str(store)]) == 0
-    out, _ = capsys.readouterr()
-    assert f"; {len(damaged)} damaged runs could not be read" in out, out
-    code = main(["sweep", CASE, "--vary", "speed=500:3000:20", "--quiet", "--resume", "--store", str(store)])
-    _, err = capsys.readouterr()
+    code, out, _ = _command(capsys, ["runs", "export", "-o", str(tmp_path / "rescued.csv")], store)
+    assert code == 0 and f"; {len(damaged)} damaged runs could not be read" in out, out
+    code, _, err = _command(capsys, RESUME, store)
     assert code == 2 and err.count("\n") == 1 and "is damaged" in err, err
+
+
+def _outputs(store: Path) -> dict[int, str]:
+    with sqlite3.connect(store) as db:
+        return dict(db.execute("SELECT id, outputs FROM runs"))
 
 
 def _sweep_runs(store: Path) -> list[int]:
@@ -479,13 +497,10 @@ MISPLACED = {  # SQL on a copy of the good store: a sweep run that is not the po
 def test_a_resumed_sweep_takes_no_point_for_another(damage, good_store, tmp_path, capsys):
     # a damaged point number, or an index that maps a point to another run, would give a point another's design:
     # each stored run's inputs must be those of the point it stands for, else the resume stops in one line
-    store = tmp_path / "runs.sqlite"
-    shutil.copy(good_store, store)
+    store = _tampered(good_store, tmp_path, MISPLACED[damage])
     with sqlite3.connect(store) as db:
-        db.executescript(MISPLACED[damage])
         assert db.execute("PRAGMA quick_check").fetchone()[0] == "ok"
-    code = main(["sweep", CASE, "--vary", "speed=500:3000:20", "--quiet", "--resume", "--store", str(store)])
-    _, err = capsys.readouterr()
+    code, _, err = _command(capsys, RESUME, store)
     assert code == 2 and err.count("\n") == 1 and "is damaged (its point number or inputs" in err, err
 
 
@@ -508,16 +523,15 @@ def test_export_rescues_runs_when_the_last_page_is_gone(good_store, tmp_path, ca
 def test_a_run_whose_text_is_no_utf8_is_named_and_nothing_of_it_printed(good_store, tmp_path, capsys):
     # damaged bytes (a terminal escape, a byte no UTF-8 text has) in a run's outputs: the run is named as damaged
     # in one printable line, skipped by the export, and a resume stops at it
-    store = tmp_path / "runs.sqlite"
-    shutil.copy(good_store, store)
-    with sqlite3.connect(store) as db:
+    with sqlite3.connect(good_store) as db:
         (run,) = db.execute("SELECT id FROM runs WHERE point = 1").fetchone()
-        db.execute("UPDATE runs SET outputs = CAST(x'7b0a1b5b33316d4641494c0d0aff' AS TEXT) WHERE id = ?", (run,))
+    store = _tampered(good_store, tmp_path,
+                      f"UPDATE runs SET outputs = CAST(x'7b0a1b5b33316d4641494c0d0aff' AS TEXT) WHERE id = {run}")
     for argv, code in ((["runs", "show", str(run)], 2), (["runs", "export", "-o", str(tmp_path / "r.csv")], 0),
-                       (["sweep", CASE, "--vary", "speed=500:3000:20", "--quiet", "--resume"], 2)):
-        assert main([*argv, "--store", str(store)]) == code
-        out, err = capsys.readouterr()
+                       (RESUME, 2)):
+        found, out, err = _command(capsys, argv, store)
         text = out + err
+        assert found == code, text
         assert "\x1b" not in text and "\r" not in text and text.count("\n") == 1, text
         assert (f"run {run} is damaged (its outputs are not JSON)" in err) if code else "1 damaged runs" in out, text
 
@@ -530,7 +544,7 @@ def test_a_sweep_the_store_refuses_counts_every_point_not_recorded(table, held, 
     with sqlite3.connect(store) as db:
         db.execute(f"CREATE TRIGGER refuse BEFORE INSERT ON {table} BEGIN SELECT RAISE(ABORT, 'refused'); END")
     capsys.readouterr()
-    assert main(["sweep", CASE, "--vary", "speed=500:3000:20", "--quiet", "--store", str(store)]) == 0
-    out, err = capsys.readouterr()
+    code, out, err = _command(capsys, SWEEP, store)
+    assert code == 0, err
     assert "20 points not recorded" in out and err.count("warning: not recorded") == 1, (out, err)
     assert ("recorded as sweep" not in out) and ((f"holds {held} of its 20 points" in out) == (held is not None))
