@@ -98,7 +98,7 @@ def run_bench(config: BenchConfig, sections: tuple[Section, ...] = SECTIONS, qui
 
 
 _MS = ("first_s", "resolve_median_s", "resolve_iqr_s", "median_s", "iqr_s", "time_s", "solver_per_resolve_s",
-       "per_resolve_s")
+       "per_resolve_s", "python_fixed_s")
 
 
 def _shown(row: dict) -> dict:

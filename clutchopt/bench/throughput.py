@@ -17,7 +17,7 @@ time inside the solver calls (an infeasibility diagnosis's IPOPT call included),
 (the rest: case data, scaling, the float64 checks, bookkeeping; point by point also outputs and sensitivities; the
 sweeps also the table, and with a store the records and their writing), and for serial sweeps points/s against the
 same sweep point by point and against the wedge paper mode's batched sweep. Serial rows also split the Python in
-two: what the same run spends over the sweep's first point alone (``python_fixed_ms``, the median of
+two: what the same run spends over the sweep's first point alone (``python_fixed_s``, the median of
 ``ONE_POINT_RUNS * sweep_repeats`` one-point runs: set-up, the first point's cold solve, a window's checks, the
 table; with a store, opening and closing it), which a sweep pays whatever its size, and the share of the wall time
 in Python beyond that (``python_per_point_share``: the overhead that grows with the points).
@@ -122,7 +122,7 @@ def _throughput_rows(config, store: str) -> list[dict]:
             row = _row(case, name, how, 1, tally, seconds, config.sweep_repeats)
             one, one_s = _median(lambda: run(case, name, values[:1], **keywords),
                                  ONE_POINT_RUNS * config.sweep_repeats)
-            row["python_fixed_ms"] = 1e3 * _python_s(one, one_s)
+            row["python_fixed_s"] = _python_s(one, one_s)
             row["python_per_point_share"] = (_python_s(tally, seconds) - _python_s(one, one_s)) / seconds
             rows.append(row)
         chunks = np.array_split(values, config.processes)
@@ -161,5 +161,5 @@ def _row(case, name, how, processes, tally, seconds, runs):
             "how": how, "processes": processes, "runs": runs, "points": tally["points"], "optimal": tally["optimal"],
             "solves_per_point": tally["solves"] / tally["points"], "wall_s": seconds,
             "points_per_s": tally["points"] / seconds, "solver_share": solver, "check_share": check,
-            "python_share": 1 - solver - check if serial else None, "python_fixed_ms": None,
+            "python_share": 1 - solver - check if serial else None, "python_fixed_s": None,
             "python_per_point_share": None}
