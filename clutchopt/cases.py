@@ -34,7 +34,7 @@ from clutchopt.files import CASE_BYTES, read_text, shown
 from clutchopt.formulations.start_up import QUANTITIES as START_UP_QUANTITIES
 from clutchopt.formulations.start_up import SPRING_PRELOAD, StartUpSpec
 from clutchopt.scatter import Scatter, parse_scatter
-from clutchopt.model import REQUIRED, Quantity
+from clutchopt.model import REQUIRED, Quantity, followed
 from clutchopt.units import to_si
 
 _TOP_LEVEL = {"coupling", "title", "description"}
@@ -56,6 +56,10 @@ class Case:
     start_up: StartUpSpec | None = None  # the drive of a [start_up] section
     filled: dict[str, tuple[str, str]] = field(default_factory=dict)  # from the library: name -> (role, entry)
     scatter: tuple[Scatter, ...] = ()  # the [scatter] section: ranges and distributions of case quantities
+    # defaults that refer to another quantity, {name: (source, factor)}: the start-up's driven inertia and load follow
+    # the duty's, its start time limit t_p, its lock-up speed 90 % of synchronous. Each is set from its source when
+    # the values change (with_values) and when a problem is posed (the NLP's parameters, a robust design's corners)
+    follows: dict[str, tuple[str, float]] = field(default_factory=dict)
 
     @property
     def quantities(self) -> tuple[Quantity, ...]:
@@ -72,13 +76,26 @@ class Case:
         return SimpleNamespace(**names)
 
     def with_values(self, **values: float) -> "Case":
-        """A copy with some SI values replaced and re-checked (sweeps, tests)."""
+        """A copy with some SI values replaced and re-checked (sweeps, tests); a default that follows a replaced
+        quantity follows it, one that is replaced itself is given from then on."""
         declared = {q.name: q for q in self.quantities}
         for name, value in values.items():
             if name not in declared:
                 raise InputError(name, f"unknown quantity for coupling {self.coupling!r}")
             declared[name].check(float(value))
-        return replace(self, values={**self.values, **{k: float(v) for k, v in values.items()}})
+        follows = {name: rule for name, rule in self.follows.items() if name not in values}
+        return replace(self, values=self.followed({**self.values, **{k: float(v) for k, v in values.items()}},
+                                                  follows), follows=follows)
+
+    def followed(self, values: dict, follows: dict | None = None) -> dict:
+        """``values`` (floats, arrays or CasADi symbols by name) with each default that follows another quantity set
+        from its source."""
+        return followed(values, self.follows if follows is None else follows)
+
+    def given(self, *names: str) -> "Case":
+        """A copy in which ``names`` are given at their present values: none of them follows another quantity
+        (a quantity a sweep varies or a scatter spreads is the one it names)."""
+        return replace(self, follows={name: rule for name, rule in self.follows.items() if name not in names})
 
 
 def read_toml(path: str | Path) -> dict:
@@ -150,12 +167,12 @@ def parse_case(data: dict, path: str = "") -> Case:
             if quantity.default is not None:
                 values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
 
-    start_up = None
+    start_up, follows = None, {}
     if "start_up" in data and not problems:  # its defaults come from the duty's values, so those must be sound
         from clutchopt.start_up_case import parse_start_up
 
         with problems.field():
-            start_values, start_up = parse_start_up(data["start_up"], coupling, values)
+            start_values, start_up, follows = parse_start_up(data["start_up"], coupling, values)
             values.update(start_values)
     scatter = ()
     if "scatter" in data and not problems:  # scattered around the case's values, so those must be sound
@@ -170,7 +187,8 @@ def parse_case(data: dict, path: str = "") -> Case:
     problems.raise_any()
 
     case = Case(coupling.name, data.get("title", ""), values, bounds, tuple(options.get("free", ())),
-                {**options, **({"choose": choose} if choose else {})}, path, start_up, filled, scatter)
+                {**options, **({"choose": choose} if choose else {})}, path, start_up, filled, scatter,
+                {name: rule for name, rule in follows.items() if name not in {s.name for s in scatter}})
     coupling.check_case(case)
     materials.variants(case, coupling)  # every choice of options.choose is checked here, before any solve
     return case

@@ -201,7 +201,7 @@ def variants(case, coupling) -> list[tuple[dict[str, str], object]]:
                 values[quantity] = declared[quantity].check(entry.values[library_field],
                                                             f"{key} = {name}: {library_field}")
                 filled[quantity] = (key, name)
-        variant = replace(case, values=values, filled=filled)
+        variant = replace(case, values=case.followed(values), filled=filled)
         coupling.check_case(variant)
         result.append((choice, variant))
     return result

@@ -245,6 +245,13 @@ class Formulation:
         return text + (f"; also {named(freeable)} if options.free lists them" if freeable else "")
 
 
+def followed(values: Mapping[str, Any], follows: Mapping[str, tuple[str, float]]) -> dict[str, Any]:
+    """``values`` (floats, arrays or CasADi symbols by name) with each default that follows another quantity,
+    ``{name: (source, factor)}``, set to factor times its source's value."""
+    return {**values, **{name: factor * values[source] for name, (source, factor) in follows.items()
+                         if source in values}}
+
+
 def namespace(values: Mapping[str, Any]) -> SimpleNamespace:
     return SimpleNamespace(**dict(values))
 

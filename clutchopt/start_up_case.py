@@ -40,7 +40,7 @@ from clutchopt.formulations.start_up import (
     LoadProfile,
     StartUpSpec,
 )
-from clutchopt.model import REQUIRED, ElasticLaw
+from clutchopt.model import REQUIRED, ElasticLaw, followed
 from clutchopt.units import to_si
 
 SECTION = "start_up"
@@ -53,8 +53,10 @@ DEFAULTS_FROM_DUTY = {"driven_inertia": "inertia", "load_torque": "resisting_tor
                       "max_start_time": "acceleration_time"}
 
 
-def parse_start_up(table, coupling, duty: dict[str, float]) -> tuple[dict[str, float], StartUpSpec]:
-    """SI values of the start-up quantities and the spec of a ``[start_up]`` table of a case of ``coupling``."""
+def parse_start_up(table, coupling, duty: dict[str, float]) -> tuple[dict[str, float], StartUpSpec, dict]:
+    """SI values of the start-up quantities, the spec of a ``[start_up]`` table of a case of ``coupling``, and the
+    defaults that follow another quantity (``{name: (source, factor)}``: the value is factor times the source's,
+    through every change a command makes; see :attr:`clutchopt.cases.Case.follows`)."""
     if not isinstance(table, dict):
         raise InputError(SECTION, "must be a table")
     laws = [f.speed_law for f in coupling.formulations.values()]
@@ -86,27 +88,30 @@ def parse_start_up(table, coupling, duty: dict[str, float]) -> tuple[dict[str, f
     if "spring_preload" in table:
         quantity = declared[f"{SECTION}.spring_preload"]
         values["spring_preload"] = quantity.check(to_si(quantity.key, table["spring_preload"], quantity.unit))
-    for quantity in QUANTITIES:
-        if quantity.name not in values and quantity.name in DEFAULTS_FROM_DUTY:
-            if DEFAULTS_FROM_DUTY[quantity.name] in duty:
-                values[quantity.name] = duty[DEFAULTS_FROM_DUTY[quantity.name]]
-        if quantity.name not in values and quantity.default not in (None, REQUIRED):
-            values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
+    follows = {name: (source, 1.0) for name, source in DEFAULTS_FROM_DUTY.items()
+               if name not in values and source in duty}
     if "motor_curve" in effects and "min_lock_up_speed" not in values and "synchronous_speed" in values:
-        values["min_lock_up_speed"] = LOCK_UP_SHARE * values["synchronous_speed"]
+        follows["min_lock_up_speed"] = ("synchronous_speed", LOCK_UP_SHARE)
     elastic = [law for law in laws if isinstance(law, ElasticLaw)]
     if elastic and "max_link_stress" not in values and elastic[0].stress_limit in duty:
-        values["max_link_stress"] = duty[elastic[0].stress_limit]
+        follows["max_link_stress"] = (elastic[0].stress_limit, 1.0)
+    values = followed({**duty, **values}, follows)
+    for quantity in QUANTITIES:
+        if quantity.name not in values and quantity.default not in (None, REQUIRED):
+            values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
+    values = {name: value for name, value in values.items() if name not in duty}
     if profile is not None and "resisting_torque" in table.get("driven", {}):
         raise InputError(f"{SECTION}.driven", "give either resisting_torque or load_profile, not both")
     if profile is not None:
         values["load_torque"] = max(profile.values)
+        follows.pop("load_torque", None)
     _check_ranges(values, duty)
     _check(values, effects, coupling, laws, profile)
     spec = StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile,
                        _intervals(table.get("intervals", StartUpSpec.intervals)),
                        _tolerance(table.get("tolerance", StartUpSpec.tolerance)))
-    return values, spec
+    return values, spec, follows
+
 
 
 def parse_effects(raw, field: str) -> tuple[str, ...]:

@@ -819,7 +819,7 @@ class Problem:
     def _start_up_case(self, case: Case) -> Case:
         """The case as the start-up sees it (a robust design's: its corner)."""
         view = self.formulation.start_up_view
-        return replace(case, values=view(case.values)) if view else case
+        return replace(case, values=case.followed(view(case.values))) if view else case
 
     @property
     def _mesh_size(self) -> int:

@@ -27,7 +27,7 @@ from clutchopt.backend import is_symbolic
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
-from clutchopt.model import Constraint, Formulation, Quantity, namespace
+from clutchopt.model import Constraint, Formulation, Quantity, followed, namespace
 from clutchopt.optimise.problem import Solution, SolverOptions, problem_for, solve_case
 from clutchopt.optimise.start_up import Structure
 from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, check_constraints, constraint_table
@@ -66,16 +66,19 @@ START_UP = "start_up"  # the corner a [start_up] is designed at: where the start
 
 
 def worst_case_formulation(base: Formulation, scattered: tuple[str, ...], names: tuple[str, ...],
-                           declared: dict) -> Formulation:
+                           declared: dict, follows: tuple = ()) -> Formulation:
     """``base`` with constraint ``names[i]`` evaluated where each scattered quantity q takes the value of the case
     quantity ``q@names[i]`` (its corner), a start-up at ``q@start_up``; objective and outputs at the nominal values.
-    ``declared``: the case's quantities by name (a start-up's may scatter too)."""
+    ``declared``: the case's quantities by name (a start-up's may scatter too); ``follows``: the case's defaults that
+    follow another quantity (``Case.follows`` items), which follow a scattered one to its start-up corner."""
+    moved = {name: rule for name, rule in follows if rule[0] in scattered}
     corners = tuple(replace(declared[q], name=corner_name(q, c), section="scatter", default=None,
                             description=f"{q} at the worst corner of {c}") for c in names + (START_UP,)
                     for q in scattered)
 
     def at_start_up(values: dict) -> dict:
-        return {**values, **{q: values.get(corner_name(q, START_UP), values.get(q)) for q in scattered}}
+        return followed({**values, **{q: values.get(corner_name(q, START_UP), values.get(q)) for q in scattered}},
+                        moved)
 
     def constraints(x, p):
         out = []
@@ -85,7 +88,8 @@ def worst_case_formulation(base: Formulation, scattered: tuple[str, ...], names:
         return out
 
     return replace(base, quantities=base.quantities + corners, constraints=constraints,
-                   variant=f"worst case over {', '.join(scattered)}", start_up_view=at_start_up)
+                   variant=f"worst case over {', '.join(scattered)}"
+                   + (f" ({', '.join(moved)} following)" if moved else ""), start_up_view=at_start_up)
 
 
 def mean_name(quantity: str) -> str:
@@ -252,9 +256,10 @@ _DERIVED: dict[tuple, Formulation] = {}
 
 def _derived(kind: str, base: Formulation, case: Case, names: tuple[str, ...]) -> Formulation:
     scattered = tuple(s.name for s in case.scatter)
-    key = (kind, base.coupling, base.mode, scattered, names, case.start_up is not None)
+    follows = tuple(sorted(case.follows.items()))
+    key = (kind, base.coupling, base.mode, scattered, names, case.start_up is not None, follows)
     if key not in _DERIVED:
-        _DERIVED[key] = (worst_case_formulation(base, scattered, names, {q.name: q for q in case.quantities})
+        _DERIVED[key] = (worst_case_formulation(base, scattered, names, {q.name: q for q in case.quantities}, follows)
                          if kind == WORST_CASE else chance_formulation(base, scattered,
                                                                        {q.name: q for q in case.quantities}))
     return _DERIVED[key]
@@ -267,7 +272,7 @@ def start_up_corner(case: Case, mode: str, design: dict, scatter) -> dict[str, f
 
     corner = {}
     for s in scatter:
-        times = [run_start_up(start_up_model(replace(case, values={**case.values, s.name: end}), mode, design,
+        times = [run_start_up(start_up_model(case.with_values(**{s.name: end}), mode, design,
                                          rtol=1e-9)).headline["start_time"] for end in (s.low, s.high)]
         corner[s.name] = s.low if times[0] > times[1] else s.high
     return corner
@@ -279,7 +284,7 @@ def start_up_checks(case: Case, mode: str, design: dict, scatter, corner: dict) 
     from clutchopt.simulate.design import run_start_up, start_up_model
 
     table = corner_table(scatter) if len(scatter) <= 4 else {q: np.array([v]) for q, v in corner.items()}
-    heads = [run_start_up(start_up_model(replace(case, values={**case.values, **{q: float(v[i]) for q, v in table.items()}}),
+    heads = [run_start_up(start_up_model(case.with_values(**{q: float(v[i]) for q, v in table.items()}),
                                      mode, design)).headline for i in range(len(next(iter(table.values()))))]
     v, limits = case.values, case.start_up.limits
     figures = [("start_time", "max_start_time", "s"), ("friction_work", "max_friction_work", "kJ"),

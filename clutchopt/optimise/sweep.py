@@ -38,6 +38,7 @@ from clutchopt.files import TABLE_BYTES, check_output, read_bytes, write_whole
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Formulation, Quantity
 from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
+from clutchopt.optimise.entering import check_entering
 from clutchopt.optimise.problem import Solution, SolverOptions, case_formulation, case_problem
 from clutchopt.optimise.table import joined_tables, record_table
 from clutchopt.optimise.verify import DESIGN_STATUSES
@@ -253,7 +254,10 @@ def solve_points(case: Case, mode: str, objective: str, tol: float,
     previous: Solution | None = None
     for j, (index, values) in enumerate(points.pairs()):
         point_case = case.with_values(**values)
-        solution = problem.solve(point_case, warm=previous)  # falls back to the case's own start by itself
+        # falls back to the case's own start by itself; a start-up design starts as `solve` does, from the papers'
+        # sizing at the point (its collocation mesh follows its own solves), so it is solve's design whatever the
+        # points before it
+        solution = problem.solve(point_case, warm=previous if problem.start_up is None else None)
         previous = solution if solution.status == "optimal" else None  # next to a failure, start from the case
         yield PointResults(points[j:j + 1], names, ([solution.as_dict()], {}),
                            spent={"solves": solution.solver.solves, "solver_s": solution.solver.time_s, "check_s": 0})
@@ -441,13 +445,15 @@ class Sweep:
 
     def __init__(self, case: Case, varies: list[Vary], mode: str | None = None, objective: str | None = None,
                  tol: float = 1e-10, zipped: bool = False):
-        self.case = case
+        self.case = case = case.given(*(v.quantity.name for v in varies))
         self.varies = varies
         self.formulation: Formulation = case_formulation(case, mode)
         self.objective = self.formulation.objective(objective or case.options.get("objective", "mass"))
         self.tol = tol
         self.grid, self.zipped = grid_points(varies, zipped), zipped
         check_points(case, varies, self.grid)
+        check_entering(case, case_problem(case, self.formulation.mode, self.objective.name, SolverOptions(tol=tol)),
+                       [v.quantity.name for v in varies], "--vary")
 
     @cached_property
     def points(self) -> list[dict[str, float]]:

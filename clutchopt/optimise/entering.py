@@ -1,0 +1,52 @@
+"""What a posed problem depends on: a quantity that a command varies or scatters must enter the problem, or the
+command refuses it by name (a sweep over a quantity that does not enter gives the same design at every point)."""
+
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+
+from clutchopt.cases import Case
+from clutchopt.errors import InputError, Problems
+from clutchopt.start_up_case import DEFAULTS_FROM_DUTY
+
+
+def entering(problem) -> frozenset[str]:
+    """The case quantities the posed NLP's objective or constraints depend on."""
+    quantities = problem.formulation.quantities
+    nlp = problem.nlp
+    used = np.diff(ca.jacobian_sparsity(ca.vertcat(nlp["f"], nlp["g"]), nlp["p"][: len(quantities)]).colind()) > 0
+    return frozenset(q.name for q, enters in zip(quantities, used) if enters)
+
+
+def check_entering(case: Case, problem, names, field: str) -> None:
+    """Refuse, each by name, the quantities among ``names`` that do not enter the problem posed for ``case``: not in
+    its objective or constraints, nor a design variable the case fixes at its value, nor the source of a default
+    that enters (the driven inertia that follows the duty's)."""
+    variables = {v.name: v for v in problem.formulation.variables}
+    fixed = {name for name, v in variables.items() if v.fixed_unless_freed and name not in case.free}
+    entered = entering(problem) | fixed
+    entered |= {source for name, (source, _) in case.follows.items() if name in entered}  # through its defaults
+    problems = Problems()
+    for name in names:
+        if name not in entered:
+            with problems.field():
+                raise InputError(f"{field} {name}", _why_not(case, problem, name, name in variables))
+    problems.raise_any()
+
+
+def _why_not(case: Case, problem, name: str, variable: bool) -> str:
+    declared = {q.name: q for q in case.quantities}
+    own = [follower for follower, source in DEFAULTS_FROM_DUTY.items()
+           if source == name and follower in case.values and follower not in case.follows]
+    if own:
+        quantity = declared[own[0]]
+        return (f"this case's start-up gives its own {own[0]} ({quantity.show(case.values[own[0]])}), so {name} does "
+                f"not enter the problem; vary {own[0]}")
+    mode = problem.formulation.mode
+    if variable:
+        return (f"a design variable the optimiser chooses in mode {mode} (the case's value only starts the search), "
+                "so it does not enter the problem; bound it with [bounds] or fix it in another mode")
+    return (f"does not enter the {case.coupling} problem in mode {mode}"
+            + (" with its [start_up]" if case.start_up is not None else "")
+            + ": no constraint and not the objective depends on it, so every design would be the same")

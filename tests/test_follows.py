@@ -1,0 +1,79 @@
+"""A default that refers to another quantity follows it through every change a command makes (issue 23, point 1):
+the start-up's driven inertia and load follow the duty's, its start time limit t_p, its lock-up speed 90 % of the
+synchronous speed; a varied quantity that does not enter the posed problem is refused by name."""
+
+import json
+import tomllib
+
+import pytest
+
+from clutchopt.cases import load_case, parse_case
+from clutchopt.optimise import solve_case
+from clutchopt.optimise.sweep import Sweep, parse_vary
+from tests.conftest import CASES
+
+WEDGE = CASES / "wedge_motor_start.toml"
+
+
+def _parsed(path, section: str, **values):
+    data = tomllib.loads(path.read_text())
+    table = data
+    for part in section.split("."):
+        table = table.setdefault(part, {})
+    table.update(values)
+    return parse_case(data, str(path))
+
+
+def test_the_defaults_follow_their_quantities_as_an_edited_file_does():
+    case = load_case(WEDGE)
+    assert case.follows == {"driven_inertia": ("inertia", 1.0), "load_torque": ("resisting_torque", 1.0),
+                            "max_start_time": ("acceleration_time", 1.0), "min_lock_up_speed": ("synchronous_speed", 0.9)}
+    changed = case.with_values(inertia=0.7, resisting_torque=6.0, acceleration_time=8.0)
+    edited = _parsed(WEDGE, "duty", inertia="0.7 kg*m^2", resisting_torque="6 N*m", acceleration_time="8 s")
+    assert changed.values == pytest.approx(edited.values, rel=1e-15)
+    assert (changed.values["driven_inertia"], changed.values["load_torque"], changed.values["max_start_time"]) == \
+        (0.7, 6.0, 8.0)
+    assert case.with_values(synchronous_speed=100.0).values["min_lock_up_speed"] == pytest.approx(90.0, rel=1e-15)
+
+
+def test_a_value_given_or_set_no_longer_follows():
+    case = load_case(WEDGE).with_values(driven_inertia=4.0)
+    assert "driven_inertia" not in case.follows
+    assert case.with_values(inertia=0.7).values["driven_inertia"] == 4.0
+    own = _parsed(WEDGE, "start_up.driven", inertia="4 kg*m^2")
+    assert "driven_inertia" not in own.follows and own.values["driven_inertia"] == 4.0
+
+
+def test_a_sweep_over_the_duty_inertia_moves_the_start_up_design_as_solve_of_each_case(cli):
+    result = cli("sweep", str(WEDGE), "--vary", "inertia=0.3:0.7:3", "--json", "--no-store")
+    assert result.returncode == 0, result.stderr
+    points = json.loads(result.stdout)["points"]
+    case = load_case(WEDGE)
+    masses = [point["objective"]["value"] if isinstance(point["objective"], dict) else point["objective"]
+              for point in points]
+    assert len(set(masses)) == 3 and masses == sorted(masses)  # more inertia to start, heavier weights
+    for point in points:
+        solved = solve_case(case.with_values(inertia=point["values"]["inertia"]))
+        for name, value in solved.design.items():
+            shown = point["design"][name]
+            assert (shown["value"] if isinstance(shown, dict) else shown) == pytest.approx(value, rel=1e-8, abs=1e-12)
+
+
+def test_a_sweep_over_a_quantity_that_does_not_enter_is_refused_by_name(tmp_path, cli):
+    data = WEDGE.read_text().replace("[start_up.heat]", '[start_up.driven]\ninertia = "4 kg*m^2"\n\n[start_up.heat]')
+    own = tmp_path / "own.toml"
+    own.write_text(data)
+    result = cli("sweep", str(own), "--vary", "inertia=0.3:0.7:3", "--no-store")
+    assert result.returncode == 2
+    assert result.stderr.strip() == ("error: --vary inertia: this case's start-up gives its own driven_inertia "
+                                     "(4 kg*m^2), so inertia does not enter the problem; vary driven_inertia")
+    result = cli("sweep", str(CASES / "wedge_paper.toml"), "--mode", "geometry", "--vary",
+                 "flank_inner_radius=60:80:2", "--vary", "speed=900:1100:2", "--no-store")
+    assert result.returncode == 2
+    assert result.stderr.startswith("error: --vary flank_inner_radius: a design variable the optimiser chooses")
+
+
+def test_a_sweep_over_the_driven_inertia_itself_is_given_at_each_point():
+    case = load_case(WEDGE)
+    sweep = Sweep(case, [parse_vary("driven_inertia=0.4,0.6", "wedge", case.quantities)])
+    assert "driven_inertia" not in sweep.case.follows and "load_torque" in sweep.case.follows
