@@ -371,12 +371,13 @@ class RunStore:
                 objective_unit, _to_json(inputs), _to_json(outputs), _versions_json(), created)
 
     def record_solution(self, kind: str, case, solution, **where) -> int | None:
-        """Record a solved case: inputs are all its SI values, outputs the solution's JSON."""
+        """Record a solved case: inputs are all its SI values, outputs the solution's JSON; ``where`` may name the
+        mode as recorded (a Pareto point's, ``geometry_capped``)."""
         return self.record(kind, {"values": case.values, "free": list(case.free), "bounds": case.bounds},
                            solution.as_dict(), status=solution.status, objective=solution.objective,
                            objective_unit=solution.objective_unit, case_path=case.path, title=case.title,
-                           coupling=case.coupling, mode=solution.mode, objective_name=solution.objective_name,
-                           **where)
+                           coupling=case.coupling, mode=where.pop("mode", solution.mode),
+                           objective_name=solution.objective_name, **where)
 
     # --- reading: a damaged file is a StoreError with the way out -------------------------------------------------
     def _read(self, sql: str, args: tuple | list = ()) -> list[sqlite3.Row]:

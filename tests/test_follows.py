@@ -77,3 +77,20 @@ def test_a_sweep_over_the_driven_inertia_itself_is_given_at_each_point():
     case = load_case(WEDGE)
     sweep = Sweep(case, [parse_vary("driven_inertia=0.4,0.6", "wedge", case.quantities)])
     assert "driven_inertia" not in sweep.case.follows and "load_torque" in sweep.case.follows
+
+
+@pytest.mark.parametrize("case, mode", [("wedge_motor_start.toml", "geometry"), ("lever_motor_start.toml", "design")])
+def test_pareto_of_a_start_up_case_gives_a_front(case, mode, cli):
+    """The capped formulation is a variant in the user's mode (it was a mode of its own, which the start-up's
+    simulation could not find: 'unknown mode geometry_capped')."""
+    result = cli("pareto", str(CASES / case), "--mode", mode, "--points", "3", "--json", "--no-store")
+    assert result.returncode == 0, result.stderr
+    rows = json.loads(result.stdout)["rows"]
+    assert [row["status"] for row in rows] == ["optimal"] * 3
+
+    def number(value):
+        return value["value"] if isinstance(value, dict) else value
+
+    masses, costs = [number(row["mass"]) for row in rows], [number(row["cost"]) for row in rows]
+    assert masses == sorted(masses) and costs == sorted(costs, reverse=True) and masses[0] < masses[-1]
+    assert masses[0] == pytest.approx(solve_case(load_case(CASES / case), mode).objective, rel=1e-8)

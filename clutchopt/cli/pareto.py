@@ -45,6 +45,7 @@ def run(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.pareto import CAP, pareto_front
+    from clutchopt.store import CAPPED_SUFFIX
     from clutchopt.optimise.problem import case_formulation
     from clutchopt.files import check_output, write_whole
     from clutchopt.optimise.sweep import table_format, write_frame
@@ -60,8 +61,11 @@ def run(args) -> str:
     with recording(args) as store:
         front = pareto_front(case, args.mode, args.points, SolverOptions(tol=args.tol))
         for cap, solution in zip(front.caps, front.solutions) if store is not None else ():
-            capped = case if math.isnan(cap) else replace(case, values={**case.values, CAP: cap})
-            store.record_solution("pareto", capped, solution)
+            if math.isnan(cap):
+                store.record_solution("pareto", case, solution)
+            else:
+                store.record_solution("pareto", replace(case, values={**case.values, CAP: cap}), solution,
+                                      mode=f"{front.mode}{CAPPED_SUFFIX}")
     formulation = case_formulation(case, front.mode)
     if args.out:
         write_frame(front.frame, args.out)

@@ -16,23 +16,22 @@ import pandas as pd
 from clutchopt.cases import Case
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Formulation, Quantity, at_most
-from clutchopt.optimise.problem import Problem, Solution, SolverOptions, case_formulation, case_problem
+from clutchopt.optimise.problem import Solution, SolverOptions, case_formulation, case_problem, problem_for
 from clutchopt.optimise.start_up import Structure
 from clutchopt.optimise.sweep import column_name
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_objective
-from clutchopt.store import CAPPED_SUFFIX
 from clutchopt.units import from_si
 
 CAP = "cost_cap"
 
 
 def capped(formulation: Formulation, bounded: str = "cost") -> Formulation:
-    """The formulation with ``<bounded> <= cost_cap`` added (the cap a case quantity)."""
+    """The formulation with ``<bounded> <= cost_cap`` added (the cap a case quantity), in the same mode: a variant."""
     objective = formulation.objective(bounded)
     cap = Quantity(CAP, objective.unit, f"upper limit on {bounded} (epsilon-constraint)", "epsilon", "pareto")
     return replace(
         formulation,
-        mode=f"{formulation.mode}{CAPPED_SUFFIX}",
+        variant=f"{formulation.variant} {bounded} capped".strip(),
         quantities=formulation.quantities + (cap,),
         constraints=lambda x, p: formulation.constraints(x, p) + [
             at_most(CAP, objective.function(x, p), getattr(p, CAP), equation="epsilon", unit=objective.unit,
@@ -50,7 +49,7 @@ class ParetoFront:
     note: str = ""  # why there is no front (one end not optimal, or both ends the same design)
 
 
-_CAPPED: dict[tuple, Problem] = {}
+_CAPPED: dict[tuple[str, str], Formulation] = {}  # one capped formulation per mode: one problem in problem_for
 
 
 def pareto_front(case: Case, mode: str | None = None, points: int = 9,
@@ -60,11 +59,8 @@ def pareto_front(case: Case, mode: str | None = None, points: int = 9,
     cost_end = case_problem(case, mode, "cost", options).solve(case)
     formulation = case_formulation(case, mode)
     structure = Structure.of(case) if case.start_up is not None else None
-    key = (formulation.coupling, formulation.mode, options, structure)
-    if key not in _CAPPED:
-        base = get_coupling(case.coupling).formulation(mode or case.options.get("mode"))
-        _CAPPED[key] = Problem(capped(base), "mass", options, structure)
-    problem = _CAPPED[key]
+    base = get_coupling(case.coupling).formulation(mode or case.options.get("mode"))
+    problem = problem_for(_CAPPED.setdefault((base.coupling, base.mode), capped(base)), "mass", options, structure)
     solutions, caps = [mass_end], [np.nan]
     note = ""
     if mass_end.status != "optimal" or cost_end.status != "optimal":
