@@ -77,7 +77,7 @@ class Case:
 
     def with_values(self, **values: float) -> "Case":
         """A copy with some SI values replaced and re-checked (sweeps, tests); a default that follows a replaced
-        quantity follows it, one that is replaced itself is given from then on."""
+        quantity follows it, one that is replaced itself is given from then on (nor filled by the library)."""
         declared = {q.name: q for q in self.quantities}
         for name, value in values.items():
             if name not in declared:
@@ -85,7 +85,8 @@ class Case:
             declared[name].check(float(value))
         follows = {name: rule for name, rule in self.follows.items() if name not in values}
         return replace(self, values=self.followed({**self.values, **{k: float(v) for k, v in values.items()}},
-                                                  follows), follows=follows)
+                                                  follows), follows=follows,
+                       filled={name: entry for name, entry in self.filled.items() if name not in values})
 
     def followed(self, values: dict, follows: dict | None = None) -> dict:
         """``values`` (floats, arrays or CasADi symbols by name) with each default that follows another quantity set

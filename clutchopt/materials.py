@@ -222,19 +222,6 @@ def display(quantity: Quantity, value: float) -> float:
     return value - 273.15 if quantity.unit == "degC" else from_si(value, quantity.unit)
 
 
-def solve_choices(case, mode: str | None = None, objective: str | None = None, options=None) -> list[tuple]:
-    """Solve every variant of ``options.choose``: [(choice, case, solution)], optimal ones first by objective,
-    then the others in the order listed. Without ``options.choose``: the case alone."""
-    from clutchopt.formulations import get_coupling
-    from clutchopt.optimise import SolverOptions, solve_case
-
-    options = options or SolverOptions()
-    solved = [(choice, variant, solve_case(variant, mode, objective, options))
-              for choice, variant in variants(case, get_coupling(case.coupling))]
-    return sorted(solved, key=lambda item: (item[2].status != "optimal",
-                                            item[2].objective if item[2].status == "optimal" else 0.0))
-
-
 def filled_by(case) -> dict[str, dict]:
     """What the library filled in a case, by role: entry, source and the filled values (SI), as ``solve`` reports."""
     from clutchopt.formulations import get_coupling

@@ -201,14 +201,17 @@ def library_json(case) -> dict:
             for key, item in filled_by(case).items()}
 
 
-def choices_text(ranked: list[tuple]) -> str:
-    """The variants of ``options.choose``, best first: choice, status, objective."""
-    rows = [{"rank": i + 1, **choice, "status": s.status,
-             f"{s.objective_name} [{s.objective_unit}]": _shown(s.objective if s.status == "optimal" else None, "")}
-            for i, (choice, _, s) in enumerate(ranked)]
-    why = [f"  {', '.join(choice.values())}: {s.diagnosis}" for choice, _, s in ranked if s.diagnosis]
-    best = ", ".join(f"{key} = {name}" for key, name in ranked[0][0].items())
-    return "\n".join(["Choices of options.choose, best first", _frame(rows), *why, "", f"Below: the best, {best}."])
+def choices_text(ranked: list) -> str:
+    """The variants of ``options.choose`` (``clutchopt.optimise.design.Designed``), best first: choice, status,
+    objective."""
+    rows = [{"rank": i + 1, **d.choice, "status": d.solution.status,
+             f"{d.solution.objective_name} [{d.solution.objective_unit}]":
+                 _shown(d.solution.objective if d.solution.status == "optimal" else None, "")}
+            for i, d in enumerate(ranked)]
+    why = [f"  {', '.join(d.choice.values())}: {d.solution.diagnosis}" for d in ranked if d.solution.diagnosis]
+    robust = f" ({ranked[0].robust.method} designs)" if ranked[0].robust is not None else ""
+    return "\n".join([f"Choices of options.choose, best first{robust}", _frame(rows), *why, "",
+                      f"Below: the best, {ranked[0].choice_text}."])
 
 START_UP_ROWS = (  # figure, display unit, meaning
     ("start_time", "s", "switch-on to lock-up"),

@@ -13,7 +13,8 @@ import pytest
 from clutchopt.cases import parse_case, read_toml
 from clutchopt.errors import InputError
 from clutchopt.formulations import MODULES, get_coupling
-from clutchopt.materials import FIELDS, library, solve_choices
+from clutchopt.materials import FIELDS, library
+from clutchopt.optimise.design import design_case
 from clutchopt.template import case_template
 from clutchopt.units import ureg
 from tests.conftest import CASES, ROOT
@@ -128,9 +129,9 @@ def test_choose_solves_every_pair_and_ranks_them_by_the_closed_form():
     (f = 0.18) needs 0.07 / 0.18 of the weight the oiled bronze (f = 0.07) needs, and comes first."""
     data = tomllib.loads(case_template("wedge"))  # the paper's duty on 70 mm flanks (steel: q within 0.25 MPa)
     data["options"] = {"choose": {"friction_pair": ["sintered_bronze_oiled", "steel_steel_dry"]}}
-    ranked = solve_choices(parse_case(data))
-    assert [choice["friction_pair"] for choice, _, _ in ranked] == ["steel_steel_dry", "sintered_bronze_oiled"]
-    (_, _, steel), (_, _, bronze) = ranked
+    ranked = design_case(parse_case(data))
+    assert [d.choice["friction_pair"] for d in ranked] == ["steel_steel_dry", "sintered_bronze_oiled"]
+    steel, bronze = (d.solution for d in ranked)
     assert steel.status == bronze.status == "optimal"
     assert steel.outputs["weight_mass"].value / bronze.outputs["weight_mass"].value == pytest.approx(0.07 / 0.18,
                                                                                                      rel=1e-8)
@@ -186,9 +187,23 @@ def test_a_build_ships_the_library(tmp_path):
     assert (built / "clutchopt" / "data" / "starting_values.toml").is_file()
 
 
-def test_commands_that_solve_one_choice_say_which(tmp_path):
+def test_every_command_designs_every_choice_and_says_which_it_keeps(tmp_path):
+    """compare and report take the best choice as solve ranks them; sweep keeps the best at each point (its
+    column choice), pareto draws a front per choice."""
     path = tmp_path / "choose.toml"
     path.write_text(case_template("cable").replace("# choose = ", "choose = "))
+    solved = json.loads(run("solve", path, "--json"))
+    best = ", ".join(f"{key} = {name}" for key, name in solved["choices"][0]["choice"].items())
+    assert len(solved["choices"]) >= 2
     text = run("compare", path)
-    assert text.startswith("options.choose: this command takes the first choice (thread_pair = "
-                           "steel_bronze_greased); clutchopt solve compares them all\n")
+    assert text.startswith(f"options.choose: compared for the best of {len(solved['choices'])} choices, {best} "
+                           "(clutchopt solve lists them)\n")
+    swept = run("sweep", path, "--vary", "torque=200,240", "--quiet")
+    assert swept.startswith("options.choose: every choice designed at every point, the best kept (column choice)\n")
+    case = parse_case(read_toml(path))
+    points = json.loads(run("sweep", path, "--vary", "torque=200,240", "--json", "--quiet"))["points"]
+    for point in points:
+        assert point["choice"] == design_case(case.with_values(torque=point["values"]["torque"]))[0].choice
+    fronts = json.loads(run("pareto", path, "--points", "2", "--json"))["fronts"]
+    listed = case.options["choose"]["thread_pair"]
+    assert [front["choice"] for front in fronts] == [{"thread_pair": name} for name in listed]

@@ -84,7 +84,7 @@ def test_the_integer_search_along_a_sweep_keeps_the_best_integer(case_file, mode
     name = next(v.name for v in formulation.variables if v.integer)
     values = case.values[quantity] * np.geomspace(0.6, 1.1, 4)
     problem = problem_for(formulation)
-    chunk = solve_chunk(case, mode, "mass", 1e-10, Points(np.arange(len(values)), {quantity: values}))
+    chunk = solve_chunk(case, mode, "mass", 1e-10, None, Points(np.arange(len(values)), {quantity: values}))
     assert len(chunk.records()) == len(values)
     for kept, value in zip(chunk.records(), values):
         assert kept["status"] == "optimal"

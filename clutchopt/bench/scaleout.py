@@ -30,7 +30,7 @@ def scaleout_rows(config) -> list[dict]:
     for workers in WORKERS:
         with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
             with Client(cluster) as client:  # every worker imports clutchopt and builds the problem
-                client.run(solve_chunk, case, MODE, "mass", 1e-10, Points(np.arange(1), {}))
+                client.run(solve_chunk, case, MODE, "mass", 1e-10, None, Points(np.arange(1), {}))
             started = time.perf_counter()
             result = sweep.run(runner=dask_runner(cluster.scheduler_address), progress=False, chunk_size=None)
             rows.append(_row("local Dask cluster", workers, result, time.perf_counter() - started))

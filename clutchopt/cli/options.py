@@ -7,6 +7,8 @@ import sys
 from contextlib import contextmanager
 from typing import Iterator
 
+from clutchopt.errors import InputError
+
 EXIT_BAD_INPUT = 2
 EXIT_INTERNAL = 3  # a bug: one line and a crash file (clutchopt.crash)
 EXIT_INTERRUPTED = 130  # Ctrl-C, as a shell reports SIGINT
@@ -111,13 +113,41 @@ def add_store_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--no-store", action="store_true", help="do not record this run")
 
 
-def first_choice_note(case) -> str:
-    """For commands that solve one variant of a case with ``options.choose``: which one, said in a line."""
-    choose = case.options.get("choose")
-    if not choose:
+def add_robust_options(command: argparse.ArgumentParser) -> None:
+    command.add_argument("--robust", metavar="METHOD",
+                         help="a design that holds under the case's [scatter]: worst-case (every constraint at its own "
+                              "worst corner of the ranges) or chance=P (each holds with probability P, to first "
+                              "order), checked by Monte Carlo beside the nominal design; e.g. --robust chance=0.999")
+    command.add_argument("--samples", type=int, metavar="N",
+                         help="Monte Carlo samples of the scatter for --robust (default 10000)")
+
+
+def robustness(args, case):
+    """The robust method the arguments ask for (None: the nominal design), checked against the case."""
+    from clutchopt.optimise.design import Robustness, check_robustness
+
+    if args.robust is None:
+        if args.samples is not None:
+            raise InputError("--samples", "counts the Monte Carlo samples of --robust; give --robust too")
+        return None
+    robust = Robustness.parse(args.robust, args.samples)
+    check_robustness(case, robust)
+    return robust
+
+
+def nominal_note(case, robust) -> str:
+    """For a case with [scatter] designed without --robust: that the design is the nominal one, said in a line."""
+    if robust is not None or not case.scatter:
         return ""
-    first = ", ".join(f"{key} = {names[0]}" for key, names in choose.items())
-    return f"options.choose: this command takes the first choice ({first}); clutchopt solve compares them all"
+    return ("nominal design: the case's [scatter] is not designed for; --robust worst-case or --robust chance=P "
+            "designs for it")
+
+
+def choices_note(case) -> str:
+    """For commands that design every choice of ``options.choose`` at each point: that they do, said in a line."""
+    if not case.options.get("choose"):
+        return ""
+    return "options.choose: every choice designed at every point, the best kept (column choice)"
 
 
 def resolve_problem(case, args, objective: bool = True) -> None:

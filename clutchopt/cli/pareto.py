@@ -11,10 +11,12 @@ from clutchopt.cli.options import (
     add_json_option,
     add_parser,
     add_problem_options,
+    add_robust_options,
     add_store_options,
-    first_choice_note,
+    nominal_note,
     recording,
     resolve_problem,
+    robustness,
     whole_number,
 )
 
@@ -25,7 +27,8 @@ def add_command(commands) -> None:
     pareto = add_parser(
         commands, "pareto", "trade mass against cost: the designs between the lightest and the cheapest",
         "The front is traced by epsilon-constraint: the mass is minimised under a cap on the cost, the cap\n"
-        "stepped from the lightest design's cost down to the cheapest design's.",
+        "stepped from the lightest design's cost down to the cheapest design's. With options.choose, one front per\n"
+        "choice; with --robust, every design on it is designed for the case's [scatter].",
         ("clutchopt pareto cases/wedge_centrifuge.toml --mode geometry --points 5",
          "clutchopt pareto cases/lever_centrifuge.toml --mode design --plot front.png --out front.csv"))
     add_case_argument(pareto)
@@ -36,21 +39,22 @@ def add_command(commands) -> None:
     pareto.add_argument("--plot", metavar="FILE",
                         help="also draw the front, mass against cost, into FILE (.png, .svg, .pdf)")
     pareto.add_argument("--out", metavar="FILE", help="also write the table: .csv, .parquet or .md")
+    add_robust_options(pareto)
     add_json_option(pareto)
     add_store_options(pareto)
     pareto.set_defaults(run=run)
 
 
 def run(args) -> str:
+    import pandas as pd
+
     from clutchopt.cases import load_case
-    from clutchopt.optimise import SolverOptions
-    from clutchopt.optimise.pareto import CAP, pareto_front
-    from clutchopt.store import CAPPED_SUFFIX
-    from clutchopt.optimise.problem import case_formulation
     from clutchopt.files import check_output, write_whole
+    from clutchopt.optimise import SolverOptions
+    from clutchopt.optimise.pareto import CAP, pareto_fronts
     from clutchopt.optimise.sweep import table_format, write_frame
-    from clutchopt.optimise.verify import evaluate_objective
     from clutchopt.output import to_json
+    from clutchopt.store import CAPPED_SUFFIX
 
     case = load_case(args.case)
     if args.out:
@@ -58,52 +62,81 @@ def run(args) -> str:
     if args.plot:
         check_output("--plot", args.plot, FIGURE_SUFFIXES)
     resolve_problem(case, args, objective=False)
+    robust = robustness(args, case)
     with recording(args) as store:
-        front = pareto_front(case, args.mode, args.points, SolverOptions(tol=args.tol))
-        for cap, solution in zip(front.caps, front.solutions) if store is not None else ():
-            if math.isnan(cap):
-                store.record_solution("pareto", case, solution)
-            else:
-                store.record_solution("pareto", replace(case, values={**case.values, CAP: cap}), solution,
-                                      mode=f"{front.mode}{CAPPED_SUFFIX}")
-    formulation = case_formulation(case, front.mode)
+        fronts = pareto_fronts(case, args.mode, args.points, SolverOptions(tol=args.tol), robust)
+        for front in fronts if store is not None else ():
+            for cap, solution in zip(front.caps, front.solutions):
+                if math.isnan(cap):
+                    store.record_solution("pareto", front.case, solution)
+                else:
+                    store.record_solution("pareto", replace(front.case, values={**front.case.values, CAP: cap}),
+                                          solution, mode=f"{front.mode}{CAPPED_SUFFIX}")
     if args.out:
-        write_frame(front.frame, args.out)
+        write_frame(pd.concat([_with_choice(front) for front in fronts], ignore_index=True), args.out)
     if args.plot:
-        write_whole("--plot", args.plot, pareto_figure(front).savefig)
+        write_whole("--plot", args.plot, pareto_figure(fronts).savefig)
     if args.json:
-        params = case.params()
-        rows = [{"cost_cap": None if math.isnan(cap) else cap, "status": solution.status,
-                 **{name: evaluate_objective(formulation, name, solution.design, params) for name in ("mass", "cost")},
-                 "design": solution.design, "active": [c.name for c in solution.constraints if c.active and c.name != CAP]}
-                for cap, solution in zip(front.caps, front.solutions)]
-        return to_json({"case": case.path, "mode": front.mode, "note": front.note, "rows": rows})
-    lines = [f"Pareto front, mass against cost (epsilon-constraint) - {case.title or case.path}, {front.mode} mode"]
-    lines += [first_choice_note(case)] if case.options.get("choose") else []
-    if front.note:
-        lines.append(front.note)
-    lines += ["", front.frame.to_string(index=False, float_format=lambda v: f"{v:.6g}", na_rep="-")]
+        shown = [{**({"choice": front.choice} if front.choice else {}), "note": front.note, "rows": _rows(front)}
+                 for front in fronts]
+        return to_json({"case": case.path, "mode": fronts[0].mode,
+                        "robust": robust.as_dict() if robust is not None else None,
+                        **(shown[0] if len(fronts) == 1 else {"fronts": shown})})
+    how = f", {robust.label} designs" if robust is not None else ""
+    lines = [f"Pareto front, mass against cost (epsilon-constraint) - {case.title or case.path}, {fronts[0].mode} "
+             f"mode{how}"]
+    lines += [nominal_note(case, robust)] if nominal_note(case, robust) else []
+    for front in fronts:
+        lines += [""] + ([f"options.choose: {_choice(front)}"] if front.choice else [])
+        lines += [front.note] if front.note else []
+        lines.append(front.frame.to_string(index=False, float_format=lambda v: f"{v:.6g}", na_rep="-"))
     lines += [f"figure written to {args.plot}"] if args.plot else []
     return "\n".join(lines)
 
 
-def pareto_figure(front):
-    """Mass against cost, the ends marked."""
+def _choice(front) -> str:
+    return ", ".join(f"{key} = {name}" for key, name in front.choice.items())
+
+
+def _with_choice(front):
+    """The front's table, its choice of options.choose as the first column where it has one."""
+    return front.frame.assign(choice=_choice(front))[["choice", *front.frame.columns]] if front.choice \
+        else front.frame
+
+
+def _rows(front) -> list[dict]:
+    from clutchopt.optimise.pareto import CAP
+    from clutchopt.optimise.problem import case_formulation
+    from clutchopt.optimise.verify import evaluate_objective
+
+    formulation, params = case_formulation(front.case, front.mode), front.case.params()
+    return [{"cost_cap": None if math.isnan(cap) else cap, "status": solution.status,
+             **{name: evaluate_objective(formulation, name, solution.design, params) for name in ("mass", "cost")},
+             "design": solution.design, "active": [c.name for c in solution.constraints if c.active and c.name != CAP],
+             **({"robust": front.robust[k].as_dict()} if front.robust else {})}
+            for k, (cap, solution) in enumerate(zip(front.caps, front.solutions))]
+
+
+def pareto_figure(fronts):
+    """Mass against cost, a line per front (per choice of options.choose), the ends marked."""
     from matplotlib.figure import Figure
 
-    frame = front.frame[front.frame["status"] == "optimal"]
-    mass, cost = [c for c in frame.columns if c.startswith("mass")][0], [c for c in frame.columns
-                                                                        if c.startswith("cost [")][0]
     figure = Figure(figsize=(5.5, 3.8), layout="constrained")
     axes = figure.add_subplot()
-    axes.plot(frame[cost], frame[mass], "o-", color="tab:blue")
-    if len(frame):
-        axes.annotate("mass optimum", (frame[cost].iloc[0], frame[mass].iloc[0]), textcoords="offset points",
-                      xytext=(-4, 14), ha="right")
-        axes.annotate("cost optimum", (frame[cost].iloc[-1], frame[mass].iloc[-1]), textcoords="offset points",
-                      xytext=(10, -4))
+    for front in fronts:
+        frame = front.frame[front.frame["status"] == "optimal"]
+        mass, cost = [c for c in frame.columns if c.startswith("mass")][0], [c for c in frame.columns
+                                                                            if c.startswith("cost [")][0]
+        axes.plot(frame[cost], frame[mass], "o-", label=_choice(front) or None)
+        if len(frame):
+            axes.annotate("mass optimum", (frame[cost].iloc[0], frame[mass].iloc[0]), textcoords="offset points",
+                          xytext=(-4, 14), ha="right")
+            axes.annotate("cost optimum", (frame[cost].iloc[-1], frame[mass].iloc[-1]), textcoords="offset points",
+                          xytext=(10, -4))
+    if len(fronts) > 1:
+        axes.legend(fontsize=7)
     axes.set_xlabel(cost)
     axes.set_ylabel(mass)
-    axes.set_title(f"Pareto front, {front.case.title or front.case.path}", fontsize=9)
+    axes.set_title(f"Pareto front, {fronts[0].case.title or fronts[0].case.path}", fontsize=9)
     axes.grid(alpha=0.3)
     return figure

@@ -6,11 +6,12 @@ from clutchopt.cli.options import (
     add_case_argument,
     add_parser,
     add_problem_options,
+    add_robust_options,
     add_store_options,
-    first_choice_note,
     record_solve,
     recording,
     resolve_problem,
+    robustness,
 )
 
 
@@ -18,7 +19,9 @@ def add_command(commands) -> None:
     report = add_parser(
         commands, "report", "write a design-review page (one HTML file, no links out) for a case",
         "Requirements, the optimal design with a dimensioned sketch to scale, constraint margins, sensitivities,\n"
-        "the comparison with the paper's method, the start-up simulation, and a sweep plot if --sweep is given.",
+        "the comparison with the paper's method, the start-up simulation, and a sweep plot if --sweep is given.\n"
+        "With options.choose the best choice is reviewed (as solve ranks them); with --robust the design for the\n"
+        "case's [scatter] is, the nominal one beside it with its failure probabilities.",
         ("clutchopt report cases/wedge_paper.toml --mode geometry -o review.html",
          "clutchopt report cases/wedge_paper.toml --sweep sweep.csv -o review.html"))
     add_case_argument(report)
@@ -26,6 +29,7 @@ def add_command(commands) -> None:
     add_problem_options(report)
     report.add_argument("--sweep", metavar="TABLE",
                         help="add a plot of this sweep table (.csv or .parquet written by clutchopt sweep --out)")
+    add_robust_options(report)
     add_store_options(report)
     report.set_defaults(run=run)
 
@@ -33,7 +37,8 @@ def add_command(commands) -> None:
 def run(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.files import check_output, write_whole
-    from clutchopt.optimise import SolverOptions, solve_case
+    from clutchopt.optimise import SolverOptions
+    from clutchopt.optimise.design import design_case
     from clutchopt.optimise.sweep import read_frame
     from clutchopt.report import build_report
 
@@ -41,16 +46,21 @@ def run(args) -> str:
     check_output("--out", args.out, (".html", ".htm"))
     sweep = read_frame(args.sweep) if args.sweep else None
     resolve_problem(case, args)
+    robust = robustness(args, case)
     with recording(args) as store:
-        solution = solve_case(case, args.mode, args.objective, SolverOptions(tol=args.tol))
-        record_solve(store, case, solution)
-    page = build_report(case, solution, sweep)
+        ranked = design_case(case, args.mode, args.objective, SolverOptions(tol=args.tol), robust)
+        best = ranked[0]
+        record_solve(store, best.case, best.solution)
+    notes = (f"options.choose: the best of {len(ranked)} choices, {best.choice_text} (clutchopt solve lists them)",) \
+        if best.choice else ()
+    page = build_report(best.case, best.solution, sweep, best.robust, notes)
 
     def write(path: str) -> None:
         with open(path, "w", encoding="utf-8") as handle:
             handle.write(page)
 
     write_whole("--out", args.out, write)
-    note = first_choice_note(case)
-    return (note + "\n" if note else "") + f"design review of {case.path} ({solution.status}, {solution.objective_name} " \
-           f"{solution.objective:.6g} {solution.objective_unit}) written to {args.out}"
+    solution = best.solution
+    return "\n".join([*notes, f"design review of {case.path} ({solution.status}, {solution.objective_name} "
+                               f"{solution.objective:.6g} {solution.objective_unit}"
+                               + (f", {robust.label} design" if robust is not None else "") + f") written to {args.out}"])

@@ -9,9 +9,12 @@ from clutchopt.cli.options import (
     add_json_option,
     add_parser,
     add_problem_options,
+    add_robust_options,
     add_store_options,
-    first_choice_note,
+    choices_note,
+    nominal_note,
     open_store,
+    robustness,
     whole_number,
 )
 from clutchopt.errors import InputError, Problems
@@ -25,7 +28,9 @@ def add_command(commands) -> None:
         commands, "sweep", "re-solve a case over a grid of requirements: how the optimum moves with speed, sizes, ...",
         "Each --vary names a case quantity and its values in the quantity's display unit (speed in rpm, pressures\n"
         "in MPa, lengths in mm); several make a full-factorial grid. Each point starts from the last optimum;\n"
-        "every point is recorded in the run store, so a sweep stopped half-way continues with --resume.",
+        "every point is recorded in the run store, so a sweep stopped half-way continues with --resume.\n"
+        "With options.choose every choice is designed at every point and the best kept (column choice); with\n"
+        "--robust each point is designed for the case's [scatter].",
         ("clutchopt sweep cases/wedge_paper.toml --vary speed=800,1000,1200",
          "clutchopt sweep cases/wedge_paper.toml --mode geometry --vary speed=500:3000:26 --out sweep.csv",
          "clutchopt sweep cases/wedge_paper.toml --vary speed=500:3000:40 --vary allowable_pressure=2:8:25 --jobs 2"))
@@ -36,6 +41,7 @@ def add_command(commands) -> None:
     sweep.add_argument("--zip", action="store_true",
                        help="pair the lists instead of crossing them: point i takes the i-th value of each --vary")
     add_problem_options(sweep)
+    add_robust_options(sweep)
     sweep.add_argument("--jobs", type=whole_number(1, MAX_JOBS), default=1,
                        help=f"solve on N local processes, 1 to {MAX_JOBS} (default 1)")
     sweep.add_argument("--dask", metavar="ADDRESS",
@@ -68,7 +74,7 @@ def run(args) -> str:
         with problems.field():
             varies.append(parse_vary(text, case.coupling, case.quantities))
     problems.raise_any()
-    sweep = Sweep(case, varies, args.mode, args.objective, args.tol, args.zip)
+    sweep = Sweep(case, varies, args.mode, args.objective, args.tol, args.zip, robustness(args, case))
     if args.out:
         table_format(args.out)  # a bad name fails before the solves, not after
     runner = dask_runner(args.dask) if args.dask else None
@@ -87,9 +93,11 @@ def run(args) -> str:
         from clutchopt.output import to_json
 
         return to_json({"case": case.path, "mode": sweep.formulation.mode, "objective": sweep.objective.name,
+                        "robust": sweep.robust.as_dict() if sweep.robust is not None else None,
                         "sweep_id": result.sweep_id, "points": [{"point": i, "values": values, **solution}
                         for i, (values, solution) in enumerate(zip(sweep.points, result.solutions))]})
-    text = "\n".join(filter(None, [first_choice_note(case), sweep_text(sweep, result, store, args.out)]))
+    text = "\n".join(filter(None, [choices_note(case), nominal_note(case, sweep.robust),
+                                   sweep_text(sweep, result, store, args.out)]))
     if args.resume and not result.reused:
         text += "\n(nothing resumed: no stored points of an identical sweep)"
     return text

@@ -48,7 +48,11 @@ def relative_difference(value: float | None, reference: float | None) -> float |
     return (value - reference) / abs(reference)
 
 
-def compare_case(case: Case, options: SolverOptions = SolverOptions()) -> ComparisonTable:
+def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=None) -> ComparisonTable:
+    """The paper's method, the closed forms and the NLP optima of each mode side by side; with a [start_up], the
+    case's mode sized as the papers size and with its start-up; with a [scatter], the nominal design beside the
+    worst-case and chance designs, or beside the one of ``robust`` (a
+    :class:`~clutchopt.optimise.design.Robustness`)."""
     coupling = get_coupling(case.coupling)
     spec = coupling.comparison
     if spec is None:
@@ -71,11 +75,13 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions()) -> Compar
         rows_shown = spec.rows + START_UP_ROWS
         notes.update(START_UP_NOTES)
     if case.scatter:
-        for column, (solution, values) in _scatter_columns(case, coupling, spec, options).items():
+        for column, (solution, values) in _scatter_columns(case, coupling, spec, options, robust).items():
             solutions[column] = solution
             columns[column] = values
         rows_shown = rows_shown + SCATTER_ROWS
-        notes.update(SCATTER_NOTES)
+        notes.update({column: note for column, note in SCATTER_NOTES.items() if column in columns})
+        if robust is not None and robust.target is not None:
+            notes[_column(robust)] = f"each constraint holds with probability {robust.target:g} to first order"
     names = list(columns)
     rows = []
     for row in rows_shown:
@@ -119,18 +125,24 @@ SCATTER_NOTES = {
 }
 
 
-def _scatter_columns(case: Case, coupling, spec, options: SolverOptions) -> dict:
-    """The case's mode and objective: nominal, worst-case and chance-constrained designs, each checked at every
-    corner of the ranges and by Monte Carlo over the distributions."""
+def _column(robust) -> str:
+    return "worst_case" if robust.target is None else f"chance_{robust.target:g}"
+
+
+def _scatter_columns(case: Case, coupling, spec, options: SolverOptions, robust=None) -> dict:
+    """The case's mode and objective: nominal and robust designs (worst-case and chance 0.999, or the method of
+    ``robust``), each checked at every corner of the ranges and by Monte Carlo over the distributions."""
+    from clutchopt.optimise.design import Robustness
     from clutchopt.optimise.robust import CHANCE, WORST_CASE, corner_checks, failure_probabilities, solve_robust
 
     mode = case.options.get("mode") or coupling.default_mode
-    worst = solve_robust(case, WORST_CASE, None, mode, None, options)
-    chance = solve_robust(case, CHANCE, CHANCE_SHOWN, mode, None, options)
+    methods = [robust] if robust is not None else [Robustness(WORST_CASE), Robustness(CHANCE, CHANCE_SHOWN)]
+    results = [solve_robust(case, m.method, m.target, mode, None, options, m.samples) for m in methods]
+    worst = results[0]
     params = case.params()
     columns = {}
-    for column, solution in (("nominal", worst.nominal), ("worst_case", worst.solution),
-                             (f"chance_{CHANCE_SHOWN:g}", chance.solution)):
+    for column, solution in (("nominal", worst.nominal),
+                             *((_column(m), result.solution) for m, result in zip(methods, results))):
         outputs = {name: out.value for name, out in solution.outputs.items()}
         values = spec.rows_from_design(mode, solution.design, outputs, params)
         if solution.status in ("optimal", "unverified"):

@@ -3,6 +3,8 @@ command refuses it by name (a sweep over a quantity that does not enter gives th
 
 from __future__ import annotations
 
+import functools
+
 import casadi as ca
 import numpy as np
 
@@ -11,6 +13,7 @@ from clutchopt.errors import InputError, Problems
 from clutchopt.start_up_case import DEFAULTS_FROM_DUTY
 
 
+@functools.lru_cache(maxsize=64)  # built problems are kept (problem_for): each is looked at once
 def entering(problem) -> frozenset[str]:
     """The case quantities the posed NLP's objective or constraints depend on."""
     quantities = problem.formulation.quantities
@@ -22,7 +25,7 @@ def entering(problem) -> frozenset[str]:
 def check_entering(case: Case, problem, names, field: str) -> None:
     """Refuse, each by name, the quantities among ``names`` that do not enter the problem posed for ``case``: not in
     its objective or constraints, nor a design variable the case fixes at its value, nor the source of a default
-    that enters (the driven inertia that follows the duty's)."""
+    that enters (the driven inertia that follows the duty's). ``field``: how an error names one, ``"--vary {}"``."""
     variables = {v.name: v for v in problem.formulation.variables}
     fixed = {name for name, v in variables.items() if v.fixed_unless_freed and name not in case.free}
     entered = entering(problem) | fixed
@@ -31,7 +34,7 @@ def check_entering(case: Case, problem, names, field: str) -> None:
     for name in names:
         if name not in entered:
             with problems.field():
-                raise InputError(f"{field} {name}", _why_not(case, problem, name, name in variables))
+                raise InputError(field.format(name), _why_not(case, problem, name, name in variables))
     problems.raise_any()
 
 

@@ -8,15 +8,18 @@ float64 check and warm starts apply. Each point is warm-started from the one bef
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import pandas as pd
 
 from clutchopt.cases import Case
 from clutchopt.formulations import get_coupling
+from clutchopt.materials import variants
 from clutchopt.model import Formulation, Quantity, at_most
-from clutchopt.optimise.problem import Solution, SolverOptions, case_formulation, case_problem, problem_for
+from clutchopt.optimise.design import Robustness, check_robustness
+from clutchopt.optimise.problem import Solution, SolverOptions, case_formulation, problem_for
+from clutchopt.optimise.robust import RobustResult, solve_robust
 from clutchopt.optimise.start_up import Structure
 from clutchopt.optimise.sweep import column_name
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_objective
@@ -47,20 +50,40 @@ class ParetoFront:
     solutions: list[Solution]
     caps: list[float]  # the cost cap of each solution (NaN at the two ends)
     note: str = ""  # why there is no front (one end not optimal, or both ends the same design)
+    choice: dict[str, str] = field(default_factory=dict)  # the choice of options.choose this front is made of
+    robust: list[RobustResult] = field(default_factory=list)  # with --robust: each point's robust result
 
 
 _CAPPED: dict[tuple[str, str], Formulation] = {}  # one capped formulation per mode: one problem in problem_for
 
 
-def pareto_front(case: Case, mode: str | None = None, points: int = 9,
-                 options: SolverOptions = SolverOptions()) -> ParetoFront:
-    """Mass optimum, cost optimum, and ``points - 2`` epsilon-constrained mass optima between them."""
-    mass_end = case_problem(case, mode, "mass", options).solve(case)
-    cost_end = case_problem(case, mode, "cost", options).solve(case)
+def pareto_fronts(case: Case, mode: str | None = None, points: int = 9, options: SolverOptions = SolverOptions(),
+                  robust: Robustness | None = None) -> list[ParetoFront]:
+    """One front per choice of ``options.choose`` (the case's own without it), each of designs for the scatter
+    with ``robust``."""
+    check_robustness(case, robust)
+    return [replace(pareto_front(variant, mode, points, options, robust), choice=choice)
+            for choice, variant in variants(case, get_coupling(case.coupling))]
+
+
+def pareto_front(case: Case, mode: str | None = None, points: int = 9, options: SolverOptions = SolverOptions(),
+                 robust: Robustness | None = None) -> ParetoFront:
+    """Mass optimum, cost optimum, and ``points - 2`` epsilon-constrained mass optima between them; with
+    ``robust``, each designed for the case's scatter (the cap bounds the robust design's cost)."""
     formulation = case_formulation(case, mode)
     structure = Structure.of(case) if case.start_up is not None else None
     base = get_coupling(case.coupling).formulation(mode or case.options.get("mode"))
-    problem = problem_for(_CAPPED.setdefault((base.coupling, base.mode), capped(base)), "mass", options, structure)
+    capped_base = _CAPPED.setdefault((base.coupling, base.mode), capped(base))
+    results: list[RobustResult] = []
+
+    def design(point: Case, objective: str, posed: Formulation, warm: Solution | None = None) -> Solution:
+        if robust is None:
+            return problem_for(posed, objective, options, structure).solve(point, warm=warm)
+        results.append(solve_robust(point, robust.method, robust.target, base.mode, objective, options,
+                                    robust.samples, base=posed))
+        return results[-1].solution
+
+    mass_end, cost_end = design(case, "mass", base), design(case, "cost", base)
     solutions, caps = [mass_end], [np.nan]
     note = ""
     if mass_end.status != "optimal" or cost_end.status != "optimal":
@@ -74,21 +97,27 @@ def pareto_front(case: Case, mode: str | None = None, points: int = 9,
             previous = mass_end
             for cap in np.linspace(high, low, points)[1:-1]:
                 capped_case = replace(case, values={**case.values, CAP: float(cap)})
-                solution = problem.solve(capped_case, warm=previous if previous.status == "optimal" else None)
+                solution = design(capped_case, "mass", capped_base, previous if previous.status == "optimal" else None)
                 solutions.append(solution)
                 caps.append(float(cap))
                 previous = solution
             solutions.append(cost_end)
             caps.append(np.nan)
-    return ParetoFront(case, formulation.mode, _frame(formulation, case, caps, solutions), solutions, caps, note)
+    if robust is not None:  # in the order of the points: the mass end, the capped ones, the cost end
+        results = [results[0], *results[2:], results[1]][: len(solutions)]
+    return ParetoFront(case, formulation.mode, _frame(formulation, case, caps, solutions, results), solutions, caps,
+                       note, robust=results)
 
 
-def _frame(formulation: Formulation, case: Case, caps: list[float], solutions: list[Solution]) -> pd.DataFrame:
+def _frame(formulation: Formulation, case: Case, caps: list[float], solutions: list[Solution],
+           robust: list[RobustResult]) -> pd.DataFrame:
     params = case.params()
     mass, cost = formulation.objective("mass"), formulation.objective("cost")
     rows = []
-    for cap, solution in zip(caps, solutions):
+    for k, (cap, solution) in enumerate(zip(caps, solutions)):
         row = {column_name(CAP, cost.unit): cap, "status": solution.status}
+        if robust:
+            row["largest P(fail)"] = max((p for p, _, _ in robust[k].failure.values()), default=0.0)
         designed = solution.status in DESIGN_STATUSES  # no design values for a point that has none
         for objective in (mass, cost):
             row[column_name(objective.name, objective.unit)] = evaluate_objective(

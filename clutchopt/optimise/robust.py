@@ -88,7 +88,7 @@ def worst_case_formulation(base: Formulation, scattered: tuple[str, ...], names:
         return out
 
     return replace(base, quantities=base.quantities + corners, constraints=constraints,
-                   variant=f"worst case over {', '.join(scattered)}"
+                   variant=f"{base.variant} worst case over {', '.join(scattered)}".strip()
                    + (f" ({', '.join(moved)} following)" if moved else ""), start_up_view=at_start_up)
 
 
@@ -141,7 +141,7 @@ def chance_formulation(base: Formulation, scattered: tuple[str, ...], declared: 
         return out
 
     return replace(base, quantities=base.quantities + extra, constraints=constraints,
-                   variant=f"chance over {', '.join(scattered)}")
+                   variant=f"{base.variant} chance over {', '.join(scattered)}".strip())
 
 
 def _violation_gradient(base: Formulation):
@@ -257,7 +257,7 @@ _DERIVED: dict[tuple, Formulation] = {}
 def _derived(kind: str, base: Formulation, case: Case, names: tuple[str, ...]) -> Formulation:
     scattered = tuple(s.name for s in case.scatter)
     follows = tuple(sorted(case.follows.items()))
-    key = (kind, base.coupling, base.mode, scattered, names, case.start_up is not None, follows)
+    key = (kind, base.coupling, base.mode, base.variant, scattered, names, case.start_up is not None, follows)
     if key not in _DERIVED:
         _DERIVED[key] = (worst_case_formulation(base, scattered, names, {q.name: q for q in case.quantities}, follows)
                          if kind == WORST_CASE else chance_formulation(base, scattered,
@@ -297,16 +297,16 @@ def start_up_checks(case: Case, mode: str, design: dict, scatter, corner: dict) 
 
 def solve_robust(case: Case, method: str, target: float | None = None, mode: str | None = None,
                  objective: str | None = None, options: SolverOptions = SolverOptions(),
-                 samples: int = SAMPLES) -> RobustResult:
-    """The robust design of a case with a [scatter] section, beside its nominal design, both checked by Monte Carlo."""
+                 samples: int = SAMPLES, base: Formulation | None = None) -> RobustResult:
+    """The robust design of a case with a [scatter] section, beside its nominal design, both checked by Monte Carlo;
+    ``base``: the formulation to make robust, if not the mode's own (a Pareto point's, with its cost cap)."""
     if not case.scatter:
         raise InputError("--robust", "the case has no [scatter] section: say which quantities scatter and how")
-    coupling = get_coupling(case.coupling)
-    base = coupling.formulation(mode or case.options.get("mode"))
+    base = base or get_coupling(case.coupling).formulation(mode or case.options.get("mode"))
     objective = objective or case.options.get("objective", "mass")
     structure = Structure.of(case) if case.start_up is not None else None
     shown = problem_for(base, objective, options, structure).formulation  # with the start-up's, if any
-    nominal = solve_case(case, base.mode, objective, options)
+    nominal = problem_for(base, objective, options, structure).solve(case)
     params = case.params()
     names = tuple(c.name for c in base.constraints(namespace(nominal.design), params))
     if method == WORST_CASE:

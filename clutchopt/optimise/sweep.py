@@ -38,6 +38,7 @@ from clutchopt.files import TABLE_BYTES, check_output, read_bytes, write_whole
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Formulation, Quantity
 from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
+from clutchopt.optimise.design import Robustness, check_robustness, design_case
 from clutchopt.optimise.entering import check_entering
 from clutchopt.optimise.problem import Solution, SolverOptions, case_formulation, case_problem
 from clutchopt.optimise.table import joined_tables, record_table
@@ -236,12 +237,21 @@ class PointResults:
                    spent=total_spent(parts))
 
 
-def solve_points(case: Case, mode: str, objective: str, tol: float,
+def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robustness | None,
                  points: Points) -> Iterator[PointResults]:
     """Solve points in order, each warm-started from the last optimum; yields the results as they are solved: a
-    window of points at once where the problem allows batches (``clutchopt.optimise.batch``), else one point each."""
+    window of points at once where the problem allows batches (``clutchopt.optimise.batch``), else one point each.
+    With ``options.choose`` or ``robust``, each point is designed as ``solve`` designs a case (every choice, for the
+    scatter: :func:`~clutchopt.optimise.design.design_case`), the best kept with its choice."""
     problem = case_problem(case, mode, objective, SolverOptions(tol=tol))
     names = [v.name for v in problem.formulation.variables]
+    if robust is not None or case.options.get("choose"):
+        for j, (index, values) in enumerate(points.pairs()):
+            best = design_case(case.with_values(**values), mode, objective, SolverOptions(tol=tol), robust)[0]
+            yield PointResults(points[j:j + 1], names, ([best.as_dict()], {}),
+                               spent={"solves": best.solution.solver.solves, "solver_s": best.solution.solver.time_s,
+                                      "check_s": 0})
+        return
     if len(points) and batchable(problem, points.columns):
         sweep = BatchSweep(problem, case, points.columns)
         first, before = 0, dict.fromkeys(SPENT, 0)
@@ -263,11 +273,11 @@ def solve_points(case: Case, mode: str, objective: str, tol: float,
                            spent={"solves": solution.solver.solves, "solver_s": solution.solver.time_s, "check_s": 0})
 
 
-def solve_chunk(case: Case, mode: str, objective: str, tol: float,
+def solve_chunk(case: Case, mode: str, objective: str, tol: float, robust: Robustness | None,
                 chunk: Points) -> PointResults:
     """A chunk of neighbouring points solved in one worker (process pool, Dask), with its records."""
     names = [v.name for v in case_formulation(case, mode).variables]
-    return PointResults.joined(list(solve_points(case, mode, objective, tol, chunk)), names)
+    return PointResults.joined(list(solve_points(case, mode, objective, tol, robust, chunk)), names)
 
 
 def _chunks(pending: Points, size: int) -> list[Points]:
@@ -444,16 +454,19 @@ class Sweep:
     """A case, the varied quantities, mode and objective: what defines a sweep and its resume key."""
 
     def __init__(self, case: Case, varies: list[Vary], mode: str | None = None, objective: str | None = None,
-                 tol: float = 1e-10, zipped: bool = False):
+                 tol: float = 1e-10, zipped: bool = False, robust: Robustness | None = None):
+        check_robustness(case, robust)
         self.case = case = case.given(*(v.quantity.name for v in varies))
-        self.varies = varies
+        self.varies, self.robust = varies, robust
         self.formulation: Formulation = case_formulation(case, mode)
         self.objective = self.formulation.objective(objective or case.options.get("objective", "mass"))
         self.tol = tol
         self.grid, self.zipped = grid_points(varies, zipped), zipped
         check_points(case, varies, self.grid)
-        check_entering(case, case_problem(case, self.formulation.mode, self.objective.name, SolverOptions(tol=tol)),
-                       [v.quantity.name for v in varies], "--vary")
+        problem = case_problem(case, self.formulation.mode, self.objective.name, SolverOptions(tol=tol))
+        check_entering(case, problem, [v.quantity.name for v in varies], "--vary {}")
+        if robust is not None:
+            check_entering(case, problem, [s.name for s in case.scatter], "scatter.{}")
 
     @cached_property
     def points(self) -> list[dict[str, float]]:
@@ -464,7 +477,10 @@ class Sweep:
     def spec(self) -> dict:
         return {"coupling": self.case.coupling, "mode": self.formulation.mode, "objective": self.objective.name,
                 "tol": self.tol, "case": {"values": self.case.values, "free": list(self.case.free),
-                                          "bounds": self.case.bounds},
+                                          "bounds": self.case.bounds,
+                                          **({"choose": self.case.options["choose"]}
+                                             if self.case.options.get("choose") else {})},
+                **({"robust": self.robust.as_dict()} if self.robust is not None else {}),
                 "points": self.points}
 
     def run(self, store=None, resume: bool = False, jobs: int = 1, runner: Callable | None = None,
@@ -482,7 +498,7 @@ class Sweep:
         pending = self.grid[np.isin(self.grid.index, kept, invert=True)] if stored else self.grid
         workers = max(jobs, 1)
         size = chunk_size or max(1, min(25, math.ceil(len(pending) / (4 * workers))))
-        task = (self.case, self.formulation.mode, self.objective.name, self.tol)
+        task = (self.case, self.formulation.mode, self.objective.name, self.tol, self.robust)
         names = [v.name for v in self.formulation.variables]
         parts = [PointResults(self.grid[kept], names, ([stored[i] for i in kept.tolist()], {}))]
         bar = tqdm(total=len(self.grid), initial=len(stored), unit="point", desc="sweep", disable=not progress,
@@ -503,9 +519,22 @@ class Sweep:
         elapsed = time.perf_counter() - started
         order = np.argsort(np.concatenate([part.points.index for part in parts]), kind="stable")  # pool: any order
         parts = [part for part in parts if len(part)]
-        return SweepResult(sweep_id, self.frame(joined_tables([part.table() for part in parts]), order),
-                           len(pending), len(stored), elapsed, SweepRecords(parts, order),
-                           total_spent(parts))
+        frame, records = self.frame(joined_tables([part.table() for part in parts]), order), SweepRecords(parts, order)
+        self._aspect_columns(frame, records)
+        return SweepResult(sweep_id, frame, len(pending), len(stored), elapsed, records, total_spent(parts))
+
+    def _aspect_columns(self, frame: pd.DataFrame, records: "SweepRecords") -> None:
+        """Where each point was designed as ``solve`` designs (``options.choose``, ``--robust``): the choice kept
+        and the robust design's largest failure probability (Monte Carlo), before the status."""
+        at = frame.columns.get_loc("status")
+        if self.case.options.get("choose"):
+            frame.insert(at, "choice", pd.Series([", ".join(f"{key} = {name}" for key, name in
+                                                           record.get("choice", {}).items()) for record in records],
+                                                 dtype=object))
+        if self.robust is not None:
+            frame.insert(frame.columns.get_loc("status") + 1, "largest P(fail)",
+                         [max((p for p, _, _ in record["robust"]["failure_probability"].values()), default=0.0)
+                          if "robust" in record else np.nan for record in records])
 
     def _inputs(self, values: dict[str, float]) -> dict:
         """A point's inputs as the store keeps them: the case's SI values with the point's (checked when the sweep

@@ -135,27 +135,35 @@ def simulation(case: Case, solution: Solution) -> str:
     return f"{table}<figure>{figure_svg(figure)}<figcaption>{escape(caption)}</figcaption></figure>"
 
 
-def scatter(case: Case) -> str:
-    """Nominal, worst-case and chance-constrained designs side by side, and a tornado chart: how far each scattered
-    quantity moves each constraint's margin over its range at the nominal design."""
+def scatter(case: Case, robust=None) -> tuple[str, str]:
+    """The designs under the case's scatter side by side (the nominal one, and the robust one of ``robust``, a
+    :class:`~clutchopt.optimise.robust.RobustResult`; without it, the worst-case and chance 0.999 designs), each with
+    its largest failure probability by Monte Carlo, and a tornado chart: how far each scattered quantity moves each
+    constraint's margin over its range at the nominal design. Also the nominal design's worst failure, in words."""
     from matplotlib.figure import Figure
 
     from clutchopt.optimise.robust import CHANCE, WORST_CASE, failure_probabilities, solve_robust, tornado
 
-    worst = solve_robust(case, WORST_CASE)
-    chance = solve_robust(case, CHANCE, 0.999)
-    params = case.params()
+    if robust is not None:
+        results = [robust]
+        designs = [("nominal", robust.nominal, robust.nominal_failure),
+                   (robust.method + (f" {robust.target:g}" if robust.target else ""), robust.solution, robust.failure)]
+    else:
+        results = [solve_robust(case, WORST_CASE), solve_robust(case, CHANCE, 0.999)]
+        worst, chance = results
+        designs = [("nominal", worst.nominal, worst.nominal_failure), ("worst case", worst.solution, worst.failure),
+                   ("chance 0.999", chance.solution, failure_probabilities(worst.formulation, chance.solution.design,
+                                                                           case.params(), case.scatter))]
+    first, params = results[0], case.params()
     rows = []
-    for label, result_solution, checks, failure in (
-            ("nominal", worst.nominal, worst.nominal_checks, worst.nominal_failure),
-            ("worst case", worst.solution, worst.checks, worst.failure),
-            ("chance 0.999", chance.solution, None, failure_probabilities(worst.formulation, chance.solution.design,
-                                                                          params, case.scatter))):
+    for label, result_solution, failure in designs:
         rows.append({"design": label, "status": result_solution.status,
                      result_solution.objective_name: f"{result_solution.objective:.6g} {result_solution.objective_unit}",
-                     "change": f"{result_solution.objective / worst.nominal.objective - 1:+.1%}",
+                     "change": f"{result_solution.objective / first.nominal.objective - 1:+.1%}",
                      "largest P(fail)": f"{max(p for p, _, _ in failure.values()):.3g}"})
-    bars = tornado(worst.formulation, worst.nominal.design, params, case.scatter)
+    name, (p, _, _) = max(first.nominal_failure.items(), key=lambda item: item[1][0])
+    worst_failure = f"{name} fails with probability {p:.3g} under the scatter"
+    bars = tornado(first.formulation, first.nominal.design, params, case.scatter)
     shown = {name: effects for name, effects in bars.items() if any(abs(v) > 1e-9 for v in effects.values())}
     figure = Figure(figsize=(6.5, 0.5 + 0.45 * max(1, len(shown) * len(case.scatter))), layout="constrained")
     axes = figure.add_subplot()
@@ -171,9 +179,9 @@ def scatter(case: Case) -> str:
     axes.invert_yaxis()
     axes.grid(axis="x", alpha=0.3)
     caption = (f"Nominal design: how each scattered quantity moves each constraint's margin over its range "
-               f"(red: the margin shrinks as the quantity rises). Monte Carlo with {worst.samples} samples.")
+               f"(red: the margin shrinks as the quantity rises). Monte Carlo with {first.samples} samples.")
     return (_table(rows, ("change", "largest P(fail)")) +
-            f"<figure>{figure_svg(figure)}<figcaption>{escape(caption)}</figcaption></figure>")
+            f"<figure>{figure_svg(figure)}<figcaption>{escape(caption)}</figcaption></figure>"), worst_failure
 
 
 def sweep_plot(frame: pd.DataFrame) -> str:
@@ -207,29 +215,40 @@ def sweep_plot(frame: pd.DataFrame) -> str:
     return f"<figure>{figure_svg(figure)}<figcaption>{escape(caption)}</figcaption></figure>"
 
 
-def build_report(case: Case, solution: Solution, sweep: pd.DataFrame | None = None) -> str:
-    """The HTML page for a case and its solution (and a sweep table, if given)."""
+def build_report(case: Case, solution: Solution, sweep: pd.DataFrame | None = None, robust=None,
+                 notes: tuple[str, ...] = ()) -> str:
+    """The HTML page for a case and its solution (and a sweep table, if given); with ``robust`` (a
+    :class:`~clutchopt.optimise.robust.RobustResult`) the solution is its robust design, the nominal one beside it
+    under Scatter; ``notes``: lines of the command's own to show under the headline (the choice it made)."""
     formulation = case_formulation(case, solution.mode)
     ok = solution.status == "optimal"
+    scattered = scatter(case, robust) if case.scatter else None
+    kind = f"Robust design ({escape(robust.method)}" + (f" {robust.target:g}" if robust.target else "") + ")" \
+        if robust is not None else "Design"
+    nominal = ("" if robust is not None or scattered is None else
+               f"<p><b>Nominal design:</b> the case's [scatter] is not designed for, and the {escape(scattered[1])}; "
+               "<code>report --robust worst-case</code> or <code>--robust chance=P</code> puts the robust design "
+               "here (the section Scatter compares them).</p>")
     header = (f"<h1>Design review: {escape(case.title or case.path)}</h1>"
-              f'<p>{escape(formulation.title)}. Case <code>{escape(case.path)}</code>. '
-              f'Status <span class="status{"" if ok else " bad"}">{escape(solution.status)}</span>, '
+              f'<p>{escape(formulation.title)}. Case <code>{escape(case.path)}</code>. {kind}: '
+              f'status <span class="status{"" if ok else " bad"}">{escape(solution.status)}</span>, '
               f"objective ({escape(solution.objective_name)}) <b>{solution.objective:.6g} "
               f"{escape(solution.objective_unit)}</b>.</p>"
+              + "".join(f"<p>{escape(note)}</p>" for note in notes) + nominal
               + (f"<p><b>Diagnosis:</b> {escape(solution.diagnosis)}</p>" if solution.diagnosis else "")
               + f'<p class="note">Generated {datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC; '
               + ", ".join(f"{escape(k)} {escape(v)}" for k, v in versions().items()) + ".</p>")
     sections = [
         ("Requirements", requirements(case), "requirements"),
-        ("Optimal design", design(solution, formulation), "design"),
+        ("Robust design" if robust is not None else "Optimal design", design(solution, formulation), "design"),
         ("Dimensioned sketch", drawing(case, solution, formulation), "sketch"),
         ("Constraint margins", margins(solution), "margins"),
         ("Sensitivities", sensitivities(solution, formulation), "sensitivities"),
         ("Comparison with the paper's method", comparison(case), "comparison"),
         ("Start-up simulation", simulation(case, solution), "simulation"),
     ]
-    if case.scatter:
-        sections.append(("Scatter", scatter(case), "scatter"))
+    if scattered is not None:
+        sections.append(("Scatter", scattered[0], "scatter"))
     if sweep is not None:
         sections.append(("Sweep", sweep_plot(sweep), "sweep"))
     body = header + "".join(_section(*s) for s in sections)

@@ -1,0 +1,92 @@
+"""A case's aspects applied in one place: every design command (solve, compare, sweep, pareto, report) designs
+through :func:`design_case`, so that each takes the library's choices (``options.choose``), the scatter
+(``[scatter]`` with a robust method) and the start-up (``[start_up]``, posed by the problem itself) alike.
+
+Each choice of ``options.choose`` is a variant of the case (``clutchopt.materials.variants``); each variant is
+designed nominally, or for its scatter by the robust method asked for (``clutchopt.optimise.robust``); the variants
+are ranked, verified designs first by objective, then the others in the order listed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import NamedTuple
+
+from clutchopt.cases import Case
+from clutchopt.errors import InputError
+from clutchopt.formulations import get_coupling
+from clutchopt.materials import variants
+from clutchopt.optimise.entering import check_entering
+from clutchopt.optimise.problem import Solution, SolverOptions, case_problem, solve_case
+from clutchopt.optimise.robust import MAX_SAMPLES, SAMPLES, RobustResult, parse_method, solve_robust
+
+
+@dataclass(frozen=True)
+class Robustness:
+    """How a command designs for a case's scatter: ``worst-case`` or ``chance`` with its target probability, and
+    the Monte Carlo samples that check it."""
+
+    method: str
+    target: float | None = None
+    samples: int = SAMPLES
+
+    @classmethod
+    def parse(cls, text: str, samples: int | None) -> "Robustness":
+        """``--robust worst-case|chance=P`` and ``--samples N`` from the command line."""
+        method, target = parse_method(text)
+        samples = SAMPLES if samples is None else samples
+        if not 100 <= samples <= MAX_SAMPLES:
+            raise InputError("--samples", f"must be a whole number from 100 to {MAX_SAMPLES}, got {samples}")
+        return cls(method, target, samples)
+
+    @property
+    def label(self) -> str:
+        return self.method if self.target is None else f"{self.method} {self.target:g}"
+
+    def as_dict(self) -> dict:
+        return {"method": self.method, "target": self.target, "samples": self.samples}
+
+
+class Designed(NamedTuple):
+    """One choice of a case designed: the choice (``{}`` without options.choose), its case, its design (the robust
+    one, its status the robust verdict, when designed for the scatter) and the robust result."""
+
+    choice: dict[str, str]
+    case: Case
+    solution: Solution
+    robust: RobustResult | None = None
+
+    @property
+    def choice_text(self) -> str:
+        return ", ".join(f"{key} = {name}" for key, name in self.choice.items())
+
+    def as_dict(self) -> dict:
+        """The design's record (``Solution.as_dict()``), with its choice and the robust result where there are."""
+        return {**self.solution.as_dict(), **({"choice": self.choice} if self.choice else {}),
+                **({"robust": self.robust.as_dict()} if self.robust is not None else {})}
+
+
+def check_robustness(case: Case, robust: Robustness | None) -> None:
+    """A robust design needs the case's scatter: refused by name before any solve."""
+    if robust is not None and not case.scatter:
+        raise InputError("--robust", "the case has no [scatter] section: say which quantities scatter and how "
+                                     "(docs/robust.md)")
+
+
+def design_case(case: Case, mode: str | None = None, objective: str | None = None,
+                options: SolverOptions = SolverOptions(), robust: Robustness | None = None) -> list[Designed]:
+    """Every choice of ``options.choose`` (the case alone without it) designed nominally or, with ``robust``, for
+    the case's scatter; optimal designs first by objective, then the others in the order listed."""
+    check_robustness(case, robust)
+    if robust is not None:
+        check_entering(case, case_problem(case, mode, objective, options), [s.name for s in case.scatter],
+                       "scatter.{}")
+    designed = []
+    for choice, variant in variants(case, get_coupling(case.coupling)):
+        if robust is None:
+            designed.append(Designed(choice, variant, solve_case(variant, mode, objective, options)))
+        else:
+            result = solve_robust(variant, robust.method, robust.target, mode, objective, options, robust.samples)
+            designed.append(Designed(choice, variant, result.solution, result))
+    return sorted(designed, key=lambda d: (d.solution.status != "optimal",
+                                           d.solution.objective if d.solution.status == "optimal" else 0.0))
