@@ -36,8 +36,9 @@ def _paper_constraints(c: BallClutch, x, p):
     ]
 
 
-PAPER = MODEL.formulation("paper", "Ball clutch, the paper's assumptions: leading-order torque, K2 from (1); R_a, l free",
-                     PAPER_VARIABLES, _paper_clutch, _paper_constraints)
+PAPER = MODEL.formulation("paper",
+                          "Ball clutch, the paper's assumptions: leading-order torque, K2 from (1); R_a, l free",
+                          PAPER_VARIABLES, _paper_clutch, _paper_constraints)
 
 
 # --- Design mode: consistent torque, Hertz stress, whole ball rows --------------------------------------------------
@@ -73,4 +74,4 @@ def _design_constraints(c: BallClutch, x, p):
 
 
 DESIGN = MODEL.formulation("design", "Ball clutch, consistent model: R_a, K2, r_c, beta, n_p free",
-                      DESIGN_VARIABLES, _design_clutch, _design_constraints)
+                           DESIGN_VARIABLES, _design_clutch, _design_constraints)
