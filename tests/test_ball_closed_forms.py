@@ -10,7 +10,17 @@ from scipy.special import ellipe, ellipk
 
 from clutchopt.backend import ellipke
 from clutchopt.cases import load_case
-from clutchopt.formulations import ball
+from clutchopt.formulations.ball.contact import (
+    KAPPA_RANGE,
+    KAPPA_START,
+    hertz_coefficients,
+    hertz_coefficients_exact,
+    hertz_peak_pressure,
+    kappa_start,
+)
+from clutchopt.formulations.ball.equations import ball_mass, clutch_torque, filling_coefficient, paper_active_radius
+from clutchopt.formulations.ball.paper import paper_eq2, paper_eq8
+from clutchopt.formulations.ball.procedure import paper_procedure
 from tests.conftest import CASES
 
 RPM = 2 * math.pi / 60
@@ -22,7 +32,7 @@ def p():
 
 
 def cubic_root(psi_c, psi_n):
-    """The real root of (1), by numpy's companion matrix: independent of the sinh form in ball.py."""
+    """The real root of (1), by numpy's companion matrix: independent of the sinh form in ball/equations.py."""
     roots = np.roots([1.0, 0.0, 3.0 * (psi_c / psi_n + 1.0), -4.0])
     return float(next(r.real for r in roots if abs(r.imag) < 1e-12))
 
@@ -30,7 +40,7 @@ def cubic_root(psi_c, psi_n):
 @pytest.mark.parametrize("psi_c, printed", [(0.8, 0.52), (1.0, 0.46)])
 def test_filling_coefficient_is_the_papers(psi_c, printed):
     # the paper: Psi_c = 0.8 to 1 give K2 = 0.52 to 0.46 (Psi_n = 0.55)
-    k2 = ball.filling_coefficient(psi_c, 0.55)
+    k2 = filling_coefficient(psi_c, 0.55)
     assert k2**3 + 3 * k2 * (psi_c / 0.55 + 1) - 4 == pytest.approx(0, abs=1e-13)
     assert k2 == pytest.approx(cubic_root(psi_c, 0.55), rel=1e-13)
     assert k2 == pytest.approx(printed, abs=0.005)
@@ -38,7 +48,7 @@ def test_filling_coefficient_is_the_papers(psi_c, printed):
 
 @pytest.mark.parametrize("psi_c", [1e-6, 0.6, 1.2, 50.0, 1e6])
 def test_filling_coefficient_is_in_0_1_for_any_construction(psi_c):
-    k2 = ball.filling_coefficient(psi_c, 0.55)
+    k2 = filling_coefficient(psi_c, 0.55)
     assert 0 < k2 < 1 and k2 == pytest.approx(cubic_root(psi_c, 0.55), rel=1e-10)
 
 
@@ -46,7 +56,7 @@ def test_eq1_is_the_lightest_filling_at_fixed_width():
     # leading order: balls + body ~ R^2 l [Psi_c + Psi_n (1 - K2^2)] at fixed torque R^4 l (1 - K2^3) and fixed l
     k = np.linspace(0.05, 0.95, 90001)
     mass = (1 - k**3) ** -0.5 * (0.8 + 0.55 * (1 - k**2))
-    assert k[np.argmin(mass)] == pytest.approx(ball.filling_coefficient(0.8, 0.55), abs=2e-5)
+    assert k[np.argmin(mass)] == pytest.approx(filling_coefficient(0.8, 0.55), abs=2e-5)
 
 
 def test_fifth_root_is_the_lightest_radius_at_fixed_torque(p):
@@ -55,7 +65,7 @@ def test_fifth_root_is_the_lightest_radius_at_fixed_torque(p):
     torque = 1.2 * 500e3 / w
     c = 2 * math.pi / 3 * 0.04 * 7850 * 0.55 * w**2 * (1 - k2**3)
     r5 = (torque / (c * 0.5)) ** 0.2
-    assert ball.paper_active_radius(torque, 0.04, 7850, 0.55, w, 0.5, k2) == pytest.approx(r5, rel=1e-14)
+    assert paper_active_radius(torque, 0.04, 7850, 0.55, w, 0.5, k2) == pytest.approx(r5, rel=1e-14)
     assert r5 == pytest.approx(0.320344, rel=1e-5)
     # scan R: the width that carries M_c is torque / (c R^4), at least K5 R; balls + body, (2) and (13), K1 = 0
     radius = np.linspace(0.2, 0.5, 300001)
@@ -65,7 +75,7 @@ def test_fifth_root_is_the_lightest_radius_at_fixed_torque(p):
 
 
 def test_paper_procedure_steps_by_hand(p):
-    result = ball.paper_procedure(p)
+    result = paper_procedure(p)
     first = result["passes"][0]
     assert first["filling"] == pytest.approx(0.5237040, rel=1e-6)
     assert first["active_radius"] == pytest.approx(0.320344, rel=1e-5)
@@ -82,8 +92,8 @@ def test_paper_procedure_steps_by_hand(p):
 
 def test_literal_restart_rule_empties_the_drum(p):
     # every pass from (4) again: (4) rescales R_a, the excess only fades as K2 -> 1 (docs/ball.md)
-    restart = ball.paper_procedure(p, rule="restart")
-    refill = ball.paper_procedure(p)
+    restart = paper_procedure(p, rule="restart")
+    refill = paper_procedure(p)
     assert restart["filling"] > 0.99 and restart["total_mass"] > 5 * refill["total_mass"]
 
 
@@ -97,7 +107,7 @@ def test_torque_end_faces_by_numerical_integration(p):
 
     cylinder = 0.04 * g * radius**2 * (1 - k2**3) / 3 * 2 * math.pi * radius * width * radius
     no_shovels = p.__class__(**{**vars(p), "shovel_ratio": 0.0})
-    assert ball.clutch_torque(no_shovels, radius, width, k2) == pytest.approx(cylinder + quad(face, r1, radius)[0],
+    assert clutch_torque(no_shovels, radius, width, k2) == pytest.approx(cylinder + quad(face, r1, radius)[0],
                                                                               rel=1e-12)
 
 
@@ -110,21 +120,21 @@ def test_shovels_in_torque_and_mass_by_hand(p):
     no_shovels = p.__class__(**{**vars(p), "shovel_ratio": 0.0})
     removed = (0.04 * g * 6 * 0.05 * radius * width * (radius**2 - r1**2) / 2 * radius
                + 0.04 * g / math.sqrt(6) * 6 * 0.05 * radius * (radius**2 - r1**2) ** 2 / 4)
-    assert (ball.clutch_torque(no_shovels, radius, width, k2) - ball.clutch_torque(p, radius, width, k2)
+    assert (clutch_torque(no_shovels, radius, width, k2) - clutch_torque(p, radius, width, k2)
             == pytest.approx(removed, rel=1e-12))
     full = 7850 * 0.55 * width * math.pi * (radius**2 - r1**2)
-    assert ball.ball_mass(p, radius, width, k2) == pytest.approx(full - 7850 * 0.55 * width * 6 * 0.05 * radius
+    assert ball_mass(p, radius, width, k2) == pytest.approx(full - 7850 * 0.55 * width * 6 * 0.05 * radius
                                                                  * (radius - r1), rel=1e-14)
     # the printed (2) takes pi K1 where the six shovels take 6 K1 (errata B2)
-    assert ball.paper_eq2(p, radius, width, k2) - ball.ball_mass(p, radius, width, k2) == pytest.approx(
+    assert paper_eq2(p, radius, width, k2) - ball_mass(p, radius, width, k2) == pytest.approx(
         7850 * 0.55 * width * radius**2 * (6 - math.pi) * 0.05 * (1 - k2), rel=1e-12)
 
 
 def test_printed_eq8_differs_only_by_width_and_face_shovel_term(p):
     radius, width, k2 = 0.3, 0.2, 0.5
     no_shovels = p.__class__(**{**vars(p), "shovel_ratio": 0.0})
-    assert ball.paper_eq8(no_shovels, radius, width, width, k2) == pytest.approx(
-        ball.clutch_torque(no_shovels, radius, width, k2), rel=1e-14)
+    assert paper_eq8(no_shovels, radius, width, width, k2) == pytest.approx(
+        clutch_torque(no_shovels, radius, width, k2), rel=1e-14)
 
 
 def test_elliptic_integrals_by_agm_are_scipys():
@@ -144,15 +154,15 @@ TIMOSHENKO = [(30, 2.731, 0.493), (45, 1.926, 0.604), (60, 1.486, 0.717), (85, 1
 def test_hertz_coefficients_against_timoshenko(theta, n_a, n_b):
     c = math.cos(math.radians(theta))
     ratio = (1 + c) / (1 - c)  # B/A
-    for coefficients in (ball.hertz_coefficients(ratio), ball.hertz_coefficients_exact(ratio)):
+    for coefficients in (hertz_coefficients(ratio), hertz_coefficients_exact(ratio)):
         assert coefficients[0] == pytest.approx(n_a, abs=6e-4)
         assert coefficients[1] == pytest.approx(n_b, abs=6e-4)
 
 
 def test_differentiable_hertz_coefficients_are_the_exact_ones():
     for ratio in np.logspace(np.log10(1.01), 5, 60):
-        n_a, n_b = ball.hertz_coefficients(ratio)
-        e_a, e_b = ball.hertz_coefficients_exact(ratio)
+        n_a, n_b = hertz_coefficients(ratio)
+        e_a, e_b = hertz_coefficients_exact(ratio)
         assert n_a == pytest.approx(e_a, rel=1e-10) and n_b == pytest.approx(e_b, rel=1e-10)
 
 
@@ -166,31 +176,31 @@ def test_the_newton_start_is_the_fit_it_says_and_within_its_error():
     # KAPPA_START: the degree-10 Chebyshev fit of ln(a/b) / ln(B/A) at 400 Chebyshev points of KAPPA_RANGE, as a
     # power series in the mapped variable; refitted here, and within 4e-6 of ln(a/b) (one Newton step then gives
     # float64 accuracy: the test above)
-    lo, hi = ball.KAPPA_RANGE
+    lo, hi = KAPPA_RANGE
     nodes = lo + (hi - lo) * (1 - np.cos(np.linspace(0, math.pi, 400))) / 2
     kappa = np.array([_exact_kappa(math.exp(x)) for x in nodes])
     fit = np.polynomial.chebyshev.Chebyshev.fit(nodes, kappa / nodes, 10, domain=[lo, hi])
-    assert np.polynomial.chebyshev.cheb2poly(fit.coef) == pytest.approx(ball.KAPPA_START, rel=1e-9, abs=1e-15)
+    assert np.polynomial.chebyshev.cheb2poly(fit.coef) == pytest.approx(KAPPA_START, rel=1e-9, abs=1e-15)
     ratios = np.logspace(math.log10(1.01), 5, 200)
-    error = max(abs(ball.kappa_start(r) - _exact_kappa(r)) for r in ratios)
+    error = max(abs(kappa_start(r) - _exact_kappa(r)) for r in ratios)
     assert 1e-6 < error < 4e-6
 
 
 def test_hertz_sphere_on_flat_is_johnsons():
     # circle (B/A -> 1, n_a = n_b = 1): p0 = (6 F E*^2 / (pi^3 R^2))^(1/3), Johnson (1985) eq. (4.24)
     force, modulus, radius = 500.0, 115e9, 0.01
-    assert ball.hertz_peak_pressure(force, 2 / radius, modulus, 1.0, 1.0) == pytest.approx(
+    assert hertz_peak_pressure(force, 2 / radius, modulus, 1.0, 1.0) == pytest.approx(
         (6 * force * modulus**2 / (math.pi**3 * radius**2)) ** (1 / 3), rel=1e-14)
-    assert ball.hertz_coefficients(1.01) == pytest.approx((1.0, 1.0), abs=0.01)
+    assert hertz_coefficients(1.01) == pytest.approx((1.0, 1.0), abs=0.01)
 
 
 def test_contact_stress_of_the_paper_design_by_hand(p):
     # R_a = 320.344 mm, K2 = 0.7023, r_c = 10 mm, beta = 1.02, steel on steel
-    result = ball.paper_procedure(p)
+    result = paper_procedure(p)
     radius, k2 = result["active_radius"], result["filling"]
     load = 7850 * 0.55 * p.speed**2 * radius**2 * (1 - k2**3) / 3 * 2 * math.sqrt(3) * 0.01**2
     around, across = 1 / 0.01 - 1 / radius, (1 - 1 / 1.02) / 0.01
-    n_a, n_b = ball.hertz_coefficients_exact(around / across)
+    n_a, n_b = hertz_coefficients_exact(around / across)
     modulus = 210e9 / (2 * (1 - 0.3**2))
     p0 = 1.5 / (math.pi * n_a * n_b) * (load * (2 * modulus * (around + across) / 3) ** 2) ** (1 / 3)
     assert result["contact_stress"] == pytest.approx(p0, rel=1e-9)

@@ -6,7 +6,15 @@ import math
 import pytest
 
 from clutchopt.cases import load_case
-from clutchopt.formulations import ball
+from clutchopt.formulations.ball.contact import contact_modulus, hertz_coefficients_exact, hertz_peak_pressure
+from clutchopt.formulations.ball.equations import (
+    ball_load,
+    clutch_torque,
+    filling_coefficient,
+    paper_active_radius,
+    required,
+)
+from clutchopt.formulations.ball.procedure import paper_procedure
 from clutchopt.optimise import solve_case
 from clutchopt.optimise.compare import compare_case
 from tests.conftest import CASES
@@ -28,12 +36,12 @@ def test_paper_assumptions_give_the_fifth_root(case):
     p = case.params()
     solution = solve_case(case, "paper", "mass")
     assert solution.status == "optimal", solution.diagnosis
-    k2 = ball.filling_coefficient(p.construction_density, p.packing_density)
-    r5 = ball.paper_active_radius(ball.required(p), p.friction_coefficient, p.density, p.packing_density, p.speed,
+    k2 = filling_coefficient(p.construction_density, p.packing_density)
+    r5 = paper_active_radius(required(p), p.friction_coefficient, p.density, p.packing_density, p.speed,
                                   p.width_ratio, k2)
     assert solution.design["active_radius"] == pytest.approx(r5, rel=1e-7)
     assert solution.design["active_width"] == pytest.approx(p.width_ratio * r5, rel=1e-7)
-    assert r5 == pytest.approx(ball.paper_procedure(p)["passes"][0]["active_radius"], rel=1e-14)
+    assert r5 == pytest.approx(paper_procedure(p)["passes"][0]["active_radius"], rel=1e-14)
 
 
 def test_design_optima_are_feasible_with_exact_hertz(case, table):
@@ -46,11 +54,11 @@ def test_design_optima_are_feasible_with_exact_hertz(case, table):
         width = math.sqrt(3) * d["ball_radius"] * (d["ball_rows"] - 1) + 2 * d["ball_radius"]  # (7)
         assert solution.outputs["active_width"].value == pytest.approx(width, rel=1e-14)
         # re-evaluate outside the NLP: torque, and p0 with n_a, n_b from scipy's elliptic integrals
-        assert ball.clutch_torque(p, d["active_radius"], width, d["filling"]) >= ball.required(p) * (1 - 1e-8)
+        assert clutch_torque(p, d["active_radius"], width, d["filling"]) >= required(p) * (1 - 1e-8)
         around, across = 1 / d["ball_radius"] - 1 / d["active_radius"], (1 - 1 / d["groove_conformity"]) / d["ball_radius"]
-        n_a, n_b = ball.hertz_coefficients_exact(around / across)
-        load = ball.ball_load(p, d["active_radius"], d["filling"], d["ball_radius"])
-        p0 = ball.hertz_peak_pressure(load, around + across, ball.contact_modulus(p), n_a, n_b)
+        n_a, n_b = hertz_coefficients_exact(around / across)
+        load = ball_load(p, d["active_radius"], d["filling"], d["ball_radius"])
+        p0 = hertz_peak_pressure(load, around + across, contact_modulus(p), n_a, n_b)
         assert p0 <= p.allowable_contact_stress * (1 + 1e-8)
         assert p.width_ratio_min * (1 - 1e-8) <= width / d["active_radius"] <= p.width_ratio_max * (1 + 1e-8)
         assert 2 * (d["active_radius"] + p.shell_thickness) <= p.outer_diameter_max * (1 + 1e-8)

@@ -7,7 +7,37 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from clutchopt.cases import load_case
-from clutchopt.formulations import cable
+from clutchopt.formulations.cable.closed_forms import (
+    _weight_wear_interval,
+    closed_form,
+    hub_lead_angle_optimum,
+    weight_lead_angle_optimum,
+)
+from clutchopt.formulations.cable.equations import (
+    cable_diameter,
+    clamp_screw_stress,
+    finger_bending_stress,
+    half_coupling_mass,
+    hub_axial_force,
+    hub_thread_load,
+    inertia_force,
+    reduced_friction_angle,
+    required_cable_count,
+    thread_pitch,
+    thread_pressure,
+    torsional_stiffness,
+    turns_in_nut,
+    weight_mass,
+)
+from clutchopt.formulations.cable.paper import (
+    paper_design,
+    paper_eq7,
+    paper_eq9,
+    paper_eq19,
+    paper_eq20,
+    paper_eq21,
+    paper_eq22,
+)
 from tests.conftest import CASES
 
 DEG = math.pi / 180
@@ -49,31 +79,31 @@ def test_hand_values_in_plain_numbers():
 
 
 def test_single_equations(p):
-    assert cable.inertia_force(2.0, 0.07, W, G) == pytest.approx(2.0 * (0.07 * W**2 - G), rel=1e-14)  # (1)
-    assert cable.reduced_friction_angle(0.1, 15 * DEG) == pytest.approx(PHI, rel=1e-14)  # (14)
-    assert cable.hub_axial_force(100.0, BETA, PHI) == pytest.approx(100 / math.tan(BETA + PHI), rel=1e-14)  # (5)
-    assert cable.hub_thread_load(p, 6) == pytest.approx(LOAD, rel=1e-14)  # (2)-(4)
-    assert cable.half_coupling_mass(LOAD, BETA, PHI, 0.07, W, G) == pytest.approx(M_HUB, rel=1e-14)  # (7)
-    assert cable.weight_mass(p, BETA_W, PHI) == pytest.approx(M_WEIGHT, rel=1e-12)  # (9)
-    assert cable.cable_diameter(0.16, 0.5, 4, TWIST) == pytest.approx(D_K, rel=1e-14)  # (17)
-    assert cable.required_cable_count(p) == pytest.approx(Z_REQ, rel=1e-12)  # (18)
-    assert cable.clamp_screw_stress(p, 6, D_1) == pytest.approx(200e6, rel=1e-12)  # (20)
-    assert cable.finger_bending_stress(p, 6, D_N) == pytest.approx(120e6, rel=1e-12)  # (22)
-    assert cable.torsional_stiffness(108, TWIST) == pytest.approx(2062.65, rel=1e-5)  # (23)
+    assert inertia_force(2.0, 0.07, W, G) == pytest.approx(2.0 * (0.07 * W**2 - G), rel=1e-14)  # (1)
+    assert reduced_friction_angle(0.1, 15 * DEG) == pytest.approx(PHI, rel=1e-14)  # (14)
+    assert hub_axial_force(100.0, BETA, PHI) == pytest.approx(100 / math.tan(BETA + PHI), rel=1e-14)  # (5)
+    assert hub_thread_load(p, 6) == pytest.approx(LOAD, rel=1e-14)  # (2)-(4)
+    assert half_coupling_mass(LOAD, BETA, PHI, 0.07, W, G) == pytest.approx(M_HUB, rel=1e-14)  # (7)
+    assert weight_mass(p, BETA_W, PHI) == pytest.approx(M_WEIGHT, rel=1e-12)  # (9)
+    assert cable_diameter(0.16, 0.5, 4, TWIST) == pytest.approx(D_K, rel=1e-14)  # (17)
+    assert required_cable_count(p) == pytest.approx(Z_REQ, rel=1e-12)  # (18)
+    assert clamp_screw_stress(p, 6, D_1) == pytest.approx(200e6, rel=1e-12)  # (20)
+    assert finger_bending_stress(p, 6, D_N) == pytest.approx(120e6, rel=1e-12)  # (22)
+    assert torsional_stiffness(108, TWIST) == pytest.approx(2062.65, rel=1e-5)  # (23)
 
 
 def test_thread_pressure_and_turns(p):
     # Tr 32x18 (P6): lead 18 mm, 3 starts; (16) q = F_a / (pi d_2 h z_e) with h = 3 mm, z_e = 40 / 6
-    pitch = cable.thread_pitch(0.029, math.atan(18 / (math.pi * 29)), 3)
+    pitch = thread_pitch(0.029, math.atan(18 / (math.pi * 29)), 3)
     assert pitch == pytest.approx(0.006, rel=1e-12)
-    assert cable.turns_in_nut(0.040, pitch) == pytest.approx(40 / 6, rel=1e-12)
-    assert cable.thread_pressure(370, 0.029, 0.003, 40 / 6) == pytest.approx(370 / (math.pi * 0.029 * 0.003 * 40 / 6),
+    assert turns_in_nut(0.040, pitch) == pytest.approx(40 / 6, rel=1e-12)
+    assert thread_pressure(370, 0.029, 0.003, 40 / 6) == pytest.approx(370 / (math.pi * 0.029 * 0.003 * 40 / 6),
                                                                              rel=1e-14)
     assert 370 / (math.pi * 0.029 * 0.003 * 40 / 6) == pytest.approx(0.20306e6, rel=1e-4)  # far below [q] = 8 MPa
 
 
 def test_closed_form_at_the_case_threads(p):
-    design = cable.closed_form(p)
+    design = closed_form(p)
     expected = {"half_coupling_mass": M_HUB, "weight_mass": M_WEIGHT, "cable_count": 6, "finger_diameter": D_N,
                 "screw_diameter": D_1, "lead_angle": BETA, "weight_lead_angle": BETA_W}
     for name, value in expected.items():
@@ -81,36 +111,36 @@ def test_closed_form_at_the_case_threads(p):
 
 
 def test_lightest_hub_thread_is_the_flattest_that_does_not_self_lock(p):
-    assert cable.hub_lead_angle_optimum(p) == pytest.approx(PHI + 2 * DEG, rel=1e-14)
-    assert cable.hub_lead_angle_optimum(p, (10 * DEG, 45 * DEG)) == 10 * DEG
+    assert hub_lead_angle_optimum(p) == pytest.approx(PHI + 2 * DEG, rel=1e-14)
+    assert hub_lead_angle_optimum(p, (10 * DEG, 45 * DEG)) == 10 * DEG
 
 
 def test_weight_thread_optimum_of_the_pump_is_its_smallest_diameter(p):
     # lead 2 pi x_2 / phi_1 = 9 mm; 6 mm smallest diameter -> tan(beta_w) = 9 / (6 pi); 45 + phi'/2 is steeper
-    assert cable.weight_lead_angle_optimum(p) == pytest.approx(math.atan(9 / (6 * math.pi)), rel=1e-12)
+    assert weight_lead_angle_optimum(p) == pytest.approx(math.atan(9 / (6 * math.pi)), rel=1e-12)
     assert math.degrees(math.atan(9 / (6 * math.pi))) == pytest.approx(25.5228, rel=1e-5)
 
 
 def test_paper_printed_forms(p):
     # (5)/(7) put tan(beta + phi') under the mass: tan^2 times the consistent value
     printed = LOAD / ((0.070 * W**2 - G) * math.tan(BETA + PHI))
-    assert cable.paper_eq7(p, 6) == pytest.approx(printed, rel=1e-14)
+    assert paper_eq7(p, 6) == pytest.approx(printed, rel=1e-14)
     assert printed / M_HUB == pytest.approx(1 / math.tan(BETA + PHI) ** 2, rel=1e-12)
     assert printed == pytest.approx(0.73988, rel=1e-4)
     # (9) adds a force and a moment and has no gravity term
-    assert cable.paper_eq9(p) == pytest.approx((650 + 10 * PHI_1) / (0.1 * W**2 * math.tan(BETA_W + PHI)), rel=1e-14)
+    assert paper_eq9(p) == pytest.approx((650 + 10 * PHI_1) / (0.1 * W**2 * math.tan(BETA_W + PHI)), rel=1e-14)
     # (19) with tan(phi), (20) with sin(phi): not inverses of each other
     d_19 = math.sqrt(3.31 * 108 * 0.08 / (0.15 * 6 * 0.16**2 * math.tan(TWIST) * 200e6))
-    assert cable.paper_eq19(p, 6) == pytest.approx(d_19, rel=1e-14)
-    assert cable.paper_eq20(p, 6, d_19) == pytest.approx(200e6 / math.cos(TWIST), rel=1e-12)
+    assert paper_eq19(p, 6) == pytest.approx(d_19, rel=1e-14)
+    assert paper_eq20(p, 6, d_19) == pytest.approx(200e6 / math.cos(TWIST), rel=1e-12)
     # (21) coefficient 10, (22) D^2: the check is not the inverse of the design formula
     d_21 = (10 * 108 * 0.03 / (0.16 * 6 * 120e6)) ** (1 / 3)
-    assert cable.paper_eq21(p, 6) == pytest.approx(d_21, rel=1e-14)
-    assert cable.paper_eq22(p, 6, d_21) == pytest.approx(120e6 / 0.16, rel=1e-12)
+    assert paper_eq21(p, 6) == pytest.approx(d_21, rel=1e-14)
+    assert paper_eq22(p, 6, d_21) == pytest.approx(120e6 / 0.16, rel=1e-12)
 
 
 def test_paper_design_column(p):
-    design = cable.paper_design(p)
+    design = paper_design(p)
     assert design["cable_count"] == 6
     assert design["half_coupling_mass"] == pytest.approx(0.73988, rel=1e-4)
     assert design["weight_mass"] == pytest.approx((650 + 10 * PHI_1) / (0.1 * W**2 * math.tan(BETA_W + PHI)), rel=1e-12)
@@ -119,7 +149,7 @@ def test_paper_design_column(p):
 def test_clamp_screw_matches_printed_eq20_to_second_order(p):
     # (20) = 2 x 1.3 x 4/pi T l / (f z D^2 sin phi d^2) is the clamp of (18)'s tension with friction on two faces,
     # up to (1 + phi^2 / (4 psi^2)) sin(phi) / phi and 3.31 vs 3.3104
-    ratio = cable.clamp_screw_stress(p, 6, D_1) / cable.paper_eq20(p, 6, D_1)
+    ratio = clamp_screw_stress(p, 6, D_1) / paper_eq20(p, 6, D_1)
     assert ratio == pytest.approx((1 + TWIST**2 / (4 * 0.25)) * math.sin(TWIST) / TWIST * (2 * 1.3 * 4 / math.pi) / 3.31,
                                   rel=1e-12)
     assert abs(ratio - 1) < 3e-3
@@ -131,7 +161,7 @@ def test_clamp_screw_matches_printed_eq20_to_second_order(p):
 def test_frictionless_weight_obeys_virtual_work(beta, travel, twist, c_kn, c_kk):
     # phi' = 0: F dx_2 = c_kn x_2 dx_2 + c_kk phi_1 dphi_1 with dphi_1 / dx_2 = phi_1 / x_2 (thread kinematics)
     p = _weight_case(travel, twist, c_kn, c_kk)
-    force = cable.weight_mass(p, beta, 0.0) * (p.weight_radius * p.speed**2 - p.gravity)
+    force = weight_mass(p, beta, 0.0) * (p.weight_radius * p.speed**2 - p.gravity)
     assert force == pytest.approx(c_kn * travel + c_kk * twist * twist / travel, rel=1e-10)
 
 
@@ -147,7 +177,7 @@ def test_weight_wear_interval_bounds_the_pressure(f, q_allow, c_kk, h_w):
         d = 2 * 5e-5 / (0.03 * math.tan(beta))
         return 2 * c_kk * 0.03 / (d * math.tan(beta - phi)) / (math.pi * d * 0.5 * h_w)
 
-    interval = cable._weight_wear_interval(p, phi)
+    interval = _weight_wear_interval(p, phi)
     if interval is None:  # then the pressure exceeds [q] everywhere: sample it
         assert min(pressure(phi + k * (math.pi / 2 - phi) / 200) for k in range(1, 200)) > q_allow
         return

@@ -8,7 +8,14 @@ from scipy.optimize import brentq
 
 from clutchopt.cases import load_case
 from clutchopt.errors import InputError
-from clutchopt.formulations import cable
+from clutchopt.formulations.cable.closed_forms import (
+    closed_form,
+    closed_form_threads,
+    hub_lead_angle_optimum,
+    weight_lead_angle_optimum,
+)
+from clutchopt.formulations.cable.equations import required_cable_count
+from clutchopt.formulations.cable.quantities import check_threads
 from clutchopt.optimise import solve_case
 from tests.conftest import CASES
 
@@ -33,7 +40,7 @@ def assert_design(solution, expected):
 def test_paper_mode_optimum_is_the_closed_form(case, objective):
     # with the threads given, both objectives rise with every size: all sizing constraints active
     solution = solve_case(case, "paper", objective)
-    assert_design(solution, cable.closed_form(case.params()))
+    assert_design(solution, closed_form(case.params()))
     active = {c.name for c in solution.constraints if c.active}
     assert active == {"hub_thread_drive", "weight_turns_cable", "clamp_screw_stress", "finger_bending"}
 
@@ -41,7 +48,7 @@ def test_paper_mode_optimum_is_the_closed_form(case, objective):
 def test_freed_hub_lead_angle_goes_to_the_self_locking_limit(case):
     p = case.params()
     solution = solve_case(replace(case, free=("lead_angle",)), "paper", "mass")
-    assert_design(solution, cable.closed_form(p, lead_angle=cable.hub_lead_angle_optimum(p)))
+    assert_design(solution, closed_form(p, lead_angle=hub_lead_angle_optimum(p)))
     assert solution.design["lead_angle"] == pytest.approx(math.atan(p.friction_coefficient / math.cos(15 * DEG))
                                                           + 2 * DEG, rel=1e-6)
     assert next(c for c in solution.constraints if c.name == "hub_thread_not_self_locking").active
@@ -49,7 +56,7 @@ def test_freed_hub_lead_angle_goes_to_the_self_locking_limit(case):
 
 def test_threads_mode_optimum_is_its_closed_form(case):
     solution = solve_case(case, "threads", "mass")
-    assert_design(solution, cable.closed_form_threads(case.params()))
+    assert_design(solution, closed_form_threads(case.params()))
     assert solution.objective <= solve_case(case, "paper", "mass").objective
 
 
@@ -89,7 +96,7 @@ def test_weight_thread_at_best_efficiency_when_nothing_stops_it():
 def test_cable_count_is_the_rounded_up_eq18(case):
     solution = solve_case(case, "paper", "mass")
     z = solution.design["cable_count"]
-    assert z == math.ceil(cable.required_cable_count(case.params()))
+    assert z == math.ceil(required_cable_count(case.params()))
     tried = {entry["cable_count"]: entry["feasible"] for entry in solution.integer_search}
     assert tried[z] and not tried[z - 1]
 
@@ -97,7 +104,7 @@ def test_cable_count_is_the_rounded_up_eq18(case):
 def test_fixed_self_locking_lead_angle_is_an_input_error():
     base = load_case(CASES / "cable_pump.toml")
     with pytest.raises(InputError) as error:
-        cable._check_threads(replace(base, values={**base.values, "lead_angle": 7 * DEG}))
+        check_threads(replace(base, values={**base.values, "lead_angle": 7 * DEG}))
     assert error.value.field == "thread.lead_angle"
     assert "must exceed phi' = 5.911 deg" in str(error.value) and "\n" not in str(error.value)
 
@@ -133,5 +140,5 @@ def test_too_weak_weight_thread_is_diagnosed():
     solution = solve_case(case, "paper", "mass")
     assert solution.status == "infeasible"
     assert "weight_thread_wear" in solution.diagnosis
-    assert cable.weight_lead_angle_optimum(case.params()) is None  # no lead angle in the box helps either
+    assert weight_lead_angle_optimum(case.params()) is None  # no lead angle in the box helps either
     assert solve_case(case, "threads", "mass").status == "infeasible"

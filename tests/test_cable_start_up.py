@@ -10,7 +10,8 @@ from scipy.integrate import quad
 
 from clutchopt.cases import parse_case, read_toml
 from clutchopt.errors import InputError
-from clutchopt.formulations import cable
+from clutchopt.formulations.cable.equations import cable_tension
+from clutchopt.formulations.cable.speed_law import cable_pretension, link_stiffness, link_tension, link_torque
 from clutchopt.formulations.start_up import kloss_torque
 from clutchopt.optimise import solve_case
 from clutchopt.optimise.compare import compare_case
@@ -43,17 +44,17 @@ def paper():
 def test_the_link_by_hand(paper):
     c, sized = paper
     x, p = SimpleNamespace(**sized.design), c.params()
-    assert cable.cable_pretension(p.transverse_stiffness, p.span) == pytest.approx(PRETENSION, rel=1e-12)
-    assert cable.link_tension(x, p, 0.0, 0.0) == pytest.approx(PRETENSION, rel=1e-12)  # the weights rest
-    assert cable.link_tension(x, p, p.speed, 0.0) == pytest.approx(PRETENSION + WEIGHT_PULL, rel=1e-9)
-    assert cable.link_stiffness(x, p, p.speed) == pytest.approx(STIFFNESS, rel=1e-9)
+    assert cable_pretension(p.transverse_stiffness, p.span) == pytest.approx(PRETENSION, rel=1e-12)
+    assert link_tension(x, p, 0.0, 0.0) == pytest.approx(PRETENSION, rel=1e-12)  # the weights rest
+    assert link_tension(x, p, p.speed, 0.0) == pytest.approx(PRETENSION + WEIGHT_PULL, rel=1e-9)
+    assert link_stiffness(x, p, p.speed) == pytest.approx(STIFFNESS, rel=1e-9)
     theta = 0.05  # the twist lengthens each cable to (D/2) sqrt(4 psi^2 + theta^2)
     stretch = 1.3e7 * L * (math.sqrt(1 + theta**2 / (4 * PSI**2)) - 1)
     tension = PRETENSION + WEIGHT_PULL + stretch
-    assert cable.link_torque(x, p, p.speed, theta) == pytest.approx(Z * tension * L * theta / (4 * PSI**2 + theta**2),
+    assert link_torque(x, p, p.speed, theta) == pytest.approx(Z * tension * L * theta / (4 * PSI**2 + theta**2),
                                                                     rel=1e-9)
     # eq. (18) both ways: the tension the design torque needs at a twist is what carries it there
-    needed = cable.cable_tension(108.0, PSI, theta, L, Z)
+    needed = cable_tension(108.0, PSI, theta, L, Z)
     assert Z * needed * L * theta / (4 * PSI**2 + theta**2) == pytest.approx(108.0, rel=1e-12)
 
 

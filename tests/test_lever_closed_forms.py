@@ -8,7 +8,20 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from clutchopt.cases import load_case
-from clutchopt.formulations import lever
+from clutchopt.formulations.lever.closed_forms import closed_form_characteristic_number, closed_form_link_diameter
+from clutchopt.formulations.lever.equations import (
+    characteristic_number,
+    disc_push,
+    euler_stress,
+    lever_offset,
+    link_force,
+    mean_diameter,
+    minimum_lever_length,
+    paper_mean_width,
+    start_radius,
+)
+from clutchopt.formulations.lever.modes import PAPER
+from clutchopt.formulations.lever.paper import paper_characteristic_number, paper_geometry, paper_k
 from tests.conftest import CASES
 
 # cases/lever_wedge_duty.toml by hand (the wedge paper's duty).
@@ -48,30 +61,30 @@ def test_hand_values():
 
 
 def test_paper_geometry(p):
-    assert lever.minimum_lever_length(DELTA, GPR, G0) == pytest.approx(L2, rel=1e-12)
-    assert lever.lever_offset(L2, G0) == pytest.approx(S_OV, rel=1e-12)
-    assert lever.start_radius(D_B, D_PHI, L_PR) == pytest.approx(R_0, rel=1e-12)
-    assert lever.mean_diameter(S_OV, R_0) == pytest.approx(D_CP, rel=1e-12)
-    assert lever.paper_k(D_B, D_PHI, L_PR) == pytest.approx(K, rel=1e-12)
-    assert lever.paper_mean_width(S_OV, DELTA, 1.5) == pytest.approx(B_CP, rel=1e-12)
-    assert lever.paper_geometry(p) == pytest.approx((L2, B_CP), rel=1e-12)
+    assert minimum_lever_length(DELTA, GPR, G0) == pytest.approx(L2, rel=1e-12)
+    assert lever_offset(L2, G0) == pytest.approx(S_OV, rel=1e-12)
+    assert start_radius(D_B, D_PHI, L_PR) == pytest.approx(R_0, rel=1e-12)
+    assert mean_diameter(S_OV, R_0) == pytest.approx(D_CP, rel=1e-12)
+    assert paper_k(D_B, D_PHI, L_PR) == pytest.approx(K, rel=1e-12)
+    assert paper_mean_width(S_OV, DELTA, 1.5) == pytest.approx(B_CP, rel=1e-12)
+    assert paper_geometry(p) == pytest.approx((L2, B_CP), rel=1e-12)
 
 
 def test_characteristic_numbers(p):
-    assert lever.paper_characteristic_number(T_MAX, F, W, G0, L2, K) == pytest.approx(MZ_PRINTED, rel=1e-12)
-    assert lever.characteristic_number(T_MAX, F, W, G0, R_0, D_CP, 2) == pytest.approx(MZ, rel=1e-12)
-    assert lever.closed_form_characteristic_number(p) == pytest.approx(MZ, rel=1e-12)
+    assert paper_characteristic_number(T_MAX, F, W, G0, L2, K) == pytest.approx(MZ_PRINTED, rel=1e-12)
+    assert characteristic_number(T_MAX, F, W, G0, R_0, D_CP, 2) == pytest.approx(MZ, rel=1e-12)
+    assert closed_form_characteristic_number(p) == pytest.approx(MZ, rel=1e-12)
 
 
 def test_closed_form_link_diameter(p):
     buckling = (64 * 3 * S_WORN * L2**2 / (math.pi**3 * 210e9)) ** 0.25  # Euler, n_b = 3, i = d/4
     compression = math.sqrt(4 * S_WORN / (math.pi * 150e6))
     assert buckling == pytest.approx(3.59405e-3, rel=1e-5) and compression == pytest.approx(2.44473e-3, rel=1e-5)
-    assert lever.closed_form_link_diameter(p, MZ / Z) == pytest.approx(buckling, rel=1e-12)
+    assert closed_form_link_diameter(p, MZ / Z) == pytest.approx(buckling, rel=1e-12)
 
 
 def test_worn_state_pressure_spring_and_pin(p):
-    outputs = lever.PAPER.outputs(SimpleNamespace(weight_mass=MZ / Z, link_diameter=0.004), p)
+    outputs = PAPER.outputs(SimpleNamespace(weight_mass=MZ / Z, link_diameter=0.004), p)
     push = Z * F_WORN / (2 * math.tan(GPR))
     assert outputs["lining_pressure"].value == pytest.approx(push / (math.pi * D_CP * B_CP), rel=1e-12)
     assert outputs["lining_pressure"].value == pytest.approx(0.1230655e6, rel=1e-6)
@@ -86,7 +99,7 @@ def test_worn_state_pressure_spring_and_pin(p):
 
 def test_printed_formula_is_the_one_surface_model(p):
     one_face = SimpleNamespace(**{**vars(p), "friction_surfaces": 1})
-    assert lever.closed_form_characteristic_number(one_face) == pytest.approx(MZ_PRINTED, rel=1e-12)
+    assert closed_form_characteristic_number(one_face) == pytest.approx(MZ_PRINTED, rel=1e-12)
 
 
 def _knee_geometry(angle, lever_length):
@@ -101,9 +114,9 @@ def test_toggle_statics_by_virtual_work(angle, lever_length, force):
     h = 1e-6 * angle
     (r1, x1), (r2, x2) = _knee_geometry(angle - h, lever_length), _knee_geometry(angle + h, lever_length)
     push = force * (r2 - r1) / (2 * (x2 - x1))
-    assert lever.disc_push(force, angle) == pytest.approx(push, rel=1e-6)
+    assert disc_push(force, angle) == pytest.approx(push, rel=1e-6)
     # link force along the link: its axial component is the push
-    assert lever.link_force(force, angle) * math.cos(angle) == pytest.approx(push, rel=1e-6)
+    assert link_force(force, angle) * math.cos(angle) == pytest.approx(push, rel=1e-6)
 
 
 @given(d_b=st.floats(0.01, 0.2), flange_extra=st.floats(0.001, 0.2), l_pr=st.floats(0.005, 0.2),
@@ -111,11 +124,11 @@ def test_toggle_statics_by_virtual_work(angle, lever_length, force):
        gpr=st.floats(math.radians(1.5), math.radians(3)), surfaces=st.integers(1, 4))
 def test_printed_over_consistent_is_the_surface_count(d_b, flange_extra, l_pr, delta, g0, gpr, surfaces):
     d_phi = d_b + flange_extra
-    length = lever.minimum_lever_length(delta, gpr, g0)
-    radius = lever.start_radius(d_b, d_phi, l_pr)
-    diameter = lever.mean_diameter(lever.lever_offset(length, g0), radius)
-    printed = lever.paper_characteristic_number(50.0, 0.3, 150.0, g0, length, lever.paper_k(d_b, d_phi, l_pr))
-    consistent = lever.characteristic_number(50.0, 0.3, 150.0, g0, radius, diameter, surfaces)
+    length = minimum_lever_length(delta, gpr, g0)
+    radius = start_radius(d_b, d_phi, l_pr)
+    diameter = mean_diameter(lever_offset(length, g0), radius)
+    printed = paper_characteristic_number(50.0, 0.3, 150.0, g0, length, paper_k(d_b, d_phi, l_pr))
+    consistent = characteristic_number(50.0, 0.3, 150.0, g0, radius, diameter, surfaces)
     assert printed / consistent == pytest.approx(surfaces, rel=1e-10)
 
 
@@ -123,5 +136,5 @@ def test_euler_stress_of_a_round_link():
     # P_cr = pi^2 E I / l^2, I = pi d^4 / 64, A = pi d^2 / 4: sigma_E = pi^2 E d^2 / (16 l^2)
     d, length, e = 0.006, 0.15, 210e9
     p_cr = math.pi**2 * e * math.pi * d**4 / 64 / length**2
-    assert lever.euler_stress(e, d, length) == pytest.approx(p_cr / (math.pi * d**2 / 4), rel=1e-12)
-    assert lever.euler_stress(e, d, length) == pytest.approx(207.26e6, rel=1e-4)
+    assert euler_stress(e, d, length) == pytest.approx(p_cr / (math.pi * d**2 / 4), rel=1e-12)
+    assert euler_stress(e, d, length) == pytest.approx(207.26e6, rel=1e-4)

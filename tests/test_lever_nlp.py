@@ -6,7 +6,10 @@ from dataclasses import replace
 import pytest
 
 from clutchopt.cases import load_case
-from clutchopt.formulations import lever
+from clutchopt.formulations.duty import required_torque
+from clutchopt.formulations.lever.closed_forms import closed_form_characteristic_number, closed_form_link_diameter
+from clutchopt.formulations.lever.modes import DESIGN, PAPER
+from clutchopt.formulations.lever.paper import paper_characteristic_number, paper_geometry, paper_k
 from clutchopt.optimise import problem_for, solve_case
 from tests.conftest import CASES
 
@@ -21,10 +24,10 @@ def case(request):
 def test_paper_mode_optimum_is_the_closed_form(case):
     solution = solve_case(case, "paper", "mass")
     p = case.params()
-    mass = lever.closed_form_characteristic_number(p) / p.weight_count
+    mass = closed_form_characteristic_number(p) / p.weight_count
     assert solution.status == "optimal"
     assert solution.design["weight_mass"] == pytest.approx(mass, rel=1e-6)
-    assert solution.design["link_diameter"] == pytest.approx(lever.closed_form_link_diameter(p, mass), rel=1e-6)
+    assert solution.design["link_diameter"] == pytest.approx(closed_form_link_diameter(p, mass), rel=1e-6)
     assert {c.name for c in solution.constraints if c.active} == {"torque", "link_buckling"}
 
 
@@ -32,10 +35,10 @@ def test_one_friction_surface_reproduces_the_printed_formula():
     # one face doubles m z and the worn-lining pressure (0.123 -> 0.246 MPa, still within 0.25 MPa)
     case = load_case(CASES / "lever_wedge_duty.toml").with_values(friction_surfaces=1)
     p = case.params()
-    printed = lever.paper_characteristic_number(
-        lever.required_torque(p.inertia, p.speed, p.acceleration_time, p.resisting_torque), p.friction_coefficient,
-        p.speed, p.engagement_angle, lever.paper_geometry(p)[0],
-        lever.paper_k(p.shaft_diameter, p.flange_diameter, p.spring_free_length))
+    printed = paper_characteristic_number(
+        required_torque(p.inertia, p.speed, p.acceleration_time, p.resisting_torque), p.friction_coefficient,
+        p.speed, p.engagement_angle, paper_geometry(p)[0],
+        paper_k(p.shaft_diameter, p.flange_diameter, p.spring_free_length))
     solution = solve_case(case, "paper", "mass")
     assert solution.status == "optimal"
     assert solution.outputs["characteristic_number"].value == pytest.approx(printed, rel=1e-6)
@@ -64,7 +67,7 @@ def test_design_mode_is_feasible_and_no_heavier_than_paper_mode(case):
 def test_integer_weight_count_is_the_best_of_all_counts():
     case = load_case(CASES / "lever_homogeniser.toml")  # z in [4, 8]
     chosen = solve_case(case, "design", "cost")
-    problem = problem_for(lever.DESIGN, "cost")
+    problem = problem_for(DESIGN, "cost")
     fixed = [problem.solve(replace(case, bounds={**case.bounds, "weight_count": (z, z)})) for z in range(4, 9)]
     best = min(fixed, key=lambda s: s.objective if s.status == "optimal" else math.inf)
     assert chosen.status == "optimal"
@@ -89,7 +92,7 @@ def test_too_small_housing_for_the_torque_is_diagnosed_in_design_mode():
 
 
 def test_one_built_problem_serves_many_cases():
-    problem = problem_for(lever.PAPER, "mass")
+    problem = problem_for(PAPER, "mass")
     base = load_case(CASES / "lever_wedge_duty.toml")
     for factor in (0.01, 0.1, 1.0, 1.5):  # the inertia term of T_max over two decades
         case = base.with_values(inertia=0.5 * factor)
@@ -97,4 +100,4 @@ def test_one_built_problem_serves_many_cases():
         p = case.params()
         assert solution.status == "optimal"
         assert solution.design["weight_mass"] == pytest.approx(
-            lever.closed_form_characteristic_number(p) / p.weight_count, rel=1e-6)
+            closed_form_characteristic_number(p) / p.weight_count, rel=1e-6)

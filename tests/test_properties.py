@@ -11,7 +11,7 @@ from clutchopt.bench.reference import bench_cases, closed_form, reference_mode
 from clutchopt.bench.torture import judge, torque_quantities
 from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
-from clutchopt.formulations.wedge import closed_form_finger_diameter, closed_form_weight_mass
+from clutchopt.formulations.wedge.closed_forms import closed_form_finger_diameter, closed_form_weight_mass
 from clutchopt.optimise import problem_for
 from clutchopt.units import ureg
 

@@ -6,7 +6,10 @@ import pytest
 from scipy import integrate
 
 from clutchopt.cases import load_case
-from clutchopt.formulations import wedge
+from clutchopt.formulations.duty import required_torque
+from clutchopt.formulations.wedge.closed_forms import closed_form_finger_diameter, closed_form_weight_mass
+from clutchopt.formulations.wedge.equations import flank_pressure, self_locking_angle, weight_body
+from clutchopt.formulations.wedge.paper import paper_eq27_first_form, paper_eq27_second_form, paper_eq28
 from tests.conftest import CASES
 
 # The paper's worked example, by hand.
@@ -30,32 +33,32 @@ def test_hand_values_are_what_the_notes_say():
 
 
 def test_required_torque(p):
-    assert wedge.required_torque(p.inertia, p.speed, p.acceleration_time, p.resisting_torque) == pytest.approx(T_MAX, rel=1e-12)
+    assert required_torque(p.inertia, p.speed, p.acceleration_time, p.resisting_torque) == pytest.approx(T_MAX, rel=1e-12)
 
 
 def test_closed_form_weight_mass(p):
-    assert wedge.closed_form_weight_mass(p) == pytest.approx(M_R, rel=1e-12)
+    assert closed_form_weight_mass(p) == pytest.approx(M_R, rel=1e-12)
 
 
 def test_closed_form_finger_diameter(p):
     # at the closed-form mass each finger carries T_max / z at lever h_n = (r1 + r2)/2, and F_fr h_n = T_max / z:
     d_n = (32 * T_MAX / Z / (math.pi * 160e6)) ** (1 / 3)
     assert d_n == pytest.approx(5.4616e-3, rel=1e-4)
-    assert wedge.closed_form_finger_diameter(p, M_R) == pytest.approx(d_n, rel=1e-12)
+    assert closed_form_finger_diameter(p, M_R) == pytest.approx(d_n, rel=1e-12)
 
 
 def test_flank_pressure_of_closed_form_design(p):
     f_u = M_R * W**2 * R_C
     q = f_u / math.tan(ALPHA) / (GAMMA * (R2**2 - R1**2))  # N = F_u/(2 sin a) on an area gamma(r2^2-r1^2)/(2 cos a)
     assert q == pytest.approx(0.34697e6, rel=1e-4)
-    assert wedge.flank_pressure(f_u, p.flank_angle, p.sector_angle, R1, R2) == pytest.approx(q, rel=1e-12)
+    assert flank_pressure(f_u, p.flank_angle, p.sector_angle, R1, R2) == pytest.approx(q, rel=1e-12)
 
 
 def test_paper_forms_of_eq27(p):
     first = 2 * T_MAX * math.sin(ALPHA) / (F * Z * 2.2 * R1 * W**2 * (1.2 * R1 - 2 / 3 * H_R))
     second = 6 * (0.5 * W + 5 * 10) * math.sin(ALPHA) / (F * Z * 2.2 * R1 * W**2 * (3 * 1.2 * R1 - 2 * H_R))
-    assert wedge.paper_eq27_first_form(p) == pytest.approx(first, rel=1e-12)
-    assert wedge.paper_eq27_second_form(p) == pytest.approx(second, rel=1e-12)
+    assert paper_eq27_first_form(p) == pytest.approx(first, rel=1e-12)
+    assert paper_eq27_second_form(p) == pytest.approx(second, rel=1e-12)
     assert second / first == pytest.approx(10.0, rel=1e-12)  # t_p multiplies instead of dividing (errata W2)
     assert first == pytest.approx(0.157, abs=5e-4) and second == pytest.approx(1.57, abs=5e-3)
 
@@ -64,7 +67,7 @@ def test_paper_eq28_reproduces_the_printed_3_1_mm(p):
     # the paper's arithmetic: [p] and [sigma] in MPa, m_r = 0.235 kg, the cube root read as mm
     number = 32 * 0.15 * 0.235 * W**2 * (3 * 1.2 * 0.05 - 2 * 0.02) * 4 * math.cos(ALPHA) / (3 * math.pi * 0.785 * 0.2 * 160)
     assert number ** (1 / 3) == pytest.approx(3.05, abs=0.01)
-    assert wedge.paper_eq28(p, 0.235) == pytest.approx(number ** (1 / 3) * 1e-3, rel=1e-12)
+    assert paper_eq28(p, 0.235) == pytest.approx(number ** (1 / 3) * 1e-3, rel=1e-12)
 
 
 def test_weight_body_matches_numerical_integration():
@@ -76,7 +79,7 @@ def test_weight_body_matches_numerical_integration():
     mass = rho * integrate.dblquad(lambda r, th: width(r) * r, -gamma / 2, gamma / 2, r_in, r2, epsabs=1e-13)[0]
     moment = rho * integrate.dblquad(lambda r, th: width(r) * r * r * math.cos(th), -gamma / 2, gamma / 2, r_in, r2,
                                      epsabs=1e-13)[0]
-    got_mass, got_centroid = wedge.weight_body(r_in, r1, r2, b, alpha, gamma, rho)
+    got_mass, got_centroid = weight_body(r_in, r1, r2, b, alpha, gamma, rho)
     assert got_mass == pytest.approx(mass, rel=1e-9)
     assert got_centroid == pytest.approx(moment / mass, rel=1e-9)
 
@@ -86,8 +89,8 @@ def test_rectangular_sector_centroid_is_the_textbook_one():
     g, r, big = 0.785, 0.04, 0.06
     expected = 2 * math.sin(g / 2) / g * 2 / 3 * (big**3 - r**3) / (big**2 - r**2)
     assert expected == pytest.approx(0.04937, rel=1e-3)  # the paper's r2 - 2/3 h_r gives 0.04667 (errata W5)
-    assert wedge.weight_body(r, 0.05, big, 0.02, 0.0, g, 7850.0)[1] == pytest.approx(expected, rel=1e-12)
+    assert weight_body(r, 0.05, big, 0.02, 0.0, g, 7850.0)[1] == pytest.approx(expected, rel=1e-12)
 
 
 def test_self_locking_angle():
-    assert math.degrees(wedge.self_locking_angle(0.15)) == pytest.approx(8.530765609948133, rel=1e-12)
+    assert math.degrees(self_locking_angle(0.15)) == pytest.approx(8.530765609948133, rel=1e-12)

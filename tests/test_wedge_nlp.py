@@ -6,7 +6,8 @@ from dataclasses import replace
 import pytest
 
 from clutchopt.cases import load_case
-from clutchopt.formulations import wedge
+from clutchopt.formulations.wedge.closed_forms import closed_form_finger_diameter, closed_form_weight_mass
+from clutchopt.formulations.wedge.modes import GEOMETRY, PAPER
 from clutchopt.optimise import problem_for, solve_case
 from tests.conftest import CASES
 
@@ -21,10 +22,10 @@ def case(request):
 def test_paper_mode_optimum_is_the_closed_form(case):
     solution = solve_case(case, "paper", "mass")
     p = case.params()
-    m_r = wedge.closed_form_weight_mass(p)
+    m_r = closed_form_weight_mass(p)
     assert solution.status == "optimal"
     assert solution.design["weight_mass"] == pytest.approx(m_r, rel=1e-6)
-    assert solution.design["finger_diameter"] == pytest.approx(wedge.closed_form_finger_diameter(p, m_r), rel=1e-6)
+    assert solution.design["finger_diameter"] == pytest.approx(closed_form_finger_diameter(p, m_r), rel=1e-6)
     active = {c.name for c in solution.constraints if c.active}
     assert active == {"torque", "finger_bending"}
 
@@ -48,7 +49,7 @@ def test_geometry_mode_is_feasible_and_no_heavier_than_paper_mode(case):
 def test_integer_weight_count_is_the_best_of_all_counts():
     case = load_case(CASES / "wedge_centrifuge.toml")  # frees flank angle and weight count, z in [3, 12]
     chosen = solve_case(case, "geometry", "mass")
-    problem = problem_for(wedge.GEOMETRY, "mass")
+    problem = problem_for(GEOMETRY, "mass")
     best = min(
         (problem.solve(replace(case.with_values(weight_count=z), free=("flank_angle",))) for z in range(3, 13)),
         key=lambda s: s.objective if s.status == "optimal" else math.inf,
@@ -87,11 +88,11 @@ def test_too_small_housing_is_diagnosed_in_geometry_mode():
 
 
 def test_one_built_problem_serves_many_cases():
-    problem = problem_for(wedge.PAPER, "mass")
+    problem = problem_for(PAPER, "mass")
     base = load_case(CASES / "wedge_paper.toml")
     for factor in (0.01, 0.1, 1.0, 10.0):  # inertia over three decades (50x pressure would exceed [p])
         case = base.with_values(inertia=0.5 * factor)
         solution = problem.solve(case)
         assert solution.status == "optimal"
-        assert solution.design["weight_mass"] == pytest.approx(wedge.closed_form_weight_mass(case.params()), rel=1e-6)
-    assert problem_for(wedge.PAPER, "mass") is problem
+        assert solution.design["weight_mass"] == pytest.approx(closed_form_weight_mass(case.params()), rel=1e-6)
+    assert problem_for(PAPER, "mass") is problem

@@ -1,4 +1,4 @@
-"""One module per coupling; each exports ``COUPLING`` (a :class:`clutchopt.model.Coupling`)."""
+"""One package per coupling; each exports ``COUPLING`` (a :class:`clutchopt.model.Coupling`)."""
 
 from __future__ import annotations
 

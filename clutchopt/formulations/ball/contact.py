@@ -1,0 +1,96 @@
+"""The Hertz contact of an outer ball on the grooved drum: eq. (9) made consistent (errata B5), with n_a, n_b of
+the contact ellipse from the elliptic integrals, differentiable for the NLP and exact for reference."""
+
+from __future__ import annotations
+
+import math
+
+from scipy.optimize import brentq
+from scipy.special import ellipe, ellipk
+
+from clutchopt.backend import cbrt, ellipke, exp, fmax, fmin, log, sqrt
+from clutchopt.formulations.ball.equations import ball_load
+
+
+def contact_modulus(p):
+    """E* = 1 / ((1 - nu_1^2) / E_1 + (1 - nu_2^2) / E_2), the Hertz contact modulus (our reading of E' in (9))."""
+    return 1.0 / ((1.0 - p.ball_poisson**2) / p.ball_modulus + (1.0 - p.drum_poisson**2) / p.drum_modulus)
+
+
+def curvatures(radius, ball_radius, conformity):
+    """Relative principal curvatures of ball on grooved drum: around the drum 1/r_c - 1/R_a, across the groove
+    1/r_c - 1/(beta r_c). Returns (sum rho, B/A >= 1) with B/A the larger over the smaller (beta r_c < R_a)."""
+    around = 1.0 / ball_radius - 1.0 / radius
+    across = (1.0 - 1.0 / conformity) / ball_radius
+    return around + across, around / across
+
+
+KAPPA_RANGE = (math.log(1.01), math.log(1e5))  # ln(B/A) over which the Newton start is fitted
+KAPPA_START = (0.6195049581568469, -0.04819203413574859, 0.017114963528664155, -0.0010213762429290012,
+               -0.005777536213994348, 0.0075816120696768595, -0.0072777845352428585, 0.003622163387927758,
+               0.0015625642464741274, -0.002686491922902393, 0.0008446148249083446)
+# ln(a/b) / ln(B/A) as a polynomial in t = (2 ln(B/A) - lo - hi) / (hi - lo): the degree-10 Chebyshev fit to the
+# exact solution at 400 Chebyshev points of KAPPA_RANGE (scipy ellipk/ellipe and brentq); within 4e-6 of ln(a/b)
+# there (tests/test_ball_closed_forms.py refits it)
+NEWTON_STEPS = 1  # from the fitted start (4e-6): float64 accuracy, value and derivatives alike
+
+
+def kappa_start(ratio):
+    """ln(a/b) of the contact ellipse to 4e-6 for 1.01 <= B/A <= 1e5 (KAPPA_START); beyond, the fit at its ends."""
+    lo, hi = KAPPA_RANGE
+    log_ratio = log(ratio)
+    t = fmin(fmax((2.0 * log_ratio - lo - hi) / (hi - lo), -1.0), 1.0)
+    value = 0.0
+    for coefficient in reversed(KAPPA_START):  # Horner
+        value = value * t + coefficient
+    return log_ratio * value
+
+
+def _curvature_ratio(m):
+    """B/A = ((1/(1 - m)) E - K) / (K - E) of the contact ellipse, e^2 = m = 1 - (b/a)^2, and d(B/A)/dm; K, E."""
+    k, e = ellipke(m)
+    num, den = e / (1.0 - m) - k, k - e
+    de, dk = (e - k) / (2.0 * m), (e - (1.0 - m) * k) / (2.0 * m * (1.0 - m))
+    dnum, dden = e / (1.0 - m) ** 2 + de / (1.0 - m) - dk, dk - de
+    return num / den, (dnum * den - num * dden) / den**2, k, e
+
+
+def hertz_coefficients(ratio):
+    """Hertz's n_a, n_b (Timoshenko's m, n) of an elliptic contact with curvature ratio B/A = ``ratio`` >= 1.01:
+    a = n_a (3F / (2 E* sum rho))^(1/3), b = n_b (...)^(1/3).
+
+    Solves B/A = ((a/b)^2 E(e) - K(e)) / (K(e) - E(e)) for kappa = ln(a/b) by Newton (NEWTON_STEPS) from a
+    fitted start (:func:`kappa_start`) with K, E by the AGM (:func:`clutchopt.backend.ellipke`); then
+    n_a^3 = 2 (K - E) (1 + B/A) / (pi e^2), n_b = n_a b/a. Differentiable in CasADi; agrees with the exact
+    solution (:func:`hertz_coefficients_exact`) to 1e-10 for 1.01 <= B/A <= 1e5 (tested).
+    """
+    kappa = kappa_start(ratio)
+    for _ in range(NEWTON_STEPS):
+        m = 1.0 - exp(-2.0 * kappa)
+        r, dr, _, _ = _curvature_ratio(m)
+        kappa = kappa - (log(r) - log(ratio)) * r / (dr * 2.0 * (1.0 - m))
+    m = 1.0 - exp(-2.0 * kappa)
+    k, e = ellipke(m)
+    n_a = cbrt(2.0 * (k - e) * (1.0 + ratio) / (math.pi * m))
+    return n_a, n_a * sqrt(1.0 - m)
+
+
+def hertz_coefficients_exact(ratio):
+    """n_a, n_b by bracketing the exact elliptic-integral equation (scipy ellipk/ellipe); floats only, reference."""
+    m = brentq(lambda m: (ellipe(m) / (1 - m) - ellipk(m)) / (ellipk(m) - ellipe(m)) - ratio, 1e-9, 1 - 1e-15,
+               xtol=1e-300, rtol=1e-15)
+    n_a = (2 * (ellipk(m) - ellipe(m)) * (1 + ratio) / (math.pi * m)) ** (1 / 3)
+    return n_a, n_a * math.sqrt(1 - m)
+
+
+def hertz_peak_pressure(load, curvature_sum, modulus, n_a, n_b):
+    """p_0 = 3F / (2 pi a b) = 1.5 / (pi n_a n_b) (F (2 E* sum rho / 3)^2)^(1/3): the Hertz form behind (9)."""
+    return 1.5 / (math.pi * n_a * n_b) * cbrt(load * (2.0 * modulus * curvature_sum / 3.0) ** 2)
+
+
+def contact_stress(p, radius, filling, ball_radius, conformity):
+    """p_0 of the outer balls on the drum, eq. (9) made consistent (errata B5): Hertz with the ball load and the
+    contact's own curvatures, n_a, n_b from the elliptic integrals."""
+    total, ratio = curvatures(radius, ball_radius, conformity)
+    n_a, n_b = hertz_coefficients(ratio)
+    return hertz_peak_pressure(ball_load(p, radius, filling, ball_radius), total, contact_modulus(p), n_a, n_b)

@@ -1,0 +1,99 @@
+"""What the couplings' formulations share: a coupling posed in its modes from one state of a design, the speed law
+of weights whose torque grows with the square of the driving speed, and the parts and case checks several
+couplings have.
+
+Written with :mod:`clutchopt.backend` math like the equations, so it serves floats and CasADi symbols alike.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from types import SimpleNamespace
+from typing import Any, Callable
+
+from clutchopt.errors import InputError
+from clutchopt.formulations.duty import required_torque
+from clutchopt.model import ElasticLaw, Formulation, Objective, Quantity, SpeedLaw, Variable
+
+State = Callable[[SimpleNamespace, SimpleNamespace], Any]  # (x, p) -> the coupling at design x of case p
+
+
+@dataclass(frozen=True)
+class CouplingModel:
+    """What every mode of one coupling shares. A mode differs only in how it obtains the state of a design,
+    ``state(x, p)`` (the weights, toggles or clutch at that design), and in constraints and outputs of its own.
+
+    ``mass`` and ``cost``: (description, ``(state, p) -> value``) of the two objectives, kg and EUR;
+    ``outputs`` and ``constraints``: ``(state, x, p) ->`` those every mode reports and meets;
+    ``speed_law``: ``state -> `` the coupling's law in a start-up.
+    """
+
+    coupling: str
+    quantities: tuple[Quantity, ...]
+    mass: tuple[str, Callable]
+    cost: tuple[str, Callable]
+    outputs: Callable
+    speed_law: Callable[[State], SpeedLaw | ElasticLaw]
+    constraints: Callable = lambda state, x, p: []
+
+    def formulation(self, mode: str, title: str, variables: tuple[Variable, ...], state: State,
+                    constraints: Callable = lambda state, x, p: [],
+                    outputs: Callable = lambda state, x, p: {}) -> Formulation:
+        """The posed problem of one mode, from how it obtains the state and what it adds."""
+        (mass_description, mass), (cost_description, cost) = self.mass, self.cost
+        return Formulation(
+            coupling=self.coupling,
+            mode=mode,
+            title=title,
+            quantities=self.quantities,
+            variables=variables,
+            constraints=lambda x, p: self.constraints(s := state(x, p), x, p) + constraints(s, x, p),
+            objectives=(Objective("mass", "kg", mass_description, lambda x, p: mass(state(x, p), p)),
+                        Objective("cost", "EUR", cost_description, lambda x, p: cost(state(x, p), p))),
+            outputs=lambda x, p: {**self.outputs(s := state(x, p), x, p), **outputs(s, x, p)},
+            speed_law=self.speed_law(state),
+        )
+
+
+def at_unit_speed(p):
+    """The case values with the driving speed set to 1 rad/s."""
+    return SimpleNamespace(**{**vars(p), "speed": 1.0})
+
+
+def centrifugal_speed_law(state: State, torque: Callable, weight_mass: Callable | None = None,
+                          weight_radius: Callable | None = None) -> SpeedLaw:
+    """T = K w_a^2 for a coupling whose torque comes from centrifugal forces: K is ``torque(state, p)`` at
+    w_a = 1 rad/s. ``weight_mass(state)`` and ``weight_radius(state)`` give m and r of one weight, whose
+    centrifugal force m r w_a^2 springs and gravity act against; without them those effects do not apply."""
+    def torque_coefficient(x, p):
+        unit = at_unit_speed(p)
+        return torque(state(x, unit), unit)
+
+    if weight_mass is None:
+        return SpeedLaw(torque_coefficient)
+    return SpeedLaw(torque_coefficient,
+                    lambda x, p: weight_mass(s := state(x, p)) * weight_radius(s),
+                    lambda x, p: weight_mass(state(x, p)))
+
+
+def duty_torque(p):
+    """T_max = I_n w_a / t_p + T_c of the case's duty (wedge paper eqs. (5), (17); lever paper T_max = I_M e + T_p)."""
+    return required_torque(p.inertia, p.speed, p.acceleration_time, p.resisting_torque)
+
+
+def rod_mass(density, diameter, length):
+    """rho pi d^2 / 4 l: a solid round rod (finger, link, screw)."""
+    return density * math.pi * diameter**2 / 4.0 * length
+
+
+def rod_bending_stress(force, arm, diameter):
+    """sigma = 32 F a / (pi d^3): a solid round cantilever loaded across at the arm a from its root."""
+    return 32.0 * force * arm / (math.pi * diameter**3)
+
+
+def check_shell_room(case):
+    """The housing's wall leaves room inside the largest outer diameter."""
+    v = case.values
+    if 2 * v["shell_thickness"] >= v["outer_diameter_max"]:
+        raise InputError("limits.outer_diameter_max", "leaves no room inside the shell")
