@@ -165,7 +165,7 @@ def solution_html(solution: Solution) -> str:
     from html import escape
 
     from clutchopt.formulations import get_coupling
-    from clutchopt.formulations.start_up import with_start_up
+    from clutchopt.start_up.equations import with_start_up
 
     formulation = get_coupling(solution.coupling).formulation(solution.mode)
     if solution.start_up is not None:

@@ -17,10 +17,10 @@ from typing import Callable
 import pandas as pd
 
 from clutchopt.bench.accuracy import accuracy_rows
+from clutchopt.bench.cli_launch import startup_rows
 from clutchopt.bench.resolve import resolve_rows
 from clutchopt.bench.scaleout import scaleout_rows
-from clutchopt.bench.start_up import start_up_rows
-from clutchopt.bench.startup import startup_rows
+from clutchopt.bench.start_up_designs import start_up_rows
 from clutchopt.bench.throughput import throughput_rows
 from clutchopt.bench.transient import effects_rows, stiffness_rows, tolerance_rows
 

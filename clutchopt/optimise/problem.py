@@ -43,11 +43,11 @@ import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.backend import fmax
-from clutchopt.formulations.start_up import with_start_up
+from clutchopt.start_up.equations import with_start_up
 from clutchopt.model import Formulation, Output, namespace
 from clutchopt.optimise.compiled import compiled_solver
 from clutchopt.optimise.in_place import InPlace
-from clutchopt.optimise.start_up import (
+from clutchopt.start_up.transcription import (
     BACK_OFF_STEPS,
     MAX_INTERVALS,
     MESH_STEPS,

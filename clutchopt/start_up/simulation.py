@@ -18,11 +18,11 @@ from types import SimpleNamespace
 
 from clutchopt.errors import InputError, Problems, shown_value
 from clutchopt.files import CASE_BYTES, read_text
-from clutchopt.formulations.start_up import RADIAL_EFFECTS, engagement_speed_squared
 from clutchopt.model import ElasticLaw
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.engine import Model, SimulationResult, simulate
 from clutchopt.simulate.laws import CentrifugalFriction, InductionMotor, Load
+from clutchopt.start_up.equations import RADIAL_EFFECTS, engagement_speed_squared
 
 
 MAX_TORQUE = 1e9  # N*m: the largest torque the simulator is tested with (clutchopt.simulate.scene.TORQUE)

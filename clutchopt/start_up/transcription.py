@@ -26,8 +26,8 @@ import casadi as ca
 import numpy as np
 
 from clutchopt.backend import sqrt
-from clutchopt.formulations import start_up as su
 from clutchopt.model import Constraint, ElasticLaw, SpeedLaw, at_least, at_most, namespace
+from clutchopt.start_up import equations as su
 
 DEGREE = 3
 MAX_INTERVALS = 128  # per phase, refining by doubling
@@ -482,7 +482,7 @@ class StartUpBlock:
 def initial_states(block: StartUpBlock, case, formulation, design: dict[str, float], scales: np.ndarray,
                    mesh: np.ndarray) -> np.ndarray:
     """The internal variables (scaled) of the start design's simulated start: a start point on the dynamics."""
-    from clutchopt.simulate.design import run_start_up
+    from clutchopt.start_up.simulation import run_start_up
 
     model = _dense(case, formulation, design, rtol=1e-6, end_time=3.0 * case.values["max_start_time"])
     result = run_start_up(model)
@@ -495,7 +495,7 @@ def _dense(case, formulation, design, rtol: float = 1e-11, end_time: float | Non
     stability-bound steps sample the motor's knee densely, and the adapted mesh is taken from the second
     derivatives of these samples (LSODA's few long steps give a poorer mesh, and at 64 intervals a start guess
     from which IPOPT finds no feasible point). ``end_time``: cut a start that does not finish there."""
-    from clutchopt.simulate.design import start_up_model
+    from clutchopt.start_up.simulation import start_up_model
     from clutchopt.simulate.engine import Model
 
     model = start_up_model(case, formulation.mode, design, rtol=rtol)
@@ -514,7 +514,7 @@ def start_up_report(block: StartUpBlock, case, formulation, design: dict[str, fl
     start-up constraints re-checked with the simulated figures: (summary in SI, constraint checks, the mesh the
     simulated start suggests for the next solve)."""
     from clutchopt.optimise.verify import check_constraints
-    from clutchopt.simulate.design import run_start_up
+    from clutchopt.start_up.simulation import run_start_up
 
     values, *columns = figures
     nlp = dict(zip(block.outputs(), np.array(values).ravel()))
