@@ -11,7 +11,8 @@ from pathlib import Path
 from clutchopt.cases import load_case
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.problem import SolverOptions, problem_for, solve_case
-from clutchopt.start_up.transcription import MESH_STEPS, Structure
+from clutchopt.start_up.drive import Structure
+from clutchopt.start_up.mesh import MESH_STEPS
 
 CASES = Path(__file__).resolve().parents[2] / "cases"
 

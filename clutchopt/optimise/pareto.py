@@ -19,7 +19,7 @@ from clutchopt.model import Formulation, Quantity, at_most
 from clutchopt.optimise.problem import Problem, Solution, SolverOptions, case_formulation, case_problem
 from clutchopt.optimise.sweep import column_name
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_objective
-from clutchopt.start_up.transcription import Structure
+from clutchopt.start_up.drive import Structure
 from clutchopt.store import CAPPED_SUFFIX
 from clutchopt.units import from_si
 

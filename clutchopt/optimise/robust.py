@@ -30,7 +30,7 @@ from clutchopt.formulations import get_coupling
 from clutchopt.model import Constraint, Formulation, Quantity, namespace
 from clutchopt.optimise.problem import Solution, SolverOptions, problem_for, solve_case
 from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, check_constraints, constraint_table
-from clutchopt.start_up.transcription import Structure
+from clutchopt.start_up.drive import Structure
 
 WORST_CASE = "worst-case"
 CHANCE = "chance"
