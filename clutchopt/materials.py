@@ -11,7 +11,7 @@ coupling declares the roles a case may fill from it (:class:`clutchopt.model.Mat
 Each role fills the case quantities it maps to, unless the case gives them itself (explicit values win); what
 the library filled is recorded in ``Case.library`` and reported by ``clutchopt solve``. ``options.choose`` lists
 alternatives, e.g. ``choose = {friction_pair = ["organic_dry", "sintered_bronze_oiled"]}``: every combination is
-a variant of the case (:func:`variants`), solved and ranked by ``clutchopt solve``.
+a variant of the case (:func:`variants`), solved and ranked by ``clutchopt solve`` (``clutchopt.optimise.choose``).
 """
 
 from __future__ import annotations
@@ -220,19 +220,6 @@ def rows(kind: str) -> list[dict]:
 def display(quantity: Quantity, value: float) -> float:
     """An SI value in the field's display unit (degC is an offset, not a factor, from kelvin)."""
     return value - 273.15 if quantity.unit == "degC" else from_si(value, quantity.unit)
-
-
-def solve_choices(case, mode: str | None = None, objective: str | None = None, options=None) -> list[tuple]:
-    """Solve every variant of ``options.choose``: [(choice, case, solution)], optimal ones first by objective,
-    then the others in the order listed. Without ``options.choose``: the case alone."""
-    from clutchopt.formulations import get_coupling
-    from clutchopt.optimise import SolverOptions, solve_case
-
-    options = options or SolverOptions()
-    solved = [(choice, variant, solve_case(variant, mode, objective, options))
-              for choice, variant in variants(case, get_coupling(case.coupling))]
-    return sorted(solved, key=lambda item: (item[2].status != "optimal",
-                                            item[2].objective if item[2].status == "optimal" else 0.0))
 
 
 def filled_by(case) -> dict[str, dict]:

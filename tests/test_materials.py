@@ -13,7 +13,8 @@ import pytest
 from clutchopt.cases import parse_case, read_toml
 from clutchopt.errors import InputError
 from clutchopt.formulations import MODULES, get_coupling
-from clutchopt.materials import FIELDS, library, solve_choices
+from clutchopt.materials import FIELDS, library
+from clutchopt.optimise.choose import solve_choices
 from clutchopt.template import case_template
 from clutchopt.units import ureg
 from tests.conftest import CASES, ROOT

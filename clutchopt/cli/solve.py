@@ -35,8 +35,8 @@ def add_command(commands) -> None:
 def run(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.cli.options import record_solve, recording, resolve_problem
-    from clutchopt.materials import solve_choices
     from clutchopt.optimise import SolverOptions
+    from clutchopt.optimise.choose import solve_choices
     from clutchopt.optimise.problem import case_formulation
     from clutchopt.output import choices_text, library_json, library_text, solution_text, to_json
 
