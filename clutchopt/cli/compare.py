@@ -34,4 +34,4 @@ def run(args) -> str:
     table = compare_case(case, SolverOptions(tol=args.tol))
     if args.json:
         return to_json({"case": case.path, "title": case.title, **table.as_dict()})
-    return "\n".join(filter(None, [first_choice_note(case), comparison_text(table)]))
+    return "\n".join(filter(None, [first_choice_note(case), comparison_text(table.as_dict())]))

@@ -28,7 +28,7 @@ class ComparisonTable:
         """Jupyter shows the comparison as the tables of ``clutchopt compare``."""
         from clutchopt.output import comparison_html
 
-        return comparison_html(self)
+        return comparison_html(self.as_dict())
 
     def as_dict(self) -> dict:
         return {
