@@ -31,10 +31,10 @@ from typing import Any
 from clutchopt import materials
 from clutchopt.errors import InputError, Problems, shown_value
 from clutchopt.files import CASE_BYTES, read_text, shown
-from clutchopt.formulations.start_up import QUANTITIES as START_UP_QUANTITIES
-from clutchopt.formulations.start_up import SPRING_PRELOAD, StartUpSpec
 from clutchopt.scatter import Scatter, parse_scatter
 from clutchopt.model import REQUIRED, Quantity, followed
+from clutchopt.start_up.equations import QUANTITIES as START_UP_QUANTITIES
+from clutchopt.start_up.equations import SPRING_PRELOAD, StartUpSpec
 from clutchopt.units import to_si
 
 _TOP_LEVEL = {"coupling", "title", "description"}
@@ -170,7 +170,7 @@ def parse_case(data: dict, path: str = "") -> Case:
 
     start_up, follows = None, {}
     if "start_up" in data and not problems:  # its defaults come from the duty's values, so those must be sound
-        from clutchopt.start_up_case import parse_start_up
+        from clutchopt.start_up.section import parse_start_up
 
         with problems.field():
             start_values, start_up, follows = parse_start_up(data["start_up"], coupling, values)

@@ -11,7 +11,7 @@ coupling declares the roles a case may fill from it (:class:`clutchopt.model.Mat
 Each role fills the case quantities it maps to, unless the case gives them itself (explicit values win); what
 the library filled is recorded in ``Case.library`` and reported by ``clutchopt solve``. ``options.choose`` lists
 alternatives, e.g. ``choose = {friction_pair = ["organic_dry", "sintered_bronze_oiled"]}``: every combination is
-a variant of the case (:func:`variants`), solved and ranked by ``clutchopt solve``.
+a variant of the case (:func:`variants`), designed and ranked by every design command (``clutchopt.optimise.design``).
 """
 
 from __future__ import annotations

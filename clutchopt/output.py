@@ -1,4 +1,9 @@
-"""One layout for every table: design, outputs, constraints with margins and sensitivities; JSON in SI."""
+"""One layout for every table: design, outputs, constraints with margins and sensitivities; JSON in SI.
+
+A solution (:class:`clutchopt.optimise.problem.Solution`) is read by its fields and a comparison is the plain data
+of ``ComparisonTable.as_dict()``: this module imports nothing of the optimiser, so that its results can show
+themselves (``_repr_html_``) without an import circle (docs/architecture.md).
+"""
 
 from __future__ import annotations
 
@@ -10,8 +15,6 @@ from clutchopt.units import from_si
 
 if TYPE_CHECKING:  # JSON needs neither pandas nor the solver: ``solve --json`` starts faster without them
     from clutchopt.model import Formulation
-    from clutchopt.optimise.compare import ComparisonTable
-    from clutchopt.optimise.problem import Solution
 
 
 _PLAIN = (str, int, bool, type(None))
@@ -83,18 +86,18 @@ def _frame(rows: list[dict]) -> str:
     return pd.DataFrame(rows).to_string(index=False) if rows else "(none)"
 
 
-def design_rows(solution: Solution, formulation: Formulation) -> list[dict]:
+def design_rows(solution, formulation: Formulation) -> list[dict]:
     return [{"variable": v.name, "symbol": v.symbol, "value": _shown(solution.design[v.name], v.unit), "unit": v.unit,
              "at bound": solution.at_bound(v.name) or "-", "description": v.description}
             for v in formulation.variables]
 
 
-def derived_rows(solution: Solution) -> list[dict]:
+def derived_rows(solution) -> list[dict]:
     return [{"quantity": name, "value": _shown(out.value, out.unit), "unit": out.unit, "description": out.description}
             for name, out in solution.outputs.items()]
 
 
-def constraint_rows(solution: Solution) -> list[dict]:
+def constraint_rows(solution) -> list[dict]:
     return [{"constraint": c.name, "eq.": c.equation, "value": _shown(c.value, c.unit), "sense": c.sense,
              "limit": _shown(c.limit, c.unit), "unit": c.unit, "margin": f"{c.margin:+.2e}",
              "active": "yes" if c.active else "no", "elasticity": _signed(c.elasticity)}
@@ -106,14 +109,14 @@ SENSITIVITIES_TITLE = ("Most sensitive parameters (elasticity = d ln objective /
                        "proportion)")
 
 
-def headline(solution: Solution, formulation: Formulation, title: str = "") -> list[str]:
+def headline(solution, formulation: Formulation, title: str = "") -> list[str]:
     lines = [f"{formulation.title}" + (f"  -  {title}" if title else ""),
              f"status: {solution.status}"
              f"   objective ({solution.objective_name}): {solution.objective:.6g} {solution.objective_unit}"]
     return lines + ([f"diagnosis: {solution.diagnosis}"] if solution.diagnosis else [])
 
 
-def solution_tables(solution: Solution, formulation: Formulation) -> list[tuple[str, list[dict], list[str]]]:
+def solution_tables(solution, formulation: Formulation) -> list[tuple[str, list[dict], list[str]]]:
     """The tables of a solution as (title, rows, notes below), in the order ``clutchopt solve`` prints them."""
     tables = [("Design", design_rows(solution, formulation), [])]
     if solution.outputs:
@@ -126,14 +129,14 @@ def solution_tables(solution: Solution, formulation: Formulation) -> list[tuple[
     return tables
 
 
-def solver_line(solution: Solution) -> str:
+def solver_line(solution) -> str:
     s = solution.solver
     iterations = "-" if s.iterations is None else s.iterations
     return (f"solver: {s.name}  status: {s.status}  iterations: {iterations}  solves: {s.solves}  "
             f"time: {s.time_s * 1e3:.1f} ms")
 
 
-def solution_text(solution: Solution, formulation: Formulation, title: str = "") -> str:
+def solution_text(solution, formulation: Formulation, title: str = "") -> str:
     lines = headline(solution, formulation, title)
     for table_title, rows, notes in solution_tables(solution, formulation):
         lines += ["", table_title, _frame(rows), *notes]
@@ -160,12 +163,12 @@ def html_table(rows: list[dict], numeric: tuple[str, ...] = ("value", "limit", "
     return f"<table><tr>{head}</tr>{body}</table>"
 
 
-def solution_html(solution: Solution) -> str:
+def solution_html(solution) -> str:
     """A solution as Jupyter shows it: the tables of ``clutchopt solve``, as HTML."""
     from html import escape
 
     from clutchopt.formulations import get_coupling
-    from clutchopt.formulations.start_up import with_start_up
+    from clutchopt.start_up.equations import with_start_up
 
     formulation = get_coupling(solution.coupling).formulation(solution.mode)
     if solution.start_up is not None:
@@ -250,7 +253,7 @@ def start_up_table(start_up: dict) -> tuple[str, list[dict], list[str]]:
     return head, rows, [] if start_up["locks_up"] else [f"simulated: {start_up['reason']}"]
 
 
-def sensitivity_rows(solution: Solution, formulation: Formulation, count: int = 8) -> list[dict]:
+def sensitivity_rows(solution, formulation: Formulation, count: int = 8) -> list[dict]:
     """The ``count`` largest elasticities, largest first, with the parameter's description."""
     described = {q.name: q.description for q in (*formulation.quantities, *formulation.variables)}
     ranked = sorted(solution.sensitivities.items(), key=lambda item: -abs(item[1]))[:count]
@@ -258,46 +261,52 @@ def sensitivity_rows(solution: Solution, formulation: Formulation, count: int = 
             for name, value in ranked if abs(value) >= 5e-5]
 
 
-def comparison_rows(table: ComparisonTable) -> tuple[list[dict], list[dict]]:
+def comparison_rows(comparison: dict) -> tuple[list[dict], list[dict]]:
     """The values of every column in each row's unit, and the relative differences against the baseline."""
     rows, rel = [], []
-    for row in table.rows:
+    for row in comparison["rows"]:
         rows.append({"quantity": row["quantity"], "unit": row["display_unit"],
-                     **{column: _shown(row[column], row["display_unit"]) for column in table.columns}})
+                     **{column: _shown(row[column], row["display_unit"]) for column in comparison["columns"]}})
         entry = {"quantity": row["quantity"]}
-        for column in table.columns:
-            if column != table.baseline:
+        for column in comparison["columns"]:
+            if column != comparison["baseline"]:
                 value = row.get(f"rel_{column}")
                 entry[column] = "-" if value is None else ("0" if abs(value) < 5e-5 else f"{value:+.2%}")
         rel.append(entry)
     return rows, rel
 
 
-def comparison_titles(table: ComparisonTable) -> tuple[str, str]:
-    return (f"Comparison for the {table.coupling} coupling (values in the unit of each row)",
-            f"Relative difference against {table.baseline}")
+def comparison_titles(comparison: dict) -> tuple[str, str]:
+    return (f"Comparison for the {comparison['coupling']} coupling (values in the unit of each row)",
+            f"Relative difference against {comparison['baseline']}")
 
 
-def comparison_text(table: ComparisonTable) -> str:
-    rows, rel = comparison_rows(table)
-    title, rel_title = comparison_titles(table)
+def column_notes(comparison: dict) -> dict[str, str]:
+    """The notes of the columns shown."""
+    return {name: note for name, note in comparison["column_notes"].items() if name in comparison["columns"]}
+
+
+def comparison_text(comparison: dict) -> str:
+    """The comparison as ``clutchopt compare`` prints it, from ``ComparisonTable.as_dict()``."""
+    rows, rel = comparison_rows(comparison)
+    title, rel_title = comparison_titles(comparison)
     lines = [title, _frame(rows), "", rel_title, _frame(rel), "", "Columns:"]
-    lines += [f"  {name}: {note}" for name, note in table.notes.items() if name in table.columns]
-    for column, solution in table.solutions.items():
-        lines.append(f"  {column}: status {solution.status}, {solution.solver.iterations} iterations"
-                     + (f"; {solution.diagnosis}" if solution.diagnosis else ""))
+    lines += [f"  {name}: {note}" for name, note in column_notes(comparison).items()]
+    for column, solve in comparison["solves"].items():
+        lines.append(f"  {column}: status {solve['status']}, {solve['solver']['iterations']} iterations"
+                     + (f"; {solve['diagnosis']}" if solve["diagnosis"] else ""))
     return "\n".join(lines)
 
 
-def comparison_html(table: ComparisonTable) -> str:
+def comparison_html(comparison: dict) -> str:
     """The comparison as Jupyter shows it: the tables of ``clutchopt compare``, as HTML."""
     from html import escape
 
-    rows, rel = comparison_rows(table)
-    title, rel_title = comparison_titles(table)
-    numeric = tuple(table.columns)
-    notes = "".join(f"<li><b>{escape(name)}</b>: {escape(note)}</li>" for name, note in table.notes.items()
-                    if name in table.columns)
+    rows, rel = comparison_rows(comparison)
+    title, rel_title = comparison_titles(comparison)
+    numeric = tuple(comparison["columns"])
+    notes = "".join(f"<li><b>{escape(name)}</b>: {escape(note)}</li>"
+                    for name, note in column_notes(comparison).items())
     return (f"<div><h4>{escape(title)}</h4>{html_table(rows, numeric)}<h4>{escape(rel_title)}</h4>"
             f"{html_table(rel, numeric)}<ul>{notes}</ul></div>")
 

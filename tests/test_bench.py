@@ -91,8 +91,8 @@ def test_throughput(report):
     assert _rows(report, "throughput", "wedge")["batched"]["vs_wedge_paper"] == 1.0
 
 
-def test_startup_rows_are_ratios_to_the_bare_imports(report):
-    rows = {row["command"]: row for row in report["sections"]["startup"]["rows"]}
+def test_cli_launch_rows_are_ratios_to_the_bare_imports(report):
+    rows = {row["command"]: row for row in report["sections"]["cli_launch"]["rows"]}
     assert rows["python -c 'import casadi, numpy'"]["ratio_to_import"] == 1.0
     assert "clutchopt --help" in rows and "clutchopt solve cases/wedge_paper.toml --json" in rows
     assert all(row["median_s"] > 0 and row["runs"] >= 1 for row in rows.values())

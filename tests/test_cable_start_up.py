@@ -12,10 +12,10 @@ from clutchopt.cases import parse_case, read_toml
 from clutchopt.errors import InputError
 from clutchopt.formulations.cable.equations import cable_tension
 from clutchopt.formulations.cable.speed_law import cable_pretension, link_stiffness, link_tension, link_torque
-from clutchopt.formulations.start_up import kloss_torque
+from clutchopt.start_up.equations import kloss_torque
 from clutchopt.optimise import solve_case
 from clutchopt.optimise.compare import compare_case
-from clutchopt.simulate.design import run_start_up, start_up_model
+from clutchopt.start_up.simulation import run_start_up, start_up_model
 from tests.conftest import CASES
 
 # cases/cable_pump.toml by hand: span l = 80 mm, finger circle D = 160 mm (psi = 0.5), c_k = 15 kN/m, c_kn = 1.3e7

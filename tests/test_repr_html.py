@@ -73,7 +73,7 @@ def test_a_solution_shows_the_tables_of_solve(geometry):
 def test_the_comparison_shows_the_tables_of_compare():
     table = compare_case(load_case(CASES / "wedge_paper.toml"))
     tables = Tables(table._repr_html_()).tables
-    text = comparison_text(table)
+    text = comparison_text(table.as_dict())
     assert tables[0][0] == ["quantity", "unit", *table.columns]
     assert tables[0][1] == text_table(text, "Comparison for the wedge coupling (values in the unit of each row)")[1]
     assert tables[1][0] == ["quantity", *[c for c in table.columns if c != "closed_form"]]

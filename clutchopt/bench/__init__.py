@@ -17,10 +17,10 @@ from typing import Callable
 import pandas as pd
 
 from clutchopt.bench.accuracy import accuracy_rows
+from clutchopt.bench.cli_launch import cli_launch_rows
 from clutchopt.bench.resolve import resolve_rows
 from clutchopt.bench.scaleout import scaleout_rows
-from clutchopt.bench.start_up import start_up_rows
-from clutchopt.bench.startup import startup_rows
+from clutchopt.bench.start_up_designs import start_up_design_rows
 from clutchopt.bench.throughput import throughput_rows
 from clutchopt.bench.transient import effects_rows, stiffness_rows, tolerance_rows
 
@@ -47,8 +47,8 @@ class Section:
 
 
 SECTIONS: tuple[Section, ...] = (
-    Section("startup", "Start-up: whole command-line runs as new processes (median wall time), against python -c "
-                       "'import casadi, numpy'", startup_rows),
+    Section("cli_launch", "Command-line launch: whole command-line runs as new processes (median wall time), "
+                          "against python -c 'import casadi, numpy'", cli_launch_rows),
     Section("accuracy", "Accuracy vs time (one case per coupling, every mode; rel_error against IPOPT tol 1e-10; "
                         "violation re-evaluated in float64, relative; times in ms)", accuracy_rows),
     Section("throughput", "Throughput: one built problem re-solved over a sweep, warm-started unless said (batched: "
@@ -71,7 +71,7 @@ SECTIONS: tuple[Section, ...] = (
     Section("start_up_accuracy", "Start-up inside the NLP: start time against the simulator per collocation "
                                  "intervals (per phase) and mesh; the default adapts, then doubles, to the case's "
                                  "tolerance; one run each, in ms, with the problem's build (first row of an "
-                                 "interval count) and the re-simulation", start_up_rows),
+                                 "interval count) and the re-simulation", start_up_design_rows),
 )
 
 

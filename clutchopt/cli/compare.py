@@ -45,4 +45,4 @@ def run(args) -> str:
     table = compare_case(case, SolverOptions(tol=args.tol), robust)
     if args.json:
         return to_json({"case": case.path, "title": case.title, **({"note": note} if note else {}), **table.as_dict()})
-    return "\n".join(filter(None, [note, comparison_text(table)]))
+    return "\n".join(filter(None, [note, comparison_text(table.as_dict())]))

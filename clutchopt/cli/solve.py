@@ -68,7 +68,7 @@ def run(args) -> str:
     if best.case.filled:
         parts.append(library_text(best.case))
     if check:
-        from clutchopt.simulate.design import verify_text
+        from clutchopt.start_up.simulation import verify_text
 
         parts.append(verify_text(check))
     return "\n\n".join(parts)

@@ -28,7 +28,7 @@ class ComparisonTable:
         """Jupyter shows the comparison as the tables of ``clutchopt compare``."""
         from clutchopt.output import comparison_html
 
-        return comparison_html(self)
+        return comparison_html(self.as_dict())
 
     def as_dict(self) -> dict:
         return {
@@ -157,7 +157,7 @@ def _scatter_columns(case: Case, coupling, spec, options: SolverOptions, robust=
 def _start_up_columns(case: Case, coupling, spec, options: SolverOptions) -> dict:
     """The case's mode and objective optimised without and with the start-up; both designs started on the case's
     drive by the simulator."""
-    from clutchopt.simulate.design import run_start_up, start_up_model
+    from clutchopt.start_up.simulation import run_start_up, start_up_model
 
     mode = case.options.get("mode") or coupling.default_mode
     objective = case.options.get("objective", "mass")

@@ -10,7 +10,7 @@ import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.errors import InputError, Problems
-from clutchopt.start_up_case import DEFAULTS_FROM_DUTY
+from clutchopt.start_up.section import DEFAULTS_FROM_DUTY
 
 
 @functools.lru_cache(maxsize=64)  # built problems are kept (problem_for): each is looked at once

@@ -20,9 +20,9 @@ from clutchopt.model import Formulation, Quantity, at_most
 from clutchopt.optimise.design import Robustness, check_robustness
 from clutchopt.optimise.problem import Solution, SolverOptions, case_formulation, problem_for
 from clutchopt.optimise.robust import RobustResult, solve_robust
-from clutchopt.optimise.start_up import Structure
 from clutchopt.optimise.sweep import column_name
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_objective
+from clutchopt.start_up.drive import Structure
 from clutchopt.units import from_si
 
 CAP = "cost_cap"

@@ -43,20 +43,14 @@ import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.backend import fmax
-from clutchopt.formulations.start_up import with_start_up
+from clutchopt.start_up.equations import with_start_up
 from clutchopt.model import Formulation, Output, namespace
 from clutchopt.optimise.compiled import compiled_solver
 from clutchopt.optimise.in_place import InPlace
-from clutchopt.optimise.start_up import (
-    BACK_OFF_STEPS,
-    MAX_INTERVALS,
-    MESH_STEPS,
-    StartUpBlock,
-    Structure,
-    initial_states,
-    start_up_report,
-    tightened_limits,
-)
+from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, start_up_report, tightened_limits
+from clutchopt.start_up.drive import Structure
+from clutchopt.start_up.mesh import MAX_INTERVALS, MESH_STEPS
+from clutchopt.start_up.transcription import StartUpBlock, initial_states
 from clutchopt.units import si_unit
 from clutchopt.optimise.verify import (
     FEASIBILITY_TOL,

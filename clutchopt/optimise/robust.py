@@ -29,8 +29,8 @@ from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Constraint, Formulation, Quantity, followed, namespace
 from clutchopt.optimise.problem import Solution, SolverOptions, problem_for, solve_case
-from clutchopt.optimise.start_up import Structure
 from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, check_constraints, constraint_table
+from clutchopt.start_up.drive import Structure
 
 WORST_CASE = "worst-case"
 CHANCE = "chance"
@@ -268,7 +268,7 @@ def _derived(kind: str, base: Formulation, case: Case, names: tuple[str, ...]) -
 def start_up_corner(case: Case, mode: str, design: dict, scatter) -> dict[str, float]:
     """The corner a start-up is designed at: each scattered quantity at the end of its range where the simulated
     start, the others nominal, takes longer (no lock-up counts as longest)."""
-    from clutchopt.simulate.design import run_start_up, start_up_model
+    from clutchopt.start_up.simulation import run_start_up, start_up_model
 
     corner = {}
     for s in scatter:
@@ -281,7 +281,7 @@ def start_up_corner(case: Case, mode: str, design: dict, scatter) -> dict[str, f
 def start_up_checks(case: Case, mode: str, design: dict, scatter, corner: dict) -> list[ConstraintCheck]:
     """The start-up's limits checked by simulation at every corner of the ranges (up to 16 corners; with more, at
     the start-up's corner), each at its worst."""
-    from clutchopt.simulate.design import run_start_up, start_up_model
+    from clutchopt.start_up.simulation import run_start_up, start_up_model
 
     table = corner_table(scatter) if len(scatter) <= 4 else {q: np.array([v]) for q, v in corner.items()}
     heads = [run_start_up(start_up_model(case.with_values(**{q: float(v[i]) for q, v in table.items()}),

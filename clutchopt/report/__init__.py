@@ -19,6 +19,7 @@ from clutchopt.formulations import get_coupling
 from clutchopt.optimise.problem import Solution, case_formulation
 from clutchopt.output import (
     _shown,
+    column_notes,
     comparison_rows,
     constraint_rows,
     derived_rows,
@@ -109,11 +110,10 @@ def comparison(case: Case) -> str:
 
     if get_coupling(case.coupling).comparison is None:
         return '<p class="note">This coupling has no comparison with a paper method.</p>'
-    table = compare_case(case)
-    rows, _ = comparison_rows(table)
-    notes = "".join(f"<li><b>{escape(name)}</b>: {escape(note)}</li>" for name, note in table.notes.items()
-                    if name in table.columns)
-    return _table(rows, tuple(table.columns)) + f'<ul class="note">{notes}</ul>'
+    data = compare_case(case).as_dict()
+    rows, _ = comparison_rows(data)
+    notes = "".join(f"<li><b>{escape(name)}</b>: {escape(note)}</li>" for name, note in column_notes(data).items())
+    return _table(rows, tuple(data["columns"])) + f'<ul class="note">{notes}</ul>'
 
 
 def simulation(case: Case, solution: Solution) -> str:

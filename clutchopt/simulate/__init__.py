@@ -9,10 +9,10 @@ Names are imported on first use, so that ``clutchopt`` commands which do not sim
 from importlib import import_module
 
 _NAMES = {
-    "load_scene": "scene", "Scene": "scene", "run_scene": "scene",
-    "simulate": "engine", "Model": "engine", "SimulationResult": "engine",
-    "report_figure": "design", "verify": "design",
-    "paper_start_up": "paper",
+    "load_scene": "simulate.scene", "Scene": "simulate.scene", "run_scene": "simulate.scene",
+    "simulate": "simulate.engine", "Model": "simulate.engine", "SimulationResult": "simulate.engine",
+    "report_figure": "start_up.simulation", "verify": "start_up.simulation",
+    "paper_start_up": "simulate.paper",
 }
 
 __all__ = sorted(_NAMES)
@@ -21,4 +21,4 @@ __all__ = sorted(_NAMES)
 def __getattr__(name: str):
     if name not in _NAMES:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    return getattr(import_module(f"clutchopt.simulate.{_NAMES[name]}"), name)
+    return getattr(import_module(f"clutchopt.{_NAMES[name]}"), name)

@@ -12,7 +12,7 @@
 from __future__ import annotations
 
 from clutchopt.formulations.duty import GRAVITY
-from clutchopt.formulations.start_up import heat_rate
+from clutchopt.start_up.equations import heat_rate
 
 
 def slip_friction(law, driver_speed: float, slip: float) -> float:

@@ -6,15 +6,16 @@ slip w_r = w_a - w (>= 0 during a start-up), and the static capacity at zero sli
 - ``PaperFriction``: k (1 + e^{a w_r}), Simionescu & Oproescu eq. (6);
 - ``CentrifugalFriction``: K (w_a^2 - w_e^2)^+, proportional to the net radial force of a weight (centrifugal less
   spring preload and, effect ``gravity``, its own weight): the weights ride on the driving half, so the torque
-  follows the driving speed, not the slip, and vanishes below the engagement speed; see ``clutchopt.simulate.design``.
+  follows the driving speed, not the slip, and vanishes below the engagement speed; see
+  ``clutchopt.start_up.simulation``.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from clutchopt.formulations.start_up import coupling_torque, kloss_torque, piecewise_linear
 from clutchopt.simulate.analytic import PaperTransient
+from clutchopt.start_up.equations import coupling_torque, kloss_torque, piecewise_linear
 
 
 class _Law:

@@ -34,7 +34,6 @@ from pathlib import Path
 
 from clutchopt.cases import check_text, read_toml
 from clutchopt.errors import InputError, Problems
-from clutchopt.formulations.start_up import RADIAL_EFFECTS
 from clutchopt.simulate.engine import (
     BREAKDOWN_SLIP,
     CONDUCTANCE,
@@ -51,7 +50,8 @@ from clutchopt.simulate.engine import (
     simulate,
 )
 from clutchopt.simulate.laws import ConstantFriction, InductionMotor, Load, PaperFriction
-from clutchopt.start_up_case import parse_effects, parse_load_profile
+from clutchopt.start_up.equations import RADIAL_EFFECTS
+from clutchopt.start_up.section import parse_effects, parse_load_profile
 from clutchopt.units import to_si
 
 LAWS = ("paper", "constant", "centrifugal")
@@ -190,7 +190,7 @@ def _case(f: _Fields, effects: tuple[str, ...]):
     """The centrifugal coupling's case (checked; its problems named inside ``coupling.case``), or None."""
     from clutchopt.cases import load_case
     from clutchopt.formulations import get_coupling
-    from clutchopt.simulate.design import speed_law_missing
+    from clutchopt.start_up.simulation import speed_law_missing
 
     if "case" not in f.table("coupling"):
         f.problems.errors.append(InputError("coupling.case", "missing: a centrifugal law needs the coupling's "
@@ -218,7 +218,7 @@ def _case(f: _Fields, effects: tuple[str, ...]):
 
 
 def _centrifugal(f: _Fields, case, effects, preload: float):
-    from clutchopt.simulate.design import centrifugal_law, design_from_json
+    from clutchopt.start_up.simulation import centrifugal_law, design_from_json
 
     table = f.table("coupling")
     source = {"law": "centrifugal", "coupling": case.coupling, "case": table["case"]}

@@ -33,7 +33,7 @@ def _wall(args: tuple[str, ...], env: dict) -> float:
     return time.perf_counter() - started
 
 
-def startup_rows(config) -> list[dict]:
+def cli_launch_rows(config) -> list[dict]:
     runs = max(1, config.repeats // 2)
     warm_up = 1 if runs > 1 else 0  # a first round warms the file cache and is not counted (not in --quick)
     with tempfile.TemporaryDirectory() as scratch:

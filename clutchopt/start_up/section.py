@@ -31,7 +31,8 @@ Layout (quantities with units; bare numbers are SI; the vocabulary of start-up s
 from __future__ import annotations
 
 from clutchopt.errors import InputError
-from clutchopt.formulations.start_up import (
+from clutchopt.model import REQUIRED, ElasticLaw, followed
+from clutchopt.start_up.equations import (
     EFFECTS,
     LIMITS,
     LOCK_UP_SHARE,
@@ -40,7 +41,6 @@ from clutchopt.formulations.start_up import (
     LoadProfile,
     StartUpSpec,
 )
-from clutchopt.model import REQUIRED, ElasticLaw, followed
 from clutchopt.units import to_si
 
 SECTION = "start_up"

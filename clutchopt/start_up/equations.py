@@ -4,8 +4,8 @@ Every sizing method of the papers assumes a constant driving speed and a constan
 (T_max = I_n w_a / t_p + T_c, wedge eqs. 5, 17). A case with a ``[start_up]`` section describes the drive instead:
 the effects to model (the vocabulary of start-up scenes, ``clutchopt.simulate``), an induction motor or a constant
 driving speed, return-spring preload, the weights' own weight, the driven machine's load, the heat capacity of the
-friction parts, and the limits the start-up must meet. The same equations serve the NLP (``clutchopt.optimise.
-start_up``, collocation) and the simulator (``clutchopt.simulate``, solve_ivp), through ``clutchopt.backend``.
+friction parts, and the limits the start-up must meet. The same equations serve the NLP (``clutchopt.start_up.
+transcription``, collocation) and the simulator (``clutchopt.simulate``, solve_ivp), through ``clutchopt.backend``.
 
 The torque of a centrifugal coupling follows its *driving* speed w_a, since the weights ride on the driving half:
 T = K (w_a^2 - w_e^2) once engaged, K = dT/d(w_a^2) of the coupling's own torque equation (a

@@ -11,7 +11,8 @@ from pathlib import Path
 from clutchopt.cases import load_case
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.problem import SolverOptions, problem_for, solve_case
-from clutchopt.optimise.start_up import MESH_STEPS, Structure
+from clutchopt.start_up.drive import Structure
+from clutchopt.start_up.mesh import MESH_STEPS
 
 CASES = Path(__file__).resolve().parents[2] / "cases"
 
@@ -24,7 +25,7 @@ def _row(case, label: str, intervals, mesh: str, solution, seconds: float) -> di
             "solves": solution.solver.solves, "time_s": seconds}
 
 
-def start_up_rows(config) -> list[dict]:
+def start_up_design_rows(config) -> list[dict]:
     """One row per case, interval count (``config.start_up_intervals``) and mesh (first, then each adaptation),
     and the default solve; the time of a solve includes its re-simulation. The error is the NLP's start time
     against the simulated one."""

@@ -1,0 +1,97 @@
+"""The NLP's start-up checked by the independent simulator, and the limits of the next solve where the simulated
+start misses the case's (docs/start_up.md).
+"""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+
+from clutchopt.model import namespace
+from clutchopt.optimise.verify import check_constraints
+from clutchopt.start_up.drive import Drive, named_constraints
+from clutchopt.start_up.mesh import adapted_mesh
+
+BACK_OFF_STEPS = 4  # defect corrections of limits the simulated start misses
+LIMIT_OF = {"start_time": "max_start_time", "friction_work": "max_friction_work",
+            "temperature_rise": "max_temperature_rise", "heat_per_hour": "heat_dissipation",
+            "link_stress": "max_link_stress"}
+UNITS = {"start_time": "s", "friction_work": "J", "temperature_rise": "K", "engagement_speed": "rad/s",
+         "lock_up_speed": "rad/s", "engagement_time": "s", "lock_up_time": "s", "peak_link_stress": "Pa",
+         "peak_twist": "rad"}
+
+
+def start_up_report(block, case, formulation, design: dict[str, float], params, figures):
+    """The NLP's start beside the independent simulator's (solve_ivp with events, float64) at the design, and the
+    start-up constraints re-checked with the simulated figures: (summary in SI, constraint checks, the mesh the
+    simulated start suggests for the next solve)."""
+    from clutchopt.start_up.simulation import dense_model, run_start_up
+
+    values, *columns = figures
+    nlp = dict(zip(block.outputs(), np.array(values).ravel()))
+    trajectory = {name: np.array(column).ravel() for name, column in zip(block.trajectory(), columns)}
+    result = run_start_up(dense_model(case, formulation, design))
+    head = result.headline
+    s = block.s
+    stresses = result.history["stress"].to_numpy() if s.elastic else 0.0
+    simulated = SimpleNamespace(start_time=head["start_time"], friction_work=head["friction_work"],
+                                temperatures=head.get("temperature_rise", 0.0), lock_up_speed=head["lock_up_speed"],
+                                stresses=stresses if head["locks_up"] else math.inf)
+    drive = Drive(s, formulation.speed_law, namespace(design), params)
+    checks = check_constraints(named_constraints(s, drive, simulated), s.spec.tolerance)
+    engaged = float(nlp.get("run_up_time", 0.0))
+    summary = {
+        "start_time": float(nlp["start_time"]),
+        "start_time_simulated": head["start_time"],
+        "friction_work": float(nlp["friction_work"]),
+        "friction_work_simulated": head["friction_work"],
+        "temperature_rise": float(trajectory["temperature_rise"].max()) if s.heat else None,
+        "temperature_rise_simulated": head.get("temperature_rise"),
+        "engagement_speed": float(nlp["engagement_speed"]),
+        "engagement_time": engaged,
+        "lock_up_time": float(nlp["start_time"]) - engaged,
+        "lock_up_speed": float(nlp["lock_up_speed"]),
+        "lock_up_speed_simulated": head["lock_up_speed"],
+        "intervals": s.intervals,
+        "phases": list(s.phases),
+        "effects": list(s.spec.effects),
+        "tolerance": s.spec.tolerance,
+        "locks_up": head["locks_up"],
+        "reason": head["reason"],
+        "discretisation_error": {name: _relative(float(nlp[name]), head[name])
+                                 for name in ("start_time", "friction_work", "lock_up_speed")},
+        "units": UNITS,
+        "trajectory": {name: column.tolist() for name, column in trajectory.items()},
+    }
+    if s.elastic:  # the link's stress and twist: the NLP's quasi-static link beside the simulated dynamic one
+        nodes = zip(trajectory["w_driver"], trajectory["twist"])
+        summary.update(peak_link_stress=max(float(drive.link_stress(w, theta)) for w, theta in nodes),
+                       peak_link_stress_simulated=head["peak_stress"], peak_twist=float(trajectory["twist"].max()),
+                       peak_twist_simulated=head["peak_twist"])
+    times = [float(nlp[f"{phase}_time"]) for phase in s.phases]
+    return summary, checks, adapted_mesh(s, result.history, times)
+
+
+def _relative(nlp: float, simulated: float) -> float:
+    """(NLP - simulated) / |simulated|: the collocation's error against the simulator (its own error ~1e-10)."""
+    if not math.isfinite(simulated) or simulated == 0:
+        return math.nan
+    return (nlp - simulated) / abs(simulated)
+
+
+def tightened_limits(solution, nlp_case) -> dict[str, float]:
+    """Limits for the next solve where the simulated start misses the case's limit: each moved in from the one the
+    NLP last saw by what the simulation exceeds the case's limit, and half the tolerance more."""
+    summary, tolerance = solution.start_up, solution.start_up["tolerance"]
+    limits = {}
+    for check in solution.constraints:
+        name = LIMIT_OF.get(check.name)
+        if name is None or check.feasible or check.sense != "<=" or not math.isfinite(check.value):
+            continue
+        excess = check.value - check.limit
+        limits[name] = nlp_case.values[name] - excess - 0.5 * tolerance * abs(check.limit)
+        if not limits[name] > 0 or summary["locks_up"] is False:
+            return {}
+    return limits

@@ -1,0 +1,180 @@
+"""The drive of a start at a design: the shape of its NLP (:class:`Structure`), its equations at the design's values
+(:class:`Drive`, CasADi symbols or floats) and its requirements as named constraints, for the NLP's figures or the
+simulator's (docs/start_up.md).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import casadi as ca
+import numpy as np
+
+from clutchopt.backend import sqrt
+from clutchopt.model import Constraint, ElasticLaw, SpeedLaw, at_least, at_most
+from clutchopt.start_up import equations as su
+from clutchopt.start_up.mesh import GRADED_PARTS
+
+LOCKED_SAMPLES = 8  # speeds from lock-up to synchronous at which a locked drive must stay locked (lockup)
+
+
+@dataclass(frozen=True)
+class Structure:
+    """What fixes the shape of a start-up NLP (part of the problem cache key)."""
+
+    spec: su.StartUpSpec
+    load_at_rest: bool  # the driven machine needs torque to break away: a breakaway phase (motor_curve)
+    intervals: int
+    graded_part: float = GRADED_PARTS[0]  # of the slip phase, where the motor runs up to meet the coupling
+    elastic: bool = False  # an elastic link (the cable coupling): one locked phase, the link quasi-static
+
+    @classmethod
+    def of(cls, case, intervals: int | None = None) -> "Structure":
+        """The structure of a case: the motor's knee time J_m w_s / T_k (its run-up at breakdown torque), 20 times
+        over, rounded up to one of GRADED_PARTS of the start time, sets the graded part of the slip phase."""
+        spec, v = case.start_up, case.values
+        rest = spec.load_profile.at(0.0, 0.0) if spec.load_profile else v["load_torque"]
+        graded = GRADED_PARTS[0]
+        if spec.has("motor_curve"):
+            knee = 20.0 * v["motor_inertia"] * v["synchronous_speed"] / v["breakdown_torque"] / v["max_start_time"]
+            graded = next((part for part in GRADED_PARTS if part >= knee), GRADED_PARTS[-1])
+        from clutchopt.formulations import get_coupling
+
+        elastic = isinstance(get_coupling(case.coupling).formulation().speed_law, ElasticLaw)
+        return cls(spec, spec.has("motor_curve") and rest > 0 and not elastic, intervals or spec.intervals, graded,
+                   elastic)
+
+    @property
+    def motor(self) -> bool:
+        return self.spec.has("motor_curve")
+
+    @property
+    def radial(self) -> bool:
+        return any(self.spec.has(e) for e in su.RADIAL_EFFECTS)
+
+    @property
+    def heat(self) -> bool:
+        return self.spec.has("friction_heat")
+
+    @property
+    def phases(self) -> tuple[str, ...]:
+        if self.elastic:
+            return ("locked",)
+        names = ("run_up",) if self.motor and self.radial else ()
+        return names + (("breakaway",) if self.load_at_rest else ()) + ("slip",)
+
+
+class Drive:
+    """The drive's equations at given design and case values (CasADi symbols or floats)."""
+
+    def __init__(self, structure: Structure, law: SpeedLaw | ElasticLaw, x, p):
+        self.s, self.p, self.law, self.x = structure, p, law, x
+        spec = structure.spec
+        self.coefficient = None if structure.elastic else law.torque_coefficient(x, p)
+        if structure.radial:
+            force = su.radial_reduction(spec.effects, x.spring_preload, law.weight_mass(x, p))
+            self.engagement_squared = su.engagement_speed_squared(force, law.mass_radius(x, p))
+        else:
+            self.engagement_squared = 0.0
+        self.speed_ref = p.synchronous_speed if structure.motor else p.speed
+        self.time_ref = p.max_start_time
+        self.energy_ref = p.driven_inertia * self.speed_ref**2
+        self.torque_ref = p.driven_inertia * self.speed_ref / p.max_start_time + p.load_torque
+        self.temperature_ref = self.energy_ref / p.heat_capacity if structure.heat else 1.0
+        self.twist_ref = law.largest_twist(x, p) / 2.0 if structure.elastic else 1.0
+
+    def link(self, speed, twist):
+        """An elastic link's torque at the driving speed and twist."""
+        return self.law.torque(self.x, self.p, speed, twist)
+
+    def link_stress(self, speed, twist):
+        return self.law.stress(self.x, self.p, speed, twist)
+
+    def torque(self, driving_speed):
+        return su.coupling_torque(self.coefficient, driving_speed, self.engagement_squared)
+
+    def motor(self, speed):
+        p = self.p
+        return su.kloss_torque(speed, p.synchronous_speed, p.breakdown_torque, p.breakdown_slip)
+
+    def load(self, driven_speed, time):
+        profile = self.s.spec.load_profile
+        return profile.at(driven_speed, time) if profile else self.p.load_torque
+
+    def carried(self, speed, time):
+        """Torque the coupling must carry at lock-up and after: the locked drive's share of the load."""
+        if not self.s.motor:
+            return self.load(speed, time)
+        return su.carried_torque(self.motor(speed), self.load(speed, time), self.p.driven_inertia,
+                                 self.p.motor_inertia)
+
+    def heat_rate(self, power, temperature):
+        return su.heat_rate(power, temperature, self.p.heat_capacity, self.p.heat_conductance)
+
+
+def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
+    """The start-up's requirements as named constraints, of the figures ``q`` (start_time, friction_work,
+    temperatures, lock_up_speed, lock_up_time): NLP expressions, or the simulator's figures for the float64 check."""
+    p, limits = drive.p, s.spec.limits
+    if s.elastic:
+        return _elastic_constraints(s, drive, q)
+    engagement = sqrt(drive.engagement_squared)
+    out = [at_most("start_time", q.start_time, p.max_start_time, equation="start-up", unit="s",
+                   description="switch-on to lock-up within max_start_time")]
+    if "max_friction_work" in limits:
+        out.append(at_most("friction_work", q.friction_work, p.max_friction_work, equation="start-up", unit="kJ",
+                           description="heat released by slip in one start"))
+    if "max_temperature_rise" in limits:
+        out.append(at_most("temperature_rise", q.temperatures, p.max_temperature_rise, equation="C dT/dt = P - G T",
+                           unit="K", description="temperature rise of the friction parts, all along the start"))
+    if "min_engagement_speed" in limits:
+        out.append(at_least("min_engagement_speed", engagement, p.min_engagement_speed, equation="w_e",
+                            unit="rpm", description="the motor runs up unloaded to at least this speed"))
+    if "max_engagement_speed" in limits:
+        out.append(at_most("max_engagement_speed", engagement, p.max_engagement_speed, equation="w_e", unit="rpm",
+                           description="the weights engage by this driving speed"))
+    if "starts_per_hour" in limits:
+        out.append(at_most("heat_per_hour", p.starts_per_hour * q.friction_work, p.heat_dissipation,
+                           equation="heat balance", unit="W", description="mean friction heat within what the "
+                                                                          "housing sheds"))
+    if "min_lock_up_speed" in limits:
+        out.append(at_least("lock_up_speed", q.lock_up_speed, p.min_lock_up_speed, equation="start-up", unit="rpm",
+                            description="the machine is nearly up to speed when the coupling locks"))
+    if s.motor:
+        out.append(at_least("motor_breakdown_torque", p.breakdown_torque, p.load_torque, equation="Kloss",
+                            unit="N*m", description="the motor's breakdown torque exceeds the largest load"))
+    lock_speed = q.lock_up_speed
+    out.append(at_least("lock_up", drive.torque(lock_speed), drive.carried(lock_speed, q.start_time),
+                        equation="slip falls to 0", unit="N*m",
+                        description="at lock-up the coupling covers the torque of the locked drive"))
+    if s.motor and s.spec.has("lockup"):
+        fractions = np.arange(1, LOCKED_SAMPLES + 1) / LOCKED_SAMPLES
+        speeds = lock_speed + (p.synchronous_speed - lock_speed) * fractions
+        if isinstance(lock_speed, ca.SX):
+            speeds = ca.vertcat(*[lock_speed + (p.synchronous_speed - lock_speed) * f for f in fractions])
+        out.append(at_least("stays_locked", drive.torque(speeds) - drive.carried(speeds, q.start_time), 0.0,
+                            equation="lockup", unit="N*m", scale=drive.torque_ref,
+                            description="torque margin over the locked run-up to synchronous speed"))
+    return out
+
+
+def _elastic_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
+    """An elastic link's start: its time to the start speed, the stress of the link all along it (``q.stresses``),
+    the damping's heat if limited, and a motor that can start the machine at all."""
+    p, limits = drive.p, s.spec.limits
+    out = [at_most("start_time", q.start_time, p.max_start_time, equation="start-up", unit="s",
+                   description="switch-on until the machine runs at the start speed (min_lock_up_speed)"),
+           at_most("link_stress", q.stresses, p.max_link_stress, equation="(18), start-up", unit="MPa",
+                   description="stress of the link all along the start")]
+    if "max_friction_work" in limits:
+        out.append(at_most("friction_work", q.friction_work, p.max_friction_work, equation="start-up", unit="kJ",
+                           description="energy the link's damping takes in one start"))
+    if "starts_per_hour" in limits:
+        out.append(at_most("heat_per_hour", p.starts_per_hour * q.friction_work, p.heat_dissipation,
+                           equation="heat balance", unit="W", description="mean heat within what the housing sheds"))
+    out.append(at_least("motor_breakdown_torque", p.breakdown_torque, p.load_torque, equation="Kloss", unit="N*m",
+                        description="the motor's breakdown torque exceeds the largest load"))
+    out.append(at_least("motor_starting_torque", drive.motor(0.0), drive.load(0.0, 0.0), equation="Kloss",
+                        unit="N*m", scale=p.breakdown_torque,
+                        description="the motor's torque at rest exceeds the load at rest"))
+    return out

@@ -1,0 +1,67 @@
+"""The mesh of a start-up's collocation: interval lengths per phase, first graded where the motor runs up, then
+adapted to the simulated start; the intervals are doubled where adapting no longer pays (docs/start_up.md).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+MAX_INTERVALS = 128  # per phase, refining by doubling
+MESH_STEPS = 3  # adaptations of the mesh to the simulated start before the intervals are doubled
+MONITOR_FLOOR = 0.2  # of the mean error monitor, added everywhere: no interval grows without bound
+GRADED_PARTS = (0.05, 0.1, 0.2, 0.4)  # share of the slip phase graded: the motor's knee times 20, rounded up
+
+
+def graded_mesh(intervals: int, graded_part: float = 0.05, first: float = 1e-4) -> np.ndarray:
+    """Interval lengths (fractions of a phase, summing to 1): half the intervals grow geometrically from ``first``
+    over the first ``graded_part`` of the phase, the rest are uniform. The motor's run-up to the speed where its
+    torque meets the coupling's (a knee over a small part of the start) lies in the graded part."""
+    graded = intervals // 2
+    if graded < 2:
+        return np.full(intervals, 1.0 / intervals)
+    from scipy.optimize import brentq  # scipy.optimize costs 0.3 s to import: only problems with a start-up pay it
+
+    largest = (graded_part / first) ** (1.0 / (graded - 1))  # the last term alone reaches the graded part
+    ratio = brentq(lambda r: first * (r**graded - 1.0) / (r - 1.0) - graded_part, 1.0 + 1e-12, largest)
+    lengths = first * ratio ** np.arange(graded)
+    uniform = np.full(intervals - graded, (1.0 - graded_part) / (intervals - graded))
+    return np.concatenate([lengths / lengths.sum() * graded_part, uniform])
+
+
+def first_mesh(structure, phase: str) -> np.ndarray:
+    """Interval lengths of a phase as fractions of its duration before any adaptation: graded where the motor
+    runs up through the slip phase's start, uniform elsewhere."""
+    if phase == "slip" and structure.motor:
+        return graded_mesh(structure.intervals, structure.graded_part)
+    return np.full(structure.intervals, 1.0 / structure.intervals)
+
+
+def adapted_mesh(structure, history, phase_times: list[float]) -> np.ndarray:
+    """A mesh for the next solve from the simulated start, over the NLP's phase timing: each phase's intervals
+    equidistribute sqrt|x''| of the states (each scaled by its range and the phase duration), the error
+    monitor of a corner (the motor's knee), with a fifth of its mean added everywhere."""
+    t_all = history["t"].to_numpy()
+    columns = [history[name].to_numpy() for name in ("w_driver", "w_driven", "friction_work", "temperature_rise")]
+    meshes, begin = [], 0.0
+    for phase, end in zip(structure.phases, np.cumsum(phase_times)):
+        inside = (t_all >= begin) & (t_all <= end)
+        t, first = np.unique(t_all[inside], return_index=True)
+        if not end > begin or len(t) < 5:
+            meshes.append(first_mesh(structure, phase))
+            begin = end
+            continue
+        span = end - begin
+        monitor = np.zeros(len(t))
+        for column in columns:
+            values = column[inside][first]
+            spread = values.max() - values.min()
+            if spread > 0:
+                monitor += np.abs(np.gradient(np.gradient(values, t), t)) * span * span / spread
+        monitor = np.sqrt(monitor)
+        monitor = MONITOR_FLOOR * monitor.mean() + monitor if monitor.mean() > 0 else np.ones_like(monitor)
+        weight = np.concatenate([[0.0], np.cumsum(0.5 * (monitor[1:] + monitor[:-1]) * np.diff(t))])
+        edges = np.interp(np.linspace(0.0, weight[-1], structure.intervals + 1), weight, (t - begin) / span)
+        edges[0], edges[-1] = 0.0, 1.0
+        meshes.append(np.diff(edges))
+        begin = end
+    return np.concatenate(meshes)

@@ -1,0 +1,266 @@
+"""The start-up inside the NLP: a centrifugal coupling's start on its drive, transcribed by Radau collocation.
+
+A start from rest has up to three phases, each with its own free duration (docs/start_up.md):
+- ``run_up``: the motor runs up unloaded until its speed reaches the engagement speed w_e (motor_curve with spring
+  preload or gravity): J_m dw_a/dt = T_m(w_a);
+- ``breakaway``: the weights press, but the coupling's torque is still below the load at rest, so the driven
+  machine stands while the coupling slips (motor_curve with a load at rest): J_m dw_a/dt = T_m - T;
+- ``slip``: both halves turn until the slip s = w_a - w falls to zero (lock-up): J dw/dt = T - T_c(w, t),
+  J_m dw_a/dt = T_m - T (constant w_a without motor_curve).
+Friction work L (dL/dt = T s) and, with friction_heat, the temperature rise (C dT/dt = T s - G T) are states too.
+Each phase has ``intervals`` intervals of Radau IIA collocation of degree 3 (order 5 at the interval ends,
+L-stable, so the motor's fast electrical-mechanical mode costs nothing); the phase ends are equalities (w_a = w_e,
+T(w_a) = T_c at rest, s = 0) and the lock-up is the first zero of a falling slip (T >= the torque the locked
+drive needs). Start time, friction work, temperature rise and engagement speed are then NLP expressions with exact
+derivatives and become named constraints. Every optimum is started again by the independent simulator
+(``clutchopt.simulate``, solve_ivp with events): the simulated figures are the constraint values reported.
+"""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import casadi as ca
+import numpy as np
+
+from clutchopt.model import SpeedLaw
+from clutchopt.start_up.drive import Drive, Structure, named_constraints
+from clutchopt.start_up.mesh import first_mesh
+
+DEGREE = 3
+
+
+def _collocation(degree: int):
+    """Radau points tau_0 = 0 < tau_1 .. tau_d = 1 and C[r, j] = l_r'(tau_j) of the Lagrange basis."""
+    tau = np.append(0.0, ca.collocation_points(degree, "radau"))
+    c = np.zeros((degree + 1, degree + 1))
+    for r in range(degree + 1):
+        basis = np.poly1d([1.0])
+        for q in range(degree + 1):
+            if q != r:
+                basis *= np.poly1d([1.0, -tau[q]]) / (tau[r] - tau[q])
+        derivative = np.polyder(basis)
+        c[r] = [derivative(t) for t in tau]
+    return tau, c
+
+
+class StartUpBlock:
+    """One start-up transcribed for one problem: internal variables (scaled), equalities, named constraints."""
+
+    def __init__(self, structure: Structure, law: SpeedLaw, x, p):
+        self.s = structure
+        self.drive = d = Drive(structure, law, x, p)
+        self.tau, self.c = _collocation(DEGREE)
+        self._hat: list[ca.SX] = []
+        self._scale: list = []
+        self._bounds: list[tuple[float, float]] = []
+        self.kinds: list[tuple[str, str]] = []  # (phase, state or "duration") of each internal variable
+        self._mesh: list = []
+        self.equalities: list = []
+        self.points: list[tuple] = []  # (time, {state: value}) of every phase start and collocation point
+        self.nodes: list[dict] = []  # the states at the collocation points (the phase starts excluded)
+        state = {"driver_speed": 0.0 if structure.motor else p.speed, "friction_work": 0.0, "temperature": 0.0}
+        time = 0.0
+        self.durations = {}
+        for phase in structure.phases:
+            duration, state = self._phase(phase, state, time)
+            self.durations[phase] = duration
+            time = time + duration
+        self.start_time = time
+        self.end_state = state
+        temperatures = [node["temperature"] for node in self.nodes if isinstance(node["temperature"], ca.SX)]
+        stresses = [d.link_stress(node["driver_speed"], node["twist"]) for node in self.nodes if "twist" in node]
+        self.figures = SimpleNamespace(
+            start_time=time, friction_work=state["friction_work"], lock_up_speed=state["driver_speed"],
+            temperatures=ca.vertcat(*temperatures) if temperatures else 0.0,
+            stresses=ca.vertcat(*stresses) if stresses else 0.0)
+        self.constraints = named_constraints(structure, d, self.figures)
+
+    # --- variables and phases ----------------------------------------------------------------------------------
+    def _variable(self, phase: str, kind: str, scale, lower: float, upper: float):
+        hat = ca.SX.sym(f"{phase}_{kind}")
+        self._hat.append(hat)
+        self._scale.append(scale)
+        self._bounds.append((lower, upper))
+        self.kinds.append((phase, kind))
+        return hat * scale
+
+    def _states(self, phase: str) -> dict[str, tuple]:
+        """State -> (scale, lower, upper) in scaled units, of one phase."""
+        d, s = self.drive, self.s
+        states = {}
+        if s.motor:
+            states["driver_speed"] = (d.speed_ref, 0.0, 1.0)
+        if phase == "locked":  # motor and machine as one: the speed of both
+            return states
+        if phase == "slip":
+            states["slip"] = (d.speed_ref, 0.0, 2.0)
+        if phase != "run_up":
+            states["friction_work"] = (d.energy_ref, 0.0, math.inf)
+            if s.heat:
+                states["temperature"] = (d.temperature_ref, -math.inf, math.inf)
+        return states
+
+    def _rates(self, phase: str, time, state: dict) -> dict:
+        d = self.drive
+        speed = state["driver_speed"]
+        if phase == "run_up":
+            return {"driver_speed": d.motor(speed) / d.p.motor_inertia}
+        if phase == "locked":
+            return {"driver_speed": (d.motor(speed) - d.load(speed, time)) / (d.p.motor_inertia + d.p.driven_inertia)}
+        torque = d.torque(speed)
+        slip = state["slip"] if phase == "slip" else speed
+        rates = {"friction_work": torque * slip}
+        if self.s.motor:
+            rates["driver_speed"] = (d.motor(speed) - torque) / d.p.motor_inertia
+        if phase == "slip":
+            driven = speed - slip
+            rates["slip"] = rates.get("driver_speed", 0.0) - (torque - d.load(driven, time)) / d.p.driven_inertia
+        if self.s.heat:
+            rates["temperature"] = d.heat_rate(torque * slip, state["temperature"])
+        return rates
+
+    def _phase(self, phase: str, state: dict, start_time):
+        d, n = self.drive, self.s.intervals
+        duration = self._variable(phase, "duration", d.time_ref, 0.0, 100.0)
+        mesh = ca.SX.sym(f"{phase}_mesh", n)  # interval lengths over the duration: NLP parameters
+        self._mesh.append(mesh)
+        starts = [sum(mesh[i] for i in range(k)) for k in range(n)]
+        states = self._states(phase)
+        previous = dict(state)
+        if phase == "slip":  # the driven machine starts from rest: all of the driving speed is slip
+            previous["slip"] = previous["driver_speed"]
+        if phase == "locked":  # both halves at rest, nothing twisted yet
+            previous.update(slip=0.0, twist=0.0)
+        self.points.append((start_time, dict(previous)))
+        for k in range(n):
+            step = mesh[k] * duration
+            nodes = [previous]
+            for j in range(1, DEGREE + 1):
+                node = dict(previous)
+                for name, (scale, lower, upper) in states.items():
+                    node[name] = self._variable(phase, name, scale, lower, upper)
+                nodes.append(node)
+            for j in range(1, DEGREE + 1):
+                time = start_time + (starts[k] + self.tau[j] * mesh[k]) * duration
+                if phase == "locked":  # the link's twist where its torque meets the locked drive's
+                    twist = nodes[j]["twist"] = self._variable(phase, "twist", d.twist_ref, 0.0, 2.0)
+                    self.equalities.append((d.link(nodes[j]["driver_speed"], twist)
+                                            - d.carried(nodes[j]["driver_speed"], time)) / d.torque_ref)
+                rates = self._rates(phase, time, nodes[j])
+                for name, (scale, _, _) in states.items():
+                    slope = sum(self.c[r, j] * nodes[r][name] for r in range(DEGREE + 1))
+                    self.equalities.append((slope - step * rates[name]) / scale)
+                self.points.append((time, nodes[j]))
+                self.nodes.append(nodes[j])
+            previous = nodes[DEGREE]
+        self.equalities.append(self._phase_end(phase, previous, start_time + duration))
+        return duration, previous
+
+
+    @property
+    def mesh_parameters(self):
+        return ca.vertcat(*self._mesh)
+
+    def initial_mesh(self) -> np.ndarray:
+        return np.concatenate([first_mesh(self.s, phase) for phase in self.s.phases])
+
+
+    def _phase_end(self, phase: str, state: dict, time):
+        d = self.drive
+        if phase == "run_up":
+            return (state["driver_speed"] ** 2 - d.engagement_squared) / d.speed_ref**2
+        if phase == "breakaway":
+            return (d.torque(state["driver_speed"]) - d.load(0.0, time)) / d.torque_ref
+        if phase == "locked":
+            return (state["driver_speed"] - d.p.min_lock_up_speed) / d.speed_ref
+        return state["slip"] / d.speed_ref
+
+    # --- what the problem needs -----------------------------------------------------------------------------------
+    @property
+    def hat(self):
+        return ca.vertcat(*self._hat)
+
+    @property
+    def size(self) -> int:
+        return len(self._hat)
+
+    @property
+    def scales(self) -> list:
+        """Scale of each internal variable (expressions of the case quantities): value = scale * hat."""
+        return self._scale
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        lower, upper = zip(*self._bounds)
+        return np.array(lower), np.array(upper)
+
+    def outputs(self) -> dict:
+        """Figures of the NLP's start (expressions): for the start_up report and the trajectory."""
+        d = self.drive
+        figures = {"start_time": self.start_time, "friction_work": self.figures.friction_work,
+                   "engagement_speed": ca.sqrt(d.engagement_squared) if self.s.radial else 0.0,
+                   "lock_up_speed": self.figures.lock_up_speed}
+        for phase, duration in self.durations.items():
+            figures[f"{phase}_time"] = duration
+        return figures
+
+    def trajectory(self) -> dict:
+        """Time, driving speed, driven speed, friction work, temperature at every collocation point."""
+        times, driver, driven, work, heat, twist = [], [], [], [], [], []
+        for time, state in self.points:
+            times.append(time)
+            driver.append(state["driver_speed"])
+            driven.append(state["driver_speed"] - state["slip"] if "slip" in state else 0.0)
+            work.append(state["friction_work"])
+            heat.append(state["temperature"])
+            twist.append(state.get("twist", 0.0))
+        return {"t": times, "w_driver": driver, "w_driven": driven, "friction_work": work, "temperature_rise": heat,
+                "twist": twist}
+
+    def guess(self, history, headline, engagement_squared: float, time_ref: float, scales: np.ndarray,
+              mesh: np.ndarray) -> np.ndarray:
+        """Internal variables (scaled by ``scales``) from a simulation of the start design, which ends at its
+        lock-up, or at ``time_ref`` if it does not lock up."""
+        d = self.s
+        locked = headline.get("locks_up") and math.isfinite(headline.get("start_time", math.inf))
+        t_end = headline["start_time"] if locked else time_ref
+        t = history["t"].to_numpy()
+        driver = history["w_driver"].to_numpy()
+        driven = history["w_driven"].to_numpy()
+        engage = t[np.argmax(driver >= math.sqrt(engagement_squared))] if d.motor and d.radial else 0.0
+        moving = driven > 1e-9 * max(driver.max(), 1e-300)
+        breakaway = t[np.argmax(moving)] if d.load_at_rest and moving.any() else engage
+        bounds = {"run_up": (0.0, engage), "breakaway": (engage, breakaway), "slip": (breakaway, t_end),
+                  "locked": (0.0, t_end)}
+        columns = {"driver_speed": driven if d.elastic else driver, "slip": driver - driven,
+                   "friction_work": history["friction_work"].to_numpy(),
+                   "temperature": history["temperature_rise"].to_numpy(),
+                   "twist": history["twist"].to_numpy() if "twist" in history else np.zeros_like(t)}
+        values = []
+        for index, phase in enumerate(d.phases):
+            begin, end = bounds[phase]
+            end = max(end, begin)
+            values.append(end - begin)
+            lengths = mesh[index * d.intervals:(index + 1) * d.intervals]
+            starts = np.concatenate([[0.0], np.cumsum(lengths)[:-1]])
+            for k in range(d.intervals):
+                for j in range(1, DEGREE + 1):
+                    time = begin + (starts[k] + self.tau[j] * lengths[k]) * (end - begin)
+                    for name in self._states(phase):
+                        values.append(float(np.interp(time, t, columns[name])))
+                    if phase == "locked":
+                        values.append(float(np.interp(time, t, columns["twist"])))
+        return np.array(values) / scales
+
+
+def initial_states(block: StartUpBlock, case, formulation, design: dict[str, float], scales: np.ndarray,
+                   mesh: np.ndarray) -> np.ndarray:
+    """The internal variables (scaled) of the start design's simulated start: a start point on the dynamics."""
+    from clutchopt.start_up.simulation import dense_model, run_start_up
+
+    model = dense_model(case, formulation, design, rtol=1e-6, end_time=3.0 * case.values["max_start_time"])
+    result = run_start_up(model)
+    squared = 0.0 if block.s.elastic else model.law.engagement_squared
+    return block.guess(result.history, result.headline, squared, case.values["max_start_time"], scales, mesh)
+
