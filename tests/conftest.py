@@ -40,3 +40,14 @@ def run_store(tmp_path, monkeypatch) -> Path:
 @pytest.fixture
 def cli():
     return run_cli
+
+
+def pytest_collection_modifyitems(items) -> None:
+    """Tests run a file per worker (``--dist loadgroup``: each file its own group, its module fixtures built once),
+    except the generated composition test, a group per coupling: it is most of the suite's solving."""
+    for item in items:
+        group = item.module.__name__
+        params = item.callspec.params if hasattr(item, "callspec") else {}
+        if item.module.__name__.endswith("test_composition") and "coupling" in params:
+            group += f"[{params['coupling']}]"
+        item.add_marker(pytest.mark.xdist_group(group))
