@@ -28,6 +28,9 @@ def add_command(commands) -> None:
                             "order), checked by Monte Carlo beside the nominal design; e.g. --robust chance=0.999")
     solve.add_argument("--samples", type=int, metavar="N",
                        help="Monte Carlo samples of the scatter for --robust (default 10000)")
+    solve.add_argument("--starts", type=int, metavar="N",
+                       help="simulated starts of the Monte Carlo of a [start_up] for --robust (default 200, about "
+                            "60 ms each)")
     add_json_option(solve)
     solve.set_defaults(run=run)
 
@@ -44,8 +47,10 @@ def run(args) -> str:
     resolve_problem(case, args)
     if args.robust is not None:
         return _robust(case, args)
-    if args.samples is not None:
-        raise InputError("--samples", "counts the Monte Carlo samples of --robust; give --robust too")
+    for name, given, what in (("--samples", args.samples, "the Monte Carlo samples"),
+                              ("--starts", args.starts, "the simulated starts")):
+        if given is not None:
+            raise InputError(name, f"counts {what} of --robust; give --robust too")
     with recording(args) as store:
         ranked = solve_choices(case, args.mode, args.objective, SolverOptions(tol=args.tol))
         _, case, solution = ranked[0]
@@ -77,13 +82,16 @@ def _robust(case, args) -> str:
     from clutchopt.errors import InputError
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.problem import case_formulation
-    from clutchopt.optimise.robust import MAX_SAMPLES, SAMPLES, parse_method, solve_robust
+    from clutchopt.optimise.robust import MAX_SAMPLES, MAX_STARTS, SAMPLES, START_SAMPLES, parse_method, solve_robust
     from clutchopt.output import robust_text, solution_text, to_json
 
     method, target = parse_method(args.robust)
     samples = SAMPLES if args.samples is None else args.samples
     if not 100 <= samples <= MAX_SAMPLES:
         raise InputError("--samples", f"must be a whole number from 100 to {MAX_SAMPLES}, got {samples}")
+    starts = START_SAMPLES if args.starts is None else args.starts
+    if not 10 <= starts <= MAX_STARTS:
+        raise InputError("--starts", f"must be a whole number from 10 to {MAX_STARTS}, got {starts}")
     if case.options.get("choose"):
         raise InputError("--robust", "the case lets the optimiser choose library entries (options.choose): name one "
                                      "entry each for a robust design")
@@ -91,7 +99,8 @@ def _robust(case, args) -> str:
         raise InputError("--robust", "the case has no [scatter] section: say which quantities scatter and how "
                                      "(docs/robust.md)")
     with recording(args) as store:
-        result = solve_robust(case, method, target, args.mode, args.objective, SolverOptions(tol=args.tol), samples)
+        result = solve_robust(case, method, target, args.mode, args.objective, SolverOptions(tol=args.tol), samples,
+                              starts)
         record_solve(store, case, result.solution)
     if args.json:
         return to_json({"case": case.path, "title": case.title, **result.solution.as_dict(),
