@@ -138,7 +138,8 @@ def test_start_up_carries_the_scatter_to_its_worst_corner():
 @pytest.fixture(scope="module")
 def motor_start():
     """The chance design (P = 0.999) of the worked example: f uniform over 0.12 to 0.18, 40 simulated starts."""
-    case = parse_case(read_toml(CASES / "wedge_motor_start_scatter.toml"), str(CASES / "wedge_motor_start_scatter.toml"))
+    path = CASES / "wedge_motor_start_scatter.toml"
+    case = parse_case(read_toml(path), str(path))
     return case, solve_robust(case, CHANCE, 0.999, starts=40)
 
 

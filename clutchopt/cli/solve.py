@@ -30,7 +30,7 @@ def add_command(commands) -> None:
                        help="Monte Carlo samples of the scatter for --robust (default 10000)")
     solve.add_argument("--starts", type=int, metavar="N",
                        help="simulated starts of the Monte Carlo of a [start_up] for --robust (default 200, about "
-                            "60 ms each)")
+                            "30 ms each)")
     add_json_option(solve)
     solve.set_defaults(run=run)
 
