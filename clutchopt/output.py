@@ -333,7 +333,7 @@ def robust_text(result, case) -> str:
            "all 2^n corners checked" if result.method == "worst-case" else
            f"chance {result.target:g}: each constraint holds with that probability to first order (limit backed "
            "off by z sigma of the linearised constraint)" + (", a start-up designed at the corner of the quantiles "
-                                                             "that lengthens it" if result.start_up_points else ""))
+                                                             "where it binds" if result.start_up_points else ""))
     robust, nominal = result.solution, result.nominal
     change = robust.objective / nominal.objective - 1 if nominal.objective else float("nan")
     nominal_checks = {c.name: c for c in result.nominal_checks}

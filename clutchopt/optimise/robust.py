@@ -11,8 +11,8 @@
 - Both are then checked by Monte Carlo: ``samples`` draws of the distributions (a range: uniform over it),
   evaluated vectorised in float64 by the formulation's own equations; each constraint's failure probability with
   its Clopper-Pearson interval, for the robust and for the nominal design.
-- A ``[start_up]`` is designed at one corner, where the simulated start takes longer: the ends of the ranges
-  (worst case) or the quantiles (chance), re-solved until the corner settles; then simulated at every such corner
+- A ``[start_up]`` is designed at one corner, where its simulated figures bind: of the ends of the ranges (worst
+  case) or of the quantiles (chance), re-solved until the corner settles; then simulated at every such corner
   (each start-up limit at its worst) and by ``starts`` simulated starts of Monte Carlo.
 """
 
@@ -76,7 +76,7 @@ def corner_name(quantity: str, constraint: str) -> str:
     return f"{quantity}@{constraint}"
 
 
-START_UP = "start_up"  # the corner a [start_up] is designed at: where the start takes longest (chance: quantiles)
+START_UP = "start_up"  # the corner a [start_up] is designed at: where it binds (chance: of the quantiles)
 
 
 def start_up_view(declared: dict, scattered: tuple[str, ...], follows: tuple = ()):
@@ -317,27 +317,45 @@ def quantile(s: Scatter, probability: float, quantity: Quantity) -> float:
 
 
 def start_up_ends(case: Case, mode: str, design: dict, scatter, target: float | None = None) -> dict:
-    """Quantity -> (the value at which the design's start takes longer, the other): the ends of its range, each
-    simulated with the others nominal (no lock-up counts as longest); with a ``target`` P (chance), its quantiles
-    P_k and 1 - P_k instead, P_k = P^(1/k) for the k quantities that move the start at all. Sidak: a start monotone
-    in each of k independent quantities is longer than at the corner of their P_k quantiles only when one of them
-    lies beyond its quantile, which happens with probability 1 - P_k^k = 1 - P."""
-    from clutchopt.simulate.design import run_start_up, start_up_model
-
-    times = {s.name: [run_start_up(start_up_model(case.with_values(**{s.name: end}), mode, design, rtol=START_RTOL))
-                      .headline["start_time"] for end in (s.low, s.high)] for s in scatter}
+    """Quantity -> (its value at the corner where the design's start-up binds, the other): the ends of its range or,
+    with a ``target`` P (chance), its quantiles P_k and 1 - P_k, P_k = P^(1/k) for the k quantities that move the
+    start at all (Sidak: start-up figures monotone in each of k independent quantities are worse than at every
+    corner of their P_k quantiles only when one of them lies beyond its quantile, with probability
+    1 - P_k^k = 1 - P). The binding corner: of all 2^k corners (up to MAX_START_CORNERS quantities), the one where
+    the start-up's smallest relative margin is smallest; with more, each quantity at the end where the start takes
+    longer, the others nominal (no lock-up counts as longest)."""
+    alone = ({s.name: simulated_start_ups(case, mode, design, [{s.name: s.low}, {s.name: s.high}]) for s in scatter}
+             if target is not None or len(scatter) > MAX_START_CORNERS else {})
     ends = {s.name: (s.low, s.high) for s in scatter}
     if target is not None:
-        share = target ** (1.0 / max(1, sum(low != high for low, high in times.values())))
+        moving = sum([c.value for c in low] != [c.value for c in high] for low, high in alone.values())
+        share = target ** (1.0 / max(1, moving))
         declared = {q.name: q for q in case.quantities}
         ends = {s.name: (quantile(s, 1.0 - share, declared[s.name]), quantile(s, share, declared[s.name]))
                 for s in scatter}
-    return {q: (low, high) if times[q][0] > times[q][1] else (high, low) for q, (low, high) in ends.items()}
+    if len(scatter) <= MAX_START_CORNERS:
+        points = _points(corner_table(scatter, ends))
+        margins = [min(-math.inf if math.isnan(c.margin) else c.margin for c in run)
+                   for run in simulated_start_ups(case, mode, design, points)]
+        binding = points[int(np.argmin(margins))]
+    else:
+        binding = {q: low if _start_time(alone[q][0]) > _start_time(alone[q][1]) else high
+                   for q, (low, high) in ends.items()}
+    return {q: (binding[q], low if binding[q] == high else high) for q, (low, high) in ends.items()}
+
+
+def _start_time(run: list[ConstraintCheck]) -> float:
+    return next(c.value for c in run if c.name == "start_time")
+
+
+def _points(table: dict[str, np.ndarray]) -> list[dict[str, float]]:
+    """The corners of a corner table, one dict each."""
+    return [{q: float(values[i]) for q, values in table.items()} for i in range(len(next(iter(table.values()))))]
 
 
 def start_up_corner(case: Case, mode: str, design: dict, scatter, target: float | None = None) -> dict[str, float]:
-    """The corner a start-up is designed at: each scattered quantity where the start takes longer
-    (:func:`start_up_ends`: the end of its range, or with a ``target`` its quantile)."""
+    """The corner a start-up is designed at, where it binds (:func:`start_up_ends`: of the ranges, or with a
+    ``target`` of the quantiles)."""
     return {q: slow for q, (slow, _) in start_up_ends(case, mode, design, scatter, target).items()}
 
 
@@ -443,9 +461,8 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
                           nominal_failure, tornado(shown, solution.design, params, case.scatter), corners, shown,
                           settled=settled)
     if structure and solution.status in DESIGN_STATUSES:
-        table = corner_table(case.scatter, ends) if len(case.scatter) <= MAX_START_CORNERS else corners[START_UP]
-        result.start_up_points = [{q: float(np.atleast_1d(v)[i]) for q, v in table.items()}
-                                  for i in range(np.size(next(iter(table.values()))))]
+        result.start_up_points = (_points(corner_table(case.scatter, ends)) if len(case.scatter) <= MAX_START_CORNERS
+                                  else [corners[START_UP]])
         result.checks += start_up_checks(case, base.mode, solution.design, result.start_up_points)
         result.nominal_checks += start_up_checks(case, base.mode, nominal.design, result.start_up_points)
         result.start_up_samples = starts
