@@ -510,6 +510,8 @@ def verdict(result: RobustResult) -> tuple[str, str | None]:
 
 def verification(result: RobustResult, case: Case) -> str:
     """One line: what was verified and how (which corners, how many samples and simulated starts, the intervals)."""
+    if result.status not in DESIGN_STATUSES:
+        return f"not verified: there is no robust design ({result.status})"
     quantities = {q.name: q for q in case.quantities}
     n = len(case.scatter)
     parts = [f"constraints at all {2 ** n} corners of the ranges" if result.method == WORST_CASE else
