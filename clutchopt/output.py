@@ -344,7 +344,8 @@ def robust_text(result, case) -> str:
     how = ("worst case: every constraint at its own worst corner of the ranges (a normal quantity: mean +- 3 sd), "
            "all 2^n corners checked" if result.method == "worst-case" else
            f"chance {result.target:g}: each constraint holds with that probability to first order (limit backed "
-           "off by z sigma of the linearised constraint)")
+           "off by z sigma of the linearised constraint)" + (", a start-up designed at the corner of the quantiles "
+                                                             "where it binds" if result.start_up_points else ""))
     robust, nominal = result.solution, result.nominal
     change = robust.objective / nominal.objective - 1 if nominal.objective else float("nan")
     nominal_checks = {c.name: c for c in result.nominal_checks}
@@ -355,24 +356,27 @@ def robust_text(result, case) -> str:
         shown = [f"{q} {quantities[q].show(v)}" for q, v in values.items() if abs(effects.get(q, 1.0)) > 1e-12]
         return ", ".join(shown) or ("any" if values else "-")
 
+    failure = {**result.failure, **result.start_up_failure}  # a start-up's from simulated starts
     rows = [{"constraint": c.name, **({"worst corner": corner(c.name)} if result.method == "worst-case" else {}),
              "robust margin": f"{c.margin:+.2e}",
              "nominal margin": f"{nominal_checks[c.name].margin:+.2e}" if c.name in nominal_checks else "-",
-             "robust P(fail)": _probability(result.failure[c.name]) if c.name in result.failure else "-",
+             "robust P(fail)": _probability(failure[c.name]) if c.name in failure else "-",
              "nominal P(fail)": _probability(result.nominal_failure[c.name]) if c.name in result.nominal_failure
              else "-"} for c in result.checks]
     names = [s.name for s in case.scatter]
     bars = [{"constraint": name, **{q: f"{effects.get(q, 0.0):+.3g}" for q in names}}
             for name, effects in result.bars.items() if any(abs(v) > 1e-12 for v in effects.values())]
     lines = [f"Robust design ({how}): status {result.status}"
-             + (f" - {result.diagnosis}" if result.diagnosis else ""),
+             + (f" - {result.diagnosis}" if result.diagnosis else ""), result.verification,
              _frame(scatter), "",
              f"{robust.objective_name}: robust {robust.objective:.6g} {robust.objective_unit}, nominal "
              f"{nominal.objective:.6g} {nominal.objective_unit} ({change:+.1%})", "",
              ("Constraints under scatter: margin at the worst corner of the ranges" if result.method == "worst-case"
               else "Constraints under scatter: margin with the back-off")
-             + f", and the failure probability from {result.samples} Monte Carlo samples "
-               f"({result.as_dict()['confidence']:.0%} Clopper-Pearson interval)", _frame(rows)]
+             + f", and the failure probability ({result.as_dict()['confidence']:.0%} Clopper-Pearson interval) from "
+               f"{result.samples} Monte Carlo samples"
+             + (f" (a start-up's: margin at its worst simulated corner, P(fail) from {result.start_up_samples} "
+                "simulated starts)" if result.start_up_points else ""), _frame(rows)]
     if bars:
         lines += ["", "What drives it: change of each relative margin as a quantity goes from low to high, the "
                       "others nominal (robust design)", _frame(bars)]

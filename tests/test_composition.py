@@ -19,7 +19,7 @@ _SOLVED: dict[tuple, tuple[int, dict | str]] = {}  # solve of each case and flag
 def _flags(aspects) -> list[str]:
     robust = {"worst-case": "worst-case", "chance": "chance=0.99"}
     method = next((robust[a] for a in aspects if a in robust), None)
-    return ["--robust", method, "--samples", SAMPLES] if method else []
+    return ["--robust", method, "--samples", SAMPLES, "--starts", "10"] if method else []
 
 
 def _case(tmp_path, coupling, aspects):

@@ -3,6 +3,7 @@ corner, the Monte Carlo estimate agrees with the target where first order is exa
 
 import json
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -17,7 +18,12 @@ from clutchopt.optimise.robust import (
     failure_probabilities,
     parse_method,
     solve_robust,
+    start_up_corner,
+    start_up_failures,
+    verdict,
 )
+from clutchopt.output import robust_text
+from clutchopt.start_up.simulation import run_start_up, start_up_model
 from tests.conftest import CASES
 
 
@@ -118,14 +124,98 @@ def test_start_up_carries_the_scatter_to_its_worst_corner():
     data = read_toml(CASES / "wedge_motor_start.toml")
     data["scatter"] = {"friction_coefficient": [0.13, 0.17], "driven_inertia": {"normal": ["0.5 kg*m^2", "0.02 kg*m^2"]}}
     case = parse_case(data, str(CASES / "wedge_motor_start.toml"))
-    result = solve_robust(case, WORST_CASE)
+    result = solve_robust(case, WORST_CASE, starts=10)
     assert result.status == "optimal"
     assert result.corners["start_up"] == {"friction_coefficient": 0.13, "driven_inertia": pytest.approx(0.56)}
+    assert "simulated at the 4 corner(s) of the ranges" in result.verification
+    assert "every limit met; 10 simulated starts" in result.verification
     start = {c.name: c for c in result.checks}
     assert start["start_time"].value <= 10.0 * (1 + 1e-6) and start["start_time"].active
     nominal = {c.name: c for c in result.nominal_checks}
     assert nominal["start_time"].value > 12.0  # the nominal design on the slow corner of the drive
     assert result.solution.objective > 1.2 * result.nominal.objective
+
+
+@pytest.fixture(scope="module")
+def motor_start():
+    """The chance design (P = 0.999) of the worked example: f uniform over 0.12 to 0.18, 40 simulated starts."""
+    path = CASES / "wedge_motor_start_scatter.toml"
+    case = parse_case(read_toml(path), str(path))
+    return case, solve_robust(case, CHANCE, 0.999, starts=40)
+
+
+def start_time(case, design: dict, friction: float) -> float:
+    """The design's start simulated independently at a friction coefficient (its default accuracy)."""
+    return run_start_up(start_up_model(case.with_values(friction_coefficient=friction), "paper", design)).headline[
+        "start_time"]
+
+
+def test_chance_designs_the_start_up_at_its_quantile_corner(motor_start):
+    """Torque ~ f, so the start is longest at low f: the start-up is designed where f stays above with P = 0.999,
+    0.12 + 0.001 * 0.06 = 0.12006, and meets max_start_time there. The low end 0.12 lies beyond that quantile (f is
+    below 0.12006 with probability 0.001, what chance=0.999 allows): the start is longer there by
+    |d ln t / d ln f| * 0.00006 / 0.12 at most, the elasticity below 2.5 (t from 10 s at 0.15 to 16 s at 0.12). The
+    design at the means (what chance did before) takes 16 s at f = 0.12."""
+    case, result = motor_start
+    assert result.status == "optimal" and result.settled
+    assert result.corners["start_up"] == {"friction_coefficient": pytest.approx(0.12006, rel=1e-12)}
+    limit, design = case.values["max_start_time"], result.solution.design
+    assert start_time(case, design, 0.12006) == pytest.approx(limit, rel=case.start_up.tolerance)  # active
+    assert limit < start_time(case, design, 0.12) <= limit * (1 + 2.5 * 0.00006 / 0.12)
+    assert start_time(case, design, 0.18) < 0.8 * limit
+    assert start_time(case, result.nominal.design, 0.12) > 1.5 * limit
+    assert result.solution.objective > 1.2 * result.nominal.objective  # heavier weights carry the start at low f
+
+
+def test_a_start_up_that_misses_is_not_optimal(motor_start):
+    """The nominal design takes 16 s at the slow quantile corner; started by Monte Carlo it fails whenever f is below
+    0.15, half the time: either is enough for a verdict other than optimal."""
+    case, result = motor_start
+    status, diagnosis = verdict(replace(result, checks=result.nominal_checks))
+    assert status == "unverified" and diagnosis.startswith("start_time at its worst corner: margin -0.6")
+    failure = start_up_failures(case, "paper", result.nominal.design, case.scatter, 40)
+    p, low, high = failure["start_time"]
+    assert 0.001 < low <= 0.5 <= high
+    status, diagnosis = verdict(replace(result, start_up_failure=failure))
+    assert status == "unverified" and "40 simulated starts: start_time fails with probability" in diagnosis
+
+
+def test_the_verification_is_one_line_in_text_and_json(motor_start):
+    case, result = motor_start
+    line = result.verification
+    assert line.startswith("verified: constraints backed off to first order for P = 0.999; 10000 Monte Carlo "
+                           "samples: largest P(fail) 0 (")
+    assert ("start-up designed at (friction_coefficient 0.12006), simulated at the 2 quantile corner(s) "
+            "(friction_coefficient 0.12006; friction_coefficient 0.17994): every limit met; 40 simulated starts: "
+            "largest P(fail) 0 (") in line
+    assert f"95% interval 0 to {1 - 0.025 ** (1 / 40):.2g})" in line  # Clopper-Pearson, no failure in 40
+    assert line in robust_text(result, case).splitlines()
+    data = result.as_dict()
+    assert data["verification"] == line
+    verified = data["start_up_verification"]
+    assert verified["simulations"] == 40 and len(verified["corners"]) == 2
+    assert verified["failure_probability"]["start_time"] == [0.0, 0.0, pytest.approx(1 - 0.025 ** (1 / 40))]
+    assert {c["name"] for c in data["checks"]} >= {"start_time", "temperature_rise", "lock_up_speed"}
+
+
+def test_a_start_up_is_designed_where_it_binds():
+    """The cable coupling's start is limited by the cables' stress, which a stronger motor drives up while it
+    shortens the start: with the breakdown torque scattering (normal, 265 +- 13 N m), its start-up binds at the
+    high end, mean + 3 sd (worst case) or mean + 3.09 sd (the 0.999 quantile, one quantity), not where the start
+    takes longest."""
+    data = read_toml(CASES / "cable_motor_start.toml")
+    data["scatter"] = {"breakdown_torque": {"normal": ["265 N*m", "13 N*m"]}}
+    case = parse_case(data, str(CASES / "cable_motor_start.toml"))
+    design = solve_case(case).design
+    assert start_up_corner(case, "paper", design, case.scatter) == {"breakdown_torque": pytest.approx(265 + 3 * 13)}
+    assert start_up_corner(case, "paper", design, case.scatter, 0.999) == {
+        "breakdown_torque": pytest.approx(265 + 13 * 3.090232306, rel=1e-9)}
+
+
+def test_starts_out_of_range_is_bad_input(cli):
+    result = cli("solve", "cases/wedge_motor_start_scatter.toml", "--robust", "chance=0.999", "--starts", "5",
+                 "--no-store")
+    assert result.returncode == 2 and "--starts: must be a whole number from 10" in result.stderr
 
 
 def test_solve_robust_json(cli):

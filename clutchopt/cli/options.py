@@ -120,6 +120,9 @@ def add_robust_options(command: argparse.ArgumentParser) -> None:
                               "order), checked by Monte Carlo beside the nominal design; e.g. --robust chance=0.999")
     command.add_argument("--samples", type=int, metavar="N",
                          help="Monte Carlo samples of the scatter for --robust (default 10000)")
+    command.add_argument("--starts", type=int, metavar="N",
+                         help="simulated starts of the Monte Carlo of a [start_up] for --robust (default 200, about "
+                              "30 ms each)")
 
 
 def robustness(args, case):
@@ -127,10 +130,12 @@ def robustness(args, case):
     from clutchopt.optimise.design import Robustness, check_robustness
 
     if args.robust is None:
-        if args.samples is not None:
-            raise InputError("--samples", "counts the Monte Carlo samples of --robust; give --robust too")
+        for name, given, what in (("--samples", args.samples, "the Monte Carlo samples"),
+                                  ("--starts", args.starts, "the simulated starts")):
+            if given is not None:
+                raise InputError(name, f"counts {what} of --robust; give --robust too")
         return None
-    robust = Robustness.parse(args.robust, args.samples)
+    robust = Robustness.parse(args.robust, args.samples, args.starts)
     check_robustness(case, robust)
     return robust
 

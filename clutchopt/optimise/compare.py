@@ -137,7 +137,7 @@ def _scatter_columns(case: Case, coupling, spec, options: SolverOptions, robust=
 
     mode = case.options.get("mode") or coupling.default_mode
     methods = [robust] if robust is not None else [Robustness(WORST_CASE), Robustness(CHANCE, CHANCE_SHOWN)]
-    results = [solve_robust(case, m.method, m.target, mode, None, options, m.samples) for m in methods]
+    results = [solve_robust(case, m.method, m.target, mode, None, options, m.samples, m.starts) for m in methods]
     worst = results[0]
     params = case.params()
     columns = {}

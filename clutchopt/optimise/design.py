@@ -18,7 +18,15 @@ from clutchopt.formulations import get_coupling
 from clutchopt.materials import variants
 from clutchopt.optimise.entering import check_entering
 from clutchopt.optimise.problem import Solution, SolverOptions, case_problem, solve_case
-from clutchopt.optimise.robust import MAX_SAMPLES, SAMPLES, RobustResult, parse_method, solve_robust
+from clutchopt.optimise.robust import (
+    MAX_SAMPLES,
+    MAX_STARTS,
+    SAMPLES,
+    START_SAMPLES,
+    RobustResult,
+    parse_method,
+    solve_robust,
+)
 
 
 @dataclass(frozen=True)
@@ -29,22 +37,26 @@ class Robustness:
     method: str
     target: float | None = None
     samples: int = SAMPLES
+    starts: int = START_SAMPLES  # simulated starts of a [start_up]'s Monte Carlo
 
     @classmethod
-    def parse(cls, text: str, samples: int | None) -> "Robustness":
-        """``--robust worst-case|chance=P`` and ``--samples N`` from the command line."""
+    def parse(cls, text: str, samples: int | None, starts: int | None = None) -> "Robustness":
+        """``--robust worst-case|chance=P``, ``--samples N`` and ``--starts N`` from the command line."""
         method, target = parse_method(text)
         samples = SAMPLES if samples is None else samples
         if not 100 <= samples <= MAX_SAMPLES:
             raise InputError("--samples", f"must be a whole number from 100 to {MAX_SAMPLES}, got {samples}")
-        return cls(method, target, samples)
+        starts = START_SAMPLES if starts is None else starts
+        if not 10 <= starts <= MAX_STARTS:
+            raise InputError("--starts", f"must be a whole number from 10 to {MAX_STARTS}, got {starts}")
+        return cls(method, target, samples, starts)
 
     @property
     def label(self) -> str:
         return self.method if self.target is None else f"{self.method} {self.target:g}"
 
     def as_dict(self) -> dict:
-        return {"method": self.method, "target": self.target, "samples": self.samples}
+        return {"method": self.method, "target": self.target, "samples": self.samples, "starts": self.starts}
 
 
 class Designed(NamedTuple):
@@ -86,7 +98,8 @@ def design_case(case: Case, mode: str | None = None, objective: str | None = Non
         if robust is None:
             designed.append(Designed(choice, variant, solve_case(variant, mode, objective, options)))
         else:
-            result = solve_robust(variant, robust.method, robust.target, mode, objective, options, robust.samples)
+            result = solve_robust(variant, robust.method, robust.target, mode, objective, options, robust.samples,
+                                  robust.starts)
             designed.append(Designed(choice, variant, result.solution, result))
     return sorted(designed, key=lambda d: (d.solution.status != "optimal",
                                            d.solution.objective if d.solution.status == "optimal" else 0.0))

@@ -80,7 +80,7 @@ def pareto_front(case: Case, mode: str | None = None, points: int = 9, options: 
         if robust is None:
             return problem_for(posed, objective, options, structure).solve(point, warm=warm)
         results.append(solve_robust(point, robust.method, robust.target, base.mode, objective, options,
-                                    robust.samples, base=posed))
+                                    robust.samples, robust.starts, base=posed))
         return results[-1].solution
 
     mass_end, cost_end = design(case, "mass", base), design(case, "cost", base)
