@@ -11,7 +11,7 @@ from clutchopt.units import from_si
 if TYPE_CHECKING:  # JSON needs neither pandas nor the solver: ``solve --json`` starts faster without them
     from clutchopt.model import Formulation
     from clutchopt.optimise.compare import ComparisonTable
-    from clutchopt.optimise.problem import Solution
+    from clutchopt.optimise.solution import Solution
 
 
 _PLAIN = (str, int, bool, type(None))

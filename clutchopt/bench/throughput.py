@@ -36,7 +36,8 @@ from clutchopt.bench.timing import time_once
 from clutchopt.cases import Case
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.batch import BatchSweep
-from clutchopt.optimise.problem import Problem, SolverOptions, problem_for
+from clutchopt.optimise.problem import Problem, problem_for
+from clutchopt.optimise.solution import SolverOptions
 
 
 def sweep_quantity(case: Case) -> str:

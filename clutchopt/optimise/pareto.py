@@ -16,7 +16,8 @@ import pandas as pd
 from clutchopt.cases import Case
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Formulation, Quantity, at_most
-from clutchopt.optimise.problem import Problem, Solution, SolverOptions, case_formulation, case_problem
+from clutchopt.optimise.problem import Problem, case_formulation, case_problem
+from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.start_up import Structure
 from clutchopt.optimise.sweep import column_name
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_objective

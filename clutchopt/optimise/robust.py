@@ -28,7 +28,8 @@ from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Constraint, Formulation, Quantity, namespace
-from clutchopt.optimise.problem import Solution, SolverOptions, problem_for, solve_case
+from clutchopt.optimise.problem import problem_for, solve_case
+from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.start_up import Structure
 from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, check_constraints, constraint_table
 

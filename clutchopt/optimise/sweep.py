@@ -38,7 +38,8 @@ from clutchopt.files import TABLE_BYTES, check_output, read_bytes, write_whole
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Formulation, Quantity
 from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
-from clutchopt.optimise.problem import Solution, SolverOptions, case_formulation, case_problem
+from clutchopt.optimise.problem import case_formulation, case_problem
+from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.table import joined_tables, record_table
 from clutchopt.optimise.verify import DESIGN_STATUSES
 from clutchopt.records import STATUSES, expanded, status_and_objective
