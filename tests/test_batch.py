@@ -219,7 +219,9 @@ def test_a_point_that_fails_the_float64_check_is_solved_again(monkeypatch):
 
 
 def test_a_sweep_table_says_where_a_point_was_batched():
-    from clutchopt.optimise.sweep import Sweep, markdown_table, parse_vary
+    from clutchopt.optimise.sweep import Sweep
+    from clutchopt.optimise.sweep_grid import parse_vary
+    from clutchopt.optimise.sweep_table import markdown_table
 
     case = load_case(CASES / "wedge_paper.toml")
     frame = Sweep(case, [parse_vary("speed=800:1200:12", "wedge")]).run(progress=False).frame

@@ -63,7 +63,8 @@ def batched_sweep(case: Case, name: str, values, options: SolverOptions = Solver
 def tabulated_sweep(case: Case, name: str, values, store_path: str | None = None) -> dict:
     """``Sweep(case, ...).run()`` over the values of ``name`` (the default mode and objective): the table, and with
     ``store_path`` each point recorded in that run store; the tally of :func:`batched_sweep`."""
-    from clutchopt.optimise.sweep import Sweep, Vary
+    from clutchopt.optimise.sweep import Sweep
+    from clutchopt.optimise.sweep_grid import Vary
     from clutchopt.store import RunStore
 
     quantity = next(q for q in case.quantities if q.name == name)

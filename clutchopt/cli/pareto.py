@@ -47,7 +47,7 @@ def run(args) -> str:
     from clutchopt.optimise.pareto import CAP, pareto_front
     from clutchopt.optimise.problem import case_formulation
     from clutchopt.files import check_output, write_whole
-    from clutchopt.optimise.sweep import table_format, write_frame
+    from clutchopt.optimise.sweep_table import table_format, write_frame
     from clutchopt.optimise.verify import evaluate_objective
     from clutchopt.output import to_json
 

@@ -19,7 +19,7 @@ from clutchopt.model import Formulation, Quantity, at_most
 from clutchopt.optimise.problem import Problem, case_formulation, case_problem
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.start_up import Structure
-from clutchopt.optimise.sweep import column_name
+from clutchopt.optimise.sweep_grid import column_name
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_objective
 from clutchopt.store import CAPPED_SUFFIX
 from clutchopt.units import from_si
