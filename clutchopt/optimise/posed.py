@@ -92,7 +92,6 @@ class Posed:
         internal, equalities = (self.start_up.hat, self.start_up.equalities) if start_up else (ca.SX(0, 1), [])
         constraints += self.start_up.constraints if start_up else []
         rows = [ca.SX(c.normalised()) for c in constraints]
-        self.constraint_names = [c.name for c in constraints]
         self.constraint_rows = [row.shape[0] for row in rows]  # a start-up constraint may hold along a path
         self.row_names = [c.name for c, row in zip(constraints, rows) for _ in range(row.shape[0])]
         self.row_senses = [c.sense for c, row in zip(constraints, rows) for _ in range(row.shape[0])]

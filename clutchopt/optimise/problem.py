@@ -42,23 +42,9 @@ class Problem:
 
     def __init__(self, formulation: Formulation, objective: str = "mass", options: SolverOptions = SolverOptions(),
                  start_up: Structure | None = None):
-        self.posed = Posed(formulation, objective, options, start_up)
-
-    @property
-    def formulation(self) -> Formulation:
-        return self.posed.formulation
-
-    @property
-    def objective(self):
-        return self.posed.objective
-
-    @property
-    def options(self) -> SolverOptions:
-        return self.posed.options
-
-    @property
-    def start_up(self):
-        return self.posed.start_up
+        self.posed = posed = Posed(formulation, objective, options, start_up)
+        self.formulation, self.objective, self.options, self.start_up = (  # what callers read of the posed problem
+            posed.formulation, posed.objective, posed.options, posed.start_up)
 
     def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
               mesh: np.ndarray | None = None, refine: bool = True) -> Solution:

@@ -1,4 +1,4 @@
-"""SciPy SLSQP on the same scaled NLP IPOPT solves (:attr:`Problem.nlp`), for comparison.
+"""SciPy SLSQP on the same scaled NLP IPOPT solves (``Posed.nlp``), for comparison.
 
 f, g and their derivatives are CasADi functions of the scaled variables, so SLSQP sees exactly the numbers
 IPOPT sees: the same scaling, bounds and start (``Posed.scaled_data``). SLSQP has no integers: integer
