@@ -20,7 +20,7 @@ from typing import Callable
 
 import numpy as np
 
-from clutchopt.optimise.attempts import attempt as attempted
+from clutchopt.optimise import attempts
 from clutchopt.optimise.posed import Box, Posed, ScaledData, scaled_box
 from clutchopt.optimise.verify import FEASIBILITY_TOL
 
@@ -111,7 +111,7 @@ def fixing(posed: Posed, data: ScaledData, runs: list[dict], search: list[dict])
     depending on the integers and fixed variables alone is excluded without a solve. Every run goes into ``runs``."""
     integer = posed.free_integers(data)
 
-    def attempt(combo, seed, methods: tuple[str, ...] = ("ipopt",)) -> dict | None:
+    def fixed_at(combo, seed, methods: tuple[str, ...] = ("ipopt",)) -> dict | None:
         lower, upper = data.lower.copy(), data.upper.copy()
         lower[integer] = upper[integer] = combo
         lbx, ubx = scaled_box(lower, upper, data.scale, (data.internal_lower, data.internal_upper))
@@ -120,11 +120,11 @@ def fixing(posed: Posed, data: ScaledData, runs: list[dict], search: list[dict])
         if excluded:
             search.append(excluded_entry(posed, integer, combo, excluded))
             return None
-        run = attempted(posed, data, lbx, ubx, x0, seed, methods, runs)
+        run = attempts.attempt(posed, data, lbx, ubx, x0, seed, methods, runs)
         search.append(search_entry(posed, integer, combo, run["status"], run["feasible"], run["value"]))
         return run if run["ok"] and run["feasible"] else None
 
-    return attempt
+    return fixed_at
 
 
 def search_entry(posed: Posed, integer: list[int], combo, status: str, feasible: bool, objective: float) -> dict:
