@@ -108,7 +108,7 @@ class Posed:
         self.integer = [i for i, v in enumerate(f.variables) if v.integer]
         self.nlp = {"x": x_all, "p": ca.vertcat(self.p_case, x_scale, f_scale, mesh),
                     "f": self.objective.function(x, p) / f_scale, "g": g}  # the scaled NLP, g <= 0
-        self.lam_g = ca.SX.sym("lam_g", g.shape[0])
+        self.lam_g = ca.SX.sym("lam_g", g.shape[0])  # the Lagrangian, for KKT verdicts and sensitivities
         self.lagrangian = self.nlp["f"] + ca.dot(self.lam_g, g)
         if start_up:
             paths = [ca.vertcat(*column) for column in self.start_up.trajectory().values()]
