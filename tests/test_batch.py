@@ -13,7 +13,9 @@ from clutchopt.cases import load_case
 from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.batch import BATCHED, BatchSweep, batchable
-from clutchopt.optimise.problem import Box, Problem, case_problem
+from clutchopt.optimise.integers import downhill, violated_whatever_the_rest
+from clutchopt.optimise.posed import Box, off_scale
+from clutchopt.optimise.problem import Problem, case_problem
 from clutchopt.optimise.verify import evaluate_objective
 from conftest import CASES
 
@@ -80,7 +82,7 @@ def _unpriced(problem, got, want, case):
     groove conformity where the contact stress does not bind: any value that keeps it within its limit is optimal,
     and the integer search's re-solve by IPOPT, point by point, and by SQP, in a batch, leave it in different
     places). Each must leave the objective unchanged when set to the other optimum's value."""
-    params = problem._params(case)
+    params = problem.posed.params(case)
     differ = [k for k in got.design if got.design[k] != pytest.approx(want.design[k], rel=1e-6, abs=1e-12)]
     for name in differ:
         moved = evaluate_objective(problem.formulation, problem.objective.name, {**got.design, name: want.design[name]},
@@ -176,14 +178,16 @@ def test_start_ups_and_fixed_variables_go_point_by_point():
 
 
 def test_an_error_inside_the_chained_call_sends_the_points_to_problem_solve(monkeypatch):
+    import clutchopt.optimise.batch as batch
+
     case = load_case(CASES / "wedge_paper.toml")
     problem = Problem(get_coupling("wedge").formulation("paper"))
     values = case.values["inertia"] * np.geomspace(0.8, 1.2, 12)
 
-    def failing(count, method="sqp_chain"):
+    def failing(posed, count, method="sqp_chain"):
         raise RuntimeError("Error in Function::call for 'sqp_chain': NaN detected")
 
-    monkeypatch.setattr(problem, "chained_sqp", failing)
+    monkeypatch.setattr(batch, "chained_sqp", failing)
     sweep = BatchSweep(problem, case, {"inertia": values})
     solutions = [s for part in sweep.run() for s in part]
     assert [s.status for s in solutions] == ["optimal"] * 12
@@ -196,12 +200,12 @@ def test_an_error_inside_the_chained_call_sends_the_points_to_problem_solve(monk
 def test_a_point_that_fails_the_float64_check_is_solved_again(monkeypatch):
     # a batched point whose float64 re-evaluation finds a constraint violated is not reported as optimal: the
     # window solves it again by Problem.solve, warm from the point before (here every batched point fails the check)
-    import clutchopt.optimise.batch as batch
+    import clutchopt.optimise.batch_window as batch_window
 
     case = load_case(CASES / "wedge_paper.toml")
     problem = Problem(get_coupling("wedge").formulation("paper"))
     values = case.values["inertia"] * np.geomspace(0.8, 1.2, 20)
-    monkeypatch.setattr(batch, "FEASIBILITY_TOL", -1.0)
+    monkeypatch.setattr(batch_window, "FEASIBILITY_TOL", -1.0)
     sweep = BatchSweep(problem, case, {"inertia": values})
     windows = list(sweep.run(window=8))
     assert [len(w) for w in windows] == [8, 8, 4]
@@ -215,7 +219,9 @@ def test_a_point_that_fails_the_float64_check_is_solved_again(monkeypatch):
 
 
 def test_a_sweep_table_says_where_a_point_was_batched():
-    from clutchopt.optimise.sweep import Sweep, markdown_table, parse_vary
+    from clutchopt.optimise.sweep import Sweep
+    from clutchopt.optimise.sweep_grid import parse_vary
+    from clutchopt.optimise.sweep_table import markdown_table
 
     case = load_case(CASES / "wedge_paper.toml")
     frame = Sweep(case, [parse_vary("speed=800:1200:12", "wedge")]).run(progress=False).frame
@@ -242,9 +248,9 @@ def test_the_predictor_ratio_of_each_point():
 @pytest.mark.parametrize("name, cases", [("cable", {"none", "all excluded"}), ("ball_speed", {"none", "open"}),
                                          ("wedge", {"on scale"})])
 def test_the_compiled_verdict_says_what_the_warm_search_would_do(name, cases, monkeypatch):
-    # Problem.chain_verdict's `moves` at every chained point against Problem.solve's own rule in Python: a neighbour
-    # that Problem._downhill steps to and that breaks no constraint of fixed variables alone; without integers, an
-    # optimum off its scales (Problem.off_scale). Along the cable's sweep every neighbour the multipliers point to is
+    # chain.chain_verdict's `moves` at every chained point against Problem.solve's own rule in Python: a neighbour
+    # that integers.downhill steps to and that breaks no constraint of fixed variables alone; without integers, an
+    # optimum off its scales (posed.off_scale). Along the cable's sweep every neighbour the multipliers point to is
     # excluded (its count breaks the cable stress); along the ball's speed sweep the search steps to a neighbour.
     import clutchopt.optimise.batch as batch
 
@@ -264,17 +270,17 @@ def test_the_compiled_verdict_says_what_the_warm_search_would_do(name, cases, mo
         for j in range(len(result.index)):
             x, scale = result.x[:, j], result.p[m:m + n, j]
             if not sweep.integer:
-                assert result.moves[j] == bool(problem.off_scale(x))
+                assert result.moves[j] == bool(off_scale(x))
                 seen.add("off scale" if result.moves[j] else "on scale")
                 continue
             run = {"x": x, "lam_x": result.lam_x[:, j], "f": float(result.f[0, j])}
             box = Box(scale, sweep.lower, sweep.upper)
             p = np.concatenate([result.p[:m, j], np.ones(n + 1)])  # unit scales: x in SI
-            neighbours, open_neighbours = problem._downhill(run, box, sweep.integer), []
+            neighbours, open_neighbours = downhill(problem.posed, run, box, sweep.integer), []
             for combo in neighbours:
                 lower, upper = sweep.lower.copy(), sweep.upper.copy()
                 lower[sweep.integer] = upper[sweep.integer] = combo
-                if not problem.violated_whatever_the_rest(p, lower, upper, np.clip(x * scale, lower, upper)):
+                if not violated_whatever_the_rest(problem.posed, p, lower, upper, np.clip(x * scale, lower, upper)):
                     open_neighbours.append(combo)
             assert bool(result.moves[j]) == bool(open_neighbours), (sweep.integer, x * scale, open_neighbours)
             seen.add("open" if open_neighbours else "all excluded" if neighbours else "none")
@@ -300,12 +306,12 @@ def test_a_windows_records_are_its_solutions_as_dicts(name):
         for record, solution in zip(records, solutions):
             assert json.dumps(record) == json.dumps(solution.as_dict())
             kinds.add((solution.solver.status == BATCHED, solution.status, bool(solution.integer_search)))
-    assert (True, "optimal", False) in kinds and (False, "optimal", bool(problem._integer)) in kinds
+    assert (True, "optimal", False) in kinds and (False, "optimal", bool(problem.posed.integer)) in kinds
 
 
 def test_the_first_re_solve_after_a_cold_ipopt_optimum_goes_by_sqp():
     # IPOPT leaves about 1e-11 on inactive bounds; CasADi's SQP (qrqp) would read them as active bounds and stop
-    # where it started. Problem.warm_multipliers drops them: the next point is one SQP re-solve, point by point and
+    # where it started. attempts.warm_multipliers drops them: the next point is one SQP re-solve, point by point and
     # in a batch (whose first point used to fail its KKT test and go to Problem.solve)
     case = load_case(CASES / "wedge_centrifuge.toml")
     problem = Problem(get_coupling("wedge").formulation("paper"))

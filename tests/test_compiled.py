@@ -23,7 +23,7 @@ def _ball_sweep(points: int = 40):
 
 
 def _is_compiled(problem) -> bool:
-    return problem._solver_for("sqp_chain").get_function("nlp_hess_l").is_a("External")
+    return problem.posed.solver("sqp_chain").get_function("nlp_hess_l").is_a("External")
 
 
 @pytest.mark.skipif(compiled.compiler() is None, reason="no C compiler here (the sweep runs on the virtual machine)")
@@ -40,7 +40,7 @@ def test_the_ball_sweep_compiled_gives_the_virtual_machines_optima(monkeypatch):
 
 def test_small_hessians_stay_on_the_virtual_machine():
     problem = Problem(get_coupling("wedge").formulation("paper"))
-    assert problem._solver_for("sqp_chain").get_function("nlp_hess_l").n_instructions() < compiled.COMPILE_ABOVE
+    assert problem.posed.solver("sqp_chain").get_function("nlp_hess_l").n_instructions() < compiled.COMPILE_ABOVE
     assert not _is_compiled(problem)
 
 
@@ -57,7 +57,7 @@ def test_without_a_library_the_sweep_runs_on_the_virtual_machine(fault, monkeypa
         if compiled.compiler() is None:
             pytest.skip("no C compiler here to build a library")
         problem = Problem(get_coupling("ball").formulation("design"))
-        plain = ca.nlpsol("plain", "sqpmethod", problem.nlp, problem.options.sqp_chain())
+        plain = ca.nlpsol("plain", "sqpmethod", problem.posed.nlp, problem.options.sqp_chain())
         library = Path(compiled.compiled_library(plain))  # built, not loaded (a process keeps what it loaded)
         if fault == "damaged library":
             damaged = tmp_path / "damaged.so"

@@ -76,7 +76,8 @@ def test_the_integer_search_along_a_sweep_keeps_the_best_integer(case_file, mode
     from clutchopt.cases import load_case
     from clutchopt.formulations import get_coupling
     from clutchopt.optimise import problem_for
-    from clutchopt.optimise.sweep import Points, solve_chunk
+    from clutchopt.optimise.sweep import solve_chunk
+    from clutchopt.optimise.sweep_grid import Points
     from conftest import CASES
 
     case = load_case(CASES / case_file)

@@ -8,7 +8,8 @@ from clutchopt.cases import load_case
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise import solve_case
 from clutchopt.optimise.compare import compare_case
-from clutchopt.optimise.sweep import Sweep, parse_vary
+from clutchopt.optimise.sweep import Sweep
+from clutchopt.optimise.sweep_grid import parse_vary
 from clutchopt.output import comparison_text, solution_text
 from tests.conftest import CASES
 

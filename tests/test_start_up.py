@@ -208,7 +208,8 @@ def test_a_ball_case_refuses_springs():
 
 def test_sweep_pareto_and_report_take_start_up_cases():
     from clutchopt.optimise.pareto import pareto_front
-    from clutchopt.optimise.sweep import Sweep, parse_vary
+    from clutchopt.optimise.sweep import Sweep
+    from clutchopt.optimise.sweep_grid import parse_vary
     from clutchopt.report import build_report
 
     case = case_from("wedge_motor_start.toml")

@@ -209,7 +209,8 @@ def test_batched_sweep_points_are_stored_compact_and_read_back_in_full(tmp_path)
     # reads it back equal to the full record, from half the bytes or less
     from clutchopt.cases import load_case
     from clutchopt.optimise.batch import BATCHED
-    from clutchopt.optimise.sweep import Sweep, parse_vary
+    from clutchopt.optimise.sweep import Sweep
+    from clutchopt.optimise.sweep_grid import parse_vary
     from clutchopt.output import to_json
 
     case = load_case(CASES / "cable_conveyor.toml")

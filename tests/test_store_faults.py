@@ -81,7 +81,8 @@ def _points(store: Path) -> list[int]:
 
 def _reference(grid: list[str]) -> pd.DataFrame:
     from clutchopt.cases import load_case
-    from clutchopt.optimise.sweep import Sweep, parse_vary
+    from clutchopt.optimise.sweep import Sweep
+    from clutchopt.optimise.sweep_grid import parse_vary
 
     case = load_case(CASE)
     return Sweep(case, [parse_vary(text, "wedge") for text in grid[1::2]]).run(progress=False).frame

@@ -10,7 +10,8 @@ import pytest
 from clutchopt.cases import load_case
 from clutchopt.errors import InputError
 from clutchopt.optimise import solve_case
-from clutchopt.optimise.sweep import Sweep, dask_runner, grid_points, parse_vary
+from clutchopt.optimise.sweep import Sweep, dask_runner
+from clutchopt.optimise.sweep_grid import grid_points, parse_vary
 from clutchopt.store import RunStore
 from conftest import CASES
 

@@ -18,7 +18,8 @@ from clutchopt.bench.timing import repeated, time_once
 from clutchopt.cases import Case
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.gp import GPModel
-from clutchopt.optimise.problem import Problem, Solution, SolverOptions
+from clutchopt.optimise.problem import Problem
+from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.scipy_slsqp import SlsqpProblem
 
 IPOPT_TOLERANCES = (1e-4, 1e-6, 1e-8, 1e-10)
@@ -66,7 +67,7 @@ def mode_rows(case: Case, mode: str, repeats: int) -> list[dict]:
                          reference, form.worst_violation, None, first_s,
                          repeated(lambda: closed_form(case, OBJECTIVE), repeats), "closed_form column, float64"))
 
-    params = problem.scaled_data(case).params
+    params = problem.posed.params(case)
     first_s, gp = time_once(lambda: GPModel(formulation, OBJECTIVE, params, pinned, best.bounds))
     result = gp.solve()
     if result.status == "not_posynomial":

@@ -11,7 +11,8 @@ import numpy as np
 from clutchopt.bench.reference import bench_cases, reference_mode
 from clutchopt.bench.throughput import sweep_quantity
 from clutchopt.formulations import get_coupling
-from clutchopt.optimise.problem import Problem, SolverOptions
+from clutchopt.optimise.problem import Problem
+from clutchopt.optimise.solution import SolverOptions
 
 METHODS = (("warm IPOPT (before)", SolverOptions(warm_sqp=False)), ("SQP, then warm IPOPT", SolverOptions()))
 

@@ -11,7 +11,8 @@ import numpy as np
 
 from clutchopt.bench.reference import CASES
 from clutchopt.cases import load_case
-from clutchopt.optimise.sweep import Points, Sweep, dask_runner, parse_vary, solve_chunk
+from clutchopt.optimise.sweep import Sweep, dask_runner, solve_chunk
+from clutchopt.optimise.sweep_grid import Points, parse_vary
 
 CASE, MODE, VARY = "ball_compressor.toml", "design", "power={start}:{stop}:{count}"
 WORKERS = (1, 2, 4)

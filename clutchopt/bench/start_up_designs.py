@@ -10,7 +10,8 @@ from pathlib import Path
 
 from clutchopt.cases import load_case
 from clutchopt.formulations import get_coupling
-from clutchopt.optimise.problem import SolverOptions, problem_for, solve_case
+from clutchopt.optimise.problem import problem_for, solve_case
+from clutchopt.optimise.solution import SolverOptions
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.mesh import MESH_STEPS
 

@@ -36,7 +36,8 @@ from clutchopt.bench.timing import time_once
 from clutchopt.cases import Case
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.batch import BatchSweep
-from clutchopt.optimise.problem import Problem, SolverOptions, problem_for
+from clutchopt.optimise.problem import Problem, problem_for
+from clutchopt.optimise.solution import SolverOptions
 
 
 def sweep_quantity(case: Case) -> str:
@@ -62,7 +63,8 @@ def batched_sweep(case: Case, name: str, values, options: SolverOptions = Solver
 def tabulated_sweep(case: Case, name: str, values, store_path: str | None = None) -> dict:
     """``Sweep(case, ...).run()`` over the values of ``name`` (the default mode and objective): the table, and with
     ``store_path`` each point recorded in that run store; the tally of :func:`batched_sweep`."""
-    from clutchopt.optimise.sweep import Sweep, Vary
+    from clutchopt.optimise.sweep import Sweep
+    from clutchopt.optimise.sweep_grid import Vary
     from clutchopt.store import RunStore
 
     quantity = next(q for q in case.quantities if q.name == name)

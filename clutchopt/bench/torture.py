@@ -28,7 +28,8 @@ from clutchopt.bench.reference import closed_form, coupling_cases, reference_mod
 from clutchopt.cases import Case, load_case
 from clutchopt.errors import InputError
 from clutchopt.formulations import MODULES, get_coupling
-from clutchopt.optimise.problem import Solution, problem_for
+from clutchopt.optimise.problem import problem_for
+from clutchopt.optimise.solution import Solution
 from clutchopt.units import ureg
 
 MATCH_TOL = 1e-7  # objective against the closed form, relative

@@ -52,7 +52,7 @@ def run(args) -> str:
     from clutchopt.files import check_output, write_whole
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.pareto import CAP, pareto_fronts
-    from clutchopt.optimise.sweep import table_format, write_frame
+    from clutchopt.optimise.sweep_table import table_format, write_frame
     from clutchopt.output import to_json
     from clutchopt.store import CAPPED_SUFFIX
 

@@ -39,7 +39,7 @@ def run(args) -> str:
     from clutchopt.files import check_output, write_whole
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.design import design_case
-    from clutchopt.optimise.sweep import read_frame
+    from clutchopt.optimise.sweep_table import read_frame
     from clutchopt.report import build_report
 
     case = load_case(args.case)

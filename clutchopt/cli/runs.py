@@ -97,7 +97,7 @@ def _objective(run: dict) -> str:
 def export(args) -> str:
     import pandas as pd
 
-    from clutchopt.optimise.sweep import table_format, write_frame
+    from clutchopt.optimise.sweep_table import table_format, write_frame
     from clutchopt.store import RunStore
 
     table_format(args.out)

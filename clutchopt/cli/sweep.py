@@ -60,7 +60,9 @@ def run(args) -> str:
     import gc
 
     from clutchopt.cases import load_case
-    from clutchopt.optimise.sweep import Sweep, dask_runner, parse_vary, table_format, write_frame
+    from clutchopt.optimise.sweep import Sweep, dask_runner
+    from clutchopt.optimise.sweep_grid import parse_vary
+    from clutchopt.optimise.sweep_table import table_format, write_frame
 
     gc.freeze()  # the modules just imported (150,000 objects) out of the cyclic collector's way (reference counting
     # still frees them): a full collection, which a stored sweep's records set off every 3000-4000 points, took 0.1 s
@@ -104,7 +106,7 @@ def run(args) -> str:
 
 
 def sweep_text(sweep, result, store, out: str | None) -> str:
-    from clutchopt.optimise.sweep import table_cell
+    from clutchopt.optimise.sweep_table import table_cell
 
     frame = result.frame
     counts = ", ".join(f"{count} {status}" for status, count in frame["status"].value_counts().items())

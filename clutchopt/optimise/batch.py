@@ -3,12 +3,12 @@
 Along a sweep each point is re-solved next to the optimum of the one before. ``Problem.solve`` does that one point
 at a time, and there a 20-40 us SQP re-solve sits inside about 0.3 ms of Python (argument conversion, the float64
 check, outputs, sensitivities, bookkeeping). Here a batch of consecutive points goes to one CasADi function that
-chains the SQP re-solves inside CasADi (``Problem.chained_sqp``: ``mapaccum`` over the ``sqpmethod`` solver; each
+chains the SQP re-solves inside CasADi (``chain.chained_sqp``: ``mapaccum`` over the ``sqpmethod`` solver; each
 point starts from the primal-dual optimum of the one before, moved on by a secant predictor, so that one SQP
 iteration usually does), its NumPy arrays read and written in place (``clutchopt.optimise.in_place``), and the
 tests of ``Problem.solve`` run afterwards on all points of the batch at once:
 
-- in one mapped CasADi evaluation (``Problem.chain_verdict``): the KKT conditions of every point, apart from the
+- in one mapped CasADi evaluation (``chain.chain_verdict``): the KKT conditions of every point, apart from the
   solver; the integer test of the warm integer search (a point whose fixed integers' bound multipliers point to a
   neighbouring integer the search would solve ends the chain); without integers, whether the optimum has moved
   more than tenfold from the variable scales (the solve is repeated with new scales there);
@@ -21,7 +21,7 @@ tests of ``Problem.solve`` run afterwards on all points of the batch at once:
 
 A batch is kept up to its first point that fails a test. Where the integer search decides that point (its
 integers excluded there, or a neighbour to try), the batch runs the search itself, with ``Problem.solve``'s steps
-(``Problem.descend``, then the relaxation and ``Problem.nearest_integers``): each integer combination is excluded
+(``integers.descend``, then the relaxation and ``integers.nearest_integers``): each integer combination is excluded
 by the tables or re-solved by a one-point chained SQP and KKT-checked (the relaxation with its Hessian
 convexified). Otherwise, and where a re-solve of that search fails its check, the point is solved by
 ``Problem.solve``, warm from the last kept point (SQP, warm IPOPT, the integer search, the cold solve and the
@@ -30,10 +30,8 @@ infeasibility diagnosis), and the next batch starts after it, 8 points long, dou
 points to another call, it repeats its last point. After a point without a design the points are solved cold, one
 by one, until one is optimal. A point that passes the KKT test but not the float64 check (rare) is solved again by
 ``Problem.solve`` at the end of its window. A chained call that CasADi ends with an evaluation error counts as a
-batch whose first point failed. A window's table rows (``Solutions.table``) and records (each point's
-``Solution.as_dict()``, ``Solutions.records``; compact, as the run store keeps them, ``Solutions.compact_records``)
-are built together when asked for, from the window's arrays; a point's :class:`Solution` is built from its record
-when the point is read.
+batch whose first point failed. A window's points are checked and built into solutions by
+``clutchopt.optimise.batch_window``.
 
 The optima equal ``Problem.solve``'s to the solver's tolerance: a batch keeps the variable scales of the point it
 starts from and normalises the objective by that point's objective, where ``Problem.solve`` takes both afresh from
@@ -49,19 +47,19 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Sequence
 from typing import Iterator
 
 import numpy as np
 
 from clutchopt.cases import Case
-from clutchopt.model import Output, namespace
-from clutchopt.optimise.problem import (Box, Problem, Solution, SolverInfo, WarmStart, limit_elasticities,
-                                       sense_sign)
-from clutchopt.optimise.table import active_names, placed, record_table
-from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, constraint_table, margin_flags
-from clutchopt.records import CONSTRAINT_COLUMNS, TEMPLATE, expand, expanded, template_key
-from clutchopt.units import si_unit
+from clutchopt.optimise.attempts import warm_multipliers
+from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
+from clutchopt.optimise.chain import chain_verdict, chained_sqp
+from clutchopt.optimise.integers import descend, excluded_entry, nearest_integers, relaxation_seed, search_entry
+from clutchopt.optimise.posed import Box, off_scale
+from clutchopt.optimise.problem import Problem
+from clutchopt.optimise.solution import Solution, WarmStart
+from clutchopt.optimise.verify import FEASIBILITY_TOL
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
 LONGEST_BATCH = 256  # doubling stops here: a longer batch saves little call overhead and risks more waste
@@ -71,8 +69,6 @@ EXCLUSION_SPAN = LONGEST_BATCH  # points ahead whose exclusion of an integer com
 # points at least; fewer cost less where the integers change often, since each table is a mapped CasADi call)
 PADDING = 64  # a chain may repeat its last point this many times to save a call (about 4 us a repeated point,
 # against 0.2 ms of a call and its checks, on the cable: 64 cost about as much as the call they save)
-BATCHED = "batched, KKT verified"
-UNVERIFIED = "SQP reported a KKT point but the float64 check finds a constraint violated"
 
 
 def chain_length(count: int) -> int:
@@ -91,25 +87,9 @@ def batchable(problem: Problem, names) -> bool:
     return problem.start_up is None and problem.options.warm_sqp and set(names) <= quantities
 
 
-class _Block:
-    """Batched points, one column each: the solver's primal-dual points, their steps from the point before (the
-    predictor's, see ``Problem.chained_sqp``) and scaled objectives, the NLP parameters and bounds, each point's
-    share of its batch's time and its solver calls."""
-
-    KEYS = ("x", "lam_x", "lam_g", "dx", "dlam_x", "dlam_g", "f", "p", "lbx", "ubx", "time", "solves")
-
-    def __init__(self, index: np.ndarray, **arrays: np.ndarray):
-        self.index, self.arrays = index, arrays
-
-    @classmethod
-    def joined(cls, blocks: list["_Block"]) -> "_Block":
-        return cls(np.concatenate([b.index for b in blocks]),
-                   **{key: np.concatenate([b.arrays[key] for b in blocks], axis=-1) for key in cls.KEYS})
-
-
-class _Chain(_Block):
+class _Chain(Block):
     """Chained points with their KKT verdicts (``ok``) and whether the warm integer search would go on from them, or
-    without integers re-scale (``moves``, see ``Problem.chain_verdict``)."""
+    without integers re-scale (``moves``, see ``chain.chain_verdict``)."""
 
     def __init__(self, index: np.ndarray, ok: np.ndarray, moves: np.ndarray, **arrays: np.ndarray):
         super().__init__(index, **arrays)
@@ -121,9 +101,9 @@ class _Chain(_Block):
         except KeyError:
             raise AttributeError(key) from None
 
-    def block(self, passed: int) -> _Block:
+    def block(self, passed: int) -> Block:
         """The first ``passed`` points."""
-        return _Block(self.index[:passed], **{key: value[:, :passed] for key, value in self.arrays.items()})
+        return Block(self.index[:passed], **{key: value[:, :passed] for key, value in self.arrays.items()})
 
 
 class _Unsettled(Exception):
@@ -134,12 +114,12 @@ class _Start:
     """Where a batch starts: a primal-dual point that passed the tests, in its own scaling, and the same as the warm
     start of a point solved by ``Problem.solve``."""
 
-    def __init__(self, sweep: "BatchSweep", solution: Solution | None = None, block: _Block | None = None):
-        n, m = len(sweep.names), len(sweep.problem.formulation.quantities)
+    def __init__(self, sweep: "BatchSweep", solution: Solution | None = None, block: Block | None = None):
+        n, m = len(sweep.names), len(sweep.posed.formulation.quantities)
         if solution is not None:
             self.scale = solution.scale
             self.x = np.array([solution.design[name] for name in sweep.names]) / self.scale
-            self.lam_x, self.lam_g = sweep.problem.warm_multipliers(*solution.multipliers)
+            self.lam_x, self.lam_g = warm_multipliers(sweep.posed, *solution.multipliers)
             self.objective = solution.objective
             self.step = {"dx": np.zeros_like(self.x), "dlam_x": np.zeros_like(self.lam_x),
                          "dlam_g": np.zeros_like(self.lam_g)}  # nothing to predict from
@@ -148,7 +128,7 @@ class _Start:
             self.scale, self.x, self.lam_x, self.lam_g = p[m:m + n], a["x"][:, -1], a["lam_x"][:, -1], a["lam_g"][:, -1]
             self.objective = float(a["f"][0, -1] * p[m + n])  # the scaled objective times its normaliser
             self.step = {key: a[key][:, -1] for key in ("dx", "dlam_x", "dlam_g")}
-        self.names, self.integer = sweep.names, sweep.problem._integer
+        self.names, self.integer = sweep.names, sweep.posed.integer
         self.combo = np.round(self.x[sweep.integer] * self.scale[sweep.integer])  # the free integers (SI)
         objective = self.objective
         self.f_scale = abs(objective) if math.isfinite(objective) and objective != 0 else 1.0  # the batch's normaliser
@@ -176,7 +156,7 @@ class BatchSweep:
     def __init__(self, problem: Problem, case: Case, varied: dict[str, np.ndarray]):
         if not batchable(problem, varied):
             raise ValueError("this problem and sweep are solved point by point (Problem.solve)")
-        self.problem, self.case = problem, case
+        self.problem, self.posed, self.case = problem, problem.posed, case
         self.varied = {name: np.asarray(values, dtype=float).ravel() for name, values in varied.items()}
         self.count = len(next(iter(self.varied.values()))) if self.varied else 1
         declared = {q.name: q for q in case.quantities}
@@ -185,7 +165,7 @@ class BatchSweep:
                 raise ValueError("every varied quantity needs one value per point")
             declared[name].check_all(values)
         f = problem.formulation
-        base = problem._params(case)
+        base = self.posed.params(case)
         self._by_point = np.tile(np.array([getattr(base, q.name) for q in f.quantities], dtype=float),
                                  (self.count, 1))  # a point's case values, a row each (CasADi's memory of columns)
         for j, q in enumerate(f.quantities):
@@ -193,20 +173,20 @@ class BatchSweep:
                 self._by_point[:, j] = self.varied[q.name]
         self.values = self._by_point.T  # a quantity a row
         self.names = [v.name for v in f.variables]
-        self.lower, self.upper, _ = problem._bounds_and_start(case, None)
-        self.integer = [i for i in problem._integer if self.lower[i] < self.upper[i]]
+        self.lower, self.upper, _ = self.posed.bounds_and_start(case, None)
+        self.integer = [i for i in self.posed.integer if self.lower[i] < self.upper[i]]
         fixed = self.lower == self.upper
         fixed[self.integer] = True
         # the constraints of fixed variables alone that the batch's integers enter (one of the case alone that breaks
         # at a point stops a batch there by its KKT check, and Problem.solve diagnoses it)
         entered = np.zeros_like(fixed)
         entered[self.integer] = True
-        rows, self._fixed_values = problem.fixed_only(fixed, entered)
-        self._verdict = problem.chain_verdict(self.integer, fixed)
-        self._fixed_names = np.array([problem.row_names[row] for row in rows])
+        rows, self._fixed_values = self.posed.fixed_only(fixed, entered)
+        self._verdict = chain_verdict(self.posed, self.integer, fixed)
+        self._fixed_names = np.array([self.posed.row_names[row] for row in rows])
         self._span = min(EXCLUSION_SPAN, self.count)
         self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
-        self._searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
+        self.searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
         varied = self.values[[q.name in self.varied for q in f.quantities]]
         with np.errstate(all="ignore"):  # each point's step in the case from the one before, relative
             moves = np.diff(varied, axis=1) / np.abs(varied[:, 1:])
@@ -227,7 +207,7 @@ class BatchSweep:
         size, k = FIRST_BATCH, 0
         while k < self.count:
             first, end, deadline = k, min(k + window, self.count), time.perf_counter() + WINDOW_S
-            blocks: list[_Block] = []
+            blocks: list[Block] = []
             alone: dict[int, Solution] = {}
             while k < end and time.perf_counter() < deadline:  # each turn solves at least one point
                 wanted = min(size, end - k)
@@ -260,7 +240,7 @@ class BatchSweep:
         self.solver_s += solution.solver.time_s
         return solution
 
-    def _batch(self, start: _Start, k: int, count: int) -> tuple[_Block | None, int, bool]:
+    def _batch(self, start: _Start, k: int, count: int) -> tuple[Block | None, int, bool]:
         """Chain up to ``count`` points from ``start``: the columns up to the first that fails a test (None if it is
         the first), how many were chained (fewer than asked where the batch's integers are excluded ahead, none
         if they are at ``k``, see :func:`chain_length`), and whether the first point left is the integer search's
@@ -304,7 +284,7 @@ class BatchSweep:
         ratio = self._ratios(points) if predict else 0.0
         began = time.perf_counter()
         try:
-            x, lam_x, lam_g, dx, dlam_x, dlam_g, f = self.problem.chained_sqp(length, method)(
+            x, lam_x, lam_g, dx, dlam_x, dlam_g, f = chained_sqp(self.posed, length, method)(
                 *(seed[key] for key in ("x", "lam_x", "lam_g", "dx", "dlam_x", "dlam_g")), ratio, p, lbx, ubx)
         except RuntimeError:
             x = None
@@ -313,7 +293,7 @@ class BatchSweep:
         if x is None:
             return None
         began = time.perf_counter()
-        kkt, moves = self.problem.mapped(self._verdict, length)(x, p, lam_x, lam_g, lbx, ubx, f, self.lower,
+        kkt, moves = self.posed.mapped(self._verdict, length)(x, p, lam_x, lam_g, lbx, ubx, f, self.lower,
                                                                  self.upper)
         self.check_s += time.perf_counter() - began
         arrays = dict(x=x, lam_x=lam_x, lam_g=lam_g, dx=dx, dlam_x=dlam_x, dlam_g=dlam_g, f=f, p=p)
@@ -329,9 +309,9 @@ class BatchSweep:
         ratio[1:][points[1:] == points[:-1]] = 0.0
         return ratio
 
-    def _settle(self, start: _Start, k: int) -> _Block | None:
-        """Point k, where a batch ended for the integer search: ``Problem.solve``'s warm search (``Problem.descend``
-        from the batch's integers; should they fail, the relaxation and ``Problem.nearest_integers``), each
+    def _settle(self, start: _Start, k: int) -> Block | None:
+        """Point k, where a batch ended for the integer search: ``Problem.solve``'s warm search (``integers.descend``
+        from the batch's integers; should they fail, the relaxation and ``integers.nearest_integers``), each
         combination excluded by the batch's tables or re-solved by a one-point chained SQP from the previous point's
         optimum and KKT-checked. None where a re-solve does not pass its check or no integer point is found
         (``Problem.solve`` decides the point; also where a constraint of the case alone breaks, which fails the
@@ -345,10 +325,10 @@ class BatchSweep:
             lower[self.integer] = upper[self.integer] = combo
             excluded = list(dict.fromkeys(self._fixed_names[self._broken(lower, k, 1)[:, 0]]))
             if excluded:
-                search.append(self.problem.excluded_entry(self.integer, combo, excluded))
+                search.append(excluded_entry(self.posed, self.integer, combo, excluded))
                 return None
             run = solved(lower, upper, seed, "sqp_chain")
-            search.append(self.problem.search_entry(self.integer, combo, BATCHED, True, run["value"]))
+            search.append(search_entry(self.posed, self.integer, combo, BATCHED, True, run["value"]))
             return run
 
         def solved(lower, upper, seed, method) -> dict:
@@ -360,12 +340,12 @@ class BatchSweep:
                 "f": float(chain.f[0, 0]), "value": float(chain.f[0, 0]) * start.f_scale, "chain": chain}
 
         try:
-            kept = self.problem.descend(box, self.integer, start.combo, seed, search, attempt)
+            kept = descend(self.posed, box, self.integer, start.combo, seed, search, attempt)
             if kept is None:  # the batch's integers fail here: the relaxation, from the same point
-                relaxed = solved(self.lower, self.upper, self.problem.relaxation_seed(seed, self.integer), "sqp_search")
-                if self.problem.off_scale(relaxed["x"][: len(self.names)]):
+                relaxed = solved(self.lower, self.upper, relaxation_seed(seed, self.integer), "sqp_search")
+                if off_scale(relaxed["x"][: len(self.names)]):
                     return None
-                kept = self.problem.nearest_integers(box, self.integer, relaxed, search, attempt)
+                kept = nearest_integers(self.posed, box, self.integer, relaxed, search, attempt)
         except _Unsettled:
             return None
         if kept is None:
@@ -375,13 +355,13 @@ class BatchSweep:
         block.arrays["solves"][:] = len(runs)
         for key in ("dx", "dlam_x", "dlam_g"):  # no step to predict from across a change of the integers
             block.arrays[key] = np.zeros_like(block.arrays[key])
-        self._searches[k] = search
+        self.searches[k] = search
         return block
 
     def _excluded(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
         """Per point k .. k + count - 1: the fixed variables of ``design`` (SI; integers and variables fixed by the
         case) break a constraint that depends on them alone there, so the integer search would exclude them without a
-        solve (the test of ``Problem.violated_whatever_the_rest``)."""
+        solve (the test of ``integers.violated_whatever_the_rest``)."""
         return self._broken(design, k, count).any(axis=0)
 
     def _broken(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
@@ -393,203 +373,21 @@ class BatchSweep:
             first, began = k, time.perf_counter()
             p_rows = np.ones((self._span, len(self.values) + len(design) + 1))  # unit scales: x is SI
             p_rows[:, : len(self.values)] = self._by_point[np.minimum(np.arange(k, k + self._span), self.count - 1)]
-            g, = self.problem.mapped(self._fixed_values, self._span)(design, p_rows.T)  # past the end: the last point
+            g, = self.posed.mapped(self._fixed_values, self._span)(design, p_rows.T)  # past the end: the last point
             self.check_s += time.perf_counter() - began
             table = g > 10 * FEASIBILITY_TOL
             self._exclusions[key] = (first, table)
         return table[:, k - first:k - first + count]
 
-    def _window(self, blocks: list[_Block], alone: dict[int, Solution], first: int, count: int) -> "Solutions":
+    def _window(self, blocks: list[Block], alone: dict[int, Solution], first: int, count: int) -> "Solutions":
         """The solutions of points first .. first + count - 1: batched points checked in float64 together; one that
         fails the check is solved again by ``Problem.solve``, warm from the point before."""
-        solutions = Solutions(first, count, alone, _Checked(self, _Block.joined(blocks)) if blocks else None,
-                              self.names)
+        block = Block.joined(blocks) if blocks else None
+        checked = None if block is None else Checked(self.posed, block, self.values[:, block.index],
+                                                     (self.lower, self.upper), self.searches)
+        solutions = Solutions(first, count, alone, checked, self.names)
         for k in solutions.unverified:
             before = solutions[k - first - 1] if k > first else None
             warm = before if before is not None and before.status == "optimal" else None
             solutions.replace(k - first, self._solve_alone(k, warm))
         return solutions
-
-
-class Solutions(Sequence):
-    """A window's solutions in point order, each batched point built as a :class:`Solution` when first read."""
-
-    def __init__(self, first: int, count: int, alone: dict[int, Solution], checked: "_Checked | None",
-                 names: list[str]):
-        self._solutions = {k - first: solution for k, solution in alone.items()}  # by position in the window
-        self._names = names  # the design variables
-        self._checked, self._column = checked, np.full(count, -1)
-        if checked is not None:
-            self._column[checked.block.index - first] = np.arange(len(checked.block.index))
-        self.unverified = [] if checked is None else checked.block.index[~checked.feasible].tolist()
-
-    def __len__(self) -> int:
-        return len(self._column)
-
-    def __getitem__(self, i):
-        if isinstance(i, slice):
-            return [self[j] for j in range(*i.indices(len(self)))]
-        i = range(len(self))[i]
-        if i not in self._solutions:
-            self._solutions[i] = self._checked[int(self._column[i])]
-        return self._solutions[i]
-
-    def replace(self, i: int, solution: Solution) -> None:
-        self._solutions[i] = solution
-
-    def records(self) -> list[dict]:
-        """Every point's ``Solution.as_dict()``, those of the batched points built together from the window's arrays
-        (no Solution objects)."""
-        return expanded(*self.compact_records())
-
-    def compact_records(self) -> tuple[list[dict], dict[str, dict]]:
-        """Every point's record as the run store keeps it, a batched point's compact (``clutchopt.records``), and the
-        templates they use, by key."""
-        if self._checked is None:
-            return self._by_position([]), {}
-        template, compact = self._checked.compact_records()
-        return self._by_position(compact), {compact[0][TEMPLATE]: template} if compact else {}
-
-    def _by_position(self, batched: list[dict]) -> list[dict]:
-        return [self._solutions[i].as_dict() if i in self._solutions else batched[column]
-                for i, column in enumerate(self._column.tolist())]
-
-    def table(self) -> dict[str, np.ndarray]:
-        """Every point's row of a sweep table (``clutchopt.optimise.table``), those of the batched points read from
-        the window's arrays without building their records."""
-        names = self._names
-        if self._checked is None:
-            return record_table([self._solutions[i].as_dict() for i in range(len(self))], names)
-        table = {key: column[..., self._column] for key, column in self._checked.table().items()}  # copies
-        alone = sorted(self._solutions)
-        if alone:
-            placed(record_table([self._solutions[i].as_dict() for i in alone], names), alone, table)
-        return table
-
-    @property
-    def statuses(self) -> list[str]:
-        """Each point's status, without building the Solutions of batched points (optimal unless one failed its
-        float64 check and was solved again)."""
-        statuses = ["optimal"] * len(self)
-        for i, solution in self._solutions.items():
-            statuses[i] = solution.status
-        return statuses
-
-
-class _Checked:
-    """Batched points checked in float64 at once by the formulation's own equations (constraints, objective), one
-    column per point; their outputs and Solutions are built when read."""
-
-    def __init__(self, sweep: BatchSweep, block: _Block):
-        problem, f = sweep.problem, sweep.problem.formulation
-        self.sweep, self.block, a = sweep, block, block.arrays
-        m, n, count = len(f.quantities), len(sweep.names), len(block.index)
-        self.design = a["x"][:n] * a["p"][m:m + n]
-        self.design[problem._integer] = np.round(self.design[problem._integer])
-        self.x = namespace(dict(zip(sweep.names, self.design)))
-        self.params = namespace({q.name: row for q, row in zip(f.quantities, sweep.values[:, block.index])})
-        with np.errstate(all="ignore"):
-            self.constraints = f.constraints(self.x, self.params)
-        self.value, self.limit, self.scale, self.margin = constraint_table(self.constraints, count)
-        self.feasible = np.all(self.margin >= -FEASIBILITY_TOL, axis=0)
-        self.objective = np.broadcast_to(np.asarray(problem.objective.function(self.x, self.params), dtype=float),
-                                         (count,))
-        self._outputs = None
-
-    @property
-    def outputs(self) -> dict[str, tuple[np.ndarray, Output]]:
-        """The derived quantities of every point (evaluated together when a first point is read)."""
-        if self._outputs is None:
-            count = len(self.block.index)
-            with np.errstate(all="ignore"):
-                self._outputs = {name: (np.broadcast_to(np.asarray(out.value, dtype=float), (count,)), out)
-                                 for name, out in self.sweep.problem.formulation.outputs(self.x, self.params).items()}
-        return self._outputs
-
-    def verdicts(self) -> tuple[np.ndarray, np.ndarray]:
-        """Each point's status and diagnosis by the float64 check: optimal, or unverified with its diagnosis."""
-        ok = self.feasible.astype(int)
-        return np.array(["unverified", "optimal"], dtype=object)[ok], np.array([UNVERIFIED, None], dtype=object)[ok]
-
-    def table(self) -> dict[str, np.ndarray]:
-        """Every point's row of a sweep table (``clutchopt.optimise.table``), from the arrays: statuses and
-        diagnoses by the float64 check, the names of the active constraints joined once per pattern."""
-        (status, diagnosis), (active, _) = self.verdicts(), margin_flags(self.margin, FEASIBILITY_TOL)
-        return {"status": status, "objective": self.objective, "design": self.design,
-                "active": active_names(active, [c.name for c in self.constraints]), "diagnosis": diagnosis,
-                "iterations": np.full(len(self.block.index), None)}
-
-    def compact_records(self, columns: list[int] | None = None) -> tuple[dict, list[dict]]:
-        """Every point's record (of the points ``columns`` only, if given) in two parts (``clutchopt.records``): the
-        template the points share, and each point's own numbers, converted to Python floats a table at a time."""
-        sweep, problem, f = self.sweep, self.sweep.problem, self.sweep.problem.formulation
-        cols = slice(None) if columns is None else np.asarray(columns, dtype=int)
-        a = {key: value[:, cols] for key, value in self.block.arrays.items()}
-        value, limit, margin, scale = (table[:, cols] for table in (self.value, self.limit, self.margin, self.scale))
-        objective, feasible, index = self.objective[cols], self.feasible[cols], self.block.index[cols]
-        m, n, n_c = len(f.quantities), len(sweep.names), len(self.constraints)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            sign = np.array([sense_sign(c.sense) for c in self.constraints])[:, None]
-            lam = a["lam_g"][:n_c]
-            elasticity = limit_elasticities(sign, lam, a["p"][m + n], limit, scale, objective)
-        priced = ((objective != 0) & np.isfinite(objective)).tolist()
-        active, fits = (flags.T.tolist() for flags in margin_flags(margin, FEASIBILITY_TOL))
-        tables = [t.T.tolist() for t in (value, limit, margin, scale, lam, elasticity)]
-        outputs = self.outputs
-        out_values = np.empty((len(outputs), len(objective)))
-        for row, (values, _) in zip(out_values, outputs.values()):
-            row[:] = values[cols]
-        template = {
-            "coupling": f.coupling, "mode": f.mode,
-            "objective": {"name": problem.objective.name, "unit": problem.objective.unit},
-            "design": list(sweep.names), "outputs": list(outputs),
-            "units": {"design": {v.name: si_unit(v.unit) for v in f.variables},
-                      "outputs": {name: si_unit(out.unit) for name, (_, out) in outputs.items()}},
-            "constraints": [{"name": c.name, "equation": c.equation, "sense": c.sense, "unit": si_unit(c.unit),
-                             "description": c.description, "tolerance": FEASIBILITY_TOL, "display_unit": c.unit}
-                            for c in self.constraints],
-            "solver": {"name": "sqpmethod", "status": BATCHED, "iterations": None},
-            "bounds": {name: [float(lo), float(hi)] for name, lo, hi in zip(sweep.names, sweep.lower, sweep.upper)},
-        }
-        key, unpriced = template_key(template), [None] * n_c
-        (statuses, diagnoses), objectives = (v[cols].tolist() for v in self.verdicts()), objective.tolist()
-        sensitivities = problem.sensitivity_columns(*(a[key] for key in ("x", "p", "lam_x", "lam_g", "lbx", "ubx")),
-                                                    np.where(feasible, objective, np.nan))
-        times, solves = a["time"][0].tolist(), a["solves"][0].tolist()
-        compact = []
-        for j, (design, point_outputs, values, limits, margins, scales, lams, elasticities) in enumerate(zip(
-                self.design[:, cols].T.tolist(), out_values.T.tolist(), *tables)):
-            compact.append({
-                TEMPLATE: key, "status": statuses[j], "objective": objectives[j],
-                "design": design, "outputs": point_outputs,
-                "constraints": dict(zip(CONSTRAINT_COLUMNS, (values, limits, margins, active[j], fits[j], scales, lams,
-                                                             elasticities if priced[j] else unpriced))),
-                "solver": {"time_s": times[j], "solves": int(solves[j])},
-                "diagnosis": diagnoses[j],
-                "integer_search": sweep._searches.get(int(index[j]), []),
-                "sensitivities": sensitivities[j],
-            })
-        return template, compact
-
-    def records(self, columns: list[int] | None = None) -> list[dict]:
-        """Every point's ``Solution.as_dict()`` (of the points ``columns`` only, if given): its compact record
-        expanded."""
-        template, compact = self.compact_records(columns)
-        return [expand(record, template) for record in compact]
-
-    def __getitem__(self, j: int) -> Solution:
-        """Point ``j`` as the Solution ``Problem.solve`` returns (its record as objects, the display units of its
-        outputs and constraints, its scales and multipliers for warm starts)."""
-        record, f = self.records([j])[0], self.sweep.problem.formulation
-        m, n = len(f.quantities), len(self.sweep.names)
-        a = {key: value[:, j] for key, value in self.block.arrays.items()}
-        checks = [ConstraintCheck(**{key: value for key, value in c.items() if key != "display_unit"}
-                                  | {"unit": c["display_unit"]}) for c in record["constraints"]]
-        outputs = {name: Output(value, out.unit, out.description)
-                   for (name, value), (_, out) in zip(record["outputs"].items(), self.outputs.values())}
-        return Solution(
-            record["coupling"], record["mode"], record["objective"]["name"], record["objective"]["unit"],
-            record["status"], record["objective"]["value"], record["design"], outputs, checks,
-            SolverInfo(**record["solver"]), record["diagnosis"], record["integer_search"],
-            {name: tuple(pair) for name, pair in record["bounds"].items()}, record["sensitivities"],
-            a["p"][m:m + n].copy(), (a["lam_x"].copy(), a["lam_g"].copy()), {v.name: v.unit for v in f.variables})

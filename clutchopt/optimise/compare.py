@@ -11,7 +11,8 @@ from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.model import ComparisonRow
-from clutchopt.optimise.problem import Solution, SolverOptions, case_problem, problem_for
+from clutchopt.optimise.problem import case_problem, problem_for
+from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.units import si_unit
 
 

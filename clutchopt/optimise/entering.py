@@ -17,7 +17,7 @@ from clutchopt.start_up.section import DEFAULTS_FROM_DUTY
 def entering(problem) -> frozenset[str]:
     """The case quantities the posed NLP's objective or constraints depend on."""
     quantities = problem.formulation.quantities
-    nlp = problem.nlp
+    nlp = problem.posed.nlp
     used = np.diff(ca.jacobian_sparsity(ca.vertcat(nlp["f"], nlp["g"]), nlp["p"][: len(quantities)]).colind()) > 0
     return frozenset(q.name for q, enters in zip(quantities, used) if enters)
 

@@ -18,9 +18,10 @@ from clutchopt.formulations import get_coupling
 from clutchopt.materials import variants
 from clutchopt.model import Formulation, Quantity, at_most
 from clutchopt.optimise.design import Robustness, check_robustness
-from clutchopt.optimise.problem import Solution, SolverOptions, case_formulation, problem_for
+from clutchopt.optimise.problem import case_formulation, problem_for
 from clutchopt.optimise.robust import RobustResult, solve_robust
-from clutchopt.optimise.sweep import column_name
+from clutchopt.optimise.solution import Solution, SolverOptions
+from clutchopt.optimise.sweep_grid import column_name
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_objective
 from clutchopt.start_up.drive import Structure
 from clutchopt.units import from_si

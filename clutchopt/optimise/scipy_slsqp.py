@@ -1,7 +1,7 @@
-"""SciPy SLSQP on the same scaled NLP IPOPT solves (:attr:`Problem.nlp`), for comparison.
+"""SciPy SLSQP on the same scaled NLP IPOPT solves (``Posed.nlp``), for comparison.
 
 f, g and their derivatives are CasADi functions of the scaled variables, so SLSQP sees exactly the numbers
-IPOPT sees: the same scaling, bounds and start (:meth:`Problem.scaled_data`). SLSQP has no integers: integer
+IPOPT sees: the same scaling, bounds and start (``Posed.scaled_data``). SLSQP has no integers: integer
 variables are fixed at given values (e.g. IPOPT's integer optimum). Its answer is re-checked in float64 like
 every other (SLSQP's own success flag is not trusted).
 """
@@ -40,7 +40,7 @@ class SlsqpProblem:
 
     def __init__(self, problem: Problem):
         self.problem = problem
-        nlp = problem.nlp
+        nlp = problem.posed.nlp
         x, p = nlp["x"], nlp["p"]
         self._f = ca.Function("f", [x, p], [nlp["f"]])
         self._grad = ca.Function("grad_f", [x, p], [ca.gradient(nlp["f"], x)])
@@ -50,7 +50,7 @@ class SlsqpProblem:
     def solve(self, case: Case, fixed: dict[str, float] | None = None, ftol: float = 1e-10,
               max_iter: int = 500) -> SlsqpResult:
         """Minimise from the problem's start; ``fixed`` pins variables (integers) at values through their bounds."""
-        data = self.problem.scaled_data(case)
+        data = self.problem.posed.scaled_data(case)
         variables = self.problem.formulation.variables
         lbx, ubx, x0 = data.lbx.copy(), data.ubx.copy(), data.x0.copy()
         for i, v in enumerate(variables):

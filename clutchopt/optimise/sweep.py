@@ -9,7 +9,8 @@ together (``clutchopt.optimise.batch``), by ``Problem.solve`` where a batch stop
 (``Problem.solve`` starts cold again if the warm start fails).
 Chunks run in this process, in a local process pool, or on a Dask cluster. The points are stored in the run store
 as they arrive, a window of them in one transaction, so a killed sweep resumes where it stopped. The table is built
-from the windows' arrays; each point's record only when read (``SweepResult.solutions``) or stored.
+from the windows' arrays; each point's record only when read (``SweepResult.solutions``) or stored. The grid comes
+from ``clutchopt.optimise.sweep_grid``; the table is written and read back by ``clutchopt.optimise.sweep_table``.
 """
 
 from __future__ import annotations
@@ -33,160 +34,19 @@ import numpy as np
 import pandas as pd
 
 from clutchopt.cases import Case
-from clutchopt.errors import InputError, Problems
-from clutchopt.files import TABLE_BYTES, check_output, read_bytes, write_whole
-from clutchopt.formulations import get_coupling
-from clutchopt.model import Formulation, Quantity
+from clutchopt.errors import InputError
+from clutchopt.model import Formulation
 from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
 from clutchopt.optimise.design import Robustness, check_robustness, design_case
 from clutchopt.optimise.entering import check_entering
-from clutchopt.optimise.problem import Solution, SolverOptions, case_formulation, case_problem
+from clutchopt.optimise.problem import case_formulation, case_problem
+from clutchopt.optimise.solution import Solution, SolverOptions
+from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_name, grid_points, grid_positions,
+                                           parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
 from clutchopt.optimise.table import joined_tables, record_table
 from clutchopt.optimise.verify import DESIGN_STATUSES
-from clutchopt.records import STATUSES, expanded, status_and_objective
-from clutchopt.units import from_si, si_factor
-
-MAX_POINTS = 100_000  # points of one sweep: hours of solving; more is a mistake (1e12 would not fit in memory)
-
-
-@dataclass(frozen=True)
-class Vary:
-    """One varied quantity: its declaration, its values in SI and, as given in its display unit, the same values (by
-    :func:`parse_vary`; without them the table converts the SI values back, e.g. 3000 rpm to 3000.0000000000005)."""
-
-    quantity: Quantity
-    values: tuple[float, ...]
-    shown: tuple[float, ...] | None = None
-
-    @property
-    def column(self) -> str:
-        return column_name(self.quantity.name, self.quantity.unit)
-
-
-def column_name(name: str, unit: str) -> str:
-    return f"{name} [{unit}]" if unit else name
-
-
-def parse_vary(text: str, coupling: str, quantities: tuple[Quantity, ...] | None = None) -> Vary:
-    """``name=start:stop:count`` or ``name=v1,v2,...``, values in the quantity's display unit; ``quantities``:
-    those a case may vary (default: the coupling's; ``Case.quantities`` adds a start-up's)."""
-    field = f"--vary {text}"
-    name, sep, spec = text.partition("=")
-    declared = {q.name: q for q in quantities or get_coupling(coupling).quantities}
-    if not sep or not spec.strip():
-        raise InputError(field, "expected name=start:stop:count or name=v1,v2,...")
-    quantity = declared.get(name.strip())
-    if quantity is None:
-        raise InputError(field, f"unknown quantity {name.strip()!r}; the {coupling} coupling has "
-                                f"{', '.join(sorted(declared))}")
-    numbers = _numbers(field, spec)
-    if ":" in spec:
-        if len(numbers) != 3 or numbers[2] != int(numbers[2]) or numbers[2] < 1:
-            raise InputError(field, "a range is start:stop:count with a whole count >= 1")
-        if numbers[2] > MAX_POINTS:
-            raise InputError(field, f"{numbers[2]:.15g} values; a sweep has at most {MAX_POINTS:,} points")
-        with np.errstate(all="ignore"):
-            numbers = np.linspace(numbers[0], numbers[1], int(numbers[2])).tolist()
-        if not all(math.isfinite(n) for n in numbers):
-            raise InputError(field, "the range's span is beyond the float64 range")
-    elif len(numbers) > MAX_POINTS:
-        raise InputError(field, f"{len(numbers)} values; a sweep has at most {MAX_POINTS:,} points")
-    factor = si_factor(quantity.unit) if quantity.unit else 1.0
-    values = tuple(value * factor for value in numbers)
-    if not all(math.isfinite(value) for value in values):
-        raise InputError(field, "values beyond the float64 range once converted to SI")
-    return Vary(quantity, values, tuple(numbers))
-
-
-def _numbers(field: str, spec: str) -> list[float]:
-    try:
-        numbers = [float(part) for part in (spec.split(":") if ":" in spec else spec.split(","))]
-    except ValueError:
-        raise InputError(field, f"not a number in {spec!r} (values are plain numbers in the quantity's "
-                                "display unit)") from None
-    if not all(math.isfinite(n) for n in numbers):
-        raise InputError(field, "values must be finite")
-    return numbers
-
-
-def check_grid(varies: list[Vary], zipped: bool = False) -> int:
-    """The number of points of the sweep's grid (at most MAX_POINTS; each quantity varied once; a listed sweep's
-    lists equally long)."""
-    names = [v.quantity.name for v in varies]
-    twice = sorted({name for name in names if names.count(name) > 1})
-    if twice:
-        raise InputError("--vary", f"{', '.join(twice)} varied twice; give all its values in one --vary")
-    count = len(varies[0].values) if zipped and varies else math.prod(len(v.values) for v in varies)
-    if count > MAX_POINTS:
-        raise InputError("--vary", f"the grid has {count:,} points; a sweep has at most {MAX_POINTS:,} "
-                                   "(split it, or use fewer values)")
-    if zipped:
-        lengths = {len(v.values) for v in varies}
-        if len(lengths) > 1:
-            raise InputError("--zip", f"listed sweeps need equally many values per --vary, got {sorted(lengths)}")
-    return count
-
-
-def grid_points(varies: list[Vary], zipped: bool = False) -> "Points":
-    """The sweep's points (see :func:`check_grid`), each varied quantity's values as an array (SI)."""
-    count = check_grid(varies, zipped)
-    return Points(np.arange(count), {v.quantity.name: np.array(v.values, dtype=float)[taken]
-                                     for v, taken in zip(varies, grid_positions(varies, zipped))})
-
-
-def grid_positions(varies: list[Vary], zipped: bool = False) -> list[np.ndarray | slice]:
-    """Which of its values each varied quantity takes at each point of the grid (all of them in order for one
-    quantity or a listed sweep)."""
-    if zipped or len(varies) < 2:
-        return [slice(None)] * len(varies)
-    return [a.ravel() for a in np.meshgrid(*(np.arange(len(v.values)) for v in varies), indexing="ij")]
-
-
-def check_points(case: Case, varies: list[Vary], points: "Points") -> None:
-    """A value out of a quantity's valid range is bad input before any solve: each varied quantity's values are
-    checked as an array; where one fails, the error names the first point that fails."""
-    try:
-        for vary in varies:
-            vary.quantity.check_all(points.columns[vary.quantity.name])
-    except InputError:
-        for index, values in points.pairs():
-            try:
-                case.with_values(**values)
-            except InputError as exc:
-                raise InputError(f"--vary (point {index})", str(exc)) from None
-        raise
-
-
-@dataclass(frozen=True)
-class Points:
-    """Points of a sweep: their indices, and each varied quantity's SI values at them (an array by name)."""
-
-    index: np.ndarray
-    columns: dict[str, np.ndarray]
-
-    def __len__(self) -> int:
-        return len(self.index)
-
-    def __getitem__(self, part: slice | np.ndarray) -> "Points":
-        return Points(self.index[part], {name: column[part] for name, column in self.columns.items()})
-
-    def values(self) -> list[dict[str, float]]:
-        """Each point's values by quantity name."""
-        names = list(self.columns)
-        if len(names) == 1:  # the common case, without a tuple per point
-            return [{names[0]: value} for value in self.columns[names[0]].tolist()]
-        rows = zip(*(column.tolist() for column in self.columns.values())) if names else [()] * len(self)
-        return [dict(zip(names, row)) for row in rows]
-
-    def pairs(self) -> Iterator[tuple[int, dict[str, float]]]:
-        """Each point's index and values."""
-        return zip(self.index.tolist(), self.values())
-
-    @classmethod
-    def joined(cls, parts: list["Points"]) -> "Points":
-        return cls(np.concatenate([p.index for p in parts]),
-                   {name: np.concatenate([p.columns[name] for p in parts]) for name in parts[0].columns})
-
+from clutchopt.records import expanded, status_and_objective
+from clutchopt.units import from_si
 
 SPENT = ("solves", "solver_s", "check_s")  # what solving points costs: solver calls, seconds in them and in checks
 
@@ -575,94 +435,3 @@ class Sweep:
         for key in ("status", "active", "diagnosis"):  # Python strings: pandas 3 would convert each to an Arrow
             columns[key] = pd.Series(columns[key], dtype=object, copy=False)  # string (a third of the table's time)
         return pd.DataFrame(columns, copy=False)
-
-
-TABLE_SUFFIXES = (".csv", ".parquet", ".md")
-
-
-def table_format(path: str, option: str = "--out") -> str:
-    """csv, parquet or md, from the file's suffix; the folder must exist and be writable (checked before any
-    solve, so that a long sweep does not end in a table it cannot write)."""
-    return check_output(option, path, TABLE_SUFFIXES)
-
-
-def write_frame(frame: pd.DataFrame, path: str, option: str = "--out") -> None:
-    """CSV, Parquet or Markdown by the file's suffix, written whole or not at all."""
-    suffix = table_format(path, option)
-
-    def write(target: str) -> None:
-        if suffix == "csv":
-            frame.to_csv(target, index=False)
-        elif suffix == "parquet":
-            frame.to_parquet(target, index=False)
-        else:
-            with open(target, "w", encoding="utf-8") as handle:
-                handle.write(markdown_table(frame) + "\n")
-
-    try:
-        write_whole(option, path, write)
-    except ImportError as exc:
-        raise InputError(option, f"Parquet needs pyarrow (pip install 'clutchopt[parquet]'): {exc}") from None
-
-
-
-
-def read_frame(path: str) -> pd.DataFrame:
-    """A sweep table written by :func:`write_frame` (CSV or Parquet), checked column by column: ``point``, the
-    varied inputs (numbers), ``status``, the objective (numbers, empty where there is no design)."""
-    import io
-
-    if not path.lower().endswith((".csv", ".parquet")):
-        raise InputError(path, "a sweep table is read from .csv or .parquet (written by clutchopt sweep --out)")
-    data = io.BytesIO(read_bytes(path, TABLE_BYTES))
-    try:
-        frame = pd.read_parquet(data) if path.lower().endswith(".parquet") else pd.read_csv(data)
-    except ImportError as exc:
-        raise InputError(path, f"Parquet needs pyarrow (pip install 'clutchopt[parquet]'): {exc}") from None
-    except (ValueError, OSError, UnicodeDecodeError) as exc:  # pandas' and pyarrow's parse errors
-        raise InputError(path, f"cannot read a sweep table ({_first_line(exc)})") from None
-    _check_sweep_table(frame, path)
-    return frame
-
-
-def _first_line(exc: Exception) -> str:
-    return (str(exc).strip().splitlines() or [type(exc).__name__])[0][:200]
-
-
-def _check_sweep_table(frame: pd.DataFrame, path: str) -> None:
-    columns = [str(c) for c in frame.columns]
-    layout = "written by clutchopt sweep --out: point, the varied inputs, status, the objective, ..."
-    if columns[:1] != ["point"] or "status" not in columns:
-        raise InputError(path, f"not a sweep table ({layout})")
-    status = columns.index("status")
-    if status < 2 or status + 1 >= len(columns):
-        raise InputError(path, f"not a sweep table: no varied input before status or no objective after it ({layout})")
-    if not 0 < len(frame) <= MAX_POINTS:
-        raise InputError(path, f"a sweep table has 1 to {MAX_POINTS:,} rows, this one {len(frame):,}")
-    problems = Problems()
-    for column in columns[:status] + [columns[status + 1]]:
-        values = pd.to_numeric(frame[column], errors="coerce")
-        blank = frame[column].isna()
-        if (values.isna() & ~blank).any() or (column != columns[status + 1] and blank.any()):
-            problems.errors.append(InputError(f"{path}: column {column!r}", "must hold numbers in every row"))
-        elif not np.isfinite(values[~blank]).all():
-            problems.errors.append(InputError(f"{path}: column {column!r}", "must hold finite numbers"))
-    unknown = sorted(set(map(str, frame["status"].dropna())) - set(STATUSES))
-    if unknown or frame["status"].isna().any():
-        problems.errors.append(InputError(f"{path}: column 'status'", f"must be one of {', '.join(STATUSES)} "
-                                                                      f"in every row, got {unknown[:3] or 'blanks'}"))
-    problems.raise_any()
-
-
-def table_cell(value) -> str:
-    """A sweep table's cell: numbers to 6 digits, ``-`` where a point has no value (no design: an infeasible point;
-    no iteration count: a point solved in a batch)."""
-    if value is pd.NA or (isinstance(value, float) and math.isnan(value)):
-        return "-"
-    return f"{value:.6g}" if isinstance(value, float) else str(value)
-
-
-def markdown_table(frame: pd.DataFrame) -> str:
-    lines = ["| " + " | ".join(frame.columns) + " |", "|" + "---|" * len(frame.columns)]
-    lines += ["| " + " | ".join(table_cell(v) for v in row) + " |" for row in frame.itertuples(index=False)]
-    return "\n".join(lines)

@@ -16,7 +16,8 @@ import pandas as pd
 
 from clutchopt.cases import Case, quantity_table
 from clutchopt.formulations import get_coupling
-from clutchopt.optimise.problem import Solution, case_formulation
+from clutchopt.optimise.problem import case_formulation
+from clutchopt.optimise.solution import Solution
 from clutchopt.output import (
     _shown,
     column_notes,

@@ -1,0 +1,135 @@
+"""Verdicts on primal-dual points of a posed problem, apart from the solver, and SQP re-solves chained for sweeps.
+
+The KKT verdict checks what a solver reports (CasADi's SQP can stop at the start when handed a previous point's
+multipliers). A chained SQP re-solves a batch of sweep points in one CasADi call, and the chain verdict tests them
+all at once: their KKT conditions and whether ``Problem.solve``'s warm integer search (or its re-scaling) would go on
+from them. Every function here is built once per posed problem (``Posed.built``) and called on NumPy arrays.
+"""
+
+from __future__ import annotations
+
+import functools
+import itertools
+
+import casadi as ca
+import numpy as np
+
+from clutchopt.optimise.in_place import InPlace
+from clutchopt.optimise.posed import Posed, off_scale_entries
+from clutchopt.optimise.verify import FEASIBILITY_TOL
+
+
+def kkt(posed: Posed) -> ca.Function:
+    """KKT conditions checked apart from the solver that reports them: the Lagrangian stationary, multipliers of
+    the right sign, complementary to their constraints and bounds, the constraints held (CasADi's SQP can stop at
+    the start when handed a previous point's multipliers, e.g. of a constraint that has become slack). A function
+    (x, p, lam_x, lam_g, lbx, ubx) -> 1 where all hold, else 0 (also where a number is NaN)."""
+    def build(_):
+        x, lam_g, g = posed.nlp["x"], posed.lam_g, posed.nlp["g"][: posed.n_ineq]
+        gradient = ca.gradient(posed.lagrangian, x)
+        lam_x, lbx, ubx = (ca.SX.sym(name, x.shape[0]) for name in ("lam_x", "lbx", "ubx"))
+        tol = 10 * posed.options.tol
+        ineq = lam_g[: posed.n_ineq]
+        width = tol * ca.fmax(1.0, ca.fabs(x))
+        wrong_bound = ca.logic_or(ca.logic_and(lam_x > tol, ubx - x > width),
+                                  ca.logic_and(lam_x < -tol, x - lbx > width))
+        holds = [ca.fabs(gradient + lam_x) <= tol, ineq >= -tol, ineq * ca.fmax(-g, 0.0) <= tol,
+                 ca.logic_not(wrong_bound), g <= FEASIBILITY_TOL]
+        failures = sum(ca.sum1(1 - condition) for condition in holds)  # a comparison with NaN fails
+        return ca.Function("kkt", [x, posed.nlp["p"], lam_x, lam_g, lbx, ubx], [failures == 0])
+
+    return posed.built("kkt", None, build)
+
+
+def first_order_optimal(posed: Posed, x, p, lam_x, lam_g, lbx, ubx) -> np.ndarray:
+    """The KKT verdict at primal-dual points (one per column; a 1-D argument serves every column), by one mapped
+    CasADi evaluation (see :func:`kkt`)."""
+    count = max(np.shape(a)[1] if np.ndim(a) == 2 else 1 for a in (x, p, lam_x, lam_g, lbx, ubx))
+    return posed.mapped(kkt(posed), count)(x, p, lam_x, lam_g, lbx, ubx)[0][0] > 0.5
+
+
+def chain_verdict(posed: Posed, integer: list[int], fixed: np.ndarray) -> ca.Function:
+    """The tests of a re-solve along a sweep as one CasADi function (x, p, lam_x, lam_g, lbx, ubx, f, lower, upper)
+    -> (kkt, moves): ``kkt`` its KKT verdict (:func:`kkt`); ``moves`` 1 where ``Problem.solve``'s warm search would
+    go on from this point. With free integers ``integer`` (fixed through their bounds in the re-solve; ``f`` its
+    scaled objective, ``lower``, ``upper`` the case's bounds, SI): a neighbouring combination that
+    ``integers.downhill`` steps to (each integer whose bound multiplier promises a gain beyond ``Posed.negligible``,
+    one unit that way inside the bounds) and that breaks no constraint of the variables ``fixed`` (a mask, integers
+    included) alone (``integers.violated_whatever_the_rest``); without, an optimum ``off_scale``. Built once per
+    integers and mask; no start-up."""
+    def build(number):
+        nlp = posed.nlp
+        x, p, lam_x, lam_g, lbx, ubx, f_hat = (ca.SX.sym(name, *shape) for name, shape in (
+            ("x", nlp["x"].shape), ("p", nlp["p"].shape), ("lam_x", nlp["x"].shape), ("lam_g", nlp["g"].shape),
+            ("lbx", nlp["x"].shape), ("ubx", nlp["x"].shape), ("f", (1, 1))))
+        n, m = len(posed.names), nlp["p"].shape[0] - len(posed.names) - 1
+        lower, upper = ca.SX.sym("lower", n), ca.SX.sym("upper", n)
+        verdict = kkt(posed)(x, p, lam_x, lam_g, lbx, ubx)
+        if integer:
+            moves = _search_moves(posed, integer, fixed, x, p, lam_x, f_hat, lower, upper, n, m)
+        else:
+            moves = ca.sum1(off_scale_entries(x[:n])) > 0
+        return ca.Function(f"chain_verdict_{number}", [x, p, lam_x, lam_g, lbx, ubx, f_hat, lower, upper],
+                           [verdict, moves])
+
+    key = np.asarray(integer, dtype=np.int64).tobytes() + b"|" + np.asarray(fixed, dtype=bool).tobytes()
+    return posed.built("verdict", key, build)
+
+
+def _search_moves(posed: Posed, integer, fixed, x, p, lam_x, f_hat, lower, upper, n: int, m: int) -> ca.SX:
+    """:func:`chain_verdict`'s test with integers, symbolic (see ``integers.downhill``)."""
+    entered = np.zeros_like(fixed)
+    entered[integer] = True
+    _, fixed_values = posed.fixed_only(fixed, entered)
+    scale = p[m:m + n]
+    combo = [ca.floor(x[i] * scale[i] + 0.5) for i in integer]
+    negligible = posed.negligible(f_hat)
+    direction = [ca.if_else(ca.fabs(lam_x[i]) / scale[i] > negligible, ca.sign(lam_x[i]), 0) for i in integer]
+    unit = ca.vertcat(p[:m], ca.DM.ones(n + 1))  # unit scales: x in SI
+    moves = ca.SX(0)
+    for step in itertools.product((-1.0, 0.0, 1.0), repeat=len(integer)):
+        if not any(step):
+            continue
+        neighbour = [ca.fmin(ca.fmax(c + s, lower[i]), upper[i]) for c, s, i in zip(combo, step, integer)]
+        stays = [nb == c for nb, c in zip(neighbour, combo)]  # no step, or one against a bound
+        tried = functools.reduce(ca.logic_and, [ca.logic_or(stay, d == s) for stay, d, s in
+                                                zip(stays, direction, step)],
+                                 ca.logic_not(functools.reduce(ca.logic_and, stays)))
+        design = [lower[i] for i in range(n)]
+        for i, nb in zip(integer, neighbour):
+            design[i] = nb
+        g = fixed_values(ca.vertcat(*design), unit)
+        excluded = ca.sum1(g > 10 * FEASIBILITY_TOL) > 0
+        moves = ca.logic_or(moves, ca.logic_and(tried, ca.logic_not(excluded)))
+    return moves
+
+
+def chained_sqp(posed: Posed, count: int, method: str = "sqp_chain") -> InPlace:
+    """``count`` SQP re-solves in one CasADi call, each started from the optimum of the one before, moved on by
+    the secant predictor: (x, lam_x, lam_g, dx, dlam_x, dlam_g, ratio, p, lbx, ubx) -> (x, lam_x, lam_g, dx,
+    dlam_x, dlam_g, f), one column per point (``ratio``, ``p``, ``lbx``, ``ubx``: a column per point, or one
+    for all; ``f`` the scaled objective). A point starts at x + ratio * dx, with dx the step between the two
+    optima before it and ``ratio`` this point's step in the case against that one (0: no prediction), clipped
+    to the bounds; its multipliers likewise, where that keeps their sign. Beside a smooth path this halves the
+    SQP iterations (2 to 1, each with an exact Hessian: most of a re-solve on the ball clutch). ``method``:
+    ``sqp_chain``, or ``sqp_search`` (its Hessian convexified). Built once per method and count, called on NumPy
+    arrays."""
+    def build(_):
+        n_x, n_g = posed.nlp["x"].shape[0], posed.nlp["g"].shape[0]
+        x, lam_x, dx, dlam_x, lbx, ubx = (ca.MX.sym(name, n_x) for name in ("x", "lam_x", "dx", "dlam_x", "lbx", "ubx"))
+        lam_g, dlam_g = ca.MX.sym("lam_g", n_g), ca.MX.sym("dlam_g", n_g)
+        ratio, p = ca.MX.sym("ratio"), ca.MX.sym("p", posed.nlp["p"].shape[0])
+
+        def predicted(lam, step):  # a multiplier keeps its sign or starts at 0
+            guess = lam + ratio * step
+            return ca.if_else(lam * guess > 0, guess, 0)
+
+        out = posed.solver(method)(x0=ca.fmin(ca.fmax(x + ratio * dx, lbx), ubx), lam_x0=predicted(lam_x, dlam_x),
+                                   lam_g0=predicted(lam_g, dlam_g), p=p, lbx=lbx, ubx=ubx, lbg=posed.lbg, ubg=0.0)
+        step = ca.Function("sqp_step", [x, lam_x, lam_g, dx, dlam_x, dlam_g, ratio, p, lbx, ubx],
+                           [out["x"], out["lam_x"], out["lam_g"], out["x"] - x, out["lam_x"] - lam_x,
+                            out["lam_g"] - lam_g, out["f"]])
+        accumulated = list(range(6))
+        return InPlace(step.mapaccum(method, count, accumulated, accumulated))
+
+    return posed.built("chain", (method, count), build)

@@ -1,0 +1,74 @@
+"""Infeasibility diagnosis of a posed problem: when IPOPT fails, an elastic problem (min sum of slacks on the
+normalised constraints) names the requirements that cannot hold together and by how much the least relaxation
+misses."""
+
+from __future__ import annotations
+
+import time
+
+import casadi as ca
+import numpy as np
+
+from clutchopt.optimise.posed import Posed
+from clutchopt.optimise.verify import FEASIBILITY_TOL
+
+
+def _elastic(posed: Posed) -> ca.Function:
+    """The elastic problem's IPOPT solver: slacks on the inequalities (the start-up's dynamics stay equalities)."""
+    def build(_):
+        n_g, nlp = posed.n_ineq, posed.nlp
+        slack = ca.SX.sym("slack", n_g)
+        g = nlp["g"]
+        elastic = {"x": ca.vertcat(nlp["x"], slack), "p": nlp["p"], "f": ca.sum1(slack),
+                   "g": ca.vertcat(g[:n_g] - slack, g[n_g:])}
+        return ca.nlpsol("elastic", "ipopt", elastic, posed.options.ipopt())
+
+    return posed.built("elastic", None, build)
+
+
+def diagnose(posed: Posed, p_vector, lbx, ubx, x0, scale) -> tuple[str, str, float]:
+    """Elastic relaxation: min sum(s) s.t. g(x) <= s, s >= 0 on the inequalities. Positive slacks name the conflict.
+    Returns status, diagnosis and the time of the IPOPT call on the elastic problem (a solver call, not a design
+    solve)."""
+    n_g, row_names, row_senses = posed.n_ineq, posed.row_names, posed.row_senses
+    g0 = np.array(posed.constraint_values(x0, p_vector)).ravel()
+    given = sorted({row_names[i] for i in posed.fixed_rows if g0[i] > FEASIBILITY_TOL}, key=row_names.index)
+    if given:  # requirements that no design variable enters: nothing to relax but the case itself
+        return "infeasible", ("infeasible whatever the design: " + ", ".join(
+            f"{name} ({'over' if row_senses[row_names.index(name)] == '<=' else 'short of'} its limit by "
+            f"{g0[row_names.index(name)]:.3g} relative)" for name in given)), 0.0
+    elastic = _elastic(posed)
+    started = time.perf_counter()
+    slack_bounds = np.zeros(n_g), np.full(n_g, np.inf)
+    result = elastic(x0=np.concatenate([x0, np.ones(n_g)]), p=p_vector, lbg=posed.lbg, ubg=0.0,
+                     lbx=np.concatenate([lbx, slack_bounds[0]]), ubx=np.concatenate([ubx, slack_bounds[1]]))
+    seconds = time.perf_counter() - started
+    slacks = np.array(result["x"]).ravel()[len(lbx):]
+    lam_g = np.array(result["lam_g"]).ravel()[:n_g]
+    x = np.array(result["x"]).ravel()[: len(lbx)]
+    if slacks.sum() <= 10 * FEASIBILITY_TOL:
+        return "solver_failed", ("IPOPT did not converge, yet a feasible point exists (elastic check); "
+                                 "try other bounds or a start point"), seconds
+    worst: dict[str, float] = {}
+    binding: list[str] = []
+    for name, s, lam in zip(row_names, slacks, lam_g):
+        worst[name] = max(worst.get(name, 0.0), s)
+        if s <= 10 * FEASIBILITY_TOL and lam > 1e-6 and name not in binding:
+            binding.append(name)
+    senses = dict(zip(row_names, row_senses))
+    violated = [f"{name} ({'over' if senses[name] == '<=' else 'short of'} its limit by {s:.3g} relative)"
+                for name, s in worst.items() if s > 10 * FEASIBILITY_TOL]
+    binding = [name for name in binding if worst[name] <= 10 * FEASIBILITY_TOL]
+    at_bounds = []
+    lam_x = np.array(result["lam_x"]).ravel()[: len(lbx)]
+    for i, v in enumerate(posed.formulation.variables):
+        if lbx[i] < ubx[i] and abs(lam_x[i]) > 1e-6:
+            side = "upper" if lam_x[i] > 0 else "lower"
+            at_bounds.append(f"{v.name} at its {side} bound ({v.show(x[i] * scale[i])})")
+        elif lbx[i] == ubx[i] and abs(lam_x[i]) > 1e-6:
+            at_bounds.append(f"{v.name} fixed at {v.show(x[i] * scale[i])}")
+    others = binding + at_bounds
+    text = "infeasible: cannot satisfy " + ", ".join(violated)
+    if others:
+        text += " together with " + ", ".join(others)
+    return "infeasible", text, seconds

@@ -1,0 +1,156 @@
+"""The integer search on a posed problem: integer variables fixed through their bounds at each integer choice tried.
+
+A first solve rounds its relaxation, a re-solve starts at the previous point's integers. From there the search steps
+to a neighbouring integer only in a direction in which the fixed integer's bound multiplier says the objective
+falls, and stops when a step does not lower it or the relaxation's objective (a bound on every integer choice) is
+reached; an integer choice that violates a constraint of fixed variables alone (e.g. cable stress against the cable
+count) is excluded without a solve. Where f*(n) is convex in the integers (the premise of rounding a relaxation at
+all) this finds the best of the relaxation's floor and ceiling, in about one solve per point along a sweep. Should
+the first integers fail, the floor and ceiling of the relaxation (then one further) are tried.
+
+The search steps are given how to try one integer choice (``attempt``): :func:`fixing` solves it on the posed
+problem; a batched sweep re-solves it by a one-point chained SQP.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from typing import Callable
+
+import numpy as np
+
+import clutchopt.optimise.attempts as attempts
+from clutchopt.optimise.posed import Box, Posed, ScaledData, scaled_box
+from clutchopt.optimise.verify import FEASIBILITY_TOL
+
+Attempt = Callable[..., "dict | None"]  # (combo, seed, methods) -> the verified run with the integers fixed at combo
+
+
+def within(data: ScaledData, integer: list[int], combo: np.ndarray) -> bool:
+    """The integer choice ``combo`` lies inside a solve's bounds."""
+    return bool(np.all((combo >= data.lower[integer]) & (combo <= data.upper[integer])))
+
+
+def _tried(posed: Posed, search: list[dict], integer: list[int], combo) -> bool:
+    return any(all(entry[posed.names[i]] == c for i, c in zip(integer, combo)) for entry in search)
+
+
+def descend(posed: Posed, box: Box, integer, combo, seed, search, attempt: Attempt, bound: float | None = None,
+            first: tuple[str, ...] = ("ipopt",)) -> dict | None:
+    """From the integers ``combo``, step to a neighbouring integer while the bound multipliers of the fixed
+    integers say the objective falls that way and the step lowers it; None if ``combo`` itself fails.
+    ``attempt(combo, seed, methods)``: the run with the integers fixed at ``combo`` if it is a verified optimum,
+    else None, logged in ``search`` (``Problem.solve``: :func:`fixing`; a batched sweep: one-point SQP).
+    ``bound``: the relaxation's scaled objective; an integer point that reaches it cannot be beaten.
+    ``first``: the methods for ``combo``; the neighbours are solved by IPOPT from a cold start."""
+    kept, queue, methods = None, [combo], first
+    while queue:
+        combo = queue.pop(0)
+        if _tried(posed, search, integer, combo):
+            continue
+        run = attempt(combo, kept or seed, methods)
+        methods = ("ipopt",)
+        if run is None and kept is None:
+            return None
+        if run is not None and (kept is None or run["value"] < kept["value"]):
+            kept, queue = run, downhill(posed, run, box, integer)
+            if bound is not None and run["f"] <= bound + posed.negligible(bound):
+                break
+    return kept
+
+
+def nearest_integers(posed: Posed, box: Box, integer, relaxed: dict, search, attempt: Attempt) -> dict | None:
+    """The integer point of a relaxation's optimum ``relaxed``: :func:`descend` from its rounded integers, bounded
+    by its objective; should they fail, the best of its floor and ceiling, then one further (``attempt`` as for
+    :func:`descend`). None: no integer point near the relaxation is feasible."""
+    nearest = np.clip(np.round(relaxed["x"][integer] * box.scale[integer]), box.lower[integer], box.upper[integer])
+    kept = descend(posed, box, integer, nearest, relaxed, search, attempt, bound=relaxed["f"])
+    for reach in (1, 2) if kept is None else ():
+        x_relaxed = relaxed["x"][: len(box.scale)] * box.scale
+        for combo in _neighbours(x_relaxed, integer, box.lower, box.upper, reach):
+            if not _tried(posed, search, integer, combo):
+                run = attempt(combo, relaxed, ("ipopt",))
+                if run is not None and (kept is None or run["value"] < kept["value"]):
+                    kept = run
+        if kept is not None:
+            break
+    return kept
+
+
+def _neighbours(x, integer, lower, upper, reach: int = 1):
+    """Floor and ceiling of each relaxed integer (within bounds), nearest combinations first."""
+    choices = []
+    for i in integer:
+        low, high = math.floor(x[i] + 1e-9), math.ceil(x[i] - 1e-9)
+        options = sorted({min(max(k, lower[i]), upper[i]) for k in range(low - reach + 1, high + reach)},
+                         key=lambda k: abs(k - x[i]))
+        choices.append(options)
+    return [np.array(combo, dtype=float) for combo in itertools.product(*choices)]
+
+
+def downhill(posed: Posed, run: dict, box: Box, integer: list[int]) -> list[np.ndarray]:
+    """Neighbours of a fixed-integer optimum in the directions its objective falls to first order.
+
+    With integer i fixed through its bounds, d f_hat / d x_hat_i = -lam_x_i, so one unit step changes the
+    scaled objective by about -|lam_x_i| / scale_i in the direction sign(lam_x_i). Where f*(n) is convex in
+    the integers (the premise of rounding a relaxation at all), the other direction cannot win, nor can this
+    one when the first-order gain is below the solver's tolerance of the objective."""
+    lam = run["lam_x"][integer]
+    gain = np.abs(lam) / box.scale[integer]
+    steps = np.where(gain > posed.negligible(run["f"]), np.sign(lam), 0.0)
+    current = np.round(run["x"][integer] * box.scale[integer])
+    choices = [sorted({c, min(max(c + s, lo), hi)}, key=lambda k: k != c + s)
+               for c, s, lo, hi in zip(current, steps, box.lower[integer], box.upper[integer])]
+    return [np.array(combo) for combo in itertools.product(*choices) if not np.array_equal(combo, current)]
+
+
+def fixing(posed: Posed, data: ScaledData, runs: list[dict], search: list[dict]) -> Attempt:
+    """``Problem.solve``'s ``attempt`` for :func:`descend`: the NLP on ``data`` with the free integers fixed at
+    ``combo``, the run if it is a verified-feasible optimum, else None. A combination that violates a constraint
+    depending on the integers and fixed variables alone is excluded without a solve. Every run goes into ``runs``."""
+    integer = posed.free_integers(data)
+
+    def fixed_at(combo, seed, methods: tuple[str, ...] = ("ipopt",)) -> dict | None:
+        lower, upper = data.lower.copy(), data.upper.copy()
+        lower[integer] = upper[integer] = combo
+        lbx, ubx = scaled_box(lower, upper, data.scale, (data.internal_lower, data.internal_upper))
+        x0 = np.clip(seed["x"], lbx, ubx)
+        excluded = violated_whatever_the_rest(posed, data.p, lbx, ubx, x0)
+        if excluded:
+            search.append(excluded_entry(posed, integer, combo, excluded))
+            return None
+        run = attempts.attempt(posed, data, lbx, ubx, x0, seed, methods, runs)
+        search.append(search_entry(posed, integer, combo, run["status"], run["feasible"], run["value"]))
+        return run if run["ok"] and run["feasible"] else None
+
+    return fixed_at
+
+
+def search_entry(posed: Posed, integer: list[int], combo, status: str, feasible: bool, objective: float) -> dict:
+    """An ``integer_search`` entry: the integer choice ``combo`` by name, how its solve ended, its objective."""
+    return {**{posed.names[i]: int(c) for i, c in zip(integer, combo)}, "status": status, "feasible": feasible,
+            "objective": objective}
+
+
+def excluded_entry(posed: Posed, integer: list[int], combo, violated: list[str]) -> dict:
+    """The ``integer_search`` entry of a choice excluded without a solve: the constraints it breaks."""
+    return search_entry(posed, integer, combo, f"excluded: {', '.join(violated)}", False, math.nan)
+
+
+def relaxation_seed(seed: dict, integer: list[int]) -> dict:
+    """A warm start for the relaxation from a fixed-integer optimum: the same point, the integers' bound
+    multipliers dropped (their bounds are opened)."""
+    lam_x = seed["lam_x"].copy()
+    lam_x[integer] = 0.0
+    return {**seed, "lam_x": lam_x}
+
+
+def violated_whatever_the_rest(posed: Posed, p, lbx, ubx, x0) -> list[str]:
+    """Constraints that depend only on fixed variables (integers included) and are violated at ``x0`` (scaled;
+    the fixed variables at their bounds)."""
+    rows, values = posed.fixed_only(lbx == ubx)
+    if not len(rows):
+        return []
+    g = posed.mapped(values, 1)(x0, p)[0].ravel()
+    return list(dict.fromkeys(posed.row_names[k] for k, gk in zip(rows, g) if gk > 10 * FEASIBILITY_TOL))

@@ -1,0 +1,274 @@
+"""A formulation posed as a scaled CasADi NLP: its functions, bounds and scaling, and its solvers, knowing no strategy.
+
+The NLP sees scaled numbers only: each design variable is ``x = s * x_hat`` with the scale ``s`` a parameter (taken
+from the start point of each solve), every constraint is normalised by its own scale (relative margin), and the
+objective is divided by its value at the start point. Case values, variable scales and the objective scale are all
+NLP parameters, so one posed problem serves every case of its formulation at every size. Solvers and derived CasADi
+functions are built on first use, once per problem (:meth:`Posed.built`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from types import SimpleNamespace
+from typing import Callable, NamedTuple
+
+import casadi as ca
+import numpy as np
+
+from clutchopt.backend import fmax
+from clutchopt.cases import Case
+from clutchopt.model import Formulation, namespace
+from clutchopt.optimise.compiled import compiled_solver
+from clutchopt.optimise.in_place import InPlace
+from clutchopt.optimise.solution import SolverOptions
+from clutchopt.optimise.verify import evaluate_objective
+from clutchopt.start_up.drive import Structure
+from clutchopt.start_up.equations import with_start_up
+from clutchopt.start_up.transcription import StartUpBlock, initial_states
+
+
+class Box(NamedTuple):
+    """The design's box in one solve: variable scales and bounds (SI)."""
+
+    scale: np.ndarray
+    lower: np.ndarray
+    upper: np.ndarray
+
+
+@dataclass
+class ScaledData:
+    """The numbers one solve hands to the NLP: parameter vector, scaled bounds and start, and the scales."""
+
+    params: SimpleNamespace  # case values of the formulation's quantities (SI)
+    lower: np.ndarray  # variable bounds (SI)
+    upper: np.ndarray
+    start: np.ndarray  # start point (SI)
+    scale: np.ndarray  # x = scale * x_hat
+    f_scale: float  # objective normaliser
+    p: np.ndarray  # the NLP's parameter vector: case values, scales, objective scale
+    internal_lower: np.ndarray = field(default_factory=lambda: np.zeros(0))  # start-up states, already scaled
+    internal_upper: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    internal_start: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    checked: SimpleNamespace | None = None  # the case values the design is checked against, if not ``params``
+
+    @property
+    def lbx(self) -> np.ndarray:
+        return np.concatenate([self.lower / self.scale, self.internal_lower])
+
+    @property
+    def ubx(self) -> np.ndarray:
+        return np.concatenate([self.upper / self.scale, self.internal_upper])
+
+    @property
+    def box(self) -> Box:
+        return Box(self.scale, self.lower, self.upper)
+
+    @property
+    def x0(self) -> np.ndarray:
+        return np.concatenate([self.start / self.scale, self.internal_start])
+
+
+class Posed:
+    """One formulation with one objective as a scaled NLP (``nlp``), built once; its IPOPT solver built with it."""
+
+    def __init__(self, formulation: Formulation, objective: str = "mass", options: SolverOptions = SolverOptions(),
+                 start_up: Structure | None = None):
+        self.base = formulation
+        self.formulation = f = with_start_up(formulation) if start_up else formulation
+        self.objective = formulation.objective(objective)
+        self.options = options
+        n, m = len(f.variables), len(f.quantities)
+        x_hat = ca.SX.sym("x_hat", n)
+        self.p_case = ca.SX.sym("p_case", m)
+        x_scale = ca.SX.sym("x_scale", n)
+        f_scale = ca.SX.sym("f_scale")
+        x = namespace({v.name: x_hat[i] * x_scale[i] for i, v in enumerate(f.variables)})
+        p = namespace({q.name: self.p_case[j] for j, q in enumerate(f.quantities)})
+        constraints = f.constraints(x, p)
+        self.n_checked = len(constraints)  # the formulation's own constraints, re-evaluated by check_design
+        at_start = namespace(f.start_up_view(vars(p))) if f.start_up_view else p
+        self.start_up = StartUpBlock(start_up, f.speed_law, x, at_start) if start_up else None
+        internal, equalities = (self.start_up.hat, self.start_up.equalities) if start_up else (ca.SX(0, 1), [])
+        constraints += self.start_up.constraints if start_up else []
+        rows = [ca.SX(c.normalised()) for c in constraints]
+        self.constraint_rows = [row.shape[0] for row in rows]  # a start-up constraint may hold along a path
+        self.row_names = [c.name for c, row in zip(constraints, rows) for _ in range(row.shape[0])]
+        self.row_senses = [c.sense for c, row in zip(constraints, rows) for _ in range(row.shape[0])]
+        g = ca.vertcat(*rows, *equalities)
+        self.n_ineq = len(self.row_names)
+        self.lbg = np.concatenate([np.full(self.n_ineq, -np.inf), np.zeros(len(equalities))])
+        x_all = ca.vertcat(x_hat, internal)
+        mesh = self.start_up.mesh_parameters if start_up else ca.SX(0, 1)
+        self.fixed_rows = [i for i in range(self.n_ineq) if not ca.depends_on(g[i], x_all)]  # no design enters
+        self.constraint_values = ca.Function("g", [x_all, ca.vertcat(self.p_case, x_scale, f_scale, mesh)],
+                                             [g[: self.n_ineq]])
+        self.row_depends = np.array(ca.DM(ca.jacobian(g[: self.n_ineq], x_all).sparsity(), 1)) != 0  # row i uses x_j
+        self.names = [v.name for v in f.variables]
+        self.integer = [i for i, v in enumerate(f.variables) if v.integer]
+        self.nlp = {"x": x_all, "p": ca.vertcat(self.p_case, x_scale, f_scale, mesh),
+                    "f": self.objective.function(x, p) / f_scale, "g": g}  # the scaled NLP, g <= 0
+        self.lam_g = ca.SX.sym("lam_g", g.shape[0])  # the Lagrangian, for KKT verdicts and sensitivities
+        self.lagrangian = self.nlp["f"] + ca.dot(self.lam_g, g)
+        if start_up:
+            paths = [ca.vertcat(*column) for column in self.start_up.trajectory().values()]
+            self.start_up_figures = ca.Function("start_up", [x_all, self.nlp["p"]],
+                                                [ca.vertcat(*self.start_up.outputs().values()), *paths])
+            self.internal_scale = ca.Function("internal_scale", [self.p_case], [ca.vertcat(*self.start_up.scales)])
+        self._built: dict[str, dict] = {"solver": {"ipopt": ca.nlpsol(f"{f.coupling}_{f.mode}_{objective}", "ipopt",
+                                                                      self.nlp, options.ipopt())}}
+
+    def built(self, kind: str, key, build: Callable[[int], object]):
+        """The object of ``kind`` (a solver, a CasADi function) for ``key``, built once: ``build(number)``, with
+        ``number`` how many of that kind were built before (unique names)."""
+        store = self._built.setdefault(kind, {})
+        if key not in store:
+            store[key] = build(len(store))
+        return store[key]
+
+    def solver(self, method: str):
+        """The solver of a method (``ipopt`` built with the problem; ``warm``, ``sqp``, ``sqp_chain``, ``sqp_search``
+        on first use)."""
+        def build(_):
+            f = self.formulation
+            plugin, options = {"warm": ("ipopt", self.options.ipopt_warm()),
+                               "sqp": ("sqpmethod", self.options.sqp()),
+                               "sqp_chain": ("sqpmethod", self.options.sqp_chain()),
+                               "sqp_search": ("sqpmethod", self.options.sqp_search())}[method]
+            name = f"{f.coupling}_{f.mode}_{self.objective.name}_{method}"
+            solver = ca.nlpsol(name, plugin, self.nlp, options)
+            if method in ("sqp_chain", "sqp_search"):  # a batched sweep's: compiled where that pays
+                solver = compiled_solver(name, solver, options)
+            return solver
+
+        return self.built("solver", method, build)
+
+    def mapped(self, function: ca.Function, count: int) -> InPlace:
+        """``function`` evaluated at ``count`` points at once (columns) on NumPy arrays, built once per count."""
+        return self.built("map", (function.name(), count),
+                          lambda _: InPlace(function if count == 1 else function.map(count)))
+
+    def fixed_only(self, fixed: np.ndarray, entered: np.ndarray | None = None) -> tuple[np.ndarray, ca.Function]:
+        """The constraint rows that no variable outside ``fixed`` (a mask over x) enters (and, if given, some variable
+        of ``entered`` does), and their normalised values as a CasADi function of (x, p), built once per masks."""
+        def build(number):
+            depends, internal = self.row_depends[:, : len(fixed)], self.row_depends[:, len(fixed):]
+            outside = np.any(depends & ~fixed, axis=1) | np.any(internal, axis=1)
+            rows = np.flatnonzero(~outside & (True if entered is None else np.any(depends & entered, axis=1)))
+            name = f"g_fixed_{number}"  # one name per mask: mapped functions are cached by name
+            g = ca.densify(self.nlp["g"][[int(r) for r in rows]])
+            return rows, ca.Function(name, [self.nlp["x"], self.nlp["p"]], [g])
+
+        key = np.asarray(fixed, dtype=bool).tobytes() + (b"" if entered is None else b"|" + entered.tobytes())
+        return self.built("fixed_only", key, build)
+
+    # --- data of one solve -------------------------------------------------------------------------------------
+    def bounds_and_start(self, case: Case, start: dict[str, float] | None):
+        """The design's bounds and start point (SI): variables the case fixes at its value, a start within bounds."""
+        lower, upper, x0 = [], [], []
+        for v in self.formulation.variables:
+            if v.fixed_unless_freed and v.name not in case.free:
+                fixed = case.values[v.name]
+                lower.append(fixed), upper.append(fixed), x0.append(fixed)
+                continue
+            lo, hi = case.bounds.get(v.name, (v.lower, v.upper))
+            lower.append(lo), upper.append(hi)
+            guess = (start or {}).get(v.name, case.values.get(v.name))
+            if guess is None or not math.isfinite(guess):
+                guess = math.sqrt(lo * hi) if lo > 0 and math.isfinite(hi) else (lo + hi) / 2
+            x0.append(min(max(guess, lo), hi))
+        return np.array(lower), np.array(upper), np.array(x0)
+
+    def _scaling(self, params: SimpleNamespace, x: np.ndarray, lower: np.ndarray, upper: np.ndarray,
+                 scale: np.ndarray | None = None, mesh: np.ndarray | None = None):
+        """Variable scales |x| (or the bound magnitude where x = 0) unless given, objective scale |f(x)|,
+        the NLP parameters (a start-up's collocation mesh last: ``mesh``, or its first one)."""
+        if scale is None:
+            scale = np.where(np.abs(x) > 0, np.abs(x), np.maximum(np.abs(lower), np.abs(upper)))
+            scale = np.where(np.isfinite(scale) & (scale > 0), scale, 1.0)
+        design = dict(zip(self.names, x))
+        f0 = abs(evaluate_objective(self.formulation, self.objective.name, design, params))
+        f_scale = f0 if math.isfinite(f0) and f0 > 0 else 1.0
+        if self.start_up is not None and mesh is None:
+            mesh = self.start_up.initial_mesh()
+        return scale, f_scale, np.concatenate([list(vars(params).values()), scale, [f_scale],
+                                               mesh if mesh is not None else []])
+
+    def params(self, case: Case) -> SimpleNamespace:
+        """The case's SI values of this formulation's quantities; those the case leaves out read as NaN."""
+        return namespace({q.name: case.values.get(q.name, math.nan) for q in self.formulation.quantities})
+
+    def scaled_data(self, case: Case, start: dict[str, float] | None = None, scale: np.ndarray | None = None,
+                    internal: np.ndarray | None = None, mesh: np.ndarray | None = None,
+                    checked: SimpleNamespace | None = None) -> ScaledData:
+        """Bounds, start and scales of one solve (scales from the start unless given); with a start-up, its states
+        start from ``internal`` (a previous solve's) or from a simulation of the start design, on ``mesh``;
+        ``checked``: the case values the design is checked against (moved limits solve, the case's own check)."""
+        lower, upper, x0 = self.bounds_and_start(case, start)
+        params = self.params(case)
+        scale, f_scale, p_vector = self._scaling(params, x0, lower, upper, scale, mesh)
+        data = ScaledData(params, lower, upper, x0, scale, f_scale, p_vector, checked=checked)
+        if self.start_up is not None:
+            data.internal_lower, data.internal_upper = self.start_up.bounds()
+            if internal is None or len(internal) != self.start_up.size:
+                internal = initial_states(self.start_up, self.start_up_case(case), self.formulation,
+                                          self.design(x0 / scale, scale),
+                                          np.array(self.internal_scale(p_vector[: len(params.__dict__)])).ravel(),
+                                          p_vector[-self.start_up.mesh_parameters.shape[0]:])
+            data.internal_start = np.clip(internal, data.internal_lower, data.internal_upper)
+        return data
+
+    def design(self, x: np.ndarray, scale: np.ndarray) -> dict[str, float]:
+        """Design variables by name (SI) from the NLP's (scaled) x, internal variables left out."""
+        return {v.name: float(value) for v, value in zip(self.formulation.variables, x[: len(scale)] * scale)}
+
+    def rounded(self, design: dict[str, float]) -> dict[str, float]:
+        """Integers rounded (IPOPT may leave them 1e-9 off their fixed bounds)."""
+        for i in self.integer:
+            design[self.names[i]] = float(round(design[self.names[i]]))
+        return design
+
+    def free_integers(self, data: ScaledData) -> list[int]:
+        """The integer variables a solve's bounds leave free."""
+        return [i for i in self.integer if data.lower[i] < data.upper[i]]
+
+    def start_up_case(self, case: Case) -> Case:
+        """The case as the start-up sees it (a robust design's: its corner)."""
+        view = self.formulation.start_up_view
+        return replace(case, values=case.followed(view(case.values))) if view else case
+
+    @property
+    def mesh_size(self) -> int:
+        return self.start_up.mesh_parameters.shape[0] if self.start_up is not None else 0
+
+    def mesh_of(self, p_vector: np.ndarray) -> np.ndarray | None:
+        """A start-up's collocation mesh in an NLP parameter vector (None without a start-up)."""
+        return p_vector[len(p_vector) - self.mesh_size:] if self.start_up is not None else None
+
+    def named_multipliers(self, lam_g: np.ndarray) -> list[float]:
+        """The multiplier of each named constraint: the sum over its rows (one row, or the points of a path)."""
+        ends = np.cumsum(self.constraint_rows)
+        return [float(lam_g[end - rows:end].sum()) for rows, end in zip(self.constraint_rows, ends)]
+
+    def negligible(self, f_hat):
+        """A change of the scaled objective within the solver's tolerance of it (elementwise for arrays; symbolic
+        for CasADi)."""
+        return 10 * self.options.tol * fmax(abs(f_hat), 1e-300)
+
+
+def off_scale(x_hat: np.ndarray) -> np.ndarray:
+    """An optimum more than tenfold off its variable scales (per column for a 2-D ``x_hat``): solved again, scaled by
+    it."""
+    return np.any(off_scale_entries(x_hat), axis=0)
+
+
+def off_scale_entries(x_hat):
+    """Per variable: 1 (true) where it has moved more than tenfold from its scale; floats, arrays or CasADi."""
+    moved = abs(x_hat)
+    return (moved > 0) * ((moved > 10) + (moved < 0.1)) > 0
+
+
+def scaled_box(lower, upper, scale, internal_bounds) -> tuple[np.ndarray, np.ndarray]:
+    """The NLP's variable bounds: design bounds scaled, then the (already scaled) internal ones."""
+    return (np.concatenate([lower / scale, internal_bounds[0]]), np.concatenate([upper / scale, internal_bounds[1]]))

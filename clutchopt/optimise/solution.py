@@ -1,0 +1,145 @@
+"""What a solve returns and how it is asked: the solver options, the solution with its solver figures, and a warm
+start's data."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from clutchopt.model import Output
+from clutchopt.optimise.verify import ConstraintCheck
+from clutchopt.units import si_unit
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    tol: float = 1e-10
+    max_iter: int = 3000
+    warm_sqp: bool = True  # warm re-solves try SQP before warm IPOPT (False: warm IPOPT alone, for comparison)
+
+    def ipopt_warm(self) -> dict:
+        """IPOPT started from a previous primal-dual point, barely pushed off the bounds."""
+        push = {f"ipopt.warm_start_{name}": 1e-9 for name in (
+            "bound_push", "bound_frac", "mult_bound_push", "slack_bound_push", "slack_bound_frac")}
+        return {**self.ipopt(), "ipopt.warm_start_init_point": "yes", "ipopt.mu_init": 1e-6, **push}
+
+    def sqp(self) -> dict:
+        """CasADi's SQP method with its dense active-set QP solver (qrqp), for re-solves beside a known optimum:
+        no barrier to drive down, so a small problem's re-solve costs a few QP solves."""
+        quiet = {"print_header": False, "print_iteration": False, "print_status": False, "print_time": False}
+        return {**quiet, "qpsol": "qrqp", "qpsol_options": {"print_iter": False, "print_header": False,
+                                                            "error_on_fail": False},
+                "tol_pr": self.tol, "tol_du": self.tol, "max_iter": 30, "error_on_fail": False, "calc_lam_p": False}
+
+    def sqp_chain(self) -> dict:
+        """SQP in a chained batch: at most 10 iterations (a warm re-solve takes 2 or 3; one that does not converge
+        leaves the batch for ``Problem.solve``), so that the points after a failed one cost little."""
+        return {**self.sqp(), "max_iter": 10}
+
+    def sqp_search(self) -> dict:
+        """SQP for the integer search in a batch, whose start may be off the optimum (a relaxation from the
+        previous integers): the Hessian's negative eigenvalues clipped, so that a first step does not overshoot (3
+        iterations instead of 10 on the cable's relaxations; a regularised Hessian stalled at one of them)."""
+        return {**self.sqp_chain(), "convexify_strategy": "eigen-clip"}
+
+    def ipopt(self) -> dict:
+        return {
+            "ipopt.tol": self.tol,
+            "ipopt.constr_viol_tol": self.tol,
+            "ipopt.acceptable_tol": self.tol * 1e2,
+            "ipopt.acceptable_constr_viol_tol": self.tol * 1e2,
+            "ipopt.max_iter": self.max_iter,
+            "ipopt.bound_relax_factor": 1e-9,
+            "ipopt.print_level": 0,
+            "ipopt.sb": "yes",
+            "print_time": False,
+        }
+
+
+@dataclass
+class SolverInfo:
+    name: str
+    status: str  # IPOPT's return status of the final (kept) solve
+    iterations: int | None  # summed over the relaxation and integer neighbours (None: solved in a chained batch)
+    time_s: float  # wall time of all solver calls (an infeasibility diagnosis included), without problem construction
+    solves: int = 1  # design solves (the diagnosis not counted)
+
+
+@dataclass
+class Solution:
+    coupling: str
+    mode: str
+    objective_name: str
+    objective_unit: str
+    status: str  # optimal | infeasible | solver_failed | unverified
+    objective: float
+    design: dict[str, float]
+    outputs: dict[str, Output]  # derived quantities (SI value, display unit, description)
+    constraints: list[ConstraintCheck]
+    solver: SolverInfo
+    diagnosis: str | None = None
+    integer_search: list[dict] = field(default_factory=list)
+    bounds: dict[str, tuple[float, float]] = field(default_factory=dict)  # search box of each variable (SI)
+    sensitivities: dict[str, float] = field(default_factory=dict)  # d ln objective / d ln parameter
+    scale: np.ndarray | None = field(default=None, repr=False)  # variable scales of the kept solve (warm starts)
+    multipliers: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False)  # (lam_x, lam_g), scaled
+    design_units: dict[str, str] = field(default_factory=dict)  # display unit of each design variable
+    start_up: dict | None = None  # the NLP's start-up beside the simulated one (cases with [start_up])
+    internal: np.ndarray | None = field(default=None, repr=False)  # scaled start-up states of the kept solve
+    mesh: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False)  # start-up mesh: used, suggested
+
+    def _repr_html_(self) -> str:
+        """Jupyter shows a solution as the tables of ``clutchopt solve``."""
+        from clutchopt.output import solution_html
+
+        return solution_html(self)
+
+    def at_bound(self, name: str) -> str:
+        """"fixed", "lower", "upper" (within 1e-7 relative) or "" for a design variable."""
+        lo, hi = self.bounds[name]
+        value = self.design[name]
+        tol = 1e-7 * abs(value) if value else 1e-12
+        if lo == hi:
+            return "fixed"
+        return "lower" if value - lo <= tol else "upper" if hi - value <= tol else ""
+
+    @property
+    def feasible(self) -> bool:
+        return all(c.feasible for c in self.constraints)
+
+    @property
+    def worst_violation(self) -> float:
+        return max([0.0] + [-c.margin for c in self.constraints])
+
+    def as_dict(self) -> dict:
+        return {
+            "coupling": self.coupling,
+            "mode": self.mode,
+            "status": self.status,
+            "objective": {"name": self.objective_name, "value": self.objective, "unit": self.objective_unit},
+            "design": self.design,
+            "outputs": {name: out.value for name, out in self.outputs.items()},
+            "units": {"design": {name: si_unit(unit) for name, unit in self.design_units.items()},
+                      "outputs": {name: si_unit(out.unit) for name, out in self.outputs.items()}},
+            "constraints": [c.as_dict() for c in self.constraints],
+            "solver": vars(self.solver),
+            "diagnosis": self.diagnosis,
+            "integer_search": self.integer_search,
+            "bounds": {name: list(pair) for name, pair in self.bounds.items()},
+            "sensitivities": self.sensitivities,
+            **({"start_up": self.start_up} if self.start_up is not None else {}),
+        }
+
+
+@dataclass
+class WarmStart:
+    """What a warm re-solve takes from a previous solve (a :class:`Solution` has these too): its design (SI),
+    variable scales and multipliers (lam_x, lam_g, scaled)."""
+
+    design: dict[str, float]
+    scale: np.ndarray
+    multipliers: tuple[np.ndarray, np.ndarray]
+    status: str = "optimal"
+    mesh: None = None  # no start-up
+    internal: None = None

@@ -1,0 +1,156 @@
+"""A sweep's grid: the varied quantities as given (``--vary``), checked, and the points they make."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Iterator
+
+import numpy as np
+
+from clutchopt.cases import Case
+from clutchopt.errors import InputError
+from clutchopt.formulations import get_coupling
+from clutchopt.model import Quantity
+from clutchopt.units import si_factor
+
+MAX_POINTS = 100_000  # points of one sweep: hours of solving; more is a mistake (1e12 would not fit in memory)
+
+
+@dataclass(frozen=True)
+class Vary:
+    """One varied quantity: its declaration, its values in SI and, as given in its display unit, the same values (by
+    :func:`parse_vary`; without them the table converts the SI values back, e.g. 3000 rpm to 3000.0000000000005)."""
+
+    quantity: Quantity
+    values: tuple[float, ...]
+    shown: tuple[float, ...] | None = None
+
+    @property
+    def column(self) -> str:
+        return column_name(self.quantity.name, self.quantity.unit)
+
+
+def column_name(name: str, unit: str) -> str:
+    return f"{name} [{unit}]" if unit else name
+
+
+def parse_vary(text: str, coupling: str, quantities: tuple[Quantity, ...] | None = None) -> Vary:
+    """``name=start:stop:count`` or ``name=v1,v2,...``, values in the quantity's display unit; ``quantities``:
+    those a case may vary (default: the coupling's; ``Case.quantities`` adds a start-up's)."""
+    field = f"--vary {text}"
+    name, sep, spec = text.partition("=")
+    declared = {q.name: q for q in quantities or get_coupling(coupling).quantities}
+    if not sep or not spec.strip():
+        raise InputError(field, "expected name=start:stop:count or name=v1,v2,...")
+    quantity = declared.get(name.strip())
+    if quantity is None:
+        raise InputError(field, f"unknown quantity {name.strip()!r}; the {coupling} coupling has "
+                                f"{', '.join(sorted(declared))}")
+    numbers = _numbers(field, spec)
+    if ":" in spec:
+        if len(numbers) != 3 or numbers[2] != int(numbers[2]) or numbers[2] < 1:
+            raise InputError(field, "a range is start:stop:count with a whole count >= 1")
+        if numbers[2] > MAX_POINTS:
+            raise InputError(field, f"{numbers[2]:.15g} values; a sweep has at most {MAX_POINTS:,} points")
+        with np.errstate(all="ignore"):
+            numbers = np.linspace(numbers[0], numbers[1], int(numbers[2])).tolist()
+        if not all(math.isfinite(n) for n in numbers):
+            raise InputError(field, "the range's span is beyond the float64 range")
+    elif len(numbers) > MAX_POINTS:
+        raise InputError(field, f"{len(numbers)} values; a sweep has at most {MAX_POINTS:,} points")
+    factor = si_factor(quantity.unit) if quantity.unit else 1.0
+    values = tuple(value * factor for value in numbers)
+    if not all(math.isfinite(value) for value in values):
+        raise InputError(field, "values beyond the float64 range once converted to SI")
+    return Vary(quantity, values, tuple(numbers))
+
+
+def _numbers(field: str, spec: str) -> list[float]:
+    try:
+        numbers = [float(part) for part in (spec.split(":") if ":" in spec else spec.split(","))]
+    except ValueError:
+        raise InputError(field, f"not a number in {spec!r} (values are plain numbers in the quantity's "
+                                "display unit)") from None
+    if not all(math.isfinite(n) for n in numbers):
+        raise InputError(field, "values must be finite")
+    return numbers
+
+
+def check_grid(varies: list[Vary], zipped: bool = False) -> int:
+    """The number of points of the sweep's grid (at most MAX_POINTS; each quantity varied once; a listed sweep's
+    lists equally long)."""
+    names = [v.quantity.name for v in varies]
+    twice = sorted({name for name in names if names.count(name) > 1})
+    if twice:
+        raise InputError("--vary", f"{', '.join(twice)} varied twice; give all its values in one --vary")
+    count = len(varies[0].values) if zipped and varies else math.prod(len(v.values) for v in varies)
+    if count > MAX_POINTS:
+        raise InputError("--vary", f"the grid has {count:,} points; a sweep has at most {MAX_POINTS:,} "
+                                   "(split it, or use fewer values)")
+    if zipped:
+        lengths = {len(v.values) for v in varies}
+        if len(lengths) > 1:
+            raise InputError("--zip", f"listed sweeps need equally many values per --vary, got {sorted(lengths)}")
+    return count
+
+
+def grid_points(varies: list[Vary], zipped: bool = False) -> "Points":
+    """The sweep's points (see :func:`check_grid`), each varied quantity's values as an array (SI)."""
+    count = check_grid(varies, zipped)
+    return Points(np.arange(count), {v.quantity.name: np.array(v.values, dtype=float)[taken]
+                                     for v, taken in zip(varies, grid_positions(varies, zipped))})
+
+
+def grid_positions(varies: list[Vary], zipped: bool = False) -> list[np.ndarray | slice]:
+    """Which of its values each varied quantity takes at each point of the grid (all of them in order for one
+    quantity or a listed sweep)."""
+    if zipped or len(varies) < 2:
+        return [slice(None)] * len(varies)
+    return [a.ravel() for a in np.meshgrid(*(np.arange(len(v.values)) for v in varies), indexing="ij")]
+
+
+def check_points(case: Case, varies: list[Vary], points: "Points") -> None:
+    """A value out of a quantity's valid range is bad input before any solve: each varied quantity's values are
+    checked as an array; where one fails, the error names the first point that fails."""
+    try:
+        for vary in varies:
+            vary.quantity.check_all(points.columns[vary.quantity.name])
+    except InputError:
+        for index, values in points.pairs():
+            try:
+                case.with_values(**values)
+            except InputError as exc:
+                raise InputError(f"--vary (point {index})", str(exc)) from None
+        raise
+
+
+@dataclass(frozen=True)
+class Points:
+    """Points of a sweep: their indices, and each varied quantity's SI values at them (an array by name)."""
+
+    index: np.ndarray
+    columns: dict[str, np.ndarray]
+
+    def __len__(self) -> int:
+        return len(self.index)
+
+    def __getitem__(self, part: slice | np.ndarray) -> "Points":
+        return Points(self.index[part], {name: column[part] for name, column in self.columns.items()})
+
+    def values(self) -> list[dict[str, float]]:
+        """Each point's values by quantity name."""
+        names = list(self.columns)
+        if len(names) == 1:  # the common case, without a tuple per point
+            return [{names[0]: value} for value in self.columns[names[0]].tolist()]
+        rows = zip(*(column.tolist() for column in self.columns.values())) if names else [()] * len(self)
+        return [dict(zip(names, row)) for row in rows]
+
+    def pairs(self) -> Iterator[tuple[int, dict[str, float]]]:
+        """Each point's index and values."""
+        return zip(self.index.tolist(), self.values())
+
+    @classmethod
+    def joined(cls, parts: list["Points"]) -> "Points":
+        return cls(np.concatenate([p.index for p in parts]),
+                   {name: np.concatenate([p.columns[name] for p in parts]) for name in parts[0].columns})

@@ -1,0 +1,102 @@
+"""A sweep's table as a file: written as CSV, Parquet or Markdown, read back checked (``clutchopt report``)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from clutchopt.errors import InputError, Problems
+from clutchopt.files import TABLE_BYTES, check_output, read_bytes, write_whole
+from clutchopt.optimise.sweep_grid import MAX_POINTS
+from clutchopt.records import STATUSES
+
+
+TABLE_SUFFIXES = (".csv", ".parquet", ".md")
+
+
+def table_format(path: str, option: str = "--out") -> str:
+    """csv, parquet or md, from the file's suffix; the folder must exist and be writable (checked before any
+    solve, so that a long sweep does not end in a table it cannot write)."""
+    return check_output(option, path, TABLE_SUFFIXES)
+
+
+def write_frame(frame: pd.DataFrame, path: str, option: str = "--out") -> None:
+    """CSV, Parquet or Markdown by the file's suffix, written whole or not at all."""
+    suffix = table_format(path, option)
+
+    def write(target: str) -> None:
+        if suffix == "csv":
+            frame.to_csv(target, index=False)
+        elif suffix == "parquet":
+            frame.to_parquet(target, index=False)
+        else:
+            with open(target, "w", encoding="utf-8") as handle:
+                handle.write(markdown_table(frame) + "\n")
+
+    try:
+        write_whole(option, path, write)
+    except ImportError as exc:
+        raise InputError(option, f"Parquet needs pyarrow (pip install 'clutchopt[parquet]'): {exc}") from None
+
+
+def read_frame(path: str) -> pd.DataFrame:
+    """A sweep table written by :func:`write_frame` (CSV or Parquet), checked column by column: ``point``, the
+    varied inputs (numbers), ``status``, the objective (numbers, empty where there is no design)."""
+    import io
+
+    if not path.lower().endswith((".csv", ".parquet")):
+        raise InputError(path, "a sweep table is read from .csv or .parquet (written by clutchopt sweep --out)")
+    data = io.BytesIO(read_bytes(path, TABLE_BYTES))
+    try:
+        frame = pd.read_parquet(data) if path.lower().endswith(".parquet") else pd.read_csv(data)
+    except ImportError as exc:
+        raise InputError(path, f"Parquet needs pyarrow (pip install 'clutchopt[parquet]'): {exc}") from None
+    except (ValueError, OSError, UnicodeDecodeError) as exc:  # pandas' and pyarrow's parse errors
+        raise InputError(path, f"cannot read a sweep table ({_first_line(exc)})") from None
+    _check_sweep_table(frame, path)
+    return frame
+
+
+def _first_line(exc: Exception) -> str:
+    return (str(exc).strip().splitlines() or [type(exc).__name__])[0][:200]
+
+
+def _check_sweep_table(frame: pd.DataFrame, path: str) -> None:
+    columns = [str(c) for c in frame.columns]
+    layout = "written by clutchopt sweep --out: point, the varied inputs, status, the objective, ..."
+    if columns[:1] != ["point"] or "status" not in columns:
+        raise InputError(path, f"not a sweep table ({layout})")
+    status = columns.index("status")
+    if status < 2 or status + 1 >= len(columns):
+        raise InputError(path, f"not a sweep table: no varied input before status or no objective after it ({layout})")
+    if not 0 < len(frame) <= MAX_POINTS:
+        raise InputError(path, f"a sweep table has 1 to {MAX_POINTS:,} rows, this one {len(frame):,}")
+    problems = Problems()
+    for column in columns[:status] + [columns[status + 1]]:
+        values = pd.to_numeric(frame[column], errors="coerce")
+        blank = frame[column].isna()
+        if (values.isna() & ~blank).any() or (column != columns[status + 1] and blank.any()):
+            problems.errors.append(InputError(f"{path}: column {column!r}", "must hold numbers in every row"))
+        elif not np.isfinite(values[~blank]).all():
+            problems.errors.append(InputError(f"{path}: column {column!r}", "must hold finite numbers"))
+    unknown = sorted(set(map(str, frame["status"].dropna())) - set(STATUSES))
+    if unknown or frame["status"].isna().any():
+        problems.errors.append(InputError(f"{path}: column 'status'", f"must be one of {', '.join(STATUSES)} "
+                                                                      f"in every row, got {unknown[:3] or 'blanks'}"))
+    problems.raise_any()
+
+
+def table_cell(value) -> str:
+    """A sweep table's cell: numbers to 6 digits, ``-`` where a point has no value (no design: an infeasible point;
+    no iteration count: a point solved in a batch)."""
+    if value is pd.NA or (isinstance(value, float) and math.isnan(value)):
+        return "-"
+    return f"{value:.6g}" if isinstance(value, float) else str(value)
+
+
+def markdown_table(frame: pd.DataFrame) -> str:
+    lines = ["| " + " | ".join(frame.columns) + " |", "|" + "---|" * len(frame.columns)]
+    lines += ["| " + " | ".join(table_cell(v) for v in row) + " |" for row in frame.itertuples(index=False)]
+    return "\n".join(lines)
