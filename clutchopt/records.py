@@ -13,7 +13,7 @@ import hashlib
 import json
 
 TEMPLATE = "template"  # the key that marks a compact record, holding its template's key
-STATUSES = ("optimal", "unverified", "infeasible", "solver_failed")  # how a solve ends
+STATUSES = ("optimal", "unverified", "infeasible", "not_found", "solver_failed")  # how a solve ends (infeasible: proven)
 CONSTRAINT_COLUMNS = ("value", "limit", "margin", "active", "feasible", "scale", "multiplier", "elasticity")
 
 

@@ -86,7 +86,7 @@ def judge_solution(solution: Solution, reference, formulation) -> Verdict:
                 return Verdict("failed", f"objective {solution.objective:.10g} above the feasible closed form's "
                                          f"{reference.objective:.10g} (gap {gap:.3g})")
         return Verdict("optimal", f"{solution.objective:.10g} {solution.objective_unit}")
-    if solution.status == "infeasible":
+    if solution.status in ("infeasible", "not_found"):  # proven or not: a verdict that names its constraints
         names = [c.name for c in solution.constraints] + [v.name for v in formulation.variables]
         if not solution.diagnosis or not any(name in solution.diagnosis for name in names):
             return Verdict("failed", f"infeasible without naming a constraint: {solution.diagnosis!r}")

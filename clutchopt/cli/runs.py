@@ -13,7 +13,7 @@ import math
 from clutchopt.cli.options import LARGEST_ID, Parser, add_json_option, add_parser, whole_number
 
 KINDS = ("solve", "sweep", "pareto", "simulation")
-NO_DESIGN = ("infeasible", "solver_failed")  # statuses whose objective value belongs to no design
+NO_DESIGN = ("infeasible", "not_found", "solver_failed")  # statuses whose objective value belongs to no design
 
 
 def add_command(commands) -> None:

@@ -10,6 +10,7 @@ import casadi as ca
 import numpy as np
 
 from clutchopt.optimise.posed import Posed
+from clutchopt.optimise.solution import Diagnosis
 from clutchopt.optimise.verify import FEASIBILITY_TOL
 
 
@@ -26,17 +27,16 @@ def _elastic(posed: Posed) -> ca.Function:
     return posed.built("elastic", None, build)
 
 
-def diagnose(posed: Posed, p_vector, lbx, ubx, x0, scale) -> tuple[str, str, float]:
-    """Elastic relaxation: min sum(s) s.t. g(x) <= s, s >= 0 on the inequalities. Positive slacks name the conflict.
-    Returns status, diagnosis and the time of the IPOPT call on the elastic problem (a solver call, not a design
-    solve)."""
+def diagnose(posed: Posed, p_vector, lbx, ubx, x0, scale) -> Diagnosis:
+    """Elastic relaxation: min sum(s) s.t. g(x) <= s, s >= 0 on the inequalities, from ``x0``. Positive slacks name
+    the conflict; the least relaxation is a local minimum, found from this start (no proof)."""
     n_g, row_names, row_senses = posed.n_ineq, posed.row_names, posed.row_senses
     g0 = np.array(posed.constraint_values(x0, p_vector)).ravel()
     given = sorted({row_names[i] for i in posed.fixed_rows if g0[i] > FEASIBILITY_TOL}, key=row_names.index)
     if given:  # requirements that no design variable enters: nothing to relax but the case itself
-        return "infeasible", ("infeasible whatever the design: " + ", ".join(
+        return Diagnosis("infeasible", "infeasible whatever the design: " + ", ".join(
             f"{name} ({'over' if row_senses[row_names.index(name)] == '<=' else 'short of'} its limit by "
-            f"{g0[row_names.index(name)]:.3g} relative)" for name in given)), 0.0
+            f"{g0[row_names.index(name)]:.3g} relative)" for name in given), 0.0, proven=True)
     elastic = _elastic(posed)
     started = time.perf_counter()
     slack_bounds = np.zeros(n_g), np.full(n_g, np.inf)
@@ -46,9 +46,10 @@ def diagnose(posed: Posed, p_vector, lbx, ubx, x0, scale) -> tuple[str, str, flo
     slacks = np.array(result["x"]).ravel()[len(lbx):]
     lam_g = np.array(result["lam_g"]).ravel()[:n_g]
     x = np.array(result["x"]).ravel()[: len(lbx)]
+    nearest = {v.name: float(value) for v, value in zip(posed.formulation.variables, x[: len(scale)] * scale)}
     if slacks.sum() <= 10 * FEASIBILITY_TOL:
-        return "solver_failed", ("IPOPT did not converge, yet a feasible point exists (elastic check); "
-                                 "try other bounds or a start point"), seconds
+        return Diagnosis("solver_failed", "IPOPT did not converge, yet a feasible point exists (elastic check); "
+                                          "try other bounds or a start point", seconds, least=0.0, nearest=nearest)
     worst: dict[str, float] = {}
     binding: list[str] = []
     for name, s, lam in zip(row_names, slacks, lam_g):
@@ -71,4 +72,4 @@ def diagnose(posed: Posed, p_vector, lbx, ubx, x0, scale) -> tuple[str, str, flo
     text = "infeasible: cannot satisfy " + ", ".join(violated)
     if others:
         text += " together with " + ", ".join(others)
-    return "infeasible", text, seconds
+    return Diagnosis("infeasible", text, seconds, least=float(slacks.sum()), nearest=nearest)

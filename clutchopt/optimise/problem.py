@@ -18,6 +18,7 @@ from dataclasses import replace
 import numpy as np
 
 from clutchopt.cases import Case
+from clutchopt.errors import InputError
 from clutchopt.model import Formulation
 from clutchopt.optimise.attempts import attempt, warm_multipliers
 from clutchopt.optimise.diagnosis import diagnose
@@ -26,7 +27,8 @@ from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
 from clutchopt.optimise.solution import Solution, SolverInfo, SolverOptions, WarmStart
 from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, start_up_report, tightened_limits
-from clutchopt.optimise.verify import evaluate_outputs
+from clutchopt.optimise.verdict import shown
+from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
 from clutchopt.start_up.mesh import MAX_INTERVALS, MESH_STEPS
@@ -42,8 +44,23 @@ class Problem:
             posed.formulation, posed.objective, posed.options, posed.start_up)
 
     def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
-              mesh: np.ndarray | None = None, refine: bool = True) -> Solution:
-        """Solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one.
+              mesh: np.ndarray | None = None, refine: bool = True, neighbour: Solution | None = None) -> Solution:
+        """Solve for one case (:meth:`refined`); a solve that ends without a design is retried from the starts that
+        can reach one before its verdict is given (:func:`clutchopt.optimise.verdict.shown`): ``neighbour``, a
+        feasible design of a neighbouring point (a sweep's), among them."""
+        try:
+            solution = self.refined(case, start, warm, mesh, refine)
+        except InputError:  # a start-up whose first simulation fails from this design: from the papers' sizing
+            if self.start_up is None or (start is None and warm is None):
+                raise
+            solution, start, warm = self.refined(case, None, None, mesh, refine), None, None
+        if solution.status in DESIGN_STATUSES or not refine:
+            return solution
+        return shown(self, case, solution, start is not None or warm is not None, neighbour)
+
+    def refined(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
+                mesh: np.ndarray | None = None, refine: bool = True) -> Solution:
+        """One solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one.
 
         With a start-up, the simulated start is what the limits are checked against, and the collocation's own
         error is the NLP's start time against the simulated one. While that error exceeds the case's tolerance,
@@ -151,6 +168,7 @@ class Problem:
         posed = self.posed
         f = posed.formulation
         params, scale, f_scale = data.checked or data.params, data.scale, data.f_scale
+        diagnosed = None
         design, objective, checks = run["design"], run["value"], list(run["checks"])
         start_up = mesh = None
         if posed.start_up is not None:  # re-checked by the independent simulator
@@ -175,7 +193,8 @@ class Problem:
             diagnosis = (f"{'IPOPT' if run['solver'] == 'ipopt' else 'SQP'} reported success but {check} finds "
                          f"{worst.name} violated by {-worst.margin:.3g} (relative)")
         else:
-            status, diagnosis, diagnosis_s = diagnose(posed, run["p"], run["lbx"], run["ubx"], run["x"], scale)
+            diagnosed = diagnose(posed, run["p"], run["lbx"], run["ubx"], run["x"], scale)
+            status, diagnosis, diagnosis_s = diagnosed.status, diagnosed.text, diagnosed.seconds
         info = SolverInfo(run["solver"], run["status"], sum(r["iterations"] for r in runs),
                           sum(r["time"] for r in runs) + diagnosis_s, len(runs))
         bounds = {n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, data.lower, data.upper)}
@@ -183,7 +202,7 @@ class Problem:
         return Solution(f.coupling, f.mode, posed.objective.name, posed.objective.unit, status, objective, design,
                         evaluate_outputs(f, design, params), checks, info, diagnosis, search, bounds,
                         elasticities, scale, (run["lam_x"], run["lam_g"]), {v.name: v.unit for v in f.variables},
-                        start_up, run["x"][len(scale):] if posed.start_up is not None else None, mesh)
+                        start_up, run["x"][len(scale):] if posed.start_up is not None else None, mesh, diagnosed)
 
 
 _CACHE: dict[tuple, Problem] = {}

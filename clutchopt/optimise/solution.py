@@ -3,7 +3,9 @@ start's data."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
@@ -66,13 +68,26 @@ class SolverInfo:
     solves: int = 1  # design solves (the diagnosis not counted)
 
 
+class Diagnosis(NamedTuple):
+    """Why a solve has no design: its status and text, the seconds of the elastic solve (a solver call, not a design
+    solve), whether the text is a proof (a requirement no design variable enters, broken whatever the design),
+    the least total relaxation found (relative, summed over the constraints) and the design where it was found."""
+
+    status: str
+    text: str
+    seconds: float
+    proven: bool = False
+    least: float = math.nan
+    nearest: dict[str, float] | None = None
+
+
 @dataclass
 class Solution:
     coupling: str
     mode: str
     objective_name: str
     objective_unit: str
-    status: str  # optimal | infeasible | solver_failed | unverified
+    status: str  # optimal | unverified | infeasible (proven) | not_found (no design from the starts tried) | solver_failed
     objective: float
     design: dict[str, float]
     outputs: dict[str, Output]  # derived quantities (SI value, display unit, description)
@@ -88,6 +103,7 @@ class Solution:
     start_up: dict | None = None  # the NLP's start-up beside the simulated one (cases with [start_up])
     internal: np.ndarray | None = field(default=None, repr=False)  # scaled start-up states of the kept solve
     mesh: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False)  # start-up mesh: used, suggested
+    diagnosed: Diagnosis | None = field(default=None, repr=False)  # a solve without a design: its elastic diagnosis
 
     def _repr_html_(self) -> str:
         """Jupyter shows a solution as the tables of ``clutchopt solve``."""

@@ -121,16 +121,34 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
                                spent={key: now[key] - before[key] for key in SPENT})
             first, before = first + len(window), now
         return
-    previous: Solution | None = None
+    previous: Solution | None = None  # the last point's optimum (a warm start), None next to a failure
+    feasible: Solution | None = None  # the last feasible point's design (a start for a point without a design)
+    designs: dict[tuple, Solution] = {}  # feasible designs by the point's values
+    waiting: list[tuple[int, Case, Solution]] = []  # points without a design, until the next feasible one
     for j, (index, values) in enumerate(points.pairs()):
         point_case = case.with_values(**values)
         # falls back to the case's own start by itself; a start-up design starts as `solve` does, from the papers'
         # sizing at the point (its collocation mesh follows its own solves), so it is solve's design whatever the
         # points before it
-        solution = problem.solve(point_case, warm=previous if problem.start_up is None else None)
-        previous = solution if solution.status == "optimal" else None  # next to a failure, start from the case
-        yield PointResults(points[j:j + 1], names, ([solution.as_dict()], {}),
-                           spent={"solves": solution.solver.solves, "solver_s": solution.solver.time_s, "check_s": 0})
+        same = designs.get(tuple(values.values()))
+        solution = problem.solve(point_case, warm=previous if problem.start_up is None else None,
+                                 neighbour=same or feasible)
+        previous = solution if solution.status == "optimal" else None
+        if solution.status not in DESIGN_STATUSES:
+            waiting.append((j, point_case, solution))
+            continue
+        feasible = designs[tuple(values.values())] = solution
+        for k, (w, waited_case, waited) in enumerate(waiting):  # between feasible neighbours: from this one too
+            waiting[k] = (w, waited_case, problem.solve(waited_case, start=solution.design, neighbour=solution))
+        yield from (_one(points, w, names, waited) for w, _, waited in waiting)
+        waiting = []
+        yield _one(points, j, names, solution)
+    yield from (_one(points, w, names, waited) for w, _, waited in waiting)
+
+
+def _one(points: Points, j: int, names: list[str], solution: Solution) -> PointResults:
+    return PointResults(points[j:j + 1], names, ([solution.as_dict()], {}),
+                        spent={"solves": solution.solver.solves, "solver_s": solution.solver.time_s, "check_s": 0})
 
 
 def solve_chunk(case: Case, mode: str, objective: str, tol: float, robust: Robustness | None,

@@ -1,0 +1,83 @@
+"""An infeasible verdict that is true (issue: "the same case, two answers").
+
+A solve that ends without a design has shown nothing yet: IPOPT's restoration may have stalled from a poor start,
+and the elastic relaxation that names the conflict is a local minimum from that start. Before a case is reported
+without a design it is solved again from the starts that can reach one: the case's own (for a start-up, the
+papers' sizing at that point), the least relaxation's design, a feasible neighbour's (a sweep's point before). The
+first that reaches a design is the answer. Otherwise the verdict says how sure it is:
+
+- ``infeasible``: proven. A requirement no design variable enters is broken (the diagnosis's "whatever the
+  design"), or the drive cannot do what the start-up asks of any coupling (:mod:`clutchopt.optimise.proofs`);
+- ``not_found``: no feasible design found from the starts named, with the least relaxation found and from how
+  many of them it was reached: a strong hint, not a proof;
+- ``solver_failed``: a feasible point exists (the elastic check found one), yet no start reached an optimum.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from clutchopt.cases import Case
+from clutchopt.errors import InputError
+from clutchopt.optimise.proofs import start_up_proofs
+from clutchopt.optimise.solution import Solution, SolverInfo
+from clutchopt.optimise.verify import DESIGN_STATUSES
+
+AGREE = 1e-3  # relative: least relaxations within this are the same minimum
+
+
+def shown(problem, case: Case, first: Solution, started: bool, neighbour: Solution | None) -> Solution:
+    """``first`` (a solve without a design) retried from the starts that can reach one; the first design found, or
+    the verdict on all of them."""
+    first_label = "the start given" if started else ("the papers' sizing" if problem.start_up is not None
+                                                     else "the case's own start")
+    tried = [(first_label, first)]
+    if not (first.diagnosed and first.diagnosed.proven):
+        starts = [("the papers' sizing" if problem.start_up is not None else "the case's own start", None)] \
+            if started else []
+        if first.diagnosed and first.diagnosed.nearest:
+            starts.append(("the least relaxation's design", first.diagnosed.nearest))
+        if neighbour is not None and neighbour.status in DESIGN_STATUSES:
+            starts.append(("the neighbouring point's design", neighbour.design))
+        for label, start in starts:
+            try:
+                retry = problem.refined(case, start)
+            except InputError:  # a start-up whose first simulation fails from this start: the next start
+                continue
+            tried.append((label, retry))
+            if retry.status in DESIGN_STATUSES:
+                return _spent(retry, tried)
+    return _spent(_verdict(problem, case, tried), tried)
+
+
+def _verdict(problem, case: Case, tried: list[tuple[str, Solution]]) -> Solution:
+    first = tried[0][1]
+    diagnosed = [(label, s) for label, s in tried if s.diagnosed is not None]
+    if first.diagnosed is not None and first.diagnosed.proven:
+        return first
+    proofs = start_up_proofs(case) if problem.start_up is not None else []
+    labels = ", ".join(label for label, _ in tried)
+    starts = f"{len(tried)} start{'s' if len(tried) > 1 else ''} ({labels})"
+    if not diagnosed:  # the integer search's verdict: no integer near the feasible relaxation
+        least, text, reached = first, first.diagnosis or "", 0
+    else:
+        _, least = min(diagnosed, key=lambda item: item[1].diagnosed.least)
+        text = least.diagnosed.text.removeprefix("infeasible: ")
+        reached = sum(abs(s.diagnosed.least - least.diagnosed.least) <= AGREE * max(least.diagnosed.least, 1e-9)
+                      for _, s in diagnosed)
+    if proofs:
+        return replace(least, status="infeasible",
+                       diagnosis="proven infeasible: " + "; ".join(proofs) + f" (least relaxation found: {text})")
+    if any(s.diagnosed.status == "solver_failed" for _, s in diagnosed):
+        return replace(least, status="solver_failed",
+                       diagnosis=f"a feasible point exists (elastic check), yet no optimum was reached from {starts}")
+    where = f"; the least relaxation, reached from {reached} of them: {text}" if diagnosed else f": {text}"
+    return replace(least, status="not_found", diagnosis=f"no feasible design found from {starts}{where}")
+
+
+def _spent(solution: Solution, tried: list[tuple[str, Solution]]) -> Solution:
+    """``solution`` with the solver calls of every start tried summed."""
+    infos = [s.solver for _, s in tried]
+    solution.solver = SolverInfo(solution.solver.name, solution.solver.status, sum(i.iterations or 0 for i in infos),
+                                 sum(i.time_s for i in infos), sum(i.solves for i in infos))
+    return solution
