@@ -28,10 +28,10 @@ def run(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.compare import compare_case
-    from clutchopt.output import comparison_text, to_json
+    from clutchopt.output import comparison_json, comparison_text, to_json
 
     case = load_case(args.case)
     table = compare_case(case, SolverOptions(tol=args.tol))
     if args.json:
-        return to_json({"case": case.path, "title": case.title, **table.as_dict()})
+        return to_json({"case": case.path, "title": case.title, **comparison_json(table)})
     return "\n".join(filter(None, [first_choice_note(case), comparison_text(table)]))

@@ -49,7 +49,8 @@ def run(args) -> str:
     from clutchopt.files import check_output, write_whole
     from clutchopt.optimise.sweep import table_format, write_frame
     from clutchopt.optimise.verify import evaluate_objective
-    from clutchopt.output import to_json
+    from clutchopt.output import to_json, with_units
+    from clutchopt.units import si_unit
 
     case = load_case(args.case)
     if args.out:
@@ -73,7 +74,10 @@ def run(args) -> str:
                  **{name: evaluate_objective(formulation, name, solution.design, params) for name in ("mass", "cost")},
                  "design": solution.design, "active": [c.name for c in solution.constraints if c.active and c.name != CAP]}
                 for cap, solution in zip(front.caps, front.solutions)]
-        return to_json({"case": case.path, "mode": front.mode, "note": front.note, "rows": rows})
+        ends = {name: si_unit(formulation.objective(name).unit) for name in ("mass", "cost")}
+        units = {"cost_cap": ends["cost"], **ends, "design": {v.name: v.si_unit for v in formulation.variables}}
+        return to_json(with_units({"case": case.path, "mode": front.mode, "note": front.note, "rows": rows},
+                                  {"rows": units}))
     lines = [f"Pareto front, mass against cost (epsilon-constraint) - {case.title or case.path}, {front.mode} mode"]
     lines += [first_choice_note(case)] if case.options.get("choose") else []
     if front.note:

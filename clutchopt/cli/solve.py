@@ -38,7 +38,8 @@ def run(args) -> str:
     from clutchopt.materials import solve_choices
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.problem import case_formulation
-    from clutchopt.output import choices_text, library_json, library_text, solution_text, to_json
+    from clutchopt.output import CHECK_UNITS, choices_text, library_json, library_text, solution_json, \
+        solution_text, to_json, with_units
 
     case = load_case(args.case)
     resolve_problem(case, args)
@@ -57,9 +58,11 @@ def run(args) -> str:
         for _, variant, variant_solution in ranked:
             record_solve(store, variant, variant_solution, check if variant_solution is solution else None)
     if args.json:
-        choices = [{"choice": choice, **s.as_dict()} for choice, _, s in ranked] if len(ranked) > 1 else []
-        return to_json({"case": case.path, "title": case.title, **solution.as_dict(), "library": library_json(case),
-                        **({"choices": choices} if choices else {}), **({"verify": check} if check else {})})
+        choices = [{"choice": choice, **solution_json(s.as_dict())} for choice, _, s in ranked] if len(ranked) > 1 \
+            else []
+        return to_json(with_units({"case": case.path, "title": case.title, **solution_json(solution.as_dict()),
+                                   "library": library_json(case), **({"choices": choices} if choices else {}),
+                                   **({"verify": check} if check else {})}, {"verify": CHECK_UNITS}))
     formulation = case_formulation(case, solution.mode)
     parts = [choices_text(ranked)] if len(ranked) > 1 else []
     parts.append(solution_text(solution, formulation, case.title))
@@ -78,7 +81,7 @@ def _robust(case, args) -> str:
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.problem import case_formulation
     from clutchopt.optimise.robust import MAX_SAMPLES, SAMPLES, parse_method, solve_robust
-    from clutchopt.output import robust_text, solution_text, to_json
+    from clutchopt.output import robust_json, robust_text, solution_json, solution_text, to_json
 
     method, target = parse_method(args.robust)
     samples = SAMPLES if args.samples is None else args.samples
@@ -94,7 +97,7 @@ def _robust(case, args) -> str:
         result = solve_robust(case, method, target, args.mode, args.objective, SolverOptions(tol=args.tol), samples)
         record_solve(store, case, result.solution)
     if args.json:
-        return to_json({"case": case.path, "title": case.title, **result.solution.as_dict(),
-                        "status": result.status, "diagnosis": result.diagnosis, "robust": result.as_dict()})
+        return to_json({"case": case.path, "title": case.title, **solution_json(result.solution.as_dict()),
+                        "status": result.status, "diagnosis": result.diagnosis, "robust": robust_json(result, case)})
     formulation = case_formulation(case, result.solution.mode)
     return "\n\n".join([solution_text(result.solution, formulation, case.title), robust_text(result, case)])
