@@ -83,13 +83,14 @@ def _merged(old, new):
 
 
 def _fitted(data, units):
-    """``units`` for the keys ``data`` has (a list: the keys of its rows)."""
+    """``units`` for the keys ``data`` has (a list: the keys of its rows), without empty mappings."""
     if not isinstance(units, dict):
         return units
     if isinstance(data, list):
         keys = {key for row in data if isinstance(row, dict) for key in row}
         return {key: unit for key, unit in units.items() if key in keys}
-    return {key: _fitted(data[key], unit) for key, unit in units.items() if isinstance(data, dict) and key in data}
+    fitted = {key: _fitted(data[key], unit) for key, unit in units.items() if isinstance(data, dict) and key in data}
+    return {key: unit for key, unit in fitted.items() if unit != {}}
 
 
 SOLVER_UNITS = {"iterations": UNITLESS, "solves": UNITLESS, "time_s": "s"}
@@ -138,7 +139,7 @@ def solution_json(record: dict) -> dict:
     design = record.get("units", {}).get("design", {})
     record = with_units(record, {"constraints": CONSTRAINT_UNITS, "solver": SOLVER_UNITS, "bounds": design,
                                  "sensitivities": UNITLESS,
-                                 "integer_search": {**design, "objective": record["objective"]["unit"]}})
+                                 "integer_search": {**design, "objective": record["objective"].get("unit")}})
     start_up = record.get("start_up")
     if start_up:
         figures = start_up.get("units", {})

@@ -188,7 +188,8 @@ def outputs(command: str, store, monkeypatch) -> list[dict]:
     argv = {
         "solve": [("solve", wedge, "--verify"), ("solve", CASES / "wedge_motor_start.toml"),
                   ("solve", CASES / "ball_crusher.toml"),  # options.choose: every choice
-                  ("solve", CASES / "wedge_centrifuge.toml", "--robust", "chance=0.99", "--samples", "1000")],
+                  *[("solve", CASES / "wedge_centrifuge.toml", "--robust", method, "--samples", "1000")
+                    for method in ("chance=0.99", "worst-case")]],
         "compare": [("compare", wedge)],
         "sweep": [("sweep", wedge, "--vary", "speed=900:1100:2", "--quiet")],
         "pareto": [("pareto", CASES / "wedge_centrifuge.toml", "--mode", "geometry", "--points", "3")],

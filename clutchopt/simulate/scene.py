@@ -105,12 +105,12 @@ class _Fields:
         """The field in SI, checked against ``valid`` (low, high, unit shown); NaN after a recorded problem."""
         raw = self.table(section).get(key) if section else self.data.get(key)
         field_name = f"{section}.{key}" if section else key
-        (self.units.setdefault(section, {}) if section else self.units)[key] = si_unit(unit)
         with self.problems.field():
             if raw is None:
                 if default is None:
                     raise InputError(field_name, f"missing (in {unit or 'SI'})")
                 return default
+            (self.units.setdefault(section, {}) if section else self.units)[key] = si_unit(unit)
             value = to_si(field_name, raw, unit)
             low, high, shown = valid
             if not low <= value <= high:
