@@ -69,11 +69,12 @@ UNITLESS = ""  # the unit of a count, an id, a ratio, a relative margin or error
 
 
 def with_units(data: dict, units: dict) -> dict:
-    """``data`` with ``units`` merged into its ``units`` mapping, the JSON's one way of saying a number's unit
-    (besides ``{"value": ..., "unit": ...}``): beside each key, the SI unit of that key's number (``""``: none), or,
-    for a mapping by name or a list of rows, a mapping of the units by name or by column (one unit for all of
-    them, e.g. a list of numbers)."""
-    return {**data, "units": _merged(data.get("units"), _fitted(data, units))}
+    """``data`` with ``units`` merged into its ``units`` mapping, one of the JSON's two ways of giving a number its
+    unit (the other: ``{"value": ..., "unit": ...}``): beside each key, the SI unit of that key's number (``""``:
+    none), or, for a mapping by name or a list of rows, a mapping of the units by name or by column (a string: one
+    unit for all of them, e.g. a list of numbers). Units of keys ``data`` lacks are left out."""
+    merged = _merged(data.get("units"), _fitted(data, units))
+    return {**data, "units": merged} if merged != {} else data
 
 
 def _merged(old, new):
@@ -275,13 +276,14 @@ def library_text(case) -> str:
 
 
 def library_json(case) -> dict:
-    """``library_text`` as JSON: per role the entry, its source and each filled value with its SI unit."""
+    """``library_text`` as JSON: per role the entry, its source, each filled value with its SI unit and the friction
+    coefficient's scatter (no unit)."""
     from clutchopt.materials import filled_by
 
-    return {key: {"entry": item["entry"], "source": item["source"],
-                  **({"friction_range": list(item["friction_range"])} if "friction_range" in item else {}),
-                  "values": {q.name: {"value": v, "unit": q.si_unit, "display_unit": q.unit}
-                             for q, v in item["values"].values()}}
+    return {key: with_units({"entry": item["entry"], "source": item["source"],
+                             **({"friction_range": list(item["friction_range"])} if "friction_range" in item else {}),
+                             "values": {q.name: {"value": v, "unit": q.si_unit, "display_unit": q.unit}
+                                        for q, v in item["values"].values()}}, {"friction_range": UNITLESS})
             for key, item in filled_by(case).items()}
 
 

@@ -181,13 +181,15 @@ def bench_report(monkeypatch) -> dict:
 
 def outputs(command: str, store, monkeypatch) -> list[dict]:
     """The JSON of ``command`` on small real cases."""
-    wedge = CASES / "wedge_paper.toml"
+    wedge, library = CASES / "wedge_paper.toml", store.parent / "library.toml"
+    run("init", "wedge", "-o", library, "--force")  # a case with [library] entries: values and a friction scatter
     if command == "runs show":
         ids = [r["id"] for r in json.loads(run("runs", "list", "--limit", "0", "--json", "--store", store))["runs"]]
         return [json.loads(run("runs", "show", i, "--store", store)) for i in ids]
     argv = {
         "solve": [("solve", wedge, "--verify"), ("solve", CASES / "wedge_motor_start.toml"),
                   ("solve", CASES / "ball_crusher.toml"),  # options.choose: every choice
+                  ("solve", library),
                   *[("solve", CASES / "wedge_centrifuge.toml", "--robust", method, "--samples", "1000")
                     for method in ("chance=0.99", "worst-case")]],
         "compare": [("compare", wedge)],
