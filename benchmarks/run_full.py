@@ -14,7 +14,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
 
-from clutchopt.bench import BenchConfig, bench_text, run_bench  # noqa: E402
+from clutchopt.bench import BenchConfig, bench_json, bench_text, run_bench  # noqa: E402
 from clutchopt.output import to_json  # noqa: E402
 
 START, END = "<!-- bench:start -->", "<!-- bench:end -->"
@@ -23,7 +23,7 @@ START, END = "<!-- bench:start -->", "<!-- bench:end -->"
 def main() -> None:
     report = run_bench(BenchConfig())
     report["taken"] = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    (HERE / "latest.json").write_text(to_json(report) + "\n")
+    (HERE / "latest.json").write_text(to_json(bench_json(report)) + "\n")
     text = bench_text(report)
     readme = HERE / "README.md"
     block = f"{START}\nTaken {report['taken']}.\n\n```\n{text}\n```\n{END}"

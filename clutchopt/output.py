@@ -11,7 +11,7 @@ import json
 import math
 from typing import TYPE_CHECKING
 
-from clutchopt.units import from_si
+from clutchopt.units import from_si, si_unit
 
 if TYPE_CHECKING:  # JSON needs neither pandas nor the solver: ``solve --json`` starts faster without them
     from clutchopt.model import Formulation
@@ -66,6 +66,91 @@ def from_json(text: str | bytes):
         return orjson.loads(text)
     except orjson.JSONDecodeError:
         return json.loads(text)
+
+
+UNITLESS = ""  # the unit of a count, an id, a ratio, a relative margin or error, an elasticity
+
+
+def with_units(data: dict, units: dict) -> dict:
+    """``data`` with ``units`` merged into its ``units`` mapping, one of the JSON's two ways of giving a number its
+    unit (the other: ``{"value": ..., "unit": ...}``): beside each key, the SI unit of that key's number (``""``:
+    none), or, for a mapping by name or a list of rows, a mapping of the units by name or by column (a string: one
+    unit for all of them, e.g. a list of numbers). Units of keys ``data`` lacks are left out."""
+    merged = _merged(data.get("units"), _fitted(data, units))
+    return {**data, "units": merged} if merged != {} else data
+
+
+def _merged(old, new):
+    if isinstance(old, dict) and isinstance(new, dict):
+        return {**old, **{key: _merged(old.get(key), value) for key, value in new.items()}}
+    return new
+
+
+def _fitted(data, units):
+    """``units`` for the keys ``data`` has (a list: the keys of its rows), without empty mappings."""
+    if not isinstance(units, dict):
+        return units
+    if isinstance(data, list):
+        keys = {key for row in data if isinstance(row, dict) for key in row}
+        return {key: unit for key, unit in units.items() if key in keys}
+    fitted = {key: _fitted(data[key], unit) for key, unit in units.items() if isinstance(data, dict) and key in data}
+    return {key: unit for key, unit in fitted.items() if unit != {}}
+
+
+SOLVER_UNITS = {"iterations": UNITLESS, "solves": UNITLESS, "time_s": "s"}
+CONSTRAINT_UNITS = dict.fromkeys(("margin", "multiplier", "elasticity", "tolerance"), UNITLESS)  # the rest: ``unit``
+TRAJECTORY_UNITS = {"t": "s", "w_driver": "rad/s", "w_driven": "rad/s", "friction_work": "J", "temperature_rise": "K",
+                    "twist": "rad"}
+
+
+def robust_json(result, case) -> dict:
+    """A robust design's ``as_dict()`` with units: the corners' quantities, the nominal design and objective, the
+    constraint checks; probabilities, counts and changes of relative margins are unitless."""
+    quantities = {q.name: q.si_unit for q in case.quantities}
+    data = result.as_dict()
+    design = {name: si_unit(unit) for name, unit in result.nominal.design_units.items()}
+    return with_units(data, {
+        "target": UNITLESS, "samples": UNITLESS, "confidence": UNITLESS, "failure_probability": UNITLESS,
+        "nominal_failure_probability": UNITLESS, "margin_sensitivity": UNITLESS,
+        "corners": {name: quantities for name in data["corners"]}, "checks": CONSTRAINT_UNITS,
+        "nominal_checks": CONSTRAINT_UNITS, "nominal_design": design})
+
+
+def comparison_json(table: ComparisonTable) -> dict:
+    """The comparison's ``as_dict()`` with units: each row's values in its ``unit``, the relative differences and
+    the solver's counts unitless, each optimum's objective in its unit."""
+    return with_units(table.as_dict(), {
+        "rows": {f"rel_{column}": UNITLESS for column in table.columns},
+        "solves": {column: {"objective": s.objective_unit, "solver": SOLVER_UNITS}
+                   for column, s in table.solutions.items()}})
+
+
+HEADLINE_UNITS = {  # a simulated start-up's figures (clutchopt.simulate), and the closed form's
+    "start_time": "s", "friction_work": "J", "source_work": "J", "lock_up_speed": "rad/s", "peak_slip_power": "W",
+    "end_time": "s", "total_friction_work": "J", "final_driver_speed": "rad/s", "final_driven_speed": "rad/s",
+    "temperature_rise": "K", "peak_twist": "rad", "peak_stress": "Pa", "start_time_printed_eq9": "s",
+    "source": {"engagement_speed": "rad/s", "design_torque": "N*m"}}
+SIMULATION_UNITS = {"headline": HEADLINE_UNITS, "events": {"time": "s", "torque": "N*m"}, "analytic": HEADLINE_UNITS}
+CHECK_UNITS = {"sized_acceleration_time": "s", "simulated_acceleration_time": "s", "relative_difference": UNITLESS,
+               "simulated_start_time": "s", "max_start_time": "s", "friction_work": "J"}  # a design's start-up check
+
+
+def solution_json(record: dict) -> dict:
+    """A solution as JSON (``Solution.as_dict()`` or a stored one) with the unit of every number: ``units`` names,
+    besides the design and outputs, the constraints' relative columns (their values and limits are in their
+    ``unit``), the solver's counts and time, the bounds, the sensitivities (elasticities), the integer search and
+    the start-up."""
+    design = record.get("units", {}).get("design", {})
+    record = with_units(record, {"constraints": CONSTRAINT_UNITS, "solver": SOLVER_UNITS, "bounds": design,
+                                 "sensitivities": UNITLESS,
+                                 "integer_search": {**design, "objective": record["objective"].get("unit")}})
+    start_up = record.get("start_up")
+    if start_up:
+        figures = start_up.get("units", {})
+        record["start_up"] = with_units(start_up, {
+            **{f"{name}_simulated": unit for name, unit in figures.items()}, "intervals": UNITLESS,
+            "tolerance": UNITLESS, "discretisation_error": UNITLESS, "trajectory": TRAJECTORY_UNITS})
+    return record
 
 
 def _shown(value: float | None, unit: str) -> str:
@@ -194,13 +279,14 @@ def library_text(case) -> str:
 
 
 def library_json(case) -> dict:
-    """``library_text`` as JSON: per role the entry, its source and each filled value with its SI unit."""
+    """``library_text`` as JSON: per role the entry, its source, each filled value with its SI unit and the friction
+    coefficient's scatter (no unit)."""
     from clutchopt.materials import filled_by
 
-    return {key: {"entry": item["entry"], "source": item["source"],
-                  **({"friction_range": list(item["friction_range"])} if "friction_range" in item else {}),
-                  "values": {q.name: {"value": v, "unit": q.si_unit, "display_unit": q.unit}
-                             for q, v in item["values"].values()}}
+    return {key: with_units({"entry": item["entry"], "source": item["source"],
+                             **({"friction_range": list(item["friction_range"])} if "friction_range" in item else {}),
+                             "values": {q.name: {"value": v, "unit": q.si_unit, "display_unit": q.unit}
+                                        for q, v in item["values"].values()}}, {"friction_range": UNITLESS})
             for key, item in filled_by(case).items()}
 
 

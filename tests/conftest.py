@@ -10,9 +10,10 @@ CASES = ROOT / "cases"
 
 
 def run_cli(*args: str, cwd: Path = ROOT, timeout: float | None = None) -> subprocess.CompletedProcess:
-    """The CLI as a user runs it, from the repository root (a hang beyond ``timeout`` seconds fails the test)."""
+    """The CLI as a user runs it, from the repository root (a hang beyond ``timeout`` seconds fails the test); this
+    checkout's clutchopt from any ``cwd``, not the one installed."""
     return subprocess.run([sys.executable, "-m", "clutchopt", *args], cwd=cwd, capture_output=True, text=True,
-                          timeout=timeout)
+                          timeout=timeout, env={**os.environ, "PYTHONPATH": str(ROOT)})
 
 
 def pytest_xdist_auto_num_workers(config) -> int:

@@ -6,10 +6,12 @@ from io import StringIO
 
 import pytest
 
-from clutchopt.bench import SECTIONS, BenchConfig, Section, bench_text, run_bench
+from clutchopt.bench import SECTIONS, BenchConfig, Section, bench_json, bench_text, run_bench
 from clutchopt.bench.reference import bench_cases, closed_form, reference_mode
 from clutchopt.cli import main
 from clutchopt.formulations import get_coupling
+from clutchopt.output import to_json
+from tests.test_json_units import assert_units
 
 
 @pytest.fixture(scope="module")
@@ -29,7 +31,8 @@ MODES = [(case.coupling, mode) for case in bench_cases() for mode in get_couplin
 
 
 def test_report_structure(report):
-    assert set(report) == {"machine", "config", "sections"}
+    assert set(report) == {"machine", "config", "sections", "units"}
+    assert assert_units(report)  # every number beside its SI unit
     assert report["config"] == {"repeats": 3, "sweep_points": 50, "sweep_repeats": 3, "processes": 2,
                                 "start_up_intervals": [16]}
     assert report["machine"]["cores"] >= 1 and report["machine"]["casadi"]
@@ -152,3 +155,5 @@ def test_a_section_is_one_function():
     assert seen == [BenchConfig(repeats=1, sweep_points=2)]
     assert report["sections"]["extra"]["rows"] == [{"coupling": "x", "a": 1.5}]
     assert "An extra section" in bench_text(report) and "1.5" in bench_text(report)
+    with pytest.raises(AssertionError, match="without a unit"):  # a new column needs its unit in COLUMN_UNITS
+        assert_units(json.loads(to_json(bench_json(report))))

@@ -14,7 +14,7 @@ import re
 
 import pytest
 
-from tests.test_json_units import assert_si_units, printed_constraints
+from tests.test_json_units import assert_units, printed_constraints
 
 T_MAX = 20 * 980 * 2 * math.pi / 60 / 20 + 20
 
@@ -62,7 +62,7 @@ def test_the_edited_case_gives_si_values_with_their_units_in_json(mine):
 
     data = json.loads(run_cli("solve", "mine.toml", "--json", "--no-store", cwd=mine).stdout)
     assert data["status"] == "optimal"
-    assert assert_si_units(data) > 40
+    assert len(assert_units(data)) > 40  # numbers, each with its SI unit
     assert data["outputs"]["required_torque"] == pytest.approx(T_MAX, rel=1e-12)
     assert data["units"]["outputs"]["required_torque"] == "N*m"
     lining = next(c for c in data["constraints"] if c["name"] == "lining_pressure")

@@ -139,6 +139,7 @@ def test_example_output_matches_the_readme(index, folder, monkeypatch):
         pytest.skip("marked slow in the README")
     monkeypatch.delenv("CLUTCHOPT_STORE", raising=False)
     env = {k: v for k, v in os.environ.items() if k != "CLUTCHOPT_STORE"}
+    env["PYTHONPATH"] = str(ROOT)  # this checkout's clutchopt, not the one installed (the folder is elsewhere)
     argv = shlex.split(command, comments=True)
     assert argv[0] == "clutchopt"
     result = subprocess.run([sys.executable, "-m", "clutchopt", *argv[1:]], cwd=folder, capture_output=True,

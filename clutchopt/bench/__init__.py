@@ -97,6 +97,27 @@ def run_bench(config: BenchConfig, sections: tuple[Section, ...] = SECTIONS, qui
     return report
 
 
+COLUMN_UNITS = {  # the SI unit of every column of every section ("": a count, ratio or relative error)
+    **dict.fromkeys(("median_s", "iqr_s", "first_s", "resolve_median_s", "resolve_iqr_s", "wall_s", "python_fixed_s",
+                     "solver_per_resolve_s", "per_resolve_s", "start_time_s", "time_s"), "s"),
+    "objective": "kg",  # every section minimises the mass
+    "points_per_s": "1/s",
+    **dict.fromkeys(("runs", "ratio_to_import", "rel_error", "worst_violation", "iterations", "processes", "points",
+                     "optimal", "solves_per_point", "solver_share", "check_share", "python_share",
+                     "python_per_point_share", "vs_point_by_point", "vs_wedge_paper", "resolves", "speedup",
+                     "max_rel_diff_objective", "workers", "rtol", "t_c_rel_error", "L_rel_error", "intervals",
+                     "start_time_rel_error", "solves"), ""),
+}
+
+
+def bench_json(report: dict) -> dict:
+    """The report with the unit of every number (``clutchopt bench --json``, ``benchmarks/latest.json``)."""
+    from clutchopt.output import with_units
+
+    return with_units(report, {"machine": {"cores": ""}, "config": "", "sections": {
+        name: {"seconds": "s", "rows": COLUMN_UNITS} for name in report["sections"]}})
+
+
 _MS = ("first_s", "resolve_median_s", "resolve_iqr_s", "median_s", "iqr_s", "time_s", "solver_per_resolve_s",
        "per_resolve_s", "python_fixed_s")
 

@@ -6,11 +6,11 @@ from clutchopt.cli.options import add_json_option, add_parser
 
 
 def run(args) -> str:
-    from clutchopt.bench import BenchConfig, bench_text, run_bench
+    from clutchopt.bench import BenchConfig, bench_json, bench_text, run_bench
     from clutchopt.output import to_json
 
     report = run_bench(BenchConfig.quick() if args.quick else BenchConfig(), quick=args.quick)
-    return to_json(report) if args.json else bench_text(report)
+    return to_json(bench_json(report)) if args.json else bench_text(report)
 
 
 def add_command(commands) -> None:

@@ -32,7 +32,7 @@ def run(args) -> str:
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.compare import compare_case
     from clutchopt.optimise.design import design_case
-    from clutchopt.output import comparison_text, to_json
+    from clutchopt.output import comparison_json, comparison_text, to_json
 
     case = load_case(args.case)
     robust = robustness(args, case)
@@ -44,5 +44,6 @@ def run(args) -> str:
                "(clutchopt solve lists them)"
     table = compare_case(case, SolverOptions(tol=args.tol), robust)
     if args.json:
-        return to_json({"case": case.path, "title": case.title, **({"note": note} if note else {}), **table.as_dict()})
+        return to_json({"case": case.path, "title": case.title, **({"note": note} if note else {}),
+                        **comparison_json(table)})
     return "\n".join(filter(None, [note, comparison_text(table.as_dict())]))

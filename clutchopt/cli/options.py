@@ -217,7 +217,8 @@ def record_simulation(store, scene, result) -> None:
     """Record a ``simulate`` run (scene file, headline, events) in an open store (or nothing for None)."""
     if store is None:
         return
-    store.record("simulation", {"scene": scene.data, "source": scene.source}, result.as_dict(),
+    store.record("simulation", {"scene": scene.data, "source": scene.source, "units": {"scene": scene.units}},
+                 result.as_dict(),
                  status="locks up" if result.headline["locks_up"] else "no lock-up",
                  objective=result.headline.get("start_time"), objective_unit="s", case_path=scene.path,
                  title=scene.title, objective_name="start_time")

@@ -53,7 +53,7 @@ def run(args) -> str:
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.pareto import CAP, pareto_fronts
     from clutchopt.optimise.sweep_table import table_format, write_frame
-    from clutchopt.output import to_json
+    from clutchopt.output import UNITLESS, to_json, with_units
     from clutchopt.store import CAPPED_SUFFIX
 
     case = load_case(args.case)
@@ -77,11 +77,10 @@ def run(args) -> str:
     if args.plot:
         write_whole("--plot", args.plot, pareto_figure(fronts).savefig)
     if args.json:
-        shown = [{**({"choice": front.choice} if front.choice else {}), "note": front.note, "rows": _rows(front)}
-                 for front in fronts]
-        return to_json({"case": case.path, "mode": fronts[0].mode,
-                        "robust": robust.as_dict() if robust is not None else None,
-                        **(shown[0] if len(fronts) == 1 else {"fronts": shown})})
+        shown = [_front_json(front) for front in fronts]
+        return to_json(with_units({"case": case.path, "mode": fronts[0].mode,
+                                   "robust": robust.as_dict() if robust is not None else None,
+                                   **(shown[0] if len(fronts) == 1 else {"fronts": shown})}, {"robust": UNITLESS}))
     how = f", {robust.label} designs" if robust is not None else ""
     lines = [f"Pareto front, mass against cost (epsilon-constraint) - {case.title or case.path}, {fronts[0].mode} "
              f"mode{how}"]
@@ -104,17 +103,25 @@ def _with_choice(front):
         else front.frame
 
 
-def _rows(front) -> list[dict]:
+def _front_json(front) -> dict:
+    """A front's rows (SI, with their units by column), its choice of options.choose and its note; with
+    --robust, each row's robust result (with its own units)."""
     from clutchopt.optimise.pareto import CAP
     from clutchopt.optimise.problem import case_formulation
     from clutchopt.optimise.verify import evaluate_objective
+    from clutchopt.output import robust_json, with_units
+    from clutchopt.units import si_unit
 
     formulation, params = case_formulation(front.case, front.mode), front.case.params()
-    return [{"cost_cap": None if math.isnan(cap) else cap, "status": solution.status,
+    rows = [{"cost_cap": None if math.isnan(cap) else cap, "status": solution.status,
              **{name: evaluate_objective(formulation, name, solution.design, params) for name in ("mass", "cost")},
              "design": solution.design, "active": [c.name for c in solution.constraints if c.active and c.name != CAP],
-             **({"robust": front.robust[k].as_dict()} if front.robust else {})}
+             **({"robust": robust_json(front.robust[k], front.case)} if front.robust else {})}
             for k, (cap, solution) in enumerate(zip(front.caps, front.solutions))]
+    ends = {name: si_unit(formulation.objective(name).unit) for name in ("mass", "cost")}
+    units = {"cost_cap": ends["cost"], **ends, "design": {v.name: v.si_unit for v in formulation.variables}}
+    return with_units({**({"choice": front.choice} if front.choice else {}), "note": front.note, "rows": rows},
+                      {"rows": units})
 
 
 def pareto_figure(fronts):

@@ -46,18 +46,43 @@ def add_command(commands) -> None:
 
 
 def run(args) -> str:
-    from clutchopt.output import to_json
+    from clutchopt.output import to_json, with_units
     from clutchopt.store import RunStore
 
     if args.action == "export":
         return export(args)
     with RunStore(args.store, writable=False) as store:
         if args.action == "show":
-            return to_json(store.run(args.id))
+            return to_json(run_json(store.run(args.id)))
         listed, swept = store.runs(args.kind, args.sweep, args.limit or None), store.sweeps()
     if args.json:
-        return to_json({"store": str(store.path), "runs": listed, "sweeps": swept})
+        return to_json(with_units({"store": str(store.path), "runs": [_objective_unit(run) for run in listed],
+                                   "sweeps": swept}, {"runs": IDS, "sweeps": {**IDS, "points": "", "stored": ""}}))
     return listing_text(store.path, listed, swept if args.sweep is None else [])
+
+
+IDS = dict.fromkeys(("id", "sweep_id", "point"), "")  # a run's id, its sweep's and its point's index: no unit
+
+
+def _objective_unit(run: dict) -> dict:
+    from clutchopt.output import with_units
+
+    return with_units(run, {"objective": run["objective_unit"] or ""})
+
+
+def run_json(run: dict) -> dict:
+    """A stored run with the unit of every number: its inputs by its coupling's quantities, its outputs as a
+    solution's or a simulation's."""
+    from clutchopt.output import CHECK_UNITS, HEADLINE_UNITS, SIMULATION_UNITS, solution_json, with_units
+
+    outputs = run["outputs"]
+    if isinstance(outputs, dict) and isinstance(outputs.get("objective"), dict):
+        outputs = solution_json(outputs)
+    elif isinstance(outputs, dict):
+        outputs = with_units(outputs, {**SIMULATION_UNITS, **CHECK_UNITS})
+    units = _input_units(run["coupling"])
+    inputs = {"values": units, "bounds": units, "design": units, "source": HEADLINE_UNITS["source"]}
+    return with_units({**_objective_unit(run), "outputs": outputs}, {**IDS, "inputs": inputs})
 
 
 def listing_text(path: str, listed: list[dict], swept: list[dict]) -> str:
@@ -156,9 +181,11 @@ _UNITS: dict[str, dict[str, str]] = {}
 
 
 def _input_units(coupling: str | None) -> dict[str, str]:
-    """SI unit of each quantity and design variable of a coupling (and of a Pareto point's cost cap)."""
+    """SI unit of each quantity and design variable of a coupling, of a start-up's quantities and of a Pareto
+    point's cost cap."""
     from clutchopt.errors import InputError
     from clutchopt.formulations import get_coupling
+    from clutchopt.formulations.start_up import QUANTITIES, SPRING_PRELOAD
     from clutchopt.optimise.pareto import CAP
     from clutchopt.units import si_unit
 
@@ -168,7 +195,8 @@ def _input_units(coupling: str | None) -> dict[str, str]:
         except InputError:  # a simulation (no coupling), or a store of a newer clutchopt
             _UNITS[coupling] = {}
         else:
-            _UNITS[coupling] = {q.name: q.si_unit for q in (*declared.quantities, *declared.variables)}
+            _UNITS[coupling] = {q.name: q.si_unit for q in (*declared.quantities, *declared.variables, *QUANTITIES,
+                                                            SPRING_PRELOAD)}
             objectives = {o.name: o for f in declared.formulations.values() for o in f.objectives}
             if "cost" in objectives:
                 _UNITS[coupling][CAP] = si_unit(objectives["cost"].unit)

@@ -37,7 +37,7 @@ def add_command(commands) -> None:
 
 def run(args) -> str:
     from clutchopt.files import check_output, write_whole
-    from clutchopt.output import to_json
+    from clutchopt.output import SIMULATION_UNITS, to_json, with_units
     from clutchopt.simulate import load_scene, run_scene
     from clutchopt.simulate.analytic import PaperTransient
     from clutchopt.simulate.plot import history_figure
@@ -55,8 +55,8 @@ def run(args) -> str:
     if m.law.name == "paper" and m.load.constant and "motor_curve" not in m.effects:
         analytic = PaperTransient(m.inertia, m.law.k, m.law.a, m.load.torque, m.driver_speed).summary()
     if args.json:
-        return to_json({"scene": scene.path, "title": scene.title, **result.as_dict(),
-                        **({"analytic": analytic} if analytic else {})})
+        return to_json(with_units({"scene": scene.path, "title": scene.title, **result.as_dict(),
+                                   **({"analytic": analytic} if analytic else {})}, SIMULATION_UNITS))
     return _text(scene, result, analytic) + (f"\nfigure written to {args.plot}" if args.plot else "")
 
 

@@ -40,7 +40,8 @@ def run(args) -> str:
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.design import design_case
     from clutchopt.optimise.problem import case_formulation
-    from clutchopt.output import choices_text, library_json, library_text, robust_text, solution_text, to_json
+    from clutchopt.output import CHECK_UNITS, choices_text, library_json, library_text, robust_text, solution_json, \
+        solution_text, to_json, with_units
 
     case = load_case(args.case)
     resolve_problem(case, args)
@@ -56,9 +57,10 @@ def run(args) -> str:
         for designed in ranked:
             record_solve(store, designed.case, designed.solution, check if designed is best else None)
     if args.json:
-        choices = [{"choice": d.choice, **d.as_dict()} for d in ranked] if len(ranked) > 1 else []
-        return to_json({"case": case.path, "title": case.title, **best.as_dict(), "library": library_json(best.case),
-                        **({"choices": choices} if choices else {}), **({"verify": check} if check else {})})
+        choices = [solution_json(d.as_dict()) for d in ranked] if len(ranked) > 1 else []
+        return to_json(with_units({"case": case.path, "title": case.title, **solution_json(best.as_dict()),
+                                   "library": library_json(best.case), **({"choices": choices} if choices else {}),
+                                   **({"verify": check} if check else {})}, {"verify": CHECK_UNITS}))
     formulation = case_formulation(best.case, best.solution.mode)
     parts = [choices_text(ranked)] if len(ranked) > 1 else []
     parts += [nominal_note(case, robust)] if nominal_note(case, robust) else []

@@ -92,12 +92,16 @@ def run(args) -> str:
     if args.out:
         write_frame(result.frame, args.out)
     if args.json:
-        from clutchopt.output import to_json
+        from clutchopt.output import UNITLESS, solution_json, to_json, with_units
 
-        return to_json({"case": case.path, "mode": sweep.formulation.mode, "objective": sweep.objective.name,
-                        "robust": sweep.robust.as_dict() if sweep.robust is not None else None,
-                        "sweep_id": result.sweep_id, "points": [{"point": i, "values": values, **solution}
-                        for i, (values, solution) in enumerate(zip(sweep.points, result.solutions))]})
+        varied = {"point": UNITLESS, "values": {v.quantity.name: v.quantity.si_unit for v in sweep.varies}}
+        points = [with_units(solution_json({"point": i, "values": values, **solution}), varied)
+                  for i, (values, solution) in enumerate(zip(sweep.points, result.solutions))]
+        return to_json(with_units({"case": case.path, "mode": sweep.formulation.mode,
+                                   "objective": sweep.objective.name,
+                                   "robust": sweep.robust.as_dict() if sweep.robust is not None else None,
+                                   "sweep_id": result.sweep_id, "points": points},
+                                  {"sweep_id": UNITLESS, "robust": UNITLESS}))
     text = "\n".join(filter(None, [choices_note(case), nominal_note(case, sweep.robust),
                                    sweep_text(sweep, result, store, args.out)]))
     if args.resume and not result.reused:

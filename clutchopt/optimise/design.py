@@ -73,9 +73,12 @@ class Designed(NamedTuple):
         return ", ".join(f"{key} = {name}" for key, name in self.choice.items())
 
     def as_dict(self) -> dict:
-        """The design's record (``Solution.as_dict()``), with its choice and the robust result where there are."""
+        """The design's record (``Solution.as_dict()``), with its choice and the robust result (with its units) where
+        there are."""
+        from clutchopt.output import robust_json
+
         return {**self.solution.as_dict(), **({"choice": self.choice} if self.choice else {}),
-                **({"robust": self.robust.as_dict()} if self.robust is not None else {})}
+                **({"robust": robust_json(self.robust, self.case)} if self.robust is not None else {})}
 
 
 def check_robustness(case: Case, robust: Robustness | None) -> None:

@@ -52,7 +52,7 @@ from clutchopt.simulate.engine import (
 from clutchopt.simulate.laws import ConstantFriction, InductionMotor, Load, PaperFriction
 from clutchopt.start_up.equations import RADIAL_EFFECTS
 from clutchopt.start_up.section import parse_effects, parse_load_profile
-from clutchopt.units import to_si
+from clutchopt.units import si_unit, to_si
 
 LAWS = ("paper", "constant", "centrifugal")
 _TOP = {"title", "description", "effects", "end_time", "tolerance", "coupling", "driven", "driver", "heat"}
@@ -73,6 +73,7 @@ class Scene:
     model: Model
     source: dict  # where the coupling came from: law and case/design, engagement speed if any
     data: dict = field(default_factory=dict)  # the scene file as read (recorded in the run store)
+    units: dict = field(default_factory=dict)  # the SI unit of each quantity field, as ``data`` nests them
 
 
 class _Fields:
@@ -81,6 +82,7 @@ class _Fields:
     def __init__(self, data: dict, path: str):
         self.data, self.path = data, path
         self.problems = Problems()
+        self.units: dict = {}  # the SI unit of each quantity read: of a bare number in ``data``
 
     def table(self, name: str) -> dict:
         table = self.data.get(name, {})
@@ -108,6 +110,7 @@ class _Fields:
                 if default is None:
                     raise InputError(field_name, f"missing (in {unit or 'SI'})")
                 return default
+            (self.units.setdefault(section, {}) if section else self.units)[key] = si_unit(unit)
             value = to_si(field_name, raw, unit)
             low, high, shown = valid
             if not low <= value <= high:
@@ -176,7 +179,7 @@ def parse_scene(data: dict, path: str = "") -> Scene:
     f.problems.raise_any()
     model = Model(law, inertia, load, effects, speed, motor, heat[0], heat[1],
                   None if math.isinf(end_time) else end_time, tolerance)
-    return Scene(title, path, model, source, data)
+    return Scene(title, path, model, source, data, f.units)
 
 
 def _friction_law(f: _Fields, law_name: str):
