@@ -198,7 +198,8 @@ def headline(solution, formulation: Formulation, title: str = "") -> list[str]:
     lines = [f"{formulation.title}" + (f"  -  {title}" if title else ""),
              f"status: {solution.status}"
              f"   objective ({solution.objective_name}): {solution.objective:.6g} {solution.objective_unit}"]
-    return lines + ([f"diagnosis: {solution.diagnosis}"] if solution.diagnosis else [])
+    return lines + ([f"diagnosis: {solution.diagnosis}"] if solution.diagnosis else []) + \
+        ([f"starts tried: {', '.join(solution.starts)}"] if solution.starts else [])
 
 
 def solution_tables(solution, formulation: Formulation) -> list[tuple[str, list[dict], list[str]]]:

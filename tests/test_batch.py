@@ -129,9 +129,11 @@ def test_the_integer_search_along_a_batched_sweep():
 def test_an_infeasible_stretch_costs_one_design_solve_a_point():
     case, problem, quantity, values, sweep, solutions = _sweep("lever")
     statuses = [s.status for s in solutions]
-    first = statuses.index("infeasible")
+    first = statuses.index("not_found")
     assert "optimal" not in statuses[first:] and first > 3  # the lining pressure ends the feasible stretch
-    assert all(s.solver.solves == 1 and s.diagnosis for s in solutions[first + 1:])
+    # each point without a design is retried from at most three more starts before its verdict (optimise/verdict.py)
+    assert all(s.solver.solves <= 4 and s.diagnosis.startswith("no feasible design found (not proven infeasible)")
+               for s in solutions[first + 1:])
     assert all(s.solver.time_s > 0 for s in solutions[first:])  # the diagnosis's IPOPT call is solver time
 
 

@@ -79,7 +79,7 @@ def test_raising_an_allowable_never_increases_the_minimum_mass(draw, raise_by):
         assert after.status == "optimal"
         assert after.objective <= before.objective * (1 + 1e-7)
     else:
-        assert before.status == "infeasible"
+        assert before.status in ("infeasible", "not_found")
 
 
 WITH_CLOSED_FORM = sorted(name for name, case in BASE.items() if closed_form(case) is not None)

@@ -185,7 +185,7 @@ def _input_units(coupling: str | None) -> dict[str, str]:
     point's cost cap."""
     from clutchopt.errors import InputError
     from clutchopt.formulations import get_coupling
-    from clutchopt.formulations.start_up import QUANTITIES, SPRING_PRELOAD
+    from clutchopt.start_up.equations import QUANTITIES, SPRING_PRELOAD
     from clutchopt.optimise.pareto import CAP
     from clutchopt.units import si_unit
 

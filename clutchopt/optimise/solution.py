@@ -104,6 +104,7 @@ class Solution:
     internal: np.ndarray | None = field(default=None, repr=False)  # scaled start-up states of the kept solve
     mesh: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False)  # start-up mesh: used, suggested
     diagnosed: Diagnosis | None = field(default=None, repr=False)  # a solve without a design: its elastic diagnosis
+    starts: tuple[str, ...] = ()  # a solve without a design: the starts it was tried from (optimise/verdict.py)
 
     def _repr_html_(self) -> str:
         """Jupyter shows a solution as the tables of ``clutchopt solve``."""
@@ -145,6 +146,7 @@ class Solution:
             "bounds": {name: list(pair) for name, pair in self.bounds.items()},
             "sensitivities": self.sensitivities,
             **({"start_up": self.start_up} if self.start_up is not None else {}),
+            **({"starts": list(self.starts)} if self.starts else {}),
         }
 
 

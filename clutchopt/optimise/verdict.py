@@ -8,8 +8,8 @@ first that reaches a design is the answer. Otherwise the verdict says how sure i
 
 - ``infeasible``: proven. A requirement no design variable enters is broken (the diagnosis's "whatever the
   design"), or the drive cannot do what the start-up asks of any coupling (:mod:`clutchopt.optimise.proofs`);
-- ``not_found``: no feasible design found from the starts named, with the least relaxation found and from how
-  many of them it was reached: a strong hint, not a proof;
+- ``not_found``: no feasible design found from the starts it names (``Solution.starts``), with the least
+  relaxation found among them: a strong hint, not a proof;
 - ``solver_failed``: a feasible point exists (the elastic check found one), yet no start reached an optimum.
 """
 
@@ -22,9 +22,6 @@ from clutchopt.errors import InputError
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.verify import DESIGN_STATUSES
-
-AGREE = 1e-3  # relative: least relaxations within this are the same minimum
-
 
 def shown(problem, case: Case, first: Solution, started: bool, neighbour: Solution | None) -> Solution:
     """``first`` (a solve without a design) retried from the starts that can reach one; the first design found, or
@@ -56,23 +53,20 @@ def _verdict(problem, case: Case, tried: list[tuple[str, Solution]]) -> Solution
     if first.diagnosed is not None and first.diagnosed.proven:
         return first
     proofs = start_up_proofs(case) if problem.start_up is not None else []
-    labels = ", ".join(label for label, _ in tried)
-    starts = f"{len(tried)} start{'s' if len(tried) > 1 else ''} ({labels})"
+    starts = tuple(label for label, _ in tried)
     if not diagnosed:  # the integer search's verdict: no integer near the feasible relaxation
-        least, text, reached = first, first.diagnosis or "", 0
+        least, text = first, first.diagnosis or ""
     else:
         _, least = min(diagnosed, key=lambda item: item[1].diagnosed.least)
-        text = least.diagnosed.text.removeprefix("infeasible: ")
-        reached = sum(abs(s.diagnosed.least - least.diagnosed.least) <= AGREE * max(least.diagnosed.least, 1e-9)
-                      for _, s in diagnosed)
+        text = "the least relaxation found " + least.diagnosed.text.removeprefix("infeasible: ")
     if proofs:
-        return replace(least, status="infeasible",
-                       diagnosis="proven infeasible: " + "; ".join(proofs) + f" (least relaxation found: {text})")
+        return replace(least, status="infeasible", starts=starts,
+                       diagnosis="proven infeasible: " + "; ".join(proofs) + f" ({text})")
     if any(s.diagnosed.status == "solver_failed" for _, s in diagnosed):
-        return replace(least, status="solver_failed",
-                       diagnosis=f"a feasible point exists (elastic check), yet no optimum was reached from {starts}")
-    where = f"; the least relaxation, reached from {reached} of them: {text}" if diagnosed else f": {text}"
-    return replace(least, status="not_found", diagnosis=f"no feasible design found from {starts}{where}")
+        return replace(least, status="solver_failed", starts=starts,
+                       diagnosis="a feasible point exists (elastic check), yet no start reached an optimum")
+    return replace(least, status="not_found", starts=starts,
+                   diagnosis=f"no feasible design found (not proven infeasible): {text}")
 
 
 def _spent(solution: Solution, tried: list[tuple[str, Solution]]) -> Solution:
