@@ -168,17 +168,20 @@ def parse_case(data: dict, path: str = "") -> Case:
                 values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
 
     start_up, follows = None, {}
-    if "start_up" in data and not problems:  # its defaults come from the duty's values, so those must be sound
+    if "start_up" in data:  # its defaults follow the duty's values: checked across fields only if those are sound
         from clutchopt.start_up_case import parse_start_up
 
         with problems.field():
-            start_values, start_up, follows = parse_start_up(data["start_up"], coupling, values)
+            start_values, start_up, follows = parse_start_up(data["start_up"], coupling, values, not problems)
             values.update(start_values)
     scatter = ()
-    if "scatter" in data and not problems:  # scattered around the case's values, so those must be sound
+    if "scatter" in data:  # scattered around the case's values: not checked against a value that is itself bad
         with problems.field():
-            quantities = coupling.quantities + (START_UP_QUANTITIES if start_up else ())
-            scatter = parse_scatter(data["scatter"], quantities, values)
+            quantities = coupling.quantities + (START_UP_QUANTITIES if "start_up" in data else ())
+            keys = {q.key: q.name for q in quantities}
+            broken = {keys[p.field] for error in problems.errors for p in error.problems if p.field in keys}
+            broken |= {q.name for q in START_UP_QUANTITIES} if "start_up" in data and start_up is None else set()
+            scatter = parse_scatter(data["scatter"], quantities, values, broken)
     bounds = _parse_bounds(data.get("bounds", {}), coupling, problems, "start_up" in data)
     options = _parse_options(options, coupling, problems, "start_up" in data)
     for name in ("title", "description"):

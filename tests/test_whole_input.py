@@ -1,0 +1,105 @@
+"""Inputs checked as a whole: every bad field of a case in one run, nested [start_up] and [scatter] sections
+included (issue 23, point 5)."""
+
+from pathlib import Path
+
+from clutchopt.cli import EXIT_BAD_INPUT, main
+
+CASES = Path(__file__).resolve().parents[1] / "cases"
+MOTOR = (CASES / "wedge_motor_start.toml").read_text()
+CABLE_MOTOR = (CASES / "cable_motor_start.toml").read_text()
+
+
+def edit(text: str, *pairs: tuple[str, str]) -> str:
+    for old, new in pairs:
+        assert old in text, old  # each edit must change the case, or the test would test nothing
+        text = text.replace(old, new, 1)
+    return text
+
+
+def errors(tmp_path, capsys, text: str, *argv: str) -> list[str]:
+    """The error lines of a command on the case ``text``, which must refuse it as bad input (exit code 2)."""
+    path = tmp_path / "case.toml"
+    path.write_text(text)
+    assert main([argv[0] if argv else "solve", str(path), "--no-store", *argv[1:]]) == EXIT_BAD_INPUT
+    out, err = capsys.readouterr()
+    lines = err.splitlines()
+    assert out == "" and lines and all(line.startswith("error: ") for line in lines), err
+    assert "Traceback" not in err
+    return lines
+
+
+def fields(lines: list[str]) -> list[str]:
+    return [line.split(": ")[1] for line in lines]
+
+
+DRIVER = ('synchronous_speed = "1000 rpm"', 'synchronous_speed = "50 Hz"\nrated_power = "1.5 kW"\npoles = 6')
+
+
+def test_every_bad_field_of_the_driver_in_one_run(tmp_path, capsys):
+    lines = errors(tmp_path, capsys, edit(MOTOR, DRIVER, ("breakdown_slip = 0.2", "breakdown_slip = 7")))
+    assert fields(lines) == ["start_up.driver.synchronous_speed", "start_up.driver.rated_power",
+                             "start_up.driver.poles", "start_up.driver.breakdown_slip"], lines
+    assert "Hz and 1/s are refused" in lines[0] and "must be < 1, got 7" in lines[3]
+
+
+def test_duty_start_up_and_scatter_reported_together(tmp_path, capsys):
+    text = edit(MOTOR, DRIVER, ('speed = "1000 rpm"', 'speed = "-3 rpm"'),
+                ('inertia = "0.5 kg*m^2"', 'inertia = "lots"'),
+                ("[start_up.heat]", "[start_up.heat]\nmass = 3"), ("[options]", "[start_up.colour]\n\n[options]"))
+    text += '\n[scatter]\nfriction_coefficient = [0.12, 0.1]\ninertia = [0.4, 0.6]\nbreakdown_slip = [0.1, 0.3]\n'
+    lines = errors(tmp_path, capsys, text)
+    assert fields(lines) == ["duty.inertia", "duty.speed", "start_up.colour", "start_up.driver.synchronous_speed",
+                             "start_up.driver.rated_power", "start_up.driver.poles", "start_up.heat.mass",
+                             "scatter.friction_coefficient"], lines
+    # the start-up's driven inertia follows the broken duty.inertia: no second message for it; neither is the
+    # scatter of a quantity whose own value is bad checked against that value
+    assert not any("missing" in line or "scatter around" in line for line in lines), lines
+
+
+HOSTILE = [
+    ("driver.breakdown_torque", 'breakdown_torque = "37 N*m"', 'breakdown_torque = "1e300 N*m"'),
+    ("driver.breakdown_slip", "breakdown_slip = 0.2", "breakdown_slip = nan"),
+    ("driver.inertia", 'inertia = "0.012 kg*m^2"', "inertia = [1, 2]"),
+    ("heat.capacity", 'capacity = "1400 J/K"', "capacity = true"),
+    ("heat.conductance", 'conductance = "4 W/K"', 'conductance = "inf W/K"'),
+    ("limits.max_temperature_rise", 'max_temperature_rise = "4 K"', "max_temperature_rise = { a = 1 }"),
+    ("limits.starts_per_hour", 'starts_per_hour = "10 1/hour"', 'starts_per_hour = "-10 1/hour"'),
+    ("spring_preload", 'spring_preload = "12 N"', 'spring_preload = "1e30 N"'),
+]
+
+
+def test_hostile_values_in_every_nested_table_all_reported(tmp_path, capsys):
+    text = edit(MOTOR, *((old, new) for _, old, new in HOSTILE),
+                ("[start_up.driver]", "intervals = 1e9\ntolerance = nan\n\n[start_up.driver]"))
+    lines = errors(tmp_path, capsys, text)
+    assert sorted(fields(lines)) == sorted([f"start_up.{name}" for name, _, _ in HOSTILE]
+                                           + ["start_up.intervals", "start_up.tolerance"]), lines
+
+
+def test_start_up_settings_and_tables_of_the_wrong_kind(tmp_path, capsys):
+    text = edit(MOTOR, ('effects = ["slip_friction",', 'effects = ["sparks", "slip_friction",'),
+                ("[start_up.heat]\ncapacity", "[start_up.heaat]\ncapacity"),
+                ('spring_preload = "12 N"', 'spring_preload = "12 N"\ndriven = 5'))
+    lines = errors(tmp_path, capsys, text)
+    assert fields(lines) == ["start_up.heaat", "start_up.effects", "start_up.driven"], lines
+
+
+def test_load_profile_and_resisting_torque_both_given_beside_a_bad_field(tmp_path, capsys):
+    text = edit(MOTOR, ("[start_up.heat]", '[start_up.driven]\nresisting_torque = "5 N*m"\ninertia = "-1 kg*m^2"\n'
+                                           'load_profile = { over = "speed", points = [0, 1000], torque = [1, 5] }'
+                                           "\n\n[start_up.heat]"))
+    lines = errors(tmp_path, capsys, text)
+    assert fields(lines) == ["start_up.driven.inertia", "start_up.driven"], lines
+
+
+def test_cross_field_checks_still_run_once_the_fields_are_sound(tmp_path, capsys):
+    lines = errors(tmp_path, capsys, edit(MOTOR, ('capacity = "1400 J/K"\n', "")))
+    assert lines == ["error: start_up.heat.capacity: missing (effect friction_heat)"]
+
+
+def test_cable_start_up_fields_all_reported(tmp_path, capsys):
+    text = edit(CABLE_MOTOR, ("[start_up.driver]", "[start_up.driver]\nvoltage = 400"))
+    text = text.replace("breakdown_slip = ", "breakdown_slip = -", 1)
+    lines = errors(tmp_path, capsys, text)
+    assert fields(lines) == ["start_up.driver.voltage", "start_up.driver.breakdown_slip"], lines
