@@ -92,6 +92,22 @@ class Case:
         from its source."""
         return followed(values, self.follows if follows is None else follows)
 
+    def missing_for(self, objective: str) -> list[Quantity]:
+        """The quantities ``objective`` alone needs (``needed_by``) that the case leaves out (a ball case's prices)."""
+        return [q for q in self.quantities if q.needed_by == objective and q.name not in self.values]
+
+    def require(self, *objectives: str) -> None:
+        """Refuse, naming each, what ``objectives`` need and the case leaves out: called before any solve that poses
+        one of them."""
+        from clutchopt.formulations import get_coupling
+
+        problems = Problems()
+        for objective in objectives:
+            for quantity in self.missing_for(objective):
+                problems.errors.append(InputError(quantity.key, _missing(
+                    quantity, get_coupling(self.coupling), f"the {objective} objective needs it: ")))
+        problems.raise_any()
+
     def given(self, *names: str) -> "Case":
         """A copy in which ``names`` are given at their present values: none of them follows another quantity
         (a quantity a sweep varies or a scatter spreads is the one it names)."""
@@ -161,10 +177,9 @@ def parse_case(data: dict, path: str = "") -> Case:
         if quantity.name in given or quantity.name in values:
             continue
         with problems.field():
-            if quantity.default is REQUIRED:
-                raise InputError(quantity.key, f"missing ({quantity.description}, in {quantity.unit or 'SI'})"
-                                               + materials.hint(coupling.materials, quantity.name))
-            if quantity.default is not None:
+            if quantity.default is REQUIRED and not quantity.needed_by:
+                raise InputError(quantity.key, _missing(quantity, coupling))
+            if quantity.default not in (None, REQUIRED):
                 values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
 
     start_up, follows = None, {}
@@ -236,6 +251,12 @@ def check_text(field: str, value: Any, multiline: bool = False) -> str:
     if bad is not None:
         raise InputError(field, f"contains the control character {bad!r}")
     return value
+
+
+def _missing(quantity: Quantity, coupling, why: str = "") -> str:
+    """``missing (price of the balls, in EUR/kg); or name a ...``: what a missing quantity is and where to get it."""
+    return (f"missing ({why}{quantity.description}, in {quantity.unit or 'SI'})"
+            + materials.hint(coupling.materials, quantity.name))
 
 
 def _did_you_mean(name: str, known) -> str:

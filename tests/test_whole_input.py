@@ -1,13 +1,19 @@
 """Inputs checked as a whole: every bad field of a case in one run, nested [start_up] and [scatter] sections
-included (issue 23, point 5)."""
+included, and nothing required that the chosen objective does not use (issue 23, point 5)."""
 
 from pathlib import Path
 
+import pytest
+
+from clutchopt.cases import load_case
 from clutchopt.cli import EXIT_BAD_INPUT, main
+from clutchopt.errors import InputError
 
 CASES = Path(__file__).resolve().parents[1] / "cases"
 MOTOR = (CASES / "wedge_motor_start.toml").read_text()
 CABLE_MOTOR = (CASES / "cable_motor_start.toml").read_text()
+BALL = (CASES / "ball_crusher.toml").read_text()
+NO_PRICES = BALL.replace('[cost]\nball_price = "2.5 EUR/kg"\nbody_price = "6 EUR/kg"\n', "")
 
 
 def edit(text: str, *pairs: tuple[str, str]) -> str:
@@ -103,3 +109,52 @@ def test_cable_start_up_fields_all_reported(tmp_path, capsys):
     text = text.replace("breakdown_slip = ", "breakdown_slip = -", 1)
     lines = errors(tmp_path, capsys, text)
     assert fields(lines) == ["start_up.driver.voltage", "start_up.driver.breakdown_slip"], lines
+
+
+# --- nothing required that the posed objective does not use ------------------------------------------------------
+
+def test_prices_not_needed_to_minimise_mass(tmp_path, capsys):
+    path = tmp_path / "case.toml"
+    path.write_text(NO_PRICES)
+    assert main(["solve", str(path), "--no-store"]) == 0
+    out = capsys.readouterr().out
+    assert "status: optimal   objective (mass)" in out
+    assert [line.split() for line in out.splitlines() if line.split()[:1] == ["cost"]] == [
+        ["cost", "-", "EUR", "balls", "and", "body", "priced", "per", "kg"]]
+
+
+PRICE_LINES = ["error: cost.ball_price: missing (the cost objective needs it: price of the balls, in EUR/kg); or "
+               "name a ball_material (clutchopt materials)",
+               "error: cost.body_price: missing (the cost objective needs it: price of the clutch body (drum, rotor), "
+               "machined, in EUR/kg)"]
+
+
+@pytest.mark.parametrize("text, argv", [
+    (NO_PRICES, ("solve", "--objective", "cost")),
+    (NO_PRICES.replace("[bounds]", '[options]\nobjective = "cost"\n\n[bounds]'), ("solve",)),
+    (NO_PRICES, ("pareto", "--points", "3")),
+    (NO_PRICES, ("sweep", "--vary", "service_factor=1.1:1.3:2", "--objective", "cost")),
+    (NO_PRICES, ("report", "--objective", "cost", "-o", "review.html")),
+], ids=["solve", "case-option", "pareto", "sweep", "report"])
+def test_a_cost_objective_refuses_by_name_before_any_solve(tmp_path, capsys, text, argv):
+    assert errors(tmp_path, capsys, text, *argv) == PRICE_LINES
+
+
+def test_the_library_refuses_too(tmp_path):
+    from clutchopt.optimise import solve_case
+
+    path = tmp_path / "case.toml"
+    path.write_text(NO_PRICES)
+    with pytest.raises(InputError) as refused:
+        solve_case(load_case(path), objective="cost")
+    assert [p.field for p in refused.value.problems] == ["cost.ball_price", "cost.body_price"]
+
+
+def test_compare_without_prices_leaves_the_cost_optimum_out(tmp_path, capsys):
+    path = tmp_path / "case.toml"
+    path.write_text(NO_PRICES)
+    assert main(["compare", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert ("nlp_cost: not solved: the cost objective needs cost.ball_price, cost.body_price, which the case does "
+            "not give") in out
+    assert "nlp_mass: status optimal" in out

@@ -449,6 +449,7 @@ class Sweep:
         self.varies = varies
         self.formulation: Formulation = case_formulation(case, mode)
         self.objective = self.formulation.objective(objective or case.options.get("objective", "mass"))
+        case.require(self.objective.name)
         self.tol = tol
         self.grid, self.zipped = grid_points(varies, zipped), zipped
         check_points(case, varies, self.grid)
