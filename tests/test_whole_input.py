@@ -158,3 +158,60 @@ def test_compare_without_prices_leaves_the_cost_optimum_out(tmp_path, capsys):
     assert ("nlp_cost: not solved: the cost objective needs cost.ball_price, cost.body_price, which the case does "
             "not give") in out
     assert "nlp_mass: status optimal" in out
+
+
+# --- a sweep table says which case it was swept from ------------------------------------------------------------
+
+def sweep_table(folder: Path, suffix: str) -> Path:
+    """A two-point sweep of the wedge paper's case written by the CLI."""
+    table = folder / f"sweep.{suffix}"
+    assert main(["sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=900,1000", "--out", str(table),
+                 "--quiet", "--no-store"]) == 0
+    return table
+
+
+@pytest.fixture(scope="module", params=["csv", "parquet"])
+def swept(request, tmp_path_factory):
+    return sweep_table(tmp_path_factory.mktemp("swept"), request.param)
+
+
+@pytest.fixture(scope="module")
+def swept_csv(tmp_path_factory):
+    return sweep_table(tmp_path_factory.mktemp("swept"), "csv")
+
+
+def review(tmp_path, capsys, case: str, table) -> tuple[int, str]:
+    code = main(["report", str(CASES / case), "-o", str(tmp_path / "review.html"), "--sweep", str(table),
+                 "--no-store"])
+    return code, capsys.readouterr().err
+
+
+def test_a_sweep_table_of_its_own_case_is_shown(tmp_path, capsys, swept):
+    assert review(tmp_path, capsys, "wedge_paper.toml", swept) == (0, "")
+
+
+@pytest.mark.parametrize("case, differs", [
+    ("lever_centrifuge.toml", "coupling 'wedge', not 'lever'"),
+    ("wedge_fan.toml", "wedge_paper.toml', whose acceleration_time, allowable_pressure,"),
+])
+def test_a_sweep_table_of_another_case_is_refused_naming_what_differs(tmp_path, capsys, swept, case, differs):
+    code, err = review(tmp_path, capsys, case, swept)
+    assert code == EXIT_BAD_INPUT and err.count("\n") == 1, err
+    assert err.startswith(f"error: {swept}: not a sweep of {CASES / case}: ") and differs in err, err
+
+
+def test_a_table_whose_columns_contradict_its_identification_is_refused(tmp_path, capsys, swept_csv):
+    edited = tmp_path / "edited.csv"
+    first, header, rest = swept_csv.read_text().split("\n", 2)
+    edited.write_text("\n".join([first, header.replace("speed [rpm]", "inertia [kg*m^2]"), rest]))
+    code, err = review(tmp_path, capsys, "wedge_paper.toml", edited)
+    assert code == EXIT_BAD_INPUT and ("quantities: its columns vary inertia [kg*m^2], its identification says "
+                                       "speed [rpm]") in err, err
+
+
+def test_an_older_table_without_identification_is_shown_with_a_warning(tmp_path, capsys, swept_csv):
+    older = tmp_path / "older.csv"
+    older.write_text(swept_csv.read_text().split("\n", 1)[1])
+    code, err = review(tmp_path, capsys, "wedge_paper.toml", older)
+    assert code == 0 and err == (f"warning: {older} does not say which case it was swept from (a table of an older "
+                                 f"clutchopt); it is shown as a sweep of {CASES / 'wedge_paper.toml'}\n")

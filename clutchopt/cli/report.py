@@ -11,6 +11,7 @@ from clutchopt.cli.options import (
     record_solve,
     recording,
     resolve_problem,
+    warn,
 )
 
 
@@ -34,12 +35,14 @@ def run(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.files import check_output, write_whole
     from clutchopt.optimise import SolverOptions, solve_case
-    from clutchopt.optimise.sweep import read_frame
+    from clutchopt.optimise.sweep import check_swept_from, read_frame
     from clutchopt.report import build_report
 
     case = load_case(args.case)
     check_output("--out", args.out, (".html", ".htm"))
     sweep = read_frame(args.sweep) if args.sweep else None
+    if sweep is not None:
+        check_swept_from(sweep, case, args.sweep, warn)
     resolve_problem(case, args)
     with recording(args) as store:
         solution = solve_case(case, args.mode, args.objective, SolverOptions(tol=args.tol))

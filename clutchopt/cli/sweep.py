@@ -82,7 +82,7 @@ def run(args) -> str:
         if store is not None:
             store.close()
     if args.out:
-        write_frame(result.frame, args.out)
+        write_frame(result.frame, args.out, identity=sweep.identity())
     if args.json:
         from clutchopt.output import to_json
 
