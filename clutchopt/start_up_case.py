@@ -98,16 +98,17 @@ def parse_start_up(table, coupling, duty: dict[str, float],
         spec["intervals"] = _intervals(table.get("intervals", StartUpSpec.intervals))
     with problems.field():
         spec["tolerance"] = _tolerance(table.get("tolerance", StartUpSpec.tolerance))
+    given = {q.name for q in QUANTITIES if q.key.rsplit(".", 1)[1] in _table(table, q.section)}  # good or bad
     follows = {name: (source, 1.0) for name, source in DEFAULTS_FROM_DUTY.items()
-               if name not in values and source in duty}
-    if "motor_curve" in effects and "min_lock_up_speed" not in values and "synchronous_speed" in values:
+               if name not in given and source in duty}
+    if "motor_curve" in effects and "min_lock_up_speed" not in given and "synchronous_speed" in values:
         follows["min_lock_up_speed"] = ("synchronous_speed", LOCK_UP_SHARE)
     elastic = [law for law in laws if isinstance(law, ElasticLaw)]
-    if elastic and "max_link_stress" not in values and elastic[0].stress_limit in duty:
+    if elastic and "max_link_stress" not in given and elastic[0].stress_limit in duty:
         follows["max_link_stress"] = (elastic[0].stress_limit, 1.0)
     values = followed({**duty, **values}, follows)
     for quantity in QUANTITIES:
-        if quantity.name not in values and quantity.default not in (None, REQUIRED):
+        if quantity.name not in values and quantity.name not in given and quantity.default not in (None, REQUIRED):
             values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
     values = {name: value for name, value in values.items() if name not in duty}
     if profile is not None and "resisting_torque" in table.get("driven", {}):
@@ -121,6 +122,12 @@ def parse_start_up(table, coupling, duty: dict[str, float],
     if duty_sound:
         _check(values, effects, coupling, laws, profile)
     return values, StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile, **spec), follows
+
+
+def _table(table: dict, section: str) -> dict:
+    """The sub-table of ``[start_up]`` that holds the quantities of ``section`` (``start_up.driver``), or ``{}``."""
+    sub = table.get(section.partition(".")[2], {}) if "." in section else table
+    return sub if isinstance(sub, dict) else {}
 
 
 def _field_value(declared, table: str, key: str, raw) -> dict[str, float]:

@@ -99,6 +99,13 @@ def test_load_profile_and_resisting_torque_both_given_beside_a_bad_field(tmp_pat
     assert fields(lines) == ["start_up.driven.inertia", "start_up.driven"], lines
 
 
+def test_a_bad_start_up_value_is_not_replaced_by_the_duty_s(tmp_path, capsys):
+    text = edit(MOTOR, ('inertia = "0.5 kg*m^2"', 'inertia = "1e10 kg*m^2"'),
+                ("[start_up.heat]", '[start_up.driven]\ninertia = "-1 kg*m^2"\n\n[start_up.heat]'))
+    lines = errors(tmp_path, capsys, text)
+    assert fields(lines) == ["start_up.driven.inertia"] and "must be > 0" in lines[0], lines
+
+
 def test_cross_field_checks_still_run_once_the_fields_are_sound(tmp_path, capsys):
     lines = errors(tmp_path, capsys, edit(MOTOR, ('capacity = "1400 J/K"\n', "")))
     assert lines == ["error: start_up.heat.capacity: missing (effect friction_heat)"]
