@@ -92,18 +92,19 @@ class Case:
         from its source."""
         return followed(values, self.follows if follows is None else follows)
 
-    def missing_for(self, objective: str) -> list[Quantity]:
-        """The quantities ``objective`` alone needs (``needed_by``) that the case leaves out (a ball case's prices)."""
-        return [q for q in self.quantities if q.needed_by == objective and q.name not in self.values]
+    def missing_for(self, objective: str, quantities: tuple[Quantity, ...] | None = None) -> list[Quantity]:
+        """The quantities ``objective`` alone needs (``needed_by``) that the case leaves out (a ball case's prices),
+        among ``quantities`` (default: the case's)."""
+        return [q for q in quantities or self.quantities if q.needed_by == objective and q.name not in self.values]
 
-    def require(self, *objectives: str) -> None:
-        """Refuse, naming each, what ``objectives`` need and the case leaves out: called before any solve that poses
-        one of them."""
+    def require(self, *objectives: str, quantities: tuple[Quantity, ...] | None = None) -> None:
+        """Refuse, naming each, what ``objectives`` need and the case leaves out (among ``quantities``, default: the
+        case's): called before any solve that poses one of them."""
         from clutchopt.formulations import get_coupling
 
         problems = Problems()
         for objective in objectives:
-            for quantity in self.missing_for(objective):
+            for quantity in self.missing_for(objective, quantities):
                 problems.errors.append(InputError(quantity.key, _missing(
                     quantity, get_coupling(self.coupling), f"the {objective} objective needs it: ")))
         problems.raise_any()
