@@ -93,6 +93,23 @@ class Case:
         from its source."""
         return followed(values, self.follows if follows is None else follows)
 
+    def missing_for(self, objective: str, quantities: tuple[Quantity, ...] | None = None) -> list[Quantity]:
+        """The quantities ``objective`` alone needs (``needed_by``) that the case leaves out (a ball case's prices),
+        among ``quantities`` (default: the case's)."""
+        return [q for q in quantities or self.quantities if q.needed_by == objective and q.name not in self.values]
+
+    def require(self, *objectives: str, quantities: tuple[Quantity, ...] | None = None) -> None:
+        """Refuse, naming each, what ``objectives`` need and the case leaves out (among ``quantities``, default: the
+        case's): called before any solve that poses one of them."""
+        from clutchopt.formulations import get_coupling
+
+        problems = Problems()
+        for objective in objectives:
+            for quantity in self.missing_for(objective, quantities):
+                problems.errors.append(InputError(quantity.key, _missing(
+                    quantity, get_coupling(self.coupling), f"the {objective} objective needs it: ")))
+        problems.raise_any()
+
     def given(self, *names: str) -> "Case":
         """A copy in which ``names`` are given at their present values: none of them follows another quantity
         (a quantity a sweep varies or a scatter spreads is the one it names)."""
@@ -162,24 +179,26 @@ def parse_case(data: dict, path: str = "") -> Case:
         if quantity.name in given or quantity.name in values:
             continue
         with problems.field():
-            if quantity.default is REQUIRED:
-                raise InputError(quantity.key, f"missing ({quantity.description}, in {quantity.unit or 'SI'})"
-                                               + materials.hint(coupling.materials, quantity.name))
-            if quantity.default is not None:
+            if quantity.default is REQUIRED and not quantity.needed_by:
+                raise InputError(quantity.key, _missing(quantity, coupling))
+            if quantity.default not in (None, REQUIRED):
                 values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
 
     start_up, follows = None, {}
-    if "start_up" in data and not problems:  # its defaults come from the duty's values, so those must be sound
+    if "start_up" in data:  # its defaults follow the duty's values: checked across fields only if those are sound
         from clutchopt.start_up.section import parse_start_up
 
         with problems.field():
-            start_values, start_up, follows = parse_start_up(data["start_up"], coupling, values)
+            start_values, start_up, follows = parse_start_up(data["start_up"], coupling, values, not problems)
             values.update(start_values)
     scatter = ()
-    if "scatter" in data and not problems:  # scattered around the case's values, so those must be sound
+    if "scatter" in data:  # scattered around the case's values: not checked against a value that is itself bad
         with problems.field():
-            quantities = coupling.quantities + (START_UP_QUANTITIES if start_up else ())
-            scatter = parse_scatter(data["scatter"], quantities, values)
+            quantities = coupling.quantities + (START_UP_QUANTITIES if "start_up" in data else ())
+            keys = {q.key: q.name for q in quantities}
+            broken = {keys[p.field] for error in problems.errors for p in error.problems if p.field in keys}
+            broken |= {q.name for q in START_UP_QUANTITIES} if "start_up" in data and start_up is None else set()
+            scatter = parse_scatter(data["scatter"], quantities, values, broken)
     bounds = _parse_bounds(data.get("bounds", {}), coupling, problems, "start_up" in data)
     options = _parse_options(options, coupling, problems, "start_up" in data)
     for name in ("title", "description"):
@@ -234,6 +253,12 @@ def check_text(field: str, value: Any, multiline: bool = False) -> str:
     if bad is not None:
         raise InputError(field, f"contains the control character {bad!r}")
     return value
+
+
+def _missing(quantity: Quantity, coupling, why: str = "") -> str:
+    """``missing (price of the balls, in EUR/kg); or name a ...``: what a missing quantity is and where to get it."""
+    return (f"missing ({why}{quantity.description}, in {quantity.unit or 'SI'})"
+            + materials.hint(coupling.materials, quantity.name))
 
 
 def _did_you_mean(name: str, known) -> str:

@@ -45,6 +45,7 @@ class Quantity:
     at_most: float | None = None  # value <= at_most
     integer: bool = False
     toml_key: str = ""  # the key in its TOML table, where it differs from the name (``inertia`` of the motor)
+    needed_by: str = ""  # the objective that alone uses it ("cost"): a case may leave it out (NaN) unless posed
 
     @property
     def key(self) -> str:

@@ -116,7 +116,7 @@ def robust_json(result, case) -> dict:
         "nominal_checks": CONSTRAINT_UNITS, "nominal_design": design})
 
 
-def comparison_json(table: ComparisonTable) -> dict:
+def comparison_json(table) -> dict:  # a ComparisonTable (optimise.compare): read by its fields
     """The comparison's ``as_dict()`` with units: each row's values in its ``unit``, the relative differences and
     the solver's counts unitless, each optimum's objective in its unit."""
     return with_units(table.as_dict(), {

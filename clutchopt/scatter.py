@@ -49,8 +49,10 @@ class Scatter:
         return f"{self.kind} {unit_shown(self.low)} to {unit_shown(self.high)}"
 
 
-def parse_scatter(table, quantities, values: dict[str, float]) -> tuple[Scatter, ...]:
-    """The scattered quantities of a ``[scatter]`` table of a case with ``quantities`` and nominal ``values``."""
+def parse_scatter(table, quantities, values: dict[str, float], broken=frozenset()) -> tuple[Scatter, ...]:
+    """The scattered quantities of a ``[scatter]`` table of a case with ``quantities`` and nominal ``values``; all
+    problems are raised together. A quantity in ``broken`` (its case value is bad) is not checked against its
+    nominal value."""
     if not isinstance(table, dict):
         raise InputError(SECTION, "must be a table of quantity = [low, high] or { normal = [mean, sd] } or "
                                   "{ uniform = [low, high] }")
@@ -68,7 +70,10 @@ def parse_scatter(table, quantities, values: dict[str, float]) -> tuple[Scatter,
                                         "(e.g. friction_coefficient, inertia, density)")
             if quantity.integer:
                 raise InputError(field, "a whole number does not scatter")
-            items.append(_item(field, quantity, raw, values.get(name)))
+            nominal = values.get(name, math.nan)
+            if math.isnan(nominal) and name not in broken:
+                raise InputError(field, "the case gives no value of it to scatter around")
+            items.append(_item(field, quantity, raw, nominal))
     problems.raise_any()
     return tuple(items)
 
@@ -79,9 +84,8 @@ def _pair(field: str, quantity, raw) -> tuple[float, float]:
     return tuple(to_si(field, value, quantity.unit) for value in raw)
 
 
-def _item(field: str, quantity, raw, nominal: float | None) -> Scatter:
-    if nominal is None or math.isnan(nominal):
-        raise InputError(field, "the case gives no value of it to scatter around")
+def _item(field: str, quantity, raw, nominal: float) -> Scatter:
+    """One scattered quantity; a range is checked to hold ``nominal`` unless that is NaN (unknown)."""
     if isinstance(raw, list):
         kind, (low, high) = "range", _pair(field, quantity, raw)
     elif isinstance(raw, dict) and len(raw) == 1 and next(iter(raw)) in ("normal", "uniform"):
@@ -101,7 +105,7 @@ def _item(field: str, quantity, raw, nominal: float | None) -> Scatter:
     if not low < high:
         raise InputError(field, f"low {quantity.show(low)} must be below high {quantity.show(high)}")
     quantity.check(low, field), quantity.check(high, field)
-    if not low <= nominal <= high:
+    if not math.isnan(nominal) and not low <= nominal <= high:
         raise InputError(field, f"the case's value {quantity.show(nominal)} lies outside {quantity.show(low)} .. "
                                 f"{quantity.show(high)}")
     return Scatter(quantity.name, kind, low, high, (low + high) / 2, (high - low) / math.sqrt(12.0))

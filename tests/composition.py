@@ -15,7 +15,6 @@ import contextlib
 import io
 import itertools
 import tomllib
-from pathlib import Path
 
 from clutchopt.cli import main
 from clutchopt.formulations import get_coupling

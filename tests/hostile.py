@@ -469,6 +469,13 @@ HOSTILE: list[Hostile] = [
     paper("report-out-missing-folder", "report", "-o", "{dir}/no/review.html", expect="--out: cannot write"),
     paper("report-out-not-html", "report", "-o", "{dir}/review.pdf", expect="--out: write .html or .htm"),
     table("table-as-written", SWEEP_TABLE, None),
+    table("table-identified-other-coupling", '# clutchopt_sweep {"coupling": "lever", "case": "lever.toml", '
+          '"values": {}, "mode": "paper", "objective": "mass", "varies": ["speed [rpm]"]}\n' + SWEEP_TABLE,
+          ("sweep.csv: not a sweep of", "case.toml: coupling 'lever', not 'wedge'")),
+    table("table-identification-damaged", '# clutchopt_sweep {"coupling": "wedge"\n' + SWEEP_TABLE,
+          "its identification (the case it was swept from) is damaged"),
+    table("table-identification-nested-deep", "# clutchopt_sweep " + "[" * 100_000 + "\n" + SWEEP_TABLE,
+          "its identification (the case it was swept from) is damaged"),
     table("table-empty", "", "cannot read a sweep table"),
     table("table-header-only", "point,speed [rpm],status,mass [kg]\n", "a sweep table has 1 to 100,000 rows"),
     table("table-no-input", "point,status,mass [kg]\n0,optimal,1\n", "no varied input before status"),

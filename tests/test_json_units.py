@@ -22,7 +22,6 @@ import re
 
 import pytest
 
-from clutchopt.bench import bench_json
 from clutchopt.cli import main
 from clutchopt.cli.main import build_parser
 from clutchopt.formulations import get_coupling

@@ -73,7 +73,8 @@ def test_thousand_point_sweep_with_progress_bar_csv_and_runs_list(cli, tmp_path,
     assert result.returncode == 0, result.stderr
     assert "1000/1000" in result.stderr  # the progress bar
     assert "1000 points, 1000 optimal" in result.stdout
-    frame = pd.read_csv(out)
+    assert out.read_text().startswith('# clutchopt_sweep {"coupling": "wedge", ')  # the sweep's identification
+    frame = pd.read_csv(out, skiprows=1)
     assert len(frame) == 1000 and frame["point"].is_unique
     assert frame["speed [rpm]"].min() == pytest.approx(500) and frame["allowable_pressure [MPa]"].max() == pytest.approx(8)
     corner = frame.iloc[-25]  # the last speed (3000 rpm) at the first pressure (2 MPa)

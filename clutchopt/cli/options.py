@@ -156,13 +156,16 @@ def choices_note(case) -> str:
 
 
 def resolve_problem(case, args, objective: bool = True) -> None:
-    """Check the mode and objective the arguments ask for (an unknown name is bad input) before any store is
-    opened or file written."""
+    """Check the mode and objective the arguments ask for (an unknown name is bad input), and that the case gives
+    what the objective needs (every objective's without ``objective``: the command poses them all), before any store
+    is opened or file written."""
     from clutchopt.optimise.problem import case_formulation
 
     formulation = case_formulation(case, args.mode)
     if objective:
-        formulation.objective(args.objective or case.options.get("objective", "mass"))
+        case.require(formulation.objective(args.objective or case.options.get("objective", "mass")).name)
+    else:
+        case.require(*(o.name for o in formulation.objectives))
 
 
 def warn(text: str) -> None:

@@ -12,6 +12,7 @@ from clutchopt.cli.options import (
     recording,
     resolve_problem,
     robustness,
+    warn,
 )
 
 
@@ -39,12 +40,14 @@ def run(args) -> str:
     from clutchopt.files import check_output, write_whole
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.design import design_case
-    from clutchopt.optimise.sweep_table import read_frame
+    from clutchopt.optimise.sweep_table import check_swept_from, read_frame
     from clutchopt.report import build_report
 
     case = load_case(args.case)
     check_output("--out", args.out, (".html", ".htm"))
     sweep = read_frame(args.sweep) if args.sweep else None
+    if sweep is not None:
+        check_swept_from(sweep, case, args.sweep, warn)
     resolve_problem(case, args)
     robust = robustness(args, case)
     with recording(args) as store:

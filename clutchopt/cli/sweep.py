@@ -90,7 +90,7 @@ def run(args) -> str:
         if store is not None:
             store.close()
     if args.out:
-        write_frame(result.frame, args.out)
+        write_frame(result.frame, args.out, identity=sweep.identity())
     if args.json:
         from clutchopt.output import UNITLESS, solution_json, to_json, with_units
 

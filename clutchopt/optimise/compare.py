@@ -61,13 +61,19 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=No
     params = case.params()
     with np.errstate(invalid="ignore", divide="ignore"):  # a closed form undefined at this duty reads as NaN ("-")
         columns = {name: dict(values) for name, values in spec.references(params).items()}
-    solutions = {}
+    solutions, notes = {}, dict(spec.column_notes)
     for column, mode, objective in spec.solves:
+        missing = case.missing_for(objective)
+        if missing:  # a ball case without prices: compared by mass only
+            columns[column] = {}
+            notes[column] = (f"not solved: the {objective} objective needs "
+                             f"{', '.join(q.key for q in missing)}, which the case does not give")
+            continue
         solution = problem_for(coupling.formulation(mode), objective, options).solve(case)
         solutions[column] = solution
         outputs = {name: out.value for name, out in solution.outputs.items()}
         columns[column] = spec.rows_from_design(mode, solution.design, outputs, params)
-    rows_shown, notes = spec.rows, dict(spec.column_notes)
+    rows_shown = spec.rows
     if case.start_up is not None:
         start_columns = _start_up_columns(case, coupling, spec, options)
         for column, (solution, values) in start_columns.items():

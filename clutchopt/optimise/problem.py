@@ -73,6 +73,7 @@ class Problem:
         overturn. Integer variables keep their values while limits are moved in (an elastic link's excepted).
         ``refine=False``: one solve on ``mesh`` (or the warm solution's, or the first one), as it comes (for
         measuring what accuracy costs)."""
+        case.require(self.objective.name, quantities=self.formulation.quantities)
         if self.start_up is None or not refine:
             return self._solve(case, start, warm, mesh=mesh)
         if start is None and warm is None:

@@ -31,7 +31,7 @@ from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Constraint, Formulation, Quantity, followed, namespace
-from clutchopt.optimise.problem import problem_for, solve_case
+from clutchopt.optimise.problem import problem_for
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.verify import (
     DESIGN_STATUSES,

@@ -338,6 +338,7 @@ class Sweep:
         self.varies, self.robust = varies, robust
         self.formulation: Formulation = case_formulation(case, mode)
         self.objective = self.formulation.objective(objective or case.options.get("objective", "mass"))
+        case.require(self.objective.name)
         self.tol = tol
         self.grid, self.zipped = grid_points(varies, zipped), zipped
         check_points(case, varies, self.grid)
@@ -345,6 +346,13 @@ class Sweep:
         check_entering(case, problem, [v.quantity.name for v in varies], "--vary {}")
         if robust is not None:
             check_entering(case, problem, [s.name for s in case.scatter], "scatter.{}")
+
+    def identity(self) -> dict:
+        """What a table of this sweep carries to say which case it was swept from (see :func:`check_swept_from`):
+        the coupling, the case's path and SI values, mode, objective and the varied columns."""
+        return {"coupling": self.case.coupling, "case": self.case.path, "values": self.case.values,
+                "mode": self.formulation.mode, "objective": self.objective.name,
+                "varies": [v.column for v in self.varies]}
 
     @cached_property
     def points(self) -> list[dict[str, float]]:

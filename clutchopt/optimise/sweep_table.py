@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import json
 import math
+from typing import Callable
 
 import numpy as np
 import pandas as pd
 
+from clutchopt.cases import Case
 from clutchopt.errors import InputError, Problems
 from clutchopt.files import TABLE_BYTES, check_output, read_bytes, write_whole
 from clutchopt.optimise.sweep_grid import MAX_POINTS
@@ -22,15 +25,25 @@ def table_format(path: str, option: str = "--out") -> str:
     return check_output(option, path, TABLE_SUFFIXES)
 
 
-def write_frame(frame: pd.DataFrame, path: str, option: str = "--out") -> None:
-    """CSV, Parquet or Markdown by the file's suffix, written whole or not at all."""
+IDENTITY = "clutchopt_sweep"  # the frame attribute (and Parquet metadata) that identifies a sweep table's case
+CSV_IDENTITY = f"# {IDENTITY} "  # a CSV sweep table's first line: this, then the identification as JSON
+
+
+def write_frame(frame: pd.DataFrame, path: str, option: str = "--out", identity: dict | None = None) -> None:
+    """CSV, Parquet or Markdown by the file's suffix, written whole or not at all; ``identity`` (a sweep's, see
+    :meth:`Sweep.identity`) goes into a CSV's first line and a Parquet file's metadata."""
     suffix = table_format(path, option)
 
     def write(target: str) -> None:
         if suffix == "csv":
-            frame.to_csv(target, index=False)
+            with open(target, "w", encoding="utf-8", newline="") as handle:
+                if identity is not None:
+                    handle.write(CSV_IDENTITY + json.dumps(identity) + "\n")
+                frame.to_csv(handle, index=False)
         elif suffix == "parquet":
-            frame.to_parquet(target, index=False)
+            identified = frame.copy(deep=False)
+            identified.attrs = {IDENTITY: identity} if identity is not None else {}
+            identified.to_parquet(target, index=False)
         else:
             with open(target, "w", encoding="utf-8") as handle:
                 handle.write(markdown_table(frame) + "\n")
@@ -43,20 +56,75 @@ def write_frame(frame: pd.DataFrame, path: str, option: str = "--out") -> None:
 
 def read_frame(path: str) -> pd.DataFrame:
     """A sweep table written by :func:`write_frame` (CSV or Parquet), checked column by column: ``point``, the
-    varied inputs (numbers), ``status``, the objective (numbers, empty where there is no design)."""
+    varied inputs (numbers), ``status``, the objective (numbers, empty where there is no design). Its identification,
+    if it has one, is ``frame.attrs[IDENTITY]``."""
     import io
 
     if not path.lower().endswith((".csv", ".parquet")):
         raise InputError(path, "a sweep table is read from .csv or .parquet (written by clutchopt sweep --out)")
-    data = io.BytesIO(read_bytes(path, TABLE_BYTES))
+    data = read_bytes(path, TABLE_BYTES)
+    identity = None
+    if data.startswith(CSV_IDENTITY.encode()):
+        first, _, data = data.partition(b"\n")
+        identity = _identity(first[len(CSV_IDENTITY):], path)
+    data = io.BytesIO(data)
     try:
         frame = pd.read_parquet(data) if path.lower().endswith(".parquet") else pd.read_csv(data)
     except ImportError as exc:
         raise InputError(path, f"Parquet needs pyarrow (pip install 'clutchopt[parquet]'): {exc}") from None
     except (ValueError, OSError, UnicodeDecodeError) as exc:  # pandas' and pyarrow's parse errors
         raise InputError(path, f"cannot read a sweep table ({_first_line(exc)})") from None
+    if identity is None and frame.attrs.get(IDENTITY) is not None:
+        identity = _identity(json.dumps(frame.attrs[IDENTITY]).encode(), path)
+    frame.attrs = {IDENTITY: identity} if identity is not None else {}
     _check_sweep_table(frame, path)
     return frame
+
+
+def _identity(text: bytes, path: str) -> dict:
+    """A sweep table's identification (JSON), checked: the keys :meth:`Sweep.identity` writes, of their kinds."""
+    try:
+        identity = json.loads(text)
+    except (ValueError, RecursionError):
+        identity = None
+    kinds = {"coupling": str, "case": str, "values": dict, "mode": str, "objective": str, "varies": list}
+    if not (isinstance(identity, dict) and set(identity) == set(kinds)
+            and all(isinstance(identity[key], kind) for key, kind in kinds.items())
+            and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in identity["values"].values())
+            and all(isinstance(column, str) for column in identity["varies"])):
+        raise InputError(path, "cannot read a sweep table: its identification (the case it was swept from) is "
+                               "damaged; write it again with clutchopt sweep --out")
+    return identity
+
+
+def check_swept_from(frame: pd.DataFrame, case: Case, path: str, warn: Callable[[str], None]) -> None:
+    """Refuse a sweep table (:func:`read_frame`) swept from another case than ``case``, in one line naming what
+    differs: the coupling, the case's values, the varied quantities. A table without identification (written
+    before clutchopt identified its tables) is taken with a warning."""
+    identity = frame.attrs.get(IDENTITY)
+    if identity is None:
+        warn(f"{path} does not say which case it was swept from (a table of an older clutchopt); it is shown as "
+             f"a sweep of {case.path}")
+        return
+    differs = []
+    if identity["coupling"] != case.coupling:
+        differs.append(f"coupling {identity['coupling']!r}, not {case.coupling!r}")
+    else:
+        names = sorted(set(identity["values"]) ^ set(case.values)
+                       | {name for name, value in case.values.items() if identity["values"].get(name, value) != value})
+        if names:
+            differs.append(f"case: swept from {identity['case']!r}, whose {_listed(names)} differ from this case's")
+    status = list(frame.columns).index("status")
+    if list(frame.columns[1:status]) != identity["varies"]:
+        differs.append(f"quantities: its columns vary {_listed(frame.columns[1:status])}, its identification says "
+                       f"{_listed(identity['varies'])}")
+    if differs:
+        raise InputError(path, f"not a sweep of {case.path}: {'; '.join(differs)}")
+
+
+def _listed(names, shown: int = 5) -> str:
+    names = list(names)
+    return ", ".join(names[:shown]) + (f" and {len(names) - shown} more" if len(names) > shown else "")
 
 
 def _first_line(exc: Exception) -> str:

@@ -30,7 +30,7 @@ Layout (quantities with units; bare numbers are SI; the vocabulary of start-up s
 
 from __future__ import annotations
 
-from clutchopt.errors import InputError
+from clutchopt.errors import InputError, Problems
 from clutchopt.model import REQUIRED, ElasticLaw, followed
 from clutchopt.start_up.equations import (
     EFFECTS,
@@ -53,65 +53,92 @@ DEFAULTS_FROM_DUTY = {"driven_inertia": "inertia", "load_torque": "resisting_tor
                       "max_start_time": "acceleration_time"}
 
 
-def parse_start_up(table, coupling, duty: dict[str, float]) -> tuple[dict[str, float], StartUpSpec, dict]:
+def parse_start_up(table, coupling, duty: dict[str, float],
+                   duty_sound: bool = True) -> tuple[dict[str, float], StartUpSpec, dict]:
     """SI values of the start-up quantities, the spec of a ``[start_up]`` table of a case of ``coupling``, and the
     defaults that follow another quantity (``{name: (source, factor)}``: the value is factor times the source's,
-    through every change a command makes; see :attr:`clutchopt.cases.Case.follows`)."""
+    through every change a command makes; see :attr:`clutchopt.cases.Case.follows`).
+
+    Every field's own problem is raised together (one InputError); the checks across fields (:func:`_check`) run
+    once the fields are sound, and only if ``duty_sound`` (the defaults follow the duty's values)."""
     if not isinstance(table, dict):
         raise InputError(SECTION, "must be a table")
     laws = [f.speed_law for f in coupling.formulations.values()]
     if not all(laws):
         raise InputError(SECTION, f"the {coupling.name} coupling has no start-up law in clutchopt yet")
+    problems = Problems()
     declared = {q.key: q for q in QUANTITIES}
     allowed = set(_SETTINGS) | set(_TABLES) | {q.key.split(".")[1] for q in QUANTITIES if q.section == SECTION}
     for key in table:
         if key not in allowed:
-            raise InputError(f"{SECTION}.{key}", f"unknown key; [{SECTION}] takes {', '.join(sorted(allowed))}")
-    effects = parse_effects(table.get("effects"), f"{SECTION}.effects")
+            problems.errors.append(InputError(f"{SECTION}.{key}",
+                                              f"unknown key; [{SECTION}] takes {', '.join(sorted(allowed))}"))
+    effects = ()
+    with problems.field():
+        effects = parse_effects(table.get("effects"), f"{SECTION}.effects")
     values: dict[str, float] = {}
     profile = None
     for name in _TABLES:
         sub = table.get(name, {})
         if not isinstance(sub, dict):
-            raise InputError(f"{SECTION}.{name}", "must be a table")
+            problems.errors.append(InputError(f"{SECTION}.{name}", "must be a table"))
+            continue
         for key, raw in sub.items():
-            field = f"{SECTION}.{name}.{key}"
-            if name == "driven" and key == "load_profile":
-                profile = parse_load_profile(raw, field)
-                continue
-            quantity = declared.get(field)
-            if quantity is None:
-                known = [q.key.rsplit(".", 1)[1] for q in QUANTITIES if q.section == f"{SECTION}.{name}"]
-                raise InputError(field, f"unknown key; [{SECTION}.{name}] takes {', '.join(known)}"
-                                        + (", load_profile" if name == "driven" else ""))
-            values[quantity.name] = quantity.check(to_si(field, raw, quantity.unit))
+            with problems.field():
+                if name == "driven" and key == "load_profile":
+                    profile = parse_load_profile(raw, f"{SECTION}.{name}.{key}")
+                else:
+                    values.update(_field_value(declared, name, key, raw))
     if "spring_preload" in table:
-        quantity = declared[f"{SECTION}.spring_preload"]
-        values["spring_preload"] = quantity.check(to_si(quantity.key, table["spring_preload"], quantity.unit))
+        with problems.field():
+            quantity = declared[f"{SECTION}.spring_preload"]
+            values["spring_preload"] = quantity.check(to_si(quantity.key, table["spring_preload"], quantity.unit))
+    spec = {}
+    with problems.field():
+        spec["intervals"] = _intervals(table.get("intervals", StartUpSpec.intervals))
+    with problems.field():
+        spec["tolerance"] = _tolerance(table.get("tolerance", StartUpSpec.tolerance))
+    given = {q.name for q in QUANTITIES if q.key.rsplit(".", 1)[1] in _table(table, q.section)}  # good or bad
     follows = {name: (source, 1.0) for name, source in DEFAULTS_FROM_DUTY.items()
-               if name not in values and source in duty}
-    if "motor_curve" in effects and "min_lock_up_speed" not in values and "synchronous_speed" in values:
+               if name not in given and source in duty}
+    if "motor_curve" in effects and "min_lock_up_speed" not in given and "synchronous_speed" in values:
         follows["min_lock_up_speed"] = ("synchronous_speed", LOCK_UP_SHARE)
     elastic = [law for law in laws if isinstance(law, ElasticLaw)]
-    if elastic and "max_link_stress" not in values and elastic[0].stress_limit in duty:
+    if elastic and "max_link_stress" not in given and elastic[0].stress_limit in duty:
         follows["max_link_stress"] = (elastic[0].stress_limit, 1.0)
     values = followed({**duty, **values}, follows)
     for quantity in QUANTITIES:
-        if quantity.name not in values and quantity.default not in (None, REQUIRED):
+        if quantity.name not in values and quantity.name not in given and quantity.default not in (None, REQUIRED):
             values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
     values = {name: value for name, value in values.items() if name not in duty}
     if profile is not None and "resisting_torque" in table.get("driven", {}):
-        raise InputError(f"{SECTION}.driven", "give either resisting_torque or load_profile, not both")
+        problems.errors.append(InputError(f"{SECTION}.driven", "give either resisting_torque or load_profile, "
+                                                               "not both"))
     if profile is not None:
         values["load_torque"] = max(profile.values)
         follows.pop("load_torque", None)
-    _check_ranges(values, duty)
-    _check(values, effects, coupling, laws, profile)
-    spec = StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile,
-                       _intervals(table.get("intervals", StartUpSpec.intervals)),
-                       _tolerance(table.get("tolerance", StartUpSpec.tolerance)))
-    return values, spec, follows
+    _check_ranges(values, duty, problems)
+    problems.raise_any()
+    if duty_sound:
+        _check(values, effects, coupling, laws, profile)
+    return values, StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile, **spec), follows
 
+
+def _table(table: dict, section: str) -> dict:
+    """The sub-table of ``[start_up]`` that holds the quantities of ``section`` (``start_up.driver``), or ``{}``."""
+    sub = table.get(section.partition(".")[2], {}) if "." in section else table
+    return sub if isinstance(sub, dict) else {}
+
+
+def _field_value(declared, table: str, key: str, raw) -> dict[str, float]:
+    """``{name: SI value}`` of one field of ``[start_up.<table>]``, checked."""
+    field = f"{SECTION}.{table}.{key}"
+    quantity = declared.get(field)
+    if quantity is None:
+        known = [q.key.rsplit(".", 1)[1] for q in QUANTITIES if q.section == f"{SECTION}.{table}"]
+        raise InputError(field, f"unknown key; [{SECTION}.{table}] takes {', '.join(known)}"
+                                + (", load_profile" if table == "driven" else ""))
+    return {quantity.name: quantity.check(to_si(field, raw, quantity.unit))}
 
 
 def parse_effects(raw, field: str) -> tuple[str, ...]:
@@ -200,8 +227,9 @@ def _check_elastic(values, effects, coupling, key) -> None:
                                         "reports)")
 
 
-def _check_ranges(values: dict[str, float], duty: dict[str, float]) -> None:
-    """The drive's quantities within the ranges the simulator is tested over (it starts every optimum again)."""
+def _check_ranges(values: dict[str, float], duty: dict[str, float], problems: Problems) -> None:
+    """The drive's quantities within the ranges the simulator is tested over (it starts every optimum again);
+    each one out of range is a problem of ``problems``."""
     from clutchopt.simulate import engine
 
     ranges = {"driven_inertia": engine.INERTIA, "load_torque": engine.LOAD, "synchronous_speed": engine.SPEED,
@@ -211,11 +239,13 @@ def _check_ranges(values: dict[str, float], duty: dict[str, float]) -> None:
     keys = {q.name: q.key for q in QUANTITIES}
     for name, (low, high, unit) in ranges.items():
         if name in values and not low <= values[name] <= high:
-            raise InputError(keys[name], f"must be from {low:g} to {high:g} {unit} (the range the simulator is "
-                                         f"tested over), got {values[name]:.6g} {unit}".replace("  ", " "))
+            problems.errors.append(InputError(keys[name], f"must be from {low:g} to {high:g} {unit} (the range the "
+                                                          f"simulator is tested over), got {values[name]:.6g} "
+                                                          f"{unit}".replace("  ", " ")))
     if "speed" in duty and not engine.SPEED[0] <= duty["speed"] <= engine.SPEED[1]:
-        raise InputError("duty.speed", f"must be from {engine.SPEED[0]:g} to {engine.SPEED[1]:g} rad/s for a case "
-                                       f"with a [start_up] section (the simulator's range), got {duty['speed']:.6g}")
+        problems.errors.append(InputError("duty.speed", f"must be from {engine.SPEED[0]:g} to {engine.SPEED[1]:g} "
+                                                        f"rad/s for a case with a [start_up] section (the simulator's "
+                                                        f"range), got {duty['speed']:.6g}"))
 
 
 def _intervals(raw) -> int:

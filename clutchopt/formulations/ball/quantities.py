@@ -46,8 +46,9 @@ QUANTITIES = POWER_DUTY_QUANTITIES + (
     Q("shell_thickness", "mm", "radial wall of the drum outside R_a", "s", "limits", at_least=0),
     Q("min_ball_layers", "", "ball diameters the layer R_a - R_1 must hold at least (continuum model)", "",
       "limits", 3.0, above=0),
-    Q("ball_price", "EUR/kg", "price of the balls", "", "cost", above=0),
-    Q("body_price", "EUR/kg", "price of the clutch body (drum, rotor), machined", "", "cost", above=0),
+    Q("ball_price", "EUR/kg", "price of the balls", "", "cost", above=0, needed_by="cost"),
+    Q("body_price", "EUR/kg", "price of the clutch body (drum, rotor), machined", "", "cost", above=0,
+      needed_by="cost"),
 )
 
 
