@@ -44,11 +44,12 @@ def cli():
 
 
 def pytest_collection_modifyitems(items) -> None:
-    """Tests run a file per worker (``--dist loadgroup``: each file its own group, its module fixtures built once),
-    except the generated composition test, a group per coupling: it is most of the suite's solving."""
+    """Tests run a file per worker (``--dist loadgroup``: each file its own group, its module fixtures built once);
+    a file that names a parameter in ``GROUP_BY`` (the composition test: ``coupling``) is a group per value of it."""
     for item in items:
         group = item.module.__name__
         params = item.callspec.params if hasattr(item, "callspec") else {}
-        if item.module.__name__.endswith("test_composition") and "coupling" in params:
-            group += f"[{params['coupling']}]"
+        by = getattr(item.module, "GROUP_BY", None)
+        if by in params:
+            group += f"[{params[by]}]"
         item.add_marker(pytest.mark.xdist_group(group))
