@@ -11,17 +11,9 @@ import pytest
 from clutchopt.cases import parse_case, read_toml
 from clutchopt.errors import InputError
 from clutchopt.optimise import solve_case
-from clutchopt.optimise.robust import (
-    CHANCE,
-    WORST_CASE,
-    corner_checks,
-    failure_probabilities,
-    parse_method,
-    solve_robust,
-    start_up_corner,
-    start_up_failures,
-    verdict,
-)
+from clutchopt.optimise.robust import CHANCE, WORST_CASE, parse_method, solve_robust, verdict
+from clutchopt.optimise.robust_models import corner_checks, failure_probabilities
+from clutchopt.optimise.robust_start_up import start_up_corner, start_up_failures
 from clutchopt.output import robust_text
 from clutchopt.start_up.simulation import run_start_up, start_up_model
 from tests.conftest import CASES

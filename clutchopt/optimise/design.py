@@ -18,15 +18,9 @@ from clutchopt.formulations import get_coupling
 from clutchopt.materials import variants
 from clutchopt.optimise.entering import check_entering
 from clutchopt.optimise.problem import Solution, SolverOptions, case_problem, solve_case
-from clutchopt.optimise.robust import (
-    MAX_SAMPLES,
-    MAX_STARTS,
-    SAMPLES,
-    START_SAMPLES,
-    RobustResult,
-    parse_method,
-    solve_robust,
-)
+from clutchopt.optimise.robust import MAX_SAMPLES, MAX_STARTS, RobustResult, parse_method, solve_robust
+from clutchopt.optimise.robust_models import SAMPLES
+from clutchopt.optimise.robust_start_up import START_SAMPLES
 
 
 @dataclass(frozen=True)

@@ -143,7 +143,8 @@ def scatter(case: Case, robust=None) -> tuple[str, str]:
     constraint's margin over its range at the nominal design. Also the nominal design's worst failure, in words."""
     from matplotlib.figure import Figure
 
-    from clutchopt.optimise.robust import CHANCE, WORST_CASE, failure_probabilities, solve_robust, tornado
+    from clutchopt.optimise.robust import CHANCE, WORST_CASE, solve_robust
+    from clutchopt.optimise.robust_models import failure_probabilities, tornado
 
     if robust is not None:
         results = [robust]

@@ -1,0 +1,116 @@
+"""A start-up under scatter: designed at one corner (of the ranges, or of the quantiles), simulated at every corner
+and by Monte Carlo of simulated starts (``clutchopt.optimise.robust``; docs/robust.md)."""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+
+from clutchopt.cases import Case
+from clutchopt.formulations import get_coupling
+from clutchopt.model import Quantity, namespace
+from clutchopt.optimise.robust_models import SEED, clopper_pearson, corner_table
+from clutchopt.optimise.verify import ConstraintCheck, check_constraints
+from clutchopt.scatter import Scatter, _within
+from clutchopt.start_up.drive import Structure
+
+START_SAMPLES = 200  # simulated starts of a start-up's Monte Carlo (about 30 ms of CPU each)
+START_RTOL = 1e-9  # of the simulated starts: far inside a start-up's tolerance (1e-6)
+MAX_START_CORNERS = 4  # scattered quantities up to which a start-up is simulated at all 2^n corners
+
+
+# --- A start-up under scatter: designed at one corner, simulated at every corner and by Monte Carlo -------------------
+def quantile(s: Scatter, probability: float, quantity: Quantity) -> float:
+    """The value a scattered quantity stays below with ``probability``: a range uniform over it, a normal
+    distribution cut where the quantity's valid range ends."""
+    from scipy.special import ndtri
+
+    if s.kind == "normal":
+        return _within(quantity, s.mean + s.sd * float(ndtri(probability)))
+    return s.low + probability * (s.high - s.low)
+
+
+def start_up_ends(case: Case, mode: str, design: dict, scatter, target: float | None = None) -> dict:
+    """Quantity -> (its value at the corner where the design's start-up binds, the other): the ends of its range or,
+    with a ``target`` P (chance), its quantiles P_k and 1 - P_k, P_k = P^(1/k) for the k quantities that move the
+    start at all (Sidak: start-up figures monotone in each of k independent quantities are worse than at every
+    corner of their P_k quantiles only when one of them lies beyond its quantile, with probability
+    1 - P_k^k = 1 - P). The binding corner: of all 2^k corners (up to MAX_START_CORNERS quantities), the one where
+    the start-up's smallest relative margin is smallest; with more, each quantity at the end where the start takes
+    longer, the others nominal (no lock-up counts as longest)."""
+    alone = ({s.name: simulated_start_ups(case, mode, design, [{s.name: s.low}, {s.name: s.high}]) for s in scatter}
+             if target is not None or len(scatter) > MAX_START_CORNERS else {})
+    ends = {s.name: (s.low, s.high) for s in scatter}
+    if target is not None:
+        moving = sum([c.value for c in low] != [c.value for c in high] for low, high in alone.values())
+        share = target ** (1.0 / max(1, moving))
+        declared = {q.name: q for q in case.quantities}
+        ends = {s.name: (quantile(s, 1.0 - share, declared[s.name]), quantile(s, share, declared[s.name]))
+                for s in scatter}
+    if len(scatter) <= MAX_START_CORNERS:
+        points = corner_points(corner_table(scatter, ends))
+        margins = [min(-math.inf if math.isnan(c.margin) else c.margin for c in run)
+                   for run in simulated_start_ups(case, mode, design, points)]
+        binding = points[int(np.argmin(margins))]
+    else:
+        binding = {q: low if _start_time(alone[q][0]) > _start_time(alone[q][1]) else high
+                   for q, (low, high) in ends.items()}
+    return {q: (binding[q], low if binding[q] == high else high) for q, (low, high) in ends.items()}
+
+
+def _start_time(run: list[ConstraintCheck]) -> float:
+    return next(c.value for c in run if c.name == "start_time")
+
+
+def corner_points(table: dict[str, np.ndarray]) -> list[dict[str, float]]:
+    """The corners of a corner table, one dict each."""
+    return [{q: float(values[i]) for q, values in table.items()} for i in range(len(next(iter(table.values()))))]
+
+
+def start_up_corner(case: Case, mode: str, design: dict, scatter, target: float | None = None) -> dict[str, float]:
+    """The corner a start-up is designed at, where it binds (:func:`start_up_ends`: of the ranges, or with a
+    ``target`` of the quantiles)."""
+    return {q: slow for q, (slow, _) in start_up_ends(case, mode, design, scatter, target).items()}
+
+
+def simulated_start_ups(case: Case, mode: str, design: dict, points: list[dict]) -> list[list[ConstraintCheck]]:
+    """Every start-up limit of the case (start time, friction work, temperature rise, engagement and lock-up
+    speeds, ...) checked with the design's start simulated at each point (scattered quantity -> value, the defaults
+    that follow one following it): a list of checks per point, in one order."""
+    from clutchopt.start_up.drive import Drive, named_constraints
+    from clutchopt.start_up.simulation import run_start_up, start_up_model
+
+    law = get_coupling(case.coupling).formulation(mode).speed_law
+    runs = []
+    for point in points:
+        at = case.with_values(**point)
+        structure = Structure.of(at)
+        result = run_start_up(start_up_model(at, mode, design, rtol=START_RTOL))
+        head = result.headline
+        figures = SimpleNamespace(
+            start_time=head["start_time"], friction_work=head["friction_work"], lock_up_speed=head["lock_up_speed"],
+            temperatures=head.get("temperature_rise", 0.0),
+            stresses=result.history["stress"].to_numpy() if structure.elastic and head["locks_up"] else math.inf)
+        drive = Drive(structure, law, namespace(design), at.params())
+        runs.append(check_constraints(named_constraints(structure, drive, figures), structure.spec.tolerance))
+    return runs
+
+
+def start_up_checks(case: Case, mode: str, design: dict, points: list[dict]) -> list[ConstraintCheck]:
+    """The start-up's limits simulated at each point, each reported at its worst."""
+    return [min(column, key=lambda c: -math.inf if math.isnan(c.margin) else c.margin)
+            for column in zip(*simulated_start_ups(case, mode, design, points))]
+
+
+def start_up_failures(case: Case, mode: str, design: dict, scatter, starts: int = START_SAMPLES,
+                      seed: int = SEED) -> dict[str, list[float]]:
+    """Monte Carlo of the simulated start: ``starts`` draws of the distributions (cut where each quantity's valid
+    range ends), each start-up limit's failure probability with its Clopper-Pearson interval."""
+    rng = np.random.default_rng(seed)
+    declared = {q.name: q for q in case.quantities}
+    drawn = {s.name: s.sample(rng, starts) for s in scatter}
+    points = [{q: _within(declared[q], float(values[i])) for q, values in drawn.items()} for i in range(starts)]
+    return {column[0].name: clopper_pearson(sum(not c.feasible for c in column), starts)
+            for column in zip(*simulated_start_ups(case, mode, design, points))}
