@@ -106,12 +106,17 @@ def sensitivities(solution: Solution, formulation) -> str:
             "(+1: the objective grows in proportion).</p>" + _table(rows, ("elasticity",)))
 
 
-def comparison(case: Case) -> str:
+def comparison(case: Case, robust=None) -> str:
+    """The paper's method beside the optimiser's designs; a scatter case's robust column by the method the page's
+    design was made with (``robust``: its RobustResult), else worst case and chance 0.999."""
     from clutchopt.optimise.compare import compare_case
+    from clutchopt.optimise.design import Robustness
 
     if get_coupling(case.coupling).comparison is None:
         return '<p class="note">This coupling has no comparison with a paper method.</p>'
-    data = compare_case(case).as_dict()
+    method = None if robust is None else Robustness(robust.method, robust.target, robust.samples,
+                                                    robust.start_up_samples or Robustness.starts)
+    data = compare_case(case, robust=method).as_dict()
     rows, _ = comparison_rows(data)
     notes = "".join(f"<li><b>{escape(name)}</b>: {escape(note)}</li>" for name, note in column_notes(data).items())
     return _table(rows, tuple(data["columns"])) + f'<ul class="note">{notes}</ul>'
@@ -246,7 +251,7 @@ def build_report(case: Case, solution: Solution, sweep: pd.DataFrame | None = No
         ("Dimensioned sketch", drawing(case, solution, formulation), "sketch"),
         ("Constraint margins", margins(solution), "margins"),
         ("Sensitivities", sensitivities(solution, formulation), "sensitivities"),
-        ("Comparison with the paper's method", comparison(case), "comparison"),
+        ("Comparison with the paper's method", comparison(case, robust), "comparison"),
         ("Start-up simulation", simulation(case, solution), "simulation"),
     ]
     if scattered is not None:
