@@ -94,3 +94,10 @@ def test_pareto_of_a_start_up_case_gives_a_front(case, mode, cli):
     masses, costs = [number(row["mass"]) for row in rows], [number(row["cost"]) for row in rows]
     assert masses == sorted(masses) and costs == sorted(costs, reverse=True) and masses[0] < masses[-1]
     assert masses[0] == pytest.approx(solve_case(load_case(CASES / case), mode).objective, rel=1e-8)
+
+
+def test_a_robust_sweep_does_not_vary_what_scatters(cli):
+    result = cli("sweep", str(CASES / "wedge_centrifuge.toml"), "--vary", "friction_coefficient=0.14,0.16", "--robust",
+                 "worst-case", "--no-store")
+    assert result.returncode == 2
+    assert result.stderr.startswith("error: --vary friction_coefficient: also scatters in the case's [scatter]")

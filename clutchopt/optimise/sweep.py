@@ -346,6 +346,11 @@ class Sweep:
         check_entering(case, problem, [v.quantity.name for v in varies], "--vary {}")
         if robust is not None:
             check_entering(case, problem, [s.name for s in case.scatter], "scatter.{}")
+            scattered = {s.name for s in case.scatter} & {v.quantity.name for v in varies}
+            if scattered:
+                raise InputError(f"--vary {sorted(scattered)[0]}", "also scatters in the case's [scatter], which a "
+                                 "robust design spreads around its own value: vary it without --robust, or edit "
+                                 "its range")
 
     def identity(self) -> dict:
         """What a table of this sweep carries to say which case it was swept from (see :func:`check_swept_from`):
