@@ -17,10 +17,11 @@ from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.materials import variants
 from clutchopt.optimise.entering import check_entering
-from clutchopt.optimise.problem import Solution, SolverOptions, case_problem, solve_case
+from clutchopt.optimise.problem import case_problem, solve_case
 from clutchopt.optimise.robust import MAX_SAMPLES, MAX_STARTS, RobustResult, parse_method, solve_robust
 from clutchopt.optimise.robust_models import SAMPLES
 from clutchopt.optimise.robust_start_up import START_SAMPLES
+from clutchopt.optimise.solution import Solution, SolverOptions
 
 
 @dataclass(frozen=True)

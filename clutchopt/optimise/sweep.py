@@ -139,7 +139,7 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
             continue
         feasible = designs[tuple(values.values())] = solution
         for k, (w, waited_case, waited) in enumerate(waiting):  # between feasible neighbours: from this one too
-            waiting[k] = (w, waited_case, problem.solve(waited_case, start=solution.design, neighbour=solution))
+            waiting[k] = (w, waited_case, problem.solve(waited_case, start=solution.design))
         yield from (_one(points, w, names, waited) for w, _, waited in waiting)
         waiting = []
         yield _one(points, j, names, solution)
