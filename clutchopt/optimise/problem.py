@@ -59,7 +59,7 @@ class Problem:
         return shown(self, case, solution, start is not None or warm is not None, neighbour)
 
     def refined(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
-                mesh: np.ndarray | None = None, refine: bool = True) -> Solution:
+                mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True) -> Solution:
         """One solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one.
 
         With a start-up, the simulated start is what the limits are checked against, and the collocation's own
@@ -75,11 +75,11 @@ class Problem:
         measuring what accuracy costs)."""
         case.require(self.objective.name, quantities=self.formulation.quantities)
         if self.start_up is None or not refine:
-            return self._solve(case, start, warm, mesh=mesh)
+            return self._solve(case, start, warm, mesh=mesh, diagnosed=diagnosed)
         if start is None and warm is None:
             sized = problem_for(self.posed.base, self.objective.name, self.options).solve(case)
             start = sized.design if sized.status == "optimal" else None
-        solution = self._solve(case, start, warm, mesh=mesh)
+        solution = self._solve(case, start, warm, mesh=mesh, diagnosed=diagnosed)
         nlp_case, adapted, last_error, solves = case, 0, math.inf, [solution.solver]
         structure = self.start_up.s
         for _ in range(MESH_STEPS + BACK_OFF_STEPS):
@@ -113,7 +113,8 @@ class Problem:
         return solution
 
     def _solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
-               nlp_case: Case | None = None, mesh: np.ndarray | None = None) -> Solution:
+               nlp_case: Case | None = None, mesh: np.ndarray | None = None,
+               diagnosed: bool = True) -> Solution:
         """One solve (with its integer search); the NLP sees ``nlp_case`` (moved limits), the checks ``case``;
         a start-up's mesh is ``mesh``, else the warm solution's, else the first one."""
         posed = self.posed
@@ -153,6 +154,8 @@ class Problem:
                                      posed.mesh_of(data.p), checked)
             relaxed = attempt(posed, data, data.lbx, data.ubx, data.x0, None, ("ipopt",), runs)
         integer = posed.free_integers(data)
+        if not relaxed["ok"] and not diagnosed:  # a retry before a verdict: its own diagnosis is not needed
+            return self._finish(case, relaxed, runs, data, search, ("not_found", "no design from this start"))
         if not integer or not relaxed["ok"]:
             return self._finish(case, relaxed, runs, data, search)
         kept = nearest_integers(posed, data.box, integer, relaxed, search, fixing(posed, data, runs, search))

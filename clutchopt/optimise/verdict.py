@@ -9,7 +9,8 @@ first that reaches a design is the answer. Otherwise the verdict says how sure i
 - ``infeasible``: proven. A requirement no design variable enters is broken (the diagnosis's "whatever the
   design"), or the drive cannot do what the start-up asks of any coupling (:mod:`clutchopt.optimise.proofs`);
 - ``not_found``: no feasible design found from the starts it names (``Solution.starts``), with the least
-  relaxation found among them: a strong hint, not a proof;
+  relaxation found from the first (the others are not diagnosed again: a sweep's stretch without designs costs a
+  solve a start, not a diagnosis too): a strong hint, not a proof;
 - ``solver_failed``: a feasible point exists (the elastic check found one), yet no start reached an optimum.
 """
 
@@ -38,7 +39,7 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: Soluti
             starts.append(("the neighbouring point's design", neighbour.design))
         for label, start in starts:
             try:
-                retry = problem.refined(case, start)
+                retry = problem.refined(case, start, diagnosed=False)
             except InputError:  # a start-up whose first simulation fails from this start: the next start
                 continue
             tried.append((label, retry))
