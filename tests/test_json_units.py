@@ -298,3 +298,15 @@ def test_compare_json_rows_are_si(case_file):
             assert row["unit"] == "m"
             values = [row[c] for c in data["columns"] if row[c] is not None]
             assert all(v < 10 for v in values), row  # metres: no coupling here is 10 m across
+
+
+@pytest.mark.parametrize("argv", [
+    ("sweep", "wedge_centrifuge.toml", "--vary", "speed=1400", "--robust", "chance=0.99", "--samples", "100",
+     "--quiet"),
+    ("pareto", "wedge_centrifuge.toml", "--points", "2", "--robust", "worst-case", "--samples", "100"),
+    ("solve", "wedge_centrifuge.toml", "--robust", "worst-case", "--samples", "100"),
+], ids=lambda argv: " ".join(argv[:1] + argv[2:]))
+def test_the_aspects_carry_their_units(argv):
+    """A robust design's result in sweep, pareto and solve (docs/composition.md) has the unit of every number."""
+    command, case, *rest = argv
+    assert_units(json.loads(run(command, CASES / case, *rest, "--json", "--no-store")))
