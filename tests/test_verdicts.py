@@ -90,3 +90,17 @@ def test_the_power_sweep_past_its_last_design_is_never_called_infeasible_without
     statuses = frame["status"].tolist()
     assert statuses[:2] == ["optimal", "optimal"]
     assert all(s in ("optimal", "not_found") for s in statuses)
+
+
+def test_continuation_follows_a_design_from_the_last_feasible_point():
+    """Three equal steps of the varied quantity, each started from the last design, reach the optimum of the point;
+    a point past the last design is not reached, and the continuation says so (None)."""
+    from clutchopt.optimise.sweep import continued
+
+    case = load_case(CASES / "wedge_motor_start.toml")
+    problem = case_problem(case)
+    before = problem.solve(case)
+    found = continued(problem, case, ({"inertia": 0.5}, before), {"inertia": 0.7})
+    assert found.status == "optimal"
+    assert found.objective == pytest.approx(problem.solve(case.with_values(inertia=0.7)).objective, rel=1e-6)
+    assert continued(problem, case, ({"inertia": 0.5}, before), {"inertia": 40.0}) is None

@@ -97,6 +97,9 @@ class PointResults:
                    spent=total_spent(parts))
 
 
+CONTINUATION_STEPS = 3  # from the last feasible point to one without a design, before its verdict
+
+
 def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robustness | None,
                  points: Points) -> Iterator[PointResults]:
     """Solve points in order, each warm-started from the last optimum; yields the results as they are solved: a
@@ -122,7 +125,7 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
             first, before = first + len(window), now
         return
     previous: Solution | None = None  # the last point's optimum (a warm start), None next to a failure
-    feasible: Solution | None = None  # the last feasible point's design (a start for a point without a design)
+    feasible: tuple[dict, Solution] | None = None  # the last feasible point's values and design
     designs: dict[tuple, Solution] = {}  # feasible designs by the point's values
     waiting: list[tuple[int, Case, Solution]] = []  # points without a design, until the next feasible one
     for j, (index, values) in enumerate(points.pairs()):
@@ -132,18 +135,36 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
         # points before it
         same = designs.get(tuple(values.values()))
         solution = problem.solve(point_case, warm=previous if problem.start_up is None else None,
-                                 neighbour=same or feasible)
+                                 neighbour=same or (feasible[1] if feasible else None))
+        if solution.status not in DESIGN_STATUSES and feasible is not None:
+            solution = continued(problem, case, feasible, values) or solution
         previous = solution if solution.status == "optimal" else None
         if solution.status not in DESIGN_STATUSES:
             waiting.append((j, point_case, solution))
             continue
-        feasible = designs[tuple(values.values())] = solution
+        feasible = values, solution
+        designs[tuple(values.values())] = solution
         for k, (w, waited_case, waited) in enumerate(waiting):  # between feasible neighbours: from this one too
             waiting[k] = (w, waited_case, problem.solve(waited_case, start=solution.design))
         yield from (_one(points, w, names, waited) for w, _, waited in waiting)
         waiting = []
         yield _one(points, j, names, solution)
     yield from (_one(points, w, names, waited) for w, _, waited in waiting)
+
+
+def continued(problem, case: Case, feasible: tuple[dict, Solution], values: dict,
+              steps: int = CONTINUATION_STEPS) -> Solution | None:
+    """The design at ``values`` followed from a feasible point's (its values, its design) in ``steps`` equal steps
+    of the varied quantities, each started from the last; None where a step finds no design."""
+    (before, solution), found = feasible, None
+    for step in range(1, steps + 1):
+        share = step / steps
+        at = case.with_values(**{name: before[name] + share * (value - before[name]) for name, value in values.items()})
+        found = problem.refined(at, solution.design, diagnosed=False)
+        if found.status not in DESIGN_STATUSES:
+            return None
+        solution = found
+    return found
 
 
 def _one(points: Points, j: int, names: list[str], solution: Solution) -> PointResults:

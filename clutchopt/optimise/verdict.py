@@ -3,8 +3,10 @@
 A solve that ends without a design has shown nothing yet: IPOPT's restoration may have stalled from a poor start,
 and the elastic relaxation that names the conflict is a local minimum from that start. Before a case is reported
 without a design it is solved again from the starts that can reach one: the case's own (for a start-up, the
-papers' sizing at that point), the least relaxation's design, a feasible neighbour's (a sweep's point before). The
-first that reaches a design is the answer. Otherwise the verdict says how sure it is:
+papers' sizing at that point), the least relaxation's design, a feasible neighbour's (a sweep's point before; a
+sweep also follows the design from its last feasible point by continuation and re-solves from the next feasible
+point: ``clutchopt.optimise.sweep.solve_points``). The first that reaches a design is the answer. Otherwise the
+verdict says how sure it is:
 
 - ``infeasible``: proven. A requirement no design variable enters is broken (the diagnosis's "whatever the
   design"), or the drive cannot do what the start-up asks of any coupling (:mod:`clutchopt.optimise.proofs`);
