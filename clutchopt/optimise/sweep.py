@@ -145,7 +145,8 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
         feasible = values, solution
         designs[tuple(values.values())] = solution
         for k, (w, waited_case, waited) in enumerate(waiting):  # between feasible neighbours: from this one too
-            waiting[k] = (w, waited_case, problem.solve(waited_case, start=solution.design))
+            retry = problem.solve(waited_case, start=solution.design)
+            waiting[k] = (w, waited_case, retry if retry.status in DESIGN_STATUSES else waited)
         yield from (_one(points, w, names, waited) for w, _, waited in waiting)
         waiting = []
         yield _one(points, j, names, solution)
