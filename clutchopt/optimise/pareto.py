@@ -18,7 +18,8 @@ from clutchopt.formulations import get_coupling
 from clutchopt.materials import variants
 from clutchopt.model import Formulation, Quantity, at_most
 from clutchopt.optimise.design import Robustness, check_robustness
-from clutchopt.optimise.problem import case_formulation, problem_for
+from clutchopt.optimise.entering import check_entering
+from clutchopt.optimise.problem import case_formulation, case_problem, problem_for
 from clutchopt.optimise.robust import RobustResult, solve_robust
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.sweep_grid import column_name
@@ -63,6 +64,8 @@ def pareto_fronts(case: Case, mode: str | None = None, points: int = 9, options:
     """One front per choice of ``options.choose`` (the case's own without it), each of designs for the scatter
     with ``robust``."""
     check_robustness(case, robust)
+    if robust is not None:
+        check_entering(case, case_problem(case, mode, "mass", options), [s.name for s in case.scatter], "scatter.{}")
     return [replace(pareto_front(variant, mode, points, options, robust), choice=choice)
             for choice, variant in variants(case, get_coupling(case.coupling))]
 
