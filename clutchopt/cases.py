@@ -211,6 +211,14 @@ def parse_case(data: dict, path: str = "") -> Case:
                 {name: rule for name, rule in follows.items() if name not in {s.name for s in scatter}})
     coupling.check_case(case)
     materials.variants(case, coupling)  # every choice of options.choose is checked here, before any solve
+    sets, _ = materials.chosen(case, coupling)
+    for s in scatter:
+        with problems.field():
+            if s.name in sets:
+                raise InputError(f"scatter.{s.name}", f"options.choose.{sets[s.name]} sets it for each choice, so "
+                                                      "one range cannot hold for all of them; scatter it in a case "
+                                                      "that names one entry")
+    problems.raise_any()
     return case
 
 

@@ -129,6 +129,21 @@ def check_choose(choose: object, roles: tuple[MaterialRole, ...]) -> dict[str, t
     return checked
 
 
+def chosen(case, coupling) -> tuple[dict[str, str], dict[str, str]]:
+    """What ``options.choose`` sets for each choice, and what the case keeps whatever the choice: quantity ->
+    the role (``friction_pair``) of each quantity a chosen role fills from the library, and of each it would fill
+    but the case gives itself."""
+    by_key = {role.key: role for role in coupling.materials}
+    sets, kept = {}, {}
+    for key in case.options.get("choose") or {}:
+        for quantity in by_key[key].fills.values():
+            if case.filled.get(quantity, (None,))[0] == key:
+                sets[quantity] = key
+            elif quantity in case.values:
+                kept[quantity] = key
+    return sets, kept
+
+
 def _example(roles: tuple[MaterialRole, ...], list_only: bool = False) -> str:
     """``friction_pair = ["organic_dry", "organic_oiled"]`` (or the list alone) for the coupling's last role."""
     role = roles[-1] if roles else MaterialRole("material", "materials", "", {})

@@ -291,16 +291,19 @@ def library_json(case) -> dict:
             for key, item in filled_by(case).items()}
 
 
-def choices_text(ranked: list) -> str:
+def choices_text(ranked: list, kept: dict[str, str] | None = None) -> str:
     """The variants of ``options.choose`` (``clutchopt.optimise.design.Designed``), best first: choice, status,
-    objective."""
+    objective; ``kept``: what a chosen role would fill but the case gives itself (quantity -> role), said in a
+    line, since every choice then uses the case's value."""
     rows = [{"rank": i + 1, **d.choice, "status": d.solution.status,
              f"{d.solution.objective_name} [{d.solution.objective_unit}]":
                  _shown(d.solution.objective if d.solution.status == "optimal" else None, "")}
             for i, d in enumerate(ranked)]
     why = [f"  {', '.join(d.choice.values())}: {d.solution.diagnosis}" for d in ranked if d.solution.diagnosis]
     robust = f" ({ranked[0].robust.method} designs)" if ranked[0].robust is not None else ""
-    return "\n".join([f"Choices of options.choose, best first{robust}", _frame(rows), *why, "",
+    same = [f"given by the case, the same for every choice: {', '.join(f'{q} ({role})' for q, role in kept.items())}"] \
+        if kept else []
+    return "\n".join([f"Choices of options.choose, best first{robust}", _frame(rows), *why, *same, "",
                       f"Below: the best, {ranked[0].choice_text}."])
 
 START_UP_ROWS = (  # figure, display unit, meaning

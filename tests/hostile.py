@@ -470,7 +470,7 @@ HOSTILE: list[Hostile] = [
     paper("report-out-not-html", "report", "-o", "{dir}/review.pdf", expect="--out: write .html or .htm"),
     table("table-as-written", SWEEP_TABLE, None),
     table("table-identified-other-coupling", '# clutchopt_sweep {"coupling": "lever", "case": "lever.toml", '
-          '"values": {}, "mode": "paper", "objective": "mass", "varies": ["speed [rpm]"]}\n' + SWEEP_TABLE,
+          '"values": {}, "mode": "paper", "objective": "mass", "robust": "", "varies": ["speed [rpm]"]}\n' + SWEEP_TABLE,
           ("sweep.csv: not a sweep of", "case.toml: coupling 'lever', not 'wedge'")),
     table("table-identification-damaged", '# clutchopt_sweep {"coupling": "wedge"\n' + SWEEP_TABLE,
           "its identification (the case it was swept from) is damaged"),

@@ -101,3 +101,50 @@ def test_a_robust_sweep_does_not_vary_what_scatters(cli):
                  "worst-case", "--no-store")
     assert result.returncode == 2
     assert result.stderr.startswith("error: --vary friction_coefficient: also scatters in the case's [scatter]")
+
+
+def _choose_case(tmp_path, **extra):
+    """The wedge case of `clutchopt init` choosing between two friction pairs, its friction left to them."""
+    from clutchopt.template import case_template
+
+    text = case_template("wedge").replace("# choose = ", "choose = ")
+    path = tmp_path / "choose.toml"
+    path.write_text(text + "".join(f"\n[{section}]\n{body}\n" for section, body in extra.items()))
+    return path
+
+
+def test_what_a_choice_sets_is_not_varied_or_scattered_and_what_the_case_keeps_is_said(tmp_path, cli):
+    """A scatter or a sweep of a quantity options.choose sets would apply one value or range to every choice."""
+    result = cli("solve", str(_choose_case(tmp_path, scatter='friction_coefficient = [0.15, 0.2]')), "--no-store")
+    assert result.returncode == 2
+    assert result.stderr.startswith("error: scatter.friction_coefficient: options.choose.friction_pair sets it for "
+                                    "each choice")
+    result = cli("sweep", str(_choose_case(tmp_path)), "--vary", "friction_coefficient=0.1,0.2", "--no-store")
+    assert result.returncode == 2
+    assert result.stderr.startswith("error: --vary friction_coefficient: options.choose.friction_pair sets it")
+    given = _choose_case(tmp_path)
+    given.write_text(given.read_text().replace("[material]\n", "[material]\nfriction_coefficient = 0.2\n", 1))
+    result = cli("solve", str(given), "--no-store")
+    assert result.returncode == 0
+    assert "given by the case, the same for every choice: friction_coefficient (friction_pair)" in result.stdout
+
+
+def test_report_takes_its_own_sweep_table_of_choices_and_refuses_another_problem(tmp_path, cli):
+    path, table = _choose_case(tmp_path), tmp_path / "sweep.csv"
+    assert cli("sweep", str(path), "--vary", "speed=900,1100", "--out", str(table), "--no-store").returncode == 0
+    result = cli("report", str(path), "--sweep", str(table), "-o", str(tmp_path / "review.html"), "--no-store")
+    assert result.returncode == 0, result.stderr
+    result = cli("report", str(path), "--mode", "geometry", "--sweep", str(table), "-o",
+                 str(tmp_path / "review.html"), "--no-store")
+    assert result.returncode == 2
+    assert ("problem: swept with mode paper, objective mass, design nominal; this page is of mode geometry, "
+            "objective mass, design nominal") in result.stderr
+
+
+def test_compare_takes_the_samples_asked_for(cli):
+    result = cli("compare", str(CASES / "wedge_centrifuge.toml"), "--robust", "chance=0.99", "--samples", "100",
+                 "--json")
+    assert result.returncode == 0, result.stderr
+    rows = {row["quantity"]: row for row in json.loads(result.stdout)["rows"]}
+    probability = rows["failure_probability"]["nominal"]
+    assert probability == pytest.approx(round(probability * 100) / 100, abs=1e-12)  # a count out of 100 samples

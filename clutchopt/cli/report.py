@@ -40,16 +40,19 @@ def run(args) -> str:
     from clutchopt.files import check_output, write_whole
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.design import design_case
+    from clutchopt.optimise.problem import case_formulation
     from clutchopt.optimise.sweep_table import check_swept_from, read_frame
     from clutchopt.report import build_report
 
     case = load_case(args.case)
     check_output("--out", args.out, (".html", ".htm"))
     sweep = read_frame(args.sweep) if args.sweep else None
-    if sweep is not None:
-        check_swept_from(sweep, case, args.sweep, warn)
     resolve_problem(case, args)
     robust = robustness(args, case)
+    if sweep is not None:
+        posed = (case_formulation(case, args.mode).mode, args.objective or case.options.get("objective", "mass"),
+                 robust.label if robust is not None else "")
+        check_swept_from(sweep, case, args.sweep, warn, posed)
     with recording(args) as store:
         ranked = design_case(case, args.mode, args.objective, SolverOptions(tol=args.tol), robust)
         best = ranked[0]

@@ -37,6 +37,8 @@ def add_command(commands) -> None:
 def run(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.cli.options import nominal_note, record_solve, recording, resolve_problem, robustness
+    from clutchopt.formulations import get_coupling
+    from clutchopt.materials import chosen
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.design import design_case
     from clutchopt.optimise.problem import case_formulation
@@ -62,7 +64,7 @@ def run(args) -> str:
                                    "library": library_json(best.case), **({"choices": choices} if choices else {}),
                                    **({"verify": check} if check else {})}, {"verify": CHECK_UNITS}))
     formulation = case_formulation(best.case, best.solution.mode)
-    parts = [choices_text(ranked)] if len(ranked) > 1 else []
+    parts = [choices_text(ranked, chosen(case, get_coupling(case.coupling))[1])] if len(ranked) > 1 else []
     parts += [nominal_note(case, robust)] if nominal_note(case, robust) else []
     parts.append(solution_text(best.solution, formulation, case.title))
     if best.robust is not None:

@@ -34,18 +34,20 @@ def check_entering(case: Case, problem, names, field: str) -> None:
     for name in names:
         if name not in entered:
             with problems.field():
-                raise InputError(field.format(name), _why_not(case, problem, name, name in variables))
+                raise InputError(field.format(name), _why_not(case, problem, name, name in variables, field))
     problems.raise_any()
 
 
-def _why_not(case: Case, problem, name: str, variable: bool) -> str:
+def _why_not(case: Case, problem, name: str, variable: bool, field: str) -> str:
     declared = {q.name: q for q in case.quantities}
     own = [follower for follower, source in DEFAULTS_FROM_DUTY.items()
            if source == name and follower in case.values and follower not in case.follows]
     if own:
         quantity = declared[own[0]]
         return (f"this case's start-up gives its own {own[0]} ({quantity.show(case.values[own[0]])}), so {name} does "
-                f"not enter the problem; vary {own[0]}")
+                f"not enter the problem; vary {own[0]}" if field.startswith("--vary") else
+                f"{own[0]} is given here ({quantity.show(case.values[own[0]])}: by the case, or by what this command "
+                f"varies), so {name} does not enter the problem; scatter {own[0]} instead")
     mode = problem.formulation.mode
     if variable:
         return (f"a design variable the optimiser chooses in mode {mode} (the case's value only starts the search), "

@@ -35,6 +35,8 @@ import pandas as pd
 
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
+from clutchopt.formulations import get_coupling
+from clutchopt.materials import chosen
 from clutchopt.model import Formulation
 from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
 from clutchopt.optimise.design import Robustness, check_robustness, design_case
@@ -364,6 +366,11 @@ class Sweep:
         self.tol = tol
         self.grid, self.zipped = grid_points(varies, zipped), zipped
         check_points(case, varies, self.grid)
+        sets, _ = chosen(case, get_coupling(case.coupling))
+        for v in varies:
+            if v.quantity.name in sets:
+                raise InputError(f"--vary {v.quantity.name}", f"options.choose.{sets[v.quantity.name]} sets it for "
+                                 "each choice; vary it in a case that names one entry")
         problem = case_problem(case, self.formulation.mode, self.objective.name, SolverOptions(tol=tol))
         check_entering(case, problem, [v.quantity.name for v in varies], "--vary {}")
         if robust is not None:
@@ -376,9 +383,11 @@ class Sweep:
 
     def identity(self) -> dict:
         """What a table of this sweep carries to say which case it was swept from (see :func:`check_swept_from`):
-        the coupling, the case's path and SI values, mode, objective and the varied columns."""
+        the coupling, the case's path and SI values, mode, objective, robust method (empty: nominal designs) and the
+        varied columns."""
         return {"coupling": self.case.coupling, "case": self.case.path, "values": self.case.values,
                 "mode": self.formulation.mode, "objective": self.objective.name,
+                "robust": self.robust.label if self.robust is not None else "",
                 "varies": [v.column for v in self.varies]}
 
     @cached_property
@@ -438,16 +447,17 @@ class Sweep:
 
     def _aspect_columns(self, frame: pd.DataFrame, records: "SweepRecords") -> None:
         """Where each point was designed as ``solve`` designs (``options.choose``, ``--robust``): the choice kept
-        and the robust design's largest failure probability (Monte Carlo), before the status."""
-        at = frame.columns.get_loc("status")
+        and the robust design's largest failure probability (Monte Carlo), after the objective (a table's layout:
+        point, the varied inputs, status, the objective, ...)."""
+        at = frame.columns.get_loc("status") + 2
+        if self.robust is not None:
+            frame.insert(at, "largest P(fail)",
+                         [max((p for p, _, _ in record["robust"]["failure_probability"].values()), default=0.0)
+                          if "robust" in record else np.nan for record in records])
         if self.case.options.get("choose"):
             frame.insert(at, "choice", pd.Series([", ".join(f"{key} = {name}" for key, name in
                                                            record.get("choice", {}).items()) for record in records],
                                                  dtype=object))
-        if self.robust is not None:
-            frame.insert(frame.columns.get_loc("status") + 1, "largest P(fail)",
-                         [max((p for p, _, _ in record["robust"]["failure_probability"].values()), default=0.0)
-                          if "robust" in record else np.nan for record in records])
 
     def _inputs(self, values: dict[str, float]) -> dict:
         """A point's inputs as the store keeps them: the case's SI values with the point's (checked when the sweep

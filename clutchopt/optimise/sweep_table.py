@@ -87,7 +87,7 @@ def _identity(text: bytes, path: str) -> dict:
         identity = json.loads(text)
     except (ValueError, RecursionError):
         identity = None
-    kinds = {"coupling": str, "case": str, "values": dict, "mode": str, "objective": str, "varies": list}
+    kinds = {"coupling": str, "case": str, "values": dict, "mode": str, "objective": str, "robust": str, "varies": list}
     if not (isinstance(identity, dict) and set(identity) == set(kinds)
             and all(isinstance(identity[key], kind) for key, kind in kinds.items())
             and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in identity["values"].values())
@@ -97,9 +97,11 @@ def _identity(text: bytes, path: str) -> dict:
     return identity
 
 
-def check_swept_from(frame: pd.DataFrame, case: Case, path: str, warn: Callable[[str], None]) -> None:
-    """Refuse a sweep table (:func:`read_frame`) swept from another case than ``case``, in one line naming what
-    differs: the coupling, the case's values, the varied quantities. A table without identification (written
+def check_swept_from(frame: pd.DataFrame, case: Case, path: str, warn: Callable[[str], None],
+                     posed: tuple[str, str, str] | None = None) -> None:
+    """Refuse a sweep table (:func:`read_frame`) swept from another case than ``case``, or of another problem than
+    ``posed`` (mode, objective, robust method: empty for nominal designs), in one line naming what differs: the
+    coupling, the case's values, the problem, the varied quantities. A table without identification (written
     before clutchopt identified its tables) is taken with a warning."""
     identity = frame.attrs.get(IDENTITY)
     if identity is None:
@@ -114,6 +116,11 @@ def check_swept_from(frame: pd.DataFrame, case: Case, path: str, warn: Callable[
                        | {name for name, value in case.values.items() if identity["values"].get(name, value) != value})
         if names:
             differs.append(f"case: swept from {identity['case']!r}, whose {_listed(names)} differ from this case's")
+    swept = (identity["mode"], identity["objective"], identity["robust"])
+    if posed is not None and swept != posed:
+        shown = [f"{what} {value or 'nominal'}" for what, value in zip(("mode", "objective", "design"), swept)]
+        asked = [f"{what} {value or 'nominal'}" for what, value in zip(("mode", "objective", "design"), posed)]
+        differs.append(f"problem: swept with {', '.join(shown)}; this page is of {', '.join(asked)}")
     status = list(frame.columns).index("status")
     if list(frame.columns[1:status]) != identity["varies"]:
         differs.append(f"quantities: its columns vary {_listed(frame.columns[1:status])}, its identification says "
