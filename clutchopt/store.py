@@ -370,11 +370,12 @@ class RunStore:
         return (kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status, objective,
                 objective_unit, _to_json(inputs), _to_json(outputs), _versions_json(), created)
 
-    def record_solution(self, kind: str, case, solution, **where) -> int | None:
-        """Record a solved case: inputs are all its SI values, outputs the solution's JSON; ``where`` may name the
-        mode as recorded (a Pareto point's, ``geometry_capped``)."""
+    def record_solution(self, kind: str, case, solution, outputs: dict | None = None, **where) -> int | None:
+        """Record a solved case: inputs are all its SI values, outputs the solution's JSON (``outputs``, if given:
+        a design's with its choice and robust result); ``where`` may name the mode as recorded (a Pareto point's,
+        ``geometry_capped``)."""
         return self.record(kind, {"values": case.values, "free": list(case.free), "bounds": case.bounds},
-                           solution.as_dict(), status=solution.status, objective=solution.objective,
+                           outputs or solution.as_dict(), status=solution.status, objective=solution.objective,
                            objective_unit=solution.objective_unit, case_path=case.path, title=case.title,
                            coupling=case.coupling, mode=where.pop("mode", solution.mode),
                            objective_name=solution.objective_name, **where)

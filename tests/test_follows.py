@@ -148,3 +148,22 @@ def test_compare_takes_the_samples_asked_for(cli):
     rows = {row["quantity"]: row for row in json.loads(result.stdout)["rows"]}
     probability = rows["failure_probability"]["nominal"]
     assert probability == pytest.approx(round(probability * 100) / 100, abs=1e-12)  # a count out of 100 samples
+
+
+def test_the_run_store_keeps_the_robust_method_and_the_choice_kept(tmp_path, cli):
+    store = str(tmp_path / "runs.sqlite")
+    assert cli("solve", str(CASES / "wedge_centrifuge.toml"), "--robust", "worst-case", "--samples", "100",
+               "--store", store).returncode == 0
+    assert cli("solve", str(_choose_case(tmp_path)), "--store", store).returncode == 0
+    robust = json.loads(cli("runs", "show", "1", "--store", store).stdout)["outputs"]["robust"]
+    assert robust["method"] == "worst-case" and robust["samples"] == 100
+    choices = [json.loads(cli("runs", "show", str(i), "--store", store).stdout)["outputs"] for i in (2, 3)]
+    assert [c["chosen"] for c in choices] == [True, False] and choices[0]["choice"] != choices[1]["choice"]
+
+
+def test_every_bad_robust_option_is_named(cli):
+    result = cli("solve", str(CASES / "wedge_centrifuge.toml"), "--robust", "chance=2", "--samples", "1",
+                 "--starts", "1", "--no-store")
+    assert result.returncode == 2
+    assert [line.split(":")[1].strip() for line in result.stderr.splitlines()] == ["--robust", "--samples",
+                                                                                   "--starts"]

@@ -203,11 +203,12 @@ def recording(args, needed: bool = False) -> Iterator:
             store.close()
 
 
-def record_solve(store, case, solution, check: dict | None = None) -> None:
-    """Record a ``solve`` (and its start-up check, a simulation) in an open store (or nothing for None)."""
+def record_solve(store, case, solution, check: dict | None = None, outputs: dict | None = None) -> None:
+    """Record a ``solve`` (and its start-up check, a simulation) in an open store (or nothing for None);
+    ``outputs``: the design's record with its choice and robust result (``Designed.as_dict()``)."""
     if store is None:
         return
-    store.record_solution("solve", case, solution)
+    store.record_solution("solve", case, solution, outputs)
     if check is not None:
         store.record("simulation", {"values": case.values, "design": solution.design}, check,
                      status="verified" if check.get("verified") else "not verified",

@@ -56,7 +56,7 @@ def run(args) -> str:
     with recording(args) as store:
         ranked = design_case(case, args.mode, args.objective, SolverOptions(tol=args.tol), robust)
         best = ranked[0]
-        record_solve(store, best.case, best.solution)
+        record_solve(store, best.case, best.solution, outputs=best.as_dict())
     notes = (f"options.choose: the best of {len(ranked)} choices, {best.choice_text} (clutchopt solve lists them)",) \
         if best.choice else ()
     page = build_report(best.case, best.solution, sweep, best.robust, notes)

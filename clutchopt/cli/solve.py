@@ -56,8 +56,10 @@ def run(args) -> str:
             from clutchopt.simulate import verify
 
             check = verify(best.case, best.solution)
-        for designed in ranked:
-            record_solve(store, designed.case, designed.solution, check if designed is best else None)
+        for designed in ranked:  # each with its choice, the best one marked, and its robust result
+            chosen_one = {"chosen": designed is best} if len(ranked) > 1 else {}
+            record_solve(store, designed.case, designed.solution, check if designed is best else None,
+                         {**designed.as_dict(), **chosen_one})
     if args.json:
         choices = [solution_json(d.as_dict()) for d in ranked] if len(ranked) > 1 else []
         return to_json(with_units({"case": case.path, "title": case.title, **solution_json(best.as_dict()),

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 from clutchopt.cases import Case
-from clutchopt.errors import InputError
+from clutchopt.errors import InputError, Problems
 from clutchopt.formulations import get_coupling
 from clutchopt.materials import variants
 from clutchopt.optimise.entering import check_entering
@@ -36,14 +36,20 @@ class Robustness:
 
     @classmethod
     def parse(cls, text: str, samples: int | None, starts: int | None = None) -> "Robustness":
-        """``--robust worst-case|chance=P``, ``--samples N`` and ``--starts N`` from the command line."""
-        method, target = parse_method(text)
+        """``--robust worst-case|chance=P``, ``--samples N`` and ``--starts N`` from the command line (each bad one
+        named)."""
+        problems, (method, target) = Problems(), (None, None)
+        with problems.field():
+            method, target = parse_method(text)
         samples = SAMPLES if samples is None else samples
         if not 100 <= samples <= MAX_SAMPLES:
-            raise InputError("--samples", f"must be a whole number from 100 to {MAX_SAMPLES}, got {samples}")
+            problems.errors.append(InputError("--samples", f"must be a whole number from 100 to {MAX_SAMPLES}, "
+                                                           f"got {samples}"))
         starts = START_SAMPLES if starts is None else starts
         if not 10 <= starts <= MAX_STARTS:
-            raise InputError("--starts", f"must be a whole number from 10 to {MAX_STARTS}, got {starts}")
+            problems.errors.append(InputError("--starts", f"must be a whole number from 10 to {MAX_STARTS}, "
+                                                          f"got {starts}"))
+        problems.raise_any()
         return cls(method, target, samples, starts)
 
     @property
