@@ -41,15 +41,3 @@ def run_store(tmp_path, monkeypatch) -> Path:
 @pytest.fixture
 def cli():
     return run_cli
-
-
-def pytest_collection_modifyitems(items) -> None:
-    """Tests run a file per worker (``--dist loadgroup``: each file its own group, its module fixtures built once);
-    a file that names a parameter in ``GROUP_BY`` (the composition test: ``coupling``) is a group per value of it."""
-    for item in items:
-        group = item.module.__name__
-        params = item.callspec.params if hasattr(item, "callspec") else {}
-        by = getattr(item.module, "GROUP_BY", None)
-        if by in params:
-            group += f"[{params[by]}]"
-        item.add_marker(pytest.mark.xdist_group(group))

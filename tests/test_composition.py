@@ -12,7 +12,6 @@ from clutchopt.cases import load_case
 from clutchopt.units import from_si
 from tests.composition import ASPECTS, SWEPT, case_data, combinations, run, toml_text
 
-GROUP_BY = "coupling"  # a worker's group per coupling (tests/conftest.py)
 SAMPLES = "100"  # the Monte Carlo check's least: what is tested here is that the aspects compose
 _SOLVED: dict[tuple, tuple[int, dict | str]] = {}  # solve of each case and flags, once per worker
 

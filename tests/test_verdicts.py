@@ -14,7 +14,6 @@ from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.sweep import Sweep, parse_vary
 from tests.conftest import CASES
 
-GROUP_BY = "name"  # a worker's group per case (tests/conftest.py)
 STATIC = {"wedge": "wedge_paper", "ball": "ball_crusher", "lever": "lever_centrifuge", "cable": "cable_pump"}
 
 
