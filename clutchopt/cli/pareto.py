@@ -84,7 +84,7 @@ def run(args) -> str:
     how = f", {robust.label} designs" if robust is not None else ""
     lines = [f"Pareto front, mass against cost (epsilon-constraint) - {case.title or case.path}, {fronts[0].mode} "
              f"mode{how}"]
-    lines += [nominal_note(case, robust)] if nominal_note(case, robust) else []
+    lines += filter(None, [nominal_note(case, robust)])
     for front in fronts:
         lines += [""] + ([f"options.choose: {_choice(front)}"] if front.choice else [])
         lines += [front.note] if front.note else []

@@ -67,7 +67,7 @@ def run(args) -> str:
                                    **({"verify": check} if check else {})}, {"verify": CHECK_UNITS}))
     formulation = case_formulation(best.case, best.solution.mode)
     parts = [choices_text(ranked, chosen(case, get_coupling(case.coupling))[1])] if len(ranked) > 1 else []
-    parts += [nominal_note(case, robust)] if nominal_note(case, robust) else []
+    parts += filter(None, [nominal_note(case, robust)])
     parts.append(solution_text(best.solution, formulation, case.title))
     if best.robust is not None:
         parts.append(robust_text(best.robust, best.case))

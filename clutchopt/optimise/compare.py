@@ -140,12 +140,12 @@ def _scatter_columns(case: Case, coupling, spec, options: SolverOptions, robust=
     """The case's mode and objective: nominal and robust designs (worst-case and chance 0.999, or the method of
     ``robust``), each checked at every corner of the ranges and by Monte Carlo over the distributions."""
     from clutchopt.optimise.design import Robustness
-    from clutchopt.optimise.robust import CHANCE, WORST_CASE, solve_robust
+    from clutchopt.optimise.robust import CHANCE, WORST_CASE
     from clutchopt.optimise.robust_models import corner_checks, failure_probabilities
 
     mode = case.options.get("mode") or coupling.default_mode
     methods = [robust] if robust is not None else [Robustness(WORST_CASE), Robustness(CHANCE, CHANCE_SHOWN)]
-    results = [solve_robust(case, m.method, m.target, mode, None, options, m.samples, m.starts) for m in methods]
+    results = [m.solve(case, mode, None, options) for m in methods]
     worst = results[0]
     params = case.params()
     columns = {}

@@ -52,6 +52,12 @@ class Robustness:
         problems.raise_any()
         return cls(method, target, samples, starts)
 
+    def solve(self, case: Case, mode: str | None = None, objective: str | None = None,
+              options: SolverOptions = SolverOptions(), base=None) -> RobustResult:
+        """The robust design of ``case`` by this method (``base``: the formulation made robust, if not the mode's)."""
+        return solve_robust(case, self.method, self.target, mode, objective, options, self.samples, self.starts,
+                            base=base)
+
     @property
     def label(self) -> str:
         return self.method if self.target is None else f"{self.method} {self.target:g}"
@@ -82,28 +88,29 @@ class Designed(NamedTuple):
                 **({"robust": robust_json(self.robust, self.case)} if self.robust is not None else {})}
 
 
-def check_robustness(case: Case, robust: Robustness | None) -> None:
-    """A robust design needs the case's scatter: refused by name before any solve."""
-    if robust is not None and not case.scatter:
+def check_robustness(case: Case, robust: Robustness | None, problem=None) -> None:
+    """A robust design needs the case's scatter, and each scattered quantity must enter ``problem`` (the problem
+    posed for the case, where given): refused by name before any solve."""
+    if robust is None:
+        return
+    if not case.scatter:
         raise InputError("--robust", "the case has no [scatter] section: say which quantities scatter and how "
                                      "(docs/robust.md)")
+    if problem is not None:
+        check_entering(case, problem, [s.name for s in case.scatter], "scatter.{}")
 
 
 def design_case(case: Case, mode: str | None = None, objective: str | None = None,
                 options: SolverOptions = SolverOptions(), robust: Robustness | None = None) -> list[Designed]:
     """Every choice of ``options.choose`` (the case alone without it) designed nominally or, with ``robust``, for
     the case's scatter; optimal designs first by objective, then the others in the order listed."""
-    check_robustness(case, robust)
-    if robust is not None:
-        check_entering(case, case_problem(case, mode, objective, options), [s.name for s in case.scatter],
-                       "scatter.{}")
+    check_robustness(case, robust, case_problem(case, mode, objective, options) if robust is not None else None)
     designed = []
     for choice, variant in variants(case, get_coupling(case.coupling)):
         if robust is None:
             designed.append(Designed(choice, variant, solve_case(variant, mode, objective, options)))
         else:
-            result = solve_robust(variant, robust.method, robust.target, mode, objective, options, robust.samples,
-                                  robust.starts)
+            result = robust.solve(variant, mode, objective, options)
             designed.append(Designed(choice, variant, result.solution, result))
     return sorted(designed, key=lambda d: (d.solution.status != "optimal",
                                            d.solution.objective if d.solution.status == "optimal" else 0.0))

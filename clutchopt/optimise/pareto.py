@@ -18,9 +18,8 @@ from clutchopt.formulations import get_coupling
 from clutchopt.materials import variants
 from clutchopt.model import Formulation, Quantity, at_most
 from clutchopt.optimise.design import Robustness, check_robustness
-from clutchopt.optimise.entering import check_entering
 from clutchopt.optimise.problem import case_formulation, case_problem, problem_for
-from clutchopt.optimise.robust import RobustResult, solve_robust
+from clutchopt.optimise.robust import RobustResult
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.sweep_grid import column_name
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_objective
@@ -63,9 +62,7 @@ def pareto_fronts(case: Case, mode: str | None = None, points: int = 9, options:
                   robust: Robustness | None = None) -> list[ParetoFront]:
     """One front per choice of ``options.choose`` (the case's own without it), each of designs for the scatter
     with ``robust``."""
-    check_robustness(case, robust)
-    if robust is not None:
-        check_entering(case, case_problem(case, mode, "mass", options), [s.name for s in case.scatter], "scatter.{}")
+    check_robustness(case, robust, case_problem(case, mode, "mass", options) if robust is not None else None)
     return [replace(pareto_front(variant, mode, points, options, robust), choice=choice)
             for choice, variant in variants(case, get_coupling(case.coupling))]
 
@@ -83,8 +80,7 @@ def pareto_front(case: Case, mode: str | None = None, points: int = 9, options: 
     def design(point: Case, objective: str, posed: Formulation, warm: Solution | None = None) -> Solution:
         if robust is None:
             return problem_for(posed, objective, options, structure).solve(point, warm=warm)
-        results.append(solve_robust(point, robust.method, robust.target, base.mode, objective, options,
-                                    robust.samples, robust.starts, base=posed))
+        results.append(robust.solve(point, base.mode, objective, options, base=posed))
         return results[-1].solution
 
     mass_end, cost_end = design(case, "mass", base), design(case, "cost", base)

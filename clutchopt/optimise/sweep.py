@@ -357,7 +357,6 @@ class Sweep:
 
     def __init__(self, case: Case, varies: list[Vary], mode: str | None = None, objective: str | None = None,
                  tol: float = 1e-10, zipped: bool = False, robust: Robustness | None = None):
-        check_robustness(case, robust)
         self.case = case = case.given(*(v.quantity.name for v in varies))
         self.varies, self.robust = varies, robust
         self.formulation: Formulation = case_formulation(case, mode)
@@ -373,8 +372,8 @@ class Sweep:
                                  "each choice; vary it in a case that names one entry")
         problem = case_problem(case, self.formulation.mode, self.objective.name, SolverOptions(tol=tol))
         check_entering(case, problem, [v.quantity.name for v in varies], "--vary {}")
+        check_robustness(case, robust, problem)
         if robust is not None:
-            check_entering(case, problem, [s.name for s in case.scatter], "scatter.{}")
             scattered = {s.name for s in case.scatter} & {v.quantity.name for v in varies}
             if scattered:
                 raise InputError(f"--vary {sorted(scattered)[0]}", "also scatters in the case's [scatter], which a "
