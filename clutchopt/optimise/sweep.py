@@ -136,8 +136,9 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
         # sizing at the point (its collocation mesh follows its own solves), so it is solve's design whatever the
         # points before it
         same = designs.get(tuple(values.values()))
+        neighbour = same or (feasible[1] if feasible else None)
         solution = problem.solve(point_case, warm=previous if problem.start_up is None else None,
-                                 neighbour=same or (feasible[1] if feasible else None))
+                                 neighbour=neighbour.design if neighbour is not None else None)
         if solution.status not in DESIGN_STATUSES and feasible is not None:
             solution = continued(problem, case, feasible, values) or solution
         previous = solution if solution.status == "optimal" else None

@@ -31,7 +31,7 @@ from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.verify import DESIGN_STATUSES
 
 
-def shown(problem, case: Case, first: Solution, started: bool, neighbour: Solution | None) -> Solution:
+def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[str, float] | None) -> Solution:
     """``first`` (a solve without a design) retried from the starts that can reach one; the first design found, or
     the verdict on all of them."""
     first_label = "the start given" if started else ("the papers' sizing" if problem.start_up is not None
@@ -42,8 +42,8 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: Soluti
             if started else []
         if first.diagnosed and first.diagnosed.nearest:
             starts.append(("the least relaxation's design", first.diagnosed.nearest))
-        if neighbour is not None and neighbour.status in DESIGN_STATUSES:
-            starts.append(("the neighbouring point's design", neighbour.design))
+        if neighbour is not None:
+            starts.append(("the neighbouring point's design", neighbour))
         for label, start in starts:
             retry = _retried(problem, case, start)
             if retry is None:
