@@ -210,14 +210,15 @@ class BatchSweep:
             first, end, deadline = k, min(k + window, self.count), time.perf_counter() + WINDOW_S
             blocks: list[Block] = []
             alone: dict[int, Solution] = {}
-            while k < end and time.perf_counter() < deadline:  # each turn solves at least one point
+            failed = False  # the last point is without a design: the window waits for a feasible point after it
+            while k < end and (failed or time.perf_counter() < deadline):  # each turn solves at least one point
                 wanted = min(size, end - k)
                 block, chained, searching = self._batch(start, k, wanted) if start is not None else (None, 0, False)
                 passed = 0 if block is None else len(block.index)
                 if passed:
                     blocks.append(block)
                     start, k = _Start(self, block=block), k + passed
-                    self.feasible = start.warm.design
+                    self.feasible, failed = start.warm.design, False
                 if chained and passed == chained:
                     size = min(2 * size, LONGEST_BATCH)
                     if not searching or k == end:  # (a batch that passes up to its integers' exclusion hands the
@@ -226,12 +227,13 @@ class BatchSweep:
                 if settled is not None:  # the integer search decided point k in the batch
                     blocks.append(settled)
                     start, k = _Start(self, block=settled), k + 1
-                    self.feasible = start.warm.design
+                    self.feasible, failed = start.warm.design, False
                     continue
                 if passed < chained:  # point k failed a test in the batch: the next batch starts short
                     size = FIRST_BATCH
                 alone[k] = self._solve_alone(k, start.warm if start is not None else None)
                 start, k = self._start_of(alone[k]), k + 1
+                failed = alone[k - 1].status not in DESIGN_STATUSES
             yield self._window(blocks, alone, first, k - first)
 
     def _start_of(self, solution: Solution) -> _Start | None:

@@ -14,8 +14,8 @@ verdict says how sure it is:
   (:mod:`clutchopt.optimise.interval_proof`; should it meet a design of the relaxation instead, the solve is
   retried from there);
 - ``not_found``: no feasible design found from the starts it names (``Solution.starts``), with the least
-  relaxation found from the first (the others are not diagnosed again: a sweep's stretch without designs costs a
-  solve a start, not a diagnosis too): a strong hint, not a proof;
+  relaxation found from the first two, and whether they agree (the others are not diagnosed again: a sweep's
+  stretch without designs costs a solve a start, not a diagnosis each): a strong hint, not a proof;
 - ``solver_failed``: a feasible point exists (the elastic check found one), yet no start reached an optimum.
 """
 
@@ -44,8 +44,8 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
             starts.append(("the least relaxation's design", first.diagnosed.nearest))
         if neighbour is not None:
             starts.append(("the neighbouring point's design", neighbour))
-        for label, start in starts:
-            retry = _retried(problem, case, start)
+        for label, start in starts:  # the first retry diagnosed too: a least relaxation seen from two starts
+            retry = _retried(problem, case, start, diagnosed=len(tried) == 1)
             if retry is None:
                 continue
             tried.append((label, retry))
@@ -74,9 +74,9 @@ def _emptied(emptiness) -> str:
             f"{emptiness.boxes} boxes of the design space)")
 
 
-def _retried(problem, case: Case, start: dict[str, float]) -> Solution | None:
+def _retried(problem, case: Case, start: dict[str, float] | None, diagnosed: bool = False) -> Solution | None:
     try:
-        return problem.refined(case, start, diagnosed=False)
+        return problem.refined(case, start, diagnosed=diagnosed)
     except InputError:  # a start-up whose first simulation fails from this start
         return None
 
@@ -89,7 +89,7 @@ def _verdict(tried: list[tuple[str, Solution]], proofs: list[str]) -> Solution:
         least, text = first, first.diagnosis or ""
     else:
         _, least = min(diagnosed, key=lambda item: item[1].diagnosed.least)
-        text = "the least relaxation found " + least.diagnosed.text.removeprefix("infeasible: ")
+        text = "the least relaxation found " + least.diagnosed.text.removeprefix("infeasible: ") + _confirmed(diagnosed)
     if proofs:
         return replace(least, status="infeasible", starts=starts,
                        diagnosis="proven infeasible: " + "; ".join(proofs) + f" ({text})")
@@ -98,6 +98,16 @@ def _verdict(tried: list[tuple[str, Solution]], proofs: list[str]) -> Solution:
                        diagnosis="a feasible point exists (elastic check), yet no start reached an optimum")
     return replace(least, status="not_found", starts=starts,
                    diagnosis=f"no feasible design found (not proven infeasible): {text}")
+
+
+def _confirmed(diagnosed: list[tuple[str, Solution]]) -> str:
+    """Whether the elastic relaxations from the starts diagnosed agree on the least violation."""
+    leasts = [s.diagnosed.least for _, s in diagnosed]
+    if len(leasts) < 2:
+        return ""
+    if max(leasts) - min(leasts) <= 1e-6 * max(1.0, min(leasts)):
+        return f" (the same from {len(leasts)} starts)"
+    return f" (the least of {len(leasts)} starts' relaxations: {', '.join(f'{v:.3g}' for v in leasts)})"
 
 
 def _spent(solution: Solution, tried: list[tuple[str, Solution]]) -> Solution:
