@@ -13,23 +13,24 @@ import casadi as ca
 import numpy as np
 
 _WIDEN = 8 * np.finfo(float).eps  # relative outward widening of every result
-_TINY = np.finfo(float).tiny
 
 Bounds = tuple[np.ndarray, np.ndarray]
 
 
 def _outward(lo, hi) -> Bounds:
-    """[lo, hi] widened outwards; NaN (an operation outside its domain on part of a box) becomes unbounded."""
-    lo = np.where(np.isnan(lo), -np.inf, lo - np.abs(lo) * _WIDEN - _TINY)
-    hi = np.where(np.isnan(hi), np.inf, hi + np.abs(hi) * _WIDEN + _TINY)
-    return lo, hi
+    """[lo, hi] widened outwards; NaN (an operation outside its domain on part of a box) becomes unbounded (fmax
+    and fmin return the other argument for a NaN). A result that underflowed to zero stays zero: an error below
+    1e-300, which no verdict's tolerance can see."""
+    return np.fmax(lo - np.abs(lo) * _WIDEN, -np.inf), np.fmin(hi + np.abs(hi) * _WIDEN, np.inf)
 
 
 def _products(a: Bounds, b: Bounds) -> Bounds:
-    with np.errstate(invalid="ignore"):
-        corners = np.stack([a[0] * b[0], a[0] * b[1], a[1] * b[0], a[1] * b[1]])
-    corners = np.where(np.isnan(corners), 0.0, corners)  # 0 * inf: the product of a zero end is zero
-    return corners.min(axis=0), corners.max(axis=0)
+    """[a] * [b]: the extremes of the four corner products (0 * inf, a NaN, left out by fmin/fmax: the product of a
+    zero end is zero, and another corner is as low or as high)."""
+    if a[0].min(initial=0.0) >= 0 and b[0].min(initial=0.0) >= 0:  # both non-negative (the usual case): the ends
+        return a[0] * b[0], a[1] * b[1]
+    p, q, r, s = a[0] * b[0], a[0] * b[1], a[1] * b[0], a[1] * b[1]
+    return np.fmin(np.fmin(p, q), np.fmin(r, s)), np.fmax(np.fmax(p, q), np.fmax(r, s))
 
 
 def _inverse(a: Bounds) -> Bounds:
@@ -181,6 +182,7 @@ class IntervalFunction:
                          f.instruction_constant(k)) for k in range(f.n_instructions())]
         self.work = f.sz_w()
 
+    @np.errstate(all="ignore")  # inf - inf, 0 * inf: NaN, which the rules make unbounded
     def bounds(self, inputs: list[Bounds]) -> list[Bounds]:
         """Bounds on each output's nonzeros (arrays of shape (nnz, boxes)) for boxes given per input as (lo, hi)
         arrays of shape (nnz, boxes)."""
