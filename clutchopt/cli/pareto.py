@@ -128,6 +128,8 @@ def pareto_figure(fronts):
     """Mass against cost, a line per front (per choice of options.choose), the ends marked."""
     from matplotlib.figure import Figure
 
+    from clutchopt.simulate.plot import literal
+
     figure = Figure(figsize=(5.5, 3.8), layout="constrained")
     axes = figure.add_subplot()
     for front in fronts:
@@ -144,6 +146,6 @@ def pareto_figure(fronts):
         axes.legend(fontsize=7)
     axes.set_xlabel(cost)
     axes.set_ylabel(mass)
-    axes.set_title(f"Pareto front, {fronts[0].case.title or fronts[0].case.path}", fontsize=9)
+    axes.set_title(f"Pareto front, {literal(fronts[0].case.title or fronts[0].case.path)}", fontsize=9)
     axes.grid(alpha=0.3)
     return figure
