@@ -11,6 +11,7 @@ from clutchopt.cli.options import (
     add_json_option,
     add_parser,
     add_problem_options,
+    add_quiet_option,
     add_robust_options,
     add_store_options,
     nominal_note,
@@ -42,6 +43,7 @@ def add_command(commands) -> None:
     add_robust_options(pareto)
     add_json_option(pareto)
     add_store_options(pareto)
+    add_quiet_option(pareto)
     pareto.set_defaults(run=run)
 
 
@@ -64,7 +66,8 @@ def run(args) -> str:
     resolve_problem(case, args, objective=False)
     robust = robustness(args, case)
     with recording(args) as store:
-        fronts = pareto_fronts(case, args.mode, args.points, SolverOptions(tol=args.tol), robust)
+        fronts = pareto_fronts(case, args.mode, args.points, SolverOptions(tol=args.tol), robust,
+                               progress=not args.quiet)
         for front in fronts if store is not None else ():
             for cap, solution in zip(front.caps, front.solutions):
                 if math.isnan(cap):
