@@ -26,6 +26,7 @@ import pytest
 from clutchopt.cli import main
 from clutchopt.store import RunStore, Schema
 from conftest import CASES, ROOT
+from hostile_runtime import FOREIGN_SQL, PARTIAL_SQL, store_with
 
 FORK = multiprocessing.get_context("fork")
 CASE = str(CASES / "wedge_paper.toml")
@@ -556,53 +557,29 @@ def test_a_sweep_the_store_refuses_counts_every_point_not_recorded(table, held, 
 
 # --- a store cut off while it was created, an older one, another program's --------------------------------------------
 def _store_with(folder: Path, sql: str) -> Path:
-    """A new, empty run store in ``folder`` with the SQL statements ``sql`` run on it."""
+    """A new run store in ``folder`` with the SQL statements ``sql`` run on it."""
     store = folder / "runs.sqlite"
-    RunStore(store).close()
-    with closing(sqlite3.connect(store)) as db:  # closed: its WAL checkpointed into the file
-        db.executescript(sql)
+    store.write_bytes(store_with(sql))
     return store
 
 
-PARTIAL = {  # what a creation cut off after each statement left (each in its own transaction then), or an older store
-    "only sweeps": "DROP TABLE runs; DROP TABLE templates",
-    "only runs": "DROP TABLE sweeps; DROP TABLE templates",
-    "only templates": "DROP TABLE runs; DROP TABLE sweeps",
-    "no index": "DROP INDEX runs_by_kind",
-    "no templates": "DROP TABLE templates",
-    "no objective_unit column": "ALTER TABLE runs DROP COLUMN objective_unit",
-}
-
-
-@pytest.mark.parametrize("name", PARTIAL)
+@pytest.mark.parametrize("name", PARTIAL_SQL)
 def test_a_partial_store_is_completed_when_opened(name, tmp_path, capsys):
-    store = _store_with(tmp_path, PARTIAL[name])
+    store = _store_with(tmp_path, PARTIAL_SQL[name])
     code, out, err = _command(capsys, ["runs", "list"], store)
     assert code == 0 and err == "" and "(none)" in out, err
     code, out, err = _command(capsys, ["solve", CASE], store)
     assert code == 0 and err == "" and "status: optimal" in out, err
-    with sqlite3.connect(store) as db:
+    with closing(sqlite3.connect(store)) as db:
         found = Schema.of(db)
     assert found.missing == "" and not found.foreign
     code, out, err = _command(capsys, ["runs", "list"], store)
     assert code == 0 and " solve " in out, err
 
 
-FOREIGN = {  # databases of other programs, some with a table of one of our names
-    "its own tables": "DROP TABLE runs; DROP TABLE sweeps; DROP TABLE templates; "
-                      "CREATE TABLE invoices (id INTEGER PRIMARY KEY, amount REAL)",
-    "a runs table of its own": "DROP TABLE runs; DROP TABLE sweeps; DROP TABLE templates; "
-                               "CREATE TABLE runs (id INTEGER PRIMARY KEY, name TEXT)",
-    "a templates table of its own": "DROP TABLE runs; DROP TABLE sweeps; DROP TABLE templates; "
-                                    "CREATE TABLE templates (id INTEGER PRIMARY KEY, html TEXT)",
-    "our sweeps table beside its own": "DROP TABLE runs; DROP TABLE templates; CREATE TABLE invoices (id INTEGER)",
-    "runs and sweeps with other columns": "DROP TABLE runs; CREATE TABLE runs (id INTEGER PRIMARY KEY, path TEXT)",
-}
-
-
-@pytest.mark.parametrize("name", FOREIGN)
+@pytest.mark.parametrize("name", FOREIGN_SQL)
 def test_another_programs_database_is_refused_untouched(name, tmp_path, capsys):
-    store = _store_with(tmp_path, FOREIGN[name])
+    store = _store_with(tmp_path, FOREIGN_SQL[name])
     before = store.read_bytes()
     code, _, err = _command(capsys, ["runs", "list"], store)
     assert code == 2 and err.startswith(f"error: --store: {store}: is an SQLite database but not a clutchopt run "
@@ -623,7 +600,7 @@ def test_a_store_cut_off_by_a_file_size_limit_heals(kib, tmp_path, capsys):
     assert result.returncode == 0 and "2 optimal" in result.stdout, result.stderr
     assert result.stderr.count("warning:") <= 1 and "Traceback" not in result.stderr, result.stderr
     if store.exists():
-        with sqlite3.connect(store) as db:
+        with closing(sqlite3.connect(store)) as db:
             found = Schema.of(db)
         assert not found.tables or found.missing == "", found
     code, out, err = _command(capsys, ["solve", CASE], store)
@@ -633,7 +610,7 @@ def test_a_store_cut_off_by_a_file_size_limit_heals(kib, tmp_path, capsys):
 
 
 def test_a_partial_store_that_cannot_be_written_names_the_command_that_completes_it(shared_folder, tmp_path):
-    store = _store_with(shared_folder, PARTIAL["only sweeps"])  # a WAL store in a folder the user cannot write
+    store = _store_with(shared_folder, PARTIAL_SQL["only-sweeps"])  # a WAL store in a folder the user cannot write
     before = store.read_bytes()
     code, text = _as_a_user(["runs", "list", "--store", str(store)], tmp_path)
     assert code == 2 and text == (

@@ -80,7 +80,7 @@ def run(args) -> str:
     sweep = Sweep(case, varies, args.mode, args.objective, args.tol, args.zip, robustness(args, case))
     if args.out:
         table_format(args.out)  # a bad name fails before the solves, not after
-    runner = dask_runner(args.dask) if args.dask else None
+    runner = dask_runner(args.dask) if args.dask is not None else None  # "" is an address too: refused
     store = open_store(args, needed=args.resume)
     try:
         result = sweep.run(store, args.resume, args.jobs, runner, progress=not args.quiet)
