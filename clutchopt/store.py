@@ -223,9 +223,10 @@ class RunStore:
     """An open store. ``with RunStore(path) as store:`` closes it afterwards.
 
     ``writable``: the store is for recording (created if missing, its folder and file must be writable);
-    otherwise it is only read (never created, read-only files and folders are fine). ``check``: run SQLite's
-    ``quick_check`` on open and refuse a damaged file (``runs export`` opens without it to rescue what it can; a
-    store for recording larger than QUICK_CHECK_BYTES is not checked).
+    otherwise it is only read (never created, read-only files and folders are fine; one cut off while it was
+    created is completed, as it could not be read). ``check``: run SQLite's ``quick_check`` on open and refuse a
+    damaged file (``runs export`` opens without it to rescue what it can; a store for recording larger than
+    QUICK_CHECK_BYTES is not checked).
     ``warn`` receives the one message about runs that could not be recorded (default: a Python warning).
     """
 

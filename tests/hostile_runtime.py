@@ -145,7 +145,8 @@ def chosen(name: str, base: str, expect: str | tuple[str, ...] | None, **roles: 
 HOSTILE: list[Hostile] = [
     # --- Dask: schemes, malformed addresses ------------------------------------------------------------------------
     dask("dask-tls", "tls://127.0.0.1:8786", "--dask: tls:// needs the cluster's TLS certificates and keys"),
-    dask("dask-inproc", "inproc://10.0.0.1/4242/1", "--dask: inproc:// names a scheduler inside one Python process"),
+    dask("dask-inproc", "inproc://10.0.0.1/4242/1", "--dask: inproc:// names a scheduler inside another Python "
+                                                     "process"),
     dask("dask-websocket", "ws://127.0.0.1:8786", "--dask: ws:// is not supported; give the scheduler's tcp://"),
     dask("dask-ucx", "ucx://127.0.0.1:13337", "--dask: ucx:// is not supported"),
     dask("dask-dashboard-url", "http://127.0.0.1:8787/status", "--dask: http:// is not supported"),

@@ -1,8 +1,9 @@
 """The connection to a Dask scheduler for ``clutchopt sweep --dask ADDRESS``, bounded in time whatever answers.
 
-Only ``tcp://host:port`` is taken: ``tls://`` needs the cluster's certificates (distributed's security settings),
-which clutchopt does not take, and ``inproc://`` names a scheduler inside another Python process; each is refused
-by name, as is any other scheme. Before ``distributed`` connects, the address is probed: a scheduler greets each
+Only ``tcp://host:port`` is taken, and from Python the ``inproc://`` address of a scheduler in the same process (a
+``LocalCluster(processes=False)``): ``tls://`` needs the cluster's certificates (distributed's security settings),
+which clutchopt does not take, and ``inproc://`` of another process cannot be reached; each is refused by name, as
+is any other scheme. Before ``distributed`` connects, the address is probed: a scheduler greets each
 new connection first, with 8 bytes (native ``Q``, as distributed writes them) giving the length of its handshake,
 then the handshake (a few hundred bytes of msgpack naming its compression, Python and pickle protocol). A web
 server says nothing until asked, other servers greet with text or junk: each is refused in one line. The probe,
@@ -12,6 +13,7 @@ scheduler all run within one deadline, ``DEADLINE_S``.
 
 from __future__ import annotations
 
+import os
 import re
 import socket
 import struct
@@ -27,21 +29,24 @@ REFUSED_SCHEMES = {
     "tls": "needs the cluster's TLS certificates and keys (distributed's security settings), which clutchopt does "
            "not take; reach the scheduler by its tcp:// address (e.g. through an SSH tunnel: ssh -L 8786:localhost:8786 "
            "HOST, then --dask tcp://localhost:8786)",
-    "inproc": "names a scheduler inside one Python process, which this command cannot reach; give its tcp:// "
-              "address",
+    "inproc": "names a scheduler inside another Python process (a LocalCluster with processes=False), which this "
+              "one cannot reach; give its tcp:// address",
 }
 
 
 def connect(address: str, deadline_s: float = DEADLINE_S):
     """A ``distributed.Client`` of the scheduler at ``tcp://host:port``, connected within ``deadline_s`` seconds;
     a malformed address, one of another scheme, or one where no Dask scheduler answers in time is bad input."""
-    parse_address(address)
+    in_process = _in_this_process(address)
+    if not in_process:
+        parse_address(address)
     try:
         from distributed import Client
     except ImportError:
         raise InputError("--dask", "needs dask.distributed (pip install 'clutchopt[dask]')") from None
     deadline = time.monotonic() + deadline_s
-    probe_scheduler(address, deadline_s)
+    if not in_process:
+        probe_scheduler(address, deadline_s)
 
     class BoundedClient(Client):
         """A client whose whole start (connection, handshake, first exchange) ends by the deadline."""
@@ -54,6 +59,12 @@ def connect(address: str, deadline_s: float = DEADLINE_S):
     except Exception as exc:  # distributed's own errors, the deadline's TimeoutError, a handshake it cannot decode
         raise InputError("--dask", f"cannot connect to a Dask scheduler at {address} within {deadline_s:g} s "
                                    f"({type(exc).__name__}: {' '.join(str(exc).split())[:120]})") from None
+
+
+def _in_this_process(address: str) -> bool:
+    """Whether ``address`` is the ``inproc://host/pid/n`` address of a scheduler in this process (nothing to probe)."""
+    match = re.fullmatch(r"inproc://[^/\s]+/(\d+)/\d+", address)
+    return match is not None and int(match[1]) == os.getpid()
 
 
 def parse_address(address: str) -> tuple[str, int]:
