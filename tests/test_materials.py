@@ -3,6 +3,7 @@ they give none; options.choose solves every choice, best first; bad names are re
 
 import json
 import math
+import os
 import shutil
 import subprocess
 import sys
@@ -13,7 +14,7 @@ import pytest
 from clutchopt.cases import parse_case, read_toml
 from clutchopt.errors import InputError
 from clutchopt.formulations import MODULES, get_coupling
-from clutchopt.materials import FIELDS, library
+from clutchopt.materials import FIELDS, MAX_CHOICES, library
 from clutchopt.optimise.design import design_case
 from clutchopt.template import case_template
 from clutchopt.units import ureg
@@ -207,3 +208,47 @@ def test_every_command_designs_every_choice_and_says_which_it_keeps(tmp_path):
     fronts = json.loads(run("pareto", path, "--points", "2", "--json"))["fronts"]
     listed = case.options["choose"]["thread_pair"]
     assert [front["choice"] for front in fronts] == [{"thread_pair": name} for name in listed]
+
+
+def test_choose_is_capped_before_any_solve():
+    data = tomllib.loads(case_template("lever"))
+    data["options"] = {"choose": {"material": list(library()["materials"]), "friction_pair": list(
+        library()["friction_pairs"])}}
+    with pytest.raises(InputError, match=rf"options\.choose: 63 combinations \(9 material x 7 friction_pair\); at most "
+                                         rf"{MAX_CHOICES} are designed in one run: list fewer names"):
+        parse_case(data)
+
+
+def _on_a_terminal(*argv: str) -> str:
+    """What a command writes to stderr when that is a terminal (100 columns): its progress bars."""
+    import fcntl
+    import pty
+    import struct
+    import termios
+
+    leader, follower = pty.openpty()
+    fcntl.ioctl(follower, termios.TIOCSWINSZ, struct.pack("HHHH", 40, 100, 0, 0))
+    process = subprocess.Popen([sys.executable, "-m", "clutchopt", *argv], stdout=subprocess.DEVNULL,
+                               stderr=follower, cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT)})
+    os.close(follower)
+    written = b""
+    while chunk := _read(leader):
+        written += chunk
+    os.close(leader)
+    assert process.wait(timeout=120) == 0, written
+    return written.decode()
+
+
+def _read(descriptor: int) -> bytes:
+    try:
+        return os.read(descriptor, 4096)
+    except OSError:  # the terminal closed with the process
+        return b""
+
+
+def test_a_progress_bar_moves_as_the_choices_are_designed_on_a_terminal_only(tmp_path, capsys):
+    path = tmp_path / "choose.toml"
+    path.write_text(case_template("lever").replace("# choose = ", "choose = "))
+    assert "choices:   0%| " in _on_a_terminal("solve", str(path), "--no-store")  # then cleared: the lever is fast
+    assert _on_a_terminal("solve", str(path), "--no-store", "--quiet") == ""
+    assert run("solve", path, "--no-store") and "choices" not in capsys.readouterr().err  # not a terminal

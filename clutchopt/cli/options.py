@@ -106,6 +106,12 @@ def add_tolerance_option(command: argparse.ArgumentParser) -> None:
                               "(default 1e-10; 1e-6 is faster and good to about 1e-6 relative)")
 
 
+def add_quiet_option(command: argparse.ArgumentParser,
+                     help: str = "no progress bar (on a terminal, one moves as options.choose's choices are "
+                                 "designed)") -> None:
+    command.add_argument("--quiet", action="store_true", help=help)
+
+
 def add_store_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--store", metavar="PATH",
                          help="the run store to record into (SQLite; default $CLUTCHOPT_STORE, then "

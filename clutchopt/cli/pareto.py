@@ -11,6 +11,7 @@ from clutchopt.cli.options import (
     add_json_option,
     add_parser,
     add_problem_options,
+    add_quiet_option,
     add_robust_options,
     add_store_options,
     nominal_note,
@@ -42,6 +43,7 @@ def add_command(commands) -> None:
     add_robust_options(pareto)
     add_json_option(pareto)
     add_store_options(pareto)
+    add_quiet_option(pareto)
     pareto.set_defaults(run=run)
 
 
@@ -64,7 +66,8 @@ def run(args) -> str:
     resolve_problem(case, args, objective=False)
     robust = robustness(args, case)
     with recording(args) as store:
-        fronts = pareto_fronts(case, args.mode, args.points, SolverOptions(tol=args.tol), robust)
+        fronts = pareto_fronts(case, args.mode, args.points, SolverOptions(tol=args.tol), robust,
+                               progress=not args.quiet)
         for front in fronts if store is not None else ():
             for cap, solution in zip(front.caps, front.solutions):
                 if math.isnan(cap):
@@ -128,6 +131,8 @@ def pareto_figure(fronts):
     """Mass against cost, a line per front (per choice of options.choose), the ends marked."""
     from matplotlib.figure import Figure
 
+    from clutchopt.simulate.plot import literal
+
     figure = Figure(figsize=(5.5, 3.8), layout="constrained")
     axes = figure.add_subplot()
     for front in fronts:
@@ -144,6 +149,6 @@ def pareto_figure(fronts):
         axes.legend(fontsize=7)
     axes.set_xlabel(cost)
     axes.set_ylabel(mass)
-    axes.set_title(f"Pareto front, {fronts[0].case.title or fronts[0].case.path}", fontsize=9)
+    axes.set_title(f"Pareto front, {literal(fronts[0].case.title or fronts[0].case.path)}", fontsize=9)
     axes.grid(alpha=0.3)
     return figure
