@@ -11,7 +11,8 @@ low as its lowest module).
 LAYERS: tuple[tuple[str, str, tuple[str, ...]], ...] = (  # (layer, what it holds, modules)
     ("base", "CasADi-or-float arithmetic, units, input errors, files, the run records' schema, packaged data, "
              "this table",
-     ("__init__", "backend", "units", "unit_table", "errors", "files", "records", "data", "layers")),
+     ("__init__", "backend", "units", "unit_table", "errors", "files", "records", "window_records", "data",
+      "layers")),
     ("model", "Quantity, Variable, Constraint, Formulation, SpeedLaw, Coupling", ("model",)),
     ("formulations", "one module per coupling: quantities, equations, paper procedure, comparison rows",
      ("formulations",)),
@@ -25,7 +26,7 @@ LAYERS: tuple[tuple[str, str, tuple[str, ...]], ...] = (  # (layer, what it hold
     ("case and aspects", "case file -> Case; material library (fill, variants), scatter, case templates",
      ("cases", "materials", "scatter", "template")),
     ("presentation", "tables, text, HTML and JSON of results, read by their fields; the run store",
-     ("output", "store")),
+     ("output", "store", "store_kept")),
     ("optimise", "posed problem, solve strategies, float64 verdict, start-up check, sweeps, Pareto, robust, "
                  "comparisons, choices", ("optimise",)),
     ("scenes", "start-up scene files (a scene may solve its coupling's case for a design)", ("simulate.scene",)),

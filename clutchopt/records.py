@@ -2,15 +2,16 @@
 window share (names, equations, units, bounds, the solver). ``expand(compact, template)`` is the point's
 ``Solution.as_dict()``.
 
-The run store keeps a batched point as its compact part and each template once (``templates``, by key), where every
-point used to repeat each constraint's equation and description: 41 % of the full record's bytes on the cable, 46 %
-on the wedge, built in less than half the time. Pure Python: the store reads records without importing the solvers.
+A window's compact records are built from its arrays (``clutchopt.window_records``); the run store keeps the arrays,
+and each template once (``templates``, by key), where every point used to repeat each constraint's equation and
+description. A store of an older clutchopt keeps a batched point as its compact part, a row each (41 % of the full
+record's bytes on the cable, 46 % on the wedge), read back by :func:`expand` as well. Pure Python: the store reads
+records without importing the solvers.
 """
 
 from __future__ import annotations
 
 import hashlib
-import json
 
 TEMPLATE = "template"  # the key that marks a compact record, holding its template's key
 STATUSES = ("optimal", "unverified", "infeasible", "not_found", "solver_failed")  # how a solve ends (infeasible: proven)
@@ -18,19 +19,15 @@ CONSTRAINT_COLUMNS = ("value", "limit", "margin", "active", "feasible", "scale",
 
 
 def template_key(template: dict) -> str:
-    """A template's key: a hash of its canonical JSON (equal templates share one key)."""
-    text = json.dumps(template, sort_keys=True, separators=(",", ":"))  # an infinite bound hashes as Infinity
-    return hashlib.sha256(text.encode()).hexdigest()[:32]
+    """A template's key: a hash of its canonical JSON (equal templates share one key; orjson's, 0.03 ms against the
+    standard library's 0.4: an older clutchopt's templates keep their keys, a new one is stored beside them)."""
+    import orjson
+
+    return hashlib.sha256(orjson.dumps(template, option=orjson.OPT_SORT_KEYS)).hexdigest()[:32]
 
 
 def is_compact(record) -> bool:
     return isinstance(record, dict) and TEMPLATE in record
-
-
-def status_and_objective(record: dict) -> tuple[str, float | None]:
-    """A record's status and objective value, compact or full."""
-    objective = record["objective"]
-    return record["status"], objective if is_compact(record) else objective["value"]
 
 
 def expand(compact: dict, template: dict) -> dict:
@@ -61,11 +58,6 @@ def expand(compact: dict, template: dict) -> dict:
         "bounds": template["bounds"],
         "sensitivities": compact["sensitivities"],
     }
-
-
-def expanded(records: list[dict], templates: dict[str, dict]) -> list[dict]:
-    """Records in full: each compact one expanded with its template (``templates`` by key)."""
-    return [expand(r, templates[r[TEMPLATE]]) if is_compact(r) else r for r in records]
 
 
 def _named(names: list[str], values: list) -> dict:

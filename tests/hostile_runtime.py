@@ -22,6 +22,7 @@ from pathlib import Path
 from hostile import CASES, LEVER, OTHER_DATABASE, SCENE, SWEEP_TABLE, WEDGE, Hostile, case, command, edit, sweep
 
 from clutchopt.store import RunStore
+from clutchopt.store_kept import close_kept
 
 BALL = (CASES / "ball_crusher.toml").read_text()
 STARTING = (CASES / "wedge_motor_start.toml").read_text()  # a [start_up]: the report draws the simulated start
@@ -121,6 +122,7 @@ def store_with(sql: str) -> bytes:
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / "runs.sqlite"
         RunStore(path).close()
+        close_kept()  # its connection: the schema folded into the file
         with closing(sqlite3.connect(path)) as db:  # closed: its WAL checkpointed into the file
             db.executescript(sql)
         return path.read_bytes()

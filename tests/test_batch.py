@@ -295,7 +295,8 @@ def test_the_compiled_verdict_says_what_the_warm_search_would_do(name, cases, mo
 def test_a_windows_records_are_its_solutions_as_dicts(name):
     # the records built column-wise (what clutchopt sweep stores and tabulates) are each point's Solution.as_dict(),
     # the same JSON text, key order and floats included; batched points, points solved alone (the first, the
-    # lever's infeasible ones) and integer searches among them
+    # lever's infeasible ones) and integer searches among them; the ball's window's sensitivities by compiled code,
+    # a point's alone on CasADi's virtual machine
     import json
 
     file, mode, quantity, factors = SWEEPS[name]

@@ -8,12 +8,15 @@ import sqlite3
 import subprocess
 import sys
 import time
+from contextlib import closing
+from pathlib import Path
 
 import pandas as pd
 import pytest
 
 from clutchopt.store import RunStore
 from conftest import CASES, ROOT
+from store_rows import forget_points, sweep_points as _stored
 
 
 def test_solve_is_recorded_with_inputs_outputs_and_versions(cli, run_store):
@@ -80,11 +83,6 @@ SWEEP = ["sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=500:3000:40"
          "allowable_pressure=2:8:125", "--quiet"]  # 5000 points: 5 windows, each recorded in one transaction
 
 
-def _stored(path) -> list[tuple]:
-    with sqlite3.connect(path, timeout=30) as db:
-        return db.execute("SELECT id, point, created FROM runs WHERE kind = 'sweep' ORDER BY id").fetchall()
-
-
 def test_killed_sweep_resumes_without_losing_duplicating_or_recomputing(run_store, tmp_path, cli):
     process = subprocess.Popen([sys.executable, "-m", "clutchopt", *SWEEP], cwd=ROOT, stdout=subprocess.DEVNULL,
                                stderr=subprocess.DEVNULL)
@@ -126,13 +124,9 @@ def test_interrupted_sweep_says_how_to_continue(run_store):
     assert process.returncode == 130  # as a shell reports SIGINT
     assert stderr.strip().endswith(f"sweep interrupted; the points solved so far are in {run_store}, "
                                    "continue with --resume")
-    statuses = {status for _, _, status in _stored_status(run_store)}
+    with RunStore(run_store, writable=False) as store:
+        statuses = {run["status"] for run in store.runs()}
     assert statuses == {"optimal"}  # the point in flight is not recorded as a failure
-
-
-def _stored_status(path) -> list[tuple]:
-    with sqlite3.connect(path, timeout=30) as db:
-        return db.execute("SELECT id, point, status FROM runs").fetchall()
 
 
 def _has_points(path) -> bool:
@@ -205,9 +199,10 @@ def test_the_stores_json_reads_back_as_the_standard_librarys():
     assert json.loads(to_json({"deep": deep}, None)) == {"deep": deep}
 
 
-def test_batched_sweep_points_are_stored_compact_and_read_back_in_full(tmp_path):
-    # a batched point is stored as its own numbers and a key to its window's template (clutchopt.records); the store
-    # reads it back equal to the full record, from half the bytes or less
+def test_a_windows_batched_points_are_one_row_read_back_in_full(tmp_path):
+    # a window's batched points are one row: their numbers as arrays beside the template they share
+    # (clutchopt.window_records), a fifth of their full records' bytes or less; each is read back as its full record,
+    # a run of its own (listed, shown, taken by a resumed sweep)
     from clutchopt.cases import load_case
     from clutchopt.optimise.batch import BATCHED
     from clutchopt.optimise.sweep import Sweep
@@ -219,19 +214,107 @@ def test_batched_sweep_points_are_stored_compact_and_read_back_in_full(tmp_path)
     with RunStore(tmp_path / "runs.sqlite") as store:
         result = sweep.run(store, progress=False)
         stored = store.sweep_outputs(result.sweep_id, sweep.points)
-        shown = [store.run(run["id"]) for run in store.runs(sweep_id=result.sweep_id)]
+        listed = store.runs(sweep_id=result.sweep_id)
+        shown = [store.run(run["id"]) for run in listed]
     full = json.loads(to_json(list(result.solutions), None))
     assert [stored[i] for i in range(40)] == full
     assert {entry["point"]: entry["outputs"] for entry in shown} == dict(enumerate(full))
+    assert [(run["id"], run["point"], run["status"]) for run in listed] == [(40 - i, 39 - i, "optimal") for i in
+                                                                            range(40)]
     with sqlite3.connect(tmp_path / "runs.sqlite") as db:
-        rows = dict(db.execute("SELECT point, outputs FROM runs"))
+        rows = db.execute("SELECT point, run_count, length(outputs) + IFNULL(length(window), 0), outputs FROM runs"
+                          ).fetchall()
         (templates,) = db.execute("SELECT COUNT(*) FROM templates").fetchone()
     batched = [i for i, record in enumerate(full) if record["solver"]["status"] == BATCHED]
-    assert len(batched) >= 30 and templates == 1
-    for i in batched:
-        assert len(rows[i]) < 0.5 * len(to_json(full[i], None)), i
-    for i in set(range(40)) - set(batched):  # solved alone by Problem.solve: stored in full
-        assert json.loads(rows[i]) == full[i]
+    windows = [(point, count, size) for point, count, size, _ in rows if count is not None]
+    assert len(batched) >= 30 and templates == 1 and len(windows) == 1
+    (point, count, size), = windows
+    assert list(range(point, point + count)) == batched
+    assert size < sum(len(to_json(full[i], None)) for i in batched) / 5
+    for point, count, _, outputs in rows:  # solved alone by Problem.solve: a row each, in full
+        assert count is not None or json.loads(outputs) == full[point]
+
+
+def test_a_window_records_only_its_points_not_stored_yet(tmp_path):
+    # two resumes of one sweep at once solve the same points: a window that meets points another process has stored
+    # records the others only (a row for each run of consecutive ones), each point once, with its own record
+    from clutchopt.cases import load_case
+    from clutchopt.optimise.sweep import Sweep, solve_points
+    from clutchopt.optimise.sweep_grid import parse_vary
+    from clutchopt.output import to_json
+
+    sweep = Sweep(load_case(CASES / "wedge_paper.toml"), [parse_vary("speed=500:3000:40", "wedge")])
+    parts = list(solve_points(sweep.case, sweep.formulation.mode, sweep.objective.name, sweep.tol, None, sweep.grid))
+    path = tmp_path / "runs.sqlite"
+
+    def record(store: RunStore, sweep_id: int) -> int:
+        return sum(store.record_points(sweep._inputs(), sweep._where(sweep_id), part.points.index, part.points.columns,
+                                       *part.stored()) for part in parts)
+
+    with RunStore(path) as store:
+        sweep_id = store.new_sweep(sweep.spec, 40)
+        assert record(store, sweep_id) == 40 and record(store, sweep_id) == 0
+    forgotten = [point for point in range(40) if point % 7 in (2, 3) or point > 30]
+    forget_points(path, lambda point: point in forgotten)
+    with RunStore(path) as store:
+        assert record(store, sweep_id) == len(forgotten) and record(store, sweep_id) == 0
+        stored = store.sweep_outputs(sweep_id, sweep.points)
+    assert sorted(point for _, point, _ in _stored(path)) == list(range(40))
+    full = [record for part in parts for record in part.records()]
+    assert stored == dict(enumerate(json.loads(to_json(full, None))))
+
+
+def test_a_store_of_a_row_per_point_is_read_and_resumed(tmp_path, capsys):
+    # a store an older clutchopt recorded (a row per point, batched ones compact: tests/older_store.sql) is listed,
+    # shown, exported and resumed; a resume after points were lost adds them as a window row beside the older rows,
+    # with the ids after the last, and every point is read once
+    from clutchopt.cli import main
+
+    store = tmp_path / "older.sqlite"
+    with closing(sqlite3.connect(store)) as db:
+        db.executescript((Path(__file__).parent / "older_store.sql").read_text())
+        db.execute("PRAGMA journal_mode=WAL")
+    capsys.readouterr()
+    assert main(["runs", "export", "-o", str(tmp_path / "older.csv"), "--store", str(store)]) == 0
+    assert main(["runs", "show", "5", "--store", str(store)]) == 0
+    shown = json.loads(capsys.readouterr().out.split("\n", 1)[1])
+    assert shown["point"] == 3 and shown["outputs"]["solver"]["status"] == "batched, KKT verified"
+    sweep = ["sweep", str(CASES / "wedge_paper.toml"), "--vary", "speed=500:3000:12", "--quiet", "--store", str(store),
+             "--resume"]
+    assert main(sweep) == 0 and "solved 0 points in" in capsys.readouterr().out
+    with closing(sqlite3.connect(store)) as db, db:
+        db.execute("DELETE FROM runs WHERE point >= 5")  # as a sweep killed half-way
+    assert main(sweep) == 0 and "solved 7 points" in capsys.readouterr().out
+    assert [(run_id, point) for run_id, point, _ in _stored(store)] == [(k + 2, k) for k in range(12)]
+    with RunStore(store, writable=False) as opened:
+        assert [(run["id"], run["point"]) for run in opened.runs()] == [(k + 2, k) for k in range(11, -1, -1)] + [
+            (1, None)] and opened.sweeps()[0]["stored"] == 12
+    assert main(["runs", "export", "-o", str(tmp_path / "resumed.csv"), "--store", str(store)]) == 0
+    older, resumed = pd.read_csv(tmp_path / "older.csv"), pd.read_csv(tmp_path / "resumed.csv")
+    assert list(resumed.columns) == list(older.columns) and len(resumed) == len(older) == 13
+    pd.testing.assert_series_equal(resumed["mass [kg]"], older["mass [kg]"], rtol=1e-8)
+
+
+def test_a_process_keeps_its_stores_connection_and_sees_what_others_changed(tmp_path):
+    # a closed store's connection is kept for the next store of the file in the process (its write-ahead log not
+    # checkpointed: two fsyncs saved, and two more at the next first write); a store that another connection has
+    # changed since is prepared and checked again; closing the kept connection folds the log into the file
+    from clutchopt.store_kept import close_kept
+
+    path = tmp_path / "runs.sqlite"
+    with RunStore(path) as store:
+        store.record("solve", {"values": {}}, {"status": "optimal"}, status="optimal")
+    assert Path(f"{path}-wal").stat().st_size > 0
+    with closing(sqlite3.connect(path)) as other, other:
+        other.execute("DROP TABLE templates")
+    with RunStore(path) as store:
+        assert store.record("solve", {"values": {}}, {"status": "optimal"}, status="optimal") == 2
+    with closing(sqlite3.connect(path)) as other:
+        assert other.execute("SELECT name FROM sqlite_master WHERE name = 'templates'").fetchall()  # prepared again
+    close_kept()
+    assert not Path(f"{path}-wal").exists()
+    with closing(sqlite3.connect(path)) as other:
+        assert other.execute("SELECT COUNT(*) FROM runs").fetchone() == (2,)
 
 
 def test_a_store_of_an_older_clutchopt_gets_the_templates_table(tmp_path):

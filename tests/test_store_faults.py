@@ -20,13 +20,16 @@ import time
 from contextlib import closing
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pytest
 
 from clutchopt.cli import main
 from clutchopt.store import RunStore, Schema
+from clutchopt.store_kept import close_kept
 from conftest import CASES, ROOT
 from hostile_runtime import FOREIGN_SQL, PARTIAL_SQL, store_with
+from store_rows import rewrite_windows, sweep_points, window_ids
 
 FORK = multiprocessing.get_context("fork")
 CASE = str(CASES / "wedge_paper.toml")
@@ -79,8 +82,7 @@ def built_problems():
 
 
 def _points(store: Path) -> list[int]:
-    with sqlite3.connect(store, timeout=60) as db:
-        return [row[0] for row in db.execute("SELECT point FROM runs WHERE kind = 'sweep' ORDER BY point")]
+    return sorted(point for _, point, _ in sweep_points(store))
 
 
 def _reference(grid: list[str]) -> pd.DataFrame:
@@ -94,7 +96,7 @@ def _reference(grid: list[str]) -> pd.DataFrame:
 
 # --- kill -9 ---------------------------------------------------------------------------------------------------------
 def test_kill_9_at_random_moments_then_resume_loses_and_duplicates_nothing(tmp_path):
-    # each run resumes the same sweep and is killed at a random moment (reproducible) up to 50 ms after it has stored
+    # each run resumes the same sweep and is killed at a random moment (reproducible) up to 15 ms after it has stored
     # a window of its own (while it solves the next or inside that window's transaction), until the sweep is complete
     store, out = tmp_path / "runs.sqlite", tmp_path / "sweep.csv"
     argv = ["sweep", CASE, *GRID, "--resume", "--quiet", "--store", str(store)]
@@ -107,7 +109,7 @@ def test_kill_9_at_random_moments_then_resume_loses_and_duplicates_nothing(tmp_p
         while writer.process.is_alive() and time.monotonic() < deadline and (
                 not store.exists() or len(_points_or_none(store)) <= before):
             time.sleep(0.002)
-        time.sleep(random.Random(12 + i).uniform(0.0, 0.05))
+        time.sleep(random.Random(12 + i).uniform(0.0, 0.015))  # a window takes about as long to solve and store
         writer.kill()
         stored = _points(store) if store.exists() else []
         assert stored == list(range(len(stored)))  # a prefix: a killed transaction left no part of its window
@@ -246,15 +248,20 @@ def good_store(tmp_path_factory) -> Path:
     path = tmp_path_factory.mktemp("good") / "runs.sqlite"
     assert main(["solve", CASE, "--store", str(path)]) == 0
     assert main([*SWEEP, "--store", str(path)]) == 0
+    close_kept()  # as at the end of a command's process: the write-ahead log folded into the file
     return path
 
 
-def _tampered(good_store: Path, folder: Path, sql: str) -> Path:
-    """A copy of the good store in ``folder`` with the SQL statements ``sql`` run on it."""
+def _tampered(good_store: Path, folder: Path, damage) -> Path:
+    """A copy of the good store in ``folder`` with ``damage`` done to it: SQL statements, or a change of its windows'
+    headers and arrays (``store_rows.rewrite_windows``)."""
     store = folder / "runs.sqlite"
     shutil.copy(good_store, store)
-    with sqlite3.connect(store) as db:
-        db.executescript(sql)
+    if callable(damage):
+        rewrite_windows(store, damage)
+        return store
+    with closing(sqlite3.connect(store)) as db, db:
+        db.executescript(damage)
     return store
 
 
@@ -390,6 +397,7 @@ def _as_a_user(argv: list[str], output: Path) -> tuple[int, str]:
 def _prepare_store(folder: Path) -> Path:
     store = folder / "runs.sqlite"
     assert main(["solve", CASE, "--store", str(store)]) == 0
+    close_kept()
     return store
 
 
@@ -425,52 +433,54 @@ def test_read_only_store_folder(shared_folder, tmp_path):
     assert stat.S_IMODE(shared_folder.stat().st_mode) == 0o555
 
 
-TAMPER = {  # SQL on a copy of the good store: each makes the sweep's compact points (or one full run) unreadable
+def _set(name: str, position: tuple, value):
+    def change(header: dict, arrays: dict) -> None:
+        arrays[name][position] = value
+    return change
+
+
+WINDOWS = "WHERE window IS NOT NULL"
+TAMPER = {  # damage to a copy of the good store: each makes its window of sweep points (or one full run) unreadable
     "template deleted": "DELETE FROM templates",
     "template not JSON": "UPDATE templates SET body = '{not json'",
     "template of another window": "UPDATE templates SET body = json_set(body, '$.constraints', json_array())",
     "a constraint's name a number": "UPDATE templates SET body = json_set(body, '$.constraints[0].name', 5)",
     "design units a list": "UPDATE templates SET body = json_set(body, '$.units.design', json_array('kg'))",
     "design names numbers": "UPDATE templates SET body = json_set(body, '$.design', json_array(1, 2))",
-    "values as characters": "UPDATE runs SET outputs = json_set(outputs, '$.constraints.value', substr("
-                            "'abcdefghijklmnopqrstuvwxyz', 1, json_array_length(outputs, '$.constraints.value'))) "
-                            "WHERE outputs LIKE '{\"template\"%'",
-    "design an object": "UPDATE runs SET outputs = json_set(outputs, '$.design', json_object('weight_mass', 1, "
-                        "'finger_diameter', 2)) WHERE outputs LIKE '{\"template\"%'",
-    "objective text": "UPDATE runs SET outputs = json_set(outputs, '$.objective', 'heavy') "
-                      "WHERE outputs LIKE '{\"template\"%'",
-    "status unknown": "UPDATE runs SET outputs = json_set(outputs, '$.status', 'exploded') "
-                      "WHERE outputs LIKE '{\"template\"%'",
-    "full solutions a list": "UPDATE runs SET outputs = '[1, 2]' WHERE outputs NOT LIKE '{\"template\"%'",
+    "numbers cut short": f"UPDATE runs SET window = substr(window, 1, length(window) - 8) {WINDOWS}",
+    "numbers as text": f"UPDATE runs SET window = 'heavy' {WINDOWS}",
+    "layout not JSON": f"UPDATE runs SET outputs = '{{\"template\": ' {WINDOWS}",
+    "objective of another type": f"UPDATE runs SET outputs = json_set(outputs, '$.arrays.objective[0]', '<i8') "
+                                 f"{WINDOWS}",
+    "a shape of text": f"UPDATE runs SET outputs = json_set(outputs, '$.arrays.design[1][0]', 'x') {WINDOWS}",
+    "a diagnosis a number": f"UPDATE runs SET outputs = json_set(outputs, '$.diagnoses[0]', 5) {WINDOWS}",
+    "status unknown": _set("status", (0,), 99),
+    "diagnosis unknown": _set("diagnosis", (1,), 7),
+    "full solutions a list": "UPDATE runs SET outputs = '[1, 2]' WHERE window IS NULL",
 }
 
 
 @pytest.mark.parametrize("damage", TAMPER)
 def test_a_tampered_solution_is_a_damaged_run(damage, good_store, tmp_path, capsys):
-    # what a compact point needs (its template, the types of its numbers, flags and names) and what a full solution
-    # needs (its shape) is checked when read: each run that fails is one damaged run, named by `runs show`, skipped
-    # and counted by `runs export`, and a resumed sweep stops at it with one line
+    # what a window's points need (their template, the layout, types and codes of their numbers) and what a full
+    # solution needs (its shape) is checked when read: each run that fails is one damaged run, named by `runs show`,
+    # skipped and counted by `runs export`, and a resumed sweep stops at it with one line
     store = _tampered(good_store, tmp_path, TAMPER[damage])
-    before, after = _outputs(good_store), _outputs(store)
-    compact = [run for run, outputs in after.items() if outputs.startswith('{"template"')]
-    damaged = compact if "templates" in TAMPER[damage] else [run for run in after if after[run] != before[run]]
-    assert damaged and set(damaged) & set(_sweep_runs(store))
-    code, _, err = _command(capsys, ["runs", "show", str(damaged[0])], store)
-    assert code == 2 and err.count("\n") == 1 and f"run {damaged[0]} is damaged" in err, err
+    before, after, windows = _rows(good_store), _rows(store), window_ids(store)
+    changed = [run for run in after if after[run] != before[run]]
+    damaged = windows if "templates" in str(TAMPER[damage]) or set(changed) & set(windows) else changed
+    assert damaged and set(damaged) & {run for run, _, _ in sweep_points(store)}
+    code, _, err = _command(capsys, ["runs", "show", str(damaged[-1])], store)
+    assert code == 2 and err.count("\n") == 1 and f"run {damaged[-1]} is damaged" in err, err
     code, out, _ = _command(capsys, ["runs", "export", "-o", str(tmp_path / "rescued.csv")], store)
     assert code == 0 and f"; {len(damaged)} damaged runs could not be read" in out, out
     code, _, err = _command(capsys, RESUME, store)
     assert code == 2 and err.count("\n") == 1 and "is damaged" in err, err
 
 
-def _outputs(store: Path) -> dict[int, str]:
-    with sqlite3.connect(store) as db:
-        return dict(db.execute("SELECT id, outputs FROM runs"))
-
-
-def _sweep_runs(store: Path) -> list[int]:
-    with sqlite3.connect(store) as db:
-        return [row[0] for row in db.execute("SELECT id FROM runs WHERE kind = 'sweep'")]
+def _rows(store: Path) -> dict[int, tuple]:
+    with closing(sqlite3.connect(store)) as db:
+        return {row[0]: row[1:] for row in db.execute("SELECT id, outputs, window FROM runs")}
 
 
 def test_a_broken_template_is_read_once(good_store, tmp_path, monkeypatch):
@@ -487,14 +497,21 @@ def test_a_broken_template_is_read_once(good_store, tmp_path, monkeypatch):
     assert lost >= 10 and sum("FROM templates" in sql for sql in reads) == 1
 
 
-MISPLACED = {  # SQL on a copy of the good store: a sweep run that is not the point it claims (quick_check passes)
-    "point beyond the sweep": "UPDATE runs SET point = 500 WHERE point = 5",
-    "point negative": "UPDATE runs SET point = -1 WHERE point = 5",
-    "point missing": "UPDATE runs SET point = NULL WHERE point = 5",
-    "point text": "UPDATE runs SET point = 'x' WHERE point = 5",
-    "two points swapped": "UPDATE runs SET point = 1000 WHERE point = 3; UPDATE runs SET point = 3 WHERE point = 17; "
-                          "UPDATE runs SET point = 17 WHERE point = 1000",
-    "inputs of another point": "UPDATE runs SET inputs = (SELECT inputs FROM runs WHERE point = 2) WHERE point = 9",
+def _shifted_inputs(header: dict, arrays: dict) -> None:
+    arrays["inputs"][:] = np.roll(arrays["inputs"], 1, axis=-1)
+
+
+MISPLACED = {  # damage to a copy of the good store: a sweep run that is not the point it claims (quick_check passes)
+    "point beyond the sweep": "UPDATE runs SET point = 500 WHERE point = 0",
+    "window beyond the sweep": f"UPDATE runs SET point = point + 10 {WINDOWS}",
+    "point negative": "UPDATE runs SET point = -1 WHERE point = 0",
+    "window's point missing": f"UPDATE runs SET point = NULL {WINDOWS}",
+    "point text": "UPDATE runs SET point = 'x' WHERE point = 0",
+    "window's point text": f"UPDATE runs SET point = 'x' {WINDOWS}",
+    "two points swapped": "UPDATE runs SET point = 1000 WHERE point = 0; UPDATE runs SET point = 0 WHERE point = 1; "
+                          "UPDATE runs SET point = 1 WHERE point = 1000",
+    "inputs of another point": "UPDATE runs SET inputs = json_set(inputs, '$.values.speed', 1.0) WHERE point = 0",
+    "a window's inputs of other points": _shifted_inputs,
 }
 
 
@@ -503,23 +520,31 @@ def test_a_resumed_sweep_takes_no_point_for_another(damage, good_store, tmp_path
     # a damaged point number, or an index that maps a point to another run, would give a point another's design:
     # each stored run's inputs must be those of the point it stands for, else the resume stops in one line
     store = _tampered(good_store, tmp_path, MISPLACED[damage])
-    with sqlite3.connect(store) as db:
+    with closing(sqlite3.connect(store)) as db:
         assert db.execute("PRAGMA quick_check").fetchone()[0] == "ok"
     code, _, err = _command(capsys, RESUME, store)
     assert code == 2 and err.count("\n") == 1 and "is damaged (its point number or inputs" in err, err
 
 
 def test_export_rescues_runs_when_the_last_page_is_gone(good_store, tmp_path, capsys):
-    # the largest id lives on the table's last page: with it zeroed, SELECT MAX(id) fails and the export used to
+    # the largest id lives on the table's last leaf page: with it zeroed, SELECT MAX(id) fails and the export used to
     # read nothing; it now tries the ids on, says where reading stopped, and writes what it read
     store = tmp_path / "runs.sqlite"
-    data = bytearray(good_store.read_bytes())
-    data[-_page(data):] = bytes(_page(data))
+    shutil.copy(good_store, store)
+    with RunStore(store) as opened:  # solves after the sweep, on leaf pages of their own (a window is one row)
+        solution = opened.run(1)["outputs"]
+        for k in range(12):
+            opened.record("solve", {"values": {}, "free": [], "bounds": {}, "marker": f"solve {k:02d}"}, solution,
+                          status="optimal", objective=solution["objective"]["value"])
+    close_kept()
+    data = bytearray(store.read_bytes())
+    last = data.index(b"solve 11") // _page(data) * _page(data)
+    data[last:last + _page(data)] = bytes(_page(data))
     store.write_bytes(bytes(data))
     assert main(["runs", "export", "-o", str(tmp_path / "rescued.csv"), "--store", str(store)]) == 0
     out, err = capsys.readouterr()
     rescued = pd.read_csv(tmp_path / "rescued.csv")
-    assert 0 < len(rescued) < 21 and rescued["id"].tolist() == list(range(1, len(rescued) + 1)), out
+    assert 21 <= len(rescued) < 33 and rescued["id"].tolist() == list(range(1, len(rescued) + 1)), out
     assert f"nothing after run {len(rescued)} could be read" in out and err == "", (out, err)
     assert main(["runs", "export", "-o", str(tmp_path / "all.csv"), "--store", str(good_store)]) == 0
     assert capsys.readouterr().out.strip().endswith("21 runs written to " + str(tmp_path / "all.csv"))
@@ -528,8 +553,8 @@ def test_export_rescues_runs_when_the_last_page_is_gone(good_store, tmp_path, ca
 def test_a_run_whose_text_is_no_utf8_is_named_and_nothing_of_it_printed(good_store, tmp_path, capsys):
     # damaged bytes (a terminal escape, a byte no UTF-8 text has) in a run's outputs: the run is named as damaged
     # in one printable line, skipped by the export, and a resume stops at it
-    with sqlite3.connect(good_store) as db:
-        (run,) = db.execute("SELECT id FROM runs WHERE point = 1").fetchone()
+    with closing(sqlite3.connect(good_store)) as db:
+        (run,) = db.execute("SELECT id FROM runs WHERE point = 0").fetchone()  # the sweep's first point: a row
     store = _tampered(good_store, tmp_path,
                       f"UPDATE runs SET outputs = CAST(x'7b0a1b5b33316d4641494c0d0aff' AS TEXT) WHERE id = {run}")
     for argv, code in ((["runs", "show", str(run)], 2), (["runs", "export", "-o", str(tmp_path / "r.csv")], 0),

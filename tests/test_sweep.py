@@ -173,10 +173,9 @@ def test_json_gives_every_point_in_si(cli, run_store):
 def test_the_table_read_from_a_window_is_the_table_of_its_records(case_file, varies, mode, tmp_path):
     # batched points are tabulated from their window's arrays, their records built only when read; both must give
     # the same table, cell for cell, next to points solved alone (the first, infeasible ones) and stored ones
-    import sqlite3
-
     from clutchopt.optimise.batch import BATCHED
     from clutchopt.optimise.table import record_table
+    from store_rows import forget_points
 
     case = load_case(CASES / case_file)
     sweep = Sweep(case, [parse_vary(text, case.coupling) for text in varies], mode=mode)
@@ -187,10 +186,7 @@ def test_the_table_read_from_a_window_is_the_table_of_its_records(case_file, var
     batched = [r["solver"]["status"] == BATCHED for r in records]
     assert any(batched) and not all(batched)
     pd.testing.assert_frame_equal(result.frame, sweep.frame(record_table(records, names)), check_exact=True)
-    connection = sqlite3.connect(tmp_path / "runs.sqlite")  # forget every other stored point, then resume
-    with connection:
-        connection.execute("DELETE FROM runs WHERE point % 2 = 1")
-    connection.close()
+    forget_points(tmp_path / "runs.sqlite", lambda point: point % 2 == 1)  # forget every other point, then resume
     with RunStore(tmp_path / "runs.sqlite") as store:
         resumed = sweep.run(store, resume=True, progress=False)
     assert resumed.reused == len(records) - len(records) // 2 and resumed.solved == len(records) // 2

@@ -2,9 +2,9 @@
 
 The batched points (``clutchopt.optimise.batch``) are re-evaluated by the formulation's own equations (constraints,
 objective; ``verify``'s arithmetic), vectorised over the points. A window's table rows (``Solutions.table``) and
-records (each point's ``Solution.as_dict()``, ``Solutions.records``; compact, as the run store keeps them,
-``Solutions.compact_records``) are built together when asked for, from the window's arrays; a point's
-:class:`Solution` is built from its record when the point is read.
+records (each point's ``Solution.as_dict()``, as arrays as the run store keeps them: ``Solutions.stored``) are built
+together when asked for, from the window's arrays; a point's :class:`Solution` is built from its record when the
+point is read.
 """
 
 from __future__ import annotations
@@ -15,11 +15,12 @@ import numpy as np
 
 from clutchopt.model import Output, namespace
 from clutchopt.optimise.posed import Posed
-from clutchopt.optimise.sensitivity import limit_elasticities, sense_sign, sensitivity_columns
+from clutchopt.optimise.sensitivity import limit_elasticities, sense_sign, sensitivity_table
 from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.table import active_names, placed, record_table
 from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, constraint_table, margin_flags
-from clutchopt.records import CONSTRAINT_COLUMNS, TEMPLATE, expand, expanded, template_key
+from clutchopt.records import STATUSES
+from clutchopt.window_records import KINDS, WindowRecords, in_order
 from clutchopt.units import si_unit
 
 BATCHED = "batched, KKT verified"  # a batched point's solver status
@@ -71,19 +72,19 @@ class Solutions(Sequence):
     def records(self) -> list[dict]:
         """Every point's ``Solution.as_dict()``, those of the batched points built together from the window's arrays
         (no Solution objects)."""
-        return expanded(*self.compact_records())
+        return in_order(len(self), *self.stored())
 
-    def compact_records(self) -> tuple[list[dict], dict[str, dict]]:
-        """Every point's record as the run store keeps it, a batched point's compact (``clutchopt.records``), and the
-        templates they use, by key."""
-        if self._checked is None:
-            return self._by_position([]), {}
-        template, compact = self._checked.compact_records()
-        return self._by_position(compact), {compact[0][TEMPLATE]: template} if compact else {}
-
-    def _by_position(self, batched: list[dict]) -> list[dict]:
-        return [self._solutions[i].as_dict() if i in self._solutions else batched[column]
-                for i, column in enumerate(self._column.tolist())]
+    def stored(self) -> tuple[dict[int, dict], list[tuple[np.ndarray, WindowRecords]]]:
+        """The records as the run store keeps them: each point solved alone's ``Solution.as_dict()`` by position,
+        and the batched points' records as arrays (``clutchopt.window_records``) with their positions."""
+        alone = {i: solution.as_dict() for i, solution in sorted(self._solutions.items())}
+        batched = np.flatnonzero(self._column >= 0)
+        batched = batched[np.isin(batched, list(alone), invert=True)]
+        if not len(batched):
+            return alone, []
+        columns = self._column[batched]
+        whole = len(columns) == len(self._checked.block.index) and (columns == np.arange(len(columns))).all()
+        return alone, [(batched, self._checked.window_records(None if whole else columns))]
 
     def table(self) -> dict[str, np.ndarray]:
         """Every point's row of a sweep table (``clutchopt.optimise.table``), those of the batched points read from
@@ -152,9 +153,9 @@ class Checked:
                 "active": active_names(active, [c.name for c in self.constraints]), "diagnosis": diagnosis,
                 "iterations": np.full(len(self.block.index), None)}
 
-    def compact_records(self, columns: list[int] | None = None) -> tuple[dict, list[dict]]:
-        """Every point's record (of the points ``columns`` only, if given) in two parts (``clutchopt.records``): the
-        template the points share, and each point's own numbers, converted to Python floats a table at a time."""
+    def window_records(self, columns: np.ndarray | None = None) -> WindowRecords:
+        """Every point's record (of the points ``columns`` only, if given) as arrays (``clutchopt.window_records``):
+        the template the points share and their numbers, a column per point."""
         posed, f, names = self.posed, self.posed.formulation, self.posed.names
         cols = slice(None) if columns is None else np.asarray(columns, dtype=int)
         a = {key: value[:, cols] for key, value in self.block.arrays.items()}
@@ -165,9 +166,7 @@ class Checked:
             sign = np.array([sense_sign(c.sense) for c in self.constraints])[:, None]
             lam = a["lam_g"][:n_c]
             elasticity = limit_elasticities(sign, lam, a["p"][m + n], limit, scale, objective)
-        priced = ((objective != 0) & np.isfinite(objective)).tolist()
-        active, fits = (flags.T.tolist() for flags in margin_flags(margin, FEASIBILITY_TOL))
-        tables = [t.T.tolist() for t in (value, limit, margin, scale, lam, elasticity)]
+        active, fits = margin_flags(margin, FEASIBILITY_TOL)
         outputs = self.outputs
         out_values = np.empty((len(outputs), len(objective)))
         for row, (values, _) in zip(out_values, outputs.values()):
@@ -184,31 +183,25 @@ class Checked:
             "solver": {"name": "sqpmethod", "status": BATCHED, "iterations": None},
             "bounds": {name: [float(lo), float(hi)] for name, lo, hi in zip(names, *self.bounds)},
         }
-        key, unpriced = template_key(template), [None] * n_c
-        (statuses, diagnoses), objectives = (v[cols].tolist() for v in self.verdicts()), objective.tolist()
-        sensitivities = sensitivity_columns(posed, *(a[key] for key in ("x", "p", "lam_x", "lam_g", "lbx", "ubx")),
-                                            np.where(feasible, objective, np.nan))
-        times, solves = a["time"][0].tolist(), a["solves"][0].tolist()
-        compact = []
-        for j, (design, point_outputs, values, limits, margins, scales, lams, elasticities) in enumerate(zip(
-                self.design[:, cols].T.tolist(), out_values.T.tolist(), *tables)):
-            compact.append({
-                TEMPLATE: key, "status": statuses[j], "objective": objectives[j],
-                "design": design, "outputs": point_outputs,
-                "constraints": dict(zip(CONSTRAINT_COLUMNS, (values, limits, margins, active[j], fits[j], scales, lams,
-                                                             elasticities if priced[j] else unpriced))),
-                "solver": {"time_s": times[j], "solves": int(solves[j])},
-                "diagnosis": diagnoses[j],
-                "integer_search": self.searches.get(int(index[j]), []),
-                "sensitivities": sensitivities[j],
-            })
-        return template, compact
+        sensitivity_names, sensitivity, sensitive = sensitivity_table(
+            posed, *(a[key] for key in ("x", "p", "lam_x", "lam_g", "lbx", "ubx")),
+            np.where(feasible, objective, np.nan))
+        found = sorted(set(self.searches) & set(index.tolist())) if self.searches else []  # points that ran one
+        searches = dict(zip(np.searchsorted(index, found).astype(str).tolist(), map(self.searches.get, found)))
+        arrays = {"status": np.where(feasible, STATUSES.index("optimal"), STATUSES.index("unverified")),
+                  "diagnosis": np.where(feasible, -1, 0), "objective": objective,
+                  "time_s": a["time"][0], "solves": a["solves"][0],
+                  "priced": (objective != 0) & np.isfinite(objective),
+                  "design": self.design[:, cols], "outputs": out_values,
+                  "value": value, "limit": limit, "margin": margin, "active": active, "feasible": fits, "scale": scale,
+                  "multiplier": lam, "elasticity": elasticity, "sensitivity": sensitivity, "sensitive": sensitive}
+        labels = {"diagnoses": [UNVERIFIED], "sensitivities": sensitivity_names, "integer_search": searches}
+        return WindowRecords(template, {name: np.ascontiguousarray(array, dtype=KINDS[name][0])
+                                        for name, array in arrays.items()}, labels)
 
-    def records(self, columns: list[int] | None = None) -> list[dict]:
-        """Every point's ``Solution.as_dict()`` (of the points ``columns`` only, if given): its compact record
-        expanded."""
-        template, compact = self.compact_records(columns)
-        return [expand(record, template) for record in compact]
+    def records(self, columns: np.ndarray | None = None) -> list[dict]:
+        """Every point's ``Solution.as_dict()`` (of the points ``columns`` only, if given)."""
+        return self.window_records(columns).records()
 
     def __getitem__(self, j: int) -> Solution:
         """Point ``j`` as the Solution ``Problem.solve`` returns (its record as objects, the display units of its

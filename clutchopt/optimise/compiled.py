@@ -43,13 +43,17 @@ def compiler() -> str | None:
 def compiled_library(solver: ca.Function) -> str | None:
     """The shared library of ``solver``'s NLP functions (its oracle and the derivatives it evaluates), from the cache
     or built now; None where that is not possible (the solver then stays as it is)."""
+    return _library([solver.oracle(), *(solver.get_function(name) for name in solver.get_function())])
+
+
+def _library(functions: list[ca.Function]) -> str | None:
+    """The shared library of ``functions``, from the cache or built now; None where that is not possible."""
     cc, folder = compiler(), cache_folder()
     if cc is None or folder is None:
         return None
     generator = ca.CodeGenerator("clutchopt_nlp", {"with_header": False})
-    generator.add(solver.oracle())
-    for name in solver.get_function():
-        generator.add(solver.get_function(name))
+    for function in functions:
+        generator.add(function)
     try:
         with tempfile.TemporaryDirectory() as scratch:
             generator.generate(scratch + os.sep)
@@ -88,3 +92,20 @@ def compiled_solver(name: str, solver: ca.Function, options: dict) -> ca.Functio
         return ca.nlpsol(name, "sqpmethod", library, options)
     except RuntimeError:  # a library that does not load (damaged cache)
         return solver
+
+
+def is_compiled(solver: ca.Function) -> bool:
+    """Whether ``solver`` (of :func:`compiled_solver`) evaluates its NLP's functions compiled."""
+    return solver.get_function("nlp_hess_l").is_a("External")
+
+
+def compiled_function(function: ca.Function) -> ca.Function:
+    """``function`` compiled where a library can be had (the same operations in the same order: the same numbers),
+    else ``function`` itself."""
+    library = _library([function])
+    if library is None:
+        return function
+    try:
+        return ca.external(function.name(), library)
+    except RuntimeError:  # a library that does not load (damaged cache)
+        return function

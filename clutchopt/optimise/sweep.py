@@ -45,7 +45,7 @@ from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_na
                                            parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
 from clutchopt.optimise.table import joined_tables, record_table
 from clutchopt.optimise.verify import DESIGN_STATUSES
-from clutchopt.records import expanded, status_and_objective
+from clutchopt.window_records import WindowRecords, in_order
 from clutchopt.units import from_si
 
 SPENT = ("solves", "solver_s", "check_s")  # what solving points costs: solver calls, seconds in them and in checks
@@ -57,29 +57,30 @@ def total_spent(parts: list["PointResults"]) -> dict:
 
 class PointResults:
     """Solved points of a sweep, in point order: their indices and values, their rows of the sweep table (a batched
-    window's read from its arrays), and their records, built when asked for: as the run store keeps them (a batched
-    point's compact, with its template: ``clutchopt.records``) and in full (``Solution.as_dict()``: ``--json``,
-    ``SweepResult.solutions``; kept once built). ``spent``: their solver calls (``solves``) and seconds in them
-    (``solver_s``) and in the batches' compiled checks (``check_s``)."""
+    window's read from its arrays), and their records, built when asked for: as the run store keeps them (a point
+    solved alone's ``Solution.as_dict()`` by position, a window's batched points' as arrays with their positions:
+    ``clutchopt.window_records``) and in full (``Solution.as_dict()``: ``--json``, ``SweepResult.solutions``; kept
+    once built). ``spent``: their solver calls (``solves``) and seconds in them (``solver_s``) and in the batches'
+    compiled checks (``check_s``)."""
 
-    def __init__(self, points: Points, names: list[str],
-                 stored: tuple[list[dict], dict[str, dict]] | None = None, solutions: Solutions | None = None,
+    def __init__(self, points: Points, names: list[str], alone: dict[int, dict] | None = None,
+                 windows: list[tuple[np.ndarray, WindowRecords]] | None = None, solutions: Solutions | None = None,
                  spent: dict | None = None):
         self.points, self.names, self.spent = points, names, spent or dict.fromkeys(SPENT, 0)
-        self._stored, self._solutions, self._records = stored, solutions, None
+        self._alone, self._windows, self._solutions, self._records = alone or {}, windows or [], solutions, None
 
     def __len__(self) -> int:
         return len(self.points)
 
-    def stored(self) -> tuple[list[dict], dict[str, dict]]:
-        """Each point's record as the run store keeps it, and the templates of the compact ones by key (a window's
-        built afresh from its arrays each time: not kept once written)."""
-        return self._stored if self._solutions is None else self._solutions.compact_records()
+    def stored(self) -> tuple[dict[int, dict], list[tuple[np.ndarray, WindowRecords]]]:
+        """The records as the run store keeps them (a window's built afresh from its arrays each time: not kept
+        once written)."""
+        return (self._alone, self._windows) if self._solutions is None else self._solutions.stored()
 
     def records(self) -> list[dict]:
         """Each point's ``Solution.as_dict()``."""
         if self._records is None:
-            self._records = expanded(*self.stored())
+            self._records = in_order(len(self), *self.stored())
         return self._records
 
     def table(self) -> dict[str, np.ndarray]:
@@ -88,13 +89,13 @@ class PointResults:
     @classmethod
     def joined(cls, parts: list["PointResults"], names: list[str]) -> "PointResults":
         """Consecutive results as one, with their records as the store keeps them (what a worker sends back)."""
-        records, templates = [], {}
+        alone, windows, offset = {}, [], 0
         for part in parts:
-            stored, used = part.stored()
-            records += stored
-            templates.update(used)
-        return cls(Points.joined([part.points for part in parts]), names, (records, templates),
-                   spent=total_spent(parts))
+            part_alone, part_windows = part.stored()
+            alone.update((offset + position, record) for position, record in part_alone.items())
+            windows += [(offset + positions, window) for positions, window in part_windows]
+            offset += len(part)
+        return cls(Points.joined([part.points for part in parts]), names, alone, windows, spent=total_spent(parts))
 
 
 CONTINUATION_STEPS = 3  # from the last feasible point to one without a design, before its verdict
@@ -111,7 +112,7 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
     if robust is not None or case.options.get("choose"):
         for j, (index, values) in enumerate(points.pairs()):
             best = design_case(case.with_values(**values), mode, objective, SolverOptions(tol=tol), robust)[0]
-            yield PointResults(points[j:j + 1], names, ([best.as_dict()], {}),
+            yield PointResults(points[j:j + 1], names, {0: best.as_dict()},
                                spent={"solves": best.solution.solver.solves, "solver_s": best.solution.solver.time_s,
                                       "check_s": 0})
         return
@@ -170,7 +171,7 @@ def continued(problem, case: Case, feasible: tuple[dict, Solution], values: dict
 
 
 def _one(points: Points, j: int, names: list[str], solution: Solution) -> PointResults:
-    return PointResults(points[j:j + 1], names, ([solution.as_dict()], {}),
+    return PointResults(points[j:j + 1], names, {0: solution.as_dict()},
                         spent={"solves": solution.solver.solves, "solver_s": solution.solver.time_s, "check_s": 0})
 
 
@@ -333,13 +334,23 @@ class Sweep:
 
     @property
     def spec(self) -> dict:
+        """What defines the sweep, its resume key: coupling, mode, objective, tolerance, the case (values, free
+        variables, bounds, choices), the robust method and the points (each varied quantity's SI values by name)."""
+        return {**self._defined, "points": {name: column.tolist() for name, column in self.grid.columns.items()}}
+
+    @property
+    def older_spec(self) -> dict:
+        """:attr:`spec` as an older clutchopt wrote it (the points a dict each): its key finds a sweep it stored."""
+        return {**self._defined, "points": self.points}
+
+    @property
+    def _defined(self) -> dict:
         return {"coupling": self.case.coupling, "mode": self.formulation.mode, "objective": self.objective.name,
                 "tol": self.tol, "case": {"values": self.case.values, "free": list(self.case.free),
                                           "bounds": self.case.bounds,
                                           **({"choose": self.case.options["choose"]}
                                              if self.case.options.get("choose") else {})},
-                **({"robust": self.robust.as_dict()} if self.robust is not None else {}),
-                "points": self.points}
+                **({"robust": self.robust.as_dict()} if self.robust is not None else {})}
 
     def run(self, store=None, resume: bool = False, jobs: int = 1, runner: Callable | None = None,
             progress: bool = True, chunk_size: int | None = None) -> SweepResult:
@@ -348,27 +359,26 @@ class Sweep:
 
         sweep_id, stored = None, {}
         if store is not None:
-            sweep_id = store.latest_sweep(self.spec) if resume else None
-            if sweep_id is None:
-                sweep_id = store.new_sweep(self.spec, len(self.grid), self.case.path)  # None: store failed
-            stored = store.sweep_outputs(sweep_id, self.points) if sweep_id is not None else {}
+            sweep_id = store.latest_sweep(self.spec, self.older_spec) if resume else None
+            if sweep_id is not None:
+                stored = store.sweep_outputs(sweep_id, self.points)
+            else:  # a new sweep (None: the store failed), nothing of it stored yet
+                sweep_id = store.new_sweep(self.spec, len(self.grid), self.case.path)
         kept = np.array(sorted(stored), dtype=int)
         pending = self.grid[np.isin(self.grid.index, kept, invert=True)] if stored else self.grid
         workers = max(jobs, 1)
         size = chunk_size or max(1, min(25, math.ceil(len(pending) / (4 * workers))))
         task = (self.case, self.formulation.mode, self.objective.name, self.tol, self.robust)
         names = [v.name for v in self.formulation.variables]
-        parts = [PointResults(self.grid[kept], names, ([stored[i] for i in kept.tolist()], {}))]
+        parts = [PointResults(self.grid[kept], names, dict(enumerate(stored[i] for i in kept.tolist())))]
         bar = tqdm(total=len(self.grid), initial=len(stored), unit="point", desc="sweep", disable=not progress,
                    mininterval=0.5)
         started = time.perf_counter()
         with bar, interrupt_between_points() as check:
             for results in (runner or local_runner(jobs))(task, pending, size):
                 if store is not None and sweep_id is not None:  # the results in hand in one transaction
-                    records, templates = results.stored()
-                    store.record_many([("sweep", self._inputs(values), record, self._where(index, record, sweep_id))
-                                       for (index, values), record in zip(results.points.pairs(), records)],
-                                      templates)
+                    store.record_points(self._inputs(), self._where(sweep_id), results.points.index,
+                                        results.points.columns, *results.stored())
                 elif store is not None:  # the sweep itself could not be recorded
                     store.unrecorded += len(results)
                 parts.append(results)
@@ -395,18 +405,16 @@ class Sweep:
                                                            record.get("choice", {}).items()) for record in records],
                                                  dtype=object))
 
-    def _inputs(self, values: dict[str, float]) -> dict:
-        """A point's inputs as the store keeps them: the case's SI values with the point's (checked when the sweep
-        was made), its free variables and bounds."""
-        values = {**self.case.values, **{name: float(value) for name, value in values.items()}}
-        return {"values": values, "free": list(self.case.free), "bounds": self.case.bounds}
+    def _inputs(self) -> dict:
+        """What the points' inputs share as the store keeps them: the case's SI values (each point's varied values,
+        checked when the sweep was made, replace the case's), its free variables and bounds."""
+        return {"values": self.case.values, "free": list(self.case.free), "bounds": self.case.bounds}
 
-    def _where(self, point: int, record: dict, sweep_id: int) -> dict:
-        status, objective = status_and_objective(record)
-        return {"status": status, "objective": objective,
-                "objective_unit": self.objective.unit, "case_path": self.case.path, "title": self.case.title,
+    def _where(self, sweep_id: int) -> dict:
+        """The store's fields every point of the sweep shares."""
+        return {"objective_unit": self.objective.unit, "case_path": self.case.path, "title": self.case.title,
                 "coupling": self.case.coupling, "mode": self.formulation.mode, "objective_name": self.objective.name,
-                "sweep_id": sweep_id, "point": point}
+                "sweep_id": sweep_id}
 
     def frame(self, table: dict[str, np.ndarray], order: np.ndarray | None = None) -> pd.DataFrame:
         """One row per point (``table``'s points taken in ``order``): inputs (as given: :class:`Vary`), status,

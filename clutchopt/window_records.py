@@ -1,0 +1,184 @@
+"""The records of a window's batched sweep points as arrays, one column per point, and their bytes in the run store.
+
+A batched window (``clutchopt.optimise.batch_window``) holds its points' numbers as arrays; :class:`WindowRecords`
+keeps them so (with the template the points share, ``clutchopt.records``) and builds a point's compact record
+only when it is read. The run store keeps a window's points as one row: :func:`pack` turns their arrays into bytes
+and a layout (each array's name, type and shape), :func:`unpack` reads them back, refusing bytes that do not fit
+their layout.
+Pure NumPy: the store reads windows without importing the solvers.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import cached_property
+from itertools import compress
+
+import numpy as np
+
+from clutchopt.records import CONSTRAINT_COLUMNS, STATUSES, TEMPLATE, expand, template_key
+
+NUMBER, FLAG, WHOLE, CODE = "<f8", "|b1", "<i8", "|i1"
+KINDS = {  # each array of a window's records: its type, and whether it holds a row per item (else one value a point)
+    "status": (CODE, False),  # index into STATUSES
+    "diagnosis": (CODE, False),  # index into the diagnoses named beside the arrays; -1: none
+    "objective": (NUMBER, False), "time_s": (NUMBER, False), "solves": (WHOLE, False),
+    "priced": (FLAG, False),  # whether the constraints' elasticities apply (a finite, non-zero objective)
+    "design": (NUMBER, True), "outputs": (NUMBER, True),
+    **{name: (FLAG if name in ("active", "feasible") else NUMBER, True) for name in CONSTRAINT_COLUMNS},
+    "sensitivity": (NUMBER, True), "sensitive": (FLAG, True),  # each point's sensitivities and which apply
+}
+
+
+class WindowRecords:
+    """Compact records (``clutchopt.records``) of batched points as arrays (:data:`KINDS`; the last axis runs over
+    the points), with their ``template``; ``labels``: the texts the arrays index (``diagnoses``), the name of each
+    sensitivity row (``sensitivities``; a name that repeats adds its row to the one before) and the integer searches
+    by column (``integer_search``, only of the points that ran one)."""
+
+    def __init__(self, template: dict, arrays: dict[str, np.ndarray], labels: dict):
+        self.template, self.arrays, self.labels = template, arrays, labels
+
+    @cached_property
+    def key(self) -> str:
+        return template_key(self.template)
+
+    def __len__(self) -> int:
+        return len(self.arrays["objective"])
+
+    def take(self, columns: np.ndarray) -> "WindowRecords":
+        """The records of the points ``columns`` only."""
+        position = {int(column): str(j) for j, column in enumerate(np.asarray(columns).tolist())}
+        searches = {position[int(column)]: search for column, search in self.labels["integer_search"].items()
+                    if int(column) in position}
+        return WindowRecords(self.template, {name: array[..., columns] for name, array in self.arrays.items()},
+                             {**self.labels, "integer_search": searches})
+
+    def compact(self, json_numbers: bool = False) -> list[dict]:
+        """Each point's compact record; ``json_numbers``: NaN and infinities as None, as JSON keeps them (what a
+        record read back from the store holds)."""
+        a, labels, count = self.arrays, self.labels, len(self)
+        lists = {name: (a[name].T if rows else a[name]).tolist() if kind != NUMBER or not json_numbers
+                 else _json_numbers(a[name].T if rows else a[name]) for name, (kind, rows) in KINDS.items()}
+        statuses = [STATUSES[code] for code in lists["status"]]
+        diagnoses = [labels["diagnoses"][code] if code >= 0 else None for code in lists["diagnosis"]]
+        searches = labels["integer_search"]
+        sensitivities = values_by_name(labels["sensitivities"], lists["sensitivity"], lists["sensitive"])
+        unpriced = [None] * len(self.template["constraints"])
+        key = self.key
+        return [{
+            TEMPLATE: key, "status": statuses[j], "objective": lists["objective"][j],
+            "design": lists["design"][j], "outputs": lists["outputs"][j],
+            "constraints": {name: lists[name][j] if name != "elasticity" or lists["priced"][j] else unpriced
+                            for name in CONSTRAINT_COLUMNS},
+            "solver": {"time_s": lists["time_s"][j], "solves": lists["solves"][j]},
+            "diagnosis": diagnoses[j], "integer_search": searches.get(str(j), []),
+            "sensitivities": sensitivities[j],
+        } for j in range(count)]
+
+    def records(self, json_numbers: bool = False) -> list[dict]:
+        """Each point's ``Solution.as_dict()``: its compact record expanded with the template."""
+        return [expand(record, self.template) for record in self.compact(json_numbers)]
+
+    @classmethod
+    def read(cls, template: dict, arrays: dict[str, np.ndarray], labels: dict) -> "WindowRecords":
+        """Records read back from the run store (the arrays of :func:`unpack`); ValueError, KeyError or TypeError
+        where the arrays or labels are not those of a window's records (their types, shapes, codes)."""
+        count = len(arrays["objective"])
+        for name, (kind, rows) in KINDS.items():
+            if arrays[name].dtype.str != kind or arrays[name].ndim != 1 + rows or arrays[name].shape[-1] != count:
+                raise ValueError("its numbers do not fit their layout")
+        labels = {key: labels[key] for key in ("diagnoses", "sensitivities", "integer_search")}
+        sizes = (len(STATUSES), len(labels["diagnoses"]), len(labels["sensitivities"]))
+        if (not all(0 <= code < sizes[0] for code in arrays["status"].tolist())
+                or not all(-1 <= code < sizes[1] for code in arrays["diagnosis"].tolist())
+                or arrays["sensitivity"].shape[0] != sizes[2] or arrays["sensitive"].shape[0] != sizes[2]
+                or not all(type(name) is str for name in (*labels["diagnoses"], *labels["sensitivities"]))
+                or type(labels["integer_search"]) is not dict
+                or not all(type(search) is list for search in labels["integer_search"].values())):
+            raise ValueError("its numbers do not fit their layout")
+        return cls(template, arrays, labels)
+
+
+def in_order(count: int, alone: dict[int, dict], windows: list[tuple[np.ndarray, WindowRecords]]) -> list[dict]:
+    """The full records (``Solution.as_dict()``) of ``count`` points in order: ``alone`` by position, and each
+    window's at its positions."""
+    records = [None] * count
+    for position, record in alone.items():
+        records[position] = record
+    for positions, window in windows:
+        for position, record in zip(positions.tolist(), window.records()):
+            records[position] = record
+    return records
+
+
+def _json_numbers(array: np.ndarray) -> list:
+    """``array.tolist()`` with None for NaN and infinities."""
+    finite = np.isfinite(array)
+    return array.tolist() if finite.all() else np.where(finite, array, None).tolist()
+
+
+def values_by_name(names: list[str], points: list[list[float]], applies: list[list[bool]]) -> list[dict[str, float]]:
+    """Each point's values (a list in the order of ``names``) by name, of those that apply to it (a name that
+    repeats adds its value to the one before)."""
+    if len(set(names)) == len(names):
+        return [dict(compress(zip(names, row), keep)) for row, keep in zip(points, applies)]
+    found = []
+    for row, keep in zip(points, applies):
+        point = {}
+        for name, value in compress(zip(names, row), keep):
+            point[name] = point[name] + value if name in point else value
+        found.append(point)
+    return found
+
+
+def pack(arrays: dict[str, np.ndarray]) -> tuple[dict, bytes]:
+    """Arrays (a value per point, or rows of them) as one byte string, and their layout: each array's name, type,
+    shape and the rows whose points all hold the same value (bit for bit), kept once: about half the rows of a
+    window's records (limits, scales, flags, sensitivities to quantities that do not move)."""
+    layout, parts = {}, []
+    for name, array in arrays.items():
+        rows = array.reshape(math.prod(array.shape[:-1]), array.shape[-1])
+        bits = rows.view(f"u{rows.itemsize}") if rows.dtype.kind == "f" else rows
+        same = (bits == bits[:, :1]).all(axis=1) if rows.shape[1] else np.zeros(len(rows), dtype=bool)
+        kept = same.tolist()
+        layout[name] = [array.dtype.str, list(array.shape), [row for row, once in enumerate(kept) if once]]
+        if not any(kept):
+            parts.append(rows.tobytes())
+        elif all(kept):
+            parts.append(rows[:, 0].tobytes())
+        else:
+            parts += [rows[~same].tobytes(), rows[same, 0].tobytes()]
+    return layout, b"".join(parts)
+
+
+def unpack(layout: dict, data: bytes) -> dict[str, np.ndarray]:
+    """The arrays :func:`pack` gave ``layout`` and ``data`` for; ValueError where the bytes do not fit the layout (a
+    type other than a window's, a shape or rows that are no lists of whole numbers, too few or too many bytes)."""
+    arrays, start = {}, 0
+    if type(layout) is not dict or type(data) is not bytes:
+        raise ValueError("its numbers do not fit their layout")
+    for name, entry in layout.items():
+        if not (type(entry) is list and len(entry) == 3 and entry[0] in (NUMBER, FLAG, WHOLE, CODE)
+                and type(entry[1]) is list and 1 <= len(entry[1]) <= 2 and type(entry[2]) is list
+                and all(type(n) is int and n >= 0 for n in (*entry[1], *entry[2]))):
+            raise ValueError("its numbers do not fit their layout")
+        dtype, shape, same = np.dtype(entry[0]), tuple(entry[1]), entry[2]
+        count = shape[-1]
+        rows = np.zeros(math.prod(shape[:-1]), dtype=bool)
+        if len(set(same)) != len(same) or any(row >= len(rows) for row in same):
+            raise ValueError("its numbers do not fit their layout")
+        rows[same] = True
+        size = dtype.itemsize * ((len(rows) - len(same)) * count + len(same))
+        if start + size > len(data):
+            raise ValueError("its numbers do not fit their layout")
+        values = np.frombuffer(data, dtype, size // dtype.itemsize, start)
+        array = np.empty((len(rows), count), dtype)
+        varying = len(rows) - len(same)
+        array[~rows] = values[:varying * count].reshape(varying, count)
+        array[rows] = values[varying * count:, None]
+        arrays[name] = array.reshape(shape)
+        start += size
+    if start != len(data):
+        raise ValueError("its numbers do not fit their layout")
+    return arrays
