@@ -72,13 +72,15 @@ def test_a_wrong_torque_unit_names_a_torque():
 
 def _declared_units() -> set[str]:
     """Every unit the couplings declare: quantities, variables, objectives, constraints and outputs (read off the
-    CasADi expressions, whose units are plain text), and the units scenes read."""
+    CasADi expressions, whose units are plain text), the [start_up] quantities and the units scenes read."""
     import casadi as ca
 
     from clutchopt.formulations import MODULES, get_coupling
     from clutchopt.model import namespace
+    from clutchopt.start_up.equations import QUANTITIES
 
     units = {"kg*m^2", "rpm", "J/K", "W/K", "s", "", "N*m", "N"}  # clutchopt/simulate/scene.py
+    units |= {q.unit for q in QUANTITIES}  # a case's [start_up] section
     for name in MODULES:
         coupling = get_coupling(name)
         units |= {q.unit for q in coupling.quantities}

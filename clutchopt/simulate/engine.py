@@ -35,22 +35,7 @@ from scipy.integrate import solve_ivp
 from clutchopt.errors import InputError
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.laws import InductionMotor, Load
-
-# The range of every quantity of a start-up (SI, low, high, unit shown): the simulator is tested at the corners of
-# these ranges (tests/test_hostile.py); far outside them float64 products such as J w^2 or k e^{a w} stop meaning
-# anything and the integrator may never finish. Scenes refuse values outside them field by field; a model built
-# otherwise (a case's start-up) is refused by :func:`simulate` as a whole.
-INERTIA = (1e-9, 1e9, "kg*m^2")
-TORQUE = (1e-9, 1e9, "N*m")
-LOAD = (0.0, 1e9, "N*m")
-SPEED = (1e-3, 1e5, "rad/s")
-TIME = (1e-9, 1e9, "s")
-SLIP_SCALE = (-1e6, 1e6, "s/rad")
-FORCE = (0.0, 1e9, "N")
-HEAT_CAPACITY = (1e-6, 1e12, "J/K")
-CONDUCTANCE = (0.0, 1e12, "W/K")
-BREAKDOWN_SLIP = (1e-6, 0.99, "")
-TOLERANCE = (1e-14, 1e-3, "")
+from clutchopt.simulate.ranges import BREAKDOWN_SLIP, CONDUCTANCE, HEAT_CAPACITY, INERTIA, LOAD, SPEED, TIME, TORQUE
 
 STEADY = 1e-9  # relative net acceleration below which a slipping start-up is steady (no lock-up)
 MAX_SWITCHES = 200  # stick/slip switches before a run is declared chattering

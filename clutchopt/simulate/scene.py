@@ -34,7 +34,8 @@ from pathlib import Path
 
 from clutchopt.cases import check_text, read_toml
 from clutchopt.errors import InputError, Problems
-from clutchopt.simulate.engine import (
+from clutchopt.simulate.engine import Model, simulate
+from clutchopt.simulate.ranges import (
     BREAKDOWN_SLIP,
     CONDUCTANCE,
     FORCE,
@@ -46,8 +47,6 @@ from clutchopt.simulate.engine import (
     TIME,
     TOLERANCE,
     TORQUE,
-    Model,
-    simulate,
 )
 from clutchopt.simulate.laws import ConstantFriction, InductionMotor, Load, PaperFriction
 from clutchopt.start_up.equations import RADIAL_EFFECTS

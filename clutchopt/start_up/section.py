@@ -230,20 +230,20 @@ def _check_elastic(values, effects, coupling, key) -> None:
 def _check_ranges(values: dict[str, float], duty: dict[str, float], problems: Problems) -> None:
     """The drive's quantities within the ranges the simulator is tested over (it starts every optimum again);
     each one out of range is a problem of ``problems``."""
-    from clutchopt.simulate import engine
+    from clutchopt.simulate import ranges as tested
 
-    ranges = {"driven_inertia": engine.INERTIA, "load_torque": engine.LOAD, "synchronous_speed": engine.SPEED,
-              "breakdown_torque": engine.TORQUE, "breakdown_slip": engine.BREAKDOWN_SLIP,
-              "motor_inertia": engine.INERTIA, "heat_capacity": engine.HEAT_CAPACITY,
-              "heat_conductance": engine.CONDUCTANCE, "max_start_time": engine.TIME, "spring_preload": engine.FORCE}
+    limits = {"driven_inertia": tested.INERTIA, "load_torque": tested.LOAD, "synchronous_speed": tested.SPEED,
+              "breakdown_torque": tested.TORQUE, "breakdown_slip": tested.BREAKDOWN_SLIP,
+              "motor_inertia": tested.INERTIA, "heat_capacity": tested.HEAT_CAPACITY,
+              "heat_conductance": tested.CONDUCTANCE, "max_start_time": tested.TIME, "spring_preload": tested.FORCE}
     keys = {q.name: q.key for q in QUANTITIES}
-    for name, (low, high, unit) in ranges.items():
+    for name, (low, high, unit) in limits.items():
         if name in values and not low <= values[name] <= high:
             problems.errors.append(InputError(keys[name], f"must be from {low:g} to {high:g} {unit} (the range the "
                                                           f"simulator is tested over), got {values[name]:.6g} "
                                                           f"{unit}".replace("  ", " ")))
-    if "speed" in duty and not engine.SPEED[0] <= duty["speed"] <= engine.SPEED[1]:
-        problems.errors.append(InputError("duty.speed", f"must be from {engine.SPEED[0]:g} to {engine.SPEED[1]:g} "
+    if "speed" in duty and not tested.SPEED[0] <= duty["speed"] <= tested.SPEED[1]:
+        problems.errors.append(InputError("duty.speed", f"must be from {tested.SPEED[0]:g} to {tested.SPEED[1]:g} "
                                                         f"rad/s for a case with a [start_up] section (the simulator's "
                                                         f"range), got {duty['speed']:.6g}"))
 
