@@ -26,7 +26,7 @@ from clutchopt.optimise.integers import descend, fixing, nearest_integers, relax
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
 from clutchopt.optimise.solution import Solution, SolverInfo, SolverOptions, WarmStart
-from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, start_up_report, tightened_limits
+from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, corrected_limits, start_up_report
 from clutchopt.optimise.verdict import shown
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
 from clutchopt.start_up.drive import Structure
@@ -67,8 +67,10 @@ class Problem:
         the mesh is adapted to the simulated start (MESH_STEPS times, or until an adaptation no longer halves the
         error), then the intervals doubled (up to
         MAX_INTERVALS). Should the simulated start still miss a limit, the missed limits are moved in by what the
-        simulation adds to the NLP's figure (defect correction) and the problem re-solves warm. Limits are always
-        reported as the case gives them. A start-up problem without a start point starts from the optimum the
+        simulation adds to the NLP's figure (defect correction) and the problem re-solves warm; so is a binding
+        limit the simulated start meets so far off that the objective is off by a tenth of the tolerance (the
+        design then does not depend on the mesh the loop ended on; not for an elastic link, whose NLP is another
+        model than its simulation). Limits are always reported as the case gives them. A start-up problem without a start point starts from the optimum the
         papers' sizing gives (the same mode without the start-up), a design the start-up changes but does not
         overturn. Integer variables keep their values while limits are moved in (an elastic link's excepted).
         ``refine=False``: one solve on ``mesh`` (or the warm solution's, or the first one), as it comes (for
@@ -99,7 +101,7 @@ class Problem:
                     break
                 adapted, last_error = adapted + 1, error
                 solution = self._solve(case, warm=solution, nlp_case=nlp_case, mesh=solution.mesh[1])
-            elif solution.status == "unverified" and (limits := tightened_limits(solution, nlp_case)):
+            elif limits := corrected_limits(solution, nlp_case, centre=not structure.elastic):
                 # integers kept, unless the difference is the model's (an elastic link's dynamics), not a small one
                 integers = {v.name: (solution.design[v.name],) * 2 for v in self.formulation.variables
                             if v.integer and not structure.elastic}

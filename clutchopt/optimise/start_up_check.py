@@ -14,7 +14,8 @@ from clutchopt.optimise.verify import check_constraints
 from clutchopt.start_up.drive import Drive, named_constraints
 from clutchopt.start_up.mesh import adapted_mesh
 
-BACK_OFF_STEPS = 4  # defect corrections of limits the simulated start misses
+BACK_OFF_STEPS = 4  # defect corrections of limits the simulated start misses (or binds at off the limit)
+CENTRE = 0.1  # of the tolerance: the objective's error from a binding limit met off the limit that is corrected
 LIMIT_OF = {"start_time": "max_start_time", "friction_work": "max_friction_work",
             "temperature_rise": "max_temperature_rise", "heat_per_hour": "heat_dissipation",
             "link_stress": "max_link_stress"}
@@ -27,12 +28,12 @@ def start_up_report(block, case, formulation, design: dict[str, float], params, 
     """The NLP's start beside the independent simulator's (solve_ivp with events, float64) at the design, and the
     start-up constraints re-checked with the simulated figures: (summary in SI, constraint checks, the mesh the
     simulated start suggests for the next solve)."""
-    from clutchopt.start_up.simulation import dense_model, run_start_up
+    from clutchopt.start_up.simulation import run_start_up, start_up_model
 
     values, *columns = figures
     nlp = dict(zip(block.outputs(), np.array(values).ravel()))
     trajectory = {name: np.array(column).ravel() for name, column in zip(block.trajectory(), columns)}
-    result = run_start_up(dense_model(case, formulation, design))
+    result = run_start_up(start_up_model(case, formulation.mode, design))
     head = result.headline
     s = block.s
     stresses = result.history["stress"].to_numpy() if s.elastic else 0.0
@@ -81,17 +82,26 @@ def _relative(nlp: float, simulated: float) -> float:
     return (nlp - simulated) / abs(simulated)
 
 
-def tightened_limits(solution, nlp_case) -> dict[str, float]:
-    """Limits for the next solve where the simulated start misses the case's limit: each moved in from the one the
-    NLP last saw by what the simulation exceeds the case's limit, and half the tolerance more."""
+def corrected_limits(solution, nlp_case, centre: bool = True) -> dict[str, float]:
+    """Limits for the next solve (defect correction), each moved from the one the NLP last saw by what the
+    simulated figure differs from the case's limit: where the simulated start misses the limit (and then half the
+    tolerance more), and (``centre``) where it meets a limit the design binds at so far from it that the objective
+    is off by more than CENTRE of the tolerance (|elasticity x relative gap|): the design is then the simulator's
+    optimum, not the collocation's, whatever mesh the accuracy loop ended on."""
     summary, tolerance = solution.start_up, solution.start_up["tolerance"]
+    if summary["locks_up"] is False:
+        return {}
     limits = {}
     for check in solution.constraints:
         name = LIMIT_OF.get(check.name)
-        if name is None or check.feasible or check.sense != "<=" or not math.isfinite(check.value):
+        if name is None or check.sense != "<=" or not math.isfinite(check.value):
             continue
-        excess = check.value - check.limit
-        limits[name] = nlp_case.values[name] - excess - 0.5 * tolerance * abs(check.limit)
-        if not limits[name] > 0 or summary["locks_up"] is False:
+        gap = check.value - check.limit
+        if not check.feasible:
+            gap += 0.5 * tolerance * abs(check.limit)
+        elif not (centre and abs((check.elasticity or 0.0) * gap / check.limit) > CENTRE * tolerance):
+            continue
+        limits[name] = nlp_case.values[name] - gap
+        if not limits[name] > 0:
             return {}
     return limits

@@ -15,9 +15,13 @@ equals what holds it in, spring preload F_s and (effect ``gravity``) its own wei
 
 from __future__ import annotations
 
+from bisect import bisect_right
 from dataclasses import dataclass, replace
+from functools import lru_cache
 
-from clutchopt.backend import fmax, fmin, sqrt
+import casadi as ca
+
+from clutchopt.backend import fmax, fmin, is_symbolic, sqrt
 from clutchopt.formulations.duty import GRAVITY
 from clutchopt.model import Formulation, Quantity, Variable
 
@@ -96,12 +100,28 @@ def kloss_torque(speed, synchronous_speed, breakdown_torque, breakdown_slip):
 
 
 def piecewise_linear(x, points, values):
-    """y(x) through (points, values), held constant beyond both ends (as numpy.interp): y_0 + sum of slopes times
-    the part of [x_i, x_i+1] below x. Written with min/max so that CasADi differentiates it."""
-    y = values[0]
-    for (x0, y0), (x1, y1) in zip(zip(points, values), zip(points[1:], values[1:])):
-        y = y + (y1 - y0) / (x1 - x0) * (fmin(fmax(x, x0), x1) - x0)
-    return y
+    """y(x) through (points, values), held constant beyond both ends (as numpy.interp). A CasADi symbol gets one
+    call of a linear interpolant (exact derivatives, the segment's slope), so a table of a thousand points is one
+    node of the NLP at each use, not a thousand; a number is looked up by bisection (:func:`table_segment`)."""
+    if is_symbolic(x):
+        return _interpolant(tuple(points), tuple(values))(fmin(fmax(x, points[0]), points[-1]))
+    return table_segment(x, points, values)[0]
+
+
+def table_segment(x: float, points, values) -> tuple[float, float]:
+    """(y, dy/dx) of the piecewise-linear table at a number x, held constant (slope 0) beyond both ends."""
+    if x <= points[0]:
+        return values[0], 0.0
+    if x >= points[-1]:
+        return values[-1], 0.0
+    i = bisect_right(points, x) - 1
+    slope = (values[i + 1] - values[i]) / (points[i + 1] - points[i])
+    return values[i] + slope * (x - points[i]), slope
+
+
+@lru_cache(maxsize=64)
+def _interpolant(points: tuple[float, ...], values: tuple[float, ...]):
+    return ca.interpolant("load_profile", "linear", [points], values, {"lookup_mode": ["binary"]})
 
 
 def heat_rate(power, temperature_rise, heat_capacity, conductance):

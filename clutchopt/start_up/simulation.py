@@ -163,15 +163,10 @@ def _elastic_model(case, law: ElasticLaw, design: dict[str, float], rtol: float)
                         p.min_lock_up_speed, float(law.largest_twist(x, p)), spec.effects, rtol=max(rtol, 1e-10))
 
 
-def dense_model(case, formulation, design, rtol: float = 1e-11, end_time: float | None = None):
-    """The start-up model of a design, simulated with DOP853 whatever the stiffness for a slipping coupling: its
-    stability-bound steps sample the motor's knee densely, and the adapted mesh is taken from the second
-    derivatives of these samples (LSODA's few long steps give a poorer mesh, and at 64 intervals a start guess
-    from which IPOPT finds no feasible point). ``end_time``: cut a start that does not finish there."""
-    model = start_up_model(case, formulation.mode, design, rtol=rtol)
-    if isinstance(model, Model):
-        model = replace(model, integrator="DOP853")
-    return replace(model, end_time=end_time) if end_time is not None else model
+def until_lock_up(model, end_time: float):
+    """A start-up model run only to its first lock-up (no locked run after it) and cut at ``end_time``: all a start
+    guess needs, however long the locked run or the case's limits."""
+    return replace(model, effects=tuple(e for e in model.effects if e != "lockup"), end_time=end_time)
 
 
 def run_start_up(model) -> SimulationResult:

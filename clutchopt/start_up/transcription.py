@@ -29,6 +29,7 @@ from clutchopt.start_up.drive import Drive, Structure, named_constraints
 from clutchopt.start_up.mesh import first_mesh
 
 DEGREE = 3
+GUESS_RTOL = 1e-6  # the start guess's simulation: a guess, not a check
 
 
 def _collocation(degree: int):
@@ -257,10 +258,10 @@ class StartUpBlock:
 def initial_states(block: StartUpBlock, case, formulation, design: dict[str, float], scales: np.ndarray,
                    mesh: np.ndarray) -> np.ndarray:
     """The internal variables (scaled) of the start design's simulated start: a start point on the dynamics."""
-    from clutchopt.start_up.simulation import dense_model, run_start_up
+    from clutchopt.start_up.simulation import run_start_up, start_up_model, until_lock_up
 
-    model = dense_model(case, formulation, design, rtol=1e-6, end_time=3.0 * case.values["max_start_time"])
-    result = run_start_up(model)
+    model = start_up_model(case, formulation.mode, design, rtol=GUESS_RTOL)
+    result = run_start_up(until_lock_up(model, 3.0 * case.values["max_start_time"]))
     squared = 0.0 if block.s.elastic else model.law.engagement_squared
     return block.guess(result.history, result.headline, squared, case.values["max_start_time"], scales, mesh)
 
