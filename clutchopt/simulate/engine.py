@@ -210,6 +210,7 @@ class _Run:
         else:
             events["lock"] = _event(lambda t, y: y[1], True, -1)
             events["stops"] = _event(lambda t, y: y[0] - y[1], True, -1)
+            events["stops"].strict = True  # the driven speed falls to zero, not a rounding of w_a - w_r at its start
         if not engaged:
             events["engages"] = _event(lambda t, y: y[0] ** 2 - law.engagement_squared, True, 1)
         if steady_armed:

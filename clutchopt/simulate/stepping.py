@@ -91,9 +91,10 @@ def integrate(fun, jac, t0: float, y0: np.ndarray, bound: float, events: list, m
 
 
 def _crosses(event, g: float, g_new: float) -> bool:
-    """A terminal event as ``solve_ivp`` finds it (a zero at the step's start counts); a sampled one only where
-    its sign changes strictly (a function that stays at zero is no maximum)."""
-    if not event.terminal:
+    """A terminal event as ``solve_ivp`` finds it (a zero at the step's start counts); a sampled one, or one marked
+    ``strict``, only where its sign changes strictly (a function that stays at zero is no maximum; a difference
+    that starts at zero and moves by rounding has not crossed it)."""
+    if not event.terminal or getattr(event, "strict", False):
         return (g > 0 > g_new and event.direction <= 0) or (g < 0 < g_new and event.direction >= 0)
     up, down = g <= 0 <= g_new, g >= 0 >= g_new
     return (up and event.direction > 0) or (down and event.direction < 0) or ((up or down) and event.direction == 0)

@@ -10,12 +10,13 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from clutchopt.backend import sqrt
+from clutchopt.backend import fmin, sqrt
 from clutchopt.model import Constraint, ElasticLaw, SpeedLaw, at_least, at_most
 from clutchopt.start_up import equations as su
 from clutchopt.start_up.mesh import GRADED_PARTS
 
 LOCKED_SAMPLES = 8  # speeds from lock-up to synchronous at which a locked drive must stay locked (lockup)
+RUN_UPS = 100  # the time scale of a motor's start: at most this many run-ups at breakdown torque, (J + J_m) w_s / T_k
 
 
 @dataclass(frozen=True)
@@ -78,8 +79,12 @@ class Drive:
             self.engagement_squared = 0.0
         self.speed_ref = p.synchronous_speed if structure.motor else p.speed
         self.time_ref = p.max_start_time
+        if structure.motor:  # a limit far beyond any start the motor makes (1e8 s) scales nothing
+            run_up = (p.driven_inertia + p.motor_inertia) * p.synchronous_speed / p.breakdown_torque
+            self.time_ref = fmin(p.max_start_time, RUN_UPS * run_up)
+            self.motor_time_ref = p.motor_inertia * p.synchronous_speed / p.breakdown_torque  # its own run-up
         self.energy_ref = p.driven_inertia * self.speed_ref**2
-        self.torque_ref = p.driven_inertia * self.speed_ref / p.max_start_time + p.load_torque
+        self.torque_ref = p.driven_inertia * self.speed_ref / self.time_ref + p.load_torque
         self.temperature_ref = self.energy_ref / p.heat_capacity if structure.heat else 1.0
         self.twist_ref = law.largest_twist(x, p) / 2.0 if structure.elastic else 1.0
 

@@ -116,15 +116,16 @@ class StartUpBlock:
         if self.s.motor:
             rates["driver_speed"] = (d.motor(speed) - torque) / d.p.motor_inertia
         if phase == "slip":
-            driven = speed - slip
-            rates["slip"] = rates.get("driver_speed", 0.0) - (torque - d.load(driven, time)) / d.p.driven_inertia
+            rates["driven"] = (torque - d.load(speed - slip, time)) / d.p.driven_inertia  # dw/dt of the machine
+            rates["slip"] = rates.get("driver_speed", 0.0) - rates["driven"]
         if self.s.heat:
             rates["temperature"] = d.heat_rate(torque * slip, state["temperature"])
         return rates
 
     def _phase(self, phase: str, state: dict, start_time):
         d, n = self.drive, self.s.intervals
-        duration = self._variable(phase, "duration", d.time_ref, 0.0, 100.0)
+        typical = d.motor_time_ref if phase in ("run_up", "breakaway") else d.time_ref  # the machine rests: the
+        duration = self._variable(phase, "duration", typical, 0.0, math.inf)  # motor's own time; start_time bounds
         mesh = ca.SX.sym(f"{phase}_mesh", n)  # interval lengths over the duration: NLP parameters
         self._mesh.append(mesh)
         starts = [sum(mesh[i] for i in range(k)) for k in range(n)]
@@ -150,9 +151,14 @@ class StartUpBlock:
                     self.equalities.append((d.link(nodes[j]["driver_speed"], twist)
                                             - d.carried(nodes[j]["driver_speed"], time)) / d.torque_ref)
                 rates = self._rates(phase, time, nodes[j])
+                slopes = {name: sum(self.c[r, j] * nodes[r][name] for r in range(DEGREE + 1)) for name in states}
                 for name, (scale, _, _) in states.items():
-                    slope = sum(self.c[r, j] * nodes[r][name] for r in range(DEGREE + 1))
-                    self.equalities.append((slope - step * rates[name]) / scale)
+                    residual = slopes[name] - step * rates[name]
+                    if name == "driver_speed" and phase != "locked":  # J_m dw_a/dt = T_m - T: its terms' size
+                        scale = scale + mesh[k] * typical * d.torque_ref / d.p.motor_inertia
+                    if name == "slip" and "driver_speed" in states:  # less the driver's equation: the machine's,
+                        residual = slopes["slip"] - slopes["driver_speed"] + step * rates["driven"]  # no 1/J_m in it
+                    self.equalities.append(residual / scale)
                 self.points.append((time, nodes[j]))
                 self.nodes.append(nodes[j])
             previous = nodes[DEGREE]
@@ -222,10 +228,10 @@ class StartUpBlock:
     def guess(self, history, headline, engagement_squared: float, time_ref: float, scales: np.ndarray,
               mesh: np.ndarray) -> np.ndarray:
         """Internal variables (scaled by ``scales``) from a simulation of the start design, which ends at its
-        lock-up, or at ``time_ref`` if it does not lock up."""
+        lock-up, or where the simulation ended (at most ``time_ref``) if it does not lock up."""
         d = self.s
         locked = headline.get("locks_up") and math.isfinite(headline.get("start_time", math.inf))
-        t_end = headline["start_time"] if locked else time_ref
+        t_end = headline["start_time"] if locked else min(time_ref, history["t"].iloc[-1])
         t = history["t"].to_numpy()
         driver = history["w_driver"].to_numpy()
         driven = history["w_driven"].to_numpy()
