@@ -20,6 +20,7 @@ from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import casadi as ca
+import numpy as np
 
 from clutchopt.backend import fmax, fmin, is_symbolic, sqrt
 from clutchopt.formulations.duty import GRAVITY
@@ -102,9 +103,12 @@ def kloss_torque(speed, synchronous_speed, breakdown_torque, breakdown_slip):
 def piecewise_linear(x, points, values):
     """y(x) through (points, values), held constant beyond both ends (as numpy.interp). A CasADi symbol gets one
     call of a linear interpolant (exact derivatives, the segment's slope), so a table of a thousand points is one
-    node of the NLP at each use, not a thousand; a number is looked up by bisection (:func:`table_segment`)."""
+    node of the NLP at each use, not a thousand; an array goes to numpy.interp, a number is looked up by bisection
+    (:func:`table_segment`)."""
     if is_symbolic(x):
         return _interpolant(tuple(points), tuple(values))(fmin(fmax(x, points[0]), points[-1]))
+    if np.ndim(x):
+        return np.interp(x, points, values)
     return table_segment(x, points, values)[0]
 
 
