@@ -4,12 +4,13 @@ Integrator: SciPy's solvers, stepped by :mod:`clutchopt.simulate.stepping` (even
 budget of MAX_STEPS solver steps per run), chosen by the scene's stiffness. Without a motor the phases are smooth
 and at most mildly stiff (the paper's law with a w0 = +1000 starts at its cap of 1e130 k, but the fast part lasts
 no longer than the solver needs to resolve it), so DOP853 (explicit Runge-Kutta 8(5,3)) reaches 1e-10 relative at
-low cost (docs/simulate.md). A motor adds a fast mode, its time constant J_m / (dT/dw) = J_m s_k w_s / (2 T_k);
-where that is below 1 % of the start's time scale (J + J_m) w / T an explicit method's steps are set by stability,
-not accuracy, and their number grows as the motor's inertia falls (1e11 steps at J_m = 1e-9 kg m^2). There LSODA
-takes over with the Jacobian of the equations (it switches to BDF when it detects stiffness), at a tenth of the
-relative tolerance, which makes it more accurate than DOP853 at the full one; should its Newton iterations fail in
-a phase, Radau IIA (L-stable, the same Jacobian) takes that phase again.
+low cost (docs/simulate.md). A motor adds a fast mode, its time constant J_m / (dT/dw) = J_m s_k w_s / (2 T_k), and
+friction heat with a conductance another, C / G; where the faster is below 1 % of the start's time scale
+(J + J_m) w / T an explicit method's steps are set by stability, not accuracy, and their number grows as the mode
+gets faster (1e11 steps at J_m = 1e-9 kg m^2). There LSODA takes over with the Jacobian of the equations (it
+switches to BDF when it detects stiffness), at a tenth of the relative tolerance, which makes it more accurate than
+DOP853 at the full one; should its Newton iterations fail in a phase, Radau IIA (L-stable, the same Jacobian) takes
+that phase again.
 
 Every kink of the right-hand side is a phase boundary, so that each phase is smooth: the driven half breaking away
 from rest (its friction torque reaching the load), the weights engaging (the driving speed reaching w_e), zero
@@ -96,7 +97,13 @@ class _Run:
         energy = self.torque_scale * self.w_ref * self.time_scale
         heat = energy / model.heat_capacity if self.heat else 1.0
         speed = min(self.w_ref, model.law.slip_scale)  # the paper's law changes over 1/|a| of slip
-        stiff = self.motor is not None and self.motor.time_constant < STIFF_RATIO * self.time_scale
+        modes = {}  # the fast modes a start may have, by what makes them
+        if self.motor:
+            modes["the motor's time constant J_m s_k w_s / (2 T_k)"] = self.motor.time_constant
+        if self.heat and model.conductance > 0:
+            modes["the heat's time constant C / G"] = model.heat_capacity / model.conductance
+        self.fastest = min(modes.items(), key=lambda mode: mode[1], default=None)
+        stiff = self.fastest is not None and self.fastest[1] < STIFF_RATIO * self.time_scale
         self.method = model.integrator if model.integrator != "auto" else "LSODA" if stiff else "DOP853"
         self.state_scale = np.array([speed, 1e-6 * speed, energy, energy, heat])  # absolute tolerance per rtol
         self.budget = Budget(MAX_STEPS)
@@ -222,8 +229,7 @@ class _Run:
 
     def budget_reason(self, t: float) -> str:
         """Why a run stopped at the step budget: the start's time scales."""
-        fast = (f", the motor's time constant J_m s_k w_s / (2 T_k) {self.motor.time_constant:.3g} s"
-                if self.motor else "")
+        fast = f", {self.fastest[0]} {self.fastest[1]:.3g} s" if self.fastest else ""
         return (f"stopped after {MAX_STEPS} solver steps at t = {t:.6g} s, not yet at a verdict: the start is too "
                 f"long or too stiff to simulate (its time scale (J + J_m) w / T {self.time_scale:.3g} s{fast}, "
                 f"integrated with {self.method})")
