@@ -199,12 +199,36 @@ def _check(values, effects, coupling, laws, profile) -> None:
     if window and not radial:
         raise InputError(key(window[0]), "needs spring_preload or gravity in effects (else the coupling engages "
                                          "at standstill)")
-    if len(window) == 2 and not values["min_engagement_speed"] < values["max_engagement_speed"]:
-        raise InputError(key("min_engagement_speed"), "must be below max_engagement_speed")
     heat_balance = given("starts_per_hour", "heat_dissipation")
     if len(heat_balance) == 1:
         other = ({"starts_per_hour", "heat_dissipation"} - set(heat_balance)).pop()
         raise InputError(key(other), f"missing (given {heat_balance[0]}: the heat balance over an hour needs both)")
+
+
+def check_values(values: dict[str, float]) -> None:
+    """What a case's drive must satisfy together (its duty's and start-up's values by name), at the values read and
+    at every point a sweep or a scatter moves them to: within the simulator's ranges, an engagement window that is
+    not empty, and an induction motor that reaches the duty speed, the lock-up and the engagement asked for (it runs
+    below its synchronous speed)."""
+    declared = {q.name: q for q in QUANTITIES}
+    problems = Problems()
+    _check_ranges(values, values, problems)
+    if "min_engagement_speed" in values and "max_engagement_speed" in values \
+            and not values["min_engagement_speed"] < values["max_engagement_speed"]:
+        problems.errors.append(InputError(declared["min_engagement_speed"].key, "must be below max_engagement_speed"))
+    synchronous = values.get("synchronous_speed")
+    if synchronous is not None:
+        shown = declared["synchronous_speed"].show
+        if "speed" in values and synchronous < values["speed"]:
+            problems.errors.append(InputError(declared["synchronous_speed"].key, (
+                f"{shown(synchronous)} is below duty.speed {shown(values['speed'])}: an induction motor runs below "
+                "its synchronous speed, so this one cannot drive the machine to its duty speed")))
+        for name in ("min_lock_up_speed", "min_engagement_speed"):
+            if name in values and not values[name] < synchronous:
+                problems.errors.append(InputError(declared[name].key, (
+                    f"{shown(values[name])} is not below start_up.driver.synchronous_speed {shown(synchronous)}: an "
+                    "induction motor runs below its synchronous speed, so the drive never reaches it")))
+    problems.raise_any()
 
 
 def _check_elastic(values, effects, coupling, key) -> None:
