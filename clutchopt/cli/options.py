@@ -51,7 +51,8 @@ class Checked(argparse.Action):
         try:
             setattr(namespace, self.dest, self.check(text))
         except argparse.ArgumentTypeError as exc:
-            refused = InputError(f"argument {option_string or self.metavar or self.dest}", str(exc))
+            refused = InputError(f"argument {option_string or self.metavar or self.dest}",
+                                 f"{exc} (see {parser.prog} --help)")
             setattr(namespace, REFUSED, [*getattr(namespace, REFUSED, []), refused])
 
 
