@@ -49,7 +49,8 @@ def scene(name: str, text: str, expect: str | None) -> Hostile:
                    (("scene.toml", text), ("wedge_paper.toml", WEDGE), ("design.json", json.dumps(DESIGN))))
 
 
-def paper_solve(name: str, *extra: str, expect: str | tuple[str, ...] | None, path: str = "wedge_paper.toml") -> Hostile:
+def paper_solve(name: str, *extra: str, expect: str | tuple[str, ...] | None,
+                path: str = "wedge_paper.toml") -> Hostile:
     return command(name, ("solve", str(CASES / path), "--no-store", *extra), expect)
 
 
