@@ -7,6 +7,7 @@ from dataclasses import replace
 
 from clutchopt.cli.options import (
     FIGURE_SUFFIXES,
+    Checked,
     add_case_argument,
     add_json_option,
     add_parser,
@@ -34,7 +35,7 @@ def add_command(commands) -> None:
          "clutchopt pareto cases/lever_centrifuge.toml --mode design --plot front.png --out front.csv"))
     add_case_argument(pareto)
     add_problem_options(pareto, objective=False)  # mass and cost are the front's two ends
-    pareto.add_argument("--points", type=whole_number(2, MAX_FRONT_POINTS), default=9,
+    pareto.add_argument("--points", action=Checked, check=whole_number(2, MAX_FRONT_POINTS), default=9,
                         help=f"designs on the front, the lightest and the cheapest included, 2 to {MAX_FRONT_POINTS} "
                              "(default 9)")
     pareto.add_argument("--plot", metavar="FILE",

@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 
 from clutchopt.cli.options import (
+    Checked,
     add_case_argument,
     add_json_option,
     add_parser,
@@ -43,7 +44,7 @@ def add_command(commands) -> None:
                        help="pair the lists instead of crossing them: point i takes the i-th value of each --vary")
     add_problem_options(sweep)
     add_robust_options(sweep)
-    sweep.add_argument("--jobs", type=whole_number(1, MAX_JOBS), default=1,
+    sweep.add_argument("--jobs", action=Checked, check=whole_number(1, MAX_JOBS), default=1,
                        help=f"solve on N local processes, 1 to {MAX_JOBS} (default 1)")
     sweep.add_argument("--dask", metavar="ADDRESS",
                        help="solve on an existing Dask cluster, e.g. tcp://host:8786 (pip install 'clutchopt[dask]')")

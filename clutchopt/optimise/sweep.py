@@ -301,7 +301,7 @@ class Sweep:
         case.require(self.objective.name)
         self.tol = tol
         self.grid, self.zipped = grid_points(varies, zipped), zipped
-        check_points(case, varies, self.grid)
+        check_points(case, varies, self.grid, scattered=robust is not None)
         sets, _ = chosen(case, get_coupling(case.coupling))
         for v in varies:
             if v.quantity.name in sets:

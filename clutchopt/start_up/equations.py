@@ -55,8 +55,8 @@ QUANTITIES = (
       "default: 90 % of synchronous speed)", "w_L,min", f"{SECTION}.limits", None, above=0),
     Q("max_link_stress", "MPa", "largest stress of an elastic link during the start (cable coupling; default: its "
       "allowable, allowable_cable_stress)", "sigma_max", f"{SECTION}.limits", None, above=0),
-    Q("min_engagement_speed", "rpm", "engagement speed at least (the motor runs up unloaded first)", "w_e,min",
-      f"{SECTION}.limits", None, at_least=0),
+    Q("min_engagement_speed", "rpm", "engagement speed at least (the motor runs up unloaded first; leave it out for "
+      "none)", "w_e,min", f"{SECTION}.limits", None, above=0),
     Q("max_engagement_speed", "rpm", "engagement speed at most", "w_e,max", f"{SECTION}.limits", None, above=0),
     Q("starts_per_hour", "1/hour", "starts per hour (with heat_dissipation: the heat balance over an hour)", "n_h",
       f"{SECTION}.limits", None, above=0),
