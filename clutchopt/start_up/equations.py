@@ -15,7 +15,7 @@ equals what holds it in, spring preload F_s and (effect ``gravity``) its own wei
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 from clutchopt.backend import fmax, fmin, sqrt
 from clutchopt.formulations.duty import GRAVITY
@@ -145,6 +145,7 @@ class StartUpSpec:
     load_profile: LoadProfile | None = None
     intervals: int = 16
     tolerance: float = 1e-6
+    motor_note: str = field(default="", compare=False)  # how a nameplate was read (no part of the structure)
 
     def has(self, effect: str) -> bool:
         return effect in self.effects

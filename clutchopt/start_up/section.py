@@ -41,6 +41,8 @@ from clutchopt.start_up.equations import (
     LoadProfile,
     StartUpSpec,
 )
+from clutchopt.start_up.nameplate import FIELDS as NAMEPLATE_FIELDS
+from clutchopt.start_up.nameplate import KLOSS, kloss_from_nameplate, nameplate_fields
 from clutchopt.units import to_si
 
 SECTION = "start_up"
@@ -85,11 +87,20 @@ def parse_start_up(table, coupling, duty: dict[str, float],
             problems.errors.append(InputError(f"{SECTION}.{name}", "must be a table"))
             continue
         for key, raw in sub.items():
+            if name == "driver" and key in NAMEPLATE_FIELDS:
+                continue
             with problems.field():
                 if name == "driven" and key == "load_profile":
                     profile = parse_load_profile(raw, f"{SECTION}.{name}.{key}")
                 else:
                     values.update(_field_value(declared, name, key, raw))
+    motor_note = ""
+    plate = nameplate_fields(_table(table, f"{SECTION}.driver"))
+    if plate:
+        with problems.field():
+            kloss = [k for k in KLOSS if BY_NAME[k].key.rsplit(".", 1)[1] in _table(table, f"{SECTION}.driver")]
+            derived, motor_note = kloss_from_nameplate(plate, f"{SECTION}.driver", kloss)
+            values.update(derived)
     if "spring_preload" in table:
         with problems.field():
             quantity = declared[f"{SECTION}.spring_preload"]
@@ -122,7 +133,8 @@ def parse_start_up(table, coupling, duty: dict[str, float],
     problems.raise_any()
     if duty_sound:
         _check(values, effects, coupling, laws, profile)
-    return values, StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile, **spec), follows
+    return values, StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile, **spec,
+                               motor_note=motor_note), follows
 
 
 def _table(table: dict, section: str) -> dict:
@@ -138,7 +150,8 @@ def _field_value(declared, table: str, key: str, raw) -> dict[str, float]:
     if quantity is None:
         known = [q.key.rsplit(".", 1)[1] for q in QUANTITIES if q.section == f"{SECTION}.{table}"]
         raise InputError(field, f"unknown key; [{SECTION}.{table}] takes {', '.join(known)}"
-                                + (", load_profile" if table == "driven" else ""))
+                                + (", load_profile" if table == "driven" else "")
+                                + (f" (or the nameplate: {', '.join(NAMEPLATE_FIELDS)})" if table == "driver" else ""))
     return {quantity.name: quantity.check(to_si(field, raw, quantity.unit))}
 
 
