@@ -252,7 +252,7 @@ def _read(descriptor: int) -> bytes:
 
 def test_a_progress_bar_moves_as_the_choices_are_designed_on_a_terminal_only(tmp_path, capsys):
     path = tmp_path / "choose.toml"
-    path.write_text(case_template("lever").replace("# choose = ", "choose = "))
+    path.write_text(choosing("lever"))
     assert "choices:   0%| " in _on_a_terminal("solve", str(path), "--no-store")  # then cleared: the lever is fast
     assert _on_a_terminal("solve", str(path), "--no-store", "--quiet") == ""
     assert run("solve", path, "--no-store") and "choices" not in capsys.readouterr().err  # not a terminal
