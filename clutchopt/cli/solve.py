@@ -7,6 +7,7 @@ from clutchopt.cli.options import (
     add_json_option,
     add_parser,
     add_problem_options,
+    add_quiet_option,
     add_robust_options,
     add_store_options,
 )
@@ -31,6 +32,7 @@ def add_command(commands) -> None:
                        help="simulate the optimised design's start-up and compare its acceleration time with t_p")
     add_robust_options(solve)
     add_json_option(solve)
+    add_quiet_option(solve)
     solve.set_defaults(run=run)
 
 
@@ -49,7 +51,8 @@ def run(args) -> str:
     resolve_problem(case, args)
     robust = robustness(args, case)
     with recording(args) as store:
-        ranked = design_case(case, args.mode, args.objective, SolverOptions(tol=args.tol), robust)
+        ranked = design_case(case, args.mode, args.objective, SolverOptions(tol=args.tol), robust,
+                             progress=not args.quiet)
         best = ranked[0]
         check = None
         if args.verify:

@@ -10,7 +10,7 @@ are ranked, verified designs first by objective, then the others in the order li
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import Iterable, NamedTuple
 
 from clutchopt.cases import Case
 from clutchopt.errors import InputError, Problems
@@ -100,13 +100,25 @@ def check_robustness(case: Case, robust: Robustness | None, problem=None) -> Non
         check_entering(case, problem, [s.name for s in case.scatter], "scatter.{}")
 
 
+def choices(case: Case, progress: bool = False) -> Iterable[tuple[dict[str, str], Case]]:
+    """Every choice of ``options.choose`` as (choice, its case); with ``progress``, a bar on stderr that moves as
+    each is designed (where there are several, and stderr is a terminal)."""
+    from tqdm import tqdm
+
+    found = variants(case, get_coupling(case.coupling))
+    return tqdm(found, desc="choices", unit="choice", leave=False,
+                disable=None if progress and len(found) > 1 else True)
+
+
 def design_case(case: Case, mode: str | None = None, objective: str | None = None,
-                options: SolverOptions = SolverOptions(), robust: Robustness | None = None) -> list[Designed]:
+                options: SolverOptions = SolverOptions(), robust: Robustness | None = None,
+                progress: bool = False) -> list[Designed]:
     """Every choice of ``options.choose`` (the case alone without it) designed nominally or, with ``robust``, for
-    the case's scatter; optimal designs first by objective, then the others in the order listed."""
+    the case's scatter (``progress``: see :func:`choices`); optimal designs first by objective, then the others in
+    the order listed."""
     check_robustness(case, robust, case_problem(case, mode, objective, options) if robust is not None else None)
     designed = []
-    for choice, variant in variants(case, get_coupling(case.coupling)):
+    for choice, variant in choices(case, progress):
         if robust is None:
             designed.append(Designed(choice, variant, solve_case(variant, mode, objective, options)))
         else:
