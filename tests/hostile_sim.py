@@ -104,8 +104,8 @@ HOSTILE: list[Hostile] = [
     motor("breakdown-slip-tiny", "breakdown_slip = 0.2", "breakdown_slip = 1e-6", None),
     motor("breakdown-slip-at-high-end", "breakdown_slip = 0.2", "breakdown_slip = 0.99", None),
     motor("breakdown-torque-at-high-end", 'breakdown_torque = "37 N*m"', 'breakdown_torque = "1e9 N*m"', None),
-    motor("synchronous-speed-below-engagement", 'synchronous_speed = "1000 rpm"', 'synchronous_speed = "100 rpm"',
-          None),
+    motor("synchronous-speed-below-the-duty", 'synchronous_speed = "1000 rpm"', 'synchronous_speed = "100 rpm"',
+          "start_up.driver.synchronous_speed: 100 rpm is below duty.speed 1000 rpm"),
     # --- loads and load profiles -------------------------------------------------------------------------------
     driven("load-zero", 'resisting_torque = "0 N*m"', None),
     driven("load-at-high-end", 'resisting_torque = "1e9 N*m"', None),  # beyond the motor: infeasible, proven

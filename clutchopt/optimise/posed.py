@@ -28,6 +28,9 @@ from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
 from clutchopt.start_up.transcription import StartUpBlock, initial_states
 
+START_UP_ITERATIONS = 500  # IPOPT's with a start-up: its solves take 15 to 300, a drive that cannot start the
+#                            machine ran the default 3,000 (5 ms each) in each solve and diagnosis
+
 
 class Box(NamedTuple):
     """The design's box in one solve: variable scales and bounds (SI)."""
@@ -79,6 +82,8 @@ class Posed:
         self.formulation = f = with_start_up(formulation) if start_up else formulation
         self.objective = formulation.objective(objective)
         self.options = options
+        self.solver_options = (replace(options, max_iter=min(options.max_iter, START_UP_ITERATIONS)) if start_up
+                               else options)  # what IPOPT is built with
         n, m = len(f.variables), len(f.quantities)
         x_hat = ca.SX.sym("x_hat", n)
         self.p_case = ca.SX.sym("p_case", m)
@@ -117,7 +122,7 @@ class Posed:
                                                 [ca.vertcat(*self.start_up.outputs().values()), *paths])
             self.internal_scale = ca.Function("internal_scale", [self.p_case], [ca.vertcat(*self.start_up.scales)])
         self._built: dict[str, dict] = {"solver": {"ipopt": ca.nlpsol(f"{f.coupling}_{f.mode}_{objective}", "ipopt",
-                                                                      self.nlp, options.ipopt())}}
+                                                                      self.nlp, self.solver_options.ipopt())}}
 
     def built(self, kind: str, key, build: Callable[[int], object]):
         """The object of ``kind`` (a solver, a CasADi function) for ``key``, built once: ``build(number)``, with
@@ -132,10 +137,10 @@ class Posed:
         on first use)."""
         def build(_):
             f = self.formulation
-            plugin, options = {"warm": ("ipopt", self.options.ipopt_warm()),
-                               "sqp": ("sqpmethod", self.options.sqp()),
-                               "sqp_chain": ("sqpmethod", self.options.sqp_chain()),
-                               "sqp_search": ("sqpmethod", self.options.sqp_search())}[method]
+            chosen = self.solver_options
+            plugin, options = {"warm": ("ipopt", chosen.ipopt_warm()), "sqp": ("sqpmethod", chosen.sqp()),
+                               "sqp_chain": ("sqpmethod", chosen.sqp_chain()),
+                               "sqp_search": ("sqpmethod", chosen.sqp_search())}[method]
             name = f"{f.coupling}_{f.mode}_{self.objective.name}_{method}"
             solver = ca.nlpsol(name, plugin, self.nlp, options)
             if method in ("sqp_chain", "sqp_search"):  # a batched sweep's: compiled where that pays

@@ -45,6 +45,7 @@ from clutchopt.simulate.stepping import Budget, Phase, integrate
 STEADY = 1e-9  # relative net acceleration below which a slipping start-up is steady (no lock-up)
 MAX_SWITCHES = 200  # phase switches (rest, slip, stick, engagement) before a run is declared chattering
 MAX_STEPS = 20_000  # solver steps per run: the runs of the tests take at most a few thousand
+LSODA_STEPS = 5_000  # LSODA's steps in a phase before Radau takes it (its phases take a few hundred)
 STIFF_RATIO = 0.01  # a mode faster than this fraction of the start-up's time scale makes the scene stiff
 
 
@@ -110,17 +111,21 @@ class _Run:
 
     def integrate(self, kind: str, t: float, bound: float, y, events: list) -> Phase:
         """One phase (``rest``, ``slip`` or ``stick``); LSODA at a tenth of the tolerance, and should it fail (its
-        stiff Newton iterations can stall), Radau takes the phase again."""
+        stiff Newton iterations can stall) or take more than LSODA_STEPS (its switch to BDF can lag a mode 1e9
+        times faster than the start), Radau takes the phase again."""
         rates, jacobian = {"rest": (self.rest, self.rest_jacobian), "slip": (self.slip, self.slip_jacobian),
                            "stick": (self.stick, self.stick_jacobian)}[kind]
-        method = self.method
-        while True:
-            rtol = self.m.rtol / 10 if method == "LSODA" else self.m.rtol
-            phase = integrate(rates, jacobian, t, y, bound, events, method, rtol, rtol * self.state_scale,
-                              self.budget)
-            if phase.status != "failed" or method != "LSODA":
-                return phase
-            method = "Radau"
+        if self.method != "LSODA":
+            return integrate(rates, jacobian, t, y, bound, events, self.method, self.m.rtol,
+                             self.m.rtol * self.state_scale, self.budget)
+        rtol, budget = self.m.rtol / 10, self.budget
+        trial = Budget(min(budget.steps, budget.taken + LSODA_STEPS), budget.taken)
+        phase = integrate(rates, jacobian, t, y, bound, events, "LSODA", rtol, rtol * self.state_scale, trial)
+        budget.taken = trial.taken
+        if phase.status == "failed" or (phase.status == "budget" and not budget.spent):
+            phase = integrate(rates, jacobian, t, y, bound, events, "Radau", self.m.rtol,
+                              self.m.rtol * self.state_scale, budget)
+        return phase
 
     # --- the right-hand sides ------------------------------------------------------------------------------------
     def torques(self, t, y):
@@ -187,11 +192,17 @@ class _Run:
         return self._turning_jacobian(y, self.m.law.slopes(y[0], y[1]))
 
     def stick_jacobian(self, t, y):
+        """Of (dw/dt, T y[0]) as :meth:`carried` gives them: with a motor the load at the driven speed w_a - w_r,
+        without one at the driving speed."""
         jacobian = np.zeros((5, 5))
-        load = self.m.load.slope(t, y[0])
         if self.motor:
-            jacobian[0, 0] = (self.motor.slope(y[0]) - load) / (self.m.inertia + self.driver_inertia)
-        jacobian[3, 0] = self.carried(t, y)[1] + y[0] * (load + self.m.inertia * jacobian[0, 0])
+            load = self.m.load.slope(t, y[0] - y[1])
+            jacobian[0, :2] = np.array([self.motor.slope(y[0]) - load, load]) / (self.m.inertia + self.driver_inertia)
+            torque_slopes = np.array([load, -load]) + self.m.inertia * jacobian[0, :2]
+        else:
+            torque_slopes = np.array([self.m.load.slope(t, y[0]), 0.0])
+        jacobian[3, :2] = y[0] * torque_slopes
+        jacobian[3, 0] += self.carried(t, y)[1]
         if self.heat:
             jacobian[4, 4] = -self.m.conductance / self.m.heat_capacity
         return jacobian
