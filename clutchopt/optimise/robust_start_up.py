@@ -38,8 +38,9 @@ def start_up_ends(case: Case, mode: str, design: dict, scatter, target: float | 
     start at all (Sidak: start-up figures monotone in each of k independent quantities are worse than at every
     corner of their P_k quantiles only when one of them lies beyond its quantile, with probability
     1 - P_k^k = 1 - P). The binding corner: of all 2^k corners (up to MAX_START_CORNERS quantities), the one where
-    the start-up's smallest relative margin is smallest; with more, each quantity at the end where the start takes
-    longer, the others nominal (no lock-up counts as longest)."""
+    the smallest relative margin of the start-up's limits that the corners move is smallest (a limit met alike at
+    every corner cannot tell them apart); with more, each quantity at the end where the start takes longer, the
+    others nominal (no lock-up counts as longest)."""
     alone = ({s.name: simulated_start_ups(case, mode, design, [{s.name: s.low}, {s.name: s.high}]) for s in scatter}
              if target is not None or len(scatter) > MAX_START_CORNERS else {})
     ends = {s.name: (s.low, s.high) for s in scatter}
@@ -51,8 +52,10 @@ def start_up_ends(case: Case, mode: str, design: dict, scatter, target: float | 
                 for s in scatter}
     if len(scatter) <= MAX_START_CORNERS:
         points = corner_points(corner_table(scatter, ends))
-        margins = [min(-math.inf if math.isnan(c.margin) else c.margin for c in run)
-                   for run in simulated_start_ups(case, mode, design, points)]
+        runs = simulated_start_ups(case, mode, design, points)
+        moving = [len({c.margin for c in column}) > 1 for column in zip(*runs)]
+        margins = [min((-math.inf if math.isnan(c.margin) else c.margin for c, moves in zip(run, moving) if moves),
+                       default=0.0) for run in runs]
         binding = points[int(np.argmin(margins))]
     else:
         binding = {q: low if _start_time(alone[q][0]) > _start_time(alone[q][1]) else high
