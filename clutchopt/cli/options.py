@@ -135,7 +135,7 @@ def robustness(args, case):
             if given is not None:
                 raise InputError(name, f"counts {what} of --robust; give --robust too")
         return None
-    robust = Robustness.parse(args.robust, args.samples, args.starts)
+    robust = Robustness.parse(args.robust, args.samples, args.starts, case.start_up is not None)
     check_robustness(case, robust)
     return robust
 
@@ -203,14 +203,16 @@ def recording(args, needed: bool = False) -> Iterator:
             store.close()
 
 
-def record_solve(store, case, solution, check: dict | None = None, outputs: dict | None = None) -> None:
-    """Record a ``solve`` (and its start-up check, a simulation) in an open store (or nothing for None);
-    ``outputs``: the design's record with its choice and robust result (``Designed.as_dict()``)."""
+def record_solve(store, designed, method: str, check: dict | None = None, extra: dict | None = None) -> None:
+    """Record a ``solve`` (and its start-up check, a simulation) in an open store (or nothing for None): a design
+    (``Designed``) with its choice and robust result, made by ``method`` (nominal, worst-case, chance=P); ``extra``:
+    more of its record (whether it is the chosen one)."""
     if store is None:
         return
-    store.record_solution("solve", case, solution, outputs)
+    case, solution = designed.case, designed.solution
+    store.record_solution("solve", case, solution, {**designed.as_dict(), **(extra or {})}, method)
     if check is not None:
-        store.record("simulation", {"values": case.values, "design": solution.design}, check,
+        store.record("simulation", {"values": case.values, "design": solution.design, "method": method}, check,
                      status="verified" if check.get("verified") else "not verified",
                      objective=check.get("simulated_acceleration_time", check.get("simulated_start_time")),
                      objective_unit="s", case_path=case.path, title=case.title, coupling=case.coupling,

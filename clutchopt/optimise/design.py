@@ -22,6 +22,7 @@ from clutchopt.optimise.robust import MAX_SAMPLES, MAX_STARTS, RobustResult, par
 from clutchopt.optimise.robust_models import SAMPLES
 from clutchopt.optimise.robust_start_up import START_SAMPLES
 from clutchopt.optimise.solution import Solution, SolverOptions
+from clutchopt.records import NOMINAL, method_text
 
 
 @dataclass(frozen=True)
@@ -35,9 +36,9 @@ class Robustness:
     starts: int = START_SAMPLES  # simulated starts of a [start_up]'s Monte Carlo
 
     @classmethod
-    def parse(cls, text: str, samples: int | None, starts: int | None = None) -> "Robustness":
+    def parse(cls, text: str, samples: int | None, starts: int | None = None, start_up: bool = True) -> "Robustness":
         """``--robust worst-case|chance=P``, ``--samples N`` and ``--starts N`` from the command line (each bad one
-        named)."""
+        named); ``start_up``: the case has a [start_up], whose starts ``--starts`` counts."""
         problems, (method, target) = Problems(), (None, None)
         with problems.field():
             method, target = parse_method(text)
@@ -45,6 +46,9 @@ class Robustness:
         if not 100 <= samples <= MAX_SAMPLES:
             problems.errors.append(InputError("--samples", f"must be a whole number from 100 to {MAX_SAMPLES}, "
                                                            f"got {samples}"))
+        if starts is not None and not start_up:
+            problems.errors.append(InputError("--starts", "counts the simulated starts of a [start_up] under scatter; "
+                                                          "this case has no [start_up], so nothing is started"))
         starts = START_SAMPLES if starts is None else starts
         if not 10 <= starts <= MAX_STARTS:
             problems.errors.append(InputError("--starts", f"must be a whole number from 10 to {MAX_STARTS}, "
@@ -62,8 +66,15 @@ class Robustness:
     def label(self) -> str:
         return self.method if self.target is None else f"{self.method} {self.target:g}"
 
-    def as_dict(self) -> dict:
-        return {"method": self.method, "target": self.target, "samples": self.samples, "starts": self.starts}
+    @property
+    def spelled(self) -> str:
+        """As --robust spells it, and the run store records it: ``worst-case``, ``chance=0.999``."""
+        return method_text(self.method, self.target)
+
+    def as_dict(self, case: Case) -> dict:
+        """The settings that apply to ``case``: its simulated starts only where it has a [start_up]."""
+        return {"method": self.method, "target": self.target, "samples": self.samples,
+                **({"starts": self.starts} if case.start_up is not None else {})}
 
 
 class Designed(NamedTuple):
@@ -86,6 +97,11 @@ class Designed(NamedTuple):
 
         return {**self.solution.as_dict(), **({"choice": self.choice} if self.choice else {}),
                 **({"robust": robust_json(self.robust, self.case)} if self.robust is not None else {})}
+
+
+def method_of(robust: Robustness | None) -> str:
+    """How a design is made, as the run store records it: ``nominal``, ``worst-case`` or ``chance=P``."""
+    return NOMINAL if robust is None else robust.spelled
 
 
 def check_robustness(case: Case, robust: Robustness | None, problem=None) -> None:

@@ -33,6 +33,13 @@ def quantile(s: Scatter, probability: float, quantity: Quantity) -> float:
     return s.low + probability * (s.high - s.low)
 
 
+def quantile_ends(case: Case, scatter, share: float) -> dict[str, tuple[float, float]]:
+    """Quantity -> its quantiles 1 - ``share`` and ``share`` (:func:`quantile`)."""
+    declared = {q.name: q for q in case.quantities}
+    return {s.name: (quantile(s, 1.0 - share, declared[s.name]), quantile(s, share, declared[s.name]))
+            for s in scatter}
+
+
 class StartUpCorners(NamedTuple):
     """A start-up under scatter at a design (:func:`start_up_corners`)."""
 
@@ -60,10 +67,7 @@ def start_up_corners(case: Case, mode: str, design: dict, scatter, target: float
     ends = {s.name: (s.low, s.high) for s in scatter}
     if target is not None:
         moving = sum(not np.array_equal(low, high) for low, high in alone.values())
-        share = target ** (1.0 / max(1, moving))
-        declared = {q.name: q for q in case.quantities}
-        ends = {s.name: (quantile(s, 1.0 - share, declared[s.name]), quantile(s, share, declared[s.name]))
-                for s in scatter}
+        ends = quantile_ends(case, scatter, target ** (1.0 / max(1, moving)))
     if len(scatter) <= MAX_START_CORNERS:
         points = corner_points(corner_table(scatter, ends))
         margins = np.array([_margins(run) for run in simulated_start_ups(case, mode, design, points)])
