@@ -126,8 +126,11 @@ def add_robust_options(command: argparse.ArgumentParser) -> None:
 
 
 def robustness(args, case):
-    """The robust method the arguments ask for (None: the nominal design), checked against the case."""
+    """The robust method the arguments ask for (None: the nominal design), checked against the case and the problem
+    the command poses (a scattered quantity that does not enter it), before any store is opened or file written."""
+    from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.design import Robustness, check_robustness
+    from clutchopt.optimise.problem import case_problem
 
     if args.robust is None:
         for name, given, what in (("--samples", args.samples, "the Monte Carlo samples"),
@@ -136,7 +139,8 @@ def robustness(args, case):
                 raise InputError(name, f"counts {what} of --robust; give --robust too")
         return None
     robust = Robustness.parse(args.robust, args.samples, args.starts, case.start_up is not None)
-    check_robustness(case, robust)
+    check_robustness(case, robust, case_problem(case, args.mode, getattr(args, "objective", None),
+                                                SolverOptions(tol=args.tol)))
     return robust
 
 
