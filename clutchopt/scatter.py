@@ -99,9 +99,9 @@ def _item(field: str, quantity, raw, nominal: float) -> Scatter:
             quantity.check(first, f"{field}.normal")
             if not math.isnan(nominal) and not math.isclose(first, nominal, rel_tol=MEAN_TOLERANCE):
                 raise InputError(f"{field}.normal", f"the mean {quantity.show(first)} is not the case's value "
-                                                    f"{quantity.show(nominal)}: a scatter spreads around the value the "
-                                                    f"case is designed at; set the case's value to the mean, or scatter "
-                                                    f"around it (normal = [{_spelled(quantity, nominal)}, "
+                                                    f"{quantity.show(nominal)}: a scatter spreads around the value "
+                                                    f"the case is designed at; set the case's value to the mean, or "
+                                                    f"scatter around it (normal = [{_spelled(quantity, nominal)}, "
                                                     f"{_spelled(quantity, second)}])")
             low, high = _within(quantity, first - NORMAL_RANGE * second), _within(quantity, first + NORMAL_RANGE * second)
             quantity.check(low, f"{field}.normal"), quantity.check(high, f"{field}.normal")

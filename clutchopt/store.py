@@ -364,8 +364,8 @@ class RunStore:
     def record_many(self, runs: list[tuple[str, dict, dict, dict]], templates: dict[str, dict] | None = None) -> int:
         """Record runs ``(kind, inputs, outputs, where)`` in one transaction (a window of sweep points: all land or
         none). ``where``: status, objective, objective_unit, method, case_path, title, coupling, mode,
-        objective_name, sweep_id, point. Outputs may be compact records (``clutchopt.records``) whose ``templates`` are given by key;
-        they are read back in full. A sweep point already stored (another process resuming the same sweep solved it
+        objective_name, sweep_id, point. Outputs may be compact records (``clutchopt.records``) whose ``templates``
+        are given by key; they are read back in full. A sweep point already stored (another process resuming the same sweep solved it
         too) is kept as it is. Returns how many were recorded."""
         created = _now()  # one transaction: one moment
         return self._write_many(RECORD, [self._row(kind, inputs, outputs, created, **where)

@@ -139,8 +139,8 @@ def robustness(args, case):
                 raise InputError(name, f"counts {what} of --robust; give --robust too")
         return None
     robust = Robustness.parse(args.robust, args.samples, args.starts, case.start_up is not None)
-    check_robustness(case, robust, case_problem(case, args.mode, getattr(args, "objective", None),
-                                                SolverOptions(tol=args.tol)))
+    mode, objective = getattr(args, "mode", None), getattr(args, "objective", None)  # compare: the case's own
+    check_robustness(case, robust, case_problem(case, mode, objective, SolverOptions(tol=args.tol)))
     return robust
 
 

@@ -50,7 +50,7 @@ class Robustness:
             problems.errors.append(InputError("--starts", "counts the simulated starts of a [start_up] under scatter; "
                                                           "this case has no [start_up], so nothing is started"))
         starts = START_SAMPLES if starts is None else starts
-        if not 10 <= starts <= MAX_STARTS:
+        if start_up and not 10 <= starts <= MAX_STARTS:
             problems.errors.append(InputError("--starts", f"must be a whole number from 10 to {MAX_STARTS}, "
                                                           f"got {starts}"))
         problems.raise_any()
