@@ -108,6 +108,10 @@ HOSTILE: list[Hostile] = [
            "scatter.flank_angle: a design variable the optimiser chooses in mode geometry", "--mode", "geometry"),
     robust("fixed-flank-angle-geometry", WEDGE, 'flank_angle = ["13 deg", "17 deg"]', None, "--mode", "geometry"),
     robust("whole-number-refused", WEDGE, "weight_count = [3, 5]", "scatter.weight_count: a whole number does not"),
+    robust("price-only-the-objective-depends-on", WEDGE, 'material_price = ["2 EUR/kg", "3 EUR/kg"]',
+           "scatter.material_price: only the cost objective depends on it, not a constraint", "--objective", "cost"),
+    robust("price-nothing-depends-on", WEDGE, 'material_price = ["2 EUR/kg", "3 EUR/kg"]',
+           "scatter.material_price: does not enter the wedge problem in mode paper"),
     robust("start-up-quantity-without-start-up", WEDGE, 'breakdown_torque = ["35 N*m", "39 N*m"]',
            "scatter.breakdown_torque: not a quantity of this case"),
     # --- followed and following quantities -------------------------------------------------------------------------

@@ -113,7 +113,7 @@ def check_robustness(case: Case, robust: Robustness | None, problem=None) -> Non
         raise InputError("--robust", "the case has no [scatter] section: say which quantities scatter and how "
                                      "(docs/robust.md)")
     if problem is not None:
-        check_entering(case, problem, [s.name for s in case.scatter], "scatter.{}")
+        check_entering(case, problem, [s.name for s in case.scatter], "scatter.{}", objective=False)
 
 
 def design_case(case: Case, mode: str | None = None, objective: str | None = None,
