@@ -11,9 +11,10 @@
 - Both are then checked by Monte Carlo: ``samples`` draws of the distributions (a range: uniform over it),
   evaluated vectorised in float64 by the formulation's own equations; each constraint's failure probability with
   its Clopper-Pearson interval, for the robust and for the nominal design.
-- A ``[start_up]`` is designed at one corner, where its simulated figures bind: of the ends of the ranges (worst
-  case) or of the quantiles (chance), re-solved until the corner settles; then simulated at every such corner
-  (each start-up limit at its worst) and by ``starts`` simulated starts of Monte Carlo.
+- A ``[start_up]``'s start is designed at one corner, where its simulated figures bind, and each of its
+  constraints evaluated at its own (a scattered limit at its strict end): of the ends of the ranges (worst case) or
+  of the quantiles (chance), re-solved until the corners settle; then simulated at every such corner (each start-up
+  limit at its worst) and by ``starts`` simulated starts of Monte Carlo.
 """
 
 from __future__ import annotations
@@ -141,8 +142,8 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
                  objective: str | None = None, options: SolverOptions = SolverOptions(),
                  samples: int = SAMPLES, starts: int = START_SAMPLES, base: Formulation | None = None) -> RobustResult:
     """The robust design of a case with a [scatter] section, beside its nominal design, both checked by Monte Carlo
-    (``samples``). A [start_up] is designed at its corner (worst case: of the ranges; chance: of the quantiles),
-    re-solved until the corner settles, then simulated at every such corner and by ``starts`` Monte Carlo starts.
+    (``samples``). A [start_up] is designed at its corners (worst case: of the ranges; chance: of the quantiles),
+    re-solved until they settle, then simulated at every such corner and by ``starts`` Monte Carlo starts.
     ``base``: the formulation to make robust, if not the mode's own (a Pareto point's, with its cost cap)."""
     if not case.scatter:
         raise InputError("--robust", "the case has no [scatter] section: say which quantities scatter and how")
