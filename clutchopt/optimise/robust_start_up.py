@@ -1,5 +1,6 @@
 """A start-up under scatter: its start designed at one corner (of the ranges, or of the quantiles), each of its
-constraints at its own, simulated at every corner and by Monte Carlo of simulated starts (``clutchopt.optimise.robust``; docs/robust.md)."""
+constraints at its own, simulated at every corner and by Monte Carlo of simulated starts
+(``clutchopt.optimise.robust``; docs/robust.md)."""
 
 from __future__ import annotations
 
