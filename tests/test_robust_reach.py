@@ -85,6 +85,19 @@ def test_a_scattered_fixed_geometry_reaches_the_static_constraints():
         assert result.nominal_failure["torque"][0] > 0.4 and result.failure["torque"][0] == 0.0
 
 
+def test_a_scattered_static_limit_is_held_at_its_strict_end():
+    """The allowable bending stress 140 to 180 MPa: the fingers are sized for 140 MPa (the corner every constraint
+    is evaluated at is its own worst, limits included)."""
+    data = read_toml(CASES / "wedge_paper.toml")
+    data["scatter"] = {"allowable_bending_stress": ["140 MPa", "180 MPa"]}
+    case = parse_case(data, str(CASES / "wedge_paper.toml"))
+    result = solve_robust(case, WORST_CASE, samples=1000)
+    bending = next(c for c in result.checks if c.name == "finger_bending")
+    assert result.status == "optimal" and bending.limit == 140e6 and bending.value <= 140e6 * (1 + 1e-8)
+    assert result.corners["finger_bending"] == {"allowable_bending_stress": 140e6}
+    assert result.nominal_failure["finger_bending"][0] > 0.4
+
+
 @pytest.fixture(scope="module")
 def start_time_limit():
     """max_start_time 8 to 12 s around the case's 10 s (the issue's example)."""
