@@ -40,7 +40,7 @@ def runs(name: str, *argv: str, store: Special = ROBUST_RUNS, expect=None) -> Ho
     return command(name, ("runs", *argv, "--store", "{dir}/runs.sqlite"), expect, ("runs.sqlite", store))
 
 
-FIVE = ('friction_coefficient = [0.14, 0.16]\ndensity = ["7800 kg/m^3", "7900 kg/m^3"]\n'
+FIVE = ('friction_coefficient = [0.14, 0.16]\nspeed = ["950 rpm", "1050 rpm"]\n'
         'allowable_pressure = ["3.8 MPa", "4.2 MPa"]\nallowable_bending_stress = ["150 MPa", "170 MPa"]\n'
         'resisting_torque = ["4.5 N*m", "5.5 N*m"]')
 OWN_DRIVEN = edit(FIXED, "[start_up.driver]", '[start_up.driven]\ninertia = "0.6 kg*m^2"\n\n[start_up.driver]')

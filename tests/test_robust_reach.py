@@ -127,7 +127,7 @@ def test_a_scattered_lower_limit_is_checked_at_its_high_end():
 def test_with_more_than_four_quantities_a_limit_is_still_at_its_strict_end():
     """Five quantities: each at its worse end, simulated alone, by the margin of each limit (a start that takes as
     long at either end of its limit is not the measure)."""
-    case = motor_start({"friction_coefficient": [0.145, 0.155], "density": ["7800 kg/m^3", "7900 kg/m^3"],
+    case = motor_start({"friction_coefficient": [0.145, 0.155], "breakdown_torque": ["36 N*m", "38 N*m"],
                         "allowable_bending_stress": ["150 MPa", "170 MPa"],
                         "driven_inertia": {"normal": ["0.5 kg*m^2", "0.01 kg*m^2"]},
                         "max_start_time": ["9 s", "11 s"]})
