@@ -12,6 +12,7 @@ Each role fills the case quantities it maps to, unless the case gives them itsel
 the library filled is recorded in ``Case.library`` and reported by ``clutchopt solve``. ``options.choose`` lists
 alternatives, e.g. ``choose = {friction_pair = ["organic_dry", "sintered_bronze_oiled"]}``: every combination is
 a variant of the case (:func:`variants`), designed and ranked by every design command (``clutchopt.optimise.design``).
+A role is named in ``[library]`` or listed in ``options.choose``, not in both (the choices would replace the entry).
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ from clutchopt.model import MaterialRole, Quantity
 from clutchopt.units import from_si, to_si
 
 Q = Quantity
+MAX_CHOICES = 30  # combinations of options.choose designed in one run (each a design: with a [start_up], 2-3 s)
 FIELDS: dict[str, tuple[Quantity, ...]] = {
     "materials": (
         Q("density", "kg/m^3", "density", "rho", above=0),
@@ -114,7 +116,8 @@ def lookup(role: MaterialRole, name: object, field: str | None = None) -> Librar
 
 
 def check_choose(choose: object, roles: tuple[MaterialRole, ...]) -> dict[str, tuple[str, ...]]:
-    """``options.choose``: a table from role to a list of at least one known entry name."""
+    """``options.choose``: a table from role to a list of at least one known entry name, at most MAX_CHOICES
+    combinations in all."""
     by_key = {role.key: role for role in roles}
     if not isinstance(choose, dict) or not choose:
         raise InputError("options.choose", f"must be a table of lists, e.g. {{{_example(roles)}}}")
@@ -126,6 +129,12 @@ def check_choose(choose: object, roles: tuple[MaterialRole, ...]) -> dict[str, t
         if not isinstance(names, list) or not names or len(set(map(str, names))) != len(names):
             raise InputError(field, f"must be a list of different names, e.g. [{_example(roles, list_only=True)}]")
         checked[key] = tuple(lookup(by_key[key], name, field).name for name in names)
+    combinations = math.prod(len(names) for names in checked.values())
+    if combinations > MAX_CHOICES:
+        raise InputError("options.choose", f"{combinations} combinations ("
+                                           f"{' x '.join(f'{len(names)} {key}' for key, names in checked.items())}); "
+                                           f"at most {MAX_CHOICES} are designed in one run: list fewer names, or name "
+                                           "one role's entry in [library] and choose among the others")
     return checked
 
 
@@ -170,6 +179,11 @@ def fill(table: object, roles: tuple[MaterialRole, ...], quantities: tuple[Quant
         if key not in keys:
             raise InputError(f"library.{key}", f"unknown key; [library] takes {', '.join(keys) or 'nothing'} "
                                                "for this coupling")
+    both = [key for key in keys if key in table and key in choose]
+    if both:
+        raise InputError(f"library.{both[0]}", f"names {table[both[0]]!r}, and options.choose.{both[0]} lists the "
+                                               "entries to choose from: name one entry in [library] or several in "
+                                               "options.choose, not both")
     declared = {q.name: q for q in quantities}
     filled = {}
     for role in roles:

@@ -12,6 +12,9 @@ What can go wrong with the file, and what happens:
 - another process is writing: each write waits for the lock (up to ``BUSY_TIMEOUT_S``), then succeeds;
 - the file or its folder cannot be written, the disk is full, the lock never comes: the run's result is still
   printed, and one warning says what was not recorded (``RunStore.failure``); nothing is lost half-written;
+- the creation is cut off (a full disk, a file-size limit, a kill): the schema is created in one transaction, all
+  of it or none; a store with part of it (ours only) is completed when opened, or where it cannot be written
+  refused with the command that completes it;
 - the file is damaged (``PRAGMA quick_check`` on open) or is not a run store: one ``StoreError`` line with the
   way out (another ``--store``; ``clutchopt runs export`` saves what can still be read). The check reads the whole
   file (about 0.25 ms a MB), so a store opened for recording is checked only up to ``QUICK_CHECK_BYTES``; a larger
@@ -29,6 +32,7 @@ import sqlite3
 import stat
 import time
 import warnings
+from dataclasses import dataclass
 from datetime import datetime, timezone
 from functools import lru_cache
 from importlib import metadata
@@ -61,13 +65,14 @@ CREATE TABLE IF NOT EXISTS runs (
     inputs TEXT NOT NULL, outputs TEXT NOT NULL, versions TEXT NOT NULL, created TEXT NOT NULL,
     objective_unit TEXT, method TEXT, UNIQUE (sweep_id, point));
 CREATE INDEX IF NOT EXISTS runs_by_kind ON runs (kind);
-"""
-TEMPLATES = "CREATE TABLE IF NOT EXISTS templates (key TEXT PRIMARY KEY, body TEXT NOT NULL)"  # clutchopt.records
+CREATE TABLE IF NOT EXISTS templates (key TEXT PRIMARY KEY, body TEXT NOT NULL);
+"""  # templates: a window's shared part of its compact sweep points (clutchopt.records)
+ADDED_COLUMNS = {"runs": {"objective_unit": "TEXT", "method": "TEXT"}}  # columns newer than their table: a store
+# of an older clutchopt lacks them, and gets them when opened for recording (read as NULL from one opened to read,
+# and filled from the run's outputs where they say)
 
 LIST_COLUMNS = ("id", "kind", "sweep_id", "point", "created", "coupling", "mode", "method", "objective_name", "status",
                 "objective", "objective_unit", "case_path")
-NEWER_COLUMNS = ("objective_unit", "method")  # of runs, added by later versions: added to an older store on opening it
-# for recording, read as NULL from one opened to read (filled from the run's outputs where they say)
 _SQLITE_HEADER = b"SQLite format 3\x00"
 
 
@@ -161,13 +166,75 @@ def _printable(detail: object, limit: int = 160) -> str:
     return text if len(text) <= limit else text[:limit] + "..."
 
 
+@lru_cache(maxsize=1)
+def _our_schema() -> "Schema":
+    """The run store's schema as :data:`_SCHEMA` creates it."""
+    db = sqlite3.connect(":memory:")
+    try:
+        db.executescript(_SCHEMA)
+        return Schema.of(db)
+    finally:
+        db.close()
+
+
+@dataclass(frozen=True)
+class Schema:
+    """What an SQLite file holds of the run store's schema: its tables with their columns, and its indexes
+    (SQLite's own left out)."""
+
+    tables: dict[str, frozenset[str]]
+    indexes: frozenset[str]
+
+    @classmethod
+    def of(cls, db: sqlite3.Connection) -> "Schema":
+        def named(kind: str) -> list[str]:
+            return [row[0] for row in db.execute(
+                "SELECT name FROM sqlite_master WHERE type = ? AND name NOT LIKE 'sqlite\\_%' ESCAPE '\\'", (kind,))]
+
+        return cls({table: frozenset(row[0] for row in db.execute("SELECT name FROM pragma_table_info(?)", (table,)))
+                    for table in named("table")}, frozenset(named("index")))
+
+    def _fits(self, table: str) -> bool:
+        """Whether a table of one of our names is ours: our columns, save those added since (ADDED_COLUMNS)."""
+        ours = _our_schema().tables[table]
+        return self.tables[table] <= ours and ours - self.tables[table] <= ADDED_COLUMNS.get(table, {}).keys()
+
+    @property
+    def readable(self) -> bool:
+        return {"runs", "sweeps"} <= self.tables.keys()
+
+    @property
+    def foreign(self) -> bool:
+        """Whether the file is another program's database: a table of one of our names is not ours, or tables of
+        other names stand where ours are missing (beside a whole store of ours, they are kept)."""
+        ours = _our_schema().tables
+        return (any(not self._fits(table) for table in self.tables.keys() & ours.keys())
+                or (bool(self.tables.keys() - ours.keys()) and not self.readable))
+
+    @property
+    def columns(self) -> list[tuple[str, str, str]]:
+        """(table, column, type) of each column a table of an older store lacks."""
+        return [(table, column, kind) for table, added in ADDED_COLUMNS.items() if table in self.tables
+                for column, kind in added.items() if column not in self.tables[table]]
+
+    @property
+    def missing(self) -> str:
+        """What the store lacks of its schema, in words ("" if nothing)."""
+        ours = _our_schema()
+        parts = [f"no {name} table" for name in sorted(ours.tables.keys() - self.tables.keys())]
+        parts += [f"no {name} index" for name in sorted(ours.indexes - self.indexes)]
+        parts += [f"no {table}.{column} column" for table, column, _ in self.columns]
+        return ", ".join(parts)
+
+
 class RunStore:
     """An open store. ``with RunStore(path) as store:`` closes it afterwards.
 
     ``writable``: the store is for recording (created if missing, its folder and file must be writable);
-    otherwise it is only read (never created, read-only files and folders are fine). ``check``: run SQLite's
-    ``quick_check`` on open and refuse a damaged file (``runs export`` opens without it to rescue what it can; a
-    store for recording larger than QUICK_CHECK_BYTES is not checked).
+    otherwise it is only read (never created, read-only files and folders are fine; one cut off while it was
+    created is completed, as it could not be read). ``check``: run SQLite's ``quick_check`` on open and refuse a
+    damaged file (``runs export`` opens without it to rescue what it can; a store for recording larger than
+    QUICK_CHECK_BYTES is not checked).
     ``warn`` receives the one message about runs that could not be recorded (default: a Python warning).
     """
 
@@ -259,29 +326,43 @@ class RunStore:
 
     def _prepare_once(self) -> None:
         try:
-            tables = {row[0] for row in self._db.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
-            if tables and not {"runs", "sweeps"} <= tables:
+            found = Schema.of(self._db)
+            if found.foreign:
                 raise StoreError(self.path, f"is an SQLite database but not a clutchopt run store (its tables: "
-                                            f"{', '.join(sorted(tables))})", "give a run store with --store")
+                                            f"{', '.join(sorted(found.tables))})", "give a run store with --store")
             if not self.writable:
-                if not tables:
+                if not found.tables:
                     raise StoreError(self.path, "is empty: nothing has been recorded in it yet")
+                if not found.readable:  # cut off while it was created: completed even to be read
+                    self._complete(found)
                 return
-            if not tables:  # set before the first write; a store of an older clutchopt keeps its pages
+            if not found.tables:  # set before the first write; a store of an older clutchopt keeps its pages
                 self._db.execute(f"PRAGMA page_size={PAGE_BYTES}")
             self._db.execute("PRAGMA journal_mode=WAL")
             self._db.execute("PRAGMA synchronous=NORMAL")
-            if not tables:
-                self._db.executescript(f"{_SCHEMA}{TEMPLATES};")
-            else:
-                for column in set(NEWER_COLUMNS) - self._columns():
-                    with self._db:
-                        self._db.execute(f"ALTER TABLE runs ADD COLUMN {column} TEXT")
-                if "templates" not in tables:
-                    with self._db:
-                        self._db.execute(TEMPLATES)
+            if found.missing:
+                self._complete(found)
         except sqlite3.DatabaseError as exc:
             raise self._damaged(exc) from None
+
+    def _complete(self, found: Schema) -> None:
+        """Create what the store lacks of its schema in one transaction, all of it or (on any error) none: a new
+        store's tables and index, the rest of one cut off while it was created, an older store's newer columns."""
+        added = "".join(f"ALTER TABLE {table} ADD COLUMN {column} {kind};" for table, column, kind in found.columns)
+        try:
+            self._db.executescript(f"BEGIN IMMEDIATE;{_SCHEMA}{added}COMMIT;")
+        except sqlite3.DatabaseError as exc:
+            if self._db.in_transaction:
+                self._db.rollback()
+            if "locked" in str(exc) or "busy" in str(exc):
+                raise  # waited for, then tried again (_prepare)
+            if not found.tables:
+                raise StoreError(self.path, f"the run store cannot be created ({_printable(exc)})",
+                                 "record elsewhere with --store OTHER.sqlite") from None
+            raise StoreError(self.path, f"its run store schema is incomplete ({found.missing}) and cannot be "
+                                        f"completed here ({_printable(exc)})",
+                             f"whoever may write it completes it with 'clutchopt runs list --store {self.path}'") \
+                from None
 
     def _columns(self) -> set[str]:
         return {row[1] for row in self._db.execute("PRAGMA table_info(runs)")}
@@ -365,8 +446,8 @@ class RunStore:
         """Record runs ``(kind, inputs, outputs, where)`` in one transaction (a window of sweep points: all land or
         none). ``where``: status, objective, objective_unit, method, case_path, title, coupling, mode,
         objective_name, sweep_id, point. Outputs may be compact records (``clutchopt.records``) whose ``templates``
-        are given by key; they are read back in full. A sweep point already stored (another process resuming the same sweep solved it
-        too) is kept as it is. Returns how many were recorded."""
+        are given by key; they are read back in full. A sweep point already stored (another process resuming the
+        same sweep solved it too) is kept as it is. Returns how many were recorded."""
         created = _now()  # one transaction: one moment
         return self._write_many(RECORD, [self._row(kind, inputs, outputs, created, **where)
                                          for kind, inputs, outputs, where in runs], templates or {})
@@ -462,7 +543,7 @@ class RunStore:
         """Runs, newest first, without their JSON bodies; ``objective_unit`` and ``method`` filled for runs of older
         versions (from their outputs, where they say)."""
         present = self._columns()
-        columns = [c if c not in NEWER_COLUMNS or c in present else f"NULL AS {c}" for c in LIST_COLUMNS]
+        columns = [c if c not in ADDED_COLUMNS["runs"] or c in present else f"NULL AS {c}" for c in LIST_COLUMNS]
         query = f"SELECT {', '.join(columns)} FROM runs"
         where, args = [], []
         if kind:

@@ -129,11 +129,13 @@ def test_the_integer_search_along_a_batched_sweep():
 def test_an_infeasible_stretch_costs_one_design_solve_a_point():
     case, problem, quantity, values, sweep, solutions = _sweep("lever")
     statuses = [s.status for s in solutions]
-    first = statuses.index("not_found")
+    first = statuses.index("infeasible")
     assert "optimal" not in statuses[first:] and first > 3  # the lining pressure ends the feasible stretch
-    # each point without a design is retried from at most three more starts before its verdict (optimise/verdict.py)
-    assert all(s.solver.solves <= 4 and s.diagnosis.startswith("no feasible design found (not proven infeasible)")
-               for s in solutions[first + 1:])
+    # each point without a design is retried from at most three more starts before its verdict (optimise/verdict.py),
+    # which here is a proof: no design within the bounds meets the torque and the lining pressure together
+    assert all(s.solver.solves <= 4 for s in solutions[first + 1:])
+    assert all(s.diagnosis.startswith("proven infeasible: no design within the bounds meets torque, lining_pressure")
+               for s in solutions[first:])
     assert all(s.solver.time_s > 0 for s in solutions[first:])  # the diagnosis's IPOPT call is solver time
 
 

@@ -94,6 +94,22 @@ def test_throughput(report):
     assert _rows(report, "throughput", "wedge")["batched"]["vs_wedge_paper"] == 1.0
 
 
+def test_user_sweeps_cover_every_coupling_and_quantity_users_vary(report):
+    rows = report["sections"]["user_sweeps"]["rows"]
+    swept = {(row["case"].split(" ")[0], row["quantity"]) for row in rows}
+    for coupling, _ in MODES:
+        assert {q for c, q in swept if c == coupling} >= {"speed", "friction_coefficient"}
+        assert any(q.endswith("(into infeasible)") for c, q in swept if c == coupling)
+    assert {c for c, q in swept if q == "driven_inertia"} == {f"{c}_motor_start" for c in ("wedge", "lever", "cable",
+                                                                                          "ball")}
+    for row in rows:
+        assert row["designed"] + row["without_design"] == row["points"] > 0 and row["solves_per_point"] >= 1
+        assert row["points_per_s"] == pytest.approx(row["points"] / row["wall_s"])
+    infeasible = [row for row in rows if row["quantity"].endswith("(into infeasible)")]
+    assert sum(row["without_design"] for row in infeasible) > 0  # the region is reached
+    assert next(r for r in rows if r["case"] == "wedge (paper)" and r["quantity"] == "inertia")["vs_wedge_paper"] == 1
+
+
 def test_cli_launch_rows_are_ratios_to_the_bare_imports(report):
     rows = {row["command"]: row for row in report["sections"]["cli_launch"]["rows"]}
     assert rows["python -c 'import casadi, numpy'"]["ratio_to_import"] == 1.0

@@ -9,7 +9,7 @@ import os
 import signal
 import socket
 import threading
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 
 import pytest
 
@@ -113,25 +113,34 @@ def test_ctrl_c_is_one_line(monkeypatch, capsys):
 
 # --- Dask: an address where no Dask scheduler answers fails fast, in one line -------------------------------------
 @contextmanager
-def server(greeting: bytes | None):
-    """A TCP server on a free local port that sends ``greeting`` on each connection (None: waits to be asked,
-    as a web server does)."""
+def server(*greetings: bytes | None, hold_s: float = 2.0):
+    """A TCP server on a free local port that sends the i-th of ``greetings`` on its i-th connection (the last one
+    on all after), holds the connection ``hold_s`` seconds and closes it (None: waits to be asked, as a web server
+    does)."""
     listener = socket.socket()
     listener.bind(("127.0.0.1", 0))
     listener.listen()
     stop = threading.Event()
 
+    def answer(connection: socket.socket, greeting: bytes | None) -> None:
+        with connection, suppress(OSError):  # the client may have gone
+            if greeting is not None:
+                connection.sendall(greeting)
+            stop.wait(hold_s)
+
     def serve():
         listener.settimeout(0.1)
+        served = []
         while not stop.is_set():
             try:
                 connection, _ = listener.accept()
             except OSError:
                 continue
-            if greeting is not None:
-                connection.sendall(greeting)
-            stop.wait(2)
-            connection.close()
+            served.append(threading.Thread(target=answer, args=(connection, greetings[min(len(served),
+                                                                                          len(greetings) - 1)])))
+            served[-1].start()
+        for thread in served:
+            thread.join()
 
     thread = threading.Thread(target=serve, daemon=True)
     thread.start()
@@ -144,7 +153,7 @@ def server(greeting: bytes | None):
 
 
 def test_a_silent_server_is_not_a_dask_scheduler():
-    from clutchopt.optimise.sweep import probe_scheduler
+    from clutchopt.optimise.dask_client import probe_scheduler
 
     with server(None) as address, pytest.raises(InputError, match="sent no Dask greeting within 0.3 s"):
         probe_scheduler(address, 0.3)
@@ -161,7 +170,7 @@ def test_a_server_greeting_with_text_is_not_a_dask_scheduler(capsys):
 def test_a_dask_scheduler_passes_the_probe():
     from distributed import LocalCluster
 
-    from clutchopt.optimise.sweep import probe_scheduler
+    from clutchopt.optimise.dask_client import probe_scheduler
 
     with LocalCluster(n_workers=0, processes=False, protocol="tcp", dashboard_address=None) as cluster:
         assert cluster.scheduler_address.startswith("tcp://")

@@ -8,21 +8,25 @@ a real SIGKILL of that process, in the middle of a solve or of an SQLite transac
 import multiprocessing
 import os
 import random
+import shlex
 import shutil
 import signal
 import sqlite3
 import stat
+import subprocess
 import sys
 import tempfile
 import time
+from contextlib import closing
 from pathlib import Path
 
 import pandas as pd
 import pytest
 
 from clutchopt.cli import main
-from clutchopt.store import RunStore
-from conftest import CASES
+from clutchopt.store import RunStore, Schema
+from conftest import CASES, ROOT
+from hostile_runtime import FOREIGN_SQL, PARTIAL_SQL, store_with
 
 FORK = multiprocessing.get_context("fork")
 CASE = str(CASES / "wedge_paper.toml")
@@ -549,3 +553,71 @@ def test_a_sweep_the_store_refuses_counts_every_point_not_recorded(table, held, 
     assert code == 0, err
     assert "20 points not recorded" in out and err.count("warning: not recorded") == 1, (out, err)
     assert ("recorded as sweep" not in out) and ((f"holds {held} of its 20 points" in out) == (held is not None))
+
+
+# --- a store cut off while it was created, an older one, another program's --------------------------------------------
+def _store_with(folder: Path, sql: str) -> Path:
+    """A new run store in ``folder`` with the SQL statements ``sql`` run on it."""
+    store = folder / "runs.sqlite"
+    store.write_bytes(store_with(sql))
+    return store
+
+
+@pytest.mark.parametrize("name", PARTIAL_SQL)
+def test_a_partial_store_is_completed_when_opened(name, tmp_path, capsys):
+    store = _store_with(tmp_path, PARTIAL_SQL[name])
+    code, out, err = _command(capsys, ["runs", "list"], store)
+    assert code == 0 and err == "" and "(none)" in out, err
+    code, out, err = _command(capsys, ["solve", CASE], store)
+    assert code == 0 and err == "" and "status: optimal" in out, err
+    with closing(sqlite3.connect(store)) as db:
+        found = Schema.of(db)
+    assert found.missing == "" and not found.foreign
+    code, out, err = _command(capsys, ["runs", "list"], store)
+    assert code == 0 and " solve " in out, err
+
+
+@pytest.mark.parametrize("name", FOREIGN_SQL)
+def test_another_programs_database_is_refused_untouched(name, tmp_path, capsys):
+    store = _store_with(tmp_path, FOREIGN_SQL[name])
+    before = store.read_bytes()
+    code, _, err = _command(capsys, ["runs", "list"], store)
+    assert code == 2 and err.startswith(f"error: --store: {store}: is an SQLite database but not a clutchopt run "
+                                        "store (its tables: "), err
+    code, out, err = _command(capsys, ["solve", CASE], store)
+    assert code == 0 and "status: optimal" in out and err.startswith("warning: this run will not be recorded"), err
+    assert store.read_bytes() == before and not Path(f"{store}-wal").exists()
+
+
+@pytest.mark.parametrize("kib", [16, 48, 112])
+def test_a_store_cut_off_by_a_file_size_limit_heals(kib, tmp_path, capsys):
+    # ulimit -f: the creation (or the points) cannot be written; the schema is there whole or not at all, and the
+    # next command records
+    store = tmp_path / "runs.sqlite"
+    sweep = f"{shlex.quote(sys.executable)} -m clutchopt sweep {shlex.quote(CASE)} --vary speed=800,900 --quiet"
+    result = subprocess.run(["bash", "-c", f"ulimit -f {kib}; exec {sweep} --store {shlex.quote(str(store))}"],
+                            capture_output=True, text=True, timeout=120, env={**os.environ, "PYTHONPATH": str(ROOT)})
+    assert result.returncode == 0 and "2 optimal" in result.stdout, result.stderr
+    assert result.stderr.count("warning:") <= 1 and "Traceback" not in result.stderr, result.stderr
+    if store.exists():
+        with closing(sqlite3.connect(store)) as db:
+            found = Schema.of(db)
+        assert not found.tables or found.missing == "", found
+    code, out, err = _command(capsys, ["solve", CASE], store)
+    assert code == 0 and err == "" and "status: optimal" in out, err
+    code, out, err = _command(capsys, ["runs", "list"], store)
+    assert code == 0 and " solve " in out, err
+
+
+def test_a_partial_store_that_cannot_be_written_names_the_command_that_completes_it(shared_folder, tmp_path):
+    store = _store_with(shared_folder, PARTIAL_SQL["only-sweeps"])  # a WAL store in a folder the user cannot write
+    before = store.read_bytes()
+    code, text = _as_a_user(["runs", "list", "--store", str(store)], tmp_path)
+    assert code == 2 and text == (
+        f"error: --store: {store}: its run store schema is incomplete (no runs table, no templates table, no "
+        "runs_by_kind index) and cannot be completed here (attempt to write a readonly database); whoever may write "
+        f"it completes it with 'clutchopt runs list --store {store}'\n"), text
+    assert store.read_bytes() == before
+    assert main(["runs", "list", "--store", str(store)]) == 0  # its owner
+    code, text = _as_a_user(["runs", "list", "--store", str(store)], tmp_path)
+    assert code == 0 and "(none)" in text, text

@@ -103,3 +103,42 @@ def test_continuation_follows_a_design_from_the_last_feasible_point():
     assert found.status == "optimal"
     assert found.objective == pytest.approx(problem.solve(case.with_values(inertia=0.7)).objective, rel=1e-6)
     assert continued(problem, case, ({"inertia": 0.5}, before), {"inertia": 40.0}) is None
+
+
+def test_a_batched_sweep_gives_each_point_the_verdict_of_its_values_in_either_order():
+    """A batched static sweep across the end of the ball clutch's designs (about 545 kW), forwards and backwards:
+    each power gets the same verdict and design both ways (a failed point is solved again from the last feasible
+    design before it and from the next one after it)."""
+    case = load_case(CASES / "ball_crusher.toml")
+    powers = [500, 520, 540, 545, 550, 560, 600]
+    frames = [Sweep(case, [parse_vary("power=" + ",".join(map(str, order)), "ball", case.quantities)]).run(
+        progress=False).frame.set_index("power [kW]") for order in (powers, powers[::-1])]
+    forwards, backwards = (frame.loc[powers] for frame in frames)
+    assert forwards["status"].tolist() == backwards["status"].tolist()
+    assert forwards["status"].iloc[0] == "optimal" and forwards["status"].iloc[-1] == "not_found"
+    assert np.allclose(forwards["mass [kg]"], backwards["mass [kg]"], rtol=1e-6, equal_nan=True)
+
+
+def test_a_batched_sweep_solves_a_failed_point_again_from_its_feasible_neighbours(monkeypatch):
+    """A point whose solve stalls (here made to: as IPOPT's restoration may from a poor warm start) is handed the
+    last feasible design as its neighbour, and solved again from the next feasible point's design."""
+    from dataclasses import replace
+
+    from clutchopt.optimise.problem import Problem
+
+    case = load_case(CASES / "ball_crusher.toml")
+    solve, neighbours = Problem.solve, []
+
+    def stalling(self, point, *args, **kwargs):
+        solution = solve(self, point, *args, **kwargs)
+        if point.values["power"] == 480e3:
+            neighbours.append(kwargs.get("neighbour"))
+            return replace(solution, status="not_found", diagnosis="no feasible design found (stalled)")
+        return solution
+
+    monkeypatch.setattr(Problem, "solve", stalling)
+    frame = Sweep(case, [parse_vary("power=400,440,480,520", "ball", case.quantities)]).run(progress=False).frame
+    assert neighbours and neighbours[0] is not None and set(neighbours[0]) >= {"active_radius", "ball_rows"}
+    assert frame["status"].tolist() == ["optimal"] * 4
+    expected = case_problem(case).solve(case.with_values(power=480e3)).objective
+    assert frame["mass [kg]"].iloc[2] == pytest.approx(expected, rel=1e-6)

@@ -23,6 +23,7 @@ from clutchopt.bench.scaleout import scaleout_rows
 from clutchopt.bench.start_up_designs import start_up_design_rows
 from clutchopt.bench.throughput import throughput_rows
 from clutchopt.bench.transient import effects_rows, stiffness_rows, tolerance_rows
+from clutchopt.bench.user_sweeps import user_sweep_rows
 
 
 @dataclass(frozen=True)
@@ -57,6 +58,10 @@ SECTIONS: tuple[Section, ...] = (
                           "solver calls, in the batches' compiled checks (KKT verdicts, exclusion tables) and in "
                           "Python; points/s against the same sweep point by point and the wedge paper mode's",
             throughput_rows),
+    Section("user_sweeps", "The sweeps users run (Sweep.run, no store): every coupling over its duty quantity, speed, "
+                           "friction coefficient and allowable (0.5x-2x), into an infeasible region (1x-10x), and each "
+                           "start-up case over its driven inertia; points with and without a design, solver calls per "
+                           "point, points/s against the wedge paper sweep of its duty quantity", user_sweep_rows),
     Section("resolve", "Warm re-solves along the same sweeps: warm IPOPT alone (before) and SQP first (now); times per "
                        "re-solve, largest relative difference of the verified optima", resolve_rows),
     Section("scaleout", "Scale-out: the ball design sweep (clutchopt sweep's code) in this process and on a local Dask "
@@ -106,7 +111,7 @@ COLUMN_UNITS = {  # the SI unit of every column of every section ("": a count, r
                      "optimal", "solves_per_point", "solver_share", "check_share", "python_share",
                      "python_per_point_share", "vs_point_by_point", "vs_wedge_paper", "resolves", "speedup",
                      "max_rel_diff_objective", "workers", "rtol", "t_c_rel_error", "L_rel_error", "intervals",
-                     "start_time_rel_error", "solves"), ""),
+                     "start_time_rel_error", "solves", "designed", "without_design"), ""),
 }
 
 

@@ -6,6 +6,7 @@ from clutchopt.cli.options import (
     add_case_argument,
     add_json_option,
     add_parser,
+    add_quiet_option,
     add_robust_options,
     add_tolerance_option,
     robustness,
@@ -24,6 +25,7 @@ def add_command(commands) -> None:
     add_tolerance_option(compare)
     add_robust_options(compare)
     add_json_option(compare)
+    add_quiet_option(compare)
     compare.set_defaults(run=run)
 
 
@@ -38,7 +40,7 @@ def run(args) -> str:
     robust = robustness(args, case)
     note = ""
     if case.options.get("choose"):
-        ranked = design_case(case, options=SolverOptions(tol=args.tol), robust=robust)
+        ranked = design_case(case, options=SolverOptions(tol=args.tol), robust=robust, progress=not args.quiet)
         case = ranked[0].case
         note = f"options.choose: compared for the best of {len(ranked)} choices, {ranked[0].choice_text} " \
                "(clutchopt solve lists them)"

@@ -7,10 +7,12 @@ from dataclasses import replace
 
 from clutchopt.cli.options import (
     FIGURE_SUFFIXES,
+    Checked,
     add_case_argument,
     add_json_option,
     add_parser,
     add_problem_options,
+    add_quiet_option,
     add_robust_options,
     add_store_options,
     nominal_note,
@@ -33,7 +35,7 @@ def add_command(commands) -> None:
          "clutchopt pareto cases/lever_centrifuge.toml --mode design --plot front.png --out front.csv"))
     add_case_argument(pareto)
     add_problem_options(pareto, objective=False)  # mass and cost are the front's two ends
-    pareto.add_argument("--points", type=whole_number(2, MAX_FRONT_POINTS), default=9,
+    pareto.add_argument("--points", action=Checked, check=whole_number(2, MAX_FRONT_POINTS), default=9,
                         help=f"designs on the front, the lightest and the cheapest included, 2 to {MAX_FRONT_POINTS} "
                              "(default 9)")
     pareto.add_argument("--plot", metavar="FILE",
@@ -42,6 +44,7 @@ def add_command(commands) -> None:
     add_robust_options(pareto)
     add_json_option(pareto)
     add_store_options(pareto)
+    add_quiet_option(pareto)
     pareto.set_defaults(run=run)
 
 
@@ -65,7 +68,8 @@ def run(args) -> str:
     resolve_problem(case, args, objective=False)
     robust = robustness(args, case)
     with recording(args) as store:
-        fronts = pareto_fronts(case, args.mode, args.points, SolverOptions(tol=args.tol), robust)
+        fronts = pareto_fronts(case, args.mode, args.points, SolverOptions(tol=args.tol), robust,
+                               progress=not args.quiet)
         for front in fronts if store is not None else ():
             for k, (cap, solution) in enumerate(zip(front.caps, front.solutions)):
                 outputs = Designed(front.choice, front.case, solution, front.robust[k] if front.robust else None)
@@ -131,6 +135,8 @@ def pareto_figure(fronts):
     """Mass against cost, a line per front (per choice of options.choose), the ends marked."""
     from matplotlib.figure import Figure
 
+    from clutchopt.simulate.plot import literal
+
     figure = Figure(figsize=(5.5, 3.8), layout="constrained")
     axes = figure.add_subplot()
     for front in fronts:
@@ -147,6 +153,6 @@ def pareto_figure(fronts):
         axes.legend(fontsize=7)
     axes.set_xlabel(cost)
     axes.set_ylabel(mass)
-    axes.set_title(f"Pareto front, {fronts[0].case.title or fronts[0].case.path}", fontsize=9)
+    axes.set_title(f"Pareto front, {literal(fronts[0].case.title or fronts[0].case.path)}", fontsize=9)
     axes.grid(alpha=0.3)
     return figure

@@ -6,6 +6,7 @@ from clutchopt.cli.options import (
     add_case_argument,
     add_parser,
     add_problem_options,
+    add_quiet_option,
     add_robust_options,
     add_store_options,
     record_solve,
@@ -32,6 +33,7 @@ def add_command(commands) -> None:
                         help="add a plot of this sweep table (.csv or .parquet written by clutchopt sweep --out)")
     add_robust_options(report)
     add_store_options(report)
+    add_quiet_option(report)
     report.set_defaults(run=run)
 
 
@@ -54,7 +56,8 @@ def run(args) -> str:
                  robust.label if robust is not None else "")
         check_swept_from(sweep, case, args.sweep, warn, posed)
     with recording(args) as store:
-        ranked = design_case(case, args.mode, args.objective, SolverOptions(tol=args.tol), robust)
+        ranked = design_case(case, args.mode, args.objective, SolverOptions(tol=args.tol), robust,
+                             progress=not args.quiet)
         best = ranked[0]
         record_solve(store, best, method_of(robust))
     notes = (f"options.choose: the best of {len(ranked)} choices, {best.choice_text} (clutchopt solve lists them)",) \

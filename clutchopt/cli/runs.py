@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from clutchopt.cli.options import LARGEST_ID, Parser, add_json_option, add_parser, whole_number
+from clutchopt.cli.options import LARGEST_ID, Checked, Parser, add_json_option, add_parser, whole_number
 
 KINDS = ("solve", "sweep", "pareto", "simulation")
 NO_DESIGN = ("infeasible", "not_found", "solver_failed")  # statuses whose objective value belongs to no design
@@ -26,19 +26,19 @@ def add_command(commands) -> None:
     run_id = whole_number(1, LARGEST_ID)
     listing = actions.add_parser("list", help="recorded runs, newest first, and the sweeps")
     listing.add_argument("--kind", choices=KINDS, help="only runs of this kind")
-    listing.add_argument("--sweep", type=run_id, metavar="ID",
+    listing.add_argument("--sweep", action=Checked, check=run_id, metavar="ID",
                          help="only the points of sweep ID (clutchopt runs list shows the sweeps)")
-    listing.add_argument("--limit", type=whole_number(0, LARGEST_ID), default=20,
+    listing.add_argument("--limit", action=Checked, check=whole_number(0, LARGEST_ID), default=20,
                          help="show at most this many runs, newest first (default 20; 0: all)")
     add_json_option(listing)
     show = actions.add_parser("show", help="one run with its inputs, outputs and versions (JSON)")
-    show.add_argument("id", type=run_id, help="the run's id, as runs list shows it")
+    show.add_argument("id", action=Checked, check=run_id, help="the run's id, as runs list shows it")
     export = actions.add_parser("export", help="runs as a table (.csv, .parquet, .md): status, objective, SI inputs "
                                                "and design with their units, active constraints; from a damaged "
                                                "store, every run that can still be read")
     export.add_argument("-o", "--out", required=True, metavar="FILE", help="the table to write: .csv, .parquet or .md")
     export.add_argument("--kind", choices=KINDS, help="only runs of this kind")
-    export.add_argument("--sweep", type=run_id, metavar="ID", help="only the points of sweep ID")
+    export.add_argument("--sweep", action=Checked, check=run_id, metavar="ID", help="only the points of sweep ID")
     for action in (listing, show, export):
         action.add_argument("--store", metavar="PATH", help="run store (default $CLUTCHOPT_STORE, then "
                                                             "./clutchopt-runs.sqlite)")

@@ -7,6 +7,7 @@ from clutchopt.cli.options import (
     add_json_option,
     add_parser,
     add_problem_options,
+    add_quiet_option,
     add_robust_options,
     add_store_options,
 )
@@ -32,6 +33,7 @@ def add_command(commands) -> None:
                             "(with --robust: at every corner of the scatter, the slowest shown)")
     add_robust_options(solve)
     add_json_option(solve)
+    add_quiet_option(solve)
     solve.set_defaults(run=run)
 
 
@@ -53,7 +55,8 @@ def run(args) -> str:
     if args.verify and robust is not None:
         check_verifiable(case)
     with recording(args) as store:
-        ranked = design_case(case, args.mode, args.objective, SolverOptions(tol=args.tol), robust)
+        ranked = design_case(case, args.mode, args.objective, SolverOptions(tol=args.tol), robust,
+                             progress=not args.quiet)
         best = ranked[0]
         check = None
         if args.verify:

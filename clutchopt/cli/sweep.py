@@ -5,10 +5,12 @@ from __future__ import annotations
 import os
 
 from clutchopt.cli.options import (
+    Checked,
     add_case_argument,
     add_json_option,
     add_parser,
     add_problem_options,
+    add_quiet_option,
     add_robust_options,
     add_store_options,
     choices_note,
@@ -42,14 +44,14 @@ def add_command(commands) -> None:
                        help="pair the lists instead of crossing them: point i takes the i-th value of each --vary")
     add_problem_options(sweep)
     add_robust_options(sweep)
-    sweep.add_argument("--jobs", type=whole_number(1, MAX_JOBS), default=1,
+    sweep.add_argument("--jobs", action=Checked, check=whole_number(1, MAX_JOBS), default=1,
                        help=f"solve on N local processes, 1 to {MAX_JOBS} (default 1)")
     sweep.add_argument("--dask", metavar="ADDRESS",
                        help="solve on an existing Dask cluster, e.g. tcp://host:8786 (pip install 'clutchopt[dask]')")
     sweep.add_argument("--resume", action="store_true",
                        help="continue the latest identical sweep in the store; stored points are not solved again")
     sweep.add_argument("--out", metavar="FILE", help="also write the table, one row per point: .csv, .parquet or .md")
-    sweep.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_quiet_option(sweep, "no progress bar")
     add_json_option(sweep, "print one JSON object instead of tables: every point's inputs and solution, SI values "
                            "beside SI units")
     add_store_options(sweep)
@@ -79,7 +81,7 @@ def run(args) -> str:
     sweep = Sweep(case, varies, args.mode, args.objective, args.tol, args.zip, robustness(args, case))
     if args.out:
         table_format(args.out)  # a bad name fails before the solves, not after
-    runner = dask_runner(args.dask) if args.dask else None
+    runner = dask_runner(args.dask) if args.dask is not None else None  # "" is an address too: refused
     store = open_store(args, needed=args.resume)
     try:
         result = sweep.run(store, args.resume, args.jobs, runner, progress=not args.quiet)

@@ -59,7 +59,7 @@ from clutchopt.optimise.integers import descend, excluded_entry, nearest_integer
 from clutchopt.optimise.posed import Box, off_scale
 from clutchopt.optimise.problem import Problem
 from clutchopt.optimise.solution import Solution, WarmStart
-from clutchopt.optimise.verify import FEASIBILITY_TOL
+from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
 LONGEST_BATCH = 256  # doubling stops here: a longer batch saves little call overhead and risks more waste
@@ -197,6 +197,7 @@ class BatchSweep:
         # the predictor's ratio of each point: its step in the case against the step before it, projected on it (0
         # where there is none, and where the steps differ more than fourfold)
         self.solves, self.solver_s, self.check_s = 0, 0.0, 0.0
+        self.feasible: dict[str, float] | None = None  # the last feasible design in order: a start for a failed point
 
     def point_case(self, k: int) -> Case:
         return self.case.with_values(**{name: float(values[k]) for name, values in self.varied.items()})
@@ -209,13 +210,15 @@ class BatchSweep:
             first, end, deadline = k, min(k + window, self.count), time.perf_counter() + WINDOW_S
             blocks: list[Block] = []
             alone: dict[int, Solution] = {}
-            while k < end and time.perf_counter() < deadline:  # each turn solves at least one point
+            failed = False  # the last point is without a design: the window waits for a feasible point after it
+            while k < end and (failed or time.perf_counter() < deadline):  # each turn solves at least one point
                 wanted = min(size, end - k)
                 block, chained, searching = self._batch(start, k, wanted) if start is not None else (None, 0, False)
                 passed = 0 if block is None else len(block.index)
                 if passed:
                     blocks.append(block)
                     start, k = _Start(self, block=block), k + passed
+                    self.feasible, failed = start.warm.design, False
                 if chained and passed == chained:
                     size = min(2 * size, LONGEST_BATCH)
                     if not searching or k == end:  # (a batch that passes up to its integers' exclusion hands the
@@ -224,18 +227,26 @@ class BatchSweep:
                 if settled is not None:  # the integer search decided point k in the batch
                     blocks.append(settled)
                     start, k = _Start(self, block=settled), k + 1
+                    self.feasible, failed = start.warm.design, False
                     continue
                 if passed < chained:  # point k failed a test in the batch: the next batch starts short
                     size = FIRST_BATCH
                 alone[k] = self._solve_alone(k, start.warm if start is not None else None)
                 start, k = self._start_of(alone[k]), k + 1
+                failed = alone[k - 1].status not in DESIGN_STATUSES
             yield self._window(blocks, alone, first, k - first)
 
     def _start_of(self, solution: Solution) -> _Start | None:
         return _Start(self, solution) if solution.status == "optimal" else None
 
     def _solve_alone(self, k: int, warm: Solution | WarmStart | None) -> Solution:
-        solution = self.problem.solve(self.point_case(k), warm=warm)
+        """Point k by ``Problem.solve``, the last feasible design in order its neighbour before a verdict."""
+        solution = self._counted(self.problem.solve(self.point_case(k), warm=warm, neighbour=self.feasible))
+        if solution.status in DESIGN_STATUSES:
+            self.feasible = solution.design
+        return solution
+
+    def _counted(self, solution: Solution) -> Solution:
         self.solves += solution.solver.solves
         self.solver_s += solution.solver.time_s
         return solution
@@ -390,4 +401,19 @@ class BatchSweep:
             before = solutions[k - first - 1] if k > first else None
             warm = before if before is not None and before.status == "optimal" else None
             solutions.replace(k - first, self._solve_alone(k, warm))
+        self._between_feasible(solutions, alone, first, count)
         return solutions
+
+    def _between_feasible(self, solutions: "Solutions", alone: dict[int, Solution], first: int, count: int) -> None:
+        """A point without a design followed by a feasible point in the window: solved again from that design, so
+        that its verdict does not depend on the order of the points (point by point: ``sweep.solve_points``)."""
+        for k in sorted(alone):
+            if solutions[k - first].status in DESIGN_STATUSES:
+                continue
+            later = next((j for j in range(k + 1, first + count) if solutions[j - first].status in DESIGN_STATUSES),
+                         None)
+            if later is not None:
+                retry = self._counted(self.problem.refined(self.point_case(k), solutions[later - first].design,
+                                                           diagnosed=False))
+                if retry.status in DESIGN_STATUSES:
+                    solutions.replace(k - first, retry)

@@ -10,7 +10,7 @@ are ranked, verified designs first by objective, then the others in the order li
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import Iterable, NamedTuple
 
 from clutchopt.cases import Case
 from clutchopt.errors import InputError, Problems
@@ -36,9 +36,9 @@ class Robustness:
     starts: int = START_SAMPLES  # simulated starts of a [start_up]'s Monte Carlo
 
     @classmethod
-    def parse(cls, text: str, samples: int | None, starts: int | None = None, start_up: bool = True) -> "Robustness":
+    def parse(cls, text: str, samples: int | None, starts: int | None = None) -> "Robustness":
         """``--robust worst-case|chance=P``, ``--samples N`` and ``--starts N`` from the command line (each bad one
-        named); ``start_up``: the case has a [start_up], whose starts ``--starts`` counts."""
+        named)."""
         problems, (method, target) = Problems(), (None, None)
         with problems.field():
             method, target = parse_method(text)
@@ -46,11 +46,8 @@ class Robustness:
         if not 100 <= samples <= MAX_SAMPLES:
             problems.errors.append(InputError("--samples", f"must be a whole number from 100 to {MAX_SAMPLES}, "
                                                            f"got {samples}"))
-        if starts is not None and not start_up:
-            problems.errors.append(InputError("--starts", "counts the simulated starts of a [start_up] under scatter; "
-                                                          "this case has no [start_up], so nothing is started"))
         starts = START_SAMPLES if starts is None else starts
-        if start_up and not 10 <= starts <= MAX_STARTS:
+        if not 10 <= starts <= MAX_STARTS:
             problems.errors.append(InputError("--starts", f"must be a whole number from 10 to {MAX_STARTS}, "
                                                           f"got {starts}"))
         problems.raise_any()
@@ -116,13 +113,25 @@ def check_robustness(case: Case, robust: Robustness | None, problem=None) -> Non
         check_entering(case, problem, [s.name for s in case.scatter], "scatter.{}", objective=False)
 
 
+def choices(case: Case, progress: bool = False) -> Iterable[tuple[dict[str, str], Case]]:
+    """Every choice of ``options.choose`` as (choice, its case); with ``progress``, a bar on stderr that moves as
+    each is designed (where there are several, and stderr is a terminal)."""
+    from tqdm import tqdm
+
+    found = variants(case, get_coupling(case.coupling))
+    return tqdm(found, desc="choices", unit="choice", leave=False,
+                disable=None if progress and len(found) > 1 else True)
+
+
 def design_case(case: Case, mode: str | None = None, objective: str | None = None,
-                options: SolverOptions = SolverOptions(), robust: Robustness | None = None) -> list[Designed]:
+                options: SolverOptions = SolverOptions(), robust: Robustness | None = None,
+                progress: bool = False) -> list[Designed]:
     """Every choice of ``options.choose`` (the case alone without it) designed nominally or, with ``robust``, for
-    the case's scatter; optimal designs first by objective, then the others in the order listed."""
+    the case's scatter (``progress``: see :func:`choices`); optimal designs first by objective, then the others in
+    the order listed."""
     check_robustness(case, robust, case_problem(case, mode, objective, options) if robust is not None else None)
     designed = []
-    for choice, variant in variants(case, get_coupling(case.coupling)):
+    for choice, variant in choices(case, progress):
         if robust is None:
             designed.append(Designed(choice, variant, solve_case(variant, mode, objective, options)))
         else:

@@ -15,9 +15,8 @@ import pandas as pd
 
 from clutchopt.cases import Case
 from clutchopt.formulations import get_coupling
-from clutchopt.materials import variants
 from clutchopt.model import Formulation, Quantity, at_most
-from clutchopt.optimise.design import Robustness, check_robustness
+from clutchopt.optimise.design import Robustness, check_robustness, choices
 from clutchopt.optimise.problem import case_formulation, case_problem, problem_for
 from clutchopt.optimise.robust import RobustResult
 from clutchopt.optimise.solution import Solution, SolverOptions
@@ -59,12 +58,12 @@ _CAPPED: dict[tuple[str, str], Formulation] = {}  # one capped formulation per m
 
 
 def pareto_fronts(case: Case, mode: str | None = None, points: int = 9, options: SolverOptions = SolverOptions(),
-                  robust: Robustness | None = None) -> list[ParetoFront]:
+                  robust: Robustness | None = None, progress: bool = False) -> list[ParetoFront]:
     """One front per choice of ``options.choose`` (the case's own without it), each of designs for the scatter
-    with ``robust``."""
+    with ``robust`` (``progress``: see :func:`~clutchopt.optimise.design.choices`)."""
     check_robustness(case, robust, case_problem(case, mode, "mass", options) if robust is not None else None)
     return [replace(pareto_front(variant, mode, points, options, robust), choice=choice)
-            for choice, variant in variants(case, get_coupling(case.coupling))]
+            for choice, variant in choices(case, progress)]
 
 
 def pareto_front(case: Case, mode: str | None = None, points: int = 9, options: SolverOptions = SolverOptions(),

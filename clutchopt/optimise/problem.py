@@ -44,9 +44,9 @@ class Problem:
             posed.formulation, posed.objective, posed.options, posed.start_up)
 
     def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
-              mesh: np.ndarray | None = None, refine: bool = True, neighbour: Solution | None = None) -> Solution:
+              mesh: np.ndarray | None = None, refine: bool = True, neighbour: dict[str, float] | None = None) -> Solution:
         """Solve for one case (:meth:`refined`); a solve that ends without a design is retried from the starts that
-        can reach one before its verdict is given (:func:`clutchopt.optimise.verdict.shown`): ``neighbour``, a
+        can reach one before its verdict is given (:func:`clutchopt.optimise.verdict.shown`): ``neighbour``, the
         feasible design of a neighbouring point (a sweep's), among them."""
         try:
             solution = self.refined(case, start, warm, mesh, refine)

@@ -60,6 +60,7 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
         "phases": list(s.phases),
         "effects": list(s.spec.effects),
         "tolerance": s.spec.tolerance,
+        "motor": case.start_up.motor_note,  # the case's, not the structure's (shared by every case of its shape)
         "locks_up": head["locks_up"],
         "reason": head["reason"],
         "discretisation_error": {name: _relative(float(nlp[name]), head[name])

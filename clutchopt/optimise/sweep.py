@@ -17,10 +17,7 @@ from __future__ import annotations
 
 import math
 import os
-import re
 import signal
-import socket
-import struct
 import threading
 import time
 from collections.abc import Sequence
@@ -39,6 +36,7 @@ from clutchopt.formulations import get_coupling
 from clutchopt.materials import chosen
 from clutchopt.model import Formulation
 from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
+from clutchopt.optimise.dask_client import connect
 from clutchopt.optimise.design import Robustness, check_robustness, design_case, method_of
 from clutchopt.optimise.entering import check_entering
 from clutchopt.optimise.problem import case_formulation, case_problem
@@ -136,8 +134,9 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
         # sizing at the point (its collocation mesh follows its own solves), so it is solve's design whatever the
         # points before it
         same = designs.get(tuple(values.values()))
+        neighbour = same or (feasible[1] if feasible else None)
         solution = problem.solve(point_case, warm=previous if problem.start_up is None else None,
-                                 neighbour=same or (feasible[1] if feasible else None))
+                                 neighbour=neighbour.design if neighbour is not None else None)
         if solution.status not in DESIGN_STATUSES and feasible is not None:
             solution = continued(problem, case, feasible, values) or solution
         previous = solution if solution.status == "optimal" else None
@@ -254,68 +253,6 @@ def dask_runner(address: str) -> Callable:
     return run
 
 
-def connect(address: str, timeout: float = 4.0):
-    """A Dask client for ``tcp://host:port``; a malformed or unreachable address, or one where something other than
-    a Dask scheduler answers, is bad input, reported within about 10 s (see :func:`probe_scheduler`)."""
-    if not re.fullmatch(r"(tcp|tls|inproc)://[^\s:/]+(:\d{1,5})?(/\S*)?", address):
-        raise InputError("--dask", f"expected an address like tcp://host:8786, got {address!r}")
-    try:
-        from distributed import Client
-    except ImportError:
-        raise InputError("--dask", "needs dask.distributed (pip install 'clutchopt[dask]')") from None
-    if address.startswith("tcp://"):
-        probe_scheduler(address, timeout)
-    try:
-        return Client(address, timeout=timeout)
-    except (OSError, TimeoutError) as exc:
-        raise InputError("--dask", f"cannot reach a Dask scheduler at {address} ({type(exc).__name__})") from None
-
-
-DASK_GREETING_BYTES = 1 << 20  # a scheduler's handshake is a few hundred bytes
-
-
-def probe_scheduler(address: str, timeout: float) -> None:
-    """Check that a Dask scheduler answers at ``tcp://host:port`` before ``distributed`` connects.
-
-    A scheduler greets each new connection first: 8 bytes (native ``Q``, as distributed writes them) giving the
-    length of its handshake, then the handshake. A web server says nothing until asked (``distributed`` would then
-    wait), other servers greet with text whose first 8 bytes read as an absurd length (``distributed`` would try
-    to allocate it). Both are refused here in one line, each wait bounded by ``timeout``."""
-    host, port = re.match(r"tcp://([^\s:/]+)(?::(\d+))?", address).groups(default="8786")
-    if not 0 < int(port) < 65536:
-        raise InputError("--dask", f"port {port} is out of range (1 to 65535)")
-    try:
-        connection = socket.create_connection((host, int(port)), timeout=timeout)
-    except TimeoutError:
-        raise InputError("--dask", f"cannot reach a Dask scheduler at {address}: no answer within {timeout:g} s") \
-            from None
-    except OSError as exc:
-        raise InputError("--dask", f"cannot reach a Dask scheduler at {address} ({exc.strerror or exc})") from None
-    with connection:
-        connection.settimeout(timeout)
-        try:
-            head = _receive(connection, 8)
-        except TimeoutError:
-            raise InputError("--dask", f"{address} is not a Dask scheduler: it accepted the connection but sent "
-                                       f"no Dask greeting within {timeout:g} s (a web server?)") from None
-        except OSError as exc:
-            raise InputError("--dask", f"{address} closed the connection ({exc.strerror or exc}): not a Dask "
-                                       "scheduler") from None
-        (length,) = struct.unpack("Q", head)
-        if not 0 < length <= DASK_GREETING_BYTES:
-            raise InputError("--dask", f"{address} is not a Dask scheduler: it greets with {head!r}")
-
-
-def _receive(connection: socket.socket, count: int) -> bytes:
-    data = b""
-    while len(data) < count:
-        chunk = connection.recv(count - len(data))
-        if not chunk:
-            raise ConnectionError("the connection closed")
-        data += chunk
-    return data
-
-
 @dataclass
 class SweepResult:
     sweep_id: int | None
@@ -364,7 +301,7 @@ class Sweep:
         case.require(self.objective.name)
         self.tol = tol
         self.grid, self.zipped = grid_points(varies, zipped), zipped
-        check_points(case, varies, self.grid)
+        check_points(case, varies, self.grid, scattered=robust is not None)
         sets, _ = chosen(case, get_coupling(case.coupling))
         for v in varies:
             if v.quantity.name in sets:

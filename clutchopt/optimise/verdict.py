@@ -9,10 +9,13 @@ point: ``clutchopt.optimise.sweep.solve_points``). The first that reaches a desi
 verdict says how sure it is:
 
 - ``infeasible``: proven. A requirement no design variable enters is broken (the diagnosis's "whatever the
-  design"), or the drive cannot do what the start-up asks of any coupling (:mod:`clutchopt.optimise.proofs`);
+  design"), or the drive cannot do what the start-up asks of any coupling (:mod:`clutchopt.optimise.proofs`), or
+  interval branch and bound shows that no design within the bounds meets the formulation's constraints
+  (:mod:`clutchopt.optimise.interval_proof`; should it meet a design of the relaxation instead, the solve is
+  retried from there);
 - ``not_found``: no feasible design found from the starts it names (``Solution.starts``), with the least
-  relaxation found from the first (the others are not diagnosed again: a sweep's stretch without designs costs a
-  solve a start, not a diagnosis too): a strong hint, not a proof;
+  relaxation found from the first two, and whether they agree (the others are not diagnosed again: a sweep's
+  stretch without designs costs a solve a start, not a diagnosis each): a strong hint, not a proof;
 - ``solver_failed``: a feasible point exists (the elastic check found one), yet no start reached an optimum.
 """
 
@@ -22,11 +25,13 @@ from dataclasses import replace
 
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
+from clutchopt.optimise.interval_proof import empty_design_space
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.verify import DESIGN_STATUSES
 
-def shown(problem, case: Case, first: Solution, started: bool, neighbour: Solution | None) -> Solution:
+
+def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[str, float] | None) -> Solution:
     """``first`` (a solve without a design) retried from the starts that can reach one; the first design found, or
     the verdict on all of them."""
     first_label = "the start given" if started else ("the papers' sizing" if problem.start_up is not None
@@ -37,31 +42,54 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: Soluti
             if started else []
         if first.diagnosed and first.diagnosed.nearest:
             starts.append(("the least relaxation's design", first.diagnosed.nearest))
-        if neighbour is not None and neighbour.status in DESIGN_STATUSES:
-            starts.append(("the neighbouring point's design", neighbour.design))
-        for label, start in starts:
-            try:
-                retry = problem.refined(case, start, diagnosed=False)
-            except InputError:  # a start-up whose first simulation fails from this start: the next start
+        if neighbour is not None:
+            starts.append(("the neighbouring point's design", neighbour))
+        for label, start in starts:  # the first retry diagnosed too: a least relaxation seen from two starts
+            retry = _retried(problem, case, start, diagnosed=len(tried) == 1)
+            if retry is None:
                 continue
             tried.append((label, retry))
             if retry.status in DESIGN_STATUSES:
                 return _spent(retry, tried)
-    return _spent(_verdict(problem, case, tried), tried)
+    if first.diagnosed and first.diagnosed.proven:
+        return _spent(first, tried)
+    proofs = start_up_proofs(case) if problem.start_up is not None else []
+    if not proofs:
+        emptiness = empty_design_space(problem.posed, case)
+        if emptiness is not None and emptiness.feasible is not None:  # a design of the relaxation: solve from it
+            retry = _retried(problem, case, dict(zip(problem.posed.names, emptiness.feasible)))
+            if retry is not None:
+                tried.append(("a design the interval search met", retry))
+                if retry.status in DESIGN_STATUSES:
+                    return _spent(retry, tried)
+        elif emptiness is not None and emptiness.proven:
+            proofs = [_emptied(emptiness)]
+    return _spent(_verdict(tried, proofs), tried)
 
 
-def _verdict(problem, case: Case, tried: list[tuple[str, Solution]]) -> Solution:
+def _emptied(emptiness) -> str:
+    """The interval proof in words: the constraints that emptied the boxes, most boxes first."""
+    names = sorted(emptiness.decisive, key=emptiness.decisive.get, reverse=True)
+    return (f"no design within the bounds meets {', '.join(names)} together (interval branch and bound over "
+            f"{emptiness.boxes} boxes of the design space)")
+
+
+def _retried(problem, case: Case, start: dict[str, float] | None, diagnosed: bool = False) -> Solution | None:
+    try:
+        return problem.refined(case, start, diagnosed=diagnosed)
+    except InputError:  # a start-up whose first simulation fails from this start
+        return None
+
+
+def _verdict(tried: list[tuple[str, Solution]], proofs: list[str]) -> Solution:
     first = tried[0][1]
     diagnosed = [(label, s) for label, s in tried if s.diagnosed is not None]
-    if first.diagnosed is not None and first.diagnosed.proven:
-        return first
-    proofs = start_up_proofs(case) if problem.start_up is not None else []
     starts = tuple(label for label, _ in tried)
     if not diagnosed:  # the integer search's verdict: no integer near the feasible relaxation
         least, text = first, first.diagnosis or ""
     else:
         _, least = min(diagnosed, key=lambda item: item[1].diagnosed.least)
-        text = "the least relaxation found " + least.diagnosed.text.removeprefix("infeasible: ")
+        text = "the least relaxation found " + least.diagnosed.text.removeprefix("infeasible: ") + _confirmed(diagnosed)
     if proofs:
         return replace(least, status="infeasible", starts=starts,
                        diagnosis="proven infeasible: " + "; ".join(proofs) + f" ({text})")
@@ -70,6 +98,16 @@ def _verdict(problem, case: Case, tried: list[tuple[str, Solution]]) -> Solution
                        diagnosis="a feasible point exists (elastic check), yet no start reached an optimum")
     return replace(least, status="not_found", starts=starts,
                    diagnosis=f"no feasible design found (not proven infeasible): {text}")
+
+
+def _confirmed(diagnosed: list[tuple[str, Solution]]) -> str:
+    """Whether the elastic relaxations from the starts diagnosed agree on the least violation."""
+    leasts = [s.diagnosed.least for _, s in diagnosed]
+    if len(leasts) < 2:
+        return ""
+    if max(leasts) - min(leasts) <= 1e-6 * max(1.0, min(leasts)):
+        return f" (the same from {len(leasts)} starts)"
+    return f" (the least of {len(leasts)} starts' relaxations: {', '.join(f'{v:.3g}' for v in leasts)})"
 
 
 def _spent(solution: Solution, tried: list[tuple[str, Solution]]) -> Solution:

@@ -30,6 +30,7 @@ from clutchopt.output import (
     start_up_table,
 )
 from clutchopt.report.sketch import sketch
+from clutchopt.simulate.plot import literal
 from clutchopt.store import versions
 
 MAX_LINES = 6  # lines of a sweep plot, one per value of the second varied input (evenly picked)
@@ -207,15 +208,16 @@ def sweep_plot(frame: pd.DataFrame) -> str:
         shown = [levels[round(i)] for i in np.linspace(0, len(levels) - 1, min(len(levels), MAX_LINES))]
         groups = [(value, optimal[optimal[inputs[1]] == value]) for value in shown]
     for value, group in groups:
-        axes.plot(group[inputs[0]], group[objective], ".-", label=None if value is None else f"{inputs[1]} = {value:.4g}")
+        axes.plot(group[inputs[0]], group[objective], ".-",
+                  label=None if value is None else f"{literal(inputs[1])} = {value:.4g}")
     failed = frame[frame["status"] != "optimal"]
     if len(failed):
         axes.plot(failed[inputs[0]], [optimal[objective].min()] * len(failed) if len(optimal) else [0] * len(failed),
                   "x", color="#b03a2e", label="not optimal")
     if len(inputs) > 1 or len(failed):
         axes.legend(fontsize=7, ncol=2)
-    axes.set_xlabel(inputs[0])
-    axes.set_ylabel(objective)
+    axes.set_xlabel(literal(inputs[0]))
+    axes.set_ylabel(literal(objective))
     axes.grid(alpha=0.3)
     caption = (f"Sweep: {len(frame)} points, {len(optimal)} optimal"
                + (f", {len(failed)} not (crosses at the bottom)" if len(failed) else ""))

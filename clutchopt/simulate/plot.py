@@ -14,6 +14,12 @@ from matplotlib.figure import Figure  # noqa: E402
 RPM = 30.0 / math.pi  # rpm per rad/s
 
 
+def literal(text: str) -> str:
+    """``text`` (a title, a column name: the user's) as matplotlib is to show it, character for character: each ``$``
+    escaped, so that no pair of them starts mathtext (``Fan $\\frac{$ drive`` would not parse)."""
+    return text.replace("$", r"\$")
+
+
 def history_figure(result, title: str = "", nlp: dict | None = None) -> Figure:
     """Speeds and slip above, clutch torque and slip power below; ``nlp``: a solution's ``start_up`` (its NLP
     trajectory, collocation nodes drawn as points over the simulated lines)."""
@@ -41,5 +47,5 @@ def history_figure(result, title: str = "", nlp: dict | None = None) -> Figure:
             axis.axvline(event["time"], color="grey", lw=0.8, ls="--")
     headline = (f"t_c = {head['start_time']:.4g} s, L = {head['friction_work']:.4g} J" if head["locks_up"]
                 else head["reason"])
-    fig.suptitle(f"{title}\n{headline}" if title else headline, fontsize=10)
+    fig.suptitle(f"{literal(title)}\n{headline}" if title else headline, fontsize=10)
     return fig

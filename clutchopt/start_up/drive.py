@@ -10,12 +10,13 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from clutchopt.backend import sqrt
+from clutchopt.backend import fmax, sqrt
 from clutchopt.model import Constraint, ElasticLaw, SpeedLaw, at_least, at_most
 from clutchopt.start_up import equations as su
 from clutchopt.start_up.mesh import GRADED_PARTS
 
 LOCKED_SAMPLES = 8  # speeds from lock-up to synchronous at which a locked drive must stay locked (lockup)
+LEAST_SHARE = 1e-6  # of the drive's torque scale: the least torque a lock-up's margin is relative to
 
 
 @dataclass(frozen=True)
@@ -146,10 +147,12 @@ def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
                             description="the machine is nearly up to speed when the coupling locks"))
     if s.motor:
         out.append(at_least("motor_breakdown_torque", p.breakdown_torque, p.load_torque, equation="Kloss",
-                            unit="N*m", description="the motor's breakdown torque exceeds the largest load"))
+                            unit="N*m", scale=p.breakdown_torque,
+                            description="the motor's breakdown torque exceeds the largest load"))
     lock_speed = q.lock_up_speed
-    out.append(at_least("lock_up", drive.torque(lock_speed), drive.carried(lock_speed, q.start_time),
-                        equation="slip falls to 0", unit="N*m",
+    carried = drive.carried(lock_speed, q.start_time)  # 0 with neither a motor nor a load
+    out.append(at_least("lock_up", drive.torque(lock_speed), carried, equation="slip falls to 0", unit="N*m",
+                        scale=fmax(carried, LEAST_SHARE * drive.torque_ref),
                         description="at lock-up the coupling covers the torque of the locked drive"))
     if s.motor and s.spec.has("lockup"):
         fractions = np.arange(1, LOCKED_SAMPLES + 1) / LOCKED_SAMPLES
@@ -186,7 +189,7 @@ def _elastic_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
         out.append(at_most("heat_per_hour", p.starts_per_hour * q.friction_work, p.heat_dissipation,
                            equation="heat balance", unit="W", description="mean heat within what the housing sheds"))
     out.append(at_least("motor_breakdown_torque", p.breakdown_torque, p.load_torque, equation="Kloss", unit="N*m",
-                        description="the motor's breakdown torque exceeds the largest load"))
+                        scale=p.breakdown_torque, description="the motor's breakdown torque exceeds the largest load"))
     out.append(at_least("motor_starting_torque", drive.motor(0.0), drive.load(0.0, 0.0), equation="Kloss",
                         unit="N*m", scale=p.breakdown_torque,
                         description="the motor's torque at rest exceeds the load at rest"))

@@ -15,7 +15,7 @@ equals what holds it in, spring preload F_s and (effect ``gravity``) its own wei
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 from clutchopt.backend import fmax, fmin, sqrt
 from clutchopt.formulations.duty import GRAVITY
@@ -55,8 +55,8 @@ QUANTITIES = (
       "default: 90 % of synchronous speed)", "w_L,min", f"{SECTION}.limits", None, above=0),
     Q("max_link_stress", "MPa", "largest stress of an elastic link during the start (cable coupling; default: its "
       "allowable, allowable_cable_stress)", "sigma_max", f"{SECTION}.limits", None, above=0),
-    Q("min_engagement_speed", "rpm", "engagement speed at least (the motor runs up unloaded first)", "w_e,min",
-      f"{SECTION}.limits", None, at_least=0),
+    Q("min_engagement_speed", "rpm", "engagement speed at least (the motor runs up unloaded first; leave it out for "
+      "none)", "w_e,min", f"{SECTION}.limits", None, above=0),
     Q("max_engagement_speed", "rpm", "engagement speed at most", "w_e,max", f"{SECTION}.limits", None, above=0),
     Q("starts_per_hour", "1/hour", "starts per hour (with heat_dissipation: the heat balance over an hour)", "n_h",
       f"{SECTION}.limits", None, above=0),
@@ -145,6 +145,7 @@ class StartUpSpec:
     load_profile: LoadProfile | None = None
     intervals: int = 16
     tolerance: float = 1e-6
+    motor_note: str = field(default="", compare=False)  # how a nameplate was read (no part of the structure)
 
     def has(self, effect: str) -> bool:
         return effect in self.effects

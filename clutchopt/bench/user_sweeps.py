@@ -1,0 +1,66 @@
+"""The sweeps users run, not only the benchmark's own: for every coupling, ``clutchopt sweep``'s code (``Sweep.run``,
+no store) over each of the speed, the duty's torque quantity, the friction coefficient and the allowable pressure
+or stress (0.5x to 2x the case's value), a sweep reaching into an infeasible region (the duty's quantity from 1x to
+10x), and for each start-up case a sweep of the driven inertia (0.6x to 1.4x, every point simulated; once, with a
+fiftieth of the points). Per sweep: the
+points, how many have a design and how many a verdict without one, solver calls per point, points/s (the median
+run of ``sweep_repeats``), and points/s against the wedge paper sweep of the duty's quantity measured in the same
+run."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import numpy as np
+
+from clutchopt.bench.reference import bench_cases, reference_mode
+from clutchopt.bench.throughput import sweep_quantity
+from clutchopt.cases import Case, load_case
+
+CASES = Path(__file__).resolve().parents[2] / "cases"
+ALLOWABLE = {"wedge": "allowable_pressure", "lever": "allowable_pressure", "cable": "allowable_cable_stress",
+             "ball": "allowable_contact_stress"}  # the allowable each coupling's main constraint is sized by
+
+
+def _run(case: Case, name: str, values: np.ndarray, mode: str | None, repeats: int) -> dict:
+    """``Sweep(case, name=values).run()`` (SI values) timed ``repeats`` times: the tally of the median run."""
+    from clutchopt.optimise.sweep import Sweep
+    from clutchopt.optimise.sweep_grid import Vary
+
+    quantity = next(q for q in case.quantities if q.name == name)
+    runs = []
+    for _ in range(repeats):
+        started = time.perf_counter()
+        result = Sweep(case, [Vary(quantity, tuple(values.tolist()))], mode=mode).run(progress=False)
+        runs.append((time.perf_counter() - started, result))
+    seconds, result = sorted(runs, key=lambda run: run[0])[len(runs) // 2]
+    statuses = result.frame["status"].to_numpy()
+    designed = int(np.isin(statuses, ("optimal", "unverified")).sum())
+    return {"points": len(values), "designed": designed, "without_design": len(values) - designed,
+            "solves_per_point": result.spent["solves"] / len(values), "wall_s": seconds,
+            "points_per_s": len(values) / seconds}
+
+
+def user_sweep_rows(config) -> list[dict]:
+    points = max(config.sweep_points // 10, 10)
+    rows, reference = [], None
+    for case in bench_cases():
+        mode, duty = reference_mode(case.coupling), sweep_quantity(case)
+        sweeps = [(q, np.geomspace(0.5, 2.0, points)) for q in
+                  dict.fromkeys((duty, "speed", "friction_coefficient", ALLOWABLE[case.coupling]))]
+        sweeps.append((f"{duty} (into infeasible)", np.geomspace(1.0, 10.0, points)))
+        for label, factors in sweeps:
+            name = label.split(" ")[0]
+            row = _run(case, name, case.values[name] * factors, mode, config.sweep_repeats)
+            if case.coupling == "wedge" and label == duty:
+                reference = row["points_per_s"]
+            rows.append({"case": f"{case.coupling} ({mode})", "quantity": label, **row})
+    for path in sorted(CASES.glob("*_motor_start.toml")):
+        case = load_case(path)
+        factors = np.linspace(0.6, 1.4, max(config.sweep_points // 50, 3))
+        rows.append({"case": path.stem, "quantity": "driven_inertia",
+                     **_run(case, "driven_inertia", case.values["driven_inertia"] * factors, None, 1)})
+    for row in rows:
+        row["vs_wedge_paper"] = row["points_per_s"] / reference
+    return rows
