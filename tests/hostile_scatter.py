@@ -130,7 +130,7 @@ HOSTILE: list[Hostile] = [
     robust("starts-without-start-up", WEDGE, "friction_coefficient = [0.12, 0.18]",
            "--starts: counts the simulated starts of a [start_up] under scatter", "--starts", "50"),
     robust("starts-and-samples-bad-at-once", WEDGE, "friction_coefficient = [0.12, 0.18]",
-           ("--starts: counts the simulated starts", "--samples: must be a whole number"), "--starts", "5",
+           ("--starts: must be a whole number from 10", "--samples: must be a whole number"), "--starts", "5",
            "--samples", "5"),
     case("verify-nominal-with-scatter", scattered(WEDGE, "friction_coefficient = [0.12, 0.18]"), None, "--verify"),
     case("pareto-robust-json", scattered(CENTRIFUGE_BARE, "friction_coefficient = [0.12, 0.18]"), None,
