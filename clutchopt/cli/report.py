@@ -41,7 +41,7 @@ def run(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.files import check_output, write_whole
     from clutchopt.optimise import SolverOptions
-    from clutchopt.optimise.design import design_case
+    from clutchopt.optimise.design import design_case, method_of
     from clutchopt.optimise.problem import case_formulation
     from clutchopt.optimise.sweep_table import check_swept_from, read_frame
     from clutchopt.report import build_report
@@ -59,7 +59,7 @@ def run(args) -> str:
         ranked = design_case(case, args.mode, args.objective, SolverOptions(tol=args.tol), robust,
                              progress=not args.quiet)
         best = ranked[0]
-        record_solve(store, best.case, best.solution, outputs=best.as_dict())
+        record_solve(store, best, method_of(robust))
     notes = (f"options.choose: the best of {len(ranked)} choices, {best.choice_text} (clutchopt solve lists them)",) \
         if best.choice else ()
     page = build_report(best.case, best.solution, sweep, best.robust, notes)
