@@ -161,9 +161,9 @@ def test_sweep_plot_has_a_line_per_level_and_marks_failed_points():
     frame = pd.DataFrame({"point": range(6), "speed [rpm]": [500, 1000, 1500] * 2,
                           "allowable_pressure [MPa]": [2] * 3 + [4] * 3,
                           "status": ["optimal"] * 5 + ["infeasible"], "mass [kg]": [3, 2, 1, 3, 2, float("nan")]})
-    svg = sweep_plot(frame)
-    assert "allowable_pressure [MPa] = 2" in svg and "allowable_pressure [MPa] = 4" in svg
-    assert "Sweep: 6 points, 5 optimal, 1 not (crosses at the bottom)" in svg
+    plot = sweep_plot(frame)
+    assert "allowable_pressure [MPa] = 2" in plot.svg and "allowable_pressure [MPa] = 4" in plot.svg
+    assert plot.caption == "Sweep: 6 points, 5 optimal, 1 not (crosses at the bottom)"
 
 
 def test_bad_report_input(cli, tmp_path):
