@@ -10,7 +10,7 @@ from functools import lru_cache
 
 from markupsafe import Markup, escape
 
-BREAKS = re.compile(r"(_|[./](?=[A-Za-z]))")  # where a key, a column's name or a path may wrap
+BREAKS = re.compile(r"(_|[./](?=[A-Za-z]))")  # where a column's name may wrap
 
 
 @dataclass(frozen=True)
@@ -79,7 +79,8 @@ def render(template: str, **context) -> str:
 
 def breakable(text) -> Markup:
     """``text`` escaped, with a line-break opportunity after each underscore, and each dot or slash before a letter:
-    a table of long keys wraps to the page's width instead of running past it."""
+    a table of many columns named like ``paper_eq27_second_form`` wraps its head to the page's width instead of
+    running past it."""
     return Markup(BREAKS.sub(r"\1<wbr>", str(escape(text))))
 
 
