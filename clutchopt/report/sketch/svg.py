@@ -202,8 +202,8 @@ class View:
         +x) first, then round the point."""
         px, py = self.at(x, y)
         cls = dimtext(optimised)
-        spots = [beside(text, cls, px, py, math.cos(a), -math.sin(a))
-                 for a in (toward + math.pi / 4 * i * (-1) ** i for i in range(8))]
+        turns = [0.0] + [sign * math.pi / 4 * i for i in range(1, 4) for sign in (1, -1)] + [math.pi]
+        spots = [beside(text, cls, px, py, math.cos(toward + a), -math.sin(toward + a)) for a in turns]
         self.labels.append(Label(text, cls, spots, (px, py)))
 
     def note(self, text: str, chosen: bool = False) -> None:
@@ -232,19 +232,17 @@ def document(views: list[View], notes: tuple[str, ...] = ()) -> str:
         texts.append(_placed(Label(view.title, "title", column(centre, view.envelope()[1] - 2 * CLEAR - 4, -ROW,
                                                                 "middle")), obstacles))
     content = union([v.envelope() for v in views] + [label.box() for label in texts])
-    lines = [LEGEND, *notes]
-    legend = [Label(line, "note", [Spot(content[0], content[3] + ROW * (i + 1.2), "start")], placed=None)
-              for i, line in enumerate(lines)]
-    for label in legend:
-        label.placed = label.spots[0]
-    content = union([content] + [label.box() for label in legend])
+    legend = [(line, "note", Spot(content[0], content[3] + ROW * (i + 1.2), "start"))
+              for i, line in enumerate((LEGEND, *notes))]
+    written = [(t.text, t.cls, t.placed) for t in texts] + legend
+    content = union([content] + [box_of(*text) for text in legend])
     left, top = content[0] - MARGIN, content[1] - MARGIN
     width, height = content[2] - left + MARGIN, content[3] - top + MARGIN
     leaders = "".join(line_element("leader", b.x1, b.y1, b.x2, b.y2) for b in (t.leader for t in texts) if b)
     return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0f}" height="{height:.0f}" '
-            f'viewBox="{left:.0f} {top:.0f} {width:.0f} {height:.0f}" role="img" aria-label="dimensioned sketch">'
+            f'viewBox="{left:.1f} {top:.1f} {width:.1f} {height:.1f}" role="img" aria-label="dimensioned sketch">'
             + STYLE + DEFS + "".join("<g>" + "".join(view.items) + "</g>" for view in views) + leaders
-            + "".join(text_element(t.text, t.cls, t.placed) for t in texts + legend) + "</svg>")
+            + "".join(text_element(*text) for text in written) + "</svg>")
 
 
 def _placed(label: Label, obstacles: Obstacles) -> Label:
