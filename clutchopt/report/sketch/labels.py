@@ -49,8 +49,8 @@ def box_of(text: str, cls: str, spot: Spot) -> Box:
     return left, spot.y - ASCENT * size, left + width, spot.y + DESCENT * size
 
 
-def centred(text: str, cls: str, cx: float, cy: float) -> Spot:
-    """The spot that centres the label's box on (cx, cy)."""
+def centred(cls: str, cx: float, cy: float) -> Spot:
+    """The spot that centres a label's box on (cx, cy)."""
     return Spot(cx, cy + (ASCENT - DESCENT) * FONTS[cls][0] / 2)
 
 
@@ -62,7 +62,7 @@ def beside(text: str, cls: str, x: float, y: float, nx: float, ny: float) -> Spo
     """The spot whose box lies beside (x, y), CLEAR px off in the direction (nx, ny) (a unit vector)."""
     width, height = size_of(text, cls)
     reach = CLEAR + abs(nx) * width / 2 + abs(ny) * height / 2
-    return centred(text, cls, x + nx * reach, y + ny * reach)
+    return centred(cls, x + nx * reach, y + ny * reach)
 
 
 @dataclass
@@ -123,7 +123,7 @@ def beside_view(label: Label, envelope: Box, rows: int = 12) -> list[Spot]:
     right = Spot(envelope[2] + LEADER_GAP, 0.0, "start")
     left = Spot(envelope[0] - LEADER_GAP, 0.0, "end")
     sides = (right, left) if x >= (envelope[0] + envelope[2]) / 2 else (left, right)
-    baseline = y + (ASCENT - DESCENT) * FONTS[label.cls][0] / 2
+    baseline = centred(label.cls, x, y).y
     offsets = [0.0] + [sign * ROW * i for i in range(1, rows) for sign in (1, -1)]
     return [Spot(side.x, baseline + dy, side.anchor) for side in sides for dy in offsets]
 
