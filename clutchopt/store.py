@@ -41,7 +41,7 @@ from typing import Callable
 
 from clutchopt.errors import InputError
 from clutchopt.files import status
-from clutchopt.records import TEMPLATE, check_solution, expand, is_compact
+from clutchopt.records import NOMINAL, TEMPLATE, check_solution, design_inputs, expand, is_compact, method_of
 
 DEFAULT_STORE = "clutchopt-runs.sqlite"
 STORE_ENV = "CLUTCHOPT_STORE"
@@ -63,14 +63,15 @@ CREATE TABLE IF NOT EXISTS runs (
     id INTEGER PRIMARY KEY, kind TEXT NOT NULL, sweep_id INTEGER REFERENCES sweeps(id), point INTEGER,
     case_path TEXT, title TEXT, coupling TEXT, mode TEXT, objective_name TEXT, status TEXT, objective REAL,
     inputs TEXT NOT NULL, outputs TEXT NOT NULL, versions TEXT NOT NULL, created TEXT NOT NULL,
-    objective_unit TEXT, UNIQUE (sweep_id, point));
+    objective_unit TEXT, method TEXT, UNIQUE (sweep_id, point));
 CREATE INDEX IF NOT EXISTS runs_by_kind ON runs (kind);
 CREATE TABLE IF NOT EXISTS templates (key TEXT PRIMARY KEY, body TEXT NOT NULL);
 """  # templates: a window's shared part of its compact sweep points (clutchopt.records)
-ADDED_COLUMNS = {"runs": {"objective_unit": "TEXT"}}  # columns newer than their table: a store of an older
-# clutchopt lacks them, and gets them when opened for recording
+ADDED_COLUMNS = {"runs": {"objective_unit": "TEXT", "method": "TEXT"}}  # columns newer than their table: a store
+# of an older clutchopt lacks them, and gets them when opened for recording (read as NULL from one opened to read,
+# and filled from the run's outputs where they say)
 
-LIST_COLUMNS = ("id", "kind", "sweep_id", "point", "created", "coupling", "mode", "objective_name", "status",
+LIST_COLUMNS = ("id", "kind", "sweep_id", "point", "created", "coupling", "mode", "method", "objective_name", "status",
                 "objective", "objective_unit", "case_path")
 _SQLITE_HEADER = b"SQLite format 3\x00"
 
@@ -103,8 +104,8 @@ def _versions_json() -> str:
 
 
 RECORD = ("INSERT INTO runs (kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status,"
-          " objective, objective_unit, inputs, outputs, versions, created)"
-          " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (sweep_id, point) DO NOTHING")
+          " objective, objective_unit, method, inputs, outputs, versions, created)"
+          " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (sweep_id, point) DO NOTHING")
 
 
 def _to_json(value) -> str:
@@ -126,6 +127,13 @@ def _now() -> str:
 def spec_key(spec: dict) -> str:
     """A stable hash of what defines a sweep (case values, grid, mode, objective): the resume key."""
     return hashlib.sha256(json.dumps(spec, sort_keys=True, default=str).encode()).hexdigest()
+
+
+def nested(data, *keys):
+    """``data[k1][k2]...``, None where a level is missing or no mapping."""
+    for key in keys:
+        data = data.get(key) if isinstance(data, dict) else None
+    return data
 
 
 class StoreError(InputError):
@@ -436,28 +444,30 @@ class RunStore:
 
     def record_many(self, runs: list[tuple[str, dict, dict, dict]], templates: dict[str, dict] | None = None) -> int:
         """Record runs ``(kind, inputs, outputs, where)`` in one transaction (a window of sweep points: all land or
-        none). ``where``: status, objective, objective_unit, case_path, title, coupling, mode, objective_name,
-        sweep_id, point. Outputs may be compact records (``clutchopt.records``) whose ``templates`` are given by key;
-        they are read back in full. A sweep point already stored (another process resuming the same sweep solved it
-        too) is kept as it is. Returns how many were recorded."""
+        none). ``where``: status, objective, objective_unit, method, case_path, title, coupling, mode,
+        objective_name, sweep_id, point. Outputs may be compact records (``clutchopt.records``) whose ``templates``
+        are given by key; they are read back in full. A sweep point already stored (another process resuming the
+        same sweep solved it too) is kept as it is. Returns how many were recorded."""
         created = _now()  # one transaction: one moment
         return self._write_many(RECORD, [self._row(kind, inputs, outputs, created, **where)
                                          for kind, inputs, outputs, where in runs], templates or {})
 
     @staticmethod
     def _row(kind: str, inputs: dict, outputs: dict, created: str, *, status: str | None = None,
-             objective: float | None = None, objective_unit: str = "", case_path: str = "", title: str = "",
-             coupling: str = "", mode: str = "", objective_name: str = "", sweep_id: int | None = None,
-             point: int | None = None) -> tuple:
+             objective: float | None = None, objective_unit: str = "", method: str | None = None,
+             case_path: str = "", title: str = "", coupling: str = "", mode: str = "", objective_name: str = "",
+             sweep_id: int | None = None, point: int | None = None) -> tuple:
         return (kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status, objective,
-                objective_unit, _to_json(inputs), _to_json(outputs), _versions_json(), created)
+                objective_unit, method, _to_json(inputs), _to_json(outputs), _versions_json(), created)
 
-    def record_solution(self, kind: str, case, solution, outputs: dict | None = None, **where) -> int | None:
-        """Record a solved case: inputs are all its SI values, outputs the solution's JSON (``outputs``, if given:
-        a design's with its choice and robust result); ``where`` may name the mode as recorded (a Pareto point's,
-        ``geometry_capped``)."""
-        return self.record(kind, {"values": case.values, "free": list(case.free), "bounds": case.bounds},
-                           outputs or solution.as_dict(), status=solution.status, objective=solution.objective,
+    def record_solution(self, kind: str, case, solution, outputs: dict | None = None, method: str = NOMINAL,
+                        **where) -> int | None:
+        """Record a solved case: inputs are all its SI values (:func:`design_inputs`), outputs the solution's JSON
+        (``outputs``, if given: a design's with its choice and robust result, its corners, samples and simulated
+        starts); ``method``: how it was designed (nominal, worst-case, chance=P); ``where`` may name the mode as
+        recorded (a Pareto point's, ``geometry_capped``)."""
+        return self.record(kind, design_inputs(case, case.values, method), outputs or solution.as_dict(),
+                           method=method, status=solution.status, objective=solution.objective,
                            objective_unit=solution.objective_unit, case_path=case.path, title=case.title,
                            coupling=case.coupling, mode=where.pop("mode", solution.mode),
                            objective_name=solution.objective_name, **where)
@@ -530,9 +540,10 @@ class RunStore:
         return bool(self._read("SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = 'templates'"))
 
     def runs(self, kind: str | None = None, sweep_id: int | None = None, limit: int | None = None) -> list[dict]:
-        """Runs, newest first, without their JSON bodies; ``objective_unit`` filled for stores of older versions."""
-        columns = [c if c != "objective_unit" or c in self._columns() else "NULL AS objective_unit"
-                   for c in LIST_COLUMNS]
+        """Runs, newest first, without their JSON bodies; ``objective_unit`` and ``method`` filled for runs of older
+        versions (from their outputs, where they say)."""
+        present = self._columns()
+        columns = [c if c not in ADDED_COLUMNS["runs"] or c in present else f"NULL AS {c}" for c in LIST_COLUMNS]
         query = f"SELECT {', '.join(columns)} FROM runs"
         where, args = [], []
         if kind:
@@ -546,19 +557,23 @@ class RunStore:
             args.append(limit)
         listed = [dict(row) for row in self._read(query, args)]
         for run in listed:
-            if run["objective_unit"] is None and run["objective"] is not None:
-                run["objective_unit"] = self._older_unit(run)
+            unit = run["objective_unit"] is None and run["objective"] is not None
+            if (unit or run["method"] is None) and run["kind"] != "simulation":
+                outputs = self._older_outputs(run["id"])
+                run["method"] = method_of(outputs)
+                if unit:
+                    run["objective_unit"] = nested(outputs, "objective", "unit") or ""
+            elif unit:
+                run["objective_unit"] = "s"
         return listed
 
-    def _older_unit(self, run: dict) -> str:
-        """The objective's unit of a run recorded before the store had the column: from its outputs."""
-        if run["kind"] == "simulation":
-            return "s"
-        rows = self._read("SELECT outputs FROM runs WHERE id = ?", (run["id"],))
+    def _older_outputs(self, run_id: int):
+        """The outputs of a run recorded before the store had the columns it lacks (None where they are no JSON)."""
+        rows = self._read("SELECT outputs FROM runs WHERE id = ?", (run_id,))
         try:
-            return json.loads(rows[0][0])["objective"]["unit"]
-        except (ValueError, KeyError, TypeError, IndexError):
-            return ""
+            return json.loads(rows[0][0])
+        except (ValueError, TypeError, IndexError, RecursionError):
+            return None
 
     def run(self, run_id: int) -> dict:
         if not 0 < run_id <= LARGEST_ID:
@@ -570,6 +585,8 @@ class RunStore:
         for name in ("inputs", "versions"):
             entry[name] = self._json(entry[name], run_id, name)
         entry["outputs"] = self._outputs(entry["outputs"], run_id, entry["kind"])
+        if entry.get("method") is None and entry["kind"] != "simulation":  # a run of an older version
+            entry["method"] = method_of(entry["outputs"])
         return entry
 
     def readable_runs(self, kind: str | None = None,

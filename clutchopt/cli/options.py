@@ -182,11 +182,21 @@ def robust_options(args):
 
 
 def robustness(args, case):
-    """The robust method the arguments ask for (None: the nominal design), checked against the case."""
+    """The robust method the arguments ask for (None: the nominal design), checked against the case and the problem
+    the command poses (a scattered quantity that does not enter it; simulated starts of no [start_up]), before any
+    store is opened or file written."""
+    from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.design import check_robustness
+    from clutchopt.optimise.problem import case_problem
 
     robust = robust_options(args)
-    check_robustness(case, robust)
+    if robust is None:
+        return None
+    if args.starts is not None and case.start_up is None:
+        raise InputError("--starts", "counts the simulated starts of a [start_up] under scatter; this case has no "
+                                     "[start_up], so nothing is started")
+    mode, objective = getattr(args, "mode", None), getattr(args, "objective", None)  # compare: the case's own
+    check_robustness(case, robust, case_problem(case, mode, objective, SolverOptions(tol=args.tol)))
     return robust
 
 
@@ -253,18 +263,20 @@ def recording(args, needed: bool = False) -> Iterator:
             store.close()
 
 
-def record_solve(store, case, solution, check: dict | None = None, outputs: dict | None = None) -> None:
-    """Record a ``solve`` (and its start-up check, a simulation) in an open store (or nothing for None);
-    ``outputs``: the design's record with its choice and robust result (``Designed.as_dict()``)."""
+def record_solve(store, designed, method: str, check: dict | None = None, extra: dict | None = None) -> None:
+    """Record a ``solve`` (and its start-up check, a simulation) in an open store (or nothing for None): a design
+    (``Designed``) with its choice and robust result, made by ``method`` (nominal, worst-case, chance=P); ``extra``:
+    more of its record (whether it is the chosen one)."""
     if store is None:
         return
-    store.record_solution("solve", case, solution, outputs)
+    case, solution = designed.case, designed.solution
+    store.record_solution("solve", case, solution, {**designed.as_dict(), **(extra or {})}, method)
     if check is not None:
-        store.record("simulation", {"values": case.values, "design": solution.design}, check,
+        store.record("simulation", {"values": case.values, "design": solution.design, "method": method}, check,
                      status="verified" if check.get("verified") else "not verified",
                      objective=check.get("simulated_acceleration_time", check.get("simulated_start_time")),
-                     objective_unit="s", case_path=case.path, title=case.title, coupling=case.coupling,
-                     mode=solution.mode, objective_name="acceleration_time")
+                     objective_unit="s", method=method, case_path=case.path, title=case.title,
+                     coupling=case.coupling, mode=solution.mode, objective_name="acceleration_time")
 
 
 def record_simulation(store, scene, result) -> None:

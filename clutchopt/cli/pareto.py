@@ -54,6 +54,7 @@ def run(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.files import check_output, write_whole
     from clutchopt.optimise import SolverOptions
+    from clutchopt.optimise.design import Designed, method_of
     from clutchopt.optimise.pareto import CAP, pareto_fronts
     from clutchopt.optimise.sweep_table import table_format, write_frame
     from clutchopt.output import UNITLESS, to_json, with_units
@@ -70,12 +71,14 @@ def run(args) -> str:
         fronts = pareto_fronts(case, args.mode, args.points, SolverOptions(tol=args.tol), robust,
                                progress=not args.quiet)
         for front in fronts if store is not None else ():
-            for cap, solution in zip(front.caps, front.solutions):
+            for k, (cap, solution) in enumerate(zip(front.caps, front.solutions)):
+                outputs = Designed(front.choice, front.case, solution, front.robust[k] if front.robust else None)
                 if math.isnan(cap):
-                    store.record_solution("pareto", front.case, solution)
+                    store.record_solution("pareto", front.case, solution, outputs.as_dict(), method_of(robust))
                 else:
                     store.record_solution("pareto", replace(front.case, values={**front.case.values, CAP: cap}),
-                                          solution, mode=f"{front.mode}{CAPPED_SUFFIX}")
+                                          solution, outputs.as_dict(), method_of(robust),
+                                          mode=f"{front.mode}{CAPPED_SUFFIX}")
     if args.out:
         write_frame(pd.concat([_with_choice(front) for front in fronts], ignore_index=True), args.out)
     if args.plot:
@@ -83,7 +86,7 @@ def run(args) -> str:
     if args.json:
         shown = [_front_json(front) for front in fronts]
         return to_json(with_units({"case": case.path, "mode": fronts[0].mode,
-                                   "robust": robust.as_dict() if robust is not None else None,
+                                   "robust": robust.as_dict(case) if robust is not None else None,
                                    **(shown[0] if len(fronts) == 1 else {"fronts": shown})}, {"robust": UNITLESS}))
     how = f", {robust.label} designs" if robust is not None else ""
     lines = [f"Pareto front, mass against cost (epsilon-constraint) - {case.title or case.path}, {fronts[0].mode} "

@@ -101,7 +101,7 @@ def run(args) -> str:
                   for i, (values, solution) in enumerate(zip(sweep.points, result.solutions))]
         return to_json(with_units({"case": case.path, "mode": sweep.formulation.mode,
                                    "objective": sweep.objective.name,
-                                   "robust": sweep.robust.as_dict() if sweep.robust is not None else None,
+                                   "robust": sweep.robust.as_dict(case) if sweep.robust is not None else None,
                                    "sweep_id": result.sweep_id, "points": points},
                                   {"sweep_id": UNITLESS, "robust": UNITLESS}))
     text = "\n".join(filter(None, [choices_note(case), nominal_note(case, sweep.robust),

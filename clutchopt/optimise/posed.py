@@ -93,8 +93,9 @@ class Posed:
         p = namespace({q.name: self.p_case[j] for j, q in enumerate(f.quantities)})
         constraints = f.constraints(x, p)
         self.n_checked = len(constraints)  # the formulation's own constraints, re-evaluated by check_design
-        at_start = namespace(f.start_up_view(vars(p))) if f.start_up_view else p
-        self.start_up = StartUpBlock(start_up, f.speed_law, x, at_start) if start_up else None
+        view = f.start_up_view  # a robust design's corners
+        seen = (lambda name: tuple(map(namespace, view(vars(x), vars(p), name)))) if view else None
+        self.start_up = StartUpBlock(start_up, f.speed_law, x, p, seen) if start_up else None
         internal, equalities = (self.start_up.hat, self.start_up.equalities) if start_up else (ca.SX(0, 1), [])
         constraints += self.start_up.constraints if start_up else []
         rows = [ca.SX(c.normalised()) for c in constraints]
@@ -217,8 +218,8 @@ class Posed:
         if self.start_up is not None:
             data.internal_lower, data.internal_upper = self.start_up.bounds()
             if internal is None or len(internal) != self.start_up.size:
-                internal = initial_states(self.start_up, self.start_up_case(case), self.formulation,
-                                          self.design(x0 / scale, scale),
+                seen, design = self.start_up_seen(case, self.design(x0 / scale, scale))
+                internal = initial_states(self.start_up, seen, self.formulation, design,
                                           np.array(self.internal_scale(p_vector[: len(params.__dict__)])).ravel(),
                                           p_vector[-self.start_up.mesh_parameters.shape[0]:])
             data.internal_start = np.clip(internal, data.internal_lower, data.internal_upper)
@@ -238,10 +239,21 @@ class Posed:
         """The integer variables a solve's bounds leave free."""
         return [i for i in self.integer if data.lower[i] < data.upper[i]]
 
-    def start_up_case(self, case: Case) -> Case:
-        """The case as the start-up sees it (a robust design's: its corner)."""
+    def seen_by(self, case: Case, design: dict[str, float]):
+        """name -> the design and case values ``(x, p)`` the start-up's constraint ``name`` is checked with, ``None``
+        -> those its start is simulated at: the case's and the design's, a robust design's at their corners."""
+        view, params = self.formulation.start_up_view, vars(self.params(case))
+        if not view:
+            return lambda name: (namespace(design), namespace(params))
+        return lambda name: tuple(map(namespace, view(design, params, name)))
+
+    def start_up_seen(self, case: Case, design: dict[str, float]) -> tuple[Case, dict[str, float]]:
+        """The case and the design as the start-up's simulated start sees them (a robust design's: at its corner)."""
         view = self.formulation.start_up_view
-        return replace(case, values=case.followed(view(case.values))) if view else case
+        if not view:
+            return case, design
+        design, values = view(design, case.values, None)
+        return replace(case, values=case.followed(values)), design
 
     @property
     def mesh_size(self) -> int:

@@ -26,7 +26,7 @@ from clutchopt.optimise.integers import descend, fixing, nearest_integers, relax
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
 from clutchopt.optimise.solution import Solution, SolverInfo, SolverOptions, WarmStart
-from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, corrected_limits, start_up_report
+from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, corrected_case, start_up_report
 from clutchopt.optimise.verdict import shown
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
 from clutchopt.start_up.drive import Structure
@@ -104,11 +104,11 @@ class Problem:
                     break
                 adapted, last_error = adapted + 1, error
                 solution = self._solve(case, warm=solution, nlp_case=nlp_case, mesh=solution.mesh[1])
-            elif limits := corrected_limits(solution, nlp_case, centre=not structure.elastic):
+            elif (moved := corrected_case(solution, nlp_case, centre=not structure.elastic)) is not None:
                 # integers kept, unless the difference is the model's (an elastic link's dynamics), not a small one
                 integers = {v.name: (solution.design[v.name],) * 2 for v in self.formulation.variables
                             if v.integer and not structure.elastic}
-                nlp_case = replace(nlp_case.with_values(**limits), bounds={**nlp_case.bounds, **integers})
+                nlp_case = replace(moved, bounds={**nlp_case.bounds, **integers})
                 solution = self._solve(case, warm=solution, nlp_case=nlp_case)
             else:
                 break
@@ -181,8 +181,8 @@ class Problem:
         design, objective, checks = run["design"], run["value"], list(run["checks"])
         start_up = mesh = None
         if posed.start_up is not None:  # re-checked by the independent simulator
-            seen = posed.start_up_case(case)
-            start_up, simulated, suggested = start_up_report(posed.start_up, seen, f, design, posed.params(seen),
+            start_up, simulated, suggested = start_up_report(posed.start_up, *posed.start_up_seen(case, design), f,
+                                                             posed.seen_by(case, design),
                                                              posed.start_up_figures(run["x"], run["p"]))
             checks += simulated
             mesh = (posed.mesh_of(run["p"]), suggested)

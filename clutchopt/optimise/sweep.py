@@ -37,7 +37,7 @@ from clutchopt.materials import chosen
 from clutchopt.model import Formulation
 from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
 from clutchopt.optimise.dask_client import connect
-from clutchopt.optimise.design import Robustness, check_robustness, design_case
+from clutchopt.optimise.design import Robustness, check_robustness, design_case, method_of
 from clutchopt.optimise.entering import check_entering
 from clutchopt.optimise.problem import case_formulation, case_problem
 from clutchopt.optimise.solution import Solution, SolverOptions
@@ -45,7 +45,7 @@ from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_na
                                            parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
 from clutchopt.optimise.table import joined_tables, record_table
 from clutchopt.optimise.verify import DESIGN_STATUSES
-from clutchopt.records import expanded, status_and_objective
+from clutchopt.records import design_inputs, expanded, scatter_record, status_and_objective
 from clutchopt.units import from_si
 
 SPENT = ("solves", "solver_s", "check_s")  # what solving points costs: solver calls, seconds in them and in checks
@@ -338,7 +338,8 @@ class Sweep:
                                           "bounds": self.case.bounds,
                                           **({"choose": self.case.options["choose"]}
                                              if self.case.options.get("choose") else {})},
-                **({"robust": self.robust.as_dict()} if self.robust is not None else {}),
+                **({"robust": {**self.robust.as_dict(self.case), "scatter": scatter_record(self.case)}}
+                   if self.robust is not None else {}),
                 "points": self.points}
 
     def run(self, store=None, resume: bool = False, jobs: int = 1, runner: Callable | None = None,
@@ -396,14 +397,14 @@ class Sweep:
                                                  dtype=object))
 
     def _inputs(self, values: dict[str, float]) -> dict:
-        """A point's inputs as the store keeps them: the case's SI values with the point's (checked when the sweep
-        was made), its free variables and bounds."""
+        """A point's inputs as the store keeps them (:func:`~clutchopt.records.design_inputs`): the case's SI values
+        with the point's (checked when the sweep was made), its free variables and bounds, how it was designed."""
         values = {**self.case.values, **{name: float(value) for name, value in values.items()}}
-        return {"values": values, "free": list(self.case.free), "bounds": self.case.bounds}
+        return design_inputs(self.case, values, method_of(self.robust))
 
     def _where(self, point: int, record: dict, sweep_id: int) -> dict:
         status, objective = status_and_objective(record)
-        return {"status": status, "objective": objective,
+        return {"status": status, "objective": objective, "method": method_of(self.robust),
                 "objective_unit": self.objective.unit, "case_path": self.case.path, "title": self.case.title,
                 "coupling": self.case.coupling, "mode": self.formulation.mode, "objective_name": self.objective.name,
                 "sweep_id": sweep_id, "point": point}

@@ -118,6 +118,10 @@ class Drive:
         return su.heat_rate(power, temperature, self.p.heat_capacity, self.p.heat_conductance)
 
 
+CLOSED_FORM = ("min_engagement_speed", "max_engagement_speed", "motor_breakdown_torque", "motor_starting_torque")
+# the start-up's constraints that read no figure of the start: closed forms in the design and the case's values
+
+
 def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
     """The start-up's requirements as named constraints, of the figures ``q`` (start_time, friction_work,
     temperatures, lock_up_speed, lock_up_time): NLP expressions, or the simulator's figures for the float64 check."""
@@ -164,6 +168,15 @@ def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
                             equation="lockup", unit="N*m", scale=drive.torque_ref,
                             description="torque margin over the locked run-up to synchronous speed"))
     return out
+
+
+def seen_constraints(s: Structure, law: SpeedLaw | ElasticLaw, q, seen) -> list[Constraint]:
+    """:func:`named_constraints` of the figures ``q`` of one start, each evaluated with the design and case values
+    ``seen(name)`` gives it, ``(x, p)``: under scatter each at its own corner (its limit at its strict end, the
+    engagement window at the preload that narrows it), while the figures are those of the start simulated at
+    ``seen(None)``."""
+    names = [c.name for c in named_constraints(s, Drive(s, law, *seen(None)), q)]
+    return [named_constraints(s, Drive(s, law, *seen(name)), q)[i] for i, name in enumerate(names)]
 
 
 def _elastic_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:

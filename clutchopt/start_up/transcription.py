@@ -25,7 +25,7 @@ import casadi as ca
 import numpy as np
 
 from clutchopt.model import SpeedLaw
-from clutchopt.start_up.drive import Drive, Structure, named_constraints
+from clutchopt.start_up.drive import Drive, Structure, named_constraints, seen_constraints
 from clutchopt.start_up.mesh import first_mesh
 
 DEGREE = 3
@@ -49,7 +49,11 @@ def _collocation(degree: int):
 class StartUpBlock:
     """One start-up transcribed for one problem: internal variables (scaled), equalities, named constraints."""
 
-    def __init__(self, structure: Structure, law: SpeedLaw, x, p):
+    def __init__(self, structure: Structure, law: SpeedLaw, x, p, seen=None):
+        """``seen``: name -> the design and case values ``(x, p)`` of each constraint, ``seen(None)`` of the start
+        (:func:`~clutchopt.start_up.drive.seen_constraints`; a robust design's corners); None: ``x`` and ``p``."""
+        if seen is not None:
+            x, p = seen(None)
         self.s = structure
         self.drive = d = Drive(structure, law, x, p)
         self.tau, self.c = _collocation(DEGREE)
@@ -76,7 +80,8 @@ class StartUpBlock:
             start_time=time, friction_work=state["friction_work"], lock_up_speed=state["driver_speed"],
             temperatures=ca.vertcat(*temperatures) if temperatures else 0.0,
             stresses=ca.vertcat(*stresses) if stresses else 0.0)
-        self.constraints = named_constraints(structure, d, self.figures)
+        self.constraints = (seen_constraints(structure, law, self.figures, seen) if seen is not None
+                            else named_constraints(structure, d, self.figures))
 
     # --- variables and phases ----------------------------------------------------------------------------------
     def _variable(self, phase: str, kind: str, scale, lower: float, upper: float):
