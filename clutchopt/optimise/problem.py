@@ -71,7 +71,7 @@ class Problem:
         error, from ``coarser`` at half the intervals, can reach the tolerance by then). Should the simulated
         start still miss a limit, the missed limits are moved in by what the simulation adds to the NLP's figure
         (defect correction) and the problem re-solves warm; so is a binding limit the simulated start meets so far
-        off that the objective is off by a tenth of the tolerance (the design then does not depend on the mesh the
+        off that the objective is off by a quarter of the tolerance (the design then does not depend on the mesh the
         loop ended on; not for an elastic link, whose NLP is another model than its simulation). Limits are always
         reported as the case gives them. A start-up problem without a start point starts from the optimum the
         papers' sizing gives (the same mode without the start-up), a design the start-up changes but does not

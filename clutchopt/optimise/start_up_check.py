@@ -16,7 +16,7 @@ from clutchopt.start_up.drive import Drive, seen_constraints
 from clutchopt.start_up.mesh import adapted_mesh
 
 BACK_OFF_STEPS = 4  # defect corrections of limits the simulated start misses (or binds at off the limit)
-CENTRE = 0.1  # of the tolerance: the objective's error from a binding limit met off the limit that is corrected
+CENTRE = 0.25  # of the tolerance: the objective's error from a binding limit met off the limit that is corrected
 LIMIT_OF = {"start_time": "max_start_time", "friction_work": "max_friction_work",
             "temperature_rise": "max_temperature_rise", "heat_per_hour": "heat_dissipation",
             "link_stress": "max_link_stress"}
