@@ -108,6 +108,7 @@ class _Run:
         self.method = model.integrator if model.integrator != "auto" else "LSODA" if stiff else "DOP853"
         self.state_scale = np.array([speed, 1e-6 * speed, energy, energy, heat])  # absolute tolerance per rtol
         self.budget = Budget(MAX_STEPS)
+        self._last = None, None  # (kind, t, y) and the rates there
 
     def integrate(self, kind: str, t: float, bound: float, y, events: list) -> Phase:
         """One phase (``rest``, ``slip`` or ``stick``); LSODA at a tenth of the tolerance, and should it fail (its
@@ -213,8 +214,15 @@ class _Run:
         at_rest = y[0] - y[1] <= 0.0 and self.m.law.excess(y[0], y[1], self.m.load(t, 0.0)) <= 0.0
         return "rest" if at_rest else "slip"
 
+    def turning_rates(self, kind: str, t, y) -> list:
+        """The rates of a rest or slip phase; the last point's kept, as the events evaluate it after each step."""
+        key = (kind, t, y.tobytes())
+        if self._last[0] != key:
+            self._last = key, (self.rest(t, y) if kind == "rest" else self.slip(t, y))
+        return self._last[1]
+
     def net_rate(self, kind: str, t, y) -> float:
-        d = self.rest(t, y) if kind == "rest" else self.slip(t, y)
+        d = self.turning_rates(kind, t, y)
         return (abs(d[0]) + abs(d[0] - d[1])) * self.time_scale / self.w_ref
 
     def turning_events(self, kind: str, engaged: bool, steady_armed: bool) -> dict:
@@ -234,8 +242,7 @@ class _Run:
         if steady_armed:
             events["steady"] = _event(lambda t, y: self.net_rate(kind, t, y) - STEADY, True, -1)
         if self.heat:
-            rates = self.rest if kind == "rest" else self.slip
-            events["peak"] = _event(lambda t, y: rates(t, y)[4], False, -1)
+            events["peak"] = _event(lambda t, y: self.turning_rates(kind, t, y)[4], False, -1)
         return events
 
     def budget_reason(self, t: float) -> str:
