@@ -115,6 +115,7 @@ HOSTILE: list[Hostile] = [
     profile("profile-1000-points-over-time", "time", spread(1000, 20.0), [5.0 + x / 20.0 for x in spread(1000, 20.0)],
             None, unit="s"),
     profile("profile-100-point-sawtooth", "speed", spread(100), [5.0 + 0.5 * (i % 2) for i in range(100)], None),
+    profile("profile-1000-point-noise", "speed", spread(1000), [5.0 + 0.1 * (i % 7) for i in range(1000)], None),
     profile("profile-step-in-time", "time", [0.0, 4.999, 5.0, 60.0], [2.0, 2.0, 8.0, 8.0], None, unit="s"),
     profile("profile-zero-everywhere", "speed", spread(50), [0.0] * 50, None),
     profile("profile-spike", "speed", [0.0, 499.0, 500.0, 501.0, RPM], [1.0, 1.0, 30.0, 1.0, 1.0], None),

@@ -95,6 +95,7 @@ def test_a_thousand_point_load_table_is_looked_up():
     speeds = np.random.default_rng(1).uniform(-10.0, 110.0, 1000)
     assert [load(0.0, w) for w in speeds] == pytest.approx(np.interp(speeds, points, values), rel=1e-14)
     assert piecewise_linear(speeds, points, values) == pytest.approx(np.interp(speeds, points, values), rel=1e-15)
+    assert np.isnan(load(0.0, np.nan)) and np.isnan(load.slope(0.0, np.nan))  # no lock-up speed: none, as np.interp
     started = time.perf_counter()
     for w in speeds:
         load(0.0, w)

@@ -65,7 +65,7 @@ def start_up_check(case, solution) -> Check:
     what = "independent simulation"
     start = solution.start_up
     if start is not None:
-        how = (f"the start on the case's drive ({', '.join(start['effects'])}) integrated by solve_ivp in float64, "
+        how = (f"the start on the case's drive ({', '.join(start['effects'])}) integrated by SciPy (LSODA where stiff) in float64, "
                f"beside the NLP's Radau collocation ({start['intervals']} intervals per phase); the start-up's "
                "constraints above are checked with the simulated figures")
         if not start["locks_up"]:
@@ -79,7 +79,7 @@ def start_up_check(case, solution) -> Check:
     check = verify(case, solution)
     if "sized_acceleration_time" not in check:
         return Check(what, "not simulated", check["reason"], NOT_DONE)
-    how = f"the start simulated by solve_ivp in float64 at {check['assumption']}"
+    how = f"the start simulated by SciPy (DOP853) in float64 at {check['assumption']}"
     if not check["verified"]:
         return Check(what, how, f"the design does not start up: {check['reason']}", FAILED)
     return Check(what, how, f"reaches speed in {check['simulated_acceleration_time']:.6g} s against t_p = "

@@ -5,7 +5,7 @@ Every sizing method of the papers assumes a constant driving speed and a constan
 the effects to model (the vocabulary of start-up scenes, ``clutchopt.simulate``), an induction motor or a constant
 driving speed, return-spring preload, the weights' own weight, the driven machine's load, the heat capacity of the
 friction parts, and the limits the start-up must meet. The same equations serve the NLP (``clutchopt.start_up.
-transcription``, collocation) and the simulator (``clutchopt.simulate``, solve_ivp), through ``clutchopt.backend``.
+transcription``, collocation) and the simulator (``clutchopt.simulate``), through ``clutchopt.backend``.
 
 The torque of a centrifugal coupling follows its *driving* speed w_a, since the weights ride on the driving half:
 T = K (w_a^2 - w_e^2) once engaged, K = dT/d(w_a^2) of the coupling's own torque equation (a
@@ -15,6 +15,7 @@ equals what holds it in, spring preload F_s and (effect ``gravity``) its own wei
 
 from __future__ import annotations
 
+import math
 from bisect import bisect_right
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
@@ -113,7 +114,10 @@ def piecewise_linear(x, points, values):
 
 
 def table_segment(x: float, points, values) -> tuple[float, float]:
-    """(y, dy/dx) of the piecewise-linear table at a number x, held constant (slope 0) beyond both ends."""
+    """(y, dy/dx) of the piecewise-linear table at a number x, held constant (slope 0) beyond both ends; NaN at NaN
+    (a start that does not lock up has no lock-up speed), as numpy.interp."""
+    if math.isnan(x):
+        return math.nan, math.nan
     if x <= points[0]:
         return values[0], 0.0
     if x >= points[-1]:

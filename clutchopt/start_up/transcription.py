@@ -13,7 +13,7 @@ L-stable, so the motor's fast electrical-mechanical mode costs nothing); the pha
 T(w_a) = T_c at rest, s = 0) and the lock-up is the first zero of a falling slip (T >= the torque the locked
 drive needs). Start time, friction work, temperature rise and engagement speed are then NLP expressions with exact
 derivatives and become named constraints. Every optimum is started again by the independent simulator
-(``clutchopt.simulate``, solve_ivp with events): the simulated figures are the constraint values reported.
+(``clutchopt.simulate``, stiff where the motor is, events): the simulated figures are the constraint values reported.
 """
 
 from __future__ import annotations
