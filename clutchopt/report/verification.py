@@ -65,8 +65,8 @@ def start_up_check(case, solution) -> Check:
     what = "independent simulation"
     start = solution.start_up
     if start is not None:
-        how = (f"the start on the case's drive ({', '.join(start['effects'])}) integrated by SciPy (LSODA where stiff) in float64, "
-               f"beside the NLP's Radau collocation ({start['intervals']} intervals per phase); the start-up's "
+        how = (f"the start on the case's drive ({', '.join(start['effects'])}) integrated by SciPy (LSODA where "
+               f"stiff) in float64, beside the NLP's Radau collocation ({start['intervals']} intervals per phase); the start-up's "
                "constraints above are checked with the simulated figures")
         if not start["locks_up"]:
             return Check(what, how, f"no lock-up: {start['reason']}", FAILED)
