@@ -66,8 +66,8 @@ def start_up_check(case, solution) -> Check:
     start = solution.start_up
     if start is not None:
         how = (f"the start on the case's drive ({', '.join(start['effects'])}) integrated by SciPy (LSODA where "
-               f"stiff) in float64, beside the NLP's Radau collocation ({start['intervals']} intervals per phase); the start-up's "
-               "constraints above are checked with the simulated figures")
+               f"stiff) in float64, beside the NLP's Radau collocation ({start['intervals']} intervals per phase); the "
+               "start-up's constraints above are checked with the simulated figures")
         if not start["locks_up"]:
             return Check(what, how, f"no lock-up: {start['reason']}", FAILED)
         errors = start["discretisation_error"]
