@@ -21,6 +21,7 @@ Every problem raises :class:`~clutchopt.errors.InputError` naming the field (``d
 from __future__ import annotations
 
 import difflib
+import itertools
 import math
 import tomllib
 from dataclasses import dataclass, field, replace
@@ -209,7 +210,8 @@ def parse_case(data: dict, path: str = "") -> Case:
     case = Case(coupling.name, data.get("title", ""), values, bounds, tuple(options.get("free", ())),
                 {**options, **({"choose": choose} if choose else {})}, path, start_up, filled, scatter,
                 {name: rule for name, rule in follows.items() if name not in {s.name for s in scatter}})
-    coupling.check_case(case)
+    check_across(case)
+    check_scatter_corners(case)
     materials.variants(case, coupling)  # every choice of options.choose is checked here, before any solve
     sets, _ = materials.chosen(case, coupling)
     for s in scatter:
@@ -220,6 +222,33 @@ def parse_case(data: dict, path: str = "") -> Case:
                                                       "that names one entry")
     problems.raise_any()
     return case
+
+
+def check_across(case: Case) -> None:
+    """The checks across fields, the coupling's and a [start_up]'s drive's: on the case as read, and on every point
+    a sweep or a scatter moves it to, before any solve."""
+    from clutchopt.formulations import get_coupling
+
+    get_coupling(case.coupling).check_case(case)
+    if case.start_up is not None:
+        from clutchopt.start_up.section import check_values
+
+        check_values(case.values)
+
+
+def check_scatter_corners(case: Case) -> None:
+    """:func:`check_across` at every corner of the scattered quantities' ranges (the ends a worst-case design
+    meets): a scatter that moves the case where it means nothing is refused, naming the corner."""
+    if not case.scatter:
+        return
+    names = [s.name for s in case.scatter]
+    for ends in itertools.product(*((s.low, s.high) for s in case.scatter)):
+        try:
+            check_across(case.with_values(**dict(zip(names, ends))))
+        except InputError as exc:
+            declared = {q.name: q for q in case.quantities}
+            corner = ", ".join(f"{name} = {declared[name].show(end)}" for name, end in zip(names, ends))
+            raise exc.at(f"scatter (at {corner})") from None
 
 
 def _parse_options(options: Any, coupling, problems: Problems, start_up: bool) -> dict[str, Any]:

@@ -27,6 +27,11 @@ class InputError(ValueError):
         combined.args = ("\n".join(problem.args[0] for problem in combined.problems),)
         return combined
 
+    def at(self, where: str) -> InputError:
+        """Every problem of this error as found at one point of a larger input (a sweep's point, a scatter's corner):
+        each under ``where``, its own field said in its problem."""
+        return InputError.several([InputError(where, str(problem)) for problem in self.problems])
+
 
 def shown_value(value: object, limit: int = 60) -> str:
     """``repr`` of a value for a message, cut to a readable length (a 20,000-element list is not printed)."""

@@ -18,8 +18,8 @@ LAYERS: tuple[tuple[str, str, tuple[str, ...]], ...] = (  # (layer, what it hold
      ("formulations",)),
     ("start-up equations", "the [start_up] quantities and the drive's equations, written once for the NLP and the "
                            "simulator", ("start_up", "start_up.equations")),
-    ("simulator", "solve_ivp engine, friction and motor laws, effects, closed forms, plots (the package's public "
-                  "names load on first use)", ("simulate",)),
+    ("simulator", "integrators stepped within a budget, friction and motor laws, effects, closed forms, plots (the "
+                  "package's public names load on first use)", ("simulate",)),
     ("start-up", "the [start_up] section, the NLP's shape and drive, its collocation and mesh, a design's start "
                  "simulated",
      ("start_up.section", "start_up.drive", "start_up.transcription", "start_up.mesh", "start_up.simulation")),

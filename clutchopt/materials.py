@@ -12,6 +12,7 @@ Each role fills the case quantities it maps to, unless the case gives them itsel
 the library filled is recorded in ``Case.library`` and reported by ``clutchopt solve``. ``options.choose`` lists
 alternatives, e.g. ``choose = {friction_pair = ["organic_dry", "sintered_bronze_oiled"]}``: every combination is
 a variant of the case (:func:`variants`), designed and ranked by every design command (``clutchopt.optimise.design``).
+A role is named in ``[library]`` or listed in ``options.choose``, not in both (the choices would replace the entry).
 """
 
 from __future__ import annotations
@@ -178,6 +179,11 @@ def fill(table: object, roles: tuple[MaterialRole, ...], quantities: tuple[Quant
         if key not in keys:
             raise InputError(f"library.{key}", f"unknown key; [library] takes {', '.join(keys) or 'nothing'} "
                                                "for this coupling")
+    both = [key for key in keys if key in table and key in choose]
+    if both:
+        raise InputError(f"library.{both[0]}", f"names {table[both[0]]!r}, and options.choose.{both[0]} lists the "
+                                               "entries to choose from: name one entry in [library] or several in "
+                                               "options.choose, not both")
     declared = {q.name: q for q in quantities}
     filled = {}
     for role in roles:

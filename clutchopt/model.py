@@ -219,7 +219,9 @@ class Formulation:
     outputs: Callable[[SimpleNamespace, SimpleNamespace], dict[str, Output]] = lambda x, p: {}
     speed_law: SpeedLaw | ElasticLaw | None = None  # its torque in a start-up (None: not available)
     variant: str = ""  # a formulation derived from the mode's (robust designs): part of what identifies it
-    start_up_view: Callable[[dict], dict] | None = None  # the case values a [start_up] sees (robust: its corner)
+    # (x, p, name) -> the design and case values (dicts) a [start_up]'s constraint ``name`` sees, and (x, p, None)
+    # those its start is simulated at: a robust design's corners (a scattered fixed design variable moves with them)
+    start_up_view: Callable[[dict, dict, str | None], tuple[dict, dict]] | None = None
     notes: str = ""
     _objective_index: dict = field(init=False, repr=False)
 

@@ -340,7 +340,8 @@ def start_up_table(start_up: dict) -> tuple[str, list[dict], list[str]]:
             f"{start_up['intervals']} intervals per phase ({', '.join(start_up['phases'])}), beside the simulator"
             + (" (the NLP takes the elastic link as quasi-static, the simulator follows its dynamics)" if elastic
                else ""))
-    return head, rows, [] if start_up["locks_up"] else [f"simulated: {start_up['reason']}"]
+    notes = [start_up["motor"]] if start_up.get("motor") else []
+    return head, rows, notes + ([] if start_up["locks_up"] else [f"simulated: {start_up['reason']}"])
 
 
 def sensitivity_rows(solution, formulation: Formulation, count: int = 8) -> list[dict]:

@@ -12,10 +12,39 @@ records without importing the solvers.
 from __future__ import annotations
 
 import hashlib
+from dataclasses import asdict
 
 TEMPLATE = "template"  # the key that marks a compact record, holding its template's key
 STATUSES = ("optimal", "unverified", "infeasible", "not_found", "solver_failed")  # how a solve ends (infeasible: proven)
 CONSTRAINT_COLUMNS = ("value", "limit", "margin", "active", "feasible", "scale", "multiplier", "elasticity")
+NOMINAL = "nominal"  # how a design was made without --robust; else worst-case or chance=P, as --robust spells it
+
+
+def method_text(method: str, target: float | None) -> str:
+    """A robust method as --robust spells it: ``worst-case``, ``chance=0.999``."""
+    return method if target is None else f"{method}={target:.15g}"
+
+
+def method_of(outputs) -> str | None:
+    """How a stored design was made, read from its robust result where its run does not say (a store of an older
+    clutchopt); None where nothing says."""
+    robust = outputs.get("robust") if isinstance(outputs, dict) else None
+    if not isinstance(robust, dict) or robust.get("method") not in ("worst-case", "chance"):
+        return None
+    target = robust.get("target")
+    return method_text(robust["method"], target if isinstance(target, float) else None)
+
+
+def design_inputs(case, values: dict[str, float], method: str = NOMINAL) -> dict:
+    """A design's inputs as the store keeps them: the SI ``values`` it was solved for, the case's free variables
+    and bounds, how it was designed (``method``) and, for a robust design, the case's scatter (SI)."""
+    scatter = {"scatter": scatter_record(case)} if method != NOMINAL else {}
+    return {"values": values, "free": list(case.free), "bounds": case.bounds, "method": method, **scatter}
+
+
+def scatter_record(case) -> dict[str, dict]:
+    """A case's scatter as the store keeps it: quantity -> kind, worst-case range, mean and sd (SI)."""
+    return {s.name: {k: v for k, v in asdict(s).items() if k != "name"} for s in case.scatter}
 
 
 def template_key(template: dict) -> str:

@@ -25,6 +25,7 @@ from clutchopt.units import to_si
 SECTION = "scatter"
 MAX_SCATTERED = 12  # quantities; worst-case designs check all 2^n corners
 NORMAL_RANGE = 3.0  # standard deviations either side of the mean: a normal quantity's worst-case range
+MEAN_TOLERANCE = 1e-9  # relative: a normal distribution's mean is the case's value (given in another unit)
 
 
 @dataclass(frozen=True)
@@ -85,7 +86,8 @@ def _pair(field: str, quantity, raw) -> tuple[float, float]:
 
 
 def _item(field: str, quantity, raw, nominal: float) -> Scatter:
-    """One scattered quantity; a range is checked to hold ``nominal`` unless that is NaN (unknown)."""
+    """One scattered quantity around the case's value ``nominal``: a range or uniform distribution must hold it, a
+    normal distribution's mean must be it (unless ``nominal`` is NaN, unknown)."""
     if isinstance(raw, list):
         kind, (low, high) = "range", _pair(field, quantity, raw)
     elif isinstance(raw, dict) and len(raw) == 1 and next(iter(raw)) in ("normal", "uniform"):
@@ -95,6 +97,12 @@ def _item(field: str, quantity, raw, nominal: float) -> Scatter:
             if not second > 0:
                 raise InputError(f"{field}.normal", f"the standard deviation must be positive, got {quantity.show(second)}")
             quantity.check(first, f"{field}.normal")
+            if not math.isnan(nominal) and not math.isclose(first, nominal, rel_tol=MEAN_TOLERANCE):
+                raise InputError(f"{field}.normal", f"the mean {quantity.show(first)} is not the case's value "
+                                                    f"{quantity.show(nominal)}: a scatter spreads around the value "
+                                                    f"the case is designed at; set the case's value to the mean, or "
+                                                    f"scatter around it (normal = [{_spelled(quantity, nominal)}, "
+                                                    f"{_spelled(quantity, second)}])")
             low, high = _within(quantity, first - NORMAL_RANGE * second), _within(quantity, first + NORMAL_RANGE * second)
             quantity.check(low, f"{field}.normal"), quantity.check(high, f"{field}.normal")
             return Scatter(quantity.name, kind, low, high, first, second)
@@ -107,8 +115,15 @@ def _item(field: str, quantity, raw, nominal: float) -> Scatter:
     quantity.check(low, field), quantity.check(high, field)
     if not math.isnan(nominal) and not low <= nominal <= high:
         raise InputError(field, f"the case's value {quantity.show(nominal)} lies outside {quantity.show(low)} .. "
-                                f"{quantity.show(high)}")
+                                f"{quantity.show(high)}: a scatter spreads around the value the case is designed "
+                                f"at; set the case's value inside the range, or give a range that holds it")
     return Scatter(quantity.name, kind, low, high, (low + high) / 2, (high - low) / math.sqrt(12.0))
+
+
+def _spelled(quantity, value: float) -> str:
+    """A value as a case file writes it: ``"12 kg*m^2"``, or a bare number where the quantity has no unit."""
+    shown = quantity.show(value)
+    return shown if " " not in shown else f'"{shown}"'
 
 
 def _within(quantity, value: float) -> float:

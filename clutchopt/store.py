@@ -49,7 +49,8 @@ import numpy as np
 
 from clutchopt.errors import InputError
 from clutchopt.files import status
-from clutchopt.records import STATUSES, TEMPLATE, check_solution, expand, is_compact
+from clutchopt.records import (NOMINAL, STATUSES, TEMPLATE, check_solution, design_inputs, expand, is_compact,
+                               method_of)
 from clutchopt.store_kept import keep, take_kept
 from clutchopt.window_records import WindowRecords, pack, unpack
 
@@ -73,16 +74,17 @@ CREATE TABLE IF NOT EXISTS runs (
     id INTEGER PRIMARY KEY, kind TEXT NOT NULL, sweep_id INTEGER REFERENCES sweeps(id), point INTEGER,
     case_path TEXT, title TEXT, coupling TEXT, mode TEXT, objective_name TEXT, status TEXT, objective REAL,
     inputs TEXT NOT NULL, outputs TEXT NOT NULL, versions TEXT NOT NULL, created TEXT NOT NULL,
-    objective_unit TEXT, run_count INTEGER, window BLOB, UNIQUE (sweep_id, point));
+    objective_unit TEXT, method TEXT, run_count INTEGER, window BLOB, UNIQUE (sweep_id, point));
 CREATE INDEX IF NOT EXISTS runs_by_kind ON runs (kind);
 CREATE TABLE IF NOT EXISTS templates (key TEXT PRIMARY KEY, body TEXT NOT NULL);
 """  # templates: a window's shared part of its compact sweep points (clutchopt.records). A row of runs holds
 # run_count runs (NULL: one), ids id .. id + run_count - 1 and sweep points point .. point + run_count - 1: a window's
 # batched points, their numbers as arrays in window (clutchopt.window_records; outputs: their layout)
-ADDED_COLUMNS = {"runs": {"objective_unit": "TEXT", "run_count": "INTEGER", "window": "BLOB"}}  # columns newer than
-# their table: a store of an older clutchopt lacks them, and gets them when opened for recording
+ADDED_COLUMNS = {"runs": {"objective_unit": "TEXT", "method": "TEXT", "run_count": "INTEGER", "window": "BLOB"}}
+# columns newer than their table: a store of an older clutchopt lacks them, and gets them when opened for recording
+# (read as NULL from one opened to read, and objective_unit and method filled from the run's outputs where they say)
 
-LIST_COLUMNS = ("id", "kind", "sweep_id", "point", "created", "coupling", "mode", "objective_name", "status",
+LIST_COLUMNS = ("id", "kind", "sweep_id", "point", "created", "coupling", "mode", "method", "objective_name", "status",
                 "objective", "objective_unit", "case_path")
 _SQLITE_HEADER = b"SQLite format 3\x00"
 
@@ -115,9 +117,9 @@ def _versions_json() -> str:
 
 
 RECORD = ("INSERT INTO runs (id, kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status,"
-          " objective, objective_unit, inputs, outputs, versions, created, run_count, window)"
+          " objective, objective_unit, method, inputs, outputs, versions, created, run_count, window)"
           " VALUES (IFNULL((SELECT id + IFNULL(run_count, 1) FROM runs ORDER BY id DESC LIMIT 1), 1),"  # the next id
-          " ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (sweep_id, point) DO NOTHING")
+          " ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT (sweep_id, point) DO NOTHING")
 
 
 def _to_json(value) -> str:
@@ -170,6 +172,13 @@ def _unstored(db: sqlite3.Connection, sweep_id: int, start: int, stop: int) -> l
             free.append((at, point))
         at = max(at, point + count)
     return free + [(at, stop)] if at < stop else free
+
+
+def nested(data, *keys):
+    """``data[k1][k2]...``, None where a level is missing or no mapping."""
+    for key in keys:
+        data = data.get(key) if isinstance(data, dict) else None
+    return data
 
 
 class StoreError(InputError):
@@ -524,18 +533,22 @@ class RunStore:
 
     @staticmethod
     def _row(kind: str, inputs: dict, outputs: dict, created: str, *, status: str | None = None,
-             objective: float | None = None, objective_unit: str = "", case_path: str = "", title: str = "",
-             coupling: str = "", mode: str = "", objective_name: str = "", sweep_id: int | None = None,
-             point: int | None = None, run_count: int | None = None, window: bytes | None = None) -> tuple:
+             objective: float | None = None, objective_unit: str = "", method: str | None = None,
+             case_path: str = "", title: str = "", coupling: str = "", mode: str = "", objective_name: str = "",
+             sweep_id: int | None = None, point: int | None = None, run_count: int | None = None,
+             window: bytes | None = None) -> tuple:
         return (kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status, objective,
-                objective_unit, _to_json(inputs), _to_json(outputs), _versions_json(), created, run_count, window)
+                objective_unit, method, _to_json(inputs), _to_json(outputs), _versions_json(), created, run_count,
+                window)
 
-    def record_solution(self, kind: str, case, solution, outputs: dict | None = None, **where) -> int | None:
-        """Record a solved case: inputs are all its SI values, outputs the solution's JSON (``outputs``, if given:
-        a design's with its choice and robust result); ``where`` may name the mode as recorded (a Pareto point's,
-        ``geometry_capped``)."""
-        return self.record(kind, {"values": case.values, "free": list(case.free), "bounds": case.bounds},
-                           outputs or solution.as_dict(), status=solution.status, objective=solution.objective,
+    def record_solution(self, kind: str, case, solution, outputs: dict | None = None, method: str = NOMINAL,
+                        **where) -> int | None:
+        """Record a solved case: inputs are all its SI values (:func:`design_inputs`), outputs the solution's JSON
+        (``outputs``, if given: a design's with its choice and robust result, its corners, samples and simulated
+        starts); ``method``: how it was designed (nominal, worst-case, chance=P); ``where`` may name the mode as
+        recorded (a Pareto point's, ``geometry_capped``)."""
+        return self.record(kind, design_inputs(case, case.values, method), outputs or solution.as_dict(),
+                           method=method, status=solution.status, objective=solution.objective,
                            objective_unit=solution.objective_unit, case_path=case.path, title=case.title,
                            coupling=case.coupling, mode=where.pop("mode", solution.mode),
                            objective_name=solution.objective_name, **where)
@@ -601,7 +614,10 @@ class RunStore:
         named = run_id + start  # a damaged row is named by the first run asked for
         entry = {**row, **{name: self._json(row[name], named, name) for name in ("inputs", "versions")}}
         if window is None:
-            return [{**entry, "outputs": self._outputs(row["outputs"], run_id, row["kind"])}]
+            entry["outputs"] = self._outputs(row["outputs"], run_id, row["kind"])
+            if entry.get("method") is None and entry["kind"] != "simulation":  # a run of an older version
+                entry["method"] = method_of(entry["outputs"])
+            return [entry]
         header, arrays = self._window(row, count, window, named)
         stop = count if stop is None else stop
         try:
@@ -663,13 +679,13 @@ class RunStore:
         return "IFNULL(run_count, 1)" if "run_count" in self._columns() else "1"
 
     def runs(self, kind: str | None = None, sweep_id: int | None = None, limit: int | None = None) -> list[dict]:
-        """Runs, newest first, without their JSON bodies; ``objective_unit`` filled for stores of older versions.
-        A window's points are read from its arrays (a damaged one: StoreError)."""
-        windows = "run_count" in self._columns()
-        columns = [c if c != "objective_unit" or c in self._columns() else "NULL AS objective_unit"
-                   for c in LIST_COLUMNS]
-        columns += (["run_count", "CASE WHEN window IS NULL THEN NULL ELSE outputs END AS outputs", "window"] if windows
-                    else ["NULL AS run_count", "NULL AS outputs", "NULL AS window"])
+        """Runs, newest first, without their JSON bodies; ``objective_unit`` and ``method`` filled for runs of older
+        versions (from their outputs, where they say). A window's points are read from its arrays (a damaged one:
+        StoreError)."""
+        present = self._columns()
+        columns = [c if c not in ADDED_COLUMNS["runs"] or c in present else f"NULL AS {c}" for c in LIST_COLUMNS]
+        columns += (["run_count", "CASE WHEN window IS NULL THEN NULL ELSE outputs END AS outputs", "window"]
+                    if "run_count" in present else ["NULL AS run_count", "NULL AS outputs", "NULL AS window"])
         query = f"SELECT {', '.join(columns)} FROM runs"
         where, args = [], []
         if kind:
@@ -683,8 +699,14 @@ class RunStore:
             args.append(limit)
         listed = [run for row in self._read(query, args) for run in self._listed(dict(row))][:limit]
         for run in listed:
-            if run["objective_unit"] is None and run["objective"] is not None:
-                run["objective_unit"] = self._older_unit(run)
+            unit = run["objective_unit"] is None and run["objective"] is not None
+            if (unit or run["method"] is None) and run["kind"] != "simulation":
+                outputs = self._older_outputs(run["id"])
+                run["method"] = method_of(outputs)
+                if unit:
+                    run["objective_unit"] = nested(outputs, "objective", "unit") or ""
+            elif unit:
+                run["objective_unit"] = "s"
         return listed
 
     def _listed(self, row: dict) -> list[dict]:
@@ -703,15 +725,13 @@ class RunStore:
         return [{**row, "id": row["id"] + k, "point": row["point"] + k, "status": statuses[k],
                  "objective": objectives[k] if math.isfinite(objectives[k]) else None} for k in reversed(range(count))]
 
-    def _older_unit(self, run: dict) -> str:
-        """The objective's unit of a run recorded before the store had the column: from its outputs."""
-        if run["kind"] == "simulation":
-            return "s"
-        rows = self._read("SELECT outputs FROM runs WHERE id = ?", (run["id"],))
+    def _older_outputs(self, run_id: int):
+        """The outputs of a run recorded before the store had the columns it lacks (None where they are no JSON)."""
+        rows = self._read("SELECT outputs FROM runs WHERE id = ?", (run_id,))
         try:
-            return json.loads(rows[0][0])["objective"]["unit"]
-        except (ValueError, KeyError, TypeError, IndexError):
-            return ""
+            return json.loads(rows[0][0])
+        except (ValueError, TypeError, IndexError, RecursionError):
+            return None
 
     def run(self, run_id: int) -> dict:
         if not 0 < run_id <= LARGEST_ID:

@@ -159,8 +159,8 @@ def _options_section(coupling: Coupling, formulation: Formulation, mode: str | N
         lines += _comment("free: variables that stay at the case's value unless listed here.")
         lines.append(f"# free = [{', '.join(_literal(name) for name in freeable)}]")
     if "choose" in start:
-        lines += _comment("choose: library entries to try; each combination is solved and all are reported, the "
-                          "best first.")
+        lines += _comment("choose: library entries to try, in place of the one [library] names (delete its line "
+                          "there); each combination is solved and all are reported, the best first.")
         lines.append("# choose = { " + ", ".join(f"{key} = [{', '.join(map(_literal, names))}]"
                                                for key, names in start["choose"].items()) + " }")
     return lines

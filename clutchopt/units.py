@@ -87,16 +87,22 @@ _PRETTY_SI = {
 }
 
 
-_DIMENSION_EXAMPLES = {  # a unit of each dimension a case uses, and its plain name
+_KIND_EXAMPLES = {  # a unit of each kind of quantity a case uses, and its plain name: a kind is a dimension and a
+    # power of radian, so that an angle is no ratio and an angular speed no count per time (to pint all are alike)
+    "": "a ratio (a bare number or %)",
+    "rad": "an angle",
+    "rad/s": "an angular speed",
+    "1/s": "a count per time",
     "Pa": "a pressure or stress",
     "N*m": "a torque or energy",
+    "N*m/rad": "a torque per angle",
     "N": "a force",
-    "1/s": "an angular speed",
     "m": "a length",
     "m^2": "an area",
     "m^3": "a volume",
     "kg": "a mass",
     "s": "a time",
+    "s/rad": "a time per angle",
     "kg*m^2": "a moment of inertia",
     "kg/m^3": "a density",
     "EUR/kg": "a price per mass",
@@ -109,22 +115,30 @@ _DIMENSION_EXAMPLES = {  # a unit of each dimension a case uses, and its plain n
 }
 
 
-def _dimension_key(unit: str) -> frozenset:
-    """Order-independent key of a unit's dimensionality (pint's text form orders the base dimensions freely)."""
-    return unit_info(unit).dimensions
+def _kind(unit: str) -> tuple[frozenset, float]:
+    """What a unit measures, order-independent: its dimensionality (pint's text form orders the base dimensions
+    freely) and its power of radian."""
+    info = unit_info(unit)
+    return info.dimensions, info.angle
 
 
 @lru_cache(maxsize=1)
-def _dimension_names() -> dict:
-    return {_dimension_key(unit): name for unit, name in _DIMENSION_EXAMPLES.items()}
+def _kind_names() -> dict:
+    return {_kind(unit): name for unit, name in _KIND_EXAMPLES.items()}
+
+
+_ANGULAR_SPEED = (frozenset({("[time]", -1)}), 1)
 
 
 def describe_dimension(unit: str) -> str:
-    """Plain name of the dimension of ``unit``: ``MPa`` -> ``a pressure or stress``."""
-    key = _dimension_key(unit)
-    if not key:
-        return "dimensionless (or an angle)"
-    return _dimension_names().get(key) or str(registry().Quantity(1.0, unit).dimensionality)
+    """Plain name of what ``unit`` measures: ``MPa`` -> ``a pressure or stress``, ``deg`` -> ``an angle``, ``1/h``
+    -> ``a count per time``."""
+    dimensions, angle = _kind(unit)
+    name = _kind_names().get((dimensions, angle))
+    if name is not None:
+        return name
+    base = _kind_names().get((dimensions, 0)) or str(registry().Quantity(1.0, unit).dimensionality)
+    return f"{base} times an angle to the power {angle:g}" if angle else base
 
 
 MAX_TEXT = 100  # characters of one quantity, e.g. "0.05 EUR/cm^2"; longer text is refused before pint sees it
@@ -220,9 +234,10 @@ def _pint_unit_info(unit: str) -> UnitInfo:
 def to_si(field: str, raw: object, unit: str) -> float:
     """Parse a case value for ``field`` expected in ``unit`` (any compatible unit) and return SI float.
 
-    Raises InputError naming the field for text that is no quantity, a wrong dimension, NaN or infinity, a value
-    beyond float64, a pure frequency (Hz, 1/s) where an angular speed is expected (see ``_SPEED_HINT``), and an
-    offset temperature (degC), which clutchopt's temperature rises cannot mean.
+    Raises InputError naming the field for text that is no quantity, a quantity of another kind (a wrong dimension,
+    or the right one with another power of radian: an angle where a ratio is expected, an angular speed where a
+    count per time is, a pure frequency (Hz, 1/s) where an angular speed is, see ``_SPEED_HINT``), NaN or infinity,
+    a value beyond float64, and an offset temperature (degC), which clutchopt's temperature rises cannot mean.
     """
     expected = unit_info(unit)
     if isinstance(raw, bool):
@@ -246,17 +261,18 @@ def to_si(field: str, raw: object, unit: str) -> float:
         if given.offset and not expected.offset:
             raise InputError(field, f"{raw.strip()!r} is a temperature on a scale with an offset; write a "
                                     "temperature difference in K (or delta_degC)")
-        if unit_text and expected.angle and given.angle != expected.angle and given.dimensions == expected.dimensions:
-            raise InputError(field, f"{raw.strip()!r} is ambiguous: {_SPEED_HINT}" if expected.dimensions
-                             else f"expected an angle (e.g. in {unit}), got {raw.strip()!r}, which is no angle")
+        if _kind(unit) == _ANGULAR_SPEED and (given.dimensions, given.angle) == (expected.dimensions, 0):
+            raise InputError(field, f"{raw.strip()!r} is ambiguous: {_SPEED_HINT}")
+        if not unit_text:  # a number in text is read as a bare one: SI (radians, where an angle is expected)
+            given = given._replace(angle=expected.angle)
         if given.offset:  # an absolute temperature (the field is one too): pint adds the offset
             value = float(registry().Quantity(number, unit_text).to_base_units().magnitude)
         else:
             value = number * given.factor if number else 0.0  # 0 * inf would be nan; inf is refused below
     else:
         raise InputError(field, f"expected a quantity in {unit}, got {type(raw).__name__} {shown_value(raw)}")
-    if given.dimensions != expected.dimensions:
-        raise InputError(field, f"expected {describe_dimension(unit)} (e.g. in {unit or 'SI'}), got "
+    if given.dimensions != expected.dimensions or given.angle != expected.angle:
+        raise InputError(field, f"expected {describe_dimension(unit)}{f' (e.g. in {unit})' if unit else ''}, got "
                                 f"{shown_value(raw)}, which is {describe_dimension(unit_text)}")
     if not math.isfinite(value):
         raise InputError(field, f"must be a finite number within the float64 range, got {shown_value(raw)}")
@@ -272,7 +288,7 @@ TABLE_UNITS = (  # the units case files and scenes usually write, besides those 
     "", "mm", "cm", "m", "um", "m^2", "m^3", "kg", "g", "t", "s", "ms", "min", "h", "rpm", "rps", "rad/s", "1/s",
     "Hz", "deg", "rad", "N", "kN", "N*m", "kN*m", "Pa", "kPa", "MPa", "GPa", "N/mm^2", "bar", "W", "kW", "MW", "J",
     "kJ", "J/K", "W/K", "kg*m^2", "kg/m^3", "g/cm^3", "N/m", "N/mm", "N*m/rad", "m/s^2", "m^3/s^2", "s/rad", "EUR",
-    "EUR/kg", "EUR/cm^2", "EUR/m^2",
+    "EUR/kg", "EUR/cm^2", "EUR/m^2", "K", "kJ/K", "1/hour", "1/h", "1/min", "kJ/hour", "kJ/h",
 )
 
 

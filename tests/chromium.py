@@ -2,8 +2,9 @@
 
 Why this and not Playwright: the Debian ``chromium`` package is all it needs; the protocol runs over two
 file descriptors (3: commands in, 4: replies out, NUL-separated JSON), so there is no port, no websocket
-library and no browser download. It loads a page, collects console errors, uncaught exceptions and failed
-loads, takes a full-page screenshot and returns the page's text.
+library and no browser download. It loads a page (on screen, or as it prints), collects console errors, uncaught
+exceptions and failed loads, takes a full-page screenshot and returns the page's text and what a probe (a script
+run in the page) measured of its layout.
 """
 
 from __future__ import annotations
@@ -13,24 +14,22 @@ import fcntl
 import json
 import os
 import select
-import shutil
 import subprocess
 import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-CANDIDATES = ("chromium", "chromium-browser", "google-chrome", "chrome")
+from clutchopt.report.pdf import find_chromium
 
-
-def find_chromium() -> str | None:
-    return next((path for path in map(shutil.which, CANDIDATES) if path), None)
+__all__ = ["find_chromium", "render", "Rendered"]
 
 
 @dataclass
 class Rendered:
     text: str  # document.body.innerText
     errors: list[str] = field(default_factory=list)  # console errors, uncaught exceptions, failed loads
+    probed: object = None  # what the probe returned (JSON)
 
 
 class _DevTools:
@@ -101,8 +100,10 @@ class _DevTools:
         os.close(self._replies)
 
 
-def render(page: Path, screenshot: Path, width: int = 1200) -> Rendered:
-    """Load ``page`` in headless Chromium, write a full-page PNG to ``screenshot``, report errors and text."""
+def render(page: Path, screenshot: Path, width: int = 1200, media: str = "screen", probe: str | None = None) -> Rendered:
+    """Load ``page`` in headless Chromium ``width`` px wide, as on ``media`` ("screen" or "print"), write a full-page
+    PNG to ``screenshot``, report errors and text, and what the script ``probe`` (an expression whose value is JSON
+    text) returned."""
     binary = find_chromium()
     if binary is None:
         raise FileNotFoundError("no Chromium found")
@@ -115,15 +116,20 @@ def render(page: Path, screenshot: Path, width: int = 1200) -> Rendered:
                 tools.call(f"{domain}.enable", session)
             tools.call("Emulation.setDeviceMetricsOverride", session, width=width, height=900, deviceScaleFactor=1,
                        mobile=False)
+            tools.call("Emulation.setEmulatedMedia", session, media=media)
             tools.call("Page.navigate", session, url=page.resolve().as_uri())
             tools.wait_for("Page.loadEventFired")
-            text = tools.call("Runtime.evaluate", session, expression="document.body.innerText",
-                              returnByValue=True)["result"]["value"]
+
+            def evaluate(expression: str):
+                return tools.call("Runtime.evaluate", session, expression=expression,
+                                  returnByValue=True)["result"]["value"]
+            text = evaluate("document.body.innerText")
+            probed = json.loads(evaluate(probe)) if probe else None
             shot = tools.call("Page.captureScreenshot", session, format="png", captureBeyondViewport=True)
             screenshot.write_bytes(base64.b64decode(shot["data"]))
         finally:
             tools.close()
-    return Rendered(text, _errors(tools.events))
+    return Rendered(text, _errors(tools.events), probed)
 
 
 def _errors(events: list[dict]) -> list[str]:

@@ -60,7 +60,7 @@ def case_data(coupling: str, aspects: tuple[str, ...]) -> dict:
             if isinstance(table, dict):
                 for quantity in role.fills.values():
                     table.pop(quantity, None)
-        data.setdefault("library", {})[role.key] = STEELS[0]
+        data.get("library", {}).pop(role.key, None)  # options.choose names the role, its first choice fills it
         data.setdefault("options", {})["choose"] = {role.key: list(STEELS)}
     return data
 

@@ -16,6 +16,19 @@ def run_cli(*args: str, cwd: Path = ROOT, timeout: float | None = None) -> subpr
                           timeout=timeout, env={**os.environ, "PYTHONPATH": str(ROOT)})
 
 
+def choosing(coupling: str) -> str:
+    """The case of ``clutchopt init COUPLING`` with its ``options.choose`` line on, each role it lists taken out of
+    ``[library]`` (a case names a role in one place)."""
+    import tomllib
+
+    from clutchopt.template import case_template
+
+    text = case_template(coupling).replace("# choose = ", "choose = ")
+    for role in tomllib.loads(text)["options"]["choose"]:
+        text = "".join(line for line in text.splitlines(keepends=True) if not line.startswith(f"{role} = "))
+    return text
+
+
 def pytest_xdist_auto_num_workers(config) -> int:
     """``-n auto``: a worker per core this process may use, at most 4 (each holds CasADi, pandas and its own built
     problems, about 0.3 GB; several tests start process pools of their own)."""

@@ -467,7 +467,7 @@ HOSTILE: list[Hostile] = [
           expect="--out: write .csv, .parquet or .md"),
     # --- report and its sweep table ------------------------------------------------------------------------------
     paper("report-out-missing-folder", "report", "-o", "{dir}/no/review.html", expect="--out: cannot write"),
-    paper("report-out-not-html", "report", "-o", "{dir}/review.pdf", expect="--out: write .html or .htm"),
+    paper("report-out-not-a-page", "report", "-o", "{dir}/review.docx", expect="--out: write .html, .htm or .pdf"),
     table("table-as-written", SWEEP_TABLE, None),
     table("table-identified-other-coupling", '# clutchopt_sweep {"coupling": "lever", "case": "lever.toml", '
           '"values": {}, "mode": "paper", "objective": "mass", "robust": "", "varies": ["speed [rpm]"]}\n' + SWEEP_TABLE,

@@ -208,3 +208,26 @@ def test_contact_stress_of_the_paper_design_by_hand(p):
     # the printed (9) with E' = E (equal steels) is within 10 % of it; the printed (10) is about 75 times it
     assert result["contact_stress_eq9"] / p0 == pytest.approx(0.90, abs=0.03)
     assert 50 < result["contact_stress_eq10"] / p0 < 100
+
+
+@pytest.mark.parametrize("name, design, share", [("ball_motor_start", "optimum", 0.00272),
+                                                 ("ball_crusher", "procedure", 0.00868)])
+def test_the_end_face_shovel_term_is_the_share_of_torque_errata_b4_says(name, design, share):
+    """Errata B4's figure by hand: 2 faces x (1/sqrt 6) x f x 6 shovels K1 R_a wide x rho Psi_n w^2 (R^2 - R1^2)^2 / 8
+    over the torque (8) of the design (the NLP's optimum, or the paper procedure's); the printed form takes twice."""
+    from clutchopt.formulations.ball.equations import width_from_rows
+    from clutchopt.optimise.problem import case_problem
+
+    case = load_case(CASES / f"{name}.toml")
+    if design == "optimum":
+        problem = case_problem(case)
+        d, q = problem.solve(case).design, problem.posed.params(case)
+        radius, width, k2 = d["active_radius"], width_from_rows(d["ball_rows"], d["ball_radius"]), d["filling"]
+    else:
+        q = case_problem(case, "paper").posed.params(case)
+        final = paper_procedure(q)
+        radius, width, k2 = final["active_radius"], final["active_width"], final["filling"]
+    r1 = k2 * radius
+    term = (2 / math.sqrt(6) * q.friction_coefficient * q.shovel_count * q.shovel_ratio * radius * q.density
+            * q.packing_density * q.speed**2 * (radius**2 - r1**2) ** 2 / 8)
+    assert term / clutch_torque(q, radius, width, k2) == pytest.approx(share, abs=5e-5)

@@ -173,3 +173,11 @@ def test_a_section_is_one_function():
     assert "An extra section" in bench_text(report) and "1.5" in bench_text(report)
     with pytest.raises(AssertionError, match="without a unit"):  # a new column needs its unit in COLUMN_UNITS
         assert_units(json.loads(to_json(bench_json(report))))
+
+
+def test_start_up_solve_section(report):
+    rows = {row["case"]: row for row in report["sections"]["start_up_solve"]["rows"]}
+    assert set(rows) == {"wedge_motor_start", "lever_motor_start", "ball_motor_start", "cable_motor_start"}
+    for row in rows.values():
+        assert row["status"] == "optimal" and row["solves"] >= 1
+        assert row["resolve_vs_static"] == pytest.approx(row["resolve_median_s"] / row["static_median_s"])

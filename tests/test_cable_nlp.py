@@ -124,21 +124,21 @@ def test_free_lead_angle_with_only_self_locking_bounds_is_diagnosed(mode):
     case = load_case(CASES / "cable_pump.toml")
     case = replace(case, free=("lead_angle",), bounds={"lead_angle": (1 * DEG, 5 * DEG)})
     solution = solve_case(case, mode, "mass")
-    assert solution.status == "not_found"
+    assert solution.status == "infeasible"  # proven: interval branch and bound
     assert "hub_thread_not_self_locking" in solution.diagnosis
 
 
 def test_free_weight_lead_angle_with_only_self_locking_bounds_is_diagnosed():
     case = replace(load_case(CASES / "cable_pump.toml"), bounds={"weight_lead_angle": (1 * DEG, 6 * DEG)})
     solution = solve_case(case, "threads", "mass")
-    assert solution.status == "not_found"
+    assert solution.status == "infeasible"
     assert "weight_thread_not_self_locking" in solution.diagnosis
 
 
 def test_too_weak_weight_thread_is_diagnosed():
     case = load_case(CASES / "cable_conveyor.toml").with_values(allowable_thread_pressure=4e6)
     solution = solve_case(case, "paper", "mass")
-    assert solution.status == "not_found"
+    assert solution.status == "infeasible"
     assert "weight_thread_wear" in solution.diagnosis
     assert weight_lead_angle_optimum(case.params()) is None  # no lead angle in the box helps either
-    assert solve_case(case, "threads", "mass").status == "not_found"
+    assert solve_case(case, "threads", "mass").status == "not_found"  # no proof within the budget

@@ -10,7 +10,7 @@ import pytest
 from clutchopt.cases import load_case, parse_case
 from clutchopt.optimise import solve_case
 from clutchopt.optimise.sweep import Sweep, parse_vary
-from tests.conftest import CASES
+from tests.conftest import CASES, choosing
 
 WEDGE = CASES / "wedge_motor_start.toml"
 
@@ -105,9 +105,7 @@ def test_a_robust_sweep_does_not_vary_what_scatters(cli):
 
 def _choose_case(tmp_path, **extra):
     """The wedge case of `clutchopt init` choosing between two friction pairs, its friction left to them."""
-    from clutchopt.template import case_template
-
-    text = case_template("wedge").replace("# choose = ", "choose = ")
+    text = choosing("wedge")
     path = tmp_path / "choose.toml"
     path.write_text(text + "".join(f"\n[{section}]\n{body}\n" for section, body in extra.items()))
     return path

@@ -79,7 +79,7 @@ def test_impossible_lining_pressure_is_diagnosed_in_paper_mode():
     # the paper design of the centrifuge presses its worn linings at 0.186 MPa
     case = load_case(CASES / "lever_centrifuge.toml").with_values(allowable_pressure=0.1e6)
     solution = solve_case(case, "paper", "mass")
-    assert solution.status == "not_found"
+    assert solution.status == "infeasible"  # proven: interval branch and bound
     assert "lining_pressure" in solution.diagnosis and "torque" in solution.diagnosis
 
 

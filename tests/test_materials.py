@@ -18,7 +18,7 @@ from clutchopt.materials import FIELDS, MAX_CHOICES, library
 from clutchopt.optimise.design import design_case
 from clutchopt.template import case_template
 from clutchopt.units import ureg
-from tests.conftest import CASES, ROOT
+from tests.conftest import CASES, ROOT, choosing
 from tests.test_json_units import assert_units, run
 
 STEELS_AND_IRONS = list(library()["materials"].values())
@@ -98,6 +98,9 @@ def test_the_library_fills_what_the_case_leaves_out_and_explicit_values_win():
      "options.choose.friction_pair: unknown friction pair 'felt'"),
     ({"options": {"choose": {"lining": ["organic_dry"]}}}, "options.choose.lining: unknown role"),
     ({"options": {"choose": "organic_dry"}}, "options.choose: must be a table of lists"),
+    ({"library": {"friction_pair": "organic_dry"}, "options": {"choose": {"friction_pair": ["cermet_dry"]}}},
+     "library.friction_pair: names 'organic_dry', and options.choose.friction_pair lists the entries to choose from: "
+     "name one entry in [library] or several in options.choose, not both"),
 ])
 def test_bad_library_names_are_refused_naming_the_field(changes, message):
     with pytest.raises(InputError) as error:
@@ -129,6 +132,7 @@ def test_choose_solves_every_pair_and_ranks_them_by_the_closed_form():
     mass goes as 1/f and the finger, sized by F_fr = T_max / (z (r1 + r2)/2), not at all: the steel pair
     (f = 0.18) needs 0.07 / 0.18 of the weight the oiled bronze (f = 0.07) needs, and comes first."""
     data = tomllib.loads(case_template("wedge"))  # the paper's duty on 70 mm flanks (steel: q within 0.25 MPa)
+    del data["library"]["friction_pair"]
     data["options"] = {"choose": {"friction_pair": ["sintered_bronze_oiled", "steel_steel_dry"]}}
     ranked = design_case(parse_case(data))
     assert [d.choice["friction_pair"] for d in ranked] == ["steel_steel_dry", "sintered_bronze_oiled"]
@@ -141,7 +145,7 @@ def test_choose_solves_every_pair_and_ranks_them_by_the_closed_form():
 
 def test_solve_reports_the_choices_and_the_library_in_text_and_json(tmp_path):
     path = tmp_path / "choose.toml"
-    path.write_text(case_template("lever").replace("# choose = ", "choose = "))
+    path.write_text(choosing("lever"))
     text = run("solve", path, "--no-store")
     assert text.startswith("Choices of options.choose, best first\n")
     assert "From the material library (values the case gives itself win):" in text
@@ -192,7 +196,7 @@ def test_every_command_designs_every_choice_and_says_which_it_keeps(tmp_path):
     """compare and report take the best choice as solve ranks them; sweep keeps the best at each point (its
     column choice), pareto draws a front per choice."""
     path = tmp_path / "choose.toml"
-    path.write_text(case_template("cable").replace("# choose = ", "choose = "))
+    path.write_text(choosing("cable"))
     solved = json.loads(run("solve", path, "--json"))
     best = ", ".join(f"{key} = {name}" for key, name in solved["choices"][0]["choice"].items())
     assert len(solved["choices"]) >= 2
@@ -248,7 +252,7 @@ def _read(descriptor: int) -> bytes:
 
 def test_a_progress_bar_moves_as_the_choices_are_designed_on_a_terminal_only(tmp_path, capsys):
     path = tmp_path / "choose.toml"
-    path.write_text(case_template("lever").replace("# choose = ", "choose = "))
+    path.write_text(choosing("lever"))
     assert "choices:   0%| " in _on_a_terminal("solve", str(path), "--no-store")  # then cleared: the lever is fast
     assert _on_a_terminal("solve", str(path), "--no-store", "--quiet") == ""
     assert run("solve", path, "--no-store") and "choices" not in capsys.readouterr().err  # not a terminal

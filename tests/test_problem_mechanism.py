@@ -46,7 +46,7 @@ def test_integer_infeasible_although_relaxation_is_feasible():
 def test_conflicting_constraints_are_named():
     problem = Problem(_toy(lower_n=3.5, upper_n=3.2))
     solution = problem.solve(Case("toy", "", {"demand": 5.0, "a": 1.0}))
-    assert solution.status == "not_found"
+    assert solution.status == "infeasible"  # proven: interval branch and bound
     assert "n_low" in solution.diagnosis and "n_high" in solution.diagnosis
     assert "product" not in solution.diagnosis.split("together with")[0]
 

@@ -1,7 +1,12 @@
-"""Design-review report: self-contained page with the key numbers, sketch or dimension table, checked in Chromium."""
+"""Design-review report: self-contained page with the key numbers, what was verified, sketch or dimension table,
+laid out in Chromium with no label over a part or another label and no table wider than the page; and the PDF."""
 
+import json
 import math
 import re
+import unicodedata
+from pathlib import Path
+from types import SimpleNamespace
 
 import pandas as pd
 import pytest
@@ -10,9 +15,12 @@ from chromium import find_chromium, render
 from clutchopt.cases import load_case
 from clutchopt.optimise import solve_case
 from clutchopt.report import build_report, sweep_plot
+from clutchopt.report.sketch.svg import PARTS
 from conftest import CASES
 
 NO_CHROMIUM = "no Chromium on this machine (.ci/run installs the Debian chromium package when it runs as root)"
+PRINTED = 703  # px: the width of an A4 page's text at 96 px per inch (210 mm less the print stylesheet's margins)
+LAYOUT = f"({Path(__file__).with_name('layout.js').read_text()})({json.dumps(', '.join('.' + c for c in PARTS))})"
 
 
 @pytest.fixture(scope="module")
@@ -46,12 +54,37 @@ def test_page_is_self_contained_with_every_section(review):
     assert "outer_diameter_max" in html and "-1.5308" in html  # the largest elasticity of the worked example
 
 
+def verification_rows(html: str) -> dict[str, list[str]]:
+    """The verification block as {check: [how, found, verdict]}."""
+    block = html[html.index('<section id="verification">'):]
+    block = block[:block.index("</section>")]
+    cells = [re.findall(r"<td[^>]*>(.*?)</td>", row) for row in re.findall(r"<tr>(.*?)</tr>", block, re.S)[1:]]
+    return {row[0]: row[1:] for row in cells}
+
+
+def test_the_page_opens_with_what_was_verified(review):
+    html = review.read_text()
+    assert html.index('<section id="verification">') < html.index('<section id="requirements">')
+    checks = verification_rows(html)
+    assert list(checks) == ["solver", "float64 re-check", "independent simulation", "corners and Monte Carlo"]
+    assert checks["solver"][0].startswith("IPOPT returned Solve_Succeeded") and checks["solver"][2] == "passed"
+    how, found, verdict = checks["float64 re-check"]
+    count = html[html.index('<section id="margins">'):html.index('<section id="sensitivities">')].count("<tr>") - 1
+    assert f"all {count} constraints re-evaluated in float64" in how and found.startswith(f"all {count} met")
+    assert verdict == "passed"
+    how, found, verdict = checks["independent simulation"]
+    assert "constant driving speed" in how and found.startswith("reaches speed in 10 s against t_p = 10 s")
+    assert checks["corners and Monte Carlo"] == ["the case has no [scatter]", "-", "not done"]
+
+
 @pytest.fixture(scope="module")
 def other_couplings(tmp_path_factory):
-    """Design-review pages of the lever (design mode), the cable (threads mode) and the ball clutch (design mode)."""
+    """Design-review pages of the lever (design mode), the cable (threads mode), the ball clutch (design mode) and the
+    wedge on a motor with return springs (paper mode)."""
     folder = tmp_path_factory.mktemp("sketches")
     pages = {}
-    for name, mode in (("lever_centrifuge", "design"), ("cable_pump", "threads"), ("ball_crusher", "design")):
+    for name, mode in (("lever_centrifuge", "design"), ("cable_pump", "threads"), ("ball_crusher", "design"),
+                       ("wedge_motor_start", "paper")):
         case = load_case(CASES / f"{name}.toml")
         solution = solve_case(case, mode)
         page = folder / f"{name}.html"
@@ -79,7 +112,8 @@ def polygon_height(polygon: str) -> float:
 def test_every_coupling_gets_a_sketch_with_its_optimised_dimensions_in_red(other_couplings):
     expected = {"lever": ("l_2 = {lever_length}", "b = {lining_width}", "D = {outer_diameter}"),
                 "cable": ("D = 160 mm", "l = 80 mm", "R_rv = 100 mm"),
-                "ball": ("R_a = {active_radius}", "l_a = {active_width}", "R_1 = {filling_radius}")}
+                "ball": ("R_a = {active_radius}", "l_a = {active_width}", "R_1 = {filling_radius}"),
+                "wedge": ("r2 = 60 mm", "h_r = 20 mm", "b = 25 mm", "D = 2 (r2 + s) = 140 mm", "s = 10 mm")}
     for coupling, (page, solution) in other_couplings.items():
         svg = sketch_of(page)
         assert "<svg" in svg and "Optimised (red)" in svg
@@ -92,6 +126,19 @@ def test_every_coupling_gets_a_sketch_with_its_optimised_dimensions_in_red(other
     cable = sketch_of(other_couplings["cable"][0])
     assert re.search(r'class="dimtext"[^>]*>D = 160 mm', cable)  # the finger circle is the case's: grey
     assert re.search(r'class="dimtext opt"[^>]*>lead angles', cable)  # threads mode chose them: red
+
+
+def test_the_wedge_sketch_has_its_housing_springs_and_flank_angle(other_couplings):
+    page, solution = other_couplings["wedge"]
+    svg = sketch_of(page)
+    assert svg.count('<path class="part" fill-rule="evenodd"') == 1  # the driven half-coupling's rim, a ring
+    assert svg.count('<polyline class="spring"') == 4  # a return spring under each of the z = 4 weights
+    preload = solution.design["spring_preload"]
+    assert re.search(rf'class="dimtext opt"[^>]*>return springs: preload F_s = {preload:.4g} N on each weight', svg)
+    assert re.search(r'<path class="dim"[^>]*marker-start[^>]*/>', svg)  # the angle dimensions' arcs
+    assert ">alpha = 15 deg</text>" in svg and ">gamma = 44.98 deg</text>" in svg
+    assert "Section of a weight in its groove" in svg
+    assert svg.count('<polygon class="dark"') == 1  # the groove's walls and the rim, in section
 
 
 def test_the_sketches_are_to_scale(other_couplings):
@@ -117,13 +164,46 @@ def test_the_sketches_are_to_scale(other_couplings):
     assert ball / polygon_height(layer) == pytest.approx(solution.design["ball_radius"] / depth, rel=1e-3)
 
 
+def check_layout(rendered, page: str) -> None:
+    """No label over a part or another label; no table or figure wider than its room, none scrolled; the page no
+    wider than the window."""
+    layout = rendered.probed
+    assert layout["overlaps"] == [], (page, layout["overlaps"])
+    for box in layout["boxes"]:
+        assert box["width"] <= box["room"] + 0.5 and not box["scrolls"], (page, box)
+    assert layout["page"]["width"] <= layout["page"]["room"], page
+
+
 @pytest.mark.skipif(find_chromium() is None, reason=NO_CHROMIUM)
 def test_the_other_sketches_render_in_headless_chromium(other_couplings, tmp_path):
     for coupling, (page, solution) in other_couplings.items():
-        rendered = render(page, tmp_path / f"{coupling}.png")
+        rendered = render(page, tmp_path / f"{coupling}.png", probe=LAYOUT)
         assert rendered.errors == [], coupling
         assert "red, bold: chosen by the optimiser" in rendered.text
         assert f"{solution.objective:.6g}" in rendered.text
+        check_layout(rendered, coupling)
+        check_layout(render(page, tmp_path / f"{coupling}-printed.png", PRINTED, "print", LAYOUT), coupling)
+
+
+@pytest.mark.skipif(find_chromium() is None, reason=NO_CHROMIUM)
+def test_the_layout_check_sees_a_label_over_a_part_a_label_over_a_label_and_a_wide_table(tmp_path):
+    from clutchopt.report.sketch.svg import STYLE
+
+    crowded = tmp_path / "crowded.html"
+    crowded.write_text(f'<!DOCTYPE html><html><body style="width:300px"><figure><svg xmlns="http://www.w3.org/2000/svg" '
+                       f'width="200" height="100" aria-label="dimensioned sketch">{STYLE}'
+                       '<circle class="part" cx="50" cy="50" r="30" fill-rule="evenodd"/>'
+                       '<line class="dark" x1="120" y1="0" x2="120" y2="100" style="stroke-width:4"/>'
+                       '<text class="dimtext" x="50" y="55" text-anchor="middle">on the disc</text>'
+                       '<text class="dimtext" x="110" y="30" text-anchor="start">across the bar</text>'
+                       '<text class="dimtext" x="110" y="34" text-anchor="start">and a label</text>'
+                       '<text class="dimtext" x="4" y="96">clear</text></svg></figure>'
+                       f'<table><tr>{"<td>wide_column_name_without_spaces</td>" * 8}</tr></table></body></html>')
+    layout = render(crowded, tmp_path / "crowded.png", probe=LAYOUT).probed
+    overlaps = {tuple(pair) for pair in layout["overlaps"]}
+    assert ("on the disc", "circle.part") in overlaps and ("across the bar", "line.dark") in overlaps
+    assert ("across the bar", "and a label") in overlaps and not any("clear" in pair for pair in overlaps)
+    assert any(box["width"] > box["room"] for box in layout["boxes"]) and layout["page"]["width"] > 300
 
 
 def test_a_design_without_a_needed_dimension_gets_a_dimension_table():
@@ -140,11 +220,58 @@ def test_a_design_without_a_needed_dimension_gets_a_dimension_table():
 @pytest.mark.skipif(find_chromium() is None, reason=NO_CHROMIUM)
 def test_page_renders_in_headless_chromium_without_console_errors(review, tmp_path):
     shot = tmp_path / "review.png"
-    page = render(review, shot)
+    page = render(review, shot, probe=LAYOUT)
     assert page.errors == []
     assert shot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and shot.stat().st_size > 50_000
-    for number in ("0.282095", "81.8182", "5.46156", "-1.5308", "Comparison with the paper's method"):
+    for number in ("0.282095", "81.8182", "5.46156", "-1.5308", "Comparison with the paper's method",
+                   "paper_eq27_second_form"):
         assert number in page.text
+    check_layout(page, "screen")
+    check_layout(render(review, tmp_path / "printed.png", PRINTED, "print", LAYOUT), "print")
+
+
+@pytest.mark.skipif(find_chromium() is None, reason=NO_CHROMIUM)
+def test_report_writes_a_pdf_with_the_headline_design(tmp_path):
+    from pypdf import PdfReader
+
+    from conftest import run_cli
+
+    pdf = tmp_path / "review.pdf"
+    result = run_cli("report", str(CASES / "wedge_paper.toml"), "--mode", "geometry", "-o", str(pdf), "--no-store")
+    assert result.returncode == 0, result.stderr
+    assert f"written to {pdf}" in result.stdout
+    reader = PdfReader(pdf)
+    text = unicodedata.normalize("NFKC", " ".join(page.extract_text() for page in reader.pages))  # no ligatures
+    assert len(reader.pages) >= 3 and round(float(reader.pages[0].mediabox.width)) == 595  # A4
+    assert "Design review" in text and "objective (mass) 0.282095 kg" in text and "Verification" in text
+    assert "r2 = 90 mm" in text  # the sketch, as text
+
+
+def test_a_pdf_without_chromium_is_refused_before_any_work(tmp_path, monkeypatch, capsys):
+    from clutchopt.cli import EXIT_BAD_INPUT, main
+
+    monkeypatch.setenv("PATH", str(tmp_path))  # no Chromium on it
+    pdf = tmp_path / "review.pdf"
+    assert main(["report", str(CASES / "wedge_paper.toml"), "-o", str(pdf), "--no-store"]) == EXIT_BAD_INPUT
+    out, err = capsys.readouterr()
+    assert err == ("error: --out: writing a PDF needs headless Chromium, and none is on the PATH: install Chromium "
+                   "(Debian and Ubuntu: apt-get install chromium) or write .html\n")
+    assert out == "" and list(tmp_path.iterdir()) == []
+
+
+def test_an_empty_tornado_chart_is_a_sentence_saying_why():
+    from clutchopt.report.sections import tornado_chart
+
+    case = load_case(CASES / "wedge_motor_start_scatter.toml")
+    result = SimpleNamespace(start_up_points=[{}, {}], start_up_samples=200, samples=10000)
+    note = tornado_chart(case, result, {"flank_pressure": {"friction_coefficient": 0.0},
+                                        "finger_bending": {"friction_coefficient": 1e-12}})
+    assert note.kind == "note" and note.text == (
+        "No tornado chart: over its range, friction_coefficient moves none of the 2 constraints' margins "
+        "(flank_pressure, finger_bending) at the nominal design; the start-up, which is simulated rather than "
+        "evaluated, is checked at 2 corner(s) and by 200 simulated starts.")
+    drawn = tornado_chart(case, result, {"flank_pressure": {"friction_coefficient": -0.2}})
+    assert drawn.kind == "figure" and "<svg" in drawn.svg
 
 
 @pytest.mark.skipif(find_chromium() is None, reason=NO_CHROMIUM)
@@ -161,9 +288,9 @@ def test_sweep_plot_has_a_line_per_level_and_marks_failed_points():
     frame = pd.DataFrame({"point": range(6), "speed [rpm]": [500, 1000, 1500] * 2,
                           "allowable_pressure [MPa]": [2] * 3 + [4] * 3,
                           "status": ["optimal"] * 5 + ["infeasible"], "mass [kg]": [3, 2, 1, 3, 2, float("nan")]})
-    svg = sweep_plot(frame)
-    assert "allowable_pressure [MPa] = 2" in svg and "allowable_pressure [MPa] = 4" in svg
-    assert "Sweep: 6 points, 5 optimal, 1 not (crosses at the bottom)" in svg
+    plot = sweep_plot(frame)
+    assert "allowable_pressure [MPa] = 2" in plot.svg and "allowable_pressure [MPa] = 4" in plot.svg
+    assert plot.caption == "Sweep: 6 points, 5 optimal, 1 not (crosses at the bottom)"
 
 
 def test_bad_report_input(cli, tmp_path):

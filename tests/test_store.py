@@ -164,13 +164,14 @@ def test_runs_are_listed_and_exported_for_a_person(tmp_path, capsys):
     rows = {int(line.split()[0]): line for line in lines[2:8]}  # ids are whole numbers
     assert sorted(rows) == [1, 2, 3, 4, 5, 6]
     assert rows[1].split()[1:4] == ["solve", "-", "-"] and "mass 0.667951 kg" in rows[1]  # the worked example
-    assert rows[2].split()[1:4] == ["sweep", "1", "0"] and rows[2].split()[8:10] == ["not_found", "-"]
+    assert rows[2].split()[1:4] == ["sweep", "1", "0"] and rows[2].split()[8:11] == ["nominal", "not_found", "-"]
     assert "geometry (cost cap)" in rows[5] and "mass 0.689202 kg" in rows[5]  # README's front, cap 39.3164 EUR
     assert "geometry (cost cap)" not in rows[6] and "cost 39.1863 EUR" in rows[6]  # the cost end
     out = tmp_path / "runs.csv"
     assert main(["runs", "export", "-o", str(out), "--store", store]) == 0
     table = pd.read_csv(out)
     assert table["id"].tolist() == [1, 2, 3, 4, 5, 6] and table["sweep"].dtype.kind in "if"
+    assert (table["method"] == "nominal").all() and table["scatter"].isna().all()
     assert table.loc[0, "input.speed [rad/s]"] == pytest.approx(1000 * 2 * 3.141592653589793 / 60, rel=1e-12)
     assert table.loc[0, "design.finger_diameter [m]"] == pytest.approx(5.46156e-3, rel=1e-5)
     infeasible = table[table["status"] == "not_found"]

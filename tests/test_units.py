@@ -72,13 +72,15 @@ def test_a_wrong_torque_unit_names_a_torque():
 
 def _declared_units() -> set[str]:
     """Every unit the couplings declare: quantities, variables, objectives, constraints and outputs (read off the
-    CasADi expressions, whose units are plain text), and the units scenes read."""
+    CasADi expressions, whose units are plain text), the [start_up] quantities and the units scenes read."""
     import casadi as ca
 
     from clutchopt.formulations import MODULES, get_coupling
     from clutchopt.model import namespace
+    from clutchopt.start_up.equations import QUANTITIES
 
-    units = {"kg*m^2", "rpm", "J/K", "W/K", "s", "", "N*m", "N"}  # clutchopt/simulate/scene.py
+    units = {"kg*m^2", "rpm", "J/K", "W/K", "s", "s/rad", "", "N*m", "N"}  # clutchopt/simulate/scene.py
+    units |= {q.unit for q in QUANTITIES}  # a case's [start_up] section
     for name in MODULES:
         coupling = get_coupling(name)
         units |= {q.unit for q in coupling.quantities}
@@ -145,7 +147,7 @@ def test_a_pure_frequency_is_refused_for_an_angular_speed(text):
 
 
 def test_the_typographic_minus_is_a_minus():
-    assert to_si("coupling.a", "\u22120.01 s/rad", "s") == -0.01
+    assert to_si("coupling.a", "\u22120.01 s/rad", "s/rad") == -0.01
 
 
 @pytest.mark.parametrize("text, words", [
@@ -177,3 +179,53 @@ def test_a_temperature_rise_is_no_temperature():
 def test_an_absolute_temperature_takes_celsius():
     assert to_si("friction_pairs.x.max_temperature", "250 degC", "degC") == pytest.approx(523.15, rel=1e-15)
     assert to_si("friction_pairs.x.max_temperature", "523.15 K", "degC") == 523.15
+
+
+# --- kinds: a quantity is read by what it means, not by pint's dimensionality alone (issue 25) ---------------------
+@pytest.mark.parametrize("text, unit, si", [
+    ("600 1/h", "1/hour", 600 / 3600), ("10 1/min", "1/hour", 10 / 60), ("0.5 1/s", "1/hour", 0.5),
+    ("20 %", "", 0.2), ("0.2", "", 0.2), ("11.46 deg", "deg", math.radians(11.46)), ("0.2", "deg", 0.2),
+    ("28 N*m/deg", "N*m/rad", 28 * 180 / math.pi), ("-0.01 s/rad", "s/rad", -0.01),
+])
+def test_each_kind_takes_its_own_units(text, unit, si):
+    assert to_si("field", text, unit) == pytest.approx(si, rel=1e-14)
+
+
+@pytest.mark.parametrize("text, unit, words", [
+    ("10 rpm", "1/hour", "expected a count per time (e.g. in 1/hour), got '10 rpm', which is an angular speed"),
+    ("10 rev/hour", "1/hour", "which is an angular speed"),
+    ("0.1 rad/s", "1/hour", "which is an angular speed"),
+    ("11.46 deg", "", "expected a ratio (a bare number or %), got '11.46 deg', which is an angle"),
+    ("0.2 rad", "", "which is an angle"),
+    ("0.1 rev", "", "which is an angle"),
+    ("20 %", "deg", "expected an angle (e.g. in deg), got '20 %', which is a ratio"),
+    ("16 Hz", "rpm", "is ambiguous: an angular speed needs an angle per time"),
+    ("28 N*m", "N*m/rad", "expected a torque per angle (e.g. in N*m/rad), got '28 N*m', which is a torque"),
+    ("0.01 s", "s/rad", "expected a time per angle"),
+    ("5 N*m/rad", "N*m", "expected a torque or energy (e.g. in N*m), got '5 N*m/rad', which is a torque per angle"),
+])
+def test_a_quantity_of_another_kind_is_refused(text, unit, words):
+    with pytest.raises(InputError) as info:
+        to_si("field", text, unit)
+    assert words in str(info.value)
+
+
+def _declared_quantities():
+    """Every quantity a case, a [start_up] section or a library entry declares."""
+    from clutchopt.formulations import MODULES, get_coupling
+    from clutchopt.materials import FIELDS
+    from clutchopt.start_up.equations import QUANTITIES
+
+    quantities = [q for name in MODULES for q in get_coupling(name).quantities] + list(QUANTITIES)
+    return quantities + [q for fields in FIELDS.values() for q in fields]
+
+
+@pytest.mark.parametrize("quantity", [q for q in _declared_quantities() if q.unit != "degC"],
+                         ids=lambda q: f"{q.key}[{q.unit}]")
+def test_every_declared_quantity_refuses_one_angle_more(quantity):
+    """An angle, a revolution or a speed slips through pint where a ratio or a count per time is meant: each
+    declared quantity takes its own unit and refuses the same unit times an angle."""
+    unit = quantity.unit
+    assert to_si(quantity.key, f"1 {unit}", unit) == pytest.approx(1 / from_si(1.0, unit) if unit else 1.0)
+    with pytest.raises(InputError, match="expected"):
+        to_si(quantity.key, f"1 ({unit})*deg" if unit else "1 deg", unit)

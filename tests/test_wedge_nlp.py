@@ -76,7 +76,7 @@ def test_elasticity_of_the_bending_allowable_is_the_finger_share():
 def test_impossible_pressure_is_diagnosed_not_optimised():
     case = load_case(CASES / "wedge_paper.toml").with_values(allowable_pressure=0.1e6)  # closed form needs 0.347 MPa
     solution = solve_case(case, "paper", "mass")
-    assert solution.status == "not_found"
+    assert solution.status == "infeasible"  # proven: interval branch and bound
     assert "flank_pressure" in solution.diagnosis and "torque" in solution.diagnosis
 
 

@@ -39,13 +39,13 @@ def fields(lines: list[str]) -> list[str]:
     return [line.split(": ")[1] for line in lines]
 
 
-DRIVER = ('synchronous_speed = "1000 rpm"', 'synchronous_speed = "50 Hz"\nrated_power = "1.5 kW"\npoles = 6')
+DRIVER = ('synchronous_speed = "1000 rpm"', 'synchronous_speed = "50 Hz"\nrated_voltage = "400 V"\npole_pairs = 3')
 
 
 def test_every_bad_field_of_the_driver_in_one_run(tmp_path, capsys):
     lines = errors(tmp_path, capsys, edit(MOTOR, DRIVER, ("breakdown_slip = 0.2", "breakdown_slip = 7")))
-    assert fields(lines) == ["start_up.driver.synchronous_speed", "start_up.driver.rated_power",
-                             "start_up.driver.poles", "start_up.driver.breakdown_slip"], lines
+    assert fields(lines) == ["start_up.driver.synchronous_speed", "start_up.driver.rated_voltage",
+                             "start_up.driver.pole_pairs", "start_up.driver.breakdown_slip"], lines
     assert "Hz and 1/s are refused" in lines[0] and "must be < 1, got 7" in lines[3]
 
 
@@ -56,7 +56,7 @@ def test_duty_start_up_and_scatter_reported_together(tmp_path, capsys):
     text += '\n[scatter]\nfriction_coefficient = [0.12, 0.1]\ninertia = [0.4, 0.6]\nbreakdown_slip = [0.1, 0.3]\n'
     lines = errors(tmp_path, capsys, text)
     assert fields(lines) == ["duty.inertia", "duty.speed", "start_up.colour", "start_up.driver.synchronous_speed",
-                             "start_up.driver.rated_power", "start_up.driver.poles", "start_up.heat.mass",
+                             "start_up.driver.rated_voltage", "start_up.driver.pole_pairs", "start_up.heat.mass",
                              "scatter.friction_coefficient"], lines
     # the start-up's driven inertia follows the broken duty.inertia: no second message for it; neither is the
     # scatter of a quantity whose own value is bad checked against that value

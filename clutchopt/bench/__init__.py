@@ -20,7 +20,7 @@ from clutchopt.bench.accuracy import accuracy_rows
 from clutchopt.bench.cli_launch import cli_launch_rows
 from clutchopt.bench.resolve import resolve_rows
 from clutchopt.bench.scaleout import scaleout_rows
-from clutchopt.bench.start_up_designs import start_up_design_rows
+from clutchopt.bench.start_up_designs import start_up_design_rows, start_up_solve_rows
 from clutchopt.bench.throughput import throughput_rows
 from clutchopt.bench.transient import effects_rows, stiffness_rows, tolerance_rows
 from clutchopt.bench.user_sweeps import user_sweep_rows
@@ -77,6 +77,9 @@ SECTIONS: tuple[Section, ...] = (
                                  "intervals (per phase) and mesh; the default adapts, then doubles, to the case's "
                                  "tolerance; one run each, in ms, with the problem's build (first row of an "
                                  "interval count) and the re-simulation", start_up_design_rows),
+    Section("start_up_solve", "Start-up solves against their static solves (the case without [start_up]): reading "
+                              "the case, the first solve in this process (the problem built) and the re-solve of the "
+                              "same case (median), in ms; the ratios (goal: at most 10)", start_up_solve_rows),
 )
 
 
@@ -104,14 +107,16 @@ def run_bench(config: BenchConfig, sections: tuple[Section, ...] = SECTIONS, qui
 
 COLUMN_UNITS = {  # the SI unit of every column of every section ("": a count, ratio or relative error)
     **dict.fromkeys(("median_s", "iqr_s", "first_s", "resolve_median_s", "resolve_iqr_s", "wall_s", "python_fixed_s",
-                     "solver_per_resolve_s", "per_resolve_s", "start_time_s", "time_s"), "s"),
+                     "solver_per_resolve_s", "per_resolve_s", "start_time_s", "time_s", "load_s", "static_first_s",
+                     "static_median_s"), "s"),
     "objective": "kg",  # every section minimises the mass
     "points_per_s": "1/s",
     **dict.fromkeys(("runs", "ratio_to_import", "rel_error", "worst_violation", "iterations", "processes", "points",
                      "optimal", "solves_per_point", "solver_share", "check_share", "python_share",
                      "python_per_point_share", "vs_point_by_point", "vs_wedge_paper", "resolves", "speedup",
                      "max_rel_diff_objective", "workers", "rtol", "t_c_rel_error", "L_rel_error", "intervals",
-                     "start_time_rel_error", "solves", "designed", "without_design"), ""),
+                     "start_time_rel_error", "solves", "designed", "without_design", "first_vs_static",
+                     "resolve_vs_static"), ""),
 }
 
 
@@ -124,7 +129,7 @@ def bench_json(report: dict) -> dict:
 
 
 _MS = ("first_s", "resolve_median_s", "resolve_iqr_s", "median_s", "iqr_s", "time_s", "solver_per_resolve_s",
-       "per_resolve_s", "python_fixed_s")
+       "per_resolve_s", "python_fixed_s", "load_s", "static_first_s", "static_median_s")
 
 
 def _shown(row: dict) -> dict:

@@ -1,6 +1,8 @@
 """What the accuracy of the start time costs: the start-up cases solved at fixed collocation intervals, on the
 first (graded) mesh and on meshes adapted to the simulated start, against the independent simulator; and the
-default adaptive solve (mesh adaptation, then doubling, until the case's tolerance)."""
+default adaptive solve (mesh adaptation, then doubling, until the case's tolerance). What a start-up solve costs
+against its static one (issue 26: at most 10x): reading the case, the first solve in a process (the problem built)
+and the re-solve of the same case, beside the same case without its [start_up] section."""
 
 from __future__ import annotations
 
@@ -8,6 +10,7 @@ import time
 from dataclasses import replace
 from pathlib import Path
 
+from clutchopt.bench.timing import repeated, time_once
 from clutchopt.cases import load_case
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.problem import problem_for, solve_case
@@ -53,4 +56,25 @@ def start_up_design_rows(config) -> list[dict]:
         solution = solve_case(case)
         rows.append(_row(case, path.stem, solution.start_up["intervals"] if solution.start_up else None,
                          "default (adaptive)", solution, time.perf_counter() - started))
+    return rows
+
+
+def start_up_solve_rows(config) -> list[dict]:
+    """Per start-up case: the seconds to read it, to solve it first (its problem built, the simulator's modules
+    loaded in the first case) and again (the median of ``config.repeats``, at least 3), the same of the case without
+    its [start_up] section, and the ratios; the simulated start time against the case's limit."""
+    rows = []
+    for path in sorted(CASES.glob("*_motor_start.toml")):
+        read, case = time_once(lambda: load_case(path))
+        static = replace(case, start_up=None)
+        first, solution = time_once(lambda: solve_case(case))
+        again = repeated(lambda: solve_case(case), max(3, config.repeats // 4))["median_s"]
+        static_first = time_once(lambda: solve_case(static))[0]
+        static_again = repeated(lambda: solve_case(static), config.repeats)["median_s"]
+        start = solution.start_up or {}
+        rows.append({"case": path.stem, "status": solution.status, "objective": solution.objective,
+                     "load_s": read, "first_s": first, "resolve_median_s": again, "static_first_s": static_first,
+                     "static_median_s": static_again, "first_vs_static": first / static_first,
+                     "resolve_vs_static": again / static_again, "solves": solution.solver.solves,
+                     "start_time_s": start.get("start_time_simulated")})
     return rows

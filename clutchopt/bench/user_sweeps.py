@@ -1,11 +1,11 @@
 """The sweeps users run, not only the benchmark's own: for every coupling, ``clutchopt sweep``'s code (``Sweep.run``,
 no store) over each of the speed, the duty's torque quantity, the friction coefficient and the allowable pressure
-or stress (0.5x to 2x the case's value), a sweep reaching into an infeasible region (the duty's quantity from 1x to
-10x), and for each start-up case a sweep of the driven inertia (0.6x to 1.4x, every point simulated; once, with a
-fiftieth of the points). Per sweep: the
-points, how many have a design and how many a verdict without one, solver calls per point, points/s (the median
-run of ``sweep_repeats``), and points/s against the wedge paper sweep of the duty's quantity measured in the same
-run."""
+or stress (0.5x to 2x the case's value, or the widest of 0.7x-1.4x and 0.9x-1.1x whose every point its checks
+accept), a sweep reaching into an infeasible region (the duty's quantity from 1x to 10x), and for each start-up
+case a sweep of the driven inertia (0.6x to 1.4x, every point simulated; once, with a fiftieth of the points). Per
+sweep: the points, how many have a design and how many a verdict without one, solver calls per point, points/s (the
+median run of ``sweep_repeats``), and points/s against the wedge paper sweep of the duty's quantity measured in the
+same run."""
 
 from __future__ import annotations
 
@@ -19,6 +19,7 @@ from clutchopt.bench.throughput import sweep_quantity
 from clutchopt.cases import Case, load_case
 
 CASES = Path(__file__).resolve().parents[2] / "cases"
+SPANS = ((0.5, 2.0), (0.7, 1.4), (0.9, 1.1))  # factors on the case's value, the widest the case accepts
 ALLOWABLE = {"wedge": "allowable_pressure", "lever": "allowable_pressure", "cable": "allowable_cable_stress",
              "ball": "allowable_contact_stress"}  # the allowable each coupling's main constraint is sized by
 
@@ -42,24 +43,37 @@ def _run(case: Case, name: str, values: np.ndarray, mode: str | None, repeats: i
             "points_per_s": len(values) / seconds}
 
 
+def _widest(case: Case, name: str, spans, points: int, mode: str | None, repeats: int) -> dict:
+    """The sweep over the widest span of factors whose every point the case's checks accept (a sweep with a point
+    they refuse is refused whole: e.g. a cable thread no longer self-locking at a higher friction coefficient)."""
+    from clutchopt.errors import InputError
+
+    for low, high in spans:
+        try:
+            row = _run(case, name, case.values[name] * np.geomspace(low, high, points), mode, repeats)
+        except InputError:
+            continue
+        return {"span": f"{low:g}x-{high:g}x", **row}
+    raise InputError(name, f"no span of {spans} is accepted")
+
+
 def user_sweep_rows(config) -> list[dict]:
     points = max(config.sweep_points // 10, 10)
     rows, reference = [], None
     for case in bench_cases():
         mode, duty = reference_mode(case.coupling), sweep_quantity(case)
-        sweeps = [(q, np.geomspace(0.5, 2.0, points)) for q in
-                  dict.fromkeys((duty, "speed", "friction_coefficient", ALLOWABLE[case.coupling]))]
-        sweeps.append((f"{duty} (into infeasible)", np.geomspace(1.0, 10.0, points)))
-        for label, factors in sweeps:
+        sweeps = [(q, SPANS) for q in dict.fromkeys((duty, "speed", "friction_coefficient", ALLOWABLE[case.coupling]))]
+        sweeps.append((f"{duty} (into infeasible)", ((1.0, 10.0),)))
+        for label, spans in sweeps:
             name = label.split(" ")[0]
-            row = _run(case, name, case.values[name] * factors, mode, config.sweep_repeats)
+            row = _widest(case, name, spans, points, mode, config.sweep_repeats)
             if case.coupling == "wedge" and label == duty:
                 reference = row["points_per_s"]
             rows.append({"case": f"{case.coupling} ({mode})", "quantity": label, **row})
     for path in sorted(CASES.glob("*_motor_start.toml")):
         case = load_case(path)
         factors = np.linspace(0.6, 1.4, max(config.sweep_points // 50, 3))
-        rows.append({"case": path.stem, "quantity": "driven_inertia",
+        rows.append({"case": path.stem, "quantity": "driven_inertia", "span": "0.6x-1.4x",
                      **_run(case, "driven_inertia", case.values["driven_inertia"] * factors, None, 1)})
     for row in rows:
         row["vs_wedge_paper"] = row["points_per_s"] / reference

@@ -18,7 +18,7 @@ import warnings
 from importlib import import_module
 
 from clutchopt import __version__
-from clutchopt.cli.options import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, Parser
+from clutchopt.cli.options import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, Parser, check_options
 from clutchopt.errors import InputError
 
 COMMANDS = ("init", "couplings", "materials", "solve", "compare", "simulate", "sweep", "pareto", "report", "runs",
@@ -70,6 +70,7 @@ def _run(argv: list[str] | None) -> int:
     args = parser.parse_args(argv)
     warnings.filterwarnings("ignore", category=FutureWarning, module="casadi")
     try:
+        check_options(args)
         text = args.run(args)
     except InputError as exc:
         print_errors(exc)

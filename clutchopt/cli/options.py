@@ -7,7 +7,7 @@ import sys
 from contextlib import contextmanager
 from typing import Iterator
 
-from clutchopt.errors import InputError
+from clutchopt.errors import InputError, Problems
 
 EXIT_BAD_INPUT = 2
 EXIT_INTERNAL = 3  # a bug: one line and a crash file (clutchopt.crash)
@@ -35,6 +35,38 @@ class Parser(argparse.ArgumentParser):
         self.exit(EXIT_BAD_INPUT, f"error: {message} (see {self.prog} --help)\n")
 
 
+REFUSED = "refused_options"  # the parsed arguments' list of the values Checked refused
+
+
+class Checked(argparse.Action):
+    """An option whose value our own code checks (``check``: text -> value, raising ArgumentTypeError): a refused
+    value is set aside, so that one run names every option refused (:func:`check_refused`), where argparse stops at
+    the first."""
+
+    def __init__(self, option_strings, dest, check, **kwargs):
+        super().__init__(option_strings, dest, **kwargs)
+        self.check = check
+
+    def __call__(self, parser, namespace, text, option_string=None):
+        try:
+            setattr(namespace, self.dest, self.check(text))
+        except argparse.ArgumentTypeError as exc:
+            refused = InputError(f"argument {option_string or self.metavar or self.dest}",
+                                 f"{exc} (see {parser.prog} --help)")
+            setattr(namespace, REFUSED, [*getattr(namespace, REFUSED, []), refused])
+
+
+def check_options(args) -> None:
+    """Every bad option value in one InputError, before a command runs: those :class:`Checked` set aside while
+    parsing, and the robust method with its counts (:func:`robust_options`)."""
+    problems = Problems()
+    problems.errors += getattr(args, REFUSED, [])
+    if hasattr(args, "robust"):
+        with problems.field():
+            robust_options(args)
+    problems.raise_any()
+
+
 def add_parser(commands, name: str, summary: str, details: str = "", examples: tuple[str, ...] = ()):
     """A command's parser: ``summary`` in the command list, ``details`` under its usage, ``examples`` below."""
     description = summary[0].upper() + summary[1:] + "." + (f"\n\n{details}" if details else "")
@@ -59,13 +91,18 @@ def tolerance(text: str) -> float:
     return value
 
 
+def integer(text: str) -> int:
+    """A whole number, whatever its size (the command checks its range)."""
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number: {text[:40]!r}") from None
+
+
 def whole_number(low: int, high: int):
-    """An argparse type: a whole number within [low, high]."""
+    """A check of :class:`Checked`: a whole number within [low, high]."""
     def parse(text: str) -> int:
-        try:
-            value = int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"not a whole number: {text[:40]!r}") from None
+        value = integer(text)
         if not low <= value <= high:
             raise argparse.ArgumentTypeError(f"must be from {low} to {high}, got {text[:40]}")
         return value
@@ -92,16 +129,16 @@ def add_json_option(command: argparse.ArgumentParser,
 
 def add_problem_options(command: argparse.ArgumentParser, objective: bool = True) -> None:
     """--mode, --objective (unless the command sets both ends itself) and --tol: how a case is posed and solved."""
-    command.add_argument("--mode", metavar="MODE", type=name, help=MODE_HELP)
+    command.add_argument("--mode", metavar="MODE", action=Checked, check=name, help=MODE_HELP)
     if objective:
-        command.add_argument("--objective", metavar="NAME", type=name,
+        command.add_argument("--objective", metavar="NAME", action=Checked, check=name,
                              help="what the optimum minimises: mass (kg) or cost (EUR) (default: the case's "
                                   "[options] objective, then mass)")
     add_tolerance_option(command)
 
 
 def add_tolerance_option(command: argparse.ArgumentParser) -> None:
-    command.add_argument("--tol", type=tolerance, default=1e-10,
+    command.add_argument("--tol", action=Checked, check=tolerance, default=1e-10,
                          help=f"IPOPT's convergence tolerance, {TOLERANCE_RANGE[0]:g} to {TOLERANCE_RANGE[1]:g} "
                               "(default 1e-10; 1e-6 is faster and good to about 1e-6 relative)")
 
@@ -124,25 +161,42 @@ def add_robust_options(command: argparse.ArgumentParser) -> None:
                          help="a design that holds under the case's [scatter]: worst-case (every constraint at its own "
                               "worst corner of the ranges) or chance=P (each holds with probability P, to first "
                               "order), checked by Monte Carlo beside the nominal design; e.g. --robust chance=0.999")
-    command.add_argument("--samples", type=int, metavar="N",
+    command.add_argument("--samples", action=Checked, check=integer, metavar="N",
                          help="Monte Carlo samples of the scatter for --robust (default 10000)")
-    command.add_argument("--starts", type=int, metavar="N",
+    command.add_argument("--starts", action=Checked, check=integer, metavar="N",
                          help="simulated starts of the Monte Carlo of a [start_up] for --robust (default 200, about "
                               "30 ms each)")
 
 
-def robustness(args, case):
-    """The robust method the arguments ask for (None: the nominal design), checked against the case."""
-    from clutchopt.optimise.design import Robustness, check_robustness
-
+def robust_options(args):
+    """The robust method ``--robust``, ``--samples`` and ``--starts`` ask for (None: the nominal design)."""
     if args.robust is None:
         for name, given, what in (("--samples", args.samples, "the Monte Carlo samples"),
                                   ("--starts", args.starts, "the simulated starts")):
             if given is not None:
                 raise InputError(name, f"counts {what} of --robust; give --robust too")
         return None
-    robust = Robustness.parse(args.robust, args.samples, args.starts)
-    check_robustness(case, robust)
+    from clutchopt.optimise.design import Robustness
+
+    return Robustness.parse(args.robust, args.samples, args.starts)
+
+
+def robustness(args, case):
+    """The robust method the arguments ask for (None: the nominal design), checked against the case and the problem
+    the command poses (a scattered quantity that does not enter it; simulated starts of no [start_up]), before any
+    store is opened or file written."""
+    from clutchopt.optimise import SolverOptions
+    from clutchopt.optimise.design import check_robustness
+    from clutchopt.optimise.problem import case_problem
+
+    robust = robust_options(args)
+    if robust is None:
+        return None
+    if args.starts is not None and case.start_up is None:
+        raise InputError("--starts", "counts the simulated starts of a [start_up] under scatter; this case has no "
+                                     "[start_up], so nothing is started")
+    mode, objective = getattr(args, "mode", None), getattr(args, "objective", None)  # compare: the case's own
+    check_robustness(case, robust, case_problem(case, mode, objective, SolverOptions(tol=args.tol)))
     return robust
 
 
@@ -209,18 +263,20 @@ def recording(args, needed: bool = False) -> Iterator:
             store.close()
 
 
-def record_solve(store, case, solution, check: dict | None = None, outputs: dict | None = None) -> None:
-    """Record a ``solve`` (and its start-up check, a simulation) in an open store (or nothing for None);
-    ``outputs``: the design's record with its choice and robust result (``Designed.as_dict()``)."""
+def record_solve(store, designed, method: str, check: dict | None = None, extra: dict | None = None) -> None:
+    """Record a ``solve`` (and its start-up check, a simulation) in an open store (or nothing for None): a design
+    (``Designed``) with its choice and robust result, made by ``method`` (nominal, worst-case, chance=P); ``extra``:
+    more of its record (whether it is the chosen one)."""
     if store is None:
         return
-    store.record_solution("solve", case, solution, outputs)
+    case, solution = designed.case, designed.solution
+    store.record_solution("solve", case, solution, {**designed.as_dict(), **(extra or {})}, method)
     if check is not None:
-        store.record("simulation", {"values": case.values, "design": solution.design}, check,
+        store.record("simulation", {"values": case.values, "design": solution.design, "method": method}, check,
                      status="verified" if check.get("verified") else "not verified",
                      objective=check.get("simulated_acceleration_time", check.get("simulated_start_time")),
-                     objective_unit="s", case_path=case.path, title=case.title, coupling=case.coupling,
-                     mode=solution.mode, objective_name="acceleration_time")
+                     objective_unit="s", method=method, case_path=case.path, title=case.title,
+                     coupling=case.coupling, mode=solution.mode, objective_name="acceleration_time")
 
 
 def record_simulation(store, scene, result) -> None:

@@ -7,6 +7,7 @@ from dataclasses import replace
 
 from clutchopt.cli.options import (
     FIGURE_SUFFIXES,
+    Checked,
     add_case_argument,
     add_json_option,
     add_parser,
@@ -34,7 +35,7 @@ def add_command(commands) -> None:
          "clutchopt pareto cases/lever_centrifuge.toml --mode design --plot front.png --out front.csv"))
     add_case_argument(pareto)
     add_problem_options(pareto, objective=False)  # mass and cost are the front's two ends
-    pareto.add_argument("--points", type=whole_number(2, MAX_FRONT_POINTS), default=9,
+    pareto.add_argument("--points", action=Checked, check=whole_number(2, MAX_FRONT_POINTS), default=9,
                         help=f"designs on the front, the lightest and the cheapest included, 2 to {MAX_FRONT_POINTS} "
                              "(default 9)")
     pareto.add_argument("--plot", metavar="FILE",
@@ -53,6 +54,7 @@ def run(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.files import check_output, write_whole
     from clutchopt.optimise import SolverOptions
+    from clutchopt.optimise.design import Designed, method_of
     from clutchopt.optimise.pareto import CAP, pareto_fronts
     from clutchopt.optimise.sweep_table import table_format, write_frame
     from clutchopt.output import UNITLESS, to_json, with_units
@@ -69,12 +71,14 @@ def run(args) -> str:
         fronts = pareto_fronts(case, args.mode, args.points, SolverOptions(tol=args.tol), robust,
                                progress=not args.quiet)
         for front in fronts if store is not None else ():
-            for cap, solution in zip(front.caps, front.solutions):
+            for k, (cap, solution) in enumerate(zip(front.caps, front.solutions)):
+                outputs = Designed(front.choice, front.case, solution, front.robust[k] if front.robust else None)
                 if math.isnan(cap):
-                    store.record_solution("pareto", front.case, solution)
+                    store.record_solution("pareto", front.case, solution, outputs.as_dict(), method_of(robust))
                 else:
                     store.record_solution("pareto", replace(front.case, values={**front.case.values, CAP: cap}),
-                                          solution, mode=f"{front.mode}{CAPPED_SUFFIX}")
+                                          solution, outputs.as_dict(), method_of(robust),
+                                          mode=f"{front.mode}{CAPPED_SUFFIX}")
     if args.out:
         write_frame(pd.concat([_with_choice(front) for front in fronts], ignore_index=True), args.out)
     if args.plot:
@@ -82,7 +86,7 @@ def run(args) -> str:
     if args.json:
         shown = [_front_json(front) for front in fronts]
         return to_json(with_units({"case": case.path, "mode": fronts[0].mode,
-                                   "robust": robust.as_dict() if robust is not None else None,
+                                   "robust": robust.as_dict(case) if robust is not None else None,
                                    **(shown[0] if len(fronts) == 1 else {"fronts": shown})}, {"robust": UNITLESS}))
     how = f", {robust.label} designs" if robust is not None else ""
     lines = [f"Pareto front, mass against cost (epsilon-constraint) - {case.title or case.path}, {fronts[0].mode} "

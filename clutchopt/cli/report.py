@@ -1,4 +1,5 @@
-"""``clutchopt report CASE -o review.html``: a self-contained HTML design-review page."""
+"""``clutchopt report CASE -o review.html``: a self-contained HTML design-review page; ``-o review.pdf``: the same
+page printed by headless Chromium."""
 
 from __future__ import annotations
 
@@ -19,15 +20,18 @@ from clutchopt.cli.options import (
 
 def add_command(commands) -> None:
     report = add_parser(
-        commands, "report", "write a design-review page (one HTML file, no links out) for a case",
-        "Requirements, the optimal design with a dimensioned sketch to scale, constraint margins, sensitivities,\n"
-        "the comparison with the paper's method, the start-up simulation, and a sweep plot if --sweep is given.\n"
-        "With options.choose the best choice is reviewed (as solve ranks them); with --robust the design for the\n"
-        "case's [scatter] is, the nominal one beside it with its failure probabilities.",
+        commands, "report", "write a design-review page (one HTML file, no links out, or a PDF) for a case",
+        "What was verified, the requirements, the optimal design with a dimensioned sketch to scale, constraint\n"
+        "margins, sensitivities, the comparison with the paper's method, the start-up simulation, and a sweep plot\n"
+        "if --sweep is given. With options.choose the best choice is reviewed (as solve ranks them); with --robust\n"
+        "the design for the case's [scatter] is, the nominal one beside it with its failure probabilities.\n"
+        "-o review.pdf prints the page with headless Chromium (A4).",
         ("clutchopt report cases/wedge_paper.toml --mode geometry -o review.html",
-         "clutchopt report cases/wedge_paper.toml --sweep sweep.csv -o review.html"))
+         "clutchopt report cases/wedge_paper.toml --sweep sweep.csv -o review.html",
+         "clutchopt report cases/wedge_motor_start.toml -o review.pdf"))
     add_case_argument(report)
-    report.add_argument("-o", "--out", required=True, metavar="FILE", help="the HTML page to write, e.g. review.html")
+    report.add_argument("-o", "--out", required=True, metavar="FILE",
+                        help="the page to write: review.html, or review.pdf (printed by headless Chromium)")
     add_problem_options(report)
     report.add_argument("--sweep", metavar="TABLE",
                         help="add a plot of this sweep table (.csv or .parquet written by clutchopt sweep --out)")
@@ -41,13 +45,15 @@ def run(args) -> str:
     from clutchopt.cases import load_case
     from clutchopt.files import check_output, write_whole
     from clutchopt.optimise import SolverOptions
-    from clutchopt.optimise.design import design_case
+    from clutchopt.optimise.design import design_case, method_of
     from clutchopt.optimise.problem import case_formulation
     from clutchopt.optimise.sweep_table import check_swept_from, read_frame
     from clutchopt.report import build_report
+    from clutchopt.report.pdf import print_pdf, require_chromium
 
     case = load_case(args.case)
-    check_output("--out", args.out, (".html", ".htm"))
+    pdf = check_output("--out", args.out, (".html", ".htm", ".pdf")) == "pdf"
+    chromium = require_chromium("--out") if pdf else None  # before any work
     sweep = read_frame(args.sweep) if args.sweep else None
     resolve_problem(case, args)
     robust = robustness(args, case)
@@ -59,12 +65,15 @@ def run(args) -> str:
         ranked = design_case(case, args.mode, args.objective, SolverOptions(tol=args.tol), robust,
                              progress=not args.quiet)
         best = ranked[0]
-        record_solve(store, best.case, best.solution, outputs=best.as_dict())
+        record_solve(store, best, method_of(robust))
     notes = (f"options.choose: the best of {len(ranked)} choices, {best.choice_text} (clutchopt solve lists them)",) \
         if best.choice else ()
     page = build_report(best.case, best.solution, sweep, best.robust, notes)
 
     def write(path: str) -> None:
+        if pdf:
+            print_pdf(chromium, page, path, "--out")
+            return
         with open(path, "w", encoding="utf-8") as handle:
             handle.write(page)
 

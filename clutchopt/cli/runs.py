@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from clutchopt.cli.options import LARGEST_ID, Parser, add_json_option, add_parser, whole_number
+from clutchopt.cli.options import LARGEST_ID, Checked, Parser, add_json_option, add_parser, whole_number
 
 KINDS = ("solve", "sweep", "pareto", "simulation")
 NO_DESIGN = ("infeasible", "not_found", "solver_failed")  # statuses whose objective value belongs to no design
@@ -26,19 +26,19 @@ def add_command(commands) -> None:
     run_id = whole_number(1, LARGEST_ID)
     listing = actions.add_parser("list", help="recorded runs, newest first, and the sweeps")
     listing.add_argument("--kind", choices=KINDS, help="only runs of this kind")
-    listing.add_argument("--sweep", type=run_id, metavar="ID",
+    listing.add_argument("--sweep", action=Checked, check=run_id, metavar="ID",
                          help="only the points of sweep ID (clutchopt runs list shows the sweeps)")
-    listing.add_argument("--limit", type=whole_number(0, LARGEST_ID), default=20,
+    listing.add_argument("--limit", action=Checked, check=whole_number(0, LARGEST_ID), default=20,
                          help="show at most this many runs, newest first (default 20; 0: all)")
     add_json_option(listing)
     show = actions.add_parser("show", help="one run with its inputs, outputs and versions (JSON)")
-    show.add_argument("id", type=run_id, help="the run's id, as runs list shows it")
+    show.add_argument("id", action=Checked, check=run_id, help="the run's id, as runs list shows it")
     export = actions.add_parser("export", help="runs as a table (.csv, .parquet, .md): status, objective, SI inputs "
                                                "and design with their units, active constraints; from a damaged "
                                                "store, every run that can still be read")
     export.add_argument("-o", "--out", required=True, metavar="FILE", help="the table to write: .csv, .parquet or .md")
     export.add_argument("--kind", choices=KINDS, help="only runs of this kind")
-    export.add_argument("--sweep", type=run_id, metavar="ID", help="only the points of sweep ID")
+    export.add_argument("--sweep", action=Checked, check=run_id, metavar="ID", help="only the points of sweep ID")
     for action in (listing, show, export):
         action.add_argument("--store", metavar="PATH", help="run store (default $CLUTCHOPT_STORE, then "
                                                             "./clutchopt-runs.sqlite)")
@@ -71,9 +71,10 @@ def _objective_unit(run: dict) -> dict:
 
 
 def run_json(run: dict) -> dict:
-    """A stored run with the unit of every number: its inputs by its coupling's quantities, its outputs as a
-    solution's or a simulation's."""
+    """A stored run with the unit of every number: its inputs by its coupling's quantities (a robust design's
+    scatter too), its outputs as a solution's or a simulation's."""
     from clutchopt.output import CHECK_UNITS, HEADLINE_UNITS, SIMULATION_UNITS, solution_json, with_units
+    from clutchopt.store import nested
 
     outputs = run["outputs"]
     if isinstance(outputs, dict) and isinstance(outputs.get("objective"), dict):
@@ -81,8 +82,14 @@ def run_json(run: dict) -> dict:
     elif isinstance(outputs, dict):
         outputs = with_units(outputs, {**SIMULATION_UNITS, **CHECK_UNITS})
     units = _input_units(run["coupling"])
-    inputs = {"values": units, "bounds": units, "design": units, "source": HEADLINE_UNITS["source"]}
+    scattered = nested(run["inputs"], "scatter")
+    scattered = scattered if isinstance(scattered, dict) else {}
+    inputs = {"values": units, "bounds": units, "design": units, "source": HEADLINE_UNITS["source"],
+              "scatter": {name: dict.fromkeys(SCATTER_NUMBERS, units.get(name, "")) for name in scattered}}
     return with_units({**_objective_unit(run), "outputs": outputs}, {**IDS, "inputs": inputs})
+
+
+SCATTER_NUMBERS = ("low", "high", "mean", "sd")  # of a scattered quantity as the store keeps it, in its SI unit
 
 
 def listing_text(path: str, listed: list[dict], swept: list[dict]) -> str:
@@ -92,7 +99,8 @@ def listing_text(path: str, listed: list[dict], swept: list[dict]) -> str:
 
     rows = [{"id": run["id"], "kind": run["kind"], "sweep": _whole(run["sweep_id"]), "point": _whole(run["point"]),
              "created (UTC)": _created(run["created"]), "coupling": run["coupling"] or "-",
-             "mode": shown_mode(run["mode"]) or "-", "status": run["status"] or "-", "objective": _objective(run),
+             "mode": shown_mode(run["mode"]) or "-", "method": run["method"] or "-", "status": run["status"] or "-",
+             "objective": _objective(run),
              "case": run["case_path"] or "-"} for run in listed]
     lines = [f"Runs in {path} (newest first)", pd.DataFrame(rows).to_string(index=False) if rows else "(none)"]
     if swept:
@@ -142,23 +150,25 @@ def export(args) -> str:
 
 
 def export_row(entry: dict) -> dict:
-    """One run as a flat row, every quantity's column named with its SI unit."""
-    from clutchopt.store import shown_mode
+    """One run as a flat row, every quantity's column named with its SI unit; how it was designed (``method``,
+    ``scatter``)."""
+    from clutchopt.store import nested, shown_mode
 
     outputs = entry["outputs"] if isinstance(entry["outputs"], dict) else {}
     designed = entry["status"] not in NO_DESIGN
+    units = _input_units(entry["coupling"])
     row = {"id": entry["id"], "kind": entry["kind"], "sweep": entry["sweep_id"], "point": entry["point"],
            "created": entry["created"], "coupling": entry["coupling"], "mode": shown_mode(entry["mode"]),
+           "method": entry.get("method") or "", "scatter": _scatter_text(nested(entry["inputs"], "scatter"), units),
            "status": entry["status"], "case": entry["case_path"], "title": entry["title"]}
-    unit = entry.get("objective_unit") or _nested(outputs, "objective", "unit") or ("s" if entry["kind"] ==
-                                                                                     "simulation" else "")
+    unit = entry.get("objective_unit") or nested(outputs, "objective", "unit") or ("s" if entry["kind"] ==
+                                                                                    "simulation" else "")
     if entry["objective_name"]:
         value = entry["objective"]
         row[_column(entry["objective_name"], unit)] = value if designed and value is not None else None
-    units = _input_units(entry["coupling"])
     inputs = entry["inputs"].get("values", {}) if isinstance(entry["inputs"], dict) else {}
     row.update({_column(f"input.{name}", units.get(name, "")): value for name, value in inputs.items()})
-    design_units = _nested(outputs, "units", "design") or {}
+    design_units = nested(outputs, "units", "design") or {}
     for name, value in (outputs.get("design") or {}).items():
         row[_column(f"design.{name}", design_units.get(name) or units.get(name, ""))] = value if designed else None
     row["active"] = " ".join(c.get("name", "") for c in outputs.get("constraints") or []
@@ -167,10 +177,21 @@ def export_row(entry: dict) -> dict:
     return row
 
 
-def _nested(data: dict, *keys):
-    for key in keys:
-        data = data.get(key) if isinstance(data, dict) else None
-    return data
+def _scatter_text(scatter, units: dict[str, str]) -> str:
+    """A robust design's scatter as one cell: ``friction_coefficient range 0.12 to 0.18; inertia normal, mean 12
+    kg*m^2, sd 0.6 kg*m^2`` (SI); a stored entry of another shape as it is."""
+    from clutchopt.scatter import Scatter
+
+    if not isinstance(scatter, dict):
+        return ""
+    parts = []
+    for name, item in scatter.items():
+        try:
+            unit = "" if units.get(name) in (None, "1") else units[name]  # "1": a ratio
+            parts.append(f"{name} " + Scatter(name, **item).describe(lambda v: f"{v:g} {unit}".rstrip()))
+        except (TypeError, ValueError):  # a damaged or foreign entry
+            parts.append(f"{name} {item}")
+    return "; ".join(parts)
 
 
 def _column(name: str, unit: str) -> str:

@@ -29,7 +29,8 @@ def add_command(commands) -> None:
     add_problem_options(solve)
     add_store_options(solve)
     solve.add_argument("--verify", action="store_true",
-                       help="simulate the optimised design's start-up and compare its acceleration time with t_p")
+                       help="simulate the optimised design's start-up and compare its acceleration time with t_p "
+                            "(with --robust: at every corner of the scatter, the slowest shown)")
     add_robust_options(solve)
     add_json_option(solve)
     add_quiet_option(solve)
@@ -42,14 +43,17 @@ def run(args) -> str:
     from clutchopt.formulations import get_coupling
     from clutchopt.materials import chosen
     from clutchopt.optimise import SolverOptions
-    from clutchopt.optimise.design import design_case
+    from clutchopt.optimise.design import design_case, method_of
     from clutchopt.optimise.problem import case_formulation
-    from clutchopt.output import CHECK_UNITS, choices_text, library_json, library_text, robust_text, solution_json, \
+    from clutchopt.optimise.robust_verify import check_verifiable, verify_robust
+    from clutchopt.output import choices_text, library_json, library_text, robust_text, solution_json, \
         solution_text, to_json, with_units
 
     case = load_case(args.case)
     resolve_problem(case, args)
     robust = robustness(args, case)
+    if args.verify and robust is not None:
+        check_verifiable(case)
     with recording(args) as store:
         ranked = design_case(case, args.mode, args.objective, SolverOptions(tol=args.tol), robust,
                              progress=not args.quiet)
@@ -58,16 +62,15 @@ def run(args) -> str:
         if args.verify:
             from clutchopt.simulate import verify
 
-            check = verify(best.case, best.solution)
+            check = verify_robust(best.case, best.robust) if best.robust else verify(best.case, best.solution)
         for designed in ranked:  # each with its choice, the best one marked, and its robust result
             chosen_one = {"chosen": designed is best} if len(ranked) > 1 else {}
-            record_solve(store, designed.case, designed.solution, check if designed is best else None,
-                         {**designed.as_dict(), **chosen_one})
+            record_solve(store, designed, method_of(robust), check if designed is best else None, chosen_one)
     if args.json:
         choices = [solution_json(d.as_dict()) for d in ranked] if len(ranked) > 1 else []
         return to_json(with_units({"case": case.path, "title": case.title, **solution_json(best.as_dict()),
                                    "library": library_json(best.case), **({"choices": choices} if choices else {}),
-                                   **({"verify": check} if check else {})}, {"verify": CHECK_UNITS}))
+                                   **({"verify": check} if check else {})}, {"verify": verify_units(case, check)}))
     formulation = case_formulation(best.case, best.solution.mode)
     parts = [choices_text(ranked, chosen(case, get_coupling(case.coupling))[1])] if len(ranked) > 1 else []
     parts += filter(None, [nominal_note(case, robust)])
@@ -79,5 +82,17 @@ def run(args) -> str:
     if check:
         from clutchopt.start_up.simulation import verify_text
 
-        parts.append(verify_text(check))
+        quantities = {q.name: q for q in case.quantities}
+        parts.append(verify_text(check) + ("" if "corner" not in check else
+                                           f" (the robust design at the slowest of {check['corners']} corners of "
+                                           f"the scatter: " + ", ".join(f"{q} {quantities[q].show(v)}"
+                                                                        for q, v in check["corner"].items()) + ")"))
     return "\n\n".join(parts)
+
+
+def verify_units(case, check: dict | None) -> dict:
+    """The units of a --verify check's numbers: a robust design's corner in its quantities' SI units."""
+    from clutchopt.output import CHECK_UNITS, UNITLESS
+
+    corner = {"corner": {q.name: q.si_unit for q in case.quantities}, "corners": UNITLESS}
+    return {**CHECK_UNITS, **(corner if check and "corner" in check else {})}

@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 
 from clutchopt.cli.options import (
+    Checked,
     add_case_argument,
     add_json_option,
     add_parser,
@@ -43,7 +44,7 @@ def add_command(commands) -> None:
                        help="pair the lists instead of crossing them: point i takes the i-th value of each --vary")
     add_problem_options(sweep)
     add_robust_options(sweep)
-    sweep.add_argument("--jobs", type=whole_number(1, MAX_JOBS), default=1,
+    sweep.add_argument("--jobs", action=Checked, check=whole_number(1, MAX_JOBS), default=1,
                        help=f"solve on N local processes, 1 to {MAX_JOBS} (default 1)")
     sweep.add_argument("--dask", metavar="ADDRESS",
                        help="solve on an existing Dask cluster, e.g. tcp://host:8786 (pip install 'clutchopt[dask]')")
@@ -100,7 +101,7 @@ def run(args) -> str:
                   for i, (values, solution) in enumerate(zip(sweep.points, result.solutions))]
         return to_json(with_units({"case": case.path, "mode": sweep.formulation.mode,
                                    "objective": sweep.objective.name,
-                                   "robust": sweep.robust.as_dict() if sweep.robust is not None else None,
+                                   "robust": sweep.robust.as_dict(case) if sweep.robust is not None else None,
                                    "sweep_id": result.sweep_id, "points": points},
                                   {"sweep_id": UNITLESS, "robust": UNITLESS}))
     text = "\n".join(filter(None, [choices_note(case), nominal_note(case, sweep.robust),

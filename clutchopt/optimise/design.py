@@ -22,6 +22,7 @@ from clutchopt.optimise.robust import MAX_SAMPLES, MAX_STARTS, RobustResult, par
 from clutchopt.optimise.robust_models import SAMPLES
 from clutchopt.optimise.robust_start_up import START_SAMPLES
 from clutchopt.optimise.solution import Solution, SolverOptions
+from clutchopt.records import NOMINAL, method_text
 
 
 @dataclass(frozen=True)
@@ -62,8 +63,15 @@ class Robustness:
     def label(self) -> str:
         return self.method if self.target is None else f"{self.method} {self.target:g}"
 
-    def as_dict(self) -> dict:
-        return {"method": self.method, "target": self.target, "samples": self.samples, "starts": self.starts}
+    @property
+    def spelled(self) -> str:
+        """As --robust spells it, and the run store records it: ``worst-case``, ``chance=0.999``."""
+        return method_text(self.method, self.target)
+
+    def as_dict(self, case: Case) -> dict:
+        """The settings that apply to ``case``: its simulated starts only where it has a [start_up]."""
+        return {"method": self.method, "target": self.target, "samples": self.samples,
+                **({"starts": self.starts} if case.start_up is not None else {})}
 
 
 class Designed(NamedTuple):
@@ -88,6 +96,11 @@ class Designed(NamedTuple):
                 **({"robust": robust_json(self.robust, self.case)} if self.robust is not None else {})}
 
 
+def method_of(robust: Robustness | None) -> str:
+    """How a design is made, as the run store records it: ``nominal``, ``worst-case`` or ``chance=P``."""
+    return NOMINAL if robust is None else robust.spelled
+
+
 def check_robustness(case: Case, robust: Robustness | None, problem=None) -> None:
     """A robust design needs the case's scatter, and each scattered quantity must enter ``problem`` (the problem
     posed for the case, where given): refused by name before any solve."""
@@ -97,7 +110,7 @@ def check_robustness(case: Case, robust: Robustness | None, problem=None) -> Non
         raise InputError("--robust", "the case has no [scatter] section: say which quantities scatter and how "
                                      "(docs/robust.md)")
     if problem is not None:
-        check_entering(case, problem, [s.name for s in case.scatter], "scatter.{}")
+        check_entering(case, problem, [s.name for s in case.scatter], "scatter.{}", objective=False)
 
 
 def choices(case: Case, progress: bool = False) -> Iterable[tuple[dict[str, str], Case]]:

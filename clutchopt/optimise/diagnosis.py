@@ -22,7 +22,7 @@ def _elastic(posed: Posed) -> ca.Function:
         g = nlp["g"]
         elastic = {"x": ca.vertcat(nlp["x"], slack), "p": nlp["p"], "f": ca.sum1(slack),
                    "g": ca.vertcat(g[:n_g] - slack, g[n_g:])}
-        return ca.nlpsol("elastic", "ipopt", elastic, posed.options.ipopt())
+        return ca.nlpsol("elastic", "ipopt", elastic, posed.solver_options.ipopt())
 
     return posed.built("elastic", None, build)
 

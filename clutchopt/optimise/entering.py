@@ -14,21 +14,24 @@ from clutchopt.start_up.section import DEFAULTS_FROM_DUTY
 
 
 @functools.lru_cache(maxsize=64)  # built problems are kept (problem_for): each is looked at once
-def entering(problem) -> frozenset[str]:
-    """The case quantities the posed NLP's objective or constraints depend on."""
+def entering(problem, objective: bool = True) -> frozenset[str]:
+    """The case quantities the posed NLP's constraints or (``objective``) its objective depend on."""
     quantities = problem.formulation.quantities
     nlp = problem.posed.nlp
-    used = np.diff(ca.jacobian_sparsity(ca.vertcat(nlp["f"], nlp["g"]), nlp["p"][: len(quantities)]).colind()) > 0
+    rows = ca.vertcat(nlp["f"], nlp["g"]) if objective else nlp["g"]
+    used = np.diff(ca.jacobian_sparsity(rows, nlp["p"][: len(quantities)]).colind()) > 0
     return frozenset(q.name for q, enters in zip(quantities, used) if enters)
 
 
-def check_entering(case: Case, problem, names, field: str) -> None:
+def check_entering(case: Case, problem, names, field: str, objective: bool = True) -> None:
     """Refuse, each by name, the quantities among ``names`` that do not enter the problem posed for ``case``: not in
-    its objective or constraints, nor a design variable the case fixes at its value, nor the source of a default
-    that enters (the driven inertia that follows the duty's). ``field``: how an error names one, ``"--vary {}"``."""
+    its constraints or (``objective``) its objective, nor a design variable the case fixes at its value, nor the
+    source of a default that enters (the driven inertia that follows the duty's). ``field``: how an error names one,
+    ``"--vary {}"``; a scatter takes ``objective=False``: a robust design keeps its objective at the nominal
+    values, so a quantity only the objective depends on would leave it the nominal design."""
     variables = {v.name: v for v in problem.formulation.variables}
     fixed = {name for name, v in variables.items() if v.fixed_unless_freed and name not in case.free}
-    entered = entering(problem) | fixed
+    entered = entering(problem, objective) | fixed
     entered |= {source for name, (source, _) in case.follows.items() if name in entered}  # through its defaults
     problems = Problems()
     for name in names:
@@ -49,6 +52,10 @@ def _why_not(case: Case, problem, name: str, variable: bool, field: str) -> str:
                 f"{own[0]} is given here ({quantity.show(case.values[own[0]])}: by the case, or by what this command "
                 f"varies), so {name} does not enter the problem; scatter {own[0]} instead")
     mode = problem.formulation.mode
+    if name in entering(problem):  # the objective only
+        return (f"only the {problem.objective.name} objective depends on it, not a constraint: a robust design keeps "
+                f"its objective at the case's values, so it would be the nominal design; scatter what a constraint "
+                f"depends on")
     if variable:
         return (f"a design variable the optimiser chooses in mode {mode} (the case's value only starts the search), "
                 "so it does not enter the problem; bound it with [bounds] or fix it in another mode")

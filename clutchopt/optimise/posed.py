@@ -28,6 +28,9 @@ from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
 from clutchopt.start_up.transcription import StartUpBlock, initial_states
 
+START_UP_ITERATIONS = 500  # IPOPT's with a start-up: its solves take 15 to 300, a drive that cannot start the
+#                            machine ran the default 3,000 (5 ms each) in each solve and diagnosis
+
 
 class Box(NamedTuple):
     """The design's box in one solve: variable scales and bounds (SI)."""
@@ -79,6 +82,8 @@ class Posed:
         self.formulation = f = with_start_up(formulation) if start_up else formulation
         self.objective = formulation.objective(objective)
         self.options = options
+        self.solver_options = (replace(options, max_iter=min(options.max_iter, START_UP_ITERATIONS)) if start_up
+                               else options)  # what IPOPT is built with
         n, m = len(f.variables), len(f.quantities)
         x_hat = ca.SX.sym("x_hat", n)
         self.p_case = ca.SX.sym("p_case", m)
@@ -88,8 +93,9 @@ class Posed:
         p = namespace({q.name: self.p_case[j] for j, q in enumerate(f.quantities)})
         constraints = f.constraints(x, p)
         self.n_checked = len(constraints)  # the formulation's own constraints, re-evaluated by check_design
-        at_start = namespace(f.start_up_view(vars(p))) if f.start_up_view else p
-        self.start_up = StartUpBlock(start_up, f.speed_law, x, at_start) if start_up else None
+        view = f.start_up_view  # a robust design's corners
+        seen = (lambda name: tuple(map(namespace, view(vars(x), vars(p), name)))) if view else None
+        self.start_up = StartUpBlock(start_up, f.speed_law, x, p, seen) if start_up else None
         internal, equalities = (self.start_up.hat, self.start_up.equalities) if start_up else (ca.SX(0, 1), [])
         constraints += self.start_up.constraints if start_up else []
         rows = [ca.SX(c.normalised()) for c in constraints]
@@ -117,7 +123,7 @@ class Posed:
                                                 [ca.vertcat(*self.start_up.outputs().values()), *paths])
             self.internal_scale = ca.Function("internal_scale", [self.p_case], [ca.vertcat(*self.start_up.scales)])
         self._built: dict[str, dict] = {"solver": {"ipopt": ca.nlpsol(f"{f.coupling}_{f.mode}_{objective}", "ipopt",
-                                                                      self.nlp, options.ipopt())}}
+                                                                      self.nlp, self.solver_options.ipopt())}}
 
     def built(self, kind: str, key, build: Callable[[int], object]):
         """The object of ``kind`` (a solver, a CasADi function) for ``key``, built once: ``build(number)``, with
@@ -132,10 +138,10 @@ class Posed:
         on first use)."""
         def build(_):
             f = self.formulation
-            plugin, options = {"warm": ("ipopt", self.options.ipopt_warm()),
-                               "sqp": ("sqpmethod", self.options.sqp()),
-                               "sqp_chain": ("sqpmethod", self.options.sqp_chain()),
-                               "sqp_search": ("sqpmethod", self.options.sqp_search())}[method]
+            chosen = self.solver_options
+            plugin, options = {"warm": ("ipopt", chosen.ipopt_warm()), "sqp": ("sqpmethod", chosen.sqp()),
+                               "sqp_chain": ("sqpmethod", chosen.sqp_chain()),
+                               "sqp_search": ("sqpmethod", chosen.sqp_search())}[method]
             name = f"{f.coupling}_{f.mode}_{self.objective.name}_{method}"
             solver = ca.nlpsol(name, plugin, self.nlp, options)
             if method in ("sqp_chain", "sqp_search"):  # a batched sweep's: compiled where that pays
@@ -212,8 +218,8 @@ class Posed:
         if self.start_up is not None:
             data.internal_lower, data.internal_upper = self.start_up.bounds()
             if internal is None or len(internal) != self.start_up.size:
-                internal = initial_states(self.start_up, self.start_up_case(case), self.formulation,
-                                          self.design(x0 / scale, scale),
+                seen, design = self.start_up_seen(case, self.design(x0 / scale, scale))
+                internal = initial_states(self.start_up, seen, self.formulation, design,
                                           np.array(self.internal_scale(p_vector[: len(params.__dict__)])).ravel(),
                                           p_vector[-self.start_up.mesh_parameters.shape[0]:])
             data.internal_start = np.clip(internal, data.internal_lower, data.internal_upper)
@@ -233,10 +239,21 @@ class Posed:
         """The integer variables a solve's bounds leave free."""
         return [i for i in self.integer if data.lower[i] < data.upper[i]]
 
-    def start_up_case(self, case: Case) -> Case:
-        """The case as the start-up sees it (a robust design's: its corner)."""
+    def seen_by(self, case: Case, design: dict[str, float]):
+        """name -> the design and case values ``(x, p)`` the start-up's constraint ``name`` is checked with, ``None``
+        -> those its start is simulated at: the case's and the design's, a robust design's at their corners."""
+        view, params = self.formulation.start_up_view, vars(self.params(case))
+        if not view:
+            return lambda name: (namespace(design), namespace(params))
+        return lambda name: tuple(map(namespace, view(design, params, name)))
+
+    def start_up_seen(self, case: Case, design: dict[str, float]) -> tuple[Case, dict[str, float]]:
+        """The case and the design as the start-up's simulated start sees them (a robust design's: at its corner)."""
         view = self.formulation.start_up_view
-        return replace(case, values=case.followed(view(case.values))) if view else case
+        if not view:
+            return case, design
+        design, values = view(design, case.values, None)
+        return replace(case, values=case.followed(values)), design
 
     @property
     def mesh_size(self) -> int:

@@ -26,7 +26,7 @@ from clutchopt.optimise.integers import descend, fixing, nearest_integers, relax
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
 from clutchopt.optimise.solution import Solution, SolverInfo, SolverOptions, WarmStart
-from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, start_up_report, tightened_limits
+from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, corrected_case, start_up_report
 from clutchopt.optimise.verdict import shown
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
 from clutchopt.start_up.drive import Structure
@@ -44,30 +44,35 @@ class Problem:
             posed.formulation, posed.objective, posed.options, posed.start_up)
 
     def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
-              mesh: np.ndarray | None = None, refine: bool = True, neighbour: dict[str, float] | None = None) -> Solution:
+              mesh: np.ndarray | None = None, refine: bool = True, neighbour: dict[str, float] | None = None,
+              coarser: float = math.inf) -> Solution:
         """Solve for one case (:meth:`refined`); a solve that ends without a design is retried from the starts that
         can reach one before its verdict is given (:func:`clutchopt.optimise.verdict.shown`): ``neighbour``, the
         feasible design of a neighbouring point (a sweep's), among them."""
         try:
-            solution = self.refined(case, start, warm, mesh, refine)
+            solution = self.refined(case, start, warm, mesh, refine, coarser=coarser)
         except InputError:  # a start-up whose first simulation fails from this design: from the papers' sizing
             if self.start_up is None or (start is None and warm is None):
                 raise
-            solution, start, warm = self.refined(case, None, None, mesh, refine), None, None
+            solution, start, warm = self.refined(case, None, None, mesh, refine, coarser=coarser), None, None
         if solution.status in DESIGN_STATUSES or not refine:
             return solution
         return shown(self, case, solution, start is not None or warm is not None, neighbour)
 
     def refined(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
-                mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True) -> Solution:
+                mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,
+                coarser: float = math.inf) -> Solution:
         """One solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one.
 
         With a start-up, the simulated start is what the limits are checked against, and the collocation's own
         error is the NLP's start time against the simulated one. While that error exceeds the case's tolerance,
         the mesh is adapted to the simulated start (MESH_STEPS times, or until an adaptation no longer halves the
-        error), then the intervals doubled (up to
-        MAX_INTERVALS). Should the simulated start still miss a limit, the missed limits are moved in by what the
-        simulation adds to the NLP's figure (defect correction) and the problem re-solves warm. Limits are always
+        error), then the intervals doubled (up to MAX_INTERVALS, while the rate at which the last doubling cut the
+        error, from ``coarser`` at half the intervals, can reach the tolerance by then). Should the simulated
+        start still miss a limit, the missed limits are moved in by what the simulation adds to the NLP's figure
+        (defect correction) and the problem re-solves warm; so is a binding limit the simulated start meets so far
+        off that the objective is off by a quarter of the tolerance (the design then does not depend on the mesh the
+        loop ended on; not for an elastic link, whose NLP is another model than its simulation). Limits are always
         reported as the case gives them. A start-up problem without a start point starts from the optimum the
         papers' sizing gives (the same mode without the start-up), a design the start-up changes but does not
         overturn. Integer variables keep their values while limits are moved in (an elastic link's excepted).
@@ -89,21 +94,21 @@ class Problem:
             if error > structure.spec.tolerance and not structure.elastic:  # an elastic link: its quasi-static
                 # NLP differs from the simulated dynamics by the model, not by the mesh
                 if adapted == MESH_STEPS or error > 0.5 * last_error:  # adapting no longer pays: more intervals
-                    if 2 * structure.intervals > MAX_INTERVALS:
+                    if not doubling_pays(error, coarser, structure.intervals, structure.spec.tolerance):
                         break
                     finer = replace(structure, intervals=2 * structure.intervals)
                     halved = np.repeat(solution.mesh[1], 2) / 2.0  # each interval of each phase split in two
                     solution = problem_for(self.posed.base, self.objective.name, self.options, finer).solve(
-                        case, solution.design, mesh=halved)
+                        case, solution.design, mesh=halved, coarser=error)
                     solves.append(solution.solver)
                     break
                 adapted, last_error = adapted + 1, error
                 solution = self._solve(case, warm=solution, nlp_case=nlp_case, mesh=solution.mesh[1])
-            elif solution.status == "unverified" and (limits := tightened_limits(solution, nlp_case)):
+            elif (moved := corrected_case(solution, nlp_case, centre=not structure.elastic)) is not None:
                 # integers kept, unless the difference is the model's (an elastic link's dynamics), not a small one
                 integers = {v.name: (solution.design[v.name],) * 2 for v in self.formulation.variables
                             if v.integer and not structure.elastic}
-                nlp_case = replace(nlp_case.with_values(**limits), bounds={**nlp_case.bounds, **integers})
+                nlp_case = replace(moved, bounds={**nlp_case.bounds, **integers})
                 solution = self._solve(case, warm=solution, nlp_case=nlp_case)
             else:
                 break
@@ -176,8 +181,8 @@ class Problem:
         design, objective, checks = run["design"], run["value"], list(run["checks"])
         start_up = mesh = None
         if posed.start_up is not None:  # re-checked by the independent simulator
-            seen = posed.start_up_case(case)
-            start_up, simulated, suggested = start_up_report(posed.start_up, seen, f, design, posed.params(seen),
+            start_up, simulated, suggested = start_up_report(posed.start_up, *posed.start_up_seen(case, design), f,
+                                                             posed.seen_by(case, design),
                                                              posed.start_up_figures(run["x"], run["p"]))
             checks += simulated
             mesh = (posed.mesh_of(run["p"]), suggested)
@@ -207,6 +212,17 @@ class Problem:
                         evaluate_outputs(f, design, params), checks, info, diagnosis, search, bounds,
                         elasticities, scale, (run["lam_x"], run["lam_g"]), {v.name: v.unit for v in f.variables},
                         start_up, run["x"][len(scale):] if posed.start_up is not None else None, mesh, diagnosed)
+
+
+def doubling_pays(error: float, coarser: float, intervals: int, tolerance: float) -> bool:
+    """Whether doubling the intervals may bring the collocation's error within ``tolerance`` by MAX_INTERVALS: at
+    the rate the last doubling cut it (from ``coarser``; none yet: it may). A start whose load jumps in time
+    converges at first order (half the error a doubling), far too slowly to try every doubling."""
+    doublings = int(math.log2(MAX_INTERVALS // intervals))
+    if doublings < 1:
+        return False
+    rate = error / coarser  # 0 before the first doubling (coarser is infinite)
+    return rate < 1.0 and error * rate ** doublings <= tolerance
 
 
 _CACHE: dict[tuple, Problem] = {}

@@ -11,9 +11,10 @@
 - Both are then checked by Monte Carlo: ``samples`` draws of the distributions (a range: uniform over it),
   evaluated vectorised in float64 by the formulation's own equations; each constraint's failure probability with
   its Clopper-Pearson interval, for the robust and for the nominal design.
-- A ``[start_up]`` is designed at one corner, where its simulated figures bind: of the ends of the ranges (worst
-  case) or of the quantiles (chance), re-solved until the corner settles; then simulated at every such corner
-  (each start-up limit at its worst) and by ``starts`` simulated starts of Monte Carlo.
+- A ``[start_up]``'s start is designed at one corner, where its simulated figures bind, and each of its
+  constraints evaluated at its own (a scattered limit at its strict end): of the ends of the ranges (worst case) or
+  of the quantiles (chance), re-solved until the corners settle; then simulated at every such corner (each start-up
+  limit at its worst) and by ``starts`` simulated starts of Monte Carlo.
 """
 
 from __future__ import annotations
@@ -46,9 +47,10 @@ from clutchopt.optimise.robust_models import (
 from clutchopt.optimise.robust_start_up import (
     MAX_START_CORNERS,
     START_SAMPLES,
+    StartUpCorners,
     corner_points,
     start_up_checks,
-    start_up_ends,
+    start_up_corners,
     start_up_failures,
 )
 from clutchopt.optimise.solution import Solution, SolverOptions
@@ -122,14 +124,16 @@ class RobustResult:
 _DERIVED: dict[tuple, Formulation] = {}
 
 
-def _derived(kind: str, base: Formulation, case: Case, names: tuple[str, ...]) -> Formulation:
+def _derived(kind: str, base: Formulation, case: Case, names: tuple[str, ...],
+             start_up_names: tuple[str, ...]) -> Formulation:
     scattered = tuple(s.name for s in case.scatter)
     follows = tuple(sorted(case.follows.items()))
-    key = (kind, base.coupling, base.mode, base.variant, scattered, names, case.start_up is not None, follows)
+    key = (kind, base.coupling, base.mode, base.variant, scattered, names, start_up_names, follows)
     if key not in _DERIVED:
         declared = {q.name: q for q in case.quantities}
-        _DERIVED[key] = (worst_case_formulation(base, scattered, names, declared, follows) if kind == WORST_CASE
-                         else chance_formulation(base, scattered, declared, follows))
+        _DERIVED[key] = (worst_case_formulation(base, scattered, names, declared, follows, start_up_names)
+                         if kind == WORST_CASE else chance_formulation(base, scattered, declared, follows,
+                                                                       start_up_names))
     return _DERIVED[key]
 
 
@@ -138,8 +142,8 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
                  objective: str | None = None, options: SolverOptions = SolverOptions(),
                  samples: int = SAMPLES, starts: int = START_SAMPLES, base: Formulation | None = None) -> RobustResult:
     """The robust design of a case with a [scatter] section, beside its nominal design, both checked by Monte Carlo
-    (``samples``). A [start_up] is designed at its corner (worst case: of the ranges; chance: of the quantiles),
-    re-solved until the corner settles, then simulated at every such corner and by ``starts`` Monte Carlo starts.
+    (``samples``). A [start_up] is designed at its corners (worst case: of the ranges; chance: of the quantiles),
+    re-solved until they settle, then simulated at every such corner and by ``starts`` Monte Carlo starts.
     ``base``: the formulation to make robust, if not the mode's own (a Pareto point's, with its cost cap)."""
     if not case.scatter:
         raise InputError("--robust", "the case has no [scatter] section: say which quantities scatter and how")
@@ -150,25 +154,24 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
     nominal = problem_for(base, objective, options, structure).solve(case)
     params = case.params()
     names = tuple(c.name for c in base.constraints(namespace(nominal.design), params))
-    if method == WORST_CASE:
-        derived, fixed = _derived(WORST_CASE, base, case, names), {}
-    else:
+
+    def corners_at(design: dict) -> tuple[dict, StartUpCorners | None]:
+        """Each constraint's worst corner (worst case; a start-up's constraints' and its start's, both methods),
+        and the start-up's ends, corners and bars there."""
+        corners = worst_corners(shown, design, params, case.scatter)[0] if method == WORST_CASE else {}
+        start_up = start_up_corners(case, base.mode, design, case.scatter, target) if structure else None
+        return ({**corners, **start_up.corners}, start_up) if start_up else (corners, None)
+
+    corners, start_up = corners_at(nominal.design)
+    start_up_names = tuple(name for name in corners if name not in names and name != START_UP)
+    derived = _derived(method, base, case, names, start_up_names)
+    fixed = {}
+    if method == CHANCE:
         from scipy.special import ndtri
 
-        derived = _derived(CHANCE, base, case, names)
         fixed = {CHANCE_Z: float(ndtri(target)), **{mean_name(s.name): s.mean for s in case.scatter},
                  **{sd_name(s.name): s.sd for s in case.scatter}}
-
-    def corners_at(design: dict) -> tuple[dict, dict]:
-        """Each constraint's worst corner (worst case) and the start-up's, and the start-up's ends there."""
-        corners = worst_corners(shown, design, params, case.scatter)[0] if method == WORST_CASE else {}
-        ends = start_up_ends(case, base.mode, design, case.scatter, target) if structure else {}
-        if ends:
-            corners[START_UP] = {q: slow for q, (slow, _) in ends.items()}
-        return corners, ends
-
     problem = problem_for(derived, objective, options, structure)
-    corners, ends = corners_at(nominal.design)
     solution, settled = None, False
     for _ in range(CORNER_STEPS):
         values = {**fixed, **{corner_name(q, c): v for c, corner in corners.items() for q, v in corner.items()}}
@@ -176,7 +179,7 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
         solution = problem.solve(solved, warm=solution) if solution else problem.solve(solved, start=nominal.design)
         if solution.status not in DESIGN_STATUSES:
             break
-        moved, ends = corners_at(solution.design)
+        moved, start_up = corners_at(solution.design)
         settled, corners = moved == corners, moved
         if settled:
             break
@@ -191,11 +194,12 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
     failure = failure_probabilities(shown, solution.design, params, case.scatter, samples)
     nominal_failure = failure_probabilities(shown, nominal.design, params, case.scatter, samples)
     result = RobustResult(method, target, solution, nominal, checks, nominal_checks, samples, failure,
-                          nominal_failure, tornado(shown, solution.design, params, case.scatter), corners, shown,
-                          settled=settled)
+                          nominal_failure, {**tornado(shown, solution.design, params, case.scatter),
+                                            **(start_up.bars if start_up else {})}, corners, shown, settled=settled)
     if structure and solution.status in DESIGN_STATUSES:
-        result.start_up_points = (corner_points(corner_table(case.scatter, ends)) if len(case.scatter) <= MAX_START_CORNERS
-                                  else [corners[START_UP]])
+        result.start_up_points = (corner_points(corner_table(case.scatter, start_up.ends))
+                                  if len(case.scatter) <= MAX_START_CORNERS
+                                  else _distinct([corners[name] for name in (START_UP, *start_up_names)]))
         result.checks += start_up_checks(case, base.mode, solution.design, result.start_up_points)
         result.nominal_checks += start_up_checks(case, base.mode, nominal.design, result.start_up_points)
         result.start_up_samples = starts
@@ -204,6 +208,10 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
     result.solution = replace(solution, status=result.status, diagnosis=result.diagnosis)
     result.verification = verification(result, case)
     return result
+
+
+def _distinct(points: list[dict[str, float]]) -> list[dict[str, float]]:
+    return [point for i, point in enumerate(points) if point not in points[:i]]
 
 
 def verdict(result: RobustResult) -> tuple[str, str | None]:

@@ -26,44 +26,59 @@ def corner_name(quantity: str, constraint: str) -> str:
     return f"{quantity}@{constraint}"
 
 
-START_UP = "start_up"  # the corner a [start_up] is designed at: where it binds (chance: of the quantiles)
+START_UP = "start_up"  # the corner a [start_up]'s start is designed at: where it binds (chance: of the quantiles)
 
 
-def start_up_view(declared: dict, scattered: tuple[str, ...], follows: tuple = ()):
-    """(quantities ``q@start_up``, the view that puts a [start_up] at them, the followers it moves): a start-up is
-    designed at one corner of the scattered quantities, the defaults that follow one of them (``Case.follows``
-    items) following it there."""
+def design_at(design: dict, values: dict) -> dict:
+    """The design with each of its variables that scatters at its value in ``values``: a scattered design variable
+    is one the case fixes (a free one enters as no case value: refused), so it scatters as the case's value does."""
+    return {**design, **{q: v for q, v in values.items() if q in design}}
+
+
+def at_point(x: dict, p: dict, values: dict) -> tuple[SimpleNamespace, SimpleNamespace]:
+    """The design and the case values (dicts) where each scattered quantity takes its value in ``values``, as a case
+    quantity and as the design variable the case fixes at it (:func:`design_at`)."""
+    return namespace(design_at(x, values)), namespace({**p, **values})
+
+
+def start_up_view(declared: dict, scattered: tuple[str, ...], follows: tuple = (), names: tuple[str, ...] = ()):
+    """(quantities ``q@start_up`` and ``q@name`` of each start-up constraint, the view ``(x, p, name) -> (x, p)``
+    that puts a [start_up]'s start (name None) and each of its constraints at its corner, the followers it moves): a
+    start is simulated at one corner, where its figures bind, and each constraint evaluated with them at its own (a
+    limit at its strict end, an engagement window at the preload that narrows it); the defaults that follow a
+    scattered quantity follow it there (``Case.follows`` items)."""
     moved = {name: rule for name, rule in follows if rule[0] in scattered}
-    corner = tuple(replace(declared[q], name=corner_name(q, START_UP), section="scatter", default=None,
-                           description=f"{q} where the start-up is designed") for q in scattered)
+    corner = tuple(replace(declared[q], name=corner_name(q, c), section="scatter", default=None,
+                           description=f"{q} where the start-up {'is designed' if c == START_UP else c + ' binds'}")
+                   for c in (START_UP, *names) for q in scattered)
 
-    def at_start_up(values: dict) -> dict:
-        return followed({**values, **{q: values.get(corner_name(q, START_UP), values.get(q)) for q in scattered}},
-                        moved)
+    def view(x: dict, p: dict, name: str | None) -> tuple[dict, dict]:
+        at = START_UP if name is None else name
+        x, p = at_point(x, p, {q: p.get(corner_name(q, at), p.get(q)) for q in scattered})
+        return vars(x), followed(vars(p), moved)
 
-    return corner, at_start_up, moved
+    return corner, view, moved
 
 
 def worst_case_formulation(base: Formulation, scattered: tuple[str, ...], names: tuple[str, ...],
-                           declared: dict, follows: tuple = ()) -> Formulation:
+                           declared: dict, follows: tuple = (), start_up_names: tuple[str, ...] = ()) -> Formulation:
     """``base`` with constraint ``names[i]`` evaluated where each scattered quantity q takes the value of the case
-    quantity ``q@names[i]`` (its corner), a start-up at ``q@start_up``; objective and outputs at the nominal values.
-    ``declared``: the case's quantities by name (a start-up's may scatter too); ``follows``: the case's defaults that
-    follow another quantity (``Case.follows`` items), which follow a scattered one to its start-up corner."""
-    start_up, at_start_up, moved = start_up_view(declared, scattered, follows)
+    quantity ``q@names[i]`` (its corner), a start-up's at ``q@start_up`` and ``q@name`` (:func:`start_up_view`,
+    ``start_up_names`` its constraints); objective and outputs at the nominal values. ``declared``: the case's
+    quantities by name (a start-up's may scatter too); ``follows``: the case's defaults that follow another quantity
+    (``Case.follows`` items), which follow a scattered one to its start-up corner."""
+    start_up, view, moved = start_up_view(declared, scattered, follows, start_up_names)
     corners = tuple(replace(declared[q], name=corner_name(q, c), section="scatter", default=None,
                             description=f"{q} at the worst corner of {c}") for c in names for q in scattered)
 
     def constraints(x, p):
-        out = []
-        for i, name in enumerate(names):
-            at_corner = SimpleNamespace(**{**vars(p), **{q: getattr(p, corner_name(q, name)) for q in scattered}})
-            out.append(base.constraints(x, at_corner)[i])
-        return out
+        return [base.constraints(*at_point(vars(x), vars(p), {q: getattr(p, corner_name(q, name))
+                                                               for q in scattered}))[i]
+                for i, name in enumerate(names)]
 
     return replace(base, quantities=base.quantities + corners + start_up, constraints=constraints,
                    variant=f"{base.variant} worst case over {', '.join(scattered)}".strip()
-                   + (f" ({', '.join(moved)} following)" if moved else ""), start_up_view=at_start_up)
+                   + (f" ({', '.join(moved)} following)" if moved else ""), start_up_view=view)
 
 
 def mean_name(quantity: str) -> str:
@@ -78,21 +93,21 @@ CHANCE_Z = "chance_z"
 
 
 def chance_formulation(base: Formulation, scattered: tuple[str, ...], declared: dict,
-                       follows: tuple = ()) -> Formulation:
+                       follows: tuple = (), start_up_names: tuple[str, ...] = ()) -> Formulation:
     """``base`` at the scattered quantities' means, each constraint backed off by z sigma_h (to first order); a
-    start-up at ``q@start_up`` (its quantile corner, :func:`start_up_corner`).
+    start-up at its quantile corners (:func:`start_up_view`).
     ``declared``: the case's quantities by name (a start-up's scatter only where the formulation uses them)."""
-    start_up, at_start_up, _ = start_up_view(declared, scattered, follows)
+    start_up, view, _ = start_up_view(declared, scattered, follows, start_up_names)
     own = [q.name for q in base.quantities]
     extra = tuple(replace(declared[q], name=mean_name(q), section="scatter", default=None, description=f"mean of {q}")
                   for q in scattered)
     extra += tuple(replace(declared[q], name=sd_name(q), section="scatter", default=None, above=None, at_least=0,
                            below=None, at_most=None, description=f"standard deviation of {q}") for q in scattered)
     extra += (Quantity(CHANCE_Z, "", "normal quantile of the target probability", "z", "scatter", None),)
-    gradient = _violation_gradient(base)
+    gradient = _violation_gradient(base, scattered)
 
     def constraints(x, p):
-        mean = SimpleNamespace(**{**vars(p), **{q: getattr(p, mean_name(q)) for q in scattered}})
+        x, mean = at_point(vars(x), vars(p), {q: getattr(p, mean_name(q)) for q in scattered})
         nominal = base.constraints(x, mean)
         symbolic = is_symbolic(*vars(p).values())
         if not symbolic:  # float64 check: CasADi's derivatives evaluated at this point
@@ -118,16 +133,17 @@ def chance_formulation(base: Formulation, scattered: tuple[str, ...], declared: 
         return out
 
     return replace(base, quantities=base.quantities + extra + start_up, constraints=constraints,
-                   variant=f"{base.variant} chance over {', '.join(scattered)}".strip(), start_up_view=at_start_up)
+                   variant=f"{base.variant} chance over {', '.join(scattered)}".strip(), start_up_view=view)
 
 
-def _violation_gradient(base: Formulation):
-    """(x, p) -> d(normalised violation of each constraint) / d(case quantity), by CasADi, evaluated in float64."""
+def _violation_gradient(base: Formulation, scattered: tuple[str, ...]):
+    """(x, p) -> d(normalised violation of each constraint) / d(case quantity), by CasADi, evaluated in float64; a
+    scattered design variable (fixed by the case) read as its case quantity."""
     x_sym = ca.SX.sym("x", len(base.variables))
     p_sym = ca.SX.sym("p", len(base.quantities))
-    x = namespace({v.name: x_sym[i] for i, v in enumerate(base.variables)})
-    p = namespace({q.name: p_sym[j] for j, q in enumerate(base.quantities)})
-    h = ca.vertcat(*[ca.SX(c.normalised()) for c in base.constraints(x, p)])
+    p = {q.name: p_sym[j] for j, q in enumerate(base.quantities)}
+    x = design_at({v.name: x_sym[i] for i, v in enumerate(base.variables)}, {q: p[q] for q in scattered if q in p})
+    h = ca.vertcat(*[ca.SX(c.normalised()) for c in base.constraints(namespace(x), namespace(p))])
     function = ca.Function("dh_dp", [x_sym, p_sym], [ca.jacobian(h, p_sym)])
 
     def evaluate(x_values, p_values) -> np.ndarray:
@@ -141,6 +157,12 @@ def _violation_gradient(base: Formulation):
 # --- Corners, samples, sensitivities at a design (float64, vectorised) ------------------------------------------
 def at_values(params: SimpleNamespace, values: dict) -> SimpleNamespace:
     return SimpleNamespace(**{**vars(params), **values})
+
+
+def constraints_at(formulation: Formulation, design: dict, params: SimpleNamespace, values: dict) -> list[Constraint]:
+    """The formulation's constraints at ``design`` with each scattered quantity at ``values`` (floats or arrays: one
+    point per element; :func:`at_point`)."""
+    return formulation.constraints(*at_point(design, vars(params), values))
 
 
 def _margins(constraints: list[Constraint], count: int) -> np.ndarray:
@@ -159,7 +181,7 @@ def corner_table(scatter, ends: dict[str, tuple[float, float]] | None = None) ->
 def worst_corners(formulation: Formulation, design: dict, params: SimpleNamespace, scatter):
     """Each constraint's worst corner (quantity -> value) at ``design``, and the constraints at every corner."""
     table = corner_table(scatter)
-    constraints = formulation.constraints(namespace(design), at_values(params, table))
+    constraints = constraints_at(formulation, design, params, table)
     margins = _margins(constraints, 2 ** len(scatter))
     worst = np.nanargmin(np.where(np.isnan(margins), -np.inf, margins), axis=1)
     return ({c.name: {q: float(values[i]) for q, values in table.items()} for c, i in zip(constraints, worst)},
@@ -172,7 +194,7 @@ def failure_probabilities(formulation: Formulation, design: dict, params: Simple
     Clopper-Pearson interval."""
     rng = np.random.default_rng(seed)
     drawn = {s.name: s.sample(rng, samples) for s in scatter}
-    constraints = formulation.constraints(namespace(design), at_values(params, drawn))
+    constraints = constraints_at(formulation, design, params, drawn)
     margins = _margins(constraints, samples)
     # active constraints sit at 0 +- round-off
     return {c.name: clopper_pearson(int(np.count_nonzero(~(row >= -FEASIBILITY_TOL))), samples)
@@ -194,7 +216,7 @@ def tornado(formulation: Formulation, design: dict, params: SimpleNamespace, sca
     the others at their nominal values: the bars of a tornado chart."""
     bars: dict[str, dict[str, float]] = {}
     for s in scatter:
-        ends = formulation.constraints(namespace(design), at_values(params, {s.name: np.array([s.low, s.high])}))
+        ends = constraints_at(formulation, design, params, {s.name: np.array([s.low, s.high])})
         for c, (low, high) in zip(ends, _margins(ends, 2)):
             bars.setdefault(c.name, {})[s.name] = float(high - low)
     return bars
@@ -202,4 +224,4 @@ def tornado(formulation: Formulation, design: dict, params: SimpleNamespace, sca
 
 def corner_checks(formulation: Formulation, design: dict, params: SimpleNamespace, scatter) -> list[ConstraintCheck]:
     """Every constraint at every corner, each reported at its worst."""
-    return check_constraints(formulation.constraints(namespace(design), at_values(params, corner_table(scatter))))
+    return check_constraints(constraints_at(formulation, design, params, corner_table(scatter)))

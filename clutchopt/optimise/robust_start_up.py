@@ -1,20 +1,22 @@
-"""A start-up under scatter: designed at one corner (of the ranges, or of the quantiles), simulated at every corner
-and by Monte Carlo of simulated starts (``clutchopt.optimise.robust``; docs/robust.md)."""
+"""A start-up under scatter: its start designed at one corner (of the ranges, or of the quantiles), each of its
+constraints at its own, simulated at every corner and by Monte Carlo of simulated starts
+(``clutchopt.optimise.robust``; docs/robust.md)."""
 
 from __future__ import annotations
 
 import math
 from types import SimpleNamespace
+from typing import NamedTuple
 
 import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Quantity, namespace
-from clutchopt.optimise.robust_models import SEED, clopper_pearson, corner_table
+from clutchopt.optimise.robust_models import SEED, START_UP, clopper_pearson, corner_table, design_at
 from clutchopt.optimise.verify import ConstraintCheck, check_constraints
 from clutchopt.scatter import Scatter, _within
-from clutchopt.start_up.drive import Structure
+from clutchopt.start_up.drive import CLOSED_FORM, Structure
 
 START_SAMPLES = 200  # simulated starts of a start-up's Monte Carlo (about 30 ms of CPU each)
 START_RTOL = 1e-9  # of the simulated starts: far inside a start-up's tolerance (1e-6)
@@ -32,36 +34,61 @@ def quantile(s: Scatter, probability: float, quantity: Quantity) -> float:
     return s.low + probability * (s.high - s.low)
 
 
-def start_up_ends(case: Case, mode: str, design: dict, scatter, target: float | None = None) -> dict:
-    """Quantity -> (its value at the corner where the design's start-up binds, the other): the ends of its range or,
-    with a ``target`` P (chance), its quantiles P_k and 1 - P_k, P_k = P^(1/k) for the k quantities that move the
-    start at all (Sidak: start-up figures monotone in each of k independent quantities are worse than at every
-    corner of their P_k quantiles only when one of them lies beyond its quantile, with probability
-    1 - P_k^k = 1 - P). The binding corner: of all 2^k corners (up to MAX_START_CORNERS quantities), the one where
-    the start-up's smallest relative margin is smallest; with more, each quantity at the end where the start takes
-    longer, the others nominal (no lock-up counts as longest)."""
-    alone = ({s.name: simulated_start_ups(case, mode, design, [{s.name: s.low}, {s.name: s.high}]) for s in scatter}
-             if target is not None or len(scatter) > MAX_START_CORNERS else {})
+def quantile_ends(case: Case, scatter, share: float) -> dict[str, tuple[float, float]]:
+    """Quantity -> its quantiles 1 - ``share`` and ``share`` (:func:`quantile`)."""
+    declared = {q.name: q for q in case.quantities}
+    return {s.name: (quantile(s, 1.0 - share, declared[s.name]), quantile(s, share, declared[s.name]))
+            for s in scatter}
+
+
+class StartUpCorners(NamedTuple):
+    """A start-up under scatter at a design (:func:`start_up_corners`)."""
+
+    ends: dict[str, tuple[float, float]]  # quantity -> its two ends: of its range, or its quantiles
+    corners: dict[str, dict[str, float]]  # START_UP and each start-up constraint -> quantity -> value
+    bars: dict[str, dict[str, float]]  # constraint -> quantity -> change of its margin over the range, others nominal
+
+
+def start_up_corners(case: Case, mode: str, design: dict, scatter, target: float | None = None) -> StartUpCorners:
+    """Where a start-up under scatter is designed at ``design``, simulated at each end of each quantity's range
+    alone (the others nominal: the tornado's bars) and at the corners.
+
+    The ends: those of its range or, with a ``target`` P (chance), its quantiles 1 - P_k and P_k, P_k = P^(1/k) for
+    the k quantities that move the start-up's margins at all, through its figures or its limits (Sidak: margins
+    monotone in each of k independent quantities are smaller than at every corner of their P_k quantiles only when
+    one of them lies beyond its quantile, with probability 1 - P_k^k = 1 - P).
+    The corners: each start-up constraint's own, where its margin is smallest (a limit at its strict end, whatever
+    the figures do; the engagement window at the preload that narrows it), and START_UP, where the start is
+    simulated in the NLP: where the smallest margin of the constraints that read its figures is smallest (a start
+    that does not lock up counts as the worst). Of all 2^k corners, up to MAX_START_CORNERS quantities; with more,
+    each quantity at the end where that margin is smaller alone."""
+    runs = {s.name: simulated_start_ups(case, mode, design, [{s.name: s.low}, {s.name: s.high}]) for s in scatter}
+    names = [c.name for c in next(iter(runs.values()))[0]]
+    alone = {q: [_margins(run) for run in pair] for q, pair in runs.items()}
     ends = {s.name: (s.low, s.high) for s in scatter}
     if target is not None:
-        moving = sum([c.value for c in low] != [c.value for c in high] for low, high in alone.values())
-        share = target ** (1.0 / max(1, moving))
-        declared = {q.name: q for q in case.quantities}
-        ends = {s.name: (quantile(s, 1.0 - share, declared[s.name]), quantile(s, share, declared[s.name]))
-                for s in scatter}
+        moving = sum(not np.array_equal(low, high) for low, high in alone.values())
+        ends = quantile_ends(case, scatter, target ** (1.0 / max(1, moving)))
     if len(scatter) <= MAX_START_CORNERS:
         points = corner_points(corner_table(scatter, ends))
-        margins = [min(-math.inf if math.isnan(c.margin) else c.margin for c in run)
-                   for run in simulated_start_ups(case, mode, design, points)]
-        binding = points[int(np.argmin(margins))]
+        margins = np.array([_margins(run) for run in simulated_start_ups(case, mode, design, points)])
+
+        def worst(columns: list[int]) -> dict[str, float]:
+            return points[int(np.argmin(margins[:, columns].min(axis=1)))]
     else:
-        binding = {q: low if _start_time(alone[q][0]) > _start_time(alone[q][1]) else high
-                   for q, (low, high) in ends.items()}
-    return {q: (binding[q], low if binding[q] == high else high) for q, (low, high) in ends.items()}
+        def worst(columns: list[int]) -> dict[str, float]:
+            return {q: ends[q][int(high[columns].min() < low[columns].min())] for q, (low, high) in alone.items()}
+
+    figures = [i for i, name in enumerate(names) if name not in CLOSED_FORM]
+    bars = {name: {q: float(high[i]) - float(low[i]) for q, (low, high) in alone.items()}
+            for i, name in enumerate(names)}
+    return StartUpCorners(ends, {START_UP: worst(figures), **{name: worst([i]) for i, name in enumerate(names)}},
+                          bars)
 
 
-def _start_time(run: list[ConstraintCheck]) -> float:
-    return next(c.value for c in run if c.name == "start_time")
+def _margins(run: list[ConstraintCheck]) -> np.ndarray:
+    """The relative margins of one simulated start's checks, a start that does not lock up (NaN) the worst."""
+    return np.array([-math.inf if math.isnan(c.margin) else c.margin for c in run])
 
 
 def corner_points(table: dict[str, np.ndarray]) -> list[dict[str, float]]:
@@ -70,9 +97,9 @@ def corner_points(table: dict[str, np.ndarray]) -> list[dict[str, float]]:
 
 
 def start_up_corner(case: Case, mode: str, design: dict, scatter, target: float | None = None) -> dict[str, float]:
-    """The corner a start-up is designed at, where it binds (:func:`start_up_ends`: of the ranges, or with a
-    ``target`` of the quantiles)."""
-    return {q: slow for q, (slow, _) in start_up_ends(case, mode, design, scatter, target).items()}
+    """The corner a start-up's start is designed at, where it binds (:func:`start_up_corners`: of the ranges, or
+    with a ``target`` of the quantiles)."""
+    return start_up_corners(case, mode, design, scatter, target).corners[START_UP]
 
 
 def simulated_start_ups(case: Case, mode: str, design: dict, points: list[dict]) -> list[list[ConstraintCheck]]:
@@ -85,15 +112,15 @@ def simulated_start_ups(case: Case, mode: str, design: dict, points: list[dict])
     law = get_coupling(case.coupling).formulation(mode).speed_law
     runs = []
     for point in points:
-        at = case.with_values(**point)
+        at, seen = case.with_values(**point), design_at(design, point)
         structure = Structure.of(at)
-        result = run_start_up(start_up_model(at, mode, design, rtol=START_RTOL))
+        result = run_start_up(start_up_model(at, mode, seen, rtol=START_RTOL))
         head = result.headline
         figures = SimpleNamespace(
             start_time=head["start_time"], friction_work=head["friction_work"], lock_up_speed=head["lock_up_speed"],
             temperatures=head.get("temperature_rise", 0.0),
             stresses=result.history["stress"].to_numpy() if structure.elastic and head["locks_up"] else math.inf)
-        drive = Drive(structure, law, namespace(design), at.params())
+        drive = Drive(structure, law, namespace(seen), at.params())
         runs.append(check_constraints(named_constraints(structure, drive, figures), structure.spec.tolerance))
     return runs
 

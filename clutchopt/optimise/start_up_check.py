@@ -5,16 +5,18 @@ start misses the case's (docs/start_up.md).
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from types import SimpleNamespace
 
 import numpy as np
 
-from clutchopt.model import namespace
+from clutchopt.optimise.robust_models import corner_name
 from clutchopt.optimise.verify import check_constraints
-from clutchopt.start_up.drive import Drive, named_constraints
+from clutchopt.start_up.drive import Drive, seen_constraints
 from clutchopt.start_up.mesh import adapted_mesh
 
-BACK_OFF_STEPS = 4  # defect corrections of limits the simulated start misses
+BACK_OFF_STEPS = 4  # defect corrections of limits the simulated start misses (or binds at off the limit)
+CENTRE = 0.25  # of the tolerance: the objective's error from a binding limit met off the limit that is corrected
 LIMIT_OF = {"start_time": "max_start_time", "friction_work": "max_friction_work",
             "temperature_rise": "max_temperature_rise", "heat_per_hour": "heat_dissipation",
             "link_stress": "max_link_stress"}
@@ -23,24 +25,25 @@ UNITS = {"start_time": "s", "friction_work": "J", "temperature_rise": "K", "enga
          "peak_twist": "rad"}
 
 
-def start_up_report(block, case, formulation, design: dict[str, float], params, figures):
-    """The NLP's start beside the independent simulator's (solve_ivp with events, float64) at the design, and the
-    start-up constraints re-checked with the simulated figures: (summary in SI, constraint checks, the mesh the
-    simulated start suggests for the next solve)."""
-    from clutchopt.start_up.simulation import dense_model, run_start_up
+def start_up_report(block, case, design: dict[str, float], formulation, seen, figures):
+    """The NLP's start beside the independent simulator's (stiff where the motor is, events, float64) at the design,
+    and the start-up constraints re-checked with the simulated figures, each with the values ``seen(name)`` gives it
+    (:func:`~clutchopt.start_up.drive.seen_constraints`): (summary in SI, constraint checks, the mesh the simulated
+    start suggests for the next solve). ``case`` and ``design``: as the start sees them."""
+    from clutchopt.start_up.simulation import run_start_up, start_up_model
 
     values, *columns = figures
     nlp = dict(zip(block.outputs(), np.array(values).ravel()))
     trajectory = {name: np.array(column).ravel() for name, column in zip(block.trajectory(), columns)}
-    result = run_start_up(dense_model(case, formulation, design))
+    result = run_start_up(start_up_model(case, formulation.mode, design))
     head = result.headline
     s = block.s
     stresses = result.history["stress"].to_numpy() if s.elastic else 0.0
     simulated = SimpleNamespace(start_time=head["start_time"], friction_work=head["friction_work"],
                                 temperatures=head.get("temperature_rise", 0.0), lock_up_speed=head["lock_up_speed"],
                                 stresses=stresses if head["locks_up"] else math.inf)
-    drive = Drive(s, formulation.speed_law, namespace(design), params)
-    checks = check_constraints(named_constraints(s, drive, simulated), s.spec.tolerance)
+    drive = Drive(s, formulation.speed_law, *seen(None))
+    checks = check_constraints(seen_constraints(s, formulation.speed_law, simulated, seen), s.spec.tolerance)
     engaged = float(nlp.get("run_up_time", 0.0))
     summary = {
         "start_time": float(nlp["start_time"]),
@@ -58,6 +61,7 @@ def start_up_report(block, case, formulation, design: dict[str, float], params, 
         "phases": list(s.phases),
         "effects": list(s.spec.effects),
         "tolerance": s.spec.tolerance,
+        "motor": case.start_up.motor_note,  # the case's, not the structure's (shared by every case of its shape)
         "locks_up": head["locks_up"],
         "reason": head["reason"],
         "discretisation_error": {name: _relative(float(nlp[name]), head[name])
@@ -81,17 +85,30 @@ def _relative(nlp: float, simulated: float) -> float:
     return (nlp - simulated) / abs(simulated)
 
 
-def tightened_limits(solution, nlp_case) -> dict[str, float]:
-    """Limits for the next solve where the simulated start misses the case's limit: each moved in from the one the
-    NLP last saw by what the simulation exceeds the case's limit, and half the tolerance more."""
+def corrected_case(solution, nlp_case, centre: bool = True):
+    """The case of the next solve (defect correction), each limit moved from the one the NLP last saw (a scattered
+    limit: its corner's, an NLP parameter) by what the simulated figure differs from the case's limit: where the
+    simulated start misses the limit (and then half the tolerance more), and (``centre``) where it meets a limit the
+    design binds at so far from it that the objective is off by more than CENTRE of the tolerance (|elasticity x
+    relative gap|): the design is then the simulator's optimum, not the collocation's, whatever mesh the accuracy
+    loop ended on. None where nothing is to be moved, or a limit cannot be."""
     summary, tolerance = solution.start_up, solution.start_up["tolerance"]
-    limits = {}
+    limits, corners = {}, {}
     for check in solution.constraints:
         name = LIMIT_OF.get(check.name)
-        if name is None or check.feasible or check.sense != "<=" or not math.isfinite(check.value):
+        if name is None or check.sense != "<=" or not math.isfinite(check.value):
             continue
-        excess = check.value - check.limit
-        limits[name] = nlp_case.values[name] - excess - 0.5 * tolerance * abs(check.limit)
-        if not limits[name] > 0 or summary["locks_up"] is False:
-            return {}
-    return limits
+        gap = check.value - check.limit
+        if not check.feasible:
+            gap += 0.5 * tolerance * abs(check.limit)
+        elif not (centre and abs((check.elasticity or 0.0) * gap / check.limit) > CENTRE * tolerance):
+            continue
+        corner = corner_name(name, check.name)
+        key, moved = (corner, corners) if corner in nlp_case.values else (name, limits)
+        moved[key] = nlp_case.values[key] - gap
+        if not moved[key] > 0 or summary["locks_up"] is False:
+            return None
+    if not limits and not corners:
+        return None
+    moved = nlp_case.with_values(**limits)
+    return replace(moved, values={**moved.values, **corners})

@@ -37,7 +37,7 @@ from clutchopt.materials import chosen
 from clutchopt.model import Formulation
 from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
 from clutchopt.optimise.dask_client import connect
-from clutchopt.optimise.design import Robustness, check_robustness, design_case
+from clutchopt.optimise.design import Robustness, check_robustness, design_case, method_of
 from clutchopt.optimise.entering import check_entering
 from clutchopt.optimise.problem import case_formulation, case_problem
 from clutchopt.optimise.solution import Solution, SolverOptions
@@ -45,6 +45,7 @@ from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_na
                                            parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
 from clutchopt.optimise.table import joined_tables, record_table
 from clutchopt.optimise.verify import DESIGN_STATUSES
+from clutchopt.records import design_inputs, scatter_record
 from clutchopt.window_records import WindowRecords, in_order
 from clutchopt.units import from_si
 
@@ -302,7 +303,7 @@ class Sweep:
         case.require(self.objective.name)
         self.tol = tol
         self.grid, self.zipped = grid_points(varies, zipped), zipped
-        check_points(case, varies, self.grid)
+        check_points(case, varies, self.grid, scattered=robust is not None)
         sets, _ = chosen(case, get_coupling(case.coupling))
         for v in varies:
             if v.quantity.name in sets:
@@ -350,7 +351,8 @@ class Sweep:
                                           "bounds": self.case.bounds,
                                           **({"choose": self.case.options["choose"]}
                                              if self.case.options.get("choose") else {})},
-                **({"robust": self.robust.as_dict()} if self.robust is not None else {})}
+                **({"robust": {**self.robust.as_dict(self.case), "scatter": scatter_record(self.case)}}
+                   if self.robust is not None else {})}
 
     def run(self, store=None, resume: bool = False, jobs: int = 1, runner: Callable | None = None,
             progress: bool = True, chunk_size: int | None = None) -> SweepResult:
@@ -406,15 +408,16 @@ class Sweep:
                                                  dtype=object))
 
     def _inputs(self) -> dict:
-        """What the points' inputs share as the store keeps them: the case's SI values (each point's varied values,
-        checked when the sweep was made, replace the case's), its free variables and bounds."""
-        return {"values": self.case.values, "free": list(self.case.free), "bounds": self.case.bounds}
+        """What the points' inputs share as the store keeps them (:func:`~clutchopt.records.design_inputs`): the case's
+        SI values (each point's varied values, checked when the sweep was made, replace the case's), its free
+        variables and bounds, how it was designed."""
+        return design_inputs(self.case, self.case.values, method_of(self.robust))
 
     def _where(self, sweep_id: int) -> dict:
         """The store's fields every point of the sweep shares."""
-        return {"objective_unit": self.objective.unit, "case_path": self.case.path, "title": self.case.title,
-                "coupling": self.case.coupling, "mode": self.formulation.mode, "objective_name": self.objective.name,
-                "sweep_id": sweep_id}
+        return {"method": method_of(self.robust), "objective_unit": self.objective.unit, "case_path": self.case.path,
+                "title": self.case.title, "coupling": self.case.coupling, "mode": self.formulation.mode,
+                "objective_name": self.objective.name, "sweep_id": sweep_id}
 
     def frame(self, table: dict[str, np.ndarray], order: np.ndarray | None = None) -> pd.DataFrame:
         """One row per point (``table``'s points taken in ``order``): inputs (as given: :class:`Vary`), status,

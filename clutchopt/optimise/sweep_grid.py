@@ -8,7 +8,7 @@ from typing import Iterator
 
 import numpy as np
 
-from clutchopt.cases import Case
+from clutchopt.cases import Case, check_across, check_scatter_corners
 from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Quantity
@@ -110,19 +110,18 @@ def grid_positions(varies: list[Vary], zipped: bool = False) -> list[np.ndarray 
     return [a.ravel() for a in np.meshgrid(*(np.arange(len(v.values)) for v in varies), indexing="ij")]
 
 
-def check_points(case: Case, varies: list[Vary], points: "Points") -> None:
-    """A value out of a quantity's valid range is bad input before any solve: each varied quantity's values are
-    checked as an array; where one fails, the error names the first point that fails."""
-    try:
-        for vary in varies:
-            vary.quantity.check_all(points.columns[vary.quantity.name])
-    except InputError:
-        for index, values in points.pairs():
-            try:
-                case.with_values(**values)
-            except InputError as exc:
-                raise InputError(f"--vary (point {index})", str(exc)) from None
-        raise
+def check_points(case: Case, varies: list[Vary], points: "Points", scattered: bool = False) -> None:
+    """Every point is checked before any solve, as a case is: each varied value against its valid range, the point's
+    case across its fields (:func:`~clutchopt.cases.check_across`) and, where the sweep designs for the scatter
+    (``scattered``), at every corner of the scatter around it; the error names the first point that fails."""
+    for index, values in points.pairs():
+        try:
+            point = case.with_values(**values)
+            check_across(point)
+            if scattered:
+                check_scatter_corners(point)
+        except InputError as exc:
+            raise exc.at(f"--vary (point {index})") from None
 
 
 @dataclass(frozen=True)

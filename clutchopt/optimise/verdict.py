@@ -37,7 +37,9 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
     first_label = "the start given" if started else ("the papers' sizing" if problem.start_up is not None
                                                      else "the case's own start")
     tried = [(first_label, first)]
-    if not (first.diagnosed and first.diagnosed.proven):
+    # a drive that starts no coupling as the case asks is proven so before any retry, and not solved again
+    proofs = start_up_proofs(case) if problem.start_up is not None else []
+    if not (first.diagnosed and first.diagnosed.proven) and not proofs:
         starts = [("the papers' sizing" if problem.start_up is not None else "the case's own start", None)] \
             if started else []
         if first.diagnosed and first.diagnosed.nearest:
@@ -53,7 +55,6 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
                 return _spent(retry, tried)
     if first.diagnosed and first.diagnosed.proven:
         return _spent(first, tried)
-    proofs = start_up_proofs(case) if problem.start_up is not None else []
     if not proofs:
         emptiness = empty_design_space(problem.posed, case)
         if emptiness is not None and emptiness.feasible is not None:  # a design of the relaxation: solve from it

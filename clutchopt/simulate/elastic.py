@@ -21,12 +21,10 @@ from typing import Callable
 
 import numpy as np
 import pandas as pd
-from scipy.integrate import solve_ivp
 
-from clutchopt.simulate.engine import SimulationResult
+from clutchopt.simulate.engine import MAX_STEPS, SimulationResult
 from clutchopt.simulate.laws import InductionMotor, Load
-
-SAMPLES = 2000
+from clutchopt.simulate.stepping import Budget, integrate
 
 
 @dataclass
@@ -47,6 +45,9 @@ class ElasticModel:
 
 
 def simulate_elastic(model: ElasticModel) -> SimulationResult:
+    """The start from rest by LSODA (its stiff mode takes the link's fast twist where it is stiff), stepped by
+    :mod:`clutchopt.simulate.stepping` within the same budget of steps as a slipping coupling's; the twist's
+    extremes (relative speed zero) are sampled where they occur, so that the peak stress is not missed."""
     m = model
     motor = m.motor
     time_scale = (m.inertia + motor.inertia) * m.target / max(motor.breakdown_torque, 1e-300)
@@ -62,49 +63,55 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     def started(t, y):
         return y[1] - m.target
 
-    started.terminal, started.direction = True, 1
-
     def overturned(t, y):
         return abs(y[2]) - m.largest_twist
 
+    def twist_extreme(t, y):
+        return y[0] - y[1]
+
+    started.terminal, started.direction = True, 1
     overturned.terminal, overturned.direction = True, 1
+    twist_extreme.terminal, twist_extreme.direction = False, 0
     bound = m.end_time if m.end_time is not None else 1e3 * time_scale
     speed_scale = motor.synchronous_speed
-    sol = solve_ivp(rates, (0.0, bound), [0.0, 0.0, 0.0, 0.0], method="LSODA", rtol=m.rtol,
-                    atol=m.rtol * np.array([speed_scale, speed_scale, m.largest_twist, 1.0 + m.inertia * speed_scale**2]),
-                    events=[started, overturned], dense_output=True)
-    t = np.union1d(sol.t, np.linspace(0.0, sol.t[-1], SAMPLES))
-    y = sol.sol(t)
+    atol = m.rtol * np.array([speed_scale, speed_scale, m.largest_twist, 1.0 + m.inertia * speed_scale**2])
+    out = integrate(rates, None, 0.0, np.zeros(4), bound, [started, overturned, twist_extreme], "LSODA", m.rtol,
+                    atol, Budget(MAX_STEPS))
+    t, y = out.t, out.y
     torque = np.array([m.torque(a, b) for a, b in zip(y[0], y[2])]) + m.damping * (y[0] - y[1])
     stress = np.array([m.stress(a, b) for a, b in zip(y[0], y[2])])
     history = pd.DataFrame({"t": t, "w_driver": y[0], "w_driven": y[1], "slip": y[0] - y[1], "twist": y[2],
                             "friction_torque": torque, "power_lost": m.damping * (y[0] - y[1]) ** 2,
                             "friction_work": y[3], "temperature_rise": np.zeros_like(t), "stress": stress,
                             "phase": "elastic"})
-    done = sol.status == 1 and sol.t_events[0].size > 0
+    done = out.status == "event" and out.event == 0
     if done:
         reason = ""
-    elif sol.status == 1:
-        reason = (f"no start: the link twisted past {m.largest_twist:.4g} rad at {sol.t[-1]:.4g} s, where its "
+    elif out.status == "event":
+        reason = (f"no start: the link twisted past {m.largest_twist:.4g} rad at {t[-1]:.4g} s, where its "
                   "torque stops growing (the cables overturn)")
-    elif sol.status < 0:
-        reason = f"integration failed: {sol.message}"
+    elif out.status == "failed":
+        reason = f"integration failed: {out.message}"
+    elif out.status == "budget":
+        reason = (f"stopped after {MAX_STEPS} solver steps at t = {t[-1]:.6g} s, not yet at the start speed: the "
+                  f"start is too long or too stiff to simulate (its time scale (J + J_m) w / T_k {time_scale:.3g} s, "
+                  f"the motor's time constant {motor.time_constant:.3g} s)")
     else:
         reason = f"no start: the machine did not reach {m.target:.6g} rad/s by {bound:.6g} s"
-    end = sol.t[-1]
+    end = t[-1]
     headline = {
         "locks_up": done, "reason": reason,
         "start_time": end if done else math.inf,
-        "friction_work": float(sol.y[3, -1]) if done else math.inf,
+        "friction_work": float(y[3, -1]) if done else math.inf,
         "source_work": math.nan,
         "lock_up_speed": m.target if done else math.nan,
         "peak_slip_power": float(history["power_lost"].max()),
         "peak_twist": float(np.abs(y[2]).max()),
         "peak_stress": float(stress.max()),
         "end_time": float(end),
-        "total_friction_work": float(sol.y[3, -1]),
-        "final_driver_speed": float(sol.y[0, -1]),
-        "final_driven_speed": float(sol.y[1, -1]),
+        "total_friction_work": float(y[3, -1]),
+        "final_driver_speed": float(y[0, -1]),
+        "final_driven_speed": float(y[1, -1]),
         "effects": list(m.effects),
     }
     events = [{"time": end, "event": "start speed reached" if done else "stopped", "torque": float(torque[-1])}]

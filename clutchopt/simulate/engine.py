@@ -1,23 +1,29 @@
-"""Start-up simulation: the right-hand side assembled from the listed effects, stick and slip as events.
+"""Start-up simulation: the right-hand side assembled from the listed effects; rest, slip and stick as phases.
 
-Integrator: SciPy's ``solve_ivp``, chosen by the scene's stiffness. Without a motor the phases are smooth between
-events and at most mildly stiff (the paper's law with a w0 = +1000 starts at its cap of 1e130 k, but the fast
-part lasts no longer than the solver needs to resolve it), so DOP853 (explicit Runge-Kutta 8(5,3)) reaches
-1e-10 relative at low cost (see docs/simulate.md for what accuracy needed). A motor adds a fast mode, its time
-constant J_m / (dT/dw); where that is below 1 % of the start-up's time scale an explicit method's steps are set
-by stability, not accuracy, and LSODA (which switches to BDF when it detects stiffness; Radau and BDF alone fail on
-the friction torque's sign change) takes over at a tenth of the relative tolerance, which makes it at least as
-accurate as DOP853 at the full one. Events locate zero slip (lock-up), the static capacity being exceeded (break
-loose) and a steady slip (no lock-up) on the dense output. CasADi's integrators (CVODES/IDAS) would need the
-stick/slip switching written around them and bring no accuracy we lack; they remain the choice if a scene ever
-enters an optimisation.
+Integrator: SciPy's solvers, stepped by :mod:`clutchopt.simulate.stepping` (events on each step's interpolant, a
+budget of MAX_STEPS solver steps per run), chosen by the scene's stiffness. Without a motor the phases are smooth
+and at most mildly stiff (the paper's law with a w0 = +1000 starts at its cap of 1e130 k, but the fast part lasts
+no longer than the solver needs to resolve it), so DOP853 (explicit Runge-Kutta 8(5,3)) reaches 1e-10 relative at
+low cost (docs/simulate.md). A motor adds a fast mode, its time constant J_m / (dT/dw) = J_m s_k w_s / (2 T_k), and
+friction heat with a conductance another, C / G; where the faster is below 1 % of the start's time scale
+(J + J_m) w / T an explicit method's steps are set by stability, not accuracy, and their number grows as the mode
+gets faster (1e11 steps at J_m = 1e-9 kg m^2). There LSODA takes over with the Jacobian of the equations (it
+switches to BDF when it detects stiffness), at a tenth of the relative tolerance, which makes it more accurate than
+DOP853 at the full one; should its Newton iterations fail in a phase, Radau IIA (L-stable, the same Jacobian) takes
+that phase again.
+
+Every kink of the right-hand side is a phase boundary, so that each phase is smooth: the driven half breaking away
+from rest (its friction torque reaching the load), the weights engaging (the driving speed reaching w_e), zero
+slip (lock-up) and the static capacity exceeded (break loose). A steady slip (no lock-up) ends a run, and so does
+the step budget, with a reason that names the start's time scales.
 
 State y = [w_driver, slip w_r = w_driver - w_driven, friction work, work into the clutch from the driving half,
 temperature rise]. The slip is integrated itself, not as a difference of speeds, so that the solver controls its
 relative error as it goes to zero: a start-up whose torque barely exceeds the load spends most of its time at
 small slip, and t_c is as accurate as the slip there.
-Slip phase:  J dw/dt = T_fr sign(w_r) - T_load (the driven half rests while T_fr <= T_load at w = 0);
-             J_m dw_a/dt = T_motor - T_fr (motor_curve), else w_a = const.
+Rest:        the driven half stands (w_r = w_a) while its friction torque is at most the load, a reaction up to its
+             value; J_m dw_a/dt = T_motor - T_fr (motor_curve).
+Slip phase:  J dw/dt = T_fr - T_load; J_m dw_a/dt = T_motor - T_fr (motor_curve), else w_a = const.
 Stick phase (lockup): (J + J_m) dw/dt = T_motor - T_load; the clutch carries T = T_load + J dw/dt and breaks
 loose when T exceeds its static capacity.
 """
@@ -25,36 +31,21 @@ loose when T exceeds its static capacity.
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
-from scipy.integrate import solve_ivp
 
 from clutchopt.errors import InputError
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.laws import InductionMotor, Load
-
-# The range of every quantity of a start-up (SI, low, high, unit shown): the simulator is tested at the corners of
-# these ranges (tests/test_hostile.py); far outside them float64 products such as J w^2 or k e^{a w} stop meaning
-# anything and the integrator may never finish. Scenes refuse values outside them field by field; a model built
-# otherwise (a case's start-up) is refused by :func:`simulate` as a whole.
-INERTIA = (1e-9, 1e9, "kg*m^2")
-TORQUE = (1e-9, 1e9, "N*m")
-LOAD = (0.0, 1e9, "N*m")
-SPEED = (1e-3, 1e5, "rad/s")
-TIME = (1e-9, 1e9, "s")
-SLIP_SCALE = (-1e6, 1e6, "s/rad")
-FORCE = (0.0, 1e9, "N")
-HEAT_CAPACITY = (1e-6, 1e12, "J/K")
-CONDUCTANCE = (0.0, 1e12, "W/K")
-BREAKDOWN_SLIP = (1e-6, 0.99, "")
-TOLERANCE = (1e-14, 1e-3, "")
+from clutchopt.simulate.ranges import BREAKDOWN_SLIP, CONDUCTANCE, HEAT_CAPACITY, INERTIA, LOAD, SPEED, TIME, TORQUE
+from clutchopt.simulate.stepping import Budget, Phase, integrate
 
 STEADY = 1e-9  # relative net acceleration below which a slipping start-up is steady (no lock-up)
-MAX_SWITCHES = 200  # stick/slip switches before a run is declared chattering
-SAMPLES = 400  # dense-output samples per phase for the history
+MAX_SWITCHES = 200  # phase switches (rest, slip, stick, engagement) before a run is declared chattering
+MAX_STEPS = 20_000  # solver steps per run: the runs of the tests take at most a few thousand
+LSODA_STEPS = 5_000  # LSODA's steps in a phase before Radau takes it (its phases take a few hundred)
 STIFF_RATIO = 0.01  # a mode faster than this fraction of the start-up's time scale makes the scene stiff
 
 
@@ -72,7 +63,7 @@ class Model:
     conductance: float = 0.0  # W/K (friction_heat)
     end_time: float | None = None  # None: until lock-up (+25 % locked), or until a verdict of no lock-up
     rtol: float = 1e-11
-    integrator: str = "auto"  # by the scene's stiffness; "DOP853" or "LSODA" to force one (benchmarks)
+    integrator: str = "auto"  # by the scene's stiffness; "DOP853", "LSODA" or "Radau" to force one (benchmarks)
 
     def has(self, effect: str) -> bool:
         return effect in self.effects
@@ -88,8 +79,13 @@ class SimulationResult:
         return {"headline": self.headline, "events": self.events}
 
 
+def _event(function, terminal: bool, direction: int):
+    function.terminal, function.direction = terminal, direction
+    return function
+
+
 class _Run:
-    """The assembled right-hand sides of one model; only listed effects are called."""
+    """The assembled right-hand sides of one model and their Jacobians; only listed effects are called."""
 
     def __init__(self, model: Model):
         self.m = model
@@ -102,25 +98,37 @@ class _Run:
         energy = self.torque_scale * self.w_ref * self.time_scale
         heat = energy / model.heat_capacity if self.heat else 1.0
         speed = min(self.w_ref, model.law.slip_scale)  # the paper's law changes over 1/|a| of slip
-        stiff = self.motor is not None and self.motor.time_constant < STIFF_RATIO * self.time_scale
+        modes = {}  # the fast modes a start may have, by what makes them
+        if self.motor:
+            modes["the motor's time constant J_m s_k w_s / (2 T_k)"] = self.motor.time_constant
+        if self.heat and model.conductance > 0:
+            modes["the heat's time constant C / G"] = model.heat_capacity / model.conductance
+        self.fastest = min(modes.items(), key=lambda mode: mode[1], default=None)
+        stiff = self.fastest is not None and self.fastest[1] < STIFF_RATIO * self.time_scale
         self.method = model.integrator if model.integrator != "auto" else "LSODA" if stiff else "DOP853"
         self.state_scale = np.array([speed, 1e-6 * speed, energy, energy, heat])  # absolute tolerance per rtol
+        self.budget = Budget(MAX_STEPS)
+        self._last = None, None  # (kind, t, y) and the rates there
 
-    def integrate(self, rhs, t: float, bound: float, y, events, method: str | None = None):
-        """One phase by ``solve_ivp``; LSODA at a tenth of the tolerance, and should it fail (its stiff Newton
-        iterations can stall at a kink of the friction law), DOP853 takes the phase again."""
-        method = method or self.method
-        rtol = self.m.rtol / 10 if method == "LSODA" else self.m.rtol
-        with warnings.catch_warnings(record=True) as warned:  # LSODA warns of convergence failures, then fails
-            warnings.simplefilter("always")
-            sol = solve_ivp(rhs, (t, bound), y, method=method, rtol=rtol, atol=rtol * self.state_scale, events=events,
-                            dense_output=True)
-        if method == "LSODA" and (sol.status < 0 or warned):
-            return self.integrate(rhs, t, bound, y, events, "DOP853")
-        for warning in warned:
-            warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
-        return sol
+    def integrate(self, kind: str, t: float, bound: float, y, events: list) -> Phase:
+        """One phase (``rest``, ``slip`` or ``stick``); LSODA at a tenth of the tolerance, and should it fail (its
+        stiff Newton iterations can stall) or take more than LSODA_STEPS (its switch to BDF can lag a mode 1e9
+        times faster than the start), Radau takes the phase again."""
+        rates, jacobian = {"rest": (self.rest, self.rest_jacobian), "slip": (self.slip, self.slip_jacobian),
+                           "stick": (self.stick, self.stick_jacobian)}[kind]
+        if self.method != "LSODA":
+            return integrate(rates, jacobian, t, y, bound, events, self.method, self.m.rtol,
+                             self.m.rtol * self.state_scale, self.budget)
+        rtol, budget = self.m.rtol / 10, self.budget
+        trial = Budget(min(budget.steps, budget.taken + LSODA_STEPS), budget.taken)
+        phase = integrate(rates, jacobian, t, y, bound, events, "LSODA", rtol, rtol * self.state_scale, trial)
+        budget.taken = trial.taken
+        if phase.status == "failed" or (phase.status == "budget" and not budget.spent):
+            phase = integrate(rates, jacobian, t, y, bound, events, "Radau", self.m.rtol,
+                              self.m.rtol * self.state_scale, budget)
+        return phase
 
+    # --- the right-hand sides ------------------------------------------------------------------------------------
     def torques(self, t, y):
         """Friction torque on the driven half, driving torque, load."""
         wa, slip = y[0], y[1]
@@ -131,14 +139,22 @@ class _Run:
     def _heat(self, power, y):
         return fx.friction_heat(power, y[4], self.m.heat_capacity, self.m.conductance) if self.heat else 0.0
 
-    def slip(self, t, y):
-        friction, drive, load = self.torques(t, y)
-        net = self.m.law.excess(y[0], y[1], load)
-        if y[0] - y[1] <= 0.0 and net < 0.0:
-            net = 0.0  # at rest the load is a reaction up to its value
+    def _turning(self, friction, drive, y) -> list:
+        """Rates of the driving half and of the works and heat while the coupling slips."""
         dwa = (drive - friction) / self.driver_inertia if self.motor else 0.0
         power = friction * y[1]
-        return [dwa, dwa - net / self.m.inertia, power, friction * y[0], self._heat(power, y)]
+        return [dwa, dwa, power, friction * y[0], self._heat(power, y)]
+
+    def slip(self, t, y):
+        friction, drive, load = self.torques(t, y)
+        rates = self._turning(friction, drive, y)
+        rates[1] -= self.m.law.excess(y[0], y[1], load) / self.m.inertia
+        return rates
+
+    def rest(self, t, y):
+        """The driven half stands: all of the driving speed is slip."""
+        friction, drive, _ = self.torques(t, y)
+        return self._turning(friction, drive, y)
 
     def carried(self, t, y):
         """Stick: common acceleration and the torque the clutch must carry."""
@@ -150,9 +166,91 @@ class _Run:
         accel, torque = self.carried(t, y)
         return [accel, 0.0, 0.0, torque * y[0], self._heat(0.0, y)]
 
-    def net_rate(self, t, y):
-        d = self.slip(t, y)
+    # --- their Jacobians -----------------------------------------------------------------------------------------
+    def _turning_jacobian(self, y, slopes) -> np.ndarray:
+        """Jacobian of the rest rates, the friction torque's ``slopes`` (dT/dw_a, dT/dw_r) at ``y`` given."""
+        wa, slip = y[0], y[1]
+        friction, (by_speed, by_slip) = self.m.law.kinetic(wa, slip), slopes
+        jacobian = np.zeros((5, 5))
+        if self.motor:
+            jacobian[0, :2] = (self.motor.slope(wa) - by_speed) / self.driver_inertia, -by_slip / self.driver_inertia
+        jacobian[1] = jacobian[0]
+        jacobian[2, :2] = by_speed * slip, by_slip * slip + friction
+        jacobian[3, :2] = by_speed * wa + friction, by_slip * wa
+        if self.heat:
+            jacobian[4] = jacobian[2] / self.m.heat_capacity
+            jacobian[4, 4] = -self.m.conductance / self.m.heat_capacity
+        return jacobian
+
+    def slip_jacobian(self, t, y):
+        slopes = self.m.law.slopes(y[0], y[1])
+        jacobian = self._turning_jacobian(y, slopes)
+        load = self.m.load.slope(t, y[0] - y[1])
+        jacobian[1, :2] -= np.array([slopes[0] - load, slopes[1] + load]) / self.m.inertia
+        return jacobian
+
+    def rest_jacobian(self, t, y):
+        return self._turning_jacobian(y, self.m.law.slopes(y[0], y[1]))
+
+    def stick_jacobian(self, t, y):
+        """Of (dw/dt, T y[0]) as :meth:`carried` gives them: with a motor the load at the driven speed w_a - w_r,
+        without one at the driving speed."""
+        jacobian = np.zeros((5, 5))
+        if self.motor:
+            load = self.m.load.slope(t, y[0] - y[1])
+            jacobian[0, :2] = np.array([self.motor.slope(y[0]) - load, load]) / (self.m.inertia + self.driver_inertia)
+            torque_slopes = np.array([load, -load]) + self.m.inertia * jacobian[0, :2]
+        else:
+            torque_slopes = np.array([self.m.load.slope(t, y[0]), 0.0])
+        jacobian[3, :2] = y[0] * torque_slopes
+        jacobian[3, 0] += self.carried(t, y)[1]
+        if self.heat:
+            jacobian[4, 4] = -self.m.conductance / self.m.heat_capacity
+        return jacobian
+
+    # --- phases and their events ---------------------------------------------------------------------------------
+    def turning_kind(self, t, y) -> str:
+        """``rest`` while the driven half stands and its friction torque is at most the load, else ``slip``."""
+        at_rest = y[0] - y[1] <= 0.0 and self.m.law.excess(y[0], y[1], self.m.load(t, 0.0)) <= 0.0
+        return "rest" if at_rest else "slip"
+
+    def turning_rates(self, kind: str, t, y) -> list:
+        """The rates of a rest or slip phase; the last point's kept, as the events evaluate it after each step."""
+        key = (kind, t, y.tobytes())
+        if self._last[0] != key:
+            self._last = key, (self.rest(t, y) if kind == "rest" else self.slip(t, y))
+        return self._last[1]
+
+    def net_rate(self, kind: str, t, y) -> float:
+        d = self.turning_rates(kind, t, y)
         return (abs(d[0]) + abs(d[0] - d[1])) * self.time_scale / self.w_ref
+
+    def turning_events(self, kind: str, engaged: bool, steady_armed: bool) -> dict:
+        """Events of a rest or slip phase by name: the terminal ones end it, ``peak`` samples the temperature's
+        maximum. ``engaged``: the driving speed has reached the engagement speed (which a motor never falls below
+        again: there the coupling's torque is zero)."""
+        law, load = self.m.law, self.m.load
+        events = {}
+        if kind == "rest":
+            events["starts"] = _event(lambda t, y: law.excess(y[0], y[1], load(t, 0.0)), True, 1)
+        else:
+            events["lock"] = _event(lambda t, y: y[1], True, -1)
+            events["stops"] = _event(lambda t, y: y[0] - y[1], True, -1)
+            events["stops"].strict = True  # the driven speed falls to zero, not a rounding of w_a - w_r at its start
+        if not engaged:
+            events["engages"] = _event(lambda t, y: y[0] ** 2 - law.engagement_squared, True, 1)
+        if steady_armed:
+            events["steady"] = _event(lambda t, y: self.net_rate(kind, t, y) - STEADY, True, -1)
+        if self.heat:
+            events["peak"] = _event(lambda t, y: self.turning_rates(kind, t, y)[4], False, -1)
+        return events
+
+    def budget_reason(self, t: float) -> str:
+        """Why a run stopped at the step budget: the start's time scales."""
+        fast = f", {self.fastest[0]} {self.fastest[1]:.3g} s" if self.fastest else ""
+        return (f"stopped after {MAX_STEPS} solver steps at t = {t:.6g} s, not yet at a verdict: the start is too "
+                f"long or too stiff to simulate (its time scale (J + J_m) w / T {self.time_scale:.3g} s{fast}, "
+                f"integrated with {self.method})")
 
 
 def range_problems(model: Model) -> list[str]:
@@ -187,50 +285,44 @@ def simulate(model: Model) -> SimulationResult:
     if not run.motor and model.load.constant:  # closed-form verdict: does the start-up lock up at all?
         verdict = model.law.lockup_failure(model.driver_speed, model.load.torque, model.inertia)
     closed_form_locks = not run.motor and model.load.constant and verdict is None
-
-    def lock(t, y):
-        return y[1]
-
-    lock.terminal, lock.direction = True, -1
-
-    def steady(t, y):
-        return run.net_rate(t, y) - STEADY
-
-    steady.terminal, steady.direction = True, -1
-
-    def loose(t, y):
-        return model.law.capacity(y[0]) - run.carried(t, y)[1]
-
-    loose.terminal, loose.direction = True, -1
-
+    loose = _event(lambda t, y: model.law.capacity(y[0]) - run.carried(t, y)[1], True, -1)
     bound = model.end_time if model.end_time is not None else (1e300 if closed_form_locks else 1e8 * run.time_scale)
     start = 0.0 if run.motor else model.driver_speed
     t, y = 0.0, np.array([start, start, 0.0, 0.0, 0.0])
-    frames, events, phase = [], [], "slip"
+    frames, events, kind = [], [], run.turning_kind(0.0, y)
+    engaged = not run.motor or start**2 >= model.law.engagement_squared
     start_time, reason, start_state = math.nan, "", None
-    if not closed_form_locks and run.net_rate(0.0, y) <= STEADY:
+    if not closed_form_locks and run.net_rate(kind, 0.0, y) <= STEADY:
         reason = verdict or "no lock-up: the driven half does not start (friction torque <= load at rest)"
     for _ in range(MAX_SWITCHES):
         if reason or t >= bound:
             break
-        if phase == "slip":
-            event_list = [lock] if closed_form_locks else [lock, steady]
-            sol = run.integrate(run.slip, t, bound, y, event_list)
-        else:
-            sol = run.integrate(run.stick, t, bound, y, [loose])
-        frames.append(_samples(run, sol, phase))
-        t, y = sol.t[-1], sol.y[:, -1].copy()
-        if sol.status != 1:  # reached the end time (or failed)
-            if sol.status < 0:
-                reason = f"integration failed: {sol.message}"
+        armed = {"loose": loose} if kind == "stick" else run.turning_events(kind, engaged, not closed_form_locks)
+        out = run.integrate(kind, t, bound, y, list(armed.values()))
+        if kind == "rest":
+            out.y[1] = out.y[0]  # the driven half stands: all of the driving speed is slip, exactly
+        frames.append(_samples(run, out, "stick" if kind == "stick" else "slip"))
+        t, y = out.t[-1], out.y[:, -1].copy()
+        if out.status != "event":
+            if out.status == "failed":
+                reason = f"integration failed: {out.message}"
+            elif out.status == "budget":
+                reason = run.budget_reason(t)
             elif math.isnan(start_time):
                 reason = verdict or f"no lock-up by the end time {bound:.6g} s"
             break
-        if phase == "stick":
+        name = list(armed)[out.event]
+        if name == "loose":
             events.append({"time": t, "event": "break loose", "torque": run.carried(t, y)[1]})
-            phase = "slip"
+            kind = run.turning_kind(t, y)
             continue
-        if event_list[-1] is steady and sol.t_events[-1].size:
+        if name in ("starts", "stops", "engages"):  # the phase an event leads to, not the state's rounding
+            kind = {"starts": "slip", "stops": "rest"}.get(name, kind)
+            engaged = engaged or name == "engages"
+            if name == "stops":
+                y[1] = y[0]
+            continue
+        if name == "steady":
             reason = verdict or _steady_reason(run, t, y)
             break
         y[1] = 0.0  # slip reached zero
@@ -242,7 +334,7 @@ def simulate(model: Model) -> SimulationResult:
         needed = run.carried(t, y)[1]
         if needed <= model.law.capacity(y[0]) * (1 + 1e-12):
             events[-1]["torque"] = needed
-            phase = "stick"
+            kind = "stick"
             if model.end_time is None:
                 bound = t + 0.25 * t
         else:
@@ -262,23 +354,13 @@ def _steady_reason(run: _Run, t: float, y) -> str:
             f"{friction:.6g} N*m = load")
 
 
-def _samples(run: _Run, sol, phase: str, y0=None) -> pd.DataFrame:
-    """History rows: the solver's steps and evenly spaced dense-output samples of one phase."""
-    if sol is None:
-        t, y = np.array([0.0]), np.asarray(y0).reshape(-1, 1)
-    elif sol.sol is None or len(sol.t) < 2:  # the first step failed: there is no dense output to sample
-        t, y = sol.t, sol.y
-    else:
-        t = np.union1d(sol.t, np.linspace(sol.t[0], sol.t[-1], SAMPLES))
-        y = sol.sol(t)
-        y[:, np.searchsorted(t, sol.t)] = sol.y  # exact step values where we have them
+def _samples(run: _Run, out: Phase | None, phase: str, y0=None) -> pd.DataFrame:
+    """History rows of one phase: the solver's steps and the middle of each (``out``), or the state ``y0``."""
+    t, y = (np.array([0.0]), np.asarray(y0).reshape(-1, 1)) if out is None else (out.t, out.y)
     rows = []
     for i, ti in enumerate(t):
         yi = y[:, i]
-        if phase == "stick":
-            torque = run.carried(ti, yi)[1]
-        else:
-            torque = run.torques(ti, yi)[0]
+        torque = run.carried(ti, yi)[1] if phase == "stick" else run.torques(ti, yi)[0]
         slip = yi[1]
         rows.append((ti, yi[0], yi[0] - slip, slip, torque, torque * slip, yi[2], yi[3], yi[4], phase))
     return pd.DataFrame(rows, columns=["t", "w_driver", "w_driven", "slip", "friction_torque", "power_lost",

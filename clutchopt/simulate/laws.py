@@ -15,16 +15,21 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from clutchopt.simulate.analytic import PaperTransient
-from clutchopt.start_up.equations import coupling_torque, kloss_torque, piecewise_linear
+from clutchopt.start_up.equations import coupling_torque, kloss_torque, table_segment
 
 
 class _Law:
     """Defaults of a law: the net torque on the driven half is friction less load; the torque has no slip scale."""
 
     slip_scale = math.inf
+    engagement_squared = 0.0  # w_e^2 below which the torque is zero (a kink the simulator makes a phase boundary)
 
     def excess(self, driver_speed, slip, load):
         return self.kinetic(driver_speed, slip) - load
+
+    def slopes(self, driver_speed, slip) -> tuple[float, float]:
+        """(dT/dw_a, dT/dw_r) of the kinetic torque: the simulator's Jacobian."""
+        return 0.0, 0.0
 
 
 @dataclass(frozen=True)
@@ -52,6 +57,11 @@ class PaperFriction(_Law):
     def kinetic(self, driver_speed, slip):
         """k (1 + e^{a w_r}), eq. (6), exponent capped at 300 (1e130 k: the time spent above it is e^-300 of t_c)."""
         return self.k * (1.0 + math.exp(min(self.a * slip, 300.0)))
+
+    def slopes(self, driver_speed, slip):
+        """dT/dw_r = k a e^{a w_r} (zero above the cap)."""
+        u = self.a * slip
+        return 0.0, self.k * self.a * math.exp(u) if u < 300.0 else 0.0
 
     def excess(self, driver_speed, slip, load):
         """M_fr - M_r without cancellation: (2k - M_r) + k expm1(a w_r) for a > 0 (M_r ~ 2k near lock-up),
@@ -85,6 +95,11 @@ class CentrifugalFriction(_Law):
         return coupling_torque(self.torque_coefficient, driver_speed, self.engagement_squared) \
             if driver_speed * driver_speed > self.engagement_squared else 0.0
 
+    def slopes(self, driver_speed, slip):
+        """dT/dw_a = 2 K w_a once engaged."""
+        engaged = driver_speed * driver_speed > self.engagement_squared
+        return (2.0 * self.torque_coefficient * driver_speed if engaged else 0.0), 0.0
+
     def capacity(self, driver_speed):
         return self.kinetic(driver_speed, 0.0)
 
@@ -114,7 +129,11 @@ class Load:
     def __call__(self, t: float, driven_speed: float) -> float:
         if not self.over:
             return self.torque
-        return float(piecewise_linear(t if self.over == "time" else driven_speed, self.points, self.values))
+        return table_segment(t if self.over == "time" else driven_speed, self.points, self.values)[0]
+
+    def slope(self, t: float, driven_speed: float) -> float:
+        """d(load)/d(driven speed), for the simulator's Jacobian (a load over time does not depend on the speed)."""
+        return table_segment(driven_speed, self.points, self.values)[1] if self.over == "speed" else 0.0
 
     def largest(self) -> float:
         return max(self.values) if self.over else self.torque
@@ -137,3 +156,9 @@ class InductionMotor:
 
     def __call__(self, speed: float) -> float:
         return kloss_torque(speed, self.synchronous_speed, self.breakdown_torque, self.breakdown_slip)
+
+    def slope(self, speed: float) -> float:
+        """dT/dw = -(dT/ds) / w_s, dT/ds = 2 T_k s_k (s_k^2 - s^2) / (s^2 + s_k^2)^2."""
+        s, s_k = 1.0 - speed / self.synchronous_speed, self.breakdown_slip
+        return -2.0 * self.breakdown_torque * s_k * (s_k * s_k - s * s) / (s * s + s_k * s_k) ** 2 \
+            / self.synchronous_speed

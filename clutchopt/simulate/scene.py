@@ -8,7 +8,7 @@ Layout (quantities with units as in case files; bare numbers are SI; paths relat
     [coupling]
     law = "paper"                             # paper: k, a | constant: torque | centrifugal: case [, design]
     k = "25 N*m"
-    a = "0.02 s"                              # 1 / slip speed (s/rad)
+    a = "0.02 s/rad"                          # 1 / slip speed
     case = "../wedge_paper.toml"              # centrifugal: a case of a coupling with a speed law (wedge)
     design = "../designs/wedge_paper.json"    # optional: clutchopt solve --json output; else the case is solved
     spring_preload = "10 N"                   # per weight (effect spring_preload)
@@ -34,7 +34,8 @@ from pathlib import Path
 
 from clutchopt.cases import check_text, read_toml
 from clutchopt.errors import InputError, Problems
-from clutchopt.simulate.engine import (
+from clutchopt.simulate.engine import Model, simulate
+from clutchopt.simulate.ranges import (
     BREAKDOWN_SLIP,
     CONDUCTANCE,
     FORCE,
@@ -46,8 +47,6 @@ from clutchopt.simulate.engine import (
     TIME,
     TOLERANCE,
     TORQUE,
-    Model,
-    simulate,
 )
 from clutchopt.simulate.laws import ConstantFriction, InductionMotor, Load, PaperFriction
 from clutchopt.start_up.equations import RADIAL_EFFECTS
@@ -185,7 +184,7 @@ def parse_scene(data: dict, path: str = "") -> Scene:
 def _friction_law(f: _Fields, law_name: str):
     if law_name == "paper":
         return PaperFriction(f.quantity("coupling", "k", "N*m", TORQUE),
-                             f.quantity("coupling", "a", "s", SLIP_SCALE)), {"law": "paper"}
+                             f.quantity("coupling", "a", "s/rad", SLIP_SCALE)), {"law": "paper"}
     return ConstantFriction(f.quantity("coupling", "torque", "N*m", TORQUE)), {"law": "constant"}
 
 

@@ -6,7 +6,7 @@
 - ``drive``: the shape of a start's NLP, the drive's equations at a design, the start's requirements as named
   constraints;
 - ``transcription``: the start inside the NLP, by Radau collocation; ``mesh``: its intervals, graded, then adapted;
-- ``simulation``: a design's start simulated (solve_ivp), the independent check of the NLP's
+- ``simulation``: a design's start simulated (SciPy's integrators), the independent check of the NLP's
   (``clutchopt.optimise.start_up_check`` compares them).
 
 Nothing is imported here: the simulator imports ``equations`` without the rest.

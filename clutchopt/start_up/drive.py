@@ -10,12 +10,14 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from clutchopt.backend import sqrt
+from clutchopt.backend import fmax, fmin, sqrt
 from clutchopt.model import Constraint, ElasticLaw, SpeedLaw, at_least, at_most
 from clutchopt.start_up import equations as su
 from clutchopt.start_up.mesh import GRADED_PARTS
 
 LOCKED_SAMPLES = 8  # speeds from lock-up to synchronous at which a locked drive must stay locked (lockup)
+RUN_UPS = 100  # the time scale of a motor's start: at most this many run-ups at breakdown torque, (J + J_m) w_s / T_k
+LEAST_SHARE = 1e-6  # of the drive's torque scale: the least torque a lock-up's margin is relative to
 
 
 @dataclass(frozen=True)
@@ -78,8 +80,12 @@ class Drive:
             self.engagement_squared = 0.0
         self.speed_ref = p.synchronous_speed if structure.motor else p.speed
         self.time_ref = p.max_start_time
+        if structure.motor:  # a limit far beyond any start the motor makes (1e8 s) scales nothing
+            run_up = (p.driven_inertia + p.motor_inertia) * p.synchronous_speed / p.breakdown_torque
+            self.time_ref = fmin(p.max_start_time, RUN_UPS * run_up)
+            self.motor_time_ref = p.motor_inertia * p.synchronous_speed / p.breakdown_torque  # its own run-up
         self.energy_ref = p.driven_inertia * self.speed_ref**2
-        self.torque_ref = p.driven_inertia * self.speed_ref / p.max_start_time + p.load_torque
+        self.torque_ref = p.driven_inertia * self.speed_ref / self.time_ref + p.load_torque
         self.temperature_ref = self.energy_ref / p.heat_capacity if structure.heat else 1.0
         self.twist_ref = law.largest_twist(x, p) / 2.0 if structure.elastic else 1.0
 
@@ -112,6 +118,10 @@ class Drive:
         return su.heat_rate(power, temperature, self.p.heat_capacity, self.p.heat_conductance)
 
 
+CLOSED_FORM = ("min_engagement_speed", "max_engagement_speed", "motor_breakdown_torque", "motor_starting_torque")
+# the start-up's constraints that read no figure of the start: closed forms in the design and the case's values
+
+
 def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
     """The start-up's requirements as named constraints, of the figures ``q`` (start_time, friction_work,
     temperatures, lock_up_speed, lock_up_time): NLP expressions, or the simulator's figures for the float64 check."""
@@ -142,10 +152,12 @@ def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
                             description="the machine is nearly up to speed when the coupling locks"))
     if s.motor:
         out.append(at_least("motor_breakdown_torque", p.breakdown_torque, p.load_torque, equation="Kloss",
-                            unit="N*m", description="the motor's breakdown torque exceeds the largest load"))
+                            unit="N*m", scale=p.breakdown_torque,
+                            description="the motor's breakdown torque exceeds the largest load"))
     lock_speed = q.lock_up_speed
-    out.append(at_least("lock_up", drive.torque(lock_speed), drive.carried(lock_speed, q.start_time),
-                        equation="slip falls to 0", unit="N*m",
+    carried = drive.carried(lock_speed, q.start_time)  # 0 with neither a motor nor a load
+    out.append(at_least("lock_up", drive.torque(lock_speed), carried, equation="slip falls to 0", unit="N*m",
+                        scale=fmax(carried, LEAST_SHARE * drive.torque_ref),
                         description="at lock-up the coupling covers the torque of the locked drive"))
     if s.motor and s.spec.has("lockup"):
         fractions = np.arange(1, LOCKED_SAMPLES + 1) / LOCKED_SAMPLES
@@ -156,6 +168,15 @@ def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
                             equation="lockup", unit="N*m", scale=drive.torque_ref,
                             description="torque margin over the locked run-up to synchronous speed"))
     return out
+
+
+def seen_constraints(s: Structure, law: SpeedLaw | ElasticLaw, q, seen) -> list[Constraint]:
+    """:func:`named_constraints` of the figures ``q`` of one start, each evaluated with the design and case values
+    ``seen(name)`` gives it, ``(x, p)``: under scatter each at its own corner (its limit at its strict end, the
+    engagement window at the preload that narrows it), while the figures are those of the start simulated at
+    ``seen(None)``."""
+    names = [c.name for c in named_constraints(s, Drive(s, law, *seen(None)), q)]
+    return [named_constraints(s, Drive(s, law, *seen(name)), q)[i] for i, name in enumerate(names)]
 
 
 def _elastic_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
@@ -173,7 +194,7 @@ def _elastic_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
         out.append(at_most("heat_per_hour", p.starts_per_hour * q.friction_work, p.heat_dissipation,
                            equation="heat balance", unit="W", description="mean heat within what the housing sheds"))
     out.append(at_least("motor_breakdown_torque", p.breakdown_torque, p.load_torque, equation="Kloss", unit="N*m",
-                        description="the motor's breakdown torque exceeds the largest load"))
+                        scale=p.breakdown_torque, description="the motor's breakdown torque exceeds the largest load"))
     out.append(at_least("motor_starting_torque", drive.motor(0.0), drive.load(0.0, 0.0), equation="Kloss",
                         unit="N*m", scale=p.breakdown_torque,
                         description="the motor's torque at rest exceeds the load at rest"))

@@ -5,7 +5,7 @@ Every sizing method of the papers assumes a constant driving speed and a constan
 the effects to model (the vocabulary of start-up scenes, ``clutchopt.simulate``), an induction motor or a constant
 driving speed, return-spring preload, the weights' own weight, the driven machine's load, the heat capacity of the
 friction parts, and the limits the start-up must meet. The same equations serve the NLP (``clutchopt.start_up.
-transcription``, collocation) and the simulator (``clutchopt.simulate``, solve_ivp), through ``clutchopt.backend``.
+transcription``, collocation) and the simulator (``clutchopt.simulate``), through ``clutchopt.backend``.
 
 The torque of a centrifugal coupling follows its *driving* speed w_a, since the weights ride on the driving half:
 T = K (w_a^2 - w_e^2) once engaged, K = dT/d(w_a^2) of the coupling's own torque equation (a
@@ -15,9 +15,15 @@ equals what holds it in, spring preload F_s and (effect ``gravity``) its own wei
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+import math
+from bisect import bisect_right
+from dataclasses import dataclass, field, replace
+from functools import lru_cache
 
-from clutchopt.backend import fmax, fmin, sqrt
+import casadi as ca
+import numpy as np
+
+from clutchopt.backend import fmax, fmin, is_symbolic, sqrt
 from clutchopt.formulations.duty import GRAVITY
 from clutchopt.model import Formulation, Quantity, Variable
 
@@ -55,8 +61,8 @@ QUANTITIES = (
       "default: 90 % of synchronous speed)", "w_L,min", f"{SECTION}.limits", None, above=0),
     Q("max_link_stress", "MPa", "largest stress of an elastic link during the start (cable coupling; default: its "
       "allowable, allowable_cable_stress)", "sigma_max", f"{SECTION}.limits", None, above=0),
-    Q("min_engagement_speed", "rpm", "engagement speed at least (the motor runs up unloaded first)", "w_e,min",
-      f"{SECTION}.limits", None, at_least=0),
+    Q("min_engagement_speed", "rpm", "engagement speed at least (the motor runs up unloaded first; leave it out for "
+      "none)", "w_e,min", f"{SECTION}.limits", None, above=0),
     Q("max_engagement_speed", "rpm", "engagement speed at most", "w_e,max", f"{SECTION}.limits", None, above=0),
     Q("starts_per_hour", "1/hour", "starts per hour (with heat_dissipation: the heat balance over an hour)", "n_h",
       f"{SECTION}.limits", None, above=0),
@@ -96,12 +102,34 @@ def kloss_torque(speed, synchronous_speed, breakdown_torque, breakdown_slip):
 
 
 def piecewise_linear(x, points, values):
-    """y(x) through (points, values), held constant beyond both ends (as numpy.interp): y_0 + sum of slopes times
-    the part of [x_i, x_i+1] below x. Written with min/max so that CasADi differentiates it."""
-    y = values[0]
-    for (x0, y0), (x1, y1) in zip(zip(points, values), zip(points[1:], values[1:])):
-        y = y + (y1 - y0) / (x1 - x0) * (fmin(fmax(x, x0), x1) - x0)
-    return y
+    """y(x) through (points, values), held constant beyond both ends (as numpy.interp). A CasADi symbol gets one
+    call of a linear interpolant (exact derivatives, the segment's slope), so a table of a thousand points is one
+    node of the NLP at each use, not a thousand; an array goes to numpy.interp, a number is looked up by bisection
+    (:func:`table_segment`)."""
+    if is_symbolic(x):
+        return _interpolant(tuple(points), tuple(values))(fmin(fmax(x, points[0]), points[-1]))
+    if np.ndim(x):
+        return np.interp(x, points, values)
+    return table_segment(x, points, values)[0]
+
+
+def table_segment(x: float, points, values) -> tuple[float, float]:
+    """(y, dy/dx) of the piecewise-linear table at a number x, held constant (slope 0) beyond both ends; NaN at NaN
+    (a start that does not lock up has no lock-up speed), as numpy.interp."""
+    if math.isnan(x):
+        return math.nan, math.nan
+    if x <= points[0]:
+        return values[0], 0.0
+    if x >= points[-1]:
+        return values[-1], 0.0
+    i = bisect_right(points, x) - 1
+    slope = (values[i + 1] - values[i]) / (points[i + 1] - points[i])
+    return values[i] + slope * (x - points[i]), slope
+
+
+@lru_cache(maxsize=64)
+def _interpolant(points: tuple[float, ...], values: tuple[float, ...]):
+    return ca.interpolant("load_profile", "linear", [points], values, {"lookup_mode": ["binary"]})
 
 
 def heat_rate(power, temperature_rise, heat_capacity, conductance):
@@ -145,6 +173,7 @@ class StartUpSpec:
     load_profile: LoadProfile | None = None
     intervals: int = 16
     tolerance: float = 1e-6
+    motor_note: str = field(default="", compare=False)  # how a nameplate was read (no part of the structure)
 
     def has(self, effect: str) -> bool:
         return effect in self.effects

@@ -9,6 +9,7 @@ import numpy as np
 MAX_INTERVALS = 128  # per phase, refining by doubling
 MESH_STEPS = 3  # adaptations of the mesh to the simulated start before the intervals are doubled
 MONITOR_FLOOR = 0.2  # of the mean error monitor, added everywhere: no interval grows without bound
+STILL = 1e-9  # a state whose spread over a phase is below this share of its spread over the start stands still
 GRADED_PARTS = (0.05, 0.1, 0.2, 0.4)  # share of the slip phase graded: the motor's knee times 20, rounded up
 
 
@@ -39,7 +40,7 @@ def first_mesh(structure, phase: str) -> np.ndarray:
 def adapted_mesh(structure, history, phase_times: list[float]) -> np.ndarray:
     """A mesh for the next solve from the simulated start, over the NLP's phase timing: each phase's intervals
     equidistribute sqrt|x''| of the states (each scaled by its range and the phase duration), the error
-    monitor of a corner (the motor's knee), with a fifth of its mean added everywhere."""
+    monitor of a corner (the motor's knee), with a fifth of its mean over the phase added everywhere."""
     t_all = history["t"].to_numpy()
     columns = [history[name].to_numpy() for name in ("w_driver", "w_driven", "friction_work", "temperature_rise")]
     meshes, begin = [], 0.0
@@ -55,13 +56,18 @@ def adapted_mesh(structure, history, phase_times: list[float]) -> np.ndarray:
         for column in columns:
             values = column[inside][first]
             spread = values.max() - values.min()
-            if spread > 0:
+            if spread > STILL * (column.max() - column.min()):  # a state at rest but for rounding shapes nothing
                 monitor += np.abs(np.gradient(np.gradient(values, t), t)) * span * span / spread
-        monitor = np.sqrt(monitor)
-        monitor = MONITOR_FLOOR * monitor.mean() + monitor if monitor.mean() > 0 else np.ones_like(monitor)
-        weight = np.concatenate([[0.0], np.cumsum(0.5 * (monitor[1:] + monitor[:-1]) * np.diff(t))])
+        weight = _cumulative(np.sqrt(monitor), t)
+        mean = weight[-1] / (t[-1] - t[0])  # over time: the samples crowd where the solver's steps are short
+        weight = weight + MONITOR_FLOOR * mean * (t - t[0]) if mean > 0 else t - t[0]
         edges = np.interp(np.linspace(0.0, weight[-1], structure.intervals + 1), weight, (t - begin) / span)
         edges[0], edges[-1] = 0.0, 1.0
         meshes.append(np.diff(edges))
         begin = end
     return np.concatenate(meshes)
+
+
+def _cumulative(values: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """The integral of ``values`` over ``t`` from its start, by trapezoids."""
+    return np.concatenate([[0.0], np.cumsum(0.5 * (values[1:] + values[:-1]) * np.diff(t))])

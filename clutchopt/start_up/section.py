@@ -41,6 +41,8 @@ from clutchopt.start_up.equations import (
     LoadProfile,
     StartUpSpec,
 )
+from clutchopt.start_up.nameplate import FIELDS as NAMEPLATE_FIELDS
+from clutchopt.start_up.nameplate import KLOSS, kloss_from_nameplate, nameplate_fields
 from clutchopt.units import to_si
 
 SECTION = "start_up"
@@ -49,6 +51,7 @@ _SETTINGS = ("effects", "intervals", "tolerance")
 MAX_INTERVALS = 128
 MAX_PROFILE_POINTS = 1000  # a load profile is a curve of a few dozen points; each point costs every evaluation
 PROFILE_SPEED_MAX, PROFILE_TIME_MAX, PROFILE_TORQUE_MAX = 1e5, 1e9, 1e9  # rad/s, s, N*m (the simulator's ranges)
+BY_NAME = {q.name: q for q in QUANTITIES}
 DEFAULTS_FROM_DUTY = {"driven_inertia": "inertia", "load_torque": "resisting_torque",
                       "max_start_time": "acceleration_time"}
 
@@ -84,11 +87,20 @@ def parse_start_up(table, coupling, duty: dict[str, float],
             problems.errors.append(InputError(f"{SECTION}.{name}", "must be a table"))
             continue
         for key, raw in sub.items():
+            if name == "driver" and key in NAMEPLATE_FIELDS:
+                continue
             with problems.field():
                 if name == "driven" and key == "load_profile":
                     profile = parse_load_profile(raw, f"{SECTION}.{name}.{key}")
                 else:
                     values.update(_field_value(declared, name, key, raw))
+    motor_note = ""
+    plate = nameplate_fields(_table(table, f"{SECTION}.driver"))
+    if plate:
+        with problems.field():
+            kloss = [k for k in KLOSS if BY_NAME[k].key.rsplit(".", 1)[1] in _table(table, f"{SECTION}.driver")]
+            derived, motor_note = kloss_from_nameplate(plate, f"{SECTION}.driver", kloss)
+            values.update(derived)
     if "spring_preload" in table:
         with problems.field():
             quantity = declared[f"{SECTION}.spring_preload"]
@@ -121,7 +133,8 @@ def parse_start_up(table, coupling, duty: dict[str, float],
     problems.raise_any()
     if duty_sound:
         _check(values, effects, coupling, laws, profile)
-    return values, StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile, **spec), follows
+    return values, StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile, **spec,
+                               motor_note=motor_note), follows
 
 
 def _table(table: dict, section: str) -> dict:
@@ -137,7 +150,8 @@ def _field_value(declared, table: str, key: str, raw) -> dict[str, float]:
     if quantity is None:
         known = [q.key.rsplit(".", 1)[1] for q in QUANTITIES if q.section == f"{SECTION}.{table}"]
         raise InputError(field, f"unknown key; [{SECTION}.{table}] takes {', '.join(known)}"
-                                + (", load_profile" if table == "driven" else ""))
+                                + (", load_profile" if table == "driven" else "")
+                                + (f" (or the nameplate: {', '.join(NAMEPLATE_FIELDS)})" if table == "driver" else ""))
     return {quantity.name: quantity.check(to_si(field, raw, quantity.unit))}
 
 
@@ -199,12 +213,35 @@ def _check(values, effects, coupling, laws, profile) -> None:
     if window and not radial:
         raise InputError(key(window[0]), "needs spring_preload or gravity in effects (else the coupling engages "
                                          "at standstill)")
-    if len(window) == 2 and not values["min_engagement_speed"] < values["max_engagement_speed"]:
-        raise InputError(key("min_engagement_speed"), "must be below max_engagement_speed")
     heat_balance = given("starts_per_hour", "heat_dissipation")
     if len(heat_balance) == 1:
         other = ({"starts_per_hour", "heat_dissipation"} - set(heat_balance)).pop()
         raise InputError(key(other), f"missing (given {heat_balance[0]}: the heat balance over an hour needs both)")
+
+
+def check_values(values: dict[str, float]) -> None:
+    """What a case's drive must satisfy together (its duty's and start-up's values by name), at the values read and
+    at every point a sweep or a scatter moves them to: within the simulator's ranges, an engagement window that is
+    not empty, and an induction motor that reaches the duty speed, the lock-up and the engagement asked for (it runs
+    below its synchronous speed)."""
+    problems = Problems()
+    _check_ranges(values, values, problems)
+    if "min_engagement_speed" in values and "max_engagement_speed" in values \
+            and not values["min_engagement_speed"] < values["max_engagement_speed"]:
+        problems.errors.append(InputError(BY_NAME["min_engagement_speed"].key, "must be below max_engagement_speed"))
+    synchronous = values.get("synchronous_speed")
+    if synchronous is not None:
+        shown = BY_NAME["synchronous_speed"].show
+        if "speed" in values and synchronous < values["speed"]:
+            problems.errors.append(InputError(BY_NAME["synchronous_speed"].key, (
+                f"{shown(synchronous)} is below duty.speed {shown(values['speed'])}: an induction motor runs below "
+                "its synchronous speed, so this one cannot drive the machine to its duty speed")))
+        for name in ("min_lock_up_speed", "min_engagement_speed"):
+            if name in values and not values[name] < synchronous:
+                problems.errors.append(InputError(BY_NAME[name].key, (
+                    f"{shown(values[name])} is not below start_up.driver.synchronous_speed {shown(synchronous)}: an "
+                    "induction motor runs below its synchronous speed, so the drive never reaches it")))
+    problems.raise_any()
 
 
 def _check_elastic(values, effects, coupling, key) -> None:
@@ -230,20 +267,19 @@ def _check_elastic(values, effects, coupling, key) -> None:
 def _check_ranges(values: dict[str, float], duty: dict[str, float], problems: Problems) -> None:
     """The drive's quantities within the ranges the simulator is tested over (it starts every optimum again);
     each one out of range is a problem of ``problems``."""
-    from clutchopt.simulate import engine
+    from clutchopt.simulate import ranges as tested
 
-    ranges = {"driven_inertia": engine.INERTIA, "load_torque": engine.LOAD, "synchronous_speed": engine.SPEED,
-              "breakdown_torque": engine.TORQUE, "breakdown_slip": engine.BREAKDOWN_SLIP,
-              "motor_inertia": engine.INERTIA, "heat_capacity": engine.HEAT_CAPACITY,
-              "heat_conductance": engine.CONDUCTANCE, "max_start_time": engine.TIME, "spring_preload": engine.FORCE}
-    keys = {q.name: q.key for q in QUANTITIES}
-    for name, (low, high, unit) in ranges.items():
+    limits = {"driven_inertia": tested.INERTIA, "load_torque": tested.LOAD, "synchronous_speed": tested.SPEED,
+              "breakdown_torque": tested.TORQUE, "breakdown_slip": tested.BREAKDOWN_SLIP,
+              "motor_inertia": tested.INERTIA, "heat_capacity": tested.HEAT_CAPACITY,
+              "heat_conductance": tested.CONDUCTANCE, "max_start_time": tested.TIME, "spring_preload": tested.FORCE}
+    for name, (low, high, unit) in limits.items():
         if name in values and not low <= values[name] <= high:
-            problems.errors.append(InputError(keys[name], f"must be from {low:g} to {high:g} {unit} (the range the "
-                                                          f"simulator is tested over), got {values[name]:.6g} "
-                                                          f"{unit}".replace("  ", " ")))
-    if "speed" in duty and not engine.SPEED[0] <= duty["speed"] <= engine.SPEED[1]:
-        problems.errors.append(InputError("duty.speed", f"must be from {engine.SPEED[0]:g} to {engine.SPEED[1]:g} "
+            problems.errors.append(InputError(BY_NAME[name].key, f"must be from {low:g} to {high:g} {unit} (the range "
+                                                                 f"the simulator is tested over), got "
+                                                                 f"{values[name]:.6g} {unit}".replace("  ", " ")))
+    if "speed" in duty and not tested.SPEED[0] <= duty["speed"] <= tested.SPEED[1]:
+        problems.errors.append(InputError("duty.speed", f"must be from {tested.SPEED[0]:g} to {tested.SPEED[1]:g} "
                                                         f"rad/s for a case with a [start_up] section (the simulator's "
                                                         f"range), got {duty['speed']:.6g}"))
 

@@ -13,7 +13,7 @@ L-stable, so the motor's fast electrical-mechanical mode costs nothing); the pha
 T(w_a) = T_c at rest, s = 0) and the lock-up is the first zero of a falling slip (T >= the torque the locked
 drive needs). Start time, friction work, temperature rise and engagement speed are then NLP expressions with exact
 derivatives and become named constraints. Every optimum is started again by the independent simulator
-(``clutchopt.simulate``, solve_ivp with events): the simulated figures are the constraint values reported.
+(``clutchopt.simulate``, stiff where the motor is, events): the simulated figures are the constraint values reported.
 """
 
 from __future__ import annotations
@@ -25,10 +25,11 @@ import casadi as ca
 import numpy as np
 
 from clutchopt.model import SpeedLaw
-from clutchopt.start_up.drive import Drive, Structure, named_constraints
+from clutchopt.start_up.drive import Drive, Structure, named_constraints, seen_constraints
 from clutchopt.start_up.mesh import first_mesh
 
 DEGREE = 3
+GUESS_RTOL = 1e-6  # the start guess's simulation: a guess, not a check
 
 
 def _collocation(degree: int):
@@ -48,7 +49,11 @@ def _collocation(degree: int):
 class StartUpBlock:
     """One start-up transcribed for one problem: internal variables (scaled), equalities, named constraints."""
 
-    def __init__(self, structure: Structure, law: SpeedLaw, x, p):
+    def __init__(self, structure: Structure, law: SpeedLaw, x, p, seen=None):
+        """``seen``: name -> the design and case values ``(x, p)`` of each constraint, ``seen(None)`` of the start
+        (:func:`~clutchopt.start_up.drive.seen_constraints`; a robust design's corners); None: ``x`` and ``p``."""
+        if seen is not None:
+            x, p = seen(None)
         self.s = structure
         self.drive = d = Drive(structure, law, x, p)
         self.tau, self.c = _collocation(DEGREE)
@@ -75,7 +80,8 @@ class StartUpBlock:
             start_time=time, friction_work=state["friction_work"], lock_up_speed=state["driver_speed"],
             temperatures=ca.vertcat(*temperatures) if temperatures else 0.0,
             stresses=ca.vertcat(*stresses) if stresses else 0.0)
-        self.constraints = named_constraints(structure, d, self.figures)
+        self.constraints = (seen_constraints(structure, law, self.figures, seen) if seen is not None
+                            else named_constraints(structure, d, self.figures))
 
     # --- variables and phases ----------------------------------------------------------------------------------
     def _variable(self, phase: str, kind: str, scale, lower: float, upper: float):
@@ -115,15 +121,16 @@ class StartUpBlock:
         if self.s.motor:
             rates["driver_speed"] = (d.motor(speed) - torque) / d.p.motor_inertia
         if phase == "slip":
-            driven = speed - slip
-            rates["slip"] = rates.get("driver_speed", 0.0) - (torque - d.load(driven, time)) / d.p.driven_inertia
+            rates["driven"] = (torque - d.load(speed - slip, time)) / d.p.driven_inertia  # dw/dt of the machine
+            rates["slip"] = rates.get("driver_speed", 0.0) - rates["driven"]
         if self.s.heat:
             rates["temperature"] = d.heat_rate(torque * slip, state["temperature"])
         return rates
 
     def _phase(self, phase: str, state: dict, start_time):
         d, n = self.drive, self.s.intervals
-        duration = self._variable(phase, "duration", d.time_ref, 0.0, 100.0)
+        typical = d.motor_time_ref if phase in ("run_up", "breakaway") else d.time_ref  # the machine rests: the
+        duration = self._variable(phase, "duration", typical, 0.0, math.inf)  # motor's own time; start_time bounds
         mesh = ca.SX.sym(f"{phase}_mesh", n)  # interval lengths over the duration: NLP parameters
         self._mesh.append(mesh)
         starts = [sum(mesh[i] for i in range(k)) for k in range(n)]
@@ -149,9 +156,14 @@ class StartUpBlock:
                     self.equalities.append((d.link(nodes[j]["driver_speed"], twist)
                                             - d.carried(nodes[j]["driver_speed"], time)) / d.torque_ref)
                 rates = self._rates(phase, time, nodes[j])
+                slopes = {name: sum(self.c[r, j] * nodes[r][name] for r in range(DEGREE + 1)) for name in states}
                 for name, (scale, _, _) in states.items():
-                    slope = sum(self.c[r, j] * nodes[r][name] for r in range(DEGREE + 1))
-                    self.equalities.append((slope - step * rates[name]) / scale)
+                    residual = slopes[name] - step * rates[name]
+                    if name == "driver_speed" and phase != "locked":  # J_m dw_a/dt = T_m - T: its terms' size
+                        scale = scale + mesh[k] * typical * d.torque_ref / d.p.motor_inertia
+                    if name == "slip" and "driver_speed" in states:  # less the driver's equation: the machine's,
+                        residual = slopes["slip"] - slopes["driver_speed"] + step * rates["driven"]  # no 1/J_m in it
+                    self.equalities.append(residual / scale)
                 self.points.append((time, nodes[j]))
                 self.nodes.append(nodes[j])
             previous = nodes[DEGREE]
@@ -221,10 +233,10 @@ class StartUpBlock:
     def guess(self, history, headline, engagement_squared: float, time_ref: float, scales: np.ndarray,
               mesh: np.ndarray) -> np.ndarray:
         """Internal variables (scaled by ``scales``) from a simulation of the start design, which ends at its
-        lock-up, or at ``time_ref`` if it does not lock up."""
+        lock-up, or where the simulation ended (at most ``time_ref``) if it does not lock up."""
         d = self.s
         locked = headline.get("locks_up") and math.isfinite(headline.get("start_time", math.inf))
-        t_end = headline["start_time"] if locked else time_ref
+        t_end = headline["start_time"] if locked else min(time_ref, history["t"].iloc[-1])
         t = history["t"].to_numpy()
         driver = history["w_driver"].to_numpy()
         driven = history["w_driven"].to_numpy()
@@ -257,10 +269,11 @@ class StartUpBlock:
 def initial_states(block: StartUpBlock, case, formulation, design: dict[str, float], scales: np.ndarray,
                    mesh: np.ndarray) -> np.ndarray:
     """The internal variables (scaled) of the start design's simulated start: a start point on the dynamics."""
-    from clutchopt.start_up.simulation import dense_model, run_start_up
+    from clutchopt.simulate.ranges import TIME
+    from clutchopt.start_up.simulation import run_start_up, start_up_model, until_lock_up
 
-    model = dense_model(case, formulation, design, rtol=1e-6, end_time=3.0 * case.values["max_start_time"])
-    result = run_start_up(model)
+    model = start_up_model(case, formulation.mode, design, rtol=GUESS_RTOL)
+    result = run_start_up(until_lock_up(model, min(3.0 * case.values["max_start_time"], TIME[1])))
     squared = 0.0 if block.s.elastic else model.law.engagement_squared
     return block.guess(result.history, result.headline, squared, case.values["max_start_time"], scales, mesh)
 

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 from clutchopt.formulations.cable.comparison import COMPARISON
 from clutchopt.formulations.cable.modes import PAPER, THREADS
-from clutchopt.formulations.cable.quantities import MATERIALS, QUANTITIES, check_drives, check_threads
+from clutchopt.formulations.cable.quantities import MATERIALS, QUANTITIES, check_drives, check_hub_load, check_threads
 from clutchopt.model import Coupling
 
 
@@ -41,6 +41,6 @@ COUPLING = Coupling(
     formulations={"paper": PAPER, "threads": THREADS},
     default_mode="paper",
     comparison=COMPARISON,
-    case_checks=(check_drives, check_threads),
+    case_checks=(check_drives, check_threads, check_hub_load),
     materials=MATERIALS,
 )

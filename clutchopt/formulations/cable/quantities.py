@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from clutchopt.errors import InputError
-from clutchopt.formulations.cable.equations import reduced_friction_angle
+from clutchopt.formulations.cable.equations import cable_transverse_force, reduced_friction_angle, spring_force
 from clutchopt.formulations.duty import GRAVITY
 from clutchopt.model import MaterialRole, Quantity
 
@@ -111,3 +111,17 @@ def check_threads(case):
                 f"self-locking thread: {symbol} = {math.degrees(v[name]):.4g} deg must exceed phi' = "
                 f"{math.degrees(phi):.4g} deg (atan(f / cos alpha_1), eq. 14) plus limits.self_locking_margin "
                 f"{math.degrees(v['self_locking_margin']):.4g} deg, i.e. {math.degrees(limit):.4g} deg"))
+
+
+def check_hub_load(case):
+    """The hub thread has a load to push, F_nk + F_pr > 0 (eq. 2): with none, eq. (7) sizes no half-coupling and the
+    thread's drive requirement has no limit to be measured against."""
+    v = case.values
+    if cable_transverse_force(1.0, v["transverse_stiffness"], v["transverse_deflection"]) > 0 \
+            or spring_force(v["spring_stiffness"], v["spring_compression"]) > 0:
+        return
+    zero = [key for key in ("cables.transverse_stiffness", "cables.transverse_deflection", "spring.spring_stiffness",
+                            "spring.spring_compression") if v[key.split(".")[1]] == 0]
+    raise InputError(zero[0], f"is 0, and so is {' and '.join(zero[1:])}: the hub thread pushes nothing (F_nk + "
+                              "F_pr = 0, eq. 2), so eq. (7) sizes no half-coupling; give the cables' transverse "
+                              "force or the spring's")

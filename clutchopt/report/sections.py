@@ -1,0 +1,215 @@
+"""The review page's sections as blocks (clutchopt.report.page): requirements, the design with its sketch,
+constraint margins, sensitivities, the comparison with the paper's method, the start-up simulation, the scatter and
+a sweep. Tables use the same columns as ``clutchopt solve`` (clutchopt.output). A chart that would be empty is
+replaced by a sentence saying why."""
+
+from __future__ import annotations
+
+import io
+
+import numpy as np
+import pandas as pd
+
+from clutchopt.cases import Case, quantity_table
+from clutchopt.formulations import get_coupling
+from clutchopt.optimise.solution import Solution
+from clutchopt.output import (
+    _shown,
+    column_notes,
+    comparison_rows,
+    constraint_rows,
+    derived_rows,
+    design_rows,
+    sensitivity_rows,
+    start_up_table,
+)
+from clutchopt.report.page import Bar, Figure, Heading, Items, Note, Table, safe_svg
+from clutchopt.report.sketch import sketch
+from clutchopt.report.verification import robust_label
+from clutchopt.simulate.plot import literal
+
+MAX_LINES = 6  # lines of a sweep plot, one per value of the second varied input (evenly picked)
+NO_EFFECT = 1e-9  # a relative margin change below this is no bar of the tornado chart
+
+
+def figure_svg(figure) -> str:
+    """A matplotlib figure as inline SVG markup."""
+    buffer = io.StringIO()
+    figure.savefig(buffer, format="svg")
+    text = buffer.getvalue()
+    return text[text.index("<svg"):]
+
+
+def requirements(case: Case) -> list:
+    """The case's inputs; those the material library filled name their entry."""
+    names = {q.key: q.name for q in case.quantities}
+    rows = [{"key": r["key"], "symbol": r["symbol"], "value": r["value"],
+             "from the library": " = ".join(case.filled.get(names[r["key"]], ())), "description": r["description"]}
+            for r in quantity_table(case.quantities, case.values)]
+    return [Table(rows, ("value",))]
+
+
+def design(solution: Solution, formulation) -> list:
+    return [Table(design_rows(solution, formulation), ("value",)), Heading("Derived"),
+            Table(derived_rows(solution), ("value",))]
+
+
+def drawing(case: Case, solution: Solution, formulation) -> list:
+    optimised = {v.name for v in formulation.variables if solution.at_bound(v.name) != "fixed"}
+    effects = tuple(case.start_up.effects) if case.start_up is not None else ()
+    svg = sketch(case.coupling, {**case.values, **solution.design},
+                 {name: out.value for name, out in solution.outputs.items()}, optimised, effects)
+    if svg is not None:
+        chosen = [v.symbol or v.name for v in formulation.variables if v.name in optimised]
+        return [Figure(safe_svg(svg), f"Dimensioned sketch of the optimum, to scale. Optimised (red): "
+                                      f"{', '.join(chosen)}; every other dimension as the case gives it or as it "
+                                      "follows from these.")]
+    rows = [{"dimension": v.name, "symbol": v.symbol, "value": _shown(solution.design[v.name], v.unit),
+             "unit": v.unit} for v in formulation.variables]
+    return [Note(f"No sketch can be drawn for this {case.coupling} design (a dimension it needs is not given); its "
+                 "dimensions are tabulated instead."), Table(rows, ("value",))]
+
+
+def margins(solution: Solution) -> list:
+    rows = []
+    for c, row in zip(solution.constraints, constraint_rows(solution)):
+        rows.append({**{k: v for k, v in row.items() if k not in ("active", "elasticity")},
+                     "margin bar": Bar(max(0.0, min(c.margin, 1.0)), c.active),
+                     "active": row["active"], "elasticity": row["elasticity"]})
+    return [Note("Re-evaluated in float64; margin relative to the limit; elasticity = d ln objective / d ln limit."),
+            Table(rows, ("value", "limit", "margin", "elasticity"))]
+
+
+def sensitivities(solution: Solution, formulation) -> list:
+    rows = sensitivity_rows(solution, formulation, count=12)
+    if not rows:
+        return [Note("No sensitivities: they are the multipliers of a verified optimum, and this solve's status is "
+                     f"{solution.status}." if solution.status != "optimal" else
+                     "No sensitivities: no parameter moves the optimum's objective by an elasticity of 5e-5 or more.")]
+    return [Note("Elasticity of the optimum, d ln objective / d ln parameter, from the multipliers (+1: the objective "
+                 "grows in proportion)."), Table(rows, ("elasticity",))]
+
+
+def comparison(case: Case, robust=None) -> list:
+    """The paper's method beside the optimiser's designs; a scatter case's robust column by the method the page's
+    design was made with (``robust``: its RobustResult), else worst case and chance 0.999."""
+    from clutchopt.optimise.compare import compare_case
+    from clutchopt.optimise.design import Robustness
+
+    if get_coupling(case.coupling).comparison is None:
+        return [Note("This coupling has no comparison with a paper method.")]
+    method = None if robust is None else Robustness(robust.method, robust.target, robust.samples,
+                                                    robust.start_up_samples or Robustness.starts)
+    data = compare_case(case, robust=method).as_dict()
+    rows, _ = comparison_rows(data)
+    return [Table(rows, tuple(data["columns"])), Items(list(column_notes(data).items()))]
+
+
+def simulation(case: Case, solution: Solution) -> list:
+    """The start-up simulation of the optimum: the one call site of the simulator's figure."""
+    from clutchopt.simulate import report_figure
+
+    figure, caption = report_figure(case, solution)
+    if figure is None:
+        return [Note(caption)]
+    blocks = []
+    if solution.start_up is not None:
+        start = solution.start_up
+        _, rows, _ = start_up_table(start)
+        blocks = [Note(f"The start designed inside the NLP (Radau collocation, {start['intervals']} intervals per "
+                       f"phase: {', '.join(start['phases'])}; points in the figure) beside the independent simulator "
+                       "(lines)."), Table(rows, ("NLP", "simulated"))]
+    return blocks + [Figure(safe_svg(figure_svg(figure)), caption)]
+
+
+def scatter(case: Case, robust=None) -> tuple[list, tuple[str, float, int]]:
+    """The designs under the case's scatter side by side (the nominal one, and the robust one of ``robust``, a
+    :class:`~clutchopt.optimise.robust.RobustResult`; without it, the worst-case and chance 0.999 designs), each with
+    its largest failure probability by Monte Carlo, and a tornado chart: how far each scattered quantity moves each
+    constraint's margin over its range at the nominal design. Also the nominal design's likeliest failure:
+    (constraint, probability, samples)."""
+    from clutchopt.optimise.robust import CHANCE, WORST_CASE, solve_robust
+    from clutchopt.optimise.robust_models import failure_probabilities, tornado
+
+    if robust is not None:
+        results = [robust]
+        designs = [("nominal", robust.nominal, robust.nominal_failure),
+                   (robust_label(robust), robust.solution, robust.failure)]
+    else:
+        results = [solve_robust(case, WORST_CASE), solve_robust(case, CHANCE, 0.999)]
+        worst, chance = results
+        designs = [("nominal", worst.nominal, worst.nominal_failure), ("worst case", worst.solution, worst.failure),
+                   ("chance 0.999", chance.solution, failure_probabilities(worst.formulation, chance.solution.design,
+                                                                           case.params(), case.scatter))]
+    first = results[0]
+    rows = []
+    for label, result_solution, failure in designs:
+        rows.append({"design": label, "status": result_solution.status,
+                     result_solution.objective_name: f"{result_solution.objective:.6g} {result_solution.objective_unit}",
+                     "change": f"{result_solution.objective / first.nominal.objective - 1:+.1%}",
+                     "largest P(fail)": f"{max(p for p, _, _ in failure.values()):.3g}"})
+    name, (p, _, _) = max(first.nominal_failure.items(), key=lambda item: item[1][0])
+    bars = tornado(first.formulation, first.nominal.design, case.params(), case.scatter)
+    return [Table(rows, ("change", "largest P(fail)")), tornado_chart(case, first, bars)], (name, p, first.samples)
+
+
+def tornado_chart(case: Case, result, bars: dict[str, dict[str, float]]):
+    """The tornado chart of ``bars`` (constraint -> quantity -> relative margin change), or why there is none."""
+    from matplotlib.figure import Figure as Chart
+
+    shown = {name: effects for name, effects in bars.items() if any(abs(v) > NO_EFFECT for v in effects.values())}
+    quantities = ", ".join(s.name for s in case.scatter)
+    if not shown:
+        simulated = (f"; the start-up, which is simulated rather than evaluated, is checked at "
+                     f"{len(result.start_up_points)} corner(s) and by {result.start_up_samples} simulated starts"
+                     if result.start_up_points else "")
+        return Note(f"No tornado chart: over its range, {quantities} moves none of the {len(bars)} constraints' "
+                    f"margins ({', '.join(bars)}) at the nominal design{simulated}.")
+    figure = Chart(figsize=(6.5, 0.5 + 0.45 * max(1, len(shown) * len(case.scatter))), layout="constrained")
+    axes = figure.add_subplot()
+    labels, values = [], []
+    for name, effects in shown.items():
+        for quantity, change in effects.items():
+            labels.append(f"{name}: {quantity}")
+            values.append(change)
+    axes.barh(range(len(values)), values, color=["#b03a2e" if v < 0 else "#2e86c1" for v in values])
+    axes.set_yticks(range(len(values)), labels, fontsize=8)
+    axes.axvline(0.0, color="black", lw=0.8)
+    axes.set_xlabel("relative margin change, low to high end of the range")
+    axes.invert_yaxis()
+    axes.grid(axis="x", alpha=0.3)
+    return Figure(safe_svg(figure_svg(figure)),
+                  f"Nominal design: how each scattered quantity moves each constraint's margin over its range (red: "
+                  f"the margin shrinks as the quantity rises). Monte Carlo with {result.samples} samples.")
+
+
+def sweep_plot(frame: pd.DataFrame) -> Figure:
+    """The objective against the first varied input, one line per value of the second."""
+    from matplotlib.figure import Figure as Chart
+
+    status = list(frame.columns).index("status")
+    inputs = list(frame.columns[1:status])
+    objective = frame.columns[status + 1]
+    figure = Chart(figsize=(6.5, 4), layout="constrained")
+    axes = figure.add_subplot()
+    optimal = frame[frame["status"] == "optimal"]
+    groups = [(None, optimal)]
+    if len(inputs) > 1:
+        levels = sorted(optimal[inputs[1]].unique())
+        shown = [levels[round(i)] for i in np.linspace(0, len(levels) - 1, min(len(levels), MAX_LINES))]
+        groups = [(value, optimal[optimal[inputs[1]] == value]) for value in shown]
+    for value, group in groups:
+        axes.plot(group[inputs[0]], group[objective], ".-",
+                  label=None if value is None else f"{literal(inputs[1])} = {value:.4g}")
+    failed = frame[frame["status"] != "optimal"]
+    if len(failed):
+        axes.plot(failed[inputs[0]], [optimal[objective].min()] * len(failed) if len(optimal) else [0] * len(failed),
+                  "x", color="#b03a2e", label="not optimal")
+    if len(inputs) > 1 or len(failed):
+        axes.legend(fontsize=7, ncol=2)
+    axes.set_xlabel(literal(inputs[0]))
+    axes.set_ylabel(literal(objective))
+    axes.grid(alpha=0.3)
+    caption = (f"Sweep: {len(frame)} points, {len(optimal)} optimal"
+               + (f", {len(failed)} not (crosses at the bottom)" if len(failed) else ""))
+    return Figure(safe_svg(figure_svg(figure)), caption)
