@@ -62,9 +62,9 @@ def check(hostile: Hostile, code: int, out: str, err: str, store_exists: bool) -
     assert not store_exists, "bad input must not create or change the run store"
 
 
-@pytest.mark.parametrize("hostile", [h for h in HOSTILE if not h.subprocess], ids=lambda h: h.name)
-def test_hostile_input_in_process(hostile, tmp_path, capsys, run_store):
-    argv = hostile.write(tmp_path / "input")
+def run_in_process(hostile: Hostile, argv: list[str], capsys, run_store) -> None:
+    """``argv`` run through ``clutchopt.cli.main`` within the time limit, its answer checked (:func:`check`); the
+    runner of every generated hostile suite."""
     with time_limit(TIME_LIMIT_S):
         try:
             code = main(argv)
@@ -72,6 +72,11 @@ def test_hostile_input_in_process(hostile, tmp_path, capsys, run_store):
             code = stop.code
     out, err = capsys.readouterr()
     check(hostile, code, out, err, run_store.exists())
+
+
+@pytest.mark.parametrize("hostile", [h for h in HOSTILE if not h.subprocess], ids=lambda h: h.name)
+def test_hostile_input_in_process(hostile, tmp_path, capsys, run_store):
+    run_in_process(hostile, hostile.write(tmp_path / "input"), capsys, run_store)
 
 
 @pytest.mark.parametrize("hostile", [h for h in HOSTILE if h.subprocess], ids=lambda h: h.name)

@@ -14,7 +14,7 @@ from clutchopt.cli import EXIT_BAD_INPUT, main
 from clutchopt.errors import InputError
 from clutchopt.optimise.dask_client import DEADLINE_S, connect
 from hostile_runtime import HANDSHAKE, HOSTILE, Served
-from test_hostile import TIME_LIMIT_S, check, server, time_limit
+from test_hostile import run_in_process, server, time_limit
 
 CASE = "cases/wedge_paper.toml"
 
@@ -29,13 +29,8 @@ def test_hostile_runtime_input(hostile, tmp_path, capsys, run_store):
     argv = hostile.write(tmp_path / "input")
     serving = server(*hostile.greetings, hold_s=hostile.hold_s) if isinstance(hostile, Served) else nullcontext("")
     started = time.monotonic()
-    with serving as address, time_limit(TIME_LIMIT_S):
-        try:
-            code = main([arg.replace("{server}", address) for arg in argv])
-        except SystemExit as stop:  # argparse
-            code = stop.code
-    out, err = capsys.readouterr()
-    check(hostile, code, out, err, run_store.exists())
+    with serving as address:
+        run_in_process(hostile, [arg.replace("{server}", address) for arg in argv], capsys, run_store)
     if "--dask" in argv:
         assert time.monotonic() - started < DEADLINE_S, "the README promises an answer within 10 s"
 

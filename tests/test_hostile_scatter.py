@@ -4,9 +4,8 @@ nothing recorded; a fine input in exit code 0; never a traceback, never exit cod
 
 import pytest
 
-from clutchopt.cli import main
 from hostile_scatter import HOSTILE, written
-from test_hostile import TIME_LIMIT_S, check, time_limit
+from test_hostile import run_in_process
 
 
 def test_at_least_40_distinct_hostile_inputs():
@@ -22,11 +21,4 @@ def stores(tmp_path_factory):
 
 @pytest.mark.parametrize("hostile", HOSTILE, ids=lambda h: h.name)
 def test_hostile_scatter_input(hostile, tmp_path, capsys, run_store, stores):
-    argv = written(hostile, tmp_path / "input", stores)
-    with time_limit(TIME_LIMIT_S):
-        try:
-            code = main(argv)
-        except SystemExit as stop:  # argparse
-            code = stop.code
-    out, err = capsys.readouterr()
-    check(hostile, code, out, err, run_store.exists())
+    run_in_process(hostile, written(hostile, tmp_path / "input", stores), capsys, run_store)

@@ -9,12 +9,11 @@ import time
 import numpy as np
 import pytest
 
-from clutchopt.cli import main
 from clutchopt.simulate.engine import MAX_STEPS, Model, _Run, simulate
 from clutchopt.simulate.laws import CentrifugalFriction, ConstantFriction, InductionMotor, Load, PaperFriction
 from clutchopt.start_up.equations import piecewise_linear
 from hostile_sim import HOSTILE
-from test_hostile import TIME_LIMIT_S, check, time_limit
+from test_hostile import run_in_process
 
 
 def test_at_least_30_distinct_inputs_fine_and_refused():
@@ -25,14 +24,7 @@ def test_at_least_30_distinct_inputs_fine_and_refused():
 
 @pytest.mark.parametrize("hostile", HOSTILE, ids=lambda h: h.name)
 def test_hostile_input_in_process(hostile, tmp_path, capsys, run_store):
-    argv = hostile.write(tmp_path / "input")
-    with time_limit(TIME_LIMIT_S):
-        try:
-            code = main(argv)
-        except SystemExit as stop:  # argparse
-            code = stop.code
-    out, err = capsys.readouterr()
-    check(hostile, code, out, err, run_store.exists())
+    run_in_process(hostile, hostile.write(tmp_path / "input"), capsys, run_store)
 
 
 MOTOR = InductionMotor(104.72, 37.0, 0.2, 0.012)

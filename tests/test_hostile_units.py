@@ -10,7 +10,7 @@ from clutchopt.cli import EXIT_BAD_INPUT, main
 from clutchopt.cases import parse_case
 from clutchopt.units import to_si
 from hostile_units import HOSTILE, MOTOR
-from test_hostile import TIME_LIMIT_S, check, time_limit
+from test_hostile import run_in_process
 
 
 def test_at_least_40_distinct_inputs_fine_and_refused():
@@ -20,14 +20,7 @@ def test_at_least_40_distinct_inputs_fine_and_refused():
 
 @pytest.mark.parametrize("hostile", HOSTILE, ids=lambda h: h.name)
 def test_hostile_input_in_process(hostile, tmp_path, capsys, run_store):
-    argv = hostile.write(tmp_path / "input")
-    with time_limit(TIME_LIMIT_S):
-        try:
-            code = main(argv)
-        except SystemExit as stop:  # argparse
-            code = stop.code
-    out, err = capsys.readouterr()
-    check(hostile, code, out, err, run_store.exists())
+    run_in_process(hostile, hostile.write(tmp_path / "input"), capsys, run_store)
 
 
 @pytest.mark.parametrize("text, unit, si", [
