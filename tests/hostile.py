@@ -547,9 +547,10 @@ HOSTILE: list[Hostile] = [
 ]
 
 
-def write_all(folder: Path) -> None:
-    """Every hostile input in a folder of its own under ``folder``, with its command line."""
-    for hostile in HOSTILE:
+def write_all(folder: Path, inputs: list[Hostile] | None = None) -> None:
+    """Every hostile input (of ``inputs``, else of this module) in a folder of its own under ``folder``, with its
+    command line; the generated suites beside this one write theirs by it too."""
+    for hostile in HOSTILE if inputs is None else inputs:
         argv = hostile.write(folder / hostile.name)
         print(f"{hostile.name}: clutchopt {' '.join(argv)}")
 

@@ -19,7 +19,8 @@ from contextlib import closing
 from dataclasses import dataclass
 from pathlib import Path
 
-from hostile import CASES, LEVER, OTHER_DATABASE, SCENE, SWEEP_TABLE, WEDGE, Hostile, case, command, edit, sweep
+from hostile import (CASES, LEVER, OTHER_DATABASE, SCENE, SWEEP_TABLE, WEDGE, Hostile, case, command, edit, sweep,
+                     write_all)
 
 from clutchopt.store import RunStore
 from clutchopt.store_kept import close_kept
@@ -229,12 +230,6 @@ HOSTILE: list[Hostile] = [
 ]
 
 
-def write_all(folder: Path) -> None:
-    """Every hostile input in a folder of its own under ``folder``, with its command line."""
-    for hostile in HOSTILE:
-        argv = hostile.write(folder / hostile.name)
-        print(f"{hostile.name}: clutchopt {' '.join(argv)}")
-
 
 if __name__ == "__main__":
-    write_all(Path(sys.argv[1] if len(sys.argv) > 1 else "hostile-runtime-inputs"))
+    write_all(Path(sys.argv[1] if len(sys.argv) > 1 else "hostile-runtime-inputs"), HOSTILE)

@@ -15,7 +15,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from hostile import CASES, Hostile, case, command, edit, scene
+from hostile import CASES, Hostile, case, command, edit, scene, write_all
 
 MOTOR = (CASES / "wedge_motor_start.toml").read_text()
 CABLE = (CASES / "cable_motor_start.toml").read_text()
@@ -150,11 +150,6 @@ HOSTILE: list[Hostile] = [
 ]
 
 
-def write_all(folder: Path) -> None:
-    for hostile in HOSTILE:
-        argv = hostile.write(folder / hostile.name)
-        print(f"{hostile.name}: clutchopt {' '.join(argv)}")
-
 
 if __name__ == "__main__":
-    write_all(Path(sys.argv[1] if len(sys.argv) > 1 else "hostile-sim-inputs"))
+    write_all(Path(sys.argv[1] if len(sys.argv) > 1 else "hostile-sim-inputs"), HOSTILE)

@@ -14,7 +14,7 @@ import json
 import sys
 from pathlib import Path
 
-from hostile import CASES, DESIGN, LEVER, WEDGE, Hostile, case, command, edit
+from hostile import CASES, DESIGN, LEVER, WEDGE, Hostile, case, command, edit, write_all
 
 MOTOR = (CASES / "wedge_motor_start.toml").read_text()
 CABLE = (CASES / "cable_conveyor.toml").read_text()
@@ -176,12 +176,6 @@ HOSTILE: list[Hostile] = [
 ]
 
 
-def write_all(folder: Path) -> None:
-    """Every hostile input in a folder of its own under ``folder``, with its command line."""
-    for hostile in HOSTILE:
-        argv = hostile.write(folder / hostile.name)
-        print(f"{hostile.name}: clutchopt {' '.join(argv)}")
-
 
 if __name__ == "__main__":
-    write_all(Path(sys.argv[1] if len(sys.argv) > 1 else "hostile-unit-inputs"))
+    write_all(Path(sys.argv[1] if len(sys.argv) > 1 else "hostile-unit-inputs"), HOSTILE)
