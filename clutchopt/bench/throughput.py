@@ -32,7 +32,7 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 
 from clutchopt.bench.reference import bench_cases, reference_mode
-from clutchopt.bench.timing import time_once
+from clutchopt.bench.timing import median_run
 from clutchopt.cases import Case
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.batch import BatchSweep
@@ -120,9 +120,9 @@ def _throughput_rows(config, store: str) -> list[dict]:
         tabulated_sweep(case, name, values, store)  # warm-up: the problem, its solvers, chained and mapped functions
         for how, run, keywords in HOWS:
             keywords = {key: store if value is STORE else value for key, value in keywords.items()}
-            tally, seconds = _median(lambda: run(case, name, values, **keywords), config.sweep_repeats)
+            tally, seconds = median_run(lambda: run(case, name, values, **keywords), config.sweep_repeats)
             row = _row(case, name, how, 1, tally, seconds, config.sweep_repeats)
-            one, one_s = _median(lambda: run(case, name, values[:1], **keywords),
+            one, one_s = median_run(lambda: run(case, name, values[:1], **keywords),
                                  ONE_POINT_RUNS * config.sweep_repeats)
             row["python_fixed_s"] = _python_s(one, one_s)
             row["python_per_point_share"] = (_python_s(tally, seconds) - _python_s(one, one_s)) / seconds
@@ -133,7 +133,7 @@ def _throughput_rows(config, store: str) -> list[dict]:
             with ProcessPoolExecutor(config.processes) as pool:
                 return _merged(list(pool.map(batched_sweep, [case] * len(chunks), [name] * len(chunks), chunks)))
 
-        tally, seconds = _median(pooled, config.sweep_repeats)
+        tally, seconds = median_run(pooled, config.sweep_repeats)
         rows.append(_row(case, name, "batched, process pool", config.processes, tally, seconds, config.sweep_repeats))
     wedge = next((r for r in rows if (r["coupling"], r["how"]) == ("wedge", "batched")), None)
     for row in rows:
@@ -147,13 +147,6 @@ def _throughput_rows(config, store: str) -> list[dict]:
 def _python_s(tally: dict, seconds: float) -> float:
     """A run's seconds outside the solver calls and the batches' compiled checks."""
     return seconds - tally["solver_s"] - tally["check_s"]
-
-
-def _median(run, repeats: int) -> tuple[dict, float]:
-    """``run()`` timed ``repeats`` times: the tally and wall time of the run of median wall time."""
-    timed = sorted((time_once(run) for _ in range(repeats)), key=lambda pair: pair[0])
-    seconds, tally = timed[len(timed) // 2]
-    return tally, seconds
 
 
 def _row(case, name, how, processes, tally, seconds, runs):

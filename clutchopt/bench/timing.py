@@ -14,6 +14,13 @@ def time_once(run: Callable[[], object]) -> tuple[float, object]:
     return time.perf_counter() - started, result
 
 
+def median_run(run: Callable[[], object], repeats: int) -> tuple[object, float]:
+    """``run()`` timed ``repeats`` times: the result and wall time of the run of median wall time."""
+    timed = sorted((time_once(run) for _ in range(repeats)), key=lambda pair: pair[0])
+    seconds, result = timed[len(timed) // 2]
+    return result, seconds
+
+
 def repeated(run: Callable[[], object], repeats: int, warmup: int = 1) -> dict[str, float]:
     """Median and interquartile range (seconds) of ``repeats`` runs after ``warmup`` runs not counted."""
     for _ in range(warmup):

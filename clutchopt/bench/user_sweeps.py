@@ -9,13 +9,13 @@ same run."""
 
 from __future__ import annotations
 
-import time
 from pathlib import Path
 
 import numpy as np
 
 from clutchopt.bench.reference import bench_cases, reference_mode
 from clutchopt.bench.throughput import sweep_quantity
+from clutchopt.bench.timing import median_run
 from clutchopt.cases import Case, load_case
 
 CASES = Path(__file__).resolve().parents[2] / "cases"
@@ -30,12 +30,8 @@ def _run(case: Case, name: str, values: np.ndarray, mode: str | None, repeats: i
     from clutchopt.optimise.sweep_grid import Vary
 
     quantity = next(q for q in case.quantities if q.name == name)
-    runs = []
-    for _ in range(repeats):
-        started = time.perf_counter()
-        result = Sweep(case, [Vary(quantity, tuple(values.tolist()))], mode=mode).run(progress=False)
-        runs.append((time.perf_counter() - started, result))
-    seconds, result = sorted(runs, key=lambda run: run[0])[len(runs) // 2]
+    result, seconds = median_run(
+        lambda: Sweep(case, [Vary(quantity, tuple(values.tolist()))], mode=mode).run(progress=False), repeats)
     statuses = result.frame["status"].to_numpy()
     designed = int(np.isin(statuses, ("optimal", "unverified")).sum())
     return {"points": len(values), "designed": designed, "without_design": len(values) - designed,
