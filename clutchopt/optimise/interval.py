@@ -36,16 +36,14 @@ def _products(a: Bounds, b: Bounds) -> Bounds:
 def _inverse(a: Bounds) -> Bounds:
     lo, hi = a
     spans_zero = (lo <= 0) & (hi >= 0)
-    with np.errstate(divide="ignore"):
-        return np.where(spans_zero, -np.inf, 1.0 / hi), np.where(spans_zero, np.inf, 1.0 / lo)
+    return np.where(spans_zero, -np.inf, 1.0 / hi), np.where(spans_zero, np.inf, 1.0 / lo)
 
 
 def _monotone(function, increasing: bool = True, domain: tuple[float, float] = (-np.inf, np.inf)):
     """The rule of a monotone function on ``domain`` (the box clipped to it: points outside give NaN, no design)."""
     def rule(a: Bounds) -> Bounds:
         lo, hi = np.clip(a[0], *domain), np.clip(a[1], *domain)
-        with np.errstate(all="ignore"):
-            f_lo, f_hi = function(lo), function(hi)
+        f_lo, f_hi = function(lo), function(hi)
         return (f_lo, f_hi) if increasing else (f_hi, f_lo)
     return rule
 
@@ -54,8 +52,7 @@ def _even(function, minimum: float = 0.0):
     """The rule of a function falling to ``minimum`` at 0 and rising symmetrically (x^2, |x|, cosh)."""
     def rule(a: Bounds) -> Bounds:
         lo, hi = a
-        with np.errstate(all="ignore"):
-            f_lo, f_hi = function(lo), function(hi)
+        f_lo, f_hi = function(lo), function(hi)
         spans_zero = (lo <= 0) & (hi >= 0)
         return np.where(spans_zero, minimum, np.minimum(f_lo, f_hi)), np.maximum(f_lo, f_hi)
     return rule
@@ -71,10 +68,9 @@ def _wave(function, peak: float):
     trough."""
     def rule(a: Bounds) -> Bounds:
         lo, hi = a
-        with np.errstate(invalid="ignore"):
-            f_lo, f_hi = function(lo), function(hi)
-            top = np.floor((hi - peak) / (2 * np.pi)) * 2 * np.pi + peak >= lo
-            bottom = np.floor((hi - peak - np.pi) / (2 * np.pi)) * 2 * np.pi + peak + np.pi >= lo
+        f_lo, f_hi = function(lo), function(hi)
+        top = np.floor((hi - peak) / (2 * np.pi)) * 2 * np.pi + peak >= lo
+        bottom = np.floor((hi - peak - np.pi) / (2 * np.pi)) * 2 * np.pi + peak + np.pi >= lo
         unbounded = ~(np.isfinite(lo) & np.isfinite(hi))
         return (np.where(bottom | unbounded, -1.0, np.minimum(f_lo, f_hi)),
                 np.where(top | unbounded, 1.0, np.maximum(f_lo, f_hi)))
@@ -84,8 +80,7 @@ def _wave(function, peak: float):
 def _tangent(a: Bounds) -> Bounds:
     """tan over [lo, hi]: rising between its poles (pi/2 + k pi); unbounded where a pole lies within."""
     lo, hi = a
-    with np.errstate(invalid="ignore"):
-        pole = np.floor((hi - np.pi / 2) / np.pi) * np.pi + np.pi / 2 >= lo
+    pole = np.floor((hi - np.pi / 2) / np.pi) * np.pi + np.pi / 2 >= lo
     pole |= ~(np.isfinite(lo) & np.isfinite(hi))
     return np.where(pole, -np.inf, np.tan(lo)), np.where(pole, np.inf, np.tan(hi))
 
@@ -104,17 +99,16 @@ def _power(a: Bounds, exponent: Bounds) -> Bounds:
     b_lo, b_hi = exponent
     lo, hi = a
     integer = (b_lo == b_hi) & (np.round(b_lo) == b_lo) & (np.abs(b_lo) <= 64)
-    with np.errstate(all="ignore"):
-        base = (np.maximum(lo, 0.0), np.maximum(hi, 0.0))
-        corners = np.stack([np.power(x, y) for x in base for y in exponent])
-        n = np.where(integer, b_lo, 1.0)
-        p_lo, p_hi = lo**n, hi**n
-        spans_zero = (lo <= 0) & (hi >= 0)
-        even = np.mod(n, 2) == 0
-        low = np.where(even & (n > 0) & spans_zero, 0.0, np.minimum(p_lo, p_hi))
-        high = np.maximum(p_lo, p_hi)
-        negative_spans = (n < 0) & spans_zero  # 1/x^k across zero
-        low, high = np.where(negative_spans, -np.inf, low), np.where(negative_spans, np.inf, high)
+    base = (np.maximum(lo, 0.0), np.maximum(hi, 0.0))
+    corners = np.stack([np.power(x, y) for x in base for y in exponent])
+    n = np.where(integer, b_lo, 1.0)
+    p_lo, p_hi = lo**n, hi**n
+    spans_zero = (lo <= 0) & (hi >= 0)
+    even = np.mod(n, 2) == 0
+    low = np.where(even & (n > 0) & spans_zero, 0.0, np.minimum(p_lo, p_hi))
+    high = np.maximum(p_lo, p_hi)
+    negative_spans = (n < 0) & spans_zero  # 1/x^k across zero
+    low, high = np.where(negative_spans, -np.inf, low), np.where(negative_spans, np.inf, high)
     return (np.where(integer, low, np.nanmin(corners, axis=0)), np.where(integer, high, np.nanmax(corners, axis=0)))
 
 
