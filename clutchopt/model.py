@@ -78,15 +78,19 @@ class Quantity:
                                    f"{MAGNITUDES[0]:g} to {MAGNITUDES[1]:g} in SI units".replace(" 1 (SI)", " (SI)"))
         return value
 
-    def check_all(self, values, field_name: str | None = None) -> None:
-        """Every value of a NumPy array valid, tested as arrays (a sweep's values); the first bad one raises as
-        :meth:`check` does."""
+    def valid(self, values) -> Any:
+        """Which values of a NumPy array :meth:`check` passes, tested as arrays (a sweep's values)."""
         size = abs(values)
         good = (values == 0) | ((size >= MAGNITUDES[0]) & (size <= MAGNITUDES[1]))  # NaN and inf fail here
         for bound, ok, _ in self._range_tests():
             good = good & ok(values, bound)
         if self.integer:
             good = good & (values == values.round())
+        return good
+
+    def check_all(self, values, field_name: str | None = None) -> None:
+        """Every value of a NumPy array valid (:meth:`valid`); the first bad one raises as :meth:`check` does."""
+        good = self.valid(values)
         if not good.all():
             self.check(float(values[good.argmin()]), field_name)
 

@@ -10,6 +10,7 @@ import numpy as np
 
 from clutchopt.cases import Case, check_across, check_scatter_corners
 from clutchopt.errors import InputError
+from clutchopt.fields_read import fields_read_across, followers
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Quantity
 from clutchopt.units import si_factor
@@ -113,7 +114,17 @@ def grid_positions(varies: list[Vary], zipped: bool = False) -> list[np.ndarray 
 def check_points(case: Case, varies: list[Vary], points: "Points", scattered: bool = False) -> None:
     """Every point is checked before any solve, as a case is: each varied value against its valid range, the point's
     case across its fields (:func:`~clutchopt.cases.check_across`) and, where the sweep designs for the scatter
-    (``scattered``), at every corner of the scatter around it; the error names the first point that fails."""
+    (``scattered``), at every corner of the scatter around it; the error names the first point that fails.
+
+    When none of the checks across fields reads a quantity the sweep changes (:mod:`clutchopt.fields_read`), they
+    pass or refuse at every point as they do at the case itself: the case is checked once, each point's values
+    against their ranges as arrays, and only the first point out of range is built (to raise what it raises)."""
+    if not scattered and _checks_once(case, varies, points):
+        return
+    _check_each(case, points, scattered)
+
+
+def _check_each(case: Case, points: "Points", scattered: bool = False) -> None:
     for index, values in points.pairs():
         try:
             point = case.with_values(**values)
@@ -122,6 +133,20 @@ def check_points(case: Case, varies: list[Vary], points: "Points", scattered: bo
                 check_scatter_corners(point)
         except InputError as exc:
             raise exc.at(f"--vary (point {index})") from None
+
+
+def _checks_once(case: Case, varies: list[Vary], points: "Points") -> bool:
+    """The points checked as :func:`check_points` does, without a case per point, if the checks across fields read
+    no changed quantity (False: not known, so each point must be checked)."""
+    read = fields_read_across(case)
+    if read is None or read & followers(case, [v.quantity.name for v in varies]):
+        return False
+    good = np.ones(len(points), dtype=bool)
+    for v in varies:
+        good &= v.quantity.valid(points.columns[v.quantity.name])
+    if not good.all():
+        _check_each(case, points[good.argmin():good.argmin() + 1])  # raises as that point's case does
+    return True
 
 
 @dataclass(frozen=True)
