@@ -26,9 +26,13 @@ def _outward(lo, hi) -> Bounds:
 
 def _products(a: Bounds, b: Bounds) -> Bounds:
     """[a] * [b]: the extremes of the four corner products (0 * inf, a NaN, left out by fmin/fmax: the product of a
-    zero end is zero, and another corner is as low or as high)."""
-    if a[0].min(initial=0.0) >= 0 and b[0].min(initial=0.0) >= 0:  # both non-negative (the usual case): the ends
-        return a[0] * b[0], a[1] * b[1]
+    zero end is zero, and another corner is as low or as high). Both non-negative in every box (the usual case): the
+    products of the ends, which are those extremes unless one is 0 * inf; so a box's bounds never depend on the
+    other boxes evaluated with it (a sweep's points are searched together: ``interval_proof.searches``)."""
+    if a[0].min(initial=0.0) >= 0 and b[0].min(initial=0.0) >= 0:
+        low, high = a[0] * b[0], a[1] * b[1]
+        if not (np.isnan(low).any() or np.isnan(high).any()):
+            return low, high
     p, q, r, s = a[0] * b[0], a[0] * b[1], a[1] * b[0], a[1] * b[1]
     return np.fmin(np.fmin(p, q), np.fmin(r, s)), np.fmax(np.fmax(p, q), np.fmax(r, s))
 

@@ -52,44 +52,95 @@ def interval_functions(posed) -> tuple[IntervalFunction, IntervalFunction]:
 def search(posed, p: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> Emptiness | None:
     """Interval branch and bound over the box [lower, upper] of a posed problem's design whose variable scales in
     ``p`` are 1 (x in SI); None where it cannot start (an unbounded variable)."""
-    if not (np.all(np.isfinite(lower)) and np.all(np.isfinite(upper))):
-        return None
+    return searches(posed, [(p, lower, upper)])[0]
+
+
+def searches(posed, problems: list[tuple[np.ndarray, np.ndarray, np.ndarray]]) -> list[Emptiness | None]:
+    """:func:`search` of each ``(p, lower, upper)`` (the points of a sweep), all at once: the boxes of every search
+    in one array (a box's bounds are its own: the interval rules work box by box), each with its own parameters and
+    its own tally, so each search's outcome, box count and decisive constraints are what it alone would give; an
+    evaluation costs per operation, not per box, so the searches of many points cost little more than one."""
     functions = interval_functions(posed)
     names = posed.row_names
-    decisive: dict[str, int] = {}
-    lo, hi = lower[:, None].copy(), upper[:, None].copy()
-    width0 = np.where(upper > lower, upper - lower, 1.0)[:, None]
-    evaluated = 0
+    outcomes: list[Emptiness | None] = [None] * len(problems)
+    started = [i for i, (_, lower, upper) in enumerate(problems)
+               if np.all(np.isfinite(lower)) and np.all(np.isfinite(upper))]
+    if not started:
+        return outcomes
+    params = np.stack([problems[i][0] for i in started], axis=1)
+    lo = np.stack([problems[i][1] for i in started], axis=1)
+    hi = np.stack([problems[i][2] for i in started], axis=1)
+    width0 = np.where(hi > lo, hi - lo, 1.0)
+    owner = np.arange(len(started))  # each box's search (a column of params), boxes of one search together
+    decisive: list[dict[str, int]] = [{} for _ in started]
+    evaluated = np.zeros(len(started), dtype=int)
+
+    def done(searches_ended, outcome) -> np.ndarray:
+        for j in searches_ended.tolist():
+            outcomes[started[j]] = outcome(j)
+        return ~np.isin(owner, searches_ended)
+
     while lo.shape[1]:
-        if evaluated + lo.shape[1] > MAX_BOXES:
-            return Emptiness(False, evaluated, decisive)
-        evaluated += lo.shape[1]
-        (g_lo, g_hi), (d_lo, d_hi), centre, (c_lo, c_hi) = _bounds(functions, lo, hi, p)
+        counts = np.bincount(owner, minlength=len(started))
+        keep = done(np.flatnonzero((counts > 0) & (evaluated + counts > MAX_BOXES)),
+                    lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
+        lo, hi, owner = lo[:, keep], hi[:, keep], owner[keep]
+        if not lo.shape[1]:
+            break
+        evaluated += np.bincount(owner, minlength=len(started))
+        (g_lo, g_hi), (d_lo, d_hi), centre, (c_lo, c_hi) = _bounds(functions, lo, hi, params[:, owner])
         met = np.all(c_hi <= 0.0, axis=0)
-        if met.any():
-            return Emptiness(False, evaluated, decisive, centre[:, int(np.argmax(met))])
+        first_met = {}
+        for box in np.flatnonzero(met)[::-1].tolist():  # the first box of its search that meets every row
+            first_met[int(owner[box])] = box
+        keep = done(np.array(sorted(first_met), dtype=int),
+                    lambda j: Emptiness(False, int(evaluated[j]), decisive[j], centre[:, first_met[j]]))
         empty = g_lo > TOLERANCE
-        for row in np.flatnonzero(empty.any(axis=1)):
-            decisive[names[row]] = decisive.get(names[row], 0) + int(empty[row].sum())
-        alive = ~empty.any(axis=0)
-        lo, hi, uncertain = lo[:, alive], hi[:, alive], g_hi[:, alive] > 0.0
+        for j in np.unique(owner[keep]).tolist():
+            emptied = empty[:, owner == j].sum(axis=1)
+            for row in np.flatnonzero(emptied).tolist():
+                decisive[j][names[row]] = decisive[j].get(names[row], 0) + int(emptied[row])
+        alive = keep & ~empty.any(axis=0)
+        before = np.unique(owner[keep])
+        lo, hi, owner, uncertain = lo[:, alive], hi[:, alive], owner[alive], g_hi[:, alive] > 0.0
+        done(np.setdiff1d(before, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         if not lo.shape[1]:
             break
         d_lo, d_hi = d_lo[:, :, alive], d_hi[:, :, alive]
         lo, hi = _faces(lo, hi, d_lo, d_hi, uncertain)
-        for _ in range(max(1, int(np.ceil(np.log2(BATCH / lo.shape[1]))))):  # few large batches: an evaluation
-            lo, hi, parents = _bisected(lo, hi, d_lo, d_hi, uncertain, width0)  # costs per operation, not per box
+        counts = np.bincount(owner, minlength=len(started))
+        with np.errstate(divide="ignore"):  # few large batches: an evaluation costs per operation, not per box
+            rounds = np.maximum(1, np.ceil(np.log2(BATCH / np.maximum(counts, 1)))).astype(int)
+        for turn in range(int(rounds[owner].max())):
+            split = rounds[owner] > turn
+            lo, hi, owner, parents = _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0, split)
             d_lo, d_hi, uncertain = d_lo[..., parents], d_hi[..., parents], uncertain[:, parents]
-    return Emptiness(True, evaluated, decisive)
+    return outcomes
 
 
-def _bounds(functions, lo: np.ndarray, hi: np.ndarray, p: np.ndarray):
+def _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0, split):
+    """:func:`_bisected` of the boxes ``split`` selects (the others kept), every search's boxes in the order its
+    own bisection gives (its boxes' first halves, then its second halves); the boxes and the box each came from."""
+    chosen = np.flatnonzero(split)
+    if len(chosen) == len(owner) and (owner[1:] == owner[:-1]).all():  # one search: as it is
+        lo, hi, parents = _bisected(lo, hi, d_lo, d_hi, uncertain, width0[:, owner])
+        return lo, hi, owner[parents], parents
+    s_lo, s_hi, s_parents = _bisected(lo[:, chosen], hi[:, chosen], d_lo[..., chosen], d_hi[..., chosen],
+                                      uncertain[:, chosen], width0[:, owner[chosen]])
+    parents = np.concatenate([np.flatnonzero(~split), chosen[s_parents]])
+    second = np.concatenate([np.zeros((~split).sum(), dtype=bool), np.arange(len(s_parents)) >= len(chosen)])
+    order = np.lexsort((parents, second, owner[parents]))  # by search, first halves before second, then by box
+    return (np.concatenate([lo[:, ~split], s_lo], axis=1)[:, order],
+            np.concatenate([hi[:, ~split], s_hi], axis=1)[:, order], owner[parents][order], parents[order])
+
+
+def _bounds(functions, lo: np.ndarray, hi: np.ndarray, params: np.ndarray):
     """Over each box: the rows' bounds (the natural interval extension met with the mean-value form
     g(c) + J(X) (X - c), which is tight on small boxes), the Jacobian's bounds (rows x variables x boxes), the centre
-    and the rows' bounds there."""
+    and the rows' bounds there; ``params``: each box's parameters (a column)."""
     rows, jacobian = functions
     count, n = lo.shape[1], lo.shape[0]
-    params = (np.repeat(p[:, None], count, axis=1),) * 2
+    params = (params, params)
     centre = 0.5 * (lo + hi)
     (g_lo, g_hi), = rows.bounds([(lo, hi), params])
     (c_lo, c_hi), = rows.bounds([(centre, centre), params])
@@ -137,8 +188,35 @@ def _bisected(lo: np.ndarray, hi: np.ndarray, d_lo: np.ndarray, d_hi: np.ndarray
 
 def empty_design_space(posed, case) -> Emptiness | None:
     """:func:`search` over the design box of ``case`` in ``posed`` (with a start-up: its formulation's own
-    constraints, without the start-up's: a design space empty without them is empty with them)."""
+    constraints, without the start-up's: a design space empty without them is empty with them); found already
+    where :func:`search_ahead` searched the same box with the same parameters."""
+    problem = _search_problem(posed, case)
+    return _ahead(posed).pop(_key(problem), None) or search(posed, *problem)
+
+
+def search_ahead(posed, cases: list) -> None:
+    """The searches of :func:`empty_design_space` for ``cases`` (the next points of a sweep, where its points have
+    no design), run together (:func:`searches`) and kept until each is asked for (those kept from before
+    dropped)."""
+    ahead = _ahead(posed)
+    ahead.clear()
+    problems = [_search_problem(posed, case) for case in cases]
+    for problem, outcome in zip(problems, searches(posed, problems)):
+        if outcome is not None:
+            ahead[_key(problem)] = outcome
+
+
+def _search_problem(posed, case) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The parameters (variable scales 1: x in SI) and the design box of ``case``'s search."""
     lower, upper, _ = posed.bounds_and_start(case, None)
     mesh = posed.start_up.initial_mesh() if posed.start_up is not None else []
     p = np.concatenate([list(vars(posed.params(case)).values()), np.ones(len(lower)), [1.0], mesh])
-    return search(posed, p, lower, upper)
+    return p, lower, upper
+
+
+def _key(problem: tuple[np.ndarray, ...]) -> tuple[bytes, ...]:
+    return tuple(np.asarray(part, dtype=float).tobytes() for part in problem)
+
+
+def _ahead(posed) -> dict:
+    return posed.built("interval_ahead", None, lambda _: {})
