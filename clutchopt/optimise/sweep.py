@@ -41,6 +41,7 @@ from clutchopt.optimise.design import Robustness, check_robustness, design_case,
 from clutchopt.optimise.entering import check_entering
 from clutchopt.optimise.problem import case_formulation, case_problem
 from clutchopt.optimise.solution import Solution, SolverOptions
+from clutchopt.optimise.start_up_sweep import solved_along
 from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_name, grid_points, grid_positions,
                                            parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
 from clutchopt.optimise.table import joined_tables, record_table
@@ -132,13 +133,14 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
     waiting: list[tuple[int, Case, Solution]] = []  # points without a design, until the next feasible one
     for j, (index, values) in enumerate(points.pairs()):
         point_case = case.with_values(**values)
-        # falls back to the case's own start by itself; a start-up design starts as `solve` does, from the papers'
-        # sizing at the point (its collocation mesh follows its own solves), so it is solve's design whatever the
-        # points before it
+        # falls back to the case's own start by itself; a start-up design starts from the point before's optimum on
+        # the first mesh (clutchopt.optimise.start_up_sweep), else as `solve` does, from the papers' sizing at the
+        # point: either way solve's design whatever the points before it
         same = designs.get(tuple(values.values()))
         neighbour = same or (feasible[1] if feasible else None)
-        solution = problem.solve(point_case, warm=previous if problem.start_up is None else None,
-                                 neighbour=neighbour.design if neighbour is not None else None)
+        solution = solved_along(problem, point_case, previous) if problem.start_up is not None else None
+        solution = solution or problem.solve(point_case, warm=previous if problem.start_up is None else None,
+                                             neighbour=neighbour.design if neighbour is not None else None)
         if solution.status not in DESIGN_STATUSES and feasible is not None:
             solution = continued(problem, case, feasible, values) or solution
         previous = solution if solution.status == "optimal" else None
