@@ -56,17 +56,22 @@ def integrate(fun, jac, t0: float, y0: np.ndarray, bound: float, events: list, m
     convergence failures before it fails) are raised as errors: the caller takes another method."""
     options = {"jac": jac} if method in IMPLICIT else {}
     solver = SOLVERS[method](fun, t0, y0, bound, rtol=rtol, atol=atol, **options)
+    with warnings.catch_warnings():  # once per phase, not per step (it cost 5 % of a start-up's simulation)
+        warnings.simplefilter("error", UserWarning)
+        return _stepped(solver, t0, y0, events, budget)
+
+
+def _stepped(solver, t0: float, y0: np.ndarray, events: list, budget: Budget) -> Phase:
+    """:func:`integrate`'s steps (a UserWarning of a step: the phase failed)."""
     times, states = [t0], [np.array(y0, dtype=float)]
     values = [event(t0, y0) for event in events]
     while solver.status == "running":
         if budget.spent:
             return Phase(np.array(times), np.array(states).T, "budget")
-        with warnings.catch_warnings():
-            warnings.simplefilter("error", UserWarning)
-            try:
-                solver.step()
-            except UserWarning as warning:
-                return Phase(np.array(times), np.array(states).T, "failed", message=str(warning))
+        try:
+            solver.step()
+        except UserWarning as warning:
+            return Phase(np.array(times), np.array(states).T, "failed", message=str(warning))
         budget.taken += 1
         if solver.status == "failed":
             return Phase(np.array(times), np.array(states).T, "failed", message="the step size fell below its least")
