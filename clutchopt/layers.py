@@ -23,8 +23,9 @@ LAYERS: tuple[tuple[str, str, tuple[str, ...]], ...] = (  # (layer, what it hold
     ("start-up", "the [start_up] section, the NLP's shape and drive, its collocation and mesh, a design's start "
                  "simulated",
      ("start_up.section", "start_up.drive", "start_up.transcription", "start_up.mesh", "start_up.simulation")),
-    ("case and aspects", "case file -> Case; material library (fill, variants), scatter, case templates",
-     ("cases", "materials", "scatter", "template")),
+    ("case and aspects", "case file -> Case; material library (fill, variants), scatter, case templates, the fields "
+                         "the checks across fields read",
+     ("cases", "fields_read", "materials", "scatter", "template")),
     ("presentation", "tables, text, HTML and JSON of results, read by their fields; the run store",
      ("output", "store", "store_kept")),
     ("optimise", "posed problem, solve strategies, float64 verdict, start-up check, sweeps, Pareto, robust, "
