@@ -15,7 +15,6 @@ from collections.abc import Mapping
 from dataclasses import replace
 from typing import Any, Iterator
 
-from clutchopt.errors import InputError
 
 
 class ReadRecorder(Mapping):
@@ -45,13 +44,13 @@ class ReadRecorder(Mapping):
 
 def fields_read_across(case) -> frozenset[str] | None:
     """The names :func:`~clutchopt.cases.check_across` reads at ``case`` (all of its checks pass there), or None when
-    that is not known: a check refuses the case, or reads the whole mapping of values."""
+    that is not known: a check refuses the case (or fails on it), or reads the whole mapping of values."""
     from clutchopt.cases import check_across
 
     recorder = ReadRecorder(case.values)
     try:
         check_across(replace(case, values=recorder))
-    except InputError:
+    except Exception:  # refused, or a field the case leaves out that a sweep gives (each point checked, as before)
         return None
     return None if recorder.everything else frozenset(recorder.read)
 

@@ -2,6 +2,7 @@
 and refuse exactly what the check at every point refuses."""
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -48,6 +49,9 @@ def test_a_check_that_reads_the_whole_mapping_or_refuses_the_case_decides_nothin
     assert recorder.everything
     # z gamma = 9 x 0.785 rad = 7.07 rad > 2 pi: the case itself is refused, so no field set is known
     assert fields_read_across(WEDGE.with_values(weight_count=9.0)) is None
+    # a field the case leaves out (a sweep may give it at each point): its check fails on the case itself
+    without = {name: value for name, value in WEDGE.values.items() if name != "shell_thickness"}
+    assert fields_read_across(replace(WEDGE, values=without)) is None
 
 
 def test_a_start_up_default_follows_the_duty_so_a_duty_sweep_changes_it():
