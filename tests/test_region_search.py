@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from clutchopt.cases import load_case
-from clutchopt.optimise import batch, interval_proof
+from clutchopt.optimise import interval_proof, sweep
 from clutchopt.optimise.interval import IntervalFunction
 from clutchopt.optimise.interval_proof import search, searches
 from clutchopt.optimise.problem import case_problem
@@ -47,10 +47,14 @@ def test_searches_together_give_each_point_its_own_search():
         assert (a.feasible is None and b.feasible is None) or np.array_equal(a.feasible, b.feasible)
 
 
-def test_a_sweep_into_an_infeasible_region_gives_each_point_its_solve_s_verdict(monkeypatch):
+@pytest.mark.parametrize("batched", [True, False])  # in batches, or point by point (start-ups, varied variables)
+def test_a_sweep_into_an_infeasible_region_gives_each_point_its_solve_s_verdict(monkeypatch, batched):
     ahead = []
     real = interval_proof.search_ahead
-    monkeypatch.setattr(batch, "search_ahead", lambda posed, cases: ahead.append(len(cases)) or real(posed, cases))
+    monkeypatch.setattr(interval_proof, "search_ahead",
+                        lambda posed, cases: ahead.append(len(cases)) or real(posed, cases))
+    if not batched:
+        monkeypatch.setattr(sweep, "batchable", lambda problem, names: False)
     vary = parse_vary("resisting_torque=20:400:12", "wedge", WEDGE.quantities)
     frame = Sweep(WEDGE, [vary]).run(progress=False).frame
     # 20, 54.5, 89.1 N m designed; from 123.6 N m on proven infeasible: the first such point searched alone, the

@@ -55,8 +55,8 @@ from clutchopt.cases import Case
 from clutchopt.optimise.attempts import warm_multipliers
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
 from clutchopt.optimise.chain import chain_verdict, chained_sqp
-from clutchopt.optimise.interval_proof import search_ahead
 from clutchopt.optimise.integers import descend, excluded_entry, nearest_integers, relaxation_seed, search_entry
+from clutchopt.optimise.interval_proof import SearchesAhead
 from clutchopt.optimise.posed import Box, off_scale
 from clutchopt.optimise.problem import Problem
 from clutchopt.optimise.solution import Solution, WarmStart
@@ -68,8 +68,6 @@ WINDOW = 1024  # points whose float64 checks run together; results are handed on
 WINDOW_S = 0.25  # or after this many seconds of solving, whichever comes first (a progress bar moves on)
 EXCLUSION_SPAN = LONGEST_BATCH  # points ahead whose exclusion of an integer combination is evaluated at once (a batch's
 # points at least; fewer cost less where the integers change often, since each table is a mapped CasADi call)
-FIRST_AHEAD = 8  # points whose interval searches run together after a point without a design (see _search_ahead);
-LONGEST_AHEAD = 128  # doubling up to this many while the points have none
 PADDING = 64  # a chain may repeat its last point this many times to save a call (about 4 us a repeated point,
 # against 0.2 ms of a call and its checks, on the cable: 64 cost about as much as the call they save)
 
@@ -201,10 +199,7 @@ class BatchSweep:
         # where there is none, and where the steps differ more than fourfold)
         self.solves, self.solver_s, self.check_s = 0, 0.0, 0.0
         self.feasible: dict[str, float] | None = None  # the last feasible design in order: a start for a failed point
-        # the last point solved alone whose verdict took the interval search (None: none yet), the end of the points
-        # searched ahead, how many to search ahead next
-        self._searched_at: int | None = None
-        self._ahead_to, self._ahead = 0, FIRST_AHEAD
+        self._ahead = SearchesAhead(self.posed, self.point_case, self.count)  # interval searches of points ahead
 
     def point_case(self, k: int) -> Case:
         return self.case.with_values(**{name: float(values[k]) for name, values in self.varied.items()})
@@ -249,25 +244,13 @@ class BatchSweep:
     def _solve_alone(self, k: int, warm: Solution | WarmStart | None) -> Solution:
         """Point k by ``Problem.solve``, the last feasible design in order its neighbour before a verdict. After a
         point whose verdict took the interval search (no design), the searches of the points ahead run together
-        first (:meth:`_search_ahead`)."""
-        if self._searched_at == k - 1 and k >= self._ahead_to:
-            self._search_ahead(k)
+        first (``interval_proof.SearchesAhead``)."""
+        self._ahead.before(k)
         solution = self._counted(self.problem.solve(self.point_case(k), warm=warm, neighbour=self.feasible))
+        self._ahead.after(k, solution)
         if solution.status in DESIGN_STATUSES:
-            self.feasible, self._ahead = solution.design, FIRST_AHEAD
-        elif solution.status == "not_found" or "interval branch and bound" in (solution.diagnosis or ""):
-            self._searched_at = k
+            self.feasible = solution.design
         return solution
-
-    def _search_ahead(self, k: int) -> None:
-        """The interval searches of points k, k + 1, ... (``interval_proof.search_ahead``: each point's own search,
-        all in one array), for their verdicts should they have no design; FIRST_AHEAD points, doubling while the
-        points go on without a design (up to LONGEST_AHEAD)."""
-        end = min(k + self._ahead, self.count)
-        began = time.perf_counter()
-        search_ahead(self.posed, [self.point_case(j) for j in range(k, end)])
-        self.solver_s += time.perf_counter() - began
-        self._ahead_to, self._ahead = end, min(2 * self._ahead, LONGEST_AHEAD)
 
     def _counted(self, solution: Solution) -> Solution:
         self.solves += solution.solver.solves

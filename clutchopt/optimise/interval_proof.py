@@ -21,6 +21,7 @@ import casadi as ca
 import numpy as np
 
 from clutchopt.optimise.interval import IntervalFunction
+from clutchopt.optimise.verify import DESIGN_STATUSES
 
 MAX_BOXES = 2_500
 BATCH = 128  # boxes an iteration evaluates at least (bisecting as often as it takes)
@@ -192,6 +193,36 @@ def empty_design_space(posed, case) -> Emptiness | None:
     where :func:`search_ahead` searched the same box with the same parameters."""
     problem = _search_problem(posed, case)
     return _ahead(posed).pop(_key(problem), None) or search(posed, *problem)
+
+
+FIRST_AHEAD = 8  # points whose searches run together after a point whose verdict took the search,
+LONGEST_AHEAD = 128  # doubling up to this many while the points go on without a design
+
+
+class SearchesAhead:
+    """Along a sweep (points 0 .. count - 1 solved in order, ``point_case(k)`` the case of point k): after a point
+    whose verdict took the interval search, the searches of the next points run together (:func:`search_ahead`)
+    before the next is solved, FIRST_AHEAD points, doubling while the points go on without a design."""
+
+    def __init__(self, posed, point_case, count: int):
+        self.posed, self.point_case, self.count = posed, point_case, count
+        self._searched_at: int | None = None  # the last point solved whose verdict took the search
+        self._to, self._length = 0, FIRST_AHEAD  # the end of the points searched ahead; how many to search next
+
+    def before(self, k: int) -> None:
+        """Point k is about to be solved: the searches ahead, where the point before took one and k has none."""
+        if self._searched_at == k - 1 and k >= self._to:
+            self._to = min(k + self._length, self.count)
+            search_ahead(self.posed, [self.point_case(j) for j in range(k, self._to)])
+            self._length = min(2 * self._length, LONGEST_AHEAD)
+
+    def after(self, k: int, solution) -> None:
+        """Point k's solution: a design ends the run of points without one; a verdict that took the search (not
+        found, or proven by it) starts or extends it."""
+        if solution.status in DESIGN_STATUSES:
+            self._length = FIRST_AHEAD
+        elif solution.status == "not_found" or "interval branch and bound" in (solution.diagnosis or ""):
+            self._searched_at = k
 
 
 def search_ahead(posed, cases: list) -> None:

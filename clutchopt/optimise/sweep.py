@@ -39,6 +39,7 @@ from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
 from clutchopt.optimise.dask_client import connect
 from clutchopt.optimise.design import Robustness, check_robustness, design_case, method_of
 from clutchopt.optimise.entering import check_entering
+from clutchopt.optimise.interval_proof import SearchesAhead
 from clutchopt.optimise.problem import case_formulation, case_problem
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.start_up_sweep import solved_along
@@ -131,8 +132,11 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
     feasible: tuple[dict, Solution] | None = None  # the last feasible point's values and design
     designs: dict[tuple, Solution] = {}  # feasible designs by the point's values
     waiting: list[tuple[int, Case, Solution]] = []  # points without a design, until the next feasible one
-    for j, (index, values) in enumerate(points.pairs()):
+    pairs = list(points.pairs())
+    ahead = SearchesAhead(problem.posed, lambda k: case.with_values(**pairs[k][1]), len(pairs))
+    for j, (index, values) in enumerate(pairs):
         point_case = case.with_values(**values)
+        ahead.before(j)
         # falls back to the case's own start by itself; a start-up design starts from the point before's optimum on
         # the first mesh (clutchopt.optimise.start_up_sweep), else as `solve` does, from the papers' sizing at the
         # point: either way solve's design whatever the points before it
@@ -143,6 +147,7 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
                                              neighbour=neighbour.design if neighbour is not None else None)
         if solution.status not in DESIGN_STATUSES and feasible is not None:
             solution = continued(problem, case, feasible, values) or solution
+        ahead.after(j, solution)
         previous = solution if solution.status == "optimal" else None
         if solution.status not in DESIGN_STATUSES:
             waiting.append((j, point_case, solution))
