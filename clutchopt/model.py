@@ -158,6 +158,51 @@ class Output:
     description: str = ""
 
 
+ENVELOPE_PARTS = {  # what every coupling's like-for-like mass counts, the same groups for all (docs/envelope.md)
+    "halves": "driving and driven halves with the housing or drum",
+    "moving_parts": "the weights, balls, fingers, links, cables and screws the coupling has",
+    "springs": "return springs",
+    "linings": "friction linings",
+}
+
+
+@dataclass(frozen=True)
+class Part:
+    """The mass of one group of :data:`ENVELOPE_PARTS` at a design, and what it counts (a group a coupling does not
+    have, or whose parts its model does not size, is 0 and says so)."""
+
+    mass: Any
+    counts: str
+
+
+@dataclass(frozen=True)
+class Envelope:
+    """A coupling at a design as it is set beside the others: outer diameter, axial length and the mass of the same
+    groups of parts (:data:`ENVELOPE_PARTS`) for every coupling. Written with the formulation's equations, so the
+    values are floats or CasADi symbols alike."""
+
+    outer_diameter: Any
+    axial_length: Any
+    parts: Mapping[str, Part]
+
+    def __post_init__(self):
+        if set(self.parts) != set(ENVELOPE_PARTS):
+            raise ValueError(f"an envelope counts the parts {', '.join(ENVELOPE_PARTS)}; got {', '.join(self.parts)}")
+
+    @property
+    def mass(self):
+        return sum(self.parts[name].mass for name in ENVELOPE_PARTS)
+
+    def outputs(self) -> dict[str, Output]:
+        """The envelope as outputs beside the design: diameter, length, like-for-like mass."""
+        return {
+            "envelope_diameter": Output(self.outer_diameter, "mm", "outer diameter of the coupling (docs/envelope.md)"),
+            "envelope_length": Output(self.axial_length, "mm", "axial length of the coupling (docs/envelope.md)"),
+            "envelope_mass": Output(self.mass, "kg", "like-for-like mass: halves and housing, moving parts, "
+                                                     "springs, linings (docs/envelope.md)"),
+        }
+
+
 @dataclass(frozen=True)
 class Objective:
     name: str
@@ -223,6 +268,8 @@ class Formulation:
     # those its start is simulated at: a robust design's corners (a scattered fixed design variable moves with them)
     start_up_view: Callable[[dict, dict, str | None], tuple[dict, dict]] | None = None
     notes: str = ""
+    # (x, p) -> the coupling's :class:`Envelope` at a design: outer diameter, axial length, like-for-like mass
+    envelope: Callable[[SimpleNamespace, SimpleNamespace], Envelope] | None = None
     _objective_index: dict = field(init=False, repr=False)
 
     def __post_init__(self):

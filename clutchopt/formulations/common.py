@@ -26,7 +26,9 @@ class CouplingModel:
 
     ``mass`` and ``cost``: (description, ``(state, p) -> value``) of the two objectives, kg and EUR;
     ``outputs`` and ``constraints``: ``(state, x, p) ->`` those every mode reports and meets;
-    ``speed_law``: ``state -> `` the coupling's law in a start-up.
+    ``speed_law``: ``state -> `` the coupling's law in a start-up;
+    ``envelope``: ``(state, x, p) ->`` its :class:`clutchopt.model.Envelope` (outer diameter, axial length,
+    like-for-like mass), reported as outputs by every mode.
     """
 
     coupling: str
@@ -36,12 +38,18 @@ class CouplingModel:
     outputs: Callable
     speed_law: Callable[[State], SpeedLaw | ElasticLaw]
     constraints: Callable = lambda state, x, p: []
+    envelope: Callable | None = None
 
     def formulation(self, mode: str, title: str, variables: tuple[Variable, ...], state: State,
                     constraints: Callable = lambda state, x, p: [],
                     outputs: Callable = lambda state, x, p: {}) -> Formulation:
         """The posed problem of one mode, from how it obtains the state and what it adds."""
         (mass_description, mass), (cost_description, cost) = self.mass, self.cost
+        envelope = self.envelope
+
+        def envelope_outputs(s, x, p):
+            return envelope(s, x, p).outputs() if envelope else {}
+
         return Formulation(
             coupling=self.coupling,
             mode=mode,
@@ -51,8 +59,10 @@ class CouplingModel:
             constraints=lambda x, p: self.constraints(s := state(x, p), x, p) + constraints(s, x, p),
             objectives=(Objective("mass", "kg", mass_description, lambda x, p: mass(state(x, p), p)),
                         Objective("cost", "EUR", cost_description, lambda x, p: cost(state(x, p), p))),
-            outputs=lambda x, p: {**self.outputs(s := state(x, p), x, p), **outputs(s, x, p)},
+            outputs=lambda x, p: {**self.outputs(s := state(x, p), x, p), **outputs(s, x, p),
+                                  **envelope_outputs(s, x, p)},
             speed_law=self.speed_law(state),
+            envelope=(lambda x, p: envelope(state(x, p), x, p)) if envelope else None,
         )
 
 

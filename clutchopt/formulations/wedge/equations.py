@@ -72,6 +72,12 @@ def weight_body(r_in, r1, r2, width, flank_angle, sector_angle, density):
     return mass, centroid
 
 
+def equivalent_width(weight_mass, density, sector_angle, r2, weight_height):
+    """b = 2 m_r / (rho gamma (r2^2 - (r2 - h_r)^2)): the axial width of an annular sector r2 - h_r..r2 of mass m_r,
+    the width a paper-mode weight (mass free, width not posed) takes in the envelope (docs/envelope.md)."""
+    return 2.0 * weight_mass / (density * sector_angle * (r2**2 - (r2 - weight_height) ** 2))
+
+
 def cost(p, total_mass, weight_count, flank_area_one_side):
     """Material at a price per kg, a fixed cost per weight-and-finger part, grinding per flank area."""
     return (p.material_price * total_mass + weight_count * p.part_cost
