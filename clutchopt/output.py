@@ -306,6 +306,25 @@ def choices_text(ranked: list, kept: dict[str, str] | None = None) -> str:
     return "\n".join([f"Choices of options.choose, best first{robust}", _frame(rows), *why, *same, "",
                       f"Below: the best, {ranked[0].choice_text}."])
 
+def choice_text(choice: dict) -> str:
+    """``clutchopt choose-coupling``: the couplings (``clutchopt.optimise.choose.choice_json``), verified optima first
+    by like-for-like mass; their parts; why each loses; what did not apply."""
+    rows = [{"rank": c["rank"] or "-", "coupling": c["coupling"], "mode": c["mode"], "status": c["status"],
+             "mass [kg]": _shown(c["envelope_mass"], "kg"), "cost [EUR]": _shown(c["cost"], "EUR"),
+             "diameter [mm]": _shown(c["envelope_diameter"], "mm"), "length [mm]": _shown(c["envelope_length"], "mm"),
+             "sized for [N*m]": _shown(c["sized_for"], "N*m")} for c in choice["couplings"]]
+    parts = [{"coupling": c["coupling"], **{f"{name} [kg]": _shown(mass, "kg") for name, mass in c["parts"].items()}}
+             for c in choice["couplings"] if c["parts"]]
+    ranking = "; ".join(f"by {what}: {', '.join(names) or '-'}" for what, names in choice["ranking"].items())
+    lines = [f"Which coupling  -  {choice['title']}",
+             f"duty: T_max = I w / t_p + T_c = {choice['required_torque']:.6g} N*m; each coupling designed for least "
+             "mass and verified in float64; mass, diameter and length like for like (docs/envelope.md)", "",
+             _frame(rows), f"ranked {ranking}", "", "Like-for-like mass by part", _frame(parts), "",
+             "Why the others lose", *(f"  {c['coupling']}: {c['why']}" for c in choice["couplings"])]
+    notes = [f"  {c['coupling']}: {note}" for c in choice["couplings"] for note in c["notes"]]
+    return "\n".join(lines + (["", "Posed with", *notes] if notes else []))
+
+
 START_UP_ROWS = (  # figure, display unit, meaning
     ("start_time", "s", "switch-on to lock-up"),
     ("friction_work", "kJ", "heat released by slip"),

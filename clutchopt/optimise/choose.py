@@ -69,7 +69,8 @@ class Candidate:
         return self.status == "optimal"
 
     def output(self, name: str) -> float:
-        if self.solution is None or name not in self.solution.outputs:
+        """An output of the verified optimum (NaN without one: an unverified point is not set beside the others)."""
+        if not self.optimal or name not in self.solution.outputs:
             return math.nan
         return float(self.solution.outputs[name].value)
 
@@ -153,9 +154,13 @@ def posed_case(name: str, duty: dict[str, float], raw_duty: dict, data: dict, pa
 
     coupling = get_coupling(name)
     overrides = data.get("couplings", {}).get(name, {})
-    mode = overrides.get("options", {}).get("mode") or max(
+    options = overrides.get("options", {}) if isinstance(overrides.get("options"), dict) else {}
+    mode = options.get("mode") or max(
         coupling.formulations.values(), key=lambda f: sum(not v.fixed_unless_freed for v in f.variables)).mode
-    case_data = tomllib.loads(case_template(name, mode))
+    try:
+        case_data = tomllib.loads(case_template(name, mode))
+    except InputError as exc:
+        return Candidate(name, str(mode), None, reason=f"cannot be posed: {exc}")
     notes: list[str] = []
     t_max = required_torque(duty["inertia"], duty["speed"], duty["acceleration_time"], duty["resisting_torque"])
     rated_torque = duty["power"] / duty["speed"] if "power" in duty else duty.get("torque", t_max)
@@ -217,9 +222,11 @@ def pose(data: dict, path: str = "") -> tuple[Choice, dict[str, float]]:
     if data.get("coupling", ANY) != ANY:
         raise InputError("coupling", f"choose-coupling takes a case with coupling = \"{ANY}\" (or none), "
                                      f"got {data['coupling']!r}")
-    duty, raw = neutral_duty(data, path)
-    couplings = data.get("couplings", {})
     problems = Problems()
+    duty, raw = {}, {}
+    with problems.field():
+        duty, raw = neutral_duty(data, path)
+    couplings = data.get("couplings", {}) if isinstance(data.get("couplings", {}), dict) else {}
     for name, table in couplings.items():
         if name not in MODULES:
             problems.errors.append(InputError(f"couplings.{name}", f"unknown coupling; known: {', '.join(MODULES)}"))
