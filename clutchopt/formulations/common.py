@@ -16,6 +16,7 @@ from clutchopt.errors import InputError
 from clutchopt.formulations.duty import required_torque
 from clutchopt.model import ElasticLaw, Formulation, Objective, Quantity, SpeedLaw, Variable
 
+ENVELOPE_MASS = "like-for-like mass: halves and housing, moving parts, springs, linings (docs/envelope.md)"
 State = Callable[[SimpleNamespace, SimpleNamespace], Any]  # (x, p) -> the coupling at design x of case p
 
 
@@ -58,7 +59,9 @@ class CouplingModel:
             variables=variables,
             constraints=lambda x, p: self.constraints(s := state(x, p), x, p) + constraints(s, x, p),
             objectives=(Objective("mass", "kg", mass_description, lambda x, p: mass(state(x, p), p)),
-                        Objective("cost", "EUR", cost_description, lambda x, p: cost(state(x, p), p))),
+                        Objective("cost", "EUR", cost_description, lambda x, p: cost(state(x, p), p)))
+            + ((Objective("envelope_mass", "kg", ENVELOPE_MASS, lambda x, p: envelope(state(x, p), x, p).mass),)
+               if envelope else ()),
             outputs=lambda x, p: {**self.outputs(s := state(x, p), x, p), **outputs(s, x, p),
                                   **envelope_outputs(s, x, p)},
             speed_law=self.speed_law(state),

@@ -36,6 +36,7 @@ from clutchopt.start_up.nameplate import FIELDS as NAMEPLATE_FIELDS
 from clutchopt.units import si_unit, to_si
 
 ANY = "any"
+OBJECTIVE = "envelope_mass"  # each coupling designed for least like-for-like mass, the mass it is ranked by
 SECTIONS = ("duty", "library", "limits", "start_up", "couplings")
 TOP_LEVEL = ("coupling", "title", "description")
 RATED = {"power": Quantity("power", "kW", "rated power of the motor", "P", "duty", None, above=0),
@@ -252,7 +253,7 @@ def choose_coupling(case, options: SolverOptions = SolverOptions()) -> Choice:
         if candidate.case is None:
             continue
         try:
-            candidate.solution = design_case(candidate.case, candidate.mode, "mass", options)[0].solution
+            candidate.solution = design_case(candidate.case, candidate.mode, OBJECTIVE, options)[0].solution
         except InputError as exc:  # the drive does not suit this coupling (e.g. an effect it does not have)
             candidate.reason = "cannot be posed: " + "; ".join(str(p) for p in exc.problems)
             continue
