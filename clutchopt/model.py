@@ -196,10 +196,9 @@ class Envelope:
     def outputs(self) -> dict[str, Output]:
         """The envelope as outputs beside the design: diameter, length, like-for-like mass."""
         return {
-            "envelope_diameter": Output(self.outer_diameter, "mm", "outer diameter of the coupling (docs/envelope.md)"),
-            "envelope_length": Output(self.axial_length, "mm", "axial length of the coupling (docs/envelope.md)"),
-            "envelope_mass": Output(self.mass, "kg", "like-for-like mass: halves and housing, moving parts, "
-                                                     "springs, linings (docs/envelope.md)"),
+            "envelope_diameter": Output(self.outer_diameter, "mm", "outer diameter (docs/envelope.md)"),
+            "envelope_length": Output(self.axial_length, "mm", "axial length (docs/envelope.md)"),
+            "envelope_mass": Output(self.mass, "kg", "like-for-like mass (docs/envelope.md)"),
         }
 
 

@@ -16,7 +16,7 @@ from clutchopt.errors import InputError
 from clutchopt.formulations.duty import required_torque
 from clutchopt.model import ElasticLaw, Formulation, Objective, Quantity, SpeedLaw, Variable
 
-ENVELOPE_MASS = "like-for-like mass: halves and housing, moving parts, springs, linings (docs/envelope.md)"
+ENVELOPE_MASS = "halves and housing, moving parts, springs, linings alike (docs/envelope.md)"
 State = Callable[[SimpleNamespace, SimpleNamespace], Any]  # (x, p) -> the coupling at design x of case p
 
 
