@@ -183,8 +183,12 @@ def posed_case(name: str, duty: dict[str, float], raw_duty: dict, data: dict, pa
     for key, entry in data.get("library", {}).items():
         if key in library:
             library[key] = entry
+        elif key in {role.key for role in coupling.materials}:
+            given = ", ".join(q for role in coupling.materials if role.key == key for q in role.fills.values()
+                              if q in case_data_values(case_data))
+            notes.append(f"library.{key} not applied: the {name}'s starting case gives {given} itself")
         else:
-            notes.append(f"library.{key} not applied: the {name} case has no such role or gives its values itself")
+            notes.append(f"library.{key} not applied: the {name} coupling has no such role")
     limits = {q.name for q in coupling.quantities if q.section == "limits"}
     for key, value in data.get("limits", {}).items():
         if key in limits:
@@ -208,6 +212,11 @@ def posed_case(name: str, duty: dict[str, float], raw_duty: dict, data: dict, pa
     except InputError as exc:
         candidate.reason = "cannot be posed: " + "; ".join(str(p) for p in exc.problems)
     return candidate
+
+
+def case_data_values(case_data: dict) -> set[str]:
+    """The quantity names a case's TOML gives a value to (its sections' keys)."""
+    return {key for section in case_data.values() if isinstance(section, dict) for key in section}
 
 
 def _merge(target: dict, extra: dict) -> None:
