@@ -318,7 +318,8 @@ def choice_text(choice: dict) -> str:
     ranking = "; ".join(f"by {what}: {', '.join(names) or '-'}" for what, names in choice["ranking"].items())
     lines = [f"Which coupling  -  {choice['title']}",
              f"duty: T_max = I w / t_p + T_c = {choice['required_torque']:.6g} N*m; each coupling designed for least "
-             "like-for-like mass (objective envelope_mass, docs/envelope.md) and verified in float64", "",
+             "like-for-like mass (objective envelope_mass, docs/envelope.md) and verified in float64",
+             *([f"drive: {choice['drive']}"] if choice.get("drive") else []), "",
              _frame(rows), f"ranked {ranking}", "", "Like-for-like mass by part", _frame(parts), "",
              "Why the others lose", *(f"  {c['coupling']}: {c['why']}" for c in choice["couplings"])]
     notes = [f"  {c['coupling']}: {note}" for c in choice["couplings"] for note in c["notes"]]

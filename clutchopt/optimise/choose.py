@@ -291,6 +291,8 @@ def choice_json(choice: Choice) -> dict:
     ranked = choice.ranked
     return {
         "case": choice.path, "title": choice.title, "required_torque": choice.required_torque,
+        "drive": next((c.case.start_up.motor_note for c in choice.candidates if c.case is not None
+                       and c.case.start_up is not None and c.case.start_up.motor_note), ""),
         "ranking": {what: choice.rank_by(output) for what, output, _ in RANKINGS},
         "couplings": [{
             "coupling": c.coupling, "mode": c.mode, "status": c.status, "rank": i + 1 if c.optimal else None,
