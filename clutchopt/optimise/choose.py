@@ -307,7 +307,7 @@ def choice_json(choice: Choice) -> dict:
 
 
 def choice_units() -> dict:
-    per = {"envelope_mass": "kg", "cost": "EUR", "envelope_diameter": "m", "envelope_length": "m",
+    per = {"rank": "", "envelope_mass": "kg", "cost": "EUR", "envelope_diameter": "m", "envelope_length": "m",
            "objective_mass": "kg", "sized_for": "N*m", "parts": {name: "kg" for name in ENVELOPE_PARTS}}
     return {"required_torque": "N*m", "couplings": per}
 
