@@ -30,7 +30,7 @@ from clutchopt.cases import Case, parse_case, read_toml
 from clutchopt.errors import InputError, Problems
 from clutchopt.formulations import MODULES, get_coupling
 from clutchopt.formulations.duty import DUTY_QUANTITIES, required_torque
-from clutchopt.model import ENVELOPE_PARTS, Quantity
+from clutchopt.model import ENVELOPE_PARTS, Quantity, namespace
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.start_up.nameplate import FIELDS as NAMEPLATE_FIELDS
 from clutchopt.units import si_unit, to_si
@@ -44,7 +44,7 @@ RATED = {"power": Quantity("power", "kW", "rated power of the motor", "P", "duty
 DUTY = {**{q.name: q for q in DUTY_QUANTITIES}, **RATED}
 START_UP_FROM_DUTY = (("driven", "inertia", "inertia"), ("driven", "resisting_torque", "resisting_torque"),
                       ("limits", "max_start_time", "acceleration_time"))
-RANKINGS = (("mass", "envelope_mass", "kg"), ("cost", "cost", "EUR"), ("diameter", "envelope_diameter", "m"))
+RANKINGS = (("mass", "envelope_mass"), ("cost", "cost"), ("diameter", "envelope_diameter"))
 
 
 @dataclass
@@ -268,10 +268,7 @@ def choose_coupling(case, options: SolverOptions = SolverOptions()) -> Choice:
             continue
         candidate.sized_for = _sized_for(candidate)
         if candidate.optimal:
-            from clutchopt.formulations import get_coupling as coupling_of
-            from clutchopt.model import namespace
-
-            formulation = coupling_of(candidate.coupling).formulation(candidate.mode)
+            formulation = get_coupling(candidate.coupling).formulation(candidate.mode)
             envelope = formulation.envelope(namespace(candidate.solution.design), namespace(candidate.case.values))
             candidate.parts = {name: float(envelope.parts[name].mass) for name in ENVELOPE_PARTS}
         elif not candidate.reason:
@@ -293,7 +290,7 @@ def choice_json(choice: Choice) -> dict:
         "case": choice.path, "title": choice.title, "required_torque": choice.required_torque,
         "drive": next((c.case.start_up.motor_note for c in choice.candidates if c.case is not None
                        and c.case.start_up is not None and c.case.start_up.motor_note), ""),
-        "ranking": {what: choice.rank_by(output) for what, output, _ in RANKINGS},
+        "ranking": {what: choice.rank_by(output) for what, output in RANKINGS},
         "couplings": [{
             "coupling": c.coupling, "mode": c.mode, "status": c.status, "rank": i + 1 if c.optimal else None,
             "envelope_mass": _finite(c.output("envelope_mass")), "cost": _finite(c.output("cost")),
