@@ -175,3 +175,15 @@ def _toml(data: dict, prefix: str = "") -> str:
         if isinstance(value, dict):
             lines += ["", f"[{prefix}{key}]", _toml(value, f"{prefix}{key}.")]
     return "\n".join(lines)
+
+
+def test_a_rated_torque_in_place_of_the_power_poses_the_same_duty():
+    """duty.torque = T_n = P / w: the ball's power is T_n w and k_s = T_max / T_n; the cable is sized for T_max."""
+    data = read_toml(CONVEYOR)
+    data["duty"].pop("power")
+    data["duty"]["torque"] = "98 N*m"
+    choice, _ = pose(data, "torque.toml")
+    posed = {c.coupling: c.case.values for c in choice.candidates}
+    assert posed["ball"]["power"] == pytest.approx(98 * W, rel=1e-12)
+    assert posed["ball"]["service_factor"] == pytest.approx(T_MAX / 98, rel=1e-12)
+    assert posed["cable"]["torque"] == pytest.approx(T_MAX, rel=1e-12)

@@ -168,7 +168,9 @@ def posed_case(name: str, duty: dict[str, float], raw_duty: dict, data: dict, pa
     declared = {q.name for q in coupling.quantities if q.section == "duty"}
     written = {}
     for quantity in declared:
-        if quantity in raw_duty:
+        if quantity == "torque":  # the torque a coupling is sized for; the neutral duty.torque is the motor's
+            written["torque"] = t_max
+        elif quantity in raw_duty:
             written[quantity] = raw_duty[quantity]
         elif quantity == "power":
             written["power"] = rated_torque * duty["speed"]
@@ -176,8 +178,6 @@ def posed_case(name: str, duty: dict[str, float], raw_duty: dict, data: dict, pa
             written["service_factor"] = max(1.0, t_max / rated_torque)
             if t_max < rated_torque:
                 notes.append(f"sized by k_s P / w for the rated torque {rated_torque:.6g} N*m, above T_max")
-        elif quantity == "torque":
-            written["torque"] = t_max
     case_data["duty"] = {**{k: v for k, v in case_data.get("duty", {}).items() if k not in declared}, **written}
     library = case_data.setdefault("library", {})
     for key, entry in data.get("library", {}).items():
