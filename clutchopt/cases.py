@@ -190,8 +190,10 @@ def parse_case(data: dict, path: str = "") -> Case:
         from clutchopt.start_up.section import parse_start_up
 
         with problems.field():
-            start_values, start_up, follows = parse_start_up(data["start_up"], coupling, values, not problems)
+            start_values, start_up, follows, start_filled = parse_start_up(
+                data["start_up"], coupling, values, not problems, (data.get("library", {}), choose))
             values.update(start_values)
+            filled.update(start_filled)
     scatter = ()
     if "scatter" in data:  # scattered around the case's values: not checked against a value that is itself bad
         with problems.field():

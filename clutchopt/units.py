@@ -279,8 +279,11 @@ def to_si(field: str, raw: object, unit: str) -> float:
     return value
 
 
-def from_si(value: float, unit: str) -> float:
-    """Convert an SI value to ``unit`` for display."""
+def from_si(value, unit: str):
+    """Convert an SI value to ``unit`` for display; an offset unit (degC) takes an absolute temperature in K, so
+    293.15 K is 20 degC, not 293.15 (a number or a NumPy array)."""
+    if unit not in UNITS and unit_info(unit).offset:
+        return registry().Quantity(value, registry().kelvin).to(unit).magnitude
     return value / si_factor(unit)
 
 
