@@ -291,7 +291,7 @@ TABLE_UNITS = (  # the units case files and scenes usually write, besides those 
     "", "mm", "cm", "m", "um", "m^2", "m^3", "kg", "g", "t", "s", "ms", "min", "h", "rpm", "rps", "rad/s", "1/s",
     "Hz", "deg", "rad", "N", "kN", "N*m", "kN*m", "Pa", "kPa", "MPa", "GPa", "N/mm^2", "bar", "W", "kW", "MW", "J",
     "kJ", "J/K", "W/K", "kg*m^2", "kg/m^3", "g/cm^3", "N/m", "N/mm", "N*m/rad", "m/s^2", "m^3/s^2", "s/rad", "EUR",
-    "EUR/kg", "EUR/cm^2", "EUR/m^2", "K", "kJ/K", "1/hour", "1/h", "1/min", "kJ/hour", "kJ/h",
+    "EUR/kg", "EUR/cm^2", "EUR/m^2", "K", "kJ/K", "1/hour", "1/h", "1/min", "kJ/hour", "kJ/h", "mm^3/J",
 )
 
 

@@ -37,9 +37,6 @@ Layout (quantities with units; bare numbers are SI; the vocabulary of start-up s
 
 from __future__ import annotations
 
-from contextlib import suppress
-
-from clutchopt import materials
 from clutchopt.errors import InputError, Problems
 from clutchopt.model import REQUIRED, ElasticLaw, followed
 from clutchopt.start_up.equations import (
@@ -67,12 +64,12 @@ DEFAULTS_FROM_DUTY = {"driven_inertia": "inertia", "load_torque": "resisting_tor
 
 
 def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = True,
-                   library: tuple[dict, dict] = ({}, {})) -> tuple[dict[str, float], StartUpSpec, dict, dict]:
+                   library: dict[str, float] | None = None) -> tuple[dict[str, float], StartUpSpec, dict, set]:
     """SI values of the start-up quantities, the spec of a ``[start_up]`` table of a case of ``coupling``, the
     defaults that follow another quantity (``{name: (source, factor)}``: the value is factor times the source's,
-    through every change a command makes; see :attr:`clutchopt.cases.Case.follows`) and what the case's
-    ``library`` (its ``[library]`` table and ``options.choose``) filled: the friction pair's temperature limits and
-    wear rate (:func:`clutchopt.materials.fill`), unless the case gives them.
+    through every change a command makes; see :attr:`clutchopt.cases.Case.follows`) and the names taken from
+    ``library``: the values the case's friction pair fills (its temperature limits and wear rate, SI, by name;
+    :func:`clutchopt.materials.fill`), where the section does not give them itself.
 
     Every field's own problem is raised together (one InputError); the checks across fields (:func:`_check`) run
     once the fields are sound, and only if ``duty_sound`` (the defaults follow the duty's values)."""
@@ -118,9 +115,8 @@ def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = T
             quantity = declared[f"{SECTION}.spring_preload"]
             values["spring_preload"] = quantity.check(to_si(quantity.key, table["spring_preload"], quantity.unit))
     given = {q.name for q in QUANTITIES if q.key.rsplit(".", 1)[1] in _table(table, q.section)}  # good or bad
-    filled = {}
-    with suppress(InputError):  # a bad [library] is reported by the case's own filling
-        filled = materials.fill(library[0], coupling.materials, QUANTITIES, values, library[1])
+    taken = {name for name in library or {} if name not in values}
+    values.update({name: (library or {})[name] for name in taken})
     spec = {}
     with problems.field():
         spec["intervals"] = _intervals(table.get("intervals", StartUpSpec.intervals))
@@ -151,7 +147,7 @@ def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = T
     if duty_sound:
         _check(values, effects, coupling, laws, profile, given)
     return values, StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile, **spec,
-                               motor_note=motor_note), follows, filled
+                               motor_note=motor_note), follows, taken
 
 
 def _table(table: dict, section: str) -> dict:
