@@ -64,7 +64,8 @@ QUANTITIES = (
     Q("min_engagement_speed", "rpm", "engagement speed at least (the motor runs up unloaded first; leave it out for "
       "none)", "w_e,min", f"{SECTION}.limits", None, above=0),
     Q("max_engagement_speed", "rpm", "engagement speed at most", "w_e,max", f"{SECTION}.limits", None, above=0),
-    Q("starts_per_hour", "1/hour", "starts per hour (with heat_dissipation: the heat balance over an hour)", "n_h",
+    Q("starts_per_hour", "1/hour", "starts per hour (the steady temperature of repeated starts, the lining's life "
+      "in hours; with heat_dissipation: the heat balance over an hour)", "n_h",
       f"{SECTION}.limits", None, above=0),
     Q("heat_dissipation", "W", "mean heat the housing can shed (e.g. '180 kJ/hour')", "P_d",
       f"{SECTION}.limits", None, above=0),
