@@ -17,12 +17,14 @@ LEVER = "cases/lever_motor_start.toml"
 
 
 def lever_case(tmp_path, name: str, library_pair: bool = True, **replace: str) -> str:
-    """cases/lever_motor_start.toml with ``[library] friction_pair = "organic_dry"`` (its explicit friction
-    coefficient and allowable pressure still win) and text replaced."""
+    """cases/lever_motor_start.toml (``[library] friction_pair = "organic_dry"``, its explicit friction coefficient
+    and allowable pressure still winning), without the friction pair unless ``library_pair``, text replaced."""
     with open(LEVER, encoding="utf-8") as file:
         text = file.read()
-    if library_pair:
-        text = text.replace("[material]\n", '[library]\nfriction_pair = "organic_dry"\n\n[material]\n')
+    pair = '[library]\nfriction_pair = "organic_dry"\n\n'
+    assert pair in text
+    if not library_pair:
+        text = text.replace(pair, "")
     for old, new in replace.items():
         assert old in text, old
         text = text.replace(old, new)
