@@ -138,3 +138,31 @@ def test_heat_dissipation_needs_the_starts():
     with pytest.raises(InputError, match="starts_per_hour.*heat_dissipation"):
         parse_start_up(table, get_coupling("wedge"), {"inertia": 1.0, "resisting_torque": 1.0,
                                                       "acceleration_time": 5.0, "speed": 100.0})
+
+
+def test_the_mean_steady_temperature_is_above_the_periodic_one():
+    """docs/start_up.md: a start of L = 100 kJ every tau = 900 s (4 an hour) into C = 7000 J/K shedding G = 10 W/K
+    starts, in the periodic state of the lumped model, at (L / C) / (exp(G tau / C) - 1) over ambient: x = G tau / C
+    = 1.2857, e^x - 1 = 2.6172, 14.286 K / 2.6172 = 5.458 K; the mean steady rise L n_h / G = 100000 / 900 / 10 =
+    11.11 K is above it (e^x - 1 >= x): the safe side."""
+    from clutchopt.start_up.equations import steady_temperature_rise
+
+    work, tau, capacity, conductance = 1e5, 900.0, 7000.0, 10.0
+    mean = steady_temperature_rise(work, 1.0 / tau, conductance)
+    periodic = (work / capacity) / math.expm1(conductance * tau / capacity)
+    assert mean == pytest.approx(100000.0 / 900.0 / 10.0, rel=1e-15)
+    assert periodic == pytest.approx(5.4583, rel=1e-4)
+    assert periodic < mean
+
+
+def test_the_friction_areas_that_wear():
+    """Wedge: both flanks of z = 4 weights, gamma = 0.785 rad, r1 = 50 mm, r2 = 60 mm, alpha = 15 deg:
+    2 z gamma (r2^2 - r1^2) / (2 cos alpha) = 8 x 0.785 x 0.0011 / 1.93185 = 3.5759e-3 m^2. Lever: i = 2 lined
+    faces of d_cp = 200 mm, b = 50 mm: 2 pi 0.2 0.05 = 0.062832 m^2."""
+    from clutchopt.formulations.lever.equations import lining_area
+    from clutchopt.formulations.wedge.equations import flank_area_total
+
+    wedge = 2 * 4 * 0.785 * (0.06**2 - 0.05**2) / (2 * math.cos(math.radians(15)))
+    assert flank_area_total(4, 0.785, 0.05, 0.06, math.radians(15)) == pytest.approx(wedge, rel=1e-12)
+    assert wedge == pytest.approx(3.5759e-3, rel=1e-4)
+    assert lining_area(2, 0.2, 0.05) == pytest.approx(0.062832, rel=1e-5)
