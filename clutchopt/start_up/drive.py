@@ -133,9 +133,11 @@ class Drive:
         """T_0 + dT_s + dT of the start (``temperature_rise``: its rise, all along the start or its largest)."""
         return su.lining_temperature(self.p.ambient_temperature, self.steady_rise(friction_work), temperature_rise)
 
+    def wear_per_start(self, friction_work):
+        return su.wear_per_start(friction_work, self.p.wear_rate, self.law.friction_area(self.x, self.p))
+
     def starts_until_worn(self, friction_work):
-        depth = su.wear_per_start(friction_work, self.p.wear_rate, self.law.friction_area(self.x, self.p))
-        return su.starts_until_worn(self.p.wear_allowance, depth)
+        return su.starts_until_worn(self.p.wear_allowance, self.wear_per_start(friction_work))
 
     def life(self, friction_work):
         """Time until worn at starts_per_hour: N / n_h (s)."""

@@ -170,7 +170,10 @@ def wear_per_start(friction_work, wear_rate, friction_area):
 
 
 def starts_until_worn(wear_allowance, wear_depth):
-    """N = s_w / h: the starts until the wear allowance s_w is gone at h per start."""
+    """N = s_w / h: the starts until the wear allowance s_w is gone at h per start (infinite where a start wears
+    nothing: one that never slips, a number only)."""
+    if not is_symbolic(wear_depth) and np.ndim(wear_depth) == 0 and wear_depth == 0:
+        return math.inf
     return wear_allowance / wear_depth
 
 

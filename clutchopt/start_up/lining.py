@@ -16,7 +16,7 @@ def lining_figures(drive: Drive, friction_work: float, temperature_rise: float |
     """The lining's figures of one start (SI; None where the case lacks what it needs): peak and steady temperature
     (friction_heat), wear per start, starts and hours until worn (wear rate, allowance and friction area known;
     hours with starts_per_hour)."""
-    s, p = drive.s, drive.p
+    s = drive.s
     heat = s.heat and temperature_rise is not None
     figures = {"lining_temperature": float(drive.lining_temperature(friction_work, temperature_rise)) if heat
                else None,
@@ -24,8 +24,8 @@ def lining_figures(drive: Drive, friction_work: float, temperature_rise: float |
                else None,
                "wear_per_start": None, "starts_until_worn": None, "life": None}
     if not _missing_for_wear(drive):
-        starts = float(drive.starts_until_worn(friction_work))
-        figures.update(wear_per_start=float(p.wear_allowance) / starts, starts_until_worn=starts,
+        figures.update(wear_per_start=float(drive.wear_per_start(friction_work)),
+                       starts_until_worn=float(drive.starts_until_worn(friction_work)),
                        life=float(drive.life(friction_work)) if drive.repeated else None)
     return figures
 
