@@ -261,6 +261,8 @@ def to_si(field: str, raw: object, unit: str) -> float:
         if given.offset and not expected.offset:
             raise InputError(field, f"{raw.strip()!r} is a temperature on a scale with an offset; write a "
                                     "temperature difference in K (or delta_degC)")
+        if expected.offset and "delta_" in unit_text:
+            raise InputError(field, f"{raw.strip()!r} is a temperature difference; write a temperature in degC or K")
         if _kind(unit) == _ANGULAR_SPEED and (given.dimensions, given.angle) == (expected.dimensions, 0):
             raise InputError(field, f"{raw.strip()!r} is ambiguous: {_SPEED_HINT}")
         if not unit_text:  # a number in text is read as a bare one: SI (radians, where an angle is expected)

@@ -39,6 +39,9 @@ def test_degc_is_an_absolute_temperature_both_ways():
     assert from_si(523.15, "degC") == pytest.approx(250.0, abs=1e-12)
     assert from_si(np.array([273.15, 373.15]), "degC") == pytest.approx([0.0, 100.0], abs=1e-12)
     assert from_si(2.0, "kJ") == 0.002
+    assert to_si("x", "300 K", "degC") == 300.0  # kelvin is absolute too
+    with pytest.raises(InputError, match="a temperature difference; write a temperature in degC or K"):
+        to_si("start_up.heat.ambient", "40 delta_degC", "degC")
 
 
 def test_every_friction_pair_has_its_temperature_limits_and_wear_rate():
