@@ -190,8 +190,13 @@ def parse_case(data: dict, path: str = "") -> Case:
         from clutchopt.start_up.section import parse_start_up
 
         with problems.field():
-            start_values, start_up, follows = parse_start_up(data["start_up"], coupling, values, not problems)
+            lining: dict[str, float] = {}  # what the friction pair fills in the section (a bad [library]: above)
+            lining_filled = _quietly(materials.fill, data.get("library", {}), coupling.materials,
+                                     START_UP_QUANTITIES, lining, choose) or {}
+            start_values, start_up, follows, taken = parse_start_up(data["start_up"], coupling, values,
+                                                                    not problems, lining)
             values.update(start_values)
+            filled.update({name: lining_filled[name] for name in taken})
     scatter = ()
     if "scatter" in data:  # scattered around the case's values: not checked against a value that is itself bad
         with problems.field():
@@ -222,6 +227,14 @@ def parse_case(data: dict, path: str = "") -> Case:
                                                       "that names one entry")
     problems.raise_any()
     return case
+
+
+def _quietly(function, *args):
+    """``function(*args)``, or None where it raises an InputError that another field's check reports already."""
+    try:
+        return function(*args)
+    except InputError:
+        return None
 
 
 def check_across(case: Case) -> None:

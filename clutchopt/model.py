@@ -218,12 +218,14 @@ class SpeedLaw:
     ``torque_coefficient``: K = dT / d(w_a^2), N*m*s^2. ``mass_radius``: m r of one weight, the radial force per
     (rad/s)^2 that springs and gravity work against, and ``weight_mass``: m of one weight (gravity); both None
     for a coupling without such weights (then the effects spring_preload and gravity do not apply).
+    ``friction_area``: the area of the friction surfaces that wear, m^2 (the lining's life; None: not known).
     """
 
     torque_coefficient: Callable[[SimpleNamespace, SimpleNamespace], Any]
     mass_radius: Callable[[SimpleNamespace, SimpleNamespace], Any] | None = None
     weight_mass: Callable[[SimpleNamespace, SimpleNamespace], Any] | None = None
-
+    friction_area: Callable[[SimpleNamespace, SimpleNamespace], Any] | None = None  # m^2: the lining area that
+    # wears (every friction surface of the coupling's wearing part), for the lining's life; None: not declared
 
 @dataclass(frozen=True)
 class ElasticLaw:

@@ -334,6 +334,11 @@ START_UP_ROWS = (  # figure, display unit, meaning
     ("engagement_speed", "rpm", "driving speed at which the weights engage"),
     ("engagement_time", "s", "motor running up unloaded"),
     ("lock_up_time", "s", "the coupling slips under load"),
+    ("lining_temperature", "degC", "peak lining temperature: ambient + steady of repeated starts + the start's rise"),
+    ("steady_temperature", "degC", "steady lining temperature of repeated starts (starts_per_hour)"),
+    ("wear_per_start", "um", "lining worn per start, k_w L / A"),
+    ("starts_until_worn", "", "starts until the wear allowance is gone"),
+    ("life", "h", "hours of starts (starts_per_hour) until worn"),
 )
 ELASTIC_START_UP_ROWS = (  # an elastic link (the cable coupling): the NLP's link quasi-static, the simulator's dynamic
     ("start_time", "s", "switch-on until the machine runs at the start speed"),
@@ -360,7 +365,7 @@ def start_up_table(start_up: dict) -> tuple[str, list[dict], list[str]]:
             f"{start_up['intervals']} intervals per phase ({', '.join(start_up['phases'])}), beside the simulator"
             + (" (the NLP takes the elastic link as quasi-static, the simulator follows its dynamics)" if elastic
                else ""))
-    notes = [start_up["motor"]] if start_up.get("motor") else []
+    notes = ([start_up["motor"]] if start_up.get("motor") else []) + start_up.get("lining_notes", [])
     return head, rows, notes + ([] if start_up["locks_up"] else [f"simulated: {start_up['reason']}"])
 
 

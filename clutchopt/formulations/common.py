@@ -75,19 +75,21 @@ def at_unit_speed(p):
 
 
 def centrifugal_speed_law(state: State, torque: Callable, weight_mass: Callable | None = None,
-                          weight_radius: Callable | None = None) -> SpeedLaw:
+                          weight_radius: Callable | None = None, friction_area: Callable | None = None) -> SpeedLaw:
     """T = K w_a^2 for a coupling whose torque comes from centrifugal forces: K is ``torque(state, p)`` at
     w_a = 1 rad/s. ``weight_mass(state)`` and ``weight_radius(state)`` give m and r of one weight, whose
-    centrifugal force m r w_a^2 springs and gravity act against; without them those effects do not apply."""
+    centrifugal force m r w_a^2 springs and gravity act against; without them those effects do not apply.
+    ``friction_area(state)``: the area of the friction surfaces that wear (the lining's life)."""
     def torque_coefficient(x, p):
         unit = at_unit_speed(p)
         return torque(state(x, unit), unit)
 
+    area = (lambda x, p: friction_area(state(x, p))) if friction_area else None
     if weight_mass is None:
-        return SpeedLaw(torque_coefficient)
+        return SpeedLaw(torque_coefficient, friction_area=area)
     return SpeedLaw(torque_coefficient,
                     lambda x, p: weight_mass(s := state(x, p)) * weight_radius(s),
-                    lambda x, p: weight_mass(state(x, p)))
+                    lambda x, p: weight_mass(state(x, p)), area)
 
 
 def duty_torque(p):

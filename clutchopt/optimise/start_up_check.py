@@ -13,16 +13,19 @@ import numpy as np
 from clutchopt.optimise.robust_models import corner_name
 from clutchopt.optimise.verify import check_constraints
 from clutchopt.start_up.drive import Drive, seen_constraints
+from clutchopt.start_up.lining import UNITS as LINING_UNITS
+from clutchopt.start_up.lining import lining_figures, lining_notes
 from clutchopt.start_up.mesh import adapted_mesh
 
 BACK_OFF_STEPS = 4  # defect corrections of limits the simulated start misses (or binds at off the limit)
 CENTRE = 0.25  # of the tolerance: the objective's error from a binding limit met off the limit that is corrected
 LIMIT_OF = {"start_time": "max_start_time", "friction_work": "max_friction_work",
             "temperature_rise": "max_temperature_rise", "heat_per_hour": "heat_dissipation",
+            "lining_temperature": "max_lining_temperature", "continuous_temperature": "max_continuous_temperature",
             "link_stress": "max_link_stress"}
 UNITS = {"start_time": "s", "friction_work": "J", "temperature_rise": "K", "engagement_speed": "rad/s",
          "lock_up_speed": "rad/s", "engagement_time": "s", "lock_up_time": "s", "peak_link_stress": "Pa",
-         "peak_twist": "rad"}
+         "peak_twist": "rad", **LINING_UNITS}
 
 
 def start_up_report(block, case, design: dict[str, float], formulation, seen, figures):
@@ -74,6 +77,13 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
         summary.update(peak_link_stress=max(float(drive.link_stress(w, theta)) for w, theta in nodes),
                        peak_link_stress_simulated=head["peak_stress"], peak_twist=float(trajectory["twist"].max()),
                        peak_twist_simulated=head["peak_twist"])
+    if not s.elastic:  # the lining's temperature and wear at the NLP's start and at the simulated one
+        summary.update(lining_figures(drive, summary["friction_work"], summary["temperature_rise"]))
+        simulated_rise = head.get("temperature_rise") if s.heat else None
+        summary.update({f"{name}_simulated": value for name, value in
+                        lining_figures(drive, head["friction_work"], simulated_rise).items()})
+        summary["ambient_temperature"] = float(drive.p.ambient_temperature) if s.heat else None
+        summary["lining_notes"] = lining_notes(drive, case.coupling)
     times = [float(nlp[f"{phase}_time"]) for phase in s.phases]
     return summary, checks, adapted_mesh(s, result.history, times)
 

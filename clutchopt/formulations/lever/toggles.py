@@ -18,6 +18,7 @@ from clutchopt.formulations.lever.equations import (
     lever_offset,
     link_force,
     link_stress,
+    lining_area,
     lining_mass,
     lining_pressure,
     mean_diameter,
@@ -110,14 +111,17 @@ class Toggles:
                            p.lining_thickness)
 
     @property
+    def lining_area(self):
+        return lining_area(self.p.friction_surfaces, self.mean_diameter, self.lining_width)
+
+    @property
     def total_mass(self):
         return self.steel_mass + self.lining_mass
 
     @property
     def cost(self):
         p = self.p
-        lining_area = p.friction_surfaces * math.pi * self.mean_diameter * self.lining_width
-        return p.material_price * self.steel_mass + self.count * p.part_cost + p.lining_price * lining_area
+        return p.material_price * self.steel_mass + self.count * p.part_cost + p.lining_price * self.lining_area
 
 
 def _duty_constraints(t: Toggles, x, p):
@@ -204,7 +208,7 @@ def _speed_law(toggles):
     """T = K w_a^2, K the friction torque with new linings (gamma_0, weight at R_0, spring slack) at 1 rad/s; each
     weight's centrifugal force is m R_0 w_a^2, against which a spring preload and gravity act."""
     return centrifugal_speed_law(toggles, lambda t, p: t.torque(t.new_push), lambda t: t.weight_mass,
-                                 lambda t: t.start_radius)
+                                 lambda t: t.start_radius, lambda t: t.lining_area)
 
 
 MODEL = CouplingModel(

@@ -37,6 +37,11 @@ def flank_area(sector_angle, r1, r2, flank_angle):
     return sector_angle * (r2**2 - r1**2) / (2.0 * cos(flank_angle))
 
 
+def flank_area_total(weight_count, sector_angle, r1, r2, flank_angle):
+    """2 z A_flank: both conical flanks of every weight rub in the groove, the friction area that wears."""
+    return 2.0 * weight_count * flank_area(sector_angle, r1, r2, flank_angle)
+
+
 def flank_pressure(centrifugal, flank_angle, sector_angle, r1, r2):
     """q = N / A_flank = F_u cot(alpha) / (gamma (r2^2 - r1^2)), eqs. (9), (12), (13) for one weight (errata W3)."""
     return flank_normal_force(centrifugal, flank_angle) / flank_area(sector_angle, r1, r2, flank_angle)

@@ -14,6 +14,7 @@ from clutchopt.formulations.wedge.equations import (
     finger_bending_stress,
     finger_mass,
     flank_area,
+    flank_area_total,
     flank_pressure,
     friction_force,
     friction_torque,
@@ -52,6 +53,10 @@ class WeightSet:
     def torque(self):
         """T_fr, eq. (15)."""
         return friction_torque(self.count, self.friction, self.r1, self.r2)
+
+    @property
+    def friction_area(self):
+        return flank_area_total(self.count, self.sector_angle, self.r1, self.r2, self.flank_angle)
 
 
 def _duty_constraints(w: WeightSet, x, p):
@@ -111,7 +116,7 @@ def _speed_law(weight_set):
     """T = K w_a^2 with K the friction torque (15) of the weights at 1 rad/s; each weight's centrifugal force is
     m_r r_c w_a^2 (10), against which springs and gravity act."""
     return centrifugal_speed_law(weight_set, lambda w, p: w.torque, lambda w: w.weight_mass,
-                                 lambda w: w.centroid_radius)
+                                 lambda w: w.centroid_radius, lambda w: w.friction_area)
 
 
 MODEL = CouplingModel(
