@@ -14,6 +14,7 @@ from clutchopt.backend import fmax, fmin, sqrt
 from clutchopt.model import Constraint, ElasticLaw, SpeedLaw, at_least, at_most
 from clutchopt.start_up import equations as su
 from clutchopt.start_up.mesh import GRADED_PARTS
+from clutchopt.start_up.overload import overload_limit, overload_torque
 
 LOCKED_SAMPLES = 8  # speeds from lock-up to synchronous at which a locked drive must stay locked (lockup)
 RUN_UPS = 100  # the time scale of a motor's start: at most this many run-ups at breakdown torque, (J + J_m) w_s / T_k
@@ -118,7 +119,8 @@ class Drive:
         return su.heat_rate(power, temperature, self.p.heat_capacity, self.p.heat_conductance)
 
 
-CLOSED_FORM = ("min_engagement_speed", "max_engagement_speed", "motor_breakdown_torque", "motor_starting_torque")
+CLOSED_FORM = ("min_engagement_speed", "max_engagement_speed", "motor_breakdown_torque", "motor_starting_torque",
+               "overload_torque")
 # the start-up's constraints that read no figure of the start: closed forms in the design and the case's values
 
 
@@ -154,6 +156,9 @@ def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
         out.append(at_least("motor_breakdown_torque", p.breakdown_torque, p.load_torque, equation="Kloss",
                             unit="N*m", scale=p.breakdown_torque,
                             description="the motor's breakdown torque exceeds the largest load"))
+    machine = "max_transmitted_torque" in limits
+    if s.spec.overload and (s.motor or machine):
+        out.append(_overload(s, drive, machine))
     lock_speed = q.lock_up_speed
     carried = drive.carried(lock_speed, q.start_time)  # 0 with neither a motor nor a load
     out.append(at_least("lock_up", drive.torque(lock_speed), carried, equation="slip falls to 0", unit="N*m",
@@ -168,6 +173,17 @@ def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
                             equation="lockup", unit="N*m", scale=drive.torque_ref,
                             description="torque margin over the locked run-up to synchronous speed"))
     return out
+
+
+def _overload(s: Structure, drive: Drive, machine: bool) -> Constraint:
+    """The largest torque the coupling passes (top speed, worn linings where they matter, highest friction) below the
+    motor's breakdown torque and the machine's limit: it slips before the motor stalls (docs/start_up.md)."""
+    p = drive.p
+    limit = overload_limit(p, s.motor, machine)
+    what = " and ".join(["the motor's breakdown torque"] * s.motor + ["max_transmitted_torque"] * machine)
+    return at_most("overload_torque", overload_torque(drive.law, drive.x, p, s.spec.effects, s.motor), limit,
+                   equation="overload", unit="N*m", scale=limit,
+                   description=f"largest torque passed (top speed, worn, f_max) within {what}: it slips first")
 
 
 def seen_constraints(s: Structure, law: SpeedLaw | ElasticLaw, q, seen) -> list[Constraint]:

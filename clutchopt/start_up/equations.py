@@ -68,6 +68,11 @@ QUANTITIES = (
       f"{SECTION}.limits", None, above=0),
     Q("heat_dissipation", "W", "mean heat the housing can shed (e.g. '180 kJ/hour')", "P_d",
       f"{SECTION}.limits", None, above=0),
+    Q("max_transmitted_torque", "N*m", "largest torque the driven machine may be given (the coupling as a torque "
+      "limiter: overload_torque)", "T_lim", f"{SECTION}.driven", None, above=0),
+    Q("friction_max", "", "highest friction coefficient of the friction pair, for the overload (default: the "
+      "largest of the nominal, the library pair's friction_max and the [scatter] range's high end)", "f_max",
+      f"{SECTION}.overload", None, above=0, at_most=1),
 )
 
 
@@ -173,14 +178,17 @@ class StartUpSpec:
     load_profile: LoadProfile | None = None
     intervals: int = 16
     tolerance: float = 1e-6
+    overload: bool = True  # the overload_torque check (with a motor or max_transmitted_torque); check = false: off
     motor_note: str = field(default="", compare=False)  # how a nameplate was read (no part of the structure)
+    friction_max_given: bool = field(default=False, compare=False)  # else the pair's or the scatter's (overload)
 
     def has(self, effect: str) -> bool:
         return effect in self.effects
 
 
 LIMITS = ("max_start_time", "max_friction_work", "max_temperature_rise", "min_lock_up_speed", "max_link_stress",
-          "min_engagement_speed", "max_engagement_speed", "starts_per_hour", "heat_dissipation")
+          "min_engagement_speed", "max_engagement_speed", "starts_per_hour", "heat_dissipation",
+          "max_transmitted_torque")
 LOCK_UP_SHARE = 0.9  # default min_lock_up_speed over the synchronous speed
 
 SPRING_PRELOAD = Variable("spring_preload", "N", "return-spring preload on each weight", "F_s", lower=0.0,

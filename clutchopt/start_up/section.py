@@ -15,6 +15,9 @@ Layout (quantities with units; bare numbers are SI; the vocabulary of start-up s
     [start_up.driven]                # defaults: the duty's inertia and resisting torque
     inertia = "0.5 kg*m^2"
     resisting_torque = "5 N*m"       # or [start_up.driven.load_profile] over = "speed"|"time", points, torque
+    max_transmitted_torque = "80 N*m"  # optional: the coupling as a torque limiter (overload_torque)
+    [start_up.overload]              # optional: the friction the overload is checked with (docs/start_up.md)
+    friction_max = 0.45              # default: the pair's friction_max or the [scatter] range's high end
     [start_up.heat]                  # effect friction_heat
     capacity = "1400 J/K"
     conductance = "4 W/K"
@@ -46,7 +49,7 @@ from clutchopt.start_up.nameplate import KLOSS, kloss_from_nameplate, nameplate_
 from clutchopt.units import to_si
 
 SECTION = "start_up"
-_TABLES = ("driver", "driven", "heat", "limits")
+_TABLES = ("driver", "driven", "heat", "limits", "overload")
 _SETTINGS = ("effects", "intervals", "tolerance")
 MAX_INTERVALS = 128
 MAX_PROFILE_POINTS = 1000  # a load profile is a curve of a few dozen points; each point costs every evaluation
@@ -80,7 +83,7 @@ def parse_start_up(table, coupling, duty: dict[str, float],
     with problems.field():
         effects = parse_effects(table.get("effects"), f"{SECTION}.effects")
     values: dict[str, float] = {}
-    profile = None
+    profile, spec = None, {}
     for name in _TABLES:
         sub = table.get(name, {})
         if not isinstance(sub, dict):
@@ -92,6 +95,8 @@ def parse_start_up(table, coupling, duty: dict[str, float],
             with problems.field():
                 if name == "driven" and key == "load_profile":
                     profile = parse_load_profile(raw, f"{SECTION}.{name}.{key}")
+                elif name == "overload" and key == "check":
+                    spec["overload"] = _switch(raw, f"{SECTION}.{name}.{key}")
                 else:
                     values.update(_field_value(declared, name, key, raw))
     motor_note = ""
@@ -105,7 +110,6 @@ def parse_start_up(table, coupling, duty: dict[str, float],
         with problems.field():
             quantity = declared[f"{SECTION}.spring_preload"]
             values["spring_preload"] = quantity.check(to_si(quantity.key, table["spring_preload"], quantity.unit))
-    spec = {}
     with problems.field():
         spec["intervals"] = _intervals(table.get("intervals", StartUpSpec.intervals))
     with problems.field():
@@ -134,7 +138,7 @@ def parse_start_up(table, coupling, duty: dict[str, float],
     if duty_sound:
         _check(values, effects, coupling, laws, profile)
     return values, StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile, **spec,
-                               motor_note=motor_note), follows
+                               motor_note=motor_note, friction_max_given="friction_max" in given), follows
 
 
 def _table(table: dict, section: str) -> dict:
@@ -151,6 +155,7 @@ def _field_value(declared, table: str, key: str, raw) -> dict[str, float]:
         known = [q.key.rsplit(".", 1)[1] for q in QUANTITIES if q.section == f"{SECTION}.{table}"]
         raise InputError(field, f"unknown key; [{SECTION}.{table}] takes {', '.join(known)}"
                                 + (", load_profile" if table == "driven" else "")
+                                + (", check" if table == "overload" else "")
                                 + (f" (or the nameplate: {', '.join(NAMEPLATE_FIELDS)})" if table == "driver" else ""))
     return {quantity.name: quantity.check(to_si(field, raw, quantity.unit))}
 
@@ -257,6 +262,10 @@ def _check_elastic(values, effects, coupling, key) -> None:
                                                    "its own gravity is in its equations, eq. 1)")
     if "max_link_stress" not in values:
         raise InputError(key("max_link_stress"), "missing (the largest cable stress during the start)")
+    for name in ("max_transmitted_torque", "friction_max"):
+        if name in values:
+            raise InputError(key(name), f"does not apply to the {coupling.name} coupling: an elastic link does not "
+                                        "slip, so it limits no torque (no overload_torque check)")
     for name in ("max_friction_work", "starts_per_hour", "heat_dissipation"):
         if name in values:
             raise InputError(key(name), f"does not apply to the {coupling.name} coupling: an elastic link releases "
@@ -282,6 +291,12 @@ def _check_ranges(values: dict[str, float], duty: dict[str, float], problems: Pr
         problems.errors.append(InputError("duty.speed", f"must be from {tested.SPEED[0]:g} to {tested.SPEED[1]:g} "
                                                         f"rad/s for a case with a [start_up] section (the simulator's "
                                                         f"range), got {duty['speed']:.6g}"))
+
+
+def _switch(raw, field: str) -> bool:
+    if not isinstance(raw, bool):
+        raise InputError(field, f"must be true or false, got {raw!r}")
+    return raw
 
 
 def _intervals(raw) -> int:
