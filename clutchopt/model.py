@@ -174,15 +174,15 @@ class SpeedLaw:
     ``torque_coefficient``: K = dT / d(w_a^2), N*m*s^2. ``mass_radius``: m r of one weight, the radial force per
     (rad/s)^2 that springs and gravity work against, and ``weight_mass``: m of one weight (gravity); both None
     for a coupling without such weights (then the effects spring_preload and gravity do not apply).
-    ``largest_torque``: ``(x, p, speed, preload) ->`` the largest torque over the linings' life at a driving speed
-    with a spring preload per weight, for a coupling whose torque changes as its linings wear (the lever: the
-    stronger of new and worn); None: the torque does not change with wear, K (w_a^2 - F_s / (m r)).
+    ``worn_torque``: ``(x, p, speed, radial_force) ->`` the torque with worn linings at a driving speed, each
+    weight's centrifugal force less ``radial_force`` (springs, gravity), for a coupling whose torque changes as its
+    linings wear (the lever); None: it does not change.
     """
 
     torque_coefficient: Callable[[SimpleNamespace, SimpleNamespace], Any]
     mass_radius: Callable[[SimpleNamespace, SimpleNamespace], Any] | None = None
     weight_mass: Callable[[SimpleNamespace, SimpleNamespace], Any] | None = None
-    largest_torque: Callable[..., Any] | None = None
+    worn_torque: Callable[..., Any] | None = None
 
 
 @dataclass(frozen=True)

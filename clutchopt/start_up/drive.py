@@ -120,7 +120,7 @@ class Drive:
 
 
 CLOSED_FORM = ("min_engagement_speed", "max_engagement_speed", "motor_breakdown_torque", "motor_starting_torque",
-               "overload_torque")
+               "overload_torque", "worn_engages_first")
 # the start-up's constraints that read no figure of the start: closed forms in the design and the case's values
 
 
@@ -159,6 +159,12 @@ def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
     machine = "max_transmitted_torque" in limits
     if s.spec.overload and (s.motor or machine):
         out.append(_overload(s, drive, machine))
+    if drive.law.worn_torque is not None and s.spec.has("spring_preload"):
+        force = su.radial_reduction(s.spec.effects, drive.x.spring_preload, drive.law.weight_mass(drive.x, p))
+        out.append(at_least("worn_engages_first", drive.law.worn_torque(drive.x, p, engagement, force), 0.0,
+                            equation="worn", unit="N*m", scale=drive.torque_ref,
+                            description="worn linings pass torque by the new engagement speed: the start with new "
+                                        "linings is the slower"))
     lock_speed = q.lock_up_speed
     carried = drive.carried(lock_speed, q.start_time)  # 0 with neither a motor nor a load
     out.append(at_least("lock_up", drive.torque(lock_speed), carried, equation="slip falls to 0", unit="N*m",

@@ -15,6 +15,13 @@ worn), with the highest friction coefficient f_max the pair reaches. It must sta
   nothing);
 - below the driven machine's ``max_transmitted_torque`` where given: the coupling as a torque limiter.
 
+Couplings whose torque changes as the linings wear (the lever) start more slowly new or worn? With new linings
+T_n = K_n (w^2 - e_n), worn T_w = K_w (w^2 - e_w) (e the engagement speed squared), K_w >= K_n (the lever:
+K_w / K_n = (R_0 + dr) tan gamma_0 / (R_0 tan gamma_pr), 5 to 10). T_w - T_n grows with w, so T_w >= T_n at every
+speed exactly when it holds at the new engagement speed, T_w(w_e,new) >= 0: the worn coupling engages no later than
+the new one. Then at every driving speed the worn coupling passes at least the new one's torque, the slip ends
+sooner, and the start with new linings, the one the start-up checks, is the slower (``worn_engages_first``).
+
 Equations written once for floats and CasADi symbols (:mod:`clutchopt.backend`).
 """
 
@@ -40,13 +47,13 @@ def highest_friction(p):
 
 
 def slip_torque(law: SpeedLaw, x, p, speed, preload):
-    """T = K (w_a^2 - F_s / (m r)) at the driving speed w_a with a spring preload F_s per weight, or the law's
-    largest over the linings' life (the lever's worn toggles). The weights' own weight is left out: over z >= 2
-    weights spaced evenly round the axis its radial components sum to zero, and the torque is their sum."""
-    if law.largest_torque is not None:
-        return law.largest_torque(x, p, speed, preload)
+    """The stronger of the coupling's torque with new linings, K (w_a^2 - F_s / (m r)), and with worn ones (a law
+    whose torque changes as they wear: the lever), at the driving speed w_a with a spring preload F_s per weight.
+    The weights' own weight is left out: over z >= 2 weights spaced evenly round the axis its radial components sum
+    to zero, and the torque is the weights' sum."""
     reduction = preload / law.mass_radius(x, p) if law.mass_radius is not None else 0.0
-    return law.torque_coefficient(x, p) * (speed**2 - reduction)
+    new = law.torque_coefficient(x, p) * (speed**2 - reduction)
+    return new if law.worn_torque is None else fmax(new, law.worn_torque(x, p, speed, preload))
 
 
 def overload_torque(law: SpeedLaw, x, p, effects, motor: bool):

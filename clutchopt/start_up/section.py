@@ -45,7 +45,7 @@ from clutchopt.start_up.equations import (
     StartUpSpec,
 )
 from clutchopt.start_up.nameplate import FIELDS as NAMEPLATE_FIELDS
-from clutchopt.start_up.nameplate import KLOSS, kloss_from_nameplate, nameplate_fields
+from clutchopt.start_up.nameplate import KLOSS, derived_from, kloss_from_nameplate, nameplate_fields
 from clutchopt.units import to_si
 
 SECTION = "start_up"
@@ -133,7 +133,7 @@ def parse_start_up(table, coupling, duty: dict[str, float],
     if profile is not None:
         values["load_torque"] = max(profile.values)
         follows.pop("load_torque", None)
-    _check_ranges(values, duty, problems)
+    _check_ranges(values, duty, problems, set(KLOSS) if plate else set())
     problems.raise_any()
     if duty_sound:
         _check(values, effects, coupling, laws, profile)
@@ -273,9 +273,11 @@ def _check_elastic(values, effects, coupling, key) -> None:
                                         "reports)")
 
 
-def _check_ranges(values: dict[str, float], duty: dict[str, float], problems: Problems) -> None:
+def _check_ranges(values: dict[str, float], duty: dict[str, float], problems: Problems,
+                  nameplate: set[str] = frozenset()) -> None:
     """The drive's quantities within the ranges the simulator is tested over (it starts every optimum again);
-    each one out of range is a problem of ``problems``."""
+    each one out of range is a problem of ``problems``, naming the nameplate fields it came from if it is one of
+    ``nameplate`` (derived, not given)."""
     from clutchopt.simulate import ranges as tested
 
     limits = {"driven_inertia": tested.INERTIA, "load_torque": tested.LOAD, "synchronous_speed": tested.SPEED,
@@ -284,8 +286,9 @@ def _check_ranges(values: dict[str, float], duty: dict[str, float], problems: Pr
               "heat_conductance": tested.CONDUCTANCE, "max_start_time": tested.TIME, "spring_preload": tested.FORCE}
     for name, (low, high, unit) in limits.items():
         if name in values and not low <= values[name] <= high:
-            problems.errors.append(InputError(BY_NAME[name].key, f"must be from {low:g} to {high:g} {unit} (the range "
-                                                                 f"the simulator is tested over), got "
+            source = f"{derived_from(name, BY_NAME[name].section)}: " if name in nameplate else ""
+            problems.errors.append(InputError(BY_NAME[name].key, f"{source}must be from {low:g} to {high:g} {unit} "
+                                                                 f"(the range the simulator is tested over), got "
                                                                  f"{values[name]:.6g} {unit}".replace("  ", " ")))
     if "speed" in duty and not tested.SPEED[0] <= duty["speed"] <= tested.SPEED[1]:
         problems.errors.append(InputError("duty.speed", f"must be from {tested.SPEED[0]:g} to {tested.SPEED[1]:g} "

@@ -8,7 +8,6 @@ from dataclasses import dataclass, replace
 from types import SimpleNamespace
 from typing import Any
 
-from clutchopt.backend import fmax
 from clutchopt.formulations.common import CouplingModel, centrifugal_speed_law, duty_torque, rod_mass
 from clutchopt.formulations.duty import centrifugal_force
 from clutchopt.formulations.lever.equations import (
@@ -177,26 +176,18 @@ def _duty_outputs(t: Toggles, x, p):
     }
 
 
-def largest_torque(t: Toggles, preload):
-    """The stronger of the new and the worn toggles' torque at the case's speed, each weight's force less a spring
-    preload F_s: new T = i f z (m w^2 R_0 - F_s) d_cp / (4 tan gamma_0), worn
-    T = i f z (m w^2 (R_0 + dr) - c dr - F_s) d_cp / (4 tan gamma_pr) (docs/lever.md, "Worn linings on the drive")."""
-    new = t.torque(t.count * disc_push(t.new_radial_force - preload, t.engagement_angle))
-    worn = t.torque(t.count * disc_push(t.worn_radial_force - preload, t.limit_angle))
-    return fmax(new, worn)
-
-
 def _speed_law(toggles):
     """T = K w_a^2, K the friction torque with new linings (gamma_0, weight at R_0, spring slack) at 1 rad/s; each
-    weight's centrifugal force is m R_0 w_a^2, against which a spring preload and gravity act. Its largest torque
-    over the linings' life: :func:`largest_torque` at the driving speed."""
-    def largest(x, p, speed, preload):
-        at = SimpleNamespace(**{**vars(p), "speed": speed})
-        return largest_torque(toggles(x, at), preload)
+    weight's centrifugal force is m R_0 w_a^2, against which a spring preload and gravity act. Worn (gamma_pr, weight
+    at R_0 + dr, the return spring stretched by dr): T = i f z (m w^2 (R_0 + dr) - c dr - F) d_cp / (4 tan gamma_pr),
+    F the radial force of preload and gravity (docs/lever.md, "Worn linings on the drive")."""
+    def worn_torque(x, p, speed, radial_force):
+        t = toggles(x, SimpleNamespace(**{**vars(p), "speed": speed}))
+        return t.torque(t.count * disc_push(t.worn_radial_force - radial_force, t.limit_angle))
 
     law = centrifugal_speed_law(toggles, lambda t, p: t.torque(t.new_push), lambda t: t.weight_mass,
                                 lambda t: t.start_radius)
-    return replace(law, largest_torque=largest)
+    return replace(law, worn_torque=worn_torque)
 
 
 MODEL = CouplingModel(
