@@ -341,7 +341,21 @@ def start_up_table(start_up: dict) -> tuple[str, list[dict], list[str]]:
             + (" (the NLP takes the elastic link as quasi-static, the simulator follows its dynamics)" if elastic
                else ""))
     notes = [start_up["motor"]] if start_up.get("motor") else []
+    if start_up.get("worn"):
+        notes.append(worn_note(start_up["worn"]))
     return head, rows, notes + ([] if start_up["locks_up"] else [f"simulated: {start_up['reason']}"])
+
+
+def worn_note(worn: dict) -> str:
+    """The start with worn linings (the lever), simulated, in a line."""
+    if not worn["locks_up"]:
+        return "worn linings (simulated): no lock-up"
+    heat = f", {worn['temperature_rise']:.4g} K" if worn.get("temperature_rise") is not None else ""
+    least = worn.get("min_lock_up_speed")
+    early = (f" (below min_lock_up_speed {least * 30 / math.pi:.5g} rpm: the motor runs the machine up locked)"
+             if least is not None and worn["lock_up_speed"] < least else "")
+    return (f"worn linings (simulated): lock-up after {worn['start_time']:.4g} s at "
+            f"{worn['lock_up_speed'] * 30 / math.pi:.5g} rpm{early}, {worn['friction_work'] / 1e3:.4g} kJ{heat}")
 
 
 def sensitivity_rows(solution, formulation: Formulation, count: int = 8) -> list[dict]:

@@ -13,6 +13,7 @@ from clutchopt.errors import InputError
 from clutchopt.optimise.problem import case_formulation, solve_case
 from clutchopt.start_up.drive import Drive, Structure, named_constraints
 from clutchopt.start_up.overload import overload_torque
+from clutchopt.start_up.simulation import start_up_model, worn_start_up_model
 from tests.conftest import CASES
 
 RPM = math.pi / 30
@@ -106,6 +107,15 @@ def test_worn_linings_engage_first_so_the_new_start_is_the_slower():
     _, worn = lever_torques(m, preload + m * G, 0.3, engagement)  # gravity too: the start model's worst position
     check = next(c for c in solution.constraints if c.name == "worn_engages_first")
     assert check.value == pytest.approx(worn, rel=1e-9) and worn > 0 and check.feasible
+    # the worn start simulated (reported): K_w = i f z m (R_0 + dr) d_cp / (4 tan gamma_pr), and it engages at
+    # w_e,worn^2 = (F_s + m g + c dr) / (m (R_0 + dr)), earlier than new; it locks up sooner
+    worn_law = worn_start_up_model(case, "paper", solution.design, start_up_model(case, "paper", solution.design)).law
+    spring = m * G + 2 * W_AX * math.tan(G0) / Z
+    assert worn_law.torque_coefficient == pytest.approx(
+        I * 0.3 * Z * m * (R_0 + TRAVEL) * D_CP / (4 * math.tan(GPR)), rel=1e-12)
+    assert worn_law.engagement_squared == pytest.approx((preload + m * G + spring) / (m * (R_0 + TRAVEL)), rel=1e-12)
+    assert worn_law.engagement_squared < engagement**2
+    assert solution.start_up["worn"]["start_time"] < solution.start_up["start_time_simulated"]
     assert "overload_torque" not in {c.name for c in solution.constraints}  # the case turns the check off
 
 
