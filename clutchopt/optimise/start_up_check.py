@@ -73,7 +73,10 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
     }
     if worn is not None:  # the same start with worn linings (the lever), simulated: reported, the new one checked
         summary["worn"] = {**_headline(run_start_up(worn).headline),
-                           "min_lock_up_speed": case.values.get("min_lock_up_speed")}
+                           "min_lock_up_speed": case.values.get("min_lock_up_speed"),
+                           "units": {**{name: UNITS[name] for name in ("start_time", "friction_work",
+                                                                        "temperature_rise", "lock_up_speed")},
+                                     "min_lock_up_speed": "rad/s"}}
     if s.elastic:  # the link's stress and twist: the NLP's quasi-static link beside the simulated dynamic one
         nodes = zip(trajectory["w_driver"], trajectory["twist"])
         summary.update(peak_link_stress=max(float(drive.link_stress(w, theta)) for w, theta in nodes),
