@@ -122,7 +122,7 @@ def test_worn_linings_engage_first_so_the_new_start_is_the_slower():
 @pytest.mark.parametrize("machine, limit", [("10.8 N*m", 10.8), ("50 N*m", 37.0), (None, 37.0)])
 def test_the_limit_is_the_lesser_of_the_breakdown_torque_and_the_machines(machine, limit, tmp_path):
     """wedge_motor_start (T_k = 37 N m) with a torque-limited machine or none: the overload's limit is the lesser;
-    its value K (w_s^2 - F_s / (m r_c)) at 1000 rpm with f_max = the nominal 0.15, from the start-up's own law."""
+    its value the wedge's slip torque at 1000 rpm with f_max = the nominal 0.15 (no pair, no scatter), by hand."""
     text = (CASES / "wedge_motor_start.toml").read_text()
     if machine:
         text = text.replace("[start_up.heat]", f'[start_up.driven]\nmax_transmitted_torque = "{machine}"\n\n'
@@ -134,9 +134,27 @@ def test_the_limit_is_the_lesser_of_the_breakdown_torque_and_the_machines(machin
     figures = SimpleNamespace(start_time=1.0, friction_work=1.0, temperatures=1.0, lock_up_speed=100.0)
     check = next(c for c in named_constraints(structure, Drive(structure, law, x, p), figures)
                  if c.name == "overload_torque")
-    by_hand = law.torque_coefficient(x, p) * (W_S**2 * 4 / 9 - 12.0 / law.mass_radius(x, p))  # (1000 rpm)^2
-    assert check.limit == limit and check.value == pytest.approx(by_hand, rel=1e-12) and check.sense == "<="
+    assert check.limit == limit and check.sense == "<="
+    assert check.value == pytest.approx(wedge_overload(0.2, 12.0, 0.15), rel=1e-12)  # f_max: the nominal 0.15
     assert ("max_transmitted_torque" in check.description) == (machine is not None)
+
+
+def wedge_overload(m, preload, f, speed=1000 * RPM):
+    """cases/wedge_motor_start*.toml by hand (wedge eqs. 10-15): T = z f (m w^2 r_c - F_s) / sin(alpha) (r_1 + r_2) / 2,
+    z = 4, alpha = 15 deg, r_1 = 50 mm, r_2 = 1.2 r_1 = 60 mm, r_c = r_2 - 2 h / 3 = 46.667 mm (h = 20 mm)."""
+    r_c = 0.060 - 2 * 0.020 / 3
+    return 4 * f * (m * speed**2 * r_c - preload) / math.sin(math.radians(15)) * (0.050 + 0.060) / 2
+
+
+@pytest.mark.parametrize("corner", [0.12, 0.15, 0.18])
+def test_under_scatter_the_overload_is_at_the_ranges_high_friction_at_every_corner(corner):
+    """wedge_motor_start_scatter.toml, f 0.12 to 0.18: friction_max defaults to 0.18, and the overload seen at any
+    corner of f (a robust design's view) is the wedge's slip torque at 1000 rpm with f = 0.18, by hand."""
+    case = load_case(CASES / "wedge_motor_start_scatter.toml")
+    law, p = case_formulation(case).speed_law, case.with_values(friction_coefficient=corner).params()
+    x = SimpleNamespace(weight_mass=0.2, finger_diameter=0.007, spring_preload=12.0)
+    value = float(overload_torque(law, x, p, case.start_up.effects, motor=True))
+    assert p.friction_max == 0.18 and value == pytest.approx(wedge_overload(0.2, 12.0, 0.18), rel=1e-12)
 
 
 def test_friction_max_defaults_to_the_scatter_high_end_and_a_given_one_stays(tmp_path):
