@@ -166,6 +166,19 @@ def test_friction_max_defaults_to_the_scatter_high_end_and_a_given_one_stays(tmp
     assert parse_case(read_toml_text(tmp_path, text), "given.toml").values["friction_max"] == 0.2
 
 
+def test_each_choice_of_friction_pair_brings_its_own_friction_max(tmp_path):
+    """options.choose: organic_dry (f 0.3, f_max 0.45) and sintered_bronze_oiled (f 0.07, f_max 0.08), library."""
+    from clutchopt.formulations import get_coupling
+    from clutchopt.materials import variants
+
+    text = _lever_text().replace('[library]\nfriction_pair = "organic_dry"\n', "").replace(
+        "[options]", '[options]\nchoose = { friction_pair = ["organic_dry", "sintered_bronze_oiled"] }')
+    case = parse_case(read_toml_text(tmp_path, text), "choose.toml")
+    chosen = {choice["friction_pair"]: variant.values["friction_max"]
+              for choice, variant in variants(case, get_coupling("lever"))}
+    assert chosen == {"organic_dry": 0.45, "sintered_bronze_oiled": 0.08}
+
+
 @pytest.mark.parametrize("table, text, field", [
     ("overload", "check = 1", "start_up.overload.check: must be true or false"),
     ("overload", "friction_max = 1.5", "start_up.overload.friction_max: must be <= 1"),
