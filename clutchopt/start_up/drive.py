@@ -187,9 +187,10 @@ def _overload(s: Structure, drive: Drive, machine: bool) -> Constraint:
     p = drive.p
     limit = overload_limit(p, s.motor, machine)
     what = " and ".join(["the motor's breakdown torque"] * s.motor + ["max_transmitted_torque"] * machine)
+    worn = ", worn" if drive.law.worn_torque is not None else ""
     return at_most("overload_torque", overload_torque(drive.law, drive.x, p, s.spec.effects, s.motor), limit,
                    equation="overload", unit="N*m", scale=limit,
-                   description=f"largest torque passed (top speed, worn, f_max) within {what}: it slips first")
+                   description=f"largest torque passed (top speed{worn}, f_max) within {what}: it slips first")
 
 
 def seen_constraints(s: Structure, law: SpeedLaw | ElasticLaw, q, seen) -> list[Constraint]:
