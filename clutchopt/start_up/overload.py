@@ -10,7 +10,8 @@ worn), with the highest friction coefficient f_max the pair reaches. It must sta
 - below the motor's breakdown torque T_k: on the motor's stable branch (slip below s_k) its torque falls from T_k to
   0 as the speed rises from (1 - s_k) w_s to w_s, while the coupling's slip torque rises with w_a^2; the two meet on
   that branch (the motor keeps running, the coupling slips) if the slip torque at the breakdown speed is below T_k.
-  T(w_s) <= T_k is sufficient whatever the speed (T grows with w_a), conservative by (1 - s_k)^-2 at most;
+  T(w_s) <= T_k is sufficient whatever the speed (T grows with w_a), conservative by T(w_s) / T(w_k), at least
+  (1 - s_k)^-2;
   otherwise the motor is pulled over its breakdown point and stalls, the coupling locked to it (it protects
   nothing);
 - below the driven machine's ``max_transmitted_torque`` where given: the coupling as a torque limiter.
