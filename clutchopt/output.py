@@ -343,6 +343,8 @@ def start_up_table(start_up: dict) -> tuple[str, list[dict], list[str]]:
     notes = [start_up["motor"]] if start_up.get("motor") else []
     if start_up.get("worn"):
         notes.append(worn_note(start_up["worn"]))
+    if start_up.get("overload"):
+        notes.append(start_up["overload"])
     return head, rows, notes + ([] if start_up["locks_up"] else [f"simulated: {start_up['reason']}"])
 
 

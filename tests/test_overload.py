@@ -117,6 +117,7 @@ def test_worn_linings_engage_first_so_the_new_start_is_the_slower():
     assert worn_law.engagement_squared < engagement**2
     assert solution.start_up["worn"]["start_time"] < solution.start_up["start_time_simulated"]
     assert "overload_torque" not in {c.name for c in solution.constraints}  # the case turns the check off
+    assert solution.start_up["overload"].startswith("overload not checked (start_up.overload.check = false)")
 
 
 @pytest.mark.parametrize("machine, limit", [("10.8 N*m", 10.8), ("50 N*m", 37.0), (None, 37.0)])

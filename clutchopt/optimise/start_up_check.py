@@ -71,6 +71,8 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
         "units": UNITS,
         "trajectory": {name: column.tolist() for name, column in trajectory.items()},
     }
+    if not s.spec.overload:
+        summary["overload"] = "overload not checked (start_up.overload.check = false): overload_torque left out"
     if worn is not None:  # the same start with worn linings (the lever), simulated: reported, the new one checked
         summary["worn"] = {**_headline(run_start_up(worn).headline),
                            "min_lock_up_speed": case.values.get("min_lock_up_speed"),
