@@ -215,6 +215,7 @@ def parse_case(data: dict, path: str = "") -> Case:
     case = Case(coupling.name, data.get("title", ""), values, bounds, tuple(options.get("free", ())),
                 {**options, **({"choose": choose} if choose else {})}, path, start_up, filled, scatter,
                 {name: rule for name, rule in follows.items() if name not in {s.name for s in scatter}})
+    case = replace(case, values=materials.with_highest_friction(case, case.values, case.filled))
     check_across(case)
     check_scatter_corners(case)
     materials.variants(case, coupling)  # every choice of options.choose is checked here, before any solve

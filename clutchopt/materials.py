@@ -243,10 +243,30 @@ def variants(case, coupling) -> list[tuple[dict[str, str], object]]:
                 values[quantity] = declared[quantity].check(entry.values[library_field],
                                                             f"{key} = {name}: {library_field}")
                 filled[quantity] = (key, name)
-        variant = replace(case, values=case.followed(values), filled=filled)
+        variant = replace(case, values=with_highest_friction(case, case.followed(values), filled), filled=filled)
         coupling.check_case(variant)
         result.append((choice, variant))
     return result
+
+
+def with_highest_friction(case, values: dict, filled: dict) -> dict:
+    """``values`` with a [start_up]'s ``friction_max`` (the overload's friction, docs/start_up.md) set, unless the
+    case gives it: the largest of the nominal friction coefficient, the friction_max of the library pair that filled
+    it, and the high end of its [scatter] range."""
+    friction = "friction_coefficient"
+    if case.start_up is None or case.start_up.friction_max_given or friction not in values:
+        return values
+    highest = [values[friction]] + [s.high for s in case.scatter if s.name == friction]
+    if friction in filled:
+        entry = next(lookup(role, filled[friction][1]) for role in _roles(case) if role.key == filled[friction][0])
+        highest.append(entry.values.get("friction_max", values[friction]))
+    return {**values, "friction_max": max(highest)}
+
+
+def _roles(case) -> tuple[MaterialRole, ...]:
+    from clutchopt.formulations import get_coupling
+
+    return get_coupling(case.coupling).materials
 
 
 def rows(kind: str) -> list[dict]:

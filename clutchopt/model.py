@@ -219,6 +219,9 @@ class SpeedLaw:
     (rad/s)^2 that springs and gravity work against, and ``weight_mass``: m of one weight (gravity); both None
     for a coupling without such weights (then the effects spring_preload and gravity do not apply).
     ``friction_area``: the area of the friction surfaces that wear, m^2 (the lining's life; None: not known).
+    ``worn_torque``: ``(x, p, speed, radial_force) ->`` the torque with worn linings at a driving speed, each
+    weight's centrifugal force less ``radial_force`` (springs, gravity), for a coupling whose torque changes as its
+    linings wear (the lever); None: it does not change.
     """
 
     torque_coefficient: Callable[[SimpleNamespace, SimpleNamespace], Any]
@@ -226,6 +229,8 @@ class SpeedLaw:
     weight_mass: Callable[[SimpleNamespace, SimpleNamespace], Any] | None = None
     friction_area: Callable[[SimpleNamespace, SimpleNamespace], Any] | None = None  # m^2: the lining area that
     # wears (every friction surface of the coupling's wearing part), for the lining's life; None: not declared
+    worn_torque: Callable[..., Any] | None = None
+
 
 @dataclass(frozen=True)
 class ElasticLaw:

@@ -316,11 +316,15 @@ def choice_text(choice: dict) -> str:
     parts = [{"coupling": c["coupling"], **{f"{name} [kg]": _shown(mass, "kg") for name, mass in c["parts"].items()}}
              for c in choice["couplings"] if c["parts"]]
     ranking = "; ".join(f"by {what}: {', '.join(names) or '-'}" for what, names in choice["ranking"].items())
+    checks = [{"coupling": c["coupling"], "check": name, "value": _shown(entry["value"], entry["display_unit"]),
+               "limit": _shown(entry["limit"], entry["display_unit"]), "unit": entry["display_unit"],
+               "margin": f"{entry['margin']:+.3g}"} for c in choice["couplings"] for name, entry in c["checks"].items()]
     lines = [f"Which coupling  -  {choice['title']}",
              f"duty: T_max = I w / t_p + T_c = {choice['required_torque']:.6g} N*m; each coupling designed for least "
              "like-for-like mass (objective envelope_mass, docs/envelope.md) and verified in float64",
              *([f"drive: {choice['drive']}"] if choice.get("drive") else []), "",
              _frame(rows), f"ranked {ranking}", "", "Like-for-like mass by part", _frame(parts), "",
+             "The drive's checks of each verified design (float64)", _frame(checks), "",
              "Why the others lose", *(f"  {c['coupling']}: {c['why']}" for c in choice["couplings"])]
     notes = [f"  {c['coupling']}: {note}" for c in choice["couplings"] for note in c["notes"]]
     return "\n".join(lines + (["", "Posed with", *notes] if notes else []))
@@ -366,7 +370,23 @@ def start_up_table(start_up: dict) -> tuple[str, list[dict], list[str]]:
             + (" (the NLP takes the elastic link as quasi-static, the simulator follows its dynamics)" if elastic
                else ""))
     notes = ([start_up["motor"]] if start_up.get("motor") else []) + start_up.get("lining_notes", [])
+    if start_up.get("worn"):
+        notes.append(worn_note(start_up["worn"]))
+    if start_up.get("overload"):
+        notes.append(start_up["overload"])
     return head, rows, notes + ([] if start_up["locks_up"] else [f"simulated: {start_up['reason']}"])
+
+
+def worn_note(worn: dict) -> str:
+    """The start with worn linings (the lever), simulated, in a line."""
+    if not worn["locks_up"]:
+        return "worn linings (simulated): no lock-up"
+    heat = f", {worn['temperature_rise']:.4g} K" if worn.get("temperature_rise") is not None else ""
+    least = worn.get("min_lock_up_speed")
+    early = (f" (below min_lock_up_speed {least * 30 / math.pi:.5g} rpm: the motor runs the machine up locked)"
+             if least is not None and worn["lock_up_speed"] < least else "")
+    return (f"worn linings (simulated): lock-up after {worn['start_time']:.4g} s at "
+            f"{worn['lock_up_speed'] * 30 / math.pi:.5g} rpm{early}, {worn['friction_work'] / 1e3:.4g} kJ{heat}")
 
 
 def sensitivity_rows(solution, formulation: Formulation, count: int = 8) -> list[dict]:

@@ -30,7 +30,7 @@ from clutchopt.cases import Case, parse_case, read_toml
 from clutchopt.errors import InputError, Problems
 from clutchopt.formulations import MODULES, get_coupling
 from clutchopt.formulations.duty import DUTY_QUANTITIES, required_torque
-from clutchopt.model import ENVELOPE_PARTS, Quantity, namespace
+from clutchopt.model import ENVELOPE_PARTS, ElasticLaw, Quantity, namespace
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.start_up.nameplate import FIELDS as NAMEPLATE_FIELDS
 from clutchopt.units import si_unit, to_si
@@ -45,6 +45,8 @@ DUTY = {**{q.name: q for q in DUTY_QUANTITIES}, **RATED}
 START_UP_FROM_DUTY = (("driven", "inertia", "inertia"), ("driven", "resisting_torque", "resisting_torque"),
                       ("limits", "max_start_time", "acceleration_time"))
 RANKINGS = (("mass", "envelope_mass"), ("cost", "cost"), ("diameter", "envelope_diameter"))
+REVIEWED = ("start_time", "lining_temperature", "continuous_temperature", "lining_life", "overload_torque")
+# the drive's constraints a reviewer compares across couplings (those a coupling's case has)
 
 
 @dataclass
@@ -201,6 +203,7 @@ def posed_case(name: str, duty: dict[str, float], raw_duty: dict, data: dict, pa
             for table, key, source in START_UP_FROM_DUTY:  # quantity for the start-up's default to follow
                 if source not in declared and isinstance(start_up.setdefault(table, {}), dict):
                     start_up[table].setdefault(key, raw_duty[source])
+            notes += _start_up_not_applied(coupling.formulation(mode).speed_law, start_up, name)
     freeable = [v.name for v in coupling.formulation(mode).variables if v.fixed_unless_freed]
     if freeable:
         case_data.setdefault("options", {})["free"] = freeable
@@ -212,6 +215,43 @@ def posed_case(name: str, duty: dict[str, float], raw_duty: dict, data: dict, pa
     except InputError as exc:
         candidate.reason = "cannot be posed: " + "; ".join(str(p) for p in exc.problems)
     return candidate
+
+
+HEAT = ("friction_heat",)  # what an elastic link (no friction surfaces) cannot take
+SLIP_ONLY = {"heat": None, "wear": None, "limits": ("max_friction_work", "max_temperature_rise", "starts_per_hour",
+                                                    "heat_dissipation", "max_lining_temperature",
+                                                    "max_continuous_temperature", "min_life"),
+             "driven": ("max_transmitted_torque",), "overload": None}
+WEAR_ONLY = {"wear": None, "limits": ("min_life",)}
+
+
+def _start_up_not_applied(law, start_up: dict, name: str) -> list[str]:
+    """Take out of the neutral ``[start_up]`` what coupling ``name`` cannot have, and say so: a coupling that does
+    not slip (an elastic link) has no friction heat, lining wear or overload; one that declares no friction area that
+    wears has no lining life."""
+    if isinstance(law, ElasticLaw):
+        dropped, why = SLIP_ONLY, "an elastic link does not slip"
+        effects = start_up.get("effects")
+        if isinstance(effects, list) and any(e in HEAT for e in effects):
+            start_up["effects"] = [e for e in effects if e not in HEAT]
+            dropped_effects = [f"start_up.effects: {', '.join(e for e in effects if e in HEAT)}"]
+        else:
+            dropped_effects = []
+    elif law is not None and law.friction_area is None:
+        dropped, why, dropped_effects = WEAR_ONLY, "it declares no friction area that wears", []
+    else:
+        return []
+    notes = [f"{text} not applied: {why}" for text in dropped_effects]
+    for table, keys in dropped.items():
+        sub = start_up.get(table)
+        if not isinstance(sub, dict):
+            continue
+        for key in list(sub) if keys is None else [k for k in keys if k in sub]:
+            del sub[key]
+            notes.append(f"start_up.{table}.{key} not applied: {why}")
+        if not sub:
+            del start_up[table]
+    return notes
 
 
 def case_data_values(case_data: dict) -> set[str]:
@@ -267,6 +307,7 @@ def choose_coupling(case, options: SolverOptions = SolverOptions()) -> Choice:
             candidate.reason = "cannot be posed: " + "; ".join(str(p) for p in exc.problems)
             continue
         candidate.sized_for = _sized_for(candidate)
+        candidate.notes += (candidate.solution.start_up or {}).get("lining_notes") or []  # what was not checked
         if candidate.optimal:
             formulation = get_coupling(candidate.coupling).formulation(candidate.mode)
             envelope = formulation.envelope(namespace(candidate.solution.design), namespace(candidate.case.values))
@@ -298,7 +339,7 @@ def choice_json(choice: Choice) -> dict:
             "envelope_length": _finite(c.output("envelope_length")),
             "objective_mass": _finite(c.solution.objective) if c.optimal else None,
             "sized_for": _finite(c.sized_for), "parts": c.parts, "sized_by": c.sizing(), "why": choice.why(c),
-            "notes": c.notes, "design": _design(c.solution),
+            "notes": c.notes, "design": _design(c.solution), "checks": _reviewed(c),
         } for i, c in enumerate(ranked)],
     }
 
@@ -307,6 +348,16 @@ def choice_units() -> dict:
     per = {"rank": "", "envelope_mass": "kg", "cost": "EUR", "envelope_diameter": "m", "envelope_length": "m",
            "objective_mass": "kg", "sized_for": "N*m", "parts": {name: "kg" for name in ENVELOPE_PARTS}}
     return {"required_torque": "N*m", "couplings": per}
+
+
+def _reviewed(candidate: Candidate) -> dict:
+    """The verified design's drive constraints of :data:`REVIEWED` (float64 re-check: value, limit, margin; SI with
+    their units); none for a coupling without a verified design."""
+    if not candidate.optimal:
+        return {}
+    checks = {c.name: c.as_dict() for c in candidate.solution.constraints if c.name in REVIEWED}
+    return {name: {k: checks[name][k] for k in ("value", "limit", "margin", "active", "unit", "display_unit")}
+            for name in REVIEWED if name in checks}
 
 
 def _design(solution: Solution | None) -> dict:

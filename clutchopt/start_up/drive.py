@@ -14,6 +14,7 @@ from clutchopt.backend import fmax, fmin, sqrt
 from clutchopt.model import Constraint, ElasticLaw, SpeedLaw, at_least, at_most
 from clutchopt.start_up import equations as su
 from clutchopt.start_up.mesh import GRADED_PARTS
+from clutchopt.start_up.overload import overload_limit, overload_torque
 
 LOCKED_SAMPLES = 8  # speeds from lock-up to synchronous at which a locked drive must stay locked (lockup)
 RUN_UPS = 100  # the time scale of a motor's start: at most this many run-ups at breakdown torque, (J + J_m) w_s / T_k
@@ -144,7 +145,8 @@ class Drive:
         return self.starts_until_worn(friction_work) / self.p.starts_per_hour
 
 
-CLOSED_FORM = ("min_engagement_speed", "max_engagement_speed", "motor_breakdown_torque", "motor_starting_torque")
+CLOSED_FORM = ("min_engagement_speed", "max_engagement_speed", "motor_breakdown_torque", "motor_starting_torque",
+               "overload_torque", "worn_engages_first")
 # the start-up's constraints that read no figure of the start: closed forms in the design and the case's values
 
 
@@ -181,6 +183,15 @@ def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
         out.append(at_least("motor_breakdown_torque", p.breakdown_torque, p.load_torque, equation="Kloss",
                             unit="N*m", scale=p.breakdown_torque,
                             description="the motor's breakdown torque exceeds the largest load"))
+    machine = "max_transmitted_torque" in limits
+    if s.spec.overload and (s.motor or machine):
+        out.append(_overload(s, drive, machine))
+    if drive.law.worn_torque is not None and s.spec.has("spring_preload"):
+        force = su.radial_reduction(s.spec.effects, drive.x.spring_preload, drive.law.weight_mass(drive.x, p))
+        out.append(at_least("worn_engages_first", drive.law.worn_torque(drive.x, p, engagement, force), 0.0,
+                            equation="worn", unit="N*m", scale=drive.torque_ref,
+                            description="worn linings pass torque by the new engagement speed: the start with new "
+                                        "linings is the slower"))
     lock_speed = q.lock_up_speed
     carried = drive.carried(lock_speed, q.start_time)  # 0 with neither a motor nor a load
     out.append(at_least("lock_up", drive.torque(lock_speed), carried, equation="slip falls to 0", unit="N*m",
@@ -216,6 +227,18 @@ def _lining_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
         out.append(at_least("lining_life", drive.life(q.friction_work), p.min_life, equation="s_w A / (k_w L n_h)",
                             unit="h", description="hours of starts until the lining's wear allowance is gone"))
     return out
+
+
+def _overload(s: Structure, drive: Drive, machine: bool) -> Constraint:
+    """The largest torque the coupling passes (top speed, worn linings where they matter, highest friction) below the
+    motor's breakdown torque and the machine's limit: it slips before the motor stalls (docs/start_up.md)."""
+    p = drive.p
+    limit = overload_limit(p, s.motor, machine)
+    what = " and ".join(["the motor's breakdown torque"] * s.motor + ["max_transmitted_torque"] * machine)
+    worn = ", worn" if drive.law.worn_torque is not None else ""
+    return at_most("overload_torque", overload_torque(drive.law, drive.x, p, s.spec.effects, s.motor), limit,
+                   equation="overload", unit="N*m", scale=limit,
+                   description=f"largest torque passed (top speed{worn}, f_max) within {what}: it slips first")
 
 
 def seen_constraints(s: Structure, law: SpeedLaw | ElasticLaw, q, seen) -> list[Constraint]:

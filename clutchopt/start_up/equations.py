@@ -81,6 +81,11 @@ QUANTITIES = (
       "coupling has one)", "s_w", f"{SECTION}.wear", None, above=0, toml_key="allowance"),
     Q("min_life", "h", "hours of starts (at starts_per_hour) until the lining is worn, at least", "L_h,min",
       f"{SECTION}.limits", None, above=0),
+    Q("max_transmitted_torque", "N*m", "largest torque the driven machine may be given (the coupling as a torque "
+      "limiter: overload_torque)", "T_lim", f"{SECTION}.driven", None, above=0),
+    Q("friction_max", "", "highest friction coefficient of the friction pair, for the overload (default: the "
+      "largest of the nominal, the library pair's friction_max and the [scatter] range's high end)", "f_max",
+      f"{SECTION}.overload", None, above=0, at_most=1),
 )
 
 
@@ -213,7 +218,9 @@ class StartUpSpec:
     load_profile: LoadProfile | None = None
     intervals: int = 16
     tolerance: float = 1e-6
+    overload: bool = True  # the overload_torque check (with a motor or max_transmitted_torque); check = false: off
     motor_note: str = field(default="", compare=False)  # how a nameplate was read (no part of the structure)
+    friction_max_given: bool = field(default=False, compare=False)  # else the pair's or the scatter's (overload)
 
     def has(self, effect: str) -> bool:
         return effect in self.effects
@@ -221,7 +228,7 @@ class StartUpSpec:
 
 LIMITS = ("max_start_time", "max_friction_work", "max_temperature_rise", "min_lock_up_speed", "max_link_stress",
           "min_engagement_speed", "max_engagement_speed", "starts_per_hour", "heat_dissipation",
-          "max_lining_temperature", "max_continuous_temperature", "min_life")
+          "max_lining_temperature", "max_continuous_temperature", "min_life", "max_transmitted_torque")
 LOCK_UP_SHARE = 0.9  # default min_lock_up_speed over the synchronous speed
 
 SPRING_PRELOAD = Variable("spring_preload", "N", "return-spring preload on each weight", "F_s", lower=0.0,

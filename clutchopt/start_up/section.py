@@ -15,6 +15,9 @@ Layout (quantities with units; bare numbers are SI; the vocabulary of start-up s
     [start_up.driven]                # defaults: the duty's inertia and resisting torque
     inertia = "0.5 kg*m^2"
     resisting_torque = "5 N*m"       # or [start_up.driven.load_profile] over = "speed"|"time", points, torque
+    max_transmitted_torque = "80 N*m"  # optional: the coupling as a torque limiter (overload_torque)
+    [start_up.overload]              # optional: the friction the overload is checked with (docs/start_up.md)
+    friction_max = 0.45              # default: the pair's friction_max or the [scatter] range's high end
     [start_up.heat]                  # effect friction_heat
     capacity = "1400 J/K"
     conductance = "4 W/K"
@@ -49,11 +52,11 @@ from clutchopt.start_up.equations import (
     StartUpSpec,
 )
 from clutchopt.start_up.nameplate import FIELDS as NAMEPLATE_FIELDS
-from clutchopt.start_up.nameplate import KLOSS, kloss_from_nameplate, nameplate_fields
+from clutchopt.start_up.nameplate import KLOSS, derived_from, kloss_from_nameplate, nameplate_fields
 from clutchopt.units import to_si
 
 SECTION = "start_up"
-_TABLES = ("driver", "driven", "heat", "wear", "limits")
+_TABLES = ("driver", "driven", "heat", "wear", "limits", "overload")
 _SETTINGS = ("effects", "intervals", "tolerance")
 MAX_INTERVALS = 128
 MAX_PROFILE_POINTS = 1000  # a load profile is a curve of a few dozen points; each point costs every evaluation
@@ -89,7 +92,7 @@ def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = T
     with problems.field():
         effects = parse_effects(table.get("effects"), f"{SECTION}.effects")
     values: dict[str, float] = {}
-    profile = None
+    profile, spec = None, {}
     for name in _TABLES:
         sub = table.get(name, {})
         if not isinstance(sub, dict):
@@ -101,6 +104,8 @@ def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = T
             with problems.field():
                 if name == "driven" and key == "load_profile":
                     profile = parse_load_profile(raw, f"{SECTION}.{name}.{key}")
+                elif name == "overload" and key == "check":
+                    spec["overload"] = _switch(raw, f"{SECTION}.{name}.{key}")
                 else:
                     values.update(_field_value(declared, name, key, raw))
     motor_note = ""
@@ -117,7 +122,6 @@ def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = T
     given = {q.name for q in QUANTITIES if q.key.rsplit(".", 1)[1] in _table(table, q.section)}  # good or bad
     taken = {name for name in library or {} if name not in values}
     values.update({name: (library or {})[name] for name in taken})
-    spec = {}
     with problems.field():
         spec["intervals"] = _intervals(table.get("intervals", StartUpSpec.intervals))
     with problems.field():
@@ -142,12 +146,12 @@ def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = T
     if profile is not None:
         values["load_torque"] = max(profile.values)
         follows.pop("load_torque", None)
-    _check_ranges(values, duty, problems)
+    _check_ranges(values, duty, problems, set(KLOSS) if plate else set())
     problems.raise_any()
     if duty_sound:
         _check(values, effects, coupling, laws, profile, given)
     return values, StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile, **spec,
-                               motor_note=motor_note), follows, taken
+                               motor_note=motor_note, friction_max_given="friction_max" in given), follows, taken
 
 
 def _table(table: dict, section: str) -> dict:
@@ -164,6 +168,7 @@ def _field_value(declared, table: str, key: str, raw) -> dict[str, float]:
         known = [q.key.rsplit(".", 1)[1] for q in QUANTITIES if q.section == f"{SECTION}.{table}"]
         raise InputError(field, f"unknown key; [{SECTION}.{table}] takes {', '.join(known)}"
                                 + (", load_profile" if table == "driven" else "")
+                                + (", check" if table == "overload" else "")
                                 + (f" (or the nameplate: {', '.join(NAMEPLATE_FIELDS)})" if table == "driver" else ""))
     return {quantity.name: quantity.check(to_si(field, raw, quantity.unit))}
 
@@ -301,6 +306,10 @@ def _check_elastic(values, effects, coupling, key) -> None:
                                                    "its own gravity is in its equations, eq. 1)")
     if "max_link_stress" not in values:
         raise InputError(key("max_link_stress"), "missing (the largest cable stress during the start)")
+    for name in ("max_transmitted_torque", "friction_max"):
+        if name in values:
+            raise InputError(key(name), f"does not apply to the {coupling.name} coupling: an elastic link does not "
+                                        "slip, so it limits no torque (no overload_torque check)")
     for name in ("max_friction_work", "starts_per_hour", "heat_dissipation"):
         if name in values:
             raise InputError(key(name), f"does not apply to the {coupling.name} coupling: an elastic link releases "
@@ -308,9 +317,11 @@ def _check_elastic(values, effects, coupling, key) -> None:
                                         "reports)")
 
 
-def _check_ranges(values: dict[str, float], duty: dict[str, float], problems: Problems) -> None:
+def _check_ranges(values: dict[str, float], duty: dict[str, float], problems: Problems,
+                  nameplate: set[str] = frozenset()) -> None:
     """The drive's quantities within the ranges the simulator is tested over (it starts every optimum again);
-    each one out of range is a problem of ``problems``."""
+    each one out of range is a problem of ``problems``, naming the nameplate fields it came from if it is one of
+    ``nameplate`` (derived, not given)."""
     from clutchopt.simulate import ranges as tested
 
     limits = {"driven_inertia": tested.INERTIA, "load_torque": tested.LOAD, "synchronous_speed": tested.SPEED,
@@ -319,13 +330,20 @@ def _check_ranges(values: dict[str, float], duty: dict[str, float], problems: Pr
               "heat_conductance": tested.CONDUCTANCE, "max_start_time": tested.TIME, "spring_preload": tested.FORCE}
     for name, (low, high, unit) in limits.items():
         if name in values and not low <= values[name] <= high:
-            problems.errors.append(InputError(BY_NAME[name].key, f"must be from {low:g} to {high:g} {unit} (the range "
-                                                                 f"the simulator is tested over), got "
+            source = f"{derived_from(name, BY_NAME[name].section)}: " if name in nameplate else ""
+            problems.errors.append(InputError(BY_NAME[name].key, f"{source}must be from {low:g} to {high:g} {unit} "
+                                                                 f"(the range the simulator is tested over), got "
                                                                  f"{values[name]:.6g} {unit}".replace("  ", " ")))
     if "speed" in duty and not tested.SPEED[0] <= duty["speed"] <= tested.SPEED[1]:
         problems.errors.append(InputError("duty.speed", f"must be from {tested.SPEED[0]:g} to {tested.SPEED[1]:g} "
                                                         f"rad/s for a case with a [start_up] section (the simulator's "
                                                         f"range), got {duty['speed']:.6g}"))
+
+
+def _switch(raw, field: str) -> bool:
+    if not isinstance(raw, bool):
+        raise InputError(field, f"must be true or false, got {raw!r}")
+    return raw
 
 
 def _intervals(raw) -> int:

@@ -4,7 +4,8 @@ linings, wear and link strength with worn ones, the mass and cost, the outputs, 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from types import SimpleNamespace
 from typing import Any
 
 from clutchopt.formulations.common import CouplingModel, centrifugal_speed_law, duty_torque, rod_mass
@@ -206,9 +207,16 @@ def _envelope(t: Toggles, x, p):
 
 def _speed_law(toggles):
     """T = K w_a^2, K the friction torque with new linings (gamma_0, weight at R_0, spring slack) at 1 rad/s; each
-    weight's centrifugal force is m R_0 w_a^2, against which a spring preload and gravity act."""
-    return centrifugal_speed_law(toggles, lambda t, p: t.torque(t.new_push), lambda t: t.weight_mass,
-                                 lambda t: t.start_radius, lambda t: t.lining_area)
+    weight's centrifugal force is m R_0 w_a^2, against which a spring preload and gravity act. Worn (gamma_pr, weight
+    at R_0 + dr, the return spring stretched by dr): T = i f z (m w^2 (R_0 + dr) - c dr - F) d_cp / (4 tan gamma_pr),
+    F the radial force of preload and gravity (docs/lever.md, "Worn linings on the drive")."""
+    def worn_torque(x, p, speed, radial_force):
+        t = toggles(x, SimpleNamespace(**{**vars(p), "speed": speed}))
+        return t.torque(t.count * disc_push(t.worn_radial_force - radial_force, t.limit_angle))
+
+    law = centrifugal_speed_law(toggles, lambda t, p: t.torque(t.new_push), lambda t: t.weight_mass,
+                                lambda t: t.start_radius, lambda t: t.lining_area)
+    return replace(law, worn_torque=worn_torque)
 
 
 MODEL = CouplingModel(
