@@ -15,6 +15,7 @@ import numpy as np
 from clutchopt.backend import is_symbolic
 from clutchopt.model import Constraint, Formulation, Quantity, followed, namespace
 from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, check_constraints, constraint_table
+from clutchopt.scatter import draw
 
 SAMPLES = 10_000
 CONFIDENCE = 0.95  # of the failure probabilities' intervals
@@ -189,11 +190,10 @@ def worst_corners(formulation: Formulation, design: dict, params: SimpleNamespac
 
 
 def failure_probabilities(formulation: Formulation, design: dict, params: SimpleNamespace, scatter,
-                          samples: int = SAMPLES, seed: int = SEED) -> dict[str, list[float]]:
+                          samples: int = SAMPLES, seed: int = SEED, correlation=None) -> dict[str, list[float]]:
     """Monte Carlo: each constraint's failure probability (relative margin below -FEASIBILITY_TOL) with its
-    Clopper-Pearson interval."""
-    rng = np.random.default_rng(seed)
-    drawn = {s.name: s.sample(rng, samples) for s in scatter}
+    Clopper-Pearson interval; ``correlation`` of the scattered quantities (:func:`clutchopt.scatter.draw`)."""
+    drawn = draw(scatter, np.random.default_rng(seed), samples, correlation)
     constraints = constraints_at(formulation, design, params, drawn)
     margins = _margins(constraints, samples)
     # active constraints sit at 0 +- round-off
