@@ -148,6 +148,8 @@ def importance_sampling(g: LimitStates, rows: list[int], centres: list[np.ndarra
     weight = np.exp(-top) / np.mean(np.exp(exponents - top), axis=0)
     failed = np.any(np.asarray(g(u), dtype=float)[rows] < -tolerance, axis=0)
     terms = weight * failed
+    if not failed.any():
+        return Estimate(0.0, 0.0, 0.0, f"IS: no failure in {samples} samples")
     p = float(terms.mean())
     half = Z_CONFIDENCE * float(terms.std(ddof=1)) / math.sqrt(samples)
     return Estimate(p, max(0.0, p - half), min(1.0, p + half), "importance sampling")

@@ -66,6 +66,7 @@ BETA_STEPS = 12  # corrections of the chance design's betas until importance sam
 BETA_TOL = 2e-3  # of the generalised reliability index: 0.6 % of a failure probability of 1e-3
 SYSTEM_TOL = 0.01  # of ln(P(system fails) / (1 - P))
 ACTIVE = 1e-6  # relative margin at its performance point below which a constraint shapes the design
+VERIFIED_FACTOR = 2.0  # a chance design's failure probability is verified when its interval lies below this x 1 - P
 SETTLED = 1e-7  # relative: a performance point that moves less has settled
 MAX_SAMPLES = 1_000_000  # vectorised in float64: about 100 MB for the widest formulation
 CORNER_STEPS = 8  # re-solves while the worst corners move
@@ -328,8 +329,15 @@ def verdict(result: RobustResult) -> tuple[str, str | None]:
                 for name, (p, low, high) in failure.items() if low > allowed]
 
     reasons = []
+    if result.reliability is not None:
+        shown = ({"the system": result.reliability.system} if result.method == SYSTEM_CHANCE else
+                 {name: c.best for name, c in result.reliability.constraints.items()})
+        if missed := [f"{name} fails with probability {e.probability:.3g} ({e.low:.3g} to {e.high:.3g}, "
+                      f"{e.estimator})" for name, e in shown.items()
+                      if e.low > allowed or e.high > VERIFIED_FACTOR * allowed]:
+            reasons.append(f"not shown within {VERIFIED_FACTOR:g} x {allowed:.3g}: " + "; ".join(missed))
     if static := exceeded(result.failure):
-        reasons.append("Monte Carlo: " + "; ".join(static) + " (first order is not enough here)")
+        reasons.append("Monte Carlo: " + "; ".join(static))
     if start := exceeded(result.start_up_failure):
         reasons.append(f"{result.start_up_samples} simulated starts: " + "; ".join(start)
                        + " (the start is not monotone in the scatter: its quantile corner is not enough)")
@@ -343,8 +351,18 @@ def verification(result: RobustResult, case: Case) -> str:
     quantities = {q.name: q for q in case.quantities}
     n = len(case.scatter)
     parts = [f"constraints at all {2 ** n} corners of the ranges" if result.method == WORST_CASE else
-             f"constraints backed off to first order for P = {result.target:g}",
-             f"{result.samples} Monte Carlo samples: {_largest(result.failure)}"]
+             f"constraints at their performance points for {result.method} P = {result.target:g}, beta corrected by "
+             "importance sampling", f"{result.samples} Monte Carlo samples: {_largest(result.failure)}"]
+    if result.reliability is not None:
+        name, best = max(((name, c.best) for name, c in result.reliability.constraints.items()),
+                         key=lambda item: item[1].probability)
+        system = result.reliability.system
+        parts.append(f"importance sampling at the design points: largest P(fail) {best.probability:.3g} ({name}; "
+                     f"95% interval {best.low:.2g} to {best.high:.2g}), system {system.probability:.3g} "
+                     f"({system.low:.2g} to {system.high:.2g})")
+    simulated = [c.name for c in result.checks if c.name in result.start_up_failure]
+    if result.method in CHANCES and simulated:
+        parts.append(f"start-up limits not by PMA but at the quantile corners: {', '.join(simulated)}")
     if result.start_up_points:
         kind = "corner(s) of the ranges" if result.method == WORST_CASE else "quantile corner(s)"
         where = "; ".join(_shown(point, quantities) for point in result.start_up_points)

@@ -107,7 +107,7 @@ def reliability_at(formulation: Formulation, design: dict, params: SimpleNamespa
                          importance_sampling(g, [row], [point.u], n, samples, SEED, FEASIBILITY_TOL)]
         elif math.isinf(point.beta) and not np.linalg.norm(point.u):
             certain = 0.0 if point.beta > 0 else 1.0
-            estimates = [Estimate(certain, certain, certain, "exact (does not depend on the scatter)")]
+            estimates = [Estimate(certain, certain, certain, "exact: independent of the scatter")]
         else:
             bound = float(form(DesignPoint(point.u, REACH, False)).probability)
             estimates = [Estimate(0.0, 0.0, bound, f"FORM (no design point within beta {REACH:g})")
