@@ -270,23 +270,25 @@ class _Allowed:
 def _next_betas(betas: dict[str, float], history: dict[str, list], reliability, solution, allowed: _Allowed) -> bool:
     """A step of the 1-D root find, per constraint, of the beta whose performance-point design meets the allowed
     failure probability by importance sampling: the generalised index -Phi^-1(p) it reaches minus the one it should,
-    zero by the secant method (common random numbers: the estimate is a smooth function of the design). Only an
+    zero by the secant method (common random numbers: the estimate is a smooth function of the design), until the
+    allowed probability lies within the estimate's interval (FORM's beta is kept where it is not refuted). Only an
     active constraint that depends on the scatter is corrected (an inactive one fails less than allowed whatever
     its beta). System: once every constraint meets its share, the share is scaled by (1 - P) / P(system fails).
     False when nothing moves (within BETA_TOL)."""
     margins = {c.name: c.margin for c in solution.constraints}
-    movable = [name for name in betas if reliability.constraints[name].point.found
-               and margins.get(name, 1.0) <= ACTIVE and reliability.constraints[name].best.probability > 0]
+    shown = reliability.constraints
+    movable = [name for name in betas if name in shown and shown[name].point.found
+               and margins.get(name, 1.0) <= ACTIVE and shown[name].best.probability > 0]
     if allowed.system and allowed.count != max(1, len(movable)):
         allowed.count = max(1, len(movable))
         for name in history:
             history[name].clear()
     moved = False
     for name in movable:
-        reached = generalised_beta(reliability.constraints[name].best.probability)
-        miss = reached - allowed.beta
+        best = shown[name].best
+        miss = generalised_beta(best.probability) - allowed.beta
         history[name].append((betas[name], miss))
-        if abs(miss) <= BETA_TOL:
+        if abs(miss) <= BETA_TOL or best.low <= allowed.each <= best.high:  # met, within the sampling's interval
             continue
         (b0, m0), (b1, m1) = history[name][-2:] if len(history[name]) > 1 else ((None, None), history[name][-1])
         betas[name] = b1 - m1 * (b1 - b0) / (m1 - m0) if b0 is not None and m1 != m0 else b1 - m1

@@ -99,12 +99,12 @@ def reliability_at(formulation: Formulation, design: dict, params: SimpleNamespa
     shown, g = limit_states(formulation, design, params, scatter, correlation, names)
     out, centres = {}, []
     for row, name in enumerate(shown):
-        point = design_point(g, row, n)
+        point = design_point(g, row, n, FEASIBILITY_TOL)
         values = {q: float(v[0]) for q, v in values_from_standard(scatter, point.u[:, None], correlation).items()}
         if point.found:
             centres.append(point.u)
             estimates = [form(point), sorm(g, row, point),
-                         importance_sampling(g, [row], [point.u], n, samples, SEED, FEASIBILITY_TOL)]
+                         importance_sampling(g, [row], [point.u], n, samples, SEED, FEASIBILITY_TOL, defensive=False)]
         elif math.isinf(point.beta) and not np.linalg.norm(point.u):
             certain = 0.0 if point.beta > 0 else 1.0
             estimates = [Estimate(certain, certain, certain, "exact: independent of the scatter")]
@@ -124,8 +124,9 @@ def performance_corners(formulation: Formulation, design: dict, params: SimpleNa
     the deterministic problem with each constraint at its shifted values, re-solved until the points settle)."""
     n = len(scatter)
     shown, g = limit_states(formulation, design, params, scatter, correlation, tuple(betas))
+    rows = {name: row for row, name in enumerate(shown)}
     corners = {}
-    for row, name in enumerate(shown):
-        u = performance_point(g, row, n, betas[name])
+    for name in betas:  # one the formulation replaces (a start-up's torque) at the means
+        u = performance_point(g, rows[name], n, betas[name]) if name in rows else np.zeros(n)
         corners[name] = {q: float(v[0]) for q, v in values_from_standard(scatter, u[:, None], correlation).items()}
     return corners
