@@ -431,7 +431,7 @@ def _estimate(estimate) -> str:
         return f"{estimate.probability:.3g} ({estimate.estimator})"
     if estimate.low == estimate.high:
         return f"{estimate.probability:.3g} {short}"
-    return f"{estimate.probability:.3g} ({estimate.low:.2g}-{estimate.high:.2g}) {short}"
+    return f"{estimate.probability:.3g} ({estimate.low:.3g}-{estimate.high:.3g}) {short}"
 
 
 def reliability_lines(result, case) -> list[str]:
@@ -440,7 +440,7 @@ def reliability_lines(result, case) -> list[str]:
     if result.reliability is None:
         return []
     quantities = {q.name: q for q in case.quantities}
-    lines = [f"System (any constraint fails): robust {_estimate(result.reliability.system)}, nominal "
+    lines = [f"System (any constraint fails{'; the start-up limits apart, simulated' if result.start_up_points else ''}): robust {_estimate(result.reliability.system)}, nominal "
              f"{_estimate(result.nominal_reliability.system)}",
              "Design points of the robust design (most probable failure point; beta = its distance in standard "
              "normal space): estimates FORM, SORM (Breitung), IS (importance sampling at the design point, 95% "

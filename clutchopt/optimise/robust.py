@@ -360,8 +360,8 @@ def verification(result: RobustResult, case: Case) -> str:
                          key=lambda item: item[1].probability)
         system = result.reliability.system
         parts.append(f"importance sampling at the design points: largest P(fail) {best.probability:.3g} ({name}; "
-                     f"95% interval {best.low:.2g} to {best.high:.2g}), system {system.probability:.3g} "
-                     f"({system.low:.2g} to {system.high:.2g})")
+                     f"95% interval {best.low:.3g} to {best.high:.3g}), system {system.probability:.3g} "
+                     f"({system.low:.3g} to {system.high:.3g})")
     simulated = [c.name for c in result.checks if c.name in result.start_up_failure]
     if result.method in CHANCES and simulated:
         parts.append(f"start-up limits not by PMA but at the quantile corners: {', '.join(simulated)}")
