@@ -113,7 +113,17 @@ def robust_json(result, case) -> dict:
         "target": UNITLESS, "samples": UNITLESS, "confidence": UNITLESS, "failure_probability": UNITLESS,
         "nominal_failure_probability": UNITLESS, "margin_sensitivity": UNITLESS,
         "corners": {name: quantities for name in data["corners"]}, "checks": CONSTRAINT_UNITS,
-        "nominal_checks": CONSTRAINT_UNITS, "nominal_design": design})
+        "nominal_checks": CONSTRAINT_UNITS, "nominal_design": design, "performance_point_beta": UNITLESS,
+        **{key: reliability_units(data[key], quantities) for key in ("reliability", "nominal_reliability")
+           if data.get(key)}})
+
+
+def reliability_units(data: dict, quantities: dict) -> dict:
+    """The units of a ``Reliability.as_dict()``: probabilities and beta unitless, a design point's quantities SI."""
+    estimate = dict.fromkeys(("probability", "low", "high"), UNITLESS)
+    return {"constraints": {name: {"beta": UNITLESS, "design_point": quantities, "estimates": estimate,
+                                   "failure_probability": estimate} for name in data["constraints"]},
+            "system": estimate}
 
 
 def comparison_json(table) -> dict:  # a ComparisonTable (optimise.compare): read by its fields
