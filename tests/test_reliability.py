@@ -165,3 +165,17 @@ def test_the_scatter_maps_are_exact():
     drawn = draw((inertia, other), np.random.default_rng(3), 200_000, [[1.0, 0.8], [0.8, 1.0]])
     assert np.corrcoef(drawn["inertia"], drawn["resisting_torque"])[0, 1] == pytest.approx(0.8, abs=0.005)
     assert drawn["inertia"].std() == pytest.approx(0.6, rel=0.01)
+
+
+def test_the_reports_scatter_section_shows_the_system_and_the_design_point(case, chance):
+    from clutchopt.report.sections import scatter
+
+    table = scatter(case, chance)[0][0]
+    nominal, robust = table.rows
+    system = chance.reliability.system
+    assert robust["system P(fail)"] == (f"{system.probability:.3g} ({system.low:.3g} to {system.high:.3g}, "
+                                        "importance sampling)")
+    assert robust["likeliest failure (design point)"].startswith(
+        ("torque: beta 2.8", "finger_bending: beta 3.09"))
+    assert "friction_coefficient 0.1" in robust["likeliest failure (design point)"]
+    assert float(nominal["system P(fail)"].split()[0]) > 0.9  # fails below the nominal f, or above it
