@@ -63,7 +63,7 @@ CHANCE = "chance"
 SYSTEM_CHANCE = "system_chance"
 CHANCES = (CHANCE, SYSTEM_CHANCE)
 BETA_STEPS = 12  # corrections of the chance design's betas until importance sampling meets the target
-BETA_TOL = 2e-3  # of the generalised reliability index: 0.6 % of a failure probability of 1e-3
+AIM_BELOW = 0.005  # relative: the root find aims this far below 1 - P, so that the estimate ends at or below it
 SYSTEM_TOL = 0.01  # of ln(P(system fails) / (1 - P))
 ACTIVE = 1e-6  # relative margin at its performance point below which a constraint shapes the design
 VERIFIED_FACTOR = 2.0  # a chance design's failure probability is verified when its interval lies below this x 1 - P
@@ -270,11 +270,12 @@ class _Allowed:
 def _next_betas(betas: dict[str, float], history: dict[str, list], reliability, solution, allowed: _Allowed) -> bool:
     """A step of the 1-D root find, per constraint, of the beta whose performance-point design meets the allowed
     failure probability by importance sampling: the generalised index -Phi^-1(p) it reaches minus the one it should,
-    zero by the secant method (common random numbers: the estimate is a smooth function of the design), until the
-    allowed probability lies within the estimate's interval (FORM's beta is kept where it is not refuted). Only an
+    zero by the secant method (common random numbers: the estimate is a smooth function of the design), aimed
+    AIM_BELOW under it, until the allowed probability lies within the estimate's interval (FORM's beta is kept
+    where importance sampling does not refute it: exact where the limit state is linear in u). Only an
     active constraint that depends on the scatter is corrected (an inactive one fails less than allowed whatever
     its beta). System: once every constraint meets its share, the share is scaled by (1 - P) / P(system fails).
-    False when nothing moves (within BETA_TOL)."""
+    False when nothing moves."""
     margins = {c.name: c.margin for c in solution.constraints}
     shown = reliability.constraints
     movable = [name for name in betas if name in shown and shown[name].point.found
@@ -286,10 +287,11 @@ def _next_betas(betas: dict[str, float], history: dict[str, list], reliability, 
     moved = False
     for name in movable:
         best = shown[name].best
-        miss = generalised_beta(best.probability) - allowed.beta
+        miss = generalised_beta(best.probability) - generalised_beta(allowed.each * (1 - AIM_BELOW))
         history[name].append((betas[name], miss))
-        if abs(miss) <= BETA_TOL or best.low <= allowed.each <= best.high:  # met, within the sampling's interval
-            continue
+        corrected = history[name][0][0] != betas[name]
+        if (best.probability if corrected else best.low) <= allowed.each <= best.high:
+            continue  # met: at or below once corrected; FORM's beta where sampling does not refute it (exact there)
         (b0, m0), (b1, m1) = history[name][-2:] if len(history[name]) > 1 else ((None, None), history[name][-1])
         betas[name] = b1 - m1 * (b1 - b0) / (m1 - m0) if b0 is not None and m1 != m0 else b1 - m1
         moved = True
