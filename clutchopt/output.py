@@ -437,6 +437,8 @@ ESTIMATORS = {"importance sampling": "IS", "Monte Carlo": "MC", "FORM": "FORM", 
 def _estimate(estimate) -> str:
     """A failure probability with its interval and, abbreviated, the estimator that gave it."""
     short = ESTIMATORS.get(estimate.estimator)
+    if math.isnan(estimate.probability):
+        return f"- {short or estimate.estimator} (not defined here)"
     if short is None:
         return f"{estimate.probability:.3g} ({estimate.estimator})"
     if estimate.low == estimate.high:

@@ -40,7 +40,13 @@ class Estimate:
     estimator: str
 
     def as_dict(self) -> dict:
-        return {"probability": self.probability, "low": self.low, "high": self.high, "estimator": self.estimator}
+        """JSON: an estimate that is not defined (SORM where 1 + beta kappa <= 0) as None."""
+        return {"probability": _defined(self.probability), "low": _defined(self.low), "high": _defined(self.high),
+                "estimator": self.estimator}
+
+
+def _defined(value: float) -> float | None:
+    return value if math.isfinite(value) else None
 
 
 @dataclass(frozen=True)
