@@ -120,6 +120,7 @@ class RobustResult:
         return {
             "method": self.method, "target": self.target, "status": self.status, "diagnosis": self.diagnosis,
             "samples": self.samples, "confidence": CONFIDENCE,
+            "failure_probability_estimator": "Monte Carlo (Clopper-Pearson interval)",
             "failure_probability": self.failure, "nominal_failure_probability": self.nominal_failure,
             "corners": self.corners,
             "checks": [c.as_dict() for c in self.checks],
