@@ -61,6 +61,9 @@ class Case:
     # the duty's, its start time limit t_p, its lock-up speed 90 % of synchronous. Each is set from its source when
     # the values change (with_values) and when a problem is posed (the NLP's parameters, a robust design's corners)
     follows: dict[str, tuple[str, float]] = field(default_factory=dict)
+    # correlations of the scattered quantities' standard normal variables (n x n, in the order of ``scatter``; a
+    # Gaussian copula), None: independent
+    correlation: Any = None
 
     @property
     def quantities(self) -> tuple[Quantity, ...]:

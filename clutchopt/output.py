@@ -113,7 +113,17 @@ def robust_json(result, case) -> dict:
         "target": UNITLESS, "samples": UNITLESS, "confidence": UNITLESS, "failure_probability": UNITLESS,
         "nominal_failure_probability": UNITLESS, "margin_sensitivity": UNITLESS,
         "corners": {name: quantities for name in data["corners"]}, "checks": CONSTRAINT_UNITS,
-        "nominal_checks": CONSTRAINT_UNITS, "nominal_design": design})
+        "nominal_checks": CONSTRAINT_UNITS, "nominal_design": design, "performance_point_beta": UNITLESS,
+        **{key: reliability_units(data[key], quantities) for key in ("reliability", "nominal_reliability")
+           if data.get(key)}})
+
+
+def reliability_units(data: dict, quantities: dict) -> dict:
+    """The units of a ``Reliability.as_dict()``: probabilities and beta unitless, a design point's quantities SI."""
+    estimate = dict.fromkeys(("probability", "low", "high"), UNITLESS)
+    return {"constraints": {name: {"beta": UNITLESS, "design_point": quantities, "estimates": estimate,
+                                   "failure_probability": estimate} for name in data["constraints"]},
+            "system": estimate}
 
 
 def comparison_json(table) -> dict:  # a ComparisonTable (optimise.compare): read by its fields
@@ -466,6 +476,41 @@ def materials_text(kind: str, title: str) -> str:
     return "\n".join([f"{title} (clutchopt/data/materials.toml)", table, "", *legend, "", *sources])
 
 
+ESTIMATORS = {"importance sampling": "IS", "Monte Carlo": "MC", "FORM": "FORM", "SORM (Breitung)": "SORM"}
+
+
+def _estimate(estimate) -> str:
+    """A failure probability with its interval and, abbreviated, the estimator that gave it."""
+    short = ESTIMATORS.get(estimate.estimator)
+    if math.isnan(estimate.probability):
+        return f"- {short or estimate.estimator} (not defined here)"
+    if short is None:
+        return f"{estimate.probability:.3g} ({estimate.estimator})"
+    if estimate.low == estimate.high:
+        return f"{estimate.probability:.3g} {short}"
+    return f"{estimate.probability:.3g} ({estimate.low:.3g}-{estimate.high:.3g}) {short}"
+
+
+def reliability_lines(result, case) -> list[str]:
+    """The system's failure probability (robust and nominal design) and each constraint's design point with its
+    reliability index and estimates (robust design)."""
+    if result.reliability is None:
+        return []
+    quantities = {q.name: q for q in case.quantities}
+    lines = [f"System (any constraint fails{'; the start-up limits apart, simulated' if result.start_up_points else ''}): robust {_estimate(result.reliability.system)}, nominal "
+             f"{_estimate(result.nominal_reliability.system)}",
+             "Design points of the robust design (most probable failure point; beta = its distance in standard "
+             "normal space): estimates FORM, SORM (Breitung), IS (importance sampling at the design point, 95% "
+             "interval)"]
+    for name, c in result.reliability.constraints.items():
+        if not c.point.found:
+            lines.append(f"  {name}: {_estimate(c.best)}")
+            continue
+        at = ", ".join(f"{q} {quantities[q].show(v, 5)}" for q, v in c.values.items())
+        lines.append(f"  {name}: beta {c.point.beta:.4g} at {at}: " + ", ".join(_estimate(e) for e in c.estimates))
+    return lines
+
+
 def _probability(triple: list[float]) -> str:
     p, low, high = triple
     return "0 (<{:.2g})".format(high) if p == 0 else f"{p:.3g} ({low:.2g}-{high:.2g})"
@@ -479,9 +524,11 @@ def robust_text(result, case) -> str:
                 "nominal": quantities[s.name].show(case.values[s.name])} for s in case.scatter]
     how = ("worst case: every constraint at its own worst corner of the ranges (a normal quantity: mean +- 3 sd), "
            "all 2^n corners checked" if result.method == "worst-case" else
-           f"chance {result.target:g}: each constraint holds with that probability to first order (limit backed "
-           "off by z sigma of the linearised constraint)" + (", a start-up designed at the corner of the quantiles "
-                                                             "where it binds" if result.start_up_points else ""))
+           f"{'system ' if result.method == 'system_chance' else ''}chance {result.target:g}: "
+           + ("the design (any constraint) holds" if result.method == "system_chance" else
+              "each constraint holds") + " with that probability, each constraint at its performance point (PMA), "
+           "beta corrected until importance sampling meets the target"
+           + (", a start-up designed at the corner of the quantiles where it binds" if result.start_up_points else ""))
     robust, nominal = result.solution, result.nominal
     change = robust.objective / nominal.objective - 1 if nominal.objective else float("nan")
     nominal_checks = {c.name: c for c in result.nominal_checks}
@@ -496,9 +543,11 @@ def robust_text(result, case) -> str:
     rows = [{"constraint": c.name, **({"worst corner": corner(c.name)} if result.method == "worst-case" else {}),
              "robust margin": f"{c.margin:+.2e}",
              "nominal margin": f"{nominal_checks[c.name].margin:+.2e}" if c.name in nominal_checks else "-",
-             "robust P(fail)": _probability(failure[c.name]) if c.name in failure else "-",
-             "nominal P(fail)": _probability(result.nominal_failure[c.name]) if c.name in result.nominal_failure
-             else "-"} for c in result.checks]
+             "robust P(fail)": (_estimate(result.reliability.constraints[c.name].best)
+                                if result.reliability and c.name in result.reliability.constraints else
+                                _probability(failure[c.name]) + " MC" if c.name in failure else "-"),
+             "nominal P(fail)": _probability(result.nominal_failure[c.name]) + " MC" if c.name in
+             result.nominal_failure else "-"} for c in result.checks]
     names = [s.name for s in case.scatter]
     bars = [{"constraint": name, **{q: f"{effects.get(q, 0.0):+.3g}" for q in names}}
             for name, effects in result.bars.items() if any(abs(v) > 1e-12 for v in effects.values())]
@@ -508,11 +557,13 @@ def robust_text(result, case) -> str:
              f"{robust.objective_name}: robust {robust.objective:.6g} {robust.objective_unit}, nominal "
              f"{nominal.objective:.6g} {nominal.objective_unit} ({change:+.1%})", "",
              ("Constraints under scatter: margin at the worst corner of the ranges" if result.method == "worst-case"
-              else "Constraints under scatter: margin with the back-off")
-             + f", and the failure probability ({result.as_dict()['confidence']:.0%} Clopper-Pearson interval) from "
-               f"{result.samples} Monte Carlo samples"
+              else "Constraints under scatter: margin at its performance point")
+             + f", and the failure probability: IS by importance sampling at the design point (95% interval), MC from "
+               f"{result.samples} Monte Carlo samples ({result.as_dict()['confidence']:.0%} Clopper-Pearson interval)"
              + (f" (a start-up's: margin at its worst simulated corner, P(fail) from {result.start_up_samples} "
                 "simulated starts)" if result.start_up_points else ""), _frame(rows)]
+    if result.reliability is not None:
+        lines += ["", *reliability_lines(result, case)]
     if bars:
         lines += ["", "What drives it: change of each relative margin as a quantity goes from low to high, the "
                       "others nominal (robust design)", _frame(bars)]

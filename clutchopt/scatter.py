@@ -39,15 +39,53 @@ class Scatter:
     mean: float  # distribution: normal (mean, sd); range and uniform: uniform over [low, high]
     sd: float
 
-    def sample(self, rng: np.random.Generator, count: int) -> np.ndarray:
+    def from_standard(self, u):
+        """The quantity's value where a standard normal variable takes ``u`` (floats or arrays): the exact
+        isoprobabilistic map x = F^-1(Phi(u)) (Rosenblatt; a normal: mean + sd u, a range or uniform:
+        low + (high - low) Phi(u))."""
+        from scipy.special import ndtr
+
+        u = np.asarray(u, dtype=float)
         if self.kind == "normal":
-            return rng.normal(self.mean, self.sd, count)
-        return rng.uniform(self.low, self.high, count)
+            return self.mean + self.sd * u
+        return self.low + (self.high - self.low) * ndtr(u)
+
+    def to_standard(self, x):
+        """The standard normal value u with :meth:`from_standard` (u) = ``x``: u = Phi^-1(F(x))."""
+        from scipy.special import ndtri
+
+        x = np.asarray(x, dtype=float)
+        if self.kind == "normal":
+            return (x - self.mean) / self.sd
+        return ndtri((x - self.low) / (self.high - self.low))
 
     def describe(self, unit_shown) -> str:
         if self.kind == "normal":
             return f"normal, mean {unit_shown(self.mean)}, sd {unit_shown(self.sd)}"
         return f"{self.kind} {unit_shown(self.low)} to {unit_shown(self.high)}"
+
+
+def correlated(u: np.ndarray, correlation=None) -> np.ndarray:
+    """Independent standard normals ``u`` (one row per scattered quantity) made correlated standard normals
+    z = L u, L the Cholesky factor of ``correlation`` (n x n, the correlations of the standard normal variables:
+    a Gaussian copula); None: independent, z = u."""
+    if correlation is None:
+        return u
+    return np.linalg.cholesky(np.asarray(correlation, dtype=float)) @ u
+
+
+def values_from_standard(scatters, u, correlation=None) -> dict[str, np.ndarray]:
+    """Quantity -> its values where the independent standard normals ``u`` (n rows in the order of ``scatters``,
+    any number of columns) take theirs: correlated (:func:`correlated`), then mapped exactly
+    (:meth:`Scatter.from_standard`). The map FORM, SORM and importance sampling work through."""
+    z = correlated(np.asarray(u, dtype=float), correlation)
+    return {s.name: s.from_standard(z[i]) for i, s in enumerate(scatters)}
+
+
+def draw(scatters, rng: np.random.Generator, count: int, correlation=None) -> dict[str, np.ndarray]:
+    """``count`` Monte Carlo draws of the scattered quantities: standard normals, correlated by ``correlation``
+    (None: independent), mapped to each quantity's distribution (:func:`values_from_standard`)."""
+    return values_from_standard(scatters, rng.standard_normal((len(scatters), count)), correlation)
 
 
 def parse_scatter(table, quantities, values: dict[str, float], broken=frozenset()) -> tuple[Scatter, ...]:

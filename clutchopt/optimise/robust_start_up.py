@@ -15,7 +15,7 @@ from clutchopt.formulations import get_coupling
 from clutchopt.model import Quantity, namespace
 from clutchopt.optimise.robust_models import SEED, START_UP, clopper_pearson, corner_table, design_at
 from clutchopt.optimise.verify import ConstraintCheck, check_constraints
-from clutchopt.scatter import Scatter, _within
+from clutchopt.scatter import Scatter, _within, draw
 from clutchopt.start_up.drive import CLOSED_FORM, Structure
 
 START_SAMPLES = 200  # simulated starts of a start-up's Monte Carlo (about 30 ms of CPU each)
@@ -135,9 +135,8 @@ def start_up_failures(case: Case, mode: str, design: dict, scatter, starts: int 
                       seed: int = SEED) -> dict[str, list[float]]:
     """Monte Carlo of the simulated start: ``starts`` draws of the distributions (cut where each quantity's valid
     range ends), each start-up limit's failure probability with its Clopper-Pearson interval."""
-    rng = np.random.default_rng(seed)
     declared = {q.name: q for q in case.quantities}
-    drawn = {s.name: s.sample(rng, starts) for s in scatter}
+    drawn = draw(scatter, np.random.default_rng(seed), starts, case.correlation)
     points = [{q: _within(declared[q], float(values[i])) for q, values in drawn.items()} for i in range(starts)]
     return {column[0].name: clopper_pearson(sum(not c.feasible for c in column), starts)
             for column in zip(*simulated_start_ups(case, mode, design, points))}
