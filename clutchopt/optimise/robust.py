@@ -191,8 +191,10 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
         checks = [c for c in solution.constraints if c.name in kept]  # backed off
         nominal_checks = [c for c in check_constraints(derived.constraints(namespace(nominal.design),
                                                                            at_values(params, values))) if c.name in kept]
-    failure = failure_probabilities(shown, solution.design, params, case.scatter, samples)
-    nominal_failure = failure_probabilities(shown, nominal.design, params, case.scatter, samples)
+    failure = failure_probabilities(shown, solution.design, params, case.scatter, samples,
+                                    correlation=case.correlation)
+    nominal_failure = failure_probabilities(shown, nominal.design, params, case.scatter, samples,
+                                            correlation=case.correlation)
     result = RobustResult(method, target, solution, nominal, checks, nominal_checks, samples, failure,
                           nominal_failure, {**tornado(shown, solution.design, params, case.scatter),
                                             **(start_up.bars if start_up else {})}, corners, shown, settled=settled)

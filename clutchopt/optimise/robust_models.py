@@ -14,6 +14,7 @@ import numpy as np
 
 from clutchopt.backend import is_symbolic
 from clutchopt.model import Constraint, Formulation, Quantity, followed, namespace
+from clutchopt.scatter import draw
 from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, check_constraints, constraint_table
 
 SAMPLES = 10_000
@@ -189,11 +190,11 @@ def worst_corners(formulation: Formulation, design: dict, params: SimpleNamespac
 
 
 def failure_probabilities(formulation: Formulation, design: dict, params: SimpleNamespace, scatter,
-                          samples: int = SAMPLES, seed: int = SEED) -> dict[str, list[float]]:
+                          samples: int = SAMPLES, seed: int = SEED, correlation=None) -> dict[str, list[float]]:
     """Monte Carlo: each constraint's failure probability (relative margin below -FEASIBILITY_TOL) with its
-    Clopper-Pearson interval."""
-    rng = np.random.default_rng(seed)
-    drawn = {s.name: s.sample(rng, samples) for s in scatter}
+    Clopper-Pearson interval; ``correlation``: of the scattered quantities' normal scores (``Case.correlation``,
+    :func:`clutchopt.scatter.draw`)."""
+    drawn = draw(scatter, np.random.default_rng(seed), samples, correlation)
     constraints = constraints_at(formulation, design, params, drawn)
     margins = _margins(constraints, samples)
     # active constraints sit at 0 +- round-off

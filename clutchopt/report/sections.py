@@ -140,7 +140,8 @@ def scatter(case: Case, robust=None) -> tuple[list, tuple[str, float, int]]:
         worst, chance = results
         designs = [("nominal", worst.nominal, worst.nominal_failure), ("worst case", worst.solution, worst.failure),
                    ("chance 0.999", chance.solution, failure_probabilities(worst.formulation, chance.solution.design,
-                                                                           case.params(), case.scatter))]
+                                                                           case.params(), case.scatter,
+                                                                           correlation=case.correlation))]
     first = results[0]
     rows = []
     for label, result_solution, failure in designs:
