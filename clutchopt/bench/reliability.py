@@ -80,11 +80,9 @@ TOOL: tuple[Estimator, ...] = (
 
 # --- OpenTURNS ------------------------------------------------------------------------------------------------------
 def openturns_available() -> bool:
-    try:
-        import openturns  # noqa: F401
-    except ImportError:
-        return False
-    return True
+    from importlib.util import find_spec
+
+    return find_spec("openturns") is not None
 
 
 def _distribution(case: Case):
