@@ -324,6 +324,13 @@ def parse_correlation(table, scatter: tuple[Scatter, ...]) -> tuple[tuple[float,
     return tuple(tuple(float(v) for v in row) for row in matrix)
 
 
+def correlation_text(scatter: tuple[Scatter, ...], correlation) -> str:
+    """``correlated (normal scores): friction_coefficient with inertia -0.4``, or "" for independent quantities."""
+    pairs = [f"{a.name} with {b.name} {correlation[i][j]:+.3g}" for (i, a), (j, b)
+             in itertools.combinations(enumerate(scatter), 2) if correlation is not None and correlation[i][j]]
+    return f"correlated (of the normal scores; the corners do not change): {'; '.join(pairs)}" if pairs else ""
+
+
 def _unscattered(name: str, order: dict) -> str:
     return (f"not a scattered quantity of this case; correlations are between the quantities [scatter] gives "
             f"({', '.join(order) or 'none'})")

@@ -151,7 +151,8 @@ def test_correlation_reaches_the_monte_carlo(tmp_path, monkeypatch, capsys):
     path = tmp_path / "case.toml"
     path.write_text(CORRELATED)
     assert main(["solve", str(path), "--robust", "worst-case", "--samples", "2000", "--no-store"]) == 0
-    capsys.readouterr()
+    assert ("correlated (of the normal scores; the corners do not change): inertia with allowable_pressure +0.5; "
+            "inertia with friction_coefficient -0.3") in capsys.readouterr().out
     assert seen and all(correlation == read(CORRELATED, tmp_path).correlation for correlation, _ in seen)
     drawn = seen[0][1]
     assert np.corrcoef(drawn["inertia"], drawn["allowable_pressure"])[0, 1] == pytest.approx(0.5, abs=0.06)
