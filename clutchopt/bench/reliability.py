@@ -239,7 +239,7 @@ def reliability_rows(config) -> list[dict]:
                 rows.append({"case": CASE.name, "design": design, "constraint": name, "estimator": estimator.name,
                              "probability": _number(p), "interval_low": _number(low), "interval_high": _number(high),
                              "samples": estimator.samples, "time_s": seconds,
-                             "note": why[0] if why else f"time for all {len(states.names)} limit states"})
+                             "note": why[0] if why else ""})
     if not available:
         rows.append({"case": CASE.name, "design": "", "constraint": "", "estimator": "openturns",
                      "probability": None, "interval_low": None, "interval_high": None, "samples": None,
