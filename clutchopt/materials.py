@@ -212,6 +212,26 @@ def fill(table: object, roles: tuple[MaterialRole, ...], quantities: tuple[Quant
     return filled
 
 
+SCATTER_RANGES = {"friction_coefficient": ("friction_min", "friction_max")}  # library field -> its scatter range
+
+
+def scatter_ranges(table: object, roles: tuple[MaterialRole, ...]) -> dict[str, tuple[float, float, str]]:
+    """The scatter ranges the entries a case's ``[library]`` names give (``[scatter] friction_coefficient =
+    "library"``): quantity name -> (low, high, "friction_pair = organic_dry"), SI. Only entries named in
+    ``[library]`` (a choice of ``options.choose`` sets the value per choice); a bad table gives none (:func:`fill`
+    refuses it)."""
+    if not isinstance(table, dict):
+        return {}
+    ranges = {}
+    for role in roles:
+        entry = library()[role.kind].get(table.get(role.key)) if isinstance(table.get(role.key), str) else None
+        for library_field, quantity in role.fills.items() if entry else ():
+            ends = SCATTER_RANGES.get(library_field)
+            if ends and all(end in entry.values for end in ends):
+                ranges[quantity] = (entry.values[ends[0]], entry.values[ends[1]], f"{role.key} = {entry.name}")
+    return ranges
+
+
 def hint(roles: tuple[MaterialRole, ...], quantity: str) -> str:
     """``; or name a friction_pair (clutchopt materials)`` for a missing quantity a role would fill, else ``""``."""
     keys = [role.key for role in roles if quantity in role.fills.values()]

@@ -12,6 +12,7 @@ import math
 from typing import TYPE_CHECKING
 
 from clutchopt.units import from_si, si_unit
+from clutchopt.scatter import correlation_text
 
 if TYPE_CHECKING:  # JSON needs neither pandas nor the solver: ``solve --json`` starts faster without them
     from clutchopt.model import Formulation
@@ -553,7 +554,7 @@ def robust_text(result, case) -> str:
             for name, effects in result.bars.items() if any(abs(v) > 1e-12 for v in effects.values())]
     lines = [f"Robust design ({how}): status {result.status}"
              + (f" - {result.diagnosis}" if result.diagnosis else ""), result.verification,
-             _frame(scatter), "",
+             _frame(scatter), *filter(None, [correlation_text(case.scatter, case.correlation)]), "",
              f"{robust.objective_name}: robust {robust.objective:.6g} {robust.objective_unit}, nominal "
              f"{nominal.objective:.6g} {nominal.objective_unit} ({change:+.1%})", "",
              ("Constraints under scatter: margin at the worst corner of the ranges" if result.method == "worst-case"

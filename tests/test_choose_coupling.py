@@ -70,6 +70,7 @@ def test_the_drive_checks_of_the_review_are_reported_for_every_verified_design(c
     wedge = next(c for c in choice.candidates if c.coupling == "wedge")
     start, p = wedge.solution.start_up, wedge.case.values
     work, n_h = start["friction_work"], 12 / 3600
+    assert (p["ambient_temperature"], p["heat_conductance"], p["starts_per_hour"]) == pytest.approx((313.15, 5.0, n_h))
     steady = 313.15 + work * n_h / 5.0
     checks = rows["wedge"]["checks"]
     assert set(checks) == {"start_time", "lining_temperature", "continuous_temperature", "lining_life",

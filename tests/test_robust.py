@@ -257,7 +257,8 @@ def test_parse_method(text, ok):
     ({"speedd": [1, 2]}, "scatter.speedd"),
     ({"weight_count": [3, 4]}, "scatter.weight_count"),
     ({"inertia": {"normal": ["12 kg*m^2", "-1 kg*m^2"]}}, "scatter.inertia.normal"),
-    ({"inertia": {"lognormal": [1, 2]}}, "scatter.inertia"),
+    ({"inertia": {"weibull": [1, 2]}}, "scatter.inertia"),  # not a kind
+    ({"inertia": {"lognormal": [1, 2]}}, "scatter.inertia.lognormal"),  # the mean is not the case's 12 kg m^2
     ({"inertia": ["12 kg", "13 kg"]}, "scatter.inertia"),
     ({f"q{i}": [0, 1] for i in range(13)}, "scatter"),
 ])

@@ -157,7 +157,8 @@ def _scatter_columns(case: Case, coupling, spec, options: SolverOptions, robust=
         values = spec.rows_from_design(mode, solution.design, outputs, params)
         if solution.status in ("optimal", "unverified"):
             checks = corner_checks(worst.formulation, solution.design, params, case.scatter)
-            failure = failure_probabilities(worst.formulation, solution.design, params, case.scatter, methods[0].samples)
+            failure = failure_probabilities(worst.formulation, solution.design, params, case.scatter, methods[0].samples,
+                                            correlation=case.correlation)
             values.update(worst_corner_margin=min(c.margin for c in checks),
                           failure_probability=max(p for p, _, _ in failure.values()))
         columns[column] = (solution, values)

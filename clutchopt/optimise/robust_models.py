@@ -116,7 +116,8 @@ def worst_corners(formulation: Formulation, design: dict, params: SimpleNamespac
 def failure_probabilities(formulation: Formulation, design: dict, params: SimpleNamespace, scatter,
                           samples: int = SAMPLES, seed: int = SEED, correlation=None) -> dict[str, list[float]]:
     """Monte Carlo: each constraint's failure probability (relative margin below -FEASIBILITY_TOL) with its
-    Clopper-Pearson interval; ``correlation`` of the scattered quantities (:func:`clutchopt.scatter.draw`)."""
+    Clopper-Pearson interval; ``correlation``: of the scattered quantities' normal scores (``Case.correlation``,
+    :func:`clutchopt.scatter.draw`)."""
     drawn = draw(scatter, np.random.default_rng(seed), samples, correlation)
     constraints = constraints_at(formulation, design, params, drawn)
     margins = _margins(constraints, samples)
