@@ -169,3 +169,43 @@ def test_the_friction_areas_that_wear():
     assert flank_area_total(4, 0.785, 0.05, 0.06, math.radians(15)) == pytest.approx(wedge, rel=1e-12)
     assert wedge == pytest.approx(3.5759e-3, rel=1e-4)
     assert lining_area(2, 0.2, 0.05) == pytest.approx(0.062832, rel=1e-5)
+
+
+LEAST_WORK_MOTOR = 0.5 * 12.0 * (450 * math.pi / 30) ** 2  # J w_e,min^2 / 2 = 13,324.0 J (min_engagement_speed)
+LEAST_WORK_CONSTANT = 0.5 * 12.0 * (1450 * math.pi / 30) ** 2  # J w^2 / 2 = 138,336 J (the constant driving speed)
+
+
+def test_a_lining_no_design_can_keep_cool_is_proven_infeasible_with_a_motor(tmp_path, cli):
+    """Nearly adiabatic housing (G = 0.1 W/K, C = 100 J/K), 4 starts an hour, min_engagement_speed 450 rpm: every
+    start releases at least W = J w_e^2 / 2 = 13.324 kJ (optimise/proofs.py), so the steady rise W n_h / G = 148.04 K
+    and a start's rise e^(-G t_max / C) W / C = e^(-0.03) 133.24 = 129.30 K put the lining at 40 + 148.04 + 129.30 =
+    317.3 degC at least, above organic_dry's 250 degC: proven, whatever the coupling's geometry."""
+    steady = LEAST_WORK_MOTOR * 4 / 3600 / 0.1
+    rise = math.exp(-0.1 * 30 / 100) * LEAST_WORK_MOTOR / 100
+    assert (steady, rise) == pytest.approx((148.044, 129.302), rel=1e-5)
+    path = lever_case(tmp_path, "adiabatic", **{'capacity = "7000 J/K"': 'capacity = "100 J/K"',
+                                                'conductance = "10 W/K"': 'conductance = "0.1 W/K"',
+                                                'max_temperature_rise = "30 K"\n': "",
+                                                'heat_dissipation = "250 W"\n': ""})
+    data = json.loads(cli("solve", path, "--json", "--no-store").stdout)
+    assert data["status"] == "infeasible" and "proven" in data["diagnosis"]
+    assert f"the lining reaches at least {40 + steady + rise:.6g} degC, above its limit 250 degC" in data["diagnosis"]
+    assert f"at least J w^2 / 2 = {LEAST_WORK_MOTOR / 1e3:.6g} kJ" in data["diagnosis"]
+
+
+def test_a_lining_no_design_can_keep_cool_on_a_constant_speed_drive_is_proven(tmp_path, cli):
+    """Driven at a constant 1450 rpm (no motor_curve), C = 100 J/K and G = 1 W/K: W >= J w^2 / 2 = 138.3 kJ, a
+    start's rise >= e^(-0.3) 1383.4 K: proven; the rise limit (max_temperature_rise 30 K) too."""
+    path = lever_case(tmp_path, "constant", **{
+        '"motor_curve", ': "", 'capacity = "7000 J/K"': 'capacity = "100 J/K"',
+        'conductance = "10 W/K"': 'conductance = "1 W/K"', 'heat_dissipation = "250 W"\n': "",
+        '[start_up.driver]\nsynchronous_speed = "1500 rpm"\nbreakdown_torque = "265 N*m"\nbreakdown_slip = 0.15\n'
+        'inertia = "0.09 kg*m^2"\n': "", '[start_up.overload]\n': "", "check = false": "",
+        'min_engagement_speed = "450 rpm"\n': "", 'max_engagement_speed = "750 rpm"\n': ""})
+    data = json.loads(cli("solve", path, "--json", "--no-store").stdout)
+    rise = math.exp(-0.3) * LEAST_WORK_CONSTANT / 100
+    assert data["status"] == "infeasible" and "proven" in data["diagnosis"]
+    assert f"temperature_rise: every start releases at least J w^2 / 2 = {LEAST_WORK_CONSTANT / 1e3:.6g} kJ" \
+        in data["diagnosis"]
+    assert f"the friction parts rise by at least {rise:.6g} K, above its limit 30 K" in data["diagnosis"]
+    assert "lining_temperature" in data["diagnosis"]
