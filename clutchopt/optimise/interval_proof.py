@@ -20,7 +20,7 @@ from typing import NamedTuple
 import casadi as ca
 import numpy as np
 
-from clutchopt.optimise.interval import IntervalFunction
+from clutchopt.optimise.interval_nodes import enclosed_rows
 
 MAX_BOXES = 2_500
 BATCH = 128  # boxes an iteration evaluates at least (bisecting as often as it takes)
@@ -36,17 +36,11 @@ class Emptiness(NamedTuple):
     feasible: np.ndarray | None = None  # a design meeting every row (SI), if one was met
 
 
-def interval_functions(posed) -> tuple[IntervalFunction, IntervalFunction]:
+def interval_functions(posed):
     """The formulation's own constraint rows (a start-up's left out: its states are not searched) and their
-    Jacobian in the design variables, as interval functions of (design, p), built once per problem."""
-    def build(_):
-        n = len(posed.names)
-        design, internal, p = posed.nlp["x"][:n], posed.nlp["x"][n:], posed.nlp["p"]
-        g = ca.substitute(posed.nlp["g"][: sum(posed.constraint_rows[: posed.n_checked])], internal,
-                          ca.DM.zeros(internal.shape))
-        return (IntervalFunction(ca.Function("g_interval", [design, p], [g])),
-                IntervalFunction(ca.Function("dg_interval", [design, p], [ca.densify(ca.jacobian(g, design))])))
-    return posed.built("interval", None, build)
+    Jacobian in the design variables, as interval functions of (design, p) with the declared monotone nodes
+    enclosed at their arguments' ends (:mod:`clutchopt.optimise.interval_nodes`), built once per problem."""
+    return posed.built("interval", None, lambda _: enclosed_rows(posed))
 
 
 def search(posed, p: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> Emptiness | None:

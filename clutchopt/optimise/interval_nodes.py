@@ -1,0 +1,86 @@
+"""Interval functions of (design, p) whose declared monotone nodes (:class:`clutchopt.monotone.MonotoneFunction`)
+are bounded at their argument's ends instead of being replayed operation by operation.
+
+The formulation's rows are built again with a symbol ``y`` in place of each declared value
+(:func:`clutchopt.monotone.as_symbols`): ``G(design, p, y)``, and their Jacobian by the chain rule,
+``dG/dx + dG/dy diag(s) dr/dx``, with ``s`` the values' slopes in their arguments ``r``. Over a box, ``r`` is bounded
+by interval replay (:mod:`clutchopt.optimise.interval`), then ``y`` and ``s`` by the declared monotony (values and
+slopes at the ends of ``r``, widened by the declaration's error), met with the node's own replay: bounds as true
+as the declaration, and as tight as the argument's. Where ``r`` leaves the declared domain, ``y`` is the node's own
+replay and ``s`` unbounded, as without a declaration.
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+
+from clutchopt.model import namespace
+from clutchopt.monotone import Node, as_symbols
+from clutchopt.optimise.interval import Bounds, IntervalFunction
+
+
+def _column(expressions: list) -> ca.SX:
+    return ca.vertcat(*expressions) if expressions else ca.SX(0, 1)
+
+
+class DeclaredNodes:
+    """The declared values a set of rows uses: their arguments' and their own replays, and their enclosures."""
+
+    def __init__(self, nodes: list[Node], design: ca.SX, p: ca.SX):
+        self.nodes = nodes
+        self.y = _column([node.symbol for node in nodes])
+        self.s = ca.SX.sym("s", len(nodes))
+        self.arguments = _column([node.argument for node in nodes])
+        self._arguments = IntervalFunction(ca.Function("arguments", [design, p], [self.arguments]))
+        self._replayed = IntervalFunction(ca.Function("declared", [design, p], [_column([n.value for n in nodes])]))
+
+    def bounds(self, inputs: list[Bounds]) -> tuple[Bounds, Bounds]:
+        """Bounds on the values ``y`` and slopes ``s`` over boxes given as (design, p) bounds."""
+        boxes = inputs[0][0].shape[1]
+        if not self.nodes:
+            return (np.zeros((0, boxes)),) * 2, (np.zeros((0, boxes)),) * 2
+        (r_lo, r_hi), = self._arguments.bounds(inputs)
+        (y_lo, y_hi), = self._replayed.bounds(inputs)
+        y_lo, y_hi, s_lo, s_hi = y_lo.copy(), y_hi.copy(), np.full_like(y_lo, -np.inf), np.full_like(y_hi, np.inf)
+        for k, node in enumerate(self.nodes):
+            (v_lo, v_hi), (d_lo, d_hi) = node.function.enclosure(r_lo[k], r_hi[k], node.index)
+            inside = ~np.isnan(v_lo)
+            y_lo[k] = np.where(inside, np.maximum(y_lo[k], v_lo), y_lo[k])  # both hold: their intersection
+            y_hi[k] = np.where(inside, np.minimum(y_hi[k], v_hi), y_hi[k])
+            s_lo[k], s_hi[k] = np.where(inside, d_lo, -np.inf), np.where(inside, d_hi, np.inf)
+        return (y_lo, y_hi), (s_lo, s_hi)
+
+
+class EnclosedFunction:
+    """An output of (design, p, y, s) evaluated over boxes of (design, p) (:meth:`bounds`, as
+    :meth:`IntervalFunction.bounds`); ``function``: the same output as the NLP computes it, of (design, p)."""
+
+    def __init__(self, nodes: DeclaredNodes, inputs: list[ca.SX], output: ca.SX, plain: ca.SX, name: str):
+        self.nodes = nodes
+        self.interval = IntervalFunction(ca.Function(name, [*inputs, nodes.y, nodes.s], [output]))
+        self.function = ca.Function(name, inputs, [plain])
+
+    def bounds(self, inputs: list[Bounds]) -> list[Bounds]:
+        y, s = self.nodes.bounds(inputs)
+        return self.interval.bounds([*inputs, y, s])
+
+
+def enclosed_rows(posed) -> tuple[EnclosedFunction, EnclosedFunction]:
+    """A posed problem's own constraint rows (``g <= 0``, normalised, as the NLP's first rows; a start-up's left
+    out) and their Jacobian in the design (dense, rows x variables) as interval functions of (design, p), the
+    declared monotone nodes among them enclosed at their arguments' ends."""
+    f, n = posed.formulation, len(posed.names)
+    design, p = posed.nlp["x"][:n], posed.nlp["p"]
+    x_scale = p[posed.p_case.shape[0]: posed.p_case.shape[0] + n]
+    x = namespace({v.name: design[i] * x_scale[i] for i, v in enumerate(f.variables)})
+    q = namespace({quantity.name: posed.p_case[j] for j, quantity in enumerate(f.quantities)})
+    with as_symbols() as collected:
+        rows = ca.vertcat(*[ca.SX(c.normalised()) for c in f.constraints(x, q)])
+    plain = posed.nlp["g"][: rows.shape[0]]
+    used = [node for node in collected if ca.depends_on(rows, node.symbol)]
+    nodes = DeclaredNodes(used, design, p)
+    chain = ca.jacobian(rows, nodes.y) @ ca.diag(nodes.s) @ ca.jacobian(nodes.arguments, design) if used else 0
+    return (EnclosedFunction(nodes, [design, p], rows, plain, "g_interval"),
+            EnclosedFunction(nodes, [design, p], ca.densify(ca.jacobian(rows, design) + chain),
+                             ca.densify(ca.jacobian(plain, design)), "dg_interval"))
