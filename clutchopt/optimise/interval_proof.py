@@ -17,12 +17,11 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
-import casadi as ca
 import numpy as np
 
 from clutchopt.optimise.interval_nodes import enclosed_rows
 
-MAX_BOXES = 2_500
+MAX_BOXES = 40_000  # about 3-4 s; ball_motor_start's static conflict at 580-800 kW takes 15,000-34,000
 BATCH = 128  # boxes an iteration evaluates at least (bisecting as often as it takes)
 TOLERANCE = 1e-6  # a row must be broken by more than this (relative) over a whole box for the box to be empty
 
