@@ -98,3 +98,16 @@ def test_a_feasible_case_is_never_proven_empty(path):
         posed = case_problem(case).posed
         p = np.concatenate([list(vars(posed.params(case)).values()), np.ones(len(emptiness.feasible)), [1.0]])
         assert np.all(np.array(posed.constraint_values(emptiness.feasible, p)) <= 0)
+
+
+def test_ball_motor_start_past_580_kw_is_proven_infeasible():
+    """Issue 29: the crusher drive at 800 kW. Its design space is empty without the start-up: the static rows
+    alone conflict (contact_stress, torque, width_ratio_max, ball_layers; no design from 40 random starts of the
+    static NLP above 575 kW either). The proof needs Hertz's n_a, n_b bounded at the ends of B/A
+    (clutchopt.monotone): replayed through the Newton step they are unbounded on 1 % boxes."""
+    case = load_case(CASES / "ball_motor_start.toml")
+    case = case.with_values(power=800e3)
+    solution = case_problem(case).solve(case)
+    assert solution.status == "infeasible"
+    assert solution.diagnosis.startswith("proven infeasible") and "interval branch and bound" in solution.diagnosis
+    assert "contact_stress" in solution.diagnosis.split("(")[0]

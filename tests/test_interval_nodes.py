@@ -1,0 +1,42 @@
+"""Declared monotone nodes (clutchopt.monotone): the declaration holds over its domain, and the interval rows that
+use it bound every value the NLP's own rows take."""
+
+import casadi as ca
+import numpy as np
+
+from clutchopt.formulations.ball.contact import HERTZ_ERROR, hertz_coefficients, hertz_coefficients_exact
+from clutchopt.monotone import as_symbols
+
+
+def test_hertz_coefficients_are_monotone_with_monotone_slopes_over_the_domain():
+    """n_a rises, n_b falls with B/A (Timoshenko & Goodier's table: n_a = n_b = 1 at B/A = 1); n_a concave, n_b
+    convex: the declaration the interval proof bounds them by, at 200,001 points of 1.01 <= B/A <= 1e5."""
+    ratios = np.geomspace(*hertz_coefficients.domain, 200_001)
+    values, slopes = hertz_coefficients.values_and_slopes(ratios)
+    for k, (rising, slope_rising) in enumerate(zip(hertz_coefficients.increasing, hertz_coefficients.slope_increasing)):
+        assert np.all(np.diff(values[k]) > 0) == rising and np.all(np.diff(values[k]) < 0) == (not rising)
+        assert np.all(np.diff(slopes[k]) > 0) == slope_rising and np.all(np.diff(slopes[k]) < 0) == (not slope_rising)
+    exact = np.array([hertz_coefficients_exact(r) for r in ratios[::1000]]).T
+    assert np.max(np.abs(values[:, ::1000] / exact - 1)) < HERTZ_ERROR / 10
+
+
+def test_enclosure_holds_every_value_between_the_ends():
+    """Over [20, 30] of B/A the enclosure is [n(20), n(30)] (ordered), a little wider; every value inside."""
+    (v_lo, v_hi), (s_lo, s_hi) = hertz_coefficients.enclosure(np.array([20.0]), np.array([30.0]), 0)
+    inside = np.linspace(20.0, 30.0, 1001)
+    values, slopes = hertz_coefficients.values_and_slopes(inside)
+    assert v_lo[0] <= values[0].min() and values[0].max() <= v_hi[0]
+    assert s_lo[0] <= slopes[0].min() and slopes[0].max() <= s_hi[0]
+    assert v_hi[0] - v_lo[0] < 1.0001 * np.ptp(values[0]) + 1e-8  # and not wider than the ends' span
+    (n_lo, _), _ = hertz_coefficients.enclosure(np.array([0.5]), np.array([30.0]), 0)
+    assert np.isnan(n_lo[0])  # outside the domain: no claim
+
+
+def test_as_symbols_stands_symbols_for_the_values_and_collects_them():
+    r = ca.SX.sym("r")
+    with as_symbols() as nodes:
+        n_a, n_b = hertz_coefficients(r * 2)
+    assert [node.index for node in nodes] == [0, 1] and n_a.is_symbolic() and n_b.is_symbolic()
+    assert ca.depends_on(nodes[0].argument, r) and ca.depends_on(nodes[1].value, r)
+    n_a, _ = hertz_coefficients(r)  # outside: the expression itself
+    assert not n_a.is_symbolic()
