@@ -79,17 +79,20 @@ class MonotoneFunction:
         values, slopes = mapped(points.reshape(1, -1))
         return np.array(values), np.array(slopes)
 
-    def enclosure(self, lo: np.ndarray, hi: np.ndarray, index: int):
-        """Bounds on value ``index`` and its slope over each interval [lo, hi] of the argument within the domain
-        (NaN elsewhere): the ends' values and slopes, ordered as declared, widened by ``error`` and a few ulps."""
+    def enclosure(self, lo: np.ndarray, hi: np.ndarray):
+        """Bounds on every value and its slope (arrays of shape (values, intervals)) over each interval [lo, hi] of
+        the argument within the domain (NaN elsewhere): the ends' values and slopes, ordered as declared, widened by
+        ``error`` and a few ulps."""
         inside = (lo >= self.domain[0]) & (hi <= self.domain[1]) & (lo <= hi)
-        a, b = np.where(inside, lo, self.domain[0]), np.where(inside, hi, self.domain[0])
-        (value_a, slope_a), (value_b, slope_b) = (
-            (v[index], s[index]) for v, s in (self.values_and_slopes(a), self.values_and_slopes(b)))
-        rising, slope_rising = self.increasing[index], self.slope_increasing[index]
-        value = (value_a, value_b) if rising else (value_b, value_a)
-        slope = (slope_a, slope_b) if slope_rising else (slope_b, slope_a)
+        ends = np.concatenate([np.where(inside, lo, self.domain[0]), np.where(inside, hi, self.domain[0])])
+        values, slopes = self.values_and_slopes(ends)
+        count = lo.size
+        rising, slope_rising = np.array(self.increasing)[:, None], np.array(self.slope_increasing)[:, None]
         widen = self.error + 8 * np.finfo(float).eps
+        value = (np.where(rising, values[:, :count], values[:, count:]),
+                 np.where(rising, values[:, count:], values[:, :count]))
+        slope = (np.where(slope_rising, slopes[:, :count], slopes[:, count:]),
+                 np.where(slope_rising, slopes[:, count:], slopes[:, :count]))
         return _widened(*value, widen, inside), _widened(*slope, widen, inside)
 
 

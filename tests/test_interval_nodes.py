@@ -21,15 +21,16 @@ def test_hertz_coefficients_are_monotone_with_monotone_slopes_over_the_domain():
 
 
 def test_enclosure_holds_every_value_between_the_ends():
-    """Over [20, 30] of B/A the enclosure is [n(20), n(30)] (ordered), a little wider; every value inside."""
-    (v_lo, v_hi), (s_lo, s_hi) = hertz_coefficients.enclosure(np.array([20.0]), np.array([30.0]), 0)
-    inside = np.linspace(20.0, 30.0, 1001)
-    values, slopes = hertz_coefficients.values_and_slopes(inside)
-    assert v_lo[0] <= values[0].min() and values[0].max() <= v_hi[0]
-    assert s_lo[0] <= slopes[0].min() and slopes[0].max() <= s_hi[0]
-    assert v_hi[0] - v_lo[0] < 1.0001 * np.ptp(values[0]) + 1e-8  # and not wider than the ends' span
-    (n_lo, _), _ = hertz_coefficients.enclosure(np.array([0.5]), np.array([30.0]), 0)
-    assert np.isnan(n_lo[0])  # outside the domain: no claim
+    """Over [20, 30] of B/A the enclosure of n_a is [n_a(20), n_a(30)], of n_b [n_b(30), n_b(20)], a little wider;
+    every value and slope inside, and no wider than the ends' span."""
+    (v_lo, v_hi), (s_lo, s_hi) = hertz_coefficients.enclosure(np.array([20.0]), np.array([30.0]))
+    values, slopes = hertz_coefficients.values_and_slopes(np.linspace(20.0, 30.0, 1001))
+    for k in (0, 1):
+        assert v_lo[k, 0] <= values[k].min() and values[k].max() <= v_hi[k, 0]
+        assert s_lo[k, 0] <= slopes[k].min() and slopes[k].max() <= s_hi[k, 0]
+        assert v_hi[k, 0] - v_lo[k, 0] < 1.0001 * np.ptp(values[k]) + 1e-8
+    (n_lo, _), _ = hertz_coefficients.enclosure(np.array([0.5]), np.array([30.0]))
+    assert np.isnan(n_lo).all()  # outside the domain: no claim
 
 
 def test_as_symbols_stands_symbols_for_the_values_and_collects_them():

@@ -29,7 +29,7 @@ import numpy as np
 
 from clutchopt.optimise.interval_nodes import enclosed_rows
 
-MAX_BOXES = 40_000  # about 3-4 s; ball_motor_start's static conflict at 580-800 kW takes 15,000-34,000
+MAX_BOXES = 40_000  # about 1.5 s of CPU; ball_motor_start's static conflict at 580-800 kW takes 15,000-34,000
 SURE_BOXES = 2_500  # evaluated in any case; beyond, only while the search closes in (GROWTH)
 GROWTH = 1.5  # the most the boxes left may grow from one iteration to the next beyond SURE_BOXES
 BATCH = 128  # boxes an iteration evaluates at least (bisecting as often as it takes)
