@@ -4,8 +4,9 @@ A formulation computes some coefficients by an algorithm (Hertz's n_a, n_b of a 
 the elliptic integrals), whose interval replay operation by operation is far wider than the values (the argument
 appears in every step). Where the function is known to be monotone in its argument, with a monotone slope, its
 values over an interval of the argument lie between its values at the ends, and its slopes between its slopes at
-the ends: :class:`MonotoneFunction` declares that, and can stand for its symbolic calls by symbols (:func:`as_symbols`), so that the interval proof
-(:mod:`clutchopt.optimise.interval_nodes`) can evaluate the node at its argument's ends instead of replaying it.
+the ends: :class:`MonotoneFunction` declares that. Within :func:`as_symbols` its symbolic calls return symbols in
+place of their values, so that the interval proof (:mod:`clutchopt.optimise.interval_nodes`) can evaluate the node
+at its argument's ends instead of replaying it.
 
 A declaration is a claim its formulation must back with a test over the whole ``domain`` (values and slopes
 monotone as declared, and within ``error`` of the exact function where the algorithm approximates one); outside the
