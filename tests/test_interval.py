@@ -121,8 +121,9 @@ def test_integer_variables_are_whole_in_every_box():
     from clutchopt.optimise.problem import problem_for
 
     lo, hi = np.array([[0.1, 0.1, 0.1], [2.2, 2.0, 1.999999999999]]), np.array([[0.2, 0.2, 0.2], [2.8, 3.5, 2.0]])
-    kept_lo, kept_hi = _whole(lo, hi, [1])
+    kept_lo, kept_hi, dropped = _whole(lo, hi, [1])
     assert kept_lo.tolist() == [[0.1, 0.1], [2.0, 2.0]] and kept_hi.tolist() == [[0.2, 0.2], [3.0, 2.0]]
+    assert dropped == [1]  # [2.2, 2.8] holds no whole number
     case = load_case(CASES / "ball_motor_start.toml").with_values(power=565e3)
     problem = case_problem(case)
     relaxed = problem_for(problem.posed.base, "mass").refined(case)

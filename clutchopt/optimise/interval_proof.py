@@ -66,7 +66,10 @@ def search(posed, p: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> Emptin
     width0 = np.where(upper > lower, upper - lower, 1.0)[:, None]
     evaluated, left = 0, np.inf
     while lo.shape[1]:
-        lo, hi = _whole(lo, hi, posed.integer)
+        lo, hi, dropped = _whole(lo, hi, posed.integer)
+        for i, count in zip(posed.integer, dropped):
+            if count:
+                decisive[f"a whole {posed.names[i]}"] = decisive.get(f"a whole {posed.names[i]}", 0) + count
         if not lo.shape[1]:
             break
         if evaluated + lo.shape[1] > MAX_BOXES:
@@ -94,15 +97,17 @@ def search(posed, p: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> Emptin
     return Emptiness(True, evaluated, decisive)
 
 
-def _whole(lo: np.ndarray, hi: np.ndarray, integer: list[int]) -> tuple[np.ndarray, np.ndarray]:
+def _whole(lo: np.ndarray, hi: np.ndarray, integer: list[int]) -> tuple[np.ndarray, np.ndarray, list[int]]:
     """The boxes with their integer variables' ranges rounded inwards to whole numbers (1e-9 of slack), those left
-    without a whole number dropped: an integer design lies in what is left."""
+    without a whole number dropped (an integer design lies in what is left); how many each integer variable
+    dropped."""
     if not integer:
-        return lo, hi
+        return lo, hi, []
     lo, hi = lo.copy(), hi.copy()
     lo[integer], hi[integer] = np.ceil(lo[integer] - 1e-9), np.floor(hi[integer] + 1e-9)
-    kept = np.all(lo <= hi, axis=0)
-    return lo[:, kept], hi[:, kept]
+    none = lo[integer] > hi[integer]
+    kept = ~none.any(axis=0)
+    return lo[:, kept], hi[:, kept], [int(row.sum()) for row in none]
 
 
 def _bounds(functions, lo: np.ndarray, hi: np.ndarray, p: np.ndarray):
