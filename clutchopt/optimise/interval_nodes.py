@@ -89,7 +89,8 @@ def enclosed_rows(posed) -> tuple[EnclosedFunction, EnclosedFunction]:
     q = namespace({quantity.name: posed.p_case[j] for j, quantity in enumerate(f.quantities)})
     with as_symbols() as collected:
         rows = ca.vertcat(*[ca.SX(c.normalised()) for c in f.constraints(x, q)])
-    plain = posed.nlp["g"][: rows.shape[0]]
+    plain = posed.nlp["g"][: sum(posed.constraint_rows[: posed.n_checked])]
+    assert rows.shape == plain.shape, "the formulation's rows built again differ from the NLP's"
     used = [node for node in collected if ca.depends_on(rows, node.symbol)]
     nodes = DeclaredNodes(used, design, p)
     chain = ca.jacobian(rows, nodes.y) @ ca.diag(nodes.s) @ ca.jacobian(nodes.arguments, design) if used else 0
