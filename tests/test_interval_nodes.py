@@ -41,3 +41,39 @@ def test_as_symbols_stands_symbols_for_the_values_and_collects_them():
     assert ca.depends_on(nodes[0].argument, r) and ca.depends_on(nodes[1].value, r)
     n_a, _ = hertz_coefficients(r)  # outside: the expression itself
     assert not n_a.is_symbolic()
+
+
+def test_declared_nodes_stand_for_the_nlp_rows_or_are_not_used():
+    """The ball's rows with n_a, n_b as symbols agree with the NLP's own at the design box's points; a formulation
+    that differentiates its own rows through the node (here: d contact_stress / d ball_radius taken inside the
+    constraint, as a chance constraint takes its slope in a scattered quantity) does not, and the search replays
+    the node instead."""
+    from dataclasses import replace
+
+    from clutchopt.cases import load_case
+    from clutchopt.model import at_most
+    from clutchopt.optimise.interval_proof import interval_functions
+    from clutchopt.optimise.problem import case_problem, problem_for
+    from conftest import CASES
+
+    case = load_case(CASES / "ball_crusher.toml")
+    posed = case_problem(case).posed
+    lower, upper, _ = posed.bounds_and_start(case, None)
+    p = np.concatenate([list(vars(posed.params(case)).values()), np.ones(len(lower)), [1.0]])
+    rows, _ = interval_functions(posed)
+    assert rows.nodes.nodes and rows.nodes.agree(lower, upper, p)
+
+    base = posed.formulation
+
+    def constraints(x, q):
+        own = base.constraints(x, q)
+        stress = [c for c in own if c.name == "contact_stress"][0]
+        if not isinstance(stress.value, ca.SX):
+            return own
+        scaled_radius = [v for v in ca.symvar(x.ball_radius) if v.name().startswith("x_hat")][0]
+        slope = ca.jacobian(ca.SX(stress.value), scaled_radius)  # d p_0 / d r_c, r_c in its start's units
+        return own + [at_most("stress_slope", slope, 1e13, equation="-")]
+
+    bent = problem_for(replace(base, constraints=constraints, variant="slope"), "mass").posed
+    rows, _ = interval_functions(bent)
+    assert rows.nodes.nodes and not rows.nodes.agree(lower, upper, p)

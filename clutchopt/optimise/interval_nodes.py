@@ -7,7 +7,10 @@ The formulation's rows are built again with a symbol ``y`` in place of each decl
 by interval replay (:mod:`clutchopt.optimise.interval`), then ``y`` and ``s`` by the declared monotony (values and
 slopes at the ends of ``r``, widened by the declaration's error), met with the node's own replay: bounds as true
 as the declaration, and as tight as the argument's. Where ``r`` leaves the declared domain, ``y`` is the node's own
-replay and ``s`` unbounded, as without a declaration.
+replay and ``s`` unbounded, as without a declaration. Before a search, the rows with the nodes' own values for ``y``
+are compared with the NLP's at points of the box (:meth:`DeclaredNodes.agree`); should a formulation differentiate
+its own expressions through a node (a chance constraint's slope), the symbols would cut that path, and the search
+replays the nodes instead.
 """
 
 from __future__ import annotations
@@ -39,6 +42,18 @@ class DeclaredNodes:
             calls.setdefault(id(node.argument), []).append(k)
         self._calls = list(calls.values())
         self._last = None
+
+    def agree(self, lower: np.ndarray, upper: np.ndarray, p: np.ndarray, points: int = 8) -> bool:
+        """Whether the rows with the nodes' own values for ``y`` are the NLP's rows (to 1e-9) at the box's centre
+        and random points of it: not so where a formulation differentiates its own expressions (a chance
+        constraint's slope in a scattered quantity), a path the symbols ``y`` would cut."""
+        if not self.nodes:
+            return True
+        rng = np.random.default_rng(0)
+        fractions = np.column_stack([np.full(len(lower), 0.5), rng.random((len(lower), points - 1))])
+        samples = lower[:, None] + (upper - lower)[:, None] * fractions
+        difference = np.array(self.check.map(points)(samples, np.repeat(p[:, None], points, axis=1)))
+        return bool(np.all(np.isnan(difference) | (np.abs(difference) <= 1e-9)))
 
     def bounds(self, inputs: list[Bounds]) -> tuple[Bounds, Bounds]:
         """Bounds on the values ``y`` and slopes ``s`` over boxes given as (design, p) bounds (the last boxes'
@@ -78,21 +93,26 @@ class EnclosedFunction:
         return self.interval.bounds([*inputs, y, s])
 
 
-def enclosed_rows(posed) -> tuple[EnclosedFunction, EnclosedFunction]:
+def enclosed_rows(posed, declared: bool = True) -> tuple[EnclosedFunction, EnclosedFunction]:
     """A posed problem's own constraint rows (``g <= 0``, normalised, as the NLP's first rows; a start-up's left
     out) and their Jacobian in the design (dense, rows x variables) as interval functions of (design, p), the
-    declared monotone nodes among them enclosed at their arguments' ends."""
+    declared monotone nodes among them enclosed at their arguments' ends (``declared``; else all replayed)."""
     f, n = posed.formulation, len(posed.names)
     design, p = posed.nlp["x"][:n], posed.nlp["p"]
-    x_scale = p[posed.p_case.shape[0]: posed.p_case.shape[0] + n]
-    x = namespace({v.name: design[i] * x_scale[i] for i, v in enumerate(f.variables)})
-    q = namespace({quantity.name: posed.p_case[j] for j, quantity in enumerate(f.quantities)})
-    with as_symbols() as collected:
-        rows = ca.vertcat(*[ca.SX(c.normalised()) for c in f.constraints(x, q)])
     plain = posed.nlp["g"][: sum(posed.constraint_rows[: posed.n_checked])]
-    assert rows.shape == plain.shape, "the formulation's rows built again differ from the NLP's"
+    if declared:
+        x_scale = p[posed.p_case.shape[0]: posed.p_case.shape[0] + n]
+        x = namespace({v.name: design[i] * x_scale[i] for i, v in enumerate(f.variables)})
+        q = namespace({quantity.name: posed.p_case[j] for j, quantity in enumerate(f.quantities)})
+        with as_symbols() as collected:
+            rows = ca.vertcat(*[ca.SX(c.normalised()) for c in f.constraints(x, q)])
+        assert rows.shape == plain.shape, "the formulation's rows built again differ from the NLP's"
+    else:
+        rows, collected = plain, []
     used = [node for node in collected if ca.depends_on(rows, node.symbol)]
     nodes = DeclaredNodes(used, design, p)
+    nodes.check = ca.Function("declared_check", [design, p], [
+        ca.substitute(rows, nodes.y, _column([node.value for node in used])) - plain])
     chain = ca.jacobian(rows, nodes.y) @ ca.diag(nodes.s) @ ca.jacobian(nodes.arguments, design) if used else 0
     return (EnclosedFunction(nodes, [design, p], rows, plain, "g_interval"),
             EnclosedFunction(nodes, [design, p], ca.densify(ca.jacobian(rows, design) + chain),

@@ -51,7 +51,7 @@ def interval_functions(posed):
     """The formulation's own constraint rows (a start-up's left out: its states are not searched) and their
     Jacobian in the design variables, as interval functions of (design, p) with the declared monotone nodes
     enclosed at their arguments' ends (:mod:`clutchopt.optimise.interval_nodes`), built once per problem."""
-    return posed.built("interval", None, lambda _: enclosed_rows(posed))
+    return posed.built("interval", True, lambda _: enclosed_rows(posed))
 
 
 def search(posed, p: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> Emptiness | None:
@@ -60,6 +60,8 @@ def search(posed, p: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> Emptin
     if not (np.all(np.isfinite(lower)) and np.all(np.isfinite(upper))):
         return None
     functions = interval_functions(posed)
+    if not functions[0].nodes.agree(lower, upper, p):  # the declared nodes do not stand for the NLP's rows here
+        functions = posed.built("interval", False, lambda _: enclosed_rows(posed, declared=False))
     names = posed.row_names
     decisive: dict[str, int] = {}
     lo, hi = lower[:, None].copy(), upper[:, None].copy()
