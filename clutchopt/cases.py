@@ -32,7 +32,7 @@ from typing import Any
 from clutchopt import materials
 from clutchopt.errors import InputError, Problems, shown_value
 from clutchopt.files import CASE_BYTES, read_text, shown
-from clutchopt.scatter import Scatter, parse_scatter
+from clutchopt.scatter import Scatter, parse_correlation, parse_scatter
 from clutchopt.model import REQUIRED, Quantity, followed
 from clutchopt.start_up.equations import QUANTITIES as START_UP_QUANTITIES
 from clutchopt.start_up.equations import SPRING_PRELOAD, StartUpSpec
@@ -61,6 +61,9 @@ class Case:
     # the duty's, its start time limit t_p, its lock-up speed 90 % of synchronous. Each is set from its source when
     # the values change (with_values) and when a problem is posed (the NLP's parameters, a robust design's corners)
     follows: dict[str, tuple[str, float]] = field(default_factory=dict)
+    # [scatter.correlation]: the correlation matrix of the scattered quantities' normal scores (n x n, in the order of
+    # scatter; a Gaussian copula, clutchopt.scatter.draw), None: independent
+    correlation: tuple[tuple[float, ...], ...] | None = None
 
     @property
     def quantities(self) -> tuple[Quantity, ...]:
@@ -190,16 +193,23 @@ def parse_case(data: dict, path: str = "") -> Case:
         from clutchopt.start_up.section import parse_start_up
 
         with problems.field():
-            start_values, start_up, follows = parse_start_up(data["start_up"], coupling, values, not problems)
+            lining: dict[str, float] = {}  # what the friction pair fills in the section (a bad [library]: above)
+            lining_filled = _quietly(materials.fill, data.get("library", {}), coupling.materials,
+                                     START_UP_QUANTITIES, lining, choose) or {}
+            start_values, start_up, follows, taken = parse_start_up(data["start_up"], coupling, values,
+                                                                    not problems, lining)
             values.update(start_values)
-    scatter = ()
+            filled.update({name: lining_filled[name] for name in taken})
+    scatter, correlation = (), None
     if "scatter" in data:  # scattered around the case's values: not checked against a value that is itself bad
         with problems.field():
             quantities = coupling.quantities + (START_UP_QUANTITIES if "start_up" in data else ())
             keys = {q.key: q.name for q in quantities}
             broken = {keys[p.field] for error in problems.errors for p in error.problems if p.field in keys}
             broken |= {q.name for q in START_UP_QUANTITIES} if "start_up" in data and start_up is None else set()
-            scatter = parse_scatter(data["scatter"], quantities, values, broken)
+            scatter = parse_scatter(data["scatter"], quantities, values, broken,
+                                    materials.scatter_ranges(data.get("library"), coupling.materials))
+            correlation = parse_correlation(data["scatter"], scatter)
     bounds = _parse_bounds(data.get("bounds", {}), coupling, problems, "start_up" in data)
     options = _parse_options(options, coupling, problems, "start_up" in data)
     for name in ("title", "description"):
@@ -209,7 +219,8 @@ def parse_case(data: dict, path: str = "") -> Case:
 
     case = Case(coupling.name, data.get("title", ""), values, bounds, tuple(options.get("free", ())),
                 {**options, **({"choose": choose} if choose else {})}, path, start_up, filled, scatter,
-                {name: rule for name, rule in follows.items() if name not in {s.name for s in scatter}})
+                {name: rule for name, rule in follows.items() if name not in {s.name for s in scatter}}, correlation)
+    case = replace(case, values=materials.with_highest_friction(case, case.values, case.filled))
     check_across(case)
     check_scatter_corners(case)
     materials.variants(case, coupling)  # every choice of options.choose is checked here, before any solve
@@ -222,6 +233,14 @@ def parse_case(data: dict, path: str = "") -> Case:
                                                       "that names one entry")
     problems.raise_any()
     return case
+
+
+def _quietly(function, *args):
+    """``function(*args)``, or None where it raises an InputError that another field's check reports already."""
+    try:
+        return function(*args)
+    except InputError:
+        return None
 
 
 def check_across(case: Case) -> None:

@@ -22,7 +22,8 @@ LAYERS: tuple[tuple[str, str, tuple[str, ...]], ...] = (  # (layer, what it hold
                   "package's public names load on first use)", ("simulate",)),
     ("start-up", "the [start_up] section, the NLP's shape and drive, its collocation and mesh, a design's start "
                  "simulated",
-     ("start_up.section", "start_up.drive", "start_up.transcription", "start_up.mesh", "start_up.simulation")),
+     ("start_up.section", "start_up.drive", "start_up.lining", "start_up.transcription", "start_up.mesh",
+      "start_up.simulation")),
     ("case and aspects", "case file -> Case; material library (fill, variants), scatter, case templates, the fields "
                          "the checks across fields read",
      ("cases", "fields_read", "materials", "scatter", "template")),

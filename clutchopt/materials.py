@@ -51,7 +51,11 @@ FIELDS: dict[str, tuple[Quantity, ...]] = {
         Q("friction_max", "", "highest friction coefficient of the scatter range", "f_max", above=0, at_most=1),
         Q("allowable_pressure", "MPa", "allowable pressure for a coupling slipping at every start (wear)", "[p]",
           above=0),
-        Q("max_temperature", "degC", "largest bulk temperature of the friction material", "T_max", above=0),
+        Q("max_temperature", "degC", "peak bulk temperature of the friction material (a start's peak)", "T_max",
+          above=0),
+        Q("continuous_temperature", "degC", "bulk temperature the friction material may keep (repeated starts)",
+          "T_cont", above=0),
+        Q("wear_rate", "mm^3/J", "specific wear rate: lining volume worn per joule of friction work", "k_w", above=0),
         Q("density", "kg/m^3", "density of the friction material", "rho", above=0),
         Q("price", "EUR/cm^2", "price per area of friction surface (lining or grinding; our estimate)", "",
           at_least=0),
@@ -66,6 +70,15 @@ FIELDS: dict[str, tuple[Quantity, ...]] = {
 KIND_TITLES = {"materials": "Steels and cast irons", "friction_pairs": "Friction pairs",
                "thread_pairs": "Thread pairs"}
 _TEXT_FIELDS = ("description", "source", "notes")
+LINING_FILLS = {"max_temperature": "max_lining_temperature", "continuous_temperature": "max_continuous_temperature",
+                "wear_rate": "wear_rate"}  # what a friction pair fills in a case's [start_up] (clutchopt.start_up)
+
+
+def fills_of(role: MaterialRole, declared) -> dict[str, str]:
+    """Library field -> quantity the role fills among ``declared`` (quantity names): the coupling's own
+    (``role.fills``) and, for a friction pair, a start-up's lining limits and wear rate (LINING_FILLS)."""
+    extra = LINING_FILLS if role.kind == "friction_pairs" else {}
+    return {field: quantity for field, quantity in {**role.fills, **extra}.items() if quantity in declared}
 
 
 @dataclass(frozen=True)
@@ -145,7 +158,7 @@ def chosen(case, coupling) -> tuple[dict[str, str], dict[str, str]]:
     by_key = {role.key: role for role in coupling.materials}
     sets, kept = {}, {}
     for key in case.options.get("choose") or {}:
-        for quantity in by_key[key].fills.values():
+        for quantity in fills_of(by_key[key], {q.name for q in case.quantities}).values():
             if case.filled.get(quantity, (None,))[0] == key:
                 sets[quantity] = key
             elif quantity in case.values:
@@ -191,12 +204,32 @@ def fill(table: object, roles: tuple[MaterialRole, ...], quantities: tuple[Quant
         if name is None:
             continue
         entry = lookup(role, name, f"library.{role.key}")
-        for library_field, quantity in role.fills.items():
+        for library_field, quantity in fills_of(role, declared).items():
             if quantity not in values and library_field in entry.values:
                 values[quantity] = declared[quantity].check(entry.values[library_field],
                                                             f"{role.key} = {entry.name}: {library_field}")
                 filled[quantity] = (role.key, entry.name)
     return filled
+
+
+SCATTER_RANGES = {"friction_coefficient": ("friction_min", "friction_max")}  # library field -> its scatter range
+
+
+def scatter_ranges(table: object, roles: tuple[MaterialRole, ...]) -> dict[str, tuple[float, float, str]]:
+    """The scatter ranges the entries a case's ``[library]`` names give (``[scatter] friction_coefficient =
+    "library"``): quantity name -> (low, high, "friction_pair = organic_dry"), SI. Only entries named in
+    ``[library]`` (a choice of ``options.choose`` sets the value per choice); a bad table gives none (:func:`fill`
+    refuses it)."""
+    if not isinstance(table, dict):
+        return {}
+    ranges = {}
+    for role in roles:
+        entry = library()[role.kind].get(table.get(role.key)) if isinstance(table.get(role.key), str) else None
+        for library_field, quantity in role.fills.items() if entry else ():
+            ends = SCATTER_RANGES.get(library_field)
+            if ends and all(end in entry.values for end in ends):
+                ranges[quantity] = (entry.values[ends[0]], entry.values[ends[1]], f"{role.key} = {entry.name}")
+    return ranges
 
 
 def hint(roles: tuple[MaterialRole, ...], quantity: str) -> str:
@@ -213,14 +246,14 @@ def variants(case, coupling) -> list[tuple[dict[str, str], object]]:
     if not choose:
         return [({}, case)]
     by_key = {role.key: role for role in coupling.materials}
-    declared = {q.name: q for q in coupling.quantities}
+    declared = {q.name: q for q in case.quantities}
     result = []
     for names in itertools.product(*choose.values()):
         choice = dict(zip(choose, names))
         values, filled = dict(case.values), dict(case.filled)
         for key, name in choice.items():
             role, entry = by_key[key], lookup(by_key[key], name)
-            for library_field, quantity in role.fills.items():
+            for library_field, quantity in fills_of(role, declared).items():
                 if filled.get(quantity, (None,))[0] != key:
                     continue  # given by the case itself
                 if library_field not in entry.values:
@@ -230,10 +263,30 @@ def variants(case, coupling) -> list[tuple[dict[str, str], object]]:
                 values[quantity] = declared[quantity].check(entry.values[library_field],
                                                             f"{key} = {name}: {library_field}")
                 filled[quantity] = (key, name)
-        variant = replace(case, values=case.followed(values), filled=filled)
+        variant = replace(case, values=with_highest_friction(case, case.followed(values), filled), filled=filled)
         coupling.check_case(variant)
         result.append((choice, variant))
     return result
+
+
+def with_highest_friction(case, values: dict, filled: dict) -> dict:
+    """``values`` with a [start_up]'s ``friction_max`` (the overload's friction, docs/start_up.md) set, unless the
+    case gives it: the largest of the nominal friction coefficient, the friction_max of the library pair that filled
+    it, and the high end of its [scatter] range."""
+    friction = "friction_coefficient"
+    if case.start_up is None or case.start_up.friction_max_given or friction not in values:
+        return values
+    highest = [values[friction]] + [s.high for s in case.scatter if s.name == friction]
+    if friction in filled:
+        entry = next(lookup(role, filled[friction][1]) for role in _roles(case) if role.key == filled[friction][0])
+        highest.append(entry.values.get("friction_max", values[friction]))
+    return {**values, "friction_max": max(highest)}
+
+
+def _roles(case) -> tuple[MaterialRole, ...]:
+    from clutchopt.formulations import get_coupling
+
+    return get_coupling(case.coupling).materials
 
 
 def rows(kind: str) -> list[dict]:
@@ -248,7 +301,7 @@ def rows(kind: str) -> list[dict]:
 
 def display(quantity: Quantity, value: float) -> float:
     """An SI value in the field's display unit (degC is an offset, not a factor, from kelvin)."""
-    return value - 273.15 if quantity.unit == "degC" else from_si(value, quantity.unit)
+    return from_si(value, quantity.unit)
 
 
 def filled_by(case) -> dict[str, dict]:
@@ -256,7 +309,7 @@ def filled_by(case) -> dict[str, dict]:
     from clutchopt.formulations import get_coupling
 
     coupling = get_coupling(case.coupling)
-    declared = {q.name: q for q in coupling.quantities}
+    declared = {q.name: q for q in case.quantities}
     report: dict[str, dict] = {}
     for quantity, (key, name) in case.filled.items():
         role = next(r for r in coupling.materials if r.key == key)

@@ -162,6 +162,50 @@ class Output:
     description: str = ""
 
 
+ENVELOPE_PARTS = {  # what every coupling's like-for-like mass counts, the same groups for all (docs/envelope.md)
+    "halves": "driving and driven halves with the housing or drum",
+    "moving_parts": "the weights, balls, fingers, links, cables and screws the coupling has",
+    "springs": "return springs",
+    "linings": "friction linings",
+}
+
+
+@dataclass(frozen=True)
+class Part:
+    """The mass of one group of :data:`ENVELOPE_PARTS` at a design, and what it counts (a group a coupling does not
+    have, or whose parts its model does not size, is 0 and says so)."""
+
+    mass: Any
+    counts: str
+
+
+@dataclass(frozen=True)
+class Envelope:
+    """A coupling at a design as it is set beside the others: outer diameter, axial length and the mass of the same
+    groups of parts (:data:`ENVELOPE_PARTS`) for every coupling. Written with the formulation's equations, so the
+    values are floats or CasADi symbols alike."""
+
+    outer_diameter: Any
+    axial_length: Any
+    parts: Mapping[str, Part]
+
+    def __post_init__(self):
+        if set(self.parts) != set(ENVELOPE_PARTS):
+            raise ValueError(f"an envelope counts the parts {', '.join(ENVELOPE_PARTS)}; got {', '.join(self.parts)}")
+
+    @property
+    def mass(self):
+        return sum(self.parts[name].mass for name in ENVELOPE_PARTS)
+
+    def outputs(self) -> dict[str, Output]:
+        """The envelope as outputs beside the design: diameter, length, like-for-like mass."""
+        return {
+            "envelope_diameter": Output(self.outer_diameter, "mm", "outer diameter (docs/envelope.md)"),
+            "envelope_length": Output(self.axial_length, "mm", "axial length (docs/envelope.md)"),
+            "envelope_mass": Output(self.mass, "kg", "like-for-like mass (docs/envelope.md)"),
+        }
+
+
 @dataclass(frozen=True)
 class Objective:
     name: str
@@ -178,11 +222,18 @@ class SpeedLaw:
     ``torque_coefficient``: K = dT / d(w_a^2), N*m*s^2. ``mass_radius``: m r of one weight, the radial force per
     (rad/s)^2 that springs and gravity work against, and ``weight_mass``: m of one weight (gravity); both None
     for a coupling without such weights (then the effects spring_preload and gravity do not apply).
+    ``friction_area``: the area of the friction surfaces that wear, m^2 (the lining's life; None: not known).
+    ``worn_torque``: ``(x, p, speed, radial_force) ->`` the torque with worn linings at a driving speed, each
+    weight's centrifugal force less ``radial_force`` (springs, gravity), for a coupling whose torque changes as its
+    linings wear (the lever); None: it does not change.
     """
 
     torque_coefficient: Callable[[SimpleNamespace, SimpleNamespace], Any]
     mass_radius: Callable[[SimpleNamespace, SimpleNamespace], Any] | None = None
     weight_mass: Callable[[SimpleNamespace, SimpleNamespace], Any] | None = None
+    friction_area: Callable[[SimpleNamespace, SimpleNamespace], Any] | None = None  # m^2: the lining area that
+    # wears (every friction surface of the coupling's wearing part), for the lining's life; None: not declared
+    worn_torque: Callable[..., Any] | None = None
 
 
 @dataclass(frozen=True)
@@ -227,6 +278,8 @@ class Formulation:
     # those its start is simulated at: a robust design's corners (a scattered fixed design variable moves with them)
     start_up_view: Callable[[dict, dict, str | None], tuple[dict, dict]] | None = None
     notes: str = ""
+    # (x, p) -> the coupling's :class:`Envelope` at a design: outer diameter, axial length, like-for-like mass
+    envelope: Callable[[SimpleNamespace, SimpleNamespace], Envelope] | None = None
     _objective_index: dict = field(init=False, repr=False)
 
     def __post_init__(self):

@@ -12,6 +12,7 @@ import math
 from typing import TYPE_CHECKING
 
 from clutchopt.units import from_si, si_unit
+from clutchopt.scatter import correlation_text
 
 if TYPE_CHECKING:  # JSON needs neither pandas nor the solver: ``solve --json`` starts faster without them
     from clutchopt.model import Formulation
@@ -113,7 +114,17 @@ def robust_json(result, case) -> dict:
         "target": UNITLESS, "samples": UNITLESS, "confidence": UNITLESS, "failure_probability": UNITLESS,
         "nominal_failure_probability": UNITLESS, "margin_sensitivity": UNITLESS,
         "corners": {name: quantities for name in data["corners"]}, "checks": CONSTRAINT_UNITS,
-        "nominal_checks": CONSTRAINT_UNITS, "nominal_design": design})
+        "nominal_checks": CONSTRAINT_UNITS, "nominal_design": design, "performance_point_beta": UNITLESS,
+        **{key: reliability_units(data[key], quantities) for key in ("reliability", "nominal_reliability")
+           if data.get(key)}})
+
+
+def reliability_units(data: dict, quantities: dict) -> dict:
+    """The units of a ``Reliability.as_dict()``: probabilities and beta unitless, a design point's quantities SI."""
+    estimate = dict.fromkeys(("probability", "low", "high"), UNITLESS)
+    return {"constraints": {name: {"beta": UNITLESS, "design_point": quantities, "estimates": estimate,
+                                   "failure_probability": estimate} for name in data["constraints"]},
+            "system": estimate}
 
 
 def comparison_json(table) -> dict:  # a ComparisonTable (optimise.compare): read by its fields
@@ -306,6 +317,30 @@ def choices_text(ranked: list, kept: dict[str, str] | None = None) -> str:
     return "\n".join([f"Choices of options.choose, best first{robust}", _frame(rows), *why, *same, "",
                       f"Below: the best, {ranked[0].choice_text}."])
 
+def choice_text(choice: dict) -> str:
+    """``clutchopt choose-coupling``: the couplings (``clutchopt.optimise.choose.choice_json``), verified optima first
+    by like-for-like mass; their parts; why each loses; what did not apply."""
+    rows = [{"rank": c["rank"] or "-", "coupling": c["coupling"], "mode": c["mode"], "status": c["status"],
+             "mass [kg]": _shown(c["envelope_mass"], "kg"), "cost [EUR]": _shown(c["cost"], "EUR"),
+             "diameter [mm]": _shown(c["envelope_diameter"], "mm"), "length [mm]": _shown(c["envelope_length"], "mm"),
+             "sized for [N*m]": _shown(c["sized_for"], "N*m")} for c in choice["couplings"]]
+    parts = [{"coupling": c["coupling"], **{f"{name} [kg]": _shown(mass, "kg") for name, mass in c["parts"].items()}}
+             for c in choice["couplings"] if c["parts"]]
+    ranking = "; ".join(f"by {what}: {', '.join(names) or '-'}" for what, names in choice["ranking"].items())
+    checks = [{"coupling": c["coupling"], "check": name, "value": _shown(entry["value"], entry["display_unit"]),
+               "limit": _shown(entry["limit"], entry["display_unit"]), "unit": entry["display_unit"],
+               "margin": f"{entry['margin']:+.3g}"} for c in choice["couplings"] for name, entry in c["checks"].items()]
+    lines = [f"Which coupling  -  {choice['title']}",
+             f"duty: T_max = I w / t_p + T_c = {choice['required_torque']:.6g} N*m; each coupling designed for least "
+             "like-for-like mass (objective envelope_mass, docs/envelope.md) and verified in float64",
+             *([f"drive: {choice['drive']}"] if choice.get("drive") else []), "",
+             _frame(rows), f"ranked {ranking}", "", "Like-for-like mass by part", _frame(parts), "",
+             "The drive's checks of each verified design (float64)", _frame(checks), "",
+             "Why the others lose", *(f"  {c['coupling']}: {c['why']}" for c in choice["couplings"])]
+    notes = [f"  {c['coupling']}: {note}" for c in choice["couplings"] for note in c["notes"]]
+    return "\n".join(lines + (["", "Posed with", *notes] if notes else []))
+
+
 START_UP_ROWS = (  # figure, display unit, meaning
     ("start_time", "s", "switch-on to lock-up"),
     ("friction_work", "kJ", "heat released by slip"),
@@ -314,6 +349,11 @@ START_UP_ROWS = (  # figure, display unit, meaning
     ("engagement_speed", "rpm", "driving speed at which the weights engage"),
     ("engagement_time", "s", "motor running up unloaded"),
     ("lock_up_time", "s", "the coupling slips under load"),
+    ("lining_temperature", "degC", "peak lining temperature: ambient + steady of repeated starts + the start's rise"),
+    ("steady_temperature", "degC", "steady lining temperature of repeated starts (starts_per_hour)"),
+    ("wear_per_start", "um", "lining worn per start, k_w L / A"),
+    ("starts_until_worn", "", "starts until the wear allowance is gone"),
+    ("life", "h", "hours of starts (starts_per_hour) until worn"),
 )
 ELASTIC_START_UP_ROWS = (  # an elastic link (the cable coupling): the NLP's link quasi-static, the simulator's dynamic
     ("start_time", "s", "switch-on until the machine runs at the start speed"),
@@ -340,8 +380,24 @@ def start_up_table(start_up: dict) -> tuple[str, list[dict], list[str]]:
             f"{start_up['intervals']} intervals per phase ({', '.join(start_up['phases'])}), beside the simulator"
             + (" (the NLP takes the elastic link as quasi-static, the simulator follows its dynamics)" if elastic
                else ""))
-    notes = [start_up["motor"]] if start_up.get("motor") else []
+    notes = ([start_up["motor"]] if start_up.get("motor") else []) + start_up.get("lining_notes", [])
+    if start_up.get("worn"):
+        notes.append(worn_note(start_up["worn"]))
+    if start_up.get("overload"):
+        notes.append(start_up["overload"])
     return head, rows, notes + ([] if start_up["locks_up"] else [f"simulated: {start_up['reason']}"])
+
+
+def worn_note(worn: dict) -> str:
+    """The start with worn linings (the lever), simulated, in a line."""
+    if not worn["locks_up"]:
+        return "worn linings (simulated): no lock-up"
+    heat = f", {worn['temperature_rise']:.4g} K" if worn.get("temperature_rise") is not None else ""
+    least = worn.get("min_lock_up_speed")
+    early = (f" (below min_lock_up_speed {least * 30 / math.pi:.5g} rpm: the motor runs the machine up locked)"
+             if least is not None and worn["lock_up_speed"] < least else "")
+    return (f"worn linings (simulated): lock-up after {worn['start_time']:.4g} s at "
+            f"{worn['lock_up_speed'] * 30 / math.pi:.5g} rpm{early}, {worn['friction_work'] / 1e3:.4g} kJ{heat}")
 
 
 def sensitivity_rows(solution, formulation: Formulation, count: int = 8) -> list[dict]:
@@ -421,6 +477,41 @@ def materials_text(kind: str, title: str) -> str:
     return "\n".join([f"{title} (clutchopt/data/materials.toml)", table, "", *legend, "", *sources])
 
 
+ESTIMATORS = {"importance sampling": "IS", "Monte Carlo": "MC", "FORM": "FORM", "SORM (Breitung)": "SORM"}
+
+
+def _estimate(estimate) -> str:
+    """A failure probability with its interval and, abbreviated, the estimator that gave it."""
+    short = ESTIMATORS.get(estimate.estimator)
+    if math.isnan(estimate.probability):
+        return f"- {short or estimate.estimator} (not defined here)"
+    if short is None:
+        return f"{estimate.probability:.3g} ({estimate.estimator})"
+    if estimate.low == estimate.high:
+        return f"{estimate.probability:.3g} {short}"
+    return f"{estimate.probability:.3g} ({estimate.low:.3g}-{estimate.high:.3g}) {short}"
+
+
+def reliability_lines(result, case) -> list[str]:
+    """The system's failure probability (robust and nominal design) and each constraint's design point with its
+    reliability index and estimates (robust design)."""
+    if result.reliability is None:
+        return []
+    quantities = {q.name: q for q in case.quantities}
+    lines = [f"System (any constraint fails{'; the start-up limits apart, simulated' if result.start_up_points else ''}): robust {_estimate(result.reliability.system)}, nominal "
+             f"{_estimate(result.nominal_reliability.system)}",
+             "Design points of the robust design (most probable failure point; beta = its distance in standard "
+             "normal space): estimates FORM, SORM (Breitung), IS (importance sampling at the design point, 95% "
+             "interval)"]
+    for name, c in result.reliability.constraints.items():
+        if not c.point.found:
+            lines.append(f"  {name}: {_estimate(c.best)}")
+            continue
+        at = ", ".join(f"{q} {quantities[q].show(v, 5)}" for q, v in c.values.items())
+        lines.append(f"  {name}: beta {c.point.beta:.4g} at {at}: " + ", ".join(_estimate(e) for e in c.estimates))
+    return lines
+
+
 def _probability(triple: list[float]) -> str:
     p, low, high = triple
     return "0 (<{:.2g})".format(high) if p == 0 else f"{p:.3g} ({low:.2g}-{high:.2g})"
@@ -434,9 +525,11 @@ def robust_text(result, case) -> str:
                 "nominal": quantities[s.name].show(case.values[s.name])} for s in case.scatter]
     how = ("worst case: every constraint at its own worst corner of the ranges (a normal quantity: mean +- 3 sd), "
            "all 2^n corners checked" if result.method == "worst-case" else
-           f"chance {result.target:g}: each constraint holds with that probability to first order (limit backed "
-           "off by z sigma of the linearised constraint)" + (", a start-up designed at the corner of the quantiles "
-                                                             "where it binds" if result.start_up_points else ""))
+           f"{'system ' if result.method == 'system_chance' else ''}chance {result.target:g}: "
+           + ("the design (any constraint) holds" if result.method == "system_chance" else
+              "each constraint holds") + " with that probability, each constraint at its performance point (PMA), "
+           "beta corrected until importance sampling meets the target"
+           + (", a start-up designed at the corner of the quantiles where it binds" if result.start_up_points else ""))
     robust, nominal = result.solution, result.nominal
     change = robust.objective / nominal.objective - 1 if nominal.objective else float("nan")
     nominal_checks = {c.name: c for c in result.nominal_checks}
@@ -451,23 +544,27 @@ def robust_text(result, case) -> str:
     rows = [{"constraint": c.name, **({"worst corner": corner(c.name)} if result.method == "worst-case" else {}),
              "robust margin": f"{c.margin:+.2e}",
              "nominal margin": f"{nominal_checks[c.name].margin:+.2e}" if c.name in nominal_checks else "-",
-             "robust P(fail)": _probability(failure[c.name]) if c.name in failure else "-",
-             "nominal P(fail)": _probability(result.nominal_failure[c.name]) if c.name in result.nominal_failure
-             else "-"} for c in result.checks]
+             "robust P(fail)": (_estimate(result.reliability.constraints[c.name].best)
+                                if result.reliability and c.name in result.reliability.constraints else
+                                _probability(failure[c.name]) + " MC" if c.name in failure else "-"),
+             "nominal P(fail)": _probability(result.nominal_failure[c.name]) + " MC" if c.name in
+             result.nominal_failure else "-"} for c in result.checks]
     names = [s.name for s in case.scatter]
     bars = [{"constraint": name, **{q: f"{effects.get(q, 0.0):+.3g}" for q in names}}
             for name, effects in result.bars.items() if any(abs(v) > 1e-12 for v in effects.values())]
     lines = [f"Robust design ({how}): status {result.status}"
              + (f" - {result.diagnosis}" if result.diagnosis else ""), result.verification,
-             _frame(scatter), "",
+             _frame(scatter), *filter(None, [correlation_text(case.scatter, case.correlation)]), "",
              f"{robust.objective_name}: robust {robust.objective:.6g} {robust.objective_unit}, nominal "
              f"{nominal.objective:.6g} {nominal.objective_unit} ({change:+.1%})", "",
              ("Constraints under scatter: margin at the worst corner of the ranges" if result.method == "worst-case"
-              else "Constraints under scatter: margin with the back-off")
-             + f", and the failure probability ({result.as_dict()['confidence']:.0%} Clopper-Pearson interval) from "
-               f"{result.samples} Monte Carlo samples"
+              else "Constraints under scatter: margin at its performance point")
+             + f", and the failure probability: IS by importance sampling at the design point (95% interval), MC from "
+               f"{result.samples} Monte Carlo samples ({result.as_dict()['confidence']:.0%} Clopper-Pearson interval)"
              + (f" (a start-up's: margin at its worst simulated corner, P(fail) from {result.start_up_samples} "
                 "simulated starts)" if result.start_up_points else ""), _frame(rows)]
+    if result.reliability is not None:
+        lines += ["", *reliability_lines(result, case)]
     if bars:
         lines += ["", "What drives it: change of each relative margin as a quantity goes from low to high, the "
                       "others nominal (robust design)", _frame(bars)]

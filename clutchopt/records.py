@@ -29,7 +29,7 @@ def method_of(outputs) -> str | None:
     """How a stored design was made, read from its robust result where its run does not say (a store of an older
     clutchopt); None where nothing says."""
     robust = outputs.get("robust") if isinstance(outputs, dict) else None
-    if not isinstance(robust, dict) or robust.get("method") not in ("worst-case", "chance"):
+    if not isinstance(robust, dict) or robust.get("method") not in ("worst-case", "chance", "system_chance"):
         return None
     target = robust.get("target")
     return method_text(robust["method"], target if isinstance(target, float) else None)

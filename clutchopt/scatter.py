@@ -7,56 +7,158 @@ stresses, the driven inertia and the load have tolerances too. Layout (quantitie
     friction_coefficient = [0.12, 0.18]                      # a range: low, high
     inertia = { normal = ["12 kg*m^2", "0.6 kg*m^2"] }        # a normal distribution: mean, standard deviation
     allowable_pressure = { uniform = ["1.35 MPa", "1.65 MPa"] }  # a uniform distribution: low, high
+    density = { lognormal = ["7850 kg/m^3", "100 kg/m^3"] }   # lognormal: mean, sd of the quantity itself
+    speed = { normal = ["1450 rpm", "10 rpm"], within = ["1430 rpm", "1460 rpm"] }  # a normal cut to [low, high]
+    resisting_torque = "+-20 %"                              # a range: the case's value -+ 20 %
+    # friction_coefficient = "library"                       # a range: friction_min .. friction_max of [library]'s pair
+
+    [scatter.correlation]                                     # correlations of the normal scores (Gaussian copula)
+    friction_coefficient.inertia = 0.5
 
 Worst-case designs use each quantity's range (a normal distribution: mean +- 3 standard deviations, cut to the
-quantity's valid range); chance-constrained designs use its distribution (a range: uniform over it).
+quantity's valid range; a lognormal one: its 0.135 % and 99.865 % quantiles, where a normal's +-3 sd lie; a cut
+normal: its cut); chance-constrained designs and Monte Carlo use its distribution (a range: uniform over it), every
+one an exact map of a standard normal variable (:meth:`Scatter.from_standard`), correlated by
+``[scatter.correlation]`` (:func:`draw`; docs/robust.md).
 """
 
 from __future__ import annotations
 
+import itertools
 import math
+import re
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.special import ndtr, ndtri
 
 from clutchopt.errors import InputError, Problems, shown_value
 from clutchopt.units import to_si
 
 SECTION = "scatter"
+CORRELATION = "correlation"  # the subtable [scatter.correlation]
 MAX_SCATTERED = 12  # quantities; worst-case designs check all 2^n corners
 NORMAL_RANGE = 3.0  # standard deviations either side of the mean: a normal quantity's worst-case range
 MEAN_TOLERANCE = 1e-9  # relative: a normal distribution's mean is the case's value (given in another unit)
+KINDS = ("range", "normal", "uniform", "lognormal", "truncated")
+FORMS = ('[low, high], { normal = [mean, sd] } or { uniform = [low, high] }, or { lognormal = [mean, sd] }, '
+         '{ normal = [mean, sd], within = [low, high] }, "+-20 %" or "library"')
+BAND = re.compile(r"^\s*(?:\+-|\+/-|±)\s*(\d+(?:\.\d*)?|\.\d+)\s*%\s*$")  # "+-20 %", "±20 %", "+/-20%"
+LIBRARY = "library"
 
 
 @dataclass(frozen=True)
 class Scatter:
-    """One scattered quantity (SI): its worst-case range and its distribution."""
+    """One scattered quantity (SI): its worst-case range and its distribution.
+
+    ``mean``, ``sd``: normal and lognormal, the distribution's own mean and standard deviation (a lognormal's log
+    parameters follow from them, :meth:`log_parameters`); truncated (a normal cut to [low, high]), those of the
+    normal before the cut; range and uniform, those of the uniform distribution over [low, high]."""
 
     name: str
-    kind: str  # "range" | "normal" | "uniform"
+    kind: str  # one of KINDS
     low: float  # worst-case range
     high: float
-    mean: float  # distribution: normal (mean, sd); range and uniform: uniform over [low, high]
+    mean: float
     sd: float
 
-    def sample(self, rng: np.random.Generator, count: int) -> np.ndarray:
+    def from_standard(self, u) -> np.ndarray:
+        """The value x with P(X <= x) = Phi(u) (vectorised): the exact isoprobabilistic map of a standard normal
+        variable u to the quantity (Rosenblatt; for a normal quantity mean + sd u)."""
+        u = np.asarray(u, dtype=float)
         if self.kind == "normal":
-            return rng.normal(self.mean, self.sd, count)
-        return rng.uniform(self.low, self.high, count)
+            return self.mean + self.sd * u
+        if self.kind == "lognormal":
+            mu, sigma = self.log_parameters()
+            return np.exp(mu + sigma * u)
+        if self.kind == "truncated":
+            law = self._truncated()
+            return _by_tails(u, law.ppf, law.isf)
+        width = self.high - self.low
+        return _by_tails(u, lambda p: self.low + width * p, lambda q: self.high - width * q)
+
+    def to_standard(self, x) -> np.ndarray:
+        """The standard normal u with Phi(u) = P(X <= x) (vectorised): the inverse of :meth:`from_standard`."""
+        x = np.asarray(x, dtype=float)
+        if self.kind == "normal":
+            return (x - self.mean) / self.sd
+        if self.kind == "lognormal":
+            mu, sigma = self.log_parameters()
+            return (np.log(x) - mu) / sigma
+        if self.kind == "truncated":
+            law = self._truncated()
+            return _to_standard(x, law.cdf, law.sf, law.median())
+        width = self.high - self.low
+        return _to_standard(x, lambda v: (v - self.low) / width, lambda v: (self.high - v) / width,
+                            (self.low + self.high) / 2)
+
+    def log_parameters(self) -> tuple[float, float]:
+        """A lognormal quantity's (mu, sigma), those of ln X, from its mean m and sd s:
+        sigma^2 = ln(1 + (s/m)^2), mu = ln m - sigma^2 / 2 (so that E X = exp(mu + sigma^2/2) = m and
+        Var X = (exp(sigma^2) - 1) m^2 = s^2)."""
+        sigma = math.sqrt(math.log1p((self.sd / self.mean) ** 2))
+        return math.log(self.mean) - sigma ** 2 / 2, sigma
+
+    def _truncated(self):
+        from scipy.stats import truncnorm
+
+        return truncnorm((self.low - self.mean) / self.sd, (self.high - self.mean) / self.sd, self.mean, self.sd)
 
     def describe(self, unit_shown) -> str:
-        if self.kind == "normal":
-            return f"normal, mean {unit_shown(self.mean)}, sd {unit_shown(self.sd)}"
+        if self.kind in ("normal", "lognormal"):
+            return f"{self.kind}, mean {unit_shown(self.mean)}, sd {unit_shown(self.sd)}"
+        if self.kind == "truncated":
+            return (f"normal, mean {unit_shown(self.mean)}, sd {unit_shown(self.sd)}, within {unit_shown(self.low)} "
+                    f"to {unit_shown(self.high)}")
         return f"{self.kind} {unit_shown(self.low)} to {unit_shown(self.high)}"
 
 
-def parse_scatter(table, quantities, values: dict[str, float], broken=frozenset()) -> tuple[Scatter, ...]:
+def _by_tails(u: np.ndarray, ppf, isf) -> np.ndarray:
+    """ppf(Phi(u)) computed from the nearer tail (isf(Phi(-u)) above the median), so that a far upper tail is not
+    lost in 1 - Phi(u) rounding to 1."""
+    lower = u <= 0
+    return np.where(lower, ppf(ndtr(np.where(lower, u, 0.0))), isf(ndtr(-np.where(lower, 0.0, u))))
+
+
+def _to_standard(x: np.ndarray, cdf, sf, median: float) -> np.ndarray:
+    """Phi^-1(cdf(x)), from the nearer tail (-Phi^-1(sf(x)) above the median)."""
+    lower = x <= median
+    return np.where(lower, ndtri(np.clip(cdf(x), 0.0, 1.0)), -ndtri(np.clip(sf(x), 0.0, 1.0)))
+
+
+def correlated(u: np.ndarray, correlation=None) -> np.ndarray:
+    """Independent standard normals ``u`` (one row per scattered quantity) made correlated standard normals
+    z = L u, L the Cholesky factor of ``correlation`` (n x n, the correlations of the standard normal variables:
+    a Gaussian copula); None: independent, z = u."""
+    if correlation is None:
+        return u
+    return np.linalg.cholesky(np.asarray(correlation, dtype=float)) @ u
+
+
+def values_from_standard(scatters, u, correlation=None) -> dict[str, np.ndarray]:
+    """Quantity -> its values where the independent standard normals ``u`` (n rows in the order of ``scatters``,
+    any number of columns) take theirs: correlated (:func:`correlated`), then mapped exactly
+    (:meth:`Scatter.from_standard`). The map FORM, SORM and importance sampling work through."""
+    z = correlated(np.asarray(u, dtype=float), correlation)
+    return {s.name: s.from_standard(z[i]) for i, s in enumerate(scatters)}
+
+
+def draw(scatters, rng: np.random.Generator, count: int, correlation=None) -> dict[str, np.ndarray]:
+    """``count`` Monte Carlo draws of the scattered quantities: standard normals, correlated by ``correlation``
+    (None: independent), mapped to each quantity's distribution (:func:`values_from_standard`)."""
+    return values_from_standard(scatters, rng.standard_normal((len(scatters), count)), correlation)
+
+
+def parse_scatter(table, quantities, values: dict[str, float], broken=frozenset(),
+                  library_ranges: dict | None = None) -> tuple[Scatter, ...]:
     """The scattered quantities of a ``[scatter]`` table of a case with ``quantities`` and nominal ``values``; all
     problems are raised together. A quantity in ``broken`` (its case value is bad) is not checked against its
-    nominal value."""
+    nominal value. ``library_ranges``: quantity -> (low, high, "friction_pair = organic_dry"), the ranges the
+    case's ``[library]`` entries give (``"library"``). The subtable ``[scatter.correlation]`` is read by
+    :func:`parse_correlation`."""
     if not isinstance(table, dict):
-        raise InputError(SECTION, "must be a table of quantity = [low, high] or { normal = [mean, sd] } or "
-                                  "{ uniform = [low, high] }")
+        raise InputError(SECTION, f"must be a table of quantity = {FORMS}")
+    table = {name: raw for name, raw in table.items() if name != CORRELATION}
     declared = {q.name: q for q in quantities}
     if len(table) > MAX_SCATTERED:
         raise InputError(SECTION, f"at most {MAX_SCATTERED} scattered quantities (their 2^n corners are checked), "
@@ -74,6 +176,10 @@ def parse_scatter(table, quantities, values: dict[str, float], broken=frozenset(
             nominal = values.get(name, math.nan)
             if math.isnan(nominal) and name not in broken:
                 raise InputError(field, "the case gives no value of it to scatter around")
+            if isinstance(raw, str):
+                raw = _spelled_range(field, quantity, raw, nominal, (library_ranges or {}).get(name))
+                if raw is None:  # a band around a case value that is refused itself
+                    continue
             items.append(_item(field, quantity, raw, nominal))
     problems.raise_any()
     return tuple(items)
@@ -85,31 +191,79 @@ def _pair(field: str, quantity, raw) -> tuple[float, float]:
     return tuple(to_si(field, value, quantity.unit) for value in raw)
 
 
+def _spelled_range(field: str, quantity, raw: str, nominal: float, library) -> list[float] | None:
+    """The range [low, high] (SI) a text entry spells: a relative band ``"+-20 %"`` around the case's value
+    (nominal (1 -+ 0.2)), or ``"library"``: friction_min .. friction_max of the entry [library] names."""
+    if raw.strip() == LIBRARY:
+        if library is None:
+            raise InputError(field, f'"library" takes the range of the friction or thread pair the case names in '
+                                    f'[library] (its friction_min .. friction_max), and this case names none that '
+                                    f'gives {quantity.name}: name one in [library] (clutchopt materials) or give '
+                                    f'a range')
+        return [library[0], library[1]]
+    band = BAND.match(raw)
+    if band is None:
+        raise InputError(field, f"must be {FORMS}, got {shown_value(raw)}")
+    share = float(band.group(1)) / 100
+    if not 0 < share < 1:
+        raise InputError(field, f"a relative band must lie above 0 % and below 100 %, got {band.group(1)} %")
+    if math.isnan(nominal):
+        return None  # the case's value is refused itself
+    if nominal == 0:
+        raise InputError(field, "a relative band of a zero value is no scatter: give a range [low, high]")
+    ends = sorted((nominal * (1 - share), nominal * (1 + share)))
+    for end, word in zip(ends, ("low", "high")):
+        try:
+            quantity.check(end, field)
+        except InputError as exc:
+            raise InputError(field, f"the band's {word} end {quantity.show(end)} ({quantity.show(nominal)} "
+                                    f"{'-' if end < nominal else '+'} {band.group(1)} %) leaves the quantity's "
+                                    f"valid range: {exc.problem}") from None
+    return ends
+
+
 def _item(field: str, quantity, raw, nominal: float) -> Scatter:
     """One scattered quantity around the case's value ``nominal``: a range or uniform distribution must hold it, a
-    normal distribution's mean must be it (unless ``nominal`` is NaN, unknown)."""
+    normal or lognormal distribution's mean must be it, as must a cut normal's before its cut (unless ``nominal`` is
+    NaN, unknown)."""
     if isinstance(raw, list):
         kind, (low, high) = "range", _pair(field, quantity, raw)
-    elif isinstance(raw, dict) and len(raw) == 1 and next(iter(raw)) in ("normal", "uniform"):
+    elif isinstance(raw, dict) and set(raw) == {"normal", "within"}:
+        return _truncated(field, quantity, raw, nominal)
+    elif isinstance(raw, dict) and len(raw) == 1 and next(iter(raw)) in ("normal", "uniform", "lognormal"):
         kind = next(iter(raw))
         first, second = _pair(f"{field}.{kind}", quantity, raw[kind])
-        if kind == "normal":
-            if not second > 0:
-                raise InputError(f"{field}.normal", f"the standard deviation must be positive, got {quantity.show(second)}")
-            quantity.check(first, f"{field}.normal")
-            if not math.isnan(nominal) and not math.isclose(first, nominal, rel_tol=MEAN_TOLERANCE):
-                raise InputError(f"{field}.normal", f"the mean {quantity.show(first)} is not the case's value "
-                                                    f"{quantity.show(nominal)}: a scatter spreads around the value "
-                                                    f"the case is designed at; set the case's value to the mean, or "
-                                                    f"scatter around it (normal = [{_spelled(quantity, nominal)}, "
-                                                    f"{_spelled(quantity, second)}])")
-            low, high = _within(quantity, first - NORMAL_RANGE * second), _within(quantity, first + NORMAL_RANGE * second)
-            quantity.check(low, f"{field}.normal"), quantity.check(high, f"{field}.normal")
+        if kind in ("normal", "lognormal"):
+            _mean_and_sd(f"{field}.{kind}", quantity, first, second, nominal)
+            if kind == "lognormal" and not first > 0:
+                raise InputError(f"{field}.lognormal", f"a lognormal quantity is positive: its mean must be above 0, "
+                                                       f"got {quantity.show(first)}")
+            trial = Scatter(quantity.name, kind, math.nan, math.nan, first, second)
+            low, high = (_within(quantity, float(trial.from_standard(u))) for u in (-NORMAL_RANGE, NORMAL_RANGE))
+            quantity.check(low, f"{field}.{kind}"), quantity.check(high, f"{field}.{kind}")
             return Scatter(quantity.name, kind, low, high, first, second)
         low, high = first, second
     else:
-        raise InputError(field, f"must be [low, high], {{ normal = [mean, sd] }} or {{ uniform = [low, high] }}, "
-                                f"got {shown_value(raw)}")
+        raise InputError(field, f"must be {FORMS}, got {shown_value(raw)}")
+    _holds(field, quantity, low, high, nominal)
+    return Scatter(quantity.name, kind, low, high, (low + high) / 2, (high - low) / math.sqrt(12.0))
+
+
+def _mean_and_sd(field: str, quantity, mean: float, sd: float, nominal: float) -> None:
+    """A distribution's mean is a valid value of the quantity, and the case's; its standard deviation positive."""
+    if not sd > 0:
+        raise InputError(field, f"the standard deviation must be positive, got {quantity.show(sd)}")
+    quantity.check(mean, field)
+    if not math.isnan(nominal) and not math.isclose(mean, nominal, rel_tol=MEAN_TOLERANCE):
+        kind = field.rsplit(".", 1)[-1]
+        raise InputError(field, f"the mean {quantity.show(mean)} is not the case's value {quantity.show(nominal)}: "
+                                f"a scatter spreads around the value the case is designed at; set the case's value "
+                                f"to the mean, or scatter around it ({kind} = [{_spelled(quantity, nominal)}, "
+                                f"{_spelled(quantity, sd)}])")
+
+
+def _holds(field: str, quantity, low: float, high: float, nominal: float) -> None:
+    """A range [low, high] of valid values that holds the case's value."""
     if not low < high:
         raise InputError(field, f"low {quantity.show(low)} must be below high {quantity.show(high)}")
     quantity.check(low, field), quantity.check(high, field)
@@ -117,7 +271,95 @@ def _item(field: str, quantity, raw, nominal: float) -> Scatter:
         raise InputError(field, f"the case's value {quantity.show(nominal)} lies outside {quantity.show(low)} .. "
                                 f"{quantity.show(high)}: a scatter spreads around the value the case is designed "
                                 f"at; set the case's value inside the range, or give a range that holds it")
-    return Scatter(quantity.name, kind, low, high, (low + high) / 2, (high - low) / math.sqrt(12.0))
+
+
+def _truncated(field: str, quantity, raw: dict, nominal: float) -> Scatter:
+    """``{ normal = [mean, sd], within = [low, high] }``: a normal distribution cut to [low, high] (its mean and sd
+    those before the cut; the mean is the case's value); its worst-case range is the cut."""
+    mean, sd = _pair(f"{field}.normal", quantity, raw["normal"])
+    _mean_and_sd(f"{field}.normal", quantity, mean, sd, nominal)
+    low, high = _pair(f"{field}.within", quantity, raw["within"])
+    _holds(f"{field}.within", quantity, low, high, nominal)
+    return Scatter(quantity.name, "truncated", low, high, mean, sd)
+
+
+def parse_correlation(table, scatter: tuple[Scatter, ...]) -> tuple[tuple[float, ...], ...] | None:
+    """The correlation matrix (n x n, in the order of ``scatter``) of ``[scatter.correlation]``: ``a.b = rho`` for
+    two scattered quantities a and b, each pair once, |rho| < 1, the whole matrix positive definite; None without
+    the subtable. The correlations are those of the quantities' normal scores (a Gaussian copula, :func:`draw`)."""
+    if not isinstance(table, dict) or CORRELATION not in table:
+        return None
+    field, given = f"{SECTION}.{CORRELATION}", table[CORRELATION]
+    if not isinstance(given, dict):
+        raise InputError(field, f"must be a table of quantity.other = rho, e.g. [scatter.correlation] "
+                                f"friction_coefficient.inertia = 0.5, got {shown_value(given)}")
+    order = {s.name: i for i, s in enumerate(scatter)}
+    matrix = np.eye(len(scatter))
+    problems, seen = Problems(), {}
+    for first, row in given.items():
+        with problems.field():
+            if first not in order:
+                raise InputError(f"{field}.{first}", _unscattered(first, order))
+            if not isinstance(row, dict):
+                raise InputError(f"{field}.{first}", f"must be a table of other = rho, e.g. {first}.{next(iter(order))}"
+                                                     f" = 0.5, got {shown_value(row)}")
+        if first not in order or not isinstance(row, dict):
+            continue
+        for second, rho in row.items():
+            with problems.field():
+                key = f"{field}.{first}.{second}"
+                if second not in order:
+                    raise InputError(key, _unscattered(second, order))
+                if second == first:
+                    raise InputError(key, "a quantity with itself: its correlation is 1 by definition; give the "
+                                          "correlation of two different quantities")
+                if isinstance(rho, bool) or not isinstance(rho, (int, float)) or not -1 < rho < 1:
+                    raise InputError(key, f"must be a number above -1 and below 1 (|rho| = 1 makes two quantities "
+                                          f"one), got {shown_value(rho)}")
+                pair = frozenset((first, second))
+                if pair in seen:
+                    raise InputError(key, f"given twice: also as {seen[pair]}")
+                seen[pair] = key
+                matrix[order[first], order[second]] = matrix[order[second], order[first]] = float(rho)
+    problems.raise_any()
+    names = [s.name for s in scatter]
+    if not _positive_definite(matrix):
+        worst = _smallest_indefinite(matrix)
+        raise InputError(field, f"the correlations of {', '.join(names[i] for i in worst)} are not positive "
+                                f"definite (no joint distribution has them: e.g. a with b and b with c strongly "
+                                f"positive, a with c strongly negative); weaken one of them")
+    return tuple(tuple(float(v) for v in row) for row in matrix)
+
+
+def correlation_text(scatter: tuple[Scatter, ...], correlation) -> str:
+    """``correlated (normal scores): friction_coefficient with inertia -0.4``, or "" for independent quantities."""
+    pairs = [f"{a.name} with {b.name} {correlation[i][j]:+.3g}" for (i, a), (j, b)
+             in itertools.combinations(enumerate(scatter), 2) if correlation is not None and correlation[i][j]]
+    return f"correlated (of the normal scores; the corners do not change): {'; '.join(pairs)}" if pairs else ""
+
+
+def _unscattered(name: str, order: dict) -> str:
+    return (f"not a scattered quantity of this case; correlations are between the quantities [scatter] gives "
+            f"({', '.join(order) or 'none'})")
+
+
+def _positive_definite(matrix: np.ndarray) -> bool:
+    try:
+        np.linalg.cholesky(matrix)
+    except np.linalg.LinAlgError:
+        return False
+    return bool(np.linalg.eigvalsh(matrix).min() > 1e-12)
+
+
+def _smallest_indefinite(matrix: np.ndarray) -> tuple[int, ...]:
+    """The indices of a smallest set of quantities whose correlations alone are not positive definite (pairs
+    always are, |rho| < 1)."""
+    n = len(matrix)
+    for size in range(3, n + 1):
+        for subset in itertools.combinations(range(n), size):
+            if not _positive_definite(matrix[np.ix_(subset, subset)]):
+                return subset
+    return tuple(range(n))
 
 
 def _spelled(quantity, value: float) -> str:

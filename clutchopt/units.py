@@ -261,6 +261,8 @@ def to_si(field: str, raw: object, unit: str) -> float:
         if given.offset and not expected.offset:
             raise InputError(field, f"{raw.strip()!r} is a temperature on a scale with an offset; write a "
                                     "temperature difference in K (or delta_degC)")
+        if expected.offset and "delta_" in unit_text:
+            raise InputError(field, f"{raw.strip()!r} is a temperature difference; write a temperature in degC or K")
         if _kind(unit) == _ANGULAR_SPEED and (given.dimensions, given.angle) == (expected.dimensions, 0):
             raise InputError(field, f"{raw.strip()!r} is ambiguous: {_SPEED_HINT}")
         if not unit_text:  # a number in text is read as a bare one: SI (radians, where an angle is expected)
@@ -279,8 +281,11 @@ def to_si(field: str, raw: object, unit: str) -> float:
     return value
 
 
-def from_si(value: float, unit: str) -> float:
-    """Convert an SI value to ``unit`` for display."""
+def from_si(value, unit: str):
+    """Convert an SI value to ``unit`` for display; an offset unit (degC) takes an absolute temperature in K, so
+    293.15 K is 20 degC, not 293.15 (a number or a NumPy array)."""
+    if unit not in UNITS and unit_info(unit).offset:
+        return registry().Quantity(value, registry().kelvin).to(unit).magnitude
     return value / si_factor(unit)
 
 
@@ -288,7 +293,7 @@ TABLE_UNITS = (  # the units case files and scenes usually write, besides those 
     "", "mm", "cm", "m", "um", "m^2", "m^3", "kg", "g", "t", "s", "ms", "min", "h", "rpm", "rps", "rad/s", "1/s",
     "Hz", "deg", "rad", "N", "kN", "N*m", "kN*m", "Pa", "kPa", "MPa", "GPa", "N/mm^2", "bar", "W", "kW", "MW", "J",
     "kJ", "J/K", "W/K", "kg*m^2", "kg/m^3", "g/cm^3", "N/m", "N/mm", "N*m/rad", "m/s^2", "m^3/s^2", "s/rad", "EUR",
-    "EUR/kg", "EUR/cm^2", "EUR/m^2", "K", "kJ/K", "1/hour", "1/h", "1/min", "kJ/hour", "kJ/h",
+    "EUR/kg", "EUR/cm^2", "EUR/m^2", "K", "kJ/K", "1/hour", "1/h", "1/min", "kJ/hour", "kJ/h", "mm^3/J",
 )
 
 

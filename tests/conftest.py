@@ -7,6 +7,9 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 CASES = ROOT / "cases"
+# the cases of one coupling; a neutral case (coupling = "any") is for choose-coupling alone
+COUPLING_CASES = sorted(path for path in CASES.glob("*.toml")
+                        if 'coupling = "any"' not in path.read_text(encoding="utf-8"))
 
 
 def run_cli(*args: str, cwd: Path = ROOT, timeout: float | None = None) -> subprocess.CompletedProcess:

@@ -66,7 +66,7 @@ HOSTILE: list[Hostile] = [
     robust("range-ends-at-the-case-value", WEDGE, "friction_coefficient = [0.15, 0.2]", None),
     robust("uniform-around-the-case-value", WEDGE, "friction_coefficient = { uniform = [0.12, 0.18] }", None,
            method="chance=0.99"),
-    robust("lognormal-not-a-distribution", WEDGE, "friction_coefficient = { lognormal = [0.15, 0.01] }",
+    robust("weibull-not-a-distribution", WEDGE, "friction_coefficient = { weibull = [0.15, 0.01] }",
            "scatter.friction_coefficient: must be [low, high], { normal = [mean, sd] } or { uniform = [low, high] }"),
     robust("every-distribution-off-at-once", WEDGE,
            'friction_coefficient = { normal = [0.3, 0.01] }\ndensity = { uniform = ["8000 kg/m^3", "8100 kg/m^3"] }'

@@ -98,3 +98,35 @@ def test_a_feasible_case_is_never_proven_empty(path):
         posed = case_problem(case).posed
         p = np.concatenate([list(vars(posed.params(case)).values()), np.ones(len(emptiness.feasible)), [1.0]])
         assert np.all(np.array(posed.constraint_values(emptiness.feasible, p)) <= 0)
+
+
+def test_ball_motor_start_past_580_kw_is_proven_infeasible():
+    """Issue 29: the crusher drive at 800 kW. Its design space is empty without the start-up: the static rows
+    alone conflict (contact_stress, torque, width_ratio_max, ball_layers; no design from 40 random starts of the
+    static NLP above 575 kW either). The proof needs Hertz's n_a, n_b bounded at the ends of B/A
+    (clutchopt.monotone): replayed through the Newton step they are unbounded on 1 % boxes."""
+    case = load_case(CASES / "ball_motor_start.toml")
+    case = case.with_values(power=800e3)
+    solution = case_problem(case).solve(case)
+    assert solution.status == "infeasible"
+    assert solution.diagnosis.startswith("proven infeasible") and "interval branch and bound" in solution.diagnosis
+    assert "contact_stress" in solution.diagnosis.split("(")[0]
+
+
+def test_integer_variables_are_whole_in_every_box():
+    """The crusher drive at 565 kW: the continuous relaxation of its static design has designs (the solve's integer
+    search says so, from the relaxed optimum), yet no whole number of ball rows does: the search proves it with
+    each box's ball_rows rounded inwards to whole numbers, and keeps what is whole."""
+    from clutchopt.optimise.interval_proof import _whole
+    from clutchopt.optimise.problem import problem_for
+
+    lo, hi = np.array([[0.1, 0.1, 0.1], [2.2, 2.0, 1.999999999999]]), np.array([[0.2, 0.2, 0.2], [2.8, 3.5, 2.0]])
+    kept_lo, kept_hi, dropped = _whole(lo, hi, [1])
+    assert kept_lo.tolist() == [[0.1, 0.1], [2.0, 2.0]] and kept_hi.tolist() == [[0.2, 0.2], [3.0, 2.0]]
+    assert dropped == [1]  # [2.2, 2.8] holds no whole number
+    case = load_case(CASES / "ball_motor_start.toml").with_values(power=565e3)
+    problem = case_problem(case)
+    relaxed = problem_for(problem.posed.base, "mass").refined(case)
+    assert relaxed.status == "infeasible" and "the continuous relaxation is feasible" in relaxed.diagnosis
+    emptiness = empty_design_space(problem.posed, case)
+    assert emptiness.proven and "contact_stress" in emptiness.decisive

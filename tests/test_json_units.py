@@ -26,9 +26,9 @@ from clutchopt.cli import main
 from clutchopt.cli.main import build_parser
 from clutchopt.formulations import get_coupling
 from clutchopt.units import ureg
-from tests.conftest import CASES, ROOT
+from tests.conftest import CASES, COUPLING_CASES, ROOT
 
-CASE_FILES = sorted(CASES.glob("*.toml"))
+CASE_FILES = COUPLING_CASES
 SCENES = sorted((CASES / "scenes").glob("*.toml"))
 ALWAYS_JSON = {"runs show"}  # prints JSON without being asked
 
@@ -192,6 +192,7 @@ def outputs(command: str, store, monkeypatch) -> list[dict]:
                   *[("solve", CASES / "wedge_centrifuge.toml", "--robust", method, "--samples", "1000")
                     for method in ("chance=0.99", "worst-case")]],
         "compare": [("compare", wedge)],
+        "choose-coupling": [("choose-coupling", CASES / "conveyor_drive.toml")],
         "sweep": [("sweep", wedge, "--vary", "speed=900:1100:2", "--quiet")],
         "pareto": [("pareto", CASES / "wedge_centrifuge.toml", "--mode", "geometry", "--points", "3")],
         "simulate": [("simulate", scene) for scene in SCENES],
@@ -209,7 +210,7 @@ JSON_COMMANDS = sorted(json_commands())
 
 
 def test_every_command_with_json_is_walked():
-    assert set(JSON_COMMANDS) == {"solve", "compare", "sweep", "pareto", "simulate", "runs list", "runs show",
+    assert set(JSON_COMMANDS) == {"solve", "choose-coupling", "compare", "sweep", "pareto", "simulate", "runs list", "runs show",
                                   "materials", "couplings", "bench"}
 
 

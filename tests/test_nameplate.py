@@ -51,6 +51,12 @@ def test_a_nameplate_motor_solves_as_the_same_motor_written_out():
     ({"breakdown_ratio": 1.0}, ["start_up.driver.breakdown_ratio: T_k/T_n must be above 1"]),
     ({"frequency": "3000 rpm"}, ["start_up.driver.frequency:"]),
     ({"rated_power": "2.2 kW*m"}, ["start_up.driver.rated_power: expected a power"]),
+    ({"rated_power": "1e-10 W"}, ["start_up.driver.breakdown_torque: derived from the nameplate's start_up.driver."
+                                  "rated_power, start_up.driver.rated_speed, start_up.driver.breakdown_ratio: must be "
+                                  "from 1e-09 to 1e+09 N*m"]),
+    ({"frequency": "1e-5 Hz", "rated_speed": "1.9e-4 rpm"}, [
+        "start_up.driver.synchronous_speed: derived from the nameplate's start_up.driver.poles, "
+        "start_up.driver.frequency: must be from 0.001 to 100000 rad/s"]),
 ])
 def test_every_bad_nameplate_field_is_named(change, fields):
     driver = {k: v for k, v in {**NAMEPLATE, **change}.items() if v is not None}

@@ -7,6 +7,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from scipy.special import ndtri
 
 from clutchopt.cases import parse_case, read_toml
 from clutchopt.errors import InputError
@@ -15,6 +16,7 @@ from clutchopt.optimise.robust import CHANCE, WORST_CASE, parse_method, solve_ro
 from clutchopt.optimise.robust_models import corner_checks, failure_probabilities
 from clutchopt.optimise.robust_start_up import start_up_corner, start_up_failures
 from clutchopt.output import robust_text
+from clutchopt.scatter import draw
 from clutchopt.start_up.simulation import run_start_up, start_up_model
 from tests.conftest import CASES
 
@@ -71,37 +73,50 @@ def test_worst_case_at_f_min_by_hand():
 
 @pytest.mark.parametrize("target", [0.99, 0.999])
 def test_chance_matches_monte_carlo_where_first_order_is_exact(target):
-    """f normal, paper mode: torque and finger force are linear in f, so the back-off z sigma is exact and each
-    constraint fails with probability 1 - target; the Monte Carlo interval must contain it."""
+    """f normal, paper mode: the limit states T - T_max and [sigma] - sigma are linear in f, so in u: FORM is exact,
+    the performance point at beta = z_P is kept (importance sampling does not refute it) and each constraint fails
+    with probability 1 - target; the Monte Carlo interval must contain it."""
     case = centrifuge({"friction_coefficient": {"normal": [0.15, 0.01]}})
     result = solve_robust(case, CHANCE, target, "paper", samples=200_000)
     assert result.status == "optimal"
+    assert result.betas["torque"] == result.betas["finger_bending"] == pytest.approx(ndtri(target), rel=1e-12)
     for name in ("torque", "finger_bending"):
         p, low, high = result.failure[name]
         assert low <= 1 - target <= high, (name, p, low, high)
 
 
-def test_chance_reports_honestly_where_first_order_is_not_exact():
-    """A uniform f over 0.10 to 0.20 (sd 0.0289): the normal quantile backs off 3.09 sd = 0.089, below the end of the
-    range 0.05 away, so the design never fails; the nominal one fails half the time. Both are reported as they are."""
+def test_a_uniform_friction_is_designed_at_its_quantile():
+    """f uniform over 0.10 to 0.20 alone: each limit state depends on f only and monotonically, so the chance optimum
+    meets it at f's quantile, mapped exactly: torque ~ f m at f = 0.10 + 0.001 x 0.10 = 0.1001, m = m_nominal
+    x 0.15 / 0.1001; the finger's force ~ f m at f = 0.1999, d = d_nominal (0.1999 m / (0.15 m_nominal))^(1/3)
+    (bending ~ F / d^3). (First order with a normal quantile backed off 3.09 sd = 0.089 below the mean, beyond the
+    range's end 0.05 away: a design that never fails, heavier than the worst case.) Lighter than the worst case."""
     case = centrifuge({"friction_coefficient": [0.10, 0.20]})
+    nominal = solve_case(case, "paper").design
     result = solve_robust(case, CHANCE, 0.999, "paper")
-    assert result.failure["torque"][0] == 0.0 and result.status == "optimal"
+    assert result.status == "optimal"
+    mass = nominal["weight_mass"] * 0.15 / 0.1001
+    assert result.solution.design["weight_mass"] == pytest.approx(mass, rel=1e-6)
+    assert result.solution.design["finger_diameter"] == pytest.approx(
+        nominal["finger_diameter"] * (0.1999 * mass / (0.15 * nominal["weight_mass"])) ** (1 / 3), rel=1e-6)
+    assert result.reliability.constraints["torque"].best.probability == pytest.approx(1e-3, rel=0.03)
     assert result.nominal_failure["torque"][0] == pytest.approx(0.5, abs=0.02)
     worst = solve_robust(case, WORST_CASE, None, "paper")
-    assert worst.solution.objective < result.solution.objective  # the first-order design is the more conservative
+    assert worst.solution.objective > result.solution.objective
 
 
-def test_a_nonlinear_scatter_that_first_order_underestimates_is_flagged():
-    """[sigma] normal (120 MPa, sd 12 MPa): the violation sigma/[sigma] - 1 is convex in [sigma], so the first-order
-    back-off allows sigma <= mu / (1 + z sd / mu) = 0.764 mu where the exact 0.999 quantile is mu - z sd = 0.691 mu:
-    the finger fails with P = Phi((0.764 - 1) / 0.1) = Phi(-2.36) = 0.0091, nine times the target, and says so."""
+def test_a_scattered_limit_is_met_at_its_quantile():
+    """[sigma] normal (120 MPa, sd 12 MPa): the limit state is the difference [sigma] - sigma, linear in [sigma], so
+    the finger is sized for [sigma] = mu - z sd = 120 - 3.0902 x 12 = 82.918 MPa and fails with P = 0.001 exactly.
+    (The ratio 1 - sigma/[sigma] backed off to first order allowed sigma <= mu / (1 + z sd / mu) = 0.764 mu, failing
+    with P = Phi((0.764 - 1) / 0.1) = 0.0091.)"""
     case = centrifuge({"allowable_bending_stress": {"normal": ["120 MPa", "12 MPa"]}})
     result = solve_robust(case, CHANCE, 0.999, "paper", samples=100_000)
+    finger = {c.name: c for c in result.checks}["finger_bending"]
+    assert finger.limit == pytest.approx(120e6 - 3.090232306 * 12e6, rel=1e-8) and finger.active
     p, low, high = result.failure["finger_bending"]
-    assert low <= 0.0091 <= high
-    assert result.status == "unverified" and "finger_bending fails with probability" in result.diagnosis
-    assert "first order is not enough" in result.diagnosis
+    assert low <= 0.001 <= high
+    assert result.status == "optimal"
 
 
 def test_monte_carlo_is_vectorised_and_reproducible():
@@ -175,8 +190,11 @@ def test_a_start_up_that_misses_is_not_optimal(motor_start):
 def test_the_verification_is_one_line_in_text_and_json(motor_start):
     case, result = motor_start
     line = result.verification
-    assert line.startswith("verified: constraints backed off to first order for P = 0.999; 10000 Monte Carlo "
-                           "samples: largest P(fail) 0 (")
+    assert line.startswith("verified: constraints at their performance points for chance P = 0.999, beta corrected "
+                           "by importance sampling; 10000 Monte Carlo samples: largest P(fail) ")
+    assert "importance sampling at the design points: largest P(fail) 0.00102 (finger_bending; 95% interval" in line
+    assert ("start-up limits not by PMA but at the quantile corners: start_time, temperature_rise, "
+            "min_engagement_speed") in line
     assert ("start-up designed at (friction_coefficient 0.12006), simulated at the 2 quantile corner(s) "
             "(friction_coefficient 0.12006; friction_coefficient 0.17994): every limit met; 40 simulated starts: "
             "largest P(fail) 0 (") in line
@@ -239,7 +257,8 @@ def test_parse_method(text, ok):
     ({"speedd": [1, 2]}, "scatter.speedd"),
     ({"weight_count": [3, 4]}, "scatter.weight_count"),
     ({"inertia": {"normal": ["12 kg*m^2", "-1 kg*m^2"]}}, "scatter.inertia.normal"),
-    ({"inertia": {"lognormal": [1, 2]}}, "scatter.inertia"),
+    ({"inertia": {"weibull": [1, 2]}}, "scatter.inertia"),  # not a kind
+    ({"inertia": {"lognormal": [1, 2]}}, "scatter.inertia.lognormal"),  # the mean is not the case's 12 kg m^2
     ({"inertia": ["12 kg", "13 kg"]}, "scatter.inertia"),
     ({f"q{i}": [0, 1] for i in range(13)}, "scatter"),
 ])
@@ -258,4 +277,4 @@ def test_normal_range_is_cut_at_the_valid_range():
     case = centrifuge({"friction_coefficient": {"normal": [0.15, 0.1]}})  # mean - 3 sd < 0
     (item,) = case.scatter
     assert item.low > 0 and item.low < 1e-6 and item.high == pytest.approx(0.45)
-    assert math.isclose(item.sample(np.random.default_rng(1), 100_000).std(), 0.1, rel_tol=0.02)
+    assert math.isclose(draw([item], np.random.default_rng(1), 100_000)[item.name].std(), 0.1, rel_tol=0.02)

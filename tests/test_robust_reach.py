@@ -82,7 +82,9 @@ def test_a_scattered_fixed_geometry_reaches_the_static_constraints():
         result = solve_robust(case, method, target, mode="geometry")
         assert result.status == "optimal"
         assert result.solution.objective > 1.1 * result.nominal.objective
-        assert result.nominal_failure["torque"][0] > 0.4 and result.failure["torque"][0] == 0.0
+        assert result.nominal_failure["torque"][0] > 0.4
+        torque = result.reliability.constraints["torque"].best  # importance sampling at the design point
+        assert result.failure["torque"][0] == 0.0 if target is None else torque.high <= 2 * (1 - target)
 
 
 def test_a_scattered_static_limit_is_held_at_its_strict_end():

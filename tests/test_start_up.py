@@ -182,7 +182,7 @@ def test_solve_json_has_the_start_up(cli):
     ({"start_up__effects": ["slip_friction", "lockup", "friction_heat"]}, "start_up.driver.synchronous_speed"),
     ({"start_up__heat": None}, "start_up.heat.capacity"),
     ({"start_up__limits__max_engagement_speed": "300 rpm"}, "start_up.limits.min_engagement_speed"),
-    ({"start_up__limits__heat_dissipation": None}, "start_up.limits.heat_dissipation"),
+    ({"start_up__limits__starts_per_hour": None}, "start_up.limits.starts_per_hour"),  # heat_dissipation needs it
     ({"start_up__intervals": 1000}, "start_up.intervals"),
     ({"start_up__driven__load_profile": {"over": "speed", "points": ["0 rpm"], "torque": ["1 N*m"]}},
      "start_up.driven.load_profile"),

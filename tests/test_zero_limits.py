@@ -12,13 +12,13 @@ from clutchopt.cases import check_across, load_case, parse_case
 from clutchopt.cli import EXIT_BAD_INPUT, main
 from clutchopt.errors import InputError
 from clutchopt.optimise.problem import case_problem
-from tests.conftest import CASES
+from tests.conftest import CASES, COUPLING_CASES
 
 NO_MOTOR = (CASES / "wedge_paper.toml").read_text() + '\n[start_up]\neffects = ["slip_friction", "lockup"]\n'
 
 
 def cases():
-    yield from ((path.name, load_case(path)) for path in sorted(CASES.glob("*.toml")))
+    yield from ((path.name, load_case(path)) for path in COUPLING_CASES)
     yield "wedge without a motor", parse_case(tomllib.loads(NO_MOTOR))
 
 

@@ -18,6 +18,7 @@ import pandas as pd
 
 from clutchopt.bench.accuracy import accuracy_rows
 from clutchopt.bench.cli_launch import cli_launch_rows
+from clutchopt.bench.reliability import reliability_rows
 from clutchopt.bench.resolve import resolve_rows
 from clutchopt.bench.scaleout import scaleout_rows
 from clutchopt.bench.start_up_designs import start_up_design_rows, start_up_solve_rows
@@ -80,6 +81,10 @@ SECTIONS: tuple[Section, ...] = (
     Section("start_up_solve", "Start-up solves against their static solves (the case without [start_up]): reading "
                               "the case, the first solve in this process (the problem built) and the re-solve of the "
                               "same case (median), in ms; the ratios (goal: at most 10)", start_up_solve_rows),
+    Section("reliability", "Failure probabilities against OpenTURNS: the wedge centrifuge's active constraints at its "
+                           "worst-case and nominal designs under its [scatter], each estimator's probability with its "
+                           "95 % interval (Monte Carlo: Clopper-Pearson for the tool, OpenTURNS' own), its samples and "
+                           "its median time for all of the design's limit states, in ms", reliability_rows),
 )
 
 
@@ -116,7 +121,7 @@ COLUMN_UNITS = {  # the SI unit of every column of every section ("": a count, r
                      "python_per_point_share", "vs_point_by_point", "vs_wedge_paper", "resolves", "speedup",
                      "max_rel_diff_objective", "workers", "rtol", "t_c_rel_error", "L_rel_error", "intervals",
                      "start_time_rel_error", "solves", "designed", "without_design", "first_vs_static",
-                     "resolve_vs_static"), ""),
+                     "resolve_vs_static", "probability", "interval_low", "interval_high", "samples"), ""),
 }
 
 

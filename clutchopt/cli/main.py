@@ -21,7 +21,7 @@ from clutchopt import __version__
 from clutchopt.cli.options import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, Parser, check_options
 from clutchopt.errors import InputError
 
-COMMANDS = ("init", "couplings", "materials", "solve", "compare", "simulate", "sweep", "pareto", "report", "runs",
+COMMANDS = ("init", "couplings", "materials", "solve", "choose-coupling", "compare", "simulate", "sweep", "pareto", "report", "runs",
             "bench")
 MAX_ERROR_LINES = 50  # a file with thousands of bad fields still gives a readable answer
 DESCRIPTION = """\
@@ -44,7 +44,7 @@ def build_parser() -> Parser:
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=Parser,
                                      title="commands")
     for name in COMMANDS:
-        import_module(f"clutchopt.cli.{name}").add_command(commands)
+        import_module(f"clutchopt.cli.{name.replace('-', '_')}").add_command(commands)
     return parser
 
 

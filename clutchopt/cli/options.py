@@ -159,8 +159,9 @@ def add_store_options(command: argparse.ArgumentParser) -> None:
 def add_robust_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--robust", metavar="METHOD",
                          help="a design that holds under the case's [scatter]: worst-case (every constraint at its own "
-                              "worst corner of the ranges) or chance=P (each holds with probability P, to first "
-                              "order), checked by Monte Carlo beside the nominal design; e.g. --robust chance=0.999")
+                              "worst corner of the ranges), chance=P (each fails with probability at most 1 - P) or "
+                              "system_chance=P (the design does), checked by Monte Carlo and importance sampling "
+                              "beside the nominal design; e.g. --robust chance=0.999")
     command.add_argument("--samples", action=Checked, check=integer, metavar="N",
                          help="Monte Carlo samples of the scatter for --robust (default 10000)")
     command.add_argument("--starts", action=Checked, check=integer, metavar="N",

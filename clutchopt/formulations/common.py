@@ -16,6 +16,7 @@ from clutchopt.errors import InputError
 from clutchopt.formulations.duty import required_torque
 from clutchopt.model import ElasticLaw, Formulation, Objective, Quantity, SpeedLaw, Variable
 
+ENVELOPE_MASS = "halves and housing, moving parts, springs, linings alike (docs/envelope.md)"
 State = Callable[[SimpleNamespace, SimpleNamespace], Any]  # (x, p) -> the coupling at design x of case p
 
 
@@ -26,7 +27,9 @@ class CouplingModel:
 
     ``mass`` and ``cost``: (description, ``(state, p) -> value``) of the two objectives, kg and EUR;
     ``outputs`` and ``constraints``: ``(state, x, p) ->`` those every mode reports and meets;
-    ``speed_law``: ``state -> `` the coupling's law in a start-up.
+    ``speed_law``: ``state -> `` the coupling's law in a start-up;
+    ``envelope``: ``(state, x, p) ->`` its :class:`clutchopt.model.Envelope` (outer diameter, axial length,
+    like-for-like mass), reported as outputs by every mode.
     """
 
     coupling: str
@@ -36,12 +39,18 @@ class CouplingModel:
     outputs: Callable
     speed_law: Callable[[State], SpeedLaw | ElasticLaw]
     constraints: Callable = lambda state, x, p: []
+    envelope: Callable | None = None
 
     def formulation(self, mode: str, title: str, variables: tuple[Variable, ...], state: State,
                     constraints: Callable = lambda state, x, p: [],
                     outputs: Callable = lambda state, x, p: {}) -> Formulation:
         """The posed problem of one mode, from how it obtains the state and what it adds."""
         (mass_description, mass), (cost_description, cost) = self.mass, self.cost
+        envelope = self.envelope
+
+        def envelope_outputs(s, x, p):
+            return envelope(s, x, p).outputs() if envelope else {}
+
         return Formulation(
             coupling=self.coupling,
             mode=mode,
@@ -50,9 +59,13 @@ class CouplingModel:
             variables=variables,
             constraints=lambda x, p: self.constraints(s := state(x, p), x, p) + constraints(s, x, p),
             objectives=(Objective("mass", "kg", mass_description, lambda x, p: mass(state(x, p), p)),
-                        Objective("cost", "EUR", cost_description, lambda x, p: cost(state(x, p), p))),
-            outputs=lambda x, p: {**self.outputs(s := state(x, p), x, p), **outputs(s, x, p)},
+                        Objective("cost", "EUR", cost_description, lambda x, p: cost(state(x, p), p)))
+            + ((Objective("envelope_mass", "kg", ENVELOPE_MASS, lambda x, p: envelope(state(x, p), x, p).mass),)
+               if envelope else ()),
+            outputs=lambda x, p: {**self.outputs(s := state(x, p), x, p), **outputs(s, x, p),
+                                  **envelope_outputs(s, x, p)},
             speed_law=self.speed_law(state),
+            envelope=(lambda x, p: envelope(state(x, p), x, p)) if envelope else None,
         )
 
 
@@ -62,19 +75,21 @@ def at_unit_speed(p):
 
 
 def centrifugal_speed_law(state: State, torque: Callable, weight_mass: Callable | None = None,
-                          weight_radius: Callable | None = None) -> SpeedLaw:
+                          weight_radius: Callable | None = None, friction_area: Callable | None = None) -> SpeedLaw:
     """T = K w_a^2 for a coupling whose torque comes from centrifugal forces: K is ``torque(state, p)`` at
     w_a = 1 rad/s. ``weight_mass(state)`` and ``weight_radius(state)`` give m and r of one weight, whose
-    centrifugal force m r w_a^2 springs and gravity act against; without them those effects do not apply."""
+    centrifugal force m r w_a^2 springs and gravity act against; without them those effects do not apply.
+    ``friction_area(state)``: the area of the friction surfaces that wear (the lining's life)."""
     def torque_coefficient(x, p):
         unit = at_unit_speed(p)
         return torque(state(x, unit), unit)
 
+    area = (lambda x, p: friction_area(state(x, p))) if friction_area else None
     if weight_mass is None:
-        return SpeedLaw(torque_coefficient)
+        return SpeedLaw(torque_coefficient, friction_area=area)
     return SpeedLaw(torque_coefficient,
                     lambda x, p: weight_mass(s := state(x, p)) * weight_radius(s),
-                    lambda x, p: weight_mass(state(x, p)))
+                    lambda x, p: weight_mass(state(x, p)), area)
 
 
 def duty_torque(p):

@@ -88,7 +88,9 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=No
         rows_shown = rows_shown + SCATTER_ROWS
         notes.update({column: note for column, note in SCATTER_NOTES.items() if column in columns})
         if robust is not None and robust.target is not None:
-            notes[_column(robust)] = f"each constraint holds with probability {robust.target:g} to first order"
+            notes[_column(robust)] = (f"the design fails with probability at most {1 - robust.target:.3g}"
+                                      if robust.method == "system_chance" else
+                                      f"each constraint fails with probability at most {1 - robust.target:.3g}")
     names = list(columns)
     rows = []
     for row in rows_shown:
@@ -128,7 +130,7 @@ CHANCE_SHOWN = 0.999  # the chance-constrained column of compare
 SCATTER_NOTES = {
     "nominal": "the case's mode optimised at the nominal values",
     "worst_case": "every constraint at its own worst corner of the [scatter] ranges",
-    f"chance_{CHANCE_SHOWN:g}": f"each constraint holds with probability {CHANCE_SHOWN:g} to first order",
+    f"chance_{CHANCE_SHOWN:g}": f"each constraint fails with probability at most {1 - CHANCE_SHOWN:.3g}",
 }
 
 
@@ -155,7 +157,8 @@ def _scatter_columns(case: Case, coupling, spec, options: SolverOptions, robust=
         values = spec.rows_from_design(mode, solution.design, outputs, params)
         if solution.status in ("optimal", "unverified"):
             checks = corner_checks(worst.formulation, solution.design, params, case.scatter)
-            failure = failure_probabilities(worst.formulation, solution.design, params, case.scatter, methods[0].samples)
+            failure = failure_probabilities(worst.formulation, solution.design, params, case.scatter, methods[0].samples,
+                                            correlation=case.correlation)
             values.update(worst_corner_margin=min(c.margin for c in checks),
                           failure_probability=max(p for p, _, _ in failure.values()))
         columns[column] = (solution, values)

@@ -5,25 +5,36 @@ interval evaluation (:mod:`clutchopt.optimise.interval`). A box is empty of feas
 bound exceeds the tolerance over all of it. A box whose uncertain rows (those not met throughout it) all fall, or all
 rise, with one variable holds a feasible design only if its face at that variable's upper (lower) bound does: the
 box shrinks to the face (the monotonicity test of interval global optimisation). Other boxes are bisected across
-their widest variable, relative to the design box. When no box is left the design space is empty: a proof, which
-holds for the relaxed integers and so for the integers. A box whose centre meets every row is a feasible design
-(of the relaxation), and the search stops there: the case is not infeasible.
+their widest variable, relative to the design box. Each box's integer variables are rounded inwards to whole
+numbers, and a box without one is dropped. When no box is left the design space is empty: a proof, for the integers
+(ball_motor_start at 565 kW: its continuous relaxation has designs, no whole number of ball rows does). A box whose
+centre meets every row is a feasible design (of the relaxation), and the search stops there: the case is not
+infeasible.
 
-Work is bounded: at most ``MAX_BOXES`` boxes are evaluated, after which the search
-gives up without a verdict.
+Work is bounded: at most ``MAX_BOXES`` boxes are evaluated, after which the search gives up without a verdict; beyond
+the first ``SURE_BOXES`` it also gives up as soon as the boxes left grow by more than ``GROWTH`` in an iteration. A
+search that will prove closes in: the boxes left grow by at most 1.25 an iteration and then fall (ball_motor_start
+at 580-800 kW: 300 to 1,200 boxes left at each of about 30 iterations, 15,000-34,000 boxes in all), while one whose
+bounds are too loose to prove doubles them every iteration (wedge_motor_start in geometry mode in a 100 mm
+housing: 32, 110, 204, 392, 752, ...) and stops where it did with a budget of 2,500 boxes.
+
+Declared monotone nodes (Hertz's n_a, n_b of the ball's contact, :mod:`clutchopt.monotone`) are bounded at their
+argument's ends (:mod:`clutchopt.optimise.interval_nodes`): replayed through their Newton step on the elliptic
+integrals, their bounds are unbounded on boxes 1 % wide, and no conflict through the contact stress was provable.
 """
 
 from __future__ import annotations
 
 from typing import NamedTuple
 
-import casadi as ca
 import numpy as np
 
-from clutchopt.optimise.interval import IntervalFunction
+from clutchopt.optimise.interval_nodes import enclosed_rows
 from clutchopt.optimise.verify import DESIGN_STATUSES
 
-MAX_BOXES = 2_500
+MAX_BOXES = 40_000  # about 1.5 s of CPU; ball_motor_start's static conflict at 580-800 kW takes 15,000-34,000
+SURE_BOXES = 2_500  # evaluated in any case; beyond, only while the search closes in (GROWTH)
+GROWTH = 1.5  # the most the boxes left may grow from one iteration to the next beyond SURE_BOXES
 BATCH = 128  # boxes an iteration evaluates at least (bisecting as often as it takes)
 TOLERANCE = 1e-6  # a row must be broken by more than this (relative) over a whole box for the box to be empty
 
@@ -37,17 +48,11 @@ class Emptiness(NamedTuple):
     feasible: np.ndarray | None = None  # a design meeting every row (SI), if one was met
 
 
-def interval_functions(posed) -> tuple[IntervalFunction, IntervalFunction]:
+def interval_functions(posed):
     """The formulation's own constraint rows (a start-up's left out: its states are not searched) and their
-    Jacobian in the design variables, as interval functions of (design, p), built once per problem."""
-    def build(_):
-        n = len(posed.names)
-        design, internal, p = posed.nlp["x"][:n], posed.nlp["x"][n:], posed.nlp["p"]
-        g = ca.substitute(posed.nlp["g"][: sum(posed.constraint_rows[: posed.n_checked])], internal,
-                          ca.DM.zeros(internal.shape))
-        return (IntervalFunction(ca.Function("g_interval", [design, p], [g])),
-                IntervalFunction(ca.Function("dg_interval", [design, p], [ca.densify(ca.jacobian(g, design))])))
-    return posed.built("interval", None, build)
+    Jacobian in the design variables, as interval functions of (design, p) with the declared monotone nodes
+    enclosed at their arguments' ends (:mod:`clutchopt.optimise.interval_nodes`), built once per problem."""
+    return posed.built("interval", True, lambda _: enclosed_rows(posed))
 
 
 def search(posed, p: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> Emptiness | None:
@@ -60,63 +65,113 @@ def searches(posed, problems: list[tuple[np.ndarray, np.ndarray, np.ndarray]]) -
     """:func:`search` of each ``(p, lower, upper)`` (the points of a sweep), all at once: the boxes of every search
     in one array (a box's bounds are its own: the interval rules work box by box), each with its own parameters and
     its own tally, so each search's outcome, box count and decisive constraints are what it alone would give; an
-    evaluation costs per operation, not per box, so the searches of many points cost little more than one."""
-    functions = interval_functions(posed)
-    names = posed.row_names
+    evaluation costs per operation as much as per box, so searches together cost less than one by one."""
     outcomes: list[Emptiness | None] = [None] * len(problems)
     started = [i for i, (_, lower, upper) in enumerate(problems)
                if np.all(np.isfinite(lower)) and np.all(np.isfinite(upper))]
     if not started:
         return outcomes
-    params = np.stack([problems[i][0] for i in started], axis=1)
-    lo = np.stack([problems[i][1] for i in started], axis=1)
-    hi = np.stack([problems[i][2] for i in started], axis=1)
-    width0 = np.where(hi > lo, hi - lo, 1.0)
-    owner = np.arange(len(started))  # each box's search (a column of params), boxes of one search together
-    decisive: list[dict[str, int]] = [{} for _ in started]
-    evaluated = np.zeros(len(started), dtype=int)
+    declared = interval_functions(posed)
+    agree = [declared[0].nodes.agree(problems[i][1], problems[i][2], problems[i][0]) for i in started]
+    for functions, group in ((declared, [i for i, a in zip(started, agree) if a]),
+                             (None, [i for i, a in zip(started, agree) if not a])):
+        if group:  # where the declared nodes do not stand for the NLP's rows, the rows replayed
+            functions = functions or posed.built("interval", False, lambda _: enclosed_rows(posed, declared=False))
+            for i, outcome in zip(group, _searched(posed, functions, [problems[i] for i in group])):
+                outcomes[i] = outcome
+    return outcomes
 
-    def done(searches_ended, outcome) -> np.ndarray:
-        for j in searches_ended.tolist():
-            outcomes[started[j]] = outcome(j)
-        return ~np.isin(owner, searches_ended)
+
+def _searched(posed, functions, problems: list) -> list[Emptiness]:
+    """The searches of :func:`searches` with the same interval functions, every box a column with its search's."""
+    names, count = posed.row_names, len(problems)
+    params = np.stack([p for p, _, _ in problems], axis=1)
+    lo = np.stack([lower for _, lower, _ in problems], axis=1)
+    hi = np.stack([upper for _, _, upper in problems], axis=1)
+    width0 = np.where(hi > lo, hi - lo, 1.0)
+    owner = np.arange(count)  # each box's search (a column of params), the boxes of one search together
+    decisive: list[dict[str, int]] = [{} for _ in problems]
+    evaluated, left = np.zeros(count, dtype=int), np.full(count, np.inf)
+    outcomes: list[Emptiness | None] = [None] * count
+
+    def end(searches_ended, outcome) -> None:
+        for j in np.asarray(searches_ended, dtype=int).tolist():
+            outcomes[j] = outcome(j)
+
+    def tally(j: int, key: str, boxes: int) -> None:
+        decisive[j][key] = decisive[j].get(key, 0) + boxes
 
     while lo.shape[1]:
-        counts = np.bincount(owner, minlength=len(started))
-        keep = done(np.flatnonzero((counts > 0) & (evaluated + counts > MAX_BOXES)),
-                    lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
+        before = np.unique(owner)
+        lo, hi, none = _rounded(lo, hi, posed.integer)
+        for j in before.tolist():
+            for i, row in zip(posed.integer, none):
+                dropped = int(row[owner == j].sum())
+                if dropped:
+                    tally(j, f"a whole {posed.names[i]}", dropped)
+        kept = ~none.any(axis=0)
+        lo, hi, owner = lo[:, kept], hi[:, kept], owner[kept]
+        end(np.setdiff1d(before, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
+        counts = np.bincount(owner, minlength=count)
+        over = np.flatnonzero((counts > 0) & (evaluated + counts > MAX_BOXES))
+        end(over, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
+        keep = ~np.isin(owner, over)
         lo, hi, owner = lo[:, keep], hi[:, keep], owner[keep]
         if not lo.shape[1]:
             break
-        evaluated += np.bincount(owner, minlength=len(started))
+        evaluated += np.bincount(owner, minlength=count)
         (g_lo, g_hi), (d_lo, d_hi), centre, (c_lo, c_hi) = _bounds(functions, lo, hi, params[:, owner])
-        met = np.all(c_hi <= 0.0, axis=0)
-        first_met = {}
-        for box in np.flatnonzero(met)[::-1].tolist():  # the first box of its search that meets every row
+        first_met: dict[int, int] = {}
+        for box in np.flatnonzero(np.all(c_hi <= 0.0, axis=0))[::-1].tolist():  # each search's first box met
             first_met[int(owner[box])] = box
-        keep = done(np.array(sorted(first_met), dtype=int),
-                    lambda j: Emptiness(False, int(evaluated[j]), decisive[j], centre[:, first_met[j]]))
+        end(sorted(first_met), lambda j: Emptiness(False, int(evaluated[j]), decisive[j], centre[:, first_met[j]]))
+        keep = ~np.isin(owner, list(first_met))
         empty = g_lo > TOLERANCE
-        for j in np.unique(owner[keep]).tolist():
+        running = np.unique(owner[keep])
+        for j in running.tolist():
             emptied = empty[:, owner == j].sum(axis=1)
             for row in np.flatnonzero(emptied).tolist():
-                decisive[j][names[row]] = decisive[j].get(names[row], 0) + int(emptied[row])
+                tally(j, names[row], int(emptied[row]))
         alive = keep & ~empty.any(axis=0)
-        before = np.unique(owner[keep])
         lo, hi, owner, uncertain = lo[:, alive], hi[:, alive], owner[alive], g_hi[:, alive] > 0.0
-        done(np.setdiff1d(before, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
+        end(np.setdiff1d(running, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
+        counts = np.bincount(owner, minlength=count)
+        spreading = np.flatnonzero((counts > 0) & (evaluated > SURE_BOXES) & (counts > GROWTH * left))
+        end(spreading, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))  # not closing in: give up
+        left = np.where(counts > 0, counts, left)
+        keep = ~np.isin(owner, spreading)
+        lo, hi, owner, uncertain = lo[:, keep], hi[:, keep], owner[keep], uncertain[:, keep]
         if not lo.shape[1]:
             break
-        d_lo, d_hi = d_lo[:, :, alive], d_hi[:, :, alive]
+        d_lo, d_hi = d_lo[:, :, alive][:, :, keep], d_hi[:, :, alive][:, :, keep]
         lo, hi = _faces(lo, hi, d_lo, d_hi, uncertain)
-        counts = np.bincount(owner, minlength=len(started))
+        counts = np.bincount(owner, minlength=count)
         with np.errstate(divide="ignore"):  # few large batches: an evaluation costs per operation, not per box
             rounds = np.maximum(1, np.ceil(np.log2(BATCH / np.maximum(counts, 1)))).astype(int)
         for turn in range(int(rounds[owner].max())):
-            split = rounds[owner] > turn
-            lo, hi, owner, parents = _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0, split)
+            lo, hi, owner, parents = _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0,
+                                                     rounds[owner] > turn)
             d_lo, d_hi, uncertain = d_lo[..., parents], d_hi[..., parents], uncertain[:, parents]
     return outcomes
+
+
+def _whole(lo: np.ndarray, hi: np.ndarray, integer: list[int]) -> tuple[np.ndarray, np.ndarray, list[int]]:
+    """The boxes with their integer variables' ranges rounded inwards to whole numbers (1e-9 of slack), those left
+    without a whole number dropped (an integer design lies in what is left); how many each integer variable
+    dropped."""
+    lo, hi, none = _rounded(lo, hi, integer)
+    kept = ~none.any(axis=0)
+    return lo[:, kept], hi[:, kept], [int(row.sum()) for row in none]
+
+
+def _rounded(lo: np.ndarray, hi: np.ndarray, integer: list[int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`_whole`'s boxes rounded, all of them, and which each integer variable leaves without a whole number
+    (a row per integer variable, a column per box)."""
+    if not integer:
+        return lo, hi, np.zeros((0, lo.shape[1]), dtype=bool)
+    lo, hi = lo.copy(), hi.copy()
+    lo[integer], hi[integer] = np.ceil(lo[integer] - 1e-9), np.floor(hi[integer] + 1e-9)
+    return lo, hi, lo[integer] > hi[integer]
 
 
 def _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0, split):

@@ -10,7 +10,14 @@ of every coupling, because they bound what the drive can do:
   locked drive turning at w >= w_L,min needs T_m(w) >= T_c;
 - the motor cannot bring the masses to the lock-up speed in time: at lock-up motor and machine turn at
   w_L >= w_L,min, so the motor has put in at least (J + J_m) w_L,min^2 / 2 (slip heat and the load's work come on
-  top); it delivers at most P_peak = max_w T(w) w, so t_start >= (J + J_m) w_L,min^2 / (2 P_peak).
+  top); it delivers at most P_peak = max_w T(w) w, so t_start >= (J + J_m) w_L,min^2 / (2 P_peak);
+- the lining cannot stay within its limits (effect friction_heat): while the coupling slips it passes T >= J dw/dt
+  (the load takes T_c >= 0 on top) at a driving speed w_a >= w_e (below its engagement speed it passes nothing), so
+  the slip heat of a start, the integral of T (w_a - w), is at least J (integral from 0 to w_e of (w_e - w) dw) =
+  J w_e^2 / 2: with a constant driving speed w (no motor_curve) W >= J w^2 / 2, with a motor W >= J w_e,min^2 / 2
+  (min_engagement_speed). The lumped heat balance C dT/dt = P - G T gives a start's rise dT >= e^(-G t_max / C) W / C
+  (the heat released by lock-up, t <= max_start_time, less what the housing shed meanwhile), the steady rise of
+  repeated starts W n_h / G; so the lining reaches at least T_0 + W n_h / G + e^(-G t_max / C) W / C.
 """
 
 from __future__ import annotations
@@ -25,8 +32,10 @@ from clutchopt.start_up.equations import kloss_torque
 def start_up_proofs(case) -> list[str]:
     """What the case's drive makes impossible whatever the coupling, each in words with its numbers (none: no
     proof). Applies to a [start_up] with an induction motor (effect motor_curve) and a lock-up speed limit."""
-    if case.start_up is None or not case.start_up.has("motor_curve"):
+    if case.start_up is None:
         return []
+    if not case.start_up.has("motor_curve"):
+        return lining_proofs(case)
     v = case.values
     if "min_lock_up_speed" not in v:
         return []
@@ -50,4 +59,55 @@ def start_up_proofs(case) -> list[str]:
         proofs.append(f"bringing {inertia:.6g} kg*m^2 to {w_l * 30 / math.pi:.6g} rpm takes at least "
                       f"{shortest:.4g} s at the motor's peak power {peak / 1e3:.6g} kW, more than max_start_time "
                       f"{v['max_start_time']:.6g} s")
-    return proofs
+    return proofs + lining_proofs(case)
+
+
+def least_friction_work(case) -> tuple[float, str]:
+    """A friction work every start of every design releases (J), and how it follows (module docstring); 0 where none
+    is known."""
+    v, spec = case.values, case.start_up
+    if spec.load_profile is not None and min(spec.load_profile.values) < 0:
+        return 0.0, ""  # a load that drives the machine: T >= J dw/dt does not hold
+    if not spec.has("motor_curve"):
+        speed, how = v["speed"], "the constant driving speed"
+    elif "min_engagement_speed" in v:
+        speed, how = v["min_engagement_speed"], "min_engagement_speed"
+    else:
+        return 0.0, ""
+    work = 0.5 * v["driven_inertia"] * speed**2
+    return work, (f"every start releases at least J w^2 / 2 = {work / 1e3:.6g} kJ of slip heat (J "
+                  f"{v['driven_inertia']:.6g} kg*m^2, w {speed * 30 / math.pi:.6g} rpm, {how})")
+
+
+def lining_proofs(case) -> list[str]:
+    """The lining's limits no design can meet (effect friction_heat), each with its numbers."""
+    v, spec = case.values, case.start_up
+    if not spec.has("friction_heat") or "heat_capacity" not in v:
+        return []
+    work, why = least_friction_work(case)
+    if work <= 0:
+        return []
+    limits = spec.limits
+    capacity, conductance = v["heat_capacity"], v.get("heat_conductance", 0.0)
+    rise = math.exp(-conductance * v["max_start_time"] / capacity) * work / capacity
+    steady = work * v["starts_per_hour"] / conductance if "starts_per_hour" in limits and conductance > 0 else 0.0
+    found = []
+
+    def beyond(name: str, least: float, limit: float, what: str, unit: str = "K", offset: float = 0.0) -> None:
+        if least > limit * (1.0 + 1e-9):
+            found.append(f"{name}: {why}, so {what} at least {least - offset:.6g} {unit}, above its limit "
+                         f"{limit - offset:.6g} {unit}")
+
+    if "max_friction_work" in limits:
+        beyond("friction_work", work, v["max_friction_work"], "the heat of a start is", "J")
+    if "max_temperature_rise" in limits:
+        beyond("temperature_rise", rise, v["max_temperature_rise"], "the friction parts rise by")
+    if "max_lining_temperature" in limits:
+        beyond("lining_temperature", v["ambient_temperature"] + steady + rise, v["max_lining_temperature"],
+               "the lining reaches", "degC", 273.15)
+    if steady and "max_continuous_temperature" in limits:
+        beyond("continuous_temperature", v["ambient_temperature"] + steady, v["max_continuous_temperature"],
+               "repeated starts keep the lining at", "degC", 273.15)
+    if "heat_dissipation" in limits and "starts_per_hour" in limits:
+        beyond("heat_per_hour", work * v["starts_per_hour"], v["heat_dissipation"], "the mean slip heat is", "W")
+    return found

@@ -5,12 +5,15 @@
   so a new assignment re-solves the built problem); the worst corner of each constraint is found by evaluating all
   2^n corners in float64 at the design (vectorised), the problem re-solved until the assignment settles, and the
   optimum checked at every corner.
-- ``chance=P``: each constraint holds with probability P to first order: h(x, mu) + z_P sigma_h(x) <= 0, h the
-  constraint's normalised violation, sigma_h^2 = sum_j (dh/dp_j sigma_j)^2 through CasADi's derivatives with
-  respect to the case quantities (the back-off of the limit by the propagated standard deviation).
+- ``chance=P``: each constraint fails with probability at most 1 - P, ``system_chance=P``: the design (any
+  constraint) does. The same NLP with each constraint at its performance point (PMA: the values of the scattered
+  quantities where its limit state is smallest on the sphere ||u|| = beta of the standard normal space, mapped
+  exactly), re-solved until the points settle (SORA); then beta corrected per constraint, a 1-D root find, until
+  importance sampling at the design point meets the target (FORM is exact only for a limit state linear in u).
 - Both are then checked by Monte Carlo: ``samples`` draws of the distributions (a range: uniform over it),
   evaluated vectorised in float64 by the formulation's own equations; each constraint's failure probability with
-  its Clopper-Pearson interval, for the robust and for the nominal design.
+  its Clopper-Pearson interval, for the robust and for the nominal design; and by FORM, SORM and importance sampling
+  at each constraint's design point, and the system's (``robust_reliability``).
 - A ``[start_up]``'s start is designed at one corner, where its simulated figures bind, and each of its
   constraints evaluated at its own (a scattered limit at its strict end): of the ends of the ranges (worst case) or
   of the quantiles (chance), re-solved until the corners settle; then simulated at every such corner (each start-up
@@ -27,23 +30,21 @@ from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Formulation, namespace
 from clutchopt.optimise.problem import problem_for
+from clutchopt.optimise.reliability import generalised_beta
 from clutchopt.optimise.robust_models import (
-    CHANCE_Z,
     CONFIDENCE,
     SAMPLES,
     START_UP,
     at_values,
-    chance_formulation,
     corner_name,
     corner_checks,
     corner_table,
     failure_probabilities,
-    mean_name,
-    sd_name,
     tornado,
     worst_case_formulation,
     worst_corners,
 )
+from clutchopt.optimise.robust_reliability import Reliability, performance_corners, reliability_at
 from clutchopt.optimise.robust_start_up import (
     MAX_START_CORNERS,
     START_SAMPLES,
@@ -59,25 +60,34 @@ from clutchopt.start_up.drive import Structure
 
 WORST_CASE = "worst-case"
 CHANCE = "chance"
+SYSTEM_CHANCE = "system_chance"
+CHANCES = (CHANCE, SYSTEM_CHANCE)
+BETA_STEPS = 12  # corrections of the chance design's betas until importance sampling meets the target
+AIM_BELOW = 0.005  # relative: the root find aims this far below 1 - P, so that the estimate ends at or below it
+SYSTEM_TOL = 0.01  # of ln(P(system fails) / (1 - P))
+ACTIVE = 1e-6  # relative margin at its performance point below which a constraint shapes the design
+VERIFIED_FACTOR = 2.0  # a chance design's failure probability is verified when its interval lies below this x 1 - P
+SETTLED = 1e-7  # relative: a performance point that moves less has settled
 MAX_SAMPLES = 1_000_000  # vectorised in float64: about 100 MB for the widest formulation
 CORNER_STEPS = 8  # re-solves while the worst corners move
 MAX_STARTS = 100_000
 
 
 def parse_method(text: str) -> tuple[str, float | None]:
-    """``worst-case`` or ``chance=P`` (0.5 < P < 1) from the command line."""
+    """``worst-case``, ``chance=P`` or ``system_chance=P`` (0.5 < P < 1) from the command line."""
     if text == WORST_CASE:
         return WORST_CASE, None
     name, sep, value = text.partition("=")
-    if name == CHANCE and sep:
+    if name in CHANCES and sep:
         try:
             probability = float(value)
         except ValueError:
             probability = math.nan
         if 0.5 < probability < 1.0 and probability <= 1.0 - 1e-9:
-            return CHANCE, probability
-        raise InputError("--robust", f"chance=P needs 0.5 < P <= 1 - 1e-9 (e.g. chance=0.999), got {value!r}")
-    raise InputError("--robust", f"expected worst-case or chance=P (e.g. chance=0.999), got {text!r}")
+            return name, probability
+        raise InputError("--robust", f"{name}=P needs 0.5 < P <= 1 - 1e-9 (e.g. chance=0.999), got {value!r}")
+    raise InputError("--robust", f"expected worst-case, chance=P or system_chance=P (e.g. chance=0.999), got "
+                                 f"{text!r}")
 
 
 # --- Solving ------------------------------------------------------------------------------------------------------
@@ -102,11 +112,15 @@ class RobustResult:
     start_up_samples: int = 0  # simulated starts of the Monte Carlo
     start_up_failure: dict[str, list[float]] = field(default_factory=dict)  # start-up limit -> [p, low, high]
     verification: str = ""  # one line: what was verified, and how
+    reliability: Reliability | None = None  # the robust design's constraints and system: FORM, SORM, importance
+    nominal_reliability: Reliability | None = None  # sampling, design points; the nominal design's
+    betas: dict[str, float] = field(default_factory=dict)  # chance: each constraint's beta of its performance point
 
     def as_dict(self) -> dict:
         return {
             "method": self.method, "target": self.target, "status": self.status, "diagnosis": self.diagnosis,
             "samples": self.samples, "confidence": CONFIDENCE,
+            "failure_probability_estimator": "Monte Carlo (Clopper-Pearson interval)",
             "failure_probability": self.failure, "nominal_failure_probability": self.nominal_failure,
             "corners": self.corners,
             "checks": [c.as_dict() for c in self.checks],
@@ -116,6 +130,9 @@ class RobustResult:
             "nominal_design": self.nominal.design,
             "margin_sensitivity": self.bars,
             "verification": self.verification,
+            "reliability": self.reliability.as_dict() if self.reliability else None,
+            "nominal_reliability": self.nominal_reliability.as_dict() if self.nominal_reliability else None,
+            "performance_point_beta": self.betas or None,
             "start_up_verification": {"corners": self.start_up_points, "simulations": self.start_up_samples,
                                       "failure_probability": self.start_up_failure} if self.start_up_points else None,
         }
@@ -124,16 +141,15 @@ class RobustResult:
 _DERIVED: dict[tuple, Formulation] = {}
 
 
-def _derived(kind: str, base: Formulation, case: Case, names: tuple[str, ...],
-             start_up_names: tuple[str, ...]) -> Formulation:
+def _derived(base: Formulation, case: Case, names: tuple[str, ...], start_up_names: tuple[str, ...]) -> Formulation:
+    """The mode's formulation with each constraint at a corner of its own (worst case: of the ranges; chance: its
+    performance point), built once per scatter."""
     scattered = tuple(s.name for s in case.scatter)
     follows = tuple(sorted(case.follows.items()))
-    key = (kind, base.coupling, base.mode, base.variant, scattered, names, start_up_names, follows)
+    key = (base.coupling, base.mode, base.variant, scattered, names, start_up_names, follows)
     if key not in _DERIVED:
         declared = {q.name: q for q in case.quantities}
-        _DERIVED[key] = (worst_case_formulation(base, scattered, names, declared, follows, start_up_names)
-                         if kind == WORST_CASE else chance_formulation(base, scattered, declared, follows,
-                                                                       start_up_names))
+        _DERIVED[key] = worst_case_formulation(base, scattered, names, declared, follows, start_up_names)
     return _DERIVED[key]
 
 
@@ -142,8 +158,11 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
                  objective: str | None = None, options: SolverOptions = SolverOptions(),
                  samples: int = SAMPLES, starts: int = START_SAMPLES, base: Formulation | None = None) -> RobustResult:
     """The robust design of a case with a [scatter] section, beside its nominal design, both checked by Monte Carlo
-    (``samples``). A [start_up] is designed at its corners (worst case: of the ranges; chance: of the quantiles),
-    re-solved until they settle, then simulated at every such corner and by ``starts`` Monte Carlo starts.
+    (``samples``) and by the reliability methods (FORM, SORM, importance sampling; the system). Worst case: each
+    constraint at its worst corner of the ranges; chance: at its performance point on the beta-sphere (PMA, SORA),
+    beta corrected until importance sampling meets the target (:func:`_next_betas`). A [start_up] is designed at
+    its corners (worst case: of the ranges; chance: of the quantiles), re-solved until they settle, then simulated
+    at every such corner and by ``starts`` Monte Carlo starts.
     ``base``: the formulation to make robust, if not the mode's own (a Pareto point's, with its cost cap)."""
     if not case.scatter:
         raise InputError("--robust", "the case has no [scatter] section: say which quantities scatter and how")
@@ -154,48 +173,60 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
     nominal = problem_for(base, objective, options, structure).solve(case)
     params = case.params()
     names = tuple(c.name for c in base.constraints(namespace(nominal.design), params))
+    chance = method in CHANCES
+    allowed = _Allowed(1.0 - target, len(names), method == SYSTEM_CHANCE) if chance else None
+    betas = dict.fromkeys(names, allowed.beta) if chance else {}
 
     def corners_at(design: dict) -> tuple[dict, StartUpCorners | None]:
-        """Each constraint's worst corner (worst case; a start-up's constraints' and its start's, both methods),
-        and the start-up's ends, corners and bars there."""
-        corners = worst_corners(shown, design, params, case.scatter)[0] if method == WORST_CASE else {}
+        """Each constraint's worst corner (worst case) or performance point (chance), and a start-up's ends,
+        corners and bars there."""
+        corners = (worst_corners(shown, design, params, case.scatter)[0] if method == WORST_CASE else
+                   performance_corners(shown, design, params, case.scatter, betas, case.correlation))
         start_up = start_up_corners(case, base.mode, design, case.scatter, target) if structure else None
         return ({**corners, **start_up.corners}, start_up) if start_up else (corners, None)
 
     corners, start_up = corners_at(nominal.design)
     start_up_names = tuple(name for name in corners if name not in names and name != START_UP)
-    derived = _derived(method, base, case, names, start_up_names)
-    fixed = {}
-    if method == CHANCE:
-        from scipy.special import ndtri
-
-        fixed = {CHANCE_Z: float(ndtri(target)), **{mean_name(s.name): s.mean for s in case.scatter},
-                 **{sd_name(s.name): s.sd for s in case.scatter}}
+    derived = _derived(base, case, names, start_up_names)
     problem = problem_for(derived, objective, options, structure)
-    solution, settled = None, False
-    for _ in range(CORNER_STEPS):
-        values = {**fixed, **{corner_name(q, c): v for c, corner in corners.items() for q, v in corner.items()}}
-        solved = replace(case, values={**case.values, **values})  # NLP parameters, not case quantities
-        solution = problem.solve(solved, warm=solution) if solution else problem.solve(solved, start=nominal.design)
-        if solution.status not in DESIGN_STATUSES:
+    solution, settled, history = None, False, {name: [] for name in names}
+    for _ in range(BETA_STEPS if chance else 1):
+        for _ in range(CORNER_STEPS):
+            values = {corner_name(q, c): v for c, corner in corners.items() for q, v in corner.items()}
+            solved = replace(case, values={**case.values, **values})  # NLP parameters, not case quantities
+            solution = problem.solve(solved, warm=solution) if solution else problem.solve(solved, start=nominal.design)
+            if solution.status not in DESIGN_STATUSES:
+                break
+            moved, start_up = corners_at(solution.design)
+            settled, corners = _same(moved, corners), moved
+            if settled:
+                break
+        if not chance or solution.status not in DESIGN_STATUSES or not settled:
             break
-        moved, start_up = corners_at(solution.design)
-        settled, corners = moved == corners, moved
-        if settled:
+        reliability = reliability_at(shown, solution.design, params, case.scatter, case.correlation, names)
+        if not _next_betas(betas, history, reliability, solution, allowed):
             break
+        corners, start_up = corners_at(solution.design)
+    kept = {c.name for c in shown.constraints(namespace(nominal.design), params)}
     if method == WORST_CASE:
         checks = corner_checks(shown, solution.design, params, case.scatter)
         nominal_checks = corner_checks(shown, nominal.design, params, case.scatter)
-    else:
-        kept = {c.name for c in shown.constraints(namespace(nominal.design), params)}
-        checks = [c for c in solution.constraints if c.name in kept]  # backed off
+    else:  # each at its performance point
+        checks = [c for c in solution.constraints if c.name in kept]
         nominal_checks = [c for c in check_constraints(derived.constraints(namespace(nominal.design),
                                                                            at_values(params, values))) if c.name in kept]
-    failure = failure_probabilities(shown, solution.design, params, case.scatter, samples)
-    nominal_failure = failure_probabilities(shown, nominal.design, params, case.scatter, samples)
+    failure = failure_probabilities(shown, solution.design, params, case.scatter, samples,
+                                    correlation=case.correlation)
+    nominal_failure = failure_probabilities(shown, nominal.design, params, case.scatter, samples,
+                                            correlation=case.correlation)
     result = RobustResult(method, target, solution, nominal, checks, nominal_checks, samples, failure,
                           nominal_failure, {**tornado(shown, solution.design, params, case.scatter),
                                             **(start_up.bars if start_up else {})}, corners, shown, settled=settled)
+    if solution.status in DESIGN_STATUSES:
+        result.reliability = reliability_at(shown, solution.design, params, case.scatter, case.correlation, names)
+        result.nominal_reliability = reliability_at(shown, nominal.design, params, case.scatter, case.correlation,
+                                                    names)
+        result.betas = dict(betas)
     if structure and solution.status in DESIGN_STATUSES:
         result.start_up_points = (corner_points(corner_table(case.scatter, start_up.ends))
                                   if len(case.scatter) <= MAX_START_CORNERS
@@ -208,6 +239,73 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
     result.solution = replace(solution, status=result.status, diagnosis=result.diagnosis)
     result.verification = verification(result, case)
     return result
+
+
+def _same(moved: dict, corners: dict) -> bool:
+    """The corners (constraint -> quantity -> value) stopped moving: equal, a performance point to SETTLED."""
+    return moved.keys() == corners.keys() and all(
+        moved[c].keys() == corners[c].keys() and all(math.isclose(v, corners[c][q], rel_tol=SETTLED, abs_tol=1e-300)
+                                                     for q, v in moved[c].items()) for c in moved)
+
+
+@dataclass
+class _Allowed:
+    """The failure probability each constraint may have: 1 - P (chance), or for the system its ``share`` of 1 - P
+    spread over the constraints that can fail (Bonferroni: P(any) <= sum; ``share`` then scaled until importance
+    sampling of the system meets 1 - P)."""
+
+    system_allowed: float
+    count: int
+    system: bool
+    share: float = 1.0
+
+    @property
+    def each(self) -> float:
+        return self.system_allowed * self.share / (self.count if self.system else 1)
+
+    @property
+    def beta(self) -> float:
+        return generalised_beta(self.each)
+
+
+def _next_betas(betas: dict[str, float], history: dict[str, list], reliability, solution, allowed: _Allowed) -> bool:
+    """A step of the 1-D root find, per constraint, of the beta whose performance-point design meets the allowed
+    failure probability by importance sampling: the generalised index -Phi^-1(p) it reaches minus the one it should,
+    zero by the secant method (common random numbers: the estimate is a smooth function of the design), aimed
+    AIM_BELOW under it, until the allowed probability lies within the estimate's interval (FORM's beta is kept
+    where importance sampling does not refute it: exact where the limit state is linear in u). Only an
+    active constraint that depends on the scatter is corrected (an inactive one fails less than allowed whatever
+    its beta). System: once every constraint meets its share, the share is scaled by (1 - P) / P(system fails).
+    False when nothing moves."""
+    margins = {c.name: c.margin for c in solution.constraints}
+    shown = reliability.constraints
+    movable = [name for name in betas if name in shown and shown[name].point.found
+               and margins.get(name, 1.0) <= ACTIVE and shown[name].best.probability > 0]
+    if allowed.system and allowed.count != max(1, len(movable)):
+        allowed.count = max(1, len(movable))
+        for name in history:
+            history[name].clear()
+    moved = False
+    for name in movable:
+        best = shown[name].best
+        miss = generalised_beta(best.probability) - generalised_beta(allowed.each * (1 - AIM_BELOW))
+        history[name].append((betas[name], miss))
+        corrected = history[name][0][0] != betas[name]
+        if (best.probability if corrected else best.low) <= allowed.each <= best.high:
+            continue  # met: at or below once corrected; FORM's beta where sampling does not refute it (exact there)
+        (b0, m0), (b1, m1) = history[name][-2:] if len(history[name]) > 1 else ((None, None), history[name][-1])
+        betas[name] = b1 - m1 * (b1 - b0) / (m1 - m0) if b0 is not None and m1 != m0 else b1 - m1
+        moved = True
+    if not moved and allowed.system and reliability.system.probability > 0:
+        ratio = allowed.system_allowed / reliability.system.probability
+        if abs(math.log(ratio)) > SYSTEM_TOL:
+            allowed.share *= ratio
+            for name in history:
+                history[name].clear()
+            for name in movable:
+                betas[name] = allowed.beta
+            moved = True
+    return moved
 
 
 def _distinct(points: list[dict[str, float]]) -> list[dict[str, float]]:
@@ -236,8 +334,15 @@ def verdict(result: RobustResult) -> tuple[str, str | None]:
                 for name, (p, low, high) in failure.items() if low > allowed]
 
     reasons = []
+    if result.reliability is not None:
+        shown = ({"the system": result.reliability.system} if result.method == SYSTEM_CHANCE else
+                 {name: c.best for name, c in result.reliability.constraints.items()})
+        if missed := [f"{name} fails with probability {e.probability:.3g} ({e.low:.3g} to {e.high:.3g}, "
+                      f"{e.estimator})" for name, e in shown.items()
+                      if e.low > allowed or e.high > VERIFIED_FACTOR * allowed]:
+            reasons.append(f"not shown within {VERIFIED_FACTOR:g} x {allowed:.3g}: " + "; ".join(missed))
     if static := exceeded(result.failure):
-        reasons.append("Monte Carlo: " + "; ".join(static) + " (first order is not enough here)")
+        reasons.append("Monte Carlo: " + "; ".join(static))
     if start := exceeded(result.start_up_failure):
         reasons.append(f"{result.start_up_samples} simulated starts: " + "; ".join(start)
                        + " (the start is not monotone in the scatter: its quantile corner is not enough)")
@@ -251,8 +356,18 @@ def verification(result: RobustResult, case: Case) -> str:
     quantities = {q.name: q for q in case.quantities}
     n = len(case.scatter)
     parts = [f"constraints at all {2 ** n} corners of the ranges" if result.method == WORST_CASE else
-             f"constraints backed off to first order for P = {result.target:g}",
-             f"{result.samples} Monte Carlo samples: {_largest(result.failure)}"]
+             f"constraints at their performance points for {result.method} P = {result.target:g}, beta corrected by "
+             "importance sampling", f"{result.samples} Monte Carlo samples: {_largest(result.failure)}"]
+    if result.reliability is not None:
+        name, best = max(((name, c.best) for name, c in result.reliability.constraints.items()),
+                         key=lambda item: item[1].probability)
+        system = result.reliability.system
+        parts.append(f"importance sampling at the design points: largest P(fail) {best.probability:.3g} ({name}; "
+                     f"95% interval {best.low:.3g} to {best.high:.3g}), system {system.probability:.3g} "
+                     f"({system.low:.3g} to {system.high:.3g})")
+    simulated = [c.name for c in result.checks if c.name in result.start_up_failure]
+    if result.method in CHANCES and simulated:
+        parts.append(f"start-up limits not by PMA but at the quantile corners: {', '.join(simulated)}")
     if result.start_up_points:
         kind = "corner(s) of the ranges" if result.method == WORST_CASE else "quantile corner(s)"
         where = "; ".join(_shown(point, quantities) for point in result.start_up_points)

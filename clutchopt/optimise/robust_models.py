@@ -1,20 +1,18 @@
-"""What a robust design is made of: the derived formulations (each constraint at a corner of its own, or backed off
-by the standard deviation it propagates) and, at a design, the corners, Monte Carlo samples and margin
+"""What a robust design is made of: the derived formulation (each constraint at a corner of its own: of the ranges,
+or its performance point) and, at a design, the corners, Monte Carlo samples and margin
 sensitivities in float64, vectorised (``clutchopt.optimise.robust`` designs with them; docs/robust.md)."""
 
 from __future__ import annotations
 
 import itertools
-import math
 from dataclasses import replace
 from types import SimpleNamespace
 
-import casadi as ca
 import numpy as np
 
-from clutchopt.backend import is_symbolic
-from clutchopt.model import Constraint, Formulation, Quantity, followed, namespace
+from clutchopt.model import Constraint, Formulation, followed, namespace
 from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, check_constraints, constraint_table
+from clutchopt.scatter import draw
 
 SAMPLES = 10_000
 CONFIDENCE = 0.95  # of the failure probabilities' intervals
@@ -81,79 +79,6 @@ def worst_case_formulation(base: Formulation, scattered: tuple[str, ...], names:
                    + (f" ({', '.join(moved)} following)" if moved else ""), start_up_view=view)
 
 
-def mean_name(quantity: str) -> str:
-    return f"{quantity}~mean"
-
-
-def sd_name(quantity: str) -> str:
-    return f"{quantity}~sd"
-
-
-CHANCE_Z = "chance_z"
-
-
-def chance_formulation(base: Formulation, scattered: tuple[str, ...], declared: dict,
-                       follows: tuple = (), start_up_names: tuple[str, ...] = ()) -> Formulation:
-    """``base`` at the scattered quantities' means, each constraint backed off by z sigma_h (to first order); a
-    start-up at its quantile corners (:func:`start_up_view`).
-    ``declared``: the case's quantities by name (a start-up's scatter only where the formulation uses them)."""
-    start_up, view, _ = start_up_view(declared, scattered, follows, start_up_names)
-    own = [q.name for q in base.quantities]
-    extra = tuple(replace(declared[q], name=mean_name(q), section="scatter", default=None, description=f"mean of {q}")
-                  for q in scattered)
-    extra += tuple(replace(declared[q], name=sd_name(q), section="scatter", default=None, above=None, at_least=0,
-                           below=None, at_most=None, description=f"standard deviation of {q}") for q in scattered)
-    extra += (Quantity(CHANCE_Z, "", "normal quantile of the target probability", "z", "scatter", None),)
-    gradient = _violation_gradient(base, scattered)
-
-    def constraints(x, p):
-        x, mean = at_point(vars(x), vars(p), {q: getattr(p, mean_name(q)) for q in scattered})
-        nominal = base.constraints(x, mean)
-        symbolic = is_symbolic(*vars(p).values())
-        if not symbolic:  # float64 check: CasADi's derivatives evaluated at this point
-            matrix = gradient(x, mean)
-        out = []
-        for row, c in enumerate(nominal):
-            violation = c.normalised()
-            terms = []
-            for q in scattered:
-                sd = getattr(p, sd_name(q))
-                if q not in own:  # a start-up's quantity: the formulation's constraints do not depend on it
-                    continue
-                if symbolic:
-                    slope = ca.jacobian(ca.SX(violation), getattr(mean, q))
-                else:
-                    slope = matrix[row, own.index(q)]
-                terms.append((slope * sd) ** 2)
-            sigma = (sum(terms) + 1e-24) ** 0.5
-            shift = p.chance_z * sigma * (c.limit if c.scale is None else c.scale)
-            value = c.value + shift if c.sense == "<=" else c.value - shift
-            out.append(Constraint(c.name, c.equation, value, c.limit, c.sense, c.unit, c.scale,
-                                  f"{c.description}, backed off by z sigma", c.constant_acceleration))
-        return out
-
-    return replace(base, quantities=base.quantities + extra + start_up, constraints=constraints,
-                   variant=f"{base.variant} chance over {', '.join(scattered)}".strip(), start_up_view=view)
-
-
-def _violation_gradient(base: Formulation, scattered: tuple[str, ...]):
-    """(x, p) -> d(normalised violation of each constraint) / d(case quantity), by CasADi, evaluated in float64; a
-    scattered design variable (fixed by the case) read as its case quantity."""
-    x_sym = ca.SX.sym("x", len(base.variables))
-    p_sym = ca.SX.sym("p", len(base.quantities))
-    p = {q.name: p_sym[j] for j, q in enumerate(base.quantities)}
-    x = design_at({v.name: x_sym[i] for i, v in enumerate(base.variables)}, {q: p[q] for q in scattered if q in p})
-    h = ca.vertcat(*[ca.SX(c.normalised()) for c in base.constraints(namespace(x), namespace(p))])
-    function = ca.Function("dh_dp", [x_sym, p_sym], [ca.jacobian(h, p_sym)])
-
-    def evaluate(x_values, p_values) -> np.ndarray:
-        xs = [float(getattr(x_values, v.name)) for v in base.variables]
-        ps = [float(getattr(p_values, q.name, math.nan)) for q in base.quantities]
-        return np.array(function(xs, ps))
-
-    return evaluate
-
-
 # --- Corners, samples, sensitivities at a design (float64, vectorised) ------------------------------------------
 def at_values(params: SimpleNamespace, values: dict) -> SimpleNamespace:
     return SimpleNamespace(**{**vars(params), **values})
@@ -189,11 +114,11 @@ def worst_corners(formulation: Formulation, design: dict, params: SimpleNamespac
 
 
 def failure_probabilities(formulation: Formulation, design: dict, params: SimpleNamespace, scatter,
-                          samples: int = SAMPLES, seed: int = SEED) -> dict[str, list[float]]:
+                          samples: int = SAMPLES, seed: int = SEED, correlation=None) -> dict[str, list[float]]:
     """Monte Carlo: each constraint's failure probability (relative margin below -FEASIBILITY_TOL) with its
-    Clopper-Pearson interval."""
-    rng = np.random.default_rng(seed)
-    drawn = {s.name: s.sample(rng, samples) for s in scatter}
+    Clopper-Pearson interval; ``correlation``: of the scattered quantities' normal scores (``Case.correlation``,
+    :func:`clutchopt.scatter.draw`)."""
+    drawn = draw(scatter, np.random.default_rng(seed), samples, correlation)
     constraints = constraints_at(formulation, design, params, drawn)
     margins = _margins(constraints, samples)
     # active constraints sit at 0 +- round-off

@@ -15,7 +15,7 @@ from clutchopt.formulations import get_coupling
 from clutchopt.model import Quantity, namespace
 from clutchopt.optimise.robust_models import SEED, START_UP, clopper_pearson, corner_table, design_at
 from clutchopt.optimise.verify import ConstraintCheck, check_constraints
-from clutchopt.scatter import Scatter, _within
+from clutchopt.scatter import Scatter, _within, draw
 from clutchopt.start_up.drive import CLOSED_FORM, Structure
 
 START_SAMPLES = 200  # simulated starts of a start-up's Monte Carlo (about 30 ms of CPU each)
@@ -25,13 +25,11 @@ MAX_START_CORNERS = 4  # scattered quantities up to which a start-up is simulate
 
 # --- A start-up under scatter: designed at one corner, simulated at every corner and by Monte Carlo -------------------
 def quantile(s: Scatter, probability: float, quantity: Quantity) -> float:
-    """The value a scattered quantity stays below with ``probability``: a range uniform over it, a normal
-    distribution cut where the quantity's valid range ends."""
+    """The value a scattered quantity stays below with ``probability`` (:meth:`Scatter.from_standard` of its normal
+    quantile), cut where the quantity's valid range ends."""
     from scipy.special import ndtri
 
-    if s.kind == "normal":
-        return _within(quantity, s.mean + s.sd * float(ndtri(probability)))
-    return s.low + probability * (s.high - s.low)
+    return _within(quantity, float(s.from_standard(ndtri(probability))))
 
 
 def quantile_ends(case: Case, scatter, share: float) -> dict[str, tuple[float, float]]:
@@ -134,10 +132,11 @@ def start_up_checks(case: Case, mode: str, design: dict, points: list[dict]) -> 
 def start_up_failures(case: Case, mode: str, design: dict, scatter, starts: int = START_SAMPLES,
                       seed: int = SEED) -> dict[str, list[float]]:
     """Monte Carlo of the simulated start: ``starts`` draws of the distributions (cut where each quantity's valid
-    range ends), each start-up limit's failure probability with its Clopper-Pearson interval."""
-    rng = np.random.default_rng(seed)
+    range ends; correlated as the case's [scatter.correlation] when ``scatter`` is the case's), each start-up
+    limit's failure probability with its Clopper-Pearson interval."""
     declared = {q.name: q for q in case.quantities}
-    drawn = {s.name: s.sample(rng, starts) for s in scatter}
+    correlation = case.correlation if tuple(scatter) == case.scatter else None
+    drawn = draw(scatter, np.random.default_rng(seed), starts, correlation)
     points = [{q: _within(declared[q], float(values[i])) for q, values in drawn.items()} for i in range(starts)]
     return {column[0].name: clopper_pearson(sum(not c.feasible for c in column), starts)
             for column in zip(*simulated_start_ups(case, mode, design, points))}

@@ -13,16 +13,19 @@ import numpy as np
 from clutchopt.optimise.robust_models import corner_name
 from clutchopt.optimise.verify import check_constraints
 from clutchopt.start_up.drive import Drive, seen_constraints
+from clutchopt.start_up.lining import UNITS as LINING_UNITS
+from clutchopt.start_up.lining import lining_figures, lining_notes
 from clutchopt.start_up.mesh import adapted_mesh
 
 BACK_OFF_STEPS = 4  # defect corrections of limits the simulated start misses (or binds at off the limit)
 CENTRE = 0.25  # of the tolerance: the objective's error from a binding limit met off the limit that is corrected
 LIMIT_OF = {"start_time": "max_start_time", "friction_work": "max_friction_work",
             "temperature_rise": "max_temperature_rise", "heat_per_hour": "heat_dissipation",
+            "lining_temperature": "max_lining_temperature", "continuous_temperature": "max_continuous_temperature",
             "link_stress": "max_link_stress"}
 UNITS = {"start_time": "s", "friction_work": "J", "temperature_rise": "K", "engagement_speed": "rad/s",
          "lock_up_speed": "rad/s", "engagement_time": "s", "lock_up_time": "s", "peak_link_stress": "Pa",
-         "peak_twist": "rad"}
+         "peak_twist": "rad", **LINING_UNITS}
 
 
 def start_up_report(block, case, design: dict[str, float], formulation, seen, figures):
@@ -30,12 +33,14 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
     and the start-up constraints re-checked with the simulated figures, each with the values ``seen(name)`` gives it
     (:func:`~clutchopt.start_up.drive.seen_constraints`): (summary in SI, constraint checks, the mesh the simulated
     start suggests for the next solve). ``case`` and ``design``: as the start sees them."""
-    from clutchopt.start_up.simulation import run_start_up, start_up_model
+    from clutchopt.start_up.simulation import run_start_up, start_up_model, worn_start_up_model
 
     values, *columns = figures
     nlp = dict(zip(block.outputs(), np.array(values).ravel()))
     trajectory = {name: np.array(column).ravel() for name, column in zip(block.trajectory(), columns)}
-    result = run_start_up(start_up_model(case, formulation.mode, design))
+    model = start_up_model(case, formulation.mode, design)
+    result = run_start_up(model)
+    worn = worn_start_up_model(case, formulation.mode, design, model)
     head = result.headline
     s = block.s
     stresses = result.history["stress"].to_numpy() if s.elastic else 0.0
@@ -69,13 +74,35 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
         "units": UNITS,
         "trajectory": {name: column.tolist() for name, column in trajectory.items()},
     }
+    if not s.spec.overload:
+        summary["overload"] = "overload not checked (start_up.overload.check = false): overload_torque left out"
+    if worn is not None:  # the same start with worn linings (the lever), simulated: reported, the new one checked
+        summary["worn"] = {**_headline(run_start_up(worn).headline),
+                           "min_lock_up_speed": case.values.get("min_lock_up_speed"),
+                           "units": {**{name: UNITS[name] for name in ("start_time", "friction_work",
+                                                                        "temperature_rise", "lock_up_speed")},
+                                     "min_lock_up_speed": "rad/s"}}
     if s.elastic:  # the link's stress and twist: the NLP's quasi-static link beside the simulated dynamic one
         nodes = zip(trajectory["w_driver"], trajectory["twist"])
         summary.update(peak_link_stress=max(float(drive.link_stress(w, theta)) for w, theta in nodes),
                        peak_link_stress_simulated=head["peak_stress"], peak_twist=float(trajectory["twist"].max()),
                        peak_twist_simulated=head["peak_twist"])
+    if not s.elastic:  # the lining's temperature and wear at the NLP's start and at the simulated one
+        summary.update(lining_figures(drive, summary["friction_work"], summary["temperature_rise"]))
+        simulated_rise = head.get("temperature_rise") if s.heat else None
+        summary.update({f"{name}_simulated": value for name, value in
+                        lining_figures(drive, head["friction_work"], simulated_rise).items()})
+        summary["ambient_temperature"] = float(drive.p.ambient_temperature) if s.heat else None
+        summary["lining_notes"] = lining_notes(drive, case.coupling)
     times = [float(nlp[f"{phase}_time"]) for phase in s.phases]
     return summary, checks, adapted_mesh(s, result.history, times)
+
+
+def _headline(head: dict) -> dict:
+    """The figures of a simulated start (SI, as ``UNITS``)."""
+    return {"start_time": head["start_time"], "friction_work": head["friction_work"],
+            "temperature_rise": head.get("temperature_rise"), "lock_up_speed": head["lock_up_speed"],
+            "locks_up": head["locks_up"]}
 
 
 def _relative(nlp: float, simulated: float) -> float:

@@ -91,9 +91,8 @@ def _verdict(tried: list[tuple[str, Solution]], proofs: list[str]) -> Solution:
     else:
         _, least = min(diagnosed, key=lambda item: item[1].diagnosed.least)
         text = "the least relaxation found " + least.diagnosed.text.removeprefix("infeasible: ") + _confirmed(diagnosed)
-    if proofs:
-        return replace(least, status="infeasible", starts=starts,
-                       diagnosis="proven infeasible: " + "; ".join(proofs) + f" ({text})")
+    if proofs:  # the proof alone: a local least relaxation beside it would name constraints the proof does not need
+        return replace(least, status="infeasible", starts=starts, diagnosis="proven infeasible: " + "; ".join(proofs))
     if any(s.diagnosed.status == "solver_failed" for _, s in diagnosed):
         return replace(least, status="solver_failed", starts=starts,
                        diagnosis="a feasible point exists (elastic check), yet no start reached an optimum")

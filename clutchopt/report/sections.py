@@ -133,24 +133,44 @@ def scatter(case: Case, robust=None) -> tuple[list, tuple[str, float, int]]:
 
     if robust is not None:
         results = [robust]
-        designs = [("nominal", robust.nominal, robust.nominal_failure),
-                   (robust_label(robust), robust.solution, robust.failure)]
+        designs = [("nominal", robust.nominal, robust.nominal_failure, robust.nominal_reliability),
+                   (robust_label(robust), robust.solution, robust.failure, robust.reliability)]
     else:
         results = [solve_robust(case, WORST_CASE), solve_robust(case, CHANCE, 0.999)]
         worst, chance = results
-        designs = [("nominal", worst.nominal, worst.nominal_failure), ("worst case", worst.solution, worst.failure),
+        designs = [("nominal", worst.nominal, worst.nominal_failure, worst.nominal_reliability),
+                   ("worst case", worst.solution, worst.failure, worst.reliability),
                    ("chance 0.999", chance.solution, failure_probabilities(worst.formulation, chance.solution.design,
-                                                                           case.params(), case.scatter))]
+                                                                           case.params(), case.scatter,
+                                                                           correlation=case.correlation),
+                    chance.reliability)]
     first = results[0]
     rows = []
-    for label, result_solution, failure in designs:
+    for label, result_solution, failure, reliability in designs:
         rows.append({"design": label, "status": result_solution.status,
                      result_solution.objective_name: f"{result_solution.objective:.6g} {result_solution.objective_unit}",
                      "change": f"{result_solution.objective / first.nominal.objective - 1:+.1%}",
-                     "largest P(fail)": f"{max(p for p, _, _ in failure.values()):.3g}"})
+                     "largest P(fail)": f"{max(p for p, _, _ in failure.values()):.3g}",
+                     **reliability_columns(case, reliability)})
     name, (p, _, _) = max(first.nominal_failure.items(), key=lambda item: item[1][0])
     bars = tornado(first.formulation, first.nominal.design, case.params(), case.scatter)
-    return [Table(rows, ("change", "largest P(fail)")), tornado_chart(case, first, bars)], (name, p, first.samples)
+    return ([Table(rows, ("change", "largest P(fail)", "system P(fail)")), tornado_chart(case, first, bars)],
+            (name, p, first.samples))
+
+
+def reliability_columns(case: Case, reliability) -> dict[str, str]:
+    """A design's system failure probability (importance sampling, 95 % interval) and the design point of the
+    constraint likeliest to fail: its beta and the scattered quantities' values there."""
+    if reliability is None:
+        return {"system P(fail)": "-", "likeliest failure (design point)": "-"}
+    quantities = {q.name: q for q in case.quantities}
+    system = reliability.system
+    name, likeliest = max(reliability.constraints.items(), key=lambda item: item[1].best.probability)
+    where = (f"{name}: beta {likeliest.point.beta:.3g} at " + ", ".join(
+        f"{q} {quantities[q].show(v, 4)}" for q, v in likeliest.values.items()) if likeliest.point.found
+        else f"{name}: {likeliest.best.estimator}")
+    return {"system P(fail)": f"{system.probability:.3g} ({system.low:.3g} to {system.high:.3g}, {system.estimator})",
+            "likeliest failure (design point)": where}
 
 
 def tornado_chart(case: Case, result, bars: dict[str, dict[str, float]]):

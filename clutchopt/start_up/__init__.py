@@ -2,6 +2,8 @@
 
 - ``equations``: the ``[start_up]`` quantities, the effects and the drive's equations, written once for the NLP and
   the simulator;
+- ``overload``: the largest torque the coupling passes (top speed, worn linings, highest friction) and what it must
+  slip below: the motor's breakdown torque, the machine's max_transmitted_torque;
 - ``section``: the ``[start_up]`` section of a case file, read into SI and checked;
 - ``drive``: the shape of a start's NLP, the drive's equations at a design, the start's requirements as named
   constraints;

@@ -14,6 +14,7 @@ from clutchopt.backend import fmax, fmin, sqrt
 from clutchopt.model import Constraint, ElasticLaw, SpeedLaw, at_least, at_most
 from clutchopt.start_up import equations as su
 from clutchopt.start_up.mesh import GRADED_PARTS
+from clutchopt.start_up.overload import overload_limit, overload_torque
 
 LOCKED_SAMPLES = 8  # speeds from lock-up to synchronous at which a locked drive must stay locked (lockup)
 RUN_UPS = 100  # the time scale of a motor's start: at most this many run-ups at breakdown torque, (J + J_m) w_s / T_k
@@ -117,8 +118,35 @@ class Drive:
     def heat_rate(self, power, temperature):
         return su.heat_rate(power, temperature, self.p.heat_capacity, self.p.heat_conductance)
 
+    # --- the lining: its temperature against the friction pair's limits, its wear (docs/start_up.md) -------------
+    @property
+    def repeated(self) -> bool:
+        """Repeated starts given (starts_per_hour): the lining starts from their steady temperature."""
+        return "starts_per_hour" in self.s.spec.limits
 
-CLOSED_FORM = ("min_engagement_speed", "max_engagement_speed", "motor_breakdown_torque", "motor_starting_torque")
+    def steady_rise(self, friction_work):
+        """dT_s = L n_h / G over the ambient, 0 for a single start."""
+        if not self.repeated:
+            return 0.0
+        return su.steady_temperature_rise(friction_work, self.p.starts_per_hour, self.p.heat_conductance)
+
+    def lining_temperature(self, friction_work, temperature_rise):
+        """T_0 + dT_s + dT of the start (``temperature_rise``: its rise, all along the start or its largest)."""
+        return su.lining_temperature(self.p.ambient_temperature, self.steady_rise(friction_work), temperature_rise)
+
+    def wear_per_start(self, friction_work):
+        return su.wear_per_start(friction_work, self.p.wear_rate, self.law.friction_area(self.x, self.p))
+
+    def starts_until_worn(self, friction_work):
+        return su.starts_until_worn(self.p.wear_allowance, self.wear_per_start(friction_work))
+
+    def life(self, friction_work):
+        """Time until worn at starts_per_hour: N / n_h (s)."""
+        return self.starts_until_worn(friction_work) / self.p.starts_per_hour
+
+
+CLOSED_FORM = ("min_engagement_speed", "max_engagement_speed", "motor_breakdown_torque", "motor_starting_torque",
+               "overload_torque", "worn_engages_first")
 # the start-up's constraints that read no figure of the start: closed forms in the design and the case's values
 
 
@@ -143,10 +171,11 @@ def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
     if "max_engagement_speed" in limits:
         out.append(at_most("max_engagement_speed", engagement, p.max_engagement_speed, equation="w_e", unit="rpm",
                            description="the weights engage by this driving speed"))
-    if "starts_per_hour" in limits:
+    if "heat_dissipation" in limits:
         out.append(at_most("heat_per_hour", p.starts_per_hour * q.friction_work, p.heat_dissipation,
                            equation="heat balance", unit="W", description="mean friction heat within what the "
                                                                           "housing sheds"))
+    out += _lining_constraints(s, drive, q)
     if "min_lock_up_speed" in limits:
         out.append(at_least("lock_up_speed", q.lock_up_speed, p.min_lock_up_speed, equation="start-up", unit="rpm",
                             description="the machine is nearly up to speed when the coupling locks"))
@@ -154,6 +183,15 @@ def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
         out.append(at_least("motor_breakdown_torque", p.breakdown_torque, p.load_torque, equation="Kloss",
                             unit="N*m", scale=p.breakdown_torque,
                             description="the motor's breakdown torque exceeds the largest load"))
+    machine = "max_transmitted_torque" in limits
+    if s.spec.overload and (s.motor or machine):
+        out.append(_overload(s, drive, machine))
+    if drive.law.worn_torque is not None and s.spec.has("spring_preload"):
+        force = su.radial_reduction(s.spec.effects, drive.x.spring_preload, drive.law.weight_mass(drive.x, p))
+        out.append(at_least("worn_engages_first", drive.law.worn_torque(drive.x, p, engagement, force), 0.0,
+                            equation="worn", unit="N*m", scale=drive.torque_ref,
+                            description="worn linings pass torque by the new engagement speed: the start with new "
+                                        "linings is the slower"))
     lock_speed = q.lock_up_speed
     carried = drive.carried(lock_speed, q.start_time)  # 0 with neither a motor nor a load
     out.append(at_least("lock_up", drive.torque(lock_speed), carried, equation="slip falls to 0", unit="N*m",
@@ -168,6 +206,39 @@ def named_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
                             equation="lockup", unit="N*m", scale=drive.torque_ref,
                             description="torque margin over the locked run-up to synchronous speed"))
     return out
+
+
+def _lining_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
+    """The lining's temperature against the friction pair's peak and continuous limits (effect friction_heat; on
+    whenever the limits are known, from the library or the case) and its life (min_life)."""
+    p, limits, out = drive.p, s.spec.limits, []
+    if s.heat and "max_lining_temperature" in limits:
+        out.append(at_most("lining_temperature", drive.lining_temperature(q.friction_work, q.temperatures),
+                           p.max_lining_temperature, equation="T_0 + L n_h/G + dT", unit="degC",
+                           scale=p.max_lining_temperature - p.ambient_temperature,
+                           description="peak temperature of the friction material in a start (on the steady "
+                                       "temperature of repeated starts)"))
+    if s.heat and drive.repeated and "max_continuous_temperature" in limits:
+        out.append(at_most("continuous_temperature", drive.lining_temperature(q.friction_work, 0.0),
+                           p.max_continuous_temperature, equation="T_0 + L n_h/G", unit="degC",
+                           scale=p.max_continuous_temperature - p.ambient_temperature,
+                           description="steady temperature of repeated starts (starts_per_hour)"))
+    if "min_life" in limits:
+        out.append(at_least("lining_life", drive.life(q.friction_work), p.min_life, equation="s_w A / (k_w L n_h)",
+                            unit="h", description="hours of starts until the lining's wear allowance is gone"))
+    return out
+
+
+def _overload(s: Structure, drive: Drive, machine: bool) -> Constraint:
+    """The largest torque the coupling passes (top speed, worn linings where they matter, highest friction) below the
+    motor's breakdown torque and the machine's limit: it slips before the motor stalls (docs/start_up.md)."""
+    p = drive.p
+    limit = overload_limit(p, s.motor, machine)
+    what = " and ".join(["the motor's breakdown torque"] * s.motor + ["max_transmitted_torque"] * machine)
+    worn = ", worn" if drive.law.worn_torque is not None else ""
+    return at_most("overload_torque", overload_torque(drive.law, drive.x, p, s.spec.effects, s.motor), limit,
+                   equation="overload", unit="N*m", scale=limit,
+                   description=f"largest torque passed (top speed{worn}, f_max) within {what}: it slips first")
 
 
 def seen_constraints(s: Structure, law: SpeedLaw | ElasticLaw, q, seen) -> list[Constraint]:
@@ -190,7 +261,7 @@ def _elastic_constraints(s: Structure, drive: Drive, q) -> list[Constraint]:
     if "max_friction_work" in limits:
         out.append(at_most("friction_work", q.friction_work, p.max_friction_work, equation="start-up", unit="kJ",
                            description="energy the link's damping takes in one start"))
-    if "starts_per_hour" in limits:
+    if "heat_dissipation" in limits:
         out.append(at_most("heat_per_hour", p.starts_per_hour * q.friction_work, p.heat_dissipation,
                            equation="heat balance", unit="W", description="mean heat within what the housing sheds"))
     out.append(at_least("motor_breakdown_torque", p.breakdown_torque, p.load_torque, equation="Kloss", unit="N*m",

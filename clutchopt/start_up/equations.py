@@ -64,10 +64,28 @@ QUANTITIES = (
     Q("min_engagement_speed", "rpm", "engagement speed at least (the motor runs up unloaded first; leave it out for "
       "none)", "w_e,min", f"{SECTION}.limits", None, above=0),
     Q("max_engagement_speed", "rpm", "engagement speed at most", "w_e,max", f"{SECTION}.limits", None, above=0),
-    Q("starts_per_hour", "1/hour", "starts per hour (with heat_dissipation: the heat balance over an hour)", "n_h",
+    Q("starts_per_hour", "1/hour", "starts per hour (the steady temperature of repeated starts, the lining's life "
+      "in hours; with heat_dissipation: the heat balance over an hour)", "n_h",
       f"{SECTION}.limits", None, above=0),
     Q("heat_dissipation", "W", "mean heat the housing can shed (e.g. '180 kJ/hour')", "P_d",
       f"{SECTION}.limits", None, above=0),
+    Q("ambient_temperature", "degC", "temperature of the air around the coupling (effect friction_heat)", "T_0",
+      f"{SECTION}.heat", "40 degC", above=0, toml_key="ambient"),
+    Q("max_lining_temperature", "degC", "peak temperature of the friction material in a start, at most (default: "
+      "the friction pair's max_temperature)", "T_peak,max", f"{SECTION}.limits", None, above=0),
+    Q("max_continuous_temperature", "degC", "steady temperature of repeated starts, at most (default: the friction "
+      "pair's continuous_temperature)", "T_cont,max", f"{SECTION}.limits", None, above=0),
+    Q("wear_rate", "mm^3/J", "specific wear rate of the lining: volume worn per friction work (default: the friction "
+      "pair's)", "k_w", f"{SECTION}.wear", None, above=0),
+    Q("wear_allowance", "mm", "thickness of lining that may wear away (default: the lining thickness, where the "
+      "coupling has one)", "s_w", f"{SECTION}.wear", None, above=0, toml_key="allowance"),
+    Q("min_life", "h", "hours of starts (at starts_per_hour) until the lining is worn, at least", "L_h,min",
+      f"{SECTION}.limits", None, above=0),
+    Q("max_transmitted_torque", "N*m", "largest torque the driven machine may be given (the coupling as a torque "
+      "limiter: overload_torque)", "T_lim", f"{SECTION}.driven", None, above=0),
+    Q("friction_max", "", "highest friction coefficient of the friction pair, for the overload (default: the "
+      "largest of the nominal, the library pair's friction_max and the [scatter] range's high end)", "f_max",
+      f"{SECTION}.overload", None, above=0, at_most=1),
 )
 
 
@@ -137,6 +155,33 @@ def heat_rate(power, temperature_rise, heat_capacity, conductance):
     return (power - conductance * temperature_rise) / heat_capacity
 
 
+def steady_temperature_rise(friction_work, starts_per_hour, conductance):
+    """dT_s = L n_h / G: the mean heat input of repeated starts (friction work L per start, n_h starts per unit time)
+    shed by the housing's conductance G, the lumped model's steady state (G dT_s = mean of P_fr). Above the exact
+    periodic temperature before a start, (L / C) / (exp(G / (n_h C)) - 1), since e^x - 1 >= x (docs/start_up.md)."""
+    return friction_work * starts_per_hour / conductance
+
+
+def lining_temperature(ambient, steady_rise, start_rise):
+    """T = T_0 + dT_s + dT: the lining's absolute temperature, a start's rise over the steady temperature of repeated
+    starts (dT_s = 0 for a single start) over the ambient."""
+    return ambient + steady_rise + start_rise
+
+
+def wear_per_start(friction_work, wear_rate, friction_area):
+    """Lining worn per start, uniform over the area: h = k_w L / A (Archard's law written per friction energy, the
+    specific wear rate k_w in m^3/J; A the lining area that wears, L the friction work of the start)."""
+    return wear_rate * friction_work / friction_area
+
+
+def starts_until_worn(wear_allowance, wear_depth):
+    """N = s_w / h: the starts until the wear allowance s_w is gone at h per start (infinite where a start wears
+    nothing: one that never slips, a number only)."""
+    if not is_symbolic(wear_depth) and np.ndim(wear_depth) == 0 and wear_depth == 0:
+        return math.inf
+    return wear_allowance / wear_depth
+
+
 def carried_torque(motor_torque, load, driven_inertia, motor_inertia):
     """Torque a locked coupling carries while motor and machine run up together:
     (J + J_m) dw/dt = T_m - T_c, so the coupling gives the machine T_c + J dw/dt = (J_m T_c + J T_m) / (J + J_m)."""
@@ -173,14 +218,17 @@ class StartUpSpec:
     load_profile: LoadProfile | None = None
     intervals: int = 16
     tolerance: float = 1e-6
+    overload: bool = True  # the overload_torque check (with a motor or max_transmitted_torque); check = false: off
     motor_note: str = field(default="", compare=False)  # how a nameplate was read (no part of the structure)
+    friction_max_given: bool = field(default=False, compare=False)  # else the pair's or the scatter's (overload)
 
     def has(self, effect: str) -> bool:
         return effect in self.effects
 
 
 LIMITS = ("max_start_time", "max_friction_work", "max_temperature_rise", "min_lock_up_speed", "max_link_stress",
-          "min_engagement_speed", "max_engagement_speed", "starts_per_hour", "heat_dissipation")
+          "min_engagement_speed", "max_engagement_speed", "starts_per_hour", "heat_dissipation",
+          "max_lining_temperature", "max_continuous_temperature", "min_life", "max_transmitted_torque")
 LOCK_UP_SHARE = 0.9  # default min_lock_up_speed over the synchronous speed
 
 SPRING_PRELOAD = Variable("spring_preload", "N", "return-spring preload on each weight", "F_s", lower=0.0,

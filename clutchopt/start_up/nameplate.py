@@ -27,6 +27,9 @@ FIELDS = {"rated_power": "W", "rated_speed": "rad/s", "poles": "", "frequency": 
           "starting_ratio": ""}
 REQUIRED = ("rated_power", "rated_speed", "poles", "frequency", "breakdown_ratio")
 KLOSS = ("synchronous_speed", "breakdown_torque", "breakdown_slip")  # what the nameplate gives
+DERIVED_FROM = {"synchronous_speed": ("poles", "frequency"),  # the nameplate fields each Kloss value comes from
+                "breakdown_torque": ("rated_power", "rated_speed", "breakdown_ratio"),
+                "breakdown_slip": ("rated_speed", "poles", "frequency", "breakdown_ratio")}
 MAX_POLES = 64
 MIN_SLIP = 1e-6  # the rated speed at least this far below the synchronous (an induction motor slips)
 
@@ -73,6 +76,12 @@ def kloss_from_nameplate(raw: dict, prefix: str, kloss_given: list[str]) -> tupl
     if "starting_ratio" in v:
         note += f" against the catalogue's {v['starting_ratio']:.3g} T_n"
     return values, note
+
+
+def derived_from(name: str, prefix: str) -> str:
+    """``derived from the nameplate's start_up.driver.rated_power, ...``: where a Kloss value a case does not give
+    came from, for an error that names it."""
+    return f"derived from the nameplate's {', '.join(f'{prefix}.{field}' for field in DERIVED_FROM[name])}"
 
 
 def _checked(name: str, value: float, field: str) -> float:

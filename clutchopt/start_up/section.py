@@ -15,9 +15,16 @@ Layout (quantities with units; bare numbers are SI; the vocabulary of start-up s
     [start_up.driven]                # defaults: the duty's inertia and resisting torque
     inertia = "0.5 kg*m^2"
     resisting_torque = "5 N*m"       # or [start_up.driven.load_profile] over = "speed"|"time", points, torque
+    max_transmitted_torque = "80 N*m"  # optional: the coupling as a torque limiter (overload_torque)
+    [start_up.overload]              # optional: the friction the overload is checked with (docs/start_up.md)
+    friction_max = 0.45              # default: the pair's friction_max or the [scatter] range's high end
     [start_up.heat]                  # effect friction_heat
     capacity = "1400 J/K"
     conductance = "4 W/K"
+    ambient = "40 degC"              # the default
+    [start_up.wear]                  # defaults: the friction pair's wear_rate, the coupling's lining thickness
+    wear_rate = "1e-4 mm^3/J"
+    allowance = "3 mm"
     [start_up.limits]                # max_start_time defaults to duty.acceleration_time
     max_start_time = "10 s"
     max_friction_work = "8 kJ"
@@ -26,6 +33,9 @@ Layout (quantities with units; bare numbers are SI; the vocabulary of start-up s
     max_engagement_speed = "600 rpm"
     starts_per_hour = "6 1/hour"
     heat_dissipation = "40 W"
+    max_lining_temperature = "250 degC"      # default: the friction pair's max_temperature
+    max_continuous_temperature = "200 degC"  # default: the friction pair's continuous_temperature
+    min_life = "20000 h"
 """
 
 from __future__ import annotations
@@ -42,11 +52,11 @@ from clutchopt.start_up.equations import (
     StartUpSpec,
 )
 from clutchopt.start_up.nameplate import FIELDS as NAMEPLATE_FIELDS
-from clutchopt.start_up.nameplate import KLOSS, kloss_from_nameplate, nameplate_fields
+from clutchopt.start_up.nameplate import KLOSS, derived_from, kloss_from_nameplate, nameplate_fields
 from clutchopt.units import to_si
 
 SECTION = "start_up"
-_TABLES = ("driver", "driven", "heat", "limits")
+_TABLES = ("driver", "driven", "heat", "wear", "limits", "overload")
 _SETTINGS = ("effects", "intervals", "tolerance")
 MAX_INTERVALS = 128
 MAX_PROFILE_POINTS = 1000  # a load profile is a curve of a few dozen points; each point costs every evaluation
@@ -56,11 +66,13 @@ DEFAULTS_FROM_DUTY = {"driven_inertia": "inertia", "load_torque": "resisting_tor
                       "max_start_time": "acceleration_time"}
 
 
-def parse_start_up(table, coupling, duty: dict[str, float],
-                   duty_sound: bool = True) -> tuple[dict[str, float], StartUpSpec, dict]:
-    """SI values of the start-up quantities, the spec of a ``[start_up]`` table of a case of ``coupling``, and the
+def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = True,
+                   library: dict[str, float] | None = None) -> tuple[dict[str, float], StartUpSpec, dict, set]:
+    """SI values of the start-up quantities, the spec of a ``[start_up]`` table of a case of ``coupling``, the
     defaults that follow another quantity (``{name: (source, factor)}``: the value is factor times the source's,
-    through every change a command makes; see :attr:`clutchopt.cases.Case.follows`).
+    through every change a command makes; see :attr:`clutchopt.cases.Case.follows`) and the names taken from
+    ``library``: the values the case's friction pair fills (its temperature limits and wear rate, SI, by name;
+    :func:`clutchopt.materials.fill`), where the section does not give them itself.
 
     Every field's own problem is raised together (one InputError); the checks across fields (:func:`_check`) run
     once the fields are sound, and only if ``duty_sound`` (the defaults follow the duty's values)."""
@@ -80,7 +92,7 @@ def parse_start_up(table, coupling, duty: dict[str, float],
     with problems.field():
         effects = parse_effects(table.get("effects"), f"{SECTION}.effects")
     values: dict[str, float] = {}
-    profile = None
+    profile, spec = None, {}
     for name in _TABLES:
         sub = table.get(name, {})
         if not isinstance(sub, dict):
@@ -92,6 +104,8 @@ def parse_start_up(table, coupling, duty: dict[str, float],
             with problems.field():
                 if name == "driven" and key == "load_profile":
                     profile = parse_load_profile(raw, f"{SECTION}.{name}.{key}")
+                elif name == "overload" and key == "check":
+                    spec["overload"] = _switch(raw, f"{SECTION}.{name}.{key}")
                 else:
                     values.update(_field_value(declared, name, key, raw))
     motor_note = ""
@@ -105,16 +119,19 @@ def parse_start_up(table, coupling, duty: dict[str, float],
         with problems.field():
             quantity = declared[f"{SECTION}.spring_preload"]
             values["spring_preload"] = quantity.check(to_si(quantity.key, table["spring_preload"], quantity.unit))
-    spec = {}
+    given = {q.name for q in QUANTITIES if q.key.rsplit(".", 1)[1] in _table(table, q.section)}  # good or bad
+    taken = {name for name in library or {} if name not in values}
+    values.update({name: (library or {})[name] for name in taken})
     with problems.field():
         spec["intervals"] = _intervals(table.get("intervals", StartUpSpec.intervals))
     with problems.field():
         spec["tolerance"] = _tolerance(table.get("tolerance", StartUpSpec.tolerance))
-    given = {q.name for q in QUANTITIES if q.key.rsplit(".", 1)[1] in _table(table, q.section)}  # good or bad
     follows = {name: (source, 1.0) for name, source in DEFAULTS_FROM_DUTY.items()
                if name not in given and source in duty}
     if "motor_curve" in effects and "min_lock_up_speed" not in given and "synchronous_speed" in values:
         follows["min_lock_up_speed"] = ("synchronous_speed", LOCK_UP_SHARE)
+    if "wear_allowance" not in given and "lining_thickness" in duty:  # the paper's delta: the wear the levers follow
+        follows["wear_allowance"] = ("lining_thickness", 1.0)
     elastic = [law for law in laws if isinstance(law, ElasticLaw)]
     if elastic and "max_link_stress" not in given and elastic[0].stress_limit in duty:
         follows["max_link_stress"] = (elastic[0].stress_limit, 1.0)
@@ -129,12 +146,12 @@ def parse_start_up(table, coupling, duty: dict[str, float],
     if profile is not None:
         values["load_torque"] = max(profile.values)
         follows.pop("load_torque", None)
-    _check_ranges(values, duty, problems)
+    _check_ranges(values, duty, problems, set(KLOSS) if plate else set())
     problems.raise_any()
     if duty_sound:
-        _check(values, effects, coupling, laws, profile)
+        _check(values, effects, coupling, laws, profile, given)
     return values, StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile, **spec,
-                               motor_note=motor_note), follows
+                               motor_note=motor_note, friction_max_given="friction_max" in given), follows, taken
 
 
 def _table(table: dict, section: str) -> dict:
@@ -151,6 +168,7 @@ def _field_value(declared, table: str, key: str, raw) -> dict[str, float]:
         known = [q.key.rsplit(".", 1)[1] for q in QUANTITIES if q.section == f"{SECTION}.{table}"]
         raise InputError(field, f"unknown key; [{SECTION}.{table}] takes {', '.join(known)}"
                                 + (", load_profile" if table == "driven" else "")
+                                + (", check" if table == "overload" else "")
                                 + (f" (or the nameplate: {', '.join(NAMEPLATE_FIELDS)})" if table == "driver" else ""))
     return {quantity.name: quantity.check(to_si(field, raw, quantity.unit))}
 
@@ -171,8 +189,9 @@ def parse_effects(raw, field: str) -> tuple[str, ...]:
     return tuple(raw)
 
 
-def _check(values, effects, coupling, laws, profile) -> None:
-    """What one field cannot show: what an effect needs, and what is given for an effect not listed."""
+def _check(values, effects, coupling, laws, profile, explicit=frozenset()) -> None:
+    """What one field cannot show: what an effect needs, and what is given (``explicit``: by the case, not the
+    library) for an effect not listed."""
     def given(*names):
         return [n for n in names if n in values]
 
@@ -195,9 +214,14 @@ def _check(values, effects, coupling, laws, profile) -> None:
                                                                      "speed)")
     if "friction_heat" in effects and "heat_capacity" not in values:
         raise InputError(key("heat_capacity"), "missing (effect friction_heat)")
-    if "friction_heat" not in effects and given("heat_capacity", "max_temperature_rise"):
-        raise InputError(key(given("heat_capacity", "max_temperature_rise")[0]),
-                         "given, but effects do not list friction_heat")
+    heat_only = [n for n in ("heat_capacity", "max_temperature_rise", "max_lining_temperature",
+                             "max_continuous_temperature", "ambient_temperature") if n in explicit]
+    if "friction_heat" not in effects and heat_only:
+        raise InputError(key(heat_only[0]), "given, but effects do not list friction_heat")
+    if "friction_heat" in effects and "starts_per_hour" in values and not values.get("heat_conductance", 0.0) > 0:
+        raise InputError(key("heat_conductance"), "missing (friction_heat with starts_per_hour: the steady "
+                                                  "temperature of repeated starts is the heat they bring over what "
+                                                  "the housing sheds per kelvin)")
     if values.get("spring_preload", 0.0) > 0 and "spring_preload" not in effects:
         raise InputError(key("spring_preload"), "given, but effects do not list spring_preload")
     if any(isinstance(law, ElasticLaw) for law in laws):
@@ -213,10 +237,28 @@ def _check(values, effects, coupling, laws, profile) -> None:
     if window and not radial:
         raise InputError(key(window[0]), "needs spring_preload or gravity in effects (else the coupling engages "
                                          "at standstill)")
-    heat_balance = given("starts_per_hour", "heat_dissipation")
-    if len(heat_balance) == 1:
-        other = ({"starts_per_hour", "heat_dissipation"} - set(heat_balance)).pop()
-        raise InputError(key(other), f"missing (given {heat_balance[0]}: the heat balance over an hour needs both)")
+    if "heat_dissipation" in values and "starts_per_hour" not in values:
+        raise InputError(key("starts_per_hour"), "missing (given heat_dissipation: the heat balance over an hour "
+                                                 "needs the starts in it)")
+    if "min_life" in values:
+        _check_life(values, coupling, laws, key)
+
+
+def _check_life(values, coupling, laws, key) -> None:
+    """min_life needs the hours (starts_per_hour), the wear rate, the wear allowance and the coupling's friction
+    area."""
+    if "starts_per_hour" not in values:
+        raise InputError(key("starts_per_hour"), "missing (given min_life: the hours until worn need the starts "
+                                                 "per hour)")
+    if not all(getattr(law, "friction_area", None) for law in laws):
+        raise InputError(key("min_life"), f"the {coupling.name} coupling declares no friction area that wears, so "
+                                          "its lining's life is not computed")
+    if "wear_rate" not in values:
+        raise InputError(key("wear_rate"), "missing (given min_life; or name a friction_pair in [library])")
+    if "wear_allowance" not in values:
+        raise InputError(key("wear_allowance"), f"missing (given min_life: the thickness of lining that may wear; "
+                                                f"the {coupling.name} coupling has no lining thickness to take it "
+                                                "from)")
 
 
 def check_values(values: dict[str, float]) -> None:
@@ -229,6 +271,13 @@ def check_values(values: dict[str, float]) -> None:
     if "min_engagement_speed" in values and "max_engagement_speed" in values \
             and not values["min_engagement_speed"] < values["max_engagement_speed"]:
         problems.errors.append(InputError(BY_NAME["min_engagement_speed"].key, "must be below max_engagement_speed"))
+    for name in ("max_lining_temperature", "max_continuous_temperature"):
+        if name in values and "ambient_temperature" in values \
+                and not values[name] > values["ambient_temperature"]:
+            shown = BY_NAME[name].show
+            problems.errors.append(InputError(BY_NAME[name].key, (
+                f"{shown(values[name])} is not above the ambient temperature {shown(values['ambient_temperature'])}"
+                " (start_up.heat.ambient): the lining cannot be cooler than the air around it")))
     synchronous = values.get("synchronous_speed")
     if synchronous is not None:
         shown = BY_NAME["synchronous_speed"].show
@@ -257,6 +306,10 @@ def _check_elastic(values, effects, coupling, key) -> None:
                                                    "its own gravity is in its equations, eq. 1)")
     if "max_link_stress" not in values:
         raise InputError(key("max_link_stress"), "missing (the largest cable stress during the start)")
+    for name in ("max_transmitted_torque", "friction_max"):
+        if name in values:
+            raise InputError(key(name), f"does not apply to the {coupling.name} coupling: an elastic link does not "
+                                        "slip, so it limits no torque (no overload_torque check)")
     for name in ("max_friction_work", "starts_per_hour", "heat_dissipation"):
         if name in values:
             raise InputError(key(name), f"does not apply to the {coupling.name} coupling: an elastic link releases "
@@ -264,9 +317,11 @@ def _check_elastic(values, effects, coupling, key) -> None:
                                         "reports)")
 
 
-def _check_ranges(values: dict[str, float], duty: dict[str, float], problems: Problems) -> None:
+def _check_ranges(values: dict[str, float], duty: dict[str, float], problems: Problems,
+                  nameplate: set[str] = frozenset()) -> None:
     """The drive's quantities within the ranges the simulator is tested over (it starts every optimum again);
-    each one out of range is a problem of ``problems``."""
+    each one out of range is a problem of ``problems``, naming the nameplate fields it came from if it is one of
+    ``nameplate`` (derived, not given)."""
     from clutchopt.simulate import ranges as tested
 
     limits = {"driven_inertia": tested.INERTIA, "load_torque": tested.LOAD, "synchronous_speed": tested.SPEED,
@@ -275,13 +330,20 @@ def _check_ranges(values: dict[str, float], duty: dict[str, float], problems: Pr
               "heat_conductance": tested.CONDUCTANCE, "max_start_time": tested.TIME, "spring_preload": tested.FORCE}
     for name, (low, high, unit) in limits.items():
         if name in values and not low <= values[name] <= high:
-            problems.errors.append(InputError(BY_NAME[name].key, f"must be from {low:g} to {high:g} {unit} (the range "
-                                                                 f"the simulator is tested over), got "
+            source = f"{derived_from(name, BY_NAME[name].section)}: " if name in nameplate else ""
+            problems.errors.append(InputError(BY_NAME[name].key, f"{source}must be from {low:g} to {high:g} {unit} "
+                                                                 f"(the range the simulator is tested over), got "
                                                                  f"{values[name]:.6g} {unit}".replace("  ", " ")))
     if "speed" in duty and not tested.SPEED[0] <= duty["speed"] <= tested.SPEED[1]:
         problems.errors.append(InputError("duty.speed", f"must be from {tested.SPEED[0]:g} to {tested.SPEED[1]:g} "
                                                         f"rad/s for a case with a [start_up] section (the simulator's "
                                                         f"range), got {duty['speed']:.6g}"))
+
+
+def _switch(raw, field: str) -> bool:
+    if not isinstance(raw, bool):
+        raise InputError(field, f"must be true or false, got {raw!r}")
+    return raw
 
 
 def _intervals(raw) -> int:

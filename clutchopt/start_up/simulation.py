@@ -107,11 +107,7 @@ def centrifugal_law(case, mode: str, design: dict[str, float], effects: tuple[st
     if radial and law.mass_radius is None:
         raise InputError("effects", f"{radial[0]} does not apply to the {case.coupling} coupling (no weights held "
                                     "in by springs or their own weight)")
-    force = 0.0
-    if "spring_preload" in effects:
-        force += fx.spring_preload(spring_preload)
-    if "gravity" in effects:
-        force += fx.gravity(law.weight_mass(x, p))
+    force = _radial_force(law, x, p, effects, spring_preload)
     squared = engagement_speed_squared(force, law.mass_radius(x, p)) if force else 0.0
     coefficient = float(law.torque_coefficient(x, p))
     if not (math.isfinite(coefficient) and coefficient > 0 and math.isfinite(squared)
@@ -120,6 +116,31 @@ def centrifugal_law(case, mode: str, design: dict[str, float], effects: tuple[st
                                             f"N*m*s^2, engagement at {math.sqrt(max(squared, 0.0)):.6g} rad/s): "
                                             f"torque at design speed must be positive and at most {MAX_TORQUE:g} N*m")
     return CentrifugalFriction(coefficient, float(squared))
+
+
+def _radial_force(law, x, p, effects: tuple[str, ...], spring_preload: float) -> float:
+    """F_s + m g per weight, each if listed: what holds a weight in against its centrifugal force."""
+    force = 0.0
+    if "spring_preload" in effects:
+        force += fx.spring_preload(spring_preload)
+    if "gravity" in effects:
+        force += fx.gravity(law.weight_mass(x, p))
+    return force
+
+
+def worn_start_up_model(case, mode: str, design: dict[str, float], model):
+    """``model`` (the design's start, :func:`start_up_model`) with worn linings, for a coupling whose torque changes
+    as they wear (the lever; None for the others). Its worn torque is linear in w_a^2 and in the radial force F
+    that holds a weight in, T_w = K_w w_a^2 - B (F + c dr): K_w = T_w(1 rad/s, 0) - T_w(0, 0) and
+    w_e,worn^2 = -T_w(0, F) / K_w (docs/start_up.md, "Overload")."""
+    law = _formulation(case.coupling, mode).speed_law
+    if isinstance(law, ElasticLaw) or law.worn_torque is None:
+        return None
+    x, p = SimpleNamespace(**design), case.params()
+    force = _radial_force(law, x, p, case.start_up.effects, design.get("spring_preload", p.spring_preload))
+    worn = [float(law.worn_torque(x, p, speed, f)) for speed, f in ((1.0, 0.0), (0.0, 0.0), (0.0, force))]
+    coefficient = worn[0] - worn[1]
+    return replace(model, law=CentrifugalFriction(coefficient, max(-worn[2] / coefficient, 0.0)))
 
 
 def ideal_start(case, mode: str, design: dict[str, float]) -> SimulationResult:

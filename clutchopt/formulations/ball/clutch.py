@@ -20,7 +20,7 @@ from clutchopt.formulations.ball.equations import (
 from clutchopt.formulations.ball.paper import paper_eq9, paper_eq10
 from clutchopt.formulations.ball.quantities import QUANTITIES
 from clutchopt.formulations.common import CouplingModel, centrifugal_speed_law
-from clutchopt.model import Output
+from clutchopt.model import Envelope, Output, Part
 
 
 @dataclass(frozen=True)
@@ -83,6 +83,18 @@ def _outputs(c: BallClutch, x, p):
     }
 
 
+def _envelope(c: BallClutch, x, p):
+    """The ball clutch beside the others (docs/envelope.md): D = 2 (R_a + s), L = l_a + 2 s (the drum's two end
+    faces). halves: the body of eq. (13), rotor and drum by the construction density Psi_c; moving parts: the balls,
+    eq. (2); springs and linings: none."""
+    return Envelope(2.0 * (c.radius + p.shell_thickness), c.width + 2.0 * p.shell_thickness, {
+        "halves": Part(c.body(p), "body, eq. (13): rotor and drum by the construction density"),
+        "moving_parts": Part(c.balls(p), "balls, eq. (2)"),
+        "springs": Part(0.0, "none: the balls need no springs"),
+        "linings": Part(0.0, "none: balls on the steel drum"),
+    })
+
+
 def _speed_law(clutch_of):
     """T = K w_a^2: the torque (8) of the ball layer, which rides on the driving rotor, at 1 rad/s. The balls have
     no springs, and their weight does not hold the layer in once it has formed, so neither effect applies."""
@@ -96,4 +108,5 @@ MODEL = CouplingModel(
     cost=("balls and body priced per kg", lambda c, p: c.cost(p)),
     outputs=_outputs,
     speed_law=_speed_law,
+    envelope=_envelope,
 )

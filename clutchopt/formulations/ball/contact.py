@@ -10,6 +10,7 @@ from scipy.special import ellipe, ellipk
 
 from clutchopt.backend import cbrt, ellipke, exp, fmax, fmin, log, sqrt
 from clutchopt.formulations.ball.equations import ball_load
+from clutchopt.monotone import MonotoneFunction
 
 
 def contact_modulus(p):
@@ -55,7 +56,7 @@ def _curvature_ratio(m):
     return num / den, (dnum * den - num * dden) / den**2, k, e
 
 
-def hertz_coefficients(ratio):
+def _hertz_coefficients(ratio):
     """Hertz's n_a, n_b (Timoshenko's m, n) of an elliptic contact with curvature ratio B/A = ``ratio`` >= 1.01:
     a = n_a (3F / (2 E* sum rho))^(1/3), b = n_b (...)^(1/3).
 
@@ -73,6 +74,15 @@ def hertz_coefficients(ratio):
     k, e = ellipke(m)
     n_a = cbrt(2.0 * (k - e) * (1.0 + ratio) / (math.pi * m))
     return n_a, n_a * sqrt(1.0 - m)
+
+
+HERTZ_ERROR = 1e-9  # relative: 10 times the agreement with the exact solution tested (tests/test_ball_closed_forms.py)
+hertz_coefficients = MonotoneFunction(
+    _hertz_coefficients, increasing=(True, False), slope_increasing=(False, True), domain=(1.01, 1e5),
+    error=HERTZ_ERROR, source="n_a rises and n_b falls with B/A (the classical table of m, n: Timoshenko & Goodier, "
+    "Theory of Elasticity, Hertz contact of two bodies); n_a concave and n_b convex in B/A: our check at 200,001 "
+    "points of the domain, tests/test_interval_nodes.py")
+hertz_coefficients.__doc__ = _hertz_coefficients.__doc__
 
 
 def hertz_coefficients_exact(ratio):

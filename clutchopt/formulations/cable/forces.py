@@ -3,12 +3,13 @@ constraints, the mass and cost, the outputs."""
 
 from __future__ import annotations
 
-from clutchopt.backend import fmax
+from clutchopt.backend import cbrt, fmax
 from clutchopt.formulations.cable.equations import (
     back_driven_torque,
     cable_diameter,
     cable_stress,
     cable_tension,
+    cable_wire_area,
     clamp_screw_stress,
     cost,
     finger_bending_stress,
@@ -28,7 +29,8 @@ from clutchopt.formulations.cable.equations import (
 from clutchopt.formulations.cable.quantities import QUANTITIES
 from clutchopt.formulations.cable.speed_law import ELASTIC_LAW
 from clutchopt.formulations.common import CouplingModel
-from clutchopt.model import Output, at_least, at_most, si
+from clutchopt.formulations.envelope import disc_mass
+from clutchopt.model import Envelope, Output, Part, at_least, at_most, si
 
 
 class CableCoupling:
@@ -128,6 +130,32 @@ def _outputs(c: CableCoupling, x, p):
     }
 
 
+def _envelope(c: CableCoupling, x, p):
+    """The cable coupling beside the others (docs/envelope.md). D = 2 max(R_rv + a_w / 2, D/2 + d_n / 2), the
+    weights (a_w the edge of a steel cube of mass m_rv) or the fingers on their circle, whichever reaches further;
+    L = l + H + l_n, the free cable span, the cup's hub (the engaged length of thread 5) and the driven half.
+
+    halves: the driving cup m (a design variable) and the driven half-coupling 8, which the paper does not size: a
+    steel disc of the finger circle D, l_n thick (our proportion); moving parts: z weights, z fingers, 2 z clamp
+    screws and the z cables (steel wire of area A_s, eq. (18), over the span l); springs: none sized (the return
+    spring 6 is given by its stiffness); linings: none.
+    """
+    ratio = length_ratio(p.span, p.finger_circle_diameter)
+    wire = cable_wire_area(p.area_ratio, cable_diameter(p.finger_circle_diameter, ratio, p.cable_coefficient,
+                                                         p.twist_angle))
+    cables = c.z * p.density * wire * p.span
+    weight_edge = cbrt(x.weight_mass / p.density)
+    radius = fmax(p.weight_radius + weight_edge / 2.0, p.finger_circle_diameter / 2.0 + x.finger_diameter / 2.0)
+    driven = disc_mass(p.density, p.finger_circle_diameter / 2.0, 0.0, p.finger_length)
+    return Envelope(2.0 * radius, p.span + p.nut_height + p.finger_length, {
+        "halves": Part(x.half_coupling_mass + driven, "driving cup m and driven half 8 (disc of D, l_n thick)"),
+        "moving_parts": Part(c.mass - x.half_coupling_mass + cables,
+                             "z weights, fingers, 2 z clamp screws, z cables (A_s over l)"),
+        "springs": Part(0.0, "none sized by the model (stiffness only)"),
+        "linings": Part(0.0, "none: the cables carry the torque"),
+    })
+
+
 MODEL = CouplingModel(
     coupling="cable",
     quantities=QUANTITIES,
@@ -136,4 +164,5 @@ MODEL = CouplingModel(
     outputs=_outputs,
     speed_law=lambda state: ELASTIC_LAW,
     constraints=_constraints,
+    envelope=_envelope,
 )

@@ -99,9 +99,14 @@ def flange_mass(density, flange_diameter, shaft_diameter, thickness):
     return density * math.pi * (flange_diameter**2 - shaft_diameter**2) / 4.0 * thickness
 
 
+def lining_area(surfaces, diameter, width):
+    """A = i pi d_cp b: the friction area of i lining rings of mean diameter d_cp and width b (what wears)."""
+    return surfaces * math.pi * diameter * width
+
+
 def lining_mass(lining_density, surfaces, diameter, width, thickness):
     """i lining rings of mean diameter d_cp, width b, thickness delta."""
-    return surfaces * lining_density * math.pi * diameter * width * thickness
+    return lining_density * lining_area(surfaces, diameter, width) * thickness
 
 
 def weight_size(weight_mass, density):

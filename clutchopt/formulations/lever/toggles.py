@@ -4,11 +4,13 @@ linings, wear and link strength with worn ones, the mass and cost, the outputs, 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from types import SimpleNamespace
 from typing import Any
 
 from clutchopt.formulations.common import CouplingModel, centrifugal_speed_law, duty_torque, rod_mass
 from clutchopt.formulations.duty import centrifugal_force
+from clutchopt.formulations.envelope import disc_mass, housing_length, housing_mass
 from clutchopt.formulations.lever.equations import (
     disc_friction_torque,
     disc_push,
@@ -17,6 +19,7 @@ from clutchopt.formulations.lever.equations import (
     lever_offset,
     link_force,
     link_stress,
+    lining_area,
     lining_mass,
     lining_pressure,
     mean_diameter,
@@ -29,7 +32,7 @@ from clutchopt.formulations.lever.equations import (
 )
 from clutchopt.formulations.lever.paper import paper_spring_stiffness
 from clutchopt.formulations.lever.quantities import QUANTITIES
-from clutchopt.model import Output, at_least, at_most
+from clutchopt.model import Envelope, Output, Part, at_least, at_most
 
 
 @dataclass(frozen=True)
@@ -109,14 +112,17 @@ class Toggles:
                            p.lining_thickness)
 
     @property
+    def lining_area(self):
+        return lining_area(self.p.friction_surfaces, self.mean_diameter, self.lining_width)
+
+    @property
     def total_mass(self):
         return self.steel_mass + self.lining_mass
 
     @property
     def cost(self):
         p = self.p
-        lining_area = p.friction_surfaces * math.pi * self.mean_diameter * self.lining_width
-        return p.material_price * self.steel_mass + self.count * p.part_cost + p.lining_price * lining_area
+        return p.material_price * self.steel_mass + self.count * p.part_cost + p.lining_price * self.lining_area
 
 
 def _duty_constraints(t: Toggles, x, p):
@@ -175,11 +181,42 @@ def _duty_outputs(t: Toggles, x, p):
     }
 
 
+def _envelope(t: Toggles, x, p):
+    """The lever coupling beside the others (docs/envelope.md): D = d_cp + b + 2 s, and L = 2 l_2 cos gamma_pr + 2
+    delta + i s + 2 s, the toggle at its longest between the i pressure discs, their linings and the housing's two end
+    walls.
+
+    halves: the spring flange, i pressure discs (d_b .. d_cp + b, as thick as the housing wall s) and the driven
+    housing 5, a drum of inner radius (d_cp + b) / 2 and wall s round them, closed at both ends; moving parts: z
+    weights and 2 z links; springs: none sized (the model gives the return springs' stiffness, not their wire);
+    linings: the i lining rings.
+    """
+    s, surfaces = p.shell_thickness, p.friction_surfaces
+    outer_radius = (t.mean_diameter + t.lining_width) / 2.0
+    inner = toggle_span(t.lever_length, t.limit_angle) + 2.0 * p.lining_thickness + surfaces * s
+    flange = flange_mass(p.density, t.flange_diameter, p.shaft_diameter, p.flange_thickness)
+    halves = (flange + surfaces * disc_mass(p.density, outer_radius, p.shaft_diameter / 2.0, s)
+              + housing_mass(p.density, outer_radius, s, inner, ends=2))
+    return Envelope(2.0 * (outer_radius + s), housing_length(inner, s, ends=2), {
+        "halves": Part(halves, "spring flange, i pressure discs (wall s thick), housing round them (two end walls)"),
+        "moving_parts": Part(t.steel_mass - flange, "z weights and 2 z links"),
+        "springs": Part(0.0, "none sized by the model (stiffness only)"),
+        "linings": Part(t.lining_mass, "i lining rings"),
+    })
+
+
 def _speed_law(toggles):
     """T = K w_a^2, K the friction torque with new linings (gamma_0, weight at R_0, spring slack) at 1 rad/s; each
-    weight's centrifugal force is m R_0 w_a^2, against which a spring preload and gravity act."""
-    return centrifugal_speed_law(toggles, lambda t, p: t.torque(t.new_push), lambda t: t.weight_mass,
-                                 lambda t: t.start_radius)
+    weight's centrifugal force is m R_0 w_a^2, against which a spring preload and gravity act. Worn (gamma_pr, weight
+    at R_0 + dr, the return spring stretched by dr): T = i f z (m w^2 (R_0 + dr) - c dr - F) d_cp / (4 tan gamma_pr),
+    F the radial force of preload and gravity (docs/lever.md, "Worn linings on the drive")."""
+    def worn_torque(x, p, speed, radial_force):
+        t = toggles(x, SimpleNamespace(**{**vars(p), "speed": speed}))
+        return t.torque(t.count * disc_push(t.worn_radial_force - radial_force, t.limit_angle))
+
+    law = centrifugal_speed_law(toggles, lambda t, p: t.torque(t.new_push), lambda t: t.weight_mass,
+                                lambda t: t.start_radius, lambda t: t.lining_area)
+    return replace(law, worn_torque=worn_torque)
 
 
 MODEL = CouplingModel(
@@ -190,4 +227,5 @@ MODEL = CouplingModel(
     outputs=_duty_outputs,
     speed_law=_speed_law,
     constraints=_duty_constraints,
+    envelope=_envelope,
 )

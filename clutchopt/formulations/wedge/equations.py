@@ -37,6 +37,11 @@ def flank_area(sector_angle, r1, r2, flank_angle):
     return sector_angle * (r2**2 - r1**2) / (2.0 * cos(flank_angle))
 
 
+def flank_area_total(weight_count, sector_angle, r1, r2, flank_angle):
+    """2 z A_flank: both conical flanks of every weight rub in the groove, the friction area that wears."""
+    return 2.0 * weight_count * flank_area(sector_angle, r1, r2, flank_angle)
+
+
 def flank_pressure(centrifugal, flank_angle, sector_angle, r1, r2):
     """q = N / A_flank = F_u cot(alpha) / (gamma (r2^2 - r1^2)), eqs. (9), (12), (13) for one weight (errata W3)."""
     return flank_normal_force(centrifugal, flank_angle) / flank_area(sector_angle, r1, r2, flank_angle)
@@ -70,6 +75,12 @@ def weight_body(r_in, r1, r2, width, flank_angle, sector_angle, density):
     mass = density * sector_angle * first
     centroid = 2.0 * sin(sector_angle / 2.0) / sector_angle * second / first
     return mass, centroid
+
+
+def equivalent_width(weight_mass, density, sector_angle, r2, weight_height):
+    """b = 2 m_r / (rho gamma (r2^2 - (r2 - h_r)^2)): the axial width of an annular sector r2 - h_r..r2 of mass m_r,
+    the width a paper-mode weight (mass free, width not posed) takes in the envelope (docs/envelope.md)."""
+    return 2.0 * weight_mass / (density * sector_angle * (r2**2 - (r2 - weight_height) ** 2))
 
 
 def cost(p, total_mass, weight_count, flank_area_one_side):

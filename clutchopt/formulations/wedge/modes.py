@@ -5,7 +5,12 @@ from __future__ import annotations
 import math
 
 from clutchopt.backend import sin, tan
-from clutchopt.formulations.wedge.equations import paper_centroid_radius, self_locking_angle, weight_body
+from clutchopt.formulations.wedge.equations import (
+    equivalent_width,
+    paper_centroid_radius,
+    self_locking_angle,
+    weight_body,
+)
 from clutchopt.formulations.wedge.weight_set import MODEL, WeightSet
 from clutchopt.model import Output, Variable, at_least, at_most, si
 
@@ -22,7 +27,8 @@ def paper_weight_set(x, p):
     r1 = p.flank_inner_radius
     r2 = p.radius_ratio * r1
     return WeightSet(p.weight_count, r1, r2, p.flank_angle, p.sector_angle, x.weight_mass,
-                     paper_centroid_radius(r2, p.weight_height), x.finger_diameter, p.speed, p.friction_coefficient)
+                     paper_centroid_radius(r2, p.weight_height), x.finger_diameter, p.speed, p.friction_coefficient,
+                     p.weight_height, equivalent_width(x.weight_mass, p.density, p.sector_angle, r2, p.weight_height))
 
 
 PAPER = MODEL.formulation("paper", "Wedge CFC, paper assumptions: geometry given, m_r and d_n free",
@@ -51,7 +57,7 @@ def _geometry_weight_set(x, p):
     r2 = x.radius_ratio * r1
     mass, r_c = weight_body(r2 - x.weight_height, r1, r2, x.weight_width, x.flank_angle, x.sector_angle, p.density)
     return WeightSet(x.weight_count, r1, r2, x.flank_angle, x.sector_angle, mass, r_c, x.finger_diameter, p.speed,
-                     p.friction_coefficient)
+                     p.friction_coefficient, x.weight_height, x.weight_width)
 
 
 def _constructive_constraints(w: WeightSet, x, p):

@@ -8,18 +8,20 @@ from typing import Any
 
 from clutchopt.formulations.common import CouplingModel, centrifugal_speed_law, duty_torque
 from clutchopt.formulations.duty import centrifugal_force
+from clutchopt.formulations.envelope import disc_mass, housing_length, housing_mass
 from clutchopt.formulations.wedge.equations import (
     cost,
     finger_bending_stress,
     finger_mass,
     flank_area,
+    flank_area_total,
     flank_pressure,
     friction_force,
     friction_torque,
     mean_flank_radius,
 )
 from clutchopt.formulations.wedge.quantities import QUANTITIES
-from clutchopt.model import Output, at_least, at_most
+from clutchopt.model import Envelope, Output, Part, at_least, at_most
 
 
 @dataclass(frozen=True)
@@ -36,6 +38,8 @@ class WeightSet:
     finger_diameter: Any
     speed: Any
     friction_coefficient: Any
+    height: Any = None  # h_r, radial height of a weight (its inner edge at r2 - h_r)
+    width: Any = None  # b, axial width of a weight
 
     @property
     def centrifugal(self):
@@ -49,6 +53,10 @@ class WeightSet:
     def torque(self):
         """T_fr, eq. (15)."""
         return friction_torque(self.count, self.friction, self.r1, self.r2)
+
+    @property
+    def friction_area(self):
+        return flank_area_total(self.count, self.sector_angle, self.r1, self.r2, self.flank_angle)
 
 
 def _duty_constraints(w: WeightSet, x, p):
@@ -86,11 +94,29 @@ def _duty_outputs(w: WeightSet, x, p):
     }
 
 
+def _envelope(w: WeightSet, x, p):
+    """The wedge coupling beside the others (docs/envelope.md): D = 2 (r2 + s), L = b + s.
+
+    halves: the driving hub, a solid disc of the hub radius r_hub over the weights' width b, and the driven
+    half-coupling, a drum of inner radius r2 (the groove's outer flank radius), wall s, over b, closed at one end;
+    moving parts: z (m_r + finger); springs: none sized (the return springs of a start-up are a preload only);
+    linings: none (steel flanks in a steel groove).
+    """
+    halves = (disc_mass(p.density, p.hub_radius, 0.0, w.width)
+              + housing_mass(p.density, w.r2, p.shell_thickness, w.width))
+    return Envelope(2.0 * (w.r2 + p.shell_thickness), housing_length(w.width, p.shell_thickness), {
+        "halves": Part(halves, "driving hub (r_hub over b) and driven drum (r2, wall s, over b, one end wall)"),
+        "moving_parts": Part(_total_mass(w, p), "z weights and z fingers"),
+        "springs": Part(0.0, "none sized by the model"),
+        "linings": Part(0.0, "none: steel flanks"),
+    })
+
+
 def _speed_law(weight_set):
     """T = K w_a^2 with K the friction torque (15) of the weights at 1 rad/s; each weight's centrifugal force is
     m_r r_c w_a^2 (10), against which springs and gravity act."""
     return centrifugal_speed_law(weight_set, lambda w, p: w.torque, lambda w: w.weight_mass,
-                                 lambda w: w.centroid_radius)
+                                 lambda w: w.centroid_radius, lambda w: w.friction_area)
 
 
 MODEL = CouplingModel(
@@ -101,4 +127,5 @@ MODEL = CouplingModel(
     outputs=_duty_outputs,
     speed_law=_speed_law,
     constraints=_duty_constraints,
+    envelope=_envelope,
 )

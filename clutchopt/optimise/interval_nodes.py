@@ -1,0 +1,120 @@
+"""Interval functions of (design, p) whose declared monotone nodes (:class:`clutchopt.monotone.MonotoneFunction`)
+are bounded at their argument's ends instead of being replayed operation by operation.
+
+The formulation's rows are built again with a symbol ``y`` in place of each declared value
+(:func:`clutchopt.monotone.as_symbols`): ``G(design, p, y)``, and their Jacobian by the chain rule,
+``dG/dx + dG/dy diag(s) dr/dx``, with ``s`` the values' slopes in their arguments ``r``. Over a box, ``r`` is bounded
+by interval replay (:mod:`clutchopt.optimise.interval`), then ``y`` and ``s`` by the declared monotony (values and
+slopes at the ends of ``r``, widened by the declaration's error), met with the node's own replay: bounds as true
+as the declaration, and as tight as the argument's. Where ``r`` leaves the declared domain, ``y`` is the node's own
+replay and ``s`` unbounded, as without a declaration. Before a search, the rows with the nodes' own values for ``y``
+are compared with the NLP's at points of the box (:meth:`DeclaredNodes.agree`); should a formulation differentiate
+its own expressions through a node (a chance constraint's slope), the symbols would cut that path, and the search
+replays the nodes instead.
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+
+from clutchopt.model import namespace
+from clutchopt.monotone import Node, as_symbols
+from clutchopt.optimise.interval import Bounds, IntervalFunction
+
+
+def _column(expressions: list) -> ca.SX:
+    return ca.vertcat(*expressions) if expressions else ca.SX(0, 1)
+
+
+class DeclaredNodes:
+    """The declared values a set of rows uses: their arguments' and their own replays, and their enclosures."""
+
+    def __init__(self, nodes: list[Node], design: ca.SX, p: ca.SX):
+        self.nodes = nodes
+        self.y = _column([node.symbol for node in nodes])
+        self.s = ca.SX.sym("s", len(nodes))
+        self.arguments = _column([node.argument for node in nodes])
+        self._arguments = IntervalFunction(ca.Function("arguments", [design, p], [self.arguments]))
+        self._replayed = IntervalFunction(ca.Function("declared", [design, p], [_column([n.value for n in nodes])]))
+        calls: dict[int, list[int]] = {}
+        for k, node in enumerate(nodes):
+            calls.setdefault(id(node.argument), []).append(k)
+        self._calls = list(calls.values())
+        self._last = None
+
+    def agree(self, lower: np.ndarray, upper: np.ndarray, p: np.ndarray, points: int = 8) -> bool:
+        """Whether the rows with the nodes' own values for ``y`` are the NLP's rows (to 1e-9) at the box's centre
+        and random points of it: not so where a formulation differentiates its own expressions (a chance
+        constraint's slope in a scattered quantity), a path the symbols ``y`` would cut."""
+        if not self.nodes:
+            return True
+        rng = np.random.default_rng(0)
+        fractions = np.column_stack([np.full(len(lower), 0.5), rng.random((len(lower), points - 1))])
+        samples = lower[:, None] + (upper - lower)[:, None] * fractions
+        difference = np.array(self.check.map(points)(samples, np.repeat(p[:, None], points, axis=1)))
+        return bool(np.all(np.isnan(difference) | (np.abs(difference) <= 1e-9)))
+
+    def bounds(self, inputs: list[Bounds]) -> tuple[Bounds, Bounds]:
+        """Bounds on the values ``y`` and slopes ``s`` over boxes given as (design, p) bounds (the last boxes'
+        kept: the rows and their Jacobian ask for the same boxes in turn)."""
+        given = (*inputs[0], *inputs[1])
+        if self._last is not None and all(np.array_equal(a, b) for a, b in zip(self._last[0], given)):
+            return self._last[1]  # the same boxes with the same parameters (searches of other points differ in p)
+        boxes = inputs[0][0].shape[1]
+        if not self.nodes:
+            return (np.zeros((0, boxes)),) * 2, (np.zeros((0, boxes)),) * 2
+        (r_lo, r_hi), = self._arguments.bounds(inputs)
+        (y_lo, y_hi), = self._replayed.bounds(inputs)
+        y_lo, y_hi, s_lo, s_hi = y_lo.copy(), y_hi.copy(), np.full_like(y_lo, -np.inf), np.full_like(y_hi, np.inf)
+        for rows in self._calls:  # the values of one call share its argument: evaluated once at its ends
+            node = self.nodes[rows[0]]
+            (v_lo, v_hi), (d_lo, d_hi) = node.function.enclosure(r_lo[rows[0]], r_hi[rows[0]])
+            for k in rows:
+                index = self.nodes[k].index
+                inside = ~np.isnan(v_lo[index])
+                y_lo[k] = np.where(inside, np.maximum(y_lo[k], v_lo[index]), y_lo[k])  # both hold: intersected
+                y_hi[k] = np.where(inside, np.minimum(y_hi[k], v_hi[index]), y_hi[k])
+                s_lo[k], s_hi[k] = np.where(inside, d_lo[index], -np.inf), np.where(inside, d_hi[index], np.inf)
+        self._last = ([a.copy() for a in given], ((y_lo, y_hi), (s_lo, s_hi)))
+        return self._last[1]
+
+
+class EnclosedFunction:
+    """An output of (design, p, y, s) evaluated over boxes of (design, p) (:meth:`bounds`, as
+    :meth:`IntervalFunction.bounds`); ``function``: the same output as the NLP computes it, of (design, p)."""
+
+    def __init__(self, nodes: DeclaredNodes, inputs: list[ca.SX], output: ca.SX, plain: ca.SX, name: str):
+        self.nodes = nodes
+        self.interval = IntervalFunction(ca.Function(name, [*inputs, nodes.y, nodes.s], [output]))
+        self.function = ca.Function(name, inputs, [plain])
+
+    def bounds(self, inputs: list[Bounds]) -> list[Bounds]:
+        y, s = self.nodes.bounds(inputs)
+        return self.interval.bounds([*inputs, y, s])
+
+
+def enclosed_rows(posed, declared: bool = True) -> tuple[EnclosedFunction, EnclosedFunction]:
+    """A posed problem's own constraint rows (``g <= 0``, normalised, as the NLP's first rows; a start-up's left
+    out) and their Jacobian in the design (dense, rows x variables) as interval functions of (design, p), the
+    declared monotone nodes among them enclosed at their arguments' ends (``declared``; else all replayed)."""
+    f, n = posed.formulation, len(posed.names)
+    design, p = posed.nlp["x"][:n], posed.nlp["p"]
+    plain = posed.nlp["g"][: sum(posed.constraint_rows[: posed.n_checked])]
+    if declared:
+        x_scale = p[posed.p_case.shape[0]: posed.p_case.shape[0] + n]
+        x = namespace({v.name: design[i] * x_scale[i] for i, v in enumerate(f.variables)})
+        q = namespace({quantity.name: posed.p_case[j] for j, quantity in enumerate(f.quantities)})
+        with as_symbols() as collected:
+            rows = ca.vertcat(*[ca.SX(c.normalised()) for c in f.constraints(x, q)])
+        assert rows.shape == plain.shape, "the formulation's rows built again differ from the NLP's"
+    else:
+        rows, collected = plain, []
+    used = [node for node in collected if ca.depends_on(rows, node.symbol)]
+    nodes = DeclaredNodes(used, design, p)
+    nodes.check = ca.Function("declared_check", [design, p], [
+        ca.substitute(rows, nodes.y, _column([node.value for node in used])) - plain])
+    chain = ca.jacobian(rows, nodes.y) @ ca.diag(nodes.s) @ ca.jacobian(nodes.arguments, design) if used else 0
+    return (EnclosedFunction(nodes, [design, p], rows, plain, "g_interval"),
+            EnclosedFunction(nodes, [design, p], ca.densify(ca.jacobian(rows, design) + chain),
+                             ca.densify(ca.jacobian(plain, design)), "dg_interval"))
