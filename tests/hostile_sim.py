@@ -99,7 +99,8 @@ HOSTILE: list[Hostile] = [
     motor("heat-capacity-at-low-end", 'capacity = "1400 J/K"', 'capacity = "1e-6 J/K"', None),
     motor("heat-capacity-at-high-end", 'capacity = "1400 J/K"', 'capacity = "1e12 J/K"', None),
     motor("heat-conductance-at-high-end", 'conductance = "4 W/K"', 'conductance = "1e12 W/K"', None),
-    motor("heat-conductance-zero", 'conductance = "4 W/K"', 'conductance = "0 W/K"', None),
+    motor("heat-conductance-zero", 'conductance = "4 W/K"', 'conductance = "0 W/K"',
+          "start_up.heat.conductance: 0 W/K with starts_per_hour: give the housing's conductance above 0 W/K"),
     # --- the motor -----------------------------------------------------------------------------------------------
     motor("breakdown-slip-tiny", "breakdown_slip = 0.2", "breakdown_slip = 1e-6", None),
     motor("breakdown-slip-at-high-end", "breakdown_slip = 0.2", "breakdown_slip = 0.99", None),

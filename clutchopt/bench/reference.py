@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from clutchopt.cases import Case, load_case
+from clutchopt.cases import Case, load_case, read_toml
 from clutchopt.formulations import MODULES, get_coupling
 from clutchopt.model import Formulation
 from clutchopt.optimise.verify import ConstraintCheck, check_design, evaluate_objective
@@ -41,8 +41,9 @@ class ClosedForm:
 
 
 def coupling_cases(coupling: str) -> list[Path]:
-    """The case files of a coupling in ``cases/``, sorted by name."""
-    return [path for path in sorted(CASES.glob("*.toml")) if load_case(path).coupling == coupling]
+    """The case files of a coupling in ``cases/``, sorted by name (a neutral case, ``coupling = "any"``, is
+    choose-coupling's, no coupling's)."""
+    return [path for path in sorted(CASES.glob("*.toml")) if read_toml(path).get("coupling") == coupling]
 
 
 def bench_cases() -> list[Case]:

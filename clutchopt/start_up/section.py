@@ -218,10 +218,6 @@ def _check(values, effects, coupling, laws, profile, explicit=frozenset()) -> No
                              "max_continuous_temperature", "ambient_temperature") if n in explicit]
     if "friction_heat" not in effects and heat_only:
         raise InputError(key(heat_only[0]), "given, but effects do not list friction_heat")
-    if "friction_heat" in effects and "starts_per_hour" in values and not values.get("heat_conductance", 0.0) > 0:
-        raise InputError(key("heat_conductance"), "missing (friction_heat with starts_per_hour: the steady "
-                                                  "temperature of repeated starts is the heat they bring over what "
-                                                  "the housing sheds per kelvin)")
     if values.get("spring_preload", 0.0) > 0 and "spring_preload" not in effects:
         raise InputError(key("spring_preload"), "given, but effects do not list spring_preload")
     if any(isinstance(law, ElasticLaw) for law in laws):
@@ -278,6 +274,11 @@ def check_values(values: dict[str, float]) -> None:
             problems.errors.append(InputError(BY_NAME[name].key, (
                 f"{shown(values[name])} is not above the ambient temperature {shown(values['ambient_temperature'])}"
                 " (start_up.heat.ambient): the lining cannot be cooler than the air around it")))
+    if "heat_capacity" in values and "starts_per_hour" in values and not values.get("heat_conductance", 0.0) > 0:
+        problems.errors.append(InputError(BY_NAME["heat_conductance"].key, (
+            f"{BY_NAME['heat_conductance'].show(values.get('heat_conductance', 0.0))} with starts_per_hour: give the "
+            "housing's conductance above 0 W/K (friction_heat: the steady temperature of repeated starts is the heat "
+            "they bring over what the housing sheds per kelvin)")))
     synchronous = values.get("synchronous_speed")
     if synchronous is not None:
         shown = BY_NAME["synchronous_speed"].show
