@@ -13,7 +13,8 @@ LAYERS: tuple[tuple[str, str, tuple[str, ...]], ...] = (  # (layer, what it hold
              "this table",
      ("__init__", "backend", "units", "unit_table", "errors", "files", "records", "window_records", "data",
       "layers")),
-    ("model", "Quantity, Variable, Constraint, Formulation, SpeedLaw, Coupling", ("model",)),
+    ("model", "Quantity, Variable, Constraint, Formulation, SpeedLaw, Coupling; functions declared monotone",
+     ("model", "monotone")),
     ("formulations", "one module per coupling: quantities, equations, paper procedure, comparison rows",
      ("formulations",)),
     ("start-up equations", "the [start_up] quantities and the drive's equations, written once for the NLP and the "
