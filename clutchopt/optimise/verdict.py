@@ -91,8 +91,10 @@ def _verdict(tried: list[tuple[str, Solution]], proofs: list[str]) -> Solution:
     else:
         _, least = min(diagnosed, key=lambda item: item[1].diagnosed.least)
         text = "the least relaxation found " + least.diagnosed.text.removeprefix("infeasible: ") + _confirmed(diagnosed)
-    if proofs:  # the proof alone: a local least relaxation beside it would name constraints the proof does not need
-        return replace(least, status="infeasible", starts=starts, diagnosis="proven infeasible: " + "; ".join(proofs))
+    if proofs:  # with the integer search's verdict, which it explains; a local least relaxation beside it would
+        # name constraints the proof does not need
+        return replace(least, status="infeasible", starts=starts, diagnosis="proven infeasible: " + "; ".join(proofs)
+                       + ("" if diagnosed or not text else f" ({text})"))
     if any(s.diagnosed.status == "solver_failed" for _, s in diagnosed):
         return replace(least, status="solver_failed", starts=starts,
                        diagnosis="a feasible point exists (elastic check), yet no start reached an optimum")
