@@ -15,7 +15,6 @@ from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
-from scipy.special import ndtr, ndtri
 
 LimitStates = Callable[[np.ndarray], np.ndarray]  # u (n, m) -> g (k, m)
 
@@ -43,6 +42,20 @@ class Estimate:
         """JSON: an estimate that is not defined (SORM where 1 + beta kappa <= 0) as None."""
         return {"probability": _defined(self.probability), "low": _defined(self.low), "high": _defined(self.high),
                 "estimator": self.estimator}
+
+
+def ndtr(x):
+    """Phi(x), scipy.special's, imported on first use (0.2 s: every solve imports this module, few use it)."""
+    from scipy.special import ndtr as phi
+
+    return phi(x)
+
+
+def ndtri(p):
+    """Phi^-1(p), imported on first use (see :func:`ndtr`)."""
+    from scipy.special import ndtri as inverse
+
+    return inverse(p)
 
 
 def _defined(value: float) -> float | None:
