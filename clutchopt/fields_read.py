@@ -16,7 +16,6 @@ from dataclasses import replace
 from typing import Any, Iterator
 
 
-
 class ReadRecorder(Mapping):
     """A case's values that remember which names were asked for (``everything`` once the whole mapping was)."""
 
