@@ -107,10 +107,14 @@ TRAJECTORY_UNITS = {"t": "s", "w_driver": "rad/s", "w_driven": "rad/s", "frictio
 def robust_json(result, case) -> dict:
     """A robust design's ``as_dict()`` with units: the corners' quantities, the nominal design and objective, the
     constraint checks; probabilities, counts and changes of relative margins are unitless."""
+    from clutchopt.records import scatter_record
+
     quantities = {q.name: q.si_unit for q in case.quantities}
-    data = result.as_dict()
+    data = {**result.as_dict(), "scatter": scatter_record(case)}
     design = {name: si_unit(unit) for name, unit in result.nominal.design_units.items()}
+    spread = {name: {key: quantities[name] for key in ("low", "high", "mean", "sd")} for name in data["scatter"]}
     return with_units(data, {
+        "scatter": {name: {**units, "correlation": UNITLESS} for name, units in spread.items()},
         "target": UNITLESS, "samples": UNITLESS, "confidence": UNITLESS, "failure_probability": UNITLESS,
         "nominal_failure_probability": UNITLESS, "margin_sensitivity": UNITLESS,
         "corners": {name: quantities for name in data["corners"]}, "checks": CONSTRAINT_UNITS,

@@ -43,8 +43,14 @@ def design_inputs(case, values: dict[str, float], method: str = NOMINAL) -> dict
 
 
 def scatter_record(case) -> dict[str, dict]:
-    """A case's scatter as the store keeps it: quantity -> kind, worst-case range, mean and sd (SI)."""
-    return {s.name: {k: v for k, v in asdict(s).items() if k != "name"} for s in case.scatter}
+    """A case's scatter as the store keeps it: quantity -> kind, worst-case range, mean and sd (SI), and where it is
+    correlated (``[scatter.correlation]``) ``correlation``: the other quantity -> rho of their normal scores."""
+    record = {s.name: {k: v for k, v in asdict(s).items() if k != "name"} for s in case.scatter}
+    for i, a in enumerate(case.scatter):
+        for j, b in enumerate(case.scatter):
+            if i != j and case.correlation is not None and case.correlation[i][j]:
+                record[a.name].setdefault("correlation", {})[b.name] = case.correlation[i][j]
+    return record
 
 
 def template_key(template: dict) -> str:

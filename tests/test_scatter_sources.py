@@ -230,3 +230,29 @@ def test_a_cut_normal_is_designed_at_its_cut(tmp_path):
                          'inertia = { normal = ["12 kg*m^2", "0.6 kg*m^2"] }\n'
                          'resisting_torque = ["15 N*m", "25 N*m"]'), tmp_path)
     assert solve_robust(cut, WORST_CASE).solution.objective == pytest.approx(1.57985, rel=1e-5)
+
+
+def test_correlation_in_the_json_and_the_run_store(tmp_path, capsys):
+    """`solve --robust --json` and the stored run keep each quantity's scatter and whom it is correlated with."""
+    import json
+
+    from clutchopt.store import RunStore
+
+    path = tmp_path / "case.toml"
+    path.write_text(CORRELATED)
+    store = tmp_path / "runs.sqlite"
+    assert main(["solve", str(path), "--robust", "worst-case", "--samples", "2000", "--json",
+                 "--store", str(store)]) == 0
+    data = json.loads(capsys.readouterr().out)
+    scatter = data["robust"]["scatter"]
+    assert data["robust"]["units"]["scatter"]["inertia"] == {"low": "kg*m^2", "high": "kg*m^2", "mean": "kg*m^2",
+                                                           "sd": "kg*m^2", "correlation": ""}
+    assert scatter["inertia"]["correlation"] == {"allowable_pressure": 0.5, "friction_coefficient": -0.3}
+    assert scatter["friction_coefficient"]["correlation"] == {"inertia": -0.3}
+    assert scatter["allowable_pressure"]["correlation"] == {"inertia": 0.5}
+    assert scatter["inertia"]["mean"] == 12.0 and scatter["inertia"]["sd"] == pytest.approx(0.6)
+    with RunStore(store) as runs:
+        record = runs.run(runs.runs()[-1]["id"])
+    assert record["inputs"]["scatter"]["inertia"]["correlation"] == {"allowable_pressure": 0.5,
+                                                                     "friction_coefficient": -0.3}
+    assert record["inputs"]["scatter"]["friction_coefficient"]["correlation"] == {"inertia": -0.3}
