@@ -189,6 +189,24 @@ def test_bad_neutral_case_is_refused_by_name(tmp_path, capsys, change, fields):
     assert "Traceback" not in err
 
 
+@pytest.mark.parametrize("table, key, value, text", [
+    ("heat", "ambient", "-300 degC", "start_up.heat.ambient: must be > -273.15 degC, got -300 degC"),
+    ("limits", "min_life", "1e400 h", "start_up.limits.min_life: must be a finite number within the float64 range"),
+    ("wear", "allowance", "3 kg", "start_up.wear.allowance: expected a length"),
+    ("limits", "max_start_tim", "6 s", "start_up.limits.max_start_tim: unknown key"),
+])
+def test_a_bad_start_up_field_is_refused_not_a_coupling_left_out(tmp_path, capsys, table, key, value, text):
+    """A field of the neutral [start_up] that is bad for every coupling is the case's error (exit 2), even where one
+    coupling would not take the field at all (the cable drops heat and wear)."""
+    data = read_toml(CONVEYOR)
+    data["start_up"][table][key] = value
+    path = tmp_path / "bad.toml"
+    path.write_text(_toml(data), encoding="utf-8")
+    assert main(["choose-coupling", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert f"error: {text}" in err and "Traceback" not in err
+
+
 def test_an_empty_neutral_case_names_every_missing_duty_field():
     with pytest.raises(InputError) as refused:
         pose({"coupling": "any"}, "empty.toml")

@@ -33,6 +33,7 @@ from clutchopt.formulations.duty import DUTY_QUANTITIES, required_torque
 from clutchopt.model import ENVELOPE_PARTS, ElasticLaw, Quantity, namespace
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.start_up.nameplate import FIELDS as NAMEPLATE_FIELDS
+from clutchopt.start_up.section import read_tables
 from clutchopt.units import si_unit, to_si
 
 ANY = "any"
@@ -282,6 +283,8 @@ def pose(data: dict, path: str = "") -> tuple[Choice, dict[str, float]]:
             problems.errors.append(InputError(f"couplings.{name}", f"unknown coupling; known: {', '.join(MODULES)}"))
         elif not isinstance(table, dict):
             problems.errors.append(InputError(f"couplings.{name}", "must be a table of that coupling's sections"))
+    if isinstance(data.get("start_up"), dict):  # a bad field is the neutral case's, not a coupling's reason to lose
+        read_tables(data["start_up"], problems)
     problems.raise_any()
     candidates = [posed_case(name, duty, raw, data, path) for name in MODULES]
     if all(c.case is None for c in candidates):  # nothing poses: the neutral case itself is wrong

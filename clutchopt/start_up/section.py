@@ -91,23 +91,7 @@ def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = T
     effects = ()
     with problems.field():
         effects = parse_effects(table.get("effects"), f"{SECTION}.effects")
-    values: dict[str, float] = {}
-    profile, spec = None, {}
-    for name in _TABLES:
-        sub = table.get(name, {})
-        if not isinstance(sub, dict):
-            problems.errors.append(InputError(f"{SECTION}.{name}", "must be a table"))
-            continue
-        for key, raw in sub.items():
-            if name == "driver" and key in NAMEPLATE_FIELDS:
-                continue
-            with problems.field():
-                if name == "driven" and key == "load_profile":
-                    profile = parse_load_profile(raw, f"{SECTION}.{name}.{key}")
-                elif name == "overload" and key == "check":
-                    spec["overload"] = _switch(raw, f"{SECTION}.{name}.{key}")
-                else:
-                    values.update(_field_value(declared, name, key, raw))
+    values, profile, spec = read_tables(table, problems)
     motor_note = ""
     plate = nameplate_fields(_table(table, f"{SECTION}.driver"))
     if plate:
@@ -158,6 +142,31 @@ def _table(table: dict, section: str) -> dict:
     """The sub-table of ``[start_up]`` that holds the quantities of ``section`` (``start_up.driver``), or ``{}``."""
     sub = table.get(section.partition(".")[2], {}) if "." in section else table
     return sub if isinstance(sub, dict) else {}
+
+
+def read_tables(table: dict, problems: Problems) -> tuple[dict[str, float], LoadProfile | None, dict]:
+    """The fields of the sub-tables of a ``[start_up]`` section (driver, driven, heat, ...), each checked on its
+    own (the nameplate's fields aside: :func:`clutchopt.start_up.nameplate.kloss_from_nameplate`): the quantities'
+    SI values, the load profile and the spec's switches; each bad field a problem of ``problems``."""
+    declared = {q.key: q for q in QUANTITIES}
+    values: dict[str, float] = {}
+    profile, spec = None, {}
+    for name in _TABLES:
+        sub = table.get(name, {})
+        if not isinstance(sub, dict):
+            problems.errors.append(InputError(f"{SECTION}.{name}", "must be a table"))
+            continue
+        for key, raw in sub.items():
+            if name == "driver" and key in NAMEPLATE_FIELDS:
+                continue
+            with problems.field():
+                if name == "driven" and key == "load_profile":
+                    profile = parse_load_profile(raw, f"{SECTION}.{name}.{key}")
+                elif name == "overload" and key == "check":
+                    spec["overload"] = _switch(raw, f"{SECTION}.{name}.{key}")
+                else:
+                    values.update(_field_value(declared, name, key, raw))
+    return values, profile, spec
 
 
 def _field_value(declared, table: str, key: str, raw) -> dict[str, float]:
