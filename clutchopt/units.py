@@ -281,6 +281,14 @@ def to_si(field: str, raw: object, unit: str) -> float:
     return value
 
 
+def into_si(value, unit: str):
+    """A number in ``unit`` (a number or a NumPy array) in SI, the inverse of :func:`from_si`: an offset unit (degC)
+    gives the absolute temperature in K, so 20 degC is 293.15 K, not 20 x 274.15."""
+    if unit not in UNITS and unit_info(unit).offset:
+        return registry().Quantity(value, unit).to(registry().kelvin).magnitude
+    return value * si_factor(unit)
+
+
 def from_si(value, unit: str):
     """Convert an SI value to ``unit`` for display; an offset unit (degC) takes an absolute temperature in K, so
     293.15 K is 20 degC, not 293.15 (a number or a NumPy array)."""

@@ -209,3 +209,16 @@ def test_a_lining_no_design_can_keep_cool_on_a_constant_speed_drive_is_proven(tm
         in data["diagnosis"]
     assert f"the friction parts rise by at least {rise:.6g} K, above its limit 30 K" in data["diagnosis"]
     assert "lining_temperature" in data["diagnosis"]
+
+
+def test_a_sweep_of_the_ambient_reads_degc_as_an_absolute_temperature():
+    """--vary values are numbers in the display unit; for degC that is an offset: 20 degC = 293.15 K, 60 degC =
+    333.15 K (not 20 x 274.15 K, a factor's reading); a speed stays a factor, 1000 rpm = 104.72 rad/s."""
+    from clutchopt.cases import load_case
+    from clutchopt.optimise.sweep_grid import parse_vary
+
+    case = load_case(LEVER)
+    ambient = parse_vary("ambient_temperature=20,60", "lever", case.quantities)
+    assert ambient.values == pytest.approx((293.15, 333.15), rel=1e-15) and ambient.shown == (20.0, 60.0)
+    assert parse_vary("speed=1000:1200:3", "lever", case.quantities).values == pytest.approx(
+        tuple(n * math.pi / 30 for n in (1000, 1100, 1200)), rel=1e-15)

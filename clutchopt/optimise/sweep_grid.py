@@ -13,7 +13,7 @@ from clutchopt.errors import InputError
 from clutchopt.fields_read import fields_read_across, followers
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Quantity
-from clutchopt.units import si_factor
+from clutchopt.units import into_si
 
 MAX_POINTS = 100_000  # points of one sweep: hours of solving; more is a mistake (1e12 would not fit in memory)
 
@@ -60,8 +60,8 @@ def parse_vary(text: str, coupling: str, quantities: tuple[Quantity, ...] | None
             raise InputError(field, "the range's span is beyond the float64 range")
     elif len(numbers) > MAX_POINTS:
         raise InputError(field, f"{len(numbers)} values; a sweep has at most {MAX_POINTS:,} points")
-    factor = si_factor(quantity.unit) if quantity.unit else 1.0
-    values = tuple(value * factor for value in numbers)
+    with np.errstate(all="ignore"):
+        values = tuple(np.asarray(into_si(np.asarray(numbers, dtype=float), quantity.unit), dtype=float).tolist())
     if not all(math.isfinite(value) for value in values):
         raise InputError(field, "values beyond the float64 range once converted to SI")
     return Vary(quantity, values, tuple(numbers))
