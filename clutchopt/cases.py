@@ -138,12 +138,19 @@ def load_case(path: str | Path) -> Case:
     return parse_case(read_toml(path), str(path))
 
 
+NEUTRAL = "any"  # the coupling of a neutral case: one duty posed for every coupling (clutchopt.optimise.choose)
+
+
 def parse_case(data: dict, path: str = "") -> Case:
     """Check every field of a case; all problems found are raised together (one InputError carrying them)."""
     from clutchopt.formulations import get_coupling
 
     if "coupling" not in data:
         raise InputError("coupling", "missing: say which coupling this case is for, e.g. coupling = \"wedge\"")
+    if data["coupling"] == NEUTRAL:
+        raise InputError("coupling", f"\"{NEUTRAL}\" poses one duty for every coupling: `clutchopt choose-coupling` "
+                                     "takes it; this command takes a case of one coupling (its `[couplings.NAME]` "
+                                     "tables, or `clutchopt init NAME`)")
     coupling = get_coupling(data["coupling"])
     declared = {q.key: q for q in coupling.quantities}
     sections = {q.section for q in coupling.quantities}

@@ -240,3 +240,11 @@ def test_a_rated_torque_in_place_of_the_power_poses_the_same_duty():
     assert posed["ball"]["power"] == pytest.approx(98 * W, rel=1e-12)
     assert posed["ball"]["service_factor"] == pytest.approx(T_MAX / 98, rel=1e-12)
     assert posed["cable"]["torque"] == pytest.approx(T_MAX, rel=1e-12)
+
+
+@pytest.mark.parametrize("args", [["solve", "--no-store"], ["sweep", "--vary", "speed=1000,1400", "--no-store"],
+                                  ["compare"]])
+def test_a_neutral_case_is_refused_by_the_one_coupling_commands(args, capsys):
+    assert main([args[0], str(CONVEYOR), *args[1:]]) == 2
+    assert capsys.readouterr().err.startswith('error: coupling: "any" poses one duty for every coupling: '
+                                              "`clutchopt choose-coupling` takes it")

@@ -26,7 +26,7 @@ import math
 import tomllib
 from dataclasses import dataclass, field
 
-from clutchopt.cases import Case, parse_case, read_toml
+from clutchopt.cases import NEUTRAL, Case, parse_case, read_toml
 from clutchopt.errors import InputError, Problems
 from clutchopt.formulations import MODULES, get_coupling
 from clutchopt.formulations.duty import DUTY_QUANTITIES, required_torque
@@ -36,7 +36,6 @@ from clutchopt.start_up.nameplate import FIELDS as NAMEPLATE_FIELDS
 from clutchopt.start_up.section import read_tables
 from clutchopt.units import si_unit, to_si
 
-ANY = "any"
 OBJECTIVE = "envelope_mass"  # each coupling designed for least like-for-like mass, the mass it is ranked by
 SECTIONS = ("duty", "library", "limits", "start_up", "couplings")
 TOP_LEVEL = ("coupling", "title", "description")
@@ -118,7 +117,7 @@ def neutral_duty(data: dict, path: str) -> tuple[dict[str, float], dict]:
     problems = Problems()
     for key in data:
         if key not in SECTIONS and key not in TOP_LEVEL:
-            problems.errors.append(InputError(key, f"unknown section or key; a case with coupling = \"{ANY}\" "
+            problems.errors.append(InputError(key, f"unknown section or key; a case with coupling = \"{NEUTRAL}\" "
                                                    f"may have {', '.join(TOP_LEVEL + SECTIONS)}"))
     for key in SECTIONS:
         if key in data and not isinstance(data[key], dict):
@@ -270,8 +269,8 @@ def _merge(target: dict, extra: dict) -> None:
 
 def pose(data: dict, path: str = "") -> tuple[Choice, dict[str, float]]:
     """Every coupling posed for the neutral case ``data`` (not solved)."""
-    if data.get("coupling", ANY) != ANY:
-        raise InputError("coupling", f"choose-coupling takes a case with coupling = \"{ANY}\" (or none), "
+    if data.get("coupling", NEUTRAL) != NEUTRAL:
+        raise InputError("coupling", f"choose-coupling takes a case with coupling = \"{NEUTRAL}\" (or none), "
                                      f"got {data['coupling']!r}")
     problems = Problems()
     duty, raw = {}, {}
