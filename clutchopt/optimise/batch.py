@@ -56,9 +56,9 @@ from clutchopt.optimise.attempts import warm_multipliers
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
 from clutchopt.optimise.chain import chain_verdict, chained_sqp
 from clutchopt.optimise.integers import descend, excluded_entry, nearest_integers, relaxation_seed, search_entry
-from clutchopt.optimise.interval_proof import SearchesAhead
 from clutchopt.optimise.posed import Box, off_scale
 from clutchopt.optimise.problem import Problem
+from clutchopt.optimise.region_proof import Regions
 from clutchopt.optimise.solution import Solution, WarmStart
 from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL
 
@@ -199,7 +199,7 @@ class BatchSweep:
         # where there is none, and where the steps differ more than fourfold)
         self.solves, self.solver_s, self.check_s = 0, 0.0, 0.0
         self.feasible: dict[str, float] | None = None  # the last feasible design in order: a start for a failed point
-        self._ahead = SearchesAhead(self.posed, self.point_case, self.count)  # interval searches of points ahead
+        self._regions = Regions(problem, self.point_case, self.count)  # infeasible regions proven at once
 
     def point_case(self, k: int) -> Case:
         return self.case.with_values(**{name: float(values[k]) for name, values in self.varied.items()})
@@ -243,11 +243,13 @@ class BatchSweep:
 
     def _solve_alone(self, k: int, warm: Solution | WarmStart | None) -> Solution:
         """Point k by ``Problem.solve``, the last feasible design in order its neighbour before a verdict. After a
-        point whose verdict took the interval search (no design), the searches of the points ahead run together
-        first (``interval_proof.SearchesAhead``)."""
-        self._ahead.before(k)
+        point without a design, the points from k are first searched as one region (``region_proof.Regions``): a
+        point a proof covers is infeasible without a solve."""
+        covered = self._regions.covered(k)
+        if covered is not None:
+            return covered
         solution = self._counted(self.problem.solve(self.point_case(k), warm=warm, neighbour=self.feasible))
-        self._ahead.after(k, solution)
+        self._regions.after(k, solution)
         if solution.status in DESIGN_STATUSES:
             self.feasible = solution.design
         return solution
@@ -414,7 +416,7 @@ class BatchSweep:
         """A point without a design followed by a feasible point in the window: solved again from that design, so
         that its verdict does not depend on the order of the points (point by point: ``sweep.solve_points``)."""
         for k in sorted(alone):
-            if solutions[k - first].status in DESIGN_STATUSES:
+            if solutions[k - first].status in DESIGN_STATUSES + ("infeasible",):  # (proven: no design to find)
                 continue
             later = next((j for j in range(k + 1, first + count) if solutions[j - first].status in DESIGN_STATUSES),
                          None)

@@ -30,7 +30,6 @@ from typing import NamedTuple
 import numpy as np
 
 from clutchopt.optimise.interval_nodes import enclosed_rows
-from clutchopt.optimise.verify import DESIGN_STATUSES
 
 MAX_BOXES = 40_000  # about 1.5 s of CPU; ball_motor_start's static conflict at 580-800 kW takes 15,000-34,000
 SURE_BOXES = 2_500  # evaluated in any case; beyond, only while the search closes in (GROWTH)
@@ -61,33 +60,42 @@ def search(posed, p: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> Emptin
     return searches(posed, [(p, lower, upper)])[0]
 
 
-def searches(posed, problems: list[tuple[np.ndarray, np.ndarray, np.ndarray]]) -> list[Emptiness | None]:
+def searches(posed, problems: list[tuple[np.ndarray, ...]], budgets: list[int] | None = None) -> list[Emptiness | None]:
     """:func:`search` of each ``(p, lower, upper)`` (the points of a sweep), all at once: the boxes of every search
     in one array (a box's bounds are its own: the interval rules work box by box), each with its own parameters and
     its own tally, so each search's outcome, box count and decisive constraints are what it alone would give; an
-    evaluation costs per operation as much as per box, so searches together cost less than one by one."""
+    evaluation costs per operation as much as per box, so searches together cost less than one by one.
+
+    A problem ``(p, lower, upper, p_upper)`` searches the parameters over the interval [p, p_upper] (a run of a
+    sweep's points: :mod:`clutchopt.optimise.region_proof`): every bound holds for every parameter vector in it, so
+    an empty design space is empty for each of them; the parameters are never split, and a box whose centre meets
+    every row for all of them is a design of every such point (the search stops there). ``budgets``: each search's
+    most boxes (default MAX_BOXES)."""
     outcomes: list[Emptiness | None] = [None] * len(problems)
-    started = [i for i, (_, lower, upper) in enumerate(problems)
+    started = [i for i, (_, lower, upper, *_) in enumerate(problems)
                if np.all(np.isfinite(lower)) and np.all(np.isfinite(upper))]
     if not started:
         return outcomes
+    budgets = budgets or [MAX_BOXES] * len(problems)
     declared = interval_functions(posed)
     agree = [declared[0].nodes.agree(problems[i][1], problems[i][2], problems[i][0]) for i in started]
     for functions, group in ((declared, [i for i, a in zip(started, agree) if a]),
                              (None, [i for i, a in zip(started, agree) if not a])):
         if group:  # where the declared nodes do not stand for the NLP's rows, the rows replayed
             functions = functions or posed.built("interval", False, lambda _: enclosed_rows(posed, declared=False))
-            for i, outcome in zip(group, _searched(posed, functions, [problems[i] for i in group])):
+            for i, outcome in zip(group, _searched(posed, functions, [problems[i] for i in group],
+                                                   np.array([budgets[i] for i in group]))):
                 outcomes[i] = outcome
     return outcomes
 
 
-def _searched(posed, functions, problems: list) -> list[Emptiness]:
+def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emptiness]:
     """The searches of :func:`searches` with the same interval functions, every box a column with its search's."""
     names, count = posed.row_names, len(problems)
-    params = np.stack([p for p, _, _ in problems], axis=1)
-    lo = np.stack([lower for _, lower, _ in problems], axis=1)
-    hi = np.stack([upper for _, _, upper in problems], axis=1)
+    p_lo = np.stack([problem[0] for problem in problems], axis=1)
+    p_hi = np.stack([problem[3] if len(problem) > 3 else problem[0] for problem in problems], axis=1)
+    lo = np.stack([problem[1] for problem in problems], axis=1)
+    hi = np.stack([problem[2] for problem in problems], axis=1)
     width0 = np.where(hi > lo, hi - lo, 1.0)
     owner = np.arange(count)  # each box's search (a column of params), the boxes of one search together
     decisive: list[dict[str, int]] = [{} for _ in problems]
@@ -113,14 +121,14 @@ def _searched(posed, functions, problems: list) -> list[Emptiness]:
         lo, hi, owner = lo[:, kept], hi[:, kept], owner[kept]
         end(np.setdiff1d(before, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         counts = np.bincount(owner, minlength=count)
-        over = np.flatnonzero((counts > 0) & (evaluated + counts > MAX_BOXES))
+        over = np.flatnonzero((counts > 0) & (evaluated + counts > budgets))
         end(over, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
         keep = ~np.isin(owner, over)
         lo, hi, owner = lo[:, keep], hi[:, keep], owner[keep]
         if not lo.shape[1]:
             break
         evaluated += np.bincount(owner, minlength=count)
-        (g_lo, g_hi), (d_lo, d_hi), centre, (c_lo, c_hi) = _bounds(functions, lo, hi, params[:, owner])
+        (g_lo, g_hi), (d_lo, d_hi), centre, (c_lo, c_hi) = _bounds(functions, lo, hi, (p_lo[:, owner], p_hi[:, owner]))
         first_met: dict[int, int] = {}
         for box in np.flatnonzero(np.all(c_hi <= 0.0, axis=0))[::-1].tolist():  # each search's first box met
             first_met[int(owner[box])] = box
@@ -190,13 +198,13 @@ def _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0, split):
             np.concatenate([hi[:, ~split], s_hi], axis=1)[:, order], owner[parents][order], parents[order])
 
 
-def _bounds(functions, lo: np.ndarray, hi: np.ndarray, params: np.ndarray):
+def _bounds(functions, lo: np.ndarray, hi: np.ndarray, params: tuple[np.ndarray, np.ndarray]):
     """Over each box: the rows' bounds (the natural interval extension met with the mean-value form
     g(c) + J(X) (X - c), which is tight on small boxes), the Jacobian's bounds (rows x variables x boxes), the centre
-    and the rows' bounds there; ``params``: each box's parameters (a column)."""
+    and the rows' bounds there; ``params``: each box's parameters (a column), their lower and upper ends (the mean
+    value form holds for each parameter vector between them: g(x, p) = g(c, p) + J(xi, p) (x - c))."""
     rows, jacobian = functions
     count, n = lo.shape[1], lo.shape[0]
-    params = (params, params)
     centre = 0.5 * (lo + hi)
     (g_lo, g_hi), = rows.bounds([(lo, hi), params])
     (c_lo, c_hi), = rows.bounds([(centre, centre), params])
@@ -245,52 +253,9 @@ def _bisected(lo: np.ndarray, hi: np.ndarray, d_lo: np.ndarray, d_hi: np.ndarray
 def empty_design_space(posed, case) -> Emptiness | None:
     """:func:`search` over the design box of ``case`` in ``posed`` (with a start-up: its formulation's own
     constraints, without the start-up's: a design space empty without them is empty with them); found already
-    where :func:`search_ahead` searched the same box with the same parameters."""
+    where a sweep searched the same box with the same parameters (:mod:`clutchopt.optimise.region_proof`)."""
     problem = _search_problem(posed, case)
     return _ahead(posed).pop(_key(problem), None) or search(posed, *problem)
-
-
-FIRST_AHEAD = 8  # points whose searches run together after a point whose verdict took the search,
-LONGEST_AHEAD = 32  # doubling up to this many while the points go on without a design (ball_crusher: 162 ms a
-# search alone, 40 ms a point 8 together, 29 ms 32 together, 35 ms 64 together: the arrays outgrow the caches)
-
-
-class SearchesAhead:
-    """Along a sweep (points 0 .. count - 1 solved in order, ``point_case(k)`` the case of point k): after a point
-    whose verdict took the interval search, the searches of the next points run together (:func:`search_ahead`)
-    before the next is solved, FIRST_AHEAD points, doubling while the points go on without a design."""
-
-    def __init__(self, posed, point_case, count: int):
-        self.posed, self.point_case, self.count = posed, point_case, count
-        self._searched_at: int | None = None  # the last point solved whose verdict took the search
-        self._to, self._length = 0, FIRST_AHEAD  # the end of the points searched ahead; how many to search next
-
-    def before(self, k: int) -> None:
-        """Point k is about to be solved: the searches ahead, where the point before took one and k has none."""
-        if self._searched_at == k - 1 and k >= self._to:
-            self._to = min(k + self._length, self.count)
-            search_ahead(self.posed, [self.point_case(j) for j in range(k, self._to)])
-            self._length = min(2 * self._length, LONGEST_AHEAD)
-
-    def after(self, k: int, solution) -> None:
-        """Point k's solution: a design ends the run of points without one; a verdict that took the search (not
-        found, or proven by it) starts or extends it."""
-        if solution.status in DESIGN_STATUSES:
-            self._length = FIRST_AHEAD
-        elif solution.status == "not_found" or "interval branch and bound" in (solution.diagnosis or ""):
-            self._searched_at = k
-
-
-def search_ahead(posed, cases: list) -> None:
-    """The searches of :func:`empty_design_space` for ``cases`` (the next points of a sweep, where its points have
-    no design), run together (:func:`searches`) and kept until each is asked for (those kept from before
-    dropped)."""
-    ahead = _ahead(posed)
-    ahead.clear()
-    problems = [_search_problem(posed, case) for case in cases]
-    for problem, outcome in zip(problems, searches(posed, problems)):
-        if outcome is not None:
-            ahead[_key(problem)] = outcome
 
 
 def _search_problem(posed, case) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

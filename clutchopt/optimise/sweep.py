@@ -39,8 +39,8 @@ from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
 from clutchopt.optimise.dask_client import connect
 from clutchopt.optimise.design import Robustness, check_robustness, design_case, method_of
 from clutchopt.optimise.entering import check_entering
-from clutchopt.optimise.interval_proof import SearchesAhead
 from clutchopt.optimise.problem import case_formulation, case_problem
+from clutchopt.optimise.region_proof import Regions
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.start_up_sweep import solved_along
 from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_name, grid_points, grid_positions,
@@ -133,10 +133,13 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
     designs: dict[tuple, Solution] = {}  # feasible designs by the point's values
     waiting: list[tuple[int, Case, Solution]] = []  # points without a design, until the next feasible one
     pairs = list(points.pairs())
-    ahead = SearchesAhead(problem.posed, lambda k: case.with_values(**pairs[k][1]), len(pairs))
+    regions = Regions(problem, lambda k: case.with_values(**pairs[k][1]), len(pairs))
     for j, (index, values) in enumerate(pairs):
         point_case = case.with_values(**values)
-        ahead.before(j)
+        if (covered := regions.covered(j)) is not None:  # proven with the points around it: no solve
+            previous = None
+            waiting.append((j, point_case, covered))
+            continue
         # falls back to the case's own start by itself; a start-up design starts from the point before's optimum on
         # the first mesh (clutchopt.optimise.start_up_sweep), else as `solve` does, from the papers' sizing at the
         # point: either way solve's design whatever the points before it
@@ -147,7 +150,7 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
                                              neighbour=neighbour.design if neighbour is not None else None)
         if solution.status not in DESIGN_STATUSES and feasible is not None:
             solution = continued(problem, case, feasible, values) or solution
-        ahead.after(j, solution)
+        regions.after(j, solution)
         previous = solution if solution.status == "optimal" else None
         if solution.status not in DESIGN_STATUSES:
             waiting.append((j, point_case, solution))
@@ -155,6 +158,8 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
         feasible = values, solution
         designs[tuple(values.values())] = solution
         for k, (w, waited_case, waited) in enumerate(waiting):  # between feasible neighbours: from this one too
+            if waited.status == "infeasible":  # proven: no design to find
+                continue
             retry = problem.solve(waited_case, start=solution.design)
             waiting[k] = (w, waited_case, retry if retry.status in DESIGN_STATUSES else waited)
         yield from (_one(points, w, names, waited) for w, _, waited in waiting)

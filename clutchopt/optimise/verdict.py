@@ -64,15 +64,16 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
                 if retry.status in DESIGN_STATUSES:
                     return _spent(retry, tried)
         elif emptiness is not None and emptiness.proven:
-            proofs = [_emptied(emptiness)]
+            proofs = [emptied(emptiness)]
     return _spent(_verdict(tried, proofs), tried)
 
 
-def _emptied(emptiness) -> str:
-    """The interval proof in words: the constraints that emptied the boxes, most boxes first."""
+def emptied(emptiness, over: str = "") -> str:
+    """The interval proof in words: the constraints that emptied the boxes, most boxes first (``over``: what the
+    boxes spanned beyond the design space, e.g. a sweep's interval of a quantity)."""
     names = sorted(emptiness.decisive, key=emptiness.decisive.get, reverse=True)
     return (f"no design within the bounds meets {', '.join(names)} together (interval branch and bound over "
-            f"{emptiness.boxes} boxes of the design space)")
+            f"{emptiness.boxes} boxes of the design space{' ' + over if over else ''})")
 
 
 def _retried(problem, case: Case, start: dict[str, float] | None, diagnosed: bool = False) -> Solution | None:

@@ -1,0 +1,163 @@
+"""Infeasible regions of a sweep proven at once (issue 26 item 3): one interval search for a run of points.
+
+Along a sweep the points without a design come in runs (a duty beyond what any design within the bounds carries).
+Each point of such a run once cost a full verdict (``clutchopt.optimise.verdict.shown``): the failed solve, its
+elastic diagnosis, the retries from every start, then the interval search that proves it. Here, after a point
+without a design, the next points are searched together *as one box*: the design box (the hull of the points'
+boxes) times the interval of their parameters, from the smallest to the largest value each takes over the run
+(``interval_proof.searches`` with a parameter interval). Every interval bound holds for every parameter vector in
+it, so a proof for the interval is a proof for each point in the run: each gets ``infeasible`` with the region's
+proof, which names the interval (e.g. "proven infeasible for power 566-1000 kW: ..."), without a solve.
+
+A run that cannot be proven as a whole (it reaches past the region's edge, or its bounds are too loose over the
+whole interval) is bisected, the halves searched together, down to single points, whose searches are the ones their
+own verdict would run (same boxes, same outcome: ``interval_proof.searches``); they are kept for it
+(``empty_design_space``), and a point proven by its own search gets the verdict its own solve gives (the same
+text), without the solves that would precede it. Runs start FIRST_RUN points long and double while they are
+proven whole, up to LONGEST_RUN. A point whose case breaks a requirement that no design variable enters ("whatever
+the design"), or (a start-up) whose drive proofs hold, is left to its own verdict, which says so.
+
+Points not covered are solved as before (``Problem.solve``). A covered point reports the design of the last point
+without a design (its least relaxation) with every constraint re-evaluated in float64 at the point's own values,
+solver ``interval`` with no solver call, and its share of the search's seconds.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import replace
+
+import numpy as np
+
+from clutchopt.optimise.interval_proof import _ahead, _key, _search_problem, searches
+from clutchopt.optimise.proofs import start_up_proofs
+from clutchopt.optimise.solution import Solution, SolverInfo
+from clutchopt.optimise.verdict import emptied
+from clutchopt.optimise.verify import DESIGN_STATUSES, check_design, evaluate_objective, evaluate_outputs
+from clutchopt.units import from_si
+
+FIRST_RUN = 8  # points searched as one region after a point without a design,
+LONGEST_RUN = 256  # doubling up to this many while whole runs are proven
+REGION_BUDGET = 4  # a region's search may evaluate this many times the boxes of the last point's own search
+# (at least interval_proof.SURE_BOXES): one reaching past the region's edge gives up there and is bisected
+
+
+class Regions:
+    """Along a sweep (points 0 .. count - 1 in order, ``point_case(k)`` the case of point k, ``problem`` its built
+    problem): :meth:`covered` gives point k's verdict where a region proof covers it (searching the run from k where
+    the point before has no design); :meth:`after` takes each point's solution."""
+
+    def __init__(self, problem, point_case, count: int):
+        self.problem, self.posed, self.point_case, self.count = problem, problem.posed, point_case, count
+        self._without: Solution | None = None  # the last point's solution where it has no design
+        self._without_at = -2
+        self._to, self._length = 0, FIRST_RUN  # the end of the points searched; how many to search next
+        self._proven: dict[int, tuple[str, float]] = {}  # point -> its proof's text, its share of the seconds
+        self._boxes = 0  # the boxes of the last single point's search that proved it
+
+    def covered(self, k: int) -> Solution | None:
+        """Point k's verdict from a region proof, or None (solve it)."""
+        if self._without_at == k - 1 and k >= self._to:
+            self._search_from(k)
+        proven = self._proven.pop(k, None)
+        if proven is None or self._without is None:
+            return None
+        solution = _covered(self.problem, self.point_case(k), self._without, *proven)
+        if solution is not None:
+            self.after(k, solution)
+        return solution
+
+    def after(self, k: int, solution: Solution) -> None:
+        """Point k's solution: one without a design starts (or goes on with) the regions searched after it; a
+        design ends a run of proven regions (the next run starts FIRST_RUN points long)."""
+        if solution.status in DESIGN_STATUSES:
+            self._length = FIRST_RUN
+        elif solution.status in ("infeasible", "not_found"):
+            self._without, self._without_at = solution, k
+
+    def _search_from(self, k: int) -> None:
+        """The runs from point k (``_length`` points), bisected where not proven whole, their searches together."""
+        end = min(k + self._length, self.count)
+        self._to, runs = end, [(k, end)]
+        _ahead(self.posed).clear()  # (single points' searches kept for their own verdicts: those of before dropped)
+        cases = {j: self.point_case(j) for j in range(k, end)}
+        points = {j: _search_problem(self.posed, case) for j, case in cases.items()}
+        whole = None  # whether the first run was proven as a whole
+        while runs:
+            problems = [_region_problem([points[j] for j in range(a, b)]) for a, b in runs]
+            budget = max(REGION_BUDGET * self._boxes, 2_500)
+            began = time.perf_counter()
+            outcomes = searches(self.posed, problems, [budget if b - a > 1 else _full() for a, b in runs])
+            seconds = time.perf_counter() - began
+            halves = []
+            for (a, b), problem, outcome in zip(runs, problems, outcomes):
+                if b - a == 1 and outcome is not None:  # a point's own search: kept for its own verdict
+                    _ahead(self.posed)[_key(problem[:3])] = outcome
+                if outcome is not None and outcome.proven:
+                    if b - a == 1:
+                        self._boxes = outcome.boxes
+                    text = _region_text(self.posed, cases, a, b, problem, outcome)
+                    for j in range(a, b):
+                        self._proven[j] = (text, seconds / max(1, end - k))
+                elif b - a > 1 and outcome is not None and outcome.feasible is None:  # (a design met for the whole
+                    # run: every point has one, solved as usual)
+                    middle = (a + b) // 2
+                    halves += [(a, middle), (middle, b)]
+            if whole is None:
+                whole = outcomes[0] is not None and outcomes[0].proven and end - k > 1
+            runs = halves
+        self._length = min(2 * self._length, LONGEST_RUN) if whole else FIRST_RUN
+
+
+def _full() -> int:
+    from clutchopt.optimise.interval_proof import MAX_BOXES
+
+    return MAX_BOXES
+
+
+def _region_problem(points: list[tuple[np.ndarray, ...]]) -> tuple[np.ndarray, ...]:
+    """One search over a run's points: the hull of their design boxes, their parameters from least to most (a single
+    point: its own problem)."""
+    if len(points) == 1:
+        return points[0]
+    p = np.stack([point[0] for point in points])
+    return (p.min(axis=0), np.min([point[1] for point in points], axis=0),
+            np.max([point[2] for point in points], axis=0), p.max(axis=0))
+
+
+def _region_text(posed, cases: dict, a: int, b: int, problem: tuple, outcome) -> str:
+    """The proof in words: a single point's as its own verdict says it; a run's with the interval it holds for."""
+    if b - a == 1:
+        return "proven infeasible: " + emptied(outcome)
+    quantities = posed.formulation.quantities
+    p_lo, p_hi = problem[0], problem[3]
+    spans = [f"{q.name} {_shown(p_lo[i], q.unit)}-{_shown(p_hi[i], q.unit)} {q.unit}"
+             for i, q in enumerate(quantities) if p_lo[i] != p_hi[i]]
+    return (f"proven infeasible for {', '.join(spans)} ({b - a} points, one proof): "
+            + emptied(outcome, "and the interval of " + ", ".join(s.split(" ")[0] for s in spans)))
+
+
+def _shown(value: float, unit: str) -> str:
+    return f"{float(from_si(value, unit)):.6g}"
+
+
+def _covered(problem, case, without: Solution, text: str, seconds: float) -> Solution | None:
+    """The verdict of a point a proof covers: the design of the last point without one (its least relaxation), every
+    constraint re-evaluated in float64 at this point's values; None where a requirement no design variable enters is
+    broken, or a start-up's drive proofs hold (its own verdict says so)."""
+    posed = problem.posed
+    if problem.start_up is not None and start_up_proofs(case):
+        return None
+    f, params = posed.formulation, posed.params(case)
+    design = without.design
+    checks = check_design(f, design, params)
+    fixed = {posed.row_names[i] for i in posed.fixed_rows}
+    if any(not c.feasible for c in checks if c.name in fixed):
+        return None
+    lower, upper, _ = posed.bounds_and_start(case, None)
+    return replace(without, status="infeasible", diagnosis=text, constraints=checks,
+                   objective=evaluate_objective(f, posed.objective.name, design, params),
+                   outputs=evaluate_outputs(f, design, params), integer_search=[], sensitivities={}, scale=None,
+                   multipliers=None, start_up=None, internal=None, mesh=None, diagnosed=None, starts=(),
+                   bounds={n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, lower, upper)},
+                   solver=SolverInfo("interval", "region proof", 0, seconds, 0))
