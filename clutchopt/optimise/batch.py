@@ -244,12 +244,13 @@ class BatchSweep:
     def _solve_alone(self, k: int, warm: Solution | WarmStart | None) -> Solution:
         """Point k by ``Problem.solve``, the last feasible design in order its neighbour before a verdict. After a
         point without a design, the points from k are first searched as one region (``region_proof.Regions``): a
-        point a proof covers is infeasible without a solve."""
-        covered = self._regions.covered(k)
-        if covered is not None:
-            return covered
-        solution = self._counted(self.problem.solve(self.point_case(k), warm=warm, neighbour=self.feasible))
-        self._regions.after(k, solution)
+        point a proof covers is infeasible without a solve; another is solved once, and searched alone before its
+        full verdict where that solve finds no design."""
+        solution = self._regions.covered(k) or self._regions.quick(k, warm)
+        if solution is None:
+            solution = self.problem.solve(self.point_case(k), warm=warm, neighbour=self.feasible)
+            self._regions.after(k, solution)
+        self._counted(solution)
         if solution.status in DESIGN_STATUSES:
             self.feasible = solution.design
         return solution

@@ -252,10 +252,23 @@ def _bisected(lo: np.ndarray, hi: np.ndarray, d_lo: np.ndarray, d_hi: np.ndarray
 
 def empty_design_space(posed, case) -> Emptiness | None:
     """:func:`search` over the design box of ``case`` in ``posed`` (with a start-up: its formulation's own
-    constraints, without the start-up's: a design space empty without them is empty with them); found already
-    where a sweep searched the same box with the same parameters (:mod:`clutchopt.optimise.region_proof`)."""
+    constraints, without the start-up's: a design space empty without them is empty with them); the search a sweep
+    ran for the same box with the same parameters where one is kept (:func:`keep_search`)."""
     problem = _search_problem(posed, case)
-    return _ahead(posed).pop(_key(problem), None) or search(posed, *problem)
+    kept = posed.built("interval_kept", None, lambda _: {}).pop(_key(problem), None)
+    emptiness = kept or search(posed, *problem)
+    if emptiness is not None and emptiness.proven:
+        last_boxes(posed, emptiness.boxes)
+    return emptiness
+
+
+def last_boxes(posed, boxes: int | None = None) -> int:
+    """The boxes of the last search of ``posed`` that proved (``boxes``: record them): what a search near it may take
+    (``region_proof``'s budget)."""
+    kept = posed.built("interval_last", None, lambda _: {"boxes": 0})
+    if boxes is not None:
+        kept["boxes"] = boxes
+    return kept["boxes"]
 
 
 def _search_problem(posed, case) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -266,9 +279,13 @@ def _search_problem(posed, case) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return p, lower, upper
 
 
+def keep_search(posed, problem: tuple[np.ndarray, ...], emptiness: Emptiness | None) -> None:
+    """Keep a search's outcome for :func:`empty_design_space` of the same problem (only the last one kept)."""
+    kept = posed.built("interval_kept", None, lambda _: {})
+    kept.clear()
+    if emptiness is not None:
+        kept[_key(problem)] = emptiness
+
+
 def _key(problem: tuple[np.ndarray, ...]) -> tuple[bytes, ...]:
     return tuple(np.asarray(part, dtype=float).tobytes() for part in problem)
-
-
-def _ahead(posed) -> dict:
-    return posed.built("interval_ahead", None, lambda _: {})

@@ -29,7 +29,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from clutchopt.optimise.interval_proof import _ahead, _key, _search_problem, searches
+from clutchopt.optimise.interval_proof import (MAX_BOXES, SURE_BOXES, _search_problem, keep_search, last_boxes,
+                                               searches)
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.verdict import emptied
@@ -53,7 +54,6 @@ class Regions:
         self._without_at = -2
         self._to, self._length = 0, FIRST_RUN  # the end of the points searched; how many to search next
         self._proven: dict[int, tuple[str, float]] = {}  # point -> its proof's text, its share of the seconds
-        self._boxes = 0  # the boxes of the last single point's search that proved it
 
     def covered(self, k: int) -> Solution | None:
         """Point k's verdict from a region proof, or None (solve it)."""
@@ -63,6 +63,32 @@ class Regions:
         if proven is None or self._without is None:
             return None
         solution = _covered(self.problem, self.point_case(k), self._without, *proven)
+        if solution is not None:
+            self.after(k, solution)
+        return solution
+
+    def quick(self, k: int, warm=None) -> Solution | None:
+        """Point k, not covered, next to a point without a design (a static problem): one solve (as ``Problem.solve``
+        starts, ``warm`` its warm start), and where it ends without a design the point's own interval search before
+        the elastic diagnosis and the retries; the solve's design, or the verdict its proof gives, or None (the
+        full verdict: ``Problem.solve``, which finds this search kept)."""
+        if self._without_at != k - 1 or self.problem.start_up is not None:
+            return None
+        case = self.point_case(k)
+        first = self.problem.refined(case, warm=warm, diagnosed=False)
+        if first.status in DESIGN_STATUSES:
+            self.after(k, first)
+            return first
+        problem = _search_problem(self.posed, case)
+        began = time.perf_counter()
+        own = searches(self.posed, [problem])[0]
+        seconds = time.perf_counter() - began
+        if own is None or not own.proven:
+            keep_search(self.posed, problem, own)
+            return None
+        last_boxes(self.posed, own.boxes)
+        solution = _covered(self.problem, case, first, "proven infeasible: " + emptied(own), seconds,
+                            first.solver.solves)
         if solution is not None:
             self.after(k, solution)
         return solution
@@ -79,56 +105,41 @@ class Regions:
         """The runs from point k (``_length`` points), bisected where not proven whole, their searches together."""
         end = min(k + self._length, self.count)
         self._to, runs = end, [(k, end)]
-        _ahead(self.posed).clear()  # (single points' searches kept for their own verdicts: those of before dropped)
-        cases = {j: self.point_case(j) for j in range(k, end)}
-        points = {j: _search_problem(self.posed, case) for j, case in cases.items()}
+        points = {j: _search_problem(self.posed, self.point_case(j)) for j in range(k, end)}
         whole = None  # whether the first run was proven as a whole
         while runs:
             problems = [_region_problem([points[j] for j in range(a, b)]) for a, b in runs]
-            budget = max(REGION_BUDGET * self._boxes, 2_500)
+            budget = min(max(REGION_BUDGET * last_boxes(self.posed), SURE_BOXES), MAX_BOXES)
             began = time.perf_counter()
-            outcomes = searches(self.posed, problems, [budget if b - a > 1 else _full() for a, b in runs])
+            outcomes = searches(self.posed, problems, [budget] * len(runs))
             seconds = time.perf_counter() - began
             halves = []
             for (a, b), problem, outcome in zip(runs, problems, outcomes):
-                if b - a == 1 and outcome is not None:  # a point's own search: kept for its own verdict
-                    _ahead(self.posed)[_key(problem[:3])] = outcome
                 if outcome is not None and outcome.proven:
-                    if b - a == 1:
-                        self._boxes = outcome.boxes
-                    text = _region_text(self.posed, cases, a, b, problem, outcome)
+                    last_boxes(self.posed, outcome.boxes)
+                    text = _region_text(self.posed, a, b, problem, outcome)
                     for j in range(a, b):
                         self._proven[j] = (text, seconds / max(1, end - k))
                 elif b - a > 1 and outcome is not None and outcome.feasible is None:  # (a design met for the whole
                     # run: every point has one, solved as usual)
                     middle = (a + b) // 2
-                    halves += [(a, middle), (middle, b)]
+                    halves += [run for run in ((a, middle), (middle, b)) if run[1] - run[0] > 1]  # a single point:
+                    # solved as usual (a design found by a solve, else its own verdict with its own search)
             if whole is None:
                 whole = outcomes[0] is not None and outcomes[0].proven and end - k > 1
             runs = halves
         self._length = min(2 * self._length, LONGEST_RUN) if whole else FIRST_RUN
 
 
-def _full() -> int:
-    from clutchopt.optimise.interval_proof import MAX_BOXES
-
-    return MAX_BOXES
-
-
 def _region_problem(points: list[tuple[np.ndarray, ...]]) -> tuple[np.ndarray, ...]:
-    """One search over a run's points: the hull of their design boxes, their parameters from least to most (a single
-    point: its own problem)."""
-    if len(points) == 1:
-        return points[0]
+    """One search over a run's points: the hull of their design boxes, their parameters from least to most."""
     p = np.stack([point[0] for point in points])
     return (p.min(axis=0), np.min([point[1] for point in points], axis=0),
             np.max([point[2] for point in points], axis=0), p.max(axis=0))
 
 
-def _region_text(posed, cases: dict, a: int, b: int, problem: tuple, outcome) -> str:
-    """The proof in words: a single point's as its own verdict says it; a run's with the interval it holds for."""
-    if b - a == 1:
-        return "proven infeasible: " + emptied(outcome)
+def _region_text(posed, a: int, b: int, problem: tuple, outcome) -> str:
+    """The proof in words, with the interval it holds for."""
     quantities = posed.formulation.quantities
     p_lo, p_hi = problem[0], problem[3]
     spans = [f"{q.name} {_shown(p_lo[i], q.unit)}-{_shown(p_hi[i], q.unit)} {q.unit}"
@@ -141,7 +152,7 @@ def _shown(value: float, unit: str) -> str:
     return f"{float(from_si(value, unit)):.6g}"
 
 
-def _covered(problem, case, without: Solution, text: str, seconds: float) -> Solution | None:
+def _covered(problem, case, without: Solution, text: str, seconds: float, solves: int = 0) -> Solution | None:
     """The verdict of a point a proof covers: the design of the last point without one (its least relaxation), every
     constraint re-evaluated in float64 at this point's values; None where a requirement no design variable enters is
     broken, or a start-up's drive proofs hold (its own verdict says so)."""
@@ -160,4 +171,4 @@ def _covered(problem, case, without: Solution, text: str, seconds: float) -> Sol
                    outputs=evaluate_outputs(f, design, params), integer_search=[], sensitivities={}, scale=None,
                    multipliers=None, start_up=None, internal=None, mesh=None, diagnosed=None, starts=(),
                    bounds={n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, lower, upper)},
-                   solver=SolverInfo("interval", "region proof", 0, seconds, 0))
+                   solver=SolverInfo("interval", "proven", 0, without.solver.time_s * (solves > 0) + seconds, solves))

@@ -136,18 +136,21 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
     regions = Regions(problem, lambda k: case.with_values(**pairs[k][1]), len(pairs))
     for j, (index, values) in enumerate(pairs):
         point_case = case.with_values(**values)
-        if (covered := regions.covered(j)) is not None:  # proven with the points around it: no solve
+        # next to a point without a design: proven with the points around it, or solved once and proven alone
+        solution = regions.covered(j) or regions.quick(j, previous if problem.start_up is None else None)
+        if solution is not None and solution.status not in DESIGN_STATUSES:  # (proven: no more solves)
             previous = None
-            waiting.append((j, point_case, covered))
+            waiting.append((j, point_case, solution))
             continue
         # falls back to the case's own start by itself; a start-up design starts from the point before's optimum on
         # the first mesh (clutchopt.optimise.start_up_sweep), else as `solve` does, from the papers' sizing at the
         # point: either way solve's design whatever the points before it
         same = designs.get(tuple(values.values()))
         neighbour = same or (feasible[1] if feasible else None)
-        solution = solved_along(problem, point_case, previous) if problem.start_up is not None else None
-        solution = solution or problem.solve(point_case, warm=previous if problem.start_up is None else None,
-                                             neighbour=neighbour.design if neighbour is not None else None)
+        if solution is None:
+            solution = solved_along(problem, point_case, previous) if problem.start_up is not None else None
+            solution = solution or problem.solve(point_case, warm=previous if problem.start_up is None else None,
+                                                 neighbour=neighbour.design if neighbour is not None else None)
         if solution.status not in DESIGN_STATUSES and feasible is not None:
             solution = continued(problem, case, feasible, values) or solution
         regions.after(j, solution)
