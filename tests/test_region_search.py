@@ -1,12 +1,13 @@
-"""Infeasible regions of a sweep searched together (issue 26 item 3): the interval searches of the points ahead of a
-point without a design run in one array (interval_proof.searches), and every point keeps the verdict its own solve
-gives (issue 29: "infeasible" only when shown, whatever the order of the points)."""
+"""Infeasible regions of a sweep proven at once (issue 26 item 3): interval searches run in one array
+(interval_proof.searches), a run of points without a design searched as one box with the varied quantity an interval
+(region_proof), and every point keeps the verdict its own solve gives (issue 29: "infeasible" only when shown,
+whatever the order of the points)."""
 
 import numpy as np
 import pytest
 
 from clutchopt.cases import load_case
-from clutchopt.optimise import interval_proof, sweep
+from clutchopt.optimise import interval_proof, region_proof, sweep
 from clutchopt.optimise.interval import IntervalFunction
 from clutchopt.optimise.interval_proof import search, searches
 from clutchopt.optimise.problem import case_problem
@@ -48,23 +49,56 @@ def test_searches_together_give_each_point_its_own_search():
 
 
 @pytest.mark.parametrize("batched", [True, False])  # in batches, or point by point (start-ups, varied variables)
-def test_a_sweep_into_an_infeasible_region_gives_each_point_its_solve_s_verdict(monkeypatch, batched):
-    ahead = []
-    real = interval_proof.search_ahead
-    monkeypatch.setattr(interval_proof, "search_ahead",
-                        lambda posed, cases: ahead.append(len(cases)) or real(posed, cases))
+def test_a_sweep_into_an_infeasible_region_proves_it_once_and_keeps_each_point_s_verdict(monkeypatch, batched):
+    # The wedge paper case at 12 resisting torques from 20 to 400 N m (each solved alone: designs up to 89.09 N m,
+    # proven infeasible from 123.6 N m on). Point 3 (123.6 N m) gets its full verdict (its own search, 257 boxes);
+    # the 8 points after it (158.2-400 N m) are searched as one box, the torque an interval: proven over 129 boxes,
+    # one proof for the 8 points, without a solve.
+    regions = []
+    real = region_proof.searches
+    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
+        [len(problem) for problem in problems]) or real(posed, problems, budgets))
     if not batched:
         monkeypatch.setattr(sweep, "batchable", lambda problem, names: False)
     vary = parse_vary("resisting_torque=20:400:12", "wedge", WEDGE.quantities)
-    frame = Sweep(WEDGE, [vary]).run(progress=False).frame
-    # 20, 54.5, 89.1 N m designed; from 123.6 N m on proven infeasible: the first such point searched alone, the
-    # next 8 (up to 400 N m) together
+    result = Sweep(WEDGE, [vary]).run(progress=False)
+    frame = result.frame
     assert list(frame["status"]) == ["optimal"] * 3 + ["infeasible"] * 9
-    assert ahead == [8]
+    assert regions == [[4]]  # one search, over a parameter interval
+    region = "proven infeasible for resisting_torque 158.182-400 N*m (8 points, one proof): no design within the " \
+             "bounds meets torque, flank_pressure together (interval branch and bound over 129 boxes of the design " \
+             "space and the interval of resisting_torque)"
+    assert list(frame["diagnosis"][4:]) == [region] * 8
+    assert [s["solver"]["solves"] for s in result.solutions][4:] == [0] * 8
     problem = case_problem(WEDGE)
-    for point in (2, 3, 4, 11):  # both edges of the region and its far end
+    for point in (2, 3):  # both sides of the region's edge: each point's own verdict
         solution = problem.solve(WEDGE.with_values(resisting_torque=vary.values[point]))
         assert (frame["status"][point], frame["diagnosis"][point]) == (solution.status, solution.diagnosis or "")
+    for point in (4, 11):  # the region's ends: proven alone too
+        solution = problem.solve(WEDGE.with_values(resisting_torque=vary.values[point]))
+        assert solution.status == "infeasible" and solution.diagnosis.startswith("proven infeasible: no design")
+    # a covered point shows point 3's design (its least relaxation) with every constraint re-evaluated in float64 at
+    # its own torque: the torque row's limit is the resisting torque plus the same 5.236 N m at each point (the
+    # wedge's limit for this case: 128.872 N m at 123.636 N m, read from point 3's own solve)
+    torques = [next(c for c in result.solutions[k]["constraints"] if c["name"] == "torque") for k in (3, 4, 11)]
+    assert [t["value"] for t in torques[1:]] == [torques[0]["value"]] * 2
+    added = torques[0]["limit"] - vary.values[3]
+    assert added == pytest.approx(5.235987756, rel=1e-9)
+    assert [t["limit"] - vary.values[k] for t, k in zip(torques[1:], (4, 11))] == pytest.approx([added] * 2, rel=1e-12)
+    assert result.solutions[4]["solver"]["name"] == "interval"
+
+
+def test_a_region_proof_holds_only_where_no_design_exists():
+    # the box over 89.09-158.2 N m holds the design of 89.09 N m (optimal alone): no proof there, however many boxes;
+    # over 123.6-400 N m (each point proven alone) one proof
+    posed = case_problem(WEDGE).posed
+    points = {t: interval_proof._search_problem(posed, WEDGE.with_values(resisting_torque=t))
+              for t in (89.090909, 123.63636, 158.18182, 400.0)}
+    reaching, inside = (region_proof._region_problem([points[t] for t in ts])
+                        for ts in ((89.090909, 123.63636, 158.18182), (123.63636, 158.18182, 400.0)))
+    out, proven = searches(posed, [reaching, inside], [interval_proof.MAX_BOXES] * 2)
+    assert not out.proven and proven.proven
+    assert case_problem(WEDGE).solve(WEDGE.with_values(resisting_torque=89.090909)).status == "optimal"
 
 
 @pytest.mark.parametrize("order", [slice(None), slice(None, None, -1)])
@@ -74,3 +108,4 @@ def test_the_verdicts_do_not_depend_on_the_order_of_the_points(order):
     frame = Sweep(WEDGE, [vary]).run(progress=False).frame
     statuses = list(frame["status"])[order]
     assert statuses == ["optimal"] * 3 + ["infeasible"] * 9
+    assert all(text.startswith("proven infeasible") for text in frame["diagnosis"][frame["status"] == "infeasible"])
