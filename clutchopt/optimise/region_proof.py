@@ -3,23 +3,29 @@
 Along a sweep the points without a design come in runs (a duty beyond what any design within the bounds carries).
 Each point of such a run once cost a full verdict (``clutchopt.optimise.verdict.shown``): the failed solve, its
 elastic diagnosis, the retries from every start, then the interval search that proves it. Here, after a point
-without a design, the next points are searched together *as one box*: the design box (the hull of the points'
-boxes) times the interval of their parameters, from the smallest to the largest value each takes over the run
-(``interval_proof.searches`` with a parameter interval). Every interval bound holds for every parameter vector in
-it, so a proof for the interval is a proof for each point in the run: each gets ``infeasible`` with the region's
-proof, which names the interval (e.g. "proven infeasible for power 566-1000 kW: ..."), without a solve.
+proven infeasible, the next points are searched together *as one box*: the hull of their design boxes times the
+interval of their parameters, from the smallest to the largest value each takes over the run
+(``interval_proof.searches`` with a parameter interval, never split). Every interval bound holds for every parameter
+vector in it, so a proof for the interval is a proof for each point of the run: each gets ``infeasible`` with the
+region's proof, which names the interval (e.g. "proven infeasible for power 600.503-626.884 kW (8 points, one
+proof): ..."), without a solve.
 
-A run that cannot be proven as a whole (it reaches past the region's edge, or its bounds are too loose over the
-whole interval) is bisected, the halves searched together, down to single points, whose searches are the ones their
-own verdict would run (same boxes, same outcome: ``interval_proof.searches``); they are kept for it
-(``empty_design_space``), and a point proven by its own search gets the verdict its own solve gives (the same
-text), without the solves that would precede it. Runs start FIRST_RUN points long and double while they are
-proven whole, up to LONGEST_RUN. A point whose case breaks a requirement that no design variable enters ("whatever
-the design"), or (a start-up) whose drive proofs hold, is left to its own verdict, which says so.
+A run that cannot be proven whole (it reaches past the region's edge, where no proof exists, or its bounds are too
+loose over the whole interval) is bisected and the halves searched together, down to pairs; a region's search may
+take REGION_BUDGET times the boxes of the last proof (at least SURE_BOXES, at most MAX_BOXES), so one reaching past
+the edge gives up early. Runs start FIRST_RUN points long and double while they are proven whole, up to LONGEST_RUN.
 
-Points not covered are solved as before (``Problem.solve``). A covered point reports the design of the last point
-without a design (its least relaxation) with every constraint re-evaluated in float64 at the point's own values,
-solver ``interval`` with no solver call, and its share of the search's seconds.
+A point left over next to a proven one is tested against that proof first (:meth:`Regions.quick`): solved once, as
+``Problem.solve`` starts (its design, if it finds one, is ``solve``'s), else its own interval search, the one its full
+verdict would run, before the elastic diagnosis and the retries: proven, it gets the verdict ``solve`` gives
+("proven infeasible: ..."), else the search is kept for its full verdict (``Problem.solve``). A point whose case
+breaks a requirement that no design variable enters ("whatever the design"), or (a start-up) whose drive proofs
+hold, is left to its own verdict, which says so.
+
+A covered point reports the design of the last point without a design (its least relaxation) with every constraint
+re-evaluated in float64 at the point's own values, solver ``interval`` (no solver call where a region covers it, the
+one solve where its own search proved it) and its share of the search's seconds. A verdict is the same whatever the
+order of the points: a region's proof is a proof of each point, and a point its region does not cover gets its own.
 """
 
 from __future__ import annotations
@@ -94,11 +100,12 @@ class Regions:
         return solution
 
     def after(self, k: int, solution: Solution) -> None:
-        """Point k's solution: one without a design starts (or goes on with) the regions searched after it; a
-        design ends a run of proven regions (the next run starts FIRST_RUN points long)."""
+        """Point k's solution: one proven infeasible starts (or goes on with) the regions searched after it (after
+        one not found, a proof is not expected); a design ends a run of proven regions (the next run starts
+        FIRST_RUN points long)."""
         if solution.status in DESIGN_STATUSES:
             self._length = FIRST_RUN
-        elif solution.status in ("infeasible", "not_found"):
+        elif solution.status == "infeasible":
             self._without, self._without_at = solution, k
 
     def _search_from(self, k: int) -> None:
