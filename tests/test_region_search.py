@@ -98,6 +98,11 @@ def test_a_region_proof_holds_only_where_no_design_exists():
                         for ts in ((89.090909, 123.63636, 158.18182), (123.63636, 158.18182, 400.0)))
     out, proven = searches(posed, [reaching, inside], [interval_proof.MAX_BOXES] * 2)
     assert not out.proven and proven.proven
+    # the box reaching 89.09 N m stops at its first evaluation (129 boxes), where a centre meets every row at that
+    # end of the interval: the design the point's own search meets there (no design meets them over the whole
+    # interval: feasible is None)
+    alone, = searches(posed, [points[89.090909]])
+    assert (out.boxes, out.feasible) == (alone.boxes, None) and alone.feasible is not None
     assert case_problem(WEDGE).solve(WEDGE.with_values(resisting_torque=89.090909)).status == "optimal"
 
 

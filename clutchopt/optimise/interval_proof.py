@@ -96,6 +96,7 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
     p_hi = np.stack([problem[3] if len(problem) > 3 else problem[0] for problem in problems], axis=1)
     lo = np.stack([problem[1] for problem in problems], axis=1)
     hi = np.stack([problem[2] for problem in problems], axis=1)
+    ranged = np.any(p_lo != p_hi, axis=0)  # a parameter interval: its ends are tried too (_reached)
     width0 = np.where(hi > lo, hi - lo, 1.0)
     owner = np.arange(count)  # each box's search (a column of params), the boxes of one search together
     decisive: list[dict[str, int]] = [{} for _ in problems]
@@ -133,7 +134,9 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         for box in np.flatnonzero(np.all(c_hi <= 0.0, axis=0))[::-1].tolist():  # each search's first box met
             first_met[int(owner[box])] = box
         end(sorted(first_met), lambda j: Emptiness(False, int(evaluated[j]), decisive[j], centre[:, first_met[j]]))
-        keep = ~np.isin(owner, list(first_met))
+        reached = _reached(functions[0], centre, owner, ranged, p_lo, p_hi, first_met, posed.integer)
+        end(reached, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
+        keep = ~np.isin(owner, list(first_met) + reached.tolist())
         empty = g_lo > TOLERANCE
         running = np.unique(owner[keep])
         for j in running.tolist():
@@ -161,6 +164,24 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
                                                      rounds[owner] > turn)
             d_lo, d_hi, uncertain = d_lo[..., parents], d_hi[..., parents], uncertain[:, parents]
     return outcomes
+
+
+def _reached(rows, centre: np.ndarray, owner: np.ndarray, ranged: np.ndarray, p_lo: np.ndarray, p_hi: np.ndarray,
+             ended: dict[int, int], integer: list[int]) -> np.ndarray:
+    """The searches over a parameter interval (``ranged``, not ``ended`` already) where a box's centre, its integer
+    variables whole, meets every row at one end of the interval: a design there, so the interval holds no proof (a run
+    of a sweep's points reaching past its infeasible region: the search stops at once rather than at its budget)."""
+    whole = np.all(centre[integer] == np.round(centre[integer]), axis=0)
+    boxes = np.flatnonzero(ranged[owner] & whole & ~np.isin(owner, list(ended)))
+    if not len(boxes):
+        return np.zeros(0, dtype=int)
+    at = centre[:, boxes]
+    met = np.zeros(len(boxes), dtype=bool)
+    for end in (p_lo, p_hi):
+        params = end[:, owner[boxes]]
+        (_, high), = rows.bounds([(at, at), (params, params)])
+        met |= np.all(high <= 0.0, axis=0)
+    return np.unique(owner[boxes[met]])
 
 
 def _whole(lo: np.ndarray, hi: np.ndarray, integer: list[int]) -> tuple[np.ndarray, np.ndarray, list[int]]:
