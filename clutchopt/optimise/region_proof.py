@@ -13,7 +13,9 @@ proof): ..."), without a solve.
 A run that cannot be proven whole (it reaches past the region's edge, where no proof exists, or its bounds are too
 loose over the whole interval) is bisected and the halves searched together, down to pairs; a region's search may
 take REGION_BUDGET times the boxes of the last proof (at least SURE_BOXES, at most MAX_BOXES), so one reaching past
-the edge gives up early. Runs start FIRST_RUN points long and double while they are proven whole, up to LONGEST_RUN.
+the edge gives up early. Runs start FIRST_RUN points long, the next twice the longest proven (from 2, doubling while
+they are proven whole, up to LONGEST_RUN): where a region's bounds are loose over wide intervals (the lever over its
+speed, which its centrifugal force takes squared) the runs stay as short as proofs allow.
 
 A point left over next to a proven one is tested against that proof first (:meth:`Regions.quick`): solved once, as
 ``Problem.solve`` starts (its design, if it finds one, is ``solve``'s), else its own interval search, the one its full
@@ -44,7 +46,7 @@ from clutchopt.optimise.verify import DESIGN_STATUSES, check_design, evaluate_ob
 from clutchopt.units import from_si
 
 FIRST_RUN = 8  # points searched as one region after a point without a design,
-LONGEST_RUN = 256  # doubling up to this many while whole runs are proven
+LONGEST_RUN = 256  # the next run twice the longest proven, up to this many
 REGION_BUDGET = 4  # a region's search may evaluate this many times the boxes of the last point's own search
 # (at least interval_proof.SURE_BOXES): one reaching past the region's edge gives up there and is bisected
 
@@ -109,11 +111,12 @@ class Regions:
             self._without, self._without_at = solution, k
 
     def _search_from(self, k: int) -> None:
-        """The runs from point k (``_length`` points), bisected where not proven whole, their searches together."""
+        """The runs from point k (``_length`` points), bisected where not proven whole, their searches together; the
+        next runs twice as long as the longest proven (FIRST_RUN again after a design)."""
         end = min(k + self._length, self.count)
-        self._to, runs = end, [(k, end)]
+        self._to, runs = end, [(k, end)] if end - k > 1 else []  # (a last point alone: Regions.quick)
         points = {j: _search_problem(self.posed, self.point_case(j)) for j in range(k, end)}
-        whole = None  # whether the first run was proven as a whole
+        longest = 1  # the longest run proven
         while runs:
             problems = [_region_problem([points[j] for j in range(a, b)]) for a, b in runs]
             budget = min(max(REGION_BUDGET * last_boxes(self.posed), SURE_BOXES), MAX_BOXES)
@@ -124,6 +127,7 @@ class Regions:
             for (a, b), problem, outcome in zip(runs, problems, outcomes):
                 if outcome is not None and outcome.proven:
                     last_boxes(self.posed, outcome.boxes)
+                    longest = max(longest, b - a)
                     text = _region_text(self.posed, a, b, problem, outcome)
                     for j in range(a, b):
                         self._proven[j] = (text, seconds / max(1, end - k))
@@ -132,10 +136,8 @@ class Regions:
                     middle = (a + b) // 2
                     halves += [run for run in ((a, middle), (middle, b)) if run[1] - run[0] > 1]  # a single point:
                     # solved as usual (a design found by a solve, else its own verdict with its own search)
-            if whole is None:
-                whole = outcomes[0] is not None and outcomes[0].proven and end - k > 1
             runs = halves
-        self._length = min(2 * self._length, LONGEST_RUN) if whole else FIRST_RUN
+        self._length = min(2 * longest, LONGEST_RUN)
 
 
 def _region_problem(points: list[tuple[np.ndarray, ...]]) -> tuple[np.ndarray, ...]:
