@@ -152,7 +152,7 @@ def _region_text(posed, a: int, b: int, problem: tuple, outcome) -> str:
     quantities = posed.formulation.quantities
     p_lo, p_hi = problem[0], problem[3]
     spans = [f"{q.name} {_shown(p_lo[i], q.unit)}-{_shown(p_hi[i], q.unit)} {q.unit}"
-             for i, q in enumerate(quantities) if p_lo[i] != p_hi[i]]
+             for i, q in enumerate(quantities) if p_lo[i] != p_hi[i] and not np.isnan(p_lo[i] + p_hi[i])]
     return (f"proven infeasible for {', '.join(spans)} ({b - a} points, one proof): "
             + emptied(outcome, "and the interval of " + ", ".join(s.split(" ")[0] for s in spans)))
 
@@ -162,9 +162,10 @@ def _shown(value: float, unit: str) -> str:
 
 
 def _covered(problem, case, without: Solution, text: str, seconds: float, solves: int = 0) -> Solution | None:
-    """The verdict of a point a proof covers: the design of the last point without one (its least relaxation), every
-    constraint re-evaluated in float64 at this point's values; None where a requirement no design variable enters is
-    broken, or a start-up's drive proofs hold (its own verdict says so)."""
+    """The verdict of a point a proof covers: the design of ``without`` (the last point without one: its least
+    relaxation; or the point's own failed solve, which took ``solves`` calls), every constraint re-evaluated in
+    float64 at this point's values; None where a requirement no design variable enters is broken, or a start-up's
+    drive proofs hold (its own verdict says so)."""
     posed = problem.posed
     if problem.start_up is not None and start_up_proofs(case):
         return None
@@ -180,4 +181,5 @@ def _covered(problem, case, without: Solution, text: str, seconds: float, solves
                    outputs=evaluate_outputs(f, design, params), integer_search=[], sensitivities={}, scale=None,
                    multipliers=None, start_up=None, internal=None, mesh=None, diagnosed=None, starts=(),
                    bounds={n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, lower, upper)},
-                   solver=SolverInfo("interval", "proven", 0, without.solver.time_s * (solves > 0) + seconds, solves))
+                   solver=SolverInfo("interval", "proven", 0, (without.solver.time_s if solves else 0.0) + seconds,
+                                     solves))
