@@ -59,7 +59,7 @@ def test_a_limit_shift_is_a_ratio_carried_to_the_next_case():
 
 def test_a_sweep_point_starts_from_the_correction_the_point_before_needed():
     # where the temperature rise binds (driven inertia 0.62-0.70 kg m^2), solve corrects the limit two or three
-    # times (the NLP's temperature rise at lock-up misses the simulated one by 1.7e-4); along the sweep the point
+    # times (the simulated rise peaks between two nodes, 1.7e-4 over the NLP's); along the sweep the point
     # before's correction is where each point starts, so it needs at most one more, and each design is solve's
     # within the accuracy contract (objective to 1e-6; measured 4e-8)
     vary = parse_vary("driven_inertia=0.62,0.66,0.7", WEDGE.coupling, WEDGE.quantities)
