@@ -62,7 +62,6 @@ class StartUpBlock:
         self._bounds: list[tuple[float, float]] = []
         self.kinds: list[tuple[str, str]] = []  # (phase, state or "duration") of each internal variable
         self._mesh: list = []
-        self._trajectory: dict | None = None
         self.equalities: list = []
         self.points: list[tuple] = []  # (time, {state: value}) of every phase start and collocation point
         self.nodes: list[dict] = []  # the states at the collocation points (the phase starts excluded)
@@ -219,13 +218,7 @@ class StartUpBlock:
         return figures
 
     def trajectory(self) -> dict:
-        """Time, driving speed, driven speed, friction work, temperature at every collocation point (expressions,
-        built once: 4 ms a call, read by every simulated check of a solve). Not to be changed by the caller."""
-        if self._trajectory is None:
-            self._trajectory = self._path()
-        return self._trajectory
-
-    def _path(self) -> dict:
+        """Time, driving speed, driven speed, friction work, temperature at every collocation point."""
         times, driver, driven, work, heat, twist = [], [], [], [], [], []
         for time, state in self.points:
             times.append(time)
