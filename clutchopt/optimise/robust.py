@@ -10,6 +10,8 @@
   quantities where its limit state is smallest on the sphere ||u|| = beta of the standard normal space, mapped
   exactly), re-solved until the points settle (SORA); then beta corrected per constraint, a 1-D root find, until
   importance sampling at the design point meets the target (FORM is exact only for a limit state linear in u).
+  For the system the betas are NLP variables whose shares of 1 - P the NLP splits
+  (``clutchopt.optimise.risk_allocation``).
 - Both are then checked by Monte Carlo: ``samples`` draws of the distributions (a range: uniform over it),
   evaluated vectorised in float64 by the formulation's own equations; each constraint's failure probability with
   its Clopper-Pearson interval, for the robust and for the nominal design; and by FORM, SORM and importance sampling
