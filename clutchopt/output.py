@@ -119,8 +119,14 @@ def robust_json(result, case) -> dict:
         "nominal_failure_probability": UNITLESS, "margin_sensitivity": UNITLESS,
         "corners": {name: quantities for name in data["corners"]}, "checks": CONSTRAINT_UNITS,
         "nominal_checks": CONSTRAINT_UNITS, "nominal_design": design, "performance_point_beta": UNITLESS,
+        "system_allocation": ALLOCATION_UNITS,
         **{key: reliability_units(data[key], quantities) for key in ("reliability", "nominal_reliability")
            if data.get(key)}})
+
+
+ESTIMATE_UNITS = dict.fromkeys(("probability", "low", "high"), UNITLESS)
+ALLOCATION_UNITS = {"target": UNITLESS, "budget": UNITLESS, "series_bound": UNITLESS, "system": ESTIMATE_UNITS,
+                    "constraints": UNITLESS}  # a system chance design's split of 1 - P: probabilities and betas
 
 
 def reliability_units(data: dict, quantities: dict) -> dict:
@@ -516,6 +522,19 @@ def reliability_lines(result, case) -> list[str]:
     return lines
 
 
+def allocation_lines(allocation) -> list[str]:
+    """How a system chance design split 1 - P between its constraints (``RiskAllocation``): the claim, then each
+    constraint's beta, the index importance sampling added, its share and its estimate."""
+    data = allocation.as_dict()
+    lines = [f"Risk allocation (system chance): {data['claim']}"]
+    for name, c in data["constraints"].items():
+        estimate = c["failure_probability"]
+        lines.append(f"  {name}: beta {c['beta']:.4g}, index shift {c['index_shift']:+.3g}, share {c['share']:.3g}"
+                     + (f", P(fail) {estimate['probability']:.3g} ({estimate['low']:.3g} to {estimate['high']:.3g}, "
+                        f"{estimate['estimator']})" if estimate else ""))
+    return lines
+
+
 def _probability(triple: list[float]) -> str:
     p, low, high = triple
     return "0 (<{:.2g})".format(high) if p == 0 else f"{p:.3g} ({low:.2g}-{high:.2g})"
@@ -532,7 +551,9 @@ def robust_text(result, case) -> str:
            f"{'system ' if result.method == 'system_chance' else ''}chance {result.target:g}: "
            + ("the design (any constraint) holds" if result.method == "system_chance" else
               "each constraint holds") + " with that probability, each constraint at its performance point (PMA), "
-           "beta corrected until importance sampling meets the target"
+           + ("1 - P split between the constraints by the NLP (optimal risk allocation), the system verified by "
+              "importance sampling" if result.allocation else "beta corrected until importance sampling meets the "
+                                                               "target")
            + (", a start-up designed at the corner of the quantiles where it binds" if result.start_up_points else ""))
     robust, nominal = result.solution, result.nominal
     change = robust.objective / nominal.objective - 1 if nominal.objective else float("nan")
@@ -567,6 +588,8 @@ def robust_text(result, case) -> str:
                f"{result.samples} Monte Carlo samples ({result.as_dict()['confidence']:.0%} Clopper-Pearson interval)"
              + (f" (a start-up's: margin at its worst simulated corner, P(fail) from {result.start_up_samples} "
                 "simulated starts)" if result.start_up_points else ""), _frame(rows)]
+    if result.allocation is not None:
+        lines += ["", *allocation_lines(result.allocation)]
     if result.reliability is not None:
         lines += ["", *reliability_lines(result, case)]
     if bars:

@@ -10,6 +10,8 @@
   quantities where its limit state is smallest on the sphere ||u|| = beta of the standard normal space, mapped
   exactly), re-solved until the points settle (SORA); then beta corrected per constraint, a 1-D root find, until
   importance sampling at the design point meets the target (FORM is exact only for a limit state linear in u).
+  For the system the betas are NLP variables whose shares of 1 - P the NLP splits
+  (``clutchopt.optimise.risk_allocation``).
 - Both are then checked by Monte Carlo: ``samples`` draws of the distributions (a range: uniform over it),
   evaluated vectorised in float64 by the formulation's own equations; each constraint's failure probability with
   its Clopper-Pearson interval, for the robust and for the nominal design; and by FORM, SORM and importance sampling
@@ -24,6 +26,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+
+import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
@@ -44,7 +48,13 @@ from clutchopt.optimise.robust_models import (
     worst_case_formulation,
     worst_corners,
 )
-from clutchopt.optimise.robust_reliability import Reliability, performance_corners, reliability_at
+from clutchopt.optimise.risk_allocation import SYSTEM_SAMPLES, RiskAllocation, allocation_formulation, beta_name
+from clutchopt.optimise.robust_reliability import (
+    Reliability,
+    performance_corners,
+    performance_points,
+    reliability_at,
+)
 from clutchopt.optimise.robust_start_up import (
     MAX_START_CORNERS,
     START_SAMPLES,
@@ -64,7 +74,6 @@ SYSTEM_CHANCE = "system_chance"
 CHANCES = (CHANCE, SYSTEM_CHANCE)
 BETA_STEPS = 12  # corrections of the chance design's betas until importance sampling meets the target
 AIM_BELOW = 0.005  # relative: the root find aims this far below 1 - P, so that the estimate ends at or below it
-SYSTEM_TOL = 0.01  # of ln(P(system fails) / (1 - P))
 ACTIVE = 1e-6  # relative margin at its performance point below which a constraint shapes the design
 VERIFIED_FACTOR = 2.0  # a chance design's failure probability is verified when its interval lies below this x 1 - P
 SETTLED = 1e-7  # relative: a performance point that moves less has settled
@@ -115,6 +124,7 @@ class RobustResult:
     reliability: Reliability | None = None  # the robust design's constraints and system: FORM, SORM, importance
     nominal_reliability: Reliability | None = None  # sampling, design points; the nominal design's
     betas: dict[str, float] = field(default_factory=dict)  # chance: each constraint's beta of its performance point
+    allocation: RiskAllocation | None = None  # system chance: how 1 - P was split between the constraints
 
     def as_dict(self) -> dict:
         return {
@@ -133,6 +143,7 @@ class RobustResult:
             "reliability": self.reliability.as_dict() if self.reliability else None,
             "nominal_reliability": self.nominal_reliability.as_dict() if self.nominal_reliability else None,
             "performance_point_beta": self.betas or None,
+            "system_allocation": self.allocation.as_dict() if self.allocation else None,
             "start_up_verification": {"corners": self.start_up_points, "simulations": self.start_up_samples,
                                       "failure_probability": self.start_up_failure} if self.start_up_points else None,
         }
@@ -176,35 +187,56 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
     chance = method in CHANCES
     allowed = _Allowed(1.0 - target, len(names), method == SYSTEM_CHANCE) if chance else None
     betas = dict.fromkeys(names, allowed.beta) if chance else {}
+    allocation = None
 
     def corners_at(design: dict) -> tuple[dict, StartUpCorners | None]:
-        """Each constraint's worst corner (worst case) or performance point (chance), and a start-up's ends,
-        corners and bars there."""
-        corners = (worst_corners(shown, design, params, case.scatter)[0] if method == WORST_CASE else
-                   performance_corners(shown, design, params, case.scatter, betas, case.correlation))
+        """Each constraint's worst corner (worst case) or performance point (chance; the system's allocation
+        aimed along them), and a start-up's ends, corners and bars there."""
+        if method == WORST_CASE:
+            corners = worst_corners(shown, design, params, case.scatter)[0]
+        else:
+            points = performance_points(shown, design, params, case.scatter, betas, case.correlation)
+            corners = performance_corners(shown, design, params, case.scatter, betas, case.correlation, points)
+            if allocation is not None:
+                allocation.aim({name: points[name] for name in allocation.names})
         start_up = start_up_corners(case, base.mode, design, case.scatter, target) if structure else None
         return ({**corners, **start_up.corners}, start_up) if start_up else (corners, None)
 
+    if method == SYSTEM_CHANCE:  # the constraints the scatter moves share 1 - P, as the NLP chooses
+        points = performance_points(shown, nominal.design, params, case.scatter, betas, case.correlation)
+        allocation = RiskAllocation(1.0 - target, case.scatter, case.correlation,
+                                    {name: betas[name] for name in names if np.linalg.norm(points[name]) > 0})
     corners, start_up = corners_at(nominal.design)
     start_up_names = tuple(name for name in corners if name not in names and name != START_UP)
     derived = _derived(base, case, names, start_up_names)
+    if allocation is not None:
+        derived = allocation_formulation(derived, base, case.scatter, names, allocation.names)
     problem = problem_for(derived, objective, options, structure)
+    with_betas = (lambda design: {**design, **allocation.variables()}) if allocation else (lambda design: design)
     solution, settled, history = None, False, {name: [] for name in names}
     for _ in range(BETA_STEPS if chance else 1):
         for _ in range(CORNER_STEPS):
             values = {corner_name(q, c): v for c, corner in corners.items() for q, v in corner.items()}
+            values.update(allocation.parameters() if allocation else {})
             solved = replace(case, values={**case.values, **values})  # NLP parameters, not case quantities
-            solution = problem.solve(solved, warm=solution) if solution else problem.solve(solved, start=nominal.design)
+            solution = (problem.solve(solved, warm=solution) if solution else
+                        problem.solve(solved, start=with_betas(nominal.design)))
             if solution.status not in DESIGN_STATUSES:
                 break
+            if allocation is not None:
+                betas.update(allocation.read(solution.design))
             moved, start_up = corners_at(solution.design)
             settled, corners = _same(moved, corners), moved
             if settled:
                 break
         if not chance or solution.status not in DESIGN_STATUSES or not settled:
             break
-        reliability = reliability_at(shown, solution.design, params, case.scatter, case.correlation, names)
-        if not _next_betas(betas, history, reliability, solution, allowed):
+        reliability = reliability_at(shown, solution.design, params, case.scatter, case.correlation, names,
+                                     SYSTEM_SAMPLES if allocation else None)
+        if allocation is not None:
+            if not allocation.step(reliability, {c.name: c.margin for c in solution.constraints}, ACTIVE):
+                break
+        elif not _next_betas(betas, history, reliability, solution, allowed):
             break
         corners, start_up = corners_at(solution.design)
     kept = {c.name for c in shown.constraints(namespace(nominal.design), params)}
@@ -213,8 +245,9 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
         nominal_checks = corner_checks(shown, nominal.design, params, case.scatter)
     else:  # each at its performance point
         checks = [c for c in solution.constraints if c.name in kept]
-        nominal_checks = [c for c in check_constraints(derived.constraints(namespace(nominal.design),
+        nominal_checks = [c for c in check_constraints(derived.constraints(namespace(with_betas(nominal.design)),
                                                                            at_values(params, values))) if c.name in kept]
+        solution = _without(solution, [beta_name(name) for name in allocation.names] if allocation else [])
     failure = failure_probabilities(shown, solution.design, params, case.scatter, samples,
                                     correlation=case.correlation)
     nominal_failure = failure_probabilities(shown, nominal.design, params, case.scatter, samples,
@@ -223,10 +256,12 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
                           nominal_failure, {**tornado(shown, solution.design, params, case.scatter),
                                             **(start_up.bars if start_up else {})}, corners, shown, settled=settled)
     if solution.status in DESIGN_STATUSES:
-        result.reliability = reliability_at(shown, solution.design, params, case.scatter, case.correlation, names)
+        result.reliability = reliability_at(shown, solution.design, params, case.scatter, case.correlation, names,
+                                            SYSTEM_SAMPLES if allocation else None)
         result.nominal_reliability = reliability_at(shown, nominal.design, params, case.scatter, case.correlation,
                                                     names)
         result.betas = dict(betas)
+        result.allocation = allocation
     if structure and solution.status in DESIGN_STATUSES:
         result.start_up_points = (corner_points(corner_table(case.scatter, start_up.ends))
                                   if len(case.scatter) <= MAX_START_CORNERS
@@ -241,6 +276,16 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
     return result
 
 
+def _without(solution: Solution, variables: list[str]) -> Solution:
+    """The solution without the allocation's beta variables: its design is the coupling's (the betas are the
+    allocation's, ``RobustResult.allocation``)."""
+    if not variables:
+        return solution
+    return replace(solution, design={k: v for k, v in solution.design.items() if k not in variables},
+                   bounds={k: v for k, v in solution.bounds.items() if k not in variables},
+                   design_units={k: v for k, v in solution.design_units.items() if k not in variables})
+
+
 def _same(moved: dict, corners: dict) -> bool:
     """The corners (constraint -> quantity -> value) stopped moving: equal, a performance point to SETTLED."""
     return moved.keys() == corners.keys() and all(
@@ -250,18 +295,16 @@ def _same(moved: dict, corners: dict) -> bool:
 
 @dataclass
 class _Allowed:
-    """The failure probability each constraint may have: 1 - P (chance), or for the system its ``share`` of 1 - P
-    spread over the constraints that can fail (Bonferroni: P(any) <= sum; ``share`` then scaled until importance
-    sampling of the system meets 1 - P)."""
+    """The failure probability each constraint may have: 1 - P (chance), or for the system, where it starts, an
+    equal share of 1 - P (the NLP then chooses the split: ``clutchopt.optimise.risk_allocation``)."""
 
     system_allowed: float
     count: int
     system: bool
-    share: float = 1.0
 
     @property
     def each(self) -> float:
-        return self.system_allowed * self.share / (self.count if self.system else 1)
+        return self.system_allowed / (self.count if self.system else 1)
 
     @property
     def beta(self) -> float:
@@ -275,16 +318,11 @@ def _next_betas(betas: dict[str, float], history: dict[str, list], reliability, 
     AIM_BELOW under it, until the allowed probability lies within the estimate's interval (FORM's beta is kept
     where importance sampling does not refute it: exact where the limit state is linear in u). Only an
     active constraint that depends on the scatter is corrected (an inactive one fails less than allowed whatever
-    its beta). System: once every constraint meets its share, the share is scaled by (1 - P) / P(system fails).
-    False when nothing moves."""
+    its beta). False when nothing moves."""
     margins = {c.name: c.margin for c in solution.constraints}
     shown = reliability.constraints
     movable = [name for name in betas if name in shown and shown[name].point.found
                and margins.get(name, 1.0) <= ACTIVE and shown[name].best.probability > 0]
-    if allowed.system and allowed.count != max(1, len(movable)):
-        allowed.count = max(1, len(movable))
-        for name in history:
-            history[name].clear()
     moved = False
     for name in movable:
         best = shown[name].best
@@ -296,15 +334,6 @@ def _next_betas(betas: dict[str, float], history: dict[str, list], reliability, 
         (b0, m0), (b1, m1) = history[name][-2:] if len(history[name]) > 1 else ((None, None), history[name][-1])
         betas[name] = b1 - m1 * (b1 - b0) / (m1 - m0) if b0 is not None and m1 != m0 else b1 - m1
         moved = True
-    if not moved and allowed.system and reliability.system.probability > 0:
-        ratio = allowed.system_allowed / reliability.system.probability
-        if abs(math.log(ratio)) > SYSTEM_TOL:
-            allowed.share *= ratio
-            for name in history:
-                history[name].clear()
-            for name in movable:
-                betas[name] = allowed.beta
-            moved = True
     return moved
 
 
@@ -356,8 +385,9 @@ def verification(result: RobustResult, case: Case) -> str:
     quantities = {q.name: q for q in case.quantities}
     n = len(case.scatter)
     parts = [f"constraints at all {2 ** n} corners of the ranges" if result.method == WORST_CASE else
-             f"constraints at their performance points for {result.method} P = {result.target:g}, beta corrected by "
-             "importance sampling", f"{result.samples} Monte Carlo samples: {_largest(result.failure)}"]
+             f"constraints at their performance points for {result.method} P = {result.target:g}, "
+             + (result.allocation.claim() if result.allocation else "beta corrected by importance sampling"),
+             f"{result.samples} Monte Carlo samples: {_largest(result.failure)}"]
     if result.reliability is not None:
         name, best = max(((name, c.best) for name, c in result.reliability.constraints.items()),
                          key=lambda item: item[1].probability)
