@@ -120,6 +120,12 @@ def test_system_chance_meets_the_system_target(case, chance, nominal):
     assert result.reliability.system.low <= exact <= result.reliability.system.high
     assert result.status == "optimal"
     assert result.solution.objective == pytest.approx(chance.solution.objective, rel=2e-4)
+    from clutchopt.report.sections import scatter  # the review page's Scatter section shows the split
+
+    claim, split = scatter(case, result)[0][1:3]
+    assert claim.text.startswith("Risk allocation (system chance):") and "the bound is tight" in claim.text
+    shares = {row["constraint"]: float(row["share of 1 - P"]) for row in split.rows}
+    assert shares["torque"] == pytest.approx(1e-3, rel=0.02) and shares["finger_bending"] < 1e-5
 
 
 def linear(u):
