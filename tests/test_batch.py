@@ -103,6 +103,16 @@ def test_every_point_is_verified_and_counted(swept):
     assert sweep.check_s > 0 and sweep.solver_s > 0  # both measured (no timing is asserted)
 
 
+def test_a_padded_chain_calls_no_solver():
+    # the wedge's 40 smooth points: the first solved alone by one cold IPOPT call, then chains of 8, 16 and 15
+    # points; the last runs on the chained function of 16 whose 16th column is padding (chain_length), which calls
+    # no solver: 1 + 8 + 16 + 15 = 40 solver calls (41 when the padding re-solved the last point)
+    case, problem, quantity, values, sweep, solutions = _sweep("wedge")
+    assert [s.status for s in solutions] == ["optimal"] * 40
+    assert [s.solver.solves for s in solutions] == [1] * 40
+    assert sweep.solves == 40
+
+
 def test_the_integer_search_along_a_batched_sweep():
     # cable count rises with the torque: a batch stops short of the point where its count breaks the cable
     # stress whatever the rest, the integer search chooses the next count there in one-point SQP re-solves (the

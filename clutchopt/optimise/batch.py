@@ -27,7 +27,7 @@ convexified). Otherwise, and where a re-solve of that search fails its check, th
 ``Problem.solve``, warm from the last kept point (SQP, warm IPOPT, the integer search, the cold solve and the
 infeasibility diagnosis), and the next batch starts after it, 8 points long, doubling while batches pass (up to
 256). A chain's length is a power of two (few functions to build): rather than leave a remainder of up to PADDING
-points to another call, it repeats its last point. After a point without a design the points are solved cold, one
+points to another call, it is padded with columns that call no solver (``chain.chained_sqp``). After a point without a design the points are solved cold, one
 by one, until one is optimal. A point that passes the KKT test but not the float64 check (rare) is solved again by
 ``Problem.solve`` at the end of its window. A chained call that CasADi ends with an evaluation error counts as a
 batch whose first point failed. A window's points are checked and built into solutions by
@@ -38,8 +38,8 @@ starts from and normalises the objective by that point's objective, where ``Prob
 each previous point. A design variable that the objective does not price at the optimum (the ball clutch's groove
 conformity where the contact stress does not bind) may be left elsewhere by the batch's SQP than by
 ``Problem.solve``'s IPOPT, both verified optimal. A point solved in a batch reports ``sqpmethod`` with the status
-``batched, KKT verified``, its share of the batch's time, its solver calls (its integer search's re-solves; a
-padded chain's repeats shared out), the integer search where the batch ran one, and no iteration count (the
+``batched, KKT verified``, its share of the batch's time, its solver calls (1, or its integer search's re-solves),
+the integer search where the batch ran one, and no iteration count (the
 chained solver reports none per point).
 """
 
@@ -68,13 +68,13 @@ WINDOW = 1024  # points whose float64 checks run together; results are handed on
 WINDOW_S = 0.25  # or after this many seconds of solving, whichever comes first (a progress bar moves on)
 EXCLUSION_SPAN = LONGEST_BATCH  # points ahead whose exclusion of an integer combination is evaluated at once (a batch's
 # points at least; fewer cost less where the integers change often, since each table is a mapped CasADi call)
-PADDING = 64  # a chain may repeat its last point this many times to save a call (about 4 us a repeated point,
-# against 0.2 ms of a call and its checks, on the cable: 64 cost about as much as the call they save)
+PADDING = 64  # a chain may be padded with this many columns that call no solver to save a call (a padded column
+# costs under 4 us, its verdict included, against 0.1-0.2 ms of a call and its checks)
 
 
 def chain_length(count: int) -> int:
     """The chained function for ``count`` points: a power of two (few functions to build), ``count`` rounded up
-    where that repeats the last point at most PADDING times, else down (the rest go to the next batch)."""
+    where that pads at most PADDING columns, else down (the rest go to the next batch)."""
     up = 1 << (count - 1).bit_length()
     return up if up - count <= PADDING else up >> 1
 
@@ -292,21 +292,22 @@ class BatchSweep:
         go to Problem.solve, which reports it)."""
         length = chain_length(count)
         count = min(count, length)
-        points = np.minimum(np.arange(k, k + length), k + count - 1)  # padded with the last point
+        points = np.minimum(np.arange(k, k + length), k + count - 1)  # the padding's parameters: the last point's
         lbx, ubx = lower / start.scale, upper / start.scale
         m, n = len(self.values), len(start.scale)
         p_rows = np.empty((length, m + n + 1))  # the NLP parameters, a point a row: CasADi's memory of the columns
         p_rows[:, :m], p_rows[:, m:m + n], p_rows[:, -1] = self._by_point[points], start.scale, start.f_scale
         p = p_rows.T
         ratio = self._ratios(points) if predict else 0.0
+        live = (np.arange(length) < count).astype(float)  # the padding calls no solver
         began = time.perf_counter()
         try:
             x, lam_x, lam_g, dx, dlam_x, dlam_g, f = chained_sqp(self.posed, length, method)(
-                *(seed[key] for key in ("x", "lam_x", "lam_g", "dx", "dlam_x", "dlam_g")), ratio, p, lbx, ubx)
+                live, *(seed[key] for key in ("x", "lam_x", "lam_g", "dx", "dlam_x", "dlam_g")), ratio, p, lbx, ubx)
         except RuntimeError:
             x = None
         seconds = time.perf_counter() - began
-        self.solves, self.solver_s = self.solves + length, self.solver_s + seconds
+        self.solves, self.solver_s = self.solves + count, self.solver_s + seconds
         if x is None:
             return None
         began = time.perf_counter()
@@ -318,7 +319,7 @@ class BatchSweep:
             arrays = {key: value[:, :count] for key, value in arrays.items()}
         return _Chain(np.arange(k, k + count), kkt[0, :count] > 0.5, moves[0, :count] > 0.5, **arrays,
                       lbx=lbx[:, None].repeat(count, axis=1), ubx=ubx[:, None].repeat(count, axis=1),
-                      time=np.full((1, count), seconds / count), solves=np.full((1, count), length / count))
+                      time=np.full((1, count), seconds / count), solves=np.ones((1, count)))
 
     def _ratios(self, points: np.ndarray) -> np.ndarray:
         """Per chained point, the predictor's ratio (0 for a repeated point)."""
