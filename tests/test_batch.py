@@ -127,6 +127,9 @@ def test_the_integer_search_along_a_batched_sweep():
         assert solution.solver.status == BATCHED and solution.solver.solves == 2
         assert [e["status"][:9] for e in solution.integer_search] == ["excluded:", BATCHED[:9]]
     assert sweep.solves / len(values) <= 1.5  # issue 14, goal 2
+    # issue 26: 60 points, +2 for the first (solved alone: its relaxation, then the count), +1 at each of the 7
+    # changes (the relaxation): every chain ends at the point its count is excluded, none padded by a solve
+    assert len(changes) == 7 and sweep.solves == 60 + 2 + 7
     for value, solution in list(zip(values, solutions))[::7]:
         point = case.with_values(**{quantity: float(value)})
         for n in (counts[0] - 1, solution.design["cable_count"] - 1, solution.design["cable_count"] + 1):
@@ -134,6 +137,21 @@ def test_the_integer_search_along_a_batched_sweep():
                 other = problem.solve(type(point)(point.coupling, "", point.values, {**point.bounds,
                                                                                      "cable_count": (n, n)}))
                 assert other.status != "optimal" or other.objective >= solution.objective * (1 - 3e-8)
+
+
+def test_a_chain_ends_near_the_next_change_of_the_integers():
+    # ball rows fall with the speed, the search stepping to a neighbour the multipliers promise (no exclusion to
+    # foresee it): at each change the chained column of the rows before is the search's first attempt, the
+    # neighbour its second (2 solves); the next chain ends where the next change is expected (batch_pace). At
+    # least 25 + 1 (the first point: relaxation and rows) + 7 changes = 33 solves; chains that ran past the
+    # changes spent 74 (41 on points after a change), now at most 9 more than the least
+    case, problem, quantity, values, sweep, solutions = _sweep("ball_speed")
+    changes = [s for before, s in zip(solutions, solutions[1:]) if s.design["ball_rows"] != before.design["ball_rows"]]
+    assert len(changes) == 7
+    for solution in changes:
+        assert solution.solver.status == BATCHED and solution.solver.solves == 2
+        assert [e["status"] for e in solution.integer_search] == [BATCHED, BATCHED]
+    assert 33 <= sweep.solves <= 42
 
 
 def test_an_infeasible_stretch_costs_one_design_solve_a_point():

@@ -53,6 +53,7 @@ import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.optimise.attempts import warm_multipliers
+from clutchopt.optimise.batch_pace import BatchPace
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
 from clutchopt.optimise.chain import chain_verdict, chained_sqp
 from clutchopt.optimise.integers import descend, excluded_entry, nearest_integers, relaxation_seed, search_entry
@@ -105,6 +106,16 @@ class _Chain(Block):
     def block(self, passed: int) -> Block:
         """The first ``passed`` points."""
         return Block(self.index[:passed], **{key: value[:, :passed] for key, value in self.arrays.items()})
+
+    def column(self, j: int, f_scale: float) -> "_Chain":
+        """Point ``j`` alone, its objective normalised by ``f_scale`` (the scaled problem's objective and multipliers
+        are the chain's times its normaliser over ``f_scale``: the same optimum)."""
+        a = {key: value[:, j:j + 1].copy() for key, value in self.arrays.items()}
+        ratio = a["p"][-1, 0] / f_scale
+        for key in ("f", "lam_x", "lam_g", "dlam_x", "dlam_g"):
+            a[key] *= ratio
+        a["p"][-1, 0] = f_scale
+        return _Chain(self.index[j:j + 1], self.ok[j:j + 1], self.moves[j:j + 1], **a)
 
 
 class _Unsettled(Exception):
@@ -207,32 +218,34 @@ class BatchSweep:
     def run(self, window: int = WINDOW) -> Iterator["Solutions"]:
         """Solve every point in order; yields the solutions window by window, each window checked in float64."""
         start: _Start | None = None  # where the next batch starts; None: after a point without a design
-        size, k = FIRST_BATCH, 0
+        pace, k = BatchPace(FIRST_BATCH, LONGEST_BATCH), 0
         while k < self.count:
             first, end, deadline = k, min(k + window, self.count), time.perf_counter() + WINDOW_S
             blocks: list[Block] = []
             alone: dict[int, Solution] = {}
             failed = False  # the last point is without a design: the window waits for a feasible point after it
             while k < end and (failed or time.perf_counter() < deadline):  # each turn solves at least one point
-                wanted = min(size, end - k)
-                block, chained, searching = self._batch(start, k, wanted) if start is not None else (None, 0, False)
+                wanted, reach = min(pace.size, end - k), min(2 * pace.size, LONGEST_BATCH, end - k)
+                block, chained, searching, tried = (self._batch(start, k, wanted, reach) if start is not None
+                                                    else (None, 0, False, None))
                 passed = 0 if block is None else len(block.index)
                 if passed:
                     blocks.append(block)
                     start, k = _Start(self, block=block), k + passed
                     self.feasible, failed = start.warm.design, False
                 if chained and passed == chained:
-                    size = min(2 * size, LONGEST_BATCH)
+                    pace.passed()
                     if not searching or k == end:  # (a batch that passes up to its integers' exclusion hands the
                         continue  # next point to the search)
-                settled = self._settle(start, k) if searching else None
+                settled = self._settle(start, k, tried) if searching else None
                 if settled is not None:  # the integer search decided point k in the batch
+                    pace.broke(k)
                     blocks.append(settled)
                     start, k = _Start(self, block=settled), k + 1
                     self.feasible, failed = start.warm.design, False
                     continue
                 if passed < chained:  # point k failed a test in the batch: the next batch starts short
-                    size = FIRST_BATCH
+                    pace.restart()
                 alone[k] = self._solve_alone(k, start.warm if start is not None else None)
                 start, k = self._start_of(alone[k]), k + 1
                 failed = alone[k - 1].status not in DESIGN_STATUSES
@@ -257,31 +270,35 @@ class BatchSweep:
         self.solver_s += solution.solver.time_s
         return solution
 
-    def _batch(self, start: _Start, k: int, count: int) -> tuple[Block | None, int, bool]:
-        """Chain up to ``count`` points from ``start``: the columns up to the first that fails a test (None if it is
-        the first), how many were chained (fewer than asked where the batch's integers are excluded ahead, none
-        if they are at ``k``, see :func:`chain_length`), and whether the first point left is the integer search's
-        to decide (its integers excluded there, or a neighbouring combination to try; also where every chained point
-        passed and the next one excludes them)."""
+    def _batch(self, start: _Start, k: int, count: int, reach: int) -> tuple[Block | None, int, bool, "_Chain | None"]:
+        """Chain ``count`` points from ``start`` (as many as up to a point within ``reach`` where the batch's
+        integers are excluded): the columns up to the first that fails a test (None if it is the first), how many
+        were chained (none if the integers are excluded at ``k``, see :func:`chain_length`), whether the first point
+        left is the integer search's to decide (its integers excluded there, or a neighbouring combination to try;
+        also where every chained point passed and the next one excludes them), and in the second case that point's
+        chained column (KKT-verified at the batch's integers: the search's first attempt)."""
         lower, upper = self.lower.copy(), self.upper.copy()
         lower[self.integer] = upper[self.integer] = start.combo
         first = -1  # the first point ahead where the batch's integers are excluded
         if self.integer:  # the batch stops short of a point its integers cannot serve whatever the rest (the search
             # excludes them there without a solve)
-            excluded = self._excluded(lower, k, count)
+            excluded = self._excluded(lower, k, max(count, reach))
             if excluded.any():
                 first = int(np.argmax(excluded))
                 if first == 0:
-                    return None, 0, True  # foreseen: nothing chained
+                    return None, 0, True, None  # foreseen: nothing chained
                 count = first
         chain = self._chain(start, k, count, lower, upper, start.seed)
         if chain is None:
-            return None, min(count, chain_length(count)), False
+            return None, min(count, chain_length(count)), False, None
         count = len(chain.index)
         ok = chain.ok & ~chain.moves
         passed = int(np.argmin(ok)) if not ok.all() else count
         searching = bool(chain.ok[passed]) if passed < count else count == first  # passed up to the exclusion
-        return (chain.block(passed) if passed else None), count, searching
+        tried = None  # normalised as the batch that starts after the passed points
+        if searching and passed < count:
+            tried = chain.column(passed, _Start(self, block=chain.block(passed)).f_scale if passed else start.f_scale)
+        return (chain.block(passed) if passed else None), count, searching, tried
 
     def _chain(self, start: _Start, k: int, count: int, lower: np.ndarray, upper: np.ndarray,
                seed: dict, method: str = "sqp_chain", predict: bool = True) -> "_Chain | None":
@@ -327,11 +344,12 @@ class BatchSweep:
         ratio[1:][points[1:] == points[:-1]] = 0.0
         return ratio
 
-    def _settle(self, start: _Start, k: int) -> Block | None:
+    def _settle(self, start: _Start, k: int, tried: _Chain | None = None) -> Block | None:
         """Point k, where a batch ended for the integer search: ``Problem.solve``'s warm search (``integers.descend``
         from the batch's integers; should they fail, the relaxation and ``integers.nearest_integers``), each
         combination excluded by the batch's tables or re-solved by a one-point chained SQP from the previous point's
-        optimum and KKT-checked. None where a re-solve does not pass its check or no integer point is found
+        optimum and KKT-checked; the batch's integers are not solved again where the chain solved them at k
+        (``tried``, its column there). None where a re-solve does not pass its check or no integer point is found
         (``Problem.solve`` decides the point; also where a constraint of the case alone breaks, which fails the
         relaxation); the search is kept for the point's Solution."""
         search: list[dict] = []
@@ -345,12 +363,15 @@ class BatchSweep:
             if excluded:
                 search.append(excluded_entry(self.posed, self.integer, combo, excluded))
                 return None
-            run = solved(lower, upper, seed, "sqp_chain")
+            run = used(tried) if tried is not None and np.array_equal(combo, start.combo) else solved(
+                lower, upper, seed, "sqp_chain")
             search.append(search_entry(self.posed, self.integer, combo, BATCHED, True, run["value"]))
             return run
 
         def solved(lower, upper, seed, method) -> dict:
-            chain = self._chain(start, k, 1, lower, upper, seed, method, predict=False)
+            return used(self._chain(start, k, 1, lower, upper, seed, method, predict=False))
+
+        def used(chain: _Chain | None) -> dict:
             if chain is None or not chain.ok[0]:
                 raise _Unsettled
             runs.append(chain)
