@@ -23,12 +23,14 @@ A batch is kept up to its first point that fails a test. Where the integer searc
 integers excluded there, or a neighbour to try), the batch runs the search itself, with ``Problem.solve``'s steps
 (``integers.descend``, then the relaxation and ``integers.nearest_integers``): each integer combination is excluded
 by the tables or re-solved by a one-point chained SQP and KKT-checked (the relaxation with its Hessian
-convexified). Otherwise, and where a re-solve of that search fails its check, the point is solved by
-``Problem.solve``, warm from the last kept point (SQP, warm IPOPT, the integer search, the cold solve and the
-infeasibility diagnosis), and the next batch starts after it, 8 points long, doubling while batches pass (up to
-256). A chain's length is a power of two (few functions to build): rather than leave a remainder of up to PADDING
-points to another call, it is padded with columns that call no solver (``chain.chained_sqp``). After a point without a design the points are solved cold, one
-by one, until one is optimal. A point that passes the KKT test but not the float64 check (rare) is solved again by
+convexified; the batch's own integers not again where the chain solved them at that point: its column there is
+the first attempt). The next chain then ends where the next such point is expected (``batch_pace``). Otherwise,
+and where a re-solve of that search fails its check, the point is solved by ``Problem.solve``, warm from the last
+kept point (SQP, warm IPOPT, the integer search, the cold solve and the infeasibility diagnosis), and the next
+batch starts after it, 8 points long, doubling while batches pass (up to 256). A chain's length is a power of two
+(few functions to build): rather than leave a remainder of up to PADDING points to another call, it is padded with
+columns that call no solver (``chain.chained_sqp``). After a point without a design the points are solved cold,
+one by one, until one is optimal. A point that passes the KKT test but not the float64 check (rare) is solved again by
 ``Problem.solve`` at the end of its window. A chained call that CasADi ends with an evaluation error counts as a
 batch whose first point failed. A window's points are checked and built into solutions by
 ``clutchopt.optimise.batch_window``.
