@@ -16,10 +16,13 @@
   evaluated vectorised in float64 by the formulation's own equations; each constraint's failure probability with
   its Clopper-Pearson interval, for the robust and for the nominal design; and by FORM, SORM and importance sampling
   at each constraint's design point, and the system's (``robust_reliability``).
-- A ``[start_up]``'s start is designed at one corner, where its simulated figures bind, and each of its
-  constraints evaluated at its own (a scattered limit at its strict end): of the ends of the ranges (worst case) or
-  of the quantiles (chance), re-solved until the corners settle; then simulated at every such corner (each start-up
-  limit at its worst) and by ``starts`` simulated starts of Monte Carlo.
+- A ``[start_up]``'s start is designed at one point, where its simulated figures bind, and each of its
+  constraints evaluated at its own (a scattered limit at its strict end): worst case at the ends of the ranges,
+  re-solved until the corners settle, then simulated at every corner (each start-up limit at its worst); chance at
+  each limit's performance point on the beta-sphere, its limit state the simulated start
+  (``start_up_reliability``), re-solved until the points settle, each limit checked at its own and its failure
+  probability estimated by importance sampling of simulated starts at its design point; both by ``starts``
+  simulated starts of Monte Carlo.
 """
 
 from __future__ import annotations
@@ -65,6 +68,7 @@ from clutchopt.optimise.robust_start_up import (
     start_up_failures,
 )
 from clutchopt.optimise.solution import Solution, SolverOptions
+from clutchopt.optimise.start_up_reliability import StartUpPerformancePoints
 from clutchopt.optimise.verify import DESIGN_STATUSES, ConstraintCheck, check_constraints
 from clutchopt.start_up.drive import Structure
 
@@ -125,6 +129,8 @@ class RobustResult:
     nominal_reliability: Reliability | None = None  # sampling, design points; the nominal design's
     betas: dict[str, float] = field(default_factory=dict)  # chance: each constraint's beta of its performance point
     allocation: RiskAllocation | None = None  # system chance: how 1 - P was split between the constraints
+    start_up_beta: float | None = None  # chance: the beta of the start-up limits' performance points
+    start_up_fallbacks: tuple[str, ...] = ()  # chance: start-up limits at their quantile corners (no settled point)
 
     def as_dict(self) -> dict:
         return {
@@ -145,7 +151,10 @@ class RobustResult:
             "performance_point_beta": self.betas or None,
             "system_allocation": self.allocation.as_dict() if self.allocation else None,
             "start_up_verification": {"corners": self.start_up_points, "simulations": self.start_up_samples,
-                                      "failure_probability": self.start_up_failure} if self.start_up_points else None,
+                                      "failure_probability": self.start_up_failure,
+                                      "performance_point_beta": self.start_up_beta,
+                                      "at_quantile_corners": list(self.start_up_fallbacks)}
+            if self.start_up_points else None,
         }
 
 
@@ -172,8 +181,9 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
     (``samples``) and by the reliability methods (FORM, SORM, importance sampling; the system). Worst case: each
     constraint at its worst corner of the ranges; chance: at its performance point on the beta-sphere (PMA, SORA),
     beta corrected until importance sampling meets the target (:func:`_next_betas`). A [start_up] is designed at
-    its corners (worst case: of the ranges; chance: of the quantiles), re-solved until they settle, then simulated
-    at every such corner and by ``starts`` Monte Carlo starts.
+    its corners (worst case: of the ranges; chance: each limit's performance point, the simulated start its limit
+    state), re-solved until they settle, then simulated at every such point, by ``starts`` Monte Carlo starts and
+    (chance) by importance sampling of ``starts`` simulated starts at each limit's design point.
     ``base``: the formulation to make robust, if not the mode's own (a Pareto point's, with its cost cap)."""
     if not case.scatter:
         raise InputError("--robust", "the case has no [scatter] section: say which quantities scatter and how")
@@ -188,6 +198,8 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
     allowed = _Allowed(1.0 - target, len(names), method == SYSTEM_CHANCE) if chance else None
     betas = dict.fromkeys(names, allowed.beta) if chance else {}
     allocation = None
+    start_up_points = (StartUpPerformancePoints(case, base.mode, target, case.correlation) if structure and chance
+                       else None)  # a start-up's limits at their performance points
 
     def corners_at(design: dict) -> tuple[dict, StartUpCorners | None]:
         """Each constraint's worst corner (worst case) or performance point (chance; the system's allocation
@@ -199,7 +211,8 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
             corners = performance_corners(shown, design, params, case.scatter, betas, case.correlation, points)
             if allocation is not None:
                 allocation.aim({name: points[name] for name in allocation.names})
-        start_up = start_up_corners(case, base.mode, design, case.scatter, target) if structure else None
+        start_up = ((start_up_points.at(design) if start_up_points else
+                     start_up_corners(case, base.mode, design, case.scatter, target)) if structure else None)
         return ({**corners, **start_up.corners}, start_up) if start_up else (corners, None)
 
     if method == SYSTEM_CHANCE:  # the constraints the scatter moves share 1 - P, as the NLP chooses
@@ -262,12 +275,23 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
                                                     names)
         result.betas = dict(betas)
         result.allocation = allocation
-    if structure and solution.status in DESIGN_STATUSES:
+    if start_up_points and solution.status in DESIGN_STATUSES:  # each limit at its performance point
+        start_up_points.at(solution.design)
+        fallbacks = sorted(start_up_points.fallbacks)
+        quantile_points = _distinct([corners[name] for name in fallbacks])
+        result.start_up_points = _distinct(start_up_points.distinct_points() + quantile_points)
+        result.checks += start_up_points.checks() + [
+            c for c in start_up_checks(case, base.mode, solution.design, quantile_points) if c.name in fallbacks]
+        result.nominal_checks += start_up_checks(case, base.mode, nominal.design, result.start_up_points)
+        result.reliability.constraints.update(start_up_points.reliability(starts))
+        result.start_up_beta, result.start_up_fallbacks = start_up_points.beta, tuple(fallbacks)
+    elif structure and solution.status in DESIGN_STATUSES:
         result.start_up_points = (corner_points(corner_table(case.scatter, start_up.ends))
                                   if len(case.scatter) <= MAX_START_CORNERS
                                   else _distinct([corners[name] for name in (START_UP, *start_up_names)]))
         result.checks += start_up_checks(case, base.mode, solution.design, result.start_up_points)
         result.nominal_checks += start_up_checks(case, base.mode, nominal.design, result.start_up_points)
+    if structure and solution.status in DESIGN_STATUSES:
         result.start_up_samples = starts
         result.start_up_failure = start_up_failures(case, base.mode, solution.design, case.scatter, starts)
     result.status, result.diagnosis = verdict(result)
@@ -374,7 +398,8 @@ def verdict(result: RobustResult) -> tuple[str, str | None]:
         reasons.append("Monte Carlo: " + "; ".join(static))
     if start := exceeded(result.start_up_failure):
         reasons.append(f"{result.start_up_samples} simulated starts: " + "; ".join(start)
-                       + " (the start is not monotone in the scatter: its quantile corner is not enough)")
+                       + ("" if result.start_up_beta is not None else
+               " (the start is not monotone in the scatter: its quantile corner is not enough)"))
     return ("unverified", "; ".join(reasons)) if reasons else ("optimal", None)
 
 
@@ -389,27 +414,44 @@ def verification(result: RobustResult, case: Case) -> str:
              + (result.allocation.claim() if result.allocation else "beta corrected by importance sampling"),
              f"{result.samples} Monte Carlo samples: {_largest(result.failure)}"]
     if result.reliability is not None:
-        name, best = max(((name, c.best) for name, c in result.reliability.constraints.items()),
-                         key=lambda item: item[1].probability)
-        system = result.reliability.system
-        parts.append(f"importance sampling at the design points: largest P(fail) {best.probability:.3g} ({name}; "
-                     f"95% interval {best.low:.3g} to {best.high:.3g}), system {system.probability:.3g} "
-                     f"({system.low:.3g} to {system.high:.3g})")
-    simulated = [c.name for c in result.checks if c.name in result.start_up_failure]
-    if result.method in CHANCES and simulated:
-        parts.append(f"start-up limits not by PMA but at the quantile corners: {', '.join(simulated)}")
+        parts.append(f"importance sampling at the design points: {_largest_estimate(result, static=True)}, system "
+                     f"{result.reliability.system.probability:.3g} ({result.reliability.system.low:.3g} to "
+                     f"{result.reliability.system.high:.3g})")
+    if result.start_up_fallbacks:
+        parts.append("start-up limits at their quantile corners (their performance point did not settle): "
+                      + ", ".join(result.start_up_fallbacks))
     if result.start_up_points:
-        kind = "corner(s) of the ranges" if result.method == WORST_CASE else "quantile corner(s)"
+        by_points = result.start_up_beta is not None
+        kind = ("point(s)" if by_points else
+                "corner(s) of the ranges" if result.method == WORST_CASE else "quantile corner(s)")
         where = "; ".join(_shown(point, quantities) for point in result.start_up_points)
         missed = [c.name for c in result.checks if c.name in result.start_up_failure and not c.feasible]
-        parts += [f"start-up designed at ({_shown(result.corners[START_UP], quantities)}), simulated at the "
-                  f"{len(result.start_up_points)} {kind} ({where}): "
+        parts += [(f"start-up designed at its performance point ({_shown(result.corners[START_UP], quantities)}; "
+                   f"beta {result.start_up_beta:.4g}), each limit simulated at its own, the "
+                   if by_points else
+                   f"start-up designed at ({_shown(result.corners[START_UP], quantities)}), simulated at the ")
+                  + f"{len(result.start_up_points)} {kind} ({where}): "
                   + (f"{', '.join(missed)} missed" if missed else "every limit met"),
+                  *([f"importance sampling of {result.start_up_samples} simulated starts at the start-up's design "
+                     f"points: {_largest_estimate(result, static=False)}"] if by_points else []),
                   f"{result.start_up_samples} simulated starts: {_largest(result.start_up_failure)}"]
         if result.method == CHANCE and max(high for _, _, high in result.start_up_failure.values()) > 1 - result.target:
-            parts[-1] += (f" (too few to show P(fail) <= {1 - result.target:.3g} alone; the quantile corners show it "
-                          "for a start monotone in each quantity)")
+            parts[-1] += (f" (too few to show P(fail) <= {1 - result.target:.3g} alone; importance sampling shows it)"
+                          if by_points else f" (too few to show P(fail) <= {1 - result.target:.3g} alone; the "
+                                            "quantile corners show it for a start monotone in each quantity)")
     return "verified: " + "; ".join(parts)
+
+
+def _largest_estimate(result: RobustResult, static: bool) -> str:
+    """The constraint (``static``) or start-up limit most likely to fail by its estimate, with its interval."""
+    shown = [(name, c.best) for name, c in result.reliability.constraints.items()
+             if (name in result.start_up_failure) != static]
+    if not shown:
+        return "none sampled"
+    name, best = max(shown, key=lambda item: item[1].probability)
+    return (f"largest P(fail) {best.probability:.3g} ({name}; {best.estimator}, 95% interval {best.low:.3g} to "
+            f"{best.high:.3g})" if not static else
+            f"largest P(fail) {best.probability:.3g} ({name}; 95% interval {best.low:.3g} to {best.high:.3g})")
 
 
 def _shown(values: dict, quantities: dict) -> str:
