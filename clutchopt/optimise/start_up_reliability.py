@@ -27,10 +27,14 @@ from clutchopt.optimise.verify import ConstraintCheck
 from clutchopt.scatter import _within, values_from_standard
 from clutchopt.start_up.drive import CLOSED_FORM
 
-STEP = 1e-3  # central differences in u of a simulated limit state: truncation STEP^2 |g'''| and the simulation's
-# noise (rtol 1e-9) / STEP both ~1e-6 of the gradient; 1e-5 (the closed forms' step) leaves 1e-4 of noise
-SETTLED = 1e-6  # |move of u| / beta at which a start-up limit's performance point has settled
-PMA_STEPS = 25  # advanced mean value steps before the limit falls back to its quantile corner
+STEP = 1e-4  # forward differences in u of a simulated limit state: truncation STEP |g''| / 2 ~ 1e-4 of the gradient
+# (in a uniform quantity's tail g'' ~ u g'), the simulation's noise (rtol 1e-9) / STEP ~ 1e-5 of it
+SEARCH_STEPS = 40  # BFGS iterations of one search
+RESTARTS = 3  # searches before the limit falls back to its quantile corner
+TANGENTIAL = 1e-3  # |tangential gradient| / |gradient| at a settled performance point (the sphere's KKT condition):
+# an angle of about that much from the minimum, where g exceeds it by about |grad g| beta TANGENTIAL^2 / 2 ~ 1e-6 |grad g|
+FLAT = 1e-6  # of g (a relative margin, the start-up's tolerance): a tangential gradient that moves g less over a
+# distance beta holds (a limit the scatter hardly moves: its differences are mostly the simulation's noise)
 NEGLIGIBLE = 1e-7  # |grad g| below this (g per unit of u) is a limit the scatter does not move
 REACH = 1.0  # a limit whose design point lies within this (in u, to first order) of its performance point is
 # sampled around it; one further out fails less than Phi(-beta - REACH): FORM from the performance point
@@ -75,34 +79,57 @@ class SimulatedLimitStates:
         return np.where(np.isnan(g), -math.inf, g)  # a start that does not lock up fails
 
     def value_gradient(self, row: int, u: np.ndarray) -> tuple[float, np.ndarray]:
-        """g_row(u) and its gradient by central differences of step STEP (2n + 1 simulated starts, cached)."""
+        """g_row(u) and its gradient by forward differences of step STEP (n + 1 simulated starts, cached)."""
         n = len(u)
-        values = self(np.column_stack([u, u[:, None] + STEP * np.eye(n), u[:, None] - STEP * np.eye(n)]))[row]
-        return float(values[0]), (values[1:n + 1] - values[n + 1:]) / (2 * STEP)
+        values = self(np.column_stack([u, u[:, None] + STEP * np.eye(n)]))[row]
+        return float(values[0]), (values[1:] - values[0]) / STEP
 
 
 def performance_point(g: SimulatedLimitStates, row: int, beta: float, start: np.ndarray | None = None):
     """(u, settled): PMA's most probable point of a simulated limit at ``beta`` (Tu, Choi & Park 1999): argmin g_row
-    on ||u|| = beta by the advanced mean value iteration u <- -beta grad g / |grad g| (as
-    ``reliability.performance_point``, with the differences and the settling a simulation allows, STEP and SETTLED),
-    from ``start`` (the point at the previous design) or the means. A limit the scatter does not move there
-    (|grad g| < NEGLIGIBLE) is at the means; one whose gradient is not finite (a start that does not lock up nearby)
-    or that has not settled in PMA_STEPS (it cycles: g concave on the sphere) is not settled."""
+    on ||u|| = beta. One quantity: the sphere is two points, -beta and beta. More: BFGS over v, u = beta v / |v|
+    (unconstrained; the gradient of g projected on the sphere's tangent plane, times beta / |v|), from ``start``
+    (the point at the previous design, kept where it still holds) or the advanced mean value step from the means,
+    u = -beta grad g / |grad g| (the AMV iteration of ``reliability.performance_point`` alone cycles here: a uniform
+    quantity mapped exactly flattens g in its tail, and the iteration jumps between the ends of two quantities).
+    Settled where the gradient is normal to the sphere (its tangential part below TANGENTIAL of it, the sphere's
+    KKT condition, or so small that g falls by less than FLAT along the sphere) and points away from the origin. A limit the scatter does not move at the means
+    (|grad g| < NEGLIGIBLE) is at the means; one whose g or gradient is not finite (a start that does not lock up
+    nearby) or that does not settle is not settled."""
     n = len(g.scatter)
-    u = np.zeros(n) if start is None else start
-    for _ in range(PMA_STEPS):
-        _, grad = g.value_gradient(row, u)
-        norm = float(np.linalg.norm(grad))
-        if not math.isfinite(norm):
-            return u, False
-        if norm < NEGLIGIBLE:
-            if start is not None and np.any(u):  # flat at the previous point: search again from the means
-                return performance_point(g, row, beta)
-            return np.zeros(n), True
-        new = -beta * grad / norm
-        if np.linalg.norm(new - u) <= SETTLED * beta:
-            return new, True
-        u = new
+
+    def holds(u: np.ndarray) -> bool:
+        value, grad = g.value_gradient(row, u)
+        tangential = grad - (grad @ u) * u / (beta * beta)
+        return bool(math.isfinite(value) and np.all(np.isfinite(grad)) and grad @ u <= 0
+                    and np.linalg.norm(tangential) <= max(TANGENTIAL * np.linalg.norm(grad), FLAT / beta))
+
+    if start is not None and np.any(start) and holds(start):
+        return start, True
+    value, grad = g.value_gradient(row, np.zeros(n))
+    norm = float(np.linalg.norm(grad))
+    if not (math.isfinite(value) and math.isfinite(norm)) or norm < NEGLIGIBLE:
+        return np.zeros(n), math.isfinite(value) and math.isfinite(norm)
+    if n == 1:
+        ends = np.array([[-beta, beta]])
+        at = g(ends)[row]
+        return ends[:, int(np.argmin(at))], bool(np.all(np.isfinite(at)))
+    from scipy.optimize import minimize
+
+    def on_sphere(v: np.ndarray) -> tuple[float, np.ndarray]:
+        length = float(np.linalg.norm(v))
+        value, grad = g.value_gradient(row, beta * v / length)
+        along = v / length
+        return value, beta / length * (grad - (grad @ along) * along)
+
+    u = start if start is not None and np.any(start) else -beta * grad / norm
+    for _ in range(RESTARTS):  # from the sphere again: the gradient in v shrinks by beta / |v| as v grows
+        result = minimize(on_sphere, u, jac=True, method="BFGS",
+                          options={"gtol": FLAT / beta / 2, "norm": 2,  # or until the noise stops it
+                                   "maxiter": SEARCH_STEPS})
+        u = beta * result.x / np.linalg.norm(result.x)
+        if holds(u):
+            return u, True
     return u, False
 
 
