@@ -554,7 +554,9 @@ def robust_text(result, case) -> str:
            + ("1 - P split between the constraints by the NLP (optimal risk allocation), the system verified by "
               "importance sampling" if result.allocation else "beta corrected until importance sampling meets the "
                                                                "target")
-           + (", a start-up designed at the corner of the quantiles where it binds" if result.start_up_points else ""))
+           + ((", each start-up limit at its performance point too (simulated starts)" if result.start_up_beta
+               is not None else ", a start-up designed at the corner of the quantiles where it binds")
+              if result.start_up_points else ""))
     robust, nominal = result.solution, result.nominal
     change = robust.objective / nominal.objective - 1 if nominal.objective else float("nan")
     nominal_checks = {c.name: c for c in result.nominal_checks}
@@ -586,8 +588,10 @@ def robust_text(result, case) -> str:
               else "Constraints under scatter: margin at its performance point")
              + f", and the failure probability: IS by importance sampling at the design point (95% interval), MC from "
                f"{result.samples} Monte Carlo samples ({result.as_dict()['confidence']:.0%} Clopper-Pearson interval)"
-             + (f" (a start-up's: margin at its worst simulated corner, P(fail) from {result.start_up_samples} "
-                "simulated starts)" if result.start_up_points else ""), _frame(rows)]
+             + ((f" (a start-up's: margin at its performance point, P(fail) by importance sampling of "
+                 f"{result.start_up_samples} simulated starts, FORM or exact)" if result.start_up_beta is not None
+                 else f" (a start-up's: margin at its worst simulated corner, P(fail) from {result.start_up_samples} "
+                      "simulated starts)") if result.start_up_points else ""), _frame(rows)]
     if result.allocation is not None:
         lines += ["", *allocation_lines(result.allocation)]
     if result.reliability is not None:

@@ -104,13 +104,13 @@ def performance_point(g: SimulatedLimitStates, row: int, beta: float, start: np.
         return bool(math.isfinite(value) and np.all(np.isfinite(grad)) and grad @ u <= 0
                     and np.linalg.norm(tangential) <= max(TANGENTIAL * np.linalg.norm(grad), FLAT / beta))
 
-    if start is not None and np.any(start) and holds(start):
+    if n > 1 and start is not None and np.any(start) and holds(start):
         return start, True
     value, grad = g.value_gradient(row, np.zeros(n))
     norm = float(np.linalg.norm(grad))
     if not (math.isfinite(value) and math.isfinite(norm)) or norm < NEGLIGIBLE:
         return np.zeros(n), math.isfinite(value) and math.isfinite(norm)
-    if n == 1:
+    if n == 1:  # the sphere's two points (2 simulated starts)
         ends = np.array([[-beta, beta]])
         at = g(ends)[row]
         return ends[:, int(np.argmin(at))], bool(np.all(np.isfinite(at)))
