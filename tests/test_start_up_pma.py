@@ -9,7 +9,7 @@ import pytest
 from scipy.special import ndtri
 
 from clutchopt.cases import parse_case, read_toml
-from clutchopt.optimise import robust
+from clutchopt.optimise import robust, solve_case
 from clutchopt.optimise.robust import CHANCE, solve_robust
 from clutchopt.optimise.start_up_reliability import SimulatedLimitStates, performance_point
 from tests.conftest import CASES
@@ -95,3 +95,25 @@ def test_the_performance_point_where_the_mean_value_iteration_fails():
     assert u == pytest.approx(best, abs=1e-3)
     assert g(u[:, None])[0, 0] == pytest.approx(g(best[:, None])[0, 0], abs=1e-6)
     assert g(u[:, None])[0, 0] < g(np.array([[-3.08628327], [0.15617714]]))[0, 0] - 0.01  # below the iteration's
+
+
+def test_a_limit_whose_point_does_not_settle_falls_back_to_its_quantile_corner(monkeypatch):
+    """Where the search does not settle (here made so for the start time), the limit is designed at its quantile
+    corner (one uniform f: 0.12 + 0.06 x 0.001 = 0.12006) and named among the fallbacks; the others keep their
+    performance points (the lock-up speed at 0.18 - 0.00006 = 0.17994)."""
+    from clutchopt.optimise import start_up_reliability
+    from clutchopt.optimise.robust_models import START_UP
+    from clutchopt.optimise.start_up_reliability import StartUpPerformancePoints
+
+    path = CASES / "wedge_motor_start_scatter.toml"
+    case = parse_case(read_toml(path), str(path))
+    searched = start_up_reliability.performance_point
+    monkeypatch.setattr(start_up_reliability, "performance_point", lambda g, row, beta, start=None: (
+        (np.zeros(1), False) if g.names[row] == "start_time" else searched(g, row, beta, start)))
+    points = StartUpPerformancePoints(case, "paper", 0.999)
+    corners = points.at(solve_case(case).design).corners  # the nominal design
+    assert points.fallbacks == {"start_time"} and "start_time" not in points.points
+    assert corners["start_time"]["friction_coefficient"] == pytest.approx(0.12006, rel=1e-9)
+    assert corners["lock_up_speed"]["friction_coefficient"] == pytest.approx(0.17994, rel=1e-9)
+    assert corners[START_UP]["friction_coefficient"] == pytest.approx(0.12006, rel=1e-9)  # the figures bind at low f
+    assert "start_time" not in {c.name for c in points.checks()}  # checked at its corner by the caller
