@@ -203,7 +203,8 @@ class StartUpPerformancePoints:
         beta + g / |grad g|; at an active limit g = 0 and the two coincide) by importance sampling of ``starts``
         simulated starts from the standard normal centred there (weight phi(u) / phi(u - u*), 95 % interval from
         the weights' spread), centres closer than SHARED_CENTRE shared; one further out by FORM from its performance
-        point, Phi(-(beta + g / |grad g|))."""
+        point, Phi(-(beta + g / |grad g|)), or where that lies beyond ``reliability.REACH`` (9) its bound Phi(-9),
+        as the closed forms' (``robust_reliability.reliability_at``)."""
         g, beta, n = self.states, self.beta, len(self.case.scatter)
         out, centres = {}, []
         for row, name in enumerate(g.names):
@@ -218,9 +219,10 @@ class StartUpPerformancePoints:
                                                                     "exact: independent of the scatter")])
                 continue
             value, grad = g.value_gradient(row, u)
-            reach = beta + value / float(np.linalg.norm(grad))
+            slope = float(np.linalg.norm(grad))
+            reach = beta + value / slope if slope > 0 else math.inf  # flat at its point: no failure within reach
             point = DesignPoint(u * reach / beta, reach, reach <= FORM_REACH)
-            if reach > FORM_REACH:  # as the static limits' (robust_reliability.reliability_at)
+            if reach > FORM_REACH:
                 bound = float(ndtr(-FORM_REACH))
                 out[name] = ConstraintReliability(point, values, [
                     Estimate(0.0, 0.0, bound, f"FORM (no design point within beta {FORM_REACH:g})")])
