@@ -388,8 +388,9 @@ def verdict(result: RobustResult) -> tuple[str, str | None]:
 
     reasons = []
     if result.reliability is not None:
-        shown = ({"the system": result.reliability.system} if result.method == SYSTEM_CHANCE else
-                 {name: c.best for name, c in result.reliability.constraints.items()})
+        shown = ({"the system": result.reliability.system} if result.method == SYSTEM_CHANCE else {}) | {
+            name: c.best for name, c in result.reliability.constraints.items()
+            if result.method != SYSTEM_CHANCE or name in result.start_up_failure}  # a start-up limit: each alone
         if missed := [f"{name} fails with probability {e.probability:.3g} ({e.low:.3g} to {e.high:.3g}, "
                       f"{e.estimator})" for name, e in shown.items()
                       if e.low > allowed or e.high > VERIFIED_FACTOR * allowed]:
@@ -399,7 +400,7 @@ def verdict(result: RobustResult) -> tuple[str, str | None]:
     if start := exceeded(result.start_up_failure):
         reasons.append(f"{result.start_up_samples} simulated starts: " + "; ".join(start)
                        + ("" if result.start_up_beta is not None else
-               " (the start is not monotone in the scatter: its quantile corner is not enough)"))
+                          " (the start is not monotone in the scatter: its quantile corner is not enough)"))
     return ("unverified", "; ".join(reasons)) if reasons else ("optimal", None)
 
 
