@@ -117,3 +117,29 @@ def test_a_limit_whose_point_does_not_settle_falls_back_to_its_quantile_corner(m
     assert corners["lock_up_speed"]["friction_coefficient"] == pytest.approx(0.17994, rel=1e-9)
     assert corners[START_UP]["friction_coefficient"] == pytest.approx(0.12006, rel=1e-9)  # the figures bind at low f
     assert "start_time" not in {c.name for c in points.checks()}  # checked at its corner by the caller
+
+
+def test_system_chance_gives_the_start_up_limits_their_shares_of_the_target(two_quantities):
+    """system_chance=0.999 on a start-up: the design (any closed-form constraint or start-up limit) fails with at
+    most 1 - P = 0.001. Each start-up limit the scatter moves takes an equal share s of 0.001 with the allocated
+    constraints (k limits, n constraints: s = 0.001 / (k + n)), the NLP splits what is left, 0.001 - k s, between
+    the constraints; the union bound of the system (the constraints' by importance sampling plus each limit's
+    estimate) is shown within 1 - P."""
+    from clutchopt.optimise.robust import SYSTEM_CHANCE, system_failure
+
+    result = solve_robust(two_quantities, SYSTEM_CHANCE, 0.999, starts=40)
+    assert result.status == "optimal"
+    share, allocated = result.start_up_share, len(result.allocation.names)
+    k = round((0.001 - result.allocation.allowed) / share)
+    assert k >= 1 and share == pytest.approx(0.001 / (k + allocated), rel=1e-12)
+    assert result.allocation.allowed == pytest.approx(0.001 - k * share, rel=1e-12)
+    start_time = result.reliability.constraints["start_time"].best
+    assert start_time.probability <= share and start_time.high <= 2 * share  # designed for its share
+    system = system_failure(result)
+    assert system.probability == pytest.approx(result.reliability.system.probability + sum(
+        c.best.probability for name, c in result.reliability.constraints.items() if name in result.start_up_failure))
+    assert system.probability <= 0.001 and system.low <= 0.001
+    data = result.as_dict()
+    assert data["system_failure_probability"]["probability"] == system.probability
+    assert data["start_up_verification"]["share_of_target"] == share
+    assert "the system with the start-up limits" in result.verification

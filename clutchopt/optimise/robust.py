@@ -37,7 +37,7 @@ from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Formulation, namespace
 from clutchopt.optimise.problem import problem_for
-from clutchopt.optimise.reliability import generalised_beta
+from clutchopt.optimise.reliability import Estimate, generalised_beta
 from clutchopt.optimise.robust_models import (
     CONFIDENCE,
     SAMPLES,
@@ -130,6 +130,7 @@ class RobustResult:
     betas: dict[str, float] = field(default_factory=dict)  # chance: each constraint's beta of its performance point
     allocation: RiskAllocation | None = None  # system chance: how 1 - P was split between the constraints
     start_up_beta: float | None = None  # chance: the beta of the start-up limits' performance points
+    start_up_share: float | None = None  # system chance: each moved start-up limit's share of 1 - P
     start_up_fallbacks: tuple[str, ...] = ()  # chance: start-up limits at their quantile corners (no settled point)
 
     def as_dict(self) -> dict:
@@ -150,9 +151,11 @@ class RobustResult:
             "nominal_reliability": self.nominal_reliability.as_dict() if self.nominal_reliability else None,
             "performance_point_beta": self.betas or None,
             "system_allocation": self.allocation.as_dict() if self.allocation else None,
+            "system_failure_probability": system_failure(self).as_dict() if self.reliability else None,
             "start_up_verification": {"corners": self.start_up_points, "simulations": self.start_up_samples,
                                       "failure_probability": self.start_up_failure,
                                       "performance_point_beta": self.start_up_beta,
+                                      "share_of_target": self.start_up_share,
                                       "at_quantile_corners": list(self.start_up_fallbacks)}
             if self.start_up_points else None,
         }
@@ -217,8 +220,10 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
 
     if method == SYSTEM_CHANCE:  # the constraints the scatter moves share 1 - P, as the NLP chooses
         points = performance_points(shown, nominal.design, params, case.scatter, betas, case.correlation)
-        allocation = RiskAllocation(1.0 - target, case.scatter, case.correlation,
-                                    {name: betas[name] for name in names if np.linalg.norm(points[name]) > 0})
+        moved = {name: betas[name] for name in names if np.linalg.norm(points[name]) > 0}
+        budget = (start_up_points.take_shares(nominal.design, len(moved), 1.0 - target) if start_up_points
+                  else 1.0 - target)  # the start-up limits the scatter moves take their shares first
+        allocation = RiskAllocation(budget, case.scatter, case.correlation, moved)
     corners, start_up = corners_at(nominal.design)
     start_up_names = tuple(name for name in corners if name not in names and name != START_UP)
     derived = _derived(base, case, names, start_up_names)
@@ -285,6 +290,7 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
         result.nominal_checks += start_up_checks(case, base.mode, nominal.design, result.start_up_points)
         result.reliability.constraints.update(start_up_points.reliability(starts))
         result.start_up_beta, result.start_up_fallbacks = start_up_points.beta, tuple(fallbacks)
+        result.start_up_share = start_up_points.share
     elif structure and solution.status in DESIGN_STATUSES:
         result.start_up_points = (corner_points(corner_table(case.scatter, start_up.ends))
                                   if len(case.scatter) <= MAX_START_CORNERS
@@ -388,9 +394,8 @@ def verdict(result: RobustResult) -> tuple[str, str | None]:
 
     reasons = []
     if result.reliability is not None:
-        shown = ({"the system": result.reliability.system} if result.method == SYSTEM_CHANCE else {}) | {
-            name: c.best for name, c in result.reliability.constraints.items()
-            if result.method != SYSTEM_CHANCE or name in result.start_up_failure}  # a start-up limit: each alone
+        shown = ({"the system": system_failure(result)} if result.method == SYSTEM_CHANCE else
+                 {name: c.best for name, c in result.reliability.constraints.items()})
         if missed := [f"{name} fails with probability {e.probability:.3g} ({e.low:.3g} to {e.high:.3g}, "
                       f"{e.estimator})" for name, e in shown.items()
                       if e.low > allowed or e.high > VERIFIED_FACTOR * allowed]:
@@ -402,6 +407,21 @@ def verdict(result: RobustResult) -> tuple[str, str | None]:
                        + ("" if result.start_up_beta is not None else
                           " (the start is not monotone in the scatter: its quantile corner is not enough)"))
     return ("unverified", "; ".join(reasons)) if reasons else ("optimal", None)
+
+
+def system_failure(result: RobustResult) -> Estimate:
+    """P(the design fails: any constraint or start-up limit) of a robust design: the closed-form constraints' system
+    (importance sampling), plus each start-up limit's estimate where the design has a start-up (a union bound: their
+    overlap is not subtracted, so the sum is at or above the system's; the interval from the largest lower end to
+    the sum of the upper ends)."""
+    static = result.reliability.system
+    limits = [c.best for name, c in result.reliability.constraints.items() if name in result.start_up_failure]
+    if not limits:
+        return static
+    return Estimate(static.probability + sum(e.probability for e in limits),
+                    max([static.low, *(e.low for e in limits)]),
+                    static.high + sum(e.high for e in limits),
+                    f"the constraints' {static.estimator} plus each start-up limit's estimate (union bound)")
 
 
 def verification(result: RobustResult, case: Case) -> str:
@@ -418,6 +438,13 @@ def verification(result: RobustResult, case: Case) -> str:
         parts.append(f"importance sampling at the design points: {_largest_estimate(result, static=True)}, system "
                      f"{result.reliability.system.probability:.3g} ({result.reliability.system.low:.3g} to "
                      f"{result.reliability.system.high:.3g})")
+    if result.method == SYSTEM_CHANCE and result.start_up_failure and result.reliability is not None:
+        system = system_failure(result)
+        share = result.start_up_share
+        parts.append((f"each start-up limit the scatter moves designed for its share {share:.3g} of "
+                      f"{1 - result.target:.3g}, " if share else "")
+                     + f"the system with the start-up limits {system.probability:.3g} ({system.low:.3g} to "
+                       f"{system.high:.3g}; {system.estimator})")
     if result.start_up_fallbacks:
         parts.append("start-up limits at their quantile corners (their performance point did not settle): "
                       + ", ".join(result.start_up_fallbacks))

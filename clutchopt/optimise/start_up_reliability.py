@@ -148,6 +148,7 @@ class StartUpPerformancePoints:
     fallbacks: set[str] = field(default_factory=set)
     states: SimulatedLimitStates | None = None  # at the last design
     points: dict[str, np.ndarray] = field(default_factory=dict)  # limit -> its performance point in u, last design
+    share: float | None = None  # under a system target: each moved limit's share of 1 - P (:meth:`take_shares`)
 
     @property
     def beta(self) -> float:
@@ -181,6 +182,18 @@ class StartUpPerformancePoints:
             corners = {START_UP: start_up_corners(self.case, self.mode, design, scatter, self.target).corners[START_UP],
                        **corners}
         return StartUpCorners({}, corners, start_up_bars(self.case, self.mode, design, scatter))
+
+    def take_shares(self, design: dict, others: int, allowed: float) -> float:
+        """Under a system target (``allowed`` = 1 - P, shared with ``others`` constraints): each start-up limit the
+        scatter moves at ``design`` (or whose point does not settle) takes an equal share of ``allowed`` and is
+        designed to hold with 1 - share; what is left for the others (whose split the NLP chooses)."""
+        self.at(design)
+        moved = [name for name, u in self.points.items() if np.any(u)] + sorted(self.fallbacks)
+        if not moved:
+            return allowed
+        self.share = allowed / (len(moved) + others)
+        self.target, self.previous = 1.0 - self.share, {}
+        return allowed - self.share * len(moved)
 
     def distinct_points(self) -> list[dict[str, float]]:
         """The points the start was simulated at for the limits' checks: each limit's performance point, once."""
