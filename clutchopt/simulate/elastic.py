@@ -31,8 +31,8 @@ from clutchopt.simulate.stepping import Budget, integrate
 class ElasticModel:
     """One start of an elastic link, SI."""
 
-    torque: Callable[[float, float], float]  # (driving speed, twist) -> torque through the link
-    stress: Callable[[float, float], float]  # (driving speed, twist) -> stress of its most loaded element
+    torque: Callable  # (driving speed, twist) -> torque through the link (numbers or NumPy arrays alike)
+    stress: Callable  # (driving speed, twist) -> stress of its most loaded element (numbers or arrays)
     damping: float  # c, N*m*s/rad
     inertia: float  # J of the machine
     load: Load
@@ -78,8 +78,8 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     out = integrate(rates, None, 0.0, np.zeros(4), bound, [started, overturned, twist_extreme], "LSODA", m.rtol,
                     atol, Budget(MAX_STEPS))
     t, y = out.t, out.y
-    torque = np.array([m.torque(a, b) for a, b in zip(y[0], y[2])]) + m.damping * (y[0] - y[1])
-    stress = np.array([m.stress(a, b) for a, b in zip(y[0], y[2])])
+    torque = m.torque(y[0], y[2]) + m.damping * (y[0] - y[1])  # the samples at once, as arrays
+    stress = np.asarray(m.stress(y[0], y[2]), dtype=float)
     history = pd.DataFrame({"t": t, "w_driver": y[0], "w_driven": y[1], "slip": y[0] - y[1], "twist": y[2],
                             "friction_torque": torque, "power_lost": m.damping * (y[0] - y[1]) ** 2,
                             "friction_work": y[3], "temperature_rise": np.zeros_like(t), "stress": stress,

@@ -289,7 +289,7 @@ def simulate(model: Model) -> SimulationResult:
     bound = model.end_time if model.end_time is not None else (1e300 if closed_form_locks else 1e8 * run.time_scale)
     start = 0.0 if run.motor else model.driver_speed
     t, y = 0.0, np.array([start, start, 0.0, 0.0, 0.0])
-    frames, events, kind = [], [], run.turning_kind(0.0, y)
+    rows, events, kind = [], [], run.turning_kind(0.0, y)
     engaged = not run.motor or start**2 >= model.law.engagement_squared
     start_time, reason, start_state = math.nan, "", None
     if not closed_form_locks and run.net_rate(kind, 0.0, y) <= STEADY:
@@ -301,7 +301,7 @@ def simulate(model: Model) -> SimulationResult:
         out = run.integrate(kind, t, bound, y, list(armed.values()))
         if kind == "rest":
             out.y[1] = out.y[0]  # the driven half stands: all of the driving speed is slip, exactly
-        frames.append(_samples(run, out, "stick" if kind == "stick" else "slip"))
+        rows.append(_samples(run, out, "stick" if kind == "stick" else "slip"))
         t, y = out.t[-1], out.y[:, -1].copy()
         if out.status != "event":
             if out.status == "failed":
@@ -341,7 +341,7 @@ def simulate(model: Model) -> SimulationResult:
             events[-1]["event"] = "zero slip, capacity too small to stick"
     else:
         reason = f"stopped after {MAX_SWITCHES} stick-slip switches (chatter)"
-    history = pd.concat(frames, ignore_index=True) if frames else _samples(run, None, "slip", y)
+    history = _history(rows or [_samples(run, None, "slip", y)])
     return SimulationResult(history, _headline(model, history, start_time, start_state, reason, y), events)
 
 
@@ -354,17 +354,25 @@ def _steady_reason(run: _Run, t: float, y) -> str:
             f"{friction:.6g} N*m = load")
 
 
-def _samples(run: _Run, out: Phase | None, phase: str, y0=None) -> pd.DataFrame:
-    """History rows of one phase: the solver's steps and the middle of each (``out``), or the state ``y0``."""
-    t, y = (np.array([0.0]), np.asarray(y0).reshape(-1, 1)) if out is None else (out.t, out.y)
-    rows = []
-    for i, ti in enumerate(t):
-        yi = y[:, i]
-        torque = run.carried(ti, yi)[1] if phase == "stick" else run.torques(ti, yi)[0]
-        slip = yi[1]
-        rows.append((ti, yi[0], yi[0] - slip, slip, torque, torque * slip, yi[2], yi[3], yi[4], phase))
-    return pd.DataFrame(rows, columns=["t", "w_driver", "w_driven", "slip", "friction_torque", "power_lost",
-                                       "friction_work", "source_work", "temperature_rise", "phase"])
+def _samples(run: _Run, out: Phase | None, phase: str, y0=None) -> tuple:
+    """(times, states, torques, phase) of one phase: the solver's steps and the middle of each (``out``), or the
+    state ``y0``."""
+    t, y = (np.array([0.0]), np.asarray(y0, dtype=float).reshape(-1, 1)) if out is None else (out.t, out.y)
+    carried = phase == "stick"
+    torque = [run.carried(ti, y[:, i])[1] if carried else run.torques(ti, y[:, i])[0] for i, ti in enumerate(t)]
+    return t, y, torque, phase
+
+
+def _history(phases: list[tuple]) -> pd.DataFrame:
+    """The run's history, one row a sample (:func:`_samples` of each phase), built as columns at once (a frame per
+    phase, concatenated, was 15 % of a run)."""
+    t = np.concatenate([p[0] for p in phases])
+    y = np.concatenate([p[1] for p in phases], axis=1)
+    torque = np.concatenate([np.asarray(p[2], dtype=float) for p in phases])
+    phase = np.concatenate([np.full(len(p[0]), p[3], dtype=object) for p in phases])
+    return pd.DataFrame({"t": t, "w_driver": y[0], "w_driven": y[0] - y[1], "slip": y[1], "friction_torque": torque,
+                         "power_lost": torque * y[1], "friction_work": y[2], "source_work": y[3],
+                         "temperature_rise": y[4], "phase": phase})
 
 
 def _headline(model, history, start_time, start_state, reason, y_end) -> dict:

@@ -270,10 +270,10 @@ def initial_states(block: StartUpBlock, case, formulation, design: dict[str, flo
                    mesh: np.ndarray) -> np.ndarray:
     """The internal variables (scaled) of the start design's simulated start: a start point on the dynamics."""
     from clutchopt.simulate.ranges import TIME
-    from clutchopt.start_up.simulation import run_start_up, start_up_model, until_lock_up
+    from clutchopt.start_up.simulation import start_guess
 
-    model = start_up_model(case, formulation.mode, design, rtol=GUESS_RTOL)
-    result = run_start_up(until_lock_up(model, min(3.0 * case.values["max_start_time"], TIME[1])))
+    model, result = start_guess(case, formulation.mode, design, GUESS_RTOL,
+                                min(3.0 * case.values["max_start_time"], TIME[1]))
     squared = 0.0 if block.s.elastic else model.law.engagement_squared
     return block.guess(result.history, result.headline, squared, case.values["max_start_time"], scales, mesh)
 
