@@ -249,21 +249,25 @@ class StartUpBlock:
                    "friction_work": history["friction_work"].to_numpy(),
                    "temperature": history["temperature_rise"].to_numpy(),
                    "twist": history["twist"].to_numpy() if "twist" in history else np.zeros_like(t)}
-        values = []
+        values, samples = [], {name: ([], []) for name in columns}  # name -> (its places in values, times)
         for index, phase in enumerate(d.phases):
             begin, end = bounds[phase]
             end = max(end, begin)
             values.append(end - begin)
             lengths = mesh[index * d.intervals:(index + 1) * d.intervals]
             starts = np.concatenate([[0.0], np.cumsum(lengths)[:-1]])
+            names = list(self._states(phase)) + (["twist"] if phase == "locked" else [])
             for k in range(d.intervals):
                 for j in range(1, DEGREE + 1):
                     time = begin + (starts[k] + self.tau[j] * lengths[k]) * (end - begin)
-                    for name in self._states(phase):
-                        values.append(float(np.interp(time, t, columns[name])))
-                    if phase == "locked":
-                        values.append(float(np.interp(time, t, columns["twist"])))
-        return np.array(values) / scales
+                    for name in names:
+                        samples[name][0].append(len(values))
+                        samples[name][1].append(time)
+                        values.append(0.0)
+        values = np.array(values)
+        for name, (places, times) in samples.items():  # each state interpolated at all its points at once
+            values[places] = np.interp(times, t, columns[name])
+        return values / scales
 
 
 def initial_states(block: StartUpBlock, case, formulation, design: dict[str, float], scales: np.ndarray,
