@@ -43,7 +43,7 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
     worn = worn_start_up_model(case, formulation.mode, design, model)
     head = result.headline
     s = block.s
-    stresses = result.history["stress"].to_numpy() if s.elastic else 0.0
+    stresses = result.columns["stress"] if s.elastic else 0.0
     simulated = SimpleNamespace(start_time=head["start_time"], friction_work=head["friction_work"],
                                 temperatures=head.get("temperature_rise", 0.0), lock_up_speed=head["lock_up_speed"],
                                 stresses=stresses if head["locks_up"] else math.inf)
@@ -95,7 +95,7 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
         summary["ambient_temperature"] = float(drive.p.ambient_temperature) if s.heat else None
         summary["lining_notes"] = lining_notes(drive, case.coupling)
     times = [float(nlp[f"{phase}_time"]) for phase in s.phases]
-    return summary, checks, adapted_mesh(s, result.history, times)
+    return summary, checks, adapted_mesh(s, result.columns, times)
 
 
 def _headline(head: dict) -> dict:

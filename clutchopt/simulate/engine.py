@@ -32,15 +32,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from clutchopt.errors import InputError
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.laws import InductionMotor, Load
 from clutchopt.simulate.ranges import BREAKDOWN_SLIP, CONDUCTANCE, HEAT_CAPACITY, INERTIA, LOAD, SPEED, TIME, TORQUE
 from clutchopt.simulate.stepping import Budget, Phase, integrate
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 STEADY = 1e-9  # relative net acceleration below which a slipping start-up is steady (no lock-up)
 MAX_SWITCHES = 200  # phase switches (rest, slip, stick, engagement) before a run is declared chattering
@@ -71,9 +75,19 @@ class Model:
 
 @dataclass
 class SimulationResult:
-    history: pd.DataFrame
+    """A run: its samples as columns (name -> NumPy array, one entry a sample), headline figures, events. The
+    solve's check reads the columns; :attr:`history` is them as a pandas DataFrame, built when first asked for
+    (pandas' import is 0.3 s, a start-up solve's check needs none of it)."""
+
+    columns: dict[str, np.ndarray]
     headline: dict
     events: list[dict] = field(default_factory=list)
+
+    @cached_property
+    def history(self) -> pd.DataFrame:
+        import pandas as pd
+
+        return pd.DataFrame(self.columns)
 
     def as_dict(self) -> dict:
         return {"headline": self.headline, "events": self.events}
@@ -345,6 +359,12 @@ def simulate(model: Model) -> SimulationResult:
     return SimulationResult(history, _headline(model, history, start_time, start_state, reason, y), events)
 
 
+def largest(values: np.ndarray) -> float:
+    """The largest sample, NaN left out (as pandas' max)."""
+    kept = values[~np.isnan(values)]
+    return float(kept.max()) if kept.size else math.nan
+
+
 def _steady_reason(run: _Run, t: float, y) -> str:
     friction, _, load = run.torques(t, y)
     if y[0] - y[1] <= 0.0:
@@ -363,16 +383,16 @@ def _samples(run: _Run, out: Phase | None, phase: str, y0=None) -> tuple:
     return t, y, torque, phase
 
 
-def _history(phases: list[tuple]) -> pd.DataFrame:
-    """The run's history, one row a sample (:func:`_samples` of each phase), built as columns at once (a frame per
+def _history(phases: list[tuple]) -> dict[str, np.ndarray]:
+    """The run's history columns, one entry a sample (:func:`_samples` of each phase), built at once (a frame per
     phase, concatenated, was 15 % of a run)."""
     t = np.concatenate([p[0] for p in phases])
     y = np.concatenate([p[1] for p in phases], axis=1)
     torque = np.concatenate([np.asarray(p[2], dtype=float) for p in phases])
     phase = np.concatenate([np.full(len(p[0]), p[3], dtype=object) for p in phases])
-    return pd.DataFrame({"t": t, "w_driver": y[0], "w_driven": y[0] - y[1], "slip": y[1], "friction_torque": torque,
-                         "power_lost": torque * y[1], "friction_work": y[2], "source_work": y[3],
-                         "temperature_rise": y[4], "phase": phase})
+    return {"t": t, "w_driver": y[0], "w_driven": y[0] - y[1], "slip": y[1], "friction_torque": torque,
+            "power_lost": torque * y[1], "friction_work": y[2], "source_work": y[3], "temperature_rise": y[4],
+            "phase": phase}
 
 
 def _headline(model, history, start_time, start_state, reason, y_end) -> dict:
@@ -386,13 +406,13 @@ def _headline(model, history, start_time, start_state, reason, y_end) -> dict:
         "friction_work": at_start[2] if locked else math.inf,
         "source_work": at_start[3] if locked else math.inf,
         "lock_up_speed": at_start[0] if locked else math.nan,
-        "peak_slip_power": float(history["power_lost"].max()),
-        "end_time": float(history["t"].iloc[-1]),
+        "peak_slip_power": largest(history["power_lost"]),
+        "end_time": float(history["t"][-1]),
         "total_friction_work": float(y_end[2]),
         "final_driver_speed": float(y_end[0]),
         "final_driven_speed": float(y_end[0] - y_end[1]),
         "effects": list(model.effects),
     }
     if model.has("friction_heat"):
-        headline["temperature_rise"] = float(history["temperature_rise"].max())
+        headline["temperature_rise"] = largest(history["temperature_rise"])
     return headline

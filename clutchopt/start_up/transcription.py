@@ -236,19 +236,19 @@ class StartUpBlock:
         lock-up, or where the simulation ended (at most ``time_ref``) if it does not lock up."""
         d = self.s
         locked = headline.get("locks_up") and math.isfinite(headline.get("start_time", math.inf))
-        t_end = headline["start_time"] if locked else min(time_ref, history["t"].iloc[-1])
-        t = history["t"].to_numpy()
-        driver = history["w_driver"].to_numpy()
-        driven = history["w_driven"].to_numpy()
+        t = np.asarray(history["t"])  # a run's columns (arrays) or its history (a DataFrame)
+        t_end = headline["start_time"] if locked else min(time_ref, t[-1])
+        driver = np.asarray(history["w_driver"])
+        driven = np.asarray(history["w_driven"])
         engage = t[np.argmax(driver >= math.sqrt(engagement_squared))] if d.motor and d.radial else 0.0
         moving = driven > 1e-9 * max(driver.max(), 1e-300)
         breakaway = t[np.argmax(moving)] if d.load_at_rest and moving.any() else engage
         bounds = {"run_up": (0.0, engage), "breakaway": (engage, breakaway), "slip": (breakaway, t_end),
                   "locked": (0.0, t_end)}
         columns = {"driver_speed": driven if d.elastic else driver, "slip": driver - driven,
-                   "friction_work": history["friction_work"].to_numpy(),
-                   "temperature": history["temperature_rise"].to_numpy(),
-                   "twist": history["twist"].to_numpy() if "twist" in history else np.zeros_like(t)}
+                   "friction_work": np.asarray(history["friction_work"]),
+                   "temperature": np.asarray(history["temperature_rise"]),
+                   "twist": np.asarray(history["twist"]) if "twist" in history else np.zeros_like(t)}
         values, samples = [], {name: ([], []) for name in columns}  # name -> (its places in values, times)
         for index, phase in enumerate(d.phases):
             begin, end = bounds[phase]
@@ -279,5 +279,5 @@ def initial_states(block: StartUpBlock, case, formulation, design: dict[str, flo
     model, result = start_guess(case, formulation.mode, design, GUESS_RTOL,
                                 min(3.0 * case.values["max_start_time"], TIME[1]))
     squared = 0.0 if block.s.elastic else model.law.engagement_squared
-    return block.guess(result.history, result.headline, squared, case.values["max_start_time"], scales, mesh)
+    return block.guess(result.columns, result.headline, squared, case.values["max_start_time"], scales, mesh)
 
