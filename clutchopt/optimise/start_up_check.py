@@ -16,6 +16,7 @@ from clutchopt.start_up.drive import Drive, seen_constraints
 from clutchopt.start_up.lining import UNITS as LINING_UNITS
 from clutchopt.start_up.lining import lining_figures, lining_notes
 from clutchopt.start_up.mesh import adapted_mesh
+from clutchopt.start_up.transcription import TRAJECTORY
 
 BACK_OFF_STEPS = 4  # defect corrections of limits the simulated start misses (or binds at off the limit)
 CENTRE = 0.25  # of the tolerance: the objective's error from a binding limit met off the limit that is corrected
@@ -37,7 +38,8 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
 
     values, *columns = figures
     nlp = dict(zip(block.outputs(), np.array(values).ravel()))
-    trajectory = {name: np.array(column).ravel() for name, column in zip(block.trajectory(), columns)}
+    trajectory = {name: np.array(column).ravel() for name, column in zip(TRAJECTORY, columns)}  # (block.trajectory()
+    # builds the expressions: 5 ms a check for its names)
     model = start_up_model(case, formulation.mode, design)
     result = run_start_up(model)
     worn = worn_start_up_model(case, formulation.mode, design, model)

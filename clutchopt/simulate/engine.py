@@ -378,8 +378,10 @@ def _samples(run: _Run, out: Phase | None, phase: str, y0=None) -> tuple:
     """(times, states, torques, phase) of one phase: the solver's steps and the middle of each (``out``), or the
     state ``y0``."""
     t, y = (np.array([0.0]), np.asarray(y0, dtype=float).reshape(-1, 1)) if out is None else (out.t, out.y)
-    carried = phase == "stick"
-    torque = [run.carried(ti, y[:, i])[1] if carried else run.torques(ti, y[:, i])[0] for i, ti in enumerate(t)]
+    if phase == "stick":
+        torque = [run.carried(ti, y[:, i])[1] for i, ti in enumerate(t)]
+    else:  # the friction torque (slip_friction) at every sample at once
+        torque = run.m.law.kinetic_samples(y[0], y[1])
     return t, y, torque, phase
 
 

@@ -30,6 +30,7 @@ from clutchopt.start_up.mesh import first_mesh
 
 DEGREE = 3
 GUESS_RTOL = 1e-6  # the start guess's simulation: a guess, not a check
+TRAJECTORY = ("t", "w_driver", "w_driven", "friction_work", "temperature_rise", "twist")  # trajectory()'s columns
 
 
 def _collocation(degree: int):
@@ -227,8 +228,7 @@ class StartUpBlock:
             work.append(state["friction_work"])
             heat.append(state["temperature"])
             twist.append(state.get("twist", 0.0))
-        return {"t": times, "w_driver": driver, "w_driven": driven, "friction_work": work, "temperature_rise": heat,
-                "twist": twist}
+        return dict(zip(TRAJECTORY, (times, driver, driven, work, heat, twist)))
 
     def guess(self, history, headline, engagement_squared: float, time_ref: float, scales: np.ndarray,
               mesh: np.ndarray) -> np.ndarray:
