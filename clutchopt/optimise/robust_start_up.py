@@ -132,7 +132,7 @@ def simulated_start_ups(case: Case, mode: str, design: dict, points: list[dict])
         figures = SimpleNamespace(
             start_time=head["start_time"], friction_work=head["friction_work"], lock_up_speed=head["lock_up_speed"],
             temperatures=head.get("temperature_rise", 0.0),
-            stresses=result.history["stress"].to_numpy() if structure.elastic and head["locks_up"] else math.inf)
+            stresses=result.columns["stress"] if structure.elastic and head["locks_up"] else math.inf)
         drive = Drive(structure, law, namespace(seen), at.params())
         runs.append(check_constraints(named_constraints(structure, drive, figures), structure.spec.tolerance))
     return runs
