@@ -1,0 +1,80 @@
+"""Hostile inputs on the surfaces of the last sessions (issue 29): the neutral case of ``choose-coupling`` and its
+``[couplings.NAME]`` tables, the lining's temperatures and life in ``[start_up]``, the distributions of ``[scatter]``.
+What each found, in the form of ``tests/hostile.py`` (``expect``: text of the ``error:`` lines, exit code 2; None:
+the input is fine, exit code 0); ``tests/test_hostile_surfaces.py`` runs them in process.
+
+Run as a script, this module writes every input to a folder (``python tests/hostile_surfaces.py /tmp/h3``).
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from hostile import CASES, WEDGE, Hostile, case, edit, write_all
+
+NEUTRAL = (CASES / "conveyor_drive.toml").read_text()  # coupling = "any": a belt conveyor on a 15 kW motor
+LINING = (CASES / "lever_motor_start.toml").read_text()  # organic lining: its temperature limits from the library
+MOTOR = (CASES / "wedge_motor_start.toml").read_text()
+QUICK = ("--tol", "1e-6")
+
+
+def neutral(name: str, old: str, new: str, expect, *extra: str) -> Hostile:
+    """``choose-coupling`` of the conveyor's neutral case with one edit."""
+    return case(name, edit(NEUTRAL, old, new), expect, *extra, command="choose-coupling")
+
+
+def override(name: str, table: str, expect, *extra: str) -> Hostile:
+    """The neutral case with a ``[couplings.NAME...]`` table before its ``[start_up]``."""
+    return neutral(name, "[start_up]\n", f"{table}\n\n[start_up]\n", expect, *extra)
+
+
+def scattered(name: str, table: str, expect, *extra: str) -> Hostile:
+    return case(name, f"{WEDGE}\n[scatter]\n{table}\n", expect, "--no-store", *extra)
+
+
+def heat(name: str, text: str, old: str, new: str, expect) -> Hostile:
+    return case(name, edit(text, old, new), expect, "--no-store")
+
+
+HOSTILE: list[Hostile] = [
+    # --- a lognormal's sd far above its mean: 1e300 overflowed ln(1 + (s/m)^2), exit code 3 ------------------------
+    scattered("lognormal-sd-1e300", 'allowable_pressure = { lognormal = ["4 MPa", "1e300 Pa"] }',
+              "scatter.allowable_pressure.lognormal: the standard deviation 1e+294 MPa against the mean 4 MPa"),
+    scattered("lognormal-sd-1e8-means", 'allowable_pressure = { lognormal = ["4 MPa", "4e8 MPa"] }',
+              "scatter.allowable_pressure.lognormal: the standard deviation 4e+08 MPa against the mean 4 MPa"),
+    scattered("lognormal-sd-ten-means", 'allowable_pressure = { lognormal = ["4 MPa", "40 MPa"] }', None),
+    # --- choose-coupling's [couplings.NAME]: the user's own override is the case's error, not a coupling's loss ------
+    override("override-mode-list", '[couplings.wedge.options]\nmode = ["geometry"]',
+             "couplings.wedge.options.mode: must be a mode of the wedge coupling (paper, geometry), got ['geometry']"),
+    override("override-mode-unknown", '[couplings.wedge.options]\nmode = "fancy"',
+             "couplings.wedge.options.mode: must be a mode of the wedge coupling (paper, geometry), got 'fancy'"),
+    override("override-coupling-swapped", '[couplings.wedge]\ncoupling = "lever"',
+             "couplings.wedge.coupling: not a section of a wedge case"),
+    override("override-title", '[couplings.ball]\ntitle = "mine"', "couplings.ball.title: not a section of a ball case"),
+    override("override-bad-value", '[couplings.wedge.geometry]\nflank_angle = "95 deg"',
+             "couplings.wedge.geometry.flank_angle: "),
+    override("override-unknown-key", '[couplings.wedge.geometry]\nflank_angel = "15 deg"',
+             "couplings.wedge.geometry.flank_angel: unknown key (did you mean 'flank_angle'?)"),
+    override("override-section-not-a-table", '[couplings.wedge]\ngeometry = 5', "couplings.wedge.geometry: must be"),
+    override("override-mode-as-written", '[couplings.wedge.options]\nmode = "paper"', None, *QUICK),
+    neutral("neutral-title-escape", 'title = "Belt conveyor', 'title = "\\u001b[2JBelt conveyor',
+            "title: contains the control character '\\x1b'"),
+    neutral("neutral-title-table", 'title = "Belt conveyor, 15 kW 4-pole motor, 4 kg m^2, 60 N m"', "title = {a = 1}",
+            "title: must be text, got dict"),
+    neutral("neutral-description-number", 'coupling = "any"', 'coupling = "any"\ndescription = 5',
+            "description: must be text, got int"),
+    # --- an absolute temperature as a bare number: read as kelvin, 40 became -233 degC -------------------------------
+    heat("ambient-bare-number", MOTOR, 'conductance = "4 W/K"', 'conductance = "4 W/K"\nambient = 40',
+         "start_up.heat.ambient: a bare number is ambiguous for a temperature: write '40 degC' or '40 K'"),
+    heat("lining-limit-bare-number", LINING, 'max_temperature_rise = "30 K"',
+         'max_temperature_rise = "30 K"\nmax_lining_temperature = 250',
+         "start_up.limits.max_lining_temperature: a bare number is ambiguous for a temperature"),
+    heat("ambient-in-kelvin", MOTOR, 'conductance = "4 W/K"', 'conductance = "4 W/K"\nambient = "313.15 K"', None),
+    heat("ambient-in-fahrenheit", MOTOR, 'conductance = "4 W/K"', 'conductance = "4 W/K"\nambient = "104 degF"', None),
+    heat("rise-bare-number", MOTOR, 'max_temperature_rise = "4 K"', "max_temperature_rise = 4", None),
+]
+
+
+if __name__ == "__main__":
+    write_all(Path(sys.argv[1] if len(sys.argv) > 1 else "hostile-surfaces"), HOSTILE)
