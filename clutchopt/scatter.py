@@ -94,9 +94,11 @@ class Scatter:
     def log_parameters(self) -> tuple[float, float]:
         """A lognormal quantity's (mu, sigma), those of ln X, from its mean m and sd s:
         sigma^2 = ln(1 + (s/m)^2), mu = ln m - sigma^2 / 2 (so that E X = exp(mu + sigma^2/2) = m and
-        Var X = (exp(sigma^2) - 1) m^2 = s^2)."""
-        sigma = math.sqrt(math.log1p((self.sd / self.mean) ** 2))
-        return math.log(self.mean) - sigma ** 2 / 2, sigma
+        Var X = (exp(sigma^2) - 1) m^2 = s^2); for s/m above 1 as 2 ln(s/m) + ln(1 + (m/s)^2), the same number,
+        which (s/m)^2 cannot overflow."""
+        ratio = self.sd / self.mean
+        variance = math.log1p(ratio ** 2) if ratio <= 1 else 2 * math.log(ratio) + math.log1p(ratio ** -2)
+        return math.log(self.mean) - variance / 2, math.sqrt(variance)
 
     def _truncated(self):
         from scipy.stats import truncnorm
@@ -244,6 +246,11 @@ def _item(field: str, quantity, raw, nominal: float) -> Scatter:
             trial = Scatter(quantity.name, kind, math.nan, math.nan, first, second)
             low, high = (_within(quantity, float(trial.from_standard(u))) for u in (-NORMAL_RANGE, NORMAL_RANGE))
             quantity.check(low, f"{field}.{kind}"), quantity.check(high, f"{field}.{kind}")
+            if not low <= first <= high:  # a lognormal with sigma above 2 NORMAL_RANGE: s/m above about 6.6e7
+                raise InputError(f"{field}.{kind}", f"the standard deviation {quantity.show(second)} against the mean "
+                                                    f"{quantity.show(first)} puts the whole worst-case range (its "
+                                                    f"0.135 % to 99.865 % quantiles) below the mean: no range of "
+                                                    f"values spreads around the case's value; give a smaller sd")
             return Scatter(quantity.name, kind, low, high, first, second)
         low, high = first, second
     else:

@@ -16,3 +16,16 @@ def test_distinct_inputs_fine_and_refused():
 @pytest.mark.parametrize("hostile", HOSTILE, ids=lambda h: h.name)
 def test_hostile_input_in_process(hostile, tmp_path, capsys, run_store):
     run_in_process(hostile, hostile.write(tmp_path / "input"), capsys, run_store)
+
+
+def test_lognormal_parameters_of_a_wide_scatter():
+    """sigma^2 = ln(1 + (s/m)^2), mu = ln m - sigma^2/2 (clutchopt/scatter.py): s/m = 2 gives sigma^2 = ln 5; s/m =
+    1e300 (whose square overflows float64) ln(1e600) = 600 ln 10 = 1381.551..., to float64 rounding."""
+    import math
+
+    from clutchopt.scatter import Scatter
+
+    mu, sigma = Scatter("inertia", "lognormal", math.nan, math.nan, 1.0, 2.0).log_parameters()
+    assert mu == pytest.approx(-math.log(5) / 2, rel=1e-15) and sigma**2 == pytest.approx(math.log(5), rel=1e-15)
+    mu, sigma = Scatter("inertia", "lognormal", math.nan, math.nan, 1.0, 1e300).log_parameters()
+    assert sigma**2 == pytest.approx(600 * math.log(10), rel=1e-15) and mu == pytest.approx(-300 * math.log(10))
