@@ -26,8 +26,8 @@ import math
 import tomllib
 from dataclasses import dataclass, field
 
-from clutchopt.cases import NEUTRAL, Case, parse_case, read_toml
-from clutchopt.errors import InputError, Problems
+from clutchopt.cases import _EXTRA_SECTIONS, NEUTRAL, Case, check_text, parse_case, read_toml
+from clutchopt.errors import InputError, Problems, shown_value
 from clutchopt.formulations import MODULES, get_coupling
 from clutchopt.formulations.duty import DUTY_QUANTITIES, required_torque
 from clutchopt.model import ENVELOPE_PARTS, ElasticLaw, Quantity, namespace
@@ -122,6 +122,9 @@ def neutral_duty(data: dict, path: str) -> tuple[dict[str, float], dict]:
     for key in SECTIONS:
         if key in data and not isinstance(data[key], dict):
             problems.errors.append(InputError(key, f"must be a table [{key}]"))
+    for key in ("title", "description"):
+        with problems.field():
+            check_text(key, data.get(key, ""), multiline=key == "description")
     problems.raise_any()
     raw = dict(data.get("duty", {}))
     values: dict[str, float] = {}
@@ -213,8 +216,41 @@ def posed_case(name: str, duty: dict[str, float], raw_duty: dict, data: dict, pa
     try:
         candidate.case = parse_case(case_data, f"{path} ({name})")
     except InputError as exc:
+        given = _override_paths(overrides)  # a field the case's own [couplings.NAME] wrote: the case's error
+        own = [p for p in exc.problems if any(p.field == g or p.field.startswith(g + ".") or g.startswith(p.field + ".")
+                                              for g in given)]
+        if own:
+            raise InputError.several([InputError(f"couplings.{name}.{p.field}", p.problem) for p in own]) from None
         candidate.reason = "cannot be posed: " + "; ".join(str(p) for p in exc.problems)
     return candidate
+
+
+def _override_paths(table: dict, prefix: str = "") -> list[str]:
+    """The dotted keys of the values a ``[couplings.NAME]`` table writes (``geometry.flank_angle``)."""
+    paths = []
+    for key, value in table.items():
+        path = f"{prefix}{key}"
+        paths += _override_paths(value, path + ".") if isinstance(value, dict) and value else [path]
+    return paths
+
+
+def _check_override(name: str, table: dict, problems: Problems) -> None:
+    """A ``[couplings.NAME]`` table holds sections of that coupling's case (each a table), and a mode it has."""
+    coupling = get_coupling(name)
+    sections = sorted({q.section for q in coupling.quantities} | set(_EXTRA_SECTIONS))
+    for key, value in table.items():
+        field = f"couplings.{name}.{key}"
+        if key not in sections:
+            problems.errors.append(InputError(field, f"not a section of a {name} case; [couplings.{name}] takes "
+                                                     f"{', '.join(sections)}"))
+        elif not isinstance(value, dict):
+            problems.errors.append(InputError(field, f"must be a table [couplings.{name}.{key}]"))
+    options = table.get("options")
+    if isinstance(options, dict) and "mode" in options:
+        mode = options["mode"]
+        if not isinstance(mode, str) or mode not in coupling.formulations:
+            problems.errors.append(InputError(f"couplings.{name}.options.mode", (
+                f"must be a mode of the {name} coupling ({', '.join(coupling.formulations)}), got {shown_value(mode)}")))
 
 
 HEAT = ("friction_heat",)  # what an elastic link (no friction surfaces) cannot take
@@ -282,10 +318,16 @@ def pose(data: dict, path: str = "") -> tuple[Choice, dict[str, float]]:
             problems.errors.append(InputError(f"couplings.{name}", f"unknown coupling; known: {', '.join(MODULES)}"))
         elif not isinstance(table, dict):
             problems.errors.append(InputError(f"couplings.{name}", "must be a table of that coupling's sections"))
+        else:
+            _check_override(name, table, problems)
     if isinstance(data.get("start_up"), dict):  # a bad field is the neutral case's, not a coupling's reason to lose
         read_tables(data["start_up"], problems)
     problems.raise_any()
-    candidates = [posed_case(name, duty, raw, data, path) for name in MODULES]
+    candidates = []
+    for name in MODULES:
+        with problems.field():
+            candidates.append(posed_case(name, duty, raw, data, path))
+    problems.raise_any()
     if all(c.case is None for c in candidates):  # nothing poses: the neutral case itself is wrong
         raise InputError(path or "case", "no coupling can be posed: " + " | ".join(
             f"{c.coupling}: {c.reason}" for c in candidates))
