@@ -144,13 +144,32 @@ def neutral_duty(data: dict, path: str) -> tuple[dict[str, float], dict]:
         problems.errors.append(InputError("duty.power", "missing: the motor's rated power (or duty.torque, its rated "
                                                         "torque; or a nameplate motor in [start_up.driver])"))
     problems.raise_any()
-    if "power" not in values and "torque" not in values and "rated_power" in driver:
+    if "rated_power" in driver and "rated_speed" in driver and isinstance(data.get("start_up"), dict):
+        plate = {}
         with problems.field():
-            for name in ("rated_power", "rated_speed"):
-                values[name] = to_si(f"start_up.driver.{name}", driver[name], NAMEPLATE_FIELDS[name])
+            plate = {name: to_si(f"start_up.driver.{name}", driver[name], NAMEPLATE_FIELDS[name])
+                     for name in ("rated_power", "rated_speed")}
         problems.raise_any()
-        values["torque"] = values["rated_power"] / values["rated_speed"]
+        _same_motor(values, plate["rated_power"], plate["rated_power"] / plate["rated_speed"])
+        if "power" not in values and "torque" not in values:
+            values["torque"] = plate["rated_power"] / plate["rated_speed"]
     return values, raw
+
+
+RATED_TOLERANCE = 0.01  # relative: duty.power (or torque) and the nameplate's are one motor's, written twice (a
+#                        catalogue's rated torque to 3 digits, 98 N*m for 98.11, is within; another motor is not)
+
+
+def _same_motor(duty: dict[str, float], power: float, torque: float) -> None:
+    """duty.power (or duty.torque) beside a nameplate motor is that motor's rated power P_n (torque P_n / w_n): the
+    couplings sized by k_s P / w and the start-up's motor curve are one motor."""
+    name, plate, what = ("power", power, "rated_power") if "power" in duty else ("torque", torque, "rated torque")
+    if name in duty and not math.isclose(duty[name], plate, rel_tol=RATED_TOLERANCE):
+        shown = DUTY[name].show
+        raise InputError(f"duty.{name}", (
+            f"{shown(duty[name])} is not the {what} of the nameplate motor in [start_up.driver], {shown(plate)}"
+            + ("" if name == "power" else " (rated_power / rated_speed)")
+            + f": the motor's rating is given twice; give it once (leave duty.{name} out: the nameplate gives it)"))
 
 
 def posed_case(name: str, duty: dict[str, float], raw_duty: dict, data: dict, path: str) -> Candidate:
