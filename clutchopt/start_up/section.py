@@ -269,7 +269,7 @@ def _check_life(values, coupling, laws, key) -> None:
 def check_values(values: dict[str, float]) -> None:
     """What a case's drive must satisfy together (its duty's and start-up's values by name), at the values read and
     at every point a sweep or a scatter moves them to: within the simulator's ranges, an engagement window that is
-    not empty, and an induction motor that reaches the duty speed, the lock-up and the engagement asked for (it runs
+    not empty, a wear allowance within the lining's thickness, and an induction motor that reaches the duty speed, the lock-up and the engagement asked for (it runs
     below its synchronous speed)."""
     problems = Problems()
     _check_ranges(values, values, problems)
@@ -283,6 +283,13 @@ def check_values(values: dict[str, float]) -> None:
             problems.errors.append(InputError(BY_NAME[name].key, (
                 f"{shown(values[name])} is not above the ambient temperature {shown(values['ambient_temperature'])}"
                 " (start_up.heat.ambient): the lining cannot be cooler than the air around it")))
+    if "wear_allowance" in values and "lining_thickness" in values \
+            and not values["wear_allowance"] <= values["lining_thickness"]:
+        shown = BY_NAME["wear_allowance"].show
+        problems.errors.append(InputError(BY_NAME["wear_allowance"].key, (
+            f"{shown(values['wear_allowance'])} is more than geometry.lining_thickness "
+            f"{shown(values['lining_thickness'])}: a lining cannot wear away more than it is thick (the hours until "
+            "worn would count wear the lining does not have)")))
     if "heat_capacity" in values and "starts_per_hour" in values and not values.get("heat_conductance", 0.0) > 0:
         problems.errors.append(InputError(BY_NAME["heat_conductance"].key, (
             f"{BY_NAME['heat_conductance'].show(values.get('heat_conductance', 0.0))} with starts_per_hour: give the "
