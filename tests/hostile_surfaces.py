@@ -84,6 +84,10 @@ HOSTILE: list[Hostile] = [
                                               'conductance = "10 W/K"\n[start_up.wear]\nallowance = "3 mm"'),
          "--vary (point 1): start_up.wear.allowance: 3 mm is more than geometry.lining_thickness 2 mm",
          "--vary", "lining_thickness=4,2", "--quiet", "--no-store", command="sweep"),
+    # --- an overload friction below the case's own: max(f, f_max) set it aside, exit 0 -------------------------------
+    heat("overload-friction-below-nominal", LINING, "check = false", "friction_max = 0.1",
+         "start_up.overload.friction_max: 0.1 is below the case's friction_coefficient 0.3"),
+    heat("overload-friction-at-nominal", LINING, "check = false", "check = false\nfriction_max = 0.3", None),
     heat("ambient-in-kelvin", MOTOR, 'conductance = "4 W/K"', 'conductance = "4 W/K"\nambient = "313.15 K"', None),
     heat("ambient-in-fahrenheit", MOTOR, 'conductance = "4 W/K"', 'conductance = "4 W/K"\nambient = "104 degF"', None),
     heat("rise-bare-number", MOTOR, 'max_temperature_rise = "4 K"', "max_temperature_rise = 4", None),
