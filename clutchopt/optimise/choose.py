@@ -7,7 +7,8 @@ A neutral case (``coupling = "any"``) gives what does not depend on the coupling
     [library]     friction_pair = "organic_dry" (and any other role a coupling has)
     [limits]      outer_diameter_max = "400 mm" (any limit a coupling declares)
     [start_up]    the drive, as in a coupling's case (the nameplate motor too)
-    [couplings.NAME.SECTION]   what one coupling takes beyond its starting values (e.g. its mode)
+    [couplings.NAME.SECTION]   what one coupling takes beyond its starting values (e.g. its mode; not a
+                               [scatter], options.objective or options.choose, which would not apply)
 
 Each coupling's case is its starting case (``clutchopt init``, the values of clutchopt/data/starting_values.toml)
 in the mode that frees the most of its geometry (with every variable ``options.free`` may free), with the neutral duty written in the coupling's own terms: a duty
@@ -253,6 +254,15 @@ def _override_paths(table: dict, prefix: str = "") -> list[str]:
     return paths
 
 
+SET_ASIDE = {  # what a coupling's case may have but choose-coupling would not apply: refused, not dropped
+    "scatter": "choose-coupling designs every coupling at its nominal values; design one coupling under scatter with "
+               "clutchopt solve CASE --robust",
+    "options.objective": f"choose-coupling designs every coupling for least like-for-like mass ({OBJECTIVE}), the "
+                         "mass it ranks them by; compare costs in its cost column",
+    "options.choose": "choose-coupling designs one entry of each role: name it in [library] or "
+                      "[couplings.NAME.library]; let solve choose among entries in one coupling's case"}
+
+
 def _check_override(name: str, table: dict, problems: Problems) -> None:
     """A ``[couplings.NAME]`` table holds sections of that coupling's case (each a table), and a mode it has."""
     coupling = get_coupling(name)
@@ -261,10 +271,15 @@ def _check_override(name: str, table: dict, problems: Problems) -> None:
         field = f"couplings.{name}.{key}"
         if key not in sections:
             problems.errors.append(InputError(field, f"not a section of a {name} case; [couplings.{name}] takes "
-                                                     f"{', '.join(sections)}"))
+                                                     f"{', '.join(s for s in sections if s not in SET_ASIDE)}"))
         elif not isinstance(value, dict):
             problems.errors.append(InputError(field, f"must be a table [couplings.{name}.{key}]"))
+        elif key in SET_ASIDE:
+            problems.errors.append(InputError(field, SET_ASIDE[key]))
     options = table.get("options")
+    for key in (options if isinstance(options, dict) else {}):
+        if f"options.{key}" in SET_ASIDE:
+            problems.errors.append(InputError(f"couplings.{name}.options.{key}", SET_ASIDE[f"options.{key}"]))
     if isinstance(options, dict) and "mode" in options:
         mode = options["mode"]
         if not isinstance(mode, str) or mode not in coupling.formulations:
