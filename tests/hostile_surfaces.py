@@ -68,6 +68,13 @@ HOSTILE: list[Hostile] = [
             "duty.power: 30 kW is not the rated_power of the nameplate motor in [start_up.driver], 15 kW"),
     neutral("rated-torque-twice", 'power = "15 kW"', 'torque = "150 N*m"',
             "duty.torque: 150 N*m is not the rated torque of the nameplate motor in [start_up.driver], 98.1092 N*m"),
+    # --- a bad setting of the neutral [start_up]: its field named, not "no coupling can be posed: wedge: ... | ..." --
+    neutral("neutral-start-up-unknown-key", "[start_up.driver]", "colour = 1\n\n[start_up.driver]",
+            "error: start_up.colour: unknown key; [start_up] takes driven, driver, effects"),
+    neutral("neutral-start-up-effect-unknown", '"lockup", "friction_heat"]', '"lockup", "friction_heat", "magic"]',
+            "error: start_up.effects: unknown effect 'magic'"),
+    neutral("neutral-start-up-intervals", "[start_up.driver]", "intervals = 1000\n\n[start_up.driver]",
+            "error: start_up.intervals: must be a whole number from 2 to 128, got 1000"),
     neutral("neutral-title-escape", 'title = "Belt conveyor', 'title = "\\u001b[2JBelt conveyor',
             "title: contains the control character '\\x1b'"),
     neutral("neutral-title-table", 'title = "Belt conveyor, 15 kW 4-pole motor, 4 kg m^2, 60 N m"', "title = {a = 1}",

@@ -82,16 +82,8 @@ def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = T
     if not all(laws):
         raise InputError(SECTION, f"the {coupling.name} coupling has no start-up law in clutchopt yet")
     problems = Problems()
-    declared = {q.key: q for q in QUANTITIES}
-    allowed = set(_SETTINGS) | set(_TABLES) | {q.key.split(".")[1] for q in QUANTITIES if q.section == SECTION}
-    for key in table:
-        if key not in allowed:
-            problems.errors.append(InputError(f"{SECTION}.{key}",
-                                              f"unknown key; [{SECTION}] takes {', '.join(sorted(allowed))}"))
-    effects = ()
-    with problems.field():
-        effects = parse_effects(table.get("effects"), f"{SECTION}.effects")
     values, profile, spec = read_tables(table, problems)
+    effects = spec.pop("effects")
     motor_note = ""
     plate = nameplate_fields(_table(table, f"{SECTION}.driver"))
     if plate:
@@ -99,17 +91,9 @@ def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = T
             kloss = [k for k in KLOSS if BY_NAME[k].key.rsplit(".", 1)[1] in _table(table, f"{SECTION}.driver")]
             derived, motor_note = kloss_from_nameplate(plate, f"{SECTION}.driver", kloss)
             values.update(derived)
-    if "spring_preload" in table:
-        with problems.field():
-            quantity = declared[f"{SECTION}.spring_preload"]
-            values["spring_preload"] = quantity.check(to_si(quantity.key, table["spring_preload"], quantity.unit))
     given = {q.name for q in QUANTITIES if q.key.rsplit(".", 1)[1] in _table(table, q.section)}  # good or bad
     taken = {name for name in library or {} if name not in values}
     values.update({name: (library or {})[name] for name in taken})
-    with problems.field():
-        spec["intervals"] = _intervals(table.get("intervals", StartUpSpec.intervals))
-    with problems.field():
-        spec["tolerance"] = _tolerance(table.get("tolerance", StartUpSpec.tolerance))
     follows = {name: (source, 1.0) for name, source in DEFAULTS_FROM_DUTY.items()
                if name not in given and source in duty}
     if "motor_curve" in effects and "min_lock_up_speed" not in given and "synchronous_speed" in values:
@@ -145,12 +129,28 @@ def _table(table: dict, section: str) -> dict:
 
 
 def read_tables(table: dict, problems: Problems) -> tuple[dict[str, float], LoadProfile | None, dict]:
-    """The fields of the sub-tables of a ``[start_up]`` section (driver, driven, heat, ...), each checked on its
-    own (the nameplate's fields aside: :func:`clutchopt.start_up.nameplate.kloss_from_nameplate`): the quantities'
-    SI values, the load profile and the spec's switches; each bad field a problem of ``problems``."""
+    """The fields of a ``[start_up]`` section, each checked on its own: its own keys (known ones; effects,
+    spring_preload, intervals, tolerance) and those of its sub-tables (driver, driven, heat, ...; the nameplate's
+    fields aside: :func:`clutchopt.start_up.nameplate.kloss_from_nameplate`): the quantities' SI values, the load
+    profile and the spec's settings (``effects`` among them); each bad field a problem of ``problems``."""
     declared = {q.key: q for q in QUANTITIES}
+    allowed = set(_SETTINGS) | set(_TABLES) | {q.key.split(".")[1] for q in QUANTITIES if q.section == SECTION}
+    for key in table:
+        if key not in allowed:
+            problems.errors.append(InputError(f"{SECTION}.{key}",
+                                              f"unknown key; [{SECTION}] takes {', '.join(sorted(allowed))}"))
     values: dict[str, float] = {}
-    profile, spec = None, {}
+    profile, spec = None, {"effects": ()}
+    with problems.field():
+        spec["effects"] = parse_effects(table.get("effects"), f"{SECTION}.effects")
+    if "spring_preload" in table:
+        with problems.field():
+            quantity = declared[f"{SECTION}.spring_preload"]
+            values["spring_preload"] = quantity.check(to_si(quantity.key, table["spring_preload"], quantity.unit))
+    with problems.field():
+        spec["intervals"] = _intervals(table.get("intervals", StartUpSpec.intervals))
+    with problems.field():
+        spec["tolerance"] = _tolerance(table.get("tolerance", StartUpSpec.tolerance))
     for name in _TABLES:
         sub = table.get(name, {})
         if not isinstance(sub, dict):
