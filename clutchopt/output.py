@@ -12,7 +12,7 @@ import math
 from typing import TYPE_CHECKING
 
 from clutchopt.units import from_si, si_unit
-from clutchopt.scatter import correlation_text
+from clutchopt.scatter import correlation_text, shown_spread
 
 if TYPE_CHECKING:  # JSON needs neither pandas nor the solver: ``solve --json`` starts faster without them
     from clutchopt.model import Formulation
@@ -525,7 +525,8 @@ def robust_text(result, case) -> str:
     """The robust design beside the nominal one: the scatter, what robustness costs, each constraint at its worst
     (corner or back-off) and its Monte Carlo failure probability, and what drives it (tornado rows)."""
     quantities = {q.name: q for q in case.quantities}
-    scatter = [{"quantity": s.name, "scatter": s.describe(quantities[s.name].show),
+    scatter = [{"quantity": s.name, "scatter": s.describe(quantities[s.name].show,
+                                                          lambda v, q=quantities[s.name]: shown_spread(q, v)),
                 "nominal": quantities[s.name].show(case.values[s.name])} for s in case.scatter]
     how = ("worst case: every constraint at its own worst corner of the ranges (a normal quantity: mean +- 3 sd), "
            "all 2^n corners checked" if result.method == "worst-case" else

@@ -284,6 +284,12 @@ def to_si(field: str, raw: object, unit: str) -> float:
     return value
 
 
+def difference_unit(unit: str) -> str:
+    """The unit of a difference of two values in ``unit``: K for an offset unit (degC: two temperatures differ by
+    kelvins), else the unit itself."""
+    return "K" if unit not in UNITS and unit_info(unit).offset else unit
+
+
 def into_si(value, unit: str):
     """A number in ``unit`` (a number or a NumPy array) in SI, the inverse of :func:`from_si`: an offset unit (degC)
     gives the absolute temperature in K, so 20 degC is 293.15 K, not 20 x 274.15."""

@@ -33,6 +33,11 @@ def scattered(name: str, table: str, expect, *extra: str) -> Hostile:
     return case(name, f"{WEDGE}\n[scatter]\n{table}\n", expect, "--no-store", *extra)
 
 
+def lining_scatter(name: str, table: str, expect) -> Hostile:
+    """``solve`` (nominal: the scatter read, not designed for) of the lever on its motor with a [scatter]."""
+    return case(name, edit(LINING, "[bounds]", f"[scatter]\n{table}\n\n[bounds]"), expect, "--no-store")
+
+
 def heat(name: str, text: str, old: str, new: str, expect) -> Hostile:
     return case(name, edit(text, old, new), expect, "--no-store")
 
@@ -44,6 +49,22 @@ HOSTILE: list[Hostile] = [
     scattered("lognormal-sd-1e8-means", 'allowable_pressure = { lognormal = ["4 MPa", "4e8 MPa"] }',
               "scatter.allowable_pressure.lognormal: the standard deviation 4e+08 MPa against the mean 4 MPa"),
     scattered("lognormal-sd-ten-means", 'allowable_pressure = { lognormal = ["4 MPa", "40 MPa"] }', None),
+    # --- a temperature's scatter: an sd in degC was 278.15 K wide; a band of 20 % of the kelvin ----------------------
+    lining_scatter("temperature-sd-in-degc", 'ambient_temperature = { normal = ["40 degC", "5 degC"] }',
+                   "scatter.ambient_temperature.normal: '5 degC' is a temperature on a scale with an offset; write a "
+                   "temperature difference in K (or delta_degC)"),
+    lining_scatter("temperature-sd-in-kelvin", 'ambient_temperature = { normal = ["40 degC", "5 K"] }', None),
+    lining_scatter("temperature-sd-in-delta-degc", 'ambient_temperature = { normal = ["40 degC", "5 delta_degC"] }',
+                   None),
+    lining_scatter("temperature-cut-normal-sd-in-degc",
+                   'ambient_temperature = { normal = ["40 degC", "5 degC"], within = ["30 degC", "50 degC"] }',
+                   "scatter.ambient_temperature.normal: '5 degC' is a temperature on a scale with an offset"),
+    lining_scatter("temperature-lognormal-sd-in-degc", 'ambient_temperature = { lognormal = ["40 degC", "5 degC"] }',
+                   "scatter.ambient_temperature.lognormal: '5 degC' is a temperature on a scale with an offset"),
+    lining_scatter("temperature-band", 'ambient_temperature = "+-20 %"',
+                   "scatter.ambient_temperature: a relative band of an absolute temperature depends on its scale"),
+    lining_scatter("temperature-range", 'ambient_temperature = ["30 degC", "50 degC"]', None),
+    scattered("band-of-a-pressure", 'allowable_pressure = "+-5 %"', None),
     # --- choose-coupling's [couplings.NAME]: the user's own override is the case's error, not a coupling's loss ------
     override("override-mode-list", '[couplings.wedge.options]\nmode = ["geometry"]',
              "couplings.wedge.options.mode: must be a mode of the wedge coupling (paper, geometry), got ['geometry']"),

@@ -47,3 +47,22 @@ def test_the_reports_largest_failure_probability_says_its_estimator_and_interval
         name, (p, low, high) = max(failure.items(), key=lambda item: item[1][0])
         assert row["largest P(fail)"] == f"{p:.3g} ({low:.2g} to {high:.2g}, Monte Carlo, 200 samples; {name})"
         assert low <= p <= high
+
+
+def test_a_temperatures_standard_deviation_is_a_difference():
+    """{ normal = ["40 degC", "5 K"] }: mean 313.15 K, sd 5 K (a difference; "5 degC" would be 278.15 K and is refused,
+    tests/hostile_surfaces.py), shown as "sd 5 K", not as the absolute temperature 5 K = -268.15 degC."""
+    import tomllib
+
+    from clutchopt.cases import parse_case
+    from clutchopt.scatter import shown_spread
+    from hostile_surfaces import LINING
+
+    text = LINING.replace("[bounds]", '[scatter]\nambient_temperature = { normal = ["40 degC", "9 delta_degF"] }\n'
+                                      "\n[bounds]")
+    case = parse_case(tomllib.loads(text))
+    (scatter,) = case.scatter
+    assert (scatter.mean, scatter.sd) == (pytest.approx(313.15, rel=1e-15), pytest.approx(5.0, rel=1e-12))
+    quantity = next(q for q in case.quantities if q.name == "ambient_temperature")
+    assert shown_spread(quantity, 5.0) == "5 K"
+    assert scatter.describe(quantity.show, lambda v: shown_spread(quantity, v)) == "normal, mean 40 degC, sd 5 K"
