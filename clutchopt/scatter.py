@@ -217,7 +217,7 @@ def _spelled_range(field: str, quantity, raw: str, nominal: float, library) -> l
     if band is None:
         raise InputError(field, f"must be {FORMS}, got {shown_value(raw)}")
     if unit_info(quantity.unit).offset:
-        raise InputError(field, f"a relative band of an absolute temperature depends on its scale (20 % of 40 degC "
+        raise InputError(field, "a relative band of an absolute temperature depends on its scale (20 % of 40 degC "
                                 "is 8 K, of 313.15 K 63 K): give a range [low, high]")
     share = float(band.group(1)) / 100
     if not 0 < share < 1:
