@@ -277,6 +277,10 @@ def _mean_and_sd(field: str, quantity, mean: float, sd: float, nominal: float) -
     if not sd > 0:
         raise InputError(field, f"the standard deviation must be positive, got {shown_spread(quantity, sd)}")
     quantity.check(mean, field)
+    if mean + NORMAL_RANGE * sd == mean or mean - NORMAL_RANGE * sd == mean:  # else every estimate says "exact"
+        raise InputError(field, f"the standard deviation {shown_spread(quantity, sd)} does not move the mean "
+                                f"{quantity.show(mean)} in float64 (mean +- {NORMAL_RANGE:g} sd rounds to the mean): "
+                                f"no scatter; leave {quantity.name} out of [scatter] or give a wider sd")
     if not math.isnan(nominal) and not math.isclose(mean, nominal, rel_tol=MEAN_TOLERANCE):
         kind = field.rsplit(".", 1)[-1]
         raise InputError(field, f"the mean {quantity.show(mean)} is not the case's value {quantity.show(nominal)}: "

@@ -48,6 +48,13 @@ HOSTILE: list[Hostile] = [
               "scatter.allowable_pressure.lognormal: the standard deviation 1e+294 MPa against the mean 4 MPa"),
     scattered("lognormal-sd-1e8-means", 'allowable_pressure = { lognormal = ["4 MPa", "4e8 MPa"] }',
               "scatter.allowable_pressure.lognormal: the standard deviation 4e+08 MPa against the mean 4 MPa"),
+    # --- an sd below float64's resolution of the mean: torque "0 (exact: independent of the scatter)" of f ----------
+    scattered("normal-sd-subnormal", "friction_coefficient = { normal = [0.15, 1e-320] }",
+              "scatter.friction_coefficient.normal: the standard deviation 9.99989e-321 does not move the mean 0.15 in "
+              "float64"),
+    scattered("cut-normal-sd-subnormal", "friction_coefficient = { normal = [0.15, 1e-320], within = [0.14, 0.16] }",
+              "scatter.friction_coefficient.normal: the standard deviation 9.99989e-321 does not move the mean"),
+    scattered("normal-sd-a-millionth", "friction_coefficient = { normal = [0.15, 1.5e-7] }", None),
     scattered("lognormal-sd-ten-means", 'allowable_pressure = { lognormal = ["4 MPa", "40 MPa"] }', None),
     # --- a temperature's scatter: an sd in degC was 278.15 K wide; a band of 20 % of the kelvin ----------------------
     lining_scatter("temperature-sd-in-degc", 'ambient_temperature = { normal = ["40 degC", "5 degC"] }',
