@@ -66,3 +66,23 @@ def test_a_temperatures_standard_deviation_is_a_difference():
     quantity = next(q for q in case.quantities if q.name == "ambient_temperature")
     assert shown_spread(quantity, 5.0) == "5 K"
     assert scatter.describe(quantity.show, lambda v: shown_spread(quantity, v)) == "normal, mean 40 degC, sd 5 K"
+
+
+def test_a_chance_target_is_shown_as_given(tmp_path, capsys):
+    """--robust chance=0.999999999 (the largest P taken, 1 - 1e-9) was shown "chance 1", P = 1: a claim no design
+    meets. Every place that names the target writes it as given."""
+    from clutchopt.cli import main
+    from clutchopt.optimise.compare import _column
+    from clutchopt.optimise.design import Robustness
+    from clutchopt.report.verification import robust_label
+    from hostile import WEDGE
+
+    path = tmp_path / "case.toml"
+    path.write_text(WEDGE + "\n[scatter]\nfriction_coefficient = [0.12, 0.18]\n")
+    assert main(["solve", str(path), "--robust", "chance=0.999999999", "--samples", "100", "--no-store"]) == 0
+    out = capsys.readouterr().out
+    assert "Robust design (chance 0.999999999: " in out and "for chance P = 0.999999999, " in out
+    assert " chance 1" not in out and "P = 1," not in out
+    robustness = Robustness.parse("chance=0.999999999", 100)
+    assert robustness.label == "chance 0.999999999"
+    assert robust_label(robustness) == "chance 0.999999999" and _column(robustness) == "chance_0.999999999"
