@@ -11,6 +11,7 @@ import json
 import math
 from typing import TYPE_CHECKING
 
+from clutchopt.records import target_text
 from clutchopt.units import from_si, si_unit
 from clutchopt.scatter import correlation_text, shown_spread
 
@@ -530,7 +531,7 @@ def robust_text(result, case) -> str:
                 "nominal": quantities[s.name].show(case.values[s.name])} for s in case.scatter]
     how = ("worst case: every constraint at its own worst corner of the ranges (a normal quantity: mean +- 3 sd), "
            "all 2^n corners checked" if result.method == "worst-case" else
-           f"{'system ' if result.method == 'system_chance' else ''}chance {result.target:g}: "
+           f"{'system ' if result.method == 'system_chance' else ''}chance {target_text(result.target)}: "
            + ("the design (any constraint) holds" if result.method == "system_chance" else
               "each constraint holds") + " with that probability, each constraint at its performance point (PMA), "
            "beta corrected until importance sampling meets the target"

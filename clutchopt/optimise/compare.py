@@ -13,6 +13,7 @@ from clutchopt.formulations import get_coupling
 from clutchopt.model import ComparisonRow
 from clutchopt.optimise.problem import case_problem, problem_for
 from clutchopt.optimise.solution import Solution, SolverOptions
+from clutchopt.records import target_text
 from clutchopt.units import si_unit
 
 
@@ -130,12 +131,12 @@ CHANCE_SHOWN = 0.999  # the chance-constrained column of compare
 SCATTER_NOTES = {
     "nominal": "the case's mode optimised at the nominal values",
     "worst_case": "every constraint at its own worst corner of the [scatter] ranges",
-    f"chance_{CHANCE_SHOWN:g}": f"each constraint fails with probability at most {1 - CHANCE_SHOWN:.3g}",
+    f"chance_{target_text(CHANCE_SHOWN)}": f"each constraint fails with probability at most {1 - CHANCE_SHOWN:.3g}",
 }
 
 
 def _column(robust) -> str:
-    return "worst_case" if robust.target is None else f"chance_{robust.target:g}"
+    return "worst_case" if robust.target is None else f"chance_{target_text(robust.target)}"
 
 
 def _scatter_columns(case: Case, coupling, spec, options: SolverOptions, robust=None) -> dict:
