@@ -27,7 +27,7 @@ import math
 import tomllib
 from dataclasses import dataclass, field
 
-from clutchopt.cases import _EXTRA_SECTIONS, NEUTRAL, Case, check_text, parse_case, read_toml
+from clutchopt.cases import _EXTRA_SECTIONS, NEUTRAL, Case, _did_you_mean, check_text, parse_case, read_toml
 from clutchopt.errors import InputError, Problems, shown_value
 from clutchopt.formulations import MODULES, get_coupling
 from clutchopt.formulations.duty import DUTY_QUANTITIES, required_torque
@@ -171,6 +171,32 @@ def _same_motor(duty: dict[str, float], power: float, torque: float) -> None:
             f"{shown(duty[name])} is not the {what} of the nameplate motor in [start_up.driver], {shown(plate)}"
             + ("" if name == "power" else " (rated_power / rated_speed)")
             + f": the motor's rating is given twice; give it once (leave duty.{name} out: the nameplate gives it)"))
+
+
+def _check_shared(data: dict, problems: Problems) -> None:
+    """The neutral [limits] and [library] as any coupling reads them: each limit one some coupling declares, with a
+    valid value; each library key a role some coupling has, naming an entry of the library (a bad one is the case's
+    error, not a reason for the couplings that take it to be left out while the others are ranked)."""
+    from clutchopt.materials import lookup
+
+    limits = {q.name: q for name in MODULES for q in get_coupling(name).quantities if q.section == "limits"}
+    for key, raw in _table(data.get("limits")).items():
+        with problems.field():
+            if key not in limits:
+                raise InputError(f"limits.{key}", f"no coupling declares this limit{_did_you_mean(key, limits)}; "
+                                                  f"limits are {', '.join(sorted(limits))}")
+            limits[key].check(to_si(limits[key].key, raw, limits[key].unit))
+    roles = {role.key: role for name in MODULES for role in get_coupling(name).materials}
+    for key, entry in _table(data.get("library")).items():
+        with problems.field():
+            if key not in roles:
+                raise InputError(f"library.{key}", f"no coupling has this role{_did_you_mean(key, roles)}; roles are "
+                                                   f"{', '.join(sorted(roles))}")
+            lookup(roles[key], entry, f"library.{key}")
+
+
+def _table(value) -> dict:
+    return value if isinstance(value, dict) else {}
 
 
 def posed_case(name: str, duty: dict[str, float], raw_duty: dict, data: dict, path: str) -> Candidate:
@@ -356,6 +382,7 @@ def pose(data: dict, path: str = "") -> tuple[Choice, dict[str, float]]:
             _check_override(name, table, problems)
     if isinstance(data.get("start_up"), dict):  # a bad field is the neutral case's, not a coupling's reason to lose
         read_tables(data["start_up"], problems)
+    _check_shared(data, problems)
     problems.raise_any()
     candidates = []
     for name in MODULES:
