@@ -34,7 +34,7 @@ from clutchopt.formulations.duty import DUTY_QUANTITIES, required_torque
 from clutchopt.model import ENVELOPE_PARTS, ElasticLaw, Quantity, namespace
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.start_up.nameplate import FIELDS as NAMEPLATE_FIELDS
-from clutchopt.start_up.section import read_tables
+from clutchopt.start_up.section import check_values, read_tables, with_defaults
 from clutchopt.units import si_unit, to_si
 
 OBJECTIVE = "envelope_mass"  # each coupling designed for least like-for-like mass, the mass it is ranked by
@@ -381,7 +381,10 @@ def pose(data: dict, path: str = "") -> tuple[Choice, dict[str, float]]:
         else:
             _check_override(name, table, problems)
     if isinstance(data.get("start_up"), dict):  # a bad field is the neutral case's, not a coupling's reason to lose
-        read_tables(data["start_up"], problems)
+        start_up, _, _ = read_tables(data["start_up"], problems)
+        if not problems:  # and so are the drive's checks across its fields that no coupling changes
+            with problems.field():
+                check_values(with_defaults({**duty, **start_up}))
     _check_shared(data, problems)
     problems.raise_any()
     candidates = []

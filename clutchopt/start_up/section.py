@@ -104,9 +104,7 @@ def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = T
     if elastic and "max_link_stress" not in given and elastic[0].stress_limit in duty:
         follows["max_link_stress"] = (elastic[0].stress_limit, 1.0)
     values = followed({**duty, **values}, follows)
-    for quantity in QUANTITIES:
-        if quantity.name not in values and quantity.name not in given and quantity.default not in (None, REQUIRED):
-            values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
+    values = with_defaults(values, given)
     values = {name: value for name, value in values.items() if name not in duty}
     if profile is not None and "resisting_torque" in table.get("driven", {}):
         problems.errors.append(InputError(f"{SECTION}.driven", "give either resisting_torque or load_profile, "
@@ -120,6 +118,12 @@ def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = T
         _check(values, effects, coupling, laws, profile, given)
     return values, StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile, **spec,
                                motor_note=motor_note, friction_max_given="friction_max" in given), follows, taken
+
+
+def with_defaults(values: dict[str, float], given=frozenset()) -> dict[str, float]:
+    """``values`` with the default of each start-up quantity that has one and is neither in them nor ``given``."""
+    return {**values, **{q.name: q.check(to_si(q.key, q.default, q.unit)) for q in QUANTITIES
+                         if q.name not in values and q.name not in given and q.default not in (None, REQUIRED)}}
 
 
 def _table(table: dict, section: str) -> dict:
