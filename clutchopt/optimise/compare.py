@@ -89,9 +89,7 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=No
         rows_shown = rows_shown + SCATTER_ROWS
         notes.update({column: note for column, note in SCATTER_NOTES.items() if column in columns})
         if robust is not None and robust.target is not None:
-            notes[_column(robust)] = (f"the design fails with probability at most {1 - robust.target:.3g}"
-                                      if robust.method == "system_chance" else
-                                      f"each constraint fails with probability at most {1 - robust.target:.3g}")
+            notes[_column(robust)] = robust_note(robust, case.start_up is not None)
     names = list(columns)
     rows = []
     for row in rows_shown:
@@ -133,6 +131,15 @@ SCATTER_NOTES = {
     "worst_case": "every constraint at its own worst corner of the [scatter] ranges",
     f"chance_{target_text(CHANCE_SHOWN)}": f"each constraint fails with probability at most {1 - CHANCE_SHOWN:.3g}",
 }
+
+
+def robust_note(robust, start_up: bool) -> str:
+    """What a chance design's column claims: each constraint's failure probability at most 1 - P, or the design's
+    (system_chance; a start-up's limits apart, designed at the quantile corners and simulated, not in that share)."""
+    if robust.method != "system_chance":
+        return f"each constraint fails with probability at most {1 - robust.target:.3g}"
+    return (f"the design fails with probability at most {1 - robust.target:.3g}"
+            + ("; the start-up limits apart (designed at the quantile corners, simulated)" if start_up else ""))
 
 
 def _column(robust) -> str:
