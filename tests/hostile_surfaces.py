@@ -16,7 +16,6 @@ from hostile import CASES, WEDGE, Hostile, case, edit, write_all
 NEUTRAL = (CASES / "conveyor_drive.toml").read_text()  # coupling = "any": a belt conveyor on a 15 kW motor
 LINING = (CASES / "lever_motor_start.toml").read_text()  # organic lining: its temperature limits from the library
 MOTOR = (CASES / "wedge_motor_start.toml").read_text()
-QUICK = ("--tol", "1e-6")
 
 
 def neutral(name: str, old: str, new: str, expect, *extra: str) -> Hostile:
@@ -91,7 +90,6 @@ HOSTILE: list[Hostile] = [
              "couplings.wedge.options.objective: choose-coupling designs every coupling for least like-for-like mass"),
     override("override-choose", '[couplings.wedge.options]\nchoose = {friction_pair = ["organic_dry", "cermet_dry"]}',
              "couplings.wedge.options.choose: choose-coupling designs one entry of each role"),
-    override("override-mode-as-written", '[couplings.wedge.options]\nmode = "paper"', None, *QUICK),
     neutral("rated-power-twice", 'power = "15 kW"', 'power = "30 kW"',
             "duty.power: 30 kW is not the rated_power of the nameplate motor in [start_up.driver], 15 kW"),
     neutral("rated-torque-twice", 'power = "15 kW"', 'torque = "150 N*m"',

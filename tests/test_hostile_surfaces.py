@@ -108,3 +108,19 @@ def test_a_system_chance_with_a_start_up_says_its_limits_are_apart(tmp_path, cap
     assert robust_note(system, False) == "the design fails with probability at most 0.01"
     assert robust_note(Robustness.parse("chance=0.99", 100), True) == \
         "each constraint fails with probability at most 0.01"
+
+
+def test_a_sound_override_poses_the_coupling_as_written():
+    """[couplings.wedge.options] mode = "paper" and [couplings.wedge.geometry] flank_angle = "20 deg" (the checks
+    above refuse the bad ones): the wedge posed in paper mode at 20 deg = pi/9 rad, the others as they were."""
+    import math
+
+    from clutchopt.cases import read_toml
+    from clutchopt.optimise.choose import pose
+
+    data = read_toml(CASES / "conveyor_drive.toml")
+    data["couplings"] = {"wedge": {"options": {"mode": "paper"}, "geometry": {"flank_angle": "20 deg"}}}
+    choice, _ = pose(data, "conveyor.toml")
+    wedge, lever = (next(c for c in choice.candidates if c.coupling == name) for name in ("wedge", "lever"))
+    assert (wedge.mode, lever.mode) == ("paper", "design")
+    assert wedge.case.values["flank_angle"] == pytest.approx(math.pi / 9, rel=1e-12)
