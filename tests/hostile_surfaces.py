@@ -16,6 +16,7 @@ from hostile import CASES, WEDGE, Hostile, case, edit, write_all
 NEUTRAL = (CASES / "conveyor_drive.toml").read_text()  # coupling = "any": a belt conveyor on a 15 kW motor
 LINING = (CASES / "lever_motor_start.toml").read_text()  # organic lining: its temperature limits from the library
 MOTOR = (CASES / "wedge_motor_start.toml").read_text()
+CABLE = (CASES / "cable_motor_start.toml").read_text()  # an elastic link on its induction motor
 
 
 def neutral(name: str, old: str, new: str, expect, *extra: str) -> Hostile:
@@ -143,6 +144,11 @@ HOSTILE: list[Hostile] = [
     heat("overload-friction-below-nominal", LINING, "check = false", "friction_max = 0.1",
          "start_up.overload.friction_max: 0.1 is below the case's friction_coefficient 0.3"),
     heat("overload-friction-at-nominal", LINING, "check = false", "check = false\nfriction_max = 0.3", None),
+    # --- an overload check asked of the cable (an elastic link: none is made), exit 0 without a word ---------------
+    heat("overload-check-of-an-elastic-link", CABLE, "[start_up.driver]", "[start_up.overload]\ncheck = true\n\n"
+         "[start_up.driver]", "start_up.overload.check: does not apply to the cable coupling: an elastic link"),
+    heat("overload-check-off-of-an-elastic-link", CABLE, "[start_up.driver]", "[start_up.overload]\ncheck = false\n"
+         "\n[start_up.driver]", None),
     heat("ambient-in-kelvin", MOTOR, 'conductance = "4 W/K"', 'conductance = "4 W/K"\nambient = "313.15 K"', None),
     heat("ambient-in-fahrenheit", MOTOR, 'conductance = "4 W/K"', 'conductance = "4 W/K"\nambient = "104 degF"', None),
     heat("rise-bare-number", MOTOR, 'max_temperature_rise = "4 K"', "max_temperature_rise = 4", None),
