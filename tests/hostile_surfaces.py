@@ -149,6 +149,11 @@ HOSTILE: list[Hostile] = [
          "[start_up.driver]", "start_up.overload.check: does not apply to the cable coupling: an elastic link"),
     heat("overload-check-off-of-an-elastic-link", CABLE, "[start_up.driver]", "[start_up.overload]\ncheck = false\n"
          "\n[start_up.driver]", None),
+    # --- a conductance given without friction_heat: not used, exit 0 without a word ---------------------------------
+    case("conductance-without-friction-heat",
+         edit(edit(edit(MOTOR, '"lockup", "friction_heat"]', '"lockup"]'), 'capacity = "1400 J/K"\n', ""),
+              'max_temperature_rise = "4 K"\n', ""),
+         "start_up.heat.conductance: given, but effects do not list friction_heat", "--no-store"),
     heat("ambient-in-kelvin", MOTOR, 'conductance = "4 W/K"', 'conductance = "4 W/K"\nambient = "313.15 K"', None),
     heat("ambient-in-fahrenheit", MOTOR, 'conductance = "4 W/K"', 'conductance = "4 W/K"\nambient = "104 degF"', None),
     heat("rise-bare-number", MOTOR, 'max_temperature_rise = "4 K"', "max_temperature_rise = 4", None),

@@ -230,7 +230,7 @@ def _check(values, effects, coupling, laws, profile, explicit=frozenset()) -> No
                                                                      "speed)")
     if "friction_heat" in effects and "heat_capacity" not in values:
         raise InputError(key("heat_capacity"), "missing (effect friction_heat)")
-    heat_only = [n for n in ("heat_capacity", "max_temperature_rise", "max_lining_temperature",
+    heat_only = [n for n in ("heat_capacity", "heat_conductance", "max_temperature_rise", "max_lining_temperature",
                              "max_continuous_temperature", "ambient_temperature") if n in explicit]
     if "friction_heat" not in effects and heat_only:
         raise InputError(key(heat_only[0]), "given, but effects do not list friction_heat")
