@@ -124,3 +124,22 @@ def test_a_sound_override_poses_the_coupling_as_written():
     wedge, lever = (next(c for c in choice.candidates if c.coupling == name) for name in ("wedge", "lever"))
     assert (wedge.mode, lever.mode) == ("paper", "design")
     assert wedge.case.values["flank_angle"] == pytest.approx(math.pi / 9, rel=1e-12)
+
+
+def test_a_robust_sweeps_largest_failure_probability_has_its_upper_bound(tmp_path, capsys):
+    """sweep --robust chance=0.999 printed "largest P(fail) 0.005" per point, bare: 1 failure in 200 Monte Carlo
+    samples, whose 95 % Clopper-Pearson interval reaches 1 - 0.025^(1/200) = 0.028 (the exact upper bound of 1 in
+    200: beta.ppf(0.975, 2, 199)). Now beside it its upper bound."""
+    import pandas as pd
+    from scipy.stats import beta
+
+    from clutchopt.cli import main
+
+    out = tmp_path / "sweep.csv"
+    assert main(["sweep", str(CASES / "wedge_centrifuge.toml"), "--vary", "speed=1450", "--robust", "chance=0.999",
+                 "--samples", "200", "--quiet", "--no-store", "--out", str(out)]) == 0
+    capsys.readouterr()
+    frame = pd.read_csv(out, comment="#")
+    assert list(frame.columns[4:6]) == ["largest P(fail)", "largest P(fail) 95% high"]
+    failed = round(frame["largest P(fail)"][0] * 200)
+    assert frame["largest P(fail) 95% high"][0] == pytest.approx(beta.ppf(0.975, failed + 1, 200 - failed), rel=1e-9)
