@@ -162,7 +162,9 @@ def largest_failure(failure: dict[str, list[float]], samples: int) -> str:
     """The largest Monte Carlo failure probability of any constraint with its 95 % Clopper-Pearson interval, the
     estimator, its sample count and the constraint: ``0.005 (0.00013 to 0.028, Monte Carlo, 200 samples; torque)``
     (bare, 1 failure in 200 read as five times the 0.001 a chance-0.999 design allows)."""
-    name, (p, low, high) = max(failure.items(), key=lambda item: item[1][0])
+    from clutchopt.optimise.robust_models import largest_failure
+
+    name, p, low, high = largest_failure(failure)
     return f"{p:.3g} ({low:.2g} to {high:.2g}, Monte Carlo, {samples} samples; {name})"
 
 
