@@ -72,6 +72,17 @@ HOSTILE: list[Hostile] = [
                    "scatter.ambient_temperature: a relative band of an absolute temperature depends on its scale"),
     lining_scatter("temperature-range", 'ambient_temperature = ["30 degC", "50 degC"]', None),
     scattered("band-of-a-pressure", 'allowable_pressure = "+-5 %"', None),
+    # --- a correlation a hair below 1: "no joint distribution has them (e.g. a with b and b with c ...)" of two -------
+    scattered("correlation-nearly-one", 'friction_coefficient = [0.12, 0.18]\nallowable_bending_stress = "+-5 %"\n'
+              "[scatter.correlation]\nfriction_coefficient.allowable_bending_stress = 0.9999999999999",
+              "scatter.correlation: the correlations of friction_coefficient, allowable_bending_stress are nearly "
+              "singular (smallest eigenvalue 1e-13, below 1e-12"),
+    scattered("correlation-not-positive-definite",
+              'friction_coefficient = [0.12, 0.18]\nallowable_bending_stress = "+-5 %"\nspeed = "+-5 %"\n'
+              "[scatter.correlation]\nfriction_coefficient.allowable_bending_stress = 0.9\n"
+              "friction_coefficient.speed = 0.9\nallowable_bending_stress.speed = -0.9",
+              "scatter.correlation: the correlations of friction_coefficient, allowable_bending_stress, speed are not "
+              "positive definite (no joint distribution has them"),
     # --- choose-coupling's [couplings.NAME]: the user's own override is the case's error, not a coupling's loss ------
     override("override-mode-list", '[couplings.wedge.options]\nmode = ["geometry"]',
              "couplings.wedge.options.mode: must be a mode of the wedge coupling (paper, geometry), got ['geometry']"),
