@@ -44,6 +44,7 @@ FORMS = ('[low, high], { normal = [mean, sd] } or { uniform = [low, high] }, or 
          '{ normal = [mean, sd], within = [low, high] }, "+-20 %" or "library"')
 BAND = re.compile(r"^\s*(?:\+-|\+/-|±)\s*(\d+(?:\.\d*)?|\.\d+)\s*%\s*$")  # "+-20 %", "±20 %", "+/-20%"
 LIBRARY = "library"
+SINGULAR = 1e-12  # smallest eigenvalue of a correlation matrix taken as positive definite
 
 
 @dataclass(frozen=True)
@@ -352,6 +353,11 @@ def parse_correlation(table, scatter: tuple[Scatter, ...]) -> tuple[tuple[float,
     names = [s.name for s in scatter]
     if not _positive_definite(matrix):
         worst = _smallest_indefinite(matrix)
+        smallest = float(np.linalg.eigvalsh(matrix[np.ix_(worst, worst)]).min())
+        if smallest > 0:  # positive definite, but too near singular to factor and sample reliably
+            raise InputError(field, f"the correlations of {', '.join(names[i] for i in worst)} are nearly singular "
+                                    f"(smallest eigenvalue {smallest:.2g}, below {SINGULAR:g}: one quantity all but "
+                                    f"another); weaken one of them, or scatter one quantity")
         raise InputError(field, f"the correlations of {', '.join(names[i] for i in worst)} are not positive "
                                 f"definite (no joint distribution has them: e.g. a with b and b with c strongly "
                                 f"positive, a with c strongly negative); weaken one of them")
@@ -375,14 +381,14 @@ def _positive_definite(matrix: np.ndarray) -> bool:
         np.linalg.cholesky(matrix)
     except np.linalg.LinAlgError:
         return False
-    return bool(np.linalg.eigvalsh(matrix).min() > 1e-12)
+    return bool(np.linalg.eigvalsh(matrix).min() > SINGULAR)
 
 
 def _smallest_indefinite(matrix: np.ndarray) -> tuple[int, ...]:
-    """The indices of a smallest set of quantities whose correlations alone are not positive definite (pairs
-    always are, |rho| < 1)."""
+    """The indices of a smallest set of quantities whose correlations alone are not positive definite (a pair only
+    when nearly singular, |rho| < 1)."""
     n = len(matrix)
-    for size in range(3, n + 1):
+    for size in range(2, n + 1):
         for subset in itertools.combinations(range(n), size):
             if not _positive_definite(matrix[np.ix_(subset, subset)]):
                 return subset
