@@ -111,19 +111,22 @@ def test_a_system_chance_with_a_start_up_says_its_limits_are_apart(tmp_path, cap
 
 
 def test_a_sound_override_poses_the_coupling_as_written():
-    """[couplings.wedge.options] mode = "paper" and [couplings.wedge.geometry] flank_angle = "20 deg" (the checks
-    above refuse the bad ones): the wedge posed in paper mode at 20 deg = pi/9 rad, the others as they were."""
+    """[couplings.wedge.options] mode = "paper", [couplings.wedge.geometry] flank_angle = "20 deg" and a lever's own
+    lining limit (the checks above refuse the bad ones, the duty and the drive): the wedge posed in paper mode at
+    20 deg = pi/9 rad, the lever's lining at most 200 degC = 473.15 K, the others as they were."""
     import math
 
     from clutchopt.cases import read_toml
     from clutchopt.optimise.choose import pose
 
     data = read_toml(CASES / "conveyor_drive.toml")
-    data["couplings"] = {"wedge": {"options": {"mode": "paper"}, "geometry": {"flank_angle": "20 deg"}}}
+    data["couplings"] = {"wedge": {"options": {"mode": "paper"}, "geometry": {"flank_angle": "20 deg"}},
+                         "lever": {"start_up": {"limits": {"max_lining_temperature": "200 degC"}}}}
     choice, _ = pose(data, "conveyor.toml")
     wedge, lever = (next(c for c in choice.candidates if c.coupling == name) for name in ("wedge", "lever"))
     assert (wedge.mode, lever.mode) == ("paper", "design")
     assert wedge.case.values["flank_angle"] == pytest.approx(math.pi / 9, rel=1e-12)
+    assert lever.case.values["max_lining_temperature"] == pytest.approx(473.15, rel=1e-15)  # the pair's is 250 degC
 
 
 def test_a_robust_sweeps_largest_failure_probability_has_its_upper_bound(tmp_path, capsys):

@@ -8,7 +8,8 @@ A neutral case (``coupling = "any"``) gives what does not depend on the coupling
     [limits]      outer_diameter_max = "400 mm" (any limit a coupling declares)
     [start_up]    the drive, as in a coupling's case (the nameplate motor too)
     [couplings.NAME.SECTION]   what one coupling takes beyond its starting values (e.g. its mode; not a
-                               [scatter], options.objective or options.choose, which would not apply)
+                               [scatter], options.objective or options.choose, which would not apply, nor
+                               a duty or drive of its own: the ranking is like for like)
 
 Each coupling's case is its starting case (``clutchopt init``, the values of clutchopt/data/starting_values.toml)
 in the mode that frees the most of its geometry (with every variable ``options.free`` may free), with the neutral duty written in the coupling's own terms: a duty
@@ -286,7 +287,10 @@ SET_ASIDE = {  # what a coupling's case may have but choose-coupling would not a
     "options.objective": f"choose-coupling designs every coupling for least like-for-like mass ({OBJECTIVE}), the "
                          "mass it ranks them by; compare costs in its cost column",
     "options.choose": "choose-coupling designs one entry of each role: name it in [library] or "
-                      "[couplings.NAME.library]; let solve choose among entries in one coupling's case"}
+                      "[couplings.NAME.library]; let solve choose among entries in one coupling's case",
+    **dict.fromkeys(("duty", "start_up.driver", "start_up.driven"), (
+        "the duty and the drive are one for every coupling (it ranks them like for like): give them in the neutral "
+        "[duty] and [start_up]"))}
 
 
 def _check_override(name: str, table: dict, problems: Problems) -> None:
@@ -300,12 +304,11 @@ def _check_override(name: str, table: dict, problems: Problems) -> None:
                                                      f"{', '.join(s for s in sections if s not in SET_ASIDE)}"))
         elif not isinstance(value, dict):
             problems.errors.append(InputError(field, f"must be a table [couplings.{name}.{key}]"))
-        elif key in SET_ASIDE:
-            problems.errors.append(InputError(field, SET_ASIDE[key]))
+    given = _override_paths(table)
+    for key, why in SET_ASIDE.items():
+        if any(path == key or path.startswith(key + ".") for path in given):
+            problems.errors.append(InputError(f"couplings.{name}.{key}", why))
     options = table.get("options")
-    for key in (options if isinstance(options, dict) else {}):
-        if f"options.{key}" in SET_ASIDE:
-            problems.errors.append(InputError(f"couplings.{name}.options.{key}", SET_ASIDE[f"options.{key}"]))
     if isinstance(options, dict) and "mode" in options:
         mode = options["mode"]
         if not isinstance(mode, str) or mode not in coupling.formulations:
