@@ -94,6 +94,8 @@ HOSTILE: list[Hostile] = [
              "couplings.wedge.duty: the duty and the drive are one for every coupling"),
     override("override-driven", '[couplings.lever.start_up.driven]\ninertia = "0.4 kg*m^2"',
              "couplings.lever.start_up.driven: the duty and the drive are one for every coupling"),
+    override("override-start-time", '[couplings.ball.start_up.limits]\nmax_start_time = "20 s"',
+             "couplings.ball.start_up.limits.max_start_time: the duty and the drive are one for every coupling"),
     override("override-title", '[couplings.ball]\ntitle = "mine"', "couplings.ball.title: not a section of a ball case"),
     override("override-bad-value", '[couplings.wedge.geometry]\nflank_angle = "95 deg"',
              "couplings.wedge.geometry.flank_angle: "),

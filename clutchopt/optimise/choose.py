@@ -288,7 +288,7 @@ SET_ASIDE = {  # what a coupling's case may have but choose-coupling would not a
                          "mass it ranks them by; compare costs in its cost column",
     "options.choose": "choose-coupling designs one entry of each role: name it in [library] or "
                       "[couplings.NAME.library]; let solve choose among entries in one coupling's case",
-    **dict.fromkeys(("duty", "start_up.driver", "start_up.driven"), (
+    **dict.fromkeys(("duty", "start_up.driver", "start_up.driven", "start_up.limits.max_start_time"), (
         "the duty and the drive are one for every coupling (it ranks them like for like): give them in the neutral "
         "[duty] and [start_up]"))}
 
