@@ -17,8 +17,11 @@ def is_symbolic(*values: object) -> bool:
 
 
 def _either(numpy_fn, casadi_fn):
-    def apply(*args):
-        return casadi_fn(*args) if is_symbolic(*args) else numpy_fn(*args)
+    def apply(*args):  # is_symbolic written out: the simulator calls these ~10^5 times a start (the cable's link)
+        for arg in args:
+            if isinstance(arg, _SYMBOLIC):
+                return casadi_fn(*args)
+        return numpy_fn(*args)
 
     apply.__name__ = numpy_fn.__name__
     return apply

@@ -207,7 +207,8 @@ def parse_case(data: dict, path: str = "") -> Case:
             start_values, start_up, follows, taken = parse_start_up(data["start_up"], coupling, values,
                                                                     not problems, lining)
             values.update(start_values)
-            filled.update({name: lining_filled[name] for name in taken})
+            filled.update({name: lining_filled[name] for name in lining_filled if name in taken})  # the library's
+            # order: ``taken`` is a set, whose order changed from run to run (PYTHONHASHSEED) in the library note
             _highest_friction_given(values, start_up)
     scatter, correlation = (), None
     if "scatter" in data:  # scattered around the case's values: not checked against a value that is itself bad

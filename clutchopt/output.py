@@ -120,8 +120,16 @@ def robust_json(result, case) -> dict:
         "nominal_failure_probability": UNITLESS, "margin_sensitivity": UNITLESS,
         "corners": {name: quantities for name in data["corners"]}, "checks": CONSTRAINT_UNITS,
         "nominal_checks": CONSTRAINT_UNITS, "nominal_design": design, "performance_point_beta": UNITLESS,
+        "system_allocation": ALLOCATION_UNITS, "system_failure_probability": ESTIMATE_UNITS,
+        "start_up_verification": {"corners": quantities, "simulations": UNITLESS, "failure_probability": UNITLESS,
+                                  "performance_point_beta": UNITLESS, "share_of_target": UNITLESS},
         **{key: reliability_units(data[key], quantities) for key in ("reliability", "nominal_reliability")
            if data.get(key)}})
+
+
+ESTIMATE_UNITS = dict.fromkeys(("probability", "low", "high"), UNITLESS)
+ALLOCATION_UNITS = {"target": UNITLESS, "budget": UNITLESS, "series_bound": UNITLESS, "system": ESTIMATE_UNITS,
+                    "constraints": UNITLESS}  # a system chance design's split of 1 - P: probabilities and betas
 
 
 def reliability_units(data: dict, quantities: dict) -> dict:
@@ -500,11 +508,15 @@ def _estimate(estimate) -> str:
 def reliability_lines(result, case) -> list[str]:
     """The system's failure probability (robust and nominal design) and each constraint's design point with its
     reliability index and estimates (robust design)."""
+    from clutchopt.optimise.robust import system_failure
+
     if result.reliability is None:
         return []
     quantities = {q.name: q for q in case.quantities}
     lines = [f"System (any constraint fails{'; the start-up limits apart, simulated' if result.start_up_points else ''}): robust {_estimate(result.reliability.system)}, nominal "
              f"{_estimate(result.nominal_reliability.system)}",
+             *([f"System with the start-up limits (any constraint or limit fails; union bound): robust "
+                f"{_estimate(system_failure(result))}"] if result.start_up_failure else []),
              "Design points of the robust design (most probable failure point; beta = its distance in standard "
              "normal space): estimates FORM, SORM (Breitung), IS (importance sampling at the design point, 95% "
              "interval)"]
@@ -514,6 +526,19 @@ def reliability_lines(result, case) -> list[str]:
             continue
         at = ", ".join(f"{q} {quantities[q].show(v, 5)}" for q, v in c.values.items())
         lines.append(f"  {name}: beta {c.point.beta:.4g} at {at}: " + ", ".join(_estimate(e) for e in c.estimates))
+    return lines
+
+
+def allocation_lines(allocation) -> list[str]:
+    """How a system chance design split 1 - P between its constraints (``RiskAllocation``): the claim, then each
+    constraint's beta, the index importance sampling added, its share and its estimate."""
+    data = allocation.as_dict()
+    lines = [f"Risk allocation (system chance): {data['claim']}"]
+    for name, c in data["constraints"].items():
+        estimate = c["failure_probability"]
+        lines.append(f"  {name}: beta {c['beta']:.4g}, index shift {c['index_shift']:+.3g}, share {c['share']:.3g}"
+                     + (f", P(fail) {estimate['probability']:.3g} ({estimate['low']:.3g} to {estimate['high']:.3g}, "
+                        f"{estimate['estimator']})" if estimate else ""))
     return lines
 
 
@@ -538,8 +563,12 @@ def robust_text(result, case) -> str:
            + (f"the design (any constraint{SYSTEM_APART if result.start_up_points else ''}) holds"
               if result.method == "system_chance" else
               "each constraint holds") + " with that probability, each constraint at its performance point (PMA), "
-           "beta corrected until importance sampling meets the target"
-           + (", a start-up designed at the corner of the quantiles where it binds" if result.start_up_points else ""))
+           + ("1 - P split between the constraints by the NLP (optimal risk allocation), the system verified by "
+              "importance sampling" if result.allocation else "beta corrected until importance sampling meets the "
+                                                               "target")
+           + ((", each start-up limit at its performance point too (simulated starts)" if result.start_up_beta
+               is not None else ", a start-up designed at the corner of the quantiles where it binds")
+              if result.start_up_points else ""))
     robust, nominal = result.solution, result.nominal
     change = robust.objective / nominal.objective - 1 if nominal.objective else float("nan")
     nominal_checks = {c.name: c for c in result.nominal_checks}
@@ -571,8 +600,12 @@ def robust_text(result, case) -> str:
               else "Constraints under scatter: margin at its performance point")
              + f", and the failure probability: IS by importance sampling at the design point (95% interval), MC from "
                f"{result.samples} Monte Carlo samples ({result.as_dict()['confidence']:.0%} Clopper-Pearson interval)"
-             + (f" (a start-up's: margin at its worst simulated corner, P(fail) from {result.start_up_samples} "
-                "simulated starts)" if result.start_up_points else ""), _frame(rows)]
+             + ((f" (a start-up's: margin at its performance point, P(fail) by importance sampling of "
+                 f"{result.start_up_samples} simulated starts, FORM or exact)" if result.start_up_beta is not None
+                 else f" (a start-up's: margin at its worst simulated corner, P(fail) from {result.start_up_samples} "
+                      "simulated starts)") if result.start_up_points else ""), _frame(rows)]
+    if result.allocation is not None:
+        lines += ["", *allocation_lines(result.allocation)]
     if result.reliability is not None:
         lines += ["", *reliability_lines(result, case)]
     if bars:

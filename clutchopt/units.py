@@ -49,6 +49,20 @@ def table_entry(unit: str) -> tuple[float, str, tuple, float]:
     return info.factor, _pint_si(unit)[1], dimensions, info.angle
 
 
+# Offset units (a temperature, not a difference): SI = value * scale + offset, as pint's OffsetConverter computes it
+# (pint: degree_Celsius = kelvin; offset: 273.15), so a case's "40 degC" is read without building pint's registry
+# (0.35 s: a start-up case's ambient temperature defaults to 40 degC); tests/test_units.py checks it against pint.
+OFFSET_UNITS = {"degC": (1.0, 273.15, "K", (("[temperature]", 1),))}
+
+
+def _offset_si(unit: str) -> tuple[float, str] | None:
+    """(pint's SI factor, SI unit) of an offset unit of the table (the factor: its 1 in SI, 1 degC = 274.15 K)."""
+    if unit not in OFFSET_UNITS:
+        return None
+    scale, offset, si, _ = OFFSET_UNITS[unit]
+    return scale + offset, si
+
+
 def _pint_si(unit: str) -> tuple[float, str]:
     base = registry().Quantity(1.0, unit).to_base_units()
     text = _PRETTY_SI.get(str(base.units), f"{base.units:~}") if str(base.units) != "dimensionless" else "1"
@@ -58,13 +72,13 @@ def _pint_si(unit: str) -> tuple[float, str]:
 @lru_cache(maxsize=None)
 def si_factor(unit: str) -> float:
     """Multiply a value in ``unit`` by this to get SI (``mm`` -> 1e-3, ``deg`` -> pi/180)."""
-    return (UNITS.get(unit) or _pint_si(unit))[0]
+    return (UNITS.get(unit) or _offset_si(unit) or _pint_si(unit))[0]
 
 
 @lru_cache(maxsize=None)
 def si_unit(unit: str) -> str:
     """The SI base unit of ``unit`` as text (``MPa`` -> ``kg / m / s ** 2`` is avoided: named forms kept)."""
-    return (UNITS.get(unit) or _pint_si(unit))[1]
+    return (UNITS.get(unit) or _offset_si(unit) or _pint_si(unit))[1]
 
 
 _PRETTY_SI = {
@@ -218,6 +232,8 @@ def unit_info(unit: str) -> UnitInfo:
     entry = UNITS.get(unit)
     if entry is not None:
         return UnitInfo(entry[0], frozenset(entry[2]), entry[3], False)
+    if unit in OFFSET_UNITS:
+        return UnitInfo(_offset_si(unit)[0], frozenset(OFFSET_UNITS[unit][3]), 0, True)
     return _pint_unit_info(unit)
 
 
@@ -271,7 +287,7 @@ def to_si(field: str, raw: object, unit: str) -> float:
         if not unit_text:  # a number in text is read as a bare one: SI (radians, where an angle is expected)
             given = given._replace(angle=expected.angle)
         if given.offset:  # an absolute temperature (the field is one too): pint adds the offset
-            value = float(registry().Quantity(number, unit_text).to_base_units().magnitude)
+            value = float(into_si(number, unit_text))
         else:
             value = number * given.factor if number else 0.0  # 0 * inf would be nan; inf is refused below
     else:
@@ -293,6 +309,9 @@ def difference_unit(unit: str) -> str:
 def into_si(value, unit: str):
     """A number in ``unit`` (a number or a NumPy array) in SI, the inverse of :func:`from_si`: an offset unit (degC)
     gives the absolute temperature in K, so 20 degC is 293.15 K, not 20 x 274.15."""
+    if unit in OFFSET_UNITS:
+        scale, offset, *_ = OFFSET_UNITS[unit]
+        return value * scale + offset
     if unit not in UNITS and unit_info(unit).offset:
         return registry().Quantity(value, unit).to(registry().kelvin).magnitude
     return value * si_factor(unit)
@@ -301,6 +320,9 @@ def into_si(value, unit: str):
 def from_si(value, unit: str):
     """Convert an SI value to ``unit`` for display; an offset unit (degC) takes an absolute temperature in K, so
     293.15 K is 20 degC, not 293.15 (a number or a NumPy array)."""
+    if unit in OFFSET_UNITS:
+        scale, offset, *_ = OFFSET_UNITS[unit]
+        return (value - offset) / scale
     if unit not in UNITS and unit_info(unit).offset:
         return registry().Quantity(value, registry().kelvin).to(unit).magnitude
     return value / si_factor(unit)

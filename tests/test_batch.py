@@ -103,6 +103,16 @@ def test_every_point_is_verified_and_counted(swept):
     assert sweep.check_s > 0 and sweep.solver_s > 0  # both measured (no timing is asserted)
 
 
+def test_a_padded_chain_calls_no_solver():
+    # the wedge's 40 smooth points: the first solved alone by one cold IPOPT call, then chains of 8, 16 and 15
+    # points; the last runs on the chained function of 16 whose 16th column is padding (chain_length), which calls
+    # no solver: 1 + 8 + 16 + 15 = 40 solver calls (41 when the padding re-solved the last point)
+    case, problem, quantity, values, sweep, solutions = _sweep("wedge")
+    assert [s.status for s in solutions] == ["optimal"] * 40
+    assert [s.solver.solves for s in solutions] == [1] * 40
+    assert sweep.solves == 40
+
+
 def test_the_integer_search_along_a_batched_sweep():
     # cable count rises with the torque: a batch stops short of the point where its count breaks the cable
     # stress whatever the rest, the integer search chooses the next count there in one-point SQP re-solves (the
@@ -117,6 +127,9 @@ def test_the_integer_search_along_a_batched_sweep():
         assert solution.solver.status == BATCHED and solution.solver.solves == 2
         assert [e["status"][:9] for e in solution.integer_search] == ["excluded:", BATCHED[:9]]
     assert sweep.solves / len(values) <= 1.5  # issue 14, goal 2
+    # issue 26: 60 points, +2 for the first (solved alone: its relaxation, then the count), +1 at each of the 7
+    # changes (the relaxation): every chain ends at the point its count is excluded, none padded by a solve
+    assert len(changes) == 7 and sweep.solves == 60 + 2 + 7
     for value, solution in list(zip(values, solutions))[::7]:
         point = case.with_values(**{quantity: float(value)})
         for n in (counts[0] - 1, solution.design["cable_count"] - 1, solution.design["cable_count"] + 1):
@@ -124,6 +137,21 @@ def test_the_integer_search_along_a_batched_sweep():
                 other = problem.solve(type(point)(point.coupling, "", point.values, {**point.bounds,
                                                                                      "cable_count": (n, n)}))
                 assert other.status != "optimal" or other.objective >= solution.objective * (1 - 3e-8)
+
+
+def test_a_chain_ends_near_the_next_change_of_the_integers():
+    # ball rows fall with the speed, the search stepping to a neighbour the multipliers promise (no exclusion to
+    # foresee it): at each change the chained column of the rows before is the search's first attempt, the
+    # neighbour its second (2 solves); the next chain ends where the next change is expected (batch_pace). At
+    # least 25 + 1 (the first point: relaxation and rows) + 7 changes = 33 solves; chains that ran past the
+    # changes spent 74 (41 on points after a change), now at most 9 more than the least
+    case, problem, quantity, values, sweep, solutions = _sweep("ball_speed")
+    changes = [s for before, s in zip(solutions, solutions[1:]) if s.design["ball_rows"] != before.design["ball_rows"]]
+    assert len(changes) == 7
+    for solution in changes:
+        assert solution.solver.status == BATCHED and solution.solver.solves == 2
+        assert [e["status"] for e in solution.integer_search] == [BATCHED, BATCHED]
+    assert 33 <= sweep.solves <= 42
 
 
 def test_an_infeasible_stretch_costs_one_design_solve_a_point():

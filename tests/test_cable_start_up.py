@@ -109,6 +109,8 @@ def test_a_stress_limit_no_cable_count_meets_is_diagnosed():
     ({"effects": ["slip_friction"], "driver": {}}, "needs the motor that drives it"),
     ({"effects": ["slip_friction", "motor_curve", "gravity"]}, "gravity does not apply to the cable coupling"),
     ({"limits": {"max_start_time": "2 s", "max_friction_work": "1 kJ"}}, "releases no friction heat"),
+    ({"heat": {"capacity": "100 J/K"}}, "start_up.heat.capacity: does not apply to the cable coupling"),
+    ({"wear": {"wear_rate": "1e-4 mm^3/J"}}, "start_up.wear.wear_rate: does not apply to the cable coupling"),
 ])
 def test_what_a_cable_start_cannot_take(edit, text):
     with pytest.raises(InputError, match=text):

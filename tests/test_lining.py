@@ -222,3 +222,22 @@ def test_a_sweep_of_the_ambient_reads_degc_as_an_absolute_temperature():
     assert ambient.values == pytest.approx((293.15, 333.15), rel=1e-15) and ambient.shown == (20.0, 60.0)
     assert parse_vary("speed=1000:1200:3", "lever", case.quantities).values == pytest.approx(
         tuple(n * math.pi / 30 for n in (1000, 1100, 1200)), rel=1e-15)
+
+
+def test_the_library_note_keeps_the_librarys_order_whatever_the_hash_seed():
+    """What the friction pair fills in [start_up] is listed in the library's order (it followed a set's order, which
+    changed with PYTHONHASHSEED from one run to the next)."""
+    import ast
+    import os
+    import subprocess
+    import sys
+
+    from tests.conftest import ROOT
+
+    code = f"from clutchopt.cases import load_case\nprint(list(load_case({LEVER!r}).filled))"
+    runs = {subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True,
+                           env={**os.environ, "PYTHONHASHSEED": str(seed)}).stdout for seed in (1, 2, 3, 4)}
+    assert len(runs) == 1
+    filled = ast.literal_eval(runs.pop())
+    assert filled.index("max_lining_temperature") < filled.index("max_continuous_temperature") < \
+        filled.index("wear_rate")  # the order organic_dry's fields fill them in

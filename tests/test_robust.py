@@ -14,7 +14,7 @@ from clutchopt.errors import InputError
 from clutchopt.optimise import solve_case
 from clutchopt.optimise.robust import CHANCE, WORST_CASE, parse_method, solve_robust, verdict
 from clutchopt.optimise.robust_models import corner_checks, failure_probabilities
-from clutchopt.optimise.robust_start_up import start_up_corner, start_up_failures
+from clutchopt.optimise.robust_start_up import start_up_corner, start_up_corners, start_up_failures
 from clutchopt.output import robust_text
 from clutchopt.scatter import draw
 from clutchopt.start_up.simulation import run_start_up, start_up_model
@@ -145,10 +145,11 @@ def test_start_up_carries_the_scatter_to_its_worst_corner():
 
 @pytest.fixture(scope="module")
 def motor_start():
-    """The chance design (P = 0.999) of the worked example: f uniform over 0.12 to 0.18, 40 simulated starts."""
+    """The chance design (P = 0.999) of the worked example: f uniform over 0.12 to 0.18, 100 simulated starts (of Monte
+    Carlo, and of importance sampling at the start time's design point)."""
     path = CASES / "wedge_motor_start_scatter.toml"
     case = parse_case(read_toml(path), str(path))
-    return case, solve_robust(case, CHANCE, 0.999, starts=40)
+    return case, solve_robust(case, CHANCE, 0.999, starts=100)
 
 
 def start_time(case, design: dict, friction: float) -> float:
@@ -174,6 +175,32 @@ def test_chance_designs_the_start_up_at_its_quantile_corner(motor_start):
     assert result.solution.objective > 1.2 * result.nominal.objective  # heavier weights carry the start at low f
 
 
+def test_chance_puts_each_start_up_limit_at_its_performance_point(motor_start):
+    """One uniform f, and every start-up margin monotone in f: the exact chance design has f at its quantile. On the
+    beta-sphere of one standard normal u (beta = -Phi^-1(0.001) = 3.090232), the map f = 0.12 + 0.06 Phi(u) puts
+    the two points at 0.12 + 0.06 x 0.001 = 0.12006 and 0.18 - 0.00006 = 0.17994: the start time (slowest at low f)
+    binds at the first, the lock-up speed (which f lowers) at the second, the closed forms that f does not move at
+    the means. PMA reproduces the quantile corner of start_up_corners to 1e-6. At the design the start takes
+    exactly max_start_time at f = 0.12006 and longer below, so P(start_time fails) = P(f < 0.12006) = 0.001
+    exactly: the importance-sampling interval of 100 simulated starts at the design point holds it."""
+    case, result = motor_start
+    quantile = start_up_corners(case, "paper", result.solution.design, case.scatter, 0.999).corners
+    for name in ("start_up", "start_time", "temperature_rise", "lock_up_speed"):
+        assert result.corners[name]["friction_coefficient"] == pytest.approx(
+            quantile[name]["friction_coefficient"], rel=1e-6)
+    assert result.corners["start_time"]["friction_coefficient"] == pytest.approx(0.12006, rel=1e-6)
+    assert result.corners["lock_up_speed"]["friction_coefficient"] == pytest.approx(0.17994, rel=1e-6)
+    assert result.corners["motor_breakdown_torque"] == {"friction_coefficient": 0.15}
+    assert result.start_up_beta == pytest.approx(-ndtri(0.001), rel=1e-12) and result.start_up_fallbacks == ()
+    start = result.reliability.constraints["start_time"]
+    # the design point one step from the performance point, beta + g / |dg/du|: g = -2.4e-7 (the start 2.4e-7 longer
+    # than allowed, within the start-up's tolerance 1e-6), dg/du = 0.06 phi(3.09) / 0.12 x 0.478 / 0.06 ~ 3e-3
+    assert start.point.beta == pytest.approx(3.090232, rel=1e-4)
+    assert start.estimates[0].probability == pytest.approx(0.001, rel=1e-3)  # FORM: exact for one monotone quantity
+    sampled = start.best
+    assert sampled.estimator == "importance sampling" and sampled.low <= 0.001 <= sampled.high <= 0.002
+
+
 def test_a_start_up_that_misses_is_not_optimal(motor_start):
     """The nominal design takes 16 s at the slow quantile corner; started by Monte Carlo it fails whenever f is below
     0.15, half the time: either is enough for a verdict other than optimal."""
@@ -183,7 +210,7 @@ def test_a_start_up_that_misses_is_not_optimal(motor_start):
     failure = start_up_failures(case, "paper", result.nominal.design, case.scatter, 40)
     p, low, high = failure["start_time"]
     assert 0.001 < low <= 0.5 <= high
-    status, diagnosis = verdict(replace(result, start_up_failure=failure))
+    status, diagnosis = verdict(replace(result, start_up_failure=failure, start_up_samples=40))
     assert status == "unverified" and "40 simulated starts: start_time fails with probability" in diagnosis
 
 
@@ -193,18 +220,21 @@ def test_the_verification_is_one_line_in_text_and_json(motor_start):
     assert line.startswith("verified: constraints at their performance points for chance P = 0.999, beta corrected "
                            "by importance sampling; 10000 Monte Carlo samples: largest P(fail) ")
     assert "importance sampling at the design points: largest P(fail) 0.00102 (finger_bending; 95% interval" in line
-    assert ("start-up limits not by PMA but at the quantile corners: start_time, temperature_rise, "
-            "min_engagement_speed") in line
-    assert ("start-up designed at (friction_coefficient 0.12006), simulated at the 2 quantile corner(s) "
-            "(friction_coefficient 0.12006; friction_coefficient 0.17994): every limit met; 40 simulated starts: "
-            "largest P(fail) 0 (") in line
-    assert f"95% interval 0 to {1 - 0.025 ** (1 / 40):.2g})" in line  # Clopper-Pearson, no failure in 40
+    assert "quantile corner" not in line  # every start-up limit by its performance point, none fell back
+    assert ("start-up designed at its performance point (friction_coefficient 0.12006; beta 3.09), each limit "
+            "simulated at its own, the 3 point(s) (friction_coefficient 0.12006; friction_coefficient 0.15; "
+            "friction_coefficient 0.17994): every limit met; importance sampling of 100 simulated starts at the "
+            "start-up's design points: largest P(fail) ") in line
+    assert "100 simulated starts: largest P(fail) 0 (" in line
+    assert f"95% interval 0 to {1 - 0.025 ** (1 / 100):.2g})" in line  # Clopper-Pearson, no failure in 100
     assert line in robust_text(result, case).splitlines()
     data = result.as_dict()
     assert data["verification"] == line
     verified = data["start_up_verification"]
-    assert verified["simulations"] == 40 and len(verified["corners"]) == 2
-    assert verified["failure_probability"]["start_time"] == [0.0, 0.0, pytest.approx(1 - 0.025 ** (1 / 40))]
+    assert verified["simulations"] == 100 and len(verified["corners"]) == 3  # f at the means: the closed forms
+    assert verified["failure_probability"]["start_time"] == [0.0, 0.0, pytest.approx(1 - 0.025 ** (1 / 100))]
+    assert verified["performance_point_beta"] == pytest.approx(3.090232306167813) and not verified[
+        "at_quantile_corners"]
     assert {c["name"] for c in data["checks"]} >= {"start_time", "temperature_rise", "lock_up_speed"}
 
 

@@ -11,7 +11,7 @@ from clutchopt.cases import load_case
 from clutchopt.errors import InputError
 from clutchopt.optimise import solve_case
 from clutchopt.optimise.sweep import Sweep, dask_runner
-from clutchopt.optimise.sweep_grid import grid_points, parse_vary
+from clutchopt.optimise.sweep_grid import Vary, grid_points, parse_vary
 from clutchopt.store import RunStore
 from conftest import CASES
 
@@ -215,3 +215,30 @@ def test_a_varied_design_variable_keeps_its_input_column():
     assert frame["status"].tolist() == ["optimal", "infeasible", "optimal", "infeasible"]  # proven (interval search)
     assert frame["design.lead_angle [deg]"].iloc[[0, 2]].tolist() == pytest.approx([10.38, 12.7])
     assert frame["design.lead_angle [deg]"].iloc[[1, 3]].isna().all()
+
+
+def test_points_where_the_integers_change_equal_individual_solves():
+    # the cable over its allowable stress: the count falls as the stress allowed rises, each change found where a
+    # chain's verdict says the next count down is no longer excluded by the cable stress and promises a gain (the
+    # batch's integer search there, its first attempt the chain's own column); at every change and the point before
+    # it, the sweep's design is the one `solve` finds alone (cold IPOPT: the same count, the optimum to the solvers'
+    # tolerances). Solver calls: at least 40 + 2 (the first point, solved alone: relaxation, then counts) + 1 a
+    # change (the next count down) = 49 with its 7 changes; chains that ran past the changes spent 81, now 63 (the
+    # first changes come before a gap between them is known)
+    case = load_case(CASES / "cable_conveyor.toml")
+    values = case.values["allowable_cable_stress"] * np.geomspace(0.5, 2.0, 40)
+    stress = next(q for q in case.quantities if q.name == "allowable_cable_stress")
+    sweep = Sweep(case, [Vary(stress, tuple(values.tolist()))], mode="paper")
+    result = sweep.run(progress=False)
+    counts = result.frame["cable_count"].tolist()
+    changes = [j for j in range(1, len(counts)) if counts[j] != counts[j - 1]]
+    assert len(changes) == 7 and counts == sorted(counts, reverse=True)
+    assert 49 <= result.spent["solves"] <= 63
+    for j in sorted({k for change in changes for k in (change - 1, change)}):
+        alone = solve_case(case.with_values(allowable_cable_stress=float(values[j])), "paper")
+        got = result.solutions[j]
+        assert got["status"] == alone.status == "optimal"
+        assert got["design"]["cable_count"] == alone.design["cable_count"], j
+        assert got["objective"]["value"] == pytest.approx(alone.objective, rel=1e-9)
+        for name, value in alone.design.items():
+            assert got["design"][name] == pytest.approx(value, rel=1e-8, abs=1e-12), (j, name)

@@ -230,3 +230,37 @@ def test_every_declared_quantity_refuses_one_angle_more(quantity):
     assert to_si(quantity.key, f"1 {unit}", unit) == pytest.approx(1 / from_si(1.0, unit) if unit else 1.0)
     with pytest.raises(InputError, match="expected"):
         to_si(quantity.key, f"1 ({unit})*deg" if unit else "1 deg", unit)
+
+
+# --- offset units without pint (issue 26: a start-up case's ambient temperature is 40 degC by default) ---------------
+def test_the_offset_table_is_what_pint_says():
+    from clutchopt.units import OFFSET_UNITS, _pint_si, _pint_unit_info, si_factor, si_unit, unit_info
+
+    for unit in OFFSET_UNITS:
+        assert unit_info(unit) == _pint_unit_info(unit)  # factor 274.15 (1 degC in K), [temperature], offset
+        assert (si_factor(unit), si_unit(unit)) == _pint_si(unit)
+
+
+@given(st.floats(min_value=-273.15, max_value=1e6, allow_subnormal=False), st.sampled_from(["{!r}", "{:.6g}"]))
+def test_celsius_reads_and_shows_as_pint_to_the_last_bit(value, form):
+    from clutchopt.units import from_si, into_si, ureg
+
+    text = form.format(value)
+    kelvin = float(ureg.Quantity(float(text), "degC").to("K").magnitude)
+    assert to_si("start_up.heat.ambient", f"{text} degC", "degC") == kelvin == into_si(float(text), "degC")
+    assert from_si(kelvin, "degC") == float(ureg.Quantity(kelvin, "K").to("degC").magnitude)
+
+
+def test_a_start_up_case_is_read_without_pint():
+    """Its [start_up] section's ambient temperature defaults to "40 degC": 313.15 K (40 + 273.15), not pint's work."""
+    import subprocess
+    import sys
+
+    from tests.conftest import CASES, ROOT
+
+    code = (f"import sys\nfrom clutchopt.cases import load_case\n"
+            f"case = load_case({str(CASES / 'wedge_motor_start.toml')!r})\n"
+            "print('pint' in sys.modules, case.values['ambient_temperature'])")
+    result = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split() == ["False", "313.15"]

@@ -165,8 +165,9 @@ def add_robust_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--samples", action=Checked, check=integer, metavar="N",
                          help="Monte Carlo samples of the scatter for --robust (default 10000)")
     command.add_argument("--starts", action=Checked, check=integer, metavar="N",
-                         help="simulated starts of the Monte Carlo of a [start_up] for --robust (default 200, about "
-                              "30 ms each)")
+                         help="simulated starts of the Monte Carlo of a [start_up] for --robust, and with chance=P "
+                              "as many again for importance sampling at each start-up limit's design point "
+                              "(default 200, about 30 ms each)")
 
 
 def robust_options(args):

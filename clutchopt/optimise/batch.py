@@ -23,12 +23,14 @@ A batch is kept up to its first point that fails a test. Where the integer searc
 integers excluded there, or a neighbour to try), the batch runs the search itself, with ``Problem.solve``'s steps
 (``integers.descend``, then the relaxation and ``integers.nearest_integers``): each integer combination is excluded
 by the tables or re-solved by a one-point chained SQP and KKT-checked (the relaxation with its Hessian
-convexified). Otherwise, and where a re-solve of that search fails its check, the point is solved by
-``Problem.solve``, warm from the last kept point (SQP, warm IPOPT, the integer search, the cold solve and the
-infeasibility diagnosis), and the next batch starts after it, 8 points long, doubling while batches pass (up to
-256). A chain's length is a power of two (few functions to build): rather than leave a remainder of up to PADDING
-points to another call, it repeats its last point. After a point without a design the points are solved cold, one
-by one, until one is optimal. A point that passes the KKT test but not the float64 check (rare) is solved again by
+convexified; the batch's own integers not again where the chain solved them at that point: its column there is
+the first attempt). The next chain then ends where the next such point is expected (``batch_pace``). Otherwise,
+and where a re-solve of that search fails its check, the point is solved by ``Problem.solve``, warm from the last
+kept point (SQP, warm IPOPT, the integer search, the cold solve and the infeasibility diagnosis), and the next
+batch starts after it, 8 points long, doubling while batches pass (up to 256). A chain's length is a power of two
+(few functions to build): rather than leave a remainder of up to PADDING points to another call, it is padded with
+columns that call no solver (``chain.chained_sqp``). After a point without a design the points are solved cold,
+one by one, until one is optimal. A point that passes the KKT test but not the float64 check (rare) is solved again by
 ``Problem.solve`` at the end of its window. A chained call that CasADi ends with an evaluation error counts as a
 batch whose first point failed. A window's points are checked and built into solutions by
 ``clutchopt.optimise.batch_window``.
@@ -38,8 +40,8 @@ starts from and normalises the objective by that point's objective, where ``Prob
 each previous point. A design variable that the objective does not price at the optimum (the ball clutch's groove
 conformity where the contact stress does not bind) may be left elsewhere by the batch's SQP than by
 ``Problem.solve``'s IPOPT, both verified optimal. A point solved in a batch reports ``sqpmethod`` with the status
-``batched, KKT verified``, its share of the batch's time, its solver calls (its integer search's re-solves; a
-padded chain's repeats shared out), the integer search where the batch ran one, and no iteration count (the
+``batched, KKT verified``, its share of the batch's time, its solver calls (1, or its integer search's re-solves),
+the integer search where the batch ran one, and no iteration count (the
 chained solver reports none per point).
 """
 
@@ -53,6 +55,7 @@ import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.optimise.attempts import warm_multipliers
+from clutchopt.optimise.batch_pace import BatchPace
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
 from clutchopt.optimise.chain import chain_verdict, chained_sqp
 from clutchopt.optimise.integers import descend, excluded_entry, nearest_integers, relaxation_seed, search_entry
@@ -68,13 +71,13 @@ WINDOW = 1024  # points whose float64 checks run together; results are handed on
 WINDOW_S = 0.25  # or after this many seconds of solving, whichever comes first (a progress bar moves on)
 EXCLUSION_SPAN = LONGEST_BATCH  # points ahead whose exclusion of an integer combination is evaluated at once (a batch's
 # points at least; fewer cost less where the integers change often, since each table is a mapped CasADi call)
-PADDING = 64  # a chain may repeat its last point this many times to save a call (about 4 us a repeated point,
-# against 0.2 ms of a call and its checks, on the cable: 64 cost about as much as the call they save)
+PADDING = 64  # a chain may be padded with this many columns that call no solver to save a call (a padded column
+# costs under 4 us, its verdict included, against 0.1-0.2 ms of a call and its checks)
 
 
 def chain_length(count: int) -> int:
     """The chained function for ``count`` points: a power of two (few functions to build), ``count`` rounded up
-    where that repeats the last point at most PADDING times, else down (the rest go to the next batch)."""
+    where that pads at most PADDING columns, else down (the rest go to the next batch)."""
     up = 1 << (count - 1).bit_length()
     return up if up - count <= PADDING else up >> 1
 
@@ -105,6 +108,16 @@ class _Chain(Block):
     def block(self, passed: int) -> Block:
         """The first ``passed`` points."""
         return Block(self.index[:passed], **{key: value[:, :passed] for key, value in self.arrays.items()})
+
+    def column(self, j: int, f_scale: float) -> "_Chain":
+        """Point ``j`` alone, its objective normalised by ``f_scale`` (the scaled problem's objective and multipliers
+        are the chain's times its normaliser over ``f_scale``: the same optimum)."""
+        a = {key: value[:, j:j + 1].copy() for key, value in self.arrays.items()}
+        ratio = a["p"][-1, 0] / f_scale
+        for key in ("f", "lam_x", "lam_g", "dlam_x", "dlam_g"):
+            a[key] *= ratio
+        a["p"][-1, 0] = f_scale
+        return _Chain(self.index[j:j + 1], self.ok[j:j + 1], self.moves[j:j + 1], **a)
 
 
 class _Unsettled(Exception):
@@ -207,32 +220,34 @@ class BatchSweep:
     def run(self, window: int = WINDOW) -> Iterator["Solutions"]:
         """Solve every point in order; yields the solutions window by window, each window checked in float64."""
         start: _Start | None = None  # where the next batch starts; None: after a point without a design
-        size, k = FIRST_BATCH, 0
+        pace, k = BatchPace(FIRST_BATCH, LONGEST_BATCH), 0
         while k < self.count:
             first, end, deadline = k, min(k + window, self.count), time.perf_counter() + WINDOW_S
             blocks: list[Block] = []
             alone: dict[int, Solution] = {}
             failed = False  # the last point is without a design: the window waits for a feasible point after it
             while k < end and (failed or time.perf_counter() < deadline):  # each turn solves at least one point
-                wanted = min(size, end - k)
-                block, chained, searching = self._batch(start, k, wanted) if start is not None else (None, 0, False)
+                wanted, reach = min(pace.size, end - k), min(2 * pace.size, LONGEST_BATCH, end - k)
+                block, chained, searching, tried = (self._batch(start, k, wanted, reach) if start is not None
+                                                    else (None, 0, False, None))
                 passed = 0 if block is None else len(block.index)
                 if passed:
                     blocks.append(block)
                     start, k = _Start(self, block=block), k + passed
                     self.feasible, failed = start.warm.design, False
                 if chained and passed == chained:
-                    size = min(2 * size, LONGEST_BATCH)
+                    pace.passed()
                     if not searching or k == end:  # (a batch that passes up to its integers' exclusion hands the
                         continue  # next point to the search)
-                settled = self._settle(start, k) if searching else None
+                settled = self._settle(start, k, tried) if searching else None
                 if settled is not None:  # the integer search decided point k in the batch
+                    pace.broke(k)
                     blocks.append(settled)
                     start, k = _Start(self, block=settled), k + 1
                     self.feasible, failed = start.warm.design, False
                     continue
                 if passed < chained:  # point k failed a test in the batch: the next batch starts short
-                    size = FIRST_BATCH
+                    pace.restart()
                 alone[k] = self._solve_alone(k, start.warm if start is not None else None)
                 start, k = self._start_of(alone[k]), k + 1
                 failed = alone[k - 1].status not in DESIGN_STATUSES
@@ -257,31 +272,35 @@ class BatchSweep:
         self.solver_s += solution.solver.time_s
         return solution
 
-    def _batch(self, start: _Start, k: int, count: int) -> tuple[Block | None, int, bool]:
-        """Chain up to ``count`` points from ``start``: the columns up to the first that fails a test (None if it is
-        the first), how many were chained (fewer than asked where the batch's integers are excluded ahead, none
-        if they are at ``k``, see :func:`chain_length`), and whether the first point left is the integer search's
-        to decide (its integers excluded there, or a neighbouring combination to try; also where every chained point
-        passed and the next one excludes them)."""
+    def _batch(self, start: _Start, k: int, count: int, reach: int) -> tuple[Block | None, int, bool, "_Chain | None"]:
+        """Chain ``count`` points from ``start`` (as many as up to a point within ``reach`` where the batch's
+        integers are excluded): the columns up to the first that fails a test (None if it is the first), how many
+        were chained (none if the integers are excluded at ``k``, see :func:`chain_length`), whether the first point
+        left is the integer search's to decide (its integers excluded there, or a neighbouring combination to try;
+        also where every chained point passed and the next one excludes them), and in the second case that point's
+        chained column (KKT-verified at the batch's integers: the search's first attempt)."""
         lower, upper = self.lower.copy(), self.upper.copy()
         lower[self.integer] = upper[self.integer] = start.combo
         first = -1  # the first point ahead where the batch's integers are excluded
         if self.integer:  # the batch stops short of a point its integers cannot serve whatever the rest (the search
             # excludes them there without a solve)
-            excluded = self._excluded(lower, k, count)
+            excluded = self._excluded(lower, k, max(count, reach))
             if excluded.any():
                 first = int(np.argmax(excluded))
                 if first == 0:
-                    return None, 0, True  # foreseen: nothing chained
+                    return None, 0, True, None  # foreseen: nothing chained
                 count = first
         chain = self._chain(start, k, count, lower, upper, start.seed)
         if chain is None:
-            return None, min(count, chain_length(count)), False
+            return None, min(count, chain_length(count)), False, None
         count = len(chain.index)
         ok = chain.ok & ~chain.moves
         passed = int(np.argmin(ok)) if not ok.all() else count
         searching = bool(chain.ok[passed]) if passed < count else count == first  # passed up to the exclusion
-        return (chain.block(passed) if passed else None), count, searching
+        tried = None  # normalised as the batch that starts after the passed points
+        if searching and passed < count:
+            tried = chain.column(passed, _Start(self, block=chain.block(passed)).f_scale if passed else start.f_scale)
+        return (chain.block(passed) if passed else None), count, searching, tried
 
     def _chain(self, start: _Start, k: int, count: int, lower: np.ndarray, upper: np.ndarray,
                seed: dict, method: str = "sqp_chain", predict: bool = True) -> "_Chain | None":
@@ -292,21 +311,22 @@ class BatchSweep:
         go to Problem.solve, which reports it)."""
         length = chain_length(count)
         count = min(count, length)
-        points = np.minimum(np.arange(k, k + length), k + count - 1)  # padded with the last point
+        points = np.minimum(np.arange(k, k + length), k + count - 1)  # the padding's parameters: the last point's
         lbx, ubx = lower / start.scale, upper / start.scale
         m, n = len(self.values), len(start.scale)
         p_rows = np.empty((length, m + n + 1))  # the NLP parameters, a point a row: CasADi's memory of the columns
         p_rows[:, :m], p_rows[:, m:m + n], p_rows[:, -1] = self._by_point[points], start.scale, start.f_scale
         p = p_rows.T
         ratio = self._ratios(points) if predict else 0.0
+        live = (np.arange(length) < count).astype(float)  # the padding calls no solver
         began = time.perf_counter()
         try:
             x, lam_x, lam_g, dx, dlam_x, dlam_g, f = chained_sqp(self.posed, length, method)(
-                *(seed[key] for key in ("x", "lam_x", "lam_g", "dx", "dlam_x", "dlam_g")), ratio, p, lbx, ubx)
+                live, *(seed[key] for key in ("x", "lam_x", "lam_g", "dx", "dlam_x", "dlam_g")), ratio, p, lbx, ubx)
         except RuntimeError:
             x = None
         seconds = time.perf_counter() - began
-        self.solves, self.solver_s = self.solves + length, self.solver_s + seconds
+        self.solves, self.solver_s = self.solves + count, self.solver_s + seconds
         if x is None:
             return None
         began = time.perf_counter()
@@ -318,7 +338,7 @@ class BatchSweep:
             arrays = {key: value[:, :count] for key, value in arrays.items()}
         return _Chain(np.arange(k, k + count), kkt[0, :count] > 0.5, moves[0, :count] > 0.5, **arrays,
                       lbx=lbx[:, None].repeat(count, axis=1), ubx=ubx[:, None].repeat(count, axis=1),
-                      time=np.full((1, count), seconds / count), solves=np.full((1, count), length / count))
+                      time=np.full((1, count), seconds / count), solves=np.ones((1, count)))
 
     def _ratios(self, points: np.ndarray) -> np.ndarray:
         """Per chained point, the predictor's ratio (0 for a repeated point)."""
@@ -326,11 +346,12 @@ class BatchSweep:
         ratio[1:][points[1:] == points[:-1]] = 0.0
         return ratio
 
-    def _settle(self, start: _Start, k: int) -> Block | None:
+    def _settle(self, start: _Start, k: int, tried: _Chain | None = None) -> Block | None:
         """Point k, where a batch ended for the integer search: ``Problem.solve``'s warm search (``integers.descend``
         from the batch's integers; should they fail, the relaxation and ``integers.nearest_integers``), each
         combination excluded by the batch's tables or re-solved by a one-point chained SQP from the previous point's
-        optimum and KKT-checked. None where a re-solve does not pass its check or no integer point is found
+        optimum and KKT-checked; the batch's integers are not solved again where the chain solved them at k
+        (``tried``, its column there). None where a re-solve does not pass its check or no integer point is found
         (``Problem.solve`` decides the point; also where a constraint of the case alone breaks, which fails the
         relaxation); the search is kept for the point's Solution."""
         search: list[dict] = []
@@ -344,12 +365,15 @@ class BatchSweep:
             if excluded:
                 search.append(excluded_entry(self.posed, self.integer, combo, excluded))
                 return None
-            run = solved(lower, upper, seed, "sqp_chain")
+            run = used(tried) if tried is not None and np.array_equal(combo, start.combo) else solved(
+                lower, upper, seed, "sqp_chain")
             search.append(search_entry(self.posed, self.integer, combo, BATCHED, True, run["value"]))
             return run
 
         def solved(lower, upper, seed, method) -> dict:
-            chain = self._chain(start, k, 1, lower, upper, seed, method, predict=False)
+            return used(self._chain(start, k, 1, lower, upper, seed, method, predict=False))
+
+        def used(chain: _Chain | None) -> dict:
             if chain is None or not chain.ok[0]:
                 raise _Unsettled
             runs.append(chain)

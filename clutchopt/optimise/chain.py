@@ -106,9 +106,11 @@ def _search_moves(posed: Posed, integer, fixed, x, p, lam_x, f_hat, lower, upper
 
 def chained_sqp(posed: Posed, count: int, method: str = "sqp_chain") -> InPlace:
     """``count`` SQP re-solves in one CasADi call, each started from the optimum of the one before, moved on by
-    the secant predictor: (x, lam_x, lam_g, dx, dlam_x, dlam_g, ratio, p, lbx, ubx) -> (x, lam_x, lam_g, dx,
-    dlam_x, dlam_g, f), one column per point (``ratio``, ``p``, ``lbx``, ``ubx``: a column per point, or one
-    for all; ``f`` the scaled objective). A point starts at x + ratio * dx, with dx the step between the two
+    the secant predictor: (live, x, lam_x, lam_g, dx, dlam_x, dlam_g, ratio, p, lbx, ubx) -> (x, lam_x, lam_g,
+    dx, dlam_x, dlam_g, f), one column per point (``live``, ``ratio``, ``p``, ``lbx``, ``ubx``: a column per
+    point, or one for all; ``f`` the scaled objective). A column whose ``live`` is 0 pads a chain to its length
+    and calls no solver (a conditional that evaluates one branch only: it hands on the point before, with no
+    step and ``f`` 0). A point starts at x + ratio * dx, with dx the step between the two
     optima before it and ``ratio`` this point's step in the case against that one (0: no prediction), clipped
     to the bounds; its multipliers likewise, where that keeps their sign. Beside a smooth path this halves the
     SQP iterations (2 to 1, each with an exact Hessian: most of a re-solve on the ball clutch). ``method``:
@@ -126,10 +128,12 @@ def chained_sqp(posed: Posed, count: int, method: str = "sqp_chain") -> InPlace:
 
         out = posed.solver(method)(x0=ca.fmin(ca.fmax(x + ratio * dx, lbx), ubx), lam_x0=predicted(lam_x, dlam_x),
                                    lam_g0=predicted(lam_g, dlam_g), p=p, lbx=lbx, ubx=ubx, lbg=posed.lbg, ubg=0.0)
-        step = ca.Function("sqp_step", [x, lam_x, lam_g, dx, dlam_x, dlam_g, ratio, p, lbx, ubx],
-                           [out["x"], out["lam_x"], out["lam_g"], out["x"] - x, out["lam_x"] - lam_x,
-                            out["lam_g"] - lam_g, out["f"]])
-        accumulated = list(range(6))
-        return InPlace(step.mapaccum(method, count, accumulated, accumulated))
+        inputs = [x, lam_x, lam_g, dx, dlam_x, dlam_g, ratio, p, lbx, ubx]
+        step = ca.Function("sqp_step", inputs, [out["x"], out["lam_x"], out["lam_g"], out["x"] - x,
+                                                out["lam_x"] - lam_x, out["lam_g"] - lam_g, out["f"]])
+        padded = ca.Function("sqp_padded", inputs, [x, lam_x, lam_g, ca.MX.zeros(n_x), ca.MX.zeros(n_x),
+                                                    ca.MX.zeros(n_g), ca.MX.zeros(1)])
+        live = ca.Function.if_else("sqp_live", step, padded)  # inputs: live, then the step's
+        return InPlace(live.mapaccum(method, count, list(range(1, 7)), list(range(6))))
 
     return posed.built("chain", (method, count), build)

@@ -34,6 +34,8 @@ from clutchopt.formulations import MODULES, get_coupling
 from clutchopt.formulations.duty import DUTY_QUANTITIES, required_torque
 from clutchopt.model import ENVELOPE_PARTS, ElasticLaw, Quantity, namespace
 from clutchopt.optimise.solution import Solution, SolverOptions
+from clutchopt.start_up.equations import QUANTITIES as START_UP_QUANTITIES
+from clutchopt.start_up.equations import SLIP_EFFECTS, SLIP_ONLY, WEAR_ONLY
 from clutchopt.start_up.nameplate import FIELDS as NAMEPLATE_FIELDS
 from clutchopt.start_up.section import check_values, read_tables, with_defaults
 from clutchopt.units import si_unit, to_si
@@ -316,12 +318,16 @@ def _check_override(name: str, table: dict, problems: Problems) -> None:
                 f"must be a mode of the {name} coupling ({', '.join(coupling.formulations)}), got {shown_value(mode)}")))
 
 
-HEAT = ("friction_heat",)  # what an elastic link (no friction surfaces) cannot take
-SLIP_ONLY = {"heat": None, "wear": None, "limits": ("max_friction_work", "max_temperature_rise", "starts_per_hour",
-                                                    "heat_dissipation", "max_lining_temperature",
-                                                    "max_continuous_temperature", "min_life"),
-             "driven": ("max_transmitted_torque",), "overload": None}
-WEAR_ONLY = {"wear": None, "limits": ("min_life",)}
+def _fields(names: tuple[str, ...]) -> dict[str, tuple[str, ...] | None]:
+    """``{table: keys}`` of the ``[start_up]`` sub-tables that hold the quantities ``names``; ``None`` for a table
+    all of whose quantities are among them (left out whole, with its switches)."""
+    tables: dict[str, list[tuple[str, str]]] = {}
+    for quantity in START_UP_QUANTITIES:
+        section, _, key = quantity.key.rpartition(".")
+        if section.count(".") == 1:
+            tables.setdefault(section.split(".")[1], []).append((quantity.name, key))
+    fields = {table: tuple(key for name, key in rows if name in names) for table, rows in tables.items()}
+    return {table: None if len(keys) == len(tables[table]) else keys for table, keys in fields.items() if keys}
 
 
 def _start_up_not_applied(law, start_up: dict, name: str) -> list[str]:
@@ -329,15 +335,15 @@ def _start_up_not_applied(law, start_up: dict, name: str) -> list[str]:
     not slip (an elastic link) has no friction heat, lining wear or overload; one that declares no friction area that
     wears has no lining life."""
     if isinstance(law, ElasticLaw):
-        dropped, why = SLIP_ONLY, "an elastic link does not slip"
+        dropped, why = _fields(SLIP_ONLY), "an elastic link does not slip"
         effects = start_up.get("effects")
-        if isinstance(effects, list) and any(e in HEAT for e in effects):
-            start_up["effects"] = [e for e in effects if e not in HEAT]
-            dropped_effects = [f"start_up.effects: {', '.join(e for e in effects if e in HEAT)}"]
+        if isinstance(effects, list) and any(e in SLIP_EFFECTS for e in effects):
+            start_up["effects"] = [e for e in effects if e not in SLIP_EFFECTS]
+            dropped_effects = [f"start_up.effects: {', '.join(e for e in effects if e in SLIP_EFFECTS)}"]
         else:
             dropped_effects = []
     elif law is not None and law.friction_area is None:
-        dropped, why, dropped_effects = WEAR_ONLY, "it declares no friction area that wears", []
+        dropped, why, dropped_effects = _fields(WEAR_ONLY), "it declares no friction area that wears", []
     else:
         return []
     notes = [f"{text} not applied: {why}" for text in dropped_effects]

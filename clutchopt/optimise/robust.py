@@ -10,14 +10,19 @@
   quantities where its limit state is smallest on the sphere ||u|| = beta of the standard normal space, mapped
   exactly), re-solved until the points settle (SORA); then beta corrected per constraint, a 1-D root find, until
   importance sampling at the design point meets the target (FORM is exact only for a limit state linear in u).
+  For the system the betas are NLP variables whose shares of 1 - P the NLP splits
+  (``clutchopt.optimise.risk_allocation``).
 - Both are then checked by Monte Carlo: ``samples`` draws of the distributions (a range: uniform over it),
   evaluated vectorised in float64 by the formulation's own equations; each constraint's failure probability with
   its Clopper-Pearson interval, for the robust and for the nominal design; and by FORM, SORM and importance sampling
   at each constraint's design point, and the system's (``robust_reliability``).
-- A ``[start_up]``'s start is designed at one corner, where its simulated figures bind, and each of its
-  constraints evaluated at its own (a scattered limit at its strict end): of the ends of the ranges (worst case) or
-  of the quantiles (chance), re-solved until the corners settle; then simulated at every such corner (each start-up
-  limit at its worst) and by ``starts`` simulated starts of Monte Carlo.
+- A ``[start_up]``'s start is designed at one point, where its simulated figures bind, and each of its
+  constraints evaluated at its own (a scattered limit at its strict end): worst case at the ends of the ranges,
+  re-solved until the corners settle, then simulated at every corner (each start-up limit at its worst); chance at
+  each limit's performance point on the beta-sphere, its limit state the simulated start
+  (``start_up_reliability``), re-solved until the points settle, each limit checked at its own and its failure
+  probability estimated by importance sampling of simulated starts at its design point; both by ``starts``
+  simulated starts of Monte Carlo.
 """
 
 from __future__ import annotations
@@ -25,12 +30,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 
+import numpy as np
+
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Formulation, namespace
 from clutchopt.optimise.problem import problem_for
-from clutchopt.optimise.reliability import generalised_beta
+from clutchopt.optimise.reliability import Estimate, generalised_beta
 from clutchopt.optimise.robust_models import (
     CONFIDENCE,
     SAMPLES,
@@ -44,7 +51,13 @@ from clutchopt.optimise.robust_models import (
     worst_case_formulation,
     worst_corners,
 )
-from clutchopt.optimise.robust_reliability import Reliability, performance_corners, reliability_at
+from clutchopt.optimise.risk_allocation import SYSTEM_SAMPLES, RiskAllocation, allocation_formulation, beta_name
+from clutchopt.optimise.robust_reliability import (
+    Reliability,
+    performance_corners,
+    performance_points,
+    reliability_at,
+)
 from clutchopt.optimise.robust_start_up import (
     MAX_START_CORNERS,
     START_SAMPLES,
@@ -55,6 +68,7 @@ from clutchopt.optimise.robust_start_up import (
     start_up_failures,
 )
 from clutchopt.optimise.solution import Solution, SolverOptions
+from clutchopt.optimise.start_up_reliability import StartUpPerformancePoints
 from clutchopt.optimise.verify import DESIGN_STATUSES, ConstraintCheck, check_constraints
 from clutchopt.records import target_text
 from clutchopt.start_up.drive import Structure
@@ -65,7 +79,6 @@ SYSTEM_CHANCE = "system_chance"
 CHANCES = (CHANCE, SYSTEM_CHANCE)
 BETA_STEPS = 12  # corrections of the chance design's betas until importance sampling meets the target
 AIM_BELOW = 0.005  # relative: the root find aims this far below 1 - P, so that the estimate ends at or below it
-SYSTEM_TOL = 0.01  # of ln(P(system fails) / (1 - P))
 ACTIVE = 1e-6  # relative margin at its performance point below which a constraint shapes the design
 VERIFIED_FACTOR = 2.0  # a chance design's failure probability is verified when its interval lies below this x 1 - P
 SETTLED = 1e-7  # relative: a performance point that moves less has settled
@@ -116,6 +129,10 @@ class RobustResult:
     reliability: Reliability | None = None  # the robust design's constraints and system: FORM, SORM, importance
     nominal_reliability: Reliability | None = None  # sampling, design points; the nominal design's
     betas: dict[str, float] = field(default_factory=dict)  # chance: each constraint's beta of its performance point
+    allocation: RiskAllocation | None = None  # system chance: how 1 - P was split between the constraints
+    start_up_beta: float | None = None  # chance: the beta of the start-up limits' performance points
+    start_up_share: float | None = None  # system chance: each moved start-up limit's share of 1 - P
+    start_up_fallbacks: tuple[str, ...] = ()  # chance: start-up limits at their quantile corners (no settled point)
 
     def as_dict(self) -> dict:
         return {
@@ -134,8 +151,14 @@ class RobustResult:
             "reliability": self.reliability.as_dict() if self.reliability else None,
             "nominal_reliability": self.nominal_reliability.as_dict() if self.nominal_reliability else None,
             "performance_point_beta": self.betas or None,
+            "system_allocation": self.allocation.as_dict() if self.allocation else None,
+            "system_failure_probability": system_failure(self).as_dict() if self.reliability else None,
             "start_up_verification": {"corners": self.start_up_points, "simulations": self.start_up_samples,
-                                      "failure_probability": self.start_up_failure} if self.start_up_points else None,
+                                      "failure_probability": self.start_up_failure,
+                                      "performance_point_beta": self.start_up_beta,
+                                      "share_of_target": self.start_up_share,
+                                      "at_quantile_corners": list(self.start_up_fallbacks)}
+            if self.start_up_points else None,
         }
 
 
@@ -162,8 +185,9 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
     (``samples``) and by the reliability methods (FORM, SORM, importance sampling; the system). Worst case: each
     constraint at its worst corner of the ranges; chance: at its performance point on the beta-sphere (PMA, SORA),
     beta corrected until importance sampling meets the target (:func:`_next_betas`). A [start_up] is designed at
-    its corners (worst case: of the ranges; chance: of the quantiles), re-solved until they settle, then simulated
-    at every such corner and by ``starts`` Monte Carlo starts.
+    its corners (worst case: of the ranges; chance: each limit's performance point, the simulated start its limit
+    state), re-solved until they settle, then simulated at every such point, by ``starts`` Monte Carlo starts and
+    (chance) by importance sampling of ``starts`` simulated starts at each limit's design point.
     ``base``: the formulation to make robust, if not the mode's own (a Pareto point's, with its cost cap)."""
     if not case.scatter:
         raise InputError("--robust", "the case has no [scatter] section: say which quantities scatter and how")
@@ -177,35 +201,61 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
     chance = method in CHANCES
     allowed = _Allowed(1.0 - target, len(names), method == SYSTEM_CHANCE) if chance else None
     betas = dict.fromkeys(names, allowed.beta) if chance else {}
+    allocation = None
+    start_up_points = (StartUpPerformancePoints(case, base.mode, target, case.correlation) if structure and chance
+                       else None)  # a start-up's limits at their performance points
 
     def corners_at(design: dict) -> tuple[dict, StartUpCorners | None]:
-        """Each constraint's worst corner (worst case) or performance point (chance), and a start-up's ends,
-        corners and bars there."""
-        corners = (worst_corners(shown, design, params, case.scatter)[0] if method == WORST_CASE else
-                   performance_corners(shown, design, params, case.scatter, betas, case.correlation))
-        start_up = start_up_corners(case, base.mode, design, case.scatter, target) if structure else None
+        """Each constraint's worst corner (worst case) or performance point (chance; the system's allocation
+        aimed along them), and a start-up's ends, corners and bars there."""
+        if method == WORST_CASE:
+            corners = worst_corners(shown, design, params, case.scatter)[0]
+        else:
+            points = performance_points(shown, design, params, case.scatter, betas, case.correlation)
+            corners = performance_corners(shown, design, params, case.scatter, betas, case.correlation, points)
+            if allocation is not None:
+                allocation.aim({name: points[name] for name in allocation.names})
+        start_up = ((start_up_points.at(design) if start_up_points else
+                     start_up_corners(case, base.mode, design, case.scatter, target)) if structure else None)
         return ({**corners, **start_up.corners}, start_up) if start_up else (corners, None)
 
+    if method == SYSTEM_CHANCE:  # the constraints the scatter moves share 1 - P, as the NLP chooses
+        points = performance_points(shown, nominal.design, params, case.scatter, betas, case.correlation)
+        moved = {name: betas[name] for name in names if np.linalg.norm(points[name]) > 0}
+        budget = (start_up_points.take_shares(nominal.design, len(moved), 1.0 - target) if start_up_points
+                  else 1.0 - target)  # the start-up limits the scatter moves take their shares first
+        allocation = RiskAllocation(budget, case.scatter, case.correlation, moved)
     corners, start_up = corners_at(nominal.design)
     start_up_names = tuple(name for name in corners if name not in names and name != START_UP)
     derived = _derived(base, case, names, start_up_names)
+    if allocation is not None:
+        derived = allocation_formulation(derived, base, case.scatter, names, allocation.names)
     problem = problem_for(derived, objective, options, structure)
+    with_betas = (lambda design: {**design, **allocation.variables()}) if allocation else (lambda design: design)
     solution, settled, history = None, False, {name: [] for name in names}
     for _ in range(BETA_STEPS if chance else 1):
         for _ in range(CORNER_STEPS):
             values = {corner_name(q, c): v for c, corner in corners.items() for q, v in corner.items()}
+            values.update(allocation.parameters() if allocation else {})
             solved = replace(case, values={**case.values, **values})  # NLP parameters, not case quantities
-            solution = problem.solve(solved, warm=solution) if solution else problem.solve(solved, start=nominal.design)
+            solution = (problem.solve(solved, warm=solution) if solution else
+                        problem.solve(solved, start=with_betas(nominal.design)))
             if solution.status not in DESIGN_STATUSES:
                 break
+            if allocation is not None:
+                betas.update(allocation.read(solution.design))
             moved, start_up = corners_at(solution.design)
             settled, corners = _same(moved, corners), moved
             if settled:
                 break
         if not chance or solution.status not in DESIGN_STATUSES or not settled:
             break
-        reliability = reliability_at(shown, solution.design, params, case.scatter, case.correlation, names)
-        if not _next_betas(betas, history, reliability, solution, allowed):
+        reliability = reliability_at(shown, solution.design, params, case.scatter, case.correlation, names,
+                                     SYSTEM_SAMPLES if allocation else None)
+        if allocation is not None:
+            if not allocation.step(reliability, {c.name: c.margin for c in solution.constraints}, ACTIVE):
+                break
+        elif not _next_betas(betas, history, reliability, solution, allowed):
             break
         corners, start_up = corners_at(solution.design)
     kept = {c.name for c in shown.constraints(namespace(nominal.design), params)}
@@ -214,8 +264,9 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
         nominal_checks = corner_checks(shown, nominal.design, params, case.scatter)
     else:  # each at its performance point
         checks = [c for c in solution.constraints if c.name in kept]
-        nominal_checks = [c for c in check_constraints(derived.constraints(namespace(nominal.design),
+        nominal_checks = [c for c in check_constraints(derived.constraints(namespace(with_betas(nominal.design)),
                                                                            at_values(params, values))) if c.name in kept]
+        solution = _without(solution, [beta_name(name) for name in allocation.names] if allocation else [])
     failure = failure_probabilities(shown, solution.design, params, case.scatter, samples,
                                     correlation=case.correlation)
     nominal_failure = failure_probabilities(shown, nominal.design, params, case.scatter, samples,
@@ -224,22 +275,46 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
                           nominal_failure, {**tornado(shown, solution.design, params, case.scatter),
                                             **(start_up.bars if start_up else {})}, corners, shown, settled=settled)
     if solution.status in DESIGN_STATUSES:
-        result.reliability = reliability_at(shown, solution.design, params, case.scatter, case.correlation, names)
+        result.reliability = reliability_at(shown, solution.design, params, case.scatter, case.correlation, names,
+                                            SYSTEM_SAMPLES if allocation else None)
         result.nominal_reliability = reliability_at(shown, nominal.design, params, case.scatter, case.correlation,
                                                     names)
         result.betas = dict(betas)
-    if structure and solution.status in DESIGN_STATUSES:
+        result.allocation = allocation
+    if start_up_points and solution.status in DESIGN_STATUSES:  # each limit at its performance point
+        start_up_points.at(solution.design)
+        fallbacks = sorted(start_up_points.fallbacks)
+        quantile_points = _distinct([corners[name] for name in fallbacks])
+        result.start_up_points = _distinct(start_up_points.distinct_points() + quantile_points)
+        result.checks += start_up_points.checks() + [
+            c for c in start_up_checks(case, base.mode, solution.design, quantile_points) if c.name in fallbacks]
+        result.nominal_checks += start_up_checks(case, base.mode, nominal.design, result.start_up_points)
+        result.reliability.constraints.update(start_up_points.reliability(starts))
+        result.start_up_beta, result.start_up_fallbacks = start_up_points.beta, tuple(fallbacks)
+        result.start_up_share = start_up_points.share
+    elif structure and solution.status in DESIGN_STATUSES:
         result.start_up_points = (corner_points(corner_table(case.scatter, start_up.ends))
                                   if len(case.scatter) <= MAX_START_CORNERS
                                   else _distinct([corners[name] for name in (START_UP, *start_up_names)]))
         result.checks += start_up_checks(case, base.mode, solution.design, result.start_up_points)
         result.nominal_checks += start_up_checks(case, base.mode, nominal.design, result.start_up_points)
+    if structure and solution.status in DESIGN_STATUSES:
         result.start_up_samples = starts
         result.start_up_failure = start_up_failures(case, base.mode, solution.design, case.scatter, starts)
     result.status, result.diagnosis = verdict(result)
     result.solution = replace(solution, status=result.status, diagnosis=result.diagnosis)
     result.verification = verification(result, case)
     return result
+
+
+def _without(solution: Solution, variables: list[str]) -> Solution:
+    """The solution without the allocation's beta variables: its design is the coupling's (the betas are the
+    allocation's, ``RobustResult.allocation``)."""
+    if not variables:
+        return solution
+    return replace(solution, design={k: v for k, v in solution.design.items() if k not in variables},
+                   bounds={k: v for k, v in solution.bounds.items() if k not in variables},
+                   design_units={k: v for k, v in solution.design_units.items() if k not in variables})
 
 
 def _same(moved: dict, corners: dict) -> bool:
@@ -251,18 +326,16 @@ def _same(moved: dict, corners: dict) -> bool:
 
 @dataclass
 class _Allowed:
-    """The failure probability each constraint may have: 1 - P (chance), or for the system its ``share`` of 1 - P
-    spread over the constraints that can fail (Bonferroni: P(any) <= sum; ``share`` then scaled until importance
-    sampling of the system meets 1 - P)."""
+    """The failure probability each constraint may have: 1 - P (chance), or for the system, where it starts, an
+    equal share of 1 - P (the NLP then chooses the split: ``clutchopt.optimise.risk_allocation``)."""
 
     system_allowed: float
     count: int
     system: bool
-    share: float = 1.0
 
     @property
     def each(self) -> float:
-        return self.system_allowed * self.share / (self.count if self.system else 1)
+        return self.system_allowed / (self.count if self.system else 1)
 
     @property
     def beta(self) -> float:
@@ -276,16 +349,11 @@ def _next_betas(betas: dict[str, float], history: dict[str, list], reliability, 
     AIM_BELOW under it, until the allowed probability lies within the estimate's interval (FORM's beta is kept
     where importance sampling does not refute it: exact where the limit state is linear in u). Only an
     active constraint that depends on the scatter is corrected (an inactive one fails less than allowed whatever
-    its beta). System: once every constraint meets its share, the share is scaled by (1 - P) / P(system fails).
-    False when nothing moves."""
+    its beta). False when nothing moves."""
     margins = {c.name: c.margin for c in solution.constraints}
     shown = reliability.constraints
     movable = [name for name in betas if name in shown and shown[name].point.found
                and margins.get(name, 1.0) <= ACTIVE and shown[name].best.probability > 0]
-    if allowed.system and allowed.count != max(1, len(movable)):
-        allowed.count = max(1, len(movable))
-        for name in history:
-            history[name].clear()
     moved = False
     for name in movable:
         best = shown[name].best
@@ -297,15 +365,6 @@ def _next_betas(betas: dict[str, float], history: dict[str, list], reliability, 
         (b0, m0), (b1, m1) = history[name][-2:] if len(history[name]) > 1 else ((None, None), history[name][-1])
         betas[name] = b1 - m1 * (b1 - b0) / (m1 - m0) if b0 is not None and m1 != m0 else b1 - m1
         moved = True
-    if not moved and allowed.system and reliability.system.probability > 0:
-        ratio = allowed.system_allowed / reliability.system.probability
-        if abs(math.log(ratio)) > SYSTEM_TOL:
-            allowed.share *= ratio
-            for name in history:
-                history[name].clear()
-            for name in movable:
-                betas[name] = allowed.beta
-            moved = True
     return moved
 
 
@@ -336,7 +395,7 @@ def verdict(result: RobustResult) -> tuple[str, str | None]:
 
     reasons = []
     if result.reliability is not None:
-        shown = ({"the system": result.reliability.system} if result.method == SYSTEM_CHANCE else
+        shown = ({"the system": system_failure(result)} if result.method == SYSTEM_CHANCE else
                  {name: c.best for name, c in result.reliability.constraints.items()})
         if missed := [f"{name} fails with probability {e.probability:.3g} ({e.low:.3g} to {e.high:.3g}, "
                       f"{e.estimator})" for name, e in shown.items()
@@ -346,8 +405,24 @@ def verdict(result: RobustResult) -> tuple[str, str | None]:
         reasons.append("Monte Carlo: " + "; ".join(static))
     if start := exceeded(result.start_up_failure):
         reasons.append(f"{result.start_up_samples} simulated starts: " + "; ".join(start)
-                       + " (the start is not monotone in the scatter: its quantile corner is not enough)")
+                       + ("" if result.start_up_beta is not None else
+                          " (the start is not monotone in the scatter: its quantile corner is not enough)"))
     return ("unverified", "; ".join(reasons)) if reasons else ("optimal", None)
+
+
+def system_failure(result: RobustResult) -> Estimate:
+    """P(the design fails: any constraint or start-up limit) of a robust design: the closed-form constraints' system
+    (importance sampling), plus each start-up limit's estimate where the design has a start-up (a union bound: their
+    overlap is not subtracted, so the sum is at or above the system's; the interval from the largest lower end to
+    the sum of the upper ends)."""
+    static = result.reliability.system
+    limits = [c.best for name, c in result.reliability.constraints.items() if name in result.start_up_failure]
+    if not limits:
+        return static
+    return Estimate(static.probability + sum(e.probability for e in limits),
+                    max([static.low, *(e.low for e in limits)]),
+                    static.high + sum(e.high for e in limits),
+                    f"the constraints' {static.estimator} plus each start-up limit's estimate (union bound)")
 
 
 def verification(result: RobustResult, case: Case) -> str:
@@ -357,30 +432,55 @@ def verification(result: RobustResult, case: Case) -> str:
     quantities = {q.name: q for q in case.quantities}
     n = len(case.scatter)
     parts = [f"constraints at all {2 ** n} corners of the ranges" if result.method == WORST_CASE else
-             f"constraints at their performance points for {result.method} P = {target_text(result.target)}, beta corrected by "
-             "importance sampling", f"{result.samples} Monte Carlo samples: {_largest(result.failure)}"]
+             f"constraints at their performance points for {result.method} P = {target_text(result.target)}, "
+             + (result.allocation.claim() if result.allocation else "beta corrected by importance sampling"),
+             f"{result.samples} Monte Carlo samples: {_largest(result.failure)}"]
     if result.reliability is not None:
-        name, best = max(((name, c.best) for name, c in result.reliability.constraints.items()),
-                         key=lambda item: item[1].probability)
-        system = result.reliability.system
-        parts.append(f"importance sampling at the design points: largest P(fail) {best.probability:.3g} ({name}; "
-                     f"95% interval {best.low:.3g} to {best.high:.3g}), system {system.probability:.3g} "
-                     f"({system.low:.3g} to {system.high:.3g})")
-    simulated = [c.name for c in result.checks if c.name in result.start_up_failure]
-    if result.method in CHANCES and simulated:
-        parts.append(f"start-up limits not by PMA but at the quantile corners: {', '.join(simulated)}")
+        parts.append(f"importance sampling at the design points: {_largest_estimate(result, static=True)}, system "
+                     f"{result.reliability.system.probability:.3g} ({result.reliability.system.low:.3g} to "
+                     f"{result.reliability.system.high:.3g})")
+    if result.method == SYSTEM_CHANCE and result.start_up_failure and result.reliability is not None:
+        system = system_failure(result)
+        share = result.start_up_share
+        parts.append((f"each start-up limit the scatter moves designed for its share {share:.3g} of "
+                      f"{1 - result.target:.3g}, " if share else "")
+                     + f"the system with the start-up limits {system.probability:.3g} ({system.low:.3g} to "
+                       f"{system.high:.3g}; {system.estimator})")
+    if result.start_up_fallbacks:
+        parts.append("start-up limits at their quantile corners (their performance point did not settle): "
+                      + ", ".join(result.start_up_fallbacks))
     if result.start_up_points:
-        kind = "corner(s) of the ranges" if result.method == WORST_CASE else "quantile corner(s)"
+        by_points = result.start_up_beta is not None
+        kind = ("point(s)" if by_points else
+                "corner(s) of the ranges" if result.method == WORST_CASE else "quantile corner(s)")
         where = "; ".join(_shown(point, quantities) for point in result.start_up_points)
         missed = [c.name for c in result.checks if c.name in result.start_up_failure and not c.feasible]
-        parts += [f"start-up designed at ({_shown(result.corners[START_UP], quantities)}), simulated at the "
-                  f"{len(result.start_up_points)} {kind} ({where}): "
+        parts += [(f"start-up designed at its performance point ({_shown(result.corners[START_UP], quantities)}; "
+                   f"beta {result.start_up_beta:.4g}), each limit simulated at its own, the "
+                   if by_points else
+                   f"start-up designed at ({_shown(result.corners[START_UP], quantities)}), simulated at the ")
+                  + f"{len(result.start_up_points)} {kind} ({where}): "
                   + (f"{', '.join(missed)} missed" if missed else "every limit met"),
+                  *([f"importance sampling of {result.start_up_samples} simulated starts at the start-up's design "
+                     f"points: {_largest_estimate(result, static=False)}"] if by_points else []),
                   f"{result.start_up_samples} simulated starts: {_largest(result.start_up_failure)}"]
         if result.method == CHANCE and max(high for _, _, high in result.start_up_failure.values()) > 1 - result.target:
-            parts[-1] += (f" (too few to show P(fail) <= {1 - result.target:.3g} alone; the quantile corners show it "
-                          "for a start monotone in each quantity)")
+            parts[-1] += (f" (too few to show P(fail) <= {1 - result.target:.3g} alone; importance sampling shows it)"
+                          if by_points else f" (too few to show P(fail) <= {1 - result.target:.3g} alone; the "
+                                            "quantile corners show it for a start monotone in each quantity)")
     return "verified: " + "; ".join(parts)
+
+
+def _largest_estimate(result: RobustResult, static: bool) -> str:
+    """The constraint (``static``) or start-up limit most likely to fail by its estimate, with its interval."""
+    shown = [(name, c.best) for name, c in result.reliability.constraints.items()
+             if (name in result.start_up_failure) != static]
+    if not shown:
+        return "none sampled"
+    name, best = max(shown, key=lambda item: item[1].probability)
+    return (f"largest P(fail) {best.probability:.3g} ({name}; {best.estimator}, 95% interval {best.low:.3g} to "
+            f"{best.high:.3g})" if not static else
+            f"largest P(fail) {best.probability:.3g} ({name}; 95% interval {best.low:.3g} to {best.high:.3g})")
 
 
 def _shown(values: dict, quantities: dict) -> str:

@@ -117,16 +117,24 @@ def reliability_at(formulation: Formulation, design: dict, params: SimpleNamespa
     return Reliability(out, system)
 
 
-def performance_corners(formulation: Formulation, design: dict, params: SimpleNamespace, scatter,
-                        betas: dict[str, float], correlation=None) -> dict[str, dict[str, float]]:
-    """Each constraint's performance point at ``design`` (PMA: the quantities' values where its limit state is
-    smallest on the sphere ||u|| = betas[name]): the corner a chance design evaluates it at (SORA, Du & Chen 2004:
-    the deterministic problem with each constraint at its shifted values, re-solved until the points settle)."""
+def performance_points(formulation: Formulation, design: dict, params: SimpleNamespace, scatter,
+                       betas: dict[str, float], correlation=None) -> dict[str, np.ndarray]:
+    """Each constraint's performance point at ``design`` in the independent standard normal space u (PMA: where its
+    limit state is smallest on the sphere ||u|| = betas[name]); the origin for one the formulation replaces (a
+    start-up's torque)."""
     n = len(scatter)
     shown, g = limit_states(formulation, design, params, scatter, correlation, tuple(betas))
     rows = {name: row for row, name in enumerate(shown)}
-    corners = {}
-    for name in betas:  # one the formulation replaces (a start-up's torque) at the means
-        u = performance_point(g, rows[name], n, betas[name]) if name in rows else np.zeros(n)
-        corners[name] = {q: float(v[0]) for q, v in values_from_standard(scatter, u[:, None], correlation).items()}
-    return corners
+    return {name: performance_point(g, rows[name], n, betas[name]) if name in rows else np.zeros(n)
+            for name in betas}
+
+
+def performance_corners(formulation: Formulation, design: dict, params: SimpleNamespace, scatter,
+                        betas: dict[str, float], correlation=None,
+                        points: dict[str, np.ndarray] | None = None) -> dict[str, dict[str, float]]:
+    """Each constraint's performance point at ``design`` (:func:`performance_points`, unless given as ``points``)
+    as the quantities' values: the corner a chance design evaluates it at (SORA, Du & Chen 2004: the
+    deterministic problem with each constraint at its shifted values, re-solved until the points settle)."""
+    points = points or performance_points(formulation, design, params, scatter, betas, correlation)
+    return {name: {q: float(v[0]) for q, v in values_from_standard(scatter, u[:, None], correlation).items()}
+            for name, u in points.items()}

@@ -60,9 +60,7 @@ def start_up_corners(case: Case, mode: str, design: dict, scatter, target: float
     simulated in the NLP: where the smallest margin of the constraints that read its figures is smallest (a start
     that does not lock up counts as the worst). Of all 2^k corners, up to MAX_START_CORNERS quantities; with more,
     each quantity at the end where that margin is smaller alone."""
-    runs = {s.name: simulated_start_ups(case, mode, design, [{s.name: s.low}, {s.name: s.high}]) for s in scatter}
-    names = [c.name for c in next(iter(runs.values()))[0]]
-    alone = {q: [_margins(run) for run in pair] for q, pair in runs.items()}
+    names, alone = _alone(case, mode, design, scatter)
     ends = {s.name: (s.low, s.high) for s in scatter}
     if target is not None:
         moving = sum(not np.array_equal(low, high) for low, high in alone.values())
@@ -78,10 +76,27 @@ def start_up_corners(case: Case, mode: str, design: dict, scatter, target: float
             return {q: ends[q][int(high[columns].min() < low[columns].min())] for q, (low, high) in alone.items()}
 
     figures = [i for i, name in enumerate(names) if name not in CLOSED_FORM]
-    bars = {name: {q: float(high[i]) - float(low[i]) for q, (low, high) in alone.items()}
-            for i, name in enumerate(names)}
     return StartUpCorners(ends, {START_UP: worst(figures), **{name: worst([i]) for i, name in enumerate(names)}},
-                          bars)
+                          _bars(names, alone))
+
+
+def _alone(case: Case, mode: str, design: dict, scatter) -> tuple[list[str], dict[str, list[np.ndarray]]]:
+    """(the start-up limits' names, quantity -> the limits' relative margins with the start simulated at each end of
+    its range, the others nominal)."""
+    runs = {s.name: simulated_start_ups(case, mode, design, [{s.name: s.low}, {s.name: s.high}]) for s in scatter}
+    return [c.name for c in next(iter(runs.values()))[0]], {q: [_margins(run) for run in pair]
+                                                            for q, pair in runs.items()}
+
+
+def _bars(names: list[str], alone: dict[str, list[np.ndarray]]) -> dict[str, dict[str, float]]:
+    return {name: {q: float(high[i]) - float(low[i]) for q, (low, high) in alone.items()}
+            for i, name in enumerate(names)}
+
+
+def start_up_bars(case: Case, mode: str, design: dict, scatter) -> dict[str, dict[str, float]]:
+    """The tornado's bars of the start-up limits: limit -> quantity -> change of its relative margin as the
+    quantity goes from the low to the high end of its range, the others nominal (simulated)."""
+    return _bars(*_alone(case, mode, design, scatter))
 
 
 def _margins(run: list[ConstraintCheck]) -> np.ndarray:
@@ -117,7 +132,7 @@ def simulated_start_ups(case: Case, mode: str, design: dict, points: list[dict])
         figures = SimpleNamespace(
             start_time=head["start_time"], friction_work=head["friction_work"], lock_up_speed=head["lock_up_speed"],
             temperatures=head.get("temperature_rise", 0.0),
-            stresses=result.history["stress"].to_numpy() if structure.elastic and head["locks_up"] else math.inf)
+            stresses=result.columns["stress"] if structure.elastic and head["locks_up"] else math.inf)
         drive = Drive(structure, law, namespace(seen), at.params())
         runs.append(check_constraints(named_constraints(structure, drive, figures), structure.spec.tolerance))
     return runs

@@ -24,7 +24,7 @@ def check_verifiable(case: Case) -> None:
 
 def verify_robust(case: Case, result) -> dict:
     """The robust design (``RobustResult``) started at every corner of its scatter: those its [start_up] was
-    simulated at, else the corners of the ranges (worst case) or of the quantiles P^(1/n) (chance P, n scattered
+    simulated at (chance: each start-up limit's performance point), else the corners of the ranges (worst case) or of the quantiles P^(1/n) (chance P, n scattered
     quantities, as a start-up's); the check (``verify``) of the corner where the start comes closest to its limit,
     or misses it most, with that ``corner`` (SI) and the number of ``corners``."""
     from clutchopt.start_up.simulation import verify

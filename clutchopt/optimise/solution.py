@@ -105,6 +105,8 @@ class Solution:
     mesh: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False)  # start-up mesh: used, suggested
     diagnosed: Diagnosis | None = field(default=None, repr=False)  # a solve without a design: its elastic diagnosis
     starts: tuple[str, ...] = ()  # a solve without a design: the starts it was tried from (optimise/verdict.py)
+    limit_shift: dict[str, float] = field(default_factory=dict, repr=False)  # start-up: the last NLP's limit
+    #                                                        / the case's, where the defect correction moved it
 
     def _repr_html_(self) -> str:
         """Jupyter shows a solution as the tables of ``clutchopt solve``."""

@@ -16,6 +16,7 @@ from clutchopt.start_up.drive import Drive, seen_constraints
 from clutchopt.start_up.lining import UNITS as LINING_UNITS
 from clutchopt.start_up.lining import lining_figures, lining_notes
 from clutchopt.start_up.mesh import adapted_mesh
+from clutchopt.start_up.transcription import TRAJECTORY
 
 BACK_OFF_STEPS = 4  # defect corrections of limits the simulated start misses (or binds at off the limit)
 CENTRE = 0.25  # of the tolerance: the objective's error from a binding limit met off the limit that is corrected
@@ -37,13 +38,14 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
 
     values, *columns = figures
     nlp = dict(zip(block.outputs(), np.array(values).ravel()))
-    trajectory = {name: np.array(column).ravel() for name, column in zip(block.trajectory(), columns)}
+    trajectory = {name: np.array(column).ravel() for name, column in zip(TRAJECTORY, columns)}  # (block.trajectory()
+    # builds the expressions: 5 ms a check for its names)
     model = start_up_model(case, formulation.mode, design)
     result = run_start_up(model)
     worn = worn_start_up_model(case, formulation.mode, design, model)
     head = result.headline
     s = block.s
-    stresses = result.history["stress"].to_numpy() if s.elastic else 0.0
+    stresses = result.columns["stress"] if s.elastic else 0.0
     simulated = SimpleNamespace(start_time=head["start_time"], friction_work=head["friction_work"],
                                 temperatures=head.get("temperature_rise", 0.0), lock_up_speed=head["lock_up_speed"],
                                 stresses=stresses if head["locks_up"] else math.inf)
@@ -95,7 +97,7 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
         summary["ambient_temperature"] = float(drive.p.ambient_temperature) if s.heat else None
         summary["lining_notes"] = lining_notes(drive, case.coupling)
     times = [float(nlp[f"{phase}_time"]) for phase in s.phases]
-    return summary, checks, adapted_mesh(s, result.history, times)
+    return summary, checks, adapted_mesh(s, result.columns, times)
 
 
 def _headline(head: dict) -> dict:

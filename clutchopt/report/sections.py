@@ -154,8 +154,22 @@ def scatter(case: Case, robust=None) -> tuple[list, tuple[str, float, int]]:
                      **reliability_columns(case, reliability)})
     name, (p, _, _) = max(first.nominal_failure.items(), key=lambda item: item[1][0])
     bars = tornado(first.formulation, first.nominal.design, case.params(), case.scatter)
-    return ([Table(rows, ("change", "largest P(fail)", "system P(fail)")), tornado_chart(case, first, bars)],
-            (name, p, first.samples))
+    allocation = allocation_blocks(robust.allocation) if robust is not None and robust.allocation else []
+    return ([Table(rows, ("change", "largest P(fail)", "system P(fail)")), *allocation,
+             tornado_chart(case, first, bars)], (name, p, first.samples))
+
+
+def allocation_blocks(allocation) -> list:
+    """How a system chance design split 1 - P between its constraints: the claim, then each constraint's beta, its
+    share of the first-order series bound and its own failure probability (importance sampling)."""
+    data = allocation.as_dict()
+    rows = [{"constraint": name, "beta": f"{c['beta']:.4g}", "index shift": f"{c['index_shift']:+.3g}",
+             "share of 1 - P": f"{c['share']:.3g}",
+             "P(fail)": "-" if not c["failure_probability"] else
+             "{probability:.3g} ({low:.3g} to {high:.3g}, {estimator})".format(**c["failure_probability"])}
+            for name, c in data["constraints"].items()]
+    return [Note(f"Risk allocation (system chance): {data['claim']}"),
+            Table(rows, ("beta", "index shift", "share of 1 - P"))]
 
 
 def largest_failure(failure: dict[str, list[float]], samples: int) -> str:

@@ -20,9 +20,8 @@ from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
-import pandas as pd
 
-from clutchopt.simulate.engine import MAX_STEPS, SimulationResult
+from clutchopt.simulate.engine import MAX_STEPS, SimulationResult, largest
 from clutchopt.simulate.laws import InductionMotor, Load
 from clutchopt.simulate.stepping import Budget, integrate
 
@@ -31,8 +30,8 @@ from clutchopt.simulate.stepping import Budget, integrate
 class ElasticModel:
     """One start of an elastic link, SI."""
 
-    torque: Callable[[float, float], float]  # (driving speed, twist) -> torque through the link
-    stress: Callable[[float, float], float]  # (driving speed, twist) -> stress of its most loaded element
+    torque: Callable  # (driving speed, twist) -> torque through the link (numbers or NumPy arrays alike)
+    stress: Callable  # (driving speed, twist) -> stress of its most loaded element (numbers or arrays)
     damping: float  # c, N*m*s/rad
     inertia: float  # J of the machine
     load: Load
@@ -78,12 +77,12 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     out = integrate(rates, None, 0.0, np.zeros(4), bound, [started, overturned, twist_extreme], "LSODA", m.rtol,
                     atol, Budget(MAX_STEPS))
     t, y = out.t, out.y
-    torque = np.array([m.torque(a, b) for a, b in zip(y[0], y[2])]) + m.damping * (y[0] - y[1])
-    stress = np.array([m.stress(a, b) for a, b in zip(y[0], y[2])])
-    history = pd.DataFrame({"t": t, "w_driver": y[0], "w_driven": y[1], "slip": y[0] - y[1], "twist": y[2],
-                            "friction_torque": torque, "power_lost": m.damping * (y[0] - y[1]) ** 2,
-                            "friction_work": y[3], "temperature_rise": np.zeros_like(t), "stress": stress,
-                            "phase": "elastic"})
+    torque = m.torque(y[0], y[2]) + m.damping * (y[0] - y[1])  # the samples at once, as arrays
+    stress = np.asarray(m.stress(y[0], y[2]), dtype=float)
+    history = {"t": t, "w_driver": y[0], "w_driven": y[1], "slip": y[0] - y[1], "twist": y[2],
+               "friction_torque": np.asarray(torque, dtype=float), "power_lost": m.damping * (y[0] - y[1]) ** 2,
+               "friction_work": y[3], "temperature_rise": np.zeros_like(t), "stress": stress,
+               "phase": np.full(len(t), "elastic", dtype=object)}
     done = out.status == "event" and out.event == 0
     if done:
         reason = ""
@@ -105,7 +104,7 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
         "friction_work": float(y[3, -1]) if done else math.inf,
         "source_work": math.nan,
         "lock_up_speed": m.target if done else math.nan,
-        "peak_slip_power": float(history["power_lost"].max()),
+        "peak_slip_power": largest(history["power_lost"]),
         "peak_twist": float(np.abs(y[2]).max()),
         "peak_stress": float(stress.max()),
         "end_time": float(end),

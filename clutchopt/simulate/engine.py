@@ -32,15 +32,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from clutchopt.errors import InputError
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.laws import InductionMotor, Load
 from clutchopt.simulate.ranges import BREAKDOWN_SLIP, CONDUCTANCE, HEAT_CAPACITY, INERTIA, LOAD, SPEED, TIME, TORQUE
 from clutchopt.simulate.stepping import Budget, Phase, integrate
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 STEADY = 1e-9  # relative net acceleration below which a slipping start-up is steady (no lock-up)
 MAX_SWITCHES = 200  # phase switches (rest, slip, stick, engagement) before a run is declared chattering
@@ -71,9 +75,19 @@ class Model:
 
 @dataclass
 class SimulationResult:
-    history: pd.DataFrame
+    """A run: its samples as columns (name -> NumPy array, one entry a sample), headline figures, events. The
+    solve's check reads the columns; :attr:`history` is them as a pandas DataFrame, built when first asked for
+    (pandas' import is 0.3 s, a start-up solve's check needs none of it)."""
+
+    columns: dict[str, np.ndarray]
     headline: dict
     events: list[dict] = field(default_factory=list)
+
+    @cached_property
+    def history(self) -> pd.DataFrame:
+        import pandas as pd
+
+        return pd.DataFrame(self.columns)
 
     def as_dict(self) -> dict:
         return {"headline": self.headline, "events": self.events}
@@ -289,7 +303,7 @@ def simulate(model: Model) -> SimulationResult:
     bound = model.end_time if model.end_time is not None else (1e300 if closed_form_locks else 1e8 * run.time_scale)
     start = 0.0 if run.motor else model.driver_speed
     t, y = 0.0, np.array([start, start, 0.0, 0.0, 0.0])
-    frames, events, kind = [], [], run.turning_kind(0.0, y)
+    rows, events, kind = [], [], run.turning_kind(0.0, y)
     engaged = not run.motor or start**2 >= model.law.engagement_squared
     start_time, reason, start_state = math.nan, "", None
     if not closed_form_locks and run.net_rate(kind, 0.0, y) <= STEADY:
@@ -301,7 +315,7 @@ def simulate(model: Model) -> SimulationResult:
         out = run.integrate(kind, t, bound, y, list(armed.values()))
         if kind == "rest":
             out.y[1] = out.y[0]  # the driven half stands: all of the driving speed is slip, exactly
-        frames.append(_samples(run, out, "stick" if kind == "stick" else "slip"))
+        rows.append(_samples(run, out, "stick" if kind == "stick" else "slip"))
         t, y = out.t[-1], out.y[:, -1].copy()
         if out.status != "event":
             if out.status == "failed":
@@ -341,8 +355,14 @@ def simulate(model: Model) -> SimulationResult:
             events[-1]["event"] = "zero slip, capacity too small to stick"
     else:
         reason = f"stopped after {MAX_SWITCHES} stick-slip switches (chatter)"
-    history = pd.concat(frames, ignore_index=True) if frames else _samples(run, None, "slip", y)
+    history = _history(rows or [_samples(run, None, "slip", y)])
     return SimulationResult(history, _headline(model, history, start_time, start_state, reason, y), events)
+
+
+def largest(values: np.ndarray) -> float:
+    """The largest sample, NaN left out (as pandas' max)."""
+    kept = values[~np.isnan(values)]
+    return float(kept.max()) if kept.size else math.nan
 
 
 def _steady_reason(run: _Run, t: float, y) -> str:
@@ -354,17 +374,27 @@ def _steady_reason(run: _Run, t: float, y) -> str:
             f"{friction:.6g} N*m = load")
 
 
-def _samples(run: _Run, out: Phase | None, phase: str, y0=None) -> pd.DataFrame:
-    """History rows of one phase: the solver's steps and the middle of each (``out``), or the state ``y0``."""
-    t, y = (np.array([0.0]), np.asarray(y0).reshape(-1, 1)) if out is None else (out.t, out.y)
-    rows = []
-    for i, ti in enumerate(t):
-        yi = y[:, i]
-        torque = run.carried(ti, yi)[1] if phase == "stick" else run.torques(ti, yi)[0]
-        slip = yi[1]
-        rows.append((ti, yi[0], yi[0] - slip, slip, torque, torque * slip, yi[2], yi[3], yi[4], phase))
-    return pd.DataFrame(rows, columns=["t", "w_driver", "w_driven", "slip", "friction_torque", "power_lost",
-                                       "friction_work", "source_work", "temperature_rise", "phase"])
+def _samples(run: _Run, out: Phase | None, phase: str, y0=None) -> tuple:
+    """(times, states, torques, phase) of one phase: the solver's steps and the middle of each (``out``), or the
+    state ``y0``."""
+    t, y = (np.array([0.0]), np.asarray(y0, dtype=float).reshape(-1, 1)) if out is None else (out.t, out.y)
+    if phase == "stick":
+        torque = [run.carried(ti, y[:, i])[1] for i, ti in enumerate(t)]
+    else:  # the friction torque (slip_friction) at every sample at once
+        torque = run.m.law.kinetic_samples(y[0], y[1])
+    return t, y, torque, phase
+
+
+def _history(phases: list[tuple]) -> dict[str, np.ndarray]:
+    """The run's history columns, one entry a sample (:func:`_samples` of each phase), built at once (a frame per
+    phase, concatenated, was 15 % of a run)."""
+    t = np.concatenate([p[0] for p in phases])
+    y = np.concatenate([p[1] for p in phases], axis=1)
+    torque = np.concatenate([np.asarray(p[2], dtype=float) for p in phases])
+    phase = np.concatenate([np.full(len(p[0]), p[3], dtype=object) for p in phases])
+    return {"t": t, "w_driver": y[0], "w_driven": y[0] - y[1], "slip": y[1], "friction_torque": torque,
+            "power_lost": torque * y[1], "friction_work": y[2], "source_work": y[3], "temperature_rise": y[4],
+            "phase": phase}
 
 
 def _headline(model, history, start_time, start_state, reason, y_end) -> dict:
@@ -378,13 +408,13 @@ def _headline(model, history, start_time, start_state, reason, y_end) -> dict:
         "friction_work": at_start[2] if locked else math.inf,
         "source_work": at_start[3] if locked else math.inf,
         "lock_up_speed": at_start[0] if locked else math.nan,
-        "peak_slip_power": float(history["power_lost"].max()),
-        "end_time": float(history["t"].iloc[-1]),
+        "peak_slip_power": largest(history["power_lost"]),
+        "end_time": float(history["t"][-1]),
         "total_friction_work": float(y_end[2]),
         "final_driver_speed": float(y_end[0]),
         "final_driven_speed": float(y_end[0] - y_end[1]),
         "effects": list(model.effects),
     }
     if model.has("friction_heat"):
-        headline["temperature_rise"] = float(history["temperature_rise"].max())
+        headline["temperature_rise"] = largest(history["temperature_rise"])
     return headline

@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+
+import numpy as np
 from clutchopt.simulate.analytic import PaperTransient
 from clutchopt.start_up.equations import coupling_torque, kloss_torque, table_segment
 
@@ -30,6 +32,10 @@ class _Law:
     def slopes(self, driver_speed, slip) -> tuple[float, float]:
         """(dT/dw_a, dT/dw_r) of the kinetic torque: the simulator's Jacobian."""
         return 0.0, 0.0
+
+    def kinetic_samples(self, driver_speeds: np.ndarray, slips: np.ndarray) -> np.ndarray:
+        """The kinetic torque at each sample of a run (its history), as :meth:`kinetic` gives it at each."""
+        return np.array([self.kinetic(w, s) for w, s in zip(driver_speeds, slips)], dtype=float)
 
 
 @dataclass(frozen=True)
@@ -94,6 +100,11 @@ class CentrifugalFriction(_Law):
     def kinetic(self, driver_speed, slip):
         return coupling_torque(self.torque_coefficient, driver_speed, self.engagement_squared) \
             if driver_speed * driver_speed > self.engagement_squared else 0.0
+
+    def kinetic_samples(self, driver_speeds, slips):
+        """:meth:`kinetic` at each sample, at once (a run has a thousand)."""
+        engaged = driver_speeds * driver_speeds > self.engagement_squared
+        return np.where(engaged, coupling_torque(self.torque_coefficient, driver_speeds, self.engagement_squared), 0.0)
 
     def slopes(self, driver_speed, slip):
         """dT/dw_a = 2 K w_a once engaged."""

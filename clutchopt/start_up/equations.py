@@ -229,6 +229,15 @@ class StartUpSpec:
 LIMITS = ("max_start_time", "max_friction_work", "max_temperature_rise", "min_lock_up_speed", "max_link_stress",
           "min_engagement_speed", "max_engagement_speed", "starts_per_hour", "heat_dissipation",
           "max_lining_temperature", "max_continuous_temperature", "min_life", "max_transmitted_torque")
+SLIP_ONLY = ("max_friction_work", "max_temperature_rise", "starts_per_hour", "heat_dissipation", "heat_capacity",
+             "heat_conductance", "ambient_temperature", "max_lining_temperature", "max_continuous_temperature",
+             "wear_rate", "wear_allowance", "min_life", "max_transmitted_torque", "friction_max")
+"""The quantities of a coupling that slips (friction heat, lining wear, the torque it passes slipping): what an
+elastic link (the cable coupling) cannot have; :func:`clutchopt.start_up.section.parse_start_up` refuses them on
+one, ``choose-coupling`` leaves them out of the neutral case it poses for one."""
+SLIP_EFFECTS = ("friction_heat",)
+WEAR_ONLY = ("wear_rate", "wear_allowance", "min_life")
+"""The quantities of lining wear: what a coupling that declares no friction area that wears cannot have."""
 LOCK_UP_SHARE = 0.9  # default min_lock_up_speed over the synchronous speed
 
 SPRING_PRELOAD = Variable("spring_preload", "N", "return-spring preload on each weight", "F_s", lower=0.0,

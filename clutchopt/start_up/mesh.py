@@ -41,8 +41,8 @@ def adapted_mesh(structure, history, phase_times: list[float]) -> np.ndarray:
     """A mesh for the next solve from the simulated start, over the NLP's phase timing: each phase's intervals
     equidistribute sqrt|x''| of the states (each scaled by its range and the phase duration), the error
     monitor of a corner (the motor's knee), with a fifth of its mean over the phase added everywhere."""
-    t_all = history["t"].to_numpy()
-    columns = [history[name].to_numpy() for name in ("w_driver", "w_driven", "friction_work", "temperature_rise")]
+    t_all = np.asarray(history["t"])  # a run's columns (arrays) or its history (a DataFrame)
+    columns = [np.asarray(history[name]) for name in ("w_driver", "w_driven", "friction_work", "temperature_rise")]
     meshes, begin = [], 0.0
     for phase, end in zip(structure.phases, np.cumsum(phase_times)):
         inside = (t_all >= begin) & (t_all <= end)

@@ -48,6 +48,8 @@ from clutchopt.start_up.equations import (
     LOCK_UP_SHARE,
     QUANTITIES,
     RADIAL_EFFECTS,
+    SLIP_EFFECTS,
+    SLIP_ONLY,
     LoadProfile,
     StartUpSpec,
 )
@@ -228,6 +230,11 @@ def _check(values, effects, coupling, laws, profile, explicit=frozenset()) -> No
         raise InputError(key(given(*motor, "min_lock_up_speed")[0]), "given, but effects do not list motor_curve "
                                                                      "(the driver then turns at the duty's constant "
                                                                      "speed)")
+    if any(isinstance(law, ElasticLaw) for law in laws):
+        _check_elastic(values, effects, coupling, key, explicit)
+    elif "max_link_stress" in values:
+        raise InputError(key("max_link_stress"), f"applies to couplings with an elastic link (the cable coupling), "
+                                                 f"not to the {coupling.name} coupling")
     if "friction_heat" in effects and "heat_capacity" not in values:
         raise InputError(key("heat_capacity"), "missing (effect friction_heat)")
     heat_only = [n for n in ("heat_capacity", "heat_conductance", "max_temperature_rise", "max_lining_temperature",
@@ -236,11 +243,6 @@ def _check(values, effects, coupling, laws, profile, explicit=frozenset()) -> No
         raise InputError(key(heat_only[0]), "given, but effects do not list friction_heat")
     if values.get("spring_preload", 0.0) > 0 and "spring_preload" not in effects:
         raise InputError(key("spring_preload"), "given, but effects do not list spring_preload")
-    if any(isinstance(law, ElasticLaw) for law in laws):
-        _check_elastic(values, effects, coupling, key)
-    elif "max_link_stress" in values:
-        raise InputError(key("max_link_stress"), f"applies to couplings with an elastic link (the cable coupling), "
-                                                 f"not to the {coupling.name} coupling")
     radial = [e for e in effects if e in RADIAL_EFFECTS]
     if radial and not all(getattr(law, "mass_radius", None) for law in laws):
         raise InputError(f"{SECTION}.effects", f"{radial[0]} does not apply to the {coupling.name} coupling "
@@ -317,28 +319,25 @@ def check_values(values: dict[str, float]) -> None:
     problems.raise_any()
 
 
-def _check_elastic(values, effects, coupling, key) -> None:
+def _check_elastic(values, effects, coupling, key, explicit) -> None:
     """A coupling with an elastic link (the cable coupling) starts on a motor; springs, the weights' weight (its
-    equations hold g already, eq. 1) and friction heat are not its effects."""
+    equations hold g already, eq. 1) and what a slipping coupling has (:data:`SLIP_ONLY`, ``explicit``: given by the
+    case) are not its own."""
     if "motor_curve" not in effects:
         raise InputError(f"{SECTION}.effects", f"the {coupling.name} coupling is an elastic link: its start needs the "
                                                "motor that drives it (list motor_curve)")
-    for effect in ("spring_preload", "gravity", "friction_heat"):
+    for effect in RADIAL_EFFECTS + SLIP_EFFECTS:
         if effect in effects:
             raise InputError(f"{SECTION}.effects", f"{effect} does not apply to the {coupling.name} coupling (an "
                                                    "elastic link: no friction surfaces, no springs on its weights; "
                                                    "its own gravity is in its equations, eq. 1)")
     if "max_link_stress" not in values:
         raise InputError(key("max_link_stress"), "missing (the largest cable stress during the start)")
-    for name in ("max_transmitted_torque", "friction_max"):
-        if name in values:
+    for name in SLIP_ONLY:
+        if name in explicit:
             raise InputError(key(name), f"does not apply to the {coupling.name} coupling: an elastic link does not "
-                                        "slip, so it limits no torque (no overload_torque check)")
-    for name in ("max_friction_work", "starts_per_hour", "heat_dissipation"):
-        if name in values:
-            raise InputError(key(name), f"does not apply to the {coupling.name} coupling: an elastic link releases "
-                                        "no friction heat (only its damping's few joules, which the simulator "
-                                        "reports)")
+                                        "slip, so it releases no friction heat (only its damping's few joules, which "
+                                        "the simulator reports), wears no lining and limits no torque")
 
 
 def _check_ranges(values: dict[str, float], duty: dict[str, float], problems: Problems,

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import math
+import threading
 from pathlib import Path
 from dataclasses import replace
 from types import SimpleNamespace
@@ -179,15 +180,44 @@ def _elastic_model(case, law: ElasticLaw, design: dict[str, float], rtol: float)
     damping = 2.0 * float(law.damping_ratio(x, p)) * math.sqrt(float(law.stiffness(x, p, p.speed)) * reduced)
     profile = spec.load_profile
     load = Load(over=profile.over, points=profile.points, values=profile.values) if profile else Load(p.load_torque)
-    return ElasticModel(lambda w, theta: float(law.torque(x, p, w, theta)),
-                        lambda w, theta: float(law.stress(x, p, w, theta)), damping, p.driven_inertia, load, motor,
-                        p.min_lock_up_speed, float(law.largest_twist(x, p)), spec.effects, rtol=max(rtol, 1e-10))
+    return ElasticModel(lambda w, theta: law.torque(x, p, w, theta), lambda w, theta: law.stress(x, p, w, theta),
+                        damping, p.driven_inertia, load, motor, p.min_lock_up_speed, float(law.largest_twist(x, p)),
+                        spec.effects, rtol=max(rtol, 1e-10))
 
 
 def until_lock_up(model, end_time: float):
     """A start-up model run only to its first lock-up (no locked run after it) and cut at ``end_time``: all a start
     guess needs, however long the locked run or the case's limits."""
     return replace(model, effects=tuple(e for e in model.effects if e != "lockup"), end_time=end_time)
+
+
+GUESSES = 16  # start guesses kept (a re-solve of a case starts from the same design: one simulation, not two)
+_GUESSES: dict[tuple, tuple] = {}
+_KEEPING = threading.Lock()  # solves of several threads (the run is simulated outside it)
+
+
+def start_guess(case, mode: str, design: dict[str, float], rtol: float, end_time: float) -> tuple:
+    """(model, result): the start of ``design`` on the case's drive up to its first lock-up (:func:`until_lock_up`),
+    at ``rtol``: a start point for the NLP's states. The same case and design give the same run, so the last GUESSES
+    are kept (a re-solve of a case, whose start design is its static optimum, simulates only its optimum's check);
+    the result is read, never changed, by its users."""
+    try:
+        key = (case.coupling, mode, case.start_up, tuple(sorted(case.values.items())),
+               tuple(sorted(design.items())), rtol, end_time)
+        hash(key)
+    except TypeError:  # a value that is no number (none in a checked case): simulated, not kept
+        key = None
+    kept = _GUESSES.get(key) if key is not None else None
+    if kept is not None:
+        return kept
+    model = start_up_model(case, mode, design, rtol=rtol)
+    result = model, run_start_up(until_lock_up(model, end_time))
+    if key is not None:
+        with _KEEPING:
+            while len(_GUESSES) >= GUESSES:
+                del _GUESSES[next(iter(_GUESSES))]  # the oldest
+            _GUESSES[key] = result
+    return result
 
 
 def run_start_up(model) -> SimulationResult:

@@ -30,6 +30,7 @@ from clutchopt.start_up.mesh import first_mesh
 
 DEGREE = 3
 GUESS_RTOL = 1e-6  # the start guess's simulation: a guess, not a check
+TRAJECTORY = ("t", "w_driver", "w_driven", "friction_work", "temperature_rise", "twist")  # trajectory()'s columns
 
 
 def _collocation(degree: int):
@@ -227,8 +228,7 @@ class StartUpBlock:
             work.append(state["friction_work"])
             heat.append(state["temperature"])
             twist.append(state.get("twist", 0.0))
-        return {"t": times, "w_driver": driver, "w_driven": driven, "friction_work": work, "temperature_rise": heat,
-                "twist": twist}
+        return dict(zip(TRAJECTORY, (times, driver, driven, work, heat, twist)))
 
     def guess(self, history, headline, engagement_squared: float, time_ref: float, scales: np.ndarray,
               mesh: np.ndarray) -> np.ndarray:
@@ -236,44 +236,48 @@ class StartUpBlock:
         lock-up, or where the simulation ended (at most ``time_ref``) if it does not lock up."""
         d = self.s
         locked = headline.get("locks_up") and math.isfinite(headline.get("start_time", math.inf))
-        t_end = headline["start_time"] if locked else min(time_ref, history["t"].iloc[-1])
-        t = history["t"].to_numpy()
-        driver = history["w_driver"].to_numpy()
-        driven = history["w_driven"].to_numpy()
+        t = np.asarray(history["t"])  # a run's columns (arrays) or its history (a DataFrame)
+        t_end = headline["start_time"] if locked else min(time_ref, t[-1])
+        driver = np.asarray(history["w_driver"])
+        driven = np.asarray(history["w_driven"])
         engage = t[np.argmax(driver >= math.sqrt(engagement_squared))] if d.motor and d.radial else 0.0
         moving = driven > 1e-9 * max(driver.max(), 1e-300)
         breakaway = t[np.argmax(moving)] if d.load_at_rest and moving.any() else engage
         bounds = {"run_up": (0.0, engage), "breakaway": (engage, breakaway), "slip": (breakaway, t_end),
                   "locked": (0.0, t_end)}
         columns = {"driver_speed": driven if d.elastic else driver, "slip": driver - driven,
-                   "friction_work": history["friction_work"].to_numpy(),
-                   "temperature": history["temperature_rise"].to_numpy(),
-                   "twist": history["twist"].to_numpy() if "twist" in history else np.zeros_like(t)}
-        values = []
+                   "friction_work": np.asarray(history["friction_work"]),
+                   "temperature": np.asarray(history["temperature_rise"]),
+                   "twist": np.asarray(history["twist"]) if "twist" in history else np.zeros_like(t)}
+        values, samples = [], {name: ([], []) for name in columns}  # name -> (its places in values, times)
         for index, phase in enumerate(d.phases):
             begin, end = bounds[phase]
             end = max(end, begin)
             values.append(end - begin)
             lengths = mesh[index * d.intervals:(index + 1) * d.intervals]
             starts = np.concatenate([[0.0], np.cumsum(lengths)[:-1]])
+            names = list(self._states(phase)) + (["twist"] if phase == "locked" else [])
             for k in range(d.intervals):
                 for j in range(1, DEGREE + 1):
                     time = begin + (starts[k] + self.tau[j] * lengths[k]) * (end - begin)
-                    for name in self._states(phase):
-                        values.append(float(np.interp(time, t, columns[name])))
-                    if phase == "locked":
-                        values.append(float(np.interp(time, t, columns["twist"])))
-        return np.array(values) / scales
+                    for name in names:
+                        samples[name][0].append(len(values))
+                        samples[name][1].append(time)
+                        values.append(0.0)
+        values = np.array(values)
+        for name, (places, times) in samples.items():  # each state interpolated at all its points at once
+            values[places] = np.interp(times, t, columns[name])
+        return values / scales
 
 
 def initial_states(block: StartUpBlock, case, formulation, design: dict[str, float], scales: np.ndarray,
                    mesh: np.ndarray) -> np.ndarray:
     """The internal variables (scaled) of the start design's simulated start: a start point on the dynamics."""
     from clutchopt.simulate.ranges import TIME
-    from clutchopt.start_up.simulation import run_start_up, start_up_model, until_lock_up
+    from clutchopt.start_up.simulation import start_guess
 
-    model = start_up_model(case, formulation.mode, design, rtol=GUESS_RTOL)
-    result = run_start_up(until_lock_up(model, min(3.0 * case.values["max_start_time"], TIME[1])))
+    model, result = start_guess(case, formulation.mode, design, GUESS_RTOL,
+                                min(3.0 * case.values["max_start_time"], TIME[1]))
     squared = 0.0 if block.s.elastic else model.law.engagement_squared
-    return block.guess(result.history, result.headline, squared, case.values["max_start_time"], scales, mesh)
+    return block.guess(result.columns, result.headline, squared, case.values["max_start_time"], scales, mesh)
 

@@ -1,0 +1,54 @@
+"""How many points a batched sweep chains next (``clutchopt.optimise.batch``).
+
+A chained call cannot stop early: a chain that runs past the point where it fails a test spends a solve on every
+point after it, for nothing; one that stops short of that point costs one more call (0.1-0.2 ms with its checks)
+but no solve. Along a smooth stretch chains double from ``first`` to ``longest`` points while they pass. Where the
+integer search has decided a point (a chain broke there: its integers excluded, or a neighbouring integer promised
+a gain), the next break is expected as far on as the last gap between breaks, grown as that gap grew from the one
+before (the relaxed integer crosses integer boundaries at a slowly changing pace along a sweep of evenly or
+geometrically spaced points), and the chain ends at that point: a break on a chain's last point wastes nothing, its
+column being the search's first attempt. Should the chain pass, the break is near: the next chain is a probe of
+one point, then doubling again. After the first break (no gap known yet) the next chain is ``first`` points long,
+probing after it; after a point solved alone, chains restart from ``first``.
+
+Measured on the 100-point user sweeps of the benchmark (``docs/tradeoffs.md``, "Batches"): the cable over its
+allowable stress broke at 7 points with gaps 9, 9, 11, 13, 16, 21, the ball over its speed at 7 with gaps 9, 9, 10,
+11, 13, 14; with chains doubling past each break, 48 and 31 solves went to points after a break.
+"""
+
+from __future__ import annotations
+
+PROBE = 1  # the chain after one aimed at an expected break passed: the break is most often the next point (of 10
+# predicted gaps on the cable and ball sweeps, 4 were exact, 4 one point longer, 1 two longer, 1 one shorter)
+
+
+class BatchPace:
+    """The length of the next chain (:attr:`size`), told what became of each: passed whole, broke for the integer
+    search at a point, or ended in a point solved alone."""
+
+    def __init__(self, first: int, longest: int):
+        self.first, self.longest = first, longest
+        self.size = first
+        self._breaks: list[int] = []  # the last three points where the integer search decided
+        self._aimed = False  # the size ends the chain at an expected break
+
+    def passed(self) -> None:
+        """A chain of :attr:`size` points passed every test: doubled, or a probe after one aimed at a break."""
+        if self._aimed:
+            self.size, self._aimed = PROBE, False
+        else:
+            self.size = min(2 * self.size, self.longest)
+
+    def broke(self, k: int) -> None:
+        """The integer search decided point ``k``: the next chain ends where the next break is expected."""
+        self._breaks = (self._breaks + [k])[-3:]
+        gaps = [b - a for a, b in zip(self._breaks, self._breaks[1:])]
+        if not gaps:  # no gap known: a first chain as after a point solved alone, probing after it
+            self.size, self._aimed = self.first, True
+            return
+        growth = min(max(gaps[-1] / gaps[0], 0.5), 2.0)  # 1 with a single gap
+        self.size, self._aimed = min(max(1, round(gaps[-1] * growth)), self.longest), True
+
+    def restart(self) -> None:
+        """A point failed a test other than the integer search's (solved alone): chains restart from ``first``."""
+        self.size, self._aimed = self.first, False

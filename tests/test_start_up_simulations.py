@@ -1,0 +1,53 @@
+"""How many simulations a start-up solve runs (issue 26): the start guess's and the check's, the guess kept for a
+re-solve of the same case; and what a kept guess must not be: another design's or another case's run."""
+
+import pytest
+
+import clutchopt.start_up.simulation as simulation
+from clutchopt.cases import load_case
+from clutchopt.optimise import solve_case
+from tests.conftest import CASES
+
+
+@pytest.fixture
+def counted(monkeypatch):
+    """The runs of the simulator (a start guess's rtol 1e-6, a check's 1e-11), none kept from before."""
+    runs, run = [], simulation.run_start_up
+    monkeypatch.setattr(simulation, "_GUESSES", {})
+    monkeypatch.setattr(simulation, "run_start_up", lambda model: runs.append(model.rtol) or run(model))
+    return runs
+
+
+def test_a_re_solve_simulates_only_its_check(counted):
+    """wedge_motor_start solves in one NLP solve (no mesh adaptation): its first solve simulates the start design's
+    start up to lock-up (the guess, rtol 1e-6) and the optimum's (the check, 1e-11); a re-solve starts from the
+    same design, so only the check runs, and the solution is the same to the last bit."""
+    case = load_case(CASES / "wedge_motor_start.toml")
+    first = solve_case(case)
+    assert counted == [1e-6, 1e-11]
+    again = solve_case(case)
+    assert counted == [1e-6, 1e-11, 1e-11]
+    assert again.objective == first.objective
+    assert again.start_up["start_time_simulated"] == first.start_up["start_time_simulated"]
+    assert again.start_up["start_time"] == first.start_up["start_time"]
+
+
+def test_a_kept_guess_is_that_of_its_case_and_design(counted):
+    """Another design, or the case with another value, is simulated afresh: a stronger spring preload engages the
+    weights later, so its guess locks up later."""
+    case = load_case(CASES / "wedge_motor_start.toml")
+    solution = solve_case(case)
+    design, mode = solution.design, solution.mode
+    counted.clear()
+    end = 30.0
+    _, kept = simulation.start_guess(case, mode, design, 1e-6, end)
+    assert counted == [1e-6]  # the solve's own guess started from its static optimum, not from this design
+    stronger = {**design, "spring_preload": design["spring_preload"] * 1.5}
+    _, other = simulation.start_guess(case, mode, stronger, 1e-6, end)
+    heavier = case.with_values(driven_inertia=case.values["driven_inertia"] * 1.5)
+    _, slower = simulation.start_guess(heavier, mode, design, 1e-6, end)
+    assert counted == [1e-6, 1e-6, 1e-6]
+    assert simulation.start_guess(case, mode, design, 1e-6, end)[1] is kept
+    assert counted == [1e-6, 1e-6, 1e-6]
+    assert other.headline["start_time"] > kept.headline["start_time"]
+    assert slower.headline["start_time"] > kept.headline["start_time"]
