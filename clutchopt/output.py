@@ -547,9 +547,6 @@ def _probability(triple: list[float]) -> str:
     return "0 (<{:.2g})".format(high) if p == 0 else f"{p:.3g} ({low:.2g}-{high:.2g})"
 
 
-SYSTEM_APART = "; the start-up limits apart, designed at the quantile corners and simulated"
-
-
 def robust_text(result, case) -> str:
     """The robust design beside the nominal one: the scatter, what robustness costs, each constraint at its worst
     (corner or back-off) and its Monte Carlo failure probability, and what drives it (tornado rows)."""
@@ -560,13 +557,15 @@ def robust_text(result, case) -> str:
     how = ("worst case: every constraint at its own worst corner of the ranges (a normal quantity: mean +- 3 sd), "
            "all 2^n corners checked" if result.method == "worst-case" else
            f"{'system ' if result.method == 'system_chance' else ''}chance {target_text(result.target)}: "
-           + (f"the design (any constraint{SYSTEM_APART if result.start_up_points else ''}) holds"
+           + (f"the design (any constraint{' or start-up limit' if result.start_up_points else ''}) holds"
               if result.method == "system_chance" else
               "each constraint holds") + " with that probability, each constraint at its performance point (PMA), "
            + ("1 - P split between the constraints by the NLP (optimal risk allocation), the system verified by "
               "importance sampling" if result.allocation else "beta corrected until importance sampling meets the "
                                                                "target")
-           + ((", each start-up limit at its performance point too (simulated starts)" if result.start_up_beta
+           + ((", each start-up limit at its performance point too (simulated starts)"
+               + (", each one the scatter moves with its share of 1 - P (a union bound)"
+                  if result.start_up_share else "") if result.start_up_beta
                is not None else ", a start-up designed at the corner of the quantiles where it binds")
               if result.start_up_points else ""))
     robust, nominal = result.solution, result.nominal

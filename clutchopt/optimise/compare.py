@@ -135,11 +135,12 @@ SCATTER_NOTES = {
 
 def robust_note(robust, start_up: bool) -> str:
     """What a chance design's column claims: each constraint's failure probability at most 1 - P, or the design's
-    (system_chance; a start-up's limits apart, designed at the quantile corners and simulated, not in that share)."""
+    (system_chance; a start-up's limits within it, each moved one with its share: a union bound)."""
     if robust.method != "system_chance":
         return f"each constraint fails with probability at most {1 - robust.target:.3g}"
     return (f"the design fails with probability at most {1 - robust.target:.3g}"
-            + ("; the start-up limits apart (designed at the quantile corners, simulated)" if start_up else ""))
+            + ("; the start-up limits within it (each the scatter moves with its share; a union bound)"
+               if start_up else ""))
 
 
 def _column(robust) -> str:
