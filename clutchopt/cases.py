@@ -36,6 +36,7 @@ from clutchopt.scatter import Scatter, parse_correlation, parse_scatter
 from clutchopt.model import REQUIRED, Quantity, followed
 from clutchopt.start_up.equations import QUANTITIES as START_UP_QUANTITIES
 from clutchopt.start_up.equations import SPRING_PRELOAD, StartUpSpec
+from clutchopt.start_up.overload import FRICTION
 from clutchopt.units import to_si
 
 _TOP_LEVEL = {"coupling", "title", "description"}
@@ -208,6 +209,7 @@ def parse_case(data: dict, path: str = "") -> Case:
             values.update(start_values)
             filled.update({name: lining_filled[name] for name in lining_filled if name in taken})  # the library's
             # order: ``taken`` is a set, whose order changed from run to run (PYTHONHASHSEED) in the library note
+            _highest_friction_given(values, start_up)
     scatter, correlation = (), None
     if "scatter" in data:  # scattered around the case's values: not checked against a value that is itself bad
         with problems.field():
@@ -241,6 +243,17 @@ def parse_case(data: dict, path: str = "") -> Case:
                                                       "that names one entry")
     problems.raise_any()
     return case
+
+
+def _highest_friction_given(values: dict[str, float], start_up) -> None:
+    """A [start_up.overload] friction_max the case gives is at least the case's own friction coefficient: the overload
+    takes max(f, f_max) (clutchopt/start_up/overload.py, for a sweep or a scatter's corner above it), which would
+    set a value below the case's own aside without a word."""
+    highest, nominal = values.get("friction_max"), values.get(FRICTION)
+    if start_up.friction_max_given and highest is not None and nominal is not None and highest < nominal:
+        raise InputError("start_up.overload.friction_max", f"{highest:g} is below the case's friction_coefficient "
+                                                           f"{nominal:g}: the highest friction coefficient the pair "
+                                                           "reaches cannot be below its nominal one")
 
 
 def _quietly(function, *args):

@@ -11,8 +11,9 @@ import json
 import math
 from typing import TYPE_CHECKING
 
+from clutchopt.records import target_text
 from clutchopt.units import from_si, si_unit
-from clutchopt.scatter import correlation_text
+from clutchopt.scatter import correlation_text, shown_spread
 
 if TYPE_CHECKING:  # JSON needs neither pandas nor the solver: ``solve --json`` starts faster without them
     from clutchopt.model import Formulation
@@ -550,17 +551,21 @@ def robust_text(result, case) -> str:
     """The robust design beside the nominal one: the scatter, what robustness costs, each constraint at its worst
     (corner or back-off) and its Monte Carlo failure probability, and what drives it (tornado rows)."""
     quantities = {q.name: q for q in case.quantities}
-    scatter = [{"quantity": s.name, "scatter": s.describe(quantities[s.name].show),
+    scatter = [{"quantity": s.name, "scatter": s.describe(quantities[s.name].show,
+                                                          lambda v, q=quantities[s.name]: shown_spread(q, v)),
                 "nominal": quantities[s.name].show(case.values[s.name])} for s in case.scatter]
     how = ("worst case: every constraint at its own worst corner of the ranges (a normal quantity: mean +- 3 sd), "
            "all 2^n corners checked" if result.method == "worst-case" else
-           f"{'system ' if result.method == 'system_chance' else ''}chance {result.target:g}: "
-           + ("the design (any constraint) holds" if result.method == "system_chance" else
+           f"{'system ' if result.method == 'system_chance' else ''}chance {target_text(result.target)}: "
+           + (f"the design (any constraint{' or start-up limit' if result.start_up_points else ''}) holds"
+              if result.method == "system_chance" else
               "each constraint holds") + " with that probability, each constraint at its performance point (PMA), "
            + ("1 - P split between the constraints by the NLP (optimal risk allocation), the system verified by "
               "importance sampling" if result.allocation else "beta corrected until importance sampling meets the "
                                                                "target")
-           + ((", each start-up limit at its performance point too (simulated starts)" if result.start_up_beta
+           + ((", each start-up limit at its performance point too (simulated starts)"
+               + (", each one the scatter moves with its share of 1 - P (a union bound)"
+                  if result.start_up_share else "") if result.start_up_beta
                is not None else ", a start-up designed at the corner of the quantiles where it binds")
               if result.start_up_points else ""))
     robust, nominal = result.solution, result.nominal

@@ -22,7 +22,12 @@ NOMINAL = "nominal"  # how a design was made without --robust; else worst-case o
 
 def method_text(method: str, target: float | None) -> str:
     """A robust method as --robust spells it: ``worst-case``, ``chance=0.999``."""
-    return method if target is None else f"{method}={target:.15g}"
+    return method if target is None else f"{method}={target_text(target)}"
+
+
+def target_text(target: float) -> str:
+    """A chance target P as given: ``0.999999999`` (``:g`` wrote it 1, a probability no design holds with)."""
+    return f"{target:.15g}"
 
 
 def method_of(outputs) -> str | None:

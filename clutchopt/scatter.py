@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from clutchopt.errors import InputError, Problems, shown_value
-from clutchopt.units import to_si
+from clutchopt.units import difference_unit, to_si, unit_info
 
 SECTION = "scatter"
 CORRELATION = "correlation"  # the subtable [scatter.correlation]
@@ -45,6 +45,7 @@ FORMS = ('[low, high], { normal = [mean, sd] } or { uniform = [low, high] }, or 
          '{ normal = [mean, sd], within = [low, high] }, "+-20 %" or "library"')
 BAND = re.compile(r"^\s*(?:\+-|\+/-|±)\s*(\d+(?:\.\d*)?|\.\d+)\s*%\s*$")  # "+-20 %", "±20 %", "+/-20%"
 LIBRARY = "library"
+SINGULAR = 1e-12  # smallest eigenvalue of a correlation matrix taken as positive definite
 
 
 @dataclass(frozen=True)
@@ -95,18 +96,23 @@ class Scatter:
     def log_parameters(self) -> tuple[float, float]:
         """A lognormal quantity's (mu, sigma), those of ln X, from its mean m and sd s:
         sigma^2 = ln(1 + (s/m)^2), mu = ln m - sigma^2 / 2 (so that E X = exp(mu + sigma^2/2) = m and
-        Var X = (exp(sigma^2) - 1) m^2 = s^2)."""
-        sigma = math.sqrt(math.log1p((self.sd / self.mean) ** 2))
-        return math.log(self.mean) - sigma ** 2 / 2, sigma
+        Var X = (exp(sigma^2) - 1) m^2 = s^2); for s/m above 1 as 2 ln(s/m) + ln(1 + (m/s)^2), the same number,
+        which (s/m)^2 cannot overflow."""
+        ratio = self.sd / self.mean
+        variance = math.log1p(ratio ** 2) if ratio <= 1 else 2 * math.log(ratio) + math.log1p(ratio ** -2)
+        return math.log(self.mean) - variance / 2, math.sqrt(variance)
 
     def _truncated(self):
         return _truncated_law(self.mean, self.sd, self.low, self.high)
 
-    def describe(self, unit_shown) -> str:
+    def describe(self, unit_shown, spread_shown=None) -> str:
+        """``normal, mean 40 degC, sd 5 K``: values by ``unit_shown``, the sd by ``spread_shown`` (a difference: a
+        temperature's in K, :func:`shown_spread`; default ``unit_shown``)."""
+        sd = (spread_shown or unit_shown)(self.sd)
         if self.kind in ("normal", "lognormal"):
-            return f"{self.kind}, mean {unit_shown(self.mean)}, sd {unit_shown(self.sd)}"
+            return f"{self.kind}, mean {unit_shown(self.mean)}, sd {sd}"
         if self.kind == "truncated":
-            return (f"normal, mean {unit_shown(self.mean)}, sd {unit_shown(self.sd)}, within {unit_shown(self.low)} "
+            return (f"normal, mean {unit_shown(self.mean)}, sd {sd}, within {unit_shown(self.low)} "
                     f"to {unit_shown(self.high)}")
         return f"{self.kind} {unit_shown(self.low)} to {unit_shown(self.high)}"
 
@@ -188,18 +194,22 @@ def parse_scatter(table, quantities, values: dict[str, float], broken=frozenset(
             if math.isnan(nominal) and name not in broken:
                 raise InputError(field, "the case gives no value of it to scatter around")
             if isinstance(raw, str):
-                raw = _spelled_range(field, quantity, raw, nominal, (library_ranges or {}).get(name))
-                if raw is None:  # a band around a case value that is refused itself
-                    continue
+                ends = _spelled_range(field, quantity, raw, nominal, (library_ranges or {}).get(name))
+                if ends is not None:  # None: a band around a case value that is refused itself
+                    items.append(_range(field, quantity, "range", *ends, nominal))
+                continue
             items.append(_item(field, quantity, raw, nominal))
     problems.raise_any()
     return tuple(items)
 
 
-def _pair(field: str, quantity, raw) -> tuple[float, float]:
+def _pair(field: str, quantity, raw, spread: bool = False) -> tuple[float, float]:
+    """Two values of ``quantity`` (SI); ``spread``: the second a standard deviation, for a temperature a temperature
+    difference (K, delta_degC: "5 degC" would be 278.15 K)."""
     if not isinstance(raw, list) or len(raw) != 2:
         raise InputError(field, f"must be a pair of values in {quantity.unit or 'SI'}, got {shown_value(raw)}")
-    return tuple(to_si(field, value, quantity.unit) for value in raw)
+    units = (quantity.unit, difference_unit(quantity.unit) if spread else quantity.unit)
+    return tuple(to_si(field, value, unit) for value, unit in zip(raw, units))
 
 
 def _spelled_range(field: str, quantity, raw: str, nominal: float, library) -> list[float] | None:
@@ -215,6 +225,9 @@ def _spelled_range(field: str, quantity, raw: str, nominal: float, library) -> l
     band = BAND.match(raw)
     if band is None:
         raise InputError(field, f"must be {FORMS}, got {shown_value(raw)}")
+    if unit_info(quantity.unit).offset:
+        raise InputError(field, "a relative band of an absolute temperature depends on its scale (20 % of 40 degC "
+                                "is 8 K, of 313.15 K 63 K): give a range [low, high]")
     share = float(band.group(1)) / 100
     if not 0 < share < 1:
         raise InputError(field, f"a relative band must lie above 0 % and below 100 %, got {band.group(1)} %")
@@ -238,12 +251,12 @@ def _item(field: str, quantity, raw, nominal: float) -> Scatter:
     normal or lognormal distribution's mean must be it, as must a cut normal's before its cut (unless ``nominal`` is
     NaN, unknown)."""
     if isinstance(raw, list):
-        kind, (low, high) = "range", _pair(field, quantity, raw)
-    elif isinstance(raw, dict) and set(raw) == {"normal", "within"}:
+        return _range(field, quantity, "range", *_pair(field, quantity, raw), nominal)
+    if isinstance(raw, dict) and set(raw) == {"normal", "within"}:
         return _truncated(field, quantity, raw, nominal)
-    elif isinstance(raw, dict) and len(raw) == 1 and next(iter(raw)) in ("normal", "uniform", "lognormal"):
+    if isinstance(raw, dict) and len(raw) == 1 and next(iter(raw)) in ("normal", "uniform", "lognormal"):
         kind = next(iter(raw))
-        first, second = _pair(f"{field}.{kind}", quantity, raw[kind])
+        first, second = _pair(f"{field}.{kind}", quantity, raw[kind], spread=kind != "uniform")
         if kind in ("normal", "lognormal"):
             _mean_and_sd(f"{field}.{kind}", quantity, first, second, nominal)
             if kind == "lognormal" and not first > 0:
@@ -252,10 +265,18 @@ def _item(field: str, quantity, raw, nominal: float) -> Scatter:
             trial = Scatter(quantity.name, kind, math.nan, math.nan, first, second)
             low, high = (_within(quantity, float(trial.from_standard(u))) for u in (-NORMAL_RANGE, NORMAL_RANGE))
             quantity.check(low, f"{field}.{kind}"), quantity.check(high, f"{field}.{kind}")
+            if not low <= first <= high:  # a lognormal with sigma above 2 NORMAL_RANGE: s/m above about 6.6e7
+                raise InputError(f"{field}.{kind}", f"the standard deviation {shown_spread(quantity, second)} against the mean "
+                                                    f"{quantity.show(first)} puts the whole worst-case range (its "
+                                                    f"0.135 % to 99.865 % quantiles) below the mean: no range of "
+                                                    f"values spreads around the case's value; give a smaller sd")
             return Scatter(quantity.name, kind, low, high, first, second)
-        low, high = first, second
-    else:
-        raise InputError(field, f"must be {FORMS}, got {shown_value(raw)}")
+        return _range(field, quantity, kind, first, second, nominal)
+    raise InputError(field, f"must be {FORMS}, got {shown_value(raw)}")
+
+
+def _range(field: str, quantity, kind: str, low: float, high: float, nominal: float) -> Scatter:
+    """A range or uniform distribution over [low, high] (SI) that holds the case's value."""
     _holds(field, quantity, low, high, nominal)
     return Scatter(quantity.name, kind, low, high, (low + high) / 2, (high - low) / math.sqrt(12.0))
 
@@ -263,14 +284,18 @@ def _item(field: str, quantity, raw, nominal: float) -> Scatter:
 def _mean_and_sd(field: str, quantity, mean: float, sd: float, nominal: float) -> None:
     """A distribution's mean is a valid value of the quantity, and the case's; its standard deviation positive."""
     if not sd > 0:
-        raise InputError(field, f"the standard deviation must be positive, got {quantity.show(sd)}")
+        raise InputError(field, f"the standard deviation must be positive, got {shown_spread(quantity, sd)}")
     quantity.check(mean, field)
+    if mean + NORMAL_RANGE * sd == mean or mean - NORMAL_RANGE * sd == mean:  # else every estimate says "exact"
+        raise InputError(field, f"the standard deviation {shown_spread(quantity, sd)} does not move the mean "
+                                f"{quantity.show(mean)} in float64 (mean +- {NORMAL_RANGE:g} sd rounds to the mean): "
+                                f"no scatter; leave {quantity.name} out of [scatter] or give a wider sd")
     if not math.isnan(nominal) and not math.isclose(mean, nominal, rel_tol=MEAN_TOLERANCE):
         kind = field.rsplit(".", 1)[-1]
         raise InputError(field, f"the mean {quantity.show(mean)} is not the case's value {quantity.show(nominal)}: "
                                 f"a scatter spreads around the value the case is designed at; set the case's value "
                                 f"to the mean, or scatter around it ({kind} = [{_spelled(quantity, nominal)}, "
-                                f"{_spelled(quantity, sd)}])")
+                                f"{_spelled(quantity, sd, spread=True)}])")
 
 
 def _holds(field: str, quantity, low: float, high: float, nominal: float) -> None:
@@ -287,7 +312,7 @@ def _holds(field: str, quantity, low: float, high: float, nominal: float) -> Non
 def _truncated(field: str, quantity, raw: dict, nominal: float) -> Scatter:
     """``{ normal = [mean, sd], within = [low, high] }``: a normal distribution cut to [low, high] (its mean and sd
     those before the cut; the mean is the case's value); its worst-case range is the cut."""
-    mean, sd = _pair(f"{field}.normal", quantity, raw["normal"])
+    mean, sd = _pair(f"{field}.normal", quantity, raw["normal"], spread=True)
     _mean_and_sd(f"{field}.normal", quantity, mean, sd, nominal)
     low, high = _pair(f"{field}.within", quantity, raw["within"])
     _holds(f"{field}.within", quantity, low, high, nominal)
@@ -336,6 +361,11 @@ def parse_correlation(table, scatter: tuple[Scatter, ...]) -> tuple[tuple[float,
     names = [s.name for s in scatter]
     if not _positive_definite(matrix):
         worst = _smallest_indefinite(matrix)
+        smallest = float(np.linalg.eigvalsh(matrix[np.ix_(worst, worst)]).min())
+        if smallest > 0:  # positive definite, but too near singular to factor and sample reliably
+            raise InputError(field, f"the correlations of {', '.join(names[i] for i in worst)} are nearly singular "
+                                    f"(smallest eigenvalue {smallest:.2g}, below {SINGULAR:g}: one quantity all but "
+                                    f"another); weaken one of them, or scatter one quantity")
         raise InputError(field, f"the correlations of {', '.join(names[i] for i in worst)} are not positive "
                                 f"definite (no joint distribution has them: e.g. a with b and b with c strongly "
                                 f"positive, a with c strongly negative); weaken one of them")
@@ -359,24 +389,31 @@ def _positive_definite(matrix: np.ndarray) -> bool:
         np.linalg.cholesky(matrix)
     except np.linalg.LinAlgError:
         return False
-    return bool(np.linalg.eigvalsh(matrix).min() > 1e-12)
+    return bool(np.linalg.eigvalsh(matrix).min() > SINGULAR)
 
 
 def _smallest_indefinite(matrix: np.ndarray) -> tuple[int, ...]:
-    """The indices of a smallest set of quantities whose correlations alone are not positive definite (pairs
-    always are, |rho| < 1)."""
+    """The indices of a smallest set of quantities whose correlations alone are not positive definite (a pair only
+    when nearly singular, |rho| < 1)."""
     n = len(matrix)
-    for size in range(3, n + 1):
+    for size in range(2, n + 1):
         for subset in itertools.combinations(range(n), size):
             if not _positive_definite(matrix[np.ix_(subset, subset)]):
                 return subset
     return tuple(range(n))
 
 
-def _spelled(quantity, value: float) -> str:
-    """A value as a case file writes it: ``"12 kg*m^2"``, or a bare number where the quantity has no unit."""
-    shown = quantity.show(value)
+def _spelled(quantity, value: float, spread: bool = False) -> str:
+    """A value (``spread``: a standard deviation) as a case file writes it: ``"12 kg*m^2"``, or a bare number where
+    the quantity has no unit."""
+    shown = shown_spread(quantity, value) if spread else quantity.show(value)
     return shown if " " not in shown else f'"{shown}"'
+
+
+def shown_spread(quantity, value: float) -> str:
+    """A standard deviation in the quantity's unit; a temperature's in K, a difference (5 K, not -268.15 degC)."""
+    unit = difference_unit(quantity.unit)
+    return quantity.show(value) if unit == quantity.unit else f"{value:.6g} {unit}"
 
 
 def _within(quantity, value: float) -> float:

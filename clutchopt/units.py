@@ -253,12 +253,15 @@ def to_si(field: str, raw: object, unit: str) -> float:
     Raises InputError naming the field for text that is no quantity, a quantity of another kind (a wrong dimension,
     or the right one with another power of radian: an angle where a ratio is expected, an angular speed where a
     count per time is, a pure frequency (Hz, 1/s) where an angular speed is, see ``_SPEED_HINT``), NaN or infinity,
-    a value beyond float64, and an offset temperature (degC), which clutchopt's temperature rises cannot mean.
+    a value beyond float64, and an offset temperature (degC), which clutchopt's temperature rises cannot mean; a
+    bare number where an absolute temperature is expected (SI would make 40 ambient 40 K, not 40 degC)
     """
     expected = unit_info(unit)
     if isinstance(raw, bool):
         raise InputError(field, f"expected a quantity in {unit}, got a boolean")
     if isinstance(raw, (int, float)):  # a bare number is SI
+        if expected.offset:  # 40 would be 40 K, -233 degC, where an absolute temperature is asked for
+            raise InputError(field, f"a bare number is ambiguous for a temperature: write '{raw} degC' or '{raw} K'")
         try:
             value, given = float(raw), expected._replace(factor=1.0)
         except OverflowError:
@@ -295,6 +298,12 @@ def to_si(field: str, raw: object, unit: str) -> float:
     if not math.isfinite(value):
         raise InputError(field, f"must be a finite number within the float64 range, got {shown_value(raw)}")
     return value
+
+
+def difference_unit(unit: str) -> str:
+    """The unit of a difference of two values in ``unit``: K for an offset unit (degC: two temperatures differ by
+    kelvins), else the unit itself."""
+    return "K" if unit not in UNITS and unit_info(unit).offset else unit
 
 
 def into_si(value, unit: str):

@@ -7,7 +7,9 @@ A neutral case (``coupling = "any"``) gives what does not depend on the coupling
     [library]     friction_pair = "organic_dry" (and any other role a coupling has)
     [limits]      outer_diameter_max = "400 mm" (any limit a coupling declares)
     [start_up]    the drive, as in a coupling's case (the nameplate motor too)
-    [couplings.NAME.SECTION]   what one coupling takes beyond its starting values (e.g. its mode)
+    [couplings.NAME.SECTION]   what one coupling takes beyond its starting values (e.g. its mode; not a
+                               [scatter], options.objective or options.choose, which would not apply, nor
+                               a duty or drive of its own: the ranking is like for like)
 
 Each coupling's case is its starting case (``clutchopt init``, the values of clutchopt/data/starting_values.toml)
 in the mode that frees the most of its geometry (with every variable ``options.free`` may free), with the neutral duty written in the coupling's own terms: a duty
@@ -26,8 +28,8 @@ import math
 import tomllib
 from dataclasses import dataclass, field
 
-from clutchopt.cases import NEUTRAL, Case, parse_case, read_toml
-from clutchopt.errors import InputError, Problems
+from clutchopt.cases import _EXTRA_SECTIONS, NEUTRAL, Case, _did_you_mean, check_text, parse_case, read_toml
+from clutchopt.errors import InputError, Problems, shown_value
 from clutchopt.formulations import MODULES, get_coupling
 from clutchopt.formulations.duty import DUTY_QUANTITIES, required_torque
 from clutchopt.model import ENVELOPE_PARTS, ElasticLaw, Quantity, namespace
@@ -35,7 +37,7 @@ from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.start_up.equations import QUANTITIES as START_UP_QUANTITIES
 from clutchopt.start_up.equations import SLIP_EFFECTS, SLIP_ONLY, WEAR_ONLY
 from clutchopt.start_up.nameplate import FIELDS as NAMEPLATE_FIELDS
-from clutchopt.start_up.section import read_tables
+from clutchopt.start_up.section import check_values, read_tables, with_defaults
 from clutchopt.units import si_unit, to_si
 
 OBJECTIVE = "envelope_mass"  # each coupling designed for least like-for-like mass, the mass it is ranked by
@@ -124,6 +126,9 @@ def neutral_duty(data: dict, path: str) -> tuple[dict[str, float], dict]:
     for key in SECTIONS:
         if key in data and not isinstance(data[key], dict):
             problems.errors.append(InputError(key, f"must be a table [{key}]"))
+    for key in ("title", "description"):
+        with problems.field():
+            check_text(key, data.get(key, ""), multiline=key == "description")
     problems.raise_any()
     raw = dict(data.get("duty", {}))
     values: dict[str, float] = {}
@@ -143,13 +148,58 @@ def neutral_duty(data: dict, path: str) -> tuple[dict[str, float], dict]:
         problems.errors.append(InputError("duty.power", "missing: the motor's rated power (or duty.torque, its rated "
                                                         "torque; or a nameplate motor in [start_up.driver])"))
     problems.raise_any()
-    if "power" not in values and "torque" not in values and "rated_power" in driver:
+    if "rated_power" in driver and "rated_speed" in driver and isinstance(data.get("start_up"), dict):
+        plate = {}
         with problems.field():
-            for name in ("rated_power", "rated_speed"):
-                values[name] = to_si(f"start_up.driver.{name}", driver[name], NAMEPLATE_FIELDS[name])
+            plate = {name: to_si(f"start_up.driver.{name}", driver[name], NAMEPLATE_FIELDS[name])
+                     for name in ("rated_power", "rated_speed")}
         problems.raise_any()
-        values["torque"] = values["rated_power"] / values["rated_speed"]
+        _same_motor(values, plate["rated_power"], plate["rated_power"] / plate["rated_speed"])
+        if "power" not in values and "torque" not in values:
+            values["torque"] = plate["rated_power"] / plate["rated_speed"]
     return values, raw
+
+
+RATED_TOLERANCE = 0.01  # relative: duty.power (or torque) and the nameplate's are one motor's, written twice (a
+#                        catalogue's rated torque to 3 digits, 98 N*m for 98.11, is within; another motor is not)
+
+
+def _same_motor(duty: dict[str, float], power: float, torque: float) -> None:
+    """duty.power (or duty.torque) beside a nameplate motor is that motor's rated power P_n (torque P_n / w_n): the
+    couplings sized by k_s P / w and the start-up's motor curve are one motor."""
+    name, plate, what = ("power", power, "rated_power") if "power" in duty else ("torque", torque, "rated torque")
+    if name in duty and not math.isclose(duty[name], plate, rel_tol=RATED_TOLERANCE):
+        shown = DUTY[name].show
+        raise InputError(f"duty.{name}", (
+            f"{shown(duty[name])} is not the {what} of the nameplate motor in [start_up.driver], {shown(plate)}"
+            + ("" if name == "power" else " (rated_power / rated_speed)")
+            + f": the motor's rating is given twice; give it once (leave duty.{name} out: the nameplate gives it)"))
+
+
+def _check_shared(data: dict, problems: Problems) -> None:
+    """The neutral [limits] and [library] as any coupling reads them: each limit one some coupling declares, with a
+    valid value; each library key a role some coupling has, naming an entry of the library (a bad one is the case's
+    error, not a reason for the couplings that take it to be left out while the others are ranked)."""
+    from clutchopt.materials import lookup
+
+    limits = {q.name: q for name in MODULES for q in get_coupling(name).quantities if q.section == "limits"}
+    for key, raw in _table(data.get("limits")).items():
+        with problems.field():
+            if key not in limits:
+                raise InputError(f"limits.{key}", f"no coupling declares this limit{_did_you_mean(key, limits)}; "
+                                                  f"limits are {', '.join(sorted(limits))}")
+            limits[key].check(to_si(limits[key].key, raw, limits[key].unit))
+    roles = {role.key: role for name in MODULES for role in get_coupling(name).materials}
+    for key, entry in _table(data.get("library")).items():
+        with problems.field():
+            if key not in roles:
+                raise InputError(f"library.{key}", f"no coupling has this role{_did_you_mean(key, roles)}; roles are "
+                                                   f"{', '.join(sorted(roles))}")
+            lookup(roles[key], entry, f"library.{key}")
+
+
+def _table(value) -> dict:
+    return value if isinstance(value, dict) else {}
 
 
 def posed_case(name: str, duty: dict[str, float], raw_duty: dict, data: dict, path: str) -> Candidate:
@@ -215,8 +265,57 @@ def posed_case(name: str, duty: dict[str, float], raw_duty: dict, data: dict, pa
     try:
         candidate.case = parse_case(case_data, f"{path} ({name})")
     except InputError as exc:
+        given = _override_paths(overrides)  # a field the case's own [couplings.NAME] wrote: the case's error
+        own = [p for p in exc.problems if any(p.field == g or p.field.startswith(g + ".") or g.startswith(p.field + ".")
+                                              for g in given)]
+        if own:
+            raise InputError.several([InputError(f"couplings.{name}.{p.field}", p.problem) for p in own]) from None
         candidate.reason = "cannot be posed: " + "; ".join(str(p) for p in exc.problems)
     return candidate
+
+
+def _override_paths(table: dict, prefix: str = "") -> list[str]:
+    """The dotted keys of the values a ``[couplings.NAME]`` table writes (``geometry.flank_angle``)."""
+    paths = []
+    for key, value in table.items():
+        path = f"{prefix}{key}"
+        paths += _override_paths(value, path + ".") if isinstance(value, dict) and value else [path]
+    return paths
+
+
+SET_ASIDE = {  # what a coupling's case may have but choose-coupling would not apply: refused, not dropped
+    "scatter": "choose-coupling designs every coupling at its nominal values; design one coupling under scatter with "
+               "clutchopt solve CASE --robust",
+    "options.objective": f"choose-coupling designs every coupling for least like-for-like mass ({OBJECTIVE}), the "
+                         "mass it ranks them by; compare costs in its cost column",
+    "options.choose": "choose-coupling designs one entry of each role: name it in [library] or "
+                      "[couplings.NAME.library]; let solve choose among entries in one coupling's case",
+    **dict.fromkeys(("duty", "start_up.driver", "start_up.driven", "start_up.limits.max_start_time"), (
+        "the duty and the drive are one for every coupling (it ranks them like for like): give them in the neutral "
+        "[duty] and [start_up]"))}
+
+
+def _check_override(name: str, table: dict, problems: Problems) -> None:
+    """A ``[couplings.NAME]`` table holds sections of that coupling's case (each a table), and a mode it has."""
+    coupling = get_coupling(name)
+    sections = sorted({q.section for q in coupling.quantities} | set(_EXTRA_SECTIONS))
+    for key, value in table.items():
+        field = f"couplings.{name}.{key}"
+        if key not in sections:
+            problems.errors.append(InputError(field, f"not a section of a {name} case; [couplings.{name}] takes "
+                                                     f"{', '.join(s for s in sections if s not in SET_ASIDE)}"))
+        elif not isinstance(value, dict):
+            problems.errors.append(InputError(field, f"must be a table [couplings.{name}.{key}]"))
+    given = _override_paths(table)
+    for key, why in SET_ASIDE.items():
+        if any(path == key or path.startswith(key + ".") for path in given):
+            problems.errors.append(InputError(f"couplings.{name}.{key}", why))
+    options = table.get("options")
+    if isinstance(options, dict) and "mode" in options:
+        mode = options["mode"]
+        if not isinstance(mode, str) or mode not in coupling.formulations:
+            problems.errors.append(InputError(f"couplings.{name}.options.mode", (
+                f"must be a mode of the {name} coupling ({', '.join(coupling.formulations)}), got {shown_value(mode)}")))
 
 
 def _fields(names: tuple[str, ...]) -> dict[str, tuple[str, ...] | None]:
@@ -288,10 +387,20 @@ def pose(data: dict, path: str = "") -> tuple[Choice, dict[str, float]]:
             problems.errors.append(InputError(f"couplings.{name}", f"unknown coupling; known: {', '.join(MODULES)}"))
         elif not isinstance(table, dict):
             problems.errors.append(InputError(f"couplings.{name}", "must be a table of that coupling's sections"))
+        else:
+            _check_override(name, table, problems)
     if isinstance(data.get("start_up"), dict):  # a bad field is the neutral case's, not a coupling's reason to lose
-        read_tables(data["start_up"], problems)
+        start_up, _, _ = read_tables(data["start_up"], problems)
+        if not problems:  # and so are the drive's checks across its fields that no coupling changes
+            with problems.field():
+                check_values(with_defaults({**duty, **start_up}))
+    _check_shared(data, problems)
     problems.raise_any()
-    candidates = [posed_case(name, duty, raw, data, path) for name in MODULES]
+    candidates = []
+    for name in MODULES:
+        with problems.field():
+            candidates.append(posed_case(name, duty, raw, data, path))
+    problems.raise_any()
     if all(c.case is None for c in candidates):  # nothing poses: the neutral case itself is wrong
         raise InputError(path or "case", "no coupling can be posed: " + " | ".join(
             f"{c.coupling}: {c.reason}" for c in candidates))

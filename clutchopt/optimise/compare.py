@@ -13,6 +13,7 @@ from clutchopt.formulations import get_coupling
 from clutchopt.model import ComparisonRow
 from clutchopt.optimise.problem import case_problem, problem_for
 from clutchopt.optimise.solution import Solution, SolverOptions
+from clutchopt.records import target_text
 from clutchopt.units import si_unit
 
 
@@ -88,9 +89,7 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=No
         rows_shown = rows_shown + SCATTER_ROWS
         notes.update({column: note for column, note in SCATTER_NOTES.items() if column in columns})
         if robust is not None and robust.target is not None:
-            notes[_column(robust)] = (f"the design fails with probability at most {1 - robust.target:.3g}"
-                                      if robust.method == "system_chance" else
-                                      f"each constraint fails with probability at most {1 - robust.target:.3g}")
+            notes[_column(robust)] = robust_note(robust, case.start_up is not None)
     names = list(columns)
     rows = []
     for row in rows_shown:
@@ -130,12 +129,22 @@ CHANCE_SHOWN = 0.999  # the chance-constrained column of compare
 SCATTER_NOTES = {
     "nominal": "the case's mode optimised at the nominal values",
     "worst_case": "every constraint at its own worst corner of the [scatter] ranges",
-    f"chance_{CHANCE_SHOWN:g}": f"each constraint fails with probability at most {1 - CHANCE_SHOWN:.3g}",
+    f"chance_{target_text(CHANCE_SHOWN)}": f"each constraint fails with probability at most {1 - CHANCE_SHOWN:.3g}",
 }
 
 
+def robust_note(robust, start_up: bool) -> str:
+    """What a chance design's column claims: each constraint's failure probability at most 1 - P, or the design's
+    (system_chance; a start-up's limits within it, each moved one with its share: a union bound)."""
+    if robust.method != "system_chance":
+        return f"each constraint fails with probability at most {1 - robust.target:.3g}"
+    return (f"the design fails with probability at most {1 - robust.target:.3g}"
+            + ("; the start-up limits within it (each the scatter moves with its share; a union bound)"
+               if start_up else ""))
+
+
 def _column(robust) -> str:
-    return "worst_case" if robust.target is None else f"chance_{robust.target:g}"
+    return "worst_case" if robust.target is None else f"chance_{target_text(robust.target)}"
 
 
 def _scatter_columns(case: Case, coupling, spec, options: SolverOptions, robust=None) -> dict:

@@ -22,7 +22,7 @@ from clutchopt.optimise.robust import MAX_SAMPLES, MAX_STARTS, RobustResult, par
 from clutchopt.optimise.robust_models import SAMPLES
 from clutchopt.optimise.robust_start_up import START_SAMPLES
 from clutchopt.optimise.solution import Solution, SolverOptions
-from clutchopt.records import NOMINAL, method_text
+from clutchopt.records import NOMINAL, method_text, target_text
 
 
 @dataclass(frozen=True)
@@ -61,7 +61,7 @@ class Robustness:
 
     @property
     def label(self) -> str:
-        return self.method if self.target is None else f"{self.method} {self.target:g}"
+        return self.method if self.target is None else f"{self.method} {target_text(self.target)}"
 
     @property
     def spelled(self) -> str:

@@ -19,6 +19,7 @@ from clutchopt.model import Formulation, Quantity, at_most
 from clutchopt.optimise.design import Robustness, check_robustness, choices
 from clutchopt.optimise.problem import case_formulation, case_problem, problem_for
 from clutchopt.optimise.robust import RobustResult
+from clutchopt.optimise.robust_models import largest_failure
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.sweep_grid import column_name
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_objective
@@ -115,8 +116,8 @@ def _frame(formulation: Formulation, case: Case, caps: list[float], solutions: l
     rows = []
     for k, (cap, solution) in enumerate(zip(caps, solutions)):
         row = {column_name(CAP, cost.unit): cap, "status": solution.status}
-        if robust:
-            row["largest P(fail)"] = max((p for p, _, _ in robust[k].failure.values()), default=0.0)
+        if robust:  # Monte Carlo: the estimate, and its 95 % upper bound beside it
+            _, row["largest P(fail)"], _, row["largest P(fail) 95% high"] = largest_failure(robust[k].failure)
         designed = solution.status in DESIGN_STATUSES  # no design values for a point that has none
         for objective in (mass, cost):
             row[column_name(objective.name, objective.unit)] = evaluate_objective(

@@ -70,6 +70,7 @@ from clutchopt.optimise.robust_start_up import (
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.start_up_reliability import StartUpPerformancePoints
 from clutchopt.optimise.verify import DESIGN_STATUSES, ConstraintCheck, check_constraints
+from clutchopt.records import target_text
 from clutchopt.start_up.drive import Structure
 
 WORST_CASE = "worst-case"
@@ -431,7 +432,7 @@ def verification(result: RobustResult, case: Case) -> str:
     quantities = {q.name: q for q in case.quantities}
     n = len(case.scatter)
     parts = [f"constraints at all {2 ** n} corners of the ranges" if result.method == WORST_CASE else
-             f"constraints at their performance points for {result.method} P = {result.target:g}, "
+             f"constraints at their performance points for {result.method} P = {target_text(result.target)}, "
              + (result.allocation.claim() if result.allocation else "beta corrected by importance sampling"),
              f"{result.samples} Monte Carlo samples: {_largest(result.failure)}"]
     if result.reliability is not None:

@@ -126,6 +126,15 @@ def failure_probabilities(formulation: Formulation, design: dict, params: Simple
             for c, row in zip(constraints, margins)}
 
 
+def largest_failure(failure: dict[str, list[float]]) -> tuple[str, float, float, float]:
+    """The constraint likeliest to fail by :func:`failure_probabilities`: its name, P(fail) and 95 % interval (low,
+    high); ("", 0, 0, 0) with no constraint."""
+    if not failure:
+        return "", 0.0, 0.0, 0.0
+    name, (p, low, high) = max(failure.items(), key=lambda item: item[1][0])
+    return name, p, low, high
+
+
 def clopper_pearson(failed: int, count: int) -> list[float]:
     """[failed / count, low, high]: a failure frequency and its CONFIDENCE Clopper-Pearson interval."""
     from scipy.stats import beta

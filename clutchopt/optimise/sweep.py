@@ -413,10 +413,13 @@ class Sweep:
         and the robust design's largest failure probability (Monte Carlo), after the objective (a table's layout:
         point, the varied inputs, status, the objective, ...)."""
         at = frame.columns.get_loc("status") + 2
-        if self.robust is not None:
-            frame.insert(at, "largest P(fail)",
-                         [max((p for p, _, _ in record["robust"]["failure_probability"].values()), default=0.0)
-                          if "robust" in record else np.nan for record in records])
+        if self.robust is not None:  # Monte Carlo: the estimate, and its 95 % upper bound beside it
+            from clutchopt.optimise.robust_models import largest_failure
+
+            largest = [largest_failure(record["robust"]["failure_probability"]) if "robust" in record else None
+                       for record in records]
+            for column, index in (("largest P(fail) 95% high", 3), ("largest P(fail)", 1)):
+                frame.insert(at, column, [np.nan if row is None else row[index] for row in largest])
         if self.case.options.get("choose"):
             frame.insert(at, "choice", pd.Series([", ".join(f"{key} = {name}" for key, name in
                                                            record.get("choice", {}).items()) for record in records],

@@ -6,12 +6,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from clutchopt.records import target_text
+
 PASSED, FAILED, NOT_DONE = "passed", "failed", "not done"
 
 
 def robust_label(robust) -> str:
     """The robust method of a RobustResult as the page names it: "worst-case", "chance 0.999"."""
-    return robust.method + (f" {robust.target:g}" if robust.target else "")
+    return robust.method + (f" {target_text(robust.target)}" if robust.target else "")
 
 
 @dataclass(frozen=True)

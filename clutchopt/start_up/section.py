@@ -84,16 +84,8 @@ def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = T
     if not all(laws):
         raise InputError(SECTION, f"the {coupling.name} coupling has no start-up law in clutchopt yet")
     problems = Problems()
-    declared = {q.key: q for q in QUANTITIES}
-    allowed = set(_SETTINGS) | set(_TABLES) | {q.key.split(".")[1] for q in QUANTITIES if q.section == SECTION}
-    for key in table:
-        if key not in allowed:
-            problems.errors.append(InputError(f"{SECTION}.{key}",
-                                              f"unknown key; [{SECTION}] takes {', '.join(sorted(allowed))}"))
-    effects = ()
-    with problems.field():
-        effects = parse_effects(table.get("effects"), f"{SECTION}.effects")
     values, profile, spec = read_tables(table, problems)
+    effects = spec.pop("effects")
     motor_note = ""
     plate = nameplate_fields(_table(table, f"{SECTION}.driver"))
     if plate:
@@ -101,17 +93,9 @@ def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = T
             kloss = [k for k in KLOSS if BY_NAME[k].key.rsplit(".", 1)[1] in _table(table, f"{SECTION}.driver")]
             derived, motor_note = kloss_from_nameplate(plate, f"{SECTION}.driver", kloss)
             values.update(derived)
-    if "spring_preload" in table:
-        with problems.field():
-            quantity = declared[f"{SECTION}.spring_preload"]
-            values["spring_preload"] = quantity.check(to_si(quantity.key, table["spring_preload"], quantity.unit))
     given = {q.name for q in QUANTITIES if q.key.rsplit(".", 1)[1] in _table(table, q.section)}  # good or bad
     taken = {name for name in library or {} if name not in values}
     values.update({name: (library or {})[name] for name in taken})
-    with problems.field():
-        spec["intervals"] = _intervals(table.get("intervals", StartUpSpec.intervals))
-    with problems.field():
-        spec["tolerance"] = _tolerance(table.get("tolerance", StartUpSpec.tolerance))
     follows = {name: (source, 1.0) for name, source in DEFAULTS_FROM_DUTY.items()
                if name not in given and source in duty}
     if "motor_curve" in effects and "min_lock_up_speed" not in given and "synchronous_speed" in values:
@@ -122,9 +106,7 @@ def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = T
     if elastic and "max_link_stress" not in given and elastic[0].stress_limit in duty:
         follows["max_link_stress"] = (elastic[0].stress_limit, 1.0)
     values = followed({**duty, **values}, follows)
-    for quantity in QUANTITIES:
-        if quantity.name not in values and quantity.name not in given and quantity.default not in (None, REQUIRED):
-            values[quantity.name] = quantity.check(to_si(quantity.key, quantity.default, quantity.unit))
+    values = with_defaults(values, given)
     values = {name: value for name, value in values.items() if name not in duty}
     if profile is not None and "resisting_torque" in table.get("driven", {}):
         problems.errors.append(InputError(f"{SECTION}.driven", "give either resisting_torque or load_profile, "
@@ -136,8 +118,17 @@ def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = T
     problems.raise_any()
     if duty_sound:
         _check(values, effects, coupling, laws, profile, given)
+    if spec.get("overload") and any(isinstance(law, ElasticLaw) for law in laws):  # asked for, never made
+        raise InputError(f"{SECTION}.overload.check", f"does not apply to the {coupling.name} coupling: an elastic "
+                                                      "link does not slip, so it has no overload torque to check")
     return values, StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile, **spec,
                                motor_note=motor_note, friction_max_given="friction_max" in given), follows, taken
+
+
+def with_defaults(values: dict[str, float], given=frozenset()) -> dict[str, float]:
+    """``values`` with the default of each start-up quantity that has one and is neither in them nor ``given``."""
+    return {**values, **{q.name: q.check(to_si(q.key, q.default, q.unit)) for q in QUANTITIES
+                         if q.name not in values and q.name not in given and q.default not in (None, REQUIRED)}}
 
 
 def _table(table: dict, section: str) -> dict:
@@ -147,12 +138,28 @@ def _table(table: dict, section: str) -> dict:
 
 
 def read_tables(table: dict, problems: Problems) -> tuple[dict[str, float], LoadProfile | None, dict]:
-    """The fields of the sub-tables of a ``[start_up]`` section (driver, driven, heat, ...), each checked on its
-    own (the nameplate's fields aside: :func:`clutchopt.start_up.nameplate.kloss_from_nameplate`): the quantities'
-    SI values, the load profile and the spec's switches; each bad field a problem of ``problems``."""
+    """The fields of a ``[start_up]`` section, each checked on its own: its own keys (known ones; effects,
+    spring_preload, intervals, tolerance) and those of its sub-tables (driver, driven, heat, ...; the nameplate's
+    fields aside: :func:`clutchopt.start_up.nameplate.kloss_from_nameplate`): the quantities' SI values, the load
+    profile and the spec's settings (``effects`` among them); each bad field a problem of ``problems``."""
     declared = {q.key: q for q in QUANTITIES}
+    allowed = set(_SETTINGS) | set(_TABLES) | {q.key.split(".")[1] for q in QUANTITIES if q.section == SECTION}
+    for key in table:
+        if key not in allowed:
+            problems.errors.append(InputError(f"{SECTION}.{key}",
+                                              f"unknown key; [{SECTION}] takes {', '.join(sorted(allowed))}"))
     values: dict[str, float] = {}
-    profile, spec = None, {}
+    profile, spec = None, {"effects": ()}
+    with problems.field():
+        spec["effects"] = parse_effects(table.get("effects"), f"{SECTION}.effects")
+    if "spring_preload" in table:
+        with problems.field():
+            quantity = declared[f"{SECTION}.spring_preload"]
+            values["spring_preload"] = quantity.check(to_si(quantity.key, table["spring_preload"], quantity.unit))
+    with problems.field():
+        spec["intervals"] = _intervals(table.get("intervals", StartUpSpec.intervals))
+    with problems.field():
+        spec["tolerance"] = _tolerance(table.get("tolerance", StartUpSpec.tolerance))
     for name in _TABLES:
         sub = table.get(name, {})
         if not isinstance(sub, dict):
@@ -230,7 +237,7 @@ def _check(values, effects, coupling, laws, profile, explicit=frozenset()) -> No
                                                  f"not to the {coupling.name} coupling")
     if "friction_heat" in effects and "heat_capacity" not in values:
         raise InputError(key("heat_capacity"), "missing (effect friction_heat)")
-    heat_only = [n for n in ("heat_capacity", "max_temperature_rise", "max_lining_temperature",
+    heat_only = [n for n in ("heat_capacity", "heat_conductance", "max_temperature_rise", "max_lining_temperature",
                              "max_continuous_temperature", "ambient_temperature") if n in explicit]
     if "friction_heat" not in effects and heat_only:
         raise InputError(key(heat_only[0]), "given, but effects do not list friction_heat")
@@ -271,7 +278,7 @@ def _check_life(values, coupling, laws, key) -> None:
 def check_values(values: dict[str, float]) -> None:
     """What a case's drive must satisfy together (its duty's and start-up's values by name), at the values read and
     at every point a sweep or a scatter moves them to: within the simulator's ranges, an engagement window that is
-    not empty, and an induction motor that reaches the duty speed, the lock-up and the engagement asked for (it runs
+    not empty, a wear allowance within the lining's thickness, and an induction motor that reaches the duty speed, the lock-up and the engagement asked for (it runs
     below its synchronous speed)."""
     problems = Problems()
     _check_ranges(values, values, problems)
@@ -285,11 +292,24 @@ def check_values(values: dict[str, float]) -> None:
             problems.errors.append(InputError(BY_NAME[name].key, (
                 f"{shown(values[name])} is not above the ambient temperature {shown(values['ambient_temperature'])}"
                 " (start_up.heat.ambient): the lining cannot be cooler than the air around it")))
+    if "wear_allowance" in values and "lining_thickness" in values \
+            and not values["wear_allowance"] <= values["lining_thickness"]:
+        shown = BY_NAME["wear_allowance"].show
+        problems.errors.append(InputError(BY_NAME["wear_allowance"].key, (
+            f"{shown(values['wear_allowance'])} is more than geometry.lining_thickness "
+            f"{shown(values['lining_thickness'])}: a lining cannot wear away more than it is thick (the hours until "
+            "worn would count wear the lining does not have)")))
     if "heat_capacity" in values and "starts_per_hour" in values and not values.get("heat_conductance", 0.0) > 0:
         problems.errors.append(InputError(BY_NAME["heat_conductance"].key, (
             f"{BY_NAME['heat_conductance'].show(values.get('heat_conductance', 0.0))} with starts_per_hour: give the "
             "housing's conductance above 0 W/K (friction_heat: the steady temperature of repeated starts is the heat "
             "they bring over what the housing sheds per kelvin)")))
+    if "starts_per_hour" in values and "max_start_time" in values \
+            and not values["starts_per_hour"] * values["max_start_time"] < 1.0:
+        problems.errors.append(InputError(BY_NAME["starts_per_hour"].key, (
+            f"{BY_NAME['starts_per_hour'].show(values['starts_per_hour'])} of up to max_start_time "
+            f"{BY_NAME['max_start_time'].show(values['max_start_time'])} each overlap: the starts of an hour must fit "
+            "in it one after another (the heat balance takes each start over before the next)")))
     synchronous = values.get("synchronous_speed")
     if synchronous is not None:
         shown = BY_NAME["synchronous_speed"].show
