@@ -168,6 +168,11 @@ HOSTILE: list[Hostile] = [
     # --- an overload check asked of the cable (an elastic link: none is made), exit 0 without a word ---------------
     heat("overload-check-of-an-elastic-link", CABLE, "[start_up.driver]", "[start_up.overload]\ncheck = true\n\n"
          "[start_up.driver]", "start_up.overload.check: does not apply to the cable coupling: an elastic link"),
+    # --- a cable given three fields of a slipping coupling: only the first named, the user fixed them one run at a time
+    heat("cable-heat-fields-each-named", CABLE, "[start_up.driver]",
+         '[start_up.heat]\ncapacity = "1400 J/K"\nconductance = "4 W/K"\n\n[start_up.driver]',
+         ("start_up.heat.capacity: does not apply to the cable coupling",
+          "start_up.heat.conductance: does not apply to the cable coupling")),
     heat("overload-check-off-of-an-elastic-link", CABLE, "[start_up.driver]", "[start_up.overload]\ncheck = false\n"
          "\n[start_up.driver]", None),
     # --- a conductance given without friction_heat: not used, exit 0 without a word ---------------------------------

@@ -328,7 +328,7 @@ def check_values(values: dict[str, float]) -> None:
 def _check_elastic(values, effects, coupling, key, explicit) -> None:
     """A coupling with an elastic link (the cable coupling) starts on a motor; springs, the weights' weight (its
     equations hold g already, eq. 1) and what a slipping coupling has (:data:`SLIP_ONLY`, ``explicit``: given by the
-    case) are not its own."""
+    case; every one given is named) are not its own."""
     if "motor_curve" not in effects:
         raise InputError(f"{SECTION}.effects", f"the {coupling.name} coupling is an elastic link: its start needs the "
                                                "motor that drives it (list motor_curve)")
@@ -339,11 +339,12 @@ def _check_elastic(values, effects, coupling, key, explicit) -> None:
                                                    "its own gravity is in its equations, eq. 1)")
     if "max_link_stress" not in values:
         raise InputError(key("max_link_stress"), "missing (the largest cable stress during the start)")
-    for name in SLIP_ONLY:
-        if name in explicit:
-            raise InputError(key(name), f"does not apply to the {coupling.name} coupling: an elastic link does not "
-                                        "slip, so it releases no friction heat (only its damping's few joules, which "
-                                        "the simulator reports), wears no lining and limits no torque")
+    given = [name for name in SLIP_ONLY if name in explicit]  # each one named, not the first alone
+    if given:
+        raise InputError.several([InputError(key(name), (
+            f"does not apply to the {coupling.name} coupling: an elastic link does not slip, so it releases no "
+            "friction heat (only its damping's few joules, which the simulator reports), wears no lining and limits "
+            "no torque")) for name in given])
 
 
 def _check_ranges(values: dict[str, float], duty: dict[str, float], problems: Problems,
