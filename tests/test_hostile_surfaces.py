@@ -147,3 +147,28 @@ def test_a_robust_sweeps_largest_failure_probability_has_its_upper_bound(tmp_pat
     assert list(frame.columns[4:6]) == ["largest P(fail)", "largest P(fail) 95% high"]
     failed = round(frame["largest P(fail)"][0] * 200)
     assert frame["largest P(fail) 95% high"][0] == pytest.approx(beta.ppf(0.975, failed + 1, 200 - failed), rel=1e-9)
+
+
+def test_a_system_chance_near_one_of_a_range_does_not_claim_a_zero_failure_probability(tmp_path, capsys):
+    """--robust system_chance=0.999999999 of cases/wedge_motor_start_scatter.toml (f uniform on 0.12 to 0.18): 1 - P
+    = 1e-9 in 7 shares (the closed-form constraints' and each of the 6 start-up limits f moves), 1e-9 / 7 =
+    1.4286e-10 each, beta = -Phi^-1(1e-9 / 7) = 6.306. start_time is active at its performance point (margin -2.4e-7,
+    within the start-up's tolerance 1e-6), so it fails with P = Phi(-6.306) = 1.4286e-10 to first order (a uniform
+    is monotone in u: P(f below the point) exactly). It was reported 0 (95 % interval 0 to 0; "IS: no failure in 10
+    samples": no sample fails by more than the tolerance so near a range's end) and the design "0 (0 to 5.6e-19)",
+    claimed 5e9 times safer than it was designed for. An importance sampling that saw no failure shows nothing; the
+    FORM estimate is the one to go by, and the system's union bound holds it."""
+    import json
+
+    from clutchopt.cli import main
+
+    share = 1e-9 / 7
+    assert main(["solve", str(CASES / "wedge_motor_start_scatter.toml"), "--robust", "system_chance=0.999999999",
+                 "--samples", "100", "--starts", "10", "--no-store", "--json"]) == 0
+    robust = json.loads(capsys.readouterr().out)["robust"]
+    start_time = robust["reliability"]["constraints"]["start_time"]
+    assert start_time["beta"] == pytest.approx(6.306, abs=1e-3)
+    assert start_time["failure_probability"]["probability"] == pytest.approx(share, rel=1e-3)
+    assert start_time["failure_probability"]["estimator"] == "FORM"
+    system = robust["system_failure_probability"]
+    assert share <= system["probability"] <= system["high"] <= 1e-9

@@ -25,6 +25,7 @@ FORM_TOL = 1e-10  # of the design point's move, relative
 NEGLIGIBLE = 1e-9  # |grad g| below this is round-off of the differences (eps / STEP ~ 1e-11): g does not depend on u
 REACH = 9.0  # ||u|| beyond which no design point is sought: Phi(-9) = 1.1e-19
 IS_SAMPLES = 50_000  # importance samples: about 0.7 % relative standard error at P = 1e-3 for a near-linear limit state
+NO_FAILURE = "IS: no failure"  # the estimator of an importance sampling that saw none: 0, and no upper bound
 Z_CONFIDENCE = 1.959963984540054  # 95 %: the normal quantile of the intervals of importance sampling
 
 
@@ -174,7 +175,7 @@ def importance_sampling(g: LimitStates, rows: list[int], centres: list[np.ndarra
     failed = np.any(np.asarray(g(u), dtype=float)[rows] < -tolerance, axis=0)
     terms = weight * failed
     if not failed.any():
-        return Estimate(0.0, 0.0, 0.0, f"IS: no failure in {samples} samples")
+        return Estimate(0.0, 0.0, 0.0, f"{NO_FAILURE} in {samples} samples")
     p = float(terms.mean())
     half = Z_CONFIDENCE * float(terms.std(ddof=1)) / math.sqrt(samples)
     return Estimate(p, max(0.0, p - half), min(1.0, p + half), "importance sampling")

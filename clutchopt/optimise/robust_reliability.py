@@ -19,6 +19,7 @@ import numpy as np
 
 from clutchopt.model import Formulation
 from clutchopt.optimise.reliability import (
+    NO_FAILURE,
     DesignPoint,
     Estimate,
     design_point,
@@ -62,8 +63,11 @@ class ConstraintReliability:
 
     @property
     def best(self) -> Estimate:
-        """The estimate to go by: importance sampling where there is one, else the only one."""
-        return self.estimates[-1]
+        """The estimate to go by: importance sampling where there is one and it saw a failure, else SORM where it is
+        defined, else FORM (an importance sampling that saw none shows no upper bound: its "0 to 0" is no
+        interval), else the only one."""
+        shown = [e for e in self.estimates if not e.estimator.startswith(NO_FAILURE) and not math.isnan(e.probability)]
+        return (shown or self.estimates)[-1]
 
     def as_dict(self) -> dict:
         return {"beta": _finite(self.point.beta), "design_point": self.values if self.point.found else None,
@@ -114,7 +118,17 @@ def reliability_at(formulation: Formulation, design: dict, params: SimpleNamespa
                          if point.beta > 0 else Estimate(1.0, 1.0 - bound, 1.0, f"FORM (fails within beta {REACH:g})")]
         out[name] = ConstraintReliability(point, values, estimates)
     system = importance_sampling(g, list(range(len(shown))), centres, n, samples, SEED + 1, FEASIBILITY_TOL)
+    if system.estimator.startswith(NO_FAILURE):  # no upper bound of its own: the constraints' (a union bound)
+        system = union_bound(list(out.values()), f"estimates summed (union bound; {system.estimator})")
     return Reliability(out, system)
+
+
+def union_bound(constraints: list[ConstraintReliability], estimator: str) -> Estimate:
+    """P(any of ``constraints`` fails) at most the sum of each one's: the sums of the estimates and of the upper
+    ends, the largest lower end (Boole's inequality)."""
+    estimates = [c.best for c in constraints]
+    return Estimate(sum(e.probability for e in estimates), max((e.low for e in estimates), default=0.0),
+                    sum(e.high for e in estimates), estimator)
 
 
 def performance_points(formulation: Formulation, design: dict, params: SimpleNamespace, scatter,

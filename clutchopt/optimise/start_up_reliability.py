@@ -217,7 +217,8 @@ class StartUpPerformancePoints:
         simulated starts from the standard normal centred there (weight phi(u) / phi(u - u*), 95 % interval from
         the weights' spread), centres closer than SHARED_CENTRE shared; one further out by FORM from its performance
         point, Phi(-(beta + g / |grad g|)), or where that lies beyond ``reliability.REACH`` (9) its bound Phi(-9),
-        as the closed forms' (``robust_reliability.reliability_at``)."""
+        as the closed forms' (``robust_reliability.reliability_at``). A g within the start-up's tolerance of 0 is 0
+        (the limit is met there as the solver meets it: active, its design point its performance point)."""
         g, beta, n = self.states, self.beta, len(self.case.scatter)
         out, centres = {}, []
         for row, name in enumerate(g.names):
@@ -232,6 +233,8 @@ class StartUpPerformancePoints:
                                                                     "exact: independent of the scatter")])
                 continue
             value, grad = g.value_gradient(row, u)
+            if abs(value) <= g.tolerance:  # met at its point within the tolerance: active there, reach = beta (a
+                value = 0.0  # -2.4e-7 over a range end's slope of 1e-9 moved it to beta -285 and "P = 1")
             slope = float(np.linalg.norm(grad))
             reach = beta + value / slope if slope > 0 else math.inf  # flat at its point: no failure within reach
             point = DesignPoint(u * reach / beta, reach, reach <= FORM_REACH)
