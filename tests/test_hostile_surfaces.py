@@ -172,3 +172,8 @@ def test_a_system_chance_near_one_of_a_range_does_not_claim_a_zero_failure_proba
     assert start_time["failure_probability"]["estimator"] == "FORM"
     system = robust["system_failure_probability"]
     assert share <= system["probability"] <= system["high"] <= 1e-9
+    # the simulated starts' [p, low, high] said no estimator beside them (the constraints' Monte Carlo does)
+    verification = robust["start_up_verification"]
+    assert verification["failure_probability_estimator"] == "Monte Carlo (Clopper-Pearson interval)"
+    p, low, high = verification["failure_probability"]["start_time"]
+    assert (p, low, high) == (0.0, 0.0, pytest.approx(1 - 0.025 ** (1 / 10), rel=1e-12))  # no failure in 10 starts

@@ -84,6 +84,7 @@ VERIFIED_FACTOR = 2.0  # a chance design's failure probability is verified when 
 SETTLED = 1e-7  # relative: a performance point that moves less has settled
 MAX_SAMPLES = 1_000_000  # vectorised in float64: about 100 MB for the widest formulation
 CORNER_STEPS = 8  # re-solves while the worst corners move
+MONTE_CARLO = "Monte Carlo (Clopper-Pearson interval)"  # estimator of the samples' and simulated starts' [p, low, high]
 MAX_STARTS = 100_000
 
 
@@ -138,7 +139,7 @@ class RobustResult:
         return {
             "method": self.method, "target": self.target, "status": self.status, "diagnosis": self.diagnosis,
             "samples": self.samples, "confidence": CONFIDENCE,
-            "failure_probability_estimator": "Monte Carlo (Clopper-Pearson interval)",
+            "failure_probability_estimator": MONTE_CARLO,
             "failure_probability": self.failure, "nominal_failure_probability": self.nominal_failure,
             "corners": self.corners,
             "checks": [c.as_dict() for c in self.checks],
@@ -155,6 +156,7 @@ class RobustResult:
             "system_failure_probability": system_failure(self).as_dict() if self.reliability else None,
             "start_up_verification": {"corners": self.start_up_points, "simulations": self.start_up_samples,
                                       "failure_probability": self.start_up_failure,
+                                      "failure_probability_estimator": MONTE_CARLO,
                                       "performance_point_beta": self.start_up_beta,
                                       "share_of_target": self.start_up_share,
                                       "at_quantile_corners": list(self.start_up_fallbacks)}
