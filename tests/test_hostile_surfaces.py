@@ -177,3 +177,25 @@ def test_a_system_chance_near_one_of_a_range_does_not_claim_a_zero_failure_proba
     assert verification["failure_probability_estimator"] == "Monte Carlo (Clopper-Pearson interval)"
     p, low, high = verification["failure_probability"]["start_time"]
     assert (p, low, high) == (0.0, 0.0, pytest.approx(1 - 0.025 ** (1 / 10), rel=1e-12))  # no failure in 10 starts
+
+
+def test_the_reports_system_failure_probability_of_a_start_up_holds_its_limits():
+    """report --robust system_chance=0.99 of cases/wedge_motor_start_scatter.toml: the scatter table's "system
+    P(fail)" of the robust design was 0.00143, the closed-form constraints' importance sampling alone (1 - P = 0.01 in
+    7 shares of 0.00143: the constraints' and the 6 start-up limits f moves), while the design the page reviews fails
+    with up to the union bound 0.00143 + each start-up limit's estimate (0.00414 in the text: start_time alone about
+    its share), the number `solve` prints as "System with the start-up limits". Now the table's is that one."""
+    from clutchopt.cases import load_case
+    from clutchopt.optimise.robust import SYSTEM_CHANCE, solve_robust, system_failure
+    from clutchopt.report.sections import scatter
+
+    case = load_case(CASES / "wedge_motor_start_scatter.toml")
+    result = solve_robust(case, SYSTEM_CHANCE, 0.99, samples=100, starts=10)
+    static, system = result.reliability.system, system_failure(result)
+    start_time = result.reliability.constraints["start_time"].best.probability
+    assert static.probability == pytest.approx(0.01 / 7, rel=0.05) and start_time > 0.01 / 7 / 2
+    assert system.probability >= static.probability + start_time and system.high <= 0.01
+    nominal, robust = scatter(case, result)[0][0].rows
+    assert robust["system P(fail)"] == (f"{system.probability:.3g} ({system.low:.3g} to {system.high:.3g}, "
+                                        f"{system.estimator})")
+    assert nominal["system P(fail)"].endswith("; the start-up limits apart)")  # the nominal's are not sampled

@@ -151,7 +151,7 @@ def scatter(case: Case, robust=None) -> tuple[list, tuple[str, float, int]]:
                      result_solution.objective_name: f"{result_solution.objective:.6g} {result_solution.objective_unit}",
                      "change": f"{result_solution.objective / first.nominal.objective - 1:+.1%}",
                      "largest P(fail)": largest_failure(failure, first.samples),
-                     **reliability_columns(case, reliability)})
+                     **reliability_columns(case, reliability, *_with_start_up(robust, reliability))})
     name, (p, _, _) = max(first.nominal_failure.items(), key=lambda item: item[1][0])
     bars = tornado(first.formulation, first.nominal.design, case.params(), case.scatter)
     allocation = allocation_blocks(robust.allocation) if robust is not None and robust.allocation else []
@@ -182,18 +182,31 @@ def largest_failure(failure: dict[str, list[float]], samples: int) -> str:
     return f"{p:.3g} ({low:.2g} to {high:.2g}, Monte Carlo, {samples} samples; {name})"
 
 
-def reliability_columns(case: Case, reliability) -> dict[str, str]:
-    """A design's system failure probability (importance sampling, 95 % interval) and the design point of the
+def _with_start_up(robust, reliability) -> tuple:
+    """(system, apart) for the scatter table's row of ``reliability``: a robust design with a start-up has its
+    system with the start-up limits (``robust.system_failure``, a union bound); the nominal design beside it the
+    constraints' alone, the start-up limits ``apart`` (not sampled for it)."""
+    from clutchopt.optimise.robust import system_failure
+
+    if robust is None or not robust.start_up_failure or reliability is None:
+        return None, False
+    return (system_failure(robust), False) if reliability is robust.reliability else (None, True)
+
+
+def reliability_columns(case: Case, reliability, system=None, apart: bool = False) -> dict[str, str]:
+    """A design's system failure probability (importance sampling, 95 % interval; ``system`` where given, a robust
+    start-up's with its limits; ``apart``: said to leave the start-up limits out) and the design point of the
     constraint likeliest to fail: its beta and the scattered quantities' values there."""
     if reliability is None:
         return {"system P(fail)": "-", "likeliest failure (design point)": "-"}
     quantities = {q.name: q for q in case.quantities}
-    system = reliability.system
+    system = system or reliability.system
     name, likeliest = max(reliability.constraints.items(), key=lambda item: item[1].best.probability)
     where = (f"{name}: beta {likeliest.point.beta:.3g} at " + ", ".join(
         f"{q} {quantities[q].show(v, 4)}" for q, v in likeliest.values.items()) if likeliest.point.found
         else f"{name}: {likeliest.best.estimator}")
-    return {"system P(fail)": f"{system.probability:.3g} ({system.low:.3g} to {system.high:.3g}, {system.estimator})",
+    return {"system P(fail)": f"{system.probability:.3g} ({system.low:.3g} to {system.high:.3g}, {system.estimator}"
+                              + ("; the start-up limits apart)" if apart else ")"),
             "likeliest failure (design point)": where}
 
 
