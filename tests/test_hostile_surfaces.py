@@ -199,3 +199,15 @@ def test_the_reports_system_failure_probability_of_a_start_up_holds_its_limits()
     assert robust["system P(fail)"] == (f"{system.probability:.3g} ({system.low:.3g} to {system.high:.3g}, "
                                         f"{system.estimator})")
     assert nominal["system P(fail)"].endswith("; the start-up limits apart)")  # the nominal's are not sampled
+
+
+def test_a_system_chance_column_of_compare_is_named_by_its_method():
+    """compare --robust system_chance=0.99 named its column "chance_0.99", the name of a design whose every
+    constraint fails with at most 0.01 (Robustness "chance"), beside the note that the design as a whole does: now
+    "system_chance_0.99"; chance and worst case as they were."""
+    from clutchopt.optimise.compare import _column
+    from clutchopt.optimise.design import Robustness
+
+    assert _column(Robustness.parse("system_chance=0.99", 100)) == "system_chance_0.99"
+    assert _column(Robustness.parse("chance=0.99", 100)) == "chance_0.99"
+    assert _column(Robustness.parse("worst-case", 100)) == "worst_case"

@@ -144,7 +144,8 @@ def robust_note(robust, start_up: bool) -> str:
 
 
 def _column(robust) -> str:
-    return "worst_case" if robust.target is None else f"chance_{target_text(robust.target)}"
+    """The column of a robust design: worst_case, chance_P or system_chance_P (its method and target as given)."""
+    return "worst_case" if robust.target is None else f"{robust.method}_{target_text(robust.target)}"
 
 
 def _scatter_columns(case: Case, coupling, spec, options: SolverOptions, robust=None) -> dict:
