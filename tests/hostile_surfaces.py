@@ -96,6 +96,13 @@ HOSTILE: list[Hostile] = [
              "couplings.lever.start_up.driven: the duty and the drive are one for every coupling"),
     override("override-start-time", '[couplings.ball.start_up.limits]\nmax_start_time = "20 s"',
              "couplings.ball.start_up.limits.max_start_time: the duty and the drive are one for every coupling"),
+    # --- the machine's starts per hour and the air around it, one coupling's own: it was ranked at 1 start an hour or
+    #     30 degC against the others at 12 and 40 degC, "like for like", exit 0 without a word ----------------------
+    override("override-starts-per-hour", '[couplings.ball.start_up.limits]\nstarts_per_hour = "1 1/hour"',
+             "couplings.ball.start_up.limits.starts_per_hour: the duty and the drive are one for every coupling"),
+    override("override-ambient", '[couplings.lever.start_up.heat]\nambient = "30 degC"',
+             "couplings.lever.start_up.heat.ambient: the air around the coupling is one for every coupling"),
+    override("override-housing", '[couplings.lever.start_up.heat]\nconductance = "8 W/K"', None),
     override("override-title", '[couplings.ball]\ntitle = "mine"', "couplings.ball.title: not a section of a ball case"),
     override("override-bad-value", '[couplings.wedge.geometry]\nflank_angle = "95 deg"',
              "couplings.wedge.geometry.flank_angle: "),

@@ -290,7 +290,10 @@ SET_ASIDE = {  # what a coupling's case may have but choose-coupling would not a
                          "mass it ranks them by; compare costs in its cost column",
     "options.choose": "choose-coupling designs one entry of each role: name it in [library] or "
                       "[couplings.NAME.library]; let solve choose among entries in one coupling's case",
-    **dict.fromkeys(("duty", "start_up.driver", "start_up.driven", "start_up.limits.max_start_time"), (
+    "start_up.heat.ambient": "the air around the coupling is one for every coupling (it ranks them like for like): "
+                             "give it in the neutral [start_up.heat]",
+    **dict.fromkeys(("duty", "start_up.driver", "start_up.driven", "start_up.limits.max_start_time",
+                     "start_up.limits.starts_per_hour"), (
         "the duty and the drive are one for every coupling (it ranks them like for like): give them in the neutral "
         "[duty] and [start_up]"))}
 
