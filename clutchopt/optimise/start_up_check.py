@@ -34,17 +34,17 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
     and the start-up constraints re-checked with the simulated figures, each with the values ``seen(name)`` gives it
     (:func:`~clutchopt.start_up.drive.seen_constraints`): (summary in SI, constraint checks, the mesh the simulated
     start suggests for the next solve). ``case`` and ``design``: as the start sees them."""
-    from clutchopt.start_up.simulation import run_start_up, start_up_model, worn_start_up_model
+    from clutchopt.start_up.simulation import check_rtol, run_start_up, start_up_model, worn_start_up_model
 
     values, *columns = figures
     nlp = dict(zip(block.outputs(), np.array(values).ravel()))
     trajectory = {name: np.array(column).ravel() for name, column in zip(TRAJECTORY, columns)}  # (block.trajectory()
     # builds the expressions: 5 ms a check for its names)
-    model = start_up_model(case, formulation.mode, design)
+    s = block.s
+    model = start_up_model(case, formulation.mode, design, check_rtol(s.spec.tolerance, s.elastic))
     result = run_start_up(model)
     worn = worn_start_up_model(case, formulation.mode, design, model)
     head = result.headline
-    s = block.s
     stresses = result.columns["stress"] if s.elastic else 0.0
     simulated = SimpleNamespace(start_time=head["start_time"], friction_work=head["friction_work"],
                                 temperatures=head.get("temperature_rise", 0.0), lock_up_speed=head["lock_up_speed"],
