@@ -26,7 +26,7 @@ from clutchopt.optimise.integers import RuledOut, descend, fixing, nearest_integ
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
 from clutchopt.optimise.solution import Solution, SolverInfo, SolverOptions, WarmStart
-from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, corrected_case, start_up_report
+from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, corrected_case, start_up_report, worn_start
 from clutchopt.optimise.start_up_shift import limit_shift, shifted
 from clutchopt.optimise.verdict import shown
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
@@ -83,8 +83,10 @@ class Problem:
         again; the simulated start decides as for any solve. An integer choice an earlier solve of the loop found
         infeasible by far more than that solve's collocation error is not solved again (:class:`RuledOut`)."""
         case.require(self.objective.name, quantities=self.formulation.quantities)
-        if self.start_up is None or not refine:
+        if self.start_up is None:
             return self._solve(case, start, warm, mesh=mesh, diagnosed=diagnosed)
+        if not refine:
+            return self._worn(case, self._solve(case, start, warm, mesh=mesh, diagnosed=diagnosed))
         if start is None and warm is None:
             sized = problem_for(self.posed.base, self.objective.name, self.options).solve(case)
             start = sized.design if sized.status == "optimal" else None
@@ -129,6 +131,12 @@ class Problem:
                                      sum(s.time_s for s in solves), sum(s.solves for s in solves))
         if nlp_case is not None:  # not the doubled problem's
             solution.limit_shift = limit_shift(case, nlp_case)
+        return self._worn(case, solution)
+
+    def _worn(self, case: Case, solution: Solution) -> Solution:
+        """The solution a solve returns, its start on worn linings simulated (:func:`worn_start`; the lever)."""
+        if solution.start_up is not None:
+            worn_start(solution.start_up, *self.posed.start_up_seen(case, solution.design), self.formulation.mode)
         return solution
 
     def _solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,

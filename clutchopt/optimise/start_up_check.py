@@ -34,17 +34,16 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
     and the start-up constraints re-checked with the simulated figures, each with the values ``seen(name)`` gives it
     (:func:`~clutchopt.start_up.drive.seen_constraints`): (summary in SI, constraint checks, the mesh the simulated
     start suggests for the next solve). ``case`` and ``design``: as the start sees them."""
-    from clutchopt.start_up.simulation import run_start_up, start_up_model, worn_start_up_model
+    from clutchopt.start_up.simulation import check_rtol, run_start_up, start_up_model
 
     values, *columns = figures
     nlp = dict(zip(block.outputs(), np.array(values).ravel()))
     trajectory = {name: np.array(column).ravel() for name, column in zip(TRAJECTORY, columns)}  # (block.trajectory()
     # builds the expressions: 5 ms a check for its names)
-    model = start_up_model(case, formulation.mode, design)
-    result = run_start_up(model)
-    worn = worn_start_up_model(case, formulation.mode, design, model)
-    head = result.headline
     s = block.s
+    model = start_up_model(case, formulation.mode, design, check_rtol(s.spec.tolerance, s.elastic))
+    result = run_start_up(model)
+    head = result.headline
     stresses = result.columns["stress"] if s.elastic else 0.0
     simulated = SimpleNamespace(start_time=head["start_time"], friction_work=head["friction_work"],
                                 temperatures=head.get("temperature_rise", 0.0), lock_up_speed=head["lock_up_speed"],
@@ -78,12 +77,8 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
     }
     if not s.spec.overload:
         summary["overload"] = "overload not checked (start_up.overload.check = false): overload_torque left out"
-    if worn is not None:  # the same start with worn linings (the lever), simulated: reported, the new one checked
-        summary["worn"] = {**_headline(run_start_up(worn).headline),
-                           "min_lock_up_speed": case.values.get("min_lock_up_speed"),
-                           "units": {**{name: UNITS[name] for name in ("start_time", "friction_work",
-                                                                        "temperature_rise", "lock_up_speed")},
-                                     "min_lock_up_speed": "rad/s"}}
+    if getattr(formulation.speed_law, "worn_torque", None) is not None:  # the start with worn linings (the lever):
+        summary["worn"] = None  # simulated for the design a solve returns only (:func:`worn_start`), in its place
     if s.elastic:  # the link's stress and twist: the NLP's quasi-static link beside the simulated dynamic one
         nodes = zip(trajectory["w_driver"], trajectory["twist"])
         summary.update(peak_link_stress=max(float(drive.link_stress(w, theta)) for w, theta in nodes),
@@ -98,6 +93,23 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
         summary["lining_notes"] = lining_notes(drive, case.coupling)
     times = [float(nlp[f"{phase}_time"]) for phase in s.phases]
     return summary, checks, adapted_mesh(s, result.columns, times)
+
+
+def worn_start(summary: dict, case, design: dict[str, float], mode: str) -> None:
+    """A solve's start-up ``summary`` completed with the same start on worn linings (the lever), simulated: reported,
+    never checked (the new linings' start is), so it is run for the design a solve returns, not for each solve of
+    its accuracy loop. ``case`` and ``design``: as the start sees them; a summary without the place (another
+    coupling) or with it filled is left as it is."""
+    from clutchopt.start_up.simulation import check_rtol, run_start_up, start_up_model, worn_start_up_model
+
+    if "worn" not in summary or summary["worn"] is not None:
+        return
+    model = start_up_model(case, mode, design, check_rtol(summary["tolerance"], False))
+    summary["worn"] = {**_headline(run_start_up(worn_start_up_model(case, mode, design, model)).headline),
+                       "min_lock_up_speed": case.values.get("min_lock_up_speed"),
+                       "units": {**{name: UNITS[name] for name in ("start_time", "friction_work",
+                                                                    "temperature_rise", "lock_up_speed")},
+                                 "min_lock_up_speed": "rad/s"}}
 
 
 def _headline(head: dict) -> dict:

@@ -25,6 +25,8 @@ from clutchopt.simulate.engine import MAX_STEPS, SimulationResult, largest
 from clutchopt.simulate.laws import InductionMotor, Load
 from clutchopt.simulate.stepping import Budget, integrate
 
+STRESS_LAG = 1e-6  # of the start's time scale: the step of the stress rate's central difference (its peak's event)
+
 
 @dataclass
 class ElasticModel:
@@ -41,12 +43,14 @@ class ElasticModel:
     effects: tuple[str, ...] = ()
     rtol: float = 1e-10
     end_time: float | None = None
+    integrator: str = "LSODA"  # "DOP853" or "Radau" for a reference run (docs/start_up.md, "The check's tolerance")
 
 
 def simulate_elastic(model: ElasticModel) -> SimulationResult:
     """The start from rest by LSODA (its stiff mode takes the link's fast twist where it is stiff), stepped by
     :mod:`clutchopt.simulate.stepping` within the same budget of steps as a slipping coupling's; the twist's
-    extremes (relative speed zero) are sampled where they occur, so that the peak stress is not missed."""
+    extremes (relative speed zero) and the stress's (its rate along the motion zero) are sampled where they occur,
+    so that the peak stress is not missed."""
     m = model
     motor = m.motor
     time_scale = (m.inertia + motor.inertia) * m.target / max(motor.breakdown_torque, 1e-300)
@@ -68,14 +72,23 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     def twist_extreme(t, y):
         return y[0] - y[1]
 
+    lag = STRESS_LAG * time_scale
+
+    def stress_extreme(t, y):
+        """The stress's rate along the motion as a central difference over +-``lag`` (the stress grows with the
+        driving speed too, so its peak lags the twist's: sampled there, it was missed by 1e-5)."""
+        dw, _, dtheta, _ = rates(t, y)
+        return m.stress(y[0] + lag * dw, y[2] + lag * dtheta) - m.stress(y[0] - lag * dw, y[2] - lag * dtheta)
+
     started.terminal, started.direction = True, 1
     overturned.terminal, overturned.direction = True, 1
     twist_extreme.terminal, twist_extreme.direction = False, 0
+    stress_extreme.terminal, stress_extreme.direction = False, -1
     bound = m.end_time if m.end_time is not None else 1e3 * time_scale
     speed_scale = motor.synchronous_speed
     atol = m.rtol * np.array([speed_scale, speed_scale, m.largest_twist, 1.0 + m.inertia * speed_scale**2])
-    out = integrate(rates, None, 0.0, np.zeros(4), bound, [started, overturned, twist_extreme], "LSODA", m.rtol,
-                    atol, Budget(MAX_STEPS))
+    out = integrate(rates, None, 0.0, np.zeros(4), bound, [started, overturned, twist_extreme, stress_extreme],
+                    m.integrator, m.rtol, atol, Budget(MAX_STEPS))
     t, y = out.t, out.y
     torque = m.torque(y[0], y[2]) + m.damping * (y[0] - y[1])  # the samples at once, as arrays
     stress = np.asarray(m.stress(y[0], y[2]), dtype=float)
