@@ -7,6 +7,8 @@ statuses identical).
 """
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from clutchopt.cases import load_case
 from clutchopt.optimise import solve_case
@@ -41,17 +43,28 @@ def test_a_point_solved_by_sqp_has_the_objective_solve_gives(text):
         assert solved.design["groove_conformity"] >= 1.005  # the declared bound, held exactly
 
 
-def test_a_sweep_reversed_gives_the_same_verdicts_and_optima():
-    # ball_crusher at 540, 570 and 600 kW: a design at 540 kW, none from about 560 kW (contact stress, torque and
-    # the outer diameter together). Forward, 570 kW is solve's full verdict and 600 kW the point after it (a region
-    # proof's quick test); reversed, 570 kW is proven next to 600 kW and 540 kW solved from the infeasible side, cold
-    values = [540, 570, 600]
+def test_a_sweep_from_an_infeasible_region_gives_solves_verdicts_and_optimum():
+    # ball_crusher at 600, 570 and 540 kW: no design from about 560 kW (contact stress, torque and the outer
+    # diameter together), one at 540 kW. 600 kW is solve's full verdict, 570 kW the point after it (a region
+    # proof's quick test), 540 kW solved from the infeasible side, cold; the same points forward:
+    # test_a_point_solved_by_sqp_has_the_objective_solve_gives and the hypothesis test below
     designed = lambda record: record["status"] == "optimal"  # noqa: E731 (a full verdict of each point: seconds)
-    forward = swept_and_solved("ball_crusher.toml", "power=" + ",".join(map(repr, values)), designed)
-    reverse = swept_and_solved("ball_crusher.toml", "power=" + ",".join(map(repr, values[::-1])), designed)[::-1]
-    assert [record["status"] for record, _ in forward] == ["optimal", "infeasible", "infeasible"]
-    for (there, solved), (back, _) in zip(forward, reverse):
-        assert there["status"] == back["status"]
-        if solved is not None:
-            assert there["objective"]["value"] == pytest.approx(solved.objective, rel=STATIC_RTOL, abs=0)
-            assert back["objective"]["value"] == pytest.approx(solved.objective, rel=STATIC_RTOL, abs=0)
+    points = swept_and_solved("ball_crusher.toml", "power=600,570,540", designed)
+    assert [record["status"] for record, _ in points] == ["infeasible", "infeasible", "optimal"]
+    assert points[1][0]["diagnosis"].startswith("proven infeasible")
+    record, solved = points[2]
+    assert solved.status == "optimal"
+    assert record["objective"]["value"] == pytest.approx(solved.objective, rel=STATIC_RTOL, abs=0)
+
+
+@settings(max_examples=12, deadline=None)
+@given(st.lists(st.floats(0.25, 0.45), min_size=2, max_size=6))
+def test_any_order_of_points_across_an_infeasible_edge_gives_solves_verdicts(pressures):
+    # wedge_paper has no design at 0.30 MPa allowable pressure and one at 0.35 MPa (torque and the flank pressure,
+    # eqs. (9), (12), (13), together; at 0.30 proven by interval branch and bound); points in any order, across the edge and back, repeated: each point's status and
+    # objective are solve's (region proofs after an infeasible point, batches and warm starts after a design)
+    text = "allowable_pressure=" + ",".join(map(repr, pressures))
+    for record, solved in swept_and_solved("wedge_paper.toml", text):
+        assert record["status"] == solved.status
+        if solved.status == "optimal":
+            assert record["objective"]["value"] == pytest.approx(solved.objective, rel=STATIC_RTOL, abs=0)
