@@ -76,7 +76,9 @@ def test_the_drive_checks_of_the_review_are_reported_for_every_verified_design(c
     assert set(checks) == {"start_time", "lining_temperature", "continuous_temperature", "lining_life",
                            "overload_torque"}
     assert checks["continuous_temperature"]["value"] == pytest.approx(steady, rel=1e-7)  # the NLP's L, re-checked
-    assert checks["lining_temperature"]["value"] == pytest.approx(steady + start["temperature_rise"], rel=1e-6)
+    assert checks["lining_temperature"]["value"] == pytest.approx(steady + start["temperature_rise"], rel=2e-6)
+    # (the lining temperature, margin 0.66, shapes nothing: the accuracy loop leaves its rise at the mesh it has,
+    # problem.py shapes_nothing; 1.1e-4 K of 23.65 K before IPOPT held its bounds, 5.7e-4 K since, 1.5e-6 of T)
     assert checks["lining_temperature"]["limit"] == pytest.approx(250 + 273.15) and \
         checks["lining_temperature"]["unit"] == "K" and checks["lining_temperature"]["display_unit"] == "degC"
     assert checks["lining_life"]["value"] == pytest.approx(start["life"], rel=1e-7)

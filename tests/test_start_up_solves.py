@@ -35,15 +35,27 @@ def test_a_choice_is_ruled_out_only_beyond_ten_times_the_error_of_the_solve_that
     assert ruled.reason([22]) == []  # the margin itself is not beyond it
 
 
-def test_the_ball_solves_its_infeasible_row_count_once():
+def test_the_ball_solves_its_infeasible_row_count_once(monkeypatch):
     # the loop adapts the mesh three times; 24 rows was solved again after each (94, 500 and 84 IPOPT iterations)
+    from clutchopt.optimise.problem import Problem
+
+    searches, solve = [], Problem._solve  # each solve's integer search (the last: a limit correction, rows kept)
+
+    def recorded(self, *args, **kwargs):
+        solution = solve(self, *args, **kwargs)
+        searches.append([e["status"] for e in solution.integer_search if e["ball_rows"] == 24])
+        return solution
+
+    monkeypatch.setattr(Problem, "_solve", recorded)
     solution = solve_case(load_case(CASES / "ball_motor_start.toml"))
     assert solution.status == "optimal", solution.diagnosis
     assert solution.design["ball_rows"] == 25
     assert solution.objective == pytest.approx(1026.07096, rel=1e-6)  # docs/start_up.md: 1026 kg
-    entry = next(e for e in solution.integer_search if e["ball_rows"] == 24)
-    assert entry["status"].startswith("excluded: infeasible by 0.0012 at an earlier mesh")
-    assert solution.solver.solves == 8  # 10 before: two solves of 24 rows, 2.1 s of IPOPT
+    tried = [status for statuses in searches for status in statuses]
+    after = tried[tried.index("Infeasible_Problem_Detected") + 1:]  # (feasible on the first, coarsest mesh)
+    assert after and all(status.startswith("excluded: infeasible by 0.0012 at an earlier mesh") for status in after)
+    assert solution.solver.solves == 9  # 10 before: two solves of 24 rows, 2.1 s of IPOPT (9: the last a limit
+    # correction with the rows kept, since IPOPT holds the bounds, docs/tradeoffs.md)
 
 
 def test_a_limit_shift_is_a_ratio_carried_to_the_next_case():
@@ -87,7 +99,8 @@ def test_a_start_up_that_shapes_nothing_is_not_refined():
     static = solve_case(replace(case, start_up=None))
     assert solution.status == static.status == "optimal"
     assert solution.objective == pytest.approx(static.objective, rel=1e-9)
-    assert solution.objective == pytest.approx(950.755429, rel=1e-8)
+    assert solution.objective == pytest.approx(950.755439, rel=1e-8)  # (950.755429 with IPOPT's bounds relaxed by
+    # 1e-10: groove conformity below 1.005, docs/tradeoffs.md)
     error = abs(solution.start_up["discretisation_error"]["start_time"])
     assert error > case.start_up.tolerance  # the first mesh's, left as it is
     first = case_problem(case).posed.n_checked

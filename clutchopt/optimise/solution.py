@@ -52,7 +52,7 @@ class SolverOptions:
             "ipopt.acceptable_tol": self.tol * 1e2,
             "ipopt.acceptable_constr_viol_tol": self.tol * 1e2,
             "ipopt.max_iter": self.max_iter,
-            "ipopt.bound_relax_factor": 1e-9,
+            "ipopt.bound_relax_factor": 0.0,
             "ipopt.print_level": 0,
             "ipopt.sb": "yes",
             "print_time": False,
