@@ -133,9 +133,11 @@ class Regions:
                         self._proven[j] = (text, seconds / max(1, end - k))
                 elif b - a > 1 and outcome is not None and outcome.feasible is None:  # (a design met for the whole
                     # run: every point has one, solved as usual)
-                    middle = (a + b) // 2
-                    halves += [run for run in ((a, middle), (middle, b)) if run[1] - run[0] > 1]  # a single point:
-                    # solved as usual (a design found by a solve, else its own verdict with its own search)
+                    middle = (a + b) // 2  # (a design at one end: the region ends within the run: only
+                    # its first half is searched again, the points of the other solved as usual)
+                    kept = ((a, middle),) if outcome.reached else ((a, middle), (middle, b))
+                    halves += [run for run in kept if run[1] - run[0] > 1]  # a single point: solved as usual (a
+                    # design found by a solve, else its own verdict with its own search)
             runs = halves
         self._length = min(2 * longest, LONGEST_RUN)
 
