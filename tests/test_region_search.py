@@ -136,21 +136,3 @@ def test_a_run_reaching_past_the_region_s_edge_searches_only_its_first_half_agai
     assert half.proven
     assert list(frame["diagnosis"][1:5]) == [frame["diagnosis"][1]] * 4
     assert frame["diagnosis"][1].startswith("proven infeasible for resisting_torque 130-250 N*m (4 points, one proof)")
-
-
-def test_a_region_s_search_gives_up_as_soon_as_its_boxes_left_spread(monkeypatch):
-    # The lever centrifuge over 0.5x-2x its speed (100 points, geometric; its paper mode): points 76-99 (2109-2900
-    # rpm) have no design, each proven alone over 1,700-2,300 boxes. Over the run of points 77-84 (2131-2351 rpm) the
-    # bounds are too loose for a proof: its boxes left go 1, 128, 256, 92, 82, 156 (x1.9 past RANGED_SURE_BOXES), and
-    # the search gives up at 1,245 boxes, where with SURE_BOXES's grace it went on to 2,619. The pair 79-80 closes in
-    # (about 75 boxes left at every iteration) and is proven over 2,277 boxes, either way.
-    lever = load_case(CASES / "lever_centrifuge.toml")
-    posed = case_problem(lever, mode="paper").posed
-    speeds = lever.values["speed"] * np.geomspace(0.5, 2.0, 100)
-    points = [interval_proof._search_problem(posed, lever.with_values(speed=speed)) for speed in speeds[77:85]]
-    run, pair = region_proof._region_problem(points), region_proof._region_problem(points[2:4])
-    spread, proven = searches(posed, [run, pair], [interval_proof.MAX_BOXES] * 2)
-    assert (spread.proven, spread.reached, spread.boxes) == (False, False, 1245)
-    assert (proven.proven, proven.boxes) == (True, 2277)
-    monkeypatch.setattr(interval_proof, "RANGED_SURE_BOXES", interval_proof.SURE_BOXES)
-    assert searches(posed, [run], [interval_proof.MAX_BOXES])[0].boxes == 2619

@@ -11,13 +11,12 @@ numbers, and a box without one is dropped. When no box is left the design space 
 centre meets every row is a feasible design (of the relaxation), and the search stops there: the case is not
 infeasible.
 
-Work is bounded: at most ``MAX_BOXES`` boxes are evaluated, after which the search gives up without a verdict;
-beyond the first ``SURE_BOXES`` (``RANGED_SURE_BOXES`` over a parameter interval) it also gives up as soon as the
-boxes left grow by more than ``GROWTH`` in an iteration. A search that will prove closes in: the boxes left grow by
-at most 1.25 an iteration and then fall (ball_motor_start at 580-800 kW: 300 to 1,200 boxes left at each of about 30
-iterations, 15,000-34,000 boxes in all), while one whose bounds are too loose to prove doubles them every iteration
-(wedge_motor_start in geometry mode in a 100 mm housing: 32, 110, 204, 392, 752, ...) and stops where it did with a
-budget of 2,500 boxes.
+Work is bounded: at most ``MAX_BOXES`` boxes are evaluated, after which the search gives up without a verdict; beyond
+the first ``SURE_BOXES`` it also gives up as soon as the boxes left grow by more than ``GROWTH`` in an iteration. A
+search that will prove closes in: the boxes left grow by at most 1.25 an iteration and then fall (ball_motor_start
+at 580-800 kW: 300 to 1,200 boxes left at each of about 30 iterations, 15,000-34,000 boxes in all), while one whose
+bounds are too loose to prove doubles them every iteration (wedge_motor_start in geometry mode in a 100 mm
+housing: 32, 110, 204, 392, 752, ...) and stops where it did with a budget of 2,500 boxes.
 
 Declared monotone nodes (Hertz's n_a, n_b of the ball's contact, :mod:`clutchopt.monotone`) are bounded at their
 argument's ends (:mod:`clutchopt.optimise.interval_nodes`): replayed through their Newton step on the elliptic
@@ -34,9 +33,6 @@ from clutchopt.optimise.interval_nodes import enclosed_rows
 
 MAX_BOXES = 40_000  # about 1.5 s of CPU; ball_motor_start's static conflict at 580-800 kW takes 15,000-34,000
 SURE_BOXES = 2_500  # evaluated in any case; beyond, only while the search closes in (GROWTH)
-RANGED_SURE_BOXES = 512  # the same over a parameter interval (a region of a sweep: region_proof), past the first
-# splits (1, 128, 256 boxes): a region's proof closes in at once, and one that cannot be proven spreads early (the
-# lever over its speed: a run failing at 2,600-4,200 boxes had doubled its boxes left by 700-1,800)
 GROWTH = 1.5  # the most the boxes left may grow from one iteration to the next beyond SURE_BOXES
 BATCH = 128  # boxes an iteration evaluates at least (bisecting as often as it takes)
 TOLERANCE = 1e-6  # a row must be broken by more than this (relative) over a whole box for the box to be empty
@@ -104,7 +100,6 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
     ranged = np.any((p_lo != p_hi) & ~(np.isnan(p_lo) & np.isnan(p_hi)), axis=0)  # a parameter interval (a quantity
     # the case leaves out reads NaN at both ends): its ends are tried too (_reached)
     width0 = np.where(hi > lo, hi - lo, 1.0)
-    sure = np.where(ranged, RANGED_SURE_BOXES, SURE_BOXES)  # boxes evaluated before GROWTH is asked
     owner = np.arange(count)  # each box's search (a column of params), the boxes of one search together
     decisive: list[dict[str, int]] = [{} for _ in problems]
     evaluated, left = np.zeros(count, dtype=int), np.full(count, np.inf)
@@ -154,7 +149,7 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         lo, hi, owner, uncertain = lo[:, alive], hi[:, alive], owner[alive], g_hi[:, alive] > 0.0
         end(np.setdiff1d(running, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         counts = np.bincount(owner, minlength=count)
-        spreading = np.flatnonzero((counts > 0) & (evaluated > sure) & (counts > GROWTH * left))
+        spreading = np.flatnonzero((counts > 0) & (evaluated > SURE_BOXES) & (counts > GROWTH * left))
         end(spreading, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))  # not closing in: give up
         left = np.where(counts > 0, counts, left)
         keep = ~np.isin(owner, spreading)
