@@ -15,11 +15,11 @@ loose over the whole interval) is bisected and the halves searched together, dow
 design at one end of the interval (``Emptiness.reached``: the region ends within the run), only its first half is
 searched again, and the other half's points, most of them with designs, are solved as usual (the back-off: on the
 ball over its allowable contact stress the run reaching past the region's edge had been bisected into 12 more
-searches, 8 of them over points with designs); a region's search may
-take REGION_BUDGET times the boxes of the last proof (at least SURE_BOXES, at most MAX_BOXES), so one reaching past
-the edge gives up early. Runs start FIRST_RUN points long, the next twice the longest proven (from 2, doubling while
-they are proven whole, up to LONGEST_RUN): where a region's bounds are loose over wide intervals (the lever over its
-speed, which its centrifugal force takes squared) the runs stay as short as proofs allow.
+searches, 9 of them over points that all have designs); a region's search may take REGION_BUDGET times the boxes of
+the last proof (at least SURE_BOXES, at most MAX_BOXES), so one reaching past the edge gives up early. Runs start
+FIRST_RUN points long, the next twice the longest proven (from 2, doubling while they are proven whole, up to
+LONGEST_RUN): where a region's bounds are loose over wide intervals (the lever over its speed, which its centrifugal
+force takes squared) the runs stay as short as proofs allow.
 
 A point left over next to a proven one is tested against that proof first (:meth:`Regions.quick`): solved once, as
 ``Problem.solve`` starts (its design, if it finds one, is ``solve``'s), else its own interval search, the one its full
