@@ -114,3 +114,25 @@ def test_the_verdicts_do_not_depend_on_the_order_of_the_points(order):
     statuses = list(frame["status"])[order]
     assert statuses == ["optimal"] * 3 + ["infeasible"] * 9
     assert all(text.startswith("proven infeasible") for text in frame["diagnosis"][frame["status"] == "infeasible"])
+
+
+def test_a_run_reaching_past_the_region_s_edge_searches_only_its_first_half_again(monkeypatch):
+    # The wedge paper case from 300 down to 20 N m: designs up to 89.09 N m, proven infeasible from 123.6 N m on
+    # (each point solved alone; the test above). Point 0 (300 N m) gets its full verdict; the run of the 8 points
+    # after it (250-30 N m) meets a design at its 30 N m end, so no proof over it exists (the back-off rule): only
+    # its first half (250-130 N m, all beyond 123.6 N m) is searched again and proven, and the other half's points
+    # (80-30 N m, designs) are solved as usual, without a search of their own.
+    regions = []
+    real = region_proof.searches
+    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
+        [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
+    torques = [300.0, 250.0, 200.0, 160.0, 130.0, 80.0, 60.0, 40.0, 30.0, 20.0]
+    vary = parse_vary("resisting_torque=" + ",".join(f"{t:g}" for t in torques), "wedge", WEDGE.quantities)
+    frame = Sweep(WEDGE, [vary]).run(progress=False).frame
+    assert list(frame["status"]) == ["infeasible"] * 5 + ["optimal"] * 5
+    assert [len(outcomes) for outcomes in regions] == [1, 1]  # the run of 8, then its first half alone
+    (run,), (half,) = regions
+    assert run.reached and not run.proven and run.feasible is None
+    assert half.proven
+    assert list(frame["diagnosis"][1:5]) == [frame["diagnosis"][1]] * 4
+    assert frame["diagnosis"][1].startswith("proven infeasible for resisting_torque 130-250 N*m (4 points, one proof)")

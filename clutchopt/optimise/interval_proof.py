@@ -45,6 +45,7 @@ class Emptiness(NamedTuple):
     boxes: int  # evaluated
     decisive: dict[str, int]  # constraint name -> boxes it emptied
     feasible: np.ndarray | None = None  # a design meeting every row (SI), if one was met
+    reached: bool = False  # a design met at one end of a parameter interval (no proof for the interval can exist)
 
 
 def interval_functions(posed):
@@ -136,7 +137,7 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
             first_met[int(owner[box])] = box
         end(sorted(first_met), lambda j: Emptiness(False, int(evaluated[j]), decisive[j], centre[:, first_met[j]]))
         reached = _reached(functions[0], centre, owner, ranged, p_lo, p_hi, first_met, posed.integer)
-        end(reached, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
+        end(reached, lambda j: Emptiness(False, int(evaluated[j]), decisive[j], reached=True))
         keep = ~np.isin(owner, list(first_met) + reached.tolist())
         empty = g_lo > TOLERANCE
         running = np.unique(owner[keep])

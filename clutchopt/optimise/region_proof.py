@@ -11,11 +11,15 @@ region's proof, which names the interval (e.g. "proven infeasible for power 600.
 proof): ..."), without a solve.
 
 A run that cannot be proven whole (it reaches past the region's edge, where no proof exists, or its bounds are too
-loose over the whole interval) is bisected and the halves searched together, down to pairs; a region's search may
-take REGION_BUDGET times the boxes of the last proof (at least SURE_BOXES, at most MAX_BOXES), so one reaching past
-the edge gives up early. Runs start FIRST_RUN points long, the next twice the longest proven (from 2, doubling while
-they are proven whole, up to LONGEST_RUN): where a region's bounds are loose over wide intervals (the lever over its
-speed, which its centrifugal force takes squared) the runs stay as short as proofs allow.
+loose over the whole interval) is bisected and the halves searched together, down to pairs; where its search met a
+design at one end of the interval (``Emptiness.reached``: the region ends within the run), only its first half is
+searched again, and the other half's points, most of them with designs, are solved as usual (the back-off: on the
+ball over its allowable contact stress the run reaching past the region's edge had been bisected into 12 more
+searches, 9 of them over points that all have designs); a region's search may take REGION_BUDGET times the boxes of
+the last proof (at least SURE_BOXES, at most MAX_BOXES), so one reaching past the edge gives up early. Runs start
+FIRST_RUN points long, the next twice the longest proven (from 2, doubling while they are proven whole, up to
+LONGEST_RUN): where a region's bounds are loose over wide intervals (the lever over its speed, which its centrifugal
+force takes squared) the runs stay as short as proofs allow.
 
 A point left over next to a proven one is tested against that proof first (:meth:`Regions.quick`): solved once, as
 ``Problem.solve`` starts (its design, if it finds one, is ``solve``'s), else its own interval search, the one its full
@@ -133,9 +137,11 @@ class Regions:
                         self._proven[j] = (text, seconds / max(1, end - k))
                 elif b - a > 1 and outcome is not None and outcome.feasible is None:  # (a design met for the whole
                     # run: every point has one, solved as usual)
-                    middle = (a + b) // 2
-                    halves += [run for run in ((a, middle), (middle, b)) if run[1] - run[0] > 1]  # a single point:
-                    # solved as usual (a design found by a solve, else its own verdict with its own search)
+                    middle = (a + b) // 2  # (a design at one end: the region ends within the run: only
+                    # its first half is searched again, the points of the other solved as usual)
+                    kept = ((a, middle),) if outcome.reached else ((a, middle), (middle, b))
+                    halves += [run for run in kept if run[1] - run[0] > 1]  # a single point: solved as usual (a
+                    # design found by a solve, else its own verdict with its own search)
             runs = halves
         self._length = min(2 * longest, LONGEST_RUN)
 
