@@ -508,15 +508,13 @@ def _estimate(estimate) -> str:
 def reliability_lines(result, case) -> list[str]:
     """The system's failure probability (robust and nominal design) and each constraint's design point with its
     reliability index and estimates (robust design)."""
-    from clutchopt.optimise.robust import system_failure
-
     if result.reliability is None:
         return []
     quantities = {q.name: q for q in case.quantities}
     lines = [f"System (any constraint fails{'; the start-up limits apart, simulated' if result.start_up_points else ''}): robust {_estimate(result.reliability.system)}, nominal "
              f"{_estimate(result.nominal_reliability.system)}",
              *([f"System with the start-up limits (any constraint or limit fails; union bound): robust "
-                f"{_estimate(system_failure(result))}"] if result.start_up_failure else []),
+                f"{_estimate(result.design_failure())}"] if result.start_up_failure else []),
              "Design points of the robust design (most probable failure point; beta = its distance in standard "
              "normal space): estimates FORM, SORM (Breitung), IS (importance sampling at the design point, 95% "
              "interval)"]

@@ -103,7 +103,7 @@ def test_user_sweeps_cover_every_coupling_and_quantity_users_vary(report):
     assert {c for c, q in swept if q == "driven_inertia"} == {f"{c}_motor_start" for c in ("wedge", "lever", "cable",
                                                                                           "ball")}
     for row in rows:
-        assert row["designed"] + row["without_design"] == row["points"] > 0 and row["solves_per_point"] >= 1
+        assert row["designed"] + row["without_design"] == row["points"] > 0 and row["solves_per_point"] > 0
         assert row["points_per_s"] == pytest.approx(row["points"] / row["wall_s"])
     infeasible = [row for row in rows if row["quantity"].endswith("(into infeasible)")]
     assert sum(row["without_design"] for row in infeasible) > 0  # the region is reached

@@ -135,6 +135,11 @@ class RobustResult:
     start_up_share: float | None = None  # system chance: each moved start-up limit's share of 1 - P
     start_up_fallbacks: tuple[str, ...] = ()  # chance: start-up limits at their quantile corners (no settled point)
 
+    def design_failure(self) -> Estimate:
+        """P(the design fails: any constraint or start-up limit): :func:`system_failure` (read by the presentation
+        layer through the result)."""
+        return system_failure(self)
+
     def as_dict(self) -> dict:
         return {
             "method": self.method, "target": self.target, "status": self.status, "diagnosis": self.diagnosis,
@@ -153,7 +158,7 @@ class RobustResult:
             "nominal_reliability": self.nominal_reliability.as_dict() if self.nominal_reliability else None,
             "performance_point_beta": self.betas or None,
             "system_allocation": self.allocation.as_dict() if self.allocation else None,
-            "system_failure_probability": system_failure(self).as_dict() if self.reliability else None,
+            "system_failure_probability": self.design_failure().as_dict() if self.reliability else None,
             "start_up_verification": {"corners": self.start_up_points, "simulations": self.start_up_samples,
                                       "failure_probability": self.start_up_failure,
                                       "failure_probability_estimator": MONTE_CARLO,

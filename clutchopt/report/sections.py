@@ -184,13 +184,11 @@ def largest_failure(failure: dict[str, list[float]], samples: int) -> str:
 
 def _with_start_up(robust, reliability) -> tuple:
     """(system, apart) for the scatter table's row of ``reliability``: a robust design with a start-up has its
-    system with the start-up limits (``robust.system_failure``, a union bound); the nominal design beside it the
+    system with the start-up limits (``RobustResult.design_failure``, a union bound); the nominal design beside it the
     constraints' alone, the start-up limits ``apart`` (not sampled for it)."""
-    from clutchopt.optimise.robust import system_failure
-
     if robust is None or not robust.start_up_failure or reliability is None:
         return None, False
-    return (system_failure(robust), False) if reliability is robust.reliability else (None, True)
+    return (robust.design_failure(), False) if reliability is robust.reliability else (None, True)
 
 
 def reliability_columns(case: Case, reliability, system=None, apart: bool = False) -> dict[str, str]:

@@ -304,12 +304,6 @@ def check_values(values: dict[str, float]) -> None:
             f"{BY_NAME['heat_conductance'].show(values.get('heat_conductance', 0.0))} with starts_per_hour: give the "
             "housing's conductance above 0 W/K (friction_heat: the steady temperature of repeated starts is the heat "
             "they bring over what the housing sheds per kelvin)")))
-    if "starts_per_hour" in values and "max_start_time" in values \
-            and not values["starts_per_hour"] * values["max_start_time"] < 1.0:
-        problems.errors.append(InputError(BY_NAME["starts_per_hour"].key, (
-            f"{BY_NAME['starts_per_hour'].show(values['starts_per_hour'])} of up to max_start_time "
-            f"{BY_NAME['max_start_time'].show(values['max_start_time'])} each overlap: the starts of an hour must fit "
-            "in it one after another (the heat balance takes each start over before the next)")))
     synchronous = values.get("synchronous_speed")
     if synchronous is not None:
         shown = BY_NAME["synchronous_speed"].show
