@@ -186,12 +186,12 @@ def test_the_reports_system_failure_probability_of_a_start_up_holds_its_limits()
     with up to the union bound 0.00143 + each start-up limit's estimate (0.00414 in the text: start_time alone about
     its share), the number `solve` prints as "System with the start-up limits". Now the table's is that one."""
     from clutchopt.cases import load_case
-    from clutchopt.optimise.robust import SYSTEM_CHANCE, solve_robust, system_failure
+    from clutchopt.optimise.robust import SYSTEM_CHANCE, solve_robust
     from clutchopt.report.sections import scatter
 
     case = load_case(CASES / "wedge_motor_start_scatter.toml")
     result = solve_robust(case, SYSTEM_CHANCE, 0.99, samples=100, starts=10)
-    static, system = result.reliability.system, system_failure(result)
+    static, system = result.reliability.system, result.design_failure()
     start_time = result.reliability.constraints["start_time"].best.probability
     assert static.probability == pytest.approx(0.01 / 7, rel=0.05) and start_time > 0.01 / 7 / 2
     assert system.probability >= static.probability + start_time and system.high <= 0.01

@@ -125,7 +125,7 @@ def test_system_chance_gives_the_start_up_limits_their_shares_of_the_target(two_
     constraints (k limits, n constraints: s = 0.001 / (k + n)), the NLP splits what is left, 0.001 - k s, between
     the constraints; the union bound of the system (the constraints' by importance sampling plus each limit's
     estimate) is shown within 1 - P."""
-    from clutchopt.optimise.robust import SYSTEM_CHANCE, system_failure
+    from clutchopt.optimise.robust import SYSTEM_CHANCE
 
     result = solve_robust(two_quantities, SYSTEM_CHANCE, 0.999, starts=40)
     assert result.status == "optimal"
@@ -135,7 +135,7 @@ def test_system_chance_gives_the_start_up_limits_their_shares_of_the_target(two_
     assert result.allocation.allowed == pytest.approx(0.001 - k * share, rel=1e-12)
     start_time = result.reliability.constraints["start_time"].best
     assert start_time.probability <= share and start_time.high <= 2 * share  # designed for its share
-    system = system_failure(result)
+    system = result.design_failure()
     assert system.probability == pytest.approx(result.reliability.system.probability + sum(
         c.best.probability for name, c in result.reliability.constraints.items() if name in result.start_up_failure))
     assert system.probability <= 0.001 and system.low <= 0.001

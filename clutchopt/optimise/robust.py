@@ -136,9 +136,18 @@ class RobustResult:
     start_up_fallbacks: tuple[str, ...] = ()  # chance: start-up limits at their quantile corners (no settled point)
 
     def design_failure(self) -> Estimate:
-        """P(the design fails: any constraint or start-up limit): :func:`system_failure` (read by the presentation
-        layer through the result)."""
-        return system_failure(self)
+        """P(the design fails: any constraint or start-up limit): the closed-form constraints' system (importance
+        sampling), plus each start-up limit's estimate where the design has a start-up (a union bound: their overlap
+        is not subtracted, so the sum is at or above the system's; the interval from the largest lower end to the
+        sum of the upper ends)."""
+        static = self.reliability.system
+        limits = [c.best for name, c in self.reliability.constraints.items() if name in self.start_up_failure]
+        if not limits:
+            return static
+        return Estimate(static.probability + sum(e.probability for e in limits),
+                        max([static.low, *(e.low for e in limits)]),
+                        static.high + sum(e.high for e in limits),
+                        f"the constraints' {static.estimator} plus each start-up limit's estimate (union bound)")
 
     def as_dict(self) -> dict:
         return {
@@ -402,7 +411,7 @@ def verdict(result: RobustResult) -> tuple[str, str | None]:
 
     reasons = []
     if result.reliability is not None:
-        shown = ({"the system": system_failure(result)} if result.method == SYSTEM_CHANCE else
+        shown = ({"the system": result.design_failure()} if result.method == SYSTEM_CHANCE else
                  {name: c.best for name, c in result.reliability.constraints.items()})
         if missed := [f"{name} fails with probability {e.probability:.3g} ({e.low:.3g} to {e.high:.3g}, "
                       f"{e.estimator})" for name, e in shown.items()
@@ -415,21 +424,6 @@ def verdict(result: RobustResult) -> tuple[str, str | None]:
                        + ("" if result.start_up_beta is not None else
                           " (the start is not monotone in the scatter: its quantile corner is not enough)"))
     return ("unverified", "; ".join(reasons)) if reasons else ("optimal", None)
-
-
-def system_failure(result: RobustResult) -> Estimate:
-    """P(the design fails: any constraint or start-up limit) of a robust design: the closed-form constraints' system
-    (importance sampling), plus each start-up limit's estimate where the design has a start-up (a union bound: their
-    overlap is not subtracted, so the sum is at or above the system's; the interval from the largest lower end to
-    the sum of the upper ends)."""
-    static = result.reliability.system
-    limits = [c.best for name, c in result.reliability.constraints.items() if name in result.start_up_failure]
-    if not limits:
-        return static
-    return Estimate(static.probability + sum(e.probability for e in limits),
-                    max([static.low, *(e.low for e in limits)]),
-                    static.high + sum(e.high for e in limits),
-                    f"the constraints' {static.estimator} plus each start-up limit's estimate (union bound)")
 
 
 def verification(result: RobustResult, case: Case) -> str:
@@ -447,7 +441,7 @@ def verification(result: RobustResult, case: Case) -> str:
                      f"{result.reliability.system.probability:.3g} ({result.reliability.system.low:.3g} to "
                      f"{result.reliability.system.high:.3g})")
     if result.method == SYSTEM_CHANCE and result.start_up_failure and result.reliability is not None:
-        system = system_failure(result)
+        system = result.design_failure()
         share = result.start_up_share
         parts.append((f"each start-up limit the scatter moves designed for its share {share:.3g} of "
                       f"{1 - result.target:.3g}, " if share else "")
