@@ -27,7 +27,8 @@ def main(names: list[str]) -> None:
     known = {section.name: section for section in SECTIONS}
     unknown = [name for name in names if name not in known]
     if unknown:
-        sys.exit(f"error: unknown section {', '.join(unknown)}; sections are {', '.join(known)}")
+        print(f"error: unknown section {', '.join(unknown)}; sections are {', '.join(known)}", file=sys.stderr)
+        sys.exit(2)
     now = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     report = run_bench(BenchConfig(), tuple(s for s in SECTIONS if s.name in names) if names else SECTIONS)  # in order:
     # a section may warm what the next reads (start_up_accuracy the simulator's imports for start_up_solve's first solve)
