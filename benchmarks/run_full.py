@@ -29,11 +29,11 @@ def main(names: list[str]) -> None:
     if unknown:
         print(f"error: unknown section {', '.join(unknown)}; sections are {', '.join(known)}", file=sys.stderr)
         sys.exit(2)
+    kept = _kept() if names else None  # read before the minutes of measuring, not after
     now = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     report = run_bench(BenchConfig(), tuple(s for s in SECTIONS if s.name in names) if names else SECTIONS)  # in order:
     # a section may warm what the next reads (start_up_accuracy the simulator's imports for start_up_solve's first solve)
     if names:
-        kept = json.loads((HERE / "latest.json").read_text())
         taken = {**kept.get("sections_taken", {}), **dict.fromkeys(names, now)}
         report = {**kept, "machine": report["machine"], "sections_taken": taken,
                   "sections": {name: report["sections"].get(name, section)
@@ -48,6 +48,19 @@ def main(names: list[str]) -> None:
     block = f"{START}\n{stamp}\n\n```\n{text}\n```\n{END}"
     readme.write_text(re.sub(f"{START}.*?{END}", lambda _: block, readme.read_text(), flags=re.S))
     print(text)
+
+
+def _kept() -> dict:
+    """The last full run's report, whose other sections a partial run keeps."""
+    try:
+        kept = json.loads((HERE / "latest.json").read_text(encoding="utf-8"))
+        if not isinstance(kept.get("sections"), dict) or "taken" not in kept:
+            raise ValueError("no sections or no time taken")
+    except (OSError, ValueError, AttributeError) as exc:
+        print(f"error: benchmarks/latest.json: cannot keep its other sections ({exc}); run every section",
+              file=sys.stderr)
+        sys.exit(2)
+    return kept
 
 
 if __name__ == "__main__":
