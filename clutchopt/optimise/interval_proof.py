@@ -29,6 +29,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from clutchopt.optimise.interval_contract import contracted
 from clutchopt.optimise.interval_nodes import enclosed_rows
 
 MAX_BOXES = 40_000  # about 1.5 s of CPU; ball_motor_start's static conflict at 580-800 kW takes 15,000-34,000
@@ -157,6 +158,19 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         if not lo.shape[1]:
             break
         d_lo, d_hi = d_lo[:, :, alive][:, :, keep], d_hi[:, :, alive][:, :, keep]
+        searching = np.unique(owner)
+        lo, hi, cut_empty, cut = contracted(lo, hi, centre[:, alive][:, keep], c_lo[:, alive][:, keep], d_lo, d_hi,
+                                            TOLERANCE)
+        for j in np.unique(owner[cut_empty]).tolist():
+            cutting = cut[:, owner == j].sum(axis=1)
+            for row in np.flatnonzero(cutting).tolist():
+                tally(j, names[row], int(cutting[row]))
+        whole = ~cut_empty
+        lo, hi, owner, uncertain, d_lo, d_hi = lo[:, whole], hi[:, whole], owner[whole], uncertain[:, whole], \
+            d_lo[..., whole], d_hi[..., whole]
+        end(np.setdiff1d(searching, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
+        if not lo.shape[1]:
+            break
         lo, hi = _faces(lo, hi, d_lo, d_hi, uncertain)
         counts = np.bincount(owner, minlength=count)
         with np.errstate(divide="ignore"):  # few large batches: an evaluation costs per operation, not per box
