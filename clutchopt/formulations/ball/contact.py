@@ -21,9 +21,8 @@ def contact_modulus(p):
 def curvatures(radius, ball_radius, conformity):
     """Relative principal curvatures of ball on grooved drum: around the drum 1/r_c - 1/R_a, across the groove
     1/r_c - 1/(beta r_c). Returns (sum rho, B/A >= 1) with B/A the larger over the smaller (beta r_c < R_a)."""
-    around = 1.0 / ball_radius - 1.0 / radius
-    across = (1.0 - 1.0 / conformity) / ball_radius
-    return around + across, around / across
+    slack = 1.0 - 1.0 / conformity  # across = slack / r_c
+    return (2.0 - 1.0 / conformity) / ball_radius - 1.0 / radius, (1.0 - ball_radius / radius) / slack
 
 
 KAPPA_RANGE = (math.log(1.01), math.log(1e5))  # ln(B/A) over which the Newton start is fitted
