@@ -53,8 +53,7 @@ def test_a_sweep_into_an_infeasible_region_proves_it_once_and_keeps_each_point_s
     # The wedge paper case at 12 resisting torques from 20 to 400 N m (each solved alone: designs up to 89.09 N m,
     # proven infeasible from 123.6 N m on). Point 3 (123.6 N m) gets its full verdict (its own search, 257 boxes);
     # the 8 points after it (158.2-400 N m) are searched as one box, the torque an interval: proven over 129 boxes,
-    # one proof for the 8 points, without a solve (the boxes contracted by their rows' mean-value form: the torque
-    # alone empties them).
+    # one proof for the 8 points, without a solve.
     regions = []
     real = region_proof.searches
     monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
@@ -67,7 +66,7 @@ def test_a_sweep_into_an_infeasible_region_proves_it_once_and_keeps_each_point_s
     assert list(frame["status"]) == ["optimal"] * 3 + ["infeasible"] * 9
     assert regions == [[4]]  # one search, over a parameter interval
     region = "proven infeasible for resisting_torque 158.182-400 N*m (8 points, one proof): no design within the " \
-             "bounds meets torque together (interval branch and bound over 129 boxes of the design " \
+             "bounds meets torque, flank_pressure together (interval branch and bound over 129 boxes of the design " \
              "space and the interval of resisting_torque)"
     assert list(frame["diagnosis"][4:]) == [region] * 8
     assert [s["solver"]["solves"] for s in result.solutions][4:] == [0] * 8

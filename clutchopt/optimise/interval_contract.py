@@ -12,9 +12,10 @@ Where the row rises with x_j throughout (a_lo > 0) this bounds t above: t <= R_j
 at a_lo for t >= 0), t <= R_j / a_hi where R_j < 0 (then t < 0, least at a_hi). Where it falls throughout (a_hi < 0)
 it bounds t below, the same rule mirrored. Where the slope spans zero nothing is taken (the points left would be two
 intervals). Every row's bound on every variable is met with the box (all at once, then again on the contracted box:
-``SWEEPS``); a box whose ends cross is empty, the rows whose bounds crossed naming why. The slopes and the centre's
-values are those over the box first evaluated: they hold over any box within it, so the contracted box needs no new
-evaluation. Each bound is widened outwards by ``_SLACK`` of the magnitudes it was computed from (a sum of a few
+``SWEEPS``); a box whose ends cross is empty. The rows that cut a box are named in the proof, as those that empty
+one are: the proof rests on them (the lever's torque alone empties what its lining pressure cut). The slopes and the
+centre's values are those over the box first evaluated: they hold over any box within it, so the contracted box needs
+no new evaluation. Each bound is widened outwards by ``_SLACK`` of the magnitudes it was computed from (a sum of a few
 terms in float64 errs by a few ulps of them), so a design is never cut away.
 
 Near a constraint's limit, where the natural interval extension's overestimation (linear in the box's width) hides a
@@ -28,6 +29,7 @@ import numpy as np
 
 SWEEPS = 3  # contractions per evaluation: each on the box the last left (the slopes of the first box)
 _SLACK = 1e-12  # relative outward widening of each bound (float64 sums of a few terms err by a few ulps)
+_CUT = 1e-9  # a row cut a box where it moved an end by more than this of the box's width (named in the proof)
 
 
 def least_terms(d_lo: np.ndarray, d_hi: np.ndarray, step_lo: np.ndarray, step_hi: np.ndarray) -> np.ndarray:
@@ -42,11 +44,11 @@ def contracted(lo: np.ndarray, hi: np.ndarray, centre: np.ndarray, c_lo: np.ndar
                d_hi: np.ndarray, limit: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The boxes [lo, hi] (variables x boxes) contracted to the points where every row may be at most ``limit``, from
     the rows' lower bounds at the ``centre`` (``c_lo``, rows x boxes) and their slopes' bounds over the boxes
-    (``d_lo``, ``d_hi``, rows x variables x boxes); the new ends, which boxes are empty, and for those the rows whose
-    bounds crossed (rows x boxes, True where a row cut the variable whose ends crossed)."""
+    (``d_lo``, ``d_hi``, rows x variables x boxes); the new ends, which boxes are empty, and the rows that cut each
+    box (rows x boxes: the proof rests on them as on the rows that empty a box, and names them)."""
     lo, hi = lo.copy(), hi.copy()
     m, n, count = d_lo.shape
-    rising, falling = d_lo > 0.0, d_hi < 0.0
+    rising, falling = (d_lo > 0.0) & np.isfinite(d_lo), (d_hi < 0.0) & np.isfinite(d_hi)
     empty, cutters = np.zeros(count, dtype=bool), np.zeros((m, count), dtype=bool)
     if not (rising.any() or falling.any()):
         return lo, hi, empty, cutters
@@ -69,15 +71,8 @@ def contracted(lo: np.ndarray, hi: np.ndarray, centre: np.ndarray, c_lo: np.ndar
             down = centre[None] + t_down - _SLACK * (np.abs(centre[None]) + np.abs(t_down))
         up, down = np.where(np.isnan(up), np.inf, up), np.where(np.isnan(down), -np.inf, down)
         new_hi, new_lo = np.minimum(hi, up.min(axis=0)), np.maximum(lo, down.max(axis=0))
-        crossed = new_lo > new_hi  # variables x boxes
-        now = crossed.any(axis=0) & ~empty
-        if now.any():
-            first = np.argmax(crossed, axis=0)  # the first variable whose ends crossed
-            columns = np.arange(count)
-            by_up = up[:, first, columns] <= new_hi[first, columns]  # the rows that set its crossed ends
-            by_down = down[:, first, columns] >= new_lo[first, columns]
-            cutters |= (by_up & (up[:, first, columns] < hi[first, columns])
-                        | by_down & (down[:, first, columns] > lo[first, columns])) & now[None]
-            empty |= now
+        margin = _CUT * (hi - lo)
+        cutters |= np.any((up < (hi - margin)[None]) | (down > (lo + margin)[None]), axis=1) & ~empty[None]
+        empty |= np.any(new_lo > new_hi, axis=0)
         lo, hi = np.where(empty, lo, new_lo), np.where(empty, hi, new_hi)
     return lo, hi, empty, cutters

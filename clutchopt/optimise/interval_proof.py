@@ -161,7 +161,7 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         searching = np.unique(owner)
         lo, hi, cut_empty, cut = contracted(lo, hi, centre[:, alive][:, keep], c_lo[:, alive][:, keep], d_lo, d_hi,
                                             TOLERANCE)
-        for j in np.unique(owner[cut_empty]).tolist():
+        for j in np.unique(owner[cut.any(axis=0)]).tolist():  # the rows a proof rests on: those that cut, too
             cutting = cut[:, owner == j].sum(axis=1)
             for row in np.flatnonzero(cutting).tolist():
                 tally(j, names[row], int(cutting[row]))

@@ -24,7 +24,7 @@ def curvatures(radius, ball_radius, conformity):
     sum rho = (2 - 1/beta) / r_c - 1/R_a and B/A = (1 - r_c/R_a) / (1 - 1/beta), the same values written with each
     variable once in a factor, so that interval bounds over a box are tight (the sum and the quotient of the two
     curvatures had r_c in both terms: on a box 14 % wide in r_c near beta = 1.01, the bounds of the contact stress's
-    slope in r_c were [-266, 233] against its values' [-2.5, -2.3]; docs/tradeoffs.md)."""
+    slope in r_c were [-266, 233], now [-71, 57], against its values' [-2.5, -2.3]; docs/tradeoffs.md)."""
     across = 1.0 - 1.0 / conformity  # times 1/r_c
     return (2.0 - 1.0 / conformity) / ball_radius - 1.0 / radius, (1.0 - ball_radius / radius) / across
 
