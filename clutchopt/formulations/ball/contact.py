@@ -103,7 +103,12 @@ def hertz_peak_pressure(load, curvature_sum, modulus, n_a, n_b):
 
 def contact_stress(p, radius, filling, ball_radius, conformity):
     """p_0 of the outer balls on the drum, eq. (9) made consistent (errata B5): Hertz with the ball load and the
-    contact's own curvatures, n_a, n_b from the elliptic integrals."""
-    total, ratio = curvatures(radius, ball_radius, conformity)
+    contact's own curvatures, n_a, n_b from the elliptic integrals. p_0 takes F and sum rho as F sum rho^2 only, so
+    they are passed as F / r_c^2 (the ball load of a unit ball radius, F being proportional to r_c^2) and
+    r_c sum rho = 2 - 1/beta - r_c/R_a: the same value with r_c once, whose interval bounds are tight (F rises and
+    sum rho^2 falls with r_c nearly in proportion: replayed apart, the bounds of the slope in r_c were 30x its
+    values' span; docs/tradeoffs.md)."""
+    _, ratio = curvatures(radius, ball_radius, conformity)
     n_a, n_b = hertz_coefficients(ratio)
-    return hertz_peak_pressure(ball_load(p, radius, filling, ball_radius), total, contact_modulus(p), n_a, n_b)
+    relative_sum = 2.0 - 1.0 / conformity - ball_radius / radius  # r_c sum rho (curvatures)
+    return hertz_peak_pressure(ball_load(p, radius, filling, 1.0), relative_sum, contact_modulus(p), n_a, n_b)
