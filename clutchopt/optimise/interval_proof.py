@@ -4,8 +4,10 @@ The posed problem's own constraint rows (``g <= 0``, normalised) are bounded ove
 interval evaluation (:mod:`clutchopt.optimise.interval`). A box is empty of feasible designs when one row's lower
 bound exceeds the tolerance over all of it. A box whose uncertain rows (those not met throughout it) all fall, or all
 rise, with one variable holds a feasible design only if its face at that variable's upper (lower) bound does: the
-box shrinks to the face (the monotonicity test of interval global optimisation). Other boxes are bisected across
-their widest variable, relative to the design box. Each box's integer variables are rounded inwards to whole
+box shrinks to the face (the monotonicity test of interval global optimisation). Every box is first contracted to
+the part where each row's mean-value form allows it to be met (:mod:`clutchopt.optimise.interval_contract`; a box
+contracted to nothing is empty). Other boxes are bisected across their widest variable, relative to the design box.
+Each box's integer variables are rounded inwards to whole
 numbers, and a box without one is dropped. When no box is left the design space is empty: a proof, for the integers
 (ball_motor_start at 565 kW: its continuous relaxation has designs, no whole number of ball rows does). A box whose
 centre meets every row is a feasible design (of the relaxation), and the search stops there: the case is not
@@ -70,9 +72,14 @@ def searches(posed, problems: list[tuple[np.ndarray, ...]], budgets: list[int] |
 
     A problem ``(p, lower, upper, p_upper)`` searches the parameters over the interval [p, p_upper] (a run of a
     sweep's points: :mod:`clutchopt.optimise.region_proof`): every bound holds for every parameter vector in it, so
-    an empty design space is empty for each of them; the parameters are never split, and a box whose centre meets
-    every row for all of them is a design of every such point (the search stops there). ``budgets``: each search's
-    most boxes (default MAX_BOXES)."""
+    an empty design space is empty for each of them. A box's parameter interval is split like a design variable
+    where it spreads the box's uncertain rows more than any design variable does (the rows' bounds at the box's
+    centre: their width comes from the parameters alone), so a run is proven where, for each parameter of it, a
+    different row breaks (the lever over its speed: its torque at the run's low speeds, its lining pressure at the
+    high ones); the halves cover the interval, so the proof is still one for every point. A box whose centre meets
+    every row for all of the search's parameters is a design of every such point (the search stops there); for the
+    parameters of a part of the interval, a design of some of its points: the search stops as ``reached`` (no
+    proof for the interval exists). ``budgets``: each search's most boxes (default MAX_BOXES)."""
     outcomes: list[Emptiness | None] = [None] * len(problems)
     started = [i for i, (_, lower, upper, *_) in enumerate(problems)
                if np.all(np.isfinite(lower)) and np.all(np.isfinite(upper))]
@@ -101,7 +108,10 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
     ranged = np.any((p_lo != p_hi) & ~(np.isnan(p_lo) & np.isnan(p_hi)), axis=0)  # a parameter interval (a quantity
     # the case leaves out reads NaN at both ends): its ends are tried too (_reached)
     width0 = np.where(hi > lo, hi - lo, 1.0)
+    p_width0 = np.where(p_hi > p_lo, p_hi - p_lo, 0.0)  # (a NaN: 0, never split)
     owner = np.arange(count)  # each box's search (a column of params), the boxes of one search together
+    plo, phi = p_lo.copy(), p_hi.copy()  # each box's parameters (a search's interval, split where it spreads the rows)
+    n = lo.shape[0]
     decisive: list[dict[str, int]] = [{} for _ in problems]
     evaluated, left = np.zeros(count, dtype=int), np.full(count, np.inf)
     outcomes: list[Emptiness | None] = [None] * count
@@ -122,21 +132,24 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
                 if dropped:
                     tally(j, f"a whole {posed.names[i]}", dropped)
         kept = ~none.any(axis=0)
-        lo, hi, owner = lo[:, kept], hi[:, kept], owner[kept]
+        lo, hi, owner, plo, phi = lo[:, kept], hi[:, kept], owner[kept], plo[:, kept], phi[:, kept]
         end(np.setdiff1d(before, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         counts = np.bincount(owner, minlength=count)
         over = np.flatnonzero((counts > 0) & (evaluated + counts > budgets))
         end(over, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
         keep = ~np.isin(owner, over)
-        lo, hi, owner = lo[:, keep], hi[:, keep], owner[keep]
+        lo, hi, owner, plo, phi = lo[:, keep], hi[:, keep], owner[keep], plo[:, keep], phi[:, keep]
         if not lo.shape[1]:
             break
         evaluated += np.bincount(owner, minlength=count)
-        (g_lo, g_hi), (d_lo, d_hi), centre, (c_lo, c_hi) = _bounds(functions, lo, hi, (p_lo[:, owner], p_hi[:, owner]))
+        (g_lo, g_hi), (d_lo, d_hi), centre, (c_lo, c_hi) = _bounds(functions, lo, hi, (plo, phi))
         first_met: dict[int, int] = {}
         for box in np.flatnonzero(np.all(c_hi <= 0.0, axis=0))[::-1].tolist():  # each search's first box met
             first_met[int(owner[box])] = box
-        end(sorted(first_met), lambda j: Emptiness(False, int(evaluated[j]), decisive[j], centre[:, first_met[j]]))
+        whole_p = np.all(_same(plo, p_lo[:, owner]) & _same(phi, p_hi[:, owner]), axis=0)
+        end(sorted(first_met), lambda j: (  # a design for every parameter of the search, or (a part of its interval)
+            Emptiness(False, int(evaluated[j]), decisive[j], centre[:, first_met[j]]) if whole_p[first_met[j]]
+            else Emptiness(False, int(evaluated[j]), decisive[j], reached=True)))  # for some: no proof for all
         reached = _reached(functions[0], centre, owner, ranged, p_lo, p_hi, first_met, posed.integer)
         end(reached, lambda j: Emptiness(False, int(evaluated[j]), decisive[j], reached=True))
         keep = ~np.isin(owner, list(first_met) + reached.tolist())
@@ -148,6 +161,7 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
                 tally(j, names[row], int(emptied[row]))
         alive = keep & ~empty.any(axis=0)
         lo, hi, owner, uncertain = lo[:, alive], hi[:, alive], owner[alive], g_hi[:, alive] > 0.0
+        plo, phi, at = plo[:, alive], phi[:, alive], np.flatnonzero(alive)
         end(np.setdiff1d(running, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         counts = np.bincount(owner, minlength=count)
         spreading = np.flatnonzero((counts > 0) & (evaluated > SURE_BOXES) & (counts > GROWTH * left))
@@ -155,12 +169,12 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         left = np.where(counts > 0, counts, left)
         keep = ~np.isin(owner, spreading)
         lo, hi, owner, uncertain = lo[:, keep], hi[:, keep], owner[keep], uncertain[:, keep]
+        plo, phi, at = plo[:, keep], phi[:, keep], at[keep]
         if not lo.shape[1]:
             break
-        d_lo, d_hi = d_lo[:, :, alive][:, :, keep], d_hi[:, :, alive][:, :, keep]
+        d_lo, d_hi = d_lo[..., at], d_hi[..., at]
         searching = np.unique(owner)
-        lo, hi, cut_empty, cut = contracted(lo, hi, centre[:, alive][:, keep], c_lo[:, alive][:, keep], d_lo, d_hi,
-                                            TOLERANCE)
+        lo, hi, cut_empty, cut = contracted(lo, hi, centre[:, at], c_lo[:, at], d_lo, d_hi, TOLERANCE)
         for j in np.unique(owner[cut.any(axis=0)]).tolist():  # the rows a proof rests on: those that cut, too
             cutting = cut[:, owner == j].sum(axis=1)
             for row in np.flatnonzero(cutting).tolist():
@@ -168,6 +182,7 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         whole = ~cut_empty
         lo, hi, owner, uncertain, d_lo, d_hi = lo[:, whole], hi[:, whole], owner[whole], uncertain[:, whole], \
             d_lo[..., whole], d_hi[..., whole]
+        plo, phi, at = plo[:, whole], phi[:, whole], at[whole]
         end(np.setdiff1d(searching, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         if not lo.shape[1]:
             break
@@ -175,11 +190,36 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         counts = np.bincount(owner, minlength=count)
         with np.errstate(divide="ignore"):  # few large batches: an evaluation costs per operation, not per box
             rounds = np.maximum(1, np.ceil(np.log2(BATCH / np.maximum(counts, 1)))).astype(int)
+        component, rate = _parameter_spread(plo, phi, p_width0[:, owner], (c_hi - c_lo)[:, at], uncertain)
         for turn in range(int(rounds[owner].max())):
-            lo, hi, owner, parents = _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0,
-                                                     rounds[owner] > turn)
+            columns = np.arange(len(owner))
+            relative = (phi - plo)[component, columns] / np.where(p_width0[component, owner] > 0,
+                                                                 p_width0[component, owner], np.inf)
+            extra = np.full(plo.shape, -1.0)
+            extra[component, columns] = np.where(relative > 0, rate * relative, -1.0)
+            z_lo, z_hi, owner, parents = _bisected_where(np.vstack([lo, plo]), np.vstack([hi, phi]), owner, d_lo,
+                                                         d_hi, uncertain, width0, rounds[owner] > turn, extra)
+            lo, plo, hi, phi = z_lo[:n], z_lo[n:], z_hi[:n], z_hi[n:]
             d_lo, d_hi, uncertain = d_lo[..., parents], d_hi[..., parents], uncertain[:, parents]
+            component, rate = component[parents], rate[parents]
     return outcomes
+
+
+def _same(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return (a == b) | (np.isnan(a) & np.isnan(b))
+
+
+def _parameter_spread(plo, phi, p_width0, c_width, uncertain) -> tuple[np.ndarray, np.ndarray]:
+    """Where a box's parameters are an interval (a run of a sweep's points): the parameter widest relative to its
+    search's interval, and how much the box's uncertain rows spread over that interval at its centre per unit of
+    relative width (the rows' bounds at a point: all their width comes from the parameters, split where it exceeds
+    the design variables' spread, :func:`_bisected`); 0 where the parameters are fixed or the spread unbounded."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        relative = np.where(p_width0 > 0, (phi - plo) / p_width0, 0.0)
+    component = np.argmax(relative, axis=0)
+    widest = relative[component, np.arange(relative.shape[1])]
+    spread = np.where(uncertain & np.isfinite(c_width), c_width, 0.0).max(axis=0, initial=0.0)
+    return component, np.where(widest > 0, spread / np.where(widest > 0, widest, 1.0), 0.0)
 
 
 def _reached(rows, centre: np.ndarray, owner: np.ndarray, ranged: np.ndarray, p_lo: np.ndarray, p_hi: np.ndarray,
@@ -219,15 +259,16 @@ def _rounded(lo: np.ndarray, hi: np.ndarray, integer: list[int]) -> tuple[np.nda
     return lo, hi, lo[integer] > hi[integer]
 
 
-def _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0, split):
+def _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0, split, extra=None):
     """:func:`_bisected` of the boxes ``split`` selects (the others kept), every search's boxes in the order its
     own bisection gives (its boxes' first halves, then its second halves); the boxes and the box each came from."""
     chosen = np.flatnonzero(split)
     if len(chosen) == len(owner) and (owner[1:] == owner[:-1]).all():  # one search: as it is
-        lo, hi, parents = _bisected(lo, hi, d_lo, d_hi, uncertain, width0[:, owner])
+        lo, hi, parents = _bisected(lo, hi, d_lo, d_hi, uncertain, width0[:, owner], extra)
         return lo, hi, owner[parents], parents
     s_lo, s_hi, s_parents = _bisected(lo[:, chosen], hi[:, chosen], d_lo[..., chosen], d_hi[..., chosen],
-                                      uncertain[:, chosen], width0[:, owner[chosen]])
+                                      uncertain[:, chosen], width0[:, owner[chosen]],
+                                      None if extra is None else extra[:, chosen])
     parents = np.concatenate([np.flatnonzero(~split), chosen[s_parents]])
     second = np.concatenate([np.zeros((~split).sum(), dtype=bool), np.arange(len(s_parents)) >= len(chosen)])
     order = np.lexsort((parents, second, owner[parents]))  # by search, first halves before second, then by box
@@ -267,14 +308,18 @@ def _faces(lo: np.ndarray, hi: np.ndarray, d_lo: np.ndarray, d_hi: np.ndarray,
 
 
 def _bisected(lo: np.ndarray, hi: np.ndarray, d_lo: np.ndarray, d_hi: np.ndarray, uncertain: np.ndarray,
-              width0: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+              width0: np.ndarray, extra: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Each box split in two across the variable that spreads its uncertain rows most (largest |dg/dx| width; a
     variable whose slope is unbounded first, the widest of them relative to the design box), at its middle (a
-    positive range over a factor 4: its geometric middle); the halves and the box each came from."""
+    positive range over a factor 4: its geometric middle); the halves and the box each came from. ``extra``: the
+    spread of further rows of the boxes below the design variables (a parameter interval's: :func:`_searched`)."""
+    n = d_lo.shape[1]
     slope = np.where(uncertain[:, None, :], np.maximum(np.abs(d_lo), np.abs(d_hi)), 0.0).max(axis=0)
     with np.errstate(invalid="ignore"):  # an unbounded slope times a zero width: the where's other branch
-        smear = np.where(np.isfinite(slope), slope * (hi - lo), 1e300 * (hi - lo) / width0)
-    smear = np.where(hi > lo, smear, -1.0)
+        smear = np.where(np.isfinite(slope), slope * (hi[:n] - lo[:n]), 1e300 * (hi[:n] - lo[:n]) / width0)
+    smear = np.where(hi[:n] > lo[:n], smear, -1.0)
+    if extra is not None:
+        smear = np.vstack([smear, extra])
     widest = np.argmax(smear, axis=0)
     columns = np.arange(lo.shape[1])
     a, b = lo[widest, columns], hi[widest, columns]

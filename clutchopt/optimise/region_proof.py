@@ -5,7 +5,8 @@ Each point of such a run once cost a full verdict (``clutchopt.optimise.verdict.
 elastic diagnosis, the retries from every start, then the interval search that proves it. Here, after a point
 proven infeasible, the next points are searched together *as one box*: the hull of their design boxes times the
 interval of their parameters, from the smallest to the largest value each takes over the run
-(``interval_proof.searches`` with a parameter interval, never split). Every interval bound holds for every parameter
+(``interval_proof.searches`` with a parameter interval, split within the search only where it spreads the rows
+more than the design does). Every interval bound holds for every parameter
 vector in it, so a proof for the interval is a proof for each point of the run: each gets ``infeasible`` with the
 region's proof, which names the interval (e.g. "proven infeasible for power 600.503-626.884 kW (8 points, one
 proof): ..."), without a solve.
