@@ -74,9 +74,10 @@ def searches(posed, problems: list[tuple[np.ndarray, ...]], budgets: list[int] |
     sweep's points: :mod:`clutchopt.optimise.region_proof`): every bound holds for every parameter vector in it, so
     an empty design space is empty for each of them. A box's parameter interval is split like a design variable
     where it spreads the box's uncertain rows more than any design variable does (the rows' bounds at the box's
-    centre: their width comes from the parameters alone), so a run is proven where, for each parameter of it, a
-    different row breaks (the lever over its speed: its torque at the run's low speeds, its lining pressure at the
-    high ones); the halves cover the interval, so the proof is still one for every point. A box whose centre meets
+    centre: their width comes from the parameters alone), so a run is proven where the rows' bounds over its whole
+    interval are too loose (the lever over 2131-2351 rpm, whose torque takes the speed squared: at one design its
+    torque row bounded by [-0.005, 0.258], its values 0.073 to 0.174) or different rows break at different
+    parameters; the halves cover the interval, so the proof is still one for every point. A box whose centre meets
     every row for all of the search's parameters is a design of every such point (the search stops there); for the
     parameters of a part of the interval, a design of some of its points: the search stops as ``reached`` (no
     proof for the interval exists). ``budgets``: each search's most boxes (default MAX_BOXES)."""
