@@ -6,8 +6,11 @@ The formulation's rows are built again with a symbol ``y`` in place of each decl
 ``dG/dx + dG/dy diag(s) dr/dx``, with ``s`` the values' slopes in their arguments ``r``. Over a box, ``r`` is bounded
 by interval replay (:mod:`clutchopt.optimise.interval`), then ``y`` and ``s`` by the declared monotony (values and
 slopes at the ends of ``r``, widened by the declaration's error), met with the node's own replay: bounds as true
-as the declaration, and as tight as the argument's. Where ``r`` leaves the declared domain, ``y`` is the node's own
-replay and ``s`` unbounded, as without a declaration. Before a search, the rows with the nodes' own values for ``y``
+as the declaration, and as tight as the argument's. Where every box evaluated together lies within the
+declarations' domains the replay is left out (it is far wider there, and it was 45 % of an evaluation of the ball's
+rows: the searches of ``ball_crusher`` at 575-800 kW took 0.10 s of CPU instead of 0.17, over the same boxes).
+Where ``r`` leaves the declared domain, ``y`` is the node's own replay and ``s`` unbounded, as without a
+declaration. Before a search, the rows with the nodes' own values for ``y``
 are compared with the NLP's at points of the box (:meth:`DeclaredNodes.agree`); should a formulation differentiate
 its own expressions through a node (a chance constraint's slope), the symbols would cut that path, and the search
 replays the nodes instead.
@@ -65,7 +68,12 @@ class DeclaredNodes:
         if not self.nodes:
             return (np.zeros((0, boxes)),) * 2, (np.zeros((0, boxes)),) * 2
         (r_lo, r_hi), = self._arguments.bounds(inputs)
-        (y_lo, y_hi), = self._replayed.bounds(inputs)
+        within = all(np.all(r_lo[k] >= node.function.domain[0]) and np.all(r_hi[k] <= node.function.domain[1])
+                     for k, node in enumerate(self.nodes))
+        if within:  # every box within the declarations: their bounds alone (the replay is far wider there)
+            y_lo, y_hi = np.full_like(r_lo, -np.inf), np.full_like(r_hi, np.inf)
+        else:
+            (y_lo, y_hi), = self._replayed.bounds(inputs)
         y_lo, y_hi, s_lo, s_hi = y_lo.copy(), y_hi.copy(), np.full_like(y_lo, -np.inf), np.full_like(y_hi, np.inf)
         for rows in self._calls:  # the values of one call share its argument: evaluated once at its ends
             node = self.nodes[rows[0]]
