@@ -92,8 +92,9 @@ def test_a_run_over_the_lever_s_speed_is_proven_with_its_speed_split_where_it_sp
     """The lever (paper mode) at 2131-2351 rpm (8 points of the bench's sweep over 0.5x-2x its speed, none with a
     design): the torque takes the speed squared, and at a fixed design the torque row over the whole interval was
     bounded by [-0.005, 0.258] where its values are 0.073 to 0.174 at the ends; no design variable's split narrows
-    that, and the search gave up after 2,600-3,000 boxes (its boxes left doubling) whatever the budget. Split where the speed
-    spreads the rows more than the design does, it is proven; a box's speeds are always within the run's."""
+    that, and the search gave up after 2,600-3,000 boxes (its boxes left doubling) whatever the budget. Split where
+    the speed spreads the rows more than the design does, it is proven (2,101 boxes); a box's speeds are always
+    within the run's."""
     from clutchopt.bench.reference import bench_cases, reference_mode
     from clutchopt.optimise.interval_proof import searches
     from clutchopt.optimise.region_proof import _region_problem
