@@ -40,7 +40,7 @@ def test_integer_infeasible_although_relaxation_is_feasible():
     problem = Problem(_toy(lower_n=2.2, upper_n=2.8))
     solution = problem.solve(Case("toy", "", {"demand": 5.0, "a": 1.0}))
     assert solution.status == "infeasible"  # proven: the interval search keeps n whole, and 2.2 <= n <= 2.8 is not
-    assert solution.diagnosis.startswith("proven infeasible: no design within the bounds meets a whole n, n_high, n_low")
+    assert solution.diagnosis.startswith("proven infeasible: no design within the bounds meets a whole n, n_low, n_high")
     assert "integer" in solution.diagnosis and "n=2" in solution.diagnosis and "n=3" in solution.diagnosis
 
 
