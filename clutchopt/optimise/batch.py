@@ -63,7 +63,7 @@ from clutchopt.optimise.posed import Box, off_scale
 from clutchopt.optimise.problem import Problem
 from clutchopt.optimise.region_proof import Regions
 from clutchopt.optimise.solution import Solution, WarmStart
-from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL
+from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL, check_design
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
 LONGEST_BATCH = 256  # doubling stops here: a longer batch saves little call overhead and risks more waste
@@ -246,7 +246,9 @@ class BatchSweep:
                     start, k = _Start(self, block=settled), k + 1
                     self.feasible, failed = start.warm.design, False
                     continue
-                if passed < chained:  # point k failed a test in the batch: the next batch starts short
+                if passed == 0 < chained and self.integer:  # its first point failed at the batch's integers: a
+                    pace.broke(k)  # break too (Problem.solve's search decides it), the next one expected as far on
+                elif passed < chained:  # point k failed a test in the batch: the next batch starts short
                     pace.restart()
                 alone[k] = self._solve_alone(k, start.warm if start is not None else None)
                 start, k = self._start_of(alone[k]), k + 1
@@ -368,8 +370,14 @@ class BatchSweep:
             if excluded:
                 search.append(excluded_entry(self.posed, self.integer, combo, excluded))
                 return None
-            run = used(tried) if tried is not None and np.array_equal(combo, start.combo) else solved(
-                lower, upper, seed, "sqp_chain")
+            if tried is not None and np.array_equal(combo, start.combo):
+                run = used(tried)
+            else:
+                chain = self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
+                if chain is None or not chain.ok[0]:  # as Problem.solve tries a neighbour: IPOPT, cold
+                    search.append(self._without_design(start, k, lower, upper, seed))
+                    return None
+                run = used(chain)
             search.append(search_entry(self.posed, self.integer, combo, BATCHED, True, run["value"]))
             return run
 
@@ -401,6 +409,27 @@ class BatchSweep:
             block.arrays[key] = np.zeros_like(block.arrays[key])
         self.searches[k] = search
         return block
+
+    def _without_design(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray, seed: dict) -> dict:
+        """The ``integer_search`` entry of an integer combination (fixed in ``lower``, ``upper``) that the one-point
+        chained SQP did not settle at point k: solved as ``Problem.solve``'s search solves a neighbour (IPOPT, cold,
+        from ``seed``'s point), and kept out of the search where IPOPT ends without a verified optimum (most often
+        ``Infeasible_Problem_Detected``: fewer balls than the torque needs). Where IPOPT finds one, ``Problem.solve``
+        decides the point (:class:`_Unsettled`)."""
+        p = np.concatenate([self._by_point[k], start.scale, [start.f_scale]])
+        lbx, ubx = lower / start.scale, upper / start.scale
+        solver, began = self.posed.solver("ipopt"), time.perf_counter()
+        out = solver(x0=np.clip(seed["x"], lbx, ubx), p=p, lbx=lbx, ubx=ubx, lbg=self.posed.lbg, ubg=0.0)
+        self.solves, self.solver_s = self.solves + 1, self.solver_s + time.perf_counter() - began
+        stats = solver.stats()
+        x = out["x"].full().ravel()
+        design = self.posed.rounded(self.posed.design(x, start.scale))
+        checks = check_design(self.posed.formulation, design, self.posed.params(self.point_case(k)))
+        if stats["success"] and all(c.feasible for c in checks):
+            raise _Unsettled
+        combo = lower[self.integer]
+        return search_entry(self.posed, self.integer, combo, stats["return_status"], False,
+                            float(out["f"]) * start.f_scale)
 
     def _excluded(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
         """Per point k .. k + count - 1: the fixed variables of ``design`` (SI; integers and variables fixed by the
