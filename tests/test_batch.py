@@ -27,10 +27,12 @@ SWEEPS = {  # case, mode, swept quantity, factors: a smooth stretch, integer cha
     "ball_speed": ("ball_compressor.toml", "design", "speed", np.geomspace(0.5, 2.0, 25)),  # rows stepped downhill
     "lever": ("lever_centrifuge.toml", "paper", "inertia", np.geomspace(1.2, 2.0, 30)),
 }
+ROWS_UP = ("ball_compressor.toml", "design", "power", np.geomspace(4.7, 6.6, 16))  # one row fewer promised by the
+# multipliers but infeasible (IPOPT), the rows rising where the rows before become infeasible
 
 
 def _sweep(name, window=1024):
-    file, mode, quantity, factors = SWEEPS[name]
+    file, mode, quantity, factors = SWEEPS[name] if name in SWEEPS else ROWS_UP
     case = load_case(CASES / file)
     problem = Problem(get_coupling(case.coupling).formulation(mode))
     values = case.values[quantity] * factors
@@ -154,6 +156,33 @@ def test_a_chain_ends_near_the_next_change_of_the_integers():
         assert solution.solver.status == BATCHED and solution.solver.solves == 2
         assert [e["status"] for e in solution.integer_search] == [BATCHED, BATCHED]
     assert 33 <= sweep.solves <= 42
+
+
+def test_a_neighbour_without_a_design_is_settled_in_the_batch():
+    # ball rows rise with the power (4.7x-6.6x): at each point the multipliers promise a gain from one row fewer,
+    # which IPOPT finds infeasible (as Problem.solve's search: the fixed-row problem solved cold), so the batch keeps
+    # its rows: 2 calls a point (its chained column, the neighbour's IPOPT call), the next chain one point (a
+    # break at every point). Where the rows before become infeasible (2 points) Problem.solve decides (4 calls).
+    # The records' calls: 3 (the first point, solved alone) + 13 * 2 + 2 * 4 = 37; the sweep's 53 (the chained
+    # columns that failed at a change of rows, the neighbour's first SQP attempt after it); 142 before (chains of 8
+    # failing at their first point, then Problem.solve at each point)
+    case, problem, quantity, values, sweep, solutions = _sweep("ball_rows_up")
+    rows = [s.design["ball_rows"] for s in solutions]
+    assert rows == sorted(rows) and rows[0] == 6 and rows[-1] == 8
+    settled = [s for s in solutions if s.solver.status == BATCHED]
+    assert len(settled) == 13
+    for s in settled:
+        fewer = s.design["ball_rows"] - 1
+        assert [(e["ball_rows"], e["status"]) for e in s.integer_search] == [
+            (s.design["ball_rows"], BATCHED), (fewer, "Infeasible_Problem_Detected")]
+        assert s.solver.solves == 2 and not s.integer_search[1]["feasible"]
+    assert sum(s.solver.solves for s in solutions) == 37 and sweep.solves <= 53
+    previous = None
+    for value, got in zip(values, solutions):  # Problem.solve's designs, point by point
+        want = problem.solve(case.with_values(**{quantity: float(value)}), warm=previous)
+        previous = want
+        assert got.status == want.status == "optimal" and got.design["ball_rows"] == want.design["ball_rows"]
+        assert got.objective == pytest.approx(want.objective, rel=1e-9)
 
 
 def test_an_infeasible_stretch_is_proven_once_after_its_first_point():

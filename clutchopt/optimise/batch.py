@@ -201,6 +201,7 @@ class BatchSweep:
         self._span = min(EXCLUSION_SPAN, self.count)
         self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
         self.searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
+        self._undesigned: dict[tuple, int] = {}  # integer combination -> the last point where IPOPT found no design
         varied = self.values[[q.name in self.varied for q in f.quantities]]
         with np.errstate(all="ignore"):  # each point's step in the case from the one before, relative
             moves = np.diff(varied, axis=1) / np.abs(varied[:, 1:])
@@ -270,6 +271,9 @@ class BatchSweep:
         self._counted(solution)
         if solution.status in DESIGN_STATUSES:
             self.feasible = solution.design
+        for entry in solution.integer_search:  # (its search's combinations without a design: IPOPT's verdicts)
+            if not entry["feasible"] and not entry["status"].startswith("excluded"):
+                self._undesigned[tuple(float(entry[self.names[i]]) for i in self.integer)] = k
         return solution
 
     def _counted(self, solution: Solution) -> Solution:
@@ -362,6 +366,7 @@ class BatchSweep:
         search: list[dict] = []
         box, seed = Box(start.scale, self.lower, self.upper), start.seed
         runs: list[_Chain] = []
+        cold: list[float] = []  # the seconds of each IPOPT call on a combination without a design
 
         def attempt(combo, seed, methods=None) -> dict | None:
             lower, upper = self.lower.copy(), self.upper.copy()
@@ -372,10 +377,15 @@ class BatchSweep:
                 return None
             if tried is not None and np.array_equal(combo, start.combo):
                 run = used(tried)
-            else:
-                chain = self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
+            else:  # a combination IPOPT left without a design at the point before goes to IPOPT again directly
+                key = tuple(combo.tolist())
+                chain = (self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
+                         if self._undesigned.get(key) != k - 1 else None)
                 if chain is None or not chain.ok[0]:  # as Problem.solve tries a neighbour: IPOPT, cold
-                    search.append(self._without_design(start, k, lower, upper, seed))
+                    entry, seconds = self._without_design(start, k, lower, upper, seed)
+                    self._undesigned[key] = k
+                    search.append(entry)
+                    cold.append(seconds)
                     return None
                 run = used(chain)
             search.append(search_entry(self.posed, self.integer, combo, BATCHED, True, run["value"]))
@@ -403,24 +413,26 @@ class BatchSweep:
         if kept is None:
             return None
         block = kept["chain"].block(1)
-        block.arrays["time"][:] = sum(float(run.arrays["time"][0, 0]) for run in runs)
-        block.arrays["solves"][:] = len(runs)
+        block.arrays["time"][:] = sum(float(run.arrays["time"][0, 0]) for run in runs) + sum(cold)
+        block.arrays["solves"][:] = len(runs) + len(cold)
         for key in ("dx", "dlam_x", "dlam_g"):  # no step to predict from across a change of the integers
             block.arrays[key] = np.zeros_like(block.arrays[key])
         self.searches[k] = search
         return block
 
-    def _without_design(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray, seed: dict) -> dict:
+    def _without_design(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
+                        seed: dict) -> tuple[dict, float]:
         """The ``integer_search`` entry of an integer combination (fixed in ``lower``, ``upper``) that the one-point
         chained SQP did not settle at point k: solved as ``Problem.solve``'s search solves a neighbour (IPOPT, cold,
         from ``seed``'s point), and kept out of the search where IPOPT ends without a verified optimum (most often
         ``Infeasible_Problem_Detected``: fewer balls than the torque needs). Where IPOPT finds one, ``Problem.solve``
-        decides the point (:class:`_Unsettled`)."""
+        decides the point (:class:`_Unsettled`). With the seconds of the call."""
         p = np.concatenate([self._by_point[k], start.scale, [start.f_scale]])
         lbx, ubx = lower / start.scale, upper / start.scale
         solver, began = self.posed.solver("ipopt"), time.perf_counter()
         out = solver(x0=np.clip(seed["x"], lbx, ubx), p=p, lbx=lbx, ubx=ubx, lbg=self.posed.lbg, ubg=0.0)
-        self.solves, self.solver_s = self.solves + 1, self.solver_s + time.perf_counter() - began
+        seconds = time.perf_counter() - began
+        self.solves, self.solver_s = self.solves + 1, self.solver_s + seconds
         stats = solver.stats()
         x = out["x"].full().ravel()
         design = self.posed.rounded(self.posed.design(x, start.scale))
@@ -429,7 +441,7 @@ class BatchSweep:
             raise _Unsettled
         combo = lower[self.integer]
         return search_entry(self.posed, self.integer, combo, stats["return_status"], False,
-                            float(out["f"]) * start.f_scale)
+                            float(out["f"]) * start.f_scale), seconds
 
     def _excluded(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
         """Per point k .. k + count - 1: the fixed variables of ``design`` (SI; integers and variables fixed by the
