@@ -266,7 +266,7 @@ class BatchSweep:
         full verdict where that solve finds no design."""
         solution = self._regions.covered(k) or self._regions.quick(k, warm)
         if solution is None:
-            solution = self.problem.solve(self.point_case(k), warm=warm, neighbour=self.feasible)
+            solution = self._regions.charged(self.problem.solve(self.point_case(k), warm=warm, neighbour=self.feasible))
             self._regions.after(k, solution)
         self._counted(solution)
         if solution.status in DESIGN_STATUSES:
@@ -382,11 +382,13 @@ class BatchSweep:
                 chain = (self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
                          if self._undesigned.get(key) != k - 1 else None)
                 if chain is None or not chain.ok[0]:  # as Problem.solve tries a neighbour: IPOPT, cold
-                    entry, seconds = self._without_design(start, k, lower, upper, seed)
-                    self._undesigned[key] = k
-                    search.append(entry)
+                    entry, seconds, optimum = self._cold(start, k, lower, upper, seed)
                     cold.append(seconds)
-                    return None
+                    if optimum is None:
+                        self._undesigned[key] = k
+                        search.append(entry)
+                        return None
+                    chain = self._chain(start, k, 1, lower, upper, optimum, "sqp_chain", predict=False)
                 run = used(chain)
             search.append(search_entry(self.posed, self.integer, combo, BATCHED, True, run["value"]))
             return run
@@ -420,13 +422,16 @@ class BatchSweep:
         self.searches[k] = search
         return block
 
-    def _without_design(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
-                        seed: dict) -> tuple[dict, float]:
+    def _cold(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
+              seed: dict) -> tuple[dict, float, dict | None]:
         """The ``integer_search`` entry of an integer combination (fixed in ``lower``, ``upper``) that the one-point
         chained SQP did not settle at point k: solved as ``Problem.solve``'s search solves a neighbour (IPOPT, cold,
         from ``seed``'s point), and kept out of the search where IPOPT ends without a verified optimum (most often
-        ``Infeasible_Problem_Detected``: fewer balls than the torque needs). Where IPOPT finds one, ``Problem.solve``
-        decides the point (:class:`_Unsettled`). With the seconds of the call."""
+        ``Infeasible_Problem_Detected``: fewer balls than the torque needs): its entry, the seconds of the call, and
+        None; where IPOPT finds a verified-feasible optimum, its primal-dual point instead (multipliers within the KKT
+        tolerance set to 0, as a warm start of SQP: ``attempts.warm_multipliers``), from which the one-point chained
+        SQP gives the column (a combination that became feasible along the sweep: the ball's fewer rows as the
+        allowable contact stress rises)."""
         p = np.concatenate([self._by_point[k], start.scale, [start.f_scale]])
         lbx, ubx = lower / start.scale, upper / start.scale
         solver, began = self.posed.solver("ipopt"), time.perf_counter()
@@ -438,10 +443,12 @@ class BatchSweep:
         design = self.posed.rounded(self.posed.design(x, start.scale))
         checks = check_design(self.posed.formulation, design, self.posed.params(self.point_case(k)))
         if stats["success"] and all(c.feasible for c in checks):
-            raise _Unsettled
+            lam_x, lam_g = warm_multipliers(self.posed, out["lam_x"].full().ravel(), out["lam_g"].full().ravel())
+            return {}, seconds, {"x": x, "lam_x": lam_x, "lam_g": lam_g, "dx": np.zeros_like(x),
+                                 "dlam_x": np.zeros_like(lam_x), "dlam_g": np.zeros_like(lam_g)}
         combo = lower[self.integer]
         return search_entry(self.posed, self.integer, combo, stats["return_status"], False,
-                            float(out["f"]) * start.f_scale), seconds
+                            float(out["f"]) * start.f_scale), seconds, None
 
     def _excluded(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
         """Per point k .. k + count - 1: the fixed variables of ``design`` (SI; integers and variables fixed by the
