@@ -405,6 +405,9 @@ class BatchSweep:
 
         try:
             kept = descend(self.posed, box, self.integer, start.combo, seed, search, attempt)
+            past = self._past_exclusion(start.combo, k) if kept is None else None
+            if past is not None:  # the only neighbour its exclusion leaves: the search from there
+                kept = descend(self.posed, box, self.integer, past, seed, search, attempt)
             if kept is None:  # the batch's integers fail here: the relaxation, from the same point
                 relaxed = solved(self.lower, self.upper, relaxation_seed(seed, self.integer), "sqp_search")
                 if off_scale(relaxed["x"][: len(self.names)]):
@@ -421,6 +424,26 @@ class BatchSweep:
             block.arrays[key] = np.zeros_like(block.arrays[key])
         self.searches[k] = search
         return block
+
+    def _past_exclusion(self, combo: np.ndarray, k: int) -> np.ndarray | None:
+        """Where the integers ``combo`` are excluded at point k (a constraint of fixed variables alone broken, e.g.
+        the cable stress of too few cables), the one neighbouring combination (one integer one unit either way, within
+        the bounds) that is not: the search starts there, without the relaxation, which would round to it. None
+        where the integers are not excluded, or none or several neighbours are left (the relaxation decides)."""
+        lower = self.lower.copy()
+        lower[self.integer] = combo
+        if not self._broken(lower, k, 1).any():
+            return None
+        left = []
+        for j, i in enumerate(self.integer):
+            for step in (-1.0, 1.0):
+                neighbour = combo.copy()
+                neighbour[j] += step
+                if self.lower[i] <= neighbour[j] <= self.upper[i]:
+                    lower[self.integer] = neighbour
+                    if not self._broken(lower, k, 1).any():
+                        left.append(neighbour)
+        return left[0] if len(left) == 1 else None
 
     def _cold(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
               seed: dict) -> tuple[dict, float, dict | None]:
