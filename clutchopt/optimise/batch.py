@@ -24,7 +24,13 @@ integers excluded there, or a neighbour to try), the batch runs the search itsel
 (``integers.descend``, then the relaxation and ``integers.nearest_integers``): each integer combination is excluded
 by the tables or re-solved by a one-point chained SQP and KKT-checked (the relaxation with its Hessian
 convexified; the batch's own integers not again where the chain solved them at that point: its column there is
-the first attempt). The next chain then ends where the next such point is expected (``batch_pace``). Otherwise,
+the first attempt). A combination the one-point SQP does not settle is solved as ``Problem.solve``'s search solves a
+neighbour, by IPOPT from cold: kept out of the search where IPOPT finds no design (and at the next point tried by
+IPOPT directly), else re-solved by SQP from IPOPT's optimum (the ball's rows: one row fewer promised by the
+multipliers but infeasible, point after point, had sent each point to ``Problem.solve``). Where the batch's integers
+are excluded and one neighbouring combination is not, the search starts there, without the relaxation (the cable
+count, one cable more). The next chain then ends where the next such point is expected (``batch_pace``; a chain
+that fails at its first point is such a point too). Otherwise,
 and where a re-solve of that search fails its check, the point is solved by ``Problem.solve``, warm from the last
 kept point (SQP, warm IPOPT, the integer search, the cold solve and the infeasibility diagnosis), and the next
 batch starts after it, 8 points long, doubling while batches pass (up to 256). A chain's length is a power of two

@@ -21,6 +21,12 @@ FIRST_RUN points long, the next twice the longest proven (from 2, doubling while
 LONGEST_RUN): where a region's bounds are loose over wide intervals (the lever over its speed, which its centrifugal
 force takes squared) the runs stay as short as proofs allow.
 
+Before a run is searched, probes look for the region's edge within it (:meth:`Regions._edge`): one solve at the run's
+last point (as ``Problem.solve`` starts cold); where it has a design, the points from the run's first on in growing
+steps, then bisection, find the first point with one, and only the points before it are searched (a run reaching past
+the edge cannot be proven, and its bisection by searches cost seconds where a solve costs 20-40 ms). A probe only
+shortens the run searched; its calls are charged to the next point's verdict.
+
 A point left over next to a proven one is tested against that proof first (:meth:`Regions.quick`): solved once, as
 ``Problem.solve`` starts (its design, if it finds one, is ``solve``'s), else its own interval search, the one its full
 verdict would run, before the elastic diagnosis and the retries: proven, it gets the verdict ``solve`` gives
