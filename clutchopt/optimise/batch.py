@@ -311,7 +311,8 @@ class BatchSweep:
         count = len(chain.index)
         ok = chain.ok & ~chain.moves
         passed = int(np.argmin(ok)) if not ok.all() else count
-        searching = bool(chain.ok[passed]) if passed < count else count == first  # passed up to the exclusion
+        searching = (bool(chain.ok[passed]) or passed == 0 < len(self.integer)) if passed < count else count == first
+        # (passed up to the exclusion; a first point that fails at the batch's integers: the search tries them by IPOPT)
         tried = None  # normalised as the batch that starts after the passed points
         if searching and passed < count:
             tried = chain.column(passed, _Start(self, block=chain.block(passed)).f_scale if passed else start.f_scale)
@@ -381,21 +382,21 @@ class BatchSweep:
             if excluded:
                 search.append(excluded_entry(self.posed, self.integer, combo, excluded))
                 return None
+            key = tuple(combo.tolist())
             if tried is not None and np.array_equal(combo, start.combo):
-                run = used(tried)
+                chain = tried  # (its chained column: the first attempt, verified or not)
             else:  # a combination IPOPT left without a design at the point before goes to IPOPT again directly
-                key = tuple(combo.tolist())
                 chain = (self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
                          if self._undesigned.get(key) != k - 1 else None)
-                if chain is None or not chain.ok[0]:  # as Problem.solve tries a neighbour: IPOPT, cold
-                    entry, seconds, optimum = self._cold(start, k, lower, upper, seed)
-                    cold.append(seconds)
-                    if optimum is None:
-                        self._undesigned[key] = k
-                        search.append(entry)
-                        return None
-                    chain = self._chain(start, k, 1, lower, upper, optimum, "sqp_chain", predict=False)
-                run = used(chain)
+            if chain is None or not chain.ok[0]:  # as Problem.solve tries a neighbour: IPOPT, cold
+                entry, seconds, optimum = self._cold(start, k, lower, upper, seed)
+                cold.append(seconds)
+                if optimum is None:
+                    self._undesigned[key] = k
+                    search.append(entry)
+                    return None
+                chain = self._chain(start, k, 1, lower, upper, optimum, "sqp_chain", predict=False)
+            run = used(chain)
             search.append(search_entry(self.posed, self.integer, combo, BATCHED, True, run["value"]))
             return run
 
