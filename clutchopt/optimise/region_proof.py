@@ -21,11 +21,12 @@ FIRST_RUN points long, the next twice the longest proven (from 2, doubling while
 LONGEST_RUN): where a region's bounds are loose over wide intervals (the lever over its speed, which its centrifugal
 force takes squared) the runs stay as short as proofs allow.
 
-Before a run is searched, probes look for the region's edge within it (:meth:`Regions._edge`): one solve at the run's
-last point (as ``Problem.solve`` starts cold); where it has a design, the points from the run's first on in growing
-steps, then bisection, find the first point with one, and only the points before it are searched (a run reaching past
-the edge cannot be proven, and its bisection by searches cost seconds where a solve costs 20-40 ms). A probe only
-shortens the run searched; its calls are charged to the next point's verdict.
+Where a run's search meets a design at one end, probes look for the region's edge within it (:meth:`Regions._edge`):
+one solve at the run's last point (as ``Problem.solve`` starts cold); where it has a design, the points from the run's
+first on in growing steps, then bisection, find the first point with one, and only the points before it are searched
+again (the bisection of such a run by searches had cost seconds where a solve costs 20-40 ms; a probe before every
+run cost a failed solve on each run inside a region). A probe only shortens the run searched; its calls are charged to
+the next point's verdict.
 
 A point left over next to a proven one is tested against that proof first (:meth:`Regions.quick`): solved once, as
 ``Problem.solve`` starts (its design, if it finds one, is ``solve``'s), else its own interval search, the one its full
@@ -138,7 +139,7 @@ class Regions:
         if k == self._found:  # the edge a probe found: solved as usual (Regions.quick)
             self._to = k + 1
             return
-        end = self._edge(k, min(k + self._length, self.count))
+        end = min(k + self._length, self.count)
         self._to, runs = end, [(k, end)] if end - k > 1 else []  # (a last point alone: Regions.quick)
         points = {j: _search_problem(self.posed, self.point_case(j)) for j in range(k, end)}
         longest = 1  # the longest run proven
@@ -158,9 +159,11 @@ class Regions:
                         self._proven[j] = (text, seconds / max(1, end - k))
                 elif b - a > 1 and outcome is not None and outcome.feasible is None:  # (a design met for the whole
                     # run: every point has one, solved as usual)
-                    middle = (a + b) // 2  # (a design at one end: the region ends within the run: only
-                    # its first half is searched again, the points of the other solved as usual)
-                    kept = ((a, middle),) if outcome.reached else ((a, middle), (middle, b))
+                    middle = (a + b) // 2  # (a design at one end: the region ends within the run: the run up to
+                    # the edge the probes find is searched again, else only its first half, the points of the other
+                    # solved as usual)
+                    edge = self._edge(a, b) if outcome.reached else b
+                    kept = ((a, edge),) if edge < b else ((a, middle),) if outcome.reached else ((a, middle), (middle, b))
                     halves += [run for run in kept if run[1] - run[0] > 1]  # a single point: solved as usual (a
                     # design found by a solve, else its own verdict with its own search)
             runs = halves
@@ -168,9 +171,9 @@ class Regions:
 
 
     def _edge(self, k: int, end: int) -> int:
-        """The end of the run from point k: ``end``, or the first point before it found with a design by one solve
-        (as ``Problem.solve`` starts cold), located where the run's last point has one: points k + 1, k + 2, k + 4, ...
-        until one has a design, then bisection. A run reaching
+        """The end of the run from point k to ``end`` whose search met a design at one end: ``end``, or the first
+        point before it found with a design by one solve (as ``Problem.solve`` starts cold), located where the run's
+        last point has one: points k + 1, k + 2, k + 4, ... until one has a design, then bisection. A run reaching
         past the region's edge cannot be proven, and its bisection by interval searches cost seconds (the ball over
         its allowable contact stress: four searches, 7.7 s, for the last two points of its region) where a solve
         costs 20-40 ms. A probe only shortens the run searched: a proof is still a proof of each point of it, and a
