@@ -278,8 +278,9 @@ class BatchSweep:
         if solution.status in DESIGN_STATUSES:
             self.feasible = solution.design
         for entry in solution.integer_search:  # (its search's combinations without a design: IPOPT's verdicts)
-            if not entry["feasible"] and not entry["status"].startswith("excluded"):
-                self._undesigned[tuple(float(entry[self.names[i]]) for i in self.integer)] = k
+            names = [self.names[i] for i in self.integer]
+            if not entry["feasible"] and not entry["status"].startswith("excluded") and all(n in entry for n in names):
+                self._undesigned[tuple(float(entry[n]) for n in names)] = k
         return solution
 
     def _counted(self, solution: Solution) -> Solution:
