@@ -1,0 +1,240 @@
+"""One phase of a start-up integrated by LSODA in spans, each span one call of ``scipy.integrate.odeint`` (its steps
+in one Fortran loop: Python only for the right-hand side and its Jacobian), the phase's events found on the span's
+samples afterwards. It takes the place of :mod:`clutchopt.simulate.stepping` for LSODA, whose ``solve_ivp``
+machinery (a Python step, a dense output and every event at each step) was three quarters of a check's time
+(docs/simulate.md, "Integrator and why"):
+
+- spans: the first ``span`` long, each next SPAN_GROWTH times longer, SPAN_SAMPLES samples evenly inside each (so
+  the samples crowd where a phase begins, where its fast transients are, as the solver's steps did); a span
+  restarts LSODA from the last sample;
+- events: each evaluated on all of a span's samples at once (an event written with NumPy operations takes the
+  arrays; one that does not is evaluated sample by sample); where one changes sign (as ``solve_ivp`` counts a
+  crossing, see :func:`clutchopt.simulate.stepping._crosses`) between two samples, LSODA integrates that interval
+  again sampled ZOOM_SAMPLES times, the root is found by Brent's method (to 4 eps) on the interpolant of the
+  nearest LOCAL_NODES of those samples, and a terminal event's state is integrated to the root itself;
+- a budget of solver steps shared by the phases of a run (:class:`~clutchopt.simulate.stepping.Budget`), counted
+  after each span.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+from scipy.integrate import ODEintWarning, odeint
+from scipy.optimize import brentq
+
+from clutchopt.simulate.stepping import EPS, Budget, Phase
+
+SPAN_SAMPLES = 64  # samples of a span (a phase of a start-up has some five spans)
+SPAN_GROWTH = 8.0  # each span this many times longer than the one before
+ZOOM_SAMPLES = 32  # the interval where an event changes sign, integrated again with this many samples
+LOCAL_NODES = 6  # samples of that interval interpolated (degree 5) to find the root
+SUCCESS = "Integration successful."
+SPAN_GRID = np.unique(np.concatenate([np.linspace(0.0, 1.0, SPAN_SAMPLES // 2 + 1),
+                                      np.geomspace(1e-3, 1.0, SPAN_SAMPLES // 2)]))  # of a span: evenly, and
+# geometrically from its start (where a span after a phase's start catches the transients)
+AHEAD = 1.25  # a span ends this much beyond where its events' extrapolation expects the first terminal one
+SHORTEST = 0.05  # of the span it would have been: no span shorter (an extrapolation that undershoots)
+
+
+def _predicted(events, times: np.ndarray, states: np.ndarray, t: float, length: float) -> float:
+    """Where the span should end so that it does not run far past the phase's end: AHEAD times as far as the
+    first terminal event, extrapolated linearly from the last two samples, is expected to cross zero."""
+    if len(times) < 2 or times[-1] <= times[-2]:
+        return np.inf
+    t_old, t_new = times[-2], times[-1]
+    expected = np.inf
+    for event in events:
+        if not event.terminal:
+            continue
+        g_old, g_new = event(t_old, states[:, -2]), event(t_new, states[:, -1])
+        if g_new == g_old or (g_new - g_old) * event.direction < 0:
+            continue
+        ahead = -g_new * (t_new - t_old) / (g_new - g_old)
+        if ahead > 0:
+            expected = min(expected, ahead)
+    return t + max(AHEAD * expected, SHORTEST * length)
+
+
+def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: list, rtol: float, atol: np.ndarray,
+                    budget: Budget, span: float) -> Phase:
+    """Integrate y' = fun(t, y) by LSODA (Jacobian ``jac``) from (t0, y0) towards ``bound`` until a terminal event,
+    the bound, a failure or the end of ``budget``, as :func:`clutchopt.simulate.stepping.integrate` does; ``span``:
+    the first span's length (the spans grow from it)."""
+    lsoda = _Lsoda(fun, jac, rtol, atol, budget)
+    times, states = [np.array([t0])], [np.array(y0, dtype=float).reshape(-1, 1)]
+    t, y, length = t0, np.array(y0, dtype=float), span
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ODEintWarning)  # a failed span is read from its message
+        while t < bound:
+            if budget.spent:
+                return _phase(times, states, "budget")
+            end = min(t + length, bound, _predicted(events, times[-1], states[-1], t, length))
+            grid = t + (end - t) * SPAN_GRID
+            grid[-1] = end
+            samples = lsoda.run(y, grid)
+            if samples is None:
+                return _phase(times, states, "failed", message=lsoda.message)
+            found = _first_events(events, grid, samples, lsoda)
+            if found is not None:
+                interval, (root, state), sampled, number = found
+                _extend(times, states, grid[1:interval + 1], samples[:, 1:interval + 1], sampled)
+                times.append(np.array([root]))
+                states.append(np.asarray(state, dtype=float).reshape(-1, 1))
+                return _phase(times, states, "event", index=number)
+            _extend(times, states, grid[1:], samples[:, 1:], lsoda.sampled)
+            t, y, length = end, samples[:, -1].copy(), length * SPAN_GROWTH
+    return _phase(times, states, "end")
+
+
+class _Lsoda:
+    """odeint runs from a state over a grid; their steps counted against the budget."""
+
+    def __init__(self, fun, jac, rtol, atol, budget: Budget):
+        self.fun, self.jac, self.rtol, self.atol, self.budget = fun, jac, rtol, atol, budget
+        self.message = ""
+        self.sampled: list = []  # (time, state) of sampled events located in the last span
+
+    def run(self, y0, grid):
+        """The states at the grid's times (columns), integrated from ``y0`` at grid[0]; None if LSODA failed."""
+        left = max(self.budget.steps - self.budget.taken, 1)
+        states, info = odeint(self.fun, y0, grid, Dfun=self.jac, tfirst=True, rtol=self.rtol, atol=self.atol,
+                              full_output=True, mxstep=left)
+        self.budget.taken += int(info["nst"][-1])
+        if info["message"] != SUCCESS:
+            self.message = f"LSODA: {info['message']}"
+            return None
+        return states.T
+
+
+def _first_events(events, grid, samples, lsoda: _Lsoda):
+    """The first terminal event among a span's samples: (its sample interval, (root, state), the sampled events'
+    (time, state) before it, its index), or None (``lsoda.sampled``: the span's sampled events)."""
+    crossings = [_crossings(event, _values(event, grid, samples)) for event in events]
+    zooms: dict = {}
+    first = min(((int(np.argmax(mask)), i) for i, (event, mask) in enumerate(zip(events, crossings))
+                 if event.terminal and mask.any()), default=None)
+    stop = None
+    if first is not None:
+        interval, i = first
+        stop = _locate(events[i], _zoom(zooms, interval, grid, samples, lsoda), lsoda, exact=True)
+        if stop is None:  # the zoom found no crossing: the end of the interval nearer zero, as stepping's _root
+            stop = _nearer(events[i], grid, samples, interval)
+    sampled = []
+    for event, mask in zip(events, crossings):
+        if event.terminal:
+            continue
+        for interval in np.flatnonzero(mask):
+            if first is not None and interval > first[0]:
+                break
+            at = _locate(event, _zoom(zooms, interval, grid, samples, lsoda), lsoda, exact=False)
+            if at is not None and (stop is None or at[0] < stop[0]):
+                sampled.append(at)
+    sampled.sort(key=lambda pair: pair[0])
+    if first is None:
+        lsoda.sampled = sampled
+        return None
+    return first[0], stop, sampled, first[1]
+
+
+def _nearer(event, grid, samples, interval: int):
+    g = [event(grid[k], samples[:, k]) for k in (interval, interval + 1)]
+    k = interval if abs(g[0]) < abs(g[1]) else interval + 1
+    return grid[k], samples[:, k].copy()
+
+
+def _values(event, times: np.ndarray, states: np.ndarray) -> np.ndarray:
+    """The event at every sample: at once where it takes arrays, else sample by sample."""
+    try:
+        with np.errstate(all="ignore"):
+            values = np.asarray(event(times, states), dtype=float)
+        if values.shape == times.shape:
+            return values
+    except (TypeError, ValueError):
+        pass
+    return np.array([event(t, states[:, k]) for k, t in enumerate(times)], dtype=float)
+
+
+def _crossings(event, g: np.ndarray) -> np.ndarray:
+    """Per sample interval, whether the event crosses zero in it, as stepping's ``_crosses`` decides."""
+    old, new, direction = g[:-1], g[1:], event.direction
+    if not event.terminal or getattr(event, "strict", False):
+        return ((old > 0) & (new < 0) & (direction <= 0)) | ((old < 0) & (new > 0) & (direction >= 0))
+    up, down = (old <= 0) & (new >= 0), (old >= 0) & (new <= 0)
+    return (up & (direction > 0)) | (down & (direction < 0)) | ((up | down) & (direction == 0))
+
+
+def _zoom(zooms: dict, interval: int, grid, samples, lsoda: _Lsoda):
+    """A span's sample interval integrated again with ZOOM_SAMPLES samples (once for all its events): (times,
+    states or None)."""
+    if interval not in zooms:
+        fine = np.linspace(grid[interval], grid[interval + 1], ZOOM_SAMPLES + 1)
+        zooms[interval] = fine, lsoda.run(samples[:, interval], fine)
+    return zooms[interval]
+
+
+def _locate(event, zoom, lsoda: _Lsoda, exact: bool):
+    """(root, state) of the event's first crossing in a zoomed interval (its state integrated to the root if
+    ``exact``), or None where the interval integrated again shows none."""
+    grid, samples = zoom
+    if samples is None:
+        return None
+    mask = _crossings(event, _values(event, grid, samples))
+    if not mask.any():
+        return None
+    k = int(np.argmax(mask))
+    nodes = _nodes(k, len(grid))
+    local = _Interpolant(grid[nodes], samples[:, nodes])
+    g_left, g_right = event(grid[k], samples[:, k]), event(grid[k + 1], samples[:, k + 1])
+    if g_left == 0.0:
+        return grid[k], samples[:, k].copy()
+    if g_right == 0.0 or g_left * g_right > 0:
+        root = grid[k + 1]
+    else:
+        root = brentq(lambda s: event(s, local(s)), grid[k], grid[k + 1], xtol=4 * EPS, rtol=4 * EPS)
+    if not exact:
+        return root, local(root)
+    if root == grid[k]:
+        return root, samples[:, k].copy()
+    end = lsoda.run(samples[:, k], np.array([grid[k], root]))
+    return root, (end[:, -1] if end is not None else local(root))
+
+
+def _nodes(k: int, count: int) -> np.ndarray:
+    """LOCAL_NODES sample indices around the interval [k, k + 1]."""
+    first = min(max(k - LOCAL_NODES // 2 + 1, 0), max(count - LOCAL_NODES, 0))
+    return np.arange(first, min(first + LOCAL_NODES, count))
+
+
+class _Interpolant:
+    """The polynomial through a few samples (barycentric form), each state component."""
+
+    def __init__(self, times: np.ndarray, states: np.ndarray):
+        self.t, self.y = times, states
+        differences = times[:, None] - times[None, :]
+        np.fill_diagonal(differences, 1.0)
+        self.w = 1.0 / differences.prod(axis=1)
+
+    def __call__(self, s: float) -> np.ndarray:
+        d = s - self.t
+        exact = np.flatnonzero(d == 0.0)
+        if exact.size:
+            return self.y[:, exact[0]].copy()
+        c = self.w / d
+        return self.y @ c / c.sum()
+
+
+def _extend(times: list, states: list, grid: np.ndarray, samples: np.ndarray, sampled: list) -> None:
+    """The span's samples and its sampled events' (time, state), in time order."""
+    if sampled:
+        t = np.concatenate([grid, [s for s, _ in sampled]])
+        y = np.concatenate([samples, np.array([x for _, x in sampled]).T], axis=1)
+        order = np.argsort(t, kind="stable")
+        grid, samples = t[order], y[:, order]
+    times.append(grid)
+    states.append(samples)
+
+
+def _phase(times: list, states: list, status: str, index: int | None = None, message: str = "") -> Phase:
+    return Phase(np.concatenate(times), np.concatenate(states, axis=1), status, index, message)
