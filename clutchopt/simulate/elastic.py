@@ -23,6 +23,7 @@ import numpy as np
 
 from clutchopt.simulate.engine import MAX_STEPS, SimulationResult, largest
 from clutchopt.simulate.laws import InductionMotor, Load
+from clutchopt.simulate.on_floats import on_floats
 from clutchopt.simulate.stepping import Budget, integrate
 
 STRESS_LAG = 1e-6  # of the start's time scale: the step of the stress rate's central difference (its peak's event)
@@ -55,9 +56,15 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     motor = m.motor
     time_scale = (m.inertia + motor.inertia) * m.target / max(motor.breakdown_torque, 1e-300)
 
+    probes = [(w, theta) for w in (0.0, 0.5 * m.target, motor.synchronous_speed)
+              for theta in (0.0, 0.1 * m.largest_twist, -0.5 * m.largest_twist)]
+    torque, stress = (on_floats(function, 2, probes) for function in (m.torque, m.stress))  # the link's equations,
+    # traced to Python on floats: two thirds of a check went to their generic form
+
     def rates(t, y):
-        wa, w, theta, _ = y
-        link = m.torque(wa, theta) + m.damping * (wa - w)
+        """At a solver's state, read as numbers (arithmetic on NumPy scalars costs twice)."""
+        wa, w, theta, _ = y.tolist()
+        link = torque(wa, theta) + m.damping * (wa - w)
         net = link - m.load(t, w)
         if w <= 0.0 and net < 0.0:
             net = 0.0  # at rest the load is a reaction up to its value
@@ -78,7 +85,8 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
         """The stress's rate along the motion as a central difference over +-``lag`` (the stress grows with the
         driving speed too, so its peak lags the twist's: sampled there, it was missed by 1e-5)."""
         dw, _, dtheta, _ = rates(t, y)
-        return m.stress(y[0] + lag * dw, y[2] + lag * dtheta) - m.stress(y[0] - lag * dw, y[2] - lag * dtheta)
+        wa, theta = float(y[0]), float(y[2])
+        return stress(wa + lag * dw, theta + lag * dtheta) - stress(wa - lag * dw, theta - lag * dtheta)
 
     started.terminal, started.direction = True, 1
     overturned.terminal, overturned.direction = True, 1

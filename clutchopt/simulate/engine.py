@@ -38,11 +38,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from clutchopt.errors import InputError
+from clutchopt.simulate import effects as fx
 from clutchopt.simulate.laws import InductionMotor, Load
 from clutchopt.simulate.ranges import BREAKDOWN_SLIP, CONDUCTANCE, HEAT_CAPACITY, INERTIA, LOAD, SPEED, TIME, TORQUE
 from clutchopt.simulate.spans import integrate_spans
 from clutchopt.simulate.stepping import Budget, Phase, integrate
-from clutchopt.start_up.equations import heat_rate
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -151,13 +151,12 @@ class _Run:
     # clutchopt.simulate.spans). A solver's state is read as numbers (y.tolist(): arithmetic on NumPy scalars costs
     # twice), and the callables are bound once (_bind): a right-hand side is some 2,000 calls a start.
     def _bind(self):
-        law, motor = self.m.law, self.motor
-        self._kinetic, self._drive, self._load = law.kinetic, (motor.__call__ if motor else None), self.m.load
-        self._own_excess = law.own_excess
+        self._load, self._own_excess = self.m.load, self.m.law.own_excess
 
     def friction(self, wa, slip):
         """The friction torque on the driven half (effect slip_friction) at numbers or at samples."""
-        return self._kinetic(wa, slip) if type(wa) is float else self.m.law.kinetic_samples(wa, slip)
+        return self.m.law.kinetic_samples(wa, slip) if isinstance(wa, np.ndarray) else fx.slip_friction(self.m.law,
+                                                                                                          wa, slip)
 
     def capacity(self, wa):
         """The static capacity at numbers or at samples."""
@@ -171,16 +170,17 @@ class _Run:
     def torques(self, t, y):
         """Friction torque on the driven half, driving torque (effect motor_curve), load."""
         wa, slip = y[0], y[1]
-        return self.friction(wa, slip), (self._drive(wa) if self._drive else 0.0), self._load(t, wa - slip)
+        drive = fx.motor_curve(self.motor, wa) if self.motor else 0.0
+        return self.friction(wa, slip), drive, self._load(t, wa - slip)
 
     def _turning(self, kind: str, t, y) -> list:
         """Rates of a rest or a slip phase: of the driving half, the slip, the works and the heat."""
         y = y.tolist() if type(y) is np.ndarray and y.ndim == 1 else y
         wa, slip, rise = y[0], y[1], y[4]
         friction, drive, load = self.torques(t, y)
-        dwa = (drive - friction) / self.driver_inertia if self._drive else 0.0
+        dwa = (drive - friction) / self.driver_inertia if self.motor else 0.0
         power = friction * slip
-        heat = heat_rate(power, rise, self.m.heat_capacity, self.m.conductance) if self.heat else 0.0  # friction_heat
+        heat = fx.friction_heat(power, rise, self.m.heat_capacity, self.m.conductance) if self.heat else 0.0
         driven = self.excess(wa, slip, friction, load) / self.m.inertia if kind == "slip" else 0.0
         return [dwa, dwa - driven, power, friction * wa, heat]
 
@@ -200,7 +200,7 @@ class _Run:
     def stick(self, t, y):
         y = y.tolist() if type(y) is np.ndarray and y.ndim == 1 else y
         accel, torque = self.carried(t, y)
-        heat = heat_rate(0.0, y[4], self.m.heat_capacity, self.m.conductance) if self.heat else 0.0
+        heat = fx.friction_heat(0.0, y[4], self.m.heat_capacity, self.m.conductance) if self.heat else 0.0
         return [accel, 0.0, 0.0, torque * y[0], heat]
 
     # --- their Jacobians -----------------------------------------------------------------------------------------
