@@ -21,9 +21,10 @@ from typing import Callable
 
 import numpy as np
 
-from clutchopt.simulate.engine import MAX_STEPS, SimulationResult, largest
+from clutchopt.simulate.engine import FIRST_SPAN, MAX_STEPS, SimulationResult, largest
 from clutchopt.simulate.laws import InductionMotor, Load
 from clutchopt.simulate.on_floats import on_floats
+from clutchopt.simulate.spans import integrate_spans
 from clutchopt.simulate.stepping import Budget, integrate
 
 STRESS_LAG = 1e-6  # of the start's time scale: the step of the stress rate's central difference (its peak's event)
@@ -62,7 +63,14 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     # traced to Python on floats: two thirds of a check went to their generic form
 
     def rates(t, y):
-        """At a solver's state, read as numbers (arithmetic on NumPy scalars costs twice)."""
+        """At a solver's state, read as numbers (arithmetic on NumPy scalars costs twice), or at samples (arrays,
+        clutchopt.simulate.spans)."""
+        if isinstance(t, np.ndarray):
+            wa, w, theta, _ = y
+            link = m.torque(wa, theta) + m.damping * (wa - w)
+            net = link - m.load(t, w)
+            net = np.where((w <= 0.0) & (net < 0.0), 0.0, net)
+            return [(motor(wa) - link) / motor.inertia, net / m.inertia, wa - w, m.damping * (wa - w) ** 2]
         wa, w, theta, _ = y.tolist()
         link = torque(wa, theta) + m.damping * (wa - w)
         net = link - m.load(t, w)
@@ -74,7 +82,7 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
         return y[1] - m.target
 
     def overturned(t, y):
-        return abs(y[2]) - m.largest_twist
+        return np.abs(y[2]) - m.largest_twist
 
     def twist_extreme(t, y):
         return y[0] - y[1]
@@ -85,6 +93,8 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
         """The stress's rate along the motion as a central difference over +-``lag`` (the stress grows with the
         driving speed too, so its peak lags the twist's: sampled there, it was missed by 1e-5)."""
         dw, _, dtheta, _ = rates(t, y)
+        if isinstance(t, np.ndarray):
+            return m.stress(y[0] + lag * dw, y[2] + lag * dtheta) - m.stress(y[0] - lag * dw, y[2] - lag * dtheta)
         wa, theta = float(y[0]), float(y[2])
         return stress(wa + lag * dw, theta + lag * dtheta) - stress(wa - lag * dw, theta - lag * dtheta)
 
@@ -95,8 +105,12 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     bound = m.end_time if m.end_time is not None else 1e3 * time_scale
     speed_scale = motor.synchronous_speed
     atol = m.rtol * np.array([speed_scale, speed_scale, m.largest_twist, 1.0 + m.inertia * speed_scale**2])
-    out = integrate(rates, None, 0.0, np.zeros(4), bound, [started, overturned, twist_extreme, stress_extreme],
-                    m.integrator, m.rtol, atol, Budget(MAX_STEPS))
+    events = [started, overturned, twist_extreme, stress_extreme]
+    if m.integrator == "LSODA":
+        out = integrate_spans(rates, None, 0.0, np.zeros(4), bound, events, m.rtol, atol, Budget(MAX_STEPS),
+                              FIRST_SPAN * time_scale)
+    else:
+        out = integrate(rates, None, 0.0, np.zeros(4), bound, events, m.integrator, m.rtol, atol, Budget(MAX_STEPS))
     t, y = out.t, out.y
     torque = m.torque(y[0], y[2]) + m.damping * (y[0] - y[1])  # the samples at once, as arrays
     stress = np.asarray(m.stress(y[0], y[2]), dtype=float)
