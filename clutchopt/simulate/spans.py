@@ -4,9 +4,10 @@ samples afterwards. It takes the place of :mod:`clutchopt.simulate.stepping` for
 machinery (a Python step, a dense output and every event at each step) was three quarters of a check's time
 (docs/simulate.md, "Integrator and why"):
 
-- spans: the first ``span`` long, each next SPAN_GROWTH times longer, SPAN_SAMPLES samples evenly inside each (so
-  the samples crowd where a phase begins, where its fast transients are, as the solver's steps did); a span
-  restarts LSODA from the last sample;
+- spans: the first ``span`` long, each next SPAN_GROWTH times longer, SPAN_SAMPLES samples in each, their spacing
+  growing geometrically over the whole phase (so the samples crowd where a phase begins, where its fast
+  transients are, as the solver's steps did, and the spacing has no jumps: the next mesh is adapted to the second
+  differences of the samples); a span restarts LSODA from the last sample;
 - events: each evaluated on all of a span's samples at once (an event written with NumPy operations takes the
   arrays; one that does not is evaluated sample by sample); where one changes sign (as ``solve_ivp`` counts a
   crossing, see :func:`clutchopt.simulate.stepping._crosses`) between two samples, LSODA integrates that interval
@@ -26,14 +27,12 @@ from scipy.optimize import brentq
 
 from clutchopt.simulate.stepping import EPS, Budget, Phase
 
-SPAN_SAMPLES = 64  # samples of a span (a phase of a start-up has some five spans)
+SPAN_SAMPLES = 128  # samples of a span (a phase of a start-up has some three to five spans)
 SPAN_GROWTH = 8.0  # each span this many times longer than the one before
 ZOOM_SAMPLES = 32  # the interval where an event changes sign, integrated again with this many samples
 LOCAL_NODES = 6  # samples of that interval interpolated (degree 5) to find the root
+TRUSTED = 1e-6  # relative: an interpolant of a span's samples this near the state integrated to its root is used
 SUCCESS = "Integration successful."
-SPAN_GRID = np.unique(np.concatenate([np.linspace(0.0, 1.0, SPAN_SAMPLES // 2 + 1),
-                                      np.geomspace(1e-3, 1.0, SPAN_SAMPLES // 2)]))  # of a span: evenly, and
-# geometrically from its start (where a span after a phase's start catches the transients)
 AHEAD = 1.25  # a span ends this much beyond where its events' extrapolation expects the first terminal one
 SHORTEST = 0.05  # of the span it would have been: no span shorter (an extrapolation that undershoots)
 
@@ -64,15 +63,19 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
     the first span's length (the spans grow from it)."""
     lsoda = _Lsoda(fun, jac, rtol, atol, budget)
     times, states = [np.array([t0])], [np.array(y0, dtype=float).reshape(-1, 1)]
-    t, y, length = t0, np.array(y0, dtype=float), span
+    t, y, length, first = t0, np.array(y0, dtype=float), span, 1
+    ratio = SPAN_GROWTH ** (1.0 / SPAN_SAMPLES)  # of consecutive sample spacings
+    spacing = span * (ratio - 1.0) / (ratio**SPAN_SAMPLES - 1.0)  # the first
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ODEintWarning)  # a failed span is read from its message
         while t < bound:
             if budget.spent:
                 return _phase(times, states, "budget")
             end = min(t + length, bound, _predicted(events, times[-1], states[-1], t, length))
-            grid = t + (end - t) * SPAN_GRID
-            grid[-1] = end
+            sequence = t0 + spacing * (ratio ** np.arange(first, first + SPAN_SAMPLES + 1) - 1.0) / (ratio - 1.0)
+            inside = sequence[(sequence > t) & (sequence < end)]
+            grid = np.concatenate([[t], inside, [end]])
+            first += len(inside) + 1
             samples = lsoda.run(y, grid)
             if samples is None:
                 return _phase(times, states, "failed", message=lsoda.message)
@@ -94,6 +97,7 @@ class _Lsoda:
     def __init__(self, fun, jac, rtol, atol, budget: Budget):
         self.fun, self.jac, self.rtol, self.atol, self.budget = fun, jac, rtol, atol, budget
         self.message = ""
+        self.refine = True  # roots on the spans' own samples first (:func:`_refined`)
         self.sampled: list = []  # (time, state) of sampled events located in the last span
 
     def run(self, y0, grid):
@@ -118,7 +122,7 @@ def _first_events(events, grid, samples, lsoda: _Lsoda):
     stop = None
     if first is not None:
         interval, i = first
-        stop = _locate(events[i], _zoom(zooms, interval, grid, samples, lsoda), lsoda, exact=True)
+        stop = _find(events[i], grid, samples, interval, zooms, lsoda, exact=True)
         if stop is None:  # the zoom found no crossing: the end of the interval nearer zero, as stepping's _root
             stop = _nearer(events[i], grid, samples, interval)
     sampled = []
@@ -128,7 +132,7 @@ def _first_events(events, grid, samples, lsoda: _Lsoda):
         for interval in np.flatnonzero(mask):
             if first is not None and interval > first[0]:
                 break
-            at = _locate(event, _zoom(zooms, interval, grid, samples, lsoda), lsoda, exact=False)
+            at = _find(event, grid, samples, interval, zooms, lsoda, exact=False)
             if at is not None and (stop is None or at[0] < stop[0]):
                 sampled.append(at)
     sampled.sort(key=lambda pair: pair[0])
@@ -163,6 +167,54 @@ def _crossings(event, g: np.ndarray) -> np.ndarray:
         return ((old > 0) & (new < 0) & (direction <= 0)) | ((old < 0) & (new > 0) & (direction >= 0))
     up, down = (old <= 0) & (new >= 0), (old >= 0) & (new <= 0)
     return (up & (direction > 0)) | (down & (direction < 0)) | ((up | down) & (direction == 0))
+
+
+def _find(event, grid, samples, interval: int, zooms: dict, lsoda: _Lsoda, exact: bool):
+    """(root, state) of the event's crossing in a span's sample interval: on the span's samples
+    (:func:`_refined`), else on the interval integrated again (:func:`_zoom`, :func:`_locate`); None if neither
+    shows one."""
+    found = _refined(event, grid, samples, interval, lsoda, exact) if lsoda.refine else None
+    if found is None:
+        lsoda.refine = False  # the phase's motion is too fast for its spans' samples: zoom from now on
+        found = _locate(event, _zoom(zooms, interval, grid, samples, lsoda), lsoda, exact)
+    return found
+
+
+def _refined(event, grid, samples, k: int, lsoda: _Lsoda, exact: bool):
+    """The root on the interpolant of the span's samples around [k, k + 1] (Brent), the state integrated to it
+    from sample k; a terminal event's root then taken one Newton step further on the event's exact value there
+    (the interpolant's slope), the state integrated on to it. None where the interpolant does not bracket the
+    root or the Newton step leaves the interval or does not bring the event nearer zero."""
+    nodes = _nodes(k, len(grid))
+    local = _Interpolant(grid[nodes], samples[:, nodes])
+    g_left, g_right = event(grid[k], samples[:, k]), event(grid[k + 1], samples[:, k + 1])
+    if g_left == 0.0:
+        return grid[k], samples[:, k].copy()
+    if g_left * g_right >= 0:
+        return None
+    guess = brentq(lambda s: event(s, local(s)), grid[k], grid[k + 1], xtol=4 * EPS, rtol=4 * EPS)
+    if guess == grid[k]:
+        return None
+    state = lsoda.run(samples[:, k], np.array([grid[k], guess]))
+    if state is None:
+        return None
+    state = state[:, -1]
+    if np.any(np.abs(state - local(guess)) > TRUSTED * (np.abs(state) + lsoda.atol / lsoda.rtol)):
+        return None  # the interpolant is off (a span too coarse for the motion): the root is not where it says
+    if not exact:
+        return guess, state
+    g = event(guess, state)
+    if g == 0.0:
+        return guess, state
+    h = TRUSTED * (grid[k + 1] - grid[k])
+    slope = (event(guess + h, local(guess + h)) - event(guess - h, local(guess - h))) / (2.0 * h)
+    root = guess - g / slope if slope else np.nan
+    if not grid[k] < root <= grid[k + 1]:
+        return None
+    end = lsoda.run(state, np.array([guess, root])) if root != guess else state.reshape(-1, 1)
+    if end is None or not abs(event(root, end[:, -1])) <= abs(g):
+        return None
+    return root, end[:, -1]
 
 
 def _zoom(zooms: dict, interval: int, grid, samples, lsoda: _Lsoda):
