@@ -4,15 +4,18 @@ samples afterwards. It takes the place of :mod:`clutchopt.simulate.stepping` for
 machinery (a Python step, a dense output and every event at each step) was three quarters of a check's time
 (docs/simulate.md, "Integrator and why"):
 
-- spans: the first ``span`` long, each next SPAN_GROWTH times longer, SPAN_SAMPLES samples in each, their spacing
-  growing geometrically over the whole phase (so the samples crowd where a phase begins, where its fast
-  transients are, as the solver's steps did, and the spacing has no jumps: the next mesh is adapted to the second
-  differences of the samples); a span restarts LSODA from the last sample;
+- samples: their spacing growing geometrically over the whole phase (so they crowd where a phase begins, where its
+  fast transients are, as the solver's steps did, and the spacing has no jumps: the next mesh is adapted to the
+  second differences of the samples); a span is SPAN_SAMPLES of them, cut short where the terminal events,
+  extrapolated from the last two samples, are expected to end the phase; each span restarts LSODA;
 - events: each evaluated on all of a span's samples at once (an event written with NumPy operations takes the
   arrays; one that does not is evaluated sample by sample); where one changes sign (as ``solve_ivp`` counts a
-  crossing, see :func:`clutchopt.simulate.stepping._crosses`) between two samples, LSODA integrates that interval
-  again sampled ZOOM_SAMPLES times, the root is found by Brent's method (to 4 eps) on the interpolant of the
-  nearest LOCAL_NODES of those samples, and a terminal event's state is integrated to the root itself;
+  crossing, see :func:`clutchopt.simulate.stepping._crosses`) between two samples, its root is found by Brent's
+  method (to 4 eps) on the interpolant of the nearest LOCAL_NODES samples and the state integrated to it; a terminal
+  event's root is then taken a Newton step further on the event's value there and the state integrated on to it.
+  Where that interpolant is off the integrated state by more than TRUSTED (a motion too fast for the span's
+  samples: the cable's torsional swings), the interval is integrated again sampled ZOOM_SAMPLES times and the
+  same is done on those samples;
 - a budget of solver steps shared by the phases of a run (:class:`~clutchopt.simulate.stepping.Budget`), counted
   after each span.
 """
@@ -27,8 +30,11 @@ from scipy.optimize import brentq
 
 from clutchopt.simulate.stepping import EPS, Budget, Phase
 
-SPAN_SAMPLES = 128  # samples of a span (a phase of a start-up has some three to five spans)
-SPAN_GROWTH = 8.0  # each span this many times longer than the one before
+FIRST_SAMPLES = 128  # the first 128 samples of a phase take ``span``, every next 128 eight times as long: the
+SPACING_GROWTH = 8.0 ** (1.0 / FIRST_SAMPLES)  # ratio of consecutive samples' spacing (the next mesh is adapted to
+# these samples: with 64 or 256 samples to the eightfold, the ball's accuracy loop took 11 to 21 solves, not 9)
+SPAN_SAMPLES = 192  # samples of a span: each restart of LSODA costs some 20-40 steps (128: 10 % more steps, 384:
+# 10-30 % more, as a span overshoots the phase's end)
 ZOOM_SAMPLES = 32  # the interval where an event changes sign, integrated again with this many samples
 LOCAL_NODES = 6  # samples of that interval interpolated (degree 5) to find the root
 TRUSTED = 1e-6  # relative: an interpolant of a span's samples this near the state integrated to its root is used
@@ -63,16 +69,16 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
     the first span's length (the spans grow from it)."""
     lsoda = _Lsoda(fun, jac, rtol, atol, budget)
     times, states = [np.array([t0])], [np.array(y0, dtype=float).reshape(-1, 1)]
-    t, y, length, first = t0, np.array(y0, dtype=float), span, 1
-    ratio = SPAN_GROWTH ** (1.0 / SPAN_SAMPLES)  # of consecutive sample spacings
-    spacing = span * (ratio - 1.0) / (ratio**SPAN_SAMPLES - 1.0)  # the first
+    t, y, first = t0, np.array(y0, dtype=float), 1
+    ratio = SPACING_GROWTH
+    spacing = span * (ratio - 1.0) / (ratio**FIRST_SAMPLES - 1.0)  # the first
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ODEintWarning)  # a failed span is read from its message
         while t < bound:
             if budget.spent:
                 return _phase(times, states, "budget")
-            end = min(t + length, bound, _predicted(events, times[-1], states[-1], t, length))
             sequence = t0 + spacing * (ratio ** np.arange(first, first + SPAN_SAMPLES + 1) - 1.0) / (ratio - 1.0)
+            end = min(sequence[-1], bound, _predicted(events, times[-1], states[-1], t, sequence[-1] - t))
             inside = sequence[(sequence > t) & (sequence < end)]
             grid = np.concatenate([[t], inside, [end]])
             first += len(inside) + 1
@@ -87,7 +93,7 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
                 states.append(np.asarray(state, dtype=float).reshape(-1, 1))
                 return _phase(times, states, "event", index=number)
             _extend(times, states, grid[1:], samples[:, 1:], lsoda.sampled)
-            t, y, length = end, samples[:, -1].copy(), length * SPAN_GROWTH
+            t, y = end, samples[:, -1].copy()
     return _phase(times, states, "end")
 
 
