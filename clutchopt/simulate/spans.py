@@ -84,7 +84,7 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
             first += len(inside) + 1
             samples = lsoda.run(y, grid)
             if samples is None:
-                return _phase(times, states, "failed", message=lsoda.message)
+                return _phase(times, states, "budget" if budget.spent else "failed", message=lsoda.message)
             found = _first_events(events, grid, samples, lsoda)
             if found is not None:
                 interval, (root, state), sampled, number = found
@@ -114,6 +114,8 @@ class _Lsoda:
         self.budget.taken += int(info["nst"][-1])
         if info["message"] != SUCCESS:
             self.message = f"LSODA: {info['message']}"
+            if "Excess work" in info["message"]:  # mxstep: the budget's steps are spent
+                self.budget.taken = max(self.budget.taken, self.budget.steps)
             return None
         return states.T
 
