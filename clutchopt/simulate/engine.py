@@ -411,7 +411,7 @@ def _samples(run: _Run, out: Phase | None, phase: str, y0=None) -> tuple:
     state ``y0``."""
     t, y = (np.array([0.0]), np.asarray(y0, dtype=float).reshape(-1, 1)) if out is None else (out.t, out.y)
     if phase == "stick":
-        torque = [run.carried(ti, y[:, i])[1] for i, ti in enumerate(t)]
+        torque = np.broadcast_to(np.asarray(run.carried(t, y)[1], dtype=float), t.shape)  # every sample at once
     else:  # the friction torque (slip_friction) at every sample at once
         torque = run.m.law.kinetic_samples(y[0], y[1])
     return t, y, torque, phase

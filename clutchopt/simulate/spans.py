@@ -63,10 +63,11 @@ def _predicted(events, times: np.ndarray, states: np.ndarray, t: float, length: 
 
 
 def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: list, rtol: float, atol: np.ndarray,
-                    budget: Budget, span: float) -> Phase:
+                    budget: Budget, span: float, widest: float = np.inf) -> Phase:
     """Integrate y' = fun(t, y) by LSODA (Jacobian ``jac``) from (t0, y0) towards ``bound`` until a terminal event,
     the bound, a failure or the end of ``budget``, as :func:`clutchopt.simulate.stepping.integrate` does; ``span``:
-    the first span's length (the spans grow from it)."""
+    the first FIRST_SAMPLES samples' time (their spacing grows from it), ``widest``: the largest spacing (a motion
+    that swings: a fraction of its period, so that its extremes are found on the samples)."""
     lsoda = _Lsoda(fun, jac, rtol, atol, budget)
     times, states = [np.array([t0])], [np.array(y0, dtype=float).reshape(-1, 1)]
     t, y, first = t0, np.array(y0, dtype=float), 1
@@ -77,7 +78,7 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
         while t < bound:
             if budget.spent:
                 return _phase(times, states, "budget")
-            sequence = t0 + spacing * (ratio ** np.arange(first, first + SPAN_SAMPLES + 1) - 1.0) / (ratio - 1.0)
+            sequence = t0 + _offsets(np.arange(first, first + SPAN_SAMPLES + 1), spacing, ratio, widest)
             end = min(sequence[-1], bound, _predicted(events, times[-1], states[-1], t, sequence[-1] - t))
             inside = sequence[(sequence > t) & (sequence < end)]
             grid = np.concatenate([[t], inside, [end]])
@@ -95,6 +96,17 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
             _extend(times, states, grid[1:], samples[:, 1:], lsoda.sampled)
             t, y = end, samples[:, -1].copy()
     return _phase(times, states, "end")
+
+
+def _offsets(indices: np.ndarray, spacing: float, ratio: float, widest: float) -> np.ndarray:
+    """Time from a phase's start to its samples of these indices: spacings ``spacing`` x ``ratio``^i, each at most
+    ``widest``."""
+    geometric = spacing * (ratio**indices - 1.0) / (ratio - 1.0)
+    if not np.isfinite(widest) or spacing >= widest:
+        return geometric if spacing < widest else widest * indices
+    last = int(np.floor(np.log(widest / spacing) / np.log(ratio)))  # the last index of a spacing below ``widest``
+    before = spacing * (ratio ** (last + 1) - 1.0) / (ratio - 1.0)  # offset of the sample after it
+    return np.where(indices <= last + 1, geometric, before + widest * (indices - last - 1))
 
 
 class _Lsoda:
@@ -203,11 +215,12 @@ def _refined(event, grid, samples, k: int, lsoda: _Lsoda, exact: bool):
     guess = brentq(lambda s: event(s, local(s)), grid[k], grid[k + 1], xtol=4 * EPS, rtol=4 * EPS)
     if guess == grid[k]:
         return None
+    scale = lsoda.atol / lsoda.rtol
     state = lsoda.run(samples[:, k], np.array([grid[k], guess]))
     if state is None:
         return None
     state = state[:, -1]
-    if np.any(np.abs(state - local(guess)) > TRUSTED * (np.abs(state) + lsoda.atol / lsoda.rtol)):
+    if np.any(np.abs(state - local(guess)) > TRUSTED * (np.abs(state) + scale)):
         return None  # the interpolant is off (a span too coarse for the motion): the root is not where it says
     if not exact:
         return guess, state
