@@ -212,8 +212,8 @@ def _refined(event, grid, samples, k: int, lsoda: _Lsoda, exact: bool):
         return grid[k], samples[:, k].copy()
     if g_left * g_right >= 0:
         return None
-    guess = brentq(lambda s: event(s, local(s)), grid[k], grid[k + 1], xtol=4 * EPS, rtol=4 * EPS)
-    if guess == grid[k]:
+    guess = _root(lambda s: event(s, local(s)), grid[k], grid[k + 1])
+    if guess is None or guess == grid[k]:
         return None
     scale = lsoda.atol / lsoda.rtol
     state = lsoda.run(samples[:, k], np.array([grid[k], guess]))
@@ -265,13 +265,24 @@ def _locate(event, zoom, lsoda: _Lsoda, exact: bool):
     if g_right == 0.0 or g_left * g_right > 0:
         root = grid[k + 1]
     else:
-        root = brentq(lambda s: event(s, local(s)), grid[k], grid[k + 1], xtol=4 * EPS, rtol=4 * EPS)
+        root = _root(lambda s: event(s, local(s)), grid[k], grid[k + 1])
+        if root is None:  # not a number between: the sample nearer zero
+            root = grid[k] if abs(g_left) < abs(g_right) else grid[k + 1]
     if not exact:
         return root, local(root)
     if root == grid[k]:
         return root, samples[:, k].copy()
     end = lsoda.run(samples[:, k], np.array([grid[k], root]))
     return root, (end[:, -1] if end is not None else local(root))
+
+
+def _root(function, a: float, b: float) -> float | None:
+    """Brent's method to 4 eps on [a, b]; None where the function is not a number inside (an interpolated state
+    outside the equations' domain)."""
+    try:
+        return brentq(function, a, b, xtol=4 * EPS, rtol=4 * EPS)
+    except ValueError:
+        return None
 
 
 def _nodes(k: int, count: int) -> np.ndarray:
