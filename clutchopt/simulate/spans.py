@@ -73,6 +73,7 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
     t, y, first = t0, np.array(y0, dtype=float), 1
     ratio = SPACING_GROWTH
     spacing = span * (ratio - 1.0) / (ratio**FIRST_SAMPLES - 1.0)  # the first
+    widest = min(widest, (bound - t0) / FIRST_SAMPLES)  # (the spacing grows no further than the bound needs)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ODEintWarning)  # a failed span is read from its message
         while t < bound:
@@ -101,12 +102,11 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
 def _offsets(indices: np.ndarray, spacing: float, ratio: float, widest: float) -> np.ndarray:
     """Time from a phase's start to its samples of these indices: spacings ``spacing`` x ``ratio``^i, each at most
     ``widest``."""
-    geometric = spacing * (ratio**indices - 1.0) / (ratio - 1.0)
-    if not np.isfinite(widest) or spacing >= widest:
-        return geometric if spacing < widest else widest * indices
+    if spacing >= widest:
+        return widest * indices
     last = int(np.floor(np.log(widest / spacing) / np.log(ratio)))  # the last index of a spacing below ``widest``
-    before = spacing * (ratio ** (last + 1) - 1.0) / (ratio - 1.0)  # offset of the sample after it
-    return np.where(indices <= last + 1, geometric, before + widest * (indices - last - 1))
+    geometric = spacing * (ratio ** np.minimum(indices, last + 1) - 1.0) / (ratio - 1.0)
+    return geometric + widest * np.maximum(indices - last - 1, 0)
 
 
 class _Lsoda:
