@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import clutchopt.simulate.spans as spans
-from clutchopt.backend import fmax, sqrt
+from clutchopt.backend import exp, fmax, sqrt
 from clutchopt.simulate.on_floats import on_floats
 from clutchopt.simulate.spans import integrate_spans
 from clutchopt.simulate.stepping import Budget
@@ -69,6 +69,20 @@ def test_a_traced_function_is_the_equation_on_floats():
     assert traced is not equation
     for x, y in [(0.5, 0.25), (3.0, 1.0), (-2.0, 7.0)]:
         assert traced(x, y) == pytest.approx(math.sqrt(1 + x * x) / (2 + y) + max(x - 1, 0), rel=1e-15)
+
+
+def test_a_traced_function_is_the_equation_where_python_s_math_is_not_ieee_s():
+    def equation(x, y):  # on NumPy floats NaN for x < 0 and y fractional, inf at x = 0; Python's math raises or
+        # goes complex
+        return x ** y + sqrt(x) + 1.0 / x + exp(y)
+
+    traced = on_floats(equation, 2, [(1.0, 2.0), (4.0, 0.5)])
+    assert traced is not equation and traced(4.0, 0.5) == pytest.approx(2.0 + 2.0 + 0.25 + math.exp(0.5), rel=1e-15)
+    with np.errstate(all="ignore"):
+        f = np.float64
+        assert math.isnan(traced(-8.0, 1.0 / 3.0)) and math.isnan(equation(f(-8.0), f(1.0 / 3.0)))
+        assert traced(0.0, 1.0) == math.inf == equation(f(0.0), f(1.0))
+        assert traced(1.0, 1000.0) == math.inf == equation(f(1.0), f(1000.0))
 
 
 def test_an_equation_that_cannot_be_traced_is_used_itself():

@@ -6,7 +6,10 @@ The cable's link torque and stress are called some 10,000 times a start-up check
 (each call dispatching every operation on its arguments' type and recomputing the design's constants) they were two
 thirds of the check. The traced function is the same equation, evaluated in the same IEEE operations, and it is
 compared with the equation at probe points when built: where it differs by more than PROBE_TOLERANCE, or the trace
-meets an operation not written out here, the equation itself is used.
+meets an operation not written out here, the equation itself is used. Python's ``math`` and ``**`` are not IEEE's
+where the equation's backend is (``sqrt(-1)``, ``log(0)``, ``sin(inf)`` and ``x / 0`` raise, ``exp(1000)`` overflows
+with an error, a negative number to a fractional power is complex): a call that raises or gives other than a float
+is answered by the equation on NumPy floats (NaN or infinite as IEEE says), only as slow.
 """
 
 from __future__ import annotations
@@ -15,6 +18,7 @@ import math
 from typing import Callable
 
 import casadi as ca
+import numpy as np
 
 PROBE_TOLERANCE = 1e-13  # relative: the traced function against the equation at the probes
 
@@ -45,11 +49,24 @@ def on_floats(function: Callable, arguments: int, probes: list[tuple[float, ...]
         fast = _written_out(traced)
     except (NotImplementedError, RuntimeError, TypeError, ValueError, KeyError):
         return function
+    def on_numbers(*arguments: float) -> float:
+        try:
+            value = fast(*arguments)
+        except (ArithmeticError, ValueError, TypeError):
+            return _on_numpy(function, arguments)
+        return value if value.__class__ is float else _on_numpy(function, arguments)
+
     for point in probes:
-        exact, value = float(function(*point)), fast(*point)
+        exact, value = float(function(*point)), on_numbers(*point)
         if not (abs(value - exact) <= PROBE_TOLERANCE * abs(exact) or (math.isnan(exact) and math.isnan(value))):
             return function
-    return fast
+    return on_numbers
+
+
+def _on_numpy(function: Callable, arguments: tuple) -> float:
+    """``function`` at ``arguments`` as NumPy floats: IEEE's NaN and infinities where Python's math raises."""
+    with np.errstate(all="ignore"):
+        return float(np.real_if_close(function(*(np.float64(a) for a in arguments))))
 
 
 def _written_out(traced: ca.Function) -> Callable:
