@@ -90,3 +90,11 @@ def test_an_equation_that_cannot_be_traced_is_used_itself():
         return x if x > y else y
 
     assert on_floats(branching, 2, [(1.0, 2.0)]) is branching
+
+
+def test_samples_that_cannot_advance_end_the_phase_instead_of_looping():
+    # at t0 = 1e20 s a first span of 1e-10 s spaces its samples far below the time's resolution (ulp 1.6e4 s):
+    # t0 + offsets == t0, so no span would advance (and odeint takes no step, so the budget never runs out)
+    out = integrate_spans(lambda t, y: [-y[0]], None, 1e20, np.array([1.0]), 2e20, [], 1e-9, np.array([1e-12]),
+                          Budget(1_000), 1e-10)
+    assert out.status == "failed" and out.t[-1] == 1e20

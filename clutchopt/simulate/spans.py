@@ -81,6 +81,8 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
                 return _phase(times, states, "budget")
             sequence = t0 + _offsets(np.arange(first, first + SPAN_SAMPLES + 1), spacing, ratio, widest)
             end = min(sequence[-1], bound, _predicted(events, times[-1], states[-1], t, sequence[-1] - t))
+            if not end > t:  # a spacing below the time's resolution (or NaN): no span would ever advance
+                return _phase(times, states, "failed", message=f"samples do not advance beyond t = {t:.17g} s")
             inside = sequence[(sequence > t) & (sequence < end)]
             grid = np.concatenate([[t], inside, [end]])
             first += len(inside) + 1
