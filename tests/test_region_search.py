@@ -122,10 +122,12 @@ def test_a_run_reaching_past_the_region_s_edge_searches_only_its_first_half_agai
     # after it (250-30 N m) meets a design at its 30 N m end, so no proof over it exists (the back-off rule): only
     # its first half (250-130 N m, all beyond 123.6 N m) is searched again and proven, and the other half's points
     # (80-30 N m, designs) are solved as usual, without a search of their own.
+    # (Without the probes for the region's edge, which would find it first: the next test.)
     regions = []
     real = region_proof.searches
     monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
         [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
+    monkeypatch.setattr(region_proof.Regions, "_edge", lambda self, k, end: end)
     torques = [300.0, 250.0, 200.0, 160.0, 130.0, 80.0, 60.0, 40.0, 30.0, 20.0]
     vary = parse_vary("resisting_torque=" + ",".join(f"{t:g}" for t in torques), "wedge", WEDGE.quantities)
     frame = Sweep(WEDGE, [vary]).run(progress=False).frame
@@ -136,3 +138,28 @@ def test_a_run_reaching_past_the_region_s_edge_searches_only_its_first_half_agai
     assert half.proven
     assert list(frame["diagnosis"][1:5]) == [frame["diagnosis"][1]] * 4
     assert frame["diagnosis"][1].startswith("proven infeasible for resisting_torque 130-250 N*m (4 points, one proof)")
+
+
+def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
+    # The sweep of the test above. The search of the run of the 8 points after point 0 (250-30 N m) meets a design
+    # at its 30 N m end; a probe (one cold solve) finds one at its last point (30 N m), so the region's edge is looked
+    # for from point 1 on in growing steps: points 2 (200 N m) and 4 (130 N m) without a design, then bisection
+    # between 4 and 8: 6 (60 N m) and 5 (80 N m) with one. Points 1-4 (250-130 N m) are searched again, proven (here
+    # the first half of the run too; the ball over its allowable contact stress: one search for the last 2 points of
+    # its region, not three more halvings from 16, 7.7 s to 1.3 s). The 5 probes (IPOPT calls:
+    # one each, two at 80 N m) are charged to point 1's verdict: the sweep's calls are its points'.
+    regions, probed = [], []
+    real, designed = region_proof.searches, region_proof.Regions._designed
+    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
+        [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
+    monkeypatch.setattr(region_proof.Regions, "_designed", lambda self, j: probed.append(j) or designed(self, j))
+    torques = [300.0, 250.0, 200.0, 160.0, 130.0, 80.0, 60.0, 40.0, 30.0, 20.0]
+    vary = parse_vary("resisting_torque=" + ",".join(f"{t:g}" for t in torques), "wedge", WEDGE.quantities)
+    result = Sweep(WEDGE, [vary]).run(progress=False)
+    frame = result.frame
+    assert list(frame["status"]) == ["infeasible"] * 5 + ["optimal"] * 5
+    assert probed == [8, 2, 4, 6, 5]
+    assert [len(outcomes) for outcomes in regions] == [1, 1] and regions[0][0].reached and regions[1][0].proven
+    assert frame["diagnosis"][1].startswith("proven infeasible for resisting_torque 130-250 N*m (4 points, one proof)")
+    assert [s["solver"]["solves"] for s in result.solutions][1:5] == [6, 0, 0, 0]  # (80 N m: 2 calls, a retry)
+    assert result.spent["solves"] == sum(s["solver"]["solves"] for s in result.solutions)

@@ -24,7 +24,13 @@ integers excluded there, or a neighbour to try), the batch runs the search itsel
 (``integers.descend``, then the relaxation and ``integers.nearest_integers``): each integer combination is excluded
 by the tables or re-solved by a one-point chained SQP and KKT-checked (the relaxation with its Hessian
 convexified; the batch's own integers not again where the chain solved them at that point: its column there is
-the first attempt). The next chain then ends where the next such point is expected (``batch_pace``). Otherwise,
+the first attempt). A combination the one-point SQP does not settle is solved as ``Problem.solve``'s search solves a
+neighbour, by IPOPT from cold: kept out of the search where IPOPT finds no design (and at the next point tried by
+IPOPT directly), else re-solved by SQP from IPOPT's optimum (the ball's rows: one row fewer promised by the
+multipliers but infeasible, point after point, had sent each point to ``Problem.solve``). Where the batch's integers
+are excluded and one neighbouring combination is not, the search starts there, without the relaxation (the cable
+count, one cable more). The next chain then ends where the next such point is expected (``batch_pace``; a chain
+that fails at its first point is such a point too). Otherwise,
 and where a re-solve of that search fails its check, the point is solved by ``Problem.solve``, warm from the last
 kept point (SQP, warm IPOPT, the integer search, the cold solve and the infeasibility diagnosis), and the next
 batch starts after it, 8 points long, doubling while batches pass (up to 256). A chain's length is a power of two
@@ -63,7 +69,7 @@ from clutchopt.optimise.posed import Box, off_scale
 from clutchopt.optimise.problem import Problem
 from clutchopt.optimise.region_proof import Regions
 from clutchopt.optimise.solution import Solution, WarmStart
-from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL
+from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL, check_design
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
 LONGEST_BATCH = 256  # doubling stops here: a longer batch saves little call overhead and risks more waste
@@ -201,6 +207,7 @@ class BatchSweep:
         self._span = min(EXCLUSION_SPAN, self.count)
         self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
         self.searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
+        self._undesigned: dict[tuple, int] = {}  # integer combination -> the last point where IPOPT found no design
         varied = self.values[[q.name in self.varied for q in f.quantities]]
         with np.errstate(all="ignore"):  # each point's step in the case from the one before, relative
             moves = np.diff(varied, axis=1) / np.abs(varied[:, 1:])
@@ -246,7 +253,9 @@ class BatchSweep:
                     start, k = _Start(self, block=settled), k + 1
                     self.feasible, failed = start.warm.design, False
                     continue
-                if passed < chained:  # point k failed a test in the batch: the next batch starts short
+                if passed == 0 < chained and self.integer:  # its first point failed at the batch's integers: a
+                    pace.broke(k)  # break too (Problem.solve's search decides it), the next one expected as far on
+                elif passed < chained:  # point k failed a test in the batch: the next batch starts short
                     pace.restart()
                 alone[k] = self._solve_alone(k, start.warm if start is not None else None)
                 start, k = self._start_of(alone[k]), k + 1
@@ -263,11 +272,15 @@ class BatchSweep:
         full verdict where that solve finds no design."""
         solution = self._regions.covered(k) or self._regions.quick(k, warm)
         if solution is None:
-            solution = self.problem.solve(self.point_case(k), warm=warm, neighbour=self.feasible)
+            solution = self._regions.charged(self.problem.solve(self.point_case(k), warm=warm, neighbour=self.feasible))
             self._regions.after(k, solution)
         self._counted(solution)
         if solution.status in DESIGN_STATUSES:
             self.feasible = solution.design
+        for entry in solution.integer_search:  # (its search's combinations without a design: IPOPT's verdicts)
+            names = [self.names[i] for i in self.integer]
+            if not entry["feasible"] and not entry["status"].startswith("excluded") and all(n in entry for n in names):
+                self._undesigned[tuple(float(entry[n]) for n in names)] = k
         return solution
 
     def _counted(self, solution: Solution) -> Solution:
@@ -299,7 +312,8 @@ class BatchSweep:
         count = len(chain.index)
         ok = chain.ok & ~chain.moves
         passed = int(np.argmin(ok)) if not ok.all() else count
-        searching = bool(chain.ok[passed]) if passed < count else count == first  # passed up to the exclusion
+        searching = (bool(chain.ok[passed]) or passed == 0 < len(self.integer)) if passed < count else count == first
+        # (passed up to the exclusion; a first point that fails at the batch's integers: the search tries them by IPOPT)
         tried = None  # normalised as the batch that starts after the passed points
         if searching and passed < count:
             tried = chain.column(passed, _Start(self, block=chain.block(passed)).f_scale if passed else start.f_scale)
@@ -360,6 +374,7 @@ class BatchSweep:
         search: list[dict] = []
         box, seed = Box(start.scale, self.lower, self.upper), start.seed
         runs: list[_Chain] = []
+        cold: list[float] = []  # the seconds of each IPOPT call on a combination without a design
 
         def attempt(combo, seed, methods=None) -> dict | None:
             lower, upper = self.lower.copy(), self.upper.copy()
@@ -368,8 +383,21 @@ class BatchSweep:
             if excluded:
                 search.append(excluded_entry(self.posed, self.integer, combo, excluded))
                 return None
-            run = used(tried) if tried is not None and np.array_equal(combo, start.combo) else solved(
-                lower, upper, seed, "sqp_chain")
+            key = tuple(combo.tolist())
+            if tried is not None and np.array_equal(combo, start.combo):
+                chain = tried  # (its chained column: the first attempt, verified or not)
+            else:  # a combination IPOPT left without a design at the point before goes to IPOPT again directly
+                chain = (self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
+                         if self._undesigned.get(key) != k - 1 else None)
+            if chain is None or not chain.ok[0]:  # as Problem.solve tries a neighbour: IPOPT, cold
+                entry, seconds, optimum = self._cold(start, k, lower, upper, seed)
+                cold.append(seconds)
+                if optimum is None:
+                    self._undesigned[key] = k
+                    search.append(entry)
+                    return None
+                chain = self._chain(start, k, 1, lower, upper, optimum, "sqp_chain", predict=False)
+            run = used(chain)
             search.append(search_entry(self.posed, self.integer, combo, BATCHED, True, run["value"]))
             return run
 
@@ -385,6 +413,9 @@ class BatchSweep:
 
         try:
             kept = descend(self.posed, box, self.integer, start.combo, seed, search, attempt)
+            past = self._past_exclusion(start.combo, k) if kept is None else None
+            if past is not None:  # the only neighbour its exclusion leaves: the search from there
+                kept = descend(self.posed, box, self.integer, past, seed, search, attempt)
             if kept is None:  # the batch's integers fail here: the relaxation, from the same point
                 relaxed = solved(self.lower, self.upper, relaxation_seed(seed, self.integer), "sqp_search")
                 if off_scale(relaxed["x"][: len(self.names)]):
@@ -395,12 +426,60 @@ class BatchSweep:
         if kept is None:
             return None
         block = kept["chain"].block(1)
-        block.arrays["time"][:] = sum(float(run.arrays["time"][0, 0]) for run in runs)
-        block.arrays["solves"][:] = len(runs)
+        block.arrays["time"][:] = sum(float(run.arrays["time"][0, 0]) for run in runs) + sum(cold)
+        block.arrays["solves"][:] = len(runs) + len(cold)
         for key in ("dx", "dlam_x", "dlam_g"):  # no step to predict from across a change of the integers
             block.arrays[key] = np.zeros_like(block.arrays[key])
         self.searches[k] = search
         return block
+
+    def _past_exclusion(self, combo: np.ndarray, k: int) -> np.ndarray | None:
+        """Where the integers ``combo`` are excluded at point k (a constraint of fixed variables alone broken, e.g.
+        the cable stress of too few cables), the one neighbouring combination (one integer one unit either way, within
+        the bounds) that is not: the search starts there, without the relaxation, which would round to it. None
+        where the integers are not excluded, or none or several neighbours are left (the relaxation decides)."""
+        lower = self.lower.copy()
+        lower[self.integer] = combo
+        if not self._broken(lower, k, 1).any():
+            return None
+        left = []
+        for j, i in enumerate(self.integer):
+            for step in (-1.0, 1.0):
+                neighbour = combo.copy()
+                neighbour[j] += step
+                if self.lower[i] <= neighbour[j] <= self.upper[i]:
+                    lower[self.integer] = neighbour
+                    if not self._broken(lower, k, 1).any():
+                        left.append(neighbour)
+        return left[0] if len(left) == 1 else None
+
+    def _cold(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
+              seed: dict) -> tuple[dict, float, dict | None]:
+        """The ``integer_search`` entry of an integer combination (fixed in ``lower``, ``upper``) that the one-point
+        chained SQP did not settle at point k: solved as ``Problem.solve``'s search solves a neighbour (IPOPT, cold,
+        from ``seed``'s point), and kept out of the search where IPOPT ends without a verified optimum (most often
+        ``Infeasible_Problem_Detected``: fewer balls than the torque needs): its entry, the seconds of the call, and
+        None; where IPOPT finds a verified-feasible optimum, its primal-dual point instead (multipliers within the KKT
+        tolerance set to 0, as a warm start of SQP: ``attempts.warm_multipliers``), from which the one-point chained
+        SQP gives the column (a combination that became feasible along the sweep: the ball's fewer rows as the
+        allowable contact stress rises)."""
+        p = np.concatenate([self._by_point[k], start.scale, [start.f_scale]])
+        lbx, ubx = lower / start.scale, upper / start.scale
+        solver, began = self.posed.solver("ipopt"), time.perf_counter()
+        out = solver(x0=np.clip(seed["x"], lbx, ubx), p=p, lbx=lbx, ubx=ubx, lbg=self.posed.lbg, ubg=0.0)
+        seconds = time.perf_counter() - began
+        self.solves, self.solver_s = self.solves + 1, self.solver_s + seconds
+        stats = solver.stats()
+        x = out["x"].full().ravel()
+        design = self.posed.rounded(self.posed.design(x, start.scale))
+        checks = check_design(self.posed.formulation, design, self.posed.params(self.point_case(k)))
+        if stats["success"] and all(c.feasible for c in checks):
+            lam_x, lam_g = warm_multipliers(self.posed, out["lam_x"].full().ravel(), out["lam_g"].full().ravel())
+            return {}, seconds, {"x": x, "lam_x": lam_x, "lam_g": lam_g, "dx": np.zeros_like(x),
+                                 "dlam_x": np.zeros_like(lam_x), "dlam_g": np.zeros_like(lam_g)}
+        combo = lower[self.integer]
+        return search_entry(self.posed, self.integer, combo, stats["return_status"], False,
+                            float(out["f"]) * start.f_scale), seconds, None
 
     def _excluded(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
         """Per point k .. k + count - 1: the fixed variables of ``design`` (SI; integers and variables fixed by the

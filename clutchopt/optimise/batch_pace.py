@@ -9,7 +9,10 @@ before (the relaxed integer crosses integer boundaries at a slowly changing pace
 geometrically spaced points), and the chain ends at that point: a break on a chain's last point wastes nothing, its
 column being the search's first attempt. Should the chain pass, the break is near: the next chain is a probe of
 one point, then doubling again. After the first break (no gap known yet) the next chain is ``first`` points long,
-probing after it; after a point solved alone, chains restart from ``first``.
+probing after it; after a point solved alone, chains restart from ``first``, unless the chain failed at its first
+point with integers to search: that point is a break (``BatchSweep.run``), so that where the integers are decided at
+every point the chains are one point long (the ball over its power past 4.6x: chains of 8 had failed at their first
+point, 7 solves lost at each).
 
 Measured on the 100-point user sweeps of the benchmark (``docs/tradeoffs.md``, "Batches"): the cable over its
 allowable stress broke at 7 points with gaps 9, 9, 11, 13, 16, 21, the ball over its speed at 7 with gaps 9, 9, 10,

@@ -22,6 +22,13 @@ FIRST_RUN points long, the next twice the longest proven (from 2, doubling while
 LONGEST_RUN): where a region's bounds are loose over wide intervals (the lever over its speed, which its centrifugal
 force takes squared) the runs stay as short as proofs allow.
 
+Where a run's search meets a design at one end, probes look for the region's edge within it (:meth:`Regions._edge`):
+one solve at the run's last point (as ``Problem.solve`` starts cold); where it has a design, the points from the run's
+first on in growing steps, then bisection, find the first point with one, and only the points before it are searched
+again (the bisection of such a run by searches had cost seconds where a solve costs 20-40 ms; a probe before every
+run cost a failed solve on each run inside a region). A probe only shortens the run searched; its calls are charged to
+the next point's verdict.
+
 A point left over next to a proven one is tested against that proof first (:meth:`Regions.quick`): solved once, as
 ``Problem.solve`` starts (its design, if it finds one, is ``solve``'s), else its own interval search, the one its full
 verdict would run, before the elastic diagnosis and the retries: proven, it gets the verdict ``solve`` gives
@@ -67,6 +74,8 @@ class Regions:
         self._without_at = -2
         self._to, self._length = 0, FIRST_RUN  # the end of the points searched; how many to search next
         self._proven: dict[int, tuple[str, float]] = {}  # point -> its proof's text, its share of the seconds
+        self._probed = (0, 0.0)  # the solver calls and seconds of the probes for a region's edge, not yet charged
+        self._found = -1  # the point a probe found with a design (the region's edge)
 
     def covered(self, k: int) -> Solution | None:
         """Point k's verdict from a region proof, or None (solve it)."""
@@ -78,7 +87,17 @@ class Regions:
         solution = _covered(self.problem, self.point_case(k), self._without, *proven)
         if solution is not None:
             self.after(k, solution)
-        return solution
+        return self.charged(solution)
+
+    def charged(self, solution: Solution | None) -> Solution | None:
+        """``solution`` with the solver calls and seconds of the probes for a region's edge not yet charged to a
+        point (:meth:`_edge`) added to its own: the sweep's count of solver calls is the sum over its points."""
+        calls, seconds = self._probed
+        if solution is None or not calls:
+            return solution
+        self._probed = (0, 0.0)
+        return replace(solution, solver=replace(solution.solver, solves=solution.solver.solves + calls,
+                                                time_s=solution.solver.time_s + seconds))
 
     def quick(self, k: int, warm=None) -> Solution | None:
         """Point k, not covered, next to a point without a design (a static problem): one solve (as ``Problem.solve``
@@ -88,7 +107,7 @@ class Regions:
         if self._without_at != k - 1 or self.problem.start_up is not None:
             return None
         case = self.point_case(k)
-        first = self.problem.refined(case, warm=warm, diagnosed=False)
+        first = self.charged(self.problem.refined(case, warm=warm, diagnosed=False))
         if first.status in DESIGN_STATUSES:
             self.after(k, first)
             return first
@@ -118,6 +137,9 @@ class Regions:
     def _search_from(self, k: int) -> None:
         """The runs from point k (``_length`` points), bisected where not proven whole, their searches together; the
         next runs twice as long as the longest proven (FIRST_RUN again after a design)."""
+        if k == self._found:  # the edge a probe found: solved as usual (Regions.quick)
+            self._to = k + 1
+            return
         end = min(k + self._length, self.count)
         self._to, runs = end, [(k, end)] if end - k > 1 else []  # (a last point alone: Regions.quick)
         points = {j: _search_problem(self.posed, self.point_case(j)) for j in range(k, end)}
@@ -138,13 +160,45 @@ class Regions:
                         self._proven[j] = (text, seconds / max(1, end - k))
                 elif b - a > 1 and outcome is not None and outcome.feasible is None:  # (a design met for the whole
                     # run: every point has one, solved as usual)
-                    middle = (a + b) // 2  # (a design at one end: the region ends within the run: only
-                    # its first half is searched again, the points of the other solved as usual)
-                    kept = ((a, middle),) if outcome.reached else ((a, middle), (middle, b))
+                    middle = (a + b) // 2  # (a design at one end: the region ends within the run: the run up to
+                    # the edge the probes find is searched again, else only its first half, the points of the other
+                    # solved as usual)
+                    edge = self._edge(a, b) if outcome.reached else b
+                    kept = ((a, edge),) if edge < b else ((a, middle),) if outcome.reached else ((a, middle), (middle, b))
                     halves += [run for run in kept if run[1] - run[0] > 1]  # a single point: solved as usual (a
                     # design found by a solve, else its own verdict with its own search)
             runs = halves
         self._length = min(2 * longest, LONGEST_RUN)
+
+
+    def _edge(self, k: int, end: int) -> int:
+        """The end of the run from point k to ``end`` whose search met a design at one end: ``end``, or the first
+        point before it found with a design by one solve (as ``Problem.solve`` starts cold), located where the run's
+        last point has one: points k + 1, k + 2, k + 4, ... until one has a design, then bisection. A run reaching
+        past the region's edge cannot be proven, and its bisection by interval searches cost seconds (the ball over
+        its allowable contact stress: four searches, 7.7 s, for the last two points of its region) where a solve
+        costs 20-40 ms. A probe only shortens the run searched: a proof is still a proof of each point of it, and a
+        point after the edge is solved as usual (its design is ``solve``'s, whatever the probe found)."""
+        if end - k <= 2 or self.problem.start_up is not None or not self._designed(end - 1):
+            return end
+        without, designed, step = k, end - 1, 1  # (point k: searched from, next to a proven one)
+        while without + step < designed:  # from k on in growing steps (an edge is most often near the run's start)
+            if self._designed(without + step):
+                designed = without + step
+                break
+            without, step = without + step, 2 * step
+        while designed - without > 1:
+            middle = (without + designed) // 2
+            without, designed = (without, middle) if self._designed(middle) else (middle, designed)
+        self._found = designed
+        return designed
+
+    def _designed(self, j: int) -> bool:
+        """Point j has a design by one solve (cold, undiagnosed); its calls are charged to the next verdict."""
+        solution = self.problem.refined(self.point_case(j), diagnosed=False)
+        calls, seconds = self._probed
+        self._probed = (calls + solution.solver.solves, seconds + solution.solver.time_s)
+        return solution.status in DESIGN_STATUSES
 
 
 def _region_problem(points: list[tuple[np.ndarray, ...]]) -> tuple[np.ndarray, ...]:

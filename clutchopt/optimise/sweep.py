@@ -149,8 +149,9 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
         neighbour = same or (feasible[1] if feasible else None)
         if solution is None:
             solution = solved_along(problem, point_case, previous) if problem.start_up is not None else None
-            solution = solution or problem.solve(point_case, warm=previous if problem.start_up is None else None,
-                                                 neighbour=neighbour.design if neighbour is not None else None)
+            solution = solution or regions.charged(problem.solve(
+                point_case, warm=previous if problem.start_up is None else None,
+                neighbour=neighbour.design if neighbour is not None else None))
         if solution.status not in DESIGN_STATUSES and feasible is not None:
             solution = continued(problem, case, feasible, values) or solution
         regions.after(j, solution)

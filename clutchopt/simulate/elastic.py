@@ -21,10 +21,14 @@ from typing import Callable
 
 import numpy as np
 
-from clutchopt.simulate.engine import MAX_STEPS, SimulationResult, largest
+from clutchopt.simulate.engine import FIRST_SPAN, MAX_STEPS, SimulationResult, largest
 from clutchopt.simulate.laws import InductionMotor, Load
+from clutchopt.simulate.on_floats import on_floats
+from clutchopt.simulate.spans import integrate_spans
 from clutchopt.simulate.stepping import Budget, integrate
 
+SWING_SAMPLES = 48  # samples of a swing at least (of its period at zero twist, some twice the swings' in a start):
+# their extremes are found on the samples, not on intervals integrated again (4,960 right-hand sides a check: 4,450)
 STRESS_LAG = 1e-6  # of the start's time scale: the step of the stress rate's central difference (its peak's event)
 
 
@@ -46,6 +50,16 @@ class ElasticModel:
     integrator: str = "LSODA"  # "DOP853" or "Radau" for a reference run (docs/start_up.md, "The check's tolerance")
 
 
+def _swing_period(m: ElasticModel, torque) -> float:
+    """2 pi sqrt(J_red / k): the period of the halves' torsional swing on the link's stiffness at zero twist and
+    synchronous speed (the stiffest it is in a start), J_red = J J_m / (J + J_m)."""
+    h = 1e-6 * m.largest_twist
+    speed = m.motor.synchronous_speed
+    stiffness = (torque(speed, h) - torque(speed, -h)) / (2.0 * h)
+    reduced = m.inertia * m.motor.inertia / (m.inertia + m.motor.inertia)
+    return 2.0 * math.pi * math.sqrt(reduced / stiffness) if stiffness > 0 else math.inf
+
+
 def simulate_elastic(model: ElasticModel) -> SimulationResult:
     """The start from rest by LSODA (its stiff mode takes the link's fast twist where it is stiff), stepped by
     :mod:`clutchopt.simulate.stepping` within the same budget of steps as a slipping coupling's; the twist's
@@ -55,9 +69,22 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     motor = m.motor
     time_scale = (m.inertia + motor.inertia) * m.target / max(motor.breakdown_torque, 1e-300)
 
+    probes = [(w, theta) for w in (0.0, 0.5 * m.target, motor.synchronous_speed)
+              for theta in (0.0, 0.1 * m.largest_twist, -0.5 * m.largest_twist)]
+    torque, stress = (on_floats(function, 2, probes) for function in (m.torque, m.stress))  # the link's equations,
+    # traced to Python on floats: two thirds of a check went to their generic form
+
     def rates(t, y):
-        wa, w, theta, _ = y
-        link = m.torque(wa, theta) + m.damping * (wa - w)
+        """At a solver's state, read as numbers (arithmetic on NumPy scalars costs twice), or at samples (arrays,
+        clutchopt.simulate.spans)."""
+        if isinstance(t, np.ndarray):
+            wa, w, theta, _ = y
+            link = m.torque(wa, theta) + m.damping * (wa - w)
+            net = link - m.load(t, w)
+            net = np.where((w <= 0.0) & (net < 0.0), 0.0, net)
+            return [(motor(wa) - link) / motor.inertia, net / m.inertia, wa - w, m.damping * (wa - w) ** 2]
+        wa, w, theta, _ = y.tolist()
+        link = torque(wa, theta) + m.damping * (wa - w)
         net = link - m.load(t, w)
         if w <= 0.0 and net < 0.0:
             net = 0.0  # at rest the load is a reaction up to its value
@@ -67,7 +94,7 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
         return y[1] - m.target
 
     def overturned(t, y):
-        return abs(y[2]) - m.largest_twist
+        return np.abs(y[2]) - m.largest_twist
 
     def twist_extreme(t, y):
         return y[0] - y[1]
@@ -78,7 +105,10 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
         """The stress's rate along the motion as a central difference over +-``lag`` (the stress grows with the
         driving speed too, so its peak lags the twist's: sampled there, it was missed by 1e-5)."""
         dw, _, dtheta, _ = rates(t, y)
-        return m.stress(y[0] + lag * dw, y[2] + lag * dtheta) - m.stress(y[0] - lag * dw, y[2] - lag * dtheta)
+        if isinstance(t, np.ndarray):
+            return m.stress(y[0] + lag * dw, y[2] + lag * dtheta) - m.stress(y[0] - lag * dw, y[2] - lag * dtheta)
+        wa, theta = float(y[0]), float(y[2])
+        return stress(wa + lag * dw, theta + lag * dtheta) - stress(wa - lag * dw, theta - lag * dtheta)
 
     started.terminal, started.direction = True, 1
     overturned.terminal, overturned.direction = True, 1
@@ -87,8 +117,14 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     bound = m.end_time if m.end_time is not None else 1e3 * time_scale
     speed_scale = motor.synchronous_speed
     atol = m.rtol * np.array([speed_scale, speed_scale, m.largest_twist, 1.0 + m.inertia * speed_scale**2])
-    out = integrate(rates, None, 0.0, np.zeros(4), bound, [started, overturned, twist_extreme, stress_extreme],
-                    m.integrator, m.rtol, atol, Budget(MAX_STEPS))
+    events = [started, overturned, twist_extreme, stress_extreme]
+    if m.integrator == "LSODA":
+        out = integrate_spans(rates, None, 0.0, np.zeros(4), bound, events, m.rtol, atol, Budget(MAX_STEPS),
+                              FIRST_SPAN * time_scale,
+                              max(_swing_period(m, torque) / SWING_SAMPLES, FIRST_SPAN * time_scale))  # (a swing
+        # faster than 48e-3 of the start, as of a rotor of 1e-9 kg m^2, is not sampled: its extremes on zooms)
+    else:
+        out = integrate(rates, None, 0.0, np.zeros(4), bound, events, m.integrator, m.rtol, atol, Budget(MAX_STEPS))
     t, y = out.t, out.y
     torque = m.torque(y[0], y[2]) + m.damping * (y[0] - y[1])  # the samples at once, as arrays
     stress = np.asarray(m.stress(y[0], y[2]), dtype=float)

@@ -1,7 +1,8 @@
 """Start-up simulation: the right-hand side assembled from the listed effects; rest, slip and stick as phases.
 
-Integrator: SciPy's solvers, stepped by :mod:`clutchopt.simulate.stepping` (events on each step's interpolant, a
-budget of MAX_STEPS solver steps per run), chosen by the scene's stiffness. Without a motor the phases are smooth
+Integrator: SciPy's solvers, DOP853 and Radau stepped by :mod:`clutchopt.simulate.stepping` (events on each step's
+interpolant), LSODA in spans of ``odeint`` by :mod:`clutchopt.simulate.spans` (events on the spans' samples), a budget
+of MAX_STEPS solver steps per run, chosen by the scene's stiffness. Without a motor the phases are smooth
 and at most mildly stiff (the paper's law with a w0 = +1000 starts at its cap of 1e130 k, but the fast part lasts
 no longer than the solver needs to resolve it), so DOP853 (explicit Runge-Kutta 8(5,3)) reaches 1e-10 relative at
 low cost (docs/simulate.md). A motor adds a fast mode, its time constant J_m / (dT/dw) = J_m s_k w_s / (2 T_k), and
@@ -41,6 +42,7 @@ from clutchopt.errors import InputError
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.laws import InductionMotor, Load
 from clutchopt.simulate.ranges import BREAKDOWN_SLIP, CONDUCTANCE, HEAT_CAPACITY, INERTIA, LOAD, SPEED, TIME, TORQUE
+from clutchopt.simulate.spans import integrate_spans
 from clutchopt.simulate.stepping import Budget, Phase, integrate
 
 if TYPE_CHECKING:
@@ -51,6 +53,7 @@ MAX_SWITCHES = 200  # phase switches (rest, slip, stick, engagement) before a ru
 MAX_STEPS = 20_000  # solver steps per run: the runs of the tests take at most a few thousand
 LSODA_STEPS = 5_000  # LSODA's steps in a phase before Radau takes it (its phases take a few hundred)
 STIFF_RATIO = 0.01  # a mode faster than this fraction of the start-up's time scale makes the scene stiff
+FIRST_SPAN = 1e-3  # of the start-up's time scale: LSODA's first span of a phase (clutchopt.simulate.spans)
 
 
 @dataclass
@@ -123,6 +126,7 @@ class _Run:
         self.state_scale = np.array([speed, 1e-6 * speed, energy, energy, heat])  # absolute tolerance per rtol
         self.budget = Budget(MAX_STEPS)
         self._last = None, None  # (kind, t, y) and the rates there
+        self._bind()
 
     def integrate(self, kind: str, t: float, bound: float, y, events: list) -> Phase:
         """One phase (``rest``, ``slip`` or ``stick``); LSODA at a tenth of the tolerance, and should it fail (its
@@ -135,7 +139,8 @@ class _Run:
                              self.m.rtol * self.state_scale, self.budget)
         rtol, budget = self.m.rtol / 10, self.budget
         trial = Budget(min(budget.steps, budget.taken + LSODA_STEPS), budget.taken)
-        phase = integrate(rates, jacobian, t, y, bound, events, "LSODA", rtol, rtol * self.state_scale, trial)
+        phase = integrate_spans(rates, jacobian, t, y, bound, events, rtol, rtol * self.state_scale, trial,
+                                FIRST_SPAN * self.time_scale)
         budget.taken = trial.taken
         if phase.status == "failed" or (phase.status == "budget" and not budget.spent):
             phase = integrate(rates, jacobian, t, y, bound, events, "Radau", self.m.rtol,
@@ -143,32 +148,49 @@ class _Run:
         return phase
 
     # --- the right-hand sides ------------------------------------------------------------------------------------
+    # Each takes a state of numbers or one of arrays (a column a sample: the events on a span's samples at once,
+    # clutchopt.simulate.spans). A solver's state is read as numbers (y.tolist(): arithmetic on NumPy scalars costs
+    # twice), and the callables are bound once (_bind): a right-hand side is some 2,000 calls a start.
+    def _bind(self):
+        self._load, self._own_excess = self.m.load, self.m.law.own_excess
+
+    def friction(self, wa, slip):
+        """The friction torque on the driven half (effect slip_friction) at numbers or at samples."""
+        return self.m.law.kinetic_samples(wa, slip) if isinstance(wa, np.ndarray) else fx.slip_friction(self.m.law,
+                                                                                                          wa, slip)
+
+    def capacity(self, wa):
+        """The static capacity at numbers or at samples."""
+        law = self.m.law
+        return law.capacity_samples(wa) if isinstance(wa, np.ndarray) else law.capacity(wa)
+
+    def excess(self, wa, slip, friction, load):
+        """Friction torque less load; a law with its own form of the difference (no cancellation) gives it."""
+        return self.m.law.excess(wa, slip, load) if self._own_excess else friction - load
+
     def torques(self, t, y):
-        """Friction torque on the driven half, driving torque, load."""
+        """Friction torque on the driven half, driving torque (effect motor_curve), load."""
         wa, slip = y[0], y[1]
-        friction = fx.slip_friction(self.m.law, wa, slip)
         drive = fx.motor_curve(self.motor, wa) if self.motor else 0.0
-        return friction, drive, self.m.load(t, wa - slip)
+        return self.friction(wa, slip), drive, self._load(t, wa - slip)
 
-    def _heat(self, power, y):
-        return fx.friction_heat(power, y[4], self.m.heat_capacity, self.m.conductance) if self.heat else 0.0
-
-    def _turning(self, friction, drive, y) -> list:
-        """Rates of the driving half and of the works and heat while the coupling slips."""
+    def _turning(self, kind: str, t, y) -> list:
+        """Rates of a rest or a slip phase: of the driving half, the slip, the works and the heat."""
+        y = y.tolist() if type(y) is np.ndarray and y.ndim == 1 else y
+        wa, slip, rise = y[0], y[1], y[4]
+        friction, drive, load = self.torques(t, y)
         dwa = (drive - friction) / self.driver_inertia if self.motor else 0.0
-        power = friction * y[1]
-        return [dwa, dwa, power, friction * y[0], self._heat(power, y)]
+        power = friction * slip
+        heat = fx.friction_heat(power, rise, self.m.heat_capacity, self.m.conductance) if self.heat else 0.0
+        driven = self.excess(wa, slip, friction, load) / self.m.inertia if kind == "slip" else 0.0
+        return [dwa, dwa - driven, power, friction * wa, heat]
 
     def slip(self, t, y):
-        friction, drive, load = self.torques(t, y)
-        rates = self._turning(friction, drive, y)
-        rates[1] -= self.m.law.excess(y[0], y[1], load) / self.m.inertia
-        return rates
+        return self._turning("slip", t, y)
 
     def rest(self, t, y):
         """The driven half stands: all of the driving speed is slip."""
-        friction, drive, _ = self.torques(t, y)
-        return self._turning(friction, drive, y)
+        return self._turning("rest", t, y)
 
     def carried(self, t, y):
         """Stick: common acceleration and the torque the clutch must carry."""
@@ -177,8 +199,10 @@ class _Run:
         return accel, load + self.m.inertia * accel
 
     def stick(self, t, y):
+        y = y.tolist() if type(y) is np.ndarray and y.ndim == 1 else y
         accel, torque = self.carried(t, y)
-        return [accel, 0.0, 0.0, torque * y[0], self._heat(0.0, y)]
+        heat = fx.friction_heat(0.0, y[4], self.m.heat_capacity, self.m.conductance) if self.heat else 0.0
+        return [accel, 0.0, 0.0, torque * y[0], heat]
 
     # --- their Jacobians -----------------------------------------------------------------------------------------
     def _turning_jacobian(self, y, slopes) -> np.ndarray:
@@ -225,11 +249,19 @@ class _Run:
     # --- phases and their events ---------------------------------------------------------------------------------
     def turning_kind(self, t, y) -> str:
         """``rest`` while the driven half stands and its friction torque is at most the load, else ``slip``."""
-        at_rest = y[0] - y[1] <= 0.0 and self.m.law.excess(y[0], y[1], self.m.load(t, 0.0)) <= 0.0
+        at_rest = y[0] - y[1] <= 0.0 and self.starting(t, y) <= 0.0
         return "rest" if at_rest else "slip"
 
+    def starting(self, t, y):
+        """Friction torque less load with the driven half at rest: positive once it breaks away."""
+        friction = self.friction(y[0], y[1])
+        return self.excess(y[0], y[1], friction, self.m.load(t, 0.0 * y[0]))
+
     def turning_rates(self, kind: str, t, y) -> list:
-        """The rates of a rest or slip phase; the last point's kept, as the events evaluate it after each step."""
+        """The rates of a rest or slip phase; the last point's kept, as the events evaluate it after each step
+        (samples as arrays: computed)."""
+        if isinstance(t, np.ndarray):
+            return self.rest(t, y) if kind == "rest" else self.slip(t, y)
         key = (kind, t, y.tobytes())
         if self._last[0] != key:
             self._last = key, (self.rest(t, y) if kind == "rest" else self.slip(t, y))
@@ -243,10 +275,10 @@ class _Run:
         """Events of a rest or slip phase by name: the terminal ones end it, ``peak`` samples the temperature's
         maximum. ``engaged``: the driving speed has reached the engagement speed (which a motor never falls below
         again: there the coupling's torque is zero)."""
-        law, load = self.m.law, self.m.load
+        law = self.m.law
         events = {}
         if kind == "rest":
-            events["starts"] = _event(lambda t, y: law.excess(y[0], y[1], load(t, 0.0)), True, 1)
+            events["starts"] = _event(lambda t, y: self.starting(t, y), True, 1)
         else:
             events["lock"] = _event(lambda t, y: y[1], True, -1)
             events["stops"] = _event(lambda t, y: y[0] - y[1], True, -1)
@@ -299,7 +331,7 @@ def simulate(model: Model) -> SimulationResult:
     if not run.motor and model.load.constant:  # closed-form verdict: does the start-up lock up at all?
         verdict = model.law.lockup_failure(model.driver_speed, model.load.torque, model.inertia)
     closed_form_locks = not run.motor and model.load.constant and verdict is None
-    loose = _event(lambda t, y: model.law.capacity(y[0]) - run.carried(t, y)[1], True, -1)
+    loose = _event(lambda t, y: run.capacity(y[0]) - run.carried(t, y)[1], True, -1)
     bound = model.end_time if model.end_time is not None else (1e300 if closed_form_locks else 1e8 * run.time_scale)
     start = 0.0 if run.motor else model.driver_speed
     t, y = 0.0, np.array([start, start, 0.0, 0.0, 0.0])
@@ -379,7 +411,7 @@ def _samples(run: _Run, out: Phase | None, phase: str, y0=None) -> tuple:
     state ``y0``."""
     t, y = (np.array([0.0]), np.asarray(y0, dtype=float).reshape(-1, 1)) if out is None else (out.t, out.y)
     if phase == "stick":
-        torque = [run.carried(ti, y[:, i])[1] for i, ti in enumerate(t)]
+        torque = np.broadcast_to(np.asarray(run.carried(t, y)[1], dtype=float), t.shape)  # every sample at once
     else:  # the friction torque (slip_friction) at every sample at once
         torque = run.m.law.kinetic_samples(y[0], y[1])
     return t, y, torque, phase

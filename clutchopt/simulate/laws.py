@@ -24,6 +24,7 @@ class _Law:
     """Defaults of a law: the net torque on the driven half is friction less load; the torque has no slip scale."""
 
     slip_scale = math.inf
+    own_excess = False  # its excess() is the kinetic torque less the load as written (else its own form)
     engagement_squared = 0.0  # w_e^2 below which the torque is zero (a kink the simulator makes a phase boundary)
 
     def excess(self, driver_speed, slip, load):
@@ -36,6 +37,10 @@ class _Law:
     def kinetic_samples(self, driver_speeds: np.ndarray, slips: np.ndarray) -> np.ndarray:
         """The kinetic torque at each sample of a run (its history), as :meth:`kinetic` gives it at each."""
         return np.array([self.kinetic(w, s) for w, s in zip(driver_speeds, slips)], dtype=float)
+
+    def capacity_samples(self, driver_speeds: np.ndarray) -> np.ndarray:
+        """The static capacity at each sample, as :meth:`capacity` gives it at each."""
+        return np.array([self.capacity(w) for w in driver_speeds], dtype=float)
 
 
 @dataclass(frozen=True)
@@ -59,6 +64,7 @@ class PaperFriction(_Law):
     k: float
     a: float
     name: str = "paper"
+    own_excess = True
 
     def kinetic(self, driver_speed, slip):
         """k (1 + e^{a w_r}), eq. (6), exponent capped at 300 (1e130 k: the time spent above it is e^-300 of t_c)."""
@@ -114,6 +120,9 @@ class CentrifugalFriction(_Law):
     def capacity(self, driver_speed):
         return self.kinetic(driver_speed, 0.0)
 
+    def capacity_samples(self, driver_speeds):
+        return self.kinetic_samples(driver_speeds, 0.0)
+
     def engagement_speed(self) -> float:
         return math.sqrt(self.engagement_squared)
 
@@ -138,9 +147,11 @@ class Load:
         return not self.over
 
     def __call__(self, t: float, driven_speed: float) -> float:
+        """At a number, or at each sample of arrays."""
         if not self.over:
             return self.torque
-        return table_segment(t if self.over == "time" else driven_speed, self.points, self.values)[0]
+        x = t if self.over == "time" else driven_speed
+        return np.interp(x, self.points, self.values) if isinstance(x, np.ndarray) else table_segment(x, self.points, self.values)[0]
 
     def slope(self, t: float, driven_speed: float) -> float:
         """d(load)/d(driven speed), for the simulator's Jacobian (a load over time does not depend on the speed)."""

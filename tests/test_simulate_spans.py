@@ -1,0 +1,100 @@
+"""LSODA in spans of odeint (clutchopt/simulate/spans.py) against closed-form solutions: a terminal event's time and
+state, sampled maxima located on the span's own samples and (a motion too fast for them) on an interval
+integrated again; the step budget; the traced functions of clutchopt/simulate/on_floats.py."""
+
+import math
+
+import numpy as np
+import pytest
+
+import clutchopt.simulate.spans as spans
+from clutchopt.backend import exp, fmax, sqrt
+from clutchopt.simulate.on_floats import on_floats
+from clutchopt.simulate.spans import integrate_spans
+from clutchopt.simulate.stepping import Budget
+
+
+def _event(function, terminal, direction):
+    function.terminal, function.direction = terminal, direction
+    return function
+
+
+def test_a_terminal_event_of_a_decay_is_found_at_its_closed_form():
+    # y' = -k y, y(0) = 1: y = e^{-k t} reaches 0.3 at t = ln(1 / 0.3) / k; work' = y: work = (1 - e^{-k t}) / k
+    k = 2.0
+    falls = _event(lambda t, y: y[0] - 0.3, True, -1)
+    out = integrate_spans(lambda t, y: [-k * y[0], y[0]], lambda t, y: np.array([[-k, 0.0], [1.0, 0.0]]), 0.0,
+                          np.array([1.0, 0.0]), 100.0, [falls], 1e-12, np.array([1e-12, 1e-12]), Budget(20_000),
+                          1e-3)
+    assert out.status == "event" and out.event == 0
+    assert out.t[-1] == pytest.approx(math.log(1 / 0.3) / k, rel=1e-10)
+    assert out.y[0, -1] == pytest.approx(0.3, rel=1e-10)
+    assert out.y[1, -1] == pytest.approx(0.7 / k, rel=1e-10)
+    assert np.all(np.diff(out.t) >= 0) and out.t[0] == 0.0
+
+
+@pytest.mark.parametrize("omega, periods, zoomed", [(2.0, 2, False), (400.0, 20, True)])  # samples spaced 1.6 % of
+# the time since the start: at 2 rad/s some 30 a period to the end (roots on them), at 400 rad/s a few (on zooms)
+def test_the_maxima_of_an_oscillation_are_sampled_where_they_are(omega, periods, zoomed, monkeypatch):
+    # x'' = -w^2 x, x(0) = 0, x'(0) = w: x = sin(w t), maxima 1 at t = (pi/2 + 2 pi n) / w (v = x' from + to -);
+    # LSODA's own error over 20 periods at rtol 1e-11: 1.5e-9 in the amplitude (stepped through solve_ivp: 1.5e-9)
+    zooms = []
+    monkeypatch.setattr(spans, "_zoom", lambda *args, _zoom=spans._zoom: zooms.append(1) or _zoom(*args))
+    peak = _event(lambda t, y: y[1], False, -1)
+    ends = _event(lambda t, y: t - periods * 2 * math.pi / omega, True, 1)
+    out = integrate_spans(lambda t, y: [y[1], -omega**2 * y[0]],
+                          lambda t, y: np.array([[0.0, 1.0], [-omega**2, 0.0]]), 0.0, np.array([0.0, omega]),
+                          1e9, [peak, ends], 1e-11, np.array([1e-11, 1e-11 * omega]), Budget(50_000), 1e-3)
+    assert out.status == "event" and out.event == 1
+    assert out.t[-1] == pytest.approx(periods * 2 * math.pi / omega, rel=1e-12)
+    assert out.y[0].max() == pytest.approx(1.0, abs=3e-9)
+    assert bool(zooms) == zoomed
+    maxima = out.t[np.isclose(out.y[0], 1.0, rtol=0, atol=3e-9)]
+    assert len(maxima) == periods
+    assert maxima == pytest.approx((math.pi / 2 + 2 * math.pi * np.arange(periods)) / omega, rel=1e-6)
+
+
+def test_a_run_past_its_budget_stops_with_that_status():
+    budget = Budget(50)
+    out = integrate_spans(lambda t, y: [y[1], -1e4 * y[0]], None, 0.0, np.array([0.0, 1.0]), 1e3, [], 1e-12,
+                          np.array([1e-12, 1e-12]), budget, 1e-3)
+    assert out.status == "budget" and budget.spent and out.t[-1] < 1e3
+
+
+def test_a_traced_function_is_the_equation_on_floats():
+    def equation(x, y):  # written with clutchopt.backend, as a formulation's
+        return sqrt(1.0 + x * x) / (2.0 + y) + fmax(x - 1.0, 0.0)
+
+    traced = on_floats(equation, 2, [(0.0, 0.0), (3.0, 1.0)])
+    assert traced is not equation
+    for x, y in [(0.5, 0.25), (3.0, 1.0), (-2.0, 7.0)]:
+        assert traced(x, y) == pytest.approx(math.sqrt(1 + x * x) / (2 + y) + max(x - 1, 0), rel=1e-15)
+
+
+def test_a_traced_function_is_the_equation_where_python_s_math_is_not_ieee_s():
+    def equation(x, y):  # on NumPy floats NaN for x < 0 and y fractional, inf at x = 0; Python's math raises or
+        # goes complex
+        return x ** y + sqrt(x) + 1.0 / x + exp(y)
+
+    traced = on_floats(equation, 2, [(1.0, 2.0), (4.0, 0.5)])
+    assert traced is not equation and traced(4.0, 0.5) == pytest.approx(2.0 + 2.0 + 0.25 + math.exp(0.5), rel=1e-15)
+    with np.errstate(all="ignore"):
+        f = np.float64
+        assert math.isnan(traced(-8.0, 1.0 / 3.0)) and math.isnan(equation(f(-8.0), f(1.0 / 3.0)))
+        assert traced(0.0, 1.0) == math.inf == equation(f(0.0), f(1.0))
+        assert traced(1.0, 1000.0) == math.inf == equation(f(1.0), f(1000.0))
+
+
+def test_an_equation_that_cannot_be_traced_is_used_itself():
+    def branching(x, y):
+        return x if x > y else y
+
+    assert on_floats(branching, 2, [(1.0, 2.0)]) is branching
+
+
+def test_samples_that_cannot_advance_end_the_phase_instead_of_looping():
+    # at t0 = 1e20 s a first span of 1e-10 s spaces its samples far below the time's resolution (ulp 1.6e4 s):
+    # t0 + offsets == t0, so no span would advance (and odeint takes no step, so the budget never runs out)
+    out = integrate_spans(lambda t, y: [-y[0]], None, 1e20, np.array([1.0]), 2e20, [], 1e-9, np.array([1e-12]),
+                          Budget(1_000), 1e-10)
+    assert out.status == "failed" and out.t[-1] == 1e20
