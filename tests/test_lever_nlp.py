@@ -83,12 +83,11 @@ def test_impossible_lining_pressure_is_diagnosed_in_paper_mode():
     assert "lining_pressure" in solution.diagnosis and "torque" in solution.diagnosis
 
 
-def test_too_small_housing_for_the_torque_is_diagnosed_in_design_mode():
+def test_too_small_housing_is_proven_infeasible_in_design_mode():
     case = load_case(CASES / "lever_centrifuge.toml").with_values(outer_diameter_max=0.15)
     solution = solve_case(case, "design", "mass")
-    assert solution.status == "not_found"
-    assert "outer_diameter" in solution.diagnosis
-    assert "torque" in solution.diagnosis or "lining_pressure" in solution.diagnosis
+    assert solution.status == "infeasible"  # proven: no lever geometry fits a 150 mm housing, whatever the torque
+    assert "outer_diameter" in solution.diagnosis and "toggle_span" in solution.diagnosis
 
 
 def test_one_built_problem_serves_many_cases():

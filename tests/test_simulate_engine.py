@@ -162,9 +162,9 @@ def test_an_infeasible_solution_is_not_started():
 
     case = load_case(CASES / "wedge_paper.toml").with_values(outer_diameter_max=0.05)
     solution = solve_case(case, "geometry")
-    assert solution.status == "not_found"
+    assert solution.status == "infeasible"
     assert verify(case, solution) == {"verified": False,
-                                      "reason": "the solution's status is not_found, there is no design to start"}
+                                      "reason": "the solution's status is infeasible, there is no design to start"}
     assert report_figure(case, solution)[0] is None
 
 

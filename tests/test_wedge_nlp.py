@@ -83,8 +83,8 @@ def test_impossible_pressure_is_diagnosed_not_optimised():
 def test_too_small_housing_is_diagnosed_in_geometry_mode():
     case = load_case(CASES / "wedge_fan.toml").with_values(outer_diameter_max=0.16)
     solution = solve_case(case, "geometry", "mass")
-    assert solution.status == "not_found"
-    assert "outer_diameter" in solution.diagnosis or "torque" in solution.diagnosis
+    assert solution.status == "infeasible"  # proven: no geometry fits a 160 mm housing, whatever the torque
+    assert "outer_diameter" in solution.diagnosis and "sectors_fit" in solution.diagnosis
 
 
 def test_one_built_problem_serves_many_cases():
