@@ -123,7 +123,15 @@ class Posed:
                                                 [ca.vertcat(*self.start_up.outputs().values()), *paths])
             self.internal_scale = ca.Function("internal_scale", [self.p_case], [ca.vertcat(*self.start_up.scales)])
         self._built: dict[str, dict] = {"solver": {"ipopt": ca.nlpsol(f"{f.coupling}_{f.mode}_{objective}", "ipopt",
-                                                                      self.nlp, self.solver_options.ipopt())}}
+                                                                      self.nlp, self._ipopt_options("ipopt"))}}
+
+    def _ipopt_options(self, method: str) -> dict:
+        """IPOPT's options for ``ipopt`` (cold) or ``warm``: a start-up's collocation has its own first barrier
+        parameter (:meth:`SolverOptions.ipopt_start_up`)."""
+        chosen, start_up = self.solver_options, self.start_up is not None
+        if method == "warm":
+            return chosen.ipopt_warm_start_up() if start_up else chosen.ipopt_warm()
+        return chosen.ipopt_start_up() if start_up else chosen.ipopt()
 
     def built(self, kind: str, key, build: Callable[[int], object]):
         """The object of ``kind`` (a solver, a CasADi function) for ``key``, built once: ``build(number)``, with
@@ -139,7 +147,7 @@ class Posed:
         def build(_):
             f = self.formulation
             chosen = self.solver_options
-            plugin, options = {"warm": ("ipopt", chosen.ipopt_warm()), "sqp": ("sqpmethod", chosen.sqp()),
+            plugin, options = {"warm": ("ipopt", self._ipopt_options("warm")), "sqp": ("sqpmethod", chosen.sqp()),
                                "sqp_chain": ("sqpmethod", chosen.sqp_chain()),
                                "sqp_search": ("sqpmethod", chosen.sqp_search())}[method]
             name = f"{f.coupling}_{f.mode}_{self.objective.name}_{method}"

@@ -26,6 +26,18 @@ class SolverOptions:
             "bound_push", "bound_frac", "mult_bound_push", "slack_bound_push", "slack_bound_frac")}
         return {**self.ipopt(), "ipopt.warm_start_init_point": "yes", "ipopt.mu_init": 1e-6, **push}
 
+    def ipopt_start_up(self) -> dict:
+        """IPOPT on a start-up's collocation from a cold start: its states start on a simulated start (or a previous
+        solve's), its design at the papers' sizing, so the barrier starts at 1e-4, not IPOPT's 0.1 (docs/start_up.md,
+        "IPOPT on the collocation": the four motor_start cases 11-150 iterations instead of 18-169, same optima)."""
+        return {**self.ipopt(), "ipopt.mu_init": START_UP_MU_INIT}
+
+    def ipopt_warm_start_up(self) -> dict:
+        """Warm IPOPT on a start-up's collocation: a re-solve from the optimum of the same structure (the accuracy
+        loop's previous solve, a sweep's point before) starts the barrier at 1e-9 (six iterations to the wedge's
+        tolerance from 1e-6, four or five from 1e-9)."""
+        return {**self.ipopt_warm(), "ipopt.mu_init": START_UP_WARM_MU_INIT}
+
     def sqp(self) -> dict:
         """CasADi's SQP method with its dense active-set QP solver (qrqp), for re-solves beside a known optimum:
         no barrier to drive down, so a small problem's re-solve costs a few QP solves."""
@@ -57,6 +69,10 @@ class SolverOptions:
             "ipopt.sb": "yes",
             "print_time": False,
         }
+
+
+START_UP_MU_INIT = 1e-4  # IPOPT's first barrier parameter on a start-up's collocation, cold (IPOPT's default: 0.1)
+START_UP_WARM_MU_INIT = 1e-9  # and warm (a static problem's warm IPOPT: 1e-6)
 
 
 @dataclass
