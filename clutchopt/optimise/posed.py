@@ -123,9 +123,9 @@ class Posed:
                                                 [ca.vertcat(*self.start_up.outputs().values()), *paths])
             self.internal_scale = ca.Function("internal_scale", [self.p_case], [ca.vertcat(*self.start_up.scales)])
         self._built: dict[str, dict] = {"solver": {"ipopt": ca.nlpsol(f"{f.coupling}_{f.mode}_{objective}", "ipopt",
-                                                                      self.nlp, self._ipopt_options("ipopt"))}}
+                                                                      self.nlp, self.ipopt_options("ipopt"))}}
 
-    def _ipopt_options(self, method: str) -> dict:
+    def ipopt_options(self, method: str) -> dict:
         """IPOPT's options for ``ipopt`` (cold) or ``warm``: a start-up's collocation has its own first barrier
         parameter (:meth:`SolverOptions.ipopt_start_up`)."""
         chosen, start_up = self.solver_options, self.start_up is not None
@@ -147,7 +147,7 @@ class Posed:
         def build(_):
             f = self.formulation
             chosen = self.solver_options
-            plugin, options = {"warm": ("ipopt", self._ipopt_options("warm")), "sqp": ("sqpmethod", chosen.sqp()),
+            plugin, options = {"warm": ("ipopt", self.ipopt_options("warm")), "sqp": ("sqpmethod", chosen.sqp()),
                                "sqp_chain": ("sqpmethod", chosen.sqp_chain()),
                                "sqp_search": ("sqpmethod", chosen.sqp_search())}[method]
             name = f"{f.coupling}_{f.mode}_{self.objective.name}_{method}"
