@@ -33,9 +33,9 @@ class SolverOptions:
         return {**self.ipopt(), "ipopt.mu_init": START_UP_MU_INIT}
 
     def ipopt_warm_start_up(self) -> dict:
-        """Warm IPOPT on a start-up's collocation: a re-solve from the optimum of the same structure (the accuracy
-        loop's previous solve, a sweep's point before) starts the barrier at 1e-9 (six iterations to the wedge's
-        tolerance from 1e-6, four or five from 1e-9)."""
+        """Warm IPOPT on a start-up's collocation re-solved on the mesh of the optimum it starts from (a limit
+        correction, a sweep's next point): the barrier starts at 1e-9 (the wedge's sweep points: six iterations from
+        1e-6, four or five from 1e-9)."""
         return {**self.ipopt_warm(), "ipopt.mu_init": START_UP_WARM_MU_INIT}
 
     def sqp(self) -> dict:
@@ -72,7 +72,7 @@ class SolverOptions:
 
 
 START_UP_MU_INIT = 1e-4  # IPOPT's first barrier parameter on a start-up's collocation, cold (IPOPT's default: 0.1)
-START_UP_WARM_MU_INIT = 1e-9  # and warm (a static problem's warm IPOPT: 1e-6)
+START_UP_WARM_MU_INIT = 1e-9  # and warm on the same mesh (any other warm IPOPT: 1e-6)
 
 
 @dataclass
