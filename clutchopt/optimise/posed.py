@@ -151,7 +151,8 @@ class Posed:
             f = self.formulation
             chosen = self.solver_options
             plugin, options = {"warm": ("ipopt", self.ipopt_options("warm")),
-                               "warm_near": ("ipopt", self.ipopt_options("warm_near")), "sqp": ("sqpmethod", chosen.sqp()),
+                               "warm_near": ("ipopt", self.ipopt_options("warm_near")),
+                               "sqp": ("sqpmethod", chosen.sqp()),
                                "sqp_chain": ("sqpmethod", chosen.sqp_chain()),
                                "sqp_search": ("sqpmethod", chosen.sqp_search())}[method]
             name = f"{f.coupling}_{f.mode}_{self.objective.name}_{method}"
