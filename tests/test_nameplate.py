@@ -39,7 +39,10 @@ def test_a_nameplate_motor_solves_as_the_same_motor_written_out():
     written = _case({"synchronous_speed": "1000 rpm", "breakdown_torque": f"{plate.values['breakdown_torque']!r} N*m",
                      "breakdown_slip": plate.values["breakdown_slip"], "inertia": "0.012 kg*m^2"})
     a, b = (case_problem(c).solve(c) for c in (plate, written))
-    assert a.status == b.status == "optimal" and a.objective == pytest.approx(b.objective, rel=1e-12)
+    # the two cases' values differ in the last bits (the synchronous speed from poles and frequency, or written):
+    # IPOPT's tolerance 1e-10 on the start-up's NLP bounds how far two such optima may end apart (measured 1.7e-10
+    # with the collocation's barrier from 1e-3, docs/start_up.md "IPOPT on the collocation"; 1e-15 from 0.1)
+    assert a.status == b.status == "optimal" and a.objective == pytest.approx(b.objective, rel=1e-9)
     assert a.start_up["motor"].startswith("motor from its nameplate") and not b.start_up["motor"]
 
 

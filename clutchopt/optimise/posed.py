@@ -123,7 +123,18 @@ class Posed:
                                                 [ca.vertcat(*self.start_up.outputs().values()), *paths])
             self.internal_scale = ca.Function("internal_scale", [self.p_case], [ca.vertcat(*self.start_up.scales)])
         self._built: dict[str, dict] = {"solver": {"ipopt": ca.nlpsol(f"{f.coupling}_{f.mode}_{objective}", "ipopt",
-                                                                      self.nlp, self.solver_options.ipopt())}}
+                                                                      self.nlp, self.ipopt_options("ipopt"))}}
+
+    def ipopt_options(self, method: str) -> dict:
+        """IPOPT's options for ``ipopt`` (cold), ``warm`` or ``warm_near`` (warm from a start-up's optimum on the same
+        mesh): a start-up's collocation has its own first barrier parameters (:meth:`SolverOptions.ipopt_start_up`,
+        :meth:`SolverOptions.ipopt_warm_start_up`)."""
+        chosen = self.solver_options
+        if method == "warm_near":
+            return chosen.ipopt_warm_start_up()
+        if method == "warm":
+            return chosen.ipopt_warm()
+        return chosen.ipopt_start_up() if self.start_up is not None else chosen.ipopt()
 
     def built(self, kind: str, key, build: Callable[[int], object]):
         """The object of ``kind`` (a solver, a CasADi function) for ``key``, built once: ``build(number)``, with
@@ -134,12 +145,14 @@ class Posed:
         return store[key]
 
     def solver(self, method: str):
-        """The solver of a method (``ipopt`` built with the problem; ``warm``, ``sqp``, ``sqp_chain``, ``sqp_search``
-        on first use)."""
+        """The solver of a method (``ipopt`` built with the problem; ``warm``, ``warm_near``, ``sqp``, ``sqp_chain``,
+        ``sqp_search`` on first use)."""
         def build(_):
             f = self.formulation
             chosen = self.solver_options
-            plugin, options = {"warm": ("ipopt", chosen.ipopt_warm()), "sqp": ("sqpmethod", chosen.sqp()),
+            plugin, options = {"warm": ("ipopt", self.ipopt_options("warm")),
+                               "warm_near": ("ipopt", self.ipopt_options("warm_near")),
+                               "sqp": ("sqpmethod", chosen.sqp()),
                                "sqp_chain": ("sqpmethod", chosen.sqp_chain()),
                                "sqp_search": ("sqpmethod", chosen.sqp_search())}[method]
             name = f"{f.coupling}_{f.mode}_{self.objective.name}_{method}"
