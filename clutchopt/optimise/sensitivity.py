@@ -31,7 +31,7 @@ def _case_gradient(posed: Posed, batched: bool) -> ca.Function:
 
 def _window_gradient(posed: Posed) -> Callable:
     """The case gradient of a window's points, columns in and out: compiled (:func:`_case_gradient`), else replayed
-    by NumPy over all the columns at once (``clutchopt.optimise.sx_columns``: the wedge's 1000 points in 0.3 ms
+    by NumPy over all the columns at once (``clutchopt.optimise.sx_columns``: the wedge's 1000 points in 0.2 ms
     against 0.65-1.0 on CasADi's virtual machine, the run store's largest cost in a stored sweep), else mapped on the
     virtual machine (columns padded to a power of two)."""
     def build(_):

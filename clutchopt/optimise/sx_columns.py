@@ -3,7 +3,7 @@
 CasADi's virtual machine runs an SX function's instructions point by point, a few ns an instruction and point (the
 wedge's case gradient, 244 instructions: 0.65-1.0 ms for 1024 points). Replaying its algorithm instruction by
 instruction with NumPy ufuncs over rows of a work array (a row per work slot, a column per point) does the same
-operations in the same order on whole rows: 0.3 ms for the wedge's 1000 points. Addition, subtraction,
+operations in the same order on whole rows: 0.2-0.3 ms for the wedge's 1000 points. Addition, subtraction,
 multiplication, division, negation, squares, square roots and reciprocals are IEEE's correctly rounded operations in
 both, so those give the same numbers bit for bit; the transcendental functions (sin, cos, tan, atan, exp, log, pow)
 are NumPy's, which on some processors (SIMD code for AVX-512) may round the last bit otherwise than the C library
@@ -47,28 +47,34 @@ class SXColumns:
             raise ValueError(f"{function.name()} cannot be replayed by NumPy")
         self.name, self.slots = function.name(), function.sz_w()
         self.outputs = [function.nnz_out(i) for i in range(function.n_out())]
-        self.program = []  # (operation, output slot or (output, row), input slots or (input, row), constant)
+        self.program = []  # (ufunc or a move, its operands: work slots, or an input's or output's (index, row))
         for k in range(function.n_instructions()):
-            op = function.instruction_id(k)
-            self.program.append((op, tuple(function.instruction_output(k)), tuple(function.instruction_input(k)),
-                                 function.instruction_constant(k) if op == ca.OP_CONST else None))
+            op, out, given = function.instruction_id(k), function.instruction_output(k), function.instruction_input(k)
+            if op in UFUNCS:
+                self.program.append((UFUNCS[op], (*given, out[0])))  # the ufunc's inputs, then its out
+            elif op == TWICE:
+                self.program.append((np.add, (given[0], given[0], out[0])))
+            elif op == ca.OP_CONST:
+                self.program.append((ca.OP_CONST, (out[0], function.instruction_constant(k))))
+            else:  # OP_INPUT: (input, row) -> slot; OP_OUTPUT: slot -> (output, row); OP_ASSIGN: slot -> slot
+                self.program.append((op, (*given, *out)))
 
     def __call__(self, *args) -> tuple[np.ndarray, ...]:
         count = np.shape(args[0])[1]
         rows = list(np.empty((self.slots, count)))  # a view of each work slot
         outputs = [np.empty((size, count)) for size in self.outputs]
         with np.errstate(all="ignore"):  # NaN and infinities as CasADi gives them, without NumPy's warnings
-            for op, out, given, constant in self.program:
-                if op in UFUNCS:
-                    UFUNCS[op](*(rows[slot] for slot in given), out=rows[out[0]])
-                elif op == TWICE:
-                    np.add(rows[given[0]], rows[given[0]], out=rows[out[0]])
+            for op, operands in self.program:
+                if len(operands) == 3 and callable(op):  # a binary ufunc: in, in, out
+                    op(rows[operands[0]], rows[operands[1]], rows[operands[2]])
+                elif callable(op):  # a unary one: in, out
+                    op(rows[operands[0]], rows[operands[1]])
                 elif op == ca.OP_INPUT:
-                    rows[out[0]][:] = args[given[0]][given[1]]
+                    rows[operands[2]][:] = args[operands[0]][operands[1]]
                 elif op == ca.OP_OUTPUT:
-                    outputs[out[0]][out[1]] = rows[given[0]]
+                    outputs[operands[1]][operands[2]] = rows[operands[0]]
                 elif op == ca.OP_CONST:
-                    rows[out[0]].fill(constant)
+                    rows[operands[0]].fill(operands[1])
                 else:  # OP_ASSIGN
-                    rows[out[0]][:] = rows[given[0]]
+                    rows[operands[1]][:] = rows[operands[0]]
         return tuple(outputs)
