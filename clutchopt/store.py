@@ -51,7 +51,6 @@ from clutchopt.errors import InputError
 from clutchopt.files import status
 from clutchopt.records import (NOMINAL, STATUSES, TEMPLATE, check_solution, design_inputs, expand, is_compact,
                                method_of)
-from clutchopt.store_behind import Behind
 from clutchopt.store_checkpoint import manual, note_written
 from clutchopt.store_kept import keep, take_kept
 from clutchopt.window_records import WindowRecords, pack, unpack
@@ -292,7 +291,6 @@ class RunStore:
         self.failure: str | None = None  # why recording stopped; runs after it were not recorded
         self.unrecorded = 0
         self._templates: dict[str, dict | None] = {}  # read so far, by key (None: missing or not JSON)
-        self._behind = Behind()  # a window's transaction under way in the writer thread
         self._warn = warn or (lambda text: warnings.warn(text, RuntimeWarning, stacklevel=3))
         size = self._check_file()
         self._db, unchanged = take_kept(self.path) if writable and check else (None, False)
@@ -446,13 +444,7 @@ class RunStore:
 
     def close(self) -> None:
         """Close the store; a writable one's connection is kept for the next store of the file in this process (see
-        :func:`clutchopt.store_kept.close_kept`), once the points handed to the writer thread are recorded."""
-        try:
-            self.settle()
-        finally:
-            self._release()
-
-    def _release(self) -> None:
+        :func:`clutchopt.store_kept.close_kept`)."""
         if self.writable and self.checked and self.failure is None and not self._db.in_transaction:
             keep(self.path, self._db)
         else:
@@ -495,17 +487,14 @@ class RunStore:
         return self._write(RECORD, self._row(kind, inputs, outputs, _now(), **where))
 
     def record_points(self, inputs: dict, where: dict, index: np.ndarray, varied: dict[str, np.ndarray],
-                      alone: dict[int, dict], windows: list[tuple[np.ndarray, WindowRecords]],
-                      behind: bool = False) -> int | None:
+                      alone: dict[int, dict], windows: list[tuple[np.ndarray, WindowRecords]]) -> int:
         """Record sweep points in one transaction (a window of them: all land or none). ``index``: their point
         numbers, ``varied``: their values (SI) by name, ``inputs``: what they share (the case's values, free
         variables, bounds), ``where``: the fields of :meth:`record` they share (sweep_id among them). A point solved
         alone (``alone``: its record by position) is a row; the batched points of a window (``windows``: their
         records as arrays, by position) a row for each run of consecutive point numbers, their numbers as arrays
         (``clutchopt.window_records``) beside their template (once per store). A point already stored (another
-        process resuming the same sweep solved it too) is kept as it is. Returns how many were recorded; ``behind``:
-        the rows are built here, the transaction left to the store's writer thread (``clutchopt.store_behind``;
-        :meth:`settle` waits for it, and returns that count), and None returned."""
+        process resuming the same sweep solved it too) is kept as it is. Returns how many were recorded."""
         created, pieces, templates = _now(), [], {}  # one transaction: one moment
         for position, record in alone.items():
             values = {**inputs["values"], **{name: float(column[position]) for name, column in varied.items()}}
@@ -521,29 +510,17 @@ class RunStore:
                 pieces.append((first, len(columns), partial(self._window_row, window, columns, positions[columns],
                                                             varied, inputs, created, first, where)))
         pieces.sort(key=lambda piece: piece[0])
-        bodies = [(key, _to_json(body)) for key, body in templates.items()]
-        rows = {(first, first + count): build(first, first + count) for first, count, build in pieces}  # built
-        # before the transaction (its lock held for SQLite's work only); a piece another process has stored part of
-        # is built again for the points still free
 
         def execute(db: sqlite3.Connection) -> int:
             db.execute("BEGIN IMMEDIATE")  # what is stored is read and written in one transaction
-            db.executemany("INSERT OR IGNORE INTO templates (key, body) VALUES (?, ?)", bodies)
+            db.executemany("INSERT OR IGNORE INTO templates (key, body) VALUES (?, ?)",
+                           [(key, _to_json(body)) for key, body in templates.items()])
             free = [(build, start, stop) for first, count, build in pieces
                     for start, stop in _unstored(db, where["sweep_id"], first, first + count)]
-            db.executemany(RECORD, [rows.get((start, stop)) or build(start, stop) for build, start, stop in free])
+            db.executemany(RECORD, [build(start, stop) for build, start, stop in free])
             return sum(stop - start for _, start, stop in free)
 
-        if behind:
-            self._behind.submit(partial(self._transaction, execute, len(index)))
-            return None
-        self.settle()
         return self._transaction(execute, len(index)) or 0
-
-    def settle(self) -> int:
-        """Wait for the points handed to the writer thread (:meth:`record_points` ``behind``): how many of them were
-        recorded (0 if none were handed over)."""
-        return self._behind.settle() or 0
 
     def _window_row(self, window: WindowRecords, columns: np.ndarray, positions: np.ndarray,
                     varied: dict[str, np.ndarray], inputs: dict, created: str, first: int, where: dict, start: int,

@@ -391,26 +391,21 @@ class Sweep:
         bar = tqdm(total=len(self.grid), initial=len(stored), unit="point", desc="sweep", disable=not progress,
                    mininterval=0.5)
         started = time.perf_counter()
-        try:
-            with bar, interrupt_between_points() as check:
-                for results in (runner or local_runner(jobs))(task, pending, size):
-                    if store is not None and sweep_id is not None:  # the results in hand in one transaction, in
-                        store.record_points(self._inputs(), self._where(sweep_id), results.points.index,  # the
-                                            results.points.columns, *results.stored(), behind=True)  # writer thread
-                    elif store is not None:  # the sweep itself could not be recorded
-                        store.unrecorded += len(results)
-                    parts.append(results)
-                    bar.update(len(results))
-                    check()
-            elapsed = time.perf_counter() - started
-            order = np.argsort(np.concatenate([part.points.index for part in parts]), kind="stable")  # pool: any order
-            parts = [part for part in parts if len(part)]
-            frame = self.frame(joined_tables([part.table() for part in parts]), order)
-            records = SweepRecords(parts, order)
-            self._aspect_columns(frame, records)
-        finally:  # the last window's transaction ran while the table was built
-            if store is not None:
-                store.settle()
+        with bar, interrupt_between_points() as check:
+            for results in (runner or local_runner(jobs))(task, pending, size):
+                if store is not None and sweep_id is not None:  # the results in hand in one transaction
+                    store.record_points(self._inputs(), self._where(sweep_id), results.points.index,
+                                        results.points.columns, *results.stored())
+                elif store is not None:  # the sweep itself could not be recorded
+                    store.unrecorded += len(results)
+                parts.append(results)
+                bar.update(len(results))
+                check()
+        elapsed = time.perf_counter() - started
+        order = np.argsort(np.concatenate([part.points.index for part in parts]), kind="stable")  # pool: any order
+        parts = [part for part in parts if len(part)]
+        frame, records = self.frame(joined_tables([part.table() for part in parts]), order), SweepRecords(parts, order)
+        self._aspect_columns(frame, records)
         return SweepResult(sweep_id, frame, len(pending), len(stored), elapsed, records, total_spent(parts))
 
     def _aspect_columns(self, frame: pd.DataFrame, records: "SweepRecords") -> None:
