@@ -20,6 +20,7 @@ from __future__ import annotations
 import os
 import sqlite3
 import threading
+from pathlib import Path
 
 CHECKPOINT_BYTES = 4 << 20  # a log this large is folded in (about 13 windows of 1000 wedge points; 12 ms)
 _running: dict[str, threading.Thread] = {}  # the checkpoint under way (or ended last), by the store's absolute path
@@ -75,7 +76,8 @@ def _checkpoint(path: str, key: str) -> None:
     """A PASSIVE checkpoint on a connection of its own; a store that cannot be checkpointed now (another process's
     checkpoint, a lock, a failing disk) is left for the next one, and for the close of the last connection."""
     try:
-        connection = sqlite3.connect(path, timeout=0)
+        connection = sqlite3.connect(f"{Path(path).resolve().as_uri()}?mode=rw", uri=True, timeout=0)  # a store
+        # removed meanwhile is not created again
         try:
             connection.execute("PRAGMA wal_checkpoint(PASSIVE)").fetchall()
         finally:
