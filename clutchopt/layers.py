@@ -29,7 +29,7 @@ LAYERS: tuple[tuple[str, str, tuple[str, ...]], ...] = (  # (layer, what it hold
                          "the checks across fields read",
      ("cases", "fields_read", "materials", "scatter", "template")),
     ("presentation", "tables, text, HTML and JSON of results, read by their fields; the run store",
-     ("output", "store", "store_kept")),
+     ("output", "store", "store_kept", "store_checkpoint")),
     ("optimise", "posed problem, solve strategies, float64 verdict, start-up check, sweeps, Pareto, robust, "
                  "comparisons, choices", ("optimise",)),
     ("scenes", "start-up scene files (a scene may solve its coupling's case for a design)", ("simulate.scene",)),

@@ -51,6 +51,7 @@ from clutchopt.errors import InputError
 from clutchopt.files import status
 from clutchopt.records import (NOMINAL, STATUSES, TEMPLATE, check_solution, design_inputs, expand, is_compact,
                                method_of)
+from clutchopt.store_checkpoint import manual, note_written
 from clutchopt.store_kept import keep, take_kept
 from clutchopt.window_records import WindowRecords, pack, unpack
 
@@ -387,6 +388,7 @@ class RunStore:
                 self._db.execute(f"PRAGMA page_size={PAGE_BYTES}")
             self._db.execute("PRAGMA journal_mode=WAL")
             self._db.execute("PRAGMA synchronous=NORMAL")
+            manual(self._db)  # its log folded into the file by a thread of its own (clutchopt.store_checkpoint)
             if found.missing:
                 self._complete(found)
         except sqlite3.DatabaseError as exc:
@@ -461,7 +463,9 @@ class RunStore:
         if self.failure is None:
             try:
                 with self._db:
-                    return execute(self._db)
+                    done = execute(self._db)
+                note_written(self.path)  # a log grown large folded into the file while the next points solve
+                return done
             except sqlite3.Error as exc:
                 self.failure = str(self._damaged(exc)).removeprefix("--store: ")
                 self._warn(f"not recorded: {self.failure}")

@@ -7,7 +7,8 @@ notebook, the benchmark) keeps the connection of the store it closed last instea
 takes it up without opening or checking the file again where no one has changed it since (its size and times, its
 log's, and SQLite's count of other connections' changes). The kept connection is closed when another is kept, and
 when the process ends: SQLite then folds the log into the file. Until then the log beside the file holds the latest
-runs (any reader sees them; a copy of the file alone would not).
+runs (any reader sees them; a copy of the file alone would not). A checkpoint of this process's own
+(``clutchopt.store_checkpoint``) changes the file's size and time, not its log: that alone leaves the store unchanged.
 """
 
 from __future__ import annotations
@@ -18,16 +19,20 @@ import sqlite3
 import threading
 from dataclasses import dataclass
 
+from clutchopt.store_checkpoint import ended, wait
+
 
 @dataclass(frozen=True)
 class _Kept:
-    """A closed store's connection, kept open: the store's file as it left it (``_stamp``), and SQLite's count of
-    changes by other connections then (``PRAGMA data_version``)."""
+    """A closed store's connection, kept open: the store's file as it left it (``_stamp``), SQLite's count of
+    changes by other connections then (``PRAGMA data_version``), and the checkpoints of this process's that had
+    ended then (``clutchopt.store_checkpoint.ended``)."""
 
     path: str
     connection: sqlite3.Connection
     stamp: tuple
     version: int
+    checkpoints: int
 
 
 _kept: list[_Kept] = []  # at most one: the connection of the writable store closed last in this process
@@ -42,6 +47,7 @@ def close_kept() -> None:
         closing = _kept[:]
         _kept.clear()
     for kept in closing:
+        wait(kept.path)  # then this connection is the store's last: closing it folds the log into the file
         kept.connection.close()
 
 
@@ -60,8 +66,9 @@ def _stamp(path: str) -> tuple:
 def keep(path: str, connection: sqlite3.Connection) -> None:
     """Keep a closed store's connection (the one kept before is closed)."""
     try:
+        checkpoints, _ = ended(path)
         kept = _Kept(os.path.abspath(path), connection, _stamp(path),
-                     connection.execute("PRAGMA data_version").fetchone()[0])
+                     connection.execute("PRAGMA data_version").fetchone()[0], checkpoints)
     except sqlite3.Error:
         connection.close()
         return
@@ -86,7 +93,16 @@ def take_kept(path: str) -> tuple[sqlite3.Connection | None, bool]:
     except sqlite3.Error:
         kept.connection.close()
         return None, False
-    return kept.connection, stamp == kept.stamp and version == kept.version
+    return kept.connection, version == kept.version and (stamp == kept.stamp or _checkpointed(kept, stamp))
+
+
+def _checkpointed(kept: _Kept, stamp: tuple) -> bool:
+    """Whether only a checkpoint of this process's has changed the store since it was kept: one under way then or
+    since, the same log as then, the store's file the same but for its size and time (a checkpoint writes the log's
+    pages into the file; the log it leaves as it is)."""
+    checkpoints, running = ended(kept.path)
+    return (running or checkpoints != kept.checkpoints) and stamp[1] == kept.stamp[1] \
+        and stamp[0][:2] == kept.stamp[0][:2]
 
 
 def _forked() -> None:

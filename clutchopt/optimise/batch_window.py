@@ -185,7 +185,7 @@ class Checked:
         }
         sensitivity_names, sensitivity, sensitive = sensitivity_table(
             posed, *(a[key] for key in ("x", "p", "lam_x", "lam_g", "lbx", "ubx")),
-            np.where(feasible, objective, np.nan))
+            np.where(feasible, objective, np.nan), window=True)
         found = sorted(set(self.searches) & set(index.tolist())) if self.searches else []  # points that ran one
         searches = dict(zip(np.searchsorted(index, found).astype(str).tolist(), map(self.searches.get, found)))
         arrays = {"status": np.where(feasible, STATUSES.index("optimal"), STATUSES.index("unverified")),
