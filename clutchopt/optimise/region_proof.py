@@ -170,7 +170,6 @@ class Regions:
             runs = halves
         self._length = min(2 * longest, LONGEST_RUN)
 
-
     def _edge(self, k: int, end: int) -> int:
         """The end of the run from point k to ``end`` whose search met a design at one end: ``end``, or the first
         point before it found with a design by one solve (as ``Problem.solve`` starts cold), located where the run's
