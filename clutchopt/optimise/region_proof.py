@@ -164,7 +164,8 @@ class Regions:
                     # the edge the probes find is searched again, else only its first half, the points of the other
                     # solved as usual)
                     edge = self._edge(a, b) if outcome.reached else b
-                    kept = ((a, edge),) if edge < b else ((a, middle),) if outcome.reached else ((a, middle), (middle, b))
+                    kept = (((a, edge),) if edge < b else ((a, middle),) if outcome.reached
+                            else ((a, middle), (middle, b)))
                     halves += [run for run in kept if run[1] - run[0] > 1]  # a single point: solved as usual (a
                     # design found by a solve, else its own verdict with its own search)
             runs = halves

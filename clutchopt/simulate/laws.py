@@ -151,7 +151,9 @@ class Load:
         if not self.over:
             return self.torque
         x = t if self.over == "time" else driven_speed
-        return np.interp(x, self.points, self.values) if isinstance(x, np.ndarray) else table_segment(x, self.points, self.values)[0]
+        if isinstance(x, np.ndarray):
+            return np.interp(x, self.points, self.values)  # (held at both ends, as table_segment)
+        return table_segment(x, self.points, self.values)[0]
 
     def slope(self, t: float, driven_speed: float) -> float:
         """d(load)/d(driven speed), for the simulator's Jacobian (a load over time does not depend on the speed)."""
