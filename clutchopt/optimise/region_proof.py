@@ -117,13 +117,21 @@ class Regions:
         seconds = time.perf_counter() - began
         if own is None or not own.proven:
             keep_search(self.posed, problem, own)
-            return None
+            return self._carried(first)
         last_boxes(self.posed, own.boxes)
         solution = _covered(self.problem, case, first, "proven infeasible: " + emptied(own), seconds,
                             first.solver.solves)
-        if solution is not None:
-            self.after(k, solution)
+        if solution is None:
+            return self._carried(first)
+        self.after(k, solution)
         return solution
+
+    def _carried(self, first: Solution) -> None:
+        """None (point k's full verdict follows), the calls and seconds of its quick solve (and the probes charged to
+        it) carried to that verdict: the sweep's count of solver calls is the sum over its points."""
+        calls, seconds = self._probed
+        self._probed = (calls + first.solver.solves, seconds + first.solver.time_s)
+        return None
 
     def after(self, k: int, solution: Solution) -> None:
         """Point k's solution: one proven infeasible starts (or goes on with) the regions searched after it (after
