@@ -98,11 +98,10 @@ def take_kept(path: str) -> tuple[sqlite3.Connection | None, bool]:
 
 def _checkpointed(kept: _Kept, stamp: tuple) -> bool:
     """Whether only a checkpoint of this process's has changed the store since it was kept: one under way then or
-    since, the same log as then, the store's file the same but for its size and time (a checkpoint writes the log's
-    pages into the file; the log it leaves as it is)."""
+    since, the same log as then (the store's file the same file: :func:`take_kept` has seen to it; a checkpoint
+    writes the log's pages into the file, changing its size and time, and leaves the log as it is)."""
     checkpoints, running = ended(kept.path)
-    return (running or checkpoints != kept.checkpoints) and stamp[1] == kept.stamp[1] \
-        and stamp[0][:2] == kept.stamp[0][:2]
+    return (running or checkpoints != kept.checkpoints) and stamp[1] == kept.stamp[1]
 
 
 def _forked() -> None:
