@@ -106,7 +106,7 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
     p_hi = np.stack([problem[3] if len(problem) > 3 else problem[0] for problem in problems], axis=1)
     lo = np.stack([problem[1] for problem in problems], axis=1)
     hi = np.stack([problem[2] for problem in problems], axis=1)
-    ranged = np.any((p_lo != p_hi) & ~(np.isnan(p_lo) & np.isnan(p_hi)), axis=0)  # a parameter interval (a quantity
+    ranged = ~np.all(_same(p_lo, p_hi), axis=0)  # a parameter interval (a quantity
     # the case leaves out reads NaN at both ends): its ends are tried too (_reached)
     width0 = np.where(hi > lo, hi - lo, 1.0)
     p_width0 = np.where(p_hi > p_lo, p_hi - p_lo, 0.0)  # (a NaN: 0, never split)
