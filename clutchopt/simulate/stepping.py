@@ -1,5 +1,6 @@
-"""One phase of a start-up integrated step by step with SciPy's solvers (DOP853, LSODA, Radau), driven here rather
-than through ``solve_ivp`` so that the work is bounded by the input and nothing is kept that is not needed:
+"""One phase of a start-up integrated step by step with SciPy's solvers (DOP853, Radau; LSODA runs in spans of
+``odeint``, :mod:`clutchopt.simulate.spans`), driven here rather than through ``solve_ivp`` so that the work is
+bounded by the input and nothing is kept that is not needed:
 
 - a budget of solver steps shared by the phases of one run (:class:`Budget`): a run that would take more stops
   with a reason instead of running on;
@@ -15,12 +16,12 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import DOP853, LSODA, Radau
+from scipy.integrate import DOP853, Radau
 from scipy.optimize import brentq
 
 EPS = np.finfo(float).eps
-SOLVERS = {"DOP853": DOP853, "LSODA": LSODA, "Radau": Radau}
-IMPLICIT = ("LSODA", "Radau")  # these take the Jacobian
+SOLVERS = {"DOP853": DOP853, "Radau": Radau}
+IMPLICIT = ("Radau",)  # these take the Jacobian
 
 
 @dataclass
@@ -52,8 +53,8 @@ def integrate(fun, jac, t0: float, y0: np.ndarray, bound: float, events: list, m
               atol: np.ndarray, budget: Budget) -> Phase:
     """Integrate y' = fun(t, y) from (t0, y0) towards ``bound`` until a terminal event, the bound, a failure or the
     end of ``budget``. Each event is a function g(t, y) with attributes ``terminal`` and ``direction`` (as
-    ``solve_ivp``'s); a non-terminal one adds a sample where g changes sign strictly. LSODA's warnings (it warns of
-    convergence failures before it fails) are raised as errors: the caller takes another method."""
+    ``solve_ivp``'s); a non-terminal one adds a sample where g changes sign strictly. A solver's warnings are raised
+    as errors."""
     options = {"jac": jac} if method in IMPLICIT else {}
     solver = SOLVERS[method](fun, t0, y0, bound, rtol=rtol, atol=atol, **options)
     with warnings.catch_warnings():  # once per phase, not per step (it cost 5 % of a start-up's simulation)
