@@ -24,11 +24,16 @@ class _Law:
     """Defaults of a law: the net torque on the driven half is friction less load; the torque has no slip scale."""
 
     slip_scale = math.inf
-    own_excess = False  # its excess() is the kinetic torque less the load as written (else its own form)
     engagement_squared = 0.0  # w_e^2 below which the torque is zero (a kink the simulator makes a phase boundary)
 
     def excess(self, driver_speed, slip, load):
         return self.kinetic(driver_speed, slip) - load
+
+    @property
+    def own_excess(self) -> bool:
+        """Whether the law writes excess() in a form of its own (no cancellation), not the kinetic torque less the
+        load."""
+        return type(self).excess is not _Law.excess
 
     def slopes(self, driver_speed, slip) -> tuple[float, float]:
         """(dT/dw_a, dT/dw_r) of the kinetic torque: the simulator's Jacobian."""
@@ -64,7 +69,6 @@ class PaperFriction(_Law):
     k: float
     a: float
     name: str = "paper"
-    own_excess = True
 
     def kinetic(self, driver_speed, slip):
         """k (1 + e^{a w_r}), eq. (6), exponent capped at 300 (1e130 k: the time spent above it is e^-300 of t_c)."""
