@@ -118,7 +118,7 @@ def parse_start_up(table, coupling, duty: dict[str, float], duty_sound: bool = T
     problems.raise_any()
     if duty_sound:
         _check(values, effects, coupling, laws, profile, given)
-    if spec.get("overload") and any(isinstance(law, ElasticLaw) for law in laws):  # asked for, never made
+    if spec.get("overload") and elastic:  # asked for, never made
         raise InputError(f"{SECTION}.overload.check", f"does not apply to the {coupling.name} coupling: an elastic "
                                                       "link does not slip, so it has no overload torque to check")
     return values, StartUpSpec(effects, tuple(name for name in LIMITS if name in values), profile, **spec,
