@@ -28,7 +28,8 @@ import math
 import tomllib
 from dataclasses import dataclass, field
 
-from clutchopt.cases import _EXTRA_SECTIONS, NEUTRAL, Case, _did_you_mean, check_text, parse_case, read_toml
+from clutchopt.cases import (_EXTRA_SECTIONS, NEUTRAL, Case, _did_you_mean, _table, check_text, parse_case,
+                             read_toml)
 from clutchopt.errors import InputError, Problems, shown_value
 from clutchopt.formulations import MODULES, get_coupling
 from clutchopt.formulations.duty import DUTY_QUANTITIES, required_torque
@@ -196,10 +197,6 @@ def _check_shared(data: dict, problems: Problems) -> None:
                 raise InputError(f"library.{key}", f"no coupling has this role{_did_you_mean(key, roles)}; roles are "
                                                    f"{', '.join(sorted(roles))}")
             lookup(roles[key], entry, f"library.{key}")
-
-
-def _table(value) -> dict:
-    return value if isinstance(value, dict) else {}
 
 
 def posed_case(name: str, duty: dict[str, float], raw_duty: dict, data: dict, path: str) -> Candidate:

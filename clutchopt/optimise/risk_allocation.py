@@ -29,14 +29,15 @@ import numpy as np
 
 from clutchopt.backend import exp, is_symbolic
 from clutchopt.model import Formulation, Quantity, Variable, at_most
-from clutchopt.optimise.reliability import REACH, generalised_beta, ndtr
+from clutchopt.optimise.reliability import REACH, generalised_beta, ndtr, ndtri
 from clutchopt.optimise.robust_models import at_point, corner_name
 from clutchopt.scatter import correlated
 
 RISK = "system_risk"  # the constraint sum_i Phi(-(beta_i + s_i)) <= B
 BUDGET = "risk_budget"  # B, the case quantity of its limit
 SYSTEM_TOL = 0.01  # of ln((1 - P) / P(system fails)): the system meets its target to 1 %
-AIM_BELOW = 0.005  # relative: a new budget aims this far below 1 - P, so that the estimate ends at or below it
+AIM_BELOW = 0.005  # relative: a new budget (and robust's root find) aims this far below 1 - P, so that the estimate
+# ends at or below it
 SYSTEM_SAMPLES = 400_000  # importance samples of the allocation's estimates: the system's mixture spends a share on
 #   the origin (defensive), so 50,000 give it +-4 % at 1e-3 on the centrifuge; 400,000 +-1.4 %, 0.2 s of CPU
 LOOSE = 0.02  # relative: a budget further than this from 1 - P says the bound is loose (correlated failure modes)
@@ -70,8 +71,6 @@ def phi_inverse(p):
     if is_symbolic(p):
         z = math.sqrt(2.0) * ca.erfinv(2.0 * p - 1.0)
         return z - (phi(z) - p) * math.sqrt(2.0 * math.pi) * exp(0.5 * z * z)
-    from scipy.special import ndtri
-
     return ndtri(p)
 
 

@@ -19,7 +19,7 @@ import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.optimise.reliability import REACH as FORM_REACH
-from clutchopt.optimise.reliability import DesignPoint, Estimate, form, importance_sampling, ndtr
+from clutchopt.optimise.reliability import DesignPoint, Estimate, form, generalised_beta, importance_sampling, ndtr
 from clutchopt.optimise.robust_models import SEED, START_UP
 from clutchopt.optimise.robust_reliability import ConstraintReliability
 from clutchopt.optimise.robust_start_up import StartUpCorners, simulated_start_ups, start_up_bars, start_up_corners
@@ -152,8 +152,6 @@ class StartUpPerformancePoints:
 
     @property
     def beta(self) -> float:
-        from clutchopt.optimise.reliability import generalised_beta
-
         return generalised_beta(1.0 - self.target)
 
     def at(self, design: dict) -> StartUpCorners:
