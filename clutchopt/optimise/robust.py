@@ -51,12 +51,14 @@ from clutchopt.optimise.robust_models import (
     worst_case_formulation,
     worst_corners,
 )
-from clutchopt.optimise.risk_allocation import SYSTEM_SAMPLES, RiskAllocation, allocation_formulation, beta_name
+from clutchopt.optimise.risk_allocation import (AIM_BELOW, SYSTEM_SAMPLES, RiskAllocation, allocation_formulation,
+                                                beta_name)
 from clutchopt.optimise.robust_reliability import (
     Reliability,
     performance_corners,
     performance_points,
     reliability_at,
+    union_bound,
 )
 from clutchopt.optimise.robust_start_up import (
     MAX_START_CORNERS,
@@ -78,7 +80,6 @@ CHANCE = "chance"
 SYSTEM_CHANCE = "system_chance"
 CHANCES = (CHANCE, SYSTEM_CHANCE)
 BETA_STEPS = 12  # corrections of the chance design's betas until importance sampling meets the target
-AIM_BELOW = 0.005  # relative: the root find aims this far below 1 - P, so that the estimate ends at or below it
 ACTIVE = 1e-6  # relative margin at its performance point below which a constraint shapes the design
 VERIFIED_FACTOR = 2.0  # a chance design's failure probability is verified when its interval lies below this x 1 - P
 SETTLED = 1e-7  # relative: a performance point that moves less has settled
@@ -144,10 +145,8 @@ class RobustResult:
         limits = [c.best for name, c in self.reliability.constraints.items() if name in self.start_up_failure]
         if not limits:
             return static
-        return Estimate(static.probability + sum(e.probability for e in limits),
-                        max([static.low, *(e.low for e in limits)]),
-                        static.high + sum(e.high for e in limits),
-                        f"the constraints' {static.estimator} plus each start-up limit's estimate (union bound)")
+        return union_bound([static, *limits],
+                           f"the constraints' {static.estimator} plus each start-up limit's estimate (union bound)")
 
     def as_dict(self) -> dict:
         return {
@@ -215,8 +214,10 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
     params = case.params()
     names = tuple(c.name for c in base.constraints(namespace(nominal.design), params))
     chance = method in CHANCES
-    allowed = _Allowed(1.0 - target, len(names), method == SYSTEM_CHANCE) if chance else None
-    betas = dict.fromkeys(names, allowed.beta) if chance else {}
+    # each constraint's failure probability to start from: 1 - P (chance), or an equal share of it (the system: the
+    # NLP then chooses the split, clutchopt.optimise.risk_allocation)
+    betas = (dict.fromkeys(names, generalised_beta((1.0 - target) / (len(names) if method == SYSTEM_CHANCE else 1)))
+             if chance else {})
     allocation = None
     start_up_points = (StartUpPerformancePoints(case, base.mode, target, case.correlation) if structure and chance
                        else None)  # a start-up's limits at their performance points
@@ -271,7 +272,7 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
         if allocation is not None:
             if not allocation.step(reliability, {c.name: c.margin for c in solution.constraints}, ACTIVE):
                 break
-        elif not _next_betas(betas, history, reliability, solution, allowed):
+        elif not _next_betas(betas, history, reliability, solution, 1.0 - target):
             break
         corners, start_up = corners_at(solution.design)
     kept = {c.name for c in shown.constraints(namespace(nominal.design), params)}
@@ -298,7 +299,6 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
         result.betas = dict(betas)
         result.allocation = allocation
     if start_up_points and solution.status in DESIGN_STATUSES:  # each limit at its performance point
-        start_up_points.at(solution.design)
         fallbacks = sorted(start_up_points.fallbacks)
         quantile_points = _distinct([corners[name] for name in fallbacks])
         result.start_up_points = _distinct(start_up_points.distinct_points() + quantile_points)
@@ -340,27 +340,9 @@ def _same(moved: dict, corners: dict) -> bool:
                                                      for q, v in moved[c].items()) for c in moved)
 
 
-@dataclass
-class _Allowed:
-    """The failure probability each constraint may have: 1 - P (chance), or for the system, where it starts, an
-    equal share of 1 - P (the NLP then chooses the split: ``clutchopt.optimise.risk_allocation``)."""
-
-    system_allowed: float
-    count: int
-    system: bool
-
-    @property
-    def each(self) -> float:
-        return self.system_allowed / (self.count if self.system else 1)
-
-    @property
-    def beta(self) -> float:
-        return generalised_beta(self.each)
-
-
-def _next_betas(betas: dict[str, float], history: dict[str, list], reliability, solution, allowed: _Allowed) -> bool:
-    """A step of the 1-D root find, per constraint, of the beta whose performance-point design meets the allowed
-    failure probability by importance sampling: the generalised index -Phi^-1(p) it reaches minus the one it should,
+def _next_betas(betas: dict[str, float], history: dict[str, list], reliability, solution, allowed: float) -> bool:
+    """A step of the 1-D root find, per constraint, of the beta whose performance-point design meets the ``allowed``
+    failure probability (1 - P) by importance sampling: the generalised index -Phi^-1(p) it reaches minus the one it should,
     zero by the secant method (common random numbers: the estimate is a smooth function of the design), aimed
     AIM_BELOW under it, until the allowed probability lies within the estimate's interval (FORM's beta is kept
     where importance sampling does not refute it: exact where the limit state is linear in u). Only an
@@ -373,10 +355,10 @@ def _next_betas(betas: dict[str, float], history: dict[str, list], reliability, 
     moved = False
     for name in movable:
         best = shown[name].best
-        miss = generalised_beta(best.probability) - generalised_beta(allowed.each * (1 - AIM_BELOW))
+        miss = generalised_beta(best.probability) - generalised_beta(allowed * (1 - AIM_BELOW))
         history[name].append((betas[name], miss))
         corrected = history[name][0][0] != betas[name]
-        if (best.probability if corrected else best.low) <= allowed.each <= best.high:
+        if (best.probability if corrected else best.low) <= allowed <= best.high:
             continue  # met: at or below once corrected; FORM's beta where sampling does not refute it (exact there)
         (b0, m0), (b1, m1) = history[name][-2:] if len(history[name]) > 1 else ((None, None), history[name][-1])
         betas[name] = b1 - m1 * (b1 - b0) / (m1 - m0) if b0 is not None and m1 != m0 else b1 - m1

@@ -119,14 +119,13 @@ def reliability_at(formulation: Formulation, design: dict, params: SimpleNamespa
         out[name] = ConstraintReliability(point, values, estimates)
     system = importance_sampling(g, list(range(len(shown))), centres, n, samples, SEED + 1, FEASIBILITY_TOL)
     if system.estimator.startswith(NO_FAILURE):  # no upper bound of its own: the constraints' (a union bound)
-        system = union_bound(list(out.values()), f"estimates summed (union bound; {system.estimator})")
+        system = union_bound([c.best for c in out.values()], f"estimates summed (union bound; {system.estimator})")
     return Reliability(out, system)
 
 
-def union_bound(constraints: list[ConstraintReliability], estimator: str) -> Estimate:
-    """P(any of ``constraints`` fails) at most the sum of each one's: the sums of the estimates and of the upper
-    ends, the largest lower end (Boole's inequality)."""
-    estimates = [c.best for c in constraints]
+def union_bound(estimates: list[Estimate], estimator: str) -> Estimate:
+    """P(any of the events whose ``estimates`` these are) at most the sum of each one's: the sums of the estimates
+    and of the upper ends, the largest lower end (Boole's inequality)."""
     return Estimate(sum(e.probability for e in estimates), max((e.low for e in estimates), default=0.0),
                     sum(e.high for e in estimates), estimator)
 
