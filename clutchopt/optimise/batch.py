@@ -61,14 +61,16 @@ import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.optimise.attempts import warm_multipliers
-from clutchopt.optimise.batch_pace import BatchPace
+from clutchopt.optimise.batch_pace import BatchPace, until_active
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
 from clutchopt.optimise.chain import chain_verdict, chained_sqp
-from clutchopt.optimise.integers import descend, excluded_entry, nearest_integers, relaxation_seed, search_entry
+from clutchopt.optimise.integers import (descend, downhill, excluded_entry, nearest_integers, relaxation_seed,
+                                         search_entry)
 from clutchopt.optimise.posed import Box, off_scale
 from clutchopt.optimise.problem import Problem
 from clutchopt.optimise.region_proof import Regions
 from clutchopt.optimise.solution import Solution, WarmStart
+from clutchopt.optimise.tightening import tightening
 from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL, check_design
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
@@ -197,6 +199,7 @@ class BatchSweep:
         self.integer = [i for i in self.posed.integer if self.lower[i] < self.upper[i]]
         fixed = self.lower == self.upper
         fixed[self.integer] = True
+        self._free = ~fixed  # the continuous variables the case leaves free
         # the constraints of fixed variables alone that the batch's integers enter (one of the case alone that breaks
         # at a point stops a batch there by its KKT check, and Problem.solve diagnoses it)
         entered = np.zeros_like(fixed)
@@ -207,7 +210,9 @@ class BatchSweep:
         self._span = min(EXCLUSION_SPAN, self.count)
         self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
         self.searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
-        self._undesigned: dict[tuple, int] = {}  # integer combination -> the last point where IPOPT found no design
+        self._undesigned: dict[tuple, tuple[int, str]] = {}  # integer combination -> the last point where IPOPT
+        # found no design, and IPOPT's status there
+        self._tightening = tightening(self.posed, self.varied)
         varied = self.values[[q.name in self.varied for q in f.quantities]]
         with np.errstate(all="ignore"):  # each point's step in the case from the one before, relative
             moves = np.diff(varied, axis=1) / np.abs(varied[:, 1:])
@@ -228,16 +233,17 @@ class BatchSweep:
         """Solve every point in order; yields the solutions window by window, each window checked in float64."""
         start: _Start | None = None  # where the next batch starts; None: after a point without a design
         pace, k = BatchPace(FIRST_BATCH, LONGEST_BATCH), 0
+        ahead = None  # points until an inactive constraint or bound is expected to become active (with integers)
         while k < self.count:
             first, end, deadline = k, min(k + window, self.count), time.perf_counter() + WINDOW_S
             blocks: list[Block] = []
             alone: dict[int, Solution] = {}
             failed = False  # the last point is without a design: the window waits for a feasible point after it
             while k < end and (failed or time.perf_counter() < deadline):  # each turn solves at least one point
-                wanted, reach = min(pace.size, end - k), min(2 * pace.size, LONGEST_BATCH, end - k)
+                wanted, reach = min(pace.size, ahead or pace.size, end - k), min(2 * pace.size, LONGEST_BATCH, end - k)
                 block, chained, searching, tried = (self._batch(start, k, wanted, reach) if start is not None
                                                     else (None, 0, False, None))
-                passed = 0 if block is None else len(block.index)
+                passed, ahead = (0, None) if block is None else (len(block.index), self._until_active(block))
                 if passed:
                     blocks.append(block)
                     start, k = _Start(self, block=block), k + passed
@@ -248,9 +254,11 @@ class BatchSweep:
                         continue  # next point to the search)
                 settled = self._settle(start, k, tried) if searching else None
                 if settled is not None:  # the integer search decided point k in the batch
-                    pace.broke(k)
+                    kept, start = start, _Start(self, block=settled)
+                    if not np.array_equal(start.combo, kept.combo):  # (where it kept the batch's integers, the
+                        pace.broke(k)  # relaxed integers crossed no boundary: no break to pace the chains by)
                     blocks.append(settled)
-                    start, k = _Start(self, block=settled), k + 1
+                    k += 1
                     self.feasible, failed = start.warm.design, False
                     continue
                 if passed == 0 < chained and self.integer:  # its first point failed at the batch's integers: a
@@ -261,6 +269,15 @@ class BatchSweep:
                 start, k = self._start_of(alone[k]), k + 1
                 failed = alone[k - 1].status not in DESIGN_STATUSES
             yield self._window(blocks, alone, first, k - first)
+
+    def _until_active(self, block: Block) -> int | None:
+        """With free integers, the points after ``block`` until its active set is expected to change
+        (``batch_pace.until_active``): the next chain ends there."""
+        if not self.integer:
+            return None
+        last = int(block.index[-1]) + 1
+        return until_active(self.posed, block, self._ratio[last:last + LONGEST_BATCH], self._free,
+                            10 * self.posed.options.tol)
 
     def _start_of(self, solution: Solution) -> _Start | None:
         return _Start(self, solution) if solution.status == "optimal" else None
@@ -280,7 +297,7 @@ class BatchSweep:
         for entry in solution.integer_search:  # (its search's combinations without a design: IPOPT's verdicts)
             names = [self.names[i] for i in self.integer]
             if not entry["feasible"] and not entry["status"].startswith("excluded") and all(n in entry for n in names):
-                self._undesigned[tuple(float(entry[n]) for n in names)] = k
+                self._undesigned[tuple(float(entry[n]) for n in names)] = (k, entry["status"])
         return solution
 
     def _counted(self, solution: Solution) -> Solution:
@@ -310,10 +327,10 @@ class BatchSweep:
         if chain is None:
             return None, min(count, chain_length(count)), False, None
         count = len(chain.index)
-        ok = chain.ok & ~chain.moves
+        ok = chain.ok & ~self._unruled_moves(chain, start)
         passed = int(np.argmin(ok)) if not ok.all() else count
-        searching = (bool(chain.ok[passed]) or passed == 0 < len(self.integer)) if passed < count else count == first
-        # (passed up to the exclusion; a first point that fails at the batch's integers: the search tries them by IPOPT)
+        searching = (bool(chain.ok[passed]) or len(self.integer) > 0) if passed < count else count == first
+        # (passed up to the exclusion; a point that fails at the batch's integers: the search tries them by IPOPT)
         tried = None  # normalised as the batch that starts after the passed points
         if searching and passed < count:
             tried = chain.column(passed, _Start(self, block=chain.block(passed)).f_scale if passed else start.f_scale)
@@ -384,16 +401,20 @@ class BatchSweep:
                 search.append(excluded_entry(self.posed, self.integer, combo, excluded))
                 return None
             key = tuple(combo.tolist())
+            ruled = self._ruled_out(key, k)
+            if ruled:
+                search.append(search_entry(self.posed, self.integer, combo, ruled, False, math.nan))
+                return None
             if tried is not None and np.array_equal(combo, start.combo):
                 chain = tried  # (its chained column: the first attempt, verified or not)
             else:  # a combination IPOPT left without a design at the point before goes to IPOPT again directly
                 chain = (self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
-                         if self._undesigned.get(key) != k - 1 else None)
+                         if self._undesigned.get(key, (None,))[0] != k - 1 else None)
             if chain is None or not chain.ok[0]:  # as Problem.solve tries a neighbour: IPOPT, cold
                 entry, seconds, optimum = self._cold(start, k, lower, upper, seed)
                 cold.append(seconds)
                 if optimum is None:
-                    self._undesigned[key] = k
+                    self._undesigned[key] = (k, entry["status"])
                     search.append(entry)
                     return None
                 chain = self._chain(start, k, 1, lower, upper, optimum, "sqp_chain", predict=False)
@@ -433,25 +454,61 @@ class BatchSweep:
         self.searches[k] = search
         return block
 
-    def _past_exclusion(self, combo: np.ndarray, k: int) -> np.ndarray | None:
-        """Where the integers ``combo`` are excluded at point k (a constraint of fixed variables alone broken, e.g.
-        the cable stress of too few cables), the one neighbouring combination (one integer one unit either way, within
-        the bounds) that is not: the search starts there, without the relaxation, which would round to it. None
-        where the integers are not excluded, or none or several neighbours are left (the relaxation decides)."""
+    def _ruled_out(self, combo: tuple, k: int) -> str:
+        """Why the integers ``combo`` are not solved at point k (empty: they are): IPOPT found no design with them at
+        an earlier point, and the step from there to k only tightens the constraints (``tightening``): no design
+        meets at k what none met there."""
+        found = self._undesigned.get(combo)
+        if found is None or found[0] >= k or not self._tightening.tightened(self._by_point[found[0]],
+                                                                             self._by_point[k]):
+            return ""
+        return f"ruled out: {found[1]} at point {found[0]}, whose limits the sweep has only tightened since"
+
+    def _unruled_moves(self, chain: _Chain, start: _Start) -> np.ndarray:
+        """Per chained point, whether ``Problem.solve``'s warm search would go on from it (the chain verdict's
+        ``moves``), but for the points up to the first whose every neighbour the search would step to
+        (``integers.downhill``) is excluded there or ruled out (:meth:`_ruled_out`): the search would keep the
+        chain's integers there without a solve."""
+        moves = chain.moves.copy()
+        if not self._undesigned:
+            return moves
+        box = Box(start.scale, self.lower, self.upper)
         lower = self.lower.copy()
-        lower[self.integer] = combo
-        if not self._broken(lower, k, 1).any():
+        for j in np.flatnonzero(moves):
+            k = int(chain.index[j])
+            run = {"x": chain.x[:, j], "lam_x": chain.lam_x[:, j], "f": float(chain.f[0, j])}
+            for combo in downhill(self.posed, run, box, self.integer):
+                lower[self.integer] = combo
+                if not (self._ruled_out(tuple(combo.tolist()), k) or self._broken(lower, k, 1).any()):
+                    return moves
+            moves[j] = False
+        return moves
+
+    def _past_exclusion(self, combo: np.ndarray, k: int) -> np.ndarray | None:
+        """Where the integers ``combo`` are left out at point k (:meth:`_left_out`: e.g. the cable stress of too few
+        cables, or the ball's rows that IPOPT has just found without a design), the one neighbouring combination (one
+        integer one unit either way, within the bounds) that is not: the search starts there, without the
+        relaxation, which would round to it. None where the integers are not left out, or none or several neighbours
+        are left (the relaxation decides)."""
+        if not self._left_out(combo, k):
             return None
         left = []
         for j, i in enumerate(self.integer):
             for step in (-1.0, 1.0):
                 neighbour = combo.copy()
                 neighbour[j] += step
-                if self.lower[i] <= neighbour[j] <= self.upper[i]:
-                    lower[self.integer] = neighbour
-                    if not self._broken(lower, k, 1).any():
-                        left.append(neighbour)
+                if self.lower[i] <= neighbour[j] <= self.upper[i] and not self._left_out(neighbour, k):
+                    left.append(neighbour)
         return left[0] if len(left) == 1 else None
+
+    def _left_out(self, combo: np.ndarray, k: int) -> bool:
+        """The integers ``combo`` have no design at point k: a constraint of fixed variables alone breaks, or IPOPT
+        found none there, or one found none before (:meth:`_ruled_out`)."""
+        lower = self.lower.copy()
+        lower[self.integer] = combo
+        key = tuple(combo.tolist())
+        return (bool(self._broken(lower, k, 1).any()) or self._undesigned.get(key, (None,))[0] == k
+                or bool(self._ruled_out(key, k)))
 
     def _cold(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
               seed: dict) -> tuple[dict, float, dict | None]:
