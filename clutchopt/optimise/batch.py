@@ -255,8 +255,9 @@ class BatchSweep:
                 settled = self._settle(start, k, tried) if searching else None
                 if settled is not None:  # the integer search decided point k in the batch
                     kept, start = start, _Start(self, block=settled)
-                    if not np.array_equal(start.combo, kept.combo):  # (where it kept the batch's integers, the
-                        pace.broke(k)  # relaxed integers crossed no boundary: no break to pace the chains by)
+                    if not (np.array_equal(start.combo, kept.combo) and self._tightens(k)):  # (where it kept the
+                        pace.broke(k)  # batch's integers and the neighbours it found without a design stay ruled
+                        # out, the relaxed integers crossed no boundary: no break to pace the chains by)
                     blocks.append(settled)
                     k += 1
                     self.feasible, failed = start.warm.design, False
@@ -463,6 +464,10 @@ class BatchSweep:
                                                                              self._by_point[k]):
             return ""
         return f"ruled out: {found[1]} at point {found[0]}, whose limits the sweep has only tightened since"
+
+    def _tightens(self, k: int) -> bool:
+        """The step from point k to the next only tightens the constraints (``tightening``)."""
+        return k + 1 < self.count and self._tightening.tightened(self._by_point[k], self._by_point[k + 1])
 
     def _unruled_moves(self, chain: _Chain, start: _Start) -> np.ndarray:
         """Per chained point, whether ``Problem.solve``'s warm search would go on from it (the chain verdict's
