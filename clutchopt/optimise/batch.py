@@ -249,7 +249,7 @@ class BatchSweep:
                     start, k = _Start(self, block=block), k + passed
                     self.feasible, failed = start.warm.design, False
                 if chained and passed == chained:
-                    pace.passed()
+                    pace.passed(chained)
                     if not searching or k == end:  # (a batch that passes up to its integers' exclusion hands the
                         continue  # next point to the search)
                 settled = self._settle(start, k, tried) if searching else None
@@ -266,7 +266,9 @@ class BatchSweep:
                     pace.broke(k)  # break too (Problem.solve's search decides it), the next one expected as far on
                 elif passed < chained:  # point k failed a test in the batch: the next batch starts short
                     pace.restart()
-                alone[k] = self._solve_alone(k, start.warm if start is not None else None)
+                alone[k] = self._solve_alone(k, start.warm if start is not None and not self._left_out(start.combo, k)
+                                             else None)  # (the batch's integers without a design here: solved as
+                # `solve` solves the point, from the case's own start; warm, it would try them again first)
                 start, k = self._start_of(alone[k]), k + 1
                 failed = alone[k - 1].status not in DESIGN_STATUSES
             yield self._window(blocks, alone, first, k - first)

@@ -37,9 +37,13 @@ class BatchPace:
         self._breaks: list[int] = []  # the last three points where the integer search decided
         self._aimed = False  # the size ends the chain at an expected break
 
-    def passed(self) -> None:
-        """A chain of :attr:`size` points passed every test: doubled, or a probe after one aimed at a break."""
-        if self._aimed:
+    def passed(self, points: int | None = None) -> None:
+        """A chain of :attr:`size` points (or ``points``) passed every test: doubled, or a probe after one aimed at a
+        break; a chain aimed at a break but cut short (an active set expected to change before it: ``until_active``)
+        leaves the rest of the way to it for the next chain."""
+        if self._aimed and points is not None and points < self.size:
+            self.size -= points
+        elif self._aimed:
             self.size, self._aimed = PROBE, False
         else:
             self.size = min(2 * self.size, self.longest)
