@@ -60,18 +60,19 @@ from typing import Iterator
 import numpy as np
 
 from clutchopt.cases import Case
+import clutchopt.optimise.attempts as attempts
 from clutchopt.optimise.attempts import warm_multipliers
 from clutchopt.optimise.batch_pace import BatchPace, until_active
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
 from clutchopt.optimise.chain import chain_verdict, chained_sqp
 from clutchopt.optimise.integers import (descend, downhill, excluded_entry, nearest_integers, relaxation_seed,
                                          search_entry)
-from clutchopt.optimise.posed import Box, off_scale
+from clutchopt.optimise.posed import Box, ScaledData, off_scale
 from clutchopt.optimise.problem import Problem
-from clutchopt.optimise.region_proof import Regions
+from clutchopt.optimise.region_proof import Regions, completed
 from clutchopt.optimise.solution import Solution, WarmStart
 from clutchopt.optimise.tightening import tightening
-from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL, check_design
+from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
 LONGEST_BATCH = 256  # doubling stops here: a longer batch saves little call overhead and risks more waste
@@ -290,10 +291,8 @@ class BatchSweep:
         point without a design, the points from k are first searched as one region (``region_proof.Regions``): a
         point a proof covers is infeasible without a solve; another is solved once, and searched alone before its
         full verdict where that solve finds no design."""
-        solution = self._regions.covered(k) or self._regions.quick(k, warm)
-        if solution is None:
-            solution = self._regions.charged(self.problem.solve(self.point_case(k), warm=warm, neighbour=self.feasible))
-            self._regions.after(k, solution)
+        case = self.point_case(k)
+        solution = self._regions.point(k, lambda first: completed(self.problem, case, first, warm, self.feasible), warm)
         self._counted(solution)
         if solution.status in DESIGN_STATUSES:
             self.feasible = solution.design
@@ -527,23 +526,19 @@ class BatchSweep:
         tolerance set to 0, as a warm start of SQP: ``attempts.warm_multipliers``), from which the one-point chained
         SQP gives the column (a combination that became feasible along the sweep: the ball's fewer rows as the
         allowable contact stress rises)."""
-        p = np.concatenate([self._by_point[k], start.scale, [start.f_scale]])
         lbx, ubx = lower / start.scale, upper / start.scale
-        solver, began = self.posed.solver("ipopt"), time.perf_counter()
-        out = solver(x0=np.clip(seed["x"], lbx, ubx), p=p, lbx=lbx, ubx=ubx, lbg=self.posed.lbg, ubg=0.0)
-        seconds = time.perf_counter() - began
-        self.solves, self.solver_s = self.solves + 1, self.solver_s + seconds
-        stats = solver.stats()
-        x = out["x"].full().ravel()
-        design = self.posed.rounded(self.posed.design(x, start.scale))
-        checks = check_design(self.posed.formulation, design, self.posed.params(self.point_case(k)))
-        if stats["success"] and all(c.feasible for c in checks):
-            lam_x, lam_g = warm_multipliers(self.posed, out["lam_x"].full().ravel(), out["lam_g"].full().ravel())
-            return {}, seconds, {"x": x, "lam_x": lam_x, "lam_g": lam_g, "dx": np.zeros_like(x),
-                                 "dlam_x": np.zeros_like(lam_x), "dlam_g": np.zeros_like(lam_g)}
-        combo = lower[self.integer]
-        return search_entry(self.posed, self.integer, combo, stats["return_status"], False,
-                            float(out["f"]) * start.f_scale), seconds, None
+        x0 = np.clip(seed["x"], lbx, ubx)
+        data = ScaledData(self.posed.params(self.point_case(k)), lower, upper, x0 * start.scale, start.scale,
+                          start.f_scale, np.concatenate([self._by_point[k], start.scale, [start.f_scale]]))
+        solved = attempts.run(self.posed, data, lbx, ubx, x0, None)
+        self.solves, self.solver_s = self.solves + 1, self.solver_s + solved["time"]
+        if solved["ok"] and solved["feasible"]:
+            x = solved["x"]
+            lam_x, lam_g = warm_multipliers(self.posed, solved["lam_x"], solved["lam_g"])
+            return {}, solved["time"], {"x": x, "lam_x": lam_x, "lam_g": lam_g, "dx": np.zeros_like(x),
+                                        "dlam_x": np.zeros_like(lam_x), "dlam_g": np.zeros_like(lam_g)}
+        return search_entry(self.posed, self.integer, lower[self.integer], solved["status"], False,
+                            solved["f"] * start.f_scale), solved["time"], None
 
     def _excluded(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
         """Per point k .. k + count - 1: the fixed variables of ``design`` (SI; integers and variables fixed by the
