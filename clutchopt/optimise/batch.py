@@ -26,11 +26,14 @@ by the tables or re-solved by a one-point chained SQP and KKT-checked (the relax
 convexified; the batch's own integers not again where the chain solved them at that point: its column there is
 the first attempt). A combination the one-point SQP does not settle is solved as ``Problem.solve``'s search solves a
 neighbour, by IPOPT from cold: kept out of the search where IPOPT finds no design (and at the next point tried by
-IPOPT directly), else re-solved by SQP from IPOPT's optimum (the ball's rows: one row fewer promised by the
-multipliers but infeasible, point after point, had sent each point to ``Problem.solve``). Where the batch's integers
-are excluded and one neighbouring combination is not, the search starts there, without the relaxation (the cable
-count, one cable more). The next chain then ends where the next such point is expected (``batch_pace``; a chain
-that fails at its first point is such a point too). Otherwise,
+IPOPT directly, or not at all where the sweep has only tightened the constraints since: ``tightening``, whose
+combinations ruled out so also do not end a chain), else re-solved by SQP from IPOPT's optimum (the ball's rows: one
+row fewer promised by the multipliers but infeasible, point after point, had sent each point to ``Problem.solve``).
+Where the batch's integers are excluded, or IPOPT finds no design with them, and one neighbouring combination is left,
+the search starts there, without the relaxation (the cable count, one cable more; the ball's rows, one more where the
+row fewer is ruled out). The next chain then ends where the next such point is expected (``batch_pace``; a point that
+fails at the batch's integers is such a point too), or sooner where the active set is expected to change
+(``batch_pace.until_active``). Otherwise,
 and where a re-solve of that search fails its check, the point is solved by ``Problem.solve``, warm from the last
 kept point (SQP, warm IPOPT, the integer search, the cold solve and the infeasibility diagnosis), and the next
 batch starts after it, 8 points long, doubling while batches pass (up to 256). A chain's length is a power of two

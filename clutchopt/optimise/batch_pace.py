@@ -14,6 +14,12 @@ point with integers to search: that point is a break (``BatchSweep.run``), so th
 every point the chains are one point long (the ball over its power past 4.6x: chains of 8 had failed at their first
 point, 7 solves lost at each).
 
+With free integers a chain also ends where an inactive constraint or bound is expected to become active
+(:func:`until_active`), where a fixed integer's multiplier can jump from nothing (the ball over its power: its first
+chain past 4.5x had run 35 points past the break); a chain aimed at a break and cut short there leaves the rest of the
+way to the next chain. A search that keeps the chain's integers (its promised neighbour without a design, ruled out
+from then on) is no break.
+
 Measured on the 100-point user sweeps of the benchmark (``docs/tradeoffs.md``, "Batches"): the cable over its
 allowable stress broke at 7 points with gaps 9, 9, 11, 13, 16, 21, the ball over its speed at 7 with gaps 9, 9, 10,
 11, 13, 14; with chains doubling past each break, 48 and 31 solves went to points after a break.
