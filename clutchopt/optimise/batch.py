@@ -270,9 +270,10 @@ class BatchSweep:
                     pace.broke(k)  # break too (Problem.solve's search decides it), the next one expected as far on
                 elif passed < chained:  # point k failed a test in the batch: the next batch starts short
                     pace.restart()
-                alone[k] = self._solve_alone(k, start.warm if start is not None and not self._left_out(start.combo, k)
-                                             else None)  # (the batch's integers without a design here: solved as
-                # `solve` solves the point, from the case's own start; warm, it would try them again first)
+                undesigned = start is not None and self._undesigned_at(start.combo, k)  # (IPOPT found none with
+                # the batch's integers here: solved as `solve` solves the point, from the case's own start; warm, it
+                # would try them again first)
+                alone[k] = self._solve_alone(k, start.warm if start is not None and not undesigned else None)
                 start, k = self._start_of(alone[k]), k + 1
                 failed = alone[k - 1].status not in DESIGN_STATUSES
             yield self._window(blocks, alone, first, k - first)
@@ -512,12 +513,16 @@ class BatchSweep:
 
     def _left_out(self, combo: np.ndarray, k: int) -> bool:
         """The integers ``combo`` have no design at point k: a constraint of fixed variables alone breaks, or IPOPT
-        found none there, or one found none before (:meth:`_ruled_out`)."""
+        found none (:meth:`_undesigned_at`)."""
         lower = self.lower.copy()
         lower[self.integer] = combo
+        return bool(self._broken(lower, k, 1).any()) or self._undesigned_at(combo, k)
+
+    def _undesigned_at(self, combo: np.ndarray, k: int) -> bool:
+        """IPOPT found no design with the integers ``combo`` at point k, or at one before it and the sweep has only
+        tightened the constraints since (:meth:`_ruled_out`)."""
         key = tuple(combo.tolist())
-        return (bool(self._broken(lower, k, 1).any()) or self._undesigned.get(key, (None,))[0] == k
-                or bool(self._ruled_out(key, k)))
+        return self._undesigned.get(key, (None,))[0] == k or bool(self._ruled_out(key, k))
 
     def _cold(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
               seed: dict) -> tuple[dict, float, dict | None]:
