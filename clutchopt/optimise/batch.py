@@ -263,7 +263,9 @@ class BatchSweep:
                         pace.broke(k)  # batch's integers and the neighbours it found without a design stay ruled
                         # out, the relaxed integers crossed no boundary: no break to pace the chains by)
                     blocks.append(settled)
-                    k += 1
+                    k, ahead = k + 1, (1 if ahead else None)  # (a forecast change of the active set often comes
+                    # with another at the next point, the ball at 4.5x its power: the contact stress active at one,
+                    # the filling off its bound at the next; the forecast was from the points before it: a probe)
                     self.feasible, failed = start.warm.design, False
                     continue
                 if passed == 0 < chained and self.integer:  # its first point failed at the batch's integers: a
@@ -274,14 +276,21 @@ class BatchSweep:
                 # the batch's integers here: solved as `solve` solves the point, from the case's own start; warm, it
                 # would try them again first)
                 alone[k] = self._solve_alone(k, start.warm if start is not None and not undesigned else None)
+                ahead = None
                 start, k = self._start_of(alone[k]), k + 1
                 failed = alone[k - 1].status not in DESIGN_STATUSES
             yield self._window(blocks, alone, first, k - first)
 
     def _until_active(self, block: Block) -> int | None:
-        """With free integers, the points after ``block`` until its active set is expected to change
-        (``batch_pace.until_active``): the next chain ends there."""
+        """With free integers that the objective does not price at the block's last point (their bound multipliers
+        within ``Posed.negligible``: a change of the active set is what would make one promise a neighbour), the
+        points after ``block`` until its active set is expected to change (``batch_pace.until_active``): the next
+        chain ends there. None otherwise (the integer breaks are paced by their gaps)."""
         if not self.integer:
+            return None
+        scale = block.arrays["p"][len(self.values):len(self.values) + len(self.names), -1]
+        gain = np.abs(block.arrays["lam_x"][self.integer, -1]) / scale[self.integer]
+        if np.any(gain > self.posed.negligible(float(block.arrays["f"][0, -1]))):
             return None
         last = int(block.index[-1]) + 1
         return until_active(self.posed, block, self._ratio[last:last + LONGEST_BATCH], self._free,
@@ -443,6 +452,8 @@ class BatchSweep:
             past = self._past_exclusion(start.combo, k) if kept is None else None
             if past is not None:  # the only neighbour its exclusion leaves: the search from there
                 kept = descend(self.posed, box, self.integer, past, seed, search, attempt)
+                if kept is None and self._undesigned_at(start.combo, k):  # it too without a design: the point is
+                    return None  # Problem.solve's from the case's own start, whose relaxation IPOPT solves first
             if kept is None:  # the batch's integers fail here: the relaxation, from the same point
                 relaxed = solved(self.lower, self.upper, relaxation_seed(seed, self.integer), "sqp_search")
                 if off_scale(relaxed["x"][: len(self.names)]):
