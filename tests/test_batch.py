@@ -397,3 +397,34 @@ def test_the_first_re_solve_after_a_cold_ipopt_optimum_goes_by_sqp():
     assert (second.status, second.solver.name, second.solver.solves) == ("optimal", "sqpmethod", 1)
     solutions = [s for part in BatchSweep(problem, case, {"inertia": values}).run() for s in part]
     assert [s.solver.status for s in solutions[1:]] == [BATCHED, BATCHED]
+
+
+def test_the_ball_past_4_5x_its_power_spends_one_call_a_point_between_changes_of_its_rows():
+    # ball_compressor over 1x-10x its power (100 points, the benchmark's sweep into the infeasible): 7 rows up to
+    # 4.5x, where the contact stress becomes active and one row fewer pays (6 rows from point 65); from point 66 on
+    # the multipliers promise one row fewer at every point, which IPOPT finds infeasible at 66 and which stays ruled
+    # out (the power enters the torque row's limit alone, so the constraints only tighten: optimise/tightening.py);
+    # the rows rise by one at 72, 77, 82, 86, 90, 93, where the rows before become infeasible (IPOPT) and one more is
+    # the only neighbour left; no design from 96 on. The records' calls: 2 (point 0: the relaxation, its rows) +
+    # 64 (1 .. 64, chained) + 2 (65: 7 rows' column, 6 rows) + 2 (66: 5 rows by IPOPT) + 23 (chained between the
+    # changes) + 6 * 2 (each change: the rows before by IPOPT, one more by SQP) + 3 (96: solve's from the case's own
+    # start, its relaxation and two retries, then the interval proof) + 0 (97 .. 99: one region proof) = 108. The
+    # sweep's 125 add the chained columns that failed at the changes and at 96, the batch's own search at 96 (the 12
+    # rows and the 13 by IPOPT) and points chained past a change; 192 before (the first chain past 4.5x ran to the
+    # sweep's end, the row fewer was solved by IPOPT at every point)
+    case = load_case(CASES / "ball_compressor.toml")
+    problem = Problem(get_coupling("ball").formulation("design"))
+    values = case.values["power"] * np.geomspace(1.0, 10.0, 100)
+    sweep = BatchSweep(problem, case, {"power": values})
+    solutions = [s for part in sweep.run() for s in part]
+    assert [s.status for s in solutions] == ["optimal"] * 96 + ["infeasible"] * 4
+    rows = [int(s.design["ball_rows"]) for s in solutions[:96]]
+    changes = [k for k in range(1, 96) if rows[k] != rows[k - 1]]
+    assert changes == [65, 72, 77, 82, 86, 90, 93] and rows[0] == 7 and rows[65] == 6 and rows[95] == 12
+    calls = [s.solver.solves for s in solutions]
+    assert calls[0] == 2 and calls[65] == calls[66] == 2 and all(calls[k] == 2 for k in changes[1:])
+    assert sum(calls) == 108 and sweep.solves <= 125
+    for k in (65, 66, 72, 95):  # Problem.solve's designs, warm from the point before (as the sweep before batches)
+        want = problem.solve(case.with_values(power=float(values[k])), warm=solutions[k - 1])
+        assert want.status == "optimal" and want.design["ball_rows"] == rows[k]
+        assert solutions[k].objective == pytest.approx(want.objective, rel=1e-9)
