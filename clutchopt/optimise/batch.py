@@ -237,7 +237,8 @@ class BatchSweep:
         """Solve every point in order; yields the solutions window by window, each window checked in float64."""
         start: _Start | None = None  # where the next batch starts; None: after a point without a design
         pace, k = BatchPace(FIRST_BATCH, LONGEST_BATCH), 0
-        ahead = None  # points until an inactive constraint or bound is expected to become active (with integers)
+        ahead = None  # points until an inactive constraint or bound is expected to become active (with integers,
+        # where the pace expects no break)
         while k < self.count:
             first, end, deadline = k, min(k + window, self.count), time.perf_counter() + WINDOW_S
             blocks: list[Block] = []
@@ -245,15 +246,17 @@ class BatchSweep:
             failed = False  # the last point is without a design: the window waits for a feasible point after it
             while k < end and (failed or time.perf_counter() < deadline):  # each turn solves at least one point
                 wanted, reach = min(pace.size, ahead or pace.size, end - k), min(2 * pace.size, LONGEST_BATCH, end - k)
+                forecast = ahead is not None and ahead < pace.size  # the chain ends at a forecast change
                 block, chained, searching, tried = (self._batch(start, k, wanted, reach) if start is not None
                                                     else (None, 0, False, None))
-                passed, ahead = (0, None) if block is None else (len(block.index), self._until_active(block))
+                passed = 0 if block is None else len(block.index)
                 if passed:
                     blocks.append(block)
                     start, k = _Start(self, block=block), k + passed
                     self.feasible, failed = start.warm.design, False
                 if chained and passed == chained:
                     pace.passed(chained)
+                    ahead = None if pace.aimed else self._until_active(block)  # (where no break is expected)
                     if not searching or k == end:  # (a batch that passes up to its integers' exclusion hands the
                         continue  # next point to the search)
                 settled = self._settle(start, k, tried) if searching else None
@@ -263,9 +266,9 @@ class BatchSweep:
                         pace.broke(k)  # batch's integers and the neighbours it found without a design stay ruled
                         # out, the relaxed integers crossed no boundary: no break to pace the chains by)
                     blocks.append(settled)
-                    k, ahead = k + 1, (1 if ahead else None)  # (a forecast change of the active set often comes
-                    # with another at the next point, the ball at 4.5x its power: the contact stress active at one,
-                    # the filling off its bound at the next; the forecast was from the points before it: a probe)
+                    k, ahead = k + 1, (1 if forecast else None)  # (a forecast change of the active set often
+                    # comes with another at the next point, the ball at 4.5x its power: the contact stress active at
+                    # one, the filling off its bound at the next; the forecast was from the points before it: a probe)
                     self.feasible, failed = start.warm.design, False
                     continue
                 if passed == 0 < chained and self.integer:  # its first point failed at the batch's integers: a

@@ -43,6 +43,11 @@ class BatchPace:
         self._breaks: list[int] = []  # the last three points where the integer search decided
         self._aimed = False  # the size ends the chain at an expected break
 
+    @property
+    def aimed(self) -> bool:
+        """The next chain ends at an expected break."""
+        return self._aimed
+
     def passed(self, points: int | None = None) -> None:
         """A chain of :attr:`size` points (or ``points``) passed every test: doubled, or a probe after one aimed at a
         break; a chain aimed at a break but cut short (an active set expected to change before it: ``until_active``)
