@@ -143,3 +143,25 @@ def test_system_chance_gives_the_start_up_limits_their_shares_of_the_target(two_
     assert data["system_failure_probability"]["probability"] == system.probability
     assert data["start_up_verification"]["share_of_target"] == share
     assert "the system with the start-up limits" in result.verification
+
+
+def test_the_shares_are_taken_from_the_gradients_at_the_means(two_quantities):
+    """take_shares decides which start-up limits the scatter moves from g and its gradient at the means (n + 1 = 3
+    simulated starts: the means and a step STEP along each u), not from each limit's search on the sphere: the
+    search ends at the means only where |grad g| < NEGLIGIBLE there. The searches (about 100 simulated starts) find
+    4 limits moved on this design: the start time, the lock-up speed, lock-up and stays-locked, which f or the
+    inertia move; the engagement windows, the breakdown and overload torques are closed forms of the design that
+    neither moves. With 2 other constraints the share is 0.001 / (4 + 2) and 0.001 - 4 x 0.001 / 6 is left."""
+    from clutchopt.optimise.start_up_reliability import StartUpPerformancePoints
+
+    case = two_quantities
+    design = solve_case(case).design
+    searched = StartUpPerformancePoints(case, "paper", 0.999)
+    searched.at(design)
+    moved = {name for name, u in searched.points.items() if np.any(u)} | searched.fallbacks
+    assert moved == {"start_time", "lock_up_speed", "lock_up", "stays_locked"}
+    assert len(searched.states.simulated) > 50
+    points = StartUpPerformancePoints(case, "paper", 0.999)
+    assert points.take_shares(design, 2, 0.001) == pytest.approx(0.001 - 4 * 0.001 / 6, rel=1e-12)
+    assert points.share == pytest.approx(0.001 / 6, rel=1e-12) and points.target == 1 - points.share
+    assert len(points.states.simulated) == 3  # the means and one step along each u

@@ -104,12 +104,11 @@ def performance_point(g: SimulatedLimitStates, row: int, beta: float, start: np.
         return bool(math.isfinite(value) and np.all(np.isfinite(grad)) and grad @ u <= 0
                     and np.linalg.norm(tangential) <= max(TANGENTIAL * np.linalg.norm(grad), FLAT / beta))
 
-    if n > 1 and start is not None and np.any(start) and holds(start):
+    if keeps_start(n, start) and holds(start):
         return start, True
-    value, grad = g.value_gradient(row, np.zeros(n))
-    norm = float(np.linalg.norm(grad))
-    if not (math.isfinite(value) and math.isfinite(norm)) or norm < NEGLIGIBLE:
-        return np.zeros(n), math.isfinite(value) and math.isfinite(norm)
+    grad, norm, finite = at_the_means(g, row)
+    if not finite or norm < NEGLIGIBLE:
+        return np.zeros(n), finite
     if n == 1:  # the sphere's two points (2 simulated starts)
         ends = np.array([[-beta, beta]])
         at = g(ends)[row]
@@ -133,6 +132,29 @@ def performance_point(g: SimulatedLimitStates, row: int, beta: float, start: np.
     return u, False
 
 
+def keeps_start(n: int, start: np.ndarray | None) -> bool:
+    """Whether :func:`performance_point` tries ``start`` (the point at the previous design) first: with more than one
+    quantity, a start away from the means."""
+    return n > 1 and start is not None and bool(np.any(start))
+
+
+def at_the_means(g: SimulatedLimitStates, row: int) -> tuple[np.ndarray, float, bool]:
+    """(grad g_row at the means, its norm, whether g and its gradient are finite there): n + 1 simulated starts,
+    shared by every limit (cached by point)."""
+    value, grad = g.value_gradient(row, np.zeros(len(g.scatter)))
+    norm = float(np.linalg.norm(grad))
+    return grad, norm, math.isfinite(value) and math.isfinite(norm)
+
+
+def moved_at_the_means(g: SimulatedLimitStates, row: int) -> bool:
+    """Whether the scatter moves limit ``row`` (:func:`performance_point` without a start to keep ends away from the
+    means, or does not settle), decided at the means without the search: the search returns the means (settled) only
+    where g and its gradient are finite there and |grad g| < NEGLIGIBLE; elsewhere a point on the sphere (one of its
+    two points for one quantity; BFGS's, normalised, for more), or the means unsettled where g is not finite."""
+    _, norm, finite = at_the_means(g, row)
+    return not finite or norm >= NEGLIGIBLE
+
+
 @dataclass
 class StartUpPerformancePoints:
     """A chance design's start-up limits at their performance points, found again at each design of the SORA loop
@@ -154,12 +176,16 @@ class StartUpPerformancePoints:
     def beta(self) -> float:
         return generalised_beta(1.0 - self.target)
 
+    def states_at(self, design: dict) -> SimulatedLimitStates:
+        """The limit states at ``design``, kept (with their simulated starts) while the design stays."""
+        if self.states is None or self.states.design != design:
+            self.states = SimulatedLimitStates(self.case, self.mode, design, self.case.scatter, self.correlation)
+        return self.states
+
     def at(self, design: dict) -> StartUpCorners:
         """The start-up's corners at ``design``: START_UP and each limit -> quantity -> value."""
         scatter = self.case.scatter
-        if self.states is None or self.states.design != design:
-            self.states = SimulatedLimitStates(self.case, self.mode, design, scatter, self.correlation)
-        g, self.points, self.fallbacks = self.states, {}, set()
+        g, self.points, self.fallbacks = self.states_at(design), {}, set()
         corners = {}
         for row, name in enumerate(g.names):
             u, settled = performance_point(g, row, self.beta, self.previous.get(name))
@@ -184,9 +210,19 @@ class StartUpPerformancePoints:
     def take_shares(self, design: dict, others: int, allowed: float) -> float:
         """Under a system target (``allowed`` = 1 - P, shared with ``others`` constraints): each start-up limit the
         scatter moves at ``design`` (or whose point does not settle) takes an equal share of ``allowed`` and is
-        designed to hold with 1 - share; what is left for the others (whose split the NLP chooses)."""
-        self.at(design)
-        moved = [name for name, u in self.points.items() if np.any(u)] + sorted(self.fallbacks)
+        designed to hold with 1 - share; what is left for the others (whose split the NLP chooses). Which limits
+        move is decided by the gradients at the means (:func:`moved_at_the_means`, n + 1 simulated starts) where
+        the search would not try a kept start, else by the search (whose points at this beta are then dropped:
+        the limits are designed at the share's)."""
+        g, n = self.states_at(design), len(self.case.scatter)
+
+        def moves(row: int, name: str) -> bool:
+            if not keeps_start(n, start := self.previous.get(name)):
+                return moved_at_the_means(g, row)
+            u, settled = performance_point(g, row, self.beta, start)
+            return bool(np.any(u)) or not settled
+
+        moved = [name for row, name in enumerate(g.names) if moves(row, name)]
         if not moved:
             return allowed
         self.share = allowed / (len(moved) + others)
