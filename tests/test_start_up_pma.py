@@ -100,9 +100,13 @@ def test_the_performance_point_where_the_mean_value_iteration_fails():
 def test_a_limit_whose_point_does_not_settle_falls_back_to_its_quantile_corner(monkeypatch):
     """Where the search does not settle (here made so for the start time), the limit is designed at its quantile
     corner (one uniform f: 0.12 + 0.06 x 0.001 = 0.12006) and named among the fallbacks; the others keep their
-    performance points (the lock-up speed at 0.18 - 0.00006 = 0.17994)."""
-    from clutchopt.optimise import start_up_reliability
+    performance points (the lock-up speed at 0.18 - 0.00006 = 0.17994). The quantile corners are simulated once per
+    design: f alone at each end of its range (2 starts, which are also the tornado's bars) and at the 2 corners of
+    its quantiles; the bars are read from those starts, and the corners found again at the same design (as the SORA
+    loop does after its importance sampling) simulate nothing new."""
+    from clutchopt.optimise import robust_start_up, start_up_reliability
     from clutchopt.optimise.robust_models import START_UP
+    from clutchopt.optimise.robust_start_up import start_up_bars
     from clutchopt.optimise.start_up_reliability import StartUpPerformancePoints
 
     path = CASES / "wedge_motor_start_scatter.toml"
@@ -110,8 +114,17 @@ def test_a_limit_whose_point_does_not_settle_falls_back_to_its_quantile_corner(m
     searched = start_up_reliability.performance_point
     monkeypatch.setattr(start_up_reliability, "performance_point", lambda g, row, beta, start=None: (
         (np.zeros(1), False) if g.names[row] == "start_time" else searched(g, row, beta, start)))
+    design = solve_case(case).design  # the nominal design
+    started, simulated = [], robust_start_up.simulated_start_ups
+    monkeypatch.setattr(robust_start_up, "simulated_start_ups", lambda *args: started.extend(args[3]) or simulated(
+        *args))  # the quantile corners' and the bars' starts
     points = StartUpPerformancePoints(case, "paper", 0.999)
-    corners = points.at(solve_case(case).design).corners  # the nominal design
+    at = points.at(design)
+    corners = at.corners
+    assert len(started) == 2 + 2  # f at 0.12 and 0.18 alone, then at 0.12006 and 0.17994
+    assert dict(at.bars) == start_up_bars(case, "paper", design, case.scatter) and len(started) == 2 + 2 + 2
+    searches = len(points.states.simulated)
+    assert points.at(design).corners == corners and (len(started), len(points.states.simulated)) == (6, searches)
     assert points.fallbacks == {"start_time"} and "start_time" not in points.points
     assert corners["start_time"]["friction_coefficient"] == pytest.approx(0.12006, rel=1e-9)
     assert corners["lock_up_speed"]["friction_coefficient"] == pytest.approx(0.17994, rel=1e-9)

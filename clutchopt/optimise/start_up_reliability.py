@@ -22,7 +22,7 @@ from clutchopt.optimise.reliability import REACH as FORM_REACH
 from clutchopt.optimise.reliability import DesignPoint, Estimate, form, generalised_beta, importance_sampling, ndtr
 from clutchopt.optimise.robust_models import SEED, START_UP
 from clutchopt.optimise.robust_reliability import ConstraintReliability
-from clutchopt.optimise.robust_start_up import StartUpCorners, simulated_start_ups, start_up_bars, start_up_corners
+from clutchopt.optimise.robust_start_up import Bars, StartUpCorners, simulated_start_ups, start_up_corners
 from clutchopt.optimise.verify import ConstraintCheck
 from clutchopt.scatter import _within, values_from_standard
 from clutchopt.start_up.drive import CLOSED_FORM
@@ -171,6 +171,9 @@ class StartUpPerformancePoints:
     states: SimulatedLimitStates | None = None  # at the last design
     points: dict[str, np.ndarray] = field(default_factory=dict)  # limit -> its performance point in u, last design
     share: float | None = None  # under a system target: each moved limit's share of 1 - P (:meth:`take_shares`)
+    quantile: dict[float, StartUpCorners] = field(default_factory=dict)  # target -> the quantile corners at the last
+    # design (:meth:`quantile_corners`)
+    bars: Bars | None = None  # the tornado's bars at the last design, simulated on first read
 
     @property
     def beta(self) -> float:
@@ -180,11 +183,21 @@ class StartUpPerformancePoints:
         """The limit states at ``design``, kept (with their simulated starts) while the design stays."""
         if self.states is None or self.states.design != design:
             self.states = SimulatedLimitStates(self.case, self.mode, design, self.case.scatter, self.correlation)
+            self.quantile, self.bars = {}, Bars(self.case, self.mode, design, self.case.scatter)
         return self.states
 
+    def quantile_corners(self) -> dict[str, dict[str, float]]:
+        """The quantile corners at the last design and target (``robust_start_up.start_up_corners``), simulated once
+        per design and target; their bars are the design's (the same starts)."""
+        if self.target not in self.quantile:
+            self.quantile[self.target] = start_up_corners(self.case, self.mode, self.states.design, self.case.scatter,
+                                                          self.target)
+            self.bars.known(self.quantile[self.target].bars)
+        return self.quantile[self.target].corners
+
     def at(self, design: dict) -> StartUpCorners:
-        """The start-up's corners at ``design``: START_UP and each limit -> quantity -> value."""
-        scatter = self.case.scatter
+        """The start-up's corners at ``design``: START_UP and each limit -> quantity -> value; its bars simulated when
+        read (:class:`robust_start_up.Bars`)."""
         g, self.points, self.fallbacks = self.states_at(design), {}, set()
         corners = {}
         for row, name in enumerate(g.names):
@@ -195,7 +208,7 @@ class StartUpPerformancePoints:
             else:
                 self.fallbacks.add(name)
         if self.fallbacks:
-            quantile = start_up_corners(self.case, self.mode, design, scatter, self.target).corners
+            quantile = self.quantile_corners()
             corners.update({name: quantile[name] for name in self.fallbacks})
         figures = [row for row, name in enumerate(g.names) if name not in CLOSED_FORM and name in self.points]
         if figures:
@@ -203,9 +216,8 @@ class StartUpPerformancePoints:
             binding = g.names[figures[int(np.argmin([at[row, i] for i, row in enumerate(figures)]))]]
             corners = {START_UP: corners[binding], **corners}
         else:
-            corners = {START_UP: start_up_corners(self.case, self.mode, design, scatter, self.target).corners[START_UP],
-                       **corners}
-        return StartUpCorners({}, corners, start_up_bars(self.case, self.mode, design, scatter))
+            corners = {START_UP: self.quantile_corners()[START_UP], **corners}
+        return StartUpCorners({}, corners, self.bars)
 
     def take_shares(self, design: dict, others: int, allowed: float) -> float:
         """Under a system target (``allowed`` = 1 - P, shared with ``others`` constraints): each start-up limit the
