@@ -41,6 +41,8 @@ _RULES = r"""
 
 static double nmin(double a, double b) { return isnan(a) ? a : isnan(b) ? b : (a < b ? a : b); }  /* np.minimum */
 static double nmax(double a, double b) { return isnan(a) ? a : isnan(b) ? b : (a > b ? a : b); }  /* np.maximum */
+static double fmin_(double a, double b) { return isnan(a) ? b : isnan(b) ? a : (a < b ? a : b); }  /* C99 fmin */
+static double fmax_(double a, double b) { return isnan(a) ? b : isnan(b) ? a : (a > b ? a : b); }  /* C99 fmax */
 static double clip(double x, double lo, double hi) { return nmin(nmax(x, lo), hi); }  /* np.clip */
 static double square(double x) { return x * x; }
 static double sign(double x) { return x > 0 ? 1.0 : x < 0 ? -1.0 : x; }  /* np.sign: 0 and NaN as they are */
@@ -54,8 +56,8 @@ static void products(double alo, double ahi, double blo, double bhi, double *lo,
         if (!isnan(l) && !isnan(h)) { *lo = l; *hi = h; return; }
     }
     double p = alo * blo, q = alo * bhi, r = ahi * blo, s = ahi * bhi;
-    *lo = fmin(fmin(p, q), fmin(r, s));
-    *hi = fmax(fmax(p, q), fmax(r, s));
+    *lo = fmin_(fmin_(p, q), fmin_(r, s));
+    *hi = fmax_(fmax_(p, q), fmax_(r, s));
 }
 
 static void inverse(double alo, double ahi, double *lo, double *hi) {
@@ -98,8 +100,8 @@ static void power(double alo, double ahi, double blo, double bhi, double *lo, do
     if (!integer) {  /* the base's non-negative part: the corners (NaN left out, all NaN: NaN) */
         double x0 = nmax(alo, 0.0), x1 = nmax(ahi, 0.0);
         double p = pow(x0, blo), q = pow(x0, bhi), r = pow(x1, blo), s = pow(x1, bhi);
-        *lo = fmin(fmin(fmin(p, q), r), s);
-        *hi = fmax(fmax(fmax(p, q), r), s);
+        *lo = fmin_(fmin_(fmin_(p, q), r), s);
+        *hi = fmax_(fmax_(fmax_(p, q), r), s);
         return;
     }
     double n = blo, p_lo = pow(alo, n), p_hi = pow(ahi, n);
@@ -115,8 +117,8 @@ static void truth(int certain, int impossible, double *lo, double *hi) {
 }
 
 static void outward(double *lo, double *hi) {
-    *lo = fmax(*lo - fabs(*lo) * WIDEN, -INFINITY);
-    *hi = fmin(*hi + fabs(*hi) * WIDEN, INFINITY);
+    *lo = fmax_(*lo - fabs(*lo) * WIDEN, -INFINITY);
+    *hi = fmin_(*hi + fabs(*hi) * WIDEN, INFINITY);
 }
 
 /* One rule over every box: the arguments' ends a0, a1 (b0, b1) in, the result's lo, hi out, widened outwards. */
