@@ -142,3 +142,12 @@ def test_without_a_compiler_or_cache_the_replay_is_used(monkeypatch):
     # [1, 2] [-1, 3] = [-2, 6]; sin over [1, 2] (its peak pi/2 within): [sin 1, 1]; the sum [-2 + sin 1, 7]
     assert low[0, 0] <= -2 + np.sin(1.0) and np.isclose(low[0, 0], -2 + np.sin(1.0), rtol=1e-14, atol=0)
     assert high[0, 0] >= 7.0 and np.isclose(high[0, 0], 7.0, rtol=1e-14, atol=0)
+
+
+@pytest.mark.parametrize("method", ["bounds", "replay"])
+def test_hypot_of_tiny_values_is_not_lost_to_underflow(method):
+    """hypot(0, 1e-200) = 1e-200 (CasADi's value too); through the squares' sum, 1e-400, it would be bounded by 0."""
+    function = ca.Function("f", [X, Y], [ca.hypot(X, Y)])
+    (low, high), = getattr(IntervalFunction(function), method)([(np.zeros((1, 1)),) * 2, (np.full((1, 1), 1e-200),) * 2])
+    assert float(function(0.0, 1e-200)) == 1e-200
+    assert low[0, 0] <= 1e-200 <= high[0, 0] and high[0, 0] <= 1e-200 * (1 + 1e-14)

@@ -94,6 +94,12 @@ def _tangent(a: Bounds) -> Bounds:
     return np.where(pole, -np.inf, np.tan(lo)), np.where(pole, np.inf, np.tan(hi))
 
 
+def _hypot(a: Bounds, b: Bounds) -> Bounds:
+    """hypot(|a|, |b|) (rising in each): at the least and the most magnitudes (not through the squares, which
+    underflow below 1e-154: hypot(0, 1e-200) is 1e-200, the root of the squares' sum 0)."""
+    return np.hypot(a[0], b[0]), np.hypot(a[1], b[1])
+
+
 def _zero(a: Bounds) -> np.ndarray:
     return (a[0] == 0) & (a[1] == 0)
 
@@ -160,8 +166,7 @@ _BINARY = {
     ca.OP_FMAX: lambda a, b: (np.maximum(a[0], b[0]), np.maximum(a[1], b[1])),
     ca.OP_POW: _power,
     ca.OP_CONSTPOW: _power,
-    ca.OP_HYPOT: lambda a, b: _monotone(np.sqrt, domain=(0.0, np.inf))(
-        tuple(x + y for x, y in zip(_even(np.square)(a), _even(np.square)(b)))),
+    ca.OP_HYPOT: lambda a, b: _hypot(_even(np.abs)(a), _even(np.abs)(b)),
     ca.OP_IF_ELSE_ZERO: lambda c, a: (  # c ? a : 0 (c true where nonzero)
         np.where(_nonzero(c), a[0], np.where(_zero(c), 0.0, np.minimum(a[0], 0.0))),
         np.where(_nonzero(c), a[1], np.where(_zero(c), 0.0, np.maximum(a[1], 0.0)))),

@@ -46,6 +46,12 @@ static double fmax_(double a, double b) { return isnan(a) ? b : isnan(b) ? a : (
 static double clip(double x, double lo, double hi) { return nmin(nmax(x, lo), hi); }  /* np.clip */
 static double square(double x) { return x * x; }
 static double sign(double x) { return x > 0 ? 1.0 : x < 0 ? -1.0 : x; }  /* np.sign: 0 and NaN as they are */
+static int same(double a, double b) { return a == b && signbit(a) == signbit(b); }  /* the same number, as bits */
+/* f at both ends, once where they are the same number (a parameter the box fixes: the same result, half the cost) */
+static void ends(double (*f)(double), double lo, double hi, double *f_lo, double *f_hi) {
+    *f_lo = f(lo);
+    *f_hi = same(lo, hi) ? *f_lo : f(hi);
+}
 static int spans_zero(double lo, double hi) { return lo <= 0 && hi >= 0; }
 static int zero(double lo, double hi) { return lo == 0 && hi == 0; }
 static int nonzero(double lo, double hi) { return lo > 0 || hi < 0; }
@@ -67,20 +73,23 @@ static void inverse(double alo, double ahi, double *lo, double *hi) {
 }
 
 static void even(double (*f)(double), double minimum, double alo, double ahi, double *lo, double *hi) {
-    double f_lo = f(alo), f_hi = f(ahi);
+    double f_lo, f_hi;
+    ends(f, alo, ahi, &f_lo, &f_hi);
     *lo = spans_zero(alo, ahi) ? minimum : nmin(f_lo, f_hi);
     *hi = nmax(f_lo, f_hi);
 }
 
 static void monotone(double (*f)(double), int increasing, double d0, double d1, double alo, double ahi, double *lo,
                      double *hi) {
-    double f_lo = f(clip(alo, d0, d1)), f_hi = f(clip(ahi, d0, d1));
+    double f_lo, f_hi;
+    ends(f, clip(alo, d0, d1), clip(ahi, d0, d1), &f_lo, &f_hi);
     *lo = increasing ? f_lo : f_hi;
     *hi = increasing ? f_hi : f_lo;
 }
 
 static void wave(double (*f)(double), double peak, double alo, double ahi, double *lo, double *hi) {
-    double f_lo = f(alo), f_hi = f(ahi);
+    double f_lo, f_hi;
+    ends(f, alo, ahi, &f_lo, &f_hi);
     int top = floor((ahi - peak) / (2 * M_PI)) * 2 * M_PI + peak >= alo;
     int bottom = floor((ahi - peak - M_PI) / (2 * M_PI)) * 2 * M_PI + peak + M_PI >= alo;
     int unbounded = !(isfinite(alo) && isfinite(ahi));
@@ -91,8 +100,10 @@ static void wave(double (*f)(double), double peak, double alo, double ahi, doubl
 static void tangent(double alo, double ahi, double *lo, double *hi) {
     int pole = floor((ahi - M_PI / 2) / M_PI) * M_PI + M_PI / 2 >= alo;
     pole = pole || !(isfinite(alo) && isfinite(ahi));
-    *lo = pole ? -INFINITY : tan(alo);
-    *hi = pole ? INFINITY : tan(ahi);
+    double t_lo, t_hi;
+    ends(tan, alo, ahi, &t_lo, &t_hi);
+    *lo = pole ? -INFINITY : t_lo;
+    *hi = pole ? INFINITY : t_hi;
 }
 
 static void power(double alo, double ahi, double blo, double bhi, double *lo, double *hi) {
@@ -182,8 +193,8 @@ void interval_replay(long count, const int *op, const int *arg0, const int *arg1
         case OP_FMIN: BINARY_RULE(lo = nmin(a0, b0); hi = nmin(a1, b1));
         case OP_FMAX: BINARY_RULE(lo = nmax(a0, b0); hi = nmax(a1, b1));
         case OP_POW: case OP_CONSTPOW: BINARY_RULE(power(a0, a1, b0, b1, &lo, &hi));
-        case OP_HYPOT: BINARY_RULE(even(square, 0.0, a0, a1, &t0, &t1); even(square, 0.0, b0, b1, &u0, &u1);
-                                   monotone(sqrt, 1, 0.0, INFINITY, t0 + u0, t1 + u1, &lo, &hi));
+        case OP_HYPOT: BINARY_RULE(even(fabs, 0.0, a0, a1, &t0, &t1); even(fabs, 0.0, b0, b1, &u0, &u1);
+                                   lo = hypot(t0, u0); hi = hypot(t1, u1));
         case OP_IF_ELSE_ZERO: BINARY_RULE(  /* c ? a : 0, the condition c first */
             lo = nonzero(a0, a1) ? b0 : zero(a0, a1) ? 0.0 : nmin(b0, 0.0);
             hi = nonzero(a0, a1) ? b1 : zero(a0, a1) ? 0.0 : nmax(b1, 0.0));
@@ -207,6 +218,11 @@ def source(widen: float) -> bytes:
 
 
 _LOADED: dict[str, ctypes.CDLL] = {}
+
+
+def _address(array: np.ndarray) -> int:
+    """Where a C-contiguous array's data starts (cheaper than ``array.ctypes``, which builds an object per call)."""
+    return array.__array_interface__["data"][0]
 
 
 def replay_library(widen: float):
@@ -247,6 +263,7 @@ class CompiledReplay:
                 result.append(res[0])
         self.arrays = [np.ascontiguousarray(a, dtype=np.intc) for a in (op, arg0, arg1, result)]
         self.constant = np.ascontiguousarray(constant, dtype=float)
+        self.program = [len(constant), *(_address(a) for a in (*self.arrays, self.constant))]  # (kept alive above)
         self.in_rows, self.out_rows, self.work, self.replay = in_rows, out_rows, max(work, 1), replay
 
     def bounds(self, inputs: list) -> list:
@@ -258,7 +275,5 @@ class CompiledReplay:
         rows = int(self.out_rows[-1])
         out_lo, out_hi = np.full((rows, boxes), -np.inf), np.full((rows, boxes), np.inf)
         w_lo, w_hi = np.empty((self.work, boxes)), np.empty((self.work, boxes))
-        self.replay(len(self.constant), *(a.ctypes.data for a in self.arrays), self.constant.ctypes.data, boxes,
-                    in_lo.ctypes.data, in_hi.ctypes.data, w_lo.ctypes.data, w_hi.ctypes.data, out_lo.ctypes.data,
-                    out_hi.ctypes.data)
+        self.replay(*self.program, boxes, *(_address(a) for a in (in_lo, in_hi, w_lo, w_hi, out_lo, out_hi)))
         return [(out_lo[a:b], out_hi[a:b]) for a, b in zip(self.out_rows[:-1], self.out_rows[1:])]
