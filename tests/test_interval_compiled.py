@@ -151,3 +151,13 @@ def test_hypot_of_tiny_values_is_not_lost_to_underflow(method):
     (low, high), = getattr(IntervalFunction(function), method)([(np.zeros((1, 1)),) * 2, (np.full((1, 1), 1e-200),) * 2])
     assert float(function(0.0, 1e-200)) == 1e-200
     assert low[0, 0] <= 1e-200 <= high[0, 0] and high[0, 0] <= 1e-200 * (1 + 1e-14)
+
+
+def test_inputs_of_the_wrong_shape_are_refused_not_read_past():
+    """The C reads the rows the function declares: an input with fewer rows (or boxes) is an error, not a read past
+    its end."""
+    f = IntervalFunction(ca.Function("f", [X, Y], [X * Y]))
+    with pytest.raises(ValueError, match="nonzeros"):
+        f.bounds([(np.zeros((1, 4)), np.ones((1, 4))), (np.zeros((0, 4)), np.ones((0, 4)))])
+    with pytest.raises(ValueError, match="nonzeros"):
+        f.bounds([(np.zeros((1, 4)), np.ones((1, 4)))])

@@ -190,8 +190,11 @@ class IntervalFunction:
                          f.instruction_constant(k)) for k in range(f.n_instructions())]
         self.work = f.sz_w()
         library = interval_compiled.replay_library(_WIDEN) if compiled else None
-        self.compiled = None if library is None else interval_compiled.CompiledReplay(f, self.program, self.work,
-                                                                                       library)
+        try:
+            self.compiled = None if library is None else interval_compiled.CompiledReplay(f, self.program, self.work,
+                                                                                           library)
+        except ValueError:  # an instruction the interpreter cannot address: replayed
+            self.compiled = None
 
     def bounds(self, inputs: list[Bounds]) -> list[Bounds]:
         """Bounds on each output's nonzeros (arrays of shape (nnz, boxes)) for boxes given per input as (lo, hi)

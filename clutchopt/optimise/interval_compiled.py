@@ -261,6 +261,10 @@ class CompiledReplay:
                 arg0.append(args[0] if len(args) and args[0] >= 0 else 0)
                 arg1.append(args[1] if len(args) > 1 and args[1] >= 0 else -1)
                 result.append(res[0])
+        inner = np.array([k for k, code in enumerate(op) if code not in (ca.OP_INPUT, ca.OP_OUTPUT)], dtype=int)
+        for index, bound in ((arg0, work), (arg1, work), (result, work)):  # the C reads and writes only these
+            if inner.size and not np.all((np.take(index, inner) >= -1) & (np.take(index, inner) < bound)):
+                raise ValueError("an instruction outside the work vector")
         self.arrays = [np.ascontiguousarray(a, dtype=np.intc) for a in (op, arg0, arg1, result)]
         self.constant = np.ascontiguousarray(constant, dtype=float)
         self.program = [len(constant), *(_address(a) for a in (*self.arrays, self.constant))]  # (kept alive above)
@@ -268,6 +272,11 @@ class CompiledReplay:
 
     def bounds(self, inputs: list) -> list:
         boxes = inputs[0][0].shape[1]
+        if len(inputs) != len(self.in_rows) - 1 or any(
+                np.shape(lo) != (n, boxes) or np.shape(hi) != (n, boxes)
+                for (lo, hi), n in zip(inputs, np.diff(self.in_rows))):  # (the C trusts the shapes)
+            raise ValueError(f"inputs of shapes {[np.shape(lo) for lo, _ in inputs]}, not the function's nonzeros "
+                             f"{np.diff(self.in_rows).tolist()} by {boxes} boxes")
         in_lo = np.ascontiguousarray(np.vstack([lo for lo, _ in inputs]) if len(inputs) > 1 else inputs[0][0],
                                      dtype=float)
         in_hi = np.ascontiguousarray(np.vstack([hi for _, hi in inputs]) if len(inputs) > 1 else inputs[0][1],
