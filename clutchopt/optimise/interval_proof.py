@@ -286,8 +286,8 @@ def _bounds(functions, lo: np.ndarray, hi: np.ndarray, params: tuple[np.ndarray,
     count, n = lo.shape[1], lo.shape[0]
     centre = 0.5 * (lo + hi)
     (g_lo, g_hi), = rows.bounds([(lo, hi), params])
+    (d_lo, d_hi), = jacobian.bounds([(lo, hi), params])  # (the same boxes in turn: their declared nodes' kept)
     (c_lo, c_hi), = rows.bounds([(centre, centre), params])
-    (d_lo, d_hi), = jacobian.bounds([(lo, hi), params])
     m = g_lo.shape[0]
     d_lo, d_hi = d_lo.reshape(n, m, count).transpose(1, 0, 2), d_hi.reshape(n, m, count).transpose(1, 0, 2)
     step_lo, step_hi = (lo - centre)[None], (hi - centre)[None]
