@@ -68,7 +68,8 @@ def searches(posed, problems: list[tuple[np.ndarray, ...]], budgets: list[int] |
     """:func:`search` of each ``(p, lower, upper)`` (the points of a sweep), all at once: the boxes of every search
     in one array (a box's bounds are its own: the interval rules work box by box), each with its own parameters and
     its own tally, so each search's outcome, box count and decisive constraints are what it alone would give; an
-    evaluation costs per operation as much as per box, so searches together cost less than one by one.
+    evaluation and an iteration's bookkeeping cost per call as much as per box, so searches together cost less than
+    one by one.
 
     A problem ``(p, lower, upper, p_upper)`` searches the parameters over the interval [p, p_upper] (a run of a
     sweep's points: :mod:`clutchopt.optimise.region_proof`): every bound holds for every parameter vector in it, so
@@ -189,7 +190,7 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
             break
         lo, hi = _faces(lo, hi, d_lo, d_hi, uncertain)
         counts = np.bincount(owner, minlength=count)
-        with np.errstate(divide="ignore"):  # few large batches: an evaluation costs per operation, not per box
+        with np.errstate(divide="ignore"):  # few large batches: an iteration costs per call as much as per box
             rounds = np.maximum(1, np.ceil(np.log2(BATCH / np.maximum(counts, 1)))).astype(int)
         component, rate = _parameter_spread(plo, phi, p_width0[:, owner], (c_hi - c_lo)[:, at], uncertain)
         for turn in range(int(rounds[owner].max())):
