@@ -34,13 +34,14 @@ EXPRESSIONS = {  # each op with a rule, and the compositions the formulations us
 }
 
 
+@pytest.mark.parametrize("method", ["bounds", "replay"])  # compiled where it can be, and the NumPy reference
 @pytest.mark.parametrize("name", EXPRESSIONS)
 @settings(max_examples=40, deadline=None)
 @given(st.floats(-3, 3), st.floats(-3, 3), st.floats(0, 2), st.floats(0, 2))
-def test_bounds_contain_every_value_in_the_box(name, a, b, wa, wb):
+def test_bounds_contain_every_value_in_the_box(name, method, a, b, wa, wb):
     f = IntervalFunction(ca.Function("f", [X], [EXPRESSIONS[name]]))
     lo, hi = np.array([[a], [b]]), np.array([[a + wa], [b + wb]])
-    (low, high), = f.bounds([(lo, hi)])
+    (low, high), = getattr(f, method)([(lo, hi)])
     grid = np.stack(np.meshgrid(np.linspace(a, a + wa, 41), np.linspace(b, b + wb, 41))).reshape(2, -1)
     values = np.array(ca.Function("f", [X], [EXPRESSIONS[name]]).map(grid.shape[1])(grid)).ravel()
     finite = values[np.isfinite(values)]

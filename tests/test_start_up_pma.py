@@ -100,9 +100,13 @@ def test_the_performance_point_where_the_mean_value_iteration_fails():
 def test_a_limit_whose_point_does_not_settle_falls_back_to_its_quantile_corner(monkeypatch):
     """Where the search does not settle (here made so for the start time), the limit is designed at its quantile
     corner (one uniform f: 0.12 + 0.06 x 0.001 = 0.12006) and named among the fallbacks; the others keep their
-    performance points (the lock-up speed at 0.18 - 0.00006 = 0.17994)."""
-    from clutchopt.optimise import start_up_reliability
+    performance points (the lock-up speed at 0.18 - 0.00006 = 0.17994). The quantile corners are simulated once per
+    design: f alone at each end of its range (2 starts, which are also the tornado's bars) and at the 2 corners of
+    its quantiles; the bars are read from those starts, and the corners found again at the same design (as the SORA
+    loop does after its importance sampling) simulate nothing new."""
+    from clutchopt.optimise import robust_start_up, start_up_reliability
     from clutchopt.optimise.robust_models import START_UP
+    from clutchopt.optimise.robust_start_up import start_up_bars
     from clutchopt.optimise.start_up_reliability import StartUpPerformancePoints
 
     path = CASES / "wedge_motor_start_scatter.toml"
@@ -110,8 +114,17 @@ def test_a_limit_whose_point_does_not_settle_falls_back_to_its_quantile_corner(m
     searched = start_up_reliability.performance_point
     monkeypatch.setattr(start_up_reliability, "performance_point", lambda g, row, beta, start=None: (
         (np.zeros(1), False) if g.names[row] == "start_time" else searched(g, row, beta, start)))
+    design = solve_case(case).design  # the nominal design
+    started, simulated = [], robust_start_up.simulated_start_ups
+    monkeypatch.setattr(robust_start_up, "simulated_start_ups", lambda *args: started.extend(args[3]) or simulated(
+        *args))  # the quantile corners' and the bars' starts
     points = StartUpPerformancePoints(case, "paper", 0.999)
-    corners = points.at(solve_case(case).design).corners  # the nominal design
+    at = points.at(design)
+    corners = at.corners
+    assert len(started) == 2 + 2  # f at 0.12 and 0.18 alone, then at 0.12006 and 0.17994
+    assert dict(at.bars) == start_up_bars(case, "paper", design, case.scatter) and len(started) == 2 + 2 + 2
+    searches = len(points.states.simulated)
+    assert points.at(design).corners == corners and (len(started), len(points.states.simulated)) == (6, searches)
     assert points.fallbacks == {"start_time"} and "start_time" not in points.points
     assert corners["start_time"]["friction_coefficient"] == pytest.approx(0.12006, rel=1e-9)
     assert corners["lock_up_speed"]["friction_coefficient"] == pytest.approx(0.17994, rel=1e-9)
@@ -143,3 +156,25 @@ def test_system_chance_gives_the_start_up_limits_their_shares_of_the_target(two_
     assert data["system_failure_probability"]["probability"] == system.probability
     assert data["start_up_verification"]["share_of_target"] == share
     assert "the system with the start-up limits" in result.verification
+
+
+def test_the_shares_are_taken_from_the_gradients_at_the_means(two_quantities):
+    """take_shares decides which start-up limits the scatter moves from g and its gradient at the means (n + 1 = 3
+    simulated starts: the means and a step STEP along each u), not from each limit's search on the sphere: the
+    search ends at the means only where |grad g| < NEGLIGIBLE there. The searches (about 100 simulated starts) find
+    4 limits moved on this design: the start time, the lock-up speed, lock-up and stays-locked, which f or the
+    inertia move; the engagement windows, the breakdown and overload torques are closed forms of the design that
+    neither moves. With 2 other constraints the share is 0.001 / (4 + 2) and 0.001 - 4 x 0.001 / 6 is left."""
+    from clutchopt.optimise.start_up_reliability import StartUpPerformancePoints
+
+    case = two_quantities
+    design = solve_case(case).design
+    searched = StartUpPerformancePoints(case, "paper", 0.999)
+    searched.at(design)
+    moved = {name for name, u in searched.points.items() if np.any(u)} | searched.fallbacks
+    assert moved == {"start_time", "lock_up_speed", "lock_up", "stays_locked"}
+    assert len(searched.states.simulated) > 50
+    points = StartUpPerformancePoints(case, "paper", 0.999)
+    assert points.take_shares(design, 2, 0.001) == pytest.approx(0.001 - 4 * 0.001 / 6, rel=1e-12)
+    assert points.share == pytest.approx(0.001 / 6, rel=1e-12) and points.target == 1 - points.share
+    assert len(points.states.simulated) == 3  # the means and one step along each u

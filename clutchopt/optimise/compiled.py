@@ -48,8 +48,7 @@ def compiled_library(solver: ca.Function) -> str | None:
 
 def _library(functions: list[ca.Function]) -> str | None:
     """The shared library of ``functions``, from the cache or built now; None where that is not possible."""
-    cc, folder = compiler(), cache_folder()
-    if cc is None or folder is None:
+    if compiler() is None or cache_folder() is None:
         return None
     generator = ca.CodeGenerator("clutchopt_nlp", {"with_header": False})
     for function in functions:
@@ -58,14 +57,26 @@ def _library(functions: list[ca.Function]) -> str | None:
         with tempfile.TemporaryDirectory() as scratch:
             generator.generate(scratch + os.sep)
             source = Path(scratch, "clutchopt_nlp.c").read_bytes()
-        key = hashlib.sha256(source + " ".join((ca.__version__, cc, *FLAGS)).encode()).hexdigest()[:32]
-        library = folder / f"nlp-{key}.so"
+    except (OSError, RuntimeError):
+        return None
+    return built_library(source)
+
+
+def built_library(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = FLAGS) -> str | None:
+    """The shared library of the C ``source``, from the cache (``prefix``-<hash>.so) or built now; None where that is
+    not possible (no compiler, no cache folder, a build that fails)."""
+    cc, folder = compiler(), cache_folder()
+    if cc is None or folder is None:
+        return None
+    try:
+        key = hashlib.sha256(source + " ".join((ca.__version__, cc, *flags)).encode()).hexdigest()[:32]
+        library = folder / f"{prefix}-{key}.so"
         if library.is_file():
             return str(library) if _trusted(library) else None
         folder.mkdir(mode=0o700, parents=True, exist_ok=True)
         with tempfile.TemporaryDirectory(dir=folder) as build:  # built beside its place, then moved in at once
             Path(build, "nlp.c").write_bytes(source)
-            subprocess.run([cc, *FLAGS, "nlp.c", "-o", "nlp.so", "-lm"], cwd=build, check=True, capture_output=True,
+            subprocess.run([cc, *flags, "nlp.c", "-o", "nlp.so", "-lm"], cwd=build, check=True, capture_output=True,
                            timeout=BUILD_TIMEOUT_S)
             os.replace(Path(build, "nlp.so"), library)
         return str(library)

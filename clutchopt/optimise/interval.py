@@ -5,12 +5,17 @@ interval ``[lo, hi]`` per box and work variable. Every operation's result is wid
 last place (NumPy's elementary functions are faithful, not correctly rounded), so a bound computed here holds for
 every point of the box in exact arithmetic. An operation without an interval rule here gives the whole real line: a
 bound that is true, if useless. Used to prove a design space empty (:mod:`clutchopt.optimise.interval_proof`).
+
+This replay is the reference; :meth:`IntervalFunction.bounds` runs the same rules compiled, all boxes in one call
+(:mod:`clutchopt.optimise.interval_compiled`), where a C compiler and a cache folder allow it.
 """
 
 from __future__ import annotations
 
 import casadi as ca
 import numpy as np
+
+from clutchopt.optimise import interval_compiled
 
 _WIDEN = 8 * np.finfo(float).eps  # relative outward widening of every result
 
@@ -89,6 +94,12 @@ def _tangent(a: Bounds) -> Bounds:
     return np.where(pole, -np.inf, np.tan(lo)), np.where(pole, np.inf, np.tan(hi))
 
 
+def _hypot(a: Bounds, b: Bounds) -> Bounds:
+    """hypot(|a|, |b|) (rising in each): at the least and the most magnitudes (not through the squares, which
+    underflow below 1e-154: hypot(0, 1e-200) is 1e-200, the root of the squares' sum 0)."""
+    return np.hypot(a[0], b[0]), np.hypot(a[1], b[1])
+
+
 def _zero(a: Bounds) -> np.ndarray:
     return (a[0] == 0) & (a[1] == 0)
 
@@ -155,8 +166,7 @@ _BINARY = {
     ca.OP_FMAX: lambda a, b: (np.maximum(a[0], b[0]), np.maximum(a[1], b[1])),
     ca.OP_POW: _power,
     ca.OP_CONSTPOW: _power,
-    ca.OP_HYPOT: lambda a, b: _monotone(np.sqrt, domain=(0.0, np.inf))(
-        tuple(x + y for x, y in zip(_even(np.square)(a), _even(np.square)(b)))),
+    ca.OP_HYPOT: lambda a, b: _hypot(_even(np.abs)(a), _even(np.abs)(b)),
     ca.OP_IF_ELSE_ZERO: lambda c, a: (  # c ? a : 0 (c true where nonzero)
         np.where(_nonzero(c), a[0], np.where(_zero(c), 0.0, np.minimum(a[0], 0.0))),
         np.where(_nonzero(c), a[1], np.where(_zero(c), 0.0, np.maximum(a[1], 0.0)))),
@@ -173,17 +183,27 @@ _NOT = lambda a: _truth(_zero(a), _nonzero(a))  # noqa: E731
 class IntervalFunction:
     """A CasADi SX function (or an MX one that can be expanded) evaluated over boxes: :meth:`bounds`."""
 
-    def __init__(self, function: ca.Function):
+    def __init__(self, function: ca.Function, compiled: bool = True):
         f = function.expand() if function.is_a("MXFunction") else function
         self.function = f
         self.program = [(f.instruction_id(k), f.instruction_input(k), f.instruction_output(k),
                          f.instruction_constant(k)) for k in range(f.n_instructions())]
         self.work = f.sz_w()
+        library = interval_compiled.replay_library(_WIDEN) if compiled else None
+        try:
+            self.compiled = None if library is None else interval_compiled.CompiledReplay(f, self.program, self.work,
+                                                                                           library)
+        except ValueError:  # an instruction the interpreter cannot address: replayed
+            self.compiled = None
 
-    @np.errstate(all="ignore")  # inf - inf, 0 * inf: NaN, which the rules make unbounded
     def bounds(self, inputs: list[Bounds]) -> list[Bounds]:
         """Bounds on each output's nonzeros (arrays of shape (nnz, boxes)) for boxes given per input as (lo, hi)
-        arrays of shape (nnz, boxes)."""
+        arrays of shape (nnz, boxes): compiled where it could be built, else :meth:`replay` (the same rules)."""
+        return self.compiled.bounds(inputs) if self.compiled is not None else self.replay(inputs)
+
+    @np.errstate(all="ignore")  # inf - inf, 0 * inf: NaN, which the rules make unbounded
+    def replay(self, inputs: list[Bounds]) -> list[Bounds]:
+        """:meth:`bounds` by NumPy, one operation at a time over all boxes (the reference implementation)."""
         boxes = inputs[0][0].shape[1]
         work: list[Bounds | None] = [None] * self.work
         outputs = [(np.full((self.function.nnz_out(i), boxes), -np.inf), np.full((self.function.nnz_out(i), boxes),

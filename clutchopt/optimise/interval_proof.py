@@ -68,7 +68,8 @@ def searches(posed, problems: list[tuple[np.ndarray, ...]], budgets: list[int] |
     """:func:`search` of each ``(p, lower, upper)`` (the points of a sweep), all at once: the boxes of every search
     in one array (a box's bounds are its own: the interval rules work box by box), each with its own parameters and
     its own tally, so each search's outcome, box count and decisive constraints are what it alone would give; an
-    evaluation costs per operation as much as per box, so searches together cost less than one by one.
+    evaluation and an iteration's bookkeeping cost per call as much as per box, so searches together cost less than
+    one by one.
 
     A problem ``(p, lower, upper, p_upper)`` searches the parameters over the interval [p, p_upper] (a run of a
     sweep's points: :mod:`clutchopt.optimise.region_proof`): every bound holds for every parameter vector in it, so
@@ -189,7 +190,7 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
             break
         lo, hi = _faces(lo, hi, d_lo, d_hi, uncertain)
         counts = np.bincount(owner, minlength=count)
-        with np.errstate(divide="ignore"):  # few large batches: an evaluation costs per operation, not per box
+        with np.errstate(divide="ignore"):  # few large batches: an iteration costs per call as much as per box
             rounds = np.maximum(1, np.ceil(np.log2(BATCH / np.maximum(counts, 1)))).astype(int)
         component, rate = _parameter_spread(plo, phi, p_width0[:, owner], (c_hi - c_lo)[:, at], uncertain)
         for turn in range(int(rounds[owner].max())):
@@ -286,8 +287,8 @@ def _bounds(functions, lo: np.ndarray, hi: np.ndarray, params: tuple[np.ndarray,
     count, n = lo.shape[1], lo.shape[0]
     centre = 0.5 * (lo + hi)
     (g_lo, g_hi), = rows.bounds([(lo, hi), params])
+    (d_lo, d_hi), = jacobian.bounds([(lo, hi), params])  # (the same boxes in turn: their declared nodes' kept)
     (c_lo, c_hi), = rows.bounds([(centre, centre), params])
-    (d_lo, d_hi), = jacobian.bounds([(lo, hi), params])
     m = g_lo.shape[0]
     d_lo, d_hi = d_lo.reshape(n, m, count).transpose(1, 0, 2), d_hi.reshape(n, m, count).transpose(1, 0, 2)
     step_lo, step_hi = (lo - centre)[None], (hi - centre)[None]

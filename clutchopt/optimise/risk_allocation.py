@@ -184,7 +184,11 @@ class RiskAllocation:
     def step(self, reliability, margins: dict[str, float], active: float) -> bool:
         """After a settled solve: each active constraint's index shift set where importance sampling refutes the
         share the NLP counted (its interval does not hold it); then, once none moved, the budget scaled by
-        (1 - P) / P(system fails) where the system misses its target. False when nothing moves."""
+        (1 - P) / P(system fails) where the system misses its target. A budget the NLP left unused (``system_risk``
+        not active: its objective does not change with the betas, as where each allocated constraint's point lies
+        at a uniform range's end) is not raised: the design meets 1 - P and a larger budget does not move an
+        optimum it does not bind; where the system misses, the bound the NLP reached is scaled, not the budget
+        (which the NLP might leave unused again). False when nothing moves."""
         self.system = reliability.system
         moved = False
         for name in self.betas:
@@ -200,9 +204,11 @@ class RiskAllocation:
         system = reliability.system.probability
         if moved or not system > 0:
             return moved
-        if system <= self.allowed and math.log(self.allowed / system) <= SYSTEM_TOL:
+        unused = margins.get(RISK, 0.0) > active
+        if system <= self.allowed and (unused or math.log(self.allowed / system) <= SYSTEM_TOL):
             return False
-        self.budget *= self.allowed * (1 - AIM_BELOW) / system
+        reached = self.budget * (1 - margins[RISK]) if unused else self.budget  # the NLP's series bound
+        self.budget = reached * self.allowed * (1 - AIM_BELOW) / system
         return True
 
     def claim(self) -> str:

@@ -250,6 +250,7 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
     problem = problem_for(derived, objective, options, structure)
     with_betas = (lambda design: {**design, **allocation.variables()}) if allocation else (lambda design: design)
     solution, settled, history = None, False, {name: [] for name in names}
+    sampled = None  # (the solution the loop last sampled, its reliability)
     for _ in range(BETA_STEPS if chance else 1):
         for _ in range(CORNER_STEPS):
             values = {corner_name(q, c): v for c, corner in corners.items() for q, v in corner.items()}
@@ -269,6 +270,7 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
             break
         reliability = reliability_at(shown, solution.design, params, case.scatter, case.correlation, names,
                                      SYSTEM_SAMPLES if allocation else None)
+        sampled = solution, reliability
         if allocation is not None:
             if not allocation.step(reliability, {c.name: c.margin for c in solution.constraints}, ACTIVE):
                 break
@@ -276,6 +278,8 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
             break
         corners, start_up = corners_at(solution.design)
     kept = {c.name for c in shown.constraints(namespace(nominal.design), params)}
+    # the design's reliability: the loop's where it sampled the design it ended on (the same samples and seed)
+    reliability = sampled[1] if sampled is not None and sampled[0] is solution else None
     if method == WORST_CASE:
         checks = corner_checks(shown, solution.design, params, case.scatter)
         nominal_checks = corner_checks(shown, nominal.design, params, case.scatter)
@@ -292,8 +296,9 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
                           nominal_failure, {**tornado(shown, solution.design, params, case.scatter),
                                             **(start_up.bars if start_up else {})}, corners, shown, settled=settled)
     if solution.status in DESIGN_STATUSES:
-        result.reliability = reliability_at(shown, solution.design, params, case.scatter, case.correlation, names,
-                                            SYSTEM_SAMPLES if allocation else None)
+        result.reliability = reliability or reliability_at(shown, solution.design, params, case.scatter,
+                                                           case.correlation, names,
+                                                           SYSTEM_SAMPLES if allocation else None)
         result.nominal_reliability = reliability_at(shown, nominal.design, params, case.scatter, case.correlation,
                                                     names)
         result.betas = dict(betas)

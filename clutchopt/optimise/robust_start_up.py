@@ -5,6 +5,7 @@ constraints at its own, simulated at every corner and by Monte Carlo of simulate
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator, Mapping
 from types import SimpleNamespace
 from typing import NamedTuple
 
@@ -44,7 +45,8 @@ class StartUpCorners(NamedTuple):
 
     ends: dict[str, tuple[float, float]]  # quantity -> its two ends: of its range, or its quantiles
     corners: dict[str, dict[str, float]]  # START_UP and each start-up constraint -> quantity -> value
-    bars: dict[str, dict[str, float]]  # constraint -> quantity -> change of its margin over the range, others nominal
+    bars: Mapping[str, dict[str, float]]  # constraint -> quantity -> change of its margin over the range, others
+    # nominal (a dict, or :class:`Bars` simulated on first read)
 
 
 def start_up_corners(case: Case, mode: str, design: dict, scatter, target: float | None = None) -> StartUpCorners:
@@ -97,6 +99,32 @@ def start_up_bars(case: Case, mode: str, design: dict, scatter) -> dict[str, dic
     """The tornado's bars of the start-up limits: limit -> quantity -> change of its relative margin as the
     quantity goes from the low to the high end of its range, the others nominal (simulated)."""
     return _bars(*_alone(case, mode, design, scatter))
+
+
+class Bars(Mapping):
+    """:func:`start_up_bars` at a design, simulated on first read (2 starts per quantity): a SORA loop finds the
+    start-up's corners at every design and shows the bars of its last only. ``known``: bars already simulated at
+    that design (a :class:`StartUpCorners`' of :func:`start_up_corners`, from the same starts)."""
+
+    def __init__(self, case: Case, mode: str, design: dict, scatter):
+        self.at, self.bars = (case, mode, design, scatter), None
+
+    def known(self, bars: dict[str, dict[str, float]]) -> None:
+        self.bars = bars if self.bars is None else self.bars
+
+    def _simulated(self) -> dict[str, dict[str, float]]:
+        if self.bars is None:
+            self.bars = start_up_bars(*self.at)
+        return self.bars
+
+    def __getitem__(self, name: str) -> dict[str, float]:
+        return self._simulated()[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._simulated())
+
+    def __len__(self) -> int:
+        return len(self._simulated())
 
 
 def _margins(run: list[ConstraintCheck]) -> np.ndarray:

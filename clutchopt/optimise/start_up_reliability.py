@@ -22,7 +22,7 @@ from clutchopt.optimise.reliability import REACH as FORM_REACH
 from clutchopt.optimise.reliability import DesignPoint, Estimate, form, generalised_beta, importance_sampling, ndtr
 from clutchopt.optimise.robust_models import SEED, START_UP
 from clutchopt.optimise.robust_reliability import ConstraintReliability
-from clutchopt.optimise.robust_start_up import StartUpCorners, simulated_start_ups, start_up_bars, start_up_corners
+from clutchopt.optimise.robust_start_up import Bars, StartUpCorners, simulated_start_ups, start_up_corners
 from clutchopt.optimise.verify import ConstraintCheck
 from clutchopt.scatter import _within, values_from_standard
 from clutchopt.start_up.drive import CLOSED_FORM
@@ -104,12 +104,11 @@ def performance_point(g: SimulatedLimitStates, row: int, beta: float, start: np.
         return bool(math.isfinite(value) and np.all(np.isfinite(grad)) and grad @ u <= 0
                     and np.linalg.norm(tangential) <= max(TANGENTIAL * np.linalg.norm(grad), FLAT / beta))
 
-    if n > 1 and start is not None and np.any(start) and holds(start):
+    if keeps_start(n, start) and holds(start):
         return start, True
-    value, grad = g.value_gradient(row, np.zeros(n))
-    norm = float(np.linalg.norm(grad))
-    if not (math.isfinite(value) and math.isfinite(norm)) or norm < NEGLIGIBLE:
-        return np.zeros(n), math.isfinite(value) and math.isfinite(norm)
+    grad, norm, finite = at_the_means(g, row)
+    if not finite or norm < NEGLIGIBLE:
+        return np.zeros(n), finite
     if n == 1:  # the sphere's two points (2 simulated starts)
         ends = np.array([[-beta, beta]])
         at = g(ends)[row]
@@ -133,6 +132,29 @@ def performance_point(g: SimulatedLimitStates, row: int, beta: float, start: np.
     return u, False
 
 
+def keeps_start(n: int, start: np.ndarray | None) -> bool:
+    """Whether :func:`performance_point` tries ``start`` (the point at the previous design) first: with more than one
+    quantity, a start away from the means."""
+    return n > 1 and start is not None and bool(np.any(start))
+
+
+def at_the_means(g: SimulatedLimitStates, row: int) -> tuple[np.ndarray, float, bool]:
+    """(grad g_row at the means, its norm, whether g and its gradient are finite there): n + 1 simulated starts,
+    shared by every limit (cached by point)."""
+    value, grad = g.value_gradient(row, np.zeros(len(g.scatter)))
+    norm = float(np.linalg.norm(grad))
+    return grad, norm, math.isfinite(value) and math.isfinite(norm)
+
+
+def moved_at_the_means(g: SimulatedLimitStates, row: int) -> bool:
+    """Whether the scatter moves limit ``row`` (:func:`performance_point` without a start to keep ends away from the
+    means, or does not settle), decided at the means without the search: the search returns the means (settled) only
+    where g and its gradient are finite there and |grad g| < NEGLIGIBLE; elsewhere a point on the sphere (one of its
+    two points for one quantity; BFGS's, normalised, for more), or the means unsettled where g is not finite."""
+    _, norm, finite = at_the_means(g, row)
+    return not finite or norm >= NEGLIGIBLE
+
+
 @dataclass
 class StartUpPerformancePoints:
     """A chance design's start-up limits at their performance points, found again at each design of the SORA loop
@@ -149,17 +171,34 @@ class StartUpPerformancePoints:
     states: SimulatedLimitStates | None = None  # at the last design
     points: dict[str, np.ndarray] = field(default_factory=dict)  # limit -> its performance point in u, last design
     share: float | None = None  # under a system target: each moved limit's share of 1 - P (:meth:`take_shares`)
+    quantile: dict[float, StartUpCorners] = field(default_factory=dict)  # target -> the quantile corners at the last
+    # design (:meth:`quantile_corners`)
+    bars: Bars | None = None  # the tornado's bars at the last design, simulated on first read
 
     @property
     def beta(self) -> float:
         return generalised_beta(1.0 - self.target)
 
-    def at(self, design: dict) -> StartUpCorners:
-        """The start-up's corners at ``design``: START_UP and each limit -> quantity -> value."""
-        scatter = self.case.scatter
+    def states_at(self, design: dict) -> SimulatedLimitStates:
+        """The limit states at ``design``, kept (with their simulated starts) while the design stays."""
         if self.states is None or self.states.design != design:
-            self.states = SimulatedLimitStates(self.case, self.mode, design, scatter, self.correlation)
-        g, self.points, self.fallbacks = self.states, {}, set()
+            self.states = SimulatedLimitStates(self.case, self.mode, design, self.case.scatter, self.correlation)
+            self.quantile, self.bars = {}, Bars(self.case, self.mode, design, self.case.scatter)
+        return self.states
+
+    def quantile_corners(self) -> dict[str, dict[str, float]]:
+        """The quantile corners at the last design and target (``robust_start_up.start_up_corners``), simulated once
+        per design and target; their bars are the design's (the same starts)."""
+        if self.target not in self.quantile:
+            self.quantile[self.target] = start_up_corners(self.case, self.mode, self.states.design, self.case.scatter,
+                                                          self.target)
+            self.bars.known(self.quantile[self.target].bars)
+        return self.quantile[self.target].corners
+
+    def at(self, design: dict) -> StartUpCorners:
+        """The start-up's corners at ``design``: START_UP and each limit -> quantity -> value; its bars simulated when
+        read (:class:`robust_start_up.Bars`)."""
+        g, self.points, self.fallbacks = self.states_at(design), {}, set()
         corners = {}
         for row, name in enumerate(g.names):
             u, settled = performance_point(g, row, self.beta, self.previous.get(name))
@@ -169,7 +208,7 @@ class StartUpPerformancePoints:
             else:
                 self.fallbacks.add(name)
         if self.fallbacks:
-            quantile = start_up_corners(self.case, self.mode, design, scatter, self.target).corners
+            quantile = self.quantile_corners()
             corners.update({name: quantile[name] for name in self.fallbacks})
         figures = [row for row, name in enumerate(g.names) if name not in CLOSED_FORM and name in self.points]
         if figures:
@@ -177,16 +216,25 @@ class StartUpPerformancePoints:
             binding = g.names[figures[int(np.argmin([at[row, i] for i, row in enumerate(figures)]))]]
             corners = {START_UP: corners[binding], **corners}
         else:
-            corners = {START_UP: start_up_corners(self.case, self.mode, design, scatter, self.target).corners[START_UP],
-                       **corners}
-        return StartUpCorners({}, corners, start_up_bars(self.case, self.mode, design, scatter))
+            corners = {START_UP: self.quantile_corners()[START_UP], **corners}
+        return StartUpCorners({}, corners, self.bars)
 
     def take_shares(self, design: dict, others: int, allowed: float) -> float:
         """Under a system target (``allowed`` = 1 - P, shared with ``others`` constraints): each start-up limit the
         scatter moves at ``design`` (or whose point does not settle) takes an equal share of ``allowed`` and is
-        designed to hold with 1 - share; what is left for the others (whose split the NLP chooses)."""
-        self.at(design)
-        moved = [name for name, u in self.points.items() if np.any(u)] + sorted(self.fallbacks)
+        designed to hold with 1 - share; what is left for the others (whose split the NLP chooses). Which limits
+        move is decided by the gradients at the means (:func:`moved_at_the_means`, n + 1 simulated starts) where
+        the search would not try a kept start, else by the search (whose points at this beta are then dropped:
+        the limits are designed at the share's)."""
+        g, n = self.states_at(design), len(self.case.scatter)
+
+        def moves(row: int, name: str) -> bool:
+            if not keeps_start(n, start := self.previous.get(name)):
+                return moved_at_the_means(g, row)
+            u, settled = performance_point(g, row, self.beta, start)
+            return bool(np.any(u)) or not settled
+
+        moved = [name for row, name in enumerate(g.names) if moves(row, name)]
         if not moved:
             return allowed
         self.share = allowed / (len(moved) + others)

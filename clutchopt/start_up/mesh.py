@@ -42,7 +42,9 @@ def adapted_mesh(structure, history, phase_times: list[float]) -> np.ndarray:
     equidistribute sqrt|x''| of the states (each scaled by its range and the phase duration), the error
     monitor of a corner (the motor's knee), with a fifth of its mean over the phase added everywhere."""
     t_all = np.asarray(history["t"])  # a run's columns (arrays) or its history (a DataFrame)
-    columns = [np.asarray(history[name]) for name in ("w_driver", "w_driven", "friction_work", "temperature_rise")]
+    columns = np.array([history[name] for name in ("w_driver", "w_driven", "friction_work", "temperature_rise")],
+                       dtype=float)
+    ranges = columns.max(axis=1) - columns.min(axis=1)  # each state's spread over the start
     meshes, begin = [], 0.0
     for phase, end in zip(structure.phases, np.cumsum(phase_times)):
         inside = (t_all >= begin) & (t_all <= end)
@@ -52,12 +54,13 @@ def adapted_mesh(structure, history, phase_times: list[float]) -> np.ndarray:
             begin = end
             continue
         span = end - begin
+        values = columns[:, inside][:, first]
+        spreads = values.max(axis=1) - values.min(axis=1)
+        moving = spreads > STILL * ranges  # a state at rest but for rounding shapes nothing
+        curvature = np.abs(np.gradient(np.gradient(values[moving], t, axis=1), t, axis=1))
         monitor = np.zeros(len(t))
-        for column in columns:
-            values = column[inside][first]
-            spread = values.max() - values.min()
-            if spread > STILL * (column.max() - column.min()):  # a state at rest but for rounding shapes nothing
-                monitor += np.abs(np.gradient(np.gradient(values, t), t)) * span * span / spread
+        for row, spread in zip(curvature, spreads[moving]):  # the states in turn, summed in the same order
+            monitor += row * span * span / spread
         weight = _cumulative(np.sqrt(monitor), t)
         mean = weight[-1] / (t[-1] - t[0])  # over time: the samples crowd where the solver's steps are short
         weight = weight + MONITOR_FLOOR * mean * (t - t[0]) if mean > 0 else t - t[0]

@@ -19,6 +19,7 @@ derivatives and become named constraints. Every optimum is started again by the 
 from __future__ import annotations
 
 import math
+from functools import cached_property
 from types import SimpleNamespace
 
 import casadi as ca
@@ -63,6 +64,7 @@ class StartUpBlock:
         self._bounds: list[tuple[float, float]] = []
         self.kinds: list[tuple[str, str]] = []  # (phase, state or "duration") of each internal variable
         self._mesh: list = []
+        self._outputs: dict | None = None
         self.equalities: list = []
         self.points: list[tuple] = []  # (time, {state: value}) of every phase start and collocation point
         self.nodes: list[dict] = []  # the states at the collocation points (the phase starts excluded)
@@ -172,8 +174,9 @@ class StartUpBlock:
         return duration, previous
 
 
-    @property
+    @cached_property
     def mesh_parameters(self):
+        """The interval lengths of every phase (NLP parameters), built once: each solve reads their count."""
         return ca.vertcat(*self._mesh)
 
     def initial_mesh(self) -> np.ndarray:
@@ -209,7 +212,13 @@ class StartUpBlock:
         return np.array(lower), np.array(upper)
 
     def outputs(self) -> dict:
-        """Figures of the NLP's start (expressions): for the start_up report and the trajectory."""
+        """Figures of the NLP's start (expressions): for the start_up report and the trajectory. Built once (each
+        solve's report reads their names); not to be changed by the caller."""
+        if self._outputs is None:
+            self._outputs = self._figure_outputs()
+        return self._outputs
+
+    def _figure_outputs(self) -> dict:
         d = self.drive
         figures = {"start_time": self.start_time, "friction_work": self.figures.friction_work,
                    "engagement_speed": ca.sqrt(d.engagement_squared) if self.s.radial else 0.0,
