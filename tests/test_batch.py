@@ -162,13 +162,15 @@ def test_a_chain_ends_near_the_next_change_of_the_integers():
 
 def test_a_neighbour_without_a_design_is_settled_in_the_batch():
     # ball rows rise with the power (4.7x-6.6x): at each point the multipliers promise a gain from one row fewer,
-    # which IPOPT finds infeasible (as Problem.solve's search: the fixed-row problem solved cold), so the batch keeps
-    # its rows: 2 calls a point (its chained column, the neighbour's IPOPT call), the next chain one point (a
-    # break at every point). Where the rows before become infeasible (2 points) the chained column fails its KKT test
-    # and the search tries them by IPOPT (infeasible), then the relaxation and its rows, one more: 3 calls (and the
-    # failed column). The records' calls: 3 (the first point, solved alone) + 13 * 2 + 2 * 3 = 35; the sweep's 51
-    # (with the failed columns at the changes and the neighbour's first SQP attempt after them); 142 before (chains
-    # of 8 failing at their first point, then Problem.solve at each point)
+    # which IPOPT finds infeasible (as Problem.solve's search: the fixed-row problem solved cold). The first point
+    # (solved alone) finds it so; from there the power only rises, and the power enters the torque row's limit alone
+    # (k_s P / w, no design variable in it), so the row fewer stays ruled out (optimise/tightening.py) and the chain
+    # runs on: 1 call a point. Where the rows before become infeasible (2 points) the chained column fails its KKT
+    # test and the search tries them by IPOPT (infeasible): one row fewer than that is ruled out, so the search starts
+    # at one row more, without the relaxation: 2 calls (and the failed column). The records' calls: 3 (the first
+    # point) + 13 * 1 + 2 * 2 = 20; the sweep's 27: the failed columns at the 2 changes, and the points chained past
+    # them (the chains of 8 from points 1 and 7 break at 6 and 11: 2 + 3); 51 before the ruling out, 142 before the
+    # batch's own search (chains of 8 failing at their first point, then Problem.solve at each point)
     case, problem, quantity, values, sweep, solutions = _sweep("ball_rows_up")
     rows = [s.design["ball_rows"] for s in solutions]
     assert rows == sorted(rows) and rows[0] == 6 and rows[-1] == 8
@@ -176,14 +178,13 @@ def test_a_neighbour_without_a_design_is_settled_in_the_batch():
     for before, s in zip(solutions, solutions[1:]):
         n = s.design["ball_rows"]
         if n == before.design["ball_rows"]:
-            assert [(e["ball_rows"], e["status"]) for e in s.integer_search] == [
-                (n, BATCHED), (n - 1, "Infeasible_Problem_Detected")] and s.solver.solves == 2
+            assert s.integer_search == [] and s.solver.solves == 1
         else:
             assert [(e["ball_rows"], e["status"]) for e in s.integer_search] == [
-                (n - 1, "Infeasible_Problem_Detected"), (n, BATCHED)] and s.solver.solves == 3
+                (n - 1, "Infeasible_Problem_Detected"), (n, BATCHED)] and s.solver.solves == 2
     assert not any(e["feasible"] for s in solutions for e in s.integer_search if e["status"] != BATCHED
                    and not e["status"].startswith("Solve"))
-    assert sum(s.solver.solves for s in solutions) == 35 and sweep.solves <= 51
+    assert sum(s.solver.solves for s in solutions) == 20 and sweep.solves <= 27
     previous = None
     for value, got in zip(values, solutions):  # Problem.solve's designs, point by point
         want = problem.solve(case.with_values(**{quantity: float(value)}), warm=previous)
@@ -396,3 +397,34 @@ def test_the_first_re_solve_after_a_cold_ipopt_optimum_goes_by_sqp():
     assert (second.status, second.solver.name, second.solver.solves) == ("optimal", "sqpmethod", 1)
     solutions = [s for part in BatchSweep(problem, case, {"inertia": values}).run() for s in part]
     assert [s.solver.status for s in solutions[1:]] == [BATCHED, BATCHED]
+
+
+def test_the_ball_past_4_5x_its_power_spends_one_call_a_point_between_changes_of_its_rows():
+    # ball_compressor over 1x-10x its power (100 points, the benchmark's sweep into the infeasible): 7 rows up to
+    # 4.5x, where the contact stress becomes active and one row fewer pays (6 rows from point 65); from point 66 on
+    # the multipliers promise one row fewer at every point, which IPOPT finds infeasible at 66 and which stays ruled
+    # out (the power enters the torque row's limit alone, so the constraints only tighten: optimise/tightening.py);
+    # the rows rise by one at 72, 77, 82, 86, 90, 93, where the rows before become infeasible (IPOPT) and one more is
+    # the only neighbour left; no design from 96 on. The records' calls: 2 (point 0: the relaxation, its rows) +
+    # 64 (1 .. 64, chained) + 2 (65: 7 rows' column, 6 rows) + 2 (66: 5 rows by IPOPT) + 23 (chained between the
+    # changes) + 6 * 2 (each change: the rows before by IPOPT, one more by SQP) + 3 (96: solve's from the case's own
+    # start, its relaxation and two retries, then the interval proof) + 0 (97 .. 99: one region proof) = 108. The
+    # sweep's 125 add the chained columns that failed at the changes and at 96, the batch's own search at 96 (the 12
+    # rows and the 13 by IPOPT) and points chained past a change; 192 before (the first chain past 4.5x ran to the
+    # sweep's end, the row fewer was solved by IPOPT at every point)
+    case = load_case(CASES / "ball_compressor.toml")
+    problem = Problem(get_coupling("ball").formulation("design"))
+    values = case.values["power"] * np.geomspace(1.0, 10.0, 100)
+    sweep = BatchSweep(problem, case, {"power": values})
+    solutions = [s for part in sweep.run() for s in part]
+    assert [s.status for s in solutions] == ["optimal"] * 96 + ["infeasible"] * 4
+    rows = [int(s.design["ball_rows"]) for s in solutions[:96]]
+    changes = [k for k in range(1, 96) if rows[k] != rows[k - 1]]
+    assert changes == [65, 72, 77, 82, 86, 90, 93] and rows[0] == 7 and rows[65] == 6 and rows[95] == 12
+    calls = [s.solver.solves for s in solutions]
+    assert calls[0] == 2 and calls[65] == calls[66] == 2 and all(calls[k] == 2 for k in changes[1:])
+    assert sum(calls) == 108 and sweep.solves <= 125
+    for k in (65, 66, 72, 95):  # Problem.solve's designs, warm from the point before (as the sweep before batches)
+        want = problem.solve(case.with_values(power=float(values[k])), warm=solutions[k - 1])
+        assert want.status == "optimal" and want.design["ball_rows"] == rows[k]
+        assert solutions[k].objective == pytest.approx(want.objective, rel=1e-9)

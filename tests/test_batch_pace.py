@@ -1,7 +1,11 @@
 """The length of a batched sweep's next chain (clutchopt/optimise/batch_pace.py): doubling along smooth stretches,
 aimed at the next expected integer break, a probe after an aimed chain passed."""
 
-from clutchopt.optimise.batch_pace import BatchPace
+import casadi as ca
+import numpy as np
+
+from clutchopt.optimise.batch_pace import BatchPace, until_active
+from clutchopt.optimise.batch_window import Block
 
 
 def test_chains_double_while_they_pass_and_restart_after_a_point_solved_alone():
@@ -49,3 +53,45 @@ def test_the_growth_of_the_gap_is_bounded():
     for k in (0, 50, 150):
         pace.broke(k)
     assert pace.size == 64
+
+
+class _Posed:
+    """A posed problem's two members ``until_active`` reads: one inequality row g = x_0 + x_1 - 1 <= 0."""
+
+    n_ineq = 1
+
+    def __init__(self):
+        x, p = ca.SX.sym("x", 2), ca.SX.sym("p", 1)
+        self.constraint_values = ca.Function("g", [x, p], [x[0] + x[1] - 1])
+
+    def mapped(self, function, count):  # as Posed.mapped's InPlace: the outputs as a list of arrays
+        return lambda *args: [np.array(function.map(count)(*args))]
+
+
+def _block(x0, x1, lam_g=0.0):
+    x = np.array([x0, x1], dtype=float)
+    return Block(np.array([4, 5]), x=x, lam_x=np.zeros((2, 2)), lam_g=np.full((1, 2), lam_g), p=np.zeros((1, 2)),
+                 lbx=np.zeros((2, 2)), ubx=np.ones((2, 2)))
+
+
+def test_a_chain_ends_where_a_slack_is_expected_to_close():
+    # x_0 0.3 -> 0.4, x_1 0.2 -> 0.2: the row's slack 1 - x_0 - x_1 is 0.5 then 0.4 (step -0.1); at evenly spaced
+    # points it is 0.3, 0.2, 0.1, 0.0 at the 1st .. 4th point ahead: active at the 4th. x_0's distance to its upper
+    # bound 1 closes too (0.6 after 6 more), later. Where the case's steps double at each point (a geometric sweep,
+    # ratio 2): 0.4 - 0.1 (2 + 4) < 0 at the 2nd point ahead
+    posed, free = _Posed(), np.array([True, True])
+    block = _block([0.3, 0.4], [0.2, 0.2])
+    assert until_active(posed, block, np.ones(10), free, 1e-9) == 4
+    assert until_active(posed, block, np.full(10, 2.0), free, 1e-9) == 2
+    # a ratio of 0 (no step known) counts as 1
+    assert until_active(posed, block, np.zeros(10), free, 1e-9) == 4
+    # an active row (its multiplier non-zero) and opening slacks forecast nothing; nor does a single point
+    assert until_active(posed, _block([0.3, 0.4], [0.2, 0.2], lam_g=1.0), np.ones(10), np.array([False, False]),
+                        1e-9) is None
+    assert until_active(posed, _block([0.4, 0.3], [0.2, 0.2]), np.ones(10), np.array([False, False]), 1e-9) is None
+    # (x_0 falling 0.4 -> 0.3 towards its lower bound 0, a variable left free: 0.3 - 3 * 0.1 = 0 at the 3rd point)
+    assert until_active(posed, _block([0.4, 0.3], [0.2, 0.2]), np.ones(10), free, 1e-9) == 3
+    assert until_active(posed, Block(np.array([5]), **{k: v[:, 1:] for k, v in block.arrays.items()}), np.ones(10),
+                        free, 1e-9) is None
+    # beyond the ratios given (the sweep's end): None
+    assert until_active(posed, block, np.ones(3), free, 1e-9) is None

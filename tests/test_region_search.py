@@ -163,3 +163,24 @@ def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     assert frame["diagnosis"][1].startswith("proven infeasible for resisting_torque 130-250 N*m (4 points, one proof)")
     assert [s["solver"]["solves"] for s in result.solutions][1:5] == [6, 0, 0, 0]  # (80 N m: 2 calls, a retry)
     assert result.spent["solves"] == sum(s["solver"]["solves"] for s in result.solutions)
+
+
+def test_a_point_its_own_search_does_not_prove_continues_its_verdict_from_its_first_solve(monkeypatch):
+    # The wedge paper case at 12 resisting torques from 20 to 400 N m with every region search and quick search made
+    # to fail (as where a point's bounds are too loose): each point after the first without a design (3) is solved
+    # once (cold IPOPT, no design), then its verdict goes on from that solve (region_proof.completed): retried from
+    # the least relaxation's design and from the last feasible point's (89.09 N m), then proven by the full
+    # verdict's own interval search, as solve's. 3 calls a point; 4 before, where Problem.solve made the first
+    # solve again
+    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: [None] * len(problems))
+    vary = parse_vary("resisting_torque=20:400:12", "wedge", WEDGE.quantities)
+    result = Sweep(WEDGE, [vary]).run(progress=False)
+    problem = case_problem(WEDGE)
+    assert [s["status"] for s in result.solutions] == ["optimal"] * 3 + ["infeasible"] * 9
+    assert [s["solver"]["solves"] for s in result.solutions][4:] == [3] * 8
+    for point in (4, 11):
+        alone = problem.solve(WEDGE.with_values(resisting_torque=vary.values[point]))
+        record = result.solutions[point]
+        assert (record["status"], record["diagnosis"]) == (alone.status, alone.diagnosis)
+        assert record["starts"] == ["the case's own start", "the least relaxation's design",
+                                    "the neighbouring point's design"]

@@ -19,7 +19,7 @@ from clutchopt.optimise.verify import check_design, evaluate_objective
 
 
 class Run(dict):
-    """One solve's figures (``x``, ``lam_x``, ``lam_g``, ``f``, ``ok``, ``status``, ``design``, ...). Its float64
+    """One solve's figures (``x``, ``g``, ``lam_x``, ``lam_g``, ``f``, ``ok``, ``status``, ``design``, ...). Its float64
     check (``checks``, ``feasible``, ``value``) is made when one of them is first read: a relaxation whose integers
     are searched next needs none."""
 
@@ -50,7 +50,8 @@ def run(posed: Posed, data: ScaledData, lbx, ubx, x0, seed: dict | None, method:
     elapsed = time.perf_counter() - started
     stats = solver.stats()
     x = result["x"].full().ravel()
-    solved = Run(x=x, lam_g=result["lam_g"].full().ravel(), lam_x=result["lam_x"].full().ravel(),
+    solved = Run(x=x, g=result["g"].full().ravel(), lam_g=result["lam_g"].full().ravel(),
+                 lam_x=result["lam_x"].full().ravel(),
                  f=float(result["f"]), ok=bool(stats["success"]), status=stats["return_status"],
                  iterations=int(stats.get("iter_count", 0)), time=elapsed, p=data.p, lbx=lbx, ubx=ubx,
                  solver="sqpmethod" if method == "sqp" else "ipopt",

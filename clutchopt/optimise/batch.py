@@ -26,11 +26,14 @@ by the tables or re-solved by a one-point chained SQP and KKT-checked (the relax
 convexified; the batch's own integers not again where the chain solved them at that point: its column there is
 the first attempt). A combination the one-point SQP does not settle is solved as ``Problem.solve``'s search solves a
 neighbour, by IPOPT from cold: kept out of the search where IPOPT finds no design (and at the next point tried by
-IPOPT directly), else re-solved by SQP from IPOPT's optimum (the ball's rows: one row fewer promised by the
-multipliers but infeasible, point after point, had sent each point to ``Problem.solve``). Where the batch's integers
-are excluded and one neighbouring combination is not, the search starts there, without the relaxation (the cable
-count, one cable more). The next chain then ends where the next such point is expected (``batch_pace``; a chain
-that fails at its first point is such a point too). Otherwise,
+IPOPT directly, or not at all where the sweep has only tightened the constraints since: ``tightening``, whose
+combinations ruled out so also do not end a chain), else re-solved by SQP from IPOPT's optimum (the ball's rows: one
+row fewer promised by the multipliers but infeasible, point after point, had sent each point to ``Problem.solve``).
+Where the batch's integers are excluded, or IPOPT finds no design with them, and one neighbouring combination is left,
+the search starts there, without the relaxation (the cable count, one cable more; the ball's rows, one more where the
+row fewer is ruled out). The next chain then ends where the next such point is expected (``batch_pace``; a point that
+fails at the batch's integers is such a point too), or sooner where the active set is expected to change
+(``batch_pace.until_active``). Otherwise,
 and where a re-solve of that search fails its check, the point is solved by ``Problem.solve``, warm from the last
 kept point (SQP, warm IPOPT, the integer search, the cold solve and the infeasibility diagnosis), and the next
 batch starts after it, 8 points long, doubling while batches pass (up to 256). A chain's length is a power of two
@@ -60,16 +63,19 @@ from typing import Iterator
 import numpy as np
 
 from clutchopt.cases import Case
+import clutchopt.optimise.attempts as attempts
 from clutchopt.optimise.attempts import warm_multipliers
-from clutchopt.optimise.batch_pace import BatchPace
+from clutchopt.optimise.batch_pace import BatchPace, until_active
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
 from clutchopt.optimise.chain import chain_verdict, chained_sqp
-from clutchopt.optimise.integers import descend, excluded_entry, nearest_integers, relaxation_seed, search_entry
-from clutchopt.optimise.posed import Box, off_scale
+from clutchopt.optimise.integers import (descend, downhill, excluded_entry, nearest_integers, relaxation_seed,
+                                         search_entry)
+from clutchopt.optimise.posed import Box, ScaledData, off_scale
 from clutchopt.optimise.problem import Problem
-from clutchopt.optimise.region_proof import Regions
+from clutchopt.optimise.region_proof import Regions, completed
 from clutchopt.optimise.solution import Solution, WarmStart
-from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL, check_design
+from clutchopt.optimise.tightening import tightening
+from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
 LONGEST_BATCH = 256  # doubling stops here: a longer batch saves little call overhead and risks more waste
@@ -197,6 +203,7 @@ class BatchSweep:
         self.integer = [i for i in self.posed.integer if self.lower[i] < self.upper[i]]
         fixed = self.lower == self.upper
         fixed[self.integer] = True
+        self._free = ~fixed  # the continuous variables the case leaves free
         # the constraints of fixed variables alone that the batch's integers enter (one of the case alone that breaks
         # at a point stops a batch there by its KKT check, and Problem.solve diagnoses it)
         entered = np.zeros_like(fixed)
@@ -207,7 +214,9 @@ class BatchSweep:
         self._span = min(EXCLUSION_SPAN, self.count)
         self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
         self.searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
-        self._undesigned: dict[tuple, int] = {}  # integer combination -> the last point where IPOPT found no design
+        self._undesigned: dict[tuple, tuple[int, str]] = {}  # integer combination -> the last point where IPOPT
+        # found no design, and IPOPT's status there
+        self._tightening = tightening(self.posed, self.varied)
         varied = self.values[[q.name in self.varied for q in f.quantities]]
         with np.errstate(all="ignore"):  # each point's step in the case from the one before, relative
             moves = np.diff(varied, axis=1) / np.abs(varied[:, 1:])
@@ -228,13 +237,16 @@ class BatchSweep:
         """Solve every point in order; yields the solutions window by window, each window checked in float64."""
         start: _Start | None = None  # where the next batch starts; None: after a point without a design
         pace, k = BatchPace(FIRST_BATCH, LONGEST_BATCH), 0
+        ahead = None  # points until an inactive constraint or bound is expected to become active (with integers,
+        # where the pace expects no break)
         while k < self.count:
             first, end, deadline = k, min(k + window, self.count), time.perf_counter() + WINDOW_S
             blocks: list[Block] = []
             alone: dict[int, Solution] = {}
             failed = False  # the last point is without a design: the window waits for a feasible point after it
             while k < end and (failed or time.perf_counter() < deadline):  # each turn solves at least one point
-                wanted, reach = min(pace.size, end - k), min(2 * pace.size, LONGEST_BATCH, end - k)
+                wanted, reach = min(pace.size, ahead or pace.size, end - k), min(2 * pace.size, LONGEST_BATCH, end - k)
+                forecast = ahead is not None and ahead < pace.size  # the chain ends at a forecast change
                 block, chained, searching, tried = (self._batch(start, k, wanted, reach) if start is not None
                                                     else (None, 0, False, None))
                 passed = 0 if block is None else len(block.index)
@@ -243,24 +255,49 @@ class BatchSweep:
                     start, k = _Start(self, block=block), k + passed
                     self.feasible, failed = start.warm.design, False
                 if chained and passed == chained:
-                    pace.passed()
+                    pace.passed(chained)
+                    ahead = None if pace.aimed else self._until_active(block)  # (where no break is expected)
                     if not searching or k == end:  # (a batch that passes up to its integers' exclusion hands the
                         continue  # next point to the search)
                 settled = self._settle(start, k, tried) if searching else None
                 if settled is not None:  # the integer search decided point k in the batch
-                    pace.broke(k)
+                    kept, start = start, _Start(self, block=settled)
+                    if not (np.array_equal(start.combo, kept.combo) and self._tightens(k)):  # (where it kept the
+                        pace.broke(k)  # batch's integers and the neighbours it found without a design stay ruled
+                        # out, the relaxed integers crossed no boundary: no break to pace the chains by)
                     blocks.append(settled)
-                    start, k = _Start(self, block=settled), k + 1
+                    k, ahead = k + 1, (1 if forecast else None)  # (a forecast change of the active set often
+                    # comes with another at the next point, the ball at 4.5x its power: the contact stress active at
+                    # one, the filling off its bound at the next; the forecast was from the points before it: a probe)
                     self.feasible, failed = start.warm.design, False
                     continue
                 if passed == 0 < chained and self.integer:  # its first point failed at the batch's integers: a
                     pace.broke(k)  # break too (Problem.solve's search decides it), the next one expected as far on
                 elif passed < chained:  # point k failed a test in the batch: the next batch starts short
                     pace.restart()
-                alone[k] = self._solve_alone(k, start.warm if start is not None else None)
+                undesigned = start is not None and self._undesigned_at(start.combo, k)  # (IPOPT found none with
+                # the batch's integers here: solved as `solve` solves the point, from the case's own start; warm, it
+                # would try them again first)
+                alone[k] = self._solve_alone(k, start.warm if start is not None and not undesigned else None)
+                ahead = None
                 start, k = self._start_of(alone[k]), k + 1
                 failed = alone[k - 1].status not in DESIGN_STATUSES
             yield self._window(blocks, alone, first, k - first)
+
+    def _until_active(self, block: Block) -> int | None:
+        """With free integers that the objective does not price at the block's last point (their bound multipliers
+        within ``Posed.negligible``: a change of the active set is what would make one promise a neighbour), the
+        points after ``block`` until its active set is expected to change (``batch_pace.until_active``): the next
+        chain ends there. None otherwise (the integer breaks are paced by their gaps)."""
+        if not self.integer:
+            return None
+        scale = block.arrays["p"][len(self.values):len(self.values) + len(self.names), -1]
+        gain = np.abs(block.arrays["lam_x"][self.integer, -1]) / scale[self.integer]
+        if np.any(gain > self.posed.negligible(float(block.arrays["f"][0, -1]))):
+            return None
+        last = int(block.index[-1]) + 1
+        return until_active(self.posed, block, self._ratio[last:last + LONGEST_BATCH], self._free,
+                            10 * self.posed.options.tol)
 
     def _start_of(self, solution: Solution) -> _Start | None:
         return _Start(self, solution) if solution.status == "optimal" else None
@@ -270,17 +307,15 @@ class BatchSweep:
         point without a design, the points from k are first searched as one region (``region_proof.Regions``): a
         point a proof covers is infeasible without a solve; another is solved once, and searched alone before its
         full verdict where that solve finds no design."""
-        solution = self._regions.covered(k) or self._regions.quick(k, warm)
-        if solution is None:
-            solution = self._regions.charged(self.problem.solve(self.point_case(k), warm=warm, neighbour=self.feasible))
-            self._regions.after(k, solution)
+        case = self.point_case(k)
+        solution = self._regions.point(k, lambda first: completed(self.problem, case, first, warm, self.feasible), warm)
         self._counted(solution)
         if solution.status in DESIGN_STATUSES:
             self.feasible = solution.design
         for entry in solution.integer_search:  # (its search's combinations without a design: IPOPT's verdicts)
             names = [self.names[i] for i in self.integer]
             if not entry["feasible"] and not entry["status"].startswith("excluded") and all(n in entry for n in names):
-                self._undesigned[tuple(float(entry[n]) for n in names)] = k
+                self._undesigned[tuple(float(entry[n]) for n in names)] = (k, entry["status"])
         return solution
 
     def _counted(self, solution: Solution) -> Solution:
@@ -310,10 +345,10 @@ class BatchSweep:
         if chain is None:
             return None, min(count, chain_length(count)), False, None
         count = len(chain.index)
-        ok = chain.ok & ~chain.moves
+        ok = chain.ok & ~self._unruled_moves(chain, start)
         passed = int(np.argmin(ok)) if not ok.all() else count
-        searching = (bool(chain.ok[passed]) or passed == 0 < len(self.integer)) if passed < count else count == first
-        # (passed up to the exclusion; a first point that fails at the batch's integers: the search tries them by IPOPT)
+        searching = (bool(chain.ok[passed]) or len(self.integer) > 0) if passed < count else count == first
+        # (passed up to the exclusion; a point that fails at the batch's integers: the search tries them by IPOPT)
         tried = None  # normalised as the batch that starts after the passed points
         if searching and passed < count:
             tried = chain.column(passed, _Start(self, block=chain.block(passed)).f_scale if passed else start.f_scale)
@@ -384,16 +419,20 @@ class BatchSweep:
                 search.append(excluded_entry(self.posed, self.integer, combo, excluded))
                 return None
             key = tuple(combo.tolist())
+            ruled = self._ruled_out(key, k)
+            if ruled:
+                search.append(search_entry(self.posed, self.integer, combo, ruled, False, math.nan))
+                return None
             if tried is not None and np.array_equal(combo, start.combo):
                 chain = tried  # (its chained column: the first attempt, verified or not)
             else:  # a combination IPOPT left without a design at the point before goes to IPOPT again directly
                 chain = (self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
-                         if self._undesigned.get(key) != k - 1 else None)
+                         if self._undesigned.get(key, (None,))[0] != k - 1 else None)
             if chain is None or not chain.ok[0]:  # as Problem.solve tries a neighbour: IPOPT, cold
                 entry, seconds, optimum = self._cold(start, k, lower, upper, seed)
                 cold.append(seconds)
                 if optimum is None:
-                    self._undesigned[key] = k
+                    self._undesigned[key] = (k, entry["status"])
                     search.append(entry)
                     return None
                 chain = self._chain(start, k, 1, lower, upper, optimum, "sqp_chain", predict=False)
@@ -416,6 +455,8 @@ class BatchSweep:
             past = self._past_exclusion(start.combo, k) if kept is None else None
             if past is not None:  # the only neighbour its exclusion leaves: the search from there
                 kept = descend(self.posed, box, self.integer, past, seed, search, attempt)
+                if kept is None and self._undesigned_at(start.combo, k):  # it too without a design: the point is
+                    return None  # Problem.solve's from the case's own start, whose relaxation IPOPT solves first
             if kept is None:  # the batch's integers fail here: the relaxation, from the same point
                 relaxed = solved(self.lower, self.upper, relaxation_seed(seed, self.integer), "sqp_search")
                 if off_scale(relaxed["x"][: len(self.names)]):
@@ -433,25 +474,69 @@ class BatchSweep:
         self.searches[k] = search
         return block
 
-    def _past_exclusion(self, combo: np.ndarray, k: int) -> np.ndarray | None:
-        """Where the integers ``combo`` are excluded at point k (a constraint of fixed variables alone broken, e.g.
-        the cable stress of too few cables), the one neighbouring combination (one integer one unit either way, within
-        the bounds) that is not: the search starts there, without the relaxation, which would round to it. None
-        where the integers are not excluded, or none or several neighbours are left (the relaxation decides)."""
+    def _ruled_out(self, combo: tuple, k: int) -> str:
+        """Why the integers ``combo`` are not solved at point k (empty: they are): IPOPT found no design with them at
+        an earlier point, and the step from there to k only tightens the constraints (``tightening``): no design
+        meets at k what none met there."""
+        found = self._undesigned.get(combo)
+        if found is None or found[0] >= k or not self._tightening.tightened(self._by_point[found[0]],
+                                                                             self._by_point[k]):
+            return ""
+        return f"ruled out: {found[1]} at point {found[0]}, whose limits the sweep has only tightened since"
+
+    def _tightens(self, k: int) -> bool:
+        """The step from point k to the next only tightens the constraints (``tightening``)."""
+        return k + 1 < self.count and self._tightening.tightened(self._by_point[k], self._by_point[k + 1])
+
+    def _unruled_moves(self, chain: _Chain, start: _Start) -> np.ndarray:
+        """Per chained point, whether ``Problem.solve``'s warm search would go on from it (the chain verdict's
+        ``moves``), but for the points up to the first whose every neighbour the search would step to
+        (``integers.downhill``) is excluded there or ruled out (:meth:`_ruled_out`): the search would keep the
+        chain's integers there without a solve."""
+        moves = chain.moves.copy()
+        if not self._undesigned:
+            return moves
+        box = Box(start.scale, self.lower, self.upper)
         lower = self.lower.copy()
-        lower[self.integer] = combo
-        if not self._broken(lower, k, 1).any():
+        for j in np.flatnonzero(moves):
+            k = int(chain.index[j])
+            run = {"x": chain.x[:, j], "lam_x": chain.lam_x[:, j], "f": float(chain.f[0, j])}
+            for combo in downhill(self.posed, run, box, self.integer):
+                lower[self.integer] = combo
+                if not (self._ruled_out(tuple(combo.tolist()), k) or self._broken(lower, k, 1).any()):
+                    return moves
+            moves[j] = False
+        return moves
+
+    def _past_exclusion(self, combo: np.ndarray, k: int) -> np.ndarray | None:
+        """Where the integers ``combo`` are left out at point k (:meth:`_left_out`: e.g. the cable stress of too few
+        cables, or the ball's rows that IPOPT has just found without a design), the one neighbouring combination (one
+        integer one unit either way, within the bounds) that is not: the search starts there, without the
+        relaxation, which would round to it. None where the integers are not left out, or none or several neighbours
+        are left (the relaxation decides)."""
+        if not self._left_out(combo, k):
             return None
         left = []
         for j, i in enumerate(self.integer):
             for step in (-1.0, 1.0):
                 neighbour = combo.copy()
                 neighbour[j] += step
-                if self.lower[i] <= neighbour[j] <= self.upper[i]:
-                    lower[self.integer] = neighbour
-                    if not self._broken(lower, k, 1).any():
-                        left.append(neighbour)
+                if self.lower[i] <= neighbour[j] <= self.upper[i] and not self._left_out(neighbour, k):
+                    left.append(neighbour)
         return left[0] if len(left) == 1 else None
+
+    def _left_out(self, combo: np.ndarray, k: int) -> bool:
+        """The integers ``combo`` have no design at point k: a constraint of fixed variables alone breaks, or IPOPT
+        found none (:meth:`_undesigned_at`)."""
+        lower = self.lower.copy()
+        lower[self.integer] = combo
+        return bool(self._broken(lower, k, 1).any()) or self._undesigned_at(combo, k)
+
+    def _undesigned_at(self, combo: np.ndarray, k: int) -> bool:
+        """IPOPT found no design with the integers ``combo`` at point k, or at one before it and the sweep has only
+        tightened the constraints since (:meth:`_ruled_out`)."""
+        key = tuple(combo.tolist())
+        return self._undesigned.get(key, (None,))[0] == k or bool(self._ruled_out(key, k))
 
     def _cold(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
               seed: dict) -> tuple[dict, float, dict | None]:
@@ -463,23 +548,19 @@ class BatchSweep:
         tolerance set to 0, as a warm start of SQP: ``attempts.warm_multipliers``), from which the one-point chained
         SQP gives the column (a combination that became feasible along the sweep: the ball's fewer rows as the
         allowable contact stress rises)."""
-        p = np.concatenate([self._by_point[k], start.scale, [start.f_scale]])
         lbx, ubx = lower / start.scale, upper / start.scale
-        solver, began = self.posed.solver("ipopt"), time.perf_counter()
-        out = solver(x0=np.clip(seed["x"], lbx, ubx), p=p, lbx=lbx, ubx=ubx, lbg=self.posed.lbg, ubg=0.0)
-        seconds = time.perf_counter() - began
-        self.solves, self.solver_s = self.solves + 1, self.solver_s + seconds
-        stats = solver.stats()
-        x = out["x"].full().ravel()
-        design = self.posed.rounded(self.posed.design(x, start.scale))
-        checks = check_design(self.posed.formulation, design, self.posed.params(self.point_case(k)))
-        if stats["success"] and all(c.feasible for c in checks):
-            lam_x, lam_g = warm_multipliers(self.posed, out["lam_x"].full().ravel(), out["lam_g"].full().ravel())
-            return {}, seconds, {"x": x, "lam_x": lam_x, "lam_g": lam_g, "dx": np.zeros_like(x),
-                                 "dlam_x": np.zeros_like(lam_x), "dlam_g": np.zeros_like(lam_g)}
-        combo = lower[self.integer]
-        return search_entry(self.posed, self.integer, combo, stats["return_status"], False,
-                            float(out["f"]) * start.f_scale), seconds, None
+        x0 = np.clip(seed["x"], lbx, ubx)
+        data = ScaledData(self.posed.params(self.point_case(k)), lower, upper, x0 * start.scale, start.scale,
+                          start.f_scale, np.concatenate([self._by_point[k], start.scale, [start.f_scale]]))
+        solved = attempts.run(self.posed, data, lbx, ubx, x0, None)
+        self.solves, self.solver_s = self.solves + 1, self.solver_s + solved["time"]
+        if solved["ok"] and solved["feasible"]:
+            x = solved["x"]
+            lam_x, lam_g = warm_multipliers(self.posed, solved["lam_x"], solved["lam_g"])
+            return {}, solved["time"], {"x": x, "lam_x": lam_x, "lam_g": lam_g, "dx": np.zeros_like(x),
+                                        "dlam_x": np.zeros_like(lam_x), "dlam_g": np.zeros_like(lam_g)}
+        return search_entry(self.posed, self.integer, lower[self.integer], solved["status"], False,
+                            solved["f"] * start.f_scale), solved["time"], None
 
     def _excluded(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
         """Per point k .. k + count - 1: the fixed variables of ``design`` (SI; integers and variables fixed by the

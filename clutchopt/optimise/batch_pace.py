@@ -14,12 +14,20 @@ point with integers to search: that point is a break (``BatchSweep.run``), so th
 every point the chains are one point long (the ball over its power past 4.6x: chains of 8 had failed at their first
 point, 7 solves lost at each).
 
+With free integers a chain also ends where an inactive constraint or bound is expected to become active
+(:func:`until_active`), where a fixed integer's multiplier can jump from nothing (the ball over its power: its first
+chain past 4.5x had run 35 points past the break); a chain aimed at a break and cut short there leaves the rest of the
+way to the next chain. A search that keeps the chain's integers (its promised neighbour without a design, ruled out
+from then on) is no break.
+
 Measured on the 100-point user sweeps of the benchmark (``docs/tradeoffs.md``, "Batches"): the cable over its
 allowable stress broke at 7 points with gaps 9, 9, 11, 13, 16, 21, the ball over its speed at 7 with gaps 9, 9, 10,
 11, 13, 14; with chains doubling past each break, 48 and 31 solves went to points after a break.
 """
 
 from __future__ import annotations
+
+import numpy as np
 
 PROBE = 1  # the chain after one aimed at an expected break passed: the break is most often the next point (of 10
 # predicted gaps on the cable and ball sweeps, 4 were exact, 4 one point longer, 1 two longer, 1 one shorter)
@@ -35,9 +43,18 @@ class BatchPace:
         self._breaks: list[int] = []  # the last three points where the integer search decided
         self._aimed = False  # the size ends the chain at an expected break
 
-    def passed(self) -> None:
-        """A chain of :attr:`size` points passed every test: doubled, or a probe after one aimed at a break."""
-        if self._aimed:
+    @property
+    def aimed(self) -> bool:
+        """The next chain ends at an expected break."""
+        return self._aimed
+
+    def passed(self, points: int | None = None) -> None:
+        """A chain of :attr:`size` points (or ``points``) passed every test: doubled, or a probe after one aimed at a
+        break; a chain aimed at a break but cut short (an active set expected to change before it: ``until_active``)
+        leaves the rest of the way to it for the next chain."""
+        if self._aimed and points is not None and points < self.size:
+            self.size -= points
+        elif self._aimed:
             self.size, self._aimed = PROBE, False
         else:
             self.size = min(2 * self.size, self.longest)
@@ -55,3 +72,32 @@ class BatchPace:
     def restart(self) -> None:
         """A point failed a test other than the integer search's (solved alone): chains restart from ``first``."""
         self.size, self._aimed = self.first, False
+
+
+def until_active(posed, block, ratios, free: np.ndarray, tol: float) -> int | None:
+    """Points ahead of ``block`` (batched points with free integers, its last two from one chain) until the first
+    where an inactive constraint row or variable bound is expected to become active, or None (none is expected, or
+    the block has one point). A change of the active set is where a fixed integer's bound multiplier jumps (the ball
+    over its power: 0 at 7 rows up to 4.5x, where the contact stress becomes active and one row fewer is promised
+    from the next point on) and where the chain's integers may stop serving (its rows at their largest radius): a
+    chain that ends there wastes no solve on the points after it (the ball's first chain past 4.5x: 35 solves). Each
+    slack (the row's -g, the variable's distance to its bound, scaled) is followed from its last value by its last
+    step, grown as the case's steps grow (``ratios``, each point's step against the one before: a geometric sweep's
+    steps grow by the same factor); ``free``: the variables neither fixed nor integer; ``tol``: a slack or multiplier
+    within it is taken as active."""
+    if len(block.index) < 2:
+        return None
+    a = block.arrays
+    x, lam_x, lam_g = a["x"][:, -2:], a["lam_x"][:, -1], a["lam_g"][:, -1]
+    g = np.asarray(posed.mapped(posed.constraint_values, 2)(x, a["p"][:, -2:])[0])
+    slack = np.concatenate([-g[: posed.n_ineq][np.abs(lam_g[: posed.n_ineq]) <= tol],
+                            (x - a["lbx"][:, -2:])[free & (np.abs(lam_x) <= tol)],
+                            (a["ubx"][:, -2:] - x)[free & (np.abs(lam_x) <= tol)]])
+    step = slack[:, 1] - slack[:, 0]
+    closing = (slack[:, 1] > tol) & (step < 0)
+    if not closing.any():
+        return None
+    ahead = np.cumsum(np.cumprod(np.where(ratios > 0, ratios, 1.0)))  # the slack's steps ahead, summed
+    left = slack[closing, 1:2] + step[closing, None] * ahead  # each closing slack over the points ahead
+    reached = (left <= 0).any(axis=0)
+    return int(np.argmax(reached)) + 1 if reached.any() else None

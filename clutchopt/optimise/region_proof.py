@@ -29,10 +29,11 @@ again (the bisection of such a run by searches had cost seconds where a solve co
 run cost a failed solve on each run inside a region). A probe only shortens the run searched; its calls are charged to
 the next point's verdict.
 
-A point left over next to a proven one is tested against that proof first (:meth:`Regions.quick`): solved once, as
+A point left over next to a proven one is tested against that proof first (:meth:`Regions._quick`): solved once, as
 ``Problem.solve`` starts (its design, if it finds one, is ``solve``'s), else its own interval search, the one its full
-verdict would run, before the elastic diagnosis and the retries: proven, it gets the verdict ``solve`` gives
-("proven infeasible: ..."), else the search is kept for its full verdict (``Problem.solve``). A point whose case
+verdict would run, before the retries: proven, it gets the verdict ``solve`` gives ("proven infeasible: ..."), else
+its full verdict goes on from that solve (:func:`completed`: the retries, then the kept search), not from the same
+solve again (20-40 ms each time it had been repeated). A point whose case
 breaks a requirement that no design variable enters ("whatever the design"), or (a start-up) whose drive proofs
 hold, is left to its own verdict, which says so.
 
@@ -46,6 +47,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import replace
+from typing import Callable
 
 import numpy as np
 
@@ -53,7 +55,7 @@ from clutchopt.optimise.interval_proof import (MAX_BOXES, SURE_BOXES, _search_pr
                                                searches)
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
-from clutchopt.optimise.verdict import emptied
+from clutchopt.optimise.verdict import emptied, shown
 from clutchopt.optimise.verify import DESIGN_STATUSES, check_design, evaluate_objective, evaluate_outputs
 from clutchopt.units import from_si
 
@@ -99,39 +101,47 @@ class Regions:
         return replace(solution, solver=replace(solution.solver, solves=solution.solver.solves + calls,
                                                 time_s=solution.solver.time_s + seconds))
 
-    def quick(self, k: int, warm=None) -> Solution | None:
-        """Point k, not covered, next to a point without a design (a static problem): one solve (as ``Problem.solve``
-        starts, ``warm`` its warm start), and where it ends without a design the point's own interval search before
-        the elastic diagnosis and the retries; the solve's design, or the verdict its proof gives, or None (the
-        full verdict: ``Problem.solve``, which finds this search kept)."""
+    def point(self, k: int, solve: Callable[[Solution | None], Solution], warm=None) -> Solution:
+        """Point k's solution, the one sequence of a sweep's point that is not batched: its region proof where one
+        covers it (:meth:`covered`), else one solve and its own interval search where the point before has no design
+        (:meth:`_quick`), else ``solve(first)``: the point's full verdict, continuing from that first solve where
+        there was one (``first``, see :func:`completed`), else from the start; the probes' calls charged to it, and
+        the regions told (:meth:`after`). ``warm``: the point's warm start (a static problem's)."""
+        solution, first = self.covered(k), None
+        if solution is None:
+            solution, first = self._quick(k, warm)
+        if solution is None:
+            solution = self.charged(solve(first))
+            self.after(k, solution)
+        return solution
+
+    def _quick(self, k: int, warm=None) -> tuple[Solution | None, Solution | None]:
+        """Point k, not covered, next to a point without a design (a static problem): one solve (``Problem.solve``'s
+        first, ``warm`` its warm start), and where it ends without a design the point's own interval search before
+        the retries: the solve's design, or the verdict its proof gives, and None; or None and that solve (its
+        verdict follows from it: :func:`completed`, which finds this search kept); or None, None where the point
+        before has a design."""
         if self._without_at != k - 1 or self.problem.start_up is not None:
-            return None
+            return None, None
         case = self.point_case(k)
-        first = self.charged(self.problem.refined(case, warm=warm, diagnosed=False))
+        first = self.charged(self.problem.refined(case, warm=warm))
         if first.status in DESIGN_STATUSES:
             self.after(k, first)
-            return first
+            return first, None
         problem = _search_problem(self.posed, case)
         began = time.perf_counter()
         own = searches(self.posed, [problem])[0]
         seconds = time.perf_counter() - began
         if own is None or not own.proven:
             keep_search(self.posed, problem, own)
-            return self._carried(first)
+            return None, first
         last_boxes(self.posed, own.boxes)
         solution = _covered(self.problem, case, first, "proven infeasible: " + emptied(own), seconds,
                             first.solver.solves)
         if solution is None:
-            return self._carried(first)
+            return None, first
         self.after(k, solution)
-        return solution
-
-    def _carried(self, first: Solution) -> None:
-        """None (point k's full verdict follows), the calls and seconds of its quick solve (and the probes charged to
-        it) carried to that verdict: the sweep's count of solver calls is the sum over its points."""
-        calls, seconds = self._probed
-        self._probed = (calls + first.solver.solves, seconds + first.solver.time_s)
-        return None
+        return solution, None
 
     def after(self, k: int, solution: Solution) -> None:
         """Point k's solution: one proven infeasible starts (or goes on with) the regions searched after it (after
@@ -145,11 +155,11 @@ class Regions:
     def _search_from(self, k: int) -> None:
         """The runs from point k (``_length`` points), bisected where not proven whole, their searches together; the
         next runs twice as long as the longest proven (FIRST_RUN again after a design)."""
-        if k == self._found:  # the edge a probe found: solved as usual (Regions.quick)
+        if k == self._found:  # the edge a probe found: solved as usual (Regions._quick)
             self._to = k + 1
             return
         end = min(k + self._length, self.count)
-        self._to, runs = end, [(k, end)] if end - k > 1 else []  # (a last point alone: Regions.quick)
+        self._to, runs = end, [(k, end)] if end - k > 1 else []  # (a last point alone: Regions._quick)
         points = {j: _search_problem(self.posed, self.point_case(j)) for j in range(k, end)}
         longest = 1  # the longest run proven
         while runs:
@@ -207,6 +217,15 @@ class Regions:
         calls, seconds = self._probed
         self._probed = (calls + solution.solver.solves, seconds + solution.solver.time_s)
         return solution.status in DESIGN_STATUSES
+
+
+def completed(problem, case, first: Solution | None, warm=None, neighbour: dict[str, float] | None = None) -> Solution:
+    """``Problem.solve(case, warm=warm, neighbour=neighbour)``'s solution, continuing from its first solve ``first``
+    where it was already made (``Regions._quick``'s, without a design): the retries and the verdict
+    (``verdict.shown``), not the same solve again."""
+    if first is None:
+        return problem.solve(case, warm=warm, neighbour=neighbour)
+    return shown(problem, case, first, warm is not None, neighbour)
 
 
 def _region_problem(points: list[tuple[np.ndarray, ...]]) -> tuple[np.ndarray, ...]:

@@ -40,7 +40,7 @@ from clutchopt.optimise.dask_client import connect
 from clutchopt.optimise.design import Robustness, check_robustness, design_case, method_of
 from clutchopt.optimise.entering import check_entering
 from clutchopt.optimise.problem import case_formulation, case_problem
-from clutchopt.optimise.region_proof import Regions
+from clutchopt.optimise.region_proof import Regions, completed
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.start_up_sweep import solved_along
 from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_name, grid_points, grid_positions,
@@ -136,25 +136,10 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
     regions = Regions(problem, lambda k: case.with_values(**pairs[k][1]), len(pairs))
     for j, (index, values) in enumerate(pairs):
         point_case = case.with_values(**values)
+        neighbour = designs.get(tuple(values.values())) or (feasible[1] if feasible else None)
         # next to a point without a design: proven with the points around it, or solved once and proven alone
-        solution = regions.covered(j) or regions.quick(j, previous if problem.start_up is None else None)
-        if solution is not None and solution.status not in DESIGN_STATUSES:  # (proven: no more solves)
-            previous = None
-            waiting.append((j, point_case, solution))
-            continue
-        # falls back to the case's own start by itself; a start-up design starts from the point before's optimum on
-        # the first mesh (clutchopt.optimise.start_up_sweep), else as `solve` does, from the papers' sizing at the
-        # point: either way solve's design whatever the points before it
-        same = designs.get(tuple(values.values()))
-        neighbour = same or (feasible[1] if feasible else None)
-        if solution is None:
-            solution = solved_along(problem, point_case, previous) if problem.start_up is not None else None
-            solution = solution or regions.charged(problem.solve(
-                point_case, warm=previous if problem.start_up is None else None,
-                neighbour=neighbour.design if neighbour is not None else None))
-        if solution.status not in DESIGN_STATUSES and feasible is not None:
-            solution = continued(problem, case, feasible, values) or solution
-        regions.after(j, solution)
+        solution = regions.point(j, partial(_solved, problem, case, values, previous, feasible, neighbour),
+                                 previous if problem.start_up is None else None)
         previous = solution if solution.status == "optimal" else None
         if solution.status not in DESIGN_STATUSES:
             waiting.append((j, point_case, solution))
@@ -170,6 +155,22 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
         waiting = []
         yield _one(points, j, names, solution)
     yield from (_one(points, w, names, waited) for w, _, waited in waiting)
+
+
+def _solved(problem, case: Case, values: dict, previous: Solution | None, feasible: tuple[dict, Solution] | None,
+            neighbour: Solution | None, first: Solution | None) -> Solution:
+    """A point's full verdict in a sweep solved point by point (continuing from ``first``, a solve already made:
+    ``region_proof.completed``): falls back to the case's own start by itself; a start-up design starts from the point
+    before's optimum on the first mesh (clutchopt.optimise.start_up_sweep), else as `solve` does, from the papers'
+    sizing at the point: either way solve's design whatever the points before it. Without a design, followed from the
+    last feasible point (:func:`continued`)."""
+    point_case = case.with_values(**values)
+    solution = solved_along(problem, point_case, previous) if problem.start_up is not None else None
+    solution = solution or completed(problem, point_case, first, previous if problem.start_up is None else None,
+                                     neighbour.design if neighbour is not None else None)
+    if solution.status not in DESIGN_STATUSES and feasible is not None:
+        solution = continued(problem, case, feasible, values) or solution
+    return solution
 
 
 def continued(problem, case: Case, feasible: tuple[dict, Solution], values: dict,

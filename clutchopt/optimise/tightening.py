@@ -1,0 +1,65 @@
+"""Whether a sweep's step only tightens the constraints, so that what no design met before none meets after.
+
+Along a sweep of case quantities the design's bounds stay put and only the constraints move. Where every constraint
+that the varied quantities enter does so through its limit alone, a function of case values only (the ball's torque
+row: the torque the design carries, ``value``, against the rated torque k_s P / w, ``limit``: the power enters the
+limit, no design variable does), the step from point j to point k moves each such limit by the same amount for every
+design. If each moved limit is at least as tight at k (``at_least``: not lower; ``at_most``: not higher; its scale,
+the row's normaliser, positive at both), the designs that meet every constraint at k are a subset of those at j:
+an integer choice left without a design at j (IPOPT: ``Infeasible_Problem_Detected``) is left without one at k by
+the same verdict, and need not be solved again (``clutchopt.optimise.batch``: the ball's row fewer, promised by the
+bound multiplier of its rows at every point past 4.6x its power and infeasible at each). Where a varied quantity
+enters a constraint's value, or a limit or scale that a design variable enters, the step's effect depends on the
+design and nothing is concluded (:attr:`Tightening.known` is false).
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+
+from clutchopt.model import namespace
+
+
+class Tightening:
+    """For a posed problem's formulation and the varied quantities (``varied``, names): :meth:`tightened` says
+    whether the step between two points' case values (all quantities, SI, in the formulation's order) only
+    tightens the constraints the varied quantities enter."""
+
+    def __init__(self, posed, varied):
+        f = posed.formulation
+        x = namespace({v.name: ca.SX.sym(v.name) for v in f.variables})
+        p_all = ca.SX.sym("p", len(f.quantities))
+        p = namespace({q.name: p_all[j] for j, q in enumerate(f.quantities)})
+        moved = ca.vertcat(*(p_all[j] for j, q in enumerate(f.quantities) if q.name in set(varied)))
+        design = ca.vertcat(*vars(x).values())
+        limits, scales, senses = [], [], []
+        self.known = moved.numel() > 0
+        for c in f.constraints(x, p):
+            value, limit = ca.SX(c.value), ca.SX(c.limit)
+            scale = limit if c.scale is None else ca.SX(c.scale)
+            if not any(ca.depends_on(e, moved) for e in (value, limit, scale)):
+                continue  # the step leaves it as it is
+            if ca.depends_on(value, moved) or ca.depends_on(limit, design) or ca.depends_on(scale, design):
+                self.known = False  # the step moves it by what the design makes of it
+                break
+            limits.append(limit), scales.append(scale * ca.DM.ones(limit.shape))
+            senses.append(np.full(limit.numel(), 1.0 if c.sense == ">=" else -1.0))
+        self._senses = np.concatenate(senses) if senses else np.zeros(0)
+        self._limits = ca.Function("tightening", [p_all], [ca.vertcat(ca.SX(0, 1), *limits),
+                                                           ca.vertcat(ca.SX(0, 1), *scales)])
+
+    def tightened(self, before: np.ndarray, after: np.ndarray) -> bool:
+        """Every constraint the varied quantities enter is at least as tight with the case values ``after`` as
+        with ``before`` (and the step moves no other)."""
+        if not self.known:
+            return False
+        (limit_before, scale_before), (limit_after, scale_after) = (
+            (np.asarray(v, dtype=float).ravel() for v in self._limits(values)) for values in (before, after))
+        return bool(np.all(scale_before > 0) and np.all(scale_after > 0)
+                    and np.all(self._senses * (limit_after - limit_before) >= 0))
+
+
+def tightening(posed, varied) -> Tightening:
+    """The :class:`Tightening` of a posed problem along the quantities ``varied``, built once."""
+    return posed.built("tightening", tuple(sorted(varied)), lambda _: Tightening(posed, varied))
