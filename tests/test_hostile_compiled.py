@@ -9,7 +9,6 @@ import sys
 from pathlib import Path
 
 import casadi as ca
-import numpy as np
 import pytest
 
 import clutchopt.optimise.compiled as compiled
