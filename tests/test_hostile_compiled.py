@@ -94,3 +94,20 @@ def test_a_folder_others_control_is_not_used(cache, fault):
     assert run_probe(cache) == "replayed"
     library.unlink()
     assert run_probe(cache) == "replayed" and not library.exists()
+
+
+@pytest.mark.parametrize("outcome", ["fails", "hangs"])
+def test_a_compiler_that_fails_or_hangs_is_tried_once_a_process(cache, tmp_path, monkeypatch, outcome):
+    """A ball sweep of four points over its infeasible region built the replay's library six times (each interval
+    proof asks for it): with a compiler that fails, six compiler runs; with one that hangs, six waits of
+    BUILD_TIMEOUT_S (120 s: twelve minutes for a three-second sweep). A build that failed is not tried again by the
+    same process; the replay is NumPy's, the same bounds."""
+    calls = tmp_path / "calls"
+    script = tmp_path / "cc"
+    script.write_text(f"#!/bin/sh\necho run >> {calls}\n" + ("exit 1\n" if outcome == "fails" else "sleep 5\n"))
+    script.chmod(0o755)
+    monkeypatch.setattr(compiled, "compiler", lambda: str(script))
+    monkeypatch.setattr(compiled, "BUILD_TIMEOUT_S", 0.5)
+    for _ in range(3):
+        assert interval_compiled.replay_library(_WIDEN) is None
+    assert calls.read_text() == "run\n"

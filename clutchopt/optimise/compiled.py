@@ -26,6 +26,8 @@ CACHE_ENV = "CLUTCHOPT_CACHE"  # the cache folder; empty: no compiled code
 COMPILE_ABOVE = 2000  # Hessian instructions above which compiling pays (ball 4,447; cable 681, lever 238, wedge 105)
 BUILD_TIMEOUT_S = 120
 FLAGS = ("-O1", "-fPIC", "-shared")  # no fast-math: the compiled code keeps IEEE arithmetic, operation by operation
+_FAILED: set[Path] = set()  # the libraries whose build failed in this process (a compiler that fails or hangs is
+# waited for once a process, not by every interval proof of a sweep)
 
 
 def cache_folder() -> Path | None:
@@ -82,9 +84,12 @@ def built_library(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = F
                 return None
             if _recorded(library) == _digest(library):
                 return str(library)
+        if library in _FAILED:
+            return None
         folder.mkdir(mode=0o700, parents=True, exist_ok=True)
         if not _trusted(folder):
             return None
+        _FAILED.add(library)  # (until it is built)
         with tempfile.TemporaryDirectory(dir=folder) as build:  # built beside its place, then moved in at once
             Path(build, "nlp.c").write_bytes(source)
             subprocess.run([cc, *flags, "nlp.c", "-o", "nlp.so", "-lm"], cwd=build, check=True, capture_output=True,
@@ -93,6 +98,7 @@ def built_library(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = F
             Path(build, "nlp.sha256").write_text(_digest(built))
             os.replace(built, library)  # (a process building the same at once: either library, each whole)
             os.replace(Path(build, "nlp.sha256"), _record(library))
+        _FAILED.discard(library)
         return str(library)
     except (OSError, subprocess.SubprocessError, RuntimeError):
         return None
