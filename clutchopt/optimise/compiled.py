@@ -115,7 +115,8 @@ def _digest(library: Path) -> str:
 def _recorded(library: Path) -> str | None:
     """The digest the build of ``library`` recorded, None where there is none (a library of an earlier version)."""
     try:
-        return _record(library).read_text().strip()
+        with open(_record(library), "rb") as record:
+            return record.read(64).decode().strip()  # (64 hex digits: no more is read, whatever the file is)
     except (OSError, UnicodeDecodeError):
         return None
 
