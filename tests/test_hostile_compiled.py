@@ -9,6 +9,7 @@ import sys
 from pathlib import Path
 
 import casadi as ca
+import numpy as np
 import pytest
 
 import clutchopt.optimise.compiled as compiled
@@ -111,3 +112,50 @@ def test_a_compiler_that_fails_or_hangs_is_tried_once_a_process(cache, tmp_path,
     for _ in range(3):
         assert interval_compiled.replay_library(_WIDEN) is None
     assert calls.read_text() == "run\n"
+
+
+def test_a_function_of_thousands_of_instructions_is_enclosed_as_the_replay_encloses_it():
+    """A random chain of 2,500 operations (sums, products, quotients, sin, fmin, sqrt, exp, hypot, atan, if_else,
+    squares, tanh, log1p; 1,655 instructions, a work vector of 208) over 2,000 boxes whose ends are drawn from 0, -0,
+    +-1, 2, -3, +-1e308, +-inf, NaN and the smallest subnormal: compiled and replayed bounds are the same numbers but
+    where libm and NumPy differ by an ulp, which cancellation may grow (1e-13 relative here at most but for 0.2 %
+    of the entries, to 4e-8); both hold every value sampled in the boxes of moderate ends (the proofs' soundness).
+    (Near 1e308 a point's float evaluation may overflow where the reals do not: exp(1e305) * 0 is NaN in float, 0 in
+    the reals and in both replays' product rule; a fmin then drops the NaN and the point's value, 3e-162, lies
+    outside the enclosure [0, 0]. The rules enclose the real function, as their docstrings say.)"""
+    from clutchopt.optimise.interval import IntervalFunction
+
+    rng = np.random.default_rng(0)
+    x = ca.SX.sym("x", 4)
+    operations = [lambda a, b: a + b, lambda a, b: a * b, lambda a, b: a / b, lambda a, b: ca.sin(a) - b,
+                  lambda a, b: ca.fmin(a, b), lambda a, b: ca.sqrt(ca.fabs(a)) + b,
+                  lambda a, b: ca.exp(a * 1e-3) * b, lambda a, b: ca.hypot(a, b), lambda a, b: ca.atan(a) * b,
+                  lambda a, b: ca.if_else(a < b, a, b), lambda a, b: a ** 2 - b,
+                  lambda a, b: ca.tanh(a) + ca.log1p(ca.fabs(b))]
+    nodes = list(x.nz)
+    for _ in range(2500):
+        a, b = nodes[rng.integers(len(nodes))], nodes[rng.integers(len(nodes))]
+        nodes.append(operations[rng.integers(len(operations))](a, b))
+    f = ca.Function("big", [x], [ca.vertcat(*nodes[-50:])])
+    assert f.n_instructions() > 1000
+    fast, slow = IntervalFunction(f), IntervalFunction(f, compiled=False)
+    assert fast.compiled is not None
+    ends = rng.choice([0.0, -0.0, 1.0, -1.0, 2.0, -3.0, 1e308, -1e308, np.inf, -np.inf, np.nan, 5e-324], (2, 4, 2000))
+    lo, hi = np.minimum(ends[0], ends[1]), np.maximum(ends[0], ends[1])  # (a NaN end: a NaN box)
+    (c_lo, c_hi), = fast.bounds([(lo, hi)])
+    with np.errstate(all="ignore"):
+        (r_lo, r_hi), = slow.bounds([(lo, hi)])
+        for compiled_end, replayed_end in ((c_lo, r_lo), (c_hi, r_hi)):
+            same = (compiled_end == replayed_end) | np.isnan(compiled_end) & np.isnan(replayed_end)
+            close = np.isclose(compiled_end, replayed_end, rtol=1e-13, atol=0)
+            assert np.mean(same | close) > 0.995 and np.all(same | np.isclose(compiled_end, replayed_end, rtol=1e-7,
+                                                                                 atol=1e-300))
+        finite = np.nan_to_num(np.stack([lo, hi]), nan=0.0, posinf=1e308, neginf=-1e308)
+        boxes = np.flatnonzero(np.all((np.abs(lo) <= 3) & (np.abs(hi) <= 3), axis=0))[:100]  # (1e308: see below)
+        t = rng.random((4, boxes.size, 20))
+        samples = finite[0][:, boxes, None] + (finite[1] - finite[0])[:, boxes, None] * t
+        samples = np.clip(samples, finite[0][:, boxes, None], finite[1][:, boxes, None]).reshape(4, -1)
+        values = np.array(f.map(samples.shape[1])(samples)).reshape(50, boxes.size, 20)
+        for low, high in ((c_lo, c_hi), (r_lo, r_hi)):
+            outside = (values < low[:, boxes, None]) | (values > high[:, boxes, None])
+            assert not np.any(outside & np.isfinite(values))
