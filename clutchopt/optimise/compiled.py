@@ -74,6 +74,7 @@ def built_library(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = F
     cc, folder = compiler(), cache_folder()
     if cc is None or folder is None:
         return None
+    library = None
     try:
         key = hashlib.sha256(source + " ".join((ca.__version__, cc, *flags)).encode()).hexdigest()[:32]
         library = folder / f"{prefix}-{key}.so"
@@ -89,7 +90,6 @@ def built_library(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = F
         folder.mkdir(mode=0o700, parents=True, exist_ok=True)
         if not _trusted(folder):
             return None
-        _FAILED.add(library)  # (until it is built)
         with tempfile.TemporaryDirectory(dir=folder) as build:  # built beside its place, then moved in at once
             Path(build, "nlp.c").write_bytes(source)
             subprocess.run([cc, *flags, "nlp.c", "-o", "nlp.so", "-lm"], cwd=build, check=True, capture_output=True,
@@ -98,9 +98,10 @@ def built_library(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = F
             Path(build, "nlp.sha256").write_text(_digest(built))
             os.replace(built, library)  # (a process building the same at once: either library, each whole)
             os.replace(Path(build, "nlp.sha256"), _record(library))
-        _FAILED.discard(library)
         return str(library)
     except (OSError, subprocess.SubprocessError, RuntimeError):
+        if library is not None:
+            _FAILED.add(library)
         return None
 
 
