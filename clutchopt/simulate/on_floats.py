@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from types import SimpleNamespace
 from typing import Callable
 
 import casadi as ca
@@ -62,7 +63,7 @@ def on_floats(function: Callable, arguments: int, probes: list[tuple[float, ...]
     """``function`` of ``arguments`` numbers as a Python function of floats (see the module), or ``function``
     itself where it cannot be traced or its trace does not match it at ``probes`` (points of its arguments)."""
     try:
-        fast = family(function, (0,) * arguments)(lambda *point: _on_numpy(function, point))
+        fast = family(function, (0,) * arguments)(lambda *point: on_numpy(function, point))
     except TRACE_FAILS:
         return function
     return trusted(fast, function, probes)
@@ -113,43 +114,47 @@ def _agrees(exact: float, value: float) -> bool:
 
 
 def parametrised(*objects):
-    """The numbers in ``objects`` (a number itself; a dataclass its float fields; None nothing): (their values,
-    ``rebuild(numbers)`` giving the objects with those numbers (symbols) in their places, the objects' other fields
-    as a key of their structure)."""
-    values, places, fixed = [], [], []
-    for thing in objects:
+    """The numbers in ``objects`` (a number itself; a dataclass or a namespace its fields, in turn): (their values,
+    ``rebuild(numbers)`` giving the objects with those numbers (symbols) in their places, the objects' structure
+    and everything in them that is not a number, as a key)."""
+    values: list[float] = []
+
+    def taken(thing):
+        """(key, rebuild from an iterator of numbers) of one thing; its numbers appended to ``values``."""
         if isinstance(thing, float):
             values.append(float(thing))
-            places.append(None)
-            fixed.append("number")
-        elif dataclasses.is_dataclass(thing):
-            names = [f.name for f in dataclasses.fields(thing) if isinstance(getattr(thing, f.name), float)]
-            values += [float(getattr(thing, name)) for name in names]
-            places.append(names)
-            fixed.append((type(thing).__qualname__, tuple((f.name, getattr(thing, f.name))
-                                                          for f in dataclasses.fields(thing) if f.name not in names)))
-        else:
-            places.append(())
-            fixed.append(repr(thing))
+            return "number", next
+        if isinstance(thing, SimpleNamespace) or (dataclasses.is_dataclass(thing) and not isinstance(thing, type)):
+            names = vars(thing) if isinstance(thing, SimpleNamespace) else [f.name for f in dataclasses.fields(thing)]
+            parts = {name: taken(getattr(thing, name)) for name in names}
+            key = (type(thing).__qualname__, tuple((name, part[0]) for name, part in parts.items()))
+            if isinstance(thing, SimpleNamespace):
+                return key, lambda numbers: SimpleNamespace(**{n: part[1](numbers) for n, part in parts.items()})
+            return key, lambda numbers: dataclasses.replace(thing, **{n: part[1](numbers)
+                                                                      for n, part in parts.items()})
+        try:
+            hash(thing)
+        except TypeError:
+            return repr(thing), lambda numbers: thing
+        return thing, lambda numbers: thing
+
+    shapes = [taken(thing) for thing in objects]
 
     def rebuild(numbers):
-        numbers, rebuilt = list(numbers), []
-        for thing, names in zip(objects, places):
-            if names is None:
-                rebuilt.append(numbers.pop(0))
-            elif names:
-                rebuilt.append(dataclasses.replace(thing, **{name: numbers.pop(0) for name in names}))
-            else:
-                rebuilt.append(thing)
-        return rebuilt
+        numbers = iter(numbers)
+        return [part[1](numbers) for part in shapes]
 
-    return values, rebuild, tuple(fixed)
+    return values, rebuild, tuple(part[0] for part in shapes)
 
 
-def _on_numpy(function: Callable, arguments: tuple) -> float:
-    """``function`` at ``arguments`` as NumPy floats: IEEE's NaN and infinities where Python's math raises."""
+def on_numpy(function: Callable, arguments: tuple):
+    """``function`` at ``arguments`` as NumPy floats: IEEE's NaN and infinities where Python's math raises (a
+    number, or a list of them)."""
     with np.errstate(all="ignore"):
-        return float(np.real_if_close(function(*(np.float64(a) for a in arguments))))
+        value = function(*(np.float64(a) for a in arguments))
+    if isinstance(value, (list, tuple)):
+        return [float(np.real_if_close(v)) for v in value]
+    return float(np.real_if_close(value))
 
 
 def _made(function: Callable, shapes: tuple[int, ...], parameters: int) -> Callable:
@@ -198,8 +203,9 @@ def _source(traced: ca.Function, shapes: tuple[int, ...], parameters: int, sever
             form = _UNARY.get(op) or _BINARY[op]
             line, constant = f"{name} = " + form.format(*(names[a] for a in args)), all(fixed[a] for a in args)
             exponent = constants.get(args[1]) if op in (ca.OP_POW, ca.OP_CONSTPOW) else 0.0
+            values = args[1:] if op == ca.OP_IF_ELSE_ZERO else args  # (its condition only chooses)
             odd[out[0]] = (op in _NOT_FLOAT or exponent is None or not float(exponent).is_integer()
-                           or any(odd.get(a, False) for a in args))
+                           or any(odd.get(a, False) for a in values))
         else:
             raise NotImplementedError(f"CasADi operation {op}")
         (outer if constant else inner).append(line)
