@@ -10,7 +10,7 @@ machinery (a Python step, a dense output and every event at each step) was three
   extrapolated from the last two samples, are expected to end the phase; each span restarts LSODA;
 - events: each evaluated on all of a span's samples at once (an event written with NumPy operations takes the
   arrays; one that does not is evaluated sample by sample); where one changes sign (as ``solve_ivp`` counts a
-  crossing, see :func:`clutchopt.simulate.stepping._crosses`) between two samples, its root is found by Brent's
+  crossing, see :func:`clutchopt.simulate.stepping.crosses`) between two samples, its root is found by Brent's
   method (to 4 eps) on the interpolant of the nearest LOCAL_NODES samples and the state integrated to it; a terminal
   event's root is then taken a Newton step further on the event's value there and the state integrated on to it.
   Where that interpolant is off the integrated state by more than TRUSTED (a motion too fast for the span's
@@ -28,7 +28,7 @@ import numpy as np
 from scipy.integrate import ODEintWarning, odeint
 from scipy.optimize import brentq
 
-from clutchopt.simulate.stepping import EPS, Budget, Phase
+from clutchopt.simulate.stepping import EPS, Budget, Phase, crosses
 
 FIRST_SAMPLES = 128  # the first 128 samples of a phase take ``span``, every next 128 eight times as long: the
 SPACING_GROWTH = 8.0 ** (1.0 / FIRST_SAMPLES)  # ratio of consecutive samples' spacing (the next mesh is adapted to
@@ -183,12 +183,8 @@ def _values(event, times: np.ndarray, states: np.ndarray) -> np.ndarray:
 
 
 def _crossings(event, g: np.ndarray) -> np.ndarray:
-    """Per sample interval, whether the event crosses zero in it, as stepping's ``_crosses`` decides."""
-    old, new, direction = g[:-1], g[1:], event.direction
-    if not event.terminal or getattr(event, "strict", False):
-        return ((old > 0) & (new < 0) & (direction <= 0)) | ((old < 0) & (new > 0) & (direction >= 0))
-    up, down = (old <= 0) & (new >= 0), (old >= 0) & (new <= 0)
-    return (up & (direction > 0)) | (down & (direction < 0)) | ((up | down) & (direction == 0))
+    """Per sample interval, whether the event crosses zero in it (:func:`~clutchopt.simulate.stepping.crosses`)."""
+    return crosses(event, g[:-1], g[1:])
 
 
 def _find(event, grid, samples, interval: int, zooms: dict, lsoda: _Lsoda, exact: bool):
