@@ -89,14 +89,14 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
             samples = lsoda.run(y, grid)
             if samples is None:
                 return _phase(times, states, "budget" if budget.spent else "failed", message=lsoda.message)
-            found = _first_events(events, grid, samples, lsoda)
-            if found is not None:
-                interval, (root, state), sampled, number = found
+            terminal, sampled = _first_events(events, grid, samples, lsoda)
+            if terminal is not None:
+                interval, (root, state), number = terminal
                 _extend(times, states, grid[1:interval + 1], samples[:, 1:interval + 1], sampled)
                 times.append(np.array([root]))
                 states.append(np.asarray(state, dtype=float).reshape(-1, 1))
                 return _phase(times, states, "event", index=number)
-            _extend(times, states, grid[1:], samples[:, 1:], lsoda.sampled)
+            _extend(times, states, grid[1:], samples[:, 1:], sampled)
             t, y = end, samples[:, -1].copy()
     return _phase(times, states, "end")
 
@@ -118,7 +118,6 @@ class _Lsoda:
         self.fun, self.jac, self.rtol, self.atol, self.budget = fun, jac, rtol, atol, budget
         self.message = ""
         self.refine = True  # roots on the spans' own samples first (:func:`_refined`)
-        self.sampled: list = []  # (time, state) of sampled events located in the last span
 
     def run(self, y0, grid):
         """The states at the grid's times (columns), integrated from ``y0`` at grid[0]; None if LSODA failed."""
@@ -135,8 +134,8 @@ class _Lsoda:
 
 
 def _first_events(events, grid, samples, lsoda: _Lsoda):
-    """The first terminal event among a span's samples: (its sample interval, (root, state), the sampled events'
-    (time, state) before it, its index), or None (``lsoda.sampled``: the span's sampled events)."""
+    """The first terminal event among a span's samples, (its sample interval, (root, state), its index) or None,
+    and the sampled events' (time, state) before it (in the whole span if none)."""
     crossings = [_crossings(event, _values(event, grid, samples)) for event in events]
     zooms: dict = {}
     first = min(((int(np.argmax(mask)), i) for i, (event, mask) in enumerate(zip(events, crossings))
@@ -158,10 +157,7 @@ def _first_events(events, grid, samples, lsoda: _Lsoda):
             if at is not None and (stop is None or at[0] < stop[0]):
                 sampled.append(at)
     sampled.sort(key=lambda pair: pair[0])
-    if first is None:
-        lsoda.sampled = sampled
-        return None
-    return first[0], stop, sampled, first[1]
+    return (None if first is None else (first[0], stop, first[1])), sampled
 
 
 def _nearer(event, grid, samples, interval: int):
@@ -203,9 +199,7 @@ def _refined(event, grid, samples, k: int, lsoda: _Lsoda, exact: bool):
     from sample k; a terminal event's root then taken one Newton step further on the event's exact value there
     (the interpolant's slope), the state integrated on to it. None where the interpolant does not bracket the
     root or the Newton step leaves the interval or does not bring the event nearer zero."""
-    nodes = _nodes(k, len(grid))
-    local = _Interpolant(grid[nodes], samples[:, nodes])
-    g_left, g_right = event(grid[k], samples[:, k]), event(grid[k + 1], samples[:, k + 1])
+    local, g_left, g_right = _opening(event, grid, samples, k)
     if g_left == 0.0:
         return grid[k], samples[:, k].copy()
     if g_left * g_right >= 0:
@@ -255,9 +249,7 @@ def _locate(event, zoom, lsoda: _Lsoda, exact: bool):
     if not mask.any():
         return None
     k = int(np.argmax(mask))
-    nodes = _nodes(k, len(grid))
-    local = _Interpolant(grid[nodes], samples[:, nodes])
-    g_left, g_right = event(grid[k], samples[:, k]), event(grid[k + 1], samples[:, k + 1])
+    local, g_left, g_right = _opening(event, grid, samples, k)
     if g_left == 0.0:
         return grid[k], samples[:, k].copy()
     if g_right == 0.0 or g_left * g_right > 0:
@@ -272,6 +264,13 @@ def _locate(event, zoom, lsoda: _Lsoda, exact: bool):
         return root, samples[:, k].copy()
     end = lsoda.run(samples[:, k], np.array([grid[k], root]))
     return root, (end[:, -1] if end is not None else local(root))
+
+
+def _opening(event, grid, samples, k: int):
+    """The interpolant of the LOCAL_NODES samples around the interval [k, k + 1] and the event at its ends."""
+    nodes = _nodes(k, len(grid))
+    local = _Interpolant(grid[nodes], samples[:, nodes])
+    return local, event(grid[k], samples[:, k]), event(grid[k + 1], samples[:, k + 1])
 
 
 def _root(function, a: float, b: float) -> float | None:
