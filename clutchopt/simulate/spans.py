@@ -38,6 +38,8 @@ SPAN_SAMPLES = 192  # samples of a span: each restart of LSODA costs some 20-40 
 ZOOM_SAMPLES = 32  # the interval where an event changes sign, integrated again with this many samples
 LOCAL_NODES = 6  # samples of that interval interpolated (degree 5) to find the root
 TRUSTED = 1e-6  # relative: an interpolant of a span's samples this near the state integrated to its root is used
+EXTREMUM_XTOL = 1e-9  # of the sample interval: a sampled event's root (a maximum, whose value moves by the square
+# of the time's error; its state is integrated to the root found): 7.6 of Brent's steps a root, not 11
 SUCCESS = "Integration successful."
 AHEAD = 1.25  # a span ends this much beyond where its events' extrapolation expects the first terminal one
 SHORTEST = 0.05  # of the span it would have been: no span shorter (an extrapolation that undershoots)
@@ -204,7 +206,7 @@ def _refined(event, grid, samples, k: int, lsoda: _Lsoda, exact: bool):
         return grid[k], samples[:, k].copy()
     if g_left * g_right >= 0:
         return None
-    guess = _root(lambda s: event(s, local(s)), grid[k], grid[k + 1])
+    guess = _root(lambda s: event(s, local(s)), grid[k], grid[k + 1], exact)
     if guess is None or guess == grid[k]:
         return None
     scale = lsoda.atol / lsoda.rtol
@@ -255,7 +257,7 @@ def _locate(event, zoom, lsoda: _Lsoda, exact: bool):
     if g_right == 0.0 or g_left * g_right > 0:
         root = grid[k + 1]
     else:
-        root = _root(lambda s: event(s, local(s)), grid[k], grid[k + 1])
+        root = _root(lambda s: event(s, local(s)), grid[k], grid[k + 1], exact)
         if root is None:  # not a number between: the sample nearer zero
             root = grid[k] if abs(g_left) < abs(g_right) else grid[k + 1]
     if not exact:
@@ -273,11 +275,12 @@ def _opening(event, grid, samples, k: int):
     return local, event(grid[k], samples[:, k]), event(grid[k + 1], samples[:, k + 1])
 
 
-def _root(function, a: float, b: float) -> float | None:
-    """Brent's method to 4 eps on [a, b]; None where the function is not a number inside (an interpolated state
-    outside the equations' domain)."""
+def _root(function, a: float, b: float, exact: bool = True) -> float | None:
+    """Brent's method on [a, b], to 4 eps (``exact``: a terminal event's) or to EXTREMUM_XTOL of the interval (a
+    sampled one); None where the function is not a number inside (an interpolated state outside the equations'
+    domain)."""
     try:
-        return brentq(function, a, b, xtol=4 * EPS, rtol=4 * EPS)
+        return brentq(function, a, b, xtol=4 * EPS if exact else EXTREMUM_XTOL * (b - a), rtol=4 * EPS)
     except ValueError:
         return None
 
