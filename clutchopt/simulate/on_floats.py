@@ -151,7 +151,7 @@ def on_numpy(function: Callable, arguments: tuple):
     """``function`` at ``arguments`` as NumPy floats: IEEE's NaN and infinities where Python's math raises (a
     number, or a list of them)."""
     with np.errstate(all="ignore"):
-        value = function(*(np.float64(a) if np.ndim(a) == 0 else np.asarray(a, dtype=np.float64) for a in arguments))
+        value = function(*(np.float64(a) for a in arguments))
     if isinstance(value, (list, tuple)):
         return [float(np.real_if_close(v)) for v in value]
     return float(np.real_if_close(value))
