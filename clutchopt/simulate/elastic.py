@@ -73,40 +73,40 @@ def _swing_period(m: ElasticModel, torque) -> float:
     return 2.0 * math.pi * math.sqrt(reduced / stiffness) if stiffness > 0 else math.inf
 
 
-def link_rates(m: ElasticModel, t, wa, w, theta) -> list:
-    """The rates of (w_a, w, theta, L) (the equations above) at time t and the state, at numbers, at samples
+def link_rates(m: ElasticModel, wa, w, theta, load) -> list:
+    """The rates of (w_a, w, theta, L) (the equations above; ``load`` T_c at the state) at numbers, at samples
     (arrays) or at symbols: the machine at rest (w <= 0) is not driven backwards, the load a reaction up to its
     value."""
     link = m.torque(wa, theta) + m.damping * (wa - w)
-    net = link - m.load(t, w)
+    net = link - load
     net = where(w <= 0.0, fmax(net, 0.0), net)
     return [(m.motor(wa) - link) / m.motor.inertia, net / m.inertia, wa - w, m.damping * (wa - w) ** 2]
 
 
-def stress_rate(m: ElasticModel, lag: float, t, wa, w, theta):
+def stress_rate(m: ElasticModel, lag: float, wa, w, theta, load):
     """The stress's rate along the motion as a central difference over +-``lag`` (the stress grows with the
     driving speed too, so its peak lags the twist's: sampled there, it was missed by 1e-5), at numbers, samples or
     symbols."""
-    dw, _, dtheta, _ = link_rates(m, t, wa, w, theta)
+    dw, _, dtheta, _ = link_rates(m, wa, w, theta, load)
     return m.stress(wa + lag * dw, theta + lag * dtheta) - m.stress(wa - lag * dw, theta - lag * dtheta)
 
 
 def _on_floats(m: ElasticModel, lag: float) -> tuple[Callable, Callable]:
-    """:func:`link_rates` and :func:`stress_rate` of ``m`` as functions of (t, w_a, w, theta) on floats: traced
+    """:func:`link_rates` and :func:`stress_rate` of ``m`` as functions of (w_a, w, theta, T_c) on floats: traced
     once per structure of the model (its numbers, the design's and the case's among them, parameters) and written
     out (clutchopt.simulate.on_floats; the generic equations were two thirds of a check), each compared with its
     equations at probes; the equations where they cannot be traced."""
     values, rebuild, structure = parametrised(m, lag)
-    w, twist, t = m.motor.synchronous_speed, m.largest_twist, 1e-2 * lag / STRESS_LAG  # (t: 1 % of the time scale)
-    probes = [(0.0, 0.0, 0.0, 0.0), (t, 0.0, -1e-3 * w, 0.1 * twist), (t, 0.5 * w, 0.4 * w, 0.1 * twist),
-              (10 * t, w, 0.9 * w, -0.5 * twist), (100 * t, w, w, twist)]  # (at rest, as it swings, beyond)
+    w, twist, load = m.motor.synchronous_speed, m.largest_twist, m.motor.breakdown_torque
+    probes = [(0.0, 0.0, 0.0, 0.0), (0.0, -1e-3 * w, 0.1 * twist, 0.5 * load), (0.5 * w, 0.4 * w, 0.1 * twist, 0.0),
+              (w, 0.9 * w, -0.5 * twist, 0.5 * load), (w, w, twist, load)]  # (at rest, as it swings, beyond)
     made = []
     for equations in (link_rates, stress_rate):
         takes_lag = equations is stress_rate
 
-        def traced(t, wa, w, theta, *numbers, equations=equations, takes_lag=takes_lag):
+        def traced(wa, w, theta, load, *numbers, equations=equations, takes_lag=takes_lag):
             model, lagged = rebuild(numbers)
-            return equations(model, *((lagged,) if takes_lag else ()), t, wa, w, theta)
+            return equations(model, *((lagged,) if takes_lag else ()), wa, w, theta, load)
 
         reference = partial(equations, m, lag) if takes_lag else partial(equations, m)
         try:
@@ -133,9 +133,9 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
         """At a solver's state, read as numbers (arithmetic on NumPy scalars costs twice), or at samples (arrays,
         clutchopt.simulate.spans)."""
         if isinstance(t, np.ndarray):
-            return link_rates(m, t, y[0], y[1], y[2])
+            return link_rates(m, y[0], y[1], y[2], m.load(t, y[1]))
         wa, w, theta, _ = y.tolist()
-        return fast_rates(t, wa, w, theta)
+        return fast_rates(wa, w, theta, m.load(t, w))
 
     def started(t, y):
         return y[1] - m.target
@@ -149,8 +149,9 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     def stress_extreme(t, y):
         """:func:`stress_rate` at a state or at samples."""
         if isinstance(t, np.ndarray):
-            return stress_rate(m, lag, t, y[0], y[1], y[2])
-        return fast_stress(float(t), float(y[0]), float(y[1]), float(y[2]))
+            return stress_rate(m, lag, y[0], y[1], y[2], m.load(t, y[1]))
+        wa, w, theta = float(y[0]), float(y[1]), float(y[2])
+        return fast_stress(wa, w, theta, m.load(t, w))
 
     started.terminal, started.direction = True, 1
     overturned.terminal, overturned.direction = True, 1

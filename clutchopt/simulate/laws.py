@@ -16,7 +16,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from clutchopt.backend import fmax, where
+from clutchopt.backend import fmax
 from clutchopt.simulate.analytic import PaperTransient
 from clutchopt.start_up.equations import coupling_torque, kloss_torque, table_segment
 
@@ -157,19 +157,13 @@ class Load:
         return not self.over
 
     def __call__(self, t: float, driven_speed: float) -> float:
-        """At numbers (the table's segment found by bisection), or at each sample of arrays, or at symbols (the
-        simulator's right-hand side traced): there each segment where it holds, the same arithmetic."""
+        """At a number, or at each sample of arrays."""
         if not self.over:
             return self.torque
         x = t if self.over == "time" else driven_speed
-        if isinstance(x, (float, int)):
-            return table_segment(x, self.points, self.values)[0]
-        points, values = self.points, self.values
-        torque = values[-1]  # held beyond both ends, as table_segment
-        for i in reversed(range(len(points) - 1)):
-            slope = (values[i + 1] - values[i]) / (points[i + 1] - points[i])  # (the points increase strictly)
-            torque = where(x < points[i + 1], values[i] + slope * (x - points[i]), torque)
-        return where(x <= points[0], values[0], torque)
+        if isinstance(x, np.ndarray):
+            return np.interp(x, self.points, self.values)  # (held at both ends, as table_segment)
+        return table_segment(x, self.points, self.values)[0]
 
     def slope(self, t: float, driven_speed: float) -> float:
         """d(load)/d(driven speed), for the simulator's Jacobian (a load over time does not depend on the speed)."""
