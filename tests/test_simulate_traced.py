@@ -14,7 +14,6 @@ from clutchopt.backend import sqrt, where
 from clutchopt.simulate.engine import Model, _Run
 from clutchopt.simulate.laws import CentrifugalFriction, InductionMotor, Load, PaperFriction
 from clutchopt.simulate.on_floats import family, parametrised
-from clutchopt.start_up.equations import table_segment
 
 
 def test_a_family_takes_vectors_gives_several_numbers_and_binds_a_design_s_numbers():
@@ -77,14 +76,16 @@ def test_parametrised_takes_every_number_and_keys_the_rest():
     assert parametrised(_Part(2.0, "lever"), SimpleNamespace(mass=3.0, count=4), 5.0, None)[2] != key
 
 
-def test_a_load_table_at_symbols_is_table_segment():
-    # (2.5, 7.5, 20) N*m at (0, 50, 100) rad/s: 2.5 + 0.1 w up to 50, 7.5 + 0.25 (w - 50) on, held beyond the ends
+def test_a_load_table_is_no_trace_and_its_right_hand_side_the_equations():
+    # table_segment at a symbol: math.isnan(x) reads a symbol as NaN (silently): refused, the equations used; a
+    # 1000-point table traced segment by segment would be some 8,000 operations a call (bisection: a few)
     load = Load(over="speed", points=(0.0, 50.0, 100.0), values=(2.5, 7.5, 20.0))
-    fast = family(lambda t, w: load(t, w), (0, 0))(None)
-    for w in (-1.0, 0.0, 25.0, 50.0, 75.0, 100.0, 150.0):
-        assert fast(0.0, w) == table_segment(w, load.points, load.values)[0]
-    assert fast(0.0, 75.0) == 7.5 + 0.25 * 25.0
-    assert list(load(0.0, np.array([25.0, 150.0]))) == [5.0, 20.0]  # samples, the same segments
+    with pytest.raises(NotImplementedError):
+        family(lambda t, w: load(t, w), (0, 0))
+    run = _Run(Model(CentrifugalFriction(0.01, 900.0), 0.5, load, ("slip_friction", "lockup"), driver_speed=100.0))
+    assert run.flat["slip"].__self__ is run
+    assert run.flat["slip"](0.0, np.array([100.0, 25.0, 0.0, 0.0, 0.0]))[1] == pytest.approx(
+        -(0.01 * (100.0**2 - 900.0) - (7.5 + 0.25 * 25.0)) / 0.5, rel=1e-15)  # driven at 75 rad/s: 13.75 N m
 
 
 def _wedge_on_its_motor(law) -> _Run:
