@@ -130,10 +130,7 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     fast_rates, fast_stress = _on_floats(m, lag)
 
     def rates(t, y):
-        """At a solver's state, read as numbers (arithmetic on NumPy scalars costs twice), or at samples (arrays,
-        clutchopt.simulate.spans)."""
-        if isinstance(t, np.ndarray):
-            return link_rates(m, y[0], y[1], y[2], m.load(t, y[1]))
+        """At a solver's state, read as numbers (arithmetic on NumPy scalars costs twice)."""
         wa, w, theta, _ = y.tolist()
         return fast_rates(wa, w, theta, m.load(t, w))
 
