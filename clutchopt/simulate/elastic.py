@@ -27,7 +27,7 @@ from clutchopt.backend import fmax, where
 from clutchopt.model import ElasticLaw
 from clutchopt.simulate.engine import FIRST_SPAN, MAX_STEPS, SimulationResult, largest
 from clutchopt.simulate.laws import InductionMotor, Load
-from clutchopt.simulate.on_floats import TRACE_FAILS, family, on_numpy, parametrised, trusted
+from clutchopt.simulate.on_floats import bound, on_numpy, parametrised
 from clutchopt.simulate.spans import integrate_spans
 from clutchopt.simulate.stepping import Budget, integrate
 
@@ -63,12 +63,12 @@ class ElasticModel:
         return self.link.stress(self.design, self.numbers, speed, twist)
 
 
-def _swing_period(m: ElasticModel, torque) -> float:
+def _swing_period(m: ElasticModel) -> float:
     """2 pi sqrt(J_red / k): the period of the halves' torsional swing on the link's stiffness at zero twist and
     synchronous speed (the stiffest it is in a start), J_red = J J_m / (J + J_m)."""
     h = 1e-6 * m.largest_twist
     speed = m.motor.synchronous_speed
-    stiffness = (torque(speed, h) - torque(speed, -h)) / (2.0 * h)
+    stiffness = (m.torque(speed, h) - m.torque(speed, -h)) / (2.0 * h)
     reduced = m.inertia * m.motor.inertia / (m.inertia + m.motor.inertia)
     return 2.0 * math.pi * math.sqrt(reduced / stiffness) if stiffness > 0 else math.inf
 
@@ -96,24 +96,15 @@ def _on_floats(m: ElasticModel, lag: float) -> tuple[Callable, Callable]:
     once per structure of the model (its numbers, the design's and the case's among them, parameters) and written
     out (clutchopt.simulate.on_floats; the generic equations were two thirds of a check), each compared with its
     equations at probes; the equations where they cannot be traced."""
-    values, rebuild, structure = parametrised(m, lag)
     w, twist, load = m.motor.synchronous_speed, m.largest_twist, m.motor.breakdown_torque
     probes = [(0.0, 0.0, 0.0, 0.0), (0.0, -1e-3 * w, 0.1 * twist, 0.5 * load), (0.5 * w, 0.4 * w, 0.1 * twist, 0.0),
               (w, 0.9 * w, -0.5 * twist, 0.5 * load), (w, w, twist, load)]  # (at rest, as it swings, beyond)
     made = []
-    for equations in (link_rates, stress_rate):
-        takes_lag = equations is stress_rate
-
-        def traced(wa, w, theta, load, *numbers, equations=equations, takes_lag=takes_lag):
-            model, lagged = rebuild(numbers)
-            return equations(model, *((lagged,) if takes_lag else ()), wa, w, theta, load)
-
-        reference = partial(equations, m, lag) if takes_lag else partial(equations, m)
-        try:
-            make = family(traced, (0, 0, 0, 0), len(values), key=("elastic", equations.__name__, structure))
-            made.append(trusted(make(lambda *point: on_numpy(reference, point), *values), reference, probes))
-        except TRACE_FAILS:
-            made.append(reference)
+    for equations, objects in ((link_rates, (m,)), (stress_rate, (m, lag))):
+        reference = partial(equations, *objects)
+        made.append(bound(partial(partial, equations), (0, 0, 0, 0), parametrised(*objects),
+                          ("elastic", equations.__name__), reference, probes,
+                          fallback=lambda *point, reference=reference: on_numpy(reference, point)))
     return made[0], made[1]
 
 
@@ -161,7 +152,7 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     if m.integrator == "LSODA":
         out = integrate_spans(rates, None, 0.0, np.zeros(4), bound, events, m.rtol, atol, Budget(MAX_STEPS),
                               FIRST_SPAN * time_scale,
-                              max(_swing_period(m, m.torque) / SWING_SAMPLES, FIRST_SPAN * time_scale))  # (a swing
+                              max(_swing_period(m) / SWING_SAMPLES, FIRST_SPAN * time_scale))  # (a swing
         # faster than 48e-3 of the start, as of a rotor of 1e-9 kg m^2, is not sampled: its extremes on zooms)
     else:
         out = integrate(rates, None, 0.0, np.zeros(4), bound, events, m.integrator, m.rtol, atol, Budget(MAX_STEPS))

@@ -41,7 +41,7 @@ import numpy as np
 from clutchopt.errors import InputError
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.laws import InductionMotor, Load
-from clutchopt.simulate.on_floats import TRACE_FAILS, family, parametrised, trusted
+from clutchopt.simulate.on_floats import bound, parametrised
 from clutchopt.simulate.ranges import BREAKDOWN_SLIP, CONDUCTANCE, HEAT_CAPACITY, INERTIA, LOAD, SPEED, TIME, TORQUE
 from clutchopt.simulate.spans import integrate_spans
 from clutchopt.simulate.stepping import Budget, Phase, integrate
@@ -170,26 +170,18 @@ class _Rates:
 def _flat(run: _Run) -> dict:
     """The run's right-hand side of each phase (``rest``, ``slip``, ``stick``) for the solver: the equations of
     :class:`_Rates` traced once per structure (law, load and effects; their numbers parameters) and written out as
-    one Python function on floats (:func:`clutchopt.simulate.on_floats.family`), bound to this run's numbers and
+    one Python function on floats (:func:`clutchopt.simulate.on_floats.bound`), bound to this run's numbers and
     compared with the equations at probes; the equations themselves where they cannot be traced (a load table, the
     paper's law) or the probes differ."""
     m = run.m
-    values, rebuild, structure = parametrised(m.law, m.load, run.motor, m.inertia, m.heat_capacity, m.conductance)
+    objects = parametrised(m.law, m.load, run.motor, m.inertia, m.heat_capacity, m.conductance)
     w = run.w_ref
     probes = [(t, np.array([wa, slip, 0.0, 0.0, rise])) for t in (0.0, run.time_scale)
               for wa, slip, rise in ((0.3 * w, 0.3 * w, 0.0), (0.9 * w, 0.2 * w, 2.0), (1.02 * w, 1e-3 * w, 5.0))]
     flat = {}
     for kind in ("rest", "slip", "stick"):
-        equations = getattr(run, kind)
-
-        def traced(t, y, *numbers, kind=kind):
-            return getattr(_Rates(*rebuild(numbers), run.heat), kind)(t, y)
-
-        try:
-            make = family(traced, (0, 5), len(values), key=("engine", kind, structure, run.heat))
-            flat[kind] = trusted(make(equations, *values), equations, probes)
-        except TRACE_FAILS:
-            flat[kind] = equations
+        flat[kind] = bound(lambda *rebuilt, kind=kind: getattr(_Rates(*rebuilt, run.heat), kind), (0, 5), objects,
+                           ("engine", kind, run.heat), getattr(run, kind), probes)
     return flat
 
 

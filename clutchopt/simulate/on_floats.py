@@ -2,14 +2,15 @@
 floats, arrays and CasADi symbols) made cheap to call on floats: traced once with CasADi SX symbols, its algorithm
 written out as Python source on floats (``math``), every subexpression of the other arguments folded to a number.
 
-The cable's link torque and stress are called some 10,000 times a start-up check; through the generic equations
-(each call dispatching every operation on its arguments' type and recomputing the design's constants) they were two
-thirds of the check. The traced function is the same equation, evaluated in the same IEEE operations, and it is
-compared with the equation at probe points when built: where it differs by more than PROBE_TOLERANCE, or the trace
-meets an operation not written out here, the equation itself is used. Python's ``math`` and ``**`` are not IEEE's
-where the equation's backend is (``sqrt(-1)``, ``log(0)``, ``sin(inf)`` and ``x / 0`` raise, ``exp(1000)`` overflows
-with an error, a negative number to a fractional power is complex): a call that raises or gives other than a float
-is answered by the equation on NumPy floats (NaN or infinite as IEEE says), only as slow.
+A start-up check calls its right-hand side some 2,000-4,500 times; through the generic equations (each call
+dispatching every operation on its arguments' type and recomputing the design's constants) the cable's link torque
+and stress alone were two thirds of its check. The traced function is the same equation, evaluated in the same IEEE
+operations, and it is compared with the equation at probe points when built: where it differs by more than
+PROBE_TOLERANCE, or the trace meets an operation not written out here, the equation itself is used. Python's
+``math`` and ``**`` are not IEEE's where the equation's backend is (``sqrt(-1)``, ``log(0)``, ``sin(inf)`` and
+``x / 0`` raise, ``exp(1000)`` overflows with an error, a negative number to a fractional power is complex): a call
+that raises or gives other than a float is answered by the equation on NumPy floats (NaN or infinite as IEEE says),
+only as slow.
 
 A whole right-hand side (:func:`family`) is traced the same way once per *structure*: its arguments may be vectors
 (a solver's state, read as floats), it may give several numbers, and the constants of a design are parameters, so
@@ -62,11 +63,28 @@ _NAMESPACE.update(_fmax=_fmax, _fmin=_fmin)
 def on_floats(function: Callable, arguments: int, probes: list[tuple[float, ...]]) -> Callable:
     """``function`` of ``arguments`` numbers as a Python function of floats (see the module), or ``function``
     itself where it cannot be traced or its trace does not match it at ``probes`` (points of its arguments)."""
+    return bound(lambda: function, (0,) * arguments, parametrised(), None, function, probes,
+                 fallback=lambda *point: on_numpy(function, point))
+
+
+def bound(equations_of: Callable, shapes: tuple[int, ...], objects, key, reference: Callable, probes: list,
+          fallback: Callable | None = None) -> Callable:
+    """``equations_of(*objects)`` (a function of arguments of ``shapes``, see :func:`family`) written out on floats
+    once per structure of the objects (``objects``: :func:`parametrised` of them, their numbers the parameters; the
+    maker kept under ``key`` and that structure, unless ``key`` is None), bound to their numbers and compared with
+    ``reference`` (the same equations, as they are) at ``probes``; ``reference`` itself where it cannot be traced or
+    the probes differ. ``fallback`` answers a call Python's math cannot (default: ``reference``)."""
+    values, rebuild, structure = objects
+    count = len(shapes)
+
+    def traced(*arguments):
+        return equations_of(*rebuild(arguments[count:]))(*arguments[:count])
+
     try:
-        fast = family(function, (0,) * arguments)(lambda *point: on_numpy(function, point))
+        make = family(traced, shapes, len(values), key=None if key is None else (*key, structure))
+        return trusted(make(fallback or reference, *values), reference, probes)
     except TRACE_FAILS:
-        return function
-    return trusted(fast, function, probes)
+        return reference
 
 
 def family(function: Callable, shapes: tuple[int, ...], parameters: int = 0, key=None) -> Callable:

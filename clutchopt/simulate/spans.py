@@ -11,7 +11,8 @@ machinery (a Python step, a dense output and every event at each step) was three
 - events: each evaluated on all of a span's samples at once (an event written with NumPy operations takes the
   arrays; one that does not is evaluated sample by sample); where one changes sign (as ``solve_ivp`` counts a
   crossing, see :func:`clutchopt.simulate.stepping.crosses`) between two samples, its root is found by Brent's
-  method (to 4 eps) on the interpolant of the nearest LOCAL_NODES samples and the state integrated to it; a terminal
+  method (a terminal event's to 4 eps, a sampled extremum's to EXTREMUM_XTOL of the interval) on the interpolant
+  of the nearest LOCAL_NODES samples and the state integrated to it; a terminal
   event's root is then taken a Newton step further on the event's value there and the state integrated on to it.
   Where that interpolant is off the integrated state by more than TRUSTED (a motion too fast for the span's
   samples: the cable's torsional swings), the interval is integrated again sampled ZOOM_SAMPLES times and the
