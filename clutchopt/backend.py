@@ -36,6 +36,7 @@ exp = _either(np.exp, ca.exp)
 log = _either(np.log, ca.log)
 fmax = _either(np.maximum, ca.fmax)
 fmin = _either(np.minimum, ca.fmin)
+where = _either(np.where, ca.if_else)  # where(condition, a, b): a where the condition holds, else b
 
 
 def cbrt(x):

@@ -68,8 +68,8 @@ from clutchopt.optimise.attempts import warm_multipliers
 from clutchopt.optimise.batch_pace import BatchPace, until_active
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
 from clutchopt.optimise.chain import chain_verdict, chained_sqp
-from clutchopt.optimise.integers import (descend, downhill, excluded_entry, nearest_integers, relaxation_seed,
-                                         search_entry)
+from clutchopt.optimise.integers import (INFEASIBLE, descend, downhill, excluded_entry, nearest_integers,
+                                         relaxation_seed, search_entry)
 from clutchopt.optimise.posed import Box, ScaledData, off_scale
 from clutchopt.optimise.problem import Problem
 from clutchopt.optimise.region_proof import Regions, completed
@@ -475,11 +475,12 @@ class BatchSweep:
         return block
 
     def _ruled_out(self, combo: tuple, k: int) -> str:
-        """Why the integers ``combo`` are not solved at point k (empty: they are): IPOPT found no design with them at
-        an earlier point, and the step from there to k only tightens the constraints (``tightening``): no design
-        meets at k what none met there."""
+        """Why the integers ``combo`` are not solved at point k (empty: they are): IPOPT found them infeasible at an
+        earlier point (its verdict, not another failure: an iteration limit, a restoration that failed, a design
+        the float64 check refused), and the step from there to k only tightens the constraints (``tightening``): no
+        design meets at k what none met there."""
         found = self._undesigned.get(combo)
-        if found is None or found[0] >= k or not self._tightening.tightened(self._by_point[found[0]],
+        if found is None or found[0] >= k or found[1] != INFEASIBLE or not self._tightening.tightened(self._by_point[found[0]],
                                                                              self._by_point[k]):
             return ""
         return f"ruled out: {found[1]} at point {found[0]}, whose limits the sweep has only tightened since"

@@ -25,7 +25,7 @@ import casadi as ca
 CACHE_ENV = "CLUTCHOPT_CACHE"  # the cache folder; empty: no compiled code
 COMPILE_ABOVE = 2000  # Hessian instructions above which compiling pays (ball 4,447; cable 681, lever 238, wedge 105)
 BUILD_TIMEOUT_S = 120
-FLAGS = ("-O1", "-fPIC", "-shared")  # no fast-math: the compiled code keeps IEEE arithmetic, operation by operation
+FLAGS = ("-O1", "-fPIC", "-shared", "-ffp-contract=off")  # no fast-math, no fused multiply-add: IEEE, op by op
 _FAILED: set[Path] = set()  # the libraries whose build failed in this process (a compiler that fails or hangs is
 # waited for once a process, not by every interval proof of a sweep)
 

@@ -27,7 +27,7 @@ import numpy as np
 
 from clutchopt.optimise import compiled
 
-FLAGS = ("-O2", "-fPIC", "-shared", "-ffp-contract=off")  # no fast-math, no fused multiply-add: IEEE operation by op
+FLAGS = ("-O2", *compiled.FLAGS[1:])  # the compiled NLP's flags (IEEE, operation by operation), optimised further
 
 UNARY = ("ASSIGN", "NEG", "TWICE", "INV", "EXP", "LOG", "SQRT", "SQ", "FABS", "COSH", "SINH", "TANH", "ASINH",
          "ACOSH", "ATANH", "ATAN", "ASIN", "ACOS", "LOG1P", "EXPM1", "FLOOR", "CEIL", "SIGN", "SIN", "COS", "TAN", "NOT")

@@ -104,7 +104,7 @@ def performance_point(g: SimulatedLimitStates, row: int, beta: float, start: np.
         return bool(math.isfinite(value) and np.all(np.isfinite(grad)) and grad @ u <= 0
                     and np.linalg.norm(tangential) <= max(TANGENTIAL * np.linalg.norm(grad), FLAT / beta))
 
-    if keeps_start(n, start) and holds(start):
+    if n > 1 and start is not None and np.any(start) and holds(start):  # a kept start, away from the means
         return start, True
     grad, norm, finite = at_the_means(g, row)
     if not finite or norm < NEGLIGIBLE:
@@ -130,12 +130,6 @@ def performance_point(g: SimulatedLimitStates, row: int, beta: float, start: np.
         if holds(u):
             return u, True
     return u, False
-
-
-def keeps_start(n: int, start: np.ndarray | None) -> bool:
-    """Whether :func:`performance_point` tries ``start`` (the point at the previous design) first: with more than one
-    quantity, a start away from the means."""
-    return n > 1 and start is not None and bool(np.any(start))
 
 
 def at_the_means(g: SimulatedLimitStates, row: int) -> tuple[np.ndarray, float, bool]:
@@ -223,18 +217,11 @@ class StartUpPerformancePoints:
         """Under a system target (``allowed`` = 1 - P, shared with ``others`` constraints): each start-up limit the
         scatter moves at ``design`` (or whose point does not settle) takes an equal share of ``allowed`` and is
         designed to hold with 1 - share; what is left for the others (whose split the NLP chooses). Which limits
-        move is decided by the gradients at the means (:func:`moved_at_the_means`, n + 1 simulated starts) where
-        the search would not try a kept start, else by the search (whose points at this beta are then dropped:
-        the limits are designed at the share's)."""
-        g, n = self.states_at(design), len(self.case.scatter)
-
-        def moves(row: int, name: str) -> bool:
-            if not keeps_start(n, start := self.previous.get(name)):
-                return moved_at_the_means(g, row)
-            u, settled = performance_point(g, row, self.beta, start)
-            return bool(np.any(u)) or not settled
-
-        moved = [name for row, name in enumerate(g.names) if moves(row, name)]
+        move is decided by the gradients at the means (:func:`moved_at_the_means`, n + 1 simulated starts: called
+        before any :meth:`at`, there is no kept start a search would try first, and a search from the means ends
+        there exactly where those gradients say the limit is not moved)."""
+        g = self.states_at(design)
+        moved = [name for row, name in enumerate(g.names) if moved_at_the_means(g, row)]
         if not moved:
             return allowed
         self.share = allowed / (len(moved) + others)

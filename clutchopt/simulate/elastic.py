@@ -17,13 +17,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import partial
+from types import SimpleNamespace
 from typing import Callable
 
 import numpy as np
 
+from clutchopt.backend import fmax, where
+from clutchopt.model import ElasticLaw
 from clutchopt.simulate.engine import FIRST_SPAN, MAX_STEPS, SimulationResult, largest
 from clutchopt.simulate.laws import InductionMotor, Load
-from clutchopt.simulate.on_floats import on_floats
+from clutchopt.simulate.on_floats import bound, on_numpy, parametrised
 from clutchopt.simulate.spans import integrate_spans
 from clutchopt.simulate.stepping import Budget, integrate
 
@@ -36,8 +40,9 @@ STRESS_LAG = 1e-6  # of the start's time scale: the step of the stress rate's ce
 class ElasticModel:
     """One start of an elastic link, SI."""
 
-    torque: Callable  # (driving speed, twist) -> torque through the link (numbers or NumPy arrays alike)
-    stress: Callable  # (driving speed, twist) -> stress of its most loaded element (numbers or arrays)
+    link: ElasticLaw  # the coupling's link: its torque and stress at (design, case, driving speed, twist)
+    design: SimpleNamespace  # its design variables
+    numbers: SimpleNamespace  # the case's quantities
     damping: float  # c, N*m*s/rad
     inertia: float  # J of the machine
     load: Load
@@ -49,15 +54,58 @@ class ElasticModel:
     end_time: float | None = None
     integrator: str = "LSODA"  # "DOP853" or "Radau" for a reference run (docs/start_up.md, "The check's tolerance")
 
+    def torque(self, speed, twist):
+        """Torque through the link at a driving speed and a twist (numbers, arrays or symbols alike)."""
+        return self.link.torque(self.design, self.numbers, speed, twist)
 
-def _swing_period(m: ElasticModel, torque) -> float:
+    def stress(self, speed, twist):
+        """Stress of the link's most loaded element (numbers, arrays or symbols alike)."""
+        return self.link.stress(self.design, self.numbers, speed, twist)
+
+
+def _swing_period(m: ElasticModel) -> float:
     """2 pi sqrt(J_red / k): the period of the halves' torsional swing on the link's stiffness at zero twist and
     synchronous speed (the stiffest it is in a start), J_red = J J_m / (J + J_m)."""
     h = 1e-6 * m.largest_twist
     speed = m.motor.synchronous_speed
-    stiffness = (torque(speed, h) - torque(speed, -h)) / (2.0 * h)
+    stiffness = (m.torque(speed, h) - m.torque(speed, -h)) / (2.0 * h)
     reduced = m.inertia * m.motor.inertia / (m.inertia + m.motor.inertia)
     return 2.0 * math.pi * math.sqrt(reduced / stiffness) if stiffness > 0 else math.inf
+
+
+def link_rates(m: ElasticModel, wa, w, theta, load) -> list:
+    """The rates of (w_a, w, theta, L) (the equations above; ``load`` T_c at the state) at numbers, at samples
+    (arrays) or at symbols: the machine at rest (w <= 0) is not driven backwards, the load a reaction up to its
+    value."""
+    link = m.torque(wa, theta) + m.damping * (wa - w)
+    net = link - load
+    net = where(w <= 0.0, fmax(net, 0.0), net)
+    return [(m.motor(wa) - link) / m.motor.inertia, net / m.inertia, wa - w, m.damping * (wa - w) ** 2]
+
+
+def stress_rate(m: ElasticModel, lag: float, wa, w, theta, load):
+    """The stress's rate along the motion as a central difference over +-``lag`` (the stress grows with the
+    driving speed too, so its peak lags the twist's: sampled there, it was missed by 1e-5), at numbers, samples or
+    symbols."""
+    dw, _, dtheta, _ = link_rates(m, wa, w, theta, load)
+    return m.stress(wa + lag * dw, theta + lag * dtheta) - m.stress(wa - lag * dw, theta - lag * dtheta)
+
+
+def _on_floats(m: ElasticModel, lag: float) -> tuple[Callable, Callable]:
+    """:func:`link_rates` and :func:`stress_rate` of ``m`` as functions of (w_a, w, theta, T_c) on floats: traced
+    once per structure of the model (its numbers, the design's and the case's among them, parameters) and written
+    out (clutchopt.simulate.on_floats; the generic equations were two thirds of a check), each compared with its
+    equations at probes; the equations where they cannot be traced."""
+    w, twist, load = m.motor.synchronous_speed, m.largest_twist, m.motor.breakdown_torque
+    probes = [(0.0, 0.0, 0.0, 0.0), (0.0, -1e-3 * w, 0.1 * twist, 0.5 * load), (0.5 * w, 0.4 * w, 0.1 * twist, 0.0),
+              (w, 0.9 * w, -0.5 * twist, 0.5 * load), (w, w, twist, load)]  # (at rest, as it swings, beyond)
+    made = []
+    for equations, objects in ((link_rates, (m,)), (stress_rate, (m, lag))):
+        reference = partial(equations, *objects)
+        made.append(bound(partial(partial, equations), (0, 0, 0, 0), parametrised(*objects),
+                          ("elastic", equations.__name__), reference, probes,
+                          fallback=lambda *point, reference=reference: on_numpy(reference, point)))
+    return made[0], made[1]
 
 
 def simulate_elastic(model: ElasticModel) -> SimulationResult:
@@ -69,26 +117,13 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     motor = m.motor
     time_scale = (m.inertia + motor.inertia) * m.target / max(motor.breakdown_torque, 1e-300)
 
-    probes = [(w, theta) for w in (0.0, 0.5 * m.target, motor.synchronous_speed)
-              for theta in (0.0, 0.1 * m.largest_twist, -0.5 * m.largest_twist)]
-    torque, stress = (on_floats(function, 2, probes) for function in (m.torque, m.stress))  # the link's equations,
-    # traced to Python on floats: two thirds of a check went to their generic form
+    lag = STRESS_LAG * time_scale
+    fast_rates, fast_stress = _on_floats(m, lag)
 
     def rates(t, y):
-        """At a solver's state, read as numbers (arithmetic on NumPy scalars costs twice), or at samples (arrays,
-        clutchopt.simulate.spans)."""
-        if isinstance(t, np.ndarray):
-            wa, w, theta, _ = y
-            link = m.torque(wa, theta) + m.damping * (wa - w)
-            net = link - m.load(t, w)
-            net = np.where((w <= 0.0) & (net < 0.0), 0.0, net)
-            return [(motor(wa) - link) / motor.inertia, net / m.inertia, wa - w, m.damping * (wa - w) ** 2]
+        """At a solver's state, read as numbers (arithmetic on NumPy scalars costs twice)."""
         wa, w, theta, _ = y.tolist()
-        link = torque(wa, theta) + m.damping * (wa - w)
-        net = link - m.load(t, w)
-        if w <= 0.0 and net < 0.0:
-            net = 0.0  # at rest the load is a reaction up to its value
-        return [(motor(wa) - link) / motor.inertia, net / m.inertia, wa - w, m.damping * (wa - w) ** 2]
+        return fast_rates(wa, w, theta, m.load(t, w))
 
     def started(t, y):
         return y[1] - m.target
@@ -99,16 +134,12 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     def twist_extreme(t, y):
         return y[0] - y[1]
 
-    lag = STRESS_LAG * time_scale
-
     def stress_extreme(t, y):
-        """The stress's rate along the motion as a central difference over +-``lag`` (the stress grows with the
-        driving speed too, so its peak lags the twist's: sampled there, it was missed by 1e-5)."""
-        dw, _, dtheta, _ = rates(t, y)
+        """:func:`stress_rate` at a state or at samples."""
         if isinstance(t, np.ndarray):
-            return m.stress(y[0] + lag * dw, y[2] + lag * dtheta) - m.stress(y[0] - lag * dw, y[2] - lag * dtheta)
-        wa, theta = float(y[0]), float(y[2])
-        return stress(wa + lag * dw, theta + lag * dtheta) - stress(wa - lag * dw, theta - lag * dtheta)
+            return stress_rate(m, lag, y[0], y[1], y[2], m.load(t, y[1]))
+        wa, w, theta = float(y[0]), float(y[1]), float(y[2])
+        return fast_stress(wa, w, theta, m.load(t, w))
 
     started.terminal, started.direction = True, 1
     overturned.terminal, overturned.direction = True, 1
@@ -121,7 +152,7 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     if m.integrator == "LSODA":
         out = integrate_spans(rates, None, 0.0, np.zeros(4), bound, events, m.rtol, atol, Budget(MAX_STEPS),
                               FIRST_SPAN * time_scale,
-                              max(_swing_period(m, torque) / SWING_SAMPLES, FIRST_SPAN * time_scale))  # (a swing
+                              max(_swing_period(m) / SWING_SAMPLES, FIRST_SPAN * time_scale))  # (a swing
         # faster than 48e-3 of the start, as of a rotor of 1e-9 kg m^2, is not sampled: its extremes on zooms)
     else:
         out = integrate(rates, None, 0.0, np.zeros(4), bound, events, m.integrator, m.rtol, atol, Budget(MAX_STEPS))

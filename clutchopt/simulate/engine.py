@@ -41,6 +41,7 @@ import numpy as np
 from clutchopt.errors import InputError
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.laws import InductionMotor, Load
+from clutchopt.simulate.on_floats import bound, parametrised
 from clutchopt.simulate.ranges import BREAKDOWN_SLIP, CONDUCTANCE, HEAT_CAPACITY, INERTIA, LOAD, SPEED, TIME, TORQUE
 from clutchopt.simulate.spans import integrate_spans
 from clutchopt.simulate.stepping import Budget, Phase, integrate
@@ -101,16 +102,98 @@ def _event(function, terminal: bool, direction: int):
     return function
 
 
-class _Run:
+class _Rates:
+    """The right-hand sides of a start-up's phases and the torques they are made of, at a state of numbers, at one of
+    arrays (a column a sample: the events on a span's samples at once, clutchopt.simulate.spans) or at CasADi
+    symbols: the law's, the load's and the motor's numbers may be symbols too, so that each right-hand side is
+    traced once per structure and written out on floats (:func:`_flat`). A solver's state is read as numbers
+    (y.tolist(): arithmetic on NumPy scalars costs twice)."""
+
+    def __init__(self, law, load: Load, motor: InductionMotor | None, inertia, heat_capacity, conductance,
+                 heat: bool):
+        self.law, self.load, self.motor, self.inertia, self.heat = law, load, motor, inertia, heat
+        self.heat_capacity, self.conductance = heat_capacity, conductance
+        self.driver_inertia = motor.inertia if motor else 0.0
+        self._own_excess = law.own_excess
+
+    def friction(self, wa, slip):
+        """The friction torque on the driven half (effect slip_friction) at numbers or at samples."""
+        return self.law.kinetic_samples(wa, slip) if isinstance(wa, np.ndarray) else fx.slip_friction(self.law,
+                                                                                                          wa, slip)
+
+    def capacity(self, wa):
+        """The static capacity at numbers or at samples."""
+        law = self.law
+        return law.capacity_samples(wa) if isinstance(wa, np.ndarray) else law.capacity(wa)
+
+    def excess(self, wa, slip, friction, load):
+        """Friction torque less load; a law with its own form of the difference (no cancellation) gives it."""
+        return self.law.excess(wa, slip, load) if self._own_excess else friction - load
+
+    def torques(self, t, y):
+        """Friction torque on the driven half, driving torque (effect motor_curve), load."""
+        wa, slip = y[0], y[1]
+        drive = fx.motor_curve(self.motor, wa) if self.motor else 0.0
+        return self.friction(wa, slip), drive, self.load(t, wa - slip)
+
+    def _turning(self, kind: str, t, y) -> list:
+        """Rates of a rest or a slip phase: of the driving half, the slip, the works and the heat."""
+        y = y.tolist() if type(y) is np.ndarray and y.ndim == 1 else y
+        wa, slip, rise = y[0], y[1], y[4]
+        friction, drive, load = self.torques(t, y)
+        dwa = (drive - friction) / self.driver_inertia if self.motor else 0.0
+        power = friction * slip
+        heat = fx.friction_heat(power, rise, self.heat_capacity, self.conductance) if self.heat else 0.0
+        driven = self.excess(wa, slip, friction, load) / self.inertia if kind == "slip" else 0.0
+        return [dwa, dwa - driven, power, friction * wa, heat]
+
+    def slip(self, t, y):
+        return self._turning("slip", t, y)
+
+    def rest(self, t, y):
+        """The driven half stands: all of the driving speed is slip."""
+        return self._turning("rest", t, y)
+
+    def carried(self, t, y):
+        """Stick: common acceleration and the torque the clutch must carry."""
+        _, drive, load = self.torques(t, y) if self.motor else (0.0, 0.0, self.load(t, y[0]))
+        accel = (drive - load) / (self.inertia + self.driver_inertia) if self.motor else 0.0
+        return accel, load + self.inertia * accel
+
+    def stick(self, t, y):
+        y = y.tolist() if type(y) is np.ndarray and y.ndim == 1 else y
+        accel, torque = self.carried(t, y)
+        heat = fx.friction_heat(0.0, y[4], self.heat_capacity, self.conductance) if self.heat else 0.0
+        return [accel, 0.0, 0.0, torque * y[0], heat]
+
+
+def _flat(run: _Run) -> dict:
+    """The run's right-hand side of each phase (``rest``, ``slip``, ``stick``) for the solver: the equations of
+    :class:`_Rates` traced once per structure (law, load and effects; their numbers parameters) and written out as
+    one Python function on floats (:func:`clutchopt.simulate.on_floats.bound`), bound to this run's numbers and
+    compared with the equations at probes; the equations themselves where they cannot be traced (a load table, the
+    paper's law) or the probes differ."""
+    m = run.m
+    objects = parametrised(m.law, m.load, run.motor, m.inertia, m.heat_capacity, m.conductance)
+    w = run.w_ref
+    probes = [(t, np.array([wa, slip, 0.0, 0.0, rise])) for t in (0.0, run.time_scale)
+              for wa, slip, rise in ((0.3 * w, 0.3 * w, 0.0), (0.9 * w, 0.2 * w, 2.0), (1.02 * w, 1e-3 * w, 5.0))]
+    flat = {}
+    for kind in ("rest", "slip", "stick"):
+        flat[kind] = bound(lambda *rebuilt, kind=kind: getattr(_Rates(*rebuilt, run.heat), kind), (0, 5), objects,
+                           ("engine", kind, run.heat), getattr(run, kind), probes)
+    return flat
+
+
+class _Run(_Rates):
     """The assembled right-hand sides of one model and their Jacobians; only listed effects are called."""
 
     def __init__(self, model: Model):
         self.m = model
-        self.motor = model.motor if model.has("motor_curve") else None
-        self.heat = model.has("friction_heat")
+        super().__init__(model.law, model.load, model.motor if model.has("motor_curve") else None, model.inertia,
+                         model.heat_capacity, model.conductance, model.has("friction_heat"))
         self.w_ref = self.motor.synchronous_speed if self.motor else model.driver_speed
         self.torque_scale = max(model.law.capacity(self.w_ref), model.load.largest(), 1e-300)
-        self.driver_inertia = self.motor.inertia if self.motor else 0.0
         self.time_scale = (model.inertia + self.driver_inertia) * self.w_ref / self.torque_scale
         energy = self.torque_scale * self.w_ref * self.time_scale
         heat = energy / model.heat_capacity if self.heat else 1.0
@@ -126,14 +209,14 @@ class _Run:
         self.state_scale = np.array([speed, 1e-6 * speed, energy, energy, heat])  # absolute tolerance per rtol
         self.budget = Budget(MAX_STEPS)
         self._last = None, None  # (kind, t, y) and the rates there
-        self._bind()
+        self.flat = _flat(self)  # the solver's right-hand sides
 
     def integrate(self, kind: str, t: float, bound: float, y, events: list) -> Phase:
         """One phase (``rest``, ``slip`` or ``stick``); LSODA at a tenth of the tolerance, and should it fail (its
         stiff Newton iterations can stall) or take more than LSODA_STEPS (its switch to BDF can lag a mode 1e9
         times faster than the start), Radau takes the phase again."""
-        rates, jacobian = {"rest": (self.rest, self.rest_jacobian), "slip": (self.slip, self.slip_jacobian),
-                           "stick": (self.stick, self.stick_jacobian)}[kind]
+        rates = self.flat[kind]
+        jacobian = {"rest": self.rest_jacobian, "slip": self.slip_jacobian, "stick": self.stick_jacobian}[kind]
         if self.method != "LSODA":
             return integrate(rates, jacobian, t, y, bound, events, self.method, self.m.rtol,
                              self.m.rtol * self.state_scale, self.budget)
@@ -146,63 +229,6 @@ class _Run:
             phase = integrate(rates, jacobian, t, y, bound, events, "Radau", self.m.rtol,
                               self.m.rtol * self.state_scale, budget)
         return phase
-
-    # --- the right-hand sides ------------------------------------------------------------------------------------
-    # Each takes a state of numbers or one of arrays (a column a sample: the events on a span's samples at once,
-    # clutchopt.simulate.spans). A solver's state is read as numbers (y.tolist(): arithmetic on NumPy scalars costs
-    # twice), and the callables are bound once (_bind): a right-hand side is some 2,000 calls a start.
-    def _bind(self):
-        self._load, self._own_excess = self.m.load, self.m.law.own_excess
-
-    def friction(self, wa, slip):
-        """The friction torque on the driven half (effect slip_friction) at numbers or at samples."""
-        return self.m.law.kinetic_samples(wa, slip) if isinstance(wa, np.ndarray) else fx.slip_friction(self.m.law,
-                                                                                                          wa, slip)
-
-    def capacity(self, wa):
-        """The static capacity at numbers or at samples."""
-        law = self.m.law
-        return law.capacity_samples(wa) if isinstance(wa, np.ndarray) else law.capacity(wa)
-
-    def excess(self, wa, slip, friction, load):
-        """Friction torque less load; a law with its own form of the difference (no cancellation) gives it."""
-        return self.m.law.excess(wa, slip, load) if self._own_excess else friction - load
-
-    def torques(self, t, y):
-        """Friction torque on the driven half, driving torque (effect motor_curve), load."""
-        wa, slip = y[0], y[1]
-        drive = fx.motor_curve(self.motor, wa) if self.motor else 0.0
-        return self.friction(wa, slip), drive, self._load(t, wa - slip)
-
-    def _turning(self, kind: str, t, y) -> list:
-        """Rates of a rest or a slip phase: of the driving half, the slip, the works and the heat."""
-        y = y.tolist() if type(y) is np.ndarray and y.ndim == 1 else y
-        wa, slip, rise = y[0], y[1], y[4]
-        friction, drive, load = self.torques(t, y)
-        dwa = (drive - friction) / self.driver_inertia if self.motor else 0.0
-        power = friction * slip
-        heat = fx.friction_heat(power, rise, self.m.heat_capacity, self.m.conductance) if self.heat else 0.0
-        driven = self.excess(wa, slip, friction, load) / self.m.inertia if kind == "slip" else 0.0
-        return [dwa, dwa - driven, power, friction * wa, heat]
-
-    def slip(self, t, y):
-        return self._turning("slip", t, y)
-
-    def rest(self, t, y):
-        """The driven half stands: all of the driving speed is slip."""
-        return self._turning("rest", t, y)
-
-    def carried(self, t, y):
-        """Stick: common acceleration and the torque the clutch must carry."""
-        _, drive, load = self.torques(t, y) if self.motor else (0.0, 0.0, self.m.load(t, y[0]))
-        accel = (drive - load) / (self.m.inertia + self.driver_inertia) if self.motor else 0.0
-        return accel, load + self.m.inertia * accel
-
-    def stick(self, t, y):
-        y = y.tolist() if type(y) is np.ndarray and y.ndim == 1 else y
-        accel, torque = self.carried(t, y)
-        heat = fx.friction_heat(0.0, y[4], self.m.heat_capacity, self.m.conductance) if self.heat else 0.0
-        return [accel, 0.0, 0.0, torque * y[0], heat]
 
     # --- their Jacobians -----------------------------------------------------------------------------------------
     def _turning_jacobian(self, y, slopes) -> np.ndarray:
@@ -264,7 +290,7 @@ class _Run:
             return self.rest(t, y) if kind == "rest" else self.slip(t, y)
         key = (kind, t, y.tobytes())
         if self._last[0] != key:
-            self._last = key, (self.rest(t, y) if kind == "rest" else self.slip(t, y))
+            self._last = key, self.flat[kind](t, y)
         return self._last[1]
 
     def net_rate(self, kind: str, t, y) -> float:

@@ -16,6 +16,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from clutchopt.backend import fmax
 from clutchopt.simulate.analytic import PaperTransient
 from clutchopt.start_up.equations import coupling_torque, kloss_torque, table_segment
 
@@ -46,6 +47,11 @@ class _Law:
     def capacity_samples(self, driver_speeds: np.ndarray) -> np.ndarray:
         """The static capacity at each sample, as :meth:`capacity` gives it at each."""
         return np.array([self.capacity(w) for w in driver_speeds], dtype=float)
+
+
+def _positive_part(x):
+    """max(x, 0): a branch at a number (numpy.maximum costs a microsecond there), else fmax (arrays, symbols)."""
+    return (x if x > 0.0 else 0.0) if x.__class__ is float else fmax(x, 0.0)
 
 
 @dataclass(frozen=True)
@@ -108,13 +114,13 @@ class CentrifugalFriction(_Law):
     name: str = "centrifugal"
 
     def kinetic(self, driver_speed, slip):
-        return coupling_torque(self.torque_coefficient, driver_speed, self.engagement_squared) \
-            if driver_speed * driver_speed > self.engagement_squared else 0.0
+        """K (w_a^2 - w_e^2) once engaged, else zero (K > 0): at numbers, at samples (arrays) or at symbols (the
+        simulator's right-hand side traced, clutchopt.simulate.engine)."""
+        return _positive_part(coupling_torque(self.torque_coefficient, driver_speed, self.engagement_squared))
 
     def kinetic_samples(self, driver_speeds, slips):
         """:meth:`kinetic` at each sample, at once (a run has a thousand)."""
-        engaged = driver_speeds * driver_speeds > self.engagement_squared
-        return np.where(engaged, coupling_torque(self.torque_coefficient, driver_speeds, self.engagement_squared), 0.0)
+        return self.kinetic(driver_speeds, slips)
 
     def slopes(self, driver_speed, slip):
         """dT/dw_a = 2 K w_a once engaged."""

@@ -10,8 +10,9 @@ machinery (a Python step, a dense output and every event at each step) was three
   extrapolated from the last two samples, are expected to end the phase; each span restarts LSODA;
 - events: each evaluated on all of a span's samples at once (an event written with NumPy operations takes the
   arrays; one that does not is evaluated sample by sample); where one changes sign (as ``solve_ivp`` counts a
-  crossing, see :func:`clutchopt.simulate.stepping._crosses`) between two samples, its root is found by Brent's
-  method (to 4 eps) on the interpolant of the nearest LOCAL_NODES samples and the state integrated to it; a terminal
+  crossing, see :func:`clutchopt.simulate.stepping.crosses`) between two samples, its root is found by Brent's
+  method (a terminal event's to 4 eps, a sampled extremum's to EXTREMUM_XTOL of the interval) on the interpolant
+  of the nearest LOCAL_NODES samples and the state integrated to it; a terminal
   event's root is then taken a Newton step further on the event's value there and the state integrated on to it.
   Where that interpolant is off the integrated state by more than TRUSTED (a motion too fast for the span's
   samples: the cable's torsional swings), the interval is integrated again sampled ZOOM_SAMPLES times and the
@@ -28,7 +29,7 @@ import numpy as np
 from scipy.integrate import ODEintWarning, odeint
 from scipy.optimize import brentq
 
-from clutchopt.simulate.stepping import EPS, Budget, Phase
+from clutchopt.simulate.stepping import EPS, Budget, Phase, crosses
 
 FIRST_SAMPLES = 128  # the first 128 samples of a phase take ``span``, every next 128 eight times as long: the
 SPACING_GROWTH = 8.0 ** (1.0 / FIRST_SAMPLES)  # ratio of consecutive samples' spacing (the next mesh is adapted to
@@ -38,6 +39,8 @@ SPAN_SAMPLES = 192  # samples of a span: each restart of LSODA costs some 20-40 
 ZOOM_SAMPLES = 32  # the interval where an event changes sign, integrated again with this many samples
 LOCAL_NODES = 6  # samples of that interval interpolated (degree 5) to find the root
 TRUSTED = 1e-6  # relative: an interpolant of a span's samples this near the state integrated to its root is used
+EXTREMUM_XTOL = 1e-9  # of the sample interval: a sampled event's root (a maximum, whose value moves by the square
+# of the time's error; its state is integrated to the root found): 7.6 of Brent's steps a root, not 11
 SUCCESS = "Integration successful."
 AHEAD = 1.25  # a span ends this much beyond where its events' extrapolation expects the first terminal one
 SHORTEST = 0.05  # of the span it would have been: no span shorter (an extrapolation that undershoots)
@@ -89,14 +92,14 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
             samples = lsoda.run(y, grid)
             if samples is None:
                 return _phase(times, states, "budget" if budget.spent else "failed", message=lsoda.message)
-            found = _first_events(events, grid, samples, lsoda)
-            if found is not None:
-                interval, (root, state), sampled, number = found
+            terminal, sampled = _first_events(events, grid, samples, lsoda)
+            if terminal is not None:
+                interval, (root, state), number = terminal
                 _extend(times, states, grid[1:interval + 1], samples[:, 1:interval + 1], sampled)
                 times.append(np.array([root]))
                 states.append(np.asarray(state, dtype=float).reshape(-1, 1))
                 return _phase(times, states, "event", index=number)
-            _extend(times, states, grid[1:], samples[:, 1:], lsoda.sampled)
+            _extend(times, states, grid[1:], samples[:, 1:], sampled)
             t, y = end, samples[:, -1].copy()
     return _phase(times, states, "end")
 
@@ -118,7 +121,6 @@ class _Lsoda:
         self.fun, self.jac, self.rtol, self.atol, self.budget = fun, jac, rtol, atol, budget
         self.message = ""
         self.refine = True  # roots on the spans' own samples first (:func:`_refined`)
-        self.sampled: list = []  # (time, state) of sampled events located in the last span
 
     def run(self, y0, grid):
         """The states at the grid's times (columns), integrated from ``y0`` at grid[0]; None if LSODA failed."""
@@ -135,8 +137,8 @@ class _Lsoda:
 
 
 def _first_events(events, grid, samples, lsoda: _Lsoda):
-    """The first terminal event among a span's samples: (its sample interval, (root, state), the sampled events'
-    (time, state) before it, its index), or None (``lsoda.sampled``: the span's sampled events)."""
+    """The first terminal event among a span's samples, (its sample interval, (root, state), its index) or None,
+    and the sampled events' (time, state) before it (in the whole span if none)."""
     crossings = [_crossings(event, _values(event, grid, samples)) for event in events]
     zooms: dict = {}
     first = min(((int(np.argmax(mask)), i) for i, (event, mask) in enumerate(zip(events, crossings))
@@ -158,10 +160,7 @@ def _first_events(events, grid, samples, lsoda: _Lsoda):
             if at is not None and (stop is None or at[0] < stop[0]):
                 sampled.append(at)
     sampled.sort(key=lambda pair: pair[0])
-    if first is None:
-        lsoda.sampled = sampled
-        return None
-    return first[0], stop, sampled, first[1]
+    return (None if first is None else (first[0], stop, first[1])), sampled
 
 
 def _nearer(event, grid, samples, interval: int):
@@ -183,12 +182,8 @@ def _values(event, times: np.ndarray, states: np.ndarray) -> np.ndarray:
 
 
 def _crossings(event, g: np.ndarray) -> np.ndarray:
-    """Per sample interval, whether the event crosses zero in it, as stepping's ``_crosses`` decides."""
-    old, new, direction = g[:-1], g[1:], event.direction
-    if not event.terminal or getattr(event, "strict", False):
-        return ((old > 0) & (new < 0) & (direction <= 0)) | ((old < 0) & (new > 0) & (direction >= 0))
-    up, down = (old <= 0) & (new >= 0), (old >= 0) & (new <= 0)
-    return (up & (direction > 0)) | (down & (direction < 0)) | ((up | down) & (direction == 0))
+    """Per sample interval, whether the event crosses zero in it (:func:`~clutchopt.simulate.stepping.crosses`)."""
+    return crosses(event, g[:-1], g[1:])
 
 
 def _find(event, grid, samples, interval: int, zooms: dict, lsoda: _Lsoda, exact: bool):
@@ -207,14 +202,12 @@ def _refined(event, grid, samples, k: int, lsoda: _Lsoda, exact: bool):
     from sample k; a terminal event's root then taken one Newton step further on the event's exact value there
     (the interpolant's slope), the state integrated on to it. None where the interpolant does not bracket the
     root or the Newton step leaves the interval or does not bring the event nearer zero."""
-    nodes = _nodes(k, len(grid))
-    local = _Interpolant(grid[nodes], samples[:, nodes])
-    g_left, g_right = event(grid[k], samples[:, k]), event(grid[k + 1], samples[:, k + 1])
+    local, g_left, g_right = _opening(event, grid, samples, k)
     if g_left == 0.0:
         return grid[k], samples[:, k].copy()
     if g_left * g_right >= 0:
         return None
-    guess = _root(lambda s: event(s, local(s)), grid[k], grid[k + 1])
+    guess = _root(lambda s: event(s, local(s)), grid[k], grid[k + 1], exact)
     if guess is None or guess == grid[k]:
         return None
     scale = lsoda.atol / lsoda.rtol
@@ -259,15 +252,13 @@ def _locate(event, zoom, lsoda: _Lsoda, exact: bool):
     if not mask.any():
         return None
     k = int(np.argmax(mask))
-    nodes = _nodes(k, len(grid))
-    local = _Interpolant(grid[nodes], samples[:, nodes])
-    g_left, g_right = event(grid[k], samples[:, k]), event(grid[k + 1], samples[:, k + 1])
+    local, g_left, g_right = _opening(event, grid, samples, k)
     if g_left == 0.0:
         return grid[k], samples[:, k].copy()
     if g_right == 0.0 or g_left * g_right > 0:
         root = grid[k + 1]
     else:
-        root = _root(lambda s: event(s, local(s)), grid[k], grid[k + 1])
+        root = _root(lambda s: event(s, local(s)), grid[k], grid[k + 1], exact)
         if root is None:  # not a number between: the sample nearer zero
             root = grid[k] if abs(g_left) < abs(g_right) else grid[k + 1]
     if not exact:
@@ -278,11 +269,19 @@ def _locate(event, zoom, lsoda: _Lsoda, exact: bool):
     return root, (end[:, -1] if end is not None else local(root))
 
 
-def _root(function, a: float, b: float) -> float | None:
-    """Brent's method to 4 eps on [a, b]; None where the function is not a number inside (an interpolated state
-    outside the equations' domain)."""
+def _opening(event, grid, samples, k: int):
+    """The interpolant of the LOCAL_NODES samples around the interval [k, k + 1] and the event at its ends."""
+    nodes = _nodes(k, len(grid))
+    local = _Interpolant(grid[nodes], samples[:, nodes])
+    return local, event(grid[k], samples[:, k]), event(grid[k + 1], samples[:, k + 1])
+
+
+def _root(function, a: float, b: float, exact: bool = True) -> float | None:
+    """Brent's method on [a, b], to 4 eps (``exact``: a terminal event's) or to EXTREMUM_XTOL of the interval (a
+    sampled one); None where the function is not a number inside (an interpolated state outside the equations'
+    domain)."""
     try:
-        return brentq(function, a, b, xtol=4 * EPS, rtol=4 * EPS)
+        return brentq(function, a, b, xtol=4 * EPS if exact else EXTREMUM_XTOL * (b - a), rtol=4 * EPS)
     except ValueError:
         return None
 
@@ -298,16 +297,15 @@ class _Interpolant:
 
     def __init__(self, times: np.ndarray, states: np.ndarray):
         self.t, self.y = times, states
+        self.nodes = times.tolist()
         differences = times[:, None] - times[None, :]
         np.fill_diagonal(differences, 1.0)
         self.w = 1.0 / differences.prod(axis=1)
 
     def __call__(self, s: float) -> np.ndarray:
-        d = s - self.t
-        exact = np.flatnonzero(d == 0.0)
-        if exact.size:
-            return self.y[:, exact[0]].copy()
-        c = self.w / d
+        if s in self.nodes:  # (a list's search: Brent calls this some 500 times a check of the cable)
+            return self.y[:, self.nodes.index(s)].copy()
+        c = self.w / (s - self.t)
         return self.y @ c / c.sum()
 
 

@@ -81,7 +81,7 @@ def _stepped(solver, t0: float, y0: np.ndarray, events: list, budget: Budget) ->
         new = [event(t, y) for event in events]
         hits = sorted((_root(event, dense, t_old, t), index)
                       for index, (event, g, g_new) in enumerate(zip(events, values, new))
-                      if _crosses(event, g, g_new))
+                      if crosses(event, g, g_new))
         stop = next(((root, index) for root, index in hits if events[index].terminal), None)
         inside = [root for root, index in hits if not events[index].terminal and (stop is None or root < stop[0])]
         end = stop[0] if stop else t
@@ -96,14 +96,16 @@ def _stepped(solver, t0: float, y0: np.ndarray, events: list, budget: Budget) ->
     return Phase(np.array(times), np.array(states).T, "end")
 
 
-def _crosses(event, g: float, g_new: float) -> bool:
-    """A terminal event as ``solve_ivp`` finds it (a zero at the step's start counts); a sampled one, or one marked
-    ``strict``, only where its sign changes strictly (a function that stays at zero is no maximum; a difference
-    that starts at zero and moves by rounding has not crossed it)."""
+def crosses(event, g, g_new):
+    """Whether the event crosses zero from ``g`` to ``g_new`` (numbers, or arrays: each sample interval of a span,
+    clutchopt.simulate.spans): a terminal event as ``solve_ivp`` finds it (a zero at the step's start counts); a
+    sampled one, or one marked ``strict``, only where its sign changes strictly (a function that stays at zero is no
+    maximum; a difference that starts at zero and moves by rounding has not crossed it)."""
+    direction = event.direction
     if not event.terminal or getattr(event, "strict", False):
-        return (g > 0 > g_new and event.direction <= 0) or (g < 0 < g_new and event.direction >= 0)
-    up, down = g <= 0 <= g_new, g >= 0 >= g_new
-    return (up and event.direction > 0) or (down and event.direction < 0) or ((up or down) and event.direction == 0)
+        return ((g > 0) & (g_new < 0) & (direction <= 0)) | ((g < 0) & (g_new > 0) & (direction >= 0))
+    up, down = (g <= 0) & (g_new >= 0), (g >= 0) & (g_new <= 0)
+    return (up & (direction > 0)) | (down & (direction < 0)) | ((up | down) & (direction == 0))
 
 
 def _root(event, dense, t_old: float, t: float) -> float:

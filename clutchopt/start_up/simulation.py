@@ -204,9 +204,8 @@ def _elastic_model(case, law: ElasticLaw, design: dict[str, float], rtol: float)
     damping = 2.0 * float(law.damping_ratio(x, p)) * math.sqrt(float(law.stiffness(x, p, p.speed)) * reduced)
     profile = spec.load_profile
     load = Load(over=profile.over, points=profile.points, values=profile.values) if profile else Load(p.load_torque)
-    return ElasticModel(lambda w, theta: law.torque(x, p, w, theta), lambda w, theta: law.stress(x, p, w, theta),
-                        damping, p.driven_inertia, load, motor, p.min_lock_up_speed, float(law.largest_twist(x, p)),
-                        spec.effects, rtol=rtol)
+    return ElasticModel(law, x, p, damping, p.driven_inertia, load, motor, p.min_lock_up_speed,
+                        float(law.largest_twist(x, p)), spec.effects, rtol=rtol)
 
 
 def until_lock_up(model, end_time: float):

@@ -64,7 +64,6 @@ class StartUpBlock:
         self._bounds: list[tuple[float, float]] = []
         self.kinds: list[tuple[str, str]] = []  # (phase, state or "duration") of each internal variable
         self._mesh: list = []
-        self._outputs: dict | None = None
         self.equalities: list = []
         self.points: list[tuple] = []  # (time, {state: value}) of every phase start and collocation point
         self.nodes: list[dict] = []  # the states at the collocation points (the phase starts excluded)
@@ -214,10 +213,9 @@ class StartUpBlock:
     def outputs(self) -> dict:
         """Figures of the NLP's start (expressions): for the start_up report and the trajectory. Built once (each
         solve's report reads their names); not to be changed by the caller."""
-        if self._outputs is None:
-            self._outputs = self._figure_outputs()
-        return self._outputs
+        return self._figure_outputs
 
+    @cached_property
     def _figure_outputs(self) -> dict:
         d = self.drive
         figures = {"start_time": self.start_time, "friction_work": self.figures.friction_work,
