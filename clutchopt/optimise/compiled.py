@@ -5,9 +5,10 @@ large (the ball clutch's: Hertz's elliptic integrals, 4,400 instructions, 50 us 
 it is most of an SQP iteration. Compiling CasADi's generated C takes about 0.6 s, more than a 1000-point sweep
 saves, so the library is kept in a cache folder (``$CLUTCHOPT_CACHE``, else the user's cache folder), named by a
 hash of its C source, the CasADi version, the compiler and its flags: built by the first sweep of a problem on a
-machine, loaded by the next ones (only a library of this user's that no one else may write). Without a C compiler,
-with a cache folder that cannot be written, or where a build or load fails, the functions stay on CasADi's virtual
-machine (same numbers: the compiled code does the same operations in the same order).
+machine, loaded by the next ones (only a library of this user's, in a folder of this user's, that no one else may
+write, and whose bytes are those its build recorded). Without a C compiler, with a cache folder that cannot be
+written, or where a build or load fails, the functions stay on CasADi's virtual machine (same numbers: the compiled
+code does the same operations in the same order).
 """
 
 from __future__ import annotations
@@ -25,6 +26,8 @@ CACHE_ENV = "CLUTCHOPT_CACHE"  # the cache folder; empty: no compiled code
 COMPILE_ABOVE = 2000  # Hessian instructions above which compiling pays (ball 4,447; cable 681, lever 238, wedge 105)
 BUILD_TIMEOUT_S = 120
 FLAGS = ("-O1", "-fPIC", "-shared", "-ffp-contract=off")  # no fast-math, no fused multiply-add: IEEE, op by op
+_FAILED: set[Path] = set()  # the libraries whose build failed in this process (a compiler that fails or hangs is
+# waited for once a process, not by every interval proof of a sweep)
 
 
 def cache_folder() -> Path | None:
@@ -64,30 +67,66 @@ def _library(functions: list[ca.Function]) -> str | None:
 
 def built_library(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = FLAGS) -> str | None:
     """The shared library of the C ``source``, from the cache (``prefix``-<hash>.so) or built now; None where that is
-    not possible (no compiler, no cache folder, a build that fails)."""
+    not possible (no compiler, no cache folder or one others may write, a build that fails). A library in the cache
+    is loaded only if its bytes are those its build recorded beside it (``.sha256``): a damaged one (cut short by a
+    full disk or a copy, or another file of its name) is built again, never mapped (a truncated ELF kills the process
+    that maps it with SIGBUS)."""
     cc, folder = compiler(), cache_folder()
     if cc is None or folder is None:
         return None
+    library = None
     try:
         key = hashlib.sha256(source + " ".join((ca.__version__, cc, *flags)).encode()).hexdigest()[:32]
         library = folder / f"{prefix}-{key}.so"
+        if folder.exists() and not _trusted(folder):
+            return None
         if library.is_file():
-            return str(library) if _trusted(library) else None
+            if not _trusted(library):
+                return None
+            if _recorded(library) == _digest(library):
+                return str(library)
+        if library in _FAILED:
+            return None
         folder.mkdir(mode=0o700, parents=True, exist_ok=True)
+        if not _trusted(folder):
+            return None
         with tempfile.TemporaryDirectory(dir=folder) as build:  # built beside its place, then moved in at once
             Path(build, "nlp.c").write_bytes(source)
             subprocess.run([cc, *flags, "nlp.c", "-o", "nlp.so", "-lm"], cwd=build, check=True, capture_output=True,
                            timeout=BUILD_TIMEOUT_S)
-            os.replace(Path(build, "nlp.so"), library)
+            built = Path(build, "nlp.so")
+            Path(build, "nlp.sha256").write_text(_digest(built))
+            os.replace(built, library)  # (a process building the same at once: either library, each whole)
+            os.replace(Path(build, "nlp.sha256"), _record(library))
         return str(library)
     except (OSError, subprocess.SubprocessError, RuntimeError):
+        if library is not None:
+            _FAILED.add(library)
         return None
 
 
-def _trusted(library: Path) -> bool:
-    """A library to load: this user's, writable by no one else (code in a shared folder is not run; where the
-    system has no user ids, none is)."""
-    info = library.stat()
+def _record(library: Path) -> Path:
+    return library.with_suffix(".sha256")
+
+
+def _digest(library: Path) -> str:
+    return hashlib.sha256(library.read_bytes()).hexdigest()
+
+
+def _recorded(library: Path) -> str | None:
+    """The digest the build of ``library`` recorded, None where there is none (a library of an earlier version)."""
+    try:
+        with open(_record(library), "rb") as record:
+            return record.read(64).decode().strip()  # (64 hex digits: no more is read, whatever the file is)
+    except (OSError, UnicodeDecodeError):
+        return None
+
+
+def _trusted(path: Path) -> bool:
+    """A library to load, or a folder to build and load from: this user's, writable by no one else (code in a shared
+    folder is not run: whoever may write a folder may put another file in a library's place; where the system has no
+    user ids, none is)."""
+    info = path.stat()
     return hasattr(os, "getuid") and info.st_uid == os.getuid() and not info.st_mode & 0o022
 
 

@@ -233,9 +233,9 @@ def replay_library(widen: float):
     if path not in _LOADED:
         try:
             library = ctypes.CDLL(path)
-        except OSError:  # a library that does not load (damaged cache)
+            library.interval_replay.restype = None
+        except (OSError, AttributeError):  # a library that does not load, or without the replay (damaged cache)
             return None
-        library.interval_replay.restype = None
         library.interval_replay.argtypes = [ctypes.c_long, *[ctypes.c_void_p] * 5, ctypes.c_long,
                                             *[ctypes.c_void_p] * 6]
         _LOADED[path] = library

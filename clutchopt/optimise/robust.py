@@ -101,7 +101,7 @@ def parse_method(text: str) -> tuple[str, float | None]:
             probability = math.nan
         if 0.5 < probability < 1.0 and probability <= 1.0 - 1e-9:
             return name, probability
-        raise InputError("--robust", f"{name}=P needs 0.5 < P <= 1 - 1e-9 (e.g. chance=0.999), got {value!r}")
+        raise InputError("--robust", f"{name}=P needs 0.5 < P <= 1 - 1e-9 (e.g. {name}=0.999), got {value!r}")
     raise InputError("--robust", f"expected worst-case, chance=P or system_chance=P (e.g. chance=0.999), got "
                                  f"{text!r}")
 
