@@ -70,27 +70,30 @@ class MonotoneFunction:
         _collecting[-1].extend(nodes)
         return tuple(node.symbol for node in nodes)
 
-    def values_and_slopes(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The values and slopes (each of shape (len(increasing), points)) at float points, by the same algorithm
-        (compiled where a library can be had: the interval proof's enclosures evaluate it at every box's ends, 60 %
-        of a search's evaluation of the ball's rows on CasADi's virtual machine)."""
+    def on_floats(self) -> ca.Function:
+        """The values and their slopes in x as a CasADi function of a float x (built once)."""
         if self._float is None:
-            from clutchopt.optimise.compiled import compiled_function  # (the optimiser imports the formulations)
-
             x = ca.SX.sym("x")
             values = ca.vertcat(*self.function(x))
-            self._float = compiled_function(ca.Function("monotone", [x], [values, ca.jacobian(values, x)]))
-        mapped = self._float.map(points.size)
+            self._float = ca.Function("monotone", [x], [values, ca.jacobian(values, x)])
+        return self._float
+
+    def values_and_slopes(self, points: np.ndarray, evaluate: ca.Function | None = None
+                          ) -> tuple[np.ndarray, np.ndarray]:
+        """The values and slopes (each of shape (len(increasing), points)) at float points, by the same algorithm:
+        :meth:`on_floats`, or ``evaluate``, the same function compiled (the interval proof's, whose enclosures
+        evaluate it at every box's ends)."""
+        mapped = (evaluate or self.on_floats()).map(points.size)
         values, slopes = mapped(points.reshape(1, -1))
         return np.array(values), np.array(slopes)
 
-    def enclosure(self, lo: np.ndarray, hi: np.ndarray):
+    def enclosure(self, lo: np.ndarray, hi: np.ndarray, evaluate: ca.Function | None = None):
         """Bounds on every value and its slope (arrays of shape (values, intervals)) over each interval [lo, hi] of
         the argument within the domain (NaN elsewhere): the ends' values and slopes, ordered as declared, widened by
-        ``error`` and a few ulps."""
+        ``error`` and a few ulps (``evaluate``: as in :meth:`values_and_slopes`)."""
         inside = (lo >= self.domain[0]) & (hi <= self.domain[1]) & (lo <= hi)
         ends = np.concatenate([np.where(inside, lo, self.domain[0]), np.where(inside, hi, self.domain[0])])
-        values, slopes = self.values_and_slopes(ends)
+        values, slopes = self.values_and_slopes(ends, evaluate)
         count = lo.size
         rising, slope_rising = np.array(self.increasing)[:, None], np.array(self.slope_increasing)[:, None]
         widen = self.error + 8 * np.finfo(float).eps

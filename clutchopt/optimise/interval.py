@@ -15,7 +15,7 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
-from clutchopt.optimise import interval_compiled
+from clutchopt.optimise.interval_compiled import CompiledReplay, replay_library
 
 _WIDEN = 8 * np.finfo(float).eps  # relative outward widening of every result
 
@@ -189,10 +189,9 @@ class IntervalFunction:
         self.program = [(f.instruction_id(k), f.instruction_input(k), f.instruction_output(k),
                          f.instruction_constant(k)) for k in range(f.n_instructions())]
         self.work = f.sz_w()
-        library = interval_compiled.replay_library(_WIDEN) if compiled else None
+        library = replay_library(_WIDEN) if compiled else None
         try:
-            self.compiled = None if library is None else interval_compiled.CompiledReplay(f, self.program, self.work,
-                                                                                           library)
+            self.compiled = None if library is None else CompiledReplay(f, self.program, self.work, library)
         except ValueError:  # an instruction the interpreter cannot address: replayed
             self.compiled = None
 

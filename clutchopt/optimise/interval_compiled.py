@@ -25,12 +25,13 @@ import ctypes
 import casadi as ca
 import numpy as np
 
-from clutchopt.optimise import compiled
+from clutchopt.optimise.compiled import FLAGS as NLP_FLAGS, built_library
 
-FLAGS = ("-O2", *compiled.FLAGS[1:])  # the compiled NLP's flags (IEEE, operation by operation), optimised further
+FLAGS = ("-O2", *NLP_FLAGS[1:])  # the compiled NLP's flags (IEEE, operation by operation), optimised further
 
 UNARY = ("ASSIGN", "NEG", "TWICE", "INV", "EXP", "LOG", "SQRT", "SQ", "FABS", "COSH", "SINH", "TANH", "ASINH",
-         "ACOSH", "ATANH", "ATAN", "ASIN", "ACOS", "LOG1P", "EXPM1", "FLOOR", "CEIL", "SIGN", "SIN", "COS", "TAN", "NOT")
+         "ACOSH", "ATANH", "ATAN", "ASIN", "ACOS", "LOG1P", "EXPM1", "FLOOR", "CEIL", "SIGN", "SIN", "COS", "TAN",
+         "NOT")
 BINARY = ("ADD", "SUB", "MUL", "DIV", "FMIN", "FMAX", "POW", "CONSTPOW", "HYPOT", "IF_ELSE_ZERO", "LT", "LE", "AND",
           "OR")
 RULED = frozenset(getattr(ca, "OP_" + name) for name in (*UNARY, *BINARY))  # the operations with a rule here
@@ -227,7 +228,7 @@ def _address(array: np.ndarray) -> int:
 
 def replay_library(widen: float):
     """The compiled ``interval_replay`` (built or taken from the cache), or None where no library can be had."""
-    path = compiled.built_library(source(widen), prefix="interval", flags=FLAGS)
+    path = built_library(source(widen), prefix="interval", flags=FLAGS)
     if path is None:
         return None
     if path not in _LOADED:
