@@ -32,12 +32,14 @@ STEP = 1e-4  # forward differences in u of a simulated limit state: truncation S
 SEARCH_STEPS = 40  # BFGS iterations of one search
 RESTARTS = 3  # searches before the limit falls back to its quantile corner
 TANGENTIAL = 1e-3  # |tangential gradient| / |gradient| at a settled performance point (the sphere's KKT condition):
-# an angle of about that much from the minimum, where g exceeds it by about |grad g| beta TANGENTIAL^2 / 2 ~ 1e-6 |grad g|
+# an angle of about that much from the minimum, where g exceeds it by about |grad g| beta TANGENTIAL^2 / 2
+# ~ 1e-6 |grad g|
 FLAT = 1e-6  # of g (a relative margin, the start-up's tolerance): a tangential gradient that moves g less over a
 # distance beta holds (a limit the scatter hardly moves: its differences are mostly the simulation's noise)
 NEGLIGIBLE = 1e-7  # |grad g| below this (g per unit of u) is a limit the scatter does not move
 REACH = 1.0  # a limit whose design point lies within this (in u, to first order) of its performance point is
 # sampled around it; one further out fails less than Phi(-beta - REACH): FORM from the performance point
+CROSSING_XTOL = 1e-6  # in u: where a limit is crossed strictly along its ray (P to 1e-6 beta, relative)
 SHARED_CENTRE = 0.25  # limits whose centres of importance sampling lie this close (in u) share one (and its starts)
 
 
@@ -93,9 +95,9 @@ def performance_point(g: SimulatedLimitStates, row: int, beta: float, start: np.
     u = -beta grad g / |grad g| (the AMV iteration of ``reliability.performance_point`` alone cycles here: a uniform
     quantity mapped exactly flattens g in its tail, and the iteration jumps between the ends of two quantities).
     Settled where the gradient is normal to the sphere (its tangential part below TANGENTIAL of it, the sphere's
-    KKT condition, or so small that g falls by less than FLAT along the sphere) and points away from the origin. A limit the scatter does not move at the means
-    (|grad g| < NEGLIGIBLE) is at the means; one whose g or gradient is not finite (a start that does not lock up
-    nearby) or that does not settle is not settled."""
+    KKT condition, or so small that g falls by less than FLAT along the sphere) and points away from the origin. A
+    limit the scatter does not move at the means (|grad g| < NEGLIGIBLE) is at the means; one whose g or gradient
+    is not finite (a start that does not lock up nearby) or that does not settle is not settled."""
     n = len(g.scatter)
 
     def holds(u: np.ndarray) -> bool:
@@ -147,6 +149,26 @@ def moved_at_the_means(g: SimulatedLimitStates, row: int) -> bool:
     two points for one quantity; BFGS's, normalised, for more), or the means unsettled where g is not finite."""
     _, norm, finite = at_the_means(g, row)
     return not finite or norm >= NEGLIGIBLE
+
+
+def strict_reach(g: SimulatedLimitStates, row: int, u: np.ndarray) -> float:
+    """Where a limit beyond its value at its performance point ``u`` (failing there, if within the
+    start-up's tolerance) is crossed strictly along the ray from the means through u: Brent's method on g's own
+    value (no tolerance) to CROSSING_XTOL, each step a simulated start; 0 where it fails at the means already. With
+    one scattered quantity the ray is the whole line and Phi(-reach) the exact probability of failing (a limit
+    monotone in it); with more, FORM's at that point."""
+    from scipy.optimize import brentq
+
+    radius = float(np.linalg.norm(u))
+    direction = u / radius
+
+    def value(t: float) -> float:
+        return float(g((t * direction)[:, None])[row, 0])
+
+    if not value(0.0) > 0:
+        return 0.0
+    return float(brentq(value, 0.0, radius, xtol=CROSSING_XTOL))
+
 
 
 @dataclass
@@ -250,8 +272,10 @@ class StartUpPerformancePoints:
         simulated starts from the standard normal centred there (weight phi(u) / phi(u - u*), 95 % interval from
         the weights' spread), centres closer than SHARED_CENTRE shared; one further out by FORM from its performance
         point, Phi(-(beta + g / |grad g|)), or where that lies beyond ``reliability.REACH`` (9) its bound Phi(-9),
-        as the closed forms' (``robust_reliability.reliability_at``). A g within the start-up's tolerance of 0 is 0
-        (the limit is met there as the solver meets it: active, its design point its performance point)."""
+        as the closed forms' (``robust_reliability.reliability_at``). A g met within the start-up's tolerance of 0 is 0
+        (the limit is met there as the solver meets it: active, its design point its performance point); one beyond
+        0 within the tolerance fails at its point, and its probability is that of the ray beyond its strict crossing
+        (:func:`strict_reach`): the failure event is the limit's own, not widened by the tolerance."""
         g, beta, n = self.states, self.beta, len(self.case.scatter)
         out, centres = {}, []
         for row, name in enumerate(g.names):
@@ -266,11 +290,17 @@ class StartUpPerformancePoints:
                                                                     "exact: independent of the scatter")])
                 continue
             value, grad = g.value_gradient(row, u)
-            if abs(value) <= g.tolerance:  # met at its point within the tolerance: active there, reach = beta (a
-                value = 0.0  # -2.4e-7 over a range end's slope of 1e-9 moved it to beta -285 and "P = 1")
             slope = float(np.linalg.norm(grad))
-            reach = beta + value / slope if slope > 0 else math.inf  # flat at its point: no failure within reach
-            point = DesignPoint(u * reach / beta, reach, reach <= FORM_REACH)
+            if -g.tolerance <= value < 0:  # beyond its limit at its point, if within the tolerance: its design point
+                # is where it is crossed strictly along the ray (at system_chance=0.999999999 near a range's end
+                # 5.02, not beta 6.31: P 2.6e-7, not 1.4e-10; to first order, -2.4e-7 over the end's slope of 1e-9
+                # had moved beta to -285 and "P = 1")
+                reach = strict_reach(g, row, u)
+            elif abs(value) <= g.tolerance:  # met at its point within the tolerance: active there, reach = beta
+                reach = beta
+            else:
+                reach = beta + value / slope if slope > 0 else math.inf  # flat at its point: no failure within reach
+            point = DesignPoint(u * reach / np.linalg.norm(u), reach, reach <= FORM_REACH)
             if reach > FORM_REACH:
                 bound = float(ndtr(-FORM_REACH))
                 out[name] = ConstraintReliability(point, values, [
