@@ -29,7 +29,8 @@ from clutchopt.optimise.solution import Solution, SolverInfo, SolverOptions, War
 from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, corrected_case, start_up_report, worn_start
 from clutchopt.optimise.start_up_shift import limit_shift, shifted
 from clutchopt.optimise.verdict import shown
-from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
+from clutchopt.optimise.proofs import start_up_proofs
+from clutchopt.optimise.verify import DESIGN_STATUSES, check_design, evaluate_objective, evaluate_outputs
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
 from clutchopt.start_up.mesh import MAX_INTERVALS, MESH_STEPS
@@ -49,7 +50,10 @@ class Problem:
               coarser: float = math.inf) -> Solution:
         """Solve for one case (:meth:`refined`); a solve that ends without a design is retried from the starts that
         can reach one before its verdict is given (:func:`clutchopt.optimise.verdict.shown`): ``neighbour``, the
-        feasible design of a neighbouring point (a sweep's), among them."""
+        feasible design of a neighbouring point (a sweep's), among them. A start-up the drive makes impossible for
+        every coupling (:func:`~clutchopt.optimise.proofs.start_up_proofs`) is not solved: :meth:`proven`."""
+        if self.start_up is not None and refine and (proofs := start_up_proofs(case)):
+            return self.proven(case, proofs)
         try:
             solution = self.refined(case, start, warm, mesh, refine, coarser=coarser)
         except InputError:  # a start-up whose first simulation fails from this design: from the papers' sizing
@@ -132,6 +136,24 @@ class Problem:
         if nlp_case is not None:  # not the doubled problem's
             solution.limit_shift = limit_shift(case, nlp_case)
         return self._worn(case, solution)
+
+    def proven(self, case: Case, proofs: list[str]) -> Solution:
+        """The verdict on a start-up the drive makes impossible (``proofs``, in words): ``infeasible``, without a
+        start-up solve (each would end without a design, then be retried and diagnosed: lever_motor_start with 6 s
+        allowed took 3 solves, 305 IPOPT iterations and 2.5 s to end `not_found`). The design shown is the papers' sizing at the case (one static
+        solve: where a start-up solve would begin), its constraints re-evaluated in float64."""
+        sized = problem_for(self.posed.base, self.objective.name, self.options).solve(case)
+        posed, f = self.posed, self.formulation
+        lower, upper, x0 = posed.bounds_and_start(case, sized.design)
+        design, params = dict(zip(posed.names, map(float, x0))), posed.params(case)
+        return Solution(f.coupling, f.mode, posed.objective.name, posed.objective.unit, "infeasible",
+                        evaluate_objective(f, posed.objective.name, design, params), design,
+                        evaluate_outputs(f, design, params), check_design(f, design, params),
+                        SolverInfo("proof", "proven", sized.solver.iterations, sized.solver.time_s,
+                                   sized.solver.solves),
+                        "proven infeasible: " + "; ".join(proofs),
+                        bounds={n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, lower, upper)},
+                        design_units={v.name: v.unit for v in f.variables})
 
     def _warm_method(self, warm: Solution | WarmStart, mesh: np.ndarray | None) -> str:
         """``warm_near`` (IPOPT's barrier from 1e-9) for a start-up re-solved on the mesh its warm optimum was solved
