@@ -22,6 +22,7 @@ from clutchopt.errors import InputError
 from clutchopt.model import Formulation
 from clutchopt.optimise.attempts import attempt, warm_multipliers
 from clutchopt.optimise.diagnosis import diagnose
+from clutchopt.optimise.failed_starts import FailedStarts
 from clutchopt.optimise.integers import RuledOut, descend, fixing, nearest_integers, relaxation_seed, within
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
@@ -44,6 +45,7 @@ class Problem:
         self.posed = posed = Posed(formulation, objective, options, start_up)
         self.formulation, self.objective, self.options, self.start_up = (  # what callers read of the posed problem
             posed.formulation, posed.objective, posed.options, posed.start_up)
+        self.failed_starts = FailedStarts()  # a start-up's retries that ended without a design
 
     def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
               mesh: np.ndarray | None = None, refine: bool = True, neighbour: dict[str, float] | None = None,
@@ -66,7 +68,22 @@ class Problem:
 
     def refined(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
                 mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,
-                coarser: float = math.inf, shift: dict[str, float] | None = None) -> Solution:
+                coarser: float = math.inf, shift: dict[str, float] | None = None, cold: bool = True) -> Solution:
+        """:meth:`_refined`; a start-up's retry (from ``start`` alone, undiagnosed) that already ended without a
+        design at this point from this start is not solved again (:mod:`clutchopt.optimise.failed_starts`)."""
+        retry = (self.start_up is not None and start is not None and warm is None and mesh is None and refine
+                 and not diagnosed and coarser == math.inf and shift is None and cold)
+        key = self.failed_starts.key(case, start) if retry else None
+        if key is not None and (known := self.failed_starts.known(key)) is not None:
+            return known
+        solution = self._refined(case, start, warm, mesh, refine, diagnosed, coarser, shift, cold)
+        if key is not None and solution.status not in DESIGN_STATUSES:
+            self.failed_starts.keep(key, solution)
+        return solution
+
+    def _refined(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
+                 mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,
+                 coarser: float = math.inf, shift: dict[str, float] | None = None, cold: bool = True) -> Solution:
         """One solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one.
 
         With a start-up, the simulated start is what the limits are checked against, and the collocation's own
@@ -84,7 +101,9 @@ class Problem:
         ``refine=False``: one solve on ``mesh`` (or the warm solution's, or the first one), as it comes (for
         measuring what accuracy costs). ``shift``: a neighbouring design's ``limit_shift`` (a sweep's point before):
         the first solve sees the limits moved as its last one did, so that the correction it needed is not solved
-        again; the simulated start decides as for any solve. An integer choice an earlier solve of the loop found
+        again; the simulated start decides as for any solve. ``cold=False``: a ``warm`` start that fails ends the
+        solve (``not_found``, undiagnosed) instead of falling back to the case's own start (a sweep's point: ``solve``
+        then starts cold from the papers' sizing, and diagnoses). An integer choice an earlier solve of the loop found
         infeasible by far more than that solve's collocation error is not solved again (:class:`RuledOut`)."""
         case.require(self.objective.name, quantities=self.formulation.quantities)
         if self.start_up is None:
@@ -98,7 +117,8 @@ class Problem:
         nlp_case = shifted(case, shift)
         ruled = None if structure.elastic else RuledOut()  # an elastic link's NLP differs from its simulation by the
         # model, not the mesh: no collocation error bounds what the next solve changes
-        solution = self._solve(case, start, warm, nlp_case=nlp_case, mesh=mesh, diagnosed=diagnosed, ruled=ruled)
+        solution = self._solve(case, start, warm, nlp_case=nlp_case, mesh=mesh, diagnosed=diagnosed, ruled=ruled,
+                               cold=cold)
         adapted, last_error, solves = 0, math.inf, [solution.solver]
         for _ in range(MESH_STEPS + BACK_OFF_STEPS):
             if solution.status not in ("optimal", "unverified"):
@@ -171,10 +191,11 @@ class Problem:
 
     def _solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
                nlp_case: Case | None = None, mesh: np.ndarray | None = None,
-               diagnosed: bool = True, ruled: RuledOut | None = None) -> Solution:
+               diagnosed: bool = True, ruled: RuledOut | None = None, cold: bool = True) -> Solution:
         """One solve (with its integer search); the NLP sees ``nlp_case`` (moved limits), the checks ``case``;
         a start-up's mesh is ``mesh``, else the warm solution's, else the first one; ``ruled``: integer choices
-        not to solve again, and where those found infeasible are recorded."""
+        not to solve again, and where those found infeasible are recorded; ``cold=False``: no cold start after a
+        failed warm one."""
         posed = self.posed
         warm_ok = warm is not None and warm.status in ("optimal", "unverified") and warm.scale is not None
         if mesh is None and warm_ok and warm.mesh is not None and len(warm.mesh[0]) == posed.mesh_size:
@@ -201,6 +222,8 @@ class Problem:
                 seed, methods = relaxation_seed(seed, integer), ("warm",)  # the previous integers fail here
             run = attempt(posed, data, data.lbx, data.ubx, data.x0, seed, methods, runs)
             relaxed = run if run["ok"] else None
+        if relaxed is None and warm_ok and not cold:
+            return self._finish(case, run, runs, data, search, ("not_found", "no design from the warm start"))
         if relaxed is None:  # cold: from the case's own start
             data = posed.scaled_data(solved, start, mesh=mesh, checked=checked)
             relaxed = attempt(posed, data, data.lbx, data.ubx, data.x0, None, ("ipopt",), runs)

@@ -33,7 +33,8 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
             or len(previous.internal) != block.size:  # none, or of another problem (its intervals doubled)
         return None
     try:
-        solution = problem.refined(case, warm=previous, mesh=previous.mesh[0], shift=previous.limit_shift)
+        solution = problem.refined(case, warm=previous, mesh=previous.mesh[0], shift=previous.limit_shift,
+                                   diagnosed=False, cold=False)  # solve's own cold start and diagnosis follow
     except InputError:  # its first simulation failed from this start
         return None
     return solution if solution.status == "optimal" else None

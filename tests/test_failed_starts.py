@@ -1,0 +1,35 @@
+"""A start-up retry that ended without a design is not solved again at the same point from the same start
+(clutchopt/optimise/failed_starts.py), and a sweep's warm start that fails ends there (``cold=False``): ``solve``'s
+own cold start from the papers' sizing follows."""
+
+import numpy as np
+
+from clutchopt.cases import load_case
+from clutchopt.optimise.problem import case_problem
+from clutchopt.optimise.start_up_sweep import solved_along
+from tests.conftest import CASES
+
+
+def test_a_failed_retry_is_known_at_the_same_point_and_solved_at_another():
+    case = load_case(CASES / "lever_motor_start.toml")
+    problem = case_problem(case)
+    inertias = case.values["driven_inertia"] * np.linspace(0.6, 1.4, 20)  # the bench's sweep: 7.2 to 16.8 kg m^2
+    feasible = problem.solve(case.with_values(driven_inertia=inertias[15]))  # 14.78 kg m^2: the last design
+    assert feasible.status == "optimal"
+    beyond = case.with_values(driven_inertia=inertias[16])  # 15.28 kg m^2: no design (docs/start_up.md)
+    first = problem.refined(beyond, feasible.design, diagnosed=False)
+    assert first.status == "not_found" and first.solver.solves == 1 and first.solver.iterations > 0
+    again = problem.refined(beyond, feasible.design, diagnosed=False)
+    assert again.status == "not_found" and again.solver.solves == 0 and again.solver.iterations == 0
+    assert again.objective == first.objective and again.design == first.design
+    # a continuation's step onto the point: inertias[15] + (inertias[18] - inertias[15]) / 3, the grid's value
+    # but for its last bits (IPOPT took 65 iterations there against 34), is the same point
+    step = inertias[15] + (inertias[18] - inertias[15]) / 3
+    assert step != inertias[16]
+    assert problem.refined(case.with_values(driven_inertia=step), feasible.design, diagnosed=False).solver.solves == 0
+    # another start, a diagnosed solve, another point: solved
+    assert problem.refined(beyond, {**feasible.design, "spring_preload": 30.0}, diagnosed=False).solver.solves == 1
+    # the warm start from the point before ends without its cold fallback and diagnosis: solve's follow
+    assert solved_along(problem, beyond, feasible) is None
+    warm = problem.refined(beyond, warm=feasible, mesh=feasible.mesh[0], diagnosed=False, cold=False)
+    assert warm.status == "not_found" and warm.solver.solves == 1 and warm.diagnosed is None
