@@ -33,3 +33,24 @@ def test_a_failed_retry_is_known_at_the_same_point_and_solved_at_another():
     assert solved_along(problem, beyond, feasible) is None
     warm = problem.refined(beyond, warm=feasible, mesh=feasible.mesh[0], diagnosed=False, cold=False)
     assert warm.status == "not_found" and warm.solver.solves == 1 and warm.diagnosed is None
+
+
+def test_along_a_run_failing_for_the_same_reason_the_interval_search_design_is_tried_once():
+    """lever_motor_start at 15.28 and 15.79 kg m^2 (no design: lining_pressure and temperature_rise, docs/start_up.md):
+    the design the interval search meets is the same at both (it bounds the static rows, which the driven inertia
+    does not enter); tried at the first, it is not tried again at the second, and the verdict names the starts it
+    did try. At a point whose reason differs it would be."""
+    from clutchopt.optimise.failed_starts import FailedStarts
+
+    case = load_case(CASES / "lever_motor_start.toml")
+    problem = case_problem(case)
+    problem.failed_starts = FailedStarts()  # what earlier tests in this process tried is not this test's
+    inertias = case.values["driven_inertia"] * np.linspace(0.6, 1.4, 20)
+    first, second = (problem.solve(case.with_values(driven_inertia=j)) for j in inertias[16:18])
+    assert first.status == second.status == "not_found"
+    assert first.diagnosed.violated == second.diagnosed.violated == ("lining_pressure", "temperature_rise")
+    assert "a design the interval search met" in first.starts
+    assert "a design the interval search met" not in second.starts
+    assert second.starts == ("the papers' sizing", "the least relaxation's design")
+    assert second.diagnosis.startswith("no feasible design found (not proven infeasible): the least relaxation found "
+                                       "cannot satisfy lining_pressure")

@@ -72,4 +72,5 @@ def diagnose(posed: Posed, p_vector, lbx, ubx, x0, scale) -> Diagnosis:
     text = "infeasible: cannot satisfy " + ", ".join(violated)
     if others:
         text += " together with " + ", ".join(others)
-    return Diagnosis("infeasible", text, seconds, least=float(slacks.sum()), nearest=nearest)
+    return Diagnosis("infeasible", text, seconds, least=float(slacks.sum()), nearest=nearest,
+                     violated=tuple(name for name, s in worst.items() if s > 10 * FEASIBILITY_TOL))

@@ -10,6 +10,13 @@ given design, is a function of the case and that design alone, so its failure is
 computed as a + (b - a) / 3 differs from the grid's value in the last bits, and IPOPT, on a problem without a
 feasible point, can end elsewhere for such a difference (lever, 15.284 kg m^2: 34 or 65 iterations), never at a
 design where the same start failed. Only failures are kept: a design is returned to be used and changed.
+
+Along a run of points without a design (issue 26 item 3) a start that failed at the last point it was tried at, where
+the point's least relaxation named the same violated constraints as here, is not tried again (:meth:`skips`: the
+design the interval search meets, the same at every point of a sweep that moves only the start-up, e.g. its driven
+inertia, since the search bounds the static rows; lever_motor_start 15.8-16.8 kg m^2, 180-200 IPOPT iterations a
+point). The verdict stays ``not_found`` and names the starts tried (``Solution.starts``): it never claimed that
+start, and a point whose reason differs tries it again.
 """
 
 from __future__ import annotations
@@ -17,7 +24,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from clutchopt.cases import Case
-from clutchopt.optimise.solution import Solution, SolverInfo
+from clutchopt.optimise.solution import Diagnosis, Solution, SolverInfo
 
 KEPT = 256  # failures kept per problem (a sweep's run of points without a design, a few starts each)
 
@@ -31,6 +38,7 @@ class FailedStarts:
 
     def __init__(self):
         self._failed: dict[tuple, Solution] = {}
+        self._tried: dict[tuple, tuple] = {}  # a start -> (the case but its values, its key there, the reason there)
 
     @staticmethod
     def key(case: Case, start: dict[str, float]) -> tuple:
@@ -49,3 +57,18 @@ class FailedStarts:
         if len(self._failed) >= KEPT:
             self._failed.pop(next(iter(self._failed)))
         self._failed[key] = solution
+
+    def skips(self, case: Case, start: dict[str, float], diagnosed: Diagnosis | None) -> bool:
+        """Whether a start-up point's retry from ``start`` is left out: it failed at the last point of this case (but
+        for its values) it was tried at, whose least relaxation named the same violated constraints as this
+        point's (``diagnosed``). Where not, the start is taken as tried here."""
+        reason = diagnosed.violated if diagnosed is not None else ()
+        if case.start_up is None or not reason:
+            return False
+        at = self.key(case, start)
+        rest, start_key = at[:1] + at[2:-1], at[-1]
+        last = self._tried.get(start_key)
+        if last is not None and last[0] == rest and last[2] == reason and last[1] in self._failed:
+            return True
+        self._tried[start_key] = (rest, at, reason)
+        return False
