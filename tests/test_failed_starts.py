@@ -54,3 +54,16 @@ def test_along_a_run_failing_for_the_same_reason_the_interval_search_design_is_t
     assert second.starts == ("the papers' sizing", "the least relaxation's design")
     assert second.diagnosis.startswith("no feasible design found (not proven infeasible): the least relaxation found "
                                        "cannot satisfy lining_pressure")
+
+
+def test_an_elastic_problem_that_does_not_converge_says_so_and_names_no_reason():
+    """ball_motor_start at 509 kg m^2 (no design): the elastic problem from the least relaxation's design ran 474
+    iterations (4-10 s) to find no point meeting the start-up's dynamics; every elastic problem of the four start-up
+    sweeps that converged did so within 88, so a start-up's stops at 200 (diagnosis.ELASTIC_ITERATIONS) and the
+    verdict says where it stopped; no feasible point is claimed from it, and it gives no reason for a run to share."""
+    case = load_case(CASES / "ball_motor_start.toml")
+    solution = case_problem(case).solve(case.with_values(driven_inertia=375.0 * (0.6 + 0.8 * 18 / 19)))
+    assert solution.status == "not_found"
+    assert "(where the elastic problem stopped, not converged: Maximum_Iterations_Exceeded after 200 iterations)" \
+        in solution.diagnosis
+    assert solution.diagnosed.violated == ()
