@@ -52,10 +52,7 @@ class Problem:
               coarser: float = math.inf) -> Solution:
         """Solve for one case (:meth:`refined`); a solve that ends without a design is retried from the starts that
         can reach one before its verdict is given (:func:`clutchopt.optimise.verdict.shown`): ``neighbour``, the
-        feasible design of a neighbouring point (a sweep's), among them. A start-up the drive makes impossible for
-        every coupling (:func:`~clutchopt.optimise.proofs.start_up_proofs`) is not solved: :meth:`proven`."""
-        if self.start_up is not None and refine and (proofs := start_up_proofs(case)):
-            return self.proven(case, proofs)
+        feasible design of a neighbouring point (a sweep's), among them."""
         try:
             solution = self.refined(case, start, warm, mesh, refine, coarser=coarser)
         except InputError:  # a start-up whose first simulation fails from this design: from the papers' sizing
@@ -69,8 +66,13 @@ class Problem:
     def refined(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
                 mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,
                 coarser: float = math.inf, shift: dict[str, float] | None = None, cold: bool = True) -> Solution:
-        """:meth:`_refined`; a start-up's retry (from ``start`` alone, undiagnosed) that already ended without a
-        design at this point from this start is not solved again (:mod:`clutchopt.optimise.failed_starts`)."""
+        """:meth:`_refined`; a start-up the drive makes impossible for every coupling
+        (:func:`~clutchopt.optimise.proofs.start_up_proofs`) is not solved (:meth:`proven`: a sweep's continuation
+        onto such a point, its retries, ``solve``), and a start-up's retry (from ``start`` alone, undiagnosed) that
+        already ended without a design at this point from this start is not solved again
+        (:mod:`clutchopt.optimise.failed_starts`)."""
+        if self.start_up is not None and refine and (proofs := start_up_proofs(case)):
+            return self.proven(case, proofs)
         retry = (self.start_up is not None and start is not None and warm is None and mesh is None and refine
                  and not diagnosed and coarser == math.inf and shift is None and cold)
         key = self.failed_starts.key(case, start) if retry else None
