@@ -162,8 +162,9 @@ class Problem:
     def proven(self, case: Case, proofs: list[str]) -> Solution:
         """The verdict on a start-up the drive makes impossible (``proofs``, in words): ``infeasible``, without a
         start-up solve (each would end without a design, then be retried and diagnosed: lever_motor_start with 6 s
-        allowed took 3 solves, 305 IPOPT iterations and 2.5 s to end `not_found`). The design shown is the papers' sizing at the case (one static
-        solve: where a start-up solve would begin), its constraints re-evaluated in float64."""
+        allowed took 3 solves, 305 IPOPT iterations and 2.5 s to end `not_found`). The design shown is the papers'
+        sizing at the case (one static solve: where a start-up solve would begin), its constraints re-evaluated in
+        float64."""
         sized = problem_for(self.posed.base, self.objective.name, self.options).solve(case)
         posed, f = self.posed, self.formulation
         lower, upper, x0 = posed.bounds_and_start(case, sized.design)
