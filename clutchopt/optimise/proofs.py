@@ -12,8 +12,9 @@ of every coupling, because they bound what the drive can do:
   w_L >= w_L,min, so the motor has put in at least (J + J_m) w_L,min^2 / 2 (slip heat and the load's work come on
   top); it delivers at most P_peak = max_w T(w) w (at the slip s_k (sqrt(1 + s_k^2) - s_k)), so
   t_start >= (J + J_m) w_L,min^2 / (2 P_peak) (energy). By momentum, usually twice as strong: motor
-  J_m dw_a/dt = T_m - T, machine J dw/dt = T - T_r (T_r the load's reaction), so d(J_m w_a + J w)/dt = T_m - T_r <= T_k - T_r. While the machine stands (run-up, breakaway) T_r = T
-  >= 0 and the rotor gathers at most J_m w_s (an induction motor driving a coupling from rest stays below w_s,
+  J_m dw_a/dt = T_m - T, machine J dw/dt = T - T_r (T_r the load's reaction), so
+  d(J_m w_a + J w)/dt = T_m - T_r <= T_k - T_r. While the machine stands (run-up, breakaway) T_r = T >= 0 and the
+  rotor gathers at most J_m w_s (an induction motor driving a coupling from rest stays below w_s,
   where its torque ends); once it moves T_r = T_c >= T_c,min, the least of the load. So
   (J + J_m) w_L,min - J_m w_s <= (T_k - T_c,min) t_start, and over the whole start, T_r >= min(0, T_c,min),
   (J + J_m) w_L,min <= (T_k - min(0, T_c,min)) t_start; the start takes at least the largest of the three;
