@@ -44,6 +44,8 @@ def test_a_start_just_outside_the_bound_is_proven_without_a_start_up_solve_and_o
     assert solution.status == "infeasible"
     assert solution.diagnosis.startswith("proven infeasible: bringing 0.512 kg*m^2 to 900 rpm takes at least 1.469 s "
                                          "by momentum")
+    assert solution.diagnosis == "proven infeasible: " + start_up_proofs(outside)[0]  # said once, no retry
+    assert solution.starts == ()
     assert solution.solver.name == "proof" and solution.solver.solves == 1  # the papers' sizing, shown as the design
     assert solution.start_up is None and solution.design["spring_preload"] >= 0
     assert not start_up_proofs(case.with_values(max_start_time=1.001 * bound))

@@ -37,6 +37,9 @@ from clutchopt.start_up.equations import with_start_up
 from clutchopt.start_up.mesh import MAX_INTERVALS, MESH_STEPS
 
 
+PROVEN = "proof"  # the solver of a start-up the drive's proofs cover (:meth:`Problem.proven`: no start-up solve)
+
+
 class Problem:
     """One formulation with one objective, posed as a CasADi NLP once (``posed``), solved for many cases."""
 
@@ -59,7 +62,7 @@ class Problem:
             if self.start_up is None or (start is None and warm is None):
                 raise
             solution, start, warm = self.refined(case, None, None, mesh, refine, coarser=coarser), None, None
-        if solution.status in DESIGN_STATUSES or not refine:
+        if solution.status in DESIGN_STATUSES or not refine or solution.solver.name == PROVEN:  # (proven: no retry)
             return solution
         return shown(self, case, solution, start is not None or warm is not None, neighbour)
 
@@ -172,7 +175,7 @@ class Problem:
         return Solution(f.coupling, f.mode, posed.objective.name, posed.objective.unit, "infeasible",
                         evaluate_objective(f, posed.objective.name, design, params), design,
                         evaluate_outputs(f, design, params), check_design(f, design, params),
-                        SolverInfo("proof", "proven", sized.solver.iterations, sized.solver.time_s,
+                        SolverInfo(PROVEN, "proven", sized.solver.iterations, sized.solver.time_s,
                                    sized.solver.solves),
                         "proven infeasible: " + "; ".join(proofs),
                         bounds={n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, lower, upper)},
