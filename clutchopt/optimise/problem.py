@@ -22,6 +22,7 @@ from clutchopt.errors import InputError
 from clutchopt.model import Formulation
 from clutchopt.optimise.attempts import attempt, warm_multipliers
 from clutchopt.optimise.diagnosis import diagnose
+from clutchopt.optimise.failed_starts import FailedStarts
 from clutchopt.optimise.integers import RuledOut, descend, fixing, nearest_integers, relaxation_seed, within
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
@@ -29,10 +30,14 @@ from clutchopt.optimise.solution import Solution, SolverInfo, SolverOptions, War
 from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, corrected_case, start_up_report, worn_start
 from clutchopt.optimise.start_up_shift import limit_shift, shifted
 from clutchopt.optimise.verdict import shown
-from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
+from clutchopt.optimise.proofs import start_up_proofs
+from clutchopt.optimise.verify import DESIGN_STATUSES, check_design, evaluate_objective, evaluate_outputs
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
 from clutchopt.start_up.mesh import MAX_INTERVALS, MESH_STEPS
+
+
+PROVEN = "proof"  # the solver of a start-up the drive's proofs cover (:meth:`Problem.proven`: no start-up solve)
 
 
 class Problem:
@@ -43,6 +48,7 @@ class Problem:
         self.posed = posed = Posed(formulation, objective, options, start_up)
         self.formulation, self.objective, self.options, self.start_up = (  # what callers read of the posed problem
             posed.formulation, posed.objective, posed.options, posed.start_up)
+        self.failed_starts = FailedStarts()  # a start-up's retries that ended without a design
 
     def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
               mesh: np.ndarray | None = None, refine: bool = True, neighbour: dict[str, float] | None = None,
@@ -56,13 +62,33 @@ class Problem:
             if self.start_up is None or (start is None and warm is None):
                 raise
             solution, start, warm = self.refined(case, None, None, mesh, refine, coarser=coarser), None, None
-        if solution.status in DESIGN_STATUSES or not refine:
+        if solution.status in DESIGN_STATUSES or not refine or solution.solver.name == PROVEN:  # (proven: no retry)
             return solution
         return shown(self, case, solution, start is not None or warm is not None, neighbour)
 
     def refined(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
                 mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,
-                coarser: float = math.inf, shift: dict[str, float] | None = None) -> Solution:
+                coarser: float = math.inf, shift: dict[str, float] | None = None, cold: bool = True) -> Solution:
+        """:meth:`_refined`; a start-up the drive makes impossible for every coupling
+        (:func:`~clutchopt.optimise.proofs.start_up_proofs`) is not solved (:meth:`proven`: a sweep's continuation
+        onto such a point, its retries, ``solve``), and a start-up's retry (from ``start`` alone, undiagnosed) that
+        already ended without a design at this point from this start is not solved again
+        (:mod:`clutchopt.optimise.failed_starts`)."""
+        if self.start_up is not None and refine and (proofs := start_up_proofs(case)):
+            return self.proven(case, proofs)
+        retry = (self.start_up is not None and start is not None and warm is None and mesh is None and refine
+                 and not diagnosed and coarser == math.inf and shift is None and cold)
+        key = self.failed_starts.key(case, start) if retry else None
+        if key is not None and (known := self.failed_starts.known(key)) is not None:
+            return known
+        solution = self._refined(case, start, warm, mesh, refine, diagnosed, coarser, shift, cold)
+        if key is not None and solution.status not in DESIGN_STATUSES:
+            self.failed_starts.keep(key, solution)
+        return solution
+
+    def _refined(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
+                 mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,
+                 coarser: float = math.inf, shift: dict[str, float] | None = None, cold: bool = True) -> Solution:
         """One solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one.
 
         With a start-up, the simulated start is what the limits are checked against, and the collocation's own
@@ -80,7 +106,9 @@ class Problem:
         ``refine=False``: one solve on ``mesh`` (or the warm solution's, or the first one), as it comes (for
         measuring what accuracy costs). ``shift``: a neighbouring design's ``limit_shift`` (a sweep's point before):
         the first solve sees the limits moved as its last one did, so that the correction it needed is not solved
-        again; the simulated start decides as for any solve. An integer choice an earlier solve of the loop found
+        again; the simulated start decides as for any solve. ``cold=False``: a ``warm`` start that fails ends the
+        solve (``not_found``, undiagnosed) instead of falling back to the case's own start (a sweep's point: ``solve``
+        then starts cold from the papers' sizing, and diagnoses). An integer choice an earlier solve of the loop found
         infeasible by far more than that solve's collocation error is not solved again (:class:`RuledOut`)."""
         case.require(self.objective.name, quantities=self.formulation.quantities)
         if self.start_up is None:
@@ -94,7 +122,8 @@ class Problem:
         nlp_case = shifted(case, shift)
         ruled = None if structure.elastic else RuledOut()  # an elastic link's NLP differs from its simulation by the
         # model, not the mesh: no collocation error bounds what the next solve changes
-        solution = self._solve(case, start, warm, nlp_case=nlp_case, mesh=mesh, diagnosed=diagnosed, ruled=ruled)
+        solution = self._solve(case, start, warm, nlp_case=nlp_case, mesh=mesh, diagnosed=diagnosed, ruled=ruled,
+                               cold=cold)
         adapted, last_error, solves = 0, math.inf, [solution.solver]
         for _ in range(MESH_STEPS + BACK_OFF_STEPS):
             if solution.status not in ("optimal", "unverified"):
@@ -133,6 +162,25 @@ class Problem:
             solution.limit_shift = limit_shift(case, nlp_case)
         return self._worn(case, solution)
 
+    def proven(self, case: Case, proofs: list[str]) -> Solution:
+        """The verdict on a start-up the drive makes impossible (``proofs``, in words): ``infeasible``, without a
+        start-up solve (each would end without a design, then be retried and diagnosed: lever_motor_start with 6 s
+        allowed took 3 solves, 305 IPOPT iterations and 2.5 s to end `not_found`). The design shown is the papers'
+        sizing at the case (one static solve: where a start-up solve would begin), its constraints re-evaluated in
+        float64."""
+        sized = problem_for(self.posed.base, self.objective.name, self.options).solve(case)
+        posed, f = self.posed, self.formulation
+        lower, upper, x0 = posed.bounds_and_start(case, sized.design)
+        design, params = dict(zip(posed.names, map(float, x0))), posed.params(case)
+        return Solution(f.coupling, f.mode, posed.objective.name, posed.objective.unit, "infeasible",
+                        evaluate_objective(f, posed.objective.name, design, params), design,
+                        evaluate_outputs(f, design, params), check_design(f, design, params),
+                        SolverInfo(PROVEN, "proven", sized.solver.iterations, sized.solver.time_s,
+                                   sized.solver.solves),
+                        "proven infeasible: " + "; ".join(proofs),
+                        bounds={n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, lower, upper)},
+                        design_units={v.name: v.unit for v in f.variables})
+
     def _warm_method(self, warm: Solution | WarmStart, mesh: np.ndarray | None) -> str:
         """``warm_near`` (IPOPT's barrier from 1e-9) for a start-up re-solved on the mesh its warm optimum was solved
         on (a limit correction, a sweep's next point): the optimum moves by what the limits or the case moved;
@@ -149,10 +197,11 @@ class Problem:
 
     def _solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
                nlp_case: Case | None = None, mesh: np.ndarray | None = None,
-               diagnosed: bool = True, ruled: RuledOut | None = None) -> Solution:
+               diagnosed: bool = True, ruled: RuledOut | None = None, cold: bool = True) -> Solution:
         """One solve (with its integer search); the NLP sees ``nlp_case`` (moved limits), the checks ``case``;
         a start-up's mesh is ``mesh``, else the warm solution's, else the first one; ``ruled``: integer choices
-        not to solve again, and where those found infeasible are recorded."""
+        not to solve again, and where those found infeasible are recorded; ``cold=False``: no cold start after a
+        failed warm one."""
         posed = self.posed
         warm_ok = warm is not None and warm.status in ("optimal", "unverified") and warm.scale is not None
         if mesh is None and warm_ok and warm.mesh is not None and len(warm.mesh[0]) == posed.mesh_size:
@@ -179,6 +228,8 @@ class Problem:
                 seed, methods = relaxation_seed(seed, integer), ("warm",)  # the previous integers fail here
             run = attempt(posed, data, data.lbx, data.ubx, data.x0, seed, methods, runs)
             relaxed = run if run["ok"] else None
+        if relaxed is None and warm_ok and not cold:
+            return self._finish(case, run, runs, data, search, ("not_found", "no design from the warm start"))
         if relaxed is None:  # cold: from the case's own start
             data = posed.scaled_data(solved, start, mesh=mesh, checked=checked)
             relaxed = attempt(posed, data, data.lbx, data.ubx, data.x0, None, ("ipopt",), runs)

@@ -10,7 +10,14 @@ of every coupling, because they bound what the drive can do:
   locked drive turning at w >= w_L,min needs T_m(w) >= T_c;
 - the motor cannot bring the masses to the lock-up speed in time: at lock-up motor and machine turn at
   w_L >= w_L,min, so the motor has put in at least (J + J_m) w_L,min^2 / 2 (slip heat and the load's work come on
-  top); it delivers at most P_peak = max_w T(w) w, so t_start >= (J + J_m) w_L,min^2 / (2 P_peak);
+  top); it delivers at most P_peak = max_w T(w) w (at the slip s_k (sqrt(1 + s_k^2) - s_k)), so
+  t_start >= (J + J_m) w_L,min^2 / (2 P_peak) (energy). By momentum, usually twice as strong: motor
+  J_m dw_a/dt = T_m - T, machine J dw/dt = T - T_r (T_r the load's reaction), so
+  d(J_m w_a + J w)/dt = T_m - T_r <= T_k - T_r. While the machine stands (run-up, breakaway) T_r = T >= 0 and the
+  rotor gathers at most J_m w_s (an induction motor driving a coupling from rest stays below w_s,
+  where its torque ends); once it moves T_r = T_c >= T_c,min, the least of the load. So
+  (J + J_m) w_L,min - J_m w_s <= (T_k - T_c,min) t_start, and over the whole start, T_r >= min(0, T_c,min),
+  (J + J_m) w_L,min <= (T_k - min(0, T_c,min)) t_start; the start takes at least the largest of the three;
 - the lining cannot stay within its limits (effect friction_heat): while the coupling slips it passes T >= J dw/dt
   (the load takes T_c >= 0 on top) at a driving speed w_a >= w_e (below its engagement speed it passes nothing), so
   the slip heat of a start, the integral of T (w_a - w), is at least J (integral from 0 to w_e of (w_e - w) dw) =
@@ -23,8 +30,6 @@ of every coupling, because they bound what the drive can do:
 from __future__ import annotations
 
 import math
-
-import numpy as np
 
 from clutchopt.start_up.equations import kloss_torque
 
@@ -51,15 +56,37 @@ def start_up_proofs(case) -> list[str]:
     if largest < load:
         proofs.append(f"the motor gives at most {largest:.6g} N*m at or above the lock-up speed "
                       f"{w_l * 30 / math.pi:.6g} rpm, less than the machine's load {load:.6g} N*m")
-    speeds = np.linspace(0.0, w_s, 100_001)  # Kloss power T(w) w is smooth with one peak: the grid finds it
-    peak = float(np.max(kloss_torque(speeds, w_s, t_k, s_k) * speeds))  # to 1e-9 relative
-    inertia = v["driven_inertia"] + v["motor_inertia"]
-    shortest = 0.5 * inertia * w_l**2 / peak
+    least = min(profile.values) if profile is not None else v["load_torque"]
+    shortest, how = shortest_start(v["driven_inertia"], v["motor_inertia"], w_l, w_s, t_k, s_k, least)
     if shortest > v["max_start_time"] * (1.0 + 1e-6):
-        proofs.append(f"bringing {inertia:.6g} kg*m^2 to {w_l * 30 / math.pi:.6g} rpm takes at least "
-                      f"{shortest:.4g} s at the motor's peak power {peak / 1e3:.6g} kW, more than max_start_time "
+        proofs.append(f"bringing {v['driven_inertia'] + v['motor_inertia']:.6g} kg*m^2 to {w_l * 30 / math.pi:.6g} "
+                      f"rpm takes at least {shortest:.4g} s {how}, more than max_start_time "
                       f"{v['max_start_time']:.6g} s")
     return proofs + lining_proofs(case)
+
+
+def shortest_start(driven: float, motor: float, lock_up: float, synchronous: float, breakdown: float, slip: float,
+                   least_load: float) -> tuple[float, str]:
+    """The least time (s) in which an induction motor (Kloss: ``synchronous`` speed w_s, ``breakdown`` torque T_k at
+    ``slip`` s_k, rotor inertia ``motor`` J_m) brings itself and the machine (``driven`` J, its load never below
+    ``least_load`` T_c,min) to the speed ``lock_up`` w_L whatever the coupling between them, and by which bound (module
+    docstring): energy (J + J_m) w_L^2 / (2 P_peak), momentum (J + J_m) w_L / (T_k - min(0, T_c,min)), momentum
+    with the load ((J + J_m) w_L - J_m w_s) / (T_k - T_c,min); the largest."""
+    inertia = driven + motor
+    # the Kloss power 2 T_k s s_k w_s (1 - s) / (s^2 + s_k^2) peaks where d/ds [s (1 - s) / (s^2 + s_k^2)] = 0,
+    # s^2 + 2 s_k^2 s - s_k^2 = 0: s = s_k (sqrt(1 + s_k^2) - s_k) (a grid of 1e5 speeds agrees to 1e-9)
+    peak_slip = slip * (math.sqrt(1.0 + slip**2) - slip)
+    peak_speed = synchronous * (1.0 - peak_slip)
+    peak = float(kloss_torque(peak_speed, synchronous, breakdown, slip)) * peak_speed
+    bounds = [(0.5 * inertia * lock_up**2 / peak, f"at the motor's peak power {peak / 1e3:.6g} kW"),
+              (inertia * lock_up / (breakdown - min(0.0, least_load)),
+               f"by momentum at the motor's breakdown torque {breakdown:.6g} N*m")]
+    if breakdown > least_load:
+        bounds.append(((inertia * lock_up - motor * synchronous) / (breakdown - least_load),
+                       f"by momentum at the motor's breakdown torque {breakdown:.6g} N*m less the machine's least "
+                       f"load {least_load:.6g} N*m (the rotor's own {motor * synchronous:.6g} N*m*s at most "
+                       f"gathered before the machine moves)"))
+    return max(bounds)
 
 
 def least_friction_work(case) -> tuple[float, str]:

@@ -96,6 +96,7 @@ class Diagnosis(NamedTuple):
     proven: bool = False
     least: float = math.nan
     nearest: dict[str, float] | None = None
+    violated: tuple[str, ...] = ()  # the constraints the least relaxation found violates (the named reason)
 
 
 @dataclass

@@ -11,13 +11,15 @@ simulated starts a point before, 1.0 now). The loop still decides on this point'
 is ``solve``'s within the accuracy contract (docs/start_up.md: each is the simulator's optimum to a quarter of the
 tolerance on the objective). The sizing and the start guess's simulation are saved; every solve is still checked by
 the simulator. A point this does not bring to an optimum is solved cold, as ``solve`` solves it (its verdict is
-``solve``'s).
+``solve``'s). A point the drive's proofs cover (:mod:`clutchopt.optimise.proofs`) is not started: ``solve`` gives
+its verdict without a solve.
 """
 
 from __future__ import annotations
 
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
+from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution
 
 
@@ -25,11 +27,14 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
     """The start-up design at ``case`` from ``previous`` (the optimum of the point before, of this problem), or
     None where there is none to start from or it does not end optimal."""
     block = problem.posed.start_up
+    if start_up_proofs(case):  # no design to start: ``Problem.solve`` gives the proof without a solve
+        return None
     if previous is None or previous.status != "optimal" or previous.internal is None \
             or len(previous.internal) != block.size:  # none, or of another problem (its intervals doubled)
         return None
     try:
-        solution = problem.refined(case, warm=previous, mesh=previous.mesh[0], shift=previous.limit_shift)
+        solution = problem.refined(case, warm=previous, mesh=previous.mesh[0], shift=previous.limit_shift,
+                                   diagnosed=False, cold=False)  # solve's own cold start and diagnosis follow
     except InputError:  # its first simulation failed from this start
         return None
     return solution if solution.status == "optimal" else None

@@ -58,7 +58,8 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
     if not proofs:
         emptiness = empty_design_space(problem.posed, case)
         if emptiness is not None and emptiness.feasible is not None:  # a design of the relaxation: solve from it
-            retry = _retried(problem, case, dict(zip(problem.posed.names, emptiness.feasible)))
+            met = dict(zip(problem.posed.names, emptiness.feasible))  # not again where it failed for the same reason
+            retry = None if problem.failed_starts.skips(case, met, first.diagnosed) else _retried(problem, case, met)
             if retry is not None:
                 tried.append(("a design the interval search met", retry))
                 if retry.status in DESIGN_STATUSES:

@@ -1,0 +1,74 @@
+"""Starts already known to fail at a point: a retry before a verdict is not solved twice (issue 26).
+
+Before a start-up point is reported without a design it is solved again from other starts
+(``clutchopt.optimise.verdict``): a feasible neighbour's design among them; a sweep then follows the design from its
+last feasible point by continuation (``clutchopt.optimise.sweep.continued``), whose steps can fall on a point
+already retried from that same design (ball_motor_start over driven_inertia: the first step towards 430.3 kg m^2
+from 382.9 lands on 398.7, tried from 382.9's design a moment before). Such a retry, an undiagnosed solve from a
+given design, is a function of the case and that design alone, so its failure is kept here and returned again
+(charged no solver call). The point is recognised to 12 significant digits of each value: a continuation's step
+computed as a + (b - a) / 3 differs from the grid's value in the last bits, and IPOPT, on a problem without a
+feasible point, can end elsewhere for such a difference (lever, 15.284 kg m^2: 34 or 65 iterations), never at a
+design where the same start failed. Only failures are kept: a design is returned to be used and changed.
+
+Along a run of points without a design (issue 26 item 3) a start that failed at the last point it was tried at, where
+the point's least relaxation named the same violated constraints as here, is not tried again (:meth:`skips`: the
+design the interval search meets, the same at every point of a sweep that moves only the start-up, e.g. its driven
+inertia, since the search bounds the static rows; lever_motor_start 15.8-16.8 kg m^2, 180-200 IPOPT iterations a
+point). The verdict stays ``not_found`` and names the starts tried (``Solution.starts``): it never claimed that
+start, and a point whose reason differs tries it again.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from clutchopt.cases import Case
+from clutchopt.optimise.solution import Diagnosis, Solution, SolverInfo
+
+KEPT = 256  # failures kept per problem (a sweep's run of points without a design, a few starts each)
+
+
+def _digits(value) -> float:
+    return float(f"{float(value):.12g}")
+
+
+class FailedStarts:
+    """Retries (an undiagnosed solve of a case from a start design) that ended without a design, by case and start."""
+
+    def __init__(self):
+        self._failed: dict[tuple, Solution] = {}
+        self._tried: dict[tuple, tuple] = {}  # a start -> (the case but its values, its key there, the reason there)
+
+    @staticmethod
+    def key(case: Case, start: dict[str, float]) -> tuple:
+        return (case.coupling, tuple(sorted((k, _digits(v)) for k, v in case.values.items())),
+                repr(sorted(case.bounds.items())), case.free, repr(sorted(case.options.items())), case.start_up,
+                tuple(sorted((k, _digits(v)) for k, v in start.items())))
+
+    def known(self, key: tuple) -> Solution | None:
+        """The failure kept for ``key``, charged no solver call (it is not solved again), or None."""
+        failed = self._failed.get(key)
+        if failed is None:
+            return None
+        return replace(failed, solver=SolverInfo(failed.solver.name, failed.solver.status, 0, 0.0, 0))
+
+    def keep(self, key: tuple, solution: Solution) -> None:
+        if len(self._failed) >= KEPT:
+            self._failed.pop(next(iter(self._failed)))
+        self._failed[key] = solution
+
+    def skips(self, case: Case, start: dict[str, float], diagnosed: Diagnosis | None) -> bool:
+        """Whether a start-up point's retry from ``start`` is left out: it failed at the last point of this case (but
+        for its values) it was tried at, whose least relaxation named the same violated constraints as this
+        point's (``diagnosed``). Where not, the start is taken as tried here."""
+        reason = diagnosed.violated if diagnosed is not None else ()
+        if case.start_up is None or not reason:
+            return False
+        at = self.key(case, start)
+        rest, start_key = at[:1] + at[2:-1], at[-1]
+        last = self._tried.get(start_key)
+        if last is not None and last[0] == rest and last[2] == reason and last[1] in self._failed:
+            return True
+        self._tried[start_key] = (rest, at, reason)
+        return False

@@ -1,0 +1,69 @@
+"""A start-up retry that ended without a design is not solved again at the same point from the same start
+(clutchopt/optimise/failed_starts.py), and a sweep's warm start that fails ends there (``cold=False``): ``solve``'s
+own cold start from the papers' sizing follows."""
+
+import numpy as np
+
+from clutchopt.cases import load_case
+from clutchopt.optimise.problem import case_problem
+from clutchopt.optimise.start_up_sweep import solved_along
+from tests.conftest import CASES
+
+
+def test_a_failed_retry_is_known_at_the_same_point_and_solved_at_another():
+    case = load_case(CASES / "lever_motor_start.toml")
+    problem = case_problem(case)
+    inertias = case.values["driven_inertia"] * np.linspace(0.6, 1.4, 20)  # the bench's sweep: 7.2 to 16.8 kg m^2
+    feasible = problem.solve(case.with_values(driven_inertia=inertias[15]))  # 14.78 kg m^2: the last design
+    assert feasible.status == "optimal"
+    beyond = case.with_values(driven_inertia=inertias[16])  # 15.28 kg m^2: no design (docs/start_up.md)
+    first = problem.refined(beyond, feasible.design, diagnosed=False)
+    assert first.status == "not_found" and first.solver.solves == 1 and first.solver.iterations > 0
+    again = problem.refined(beyond, feasible.design, diagnosed=False)
+    assert again.status == "not_found" and again.solver.solves == 0 and again.solver.iterations == 0
+    assert again.objective == first.objective and again.design == first.design
+    # a continuation's step onto the point: inertias[15] + (inertias[18] - inertias[15]) / 3, the grid's value
+    # but for its last bits (IPOPT took 65 iterations there against 34), is the same point
+    step = inertias[15] + (inertias[18] - inertias[15]) / 3
+    assert step != inertias[16]
+    assert problem.refined(case.with_values(driven_inertia=step), feasible.design, diagnosed=False).solver.solves == 0
+    # another start, a diagnosed solve, another point: solved
+    assert problem.refined(beyond, {**feasible.design, "spring_preload": 30.0}, diagnosed=False).solver.solves == 1
+    # the warm start from the point before ends without its cold fallback and diagnosis: solve's follow
+    assert solved_along(problem, beyond, feasible) is None
+    warm = problem.refined(beyond, warm=feasible, mesh=feasible.mesh[0], diagnosed=False, cold=False)
+    assert warm.status == "not_found" and warm.solver.solves == 1 and warm.diagnosed is None
+
+
+def test_along_a_run_failing_for_the_same_reason_the_interval_search_design_is_tried_once():
+    """lever_motor_start at 15.28 and 15.79 kg m^2 (no design: lining_pressure and temperature_rise, docs/start_up.md):
+    the design the interval search meets is the same at both (it bounds the static rows, which the driven inertia
+    does not enter); tried at the first, it is not tried again at the second, and the verdict names the starts it
+    did try. At a point whose reason differs it would be."""
+    from clutchopt.optimise.failed_starts import FailedStarts
+
+    case = load_case(CASES / "lever_motor_start.toml")
+    problem = case_problem(case)
+    problem.failed_starts = FailedStarts()  # what earlier tests in this process tried is not this test's
+    inertias = case.values["driven_inertia"] * np.linspace(0.6, 1.4, 20)
+    first, second = (problem.solve(case.with_values(driven_inertia=j)) for j in inertias[16:18])
+    assert first.status == second.status == "not_found"
+    assert first.diagnosed.violated == second.diagnosed.violated == ("lining_pressure", "temperature_rise")
+    assert "a design the interval search met" in first.starts
+    assert "a design the interval search met" not in second.starts
+    assert second.starts == ("the papers' sizing", "the least relaxation's design")
+    assert second.diagnosis.startswith("no feasible design found (not proven infeasible): the least relaxation found "
+                                       "cannot satisfy lining_pressure")
+
+
+def test_an_elastic_problem_that_does_not_converge_says_so_and_names_no_reason():
+    """ball_motor_start at 509 kg m^2 (no design): the elastic problem from the least relaxation's design ran 474
+    iterations (4-10 s) to find no point meeting the start-up's dynamics; every elastic problem of the four start-up
+    sweeps that converged did so within 88, so a start-up's stops at 200 (diagnosis.ELASTIC_ITERATIONS) and the
+    verdict says where it stopped; no feasible point is claimed from it, and it gives no reason for a run to share."""
+    case = load_case(CASES / "ball_motor_start.toml")
+    solution = case_problem(case).solve(case.with_values(driven_inertia=375.0 * (0.6 + 0.8 * 18 / 19)))
+    assert solution.status == "not_found"
+    assert "(where the elastic problem stopped, not converged: Maximum_Iterations_Exceeded after 200 iterations)" \
+        in solution.diagnosis
+    assert solution.diagnosed.violated == ()

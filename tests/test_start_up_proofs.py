@@ -1,0 +1,65 @@
+"""The drive's start-time proof by momentum (clutchopt/optimise/proofs.py, docs/start_up.md "A start no coupling can
+make in time: a proof"): d(J_m w_a + J w)/dt = T_m - T_r <= T_k - T_r, so the start takes at least
+((J + J_m) w_L,min - J_m w_s) / (T_k - T_c,min); a proven case is `infeasible` without a start-up solve."""
+
+import math
+
+import pytest
+
+from clutchopt.cases import load_case
+from clutchopt.optimise.problem import case_problem
+from clutchopt.optimise.proofs import shortest_start, start_up_proofs
+from tests.conftest import CASES
+
+RPM = math.pi / 30
+
+
+def _wedge_bound() -> float:
+    """cases/wedge_motor_start.toml: J 0.5, J_m 0.012 kg m^2, w_L,min 900 rpm (90 % of w_s 1000 rpm), T_k 37 N m,
+    T_c 5 N m: (0.512 * 94.24778 - 0.012 * 104.71976) / 32 = (48.25486 - 1.25664) / 32 = 1.468694 s, against the
+    energy bound 0.512 * 94.24778^2 / 2 / P_peak (P_peak about 3.5 kW: 0.65 s) and momentum without the load
+    0.512 * 94.24778 / 37 = 1.304 s."""
+    return (0.512 * 900 * RPM - 0.012 * 1000 * RPM) / (37.0 - 5.0)
+
+
+def test_the_momentum_bound_by_hand():
+    case = load_case(CASES / "wedge_motor_start.toml")
+    v = case.values
+    shortest, how = shortest_start(v["driven_inertia"], v["motor_inertia"], v["min_lock_up_speed"],
+                                   v["synchronous_speed"], v["breakdown_torque"], v["breakdown_slip"], v["load_torque"])
+    assert shortest == pytest.approx(_wedge_bound(), rel=1e-12)
+    assert shortest == pytest.approx(1.468694, abs=1e-6)
+    assert "less the machine's least load 5 N*m" in how
+    # a load that drives the machine (T_c,min < 0): the momentum bound without the load, (J + J_m) w_L / (T_k + 3)
+    driving, _ = shortest_start(0.5, 0.012, 900 * RPM, 1000 * RPM, 37.0, v["breakdown_slip"], -3.0)
+    assert driving == pytest.approx(0.512 * 900 * RPM / 40.0, rel=1e-12)
+
+
+def test_a_start_just_outside_the_bound_is_proven_without_a_start_up_solve_and_one_inside_is_not():
+    case = load_case(CASES / "wedge_motor_start.toml")
+    problem = case_problem(case)
+    bound = _wedge_bound()
+    outside = case.with_values(max_start_time=0.999 * bound)
+    solution = problem.solve(outside)
+    assert solution.status == "infeasible"
+    assert solution.diagnosis.startswith("proven infeasible: bringing 0.512 kg*m^2 to 900 rpm takes at least 1.469 s "
+                                         "by momentum")
+    assert solution.diagnosis == "proven infeasible: " + start_up_proofs(outside)[0]  # said once, no retry
+    assert solution.starts == ()
+    assert solution.solver.name == "proof" and solution.solver.solves == 1  # the papers' sizing, shown as the design
+    assert solution.start_up is None and solution.design["spring_preload"] >= 0
+    assert not start_up_proofs(case.with_values(max_start_time=1.001 * bound))
+
+
+def test_a_design_found_starts_no_faster_than_the_bound():
+    """The wedge's shortest start is about 2.05-2.5 s (its overload_torque and engagement window bind, measured):
+    at 2.5 s a design is found, and its simulated start locks up at w_L >= 900 rpm no sooner than the bound at
+    its own lock-up speed."""
+    case = load_case(CASES / "wedge_motor_start.toml").with_values(max_start_time=2.5)
+    solution = case_problem(case).solve(case)
+    assert solution.status == "optimal"
+    figures = solution.start_up
+    w_l = float(figures["lock_up_speed_simulated"])
+    assert w_l >= 900 * RPM * (1 - 1e-6)
+    at_own = (0.512 * w_l - 0.012 * 1000 * RPM) / 32.0
+    assert float(figures["start_time_simulated"]) >= at_own == pytest.approx(1.5077, abs=1e-3)
