@@ -63,3 +63,13 @@ def test_a_design_found_starts_no_faster_than_the_bound():
     assert w_l >= 900 * RPM * (1 - 1e-6)
     at_own = (0.512 * w_l - 0.012 * 1000 * RPM) / 32.0
     assert float(figures["start_time_simulated"]) >= at_own == pytest.approx(1.5077, abs=1e-3)
+
+
+def test_a_load_that_drives_the_machine_bounds_the_start_by_momentum_alone():
+    """J = 10, J_m = 0.1 kg m^2 to w_L = 150 rad/s, T_k = 100 N m at s_k = 0.2 (w_s = 157 rad/s), the load down to
+    -200 N m (driving the machine): it puts in energy of its own, so the motor's peak power (12.9 kW: an 8.8 s bound)
+    bounds nothing; momentum does, 10.1 x 150 / (100 + 200) = 5.05 s (with the rotor's own momentum taken off,
+    (1515 - 15.7) / 300 = 5.00 s, less)."""
+    shortest, how = shortest_start(10.0, 0.1, 150.0, 157.0, 100.0, 0.2, -200.0)
+    assert shortest == pytest.approx(10.1 * 150.0 / 300.0, rel=1e-12) and "peak power" not in how
+    assert shortest_start(10.0, 0.1, 150.0, 157.0, 100.0, 0.2, 0.0)[0] == pytest.approx(10.1 * 150.0 / 100.0)

@@ -70,17 +70,18 @@ def shortest_start(driven: float, motor: float, lock_up: float, synchronous: flo
     """The least time (s) in which an induction motor (Kloss: ``synchronous`` speed w_s, ``breakdown`` torque T_k at
     ``slip`` s_k, rotor inertia ``motor`` J_m) brings itself and the machine (``driven`` J, its load never below
     ``least_load`` T_c,min) to the speed ``lock_up`` w_L whatever the coupling between them, and by which bound (module
-    docstring): energy (J + J_m) w_L^2 / (2 P_peak), momentum (J + J_m) w_L / (T_k - min(0, T_c,min)), momentum
-    with the load ((J + J_m) w_L - J_m w_s) / (T_k - T_c,min); the largest."""
+    docstring): energy (J + J_m) w_L^2 / (2 P_peak) where the load is never negative, momentum (J + J_m) w_L /
+    (T_k - min(0, T_c,min)), momentum with the load ((J + J_m) w_L - J_m w_s) / (T_k - T_c,min); the largest."""
     inertia = driven + motor
     # the Kloss power 2 T_k s s_k w_s (1 - s) / (s^2 + s_k^2) peaks where d/ds [s (1 - s) / (s^2 + s_k^2)] = 0,
     # s^2 + 2 s_k^2 s - s_k^2 = 0: s = s_k (sqrt(1 + s_k^2) - s_k) (a grid of 1e5 speeds agrees to 1e-9)
     peak_slip = slip * (math.sqrt(1.0 + slip**2) - slip)
     peak_speed = synchronous * (1.0 - peak_slip)
     peak = float(kloss_torque(peak_speed, synchronous, breakdown, slip)) * peak_speed
-    bounds = [(0.5 * inertia * lock_up**2 / peak, f"at the motor's peak power {peak / 1e3:.6g} kW"),
-              (inertia * lock_up / (breakdown - min(0.0, least_load)),
+    bounds = [(inertia * lock_up / (breakdown - min(0.0, least_load)),
                f"by momentum at the motor's breakdown torque {breakdown:.6g} N*m")]
+    if least_load >= 0:  # (a load that drives the machine puts in energy of its own)
+        bounds.append((0.5 * inertia * lock_up**2 / peak, f"at the motor's peak power {peak / 1e3:.6g} kW"))
     if breakdown > least_load:
         bounds.append(((inertia * lock_up - motor * synchronous) / (breakdown - least_load),
                        f"by momentum at the motor's breakdown torque {breakdown:.6g} N*m less the machine's least "
