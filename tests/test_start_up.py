@@ -141,8 +141,9 @@ def test_a_motor_too_weak_for_the_load_is_diagnosed():
     # proven before any start-up solve (clutchopt/optimise/proofs.py): above its breakdown speed (800 rpm) the Kloss
     # torque falls, so at or above the lock-up speed 900 rpm (s = 0.1, s_k = 0.2) the motor gives at most
     # 2 * 4 * 0.1 * 0.2 / (0.1^2 + 0.2^2) = 3.2 N m, less than the load's 5 N m
-    assert solution.diagnosis.startswith("proven infeasible: the motor gives at most 3.2 N*m at or above the lock-up "
-                                         "speed 900 rpm, less than the machine's load 5 N*m")
+    assert solution.diagnosis.startswith("proven infeasible: the motor gives at most 3.2 N*m (breakdown_torque 4 N*m) "
+                                         "at or above min_lock_up_speed 900 rpm, less than the machine's load_torque "
+                                         "5 N*m")
 
 
 def test_an_engagement_window_the_springs_cannot_meet_is_diagnosed():

@@ -28,7 +28,7 @@ from clutchopt.bench.reference import closed_form, coupling_cases, reference_mod
 from clutchopt.cases import Case, load_case
 from clutchopt.errors import InputError
 from clutchopt.formulations import MODULES, get_coupling
-from clutchopt.optimise.problem import problem_for
+from clutchopt.optimise.problem import PROVEN, problem_for
 from clutchopt.optimise.solution import Solution
 from clutchopt.units import ureg
 
@@ -88,6 +88,8 @@ def judge_solution(solution: Solution, reference, formulation) -> Verdict:
         return Verdict("optimal", f"{solution.objective:.10g} {solution.objective_unit}")
     if solution.status in ("infeasible", "not_found"):  # proven or not: a verdict that names its constraints
         names = [c.name for c in solution.constraints] + [v.name for v in formulation.variables]
+        if solution.solver.name == PROVEN:  # a proof from the case's values alone: it names the fields it rests on
+            names += [q.name for q in formulation.quantities]
         if not solution.diagnosis or not any(name in solution.diagnosis for name in names):
             return Verdict("failed", f"infeasible without naming a constraint: {solution.diagnosis!r}")
         if reference is not None and reference.feasible:

@@ -54,8 +54,10 @@ def start_up_proofs(case) -> list[str]:
         return proofs
     largest = t_k if w_l < w_s * (1.0 - s_k) else float(kloss_torque(w_l, w_s, t_k, s_k))
     if largest < load:
-        proofs.append(f"the motor gives at most {largest:.6g} N*m at or above the lock-up speed "
-                      f"{w_l * 30 / math.pi:.6g} rpm, less than the machine's load {load:.6g} N*m")
+        named = "load_profile at its largest" if profile is not None else "load_torque"
+        proofs.append(f"the motor gives at most {largest:.6g} N*m (breakdown_torque {t_k:.6g} N*m) at or above "
+                      f"min_lock_up_speed {w_l * 30 / math.pi:.6g} rpm, less than the machine's {named} "
+                      f"{load:.6g} N*m")
     least = min(profile.values) if profile is not None else v["load_torque"]
     shortest, how = shortest_start(v["driven_inertia"], v["motor_inertia"], w_l, w_s, t_k, s_k, least)
     if shortest > v["max_start_time"] * (1.0 + 1e-6):
