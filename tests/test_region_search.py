@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from clutchopt.cases import load_case
-from clutchopt.optimise import interval_proof, region_proof, sweep
+from clutchopt.optimise import interval_proof, region_proof, sweep, verdict
 from clutchopt.optimise.interval import IntervalFunction
 from clutchopt.optimise.interval_proof import search, searches
 from clutchopt.optimise.problem import case_problem
@@ -168,19 +168,28 @@ def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
 def test_a_point_its_own_search_does_not_prove_continues_its_verdict_from_its_first_solve(monkeypatch):
     # The wedge paper case at 12 resisting torques from 20 to 400 N m with every region search and quick search made
     # to fail (as where a point's bounds are too loose): each point after the first without a design (3) is solved
-    # once (cold IPOPT, no design), then its verdict goes on from that solve (region_proof.completed): retried from
-    # the least relaxation's design and from the last feasible point's (89.09 N m), then proven by the full
-    # verdict's own interval search, as solve's. 3 calls a point; 4 before, where Problem.solve made the first
-    # solve again
+    # once (cold IPOPT, no design), then its verdict goes on from that solve (region_proof.completed), not from the
+    # same solve again (4 calls a point before): its elastic relaxation finds the constraints apart, so the full
+    # verdict's own interval search runs first and proves it, as solve's, without the retries (1 call a point; 3
+    # before, with the retries from the least relaxation's design and from the last feasible point's, 89.09 N m).
+    # With that search made to fail too, the retries follow from the same first solve: 3 calls a point, not_found
     monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: [None] * len(problems))
     vary = parse_vary("resisting_torque=20:400:12", "wedge", WEDGE.quantities)
-    result = Sweep(WEDGE, [vary]).run(progress=False)
     problem = case_problem(WEDGE)
-    assert [s["status"] for s in result.solutions] == ["optimal"] * 3 + ["infeasible"] * 9
-    assert [s["solver"]["solves"] for s in result.solutions][4:] == [3] * 8
-    for point in (4, 11):
-        alone = problem.solve(WEDGE.with_values(resisting_torque=vary.values[point]))
-        record = result.solutions[point]
-        assert (record["status"], record["diagnosis"]) == (alone.status, alone.diagnosis)
-        assert record["starts"] == ["the case's own start", "the least relaxation's design",
-                                    "the neighbouring point's design"]
+    for proven, calls, starts in ((True, 1, ["the case's own start"]),
+                                  (False, 3, ["the case's own start", "the least relaxation's design",
+                                              "the neighbouring point's design"])):
+        if not proven:
+            monkeypatch.setattr(verdict, "empty_design_space", lambda posed, case: None)
+        result = Sweep(WEDGE, [vary]).run(progress=False)
+        status = "infeasible" if proven else "not_found"
+        assert [s["status"] for s in result.solutions] == ["optimal"] * 3 + [status] * 9
+        assert [s["solver"]["solves"] for s in result.solutions][4:] == [calls] * 8
+        for point in (4, 11):
+            alone = problem.solve(WEDGE.with_values(resisting_torque=vary.values[point]))
+            record = result.solutions[point]
+            assert (record["status"], record["diagnosis"]) == (alone.status, alone.diagnosis)
+            assert record["starts"] == starts
+        assert result.solutions[4]["diagnosis"].startswith(
+            "proven infeasible: no design within the bounds meets" if proven
+            else "no feasible design found (not proven infeasible): the least relaxation found")
