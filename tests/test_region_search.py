@@ -49,11 +49,41 @@ def test_searches_together_give_each_point_its_own_search():
 
 
 @pytest.mark.parametrize("batched", [True, False])  # in batches, or point by point (start-ups, varied variables)
-def test_a_sweep_into_an_infeasible_region_proves_it_once_and_keeps_each_point_s_verdict(monkeypatch, batched):
+def test_a_sweep_into_an_infeasible_region_proves_each_point_alone_where_its_proof_takes_few_boxes(monkeypatch,
+                                                                                                     batched):
     # The wedge paper case at 12 resisting torques from 20 to 400 N m (each solved alone: designs up to 89.09 N m,
-    # proven infeasible from 123.6 N m on). Point 3 (123.6 N m) gets its full verdict (its own search, 257 boxes);
-    # the 8 points after it (158.2-400 N m) are searched as one box, the torque an interval: proven over 129 boxes,
-    # one proof for the 8 points, without a solve.
+    # proven infeasible from 123.6 N m on). Point 3 (123.6 N m) gets its full verdict (its own search proves it in
+    # 1 box); the 8 points after it (158.2-400 N m) are searched each alone, in one call (8 boxes expected, where
+    # their region's search takes 129: the next test): each proven, with the words of its own verdict (solve's),
+    # without a solve.
+    searched = []
+    real = region_proof.searches
+    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: searched.append(
+        [len(problem) for problem in problems]) or real(posed, problems, budgets))
+    if not batched:
+        monkeypatch.setattr(sweep, "batchable", lambda problem, names: False)
+    vary = parse_vary("resisting_torque=20:400:12", "wedge", WEDGE.quantities)
+    result = Sweep(WEDGE, [vary]).run(progress=False)
+    frame = result.frame
+    assert list(frame["status"]) == ["optimal"] * 3 + ["infeasible"] * 9
+    assert searched == [[3] * 8]  # one call, 8 searches of one point each (no parameter interval)
+    assert [s["solver"]["solves"] for s in result.solutions][4:] == [0] * 8
+    assert [s["solver"]["name"] for s in result.solutions][4:] == ["interval"] * 8
+    problem = case_problem(WEDGE)
+    for point in (3, 4, 11):
+        solution = problem.solve(WEDGE.with_values(resisting_torque=vary.values[point]))
+        assert (frame["status"][point], frame["diagnosis"][point]) == (solution.status, solution.diagnosis)
+    assert frame["diagnosis"][4] == ("proven infeasible: no design within the bounds meets torque, flank_pressure "
+                                     "together (interval branch and bound over 1 boxes of the design space)")
+
+
+@pytest.mark.parametrize("batched", [True, False])  # in batches, or point by point (start-ups, varied variables)
+def test_a_sweep_into_an_infeasible_region_proves_it_once_and_keeps_each_point_s_verdict(monkeypatch, batched):
+    # The sweep of the test above, its runs searched as regions (as where a point's own proof takes as many boxes as
+    # its region's: the ball). Point 3 (123.6 N m) gets its full verdict (its own search); the 8 points after it
+    # (158.2-400 N m) are searched as one box, the torque an interval: proven over 129 boxes, one proof for the 8
+    # points, without a solve.
+    monkeypatch.setattr(region_proof.Regions, "_one_by_one", lambda self, count: False)
     regions = []
     real = region_proof.searches
     monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
@@ -128,6 +158,7 @@ def test_a_run_reaching_past_the_region_s_edge_searches_only_its_first_half_agai
     monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
         [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
     monkeypatch.setattr(region_proof.Regions, "_edge", lambda self, k, end: end)
+    monkeypatch.setattr(region_proof.Regions, "_one_by_one", lambda self, count: False)  # (its regions, as the ball's)
     torques = [300.0, 250.0, 200.0, 160.0, 130.0, 80.0, 60.0, 40.0, 30.0, 20.0]
     vary = parse_vary("resisting_torque=" + ",".join(f"{t:g}" for t in torques), "wedge", WEDGE.quantities)
     frame = Sweep(WEDGE, [vary]).run(progress=False).frame
@@ -153,6 +184,7 @@ def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
         [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
     monkeypatch.setattr(region_proof.Regions, "_designed", lambda self, j: probed.append(j) or designed(self, j))
+    monkeypatch.setattr(region_proof.Regions, "_one_by_one", lambda self, count: False)  # (its regions, as the ball's)
     torques = [300.0, 250.0, 200.0, 160.0, 130.0, 80.0, 60.0, 40.0, 30.0, 20.0]
     vary = parse_vary("resisting_torque=" + ",".join(f"{t:g}" for t in torques), "wedge", WEDGE.quantities)
     result = Sweep(WEDGE, [vary]).run(progress=False)
