@@ -52,8 +52,9 @@ def test_searches_together_give_each_point_its_own_search():
 def test_a_sweep_into_an_infeasible_region_proves_each_point_alone_where_its_proof_takes_few_boxes(monkeypatch,
                                                                                                      batched):
     # The wedge paper case at 12 resisting torques from 20 to 400 N m (each solved alone: designs up to 89.09 N m,
-    # proven infeasible from 123.6 N m on). Point 3 (123.6 N m) gets its full verdict (its own search proves it in
-    # 1 box); the 8 points after it (158.2-400 N m) are searched each alone, in one call (8 boxes expected, where
+    # proven infeasible from 123.6 N m on). Point 3 (123.6 N m), where the batch's chain from point 2 fails, is
+    # searched alone before any solve and proven in 1 box (point by point: its full verdict, whose search proves it
+    # in 1 box); the 8 points after it (158.2-400 N m) are searched each alone, in one call (8 boxes expected, where
     # their region's search takes 129: the next test): each proven, with the words of its own verdict (solve's),
     # without a solve.
     searched = []
@@ -66,9 +67,14 @@ def test_a_sweep_into_an_infeasible_region_proves_each_point_alone_where_its_pro
     result = Sweep(WEDGE, [vary]).run(progress=False)
     frame = result.frame
     assert list(frame["status"]) == ["optimal"] * 3 + ["infeasible"] * 9
-    assert searched == [[3] * 8]  # one call, 8 searches of one point each (no parameter interval)
+    assert searched == [[3]] * batched + [[3] * 8]  # one call, 8 searches of one point each (no parameter interval)
     assert [s["solver"]["solves"] for s in result.solutions][4:] == [0] * 8
-    assert [s["solver"]["name"] for s in result.solutions][4:] == ["interval"] * 8
+    assert [s["solver"]["name"] for s in result.solutions][3 + (not batched):] == ["interval"] * (8 + batched)
+    if batched:  # point 3 shows point 2's design (its full verdict: its least relaxation's), at its own torque
+        assert result.solutions[3]["solver"]["solves"] == 0
+        assert result.solutions[3]["design"] == result.solutions[2]["design"]
+        torque = next(c for c in result.solutions[3]["constraints"] if c["name"] == "torque")
+        assert torque["margin"] < 0 and torque["limit"] == pytest.approx(vary.values[3] + 5.235987756, rel=1e-9)
     problem = case_problem(WEDGE)
     for point in (3, 4, 11):
         solution = problem.solve(WEDGE.with_values(resisting_torque=vary.values[point]))
@@ -94,7 +100,8 @@ def test_a_sweep_into_an_infeasible_region_proves_it_once_and_keeps_each_point_s
     result = Sweep(WEDGE, [vary]).run(progress=False)
     frame = result.frame
     assert list(frame["status"]) == ["optimal"] * 3 + ["infeasible"] * 9
-    assert regions == [[4]]  # one search, over a parameter interval
+    assert regions == [[3]] * batched + [[4]]  # (point 3 searched alone first where a chain failed there) one
+    # search, over a parameter interval
     region = "proven infeasible for resisting_torque 158.182-400 N*m (8 points, one proof): no design within the " \
              "bounds meets torque, flank_pressure together (interval branch and bound over 129 boxes of the design " \
              "space and the interval of resisting_torque)"
