@@ -48,6 +48,22 @@ def test_searches_together_give_each_point_its_own_search():
         assert (a.feasible is None and b.feasible is None) or np.array_equal(a.feasible, b.feasible)
 
 
+def _wedge_into_its_region(monkeypatch, batched: bool):
+    """The wedge paper case at 12 resisting torques from 20 to 400 N m (each solved alone: designs up to 89.09 N m,
+    proven infeasible from 123.6 N m on), in batches or point by point: the varied torques, the sweep's result, and
+    per call of ``searches`` its problems' lengths (3: a point's, 4: a region's, with a parameter interval)."""
+    searched = []
+    real = region_proof.searches
+    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: searched.append(
+        [len(problem) for problem in problems]) or real(posed, problems, budgets))
+    if not batched:
+        monkeypatch.setattr(sweep, "batchable", lambda problem, names: False)
+    vary = parse_vary("resisting_torque=20:400:12", "wedge", WEDGE.quantities)
+    result = Sweep(WEDGE, [vary]).run(progress=False)
+    assert [s["status"] for s in result.solutions] == ["optimal"] * 3 + ["infeasible"] * 9
+    return vary, result, searched
+
+
 @pytest.mark.parametrize("batched", [True, False])  # in batches, or point by point (start-ups, varied variables)
 def test_a_sweep_into_an_infeasible_region_proves_each_point_alone_where_its_proof_takes_few_boxes(monkeypatch,
                                                                                                      batched):
@@ -57,16 +73,8 @@ def test_a_sweep_into_an_infeasible_region_proves_each_point_alone_where_its_pro
     # in 1 box); the 8 points after it (158.2-400 N m) are searched each alone, in one call (8 boxes expected, where
     # their region's search takes 129: the next test): each proven, with the words of its own verdict (solve's),
     # without a solve.
-    searched = []
-    real = region_proof.searches
-    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: searched.append(
-        [len(problem) for problem in problems]) or real(posed, problems, budgets))
-    if not batched:
-        monkeypatch.setattr(sweep, "batchable", lambda problem, names: False)
-    vary = parse_vary("resisting_torque=20:400:12", "wedge", WEDGE.quantities)
-    result = Sweep(WEDGE, [vary]).run(progress=False)
+    vary, result, searched = _wedge_into_its_region(monkeypatch, batched)
     frame = result.frame
-    assert list(frame["status"]) == ["optimal"] * 3 + ["infeasible"] * 9
     assert searched == [[3]] * batched + [[3] * 8]  # one call, 8 searches of one point each (no parameter interval)
     assert [s["solver"]["solves"] for s in result.solutions][4:] == [0] * 8
     assert [s["solver"]["name"] for s in result.solutions][3 + (not batched):] == ["interval"] * (8 + batched)
@@ -90,16 +98,8 @@ def test_a_sweep_into_an_infeasible_region_proves_it_once_and_keeps_each_point_s
     # (158.2-400 N m) are searched as one box, the torque an interval: proven over 129 boxes, one proof for the 8
     # points, without a solve.
     monkeypatch.setattr(region_proof.Regions, "_one_by_one", lambda self, count: False)
-    regions = []
-    real = region_proof.searches
-    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
-        [len(problem) for problem in problems]) or real(posed, problems, budgets))
-    if not batched:
-        monkeypatch.setattr(sweep, "batchable", lambda problem, names: False)
-    vary = parse_vary("resisting_torque=20:400:12", "wedge", WEDGE.quantities)
-    result = Sweep(WEDGE, [vary]).run(progress=False)
+    vary, result, regions = _wedge_into_its_region(monkeypatch, batched)
     frame = result.frame
-    assert list(frame["status"]) == ["optimal"] * 3 + ["infeasible"] * 9
     assert regions == [[3]] * batched + [[4]]  # (point 3 searched alone first where a chain failed there) one
     # search, over a parameter interval
     region = "proven infeasible for resisting_torque 158.182-400 N*m (8 points, one proof): no design within the " \
