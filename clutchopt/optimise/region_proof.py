@@ -81,6 +81,8 @@ class Regions:
         self._proven: dict[int, tuple[str, float]] = {}  # point -> its proof's text, its share of the seconds
         self._probed = (0, 0.0)  # the solver calls and seconds of the probes for a region's edge, not yet charged
         self._found = -1  # the point a probe found with a design (the region's edge)
+        self._probes: dict[int, Solution] = {}  # the probes' solutions with a design, by point
+        self._edge_probe: Solution | None = None  # the solve of the edge's probe, for that point's own (uncharged)
         self._alone = 0  # the boxes of the last proof of one point (its own verdict's or its own search's; the mean
         # of the last run searched point by point)
         self._region: int | None = None  # the boxes of the last region proof
@@ -158,10 +160,12 @@ class Regions:
         the retries: the solve's design, or the verdict its proof gives, and None; or None and that solve (its
         verdict follows from it: :func:`completed`, which finds this search kept); or None, None where the point
         before has a design."""
-        if self._without_at != k - 1 or self.problem.start_up is not None:
+        quick = self._without_at == k - 1 and self.problem.start_up is None
+        probe = self._edge_solve(k, quick and warm is None)
+        if not quick:
             return None, None
         case = self.point_case(k)
-        first = self.charged(self.problem.refined(case, warm=warm))
+        first = self.charged(probe or self.problem.refined(case, warm=warm))
         if first.status in DESIGN_STATUSES:
             self.after(k, first)
             return first, None
@@ -281,15 +285,37 @@ class Regions:
         while designed - without > 1:
             middle = (without + designed) // 2
             without, designed = (without, middle) if self._designed(middle) else (middle, designed)
-        self._found = designed
+        self._found, self._edge_probe = designed, self._probes.get(designed)
+        self._probes = {}
+        self._charge(self._edge_probe, -1)  # (charged to the edge's point, whose solve it is: :meth:`_edge_solve`)
         return designed
 
     def _designed(self, j: int) -> bool:
         """Point j has a design by one solve (cold, undiagnosed); its calls are charged to the next verdict."""
         solution = self.problem.refined(self.point_case(j), diagnosed=False)
-        calls, seconds = self._probed
-        self._probed = (calls + solution.solver.solves, seconds + solution.solver.time_s)
+        self._charge(solution)
+        if solution.status in DESIGN_STATUSES:
+            self._probes[j] = solution
         return solution.status in DESIGN_STATUSES
+
+    def _edge_solve(self, k: int, usable: bool) -> Solution | None:
+        """At the region's edge found by the probes (point k), the probe's solve where it is the point's first
+        (``usable``: cold, as ``Problem.solve`` starts next to a point without a design; the same call, the same
+        design: the ball over its contact stress, 20 ms); else None, its calls then charged to the next verdict."""
+        probe = self._edge_probe if k == self._found else None
+        if probe is None:
+            return None
+        self._edge_probe = None
+        if usable:
+            return probe
+        self._charge(probe)
+        return None
+
+    def _charge(self, solution: Solution | None, sign: int = 1) -> None:
+        """The calls and seconds of a probe's ``solution`` added to those not yet charged (``sign`` -1: taken out)."""
+        if solution is not None:
+            calls, seconds = self._probed
+            self._probed = (calls + sign * solution.solver.solves, seconds + sign * solution.solver.time_s)
 
 
 def completed(problem, case, first: Solution | None, warm=None, neighbour: dict[str, float] | None = None) -> Solution:
