@@ -204,6 +204,21 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
             lo, plo, hi, phi = z_lo[:n], z_lo[n:], z_hi[:n], z_hi[n:]
             d_lo, d_hi, uncertain = d_lo[..., parents], d_hi[..., parents], uncertain[:, parents]
             component, rate = component[parents], rate[parents]
+            if posed.integer:
+                continue
+            # without integers no box is dropped before the next evaluation (rounding keeps them all): a search whose
+            # boxes now pass its budget ends there as it would after the last split, unsplit further (a point of a
+            # sweep searched alone past its region's edge: 1 box evaluated, then not 128 split for nothing)
+            counts = np.bincount(owner, minlength=count)
+            over = np.flatnonzero((counts > 0) & (evaluated + counts > budgets))
+            if len(over):
+                end(over, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
+                keep = ~np.isin(owner, over)
+                lo, hi, plo, phi, owner = lo[:, keep], hi[:, keep], plo[:, keep], phi[:, keep], owner[keep]
+                d_lo, d_hi, uncertain = d_lo[..., keep], d_hi[..., keep], uncertain[:, keep]
+                component, rate = component[keep], rate[keep]
+                if not lo.shape[1]:
+                    break
     return outcomes
 
 

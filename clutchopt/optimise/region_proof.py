@@ -255,7 +255,7 @@ class Regions:
         own proof's verdict ("proven infeasible: ...", the words of its full verdict), another is solved as usual;
         the next run twice as long where all are proven."""
         budget = min(max(REGION_BUDGET * self._alone, FEW_BOXES), MAX_BOXES)  # (a point past the region's edge
-        # gives up where the next split would pass it: 1 box, then 128 where one proved in 1)
+        # gives up after its first box where one proved in 1: the split to 128 passes the budget)
         began = time.perf_counter()
         outcomes = searches(self.posed, [points[j] for j in range(k, end)], [budget] * (end - k))
         seconds = (time.perf_counter() - began) / (end - k)
