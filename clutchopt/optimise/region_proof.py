@@ -133,18 +133,18 @@ class Regions:
 
     def _early(self, k: int, design: dict[str, float]) -> Solution | None:
         """Point k, where a batch's chain from the point before (with ``design``) failed: its own interval search,
-        within FEW_BOXES or four times the boxes of the last point's own proof, before any solve. Proven, it gets the
-        verdict its full verdict gives ("proven infeasible: ...", the same search, whose budget did not bind), with
-        ``design`` re-evaluated in float64 at its values (where its full verdict shows its least relaxation's), no
-        solver call; else None (it is solved as usual; a point with a design costs this one failed search, most
-        often one box). At the first point of a stretch without designs the full verdict had cost 20 ms on the lever
+        within FEW_BOXES, before any solve, unless the last point's own proof took more (the ball: hundreds of
+        boxes). Proven, it gets the verdict its full verdict gives ("proven infeasible: ...", the same search, whose
+        budget did not bind), with ``design`` re-evaluated in float64 at its values (where its full verdict shows its
+        least relaxation's), no solver call; else None (it is solved as usual; a point with a design costs this one
+        failed search: one box and its split, under a millisecond without integers; 3 ms on the ball before its
+        first proof). At the first point of a stretch without designs the full verdict had cost 20 ms on the lever
         (SQP, warm and cold IPOPT, the elastic diagnosis, then the proof in one box)."""
-        if self.problem.start_up is not None:
+        if self.problem.start_up is not None or self._alone > FEW_BOXES:
             return None
         case = self.point_case(k)
         began = time.perf_counter()
-        own = searches(self.posed, [_search_problem(self.posed, case)],
-                       [min(max(REGION_BUDGET * self._alone, FEW_BOXES), MAX_BOXES)])[0]
+        own = searches(self.posed, [_search_problem(self.posed, case)], [FEW_BOXES])[0]
         if own is None or not own.proven:
             return None
         self._alone = last_boxes(self.posed, own.boxes)
