@@ -240,7 +240,7 @@ def test_a_point_its_own_search_does_not_prove_continues_its_verdict_from_its_fi
                                   (False, 3, ["the case's own start", "the least relaxation's design",
                                               "the neighbouring point's design"])):
         if not proven:
-            monkeypatch.setattr(verdict, "empty_design_space", lambda posed, case: None)
+            monkeypatch.setattr(verdict, "empty_design_space", lambda posed, case, budget=None: None)
         result = Sweep(WEDGE, [vary]).run(progress=False)
         status = "infeasible" if proven else "not_found"
         assert [s["status"] for s in result.solutions] == ["optimal"] * 3 + [status] * 9

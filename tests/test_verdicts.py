@@ -95,7 +95,7 @@ def test_a_static_verdict_the_interval_search_proves_is_given_without_the_retrie
     assert solution.solver.solves == 1 and solution.diagnosed.least == pytest.approx(0.709, abs=5e-4)
     assert solution.diagnosis.startswith("proven infeasible: no design within the bounds meets torque, flank_pressure "
                                          "together")
-    monkeypatch.setattr(verdict, "empty_design_space", lambda posed, case: None)
+    monkeypatch.setattr(verdict, "empty_design_space", lambda posed, case, budget=None: None)
     retried = problem.solve(case)
     assert retried.status == "not_found" and retried.solver.solves == 2
     assert retried.starts == ("the case's own start", "the least relaxation's design")

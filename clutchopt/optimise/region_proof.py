@@ -52,8 +52,8 @@ from typing import Callable
 
 import numpy as np
 
-from clutchopt.optimise.interval_proof import (MAX_BOXES, SURE_BOXES, _search_problem, keep_search, last_boxes,
-                                               searches)
+from clutchopt.optimise.interval_proof import (FEW_BOXES, MAX_BOXES, SURE_BOXES, _search_problem, keep_search,
+                                               last_boxes, searches)
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.verdict import emptied, shown
@@ -62,8 +62,8 @@ from clutchopt.units import from_si
 
 FIRST_RUN = 8  # points searched as one region after a point without a design,
 LONGEST_RUN = 256  # the next run twice the longest proven, up to this many
-FEW_BOXES = 64  # a run is searched point by point where its points' own proofs take no more boxes in all (before a
-# region proof to compare with; about what one search costs whatever its boxes)
+# a run is searched point by point where its points' own proofs take no more boxes in all than its region's search
+# (before a region proof to compare with: interval_proof.FEW_BOXES)
 REGION_BUDGET = 4  # a region's search may evaluate this many times the boxes of the last point's own search
 # (at least interval_proof.SURE_BOXES): one reaching past the region's edge gives up there and is bisected
 
