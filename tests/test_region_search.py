@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from clutchopt.cases import load_case
-from clutchopt.optimise import interval_proof, region_proof, sweep
+from clutchopt.optimise import interval_proof, region_proof, sweep, verdict
 from clutchopt.optimise.interval import IntervalFunction
 from clutchopt.optimise.interval_proof import search, searches
 from clutchopt.optimise.problem import case_problem
@@ -48,23 +48,79 @@ def test_searches_together_give_each_point_its_own_search():
         assert (a.feasible is None and b.feasible is None) or np.array_equal(a.feasible, b.feasible)
 
 
-@pytest.mark.parametrize("batched", [True, False])  # in batches, or point by point (start-ups, varied variables)
-def test_a_sweep_into_an_infeasible_region_proves_it_once_and_keeps_each_point_s_verdict(monkeypatch, batched):
-    # The wedge paper case at 12 resisting torques from 20 to 400 N m (each solved alone: designs up to 89.09 N m,
-    # proven infeasible from 123.6 N m on). Point 3 (123.6 N m) gets its full verdict (its own search, 257 boxes);
-    # the 8 points after it (158.2-400 N m) are searched as one box, the torque an interval: proven over 129 boxes,
-    # one proof for the 8 points, without a solve.
-    regions = []
+def test_a_search_past_its_budget_ends_before_the_split_that_passes_it(monkeypatch):
+    # The wedge paper case at 89.09 N m has a design (optimal alone); its search evaluates its first box (the design
+    # box, not emptied), splits it into 128 and meets a design centre among them (129 boxes). With a budget of 64 it
+    # ends after its first box, not proven, nothing met; 400 N m is proven in its first box whatever the budget. A
+    # search stops splitting at the turn that passes its budget (a point searched alone past its region's edge): 6
+    # turns (64 boxes: 1 + 64 > 64), not the 7 that make 128
+    posed = case_problem(WEDGE).posed
+    problems = [interval_proof._search_problem(posed, WEDGE.with_values(resisting_torque=t)) for t in (89.090909, 400.0)]
+    turns = []
+    real = interval_proof._bisected_where
+    monkeypatch.setattr(interval_proof, "_bisected_where", lambda *a, **k: turns.append(1) or real(*a, **k))
+    short, proven = searches(posed, problems, [64, 64])
+    assert (short.proven, short.boxes, short.feasible, short.reached) == (False, 1, None, False)
+    assert (proven.proven, proven.boxes) == (True, 1)
+    assert len(turns) == 6
+    met, = searches(posed, problems[:1])
+    assert (met.proven, met.boxes, met.feasible is not None) == (False, 129, True) and len(turns) == 6 + 7
+
+
+def _wedge_into_its_region(monkeypatch, batched: bool):
+    """The wedge paper case at 12 resisting torques from 20 to 400 N m (each solved alone: designs up to 89.09 N m,
+    proven infeasible from 123.6 N m on), in batches or point by point: the varied torques, the sweep's result, and
+    per call of ``searches`` its problems' lengths (3: a point's, 4: a region's, with a parameter interval)."""
+    searched = []
     real = region_proof.searches
-    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
+    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: searched.append(
         [len(problem) for problem in problems]) or real(posed, problems, budgets))
     if not batched:
         monkeypatch.setattr(sweep, "batchable", lambda problem, names: False)
     vary = parse_vary("resisting_torque=20:400:12", "wedge", WEDGE.quantities)
     result = Sweep(WEDGE, [vary]).run(progress=False)
+    assert [s["status"] for s in result.solutions] == ["optimal"] * 3 + ["infeasible"] * 9
+    return vary, result, searched
+
+
+@pytest.mark.parametrize("batched", [True, False])  # in batches, or point by point (start-ups, varied variables)
+def test_a_sweep_into_an_infeasible_region_proves_each_point_alone_where_its_proof_takes_few_boxes(monkeypatch,
+                                                                                                     batched):
+    # The wedge paper case at 12 resisting torques from 20 to 400 N m (each solved alone: designs up to 89.09 N m,
+    # proven infeasible from 123.6 N m on). Point 3 (123.6 N m), where the batch's chain from point 2 fails, is
+    # searched alone before any solve and proven in 1 box (point by point: its full verdict, whose search proves it
+    # in 1 box); the 8 points after it (158.2-400 N m) are searched each alone, in one call (8 boxes expected, where
+    # their region's search takes 129: the next test): each proven, with the words of its own verdict (solve's),
+    # without a solve.
+    vary, result, searched = _wedge_into_its_region(monkeypatch, batched)
     frame = result.frame
-    assert list(frame["status"]) == ["optimal"] * 3 + ["infeasible"] * 9
-    assert regions == [[4]]  # one search, over a parameter interval
+    assert searched == [[3]] * batched + [[3] * 8]  # one call, 8 searches of one point each (no parameter interval)
+    assert [s["solver"]["solves"] for s in result.solutions][4:] == [0] * 8
+    assert [s["solver"]["name"] for s in result.solutions][3 + (not batched):] == ["interval"] * (8 + batched)
+    if batched:  # point 3 shows point 2's design (its full verdict: its least relaxation's), at its own torque
+        assert result.solutions[3]["solver"]["solves"] == 0
+        assert result.solutions[3]["design"] == result.solutions[2]["design"]
+        torque = next(c for c in result.solutions[3]["constraints"] if c["name"] == "torque")
+        assert torque["margin"] < 0 and torque["limit"] == pytest.approx(vary.values[3] + 5.235987756, rel=1e-9)
+    problem = case_problem(WEDGE)
+    for point in (3, 4, 11):
+        solution = problem.solve(WEDGE.with_values(resisting_torque=vary.values[point]))
+        assert (frame["status"][point], frame["diagnosis"][point]) == (solution.status, solution.diagnosis)
+    assert frame["diagnosis"][4] == ("proven infeasible: no design within the bounds meets torque, flank_pressure "
+                                     "together (interval branch and bound over 1 boxes of the design space)")
+
+
+@pytest.mark.parametrize("batched", [True, False])  # in batches, or point by point (start-ups, varied variables)
+def test_a_sweep_into_an_infeasible_region_proves_it_once_and_keeps_each_point_s_verdict(monkeypatch, batched):
+    # The sweep of the test above, its runs searched as regions (as where a point's own proof takes as many boxes as
+    # its region's: the ball). Point 3 (123.6 N m) gets its full verdict (its own search); the 8 points after it
+    # (158.2-400 N m) are searched as one box, the torque an interval: proven over 129 boxes, one proof for the 8
+    # points, without a solve.
+    monkeypatch.setattr(region_proof.Regions, "_one_by_one", lambda self, count: False)
+    vary, result, regions = _wedge_into_its_region(monkeypatch, batched)
+    frame = result.frame
+    assert regions == [[3]] * batched + [[4]]  # (point 3 searched alone first where a chain failed there) one
+    # search, over a parameter interval
     region = "proven infeasible for resisting_torque 158.182-400 N*m (8 points, one proof): no design within the " \
              "bounds meets torque, flank_pressure together (interval branch and bound over 129 boxes of the design " \
              "space and the interval of resisting_torque)"
@@ -128,6 +184,7 @@ def test_a_run_reaching_past_the_region_s_edge_searches_only_its_first_half_agai
     monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
         [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
     monkeypatch.setattr(region_proof.Regions, "_edge", lambda self, k, end: end)
+    monkeypatch.setattr(region_proof.Regions, "_one_by_one", lambda self, count: False)  # (its regions, as the ball's)
     torques = [300.0, 250.0, 200.0, 160.0, 130.0, 80.0, 60.0, 40.0, 30.0, 20.0]
     vary = parse_vary("resisting_torque=" + ",".join(f"{t:g}" for t in torques), "wedge", WEDGE.quantities)
     frame = Sweep(WEDGE, [vary]).run(progress=False).frame
@@ -147,12 +204,14 @@ def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     # between 4 and 8: 6 (60 N m) and 5 (80 N m) with one. Points 1-4 (250-130 N m) are searched again, proven (here
     # the first half of the run too; the ball over its allowable contact stress: one search for the last 2 points of
     # its region, not three more halvings from 16, 7.7 s to 1.3 s). The 5 probes (IPOPT calls:
-    # one each, two at 80 N m) are charged to point 1's verdict: the sweep's calls are its points'.
+    # one each, two at 80 N m) are charged to point 1's verdict but the one at the edge (80 N m), which is that
+    # point's own solve (cold, as next to a point without a design), not made again: the sweep's calls are its points'.
     regions, probed = [], []
     real, designed = region_proof.searches, region_proof.Regions._designed
     monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
         [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
     monkeypatch.setattr(region_proof.Regions, "_designed", lambda self, j: probed.append(j) or designed(self, j))
+    monkeypatch.setattr(region_proof.Regions, "_one_by_one", lambda self, count: False)  # (its regions, as the ball's)
     torques = [300.0, 250.0, 200.0, 160.0, 130.0, 80.0, 60.0, 40.0, 30.0, 20.0]
     vary = parse_vary("resisting_torque=" + ",".join(f"{t:g}" for t in torques), "wedge", WEDGE.quantities)
     result = Sweep(WEDGE, [vary]).run(progress=False)
@@ -161,26 +220,36 @@ def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     assert probed == [8, 2, 4, 6, 5]
     assert [len(outcomes) for outcomes in regions] == [1, 1] and regions[0][0].reached and regions[1][0].proven
     assert frame["diagnosis"][1].startswith("proven infeasible for resisting_torque 130-250 N*m (4 points, one proof)")
-    assert [s["solver"]["solves"] for s in result.solutions][1:5] == [6, 0, 0, 0]  # (80 N m: 2 calls, a retry)
+    assert [s["solver"]["solves"] for s in result.solutions][1:6] == [4, 0, 0, 0, 2]  # (80 N m: 2 calls, a retry;
+    # 6 at point 1 and the edge's solve made again before)
     assert result.spent["solves"] == sum(s["solver"]["solves"] for s in result.solutions)
 
 
 def test_a_point_its_own_search_does_not_prove_continues_its_verdict_from_its_first_solve(monkeypatch):
     # The wedge paper case at 12 resisting torques from 20 to 400 N m with every region search and quick search made
     # to fail (as where a point's bounds are too loose): each point after the first without a design (3) is solved
-    # once (cold IPOPT, no design), then its verdict goes on from that solve (region_proof.completed): retried from
-    # the least relaxation's design and from the last feasible point's (89.09 N m), then proven by the full
-    # verdict's own interval search, as solve's. 3 calls a point; 4 before, where Problem.solve made the first
-    # solve again
+    # once (cold IPOPT, no design), then its verdict goes on from that solve (region_proof.completed), not from the
+    # same solve again (4 calls a point before): its elastic relaxation finds the constraints apart, so the full
+    # verdict's own interval search runs first and proves it, as solve's, without the retries (1 call a point; 3
+    # before, with the retries from the least relaxation's design and from the last feasible point's, 89.09 N m).
+    # With that search made to fail too, the retries follow from the same first solve: 3 calls a point, not_found
     monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: [None] * len(problems))
     vary = parse_vary("resisting_torque=20:400:12", "wedge", WEDGE.quantities)
-    result = Sweep(WEDGE, [vary]).run(progress=False)
     problem = case_problem(WEDGE)
-    assert [s["status"] for s in result.solutions] == ["optimal"] * 3 + ["infeasible"] * 9
-    assert [s["solver"]["solves"] for s in result.solutions][4:] == [3] * 8
-    for point in (4, 11):
-        alone = problem.solve(WEDGE.with_values(resisting_torque=vary.values[point]))
-        record = result.solutions[point]
-        assert (record["status"], record["diagnosis"]) == (alone.status, alone.diagnosis)
-        assert record["starts"] == ["the case's own start", "the least relaxation's design",
-                                    "the neighbouring point's design"]
+    for proven, calls, starts in ((True, 1, ["the case's own start"]),
+                                  (False, 3, ["the case's own start", "the least relaxation's design",
+                                              "the neighbouring point's design"])):
+        if not proven:
+            monkeypatch.setattr(verdict, "empty_design_space", lambda posed, case, budget=None: None)
+        result = Sweep(WEDGE, [vary]).run(progress=False)
+        status = "infeasible" if proven else "not_found"
+        assert [s["status"] for s in result.solutions] == ["optimal"] * 3 + [status] * 9
+        assert [s["solver"]["solves"] for s in result.solutions][4:] == [calls] * 8
+        for point in (4, 11):
+            alone = problem.solve(WEDGE.with_values(resisting_torque=vary.values[point]))
+            record = result.solutions[point]
+            assert (record["status"], record["diagnosis"]) == (alone.status, alone.diagnosis)
+            assert record["starts"] == starts
+        assert result.solutions[4]["diagnosis"].startswith(
+            "proven infeasible: no design within the bounds meets" if proven
+            else "no feasible design found (not proven infeasible): the least relaxation found")

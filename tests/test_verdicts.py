@@ -9,6 +9,7 @@ import pytest
 
 from clutchopt.cases import load_case
 from clutchopt.formulations import get_coupling
+from clutchopt.optimise import verdict
 from clutchopt.optimise.problem import case_problem
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.sweep import Sweep, parse_vary
@@ -82,6 +83,28 @@ def test_infeasible_is_proven_and_not_found_names_its_starts():
     assert solution.starts[0] == "the papers' sizing" and "the least relaxation's design" in solution.starts
     assert solution.as_dict()["starts"] == list(solution.starts)
 
+
+
+def test_a_static_verdict_the_interval_search_proves_is_given_without_the_retries(monkeypatch):
+    # The wedge paper case at 400 N m: the design's torque (the paper's Eq. 9) falls short of it by 0.709 relative at
+    # the least relaxation (elastic diagnosis of the first, cold, solve), with flank_pressure binding. The relaxation
+    # finds the constraints apart, so the interval search runs before the retries and proves it (one box): the one
+    # solve, its one start, the proof naming the same two rows. Without the proof (search made to fail) the retry
+    # from the least relaxation's design follows and the verdict is not_found, from two starts
+    problem = case_problem(load_case(CASES / "wedge_paper.toml"))
+    case = load_case(CASES / "wedge_paper.toml").with_values(resisting_torque=400.0)
+    solution = problem.solve(case)
+    assert solution.status == "infeasible" and solution.starts == ("the case's own start",)
+    assert solution.solver.solves == 1 and solution.diagnosed.least == pytest.approx(0.709, abs=5e-4)
+    assert solution.diagnosis.startswith("proven infeasible: no design within the bounds meets torque, flank_pressure "
+                                         "together")
+    monkeypatch.setattr(verdict, "empty_design_space", lambda posed, case, budget=None: None)
+    retried = problem.solve(case)
+    assert retried.status == "not_found" and retried.solver.solves == 2
+    assert retried.starts == ("the case's own start", "the least relaxation's design")
+    assert retried.diagnosis == ("no feasible design found (not proven infeasible): the least relaxation found cannot "
+                                 "satisfy torque (short of its limit by 0.709 relative) together with flank_pressure "
+                                 "(the same from 2 starts)")
 
 @pytest.mark.parametrize("name", ["ball_motor_start"])
 def test_the_power_sweep_past_its_last_design_is_never_called_infeasible_without_proof(name):

@@ -278,7 +278,8 @@ class BatchSweep:
                 undesigned = start is not None and self._undesigned_at(start.combo, k)  # (IPOPT found none with
                 # the batch's integers here: solved as `solve` solves the point, from the case's own start; warm, it
                 # would try them again first)
-                alone[k] = self._solve_alone(k, start.warm if start is not None and not undesigned else None)
+                alone[k] = self._solve_alone(k, start.warm if start is not None and not undesigned else None,
+                                             start is not None)  # (a chain from a design failed at k)
                 ahead = None
                 start, k = self._start_of(alone[k]), k + 1
                 failed = alone[k - 1].status not in DESIGN_STATUSES
@@ -302,13 +303,16 @@ class BatchSweep:
     def _start_of(self, solution: Solution) -> _Start | None:
         return _Start(self, solution) if solution.status == "optimal" else None
 
-    def _solve_alone(self, k: int, warm: Solution | WarmStart | None) -> Solution:
+    def _solve_alone(self, k: int, warm: Solution | WarmStart | None, failed: bool = False) -> Solution:
         """Point k by ``Problem.solve``, the last feasible design in order its neighbour before a verdict. After a
         point without a design, the points from k are first searched as one region (``region_proof.Regions``): a
         point a proof covers is infeasible without a solve; another is solved once, and searched alone before its
-        full verdict where that solve finds no design."""
+        full verdict where that solve finds no design. Where a chain from the point before, with a design, ``failed``
+        at k, the point's own interval search goes first (``Regions.point``'s ``beside``: a stretch without designs
+        often starts there)."""
         case = self.point_case(k)
-        solution = self._regions.point(k, lambda first: completed(self.problem, case, first, warm, self.feasible), warm)
+        solution = self._regions.point(k, lambda first: completed(self.problem, case, first, warm, self.feasible), warm,
+                                       self.feasible if failed else None)
         self._counted(solution)
         if solution.status in DESIGN_STATUSES:
             self.feasible = solution.design

@@ -36,6 +36,8 @@ from clutchopt.optimise.interval_nodes import enclosed_rows
 
 MAX_BOXES = 40_000  # about 1.5 s of CPU; ball_motor_start's static conflict at 580-800 kW takes 15,000-34,000
 SURE_BOXES = 2_500  # evaluated in any case; beyond, only while the search closes in (GROWTH)
+FEW_BOXES = 64  # about what one search costs whatever its boxes: a search tried before a solve or a region's search
+# may take this many (optimise/verdict.py, optimise/region_proof.py)
 GROWTH = 1.5  # the most the boxes left may grow from one iteration to the next beyond SURE_BOXES
 BATCH = 128  # boxes an iteration evaluates at least (bisecting as often as it takes)
 TOLERANCE = 1e-6  # a row must be broken by more than this (relative) over a whole box for the box to be empty
@@ -204,6 +206,21 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
             lo, plo, hi, phi = z_lo[:n], z_lo[n:], z_hi[:n], z_hi[n:]
             d_lo, d_hi, uncertain = d_lo[..., parents], d_hi[..., parents], uncertain[:, parents]
             component, rate = component[parents], rate[parents]
+            if posed.integer:
+                continue
+            # without integers no box is dropped before the next evaluation (rounding keeps them all): a search whose
+            # boxes now pass its budget ends there as it would after the last split, unsplit further (a point of a
+            # sweep searched alone past its region's edge: 1 box evaluated, then not 128 split for nothing)
+            counts = np.bincount(owner, minlength=count)
+            over = np.flatnonzero((counts > 0) & (evaluated + counts > budgets))
+            if len(over):
+                end(over, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
+                keep = ~np.isin(owner, over)
+                lo, hi, plo, phi, owner = lo[:, keep], hi[:, keep], plo[:, keep], phi[:, keep], owner[keep]
+                d_lo, d_hi, uncertain = d_lo[..., keep], d_hi[..., keep], uncertain[:, keep]
+                component, rate = component[keep], rate[keep]
+                if not lo.shape[1]:
+                    break
     return outcomes
 
 
@@ -334,13 +351,15 @@ def _bisected(lo: np.ndarray, hi: np.ndarray, d_lo: np.ndarray, d_hi: np.ndarray
             np.concatenate([columns, columns[split]]))
 
 
-def empty_design_space(posed, case) -> Emptiness | None:
+def empty_design_space(posed, case, budget: int | None = None) -> Emptiness | None:
     """:func:`search` over the design box of ``case`` in ``posed`` (with a start-up: its formulation's own
     constraints, without the start-up's: a design space empty without them is empty with them); the search a sweep
-    ran for the same box with the same parameters where one is kept (:func:`keep_search`)."""
+    ran for the same box with the same parameters where one is kept (:func:`keep_search`). ``budget``: the most boxes
+    (a search that may end short of its outcome: the kept one is left for the search without a budget)."""
     problem = _search_problem(posed, case)
-    kept = posed.built("interval_kept", None, lambda _: {}).pop(_key(problem), None)
-    emptiness = kept or search(posed, *problem)
+    kept = posed.built("interval_kept", None, lambda _: {})
+    kept = kept.get(_key(problem)) if budget is not None else kept.pop(_key(problem), None)
+    emptiness = kept or (search(posed, *problem) if budget is None else searches(posed, [problem], [budget])[0])
     if emptiness is not None and emptiness.proven:
         last_boxes(posed, emptiness.boxes)
     return emptiness

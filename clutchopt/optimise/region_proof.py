@@ -45,14 +45,15 @@ order of the points: a region's proof is a proof of each point, and a point its 
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import replace
 from typing import Callable
 
 import numpy as np
 
-from clutchopt.optimise.interval_proof import (MAX_BOXES, SURE_BOXES, _search_problem, keep_search, last_boxes,
-                                               searches)
+from clutchopt.optimise.interval_proof import (FEW_BOXES, MAX_BOXES, SURE_BOXES, _search_problem, keep_search,
+                                               last_boxes, searches)
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.verdict import emptied, shown
@@ -61,6 +62,8 @@ from clutchopt.units import from_si
 
 FIRST_RUN = 8  # points searched as one region after a point without a design,
 LONGEST_RUN = 256  # the next run twice the longest proven, up to this many
+# a run is searched point by point where its points' own proofs take no more boxes in all than its region's search
+# (before a region proof to compare with: interval_proof.FEW_BOXES)
 REGION_BUDGET = 4  # a region's search may evaluate this many times the boxes of the last point's own search
 # (at least interval_proof.SURE_BOXES): one reaching past the region's edge gives up there and is bisected
 
@@ -78,6 +81,11 @@ class Regions:
         self._proven: dict[int, tuple[str, float]] = {}  # point -> its proof's text, its share of the seconds
         self._probed = (0, 0.0)  # the solver calls and seconds of the probes for a region's edge, not yet charged
         self._found = -1  # the point a probe found with a design (the region's edge)
+        self._probes: dict[int, Solution] = {}  # the probes' solutions with a design, by point
+        self._edge_probe: Solution | None = None  # the solve of the edge's probe, for that point's own (uncharged)
+        self._alone = 0  # the boxes of the last proof of one point (its own verdict's or its own search's; the mean
+        # of the last run searched point by point)
+        self._region: int | None = None  # the boxes of the last region proof
 
     def covered(self, k: int) -> Solution | None:
         """Point k's verdict from a region proof, or None (solve it)."""
@@ -101,17 +109,48 @@ class Regions:
         return replace(solution, solver=replace(solution.solver, solves=solution.solver.solves + calls,
                                                 time_s=solution.solver.time_s + seconds))
 
-    def point(self, k: int, solve: Callable[[Solution | None], Solution], warm=None) -> Solution:
+    def point(self, k: int, solve: Callable[[Solution | None], Solution], warm=None,
+              beside: dict[str, float] | None = None) -> Solution:
         """Point k's solution, the one sequence of a sweep's point that is not batched: its region proof where one
-        covers it (:meth:`covered`), else one solve and its own interval search where the point before has no design
-        (:meth:`_quick`), else ``solve(first)``: the point's full verdict, continuing from that first solve where
-        there was one (``first``, see :func:`completed`), else from the start; the probes' calls charged to it, and
-        the regions told (:meth:`after`). ``warm``: the point's warm start (a static problem's)."""
+        covers it (:meth:`covered`), else its own interval search before any solve where a stretch without designs
+        likely starts at it (:meth:`_early`: ``beside``, the design of the point before, given), else one solve and
+        its own interval search where the point before has no design (:meth:`_quick`), else ``solve(first)``: the
+        point's full verdict, continuing from that first solve where there was one (``first``, see
+        :func:`completed`), else from the start; the probes' calls charged to it, and the regions told
+        (:meth:`after`). ``warm``: the point's warm start (a static problem's)."""
         solution, first = self.covered(k), None
-        if solution is None:
-            solution, first = self._quick(k, warm)
+        if solution is None and beside is not None:
+            solution = self._early(k, beside)
+        if solution is not None:
+            return solution
+        solution, first = self._quick(k, warm)
         if solution is None:
             solution = self.charged(solve(first))
+            self.after(k, solution)
+        if solution.status == "infeasible":  # (proven by its own search: its boxes)
+            self._alone = last_boxes(self.posed)
+        return solution
+
+    def _early(self, k: int, design: dict[str, float]) -> Solution | None:
+        """Point k, where a batch's chain from the point before (with ``design``) failed: its own interval search,
+        within FEW_BOXES, before any solve, unless the last point's own proof took more (the ball: hundreds of
+        boxes). Proven, it gets the verdict its full verdict gives ("proven infeasible: ...", the same search, whose
+        budget did not bind), with ``design`` re-evaluated in float64 at its values (where its full verdict shows its
+        least relaxation's), no solver call; else None (it is solved as usual; a point with a design costs this one
+        failed search: one box and its split, under a millisecond without integers; 3 ms on the ball before its
+        first proof). At the first point of a stretch without designs the full verdict had cost 20 ms on the lever
+        (SQP, warm and cold IPOPT, the elastic diagnosis, then the proof in one box)."""
+        if self.problem.start_up is not None or self._alone > FEW_BOXES:
+            return None
+        case = self.point_case(k)
+        began = time.perf_counter()
+        own = searches(self.posed, [_search_problem(self.posed, case)], [FEW_BOXES])[0]
+        if own is None or not own.proven:
+            return None
+        self._alone = last_boxes(self.posed, own.boxes)
+        solution = _covered(self.problem, case, _designed_as(self.problem, design),
+                            "proven infeasible: " + emptied(own), time.perf_counter() - began)
+        if solution is not None:
             self.after(k, solution)
         return solution
 
@@ -121,10 +160,12 @@ class Regions:
         the retries: the solve's design, or the verdict its proof gives, and None; or None and that solve (its
         verdict follows from it: :func:`completed`, which finds this search kept); or None, None where the point
         before has a design."""
-        if self._without_at != k - 1 or self.problem.start_up is not None:
+        quick = self._without_at == k - 1 and self.problem.start_up is None
+        probe = self._edge_solve(k, quick and warm is None)
+        if not quick:
             return None, None
         case = self.point_case(k)
-        first = self.charged(self.problem.refined(case, warm=warm))
+        first = self.charged(probe or self.problem.refined(case, warm=warm))
         if first.status in DESIGN_STATUSES:
             self.after(k, first)
             return first, None
@@ -161,10 +202,13 @@ class Regions:
         end = min(k + self._length, self.count)
         self._to, runs = end, [(k, end)] if end - k > 1 else []  # (a last point alone: Regions._quick)
         points = {j: _search_problem(self.posed, self.point_case(j)) for j in range(k, end)}
+        if runs and self._one_by_one(end - k):
+            self._search_each(k, end, points)
+            return
         longest = 1  # the longest run proven
         while runs:
             problems = [_region_problem([points[j] for j in range(a, b)]) for a, b in runs]
-            budget = min(max(REGION_BUDGET * last_boxes(self.posed), SURE_BOXES), MAX_BOXES)
+            budget = self._budget()
             began = time.perf_counter()
             outcomes = searches(self.posed, problems, [budget] * len(runs))
             seconds = time.perf_counter() - began
@@ -172,6 +216,7 @@ class Regions:
             for (a, b), problem, outcome in zip(runs, problems, outcomes):
                 if outcome is not None and outcome.proven:
                     last_boxes(self.posed, outcome.boxes)
+                    self._region = outcome.boxes
                     longest = max(longest, b - a)
                     text = _region_text(self.posed, a, b, problem, outcome)
                     for j in range(a, b):
@@ -188,6 +233,38 @@ class Regions:
                     # design found by a solve, else its own verdict with its own search)
             runs = halves
         self._length = min(2 * longest, LONGEST_RUN)
+
+    def _budget(self) -> int:
+        """The most boxes of a region's search: REGION_BUDGET times the last proof's (within SURE_BOXES, MAX_BOXES)."""
+        return min(max(REGION_BUDGET * last_boxes(self.posed), SURE_BOXES), MAX_BOXES)
+
+    def _one_by_one(self, count: int) -> bool:
+        """The ``count`` points of a run are searched each alone (:meth:`_search_each`): their own proofs, at the
+        boxes of the last point's own, are expected to take fewer boxes than the run's search, as many as the last
+        region proof took (before one, as the last point's own, or FEW_BOXES). Where one point's design space is
+        emptied in a few boxes, the interval of the varied quantity can cost far more: the lever over its speed, one
+        point in 1 box, 8 points together in 2,101 (its centrifugal torque takes the speed squared), 16 in 1,461.
+        Where a point's own proof takes hundreds of boxes, a region's takes about as many: the wedge over its
+        resisting torque (257 and 129 for 8 points), the ball (435 and 439 for 8 points over its contact stress;
+        1,397 and 937-1,345 for 8-64 points of the crusher's power)."""
+        alone = max(self._alone, 1)
+        return count * alone <= (self._region if self._region is not None else max(alone, FEW_BOXES))
+
+    def _search_each(self, k: int, end: int, points: dict) -> None:
+        """Points k .. end - 1 searched each alone, in one call (``interval_proof.searches``): a point proven gets its
+        own proof's verdict ("proven infeasible: ...", the words of its full verdict), another is solved as usual;
+        the next run twice as long where all are proven."""
+        budget = min(max(REGION_BUDGET * self._alone, FEW_BOXES), MAX_BOXES)  # (a point past the region's edge
+        # gives up after its first box where one proved in 1: the split to 128 passes the budget)
+        began = time.perf_counter()
+        outcomes = searches(self.posed, [points[j] for j in range(k, end)], [budget] * (end - k))
+        seconds = (time.perf_counter() - began) / (end - k)
+        proven = [(j, outcome) for j, outcome in zip(range(k, end), outcomes) if outcome is not None and outcome.proven]
+        for j, outcome in proven:
+            self._proven[j] = ("proven infeasible: " + emptied(outcome), seconds)
+        if proven:
+            self._alone = round(sum(outcome.boxes for _, outcome in proven) / len(proven))
+        self._length = min(2 * (end - k), LONGEST_RUN) if len(proven) == end - k else FIRST_RUN
 
     def _edge(self, k: int, end: int) -> int:
         """The end of the run from point k to ``end`` whose search met a design at one end: ``end``, or the first
@@ -208,15 +285,37 @@ class Regions:
         while designed - without > 1:
             middle = (without + designed) // 2
             without, designed = (without, middle) if self._designed(middle) else (middle, designed)
-        self._found = designed
+        self._found, self._edge_probe = designed, self._probes.get(designed)
+        self._probes = {}
+        self._charge(self._edge_probe, -1)  # (charged to the edge's point, whose solve it is: :meth:`_edge_solve`)
         return designed
 
     def _designed(self, j: int) -> bool:
         """Point j has a design by one solve (cold, undiagnosed); its calls are charged to the next verdict."""
         solution = self.problem.refined(self.point_case(j), diagnosed=False)
-        calls, seconds = self._probed
-        self._probed = (calls + solution.solver.solves, seconds + solution.solver.time_s)
+        self._charge(solution)
+        if solution.status in DESIGN_STATUSES:
+            self._probes[j] = solution
         return solution.status in DESIGN_STATUSES
+
+    def _edge_solve(self, k: int, usable: bool) -> Solution | None:
+        """At the region's edge found by the probes (point k), the probe's solve where it is the point's first
+        (``usable``: cold, as ``Problem.solve`` starts next to a point without a design; the same call, the same
+        design: the ball over its contact stress, 20 ms); else None, its calls then charged to the next verdict."""
+        probe = self._edge_probe if k == self._found else None
+        if probe is None:
+            return None
+        self._edge_probe = None
+        if usable:
+            return probe
+        self._charge(probe)
+        return None
+
+    def _charge(self, solution: Solution | None, sign: int = 1) -> None:
+        """The calls and seconds of a probe's ``solution`` added to those not yet charged (``sign`` -1: taken out)."""
+        if solution is not None:
+            calls, seconds = self._probed
+            self._probed = (calls + sign * solution.solver.solves, seconds + sign * solution.solver.time_s)
 
 
 def completed(problem, case, first: Solution | None, warm=None, neighbour: dict[str, float] | None = None) -> Solution:
@@ -247,6 +346,14 @@ def _region_text(posed, a: int, b: int, problem: tuple, outcome) -> str:
 
 def _shown(value: float, unit: str) -> str:
     return f"{float(from_si(value, unit)):.6g}"
+
+
+def _designed_as(problem, design: dict[str, float]) -> Solution:
+    """A solution carrying ``design`` alone, for :func:`_covered` to evaluate at a point's values."""
+    f = problem.formulation
+    return Solution(f.coupling, f.mode, problem.posed.objective.name, problem.posed.objective.unit, "infeasible",
+                    math.nan, dict(design), {}, [], SolverInfo("interval", "proven", 0, 0.0, 0),
+                    design_units={v.name: v.unit for v in f.variables})
 
 
 def _covered(problem, case, without: Solution, text: str, seconds: float, solves: int = 0) -> Solution | None:
