@@ -72,7 +72,7 @@ from clutchopt.optimise.integers import (INFEASIBLE, descend, downhill, excluded
                                          relaxation_seed, search_entry)
 from clutchopt.optimise.posed import Box, ScaledData, off_scale
 from clutchopt.optimise.problem import Problem
-from clutchopt.optimise.region_proof import Regions, completed
+from clutchopt.optimise.region_proof import Regions
 from clutchopt.optimise.solution import Solution, WarmStart
 from clutchopt.optimise.tightening import tightening
 from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL
@@ -216,7 +216,6 @@ class BatchSweep:
         self.searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
         self._undesigned: dict[tuple, tuple[int, str]] = {}  # integer combination -> the last point where IPOPT
         # found no design, and IPOPT's status there
-        self._tightening = tightening(self.posed, self.varied)
         varied = self.values[[q.name in self.varied for q in f.quantities]]
         with np.errstate(all="ignore"):  # each point's step in the case from the one before, relative
             moves = np.diff(varied, axis=1) / np.abs(varied[:, 1:])
@@ -311,8 +310,9 @@ class BatchSweep:
         at k, the point's own interval search goes first (``Regions.point``'s ``beside``: a stretch without designs
         often starts there)."""
         case = self.point_case(k)
-        solution = self._regions.point(k, lambda first: completed(self.problem, case, first, warm, self.feasible), warm,
-                                       self.feasible if failed else None)
+        solution = self._regions.point(k, lambda first: self.problem.solve(case, warm=warm, neighbour=self.feasible,
+                                                                           first=first),
+                                       warm, self.feasible if failed else None)
         self._counted(solution)
         if solution.status in DESIGN_STATUSES:
             self.feasible = solution.design
@@ -484,10 +484,17 @@ class BatchSweep:
         the float64 check refused), and the step from there to k only tightens the constraints (``tightening``): no
         design meets at k what none met there."""
         found = self._undesigned.get(combo)
-        if found is None or found[0] >= k or found[1] != INFEASIBLE or not self._tightening.tightened(self._by_point[found[0]],
-                                                                             self._by_point[k]):
+        if found is None or found[0] >= k or found[1] != INFEASIBLE:
+            return ""
+        if not self._tightening.tightened(self._by_point[found[0]], self._by_point[k]):
             return ""
         return f"ruled out: {found[1]} at point {found[0]}, whose limits the sweep has only tightened since"
+
+    @property
+    def _tightening(self):
+        """The sweep's :class:`~clutchopt.optimise.tightening.Tightening`, built on first use (kept by the posed
+        problem): only a sweep with integers asks."""
+        return tightening(self.posed, self.varied)
 
     def _tightens(self, k: int) -> bool:
         """The step from point k to the next only tightens the constraints (``tightening``)."""

@@ -52,12 +52,13 @@ class Problem:
 
     def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
               mesh: np.ndarray | None = None, refine: bool = True, neighbour: dict[str, float] | None = None,
-              coarser: float = math.inf) -> Solution:
+              coarser: float = math.inf, first: Solution | None = None) -> Solution:
         """Solve for one case (:meth:`refined`); a solve that ends without a design is retried from the starts that
         can reach one before its verdict is given (:func:`clutchopt.optimise.verdict.shown`): ``neighbour``, the
-        feasible design of a neighbouring point (a sweep's), among them."""
+        feasible design of a neighbouring point (a sweep's), among them. ``first``: that first solve, where a caller
+        has made it already (a sweep's quick solve of a point its interval search did not prove)."""
         try:
-            solution = self.refined(case, start, warm, mesh, refine, coarser=coarser)
+            solution = first or self.refined(case, start, warm, mesh, refine, coarser=coarser)
         except InputError:  # a start-up whose first simulation fails from this design: from the papers' sizing
             if self.start_up is None or (start is None and warm is None):
                 raise

@@ -32,8 +32,8 @@ the next point's verdict.
 A point left over next to a proven one is tested against that proof first (:meth:`Regions._quick`): solved once, as
 ``Problem.solve`` starts (its design, if it finds one, is ``solve``'s), else its own interval search, the one its full
 verdict would run, before the retries: proven, it gets the verdict ``solve`` gives ("proven infeasible: ..."), else
-its full verdict goes on from that solve (:func:`completed`: the retries, then the kept search), not from the same
-solve again (20-40 ms each time it had been repeated). A point whose case
+its full verdict goes on from that solve (``Problem.solve``'s ``first``: the retries, then the kept search), not
+from the same solve again (20-40 ms each time it had been repeated). A point whose case
 breaks a requirement that no design variable enters ("whatever the design"), or (a start-up) whose drive proofs
 hold, is left to its own verdict, which says so.
 
@@ -56,7 +56,7 @@ from clutchopt.optimise.interval_proof import (FEW_BOXES, MAX_BOXES, SURE_BOXES,
                                                last_boxes, searches)
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
-from clutchopt.optimise.verdict import emptied, shown
+from clutchopt.optimise.verdict import emptied
 from clutchopt.optimise.verify import DESIGN_STATUSES, check_design, evaluate_objective, evaluate_outputs
 from clutchopt.units import from_si
 
@@ -116,7 +116,7 @@ class Regions:
         likely starts at it (:meth:`_early`: ``beside``, the design of the point before, given), else one solve and
         its own interval search where the point before has no design (:meth:`_quick`), else ``solve(first)``: the
         point's full verdict, continuing from that first solve where there was one (``first``, see
-        :func:`completed`), else from the start; the probes' calls charged to it, and the regions told
+        ``Problem.solve``'s ``first``), else from the start; the probes' calls charged to it, and the regions told
         (:meth:`after`). ``warm``: the point's warm start (a static problem's)."""
         solution, first = self.covered(k), None
         if solution is None and beside is not None:
@@ -158,8 +158,8 @@ class Regions:
         """Point k, not covered, next to a point without a design (a static problem): one solve (``Problem.solve``'s
         first, ``warm`` its warm start), and where it ends without a design the point's own interval search before
         the retries: the solve's design, or the verdict its proof gives, and None; or None and that solve (its
-        verdict follows from it: :func:`completed`, which finds this search kept); or None, None where the point
-        before has a design."""
+        verdict follows from it: ``Problem.solve`` given it as ``first``, which finds this search kept); or None,
+        None where the point before has a design."""
         quick = self._without_at == k - 1 and self.problem.start_up is None
         probe = self._edge_solve(k, quick and warm is None)
         if not quick:
@@ -316,15 +316,6 @@ class Regions:
         if solution is not None:
             calls, seconds = self._probed
             self._probed = (calls + sign * solution.solver.solves, seconds + sign * solution.solver.time_s)
-
-
-def completed(problem, case, first: Solution | None, warm=None, neighbour: dict[str, float] | None = None) -> Solution:
-    """``Problem.solve(case, warm=warm, neighbour=neighbour)``'s solution, continuing from its first solve ``first``
-    where it was already made (``Regions._quick``'s, without a design): the retries and the verdict
-    (``verdict.shown``), not the same solve again."""
-    if first is None:
-        return problem.solve(case, warm=warm, neighbour=neighbour)
-    return shown(problem, case, first, warm is not None, neighbour)
 
 
 def _region_problem(points: list[tuple[np.ndarray, ...]]) -> tuple[np.ndarray, ...]:

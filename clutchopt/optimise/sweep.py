@@ -40,7 +40,7 @@ from clutchopt.optimise.dask_client import connect
 from clutchopt.optimise.design import Robustness, check_robustness, design_case, method_of
 from clutchopt.optimise.entering import check_entering
 from clutchopt.optimise.problem import case_formulation, case_problem
-from clutchopt.optimise.region_proof import Regions, completed
+from clutchopt.optimise.region_proof import Regions
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.start_up_sweep import solved_along
 from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_name, grid_points, grid_positions,
@@ -160,14 +160,14 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
 def _solved(problem, case: Case, values: dict, previous: Solution | None, feasible: tuple[dict, Solution] | None,
             neighbour: Solution | None, first: Solution | None) -> Solution:
     """A point's full verdict in a sweep solved point by point (continuing from ``first``, a solve already made:
-    ``region_proof.completed``): falls back to the case's own start by itself; a start-up design starts from the point
-    before's optimum on the first mesh (clutchopt.optimise.start_up_sweep), else as `solve` does, from the papers'
+    ``Problem.solve``'s ``first``): falls back to the case's own start by itself; a start-up design starts from the
+    point before's optimum on the first mesh (clutchopt.optimise.start_up_sweep), else as `solve` does, from the papers'
     sizing at the point: either way solve's design whatever the points before it. Without a design, followed from the
     last feasible point (:func:`continued`)."""
     point_case = case.with_values(**values)
     solution = solved_along(problem, point_case, previous) if problem.start_up is not None else None
-    solution = solution or completed(problem, point_case, first, previous if problem.start_up is None else None,
-                                     neighbour.design if neighbour is not None else None)
+    solution = solution or problem.solve(point_case, warm=previous if problem.start_up is None else None,
+                                         neighbour=neighbour.design if neighbour is not None else None, first=first)
     if solution.status not in DESIGN_STATUSES and feasible is not None:
         solution = continued(problem, case, feasible, values) or solution
     return solution
