@@ -59,3 +59,17 @@ def test_a_load_above_the_motor_within_the_lock_up_window_is_still_proven():
     assert any("29.6 N*m" in proof and "33 N*m" in proof for proof in start_up_proofs(over_speed))
     late = _wedge_with_profile("time", ["0 s", "10.5 s", "20 s"], ["5 N*m", "5 N*m", "40 N*m"])
     assert any("breakdown_torque 37 N*m" in proof and "40 N*m" in proof for proof in start_up_proofs(late))
+
+
+def test_a_lining_proof_just_over_its_edge_shows_its_two_numbers_apart():
+    """A constant-speed start (no motor_curve, no load) releases J w^2 / 2 = 0.25 (1000 pi / 30)^2 = 2741.556778 J
+    whatever the design: max_friction_work 5e-7 below it read "at least 2741.56 J, above its limit 2741.56 J". The
+    pair is now shown with the digits that tell its two numbers apart (7 here: 2741.557 and 2741.555)."""
+    data = tomllib.loads((CASES / "wedge_motor_start.toml").read_text())
+    data["start_up"]["effects"].remove("motor_curve")
+    del data["start_up"]["driver"]
+    data["start_up"]["driven"] = {"resisting_torque": "0 N*m"}
+    work = 0.25 * (1000 * RPM) ** 2
+    data["start_up"]["limits"]["max_friction_work"] = f"{work * (1 - 5e-7)!r} J"
+    proof = next(p for p in start_up_proofs(parse_case(data)) if p.startswith("friction_work"))
+    assert "at least 2741.557 J, above its limit 2741.555 J" in proof

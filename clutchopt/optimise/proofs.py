@@ -76,6 +76,16 @@ def start_up_proofs(case) -> list[str]:
 WINDOW = {"speed": "from min_lock_up_speed to the synchronous speed", "time": "until max_start_time"}
 
 
+def told_apart(a: float, b: float, digits: int = 6) -> tuple[str, str]:
+    """``a`` and ``b`` in at least ``digits`` significant digits, more where they would read the same (a proof just
+    over its edge read "at least 2741.56 J, above its limit 2741.56 J")."""
+    for shown_digits in range(digits, 18):
+        shown = f"{a:.{shown_digits}g}", f"{b:.{shown_digits}g}"
+        if shown[0] != shown[1]:
+            break
+    return shown
+
+
 def least_at_lock_up(profile, lock_up: float, synchronous: float, max_start_time: float) -> float:
     """The least load (N*m) the machine can ask when the drive locks up: over its speeds from ``lock_up`` w_L,min to
     ``synchronous`` w_s, or over the times up to ``max_start_time`` (a load rising after the start, or a breakaway
@@ -144,8 +154,8 @@ def lining_proofs(case) -> list[str]:
 
     def beyond(name: str, least: float, limit: float, what: str, unit: str = "K", offset: float = 0.0) -> None:
         if least > limit * (1.0 + 1e-9):
-            found.append(f"{name}: {why}, so {what} at least {least - offset:.6g} {unit}, above its limit "
-                         f"{limit - offset:.6g} {unit}")
+            shown, allowed = told_apart(least - offset, limit - offset)
+            found.append(f"{name}: {why}, so {what} at least {shown} {unit}, above its limit {allowed} {unit}")
 
     if "max_friction_work" in limits:
         beyond("friction_work", work, v["max_friction_work"], "the heat of a start is", "J")
