@@ -168,8 +168,8 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
     solution = solved_along(problem, point_case, previous) if problem.start_up is not None else None
     solution = solution or problem.solve(point_case, warm=previous if problem.start_up is None else None,
                                          neighbour=neighbour.design if neighbour is not None else None, first=first)
-    if solution.status not in DESIGN_STATUSES and feasible is not None:
-        solution = continued(problem, case, feasible, values) or solution
+    if solution.status not in DESIGN_STATUSES and solution.status != "infeasible" and feasible is not None:
+        solution = continued(problem, case, feasible, values) or solution  # (a proven point: no design to follow)
     return solution
 
 
