@@ -228,7 +228,7 @@ def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
 def test_a_point_its_own_search_does_not_prove_continues_its_verdict_from_its_first_solve(monkeypatch):
     # The wedge paper case at 12 resisting torques from 20 to 400 N m with every region search and quick search made
     # to fail (as where a point's bounds are too loose): each point after the first without a design (3) is solved
-    # once (cold IPOPT, no design), then its verdict goes on from that solve (region_proof.completed), not from the
+    # once (cold IPOPT, no design), then its verdict goes on from that solve (Problem.solve's first=), not from the
     # same solve again (4 calls a point before): its elastic relaxation finds the constraints apart, so the full
     # verdict's own interval search runs first and proves it, as solve's, without the retries (1 call a point; 3
     # before, with the retries from the least relaxation's design and from the last feasible point's, 89.09 N m).

@@ -73,3 +73,20 @@ def test_a_load_that_drives_the_machine_bounds_the_start_by_momentum_alone():
     shortest, how = shortest_start(10.0, 0.1, 150.0, 157.0, 100.0, 0.2, -200.0)
     assert shortest == pytest.approx(10.1 * 150.0 / 300.0, rel=1e-12) and "peak power" not in how
     assert shortest_start(10.0, 0.1, 150.0, 157.0, 100.0, 0.2, 0.0)[0] == pytest.approx(10.1 * 150.0 / 100.0)
+
+
+def test_a_point_the_drive_proves_is_not_followed_by_continuation(monkeypatch):
+    """wedge_motor_start swept over max_start_time 3, 1.4, 1.3 s: the momentum bound (1.469 s) proves the last two
+    before any solve; continuation from the first point's design towards them (start-up solves whose result the
+    proof makes moot, uncounted) was still run, about 0.1-0.2 s a point."""
+    import clutchopt.optimise.sweep as sweep_module
+    from clutchopt.optimise.sweep import Sweep
+    from clutchopt.optimise.sweep_grid import parse_vary
+
+    followed = []
+    real = sweep_module.continued
+    monkeypatch.setattr(sweep_module, "continued", lambda *args: followed.append(args[3]) or real(*args))
+    case = load_case(CASES / "wedge_motor_start.toml")
+    result = Sweep(case, [parse_vary("max_start_time=3,1.4,1.3", case.coupling, case.quantities)]).run(progress=False)
+    assert result.frame["status"].tolist() == ["optimal", "infeasible", "infeasible"]
+    assert followed == []

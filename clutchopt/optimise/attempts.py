@@ -82,5 +82,5 @@ def warm_multipliers(posed: Posed, lam_x: np.ndarray, lam_g: np.ndarray) -> tupl
     about 1e-11 on inactive bounds and constraints (an interior point); CasADi's SQP (qrqp) reads any non-zero
     multiplier as an active bound, fixes the variable there and stops on a search direction too small (the
     wedge's first re-solve after a cold IPOPT solve did)."""
-    tol = 10 * posed.options.tol
+    tol = posed.kkt_tolerance
     return tuple(np.where(np.abs(lam) > tol, lam, 0.0) for lam in (lam_x, lam_g))

@@ -68,7 +68,7 @@ from clutchopt.optimise.attempts import warm_multipliers
 from clutchopt.optimise.batch_pace import BatchPace, until_active
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
 from clutchopt.optimise.chain import chain_verdict, chained_sqp
-from clutchopt.optimise.integers import (INFEASIBLE, descend, downhill, excluded_entry, nearest_integers,
+from clutchopt.optimise.integers import (INFEASIBLE, descend, downhill, excluded_entry, nearest_integers, priced,
                                          relaxation_seed, search_entry)
 from clutchopt.optimise.posed import Box, ScaledData, off_scale
 from clutchopt.optimise.problem import Problem
@@ -292,12 +292,12 @@ class BatchSweep:
         if not self.integer:
             return None
         scale = block.arrays["p"][len(self.values):len(self.values) + len(self.names), -1]
-        gain = np.abs(block.arrays["lam_x"][self.integer, -1]) / scale[self.integer]
-        if np.any(gain > self.posed.negligible(float(block.arrays["f"][0, -1]))):
+        if np.any(priced(self.posed, block.arrays["lam_x"][self.integer, -1], scale[self.integer],
+                         float(block.arrays["f"][0, -1]))):
             return None
         last = int(block.index[-1]) + 1
         return until_active(self.posed, block, self._ratio[last:last + LONGEST_BATCH], self._free,
-                            10 * self.posed.options.tol)
+                            self.posed.kkt_tolerance)
 
     def _start_of(self, solution: Solution) -> _Start | None:
         return _Start(self, solution) if solution.status == "optimal" else None

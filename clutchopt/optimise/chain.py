@@ -28,7 +28,7 @@ def kkt(posed: Posed) -> ca.Function:
         x, lam_g, g = posed.nlp["x"], posed.lam_g, posed.nlp["g"][: posed.n_ineq]
         gradient = ca.gradient(posed.lagrangian, x)
         lam_x, lbx, ubx = (ca.SX.sym(name, x.shape[0]) for name in ("lam_x", "lbx", "ubx"))
-        tol = 10 * posed.options.tol
+        tol = posed.kkt_tolerance
         ineq = lam_g[: posed.n_ineq]
         width = tol * ca.fmax(1.0, ca.fabs(x))
         wrong_bound = ca.logic_or(ca.logic_and(lam_x > tol, ubx - x > width),

@@ -26,7 +26,7 @@ from dataclasses import replace
 from clutchopt.cases import Case
 from clutchopt.optimise.solution import Diagnosis, Solution, SolverInfo
 
-KEPT = 256  # failures kept per problem (a sweep's run of points without a design, a few starts each)
+KEPT = 256  # failures and tried starts kept per problem (a sweep's run of points without a design, a few starts each)
 
 
 def _digits(value) -> float:
@@ -70,5 +70,7 @@ class FailedStarts:
         last = self._tried.get(start_key)
         if last is not None and last[0] == rest and last[2] == reason and last[1] in self._failed:
             return True
+        if len(self._tried) >= KEPT and start_key not in self._tried:
+            self._tried.pop(next(iter(self._tried)))  # (the oldest: a problem is kept for the process)
         self._tried[start_key] = (rest, at, reason)
         return False

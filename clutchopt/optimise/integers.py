@@ -89,6 +89,13 @@ def _neighbours(x, integer, lower, upper, reach: int = 1):
     return [np.array(combo, dtype=float) for combo in itertools.product(*choices)]
 
 
+def priced(posed: Posed, lam: np.ndarray, scale: np.ndarray, f_hat) -> np.ndarray:
+    """Per fixed integer (its bound multiplier ``lam``, its ``scale``), the direction of a unit step in which the
+    scaled objective falls to first order, -|lam| / scale; 0 where that gain is within the solver's tolerance of
+    the objective (``Posed.negligible``)."""
+    return np.where(np.abs(lam) / scale > posed.negligible(f_hat), np.sign(lam), 0.0)
+
+
 def downhill(posed: Posed, run: dict, box: Box, integer: list[int]) -> list[np.ndarray]:
     """Neighbours of a fixed-integer optimum in the directions its objective falls to first order.
 
@@ -96,9 +103,7 @@ def downhill(posed: Posed, run: dict, box: Box, integer: list[int]) -> list[np.n
     scaled objective by about -|lam_x_i| / scale_i in the direction sign(lam_x_i). Where f*(n) is convex in
     the integers (the premise of rounding a relaxation at all), the other direction cannot win, nor can this
     one when the first-order gain is below the solver's tolerance of the objective."""
-    lam = run["lam_x"][integer]
-    gain = np.abs(lam) / box.scale[integer]
-    steps = np.where(gain > posed.negligible(run["f"]), np.sign(lam), 0.0)
+    steps = priced(posed, run["lam_x"][integer], box.scale[integer], run["f"])
     current = np.round(run["x"][integer] * box.scale[integer])
     choices = [sorted({c, min(max(c + s, lo), hi)}, key=lambda k: k != c + s)
                for c, s, lo, hi in zip(current, steps, box.lower[integer], box.upper[integer])]

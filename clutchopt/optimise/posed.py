@@ -281,10 +281,15 @@ class Posed:
         ends = np.cumsum(self.constraint_rows)
         return [float(lam_g[end - rows:end].sum()) for rows, end in zip(self.constraint_rows, ends)]
 
+    @property
+    def kkt_tolerance(self) -> float:
+        """The KKT verdict's tolerance (10 tol): of the scaled stationarity, feasibility and complementarity."""
+        return 10 * self.options.tol
+
     def negligible(self, f_hat):
         """A change of the scaled objective within the solver's tolerance of it (elementwise for arrays; symbolic
         for CasADi)."""
-        return 10 * self.options.tol * fmax(abs(f_hat), 1e-300)
+        return self.kkt_tolerance * fmax(abs(f_hat), 1e-300)
 
 
 def off_scale(x_hat: np.ndarray) -> np.ndarray:

@@ -70,8 +70,8 @@ REGION_BUDGET = 4  # a region's search may evaluate this many times the boxes of
 
 class Regions:
     """Along a sweep (points 0 .. count - 1 in order, ``point_case(k)`` the case of point k, ``problem`` its built
-    problem): :meth:`covered` gives point k's verdict where a region proof covers it (searching the run from k where
-    the point before has no design); :meth:`after` takes each point's solution."""
+    problem): :meth:`point` gives point k's solution, from a region proof that covers it (searching the run from k
+    where the point before has no design), a search of its own or its solve."""
 
     def __init__(self, problem, point_case, count: int):
         self.problem, self.posed, self.point_case, self.count = problem, problem.posed, point_case, count

@@ -24,7 +24,7 @@ from collections.abc import Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from functools import cached_property, partial
+from functools import cached_property, lru_cache, partial
 from typing import Callable, Iterator
 
 import numpy as np
@@ -133,12 +133,13 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
     designs: dict[tuple, Solution] = {}  # feasible designs by the point's values
     waiting: list[tuple[int, Case, Solution]] = []  # points without a design, until the next feasible one
     pairs = list(points.pairs())
-    regions = Regions(problem, lambda k: case.with_values(**pairs[k][1]), len(pairs))
+    case_at = lru_cache(maxsize=2)(lambda k: case.with_values(**pairs[k][1]))  # (the regions read the next one)
+    regions = Regions(problem, case_at, len(pairs))
     for j, (index, values) in enumerate(pairs):
-        point_case = case.with_values(**values)
+        point_case = case_at(j)
         neighbour = designs.get(tuple(values.values())) or (feasible[1] if feasible else None)
         # next to a point without a design: proven with the points around it, or solved once and proven alone
-        solution = regions.point(j, partial(_solved, problem, case, values, previous, feasible, neighbour),
+        solution = regions.point(j, partial(_solved, problem, case, point_case, values, previous, feasible, neighbour),
                                  previous if problem.start_up is None else None)
         previous = solution if solution.status == "optimal" else None
         if solution.status not in DESIGN_STATUSES:
@@ -157,19 +158,18 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
     yield from (_one(points, w, names, waited) for w, _, waited in waiting)
 
 
-def _solved(problem, case: Case, values: dict, previous: Solution | None, feasible: tuple[dict, Solution] | None,
-            neighbour: Solution | None, first: Solution | None) -> Solution:
+def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solution | None,
+            feasible: tuple[dict, Solution] | None, neighbour: Solution | None, first: Solution | None) -> Solution:
     """A point's full verdict in a sweep solved point by point (continuing from ``first``, a solve already made:
     ``Problem.solve``'s ``first``): falls back to the case's own start by itself; a start-up design starts from the
     point before's optimum on the first mesh (clutchopt.optimise.start_up_sweep), else as `solve` does, from the papers'
     sizing at the point: either way solve's design whatever the points before it. Without a design, followed from the
-    last feasible point (:func:`continued`)."""
-    point_case = case.with_values(**values)
+    last feasible point (:func:`continued`). ``point_case``: ``case`` with ``values``."""
     solution = solved_along(problem, point_case, previous) if problem.start_up is not None else None
     solution = solution or problem.solve(point_case, warm=previous if problem.start_up is None else None,
                                          neighbour=neighbour.design if neighbour is not None else None, first=first)
-    if solution.status not in DESIGN_STATUSES and feasible is not None:
-        solution = continued(problem, case, feasible, values) or solution
+    if solution.status not in DESIGN_STATUSES and solution.status != "infeasible" and feasible is not None:
+        solution = continued(problem, case, feasible, values) or solution  # (a proven point: no design to follow)
     return solution
 
 

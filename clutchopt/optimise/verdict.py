@@ -9,7 +9,8 @@ point: ``clutchopt.optimise.sweep.solve_points``). The first that reaches a desi
 verdict says how sure it is:
 
 - ``infeasible``: proven. A requirement no design variable enters is broken (the diagnosis's "whatever the
-  design"), or the drive cannot do what the start-up asks of any coupling (:mod:`clutchopt.optimise.proofs`), or
+  design"), or the drive cannot do what the start-up asks of any coupling (:mod:`clutchopt.optimise.proofs`, given
+  by ``Problem.proven`` before any solve), or
   interval branch and bound shows that no design within the bounds meets the formulation's constraints
   (:mod:`clutchopt.optimise.interval_proof`; should it meet a design of the relaxation instead, the solve is
   retried from there);
@@ -26,7 +27,6 @@ from dataclasses import replace
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.optimise.interval_proof import SURE_BOXES, empty_design_space
-from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.verify import DESIGN_STATUSES
 
@@ -37,11 +37,10 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
     first_label = "the start given" if started else ("the papers' sizing" if problem.start_up is not None
                                                      else "the case's own start")
     tried = [(first_label, first)]
-    # a drive that starts no coupling as the case asks is proven so before any retry, and not solved again
-    proofs = start_up_proofs(case) if problem.start_up is not None else []
-    early = (empty_design_space(problem.posed, case, SURE_BOXES) if _relaxed_apart(problem, first) and not proofs
-             else None)  # (before the retries, the boxes every search evaluates: proven, no start reaches a design,
-    # and none is tried; where a retry finds one, a search that cannot prove has cost these, not up to MAX_BOXES)
+    proofs: list[str] = []  # (a drive that starts no coupling as asked is proven before any solve: Problem.proven)
+    early = empty_design_space(problem.posed, case, SURE_BOXES) if _relaxed_apart(problem, first) else None
+    # (before the retries, the boxes every search evaluates: proven, no start reaches a design, and none is tried;
+    # where a retry finds one, a search that cannot prove has cost these, not up to MAX_BOXES)
     if early is not None and early.proven:
         proofs = [emptied(early)]
     if not (first.diagnosed and first.diagnosed.proven) and not proofs:
