@@ -7,7 +7,10 @@ of every coupling, because they bound what the drive can do:
 
 - the motor cannot hold the machine at the lock-up speed asked for: above the breakdown speed w_s (1 - s_k) the
   Kloss torque falls with speed, so the largest torque at or above w_L,min is T(w_L,min) there (T_k below it); a
-  locked drive turning at w >= w_L,min needs T_m(w) >= T_c;
+  locked drive turning at w >= w_L,min needs T_m(w) >= T_c, the load when it locks: a profile's least over the
+  speeds from w_L,min to w_s or the times up to t_max (not its largest: a load rising after the start, or a
+  breakaway below w_L,min, was proven against a design that exists); its largest against T_k is the case's own
+  motor_breakdown_torque;
 - the motor cannot bring the masses to the lock-up speed in time: at lock-up motor and machine turn at
   w_L >= w_L,min, so the motor has put in at least (J + J_m) w_L,min^2 / 2 (slip heat and the load's work come on
   top); it delivers at most P_peak = max_w T(w) w (at the slip s_k (sqrt(1 + s_k^2) - s_k)), so
@@ -46,7 +49,7 @@ def start_up_proofs(case) -> list[str]:
         return []
     w_s, t_k, s_k, w_l = v["synchronous_speed"], v["breakdown_torque"], v["breakdown_slip"], v["min_lock_up_speed"]
     profile = case.start_up.load_profile
-    load = max(profile.values) if profile is not None else v["load_torque"]
+    load = v["load_torque"] if profile is None else least_at_lock_up(profile, w_l, w_s, v["max_start_time"])
     proofs = []
     if w_l >= w_s:
         proofs.append(f"min_lock_up_speed {w_l * 30 / math.pi:.6g} rpm is not below the motor's synchronous speed "
@@ -54,10 +57,13 @@ def start_up_proofs(case) -> list[str]:
         return proofs
     largest = t_k if w_l < w_s * (1.0 - s_k) else float(kloss_torque(w_l, w_s, t_k, s_k))
     if largest < load:
-        named = "load_profile at its largest" if profile is not None else "load_torque"
+        named = f"load_profile at its least {WINDOW[profile.over]}" if profile is not None else "load_torque"
         proofs.append(f"the motor gives at most {largest:.6g} N*m (breakdown_torque {t_k:.6g} N*m) at or above "
                       f"min_lock_up_speed {w_l * 30 / math.pi:.6g} rpm, less than the machine's {named} "
                       f"{load:.6g} N*m")
+    elif t_k < v["load_torque"]:  # a profile's largest value (motor_breakdown_torque, whatever the design)
+        proofs.append(f"the motor's breakdown_torque {t_k:.6g} N*m is below the machine's load_profile at its "
+                      f"largest {v['load_torque']:.6g} N*m (motor_breakdown_torque)")
     least = min(profile.values) if profile is not None else v["load_torque"]
     shortest, how = shortest_start(v["driven_inertia"], v["motor_inertia"], w_l, w_s, t_k, s_k, least)
     if shortest > v["max_start_time"] * (1.0 + 1e-6):
@@ -65,6 +71,29 @@ def start_up_proofs(case) -> list[str]:
                       f"rpm takes at least {shortest:.4g} s {how}, more than max_start_time "
                       f"{v['max_start_time']:.6g} s")
     return proofs + lining_proofs(case)
+
+
+WINDOW = {"speed": "from min_lock_up_speed to the synchronous speed", "time": "until max_start_time"}
+
+
+def told_apart(a: float, b: float, digits: int = 6) -> tuple[str, str]:
+    """``a`` and ``b`` in at least ``digits`` significant digits, more where they would read the same (a proof just
+    over its edge read "at least 2741.56 J, above its limit 2741.56 J")."""
+    for shown_digits in range(digits, 18):
+        shown = f"{a:.{shown_digits}g}", f"{b:.{shown_digits}g}"
+        if shown[0] != shown[1]:
+            break
+    return shown
+
+
+def least_at_lock_up(profile, lock_up: float, synchronous: float, max_start_time: float) -> float:
+    """The least load (N*m) the machine can ask when the drive locks up: over its speeds from ``lock_up`` w_L,min to
+    ``synchronous`` w_s, or over the times up to ``max_start_time`` (a load rising after the start, or a breakaway
+    below w_L,min, is no load at lock-up). The table is linear between its points and held beyond its ends, so its
+    least over [a, b] is at a, b or a point between."""
+    low, high = (lock_up, synchronous) if profile.over == "speed" else (0.0, max_start_time * (1.0 + 1e-6))
+    inside = [y for x, y in zip(profile.points, profile.values) if low < x < high]
+    return min([float(profile.at(low, low)), float(profile.at(high, high)), *inside])
 
 
 def shortest_start(driven: float, motor: float, lock_up: float, synchronous: float, breakdown: float, slip: float,
@@ -125,8 +154,8 @@ def lining_proofs(case) -> list[str]:
 
     def beyond(name: str, least: float, limit: float, what: str, unit: str = "K", offset: float = 0.0) -> None:
         if least > limit * (1.0 + 1e-9):
-            found.append(f"{name}: {why}, so {what} at least {least - offset:.6g} {unit}, above its limit "
-                         f"{limit - offset:.6g} {unit}")
+            shown, allowed = told_apart(least - offset, limit - offset)
+            found.append(f"{name}: {why}, so {what} at least {shown} {unit}, above its limit {allowed} {unit}")
 
     if "max_friction_work" in limits:
         beyond("friction_work", work, v["max_friction_work"], "the heat of a start is", "J")
