@@ -90,3 +90,15 @@ def test_a_point_the_drive_proves_is_not_followed_by_continuation(monkeypatch):
     result = Sweep(case, [parse_vary("max_start_time=3,1.4,1.3", case.coupling, case.quantities)]).run(progress=False)
     assert result.frame["status"].tolist() == ["optimal", "infeasible", "infeasible"]
     assert followed == []
+
+
+def test_through_an_elastic_link_the_rotor_s_inertia_is_not_counted():
+    """The cable's start ends when the machine reaches w_L, the rotor at any speed w_a >= 0 and the link twisted:
+    momentum J w_L + J_m w_a <= (T_k - T_c,min) t (+ J_m w_s gathered at rest) bounds the start by J alone. J = 10,
+    J_m = 2 kg m^2, w_L = 150 rad/s, T_k = 100 N m, s_k = 0.2, w_s = 157 rad/s, load 0: rigid (10 + 2) x 150 / 100 =
+    18 s; elastic 10 x 150 / 100 = 15 s (the energy bound, 0.5 x 10 x 150^2 / 12,872 W = 8.7 s, is less)."""
+    assert shortest_start(10.0, 2.0, 150.0, 157.0, 100.0, 0.2, 0.0)[0] == pytest.approx(18.0, rel=1e-12)
+    assert shortest_start(10.0, 2.0, 150.0, 157.0, 100.0, 0.2, 0.0, rigid=False)[0] == pytest.approx(15.0, rel=1e-12)
+    cable = load_case(CASES / "cable_motor_start.toml")
+    proofs = start_up_proofs(cable.with_values(breakdown_torque=0.5 * cable.values["load_torque"]))
+    assert not any("less than the machine's" in proof for proof in proofs)  # no torque proof through a link

@@ -20,7 +20,10 @@ of every coupling, because they bound what the drive can do:
   rotor gathers at most J_m w_s (an induction motor driving a coupling from rest stays below w_s,
   where its torque ends); once it moves T_r = T_c >= T_c,min, the least of the load. So
   (J + J_m) w_L,min - J_m w_s <= (T_k - T_c,min) t_start, and over the whole start, T_r >= min(0, T_c,min),
-  (J + J_m) w_L,min <= (T_k - min(0, T_c,min)) t_start; the start takes at least the largest of the three;
+  (J + J_m) w_L,min <= (T_k - min(0, T_c,min)) t_start; the start takes at least the largest of the three. Through
+  an elastic link (the cable's) the start ends when the machine reaches w_L,min, the rotor at any w_a >= 0 and the
+  link twisted: J takes the place of J + J_m in each bound (the rotor's momentum and energy, and the link's, only
+  add), and the torque at lock-up proves nothing (the link passes more than T_k while the rotor slows);
 - the lining cannot stay within its limits (effect friction_heat): while the coupling slips it passes T >= J dw/dt
   (the load takes T_c >= 0 on top) at a driving speed w_a >= w_e (below its engagement speed it passes nothing), so
   the slip heat of a start, the integral of T (w_a - w), is at least J (integral from 0 to w_e of (w_e - w) dw) =
@@ -34,6 +37,8 @@ from __future__ import annotations
 
 import math
 
+from clutchopt.formulations import get_coupling
+from clutchopt.model import ElasticLaw
 from clutchopt.start_up.equations import kloss_torque
 
 
@@ -56,18 +61,21 @@ def start_up_proofs(case) -> list[str]:
                       f"{w_s * 30 / math.pi:.6g} rpm, where an induction motor gives no torque")
         return proofs
     largest = t_k if w_l < w_s * (1.0 - s_k) else float(kloss_torque(w_l, w_s, t_k, s_k))
-    if largest < load:
+    rigid = not isinstance(get_coupling(case.coupling).formulation().speed_law, ElasticLaw)
+    if largest < load and rigid:
         named = f"load_profile at its least {WINDOW[profile.over]}" if profile is not None else "load_torque"
         proofs.append(f"the motor gives at most {largest:.6g} N*m (breakdown_torque {t_k:.6g} N*m) at or above "
                       f"min_lock_up_speed {w_l * 30 / math.pi:.6g} rpm, less than the machine's {named} "
                       f"{load:.6g} N*m")
-    elif t_k < v["load_torque"]:  # a profile's largest value (motor_breakdown_torque, whatever the design)
-        proofs.append(f"the motor's breakdown_torque {t_k:.6g} N*m is below the machine's load_profile at its "
-                      f"largest {v['load_torque']:.6g} N*m (motor_breakdown_torque)")
+    elif t_k < v["load_torque"]:  # the load's largest value (motor_breakdown_torque, whatever the design)
+        named = "load_profile at its largest" if profile is not None else "load_torque"
+        proofs.append(f"the motor's breakdown_torque {t_k:.6g} N*m is below the machine's {named} "
+                      f"{v['load_torque']:.6g} N*m (motor_breakdown_torque)")
     least = min(profile.values) if profile is not None else v["load_torque"]
-    shortest, how = shortest_start(v["driven_inertia"], v["motor_inertia"], w_l, w_s, t_k, s_k, least)
+    shortest, how = shortest_start(v["driven_inertia"], v["motor_inertia"], w_l, w_s, t_k, s_k, least, rigid)
     if shortest > v["max_start_time"] * (1.0 + 1e-6):
-        proofs.append(f"bringing {v['driven_inertia'] + v['motor_inertia']:.6g} kg*m^2 to {w_l * 30 / math.pi:.6g} "
+        moved = v["driven_inertia"] + (v["motor_inertia"] if rigid else 0.0)
+        proofs.append(f"bringing {moved:.6g} kg*m^2 to {w_l * 30 / math.pi:.6g} "
                       f"rpm takes at least {shortest:.4g} s {how}, more than max_start_time "
                       f"{v['max_start_time']:.6g} s")
     return proofs + lining_proofs(case)
@@ -97,13 +105,16 @@ def least_at_lock_up(profile, lock_up: float, synchronous: float, max_start_time
 
 
 def shortest_start(driven: float, motor: float, lock_up: float, synchronous: float, breakdown: float, slip: float,
-                   least_load: float) -> tuple[float, str]:
+                   least_load: float, rigid: bool = True) -> tuple[float, str]:
     """The least time (s) in which an induction motor (Kloss: ``synchronous`` speed w_s, ``breakdown`` torque T_k at
     ``slip`` s_k, rotor inertia ``motor`` J_m) brings itself and the machine (``driven`` J, its load never below
     ``least_load`` T_c,min) to the speed ``lock_up`` w_L whatever the coupling between them, and by which bound (module
     docstring): energy (J + J_m) w_L^2 / (2 P_peak) where the load is never negative, momentum (J + J_m) w_L /
-    (T_k - min(0, T_c,min)), momentum with the load ((J + J_m) w_L - J_m w_s) / (T_k - T_c,min); the largest."""
-    inertia = driven + motor
+    (T_k - min(0, T_c,min)), momentum with the load ((J + J_m) w_L - J_m w_s) / (T_k - T_c,min); the largest.
+    Not ``rigid`` (an elastic link, the cable's: the start ends when the machine reaches w_L, the rotor then at any
+    speed w_a >= 0, its twist storing energy), J + J_m is J: the rotor's momentum J_m w_a >= 0 and its energy only add
+    to what the motor put in."""
+    inertia = driven + (motor if rigid else 0.0)
     # the Kloss power 2 T_k s s_k w_s (1 - s) / (s^2 + s_k^2) peaks where d/ds [s (1 - s) / (s^2 + s_k^2)] = 0,
     # s^2 + 2 s_k^2 s - s_k^2 = 0: s = s_k (sqrt(1 + s_k^2) - s_k) (a grid of 1e5 speeds agrees to 1e-9)
     peak_slip = slip * (math.sqrt(1.0 + slip**2) - slip)
