@@ -98,3 +98,19 @@ def test_samples_that_cannot_advance_end_the_phase_instead_of_looping():
     out = integrate_spans(lambda t, y: [-y[0]], None, 1e20, np.array([1.0]), 2e20, [], 1e-9, np.array([1e-12]),
                           Budget(1_000), 1e-10)
     assert out.status == "failed" and out.t[-1] == 1e20
+
+
+def test_a_state_gone_infinite_fails_its_phase_without_printing_numpy_s_warnings():
+    """A right-hand side that turns infinite at t = 0.5 (a start far in a scatter's tail): DOP853's steps printed
+    "invalid value encountered in dot" 308 times (1e308: "overflow", 203 times) before the step size fell below its
+    least; the phase still ends failed, saying so, and nothing is printed."""
+    import warnings
+
+    from clutchopt.simulate.stepping import integrate
+
+    for bad in (np.inf, 1e308):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            out = integrate(lambda t, y, bad=bad: np.array([bad if t > 0.5 else 1.0]), None, 0.0, np.array([1.0]),
+                            10.0, [], "DOP853", 1e-8, np.array([1e-8]), Budget(1000))
+        assert out.status == "failed" and out.message == "the step size fell below its least" and caught == []

@@ -54,11 +54,13 @@ def integrate(fun, jac, t0: float, y0: np.ndarray, bound: float, events: list, m
     """Integrate y' = fun(t, y) from (t0, y0) towards ``bound`` until a terminal event, the bound, a failure or the
     end of ``budget``. Each event is a function g(t, y) with attributes ``terminal`` and ``direction`` (as
     ``solve_ivp``'s); a non-terminal one adds a sample where g changes sign strictly. A solver's warnings are raised
-    as errors."""
+    as errors; NumPy's floating-point warnings are not shown (a state gone infinite or NaN, e.g. a start of a driven
+    inertia far in a lognormal's tail, printed SciPy's "invalid value encountered in dot" once a step until the step
+    size fell below its least: the phase ends ``failed`` saying so)."""
     options = {"jac": jac} if method in IMPLICIT else {}
     solver = SOLVERS[method](fun, t0, y0, bound, rtol=rtol, atol=atol, **options)
-    with warnings.catch_warnings():  # once per phase, not per step (it cost 5 % of a start-up's simulation)
-        warnings.simplefilter("error", UserWarning)
+    with warnings.catch_warnings(), np.errstate(over="ignore", invalid="ignore"):  # once per phase, not per step
+        warnings.simplefilter("error", UserWarning)  # (it cost 5 % of a start-up's simulation)
         return _stepped(solver, t0, y0, events, budget)
 
 
