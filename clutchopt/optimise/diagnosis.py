@@ -69,8 +69,9 @@ def diagnose(posed: Posed, p_vector, lbx, ubx, x0, scale) -> Diagnosis:
         if s <= 10 * FEASIBILITY_TOL and lam > 1e-6 and name not in binding:
             binding.append(name)
     senses = dict(zip(row_names, row_senses))
-    violated = [f"{name} ({'over' if senses[name] == '<=' else 'short of'} its limit by {s:.3g} relative)"
-                for name, s in worst.items() if s > 10 * FEASIBILITY_TOL]
+    over = [name for name, s in worst.items() if s > 10 * FEASIBILITY_TOL]
+    violated = [f"{name} ({'over' if senses[name] == '<=' else 'short of'} its limit by {worst[name]:.3g} relative)"
+                for name in over]
     binding = [name for name in binding if worst[name] <= 10 * FEASIBILITY_TOL]
     at_bounds = []
     lam_x = np.array(result["lam_x"]).ravel()[: len(lbx)]
@@ -85,4 +86,4 @@ def diagnose(posed: Posed, p_vector, lbx, ubx, x0, scale) -> Diagnosis:
     if others:
         text += " together with " + ", ".join(others)
     return Diagnosis("infeasible", text + stopped, seconds, least=float(slacks.sum()), nearest=nearest,
-                     violated=() if stopped else tuple(name for name, s in worst.items() if s > 10 * FEASIBILITY_TOL))
+                     violated=() if stopped else tuple(over))

@@ -37,8 +37,7 @@ from __future__ import annotations
 
 import math
 
-from clutchopt.formulations import get_coupling
-from clutchopt.model import ElasticLaw
+from clutchopt.start_up.drive import elastic_link
 from clutchopt.start_up.equations import kloss_torque
 
 
@@ -61,7 +60,7 @@ def start_up_proofs(case) -> list[str]:
                       f"{w_s * 30 / math.pi:.6g} rpm, where an induction motor gives no torque")
         return proofs
     largest = t_k if w_l < w_s * (1.0 - s_k) else float(kloss_torque(w_l, w_s, t_k, s_k))
-    rigid = not isinstance(get_coupling(case.coupling).formulation().speed_law, ElasticLaw)
+    rigid = not elastic_link(case)
     if largest < load and rigid:
         named = f"load_profile at its least {WINDOW[profile.over]}" if profile is not None else "load_torque"
         proofs.append(f"the motor gives at most {largest:.6g} N*m (breakdown_torque {t_k:.6g} N*m) at or above "

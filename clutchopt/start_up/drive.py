@@ -21,6 +21,13 @@ RUN_UPS = 100  # the time scale of a motor's start: at most this many run-ups at
 LEAST_SHARE = 1e-6  # of the drive's torque scale: the least torque a lock-up's margin is relative to
 
 
+def elastic_link(case) -> bool:
+    """Whether the case's coupling drives through an elastic link (the cable's: it twists, it does not slip)."""
+    from clutchopt.formulations import get_coupling  # (the formulations import the start-up's drive)
+
+    return isinstance(get_coupling(case.coupling).formulation().speed_law, ElasticLaw)
+
+
 @dataclass(frozen=True)
 class Structure:
     """What fixes the shape of a start-up NLP (part of the problem cache key)."""
@@ -41,9 +48,7 @@ class Structure:
         if spec.has("motor_curve"):
             knee = 20.0 * v["motor_inertia"] * v["synchronous_speed"] / v["breakdown_torque"] / v["max_start_time"]
             graded = next((part for part in GRADED_PARTS if part >= knee), GRADED_PARTS[-1])
-        from clutchopt.formulations import get_coupling
-
-        elastic = isinstance(get_coupling(case.coupling).formulation().speed_law, ElasticLaw)
+        elastic = elastic_link(case)
         return cls(spec, spec.has("motor_curve") and rest > 0 and not elastic, intervals or spec.intervals, graded,
                    elastic)
 
