@@ -127,6 +127,14 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
     def tally(j: int, key: str, boxes: int) -> None:
         decisive[j][key] = decisive[j].get(key, 0) + boxes
 
+    def within_budgets(owner: np.ndarray) -> np.ndarray:
+        """Which boxes belong to searches their evaluation keeps within budget; the others' searches end there, not
+        proven."""
+        counts = np.bincount(owner, minlength=count)
+        over = np.flatnonzero((counts > 0) & (evaluated + counts > budgets))
+        end(over, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
+        return ~np.isin(owner, over)
+
     while lo.shape[1]:
         before = np.unique(owner)
         lo, hi, none = _rounded(lo, hi, posed.integer)
@@ -138,10 +146,7 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         kept = ~none.any(axis=0)
         lo, hi, owner, plo, phi = lo[:, kept], hi[:, kept], owner[kept], plo[:, kept], phi[:, kept]
         end(np.setdiff1d(before, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
-        counts = np.bincount(owner, minlength=count)
-        over = np.flatnonzero((counts > 0) & (evaluated + counts > budgets))
-        end(over, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
-        keep = ~np.isin(owner, over)
+        keep = within_budgets(owner)
         lo, hi, owner, plo, phi = lo[:, keep], hi[:, keep], owner[keep], plo[:, keep], phi[:, keep]
         if not lo.shape[1]:
             break
@@ -211,11 +216,8 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
             # without integers no box is dropped before the next evaluation (rounding keeps them all): a search whose
             # boxes now pass its budget ends there as it would after the last split, unsplit further (a point of a
             # sweep searched alone past its region's edge: 1 box evaluated, then not 128 split for nothing)
-            counts = np.bincount(owner, minlength=count)
-            over = np.flatnonzero((counts > 0) & (evaluated + counts > budgets))
-            if len(over):
-                end(over, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
-                keep = ~np.isin(owner, over)
+            keep = within_budgets(owner)
+            if not keep.all():
                 lo, hi, plo, phi, owner = lo[:, keep], hi[:, keep], plo[:, keep], phi[:, keep], owner[keep]
                 d_lo, d_hi, uncertain = d_lo[..., keep], d_hi[..., keep], uncertain[:, keep]
                 component, rate = component[keep], rate[keep]
