@@ -117,7 +117,7 @@ class Problem:
         if not refine:
             return self._worn(case, self._solve(case, start, warm, mesh=mesh, diagnosed=diagnosed))
         if start is None and warm is None:
-            sized = problem_for(self.posed.base, self.objective.name, self.options).solve(case)
+            sized = self._sizing(case)
             start = sized.design if sized.status == "optimal" else None
         structure = self.start_up.s
         nlp_case = shifted(case, shift)
@@ -169,7 +169,7 @@ class Problem:
         allowed took 3 solves, 305 IPOPT iterations and 2.5 s to end `not_found`). The design shown is the papers'
         sizing at the case (one static solve: where a start-up solve would begin), its constraints re-evaluated in
         float64."""
-        sized = problem_for(self.posed.base, self.objective.name, self.options).solve(case)
+        sized = self._sizing(case)
         posed, f = self.posed, self.formulation
         lower, upper, x0 = posed.bounds_and_start(case, sized.design)
         design, params = dict(zip(posed.names, map(float, x0))), posed.params(case)
@@ -181,6 +181,11 @@ class Problem:
                         "proven infeasible: " + "; ".join(proofs),
                         bounds={n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, lower, upper)},
                         design_units={v.name: v.unit for v in f.variables})
+
+    def _sizing(self, case: Case) -> Solution:
+        """The papers' sizing at ``case``: the static problem of the same formulation solved (where a start-up solve
+        begins)."""
+        return problem_for(self.posed.base, self.objective.name, self.options).solve(case)
 
     def _warm_method(self, warm: Solution | WarmStart, mesh: np.ndarray | None) -> str:
         """``warm_near`` (IPOPT's barrier from 1e-9) for a start-up re-solved on the mesh its warm optimum was solved
