@@ -49,6 +49,7 @@ class Solutions(Sequence):
     def __init__(self, first: int, count: int, alone: dict[int, Solution], checked: "Checked | None",
                  names: list[str]):
         self._solutions = {k - first: solution for k, solution in alone.items()}  # by position in the window
+        self._records: dict[int, dict] = {}  # the points solved alone's as_dict(), built once (stored and tabulated)
         self._names = names  # the design variables
         self._checked, self._column = checked, np.full(count, -1)
         if checked is not None:
@@ -68,6 +69,13 @@ class Solutions(Sequence):
 
     def replace(self, i: int, solution: Solution) -> None:
         self._solutions[i] = solution
+        self._records.pop(i, None)
+
+    def _record(self, i: int) -> dict:
+        """The point ``i`` solved alone's ``Solution.as_dict()``, built once."""
+        if i not in self._records:
+            self._records[i] = self._solutions[i].as_dict()
+        return self._records[i]
 
     def records(self) -> list[dict]:
         """Every point's ``Solution.as_dict()``, those of the batched points built together from the window's arrays
@@ -77,7 +85,7 @@ class Solutions(Sequence):
     def stored(self) -> tuple[dict[int, dict], list[tuple[np.ndarray, WindowRecords]]]:
         """The records as the run store keeps them: each point solved alone's ``Solution.as_dict()`` by position,
         and the batched points' records as arrays (``clutchopt.window_records``) with their positions."""
-        alone = {i: solution.as_dict() for i, solution in sorted(self._solutions.items())}
+        alone = {i: self._record(i) for i in sorted(self._solutions)}
         batched = np.flatnonzero(self._column >= 0)
         batched = batched[np.isin(batched, list(alone), invert=True)]
         if not len(batched):
@@ -91,11 +99,11 @@ class Solutions(Sequence):
         the window's arrays without building their records."""
         names = self._names
         if self._checked is None:
-            return record_table([self._solutions[i].as_dict() for i in range(len(self))], names)
+            return record_table([self._record(i) for i in range(len(self))], names)
         table = {key: column[..., self._column] for key, column in self._checked.table().items()}  # copies
         alone = sorted(self._solutions)
         if alone:
-            placed(record_table([self._solutions[i].as_dict() for i in alone], names), alone, table)
+            placed(record_table([self._record(i) for i in alone], names), alone, table)
         return table
 
     @property
