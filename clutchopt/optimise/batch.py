@@ -68,7 +68,8 @@ from clutchopt.optimise.attempts import warm_multipliers
 from clutchopt.optimise.batch_pace import BatchPace, until_active
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
 from clutchopt.optimise.chain import chain_verdict, chained_sqp
-from clutchopt.optimise.integers import (INFEASIBLE, descend, downhill, excluded_entry, nearest_integers, priced,
+from clutchopt.optimise.feasibility import LOCALLY_INFEASIBLE, infeasible, without_design
+from clutchopt.optimise.integers import (descend, downhill, excluded_entry, nearest_integers, priced,
                                          relaxation_seed, search_entry)
 from clutchopt.optimise.posed import Box, ScaledData, off_scale
 from clutchopt.optimise.problem import Problem
@@ -413,7 +414,7 @@ class BatchSweep:
         search: list[dict] = []
         box, seed = Box(start.scale, self.lower, self.upper), start.seed
         runs: list[_Chain] = []
-        cold: list[float] = []  # the seconds of each IPOPT call on a combination without a design
+        cold: list[float] = []  # the seconds of each call beside the one-point SQPs (the least violation, IPOPT)
 
         def attempt(combo, seed, methods=None) -> dict | None:
             lower, upper = self.lower.copy(), self.upper.copy()
@@ -432,7 +433,14 @@ class BatchSweep:
             else:  # a combination IPOPT left without a design at the point before goes to IPOPT again directly
                 chain = (self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
                          if self._undesigned.get(key, (None,))[0] != k - 1 else None)
-            if chain is None or not chain.ok[0]:  # as Problem.solve tries a neighbour: IPOPT, cold
+            if chain is None or not chain.ok[0]:  # without a design by its least violation, else as Problem.solve
+                violation, seconds = self._least_violation(start, k, lower, upper, seed)  # tries a neighbour:
+                cold.append(seconds)  # IPOPT, cold
+                if violation is not None:
+                    status = LOCALLY_INFEASIBLE.format(violation)
+                    self._undesigned[key] = (k, status)
+                    search.append(search_entry(self.posed, self.integer, combo, status, False, math.nan))
+                    return None
                 entry, seconds, optimum = self._cold(start, k, lower, upper, seed)
                 cold.append(seconds)
                 if optimum is None:
@@ -484,7 +492,7 @@ class BatchSweep:
         the float64 check refused), and the step from there to k only tightens the constraints (``tightening``): no
         design meets at k what none met there."""
         found = self._undesigned.get(combo)
-        if found is None or found[0] >= k or found[1] != INFEASIBLE:
+        if found is None or found[0] >= k or not infeasible(found[1]):
             return ""
         if not self._tightening.tightened(self._by_point[found[0]], self._by_point[k]):
             return ""
@@ -549,6 +557,20 @@ class BatchSweep:
         tightened the constraints since (:meth:`_ruled_out`)."""
         key = tuple(combo.tolist())
         return self._undesigned.get(key, (None,))[0] == k or bool(self._ruled_out(key, k))
+
+    def _least_violation(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
+                         seed: dict) -> tuple[float | None, float]:
+        """The least largest violation of an integer combination (fixed in ``lower``, ``upper``) that the one-point
+        chained SQP did not settle at point k, from ``seed``'s point, where it shows the combination without a design
+        (``feasibility.without_design``: IPOPT's verdict at a few QP solves), else None; and the seconds of the
+        call."""
+        began = time.perf_counter()
+        violation = without_design(self.posed, seed["x"], np.concatenate([self._by_point[k], start.scale,
+                                                                          [start.f_scale]]),
+                                   lower / start.scale, upper / start.scale)
+        seconds = time.perf_counter() - began
+        self.solves, self.solver_s = self.solves + 1, self.solver_s + seconds
+        return violation, seconds
 
     def _cold(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
               seed: dict) -> tuple[dict, float, dict | None]:
