@@ -1,5 +1,5 @@
-"""The least largest violation (clutchopt/optimise/feasibility.py): an integer combination without a design, found by SQP
-on the feasibility problem, with the violation it cannot get below."""
+"""The least largest violation (clutchopt/optimise/feasibility.py): an integer combination without a design, found
+by SQP on the feasibility problem, with the violation it cannot get below."""
 
 import pytest
 

@@ -12,11 +12,11 @@ fixed integers' bounds closed)::
 solved by CasADi's SQP (``qrqp``, its Hessian's negative eigenvalues clipped) from the previous point's optimum,
 with t starting at the largest violation there, so that every QP has a solution. At a KKT point of this problem,
 checked apart from the solver (``chain.kkt_of``: the multipliers mu of the rows at t sum to one, since d/dt of the
-Lagrangian is 1 - sum mu, and sum mu_i grad g_i + lam_x = 0), t* is a local minimum of the largest violation: where
-it exceeds :data:`INFEASIBLE_MARGIN`, no design is near, the claim IPOPT's status makes, here at a few QP solves
-(0.3 ms on the ball clutch) instead of a cold IPOPT solve and its restoration phase (5-15 ms). Elsewhere (t* within the margin,
-or no verified KKT point) the caller asks IPOPT as before. The rows are relative margins, so t* is the least relative
-violation of the worst row.
+Lagrangian is 1 - sum mu, and sum mu_i grad g_i + lam_x = 0), t* is a local minimum of the largest violation:
+where it exceeds :data:`INFEASIBLE_MARGIN`, no design is near, the claim IPOPT's status makes, here at a few QP
+solves (0.3 ms on the ball clutch) instead of a cold IPOPT solve and its restoration phase (5-15 ms). Elsewhere (t*
+within the margin, or no verified KKT point) the caller asks IPOPT as before. The rows are relative margins, so t*
+is the least relative violation of the worst row.
 """
 
 from __future__ import annotations
