@@ -6,7 +6,7 @@ import pytest
 from clutchopt.cases import load_case
 from clutchopt.formulations import get_coupling
 from clutchopt.formulations.cable.equations import cable_stress
-from clutchopt.optimise.feasibility import INFEASIBLE_MARGIN, infeasible, least_violation, without_design
+from clutchopt.optimise.feasibility import INFEASIBLE_MARGIN, infeasible, least, least_violation
 from clutchopt.optimise.integers import INFEASIBLE
 from clutchopt.optimise.problem import Problem
 from conftest import CASES
@@ -27,13 +27,14 @@ def test_too_few_cables_are_without_a_design_by_their_stress():
     for z in (2, 3, 4, 5):
         lbx, ubx = data.lbx.copy(), data.ubx.copy()
         lbx[i] = ubx[i] = z / data.scale[i]
-        t, verified = least_violation(posed)(data.x0, data.p, lbx, ubx)
-        assert verified[0, 0] == 1.0
+        t, verified, x = least_violation(posed)(data.x0, data.p, lbx, ubx)
+        found = least(posed, data.x0, data.p, lbx, ubx)
+        assert verified[0, 0] == 1.0 and found.verified and found.violation == t[0, 0]
         if z < 5:
-            assert t[0, 0] == pytest.approx(one / z - 1, rel=1e-9)
-            assert without_design(posed, data.x0, data.p, lbx, ubx) == pytest.approx(one / z - 1, rel=1e-9)
-        else:
-            assert t[0, 0] == pytest.approx(0.0, abs=1e-12) and without_design(posed, data.x0, data.p, lbx, ubx) is None
+            assert t[0, 0] == pytest.approx(one / z - 1, rel=1e-9) and found.without_design and not found.feasible
+        else:  # a design: every row of the formulation met there (x scaled)
+            assert t[0, 0] == pytest.approx(0.0, abs=1e-12) and found.feasible and not found.without_design
+            assert posed.constraint_values(x[:, 0], data.p).full().max() <= 1e-8
 
 
 def test_a_violation_within_the_margin_leaves_the_verdict_to_ipopt():
@@ -47,9 +48,9 @@ def test_a_violation_within_the_margin_leaves_the_verdict_to_ipopt():
     i = posed.names.index("cable_count")
     lbx, ubx = data.lbx.copy(), data.ubx.copy()
     lbx[i] = ubx[i] = 5 / data.scale[i]
-    t, verified = least_violation(posed)(data.x0, data.p, lbx, ubx)
-    assert verified[0, 0] == 1.0 and t[0, 0] == pytest.approx(5e-7, rel=1e-6) and 5e-7 < INFEASIBLE_MARGIN
-    assert without_design(posed, data.x0, data.p, lbx, ubx) is None
+    found = least(posed, data.x0, data.p, lbx, ubx)
+    assert found.verified and found.violation == pytest.approx(5e-7, rel=1e-6) and 5e-7 < INFEASIBLE_MARGIN
+    assert not found.without_design and not found.feasible
 
 
 def test_statuses_that_say_no_design_is_near():

@@ -68,8 +68,8 @@ from clutchopt.optimise.attempts import warm_multipliers
 from clutchopt.optimise.batch_pace import BatchPace, until_active
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
 from clutchopt.optimise.chain import chain_verdict, chained_sqp
-from clutchopt.optimise.feasibility import LOCALLY_INFEASIBLE, infeasible, without_design
-from clutchopt.optimise.integers import (descend, downhill, excluded_entry, nearest_integers, priced,
+from clutchopt.optimise.feasibility import LOCALLY_INFEASIBLE, Least, infeasible, least
+from clutchopt.optimise.integers import (descend, downhill, excluded_entry, nearest_integers,
                                          relaxation_seed, search_entry)
 from clutchopt.optimise.posed import Box, ScaledData, off_scale
 from clutchopt.optimise.problem import Problem
@@ -131,6 +131,34 @@ class _Chain(Block):
             a[key] *= ratio
         a["p"][-1, 0] = f_scale
         return _Chain(self.index[j:j + 1], self.ok[j:j + 1], self.moves[j:j + 1], **a)
+
+
+def _from_design(x: np.ndarray, seed: dict) -> dict:
+    """A start for SQP at the design ``x`` (scaled) with ``seed``'s constraint multipliers, without bound multipliers
+    or a step to predict from. (From the least violation's design at the ball's rows, its multipliers zero, SQP
+    stopped on a search direction too small at 2 of 3 combinations; with the previous optimum's constraint
+    multipliers each converged in 2 iterations, with the Hessian's negative eigenvalues clipped.)"""
+    return {"x": x, "lam_g": seed["lam_g"],
+            **{key: np.zeros_like(seed[key]) for key in ("lam_x", "dx", "dlam_x", "dlam_g")}}
+
+
+def _last_two(blocks: list[Block], integer: list[int]) -> Block | None:
+    """The last two kept points as a block, where they are consecutive, with the same integers (SI) and variable
+    scales (each from a chain or an integer search), so that each slack's step between them is the sweep's; None
+    where they are not."""
+    columns = [(block, j) for block in blocks[-2:] for j in range(max(len(block.index) - 2, 0), len(block.index))][-2:]
+    if len(columns) < 2:
+        return None
+    pair = Block(np.array([block.index[j] for block, j in columns]),
+                 **{key: np.concatenate([block.arrays[key][:, j:j + 1] for block, j in columns], axis=1)
+                    for key in ("x", "lam_x", "lam_g", "p", "lbx", "ubx")})
+    p, x, n = pair.arrays["p"], pair.arrays["x"], len(pair.arrays["lbx"])
+    m = len(p) - n - 1
+    scale = p[m:m + n]
+    if pair.index[1] - pair.index[0] != 1 or not np.array_equal(scale[:, 0], scale[:, 1]):
+        return None
+    combos = np.round(x[integer] * scale[integer])
+    return pair if np.array_equal(combos[:, 0], combos[:, 1]) else None
 
 
 class _Unsettled(Exception):
@@ -256,7 +284,7 @@ class BatchSweep:
                     self.feasible, failed = start.warm.design, False
                 if chained and passed == chained:
                     pace.passed(chained)
-                    ahead = None if pace.aimed else self._until_active(block)  # (where no break is expected)
+                    ahead = self._until_active(blocks)
                     if not searching or k == end:  # (a batch that passes up to its integers' exclusion hands the
                         continue  # next point to the search)
                 settled = self._settle(start, k, tried) if searching else None
@@ -285,19 +313,18 @@ class BatchSweep:
                 failed = alone[k - 1].status not in DESIGN_STATUSES
             yield self._window(blocks, alone, first, k - first)
 
-    def _until_active(self, block: Block) -> int | None:
-        """With free integers that the objective does not price at the block's last point (their bound multipliers
-        within ``Posed.negligible``: a change of the active set is what would make one promise a neighbour), the
-        points after ``block`` until its active set is expected to change (``batch_pace.until_active``): the next
-        chain ends there. None otherwise (the integer breaks are paced by their gaps)."""
-        if not self.integer:
+    def _until_active(self, blocks: list[Block]) -> int | None:
+        """With free integers, the points after the last kept one until its active set is expected to change
+        (``batch_pace.until_active``, from the last two kept points where they are consecutive, with the same integers
+        and scales: :func:`_last_two`): the next chain ends there. A change of the active set is what makes a fixed
+        integer's multiplier promise a neighbour, and where a slack of the design closes at fixed integers the
+        integers stop serving (the ball over its power past 7.5x: each point where the rows carry no more, one row
+        more, was foreseen to the point). None otherwise (the integer breaks are paced by their gaps)."""
+        pair = _last_two(blocks, self.integer) if self.integer else None
+        if pair is None:
             return None
-        scale = block.arrays["p"][len(self.values):len(self.values) + len(self.names), -1]
-        if np.any(priced(self.posed, block.arrays["lam_x"][self.integer, -1], scale[self.integer],
-                         float(block.arrays["f"][0, -1]))):
-            return None
-        last = int(block.index[-1]) + 1
-        return until_active(self.posed, block, self._ratio[last:last + LONGEST_BATCH], self._free,
+        last = int(pair.index[-1]) + 1
+        return until_active(self.posed, pair, self._ratio[last:last + LONGEST_BATCH], self._free,
                             self.posed.kkt_tolerance)
 
     def _start_of(self, solution: Solution) -> _Start | None:
@@ -433,14 +460,17 @@ class BatchSweep:
             else:  # a combination IPOPT left without a design at the point before goes to IPOPT again directly
                 chain = (self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
                          if self._undesigned.get(key, (None,))[0] != k - 1 else None)
-            if chain is None or not chain.ok[0]:  # without a design by its least violation, else as Problem.solve
-                violation, seconds = self._least_violation(start, k, lower, upper, seed)  # tries a neighbour:
-                cold.append(seconds)  # IPOPT, cold
-                if violation is not None:
-                    status = LOCALLY_INFEASIBLE.format(violation)
+            if chain is None or not chain.ok[0]:  # its least violation: without a design, or SQP from the design
+                found, seconds = self._least_violation(start, k, lower, upper, seed)  # it found; else as
+                cold.append(seconds)  # Problem.solve tries a neighbour: IPOPT, cold
+                if found.without_design:
+                    status = LOCALLY_INFEASIBLE.format(found.violation)
                     self._undesigned[key] = (k, status)
                     search.append(search_entry(self.posed, self.integer, combo, status, False, math.nan))
                     return None
+                chain = (self._chain(start, k, 1, lower, upper, _from_design(found.x, seed), "sqp_search", predict=False)
+                         if found.feasible else None)
+            if chain is None or not chain.ok[0]:
                 entry, seconds, optimum = self._cold(start, k, lower, upper, seed)
                 cold.append(seconds)
                 if optimum is None:
@@ -559,18 +589,17 @@ class BatchSweep:
         return self._undesigned.get(key, (None,))[0] == k or bool(self._ruled_out(key, k))
 
     def _least_violation(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
-                         seed: dict) -> tuple[float | None, float]:
+                         seed: dict) -> tuple[Least, float]:
         """The least largest violation of an integer combination (fixed in ``lower``, ``upper``) that the one-point
-        chained SQP did not settle at point k, from ``seed``'s point, where it shows the combination without a design
-        (``feasibility.without_design``: IPOPT's verdict at a few QP solves), else None; and the seconds of the
+        chained SQP did not settle at point k, from ``seed``'s point (``feasibility.least``: whether the combination
+        is without a design, IPOPT's verdict at a few QP solves, or where a design was found), and the seconds of the
         call."""
         began = time.perf_counter()
-        violation = without_design(self.posed, seed["x"], np.concatenate([self._by_point[k], start.scale,
-                                                                          [start.f_scale]]),
-                                   lower / start.scale, upper / start.scale)
+        found = least(self.posed, seed["x"], np.concatenate([self._by_point[k], start.scale, [start.f_scale]]),
+                      lower / start.scale, upper / start.scale)
         seconds = time.perf_counter() - began
         self.solves, self.solver_s = self.solves + 1, self.solver_s + seconds
-        return violation, seconds
+        return found, seconds
 
     def _cold(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
               seed: dict) -> tuple[dict, float, dict | None]:

@@ -21,6 +21,9 @@ is the least relative violation of the worst row.
 
 from __future__ import annotations
 
+import math
+from typing import NamedTuple
+
 import casadi as ca
 import numpy as np
 
@@ -28,6 +31,7 @@ from clutchopt.optimise.chain import kkt_of
 from clutchopt.optimise.in_place import InPlace
 from clutchopt.optimise.integers import INFEASIBLE
 from clutchopt.optimise.posed import Posed
+from clutchopt.optimise.verify import FEASIBILITY_TOL
 
 INFEASIBLE_MARGIN = 1e-6  # least relative violation (100 times verify's FEASIBILITY_TOL) read as no design: below it
 # the combination is borderline and IPOPT decides (on the ball's rows the least violations at a change were 1e-3 to
@@ -46,9 +50,9 @@ def infeasible(status: str) -> bool:
 
 
 def least_violation(posed: Posed) -> InPlace:
-    """(x0, p, lbx, ubx) -> (t*, verified): the least largest violation from ``x0`` (scaled, clipped to the box) and
-    whether the SQP's answer is a KKT point of the feasibility problem (1, else 0). One CasADi call, built once per
-    posed problem (no start-up: its collocation is solved point by point)."""
+    """(x0, p, lbx, ubx) -> (t*, verified, x*): the least largest violation from ``x0`` (scaled, clipped to the box),
+    whether the SQP's answer is a KKT point of the feasibility problem (1, else 0), and where (scaled). One CasADi
+    call, built once per posed problem (no start-up: its collocation is solved point by point)."""
     def build(_):
         nlp, n_ineq = posed.nlp, posed.n_ineq
         x, p, g = nlp["x"], nlp["p"], nlp["g"]
@@ -65,17 +69,35 @@ def least_violation(posed: Posed) -> InPlace:
         lower, upper = ca.vertcat(lbx, 0.0), ca.vertcat(ubx, ca.inf)
         out = solver(x0=ca.vertcat(start, largest(start, p_in)), p=p_in, lbx=lower, ubx=upper, lbg=-ca.inf, ubg=0.0)
         verified = verdict(out["x"], p_in, out["lam_x"], out["lam_g"], lower, upper)
-        return InPlace(ca.Function(name, [x0, p_in, lbx, ubx], [out["f"], verified]))
+        return InPlace(ca.Function(name, [x0, p_in, lbx, ubx], [out["f"], verified, out["x"][: x.shape[0]]]))
 
     return posed.built("least_violation", None, build)
 
 
-def without_design(posed: Posed, x0: np.ndarray, p: np.ndarray, lbx: np.ndarray, ubx: np.ndarray) -> float | None:
-    """The least largest violation t* where it shows the box (scaled, integers fixed) without a design: a verified
-    local minimum above :data:`INFEASIBLE_MARGIN`; None where it does not (IPOPT decides)."""
+class Least(NamedTuple):
+    """The least largest violation found from a start: its value t*, whether it is a verified KKT point of the
+    feasibility problem, and where (scaled; None after an evaluation error inside CasADi)."""
+
+    violation: float
+    verified: bool
+    x: np.ndarray | None
+
+    @property
+    def without_design(self) -> bool:
+        """The box has no design near: a verified local minimum above :data:`INFEASIBLE_MARGIN`."""
+        return self.verified and self.violation > INFEASIBLE_MARGIN
+
+    @property
+    def feasible(self) -> bool:
+        """A design that meets every row (to verify's FEASIBILITY_TOL) was found: ``x``."""
+        return self.verified and self.violation <= FEASIBILITY_TOL
+
+
+def least(posed: Posed, x0: np.ndarray, p: np.ndarray, lbx: np.ndarray, ubx: np.ndarray) -> Least:
+    """The least largest violation in the box ``lbx``, ``ubx`` (scaled, integers fixed) from ``x0``
+    (:func:`least_violation`)."""
     try:
-        t, verified = least_violation(posed)(x0, p, lbx, ubx)
+        t, verified, x = least_violation(posed)(x0, p, lbx, ubx)
     except RuntimeError:  # an evaluation error inside CasADi
-        return None
-    t = float(t[0, 0])
-    return t if verified[0, 0] > 0.5 and t > INFEASIBLE_MARGIN else None
+        return Least(math.nan, False, None)
+    return Least(float(t[0, 0]), bool(verified[0, 0] > 0.5), x[:, 0])
