@@ -146,6 +146,37 @@ def test_the_integer_search_along_a_batched_sweep():
                 assert other.status != "optimal" or other.objective >= solution.objective * (1 - 1e-9)
 
 
+def test_a_count_that_opens_is_where_the_search_starts():
+    # cable count falls as the allowable cable stress rises (cable_conveyor, 0.5x-2x over 40 points): the count one
+    # fewer, promised a gain by the multipliers, is excluded by eq. (18)'s stress alone (no design variable enters it)
+    # until the point where sigma_pk(n - 1) <= [sigma_pk]; the exclusion table finds that point ahead, the chain ends
+    # before it and the search starts there at n - 1 (batch._opening): one solve, not the chained column at n and
+    # then n - 1. Its record: n - 1 solved, n - 2 excluded. Under the convexity the search rests on, n could not win
+    # where n - 1's multiplier promises a gain towards n - 2 (the tangent bounds f*(n) from below by more than
+    # f*(n - 1)): each point equals Problem.solve's, which steps from n to n - 1
+    file, mode, quantity = "cable_conveyor.toml", "paper", "allowable_cable_stress"
+    case = load_case(CASES / file)
+    problem = Problem(get_coupling(case.coupling).formulation(mode))
+    values = case.values[quantity] * np.geomspace(0.5, 2.0, 40)
+    sweep = BatchSweep(problem, case, {quantity: values})
+    solutions = [s for part in sweep.run() for s in part]
+    counts = [s.design["cable_count"] for s in solutions]
+    changes = [k for k in range(1, len(counts)) if counts[k] != counts[k - 1]]
+    assert counts == sorted(counts, reverse=True) and len(changes) >= 4
+    for k in changes:
+        n = counts[k - 1]
+        assert counts[k] == n - 1 and solutions[k].solver.solves == 1
+        assert [(e["cable_count"], e["status"][:9]) for e in solutions[k].integer_search] == [
+            (n - 1, BATCHED[:9]), (n - 2, "excluded:")]
+    previous = None
+    for value, got in zip(values, solutions):
+        want = problem.solve(case.with_values(**{quantity: float(value)}), warm=previous)
+        previous = want
+        assert got.status == want.status == "optimal" and got.design["cable_count"] == want.design["cable_count"]
+        assert got.objective == pytest.approx(want.objective, rel=1e-9)
+    assert sweep.solves <= len(values) + 3  # the first point's relaxation and count, no second solve at a change
+
+
 def test_a_chain_ends_near_the_next_change_of_the_integers():
     # ball rows fall with the speed, the search stepping to a neighbour the multipliers promise (no exclusion to
     # foresee it): at each change the chained column of the rows before is the search's first attempt, the

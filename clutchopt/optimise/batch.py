@@ -243,6 +243,7 @@ class BatchSweep:
         self._span = min(EXCLUSION_SPAN, self.count)
         self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
         self.searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
+        self._opened: dict[int, np.ndarray] = {}  # point -> the combination the search starts from (:meth:`_opening`)
         self._undesigned: dict[tuple, tuple[int, str]] = {}  # integer combination -> the last point where IPOPT
         # found no design, and IPOPT's status there
         varied = self.values[[q.name in self.varied for q in f.quantities]]
@@ -364,15 +365,20 @@ class BatchSweep:
         chained column (KKT-verified at the batch's integers: the search's first attempt)."""
         lower, upper = self.lower.copy(), self.upper.copy()
         lower[self.integer] = upper[self.integer] = start.combo
-        first = -1  # the first point ahead where the batch's integers are excluded
+        first = -1  # the first point ahead where the batch's integers are excluded, or a neighbour opens
+        self._opened = {}
         if self.integer:  # the batch stops short of a point its integers cannot serve whatever the rest (the search
             # excludes them there without a solve)
             excluded = self._excluded(lower, k, max(count, reach))
             if excluded.any():
                 first = int(np.argmax(excluded))
-                if first == 0:
-                    return None, 0, True, None  # foreseen: nothing chained
-                count = first
+            opens, neighbour = self._opening(start, k, max(count, reach))
+            if opens is not None and (first < 0 or opens < first):
+                first, self._opened[k + opens] = opens, neighbour
+            if first == 0:
+                return None, 0, True, None  # foreseen: nothing chained
+            if first > 0:
+                count = min(count, first)
         chain = self._chain(start, k, count, lower, upper, start.seed)
         if chain is None:
             return None, min(count, chain_length(count)), False, None
@@ -385,6 +391,26 @@ class BatchSweep:
         if searching and passed < count:
             tried = chain.column(passed, _Start(self, block=chain.block(passed)).f_scale if passed else start.f_scale)
         return (chain.block(passed) if passed else None), count, searching, tried
+
+    def _opening(self, start: _Start, k: int, count: int) -> tuple[int | None, np.ndarray | None]:
+        """Where, among points k .. k + count - 1, the neighbouring combination that ``start``'s multipliers promise a
+        gain at (``integers.downhill``) stops being excluded by a constraint of fixed variables alone that it broke at
+        the point before k (the cable count one fewer as the allowable cable stress rises): its offset from k and the
+        combination, or (None, None). There the warm search would step to it from the batch's integers; it starts
+        there instead (:meth:`_settle`), with the same outcome where f*(n) is convex in the integers (the search's
+        premise): from the neighbour, whose multipliers then promise a gain the other way or none, the batch's own
+        integers are tried again as its downhill step only where the tangent there does not already show them worse.
+        One solve at that point instead of two."""
+        run = {"x": start.x, "lam_x": start.lam_x, "f": start.objective / start.f_scale}
+        for combo in downhill(self.posed, run, Box(start.scale, self.lower, self.upper), self.integer):
+            design = self.lower.copy()
+            design[self.integer] = combo
+            if k == 0 or not self._excluded(design, k - 1, 1)[0]:
+                continue
+            ahead = self._excluded(design, k, count)
+            if not ahead.all():
+                return int(np.argmin(ahead)), combo
+        return None, None
 
     def _chain(self, start: _Start, k: int, count: int, lower: np.ndarray, upper: np.ndarray,
                seed: dict, method: str = "sqp_chain", predict: bool = True) -> "_Chain | None":
@@ -493,7 +519,8 @@ class BatchSweep:
                 "f": float(chain.f[0, 0]), "value": float(chain.f[0, 0]) * start.f_scale, "chain": chain}
 
         try:
-            kept = descend(self.posed, box, self.integer, start.combo, seed, search, attempt)
+            origin = self._opened.pop(k, start.combo)  # (a neighbour that opens at k: :meth:`_opening`)
+            kept = descend(self.posed, box, self.integer, origin, seed, search, attempt)
             past = self._past_exclusion(start.combo, k) if kept is None else None
             if past is not None:  # the only neighbour its exclusion leaves: the search from there
                 kept = descend(self.posed, box, self.integer, past, seed, search, attempt)
