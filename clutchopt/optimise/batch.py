@@ -494,8 +494,8 @@ class BatchSweep:
                     self._undesigned[key] = (k, status)
                     search.append(search_entry(self.posed, self.integer, combo, status, False, math.nan))
                     return None
-                chain = (self._chain(start, k, 1, lower, upper, _from_design(found.x, seed), "sqp_search", predict=False)
-                         if found.feasible else None)
+                chain = (self._chain(start, k, 1, lower, upper, _from_design(found.x, seed), "sqp_search",
+                                     predict=False) if found.feasible else None)
             if chain is None or not chain.ok[0]:
                 entry, seconds, optimum = self._cold(start, k, lower, upper, seed)
                 cold.append(seconds)

@@ -9,17 +9,19 @@ before (the relaxed integer crosses integer boundaries at a slowly changing pace
 geometrically spaced points), and the chain ends at that point: a break on a chain's last point wastes nothing, its
 column being the search's first attempt; it ends one point short of that (:data:`SHORT`), so that a break one
 point sooner wastes nothing either, and the probe after it takes the expected break. Should the chain pass, the
-break is near: the next chains are probes of one point (two: :data:`PROBES`), then doubling again. After the first break (no gap known yet) the next chain is ``first`` points long,
-probing after it; after a point solved alone, chains restart from ``first``, unless the chain failed at its first
-point with integers to search: that point is a break (``BatchSweep.run``), so that where the integers are decided at
-every point the chains are one point long (the ball over its power past 4.6x: chains of 8 had failed at their first
-point, 7 solves lost at each).
+break is near: the next chains are probes of one point (two: :data:`PROBES`), then doubling again. After the first
+break (no gap known yet) the next chain is ``first`` points long, probing after it; after a point solved alone,
+chains restart from ``first``, unless the chain failed at its first point with integers to search: that point is a
+break (``BatchSweep.run``), so that where the integers are decided at every point the chains are one point long (the
+ball over its power past 4.6x: chains of 8 had failed at their first point, 7 solves lost at each).
 
 With free integers a chain also ends where an inactive constraint or bound is expected to become active
 (:func:`until_active`), where a fixed integer's multiplier can jump from nothing (the ball over its power: its first
 chain past 4.5x had run 35 points past the break); a chain aimed at a break and cut short there leaves the rest of the
 way to the next chain. A search that keeps the chain's integers (its promised neighbour without a design, ruled out
-from then on) is no break.
+from then on) is no break. The slacks are followed from the last two kept points with the same integers, also the
+first two after a break, and also where the integers' multipliers promise a gain at neighbours that are ruled out:
+where the rows of the ball carry no more past 7.5x its power, the slack that closes there foretold each break.
 
 Measured on the 100-point user sweeps of the benchmark (``docs/tradeoffs.md``, "Batches"): the cable over its
 allowable stress broke at 7 points with gaps 9, 9, 11, 13, 16, 21, the ball over its speed at 7 with gaps 9, 9, 10,
