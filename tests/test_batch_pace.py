@@ -44,6 +44,25 @@ def test_the_next_chain_ends_where_the_next_break_is_expected():
     assert pace.size == 16
 
 
+def test_a_worse_neighbour_with_a_design_makes_the_next_chains_probes():
+    # ball_crusher's rows: at one point one row more is promised a gain and, solved, does worse (kept: no change of
+    # the integers, no break), at the next the rows carry no more. Breaks at 3 and 8 (gap 5: next aim 5 - 1 = 4);
+    # near() then makes the next two chains one point long and records no break, so the gaps stay those between
+    # changes: a break at 14 gives gaps 5, 6 -> 6 * 6/5 = 7.2 -> 7, one short: 6
+    pace = BatchPace(8, 256)
+    for k in (3, 8):
+        pace.broke(k)
+    assert pace.size == 4 and pace.aimed
+    pace.near()
+    assert pace.size == 1 and not pace.aimed
+    pace.passed()
+    assert pace.size == 1
+    pace.passed()
+    assert pace.size == 2
+    pace.broke(14)
+    assert pace.size == 6
+
+
 def test_the_growth_of_the_gap_is_bounded():
     # gaps 2 then 20: growth 10 bounded to 2 -> 40 points, one short: 39; gaps 40 then 4: growth 0.1 bounded to 0.5
     # -> 2, one short: 1; gaps 1 then 1: 1, one short 0, at least 1; a prediction never exceeds the longest chain

@@ -299,6 +299,9 @@ class BatchSweep:
                     if not (np.array_equal(start.combo, kept.combo) and self._tightens(k)):  # (where it kept the
                         pace.broke(k)  # batch's integers and the neighbours it found without a design stay ruled
                         # out, the relaxed integers crossed no boundary: no break to pace the chains by)
+                    elif sum(bool(entry["feasible"]) for entry in self.searches[k]) > 1:  # a neighbour promised a
+                        pace.near()  # gain has a design, worse: a boundary close by (ball_crusher's rows: one row
+                        # more promised and worse at one point, the rows kept without a design at the next)
                     blocks.append(settled)
                     k, ahead = k + 1, (1 if forecast else None)  # (a forecast change of the active set often
                     # comes with another at the next point, the ball at 4.5x its power: the contact stress active at

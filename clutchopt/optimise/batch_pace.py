@@ -80,6 +80,13 @@ class BatchPace:
         growth = min(max(gaps[-1] / gaps[0], 0.5), 2.0)  # 1 with a single gap
         self.size, self._aimed = min(max(1, round(gaps[-1] * growth) - SHORT), self.longest), True
 
+    def near(self) -> None:
+        """The integer search kept the chain's integers at a point where a neighbour promised a gain and, solved, did
+        worse: the integers are near a change (on ``ball_crusher``'s rows most often at the next point, where they
+        carry no more), and the next chains are probes (:data:`PROBES`); no break is recorded (a pace aimed by gaps of
+        one point between such a point and the change had run chains of 9 that failed at their first point)."""
+        self.size, self._aimed, self._probes = PROBE, False, PROBES - 1
+
     def restart(self) -> None:
         """A point failed a test other than the integer search's (solved alone): chains restart from ``first``."""
         self.size, self._aimed, self._probes = self.first, False, 0
