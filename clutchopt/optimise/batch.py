@@ -290,7 +290,7 @@ class BatchSweep:
                     self.feasible, failed = start.warm.design, False
                 if chained and passed == chained:
                     pace.passed(chained)
-                    ahead = self._until_active(blocks)
+                    ahead = self._until_active(blocks) if pace.size > 1 else None  # (a chain of one: no shorter)
                     if not searching or k == end:  # (a batch that passes up to its integers' exclusion hands the
                         continue  # next point to the search)
                 settled = self._settle(start, k, tried) if searching else None
@@ -386,7 +386,7 @@ class BatchSweep:
             if first == 0:
                 return None, 0, True, None  # foreseen: nothing chained
             if first > 0:
-                count = min(count, first)
+                count = first  # (a break known ahead, within reach: the chain ends there)
         chain = self._chain(start, k, count, lower, upper, start.seed)
         if chain is None:
             return None, min(count, chain_length(count)), False, None
@@ -409,15 +409,15 @@ class BatchSweep:
         premise): from the neighbour, whose multipliers then promise a gain the other way or none, the batch's own
         integers are tried again as its downhill step only where the tangent there does not already show them worse.
         One solve at that point instead of two."""
+        if k == 0 or not len(self._fixed_names):
+            return None, None
         run = {"x": start.x, "lam_x": start.lam_x, "f": start.objective / start.f_scale}
         for combo in downhill(self.posed, run, Box(start.scale, self.lower, self.upper), self.integer):
             design = self.lower.copy()
             design[self.integer] = combo
-            if k == 0 or not self._excluded(design, k - 1, 1)[0]:
-                continue
-            ahead = self._excluded(design, k, count)
-            if not ahead.all():
-                return int(np.argmin(ahead)), combo
+            table = self._excluded(design, k - 1, min(count, self._span - 1) + 1)  # (one table from k - 1)
+            if table[0] and not table[1:].all():
+                return int(np.argmin(table[1:])), combo
         return None, None
 
     def _chain(self, start: _Start, k: int, count: int, lower: np.ndarray, upper: np.ndarray,
