@@ -249,8 +249,8 @@ class BatchSweep:
         self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
         self.searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
         self._opened: dict[int, np.ndarray] = {}  # point -> the combination the search starts from (:meth:`_opening`)
-        self._undesigned: dict[tuple, tuple[int, str]] = {}  # integer combination -> the last point where IPOPT
-        # found no design, and IPOPT's status there
+        self._undesigned: dict[tuple, tuple[int, str]] = {}  # integer combination -> the last point where IPOPT or
+        # the least violation found no design, and the status there
         varied = self.values[[q.name in self.varied for q in f.quantities]]
         with np.errstate(all="ignore"):  # each point's step in the case from the one before, relative
             moves = np.diff(varied, axis=1) / np.abs(varied[:, 1:])
