@@ -290,7 +290,8 @@ class BatchSweep:
                     self.feasible, failed = start.warm.design, False
                 if chained and passed == chained:
                     pace.passed(chained)
-                    ahead = self._until_active(blocks) if pace.size > 1 else None  # (a chain of one: no shorter)
+                    ahead = self._until_active(blocks, pace.size) if pace.size > 1 else None  # (a chain of one:
+                    # no shorter)
                     if not searching or k == end:  # (a batch that passes up to its integers' exclusion hands the
                         continue  # next point to the search)
                 settled = self._settle(start, k, tried) if searching else None
@@ -322,17 +323,23 @@ class BatchSweep:
                 failed = alone[k - 1].status not in DESIGN_STATUSES
             yield self._window(blocks, alone, first, k - first)
 
-    def _until_active(self, blocks: list[Block]) -> int | None:
+    def _until_active(self, blocks: list[Block], size: int) -> int | None:
         """With free integers, the points after the last kept one until its active set is expected to change
         (``batch_pace.until_active``, from the last two kept points where they are consecutive, with the same integers
         and scales: :func:`_last_two`): the next chain ends there. A change of the active set is what makes a fixed
         integer's multiplier promise a neighbour, and where a slack of the design closes at fixed integers the
         integers stop serving (the ball over its power past 7.5x: each point where the rows carry no more, one row
-        more, was foreseen to the point). None otherwise (the integer breaks are paced by their gaps)."""
+        more, was foreseen to the point). None otherwise (the integer breaks are paced by their gaps), and where the
+        exclusion tables end the next chain of ``size`` points anyway (the cable count as its torque rises)."""
         pair = _last_two(blocks, self.integer) if self.integer else None
         if pair is None:
             return None
         last = int(pair.index[-1]) + 1
+        design = self.lower.copy()
+        design[self.integer] = np.round(pair.arrays["x"][self.integer, -1] * pair.arrays["p"][
+            len(self.values):len(self.values) + len(self.names), -1][self.integer])
+        if last < self.count and self._excluded(design, last, min(size, self.count - last)).any():
+            return None
         return until_active(self.posed, pair, self._ratio[last:last + LONGEST_BATCH], self._free,
                             self.posed.kkt_tolerance)
 
