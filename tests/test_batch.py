@@ -13,6 +13,7 @@ from clutchopt.cases import load_case
 from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.batch import BATCHED, BatchSweep, batchable
+from clutchopt.optimise.feasibility import INFEASIBLE_MARGIN
 from clutchopt.optimise.integers import downhill, violated_whatever_the_rest
 from clutchopt.optimise.posed import Box, off_scale
 from clutchopt.optimise.problem import Problem, case_problem
@@ -145,6 +146,37 @@ def test_the_integer_search_along_a_batched_sweep():
                 assert other.status != "optimal" or other.objective >= solution.objective * (1 - 1e-9)
 
 
+def test_a_count_that_opens_is_where_the_search_starts():
+    # cable count falls as the allowable cable stress rises (cable_conveyor, 0.5x-2x over 40 points): the count one
+    # fewer, promised a gain by the multipliers, is excluded by eq. (18)'s stress alone (no design variable enters it)
+    # until the point where sigma_pk(n - 1) <= [sigma_pk]; the exclusion table finds that point ahead, the chain ends
+    # before it and the search starts there at n - 1 (batch._opening): one solve, not the chained column at n and
+    # then n - 1. Its record: n - 1 solved, n - 2 excluded. Under the convexity the search rests on, n could not win
+    # where n - 1's multiplier promises a gain towards n - 2 (the tangent bounds f*(n) from below by more than
+    # f*(n - 1)): each point equals Problem.solve's, which steps from n to n - 1
+    file, mode, quantity = "cable_conveyor.toml", "paper", "allowable_cable_stress"
+    case = load_case(CASES / file)
+    problem = Problem(get_coupling(case.coupling).formulation(mode))
+    values = case.values[quantity] * np.geomspace(0.5, 2.0, 40)
+    sweep = BatchSweep(problem, case, {quantity: values})
+    solutions = [s for part in sweep.run() for s in part]
+    counts = [s.design["cable_count"] for s in solutions]
+    changes = [k for k in range(1, len(counts)) if counts[k] != counts[k - 1]]
+    assert counts == sorted(counts, reverse=True) and len(changes) >= 4
+    for k in changes:
+        n = counts[k - 1]
+        assert counts[k] == n - 1 and solutions[k].solver.solves == 1
+        assert [(e["cable_count"], e["status"][:9]) for e in solutions[k].integer_search] == [
+            (n - 1, BATCHED[:9]), (n - 2, "excluded:")]
+    previous = None
+    for value, got in zip(values, solutions):
+        want = problem.solve(case.with_values(**{quantity: float(value)}), warm=previous)
+        previous = want
+        assert got.status == want.status == "optimal" and got.design["cable_count"] == want.design["cable_count"]
+        assert got.objective == pytest.approx(want.objective, rel=1e-9)
+    assert sweep.solves <= len(values) + 3  # the first point's relaxation and count, no second solve at a change
+
+
 def test_a_chain_ends_near_the_next_change_of_the_integers():
     # ball rows fall with the speed, the search stepping to a neighbour the multipliers promise (no exclusion to
     # foresee it): at each change the chained column of the rows before is the search's first attempt, the
@@ -166,11 +198,13 @@ def test_a_neighbour_without_a_design_is_settled_in_the_batch():
     # (solved alone) finds it so; from there the power only rises, and the power enters the torque row's limit alone
     # (k_s P / w, no design variable in it), so the row fewer stays ruled out (optimise/tightening.py) and the chain
     # runs on: 1 call a point. Where the rows before become infeasible (2 points) the chained column fails its KKT
-    # test and the search tries them by IPOPT (infeasible): one row fewer than that is ruled out, so the search starts
-    # at one row more, without the relaxation: 2 calls (and the failed column). The records' calls: 3 (the first
-    # point) + 13 * 1 + 2 * 2 = 20; the sweep's 27: the failed columns at the 2 changes, and the points chained past
-    # them (the chains of 8 from points 1 and 7 break at 6 and 11: 2 + 3); 51 before the ruling out, 142 before the
-    # batch's own search (chains of 8 failing at their first point, then Problem.solve at each point)
+    # test and the search finds them without a design by their least violation (optimise/feasibility.py: a verified
+    # local minimum of the largest violation above 1e-6, where IPOPT had said Infeasible_Problem_Detected in 5-8 ms):
+    # one row fewer than that is ruled out, so the search starts at one row more, without the relaxation: 2 calls (and
+    # the failed column). The records' calls: 3 (the first point) + 13 * 1 + 2 * 2 = 20; the sweep's 27: the failed
+    # columns at the 2 changes, and the points chained past them (the chains of 8 from points 1 and 7 break at 6 and
+    # 11: 2 + 3); 51 before the ruling out, 142 before the batch's own search (chains of 8 failing at their first
+    # point, then Problem.solve at each point)
     case, problem, quantity, values, sweep, solutions = _sweep("ball_rows_up")
     rows = [s.design["ball_rows"] for s in solutions]
     assert rows == sorted(rows) and rows[0] == 6 and rows[-1] == 8
@@ -180,8 +214,9 @@ def test_a_neighbour_without_a_design_is_settled_in_the_batch():
         if n == before.design["ball_rows"]:
             assert s.integer_search == [] and s.solver.solves == 1
         else:
-            assert [(e["ball_rows"], e["status"]) for e in s.integer_search] == [
-                (n - 1, "Infeasible_Problem_Detected"), (n, BATCHED)] and s.solver.solves == 2
+            assert [(e["ball_rows"], e["status"][:28]) for e in s.integer_search] == [
+                (n - 1, "infeasible (least violation "), (n, BATCHED)] and s.solver.solves == 2
+            assert float(s.integer_search[0]["status"][28:].split(",")[0]) > INFEASIBLE_MARGIN
     assert not any(e["feasible"] for s in solutions for e in s.integer_search if e["status"] != BATCHED
                    and not e["status"].startswith("Solve"))
     assert sum(s.solver.solves for s in solutions) == 20 and sweep.solves <= 27

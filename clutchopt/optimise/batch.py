@@ -24,11 +24,16 @@ integers excluded there, or a neighbour to try), the batch runs the search itsel
 (``integers.descend``, then the relaxation and ``integers.nearest_integers``): each integer combination is excluded
 by the tables or re-solved by a one-point chained SQP and KKT-checked (the relaxation with its Hessian
 convexified; the batch's own integers not again where the chain solved them at that point: its column there is
-the first attempt). A combination the one-point SQP does not settle is solved as ``Problem.solve``'s search solves a
-neighbour, by IPOPT from cold: kept out of the search where IPOPT finds no design (and at the next point tried by
-IPOPT directly, or not at all where the sweep has only tightened the constraints since: ``tightening``, whose
-combinations ruled out so also do not end a chain), else re-solved by SQP from IPOPT's optimum (the ball's rows: one
-row fewer promised by the multipliers but infeasible, point after point, had sent each point to ``Problem.solve``).
+the first attempt). A combination the one-point SQP does not settle goes to SQP on its least largest violation
+(``feasibility``): a verified local minimum above 1e-6 keeps it out of the search (IPOPT's
+``Infeasible_Problem_Detected`` at 0.3 ms instead of 5-15 ms: the ball's rows, each time they carry no more), a design
+found there is re-solved by SQP from it; otherwise it is solved as ``Problem.solve``'s search solves a neighbour, by
+IPOPT from cold: kept out of the search where IPOPT finds no design (and at the next point tried again directly, or
+not at all where the sweep has only tightened the constraints since: ``tightening``, whose combinations ruled out so
+also do not end a chain), else re-solved by SQP from IPOPT's optimum (the ball's rows: one row fewer promised by the
+multipliers but infeasible, point after point, had sent each point to ``Problem.solve``). Where the neighbour the
+multipliers promise stops being excluded by a constraint of fixed variables alone (the cable count one fewer as the
+allowable stress rises), the chain ends before that point and the search starts there at the neighbour.
 Where the batch's integers are excluded, or IPOPT finds no design with them, and one neighbouring combination is left,
 the search starts there, without the relaxation (the cable count, one cable more; the ball's rows, one more where the
 row fewer is ruled out). The next chain then ends where the next such point is expected (``batch_pace``; a point that
@@ -68,7 +73,8 @@ from clutchopt.optimise.attempts import warm_multipliers
 from clutchopt.optimise.batch_pace import BatchPace, until_active
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
 from clutchopt.optimise.chain import chain_verdict, chained_sqp
-from clutchopt.optimise.integers import (INFEASIBLE, descend, downhill, excluded_entry, nearest_integers, priced,
+from clutchopt.optimise.feasibility import LOCALLY_INFEASIBLE, Least, infeasible, least
+from clutchopt.optimise.integers import (descend, downhill, excluded_entry, nearest_integers,
                                          relaxation_seed, search_entry)
 from clutchopt.optimise.posed import Box, ScaledData, off_scale
 from clutchopt.optimise.problem import Problem
@@ -130,6 +136,34 @@ class _Chain(Block):
             a[key] *= ratio
         a["p"][-1, 0] = f_scale
         return _Chain(self.index[j:j + 1], self.ok[j:j + 1], self.moves[j:j + 1], **a)
+
+
+def _from_design(x: np.ndarray, seed: dict) -> dict:
+    """A start for SQP at the design ``x`` (scaled) with ``seed``'s constraint multipliers, without bound multipliers
+    or a step to predict from. (From the least violation's design at the ball's rows, its multipliers zero, SQP
+    stopped on a search direction too small at 2 of 3 combinations; with the previous optimum's constraint
+    multipliers each converged in 2 iterations, with the Hessian's negative eigenvalues clipped.)"""
+    return {"x": x, "lam_g": seed["lam_g"],
+            **{key: np.zeros_like(seed[key]) for key in ("lam_x", "dx", "dlam_x", "dlam_g")}}
+
+
+def _last_two(blocks: list[Block], integer: list[int]) -> Block | None:
+    """The last two kept points as a block, where they are consecutive, with the same integers (SI) and variable
+    scales (each from a chain or an integer search), so that each slack's step between them is the sweep's; None
+    where they are not."""
+    columns = [(block, j) for block in blocks[-2:] for j in range(max(len(block.index) - 2, 0), len(block.index))][-2:]
+    if len(columns) < 2:
+        return None
+    pair = Block(np.array([block.index[j] for block, j in columns]),
+                 **{key: np.concatenate([block.arrays[key][:, j:j + 1] for block, j in columns], axis=1)
+                    for key in ("x", "lam_x", "lam_g", "p", "lbx", "ubx")})
+    p, x, n = pair.arrays["p"], pair.arrays["x"], len(pair.arrays["lbx"])
+    m = len(p) - n - 1
+    scale = p[m:m + n]
+    if pair.index[1] - pair.index[0] != 1 or not np.array_equal(scale[:, 0], scale[:, 1]):
+        return None
+    combos = np.round(x[integer] * scale[integer])
+    return pair if np.array_equal(combos[:, 0], combos[:, 1]) else None
 
 
 class _Unsettled(Exception):
@@ -214,8 +248,9 @@ class BatchSweep:
         self._span = min(EXCLUSION_SPAN, self.count)
         self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
         self.searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
-        self._undesigned: dict[tuple, tuple[int, str]] = {}  # integer combination -> the last point where IPOPT
-        # found no design, and IPOPT's status there
+        self._opened: dict[int, np.ndarray] = {}  # point -> the combination the search starts from (:meth:`_opening`)
+        self._undesigned: dict[tuple, tuple[int, str]] = {}  # integer combination -> the last point where IPOPT or
+        # the least violation found no design, and the status there
         varied = self.values[[q.name in self.varied for q in f.quantities]]
         with np.errstate(all="ignore"):  # each point's step in the case from the one before, relative
             moves = np.diff(varied, axis=1) / np.abs(varied[:, 1:])
@@ -255,7 +290,8 @@ class BatchSweep:
                     self.feasible, failed = start.warm.design, False
                 if chained and passed == chained:
                     pace.passed(chained)
-                    ahead = None if pace.aimed else self._until_active(block)  # (where no break is expected)
+                    ahead = self._until_active(blocks, pace.size) if pace.size > 1 else None  # (a chain of one:
+                    # no shorter)
                     if not searching or k == end:  # (a batch that passes up to its integers' exclusion hands the
                         continue  # next point to the search)
                 settled = self._settle(start, k, tried) if searching else None
@@ -264,6 +300,9 @@ class BatchSweep:
                     if not (np.array_equal(start.combo, kept.combo) and self._tightens(k)):  # (where it kept the
                         pace.broke(k)  # batch's integers and the neighbours it found without a design stay ruled
                         # out, the relaxed integers crossed no boundary: no break to pace the chains by)
+                    elif sum(bool(entry["feasible"]) for entry in self.searches[k]) > 1:  # a neighbour promised a
+                        pace.near()  # gain has a design, worse: a boundary close by (ball_crusher's rows: one row
+                        # more promised and worse at one point, the rows kept without a design at the next)
                     blocks.append(settled)
                     k, ahead = k + 1, (1 if forecast else None)  # (a forecast change of the active set often
                     # comes with another at the next point, the ball at 4.5x its power: the contact stress active at
@@ -284,19 +323,24 @@ class BatchSweep:
                 failed = alone[k - 1].status not in DESIGN_STATUSES
             yield self._window(blocks, alone, first, k - first)
 
-    def _until_active(self, block: Block) -> int | None:
-        """With free integers that the objective does not price at the block's last point (their bound multipliers
-        within ``Posed.negligible``: a change of the active set is what would make one promise a neighbour), the
-        points after ``block`` until its active set is expected to change (``batch_pace.until_active``): the next
-        chain ends there. None otherwise (the integer breaks are paced by their gaps)."""
-        if not self.integer:
+    def _until_active(self, blocks: list[Block], size: int) -> int | None:
+        """With free integers, the points after the last kept one until its active set is expected to change
+        (``batch_pace.until_active``, from the last two kept points where they are consecutive, with the same integers
+        and scales: :func:`_last_two`): the next chain ends there. A change of the active set is what makes a fixed
+        integer's multiplier promise a neighbour, and where a slack of the design closes at fixed integers the
+        integers stop serving (the ball over its power past 7.5x: each point where the rows carry no more, one row
+        more, was foreseen to the point). None otherwise (the integer breaks are paced by their gaps), and where the
+        exclusion tables end the next chain of ``size`` points anyway (the cable count as its torque rises)."""
+        pair = _last_two(blocks, self.integer) if self.integer else None
+        if pair is None:
             return None
-        scale = block.arrays["p"][len(self.values):len(self.values) + len(self.names), -1]
-        if np.any(priced(self.posed, block.arrays["lam_x"][self.integer, -1], scale[self.integer],
-                         float(block.arrays["f"][0, -1]))):
+        last = int(pair.index[-1]) + 1
+        design = self.lower.copy()
+        design[self.integer] = np.round(pair.arrays["x"][self.integer, -1] * pair.arrays["p"][
+            len(self.values):len(self.values) + len(self.names), -1][self.integer])
+        if last < self.count and self._excluded(design, last, min(size, self.count - last)).any():
             return None
-        last = int(block.index[-1]) + 1
-        return until_active(self.posed, block, self._ratio[last:last + LONGEST_BATCH], self._free,
+        return until_active(self.posed, pair, self._ratio[last:last + LONGEST_BATCH], self._free,
                             self.posed.kkt_tolerance)
 
     def _start_of(self, solution: Solution) -> _Start | None:
@@ -336,15 +380,20 @@ class BatchSweep:
         chained column (KKT-verified at the batch's integers: the search's first attempt)."""
         lower, upper = self.lower.copy(), self.upper.copy()
         lower[self.integer] = upper[self.integer] = start.combo
-        first = -1  # the first point ahead where the batch's integers are excluded
+        first = -1  # the first point ahead where the batch's integers are excluded, or a neighbour opens
+        self._opened = {}
         if self.integer:  # the batch stops short of a point its integers cannot serve whatever the rest (the search
             # excludes them there without a solve)
             excluded = self._excluded(lower, k, max(count, reach))
             if excluded.any():
                 first = int(np.argmax(excluded))
-                if first == 0:
-                    return None, 0, True, None  # foreseen: nothing chained
-                count = first
+            opens, neighbour = self._opening(start, k, max(count, reach))
+            if opens is not None and (first < 0 or opens < first):
+                first, self._opened[k + opens] = opens, neighbour
+            if first == 0:
+                return None, 0, True, None  # foreseen: nothing chained
+            if first > 0:
+                count = first  # (a break known ahead, within reach: the chain ends there)
         chain = self._chain(start, k, count, lower, upper, start.seed)
         if chain is None:
             return None, min(count, chain_length(count)), False, None
@@ -357,6 +406,26 @@ class BatchSweep:
         if searching and passed < count:
             tried = chain.column(passed, _Start(self, block=chain.block(passed)).f_scale if passed else start.f_scale)
         return (chain.block(passed) if passed else None), count, searching, tried
+
+    def _opening(self, start: _Start, k: int, count: int) -> tuple[int | None, np.ndarray | None]:
+        """Where, among points k .. k + count - 1, the neighbouring combination that ``start``'s multipliers promise a
+        gain at (``integers.downhill``) stops being excluded by a constraint of fixed variables alone that it broke at
+        the point before k (the cable count one fewer as the allowable cable stress rises): its offset from k and the
+        combination, or (None, None). There the warm search would step to it from the batch's integers; it starts
+        there instead (:meth:`_settle`), with the same outcome where f*(n) is convex in the integers (the search's
+        premise): from the neighbour, whose multipliers then promise a gain the other way or none, the batch's own
+        integers are tried again as its downhill step only where the tangent there does not already show them worse.
+        One solve at that point instead of two."""
+        if k == 0 or not len(self._fixed_names):
+            return None, None
+        run = {"x": start.x, "lam_x": start.lam_x, "f": start.objective / start.f_scale}
+        for combo in downhill(self.posed, run, Box(start.scale, self.lower, self.upper), self.integer):
+            design = self.lower.copy()
+            design[self.integer] = combo
+            table = self._excluded(design, k - 1, min(count, self._span - 1) + 1)  # (one table from k - 1)
+            if table[0] and not table[1:].all():
+                return int(np.argmin(table[1:])), combo
+        return None, None
 
     def _chain(self, start: _Start, k: int, count: int, lower: np.ndarray, upper: np.ndarray,
                seed: dict, method: str = "sqp_chain", predict: bool = True) -> "_Chain | None":
@@ -413,7 +482,7 @@ class BatchSweep:
         search: list[dict] = []
         box, seed = Box(start.scale, self.lower, self.upper), start.seed
         runs: list[_Chain] = []
-        cold: list[float] = []  # the seconds of each IPOPT call on a combination without a design
+        cold: list[float] = []  # the seconds of each call beside the one-point SQPs (the least violation, IPOPT)
 
         def attempt(combo, seed, methods=None) -> dict | None:
             lower, upper = self.lower.copy(), self.upper.copy()
@@ -432,7 +501,17 @@ class BatchSweep:
             else:  # a combination IPOPT left without a design at the point before goes to IPOPT again directly
                 chain = (self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
                          if self._undesigned.get(key, (None,))[0] != k - 1 else None)
-            if chain is None or not chain.ok[0]:  # as Problem.solve tries a neighbour: IPOPT, cold
+            if chain is None or not chain.ok[0]:  # its least violation: without a design, or SQP from the design
+                found, seconds = self._least_violation(start, k, lower, upper, seed)  # it found; else as
+                cold.append(seconds)  # Problem.solve tries a neighbour: IPOPT, cold
+                if found.without_design:
+                    status = LOCALLY_INFEASIBLE.format(found.violation)
+                    self._undesigned[key] = (k, status)
+                    search.append(search_entry(self.posed, self.integer, combo, status, False, math.nan))
+                    return None
+                chain = (self._chain(start, k, 1, lower, upper, _from_design(found.x, seed), "sqp_search",
+                                     predict=False) if found.feasible else None)
+            if chain is None or not chain.ok[0]:
                 entry, seconds, optimum = self._cold(start, k, lower, upper, seed)
                 cold.append(seconds)
                 if optimum is None:
@@ -455,7 +534,8 @@ class BatchSweep:
                 "f": float(chain.f[0, 0]), "value": float(chain.f[0, 0]) * start.f_scale, "chain": chain}
 
         try:
-            kept = descend(self.posed, box, self.integer, start.combo, seed, search, attempt)
+            origin = self._opened.pop(k, start.combo)  # (a neighbour that opens at k: :meth:`_opening`)
+            kept = descend(self.posed, box, self.integer, origin, seed, search, attempt)
             past = self._past_exclusion(start.combo, k) if kept is None else None
             if past is not None:  # the only neighbour its exclusion leaves: the search from there
                 kept = descend(self.posed, box, self.integer, past, seed, search, attempt)
@@ -484,7 +564,7 @@ class BatchSweep:
         the float64 check refused), and the step from there to k only tightens the constraints (``tightening``): no
         design meets at k what none met there."""
         found = self._undesigned.get(combo)
-        if found is None or found[0] >= k or found[1] != INFEASIBLE:
+        if found is None or found[0] >= k or not infeasible(found[1]):
             return ""
         if not self._tightening.tightened(self._by_point[found[0]], self._by_point[k]):
             return ""
@@ -549,6 +629,19 @@ class BatchSweep:
         tightened the constraints since (:meth:`_ruled_out`)."""
         key = tuple(combo.tolist())
         return self._undesigned.get(key, (None,))[0] == k or bool(self._ruled_out(key, k))
+
+    def _least_violation(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
+                         seed: dict) -> tuple[Least, float]:
+        """The least largest violation of an integer combination (fixed in ``lower``, ``upper``) that the one-point
+        chained SQP did not settle at point k, from ``seed``'s point (``feasibility.least``: whether the combination
+        is without a design, IPOPT's verdict at a few QP solves, or where a design was found), and the seconds of the
+        call."""
+        began = time.perf_counter()
+        found = least(self.posed, seed["x"], np.concatenate([self._by_point[k], start.scale, [start.f_scale]]),
+                      lower / start.scale, upper / start.scale)
+        seconds = time.perf_counter() - began
+        self.solves, self.solver_s = self.solves + 1, self.solver_s + seconds
+        return found, seconds
 
     def _cold(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
               seed: dict) -> tuple[dict, float, dict | None]:

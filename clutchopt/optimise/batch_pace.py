@@ -7,18 +7,21 @@ integer search has decided a point (a chain broke there: its integers excluded, 
 a gain), the next break is expected as far on as the last gap between breaks, grown as that gap grew from the one
 before (the relaxed integer crosses integer boundaries at a slowly changing pace along a sweep of evenly or
 geometrically spaced points), and the chain ends at that point: a break on a chain's last point wastes nothing, its
-column being the search's first attempt. Should the chain pass, the break is near: the next chain is a probe of
-one point, then doubling again. After the first break (no gap known yet) the next chain is ``first`` points long,
-probing after it; after a point solved alone, chains restart from ``first``, unless the chain failed at its first
-point with integers to search: that point is a break (``BatchSweep.run``), so that where the integers are decided at
-every point the chains are one point long (the ball over its power past 4.6x: chains of 8 had failed at their first
-point, 7 solves lost at each).
+column being the search's first attempt; it ends one point short of that (:data:`SHORT`), so that a break one
+point sooner wastes nothing either, and the probe after it takes the expected break. Should the chain pass, the
+break is near: the next chains are probes of one point (two: :data:`PROBES`), then doubling again. After the first
+break (no gap known yet) the next chain is ``first`` points long, probing after it; after a point solved alone,
+chains restart from ``first``, unless the chain failed at its first point with integers to search: that point is a
+break (``BatchSweep.run``), so that where the integers are decided at every point the chains are one point long (the
+ball over its power past 4.6x: chains of 8 had failed at their first point, 7 solves lost at each).
 
 With free integers a chain also ends where an inactive constraint or bound is expected to become active
 (:func:`until_active`), where a fixed integer's multiplier can jump from nothing (the ball over its power: its first
 chain past 4.5x had run 35 points past the break); a chain aimed at a break and cut short there leaves the rest of the
 way to the next chain. A search that keeps the chain's integers (its promised neighbour without a design, ruled out
-from then on) is no break.
+from then on) is no break. The slacks are followed from the last two kept points with the same integers, also the
+first two after a break, and also where the integers' multipliers promise a gain at neighbours that are ruled out:
+where the rows of the ball carry no more past 7.5x its power, the slack that closes there foretold each break.
 
 Measured on the 100-point user sweeps of the benchmark (``docs/tradeoffs.md``, "Batches"): the cable over its
 allowable stress broke at 7 points with gaps 9, 9, 11, 13, 16, 21, the ball over its speed at 7 with gaps 9, 9, 10,
@@ -31,6 +34,11 @@ import numpy as np
 
 PROBE = 1  # the chain after one aimed at an expected break passed: the break is most often the next point (of 10
 # predicted gaps on the cable and ball sweeps, 4 were exact, 4 one point longer, 1 two longer, 1 one shorter)
+PROBES = 2  # probes of PROBE points before doubling again (a break one point past the aim ends the second probe)
+SHORT = 1  # an aimed chain ends this many points before the expected break: a break there or one point sooner wastes
+# nothing (its probe, or the chain's last column, is the search's first attempt), where a chain aimed at the break
+# itself spent a solve on each point past a break that came sooner (the ball over its power 1x-10x, rows rising every
+# 3-5 points as each carries no more: 2 of 6)
 
 
 class BatchPace:
@@ -42,6 +50,7 @@ class BatchPace:
         self.size = first
         self._breaks: list[int] = []  # the last three points where the integer search decided
         self._aimed = False  # the size ends the chain at an expected break
+        self._probes = 0  # probes left after this one
 
     @property
     def aimed(self) -> bool:
@@ -55,7 +64,9 @@ class BatchPace:
         if self._aimed and points is not None and points < self.size:
             self.size -= points
         elif self._aimed:
-            self.size, self._aimed = PROBE, False
+            self.size, self._aimed, self._probes = PROBE, False, PROBES - 1
+        elif self._probes:
+            self._probes -= 1
         else:
             self.size = min(2 * self.size, self.longest)
 
@@ -67,11 +78,18 @@ class BatchPace:
             self.size, self._aimed = self.first, True
             return
         growth = min(max(gaps[-1] / gaps[0], 0.5), 2.0)  # 1 with a single gap
-        self.size, self._aimed = min(max(1, round(gaps[-1] * growth)), self.longest), True
+        self.size, self._aimed = min(max(1, round(gaps[-1] * growth) - SHORT), self.longest), True
+
+    def near(self) -> None:
+        """The integer search kept the chain's integers at a point where a neighbour promised a gain and, solved, did
+        worse: the integers are near a change (on ``ball_crusher``'s rows most often at the next point, where they
+        carry no more), and the next chains are probes (:data:`PROBES`); no break is recorded (a pace aimed by gaps of
+        one point between such a point and the change had run chains of 9 that failed at their first point)."""
+        self.size, self._aimed, self._probes = PROBE, False, PROBES - 1
 
     def restart(self) -> None:
         """A point failed a test other than the integer search's (solved alone): chains restart from ``first``."""
-        self.size, self._aimed = self.first, False
+        self.size, self._aimed, self._probes = self.first, False, 0
 
 
 def until_active(posed, block, ratios, free: np.ndarray, tol: float) -> int | None:

@@ -24,21 +24,24 @@ def kkt(posed: Posed) -> ca.Function:
     the right sign, complementary to their constraints and bounds, the constraints held (CasADi's SQP can stop at
     the start when handed a previous point's multipliers, e.g. of a constraint that has become slack). A function
     (x, p, lam_x, lam_g, lbx, ubx) -> 1 where all hold, else 0 (also where a number is NaN)."""
-    def build(_):
-        x, lam_g, g = posed.nlp["x"], posed.lam_g, posed.nlp["g"][: posed.n_ineq]
-        gradient = ca.gradient(posed.lagrangian, x)
-        lam_x, lbx, ubx = (ca.SX.sym(name, x.shape[0]) for name in ("lam_x", "lbx", "ubx"))
-        tol = posed.kkt_tolerance
-        ineq = lam_g[: posed.n_ineq]
-        width = tol * ca.fmax(1.0, ca.fabs(x))
-        wrong_bound = ca.logic_or(ca.logic_and(lam_x > tol, ubx - x > width),
-                                  ca.logic_and(lam_x < -tol, x - lbx > width))
-        holds = [ca.fabs(gradient + lam_x) <= tol, ineq >= -tol, ineq * ca.fmax(-g, 0.0) <= tol,
-                 ca.logic_not(wrong_bound), g <= FEASIBILITY_TOL]
-        failures = sum(ca.sum1(1 - condition) for condition in holds)  # a comparison with NaN fails
-        return ca.Function("kkt", [x, posed.nlp["p"], lam_x, lam_g, lbx, ubx], [failures == 0])
+    return posed.built("kkt", None, lambda _: kkt_of(posed.nlp, posed.n_ineq, posed.kkt_tolerance, "kkt"))
 
-    return posed.built("kkt", None, build)
+
+def kkt_of(nlp: dict, n_ineq: int, tol: float, name: str) -> ca.Function:
+    """:func:`kkt`'s function for any scaled NLP (``x``, ``p``, ``f``, ``g``: rows ``g <= 0`` first, ``n_ineq`` of
+    them, then equalities ``g = 0``), to the tolerance ``tol``."""
+    x, g = nlp["x"], nlp["g"]
+    lam_g = ca.SX.sym("lam_g", g.shape[0])
+    gradient = ca.gradient(nlp["f"] + ca.dot(lam_g, g), x)
+    lam_x, lbx, ubx = (ca.SX.sym(label, x.shape[0]) for label in ("lam_x", "lbx", "ubx"))
+    ineq, g = lam_g[:n_ineq], g[:n_ineq]
+    width = tol * ca.fmax(1.0, ca.fabs(x))
+    wrong_bound = ca.logic_or(ca.logic_and(lam_x > tol, ubx - x > width),
+                              ca.logic_and(lam_x < -tol, x - lbx > width))
+    holds = [ca.fabs(gradient + lam_x) <= tol, ineq >= -tol, ineq * ca.fmax(-g, 0.0) <= tol,
+             ca.logic_not(wrong_bound), g <= FEASIBILITY_TOL]
+    failures = sum(ca.sum1(1 - condition) for condition in holds)  # a comparison with NaN fails
+    return ca.Function(name, [x, nlp["p"], lam_x, lam_g, lbx, ubx], [failures == 0])
 
 
 def first_order_optimal(posed: Posed, x, p, lam_x, lam_g, lbx, ubx) -> np.ndarray:
