@@ -2,6 +2,7 @@
 design is the one ``clutchopt solve`` gives at its values, every solve still checked by the simulator."""
 
 import numpy as np
+import pytest
 
 from clutchopt.cases import load_case
 from clutchopt.optimise import start_up_sweep, sweep
@@ -36,3 +37,50 @@ def test_a_start_up_sweep_gives_each_point_solve_s_design_from_the_point_before(
         # verified by the simulator as solve verifies it: its start time beside the collocation's
         simulated = record["start_up"]["start_time_simulated"]
         assert abs(simulated - alone.start_up["start_time_simulated"]) <= 1e-6 * simulated
+
+
+def test_the_limits_a_point_starts_with_follow_the_secant_through_the_two_points_before():
+    """predicted_shift by hand: the two points before at J = 0.60 and 0.61 kg m^2 ended with the temperature limit's
+    share (centred) 1 - 1.9765e-4 and 1 - 1.9470e-4 on the same mesh. At 0.62 (one step on, t = 1) the secant gives
+    2 (1 - 1.9470e-4) - (1 - 1.9765e-4) = 1 - 1.9175e-4; at 0.625 (t = 1.5) 1 - 1.9470e-4 + 1.5 x 2.95e-6
+    = 1 - 1.90275e-4. Beyond FURTHEST steps, off the line through the two points, or across a mesh change the point
+    before's centred share is carried as it is; without points before, its limit_shift."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.start_up_sweep import Along, predicted_shift
+
+    mesh = np.full(16, 1 / 16)
+    before = Along({"driven_inertia": 0.60, "speed": 100.0}, {"max_temperature_rise": 1 - 1.9765e-4}, mesh)
+    last = Along({"driven_inertia": 0.61, "speed": 100.0}, {"max_temperature_rise": 1 - 1.9470e-4}, mesh, before)
+    previous = SimpleNamespace(along=last, limit_shift={"max_temperature_rise": 1 - 1.9400e-4})  # as its last NLP
+
+    def at(inertia, speed=100.0, point_before=previous):
+        return predicted_shift(point_before, SimpleNamespace(values={"driven_inertia": inertia, "speed": speed}))
+
+    assert at(0.62)["max_temperature_rise"] == pytest.approx(1 - 1.9175e-4, rel=0, abs=1e-15)
+    assert at(0.625)["max_temperature_rise"] == pytest.approx(1 - 1.90275e-4, rel=0, abs=1e-15)
+    assert at(0.65) == last.shift  # t = 4 > FURTHEST
+    assert at(0.62, speed=101.0) == last.shift  # not on the line through the points before
+    adapted = SimpleNamespace(along=Along(last.values, last.shift, mesh * 1.0 + [0.01, -0.01] * 8, before),
+                              limit_shift=previous.limit_shift)
+    assert at(0.62, point_before=adapted) == last.shift  # a mesh adaptation between them
+    cold = SimpleNamespace(along=None, limit_shift=previous.limit_shift)  # the sweep's first point: solve's
+    assert at(0.62, point_before=cold) == previous.limit_shift
+
+
+def test_a_binding_limit_is_centred_on_the_simulated_figure():
+    """centred_shift by hand: the NLP saw max_temperature_rise 4 K x 0.9998 = 3.9992 K; the simulated peak is
+    4 K + 2e-6 K, the check active: centred on the simulator, the NLP's limit would be 3.9992 - 2e-6 K, a share of
+    0.9998 - 5e-7. An inactive check, or a limit the correction did not move, is left as it is."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.start_up_sweep import centred_shift
+
+    check = SimpleNamespace(name="temperature_rise", active=True, sense="<=", value=4.0 + 2e-6, limit=4.0)
+    loose = SimpleNamespace(name="start_time", active=False, sense="<=", value=9.0, limit=10.0)
+    solution = SimpleNamespace(constraints=[check, loose],
+                               limit_shift={"max_temperature_rise": 0.9998, "max_start_time": 0.99})
+    case = SimpleNamespace(values={"max_temperature_rise": 4.0, "max_start_time": 10.0})
+    shares = centred_shift(solution, case)
+    assert shares["max_temperature_rise"] == pytest.approx(0.9998 - 5e-7, rel=0, abs=1e-15)
+    assert shares["max_start_time"] == 0.99
