@@ -60,8 +60,9 @@ class StartUpBlock:
         self.s = structure
         self.drive = d = Drive(structure, law, x, p)
         self.tau, self.c = _collocation(DEGREE)
-        self._tau, self._c = self.tau.tolist(), self.c.tolist()  # as Python floats: NumPy scalars times SX go
-        # through NumPy's ufunc dispatch (a third of building the collocation; the same expressions)
+        self._tau = self.tau.tolist()  # as Python floats: NumPy scalars times SX go through NumPy's ufunc dispatch
+        self._slopes = ca.DM(self.c[:, 1:].T)  # row j - 1: l_r'(tau_j) over r, times the nodes' values: the slopes
+        # at the collocation points, one product an interval and state (the same expressions as summed one by one)
         self._hat: list[ca.SX] = []
         self._scale: list = []
         self._bounds: list[tuple[float, float]] = []
@@ -155,6 +156,8 @@ class StartUpBlock:
                 for name, (scale, lower, upper) in states.items():
                     node[name] = self._variable(phase, name, scale, lower, upper)
                 nodes.append(node)
+            slopes_at = {name: ca.vertsplit(ca.mtimes(self._slopes, ca.vertcat(*(node[name] for node in nodes))))
+                         for name in states}
             for j in range(1, DEGREE + 1):
                 time = start_time + (starts[k] + self._tau[j] * mesh[k]) * duration
                 if phase == "locked":  # the link's twist where its torque meets the locked drive's
@@ -162,7 +165,7 @@ class StartUpBlock:
                     self.equalities.append((d.link(nodes[j]["driver_speed"], twist)
                                             - d.carried(nodes[j]["driver_speed"], time)) / d.torque_ref)
                 rates = self._rates(phase, time, nodes[j])
-                slopes = {name: sum(self._c[r][j] * nodes[r][name] for r in range(DEGREE + 1)) for name in states}
+                slopes = {name: slopes_at[name][j - 1] for name in states}
                 for name, (scale, _, _) in states.items():
                     residual = slopes[name] - step * rates[name]
                     if name == "driver_speed" and phase != "locked":  # J_m dw_a/dt = T_m - T: its terms' size
