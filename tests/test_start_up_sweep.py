@@ -84,3 +84,25 @@ def test_a_binding_limit_is_centred_on_the_simulated_figure():
     shares = centred_shift(solution, case)
     assert shares["max_temperature_rise"] == pytest.approx(0.9998 - 5e-7, rel=0, abs=1e-15)
     assert shares["max_start_time"] == 0.99
+
+
+def test_an_elastic_link_s_sweep_carries_its_limits_as_they_are(monkeypatch):
+    """The cable's loop moves the stress limit only where the simulated start misses it, never centres it (its NLP
+    is another model than the simulated dynamics): its points record nothing for a secant, and each starts from the
+    limit share the point before ended with (the same at every point: the stress limit moved by the same share)."""
+    cable = load_case(CASES / "cable_motor_start.toml")
+    seen = []
+
+    def spy(problem, case, previous):
+        found = start_up_sweep.solved_along(problem, case, previous)
+        seen.append((found, start_up_sweep.predicted_shift(previous, case) if found is not None else None,
+                     previous.limit_shift if previous is not None else None))
+        return found
+
+    monkeypatch.setattr(sweep, "solved_along", spy)
+    vary = parse_vary("driven_inertia=0.2,0.21,0.22", cable.coupling, cable.quantities)
+    Sweep(cable, [vary]).run(progress=False)
+    along = [(found, shift, before) for found, shift, before in seen if found is not None]
+    assert len(along) == 2
+    for found, shift, before in along:
+        assert found.along is None and shift == before and set(shift) == {"max_link_stress"}
