@@ -2,6 +2,7 @@
 design is the one ``clutchopt solve`` gives at its values, every solve still checked by the simulator."""
 
 import numpy as np
+import pytest
 
 from clutchopt.cases import load_case
 from clutchopt.optimise import start_up_sweep, sweep
@@ -36,3 +37,87 @@ def test_a_start_up_sweep_gives_each_point_solve_s_design_from_the_point_before(
         # verified by the simulator as solve verifies it: its start time beside the collocation's
         simulated = record["start_up"]["start_time_simulated"]
         assert abs(simulated - alone.start_up["start_time_simulated"]) <= 1e-6 * simulated
+
+
+def test_the_limits_a_point_starts_with_follow_the_secant_through_the_two_points_before():
+    """predicted_shift by hand: the two points before at J = 0.60 and 0.61 kg m^2 ended with the temperature limit's
+    share (centred) 1 - 1.9765e-4 and 1 - 1.9470e-4 on the same mesh. At 0.62 (one step on, t = 1) the secant gives
+    2 (1 - 1.9470e-4) - (1 - 1.9765e-4) = 1 - 1.9175e-4; at 0.625 (t = 1.5) 1 - 1.9470e-4 + 1.5 x 2.95e-6
+    = 1 - 1.90275e-4. Beyond FURTHEST steps, off the line through the two points, or across a mesh change the point
+    before's centred share is carried as it is; without points before, its limit_shift."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.start_up_sweep import Along, predicted_shift
+
+    mesh = np.full(16, 1 / 16)
+    before = Along({"driven_inertia": 0.60, "speed": 100.0}, {"max_temperature_rise": 1 - 1.9765e-4}, mesh)
+    last = Along({"driven_inertia": 0.61, "speed": 100.0}, {"max_temperature_rise": 1 - 1.9470e-4}, mesh, before)
+    previous = SimpleNamespace(along=last, limit_shift={"max_temperature_rise": 1 - 1.9400e-4})  # as its last NLP
+
+    def at(inertia, speed=100.0, point_before=previous):
+        return predicted_shift(point_before, SimpleNamespace(values={"driven_inertia": inertia, "speed": speed}))
+
+    assert at(0.62)["max_temperature_rise"] == pytest.approx(1 - 1.9175e-4, rel=0, abs=1e-15)
+    assert at(0.625)["max_temperature_rise"] == pytest.approx(1 - 1.90275e-4, rel=0, abs=1e-15)
+    assert at(0.65) == last.shift  # t = 4 > FURTHEST
+    assert at(0.62, speed=101.0) == last.shift  # not on the line through the points before
+    adapted = SimpleNamespace(along=Along(last.values, last.shift, mesh * 1.0 + [0.01, -0.01] * 8, before),
+                              limit_shift=previous.limit_shift)
+    assert at(0.62, point_before=adapted) == last.shift  # a mesh adaptation between them
+    cold = SimpleNamespace(along=None, limit_shift=previous.limit_shift)  # the sweep's first point: solve's
+    assert at(0.62, point_before=cold) == previous.limit_shift
+
+
+def test_a_binding_limit_is_centred_on_the_simulated_figure():
+    """centred_shift by hand: the NLP saw max_temperature_rise 4 K x 0.9998 = 3.9992 K; the simulated peak is
+    4 K + 2e-6 K, the check active: centred on the simulator, the NLP's limit would be 3.9992 - 2e-6 K, a share of
+    0.9998 - 5e-7. An inactive check, or a limit the correction did not move, is left as it is."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.start_up_sweep import centred_shift
+
+    check = SimpleNamespace(name="temperature_rise", active=True, sense="<=", value=4.0 + 2e-6, limit=4.0)
+    loose = SimpleNamespace(name="start_time", active=False, sense="<=", value=9.0, limit=10.0)
+    solution = SimpleNamespace(constraints=[check, loose],
+                               limit_shift={"max_temperature_rise": 0.9998, "max_start_time": 0.99})
+    case = SimpleNamespace(values={"max_temperature_rise": 4.0, "max_start_time": 10.0})
+    shares = centred_shift(solution, case)
+    assert shares["max_temperature_rise"] == pytest.approx(0.9998 - 5e-7, rel=0, abs=1e-15)
+    assert shares["max_start_time"] == 0.99
+
+
+def test_an_elastic_link_s_sweep_carries_its_limits_as_they_are(monkeypatch):
+    """The cable's loop moves the stress limit only where the simulated start misses it, never centres it (its NLP
+    is another model than the simulated dynamics): its points record nothing for a secant, and each starts from the
+    limit share the point before ended with (the same at every point: the stress limit moved by the same share)."""
+    cable = load_case(CASES / "cable_motor_start.toml")
+    seen = []
+
+    def spy(problem, case, previous):
+        found = start_up_sweep.solved_along(problem, case, previous)
+        seen.append((found, start_up_sweep.predicted_shift(previous, case) if found is not None else None,
+                     previous.limit_shift if previous is not None else None))
+        return found
+
+    monkeypatch.setattr(sweep, "solved_along", spy)
+    vary = parse_vary("driven_inertia=0.2,0.21,0.22", cable.coupling, cable.quantities)
+    Sweep(cable, [vary]).run(progress=False)
+    along = [(found, shift, before) for found, shift, before in seen if found is not None]
+    assert len(along) == 2
+    for found, shift, before in along:
+        assert found.along is None and shift == before and set(shift) == {"max_link_stress"}
+
+
+def test_a_dense_sweep_where_the_temperature_rise_binds_needs_no_correction_a_point():
+    """wedge_motor_start at 0.6192-0.6394 kg m^2 (steps of about 0.004): the temperature rise binds, and the limit
+    share the simulator needs moves by about 2.9e-6 a point, with a second difference of about 3e-8 (docs/start_up.md,
+    "A sweep's limits carried on by a secant"): carried as it was, each point missed the centring (1.6e-7) and took a
+    correction, two solves; from the fourth point on (two points before it solved along the sweep on one mesh) the
+    secant meets it: one solve. Each design is solve's within the contract (a quarter of the tolerance, 1e-6, on the
+    objective)."""
+    vary = parse_vary("driven_inertia=0.6192,0.6232,0.6273,0.6313,0.6354,0.6394", MOTOR.coupling, MOTOR.quantities)
+    records = list(Sweep(MOTOR, [vary]).run(progress=False).solutions)
+    assert [r["status"] for r in records] == ["optimal"] * 6
+    assert [r["solver"]["solves"] for r in records][3:] == [1, 1, 1]
+    alone = case_problem(MOTOR).solve(MOTOR.with_values(driven_inertia=0.6394))
+    assert abs(records[-1]["objective"]["value"] - alone.objective) <= 0.25e-6 * abs(alone.objective)

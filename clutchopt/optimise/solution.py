@@ -125,6 +125,8 @@ class Solution:
     starts: tuple[str, ...] = ()  # a solve without a design: the starts it was tried from (optimise/verdict.py)
     limit_shift: dict[str, float] = field(default_factory=dict, repr=False)  # start-up: the last NLP's limit
     #                                                        / the case's, where the defect correction moved it
+    along: object | None = field(default=None, repr=False)  # a start-up sweep's point: its limits as its loop
+    #                           ended, for the next point's (clutchopt.optimise.start_up_sweep.Along)
 
     def _repr_html_(self) -> str:
         """Jupyter shows a solution as the tables of ``clutchopt solve``."""

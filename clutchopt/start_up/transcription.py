@@ -18,6 +18,7 @@ derivatives and become named constraints. Every optimum is started again by the 
 
 from __future__ import annotations
 
+import itertools
 import math
 from functools import cached_property
 from types import SimpleNamespace
@@ -59,6 +60,9 @@ class StartUpBlock:
         self.s = structure
         self.drive = d = Drive(structure, law, x, p)
         self.tau, self.c = _collocation(DEGREE)
+        self._tau = self.tau.tolist()  # as Python floats: NumPy scalars times SX go through NumPy's ufunc dispatch
+        self._slopes = ca.DM(self.c[:, 1:].T)  # row j - 1: l_r'(tau_j) over r, times the nodes' values: the slopes
+        # at the collocation points, one product an interval and state (the same expressions as summed one by one)
         self._hat: list[ca.SX] = []
         self._scale: list = []
         self._bounds: list[tuple[float, float]] = []
@@ -133,9 +137,10 @@ class StartUpBlock:
         d, n = self.drive, self.s.intervals
         typical = d.motor_time_ref if phase in ("run_up", "breakaway") else d.time_ref  # the machine rests: the
         duration = self._variable(phase, "duration", typical, 0.0, math.inf)  # motor's own time; start_time bounds
-        mesh = ca.SX.sym(f"{phase}_mesh", n)  # interval lengths over the duration: NLP parameters
-        self._mesh.append(mesh)
-        starts = [sum(mesh[i] for i in range(k)) for k in range(n)]
+        symbols = ca.SX.sym(f"{phase}_mesh", n)  # interval lengths over the duration: NLP parameters
+        self._mesh.append(symbols)
+        mesh = ca.vertsplit(symbols)  # each element taken once (indexing an SX is a call)
+        starts = list(itertools.accumulate(mesh[:-1], initial=0))  # sum(mesh[:k]), each sum from the one before
         states = self._states(phase)
         previous = dict(state)
         if phase == "slip":  # the driven machine starts from rest: all of the driving speed is slip
@@ -151,14 +156,16 @@ class StartUpBlock:
                 for name, (scale, lower, upper) in states.items():
                     node[name] = self._variable(phase, name, scale, lower, upper)
                 nodes.append(node)
+            slopes_at = {name: ca.vertsplit(ca.mtimes(self._slopes, ca.vertcat(*(node[name] for node in nodes))))
+                         for name in states}
             for j in range(1, DEGREE + 1):
-                time = start_time + (starts[k] + self.tau[j] * mesh[k]) * duration
+                time = start_time + (starts[k] + self._tau[j] * mesh[k]) * duration
                 if phase == "locked":  # the link's twist where its torque meets the locked drive's
                     twist = nodes[j]["twist"] = self._variable(phase, "twist", d.twist_ref, 0.0, 2.0)
                     self.equalities.append((d.link(nodes[j]["driver_speed"], twist)
                                             - d.carried(nodes[j]["driver_speed"], time)) / d.torque_ref)
                 rates = self._rates(phase, time, nodes[j])
-                slopes = {name: sum(self.c[r, j] * nodes[r][name] for r in range(DEGREE + 1)) for name in states}
+                slopes = {name: slopes_at[name][j - 1] for name in states}
                 for name, (scale, _, _) in states.items():
                     residual = slopes[name] - step * rates[name]
                     if name == "driver_speed" and phase != "locked":  # J_m dw_a/dt = T_m - T: its terms' size
