@@ -48,12 +48,12 @@ def test_searches_together_give_each_point_its_own_search():
         assert (a.feasible is None and b.feasible is None) or np.array_equal(a.feasible, b.feasible)
 
 
-def test_a_search_past_its_budget_ends_before_the_split_that_passes_it(monkeypatch):
+def test_a_search_past_its_budget_ends_before_the_splits_that_pass_it(monkeypatch):
     # The wedge paper case at 89.09 N m has a design (optimal alone); its search evaluates its first box (the design
     # box, not emptied), splits it into 128 and meets a design centre among them (129 boxes). With a budget of 64 it
     # ends after its first box, not proven, nothing met; 400 N m is proven in its first box whatever the budget. A
-    # search stops splitting at the turn that passes its budget (a point searched alone past its region's edge): 6
-    # turns (64 boxes: 1 + 64 > 64), not the 7 that make 128
+    # search without integers whose splits would pass its budget ends before them (a point searched alone past its
+    # region's edge): no turn of bisection, not the 6 that pass it (64 boxes: 1 + 64 > 64) nor the 7 that make 128
     posed = case_problem(WEDGE).posed
     problems = [interval_proof._search_problem(posed, WEDGE.with_values(resisting_torque=t)) for t in (89.090909, 400.0)]
     turns = []
@@ -62,9 +62,9 @@ def test_a_search_past_its_budget_ends_before_the_split_that_passes_it(monkeypat
     short, proven = searches(posed, problems, [64, 64])
     assert (short.proven, short.boxes, short.feasible, short.reached) == (False, 1, None, False)
     assert (proven.proven, proven.boxes) == (True, 1)
-    assert len(turns) == 6
+    assert len(turns) == 0
     met, = searches(posed, problems[:1])
-    assert (met.proven, met.boxes, met.feasible is not None) == (False, 129, True) and len(turns) == 6 + 7
+    assert (met.proven, met.boxes, met.feasible is not None) == (False, 129, True) and len(turns) == 7
 
 
 def _wedge_into_its_region(monkeypatch, batched: bool):

@@ -127,10 +127,10 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
     def tally(j: int, key: str, boxes: int) -> None:
         decisive[j][key] = decisive[j].get(key, 0) + boxes
 
-    def within_budgets(owner: np.ndarray) -> np.ndarray:
-        """Which boxes belong to searches their evaluation keeps within budget; the others' searches end there, not
-        proven."""
-        counts = np.bincount(owner, minlength=count)
+    def within_budgets(owner: np.ndarray, grown: np.ndarray | None = None) -> np.ndarray:
+        """Which boxes belong to searches their evaluation keeps within budget (of ``grown`` boxes each, if given:
+        after their splits); the others' searches end there, not proven."""
+        counts = np.bincount(owner, minlength=count) if grown is None else grown
         over = np.flatnonzero((counts > 0) & (evaluated + counts > budgets))
         end(over, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
         return ~np.isin(owner, over)
@@ -199,6 +199,19 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         counts = np.bincount(owner, minlength=count)
         with np.errstate(divide="ignore"):  # few large batches: an iteration costs per call as much as per box
             rounds = np.maximum(1, np.ceil(np.log2(BATCH / np.maximum(counts, 1)))).astype(int)
+        if not posed.integer:  # without integers no box is dropped before the next evaluation (rounding keeps them
+            # all) and each of its rounds splits in two every box with a width (a point box stays one): a search whose
+            # boxes would then pass its budget ends here, as it would at the split that passes it (below), its outcome
+            # the same (its boxes evaluated and decisive rows are those of the evaluations before), without the splits
+            # (a sweep's 28 points past its region's edge searched alone at 64 boxes: 6 rounds of splits to 1,792
+            # boxes for nothing, 8 ms)
+            wide = np.any(hi > lo, axis=0) | np.any(phi > plo, axis=0)
+            keep = within_budgets(owner, np.bincount(owner, np.where(wide, 2.0 ** rounds[owner], 1.0), count))
+            if not keep.all():
+                lo, hi, plo, phi, owner, at = lo[:, keep], hi[:, keep], plo[:, keep], phi[:, keep], owner[keep], at[keep]
+                d_lo, d_hi, uncertain = d_lo[..., keep], d_hi[..., keep], uncertain[:, keep]
+                if not lo.shape[1]:
+                    break
         component, rate = _parameter_spread(plo, phi, p_width0[:, owner], (c_hi - c_lo)[:, at], uncertain)
         for turn in range(int(rounds[owner].max())):
             columns = np.arange(len(owner))
