@@ -13,6 +13,7 @@ from clutchopt.optimise.interval_proof import search, searches
 from clutchopt.optimise.problem import case_problem
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import parse_vary
+from clutchopt.optimise.verify import check_design
 from tests.conftest import CASES
 
 WEDGE = load_case(CASES / "wedge_paper.toml")
@@ -183,7 +184,7 @@ def test_a_run_reaching_past_the_region_s_edge_searches_only_its_first_half_agai
     real = region_proof.searches
     monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
         [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
-    monkeypatch.setattr(region_proof.Regions, "_edge", lambda self, k, end: end)
+    monkeypatch.setattr(region_proof.Regions, "_edge", lambda self, k, end, witness=None: end)
     monkeypatch.setattr(region_proof.Regions, "_one_by_one", lambda self, count: False)  # (its regions, as the ball's)
     torques = [300.0, 250.0, 200.0, 160.0, 130.0, 80.0, 60.0, 40.0, 30.0, 20.0]
     vary = parse_vary("resisting_torque=" + ",".join(f"{t:g}" for t in torques), "wedge", WEDGE.quantities)
@@ -199,18 +200,20 @@ def test_a_run_reaching_past_the_region_s_edge_searches_only_its_first_half_agai
 
 def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     # The sweep of the test above. The search of the run of the 8 points after point 0 (250-30 N m) meets a design
-    # at its 30 N m end; a probe (one cold solve) finds one at its last point (30 N m), so the region's edge is looked
+    # at its 30 N m end; the run's last point (30 N m) has one without a solve (that design, within its bounds, meets
+    # every constraint there in float64; a cold solve before), so the region's edge is looked
     # for from point 1 on in growing steps: points 2 (200 N m) and 4 (130 N m) without a design, then bisection
     # between 4 and 8: 6 (60 N m) and 5 (80 N m) with one. Points 1-4 (250-130 N m) are searched again, proven (here
     # the first half of the run too; the ball over its allowable contact stress: one search for the last 2 points of
-    # its region, not three more halvings from 16, 7.7 s to 1.3 s). The 5 probes (IPOPT calls:
+    # its region, not three more halvings from 16, 7.7 s to 1.3 s). The 4 probes solved (IPOPT calls:
     # one each, two at 80 N m) are charged to point 1's verdict but the one at the edge (80 N m), which is that
     # point's own solve (cold, as next to a point without a design), not made again: the sweep's calls are its points'.
     regions, probed = [], []
     real, designed = region_proof.searches, region_proof.Regions._designed
     monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
         [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
-    monkeypatch.setattr(region_proof.Regions, "_designed", lambda self, j: probed.append(j) or designed(self, j))
+    monkeypatch.setattr(region_proof.Regions, "_designed", lambda self, j, witness=None: probed.append(j) or designed(
+        self, j, witness))
     monkeypatch.setattr(region_proof.Regions, "_one_by_one", lambda self, count: False)  # (its regions, as the ball's)
     torques = [300.0, 250.0, 200.0, 160.0, 130.0, 80.0, 60.0, 40.0, 30.0, 20.0]
     vary = parse_vary("resisting_torque=" + ",".join(f"{t:g}" for t in torques), "wedge", WEDGE.quantities)
@@ -219,9 +222,13 @@ def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     assert list(frame["status"]) == ["infeasible"] * 5 + ["optimal"] * 5
     assert probed == [8, 2, 4, 6, 5]
     assert [len(outcomes) for outcomes in regions] == [1, 1] and regions[0][0].reached and regions[1][0].proven
+    posed = case_problem(WEDGE).posed  # (the design met at 30 N m, the run's last point: no probe solved there)
+    met = dict(zip(posed.names, regions[0][0].witness))
+    assert all(c.feasible for c in check_design(posed.formulation, met, posed.params(WEDGE.with_values(
+        resisting_torque=30.0))))
     assert frame["diagnosis"][1].startswith("proven infeasible for resisting_torque 130-250 N*m (4 points, one proof)")
-    assert [s["solver"]["solves"] for s in result.solutions][1:6] == [4, 0, 0, 0, 2]  # (80 N m: 2 calls, a retry;
-    # 6 at point 1 and the edge's solve made again before)
+    assert [s["solver"]["solves"] for s in result.solutions][1:6] == [3, 0, 0, 0, 2]  # (80 N m: 2 calls, a retry;
+    # 4 at point 1 with the solve at 30 N m, 6 with the edge's solve made again before)
     assert result.spent["solves"] == sum(s["solver"]["solves"] for s in result.solutions)
 
 

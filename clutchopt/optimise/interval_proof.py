@@ -51,6 +51,8 @@ class Emptiness(NamedTuple):
     decisive: dict[str, int]  # constraint name -> boxes it emptied
     feasible: np.ndarray | None = None  # a design meeting every row (SI), if one was met
     reached: bool = False  # a design met at one end of a parameter interval (no proof for the interval can exist)
+    witness: np.ndarray | None = None  # where reached: that design (SI; a box centre, its integers whole unless met
+    # over a part of the interval)
 
 
 def interval_functions(posed):
@@ -158,10 +160,12 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         whole_p = np.all(_same(plo, p_lo[:, owner]) & _same(phi, p_hi[:, owner]), axis=0)
         end(sorted(first_met), lambda j: (  # a design for every parameter of the search, or (a part of its interval)
             Emptiness(False, int(evaluated[j]), decisive[j], centre[:, first_met[j]]) if whole_p[first_met[j]]
-            else Emptiness(False, int(evaluated[j]), decisive[j], reached=True)))  # for some: no proof for all
+            else Emptiness(False, int(evaluated[j]), decisive[j], reached=True, witness=centre[:, first_met[j]])))
+        # (for some: no proof for all)
         reached = _reached(functions[0], centre, owner, ranged, p_lo, p_hi, first_met, posed.integer)
-        end(reached, lambda j: Emptiness(False, int(evaluated[j]), decisive[j], reached=True))
-        keep = ~np.isin(owner, list(first_met) + reached.tolist())
+        end(list(reached), lambda j: Emptiness(False, int(evaluated[j]), decisive[j], reached=True,
+                                               witness=centre[:, reached[j]]))
+        keep = ~np.isin(owner, list(first_met) + list(reached))
         empty = g_lo > TOLERANCE
         running = np.unique(owner[keep])
         for j in running.tolist():
@@ -257,21 +261,25 @@ def _parameter_spread(plo, phi, p_width0, c_width, uncertain) -> tuple[np.ndarra
 
 
 def _reached(rows, centre: np.ndarray, owner: np.ndarray, ranged: np.ndarray, p_lo: np.ndarray, p_hi: np.ndarray,
-             ended: dict[int, int], integer: list[int]) -> np.ndarray:
+             ended: dict[int, int], integer: list[int]) -> dict[int, int]:
     """The searches over a parameter interval (``ranged``, not ``ended`` already) where a box's centre, its integer
     variables whole, meets every row at one end of the interval: a design there, so the interval holds no proof (a run
-    of a sweep's points reaching past its infeasible region: the search stops at once rather than at its budget)."""
+    of a sweep's points reaching past its infeasible region: the search stops at once rather than at its budget);
+    each with the first such box."""
     whole = np.all(centre[integer] == np.round(centre[integer]), axis=0)
     boxes = np.flatnonzero(ranged[owner] & whole & ~np.isin(owner, list(ended)))
     if not len(boxes):
-        return np.zeros(0, dtype=int)
+        return {}
     at = centre[:, boxes]
     met = np.zeros(len(boxes), dtype=bool)
     for end in (p_lo, p_hi):
         params = end[:, owner[boxes]]
         (_, high), = rows.bounds([(at, at), (params, params)])
         met |= np.all(high <= 0.0, axis=0)
-    return np.unique(owner[boxes[met]])
+    first: dict[int, int] = {}
+    for box in boxes[met][::-1].tolist():
+        first[int(owner[box])] = box
+    return dict(sorted(first.items()))
 
 
 def _whole(lo: np.ndarray, hi: np.ndarray, integer: list[int]) -> tuple[np.ndarray, np.ndarray, list[int]]:

@@ -23,7 +23,8 @@ LONGEST_RUN): where a region's bounds are loose over wide intervals (the lever o
 force takes squared) the runs stay as short as proofs allow.
 
 Where a run's search meets a design at one end, probes look for the region's edge within it (:meth:`Regions._edge`):
-one solve at the run's last point (as ``Problem.solve`` starts cold); where it has a design, the points from the run's
+one solve at the run's last point (as ``Problem.solve`` starts cold; none where the design the search met, within
+the point's bounds, meets every constraint there in float64); where it has a design, the points from the run's
 first on in growing steps, then bisection, find the first point with one, and only the points before it are searched
 again (the bisection of such a run by searches had cost seconds where a solve costs 20-40 ms; a probe before every
 run cost a failed solve on each run inside a region). A probe only shortens the run searched; its calls are charged to
@@ -230,7 +231,7 @@ class Regions:
                     middle = (a + b) // 2  # (a design at one end: the region ends within the run: the run up to
                     # the edge the probes find is searched again, else only its first half, the points of the other
                     # solved as usual)
-                    edge = self._edge(a, b) if outcome.reached else b
+                    edge = self._edge(a, b, outcome.witness) if outcome.reached else b
                     kept = (((a, edge),) if edge < b else ((a, middle),) if outcome.reached
                             else ((a, middle), (middle, b)))
                     halves += [run for run in kept if run[1] - run[0] > 1]  # a single point: solved as usual (a
@@ -270,33 +271,43 @@ class Regions:
             self._alone = round(sum(outcome.boxes for _, outcome in proven) / len(proven))
         self._length = min(2 * (end - k), LONGEST_RUN) if len(proven) == end - k else FIRST_RUN
 
-    def _edge(self, k: int, end: int) -> int:
+    def _edge(self, k: int, end: int, witness: np.ndarray | None = None) -> int:
         """The end of the run from point k to ``end`` whose search met a design at one end: ``end``, or the first
         point before it found with a design by one solve (as ``Problem.solve`` starts cold), located where the run's
         last point has one: points k + 1, k + 2, k + 4, ... until one has a design, then bisection. A run reaching
         past the region's edge cannot be proven, and its bisection by interval searches cost seconds (the ball over
         its allowable contact stress: four searches, 7.7 s, for the last two points of its region) where a solve
         costs 20-40 ms. A probe only shortens the run searched: a proof is still a proof of each point of it, and a
-        point after the edge is solved as usual (its design is ``solve``'s, whatever the probe found)."""
-        if end - k <= 2 or self.problem.start_up is not None or not self._designed(end - 1):
+        point after the edge is solved as usual (its design is ``solve``'s, whatever the probe found). A point where
+        the design the run's search met (``witness``) meets every constraint in float64 has a design without a probe
+        (the ball over its allowable contact stress: the run's last point, a cold solve with its integer search, 12
+        ms)."""
+        if end - k <= 2 or self.problem.start_up is not None or not self._designed(end - 1, witness):
             return end
         without, designed, step = k, end - 1, 1  # (point k: searched from, next to a proven one)
         while without + step < designed:  # from k on in growing steps (an edge is most often near the run's start)
-            if self._designed(without + step):
+            if self._designed(without + step, witness):
                 designed = without + step
                 break
             without, step = without + step, 2 * step
         while designed - without > 1:
             middle = (without + designed) // 2
-            without, designed = (without, middle) if self._designed(middle) else (middle, designed)
+            without, designed = (without, middle) if self._designed(middle, witness) else (middle, designed)
         self._found, self._edge_probe = designed, self._probes.get(designed)
         self._probes = {}
         self._charge(self._edge_probe, -1)  # (charged to the edge's point, whose solve it is: :meth:`_edge_solve`)
         return designed
 
-    def _designed(self, j: int) -> bool:
-        """Point j has a design by one solve (cold, undiagnosed); its calls are charged to the next verdict."""
-        solution = self.problem.refined(self.point_case(j), diagnosed=False)
+    def _designed(self, j: int, witness: np.ndarray | None = None) -> bool:
+        """Point j has a design: ``witness``, within j's bounds and its integers whole, meets every constraint at j in
+        float64, else by one solve (cold, undiagnosed), whose calls are charged to the next verdict."""
+        posed, case = self.posed, self.point_case(j)
+        if witness is not None and np.all(witness[posed.integer] == np.round(witness[posed.integer])):
+            lower, upper, _ = posed.bounds_and_start(case, None)
+            checks = check_design(posed.formulation, dict(zip(posed.names, witness.tolist())), posed.params(case))
+            if np.all((lower <= witness) & (witness <= upper)) and all(c.feasible for c in checks):
+                return True
+        solution = self.problem.refined(case, diagnosed=False)
         self._charge(solution)
         if solution.status in DESIGN_STATUSES:
             self._probes[j] = solution
