@@ -46,7 +46,6 @@ order of the points: a region's proof is a proof of each point, and a point its 
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import replace
 from typing import Callable
@@ -57,10 +56,8 @@ from clutchopt.optimise.interval_proof import (FEW_BOXES, MAX_BOXES, SURE_BOXES,
                                                last_boxes, searches)
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
-from clutchopt.optimise.verdict import emptied
-from clutchopt.model import Output, namespace
-from clutchopt.optimise.verify import (DESIGN_STATUSES, check_design, constraint_check, constraint_table,
-                                       evaluate_objective, evaluate_outputs)
+from clutchopt.optimise.verdict import emptied, figures_at, infeasible_at
+from clutchopt.optimise.verify import DESIGN_STATUSES, check_design
 from clutchopt.units import from_si
 
 FIRST_RUN = 8  # points searched as one region after a point without a design,
@@ -99,7 +96,8 @@ class Regions:
         proven = self._proven.pop(k, None)
         if proven is None or self._without is None:
             return None
-        solution = _covered(self.problem, self.point_case(k), self._without, *proven, figures=self._figures_at(k))
+        solution = _covered(self.problem, self.point_case(k), self._without.design, *proven,
+                            figures=self._figures_at(k))
         if solution is not None:
             self.after(k, solution)
         return self.charged(solution)
@@ -153,8 +151,8 @@ class Regions:
         if own is None or not own.proven:
             return None
         self._alone = last_boxes(self.posed, own.boxes)
-        solution = _covered(self.problem, case, _designed_as(self.problem, design),
-                            "proven infeasible: " + emptied(own), time.perf_counter() - began)
+        solution = _covered(self.problem, case, design, "proven infeasible: " + emptied(own),
+                            time.perf_counter() - began)
         if solution is not None:
             self.after(k, solution)
         return solution
@@ -182,8 +180,8 @@ class Regions:
             keep_search(self.posed, problem, own)
             return None, first
         last_boxes(self.posed, own.boxes)
-        solution = _covered(self.problem, case, first, "proven infeasible: " + emptied(own), seconds,
-                            first.solver.solves)
+        solution = _covered(self.problem, case, first.design, "proven infeasible: " + emptied(own), seconds,
+                            first.solver)
         if solution is None:
             return None, first
         self.after(k, solution)
@@ -335,7 +333,7 @@ class Regions:
         design = self._without.design
         if k not in self._figures or self._figured != design:
             points = sorted({k, *(j for j in self._proven if j > k)})
-            self._figures = dict(zip(points, _figures(self.posed, [self.point_case(j) for j in points], design)))
+            self._figures = dict(zip(points, figures_at(self.posed, [self.point_case(j) for j in points], design)))
             self._figured = dict(design)
         return self._figures.pop(k)
 
@@ -367,57 +365,19 @@ def _shown(value: float, unit: str) -> str:
     return f"{float(from_si(value, unit)):.6g}"
 
 
-def _designed_as(problem, design: dict[str, float]) -> Solution:
-    """A solution carrying ``design`` alone, for :func:`_covered` to evaluate at a point's values."""
-    f = problem.formulation
-    return Solution(f.coupling, f.mode, problem.posed.objective.name, problem.posed.objective.unit, "infeasible",
-                    math.nan, dict(design), {}, [], SolverInfo("interval", "proven", 0, 0.0, 0),
-                    design_units={v.name: v.unit for v in f.variables})
-
-
-def _figures(posed, cases: list, design: dict[str, float]) -> list[tuple[list, float, dict[str, Output]]]:
-    """The float64 figures of ``design`` at each of ``cases``: its constraint checks, objective and outputs, by the
-    formulation's own equations; for several cases of a static problem evaluated once over arrays of their values (a
-    column each, as ``batch_window.Checked`` checks batched points; the same arithmetic, the same bits), else by
-    ``verify`` point by point (a start-up's constraints are arrays over its path already)."""
-    f, count = posed.formulation, len(cases)
-    if count == 1 or posed.start_up is not None:
-        return [(check_design(f, design, params), evaluate_objective(f, posed.objective.name, design, params),
-                 evaluate_outputs(f, design, params)) for params in map(posed.params, cases)]
-    params = [vars(posed.params(case)) for case in cases]
-    x = namespace({name: float(value) for name, value in design.items()})
-    p = namespace({name: np.array([values[name] for values in params]) for name in params[0]})
-    with np.errstate(all="ignore"):
-        constraints = f.constraints(x, p)
-        objective = np.broadcast_to(np.asarray(f.objective(posed.objective.name).function(x, p), dtype=float),
-                                    (count,))
-        outputs = {name: (np.broadcast_to(np.asarray(out.value, dtype=float), (count,)), out)
-                   for name, out in f.outputs(x, p).items()}
-    value, limit, scale, margin = constraint_table(constraints, count)
-    return [([constraint_check(c, float(value[i, j]), float(limit[i, j]), float(scale[i, j]), float(margin[i, j]))
-              for i, c in enumerate(constraints)], float(objective[j]),
-             {name: Output(float(values[j]), out.unit, out.description) for name, (values, out) in outputs.items()})
-            for j in range(count)]
-
-
-def _covered(problem, case, without: Solution, text: str, seconds: float, solves: int = 0,
+def _covered(problem, case, design: dict[str, float], text: str, seconds: float, spent: SolverInfo | None = None,
              figures: tuple | None = None) -> Solution | None:
-    """The verdict of a point a proof covers: the design of ``without`` (the last point without one: its least
-    relaxation; or the point's own failed solve, which took ``solves`` calls), every constraint re-evaluated in
-    float64 at this point's values (``figures``, if evaluated already: :func:`_figures`); None where a requirement no
-    design variable enters is broken, or a start-up's drive proofs hold (its own verdict says so)."""
+    """The verdict of a point a proof covers, showing ``design`` (the last point without one: its least relaxation;
+    or the point's own failed solve, which ``spent`` its calls and seconds) with every constraint re-evaluated in
+    float64 at this point's values (``figures``, if evaluated already: ``verdict.figures_at``); None where a
+    requirement no design variable enters is broken, or a start-up's drive proofs hold (its own verdict says so)."""
     posed = problem.posed
     if problem.start_up is not None and start_up_proofs(case):
         return None
-    design = without.design
-    checks, objective, outputs = figures or _figures(posed, [case], design)[0]
+    figures = figures or figures_at(posed, [case], design)[0]
     fixed = {posed.row_names[i] for i in posed.fixed_rows}
-    if any(not c.feasible for c in checks if c.name in fixed):
+    if any(not c.feasible for c in figures[0] if c.name in fixed):
         return None
-    lower, upper, _ = posed.bounds_and_start(case, None)
-    return replace(without, status="infeasible", diagnosis=text, constraints=checks, objective=objective,
-                   outputs=outputs, integer_search=[], sensitivities={}, scale=None,
-                   multipliers=None, start_up=None, internal=None, mesh=None, diagnosed=None, starts=(),
-                   bounds={n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, lower, upper)},
-                   solver=SolverInfo("interval", "proven", 0, (without.solver.time_s if solves else 0.0) + seconds,
-                                     solves))
+    solves, time_s = (spent.solves, spent.time_s) if spent is not None else (0, 0.0)
+    return infeasible_at(posed, case, design, text, SolverInfo("interval", "proven", 0, time_s + seconds, solves),
+                         figures)
