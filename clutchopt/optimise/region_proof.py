@@ -81,8 +81,8 @@ class Regions:
         self._proven: dict[int, tuple[str, float]] = {}  # point -> its proof's text, its share of the seconds
         self._probed = (0, 0.0)  # the solver calls and seconds of the probes for a region's edge, not yet charged
         self._found = -1  # the point a probe found with a design (the region's edge)
-        self._probes: dict[int, Solution] = {}  # the probes' solutions with a design, by point
-        self._edge_probe: Solution | None = None  # the solve of the edge's probe, for that point's own (uncharged)
+        self._edge_probe: Solution | None = None  # the solve of the last probe that found a design (the edge's,
+        # for that point's own, uncharged; None where the design the run's search met decided it)
         self._alone = 0  # the boxes of the last proof of one point (its own verdict's or its own search's; the mean
         # of the last run searched point by point)
         self._region: int | None = None  # the boxes of the last region proof
@@ -291,8 +291,7 @@ class Regions:
         while designed - without > 1:
             middle = (without + designed) // 2
             without, designed = (without, middle) if self._designed(middle, witness) else (middle, designed)
-        self._found, self._edge_probe = designed, self._probes.get(designed)
-        self._probes = {}
+        self._found = designed  # (the last probe with a design: self._edge_probe)
         self._charge(self._edge_probe, -1)  # (charged to the edge's point, whose solve it is: :meth:`_edge_solve`)
         return designed
 
@@ -304,11 +303,12 @@ class Regions:
             lower, upper, _ = posed.bounds_and_start(case, None)
             checks = check_design(posed.formulation, dict(zip(posed.names, witness.tolist())), posed.params(case))
             if np.all((lower <= witness) & (witness <= upper)) and all(c.feasible for c in checks):
+                self._edge_probe = None
                 return True
         solution = self.problem.refined(case, diagnosed=False)
         self._charge(solution)
         if solution.status in DESIGN_STATUSES:
-            self._probes[j] = solution
+            self._edge_probe = solution
         return solution.status in DESIGN_STATUSES
 
     def _edge_solve(self, k: int, usable: bool) -> Solution | None:
