@@ -11,6 +11,7 @@ from clutchopt.optimise import interval_proof, region_proof, sweep, verdict
 from clutchopt.optimise.interval import IntervalFunction
 from clutchopt.optimise.interval_proof import search, searches
 from clutchopt.optimise.problem import case_problem
+from clutchopt.optimise.solution import SolverInfo
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import parse_vary
 from clutchopt.optimise.verify import check_design
@@ -260,3 +261,23 @@ def test_a_point_its_own_search_does_not_prove_continues_its_verdict_from_its_fi
         assert result.solutions[4]["diagnosis"].startswith(
             "proven infeasible: no design within the bounds meets" if proven
             else "no feasible design found (not proven infeasible): the least relaxation found")
+
+
+def test_a_verdict_without_an_interval_search_leaves_the_boxes_of_a_point_s_own_proof():
+    # Regions.point keeps the boxes of a point's own proof (its full verdict's or its own search's) for the budgets of
+    # the searches after it (Regions._alone). A verdict that no interval search gave (here one "whatever the design",
+    # a requirement no design variable enters broken; or a start-up's drive proofs) leaves them: the count of the last
+    # search that proved, 500 boxes here, recorded before, is not this point's
+    problem = case_problem(WEDGE)
+    regions = region_proof.Regions(problem, lambda k: WEDGE, 1)
+    interval_proof.last_boxes(problem.posed, 500)
+    design = dict(zip(problem.posed.names, problem.posed.bounds_and_start(WEDGE, None)[2].tolist()))
+    whatever = verdict.infeasible_at(problem.posed, WEDGE, design, "infeasible whatever the design: ...",
+                                     SolverInfo("ipopt", "Infeasible_Problem_Detected", 3, 0.0, 1))
+    assert regions.point(0, lambda first: whatever).status == "infeasible"
+    assert regions._alone == 0
+    proven = verdict.infeasible_at(problem.posed, WEDGE, design, "proven infeasible: ...",
+                                   SolverInfo("ipopt", "Infeasible_Problem_Detected", 3, 0.0, 1))
+    regions = region_proof.Regions(problem, lambda k: WEDGE, 1)  # (a full verdict whose own search proved: 700)
+    assert regions.point(0, lambda first: interval_proof.last_boxes(problem.posed, 700) and proven) is proven
+    assert regions._alone == 700

@@ -391,10 +391,20 @@ def empty_design_space(posed, case, budget: int | None = None) -> Emptiness | No
 def last_boxes(posed, boxes: int | None = None) -> int:
     """The boxes of the last search of ``posed`` that proved (``boxes``: record them): what a search near it may take
     (``region_proof``'s budget)."""
-    kept = posed.built("interval_last", None, lambda _: {"boxes": 0})
+    kept = _proofs(posed)
     if boxes is not None:
-        kept["boxes"] = boxes
+        kept["boxes"], kept["proofs"] = boxes, kept["proofs"] + 1
     return kept["boxes"]
+
+
+def proofs_recorded(posed) -> int:
+    """How many searches of ``posed`` that proved :func:`last_boxes` has recorded (a verdict between two counts
+    rests on one of them where the count grew)."""
+    return _proofs(posed)["proofs"]
+
+
+def _proofs(posed) -> dict[str, int]:
+    return posed.built("interval_last", None, lambda _: {"boxes": 0, "proofs": 0})
 
 
 def _search_problem(posed, case) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -53,7 +53,7 @@ from typing import Callable
 import numpy as np
 
 from clutchopt.optimise.interval_proof import (FEW_BOXES, MAX_BOXES, SURE_BOXES, _search_problem, keep_search,
-                                               last_boxes, searches)
+                                               last_boxes, proofs_recorded, searches)
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.verdict import emptied, figures_at, infeasible_at
@@ -126,12 +126,13 @@ class Regions:
             solution = self._early(k, beside)
         if solution is not None:
             return solution
+        proofs = proofs_recorded(self.posed)
         solution, first = self._quick(k, warm)
         if solution is None:
             solution = self.charged(solve(first))
             self.after(k, solution)
-        if solution.status == "infeasible":  # (proven by its own search: its boxes)
-            self._alone = last_boxes(self.posed)
+        if solution.status == "infeasible" and proofs_recorded(self.posed) > proofs:  # (proven by its own search:
+            self._alone = last_boxes(self.posed)  # its boxes; not a verdict "whatever the design", nor a drive's)
         return solution
 
     def _early(self, k: int, design: dict[str, float]) -> Solution | None:
