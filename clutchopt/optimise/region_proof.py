@@ -74,7 +74,8 @@ class Regions:
     where the point before has no design), a search of its own or its solve."""
 
     def __init__(self, problem, point_case, count: int):
-        self.problem, self.posed, self.point_case, self.count = problem, problem.posed, point_case, count
+        self.problem, self.posed, self._case_of, self.count = problem, problem.posed, point_case, count
+        self._cases: dict = {}  # point -> its case, from its run's search on until its verdict (built once)
         self._without: Solution | None = None  # the last point's solution where it has no design
         self._without_at = -2
         self._to, self._length = 0, FIRST_RUN  # the end of the points searched; how many to search next
@@ -88,6 +89,13 @@ class Regions:
         self._region: int | None = None  # the boxes of the last region proof
         self._figures: dict[int, tuple] = {}  # proven point -> its float64 figures at the design of self._without
         self._figured: dict[str, float] | None = None  # (that design)
+
+    def point_case(self, k: int):
+        """Point k's case, built once for its run's search, its float64 figures and its verdict."""
+        case = self._cases.get(k)
+        if case is None:
+            case = self._cases[k] = self._case_of(k)
+        return case
 
     def covered(self, k: int) -> Solution | None:
         """Point k's verdict from a region proof, or None (solve it)."""
@@ -192,6 +200,7 @@ class Regions:
         """Point k's solution: one proven infeasible starts (or goes on with) the regions searched after it (after
         one not found, a proof is not expected); a design ends a run of proven regions (the next run starts
         FIRST_RUN points long)."""
+        self._cases.pop(k, None)
         if solution.status in DESIGN_STATUSES:
             self._length = FIRST_RUN
         elif solution.status == "infeasible":
@@ -204,6 +213,7 @@ class Regions:
             self._to = k + 1
             return
         end = min(k + self._length, self.count)
+        self._cases = {j: case for j, case in self._cases.items() if j >= k}  # (those of points solved as usual)
         self._to, runs = end, [(k, end)] if end - k > 1 else []  # (a last point alone: Regions._quick)
         points = {j: _search_problem(self.posed, self.point_case(j)) for j in range(k, end)}
         if runs and self._one_by_one(end - k):
