@@ -178,11 +178,11 @@ def figures_at(posed, cases: list[Case], design: dict[str, float]
     with np.errstate(all="ignore"):
         constraints = f.constraints(x, p)
         objective = np.broadcast_to(np.asarray(f.objective(posed.objective.name).function(x, p), dtype=float),
-                                    (count,))
-        outputs = {name: (np.broadcast_to(np.asarray(out.value, dtype=float), (count,)), out)
-                   for name, out in f.outputs(x, p).items()}
-    value, limit, scale, margin = constraint_table(constraints, count)
-    return [([constraint_check(c, float(value[i, j]), float(limit[i, j]), float(scale[i, j]), float(margin[i, j]))
-              for i, c in enumerate(constraints)], float(objective[j]),
-             {name: Output(float(values[j]), out.unit, out.description) for name, (values, out) in outputs.items()})
+                                    (count,)).tolist()
+        outputs = [(name, np.broadcast_to(np.asarray(out.value, dtype=float), (count,)).tolist(), out)
+                   for name, out in f.outputs(x, p).items()]
+    value, limit, scale, margin = (table.tolist() for table in constraint_table(constraints, count))  # (floats: read
+    # point by point from lists, not from arrays)
+    return [([constraint_check(c, value[i][j], limit[i][j], scale[i][j], margin[i][j]) for i, c in enumerate(constraints)],
+             objective[j], {name: Output(values[j], out.unit, out.description) for name, values, out in outputs})
             for j in range(count)]
