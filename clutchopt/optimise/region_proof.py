@@ -39,7 +39,8 @@ breaks a requirement that no design variable enters ("whatever the design"), or 
 hold, is left to its own verdict, which says so.
 
 A covered point reports the design of the last point without a design (its least relaxation) with every constraint
-re-evaluated in float64 at the point's own values, solver ``interval`` (no solver call where a region covers it, the
+re-evaluated in float64 at the point's own values (those of a run's points together, one NumPy column a point:
+``verdict.figures_at``), solver ``interval`` (no solver call where a region covers it, the
 one solve where its own search proved it) and its share of the search's seconds. A verdict is the same whatever the
 order of the points: a region's proof is a proof of each point, and a point its region does not cover gets its own.
 """
