@@ -8,6 +8,7 @@ import pytest
 
 from clutchopt.cases import load_case
 from clutchopt.optimise import interval_proof, region_proof, sweep, verdict
+from clutchopt.optimise import problem as problem_module
 from clutchopt.optimise.interval import IntervalFunction
 from clutchopt.optimise.interval_proof import search, searches
 from clutchopt.optimise.problem import case_problem
@@ -176,7 +177,8 @@ def test_the_verdicts_do_not_depend_on_the_order_of_the_points(order):
 
 def test_a_run_reaching_past_the_region_s_edge_searches_only_its_first_half_again(monkeypatch):
     # The wedge paper case from 300 down to 20 N m: designs up to 89.09 N m, proven infeasible from 123.6 N m on
-    # (each point solved alone; the test above). Point 0 (300 N m) gets its full verdict; the run of the 8 points
+    # (each point solved alone; the test above). Point 0 (300 N m), solved once, is proven by its own search
+    # (Regions._first: solve's verdict); the run of the 8 points
     # after it (250-30 N m) meets a design at its 30 N m end, so no proof over it exists (the back-off rule): only
     # its first half (250-130 N m, all beyond 123.6 N m) is searched again and proven, and the other half's points
     # (80-30 N m, designs) are solved as usual, without a search of their own.
@@ -191,8 +193,9 @@ def test_a_run_reaching_past_the_region_s_edge_searches_only_its_first_half_agai
     vary = parse_vary("resisting_torque=" + ",".join(f"{t:g}" for t in torques), "wedge", WEDGE.quantities)
     frame = Sweep(WEDGE, [vary]).run(progress=False).frame
     assert list(frame["status"]) == ["infeasible"] * 5 + ["optimal"] * 5
-    assert [len(outcomes) for outcomes in regions] == [1, 1]  # the run of 8, then its first half alone
-    (run,), (half,) = regions
+    assert [len(outcomes) for outcomes in regions] == [1, 1, 1]  # point 0, the run of 8, then its first half alone
+    (own,), (run,), (half,) = regions
+    assert own.proven and frame["diagnosis"][0] == "proven infeasible: " + verdict.emptied(own)
     assert run.reached and not run.proven and run.feasible is None
     assert half.proven
     assert list(frame["diagnosis"][1:5]) == [frame["diagnosis"][1]] * 4
@@ -222,9 +225,10 @@ def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     frame = result.frame
     assert list(frame["status"]) == ["infeasible"] * 5 + ["optimal"] * 5
     assert probed == [8, 2, 4, 6, 5]
-    assert [len(outcomes) for outcomes in regions] == [1, 1] and regions[0][0].reached and regions[1][0].proven
+    assert [len(outcomes) for outcomes in regions] == [1, 1, 1]  # (point 0's own search first: Regions._first)
+    assert regions[0][0].proven and regions[1][0].reached and regions[2][0].proven
     posed = case_problem(WEDGE).posed  # (the design met at 30 N m, the run's last point: no probe solved there)
-    met = dict(zip(posed.names, regions[0][0].witness))
+    met = dict(zip(posed.names, regions[1][0].witness))
     assert all(c.feasible for c in check_design(posed.formulation, met, posed.params(WEDGE.with_values(
         resisting_torque=30.0))))
     assert frame["diagnosis"][1].startswith("proven infeasible for resisting_torque 130-250 N*m (4 points, one proof)")
@@ -269,15 +273,33 @@ def test_a_verdict_without_an_interval_search_leaves_the_boxes_of_a_point_s_own_
     # a requirement no design variable enters broken; or a start-up's drive proofs) leaves them: the count of the last
     # search that proved, 500 boxes here, recorded before, is not this point's
     problem = case_problem(WEDGE)
-    regions = region_proof.Regions(problem, lambda k: WEDGE, 1)
+    regions = region_proof.Regions(problem, lambda k: WEDGE, 2)  # (point 1: point 0 is solved by Regions._first)
     interval_proof.last_boxes(problem.posed, 500)
     design = dict(zip(problem.posed.names, problem.posed.bounds_and_start(WEDGE, None)[2].tolist()))
     whatever = verdict.infeasible_at(problem.posed, WEDGE, design, "infeasible whatever the design: ...",
                                      SolverInfo("ipopt", "Infeasible_Problem_Detected", 3, 0.0, 1))
-    assert regions.point(0, lambda first: whatever).status == "infeasible"
+    assert regions.point(1, lambda first: whatever).status == "infeasible"
     assert regions._alone == 0
     proven = verdict.infeasible_at(problem.posed, WEDGE, design, "proven infeasible: ...",
                                    SolverInfo("ipopt", "Infeasible_Problem_Detected", 3, 0.0, 1))
-    regions = region_proof.Regions(problem, lambda k: WEDGE, 1)  # (a full verdict whose own search proved: 700)
-    assert regions.point(0, lambda first: interval_proof.last_boxes(problem.posed, 700) and proven) is proven
+    regions = region_proof.Regions(problem, lambda k: WEDGE, 2)  # (a full verdict whose own search proved: 700)
+    assert regions.point(1, lambda first: interval_proof.last_boxes(problem.posed, 700) and proven) is proven
     assert regions._alone == 700
+
+
+def test_a_sweep_s_first_point_without_a_design_gets_solve_s_verdict_without_the_elastic_diagnosis(monkeypatch):
+    # The wedge paper case at 300 N m: solve's first solve ends without a design, its elastic diagnosis finds the
+    # constraints apart, so its own interval search goes before the retries and proves it; the verdict shows the
+    # failed solve's design. As a sweep's first point (then 20 N m, a design) it is solved once, undiagnosed, and
+    # searched (Regions._first): the same verdict, design and figures, no elastic problem solved
+    calls = []
+    real = problem_module.diagnose
+    monkeypatch.setattr(problem_module, "diagnose", lambda *args: calls.append(1) or real(*args))
+    alone = case_problem(WEDGE).solve(WEDGE.with_values(resisting_torque=300.0))
+    assert len(calls) == 1 and alone.status == "infeasible" and alone.diagnosis.startswith("proven infeasible: ")
+    vary = parse_vary("resisting_torque=300,20", "wedge", WEDGE.quantities)
+    first, second = Sweep(WEDGE, [vary]).run(progress=False).solutions
+    assert len(calls) == 1  # (none in the sweep)
+    assert (first["status"], first["diagnosis"], first["design"]) == (alone.status, alone.diagnosis, alone.design)
+    assert [c["value"] for c in first["constraints"]] == [c.value for c in alone.constraints]
+    assert (first["solver"]["name"], first["solver"]["solves"]) == ("interval", 1) and second["status"] == "optimal"
