@@ -38,6 +38,10 @@ from the same solve again (20-40 ms each time it had been repeated). A point who
 breaks a requirement that no design variable enters ("whatever the design"), or (a start-up) whose drive proofs
 hold, is left to its own verdict, which says so.
 
+A sweep's first point, with nothing before it to go by, is solved as ``Problem.solve`` starts but undiagnosed; where
+that solve ends without a design, its own interval search (within SURE_BOXES) goes before the elastic diagnosis
+(:meth:`Regions._first`): proven, it gets the verdict ``solve`` gives, at the same design, without the diagnosis.
+
 A covered point reports the design of the last point without a design (its least relaxation) with every constraint
 re-evaluated in float64 at the point's own values (those of a run's points together, one NumPy column a point:
 ``verdict.figures_at``), solver ``interval`` (no solver call where a region covers it, the
