@@ -231,8 +231,8 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
             if posed.integer:
                 continue
             # without integers no box is dropped before the next evaluation (rounding keeps them all): a search whose
-            # boxes now pass its budget ends there as it would after the last split, unsplit further (a point of a
-            # sweep searched alone past its region's edge: 1 box evaluated, then not 128 split for nothing)
+            # boxes now pass its budget ends there as it would after the last split, unsplit further (those whose
+            # rounds would pass it ended before them, above; this holds where a half could not be split again)
             keep = within_budgets(owner)
             if not keep.all():
                 lo, hi, plo, phi, owner = lo[:, keep], hi[:, keep], plo[:, keep], phi[:, keep], owner[keep]
