@@ -8,11 +8,14 @@ import pytest
 
 from clutchopt.cases import load_case
 from clutchopt.optimise import interval_proof, region_proof, sweep, verdict
+from clutchopt.optimise import problem as problem_module
 from clutchopt.optimise.interval import IntervalFunction
 from clutchopt.optimise.interval_proof import search, searches
 from clutchopt.optimise.problem import case_problem
+from clutchopt.optimise.solution import SolverInfo
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import parse_vary
+from clutchopt.optimise.verify import check_design
 from tests.conftest import CASES
 
 WEDGE = load_case(CASES / "wedge_paper.toml")
@@ -48,12 +51,12 @@ def test_searches_together_give_each_point_its_own_search():
         assert (a.feasible is None and b.feasible is None) or np.array_equal(a.feasible, b.feasible)
 
 
-def test_a_search_past_its_budget_ends_before_the_split_that_passes_it(monkeypatch):
+def test_a_search_past_its_budget_ends_before_the_splits_that_pass_it(monkeypatch):
     # The wedge paper case at 89.09 N m has a design (optimal alone); its search evaluates its first box (the design
     # box, not emptied), splits it into 128 and meets a design centre among them (129 boxes). With a budget of 64 it
     # ends after its first box, not proven, nothing met; 400 N m is proven in its first box whatever the budget. A
-    # search stops splitting at the turn that passes its budget (a point searched alone past its region's edge): 6
-    # turns (64 boxes: 1 + 64 > 64), not the 7 that make 128
+    # search without integers whose splits would pass its budget ends before them (a point searched alone past its
+    # region's edge): no turn of bisection, not the 6 that pass it (64 boxes: 1 + 64 > 64) nor the 7 that make 128
     posed = case_problem(WEDGE).posed
     problems = [interval_proof._search_problem(posed, WEDGE.with_values(resisting_torque=t)) for t in (89.090909, 400.0)]
     turns = []
@@ -62,9 +65,9 @@ def test_a_search_past_its_budget_ends_before_the_split_that_passes_it(monkeypat
     short, proven = searches(posed, problems, [64, 64])
     assert (short.proven, short.boxes, short.feasible, short.reached) == (False, 1, None, False)
     assert (proven.proven, proven.boxes) == (True, 1)
-    assert len(turns) == 6
+    assert len(turns) == 0
     met, = searches(posed, problems[:1])
-    assert (met.proven, met.boxes, met.feasible is not None) == (False, 129, True) and len(turns) == 6 + 7
+    assert (met.proven, met.boxes, met.feasible is not None) == (False, 129, True) and len(turns) == 7
 
 
 def _wedge_into_its_region(monkeypatch, batched: bool):
@@ -174,7 +177,8 @@ def test_the_verdicts_do_not_depend_on_the_order_of_the_points(order):
 
 def test_a_run_reaching_past_the_region_s_edge_searches_only_its_first_half_again(monkeypatch):
     # The wedge paper case from 300 down to 20 N m: designs up to 89.09 N m, proven infeasible from 123.6 N m on
-    # (each point solved alone; the test above). Point 0 (300 N m) gets its full verdict; the run of the 8 points
+    # (each point solved alone; the test above). Point 0 (300 N m), solved once, is proven by its own search
+    # (Regions._first: solve's verdict); the run of the 8 points
     # after it (250-30 N m) meets a design at its 30 N m end, so no proof over it exists (the back-off rule): only
     # its first half (250-130 N m, all beyond 123.6 N m) is searched again and proven, and the other half's points
     # (80-30 N m, designs) are solved as usual, without a search of their own.
@@ -183,14 +187,15 @@ def test_a_run_reaching_past_the_region_s_edge_searches_only_its_first_half_agai
     real = region_proof.searches
     monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
         [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
-    monkeypatch.setattr(region_proof.Regions, "_edge", lambda self, k, end: end)
+    monkeypatch.setattr(region_proof.Regions, "_edge", lambda self, k, end, witness=None: end)
     monkeypatch.setattr(region_proof.Regions, "_one_by_one", lambda self, count: False)  # (its regions, as the ball's)
     torques = [300.0, 250.0, 200.0, 160.0, 130.0, 80.0, 60.0, 40.0, 30.0, 20.0]
     vary = parse_vary("resisting_torque=" + ",".join(f"{t:g}" for t in torques), "wedge", WEDGE.quantities)
     frame = Sweep(WEDGE, [vary]).run(progress=False).frame
     assert list(frame["status"]) == ["infeasible"] * 5 + ["optimal"] * 5
-    assert [len(outcomes) for outcomes in regions] == [1, 1]  # the run of 8, then its first half alone
-    (run,), (half,) = regions
+    assert [len(outcomes) for outcomes in regions] == [1, 1, 1]  # point 0, the run of 8, then its first half alone
+    (own,), (run,), (half,) = regions
+    assert own.proven and frame["diagnosis"][0] == "proven infeasible: " + verdict.emptied(own)
     assert run.reached and not run.proven and run.feasible is None
     assert half.proven
     assert list(frame["diagnosis"][1:5]) == [frame["diagnosis"][1]] * 4
@@ -199,18 +204,20 @@ def test_a_run_reaching_past_the_region_s_edge_searches_only_its_first_half_agai
 
 def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     # The sweep of the test above. The search of the run of the 8 points after point 0 (250-30 N m) meets a design
-    # at its 30 N m end; a probe (one cold solve) finds one at its last point (30 N m), so the region's edge is looked
+    # at its 30 N m end; the run's last point (30 N m) has one without a solve (that design, within its bounds, meets
+    # every constraint there in float64; a cold solve before), so the region's edge is looked
     # for from point 1 on in growing steps: points 2 (200 N m) and 4 (130 N m) without a design, then bisection
     # between 4 and 8: 6 (60 N m) and 5 (80 N m) with one. Points 1-4 (250-130 N m) are searched again, proven (here
     # the first half of the run too; the ball over its allowable contact stress: one search for the last 2 points of
-    # its region, not three more halvings from 16, 7.7 s to 1.3 s). The 5 probes (IPOPT calls:
+    # its region, not three more halvings from 16, 7.7 s to 1.3 s). The 4 probes solved (IPOPT calls:
     # one each, two at 80 N m) are charged to point 1's verdict but the one at the edge (80 N m), which is that
     # point's own solve (cold, as next to a point without a design), not made again: the sweep's calls are its points'.
     regions, probed = [], []
     real, designed = region_proof.searches, region_proof.Regions._designed
     monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
         [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
-    monkeypatch.setattr(region_proof.Regions, "_designed", lambda self, j: probed.append(j) or designed(self, j))
+    monkeypatch.setattr(region_proof.Regions, "_designed", lambda self, j, witness=None: probed.append(j) or designed(
+        self, j, witness))
     monkeypatch.setattr(region_proof.Regions, "_one_by_one", lambda self, count: False)  # (its regions, as the ball's)
     torques = [300.0, 250.0, 200.0, 160.0, 130.0, 80.0, 60.0, 40.0, 30.0, 20.0]
     vary = parse_vary("resisting_torque=" + ",".join(f"{t:g}" for t in torques), "wedge", WEDGE.quantities)
@@ -218,10 +225,15 @@ def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     frame = result.frame
     assert list(frame["status"]) == ["infeasible"] * 5 + ["optimal"] * 5
     assert probed == [8, 2, 4, 6, 5]
-    assert [len(outcomes) for outcomes in regions] == [1, 1] and regions[0][0].reached and regions[1][0].proven
+    assert [len(outcomes) for outcomes in regions] == [1, 1, 1]  # (point 0's own search first: Regions._first)
+    assert regions[0][0].proven and regions[1][0].reached and regions[2][0].proven
+    posed = case_problem(WEDGE).posed  # (the design met at 30 N m, the run's last point: no probe solved there)
+    met = dict(zip(posed.names, regions[1][0].witness))
+    assert all(c.feasible for c in check_design(posed.formulation, met, posed.params(WEDGE.with_values(
+        resisting_torque=30.0))))
     assert frame["diagnosis"][1].startswith("proven infeasible for resisting_torque 130-250 N*m (4 points, one proof)")
-    assert [s["solver"]["solves"] for s in result.solutions][1:6] == [4, 0, 0, 0, 2]  # (80 N m: 2 calls, a retry;
-    # 6 at point 1 and the edge's solve made again before)
+    assert [s["solver"]["solves"] for s in result.solutions][1:6] == [3, 0, 0, 0, 2]  # (80 N m: 2 calls, a retry;
+    # 4 at point 1 with the solve at 30 N m, 6 with the edge's solve made again before)
     assert result.spent["solves"] == sum(s["solver"]["solves"] for s in result.solutions)
 
 
@@ -253,3 +265,41 @@ def test_a_point_its_own_search_does_not_prove_continues_its_verdict_from_its_fi
         assert result.solutions[4]["diagnosis"].startswith(
             "proven infeasible: no design within the bounds meets" if proven
             else "no feasible design found (not proven infeasible): the least relaxation found")
+
+
+def test_a_verdict_without_an_interval_search_leaves_the_boxes_of_a_point_s_own_proof():
+    # Regions.point keeps the boxes of a point's own proof (its full verdict's or its own search's) for the budgets of
+    # the searches after it (Regions._alone). A verdict that no interval search gave (here one "whatever the design",
+    # a requirement no design variable enters broken; or a start-up's drive proofs) leaves them: the count of the last
+    # search that proved, 500 boxes here, recorded before, is not this point's
+    problem = case_problem(WEDGE)
+    regions = region_proof.Regions(problem, lambda k: WEDGE, 2)  # (point 1: point 0 is solved by Regions._first)
+    interval_proof.last_boxes(problem.posed, 500)
+    design = dict(zip(problem.posed.names, problem.posed.bounds_and_start(WEDGE, None)[2].tolist()))
+    whatever = verdict.infeasible_at(problem.posed, WEDGE, design, "infeasible whatever the design: ...",
+                                     SolverInfo("ipopt", "Infeasible_Problem_Detected", 3, 0.0, 1))
+    assert regions.point(1, lambda first: whatever).status == "infeasible"
+    assert regions._alone == 0
+    proven = verdict.infeasible_at(problem.posed, WEDGE, design, "proven infeasible: ...",
+                                   SolverInfo("ipopt", "Infeasible_Problem_Detected", 3, 0.0, 1))
+    regions = region_proof.Regions(problem, lambda k: WEDGE, 2)  # (a full verdict whose own search proved: 700)
+    assert regions.point(1, lambda first: interval_proof.last_boxes(problem.posed, 700) and proven) is proven
+    assert regions._alone == 700
+
+
+def test_a_sweep_s_first_point_without_a_design_gets_solve_s_verdict_without_the_elastic_diagnosis(monkeypatch):
+    # The wedge paper case at 300 N m: solve's first solve ends without a design, its elastic diagnosis finds the
+    # constraints apart, so its own interval search goes before the retries and proves it; the verdict shows the
+    # failed solve's design. As a sweep's first point (then 20 N m, a design) it is solved once, undiagnosed, and
+    # searched (Regions._first): the same verdict, design and figures, no elastic problem solved
+    calls = []
+    real = problem_module.diagnose
+    monkeypatch.setattr(problem_module, "diagnose", lambda *args: calls.append(1) or real(*args))
+    alone = case_problem(WEDGE).solve(WEDGE.with_values(resisting_torque=300.0))
+    assert len(calls) == 1 and alone.status == "infeasible" and alone.diagnosis.startswith("proven infeasible: ")
+    vary = parse_vary("resisting_torque=300,20", "wedge", WEDGE.quantities)
+    first, second = Sweep(WEDGE, [vary]).run(progress=False).solutions
+    assert len(calls) == 1  # (none in the sweep)
+    assert (first["status"], first["diagnosis"], first["design"]) == (alone.status, alone.diagnosis, alone.design)
+    assert [c["value"] for c in first["constraints"]] == [c.value for c in alone.constraints]
+    assert (first["solver"]["name"], first["solver"]["solves"]) == ("interval", 1) and second["status"] == "optimal"

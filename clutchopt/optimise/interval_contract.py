@@ -27,7 +27,8 @@ from __future__ import annotations
 
 import numpy as np
 
-SWEEPS = 3  # contractions per evaluation: each on the box the last left (the slopes of the first box)
+SWEEPS = 3  # contractions per evaluation: each on the box the last left (the slopes of the first box), fewer where
+# one empties every box or moves none
 _SLACK = 1e-12  # relative outward widening of each bound (float64 sums of a few terms err by a few ulps)
 _CUT = 1e-9  # a row cut a box where it moved an end by more than this of the box's width (named in the proof)
 
@@ -74,5 +75,8 @@ def contracted(lo: np.ndarray, hi: np.ndarray, centre: np.ndarray, c_lo: np.ndar
         margin = _CUT * (hi - lo)
         cutters |= np.any((up < (hi - margin)[None]) | (down > (lo + margin)[None]), axis=1) & ~empty[None]
         empty |= np.any(new_lo > new_hi, axis=0)
+        before = lo, hi
         lo, hi = np.where(empty, lo, new_lo), np.where(empty, hi, new_hi)
+        if empty.all() or all(np.array_equal(a, b, equal_nan=True) for a, b in zip(before, (lo, hi))):
+            break  # (every box empty, or none moved: a further sweep gives the same boxes and cutters)
     return lo, hi, empty, cutters

@@ -29,9 +29,9 @@ from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
 from clutchopt.optimise.solution import Solution, SolverInfo, SolverOptions, WarmStart
 from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, corrected_case, start_up_report, worn_start
 from clutchopt.optimise.start_up_shift import limit_shift, shifted
-from clutchopt.optimise.verdict import shown
+from clutchopt.optimise.verdict import infeasible_at, shown
 from clutchopt.optimise.proofs import start_up_proofs
-from clutchopt.optimise.verify import DESIGN_STATUSES, check_design, evaluate_objective, evaluate_outputs
+from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
 from clutchopt.start_up.mesh import MAX_INTERVALS, MESH_STEPS
@@ -171,17 +171,11 @@ class Problem:
         sizing at the case (one static solve: where a start-up solve would begin), its constraints re-evaluated in
         float64."""
         sized = self._sizing(case)
-        posed, f = self.posed, self.formulation
-        lower, upper, x0 = posed.bounds_and_start(case, sized.design)
-        design, params = dict(zip(posed.names, map(float, x0))), posed.params(case)
-        return Solution(f.coupling, f.mode, posed.objective.name, posed.objective.unit, "infeasible",
-                        evaluate_objective(f, posed.objective.name, design, params), design,
-                        evaluate_outputs(f, design, params), check_design(f, design, params),
-                        SolverInfo(PROVEN, "proven", sized.solver.iterations, sized.solver.time_s,
-                                   sized.solver.solves),
-                        "proven infeasible: " + "; ".join(proofs),
-                        bounds={n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, lower, upper)},
-                        design_units={v.name: v.unit for v in f.variables})
+        _, _, x0 = self.posed.bounds_and_start(case, sized.design)
+        return infeasible_at(self.posed, case, dict(zip(self.posed.names, map(float, x0))),
+                             "proven infeasible: " + "; ".join(proofs),
+                             SolverInfo(PROVEN, "proven", sized.solver.iterations, sized.solver.time_s,
+                                        sized.solver.solves))
 
     def _sizing(self, case: Case) -> Solution:
         """The papers' sizing at ``case``: the static problem of the same formulation solved (where a start-up solve

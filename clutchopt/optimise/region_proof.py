@@ -23,7 +23,8 @@ LONGEST_RUN): where a region's bounds are loose over wide intervals (the lever o
 force takes squared) the runs stay as short as proofs allow.
 
 Where a run's search meets a design at one end, probes look for the region's edge within it (:meth:`Regions._edge`):
-one solve at the run's last point (as ``Problem.solve`` starts cold); where it has a design, the points from the run's
+one solve at the run's last point (as ``Problem.solve`` starts cold; none where the design the search met, within
+the point's bounds, meets every constraint there in float64); where it has a design, the points from the run's
 first on in growing steps, then bisection, find the first point with one, and only the points before it are searched
 again (the bisection of such a run by searches had cost seconds where a solve costs 20-40 ms; a probe before every
 run cost a failed solve on each run inside a region). A probe only shortens the run searched; its calls are charged to
@@ -37,15 +38,19 @@ from the same solve again (20-40 ms each time it had been repeated). A point who
 breaks a requirement that no design variable enters ("whatever the design"), or (a start-up) whose drive proofs
 hold, is left to its own verdict, which says so.
 
+A sweep's first point, with nothing before it to go by, is solved as ``Problem.solve`` starts but undiagnosed; where
+that solve ends without a design, its own interval search (within SURE_BOXES) goes before the elastic diagnosis
+(:meth:`Regions._first`): proven, it gets the verdict ``solve`` gives, at the same design, without the diagnosis.
+
 A covered point reports the design of the last point without a design (its least relaxation) with every constraint
-re-evaluated in float64 at the point's own values, solver ``interval`` (no solver call where a region covers it, the
+re-evaluated in float64 at the point's own values (those of a run's points together, one NumPy column a point:
+``verdict.figures_at``), solver ``interval`` (no solver call where a region covers it, the
 one solve where its own search proved it) and its share of the search's seconds. A verdict is the same whatever the
 order of the points: a region's proof is a proof of each point, and a point its region does not cover gets its own.
 """
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import replace
 from typing import Callable
@@ -53,11 +58,11 @@ from typing import Callable
 import numpy as np
 
 from clutchopt.optimise.interval_proof import (FEW_BOXES, MAX_BOXES, SURE_BOXES, _search_problem, keep_search,
-                                               last_boxes, searches)
+                                               last_boxes, proofs_recorded, searches)
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
-from clutchopt.optimise.verdict import emptied
-from clutchopt.optimise.verify import DESIGN_STATUSES, check_design, evaluate_objective, evaluate_outputs
+from clutchopt.optimise.verdict import emptied, figures_at, infeasible_at
+from clutchopt.optimise.verify import DESIGN_STATUSES, check_design
 from clutchopt.units import from_si
 
 FIRST_RUN = 8  # points searched as one region after a point without a design,
@@ -74,18 +79,28 @@ class Regions:
     where the point before has no design), a search of its own or its solve."""
 
     def __init__(self, problem, point_case, count: int):
-        self.problem, self.posed, self.point_case, self.count = problem, problem.posed, point_case, count
+        self.problem, self.posed, self._case_of, self.count = problem, problem.posed, point_case, count
+        self._cases: dict = {}  # point -> its case, from its run's search on until its verdict (built once)
         self._without: Solution | None = None  # the last point's solution where it has no design
         self._without_at = -2
         self._to, self._length = 0, FIRST_RUN  # the end of the points searched; how many to search next
         self._proven: dict[int, tuple[str, float]] = {}  # point -> its proof's text, its share of the seconds
         self._probed = (0, 0.0)  # the solver calls and seconds of the probes for a region's edge, not yet charged
         self._found = -1  # the point a probe found with a design (the region's edge)
-        self._probes: dict[int, Solution] = {}  # the probes' solutions with a design, by point
-        self._edge_probe: Solution | None = None  # the solve of the edge's probe, for that point's own (uncharged)
+        self._edge_probe: Solution | None = None  # the solve of the last probe that found a design (the edge's,
+        # for that point's own, uncharged; None where the design the run's search met decided it)
         self._alone = 0  # the boxes of the last proof of one point (its own verdict's or its own search's; the mean
         # of the last run searched point by point)
         self._region: int | None = None  # the boxes of the last region proof
+        self._figures: dict[int, tuple] = {}  # proven point -> its float64 figures at the design of self._without
+        self._figured: dict[str, float] | None = None  # (that design)
+
+    def point_case(self, k: int):
+        """Point k's case, built once for its run's search, its float64 figures and its verdict."""
+        case = self._cases.get(k)
+        if case is None:
+            case = self._cases[k] = self._case_of(k)
+        return case
 
     def covered(self, k: int) -> Solution | None:
         """Point k's verdict from a region proof, or None (solve it)."""
@@ -94,7 +109,8 @@ class Regions:
         proven = self._proven.pop(k, None)
         if proven is None or self._without is None:
             return None
-        solution = _covered(self.problem, self.point_case(k), self._without, *proven)
+        solution = _covered(self.problem, self.point_case(k), self._without.design, *proven,
+                            figures=self._figures_at(k))
         if solution is not None:
             self.after(k, solution)
         return self.charged(solution)
@@ -121,14 +137,17 @@ class Regions:
         solution, first = self.covered(k), None
         if solution is None and beside is not None:
             solution = self._early(k, beside)
+        if solution is None:
+            solution = self._first(k, warm)
         if solution is not None:
             return solution
+        proofs = proofs_recorded(self.posed)
         solution, first = self._quick(k, warm)
         if solution is None:
             solution = self.charged(solve(first))
             self.after(k, solution)
-        if solution.status == "infeasible":  # (proven by its own search: its boxes)
-            self._alone = last_boxes(self.posed)
+        if solution.status == "infeasible" and proofs_recorded(self.posed) > proofs:  # (proven by its own search:
+            self._alone = last_boxes(self.posed)  # its boxes; not a verdict "whatever the design", nor a drive's)
         return solution
 
     def _early(self, k: int, design: dict[str, float]) -> Solution | None:
@@ -148,10 +167,40 @@ class Regions:
         if own is None or not own.proven:
             return None
         self._alone = last_boxes(self.posed, own.boxes)
-        solution = _covered(self.problem, case, _designed_as(self.problem, design),
-                            "proven infeasible: " + emptied(own), time.perf_counter() - began)
+        solution = _covered(self.problem, case, design, "proven infeasible: " + emptied(own),
+                            time.perf_counter() - began)
         if solution is not None:
             self.after(k, solution)
+        return solution
+
+    def _first(self, k: int, warm=None) -> Solution | None:
+        """The sweep's first point (static, no warm start: nothing before it to go by) solved as ``Problem.solve``
+        starts, undiagnosed; where that solve ends without a design, the point's own interval search within
+        SURE_BOXES (what ``verdict.shown`` evaluates before the retries) before the elastic diagnosis: proven, the
+        verdict ``solve`` gives ("proven infeasible: ...", the same search's words, at the same design: the failed
+        solve's, which its full verdict shows), without the diagnosis, which there only lets that search go first and
+        is not shown (the lever over its friction coefficient: 3-6 ms of the 10 its first point took); a design:
+        that solve's, ``solve``'s. Else None: its full verdict from the start, the first solve's calls charged to it
+        (a sweep whose first point has no design and no proof, the wedge's geometry mode, pays that solve and
+        search again)."""
+        if k != 0 or warm is not None or self.problem.start_up is not None:
+            return None
+        case = self.point_case(k)
+        first = self.problem.refined(case, diagnosed=False)
+        if first.status in DESIGN_STATUSES:
+            self.after(k, first)
+            return first
+        began = time.perf_counter()
+        own = searches(self.posed, [_search_problem(self.posed, case)], [SURE_BOXES])[0]
+        solution = None
+        if own is not None and own.proven:
+            self._alone = last_boxes(self.posed, own.boxes)
+            solution = _covered(self.problem, case, first.design, "proven infeasible: " + emptied(own),
+                                time.perf_counter() - began, first.solver)
+        if solution is None:
+            self._charge(first)
+            return None
+        self.after(k, solution)
         return solution
 
     def _quick(self, k: int, warm=None) -> tuple[Solution | None, Solution | None]:
@@ -177,8 +226,8 @@ class Regions:
             keep_search(self.posed, problem, own)
             return None, first
         last_boxes(self.posed, own.boxes)
-        solution = _covered(self.problem, case, first, "proven infeasible: " + emptied(own), seconds,
-                            first.solver.solves)
+        solution = _covered(self.problem, case, first.design, "proven infeasible: " + emptied(own), seconds,
+                            first.solver)
         if solution is None:
             return None, first
         self.after(k, solution)
@@ -188,6 +237,7 @@ class Regions:
         """Point k's solution: one proven infeasible starts (or goes on with) the regions searched after it (after
         one not found, a proof is not expected); a design ends a run of proven regions (the next run starts
         FIRST_RUN points long)."""
+        self._cases.pop(k, None)
         if solution.status in DESIGN_STATUSES:
             self._length = FIRST_RUN
         elif solution.status == "infeasible":
@@ -200,6 +250,7 @@ class Regions:
             self._to = k + 1
             return
         end = min(k + self._length, self.count)
+        self._cases = {j: case for j, case in self._cases.items() if j >= k}  # (those of points solved as usual)
         self._to, runs = end, [(k, end)] if end - k > 1 else []  # (a last point alone: Regions._quick)
         points = {j: _search_problem(self.posed, self.point_case(j)) for j in range(k, end)}
         if runs and self._one_by_one(end - k):
@@ -226,7 +277,7 @@ class Regions:
                     middle = (a + b) // 2  # (a design at one end: the region ends within the run: the run up to
                     # the edge the probes find is searched again, else only its first half, the points of the other
                     # solved as usual)
-                    edge = self._edge(a, b) if outcome.reached else b
+                    edge = self._edge(a, b, outcome.witness) if outcome.reached else b
                     kept = (((a, edge),) if edge < b else ((a, middle),) if outcome.reached
                             else ((a, middle), (middle, b)))
                     halves += [run for run in kept if run[1] - run[0] > 1]  # a single point: solved as usual (a
@@ -266,36 +317,46 @@ class Regions:
             self._alone = round(sum(outcome.boxes for _, outcome in proven) / len(proven))
         self._length = min(2 * (end - k), LONGEST_RUN) if len(proven) == end - k else FIRST_RUN
 
-    def _edge(self, k: int, end: int) -> int:
+    def _edge(self, k: int, end: int, witness: np.ndarray | None = None) -> int:
         """The end of the run from point k to ``end`` whose search met a design at one end: ``end``, or the first
         point before it found with a design by one solve (as ``Problem.solve`` starts cold), located where the run's
         last point has one: points k + 1, k + 2, k + 4, ... until one has a design, then bisection. A run reaching
         past the region's edge cannot be proven, and its bisection by interval searches cost seconds (the ball over
         its allowable contact stress: four searches, 7.7 s, for the last two points of its region) where a solve
         costs 20-40 ms. A probe only shortens the run searched: a proof is still a proof of each point of it, and a
-        point after the edge is solved as usual (its design is ``solve``'s, whatever the probe found)."""
-        if end - k <= 2 or self.problem.start_up is not None or not self._designed(end - 1):
+        point after the edge is solved as usual (its design is ``solve``'s, whatever the probe found). A point where
+        the design the run's search met (``witness``) meets every constraint in float64 has a design without a probe
+        (the ball over its allowable contact stress: the run's last point, a cold solve with its integer search, 12
+        ms)."""
+        if end - k <= 2 or self.problem.start_up is not None or not self._designed(end - 1, witness):
             return end
         without, designed, step = k, end - 1, 1  # (point k: searched from, next to a proven one)
         while without + step < designed:  # from k on in growing steps (an edge is most often near the run's start)
-            if self._designed(without + step):
+            if self._designed(without + step, witness):
                 designed = without + step
                 break
             without, step = without + step, 2 * step
         while designed - without > 1:
             middle = (without + designed) // 2
-            without, designed = (without, middle) if self._designed(middle) else (middle, designed)
-        self._found, self._edge_probe = designed, self._probes.get(designed)
-        self._probes = {}
+            without, designed = (without, middle) if self._designed(middle, witness) else (middle, designed)
+        self._found = designed  # (the last probe with a design: self._edge_probe)
         self._charge(self._edge_probe, -1)  # (charged to the edge's point, whose solve it is: :meth:`_edge_solve`)
         return designed
 
-    def _designed(self, j: int) -> bool:
-        """Point j has a design by one solve (cold, undiagnosed); its calls are charged to the next verdict."""
-        solution = self.problem.refined(self.point_case(j), diagnosed=False)
+    def _designed(self, j: int, witness: np.ndarray | None = None) -> bool:
+        """Point j has a design: ``witness``, within j's bounds and its integers whole, meets every constraint at j in
+        float64, else by one solve (cold, undiagnosed), whose calls are charged to the next verdict."""
+        posed, case = self.posed, self.point_case(j)
+        if witness is not None and np.all(witness[posed.integer] == np.round(witness[posed.integer])):
+            lower, upper, _ = posed.bounds_and_start(case, None)
+            checks = check_design(posed.formulation, dict(zip(posed.names, witness.tolist())), posed.params(case))
+            if np.all((lower <= witness) & (witness <= upper)) and all(c.feasible for c in checks):
+                self._edge_probe = None
+                return True
+        solution = self.problem.refined(case, diagnosed=False)
         self._charge(solution)
         if solution.status in DESIGN_STATUSES:
-            self._probes[j] = solution
+            self._edge_probe = solution
         return solution.status in DESIGN_STATUSES
 
     def _edge_solve(self, k: int, usable: bool) -> Solution | None:
@@ -310,6 +371,19 @@ class Regions:
             return probe
         self._charge(probe)
         return None
+
+    def _figures_at(self, k: int) -> tuple | None:
+        """Proven point k's float64 figures at the design of the last point without one (:func:`_covered`), those of
+        every point proven with it evaluated together, one NumPy column a point (static problems; None otherwise):
+        a region's points share that design, and one evaluation of the formulation's equations over arrays costs
+        what one over floats does (the lever over 1x-10x its inertia: 84 covered points, each evaluated alone, were
+        half the sweep's time)."""
+        design = self._without.design
+        if k not in self._figures or self._figured != design:
+            points = sorted({k, *(j for j in self._proven if j > k)})
+            self._figures = dict(zip(points, figures_at(self.posed, [self.point_case(j) for j in points], design)))
+            self._figured = dict(design)
+        return self._figures.pop(k)
 
     def _charge(self, solution: Solution | None, sign: int = 1) -> None:
         """The calls and seconds of a probe's ``solution`` added to those not yet charged (``sign`` -1: taken out)."""
@@ -339,33 +413,19 @@ def _shown(value: float, unit: str) -> str:
     return f"{float(from_si(value, unit)):.6g}"
 
 
-def _designed_as(problem, design: dict[str, float]) -> Solution:
-    """A solution carrying ``design`` alone, for :func:`_covered` to evaluate at a point's values."""
-    f = problem.formulation
-    return Solution(f.coupling, f.mode, problem.posed.objective.name, problem.posed.objective.unit, "infeasible",
-                    math.nan, dict(design), {}, [], SolverInfo("interval", "proven", 0, 0.0, 0),
-                    design_units={v.name: v.unit for v in f.variables})
-
-
-def _covered(problem, case, without: Solution, text: str, seconds: float, solves: int = 0) -> Solution | None:
-    """The verdict of a point a proof covers: the design of ``without`` (the last point without one: its least
-    relaxation; or the point's own failed solve, which took ``solves`` calls), every constraint re-evaluated in
-    float64 at this point's values; None where a requirement no design variable enters is broken, or a start-up's
-    drive proofs hold (its own verdict says so)."""
+def _covered(problem, case, design: dict[str, float], text: str, seconds: float, spent: SolverInfo | None = None,
+             figures: tuple | None = None) -> Solution | None:
+    """The verdict of a point a proof covers, showing ``design`` (the last point without one: its least relaxation;
+    or the point's own failed solve, which ``spent`` its calls and seconds) with every constraint re-evaluated in
+    float64 at this point's values (``figures``, if evaluated already: ``verdict.figures_at``); None where a
+    requirement no design variable enters is broken, or a start-up's drive proofs hold (its own verdict says so)."""
     posed = problem.posed
     if problem.start_up is not None and start_up_proofs(case):
         return None
-    f, params = posed.formulation, posed.params(case)
-    design = without.design
-    checks = check_design(f, design, params)
+    figures = figures or figures_at(posed, [case], design)[0]
     fixed = {posed.row_names[i] for i in posed.fixed_rows}
-    if any(not c.feasible for c in checks if c.name in fixed):
+    if any(not c.feasible for c in figures[0] if c.name in fixed):
         return None
-    lower, upper, _ = posed.bounds_and_start(case, None)
-    return replace(without, status="infeasible", diagnosis=text, constraints=checks,
-                   objective=evaluate_objective(f, posed.objective.name, design, params),
-                   outputs=evaluate_outputs(f, design, params), integer_search=[], sensitivities={}, scale=None,
-                   multipliers=None, start_up=None, internal=None, mesh=None, diagnosed=None, starts=(),
-                   bounds={n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, lower, upper)},
-                   solver=SolverInfo("interval", "proven", 0, (without.solver.time_s if solves else 0.0) + seconds,
-                                     solves))
+    solves, time_s = (spent.solves, spent.time_s) if spent is not None else (0, 0.0)
+    return infeasible_at(posed, case, design, text, SolverInfo("interval", "proven", 0, time_s + seconds, solves),
+                         figures)

@@ -24,11 +24,15 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+import numpy as np
+
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
+from clutchopt.model import Output, namespace
 from clutchopt.optimise.interval_proof import SURE_BOXES, empty_design_space
 from clutchopt.optimise.solution import Solution, SolverInfo
-from clutchopt.optimise.verify import DESIGN_STATUSES
+from clutchopt.optimise.verify import (DESIGN_STATUSES, ConstraintCheck, check_design, constraint_check,
+                                       constraint_table, evaluate_objective, evaluate_outputs)
 
 
 def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[str, float] | None) -> Solution:
@@ -140,3 +144,45 @@ def _spent(solution: Solution, tried: list[tuple[str, Solution]]) -> Solution:
     solution.solver = SolverInfo(solution.solver.name, solution.solver.status, sum(i.iterations or 0 for i in infos),
                                  sum(i.time_s for i in infos), sum(i.solves for i in infos))
     return solution
+
+
+def infeasible_at(posed, case: Case, design: dict[str, float], diagnosis: str, solver: SolverInfo,
+                  figures: tuple | None = None) -> Solution:
+    """A proven ``infeasible`` verdict at ``case`` that shows ``design`` (a start-up the drive makes impossible: the
+    papers' sizing, ``Problem.proven``; a sweep's point a proof covers: the design of the point before,
+    ``region_proof``), every constraint, the objective and the outputs re-evaluated in float64 at the case's values
+    (``figures``: evaluated already, :func:`figures_at`), the bounds the case's."""
+    f = posed.formulation
+    checks, objective, outputs = figures or figures_at(posed, [case], design)[0]
+    lower, upper, _ = posed.bounds_and_start(case, None)
+    return Solution(f.coupling, f.mode, posed.objective.name, posed.objective.unit, "infeasible", objective, design,
+                    outputs, checks, solver, diagnosis,
+                    bounds={n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, lower, upper)},
+                    design_units={v.name: v.unit for v in f.variables})
+
+
+def figures_at(posed, cases: list[Case], design: dict[str, float]
+               ) -> list[tuple[list[ConstraintCheck], float, dict[str, Output]]]:
+    """The float64 figures of ``design`` at each of ``cases``: its constraint checks, objective and outputs, by the
+    formulation's own equations; for several cases of a static problem evaluated once over arrays of their values (a
+    column each, as ``batch_window.Checked`` checks batched points; the same arithmetic, the same bits: a run of
+    points a region proof covers shares one design), else by ``verify`` point by point (a start-up's constraints are
+    arrays over its path already)."""
+    f, count = posed.formulation, len(cases)
+    if count == 1 or posed.start_up is not None:
+        return [(check_design(f, design, params), evaluate_objective(f, posed.objective.name, design, params),
+                 evaluate_outputs(f, design, params)) for params in map(posed.params, cases)]
+    params = [vars(posed.params(case)) for case in cases]
+    x = namespace({name: float(value) for name, value in design.items()})
+    p = namespace({name: np.array([values[name] for values in params]) for name in params[0]})
+    with np.errstate(all="ignore"):
+        constraints = f.constraints(x, p)
+        objective = np.broadcast_to(np.asarray(f.objective(posed.objective.name).function(x, p), dtype=float),
+                                    (count,)).tolist()
+        outputs = [(name, np.broadcast_to(np.asarray(out.value, dtype=float), (count,)).tolist(), out)
+                   for name, out in f.outputs(x, p).items()]
+    value, limit, scale, margin = (table.tolist() for table in constraint_table(constraints, count))  # (floats: read
+    # point by point from lists, not from arrays)
+    return [([constraint_check(c, value[i][j], limit[i][j], scale[i][j], margin[i][j]) for i, c in enumerate(constraints)],
+             objective[j], {name: Output(values[j], out.unit, out.description) for name, values, out in outputs})
+            for j in range(count)]
