@@ -33,6 +33,23 @@ def test_a_terminal_event_of_a_decay_is_found_at_its_closed_form():
     assert np.all(np.diff(out.t) >= 0) and out.t[0] == 0.0
 
 
+def test_a_root_where_the_samples_interpolate_as_accurately_as_integrated_is_not_integrated_again(monkeypatch):
+    # y' = -k y, w' = y as above, the event y = 0.3 at t = ln(1 / 0.3) / k = 0.602 s: the samples there are 1.6 %
+    # of the time apart (the spacing grows geometrically from 1e-3 / 128 s), so two interpolants of six of them agree
+    # far below rtol (e^{-kt} over 0.01 s: sixth derivative x h^6 / 720 ~ 1e-17): the root and its state are the
+    # interpolant's, no odeint run from a sample to the root (each a restart of LSODA)
+    k = 2.0
+    runs, odeint = [], spans.odeint
+    monkeypatch.setattr(spans, "odeint", lambda *args, **kwargs: runs.append(len(args[2])) or odeint(*args, **kwargs))
+    falls = _event(lambda t, y: y[0] - 0.3, True, -1)
+    out = integrate_spans(lambda t, y: [-k * y[0], y[0]], lambda t, y: np.array([[-k, 0.0], [1.0, 0.0]]), 0.0,
+                          np.array([1.0, 0.0]), 100.0, [falls], 1e-12, np.array([1e-12, 1e-12]), Budget(20_000),
+                          1e-3)
+    assert out.status == "event" and 2 not in runs  # spans only
+    assert out.t[-1] == pytest.approx(math.log(1 / 0.3) / k, rel=1e-10)
+    assert out.y[0, -1] == pytest.approx(0.3, rel=1e-10) and out.y[1, -1] == pytest.approx(0.7 / k, rel=1e-10)
+
+
 @pytest.mark.parametrize("omega, periods, zoomed", [(2.0, 2, False), (400.0, 20, True)])  # samples spaced 1.6 % of
 # the time since the start: at 2 rad/s some 30 a period to the end (roots on them), at 400 rad/s a few (on zooms)
 def test_the_maxima_of_an_oscillation_are_sampled_where_they_are(omega, periods, zoomed, monkeypatch):

@@ -210,6 +210,8 @@ def _refined(event, grid, samples, k: int, lsoda: _Lsoda, exact: bool):
     guess = _root(lambda s: event(s, local(s)), grid[k], grid[k + 1], exact)
     if guess is None or guess == grid[k]:
         return None
+    if _interpolated(local, grid, samples, k, guess, lsoda):
+        return guess, local(guess)
     scale = lsoda.atol / lsoda.rtol
     state = lsoda.run(samples[:, k], np.array([grid[k], guess]))
     if state is None:
@@ -231,6 +233,19 @@ def _refined(event, grid, samples, k: int, lsoda: _Lsoda, exact: bool):
     if end is None or not abs(event(root, end[:, -1])) <= abs(g):
         return None
     return root, end[:, -1]
+
+
+def _interpolated(local, grid, samples, k: int, s: float, lsoda: _Lsoda) -> bool:
+    """Whether the interpolant ``local`` of the samples around [k, k + 1] is at ``s`` as accurate as the samples
+    themselves: the interpolant of the LOCAL_NODES samples one further (its error estimate) agrees with it there
+    within the solver's tolerance (rtol |y| + atol, each component). Then the state at a root is the interpolant's,
+    not integrated again (LSODA restarted from sample k: some 20-40 steps a root)."""
+    nodes = _nodes(k, len(grid))
+    other = nodes + (1 if nodes[-1] + 1 < len(grid) else -1)
+    if len(nodes) < LOCAL_NODES or other[0] < 0:
+        return False
+    here, there = local(s), _Interpolant(grid[other], samples[:, other])(s)
+    return bool(np.all(np.abs(here - there) <= lsoda.rtol * np.abs(here) + lsoda.atol))
 
 
 def _zoom(zooms: dict, interval: int, grid, samples, lsoda: _Lsoda):
