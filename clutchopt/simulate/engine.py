@@ -209,6 +209,7 @@ class _Run(_Rates):
         self.state_scale = np.array([speed, 1e-6 * speed, energy, energy, heat])  # absolute tolerance per rtol
         self.budget = Budget(MAX_STEPS)
         self._last = None, None  # (kind, t, y) and the rates there
+        self._last_samples = None, None, None, None  # (kind, times, states, rates) of the last samples (arrays)
         self.flat = _flat(self)  # the solver's right-hand sides
 
     def integrate(self, kind: str, t: float, bound: float, y, events: list) -> Phase:
@@ -284,10 +285,14 @@ class _Run(_Rates):
         return self.excess(y[0], y[1], friction, self.m.load(t, 0.0 * y[0]))
 
     def turning_rates(self, kind: str, t, y) -> list:
-        """The rates of a rest or slip phase; the last point's kept, as the events evaluate it after each step
-        (samples as arrays: computed)."""
+        """The rates of a rest or slip phase; the last point's kept, as the events evaluate it after each step,
+        and the last samples' (arrays: a span's, which the events ``steady`` and ``peak`` both read)."""
         if isinstance(t, np.ndarray):
-            return self.rest(t, y) if kind == "rest" else self.slip(t, y)
+            kept_kind, kept_t, kept_y, rates = self._last_samples
+            if not (kept_kind == kind and kept_t is t and kept_y is y):
+                rates = self.rest(t, y) if kind == "rest" else self.slip(t, y)
+                self._last_samples = kind, t, y, rates
+            return rates
         key = (kind, t, y.tobytes())
         if self._last[0] != key:
             self._last = key, self.flat[kind](t, y)
