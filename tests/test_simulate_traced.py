@@ -88,6 +88,17 @@ def test_a_load_table_is_no_trace_and_its_right_hand_side_the_equations():
         -(0.01 * (100.0**2 - 900.0) - (7.5 + 0.25 * 25.0)) / 0.5, rel=1e-15)  # driven at 75 rad/s: 13.75 N m
 
 
+def test_a_load_on_floats_is_its_table_looked_up():
+    # over speed: (2.5, 7.5, 20) at (0, 50, 100) rad/s, held beyond both ends: at 75 rad/s 7.5 + 12.5 / 2 = 13.75 N m;
+    # over time the same table read at t; constant: the torque whatever t and speed
+    table = {"points": (0.0, 50.0, 100.0), "values": (2.5, 7.5, 20.0)}
+    by_speed, by_time = Load(over="speed", **table).on_floats(), Load(over="time", **table).on_floats()
+    assert by_speed(1e9, 75.0) == 13.75 and by_time(75.0, 1e9) == 13.75
+    assert by_speed(0.0, -5.0) == 2.5 and by_speed(0.0, 500.0) == 20.0
+    assert math.isnan(by_speed(0.0, math.nan))
+    assert Load(4.0).on_floats()(3.0, 7.0) == 4.0
+
+
 def _wedge_on_its_motor(law) -> _Run:
     motor = InductionMotor(104.72, 37.0, 0.2, 0.012)
     return _Run(Model(law, 0.5, Load(5.0), ("slip_friction", "motor_curve", "lockup", "friction_heat"),

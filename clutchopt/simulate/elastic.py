@@ -120,10 +120,12 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     lag = STRESS_LAG * time_scale
     fast_rates, fast_stress = _on_floats(m, lag)
 
+    load = m.load.on_floats()
+
     def rates(t, y):
         """At a solver's state, read as numbers (arithmetic on NumPy scalars costs twice)."""
         wa, w, theta, _ = y.tolist()
-        return fast_rates(wa, w, theta, m.load(t, w))
+        return fast_rates(wa, w, theta, load(t, w))
 
     def started(t, y):
         return y[1] - m.target
@@ -139,7 +141,7 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
         if isinstance(t, np.ndarray):
             return stress_rate(m, lag, y[0], y[1], y[2], m.load(t, y[1]))
         wa, w, theta = float(y[0]), float(y[1]), float(y[2])
-        return fast_stress(wa, w, theta, m.load(t, w))
+        return fast_stress(wa, w, theta, load(t, w))
 
     started.terminal, started.direction = True, 1
     overturned.terminal, overturned.direction = True, 1

@@ -165,6 +165,18 @@ class Load:
             return np.interp(x, self.points, self.values)  # (held at both ends, as table_segment)
         return table_segment(x, self.points, self.values)[0]
 
+    def on_floats(self):
+        """The load as a function of (t, driven speed) at numbers, for a solver's right-hand side: the table looked
+        up by :func:`table_segment` itself, without :meth:`__call__`'s dispatch on the kind of load and argument
+        (1.06 -> 0.35 us a call: an elastic start's check calls it some 3,000 times)."""
+        if not self.over:
+            torque = self.torque
+            return lambda t, driven_speed: torque
+        points, values = self.points, self.values
+        if self.over == "time":
+            return lambda t, driven_speed: table_segment(t, points, values)[0]
+        return lambda t, driven_speed: table_segment(driven_speed, points, values)[0]
+
     def slope(self, t: float, driven_speed: float) -> float:
         """d(load)/d(driven speed), for the simulator's Jacobian (a load over time does not depend on the speed)."""
         return table_segment(driven_speed, self.points, self.values)[1] if self.over == "speed" else 0.0
