@@ -31,8 +31,10 @@ from clutchopt.simulate.on_floats import bound, on_numpy, parametrised
 from clutchopt.simulate.spans import integrate_spans
 from clutchopt.simulate.stepping import Budget, integrate
 
-SWING_SAMPLES = 48  # samples of a swing at least (of its period at zero twist, some twice the swings' in a start):
+SWING_SAMPLES = 96  # samples of a swing at least (of its period at zero twist, some twice the swings' in a start):
 # their extremes are found on the samples, not on intervals integrated again (4,960 right-hand sides a check: 4,450)
+SWING_NODES = 10  # samples an extreme's interpolant runs through (degree 9): with 96 a swing it is as accurate as
+# LSODA's own samples at most extremes, whose states are then not integrated again (15 odeint runs a check, not 53)
 STRESS_LAG = 1e-6  # of the start's time scale: the step of the stress rate's central difference (its peak's event)
 
 
@@ -154,8 +156,9 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     if m.integrator == "LSODA":
         out = integrate_spans(rates, None, 0.0, np.zeros(4), bound, events, m.rtol, atol, Budget(MAX_STEPS),
                               FIRST_SPAN * time_scale,
-                              max(_swing_period(m) / SWING_SAMPLES, FIRST_SPAN * time_scale))  # (a swing
-        # faster than 48e-3 of the start, as of a rotor of 1e-9 kg m^2, is not sampled: its extremes on zooms)
+                              max(_swing_period(m) / SWING_SAMPLES, FIRST_SPAN * time_scale),  # (a swing faster
+                              SWING_NODES)  # than 96e-3 of the start, as of a rotor of 1e-9 kg m^2, is not sampled:
+        # its extremes on zooms)
     else:
         out = integrate(rates, None, 0.0, np.zeros(4), bound, events, m.integrator, m.rtol, atol, Budget(MAX_STEPS))
     t, y = out.t, out.y

@@ -37,7 +37,7 @@ SPACING_GROWTH = 8.0 ** (1.0 / FIRST_SAMPLES)  # ratio of consecutive samples' s
 SPAN_SAMPLES = 192  # samples of a span: each restart of LSODA costs some 20-40 steps (128: 10 % more steps, 384:
 # 10-30 % more, as a span overshoots the phase's end)
 ZOOM_SAMPLES = 32  # the interval where an event changes sign, integrated again with this many samples
-LOCAL_NODES = 6  # samples of that interval interpolated (degree 5) to find the root
+LOCAL_NODES = 6  # samples of that interval interpolated (degree 5) to find the root (a caller may take more)
 TRUSTED = 1e-6  # relative: an interpolant of a span's samples this near the state integrated to its root is used
 EXTREMUM_XTOL = 1e-9  # of the sample interval: a sampled event's root (a maximum, whose value moves by the square
 # of the time's error; its state is integrated to the root found): 7.6 of Brent's steps a root, not 11
@@ -66,12 +66,13 @@ def _predicted(events, times: np.ndarray, states: np.ndarray, t: float, length: 
 
 
 def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: list, rtol: float, atol: np.ndarray,
-                    budget: Budget, span: float, widest: float = np.inf) -> Phase:
+                    budget: Budget, span: float, widest: float = np.inf, nodes: int = LOCAL_NODES) -> Phase:
     """Integrate y' = fun(t, y) by LSODA (Jacobian ``jac``) from (t0, y0) towards ``bound`` until a terminal event,
     the bound, a failure or the end of ``budget``, as :func:`clutchopt.simulate.stepping.integrate` does; ``span``:
     the first FIRST_SAMPLES samples' time (their spacing grows from it), ``widest``: the largest spacing (a motion
-    that swings: a fraction of its period, so that its extremes are found on the samples)."""
-    lsoda = _Lsoda(fun, jac, rtol, atol, budget)
+    that swings: a fraction of its period, so that its extremes are found on the samples), ``nodes``: the samples
+    an event's interpolant runs through."""
+    lsoda = _Lsoda(fun, jac, rtol, atol, budget, nodes)
     times, states = [np.array([t0])], [np.array(y0, dtype=float).reshape(-1, 1)]
     t, y, first = t0, np.array(y0, dtype=float), 1
     ratio = SPACING_GROWTH
@@ -117,8 +118,8 @@ def _offsets(indices: np.ndarray, spacing: float, ratio: float, widest: float) -
 class _Lsoda:
     """odeint runs from a state over a grid; their steps counted against the budget."""
 
-    def __init__(self, fun, jac, rtol, atol, budget: Budget):
-        self.fun, self.jac, self.rtol, self.atol, self.budget = fun, jac, rtol, atol, budget
+    def __init__(self, fun, jac, rtol, atol, budget: Budget, nodes: int = LOCAL_NODES):
+        self.fun, self.jac, self.rtol, self.atol, self.budget, self.nodes = fun, jac, rtol, atol, budget, nodes
         self.message = ""
         self.refine = True  # roots on the spans' own samples first (:func:`_refined`)
 
@@ -202,7 +203,7 @@ def _refined(event, grid, samples, k: int, lsoda: _Lsoda, exact: bool):
     from sample k; a terminal event's root then taken one Newton step further on the event's exact value there
     (the interpolant's slope), the state integrated on to it. None where the interpolant does not bracket the
     root or the Newton step leaves the interval or does not bring the event nearer zero."""
-    local, g_left, g_right = _opening(event, grid, samples, k)
+    local, g_left, g_right = _opening(event, grid, samples, k, lsoda.nodes)
     if g_left == 0.0:
         return grid[k], samples[:, k].copy()
     if g_left * g_right >= 0:
@@ -237,12 +238,12 @@ def _refined(event, grid, samples, k: int, lsoda: _Lsoda, exact: bool):
 
 def _interpolated(local, grid, samples, k: int, s: float, lsoda: _Lsoda) -> bool:
     """Whether the interpolant ``local`` of the samples around [k, k + 1] is at ``s`` as accurate as the samples
-    themselves: the interpolant of the LOCAL_NODES samples one further (its error estimate) agrees with it there
+    themselves: the interpolant of as many samples one further (its error estimate) agrees with it there
     within the solver's tolerance (rtol |y| + atol, each component). Then the state at a root is the interpolant's,
     not integrated again (LSODA restarted from sample k: some 20-40 steps a root)."""
-    nodes = _nodes(k, len(grid))
+    nodes = _nodes(k, len(grid), lsoda.nodes)
     other = nodes + (1 if nodes[-1] + 1 < len(grid) else -1)
-    if len(nodes) < LOCAL_NODES or other[0] < 0:
+    if len(nodes) < lsoda.nodes or other[0] < 0:
         return False
     here, there = local(s), _Interpolant(grid[other], samples[:, other])(s)
     return bool(np.all(np.abs(here - there) <= lsoda.rtol * np.abs(here) + lsoda.atol))
@@ -267,7 +268,7 @@ def _locate(event, zoom, lsoda: _Lsoda, exact: bool):
     if not mask.any():
         return None
     k = int(np.argmax(mask))
-    local, g_left, g_right = _opening(event, grid, samples, k)
+    local, g_left, g_right = _opening(event, grid, samples, k, lsoda.nodes)
     if g_left == 0.0:
         return grid[k], samples[:, k].copy()
     if g_right == 0.0 or g_left * g_right > 0:
@@ -284,9 +285,9 @@ def _locate(event, zoom, lsoda: _Lsoda, exact: bool):
     return root, (end[:, -1] if end is not None else local(root))
 
 
-def _opening(event, grid, samples, k: int):
-    """The interpolant of the LOCAL_NODES samples around the interval [k, k + 1] and the event at its ends."""
-    nodes = _nodes(k, len(grid))
+def _opening(event, grid, samples, k: int, nodes: int):
+    """The interpolant of ``nodes`` samples around the interval [k, k + 1] and the event at its ends."""
+    nodes = _nodes(k, len(grid), nodes)
     local = _Interpolant(grid[nodes], samples[:, nodes])
     return local, event(grid[k], samples[:, k]), event(grid[k + 1], samples[:, k + 1])
 
@@ -301,10 +302,10 @@ def _root(function, a: float, b: float, exact: bool = True) -> float | None:
         return None
 
 
-def _nodes(k: int, count: int) -> np.ndarray:
-    """LOCAL_NODES sample indices around the interval [k, k + 1]."""
-    first = min(max(k - LOCAL_NODES // 2 + 1, 0), max(count - LOCAL_NODES, 0))
-    return np.arange(first, min(first + LOCAL_NODES, count))
+def _nodes(k: int, count: int, nodes: int) -> np.ndarray:
+    """``nodes`` sample indices around the interval [k, k + 1]."""
+    first = min(max(k - nodes // 2 + 1, 0), max(count - nodes, 0))
+    return np.arange(first, min(first + nodes, count))
 
 
 class _Interpolant:
