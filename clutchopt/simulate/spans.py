@@ -78,7 +78,7 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
     ratio = SPACING_GROWTH
     spacing = span * (ratio - 1.0) / (ratio**FIRST_SAMPLES - 1.0)  # the first
     widest = min(widest, (bound - t0) / FIRST_SAMPLES)  # (the spacing grows no further than the bound needs)
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), np.errstate(all="ignore"):  # (NumPy's once a phase, as stepping.integrate)
         warnings.simplefilter("ignore", ODEintWarning)  # a failed span is read from its message
         while t < bound:
             if budget.spent:
@@ -171,10 +171,10 @@ def _nearer(event, grid, samples, interval: int):
 
 
 def _values(event, times: np.ndarray, states: np.ndarray) -> np.ndarray:
-    """The event at every sample: at once where it takes arrays, else sample by sample."""
+    """The event at every sample: at once where it takes arrays, else sample by sample (within a phase: NumPy's
+    floating-point warnings not shown)."""
     try:
-        with np.errstate(all="ignore"):
-            values = np.asarray(event(times, states), dtype=float)
+        values = np.asarray(event(times, states), dtype=float)
         if values.shape == times.shape:
             return values
     except (TypeError, ValueError):
