@@ -12,7 +12,7 @@ import pytest
 
 from clutchopt.backend import sqrt, where
 from clutchopt.simulate.engine import Model, _Run
-from clutchopt.simulate.laws import CentrifugalFriction, InductionMotor, Load, PaperFriction
+from clutchopt.simulate.laws import CentrifugalFriction, InductionMotor, Load, PaperFriction, positive_part
 from clutchopt.simulate.on_floats import family, parametrised
 
 
@@ -97,6 +97,18 @@ def test_a_load_on_floats_is_its_table_looked_up():
     assert by_speed(0.0, -5.0) == 2.5 and by_speed(0.0, 500.0) == 20.0
     assert math.isnan(by_speed(0.0, math.nan))
     assert Load(4.0).on_floats()(3.0, 7.0) == 4.0
+
+
+def test_the_positive_part_is_one_function_at_numbers_samples_and_symbols():
+    # (x)^+ of the centrifugal torque K (w_a^2 - w_e^2)^+ and of the elastic link's net torque at rest: 3 -> 3,
+    # -2 -> 0, NaN -> NaN at a number as numpy.maximum gives it at samples; a symbol: CasADi's fmax
+    import casadi as ca
+
+    assert positive_part(3.0) == 3.0 and positive_part(-2.0) == 0.0 and math.isnan(positive_part(math.nan))
+    samples = positive_part(np.array([3.0, -2.0, math.nan]))
+    assert samples[:2].tolist() == [3.0, 0.0] and math.isnan(samples[2])
+    x = ca.SX.sym("x")
+    assert float(ca.Function("f", [x], [positive_part(x)])(-2.0)) == 0.0
 
 
 def _wedge_on_its_motor(law) -> _Run:

@@ -23,10 +23,10 @@ from typing import Callable
 
 import numpy as np
 
-from clutchopt.backend import fmax, where
+from clutchopt.backend import where
 from clutchopt.model import ElasticLaw
 from clutchopt.simulate.engine import FIRST_SPAN, MAX_STEPS, SimulationResult, largest
-from clutchopt.simulate.laws import InductionMotor, Load
+from clutchopt.simulate.laws import InductionMotor, Load, positive_part
 from clutchopt.simulate.on_floats import bound, on_numpy, parametrised
 from clutchopt.simulate.spans import integrate_spans
 from clutchopt.simulate.stepping import Budget, integrate
@@ -81,7 +81,7 @@ def link_rates(m: ElasticModel, wa, w, theta, load) -> list:
     value."""
     link = m.torque(wa, theta) + m.damping * (wa - w)
     net = link - load
-    net = where(w <= 0.0, fmax(net, 0.0), net)
+    net = where(w <= 0.0, positive_part(net), net)
     return [(m.motor(wa) - link) / m.motor.inertia, net / m.inertia, wa - w, m.damping * (wa - w) ** 2]
 
 
