@@ -12,8 +12,10 @@ machinery (a Python step, a dense output and every event at each step) was three
   arrays; one that does not is evaluated sample by sample); where one changes sign (as ``solve_ivp`` counts a
   crossing, see :func:`clutchopt.simulate.stepping.crosses`) between two samples, its root is found by Brent's
   method (a terminal event's to 4 eps, a sampled extremum's to EXTREMUM_XTOL of the interval) on the interpolant
-  of the nearest LOCAL_NODES samples and the state integrated to it; a terminal
-  event's root is then taken a Newton step further on the event's value there and the state integrated on to it.
+  of the nearest LOCAL_NODES samples (a caller's ``nodes``); where the interpolant of as many samples one further
+  agrees with it there within the solver's tolerance (:func:`_interpolated`), the root's state is the interpolant's,
+  else it is integrated to from the sample before; then a terminal
+  event's root is taken a Newton step further on the event's value there and the state integrated on to it.
   Where that interpolant is off the integrated state by more than TRUSTED (a motion too fast for the span's
   samples: the cable's torsional swings), the interval is integrated again sampled ZOOM_SAMPLES times and the
   same is done on those samples;
