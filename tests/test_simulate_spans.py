@@ -33,21 +33,24 @@ def test_a_terminal_event_of_a_decay_is_found_at_its_closed_form():
     assert np.all(np.diff(out.t) >= 0) and out.t[0] == 0.0
 
 
-def test_a_root_where_the_samples_interpolate_as_accurately_as_integrated_is_not_integrated_again(monkeypatch):
-    # y' = -k y, w' = y as above, the event y = 0.3 at t = ln(1 / 0.3) / k = 0.602 s: the samples there are 1.6 %
-    # of the time apart (the spacing grows geometrically from 1e-3 / 128 s), so two interpolants of six of them agree
-    # far below rtol (e^{-kt} over 0.01 s: sixth derivative x h^6 / 720 ~ 1e-17): the root and its state are the
-    # interpolant's, no odeint run from a sample to the root (each a restart of LSODA)
-    k = 2.0
+def test_a_maximum_where_the_samples_interpolate_as_accurately_as_integrated_is_not_integrated_again(monkeypatch):
+    # x'' = -w^2 x, x(0) = 0, x'(0) = w, w = 2 rad/s: the maximum x = 1 at t = pi / (2 w) = 0.785 s, where the samples
+    # are 1.6 % of the time apart (0.0126 s: w h = 0.025, two interpolants of six agree to ~(w h)^6 / 720 ~ 3e-13 of
+    # the amplitude, below rtol): its state is the interpolant's, no odeint run from a sample to it (a restart of
+    # LSODA); the terminal event at t = pi / w is integrated to, as ever (runs of two times, from its last sample)
+    omega, end = 2.0, math.pi / 2.0
     runs, odeint = [], spans.odeint
-    monkeypatch.setattr(spans, "odeint", lambda *args, **kwargs: runs.append(len(args[2])) or odeint(*args, **kwargs))
-    falls = _event(lambda t, y: y[0] - 0.3, True, -1)
-    out = integrate_spans(lambda t, y: [-k * y[0], y[0]], lambda t, y: np.array([[-k, 0.0], [1.0, 0.0]]), 0.0,
-                          np.array([1.0, 0.0]), 100.0, [falls], 1e-12, np.array([1e-12, 1e-12]), Budget(20_000),
-                          1e-3)
-    assert out.status == "event" and 2 not in runs  # spans only
-    assert out.t[-1] == pytest.approx(math.log(1 / 0.3) / k, rel=1e-10)
-    assert out.y[0, -1] == pytest.approx(0.3, rel=1e-10) and out.y[1, -1] == pytest.approx(0.7 / k, rel=1e-10)
+    monkeypatch.setattr(spans, "odeint", lambda *args, **kwargs: runs.append(args[2]) or odeint(*args, **kwargs))
+    peak = _event(lambda t, y: y[1], False, -1)
+    ends = _event(lambda t, y: t - end, True, 1)
+    out = integrate_spans(lambda t, y: [y[1], -omega**2 * y[0]],
+                          lambda t, y: np.array([[0.0, 1.0], [-omega**2, 0.0]]), 0.0, np.array([0.0, omega]),
+                          1e9, [peak, ends], 1e-11, np.array([1e-11, 1e-11 * omega]), Budget(50_000), 1e-3)
+    assert out.status == "event" and out.t[-1] == pytest.approx(end, rel=1e-12)
+    at = int(np.argmax(out.y[0]))
+    assert out.t[at] == pytest.approx(math.pi / (2 * omega), rel=1e-6) and out.y[0, at] == pytest.approx(1.0, abs=1e-9)
+    roots = [grid for grid in runs if len(grid) == 2]
+    assert roots and all(grid[0] > 0.9 * end for grid in roots)  # the terminal event's only (its last sample)
 
 
 @pytest.mark.parametrize("omega, periods, zoomed", [(2.0, 2, False), (400.0, 20, True)])  # samples spaced 1.6 % of
