@@ -45,7 +45,8 @@ def test_a_maximum_where_the_samples_interpolate_as_accurately_as_integrated_is_
     ends = _event(lambda t, y: t - end, True, 1)
     out = integrate_spans(lambda t, y: [y[1], -omega**2 * y[0]],
                           lambda t, y: np.array([[0.0, 1.0], [-omega**2, 0.0]]), 0.0, np.array([0.0, omega]),
-                          1e9, [peak, ends], 1e-11, np.array([1e-11, 1e-11 * omega]), Budget(50_000), 1e-3)
+                          1e9, [peak, ends], 1e-11, np.array([1e-11, 1e-11 * omega]), Budget(50_000), 1e-3,
+                          extremes_interpolated=True)
     assert out.status == "event" and out.t[-1] == pytest.approx(end, rel=1e-12)
     at = int(np.argmax(out.y[0]))
     assert out.t[at] == pytest.approx(math.pi / (2 * omega), rel=1e-6) and out.y[0, at] == pytest.approx(1.0, abs=1e-9)

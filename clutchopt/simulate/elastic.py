@@ -157,8 +157,8 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
         out = integrate_spans(rates, None, 0.0, np.zeros(4), bound, events, m.rtol, atol, Budget(MAX_STEPS),
                               FIRST_SPAN * time_scale,
                               max(_swing_period(m) / SWING_SAMPLES, FIRST_SPAN * time_scale),  # (a swing faster
-                              SWING_NODES)  # than 96e-3 of the start, as of a rotor of 1e-9 kg m^2, is not sampled:
-        # its extremes on zooms)
+                              SWING_NODES, extremes_interpolated=True)  # than 96e-3 of the start, as of a rotor
+        # of 1e-9 kg m^2, is not sampled: its extremes on zooms)
     else:
         out = integrate(rates, None, 0.0, np.zeros(4), bound, events, m.integrator, m.rtol, atol, Budget(MAX_STEPS))
     t, y = out.t, out.y

@@ -13,7 +13,7 @@ machinery (a Python step, a dense output and every event at each step) was three
   crossing, see :func:`clutchopt.simulate.stepping.crosses`) between two samples, its root is found by Brent's
   method (a terminal event's to 4 eps, a sampled extremum's to EXTREMUM_XTOL of the interval) on the interpolant
   of the nearest LOCAL_NODES samples (a caller's ``nodes``); a sampled event's state is the interpolant's where the
-  interpolant of as many samples one further agrees with it there within the solver's tolerance
+  caller asks and the interpolant of as many samples one further agrees with it there within the solver's tolerance
   (:func:`_interpolated`), else, and a terminal event's always, it is integrated to from the sample before; then a
   terminal event's root is taken a Newton step further on the event's value there and the state integrated on to it.
   Where that interpolant is off the integrated state by more than TRUSTED (a motion too fast for the span's
@@ -68,13 +68,15 @@ def _predicted(events, times: np.ndarray, states: np.ndarray, t: float, length: 
 
 
 def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: list, rtol: float, atol: np.ndarray,
-                    budget: Budget, span: float, widest: float = np.inf, nodes: int = LOCAL_NODES) -> Phase:
+                    budget: Budget, span: float, widest: float = np.inf, nodes: int = LOCAL_NODES,
+                    extremes_interpolated: bool = False) -> Phase:
     """Integrate y' = fun(t, y) by LSODA (Jacobian ``jac``) from (t0, y0) towards ``bound`` until a terminal event,
     the bound, a failure or the end of ``budget``, as :func:`clutchopt.simulate.stepping.integrate` does; ``span``:
     the first FIRST_SAMPLES samples' time (their spacing grows from it), ``widest``: the largest spacing (a motion
     that swings: a fraction of its period, so that its extremes are found on the samples), ``nodes``: the samples
-    an event's interpolant runs through."""
-    lsoda = _Lsoda(fun, jac, rtol, atol, budget, nodes)
+    an event's interpolant runs through; ``extremes_interpolated``: a sampled event's state taken from the
+    interpolant where it is as accurate as the samples (:func:`_interpolated`)."""
+    lsoda = _Lsoda(fun, jac, rtol, atol, budget, nodes, extremes_interpolated)
     times, states = [np.array([t0])], [np.array(y0, dtype=float).reshape(-1, 1)]
     t, y, first = t0, np.array(y0, dtype=float), 1
     ratio = SPACING_GROWTH
@@ -120,8 +122,9 @@ def _offsets(indices: np.ndarray, spacing: float, ratio: float, widest: float) -
 class _Lsoda:
     """odeint runs from a state over a grid; their steps counted against the budget."""
 
-    def __init__(self, fun, jac, rtol, atol, budget: Budget, nodes: int = LOCAL_NODES):
+    def __init__(self, fun, jac, rtol, atol, budget: Budget, nodes: int = LOCAL_NODES, interpolated: bool = False):
         self.fun, self.jac, self.rtol, self.atol, self.budget, self.nodes = fun, jac, rtol, atol, budget, nodes
+        self.interpolated = interpolated  # a sampled event's state from the interpolant where it is as accurate
         self.message = ""
         self.refine = True  # roots on the spans' own samples first (:func:`_refined`)
 
@@ -213,9 +216,11 @@ def _refined(event, grid, samples, k: int, lsoda: _Lsoda, exact: bool):
     guess = _root(lambda s: event(s, local(s)), grid[k], grid[k + 1], exact)
     if guess is None or guess == grid[k]:
         return None
-    if not exact and _interpolated(local, grid, samples, k, guess, lsoda):
+    if lsoda.interpolated and not exact and _interpolated(local, grid, samples, k, guess, lsoda):
         return guess, local(guess)  # (a terminal event's state integrated to, as ever: taken from the interpolant
-        # too, it moved the ball's solves by 1e-13 and their IPOPT iterations from 133 to 172, its sweep's by 31 %)
+        # too, it moved the ball's solves by 1e-13 and their IPOPT iterations from 133 to 172, its sweep's by 31 %;
+        # the same of a slipping start's temperature peak moved them by one iteration: asked for by the cable's
+        # start only, its 48 extremes)
     scale = lsoda.atol / lsoda.rtol
     state = lsoda.run(samples[:, k], np.array([grid[k], guess]))
     if state is None:
