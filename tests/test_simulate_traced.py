@@ -148,3 +148,25 @@ def test_a_branch_written_with_fmax_is_traced_and_equal_to_the_number_s_branch()
     fast = family(lambda w: law.kinetic(w, 0.0), (0,))(None)
     assert [fast(w) for w in (0.0, 29.0, 30.0, 31.0)] == [0.0, 0.0, 0.0, 0.01 * (961.0 - 900.0)]
     assert [fast(w) for w in (29.0, 31.0)] == [law.kinetic(w, 0.0) for w in (29.0, 31.0)]
+
+
+@pytest.mark.parametrize("kind", ["rest", "slip", "stick"])
+def test_each_phase_s_jacobian_is_its_rates_differentiated(kind):
+    # the wedge on its motor with heat, the load a table over the driven speed (slope 0.25 N m s at 75 rad/s);
+    # the hand-written Jacobian (LSODA's) against central differences of the phase's rates, step 1e-6 of each state:
+    # d(dw_a/dt)/dw_a = (dT_m/dw_a - 2 K w_a) / J_m and the rest, each entry to 1e-6 of the largest in its row
+    motor = InductionMotor(104.72, 37.0, 0.2, 0.012)
+    load = Load(over="speed", points=(0.0, 50.0, 100.0), values=(2.5, 7.5, 20.0))
+    run = _Run(Model(CentrifugalFriction(0.01, 900.0), 0.5, load,
+                     ("slip_friction", "motor_curve", "lockup", "friction_heat"), motor=motor, heat_capacity=1400.0,
+                     conductance=4.0))
+    y = np.array([100.0, 25.0, 10.0, 20.0, 3.0])
+    rates, jacobian = getattr(run, kind), getattr(run, f"{kind}_jacobian")(0.0, y)
+    for j in range(5):
+        h = 1e-6 * max(abs(y[j]), 1.0)
+        up, down = y.copy(), y.copy()
+        up[j] += h
+        down[j] -= h
+        column = (np.array(rates(0.0, up)) - np.array(rates(0.0, down))) / (2.0 * h)
+        scale = np.maximum(np.abs(jacobian).max(axis=1), 1e-300)
+        assert np.all(np.abs(jacobian[:, j] - column) <= 1e-6 * scale), (kind, j, jacobian[:, j], column)
