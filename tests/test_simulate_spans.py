@@ -33,6 +33,27 @@ def test_a_terminal_event_of_a_decay_is_found_at_its_closed_form():
     assert np.all(np.diff(out.t) >= 0) and out.t[0] == 0.0
 
 
+def test_a_maximum_where_the_samples_interpolate_as_accurately_as_integrated_is_not_integrated_again(monkeypatch):
+    # x'' = -w^2 x, x(0) = 0, x'(0) = w, w = 2 rad/s: the maximum x = 1 at t = pi / (2 w) = 0.785 s, where the samples
+    # are 1.6 % of the time apart (0.0126 s: w h = 0.025, two interpolants of six agree to ~(w h)^6 / 720 ~ 3e-13 of
+    # the amplitude, below rtol): its state is the interpolant's, no odeint run from a sample to it (a restart of
+    # LSODA); the terminal event at t = pi / w is integrated to, as ever (runs of two times, from its last sample)
+    omega, end = 2.0, math.pi / 2.0
+    runs, odeint = [], spans.odeint
+    monkeypatch.setattr(spans, "odeint", lambda *args, **kwargs: runs.append(args[2]) or odeint(*args, **kwargs))
+    peak = _event(lambda t, y: y[1], False, -1)
+    ends = _event(lambda t, y: t - end, True, 1)
+    out = integrate_spans(lambda t, y: [y[1], -omega**2 * y[0]],
+                          lambda t, y: np.array([[0.0, 1.0], [-omega**2, 0.0]]), 0.0, np.array([0.0, omega]),
+                          1e9, [peak, ends], 1e-11, np.array([1e-11, 1e-11 * omega]), Budget(50_000), 1e-3,
+                          extremes_interpolated=True)
+    assert out.status == "event" and out.t[-1] == pytest.approx(end, rel=1e-12)
+    at = int(np.argmax(out.y[0]))
+    assert out.t[at] == pytest.approx(math.pi / (2 * omega), rel=1e-6) and out.y[0, at] == pytest.approx(1.0, abs=1e-9)
+    roots = [grid for grid in runs if len(grid) == 2]
+    assert roots and all(grid[0] > 0.9 * end for grid in roots)  # the terminal event's only (its last sample)
+
+
 @pytest.mark.parametrize("omega, periods, zoomed", [(2.0, 2, False), (400.0, 20, True)])  # samples spaced 1.6 % of
 # the time since the start: at 2 rad/s some 30 a period to the end (roots on them), at 400 rad/s a few (on zooms)
 def test_the_maxima_of_an_oscillation_are_sampled_where_they_are(omega, periods, zoomed, monkeypatch):

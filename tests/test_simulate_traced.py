@@ -12,7 +12,7 @@ import pytest
 
 from clutchopt.backend import sqrt, where
 from clutchopt.simulate.engine import Model, _Run
-from clutchopt.simulate.laws import CentrifugalFriction, InductionMotor, Load, PaperFriction
+from clutchopt.simulate.laws import CentrifugalFriction, InductionMotor, Load, PaperFriction, positive_part
 from clutchopt.simulate.on_floats import family, parametrised
 
 
@@ -88,6 +88,29 @@ def test_a_load_table_is_no_trace_and_its_right_hand_side_the_equations():
         -(0.01 * (100.0**2 - 900.0) - (7.5 + 0.25 * 25.0)) / 0.5, rel=1e-15)  # driven at 75 rad/s: 13.75 N m
 
 
+def test_a_load_on_floats_is_its_table_looked_up():
+    # over speed: (2.5, 7.5, 20) at (0, 50, 100) rad/s, held beyond both ends: at 75 rad/s 7.5 + 12.5 / 2 = 13.75 N m;
+    # over time the same table read at t; constant: the torque whatever t and speed
+    table = {"points": (0.0, 50.0, 100.0), "values": (2.5, 7.5, 20.0)}
+    by_speed, by_time = Load(over="speed", **table).on_floats(), Load(over="time", **table).on_floats()
+    assert by_speed(1e9, 75.0) == 13.75 and by_time(75.0, 1e9) == 13.75
+    assert by_speed(0.0, -5.0) == 2.5 and by_speed(0.0, 500.0) == 20.0
+    assert math.isnan(by_speed(0.0, math.nan))
+    assert Load(4.0).on_floats()(3.0, 7.0) == 4.0
+
+
+def test_the_positive_part_is_one_function_at_numbers_samples_and_symbols():
+    # (x)^+ of the centrifugal torque K (w_a^2 - w_e^2)^+ and of the elastic link's net torque at rest: 3 -> 3,
+    # -2 -> 0, NaN -> NaN at a number as numpy.maximum gives it at samples; a symbol: CasADi's fmax
+    import casadi as ca
+
+    assert positive_part(3.0) == 3.0 and positive_part(-2.0) == 0.0 and math.isnan(positive_part(math.nan))
+    samples = positive_part(np.array([3.0, -2.0, math.nan]))
+    assert samples[:2].tolist() == [3.0, 0.0] and math.isnan(samples[2])
+    x = ca.SX.sym("x")
+    assert float(ca.Function("f", [x], [positive_part(x)])(-2.0)) == 0.0
+
+
 def _wedge_on_its_motor(law) -> _Run:
     motor = InductionMotor(104.72, 37.0, 0.2, 0.012)
     return _Run(Model(law, 0.5, Load(5.0), ("slip_friction", "motor_curve", "lockup", "friction_heat"),
@@ -125,3 +148,25 @@ def test_a_branch_written_with_fmax_is_traced_and_equal_to_the_number_s_branch()
     fast = family(lambda w: law.kinetic(w, 0.0), (0,))(None)
     assert [fast(w) for w in (0.0, 29.0, 30.0, 31.0)] == [0.0, 0.0, 0.0, 0.01 * (961.0 - 900.0)]
     assert [fast(w) for w in (29.0, 31.0)] == [law.kinetic(w, 0.0) for w in (29.0, 31.0)]
+
+
+@pytest.mark.parametrize("kind", ["rest", "slip", "stick"])
+def test_each_phase_s_jacobian_is_its_rates_differentiated(kind):
+    # the wedge on its motor with heat, the load a table over the driven speed (slope 0.25 N m s at 75 rad/s);
+    # the hand-written Jacobian (LSODA's) against central differences of the phase's rates, step 1e-6 of each state:
+    # d(dw_a/dt)/dw_a = (dT_m/dw_a - 2 K w_a) / J_m and the rest, each entry to 1e-6 of the largest in its row
+    motor = InductionMotor(104.72, 37.0, 0.2, 0.012)
+    load = Load(over="speed", points=(0.0, 50.0, 100.0), values=(2.5, 7.5, 20.0))
+    run = _Run(Model(CentrifugalFriction(0.01, 900.0), 0.5, load,
+                     ("slip_friction", "motor_curve", "lockup", "friction_heat"), motor=motor, heat_capacity=1400.0,
+                     conductance=4.0))
+    y = np.array([100.0, 25.0, 10.0, 20.0, 3.0])
+    rates, jacobian = getattr(run, kind), getattr(run, f"{kind}_jacobian")(0.0, y)
+    for j in range(5):
+        h = 1e-6 * max(abs(y[j]), 1.0)
+        up, down = y.copy(), y.copy()
+        up[j] += h
+        down[j] -= h
+        column = (np.array(rates(0.0, up)) - np.array(rates(0.0, down))) / (2.0 * h)
+        scale = np.maximum(np.abs(jacobian).max(axis=1), 1e-300)
+        assert np.all(np.abs(jacobian[:, j] - column) <= 1e-6 * scale), (kind, j, jacobian[:, j], column)

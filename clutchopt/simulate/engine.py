@@ -209,6 +209,7 @@ class _Run(_Rates):
         self.state_scale = np.array([speed, 1e-6 * speed, energy, energy, heat])  # absolute tolerance per rtol
         self.budget = Budget(MAX_STEPS)
         self._last = None, None  # (kind, t, y) and the rates there
+        self._last_samples = None, None, None, None  # (kind, times, states, rates) of the last samples (arrays)
         self.flat = _flat(self)  # the solver's right-hand sides
 
     def integrate(self, kind: str, t: float, bound: float, y, events: list) -> Phase:
@@ -231,46 +232,51 @@ class _Run(_Rates):
         return phase
 
     # --- their Jacobians -----------------------------------------------------------------------------------------
-    def _turning_jacobian(self, y, slopes) -> np.ndarray:
-        """Jacobian of the rest rates, the friction torque's ``slopes`` (dT/dw_a, dT/dw_r) at ``y`` given."""
+    def _turning_jacobian(self, y, slopes, driven=None) -> np.ndarray:
+        """Jacobian of the rest rates, the friction torque's ``slopes`` (dT/dw_a, dT/dw_r) at ``y`` given; ``driven``:
+        the slip phase's driven-half terms (d(net torque)/dw_a, d(net torque)/dw_r over J) taken from the slip's row.
+        Its entries as numbers, the array built once (an array filled row by row cost 10 us a call)."""
         wa, slip = y[0], y[1]
         friction, (by_speed, by_slip) = self.m.law.kinetic(wa, slip), slopes
-        jacobian = np.zeros((5, 5))
         if self.motor:
-            jacobian[0, :2] = (self.motor.slope(wa) - by_speed) / self.driver_inertia, -by_slip / self.driver_inertia
-        jacobian[1] = jacobian[0]
-        jacobian[2, :2] = by_speed * slip, by_slip * slip + friction
-        jacobian[3, :2] = by_speed * wa + friction, by_slip * wa
+            drive = ((self.motor.slope(wa) - by_speed) / self.driver_inertia, -by_slip / self.driver_inertia)
+        else:
+            drive = (0.0, 0.0)
+        rates = [[drive[0], drive[1], 0.0, 0.0, 0.0],
+                 [drive[0], drive[1], 0.0, 0.0, 0.0] if driven is None else
+                 [drive[0] - driven[0], drive[1] - driven[1], 0.0, 0.0, 0.0],
+                 [by_speed * slip, by_slip * slip + friction, 0.0, 0.0, 0.0],
+                 [by_speed * wa + friction, by_slip * wa, 0.0, 0.0, 0.0],
+                 [0.0, 0.0, 0.0, 0.0, 0.0]]
         if self.heat:
-            jacobian[4] = jacobian[2] / self.m.heat_capacity
-            jacobian[4, 4] = -self.m.conductance / self.m.heat_capacity
-        return jacobian
+            capacity = self.m.heat_capacity
+            rates[4] = [entry / capacity for entry in rates[2][:4]] + [-self.m.conductance / capacity]
+        return np.array(rates)
 
     def slip_jacobian(self, t, y):
         slopes = self.m.law.slopes(y[0], y[1])
-        jacobian = self._turning_jacobian(y, slopes)
         load = self.m.load.slope(t, y[0] - y[1])
-        jacobian[1, :2] -= np.array([slopes[0] - load, slopes[1] + load]) / self.m.inertia
-        return jacobian
+        return self._turning_jacobian(y, slopes, ((slopes[0] - load) / self.m.inertia,
+                                                  (slopes[1] + load) / self.m.inertia))
 
     def rest_jacobian(self, t, y):
         return self._turning_jacobian(y, self.m.law.slopes(y[0], y[1]))
 
     def stick_jacobian(self, t, y):
         """Of (dw/dt, T y[0]) as :meth:`carried` gives them: with a motor the load at the driven speed w_a - w_r,
-        without one at the driving speed."""
-        jacobian = np.zeros((5, 5))
+        without one at the driving speed (entries as numbers, the array built once)."""
         if self.motor:
             load = self.m.load.slope(t, y[0] - y[1])
-            jacobian[0, :2] = np.array([self.motor.slope(y[0]) - load, load]) / (self.m.inertia + self.driver_inertia)
-            torque_slopes = np.array([load, -load]) + self.m.inertia * jacobian[0, :2]
+            both = self.m.inertia + self.driver_inertia
+            accel = ((self.motor.slope(y[0]) - load) / both, load / both)
+            torque_slopes = (load + self.m.inertia * accel[0], -load + self.m.inertia * accel[1])
         else:
-            torque_slopes = np.array([self.m.load.slope(t, y[0]), 0.0])
-        jacobian[3, :2] = y[0] * torque_slopes
-        jacobian[3, 0] += self.carried(t, y)[1]
-        if self.heat:
-            jacobian[4, 4] = -self.m.conductance / self.m.heat_capacity
-        return jacobian
+            accel = (0.0, 0.0)
+            torque_slopes = (self.m.load.slope(t, y[0]), 0.0)
+        rates = [[accel[0], accel[1], 0.0, 0.0, 0.0], [0.0] * 5, [0.0] * 5,
+                 [y[0] * torque_slopes[0] + self.carried(t, y)[1], y[0] * torque_slopes[1], 0.0, 0.0, 0.0],
+                 [0.0, 0.0, 0.0, 0.0, -self.m.conductance / self.m.heat_capacity if self.heat else 0.0]]
+        return np.array(rates, dtype=float)
 
     # --- phases and their events ---------------------------------------------------------------------------------
     def turning_kind(self, t, y) -> str:
@@ -284,10 +290,14 @@ class _Run(_Rates):
         return self.excess(y[0], y[1], friction, self.m.load(t, 0.0 * y[0]))
 
     def turning_rates(self, kind: str, t, y) -> list:
-        """The rates of a rest or slip phase; the last point's kept, as the events evaluate it after each step
-        (samples as arrays: computed)."""
+        """The rates of a rest or slip phase; the last point's kept, as the events evaluate it after each step,
+        and the last samples' (arrays: a span's, which the events ``steady`` and ``peak`` both read)."""
         if isinstance(t, np.ndarray):
-            return self.rest(t, y) if kind == "rest" else self.slip(t, y)
+            kept_kind, kept_t, kept_y, rates = self._last_samples
+            if not (kept_kind == kind and kept_t is t and kept_y is y):
+                rates = self.rest(t, y) if kind == "rest" else self.slip(t, y)
+                self._last_samples = kind, t, y, rates
+            return rates
         key = (kind, t, y.tobytes())
         if self._last[0] != key:
             self._last = key, self.flat[kind](t, y)
