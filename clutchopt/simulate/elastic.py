@@ -32,7 +32,7 @@ from clutchopt.simulate.spans import integrate_spans
 from clutchopt.simulate.stepping import Budget, integrate
 
 SWING_SAMPLES = 96  # samples of a swing at least (of its period at zero twist, some twice the swings' in a start):
-# their extremes are found on the samples, not on intervals integrated again (4,960 right-hand sides a check: 4,450)
+# their extremes are found on the samples, not on intervals integrated again
 SWING_NODES = 10  # samples an extreme's interpolant runs through (degree 9): with 96 a swing it is as accurate as
 # LSODA's own samples at most extremes, whose states are then not integrated again (cable_motor_start: 17 odeint
 # runs and 2,966 right-hand sides a check, not 53 and 4,460 with 48 a swing and 6)

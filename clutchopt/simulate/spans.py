@@ -82,7 +82,7 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
     ratio = SPACING_GROWTH
     spacing = span * (ratio - 1.0) / (ratio**FIRST_SAMPLES - 1.0)  # the first
     widest = min(widest, (bound - t0) / FIRST_SAMPLES)  # (the spacing grows no further than the bound needs)
-    with warnings.catch_warnings(), np.errstate(all="ignore"):  # (NumPy's once a phase, as stepping.integrate)
+    with warnings.catch_warnings(), np.errstate(all="ignore"):  # NumPy's, all of them, once a phase
         warnings.simplefilter("ignore", ODEintWarning)  # a failed span is read from its message
         while t < bound:
             if budget.spent:
@@ -122,7 +122,7 @@ def _offsets(indices: np.ndarray, spacing: float, ratio: float, widest: float) -
 class _Lsoda:
     """odeint runs from a state over a grid; their steps counted against the budget."""
 
-    def __init__(self, fun, jac, rtol, atol, budget: Budget, nodes: int = LOCAL_NODES, interpolated: bool = False):
+    def __init__(self, fun, jac, rtol, atol, budget: Budget, nodes: int, interpolated: bool):
         self.fun, self.jac, self.rtol, self.atol, self.budget, self.nodes = fun, jac, rtol, atol, budget, nodes
         self.interpolated = interpolated  # a sampled event's state from the interpolant where it is as accurate
         self.message = ""
