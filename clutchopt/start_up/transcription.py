@@ -292,14 +292,13 @@ class StartUpBlock:
             values.append(end - begin)
             lengths = mesh[index * d.intervals:(index + 1) * d.intervals]
             starts = np.concatenate([[0.0], np.cumsum(lengths)[:-1]])
-            names = list(self._states(phase)) + (["twist"] if phase == "locked" else [])
-            for k in range(d.intervals):
-                for j in range(1, DEGREE + 1):
-                    time = begin + (starts[k] + self.tau[j] * lengths[k]) * (end - begin)
-                    for name in names:
-                        samples[name][0].append(len(values))
-                        samples[name][1].append(time)
-                        values.append(0.0)
+            for k in range(d.intervals):  # in the NLP's order: the nodes' states, then (locked) their twists
+                times = [begin + (starts[k] + self.tau[j] * lengths[k]) * (end - begin) for j in range(1, DEGREE + 1)]
+                places = [(time, name) for time in times for name in self._states(phase)]
+                for time, name in places + [(time, "twist") for time in times if phase == "locked"]:
+                    samples[name][0].append(len(values))
+                    samples[name][1].append(time)
+                    values.append(0.0)
         values = np.array(values)
         for name, (places, times) in samples.items():  # each state interpolated at all its points at once
             values[places] = np.interp(times, t, columns[name])
