@@ -99,6 +99,17 @@ class StartUpBlock:
         self.kinds.append((phase, kind))
         return hat * scale
 
+    def _variables(self, phase: str, specs: list[tuple]) -> list:
+        """Internal variables ``(kind, scale, lower, upper)`` in this order, their values (scale times hat) taken in
+        one product of a symbol vector with its scales (one CasADi call, not one a variable)."""
+        hats = ca.SX.sym(phase, len(specs))
+        self._hat += ca.vertsplit(hats)
+        for kind, scale, lower, upper in specs:
+            self._scale.append(scale)
+            self._bounds.append((lower, upper))
+            self.kinds.append((phase, kind))
+        return ca.vertsplit(hats * ca.vertcat(*(scale for _, scale, _, _ in specs)))
+
     def _states(self, phase: str) -> dict[str, tuple]:
         """State -> (scale, lower, upper) in scaled units, of one phase."""
         d, s = self.drive, self.s
@@ -153,17 +164,15 @@ class StartUpBlock:
         if phase == "locked":  # both halves at rest, nothing twisted yet
             previous.update(slip=0.0, twist=0.0)
         self.points.append((start_time, dict(previous)))
+        interval = [(name, *states[name]) for _ in range(DEGREE) for name in states]
+        interval += [("twist", d.twist_ref, 0.0, 2.0)] * DEGREE if phase == "locked" else []  # the link's twist
+        values = iter(self._variables(phase, interval * n))  # where its torque meets the locked drive's
         chain = [previous]  # the phase start, then each interval's nodes 1..DEGREE (node 0: the one before)
         for k in range(n):
-            nodes = []
-            for j in range(1, DEGREE + 1):
-                node = dict(chain[-1])
-                for name, (scale, lower, upper) in states.items():
-                    node[name] = self._variable(phase, name, scale, lower, upper)
-                nodes.append(node)
-            if phase == "locked":  # the link's twist where its torque meets the locked drive's
+            nodes = [dict(chain[-1], **{name: next(values) for name in states}) for _ in range(DEGREE)]
+            if phase == "locked":
                 for node in nodes:
-                    node["twist"] = self._variable(phase, "twist", d.twist_ref, 0.0, 2.0)
+                    node["twist"] = next(values)
             chain += nodes
         nodes, count = chain[1:], n * DEGREE
         steps = [mesh[k] * duration for k in range(n)]
