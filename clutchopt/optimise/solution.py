@@ -74,6 +74,11 @@ class SolverOptions:
 
 START_UP_MU_INIT = 1e-3  # IPOPT's first barrier parameter on a start-up's collocation, cold (IPOPT's default: 0.1)
 START_UP_WARM_MU_INIT = 1e-9  # and warm on the same mesh (any other warm IPOPT: 1e-6)
+IPOPT_OWN_FIGURES = {"no_nlp_grad": True, "calc_lam_p": False, "calc_lam_x": False, "calc_f": False, "calc_g": False}
+# a start-up's IPOPT returns IPOPT's own x, f, g and multipliers (those of fixed variables too, IPOPT 3.14) instead of
+# CasADi evaluating f, g and the Lagrangian's gradient again at its optimum: so CasADi does not derive that gradient
+# in x and p when it builds the solver (12-25 ms of 63-120 per solver; the four motor_start cases' runs equal to the
+# last bit: docs/start_up.md, "IPOPT's cost on the start-up NLP")
 
 
 @dataclass

@@ -61,8 +61,6 @@ class StartUpBlock:
         self.drive = d = Drive(structure, law, x, p)
         self.tau, self.c = _collocation(DEGREE)
         self._tau = self.tau.tolist()  # as Python floats: NumPy scalars times SX go through NumPy's ufunc dispatch
-        self._slopes = ca.DM(self.c[:, 1:].T)  # row j - 1: l_r'(tau_j) over r, times the nodes' values: the slopes
-        # at the collocation points, one product an interval and state (the same expressions as summed one by one)
         self._hat: list[ca.SX] = []
         self._scale: list = []
         self._bounds: list[tuple[float, float]] = []
@@ -81,11 +79,14 @@ class StartUpBlock:
         self.start_time = time
         self.end_state = state
         temperatures = [node["temperature"] for node in self.nodes if isinstance(node["temperature"], ca.SX)]
-        stresses = [d.link_stress(node["driver_speed"], node["twist"]) for node in self.nodes if "twist" in node]
+        twisted = [node for node in self.nodes if "twist" in node]  # an elastic link's stress at all its nodes at once
+        stresses = (d.link_stress(*(ca.vertcat(*(node[name] for node in twisted)) for name in ("driver_speed",
+                                                                                                  "twist")))
+                    if twisted else 0.0)
         self.figures = SimpleNamespace(
             start_time=time, friction_work=state["friction_work"], lock_up_speed=state["driver_speed"],
             temperatures=ca.vertcat(*temperatures) if temperatures else 0.0,
-            stresses=ca.vertcat(*stresses) if stresses else 0.0)
+            stresses=stresses)
         self.constraints = (seen_constraints(structure, law, self.figures, seen) if seen is not None
                             else named_constraints(structure, d, self.figures))
 
@@ -97,6 +98,17 @@ class StartUpBlock:
         self._bounds.append((lower, upper))
         self.kinds.append((phase, kind))
         return hat * scale
+
+    def _variables(self, phase: str, specs: list[tuple]) -> list:
+        """Internal variables ``(kind, scale, lower, upper)`` in this order, their values (scale times hat) taken in
+        one product of a symbol vector with its scales (one CasADi call, not one a variable)."""
+        hats = ca.SX.sym(phase, len(specs))
+        self._hat += ca.vertsplit(hats)
+        for kind, scale, lower, upper in specs:
+            self._scale.append(scale)
+            self._bounds.append((lower, upper))
+            self.kinds.append((phase, kind))
+        return ca.vertsplit(hats * ca.vertcat(*(scale for _, scale, _, _ in specs)))
 
     def _states(self, phase: str) -> dict[str, tuple]:
         """State -> (scale, lower, upper) in scaled units, of one phase."""
@@ -134,6 +146,10 @@ class StartUpBlock:
         return rates
 
     def _phase(self, phase: str, state: dict, start_time):
+        """One phase's collocation: its variables in the NLP's order (per interval its nodes' states, then in the
+        locked phase their twists), then the dynamics at all its collocation points at once (each state a vector
+        over the phase's nodes: one CasADi operation per term of an equation, not one per node and term), then the
+        residuals in the NLP's order (per node: the link's balance, then each state's)."""
         d, n = self.drive, self.s.intervals
         typical = d.motor_time_ref if phase in ("run_up", "breakaway") else d.time_ref  # the machine rests: the
         duration = self._variable(phase, "duration", typical, 0.0, math.inf)  # motor's own time; start_time bounds
@@ -148,37 +164,52 @@ class StartUpBlock:
         if phase == "locked":  # both halves at rest, nothing twisted yet
             previous.update(slip=0.0, twist=0.0)
         self.points.append((start_time, dict(previous)))
+        interval = [(name, *states[name]) for _ in range(DEGREE) for name in states]
+        interval += [("twist", d.twist_ref, 0.0, 2.0)] * DEGREE if phase == "locked" else []  # the link's twist
+        values = iter(self._variables(phase, interval * n))  # where its torque meets the locked drive's
+        chain = [previous]  # the phase start, then each interval's nodes 1..DEGREE (node 0: the one before)
         for k in range(n):
-            step = mesh[k] * duration
-            nodes = [previous]
-            for j in range(1, DEGREE + 1):
-                node = dict(previous)
-                for name, (scale, lower, upper) in states.items():
-                    node[name] = self._variable(phase, name, scale, lower, upper)
-                nodes.append(node)
-            slopes_at = {name: ca.vertsplit(ca.mtimes(self._slopes, ca.vertcat(*(node[name] for node in nodes))))
-                         for name in states}
-            for j in range(1, DEGREE + 1):
-                time = start_time + (starts[k] + self._tau[j] * mesh[k]) * duration
-                if phase == "locked":  # the link's twist where its torque meets the locked drive's
-                    twist = nodes[j]["twist"] = self._variable(phase, "twist", d.twist_ref, 0.0, 2.0)
-                    self.equalities.append((d.link(nodes[j]["driver_speed"], twist)
-                                            - d.carried(nodes[j]["driver_speed"], time)) / d.torque_ref)
-                rates = self._rates(phase, time, nodes[j])
-                slopes = {name: slopes_at[name][j - 1] for name in states}
-                for name, (scale, _, _) in states.items():
-                    residual = slopes[name] - step * rates[name]
-                    if name == "driver_speed" and phase != "locked":  # J_m dw_a/dt = T_m - T: its terms' size
-                        scale = scale + mesh[k] * typical * d.torque_ref / d.p.motor_inertia
-                    if name == "slip" and "driver_speed" in states:  # less the driver's equation: the machine's,
-                        residual = slopes["slip"] - slopes["driver_speed"] + step * rates["driven"]  # no 1/J_m in it
-                    self.equalities.append(residual / scale)
-                self.points.append((time, nodes[j]))
-                self.nodes.append(nodes[j])
-            previous = nodes[DEGREE]
+            nodes = [dict(chain[-1], **{name: next(values) for name in states}) for _ in range(DEGREE)]
+            if phase == "locked":
+                for node in nodes:
+                    node["twist"] = next(values)
+            chain += nodes
+        nodes, count = chain[1:], n * DEGREE
+        steps = [mesh[k] * duration for k in range(n)]
+        step = ca.vertcat(*[steps[k] for k in range(n) for _ in range(DEGREE)])
+        lengths = ca.vertcat(*[mesh[k] for k in range(n) for _ in range(DEGREE)])
+        offsets = ca.vertcat(*[starts[k] for k in range(n) for _ in range(DEGREE)])
+        taus = ca.DM(self._tau[1:] * n)
+        times = start_time + (offsets + taus * lengths) * duration
+        at = {name: ca.vertcat(*(node[name] for node in nodes)) for name in nodes[0]}
+        equalities = []  # per kind, a vector over the phase's nodes
+        if phase == "locked":
+            equalities.append((d.link(at["driver_speed"], at["twist"])
+                               - d.carried(at["driver_speed"], times)) / d.torque_ref)
+        rates = self._rates(phase, times, at)
+        slopes = {name: self._phase_slopes(n) @ ca.vertcat(*(node[name] for node in chain)) for name in states}
+        for name, (scale, _, _) in states.items():
+            residual = slopes[name] - step * rates[name]
+            if name == "driver_speed" and phase != "locked":  # J_m dw_a/dt = T_m - T: its terms' size
+                scale = scale + lengths * typical * d.torque_ref / d.p.motor_inertia
+            if name == "slip" and "driver_speed" in states:  # less the driver's equation: the machine's,
+                residual = slopes["slip"] - slopes["driver_speed"] + step * rates["driven"]  # no 1/J_m in it
+            equalities.append(residual / scale)
+        rows = [ca.vertsplit(vector) for vector in equalities]
+        self.equalities += [row[i] for i in range(count) for row in rows]
+        self.points += zip(ca.vertsplit(times), nodes)
+        self.nodes += nodes
+        previous = chain[-1]
         self.equalities.append(self._phase_end(phase, previous, start_time + duration))
         return duration, previous
 
+    def _phase_slopes(self, n: int) -> ca.DM:
+        """The slopes at a phase's collocation points from its chain of node values (the phase start, then each
+        interval's nodes 1..DEGREE): row k DEGREE + j - 1 holds l_r'(tau_j) at column k DEGREE + r."""
+        c = np.zeros((n * DEGREE, n * DEGREE + 1))
+        for k in range(n):
+            c[k * DEGREE:(k + 1) * DEGREE, k * DEGREE:(k + 1) * DEGREE + 1] = self.c[:, 1:].T
+        return ca.sparsify(ca.DM(c))
 
     @cached_property
     def mesh_parameters(self):
@@ -270,14 +301,13 @@ class StartUpBlock:
             values.append(end - begin)
             lengths = mesh[index * d.intervals:(index + 1) * d.intervals]
             starts = np.concatenate([[0.0], np.cumsum(lengths)[:-1]])
-            names = list(self._states(phase)) + (["twist"] if phase == "locked" else [])
-            for k in range(d.intervals):
-                for j in range(1, DEGREE + 1):
-                    time = begin + (starts[k] + self.tau[j] * lengths[k]) * (end - begin)
-                    for name in names:
-                        samples[name][0].append(len(values))
-                        samples[name][1].append(time)
-                        values.append(0.0)
+            for k in range(d.intervals):  # in the NLP's order: the nodes' states, then (locked) their twists
+                times = [begin + (starts[k] + self.tau[j] * lengths[k]) * (end - begin) for j in range(1, DEGREE + 1)]
+                places = [(time, name) for time in times for name in self._states(phase)]
+                for time, name in places + [(time, "twist") for time in times if phase == "locked"]:
+                    samples[name][0].append(len(values))
+                    samples[name][1].append(time)
+                    values.append(0.0)
         values = np.array(values)
         for name, (places, times) in samples.items():  # each state interpolated at all its points at once
             values[places] = np.interp(times, t, columns[name])
