@@ -49,7 +49,7 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
                                 temperatures=head.get("temperature_rise", 0.0), lock_up_speed=head["lock_up_speed"],
                                 stresses=stresses if head["locks_up"] else math.inf)
     drive = Drive(s, formulation.speed_law, *seen(None))
-    checks = check_constraints(seen_constraints(s, formulation.speed_law, simulated, seen), s.spec.tolerance)
+    checks = check_constraints(seen_constraints(s, formulation.speed_law, simulated, seen, drive), s.spec.tolerance)
     engaged = float(nlp.get("run_up_time", 0.0))
     summary = {
         "start_time": float(nlp["start_time"]),

@@ -254,13 +254,13 @@ def _overload(s: Structure, drive: Drive, machine: bool) -> Constraint:
                    description=f"largest torque passed (top speed{worn}, f_max) within {what}: it slips first")
 
 
-def seen_constraints(s: Structure, law: SpeedLaw | ElasticLaw, q, seen) -> list[Constraint]:
+def seen_constraints(s: Structure, law: SpeedLaw | ElasticLaw, q, seen, drive: Drive) -> list[Constraint]:
     """:func:`named_constraints` of the figures ``q`` of one start, each evaluated with the design and case values
     ``seen(name)`` gives it, ``(x, p)``: under scatter each at its own corner (its limit at its strict end, the
     engagement window at the preload that narrows it), while the figures are those of the start simulated at
-    ``seen(None)``."""
+    ``seen(None)``, whose ``drive`` the caller has built."""
     start = seen(None)
-    constraints = named_constraints(s, Drive(s, law, *start), q)
+    constraints = named_constraints(s, drive, q)
     return [constraint if _same_values(at := seen(constraint.name), start)  # (without scatter: every one, once)
             else named_constraints(s, Drive(s, law, *at), q)[i] for i, constraint in enumerate(constraints)]
 

@@ -59,8 +59,8 @@ class StartUpBlock:
             x, p = seen(None)
         self.s = structure
         self.drive = d = Drive(structure, law, x, p)
-        self.tau, self.c = _collocation(DEGREE)
-        self._tau = self.tau.tolist()  # as Python floats: NumPy scalars times SX go through NumPy's ufunc dispatch
+        tau, self.c = _collocation(DEGREE)
+        self.tau = tau.tolist()  # as Python floats: NumPy scalars times SX go through NumPy's ufunc dispatch
         self._hat: list[ca.SX] = []
         self._scale: list = []
         self._bounds: list[tuple[float, float]] = []
@@ -87,7 +87,7 @@ class StartUpBlock:
             start_time=time, friction_work=state["friction_work"], lock_up_speed=state["driver_speed"],
             temperatures=ca.vertcat(*temperatures) if temperatures else 0.0,
             stresses=stresses)
-        self.constraints = (seen_constraints(structure, law, self.figures, seen) if seen is not None
+        self.constraints = (seen_constraints(structure, law, self.figures, seen, d) if seen is not None
                             else named_constraints(structure, d, self.figures))
 
     # --- variables and phases ----------------------------------------------------------------------------------
@@ -179,7 +179,7 @@ class StartUpBlock:
         step = ca.vertcat(*[steps[k] for k in range(n) for _ in range(DEGREE)])
         lengths = ca.vertcat(*[mesh[k] for k in range(n) for _ in range(DEGREE)])
         offsets = ca.vertcat(*[starts[k] for k in range(n) for _ in range(DEGREE)])
-        taus = ca.DM(self._tau[1:] * n)
+        taus = ca.DM(self.tau[1:] * n)
         times = start_time + (offsets + taus * lengths) * duration
         at = {name: ca.vertcat(*(node[name] for node in nodes)) for name in nodes[0]}
         equalities = []  # per kind, a vector over the phase's nodes
