@@ -270,12 +270,11 @@ def _reached(rows, centre: np.ndarray, owner: np.ndarray, ranged: np.ndarray, p_
     boxes = np.flatnonzero(ranged[owner] & whole & ~np.isin(owner, list(ended)))
     if not len(boxes):
         return {}
-    at = centre[:, boxes]
-    met = np.zeros(len(boxes), dtype=bool)
-    for end in (p_lo, p_hi):
-        params = end[:, owner[boxes]]
-        (_, high), = rows.bounds([(at, at), (params, params)])
-        met |= np.all(high <= 0.0, axis=0)
+    at = np.hstack([centre[:, boxes]] * 2)  # each box's centre at both ends, in one evaluation (a box's bounds are
+    # its own: the interval rules work box by box)
+    params = np.hstack([p_lo[:, owner[boxes]], p_hi[:, owner[boxes]]])
+    (_, high), = rows.bounds([(at, at), (params, params)])
+    met = np.all(high[:, :len(boxes)] <= 0.0, axis=0) | np.all(high[:, len(boxes):] <= 0.0, axis=0)
     first: dict[int, int] = {}
     for box in boxes[met][::-1].tolist():
         first[int(owner[box])] = box
