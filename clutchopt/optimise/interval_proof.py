@@ -206,7 +206,7 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
             rounds = np.maximum(1, np.ceil(np.log2(_batch(posed) / np.maximum(counts, 1)))).astype(int)
         if not posed.integer:  # without integers no box is dropped before the next evaluation (rounding keeps them
             # all) and each of its rounds splits in two every box with a width (a point box stays one): a search whose
-            # boxes would then pass its budget ends here, as it would at the split that passes it (below), its outcome
+            # boxes would then pass its budget ends here, as it would at the split that passes it, its outcome
             # the same (its boxes evaluated and decisive rows are those of the evaluations before), without the splits
             # (a sweep's 28 points past its region's edge searched alone at 64 boxes: 6 rounds of splits to 1,792
             # boxes for nothing, 8 ms)
@@ -229,18 +229,6 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
             lo, plo, hi, phi = z_lo[:n], z_lo[n:], z_hi[:n], z_hi[n:]
             d_lo, d_hi, uncertain = d_lo[..., parents], d_hi[..., parents], uncertain[:, parents]
             component, rate = component[parents], rate[parents]
-            if posed.integer:
-                continue
-            # without integers no box is dropped before the next evaluation (rounding keeps them all): a search whose
-            # boxes now pass its budget ends there as it would after the last split, unsplit further (those whose
-            # rounds would pass it ended before them, above; this holds where a half could not be split again)
-            keep = within_budgets(owner)
-            if not keep.all():
-                lo, hi, plo, phi, owner = lo[:, keep], hi[:, keep], plo[:, keep], phi[:, keep], owner[keep]
-                d_lo, d_hi, uncertain = d_lo[..., keep], d_hi[..., keep], uncertain[:, keep]
-                component, rate = component[keep], rate[keep]
-                if not lo.shape[1]:
-                    break
     return outcomes
 
 

@@ -57,8 +57,8 @@ from typing import Callable
 
 import numpy as np
 
-from clutchopt.optimise.interval_proof import (FEW_BOXES, MAX_BOXES, SURE_BOXES, _search_problem, keep_search,
-                                               last_boxes, proofs_recorded, searches)
+from clutchopt.optimise.interval_proof import (FEW_BOXES, MAX_BOXES, SURE_BOXES, Emptiness, _search_problem,
+                                               keep_search, last_boxes, proofs_recorded, searches)
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.verdict import emptied, figures_at, infeasible_at
@@ -161,14 +161,7 @@ class Regions:
         (SQP, warm and cold IPOPT, the elastic diagnosis, then the proof in one box)."""
         if self.problem.start_up is not None or self._alone > FEW_BOXES:
             return None
-        case = self.point_case(k)
-        began = time.perf_counter()
-        own = searches(self.posed, [_search_problem(self.posed, case)], [FEW_BOXES])[0]
-        if own is None or not own.proven:
-            return None
-        self._alone = last_boxes(self.posed, own.boxes)
-        solution = _covered(self.problem, case, design, "proven infeasible: " + emptied(own),
-                            time.perf_counter() - began)
+        solution = self._own_proof(self.point_case(k), design, FEW_BOXES)[0]
         if solution is not None:
             self.after(k, solution)
         return solution
@@ -190,13 +183,7 @@ class Regions:
         if first.status in DESIGN_STATUSES:
             self.after(k, first)
             return first
-        began = time.perf_counter()
-        own = searches(self.posed, [_search_problem(self.posed, case)], [SURE_BOXES])[0]
-        solution = None
-        if own is not None and own.proven:
-            self._alone = last_boxes(self.posed, own.boxes)
-            solution = _covered(self.problem, case, first.design, "proven infeasible: " + emptied(own),
-                                time.perf_counter() - began, first.solver)
+        solution = self._own_proof(case, first.design, SURE_BOXES, first.solver)[0]
         if solution is None:
             self._charge(first)
             return None
@@ -218,20 +205,28 @@ class Regions:
         if first.status in DESIGN_STATUSES:
             self.after(k, first)
             return first, None
-        problem = _search_problem(self.posed, case)
-        began = time.perf_counter()
-        own = searches(self.posed, [problem])[0]
-        seconds = time.perf_counter() - began
+        solution, own, problem = self._own_proof(case, first.design, None, first.solver)
         if own is None or not own.proven:
             keep_search(self.posed, problem, own)
-            return None, first
-        last_boxes(self.posed, own.boxes)
-        solution = _covered(self.problem, case, first.design, "proven infeasible: " + emptied(own), seconds,
-                            first.solver)
         if solution is None:
             return None, first
         self.after(k, solution)
         return solution, None
+
+    def _own_proof(self, case, design: dict[str, float], budget: int | None,
+                   spent: SolverInfo | None = None) -> tuple[Solution | None, Emptiness | None, tuple]:
+        """A point's own interval search (within ``budget`` boxes; None: the search's own), and where it proves the
+        point, the verdict it gives ("proven infeasible: ...") showing ``design`` (``spent``: the calls and seconds
+        of the solve that gave it), its boxes the last point's alone (``_alone``): (verdict or None, the search's
+        outcome, its problem)."""
+        problem = _search_problem(self.posed, case)
+        began = time.perf_counter()
+        own = searches(self.posed, [problem], None if budget is None else [budget])[0]
+        if own is None or not own.proven:
+            return None, own, problem
+        self._alone = last_boxes(self.posed, own.boxes)
+        return (_covered(self.problem, case, design, "proven infeasible: " + emptied(own),
+                         time.perf_counter() - began, spent), own, problem)
 
     def after(self, k: int, solution: Solution) -> None:
         """Point k's solution: one proven infeasible starts (or goes on with) the regions searched after it (after
@@ -378,6 +373,8 @@ class Regions:
         a region's points share that design, and one evaluation of the formulation's equations over arrays costs
         what one over floats does (the lever over 1x-10x its inertia: 84 covered points, each evaluated alone, were
         half the sweep's time)."""
+        if self.posed.start_up is not None:  # (its own drive proofs come first: ``_covered``)
+            return None
         design = self._without.design
         if k not in self._figures or self._figured != design:
             points = sorted({k, *(j for j in self._proven if j > k)})
