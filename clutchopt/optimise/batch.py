@@ -263,6 +263,7 @@ class BatchSweep:
         self.solves, self.solver_s, self.check_s = 0, 0.0, 0.0
         self.feasible: dict[str, float] | None = None  # the last feasible design in order: a start for a failed point
         self._regions = Regions(problem, self.point_case, self.count)  # infeasible regions proven at once
+        self._limits: tuple[np.ndarray, np.ndarray] | None = None  # the tightening's limits and scales per point
 
     def point_case(self, k: int) -> Case:
         return self.case.with_values(**{name: float(values[k]) for name, values in self.varied.items()})
@@ -632,7 +633,7 @@ class BatchSweep:
         found = self._undesigned.get(combo)
         if found is None or found[0] >= k or not infeasible(found[1]):
             return ""
-        if not self._tightening.tightened(self._by_point[found[0]], self._by_point[k]):
+        if not self._tightened(found[0], k):
             return ""
         return f"ruled out: {found[1]} at point {found[0]}, whose limits the sweep has only tightened since"
 
@@ -644,7 +645,18 @@ class BatchSweep:
 
     def _tightens(self, k: int) -> bool:
         """The step from point k to the next only tightens the constraints (``tightening``)."""
-        return k + 1 < self.count and self._tightening.tightened(self._by_point[k], self._by_point[k + 1])
+        return k + 1 < self.count and self._tightened(k, k + 1)
+
+    def _tightened(self, j: int, k: int) -> bool:
+        """The step from point j to point k only tightens the constraints (``tightening``), from the limits of every
+        point evaluated at once on first use (``Tightening.limits``)."""
+        t = self._tightening
+        if not t.known:
+            return False
+        if self._limits is None:
+            self._limits = t.limits(self._by_point)
+        limits, scales = self._limits
+        return t.holds(limits[:, j], scales[:, j], limits[:, k], scales[:, k])
 
     def _unruled_moves(self, chain: _Chain, start: _Start) -> np.ndarray:
         """Per chained point, whether ``Problem.solve``'s warm search would go on from it (the chain verdict's
