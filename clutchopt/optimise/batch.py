@@ -448,7 +448,10 @@ class BatchSweep:
             if j > begin:
                 pieces.append(chain.block(j, begin))
                 before = _Start(self, block=pieces[-1])
-            settled = self._settle(before, int(chain.index[j]), chain.column(j, before.f_scale))
+            tried = chain.column(j, before.f_scale)
+            settled = self._changed(before, int(chain.index[j]), tried)
+            if settled is None:
+                settled = self._settle(before, int(chain.index[j]), tried)
             if settled is None:
                 return pieces, before, j
             pieces.append(settled)
@@ -617,13 +620,38 @@ class BatchSweep:
             return None
         if kept is None:
             return None
-        block = kept["chain"].block(1)
-        block.arrays["time"][:] = sum(float(run.arrays["time"][0, 0]) for run in runs) + sum(cold)
-        block.arrays["solves"][:] = len(runs) + len(cold)
-        for key in ("dx", "dlam_x", "dlam_g"):  # no step to predict from across a change of the integers
+        return self._searched(kept["chain"], k, search, sum(float(run.arrays["time"][0, 0]) for run in runs)
+                              + sum(cold), len(runs) + len(cold))
+
+    def _searched(self, chain: "_Chain", k: int, search: list[dict], seconds: float, solves: int) -> Block:
+        """Point k as the integer search ``search`` kept it: ``chain``'s column, its time and solver calls those of
+        the search, without a step to predict from (across a change of the integers); the search is recorded."""
+        block = chain.block(1)
+        block.arrays["time"][:] = seconds
+        block.arrays["solves"][:] = solves
+        for key in ("dx", "dlam_x", "dlam_g"):
             block.arrays[key] = np.zeros_like(block.arrays[key])
         self.searches[k] = search
         return block
+
+    def _changed(self, start: _Start, k: int, tried: "_Chain") -> Block | None:
+        """Point k, where a chain changed its integers from ``start``'s (excluded there) to the one neighbour left,
+        settled as :meth:`_settle` settles it, without running the search, where its outcome is certain: the column
+        ``tried`` is the search's first attempt (KKT-verified), and every neighbour its multipliers promise a gain
+        at (``integers.downhill``) is ``start``'s integers, tried already: the search's record is those excluded and
+        the column kept. None otherwise (:meth:`_settle` runs the search)."""
+        run = {"x": tried.x[:, 0], "lam_x": tried.lam_x[:, 0], "f": float(tried.f[0, 0])}
+        if k in self._opened or not tried.ok[0] or any(
+                not np.array_equal(combo, start.combo)
+                for combo in downhill(self.posed, run, Box(start.scale, self.lower, self.upper), self.integer)):
+            return None
+        lower = self.lower.copy()
+        lower[self.integer] = start.combo
+        excluded = list(dict.fromkeys(self._fixed_names[self._broken(lower, k, 1)[:, 0]]))
+        combo = np.round(tried.x[self.integer, 0] * start.scale[self.integer])
+        search = [excluded_entry(self.posed, self.integer, start.combo, excluded),
+                  search_entry(self.posed, self.integer, combo, BATCHED, True, run["f"] * start.f_scale)]
+        return self._searched(tried, k, search, float(tried.arrays["time"][0, 0]), 1)
 
     def _ruled_out(self, combo: tuple, k: int) -> str:
         """Why the integers ``combo`` are not solved at point k (empty: they are): IPOPT found them infeasible at an
