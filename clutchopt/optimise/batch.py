@@ -14,7 +14,10 @@ tests of ``Problem.solve`` run afterwards on all points of the batch at once:
   more than tenfold from the variable scales (the solve is repeated with new scales there);
 - a batch stops short of the point where its integers break a constraint of fixed variables alone that they enter
   (the search excludes them there without a solve), found ahead of the batch by a mapped CasADi evaluation (the
-  exclusion tables);
+  exclusion tables); where one neighbouring combination is left there (the cable count, one cable more, as its
+  torque rises), the chain goes on with it instead, its bounds a column each, and that point is settled from its
+  column as the search's first attempt (``BatchSweep._changed``, or the search itself where its outcome is not
+  certain): one chained call through the changes, not one that ends at each and a one-point re-solve there;
 - at the end of a window of points (up to 1024, or a quarter of a second of solving), the float64 re-evaluation
   of every constraint and the objective by the formulation's own equations (``verify``'s arithmetic), vectorised
   over the points.
