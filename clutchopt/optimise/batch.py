@@ -445,22 +445,23 @@ class BatchSweep:
         """The first ``passed`` points of ``chain`` as blocks, each point where it changed its integers
         (``changes``) settled by :meth:`_settle` with its column as the first attempt (the search ``Problem.solve``
         runs there, without a solve where the column passed its tests); the start after them, and how many points
-        are kept: up to a change that the search does not settle, or past one where it kept other integers."""
+        are kept: up to a change that the search does not settle, or past one where it ran (or kept other
+        integers)."""
         pieces, before, begin = [], start, 0
         for j, combo in changes:
             if j > begin:
                 pieces.append(chain.block(j, begin))
                 before = _Start(self, block=pieces[-1])
             tried = chain.column(j, before.f_scale)
-            settled = self._changed(before, int(chain.index[j]), tried)
+            settled = searched = self._changed(before, int(chain.index[j]), tried)
             if settled is None:
                 settled = self._settle(before, int(chain.index[j]), tried)
             if settled is None:
                 return pieces, before, j
             pieces.append(settled)
             before, begin = _Start(self, block=settled), j + 1
-            if not np.array_equal(before.combo, combo):
-                return pieces, before, j + 1
+            if searched is None or not np.array_equal(before.combo, combo):  # (a search that ran may have found
+                return pieces, before, j + 1  # combinations without a design that the later changes assumed open)
         if passed > begin:
             pieces.append(chain.block(passed, begin))
             before = _Start(self, block=pieces[-1])
