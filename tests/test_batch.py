@@ -450,6 +450,29 @@ def test_a_chain_goes_on_where_its_count_is_excluded(monkeypatch):
     assert all(s.solver.status == BATCHED for s in solutions[1:])
 
 
+def test_a_change_settled_from_its_column_is_what_the_search_records(monkeypatch):
+    # BatchSweep._changed gives a change's outcome without running the search, where it is certain: the same
+    # designs, records (the count before excluded, then the column kept) and calls as the search run at each change
+    # (_settle from the column), which then ends the kept points after it (more chained calls)
+    def solved():
+        chains = []
+        monkeypatch.setattr(BatchSweep, "_chain", lambda self, *a, _chain=BatchSweep._chain, **k: chains.append(
+            a[2]) or _chain(self, *a, **k))
+        *_, sweep, solutions = _sweep("cable")
+        monkeypatch.undo()
+        return len(chains), solutions
+
+    calls, direct = solved()
+    monkeypatch.setattr(BatchSweep, "_changed", lambda *a: None)
+    searched_calls, searched = solved()
+    assert calls == 4 and searched_calls > calls
+    for s, t in zip(direct, searched):  # (the chains end elsewhere: the objective normalised by another point's)
+        assert s.objective == pytest.approx(t.objective, rel=1e-12) and s.design["cable_count"] == t.design[
+            "cable_count"] and s.solver.solves == t.solver.solves and s.solver.status == t.solver.status
+        assert [(e["cable_count"], e["status"]) for e in s.integer_search] == [
+            (e["cable_count"], e["status"]) for e in t.integer_search]
+
+
 def test_the_ball_past_4_5x_its_power_spends_one_call_a_point_between_changes_of_its_rows():
     # ball_compressor over 1x-10x its power (100 points, the benchmark's sweep into the infeasible): 7 rows up to
     # 4.5x, where the contact stress becomes active and one row fewer pays (6 rows from point 65); from point 66 on

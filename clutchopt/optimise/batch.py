@@ -410,7 +410,9 @@ class BatchSweep:
         count = len(chain.index)
         ok = chain.ok & ~self._unruled_moves(chain, start)
         passed = int(np.argmin(ok)) if not ok.all() else count
-        pieces, before, passed = self._replayed(chain, start, [c for c in changes if c[0] < passed], passed)
+        pieces, before, passed, cut = self._replayed(chain, start, [c for c in changes if c[0] < passed], passed)
+        if cut:  # (the points after it left to the next batch, as after a chain that ended there)
+            count = passed
         if passed < count and not ok[passed]:
             searching = bool(chain.ok[passed]) or len(self.integer) > 0
         else:  # (passed up to the exclusion, or a replayed search that found other integers)
@@ -441,12 +443,12 @@ class BatchSweep:
         return changes, -1
 
     def _replayed(self, chain: "_Chain", start: _Start, changes: list[tuple[int, np.ndarray]],
-                  passed: int) -> tuple[list[Block], _Start, int]:
+                  passed: int) -> tuple[list[Block], _Start, int, bool]:
         """The first ``passed`` points of ``chain`` as blocks, each point where it changed its integers
         (``changes``) settled by :meth:`_settle` with its column as the first attempt (the search ``Problem.solve``
-        runs there, without a solve where the column passed its tests); the start after them, and how many points
-        are kept: up to a change that the search does not settle, or past one where it ran (or kept other
-        integers)."""
+        runs there, without a solve where the column passed its tests); the start after them, how many points are
+        kept (up to a change that the search does not settle, or up to and with one where it ran or kept other
+        integers), and whether the kept points end there by choice (the latter)."""
         pieces, before, begin = [], start, 0
         for j, combo in changes:
             if j > begin:
@@ -457,15 +459,15 @@ class BatchSweep:
             if settled is None:
                 settled = self._settle(before, int(chain.index[j]), tried)
             if settled is None:
-                return pieces, before, j
+                return pieces, before, j, False
             pieces.append(settled)
             before, begin = _Start(self, block=settled), j + 1
             if searched is None or not np.array_equal(before.combo, combo):  # (a search that ran may have found
-                return pieces, before, j + 1  # combinations without a design that the later changes assumed open)
+                return pieces, before, j + 1, True  # combinations without a design the later changes assumed open)
         if passed > begin:
             pieces.append(chain.block(passed, begin))
             before = _Start(self, block=pieces[-1])
-        return pieces, before, passed
+        return pieces, before, passed, False
 
     def _opening(self, start: _Start, k: int, count: int) -> tuple[int | None, np.ndarray | None]:
         """Where, among points k .. k + count - 1, the neighbouring combination that ``start``'s multipliers promise a
