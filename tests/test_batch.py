@@ -134,8 +134,7 @@ def test_the_integer_search_along_a_batched_sweep():
         assert solution.design["cable_count"] == solutions[solutions.index(solution) - 1].design["cable_count"] + 1
     assert sweep.solves / len(values) <= 1.5  # issue 14, goal 2
     # issue 26: 60 points, +2 for the first (solved alone: its relaxation, then the count); at each of the 7
-    # changes the count one more, without the relaxation (69 calls before): every chain ends at the point its count
-    # is excluded, none padded by a solve
+    # changes the count one more, without the relaxation (69 calls before), none padded by a solve
     assert len(changes) == 7 and sweep.solves == 60 + 2
     for value, solution in list(zip(values, solutions))[::7]:
         point = case.with_values(**{quantity: float(value)})
@@ -432,6 +431,46 @@ def test_the_first_re_solve_after_a_cold_ipopt_optimum_goes_by_sqp():
     assert (second.status, second.solver.name, second.solver.solves) == ("optimal", "sqpmethod", 1)
     solutions = [s for part in BatchSweep(problem, case, {"inertia": values}).run() for s in part]
     assert [s.solver.status for s in solutions[1:]] == [BATCHED, BATCHED]
+
+
+def test_a_chain_goes_on_where_its_count_is_excluded(monkeypatch):
+    # the cable count rises with the torque (7 changes over 0.5x-2x, 60 points): at each change the count before
+    # breaks the cable stress whatever the rest and one cable more is the one neighbour left, so a chain goes on
+    # there with one cable more (its column the search's only attempt): after point 0 (solved alone) a chain of 8
+    # points taken on to the change at point 10 (within the 16 it may reach), then 16 and 32 points doubling as they
+    # pass, and the last point: 4 chained calls, where a chain that ended at each change and the one-point re-solve
+    # there had made 15
+    chains = []
+    monkeypatch.setattr(BatchSweep, "_chain", lambda self, *a, _chain=BatchSweep._chain, **k: chains.append(
+        a[2]) or _chain(self, *a, **k))
+    *_, sweep, solutions = _sweep("cable")
+    counts = [s.design["cable_count"] for s in solutions]
+    assert sum(a != b for a, b in zip(counts, counts[1:])) == 7
+    assert chains == [10, 16, 32, 1] and sweep.solves == 62
+    assert all(s.solver.status == BATCHED for s in solutions[1:])
+
+
+def test_a_change_settled_from_its_column_is_what_the_search_records(monkeypatch):
+    # BatchSweep._changed gives a change's outcome without running the search, where it is certain: the same
+    # designs, records (the count before excluded, then the column kept) and calls as the search run at each change
+    # (_settle from the column), which then ends the kept points after it (more chained calls)
+    def solved():
+        chains = []
+        monkeypatch.setattr(BatchSweep, "_chain", lambda self, *a, _chain=BatchSweep._chain, **k: chains.append(
+            a[2]) or _chain(self, *a, **k))
+        *_, sweep, solutions = _sweep("cable")
+        monkeypatch.undo()
+        return len(chains), solutions
+
+    calls, direct = solved()
+    monkeypatch.setattr(BatchSweep, "_changed", lambda *a: None)
+    searched_calls, searched = solved()
+    assert calls == 4 and searched_calls > calls
+    for s, t in zip(direct, searched):  # (the chains end elsewhere: the objective normalised by another point's)
+        assert s.objective == pytest.approx(t.objective, rel=1e-12) and s.design["cable_count"] == t.design[
+            "cable_count"] and s.solver.solves == t.solver.solves and s.solver.status == t.solver.status
+        assert [(e["cable_count"], e["status"]) for e in s.integer_search] == [
+            (e["cable_count"], e["status"]) for e in t.integer_search]
 
 
 def test_the_ball_past_4_5x_its_power_spends_one_call_a_point_between_changes_of_its_rows():

@@ -37,3 +37,20 @@ def test_a_limit_of_case_values_alone_tightens_or_loosens():
     # torque: what a step does depends on the design, nothing is concluded
     speed = tightening(problem.posed, ["speed"])
     assert not speed.known and not speed.tightened(base, _values(problem, case, speed=0.9))
+
+
+def test_the_limits_of_every_point_at_once_give_the_same_verdicts():
+    # a sweep evaluates the limits of all its points in one mapped call (Tightening.limits): the torque row's limit
+    # k_s P / w (eq. (8)) at P, 1.1 P and 0.9 P is the base limit times 1, 1.1 and 0.9; a step to a higher power
+    # tightens, a step down loosens, as point by point
+    case = load_case(CASES / "ball_compressor.toml")
+    problem = Problem(get_coupling("ball").formulation("design"))
+    power = tightening(problem.posed, ["power"])
+    points = np.array([_values(problem, case, power=f) for f in (1.0, 1.1, 0.9)])
+    limits, scales = power.limits(points)
+    assert limits.shape == (1, 3)
+    np.testing.assert_allclose(limits[0] / limits[0, 0], [1.0, 1.1, 0.9], rtol=1e-12)
+    for j in range(3):
+        for k in range(3):
+            verdict = power.holds(limits[:, j], scales[:, j], limits[:, k], scales[:, k])
+            assert verdict == power.tightened(points[j], points[k]) == (j == k or (j, k) in ((0, 1), (2, 0), (2, 1)))

@@ -14,7 +14,10 @@ tests of ``Problem.solve`` run afterwards on all points of the batch at once:
   more than tenfold from the variable scales (the solve is repeated with new scales there);
 - a batch stops short of the point where its integers break a constraint of fixed variables alone that they enter
   (the search excludes them there without a solve), found ahead of the batch by a mapped CasADi evaluation (the
-  exclusion tables);
+  exclusion tables); where one neighbouring combination is left there (the cable count, one cable more, as its
+  torque rises), the chain goes on with it instead, its bounds a column each, and that point is settled from its
+  column as the search's first attempt (``BatchSweep._changed``, or the search itself where its outcome is not
+  certain): one chained call through the changes, not one that ends at each and a one-point re-solve there;
 - at the end of a window of points (up to 1024, or a quarter of a second of solving), the float64 re-evaluation
   of every constraint and the objective by the formulation's own equations (``verify``'s arithmetic), vectorised
   over the points.
@@ -123,9 +126,9 @@ class _Chain(Block):
         except KeyError:
             raise AttributeError(key) from None
 
-    def block(self, passed: int) -> Block:
-        """The first ``passed`` points."""
-        return Block(self.index[:passed], **{key: value[:, :passed] for key, value in self.arrays.items()})
+    def block(self, passed: int, begin: int = 0) -> Block:
+        """The first ``passed`` points (from ``begin``)."""
+        return Block(self.index[begin:passed], **{key: value[:, begin:passed] for key, value in self.arrays.items()})
 
     def column(self, j: int, f_scale: float) -> "_Chain":
         """Point ``j`` alone, its objective normalised by ``f_scale`` (the scaled problem's objective and multipliers
@@ -263,6 +266,7 @@ class BatchSweep:
         self.solves, self.solver_s, self.check_s = 0, 0.0, 0.0
         self.feasible: dict[str, float] | None = None  # the last feasible design in order: a start for a failed point
         self._regions = Regions(problem, self.point_case, self.count)  # infeasible regions proven at once
+        self._limits: tuple[np.ndarray, np.ndarray] | None = None  # the tightening's limits and scales per point
 
     def point_case(self, k: int) -> Case:
         return self.case.with_values(**{name: float(values[k]) for name, values in self.varied.items()})
@@ -377,35 +381,93 @@ class BatchSweep:
         were chained (none if the integers are excluded at ``k``, see :func:`chain_length`), whether the first point
         left is the integer search's to decide (its integers excluded there, or a neighbouring combination to try;
         also where every chained point passed and the next one excludes them), and in the second case that point's
-        chained column (KKT-verified at the batch's integers: the search's first attempt)."""
+        chained column (KKT-verified at its integers: the search's first attempt). Where the integers are excluded
+        at a point and one neighbouring combination is left there (:meth:`_changes`), the chain goes on with it:
+        the point is settled from its column (:meth:`_replayed`)."""
         lower, upper = self.lower.copy(), self.upper.copy()
         lower[self.integer] = upper[self.integer] = start.combo
         first = -1  # the first point ahead where the batch's integers are excluded, or a neighbour opens
+        changes: list[tuple[int, np.ndarray]] = []  # (offset, combination) where the chain changes its integers
         self._opened = {}
         if self.integer:  # the batch stops short of a point its integers cannot serve whatever the rest (the search
-            # excludes them there without a solve)
+            # excludes them there without a solve), or changes them there to the one neighbour left
             excluded = self._excluded(lower, k, max(count, reach))
             if excluded.any():
                 first = int(np.argmax(excluded))
             opens, neighbour = self._opening(start, k, max(count, reach))
             if opens is not None and (first < 0 or opens < first):
                 first, self._opened[k + opens] = opens, neighbour
+            elif first >= 0:
+                count = max(count, first + 1)
+                changes, first = self._changes(start.combo, k, count, first)
             if first == 0:
                 return None, 0, True, None  # foreseen: nothing chained
             if first > 0:
                 count = first  # (a break known ahead, within reach: the chain ends there)
-        chain = self._chain(start, k, count, lower, upper, start.seed)
+        chain = self._chain(start, k, count, lower, upper, start.seed, changes=changes)
         if chain is None:
             return None, min(count, chain_length(count)), False, None
         count = len(chain.index)
         ok = chain.ok & ~self._unruled_moves(chain, start)
         passed = int(np.argmin(ok)) if not ok.all() else count
-        searching = (bool(chain.ok[passed]) or len(self.integer) > 0) if passed < count else count == first
-        # (passed up to the exclusion; a point that fails at the batch's integers: the search tries them by IPOPT)
+        pieces, before, passed, cut = self._replayed(chain, start, [c for c in changes if c[0] < passed], passed)
+        if cut:  # (the points after it left to the next batch, as after a chain that ended there)
+            count = passed
+        if passed < count and not ok[passed]:
+            searching = bool(chain.ok[passed]) or len(self.integer) > 0
+        else:  # (passed up to the exclusion, or a replayed search that found other integers)
+            searching = passed == count == first
+        # (a point that fails at the batch's integers: the search tries them by IPOPT)
         tried = None  # normalised as the batch that starts after the passed points
         if searching and passed < count:
-            tried = chain.column(passed, _Start(self, block=chain.block(passed)).f_scale if passed else start.f_scale)
-        return (chain.block(passed) if passed else None), count, searching, tried
+            tried = chain.column(passed, before.f_scale)
+        block = (pieces[0] if len(pieces) == 1 else Block.joined(pieces)) if pieces else None
+        return block, count, searching, tried
+
+    def _changes(self, combo: np.ndarray, k: int, count: int, first: int) -> tuple[list[tuple[int, np.ndarray]], int]:
+        """Where the integers ``combo`` are excluded at point k + ``first`` (and the next ones at later points, up to
+        ``count`` points from k), the one neighbouring combination left there (:meth:`_past_exclusion`, where the
+        search would step at once; the cable count, one cable more, as its torque rises): the offsets and
+        combinations the chain changes to, and the offset of the first exclusion not so passed (-1: none)."""
+        changes, j = [], first
+        while 0 <= j < count:
+            past = self._past_exclusion(combo, k + j)
+            if past is None or self._undesigned.get(tuple(past.tolist()), (None,))[0] == k + j - 1:
+                return changes, j  # (a combination IPOPT left without a design at the point before: its search)
+            changes.append((j, past))
+            combo = past
+            design = self.lower.copy()
+            design[self.integer] = combo
+            ahead = self._excluded(design, k + j + 1, count - j - 1) if j + 1 < count else np.zeros(0, dtype=bool)
+            j = j + 1 + int(np.argmax(ahead)) if ahead.any() else -1
+        return changes, -1
+
+    def _replayed(self, chain: "_Chain", start: _Start, changes: list[tuple[int, np.ndarray]],
+                  passed: int) -> tuple[list[Block], _Start, int, bool]:
+        """The first ``passed`` points of ``chain`` as blocks, each point where it changed its integers
+        (``changes``) settled by :meth:`_settle` with its column as the first attempt (the search ``Problem.solve``
+        runs there, without a solve where the column passed its tests); the start after them, how many points are
+        kept (up to a change that the search does not settle, or up to and with one where it ran or kept other
+        integers), and whether the kept points end there by choice (the latter)."""
+        pieces, before, begin = [], start, 0
+        for j, combo in changes:
+            if j > begin:
+                pieces.append(chain.block(j, begin))
+                before = _Start(self, block=pieces[-1])
+            tried = chain.column(j, before.f_scale)
+            settled = searched = self._changed(before, int(chain.index[j]), tried)
+            if settled is None:
+                settled = self._settle(before, int(chain.index[j]), tried)
+            if settled is None:
+                return pieces, before, j, False
+            pieces.append(settled)
+            before, begin = _Start(self, block=settled), j + 1
+            if searched is None or not np.array_equal(before.combo, combo):  # (a search that ran may have found
+                return pieces, before, j + 1, True  # combinations without a design the later changes assumed open)
+        if passed > begin:
+            pieces.append(chain.block(passed, begin))
+            before = _Start(self, block=pieces[-1])
+        return pieces, before, passed, False
 
     def _opening(self, start: _Start, k: int, count: int) -> tuple[int | None, np.ndarray | None]:
         """Where, among points k .. k + count - 1, the neighbouring combination that ``start``'s multipliers promise a
@@ -428,21 +490,30 @@ class BatchSweep:
         return None, None
 
     def _chain(self, start: _Start, k: int, count: int, lower: np.ndarray, upper: np.ndarray,
-               seed: dict, method: str = "sqp_chain", predict: bool = True) -> "_Chain | None":
+               seed: dict, method: str = "sqp_chain", predict: bool = True,
+               changes: list[tuple[int, np.ndarray]] = ()) -> "_Chain | None":
         """Points k .. k + count - 1 (fewer: :func:`chain_length`) re-solved by the chained SQP from ``seed``'s
         primal-dual point (``x``, ``lam_x``, ``lam_g``) and the step that led to it (``dx``, ``dlam_x``,
         ``dlam_g``, for the predictor unless ``predict`` is false), scaled as ``start``, in the box ``lower``,
         ``upper`` (SI), each point's KKT conditions checked; None after an evaluation error inside CasADi (the points
-        go to Problem.solve, which reports it)."""
+        go to Problem.solve, which reports it). ``changes``: (offset, combination) where the free integers change
+        from that point on, each such point and the next started without a prediction (as after the integer
+        search)."""
         length = chain_length(count)
         count = min(count, length)
         points = np.minimum(np.arange(k, k + length), k + count - 1)  # the padding's parameters: the last point's
         lbx, ubx = lower / start.scale, upper / start.scale
+        ratio = self._ratios(points) if predict else 0.0
+        if changes:  # the integers' bounds a column each
+            lbx, ubx = lbx[:, None].repeat(length, axis=1), ubx[:, None].repeat(length, axis=1)
+            for j, combo in changes:
+                lbx[self.integer, j:] = ubx[self.integer, j:] = (combo / start.scale[self.integer])[:, None]
+                if predict:
+                    ratio[j:j + 2] = 0.0
         m, n = len(self.values), len(start.scale)
         p_rows = np.empty((length, m + n + 1))  # the NLP parameters, a point a row: CasADi's memory of the columns
         p_rows[:, :m], p_rows[:, m:m + n], p_rows[:, -1] = self._by_point[points], start.scale, start.f_scale
         p = p_rows.T
-        ratio = self._ratios(points) if predict else 0.0
         live = (np.arange(length) < count).astype(float)  # the padding calls no solver
         began = time.perf_counter()
         try:
@@ -462,7 +533,8 @@ class BatchSweep:
         if count < length:
             arrays = {key: value[:, :count] for key, value in arrays.items()}
         return _Chain(np.arange(k, k + count), kkt[0, :count] > 0.5, moves[0, :count] > 0.5, **arrays,
-                      lbx=lbx[:, None].repeat(count, axis=1), ubx=ubx[:, None].repeat(count, axis=1),
+                      **{key: (bound[:, :count] if bound.ndim == 2 else bound[:, None].repeat(count, axis=1))
+                         for key, bound in (("lbx", lbx), ("ubx", ubx))},
                       time=np.full((1, count), seconds / count), solves=np.ones((1, count)))
 
     def _ratios(self, points: np.ndarray) -> np.ndarray:
@@ -483,6 +555,10 @@ class BatchSweep:
         box, seed = Box(start.scale, self.lower, self.upper), start.seed
         runs: list[_Chain] = []
         cold: list[float] = []  # the seconds of each call beside the one-point SQPs (the least violation, IPOPT)
+        if tried is not None:  # its integers (SI)
+            n = len(self.names)
+            tried_combo = np.round(tried.x[self.integer, 0] * tried.p[len(self.values):len(self.values) + n][
+                self.integer, 0])
 
         def attempt(combo, seed, methods=None) -> dict | None:
             lower, upper = self.lower.copy(), self.upper.copy()
@@ -496,7 +572,7 @@ class BatchSweep:
             if ruled:
                 search.append(search_entry(self.posed, self.integer, combo, ruled, False, math.nan))
                 return None
-            if tried is not None and np.array_equal(combo, start.combo):
+            if tried is not None and np.array_equal(combo, tried_combo):
                 chain = tried  # (its chained column: the first attempt, verified or not)
             else:  # a combination IPOPT left without a design at the point before goes to IPOPT again directly
                 chain = (self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
@@ -550,13 +626,38 @@ class BatchSweep:
             return None
         if kept is None:
             return None
-        block = kept["chain"].block(1)
-        block.arrays["time"][:] = sum(float(run.arrays["time"][0, 0]) for run in runs) + sum(cold)
-        block.arrays["solves"][:] = len(runs) + len(cold)
-        for key in ("dx", "dlam_x", "dlam_g"):  # no step to predict from across a change of the integers
+        return self._searched(kept["chain"], k, search, sum(float(run.arrays["time"][0, 0]) for run in runs)
+                              + sum(cold), len(runs) + len(cold))
+
+    def _searched(self, chain: "_Chain", k: int, search: list[dict], seconds: float, solves: int) -> Block:
+        """Point k as the integer search ``search`` kept it: ``chain``'s column, its time and solver calls those of
+        the search, without a step to predict from (across a change of the integers); the search is recorded."""
+        block = chain.block(1)
+        block.arrays["time"][:] = seconds
+        block.arrays["solves"][:] = solves
+        for key in ("dx", "dlam_x", "dlam_g"):
             block.arrays[key] = np.zeros_like(block.arrays[key])
         self.searches[k] = search
         return block
+
+    def _changed(self, start: _Start, k: int, tried: "_Chain") -> Block | None:
+        """Point k, where a chain changed its integers from ``start``'s (excluded there) to the one neighbour left,
+        settled as :meth:`_settle` settles it, without running the search, where its outcome is certain: the column
+        ``tried`` is the search's first attempt (KKT-verified), and every neighbour its multipliers promise a gain
+        at (``integers.downhill``) is ``start``'s integers, tried already: the search's record is those excluded and
+        the column kept. None otherwise (:meth:`_settle` runs the search)."""
+        run = {"x": tried.x[:, 0], "lam_x": tried.lam_x[:, 0], "f": float(tried.f[0, 0])}
+        if k in self._opened or not tried.ok[0] or any(
+                not np.array_equal(combo, start.combo)
+                for combo in downhill(self.posed, run, Box(start.scale, self.lower, self.upper), self.integer)):
+            return None
+        lower = self.lower.copy()
+        lower[self.integer] = start.combo
+        excluded = list(dict.fromkeys(self._fixed_names[self._broken(lower, k, 1)[:, 0]]))
+        combo = np.round(tried.x[self.integer, 0] * start.scale[self.integer])
+        search = [excluded_entry(self.posed, self.integer, start.combo, excluded),
+                  search_entry(self.posed, self.integer, combo, BATCHED, True, run["f"] * start.f_scale)]
+        return self._searched(tried, k, search, float(tried.arrays["time"][0, 0]), 1)
 
     def _ruled_out(self, combo: tuple, k: int) -> str:
         """Why the integers ``combo`` are not solved at point k (empty: they are): IPOPT found them infeasible at an
@@ -566,7 +667,7 @@ class BatchSweep:
         found = self._undesigned.get(combo)
         if found is None or found[0] >= k or not infeasible(found[1]):
             return ""
-        if not self._tightening.tightened(self._by_point[found[0]], self._by_point[k]):
+        if not self._tightened(found[0], k):
             return ""
         return f"ruled out: {found[1]} at point {found[0]}, whose limits the sweep has only tightened since"
 
@@ -578,7 +679,18 @@ class BatchSweep:
 
     def _tightens(self, k: int) -> bool:
         """The step from point k to the next only tightens the constraints (``tightening``)."""
-        return k + 1 < self.count and self._tightening.tightened(self._by_point[k], self._by_point[k + 1])
+        return k + 1 < self.count and self._tightened(k, k + 1)
+
+    def _tightened(self, j: int, k: int) -> bool:
+        """The step from point j to point k only tightens the constraints (``tightening``), from the limits of every
+        point evaluated at once on first use (``Tightening.limits``)."""
+        t = self._tightening
+        if not t.known:
+            return False
+        if self._limits is None:
+            self._limits = t.limits(self._by_point)
+        limits, scales = self._limits
+        return t.holds(limits[:, j], scales[:, j], limits[:, k], scales[:, k])
 
     def _unruled_moves(self, chain: _Chain, start: _Start) -> np.ndarray:
         """Per chained point, whether ``Problem.solve``'s warm search would go on from it (the chain verdict's

@@ -56,8 +56,20 @@ class Tightening:
             return False
         (limit_before, scale_before), (limit_after, scale_after) = (
             (np.asarray(v, dtype=float).ravel() for v in self._limits(values)) for values in (before, after))
-        return bool(np.all(scale_before > 0) and np.all(scale_after > 0)
+        return self.holds(limit_before, scale_before, limit_after, scale_after)
+
+    def holds(self, limit_before, scale_before, limit_after, scale_after) -> bool:
+        """:meth:`tightened` on the limits and scales of the constraints the varied quantities enter, before and
+        after the step (:meth:`limits`)."""
+        return bool(self.known and np.all(scale_before > 0) and np.all(scale_after > 0)
                     and np.all(self._senses * (limit_after - limit_before) >= 0))
+
+    def limits(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The limits and scales of the constraints the varied quantities enter at each point (``points``: a row of
+        case values each, as :meth:`tightened` takes them), by one mapped evaluation: a column per point each (the
+        same numbers as :meth:`tightened` evaluates point by point)."""
+        limits, scales = self._limits.map(len(points))(np.asarray(points, dtype=float).T)
+        return np.asarray(limits, dtype=float), np.asarray(scales, dtype=float)
 
 
 def tightening(posed, varied) -> Tightening:
