@@ -52,9 +52,9 @@ def test_a_worse_neighbour_with_a_design_makes_the_next_chains_probes():
     pace = BatchPace(8, 256)
     for k in (3, 8):
         pace.broke(k)
-    assert pace.size == 4 and pace.aimed
+    assert pace.size == 4 and pace._aimed
     pace.near()
-    assert pace.size == 1 and not pace.aimed
+    assert pace.size == 1 and not pace._aimed
     pace.passed()
     assert pace.size == 1
     pace.passed()

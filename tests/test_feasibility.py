@@ -6,7 +6,7 @@ import pytest
 from clutchopt.cases import load_case
 from clutchopt.formulations import get_coupling
 from clutchopt.formulations.cable.equations import cable_stress
-from clutchopt.optimise.feasibility import INFEASIBLE_MARGIN, infeasible, least, least_violation
+from clutchopt.optimise.feasibility import INFEASIBLE_MARGIN, infeasible, least, least_violation_solver
 from clutchopt.optimise.integers import INFEASIBLE
 from clutchopt.optimise.problem import Problem
 from conftest import CASES
@@ -27,7 +27,7 @@ def test_too_few_cables_are_without_a_design_by_their_stress():
     for z in (2, 3, 4, 5):
         lbx, ubx = data.lbx.copy(), data.ubx.copy()
         lbx[i] = ubx[i] = z / data.scale[i]
-        t, verified, x = least_violation(posed)(data.x0, data.p, lbx, ubx)
+        t, verified, x = least_violation_solver(posed)(data.x0, data.p, lbx, ubx)
         found = least(posed, data.x0, data.p, lbx, ubx)
         assert verified[0, 0] == 1.0 and found.verified and found.violation == t[0, 0]
         if z < 5:

@@ -294,7 +294,7 @@ class BatchSweep:
                     self.feasible, failed = start.warm.design, False
                 if chained and passed == chained:
                     pace.passed(chained)
-                    ahead = self._until_active(blocks, pace.size) if pace.size > 1 else None  # (a chain of one:
+                    ahead = self._until_active(blocks, pace.size, start.combo) if pace.size > 1 else None  # (one:
                     # no shorter)
                     if not searching or k == end:  # (a batch that passes up to its integers' exclusion hands the
                         continue  # next point to the search)
@@ -327,21 +327,21 @@ class BatchSweep:
                 failed = alone[k - 1].status not in DESIGN_STATUSES
             yield self._window(blocks, alone, first, k - first)
 
-    def _until_active(self, blocks: list[Block], size: int) -> int | None:
+    def _until_active(self, blocks: list[Block], size: int, combo: np.ndarray) -> int | None:
         """With free integers, the points after the last kept one until its active set is expected to change
         (``batch_pace.until_active``, from the last two kept points where they are consecutive, with the same integers
         and scales: :func:`_last_two`): the next chain ends there. A change of the active set is what makes a fixed
         integer's multiplier promise a neighbour, and where a slack of the design closes at fixed integers the
         integers stop serving (the ball over its power past 7.5x: each point where the rows carry no more, one row
         more, was foreseen to the point). None otherwise (the integer breaks are paced by their gaps), and where the
-        exclusion tables end the next chain of ``size`` points anyway (the cable count as its torque rises)."""
+        exclusion tables end the next chain of ``size`` points anyway (the cable count as its torque rises).
+        ``combo``: the integers of the last kept point (the batch's start)."""
         pair = _last_two(blocks, self.integer) if self.integer else None
         if pair is None:
             return None
         last = int(pair.index[-1]) + 1
         design = self.lower.copy()
-        design[self.integer] = np.round(pair.arrays["x"][self.integer, -1] * pair.arrays["p"][
-            len(self.values):len(self.values) + len(self.names), -1][self.integer])
+        design[self.integer] = combo
         if last < self.count and self._excluded(design, last, min(size, self.count - last)).any():
             return None
         return until_active(self.posed, pair, self._ratio[last:last + LONGEST_BATCH], self._free,
@@ -574,7 +574,7 @@ class BatchSweep:
                 return None
             if tried is not None and np.array_equal(combo, tried_combo):
                 chain = tried  # (its chained column: the first attempt, verified or not)
-            else:  # a combination IPOPT left without a design at the point before goes to IPOPT again directly
+            else:  # a combination left without a design at the point before goes to its least violation directly
                 chain = (self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
                          if self._undesigned.get(key, (None,))[0] != k - 1 else None)
             if chain is None or not chain.ok[0]:  # its least violation: without a design, or SQP from the design
@@ -660,10 +660,10 @@ class BatchSweep:
         return self._searched(tried, k, search, float(tried.arrays["time"][0, 0]), 1)
 
     def _ruled_out(self, combo: tuple, k: int) -> str:
-        """Why the integers ``combo`` are not solved at point k (empty: they are): IPOPT found them infeasible at an
-        earlier point (its verdict, not another failure: an iteration limit, a restoration that failed, a design
-        the float64 check refused), and the step from there to k only tightens the constraints (``tightening``): no
-        design meets at k what none met there."""
+        """Why the integers ``combo`` are not solved at point k (empty: they are): IPOPT or their least violation
+        (``feasibility``) found them infeasible at an earlier point (that verdict, not another failure: an iteration
+        limit, a restoration that failed, a design the float64 check refused), and the step from there to k only
+        tightens the constraints (``tightening``): no design meets at k what none met there."""
         found = self._undesigned.get(combo)
         if found is None or found[0] >= k or not infeasible(found[1]):
             return ""

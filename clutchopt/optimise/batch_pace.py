@@ -52,11 +52,6 @@ class BatchPace:
         self._aimed = False  # the size ends the chain at an expected break
         self._probes = 0  # probes left after this one
 
-    @property
-    def aimed(self) -> bool:
-        """The next chain ends at an expected break."""
-        return self._aimed
-
     def passed(self, points: int | None = None) -> None:
         """A chain of :attr:`size` points (or ``points``) passed every test: doubled, or a probe after one aimed at a
         break; a chain aimed at a break but cut short (an active set expected to change before it: ``until_active``)
@@ -93,7 +88,8 @@ class BatchPace:
 
 
 def until_active(posed, block, ratios, free: np.ndarray, tol: float) -> int | None:
-    """Points ahead of ``block`` (batched points with free integers, its last two from one chain) until the first
+    """Points ahead of ``block`` (batched points with free integers, its last two consecutive with the same
+    integers: a chain's, or a search's and a chain's) until the first
     where an inactive constraint row or variable bound is expected to become active, or None (none is expected, or
     the block has one point). A change of the active set is where a fixed integer's bound multiplier jumps (the ball
     over its power: 0 at 7 rows up to 4.5x, where the contact stress becomes active and one row fewer is promised

@@ -49,7 +49,7 @@ def infeasible(status: str) -> bool:
     return status == INFEASIBLE or status.startswith(LOCALLY_INFEASIBLE[:LOCALLY_INFEASIBLE.index("{")])
 
 
-def least_violation(posed: Posed) -> InPlace:
+def least_violation_solver(posed: Posed) -> InPlace:
     """(x0, p, lbx, ubx) -> (t*, verified, x*): the least largest violation from ``x0`` (scaled, clipped to the box),
     whether the SQP's answer is a KKT point of the feasibility problem (1, else 0), and where (scaled). One CasADi
     call, built once per posed problem (no start-up: its collocation is solved point by point)."""
@@ -63,6 +63,7 @@ def least_violation(posed: Posed) -> InPlace:
         solver = ca.nlpsol(name, "sqpmethod", problem, {**posed.options.sqp(), "convexify_strategy": "eigen-clip"})
         verdict = kkt_of(problem, rows.shape[0], CERTIFICATE_TOL, f"{name}_kkt")
         largest = ca.Function("largest", [x, p], [ca.fmax(0.0, ca.mmax(ca.vertcat(g[:n_ineq], ca.fabs(g[n_ineq:]))))])
+        # (the symbolic twin of integers.least_violation, a float)
         x0, p_in, lbx, ubx = (ca.MX.sym(label, *shape) for label, shape in (
             ("x0", x.shape), ("p", p.shape), ("lbx", x.shape), ("ubx", x.shape)))
         start = ca.fmin(ca.fmax(x0, lbx), ubx)
@@ -95,9 +96,9 @@ class Least(NamedTuple):
 
 def least(posed: Posed, x0: np.ndarray, p: np.ndarray, lbx: np.ndarray, ubx: np.ndarray) -> Least:
     """The least largest violation in the box ``lbx``, ``ubx`` (scaled, integers fixed) from ``x0``
-    (:func:`least_violation`)."""
+    (:func:`least_violation_solver`)."""
     try:
-        t, verified, x = least_violation(posed)(x0, p, lbx, ubx)
+        t, verified, x = least_violation_solver(posed)(x0, p, lbx, ubx)
     except RuntimeError:  # an evaluation error inside CasADi
         return Least(math.nan, False, None)
     return Least(float(t[0, 0]), bool(verified[0, 0] > 0.5), x[:, 0])
