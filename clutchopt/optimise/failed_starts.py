@@ -39,6 +39,7 @@ class FailedStarts:
     def __init__(self):
         self._failed: dict[tuple, Solution] = {}
         self._tried: dict[tuple, tuple] = {}  # a start -> (the case but its values, its key there, the reason there)
+        self._lost: dict[tuple, list[tuple[dict, dict]]] = {}  # a continuation's start -> (from, lost at) values
 
     @staticmethod
     def key(case: Case, start: dict[str, float]) -> tuple:
@@ -74,3 +75,30 @@ class FailedStarts:
             self._tried.pop(next(iter(self._tried)))  # (the oldest: a problem is kept for the process)
         self._tried[start_key] = (rest, at, reason)
         return False
+
+    def lose(self, case: Case, start: dict[str, float], origin: dict[str, float], at: dict[str, float]) -> None:
+        """A continuation of ``case`` from ``start`` (the design at the varied values ``origin``) lost its path at the
+        step ``at`` (the varied values)."""
+        key = self.key(case, start)
+        if len(self._lost) >= KEPT and key not in self._lost:
+            self._lost.pop(next(iter(self._lost)))
+        self._lost.setdefault(key, []).append((dict(origin), dict(at)))
+
+    def lost_beyond(self, case: Case, start: dict[str, float], origin: dict[str, float],
+                    first: dict[str, float]) -> bool:
+        """Whether a continuation of ``case`` from ``start`` at ``origin`` whose first step is ``first`` lands on or
+        beyond a step where a path from there was lost, on the same ray from ``origin``."""
+        return any(lost_from == origin and _on_or_beyond(origin, lost_at, first)
+                   for lost_from, lost_at in self._lost.get(self.key(case, start), ()))
+
+
+def _on_or_beyond(origin: dict[str, float], lost: dict[str, float], first: dict[str, float]) -> bool:
+    """``first`` = ``origin`` + t (``lost`` - ``origin``) in every value with t >= 1 (to 1e-9 of each step)."""
+    if origin.keys() != lost.keys() or origin.keys() != first.keys():
+        return False
+    steps = [(lost[name] - origin[name], first[name] - origin[name]) for name in origin]
+    moved = [(towards, ahead) for towards, ahead in steps if towards != 0.0]
+    if not moved or any(towards == 0.0 and ahead != 0.0 for towards, ahead in steps):
+        return False
+    t = moved[0][1] / moved[0][0]
+    return t >= 1.0 - 1e-9 and all(abs(ahead - t * towards) <= 1e-9 * abs(ahead) for towards, ahead in moved)
