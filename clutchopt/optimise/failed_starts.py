@@ -101,6 +101,8 @@ class FailedStarts:
         """Whether a path from ``start`` was lost on the way to ``first`` (the varied values; default: ``case``'s own)
         from ``origin`` (default: the point ``start`` was lost from): ``first`` on the ray from there through the step
         where the path was lost, on or beyond it, and every other value of ``case`` the sweep's."""
+        if not self._lost:  # (a static problem's: none kept, no key built)
+            return False
         for base, lost_from, lost_at in self._lost.get(self._start_key(case, start), ()):
             here = _values(case)
             ahead = {name: here[name] for name in lost_from} if first is None else first
