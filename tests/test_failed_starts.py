@@ -3,6 +3,7 @@
 own cold start from the papers' sizing follows."""
 
 import numpy as np
+import pytest
 
 from clutchopt.cases import load_case
 from clutchopt.optimise.problem import case_problem
@@ -67,3 +68,42 @@ def test_an_elastic_problem_that_does_not_converge_says_so_and_names_no_reason()
     assert "(where the elastic problem stopped, not converged: Maximum_Iterations_Exceeded after 200 iterations)" \
         in solution.diagnosis
     assert solution.diagnosed.violated == ()
+
+
+def test_a_continuation_lost_at_a_step_is_not_started_from_the_same_design_beyond_it(monkeypatch):
+    """lever_motor_start swept over driven_inertia 0.6x-1.4x (20 points, 12 kg m^2 a step of 0.505): from the last
+    design at 14.779 kg m^2 the continuation towards 15.284 takes its first step to 14.779 + 0.505 / 3 = 14.947 and
+    finds no design there (docs/start_up.md: lining_pressure with temperature_rise). Towards 15.789 its first step
+    would be 14.779 + 1.011 / 3 = 15.116, on the same ray and twice as far (t = 2): not started, no solve. A step on
+    the other side of the design (towards 14.274: first step 14.611), or from another design, is not covered."""
+    from clutchopt.optimise.failed_starts import FailedStarts
+    from clutchopt.optimise.sweep import continued
+
+    case = load_case(CASES / "lever_motor_start.toml")
+    problem = case_problem(case)
+    problem.failed_starts = FailedStarts()
+    inertias = case.values["driven_inertia"] * np.linspace(0.6, 1.4, 20)
+    assert inertias[15:18] == pytest.approx([14.7789, 15.2842, 15.7895], abs=1e-4)
+    design = problem.solve(case.with_values(driven_inertia=inertias[15]))
+    assert design.status == "optimal"
+    feasible = ({"driven_inertia": inertias[15]}, design)
+    solved = []
+    real = problem.refined
+    monkeypatch.setattr(problem, "refined", lambda at, *a, **k: solved.append(at.values["driven_inertia"])
+                        or real(at, *a, **k))
+    assert continued(problem, case, feasible, {"driven_inertia": inertias[16]}) is None
+    assert solved == [pytest.approx(inertias[15] + (inertias[16] - inertias[15]) / 3, rel=1e-15)]
+    assert continued(problem, case, feasible, {"driven_inertia": inertias[17]}) is None
+    assert len(solved) == 1  # not started: 15.116 lies beyond 14.947 on the ray from 14.779
+    lost = problem.failed_starts
+    origin = feasible[0]
+    step = (inertias[16] - inertias[15]) / 3
+    assert not lost.lost_beyond(case, design.design, origin, {"driven_inertia": inertias[15] - step})
+    assert not lost.lost_beyond(case, design.design, origin, {"driven_inertia": inertias[15] + 0.99 * step})
+    assert not lost.lost_beyond(case, {**design.design, "spring_preload": 30.0}, origin,
+                                {"driven_inertia": inertias[15] + 2 * step})
+    assert lost.lost_beyond(case, design.design, origin, {"driven_inertia": inertias[15] + step})  # t = 1
+    # a verdict's retry from the neighbour's design at 15.789 (beyond 14.947) is left out; at 14.274 (behind) not
+    assert lost.lost_beyond(case.with_values(driven_inertia=inertias[17]), design.design)
+    assert not lost.lost_beyond(case.with_values(driven_inertia=inertias[14]), design.design)
+    assert not lost.lost_beyond(case.with_values(driven_inertia=inertias[17], load_torque=1.0), design.design)

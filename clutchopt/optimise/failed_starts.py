@@ -17,6 +17,18 @@ design the interval search meets, the same at every point of a sweep that moves 
 inertia, since the search bounds the static rows; lever_motor_start 15.8-16.8 kg m^2, 180-200 IPOPT iterations a
 point). The verdict stays ``not_found`` and names the starts tried (``Solution.starts``): it never claimed that
 start, and a point whose reason differs tries it again.
+
+A sweep's continuation (``clutchopt.optimise.sweep.continued``) follows the last feasible point's design towards a
+point without one in equal steps. Where one such path was lost at a step (no design there from the step before),
+a later continuation from the same design whose first step lands on or beyond that step, on the same ray from the
+feasible point, is not started (:meth:`lost_beyond`): it would jump from that design at once further than the path
+already failed to follow it (lever_motor_start from 14.78 kg m^2: lost at 14.95, then asked to start at 15.12 and
+15.45, 53 and 82 IPOPT iterations; ball_motor_start from 382.9: lost at 393.4, then asked at 393.4 from the design
+itself (487 iterations) and at 403.9-425.0). Nor is a verdict's retry from that design (the neighbouring point's, in
+``clutchopt.optimise.verdict``) at a point on or beyond that step (lever 15.79-16.8 kg m^2, ball 414.5-525 kg m^2:
+30-80 iterations each). A continuation, or a retry from a neighbour's design, changes a point's verdict only where it
+finds a design ``solve`` of that point alone would not try (it has no neighbour: its verdict is ``solve``'s either
+way); a retry left out is not among the starts the verdict names.
 """
 
 from __future__ import annotations
@@ -39,6 +51,7 @@ class FailedStarts:
     def __init__(self):
         self._failed: dict[tuple, Solution] = {}
         self._tried: dict[tuple, tuple] = {}  # a start -> (the case but its values, its key there, the reason there)
+        self._lost: dict[tuple, list[tuple[dict, dict]]] = {}  # a continuation's start -> (from, lost at) values
 
     @staticmethod
     def key(case: Case, start: dict[str, float]) -> tuple:
@@ -74,3 +87,48 @@ class FailedStarts:
             self._tried.pop(next(iter(self._tried)))  # (the oldest: a problem is kept for the process)
         self._tried[start_key] = (rest, at, reason)
         return False
+
+    def lose(self, case: Case, start: dict[str, float], origin: dict[str, float], at: dict[str, float]) -> None:
+        """A continuation of the sweep ``case`` from ``start`` (the design at the varied values ``origin``) lost its
+        path at the step ``at`` (the varied values)."""
+        key = self._start_key(case, start)
+        if len(self._lost) >= KEPT and key not in self._lost:
+            self._lost.pop(next(iter(self._lost)))
+        self._lost.setdefault(key, []).append((_values(case), dict(origin), dict(at)))
+
+    def lost_beyond(self, case: Case, start: dict[str, float], origin: dict[str, float] | None = None,
+                    first: dict[str, float] | None = None) -> bool:
+        """Whether a path from ``start`` was lost on the way to ``first`` (the varied values; default: ``case``'s own)
+        from ``origin`` (default: the point ``start`` was lost from): ``first`` on the ray from there through the step
+        where the path was lost, on or beyond it, and every other value of ``case`` the sweep's."""
+        if not self._lost:  # (a static problem's: none kept, no key built)
+            return False
+        for base, lost_from, lost_at in self._lost.get(self._start_key(case, start), ()):
+            here = _values(case)
+            ahead = {name: here[name] for name in lost_from} if first is None else first
+            others = {name for name in base if name not in lost_from} if first is None else set()
+            if (origin is None or lost_from == origin) and all(here.get(name) == base[name] for name in others) \
+                    and _on_or_beyond(lost_from, lost_at, ahead):
+                return True
+        return False
+
+    def _start_key(self, case: Case, start: dict[str, float]) -> tuple:
+        at = self.key(case, start)
+        return at[:1] + at[2:]  # (the case but its values: a sweep's points share it)
+
+
+def _values(case: Case) -> dict[str, float]:
+    return {name: _digits(value) for name, value in case.values.items()
+            if isinstance(value, (int, float)) and not isinstance(value, bool)}
+
+
+def _on_or_beyond(origin: dict[str, float], lost: dict[str, float], first: dict[str, float]) -> bool:
+    """``first`` = ``origin`` + t (``lost`` - ``origin``) in every value with t >= 1 (to 1e-9 of each step)."""
+    if origin.keys() != lost.keys() or origin.keys() != first.keys():
+        return False
+    steps = [(lost[name] - origin[name], first[name] - origin[name]) for name in origin]
+    moved = [(towards, ahead) for towards, ahead in steps if towards != 0.0]
+    if not moved or any(towards == 0.0 and ahead != 0.0 for towards, ahead in steps):
+        return False
+    t = moved[0][1] / moved[0][0]
+    return t >= 1.0 - 1e-9 and all(abs(ahead - t * towards) <= 1e-9 * abs(ahead) for towards, ahead in moved)

@@ -178,11 +178,17 @@ def continued(problem, case: Case, feasible: tuple[dict, Solution], values: dict
     """The design at ``values`` followed from a feasible point's (its values, its design) in ``steps`` equal steps
     of the varied quantities, each started from the last; None where a step finds no design."""
     (before, solution), found = feasible, None
+    lost = problem.failed_starts if problem.start_up is not None else None  # (a path already lost: not followed
+    # beyond, clutchopt.optimise.failed_starts)
     for step in range(1, steps + 1):
         share = step / steps
-        at = case.with_values(**{name: before[name] + share * (value - before[name]) for name, value in values.items()})
-        found = problem.refined(at, solution.design, diagnosed=False)
+        moved = {name: before[name] + share * (value - before[name]) for name, value in values.items()}
+        if lost is not None and step == 1 and lost.lost_beyond(case, solution.design, before, moved):
+            return None
+        found = problem.refined(case.with_values(**moved), solution.design, diagnosed=False)
         if found.status not in DESIGN_STATUSES:
+            if lost is not None:
+                lost.lose(case, feasible[1].design, before, moved)
             return None
         solution = found
     return found

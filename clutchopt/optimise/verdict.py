@@ -52,7 +52,8 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
             if started else []
         if first.diagnosed and first.diagnosed.nearest:
             starts.append(("the least relaxation's design", first.diagnosed.nearest))
-        if neighbour is not None:
+        if neighbour is not None and not problem.failed_starts.lost_beyond(case, neighbour):  # (its path lost
+            # nearer: clutchopt.optimise.failed_starts)
             starts.append(("the neighbouring point's design", neighbour))
         for label, start in starts:  # the first retry diagnosed too: a least relaxation seen from two starts
             retry = _retried(problem, case, start, diagnosed=len(tried) == 1)
