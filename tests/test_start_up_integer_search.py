@@ -8,7 +8,7 @@ choice alone does), and the test asserts that the retry was taken, so that it ca
 from dataclasses import replace
 
 from clutchopt.cases import load_case
-from clutchopt.optimise import integers, solve_case
+from clutchopt.optimise import integers, problem, solve_case
 from conftest import CASES
 
 
@@ -34,3 +34,27 @@ def test_ball_start_up_at_345_kg_m2_finds_the_rows_its_iteration_limit_hid(monke
     assert solution.design["ball_rows"] == 23.0
     assert solution.objective <= fixed.objective * (1 + 1e-6)
     assert abs(solution.objective - 950.755) < 0.01
+
+
+def test_ball_start_up_at_340_kg_m2_tries_the_sizing_rows_its_relaxation_left(monkeypatch):
+    # ball_motor_start at driven_inertia 340 kg m^2: the relaxation ends at a local optimum of 24.25 rows, 24 rows
+    # from there at 1016.18 kg, 25 rows at 1015.94 kg (main's design); the papers' sizing (23 rows, 950.755 kg, its
+    # start-up within every limit) is the static optimum, so no start-up design goes below it: its rows fixed and
+    # solved from it give 950.76 kg, the design of the solve with ball_rows fixed at 23
+    tried = []
+    original = integers.from_the_start
+
+    def spied(posed, data, integer, kept, search, attempt):
+        found = original(posed, data, integer, kept, search, attempt)
+        tried.append((kept["value"], found["value"]))
+        return found
+
+    monkeypatch.setattr(integers, "from_the_start", spied)
+    monkeypatch.setattr(problem, "from_the_start", spied)
+    case = load_case(CASES / "ball_motor_start.toml").with_values(driven_inertia=340.0)
+    solution = solve_case(case)
+    assert len(tried) == 1 and abs(tried[0][0] - 1015.94) < 0.01 and abs(tried[0][1] - 950.755) < 0.01
+    fixed = solve_case(replace(case, bounds={**case.bounds, "ball_rows": (23.0, 23.0)}))
+    assert solution.status == fixed.status == "optimal"
+    assert solution.design["ball_rows"] == 23.0
+    assert solution.objective <= fixed.objective * (1 + 1e-6)
