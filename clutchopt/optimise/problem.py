@@ -23,7 +23,8 @@ from clutchopt.model import Formulation
 from clutchopt.optimise.attempts import attempt, warm_multipliers
 from clutchopt.optimise.diagnosis import diagnose
 from clutchopt.optimise.failed_starts import FailedStarts
-from clutchopt.optimise.integers import RuledOut, descend, fixing, nearest_integers, relaxation_seed, within
+from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_start, nearest_integers, relaxation_seed,
+                                         within)
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
 from clutchopt.optimise.solution import Solution, SolverInfo, SolverOptions, WarmStart
@@ -249,7 +250,10 @@ class Problem:
             return self._finish(case, relaxed, runs, data, search, ("not_found", "no design from this start"))
         if not integer or not relaxed["ok"]:
             return self._finish(case, relaxed, runs, data, search)
-        kept = nearest_integers(posed, data.box, integer, relaxed, search, fixing(posed, data, runs, search, ruled))
+        attempt_at = fixing(posed, data, runs, search, ruled)
+        kept = nearest_integers(posed, data.box, integer, relaxed, search, attempt_at)
+        if self.start_up is not None and start is not None and not warm_ok:  # a first solve, from the sizing
+            kept = from_the_start(posed, data, integer, kept, search, attempt_at)
         if kept is None:  # the relaxation is feasible, no integer near it is
             tried = "; ".join(", ".join(f"{k}={v}" for k, v in e.items() if k in posed.names) for e in search)
             return self._finish(case, runs[-1], runs, data, search,

@@ -1,0 +1,60 @@
+"""The start-up's integer search does not take a fixed-integer run that ended without a verdict for "no design there"
+(clutchopt/optimise/integers.py, ``no_verdict``; docs/start_up.md, "Integer attempts without a verdict").
+
+No hand calculation: the reference is a solve of the same case with the integers fixed (a mixed-integer solve is a
+local search over the integers, so the least it promises is to find a choice it tries as well as a solve of that
+choice alone does), and the test asserts that the retry was taken, so that it cannot pass by not being exercised."""
+
+from dataclasses import replace
+
+from clutchopt.cases import load_case
+from clutchopt.optimise import integers, problem, solve_case
+from conftest import CASES
+
+
+def test_ball_start_up_at_345_kg_m2_finds_the_rows_its_iteration_limit_hid(monkeypatch):
+    # ball_motor_start at driven_inertia 345 kg m^2: the relaxation rounds to 24 rows, whose run from the
+    # relaxation's point ends at IPOPT's iteration limit (500); main then kept 25 rows, 1020.37 kg. From the
+    # solve's own start (the papers' sizing) 24 rows solve to 954.26 kg, and 23 rows, their downhill neighbour, to
+    # 950.76 kg: the solve with ball_rows fixed at 23 finds the same design
+    retried = []
+    original = integers.no_verdict
+
+    def spied(posed, run):
+        found = original(posed, run)
+        retried.append((run["status"], found))
+        return found
+
+    monkeypatch.setattr(integers, "no_verdict", spied)
+    case = load_case(CASES / "ball_motor_start.toml").with_values(driven_inertia=345.0)
+    solution = solve_case(case)
+    assert ("Maximum_Iterations_Exceeded", True) in retried
+    fixed = solve_case(replace(case, bounds={**case.bounds, "ball_rows": (23.0, 23.0)}))
+    assert solution.status == fixed.status == "optimal"
+    assert solution.design["ball_rows"] == 23.0
+    assert solution.objective <= fixed.objective * (1 + 1e-6)
+    assert abs(solution.objective - 950.755) < 0.01
+
+
+def test_ball_start_up_at_340_kg_m2_tries_the_sizing_rows_its_relaxation_left(monkeypatch):
+    # ball_motor_start at driven_inertia 340 kg m^2: the relaxation ends at a local optimum of 24.25 rows, 24 rows
+    # from there at 1016.18 kg, 25 rows at 1015.94 kg (main's design); the papers' sizing (23 rows, 950.755 kg, its
+    # start-up within every limit) is the static optimum, so no start-up design goes below it: its rows fixed and
+    # solved from it give 950.76 kg, the design of the solve with ball_rows fixed at 23
+    tried = []
+    original = integers.from_the_start
+
+    def spied(posed, data, integer, kept, search, attempt):
+        found = original(posed, data, integer, kept, search, attempt)
+        tried.append((kept["value"], found["value"]))
+        return found
+
+    monkeypatch.setattr(integers, "from_the_start", spied)
+    monkeypatch.setattr(problem, "from_the_start", spied)
+    case = load_case(CASES / "ball_motor_start.toml").with_values(driven_inertia=340.0)
+    solution = solve_case(case)
+    assert len(tried) == 1 and abs(tried[0][0] - 1015.94) < 0.01 and abs(tried[0][1] - 950.755) < 0.01
+    fixed = solve_case(replace(case, bounds={**case.bounds, "ball_rows": (23.0, 23.0)}))
+    assert solution.status == fixed.status == "optimal"
+    assert solution.design["ball_rows"] == 23.0
+    assert solution.objective <= fixed.objective * (1 + 1e-6)
