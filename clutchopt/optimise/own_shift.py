@@ -17,16 +17,25 @@ from __future__ import annotations
 import math
 
 SOLVED = "Solve_Succeeded"
-CARRIED = None  # the "choice" that measured a shift a sweep's point before carried: none of this loop's
+CARRIED = None  # the "choice" that measured a shift carried from elsewhere, where it is not known
+
+
+def carried_by(warm) -> frozenset:
+    """The choices that measured the limits a loop starts moved (a sweep's: the point before's ``limit_shift``,
+    with its solution ``warm``): those its loop recorded, else an unknown one (:data:`CARRIED`). The cable's sweep
+    at 0.25 kg m^2 starts from 0.2's stress limit, moved by 7 cables' start: 7 cables found infeasible there are
+    not solved through their own loop again (0.25 alone: 7 infeasible at the limit they moved themselves)."""
+    return getattr(warm, "shift_measured_by", None) or frozenset({CARRIED})
 
 
 class ForeignShifts:
     """The integer choices (tuples of the integer variables ``names``, in order) an elastic link's accuracy loop
     found infeasible at limits moved by other choices' simulated starts, with the objective at each run's end."""
 
-    def __init__(self, names: list[str], carried: bool):
+    def __init__(self, names: list[str], carried: frozenset | tuple = ()):
         self.names = names
-        self.measured: set = {CARRIED} if carried else set()  # choices whose simulated starts moved the limits
+        self.measured: set = set(carried)  # the choices whose simulated starts moved the limits (``carried``: those
+        # that moved the limits the loop starts with, a sweep's point before's)
         self.found: dict[tuple, float] = {}  # choice -> least objective at the end of its infeasible runs
         self.own: set[tuple] = set()  # choices found infeasible at the case's limits or at their own shift
 

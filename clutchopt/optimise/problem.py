@@ -25,7 +25,7 @@ from clutchopt.optimise.diagnosis import diagnose
 from clutchopt.optimise.failed_starts import FailedStarts
 from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_start, nearest_integers, relaxation_seed,
                                          within)
-from clutchopt.optimise.own_shift import ForeignShifts
+from clutchopt.optimise.own_shift import ForeignShifts, carried_by
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
 from clutchopt.optimise.solution import Solution, SolverInfo, SolverOptions, WarmStart
@@ -129,7 +129,7 @@ class Problem:
         if fixed:
             nlp_case = replace(nlp_case, bounds={**nlp_case.bounds, **fixed})
         foreign = ForeignShifts([v.name for v in self.formulation.variables if v.integer],
-                                bool(limit_shift(case, nlp_case))) if structure.elastic and not fixed else None
+                                carried_by(warm) if limit_shift(case, nlp_case) else ()) if structure.elastic else None
         ruled = None if structure.elastic else RuledOut()  # an elastic link's NLP differs from its simulation by the
         # model, not the mesh: no collocation error bounds what the next solve changes
         solution = self._solve(case, start, warm, nlp_case=nlp_case, mesh=mesh, diagnosed=diagnosed, ruled=ruled,
@@ -177,7 +177,9 @@ class Problem:
             solution.limit_shift = limit_shift(case, nlp_case)
         if foreign is not None:
             foreign.seen(solution)  # (the last solve's, where the loop ran its course)
-            solution = self._own_loops(case, solution, foreign)
+            solution.shift_measured_by = frozenset(foreign.measured)
+            if not fixed:
+                solution = self._own_loops(case, solution, foreign)
         return self._worn(case, solution)
 
     def _own_loops(self, case: Case, solution: Solution, foreign: ForeignShifts) -> Solution:
