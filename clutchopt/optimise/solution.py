@@ -132,6 +132,8 @@ class Solution:
     #                                                        / the case's, where the defect correction moved it
     along: object | None = field(default=None, repr=False)  # a start-up sweep's point: its limits as its loop
     #                           ended, for the next point's (clutchopt.optimise.start_up_sweep.Along)
+    shift_measured_by: frozenset = field(default_factory=frozenset, repr=False)  # an elastic link's start-up: the
+    #     integer choices whose simulated starts moved limit_shift's limits (clutchopt.optimise.own_shift)
 
     def _repr_html_(self) -> str:
         """Jupyter shows a solution as the tables of ``clutchopt solve``."""

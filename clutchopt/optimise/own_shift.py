@@ -1,0 +1,70 @@
+"""Integer choices a start-up's accuracy loop found infeasible only at limits moved for another choice.
+
+The defect correction (:func:`~clutchopt.optimise.start_up_check.corrected_case`) moves a start-up limit by what the
+simulated start of the kept design adds to the NLP's figure. An elastic link's loop then decides its integers again
+at the moved limit, but what the simulation adds is the kept choice's: the cable's dynamic stress over its
+quasi-static one differs from one cable count to the next. cable_motor_start at 0.3 kg m^2: the first solve keeps
+7 cables, whose simulated stress moves the stress limit in to 0.905 of the case's; at that limit 8 cables are
+infeasible and 9 are kept (4.418 kg), where 8 cables fixed solve to 3.953 kg, their own simulated start meeting the
+case's limit. :class:`ForeignShifts` records the choices found infeasible at limits another choice's start moved
+(or a sweep's point before carried), and ``Problem._refined`` solves those lighter than the kept design through
+their own accuracy loop (integers fixed, from the case's limits) before it keeps the heavier one (docs/start_up.md,
+"Integer attempts").
+"""
+
+from __future__ import annotations
+
+import math
+
+SOLVED = "Solve_Succeeded"
+CARRIED = None  # the "choice" that measured a shift carried from elsewhere, where it is not known
+
+
+def carried_by(warm) -> frozenset:
+    """The choices that measured the limits a loop starts moved (a sweep's: the point before's ``limit_shift``,
+    with its solution ``warm``): those its loop recorded, else an unknown one (:data:`CARRIED`). The cable's sweep
+    at 0.25 kg m^2 starts from 0.2's stress limit, moved by 7 cables' start: 7 cables found infeasible there are
+    not solved through their own loop again (0.25 alone: 7 infeasible at the limit they moved themselves)."""
+    return getattr(warm, "shift_measured_by", None) or frozenset({CARRIED})
+
+
+class ForeignShifts:
+    """The integer choices (tuples of the integer variables ``names``, in order) an elastic link's accuracy loop
+    found infeasible at limits moved by other choices' simulated starts, with the objective at each run's end."""
+
+    def __init__(self, names: list[str], carried: frozenset | tuple = ()):
+        self.names = names
+        self.measured: set = set(carried)  # the choices whose simulated starts moved the limits (``carried``: those
+        # that moved the limits the loop starts with, a sweep's point before's)
+        self.found: dict[tuple, float] = {}  # choice -> least objective at the end of its infeasible runs
+        self.own: set[tuple] = set()  # choices found infeasible at the case's limits or at their own shift
+
+    def choice(self, design: dict[str, float]) -> tuple:
+        return tuple(float(design[name]) for name in self.names)
+
+    def corrected(self, solution) -> None:
+        """The limits are moved by ``solution``'s simulated start (its choice measured the shift)."""
+        self.measured.add(self.choice(solution.design))
+
+    def seen(self, solution) -> None:
+        """A solve of the loop (at the limits moved so far): its infeasible choices, recorded as found at another
+        choice's shift or at their own (none moved, or moved by their own start alone)."""
+        for entry in solution.integer_search:
+            if entry["status"] == SOLVED or entry["status"].startswith("excluded") \
+                    or not all(name in entry for name in self.names):
+                continue
+            combo = tuple(float(entry[name]) for name in self.names)
+            if self.measured <= {combo}:
+                self.own.add(combo)
+            elif math.isfinite(entry["objective"]):
+                self.found[combo] = min(self.found.get(combo, math.inf), entry["objective"])
+
+    def lighter(self, kept) -> list[tuple]:
+        """The choices to solve through their own loop before ``kept`` (the loop's solution) is kept: found
+        infeasible only at another choice's shift, their runs ending below the kept objective (any, where the loop
+        kept no design), lightest first."""
+        has_design = kept.status in ("optimal", "unverified")
+        bound = kept.objective if has_design else math.inf
+        own = self.choice(kept.design) if has_design else None
+        return sorted((combo for combo, value in self.found.items()
+                       if value < bound and combo not in self.own and combo != own), key=self.found.get)
