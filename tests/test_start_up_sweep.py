@@ -55,7 +55,7 @@ def test_the_limits_a_point_starts_with_follow_the_secant_through_the_two_points
     previous = SimpleNamespace(along=last, limit_shift={"max_temperature_rise": 1 - 1.9400e-4})  # as its last NLP
 
     def at(inertia, speed=100.0, point_before=previous):
-        return predicted_shift(point_before, SimpleNamespace(values={"driven_inertia": inertia, "speed": speed}))
+        return predicted_shift(point_before, {"driven_inertia": inertia, "speed": speed})
 
     assert at(0.62)["max_temperature_rise"] == pytest.approx(1 - 1.9175e-4, rel=0, abs=1e-15)
     assert at(0.625)["max_temperature_rise"] == pytest.approx(1 - 1.90275e-4, rel=0, abs=1e-15)
@@ -95,7 +95,8 @@ def test_an_elastic_link_s_sweep_carries_its_limits_as_they_are(monkeypatch):
 
     def spy(problem, case, previous):
         found = start_up_sweep.solved_along(problem, case, previous)
-        seen.append((found, start_up_sweep.predicted_shift(previous, case) if found is not None else None,
+        predicted = start_up_sweep.predicted_shift(previous, start_up_sweep._numbers(case)) if found is not None else None
+        seen.append((found, predicted,
                      previous.limit_shift if previous is not None else None))
         return found
 

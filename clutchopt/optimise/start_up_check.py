@@ -126,6 +126,15 @@ def _relative(nlp: float, simulated: float) -> float:
     return (nlp - simulated) / abs(simulated)
 
 
+def limit_gaps(solution):
+    """Each simulated check of a start-up limit (``LIMIT_OF``: an upper limit, its figure a number): (the check, the
+    limit's case quantity, the simulated figure less the limit the check holds it to)."""
+    for check in solution.constraints:
+        name = LIMIT_OF.get(check.name)
+        if name is not None and check.sense == "<=" and math.isfinite(check.value):
+            yield check, name, check.value - check.limit
+
+
 def corrected_case(solution, nlp_case, centre: bool = True):
     """The case of the next solve (defect correction), each limit moved from the one the NLP last saw (a scattered
     limit: its corner's, an NLP parameter) by what the simulated figure differs from the case's limit: where the
@@ -135,11 +144,7 @@ def corrected_case(solution, nlp_case, centre: bool = True):
     loop ended on. None where nothing is to be moved, or a limit cannot be."""
     summary, tolerance = solution.start_up, solution.start_up["tolerance"]
     limits, corners = {}, {}
-    for check in solution.constraints:
-        name = LIMIT_OF.get(check.name)
-        if name is None or check.sense != "<=" or not math.isfinite(check.value):
-            continue
-        gap = check.value - check.limit
+    for check, name, gap in limit_gaps(solution):
         if not check.feasible:
             gap += 0.5 * tolerance * abs(check.limit)
         elif not (centre and abs((check.elasticity or 0.0) * gap / check.limit) > CENTRE * tolerance):

@@ -22,7 +22,7 @@ to an optimum is solved cold, as ``solve`` solves it (its verdict is ``solve``'s
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -30,7 +30,7 @@ from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution
-from clutchopt.optimise.start_up_check import LIMIT_OF
+from clutchopt.optimise.start_up_check import limit_gaps
 
 COLLINEAR = 1e-9  # relative: the case's values on the line through the two points before (each changed value's step)
 FURTHEST = 1.5  # the longest step ahead, in steps of the two points before, the secant is carried over
@@ -57,7 +57,8 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
             or len(previous.internal) != block.size:  # none, or of another problem (its intervals doubled)
         return None
     try:
-        solution = problem.refined(case, warm=previous, mesh=previous.mesh[0], shift=predicted_shift(previous, case),
+        numbers = _numbers(case)
+        solution = problem.refined(case, warm=previous, mesh=previous.mesh[0], shift=predicted_shift(previous, numbers),
                                    diagnosed=False, cold=False)  # solve's own cold start and diagnosis follow
     except InputError:  # its first simulation failed from this start
         return None
@@ -66,13 +67,14 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
     if block.s.elastic:  # its loop moves a limit only where the simulated start misses it, never centres one: the
         return solution  # NLP is another model than the simulated dynamics, not a mesh off them (the share is kept)
     before = previous.along
-    solution.along = Along(_numbers(case), centred_shift(solution, case), solution.mesh[0],
-                           Along(before.values, before.shift, before.mesh) if before is not None else None)
+    solution.along = Along(numbers, centred_shift(solution, case), solution.mesh[0],
+                           replace(before, before=None) if before is not None else None)
     return solution
 
 
-def predicted_shift(previous: Solution, case: Case) -> dict[str, float]:
-    """The limits the point at ``case`` starts with, as shares of its case's: the point before's, centred
+def predicted_shift(previous: Solution, numbers: dict[str, float]) -> dict[str, float]:
+    """The limits the point whose case's values are ``numbers`` (:func:`_numbers`) starts with, as shares of its
+    case's: the point before's, centred
     (:func:`centred_shift`), each moved on by the secant through the two points before where both ended on the same
     mesh (a mesh adaptation moves the collocation's figures, hence the corrections, by a step of its own) and
     ``case`` lies on the line through their values, at most FURTHEST steps on; the point before's ``limit_shift``
@@ -82,7 +84,7 @@ def predicted_shift(previous: Solution, case: Case) -> dict[str, float]:
         return previous.limit_shift
     if last.before is None or not np.array_equal(last.mesh, last.before.mesh):
         return last.shift
-    step = _step(last.before.values, last.values, _numbers(case))
+    step = _step(last.before.values, last.values, numbers)
     if step is None:
         return last.shift
     return {name: share + step * (share - last.before.shift[name]) if name in last.before.shift else share
@@ -96,10 +98,9 @@ def centred_shift(solution: Solution, case: Case) -> dict[str, float]:
     those of the limits its last solve saw, off that by up to what the loop accepts; the secant is taken through
     the centred ones, not through its own predictions."""
     shares = dict(solution.limit_shift)
-    for check in solution.constraints:
-        name = LIMIT_OF.get(check.name)
-        if name in shares and check.active and check.sense == "<=" and math.isfinite(check.value):
-            shares[name] -= (check.value - check.limit) / case.values[name]
+    for check, name, gap in limit_gaps(solution):
+        if name in shares and check.active:
+            shares[name] -= gap / case.values[name]
     return shares
 
 
