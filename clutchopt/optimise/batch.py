@@ -251,7 +251,6 @@ class BatchSweep:
         self._span = min(EXCLUSION_SPAN, self.count)
         self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
         self.searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
-        self._opened: dict[int, np.ndarray] = {}  # point -> the combination the search starts from (:meth:`_opening`)
         self._undesigned: dict[tuple, tuple[int, str]] = {}  # integer combination -> the last point where IPOPT or
         # the least violation found no design, and the status there
         varied = self.values[[q.name in self.varied for q in f.quantities]]
@@ -285,8 +284,8 @@ class BatchSweep:
             while k < end and (failed or time.perf_counter() < deadline):  # each turn solves at least one point
                 wanted, reach = min(pace.size, ahead or pace.size, end - k), min(2 * pace.size, LONGEST_BATCH, end - k)
                 forecast = ahead is not None and ahead < pace.size  # the chain ends at a forecast change
-                block, chained, searching, tried = (self._batch(start, k, wanted, reach) if start is not None
-                                                    else (None, 0, False, None))
+                block, chained, searching, tried, origin = (self._batch(start, k, wanted, reach) if start is not None
+                                                            else (None, 0, False, None, None))
                 passed = 0 if block is None else len(block.index)
                 if passed:
                     blocks.append(block)
@@ -298,7 +297,7 @@ class BatchSweep:
                     # no shorter)
                     if not searching or k == end:  # (a batch that passes up to its integers' exclusion hands the
                         continue  # next point to the search)
-                settled = self._settle(start, k, tried) if searching else None
+                settled = self._settle(start, k, tried, origin) if searching else None
                 if settled is not None:  # the integer search decided point k in the batch
                     kept, start = start, _Start(self, block=settled)
                     if not (np.array_equal(start.combo, kept.combo) and self._tightens(k)):  # (where it kept the
@@ -375,20 +374,22 @@ class BatchSweep:
         self.solver_s += solution.solver.time_s
         return solution
 
-    def _batch(self, start: _Start, k: int, count: int, reach: int) -> tuple[Block | None, int, bool, "_Chain | None"]:
+    def _batch(self, start: _Start, k: int, count: int, reach: int
+               ) -> tuple[Block | None, int, bool, "_Chain | None", np.ndarray | None]:
         """Chain ``count`` points from ``start`` (as many as up to a point within ``reach`` where the batch's
         integers are excluded): the columns up to the first that fails a test (None if it is the first), how many
         were chained (none if the integers are excluded at ``k``, see :func:`chain_length`), whether the first point
         left is the integer search's to decide (its integers excluded there, or a neighbouring combination to try;
         also where every chained point passed and the next one excludes them), and in the second case that point's
-        chained column (KKT-verified at its integers: the search's first attempt). Where the integers are excluded
-        at a point and one neighbouring combination is left there (:meth:`_changes`), the chain goes on with it:
-        the point is settled from its column (:meth:`_replayed`)."""
+        chained column (KKT-verified at its integers: the search's first attempt), and the combination the search
+        starts from there where it is not the batch's (a neighbour that opens at that point: :meth:`_opening`; None:
+        the batch's). Where the integers are excluded at a point and one neighbouring combination is left there
+        (:meth:`_changes`), the chain goes on with it: the point is settled from its column (:meth:`_replayed`)."""
         lower, upper = self.lower.copy(), self.upper.copy()
         lower[self.integer] = upper[self.integer] = start.combo
         first = -1  # the first point ahead where the batch's integers are excluded, or a neighbour opens
         changes: list[tuple[int, np.ndarray]] = []  # (offset, combination) where the chain changes its integers
-        self._opened = {}
+        opens, neighbour = None, None  # (the offset where a neighbour opens, if the chain ends there; no changes then)
         if self.integer:  # the batch stops short of a point its integers cannot serve whatever the rest (the search
             # excludes them there without a solve), or changes them there to the one neighbour left
             excluded = self._excluded(lower, k, max(count, reach))
@@ -396,17 +397,19 @@ class BatchSweep:
                 first = int(np.argmax(excluded))
             opens, neighbour = self._opening(start, k, max(count, reach))
             if opens is not None and (first < 0 or opens < first):
-                first, self._opened[k + opens] = opens, neighbour
-            elif first >= 0:
+                first = opens
+            else:
+                opens = None
+            if opens is None and first >= 0:
                 count = max(count, first + 1)
                 changes, first = self._changes(start.combo, k, count, first)
             if first == 0:
-                return None, 0, True, None  # foreseen: nothing chained
+                return None, 0, True, None, (neighbour if opens == 0 else None)  # foreseen: nothing chained
             if first > 0:
                 count = first  # (a break known ahead, within reach: the chain ends there)
         chain = self._chain(start, k, count, lower, upper, start.seed, changes=changes)
         if chain is None:
-            return None, min(count, chain_length(count)), False, None
+            return None, min(count, chain_length(count)), False, None, None
         count = len(chain.index)
         ok = chain.ok & ~self._unruled_moves(chain, start)
         passed = int(np.argmin(ok)) if not ok.all() else count
@@ -422,7 +425,7 @@ class BatchSweep:
         if searching and passed < count:
             tried = chain.column(passed, before.f_scale)
         block = (pieces[0] if len(pieces) == 1 else Block.joined(pieces)) if pieces else None
-        return block, count, searching, tried
+        return block, count, searching, tried, (neighbour if passed == opens else None)
 
     def _changes(self, combo: np.ndarray, k: int, count: int, first: int) -> tuple[list[tuple[int, np.ndarray]], int]:
         """Where the integers ``combo`` are excluded at point k + ``first`` (and the next ones at later points, up to
@@ -543,14 +546,16 @@ class BatchSweep:
         ratio[1:][points[1:] == points[:-1]] = 0.0
         return ratio
 
-    def _settle(self, start: _Start, k: int, tried: _Chain | None = None) -> Block | None:
+    def _settle(self, start: _Start, k: int, tried: _Chain | None = None,
+                origin: np.ndarray | None = None) -> Block | None:
         """Point k, where a batch ended for the integer search: ``Problem.solve``'s warm search (``integers.descend``
-        from the batch's integers; should they fail, the relaxation and ``integers.nearest_integers``), each
-        combination excluded by the batch's tables or re-solved by a one-point chained SQP from the previous point's
-        optimum and KKT-checked; the batch's integers are not solved again where the chain solved them at k
-        (``tried``, its column there). None where a re-solve does not pass its check or no integer point is found
-        (``Problem.solve`` decides the point; also where a constraint of the case alone breaks, which fails the
-        relaxation); the search is kept for the point's Solution."""
+        from the batch's integers, or from ``origin``, a neighbour that opens at k: :meth:`_opening`; should they
+        fail, the relaxation and ``integers.nearest_integers``), each combination excluded by the batch's tables or
+        re-solved by a one-point chained SQP from the previous point's optimum and KKT-checked; the batch's integers
+        are not solved again where the chain solved them at k (``tried``, its column there). None where a re-solve
+        does not pass its check or no integer point is found (``Problem.solve`` decides the point; also where a
+        constraint of the case alone breaks, which fails the relaxation); the search is kept for the point's
+        Solution."""
         search: list[dict] = []
         box, seed = Box(start.scale, self.lower, self.upper), start.seed
         runs: list[_Chain] = []
@@ -610,8 +615,8 @@ class BatchSweep:
                 "f": float(chain.f[0, 0]), "value": float(chain.f[0, 0]) * start.f_scale, "chain": chain}
 
         try:
-            origin = self._opened.pop(k, start.combo)  # (a neighbour that opens at k: :meth:`_opening`)
-            kept = descend(self.posed, box, self.integer, origin, seed, search, attempt)
+            kept = descend(self.posed, box, self.integer, start.combo if origin is None else origin, seed, search,
+                           attempt)
             past = self._past_exclusion(start.combo, k) if kept is None else None
             if past is not None:  # the only neighbour its exclusion leaves: the search from there
                 kept = descend(self.posed, box, self.integer, past, seed, search, attempt)
@@ -647,7 +652,7 @@ class BatchSweep:
         at (``integers.downhill``) is ``start``'s integers, tried already: the search's record is those excluded and
         the column kept. None otherwise (:meth:`_settle` runs the search)."""
         run = {"x": tried.x[:, 0], "lam_x": tried.lam_x[:, 0], "f": float(tried.f[0, 0])}
-        if k in self._opened or not tried.ok[0] or any(
+        if not tried.ok[0] or any(
                 not np.array_equal(combo, start.combo)
                 for combo in downhill(self.posed, run, Box(start.scale, self.lower, self.upper), self.integer)):
             return None
