@@ -141,13 +141,23 @@ class _Chain(Block):
         return _Chain(self.index[j:j + 1], self.ok[j:j + 1], self.moves[j:j + 1], **a)
 
 
+def _zero_step(x: np.ndarray, lam_x: np.ndarray, lam_g: np.ndarray) -> dict:
+    """No step to predict from at the primal-dual point ``x``, ``lam_x``, ``lam_g``: zeros of their shapes."""
+    return {"dx": np.zeros_like(x), "dlam_x": np.zeros_like(lam_x), "dlam_g": np.zeros_like(lam_g)}
+
+
+def _seed(x: np.ndarray, lam_x: np.ndarray, lam_g: np.ndarray) -> dict:
+    """A start for SQP at the primal-dual point ``x``, ``lam_x``, ``lam_g`` (scaled), without a step to predict
+    from."""
+    return {"x": x, "lam_x": lam_x, "lam_g": lam_g, **_zero_step(x, lam_x, lam_g)}
+
+
 def _from_design(x: np.ndarray, seed: dict) -> dict:
     """A start for SQP at the design ``x`` (scaled) with ``seed``'s constraint multipliers, without bound multipliers
     or a step to predict from. (From the least violation's design at the ball's rows, its multipliers zero, SQP
     stopped on a search direction too small at 2 of 3 combinations; with the previous optimum's constraint
     multipliers each converged in 2 iterations, with the Hessian's negative eigenvalues clipped.)"""
-    return {"x": x, "lam_g": seed["lam_g"],
-            **{key: np.zeros_like(seed[key]) for key in ("lam_x", "dx", "dlam_x", "dlam_g")}}
+    return _seed(x, np.zeros_like(seed["lam_x"]), seed["lam_g"])
 
 
 def _last_two(blocks: list[Block], integer: list[int]) -> Block | None:
@@ -184,8 +194,7 @@ class _Start:
             self.x = np.array([solution.design[name] for name in sweep.names]) / self.scale
             self.lam_x, self.lam_g = warm_multipliers(sweep.posed, *solution.multipliers)
             self.objective = solution.objective
-            self.step = {"dx": np.zeros_like(self.x), "dlam_x": np.zeros_like(self.lam_x),
-                         "dlam_g": np.zeros_like(self.lam_g)}  # nothing to predict from
+            self.step = _zero_step(self.x, self.lam_x, self.lam_g)  # nothing to predict from
         else:  # its last point
             a, p = block.arrays, block.arrays["p"][:, -1]
             self.scale, self.x, self.lam_x, self.lam_g = p[m:m + n], a["x"][:, -1], a["lam_x"][:, -1], a["lam_g"][:, -1]
@@ -754,11 +763,15 @@ class BatchSweep:
         is without a design, IPOPT's verdict at a few QP solves, or where a design was found), and the seconds of the
         call."""
         began = time.perf_counter()
-        found = least(self.posed, seed["x"], np.concatenate([self._by_point[k], start.scale, [start.f_scale]]),
-                      lower / start.scale, upper / start.scale)
+        found = least(self.posed, seed["x"], self._p(k, start), lower / start.scale, upper / start.scale)
         seconds = time.perf_counter() - began
         self.solves, self.solver_s = self.solves + 1, self.solver_s + seconds
         return found, seconds
+
+    def _p(self, k: int, start: _Start) -> np.ndarray:
+        """The NLP's parameter vector at point k, scaled as ``start``: the point's case values, the variable scales,
+        the objective's normaliser."""
+        return np.concatenate([self._by_point[k], start.scale, [start.f_scale]])
 
     def _cold(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
               seed: dict) -> tuple[dict, float, dict | None]:
@@ -773,14 +786,12 @@ class BatchSweep:
         lbx, ubx = lower / start.scale, upper / start.scale
         x0 = np.clip(seed["x"], lbx, ubx)
         data = ScaledData(self.posed.params(self.point_case(k)), lower, upper, x0 * start.scale, start.scale,
-                          start.f_scale, np.concatenate([self._by_point[k], start.scale, [start.f_scale]]))
+                          start.f_scale, self._p(k, start))
         solved = attempts.run(self.posed, data, lbx, ubx, x0, None)
         self.solves, self.solver_s = self.solves + 1, self.solver_s + solved["time"]
         if solved["ok"] and solved["feasible"]:
-            x = solved["x"]
-            lam_x, lam_g = warm_multipliers(self.posed, solved["lam_x"], solved["lam_g"])
-            return {}, solved["time"], {"x": x, "lam_x": lam_x, "lam_g": lam_g, "dx": np.zeros_like(x),
-                                        "dlam_x": np.zeros_like(lam_x), "dlam_g": np.zeros_like(lam_g)}
+            return {}, solved["time"], _seed(solved["x"], *warm_multipliers(self.posed, solved["lam_x"],
+                                                                              solved["lam_g"]))
         return search_entry(self.posed, self.integer, lower[self.integer], solved["status"], False,
                             solved["f"] * start.f_scale), solved["time"], None
 
