@@ -148,14 +148,15 @@ def _spent(solution: Solution, tried: list[tuple[str, Solution]]) -> Solution:
 
 
 def infeasible_at(posed, case: Case, design: dict[str, float], diagnosis: str, solver: SolverInfo,
-                  figures: tuple | None = None) -> Solution:
+                  figures: tuple | None = None, bounds: tuple[np.ndarray, np.ndarray] | None = None) -> Solution:
     """A proven ``infeasible`` verdict at ``case`` that shows ``design`` (a start-up the drive makes impossible: the
     papers' sizing, ``Problem.proven``; a sweep's point a proof covers: the design of the point before,
     ``region_proof``), every constraint, the objective and the outputs re-evaluated in float64 at the case's values
-    (``figures``: evaluated already, :func:`figures_at`), the bounds the case's."""
+    (``figures``: evaluated already, :func:`figures_at`), the bounds the case's (``bounds``: lower and upper, SI,
+    read already from ``posed.bounds_and_start``)."""
     f = posed.formulation
     checks, objective, outputs = figures or figures_at(posed, [case], design)[0]
-    lower, upper, _ = posed.bounds_and_start(case, None)
+    lower, upper = bounds or posed.bounds_and_start(case, None)[:2]
     return Solution(f.coupling, f.mode, posed.objective.name, posed.objective.unit, "infeasible", objective, design,
                     outputs, checks, solver, diagnosis,
                     bounds={n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, lower, upper)},
