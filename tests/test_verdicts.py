@@ -160,8 +160,8 @@ def test_a_batched_sweep_solves_a_failed_point_again_from_its_feasible_neighbour
 
     case = load_case(CASES / "ball_crusher.toml")
     solve, settle, neighbours = Problem.solve, BatchSweep._settle, []
-    monkeypatch.setattr(BatchSweep, "_settle", lambda self, start, k, tried=None: None if k == 2 else
-                        settle(self, start, k, tried))
+    monkeypatch.setattr(BatchSweep, "_settle", lambda self, start, k, tried=None, origin=None: None if k == 2 else
+                        settle(self, start, k, tried, origin))
 
     def stalling(self, point, *args, **kwargs):
         solution = solve(self, point, *args, **kwargs)

@@ -141,13 +141,23 @@ class _Chain(Block):
         return _Chain(self.index[j:j + 1], self.ok[j:j + 1], self.moves[j:j + 1], **a)
 
 
+def _zero_step(x: np.ndarray, lam_x: np.ndarray, lam_g: np.ndarray) -> dict:
+    """No step to predict from at the primal-dual point ``x``, ``lam_x``, ``lam_g``: zeros of their shapes."""
+    return {"dx": np.zeros_like(x), "dlam_x": np.zeros_like(lam_x), "dlam_g": np.zeros_like(lam_g)}
+
+
+def _seed(x: np.ndarray, lam_x: np.ndarray, lam_g: np.ndarray) -> dict:
+    """A start for SQP at the primal-dual point ``x``, ``lam_x``, ``lam_g`` (scaled), without a step to predict
+    from."""
+    return {"x": x, "lam_x": lam_x, "lam_g": lam_g, **_zero_step(x, lam_x, lam_g)}
+
+
 def _from_design(x: np.ndarray, seed: dict) -> dict:
     """A start for SQP at the design ``x`` (scaled) with ``seed``'s constraint multipliers, without bound multipliers
     or a step to predict from. (From the least violation's design at the ball's rows, its multipliers zero, SQP
     stopped on a search direction too small at 2 of 3 combinations; with the previous optimum's constraint
     multipliers each converged in 2 iterations, with the Hessian's negative eigenvalues clipped.)"""
-    return {"x": x, "lam_g": seed["lam_g"],
-            **{key: np.zeros_like(seed[key]) for key in ("lam_x", "dx", "dlam_x", "dlam_g")}}
+    return _seed(x, np.zeros_like(seed["lam_x"]), seed["lam_g"])
 
 
 def _last_two(blocks: list[Block], integer: list[int]) -> Block | None:
@@ -184,8 +194,7 @@ class _Start:
             self.x = np.array([solution.design[name] for name in sweep.names]) / self.scale
             self.lam_x, self.lam_g = warm_multipliers(sweep.posed, *solution.multipliers)
             self.objective = solution.objective
-            self.step = {"dx": np.zeros_like(self.x), "dlam_x": np.zeros_like(self.lam_x),
-                         "dlam_g": np.zeros_like(self.lam_g)}  # nothing to predict from
+            self.step = _zero_step(self.x, self.lam_x, self.lam_g)  # nothing to predict from
         else:  # its last point
             a, p = block.arrays, block.arrays["p"][:, -1]
             self.scale, self.x, self.lam_x, self.lam_g = p[m:m + n], a["x"][:, -1], a["lam_x"][:, -1], a["lam_g"][:, -1]
@@ -251,7 +260,6 @@ class BatchSweep:
         self._span = min(EXCLUSION_SPAN, self.count)
         self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
         self.searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
-        self._opened: dict[int, np.ndarray] = {}  # point -> the combination the search starts from (:meth:`_opening`)
         self._undesigned: dict[tuple, tuple[int, str]] = {}  # integer combination -> the last point where IPOPT or
         # the least violation found no design, and the status there
         varied = self.values[[q.name in self.varied for q in f.quantities]]
@@ -285,8 +293,8 @@ class BatchSweep:
             while k < end and (failed or time.perf_counter() < deadline):  # each turn solves at least one point
                 wanted, reach = min(pace.size, ahead or pace.size, end - k), min(2 * pace.size, LONGEST_BATCH, end - k)
                 forecast = ahead is not None and ahead < pace.size  # the chain ends at a forecast change
-                block, chained, searching, tried = (self._batch(start, k, wanted, reach) if start is not None
-                                                    else (None, 0, False, None))
+                block, chained, searching, tried, origin = (self._batch(start, k, wanted, reach) if start is not None
+                                                            else (None, 0, False, None, None))
                 passed = 0 if block is None else len(block.index)
                 if passed:
                     blocks.append(block)
@@ -298,7 +306,7 @@ class BatchSweep:
                     # no shorter)
                     if not searching or k == end:  # (a batch that passes up to its integers' exclusion hands the
                         continue  # next point to the search)
-                settled = self._settle(start, k, tried) if searching else None
+                settled = self._settle(start, k, tried, origin) if searching else None
                 if settled is not None:  # the integer search decided point k in the batch
                     kept, start = start, _Start(self, block=settled)
                     if not (np.array_equal(start.combo, kept.combo) and self._tightens(k)):  # (where it kept the
@@ -375,20 +383,22 @@ class BatchSweep:
         self.solver_s += solution.solver.time_s
         return solution
 
-    def _batch(self, start: _Start, k: int, count: int, reach: int) -> tuple[Block | None, int, bool, "_Chain | None"]:
+    def _batch(self, start: _Start, k: int, count: int, reach: int
+               ) -> tuple[Block | None, int, bool, "_Chain | None", np.ndarray | None]:
         """Chain ``count`` points from ``start`` (as many as up to a point within ``reach`` where the batch's
         integers are excluded): the columns up to the first that fails a test (None if it is the first), how many
         were chained (none if the integers are excluded at ``k``, see :func:`chain_length`), whether the first point
         left is the integer search's to decide (its integers excluded there, or a neighbouring combination to try;
         also where every chained point passed and the next one excludes them), and in the second case that point's
-        chained column (KKT-verified at its integers: the search's first attempt). Where the integers are excluded
-        at a point and one neighbouring combination is left there (:meth:`_changes`), the chain goes on with it:
-        the point is settled from its column (:meth:`_replayed`)."""
+        chained column (KKT-verified at its integers: the search's first attempt), and the combination the search
+        starts from there where it is not the batch's (a neighbour that opens at that point: :meth:`_opening`; None:
+        the batch's). Where the integers are excluded at a point and one neighbouring combination is left there
+        (:meth:`_changes`), the chain goes on with it: the point is settled from its column (:meth:`_replayed`)."""
         lower, upper = self.lower.copy(), self.upper.copy()
         lower[self.integer] = upper[self.integer] = start.combo
         first = -1  # the first point ahead where the batch's integers are excluded, or a neighbour opens
         changes: list[tuple[int, np.ndarray]] = []  # (offset, combination) where the chain changes its integers
-        self._opened = {}
+        opens, neighbour = None, None  # (the offset where a neighbour opens, if the chain ends there; no changes then)
         if self.integer:  # the batch stops short of a point its integers cannot serve whatever the rest (the search
             # excludes them there without a solve), or changes them there to the one neighbour left
             excluded = self._excluded(lower, k, max(count, reach))
@@ -396,17 +406,19 @@ class BatchSweep:
                 first = int(np.argmax(excluded))
             opens, neighbour = self._opening(start, k, max(count, reach))
             if opens is not None and (first < 0 or opens < first):
-                first, self._opened[k + opens] = opens, neighbour
-            elif first >= 0:
+                first = opens
+            else:
+                opens = None
+            if opens is None and first >= 0:
                 count = max(count, first + 1)
                 changes, first = self._changes(start.combo, k, count, first)
             if first == 0:
-                return None, 0, True, None  # foreseen: nothing chained
+                return None, 0, True, None, (neighbour if opens == 0 else None)  # foreseen: nothing chained
             if first > 0:
                 count = first  # (a break known ahead, within reach: the chain ends there)
         chain = self._chain(start, k, count, lower, upper, start.seed, changes=changes)
         if chain is None:
-            return None, min(count, chain_length(count)), False, None
+            return None, min(count, chain_length(count)), False, None, None
         count = len(chain.index)
         ok = chain.ok & ~self._unruled_moves(chain, start)
         passed = int(np.argmin(ok)) if not ok.all() else count
@@ -422,7 +434,7 @@ class BatchSweep:
         if searching and passed < count:
             tried = chain.column(passed, before.f_scale)
         block = (pieces[0] if len(pieces) == 1 else Block.joined(pieces)) if pieces else None
-        return block, count, searching, tried
+        return block, count, searching, tried, (neighbour if passed == opens else None)
 
     def _changes(self, combo: np.ndarray, k: int, count: int, first: int) -> tuple[list[tuple[int, np.ndarray]], int]:
         """Where the integers ``combo`` are excluded at point k + ``first`` (and the next ones at later points, up to
@@ -543,14 +555,16 @@ class BatchSweep:
         ratio[1:][points[1:] == points[:-1]] = 0.0
         return ratio
 
-    def _settle(self, start: _Start, k: int, tried: _Chain | None = None) -> Block | None:
+    def _settle(self, start: _Start, k: int, tried: _Chain | None = None,
+                origin: np.ndarray | None = None) -> Block | None:
         """Point k, where a batch ended for the integer search: ``Problem.solve``'s warm search (``integers.descend``
-        from the batch's integers; should they fail, the relaxation and ``integers.nearest_integers``), each
-        combination excluded by the batch's tables or re-solved by a one-point chained SQP from the previous point's
-        optimum and KKT-checked; the batch's integers are not solved again where the chain solved them at k
-        (``tried``, its column there). None where a re-solve does not pass its check or no integer point is found
-        (``Problem.solve`` decides the point; also where a constraint of the case alone breaks, which fails the
-        relaxation); the search is kept for the point's Solution."""
+        from the batch's integers, or from ``origin``, a neighbour that opens at k: :meth:`_opening`; should they
+        fail, the relaxation and ``integers.nearest_integers``), each combination excluded by the batch's tables or
+        re-solved by a one-point chained SQP from the previous point's optimum and KKT-checked; the batch's integers
+        are not solved again where the chain solved them at k (``tried``, its column there). None where a re-solve
+        does not pass its check or no integer point is found (``Problem.solve`` decides the point; also where a
+        constraint of the case alone breaks, which fails the relaxation); the search is kept for the point's
+        Solution."""
         search: list[dict] = []
         box, seed = Box(start.scale, self.lower, self.upper), start.seed
         runs: list[_Chain] = []
@@ -610,8 +624,8 @@ class BatchSweep:
                 "f": float(chain.f[0, 0]), "value": float(chain.f[0, 0]) * start.f_scale, "chain": chain}
 
         try:
-            origin = self._opened.pop(k, start.combo)  # (a neighbour that opens at k: :meth:`_opening`)
-            kept = descend(self.posed, box, self.integer, origin, seed, search, attempt)
+            kept = descend(self.posed, box, self.integer, start.combo if origin is None else origin, seed, search,
+                           attempt)
             past = self._past_exclusion(start.combo, k) if kept is None else None
             if past is not None:  # the only neighbour its exclusion leaves: the search from there
                 kept = descend(self.posed, box, self.integer, past, seed, search, attempt)
@@ -647,7 +661,7 @@ class BatchSweep:
         at (``integers.downhill``) is ``start``'s integers, tried already: the search's record is those excluded and
         the column kept. None otherwise (:meth:`_settle` runs the search)."""
         run = {"x": tried.x[:, 0], "lam_x": tried.lam_x[:, 0], "f": float(tried.f[0, 0])}
-        if k in self._opened or not tried.ok[0] or any(
+        if not tried.ok[0] or any(
                 not np.array_equal(combo, start.combo)
                 for combo in downhill(self.posed, run, Box(start.scale, self.lower, self.upper), self.integer)):
             return None
@@ -749,11 +763,15 @@ class BatchSweep:
         is without a design, IPOPT's verdict at a few QP solves, or where a design was found), and the seconds of the
         call."""
         began = time.perf_counter()
-        found = least(self.posed, seed["x"], np.concatenate([self._by_point[k], start.scale, [start.f_scale]]),
-                      lower / start.scale, upper / start.scale)
+        found = least(self.posed, seed["x"], self._p(k, start), lower / start.scale, upper / start.scale)
         seconds = time.perf_counter() - began
         self.solves, self.solver_s = self.solves + 1, self.solver_s + seconds
         return found, seconds
+
+    def _p(self, k: int, start: _Start) -> np.ndarray:
+        """The NLP's parameter vector at point k, scaled as ``start``: the point's case values, the variable scales,
+        the objective's normaliser."""
+        return np.concatenate([self._by_point[k], start.scale, [start.f_scale]])
 
     def _cold(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
               seed: dict) -> tuple[dict, float, dict | None]:
@@ -768,14 +786,12 @@ class BatchSweep:
         lbx, ubx = lower / start.scale, upper / start.scale
         x0 = np.clip(seed["x"], lbx, ubx)
         data = ScaledData(self.posed.params(self.point_case(k)), lower, upper, x0 * start.scale, start.scale,
-                          start.f_scale, np.concatenate([self._by_point[k], start.scale, [start.f_scale]]))
+                          start.f_scale, self._p(k, start))
         solved = attempts.run(self.posed, data, lbx, ubx, x0, None)
         self.solves, self.solver_s = self.solves + 1, self.solver_s + solved["time"]
         if solved["ok"] and solved["feasible"]:
-            x = solved["x"]
-            lam_x, lam_g = warm_multipliers(self.posed, solved["lam_x"], solved["lam_g"])
-            return {}, solved["time"], {"x": x, "lam_x": lam_x, "lam_g": lam_g, "dx": np.zeros_like(x),
-                                        "dlam_x": np.zeros_like(lam_x), "dlam_g": np.zeros_like(lam_g)}
+            return {}, solved["time"], _seed(solved["x"], *warm_multipliers(self.posed, solved["lam_x"],
+                                                                              solved["lam_g"]))
         return search_entry(self.posed, self.integer, lower[self.integer], solved["status"], False,
                             solved["f"] * start.f_scale), solved["time"], None
 

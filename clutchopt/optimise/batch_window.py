@@ -18,7 +18,7 @@ from clutchopt.optimise.posed import Posed
 from clutchopt.optimise.sensitivity import limit_elasticities, sense_sign, sensitivity_table
 from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.table import active_names, placed, record_table
-from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, constraint_table, margin_flags
+from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, column_figures, column_outputs, margin_flags
 from clutchopt.records import STATUSES
 from clutchopt.window_records import KINDS, WindowRecords, in_order
 from clutchopt.units import si_unit
@@ -130,22 +130,16 @@ class Checked:
         self.design[posed.integer] = np.round(self.design[posed.integer])
         self.x = namespace(dict(zip(posed.names, self.design)))
         self.params = namespace({q.name: row for q, row in zip(f.quantities, values)})
-        with np.errstate(all="ignore"):
-            self.constraints = f.constraints(self.x, self.params)
-        self.value, self.limit, self.scale, self.margin = constraint_table(self.constraints, count)
+        self.constraints, (self.value, self.limit, self.scale, self.margin), self.objective = column_figures(
+            f, posed.objective, self.x, self.params, count)
         self.feasible = np.all(self.margin >= -FEASIBILITY_TOL, axis=0)
-        self.objective = np.broadcast_to(np.asarray(posed.objective.function(self.x, self.params), dtype=float),
-                                         (count,))
         self._outputs = None
 
     @property
     def outputs(self) -> dict[str, tuple[np.ndarray, Output]]:
         """The derived quantities of every point (evaluated together when a first point is read)."""
         if self._outputs is None:
-            count = len(self.block.index)
-            with np.errstate(all="ignore"):
-                self._outputs = {name: (np.broadcast_to(np.asarray(out.value, dtype=float), (count,)), out)
-                                 for name, out in self.posed.formulation.outputs(self.x, self.params).items()}
+            self._outputs = column_outputs(self.posed.formulation, self.x, self.params, len(self.block.index))
         return self._outputs
 
     def verdicts(self) -> tuple[np.ndarray, np.ndarray]:

@@ -155,9 +155,7 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
             break
         evaluated += np.bincount(owner, minlength=count)
         (g_lo, g_hi), (d_lo, d_hi), centre, (c_lo, c_hi) = _bounds(functions, lo, hi, (plo, phi))
-        first_met: dict[int, int] = {}
-        for box in np.flatnonzero(np.all(c_hi <= 0.0, axis=0))[::-1].tolist():  # each search's first box met
-            first_met[int(owner[box])] = box
+        first_met = _first_boxes(np.flatnonzero(np.all(c_hi <= 0.0, axis=0)), owner)  # each search's first box met
         whole_p = np.all(_same(plo, p_lo[:, owner]) & _same(phi, p_hi[:, owner]), axis=0)
         end(sorted(first_met), lambda j: (  # a design for every parameter of the search, or (a part of its interval)
             Emptiness(False, int(evaluated[j]), decisive[j], centre[:, first_met[j]]) if whole_p[first_met[j]]
@@ -276,10 +274,13 @@ def _reached(rows, centre: np.ndarray, owner: np.ndarray, ranged: np.ndarray, p_
     params = np.hstack([p_lo[:, owner[boxes]], p_hi[:, owner[boxes]]])
     (_, high), = rows.bounds([(at, at), (params, params)])
     met = np.all(high[:, :len(boxes)] <= 0.0, axis=0) | np.all(high[:, len(boxes):] <= 0.0, axis=0)
-    first: dict[int, int] = {}
-    for box in boxes[met][::-1].tolist():
-        first[int(owner[box])] = box
-    return dict(sorted(first.items()))
+    return _first_boxes(boxes[met], owner)
+
+
+def _first_boxes(boxes: np.ndarray, owner: np.ndarray) -> dict[int, int]:
+    """Each search's first box among ``boxes`` (ascending box numbers; ``owner``: each box's search), by search."""
+    searches, first = np.unique(owner[boxes], return_index=True)
+    return dict(zip(searches.tolist(), boxes[first].tolist()))
 
 
 def _whole(lo: np.ndarray, hi: np.ndarray, integer: list[int]) -> tuple[np.ndarray, np.ndarray, list[int]]:

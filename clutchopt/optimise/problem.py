@@ -212,11 +212,11 @@ class Problem:
         sizing at the case (one static solve: where a start-up solve would begin), its constraints re-evaluated in
         float64."""
         sized = self._sizing(case)
-        _, _, x0 = self.posed.bounds_and_start(case, sized.design)
+        lower, upper, x0 = self.posed.bounds_and_start(case, sized.design)
         return infeasible_at(self.posed, case, dict(zip(self.posed.names, map(float, x0))),
                              "proven infeasible: " + "; ".join(proofs),
                              SolverInfo(PROVEN, "proven", sized.solver.iterations, sized.solver.time_s,
-                                        sized.solver.solves))
+                                        sized.solver.solves), bounds=(lower, upper))
 
     def _sizing(self, case: Case) -> Solution:
         """The papers' sizing at ``case``: the static problem of the same formulation solved (where a start-up solve

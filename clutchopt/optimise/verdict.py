@@ -31,8 +31,8 @@ from clutchopt.errors import InputError
 from clutchopt.model import Output, namespace
 from clutchopt.optimise.interval_proof import SURE_BOXES, empty_design_space
 from clutchopt.optimise.solution import Solution, SolverInfo
-from clutchopt.optimise.verify import (DESIGN_STATUSES, ConstraintCheck, check_design, constraint_check,
-                                       constraint_table, evaluate_objective, evaluate_outputs)
+from clutchopt.optimise.verify import (DESIGN_STATUSES, ConstraintCheck, check_design, column_figures, column_outputs,
+                                       constraint_check, evaluate_objective, evaluate_outputs)
 
 
 def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[str, float] | None) -> Solution:
@@ -148,14 +148,15 @@ def _spent(solution: Solution, tried: list[tuple[str, Solution]]) -> Solution:
 
 
 def infeasible_at(posed, case: Case, design: dict[str, float], diagnosis: str, solver: SolverInfo,
-                  figures: tuple | None = None) -> Solution:
+                  figures: tuple | None = None, bounds: tuple[np.ndarray, np.ndarray] | None = None) -> Solution:
     """A proven ``infeasible`` verdict at ``case`` that shows ``design`` (a start-up the drive makes impossible: the
     papers' sizing, ``Problem.proven``; a sweep's point a proof covers: the design of the point before,
     ``region_proof``), every constraint, the objective and the outputs re-evaluated in float64 at the case's values
-    (``figures``: evaluated already, :func:`figures_at`), the bounds the case's."""
+    (``figures``: evaluated already, :func:`figures_at`), the bounds the case's (``bounds``: lower and upper, SI,
+    read already from ``posed.bounds_and_start``)."""
     f = posed.formulation
     checks, objective, outputs = figures or figures_at(posed, [case], design)[0]
-    lower, upper, _ = posed.bounds_and_start(case, None)
+    lower, upper = bounds or posed.bounds_and_start(case, None)[:2]
     return Solution(f.coupling, f.mode, posed.objective.name, posed.objective.unit, "infeasible", objective, design,
                     outputs, checks, solver, diagnosis,
                     bounds={n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, lower, upper)},
@@ -176,14 +177,10 @@ def figures_at(posed, cases: list[Case], design: dict[str, float]
     params = [vars(posed.params(case)) for case in cases]
     x = namespace({name: float(value) for name, value in design.items()})
     p = namespace({name: np.array([values[name] for values in params]) for name in params[0]})
-    with np.errstate(all="ignore"):
-        constraints = f.constraints(x, p)
-        objective = np.broadcast_to(np.asarray(f.objective(posed.objective.name).function(x, p), dtype=float),
-                                    (count,)).tolist()
-        outputs = [(name, np.broadcast_to(np.asarray(out.value, dtype=float), (count,)).tolist(), out)
-                   for name, out in f.outputs(x, p).items()]
-    value, limit, scale, margin = (table.tolist() for table in constraint_table(constraints, count))  # (floats: read
-    # point by point from lists, not from arrays)
+    constraints, table, objective = column_figures(f, posed.objective, x, p, count)
+    outputs = [(name, values.tolist(), out) for name, (values, out) in column_outputs(f, x, p, count).items()]
+    (value, limit, scale, margin), objective = (column.tolist() for column in table), objective.tolist()  # (floats:
+    # read point by point from lists, not from arrays)
     return [([constraint_check(c, value[i][j], limit[i][j], scale[i][j], margin[i][j]) for i, c in enumerate(constraints)],
              objective[j], {name: Output(values[j], out.unit, out.description) for name, values, out in outputs})
             for j in range(count)]

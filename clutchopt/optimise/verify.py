@@ -7,7 +7,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from clutchopt.model import Constraint, Formulation, Output, namespace
+from clutchopt.model import Constraint, Formulation, Objective, Output, namespace
 from clutchopt.units import si_unit
 
 FEASIBILITY_TOL = 1e-8  # largest relative violation accepted as feasible
@@ -91,6 +91,27 @@ def constraint_table(constraints: list[Constraint], count: int) -> tuple[np.ndar
     with np.errstate(invalid="ignore", divide="ignore"):
         margin = relative_margin(at_most, value, limit, scale)
     return value, limit, scale, margin
+
+
+def column_figures(formulation: Formulation, objective: Objective, x: SimpleNamespace, params: SimpleNamespace,
+                   count: int) -> tuple[list[Constraint], tuple[np.ndarray, ...], np.ndarray]:
+    """The float64 constraints of ``formulation`` at ``x`` and ``params`` whose values are arrays of ``count``
+    columns (a point each) or floats (the same at every point), their table (:func:`constraint_table`: value, limit,
+    scale, margin) and ``objective``'s value at each point, shape (count,). Batched points
+    (``batch_window.Checked``) and one design at several cases (``verdict.figures_at``) are checked by it."""
+    with np.errstate(all="ignore"):
+        constraints = formulation.constraints(x, params)
+        values = np.broadcast_to(np.asarray(objective.function(x, params), dtype=float), (count,))
+    return constraints, constraint_table(constraints, count), values
+
+
+def column_outputs(formulation: Formulation, x: SimpleNamespace, params: SimpleNamespace,
+                   count: int) -> dict[str, tuple[np.ndarray, Output]]:
+    """The derived quantities of ``formulation`` at the same columns as :func:`column_figures`: each one's values,
+    shape (count,), and its declaration."""
+    with np.errstate(all="ignore"):
+        return {name: (np.broadcast_to(np.asarray(out.value, dtype=float), (count,)), out)
+                for name, out in formulation.outputs(x, params).items()}
 
 
 def relative_margin(at_most, value, limit, scale):
