@@ -53,3 +53,29 @@ def test_the_cable_at_0_5_keeps_the_verified_9_cables_not_an_unverified_8():
     assert abs(alone.objective - nine.objective) <= START_UP_RTOL * nine.objective
     stress = next(c for c in alone.constraints if c.name == "link_stress")
     assert stress.feasible and stress.limit == 350e6 and stress.value < 350e6
+
+
+def test_the_counts_one_off_the_kept_design():
+    """The record of the 250 MPa point's loop: 10 and 13 infeasible at a carried limit, 14 solved; 13 kept (its own
+    loop): 12 is the untried count below, none above (13 is verified); 14 unverified would ask for 15 alone (16
+    is past an upper bound of 15). At the lower bound 3 nothing is below."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.own_shift import ForeignShifts, carried_by
+
+    foreign = ForeignShifts(["cable_count"], carried_by(None))
+    entries = [{"cable_count": n, "status": status, "objective": value} for n, status, value in
+               [(10, "Infeasible_Problem_Detected", 4.906), (13, "Infeasible_Problem_Detected", 6.285),
+                (14, "Solve_Succeeded", 6.742)]]
+    foreign.seen(SimpleNamespace(integer_search=entries))
+    assert foreign.tried == {(10.0,), (13.0,), (14.0,)} and foreign.found == {(10.0,): 4.906, (13.0,): 6.285}
+    kept = SimpleNamespace(status="optimal", objective=6.277, design={"cable_count": 13.0})
+    assert foreign.untried_below(kept, {"cable_count": 3.0}) == [(12.0,)]
+    assert foreign.above_unverified(kept, {"cable_count": 15.0}) == []
+    unverified = SimpleNamespace(status="unverified", objective=6.742, design={"cable_count": 14.0})
+    assert foreign.above_unverified(unverified, {"cable_count": 15.0}) == [(15.0,)]
+    assert foreign.above_unverified(SimpleNamespace(**{**vars(unverified), "design": {"cable_count": 15.0}}),
+                                    {"cable_count": 15.0}) == []
+    assert foreign.untried_below(SimpleNamespace(**{**vars(kept), "design": {"cable_count": 3.0}}),
+                                 {"cable_count": 3.0}) == []
+    assert foreign.untried_below(unverified, {"cable_count": 3.0}) == []  # no verified design kept: none below

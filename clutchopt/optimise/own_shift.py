@@ -80,9 +80,7 @@ class ForeignShifts:
         unmoved); 9 cables fixed are verified (4.418 kg)."""
         if kept.status != "unverified":
             return []
-        own = self.choice(kept.design)
-        return [own[:i] + (value + 1.0,) + own[i + 1:] for i, (name, value) in enumerate(zip(self.names, own))
-                if value + 1.0 <= upper[name]]
+        return self.one_off(kept, +1.0, lambda name, value: value <= upper[name])
 
     def untried_below(self, kept, lower: dict[str, float]) -> list[tuple]:
         """The choices one count below ``kept``'s in one integer (within its ``lower`` bound) that no search of the
@@ -92,10 +90,14 @@ class ForeignShifts:
         are `solve`'s of 250 MPa alone (5.813 kg)."""
         if kept.status != "optimal":
             return []
-        own = self.choice(kept.design)
-        below = [own[:i] + (value - 1.0,) + own[i + 1:] for i, (name, value) in enumerate(zip(self.names, own))
-                 if value - 1.0 >= lower[name]]
+        below = self.one_off(kept, -1.0, lambda name, value: value >= lower[name])
         return [combo for combo in below if combo not in self.tried and combo not in self.own]
+
+    def one_off(self, kept, step: float, within) -> list[tuple]:
+        """The choices ``step`` counts off ``kept``'s in one integer, where ``within(name, value)``."""
+        own = self.choice(kept.design)
+        return [own[:i] + (value + step,) + own[i + 1:] for i, (name, value) in enumerate(zip(self.names, own))
+                if within(name, value + step)]
 
 
 def own_entry(names: list[str], combo: tuple, own) -> dict:
