@@ -95,7 +95,8 @@ def test_an_elastic_link_s_sweep_carries_its_limits_as_they_are(monkeypatch):
 
     def spy(problem, case, previous):
         found = start_up_sweep.solved_along(problem, case, previous)
-        predicted = start_up_sweep.predicted_shift(previous, start_up_sweep._numbers(case)) if found is not None else None
+        predicted = (start_up_sweep.predicted_shift(previous, start_up_sweep._numbers(case))
+                     if found is not None else None)
         seen.append((found, predicted,
                      previous.limit_shift if previous is not None else None))
         return found

@@ -211,7 +211,8 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
             wide = np.any(hi > lo, axis=0) | np.any(phi > plo, axis=0)
             keep = within_budgets(owner, np.bincount(owner, np.where(wide, 2.0 ** rounds[owner], 1.0), count))
             if not keep.all():
-                lo, hi, plo, phi, owner, at = lo[:, keep], hi[:, keep], plo[:, keep], phi[:, keep], owner[keep], at[keep]
+                lo, hi, plo, phi = lo[:, keep], hi[:, keep], plo[:, keep], phi[:, keep]
+                owner, at = owner[keep], at[keep]
                 d_lo, d_hi, uncertain = d_lo[..., keep], d_hi[..., keep], uncertain[:, keep]
                 if not lo.shape[1]:
                     break

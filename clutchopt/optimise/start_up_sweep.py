@@ -10,8 +10,8 @@ adaptation nor correction where the point before's did (wedge_motor_start over d
 simulated starts a point before, 1.0 now). Where the two points before ended on the same mesh and this point lies on
 the line through theirs, the moved limits are carried on along that line (:func:`predicted_shift`, a secant): where
 the temperature rise binds, the correction moves by some 1e-5 a point, which the carried share misses by more than
-the loop accepts, the secant's by the second difference only (a correction a point saved on a dense sweep; an elastic link's
-limits, which its loop never centres, are carried as they are). The loop
+the loop accepts, the secant's by the second difference only (a correction a point saved on a dense sweep; an
+elastic link's limits, which its loop never centres, are carried as they are). The loop
 still decides on this point's own simulated start, so the design is ``solve``'s within the accuracy contract
 (docs/start_up.md: each is the simulator's optimum to a quarter of the tolerance on the objective). The sizing and
 the start guess's simulation are saved; every solve is still checked by the simulator. A point this does not bring

@@ -7,10 +7,11 @@ limit, no design variable does), the step from point j to point k moves each suc
 design. If each moved limit is at least as tight at k (``at_least``: not lower; ``at_most``: not higher; its scale,
 the row's normaliser, positive at both), the designs that meet every constraint at k are a subset of those at j:
 an integer choice left without a design at j (IPOPT: ``Infeasible_Problem_Detected``; or its least violation,
-``clutchopt.optimise.feasibility``) is left without one at k by the same verdict, and need not be solved again (``clutchopt.optimise.batch``: the ball's row fewer, promised by the
-bound multiplier of its rows at every point past 4.6x its power and infeasible at each). Where a varied quantity
-enters a constraint's value, or a limit or scale that a design variable enters, the step's effect depends on the
-design and nothing is concluded (:attr:`Tightening.known` is false).
+``clutchopt.optimise.feasibility``) is left without one at k by the same verdict, and need not be solved again
+(``clutchopt.optimise.batch``: the ball's row fewer, promised by the bound multiplier of its rows at every point
+past 4.6x its power and infeasible at each). Where a varied quantity enters a constraint's value, or a limit or
+scale that a design variable enters, the step's effect depends on the design and nothing is concluded
+(:attr:`Tightening.known` is false).
 """
 
 from __future__ import annotations

@@ -181,6 +181,7 @@ def figures_at(posed, cases: list[Case], design: dict[str, float]
     outputs = [(name, values.tolist(), out) for name, (values, out) in column_outputs(f, x, p, count).items()]
     (value, limit, scale, margin), objective = (column.tolist() for column in table), objective.tolist()  # (floats:
     # read point by point from lists, not from arrays)
-    return [([constraint_check(c, value[i][j], limit[i][j], scale[i][j], margin[i][j]) for i, c in enumerate(constraints)],
+    return [([constraint_check(c, value[i][j], limit[i][j], scale[i][j], margin[i][j])
+              for i, c in enumerate(constraints)],
              objective[j], {name: Output(values[j], out.unit, out.description) for name, values, out in outputs})
             for j in range(count)]
