@@ -61,7 +61,8 @@ def diagnose(posed: Posed, p_vector, lbx, ubx, x0, scale) -> Diagnosis:
     nearest = {v.name: float(value) for v, value in zip(posed.formulation.variables, x[: len(scale)] * scale)}
     if slacks.sum() <= 10 * FEASIBILITY_TOL and not stopped:  # a feasible point only where it converged
         return Diagnosis("solver_failed", "IPOPT did not converge, yet a feasible point exists (elastic check); "
-                                          "try other bounds or a start point", seconds, least=0.0, nearest=nearest)
+                                          "try other bounds or a start point", seconds, least=0.0, nearest=nearest,
+                         point=x)
     worst: dict[str, float] = {}
     binding: list[str] = []
     for name, s, lam in zip(row_names, slacks, lam_g):

@@ -28,7 +28,7 @@ from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_sta
 from clutchopt.optimise.own_shift import ForeignShifts, carried_by, own_entry
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
-from clutchopt.optimise.solution import Solution, SolverInfo, SolverOptions, WarmStart
+from clutchopt.optimise.solution import Diagnosis, Solution, SolverInfo, SolverOptions, WarmStart
 from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, corrected_case, start_up_report, worn_start
 from clutchopt.optimise.start_up_shift import limit_shift, shifted
 from clutchopt.optimise.verdict import infeasible_at, shown
@@ -309,8 +309,11 @@ class Problem:
         integer = posed.free_integers(data)
         if not relaxed["ok"] and not diagnosed:  # a retry before a verdict: its own diagnosis is not needed
             return self._finish(case, relaxed, runs, data, search, ("not_found", "no design from this start"))
+        failed = None
+        if not relaxed["ok"] and self.start_up is not None:
+            relaxed, failed = self._from_the_elastic_point(relaxed, data, runs)
         if not integer or not relaxed["ok"]:
-            return self._finish(case, relaxed, runs, data, search)
+            return self._finish(case, relaxed, runs, data, search, diagnosed=failed)
         attempt_at = fixing(posed, data, runs, search, ruled)
         kept = nearest_integers(posed, data.box, integer, relaxed, search, attempt_at)
         if self.start_up is not None and start is not None and not warm_ok:  # a first solve, from the sizing
@@ -322,13 +325,26 @@ class Problem:
                                  f"but none of the integer neighbours is ({tried})"))
         return self._finish(case, kept, runs, data, search)
 
-    def _finish(self, case, run, runs, data: ScaledData, search, verdict=None) -> Solution:
+    def _from_the_elastic_point(self, failed: dict, data: ScaledData, runs: list[dict]) -> tuple[dict, Diagnosis]:
+        """A start-up's failed cold run and its diagnosis; where the elastic problem finds a point of the NLP (its
+        slacks zero: ``solver_failed``), the run from that point (design and states) instead. IPOPT's restoration
+        can end ``Infeasible_Problem_Detected`` on a first, coarse mesh whose relaxation is feasible:
+        ball_motor_start at 403.9-410 kg m^2 (docs/start_up.md, "A feasible point on the first mesh"); solved from
+        the elastic point (15 iterations), the accuracy loop then decides on the meshes that resolve the start."""
+        diagnosed = diagnose(self.posed, failed["p"], failed["lbx"], failed["ubx"], failed["x"], data.scale)
+        if diagnosed.status != "solver_failed" or diagnosed.point is None:
+            return failed, diagnosed
+        rescued = attempt(self.posed, data, data.lbx, data.ubx, diagnosed.point, None, ("ipopt",), runs)
+        return (rescued, None) if rescued["ok"] else (failed, diagnosed)
+
+    def _finish(self, case, run, runs, data: ScaledData, search, verdict=None,
+                diagnosed: Diagnosis | None = None) -> Solution:
         """The Solution of a solve's kept run: its float64 checks (and a start-up's simulated ones) with their
-        multipliers, its status (``verdict``, or by the checks, or the diagnosis of a failed run), sensitivities."""
+        multipliers, its status (``verdict``, or by the checks, or the diagnosis of a failed run: ``diagnosed``,
+        where it is made already), sensitivities."""
         posed = self.posed
         f = posed.formulation
         params, scale, f_scale = data.checked or data.params, data.scale, data.f_scale
-        diagnosed = None
         design, objective, checks = run["design"], run["value"], list(run["checks"])
         start_up = mesh = None
         if posed.start_up is not None:  # re-checked by the independent simulator
@@ -353,7 +369,7 @@ class Problem:
             diagnosis = (f"{'IPOPT' if run['solver'] == 'ipopt' else 'SQP'} reported success but {check} finds "
                          f"{worst.name} violated by {-worst.margin:.3g} (relative)")
         else:
-            diagnosed = diagnose(posed, run["p"], run["lbx"], run["ubx"], run["x"], scale)
+            diagnosed = diagnosed or diagnose(posed, run["p"], run["lbx"], run["ubx"], run["x"], scale)
             status, diagnosis, diagnosis_s = diagnosed.status, diagnosed.text, diagnosed.seconds
         info = SolverInfo(run["solver"], run["status"], sum(r["iterations"] for r in runs),
                           sum(r["time"] for r in runs) + diagnosis_s, len(runs))

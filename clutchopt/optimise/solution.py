@@ -102,6 +102,7 @@ class Diagnosis(NamedTuple):
     least: float = math.nan
     nearest: dict[str, float] | None = None
     violated: tuple[str, ...] = ()  # the constraints the least relaxation found violates (the named reason)
+    point: np.ndarray | None = None  # the elastic problem's own point (scaled NLP variables: design and states)
 
 
 @dataclass
