@@ -178,3 +178,24 @@ def test_the_shares_are_taken_from_the_gradients_at_the_means(two_quantities):
     assert points.take_shares(design, 2, 0.001) == pytest.approx(0.001 - 4 * 0.001 / 6, rel=1e-12)
     assert points.share == pytest.approx(0.001 / 6, rel=1e-12) and points.target == 1 - points.share
     assert len(points.states.simulated) == 3  # the means and one step along each u
+
+
+def test_a_limit_failing_at_its_point_is_crossed_between_the_means_and_that_point_itself():
+    # strict_reach's bracket ends at u itself, not at radius * (u / radius), which differs from u = (0.213643,
+    # 0.217322) in its last bits: a limit a hair below zero at u (g = -1e-12, its start simulated there) and a hair
+    # above everywhere else on the ray from the means, g = 1 - t / |u| > 0 for t < |u|, would have had no sign change
+    from clutchopt.optimise.start_up_reliability import strict_reach
+
+    u = np.array([0.213643, 0.217322])
+    radius = float(np.linalg.norm(u))
+    assert (radius * (u / radius)).tobytes() != u.tobytes()
+
+    def g(points):
+        point = points[:, 0]
+        if point.tobytes() == u.tobytes():
+            return np.array([[-1e-12]])
+        return np.array([[max(1.0 - float(np.linalg.norm(point)) / radius, 1e-12)]])
+
+    reach = strict_reach(g, 0, u)
+    assert 0.0 < reach <= radius
+    assert reach == pytest.approx(radius, rel=1e-6)

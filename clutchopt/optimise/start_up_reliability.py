@@ -162,8 +162,10 @@ def strict_reach(g: SimulatedLimitStates, row: int, u: np.ndarray) -> float:
     radius = float(np.linalg.norm(u))
     direction = u / radius
 
-    def value(t: float) -> float:
-        return float(g((t * direction)[:, None])[row, 0])
+    def value(t: float) -> float:  # (at t = radius u itself: radius * (u / radius) may differ from u in its last
+        # bits, a start simulated again whose g, a hair below zero at u, may come out at or above it)
+        point = u if t == radius else t * direction
+        return float(g(np.asarray(point, dtype=float)[:, None])[row, 0])
 
     if not value(0.0) > 0:
         return 0.0
