@@ -348,9 +348,7 @@ class BatchSweep:
         if pair is None:
             return None
         last = int(pair.index[-1]) + 1
-        design = self.lower.copy()
-        design[self.integer] = combo
-        if last < self.count and self._excluded(design, last, min(size, self.count - last)).any():
+        if last < self.count and self._excluded(self._with_integers(combo), last, min(size, self.count - last)).any():
             return None
         return until_active(self.posed, pair, self._ratio[last:last + LONGEST_BATCH], self._free,
                             self.posed.kkt_tolerance)
@@ -448,9 +446,8 @@ class BatchSweep:
                 return changes, j  # (a combination IPOPT left without a design at the point before: its search)
             changes.append((j, past))
             combo = past
-            design = self.lower.copy()
-            design[self.integer] = combo
-            ahead = self._excluded(design, k + j + 1, count - j - 1) if j + 1 < count else np.zeros(0, dtype=bool)
+            ahead = (self._excluded(self._with_integers(combo), k + j + 1, count - j - 1) if j + 1 < count
+                     else np.zeros(0, dtype=bool))
             j = j + 1 + int(np.argmax(ahead)) if ahead.any() else -1
         return changes, -1
 
@@ -459,8 +456,8 @@ class BatchSweep:
         """The first ``passed`` points of ``chain`` as blocks, each point where it changed its integers
         (``changes``) settled by :meth:`_settle` with its column as the first attempt (the search ``Problem.solve``
         runs there, without a solve where the column passed its tests); the start after them, how many points are
-        kept (up to a change that the search does not settle, or up to and with one where it ran or kept other
-        integers), and whether the kept points end there by choice (the latter)."""
+        kept (up to a change that the search does not settle, or up to and with one where the search ran), and
+        whether the kept points end there by choice (the latter)."""
         pieces, before, begin = [], start, 0
         for j, combo in changes:
             if j > begin:
@@ -474,8 +471,8 @@ class BatchSweep:
                 return pieces, before, j, False
             pieces.append(settled)
             before, begin = _Start(self, block=settled), j + 1
-            if searched is None or not np.array_equal(before.combo, combo):  # (a search that ran may have found
-                return pieces, before, j + 1, True  # combinations without a design the later changes assumed open)
+            if searched is None:  # (a search that ran may have found combinations without a design the later
+                return pieces, before, j + 1, True  # changes assumed open)
         if passed > begin:
             pieces.append(chain.block(passed, begin))
             before = _Start(self, block=pieces[-1])
@@ -494,9 +491,8 @@ class BatchSweep:
             return None, None
         run = {"x": start.x, "lam_x": start.lam_x, "f": start.objective / start.f_scale}
         for combo in downhill(self.posed, run, Box(start.scale, self.lower, self.upper), self.integer):
-            design = self.lower.copy()
-            design[self.integer] = combo
-            table = self._excluded(design, k - 1, min(count, self._span - 1) + 1)  # (one table from k - 1)
+            table = self._excluded(self._with_integers(combo), k - 1, min(count, self._span - 1) + 1)  # (one table
+            # from k - 1)
             if table[0] and not table[1:].all():
                 return int(np.argmin(table[1:])), combo
         return None, None
@@ -569,15 +565,13 @@ class BatchSweep:
         box, seed = Box(start.scale, self.lower, self.upper), start.seed
         runs: list[_Chain] = []
         cold: list[float] = []  # the seconds of each call beside the one-point SQPs (the least violation, IPOPT)
-        if tried is not None:  # its integers (SI)
-            n = len(self.names)
-            tried_combo = np.round(tried.x[self.integer, 0] * tried.p[len(self.values):len(self.values) + n][
-                self.integer, 0])
+        if tried is not None:  # its integers (SI; scaled as ``start``: the same chain's)
+            tried_combo = np.round(tried.x[self.integer, 0] * start.scale[self.integer])
 
         def attempt(combo, seed, methods=None) -> dict | None:
             lower, upper = self.lower.copy(), self.upper.copy()
             lower[self.integer] = upper[self.integer] = combo
-            excluded = list(dict.fromkeys(self._fixed_names[self._broken(lower, k, 1)[:, 0]]))
+            excluded = self._excluded_names(lower, k)
             if excluded:
                 search.append(excluded_entry(self.posed, self.integer, combo, excluded))
                 return None
@@ -665,9 +659,7 @@ class BatchSweep:
                 not np.array_equal(combo, start.combo)
                 for combo in downhill(self.posed, run, Box(start.scale, self.lower, self.upper), self.integer)):
             return None
-        lower = self.lower.copy()
-        lower[self.integer] = start.combo
-        excluded = list(dict.fromkeys(self._fixed_names[self._broken(lower, k, 1)[:, 0]]))
+        excluded = self._excluded_names(self._with_integers(start.combo), k)
         combo = np.round(tried.x[self.integer, 0] * start.scale[self.integer])
         search = [excluded_entry(self.posed, self.integer, start.combo, excluded),
                   search_entry(self.posed, self.integer, combo, BATCHED, True, run["f"] * start.f_scale)]
@@ -746,9 +738,18 @@ class BatchSweep:
     def _left_out(self, combo: np.ndarray, k: int) -> bool:
         """The integers ``combo`` have no design at point k: a constraint of fixed variables alone breaks, or IPOPT
         found none (:meth:`_undesigned_at`)."""
-        lower = self.lower.copy()
-        lower[self.integer] = combo
-        return bool(self._broken(lower, k, 1).any()) or self._undesigned_at(combo, k)
+        return bool(self._broken(self._with_integers(combo), k, 1).any()) or self._undesigned_at(combo, k)
+
+    def _with_integers(self, combo: np.ndarray) -> np.ndarray:
+        """The lower bounds of the design (SI) with the free integers at ``combo``: what the exclusion tables and
+        ``_broken`` read (constraints of fixed variables alone)."""
+        design = self.lower.copy()
+        design[self.integer] = combo
+        return design
+
+    def _excluded_names(self, design: np.ndarray, k: int) -> list[str]:
+        """The constraints of fixed variables alone that ``design``'s integers break at point k, each named once."""
+        return list(dict.fromkeys(self._fixed_names[self._broken(design, k, 1)[:, 0]]))
 
     def _undesigned_at(self, combo: np.ndarray, k: int) -> bool:
         """IPOPT found no design with the integers ``combo`` at point k, or at one before it and the sweep has only

@@ -90,7 +90,7 @@ def from_the_start(posed: Posed, data: ScaledData, integer, kept: dict | None, s
     sizing solve to 950.76 kg, its own design. (At its 375 kg m^2 the sizing misses the start time by 6.3 %, the
     cable's link stress is 93 times over at its 0.25 kg m^2: not tried, no run added.)"""
     combo = np.round(data.start[integer])
-    if least_violation(posed, {"g": np.array(posed.constraint_values(data.x0, data.p)).ravel()}) > 10 * FEASIBILITY_TOL:
+    if least_violation(posed, np.array(posed.constraint_values(data.x0, data.p)).ravel()) > 10 * FEASIBILITY_TOL:
         return kept
     start_value = attempts.checked(posed, dict(zip(posed.names, data.start)), data.checked or data.params)["value"]
     if (kept is not None and kept["value"] <= start_value + posed.negligible(start_value)
@@ -156,14 +156,15 @@ def fixing(posed: Posed, data: ScaledData, runs: list[dict], search: list[dict],
             run = attempts.attempt(posed, data, lbx, ubx, second, None, ("ipopt",), runs)
         search.append(search_entry(posed, integer, combo, run["status"], run["feasible"], run["value"]))
         if ruled is not None and run["status"] == INFEASIBLE:
-            ruled.found(combo, least_violation(posed, run))
+            ruled.found(combo, least_violation(posed, run["g"]))
         return run if run["ok"] and run["feasible"] else None
 
     return fixed_at
 
 
 INFEASIBLE = "Infeasible_Problem_Detected"  # IPOPT's restoration phase ended at a local minimum of the violation
-VERDICTS = ("Solve_Succeeded", INFEASIBLE)  # IPOPT's ends that say something of the choice (not that they are global)
+SOLVED = "Solve_Succeeded"
+VERDICTS = (SOLVED, INFEASIBLE)  # IPOPT's ends that say something of the choice (not that they are global)
 
 
 def no_verdict(posed: Posed, run: dict) -> bool:
@@ -210,10 +211,9 @@ class RuledOut:
         return [f"infeasible by {found[0]:.2g} at an earlier mesh of collocation error {found[1]:.2g}"]
 
 
-def least_violation(posed: Posed, run: dict) -> float:
-    """The largest normalised constraint row a run leaves violated (inequalities above 0, equalities off 0), from
-    the rows its solver returned at its last point (``g``)."""
-    values = run["g"]
+def least_violation(posed: Posed, values: np.ndarray) -> float:
+    """The largest normalised constraint row left violated (inequalities above 0, equalities off 0) by the rows
+    ``values`` (e.g. those a run's solver returned at its last point, ``g``)."""
     return float(max(np.max(values[: posed.n_ineq], initial=0.0), np.max(np.abs(values[posed.n_ineq:]), initial=0.0)))
 
 

@@ -16,7 +16,9 @@ from __future__ import annotations
 
 import math
 
-SOLVED = "Solve_Succeeded"
+from clutchopt.optimise.integers import SOLVED
+from clutchopt.optimise.verify import DESIGN_STATUSES
+
 CARRIED = None  # the "choice" that measured a shift carried from elsewhere, where it is not known
 
 
@@ -51,12 +53,12 @@ class ForeignShifts:
         """A solve of the loop (at the limits moved so far): its infeasible choices, recorded as found at another
         choice's shift or at their own (none moved, or moved by their own start alone)."""
         for entry in solution.integer_search:
-            if all(name in entry for name in self.names):
-                self.tried.add(tuple(float(entry[name]) for name in self.names))
-            if entry["status"] == SOLVED or entry["status"].startswith("excluded") \
-                    or not all(name in entry for name in self.names):
+            if not all(name in entry for name in self.names):
                 continue
             combo = tuple(float(entry[name]) for name in self.names)
+            self.tried.add(combo)
+            if entry["status"] == SOLVED or entry["status"].startswith("excluded"):
+                continue
             if self.measured <= {combo}:
                 self.own.add(combo)
             elif math.isfinite(entry["objective"]):
@@ -66,7 +68,7 @@ class ForeignShifts:
         """The choices to solve through their own loop before ``kept`` (the loop's solution) is kept: found
         infeasible only at another choice's shift, their runs ending below the kept objective (any, where the loop
         kept no design), lightest first."""
-        has_design = kept.status in ("optimal", "unverified")
+        has_design = kept.status in DESIGN_STATUSES
         bound = kept.objective if has_design else math.inf
         own = self.choice(kept.design) if has_design else None
         return sorted((combo for combo, value in self.found.items()
