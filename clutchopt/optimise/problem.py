@@ -171,8 +171,7 @@ class Problem:
             else:
                 break
             solves.append(solution.solver)
-        solution.solver = SolverInfo(solution.solver.name, solution.solver.status, sum(s.iterations for s in solves),
-                                     sum(s.time_s for s in solves), sum(s.solves for s in solves))
+        solution.solver = solution.solver.summed(solves)
         if nlp_case is not None:  # not the doubled problem's
             solution.limit_shift = limit_shift(case, nlp_case)
         if foreign is not None:
@@ -207,8 +206,7 @@ class Problem:
         while below := foreign.untried_below(kept, lower):  # a count below the kept one its search never solved
             kept, _ = self._own_loop(case, solution, kept, foreign, below[0], runs)
         if len(runs) > 1:
-            kept.solver = SolverInfo(kept.solver.name, kept.solver.status, sum(s.iterations for s in runs),
-                                     sum(s.time_s for s in runs), sum(s.solves for s in runs))
+            kept.solver = kept.solver.summed(runs)
         return kept
 
     def _own_loop(self, case: Case, solution: Solution, kept: Solution, foreign: ForeignShifts, combo: tuple,
@@ -309,11 +307,11 @@ class Problem:
         integer = posed.free_integers(data)
         if not relaxed["ok"] and not diagnosed:  # a retry before a verdict: its own diagnosis is not needed
             return self._finish(case, relaxed, runs, data, search, ("not_found", "no design from this start"))
-        failed = None
+        diagnosis = None
         if not relaxed["ok"] and self.start_up is not None:
-            relaxed, failed = self._from_the_elastic_point(relaxed, data, runs)
+            relaxed, diagnosis = self._from_the_elastic_point(relaxed, data, runs)
         if not integer or not relaxed["ok"]:
-            return self._finish(case, relaxed, runs, data, search, diagnosed=failed)
+            return self._finish(case, relaxed, runs, data, search, diagnosed=diagnosis)
         attempt_at = fixing(posed, data, runs, search, ruled)
         kept = nearest_integers(posed, data.box, integer, relaxed, search, attempt_at)
         if self.start_up is not None and start is not None and not warm_ok:  # a first solve, from the sizing
@@ -325,17 +323,22 @@ class Problem:
                                  f"but none of the integer neighbours is ({tried})"))
         return self._finish(case, kept, runs, data, search)
 
-    def _from_the_elastic_point(self, failed: dict, data: ScaledData, runs: list[dict]) -> tuple[dict, Diagnosis]:
+    def _from_the_elastic_point(self, failed: dict, data: ScaledData,
+                                runs: list[dict]) -> tuple[dict, Diagnosis | None]:
         """A start-up's failed cold run and its diagnosis; where the elastic problem finds a point of the NLP (its
         slacks zero: ``solver_failed``), the run from that point (design and states) instead. IPOPT's restoration
         can end ``Infeasible_Problem_Detected`` on a first, coarse mesh whose relaxation is feasible:
         ball_motor_start at 403.9-410 kg m^2 (docs/start_up.md, "A feasible point on the first mesh"); solved from
-        the elastic point (15 iterations), the accuracy loop then decides on the meshes that resolve the start."""
+        the elastic point (15 iterations), the accuracy loop then decides on the meshes that resolve the start; the
+        elastic solve's seconds counted in that run's (its diagnosis is not shown)."""
         diagnosed = diagnose(self.posed, failed["p"], failed["lbx"], failed["ubx"], failed["x"], data.scale)
         if diagnosed.status != "solver_failed" or diagnosed.point is None:
             return failed, diagnosed
         rescued = attempt(self.posed, data, data.lbx, data.ubx, diagnosed.point, None, ("ipopt",), runs)
-        return (rescued, None) if rescued["ok"] else (failed, diagnosed)
+        if not rescued["ok"]:
+            return failed, diagnosed
+        rescued["time"] += diagnosed.seconds  # (``_finish`` sums the runs' times)
+        return rescued, None
 
     def _finish(self, case, run, runs, data: ScaledData, search, verdict=None,
                 diagnosed: Diagnosis | None = None) -> Solution:

@@ -89,6 +89,13 @@ class SolverInfo:
     time_s: float  # wall time of all solver calls (an infeasibility diagnosis included), without problem construction
     solves: int = 1  # design solves (the diagnosis not counted)
 
+    def summed(self, infos) -> "SolverInfo":
+        """This solve's name and status with the iterations, seconds and solves of ``infos`` (every solver call a
+        result took: a loop's solves, starts tried, own loops) summed."""
+        infos = list(infos)
+        return SolverInfo(self.name, self.status, sum(i.iterations or 0 for i in infos), sum(i.time_s for i in infos),
+                          sum(i.solves for i in infos))
+
 
 class Diagnosis(NamedTuple):
     """Why a solve has no design: its status and text, the seconds of the elastic solve (a solver call, not a design

@@ -141,9 +141,7 @@ def _confirmed(diagnosed: list[tuple[str, Solution]]) -> str:
 
 def _spent(solution: Solution, tried: list[tuple[str, Solution]]) -> Solution:
     """``solution`` with the solver calls of every start tried summed."""
-    infos = [s.solver for _, s in tried]
-    solution.solver = SolverInfo(solution.solver.name, solution.solver.status, sum(i.iterations or 0 for i in infos),
-                                 sum(i.time_s for i in infos), sum(i.solves for i in infos))
+    solution.solver = solution.solver.summed(s.solver for _, s in tried)
     return solution
 
 
