@@ -124,11 +124,23 @@ def _values(case: Case) -> dict[str, float]:
 
 def _on_or_beyond(origin: dict[str, float], lost: dict[str, float], first: dict[str, float]) -> bool:
     """``first`` = ``origin`` + t (``lost`` - ``origin``) in every value with t >= 1 (to 1e-9 of each step)."""
-    if origin.keys() != lost.keys() or origin.keys() != first.keys():
-        return False
-    steps = [(lost[name] - origin[name], first[name] - origin[name]) for name in origin]
-    moved = [(towards, ahead) for towards, ahead in steps if towards != 0.0]
-    if not moved or any(towards == 0.0 and ahead != 0.0 for towards, ahead in steps):
-        return False
+    t = on_ray(origin, lost, first)
+    return t is not None and t >= 1.0 - 1e-9
+
+
+ON_RAY = 1e-9  # relative: a value on the ray to this fraction of its step
+
+
+def on_ray(origin: dict[str, float], towards: dict[str, float], point: dict[str, float]) -> float | None:
+    """t where ``point`` = ``origin`` + t (``towards`` - ``origin``) in every value (to ON_RAY of each step), taken
+    from the first value that moves; None where they are not so placed (other names, no value moving, or one off
+    the ray). A sweep's continuation lost on its way (:func:`_on_or_beyond`) and the secant of a start-up sweep's
+    moved limits (``start_up_sweep``) read it."""
+    if origin.keys() != towards.keys() or origin.keys() != point.keys():
+        return None
+    steps = [(towards[name] - origin[name], point[name] - origin[name]) for name in origin]
+    moved = [(step, ahead) for step, ahead in steps if step != 0.0]
+    if not moved or any(step == 0.0 and ahead != 0.0 for step, ahead in steps):
+        return None
     t = moved[0][1] / moved[0][0]
-    return t >= 1.0 - 1e-9 and all(abs(ahead - t * towards) <= 1e-9 * abs(ahead) for towards, ahead in moved)
+    return t if all(abs(ahead - t * step) <= ON_RAY * abs(ahead) for step, ahead in moved) else None

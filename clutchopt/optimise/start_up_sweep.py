@@ -28,11 +28,11 @@ import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
+from clutchopt.optimise.failed_starts import on_ray
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution
 from clutchopt.optimise.start_up_check import limit_gaps
 
-COLLINEAR = 1e-9  # relative: the case's values on the line through the two points before (each changed value's step)
 FURTHEST = 1.5  # the longest step ahead, in steps of the two points before, the secant is carried over
 
 
@@ -105,20 +105,11 @@ def centred_shift(solution: Solution, case: Case) -> dict[str, float]:
 
 
 def _step(first: dict[str, float], second: dict[str, float], third: dict[str, float]) -> float | None:
-    """t where ``third`` = ``second`` + t (``second`` - ``first``) in every value (to COLLINEAR of each step),
-    0 < t <= FURTHEST; None where the three points are not so placed."""
-    if first.keys() != second.keys() or second.keys() != third.keys():
-        return None
-    steps = [(second[name] - first[name], third[name] - second[name]) for name in second
-             if second[name] != first[name] or third[name] != second[name]]
-    if not steps or any(before == 0.0 for before, _ in steps):
-        return None
-    t = steps[0][1] / steps[0][0]
-    if not 0.0 < t <= FURTHEST:
-        return None
-    if any(abs(ahead - t * before) > COLLINEAR * abs(ahead) for before, ahead in steps):
-        return None
-    return t
+    """t where ``third`` = ``second`` + t (``second`` - ``first``) in every value (to ON_RAY of each step:
+    ``failed_starts.on_ray`` from ``second`` towards ``first``, t its negative), 0 < t <= FURTHEST; None where the
+    three points are not so placed."""
+    back = on_ray(second, first, third)
+    return -back if back is not None and 0.0 < -back <= FURTHEST else None
 
 
 def _numbers(case: Case) -> dict[str, float]:
