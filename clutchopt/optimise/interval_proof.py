@@ -384,7 +384,7 @@ def empty_design_space(posed, case, budget: int | None = None) -> Emptiness | No
     problem = _search_problem(posed, case)
     kept = posed.built("interval_kept", None, lambda _: {})
     kept = kept.get(_key(problem)) if budget is not None else kept.pop(_key(problem), None)
-    emptiness = kept or (search(posed, *problem) if budget is None else searches(posed, [problem], [budget])[0])
+    emptiness = kept or searches(posed, [problem], None if budget is None else [budget])[0]
     if emptiness is not None and emptiness.proven:
         last_boxes(posed, emptiness.boxes)
     return emptiness

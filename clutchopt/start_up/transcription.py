@@ -187,7 +187,8 @@ class StartUpBlock:
             equalities.append((d.link(at["driver_speed"], at["twist"])
                                - d.carried(at["driver_speed"], times)) / d.torque_ref)
         rates = self._rates(phase, times, at)
-        slopes = {name: self._phase_slopes(n) @ ca.vertcat(*(node[name] for node in chain)) for name in states}
+        c = self._phase_slopes(n)
+        slopes = {name: c @ ca.vertcat(*(node[name] for node in chain)) for name in states}
         for name, (scale, _, _) in states.items():
             residual = slopes[name] - step * rates[name]
             if name == "driver_speed" and phase != "locked":  # J_m dw_a/dt = T_m - T: its terms' size
@@ -301,9 +302,10 @@ class StartUpBlock:
             values.append(end - begin)
             lengths = mesh[index * d.intervals:(index + 1) * d.intervals]
             starts = np.concatenate([[0.0], np.cumsum(lengths)[:-1]])
+            names = list(self._states(phase))
             for k in range(d.intervals):  # in the NLP's order: the nodes' states, then (locked) their twists
                 times = [begin + (starts[k] + self.tau[j] * lengths[k]) * (end - begin) for j in range(1, DEGREE + 1)]
-                places = [(time, name) for time in times for name in self._states(phase)]
+                places = [(time, name) for time in times for name in names]
                 for time, name in places + [(time, "twist") for time in times if phase == "locked"]:
                     samples[name][0].append(len(values))
                     samples[name][1].append(time)
