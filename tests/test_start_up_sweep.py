@@ -71,19 +71,24 @@ def test_the_limits_a_point_starts_with_follow_the_secant_through_the_two_points
 def test_a_binding_limit_is_centred_on_the_simulated_figure():
     """centred_shift by hand: the NLP saw max_temperature_rise 4 K x 0.9998 = 3.9992 K; the simulated peak is
     4 K + 2e-6 K, the check active: centred on the simulator, the NLP's limit would be 3.9992 - 2e-6 K, a share of
-    0.9998 - 5e-7. An inactive check, or a limit the correction did not move, is left as it is."""
+    0.9998 - 5e-7. An active limit never moved (max_friction_work 8 kJ, the simulated 8000.004 J) from the case's:
+    a share of 1 - 0.004 / 8000 = 1 - 5e-7. An inactive one whose NLP figure the report gives (the start time: NLP
+    9 s, simulated 9.000003 s against 10 s) is centred the same way, L - (F_sim - F_nlp): 10 - 3e-6 s, a share of
+    1 - 3e-7, whatever the share it had (0.99)."""
     from types import SimpleNamespace
 
     from clutchopt.optimise.start_up_sweep import centred_shift
 
     check = SimpleNamespace(name="temperature_rise", active=True, sense="<=", value=4.0 + 2e-6, limit=4.0)
-    loose = SimpleNamespace(name="start_time", active=False, sense="<=", value=9.0, limit=10.0)
-    solution = SimpleNamespace(constraints=[check, loose],
+    work = SimpleNamespace(name="friction_work", active=True, sense="<=", value=8000.004, limit=8000.0)
+    loose = SimpleNamespace(name="start_time", active=False, sense="<=", value=9.000003, limit=10.0)
+    solution = SimpleNamespace(constraints=[check, work, loose], start_up={"start_time": 9.0},
                                limit_shift={"max_temperature_rise": 0.9998, "max_start_time": 0.99})
-    case = SimpleNamespace(values={"max_temperature_rise": 4.0, "max_start_time": 10.0})
+    case = SimpleNamespace(values={"max_temperature_rise": 4.0, "max_start_time": 10.0, "max_friction_work": 8000.0})
     shares = centred_shift(solution, case)
     assert shares["max_temperature_rise"] == pytest.approx(0.9998 - 5e-7, rel=0, abs=1e-15)
-    assert shares["max_start_time"] == 0.99
+    assert shares["max_friction_work"] == pytest.approx(1 - 5e-7, rel=0, abs=1e-15)
+    assert shares["max_start_time"] == pytest.approx(1 - 3e-7, rel=0, abs=1e-15)
 
 
 def test_an_elastic_link_s_sweep_carries_its_limits_as_they_are(monkeypatch):

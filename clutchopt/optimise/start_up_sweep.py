@@ -34,6 +34,9 @@ from clutchopt.optimise.solution import Solution
 from clutchopt.optimise.start_up_check import limit_gaps
 
 FURTHEST = 1.5  # the longest step ahead, in steps of the two points before, the secant is carried over
+NLP_FIGURE = {"start_time": "start_time", "friction_work": "friction_work", "temperature_rise": "temperature_rise"}
+# a start-up check's figure as the NLP has it in the start-up report (``start_up_report``: the temperature rise its
+# largest at the nodes), beside the simulated one the check holds
 
 
 @dataclass(frozen=True)
@@ -58,8 +61,9 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
         return None
     try:
         numbers = _numbers(case)
-        solution = problem.refined(case, warm=previous, mesh=previous.mesh[0], shift=predicted_shift(previous, numbers),
-                                   diagnosed=False, cold=False)  # solve's own cold start and diagnosis follow
+        solution = problem.refined(case, warm=previous, mesh=previous.mesh[0],
+                                   shift=predicted_shift(previous, numbers), diagnosed=False,
+                                   cold=False)  # solve's own cold start and diagnosis follow
     except InputError:  # its first simulation failed from this start
         return None
     if solution.status != "optimal":
@@ -96,11 +100,19 @@ def centred_shift(solution: Solution, case: Case) -> dict[str, float]:
     the simulated figure meets the case's limit: the NLP's limit less the simulated gap, what the defect correction
     would move it to (:func:`~clutchopt.optimise.start_up_check.corrected_case`). The shares a point ends with are
     those of the limits its last solve saw, off that by up to what the loop accepts; the secant is taken through
-    the centred ones, not through its own predictions."""
+    the centred ones, not through its own predictions. A limit the design does not bind at whose NLP figure the
+    report gives beside the simulated one (:data:`NLP_FIGURE`) is centred the same way, the NLP's limit the case's
+    less what the simulator adds to the NLP's figure (L - (F_sim - F_nlp)): where a later point's design comes to
+    bind at it, its first solve meets it as the simulator sees it, and the correction it needed where a limit first
+    binds is not solved (wedge_motor_start over driven_inertia: the start time at 0.595 kg m^2, the temperature rise
+    at 0.637). Inactive, the moved limit changes no design."""
     shares = dict(solution.limit_shift)
     for check, name, gap in limit_gaps(solution):
-        if name in shares and check.active:
-            shares[name] -= gap / case.values[name]
+        if check.active:  # (a limit never moved: from the case's)
+            shares[name] = shares.get(name, 1.0) - gap / case.values[name]
+        elif not check.active and (nlp := solution.start_up.get(NLP_FIGURE.get(check.name, ""))) is not None \
+                and math.isfinite(nlp):
+            shares[name] = 1.0 - (check.value - nlp) / case.values[name]
     return shares
 
 
