@@ -128,3 +128,27 @@ def test_a_dense_sweep_where_the_temperature_rise_binds_needs_no_correction_a_po
     assert [r["solver"]["solves"] for r in records][3:] == [1, 1, 1]
     alone = case_problem(MOTOR).solve(MOTOR.with_values(driven_inertia=0.6394))
     assert abs(records[-1]["objective"]["value"] - alone.objective) <= 0.25e-6 * abs(alone.objective)
+
+
+def test_a_point_whose_error_the_secant_puts_beyond_the_tolerance_starts_on_the_adapted_mesh():
+    """first_mesh by hand: the two points before at J = 0.616 and 0.637 kg m^2 ended on one mesh with collocation
+    errors -5.93e-7 and -8.97e-7 (wedge_motor_start's 20-point sweep). At 0.658 (t = 1) the secant gives
+    -8.97e-7 + (-8.97e-7 + 5.93e-7) = -1.201e-6, beyond the tolerance 1e-6: the mesh the point before's simulated
+    start suggests (its ``mesh[1]``). At 0.6475 (t = 0.5) -1.049e-6: adapted too; with errors -5.93e-7 and -7.0e-7
+    the secant's -8.07e-7 at t = 1 is within: the mesh the point before ended on. Across a mesh change, or off the
+    line, no secant: the mesh the point before ended on."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.start_up_sweep import Along, first_mesh
+
+    mesh, suggested = np.full(16, 1 / 16), np.linspace(1, 2, 16) / 24
+    before = Along({"driven_inertia": 0.616}, {}, mesh, error=-5.93e-7)
+
+    def at(inertia, last_error=-8.97e-7, before=before):
+        last = Along({"driven_inertia": 0.637}, {}, mesh, before, error=last_error)
+        return first_mesh(SimpleNamespace(along=last, mesh=(mesh, suggested)), {"driven_inertia": inertia}, 1e-6)
+
+    assert at(0.658) is suggested and at(0.6475) is suggested
+    assert at(0.658, last_error=-7.0e-7) is mesh
+    assert at(0.658, before=Along(before.values, {}, mesh * 1.01, error=-5.93e-7)) is mesh  # a mesh change
+    assert at(0.637 + 2 * 0.021) is mesh  # t = 2 > FURTHEST

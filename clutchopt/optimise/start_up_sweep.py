@@ -48,6 +48,7 @@ class Along:
     shift: dict[str, float]
     mesh: np.ndarray
     before: "Along | None" = None
+    error: float = 0.0  # the collocation's error of its last solve (its start time against the simulated one)
 
 
 def solved_along(problem, case: Case, previous: Solution | None) -> Solution | None:
@@ -61,7 +62,7 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
         return None
     try:
         numbers = _numbers(case)
-        solution = problem.refined(case, warm=previous, mesh=previous.mesh[0],
+        solution = problem.refined(case, warm=previous, mesh=first_mesh(previous, numbers, block.s.spec.tolerance),
                                    shift=predicted_shift(previous, numbers), diagnosed=False,
                                    cold=False)  # solve's own cold start and diagnosis follow
     except InputError:  # its first simulation failed from this start
@@ -72,8 +73,25 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
         return solution  # NLP is another model than the simulated dynamics, not a mesh off them (the share is kept)
     before = previous.along
     solution.along = Along(numbers, centred_shift(solution, case), solution.mesh[0],
-                           replace(before, before=None) if before is not None else None)
+                           replace(before, before=None) if before is not None else None,
+                           solution.start_up["discretisation_error"]["start_time"])
     return solution
+
+
+def first_mesh(previous: Solution, numbers: dict[str, float], tolerance: float) -> np.ndarray:
+    """The mesh a point's first solve is on: the one the point before's loop ended on, or where the secant through
+    the collocation errors of the two points before on that mesh (their start time against the simulated one)
+    puts this point's error beyond ``tolerance``, the mesh the point before's simulated start suggests (adapted to
+    it, ``Solution.mesh[1]``): the loop would solve on the old mesh only to adapt it (wedge_motor_start over
+    driven_inertia at 0.658 kg m^2: errors -5.9e-7 and -9.0e-7 at the two points before, -1.24e-6 there). The
+    secant is taken as :func:`predicted_shift` takes it (the same mesh, on the line, at most FURTHEST steps on)."""
+    last = previous.along
+    if last is None or last.before is None or not np.array_equal(last.mesh, last.before.mesh):
+        return previous.mesh[0]
+    step = _step(last.before.values, last.values, numbers)
+    if step is None or not abs(last.error + step * (last.error - last.before.error)) > tolerance:
+        return previous.mesh[0]
+    return previous.mesh[1]
 
 
 def predicted_shift(previous: Solution, numbers: dict[str, float]) -> dict[str, float]:
@@ -104,14 +122,13 @@ def centred_shift(solution: Solution, case: Case) -> dict[str, float]:
     report gives beside the simulated one (:data:`NLP_FIGURE`) is centred the same way, the NLP's limit the case's
     less what the simulator adds to the NLP's figure (L - (F_sim - F_nlp)): where a later point's design comes to
     bind at it, its first solve meets it as the simulator sees it, and the correction it needed where a limit first
-    binds is not solved (wedge_motor_start over driven_inertia: the start time at 0.595 kg m^2, the temperature rise
-    at 0.637). Inactive, the moved limit changes no design."""
+    binds is not solved (wedge_motor_start over driven_inertia: one of the two at 0.637 kg m^2, where the temperature
+    rise first binds). Inactive, the moved limit changes no design."""
     shares = dict(solution.limit_shift)
     for check, name, gap in limit_gaps(solution):
         if check.active:  # (a limit never moved: from the case's)
             shares[name] = shares.get(name, 1.0) - gap / case.values[name]
-        elif not check.active and (nlp := solution.start_up.get(NLP_FIGURE.get(check.name, ""))) is not None \
-                and math.isfinite(nlp):
+        elif (nlp := solution.start_up.get(NLP_FIGURE.get(check.name, ""))) is not None and math.isfinite(nlp):
             shares[name] = 1.0 - (check.value - nlp) / case.values[name]
     return shares
 
