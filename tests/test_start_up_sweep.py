@@ -152,3 +152,29 @@ def test_a_point_whose_error_the_secant_puts_beyond_the_tolerance_starts_on_the_
     assert at(0.658, last_error=-7.0e-7) is mesh
     assert at(0.658, before=Along(before.values, {}, mesh * 1.01, error=-5.93e-7)) is mesh  # a mesh change
     assert at(0.637 + 2 * 0.021) is mesh  # t = 2 > FURTHEST
+
+
+def test_an_active_limit_left_at_the_case_s_is_moved_where_the_correction_would_move_it():
+    """predicted_shift with held_limits by hand: the start time binds at the two points before (J = 0.553 and 0.574
+    kg m^2), its loop never moved it; the objective's error from the simulated start off the limit, |elasticity x
+    gap / limit|, was 2.07e-7 and 2.47e-7 (0.55 x 3.75e-7, 0.56 x 4.40e-7), within CENTRE x tolerance = 2.5e-7, and
+    its centred share 1 - 4.40e-7 at 0.574. At 0.595 (t = 1) the secant puts the error at 2.87e-7, beyond: the
+    point starts at the centred share moved on by the secant, 1 - 4.40e-7 - 0.65e-7 = 1 - 5.05e-7. At 0.5845
+    (t = 0.5) 2.67e-7: moved too; were the error 1.8e-7 and 2.0e-7 (2.2e-7 at t = 1), it stays at the case's."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.start_up_sweep import Along, predicted_shift
+
+    mesh = np.full(16, 1 / 16)
+
+    def at(inertia, errors=(2.07e-7, 2.47e-7)):
+        before = Along({"driven_inertia": 0.553}, {"max_start_time": 1 - 3.75e-7}, mesh, held={"max_start_time":
+                                                                                                errors[0]})
+        last = Along({"driven_inertia": 0.574}, {"max_start_time": 1 - 4.40e-7}, mesh, before,
+                     held={"max_start_time": errors[1]})
+        previous = SimpleNamespace(along=last, limit_shift={}, start_up={"tolerance": 1e-6})
+        return predicted_shift(previous, {"driven_inertia": inertia})
+
+    assert at(0.595)["max_start_time"] == pytest.approx(1 - 5.05e-7, rel=0, abs=1e-15)
+    assert at(0.5845)["max_start_time"] == pytest.approx(1 - 4.725e-7, rel=0, abs=1e-15)
+    assert "max_start_time" not in at(0.595, errors=(1.8e-7, 2.0e-7))
