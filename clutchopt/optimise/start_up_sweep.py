@@ -64,8 +64,11 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
         return None
     try:
         numbers = _numbers(case)
-        solution = problem.refined(case, warm=previous, mesh=first_mesh(previous, numbers, block.s.spec.tolerance),
-                                   shift=predicted_shift(previous, numbers), diagnosed=False,
+        mesh, shift = first_mesh(previous, numbers, block.s.spec.tolerance), predicted_shift(previous, numbers)
+        if mesh is not previous.mesh[0]:  # an adapted mesh moves the collocation's figures by a step of its own:
+            shift = {name: share for name, share in shift.items() if name in previous.limit_shift}  # the limits
+            # the point before's loop moved, as they are carried into an adaptation
+        solution = problem.refined(case, warm=previous, mesh=mesh, shift=shift, diagnosed=False,
                                    cold=False)  # solve's own cold start and diagnosis follow
     except InputError:  # its first simulation failed from this start
         return None
