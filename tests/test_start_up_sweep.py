@@ -74,7 +74,7 @@ def test_a_binding_limit_is_centred_on_the_simulated_figure():
     0.9998 - 5e-7. An active limit never moved (max_friction_work 8 kJ, the simulated 8000.004 J) from the case's:
     a share of 1 - 0.004 / 8000 = 1 - 5e-7. An inactive one whose NLP figure the report gives (the start time: NLP
     9 s, simulated 9.000003 s against 10 s) is centred the same way, L - (F_sim - F_nlp): 10 - 3e-6 s, a share of
-    1 - 3e-7, whatever the share it had (0.99)."""
+    1 - 3e-7, whatever the share it had (0.99), where the solve's mesh resolves the start."""
     from types import SimpleNamespace
 
     from clutchopt.optimise.start_up_sweep import centred_shift
@@ -82,13 +82,18 @@ def test_a_binding_limit_is_centred_on_the_simulated_figure():
     check = SimpleNamespace(name="temperature_rise", active=True, sense="<=", value=4.0 + 2e-6, limit=4.0)
     work = SimpleNamespace(name="friction_work", active=True, sense="<=", value=8000.004, limit=8000.0)
     loose = SimpleNamespace(name="start_time", active=False, sense="<=", value=9.000003, limit=10.0)
-    solution = SimpleNamespace(constraints=[check, work, loose], start_up={"start_time": 9.0},
-                               limit_shift={"max_temperature_rise": 0.9998, "max_start_time": 0.99})
     case = SimpleNamespace(values={"max_temperature_rise": 4.0, "max_start_time": 10.0, "max_friction_work": 8000.0})
-    shares = centred_shift(solution, case)
-    assert shares["max_temperature_rise"] == pytest.approx(0.9998 - 5e-7, rel=0, abs=1e-15)
-    assert shares["max_friction_work"] == pytest.approx(1 - 5e-7, rel=0, abs=1e-15)
-    assert shares["max_start_time"] == pytest.approx(1 - 3e-7, rel=0, abs=1e-15)
+
+    def shares(error):  # the collocation's error of the solve: (9 - 9.000003) / 9.000003 on this start
+        return centred_shift(SimpleNamespace(
+            constraints=[check, work, loose], limit_shift={"max_temperature_rise": 0.9998, "max_start_time": 0.99},
+            start_up={"start_time": 9.0, "tolerance": 1e-6, "discretisation_error": {"start_time": error}}), case)
+
+    assert shares(-3.3e-7)["max_temperature_rise"] == pytest.approx(0.9998 - 5e-7, rel=0, abs=1e-15)
+    assert shares(-3.3e-7)["max_friction_work"] == pytest.approx(1 - 5e-7, rel=0, abs=1e-15)
+    assert shares(-3.3e-7)["max_start_time"] == pytest.approx(1 - 3e-7, rel=0, abs=1e-15)
+    # a mesh that does not resolve the start (error 2e-3, beyond the tolerance): the inactive limit is left as it is
+    assert shares(2e-3)["max_start_time"] == 0.99
 
 
 def test_an_elastic_link_s_sweep_carries_its_limits_as_they_are(monkeypatch):
@@ -193,3 +198,17 @@ def test_where_the_temperature_rise_first_binds_and_the_mesh_must_adapt_a_point_
     assert [r["solver"]["solves"] for r in records][1:] == [1, 2, 2]
     alone = case_problem(MOTOR).solve(MOTOR.with_values(driven_inertia=0.6579))
     assert abs(records[-1]["objective"]["value"] - alone.objective) <= 0.25e-6 * abs(alone.objective)
+
+
+def test_a_point_after_a_coarse_mesh_the_loop_kept_stays_on_it():
+    """first_mesh: where the point before's loop kept a mesh whose error is beyond the tolerance (it stopped for
+    another reason: no start-up limit shapes the design, ``shapes_nothing``; ball_motor_start at 0.6-0.9 times its
+    driven inertia, errors -1.0e-3 and 1.6e-3), the secant's 4.1e-3 starts no adaptation: the point before's mesh."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.start_up_sweep import Along, first_mesh
+
+    mesh, suggested = np.full(16, 1 / 16), np.linspace(1, 2, 16) / 24
+    before = Along({"driven_inertia": 240.8}, {}, mesh, error=-1.02e-3)
+    last = Along({"driven_inertia": 256.6}, {}, mesh, before, error=1.55e-3)
+    assert first_mesh(SimpleNamespace(along=last, mesh=(mesh, suggested)), {"driven_inertia": 272.4}, 1e-6) is mesh
