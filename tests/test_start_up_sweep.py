@@ -212,3 +212,31 @@ def test_a_point_after_a_coarse_mesh_the_loop_kept_stays_on_it():
     before = Along({"driven_inertia": 240.8}, {}, mesh, error=-1.02e-3)
     last = Along({"driven_inertia": 256.6}, {}, mesh, before, error=1.55e-3)
     assert first_mesh(SimpleNamespace(along=last, mesh=(mesh, suggested)), {"driven_inertia": 272.4}, 1e-6) is mesh
+
+
+def test_an_integer_choice_the_papers_sizing_finds_infeasible_is_not_solved_along_the_sweep():
+    """ball_motor_start over driven_inertia (225-336 kg m^2 in the 20-point sweep): the design is the papers'
+    sizing, 23 ball rows, and the row fewer its multiplier promises, 22, is infeasible in the sizing (the static
+    problem, least violation 2.72e-3) and in the start-up problem, which keeps every row of the sizing (the ball has
+    no constant-acceleration row): each point solved it (26-33 IPOPT iterations). The driven inertia enters no row
+    of the sizing, so its verdict holds at every point: from the third point on (the second solved along the sweep
+    whose sizing problem is its point before's) 22 rows are excluded without a solve, and the design is solve's. The
+    wedge's sizing has a row the start-up model replaces (the torque for T_max): nothing is ruled out by it."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.start_up_sweep import SizedOut, sized_out
+
+    ball = load_case(CASES / "ball_motor_start.toml")
+    points = ",".join(str(375.0 * factor) for factor in np.linspace(0.6, 1.4, 20)[[1, 2, 4]])  # the sweep's
+    vary = parse_vary(f"driven_inertia={points}", ball.coupling, ball.quantities)
+    records = list(Sweep(ball, [vary]).run(progress=False).solutions)
+    assert [r["status"] for r in records] == ["optimal"] * 3
+    rows = [{e["ball_rows"]: e["status"] for e in r["integer_search"]} for r in records]
+    assert rows[0][22] == rows[1][22] == "Infeasible_Problem_Detected" and rows[0][23] == "Solve_Succeeded"
+    assert rows[2][22].startswith("excluded: infeasible in the papers' sizing at this point")
+    alone = case_problem(ball).solve(ball.with_values(driven_inertia=vary.values[2]))
+    assert alone.design["ball_rows"] == records[2]["design"]["ball_rows"] == 23
+    assert records[2]["objective"]["value"] == pytest.approx(alone.objective, rel=1e-9, abs=0)
+    problem = case_problem(MOTOR)
+    key = sized_out(problem, MOTOR, None).key
+    assert sized_out(problem, MOTOR, SimpleNamespace(sized=SizedOut(key))).choices == {}

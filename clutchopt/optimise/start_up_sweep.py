@@ -29,6 +29,8 @@ import numpy as np
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.optimise.failed_starts import on_ray
+from clutchopt.optimise.integers import INFEASIBLE
+from clutchopt.optimise.problem import problem_for
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution
 from clutchopt.optimise.start_up_check import CENTRE, limit_gaps
@@ -51,6 +53,7 @@ class Along:
     error: float = 0.0  # the collocation's error of its last solve (its start time against the simulated one)
     held: dict[str, float] = field(default_factory=dict)  # the active limits its loop never moved: the objective's
     # error from each (:func:`held_limits`)
+    sized: "SizedOut | None" = None  # the papers' sizing's problem at the point, and its infeasible integer choices
 
 
 def solved_along(problem, case: Case, previous: Solution | None) -> Solution | None:
@@ -64,12 +67,13 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
         return None
     try:
         numbers = _numbers(case)
+        sized = sized_out(problem, case, previous.along)
         mesh, shift = first_mesh(previous, numbers, block.s.spec.tolerance), predicted_shift(previous, numbers)
         if mesh is not previous.mesh[0]:  # an adapted mesh moves the collocation's figures by a step of its own:
             shift = {name: share for name, share in shift.items() if name in previous.limit_shift}  # the limits
             # the point before's loop moved, as they are carried into an adaptation
-        solution = problem.refined(case, warm=previous, mesh=mesh, shift=shift, diagnosed=False,
-                                   cold=False)  # solve's own cold start and diagnosis follow
+        solution = problem.refined(case, warm=previous, mesh=mesh, shift=shift, diagnosed=False, cold=False,
+                                   infeasible=sized.choices)  # solve's own cold start and diagnosis follow
     except InputError:  # its first simulation failed from this start
         return None
     if solution.status != "optimal":
@@ -79,8 +83,44 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
     before = previous.along
     solution.along = Along(numbers, centred_shift(solution, case), solution.mesh[0],
                            replace(before, before=None) if before is not None else None,
-                           solution.start_up["discretisation_error"]["start_time"], held_limits(solution))
+                           solution.start_up["discretisation_error"]["start_time"], held_limits(solution), sized)
     return solution
+
+
+@dataclass(frozen=True)
+class SizedOut:
+    """The papers' sizing's problem at a sweep's point (``key``: its case values, as its posed problem reads them)
+    and the integer choices its search found infeasible there (``choices``: the start-up problem's integer
+    variables' values -> why; None: not solved for)."""
+
+    key: str
+    choices: dict[tuple, str] | None = None
+
+
+def sized_out(problem, case: Case, before: Along | None) -> SizedOut:
+    """The integer choices a start-up sweep's point need not solve: those the papers' sizing (the same formulation
+    without the start-up, ``Problem._sizing``) finds infeasible at the point (IPOPT: ``Infeasible_Problem_Detected``),
+    where the start-up problem keeps every row of it (no constant-acceleration row left to the start-up model, as
+    the wedge's and lever's torque rows are): its designs are then a subset of the sizing's, and a choice without a
+    design there has none here, as the batch's ``tightening`` reads a step that only tightens. The sizing is solved
+    once a sweep, at the first point solved along it whose sizing problem is the point before's (a sweep of
+    start-up quantities alone: the driven inertia), and carried while the problem stays the same; a sweep that
+    moves it solves none. ball_motor_start over driven_inertia: 22 rows, the sizing's row fewer, infeasible by the
+    same least violation 2.72e-3 at every point from 225 to 336 kg m^2, were solved at each (26-33 IPOPT
+    iterations); ``solve`` of such a point alone tries them and finds them infeasible: the same verdict."""
+    static = problem_for(problem.posed.base, problem.objective.name, problem.options)
+    key = repr(tuple(vars(static.posed.params(case)).values()))
+    if before is None or before.sized is None or before.sized.key != key:
+        return SizedOut(key)
+    if before.sized.choices is not None:
+        return before.sized
+    if problem.start_up.s.elastic or not set(static.posed.row_names) <= set(problem.posed.row_names):  # a row
+        return SizedOut(key, {})  # left to the start-up model (an elastic link's loop rules nothing out)
+    names = [v.name for v in problem.formulation.variables if v.integer]
+    choices = {tuple(float(entry[name]) for name in names if name in entry):
+               f"infeasible in the papers' sizing at this point ({entry['status']}), whose every row the start-up "
+               "problem keeps" for entry in problem._sizing(case).integer_search if entry["status"] == INFEASIBLE}
+    return SizedOut(key, choices)
 
 
 def first_mesh(previous: Solution, numbers: dict[str, float], tolerance: float) -> np.ndarray:
