@@ -13,7 +13,12 @@ the temperature rise binds, the correction moves by some 1e-5 a point, which the
 the loop accepts, the secant's by the second difference only (a correction a point saved on a dense sweep; an
 elastic link's limits, which its loop never centres, are carried as they are). The loop
 still decides on this point's own simulated start, so the design is ``solve``'s within the accuracy contract
-(docs/start_up.md: each is the simulator's optimum to a quarter of the tolerance on the objective). The sizing and
+(docs/start_up.md: each is the simulator's optimum to a quarter of the tolerance on the objective). A limit its
+loop left at the case's is moved only where the correction would move it (:func:`held_limits`), a point whose error
+the secant puts beyond the tolerance starts on the adapted mesh (:func:`first_mesh`), and an integer choice the
+papers' sizing finds infeasible at the point is not solved where the sizing's rows are all the start-up problem's
+(:func:`sized_out`): the corrections, adaptations and integer attempts the loop would solve only to land where it
+would have. The sizing and
 the start guess's simulation are saved; every solve is still checked by the simulator. A point this does not bring
 to an optimum is solved cold, as ``solve`` solves it (its verdict is ``solve``'s). A point the drive's proofs cover
 (:mod:`clutchopt.optimise.proofs`) is not started: ``solve`` gives its verdict without a solve.
@@ -36,10 +41,6 @@ from clutchopt.optimise.solution import Solution
 from clutchopt.optimise.start_up_check import CENTRE, limit_gaps
 
 FURTHEST = 1.5  # the longest step ahead, in steps of the two points before, the secant is carried over
-NLP_FIGURE = {"start_time": "start_time", "friction_work": "friction_work", "temperature_rise": "temperature_rise"}
-# a start-up check's figure as the NLP has it in the start-up report (``start_up_report``: the temperature rise its
-# largest at the nodes), beside the simulated one the check holds
-
 
 @dataclass(frozen=True)
 class Along:
@@ -129,7 +130,11 @@ def first_mesh(previous: Solution, numbers: dict[str, float], tolerance: float) 
     puts this point's error beyond ``tolerance``, the mesh the point before's simulated start suggests (adapted to
     it, ``Solution.mesh[1]``): the loop would solve on the old mesh only to adapt it (wedge_motor_start over
     driven_inertia at 0.658 kg m^2: errors -5.9e-7 and -9.0e-7 at the two points before, -1.24e-6 there). The
-    secant is taken as :func:`predicted_shift` takes it (the same mesh, on the line, at most FURTHEST steps on)."""
+    secant is taken as :func:`predicted_shift` takes it (the same mesh, on the line, at most FURTHEST steps on), and
+    only after a mesh that resolved the point before's start (its error within ``tolerance``): a loop that kept a
+    coarse mesh for another reason (no start-up limit shapes the design, ``shapes_nothing``: ball_motor_start at
+    0.6-0.9 times its driven inertia, errors 1e-3 to 1e-2) keeps it (adapted ahead, the ball's integer search went
+    down another path at 272 and 288 kg m^2, to designs 0.4 and 0.7 % heavier than ``solve``'s)."""
     last = previous.along
     if last is None or last.before is None or not np.array_equal(last.mesh, last.before.mesh) \
             or not abs(last.error) <= tolerance:  # (a loop that kept a coarse mesh for another reason: kept)
@@ -149,9 +154,9 @@ def predicted_shift(previous: Solution, numbers: dict[str, float]) -> dict[str, 
     where it was not solved along the sweep. An active limit the point before's loop left at the case's
     (:func:`held_limits`) is moved only where the objective's error from it, carried on the same way, passes what
     the defect correction accepts (CENTRE of the tolerance): the correction this point would solve is then not
-    solved (wedge_motor_start over driven_inertia at 0.595 kg m^2, where the start time's passes it: 2.5e-7 and
-    2.9e-7 the two points before, each centred from then on), and a point it would not correct is solved at the
-    case's limit, as the point alone is."""
+    solved (wedge_motor_start over driven_inertia at 0.595 kg m^2, where the start time's passes it: 2.1e-7 and
+    2.5e-7 at the two points before, 2.9e-7 there; centred from then on), and a point it would not correct is
+    solved at the case's limit, as the point alone is."""
     last = previous.along
     if last is None:
         return previous.limit_shift
@@ -164,12 +169,6 @@ def predicted_shift(previous: Solution, numbers: dict[str, float]) -> dict[str, 
         if not _ahead(error, before.held.get(name), step) > CENTRE * previous.start_up["tolerance"]:
             shares.pop(name, None)
     return shares
-
-
-def _resolved(solution: Solution) -> bool:
-    """Whether a start-up solve's mesh resolves its start: its collocation error (start time against the simulated
-    one) within the tolerance."""
-    return abs(solution.start_up["discretisation_error"]["start_time"]) <= solution.start_up["tolerance"]
 
 
 def held_limits(solution: Solution) -> dict[str, float]:
@@ -189,25 +188,17 @@ def _ahead(value: float, before: float | None, step: float | None) -> float:
 def centred_shift(solution: Solution, case: Case) -> dict[str, float]:
     """``solution``'s ``limit_shift`` with each limit its design binds at (the simulated check active) moved to where
     the simulated figure meets the case's limit: the NLP's limit less the simulated gap, what the defect correction
-    would move it to (:func:`~clutchopt.optimise.start_up_check.corrected_case`). The shares a point ends with are
-    those of the limits its last solve saw, off that by up to what the loop accepts; the secant is taken through
-    the centred ones, not through its own predictions. A limit the design does not bind at whose NLP figure the
-    report gives beside the simulated one (:data:`NLP_FIGURE`) is centred the same way, the NLP's limit the case's
-    less what the simulator adds to the NLP's figure (L - (F_sim - F_nlp)): where a later point's design comes to
-    bind at it, its first solve meets it as the simulator sees it, and the correction it needed where a limit first
-    binds is not solved (wedge_motor_start over driven_inertia: one of the two at 0.637 kg m^2, where the temperature
-    rise first binds). Inactive, the moved limit changes no design. Only where the point's last mesh resolves its
-    start (:func:`_resolved`): a loop that stopped on a coarse mesh (``shapes_nothing``: ball_motor_start at 0.6-0.9
-    times its driven inertia, errors of 1e-3 to 1e-2) would move the next point's limits by that much, and its
-    integer search down another path (at 272 and 288 kg m^2 to designs 0.4 and 0.7 % heavier than ``solve``'s)."""
+    would move it to (:func:`~clutchopt.optimise.start_up_check.corrected_case`); a limit its loop never moved from
+    the case's (share 1; :func:`predicted_shift` carries it only where the correction would move it). The shares a
+    point ends with are those of the limits its last solve saw, off that by up to what the loop accepts; the secant
+    is taken through the centred ones, not through its own predictions. A limit the design does not bind at is left
+    as it is (centred on what the simulator adds to the NLP's figure, the correction where it first binds was
+    saved, but that point's design moved off ``solve``'s by up to what the correction accepts: docs/start_up.md,
+    "Fewer solver calls a start-up sweep's point")."""
     shares = dict(solution.limit_shift)
-    resolved = _resolved(solution)
     for check, name, gap in limit_gaps(solution):
-        if check.active:  # (a limit never moved: from the case's)
+        if check.active:
             shares[name] = shares.get(name, 1.0) - gap / case.values[name]
-        elif resolved and (nlp := solution.start_up.get(NLP_FIGURE.get(check.name, ""))) is not None \
-                and math.isfinite(nlp):
-            shares[name] = 1.0 - (check.value - nlp) / case.values[name]
     return shares
 
 
