@@ -135,7 +135,8 @@ def test_a_point_whose_error_the_secant_puts_beyond_the_tolerance_starts_on_the_
     -8.97e-7 + (-8.97e-7 + 5.93e-7) = -1.201e-6, beyond the tolerance 1e-6: the mesh the point before's simulated
     start suggests (its ``mesh[1]``). At 0.6475 (t = 0.5) -1.049e-6: adapted too; with errors -5.93e-7 and -7.0e-7
     the secant's -8.07e-7 at t = 1 is within: the mesh the point before ended on. Across a mesh change, or off the
-    line, no secant: the mesh the point before ended on."""
+    line, no secant, or where the point before binds at a limit its loop left uncorrected (its design carries the
+    collocation's error there: the mesh decides it): the mesh the point before ended on."""
     from types import SimpleNamespace
 
     from clutchopt.optimise.start_up_sweep import Along, first_mesh
@@ -151,6 +152,8 @@ def test_a_point_whose_error_the_secant_puts_beyond_the_tolerance_starts_on_the_
     assert at(0.658, last_error=-7.0e-7) is mesh
     assert at(0.658, before=Along(before.values, {}, mesh * 1.01, error=-5.93e-7)) is mesh  # a mesh change
     assert at(0.637 + 2 * 0.021) is mesh  # t = 2 > FURTHEST
+    held = Along({"driven_inertia": 0.637}, {}, mesh, before, error=-8.97e-7, held={"max_start_time": 1e-7})
+    assert first_mesh(SimpleNamespace(along=held, mesh=(mesh, suggested)), {"driven_inertia": 0.658}, 1e-6) is mesh
 
 
 def test_an_active_limit_left_at_the_case_s_is_moved_where_the_correction_would_move_it():
