@@ -70,9 +70,10 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
         numbers = _numbers(case)
         sized = sized_out(problem, case, previous.along)
         mesh, shift = first_mesh(previous, numbers, block.s.spec.tolerance), predicted_shift(previous, numbers)
-        if mesh is not previous.mesh[0]:  # an adapted mesh moves the collocation's figures by a step of its own:
-            shift = {name: share for name, share in shift.items() if name in previous.limit_shift}  # the limits
-            # the point before's loop moved, as they are carried into an adaptation
+        if not abs(error_ahead(previous, numbers) or 0.0) <= block.s.spec.tolerance:  # an adaptation (ahead, or
+            # the loop's) moves the collocation's figures by a step of its own: the limits the point before's loop
+            # moved are carried into it, as the loop carries them, not those moved ahead on the old mesh's figures
+            shift = {name: share for name, share in shift.items() if name in previous.limit_shift}
         solution = problem.refined(case, warm=previous, mesh=mesh, shift=shift, diagnosed=False, cold=False,
                                    infeasible=sized.choices)  # solve's own cold start and diagnosis follow
     except InputError:  # its first simulation failed from this start
@@ -140,14 +141,21 @@ def first_mesh(previous: Solution, numbers: dict[str, float], tolerance: float) 
     of the point before instead of this point's own moves it and every later point on it (lever_motor_start from
     9.22 kg m^2 on, ten points by up to 3.6e-8 off main's, 1.0e-7 off ``solve``'s; where the correction centres
     every binding limit, as on the wedge at 0.658 kg m^2, the designs after it are main's to 5e-11)."""
-    last = previous.along
-    if last is None or last.before is None or not np.array_equal(last.mesh, last.before.mesh) \
-            or not abs(last.error) <= tolerance or last.held:  # (a loop that kept a coarse mesh for another
-        return previous.mesh[0]  # reason: kept; a binding limit left uncorrected: the mesh decides the design)
-    step = _step(last.before.values, last.values, numbers)
-    if step is None or not abs(last.error + step * (last.error - last.before.error)) > tolerance:
-        return previous.mesh[0]
+    ahead, last = error_ahead(previous, numbers), previous.along
+    if ahead is None or not abs(ahead) > tolerance or not abs(last.error) <= tolerance or last.held:  # (a loop that
+        return previous.mesh[0]  # kept a coarse mesh for another reason; a binding limit left uncorrected)
     return previous.mesh[1]
+
+
+def error_ahead(previous: Solution, numbers: dict[str, float]) -> float | None:
+    """The collocation error (start time against the simulated one) the secant through the two points before puts
+    at the point whose case's values are ``numbers``, where both ended on the same mesh, the point lies on the line
+    through theirs, at most FURTHEST steps on; None where not."""
+    last = previous.along
+    if last is None or last.before is None or not np.array_equal(last.mesh, last.before.mesh):
+        return None
+    step = _step(last.before.values, last.values, numbers)
+    return None if step is None else last.error + step * (last.error - last.before.error)
 
 
 def predicted_shift(previous: Solution, numbers: dict[str, float]) -> dict[str, float]:
