@@ -123,7 +123,8 @@ COLUMN_UNITS = {  # the SI unit of every column of every section ("": a count, r
                      "python_per_point_share", "vs_point_by_point", "vs_wedge_paper", "resolves", "speedup",
                      "max_rel_diff_objective", "workers", "rtol", "t_c_rel_error", "L_rel_error", "intervals",
                      "start_time_rel_error", "solves", "designed", "without_design", "first_vs_static",
-                     "resolve_vs_static", "point_cost_vs_designed", "probability", "interval_low", "interval_high", "samples"), ""),
+                     "resolve_vs_static", "point_cost_vs_designed", "probability", "interval_low", "interval_high",
+                     "samples"), ""),
 }
 
 
