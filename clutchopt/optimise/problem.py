@@ -65,7 +65,7 @@ class Problem:
             if self.start_up is None or (start is None and warm is None):
                 raise
             solution, start, warm = self.refined(case, None, None, mesh, refine, coarser=coarser), None, None
-        if solution.status in DESIGN_STATUSES or not refine or solution.solver.name == PROVEN:  # (proven: no retry)
+        if solution.status in DESIGN_STATUSES or not refine:
             return solution
         return shown(self, case, solution, start is not None or warm is not None, neighbour)
 
@@ -229,13 +229,15 @@ class Problem:
         start-up solve (each would end without a design, then be retried and diagnosed: lever_motor_start with 6 s
         allowed took 3 solves, 305 IPOPT iterations and 2.5 s to end `not_found`). The design shown is the papers'
         sizing at the case (one static solve: where a start-up solve would begin), its constraints re-evaluated in
-        float64."""
+        float64; its diagnosis a proof, so that :meth:`solve` gives it as it is (no retry: ``verdict.shown``)."""
         sized = self._sizing(case)
         lower, upper, x0 = self.posed.bounds_and_start(case, sized.design)
-        return infeasible_at(self.posed, case, dict(zip(self.posed.names, map(float, x0))),
-                             "proven infeasible: " + "; ".join(proofs),
-                             SolverInfo(PROVEN, "proven", sized.solver.iterations, sized.solver.time_s,
-                                        sized.solver.solves), bounds=(lower, upper))
+        text = "proven infeasible: " + "; ".join(proofs)
+        solution = infeasible_at(self.posed, case, dict(zip(self.posed.names, map(float, x0))), text,
+                                 SolverInfo(PROVEN, "proven", sized.solver.iterations, sized.solver.time_s,
+                                            sized.solver.solves), bounds=(lower, upper))
+        solution.diagnosed = Diagnosis("infeasible", text, 0.0, proven=True)
+        return solution
 
     def _sizing(self, case: Case) -> Solution:
         """The papers' sizing at ``case``: the static problem of the same formulation solved (where a start-up solve
