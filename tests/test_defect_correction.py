@@ -90,3 +90,21 @@ def test_the_cable_at_0_5_keeps_the_lightest_verified_count():
                                                "weight_mass": (0.495, 0.495)}))
     assert heavier.status == "optimal" and heavier.objective == pytest.approx(4.2759287, rel=1e-6)
     assert solve_case(case).objective <= heavier.objective
+
+
+def test_the_cable_s_sweep_past_0_4_agrees_with_solve():
+    """Over 0.45, 0.5 and 0.6 kg m^2 (9 cables at each: 8 cables' simulated start is over 350 MPa at every weight
+    mass the NLP can give them) each sweep point is solve's of the point alone: status, cable count and objective
+    within the start-up contract (1e-6 relative), every point's stress limit met by its simulated start."""
+    from clutchopt.optimise.sweep import Sweep
+    from clutchopt.optimise.sweep_grid import parse_vary
+
+    vary = parse_vary("driven_inertia=0.45,0.5,0.6", CABLE.coupling, CABLE.quantities)
+    records = list(Sweep(CABLE, [vary]).run(progress=False).solutions)
+    for inertia, record in zip(vary.values, records):
+        alone = solve_case(CABLE.with_values(driven_inertia=inertia))
+        assert record["status"] == alone.status == "optimal"
+        assert record["design"]["cable_count"] == alone.design["cable_count"] == 9.0
+        assert abs(record["objective"]["value"] - alone.objective) <= 1e-6 * alone.objective
+        stress = next(c for c in alone.constraints if c.name == "link_stress")
+        assert stress.limit == L and stress.value <= L
