@@ -168,7 +168,7 @@ class Problem:
                 if foreign is not None:
                     foreign.corrected(solution)
                 corrected = self._solve(case, warm=solution, nlp_case=moved, ruled=ruled)
-                if corrected.status not in DESIGN_STATUSES:  # (h9-cableshift) no design meets the moved limits
+                if corrected.status not in DESIGN_STATUSES:  # no design meets the moved limits
                     solves.append(corrected.solver)
                     if foreign is not None:
                         foreign.seen(corrected)
