@@ -53,7 +53,7 @@ from clutchopt.records import (NOMINAL, STATUSES, TEMPLATE, check_solution, desi
                                method_of)
 from clutchopt.store_checkpoint import manual, note_written
 from clutchopt.store_kept import keep, take_kept
-from clutchopt.window_records import WindowRecords, pack, unpack
+from clutchopt.window_records import WindowRecords, gathered, pack, unpack
 
 DEFAULT_STORE = "clutchopt-runs.sqlite"
 STORE_ENV = "CLUTCHOPT_STORE"
@@ -496,12 +496,13 @@ class RunStore:
         (``clutchopt.window_records``) beside their template (once per store). A point already stored (another
         process resuming the same sweep solved it too) is kept as it is. Returns how many were recorded."""
         created, pieces, templates = _now(), [], {}  # one transaction: one moment
+        alone, gathered_windows = gathered(alone)  # (points without a design, one proof: as a window's)
         for position, record in alone.items():
             values = {**inputs["values"], **{name: float(column[position]) for name, column in varied.items()}}
             row = self._row("sweep", {**inputs, "values": values}, record, created, status=record["status"],
                             objective=record["objective"]["value"], point=int(index[position]), **where)
             pieces.append((int(index[position]), 1, lambda start, stop, row=row: row))
-        for positions, window in windows:
+        for positions, window in windows + gathered_windows:
             templates[window.key] = window.template
             numbers = index[positions]
             breaks = np.flatnonzero(np.diff(numbers) != 1) + 1  # a row holds consecutive points only
