@@ -2,9 +2,10 @@
 
 A batched window (``clutchopt.optimise.batch_window``) holds its points' numbers as arrays; :class:`WindowRecords`
 keeps them so (with the template the points share, ``clutchopt.records``) and builds a point's compact record
-only when it is read. The run store keeps a window's points as one row: :func:`pack` turns their arrays into bytes
-and a layout (each array's name, type and shape), :func:`unpack` reads them back, refusing bytes that do not fit
-their layout.
+only when it is read. Points solved alone one after another that share a template (a region proof's points
+without a design) are gathered into such records from their full ones (:func:`gathered`). The run store keeps a
+window's points as one row: :func:`pack` turns their arrays into bytes and a layout (each array's name, type and
+shape), :func:`unpack` reads them back, refusing bytes that do not fit their layout.
 Pure NumPy: the store reads windows without importing the solvers.
 """
 
@@ -117,10 +118,11 @@ class WindowRecords:
             return None
         code = {text: j for j, text in enumerate(diagnoses)}
         lists = {"status": [STATUSES.index(r["status"]) for r in records],
-                 "diagnosis": [code.get(r["diagnosis"], -1) for r in records], "priced": [True] * count,
+                 "diagnosis": [code.get(r["diagnosis"], -1) for r in records],
                  "sensitive": [name in r["sensitivities"] for r in records for name in names], **per_point, **per_item}
-        arrays = {name: np.array(lists[name], dtype=kind).reshape(count, -1).T.copy() if rows  # (a point's rows: a
-                  else np.array(lists[name], dtype=kind) for name, (kind, rows) in KINDS.items()}  # column)
+        arrays = {name: np.array(lists[name], dtype=kind).reshape(count, -1).T.copy() if rows  # (a point's rows:
+                  else np.array(lists[name], dtype=kind)  # a column)
+                  for name, (kind, rows) in KINDS.items() if name in lists}
         arrays["priced"] = ~np.isnan(arrays["elasticity"]).all(axis=0)  # (unpriced: every elasticity None)
         return cls(template_of(records[0]), arrays,
                    {"diagnoses": diagnoses, "sensitivities": names, "integer_search": searches})
@@ -150,7 +152,7 @@ def gathered(alone: dict[int, dict]) -> tuple[dict[int, dict], list[tuple[np.nda
     each run of GATHERED or more at consecutive positions that share a template and whose numbers are numbers
     (:meth:`WindowRecords.of`) as a window's records, with their positions; the rest alone. A sweep's points
     without a design come so (the points a region proof covers: one design, one proof, one solver status; the lever
-    over its inertia 0.5x-2x: 232 of 1000 points), where each had been a row of JSON of its own (4 kB)."""
+    over its inertia 0.5x-2x: 232 of 1000 points), where each had been a row of JSON of its own (4.8 kB)."""
     kept, windows, run, shared, diagnoses = {}, [], [], None, set()
 
     def close() -> None:
