@@ -189,12 +189,14 @@ def _statics(record) -> tuple | None:
     building the template: records with equal statics have equal templates, their keys in one order; None for what
     is no record."""
     try:
-        objective, solver, constraints = record["objective"], record["solver"], record["constraints"]
+        objective, solver = record["objective"], record["solver"]
+        constraints, units = record["constraints"], record["units"]
         return (tuple(record), record["coupling"], record["mode"], tuple(objective), objective["name"],
-                objective["unit"], list(record["design"]), list(record["outputs"]), record["units"],
-                list(map(tuple, constraints)), list(map(_CONSTRAINT_STATICS, constraints)), tuple(solver),
-                _SOLVER_STATICS(solver), record["bounds"])
-    except (KeyError, TypeError, IndexError):
+                objective["unit"], list(record["design"]), list(record["outputs"]), units,
+                list(map(list, units.values())), list(map(tuple, constraints)),
+                list(map(_CONSTRAINT_STATICS, constraints)), tuple(solver), _SOLVER_STATICS(solver), record["bounds"],
+                list(record["bounds"]))
+    except (KeyError, TypeError, IndexError, AttributeError):
         return None
 
 
