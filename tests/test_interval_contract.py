@@ -41,7 +41,7 @@ def test_every_value_and_every_point_within_a_row_s_limit_stay_in_the_bounds(pat
     half = (upper - lower) * 10 ** log_width * np.array(fractions[n:2 * n]) / 2 + 1e-300
     lo, hi = np.maximum(centre - half, lower), np.minimum(centre + half, upper)
     lo[posed.integer], hi[posed.integer] = np.round(lo[posed.integer]), np.round(lo[posed.integer])
-    (g_lo, g_hi), (d_lo, d_hi), mid, (c_lo, _) = _bounds(functions, lo[:, None], hi[:, None], (p[:, None],) * 2)
+    (g_lo, g_hi), (d_lo, d_hi), mid, (c_lo, _), _ = _bounds(functions, lo[:, None], hi[:, None], (p[:, None],) * 2)
     rng = np.random.default_rng(len(fractions) + int(1e6 * quantile))
     x = lo[:, None] + (hi - lo)[:, None] * rng.random((n, 200))
     g = np.array(functions[0].function.map(200)(x, np.repeat(p[:, None], 200, axis=1)))

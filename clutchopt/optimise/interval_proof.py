@@ -154,14 +154,16 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         if not lo.shape[1]:
             break
         evaluated += np.bincount(owner, minlength=count)
-        (g_lo, g_hi), (d_lo, d_hi), centre, (c_lo, c_hi) = _bounds(functions, lo, hi, (plo, phi))
+        ends = _end_boxes(lo, hi, owner, ranged, posed.integer)
+        (g_lo, g_hi), (d_lo, d_hi), centre, (c_lo, c_hi), at_ends = _bounds(
+            functions, lo, hi, (plo, phi), (ends, p_lo[:, owner[ends]], p_hi[:, owner[ends]]))
         first_met = _first_boxes(np.flatnonzero(np.all(c_hi <= 0.0, axis=0)), owner)  # each search's first box met
         whole_p = np.all(_same(plo, p_lo[:, owner]) & _same(phi, p_hi[:, owner]), axis=0)
         end(sorted(first_met), lambda j: (  # a design for every parameter of the search, or (a part of its interval)
             Emptiness(False, int(evaluated[j]), decisive[j], centre[:, first_met[j]]) if whole_p[first_met[j]]
             else Emptiness(False, int(evaluated[j]), decisive[j], reached=True, witness=centre[:, first_met[j]])))
         # (for some: no proof for all)
-        reached = _reached(functions[0], centre, owner, ranged, p_lo, p_hi, first_met, posed.integer)
+        reached = _reached(at_ends, ends, owner, first_met)
         end(list(reached), lambda j: Emptiness(False, int(evaluated[j]), decisive[j], reached=True,
                                                witness=centre[:, reached[j]]))
         keep = ~np.isin(owner, list(first_met) + list(reached))
@@ -260,22 +262,24 @@ def _parameter_spread(plo, phi, p_width0, c_width, uncertain) -> tuple[np.ndarra
     return component, np.where(widest > 0, spread / np.where(widest > 0, widest, 1.0), 0.0)
 
 
-def _reached(rows, centre: np.ndarray, owner: np.ndarray, ranged: np.ndarray, p_lo: np.ndarray, p_hi: np.ndarray,
-             ended: dict[int, int], integer: list[int]) -> dict[int, int]:
-    """The searches over a parameter interval (``ranged``, not ``ended`` already) where a box's centre, its integer
-    variables whole, meets every row at one end of the interval: a design there, so the interval holds no proof (a run
-    of a sweep's points reaching past its infeasible region: the search stops at once rather than at its budget);
-    each with the first such box."""
+def _end_boxes(lo: np.ndarray, hi: np.ndarray, owner: np.ndarray, ranged: np.ndarray, integer: list[int]
+               ) -> np.ndarray:
+    """The boxes of searches over a parameter interval (``ranged``) whose centres, their integer variables whole,
+    are tried at the interval's ends (:func:`_reached`), evaluated with the boxes (:func:`_bounds`)."""
+    centre = 0.5 * (lo + hi)
     whole = np.all(centre[integer] == np.round(centre[integer]), axis=0)
-    boxes = np.flatnonzero(ranged[owner] & whole & ~np.isin(owner, list(ended)))
-    if not len(boxes):
-        return {}
-    at = np.hstack([centre[:, boxes]] * 2)  # each box's centre at both ends, in one evaluation (a box's bounds are
-    # its own: the interval rules work box by box)
-    params = np.hstack([p_lo[:, owner[boxes]], p_hi[:, owner[boxes]]])
-    (_, high), = rows.bounds([(at, at), (params, params)])
-    met = np.all(high[:, :len(boxes)] <= 0.0, axis=0) | np.all(high[:, len(boxes):] <= 0.0, axis=0)
-    return _first_boxes(boxes[met], owner)
+    return np.flatnonzero(ranged[owner] & whole)
+
+
+def _reached(at_ends: np.ndarray, boxes: np.ndarray, owner: np.ndarray, ended: dict[int, int]
+             ) -> dict[int, int]:
+    """The searches over a parameter interval, not ``ended`` already, where a box's centre (of ``boxes``:
+    :func:`_end_boxes`) meets every row at one end of the interval (``at_ends``: the rows' upper bounds there, the
+    interval's low ends' columns, then its high ends'): a design there, so the interval holds no proof (a run of a
+    sweep's points reaching past its infeasible region: the search stops at once rather than at its budget); each
+    with the first such box."""
+    met = np.all(at_ends[:, :len(boxes)] <= 0.0, axis=0) | np.all(at_ends[:, len(boxes):] <= 0.0, axis=0)
+    return _first_boxes(boxes[met & ~np.isin(owner[boxes], list(ended))], owner)
 
 
 def _first_boxes(boxes: np.ndarray, owner: np.ndarray) -> dict[int, int]:
@@ -320,17 +324,37 @@ def _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0, split, extra=N
             np.concatenate([hi[:, ~split], s_hi], axis=1)[:, order], owner[parents][order], parents[order])
 
 
-def _bounds(functions, lo: np.ndarray, hi: np.ndarray, params: tuple[np.ndarray, np.ndarray]):
+class BoxBounds(NamedTuple):
+    """What one evaluation gives over boxes (:func:`_bounds`)."""
+
+    rows: tuple[np.ndarray, np.ndarray]  # the rows' bounds over each box (rows x boxes)
+    slopes: tuple[np.ndarray, np.ndarray]  # the Jacobian's (rows x variables x boxes)
+    centre: np.ndarray  # each box's centre (variables x boxes)
+    at_centre: tuple[np.ndarray, np.ndarray]  # the rows' bounds there (rows x boxes)
+    at_ends: np.ndarray  # the rows' upper bounds at the further points asked for (rows x points)
+
+
+def _bounds(functions, lo: np.ndarray, hi: np.ndarray, params: tuple[np.ndarray, np.ndarray],
+            ends: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None) -> BoxBounds:
     """Over each box: the rows' bounds (the natural interval extension met with the mean-value form
     g(c) + J(X) (X - c), which is tight on small boxes), the Jacobian's bounds (rows x variables x boxes), the centre
     and the rows' bounds there; ``params``: each box's parameters (a column), their lower and upper ends (the mean
-    value form holds for each parameter vector between them: g(x, p) = g(c, p) + J(xi, p) (x - c))."""
-    rows, jacobian = functions
+    value form holds for each parameter vector between them: g(x, p) = g(c, p) + J(xi, p) (x - c)). ``ends``: boxes
+    (their numbers) whose centres are evaluated too at two further parameter vectors each (the ends of a search's
+    interval, one column a box each: :func:`_reached`). All in one replay of the function that gives the Jacobian and
+    the rows (``interval_nodes.enclosed_rows``): a box's bounds are its own (the rules work box by box), and one call
+    costs about what each of its three had (the ball's searches: about 2 ms an iteration, most of it per call)."""
+    _, slopes = functions
     count, n = lo.shape[1], lo.shape[0]
     centre = 0.5 * (lo + hi)
-    (g_lo, g_hi), = rows.bounds([(lo, hi), params])
-    (d_lo, d_hi), = jacobian.bounds([(lo, hi), params])  # (the same boxes in turn: their declared nodes' kept)
-    (c_lo, c_hi), = rows.bounds([(centre, centre), params])
+    x_lo, x_hi, p_lo, p_hi = [lo, centre], [hi, centre], [params[0]] * 2, [params[1]] * 2
+    boxes = np.zeros(0, dtype=int) if ends is None else ends[0]
+    for p_end in ((ends[1], ends[2]) if len(boxes) else ()):
+        x_lo.append(centre[:, boxes]), x_hi.append(centre[:, boxes]), p_lo.append(p_end), p_hi.append(p_end)
+    (d_lo, d_hi), (g_lo, g_hi) = slopes.bounds([(np.hstack(x_lo), np.hstack(x_hi)),
+                                                 (np.hstack(p_lo), np.hstack(p_hi))])
+    c_lo, c_hi, at_ends = g_lo[:, count:2 * count], g_hi[:, count:2 * count], g_hi[:, 2 * count:]
+    g_lo, g_hi, d_lo, d_hi = g_lo[:, :count], g_hi[:, :count], d_lo[:, :count], d_hi[:, :count]
     m = g_lo.shape[0]
     d_lo, d_hi = d_lo.reshape(n, m, count).transpose(1, 0, 2), d_hi.reshape(n, m, count).transpose(1, 0, 2)
     step_lo, step_hi = (lo - centre)[None], (hi - centre)[None]
@@ -339,7 +363,8 @@ def _bounds(functions, lo: np.ndarray, hi: np.ndarray, params: tuple[np.ndarray,
     corners = np.where(np.isnan(corners), 0.0, corners)  # 0 * inf: a variable the box fixes adds nothing
     mv_lo, mv_hi = c_lo + corners.min(axis=0).sum(axis=1), c_hi + corners.max(axis=0).sum(axis=1)
     mv_lo, mv_hi = np.where(np.isnan(mv_lo), -np.inf, mv_lo), np.where(np.isnan(mv_hi), np.inf, mv_hi)
-    return (np.maximum(g_lo, mv_lo), np.minimum(g_hi, mv_hi)), (d_lo, d_hi), centre, (c_lo, c_hi)
+    return BoxBounds((np.maximum(g_lo, mv_lo), np.minimum(g_hi, mv_hi)), (d_lo, d_hi), centre, (c_lo, c_hi),
+                     at_ends)
 
 
 def _faces(lo: np.ndarray, hi: np.ndarray, d_lo: np.ndarray, d_hi: np.ndarray,
