@@ -120,6 +120,7 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
     plo, phi = p_lo.copy(), p_hi.copy()  # each box's parameters (a search's interval, split where it spreads the rows)
     n = lo.shape[0]
     decisive: list[dict[str, int]] = [{} for _ in problems]
+    whole_names = [f"a whole {posed.names[i]}" for i in posed.integer]
     evaluated, left = np.zeros(count, dtype=int), np.full(count, np.inf)
     outcomes: list[Emptiness | None] = [None] * count
 
@@ -127,28 +128,38 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         for j in np.asarray(searches_ended, dtype=int).tolist():
             outcomes[j] = outcome(j)
 
-    def tally(j: int, key: str, boxes: int) -> None:
-        decisive[j][key] = decisive[j].get(key, 0) + boxes
+    def tally(keys: list[str], boxes: np.ndarray, owner: np.ndarray) -> None:
+        """The boxes each key (a row of ``boxes``: which boxes it emptied or cut) counts, by search."""
+        per_search = np.zeros((len(keys), count), dtype=int)
+        for k in range(len(keys)):
+            per_search[k] = np.bincount(owner, boxes[k], count)
+        for k, j in zip(*np.nonzero(per_search)):  # (a search's keys in the order of the rows)
+            decisive[j][keys[k]] = decisive[j].get(keys[k], 0) + int(per_search[k, j])
+
+    def searching(owner: np.ndarray) -> np.ndarray:
+        """Which searches have a box among ``owner`` (one flag a search)."""
+        return np.bincount(owner, minlength=count) > 0
+
+    def flagged(searches_flagged) -> np.ndarray:
+        mask = np.zeros(count, dtype=bool)
+        mask[list(searches_flagged)] = True
+        return mask
 
     def within_budgets(owner: np.ndarray, grown: np.ndarray | None = None) -> np.ndarray:
         """Which boxes belong to searches their evaluation keeps within budget (of ``grown`` boxes each, if given:
         after their splits); the others' searches end there, not proven."""
         counts = np.bincount(owner, minlength=count) if grown is None else grown
-        over = np.flatnonzero((counts > 0) & (evaluated + counts > budgets))
-        end(over, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
-        return ~np.isin(owner, over)
+        over = (counts > 0) & (evaluated + counts > budgets)
+        end(np.flatnonzero(over), lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
+        return ~over[owner]
 
     while lo.shape[1]:
-        before = np.unique(owner)
+        before = searching(owner)
         lo, hi, none = _rounded(lo, hi, posed.integer)
-        for j in before.tolist():
-            for i, row in zip(posed.integer, none):
-                dropped = int(row[owner == j].sum())
-                if dropped:
-                    tally(j, f"a whole {posed.names[i]}", dropped)
+        tally(whole_names, none, owner)
         kept = ~none.any(axis=0)
         lo, hi, owner, plo, phi = lo[:, kept], hi[:, kept], owner[kept], plo[:, kept], phi[:, kept]
-        end(np.setdiff1d(before, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
+        end(np.flatnonzero(before & ~searching(owner)), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         keep = within_budgets(owner)
         lo, hi, owner, plo, phi = lo[:, keep], hi[:, keep], owner[keep], plo[:, keep], phi[:, keep]
         if not lo.shape[1]:
@@ -166,38 +177,34 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         reached = _reached(at_ends, ends, owner, first_met)
         end(list(reached), lambda j: Emptiness(False, int(evaluated[j]), decisive[j], reached=True,
                                                witness=centre[:, reached[j]]))
-        keep = ~np.isin(owner, list(first_met) + list(reached))
+        keep = ~flagged([*first_met, *reached])[owner]
         empty = g_lo > TOLERANCE
-        running = np.unique(owner[keep])
-        for j in running.tolist():
-            emptied = empty[:, owner == j].sum(axis=1)
-            for row in np.flatnonzero(emptied).tolist():
-                tally(j, names[row], int(emptied[row]))
+        running = searching(owner[keep])
+        tally(names, empty & keep, owner)
         alive = keep & ~empty.any(axis=0)
         lo, hi, owner, uncertain = lo[:, alive], hi[:, alive], owner[alive], g_hi[:, alive] > 0.0
         plo, phi, at = plo[:, alive], phi[:, alive], np.flatnonzero(alive)
-        end(np.setdiff1d(running, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
+        end(np.flatnonzero(running & ~searching(owner)), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         counts = np.bincount(owner, minlength=count)
-        spreading = np.flatnonzero((counts > 0) & (evaluated > SURE_BOXES) & (counts > GROWTH * left))
-        end(spreading, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))  # not closing in: give up
+        spreading = (counts > 0) & (evaluated > SURE_BOXES) & (counts > GROWTH * left)
+        end(np.flatnonzero(spreading), lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))  # not closing
+        # in: give up
         left = np.where(counts > 0, counts, left)
-        keep = ~np.isin(owner, spreading)
+        keep = ~spreading[owner]
         lo, hi, owner, uncertain = lo[:, keep], hi[:, keep], owner[keep], uncertain[:, keep]
         plo, phi, at = plo[:, keep], phi[:, keep], at[keep]
         if not lo.shape[1]:
             break
         d_lo, d_hi = d_lo[..., at], d_hi[..., at]
-        searching = np.unique(owner)
+        contracting = searching(owner)
         lo, hi, cut_empty, cut = contracted(lo, hi, centre[:, at], c_lo[:, at], d_lo, d_hi, TOLERANCE)
-        for j in np.unique(owner[cut.any(axis=0)]).tolist():  # the rows a proof rests on: those that cut, too
-            cutting = cut[:, owner == j].sum(axis=1)
-            for row in np.flatnonzero(cutting).tolist():
-                tally(j, names[row], int(cutting[row]))
+        tally(names, cut, owner)  # the rows a proof rests on: those that cut, too
         whole = ~cut_empty
         lo, hi, owner, uncertain, d_lo, d_hi = lo[:, whole], hi[:, whole], owner[whole], uncertain[:, whole], \
             d_lo[..., whole], d_hi[..., whole]
         plo, phi, at = plo[:, whole], phi[:, whole], at[whole]
-        end(np.setdiff1d(searching, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
+        end(np.flatnonzero(contracting & ~searching(owner)),
+            lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         if not lo.shape[1]:
             break
         lo, hi = _faces(lo, hi, d_lo, d_hi, uncertain)
