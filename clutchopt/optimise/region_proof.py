@@ -254,7 +254,7 @@ class Regions:
         longest = 1  # the longest run proven
         while runs:
             problems = [_region_problem([points[j] for j in range(a, b)]) for a, b in runs]
-            budget = self._budget()
+            budget = _budget(last_boxes(self.posed), SURE_BOXES)
             began = time.perf_counter()
             outcomes = searches(self.posed, problems, [budget] * len(runs))
             seconds = time.perf_counter() - began
@@ -280,10 +280,6 @@ class Regions:
             runs = halves
         self._length = min(2 * longest, LONGEST_RUN)
 
-    def _budget(self) -> int:
-        """The most boxes of a region's search: REGION_BUDGET times the last proof's (within SURE_BOXES, MAX_BOXES)."""
-        return min(max(REGION_BUDGET * last_boxes(self.posed), SURE_BOXES), MAX_BOXES)
-
     def _one_by_one(self, count: int) -> bool:
         """The ``count`` points of a run are searched each alone (:meth:`_search_each`): their own proofs, at the
         boxes of the last point's own, are expected to take fewer boxes than the run's search, as many as the last
@@ -300,8 +296,8 @@ class Regions:
         """Points k .. end - 1 searched each alone, in one call (``interval_proof.searches``): a point proven gets its
         own proof's verdict ("proven infeasible: ...", the words of its full verdict), another is solved as usual;
         the next run twice as long where all are proven."""
-        budget = min(max(REGION_BUDGET * self._alone, FEW_BOXES), MAX_BOXES)  # (a point past the region's edge
-        # gives up after its first box where one proved in 1: the split to 128 passes the budget)
+        budget = _budget(self._alone, FEW_BOXES)  # (a point past the region's edge gives up after its first box where
+        # one proved in 1: the split to 128 passes the budget)
         began = time.perf_counter()
         outcomes = searches(self.posed, [points[j] for j in range(k, end)], [budget] * (end - k))
         seconds = (time.perf_counter() - began) / (end - k)
@@ -387,6 +383,13 @@ class Regions:
         if solution is not None:
             calls, seconds = self._probed
             self._probed = (calls + sign * solution.solver.solves, seconds + sign * solution.solver.time_s)
+
+
+def _budget(boxes: int, least: int) -> int:
+    """The most boxes of a search near a proof of ``boxes`` boxes: REGION_BUDGET times as many, at least ``least``
+    (a region's search: SURE_BOXES; a point's of a run searched point by point, next to its last point's own proof:
+    FEW_BOXES), at most MAX_BOXES."""
+    return min(max(REGION_BUDGET * boxes, least), MAX_BOXES)
 
 
 def _region_problem(points: list[tuple[np.ndarray, ...]]) -> tuple[np.ndarray, ...]:
