@@ -55,7 +55,6 @@ class DeclaredNodes:
         for k, node in enumerate(nodes):
             calls.setdefault(id(node.argument), []).append(k)
         self._calls = list(calls.values())
-        self._last = None
 
     def agree(self, lower: np.ndarray, upper: np.ndarray, p: np.ndarray, points: int = 8) -> bool:
         """Whether the rows with the nodes' own values for ``y`` are the NLP's rows (to 1e-9) at the box's centre
@@ -70,11 +69,7 @@ class DeclaredNodes:
         return bool(np.all(np.isnan(difference) | (np.abs(difference) <= 1e-9)))
 
     def bounds(self, inputs: list[Bounds]) -> tuple[Bounds, Bounds]:
-        """Bounds on the values ``y`` and slopes ``s`` over boxes given as (design, p) bounds (the last boxes'
-        kept: the rows and their Jacobian ask for the same boxes in turn)."""
-        given = (*inputs[0], *inputs[1])
-        if self._last is not None and all(np.array_equal(a, b) for a, b in zip(self._last[0], given)):
-            return self._last[1]  # the same boxes with the same parameters (searches of other points differ in p)
+        """Bounds on the values ``y`` and slopes ``s`` over boxes given as (design, p) bounds."""
         boxes = inputs[0][0].shape[1]
         if not self.nodes:
             return (np.zeros((0, boxes)),) * 2, (np.zeros((0, boxes)),) * 2
@@ -96,8 +91,7 @@ class DeclaredNodes:
                 y_lo[k] = np.where(inside, np.maximum(y_lo[k], v_lo[index]), y_lo[k])  # both hold: intersected
                 y_hi[k] = np.where(inside, np.minimum(y_hi[k], v_hi[index]), y_hi[k])
                 s_lo[k], s_hi[k] = np.where(inside, d_lo[index], -np.inf), np.where(inside, d_hi[index], np.inf)
-        self._last = ([a.copy() for a in given], ((y_lo, y_hi), (s_lo, s_hi)))
-        return self._last[1]
+        return (y_lo, y_hi), (s_lo, s_hi)
 
 
 class EnclosedFunction:
