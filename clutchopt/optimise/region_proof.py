@@ -24,11 +24,12 @@ force takes squared) the runs stay as short as proofs allow.
 
 Where a run's search meets a design at one end, probes look for the region's edge within it (:meth:`Regions._edge`):
 one solve at the run's last point (as ``Problem.solve`` starts cold; none where the design the search met, within
-the point's bounds, meets every constraint there in float64); where it has a design, the points from the run's
-first on in growing steps, then bisection, find the first point with one, and only the points before it are searched
-again (the bisection of such a run by searches had cost seconds where a solve costs 20-40 ms; a probe before every
-run cost a failed solve on each run inside a region). A probe only shortens the run searched; its calls are charged to
-the next point's verdict.
+the point's bounds, meets every constraint there in float64); where it has a design, the run's first two points are
+searched as one region (:meth:`Regions._head`: proven, the second needs no probe, which had been a failed solve), then
+the points after them in growing steps, then bisection, find the first point with one, and only the points before it
+are searched again, none where the two proven reach it (the bisection of such a run by searches had cost seconds
+where a solve costs 20-40 ms; a probe before every run cost a failed solve on each run inside a region). A probe only
+shortens the run searched; its calls are charged to the next point's verdict.
 
 A point left over next to a proven one is tested against that proof first (:meth:`Regions._quick`): solved once, as
 ``Problem.solve`` starts (its design, if it finds one, is ``solve``'s), else its own interval search, the one its full
@@ -261,24 +262,32 @@ class Regions:
             halves = []
             for (a, b), problem, outcome in zip(runs, problems, outcomes):
                 if outcome is not None and outcome.proven:
-                    last_boxes(self.posed, outcome.boxes)
-                    self._region = outcome.boxes
+                    self._proved(a, b, problem, outcome, seconds / max(1, end - k))
                     longest = max(longest, b - a)
-                    text = _region_text(self.posed, a, b, problem, outcome)
-                    for j in range(a, b):
-                        self._proven[j] = (text, seconds / max(1, end - k))
                 elif b - a > 1 and outcome is not None and outcome.feasible is None:  # (a design met for the whole
                     # run: every point has one, solved as usual)
                     middle = (a + b) // 2  # (a design at one end: the region ends within the run: the run up to
                     # the edge the probes find is searched again, else only its first half, the points of the other
                     # solved as usual)
-                    edge = self._edge(a, b, outcome.witness) if outcome.reached else b
+                    edge, head = self._edge(a, b, points, outcome.witness) if outcome.reached else (b, a)
+                    if head >= edge:  # (the run up to the edge proven by the probes' search of its head)
+                        longest = max(longest, edge - a)
+                        continue
                     kept = (((a, edge),) if edge < b else ((a, middle),) if outcome.reached
                             else ((a, middle), (middle, b)))
                     halves += [run for run in kept if run[1] - run[0] > 1]  # a single point: solved as usual (a
                     # design found by a solve, else its own verdict with its own search)
             runs = halves
         self._length = min(2 * longest, LONGEST_RUN)
+
+    def _proved(self, a: int, b: int, problem: tuple, outcome: Emptiness, seconds: float) -> None:
+        """Points a .. b - 1 proven by one search (``outcome``, of the region ``problem``): each gets its text
+        and ``seconds``; the search's boxes are the last proof's."""
+        last_boxes(self.posed, outcome.boxes)
+        self._region = outcome.boxes
+        text = _region_text(self.posed, a, b, problem, outcome)
+        for j in range(a, b):
+            self._proven[j] = (text, seconds)
 
     def _one_by_one(self, count: int) -> bool:
         """The ``count`` points of a run are searched each alone (:meth:`_search_each`): their own proofs, at the
@@ -308,10 +317,11 @@ class Regions:
             self._alone = round(sum(outcome.boxes for _, outcome in proven) / len(proven))
         self._length = min(2 * (end - k), LONGEST_RUN) if len(proven) == end - k else FIRST_RUN
 
-    def _edge(self, k: int, end: int, witness: np.ndarray | None = None) -> int:
+    def _edge(self, k: int, end: int, points: dict, witness: np.ndarray | None = None) -> tuple[int, int]:
         """The end of the run from point k to ``end`` whose search met a design at one end: ``end``, or the first
         point before it found with a design by one solve (as ``Problem.solve`` starts cold), located where the run's
-        last point has one: points k + 1, k + 2, k + 4, ... until one has a design, then bisection. A run reaching
+        last point has one: points k + 1, k + 2, k + 4, ... until one has a design, then bisection; and the end of
+        the points from k its probes proved (k where none: :meth:`_head`). A run reaching
         past the region's edge cannot be proven, and its bisection by interval searches cost seconds (the ball over
         its allowable contact stress: four searches, 7.7 s, for the last two points of its region) where a solve
         costs 20-40 ms. A probe only shortens the run searched: a proof is still a proof of each point of it, and a
@@ -320,8 +330,11 @@ class Regions:
         (the ball over its allowable contact stress: the run's last point, a cold solve with its integer search, 12
         ms)."""
         if end - k <= 2 or self.problem.start_up is not None or not self._designed(end - 1, witness):
-            return end
+            return end, k
         without, designed, step = k, end - 1, 1  # (point k: searched from, next to a proven one)
+        headed = self._head(k, points)
+        if headed:  # (points k, k + 1 proven: the probes from k + 2 on)
+            without = k + 1
         while without + step < designed:  # from k on in growing steps (an edge is most often near the run's start)
             if self._designed(without + step, witness):
                 designed = without + step
@@ -332,7 +345,22 @@ class Regions:
             without, designed = (without, middle) if self._designed(middle, witness) else (middle, designed)
         self._found = designed  # (the last probe with a design: self._edge_probe)
         self._charge(self._edge_probe, -1)  # (charged to the edge's point, whose solve it is: :meth:`_edge_solve`)
-        return designed
+        return designed, k + 2 if headed else k
+
+    def _head(self, k: int, points: dict) -> bool:
+        """Points k and k + 1 of a run reaching past its region's edge searched as one region before any probe
+        (within REGION_BUDGET times the last proof's boxes): proven, point k + 1 needs no probe, and where the edge is
+        k + 2 the run up to it is proven (the ball over its allowable contact stress: a failed solve at k + 1, 9 ms,
+        a solve at k + 3 that the bisection then passed over, 15 ms, and the search of the same two points after
+        them, which this one is). Not proven (a design at k + 1, most often met at once), the probes go on from
+        k + 1."""
+        problem = _region_problem([points[k], points[k + 1]])
+        began = time.perf_counter()
+        outcome, = searches(self.posed, [problem], [_budget(last_boxes(self.posed), FEW_BOXES)])
+        if outcome is None or not outcome.proven:
+            return False
+        self._proved(k, k + 2, problem, outcome, (time.perf_counter() - began) / 2)
+        return True
 
     def _designed(self, j: int, witness: np.ndarray | None = None) -> bool:
         """Point j has a design: ``witness``, within j's bounds and its integers whole, meets every constraint at j in
