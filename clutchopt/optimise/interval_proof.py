@@ -114,6 +114,7 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
     hi = np.stack([problem[2] for problem in problems], axis=1)
     ranged = ~np.all(_same(p_lo, p_hi), axis=0)  # a parameter interval (a quantity
     # the case leaves out reads NaN at both ends): its ends are tried too (_reached)
+    intervals = bool(ranged.any())  # (none: no parameter is split, no end tried)
     width0 = np.where(hi > lo, hi - lo, 1.0)
     p_width0 = np.where(p_hi > p_lo, p_hi - p_lo, 0.0)  # (a NaN: 0, never split)
     owner = np.arange(count)  # each box's search (a column of params), the boxes of one search together
@@ -165,16 +166,17 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         if not lo.shape[1]:
             break
         evaluated += np.bincount(owner, minlength=count)
-        ends = _end_boxes(lo, hi, owner, ranged, posed.integer)
+        ends = _end_boxes(lo, hi, owner, ranged, posed.integer) if intervals else np.zeros(0, dtype=int)
         (g_lo, g_hi), (d_lo, d_hi), centre, (c_lo, c_hi), at_ends = _bounds(
             functions, lo, hi, (plo, phi), (ends, p_lo[:, owner[ends]], p_hi[:, owner[ends]]))
         first_met = _first_boxes(np.flatnonzero(np.all(c_hi <= 0.0, axis=0)), owner)  # each search's first box met
-        whole_p = np.all(_same(plo, p_lo[:, owner]) & _same(phi, p_hi[:, owner]), axis=0)
+        whole_p = (np.all(_same(plo, p_lo[:, owner]) & _same(phi, p_hi[:, owner]), axis=0) if first_met
+                   else None)
         end(sorted(first_met), lambda j: (  # a design for every parameter of the search, or (a part of its interval)
             Emptiness(False, int(evaluated[j]), decisive[j], centre[:, first_met[j]]) if whole_p[first_met[j]]
             else Emptiness(False, int(evaluated[j]), decisive[j], reached=True, witness=centre[:, first_met[j]])))
         # (for some: no proof for all)
-        reached = _reached(at_ends, ends, owner, first_met)
+        reached = _reached(at_ends, ends, owner, first_met) if len(ends) else {}
         end(list(reached), lambda j: Emptiness(False, int(evaluated[j]), decisive[j], reached=True,
                                                witness=centre[:, reached[j]]))
         keep = ~flagged([*first_met, *reached])[owner]
@@ -225,6 +227,13 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
                 d_lo, d_hi, uncertain = d_lo[..., keep], d_hi[..., keep], uncertain[:, keep]
                 if not lo.shape[1]:
                     break
+        if not intervals:  # (no parameter interval to split: the boxes' parameters follow their boxes)
+            for turn in range(int(rounds[owner].max())):
+                lo, hi, owner, parents = _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0,
+                                                         rounds[owner] > turn)
+                plo, phi = plo[:, parents], phi[:, parents]
+                d_lo, d_hi, uncertain = d_lo[..., parents], d_hi[..., parents], uncertain[:, parents]
+            continue
         component, rate = _parameter_spread(plo, phi, p_width0[:, owner], (c_hi - c_lo)[:, at], uncertain)
         for turn in range(int(rounds[owner].max())):
             columns = np.arange(len(owner))
