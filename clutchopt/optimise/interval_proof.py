@@ -130,9 +130,10 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
             outcomes[j] = outcome(j)
 
     def tally(keys: list[str], boxes: np.ndarray, owner: np.ndarray) -> None:
-        """The boxes each key (a row of ``boxes``: which boxes it emptied or cut) counts, by search."""
-        per_search = np.zeros((len(keys), count), dtype=int)
-        for k in range(len(keys)):
+        """The boxes each key (of a row of ``boxes``: which boxes it emptied or cut; the rows the first keys') counts,
+        by search (a start-up's names: its formulation's rows, then the start-up's, which are not searched)."""
+        per_search = np.zeros((boxes.shape[0], count), dtype=int)
+        for k in range(boxes.shape[0]):
             per_search[k] = np.bincount(owner, boxes[k], count)
         for k, j in zip(*np.nonzero(per_search)):  # (a search's keys in the order of the rows)
             decisive[j][keys[k]] = decisive[j].get(keys[k], 0) + int(per_search[k, j])
