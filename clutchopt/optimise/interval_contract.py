@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from clutchopt.optimise import interval_contract_compiled
+from clutchopt.optimise.interval_contract_compiled import compiled_contracted, library
 
 SWEEPS = 3  # contractions per evaluation: each on the box the last left (the slopes of the first box), fewer where
 # one empties every box or moves none
@@ -52,10 +52,9 @@ def contracted(lo: np.ndarray, hi: np.ndarray, centre: np.ndarray, c_lo: np.ndar
     box (rows x boxes: the proof rests on them as on the rows that empty a box, and names them). By the compiled
     rule where it can be had (``compiled``: :mod:`clutchopt.optimise.interval_contract_compiled`, the same numbers),
     else by NumPy below."""
-    function = interval_contract_compiled.library() if compiled else None
+    function = library() if compiled else None
     if function is not None:
-        return interval_contract_compiled.contracted(function, lo, hi, centre, c_lo, d_lo, d_hi, limit, SWEEPS,
-                                                     _SLACK, _CUT)
+        return compiled_contracted(function, lo, hi, centre, c_lo, d_lo, d_hi, limit, SWEEPS, _SLACK, _CUT)
     lo, hi = lo.copy(), hi.copy()
     m, n, count = d_lo.shape
     rising, falling = (d_lo > 0.0) & np.isfinite(d_lo), (d_hi < 0.0) & np.isfinite(d_hi)

@@ -133,7 +133,7 @@ def _loaded(path: str | None):
     return loaded.contract
 
 
-def contracted(function, lo: np.ndarray, hi: np.ndarray, centre: np.ndarray, c_lo: np.ndarray, d_lo: np.ndarray,
+def compiled_contracted(function, lo: np.ndarray, hi: np.ndarray, centre: np.ndarray, c_lo: np.ndarray, d_lo: np.ndarray,
                d_hi: np.ndarray, limit: float, sweeps: int, slack: float, cut: float):
     """``interval_contract.contracted`` by the compiled ``function`` (:func:`library`): the same arguments and
     results."""
