@@ -202,6 +202,17 @@ def test_a_run_reaching_past_the_region_s_edge_searches_only_its_first_half_agai
     assert frame["diagnosis"][1].startswith("proven infeasible for resisting_torque 130-250 N*m (4 points, one proof)")
 
 
+def _searches_and_probes(monkeypatch) -> tuple[list, list]:
+    """The outcomes of a sweep's region searches (a list per call) and the points its probes tried, as they come."""
+    regions, probed = [], []
+    real, designed = region_proof.searches, region_proof.Regions._designed
+    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
+        [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
+    monkeypatch.setattr(region_proof.Regions, "_designed", lambda self, j, witness=None: probed.append(j) or designed(
+        self, j, witness))
+    return regions, probed
+
+
 def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     # The sweep of the test above. The search of the run of the 8 points after point 0 (250-30 N m) meets a design
     # at its 30 N m end; the run's last point (30 N m) has one without a solve (that design, within its bounds, meets
@@ -212,12 +223,7 @@ def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     # its region, not three more halvings from 16, 7.7 s to 1.3 s). The 4 probes solved (IPOPT calls:
     # one each, two at 80 N m) are charged to point 1's verdict but the one at the edge (80 N m), which is that
     # point's own solve (cold, as next to a point without a design), not made again: the sweep's calls are its points'.
-    regions, probed = [], []
-    real, designed = region_proof.searches, region_proof.Regions._designed
-    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
-        [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
-    monkeypatch.setattr(region_proof.Regions, "_designed", lambda self, j, witness=None: probed.append(j) or designed(
-        self, j, witness))
+    regions, probed = _searches_and_probes(monkeypatch)
     monkeypatch.setattr(region_proof.Regions, "_one_by_one", lambda self, count: False)  # (its regions, as the ball's)
     torques = [300.0, 250.0, 200.0, 160.0, 130.0, 80.0, 60.0, 40.0, 30.0, 20.0]
     vary = parse_vary("resisting_torque=" + ",".join(f"{t:g}" for t in torques), "wedge", WEDGE.quantities)
@@ -248,12 +254,7 @@ def test_the_head_of_a_run_past_the_region_s_edge_proven_before_the_probes(monke
     # probes start at 11: 11 without a design, 13 with one, then 12 without: the edge is 13, and points 9-12 are
     # searched again (321 boxes), their proof the one the probes from 9 had led to (main: probes at 10 and 12
     # without, 16, 14 and 13 with a design, 45 solver calls in the sweep; here 39). Every status and proof the same.
-    regions, probed = [], []
-    real, designed = region_proof.searches, region_proof.Regions._designed
-    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
-        [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
-    monkeypatch.setattr(region_proof.Regions, "_designed", lambda self, j, witness=None: probed.append(j) or designed(
-        self, j, witness))
+    regions, probed = _searches_and_probes(monkeypatch)
     from clutchopt.bench.reference import bench_cases, reference_mode
     from clutchopt.optimise.sweep_grid import Vary
 
