@@ -249,9 +249,10 @@ def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
 def test_the_head_of_a_run_past_the_region_s_edge_proven_before_the_probes(monkeypatch):
     # The ball (design mode) over 20 points of the bench's sweep of its allowable contact stress (points 14-33 of 100
     # from 0.5x to 2x): no design up to 719.6 MPa (points 0-12), designs from 729.7 MPa. Point 0 proven by its own
-    # search, points 1-8 by one region; the run from point 9 meets a design at its end (point 19, whose design is
-    # that one: no solve). Points 9 and 10 searched as one region first (Regions._head): proven (249 boxes), so the
-    # probes start at 11: 11 without a design, 13 with one, then 12 without: the edge is 13, and points 9-12 are
+    # search, points 1-8 by one region; the run from point 9 (searched with it) meets a design at its end (point 19,
+    # whose design is that one: no solve). Points 9 and 10 searched as one region first (Regions._head): proven (249
+    # boxes), so the probes start at 11: 11 without a design, 13 with one, then 12 without: the edge is 13, and
+    # points 9-12 are
     # searched again (321 boxes), their proof the one the probes from 9 had led to (main: probes at 10 and 12
     # without, 16, 14 and 13 with a design, 45 solver calls in the sweep; here 39). Every status and proof the same.
     regions, probed = _searches_and_probes(monkeypatch)
@@ -266,7 +267,8 @@ def test_the_head_of_a_run_past_the_region_s_edge_proven_before_the_probes(monke
     assert list(frame["status"]) == ["infeasible"] * 13 + ["optimal"] * 7
     assert probed == [19, 11, 13, 12]
     assert [[(o.proven, o.reached, o.boxes) for o in outcomes] for outcomes in regions] == [
-        [(True, False, 177)], [(True, False, 253)], [(False, True, 77)], [(True, False, 249)], [(True, False, 321)]]
+        [(True, False, 177)], [(True, False, 253), (False, True, 77)], [(True, False, 249)], [(True, False, 321)]]
+    # (the run from point 9 searched ahead with points 1-8's: Regions._runs_ahead)
     assert list(frame["diagnosis"][9:13]) == [frame["diagnosis"][9]] * 4
     assert frame["diagnosis"][9].startswith("proven infeasible for allowable_contact_stress 0.68999-0.719593 GPa "
                                             "(4 points, one proof)")

@@ -20,7 +20,11 @@ searches, 9 of them over points that all have designs); a region's search may ta
 the last proof (at least SURE_BOXES, at most MAX_BOXES), so one reaching past the edge gives up early. Runs start
 FIRST_RUN points long, the next twice the longest proven (from 2, doubling while they are proven whole, up to
 LONGEST_RUN): where a region's bounds are loose over wide intervals (the lever over its speed, which its centrifugal
-force takes squared) the runs stay as short as proofs allow.
+force takes squared) the runs stay as short as proofs allow. Where the design has integer variables (the ball, whose
+region's search costs about what a point's own does), the two runs that follow a run if it is proven whole are
+searched with it, in one call (:meth:`Regions._runs_ahead`): an iteration costs per call, so the three take the
+iterations of the longest; each outcome is kept for the call that searches its run, and taken where that search
+would make the same steps (:func:`_holds`).
 
 Where a run's search meets a design at one end, probes look for the region's edge within it (:meth:`Regions._edge`):
 one solve at the run's last point (as ``Problem.solve`` starts cold; none where the design the search met, within
@@ -95,6 +99,7 @@ class Regions:
         self._region: int | None = None  # the boxes of the last region proof
         self._figures: dict[int, tuple] = {}  # proven point -> its float64 figures at the design of self._without
         self._figured: dict[str, float] | None = None  # (that design)
+        self._ahead: dict[tuple[int, int], tuple] = {}  # a run searched ahead -> its problem and outcome
 
     def point_case(self, k: int):
         """Point k's case, built once for its run's search, its float64 figures and its verdict."""
@@ -253,14 +258,22 @@ class Regions:
             self._search_each(k, end, points)
             return
         longest = 1  # the longest run proven
+        ahead = [run for run in self._runs_ahead(k, end) if run not in self._ahead]
         while runs:
-            problems = [_region_problem([points[j] for j in range(a, b)]) for a, b in runs]
             budget = _budget(last_boxes(self.posed), SURE_BOXES)
+            known = {run: self._ahead.pop(run) for run in runs if run in self._ahead}
+            known = {run: kept for run, kept in known.items() if _holds(kept[1], budget)}
+            fresh = [run for run in runs if run not in known]
+            problems = [_region_problem([points[j] for j in range(a, b)]) for a, b in fresh]
+            problems += [_region_problem([_search_problem(self.posed, self.point_case(j)) for j in range(a, b)])
+                         for a, b in ahead]
             began = time.perf_counter()
-            outcomes = searches(self.posed, problems, [budget] * len(runs))
+            outcomes = searches(self.posed, problems, [budget] * len(problems)) if problems else []
             seconds = time.perf_counter() - began
-            halves = []
-            for (a, b), problem, outcome in zip(runs, problems, outcomes):
+            self._ahead.update(zip(ahead, zip(problems[len(fresh):], outcomes[len(fresh):])))
+            found = {**dict(zip(fresh, zip(problems, outcomes))), **known}
+            ahead, halves = [], []
+            for (a, b), (problem, outcome) in ((run, found[run]) for run in runs):
                 if outcome is not None and outcome.proven:
                     self._proved(a, b, problem, outcome, seconds / max(1, end - k))
                     longest = max(longest, b - a)
@@ -279,6 +292,22 @@ class Regions:
                     # design found by a solve, else its own verdict with its own search)
             runs = halves
         self._length = min(2 * longest, LONGEST_RUN)
+
+    def _runs_ahead(self, k: int, end: int) -> list[tuple[int, int]]:
+        """The runs after k .. end - 1 that :meth:`_search_from` searches next where each before it is proven whole
+        (twice as long each, up to LONGEST_RUN; two of them), searched with it where the design has integer
+        variables: an iteration costs per call, and a region's search there costs about a point's own (the ball's:
+        121-473 boxes, 8-16 iterations), so the runs together take the iterations of the longest, not their sum;
+        their outcomes are kept for the calls that search them (:func:`_holds`; the others dropped with the
+        sweep)."""
+        if not self.posed.integer or self.problem.start_up is not None:
+            return []
+        runs, length = [], end - k
+        while len(runs) < 2 and end < self.count - 1:
+            length = min(2 * length, LONGEST_RUN)
+            runs.append((end, min(end + length, self.count)))
+            end = runs[-1][1]
+        return runs
 
     def _proved(self, a: int, b: int, problem: tuple, outcome: Emptiness, seconds: float) -> None:
         """Points a .. b - 1 proven by one search (``outcome``, of the region ``problem``): each gets its text
@@ -418,6 +447,14 @@ def _budget(boxes: int, least: int) -> int:
     (a region's search: SURE_BOXES; a point's of a run searched point by point, next to its last point's own proof:
     FEW_BOXES), at most MAX_BOXES."""
     return min(max(REGION_BUDGET * boxes, least), MAX_BOXES)
+
+
+def _holds(outcome: Emptiness | None, budget: int) -> bool:
+    """A search made ahead (:meth:`Regions._runs_ahead`) is the one a search within ``budget`` makes: it ended by
+    its outcome (proven, or a design met), not by a budget or its growth, within ``budget`` boxes (a search's steps do
+    not depend on its budget until it passes it)."""
+    return (outcome is not None and (outcome.proven or outcome.reached or outcome.feasible is not None)
+            and outcome.boxes <= budget)
 
 
 def _region_problem(points: list[tuple[np.ndarray, ...]]) -> tuple[np.ndarray, ...]:
