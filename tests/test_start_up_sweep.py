@@ -71,18 +71,22 @@ def test_the_limits_a_point_starts_with_follow_the_secant_through_the_two_points
 def test_a_binding_limit_is_centred_on_the_simulated_figure():
     """centred_shift by hand: the NLP saw max_temperature_rise 4 K x 0.9998 = 3.9992 K; the simulated peak is
     4 K + 2e-6 K, the check active: centred on the simulator, the NLP's limit would be 3.9992 - 2e-6 K, a share of
-    0.9998 - 5e-7. An inactive check, or a limit the correction did not move, is left as it is."""
+    0.9998 - 5e-7. An active limit never moved (max_friction_work 8 kJ, the simulated 8000.004 J) from the case's:
+    a share of 1 - 0.004 / 8000 = 1 - 5e-7. An inactive check, or a limit the correction did not move, is left as
+    it is."""
     from types import SimpleNamespace
 
     from clutchopt.optimise.start_up_sweep import centred_shift
 
     check = SimpleNamespace(name="temperature_rise", active=True, sense="<=", value=4.0 + 2e-6, limit=4.0)
+    work = SimpleNamespace(name="friction_work", active=True, sense="<=", value=8000.004, limit=8000.0)
     loose = SimpleNamespace(name="start_time", active=False, sense="<=", value=9.0, limit=10.0)
-    solution = SimpleNamespace(constraints=[check, loose],
+    solution = SimpleNamespace(constraints=[check, work, loose],
                                limit_shift={"max_temperature_rise": 0.9998, "max_start_time": 0.99})
-    case = SimpleNamespace(values={"max_temperature_rise": 4.0, "max_start_time": 10.0})
+    case = SimpleNamespace(values={"max_temperature_rise": 4.0, "max_start_time": 10.0, "max_friction_work": 8000.0})
     shares = centred_shift(solution, case)
     assert shares["max_temperature_rise"] == pytest.approx(0.9998 - 5e-7, rel=0, abs=1e-15)
+    assert shares["max_friction_work"] == pytest.approx(1 - 5e-7, rel=0, abs=1e-15)
     assert shares["max_start_time"] == 0.99
 
 
@@ -123,3 +127,112 @@ def test_a_dense_sweep_where_the_temperature_rise_binds_needs_no_correction_a_po
     assert [r["solver"]["solves"] for r in records][3:] == [1, 1, 1]
     alone = case_problem(MOTOR).solve(MOTOR.with_values(driven_inertia=0.6394))
     assert abs(records[-1]["objective"]["value"] - alone.objective) <= 0.25e-6 * abs(alone.objective)
+
+
+def test_a_point_whose_error_the_secant_puts_beyond_the_tolerance_starts_on_the_adapted_mesh():
+    """first_mesh by hand: the two points before at J = 0.616 and 0.637 kg m^2 ended on one mesh with collocation
+    errors -5.93e-7 and -8.97e-7 (wedge_motor_start's 20-point sweep). At 0.658 (t = 1) the secant gives
+    -8.97e-7 + (-8.97e-7 + 5.93e-7) = -1.201e-6, beyond the tolerance 1e-6: the mesh the point before's simulated
+    start suggests (its ``mesh[1]``). At 0.6475 (t = 0.5) -1.049e-6: adapted too; with errors -5.93e-7 and -7.0e-7
+    the secant's -8.07e-7 at t = 1 is within: the mesh the point before ended on. Across a mesh change, or off the
+    line, no secant, or where the point before binds at a limit its loop left uncorrected (its design carries the
+    collocation's error there: the mesh decides it): the mesh the point before ended on."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.start_up_sweep import Along, first_mesh
+
+    mesh, suggested = np.full(16, 1 / 16), np.linspace(1, 2, 16) / 24
+    before = Along({"driven_inertia": 0.616}, {}, mesh, error=-5.93e-7)
+
+    def at(inertia, last_error=-8.97e-7, before=before):
+        last = Along({"driven_inertia": 0.637}, {}, mesh, before, error=last_error)
+        return first_mesh(SimpleNamespace(along=last, mesh=(mesh, suggested)), {"driven_inertia": inertia}, 1e-6)
+
+    assert at(0.658) is suggested and at(0.6475) is suggested
+    assert at(0.658, last_error=-7.0e-7) is mesh
+    assert at(0.658, before=Along(before.values, {}, mesh * 1.01, error=-5.93e-7)) is mesh  # a mesh change
+    assert at(0.637 + 2 * 0.021) is mesh  # t = 2 > FURTHEST
+    held = Along({"driven_inertia": 0.637}, {}, mesh, before, error=-8.97e-7, held={"max_start_time": 1e-7})
+    assert first_mesh(SimpleNamespace(along=held, mesh=(mesh, suggested)), {"driven_inertia": 0.658}, 1e-6) is mesh
+
+
+def test_an_active_limit_left_at_the_case_s_is_moved_where_the_correction_would_move_it():
+    """predicted_shift with held_limits by hand: the start time binds at the two points before (J = 0.553 and 0.574
+    kg m^2), its loop never moved it; the objective's error from the simulated start off the limit, |elasticity x
+    gap / limit|, was 2.07e-7 and 2.47e-7 (0.55 x 3.75e-7, 0.56 x 4.40e-7), within CENTRE x tolerance = 2.5e-7, and
+    its centred share 1 - 4.40e-7 at 0.574. At 0.595 (t = 1) the secant puts the error at 2.87e-7, beyond: the
+    point starts at the centred share moved on by the secant, 1 - 4.40e-7 - 0.65e-7 = 1 - 5.05e-7. At 0.5845
+    (t = 0.5) 2.67e-7: moved too; were the error 1.8e-7 and 2.0e-7 (2.2e-7 at t = 1), it stays at the case's."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.start_up_sweep import Along, predicted_shift
+
+    mesh = np.full(16, 1 / 16)
+
+    def at(inertia, errors=(2.07e-7, 2.47e-7)):
+        before = Along({"driven_inertia": 0.553}, {"max_start_time": 1 - 3.75e-7}, mesh, held={"max_start_time":
+                                                                                                errors[0]})
+        last = Along({"driven_inertia": 0.574}, {"max_start_time": 1 - 4.40e-7}, mesh, before,
+                     held={"max_start_time": errors[1]})
+        previous = SimpleNamespace(along=last, limit_shift={}, start_up={"tolerance": 1e-6})
+        return predicted_shift(previous, {"driven_inertia": inertia})
+
+    assert at(0.595)["max_start_time"] == pytest.approx(1 - 5.05e-7, rel=0, abs=1e-15)
+    assert at(0.5845)["max_start_time"] == pytest.approx(1 - 4.725e-7, rel=0, abs=1e-15)
+    assert "max_start_time" not in at(0.595, errors=(1.8e-7, 2.0e-7))
+
+
+def test_where_the_mesh_must_adapt_a_point_starts_on_the_adapted_mesh():
+    """wedge_motor_start at 0.5947-0.6579 kg m^2 (the 20-point sweep's): at 0.6368 the temperature rise first binds
+    (3 solves: unverified, two corrections). At 0.6579 the secant through the errors of the two points before
+    (-5.9e-7, -9.0e-7) puts its error beyond the tolerance (1.24e-6 on the old mesh): its first solve is on the mesh
+    the point before's start suggests, then one correction (3 before: the old mesh, the adaptation, the correction).
+    Its design is solve's within the contract."""
+    vary = parse_vary("driven_inertia=0.5947,0.6158,0.6368,0.6579", MOTOR.coupling, MOTOR.quantities)
+    records = list(Sweep(MOTOR, [vary]).run(progress=False).solutions)
+    assert [r["status"] for r in records] == ["optimal"] * 4
+    assert [r["solver"]["solves"] for r in records][1:] == [1, 3, 2]
+    alone = case_problem(MOTOR).solve(MOTOR.with_values(driven_inertia=0.6579))
+    assert abs(records[-1]["objective"]["value"] - alone.objective) <= 0.25e-6 * abs(alone.objective)
+
+
+def test_a_point_after_a_coarse_mesh_the_loop_kept_stays_on_it():
+    """first_mesh: where the point before's loop kept a mesh whose error is beyond the tolerance (it stopped for
+    another reason: no start-up limit shapes the design, ``shapes_nothing``; ball_motor_start at 0.6-0.9 times its
+    driven inertia, errors -1.0e-3 and 1.6e-3), the secant's 4.1e-3 starts no adaptation: the point before's mesh."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.start_up_sweep import Along, first_mesh
+
+    mesh, suggested = np.full(16, 1 / 16), np.linspace(1, 2, 16) / 24
+    before = Along({"driven_inertia": 240.8}, {}, mesh, error=-1.02e-3)
+    last = Along({"driven_inertia": 256.6}, {}, mesh, before, error=1.55e-3)
+    assert first_mesh(SimpleNamespace(along=last, mesh=(mesh, suggested)), {"driven_inertia": 272.4}, 1e-6) is mesh
+
+
+def test_an_integer_choice_the_papers_sizing_finds_infeasible_is_not_solved_along_the_sweep():
+    """ball_motor_start over driven_inertia (225-336 kg m^2 in the 20-point sweep): the design is the papers'
+    sizing, 23 ball rows, and the row fewer its multiplier promises, 22, is infeasible in the sizing (the static
+    problem, least violation 2.72e-3) and in the start-up problem, which keeps every row of the sizing (the ball has
+    no constant-acceleration row): each point solved it (26-33 IPOPT iterations). The driven inertia enters no row
+    of the sizing, so its verdict holds at every point: from the third point on (the second solved along the sweep
+    whose sizing problem is its point before's) 22 rows are excluded without a solve, and the design is solve's. The
+    wedge's sizing has a row the start-up model replaces (the torque for T_max): nothing is ruled out by it."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.start_up_sweep import SizedOut, sized_out
+
+    ball = load_case(CASES / "ball_motor_start.toml")
+    points = ",".join(str(375.0 * factor) for factor in np.linspace(0.6, 1.4, 20)[[1, 2, 4]])  # the sweep's
+    vary = parse_vary(f"driven_inertia={points}", ball.coupling, ball.quantities)
+    records = list(Sweep(ball, [vary]).run(progress=False).solutions)
+    assert [r["status"] for r in records] == ["optimal"] * 3
+    rows = [{e["ball_rows"]: e["status"] for e in r["integer_search"]} for r in records]
+    assert rows[0][22] == rows[1][22] == "Infeasible_Problem_Detected" and rows[0][23] == "Solve_Succeeded"
+    assert rows[2][22].startswith("excluded: infeasible in the papers' sizing at this point")
+    alone = case_problem(ball).solve(ball.with_values(driven_inertia=vary.values[2]))
+    assert alone.design["ball_rows"] == records[2]["design"]["ball_rows"] == 23
+    assert records[2]["objective"]["value"] == pytest.approx(alone.objective, rel=1e-9, abs=0)
+    problem = case_problem(MOTOR)
+    key = sized_out(problem, MOTOR, None).key
+    assert sized_out(problem, MOTOR, SimpleNamespace(sized=SizedOut(key))).choices == {}

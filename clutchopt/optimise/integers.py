@@ -190,9 +190,11 @@ class RuledOut:
     rows: v = 1.2e-3 on each mesh against e = 7e-5 and less; it was solved again after every adaptation, 94, 500
     and 84 IPOPT iterations, 1.9 s of the 2.4 s the design took.)"""
 
-    def __init__(self):
+    def __init__(self, known: dict[tuple, str] | None = None):
         self.violations: dict[tuple, tuple[float, float]] = {}  # choice -> (least violation, error of its solve)
         self._pending: dict[tuple, float] = {}
+        self.known = known or {}  # choices known to have no design before the loop starts -> why (a start-up
+        # sweep's point: those the papers' sizing there finds infeasible, ``start_up_sweep.sized_out``)
 
     def found(self, combo, violation: float) -> None:
         """A choice the current solve found infeasible by ``violation``; its error comes with :meth:`settle`."""
@@ -205,6 +207,8 @@ class RuledOut:
 
     def reason(self, combo) -> list[str]:
         """Why ``combo`` is not solved again (empty: it is)."""
+        if (known := self.known.get(tuple(float(c) for c in combo))) is not None:
+            return [known]
         found = self.violations.get(tuple(float(c) for c in combo))
         if found is None or not found[0] > RULED_MARGIN * found[1]:
             return []

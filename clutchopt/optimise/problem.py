@@ -71,7 +71,8 @@ class Problem:
 
     def refined(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
                 mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,
-                coarser: float = math.inf, shift: dict[str, float] | None = None, cold: bool = True) -> Solution:
+                coarser: float = math.inf, shift: dict[str, float] | None = None, cold: bool = True,
+                infeasible: dict[tuple, str] | None = None) -> Solution:
         """:meth:`_refined`; a start-up the drive makes impossible for every coupling
         (:func:`~clutchopt.optimise.proofs.start_up_proofs`) is not solved (:meth:`proven`: a sweep's continuation
         onto such a point, its retries, ``solve``), and a start-up's retry (from ``start`` alone, undiagnosed) that
@@ -84,7 +85,8 @@ class Problem:
         key = self.failed_starts.key(case, start) if retry else None
         if key is not None and (known := self.failed_starts.known(key)) is not None:
             return known
-        solution = self._refined(case, start, warm, mesh, refine, diagnosed, coarser, shift, cold)
+        solution = self._refined(case, start, warm, mesh, refine, diagnosed, coarser, shift, cold,
+                                 infeasible=infeasible)
         if key is not None and solution.status not in DESIGN_STATUSES:
             self.failed_starts.keep(key, solution)
         return solution
@@ -92,7 +94,8 @@ class Problem:
     def _refined(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
                  mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,
                  coarser: float = math.inf, shift: dict[str, float] | None = None, cold: bool = True,
-                 fixed: dict[str, tuple[float, float]] | None = None) -> Solution:
+                 fixed: dict[str, tuple[float, float]] | None = None,
+                 infeasible: dict[tuple, str] | None = None) -> Solution:
         """One solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one.
 
         With a start-up, the simulated start is what the limits are checked against, and the collocation's own
@@ -115,7 +118,9 @@ class Problem:
         then starts cold from the papers' sizing, and diagnoses). An integer choice an earlier solve of the loop found
         infeasible by far more than that solve's collocation error is not solved again (:class:`RuledOut`). An elastic
         link's integer choice found infeasible only at limits another choice's simulated start moved, lighter than the
-        kept design, is solved through its own loop (:meth:`_own_loops`); ``fixed``: integer bounds of such a loop."""
+        kept design, is solved through its own loop (:meth:`_own_loops`); ``fixed``: integer bounds of such a loop.
+        ``infeasible``: integer choices known to have no design here, with why (:class:`RuledOut`; a start-up
+        sweep's point: those the papers' sizing at the point finds infeasible, ``start_up_sweep.sized_out``)."""
         case.require(self.objective.name, quantities=self.formulation.quantities)
         if self.start_up is None:
             return self._solve(case, start, warm, mesh=mesh, diagnosed=diagnosed)
@@ -130,8 +135,8 @@ class Problem:
             nlp_case = replace(nlp_case, bounds={**nlp_case.bounds, **fixed})
         foreign = ForeignShifts([v.name for v in self.formulation.variables if v.integer],
                                 carried_by(warm) if limit_shift(case, nlp_case) else ()) if structure.elastic else None
-        ruled = None if structure.elastic else RuledOut()  # an elastic link's NLP differs from its simulation by the
-        # model, not the mesh: no collocation error bounds what the next solve changes
+        ruled = None if structure.elastic else RuledOut(infeasible)  # an elastic link's NLP differs from its
+        # simulation by the model, not the mesh: no collocation error bounds what the next solve changes
         solution = self._solve(case, start, warm, nlp_case=nlp_case, mesh=mesh, diagnosed=diagnosed, ruled=ruled,
                                cold=cold)
         adapted, last_error, solves = 0, math.inf, [solution.solver]

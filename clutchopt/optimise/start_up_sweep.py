@@ -13,7 +13,12 @@ the temperature rise binds, the correction moves by some 1e-5 a point, which the
 the loop accepts, the secant's by the second difference only (a correction a point saved on a dense sweep; an
 elastic link's limits, which its loop never centres, are carried as they are). The loop
 still decides on this point's own simulated start, so the design is ``solve``'s within the accuracy contract
-(docs/start_up.md: each is the simulator's optimum to a quarter of the tolerance on the objective). The sizing and
+(docs/start_up.md: each is the simulator's optimum to a quarter of the tolerance on the objective). A limit its
+loop left at the case's is moved only where the correction would move it (:func:`held_limits`), a point whose error
+the secant puts beyond the tolerance starts on the adapted mesh (:func:`first_mesh`), and an integer choice the
+papers' sizing finds infeasible at the point is not solved where the sizing's rows are all the start-up problem's
+(:func:`sized_out`): the corrections, adaptations and integer attempts the loop would solve only to land where it
+would have. The sizing and
 the start guess's simulation are saved; every solve is still checked by the simulator. A point this does not bring
 to an optimum is solved cold, as ``solve`` solves it (its verdict is ``solve``'s). A point the drive's proofs cover
 (:mod:`clutchopt.optimise.proofs`) is not started: ``solve`` gives its verdict without a solve.
@@ -22,19 +27,20 @@ to an optimum is solved cold, as ``solve`` solves it (its verdict is ``solve``'s
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.optimise.failed_starts import case_numbers, on_ray
+from clutchopt.optimise.integers import INFEASIBLE
+from clutchopt.optimise.problem import problem_for
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution
-from clutchopt.optimise.start_up_check import limit_gaps
+from clutchopt.optimise.start_up_check import CENTRE, limit_gaps
 
 FURTHEST = 1.5  # the longest step ahead, in steps of the two points before, the secant is carried over
-
 
 @dataclass(frozen=True)
 class Along:
@@ -45,6 +51,10 @@ class Along:
     shift: dict[str, float]
     mesh: np.ndarray
     before: "Along | None" = None
+    error: float = 0.0  # the collocation's error of its last solve (its start time against the simulated one)
+    held: dict[str, float] = field(default_factory=dict)  # the active limits its loop never moved: the objective's
+    # error from each (:func:`held_limits`)
+    sized: "SizedOut | None" = None  # the papers' sizing's problem at the point, and its infeasible integer choices
 
 
 def solved_along(problem, case: Case, previous: Solution | None) -> Solution | None:
@@ -58,8 +68,14 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
         return None
     try:
         numbers = _numbers(case)
-        solution = problem.refined(case, warm=previous, mesh=previous.mesh[0], shift=predicted_shift(previous, numbers),
-                                   diagnosed=False, cold=False)  # solve's own cold start and diagnosis follow
+        sized = sized_out(problem, case, previous.along)
+        mesh, shift = first_mesh(previous, numbers, block.s.spec.tolerance), predicted_shift(previous, numbers)
+        if not abs(error_ahead(previous, numbers) or 0.0) <= block.s.spec.tolerance:  # an adaptation (ahead, or
+            # the loop's) moves the collocation's figures by a step of its own: the limits the point before's loop
+            # moved are carried into it, as the loop carries them, not those moved ahead on the old mesh's figures
+            shift = {name: share for name, share in shift.items() if name in previous.limit_shift}
+        solution = problem.refined(case, warm=previous, mesh=mesh, shift=shift, diagnosed=False, cold=False,
+                                   infeasible=sized.choices)  # solve's own cold start and diagnosis follow
     except InputError:  # its first simulation failed from this start
         return None
     if solution.status != "optimal":
@@ -68,8 +84,78 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
         return solution  # NLP is another model than the simulated dynamics, not a mesh off them (the share is kept)
     before = previous.along
     solution.along = Along(numbers, centred_shift(solution, case), solution.mesh[0],
-                           replace(before, before=None) if before is not None else None)
+                           replace(before, before=None) if before is not None else None,
+                           solution.start_up["discretisation_error"]["start_time"], held_limits(solution), sized)
     return solution
+
+
+@dataclass(frozen=True)
+class SizedOut:
+    """The papers' sizing's problem at a sweep's point (``key``: its case values, as its posed problem reads them)
+    and the integer choices its search found infeasible there (``choices``: the start-up problem's integer
+    variables' values -> why; None: not solved for)."""
+
+    key: str
+    choices: dict[tuple, str] | None = None
+
+
+def sized_out(problem, case: Case, before: Along | None) -> SizedOut:
+    """The integer choices a start-up sweep's point need not solve: those the papers' sizing (the same formulation
+    without the start-up, ``Problem._sizing``) finds infeasible at the point (IPOPT: ``Infeasible_Problem_Detected``),
+    where the start-up problem keeps every row of it (no constant-acceleration row left to the start-up model, as
+    the wedge's and lever's torque rows are): its designs are then a subset of the sizing's, and a choice without a
+    design there has none here, as the batch's ``tightening`` reads a step that only tightens. The sizing is solved
+    once a sweep, at the first point solved along it whose sizing problem is the point before's (a sweep of
+    start-up quantities alone: the driven inertia), and carried while the problem stays the same; a sweep that
+    moves it solves none. ball_motor_start over driven_inertia: 22 rows, the sizing's row fewer, infeasible by the
+    same least violation 2.72e-3 at every point from 225 to 336 kg m^2, were solved at each (26-33 IPOPT
+    iterations); ``solve`` of such a point alone tries them and finds them infeasible: the same verdict."""
+    static = problem_for(problem.posed.base, problem.objective.name, problem.options)
+    key = repr(tuple(vars(static.posed.params(case)).values()))
+    if before is None or before.sized is None or before.sized.key != key:
+        return SizedOut(key)
+    if before.sized.choices is not None:
+        return before.sized
+    if problem.start_up.s.elastic or not set(static.posed.row_names) <= set(problem.posed.row_names):  # a row
+        return SizedOut(key, {})  # left to the start-up model (an elastic link's loop rules nothing out)
+    names = [v.name for v in problem.formulation.variables if v.integer]
+    choices = {tuple(float(entry[name]) for name in names if name in entry):
+               f"infeasible in the papers' sizing at this point ({entry['status']}), whose every row the start-up "
+               "problem keeps" for entry in problem._sizing(case).integer_search if entry["status"] == INFEASIBLE}
+    return SizedOut(key, choices)
+
+
+def first_mesh(previous: Solution, numbers: dict[str, float], tolerance: float) -> np.ndarray:
+    """The mesh a point's first solve is on: the one the point before's loop ended on, or where the secant through
+    the collocation errors of the two points before on that mesh (their start time against the simulated one)
+    puts this point's error beyond ``tolerance``, the mesh the point before's simulated start suggests (adapted to
+    it, ``Solution.mesh[1]``): the loop would solve on the old mesh only to adapt it (wedge_motor_start over
+    driven_inertia at 0.658 kg m^2: errors -5.9e-7 and -9.0e-7 at the two points before, -1.24e-6 there). The
+    secant is taken as :func:`predicted_shift` takes it (the same mesh, on the line, at most FURTHEST steps on), and
+    only after a mesh that resolved the point before's start (its error within ``tolerance``): a loop that kept a
+    coarse mesh for another reason (no start-up limit shapes the design, ``shapes_nothing``: ball_motor_start at
+    0.6-0.9 times its driven inertia, errors 1e-3 to 1e-2) keeps it (adapted ahead, the ball's integer search went
+    down another path at 272 and 288 kg m^2, to designs 0.4 and 0.7 % heavier than ``solve``'s). Nor where the point
+    before binds at a limit its loop left uncorrected (:func:`held_limits`): its design then carries the
+    collocation's error at that limit, so the mesh decides it within the contract, and a mesh adapted to the start
+    of the point before instead of this point's own moves it and every later point on it (lever_motor_start from
+    9.22 kg m^2 on, ten points by up to 3.6e-8 off main's, 1.0e-7 off ``solve``'s; where the correction centres
+    every binding limit, as on the wedge at 0.658 kg m^2, the designs after it are main's to 5e-11)."""
+    ahead, last = error_ahead(previous, numbers), previous.along
+    if ahead is None or not abs(ahead) > tolerance or not abs(last.error) <= tolerance or last.held:  # (a loop that
+        return previous.mesh[0]  # kept a coarse mesh for another reason; a binding limit left uncorrected)
+    return previous.mesh[1]
+
+
+def error_ahead(previous: Solution, numbers: dict[str, float]) -> float | None:
+    """The collocation error (start time against the simulated one) the secant through the two points before puts
+    at the point whose case's values are ``numbers``, where both ended on the same mesh, the point lies on the line
+    through theirs, at most FURTHEST steps on; None where not."""
+    last = previous.along
+    if last is None or last.before is None or not np.array_equal(last.mesh, last.before.mesh):
+        return None
+    step = _step(last.before.values, last.values, numbers)
+    return None if step is None else last.error + step * (last.error - last.before.error)
 
 
 def predicted_shift(previous: Solution, numbers: dict[str, float]) -> dict[str, float]:
@@ -78,29 +164,54 @@ def predicted_shift(previous: Solution, numbers: dict[str, float]) -> dict[str, 
     (:func:`centred_shift`), each moved on by the secant through the two points before where both ended on the same
     mesh (a mesh adaptation moves the collocation's figures, hence the corrections, by a step of its own) and
     ``case`` lies on the line through their values, at most FURTHEST steps on; the point before's ``limit_shift``
-    where it was not solved along the sweep."""
+    where it was not solved along the sweep. An active limit the point before's loop left at the case's
+    (:func:`held_limits`) is moved only where the objective's error from it, carried on the same way, passes what
+    the defect correction accepts (CENTRE of the tolerance): the correction this point would solve is then not
+    solved (wedge_motor_start over driven_inertia at 0.595 kg m^2, where the start time's passes it: 2.1e-7 and
+    2.5e-7 at the two points before, 2.9e-7 there; centred from then on), and a point it would not correct is
+    solved at the case's limit, as the point alone is."""
     last = previous.along
     if last is None:
         return previous.limit_shift
-    if last.before is None or not np.array_equal(last.mesh, last.before.mesh):
-        return last.shift
-    step = _step(last.before.values, last.values, numbers)
-    if step is None:
-        return last.shift
-    return {name: share + step * (share - last.before.shift[name]) if name in last.before.shift else share
-            for name, share in last.shift.items()}
+    step = None
+    if last.before is not None and np.array_equal(last.mesh, last.before.mesh):
+        step = _step(last.before.values, last.values, numbers)
+    before = last.before or Along({}, {}, last.mesh)
+    shares = {name: _ahead(share, before.shift.get(name), step) for name, share in last.shift.items()}
+    for name, error in last.held.items():
+        if not _ahead(error, before.held.get(name), step) > CENTRE * previous.start_up["tolerance"]:
+            shares.pop(name, None)
+    return shares
+
+
+def held_limits(solution: Solution) -> dict[str, float]:
+    """Each start-up limit ``solution``'s design binds at (the simulated check active) that its loop left at the
+    case's (not in its ``limit_shift``): the objective's relative error from the simulated figure off the limit,
+    |elasticity x gap / limit|, what the defect correction compares with CENTRE of the tolerance
+    (:func:`~clutchopt.optimise.start_up_check.corrected_case`)."""
+    return {name: abs((check.elasticity or 0.0) * gap / check.limit) for check, name, gap in limit_gaps(solution)
+            if check.active and name not in solution.limit_shift}
+
+
+def _ahead(value: float, before: float | None, step: float | None) -> float:
+    """``value`` moved on by the secant from ``before`` over ``step`` steps (as it is without either)."""
+    return value if step is None or before is None else value + step * (value - before)
 
 
 def centred_shift(solution: Solution, case: Case) -> dict[str, float]:
     """``solution``'s ``limit_shift`` with each limit its design binds at (the simulated check active) moved to where
     the simulated figure meets the case's limit: the NLP's limit less the simulated gap, what the defect correction
-    would move it to (:func:`~clutchopt.optimise.start_up_check.corrected_case`). The shares a point ends with are
-    those of the limits its last solve saw, off that by up to what the loop accepts; the secant is taken through
-    the centred ones, not through its own predictions."""
+    would move it to (:func:`~clutchopt.optimise.start_up_check.corrected_case`); a limit its loop never moved from
+    the case's (share 1; :func:`predicted_shift` carries it only where the correction would move it). The shares a
+    point ends with are those of the limits its last solve saw, off that by up to what the loop accepts; the secant
+    is taken through the centred ones, not through its own predictions. A limit the design does not bind at is left
+    as it is (centred on what the simulator adds to the NLP's figure, the correction where it first binds was
+    saved, but that point's design moved off ``solve``'s by up to what the correction accepts: docs/start_up.md,
+    "Fewer solver calls a start-up sweep's point")."""
     shares = dict(solution.limit_shift)
     for check, name, gap in limit_gaps(solution):
-        if name in shares and check.active:
-            shares[name] -= gap / case.values[name]
+        if check.active:
+            shares[name] = shares.get(name, 1.0) - gap / case.values[name]
     return shares
 
 
