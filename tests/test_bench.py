@@ -107,6 +107,15 @@ def test_user_sweeps_cover_every_coupling_and_quantity_users_vary(report):
         assert row["points_per_s"] == pytest.approx(row["points"] / row["wall_s"])
     infeasible = [row for row in rows if row["quantity"].endswith("(into infeasible)")]
     assert sum(row["without_design"] for row in infeasible) > 0  # the region is reached
+    for coupling, _ in MODES:  # either side of the edge each sweep into the region met
+        sides = {q.split(" (")[1]: row for row in rows if row["case"].startswith(coupling + " ")
+                 for q in [row["quantity"]] if " the edge)" in q}
+        before, beyond = sides["before the edge)"], sides["beyond the edge)"]
+        assert before["without_design"] == 0 and beyond["designed"] == 0
+        assert beyond["point_cost_vs_designed"] == pytest.approx(before["points_per_s"] / beyond["points_per_s"])
+        assert before["point_cost_vs_designed"] is None
+    crusher = next(row for row in rows if row["case"] == "ball_crusher")
+    assert crusher["quantity"] == "power" and crusher["span"] == "250-1000 kW" and crusher["without_design"] > 0
     assert next(r for r in rows if r["case"] == "wedge (paper)" and r["quantity"] == "inertia")["vs_wedge_paper"] == 1
 
 

@@ -107,3 +107,27 @@ def test_a_continuation_lost_at_a_step_is_not_started_from_the_same_design_beyon
     assert lost.lost_beyond(case.with_values(driven_inertia=inertias[17]), design.design)
     assert not lost.lost_beyond(case.with_values(driven_inertia=inertias[14]), design.design)
     assert not lost.lost_beyond(case.with_values(driven_inertia=inertias[17], load_torque=1.0), design.design)
+
+
+def test_each_table_keeps_its_newest_entries_up_to_kept(monkeypatch):
+    from dataclasses import dataclass
+
+    from clutchopt.optimise import failed_starts
+    from clutchopt.optimise.solution import SolverInfo
+
+    @dataclass
+    class Failed:  # what FailedStarts.known reads of a kept Solution
+        solver: SolverInfo
+
+    monkeypatch.setattr(failed_starts, "KEPT", 2)
+    table = {"a": 1, "b": 2}
+    failed_starts._make_room(table, "b")  # a key it holds: replaced in place, nothing dropped
+    assert table == {"a": 1, "b": 2}
+    failed_starts._make_room(table, "c")  # a new key: the oldest dropped
+    assert table == {"b": 2}
+    starts = failed_starts.FailedStarts()
+    for key in ("x", "y", "z"):
+        starts.keep(key, Failed(SolverInfo("ipopt", "Infeasible_Problem_Detected", 30, 0.5, 1)))
+    assert starts.known("x") is None
+    assert starts.known("y").solver == starts.known("z").solver == SolverInfo("ipopt", "Infeasible_Problem_Detected",
+                                                                               0, 0.0, 0)  # charged no solver call

@@ -43,7 +43,9 @@ def test_the_cable_at_0_5_keeps_the_verified_9_cables_not_an_unverified_8():
     allowed, and the defect correction moves the NLP's limit by that 1.55 MPa a step (plus half the tolerance), where
     the NLP's quasi-static figure binds nowhere near: its seven steps leave the design unmoved and end `unverified`
     (3.953 kg, exit 0), though 9 cables fixed are verified (4.418 kg, their start at 321 MPa) and the sweep
-    0.2, 0.5 keeps them. Failed on main: solve alone kept the 8 cables, unverified."""
+    0.2, 0.5 keeps them. Failed on main: solve alone kept the 8 cables, unverified. (Since the correction moves the
+    NLP's limit from its own figure, 335.996 MPa, it goes to 334.444 MPa in one step, where no 8-cable design of the
+    NLP exists: 8 fixed stay `unverified` in 3 solves, and solve keeps 9 in 6; tests/test_defect_correction.py.)"""
     case = CABLE.with_values(driven_inertia=0.5)
     nine = fixed_count(case, 9)
     assert nine.status == "optimal" and nine.objective == pytest.approx(4.4177854, rel=1e-7)

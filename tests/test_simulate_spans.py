@@ -9,7 +9,7 @@ import pytest
 
 import clutchopt.simulate.spans as spans
 from clutchopt.backend import exp, fmax, sqrt
-from clutchopt.simulate.on_floats import on_floats
+from clutchopt.simulate.on_floats import bound, on_numpy, parametrised
 from clutchopt.simulate.spans import integrate_spans
 from clutchopt.simulate.stepping import Budget
 
@@ -82,11 +82,19 @@ def test_a_run_past_its_budget_stops_with_that_status():
     assert out.status == "budget" and budget.spent and out.t[-1] < 1e3
 
 
+def _traced(equation, probes):
+    """``equation`` of two numbers written out on floats as clutchopt/simulate/elastic.py binds its equations: no
+    parameters, untraceable or differing at ``probes`` the equation itself, a call Python's math cannot answer
+    answered by it on NumPy floats."""
+    return bound(lambda: equation, (0, 0), parametrised(), None, equation, probes,
+                 fallback=lambda *point: on_numpy(equation, point))
+
+
 def test_a_traced_function_is_the_equation_on_floats():
     def equation(x, y):  # written with clutchopt.backend, as a formulation's
         return sqrt(1.0 + x * x) / (2.0 + y) + fmax(x - 1.0, 0.0)
 
-    traced = on_floats(equation, 2, [(0.0, 0.0), (3.0, 1.0)])
+    traced = _traced(equation, [(0.0, 0.0), (3.0, 1.0)])
     assert traced is not equation
     for x, y in [(0.5, 0.25), (3.0, 1.0), (-2.0, 7.0)]:
         assert traced(x, y) == pytest.approx(math.sqrt(1 + x * x) / (2 + y) + max(x - 1, 0), rel=1e-15)
@@ -97,7 +105,7 @@ def test_a_traced_function_is_the_equation_where_python_s_math_is_not_ieee_s():
         # goes complex
         return x ** y + sqrt(x) + 1.0 / x + exp(y)
 
-    traced = on_floats(equation, 2, [(1.0, 2.0), (4.0, 0.5)])
+    traced = _traced(equation, [(1.0, 2.0), (4.0, 0.5)])
     assert traced is not equation and traced(4.0, 0.5) == pytest.approx(2.0 + 2.0 + 0.25 + math.exp(0.5), rel=1e-15)
     with np.errstate(all="ignore"):
         f = np.float64
@@ -110,7 +118,7 @@ def test_an_equation_that_cannot_be_traced_is_used_itself():
     def branching(x, y):
         return x if x > y else y
 
-    assert on_floats(branching, 2, [(1.0, 2.0)]) is branching
+    assert _traced(branching, [(1.0, 2.0)]) is branching
 
 
 def test_samples_that_cannot_advance_end_the_phase_instead_of_looping():

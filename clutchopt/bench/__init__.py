@@ -60,9 +60,11 @@ SECTIONS: tuple[Section, ...] = (
                           "Python; points/s against the same sweep point by point and the wedge paper mode's",
             throughput_rows),
     Section("user_sweeps", "The sweeps users run (Sweep.run, no store): every coupling over its duty quantity, speed, "
-                           "friction coefficient and allowable (0.5x-2x), into an infeasible region (1x-10x), and each "
-                           "start-up case over its driven inertia; points with and without a design, solver calls per "
-                           "point, points/s against the wedge paper sweep of its duty quantity", user_sweep_rows),
+                           "friction coefficient and allowable (0.5x-2x), into an infeasible region (1x-10x) and on "
+                           "either side of the edge it meets (a point beyond it against one before it: "
+                           "point_cost_vs_designed), ball_crusher over 250-1000 kW, and each start-up case over its "
+                           "driven inertia; points with and without a design, solver calls per point, points/s "
+                           "against the wedge paper sweep of its duty quantity", user_sweep_rows),
     Section("resolve", "Warm re-solves along the same sweeps: warm IPOPT alone (before) and SQP first (now); times per "
                        "re-solve, largest relative difference of the verified optima", resolve_rows),
     Section("scaleout", "Scale-out: the ball design sweep (clutchopt sweep's code) in this process and on a local Dask "
@@ -121,7 +123,8 @@ COLUMN_UNITS = {  # the SI unit of every column of every section ("": a count, r
                      "python_per_point_share", "vs_point_by_point", "vs_wedge_paper", "resolves", "speedup",
                      "max_rel_diff_objective", "workers", "rtol", "t_c_rel_error", "L_rel_error", "intervals",
                      "start_time_rel_error", "solves", "designed", "without_design", "first_vs_static",
-                     "resolve_vs_static", "probability", "interval_low", "interval_high", "samples"), ""),
+                     "resolve_vs_static", "point_cost_vs_designed", "probability", "interval_low", "interval_high",
+                     "samples"), ""),
 }
 
 

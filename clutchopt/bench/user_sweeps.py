@@ -1,11 +1,13 @@
 """The sweeps users run, not only the benchmark's own: for every coupling, ``clutchopt sweep``'s code (``Sweep.run``,
 no store) over each of the speed, the duty's torque quantity, the friction coefficient and the allowable pressure
 or stress (0.5x to 2x the case's value, or the widest of 0.7x-1.4x and 0.9x-1.1x whose every point its checks
-accept), a sweep reaching into an infeasible region (the duty's quantity from 1x to 10x), and for each start-up
-case a sweep of the driven inertia (0.6x to 1.4x, every point simulated; once, with a fiftieth of the points). Per
-sweep: the points, how many have a design and how many a verdict without one, solver calls per point, points/s (the
-median run of ``sweep_repeats``), and points/s against the wedge paper sweep of the duty's quantity measured in the
-same run."""
+accept), a sweep reaching into an infeasible region (the duty's quantity from 1x to 10x) and the two sides of the
+edge it meets (from 1x to its last point with a design, and from its first point without one to twice that: what a
+point without a design costs against one with a design, issue 26's "an infeasible point <= 20x a feasible one"),
+``ball_crusher`` over 250-1000 kW, and for each start-up case a sweep of the driven inertia (0.6x to 1.4x, every
+point simulated; once, with a fiftieth of the points). Per sweep: the points, how many have a design and how many a
+verdict without one, solver calls per point, points/s (the median run of ``sweep_repeats``), and points/s against
+the wedge paper sweep of the duty's quantity measured in the same run."""
 
 from __future__ import annotations
 
@@ -25,7 +27,8 @@ ALLOWABLE = {"wedge": "allowable_pressure", "lever": "allowable_pressure", "cabl
 
 
 def _run(case: Case, name: str, values: np.ndarray, mode: str | None, repeats: int) -> dict:
-    """``Sweep(case, name=values).run()`` (SI values) timed ``repeats`` times: the tally of the median run."""
+    """``Sweep(case, name=values).run()`` (SI values) timed ``repeats`` times: the tally of the median run, and which
+    points have a design (``designed_at``, a mask over ``values``)."""
     from clutchopt.optimise.sweep import Sweep
     from clutchopt.optimise.sweep_grid import Vary
 
@@ -33,10 +36,11 @@ def _run(case: Case, name: str, values: np.ndarray, mode: str | None, repeats: i
     result, seconds = median_run(
         lambda: Sweep(case, [Vary(quantity, tuple(values.tolist()))], mode=mode).run(progress=False), repeats)
     statuses = result.frame["status"].to_numpy()
-    designed = int(np.isin(statuses, ("optimal", "unverified")).sum())
+    designed_at = np.isin(statuses, ("optimal", "unverified"))
+    designed = int(designed_at.sum())
     return {"points": len(values), "designed": designed, "without_design": len(values) - designed,
             "solves_per_point": result.spent["solves"] / len(values), "wall_s": seconds,
-            "points_per_s": len(values) / seconds}
+            "points_per_s": len(values) / seconds, "designed_at": designed_at}
 
 
 def _widest(case: Case, name: str, spans, points: int, mode: str | None, repeats: int) -> dict:
@@ -53,6 +57,22 @@ def _widest(case: Case, name: str, spans, points: int, mode: str | None, repeats
     raise InputError(name, f"no span of {spans} is accepted")
 
 
+def _edge_sides(case: Case, name: str, factors: np.ndarray, designed_at: np.ndarray, mode: str | None,
+                repeats: int) -> list[dict]:
+    """The sweeps on either side of the edge a sweep over ``factors`` met (none if it met none): from its first factor
+    to its last with a design, and from its first without one to twice that, as many points each; the second's cost
+    a point against the first's (``point_cost_vs_designed``)."""
+    if designed_at.all() or not designed_at.any():
+        return []
+    last, first = factors[designed_at].max(), factors[~designed_at].min()
+    sides = []
+    for label, low, high in (("before the edge", factors[0], last), ("beyond the edge", first, 2 * first)):
+        row = _run(case, name, case.values[name] * np.geomspace(low, high, len(factors)), mode, repeats)
+        sides.append({"quantity": f"{name} ({label})", "span": f"{low:.3g}x-{high:.3g}x", **row})
+    sides[1]["point_cost_vs_designed"] = sides[0]["points_per_s"] / sides[1]["points_per_s"]
+    return sides
+
+
 def user_sweep_rows(config) -> list[dict]:
     points = max(config.sweep_points // 10, 10)
     rows, reference = [], None
@@ -60,17 +80,26 @@ def user_sweep_rows(config) -> list[dict]:
         mode, duty = reference_mode(case.coupling), sweep_quantity(case)
         sweeps = [(q, SPANS) for q in dict.fromkeys((duty, "speed", "friction_coefficient", ALLOWABLE[case.coupling]))]
         sweeps.append((f"{duty} (into infeasible)", ((1.0, 10.0),)))
+        label_case = f"{case.coupling} ({mode})"
         for label, spans in sweeps:
             name = label.split(" ")[0]
             row = _widest(case, name, spans, points, mode, config.sweep_repeats)
             if case.coupling == "wedge" and label == duty:
                 reference = row["points_per_s"]
-            rows.append({"case": f"{case.coupling} ({mode})", "quantity": label, **row})
+            rows.append({"case": label_case, "quantity": label, **row})
+        factors = np.geomspace(1.0, 10.0, points)
+        rows += [{"case": label_case, **side} for side in
+                 _edge_sides(case, duty, factors, rows[-1]["designed_at"], mode, config.sweep_repeats)]
+    crusher = load_case(CASES / "ball_crusher.toml")
+    rows.append({"case": "ball_crusher", "quantity": "power", "span": "250-1000 kW",
+                 **_run(crusher, "power", np.linspace(250e3, 1000e3, 2 * points), None, config.sweep_repeats)})
     for path in sorted(CASES.glob("*_motor_start.toml")):
         case = load_case(path)
         factors = np.linspace(0.6, 1.4, max(config.sweep_points // 50, 3))
         rows.append({"case": path.stem, "quantity": "driven_inertia", "span": "0.6x-1.4x",
                      **_run(case, "driven_inertia", case.values["driven_inertia"] * factors, None, 1)})
     for row in rows:
+        del row["designed_at"]
         row["vs_wedge_paper"] = row["points_per_s"] / reference
+        row["point_cost_vs_designed"] = row.get("point_cost_vs_designed")
     return rows

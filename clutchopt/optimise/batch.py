@@ -130,6 +130,11 @@ class _Chain(Block):
         """The first ``passed`` points (from ``begin``)."""
         return Block(self.index[begin:passed], **{key: value[:, begin:passed] for key, value in self.arrays.items()})
 
+    def run(self, j: int) -> dict:
+        """Point ``j`` as a run of ``integers.descend`` (its arrays' column, ``f`` a number): what the integer search
+        and ``integers.downhill`` read."""
+        return {key: value[:, j] for key, value in self.arrays.items()} | {"f": float(self.f[0, j])}
+
     def column(self, j: int, f_scale: float) -> "_Chain":
         """Point ``j`` alone, its objective normalised by ``f_scale`` (the scaled problem's objective and multipliers
         are the chain's times its normaliser over ``f_scale``: the same optimum)."""
@@ -204,6 +209,11 @@ class _Start:
         self.combo = np.round(self.x[sweep.integer] * self.scale[sweep.integer])  # the free integers (SI)
         objective = self.objective
         self.f_scale = abs(objective) if math.isfinite(objective) and objective != 0 else 1.0  # the batch's normaliser
+
+    @property
+    def run(self) -> dict:
+        """The point as ``integers.downhill`` reads a run: its objective scaled by the batch's normaliser."""
+        return {"x": self.x, "lam_x": self.lam_x, "f": self.objective / self.f_scale}
 
     @property
     def seed(self) -> dict:
@@ -442,7 +452,7 @@ class BatchSweep:
         changes, j = [], first
         while 0 <= j < count:
             past = self._past_exclusion(combo, k + j)
-            if past is None or self._undesigned.get(tuple(past.tolist()), (None,))[0] == k + j - 1:
+            if past is None or self._last_undesigned(past) == k + j - 1:
                 return changes, j  # (a combination IPOPT left without a design at the point before: its search)
             changes.append((j, past))
             combo = past
@@ -489,8 +499,7 @@ class BatchSweep:
         One solve at that point instead of two."""
         if k == 0 or not len(self._fixed_names):
             return None, None
-        run = {"x": start.x, "lam_x": start.lam_x, "f": start.objective / start.f_scale}
-        for combo in downhill(self.posed, run, Box(start.scale, self.lower, self.upper), self.integer):
+        for combo in self._downhill(start.run, start):
             table = self._excluded(self._with_integers(combo), k - 1, min(count, self._span - 1) + 1)  # (one table
             # from k - 1)
             if table[0] and not table[1:].all():
@@ -584,7 +593,7 @@ class BatchSweep:
                 chain = tried  # (its chained column: the first attempt, verified or not)
             else:  # a combination left without a design at the point before goes to its least violation directly
                 chain = (self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
-                         if self._undesigned.get(key, (None,))[0] != k - 1 else None)
+                         if self._last_undesigned(combo) != k - 1 else None)
             if chain is None or not chain.ok[0]:  # its least violation: without a design, or SQP from the design
                 found, seconds = self._least_violation(start, k, lower, upper, seed)  # it found; else as
                 cold.append(seconds)  # Problem.solve tries a neighbour: IPOPT, cold
@@ -614,8 +623,7 @@ class BatchSweep:
             if chain is None or not chain.ok[0]:
                 raise _Unsettled
             runs.append(chain)
-            return {key: value[:, 0] for key, value in chain.arrays.items()} | {
-                "f": float(chain.f[0, 0]), "value": float(chain.f[0, 0]) * start.f_scale, "chain": chain}
+            return chain.run(0) | {"value": float(chain.f[0, 0]) * start.f_scale, "chain": chain}
 
         try:
             kept = descend(self.posed, box, self.integer, start.combo if origin is None else origin, seed, search,
@@ -654,10 +662,8 @@ class BatchSweep:
         ``tried`` is the search's first attempt (KKT-verified), and every neighbour its multipliers promise a gain
         at (``integers.downhill``) is ``start``'s integers, tried already: the search's record is those excluded and
         the column kept. None otherwise (:meth:`_settle` runs the search)."""
-        run = {"x": tried.x[:, 0], "lam_x": tried.lam_x[:, 0], "f": float(tried.f[0, 0])}
-        if not tried.ok[0] or any(
-                not np.array_equal(combo, start.combo)
-                for combo in downhill(self.posed, run, Box(start.scale, self.lower, self.upper), self.integer)):
+        run = tried.run(0)
+        if not tried.ok[0] or any(not np.array_equal(combo, start.combo) for combo in self._downhill(run, start)):
             return None
         excluded = self._excluded_names(self._with_integers(start.combo), k)
         combo = np.round(tried.x[self.integer, 0] * start.scale[self.integer])
@@ -706,17 +712,19 @@ class BatchSweep:
         moves = chain.moves.copy()
         if not self._undesigned:
             return moves
-        box = Box(start.scale, self.lower, self.upper)
         lower = self.lower.copy()
         for j in np.flatnonzero(moves):
             k = int(chain.index[j])
-            run = {"x": chain.x[:, j], "lam_x": chain.lam_x[:, j], "f": float(chain.f[0, j])}
-            for combo in downhill(self.posed, run, box, self.integer):
+            for combo in self._downhill(chain.run(j), start):
                 lower[self.integer] = combo
                 if not (self._ruled_out(tuple(combo.tolist()), k) or self._broken(lower, k, 1).any()):
                     return moves
             moves[j] = False
         return moves
+
+    def _downhill(self, run: dict, start: _Start) -> list[np.ndarray]:
+        """The neighbouring integers ``integers.downhill`` steps to from ``run`` (a point in ``start``'s scaling)."""
+        return downhill(self.posed, run, Box(start.scale, self.lower, self.upper), self.integer)
 
     def _past_exclusion(self, combo: np.ndarray, k: int) -> np.ndarray | None:
         """Where the integers ``combo`` are left out at point k (:meth:`_left_out`: e.g. the cable stress of too few
@@ -754,8 +762,11 @@ class BatchSweep:
     def _undesigned_at(self, combo: np.ndarray, k: int) -> bool:
         """IPOPT found no design with the integers ``combo`` at point k, or at one before it and the sweep has only
         tightened the constraints since (:meth:`_ruled_out`)."""
-        key = tuple(combo.tolist())
-        return self._undesigned.get(key, (None,))[0] == k or bool(self._ruled_out(key, k))
+        return self._last_undesigned(combo) == k or bool(self._ruled_out(tuple(combo.tolist()), k))
+
+    def _last_undesigned(self, combo: np.ndarray) -> int | None:
+        """The last point where IPOPT or the least violation found no design with the integers ``combo``, if any."""
+        return self._undesigned.get(tuple(combo.tolist()), (None,))[0]
 
     def _least_violation(self, start: _Start, k: int, lower: np.ndarray, upper: np.ndarray,
                          seed: dict) -> tuple[Least, float]:

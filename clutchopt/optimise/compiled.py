@@ -78,7 +78,8 @@ def built_library(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = F
     try:
         key = hashlib.sha256(source + " ".join((ca.__version__, cc, *flags)).encode()).hexdigest()[:32]
         library = folder / f"{prefix}-{key}.so"
-        if folder.exists() and not _trusted(folder):
+        folder.mkdir(mode=0o700, parents=True, exist_ok=True)  # (one there is kept as it is, and checked)
+        if not _trusted(folder):
             return None
         if library.is_file():
             if not _trusted(library):
@@ -86,9 +87,6 @@ def built_library(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = F
             if _recorded(library) == _digest(library):
                 return str(library)
         if library in _FAILED:
-            return None
-        folder.mkdir(mode=0o700, parents=True, exist_ok=True)
-        if not _trusted(folder):
             return None
         with tempfile.TemporaryDirectory(dir=folder) as build:  # built beside its place, then moved in at once
             Path(build, "nlp.c").write_bytes(source)

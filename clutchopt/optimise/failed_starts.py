@@ -41,6 +41,20 @@ from clutchopt.optimise.solution import Diagnosis, Solution, SolverInfo
 KEPT = 256  # failures and tried starts kept per problem (a sweep's run of points without a design, a few starts each)
 
 
+def case_numbers(case: Case) -> dict[str, float]:
+    """The case's values that are numbers (not flags), as floats: where a sweep's point lies (read here to 12 digits,
+    and by ``start_up_sweep``'s secant, the finite ones)."""
+    return {name: float(value) for name, value in case.values.items()
+            if isinstance(value, (int, float)) and not isinstance(value, bool)}
+
+
+def _make_room(table: dict, key) -> None:
+    """The oldest entry of ``table`` dropped where it holds KEPT and ``key`` is not among them (a problem is kept
+    for the process)."""
+    if len(table) >= KEPT and key not in table:
+        table.pop(next(iter(table)))
+
+
 def _digits(value) -> float:
     return float(f"{float(value):.12g}")
 
@@ -67,8 +81,7 @@ class FailedStarts:
         return replace(failed, solver=SolverInfo(failed.solver.name, failed.solver.status, 0, 0.0, 0))
 
     def keep(self, key: tuple, solution: Solution) -> None:
-        if len(self._failed) >= KEPT:
-            self._failed.pop(next(iter(self._failed)))
+        _make_room(self._failed, key)
         self._failed[key] = solution
 
     def skips(self, case: Case, start: dict[str, float], diagnosed: Diagnosis | None) -> bool:
@@ -83,8 +96,7 @@ class FailedStarts:
         last = self._tried.get(start_key)
         if last is not None and last[0] == rest and last[2] == reason and last[1] in self._failed:
             return True
-        if len(self._tried) >= KEPT and start_key not in self._tried:
-            self._tried.pop(next(iter(self._tried)))  # (the oldest: a problem is kept for the process)
+        _make_room(self._tried, start_key)
         self._tried[start_key] = (rest, at, reason)
         return False
 
@@ -92,8 +104,7 @@ class FailedStarts:
         """A continuation of the sweep ``case`` from ``start`` (the design at the varied values ``origin``) lost its
         path at the step ``at`` (the varied values)."""
         key = self._start_key(case, start)
-        if len(self._lost) >= KEPT and key not in self._lost:
-            self._lost.pop(next(iter(self._lost)))
+        _make_room(self._lost, key)
         self._lost.setdefault(key, []).append((_values(case), dict(origin), dict(at)))
 
     def lost_beyond(self, case: Case, start: dict[str, float], origin: dict[str, float] | None = None,
@@ -118,8 +129,7 @@ class FailedStarts:
 
 
 def _values(case: Case) -> dict[str, float]:
-    return {name: _digits(value) for name, value in case.values.items()
-            if isinstance(value, (int, float)) and not isinstance(value, bool)}
+    return {name: _digits(value) for name, value in case_numbers(case).items()}
 
 
 def _on_or_beyond(origin: dict[str, float], lost: dict[str, float], first: dict[str, float]) -> bool:

@@ -76,10 +76,11 @@ class ForeignShifts:
 
     def above_unverified(self, kept, upper: dict[str, float]) -> list[tuple]:
         """The choices one count above ``kept``'s in one integer (within its ``upper`` bound) where the loop kept an
-        ``unverified`` design (its corrections did not bring its simulated start within the limits): the cable at
-        0.5 kg m^2 keeps 8 cables whose start carries 0.44 % more than the stress allowed, the correction moving the
-        NLP's limit by that much a step where its quasi-static figure binds nowhere near (seven steps, the design
-        unmoved); 9 cables fixed are verified (4.418 kg)."""
+        ``unverified`` design (its corrections did not bring its simulated start within the limits, or the NLP had
+        no design at the moved limits: ``Problem._refined``'s ``uncorrected``). Written for the cable at 0.5 kg m^2,
+        whose 8 cables' start carries 0.44 % more than the stress allowed; since the correction moves the NLP's
+        limit from its own figure (docs/start_up.md, "The defect correction's fixed point") that loop finds 8
+        cables infeasible at the moved limit and keeps 9 itself (4.418 kg)."""
         if kept.status != "unverified":
             return []
         return self.one_off(kept, +1.0, lambda name, value: value <= upper[name])

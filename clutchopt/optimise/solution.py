@@ -148,6 +148,8 @@ class Solution:
     #                           ended, for the next point's (clutchopt.optimise.start_up_sweep.Along)
     shift_measured_by: frozenset = field(default_factory=frozenset, repr=False)  # an elastic link's start-up: the
     #     integer choices whose simulated starts moved limit_shift's limits (clutchopt.optimise.own_shift)
+    collocated: dict[str, float] = field(default_factory=dict, repr=False)  # a start-up: the NLP's own figure of
+    #     each start-up limit's check, by name (clutchopt.optimise.start_up_check.corrected_case)
 
     def _repr_html_(self) -> str:
         """Jupyter shows a solution as the tables of ``clutchopt solve``."""

@@ -11,7 +11,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from clutchopt.optimise.robust_models import corner_name
-from clutchopt.optimise.verify import check_constraints
+from clutchopt.optimise.verify import ACTIVE_TOL, check_constraints
 from clutchopt.start_up.drive import Drive, seen_constraints
 from clutchopt.start_up.lining import UNITS as LINING_UNITS
 from clutchopt.start_up.lining import lining_figures, lining_notes
@@ -50,6 +50,8 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
                                 stresses=stresses if head["locks_up"] else math.inf)
     drive = Drive(s, formulation.speed_law, *seen(None))
     checks = check_constraints(seen_constraints(s, formulation.speed_law, simulated, seen, drive), s.spec.tolerance)
+    node_stresses = ([float(drive.link_stress(w, theta)) for w, theta in zip(trajectory["w_driver"], trajectory["twist"])]
+                     if s.elastic else [])
     engaged = float(nlp.get("run_up_time", 0.0))
     summary = {
         "start_time": float(nlp["start_time"]),
@@ -80,8 +82,7 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
     if getattr(formulation.speed_law, "worn_torque", None) is not None:  # the start with worn linings (the lever):
         summary["worn"] = None  # simulated for the design a solve returns only (:func:`worn_start`), in its place
     if s.elastic:  # the link's stress and twist: the NLP's quasi-static link beside the simulated dynamic one
-        nodes = zip(trajectory["w_driver"], trajectory["twist"])
-        summary.update(peak_link_stress=max(float(drive.link_stress(w, theta)) for w, theta in nodes),
+        summary.update(peak_link_stress=max(node_stresses),
                        peak_link_stress_simulated=head["peak_stress"], peak_twist=float(trajectory["twist"].max()),
                        peak_twist_simulated=head["peak_twist"])
     if not s.elastic:  # the lining's temperature and wear at the NLP's start and at the simulated one
@@ -92,7 +93,12 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
         summary["ambient_temperature"] = float(drive.p.ambient_temperature) if s.heat else None
         summary["lining_notes"] = lining_notes(drive, case.coupling)
     times = [float(nlp[f"{phase}_time"]) for phase in s.phases]
-    return summary, checks, adapted_mesh(s, result.columns, times)
+    collocated = SimpleNamespace(start_time=summary["start_time"], friction_work=summary["friction_work"],
+                                 temperatures=summary["temperature_rise"] or 0.0,
+                                 lock_up_speed=summary["lock_up_speed"], stresses=np.array(node_stresses))
+    own = {check.name: check.value for check in check_constraints(
+        seen_constraints(s, formulation.speed_law, collocated, seen, drive)) if check.name in LIMIT_OF}
+    return summary, checks, adapted_mesh(s, result.columns, times), own
 
 
 def worn_start(summary: dict, case, design: dict[str, float], mode: str) -> None:
@@ -136,13 +142,17 @@ def limit_gaps(solution):
 
 
 def corrected_case(solution, nlp_case, centre: bool = True):
-    """The case of the next solve (defect correction), each limit moved from the one the NLP last saw (a scattered
-    limit: its corner's, an NLP parameter) by what the simulated figure differs from the case's limit: where the
-    simulated start misses the limit (and then half the tolerance more), and (``centre``) where it meets a limit the
-    design binds at so far from it that the objective is off by more than CENTRE of the tolerance (|elasticity x
-    relative gap|): the design is then the simulator's optimum, not the collocation's, whatever mesh the accuracy
-    loop ended on. None where nothing is to be moved, or a limit cannot be."""
+    """The case of the next solve (defect correction): each limit L_k the NLP last saw (a scattered limit: its
+    corner's, an NLP parameter) moved to L - (S - C), the case's limit L less what the simulated figure S adds to
+    the NLP's own C (``Solution.collocated``) at this design: where the simulated start misses the limit (and then
+    half the tolerance more), and (``centre``) where it meets a limit the design binds at so far from it that the
+    objective is off by more than CENTRE of the tolerance (|elasticity x relative gap|): the design is then the
+    simulator's optimum, not the collocation's, whatever mesh the accuracy loop ended on. Where the NLP binds the
+    limit (C = L_k within ACTIVE_TOL of its scale) this is L_k - (S - L); where it does not, the NLP's own slack
+    L_k - C is taken in at once, not a step of S - L a solve (docs/start_up.md, "The defect correction's fixed
+    point"). None where nothing is to be moved, or a limit cannot be."""
     summary, tolerance = solution.start_up, solution.start_up["tolerance"]
+    collocated = getattr(solution, "collocated", None) or {}
     limits, corners = {}, {}
     for check, name, gap in limit_gaps(solution):
         if not check.feasible:
@@ -151,10 +161,19 @@ def corrected_case(solution, nlp_case, centre: bool = True):
             continue
         corner = corner_name(name, check.name)
         key, moved = (corner, corners) if corner in nlp_case.values else (name, limits)
-        moved[key] = nlp_case.values[key] - gap
+        moved[key] = nlp_case.values[key] - gap - nlp_slack(collocated.get(check.name), nlp_case.values[key], check)
         if not moved[key] > 0 or summary["locks_up"] is False:
             return None
     if not limits and not corners:
         return None
     moved = nlp_case.with_values(**limits)
     return replace(moved, values={**moved.values, **corners})
+
+
+def nlp_slack(figure: float | None, limit: float, check) -> float:
+    """How far the NLP's own ``figure`` of ``check`` stays inside the ``limit`` it saw (an upper limit): 0 where it
+    binds it (within ACTIVE_TOL of the check's scale, IPOPT's own margin at an active row), or is not known."""
+    if figure is None or not math.isfinite(figure):
+        return 0.0
+    slack = limit - figure
+    return slack if slack > ACTIVE_TOL * abs(check.scale) else 0.0

@@ -28,7 +28,7 @@ import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
-from clutchopt.optimise.failed_starts import on_ray
+from clutchopt.optimise.failed_starts import case_numbers, on_ray
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution
 from clutchopt.optimise.start_up_check import limit_gaps
@@ -113,5 +113,4 @@ def _step(first: dict[str, float], second: dict[str, float], third: dict[str, fl
 
 
 def _numbers(case: Case) -> dict[str, float]:
-    return {name: float(value) for name, value in case.values.items()
-            if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)}
+    return {name: value for name, value in case_numbers(case).items() if math.isfinite(value)}

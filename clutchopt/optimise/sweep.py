@@ -24,7 +24,7 @@ from collections.abc import Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from functools import cached_property, lru_cache, partial
+from functools import cached_property, partial
 from typing import Callable, Iterator
 
 import numpy as np
@@ -133,10 +133,9 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
     designs: dict[tuple, Solution] = {}  # feasible designs by the point's values
     waiting: list[tuple[int, Case, Solution]] = []  # points without a design, until the next feasible one
     pairs = list(points.pairs())
-    case_at = lru_cache(maxsize=2)(lambda k: case.with_values(**pairs[k][1]))  # (the regions read the next one)
-    regions = Regions(problem, case_at, len(pairs))
+    regions = Regions(problem, lambda k: case.with_values(**pairs[k][1]), len(pairs))
     for j, (index, values) in enumerate(pairs):
-        point_case = case_at(j)
+        point_case = regions.point_case(j)  # (built once: the regions keep it from their search on to its verdict)
         neighbour = designs.get(tuple(values.values())) or (feasible[1] if feasible else None)
         # next to a point without a design: proven with the points around it, or solved once and proven alone
         solution = regions.point(j, partial(_solved, problem, case, point_case, values, previous, feasible, neighbour),

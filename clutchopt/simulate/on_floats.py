@@ -60,13 +60,6 @@ def _fmin(a: float, b: float) -> float:
 _NAMESPACE.update(_fmax=_fmax, _fmin=_fmin)
 
 
-def on_floats(function: Callable, arguments: int, probes: list[tuple[float, ...]]) -> Callable:
-    """``function`` of ``arguments`` numbers as a Python function of floats (see the module), or ``function``
-    itself where it cannot be traced or its trace does not match it at ``probes`` (points of its arguments)."""
-    return bound(lambda: function, (0,) * arguments, parametrised(), None, function, probes,
-                 fallback=lambda *point: on_numpy(function, point))
-
-
 def bound(equations_of: Callable, shapes: tuple[int, ...], objects, key, reference: Callable, probes: list,
           fallback: Callable | None = None) -> Callable:
     """``equations_of(*objects)`` (a function of arguments of ``shapes``, see :func:`family`) written out on floats

@@ -110,15 +110,11 @@ class Drive:
         return su.kloss_torque(speed, p.synchronous_speed, p.breakdown_torque, p.breakdown_slip)
 
     def load(self, driven_speed, time):
-        """The driven machine's torque: the case's load_torque, or its load profile at the speed or the time; a
-        CasADi vector of them (a phase's collocation points) one element at a time (the profile's interpolant takes
-        one)."""
+        """The driven machine's torque: the case's load_torque, or its load profile at the speed or the time (a
+        number, or a vector of them: a phase's collocation points)."""
         profile = self.s.spec.load_profile
         if not profile:
             return self.p.load_torque
-        over = driven_speed if profile.over == "speed" else time
-        if isinstance(over, ca.SX) and over.numel() > 1:
-            return ca.vertcat(*[profile.at(value, value) for value in ca.vertsplit(over)])
         return profile.at(driven_speed, time)
 
     def carried(self, speed, time):

@@ -122,8 +122,9 @@ def kloss_torque(speed, synchronous_speed, breakdown_torque, breakdown_slip):
 def piecewise_linear(x, points, values):
     """y(x) through (points, values), held constant beyond both ends (as numpy.interp). A CasADi symbol gets one
     call of a linear interpolant (exact derivatives, the segment's slope), so a table of a thousand points is one
-    node of the NLP at each use, not a thousand; an array goes to numpy.interp, a number is looked up by bisection
-    (:func:`table_segment`)."""
+    node of the NLP at each use, not a thousand; a symbol vector (a phase's collocation points) one such node per
+    element, in that one call (CasADi maps a function of a number over the vector it is given); an array goes to
+    numpy.interp, a number is looked up by bisection (:func:`table_segment`)."""
     if is_symbolic(x):
         return _interpolant(tuple(points), tuple(values))(fmin(fmax(x, points[0]), points[-1]))
     if np.ndim(x):
