@@ -256,8 +256,9 @@ class Posed:
         """name -> the design and case values ``(x, p)`` the start-up's constraint ``name`` is checked with, ``None``
         -> those its start is simulated at: the case's and the design's, a robust design's at their corners."""
         view, params = self.formulation.start_up_view, vars(self.params(case))
-        if not view:
-            return lambda name: (namespace(design), namespace(params))
+        if not view:  # one pair for every name: each constraint is the start's (``seen_constraints`` sees it at once)
+            values = (namespace(design), namespace(params))
+            return lambda name: values
         return lambda name: tuple(map(namespace, view(design, params, name)))
 
     def start_up_seen(self, case: Case, design: dict[str, float]) -> tuple[Case, dict[str, float]]:
