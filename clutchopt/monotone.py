@@ -93,7 +93,11 @@ class MonotoneFunction:
         ``error`` and a few ulps (``evaluate``: as in :meth:`values_and_slopes`)."""
         inside = (lo >= self.domain[0]) & (hi <= self.domain[1]) & (lo <= hi)
         ends = np.concatenate([np.where(inside, lo, self.domain[0]), np.where(inside, hi, self.domain[0])])
-        values, slopes = self.values_and_slopes(ends, evaluate)
+        _, first, inverse = np.unique(ends.view(np.int64), return_index=True, return_inverse=True)
+        values, slopes = self.values_and_slopes(ends[first], evaluate)  # each end once (the same bits: the same
+        # number; a search's boxes split in a variable the argument does not take share their ends: the ball's
+        # searches evaluated a third of them)
+        values, slopes = values[:, inverse], slopes[:, inverse]
         count = lo.size
         rising, slope_rising = np.array(self.increasing)[:, None], np.array(self.slope_increasing)[:, None]
         widen = self.error + 8 * np.finfo(float).eps

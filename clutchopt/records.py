@@ -18,6 +18,14 @@ TEMPLATE = "template"  # the key that marks a compact record, holding its templa
 STATUSES = ("optimal", "unverified", "infeasible", "not_found", "solver_failed")  # how a solve ends (infeasible: proven)
 CONSTRAINT_COLUMNS = ("value", "limit", "margin", "active", "feasible", "scale", "multiplier", "elasticity")
 NOMINAL = "nominal"  # how a design was made without --robust; else worst-case or chance=P, as --robust spells it
+RECORD_KEYS = ("coupling", "mode", "status", "objective", "design", "outputs", "units", "constraints", "solver",
+               "diagnosis", "integer_search", "bounds", "sensitivities")  # a full record's, in :func:`expand`'s order
+OBJECTIVE_KEYS = ("name", "value", "unit")
+CONSTRAINT_KEYS = ("name", "equation", "sense", "value", "limit", "margin", "active", "feasible", "unit", "description",
+                   "scale", "multiplier", "elasticity", "tolerance", "display_unit")
+CONSTRAINT_STATICS = ("name", "equation", "sense", "unit", "description", "tolerance", "display_unit")  # a template's
+SOLVER_STATICS = ("name", "status", "iterations")  # a template's; a point's own: time_s, solves
+SOLVER_KEYS = (*SOLVER_STATICS, "time_s", "solves")
 
 
 def method_text(method: str, target: float | None) -> str:
@@ -64,6 +72,25 @@ def template_key(template: dict) -> str:
     import orjson
 
     return hashlib.sha256(orjson.dumps(template, option=orjson.OPT_SORT_KEYS)).hexdigest()[:32]
+
+
+def laid_out(record: dict) -> bool:
+    """Whether a full record has exactly the keys, in their order, that :func:`expand` gives a compact record and
+    its template (not so: a design's choice or robust result, a start-up's path, a record of an older clutchopt)."""
+    return (tuple(record) == RECORD_KEYS and tuple(record["objective"]) == OBJECTIVE_KEYS
+            and type(record["solver"]) is dict and tuple(record["solver"]) == SOLVER_KEYS
+            and all(type(c) is dict and tuple(c) == CONSTRAINT_KEYS for c in record["constraints"]))
+
+
+def template_of(record: dict) -> dict:
+    """What :func:`expand` takes from a template, read from a full record (:func:`laid_out`): what the points of one
+    formulation solved alike share (names, equations, units, bounds, the solver's name, status and iterations)."""
+    objective, solver = record["objective"], record["solver"]
+    return {"coupling": record["coupling"], "mode": record["mode"],
+            "objective": {"name": objective["name"], "unit": objective["unit"]},
+            "design": list(record["design"]), "outputs": list(record["outputs"]), "units": record["units"],
+            "constraints": [{key: c[key] for key in CONSTRAINT_STATICS} for c in record["constraints"]],
+            "solver": {key: solver[key] for key in SOLVER_STATICS}, "bounds": record["bounds"]}
 
 
 def is_compact(record) -> bool:

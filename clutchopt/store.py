@@ -6,12 +6,13 @@ the points in flight. Each run keeps its inputs (all case values, SI), its outpu
 objective with its unit and the versions of clutchopt and its solvers. A sweep is a row in ``sweeps``; its points
 are runs with a point index. The batched points of a window are one row of ``runs`` for each run of consecutive
 point indices: their numbers as arrays (``clutchopt.window_records``), beside the template they share (table
-``templates``); its ``run_count`` points have the ids ``id ..`` and the point indices ``point ..`` onwards, and each
-is read back as a run of its own, in full. A store of an older clutchopt (a row per point, a batched one compact:
-``clutchopt.records``) is read as it is and gets the newer columns when first written. A sweep's points are read
-and written in one transaction, so a resumed sweep cannot record a point twice (two resumes of one sweep running at
-once both finish; the point solved twice is stored once). The connection of a store closed last is kept for the
-next store of the same file in the process (``clutchopt.store_kept``).
+``templates``); so are consecutive points solved alone that share a template (a region proof's points without a
+design: ``window_records.gathered``). A row's ``run_count`` points have the ids ``id ..`` and the point indices
+``point ..`` onwards, and each is read back as a run of its own, in full. A store of an older clutchopt (a row per
+point, a batched one compact: ``clutchopt.records``) is read as it is and gets the newer columns when first
+written. A sweep's points are read and written in one transaction, so a resumed sweep cannot record a point twice
+(two resumes of one sweep running at once both finish; the point solved twice is stored once). The connection of a
+store closed last is kept for the next store of the same file in the process (``clutchopt.store_kept``).
 
 What can go wrong with the file, and what happens:
 - another process is writing: each write waits for the lock (up to ``BUSY_TIMEOUT_S``), then succeeds;
@@ -53,7 +54,7 @@ from clutchopt.records import (NOMINAL, STATUSES, TEMPLATE, check_solution, desi
                                method_of)
 from clutchopt.store_checkpoint import manual, note_written
 from clutchopt.store_kept import keep, take_kept
-from clutchopt.window_records import WindowRecords, pack, unpack
+from clutchopt.window_records import WindowRecords, gathered, pack, unpack
 
 DEFAULT_STORE = "clutchopt-runs.sqlite"
 STORE_ENV = "CLUTCHOPT_STORE"
@@ -494,14 +495,17 @@ class RunStore:
         alone (``alone``: its record by position) is a row; the batched points of a window (``windows``: their
         records as arrays, by position) a row for each run of consecutive point numbers, their numbers as arrays
         (``clutchopt.window_records``) beside their template (once per store). A point already stored (another
-        process resuming the same sweep solved it too) is kept as it is. Returns how many were recorded."""
+        process resuming the same sweep solved it too) is kept as it is. Points solved alone one after another that
+        share a template (a region proof's points without a design) are a window's too (``window_records.gathered``:
+        the numbers of their records, where the arrays keep them bit for bit). Returns how many were recorded."""
         created, pieces, templates = _now(), [], {}  # one transaction: one moment
+        alone, gathered_windows = gathered(alone)  # (points without a design, one proof: as a window's)
         for position, record in alone.items():
             values = {**inputs["values"], **{name: float(column[position]) for name, column in varied.items()}}
             row = self._row("sweep", {**inputs, "values": values}, record, created, status=record["status"],
                             objective=record["objective"]["value"], point=int(index[position]), **where)
             pieces.append((int(index[position]), 1, lambda start, stop, row=row: row))
-        for positions, window in windows:
+        for positions, window in windows + gathered_windows:
             templates[window.key] = window.template
             numbers = index[positions]
             breaks = np.flatnonzero(np.diff(numbers) != 1) + 1  # a row holds consecutive points only

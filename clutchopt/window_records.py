@@ -2,9 +2,10 @@
 
 A batched window (``clutchopt.optimise.batch_window``) holds its points' numbers as arrays; :class:`WindowRecords`
 keeps them so (with the template the points share, ``clutchopt.records``) and builds a point's compact record
-only when it is read. The run store keeps a window's points as one row: :func:`pack` turns their arrays into bytes
-and a layout (each array's name, type and shape), :func:`unpack` reads them back, refusing bytes that do not fit
-their layout.
+only when it is read. Points solved alone one after another that share a template (a region proof's points
+without a design) are gathered into such records from their full ones (:func:`gathered`). The run store keeps a
+window's points as one row: :func:`pack` turns their arrays into bytes and a layout (each array's name, type and
+shape), :func:`unpack` reads them back, refusing bytes that do not fit their layout.
 Pure NumPy: the store reads windows without importing the solvers.
 """
 
@@ -13,12 +14,19 @@ from __future__ import annotations
 import math
 from functools import cached_property
 from itertools import compress
+from operator import itemgetter
 
 import numpy as np
 
-from clutchopt.records import CONSTRAINT_COLUMNS, STATUSES, TEMPLATE, expand, template_key
+from clutchopt.records import (CONSTRAINT_COLUMNS, CONSTRAINT_STATICS, SOLVER_STATICS, STATUSES, TEMPLATE, expand,
+                               laid_out, template_key, template_of)
 
 NUMBER, FLAG, WHOLE, CODE = "<f8", "|b1", "<i8", "|i1"
+LABELS = 127  # the most texts a CODE array can index (diagnoses)
+_TYPES = {NUMBER: frozenset({float, np.float64, type(None)}),  # what each array keeps as it is (None: NaN, as JSON
+          FLAG: frozenset({bool, np.bool_}), WHOLE: frozenset({int, np.int64})}  # keeps NaN)
+_CONSTRAINT_ITEMS = itemgetter(*CONSTRAINT_COLUMNS)
+GATHERED = 2  # the fewest points solved alone, one after another with one template, kept as arrays (:func:`gathered`)
 KINDS = {  # each array of a window's records: its type, and whether it holds a row per item (else one value a point)
     "status": (CODE, False),  # index into STATUSES
     "diagnosis": (CODE, False),  # index into the diagnoses named beside the arrays; -1: none
@@ -81,6 +89,45 @@ class WindowRecords:
         return [expand(record, self.template) for record in self.compact(json_numbers)]
 
     @classmethod
+    def of(cls, records: list[dict]) -> "WindowRecords | None":
+        """The records (full, ``Solution.as_dict()``, laid out as :func:`~clutchopt.records.expand` gives them) of
+        points that share a template (:func:`~clutchopt.records.template_of`), as arrays, read back as they are
+        (``records(json_numbers=True)`` is their JSON, bit for bit); None where a value is not of its array's type
+        (a whole number where a float goes, NumPy's float32, text): they stay records of their own."""
+        count = len(records)
+        names = next((list(r["sensitivities"]) for r in records if r["sensitivities"]), [])
+        if any(r["sensitivities"] and list(r["sensitivities"]) != names for r in records):
+            return None  # (sensitivities named in another order: their JSON would differ)
+        items = list(zip(*(_CONSTRAINT_ITEMS(c) for r in records for c in r["constraints"])))  # a column's every item
+        if not items:
+            return None  # (no constraints)
+        per_point = {"objective": [r["objective"]["value"] for r in records],
+                     "time_s": [r["solver"]["time_s"] for r in records],
+                     "solves": [r["solver"]["solves"] for r in records]}
+        per_item = {"design": [value for r in records for value in r["design"].values()],
+                    "outputs": [value for r in records for value in r["outputs"].values()],
+                    "sensitivity": [r["sensitivities"].get(name) for r in records for name in names],
+                    **dict(zip(CONSTRAINT_COLUMNS, items))}
+        diagnoses = list(dict.fromkeys(r["diagnosis"] for r in records if r["diagnosis"] is not None))
+        searches = {str(j): r["integer_search"] for j, r in enumerate(records) if r["integer_search"]}
+        if not (all(set(map(type, values)) <= _TYPES[KINDS[name][0]] for values in (per_point, per_item)
+                    for name, values in values.items())
+                and all(r["status"] in STATUSES for r in records)
+                and len(diagnoses) <= LABELS and all(type(text) is str for text in diagnoses)
+                and all(type(search) is list for search in searches.values())):
+            return None
+        code = {text: j for j, text in enumerate(diagnoses)}
+        lists = {"status": [STATUSES.index(r["status"]) for r in records],
+                 "diagnosis": [code.get(r["diagnosis"], -1) for r in records],
+                 "sensitive": [name in r["sensitivities"] for r in records for name in names], **per_point, **per_item}
+        arrays = {name: np.array(lists[name], dtype=kind).reshape(count, -1).T.copy() if rows  # (a point's rows:
+                  else np.array(lists[name], dtype=kind)  # a column)
+                  for name, (kind, rows) in KINDS.items() if name in lists}
+        arrays["priced"] = ~np.isnan(arrays["elasticity"]).all(axis=0)  # (unpriced: every elasticity None)
+        return cls(template_of(records[0]), arrays,
+                   {"diagnoses": diagnoses, "sensitivities": names, "integer_search": searches})
+
+    @classmethod
     def read(cls, template: dict, arrays: dict[str, np.ndarray], labels: dict) -> "WindowRecords":
         """Records read back from the run store (the arrays of :func:`unpack`); ValueError, KeyError or TypeError
         where the arrays or labels are not those of a window's records (their types, shapes, codes)."""
@@ -98,6 +145,59 @@ class WindowRecords:
                 or not all(type(search) is list for search in labels["integer_search"].values())):
             raise ValueError("its numbers do not fit their layout")
         return cls(template, arrays, labels)
+
+
+def gathered(alone: dict[int, dict]) -> tuple[dict[int, dict], list[tuple[np.ndarray, WindowRecords]]]:
+    """Points solved alone (their full records, ``Solution.as_dict()``, by position) as the run store keeps them:
+    each run of GATHERED or more at consecutive positions that share a template and whose numbers are numbers
+    (:meth:`WindowRecords.of`) as a window's records, with their positions; the rest alone. A sweep's points
+    without a design come so (the points a region proof covers: one design, one proof, one solver status; the lever
+    over its inertia 0.5x-2x: 232 of 1000 points), where each had been a row of JSON of its own (4.8 kB)."""
+    kept, windows, run, shared, diagnoses = {}, [], [], None, set()
+
+    def close() -> None:
+        found = WindowRecords.of([alone[position] for position in run]) if len(run) >= GATHERED else None
+        if found is None:
+            kept.update((position, alone[position]) for position in run)
+        else:
+            windows.append((np.array(run), found))
+
+    for position in sorted(alone):
+        record = alone[position]
+        statics = _statics(record)
+        if (statics is None or statics != shared or not run or position != run[-1] + 1
+                or (len(diagnoses) == LABELS and record["diagnosis"] not in diagnoses)):
+            close()
+            run, diagnoses = [], set()
+            shared = statics = statics if statics is not None and laid_out(record) else None  # (the same statics:
+            # the same keys, in the same order)
+        if statics is None:
+            kept[position] = record
+        else:
+            run.append(position)
+            diagnoses.add(record["diagnosis"])
+    close()
+    return kept, windows
+
+
+_CONSTRAINT_STATICS = itemgetter(*CONSTRAINT_STATICS)
+_SOLVER_STATICS = itemgetter(*SOLVER_STATICS)
+
+
+def _statics(record) -> tuple | None:
+    """What a record's template (``records.template_of``) holds, and the order of its keys, compared without
+    building the template: records with equal statics have equal templates, their keys in one order; None for what
+    is no record."""
+    try:
+        objective, solver = record["objective"], record["solver"]
+        constraints, units = record["constraints"], record["units"]
+        return (tuple(record), record["coupling"], record["mode"], tuple(objective), objective["name"],
+                objective["unit"], list(record["design"]), list(record["outputs"]), units,
+                list(map(list, units.values())), list(map(tuple, constraints)),
+                list(map(_CONSTRAINT_STATICS, constraints)), tuple(solver), _SOLVER_STATICS(solver), record["bounds"],
+                list(record["bounds"]))
+    except (KeyError, TypeError, IndexError, AttributeError):
+        return None
 
 
 def in_order(count: int, alone: dict[int, dict], windows: list[tuple[np.ndarray, WindowRecords]]) -> list[dict]:

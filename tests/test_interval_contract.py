@@ -41,7 +41,7 @@ def test_every_value_and_every_point_within_a_row_s_limit_stay_in_the_bounds(pat
     half = (upper - lower) * 10 ** log_width * np.array(fractions[n:2 * n]) / 2 + 1e-300
     lo, hi = np.maximum(centre - half, lower), np.minimum(centre + half, upper)
     lo[posed.integer], hi[posed.integer] = np.round(lo[posed.integer]), np.round(lo[posed.integer])
-    (g_lo, g_hi), (d_lo, d_hi), mid, (c_lo, _) = _bounds(functions, lo[:, None], hi[:, None], (p[:, None],) * 2)
+    (g_lo, g_hi), (d_lo, d_hi), mid, (c_lo, _), _ = _bounds(functions, lo[:, None], hi[:, None], (p[:, None],) * 2)
     rng = np.random.default_rng(len(fractions) + int(1e6 * quantile))
     x = lo[:, None] + (hi - lo)[:, None] * rng.random((n, 200))
     g = np.array(functions[0].function.map(200)(x, np.repeat(p[:, None], 200, axis=1)))
@@ -108,3 +108,42 @@ def test_a_run_over_the_lever_s_speed_is_proven_with_its_speed_split_where_it_sp
     outcome, = searches(posed, [problem], [40_000])
     assert outcome.proven and outcome.boxes < 5_000
     assert {"torque", "lining_pressure"} <= set(outcome.decisive)
+
+
+def test_the_compiled_contraction_gives_the_numpy_contraction_s_numbers():
+    """Random boxes (1-7 rows, 1-6 variables, 1-49 boxes; infinite ends and slopes, zero slopes, NaN and -inf at the
+    centre): the compiled contraction's ends, empty boxes and cutters are the NumPy rule's, every number equal (a
+    box's sweeps stop where it is empty or did not move, where the sweeps over all boxes leave it). The draws cut and
+    empty boxes: the rule's every branch is taken."""
+    from clutchopt.optimise import interval_contract_compiled
+
+    if interval_contract_compiled.library() is None:
+        pytest.skip("no C compiler or cache folder")
+    rng = np.random.default_rng(7)
+    emptied = cut = 0
+    for trial in range(600):
+        m, n, count = rng.integers(1, 8), rng.integers(1, 7), rng.integers(1, 50)
+        lo = rng.normal(size=(n, count))
+        hi = lo + rng.random((n, count)) * rng.choice([0.0, 1e-3, 1.0, 10.0], size=(n, count))
+        if trial % 3 == 0:
+            lo[rng.random((n, count)) < 0.1], hi[rng.random((n, count)) < 0.1] = -np.inf, np.inf
+        with np.errstate(invalid="ignore"):
+            centre = np.nan_to_num(0.5 * (lo + hi), nan=0.0, posinf=1.0, neginf=-1.0)
+        centre = np.clip(centre, lo, hi)
+        c_lo = rng.normal(size=(m, count)) * rng.choice([0.01, 1.0, 100.0])
+        c_lo[rng.random((m, count)) < 0.05], c_lo[rng.random((m, count)) < 0.05] = np.nan, -np.inf
+        slope = rng.normal(size=(m, n, count)) * rng.choice([0.1, 1.0, 10.0])
+        spread = rng.random((m, n, count)) * rng.choice([0.01, 1.0])
+        d_lo, d_hi = slope - spread, slope + spread
+        d_lo[rng.random((m, n, count)) < 0.05], d_hi[rng.random((m, n, count)) < 0.05] = -np.inf, np.inf
+        flat = rng.random((m, n, count)) < 0.1
+        d_lo[flat], d_hi[flat] = 0.0, 0.0
+        limit = rng.choice([0.0, 1e-6, -0.5])
+        with np.errstate(invalid="ignore"):
+            numpy_rule = contracted(lo, hi, centre, c_lo, d_lo, d_hi, limit, compiled=False)
+        compiled_rule = contracted(lo, hi, centre, c_lo, d_lo, d_hi, limit)
+        for a, b in zip(compiled_rule, numpy_rule):
+            assert a.shape == b.shape and a.dtype == b.dtype
+            assert np.all((a == b) | (np.isnan(a) & np.isnan(b)) if a.dtype.kind == "f" else a == b), trial
+        emptied, cut = emptied + int(numpy_rule[2].sum()), cut + int(numpy_rule[3].sum())
+    assert emptied > 1000 and cut > 3000, (emptied, cut)

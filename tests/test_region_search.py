@@ -187,7 +187,7 @@ def test_a_run_reaching_past_the_region_s_edge_searches_only_its_first_half_agai
     real = region_proof.searches
     monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
         [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
-    monkeypatch.setattr(region_proof.Regions, "_edge", lambda self, k, end, witness=None: end)
+    monkeypatch.setattr(region_proof.Regions, "_edge", lambda self, k, end, points, witness=None: (end, k))
     monkeypatch.setattr(region_proof.Regions, "_one_by_one", lambda self, count: False)  # (its regions, as the ball's)
     torques = [300.0, 250.0, 200.0, 160.0, 130.0, 80.0, 60.0, 40.0, 30.0, 20.0]
     vary = parse_vary("resisting_torque=" + ",".join(f"{t:g}" for t in torques), "wedge", WEDGE.quantities)
@@ -202,6 +202,17 @@ def test_a_run_reaching_past_the_region_s_edge_searches_only_its_first_half_agai
     assert frame["diagnosis"][1].startswith("proven infeasible for resisting_torque 130-250 N*m (4 points, one proof)")
 
 
+def _searches_and_probes(monkeypatch) -> tuple[list, list]:
+    """The outcomes of a sweep's region searches (a list per call) and the points its probes tried, as they come."""
+    regions, probed = [], []
+    real, designed = region_proof.searches, region_proof.Regions._designed
+    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
+        [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
+    monkeypatch.setattr(region_proof.Regions, "_designed", lambda self, j, witness=None: probed.append(j) or designed(
+        self, j, witness))
+    return regions, probed
+
+
 def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     # The sweep of the test above. The search of the run of the 8 points after point 0 (250-30 N m) meets a design
     # at its 30 N m end; the run's last point (30 N m) has one without a solve (that design, within its bounds, meets
@@ -212,12 +223,7 @@ def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     # its region, not three more halvings from 16, 7.7 s to 1.3 s). The 4 probes solved (IPOPT calls:
     # one each, two at 80 N m) are charged to point 1's verdict but the one at the edge (80 N m), which is that
     # point's own solve (cold, as next to a point without a design), not made again: the sweep's calls are its points'.
-    regions, probed = [], []
-    real, designed = region_proof.searches, region_proof.Regions._designed
-    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
-        [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
-    monkeypatch.setattr(region_proof.Regions, "_designed", lambda self, j, witness=None: probed.append(j) or designed(
-        self, j, witness))
+    regions, probed = _searches_and_probes(monkeypatch)
     monkeypatch.setattr(region_proof.Regions, "_one_by_one", lambda self, count: False)  # (its regions, as the ball's)
     torques = [300.0, 250.0, 200.0, 160.0, 130.0, 80.0, 60.0, 40.0, 30.0, 20.0]
     vary = parse_vary("resisting_torque=" + ",".join(f"{t:g}" for t in torques), "wedge", WEDGE.quantities)
@@ -225,8 +231,11 @@ def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     frame = result.frame
     assert list(frame["status"]) == ["infeasible"] * 5 + ["optimal"] * 5
     assert probed == [8, 2, 4, 6, 5]
-    assert [len(outcomes) for outcomes in regions] == [1, 1, 1]  # (point 0's own search first: Regions._first)
-    assert regions[0][0].proven and regions[1][0].reached and regions[2][0].proven
+    assert [len(outcomes) for outcomes in regions] == [1, 1, 1, 1]  # (point 0's own search first: Regions._first)
+    assert regions[0][0].proven and regions[1][0].reached and regions[3][0].proven
+    # (before the probes, points 1-2's search (Regions._head), within 4 x the last proof's 1 box, at least 64: its
+    # split of its first box to 128 passes that, and it ends unproven after 1 box)
+    assert not regions[2][0].proven and regions[2][0].boxes == 1
     posed = case_problem(WEDGE).posed  # (the design met at 30 N m, the run's last point: no probe solved there)
     met = dict(zip(posed.names, regions[1][0].witness))
     assert all(c.feasible for c in check_design(posed.formulation, met, posed.params(WEDGE.with_values(
@@ -235,6 +244,35 @@ def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     assert [s["solver"]["solves"] for s in result.solutions][1:6] == [3, 0, 0, 0, 2]  # (80 N m: 2 calls, a retry;
     # 4 at point 1 with the solve at 30 N m, 6 with the edge's solve made again before)
     assert result.spent["solves"] == sum(s["solver"]["solves"] for s in result.solutions)
+
+
+def test_the_head_of_a_run_past_the_region_s_edge_proven_before_the_probes(monkeypatch):
+    # The ball (design mode) over 20 points of the bench's sweep of its allowable contact stress (points 14-33 of 100
+    # from 0.5x to 2x): no design up to 719.6 MPa (points 0-12), designs from 729.7 MPa. Point 0 proven by its own
+    # search, points 1-8 by one region; the run from point 9 (searched with it) meets a design at its end (point 19,
+    # whose design is that one: no solve). Points 9 and 10 searched as one region first (Regions._head): proven (249
+    # boxes), so the probes start at 11: 11 without a design, 13 with one, then 12 without: the edge is 13, and
+    # points 9-12 are
+    # searched again (321 boxes), their proof the one the probes from 9 had led to (main: probes at 10 and 12
+    # without, 16, 14 and 13 with a design, 45 solver calls in the sweep; here 39). Every status and proof the same.
+    regions, probed = _searches_and_probes(monkeypatch)
+    from clutchopt.bench.reference import bench_cases, reference_mode
+    from clutchopt.optimise.sweep_grid import Vary
+
+    case = next(c for c in bench_cases() if c.coupling == "ball")
+    values = case.values["allowable_contact_stress"] * np.geomspace(0.5, 2.0, 100)[14:34]
+    quantity = next(q for q in case.quantities if q.name == "allowable_contact_stress")
+    result = Sweep(case, [Vary(quantity, tuple(values.tolist()))], mode=reference_mode("ball")).run(progress=False)
+    frame = result.frame
+    assert list(frame["status"]) == ["infeasible"] * 13 + ["optimal"] * 7
+    assert probed == [19, 11, 13, 12]
+    assert [[(o.proven, o.reached, o.boxes) for o in outcomes] for outcomes in regions] == [
+        [(True, False, 177)], [(True, False, 253), (False, True, 77)], [(True, False, 249)], [(True, False, 321)]]
+    # (the run from point 9 searched ahead with points 1-8's: Regions._runs_ahead)
+    assert list(frame["diagnosis"][9:13]) == [frame["diagnosis"][9]] * 4
+    assert frame["diagnosis"][9].startswith("proven infeasible for allowable_contact_stress 0.68999-0.719593 GPa "
+                                            "(4 points, one proof)")
+    assert result.spent["solves"] == 39
 
 
 def test_a_point_its_own_search_does_not_prove_continues_its_verdict_from_its_first_solve(monkeypatch):

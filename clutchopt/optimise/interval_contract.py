@@ -27,6 +27,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from clutchopt.optimise.interval_contract_compiled import compiled_contracted, library
+
 SWEEPS = 3  # contractions per evaluation: each on the box the last left (the slopes of the first box), fewer where
 # one empties every box or moves none
 _SLACK = 1e-12  # relative outward widening of each bound (float64 sums of a few terms err by a few ulps)
@@ -42,11 +44,17 @@ def least_terms(d_lo: np.ndarray, d_hi: np.ndarray, step_lo: np.ndarray, step_hi
 
 
 def contracted(lo: np.ndarray, hi: np.ndarray, centre: np.ndarray, c_lo: np.ndarray, d_lo: np.ndarray,
-               d_hi: np.ndarray, limit: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+               d_hi: np.ndarray, limit: float, compiled: bool = True
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The boxes [lo, hi] (variables x boxes) contracted to the points where every row may be at most ``limit``, from
     the rows' lower bounds at the ``centre`` (``c_lo``, rows x boxes) and their slopes' bounds over the boxes
     (``d_lo``, ``d_hi``, rows x variables x boxes); the new ends, which boxes are empty, and the rows that cut each
-    box (rows x boxes: the proof rests on them as on the rows that empty a box, and names them)."""
+    box (rows x boxes: the proof rests on them as on the rows that empty a box, and names them). By the compiled
+    rule where it can be had (``compiled``: :mod:`clutchopt.optimise.interval_contract_compiled`, the same numbers),
+    else by NumPy below."""
+    function = library() if compiled else None
+    if function is not None:
+        return compiled_contracted(function, lo, hi, centre, c_lo, d_lo, d_hi, limit, SWEEPS, _SLACK, _CUT)
     lo, hi = lo.copy(), hi.copy()
     m, n, count = d_lo.shape
     rising, falling = (d_lo > 0.0) & np.isfinite(d_lo), (d_hi < 0.0) & np.isfinite(d_hi)

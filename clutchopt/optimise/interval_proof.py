@@ -114,12 +114,14 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
     hi = np.stack([problem[2] for problem in problems], axis=1)
     ranged = ~np.all(_same(p_lo, p_hi), axis=0)  # a parameter interval (a quantity
     # the case leaves out reads NaN at both ends): its ends are tried too (_reached)
+    intervals = bool(ranged.any())  # (none: no parameter is split, no end tried)
     width0 = np.where(hi > lo, hi - lo, 1.0)
     p_width0 = np.where(p_hi > p_lo, p_hi - p_lo, 0.0)  # (a NaN: 0, never split)
     owner = np.arange(count)  # each box's search (a column of params), the boxes of one search together
     plo, phi = p_lo.copy(), p_hi.copy()  # each box's parameters (a search's interval, split where it spreads the rows)
     n = lo.shape[0]
     decisive: list[dict[str, int]] = [{} for _ in problems]
+    whole_names = [f"a whole {posed.names[i]}" for i in posed.integer]
     evaluated, left = np.zeros(count, dtype=int), np.full(count, np.inf)
     outcomes: list[Emptiness | None] = [None] * count
 
@@ -127,75 +129,85 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         for j in np.asarray(searches_ended, dtype=int).tolist():
             outcomes[j] = outcome(j)
 
-    def tally(j: int, key: str, boxes: int) -> None:
-        decisive[j][key] = decisive[j].get(key, 0) + boxes
+    def tally(keys: list[str], boxes: np.ndarray, owner: np.ndarray) -> None:
+        """The boxes each key (of a row of ``boxes``: which boxes it emptied or cut; the rows the first keys') counts,
+        by search (a start-up's names: its formulation's rows, then the start-up's, which are not searched)."""
+        per_search = np.zeros((boxes.shape[0], count), dtype=int)
+        for k in range(boxes.shape[0]):
+            per_search[k] = np.bincount(owner, boxes[k], count)
+        for k, j in zip(*np.nonzero(per_search)):  # (a search's keys in the order of the rows)
+            decisive[j][keys[k]] = decisive[j].get(keys[k], 0) + int(per_search[k, j])
+
+    def searching(owner: np.ndarray) -> np.ndarray:
+        """Which searches have a box among ``owner`` (one flag a search)."""
+        return np.bincount(owner, minlength=count) > 0
+
+    def flagged(searches_flagged) -> np.ndarray:
+        mask = np.zeros(count, dtype=bool)
+        mask[list(searches_flagged)] = True
+        return mask
 
     def within_budgets(owner: np.ndarray, grown: np.ndarray | None = None) -> np.ndarray:
         """Which boxes belong to searches their evaluation keeps within budget (of ``grown`` boxes each, if given:
         after their splits); the others' searches end there, not proven."""
         counts = np.bincount(owner, minlength=count) if grown is None else grown
-        over = np.flatnonzero((counts > 0) & (evaluated + counts > budgets))
-        end(over, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
-        return ~np.isin(owner, over)
+        over = (counts > 0) & (evaluated + counts > budgets)
+        end(np.flatnonzero(over), lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
+        return ~over[owner]
 
     while lo.shape[1]:
-        before = np.unique(owner)
+        before = searching(owner)
         lo, hi, none = _rounded(lo, hi, posed.integer)
-        for j in before.tolist():
-            for i, row in zip(posed.integer, none):
-                dropped = int(row[owner == j].sum())
-                if dropped:
-                    tally(j, f"a whole {posed.names[i]}", dropped)
+        tally(whole_names, none, owner)
         kept = ~none.any(axis=0)
         lo, hi, owner, plo, phi = lo[:, kept], hi[:, kept], owner[kept], plo[:, kept], phi[:, kept]
-        end(np.setdiff1d(before, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
+        end(np.flatnonzero(before & ~searching(owner)), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         keep = within_budgets(owner)
         lo, hi, owner, plo, phi = lo[:, keep], hi[:, keep], owner[keep], plo[:, keep], phi[:, keep]
         if not lo.shape[1]:
             break
         evaluated += np.bincount(owner, minlength=count)
-        (g_lo, g_hi), (d_lo, d_hi), centre, (c_lo, c_hi) = _bounds(functions, lo, hi, (plo, phi))
+        ends = _end_boxes(lo, hi, owner, ranged, posed.integer) if intervals else np.zeros(0, dtype=int)
+        (g_lo, g_hi), (d_lo, d_hi), centre, (c_lo, c_hi), at_ends = _bounds(
+            functions, lo, hi, (plo, phi), (ends, p_lo[:, owner[ends]], p_hi[:, owner[ends]]))
         first_met = _first_boxes(np.flatnonzero(np.all(c_hi <= 0.0, axis=0)), owner)  # each search's first box met
-        whole_p = np.all(_same(plo, p_lo[:, owner]) & _same(phi, p_hi[:, owner]), axis=0)
+        whole_p = (np.all(_same(plo, p_lo[:, owner]) & _same(phi, p_hi[:, owner]), axis=0) if first_met
+                   else None)
         end(sorted(first_met), lambda j: (  # a design for every parameter of the search, or (a part of its interval)
             Emptiness(False, int(evaluated[j]), decisive[j], centre[:, first_met[j]]) if whole_p[first_met[j]]
             else Emptiness(False, int(evaluated[j]), decisive[j], reached=True, witness=centre[:, first_met[j]])))
         # (for some: no proof for all)
-        reached = _reached(functions[0], centre, owner, ranged, p_lo, p_hi, first_met, posed.integer)
+        reached = _reached(at_ends, ends, owner, first_met) if len(ends) else {}
         end(list(reached), lambda j: Emptiness(False, int(evaluated[j]), decisive[j], reached=True,
                                                witness=centre[:, reached[j]]))
-        keep = ~np.isin(owner, list(first_met) + list(reached))
+        keep = ~flagged([*first_met, *reached])[owner]
         empty = g_lo > TOLERANCE
-        running = np.unique(owner[keep])
-        for j in running.tolist():
-            emptied = empty[:, owner == j].sum(axis=1)
-            for row in np.flatnonzero(emptied).tolist():
-                tally(j, names[row], int(emptied[row]))
+        running = searching(owner[keep])
+        tally(names, empty & keep, owner)
         alive = keep & ~empty.any(axis=0)
         lo, hi, owner, uncertain = lo[:, alive], hi[:, alive], owner[alive], g_hi[:, alive] > 0.0
         plo, phi, at = plo[:, alive], phi[:, alive], np.flatnonzero(alive)
-        end(np.setdiff1d(running, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
+        end(np.flatnonzero(running & ~searching(owner)), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         counts = np.bincount(owner, minlength=count)
-        spreading = np.flatnonzero((counts > 0) & (evaluated > SURE_BOXES) & (counts > GROWTH * left))
-        end(spreading, lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))  # not closing in: give up
+        spreading = (counts > 0) & (evaluated > SURE_BOXES) & (counts > GROWTH * left)
+        end(np.flatnonzero(spreading), lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))  # not closing
+        # in: give up
         left = np.where(counts > 0, counts, left)
-        keep = ~np.isin(owner, spreading)
+        keep = ~spreading[owner]
         lo, hi, owner, uncertain = lo[:, keep], hi[:, keep], owner[keep], uncertain[:, keep]
         plo, phi, at = plo[:, keep], phi[:, keep], at[keep]
         if not lo.shape[1]:
             break
         d_lo, d_hi = d_lo[..., at], d_hi[..., at]
-        searching = np.unique(owner)
+        contracting = searching(owner)
         lo, hi, cut_empty, cut = contracted(lo, hi, centre[:, at], c_lo[:, at], d_lo, d_hi, TOLERANCE)
-        for j in np.unique(owner[cut.any(axis=0)]).tolist():  # the rows a proof rests on: those that cut, too
-            cutting = cut[:, owner == j].sum(axis=1)
-            for row in np.flatnonzero(cutting).tolist():
-                tally(j, names[row], int(cutting[row]))
+        tally(names, cut, owner)  # the rows a proof rests on: those that cut, too
         whole = ~cut_empty
         lo, hi, owner, uncertain, d_lo, d_hi = lo[:, whole], hi[:, whole], owner[whole], uncertain[:, whole], \
             d_lo[..., whole], d_hi[..., whole]
         plo, phi, at = plo[:, whole], phi[:, whole], at[whole]
-        end(np.setdiff1d(searching, owner), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
+        end(np.flatnonzero(contracting & ~searching(owner)),
+            lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         if not lo.shape[1]:
             break
         lo, hi = _faces(lo, hi, d_lo, d_hi, uncertain)
@@ -216,6 +228,13 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
                 d_lo, d_hi, uncertain = d_lo[..., keep], d_hi[..., keep], uncertain[:, keep]
                 if not lo.shape[1]:
                     break
+        if not intervals:  # (no parameter interval to split: the boxes' parameters follow their boxes)
+            for turn in range(int(rounds[owner].max())):
+                lo, hi, owner, parents = _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0,
+                                                         rounds[owner] > turn)
+                plo, phi = plo[:, parents], phi[:, parents]
+                d_lo, d_hi, uncertain = d_lo[..., parents], d_hi[..., parents], uncertain[:, parents]
+            continue
         component, rate = _parameter_spread(plo, phi, p_width0[:, owner], (c_hi - c_lo)[:, at], uncertain)
         for turn in range(int(rounds[owner].max())):
             columns = np.arange(len(owner))
@@ -260,22 +279,24 @@ def _parameter_spread(plo, phi, p_width0, c_width, uncertain) -> tuple[np.ndarra
     return component, np.where(widest > 0, spread / np.where(widest > 0, widest, 1.0), 0.0)
 
 
-def _reached(rows, centre: np.ndarray, owner: np.ndarray, ranged: np.ndarray, p_lo: np.ndarray, p_hi: np.ndarray,
-             ended: dict[int, int], integer: list[int]) -> dict[int, int]:
-    """The searches over a parameter interval (``ranged``, not ``ended`` already) where a box's centre, its integer
-    variables whole, meets every row at one end of the interval: a design there, so the interval holds no proof (a run
-    of a sweep's points reaching past its infeasible region: the search stops at once rather than at its budget);
-    each with the first such box."""
+def _end_boxes(lo: np.ndarray, hi: np.ndarray, owner: np.ndarray, ranged: np.ndarray, integer: list[int]
+               ) -> np.ndarray:
+    """The boxes of searches over a parameter interval (``ranged``) whose centres, their integer variables whole,
+    are tried at the interval's ends (:func:`_reached`), evaluated with the boxes (:func:`_bounds`)."""
+    centre = 0.5 * (lo + hi)
     whole = np.all(centre[integer] == np.round(centre[integer]), axis=0)
-    boxes = np.flatnonzero(ranged[owner] & whole & ~np.isin(owner, list(ended)))
-    if not len(boxes):
-        return {}
-    at = np.hstack([centre[:, boxes]] * 2)  # each box's centre at both ends, in one evaluation (a box's bounds are
-    # its own: the interval rules work box by box)
-    params = np.hstack([p_lo[:, owner[boxes]], p_hi[:, owner[boxes]]])
-    (_, high), = rows.bounds([(at, at), (params, params)])
-    met = np.all(high[:, :len(boxes)] <= 0.0, axis=0) | np.all(high[:, len(boxes):] <= 0.0, axis=0)
-    return _first_boxes(boxes[met], owner)
+    return np.flatnonzero(ranged[owner] & whole)
+
+
+def _reached(at_ends: np.ndarray, boxes: np.ndarray, owner: np.ndarray, ended: dict[int, int]
+             ) -> dict[int, int]:
+    """The searches over a parameter interval, not ``ended`` already, where a box's centre (of ``boxes``:
+    :func:`_end_boxes`) meets every row at one end of the interval (``at_ends``: the rows' upper bounds there, the
+    interval's low ends' columns, then its high ends'): a design there, so the interval holds no proof (a run of a
+    sweep's points reaching past its infeasible region: the search stops at once rather than at its budget); each
+    with the first such box."""
+    met = np.all(at_ends[:, :len(boxes)] <= 0.0, axis=0) | np.all(at_ends[:, len(boxes):] <= 0.0, axis=0)
+    return _first_boxes(boxes[met & ~np.isin(owner[boxes], list(ended))], owner)
 
 
 def _first_boxes(boxes: np.ndarray, owner: np.ndarray) -> dict[int, int]:
@@ -320,17 +341,37 @@ def _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0, split, extra=N
             np.concatenate([hi[:, ~split], s_hi], axis=1)[:, order], owner[parents][order], parents[order])
 
 
-def _bounds(functions, lo: np.ndarray, hi: np.ndarray, params: tuple[np.ndarray, np.ndarray]):
+class BoxBounds(NamedTuple):
+    """What one evaluation gives over boxes (:func:`_bounds`)."""
+
+    rows: tuple[np.ndarray, np.ndarray]  # the rows' bounds over each box (rows x boxes)
+    slopes: tuple[np.ndarray, np.ndarray]  # the Jacobian's (rows x variables x boxes)
+    centre: np.ndarray  # each box's centre (variables x boxes)
+    at_centre: tuple[np.ndarray, np.ndarray]  # the rows' bounds there (rows x boxes)
+    at_ends: np.ndarray  # the rows' upper bounds at the further points asked for (rows x points)
+
+
+def _bounds(functions, lo: np.ndarray, hi: np.ndarray, params: tuple[np.ndarray, np.ndarray],
+            ends: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None) -> BoxBounds:
     """Over each box: the rows' bounds (the natural interval extension met with the mean-value form
     g(c) + J(X) (X - c), which is tight on small boxes), the Jacobian's bounds (rows x variables x boxes), the centre
     and the rows' bounds there; ``params``: each box's parameters (a column), their lower and upper ends (the mean
-    value form holds for each parameter vector between them: g(x, p) = g(c, p) + J(xi, p) (x - c))."""
-    rows, jacobian = functions
+    value form holds for each parameter vector between them: g(x, p) = g(c, p) + J(xi, p) (x - c)). ``ends``: boxes
+    (their numbers) whose centres are evaluated too at two further parameter vectors each (the ends of a search's
+    interval, one column a box each: :func:`_reached`). All in one replay of the function that gives the Jacobian and
+    the rows (``interval_nodes.enclosed_rows``): a box's bounds are its own (the rules work box by box), and one call
+    costs about what each of its three had (the ball's searches: about 2 ms an iteration, most of it per call)."""
+    _, slopes = functions
     count, n = lo.shape[1], lo.shape[0]
     centre = 0.5 * (lo + hi)
-    (g_lo, g_hi), = rows.bounds([(lo, hi), params])
-    (d_lo, d_hi), = jacobian.bounds([(lo, hi), params])  # (the same boxes in turn: their declared nodes' kept)
-    (c_lo, c_hi), = rows.bounds([(centre, centre), params])
+    x_lo, x_hi, p_lo, p_hi = [lo, centre], [hi, centre], [params[0]] * 2, [params[1]] * 2
+    boxes = np.zeros(0, dtype=int) if ends is None else ends[0]
+    for p_end in ((ends[1], ends[2]) if len(boxes) else ()):
+        x_lo.append(centre[:, boxes]), x_hi.append(centre[:, boxes]), p_lo.append(p_end), p_hi.append(p_end)
+    (d_lo, d_hi), (g_lo, g_hi) = slopes.bounds([(np.hstack(x_lo), np.hstack(x_hi)),
+                                                 (np.hstack(p_lo), np.hstack(p_hi))])
+    c_lo, c_hi, at_ends = g_lo[:, count:2 * count], g_hi[:, count:2 * count], g_hi[:, 2 * count:]
+    g_lo, g_hi, d_lo, d_hi = g_lo[:, :count], g_hi[:, :count], d_lo[:, :count], d_hi[:, :count]
     m = g_lo.shape[0]
     d_lo, d_hi = d_lo.reshape(n, m, count).transpose(1, 0, 2), d_hi.reshape(n, m, count).transpose(1, 0, 2)
     step_lo, step_hi = (lo - centre)[None], (hi - centre)[None]
@@ -339,7 +380,8 @@ def _bounds(functions, lo: np.ndarray, hi: np.ndarray, params: tuple[np.ndarray,
     corners = np.where(np.isnan(corners), 0.0, corners)  # 0 * inf: a variable the box fixes adds nothing
     mv_lo, mv_hi = c_lo + corners.min(axis=0).sum(axis=1), c_hi + corners.max(axis=0).sum(axis=1)
     mv_lo, mv_hi = np.where(np.isnan(mv_lo), -np.inf, mv_lo), np.where(np.isnan(mv_hi), np.inf, mv_hi)
-    return (np.maximum(g_lo, mv_lo), np.minimum(g_hi, mv_hi)), (d_lo, d_hi), centre, (c_lo, c_hi)
+    return BoxBounds((np.maximum(g_lo, mv_lo), np.minimum(g_hi, mv_hi)), (d_lo, d_hi), centre, (c_lo, c_hi),
+                     at_ends)
 
 
 def _faces(lo: np.ndarray, hi: np.ndarray, d_lo: np.ndarray, d_hi: np.ndarray,

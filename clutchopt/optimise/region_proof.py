@@ -20,15 +20,20 @@ searches, 9 of them over points that all have designs); a region's search may ta
 the last proof (at least SURE_BOXES, at most MAX_BOXES), so one reaching past the edge gives up early. Runs start
 FIRST_RUN points long, the next twice the longest proven (from 2, doubling while they are proven whole, up to
 LONGEST_RUN): where a region's bounds are loose over wide intervals (the lever over its speed, which its centrifugal
-force takes squared) the runs stay as short as proofs allow.
+force takes squared) the runs stay as short as proofs allow. Where the design has integer variables (the ball, whose
+region's search costs about what a point's own does), the two runs that follow a run if it is proven whole are
+searched with it, in one call (:meth:`Regions._runs_ahead`): an iteration costs per call, so the three take the
+iterations of the longest; each outcome is kept for the call that searches its run, and taken where that search
+would make the same steps (:func:`_holds`).
 
 Where a run's search meets a design at one end, probes look for the region's edge within it (:meth:`Regions._edge`):
 one solve at the run's last point (as ``Problem.solve`` starts cold; none where the design the search met, within
-the point's bounds, meets every constraint there in float64); where it has a design, the points from the run's
-first on in growing steps, then bisection, find the first point with one, and only the points before it are searched
-again (the bisection of such a run by searches had cost seconds where a solve costs 20-40 ms; a probe before every
-run cost a failed solve on each run inside a region). A probe only shortens the run searched; its calls are charged to
-the next point's verdict.
+the point's bounds, meets every constraint there in float64); where it has a design, the run's first two points are
+searched as one region (:meth:`Regions._head`: proven, the second needs no probe, which had been a failed solve), then
+the points after them in growing steps, then bisection, find the first point with one, and only the points before it
+are searched again, none where the two proven reach it (the bisection of such a run by searches had cost seconds
+where a solve costs 20-40 ms; a probe before every run cost a failed solve on each run inside a region). A probe only
+shortens the run searched; its calls are charged to the next point's verdict.
 
 A point left over next to a proven one is tested against that proof first (:meth:`Regions._quick`): solved once, as
 ``Problem.solve`` starts (its design, if it finds one, is ``solve``'s), else its own interval search, the one its full
@@ -94,6 +99,7 @@ class Regions:
         self._region: int | None = None  # the boxes of the last region proof
         self._figures: dict[int, tuple] = {}  # proven point -> its float64 figures at the design of self._without
         self._figured: dict[str, float] | None = None  # (that design)
+        self._ahead: dict[tuple[int, int], tuple] = {}  # a run searched ahead -> its problem and outcome
 
     def point_case(self, k: int):
         """Point k's case, built once for its run's search, its float64 figures and its verdict."""
@@ -252,27 +258,34 @@ class Regions:
             self._search_each(k, end, points)
             return
         longest = 1  # the longest run proven
+        ahead = [run for run in self._runs_ahead(k, end) if run not in self._ahead]
         while runs:
-            problems = [_region_problem([points[j] for j in range(a, b)]) for a, b in runs]
-            budget = self._budget()
+            budget = _budget(last_boxes(self.posed), SURE_BOXES)
+            known = {run: self._ahead.pop(run) for run in runs if run in self._ahead}
+            known = {run: kept for run, kept in known.items() if _holds(kept[1], budget)}
+            fresh = [run for run in runs if run not in known]
+            problems = [_region_problem([points[j] for j in range(a, b)]) for a, b in fresh]
+            problems += [_region_problem([_search_problem(self.posed, self.point_case(j)) for j in range(a, b)])
+                         for a, b in ahead]
             began = time.perf_counter()
-            outcomes = searches(self.posed, problems, [budget] * len(runs))
+            outcomes = searches(self.posed, problems, [budget] * len(problems)) if problems else []
             seconds = time.perf_counter() - began
-            halves = []
-            for (a, b), problem, outcome in zip(runs, problems, outcomes):
+            self._ahead.update(zip(ahead, zip(problems[len(fresh):], outcomes[len(fresh):])))
+            found = {**dict(zip(fresh, zip(problems, outcomes))), **known}
+            ahead, halves = [], []
+            for (a, b), (problem, outcome) in ((run, found[run]) for run in runs):
                 if outcome is not None and outcome.proven:
-                    last_boxes(self.posed, outcome.boxes)
-                    self._region = outcome.boxes
+                    self._proved(a, b, problem, outcome, seconds / max(1, end - k))
                     longest = max(longest, b - a)
-                    text = _region_text(self.posed, a, b, problem, outcome)
-                    for j in range(a, b):
-                        self._proven[j] = (text, seconds / max(1, end - k))
                 elif b - a > 1 and outcome is not None and outcome.feasible is None:  # (a design met for the whole
                     # run: every point has one, solved as usual)
                     middle = (a + b) // 2  # (a design at one end: the region ends within the run: the run up to
                     # the edge the probes find is searched again, else only its first half, the points of the other
                     # solved as usual)
-                    edge = self._edge(a, b, outcome.witness) if outcome.reached else b
+                    edge, head = self._edge(a, b, points, outcome.witness) if outcome.reached else (b, a)
+                    if head >= edge:  # (the run up to the edge proven by the probes' search of its head)
+                        longest = max(longest, edge - a)
+                        continue
                     kept = (((a, edge),) if edge < b else ((a, middle),) if outcome.reached
                             else ((a, middle), (middle, b)))
                     halves += [run for run in kept if run[1] - run[0] > 1]  # a single point: solved as usual (a
@@ -280,9 +293,30 @@ class Regions:
             runs = halves
         self._length = min(2 * longest, LONGEST_RUN)
 
-    def _budget(self) -> int:
-        """The most boxes of a region's search: REGION_BUDGET times the last proof's (within SURE_BOXES, MAX_BOXES)."""
-        return min(max(REGION_BUDGET * last_boxes(self.posed), SURE_BOXES), MAX_BOXES)
+    def _runs_ahead(self, k: int, end: int) -> list[tuple[int, int]]:
+        """The runs after k .. end - 1 that :meth:`_search_from` searches next where each before it is proven whole
+        (twice as long each, up to LONGEST_RUN; two of them), searched with it where the design has integer
+        variables: an iteration costs per call, and a region's search there costs about a point's own (the ball's:
+        121-473 boxes, 8-16 iterations), so the runs together take the iterations of the longest, not their sum;
+        their outcomes are kept for the calls that search them (:func:`_holds`; the others dropped with the
+        sweep)."""
+        if not self.posed.integer or self.problem.start_up is not None:
+            return []
+        runs, length = [], end - k
+        while len(runs) < 2 and end < self.count - 1:
+            length = min(2 * length, LONGEST_RUN)
+            runs.append((end, min(end + length, self.count)))
+            end = runs[-1][1]
+        return runs
+
+    def _proved(self, a: int, b: int, problem: tuple, outcome: Emptiness, seconds: float) -> None:
+        """Points a .. b - 1 proven by one search (``outcome``, of the region ``problem``): each gets its text
+        and ``seconds``; the search's boxes are the last proof's."""
+        last_boxes(self.posed, outcome.boxes)
+        self._region = outcome.boxes
+        text = _region_text(self.posed, a, b, problem, outcome)
+        for j in range(a, b):
+            self._proven[j] = (text, seconds)
 
     def _one_by_one(self, count: int) -> bool:
         """The ``count`` points of a run are searched each alone (:meth:`_search_each`): their own proofs, at the
@@ -300,8 +334,8 @@ class Regions:
         """Points k .. end - 1 searched each alone, in one call (``interval_proof.searches``): a point proven gets its
         own proof's verdict ("proven infeasible: ...", the words of its full verdict), another is solved as usual;
         the next run twice as long where all are proven."""
-        budget = min(max(REGION_BUDGET * self._alone, FEW_BOXES), MAX_BOXES)  # (a point past the region's edge
-        # gives up after its first box where one proved in 1: the split to 128 passes the budget)
+        budget = _budget(self._alone, FEW_BOXES)  # (a point past the region's edge gives up after its first box where
+        # one proved in 1: the split to 128 passes the budget)
         began = time.perf_counter()
         outcomes = searches(self.posed, [points[j] for j in range(k, end)], [budget] * (end - k))
         seconds = (time.perf_counter() - began) / (end - k)
@@ -312,10 +346,11 @@ class Regions:
             self._alone = round(sum(outcome.boxes for _, outcome in proven) / len(proven))
         self._length = min(2 * (end - k), LONGEST_RUN) if len(proven) == end - k else FIRST_RUN
 
-    def _edge(self, k: int, end: int, witness: np.ndarray | None = None) -> int:
+    def _edge(self, k: int, end: int, points: dict, witness: np.ndarray | None = None) -> tuple[int, int]:
         """The end of the run from point k to ``end`` whose search met a design at one end: ``end``, or the first
         point before it found with a design by one solve (as ``Problem.solve`` starts cold), located where the run's
-        last point has one: points k + 1, k + 2, k + 4, ... until one has a design, then bisection. A run reaching
+        last point has one: points k + 1, k + 2, k + 4, ... until one has a design, then bisection; and the end of
+        the points from k its probes proved (k where none: :meth:`_head`). A run reaching
         past the region's edge cannot be proven, and its bisection by interval searches cost seconds (the ball over
         its allowable contact stress: four searches, 7.7 s, for the last two points of its region) where a solve
         costs 20-40 ms. A probe only shortens the run searched: a proof is still a proof of each point of it, and a
@@ -324,8 +359,11 @@ class Regions:
         (the ball over its allowable contact stress: the run's last point, a cold solve with its integer search, 12
         ms)."""
         if end - k <= 2 or self.problem.start_up is not None or not self._designed(end - 1, witness):
-            return end
+            return end, k
         without, designed, step = k, end - 1, 1  # (point k: searched from, next to a proven one)
+        headed = self._head(k, points)
+        if headed:  # (points k, k + 1 proven: the probes from k + 2 on)
+            without = k + 1
         while without + step < designed:  # from k on in growing steps (an edge is most often near the run's start)
             if self._designed(without + step, witness):
                 designed = without + step
@@ -336,7 +374,22 @@ class Regions:
             without, designed = (without, middle) if self._designed(middle, witness) else (middle, designed)
         self._found = designed  # (the last probe with a design: self._edge_probe)
         self._charge(self._edge_probe, -1)  # (charged to the edge's point, whose solve it is: :meth:`_edge_solve`)
-        return designed
+        return designed, k + 2 if headed else k
+
+    def _head(self, k: int, points: dict) -> bool:
+        """Points k and k + 1 of a run reaching past its region's edge searched as one region before any probe
+        (within REGION_BUDGET times the last proof's boxes): proven, point k + 1 needs no probe, and where the edge is
+        k + 2 the run up to it is proven (the ball over its allowable contact stress: a failed solve at k + 1, 9 ms,
+        a solve at k + 3 that the bisection then passed over, 15 ms, and the search of the same two points after
+        them, which this one is). Not proven (a design at k + 1, most often met at once), the probes go on from
+        k + 1."""
+        problem = _region_problem([points[k], points[k + 1]])
+        began = time.perf_counter()
+        outcome, = searches(self.posed, [problem], [_budget(last_boxes(self.posed), FEW_BOXES)])
+        if outcome is None or not outcome.proven:
+            return False
+        self._proved(k, k + 2, problem, outcome, (time.perf_counter() - began) / 2)
+        return True
 
     def _designed(self, j: int, witness: np.ndarray | None = None) -> bool:
         """Point j has a design: ``witness``, within j's bounds and its integers whole, meets every constraint at j in
@@ -387,6 +440,21 @@ class Regions:
         if solution is not None:
             calls, seconds = self._probed
             self._probed = (calls + sign * solution.solver.solves, seconds + sign * solution.solver.time_s)
+
+
+def _budget(boxes: int, least: int) -> int:
+    """The most boxes of a search near a proof of ``boxes`` boxes: REGION_BUDGET times as many, at least ``least``
+    (a region's search: SURE_BOXES; a point's of a run searched point by point, next to its last point's own proof:
+    FEW_BOXES), at most MAX_BOXES."""
+    return min(max(REGION_BUDGET * boxes, least), MAX_BOXES)
+
+
+def _holds(outcome: Emptiness | None, budget: int) -> bool:
+    """A search made ahead (:meth:`Regions._runs_ahead`) is the one a search within ``budget`` makes: it ended by
+    its outcome (proven, or a design met), not by a budget or its growth, within ``budget`` boxes (a search's steps do
+    not depend on its budget until it passes it)."""
+    return (outcome is not None and (outcome.proven or outcome.reached or outcome.feasible is not None)
+            and outcome.boxes <= budget)
 
 
 def _region_problem(points: list[tuple[np.ndarray, ...]]) -> tuple[np.ndarray, ...]:
