@@ -25,6 +25,7 @@ def test_each_constraint_is_checked_with_the_values_its_view_gives_it_built_once
     law, structure = problem.formulation.speed_law, problem.start_up.s
     design = problem.solve(MOTOR).design
     plain = problem.posed.seen_by(MOTOR, design)
+    assert plain("start_time") is plain(None)  # one pair for every name: each constraint is the start's at once
 
     def corner(name):
         x, p = plain(name)

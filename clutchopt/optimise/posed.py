@@ -22,7 +22,7 @@ from clutchopt.cases import Case
 from clutchopt.model import Formulation, namespace
 from clutchopt.optimise.compiled import compiled_solver
 from clutchopt.optimise.in_place import InPlace
-from clutchopt.optimise.solution import IPOPT_OWN_FIGURES, SolverOptions
+from clutchopt.optimise.solution import IPOPT_OWN_FIGURES, START_UP_RESTORATION, SolverOptions
 from clutchopt.optimise.verify import evaluate_objective
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
@@ -129,11 +129,12 @@ class Posed:
     def ipopt_options(self, method: str) -> dict:
         """IPOPT's options for ``ipopt`` (cold), ``warm`` or ``warm_near`` (warm from a start-up's optimum on the same
         mesh): a start-up's collocation has its own first barrier parameters (:meth:`SolverOptions.ipopt_start_up`,
-        :meth:`SolverOptions.ipopt_warm_start_up`) and returns IPOPT's own figures (``IPOPT_OWN_FIGURES``)."""
+        :meth:`SolverOptions.ipopt_warm_start_up`), returns IPOPT's own figures (``IPOPT_OWN_FIGURES``) and ends a
+        restoration phase that finds no feasible point sooner (``START_UP_RESTORATION``)."""
         chosen = self.solver_options
         cold = chosen.ipopt_start_up if self.start_up is not None else chosen.ipopt
         options = {"warm_near": chosen.ipopt_warm_start_up, "warm": chosen.ipopt_warm}.get(method, cold)()
-        return {**options, **IPOPT_OWN_FIGURES} if self.start_up is not None else options
+        return {**options, **IPOPT_OWN_FIGURES, **START_UP_RESTORATION} if self.start_up is not None else options
 
     def built(self, kind: str, key, build: Callable[[int], object]):
         """The object of ``kind`` (a solver, a CasADi function) for ``key``, built once: ``build(number)``, with
@@ -255,8 +256,9 @@ class Posed:
         """name -> the design and case values ``(x, p)`` the start-up's constraint ``name`` is checked with, ``None``
         -> those its start is simulated at: the case's and the design's, a robust design's at their corners."""
         view, params = self.formulation.start_up_view, vars(self.params(case))
-        if not view:
-            return lambda name: (namespace(design), namespace(params))
+        if not view:  # one pair for every name: each constraint is the start's (``seen_constraints`` sees it at once)
+            values = (namespace(design), namespace(params))
+            return lambda name: values
         return lambda name: tuple(map(namespace, view(design, params, name)))
 
     def start_up_seen(self, case: Case, design: dict[str, float]) -> tuple[Case, dict[str, float]]:

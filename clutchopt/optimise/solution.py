@@ -79,6 +79,12 @@ IPOPT_OWN_FIGURES = {"no_nlp_grad": True, "calc_lam_p": False, "calc_lam_x": Fal
 # CasADi evaluating f, g and the Lagrangian's gradient again at its optimum: so CasADi does not derive that gradient
 # in x and p when it builds the solver (12-25 ms of 63-120 per solver; the four motor_start cases' runs equal to the
 # last bit: docs/start_up.md, "IPOPT's cost on the start-up NLP")
+START_UP_RESTORATION = {"ipopt.resto.tol": 1e-6}  # a start-up's IPOPT ends a restoration phase that cannot
+# return to the NLP once the restoration problem (the least l1 violation) is stationary to 1e-6, not 1e-10: only a run
+# that ends `Infeasible_Problem_Detected` changes, by the iterations that drove the restoration's barrier to 1e-11
+# around a violation already found (cable_motor_start's 6 cables: 44 to 35 iterations, its least violation 7.7165587e-2
+# either way, 9e-10 apart); every run that ends with a design is the same to the last bit (docs/start_up.md,
+# "Infeasible integer choices found sooner")
 
 
 @dataclass
