@@ -36,10 +36,11 @@ def _tried(posed: Posed, search: list[dict], integer: list[int], combo) -> bool:
     return any(all(entry[posed.names[i]] == c for i, c in zip(integer, combo)) for entry in search)
 
 
-def _solved(posed: Posed, search: list[dict], integer: list[int], combo) -> bool:
-    """Whether the search found a design with the integers ``combo`` (a verified optimum of theirs)."""
-    return any(entry["feasible"] and all(entry[posed.names[i]] == c for i, c in zip(integer, combo))
-               for entry in search)
+def _solved(posed: Posed, search: list[dict], integer: list[int], combo, bound: float = math.inf) -> bool:
+    """Whether the search found a design with the integers ``combo`` (a verified optimum of theirs) whose objective
+    is within ``bound``."""
+    return any(entry["feasible"] and entry["objective"] <= bound
+               and all(entry[posed.names[i]] == c for i, c in zip(integer, combo)) for entry in search)
 
 
 def descend(posed: Posed, box: Box, integer, combo, seed, search, attempt: Attempt, bound: float | None = None,
@@ -109,8 +110,9 @@ def from_the_start(posed: Posed, data: ScaledData, integer, kept: dict | None, s
     if least_violation(posed, np.array(posed.constraint_values(data.x0, data.p)).ravel()) > 10 * FEASIBILITY_TOL:
         return kept
     start_value = attempts.checked(posed, dict(zip(posed.names, data.start)), data.checked or data.params)["value"]
-    if (kept is not None and kept["value"] <= start_value + posed.negligible(start_value)
-            or not within(data, integer, combo) or _solved(posed, search, integer, combo)):
+    bound = start_value + posed.negligible(start_value)
+    if (kept is not None and kept["value"] <= bound or not within(data, integer, combo)
+            or _solved(posed, search, integer, combo, bound)):
         return kept
     found = descend(posed, data.box, integer, combo, feasible_start(posed, data.x0), search, attempt,
                     first=FROM_A_FEASIBLE_START, again=True)
