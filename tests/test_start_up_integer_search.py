@@ -1,11 +1,16 @@
 """The start-up's integer search does not take a fixed-integer run that ended without a verdict for "no design there"
-(clutchopt/optimise/integers.py, ``no_verdict``; docs/start_up.md, "Integer attempts without a verdict").
+(clutchopt/optimise/integers.py, ``no_verdict``; docs/start_up.md, "Integer attempts without a verdict"), nor an
+infeasibility found from another point for the start's integers where the start meets every row (``from_the_start``).
 
 No hand calculation: the reference is a solve of the same case with the integers fixed (a mixed-integer solve is a
 local search over the integers, so the least it promises is to find a choice it tries as well as a solve of that
 choice alone does), and the test asserts that the retry was taken, so that it cannot pass by not being exercised."""
 
 from dataclasses import replace
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
 
 from clutchopt.cases import load_case
 from clutchopt.optimise import integers, problem, solve_case
@@ -58,3 +63,50 @@ def test_ball_start_up_at_340_kg_m2_tries_the_sizing_rows_its_relaxation_left(mo
     assert solution.status == fixed.status == "optimal"
     assert solution.design["ball_rows"] == 23.0
     assert solution.objective <= fixed.objective * (1 + 1e-6)
+
+
+def test_a_choice_tried_elsewhere_without_a_design_is_not_solved_at_its_start():
+    # from_the_start skips the start's integers only where the search found a design with them: a run that ended
+    # infeasible from another point (the relaxation's) says nothing of the start, which meets every row of their
+    # NLP (ball_motor_start at 303.95 kg m^2: 23 rows from the relaxation's point ended infeasible, 43 iterations)
+    posed = SimpleNamespace(names=["ball_rows"])
+    infeasible = [integers.search_entry(posed, [0], [23], integers.INFEASIBLE, False, 978.236),
+                  integers.search_entry(posed, [0], [24], integers.SOLVED, True, 977.864)]
+    assert integers._tried(posed, infeasible, [0], [23])
+    assert not integers._solved(posed, infeasible, [0], [23])
+    assert integers._solved(posed, infeasible, [0], [24])
+    assert not integers._solved(posed, infeasible, [0], [24], bound=950.755)  # a design heavier than the start
+    ruled = integers.RuledOut()
+    ruled.found([23], 1.0)
+    ruled.settle(1e-5)
+    assert ruled.reason([23])  # 1.0 > 10 x 1e-5: ruled out ...
+    ruled.designed([23.0])
+    assert ruled.reason([23]) == []  # ... until a run finds a design with 23 rows
+
+
+@pytest.mark.parametrize("points, point", [(20, 5), (40, 3)])
+def test_ball_start_up_solves_the_sizing_rows_from_the_sizing(monkeypatch, points, point):
+    # ball_motor_start at driven_inertia 0.8105 x 375 kg m^2 (303.95, the 6th of 20 points over 0.6-1.4 x): the
+    # relaxation rounds to 23 rows, which from its point end Infeasible_Problem_Detected; main kept 24 rows,
+    # 977.86 kg. At 248.08 kg m^2 (the 4th of 40) 23 rows from the relaxation's point end at 955.98 kg, main's
+    # design. The papers' sizing (23 rows, 950.755 kg) meets every row of the NLP: from it, as from a feasible
+    # point, 23 rows solve to 950.755 kg, the design of the solve with ball_rows fixed at 23 (to 1e-6 relative)
+    # at 303.95 kg m^2; at 248.08 that solve (no integer to search) ends at 955.98 kg from the same start
+    again = []
+    original = integers.descend
+
+    def spied(*args, **kwargs):
+        again.append(kwargs.get("again", False))
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(integers, "descend", spied)
+    case = load_case(CASES / "ball_motor_start.toml")
+    case = case.with_values(driven_inertia=float(np.linspace(0.6, 1.4, points)[point] * case.values["driven_inertia"]))
+    solution = solve_case(case)
+    assert True in again  # the start's rows solved again from the start
+    fixed = solve_case(replace(case, bounds={**case.bounds, "ball_rows": (23.0, 23.0)}))
+    assert solution.status == fixed.status == "optimal"
+    assert solution.design["ball_rows"] == 23.0
+    assert solution.objective <= fixed.objective * (1 + 1e-6)  # 248.08: the fixed solve itself ends at 955.98 kg
+    assert abs(solution.objective - 950.7554394) <= 1e-6 * 950.7554394  # the sizing's mass: no start-up design
+    # goes below the static optimum
