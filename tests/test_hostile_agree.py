@@ -1,0 +1,39 @@
+"""Sweeps against `solve` of the same point, on the cases and quantities users vary: what a randomised hunt
+(every case file, every mode, the case's own quantities over spans across feasibility edges and integer changes,
+points compared with ``solve_case`` of each alone) found. Each test is one finding's minimal repro.
+"""
+
+import math
+from types import SimpleNamespace
+
+import pytest
+
+from clutchopt.cases import load_case
+from clutchopt.formulations.cable.equations import reduced_friction_angle
+from clutchopt.formulations.cable.speed_law import link_stiffness, weight_stiffness
+from clutchopt.start_up.simulation import start_up_model
+from conftest import CASES
+
+# cable_motor_start in threads mode at max_link_stress 70.5 MPa: the retry after the first solve's elastic
+# diagnosis starts from its least relaxation's design, whose weight lead angle (5.45 deg) is below the thread's
+# friction angle: the weight thread self-locks, so the weights' radial stiffness (eq. (9), errata C3) is negative,
+# so the cables' tension and the link's stiffness are; the simulated start that seeds the NLP's states took the
+# square root of that stiffness for its damping and `solve` (and any sweep reaching the point) ended in a traceback
+SELF_LOCKED = {"half_coupling_mass": 16.697314388259723, "weight_mass": 21.506536978947224,
+               "cable_count": 47.9888189203817, "finger_diameter": 0.0974401543524354,
+               "screw_diameter": 0.05023706826251048, "lead_angle": 0.27349127439227344,
+               "weight_lead_angle": 0.09510849574242783, "spring_preload": 0.0}
+
+
+def test_a_start_of_a_design_whose_weight_thread_self_locks_is_modelled_without_a_damping_reference():
+    case = load_case(CASES / "cable_motor_start.toml").with_values(max_link_stress=70.5e6)
+    p, x = case.params(), SimpleNamespace(**SELF_LOCKED)
+    # phi' = atan(f / cos alpha_1) = atan(0.1 / cos 15 deg) = 0.10316 rad (eq. (14)) > beta_w = 0.09511 rad, so
+    # tan(beta_w - phi') < 0 and k_w = c_kn + 4 c_kk / (d_2w^2 tan beta_w tan(beta_w - phi')) < 0
+    friction_angle = math.atan(0.1 / math.cos(math.radians(15.0)))
+    assert reduced_friction_angle(p.friction_coefficient, p.flank_angle) == pytest.approx(friction_angle, rel=1e-12)
+    assert SELF_LOCKED["weight_lead_angle"] < friction_angle
+    assert weight_stiffness(p, x.weight_lead_angle, friction_angle) < 0.0
+    assert link_stiffness(x, p, p.speed) < 0.0  # slack cables: no stiffness to take a damping's reference from
+    model = start_up_model(case, "threads", SELF_LOCKED)
+    assert model.damping == 0.0  # c = 2 zeta sqrt(k J_red) with k at most 0: none (the swing period is then inf)
