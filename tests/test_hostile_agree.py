@@ -11,8 +11,12 @@ import pytest
 from clutchopt.cases import load_case
 from clutchopt.formulations.cable.equations import reduced_friction_angle
 from clutchopt.formulations.cable.speed_law import link_stiffness, weight_stiffness
+from clutchopt.optimise import solve_case
+from clutchopt.optimise.sweep import Sweep
+from clutchopt.optimise.sweep_grid import Vary
 from clutchopt.start_up.simulation import start_up_model
 from conftest import CASES
+from test_sweep_agrees import STATIC_RTOL
 
 # cable_motor_start in threads mode at max_link_stress 70.5 MPa: the retry after the first solve's elastic
 # diagnosis starts from its least relaxation's design, whose weight lead angle (5.45 deg) is below the thread's
@@ -37,3 +41,23 @@ def test_a_start_of_a_design_whose_weight_thread_self_locks_is_modelled_without_
     assert link_stiffness(x, p, p.speed) < 0.0  # slack cables: no stiffness to take a damping's reference from
     model = start_up_model(case, "threads", SELF_LOCKED)
     assert model.damping == 0.0  # c = 2 zeta sqrt(k J_red) with k at most 0: none (the swing period is then inf)
+
+
+@pytest.mark.xfail(strict=True, reason="solve's cold IPOPT stops 1.2e-9 relative above the optimum the sweep's "
+                   "warm SQP reaches exactly (barrier complementarity at tol 1e-10 on the active constraints); "
+                   "within the 1e-6 of a user's answer, beyond the 1e-9 tests/test_sweep_agrees.py holds static "
+                   "points to")
+def test_the_wedge_centrifuge_in_geometry_mode_swept_over_its_acceleration_time_has_solve_s_objective():
+    # the second point warm from the first (SQP): 0.29399649264 kg; solved alone (IPOPT, 40 iterations):
+    # 0.29399649299 kg, the same active constraints, the flank angle 1e-10 rad apart inside its 5-45 deg bounds
+    case = load_case(CASES / "wedge_centrifuge.toml")
+    sweep = Sweep(case, [Vary(_quantity(case, "acceleration_time"), (111.4484713103465, 224.4721056297064))],
+                  mode="geometry")
+    for record, point in zip(sweep.run(progress=False).solutions, sweep.points):
+        solved = solve_case(sweep.case.with_values(**point), mode="geometry")
+        assert record["status"] == solved.status == "optimal"
+        assert record["objective"]["value"] == pytest.approx(solved.objective, rel=STATIC_RTOL, abs=0)
+
+
+def _quantity(case, name):
+    return next(q for q in case.quantities if q.name == name)
