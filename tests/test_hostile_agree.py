@@ -83,3 +83,23 @@ def test_ball_motor_start_swept_over_its_motor_inertia_has_solve_s_ball_rows():
     assert solved.status == record["status"] == "optimal"
     assert record["design"]["ball_rows"] == solved.design["ball_rows"]
     assert record["objective"]["value"] == pytest.approx(solved.objective, rel=START_UP_RTOL)
+
+
+@pytest.mark.xfail(strict=True, reason="the sweep's warm start-up solve (start_up_sweep.solved_along) ends at a point "
+                   "of its collocation NLP that is no optimum of the case: every named constraint but width_ratio "
+                   "slack (torque by 2.7 %), the objective elastic to the motor's data (a row of the collocation "
+                   "binds), its collocation error 3.3e-4 against the 1e-6 tolerance, and Problem._refined's loop "
+                   "stops at once: shapes_nothing reads only the named start-up checks (margins over 10x the error, "
+                   "multipliers negligible); helpers susweep, suratio")
+def test_ball_motor_start_in_paper_mode_swept_over_its_service_factor_has_solve_s_design():
+    # service factor 1.376 then 1.334: the first point 516.65 kg, as solve; at the second the sweep (warm from the
+    # first, 11 IPOPT iterations) reports 515.40 kg "optimal" with the torque 2.7 % over its need and no start-up
+    # limit active, where solve alone (cold, from the sizing) finds 507.23 kg with the torque active, its simulated
+    # start 7.12 s within 8 s: the sweep's design is 1.6 % heavier than one that meets every limit
+    case = load_case(CASES / "ball_motor_start.toml")
+    sweep = Sweep(case, [Vary(_quantity(case, "service_factor"), (1.3758502778708084, 1.3343176887557189))],
+                  mode="paper")
+    record = list(sweep.run(progress=False).solutions)[-1]
+    solved = solve_case(sweep.case.with_values(**sweep.points[-1]), mode="paper")
+    assert solved.status == record["status"] == "optimal"
+    assert record["objective"]["value"] == pytest.approx(solved.objective, rel=START_UP_RTOL)
