@@ -103,3 +103,22 @@ def test_ball_motor_start_in_paper_mode_swept_over_its_service_factor_has_solve_
     solved = solve_case(sweep.case.with_values(**sweep.points[-1]), mode="paper")
     assert solved.status == record["status"] == "optimal"
     assert record["objective"]["value"] == pytest.approx(solved.objective, rel=START_UP_RTOL)
+
+
+@pytest.mark.xfail(strict=True, reason="`solve` itself (cold, from the sizing) ends at a point of the collocation NLP "
+                   "that is no optimum of the case: only width_ratio of the named constraints binds, the objective "
+                   "elastic to the drive's data (driven inertia 0.16, breakdown torque 0.56: a row of the collocation "
+                   "binds), collocation error 2.3e-4 against the 1e-6 tolerance, accepted by shapes_nothing (the "
+                   "named start-up checks' margins and multipliers only); the sweep, warm from 1.58, reaches the "
+                   "start-time-bound optimum 4.9 % lighter; helper suratio (Problem._refined)")
+def test_ball_motor_start_in_paper_mode_solved_at_a_width_ratio_of_1_36_has_the_sweep_s_lighter_design():
+    # width ratio 1.58 then 1.36: at 1.36 the sweep's 728.24 kg has its simulated start 8.000002 s (the limit 8 s,
+    # within the 1e-6 tolerance), the torque 4.3 % over its need; solve alone reports 765.47 kg "optimal" with its
+    # start at 7.51 s and its torque 13 % over: nothing but the width ratio holds it
+    case = load_case(CASES / "ball_motor_start.toml")
+    sweep = Sweep(case, [Vary(_quantity(case, "width_ratio"), (1.5811697356931946, 1.3594688602661984))],
+                  mode="paper")
+    record = list(sweep.run(progress=False).solutions)[-1]
+    solved = solve_case(sweep.case.with_values(**sweep.points[-1]), mode="paper")
+    assert solved.status == record["status"] == "optimal"
+    assert record["objective"]["value"] == pytest.approx(solved.objective, rel=START_UP_RTOL)
