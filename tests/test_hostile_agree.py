@@ -52,17 +52,21 @@ def test_a_start_of_a_design_whose_weight_thread_self_locks_is_modelled_without_
 def test_the_wedge_centrifuge_in_geometry_mode_swept_over_its_acceleration_time_has_solve_s_objective():
     # the second point warm from the first (SQP): 0.29399649264 kg; solved alone (IPOPT, 40 iterations):
     # 0.29399649299 kg, the same active constraints, the flank angle 1e-10 rad apart inside its 5-45 deg bounds
-    case = load_case(CASES / "wedge_centrifuge.toml")
-    sweep = Sweep(case, [Vary(_quantity(case, "acceleration_time"), (111.4484713103465, 224.4721056297064))],
-                  mode="geometry")
-    for record, point in zip(sweep.run(progress=False).solutions, sweep.points):
-        solved = solve_case(sweep.case.with_values(**point), mode="geometry")
+    for record, solved in swept_and_solved("wedge_centrifuge.toml", "geometry", "acceleration_time",
+                                           (111.4484713103465, 224.4721056297064), every=True):
         assert record["status"] == solved.status == "optimal"
         assert record["objective"]["value"] == pytest.approx(solved.objective, rel=STATIC_RTOL, abs=0)
 
 
-def _quantity(case, name):
-    return next(q for q in case.quantities if q.name == name)
+def swept_and_solved(case_file: str, mode: str, name: str, values: tuple[float, ...], every: bool = False) -> list:
+    """The sweep of a case over ``name`` = ``values`` (SI) in ``mode``: (record, `solve_case` of its values alone) of
+    its last point, or with ``every`` of each point."""
+    case = load_case(CASES / case_file)
+    quantity = next(q for q in case.quantities if q.name == name)
+    sweep = Sweep(case, [Vary(quantity, values)], mode=mode)
+    pairs = list(zip(sweep.run(progress=False).solutions, sweep.points))
+    return [(record, solve_case(sweep.case.with_values(**point), mode=mode))
+            for record, point in pairs[0 if every else -1:]]
 
 
 @pytest.mark.xfail(strict=True, reason="a start-up sweep point keeps the point before's integers where their "
@@ -75,11 +79,8 @@ def test_ball_motor_start_swept_over_its_motor_inertia_has_solve_s_ball_rows():
     # second the sweep starts warm from 25 rows (1002.07 kg), its downhill neighbour 24 rows fails from there; solve
     # alone relaxes from the papers' sizing, rounds to 24 rows and ends at 998.53 kg: the sweep's "optimal" point
     # is 0.35 % heavier than solve's, with another ball count
-    case = load_case(CASES / "ball_motor_start.toml")
-    sweep = Sweep(case, [Vary(_quantity(case, "motor_inertia"), (14.65434207062844, 12.257623755009474))],
-                  mode="design")
-    record = list(sweep.run(progress=False).solutions)[-1]
-    solved = solve_case(sweep.case.with_values(**sweep.points[-1]), mode="design")
+    [(record, solved)] = swept_and_solved("ball_motor_start.toml", "design", "motor_inertia",
+                                          (14.65434207062844, 12.257623755009474))
     assert solved.status == record["status"] == "optimal"
     assert record["design"]["ball_rows"] == solved.design["ball_rows"]
     assert record["objective"]["value"] == pytest.approx(solved.objective, rel=START_UP_RTOL)
@@ -91,11 +92,8 @@ def test_ball_motor_start_in_paper_mode_swept_over_its_service_factor_has_solve_
     # limit active (its collocation error 3.3e-4, its objective elastic to the drive: a row of the collocation bound,
     # and shapes_nothing ended the loop), where solve alone (cold, from the sizing) finds 507.23 kg with the torque
     # active, its simulated start 7.12 s within 8 s: the sweep's design was 1.6 % heavier
-    case = load_case(CASES / "ball_motor_start.toml")
-    sweep = Sweep(case, [Vary(_quantity(case, "service_factor"), (1.3758502778708084, 1.3343176887557189))],
-                  mode="paper")
-    record = list(sweep.run(progress=False).solutions)[-1]
-    solved = solve_case(sweep.case.with_values(**sweep.points[-1]), mode="paper")
+    [(record, solved)] = swept_and_solved("ball_motor_start.toml", "paper", "service_factor",
+                                          (1.3758502778708084, 1.3343176887557189))
     assert solved.status == record["status"] == "optimal"
     assert record["objective"]["value"] == pytest.approx(solved.objective, rel=START_UP_RTOL)
     assert solved.objective == pytest.approx(507.23194, rel=START_UP_RTOL)
@@ -107,11 +105,8 @@ def test_ball_motor_start_in_paper_mode_solved_at_a_width_ratio_of_1_36_has_the_
     # within the 1e-6 tolerance), the torque 4.3 % over its need; solve alone reported 765.47 kg "optimal" with its
     # start at 7.51 s and its torque 13 % over: nothing named but the width ratio held it (collocation error 2.3e-4,
     # elasticity 0.16 to the driven inertia), 4.9 % heavier
-    case = load_case(CASES / "ball_motor_start.toml")
-    sweep = Sweep(case, [Vary(_quantity(case, "width_ratio"), (1.5811697356931946, 1.3594688602661984))],
-                  mode="paper")
-    record = list(sweep.run(progress=False).solutions)[-1]
-    solved = solve_case(sweep.case.with_values(**sweep.points[-1]), mode="paper")
+    [(record, solved)] = swept_and_solved("ball_motor_start.toml", "paper", "width_ratio",
+                                          (1.5811697356931946, 1.3594688602661984))
     assert solved.status == record["status"] == "optimal"
     assert record["objective"]["value"] == pytest.approx(solved.objective, rel=START_UP_RTOL)
     assert solved.objective == pytest.approx(728.2394, rel=START_UP_RTOL)
@@ -126,10 +121,22 @@ def test_ball_compressor_in_paper_mode_at_high_speed_has_the_optimum_on_its_boun
     # speed 2144 then 2858 rad/s (20,476 and 27,292 rpm): at the second the mass is least with both the active
     # radius and width at their lower bounds, 3.1832330807 kg (the sweep: 50 mm and 40 mm exactly); solve alone
     # 3.1832330889 kg at 50.000000021 mm and 40.000000069 mm
-    case = load_case(CASES / "ball_compressor.toml")
-    sweep = Sweep(case, [Vary(_quantity(case, "speed"), (2144.279785741106, 2857.992516770278))], mode="paper")
-    record = list(sweep.run(progress=False).solutions)[-1]
-    solved = solve_case(sweep.case.with_values(**sweep.points[-1]), mode="paper")
+    [(record, solved)] = swept_and_solved("ball_compressor.toml", "paper", "speed",
+                                          (2144.279785741106, 2857.992516770278))
     assert record["design"] == {"active_radius": 0.05, "active_width": 0.04}
     assert solved.status == record["status"] == "optimal"
     assert record["objective"]["value"] == pytest.approx(solved.objective, rel=STATIC_RTOL, abs=0)
+
+
+@pytest.mark.xfail(strict=True, reason="the sweep has a design where `solve` alone reports not_found: warm from the "
+                   "point before (start_up_sweep.solved_along) it reaches a design whose simulated start meets every "
+                   "limit, where solve's cold start from the papers' sizing ends at a least relaxation 31 % over the "
+                   "start time and its retries find none; the sweep's answer depends on its path (596 kg from 1.389, "
+                   "612 kg within 1.08-1.8 in eight points): solve's cold start, not the sweep, would need mending")
+def test_ball_motor_start_in_paper_mode_at_a_service_factor_of_1_49_has_a_design_swept_and_solved():
+    # service factor 1.389 then 1.491: the sweep's second point 595.66 kg "optimal", its start simulated; solve alone
+    # "not_found" (no feasible design found, not proven infeasible)
+    [(record, solved)] = swept_and_solved("ball_motor_start.toml", "paper", "service_factor",
+                                          (1.3885714285714283, 1.4914285714285713))
+    assert record["status"] == "optimal"
+    assert solved.status == record["status"]
