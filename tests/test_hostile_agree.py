@@ -20,11 +20,12 @@ from test_sweep_agrees import STATIC_RTOL
 
 START_UP_RTOL = 1e-6  # a start-up's objective: the tolerance of its collocation against its simulated start
 
-# cable_motor_start in threads mode at max_link_stress 70.5 MPa: the retry after the first solve's elastic
-# diagnosis starts from its least relaxation's design, whose weight lead angle (5.45 deg) is below the thread's
-# friction angle: the weight thread self-locks, so the weights' radial stiffness (eq. (9), errata C3) is negative,
-# so the cables' tension and the link's stiffness are; the simulated start that seeds the NLP's states took the
-# square root of that stiffness for its damping and `solve` (and any sweep reaching the point) ended in a traceback
+# cable_motor_start in threads mode at max_link_stress 70.4991907737889 MPa (not at 70.5): the retry after the first
+# solve's elastic diagnosis starts from its least relaxation's design, whose weight lead angle (5.45 deg) is below
+# the thread's friction angle: the weight thread self-locks, so the weights' radial stiffness (eq. (9), errata C3)
+# is negative, so the cables' tension and the link's stiffness are; the simulated start that seeds the NLP's states
+# took the square root of that stiffness for its damping and `solve` (and any sweep reaching the point) ended in a
+# traceback ("internal error: ValueError: math domain error")
 SELF_LOCKED = {"half_coupling_mass": 16.697314388259723, "weight_mass": 21.506536978947224,
                "cable_count": 47.9888189203817, "finger_diameter": 0.0974401543524354,
                "screw_diameter": 0.05023706826251048, "lead_angle": 0.27349127439227344,
