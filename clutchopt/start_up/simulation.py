@@ -201,7 +201,8 @@ def _elastic_model(case, law: ElasticLaw, design: dict[str, float], rtol: float)
     x = SimpleNamespace(**design)
     motor = InductionMotor(p.synchronous_speed, p.breakdown_torque, p.breakdown_slip, p.motor_inertia)
     reduced = p.driven_inertia * p.motor_inertia / (p.driven_inertia + p.motor_inertia)
-    damping = 2.0 * float(law.damping_ratio(x, p)) * math.sqrt(float(law.stiffness(x, p, p.speed)) * reduced)
+    stiffness = max(float(law.stiffness(x, p, p.speed)), 0.0)  # slack (a self-locking weight thread): none
+    damping = 2.0 * float(law.damping_ratio(x, p)) * math.sqrt(stiffness * reduced)
     profile = spec.load_profile
     load = Load(over=profile.over, points=profile.points, values=profile.values) if profile else Load(p.load_torque)
     return ElasticModel(law, x, p, damping, p.driven_inertia, load, motor, p.min_lock_up_speed,

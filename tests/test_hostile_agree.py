@@ -1,0 +1,152 @@
+"""Sweeps against `solve` of the same point, on the cases and quantities users vary: what a randomised hunt
+(every case file, every mode, the case's own quantities over spans across feasibility edges and integer changes,
+points compared with ``solve_case`` of each alone) found. Each test is one finding's minimal repro.
+"""
+
+import math
+from types import SimpleNamespace
+
+import pytest
+
+from clutchopt.cases import load_case
+from clutchopt.formulations.cable.equations import reduced_friction_angle
+from clutchopt.formulations.cable.speed_law import link_stiffness, weight_stiffness
+from clutchopt.optimise import solve_case
+from clutchopt.optimise.sweep import Sweep
+from clutchopt.optimise.sweep_grid import Vary
+from clutchopt.start_up.simulation import start_up_model
+from conftest import CASES
+from test_sweep_agrees import STATIC_RTOL
+
+START_UP_RTOL = 1e-6  # a start-up's objective: the tolerance of its collocation against its simulated start
+
+# cable_motor_start in threads mode at max_link_stress 70.4991907737889 MPa (not at 70.5): the retry after the first
+# solve's elastic diagnosis starts from its least relaxation's design, whose weight lead angle (5.45 deg) is below
+# the thread's friction angle: the weight thread self-locks, so the weights' radial stiffness (eq. (9), errata C3)
+# is negative, so the cables' tension and the link's stiffness are; the simulated start that seeds the NLP's states
+# took the square root of that stiffness for its damping and `solve` (and any sweep reaching the point) ended in a
+# traceback ("internal error: ValueError: math domain error")
+SELF_LOCKED = {"half_coupling_mass": 16.697314388259723, "weight_mass": 21.506536978947224,
+               "cable_count": 47.9888189203817, "finger_diameter": 0.0974401543524354,
+               "screw_diameter": 0.05023706826251048, "lead_angle": 0.27349127439227344,
+               "weight_lead_angle": 0.09510849574242783, "spring_preload": 0.0}
+
+
+def test_a_start_of_a_design_whose_weight_thread_self_locks_is_modelled_without_a_damping_reference():
+    case = load_case(CASES / "cable_motor_start.toml").with_values(max_link_stress=70.5e6)
+    p, x = case.params(), SimpleNamespace(**SELF_LOCKED)
+    # phi' = atan(f / cos alpha_1) = atan(0.1 / cos 15 deg) = 0.10316 rad (eq. (14)) > beta_w = 0.09511 rad, so
+    # tan(beta_w - phi') < 0 and k_w = c_kn + 4 c_kk / (d_2w^2 tan beta_w tan(beta_w - phi')) < 0
+    friction_angle = math.atan(0.1 / math.cos(math.radians(15.0)))
+    assert reduced_friction_angle(p.friction_coefficient, p.flank_angle) == pytest.approx(friction_angle, rel=1e-12)
+    assert SELF_LOCKED["weight_lead_angle"] < friction_angle
+    assert weight_stiffness(p, x.weight_lead_angle, friction_angle) < 0.0
+    assert link_stiffness(x, p, p.speed) < 0.0  # slack cables: no stiffness to take a damping's reference from
+    model = start_up_model(case, "threads", SELF_LOCKED)
+    assert model.damping == 0.0  # c = 2 zeta sqrt(k J_red) with k at most 0: none (the swing period is then inf)
+
+
+def test_cable_motor_start_in_threads_mode_at_a_link_stress_of_70_5_mpa_has_a_verdict_not_a_traceback():
+    # the point of the test above solved: its retry's start simulated, no design found (the least relaxation misses
+    # weight_pulls_cable by 0.973 relative with the weights at their least mass), not proven infeasible
+    case = load_case(CASES / "cable_motor_start.toml").with_values(max_link_stress=70.4991907737889e6)
+    solved = solve_case(case, mode="threads")
+    assert solved.status == "not_found"
+    assert "weight_pulls_cable" in solved.diagnosis
+
+
+@pytest.mark.xfail(strict=True, reason="solve's cold IPOPT stops 1.2e-9 relative above the optimum the sweep's "
+                   "warm SQP reaches exactly (barrier complementarity at tol 1e-10 on the active constraints); "
+                   "within the 1e-6 of a user's answer, beyond the 1e-9 tests/test_sweep_agrees.py holds static "
+                   "points to")
+def test_the_wedge_centrifuge_in_geometry_mode_swept_over_its_acceleration_time_has_solve_s_objective():
+    # the second point warm from the first (SQP): 0.29399649264 kg; solved alone (IPOPT, 40 iterations):
+    # 0.29399649299 kg, the same active constraints, the flank angle 1e-10 rad apart inside its 5-45 deg bounds
+    for record, solved in swept_and_solved("wedge_centrifuge.toml", "geometry", "acceleration_time",
+                                           (111.4484713103465, 224.4721056297064), every=True):
+        assert record["status"] == solved.status == "optimal"
+        assert record["objective"]["value"] == pytest.approx(solved.objective, rel=STATIC_RTOL, abs=0)
+
+
+def swept_and_solved(case_file: str, mode: str, name: str, values: tuple[float, ...], every: bool = False) -> list:
+    """The sweep of a case over ``name`` = ``values`` (SI) in ``mode``: (record, `solve_case` of its values alone) of
+    its last point, or with ``every`` of each point."""
+    case = load_case(CASES / case_file)
+    quantity = next(q for q in case.quantities if q.name == name)
+    sweep = Sweep(case, [Vary(quantity, values)], mode=mode)
+    pairs = list(zip(sweep.run(progress=False).solutions, sweep.points))
+    return [(record, solve_case(sweep.case.with_values(**point), mode=mode))
+            for record, point in pairs[0 if every else -1:]]
+
+
+@pytest.mark.xfail(strict=True, reason="a start-up sweep point keeps the point before's integers where their "
+                   "downhill neighbour fails from their optimum (integers.descend: the neighbour solved from the "
+                   "kept design), though solved from the relaxation (solve's path) it is feasible and lighter: the "
+                   "fixed-integer start-up NLPs have several local optima (integers.from_the_start); "
+                   "optimise/start_up_sweep.solved_along and Problem._solve's warm path (helpers susweep, suratio)")
+def test_ball_motor_start_swept_over_its_motor_inertia_has_solve_s_ball_rows():
+    # motor inertia 14.65 then 12.26 kg m^2 (design mode): the first point 25 rows, 1022.88 kg, as solve; at the
+    # second the sweep starts warm from 25 rows (1002.07 kg), its downhill neighbour 24 rows fails from there; solve
+    # alone relaxes from the papers' sizing, rounds to 24 rows and ends at 998.53 kg: the sweep's "optimal" point
+    # is 0.35 % heavier than solve's, with another ball count
+    [(record, solved)] = swept_and_solved("ball_motor_start.toml", "design", "motor_inertia",
+                                          (14.65434207062844, 12.257623755009474))
+    assert solved.status == record["status"] == "optimal"
+    assert record["design"]["ball_rows"] == solved.design["ball_rows"]
+    assert record["objective"]["value"] == pytest.approx(solved.objective, rel=START_UP_RTOL)
+
+
+def test_ball_motor_start_in_paper_mode_swept_over_its_service_factor_has_solve_s_design():
+    # service factor 1.376 then 1.334: the first point 516.65 kg, as solve; at the second the sweep (warm from the
+    # first, 11 IPOPT iterations) reported 515.40 kg "optimal" with the torque 2.7 % over its need and no start-up
+    # limit active (its collocation error 3.3e-4, its objective elastic to the drive: a row of the collocation bound,
+    # and shapes_nothing ended the loop), where solve alone (cold, from the sizing) finds 507.23 kg with the torque
+    # active, its simulated start 7.12 s within 8 s: the sweep's design was 1.6 % heavier
+    [(record, solved)] = swept_and_solved("ball_motor_start.toml", "paper", "service_factor",
+                                          (1.3758502778708084, 1.3343176887557189))
+    assert solved.status == record["status"] == "optimal"
+    assert record["objective"]["value"] == pytest.approx(solved.objective, rel=START_UP_RTOL)
+    assert solved.objective == pytest.approx(507.23194, rel=START_UP_RTOL)
+    assert {c["name"] for c in record["constraints"] if c["active"]} == {"torque", "width_ratio"}
+
+
+def test_ball_motor_start_in_paper_mode_solved_at_a_width_ratio_of_1_36_has_the_sweep_s_lighter_design():
+    # width ratio 1.58 then 1.36: at 1.36 the sweep's 728.24 kg has its simulated start 8.000002 s (the limit 8 s,
+    # within the 1e-6 tolerance), the torque 4.3 % over its need; solve alone reported 765.47 kg "optimal" with its
+    # start at 7.51 s and its torque 13 % over: nothing named but the width ratio held it (collocation error 2.3e-4,
+    # elasticity 0.16 to the driven inertia), 4.9 % heavier
+    [(record, solved)] = swept_and_solved("ball_motor_start.toml", "paper", "width_ratio",
+                                          (1.5811697356931946, 1.3594688602661984))
+    assert solved.status == record["status"] == "optimal"
+    assert record["objective"]["value"] == pytest.approx(solved.objective, rel=START_UP_RTOL)
+    assert solved.objective == pytest.approx(728.2394, rel=START_UP_RTOL)
+    assert "start_time" in {c.name for c in solved.constraints if c.active}
+
+
+@pytest.mark.xfail(strict=True, reason="solve's IPOPT (bound_relax_factor 0) stops 2e-11 m inside the bounds the "
+                   "optimum sits on (active radius 50 mm, active width 40 mm: a vertex of the box), 2.6e-9 relative "
+                   "heavier than the exact optimum the sweep's SQP reaches; beyond the 1e-9 of a static point, within "
+                   "a user's 1e-6 (the wedge_centrifuge xfail above is the same barrier's)")
+def test_ball_compressor_in_paper_mode_at_high_speed_has_the_optimum_on_its_bounds_as_the_sweep_does():
+    # speed 2144 then 2858 rad/s (20,476 and 27,292 rpm): at the second the mass is least with both the active
+    # radius and width at their lower bounds, 3.1832330807 kg (the sweep: 50 mm and 40 mm exactly); solve alone
+    # 3.1832330889 kg at 50.000000021 mm and 40.000000069 mm
+    [(record, solved)] = swept_and_solved("ball_compressor.toml", "paper", "speed",
+                                          (2144.279785741106, 2857.992516770278))
+    assert record["design"] == {"active_radius": 0.05, "active_width": 0.04}
+    assert solved.status == record["status"] == "optimal"
+    assert record["objective"]["value"] == pytest.approx(solved.objective, rel=STATIC_RTOL, abs=0)
+
+
+@pytest.mark.xfail(strict=True, reason="the sweep has a design where `solve` alone reports not_found: warm from the "
+                   "point before (start_up_sweep.solved_along) it reaches a design whose simulated start meets every "
+                   "limit, where solve's cold start from the papers' sizing ends at a least relaxation 31 % over the "
+                   "start time and its retries find none; the sweep's answer depends on its path (596 kg from 1.389, "
+                   "612 kg within 1.08-1.8 in eight points): solve's cold start, not the sweep, would need mending")
+def test_ball_motor_start_in_paper_mode_at_a_service_factor_of_1_49_has_a_design_swept_and_solved():
+    # service factor 1.389 then 1.491: the sweep's second point 595.66 kg "optimal", its start simulated; solve alone
+    # "not_found" (no feasible design found, not proven infeasible)
+    [(record, solved)] = swept_and_solved("ball_motor_start.toml", "paper", "service_factor",
+                                          (1.3885714285714283, 1.4914285714285713))
+    assert record["status"] == "optimal"
+    assert solved.status == record["status"]
