@@ -6,8 +6,8 @@ the points in flight. Each run keeps its inputs (all case values, SI), its outpu
 objective with its unit and the versions of clutchopt and its solvers. A sweep is a row in ``sweeps``; its points
 are runs with a point index. The batched points of a window are one row of ``runs`` for each run of consecutive
 point indices: their numbers as arrays (``clutchopt.window_records``), beside the template they share (table
-``templates``); so are consecutive points solved alone that share a template (a region proof's points without a
-design: ``window_records.gathered``). A row's ``run_count`` points have the ids ``id ..`` and the point indices
+``templates``); so are consecutive points solved alone that share a template (``window_records.gathered``: e.g. a
+region proof's points without a design). A row's ``run_count`` points have the ids ``id ..`` and the point indices
 ``point ..`` onwards, and each is read back as a run of its own, in full. A store of an older clutchopt (a row per
 point, a batched one compact: ``clutchopt.records``) is read as it is and gets the newer columns when first
 written. A sweep's points are read and written in one transaction, so a resumed sweep cannot record a point twice

@@ -150,7 +150,7 @@ class WindowRecords:
 def gathered(alone: dict[int, dict]) -> tuple[dict[int, dict], list[tuple[np.ndarray, WindowRecords]]]:
     """Points solved alone (their full records, ``Solution.as_dict()``, by position) as the run store keeps them:
     each run of GATHERED or more at consecutive positions that share a template and whose numbers are numbers
-    (:meth:`WindowRecords.of`) as a window's records, with their positions; the rest alone. A sweep's points
+    (:meth:`WindowRecords.of`) as a window's records, with their positions; the rest alone. E.g. a sweep's points
     without a design come so (the points a region proof covers: one design, one proof, one solver status; the lever
     over its inertia 0.5x-2x: 232 of 1000 points), where each had been a row of JSON of its own (4.8 kB)."""
     kept, windows, run, shared, diagnoses = {}, [], [], None, set()

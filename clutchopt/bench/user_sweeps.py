@@ -22,13 +22,14 @@ from clutchopt.cases import Case, load_case
 
 CASES = Path(__file__).resolve().parents[2] / "cases"
 SPANS = ((0.5, 2.0), (0.7, 1.4), (0.9, 1.1))  # factors on the case's value, the widest the case accepts
+INTO_INFEASIBLE = (1.0, 10.0)  # factors on the duty's quantity: a sweep that reaches into its infeasible region
 ALLOWABLE = {"wedge": "allowable_pressure", "lever": "allowable_pressure", "cable": "allowable_cable_stress",
              "ball": "allowable_contact_stress"}  # the allowable each coupling's main constraint is sized by
 
 
 def _run(case: Case, name: str, values: np.ndarray, mode: str | None, repeats: int) -> dict:
-    """``Sweep(case, name=values).run()`` (SI values) timed ``repeats`` times: the tally of the median run, and which
-    points have a design (``designed_at``, a mask over ``values``)."""
+    """``Sweep(case, name=values).run()`` (SI values) timed ``repeats`` times: the tally of the median run, the
+    values and which of them have a design (``values``, ``designed_at``: read by :func:`_edge_sides`, not shown)."""
     from clutchopt.optimise.sweep import Sweep
     from clutchopt.optimise.sweep_grid import Vary
 
@@ -40,7 +41,7 @@ def _run(case: Case, name: str, values: np.ndarray, mode: str | None, repeats: i
     designed = int(designed_at.sum())
     return {"points": len(values), "designed": designed, "without_design": len(values) - designed,
             "solves_per_point": result.spent["solves"] / len(values), "wall_s": seconds,
-            "points_per_s": len(values) / seconds, "designed_at": designed_at}
+            "points_per_s": len(values) / seconds, "values": values, "designed_at": designed_at}
 
 
 def _widest(case: Case, name: str, spans, points: int, mode: str | None, repeats: int) -> dict:
@@ -57,11 +58,12 @@ def _widest(case: Case, name: str, spans, points: int, mode: str | None, repeats
     raise InputError(name, f"no span of {spans} is accepted")
 
 
-def _edge_sides(case: Case, name: str, factors: np.ndarray, designed_at: np.ndarray, mode: str | None,
-                repeats: int) -> list[dict]:
-    """The sweeps on either side of the edge a sweep over ``factors`` met (none if it met none): from its first factor
-    to its last with a design, and from its first without one to twice that, as many points each; the second's cost
-    a point against the first's (``point_cost_vs_designed``)."""
+def _edge_sides(case: Case, name: str, swept: dict, mode: str | None, repeats: int) -> list[dict]:
+    """The sweeps on either side of the edge the sweep ``swept`` (:func:`_run`'s row) over ``name`` met (none if it
+    met none): from its first value to its last with a design, and from its first without one to twice that (as
+    factors on the case's value), as many points each; the second's cost a point against the first's
+    (``point_cost_vs_designed``)."""
+    factors, designed_at = swept["values"] / case.values[name], swept["designed_at"]
     if designed_at.all() or not designed_at.any():
         return []
     last, first = factors[designed_at].max(), factors[~designed_at].min()
@@ -79,7 +81,6 @@ def user_sweep_rows(config) -> list[dict]:
     for case in bench_cases():
         mode, duty = reference_mode(case.coupling), sweep_quantity(case)
         sweeps = [(q, SPANS) for q in dict.fromkeys((duty, "speed", "friction_coefficient", ALLOWABLE[case.coupling]))]
-        sweeps.append((f"{duty} (into infeasible)", ((1.0, 10.0),)))
         label_case = f"{case.coupling} ({mode})"
         for label, spans in sweeps:
             name = label.split(" ")[0]
@@ -87,9 +88,9 @@ def user_sweep_rows(config) -> list[dict]:
             if case.coupling == "wedge" and label == duty:
                 reference = row["points_per_s"]
             rows.append({"case": label_case, "quantity": label, **row})
-        factors = np.geomspace(1.0, 10.0, points)
-        rows += [{"case": label_case, **side} for side in
-                 _edge_sides(case, duty, factors, rows[-1]["designed_at"], mode, config.sweep_repeats)]
+        into = _widest(case, duty, (INTO_INFEASIBLE,), points, mode, config.sweep_repeats)
+        rows.append({"case": label_case, "quantity": f"{duty} (into infeasible)", **into})
+        rows += [{"case": label_case, **side} for side in _edge_sides(case, duty, into, mode, config.sweep_repeats)]
     crusher = load_case(CASES / "ball_crusher.toml")
     rows.append({"case": "ball_crusher", "quantity": "power", "span": "250-1000 kW",
                  **_run(crusher, "power", np.linspace(250e3, 1000e3, 2 * points), None, config.sweep_repeats)})
@@ -99,7 +100,7 @@ def user_sweep_rows(config) -> list[dict]:
         rows.append({"case": path.stem, "quantity": "driven_inertia", "span": "0.6x-1.4x",
                      **_run(case, "driven_inertia", case.values["driven_inertia"] * factors, None, 1)})
     for row in rows:
-        del row["designed_at"]
+        del row["values"], row["designed_at"]
         row["vs_wedge_paper"] = row["points_per_s"] / reference
         row["point_cost_vs_designed"] = row.get("point_cost_vs_designed")
     return rows
