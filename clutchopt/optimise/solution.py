@@ -42,7 +42,8 @@ class SolverOptions:
     def sqp(self) -> dict:
         """CasADi's SQP method with its dense active-set QP solver (qrqp), for re-solves beside a known optimum:
         no barrier to drive down, so a small problem's re-solve costs a few QP solves."""
-        quiet = {"print_header": False, "print_iteration": False, "print_status": False, "print_time": False}
+        quiet = {"print_header": False, "print_iteration": False, "print_status": False, "print_time": False,
+                 "show_eval_warnings": False}  # (a NaN at a trial step is the method's to handle, not the user's)
         return {**quiet, "qpsol": "qrqp", "qpsol_options": {"print_iter": False, "print_header": False,
                                                             "error_on_fail": False},
                 "tol_pr": self.tol, "tol_du": self.tol, "max_iter": 30, "error_on_fail": False, "calc_lam_p": False}
@@ -69,6 +70,7 @@ class SolverOptions:
             "ipopt.print_level": 0,
             "ipopt.sb": "yes",
             "print_time": False,
+            "show_eval_warnings": False,
         }
 
 
