@@ -17,7 +17,8 @@ import pytest
 from clutchopt.cases import load_case
 from clutchopt.model import at_most
 from clutchopt.optimise import solve_case
-from clutchopt.optimise.start_up_check import corrected_case, nlp_slack
+from clutchopt.optimise.problem import uncorrected
+from clutchopt.optimise.start_up_check import CENTRE, corrected_case, nlp_slack
 from clutchopt.optimise.verify import ACTIVE_TOL, check_constraints
 from tests.conftest import CASES
 
@@ -108,3 +109,24 @@ def test_the_cable_s_sweep_past_0_4_agrees_with_solve():
         assert abs(record["objective"]["value"] - alone.objective) <= 1e-6 * alone.objective
         stress = next(c for c in alone.constraints if c.name == "link_stress")
         assert stress.limit == L and stress.value <= L
+
+
+def test_a_correction_without_a_design_is_said_as_it_ended():
+    """``uncorrected``: the last design keeps its status; only an ``infeasible`` corrected solve says that no design
+    of the NLP meets the moved limits (``solver_failed``, ``not_found``: none found from its start); an ``optimal``
+    design whose centring correction ended without one gets a note (verified, the objective's CENTRE of the tolerance
+    not reached); a design-less last solve is left as it is."""
+    violated = "the simulated start-up finds link_stress violated by 0.00443 (relative)"
+    for ended, says in (("infeasible", "no design of the NLP meets the start-up limits moved"),
+                        ("solver_failed", "the NLP at the start-up limits moved by what the simulated start adds to "
+                                          "its figures ended without a design (solver_failed)"),
+                        ("not_found", "ended without a design (not_found)")):
+        kept = uncorrected(SimpleNamespace(status="unverified", diagnosis=violated),
+                           SimpleNamespace(status=ended, diagnosis="whatever"))
+        assert kept.status == "unverified" and kept.diagnosis.startswith(violated + "; ") and says in kept.diagnosis
+        assert ("no design of the NLP meets" in kept.diagnosis) == (ended == "infeasible")
+        centred = uncorrected(SimpleNamespace(status="optimal", diagnosis=None), SimpleNamespace(status=ended))
+        assert centred.status == "optimal" and centred.diagnosis.startswith("verified by its simulated start, but")
+        assert says in centred.diagnosis and f"more than {CENTRE:g} of the tolerance" in centred.diagnosis
+    lost = uncorrected(SimpleNamespace(status="not_found", diagnosis="no start"), SimpleNamespace(status="infeasible"))
+    assert lost.status == "not_found" and lost.diagnosis == "no start"

@@ -29,7 +29,7 @@ from clutchopt.optimise.own_shift import ForeignShifts, carried_by, own_entry
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
 from clutchopt.optimise.solution import Diagnosis, Solution, SolverInfo, SolverOptions, WarmStart
-from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, corrected_case, start_up_report, worn_start
+from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, CENTRE, corrected_case, start_up_report, worn_start
 from clutchopt.optimise.start_up_shift import limit_shift, shifted
 from clutchopt.optimise.verdict import infeasible_at, shown
 from clutchopt.optimise.proofs import start_up_proofs
@@ -402,15 +402,25 @@ class Problem:
 
 
 def uncorrected(solution: Solution, corrected: Solution) -> Solution:
-    """A start-up solve's last design where its defect correction's solve (``corrected``) ends without one: no design
-    of the NLP meets the limits moved by what the simulated start adds to its figures. It stays what its simulated
-    start makes it (``unverified``: the violation named, and that the correction found no design), not a verdict
-    of the solve: cable_motor_start at 0.5 kg m^2 with 8 cables fixed (their simulated start 0.44 % over the
-    allowed stress, where no 8-cable design of the quasi-static NLP is 4.4 % under it: docs/start_up.md, "The
-    defect correction's fixed point")."""
+    """A start-up solve's last design where its defect correction's solve (``corrected``) ends without one, kept with
+    its status and said so in its diagnosis. ``unverified`` (its simulated start misses a limit): it stays what its
+    simulated start makes it (the violation named, and that the correction found no design), not a verdict of the
+    solve: cable_motor_start at 0.5 kg m^2 with 8 cables fixed (their simulated start 0.44 % over the allowed stress,
+    where no 8-cable design of the quasi-static NLP is 4.4 % under it: docs/start_up.md, "The defect correction's
+    fixed point"). Only an ``infeasible`` corrected solve says that no design of the NLP meets the moved limits; one
+    that ended ``solver_failed`` or ``not_found`` found none from its start, which proves nothing. ``optimal`` (the
+    correction only centred a binding limit the simulated start meets): verified, its status kept, but the objective
+    may be off the simulator's optimum by more than the CENTRE of the tolerance the correction holds it to: a note."""
+    moved = "the start-up limits moved by what the simulated start adds to its figures"
+    ended = (f"no design of the NLP meets {moved}" if corrected.status == "infeasible"
+             else f"the NLP at {moved} ended without a design")
     if solution.status == "unverified":
-        solution.diagnosis = (f"{solution.diagnosis}; no design of the NLP meets the start-up limits moved by what "
-                              f"the simulated start adds to its figures ({corrected.status})")
+        solution.diagnosis = f"{solution.diagnosis}; {ended} ({corrected.status})"
+    elif solution.status == "optimal":
+        note = (f"verified by its simulated start, but not centred on the start-up limits it binds: {ended} "
+                f"({corrected.status}), so the objective may be off the simulator's optimum by more than "
+                f"{CENTRE:g} of the tolerance")
+        solution.diagnosis = f"{solution.diagnosis}; {note}" if solution.diagnosis else note
     return solution
 
 
