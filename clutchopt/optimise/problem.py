@@ -206,7 +206,9 @@ class Problem:
         lighter, until the count below is tried (:meth:`~clutchopt.optimise.own_shift.ForeignShifts.untried_below`).
         Where the loop keeps an ``unverified`` design, the counts one above it are solved through their own loops
         and the lightest that ends optimal kept (:meth:`~clutchopt.optimise.own_shift.ForeignShifts.above_unverified`;
-        the cable at 0.5 kg m^2: 9 cables verified, 4.418 kg, not 8 unverified)."""
+        written for the cable at 0.5 kg m^2, whose 8 cables' start carries 0.44 % more than the stress allowed: since
+        the correction moves the NLP's limit from its own figure, that loop finds 8 cables infeasible at the moved
+        limit and keeps 9 itself, 4.418 kg: docs/start_up.md, "The defect correction's fixed point")."""
         kept, runs = solution, [solution.solver]
         for combo in foreign.lighter(solution):
             kept, better = self._own_loop(case, solution, kept, foreign, combo, runs)
