@@ -109,15 +109,18 @@ def sized_out(problem, case: Case, before: Along | None) -> SizedOut:
     start-up quantities alone: the driven inertia), and carried while the problem stays the same; a sweep that
     moves it solves none. ball_motor_start over driven_inertia: 22 rows, the sizing's row fewer, infeasible by the
     same least violation 2.72e-3 at every point from 225 to 336 kg m^2, were solved at each (26-33 IPOPT
-    iterations); ``solve`` of such a point alone tries them and finds them infeasible: the same verdict."""
+    iterations); ``solve`` of such a point alone tries them and finds them infeasible: the same verdict. An elastic
+    link (the cable) keeps every row too but gets none: its points carry no :class:`Along` (:func:`solved_along`),
+    and its loop rules nothing out (``Problem._refined``: no ``RuledOut``, its NLP is another model than its
+    simulation)."""
     static = problem_for(problem.posed.base, problem.objective.name, problem.options)
     key = repr(tuple(vars(static.posed.params(case)).values()))
     if before is None or before.sized is None or before.sized.key != key:
         return SizedOut(key)
     if before.sized.choices is not None:
         return before.sized
-    if problem.start_up.s.elastic or not set(static.posed.row_names) <= set(problem.posed.row_names):  # a row
-        return SizedOut(key, {})  # left to the start-up model (an elastic link's loop rules nothing out)
+    if not set(static.posed.row_names) <= set(problem.posed.row_names):  # a row left to the start-up model
+        return SizedOut(key, {})
     names = [v.name for v in problem.formulation.variables if v.integer]
     choices = {tuple(float(entry[name]) for name in names if name in entry):
                f"infeasible in the papers' sizing at this point ({entry['status']}), whose every row the start-up "
