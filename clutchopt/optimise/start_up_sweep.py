@@ -67,13 +67,10 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
             or len(previous.internal) != block.size:  # none, or of another problem (its intervals doubled)
         return None
     try:
-        numbers = _numbers(case)
+        numbers, tolerance = _numbers(case), block.s.spec.tolerance
         sized = sized_out(problem, case, previous.along)
-        mesh, shift = first_mesh(previous, numbers, block.s.spec.tolerance), predicted_shift(previous, numbers)
-        if not abs(error_ahead(previous, numbers) or 0.0) <= block.s.spec.tolerance:  # an adaptation (ahead, or
-            # the loop's) moves the collocation's figures by a step of its own: the limits the point before's loop
-            # moved are carried into it, as the loop carries them, not those moved ahead on the old mesh's figures
-            shift = {name: share for name, share in shift.items() if name in previous.limit_shift}
+        step = secant_step(previous.along, numbers)
+        mesh, shift = first_mesh(previous, step, tolerance), predicted_shift(previous, step, tolerance)
         solution = problem.refined(case, warm=previous, mesh=mesh, shift=shift, diagnosed=False, cold=False,
                                    infeasible=sized.choices)  # solve's own cold start and diagnosis follow
     except InputError:  # its first simulation failed from this start
@@ -128,10 +125,10 @@ def sized_out(problem, case: Case, before: Along | None) -> SizedOut:
     return SizedOut(key, choices)
 
 
-def first_mesh(previous: Solution, numbers: dict[str, float], tolerance: float) -> np.ndarray:
+def first_mesh(previous: Solution, step: float | None, tolerance: float) -> np.ndarray:
     """The mesh a point's first solve is on: the one the point before's loop ended on, or where the secant through
     the collocation errors of the two points before on that mesh (their start time against the simulated one)
-    puts this point's error beyond ``tolerance``, the mesh the point before's simulated start suggests (adapted to
+    puts this point's error beyond ``tolerance`` (:func:`error_ahead`, ``step`` steps on: :func:`secant_step`), the mesh the point before's simulated start suggests (adapted to
     it, ``Solution.mesh[1]``): the loop would solve on the old mesh only to adapt it (wedge_motor_start over
     driven_inertia at 0.658 kg m^2: errors -5.9e-7 and -9.0e-7 at the two points before, -1.24e-6 there). The
     secant is taken as :func:`predicted_shift` takes it (the same mesh, on the line, at most FURTHEST steps on), and
@@ -144,45 +141,48 @@ def first_mesh(previous: Solution, numbers: dict[str, float], tolerance: float) 
     of the point before instead of this point's own moves it and every later point on it (lever_motor_start from
     9.22 kg m^2 on, ten points by up to 3.6e-8 off main's, 1.0e-7 off ``solve``'s; where the correction centres
     every binding limit, as on the wedge at 0.658 kg m^2, the designs after it are main's to 5e-11)."""
-    ahead, last = error_ahead(previous, numbers), previous.along
+    ahead, last = error_ahead(previous.along, step), previous.along
     if ahead is None or not abs(ahead) > tolerance or not abs(last.error) <= tolerance or last.held:  # (a loop that
         return previous.mesh[0]  # kept a coarse mesh for another reason; a binding limit left uncorrected)
     return previous.mesh[1]
 
 
-def error_ahead(previous: Solution, numbers: dict[str, float]) -> float | None:
-    """The collocation error (start time against the simulated one) the secant through the two points before puts
-    at the point whose case's values are ``numbers``, where both ended on the same mesh, the point lies on the line
-    through theirs, at most FURTHEST steps on; None where not."""
-    last = previous.along
+def secant_step(last: Along | None, numbers: dict[str, float]) -> float | None:
+    """How many steps of the two points before (``last``, the point before, and its ``before``) the point whose
+    case's values are ``numbers`` (:func:`_numbers`) lies on from ``last``: where both ended on the same mesh (a
+    mesh adaptation moves the collocation's figures, hence the corrections, by a step of its own), the point lies on
+    the line through their values, at most FURTHEST steps on; None where not (no secant)."""
     if last is None or last.before is None or not np.array_equal(last.mesh, last.before.mesh):
         return None
-    step = _step(last.before.values, last.values, numbers)
-    return None if step is None else last.error + step * (last.error - last.before.error)
+    return _step(last.before.values, last.values, numbers)
 
 
-def predicted_shift(previous: Solution, numbers: dict[str, float]) -> dict[str, float]:
-    """The limits the point whose case's values are ``numbers`` (:func:`_numbers`) starts with, as shares of its
-    case's: the point before's, centred
-    (:func:`centred_shift`), each moved on by the secant through the two points before where both ended on the same
-    mesh (a mesh adaptation moves the collocation's figures, hence the corrections, by a step of its own) and
-    ``case`` lies on the line through their values, at most FURTHEST steps on; the point before's ``limit_shift``
-    where it was not solved along the sweep. An active limit the point before's loop left at the case's
+def error_ahead(last: Along | None, step: float | None) -> float | None:
+    """The collocation error (start time against the simulated one) the secant through the two points before
+    (``last`` and its ``before``) puts ``step`` steps on from ``last`` (:func:`secant_step`); None without a secant."""
+    return None if step is None else _ahead(last.error, last.before.error, step)
+
+
+def predicted_shift(previous: Solution, step: float | None, tolerance: float) -> dict[str, float]:
+    """The limits a point starts with, as shares of its case's: the point before's, centred (:func:`centred_shift`),
+    each moved on by the secant through the two points before over ``step`` of their steps (:func:`secant_step`;
+    none: carried as they are); the point before's ``limit_shift`` where it was not solved along the sweep. An active limit the point before's loop left at the case's
     (:func:`held_limits`) is moved only where the objective's error from it, carried on the same way, passes what
-    the defect correction accepts (CENTRE of the tolerance): the correction this point would solve is then not
+    the defect correction accepts (CENTRE of ``tolerance``): the correction this point would solve is then not
     solved (wedge_motor_start over driven_inertia at 0.595 kg m^2, where the start time's passes it: 2.1e-7 and
     2.5e-7 at the two points before, 2.9e-7 there; centred from then on), and a point it would not correct is
-    solved at the case's limit, as the point alone is."""
+    solved at the case's limit, as the point alone is. Where the secant puts the point's collocation error beyond
+    ``tolerance`` (:func:`error_ahead`), an adaptation (ahead, :func:`first_mesh`, or the loop's) moves the
+    collocation's figures by a step of its own: only the limits the point before's loop moved are carried into it,
+    as the loop carries them, not those moved ahead on the old mesh's figures (every held limit dropped)."""
     last = previous.along
     if last is None:
         return previous.limit_shift
-    step = None
-    if last.before is not None and np.array_equal(last.mesh, last.before.mesh):
-        step = _step(last.before.values, last.values, numbers)
     before = last.before or Along({}, {}, last.mesh)
     shares = {name: _ahead(share, before.shift.get(name), step) for name, share in last.shift.items()}
+    adapting = not abs(error_ahead(last, step) or 0.0) <= tolerance
     for name, error in last.held.items():
-        if not _ahead(error, before.held.get(name), step) > CENTRE * previous.start_up["tolerance"]:
+        if adapting or not _ahead(error, before.held.get(name), step) > CENTRE * tolerance:
             shares.pop(name, None)
     return shares
 
