@@ -18,7 +18,7 @@ from clutchopt.cases import load_case
 from clutchopt.model import at_most
 from clutchopt.optimise import solve_case
 from clutchopt.optimise.problem import uncorrected
-from clutchopt.optimise.start_up_check import CENTRE, corrected_case, nlp_slack
+from clutchopt.optimise.start_up_check import CENTRE, corrected_case, nlp_slack, objective_error
 from clutchopt.optimise.verify import ACTIVE_TOL, check_constraints
 from tests.conftest import CASES
 
@@ -130,3 +130,13 @@ def test_a_correction_without_a_design_is_said_as_it_ended():
         assert says in centred.diagnosis and f"more than {CENTRE:g} of the tolerance" in centred.diagnosis
     lost = uncorrected(SimpleNamespace(status="not_found", diagnosis="no start"), SimpleNamespace(status="infeasible"))
     assert lost.status == "not_found" and lost.diagnosis == "no start"
+
+
+def test_the_objective_s_error_from_a_limit_met_off_it():
+    """objective_error, the centring criterion corrected_case and start_up_sweep.held_limits share: the start time
+    binds (elasticity 0.55) and the simulated start is 3.75e-6 s off its 10 s limit: |0.55 x 3.75e-6 / 10| =
+    2.0625e-7, within CENTRE x tolerance = 2.5e-7; no elasticity known: 0."""
+    check = SimpleNamespace(elasticity=0.55, limit=10.0)
+    assert objective_error(check, -3.75e-6) == pytest.approx(2.0625e-7, rel=1e-12)
+    assert objective_error(check, -3.75e-6) < CENTRE * TOL < objective_error(check, -5e-6)
+    assert objective_error(SimpleNamespace(elasticity=None, limit=10.0), 1.0) == 0.0

@@ -38,7 +38,7 @@ from clutchopt.optimise.integers import INFEASIBLE
 from clutchopt.optimise.problem import problem_for
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution
-from clutchopt.optimise.start_up_check import CENTRE, limit_gaps
+from clutchopt.optimise.start_up_check import CENTRE, limit_gaps, objective_error
 
 FURTHEST = 1.5  # the longest step ahead, in steps of the two points before, the secant is carried over
 
@@ -189,10 +189,10 @@ def predicted_shift(previous: Solution, step: float | None, tolerance: float) ->
 
 def held_limits(solution: Solution) -> dict[str, float]:
     """Each start-up limit ``solution``'s design binds at (the simulated check active) that its loop left at the
-    case's (not in its ``limit_shift``): the objective's relative error from the simulated figure off the limit,
-    |elasticity x gap / limit|, what the defect correction compares with CENTRE of the tolerance
-    (:func:`~clutchopt.optimise.start_up_check.corrected_case`)."""
-    return {name: abs((check.elasticity or 0.0) * gap / check.limit) for check, name, gap in limit_gaps(solution)
+    case's (not in its ``limit_shift``): the objective's relative error from the simulated figure off the limit
+    (:func:`~clutchopt.optimise.start_up_check.objective_error`), what the defect correction compares with CENTRE of
+    the tolerance (:func:`~clutchopt.optimise.start_up_check.corrected_case`)."""
+    return {name: objective_error(check, gap) for check, name, gap in limit_gaps(solution)
             if check.active and name not in solution.limit_shift}
 
 
@@ -203,9 +203,12 @@ def _ahead(value: float, before: float | None, step: float | None) -> float:
 
 def centred_shift(solution: Solution, case: Case) -> dict[str, float]:
     """``solution``'s ``limit_shift`` with each limit its design binds at (the simulated check active) moved to where
-    the simulated figure meets the case's limit: the NLP's limit less the simulated gap, what the defect correction
-    would move it to (:func:`~clutchopt.optimise.start_up_check.corrected_case`); a limit its loop never moved from
-    the case's (share 1; :func:`predicted_shift` carries it only where the correction would move it). The shares a
+    the simulated figure meets the case's limit: the NLP's limit L_k less the simulated gap S - L. That is the defect
+    correction's L - (S - C) (:func:`~clutchopt.optimise.start_up_check.corrected_case`) where the NLP binds the limit
+    (its own figure C = L_k); where the NLP leaves it slack (C < L_k) the correction also takes that slack in
+    (docs/start_up.md, "The defect correction's fixed point"), the share here does not (the former step, kept: the
+    sweeps' designs and solver calls stay as they were). A limit its loop never moved from the case's
+    has share 1 (:func:`predicted_shift` carries it only where the correction would move it). The shares a
     point ends with are those of the limits its last solve saw, off that by up to what the loop accepts; the secant
     is taken through the centred ones, not through its own predictions. A limit the design does not bind at is left
     as it is (centred on what the simulator adds to the NLP's figure, the correction where it first binds was
