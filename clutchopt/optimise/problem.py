@@ -254,10 +254,15 @@ class Problem:
         solution.diagnosed = Diagnosis("infeasible", text, 0.0, proven=True)
         return solution
 
+    @property
+    def static_problem(self) -> "Problem":
+        """The papers' sizing's problem: the same formulation without the start-up, the same objective and options
+        (built once: :func:`problem_for`)."""
+        return problem_for(self.posed.base, self.objective.name, self.options)
+
     def _sizing(self, case: Case) -> Solution:
-        """The papers' sizing at ``case``: the static problem of the same formulation solved (where a start-up solve
-        begins)."""
-        return problem_for(self.posed.base, self.objective.name, self.options).solve(case)
+        """The papers' sizing at ``case``: :attr:`static_problem` solved (where a start-up solve begins)."""
+        return self.static_problem.solve(case)
 
     def _warm_method(self, warm: Solution | WarmStart, mesh: np.ndarray | None) -> str:
         """``warm_near`` (IPOPT's barrier from 1e-9) for a start-up re-solved on the mesh its warm optimum was solved

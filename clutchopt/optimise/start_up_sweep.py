@@ -35,7 +35,6 @@ from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.optimise.failed_starts import case_numbers, on_ray
 from clutchopt.optimise.integers import INFEASIBLE
-from clutchopt.optimise.problem import problem_for
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution
 from clutchopt.optimise.start_up_check import CENTRE, limit_gaps, objective_error
@@ -98,8 +97,8 @@ class SizedOut:
 
 def sized_out(problem, case: Case, before: Along | None) -> SizedOut:
     """The integer choices a start-up sweep's point need not solve: those the papers' sizing (the same formulation
-    without the start-up, ``Problem._sizing``) finds infeasible at the point (IPOPT: ``Infeasible_Problem_Detected``),
-    where the start-up problem keeps every row of it (no constant-acceleration row left to the start-up model, as
+    without the start-up, ``Problem.static_problem``) finds infeasible at the point (IPOPT:
+    ``Infeasible_Problem_Detected``), where the start-up problem keeps every row of it (no constant-acceleration row left to the start-up model, as
     the wedge's and lever's torque rows are): its designs are then a subset of the sizing's, and a choice without a
     design there has none here, as the batch's ``tightening`` reads a step that only tightens. The sizing is solved
     once a sweep, at the first point solved along it whose sizing problem is the point before's (a sweep of
@@ -110,7 +109,7 @@ def sized_out(problem, case: Case, before: Along | None) -> SizedOut:
     link (the cable) keeps every row too but gets none: its points carry no :class:`Along` (:func:`solved_along`),
     and its loop rules nothing out (``Problem._refined``: no ``RuledOut``, its NLP is another model than its
     simulation)."""
-    static = problem_for(problem.posed.base, problem.objective.name, problem.options)
+    static = problem.static_problem
     key = repr(tuple(vars(static.posed.params(case)).values()))
     if before is None or before.sized is None or before.sized.key != key:
         return SizedOut(key)
@@ -121,7 +120,7 @@ def sized_out(problem, case: Case, before: Along | None) -> SizedOut:
     names = [v.name for v in problem.formulation.variables if v.integer]
     choices = {tuple(float(entry[name]) for name in names if name in entry):
                f"infeasible in the papers' sizing at this point ({entry['status']}), whose every row the start-up "
-               "problem keeps" for entry in problem._sizing(case).integer_search if entry["status"] == INFEASIBLE}
+               "problem keeps" for entry in static.solve(case).integer_search if entry["status"] == INFEASIBLE}
     return SizedOut(key, choices)
 
 
