@@ -98,17 +98,16 @@ class SizedOut:
 def sized_out(problem, case: Case, before: Along | None) -> SizedOut:
     """The integer choices a start-up sweep's point need not solve: those the papers' sizing (the same formulation
     without the start-up, ``Problem.static_problem``) finds infeasible at the point (IPOPT:
-    ``Infeasible_Problem_Detected``), where the start-up problem keeps every row of it (no constant-acceleration row left to the start-up model, as
-    the wedge's and lever's torque rows are): its designs are then a subset of the sizing's, and a choice without a
-    design there has none here, as the batch's ``tightening`` reads a step that only tightens. The sizing is solved
-    once a sweep, at the first point solved along it whose sizing problem is the point before's (a sweep of
-    start-up quantities alone: the driven inertia), and carried while the problem stays the same; a sweep that
-    moves it solves none. ball_motor_start over driven_inertia: 22 rows, the sizing's row fewer, infeasible by the
-    same least violation 2.72e-3 at every point from 225 to 336 kg m^2, were solved at each (26-33 IPOPT
-    iterations); ``solve`` of such a point alone tries them and finds them infeasible: the same verdict. An elastic
-    link (the cable) keeps every row too but gets none: its points carry no :class:`Along` (:func:`solved_along`),
-    and its loop rules nothing out (``Problem._refined``: no ``RuledOut``, its NLP is another model than its
-    simulation)."""
+    ``Infeasible_Problem_Detected``), where the start-up problem keeps every row of it (no constant-acceleration row
+    left to the start-up model, as the wedge's and lever's torque rows are): its designs are then a subset of the
+    sizing's, and a choice without a design there has none here, as the batch's ``tightening`` reads a step that only
+    tightens. The sizing is solved once a sweep, at the first point solved along it whose sizing problem is the point
+    before's (a sweep of start-up quantities alone: the driven inertia), and carried while the problem stays the same; a
+    sweep that moves it solves none. ball_motor_start over driven_inertia: 22 rows, the sizing's row fewer, infeasible
+    by the same least violation 2.72e-3 at every point from 225 to 336 kg m^2, were solved at each (26-33 IPOPT
+    iterations); ``solve`` of such a point alone tries them and finds them infeasible: the same verdict. An elastic link
+    (the cable) keeps every row too but gets none: its points carry no :class:`Along` (:func:`solved_along`), and its
+    loop rules nothing out (``Problem._refined``: no ``RuledOut``, its NLP is another model than its simulation)."""
     static = problem.static_problem
     key = repr(tuple(vars(static.posed.params(case)).values()))
     if before is None or before.sized is None or before.sized.key != key:
@@ -125,21 +124,22 @@ def sized_out(problem, case: Case, before: Along | None) -> SizedOut:
 
 
 def first_mesh(previous: Solution, step: float | None, tolerance: float) -> np.ndarray:
-    """The mesh a point's first solve is on: the one the point before's loop ended on, or where the secant through
-    the collocation errors of the two points before on that mesh (their start time against the simulated one)
-    puts this point's error beyond ``tolerance`` (:func:`error_ahead`, ``step`` steps on: :func:`secant_step`), the mesh the point before's simulated start suggests (adapted to
-    it, ``Solution.mesh[1]``): the loop would solve on the old mesh only to adapt it (wedge_motor_start over
-    driven_inertia at 0.658 kg m^2: errors -5.9e-7 and -9.0e-7 at the two points before, -1.24e-6 there). The
-    secant is taken as :func:`predicted_shift` takes it (the same mesh, on the line, at most FURTHEST steps on), and
-    only after a mesh that resolved the point before's start (its error within ``tolerance``): a loop that kept a
-    coarse mesh for another reason (no start-up limit shapes the design, ``shapes_nothing``: ball_motor_start at
-    0.6-0.9 times its driven inertia, errors 1e-3 to 1e-2) keeps it (adapted ahead, the ball's integer search went
-    down another path at 272 and 288 kg m^2, to designs 0.4 and 0.7 % heavier than ``solve``'s). Nor where the point
-    before binds at a limit its loop left uncorrected (:func:`held_limits`): its design then carries the
-    collocation's error at that limit, so the mesh decides it within the contract, and a mesh adapted to the start
-    of the point before instead of this point's own moves it and every later point on it (lever_motor_start from
-    9.22 kg m^2 on, ten points by up to 3.6e-8 off main's, 1.0e-7 off ``solve``'s; where the correction centres
-    every binding limit, as on the wedge at 0.658 kg m^2, the designs after it are main's to 5e-11)."""
+    """The mesh a point's first solve is on: the one the point before's loop ended on, or where the secant through the
+    collocation errors of the two points before on that mesh (their start time against the simulated one) puts this
+    point's error beyond ``tolerance`` (:func:`error_ahead`, ``step`` steps on: :func:`secant_step`), the mesh the point
+    before's simulated start suggests (adapted to it, ``Solution.mesh[1]``): the loop would solve on the old mesh only
+    to adapt it (wedge_motor_start over driven_inertia at 0.658 kg m^2: errors -5.9e-7 and -9.0e-7 at the two points
+    before, -1.24e-6 there). The secant is taken as :func:`predicted_shift` takes it (the same mesh, on the line, at
+    most FURTHEST steps on), and only after a mesh that resolved the point before's start (its error within
+    ``tolerance``): a loop that kept a coarse mesh for another reason (no start-up limit shapes the design,
+    ``shapes_nothing``: ball_motor_start at 0.6-0.9 times its driven inertia, errors 1e-3 to 1e-2) keeps it (adapted
+    ahead, the ball's integer search went down another path at 272 and 288 kg m^2, to designs 0.4 and 0.7 % heavier than
+    ``solve``'s). Nor where the point before binds at a limit its loop left uncorrected (:func:`held_limits`): its
+    design then carries the collocation's error at that limit, so the mesh decides it within the contract, and a mesh
+    adapted to the start of the point before instead of this point's own moves it and every later point on it
+    (lever_motor_start from 9.22 kg m^2 on, ten points by up to 3.6e-8 off main's, 1.0e-7 off ``solve``'s; where the
+    correction centres every binding limit, as on the wedge at 0.658 kg m^2, the designs after it are main's to
+    5e-11)."""
     ahead, last = error_ahead(previous.along, step), previous.along
     if ahead is None or not abs(ahead) > tolerance or not abs(last.error) <= tolerance or last.held:  # (a loop that
         return previous.mesh[0]  # kept a coarse mesh for another reason; a binding limit left uncorrected)
@@ -164,16 +164,16 @@ def error_ahead(last: Along | None, step: float | None) -> float | None:
 
 def predicted_shift(previous: Solution, step: float | None, tolerance: float) -> dict[str, float]:
     """The limits a point starts with, as shares of its case's: the point before's, centred (:func:`centred_shift`),
-    each moved on by the secant through the two points before over ``step`` of their steps (:func:`secant_step`;
-    none: carried as they are); the point before's ``limit_shift`` where it was not solved along the sweep. An active limit the point before's loop left at the case's
-    (:func:`held_limits`) is moved only where the objective's error from it, carried on the same way, passes what
-    the defect correction accepts (CENTRE of ``tolerance``): the correction this point would solve is then not
-    solved (wedge_motor_start over driven_inertia at 0.595 kg m^2, where the start time's passes it: 2.1e-7 and
-    2.5e-7 at the two points before, 2.9e-7 there; centred from then on), and a point it would not correct is
-    solved at the case's limit, as the point alone is. Where the secant puts the point's collocation error beyond
-    ``tolerance`` (:func:`error_ahead`), an adaptation (ahead, :func:`first_mesh`, or the loop's) moves the
-    collocation's figures by a step of its own: only the limits the point before's loop moved are carried into it,
-    as the loop carries them, not those moved ahead on the old mesh's figures (every held limit dropped)."""
+    each moved on by the secant through the two points before over ``step`` of their steps (:func:`secant_step`; none:
+    carried as they are); the point before's ``limit_shift`` where it was not solved along the sweep. An active limit
+    the point before's loop left at the case's (:func:`held_limits`) is moved only where the objective's error from it,
+    carried on the same way, passes what the defect correction accepts (CENTRE of ``tolerance``): the correction this
+    point would solve is then not solved (wedge_motor_start over driven_inertia at 0.595 kg m^2, where the start time's
+    passes it: 2.1e-7 and 2.5e-7 at the two points before, 2.9e-7 there; centred from then on), and a point it would not
+    correct is solved at the case's limit, as the point alone is. Where the secant puts the point's collocation error
+    beyond ``tolerance`` (:func:`error_ahead`), an adaptation (ahead, :func:`first_mesh`, or the loop's) moves the
+    collocation's figures by a step of its own: only the limits the point before's loop moved are carried into it, as
+    the loop carries them, not those moved ahead on the old mesh's figures (every held limit dropped)."""
     last = previous.along
     if last is None:
         return previous.limit_shift
