@@ -17,7 +17,8 @@ import pytest
 from clutchopt.cases import load_case
 from clutchopt.model import at_most
 from clutchopt.optimise import solve_case
-from clutchopt.optimise.start_up_check import corrected_case, nlp_slack
+from clutchopt.optimise.problem import uncorrected
+from clutchopt.optimise.start_up_check import CENTRE, corrected_case, nlp_slack, objective_error
 from clutchopt.optimise.verify import ACTIVE_TOL, check_constraints
 from tests.conftest import CASES
 
@@ -108,3 +109,34 @@ def test_the_cable_s_sweep_past_0_4_agrees_with_solve():
         assert abs(record["objective"]["value"] - alone.objective) <= 1e-6 * alone.objective
         stress = next(c for c in alone.constraints if c.name == "link_stress")
         assert stress.limit == L and stress.value <= L
+
+
+def test_a_correction_without_a_design_is_said_as_it_ended():
+    """``uncorrected``: the last design keeps its status; only an ``infeasible`` corrected solve says that no design
+    of the NLP meets the moved limits (``solver_failed``, ``not_found``: none found from its start); an ``optimal``
+    design whose centring correction ended without one gets a note (verified, the objective's CENTRE of the tolerance
+    not reached); a design-less last solve is left as it is."""
+    violated = "the simulated start-up finds link_stress violated by 0.00443 (relative)"
+    for ended, says in (("infeasible", "no design of the NLP meets the start-up limits moved"),
+                        ("solver_failed", "the NLP at the start-up limits moved by what the simulated start adds to "
+                                          "its figures ended without a design (solver_failed)"),
+                        ("not_found", "ended without a design (not_found)")):
+        kept = uncorrected(SimpleNamespace(status="unverified", diagnosis=violated),
+                           SimpleNamespace(status=ended, diagnosis="whatever"))
+        assert kept.status == "unverified" and kept.diagnosis.startswith(violated + "; ") and says in kept.diagnosis
+        assert ("no design of the NLP meets" in kept.diagnosis) == (ended == "infeasible")
+        centred = uncorrected(SimpleNamespace(status="optimal", diagnosis=None), SimpleNamespace(status=ended))
+        assert centred.status == "optimal" and centred.diagnosis.startswith("verified by its simulated start, but")
+        assert says in centred.diagnosis and f"more than {CENTRE:g} of the tolerance" in centred.diagnosis
+    lost = uncorrected(SimpleNamespace(status="not_found", diagnosis="no start"), SimpleNamespace(status="infeasible"))
+    assert lost.status == "not_found" and lost.diagnosis == "no start"
+
+
+def test_the_objective_s_error_from_a_limit_met_off_it():
+    """objective_error, the centring criterion corrected_case and start_up_sweep.held_limits share: the start time
+    binds (elasticity 0.55) and the simulated start is 3.75e-6 s off its 10 s limit: |0.55 x 3.75e-6 / 10| =
+    2.0625e-7, within CENTRE x tolerance = 2.5e-7; no elasticity known: 0."""
+    check = SimpleNamespace(elasticity=0.55, limit=10.0)
+    assert objective_error(check, -3.75e-6) == pytest.approx(2.0625e-7, rel=1e-12)
+    assert objective_error(check, -3.75e-6) < CENTRE * TOL < objective_error(check, -5e-6)
+    assert objective_error(SimpleNamespace(elasticity=None, limit=10.0), 1.0) == 0.0

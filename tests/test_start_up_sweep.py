@@ -47,7 +47,7 @@ def test_the_limits_a_point_starts_with_follow_the_secant_through_the_two_points
     before's centred share is carried as it is; without points before, its limit_shift."""
     from types import SimpleNamespace
 
-    from clutchopt.optimise.start_up_sweep import Along, predicted_shift
+    from clutchopt.optimise.start_up_sweep import Along, predicted_shift, secant_step
 
     mesh = np.full(16, 1 / 16)
     before = Along({"driven_inertia": 0.60, "speed": 100.0}, {"max_temperature_rise": 1 - 1.9765e-4}, mesh)
@@ -55,7 +55,8 @@ def test_the_limits_a_point_starts_with_follow_the_secant_through_the_two_points
     previous = SimpleNamespace(along=last, limit_shift={"max_temperature_rise": 1 - 1.9400e-4})  # as its last NLP
 
     def at(inertia, speed=100.0, point_before=previous):
-        return predicted_shift(point_before, {"driven_inertia": inertia, "speed": speed})
+        step = secant_step(point_before.along, {"driven_inertia": inertia, "speed": speed})
+        return predicted_shift(point_before, step, 1e-6)
 
     assert at(0.62)["max_temperature_rise"] == pytest.approx(1 - 1.9175e-4, rel=0, abs=1e-15)
     assert at(0.625)["max_temperature_rise"] == pytest.approx(1 - 1.90275e-4, rel=0, abs=1e-15)
@@ -99,8 +100,8 @@ def test_an_elastic_link_s_sweep_carries_its_limits_as_they_are(monkeypatch):
 
     def spy(problem, case, previous):
         found = start_up_sweep.solved_along(problem, case, previous)
-        predicted = (start_up_sweep.predicted_shift(previous, start_up_sweep._numbers(case))
-                     if found is not None else None)
+        step = start_up_sweep.secant_step(previous.along, start_up_sweep._numbers(case)) if found else None
+        predicted = start_up_sweep.predicted_shift(previous, step, 1e-6) if found is not None else None
         seen.append((found, predicted,
                      previous.limit_shift if previous is not None else None))
         return found
@@ -139,21 +140,24 @@ def test_a_point_whose_error_the_secant_puts_beyond_the_tolerance_starts_on_the_
     collocation's error there: the mesh decides it): the mesh the point before ended on."""
     from types import SimpleNamespace
 
-    from clutchopt.optimise.start_up_sweep import Along, first_mesh
+    from clutchopt.optimise.start_up_sweep import Along, first_mesh, secant_step
 
     mesh, suggested = np.full(16, 1 / 16), np.linspace(1, 2, 16) / 24
     before = Along({"driven_inertia": 0.616}, {}, mesh, error=-5.93e-7)
 
     def at(inertia, last_error=-8.97e-7, before=before):
         last = Along({"driven_inertia": 0.637}, {}, mesh, before, error=last_error)
-        return first_mesh(SimpleNamespace(along=last, mesh=(mesh, suggested)), {"driven_inertia": inertia}, 1e-6)
+        step = secant_step(last, {"driven_inertia": inertia})
+        return first_mesh(SimpleNamespace(along=last, mesh=(mesh, suggested)), step, 1e-6)
 
     assert at(0.658) is suggested and at(0.6475) is suggested
     assert at(0.658, last_error=-7.0e-7) is mesh
     assert at(0.658, before=Along(before.values, {}, mesh * 1.01, error=-5.93e-7)) is mesh  # a mesh change
     assert at(0.637 + 2 * 0.021) is mesh  # t = 2 > FURTHEST
     held = Along({"driven_inertia": 0.637}, {}, mesh, before, error=-8.97e-7, held={"max_start_time": 1e-7})
-    assert first_mesh(SimpleNamespace(along=held, mesh=(mesh, suggested)), {"driven_inertia": 0.658}, 1e-6) is mesh
+    step = secant_step(held, {"driven_inertia": 0.658})
+    assert step == pytest.approx(1.0) and first_mesh(SimpleNamespace(along=held, mesh=(mesh, suggested)), step,
+                                                     1e-6) is mesh
 
 
 def test_an_active_limit_left_at_the_case_s_is_moved_where_the_correction_would_move_it():
@@ -165,7 +169,7 @@ def test_an_active_limit_left_at_the_case_s_is_moved_where_the_correction_would_
     (t = 0.5) 2.67e-7: moved too; were the error 1.8e-7 and 2.0e-7 (2.2e-7 at t = 1), it stays at the case's."""
     from types import SimpleNamespace
 
-    from clutchopt.optimise.start_up_sweep import Along, predicted_shift
+    from clutchopt.optimise.start_up_sweep import Along, predicted_shift, secant_step
 
     mesh = np.full(16, 1 / 16)
 
@@ -174,12 +178,40 @@ def test_an_active_limit_left_at_the_case_s_is_moved_where_the_correction_would_
                                                                                                 errors[0]})
         last = Along({"driven_inertia": 0.574}, {"max_start_time": 1 - 4.40e-7}, mesh, before,
                      held={"max_start_time": errors[1]})
-        previous = SimpleNamespace(along=last, limit_shift={}, start_up={"tolerance": 1e-6})
-        return predicted_shift(previous, {"driven_inertia": inertia})
+        previous = SimpleNamespace(along=last, limit_shift={})
+        return predicted_shift(previous, secant_step(last, {"driven_inertia": inertia}), 1e-6)
 
     assert at(0.595)["max_start_time"] == pytest.approx(1 - 5.05e-7, rel=0, abs=1e-15)
     assert at(0.5845)["max_start_time"] == pytest.approx(1 - 4.725e-7, rel=0, abs=1e-15)
     assert "max_start_time" not in at(0.595, errors=(1.8e-7, 2.0e-7))
+
+
+def test_where_an_adaptation_is_ahead_only_the_limits_the_loop_moved_are_carried():
+    """predicted_shift: the two points before on one mesh, collocation errors -5.93e-7 and -8.97e-7, the secant's
+    -1.201e-6 at t = 1 beyond the tolerance 1e-6 (an adaptation ahead): the temperature limit the point before's loop
+    moved is carried on (1 - 1.9470e-4 + (1.9765e-4 - 1.9470e-4) = 1 - 1.9175e-4), the start time it binds at but left
+    at the case's (held, its objective error 2.87e-7 ahead, past CENTRE x tolerance = 2.5e-7) is not; with the
+    errors -5.93e-7 and -7.0e-7 (-8.07e-7 ahead, within) it is moved, to 1 - 4.40e-7 - 0.65e-7 = 1 - 5.05e-7."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.start_up_sweep import Along, predicted_shift, secant_step
+
+    mesh = np.full(16, 1 / 16)
+
+    def at(last_error):
+        before = Along({"driven_inertia": 0.553}, {"max_temperature_rise": 1 - 1.9765e-4,
+                                                   "max_start_time": 1 - 3.75e-7}, mesh, error=-5.93e-7,
+                       held={"max_start_time": 2.07e-7})
+        last = Along({"driven_inertia": 0.574}, {"max_temperature_rise": 1 - 1.9470e-4,
+                                                 "max_start_time": 1 - 4.40e-7}, mesh, before, error=last_error,
+                     held={"max_start_time": 2.47e-7})
+        previous = SimpleNamespace(along=last, limit_shift={"max_temperature_rise": 1 - 1.9400e-4})
+        return predicted_shift(previous, secant_step(last, {"driven_inertia": 0.595}), 1e-6)
+
+    adapting = at(-8.97e-7)
+    assert set(adapting) == {"max_temperature_rise"}
+    assert adapting["max_temperature_rise"] == pytest.approx(1 - 1.9175e-4, rel=0, abs=1e-15)
+    assert at(-7.0e-7)["max_start_time"] == pytest.approx(1 - 5.05e-7, rel=0, abs=1e-15)
 
 
 def test_where_the_mesh_must_adapt_a_point_starts_on_the_adapted_mesh():
@@ -202,12 +234,13 @@ def test_a_point_after_a_coarse_mesh_the_loop_kept_stays_on_it():
     driven inertia, errors -1.0e-3 and 1.6e-3), the secant's 4.1e-3 starts no adaptation: the point before's mesh."""
     from types import SimpleNamespace
 
-    from clutchopt.optimise.start_up_sweep import Along, first_mesh
+    from clutchopt.optimise.start_up_sweep import Along, first_mesh, secant_step
 
     mesh, suggested = np.full(16, 1 / 16), np.linspace(1, 2, 16) / 24
     before = Along({"driven_inertia": 240.8}, {}, mesh, error=-1.02e-3)
     last = Along({"driven_inertia": 256.6}, {}, mesh, before, error=1.55e-3)
-    assert first_mesh(SimpleNamespace(along=last, mesh=(mesh, suggested)), {"driven_inertia": 272.4}, 1e-6) is mesh
+    step = secant_step(last, {"driven_inertia": 272.4})
+    assert first_mesh(SimpleNamespace(along=last, mesh=(mesh, suggested)), step, 1e-6) is mesh
 
 
 def test_an_integer_choice_the_papers_sizing_finds_infeasible_is_not_solved_along_the_sweep():

@@ -29,7 +29,7 @@ from clutchopt.optimise.own_shift import ForeignShifts, carried_by, own_entry
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
 from clutchopt.optimise.solution import Diagnosis, Solution, SolverInfo, SolverOptions, WarmStart
-from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, corrected_case, start_up_report, worn_start
+from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, CENTRE, corrected_case, start_up_report, worn_start
 from clutchopt.optimise.start_up_shift import limit_shift, shifted
 from clutchopt.optimise.verdict import infeasible_at, shown
 from clutchopt.optimise.proofs import start_up_proofs
@@ -206,7 +206,9 @@ class Problem:
         lighter, until the count below is tried (:meth:`~clutchopt.optimise.own_shift.ForeignShifts.untried_below`).
         Where the loop keeps an ``unverified`` design, the counts one above it are solved through their own loops
         and the lightest that ends optimal kept (:meth:`~clutchopt.optimise.own_shift.ForeignShifts.above_unverified`;
-        the cable at 0.5 kg m^2: 9 cables verified, 4.418 kg, not 8 unverified)."""
+        written for the cable at 0.5 kg m^2, whose 8 cables' start carries 0.44 % more than the stress allowed: since
+        the correction moves the NLP's limit from its own figure, that loop finds 8 cables infeasible at the moved
+        limit and keeps 9 itself, 4.418 kg: docs/start_up.md, "The defect correction's fixed point")."""
         kept, runs = solution, [solution.solver]
         for combo in foreign.lighter(solution):
             kept, better = self._own_loop(case, solution, kept, foreign, combo, runs)
@@ -252,10 +254,15 @@ class Problem:
         solution.diagnosed = Diagnosis("infeasible", text, 0.0, proven=True)
         return solution
 
+    @property
+    def static_problem(self) -> "Problem":
+        """The papers' sizing's problem: the same formulation without the start-up, the same objective and options
+        (built once: :func:`problem_for`)."""
+        return problem_for(self.posed.base, self.objective.name, self.options)
+
     def _sizing(self, case: Case) -> Solution:
-        """The papers' sizing at ``case``: the static problem of the same formulation solved (where a start-up solve
-        begins)."""
-        return problem_for(self.posed.base, self.objective.name, self.options).solve(case)
+        """The papers' sizing at ``case``: :attr:`static_problem` solved (where a start-up solve begins)."""
+        return self.static_problem.solve(case)
 
     def _warm_method(self, warm: Solution | WarmStart, mesh: np.ndarray | None) -> str:
         """``warm_near`` (IPOPT's barrier from 1e-9) for a start-up re-solved on the mesh its warm optimum was solved
@@ -402,15 +409,25 @@ class Problem:
 
 
 def uncorrected(solution: Solution, corrected: Solution) -> Solution:
-    """A start-up solve's last design where its defect correction's solve (``corrected``) ends without one: no design
-    of the NLP meets the limits moved by what the simulated start adds to its figures. It stays what its simulated
-    start makes it (``unverified``: the violation named, and that the correction found no design), not a verdict
-    of the solve: cable_motor_start at 0.5 kg m^2 with 8 cables fixed (their simulated start 0.44 % over the
-    allowed stress, where no 8-cable design of the quasi-static NLP is 4.4 % under it: docs/start_up.md, "The
-    defect correction's fixed point")."""
+    """A start-up solve's last design where its defect correction's solve (``corrected``) ends without one, kept with
+    its status and said so in its diagnosis. ``unverified`` (its simulated start misses a limit): it stays what its
+    simulated start makes it (the violation named, and that the correction found no design), not a verdict of the
+    solve: cable_motor_start at 0.5 kg m^2 with 8 cables fixed (their simulated start 0.44 % over the allowed stress,
+    where no 8-cable design of the quasi-static NLP is 4.4 % under it: docs/start_up.md, "The defect correction's
+    fixed point"). Only an ``infeasible`` corrected solve says that no design of the NLP meets the moved limits; one
+    that ended ``solver_failed`` or ``not_found`` found none from its start, which proves nothing. ``optimal`` (the
+    correction only centred a binding limit the simulated start meets): verified, its status kept, but the objective
+    may be off the simulator's optimum by more than the CENTRE of the tolerance the correction holds it to: a note."""
+    moved = "the start-up limits moved by what the simulated start adds to its figures"
+    ended = (f"no design of the NLP meets {moved}" if corrected.status == "infeasible"
+             else f"the NLP at {moved} ended without a design")
     if solution.status == "unverified":
-        solution.diagnosis = (f"{solution.diagnosis}; no design of the NLP meets the start-up limits moved by what "
-                              f"the simulated start adds to its figures ({corrected.status})")
+        solution.diagnosis = f"{solution.diagnosis}; {ended} ({corrected.status})"
+    elif solution.status == "optimal":
+        note = (f"verified by its simulated start, but not centred on the start-up limits it binds: {ended} "
+                f"({corrected.status}), so the objective may be off the simulator's optimum by more than "
+                f"{CENTRE:g} of the tolerance")
+        solution.diagnosis = f"{solution.diagnosis}; {note}" if solution.diagnosis else note
     return solution
 
 

@@ -141,12 +141,20 @@ def limit_gaps(solution):
             yield check, name, check.value - check.limit
 
 
+def objective_error(check, gap: float) -> float:
+    """The objective's relative error from a simulated start-up figure ``gap`` off the limit ``check`` holds it to
+    (:func:`limit_gaps`): |elasticity x gap / limit| (the check's elasticity, d ln objective / d ln limit, at the
+    NLP's optimum; none: 0). What the defect correction compares with CENTRE of the tolerance
+    (:func:`corrected_case`)."""
+    return abs((check.elasticity or 0.0) * gap / check.limit)
+
+
 def corrected_case(solution, nlp_case, centre: bool = True):
     """The case of the next solve (defect correction): each limit L_k the NLP last saw (a scattered limit: its
     corner's, an NLP parameter) moved to L - (S - C), the case's limit L less what the simulated figure S adds to
     the NLP's own C (``Solution.collocated``) at this design: where the simulated start misses the limit (and then
     half the tolerance more), and (``centre``) where it meets a limit the design binds at so far from it that the
-    objective is off by more than CENTRE of the tolerance (|elasticity x relative gap|): the design is then the
+    objective is off by more than CENTRE of the tolerance (:func:`objective_error`): the design is then the
     simulator's optimum, not the collocation's, whatever mesh the accuracy loop ended on. Where the NLP binds the
     limit (C = L_k within ACTIVE_TOL of its scale) this is L_k - (S - L); where it does not, the NLP's own slack
     L_k - C is taken in at once, not a step of S - L a solve (docs/start_up.md, "The defect correction's fixed
@@ -157,7 +165,7 @@ def corrected_case(solution, nlp_case, centre: bool = True):
     for check, name, gap in limit_gaps(solution):
         if not check.feasible:
             gap += 0.5 * tolerance * abs(check.limit)
-        elif not (centre and abs((check.elasticity or 0.0) * gap / check.limit) > CENTRE * tolerance):
+        elif not (centre and objective_error(check, gap) > CENTRE * tolerance):
             continue
         corner = corner_name(name, check.name)
         key, moved = (corner, corners) if corner in nlp_case.values else (name, limits)

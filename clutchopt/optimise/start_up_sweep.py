@@ -35,10 +35,9 @@ from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.optimise.failed_starts import case_numbers, on_ray
 from clutchopt.optimise.integers import INFEASIBLE
-from clutchopt.optimise.problem import problem_for
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution
-from clutchopt.optimise.start_up_check import CENTRE, limit_gaps
+from clutchopt.optimise.start_up_check import CENTRE, limit_gaps, objective_error
 
 FURTHEST = 1.5  # the longest step ahead, in steps of the two points before, the secant is carried over
 
@@ -67,13 +66,10 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
             or len(previous.internal) != block.size:  # none, or of another problem (its intervals doubled)
         return None
     try:
-        numbers = _numbers(case)
+        numbers, tolerance = _numbers(case), block.s.spec.tolerance
         sized = sized_out(problem, case, previous.along)
-        mesh, shift = first_mesh(previous, numbers, block.s.spec.tolerance), predicted_shift(previous, numbers)
-        if not abs(error_ahead(previous, numbers) or 0.0) <= block.s.spec.tolerance:  # an adaptation (ahead, or
-            # the loop's) moves the collocation's figures by a step of its own: the limits the point before's loop
-            # moved are carried into it, as the loop carries them, not those moved ahead on the old mesh's figures
-            shift = {name: share for name, share in shift.items() if name in previous.limit_shift}
+        step = secant_step(previous.along, numbers)
+        mesh, shift = first_mesh(previous, step, tolerance), predicted_shift(previous, step, tolerance)
         solution = problem.refined(case, warm=previous, mesh=mesh, shift=shift, diagnosed=False, cold=False,
                                    infeasible=sized.choices)  # solve's own cold start and diagnosis follow
     except InputError:  # its first simulation failed from this start
@@ -101,95 +97,101 @@ class SizedOut:
 
 def sized_out(problem, case: Case, before: Along | None) -> SizedOut:
     """The integer choices a start-up sweep's point need not solve: those the papers' sizing (the same formulation
-    without the start-up, ``Problem._sizing``) finds infeasible at the point (IPOPT: ``Infeasible_Problem_Detected``),
-    where the start-up problem keeps every row of it (no constant-acceleration row left to the start-up model, as
-    the wedge's and lever's torque rows are): its designs are then a subset of the sizing's, and a choice without a
-    design there has none here, as the batch's ``tightening`` reads a step that only tightens. The sizing is solved
-    once a sweep, at the first point solved along it whose sizing problem is the point before's (a sweep of
-    start-up quantities alone: the driven inertia), and carried while the problem stays the same; a sweep that
-    moves it solves none. ball_motor_start over driven_inertia: 22 rows, the sizing's row fewer, infeasible by the
-    same least violation 2.72e-3 at every point from 225 to 336 kg m^2, were solved at each (26-33 IPOPT
-    iterations); ``solve`` of such a point alone tries them and finds them infeasible: the same verdict."""
-    static = problem_for(problem.posed.base, problem.objective.name, problem.options)
+    without the start-up, ``Problem.static_problem``) finds infeasible at the point (IPOPT:
+    ``Infeasible_Problem_Detected``), where the start-up problem keeps every row of it (no constant-acceleration row
+    left to the start-up model, as the wedge's and lever's torque rows are): its designs are then a subset of the
+    sizing's, and a choice without a design there has none here, as the batch's ``tightening`` reads a step that only
+    tightens. The sizing is solved once a sweep, at the first point solved along it whose sizing problem is the point
+    before's (a sweep of start-up quantities alone: the driven inertia), and carried while the problem stays the same; a
+    sweep that moves it solves none. ball_motor_start over driven_inertia: 22 rows, the sizing's row fewer, infeasible
+    by the same least violation 2.72e-3 at every point from 225 to 336 kg m^2, were solved at each (26-33 IPOPT
+    iterations); ``solve`` of such a point alone tries them and finds them infeasible: the same verdict. An elastic link
+    (the cable) keeps every row too but gets none: its points carry no :class:`Along` (:func:`solved_along`), and its
+    loop rules nothing out (``Problem._refined``: no ``RuledOut``, its NLP is another model than its simulation)."""
+    static = problem.static_problem
     key = repr(tuple(vars(static.posed.params(case)).values()))
     if before is None or before.sized is None or before.sized.key != key:
         return SizedOut(key)
     if before.sized.choices is not None:
         return before.sized
-    if problem.start_up.s.elastic or not set(static.posed.row_names) <= set(problem.posed.row_names):  # a row
-        return SizedOut(key, {})  # left to the start-up model (an elastic link's loop rules nothing out)
+    if not set(static.posed.row_names) <= set(problem.posed.row_names):  # a row left to the start-up model
+        return SizedOut(key, {})
     names = [v.name for v in problem.formulation.variables if v.integer]
     choices = {tuple(float(entry[name]) for name in names if name in entry):
                f"infeasible in the papers' sizing at this point ({entry['status']}), whose every row the start-up "
-               "problem keeps" for entry in problem._sizing(case).integer_search if entry["status"] == INFEASIBLE}
+               "problem keeps" for entry in static.solve(case).integer_search if entry["status"] == INFEASIBLE}
     return SizedOut(key, choices)
 
 
-def first_mesh(previous: Solution, numbers: dict[str, float], tolerance: float) -> np.ndarray:
-    """The mesh a point's first solve is on: the one the point before's loop ended on, or where the secant through
-    the collocation errors of the two points before on that mesh (their start time against the simulated one)
-    puts this point's error beyond ``tolerance``, the mesh the point before's simulated start suggests (adapted to
-    it, ``Solution.mesh[1]``): the loop would solve on the old mesh only to adapt it (wedge_motor_start over
-    driven_inertia at 0.658 kg m^2: errors -5.9e-7 and -9.0e-7 at the two points before, -1.24e-6 there). The
-    secant is taken as :func:`predicted_shift` takes it (the same mesh, on the line, at most FURTHEST steps on), and
-    only after a mesh that resolved the point before's start (its error within ``tolerance``): a loop that kept a
-    coarse mesh for another reason (no start-up limit shapes the design, ``shapes_nothing``: ball_motor_start at
-    0.6-0.9 times its driven inertia, errors 1e-3 to 1e-2) keeps it (adapted ahead, the ball's integer search went
-    down another path at 272 and 288 kg m^2, to designs 0.4 and 0.7 % heavier than ``solve``'s). Nor where the point
-    before binds at a limit its loop left uncorrected (:func:`held_limits`): its design then carries the
-    collocation's error at that limit, so the mesh decides it within the contract, and a mesh adapted to the start
-    of the point before instead of this point's own moves it and every later point on it (lever_motor_start from
-    9.22 kg m^2 on, ten points by up to 3.6e-8 off main's, 1.0e-7 off ``solve``'s; where the correction centres
-    every binding limit, as on the wedge at 0.658 kg m^2, the designs after it are main's to 5e-11)."""
-    ahead, last = error_ahead(previous, numbers), previous.along
+def first_mesh(previous: Solution, step: float | None, tolerance: float) -> np.ndarray:
+    """The mesh a point's first solve is on: the one the point before's loop ended on, or where the secant through the
+    collocation errors of the two points before on that mesh (their start time against the simulated one) puts this
+    point's error beyond ``tolerance`` (:func:`error_ahead`, ``step`` steps on: :func:`secant_step`), the mesh the point
+    before's simulated start suggests (adapted to it, ``Solution.mesh[1]``): the loop would solve on the old mesh only
+    to adapt it (wedge_motor_start over driven_inertia at 0.658 kg m^2: errors -5.9e-7 and -9.0e-7 at the two points
+    before, -1.24e-6 there). The secant is taken as :func:`predicted_shift` takes it (the same mesh, on the line, at
+    most FURTHEST steps on), and only after a mesh that resolved the point before's start (its error within
+    ``tolerance``): a loop that kept a coarse mesh for another reason (no start-up limit shapes the design,
+    ``shapes_nothing``: ball_motor_start at 0.6-0.9 times its driven inertia, errors 1e-3 to 1e-2) keeps it (adapted
+    ahead, the ball's integer search went down another path at 272 and 288 kg m^2, to designs 0.4 and 0.7 % heavier than
+    ``solve``'s). Nor where the point before binds at a limit its loop left uncorrected (:func:`held_limits`): its
+    design then carries the collocation's error at that limit, so the mesh decides it within the contract, and a mesh
+    adapted to the start of the point before instead of this point's own moves it and every later point on it
+    (lever_motor_start from 9.22 kg m^2 on, ten points by up to 3.6e-8 off main's, 1.0e-7 off ``solve``'s; where the
+    correction centres every binding limit, as on the wedge at 0.658 kg m^2, the designs after it are main's to
+    5e-11)."""
+    ahead, last = error_ahead(previous.along, step), previous.along
     if ahead is None or not abs(ahead) > tolerance or not abs(last.error) <= tolerance or last.held:  # (a loop that
         return previous.mesh[0]  # kept a coarse mesh for another reason; a binding limit left uncorrected)
     return previous.mesh[1]
 
 
-def error_ahead(previous: Solution, numbers: dict[str, float]) -> float | None:
-    """The collocation error (start time against the simulated one) the secant through the two points before puts
-    at the point whose case's values are ``numbers``, where both ended on the same mesh, the point lies on the line
-    through theirs, at most FURTHEST steps on; None where not."""
-    last = previous.along
+def secant_step(last: Along | None, numbers: dict[str, float]) -> float | None:
+    """How many steps of the two points before (``last``, the point before, and its ``before``) the point whose
+    case's values are ``numbers`` (:func:`_numbers`) lies on from ``last``: where both ended on the same mesh (a
+    mesh adaptation moves the collocation's figures, hence the corrections, by a step of its own), the point lies on
+    the line through their values, at most FURTHEST steps on; None where not (no secant)."""
     if last is None or last.before is None or not np.array_equal(last.mesh, last.before.mesh):
         return None
-    step = _step(last.before.values, last.values, numbers)
-    return None if step is None else last.error + step * (last.error - last.before.error)
+    return _step(last.before.values, last.values, numbers)
 
 
-def predicted_shift(previous: Solution, numbers: dict[str, float]) -> dict[str, float]:
-    """The limits the point whose case's values are ``numbers`` (:func:`_numbers`) starts with, as shares of its
-    case's: the point before's, centred
-    (:func:`centred_shift`), each moved on by the secant through the two points before where both ended on the same
-    mesh (a mesh adaptation moves the collocation's figures, hence the corrections, by a step of its own) and
-    ``case`` lies on the line through their values, at most FURTHEST steps on; the point before's ``limit_shift``
-    where it was not solved along the sweep. An active limit the point before's loop left at the case's
-    (:func:`held_limits`) is moved only where the objective's error from it, carried on the same way, passes what
-    the defect correction accepts (CENTRE of the tolerance): the correction this point would solve is then not
-    solved (wedge_motor_start over driven_inertia at 0.595 kg m^2, where the start time's passes it: 2.1e-7 and
-    2.5e-7 at the two points before, 2.9e-7 there; centred from then on), and a point it would not correct is
-    solved at the case's limit, as the point alone is."""
+def error_ahead(last: Along | None, step: float | None) -> float | None:
+    """The collocation error (start time against the simulated one) the secant through the two points before
+    (``last`` and its ``before``) puts ``step`` steps on from ``last`` (:func:`secant_step`); None without a secant."""
+    return None if step is None else _ahead(last.error, last.before.error, step)
+
+
+def predicted_shift(previous: Solution, step: float | None, tolerance: float) -> dict[str, float]:
+    """The limits a point starts with, as shares of its case's: the point before's, centred (:func:`centred_shift`),
+    each moved on by the secant through the two points before over ``step`` of their steps (:func:`secant_step`; none:
+    carried as they are); the point before's ``limit_shift`` where it was not solved along the sweep. An active limit
+    the point before's loop left at the case's (:func:`held_limits`) is moved only where the objective's error from it,
+    carried on the same way, passes what the defect correction accepts (CENTRE of ``tolerance``): the correction this
+    point would solve is then not solved (wedge_motor_start over driven_inertia at 0.595 kg m^2, where the start time's
+    passes it: 2.1e-7 and 2.5e-7 at the two points before, 2.9e-7 there; centred from then on), and a point it would not
+    correct is solved at the case's limit, as the point alone is. Where the secant puts the point's collocation error
+    beyond ``tolerance`` (:func:`error_ahead`), an adaptation (ahead, :func:`first_mesh`, or the loop's) moves the
+    collocation's figures by a step of its own: only the limits the point before's loop moved are carried into it, as
+    the loop carries them, not those moved ahead on the old mesh's figures (every held limit dropped)."""
     last = previous.along
     if last is None:
         return previous.limit_shift
-    step = None
-    if last.before is not None and np.array_equal(last.mesh, last.before.mesh):
-        step = _step(last.before.values, last.values, numbers)
     before = last.before or Along({}, {}, last.mesh)
     shares = {name: _ahead(share, before.shift.get(name), step) for name, share in last.shift.items()}
+    adapting = not abs(error_ahead(last, step) or 0.0) <= tolerance
     for name, error in last.held.items():
-        if not _ahead(error, before.held.get(name), step) > CENTRE * previous.start_up["tolerance"]:
+        if adapting or not _ahead(error, before.held.get(name), step) > CENTRE * tolerance:
             shares.pop(name, None)
     return shares
 
 
 def held_limits(solution: Solution) -> dict[str, float]:
     """Each start-up limit ``solution``'s design binds at (the simulated check active) that its loop left at the
-    case's (not in its ``limit_shift``): the objective's relative error from the simulated figure off the limit,
-    |elasticity x gap / limit|, what the defect correction compares with CENTRE of the tolerance
-    (:func:`~clutchopt.optimise.start_up_check.corrected_case`)."""
-    return {name: abs((check.elasticity or 0.0) * gap / check.limit) for check, name, gap in limit_gaps(solution)
+    case's (not in its ``limit_shift``): the objective's relative error from the simulated figure off the limit
+    (:func:`~clutchopt.optimise.start_up_check.objective_error`), what the defect correction compares with CENTRE of
+    the tolerance (:func:`~clutchopt.optimise.start_up_check.corrected_case`)."""
+    return {name: objective_error(check, gap) for check, name, gap in limit_gaps(solution)
             if check.active and name not in solution.limit_shift}
 
 
@@ -200,9 +202,12 @@ def _ahead(value: float, before: float | None, step: float | None) -> float:
 
 def centred_shift(solution: Solution, case: Case) -> dict[str, float]:
     """``solution``'s ``limit_shift`` with each limit its design binds at (the simulated check active) moved to where
-    the simulated figure meets the case's limit: the NLP's limit less the simulated gap, what the defect correction
-    would move it to (:func:`~clutchopt.optimise.start_up_check.corrected_case`); a limit its loop never moved from
-    the case's (share 1; :func:`predicted_shift` carries it only where the correction would move it). The shares a
+    the simulated figure meets the case's limit: the NLP's limit L_k less the simulated gap S - L. That is the defect
+    correction's L - (S - C) (:func:`~clutchopt.optimise.start_up_check.corrected_case`) where the NLP binds the limit
+    (its own figure C = L_k); where the NLP leaves it slack (C < L_k) the correction also takes that slack in
+    (docs/start_up.md, "The defect correction's fixed point"), the share here does not (the former step, kept: the
+    sweeps' designs and solver calls stay as they were). A limit its loop never moved from the case's
+    has share 1 (:func:`predicted_shift` carries it only where the correction would move it). The shares a
     point ends with are those of the limits its last solve saw, off that by up to what the loop accepts; the secant
     is taken through the centred ones, not through its own predictions. A limit the design does not bind at is left
     as it is (centred on what the simulator adds to the NLP's figure, the correction where it first binds was
