@@ -99,7 +99,8 @@ class Regions:
         self._region: int | None = None  # the boxes of the last region proof
         self._figures: dict[int, tuple] = {}  # proven point -> its float64 figures at the design of self._without
         self._figured: dict[str, float] | None = None  # (that design)
-        self._ahead: dict[tuple[int, int], tuple] = {}  # a run searched ahead -> its problem and outcome
+        self._ahead: dict[tuple[int, int], tuple] = {}  # a run searched ahead -> its problem, outcome and
+        # seconds a point (its share of the call that searched it)
 
     def point_case(self, k: int):
         """Point k's case, built once for its run's search, its float64 figures and its verdict."""
@@ -268,13 +269,16 @@ class Regions:
             problems = [_region_problem([points[j] for j in range(a, b)]) for a, b in fresh + ahead]
             began = time.perf_counter()
             outcomes = searches(self.posed, problems, [budget] * len(problems)) if problems else []
-            seconds = time.perf_counter() - began
-            self._ahead.update(zip(ahead, zip(problems[len(fresh):], outcomes[len(fresh):])))
-            found = {**dict(zip(fresh, zip(problems, outcomes))), **known}
+            share = (time.perf_counter() - began) / max(1, sum(b - a for a, b in fresh + ahead))  # a point's
+            # seconds: the call's over the points of every run it searched (an ahead run's kept with it)
+            self._ahead.update((run, (problem, outcome, share)) for run, problem, outcome
+                               in zip(ahead, problems[len(fresh):], outcomes[len(fresh):]))
+            found = {**{run: (problem, outcome, share) for run, problem, outcome in zip(fresh, problems, outcomes)},
+                     **known}
             ahead, halves = [], []
-            for (a, b), (problem, outcome) in ((run, found[run]) for run in runs):
+            for (a, b), (problem, outcome, seconds) in ((run, found[run]) for run in runs):
                 if outcome is not None and outcome.proven:
-                    self._proved(a, b, problem, outcome, seconds / max(1, end - k))
+                    self._proved(a, b, problem, outcome, seconds)
                     longest = max(longest, b - a)
                 elif b - a > 1 and outcome is not None and outcome.feasible is None:  # (a design met for the whole
                     # run: every point has one, solved as usual)
