@@ -111,18 +111,20 @@ def test_a_run_over_the_lever_s_speed_is_proven_with_its_speed_split_where_it_sp
 
 
 def test_the_compiled_contraction_gives_the_numpy_contraction_s_numbers():
-    """Random boxes (1-7 rows, 1-6 variables, 1-49 boxes; infinite ends and slopes, zero slopes, NaN and -inf at the
-    centre): the compiled contraction's ends, empty boxes and cutters are the NumPy rule's, every number equal (a
-    box's sweeps stop where it is empty or did not move, where the sweeps over all boxes leave it). The draws cut and
-    empty boxes: the rule's every branch is taken."""
+    """Random boxes (1-7 rows, 1-10 variables, 1-49 boxes, every fourth draw one box; infinite ends and slopes, zero
+    slopes, NaN and -inf at the centre): the compiled contraction's ends, empty boxes and cutters are the NumPy
+    rule's, every number equal (a box's sweeps stop where it is empty or did not move, where the sweeps over all
+    boxes leave it), and the NumPy rule gives a box alone what it gives it among others. One box and 8 or more
+    variables is where NumPy's own sum over the variables would add them pairwise, not from the first on as over a
+    batch (the axis then innermost). The draws cut and empty boxes: the rule's every branch is taken."""
     from clutchopt.optimise import interval_contract_compiled
 
     if interval_contract_compiled.library() is None:
         pytest.skip("no C compiler or cache folder")
     rng = np.random.default_rng(7)
-    emptied = cut = 0
+    emptied = cut = alone = 0
     for trial in range(600):
-        m, n, count = rng.integers(1, 8), rng.integers(1, 7), rng.integers(1, 50)
+        m, n, count = rng.integers(1, 8), rng.integers(1, 11), 1 if trial % 4 == 1 else rng.integers(1, 50)
         lo = rng.normal(size=(n, count))
         hi = lo + rng.random((n, count)) * rng.choice([0.0, 1e-3, 1.0, 10.0], size=(n, count))
         if trial % 3 == 0:
@@ -145,5 +147,14 @@ def test_the_compiled_contraction_gives_the_numpy_contraction_s_numbers():
         for a, b in zip(compiled_rule, numpy_rule):
             assert a.shape == b.shape and a.dtype == b.dtype
             assert np.all((a == b) | (np.isnan(a) & np.isnan(b)) if a.dtype.kind == "f" else a == b), trial
+        b = int(rng.integers(count))
+        with np.errstate(invalid="ignore"):
+            one_box = contracted(lo[:, [b]], hi[:, [b]], centre[:, [b]], c_lo[:, [b]], d_lo[..., [b]],
+                                 d_hi[..., [b]], limit, compiled=False)
+        for a, batched in zip(one_box, numpy_rule):
+            a, batched = a[..., 0], batched[..., b]
+            assert np.all((a == batched) | (np.isnan(a) & np.isnan(batched)) if a.dtype.kind == "f"
+                          else a == batched), trial
         emptied, cut = emptied + int(numpy_rule[2].sum()), cut + int(numpy_rule[3].sum())
-    assert emptied > 1000 and cut > 3000, (emptied, cut)
+        alone += int(count == 1 and n >= 8)
+    assert emptied > 1000 and cut > 3000 and alone > 20, (emptied, cut, alone)

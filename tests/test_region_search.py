@@ -341,3 +341,30 @@ def test_a_sweep_s_first_point_without_a_design_gets_solve_s_verdict_without_the
     assert (first["status"], first["diagnosis"], first["design"]) == (alone.status, alone.diagnosis, alone.design)
     assert [c["value"] for c in first["constraints"]] == [c.value for c in alone.constraints]
     assert (first["solver"]["name"], first["solver"]["solves"]) == ("interval", 1) and second["status"] == "optimal"
+
+
+def test_a_run_searched_ahead_keeps_its_share_of_the_call_that_searched_it(monkeypatch):
+    # ball_crusher over 200 powers from 250 to 1000 kW: no design from point 84 (566.6 kW, its own proof). Points
+    # 85-92 are searched
+    # as one region with the runs ahead 93-108 and 109-140 (Regions._runs_ahead) in one call, 8 + 16 + 32 = 56
+    # points: each point 1/56 of that call's seconds, the ahead runs' points too when taken from the kept searches
+    # later (main gave them the seconds of the later call that took them, which searched nothing, over its 16 and
+    # 32 points: 1/16 and 1/32); points 141-199 in the next call, 59 points, 1/59 each. With a clock that reads one
+    # second more at each reading, each call takes 1 s, and the seconds the proven points carry add up to the calls'
+    # 2 s.
+    import types
+
+    from clutchopt.optimise.sweep_grid import Vary
+
+    clock = iter(range(1, 1_000_000))
+    monkeypatch.setattr(region_proof, "time", types.SimpleNamespace(perf_counter=lambda: float(next(clock))))
+    proved, own = [], region_proof.Regions._proved
+    monkeypatch.setattr(region_proof.Regions, "_proved",
+                        lambda self, a, b, problem, outcome, seconds: (proved.append((a, b, seconds)),
+                                                                       own(self, a, b, problem, outcome, seconds)))
+    crusher = load_case(CASES / "ball_crusher.toml")
+    quantity = next(q for q in crusher.quantities if q.name == "power")
+    result = Sweep(crusher, [Vary(quantity, tuple(np.linspace(250e3, 1000e3, 200).tolist()))]).run(progress=False)
+    assert list(result.frame["status"]) == ["optimal"] * 84 + ["infeasible"] * 116
+    assert proved == [(85, 93, 1 / 56), (93, 109, 1 / 56), (109, 141, 1 / 56), (141, 200, 1 / 59)]
+    assert sum((b - a) * seconds for a, b, seconds in proved) == pytest.approx(2.0, rel=1e-12)

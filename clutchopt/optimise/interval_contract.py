@@ -66,9 +66,9 @@ def contracted(lo: np.ndarray, hi: np.ndarray, centre: np.ndarray, c_lo: np.ndar
         terms = least_terms(d_lo, d_hi, (lo - centre)[None], (hi - centre)[None])
         infinite = np.isinf(terms)
         finite = np.where(infinite, 0.0, terms)
-        others = finite.sum(axis=1, keepdims=True) - finite  # the least of the other variables' terms
+        others = _sum_in_order(finite) - finite  # the least of the other variables' terms
         others = np.where(infinite.sum(axis=1, keepdims=True) - infinite > 0, -np.inf, others)
-        magnitude = np.abs(finite).sum(axis=1, keepdims=True) + np.abs(c_lo) + abs(limit)
+        magnitude = _sum_in_order(np.abs(finite)) + np.abs(c_lo) + abs(limit)
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             room = limit - c_lo - others + _SLACK * magnitude  # R_j, rounded up
             room = np.where(np.isnan(room), np.inf, room)
@@ -88,3 +88,10 @@ def contracted(lo: np.ndarray, hi: np.ndarray, centre: np.ndarray, c_lo: np.ndar
         if empty.all() or all(np.array_equal(a, b, equal_nan=True) for a, b in zip(before, (lo, hi))):
             break  # (every box empty, or none moved: a further sweep gives the same boxes and cutters)
     return lo, hi, empty, cutters
+
+
+def _sum_in_order(terms: np.ndarray) -> np.ndarray:
+    """The sum over the variables (axis 1, kept) added from the first on, as the compiled rule adds them (a running
+    sum's last: an accumulation adds in order): NumPy's own sum adds pairwise along an innermost axis of 8 or more
+    (one box), so a box's bits would depend on the boxes with it in the call."""
+    return np.add.accumulate(terms, axis=1)[:, -1:]

@@ -5,8 +5,8 @@ x boxes (the ball's 6 x 5 x 30-60), 0.36 ms a call of three sweeps whatever the 
 the ball's interval searches. Here the same rule is written once in C, box by box (the boxes are contracted each on
 its own: a box's sweeps stop where it is empty or did not move, which is where the NumPy sweeps over all boxes leave
 it, since a further sweep of a box that did not move gives the same ends and cutters). Every operation is the NumPy
-code's, in its order: the sums over the variables from the first term on (as NumPy reduces an axis that is not the
-innermost), the minima and maxima over the corners and the rows in turn, NaN replaced where NumPy replaces it; the
+code's, in its order: the sums over the variables from the first term on (as the NumPy code adds them, for one box as
+for many), the minima and maxima over the corners and the rows in turn, NaN replaced where NumPy replaces it; the
 compiler is kept from contracting a * b + c into one rounding and from fast-math (the flags of
 :mod:`clutchopt.optimise.interval_compiled`), so the ends are the NumPy code's to the bit (tested on random boxes with
 infinite and zero slopes, tests/test_interval_contract.py). Built once per machine into the cache folder of

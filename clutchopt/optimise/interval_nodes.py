@@ -18,7 +18,7 @@ replays the nodes instead.
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import casadi as ca
 import numpy as np
@@ -96,12 +96,21 @@ class DeclaredNodes:
 
 class EnclosedFunction:
     """Outputs of (design, p, y, s) evaluated over boxes of (design, p) (:meth:`bounds`, as
-    :meth:`IntervalFunction.bounds`); ``function``: the first output as the NLP computes it, of (design, p)."""
+    :meth:`IntervalFunction.bounds`); ``function``: the first output as the NLP computes it, of (design, p). Both
+    built at their first use (the interval function's program and compiled replay cost 1-2 ms a problem and variant:
+    the rows' own function serves the tests alone, a search takes the rows from the Jacobian's)."""
 
     def __init__(self, nodes: DeclaredNodes, inputs: list[ca.SX], outputs: list[ca.SX], plain: ca.SX, name: str):
         self.nodes = nodes
-        self.interval = IntervalFunction(ca.Function(name, [*inputs, nodes.y, nodes.s], outputs))
-        self.function = ca.Function(name, inputs, [plain])
+        self._inputs, self._outputs, self._plain, self._name = inputs, outputs, plain, name
+
+    @cached_property
+    def interval(self) -> IntervalFunction:
+        return IntervalFunction(ca.Function(self._name, [*self._inputs, self.nodes.y, self.nodes.s], self._outputs))
+
+    @cached_property
+    def function(self) -> ca.Function:
+        return ca.Function(self._name, self._inputs, [self._plain])
 
     def bounds(self, inputs: list[Bounds]) -> list[Bounds]:
         y, s = self.nodes.bounds(inputs)

@@ -99,7 +99,8 @@ class Regions:
         self._region: int | None = None  # the boxes of the last region proof
         self._figures: dict[int, tuple] = {}  # proven point -> its float64 figures at the design of self._without
         self._figured: dict[str, float] | None = None  # (that design)
-        self._ahead: dict[tuple[int, int], tuple] = {}  # a run searched ahead -> its problem and outcome
+        self._ahead: dict[tuple[int, int], tuple] = {}  # a run searched ahead -> its problem, outcome and
+        # seconds a point (its share of the call that searched it)
 
     def point_case(self, k: int):
         """Point k's case, built once for its run's search, its float64 figures and its verdict."""
@@ -253,29 +254,31 @@ class Regions:
         end = min(k + self._length, self.count)
         self._cases = {j: case for j, case in self._cases.items() if j >= k}  # (those of points solved as usual)
         self._to, runs = end, [(k, end)] if end - k > 1 else []  # (a last point alone: Regions._quick)
-        points = {j: _search_problem(self.posed, self.point_case(j)) for j in range(k, end)}
+        points = self._point_problems([(k, end)])
         if runs and self._one_by_one(end - k):
             self._search_each(k, end, points)
             return
         longest = 1  # the longest run proven
-        ahead = [run for run in self._runs_ahead(k, end) if run not in self._ahead]
+        ahead = [run for run in self._runs_ahead(k, end) if run not in self._ahead] if runs else []
+        points.update(self._point_problems(ahead))
         while runs:
             budget = _budget(last_boxes(self.posed), SURE_BOXES)
             known = {run: self._ahead.pop(run) for run in runs if run in self._ahead}
             known = {run: kept for run, kept in known.items() if _holds(kept[1], budget)}
             fresh = [run for run in runs if run not in known]
-            problems = [_region_problem([points[j] for j in range(a, b)]) for a, b in fresh]
-            problems += [_region_problem([_search_problem(self.posed, self.point_case(j)) for j in range(a, b)])
-                         for a, b in ahead]
+            problems = [_region_problem([points[j] for j in range(a, b)]) for a, b in fresh + ahead]
             began = time.perf_counter()
             outcomes = searches(self.posed, problems, [budget] * len(problems)) if problems else []
-            seconds = time.perf_counter() - began
-            self._ahead.update(zip(ahead, zip(problems[len(fresh):], outcomes[len(fresh):])))
-            found = {**dict(zip(fresh, zip(problems, outcomes))), **known}
+            share = (time.perf_counter() - began) / max(1, sum(b - a for a, b in fresh + ahead))  # a point's
+            # seconds: the call's over the points of every run it searched (an ahead run's kept with it)
+            self._ahead.update((run, (problem, outcome, share)) for run, problem, outcome
+                               in zip(ahead, problems[len(fresh):], outcomes[len(fresh):]))
+            found = {**{run: (problem, outcome, share) for run, problem, outcome in zip(fresh, problems, outcomes)},
+                     **known}
             ahead, halves = [], []
-            for (a, b), (problem, outcome) in ((run, found[run]) for run in runs):
+            for (a, b), (problem, outcome, seconds) in ((run, found[run]) for run in runs):
                 if outcome is not None and outcome.proven:
-                    self._proved(a, b, problem, outcome, seconds / max(1, end - k))
+                    self._proved(a, b, problem, outcome, seconds)
                     longest = max(longest, b - a)
                 elif b - a > 1 and outcome is not None and outcome.feasible is None:  # (a design met for the whole
                     # run: every point has one, solved as usual)
@@ -292,6 +295,10 @@ class Regions:
                     # design found by a solve, else its own verdict with its own search)
             runs = halves
         self._length = min(2 * longest, LONGEST_RUN)
+
+    def _point_problems(self, runs: list[tuple[int, int]]) -> dict[int, tuple[np.ndarray, ...]]:
+        """The search problem of each point of ``runs`` (``(a, b)``: points a .. b - 1), by its number."""
+        return {j: _search_problem(self.posed, self.point_case(j)) for a, b in runs for j in range(a, b)}
 
     def _runs_ahead(self, k: int, end: int) -> list[tuple[int, int]]:
         """The runs after k .. end - 1 that :meth:`_search_from` searches next where each before it is proven whole
