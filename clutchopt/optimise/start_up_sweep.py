@@ -71,7 +71,8 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
         step = secant_step(previous.along, numbers)
         mesh, shift = first_mesh(previous, step, tolerance), predicted_shift(previous, step, tolerance)
         solution = problem.refined(case, warm=previous, mesh=mesh, shift=shift, diagnosed=False, cold=False,
-                                   infeasible=sized.choices, sizing=sized.design)  # solve's own cold start and diagnosis follow
+                                   infeasible=sized.choices, sizing=sized.design)  # solve's own cold start and
+        # diagnosis follow
     except InputError:  # its first simulation failed from this start
         return None
     if solution.status != "optimal":
