@@ -72,7 +72,7 @@ class Problem:
     def refined(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
                 mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,
                 coarser: float = math.inf, shift: dict[str, float] | None = None, cold: bool = True,
-                infeasible: dict[tuple, str] | None = None) -> Solution:
+                infeasible: dict[tuple, str] | None = None, sizing: dict[str, float] | None = None) -> Solution:
         """:meth:`_refined`; a start-up the drive makes impossible for every coupling
         (:func:`~clutchopt.optimise.proofs.start_up_proofs`) is not solved (:meth:`proven`: a sweep's continuation
         onto such a point, its retries, ``solve``), and a start-up's retry (from ``start`` alone, undiagnosed) that
@@ -86,7 +86,7 @@ class Problem:
         if key is not None and (known := self.failed_starts.known(key)) is not None:
             return known
         solution = self._refined(case, start, warm, mesh, refine, diagnosed, coarser, shift, cold,
-                                 infeasible=infeasible)
+                                 infeasible=infeasible, sizing=sizing)
         if key is not None and solution.status not in DESIGN_STATUSES:
             self.failed_starts.keep(key, solution)
         return solution
@@ -95,7 +95,7 @@ class Problem:
                  mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,
                  coarser: float = math.inf, shift: dict[str, float] | None = None, cold: bool = True,
                  fixed: dict[str, tuple[float, float]] | None = None,
-                 infeasible: dict[tuple, str] | None = None) -> Solution:
+                 infeasible: dict[tuple, str] | None = None, sizing: dict[str, float] | None = None) -> Solution:
         """One solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one.
 
         With a start-up, the simulated start is what the limits are checked against, and the collocation's own
@@ -120,7 +120,10 @@ class Problem:
         link's integer choice found infeasible only at limits another choice's simulated start moved, lighter than the
         kept design, is solved through its own loop (:meth:`_own_loops`); ``fixed``: integer bounds of such a loop.
         ``infeasible``: integer choices known to have no design here, with why (:class:`RuledOut`; a start-up
-        sweep's point: those the papers' sizing at the point finds infeasible, ``start_up_sweep.sized_out``)."""
+        sweep's point: those the papers' sizing at the point finds infeasible, ``start_up_sweep.sized_out``);
+        ``sizing``: the papers' sizing's design at the point, where a caller starting warm knows it (a start-up
+        sweep's point, ``sized_out``): the integer search of each warm solve of the loop is completed by its
+        integers, as a first solve's is from the sizing (:meth:`_sized`)."""
         case.require(self.objective.name, quantities=self.formulation.quantities)
         if self.start_up is None:
             return self._solve(case, start, warm, mesh=mesh, diagnosed=diagnosed)
@@ -138,7 +141,7 @@ class Problem:
         ruled = None if structure.elastic else RuledOut(infeasible)  # an elastic link's NLP differs from its
         # simulation by the model, not the mesh: no collocation error bounds what the next solve changes
         solution = self._solve(case, start, warm, nlp_case=nlp_case, mesh=mesh, diagnosed=diagnosed, ruled=ruled,
-                               cold=cold)
+                               cold=cold, sizing=sizing)
         adapted, last_error, solves = 0, math.inf, [solution.solver]
         for _ in range(MESH_STEPS + BACK_OFF_STEPS):
             if foreign is not None:
@@ -165,7 +168,7 @@ class Problem:
                     break
                 adapted, last_error = adapted + 1, error
                 solution = self._solve(case, warm=solution, nlp_case=nlp_case, mesh=solution.mesh[1], ruled=ruled,
-                                       redecide=unsettled(solution, error))
+                                       redecide=unsettled(solution, error), sizing=sizing)
             elif (moved := corrected_case(solution, nlp_case, centre=not structure.elastic)) is not None:
                 # integers kept, unless the difference is the model's (an elastic link's dynamics), not a small one
                 integers = {v.name: (solution.design[v.name],) * 2 for v in self.formulation.variables
@@ -281,12 +284,13 @@ class Problem:
     def _solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
                nlp_case: Case | None = None, mesh: np.ndarray | None = None,
                diagnosed: bool = True, ruled: RuledOut | None = None, cold: bool = True,
-               redecide: bool = False) -> Solution:
+               redecide: bool = False, sizing: dict[str, float] | None = None) -> Solution:
         """One solve (with its integer search); the NLP sees ``nlp_case`` (moved limits), the checks ``case``;
         a start-up's mesh is ``mesh``, else the warm solution's, else the first one; ``ruled``: integer choices
         not to solve again, and where those found infeasible are recorded; ``cold=False``: no cold start after a
         failed warm one; ``redecide``: the warm solution's integers are not tried first, the relaxation is solved
-        (warm) and its integers searched as a first solve's (:func:`unsettled`)."""
+        (warm) and its integers searched as a first solve's (:func:`unsettled`); ``sizing``: the papers' sizing at
+        the point, whose integers a warm start-up solve's search is completed by (:meth:`_sized`)."""
         posed = self.posed
         warm_ok = warm is not None and warm.status in ("optimal", "unverified") and warm.scale is not None
         if mesh is None and warm_ok and warm.mesh is not None and len(warm.mesh[0]) == posed.mesh_size:
@@ -306,9 +310,11 @@ class Problem:
             sqp = ("sqp",) if self.options.warm_sqp and self.start_up is None else ()  # small dense NLPs only
             methods = sqp + (self._warm_method(warm, mesh),) if seed is not None else ("ipopt",)
             if integer and seed is not None and within(data, integer, combo):
-                kept = None if redecide else descend(posed, data.box, integer, combo, seed, search,
-                                                     fixing(posed, data, runs, search, ruled), first=methods)
+                attempt_at = fixing(posed, data, runs, search, ruled)
+                kept = None if redecide else descend(posed, data.box, integer, combo, seed, search, attempt_at,
+                                                     first=methods)
                 if kept is not None:
+                    kept = self._sized(solved, data, integer, kept, search, attempt_at, sizing)
                     return self._finish(case, kept, runs, data, search)
                 seed, methods = relaxation_seed(seed, integer), ("warm",)  # the previous integers fail here (or
                 # are decided again: ``redecide``)
@@ -338,12 +344,37 @@ class Problem:
         kept = nearest_integers(posed, data.box, integer, relaxed, search, attempt_at)
         if self.start_up is not None and start is not None and not warm_ok:  # a first solve, from the sizing
             kept = from_the_start(posed, data, integer, kept, search, attempt_at)
+        else:
+            kept = self._sized(solved, data, integer, kept, search, attempt_at, sizing)
         if kept is None:  # the relaxation is feasible, no integer near it is
             tried = "; ".join(", ".join(f"{k}={v}" for k, v in e.items() if k in posed.names) for e in search)
             return self._finish(case, runs[-1], runs, data, search,
                                 ("infeasible", f"infeasible in integers: the continuous relaxation is feasible "
                                  f"but none of the integer neighbours is ({tried})"))
         return self._finish(case, kept, runs, data, search)
+
+    def _sized(self, solved: Case, data: ScaledData, integer: list[int], kept: dict | None, search: list[dict],
+               attempt_at, sizing: dict[str, float] | None) -> dict | None:
+        """A warm start-up solve's search (of the NLP at ``solved`` on ``data``; ``kept``: its kept run) completed by
+        the papers' sizing's integers, as a first solve's is by its start
+        (:func:`~clutchopt.optimise.integers.from_the_start`), where it ended without a design or on other integers
+        than the sizing's: the sizing's point of this NLP (its design on ``data``'s scales, its states simulated on
+        ``data``'s mesh) is built only where the sizing may win. A search from a neighbouring optimum that keeps the
+        sizing's integers, heavier, is left as it is: its design is the mesh's (ball_motor_start at 288.2 kg m^2, the
+        loop's first solve: 23 rows at 957.55 kg, the same from the sizing, one solve more; the loop's next solve
+        then decided the rows again, ended without a design and the sweep solved the point cold). ``sizing``: None
+        (not known: a sweep's point before its sizing is solved, ``start_up_sweep.sized_out``): ``kept`` as it is."""
+        posed = self.posed
+        if self.start_up is None or sizing is None or kept is not None and all(
+                round(kept["design"][posed.names[i]]) == round(sizing[posed.names[i]]) for i in integer):
+            return kept
+        mesh = posed.mesh_of(data.p)
+
+        def point() -> np.ndarray:
+            return posed.scaled_data(solved, sizing, data.scale, None, mesh, data.checked).x0
+
+        design = posed.bounds_and_start(solved, sizing)[2]
+        return from_the_start(posed, data, integer, kept, search, attempt_at, (design, point))
 
     def _from_the_elastic_point(self, failed: dict, data: ScaledData,
                                 runs: list[dict]) -> tuple[dict, Diagnosis | None]:

@@ -71,7 +71,8 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
         step = secant_step(previous.along, numbers)
         mesh, shift = first_mesh(previous, step, tolerance), predicted_shift(previous, step, tolerance)
         solution = problem.refined(case, warm=previous, mesh=mesh, shift=shift, diagnosed=False, cold=False,
-                                   infeasible=sized.choices)  # solve's own cold start and diagnosis follow
+                                   infeasible=sized.choices, sizing=sized.design)  # solve's own cold start and
+        # diagnosis follow
     except InputError:  # its first simulation failed from this start
         return None
     if solution.status != "optimal":
@@ -89,10 +90,12 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
 class SizedOut:
     """The papers' sizing's problem at a sweep's point (``key``: its case values, as its posed problem reads them)
     and the integer choices its search found infeasible there (``choices``: the start-up problem's integer
-    variables' values -> why; None: not solved for)."""
+    variables' values -> why; None: not solved for), and its design there (``design``; None: not solved for, or not
+    optimal), whose integers complete each warm solve's search at the point (``Problem._sized``)."""
 
     key: str
     choices: dict[tuple, str] | None = None
+    design: dict[str, float] | None = None
 
 
 def sized_out(problem, case: Case, before: Along | None) -> SizedOut:
@@ -117,10 +120,11 @@ def sized_out(problem, case: Case, before: Along | None) -> SizedOut:
     if not set(static.posed.row_names) <= set(problem.posed.row_names):  # a row left to the start-up model
         return SizedOut(key, {})
     names = [v.name for v in problem.formulation.variables if v.integer]
+    sizing = static.solve(case)
     choices = {tuple(float(entry[name]) for name in names if name in entry):
                f"infeasible in the papers' sizing at this point ({entry['status']}), whose every row the start-up "
-               "problem keeps" for entry in static.solve(case).integer_search if entry["status"] == INFEASIBLE}
-    return SizedOut(key, choices)
+               "problem keeps" for entry in sizing.integer_search if entry["status"] == INFEASIBLE}
+    return SizedOut(key, choices, sizing.design if sizing.status == "optimal" else None)
 
 
 def first_mesh(previous: Solution, step: float | None, tolerance: float) -> np.ndarray:
