@@ -93,7 +93,7 @@ class WindowRecords:
         """The records (full, ``Solution.as_dict()``, laid out as :func:`~clutchopt.records.expand` gives them) of
         points that share a template (:func:`~clutchopt.records.template_of`), as arrays, read back as they are
         (``records(json_numbers=True)`` is their JSON, bit for bit); None where a value is not of its array's type
-        (a whole number where a float goes, NumPy's float32, text): they stay records of their own."""
+        (a whole number where a float goes or beyond 64 bits, NumPy's float32, text): they stay records of their own."""
         count = len(records)
         names = next((list(r["sensitivities"]) for r in records if r["sensitivities"]), [])
         if any(r["sensitivities"] and list(r["sensitivities"]) != names for r in records):
@@ -120,9 +120,12 @@ class WindowRecords:
         lists = {"status": [STATUSES.index(r["status"]) for r in records],
                  "diagnosis": [code.get(r["diagnosis"], -1) for r in records],
                  "sensitive": [name in r["sensitivities"] for r in records for name in names], **per_point, **per_item}
-        arrays = {name: np.array(lists[name], dtype=kind).reshape(count, -1).T.copy() if rows  # (a point's rows:
-                  else np.array(lists[name], dtype=kind)  # a column)
-                  for name, (kind, rows) in KINDS.items() if name in lists}
+        try:
+            arrays = {name: np.array(lists[name], dtype=kind).reshape(count, -1).T.copy() if rows  # (a point's rows:
+                      else np.array(lists[name], dtype=kind)  # a column)
+                      for name, (kind, rows) in KINDS.items() if name in lists}
+        except OverflowError:  # a whole number beyond 64 bits
+            return None
         arrays["priced"] = ~np.isnan(arrays["elasticity"]).all(axis=0)  # (unpriced: every elasticity None)
         return cls(template_of(records[0]), arrays,
                    {"diagnoses": diagnoses, "sensitivities": names, "integer_search": searches})
