@@ -3,7 +3,6 @@ template, kept as one row of arrays. Each test is a finding of an attack (the co
 test first, then its mend. Fast: the records are made by hand (a two-variable lever point without a design), no
 solve."""
 
-import copy
 import sqlite3
 from contextlib import closing
 
@@ -108,3 +107,20 @@ def test_a_gathered_rows_numbers_with_one_bit_flipped_are_refused(tmp_path, caps
         return bytes(data)
 
     _damaged_everywhere(tmp_path / "runs.sqlite", flipped, tmp_path, capsys)
+
+
+def test_a_template_changed_in_place_is_refused(tmp_path, capsys):
+    # attack: UPDATE templates SET body = replace(body, '"kg"', '"g"') (the template a gathered row's points share,
+    # still JSON of its shape, one unit changed): `runs show 1` printed the point's mass in g, the export's column
+    # "mass [g]". A template's key is the hash of its JSON (records.template_key): one that does not match its key is
+    # refused as a damaged one is
+    path = tmp_path / "runs.sqlite"
+    assert _recorded(path, [_point(k) for k in range(POINTS)]) == POINTS
+    with closing(sqlite3.connect(path)) as db, db:
+        assert db.execute("""UPDATE templates SET body = replace(body, '"kg"', '"g"')""").rowcount == 1
+    code, out, err = _shown(path, 1, capsys)
+    assert (code, out) == (2, "")
+    assert err.startswith(f"error: --store: {path}: run 1 is damaged (its template is missing, not JSON or changed)")
+    out = tmp_path / "rescued.csv"
+    assert main(["runs", "export", "-o", str(out), "--store", str(path)]) == 0
+    assert capsys.readouterr().out.startswith(f"0 runs written to {out}; {POINTS} damaged runs could not be read")
