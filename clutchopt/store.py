@@ -51,7 +51,7 @@ import numpy as np
 from clutchopt.errors import InputError
 from clutchopt.files import status
 from clutchopt.records import (NOMINAL, STATUSES, TEMPLATE, check_solution, design_inputs, expand, is_compact,
-                               method_of)
+                               is_keyed_by, method_of)
 from clutchopt.store_checkpoint import manual, note_written
 from clutchopt.store_kept import keep, take_kept
 from clutchopt.window_records import CHECKSUM, WindowRecords, checksum, gathered, pack, unpack
@@ -291,7 +291,7 @@ class RunStore:
         self.writable, self.checked = writable, check
         self.failure: str | None = None  # why recording stopped; runs after it were not recorded
         self.unrecorded = 0
-        self._templates: dict[str, dict | None] = {}  # read so far, by key (None: missing or not JSON)
+        self._templates: dict[str, dict | None] = {}  # read so far, by key (None: missing, not JSON or changed)
         self._warn = warn or (lambda text: warnings.warn(text, RuntimeWarning, stacklevel=3))
         size = self._check_file()
         self._db, unchanged = take_kept(self.path) if writable and check else (None, False)
@@ -608,7 +608,7 @@ class RunStore:
             if is_compact(outputs):
                 template = self._template(str(outputs[TEMPLATE]))
                 if template is None:
-                    raise ValueError("its template is missing or not JSON")
+                    raise ValueError("its template is missing, not JSON or changed")
                 outputs = expand(outputs, template)
             return outputs if kind == "simulation" else check_solution(outputs)
         except (KeyError, IndexError, TypeError, ValueError, AttributeError) as exc:
@@ -632,7 +632,7 @@ class RunStore:
         try:
             template = self._template(str(header[TEMPLATE]))
             if template is None:
-                raise ValueError("its template is missing or not JSON")
+                raise ValueError("its template is missing, not JSON or changed")
             values, varied = arrays.pop("inputs"), header["varied"]
             if values.shape != (len(varied), count) or not all(type(name) is str for name in varied):
                 raise ValueError("its numbers do not fit their layout")
@@ -671,13 +671,16 @@ class RunStore:
         return StoreError(self.path, f"run {run_id} is damaged ({problem})", _rescue(self.path))
 
     def _template(self, key: str) -> dict | None:
-        """A compact record's template (None if missing or not JSON), read once: the last TEMPLATES_KEPT are kept."""
+        """A compact record's template (None if missing, not JSON or not the one of its key), read once: the last
+        TEMPLATES_KEPT are kept."""
         if key not in self._templates:
             rows = self._read("SELECT body FROM templates WHERE key = ?", (key,)) if self._has_templates() else []
             try:
                 template = _from_json(rows[0][0]) if rows else None
             except (TypeError, ValueError, RecursionError):
                 template = None
+            if template is not None and not is_keyed_by(template, key):
+                template = None  # (changed in place)
             if len(self._templates) >= TEMPLATES_KEPT:
                 self._templates.pop(next(iter(self._templates)))
             self._templates[key] = template
