@@ -124,3 +124,23 @@ def test_a_template_changed_in_place_is_refused(tmp_path, capsys):
     out = tmp_path / "rescued.csv"
     assert main(["runs", "export", "-o", str(out), "--store", str(path)]) == 0
     assert capsys.readouterr().out.startswith(f"0 runs written to {out}; {POINTS} damaged runs could not be read")
+
+
+def test_a_gathered_rows_run_count_made_huge_is_damage_an_export_counts(tmp_path, capsys):
+    # attack: UPDATE runs SET run_count = 2**40 on the gathered row of 5 points: `runs export` listed the ids of the
+    # damaged row one by one (list(range(...)): 'internal error: MemoryError', exit 3; 10**8 took 18 s and 4.8 GB,
+    # 10**9 was killed). The ids counted lost stop where the file's size says no run can be (ROW_BYTES a run), as
+    # those of a damaged largest id do; the row's points are lost, the point solved alone beside it is exported
+    path = tmp_path / "runs.sqlite"
+    records = [_point(k) for k in range(POINTS)]
+    records[-1] = {**records[-1], "choice": {"lining": "moulded"}}  # (a key of its own: a row of its own)
+    assert _recorded(path, records) == POINTS
+    assert _gathered_rows(path) == [(0, POINTS - 1)]
+    with closing(sqlite3.connect(path)) as db, db:
+        db.execute("UPDATE runs SET run_count = ? WHERE window IS NOT NULL", (2**40,))
+    out = tmp_path / "rescued.csv"
+    assert main(["runs", "export", "-o", str(out), "--store", str(path)]) == 0
+    printed = capsys.readouterr().out
+    assert printed.startswith(f"1 runs written to {out}; ") and "damaged runs could not be read" in printed
+    code, shown, err = _shown(path, 3, capsys)
+    assert (code, shown) == (2, "") and "run 3 is damaged (its numbers do not fit their layout)" in err
