@@ -789,7 +789,7 @@ class RunStore:
                 row = self._row_of(run_id)
                 entries = self._entries(row, run_id - row["id"])
             except InputError as exc:  # damaged (a StoreError), or no run with this id (ids are not reused)
-                lost = self._lost(run_id) if isinstance(exc, StoreError) else []
+                lost = self._lost(run_id, largest) if isinstance(exc, StoreError) else []
                 damaged += lost
                 run_id += max(len(lost) - 1, 0)
                 missed += run_id > largest
@@ -801,12 +801,14 @@ class RunStore:
         open_end = largest if damaged and damaged[-1] > largest else None
         return runs, sum(run_id <= largest for run_id in damaged), open_end
 
-    def _lost(self, run_id: int) -> list[int]:
+    def _lost(self, run_id: int, largest: int) -> list[int]:
         """The ids of a damaged row from ``run_id`` on: as many as it holds where that much can be read (not its
-        numbers), else one."""
+        numbers), else one; none past the next row's first or ``largest`` (a damaged run count may say 2**40)."""
         try:
             row = self._row_of(run_id, f"id, {self._span()} AS count")
-            return list(range(run_id, row["id"] + row["count"]))
+            following = self._read("SELECT MIN(id) FROM runs WHERE id > ?", (run_id,))[0][0]
+            end = min(row["id"] + row["count"], largest + 1, following if type(following) is int else largest + 1)
+            return list(range(run_id, max(end, run_id + 1)))
         except InputError:
             return [run_id]
 
