@@ -12,6 +12,7 @@ records without importing the solvers.
 from __future__ import annotations
 
 import hashlib
+import json
 from dataclasses import asdict
 
 TEMPLATE = "template"  # the key that marks a compact record, holding its template's key
@@ -72,6 +73,28 @@ def template_key(template: dict) -> str:
     import orjson
 
     return hashlib.sha256(orjson.dumps(template, option=orjson.OPT_SORT_KEYS)).hexdigest()[:32]
+
+
+def is_keyed_by(template, key: str) -> bool:
+    """Whether a template read back from the store is the one its key was made of (a body changed in place, still
+    JSON of a template's shape: a unit, a name, an equation, is not): its key by :func:`template_key`, or by the
+    standard library's JSON as an older clutchopt made it. Such a key of a template with an infinite bound hashed
+    ``Infinity`` where the body may hold null: a template with a null bound is taken as it is."""
+    if type(template) is not dict:
+        return False
+    for form in (template_key, _older_template_key):
+        try:
+            if key == form(template):
+                return True
+        except (TypeError, ValueError):  # (what orjson refuses: a whole number beyond 64 bits)
+            pass
+    bounds = template.get("bounds")
+    return type(bounds) is dict and any(type(pair) is list and None in pair for pair in bounds.values())
+
+
+def _older_template_key(template: dict) -> str:
+    """A template's key as an older clutchopt made it (the standard library's JSON)."""
+    return hashlib.sha256(json.dumps(template, sort_keys=True, separators=(",", ":")).encode()).hexdigest()[:32]
 
 
 def laid_out(record: dict) -> bool:

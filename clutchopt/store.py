@@ -51,10 +51,10 @@ import numpy as np
 from clutchopt.errors import InputError
 from clutchopt.files import status
 from clutchopt.records import (NOMINAL, STATUSES, TEMPLATE, check_solution, design_inputs, expand, is_compact,
-                               method_of)
+                               is_keyed_by, method_of)
 from clutchopt.store_checkpoint import manual, note_written
 from clutchopt.store_kept import keep, take_kept
-from clutchopt.window_records import WindowRecords, gathered, pack, unpack
+from clutchopt.window_records import CHECKSUM, WindowRecords, checksum, gathered, pack, unpack
 
 DEFAULT_STORE = "clutchopt-runs.sqlite"
 STORE_ENV = "CLUTCHOPT_STORE"
@@ -291,7 +291,7 @@ class RunStore:
         self.writable, self.checked = writable, check
         self.failure: str | None = None  # why recording stopped; runs after it were not recorded
         self.unrecorded = 0
-        self._templates: dict[str, dict | None] = {}  # read so far, by key (None: missing or not JSON)
+        self._templates: dict[str, dict | None] = {}  # read so far, by key (None: missing, not JSON or changed)
         self._warn = warn or (lambda text: warnings.warn(text, RuntimeWarning, stacklevel=3))
         size = self._check_file()
         self._db, unchanged = take_kept(self.path) if writable and check else (None, False)
@@ -536,7 +536,8 @@ class RunStore:
         part = window if stop - start == len(window) else window.take(columns[taken])
         layout, data = pack({**part.arrays, "inputs": np.array([column[positions[taken]] for column in varied.values()],
                                                                dtype=float).reshape(len(varied), stop - start)})
-        header = {TEMPLATE: window.key, "arrays": layout, "varied": list(varied), **part.labels}
+        header = {TEMPLATE: window.key, "arrays": layout, "varied": list(varied), **part.labels,
+                  CHECKSUM: checksum(data)}
         return self._row("sweep", inputs, header, created, point=start, run_count=stop - start, window=data, **where)
 
     @staticmethod
@@ -607,7 +608,7 @@ class RunStore:
             if is_compact(outputs):
                 template = self._template(str(outputs[TEMPLATE]))
                 if template is None:
-                    raise ValueError("its template is missing or not JSON")
+                    raise ValueError("its template is missing, not JSON or changed")
                 outputs = expand(outputs, template)
             return outputs if kind == "simulation" else check_solution(outputs)
         except (KeyError, IndexError, TypeError, ValueError, AttributeError) as exc:
@@ -631,7 +632,7 @@ class RunStore:
         try:
             template = self._template(str(header[TEMPLATE]))
             if template is None:
-                raise ValueError("its template is missing or not JSON")
+                raise ValueError("its template is missing, not JSON or changed")
             values, varied = arrays.pop("inputs"), header["varied"]
             if values.shape != (len(varied), count) or not all(type(name) is str for name in varied):
                 raise ValueError("its numbers do not fit their layout")
@@ -646,14 +647,17 @@ class RunStore:
             raise self._damaged_run(named, exc) from None
 
     def _window(self, row: dict, count, data, named: int) -> tuple[dict, dict[str, np.ndarray]]:
-        """A window row's header (its outputs: the layout, the template's key, labels) and arrays, unpacked; the
-        row's point and run count checked (whole numbers); a damaged one named by run ``named``."""
+        """A window row's header (its outputs: the layout, the template's key, labels, the checksum of its bytes) and
+        arrays, unpacked; the row's point, run count (whole numbers) and bytes (their checksum, where the row has one)
+        checked; a damaged one named by run ``named``."""
         header = self._json(row["outputs"], named, "outputs")
         try:
             if type(count) is not int or count < 1:
                 raise ValueError("its run count is not a whole number")
             if type(row["point"]) is not int:
                 raise ValueError("its point number or inputs are not one of its sweep's points")
+            if CHECKSUM in header and type(data) is bytes and header[CHECKSUM] != checksum(data):  # (changed in place)
+                raise ValueError("its numbers do not match their checksum")
             arrays = unpack(header["arrays"], data)
             if not all(array.shape[-1:] == (count,) for array in arrays.values()):
                 raise ValueError("its numbers do not fit their layout")
@@ -667,13 +671,16 @@ class RunStore:
         return StoreError(self.path, f"run {run_id} is damaged ({problem})", _rescue(self.path))
 
     def _template(self, key: str) -> dict | None:
-        """A compact record's template (None if missing or not JSON), read once: the last TEMPLATES_KEPT are kept."""
+        """A compact record's template (None if missing, not JSON or not the one of its key), read once: the last
+        TEMPLATES_KEPT are kept."""
         if key not in self._templates:
             rows = self._read("SELECT body FROM templates WHERE key = ?", (key,)) if self._has_templates() else []
             try:
                 template = _from_json(rows[0][0]) if rows else None
             except (TypeError, ValueError, RecursionError):
                 template = None
+            if template is not None and not is_keyed_by(template, key):
+                template = None  # (changed in place)
             if len(self._templates) >= TEMPLATES_KEPT:
                 self._templates.pop(next(iter(self._templates)))
             self._templates[key] = template
@@ -782,7 +789,7 @@ class RunStore:
                 row = self._row_of(run_id)
                 entries = self._entries(row, run_id - row["id"])
             except InputError as exc:  # damaged (a StoreError), or no run with this id (ids are not reused)
-                lost = self._lost(run_id) if isinstance(exc, StoreError) else []
+                lost = self._lost(run_id, largest) if isinstance(exc, StoreError) else []
                 damaged += lost
                 run_id += max(len(lost) - 1, 0)
                 missed += run_id > largest
@@ -794,12 +801,14 @@ class RunStore:
         open_end = largest if damaged and damaged[-1] > largest else None
         return runs, sum(run_id <= largest for run_id in damaged), open_end
 
-    def _lost(self, run_id: int) -> list[int]:
+    def _lost(self, run_id: int, largest: int) -> list[int]:
         """The ids of a damaged row from ``run_id`` on: as many as it holds where that much can be read (not its
-        numbers), else one."""
+        numbers), else one; none past the next row's first or ``largest`` (a damaged run count may say 2**40)."""
         try:
             row = self._row_of(run_id, f"id, {self._span()} AS count")
-            return list(range(run_id, row["id"] + row["count"]))
+            following = self._read("SELECT MIN(id) FROM runs WHERE id > ?", (run_id,))[0][0]
+            end = min(row["id"] + row["count"], largest + 1, following if type(following) is int else largest + 1)
+            return list(range(run_id, max(end, run_id + 1)))
         except InputError:
             return [run_id]
 

@@ -10,7 +10,7 @@ from typing import Callable
 
 import numpy as np
 
-from clutchopt.window_records import pack, unpack
+from clutchopt.window_records import CHECKSUM, checksum, pack, unpack
 
 
 def sweep_points(store: Path) -> list[tuple[int, int, str]]:
@@ -30,7 +30,7 @@ def window_ids(store: Path) -> list[int]:
 
 def rewrite_windows(store: Path, change: Callable[[dict, dict[str, np.ndarray]], None]) -> None:
     """Every window row's header (its outputs) and arrays changed in place by ``change(header, arrays)``, and
-    packed again."""
+    packed again (with the checksum of the new bytes)."""
     with closing(sqlite3.connect(store)) as db, db:
         for run_id, outputs, data in db.execute("SELECT id, outputs, window FROM runs WHERE window IS NOT NULL"
                                                 ).fetchall():
@@ -38,6 +38,7 @@ def rewrite_windows(store: Path, change: Callable[[dict, dict[str, np.ndarray]],
             arrays = {name: array.copy() for name, array in unpack(header["arrays"], data).items()}
             change(header, arrays)
             header["arrays"], data = pack(arrays)
+            header[CHECKSUM] = checksum(data)
             db.execute("UPDATE runs SET outputs = ?, window = ? WHERE id = ?", (json.dumps(header), data, run_id))
 
 
@@ -61,6 +62,7 @@ def forget_points(store: Path, forget: Callable[[int], bool]) -> None:
                 layout, data = pack({name: np.ascontiguousarray(array[..., k:k + 1]) for name, array in arrays.items()})
                 searches = {"0": search for column, search in header["integer_search"].items() if int(column) == k}
                 kept = {**dict(row), "id": row["id"] + k, "point": row["point"] + k, "run_count": 1, "window": data,
-                        "outputs": json.dumps({**header, "arrays": layout, "integer_search": searches})}
+                        "outputs": json.dumps({**header, "arrays": layout, "integer_search": searches,
+                                               CHECKSUM: checksum(data)})}
                 db.execute(f"INSERT INTO runs ({', '.join(kept)}) VALUES ({', '.join('?' * len(kept))})",
                            tuple(kept.values()))
