@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 from dataclasses import asdict
 
 TEMPLATE = "template"  # the key that marks a compact record, holding its template's key
@@ -78,8 +79,8 @@ def template_key(template: dict) -> str:
 def is_keyed_by(template, key: str) -> bool:
     """Whether a template read back from the store is the one its key was made of (a body changed in place, still
     JSON of a template's shape: a unit, a name, an equation, is not): its key by :func:`template_key`, or by the
-    standard library's JSON as an older clutchopt made it. Such a key of a template with an infinite bound hashed
-    ``Infinity`` where the body may hold null: a template with a null bound is taken as it is."""
+    standard library's JSON as an older clutchopt made it, which hashed an infinite bound as ``Infinity`` where the
+    body holds null (the null put back as the infinity it stands for)."""
     if type(template) is not dict:
         return False
     for form in (template_key, _older_template_key):
@@ -89,7 +90,11 @@ def is_keyed_by(template, key: str) -> bool:
         except (TypeError, ValueError):  # (what orjson refuses: a whole number beyond 64 bits)
             pass
     bounds = template.get("bounds")
-    return type(bounds) is dict and any(type(pair) is list and None in pair for pair in bounds.values())
+    if type(bounds) is not dict or not all(type(pair) is list and len(pair) == 2 for pair in bounds.values()):
+        return False
+    infinite = {name: [-math.inf if low is None else low, math.inf if high is None else high]
+                for name, (low, high) in bounds.items()}
+    return infinite != bounds and key == _older_template_key({**template, "bounds": infinite})
 
 
 def _older_template_key(template: dict) -> str:

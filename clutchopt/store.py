@@ -606,10 +606,7 @@ class RunStore:
         outputs = self._json(text, run_id, "outputs")
         try:
             if is_compact(outputs):
-                template = self._template(str(outputs[TEMPLATE]))
-                if template is None:
-                    raise ValueError("its template is missing, not JSON or changed")
-                outputs = expand(outputs, template)
+                outputs = expand(outputs, self._template(str(outputs[TEMPLATE])))
             return outputs if kind == "simulation" else check_solution(outputs)
         except (KeyError, IndexError, TypeError, ValueError, AttributeError) as exc:
             raise self._damaged_run(run_id, exc) from None
@@ -631,8 +628,6 @@ class RunStore:
         stop = count if stop is None else stop
         try:
             template = self._template(str(header[TEMPLATE]))
-            if template is None:
-                raise ValueError("its template is missing, not JSON or changed")
             values, varied = arrays.pop("inputs"), header["varied"]
             if values.shape != (len(varied), count) or not all(type(name) is str for name in varied):
                 raise ValueError("its numbers do not fit their layout")
@@ -670,9 +665,9 @@ class RunStore:
             "its outputs do not fit their template"
         return StoreError(self.path, f"run {run_id} is damaged ({problem})", _rescue(self.path))
 
-    def _template(self, key: str) -> dict | None:
-        """A compact record's template (None if missing, not JSON or not the one of its key), read once: the last
-        TEMPLATES_KEPT are kept."""
+    def _template(self, key: str) -> dict:
+        """A compact record's template, read once (the last TEMPLATES_KEPT are kept); ValueError where it is missing,
+        not JSON or not the one of its key (a damaged run, to its caller)."""
         if key not in self._templates:
             rows = self._read("SELECT body FROM templates WHERE key = ?", (key,)) if self._has_templates() else []
             try:
@@ -684,6 +679,8 @@ class RunStore:
             if len(self._templates) >= TEMPLATES_KEPT:
                 self._templates.pop(next(iter(self._templates)))
             self._templates[key] = template
+        if self._templates[key] is None:
+            raise ValueError("its template is missing, not JSON or changed")
         return self._templates[key]
 
     def _has_templates(self) -> bool:

@@ -3,13 +3,17 @@ template, kept as one row of arrays. Each test is a finding of an attack (the co
 test first, then its mend. Fast: the records are made by hand (a two-variable lever point without a design), no
 solve."""
 
+import json
+import math
 import sqlite3
 from contextlib import closing
 
 import numpy as np
+import pytest
 
 from clutchopt.cli import main
 from clutchopt.output import to_json
+from clutchopt.records import _older_template_key, template_of
 from clutchopt.store import RunStore
 
 POINTS = 5
@@ -109,13 +113,21 @@ def test_a_gathered_rows_numbers_with_one_bit_flipped_are_refused(tmp_path, caps
     _damaged_everywhere(tmp_path / "runs.sqlite", flipped, tmp_path, capsys)
 
 
-def test_a_template_changed_in_place_is_refused(tmp_path, capsys):
+def _with_infinite_bound(record: dict) -> dict:
+    """The point with link_diameter unbounded above (its template's JSON holds null there)."""
+    return {**record, "bounds": {**record["bounds"], "link_diameter": [0.0005, math.inf]}}
+
+
+@pytest.mark.parametrize("bounded", [True, False], ids=["finite bounds", "an infinite bound"])
+def test_a_template_changed_in_place_is_refused(tmp_path, capsys, bounded):
     # attack: UPDATE templates SET body = replace(body, '"kg"', '"g"') (the template a gathered row's points share,
     # still JSON of its shape, one unit changed): `runs show 1` printed the point's mass in g, the export's column
     # "mass [g]". A template's key is the hash of its JSON (records.template_key): one that does not match its key is
-    # refused as a damaged one is
+    # refused as a damaged one is; so with an infinite bound (a reviewer's finding: a template with a null bound was
+    # taken unchecked, since an older clutchopt hashed it as Infinity: that key is now made with the infinity)
     path = tmp_path / "runs.sqlite"
-    assert _recorded(path, [_point(k) for k in range(POINTS)]) == POINTS
+    records = [_point(k) if bounded else _with_infinite_bound(_point(k)) for k in range(POINTS)]
+    assert _recorded(path, records) == POINTS
     with closing(sqlite3.connect(path)) as db, db:
         assert db.execute("""UPDATE templates SET body = replace(body, '"kg"', '"g"')""").rowcount == 1
     code, out, err = _shown(path, 1, capsys)
@@ -144,3 +156,41 @@ def test_a_gathered_rows_run_count_made_huge_is_damage_an_export_counts(tmp_path
     assert printed.startswith(f"1 runs written to {out}; ") and "damaged runs could not be read" in printed
     code, shown, err = _shown(path, 3, capsys)
     assert (code, shown) == (2, "") and "run 3 is damaged (its numbers do not fit their layout)" in err
+
+
+def test_a_whole_number_beyond_64_bits_in_what_the_points_share_keeps_them_rows(tmp_path):
+    # a reviewer's finding: the same number in a field the points share (solver.iterations, in their template)
+    # reached the template's key, whose JSON (orjson) refuses it: a TypeError out of record_points. The points stay
+    # rows of their own (each as a point solved alone is kept)
+    records = [_point(k) for k in range(POINTS)]
+    for record in records:
+        record["solver"]["iterations"] = 2**64
+    path = tmp_path / "runs.sqlite"
+    assert _recorded(path, records) == POINTS
+    assert _gathered_rows(path) == []
+    with closing(sqlite3.connect(path)) as db:
+        rows = db.execute("SELECT point, IFNULL(run_count, 1), outputs FROM runs ORDER BY point").fetchall()
+    assert [(point, count) for point, count, _ in rows] == [(k, 1) for k in range(POINTS)]
+    assert all('"iterations": 18446744073709551616' in text for _, _, text in rows)  # (the JSON of each)
+
+
+@pytest.mark.parametrize("bounded", [True, False], ids=["finite bounds", "an infinite bound"])
+def test_a_gathered_row_of_an_older_clutchopt_reads_as_it_was_recorded(tmp_path, bounded):
+    # rows of a store recorded before the checksum and orjson's keys: no crc32 in a row's header, its template keyed
+    # by the standard library's JSON (an infinite bound hashed as Infinity, its body holding null): read unchecked,
+    # each point as it was recorded, none damaged
+    path = tmp_path / "runs.sqlite"
+    records = [_point(k) if bounded else _with_infinite_bound(_point(k)) for k in range(POINTS)]
+    assert _recorded(path, records) == POINTS
+    older = _older_template_key(template_of(records[0]))
+    with closing(sqlite3.connect(path)) as db, db:
+        db.execute("UPDATE templates SET key = ?", (older,))
+        for run_id, text in db.execute("SELECT id, outputs FROM runs WHERE window IS NOT NULL").fetchall():
+            header = json.loads(text)
+            header.pop("crc32")
+            db.execute("UPDATE runs SET outputs = ? WHERE id = ?", (json.dumps({**header, "template": older}), run_id))
+    with RunStore(path, writable=False) as store:
+        runs, damaged, _ = store.readable_runs()
+    assert damaged == 0
+    back = {run["point"]: run["outputs"] for run in runs}
+    assert [to_json(back[k], None) for k in range(POINTS)] == [to_json(record, None) for record in records]
