@@ -36,13 +36,6 @@ def _tried(posed: Posed, search: list[dict], integer: list[int], combo) -> bool:
     return any(all(entry[posed.names[i]] == c for i, c in zip(integer, combo)) for entry in search)
 
 
-def _solved(posed: Posed, search: list[dict], integer: list[int], combo, bound: float = math.inf) -> bool:
-    """Whether the search found a design with the integers ``combo`` (a verified optimum of theirs) whose objective
-    is within ``bound``."""
-    return any(entry["feasible"] and entry["objective"] <= bound
-               and all(entry[posed.names[i]] == c for i, c in zip(integer, combo)) for entry in search)
-
-
 def descend(posed: Posed, box: Box, integer, combo, seed, search, attempt: Attempt, bound: float | None = None,
             first: tuple[str, ...] = ("ipopt",), again: bool = False) -> dict | None:
     """From the integers ``combo``, step to a neighbouring integer while the bound multipliers of the fixed
@@ -100,8 +93,9 @@ def from_the_start(posed: Posed, data: ScaledData, integer, kept: dict | None, s
     sizing solve to 950.76 kg, its own design. (At its 375 kg m^2 the sizing misses the start time by 6.3 %, the
     cable's link stress is 93 times over at its 0.25 kg m^2: not tried, no run added.)
 
-    The start's integers are solved from the start too where the search tried them from another point without a
-    design no heavier than the start (:func:`_solved`): the start is a point of their NLP (every row met), so an
+    The start's integers are solved from the start too where the search tried them from another point and kept no
+    design as light as the start (the kept one heavier, or none): the start is a point of their NLP (every row
+    met), so an
     infeasibility IPOPT reported for them from elsewhere is a local one its restoration ended in, and a heavier
     optimum a local one, both refuted by the start. They are solved first
     from the start as from a feasible point (FROM_A_FEASIBLE_START), then cold. ball_motor_start at 303.95 kg
@@ -113,19 +107,19 @@ def from_the_start(posed: Posed, data: ScaledData, integer, kept: dict | None, s
     ``start``: where the search's own start (``data``'s) is not the sizing, as in a warm solve (a sweep's point from
     the point before's optimum, and the accuracy loop's solves after it), the sizing's design (SI) and a function
     giving its point of this NLP (the design scaled as ``data``, its states from its simulated start, as a first solve
-    builds them): called only where the tests on the design alone leave the sizing a chance, so a point whose kept
-    design is the sizing's simulates nothing. ball_motor_start over driven_inertia at 288.2 kg m^2: the loop's
+    builds them; None where it cannot be simulated): called only where the tests on the design alone leave the
+    sizing a chance, so a point whose kept design is the sizing's simulates nothing. ball_motor_start over driven_inertia at 288.2 kg m^2: the loop's
     second solve, warm from the first's 23-row design (957.55 kg, its first mesh's), found 23 rows infeasible and
     kept 24 (954.264 kg); from the sizing 23 rows solve to 950.755 kg, ``solve``'s design of the point."""
     design, point = start if start is not None else (data.start, lambda: data.x0)
     combo = np.round(design[integer])
     start_value = attempts.checked(posed, dict(zip(posed.names, design)), data.checked or data.params)["value"]
     bound = start_value + posed.negligible(start_value)
-    if (kept is not None and kept["value"] <= bound or not within(data, integer, combo)
-            or _solved(posed, search, integer, combo, bound)):
-        return kept
+    if kept is not None and kept["value"] <= bound or not within(data, integer, combo):
+        return kept  # (a design with the start's integers as light as the start would be kept: the lightest is)
     x0 = point()
-    if least_violation(posed, np.array(posed.constraint_values(x0, data.p)).ravel()) > 10 * FEASIBILITY_TOL:
+    if x0 is None or least_violation(posed, np.array(posed.constraint_values(x0, data.p)).ravel()) > \
+            10 * FEASIBILITY_TOL:
         return kept
     found = descend(posed, data.box, integer, combo, feasible_start(posed, x0), search, attempt,
                     first=FROM_A_FEASIBLE_START, again=True)

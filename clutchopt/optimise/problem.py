@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from functools import cached_property
 
 import numpy as np
 
@@ -153,8 +154,7 @@ class Problem:
                 ruled.settle(error)
             if error > structure.spec.tolerance and not structure.elastic:  # an elastic link: its quasi-static
                 # NLP differs from the simulated dynamics by the model, not by the mesh
-                if shapes_nothing(solution, self.posed.n_checked, structure.spec.tolerance,
-                                  {q.name for q in self.posed.base.quantities}):
+                if shapes_nothing(solution, self.posed.n_checked, structure.spec.tolerance, self._own_names):
                     break
                 if adapted == MESH_STEPS or error > 0.5 * last_error:  # adapting no longer pays: more intervals
                     if not doubling_pays(error, coarser, structure.intervals, structure.spec.tolerance):
@@ -353,6 +353,12 @@ class Problem:
                                  f"but none of the integer neighbours is ({tried})"))
         return self._finish(case, kept, runs, data, search)
 
+    @cached_property
+    def _own_names(self) -> frozenset[str]:
+        """The coupling's own quantities and design variables (a variable a case fixes by its bounds has a
+        sensitivity of its name): what the start-up's drive, load and limits are not (:func:`shapes_nothing`)."""
+        return frozenset(q.name for q in self.posed.base.quantities) | {v.name for v in self.formulation.variables}
+
     def _sized(self, solved: Case, data: ScaledData, integer: list[int], kept: dict | None, search: list[dict],
                attempt_at, sizing: dict[str, float] | None) -> dict | None:
         """A warm start-up solve's search (of the NLP at ``solved`` on ``data``; ``kept``: its kept run) completed by
@@ -370,8 +376,12 @@ class Problem:
             return kept
         mesh = posed.mesh_of(data.p)
 
-        def point() -> np.ndarray:
-            return posed.scaled_data(solved, sizing, data.scale, None, mesh, data.checked).x0
+        def point() -> np.ndarray | None:  # (None: the sizing cannot be simulated here, outside the simulator's
+            # ranges: the warm search's design is kept)
+            try:
+                return posed.scaled_data(solved, sizing, data.scale, None, mesh, data.checked).x0
+            except InputError:
+                return None
 
         design = posed.bounds_and_start(solved, sizing)[2]
         return from_the_start(posed, data, integer, kept, search, attempt_at, (design, point))

@@ -3,7 +3,7 @@
 An induction motor (rotor J_m) drives the machine (J, load T_c) through a link whose torque T(w_a, theta) depends
 on the driving speed and the relative twist theta of the halves (``clutchopt.model.ElasticLaw``), with an
 equivalent viscous damping c = 2 zeta sqrt(k J_red) (k the link's stiffness at zero twist and the driving speed of
-the design, J_red = J J_m / (J + J_m)):
+the design, J_red = J J_m / (J + J_m); c = 0 where k <= 0, its limit as k falls to 0):
 
     J_m dw_a/dt = T_m(w_a) - T(w_a, theta) - c (w_a - w)
     J   dw/dt   = T(w_a, theta) + c (w_a - w) - T_c(w, t)      (the machine rests while that is <= 0 at w = 0)

@@ -201,7 +201,8 @@ def _elastic_model(case, law: ElasticLaw, design: dict[str, float], rtol: float)
     x = SimpleNamespace(**design)
     motor = InductionMotor(p.synchronous_speed, p.breakdown_torque, p.breakdown_slip, p.motor_inertia)
     reduced = p.driven_inertia * p.motor_inertia / (p.driven_inertia + p.motor_inertia)
-    stiffness = max(float(law.stiffness(x, p, p.speed)), 0.0)  # slack (a self-locking weight thread): none
+    stiffness = max(float(law.stiffness(x, p, p.speed)), 0.0)  # k <= 0 at the design speed (the cables' tension
+    # below zero: a self-locking weight thread, a retry's start the NLP rules out): no reference stiffness, c = 0
     damping = 2.0 * float(law.damping_ratio(x, p)) * math.sqrt(stiffness * reduced)
     profile = spec.load_profile
     load = Load(over=profile.over, points=profile.points, values=profile.values) if profile else Load(p.load_torque)
