@@ -506,8 +506,9 @@ def shapes_nothing(solution: Solution, first: int, tolerance: float, static: set
     negligible (elasticity of the objective within ``tolerance``): only the static constraints bind, the start-up
     states follow the design. (ball_motor_start at 0.6-0.9 times its driven inertia: the sizing's 950.755 kg starts
     in time whatever the mesh; the accuracy loop solved it 4 more times, every design the same to 1e-12.) And the
-    objective elastic within ``tolerance`` to every quantity not in ``static`` (the coupling's own: so the drive,
-    the load and the start-up's limits): where it is not, a row of the collocation binds, not a named check, and
+    objective elastic within ``tolerance`` to every quantity not in ``static`` (the coupling's own quantities and
+    design variables, one a case fixes having a sensitivity of its name: so the drive, the load and the start-up's
+    limits): where it is not, a row of the collocation binds, not a named check, and
     the design is the mesh's (ball_motor_start in paper mode at a width ratio of 1.36: only the width ratio bound
     of the named constraints, elasticity 0.16 to the driven inertia, error 2.3e-4: 765.47 kg, where the start-time
     bound optimum is 728.24 kg; tests/test_hostile_agree.py)."""
