@@ -94,23 +94,23 @@ def from_the_start(posed: Posed, data: ScaledData, integer, kept: dict | None, s
     cable's link stress is 93 times over at its 0.25 kg m^2: not tried, no run added.)
 
     The start's integers are solved from the start too where the search tried them from another point and kept no
-    design as light as the start (the kept one heavier, or none): the start is a point of their NLP (every row
-    met), so an
-    infeasibility IPOPT reported for them from elsewhere is a local one its restoration ended in, and a heavier
-    optimum a local one, both refuted by the start. They are solved first
-    from the start as from a feasible point (FROM_A_FEASIBLE_START), then cold. ball_motor_start at 303.95 kg
-    m^2: 23 rows from the relaxation's point end ``Infeasible_Problem_Detected`` (43 iterations), 24 rows were kept
-    (977.86 kg); 23 rows from the sizing, cold, end infeasible too (106 iterations), from it as a feasible point
-    they solve to 950.76 kg, the design of the solve with 23 rows fixed. At 248.08 kg m^2 23 rows from the
-    relaxation's point end at 955.98 kg, from the sizing at 950.755 kg.
+    design as light as the start (the kept one heavier, or none): the start is a point of their NLP (every row met),
+    so an infeasibility IPOPT reported for them from elsewhere is a local one its restoration ended in, and a
+    heavier optimum a local one, both refuted by the start. They are solved first from the start as from a feasible
+    point (FROM_A_FEASIBLE_START), then cold. ball_motor_start at 303.95 kg m^2: 23 rows from the relaxation's point
+    end ``Infeasible_Problem_Detected`` (43 iterations), 24 rows were kept (977.86 kg); 23 rows from the sizing,
+    cold, end infeasible too (106 iterations), from it as a feasible point they solve to 950.76 kg, the design of
+    the solve with 23 rows fixed. At 248.08 kg m^2 23 rows from the relaxation's point end at 955.98 kg, from the
+    sizing at 950.755 kg.
 
     ``start``: where the search's own start (``data``'s) is not the sizing, as in a warm solve (a sweep's point from
     the point before's optimum, and the accuracy loop's solves after it), the sizing's design (SI) and a function
-    giving its point of this NLP (the design scaled as ``data``, its states from its simulated start, as a first solve
-    builds them; None where it cannot be simulated): called only where the tests on the design alone leave the
-    sizing a chance, so a point whose kept design is the sizing's simulates nothing. ball_motor_start over driven_inertia at 288.2 kg m^2: the loop's
-    second solve, warm from the first's 23-row design (957.55 kg, its first mesh's), found 23 rows infeasible and
-    kept 24 (954.264 kg); from the sizing 23 rows solve to 950.755 kg, ``solve``'s design of the point."""
+    giving its point of this NLP (the design scaled as ``data``, its states from its simulated start, as a first
+    solve builds them; None where it cannot be simulated): called only where the tests on the design alone leave the
+    sizing a chance, so a point whose kept design is the sizing's simulates nothing. ball_motor_start over
+    driven_inertia at 288.2 kg m^2: the loop's second solve, warm from the first's 23-row design (957.55 kg, its
+    first mesh's), found 23 rows infeasible and kept 24 (954.264 kg); from the sizing 23 rows solve to 950.755 kg,
+    ``solve``'s design of the point."""
     design, point = start if start is not None else (data.start, lambda: data.x0)
     combo = np.round(design[integer])
     start_value = attempts.checked(posed, dict(zip(posed.names, design)), data.checked or data.params)["value"]
