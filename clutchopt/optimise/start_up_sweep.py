@@ -1,27 +1,25 @@
 """A start-up sweep's point solved from the optimum of the point before (issue 26 item 2).
 
-``Problem.solve`` starts a start-up design cold: the papers' sizing at the point (a static solve), a simulation of
-that design for the collocation's states (the start guess), IPOPT from there on the first mesh, then the accuracy
-loop (mesh adapted to the simulated start, defect corrections), each solve checked by the independent simulator.
-Along a sweep the point before gives a start as good and cheaper: its design, scales, multipliers and collocation
-states, on the mesh its loop ended on (adapted to a start next to this one's), and the limits its defect correction
-moved, as shares of its case's (:mod:`clutchopt.optimise.start_up_shift`): the first solve then needs no
-adaptation nor correction where the point before's did (wedge_motor_start over driven_inertia: 1.65 solves and
-simulated starts a point before, 1.0 now). Where the two points before ended on the same mesh and this point lies on
-the line through theirs, the moved limits are carried on along that line (:func:`predicted_shift`, a secant): where
-the temperature rise binds, the correction moves by some 1e-5 a point, which the carried share misses by more than
-the loop accepts, the secant's by the second difference only (a correction a point saved on a dense sweep; an
-elastic link's limits, which its loop never centres, are carried as they are). The loop
-still decides on this point's own simulated start, so the design is ``solve``'s within the accuracy contract
-(docs/start_up.md: each is the simulator's optimum to a quarter of the tolerance on the objective). A limit its
-loop left at the case's is moved only where the correction would move it (:func:`held_limits`), a point whose error
-the secant puts beyond the tolerance starts on the adapted mesh (:func:`first_mesh`), and an integer choice the
-papers' sizing finds infeasible at the point is not solved where the sizing's rows are all the start-up problem's
-(:func:`sized_out`): the corrections, adaptations and integer attempts the loop would solve only to land where it
-would have. The sizing and
-the start guess's simulation are saved; every solve is still checked by the simulator. A point this does not bring
-to an optimum is solved cold, as ``solve`` solves it (its verdict is ``solve``'s). A point the drive's proofs cover
-(:mod:`clutchopt.optimise.proofs`) is not started: ``solve`` gives its verdict without a solve.
+``Problem.solve`` starts a start-up design cold: the papers' sizing at the point (a static solve), a simulation of that
+design for the collocation's states (the start guess), IPOPT from there on the first mesh, then the accuracy loop (mesh
+adapted to the simulated start, defect corrections), each solve checked by the independent simulator. Along a sweep the
+point before gives a start as good and cheaper: its design, scales, multipliers and collocation states, on the mesh its
+loop ended on (adapted to a start next to this one's), and the limits its defect correction moved, as shares of its
+case's (:mod:`clutchopt.optimise.start_up_shift`): the first solve then needs no adaptation nor correction where the
+point before's did (wedge_motor_start over driven_inertia: 1.65 solves and simulated starts a point before, 1.0 now).
+Where the two points before ended on the same mesh and this point lies on the line through theirs, the moved limits are
+carried on along that line (:func:`predicted_shift`, a secant): where the temperature rise binds, the correction moves
+by some 1e-5 a point, which the carried share misses by more than the loop accepts, the secant's by the second
+difference only (a correction a point saved on a dense sweep; an elastic link's limits, which its loop never centres,
+are carried as they are). The loop still decides on this point's own simulated start, so the design is ``solve``'s
+within the accuracy contract (docs/start_up.md: each is the simulator's optimum to a quarter of the tolerance on the
+objective). A limit its loop left at the case's is moved only where the correction would move it (:func:`held_limits`),
+a point whose error the secant puts beyond the tolerance starts on the adapted mesh (:func:`first_mesh`), and an integer
+choice the papers' sizing finds infeasible at the point is not solved where the sizing's rows are all the start-up
+problem's (:func:`sized_out`): the corrections, adaptations and integer attempts the loop would solve only to land where
+it would have. The sizing and the start guess's simulation are saved; every solve is still checked by the simulator. A
+point this does not bring to an optimum is solved cold, as ``solve`` solves it (its verdict is ``solve``'s). A point the
+drive's proofs cover (:mod:`clutchopt.optimise.proofs`) is not started: ``solve`` gives its verdict without a solve.
 """
 
 from __future__ import annotations
@@ -40,6 +38,7 @@ from clutchopt.optimise.solution import Solution
 from clutchopt.optimise.start_up_check import CENTRE, limit_gaps, objective_error
 
 FURTHEST = 1.5  # the longest step ahead, in steps of the two points before, the secant is carried over
+
 
 @dataclass(frozen=True)
 class Along:
