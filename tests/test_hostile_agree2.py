@@ -1,0 +1,79 @@
+"""Start-up sweeps against `solve` of the same point, on today's merged main (warm solves completed by the sizing's
+integers, the accuracy loop's early stop, the defect correction, the mesh adapted ahead): what a randomised hunt over
+the four ``*_motor_start`` cases (and the wedge's scatter case), every mode, the quantities users vary in start-ups
+found. Each test is one finding's minimal repro; the lighter design of each pair is checked by its simulated start
+(status ``optimal``: every limit met by the independent simulation)."""
+
+from dataclasses import replace
+
+import pytest
+
+from clutchopt.cases import load_case
+from clutchopt.optimise import solve_case
+from conftest import CASES
+from test_hostile_agree import START_UP_RTOL, swept_and_solved
+
+
+def cable_solved(mode: str, cable_count: int | None = None, **values: float):
+    """`solve_case` of cable_motor_start at ``values`` (SI) in ``mode``, its cable count fixed where given."""
+    case = load_case(CASES / "cable_motor_start.toml").with_values(**values)
+    if cable_count is not None:
+        case = replace(case, bounds={**case.bounds, "cable_count": (cable_count, cable_count)})
+    return solve_case(case, mode=mode)
+
+
+@pytest.mark.xfail(strict=True, reason="solve's accuracy loop ends (start-time error 8.0e-4, within the tolerance, "
+                   "32 intervals, 6 solves) on a design no named limit holds: only width_ratio active, the torque "
+                   "13 % over its need, the objective elastic to the motor (breakdown torque 0.59, slip 0.55): held by "
+                   "a row of the collocation (an internal variable at its bound with multiplier 9.1e3, scaled), the "
+                   "class of the width-ratio-1.36 finding that shapes_nothing's elasticity test mended for the early "
+                   "stop, here on a loop that ends within the tolerance")
+def test_ball_motor_start_in_paper_mode_solved_at_a_start_time_limit_of_24_s_is_as_light_as_at_16_s():
+    # at 16 s (and at 13.2 s and 20 s) the optimum is 475.94832 kg with the torque and the width ratio active, the
+    # simulated start 7.43 s (the start time 54 % under its limit): a looser start-time limit (24 s) leaves that
+    # design feasible, so the optimum there cannot be heavier; solve at 24 s reported 512.94660 kg "optimal" (7.8 %
+    # heavier, its start 7.15 s); the sweep (13.2 s then 24 s) has 475.94832 kg at 24 s, verified
+    at_16 = solve_case(load_case(CASES / "ball_motor_start.toml").with_values(max_start_time=16.0), mode="paper")
+    assert at_16.status == "optimal"
+    assert at_16.objective == pytest.approx(475.94832, rel=START_UP_RTOL)
+    assert {c.name for c in at_16.constraints if c.active} == {"torque", "width_ratio"}
+    at_24 = solve_case(load_case(CASES / "ball_motor_start.toml").with_values(max_start_time=24.0), mode="paper")
+    assert at_24.status == "optimal"
+    assert at_24.objective == pytest.approx(at_16.objective, rel=START_UP_RTOL)
+
+
+@pytest.mark.xfail(strict=True, reason="solve alone ends on 9 cables where 8 meet every limit in their simulated "
+                   "start (link stress 2.6-4.2 % under its limit) and are 10.4 % lighter; a sweep reaching the point "
+                   "from a neighbour keeps 8: the cable count is decided by the elastic link's loop (its defect "
+                   "correction with the integers free, ForeignShifts), whose path from the papers' sizing ends on 9")
+@pytest.mark.parametrize("values", [{"max_link_stress": 344094739.753188}, {"torque": 93.60184278490337}],
+                         ids=["max_link_stress_344_MPa", "torque_93_6_N_m"])
+def test_cable_motor_start_in_threads_mode_solved_alone_has_the_lighter_verified_cable_count(values):
+    # with 8 cables fixed: 3.65473 kg (344 MPa) and 3.62645 kg (93.6 N m), "optimal", the simulated link stress
+    # 335.3 MPa; solve alone: 4.08318 kg and 4.05471 kg with 9 cables; a sweep (357.95 then 344.09 MPa; 79.47 then
+    # 93.60 N m) has the 8-cable design at the second point
+    eight = cable_solved("threads", 8, **values)
+    assert eight.status == "optimal"
+    stress = next(c for c in eight.constraints if c.name == "link_stress")
+    assert stress.margin > 0.02
+    solved = cable_solved("threads", **values)
+    assert solved.status == "optimal"
+    assert solved.design["cable_count"] == 8
+    assert solved.objective == pytest.approx(eight.objective, rel=START_UP_RTOL)
+
+
+@pytest.mark.xfail(strict=True, reason="the sweep keeps the 9 cables of the points before where 8 are feasible "
+                   "and verified (solve alone, and a sweep from 0.078 kg m^2 alone, find 8): the third point starts "
+                   "warm from 9 cables with the link-stress shift the two points before measured on 9 cables "
+                   "(start_up_sweep's held limits / predicted_shift), under which 8 look infeasible")
+def test_cable_motor_start_in_paper_mode_swept_over_its_motor_inertia_has_solve_s_cable_count():
+    # motor inertia 0.0695, 0.0779, 0.0820 kg m^2: at the first two 8 cables miss the link stress in their simulated
+    # start (by 3.0 % and 0.029 %), so 9 cables (4.41779 kg) as solve; at the third 8 cables meet it (solve alone:
+    # 3.95257 kg, "optimal"), the sweep keeps 9 (4.41779 kg, 11.8 % heavier)
+    record, solved = swept_and_solved("cable_motor_start.toml", "paper", "motor_inertia",
+                                      (0.0694503556954281, 0.07794988838460659, 0.08202439297229025))[0]
+    assert solved.status == record["status"] == "optimal"
+    assert solved.design["cable_count"] == 8
+    assert solved.objective == pytest.approx(3.95257292, rel=START_UP_RTOL)
+    assert record["design"]["cable_count"] == solved.design["cable_count"]
+    assert record["objective"]["value"] == pytest.approx(solved.objective, rel=START_UP_RTOL)
