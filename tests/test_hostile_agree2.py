@@ -76,3 +76,28 @@ def test_cable_motor_start_in_paper_mode_swept_over_its_motor_inertia_has_solve_
     assert solved.objective == pytest.approx(3.95257292, rel=START_UP_RTOL)
     assert record["design"]["cable_count"] == solved.design["cable_count"]
     assert record["objective"]["value"] == pytest.approx(solved.objective, rel=START_UP_RTOL)
+
+
+def test_a_count_below_found_infeasible_only_at_another_count_s_limit_gets_its_own_loop_once():
+    """The record of the 344.09 MPa loop above: 7 cables solved at the case's limit (6 infeasible there), then at
+    the limit 7's start moved 8 infeasible (its run ending at 5.598 kg, above the kept 4.083 kg) and 9 solved: 8 is
+    the count below to solve through its own loop (not a lighter run: ``lighter`` has none), once."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.own_shift import ForeignShifts
+
+    foreign = ForeignShifts(["cable_count"])
+
+    def searched(*entries):
+        return SimpleNamespace(integer_search=[{"cable_count": n, "status": status, "objective": value}
+                                               for n, status, value in entries])
+
+    foreign.seen(searched((7, "Solve_Succeeded", 3.226), (6, "Infeasible_Problem_Detected", 2.893)))
+    foreign.corrected(SimpleNamespace(design={"cable_count": 7.0}))
+    foreign.seen(searched((7, "Infeasible_Problem_Detected", 3.243), (8, "Infeasible_Problem_Detected", 5.598),
+                          (9, "Solve_Succeeded", 4.083)))
+    kept = SimpleNamespace(status="optimal", objective=4.083, design={"cable_count": 9.0})
+    assert foreign.lighter(kept) == []
+    assert foreign.untried_below(kept, {"cable_count": 3.0}) == [(8.0,)]
+    foreign.own_loop((8.0,))
+    assert foreign.untried_below(kept, {"cable_count": 3.0}) == []
