@@ -24,10 +24,14 @@ CARRIED = None  # the "choice" that measured a shift carried from elsewhere, whe
 
 def carried_by(warm) -> frozenset:
     """The choices that measured the limits a loop starts moved (a sweep's: the point before's ``limit_shift``,
-    with its solution ``warm``): those its loop recorded, else an unknown one (:data:`CARRIED`). The cable's sweep
-    at 0.25 kg m^2 starts from 0.2's stress limit, moved by 7 cables' start: 7 cables found infeasible there are
-    not solved through their own loop again (0.25 alone: 7 infeasible at the limit they moved themselves)."""
-    return getattr(warm, "shift_measured_by", None) or frozenset({CARRIED})
+    with its solution ``warm``): those its loop recorded, and always :data:`CARRIED`, for they measured it at another
+    point: no choice's verdict at a carried limit is its own. cable_motor_start (paper) swept over its motor inertia
+    0.0695, 0.0779, 0.0820 kg m^2: at 0.0779 8 cables' start carries 0.029 % more than the stress allowed and moves
+    the limit; the third point starts there, 8 cables infeasible, and with 8 taken as having measured that shift
+    itself no own loop ran: the sweep kept 9 cables (4.418 kg) where 8's own start at 0.0820 meets the case's limit
+    (3.953 kg, solve's). (The sweep at 0.25 kg m^2 from 0.2, 7 cables' limit, now solves 7 through its own loop
+    once: infeasible there as at 0.25 alone.)"""
+    return frozenset(getattr(warm, "shift_measured_by", None) or ()) | {CARRIED}
 
 
 class ForeignShifts:
