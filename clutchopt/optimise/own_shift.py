@@ -97,19 +97,24 @@ class ForeignShifts:
 
     def untried_below(self, kept, lower: dict[str, float]) -> list[tuple]:
         """The choices one count below ``kept``'s in one integer (within its ``lower`` bound) that no search of the
-        loop solved: a loop started at limits moved for another choice (a sweep's point before's) may round past
+        loop settled: a loop started at limits moved for another choice (a sweep's point before's) may round past
         them. allowable_cable_stress 350, 300, 250 MPa swept: at 250 MPa from 300's limit, moved by 10 cables'
         start, the search went 10 -> 13 -> 14 and 13's own loop ended optimal (6.277 kg); 12 cables, never tried,
         are `solve`'s of 250 MPa alone (5.813 kg). So is one the searches found infeasible only at limits another
         choice's start moved, whatever the objective its runs ended at (:attr:`found`; :meth:`lighter` takes those
         below the kept objective only, but an infeasible run's end bounds nothing): cable_motor_start (threads) at
         344.09 MPa: 7 cables' start moves the limit to 0.896 of the case's, where 8 cables' run ends infeasible at
-        5.598 kg and 9 are kept (4.083 kg); 8 cables' own loop: 3.655 kg, verified."""
+        5.598 kg and 9 are kept (4.083 kg); 8 cables' own loop: 3.655 kg, verified. And so is one a search solved
+        (a design of the NLP) but did not keep: its start was never simulated, so nothing but its own loop is its
+        verdict. cable_motor_start at a breakdown torque of 466.69 N m swept over torque 133.58 then 110.72 N m: the
+        second point's first search solves 16 down to 12 cables and keeps 12, whose start moves the limit; 19 are
+        kept there, 18's and 17's own loops end lighter, and 16 (solved, not kept) was skipped: the sweep kept 17
+        cables (8.141 kg) where 16's own loop gives solve's 7.677 kg. Only a choice found infeasible at the case's
+        limits or its own shift (:attr:`own`) or already looped is not solved again."""
         if kept.status != "optimal":
             return []
         below = self.one_off(kept, -1.0, lambda name, value: value >= lower[name])
-        return [combo for combo in below if (combo not in self.tried or combo in self.found)
-                and combo not in self.own and combo not in self.looped]
+        return [combo for combo in below if combo not in self.own and combo not in self.looped]
 
     def one_off(self, kept, step: float, within) -> list[tuple]:
         """The choices ``step`` counts off ``kept``'s in one integer, where ``within(name, value)``."""
