@@ -43,6 +43,21 @@ def test_ball_motor_start_in_paper_mode_solved_at_a_start_time_limit_of_24_s_is_
     assert at_24.objective == pytest.approx(at_16.objective, rel=START_UP_RTOL)
 
 
+
+@pytest.mark.xfail(strict=True, reason="the sweep's point is held by no named limit: only width_ratio active, the "
+                   "torque slack, as solve at a start-time limit of 24 s above (the same class: a row of the "
+                   "collocation, its design the mesh's); warm from 21.1 kg m^2's mesh and design the loop ends there")
+def test_ball_motor_start_in_paper_mode_swept_down_in_motor_inertia_has_solve_s_torque_bound_design():
+    # motor inertia 20.53, 21.10 then 10.82 kg m^2: at the third the sweep reported 476.06258 kg "optimal" with the
+    # torque slack (its simulated start verified), solve alone 475.94832 kg with the torque and width ratio active
+    # (the design of every start-up-slack point of this case: 2.4e-4 relative lighter); a sweep from 21.10 alone agrees
+    [(record, solved)] = swept_and_solved("ball_motor_start.toml", "paper", "motor_inertia",
+                                          (20.527572762408244, 21.09549236940575, 10.816363924537455))
+    assert solved.status == record["status"] == "optimal"
+    assert solved.objective == pytest.approx(475.94832, rel=START_UP_RTOL)
+    assert record["objective"]["value"] == pytest.approx(solved.objective, rel=START_UP_RTOL)
+
+
 @pytest.mark.parametrize("values", [{"max_link_stress": 344094739.753188}, {"torque": 93.60184278490337}],
                          ids=["max_link_stress_344_MPa", "torque_93_6_N_m"])
 def test_cable_motor_start_in_threads_mode_solved_alone_has_the_lighter_verified_cable_count(values):
