@@ -68,10 +68,11 @@ def test_the_wedge_centrifuge_in_geometry_mode_swept_over_its_acceleration_time_
         assert record["objective"]["value"] == pytest.approx(solved.objective, rel=STATIC_RTOL, abs=0)
 
 
-def swept_and_solved(case_file: str, mode: str, name: str, values: tuple[float, ...], every: bool = False) -> list:
-    """The sweep of a case over ``name`` = ``values`` (SI) in ``mode``: (record, `solve_case` of its values alone) of
-    its last point, or with ``every`` of each point."""
-    case = load_case(CASES / case_file)
+def swept_and_solved(case_file: str, mode: str, name: str, values: tuple[float, ...], every: bool = False,
+                     **fixed: float) -> list:
+    """The sweep of a case (at ``fixed`` values, SI) over ``name`` = ``values`` (SI) in ``mode``: (record,
+    `solve_case` of its values alone) of its last point, or with ``every`` of each point."""
+    case = load_case(CASES / case_file).with_values(**fixed)
     quantity = next(q for q in case.quantities if q.name == name)
     sweep = Sweep(case, [Vary(quantity, values)], mode=mode)
     pairs = list(zip(sweep.run(progress=False).solutions, sweep.points))

@@ -24,10 +24,14 @@ CARRIED = None  # the "choice" that measured a shift carried from elsewhere, whe
 
 def carried_by(warm) -> frozenset:
     """The choices that measured the limits a loop starts moved (a sweep's: the point before's ``limit_shift``,
-    with its solution ``warm``): those its loop recorded, else an unknown one (:data:`CARRIED`). The cable's sweep
-    at 0.25 kg m^2 starts from 0.2's stress limit, moved by 7 cables' start: 7 cables found infeasible there are
-    not solved through their own loop again (0.25 alone: 7 infeasible at the limit they moved themselves)."""
-    return getattr(warm, "shift_measured_by", None) or frozenset({CARRIED})
+    with its solution ``warm``): those its loop recorded, and always :data:`CARRIED`, for they measured it at another
+    point: no choice's verdict at a carried limit is its own. cable_motor_start (paper) swept over its motor inertia
+    0.0695, 0.0779, 0.0820 kg m^2: at 0.0779 8 cables' start carries 0.029 % more than the stress allowed and moves
+    the limit; the third point starts there, 8 cables infeasible, and with 8 taken as having measured that shift
+    itself no own loop ran: the sweep kept 9 cables (4.418 kg) where 8's own start at 0.0820 meets the case's limit
+    (3.953 kg, solve's). (The sweep at 0.25 kg m^2 from 0.2, 7 cables' limit, now solves 7 through its own loop
+    once: infeasible there as at 0.25 alone.)"""
+    return frozenset(getattr(warm, "shift_measured_by", None) or ()) | {CARRIED}
 
 
 class ForeignShifts:
@@ -41,6 +45,7 @@ class ForeignShifts:
         self.found: dict[tuple, float] = {}  # choice -> least objective at the end of its infeasible runs
         self.own: set[tuple] = set()  # choices found infeasible at the case's limits or at their own shift
         self.tried: set[tuple] = set()  # every choice the loop's integer searches or own loops solved
+        self.looped: set[tuple] = set()  # the choices solved through their own loop (``Problem._own_loop``)
 
     def choice(self, design: dict[str, float]) -> tuple:
         return tuple(float(design[name]) for name in self.names)
@@ -63,6 +68,11 @@ class ForeignShifts:
                 self.own.add(combo)
             elif math.isfinite(entry["objective"]):
                 self.found[combo] = min(self.found.get(combo, math.inf), entry["objective"])
+
+    def own_loop(self, combo: tuple) -> None:
+        """``combo`` solved through its own accuracy loop (``Problem._own_loop``)."""
+        self.tried.add(combo)
+        self.looped.add(combo)
 
     def lighter(self, kept) -> list[tuple]:
         """The choices to solve through their own loop before ``kept`` (the loop's solution) is kept: found
@@ -87,14 +97,24 @@ class ForeignShifts:
 
     def untried_below(self, kept, lower: dict[str, float]) -> list[tuple]:
         """The choices one count below ``kept``'s in one integer (within its ``lower`` bound) that no search of the
-        loop solved: a loop started at limits moved for another choice (a sweep's point before's) may round past
+        loop settled: a loop started at limits moved for another choice (a sweep's point before's) may round past
         them. allowable_cable_stress 350, 300, 250 MPa swept: at 250 MPa from 300's limit, moved by 10 cables'
         start, the search went 10 -> 13 -> 14 and 13's own loop ended optimal (6.277 kg); 12 cables, never tried,
-        are `solve`'s of 250 MPa alone (5.813 kg)."""
+        are `solve`'s of 250 MPa alone (5.813 kg). So is one the searches found infeasible only at limits another
+        choice's start moved, whatever the objective its runs ended at (:attr:`found`; :meth:`lighter` takes those
+        below the kept objective only, but an infeasible run's end bounds nothing): cable_motor_start (threads) at
+        344.09 MPa: 7 cables' start moves the limit to 0.896 of the case's, where 8 cables' run ends infeasible at
+        5.598 kg and 9 are kept (4.083 kg); 8 cables' own loop: 3.655 kg, verified. And so is one a search solved
+        (a design of the NLP) but did not keep: its start was never simulated, so nothing but its own loop is its
+        verdict. cable_motor_start at a breakdown torque of 466.69 N m swept over torque 133.58 then 110.72 N m: the
+        second point's first search solves 16 down to 12 cables and keeps 12, whose start moves the limit; 19 are
+        kept there, 18's and 17's own loops end lighter, and 16 (solved, not kept) was skipped: the sweep kept 17
+        cables (8.141 kg) where 16's own loop gives solve's 7.677 kg. Only a choice found infeasible at the case's
+        limits or its own shift (:attr:`own`) or already looped is not solved again."""
         if kept.status != "optimal":
             return []
         below = self.one_off(kept, -1.0, lambda name, value: value >= lower[name])
-        return [combo for combo in below if combo not in self.tried and combo not in self.own]
+        return [combo for combo in below if combo not in self.own and combo not in self.looped]
 
     def one_off(self, kept, step: float, within) -> list[tuple]:
         """The choices ``step`` counts off ``kept``'s in one integer, where ``within(name, value)``."""

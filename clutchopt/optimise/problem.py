@@ -234,7 +234,7 @@ class Problem:
         optimal and lighter than ``kept`` (or ``kept`` has none verified), else ``kept``; and whether it was."""
         fixed = {name: (value, value) for name, value in zip(foreign.names, combo)}
         own = self._refined(case, warm=solution, diagnosed=False, cold=False, fixed=fixed)
-        foreign.tried.add(combo)
+        foreign.own_loop(combo)
         runs.append(own.solver)
         kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, own)]
         if own.status == "optimal" and (kept.status != "optimal" or own.objective < kept.objective):
