@@ -44,7 +44,6 @@ class ForeignShifts:
         # that moved the limits the loop starts with, a sweep's point before's)
         self.found: dict[tuple, float] = {}  # choice -> least objective at the end of its infeasible runs
         self.own: set[tuple] = set()  # choices found infeasible at the case's limits or at their own shift
-        self.tried: set[tuple] = set()  # every choice the loop's integer searches or own loops solved
         self.looped: set[tuple] = set()  # the choices solved through their own loop (``Problem._own_loop``)
 
     def choice(self, design: dict[str, float]) -> tuple:
@@ -61,7 +60,6 @@ class ForeignShifts:
             if not all(name in entry for name in self.names):
                 continue
             combo = tuple(float(entry[name]) for name in self.names)
-            self.tried.add(combo)
             if entry["status"] == SOLVED or entry["status"].startswith("excluded"):
                 continue
             if self.measured <= {combo}:
@@ -71,7 +69,6 @@ class ForeignShifts:
 
     def own_loop(self, combo: tuple) -> None:
         """``combo`` solved through its own accuracy loop (``Problem._own_loop``)."""
-        self.tried.add(combo)
         self.looped.add(combo)
 
     def lighter(self, kept) -> list[tuple]:
