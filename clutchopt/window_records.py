@@ -129,12 +129,13 @@ class WindowRecords:
         except OverflowError:  # a whole number beyond 64 bits
             return None
         arrays["priced"] = ~np.isnan(arrays["elasticity"]).all(axis=0)  # (unpriced: every elasticity None)
-        template = template_of(records[0])
+        window = cls(template_of(records[0]), arrays,
+                     {"diagnoses": diagnoses, "sensitivities": names, "integer_search": searches})
         try:
-            template_key(template)
+            window.key  # (kept: the store names the row's template by it)
         except TypeError:  # (a whole number beyond 64 bits in what the points share: no key, kept as rows)
             return None
-        return cls(template, arrays, {"diagnoses": diagnoses, "sensitivities": names, "integer_search": searches})
+        return window
 
     @classmethod
     def read(cls, template: dict, arrays: dict[str, np.ndarray], labels: dict) -> "WindowRecords":
