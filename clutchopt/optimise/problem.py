@@ -26,6 +26,7 @@ from clutchopt.optimise.diagnosis import diagnose
 from clutchopt.optimise.failed_starts import FailedStarts
 from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_start, nearest_integers, relaxation_seed,
                                          within)
+from clutchopt.optimise.modifier import first_order
 from clutchopt.optimise.own_shift import ForeignShifts, carried_by, own_entry
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
@@ -96,7 +97,8 @@ class Problem:
                  mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,
                  coarser: float = math.inf, shift: dict[str, float] | None = None, cold: bool = True,
                  fixed: dict[str, tuple[float, float]] | None = None,
-                 infeasible: dict[tuple, str] | None = None, sizing: dict[str, float] | None = None) -> Solution:
+                 infeasible: dict[tuple, str] | None = None, sizing: dict[str, float] | None = None,
+                 lighter_than: float = math.inf) -> Solution:
         """One solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one.
 
         With a start-up, the simulated start is what the limits are checked against, and the collocation's own
@@ -120,6 +122,9 @@ class Problem:
         infeasible by far more than that solve's collocation error is not solved again (:class:`RuledOut`). An elastic
         link's integer choice found infeasible only at limits another choice's simulated start moved, lighter than the
         kept design, is solved through its own loop (:meth:`_own_loops`); ``fixed``: integer bounds of such a loop.
+        A loop that ends ``unverified`` goes on in modifier adaptation (:func:`~clutchopt.optimise.modifier.first_order`:
+        the limits' figures corrected in value and gradient, integers kept), its steps ending at a design no lighter
+        than ``lighter_than`` (an own loop's: the kept design's objective).
         ``infeasible``: integer choices known to have no design here, with why (:class:`RuledOut`; a start-up
         sweep's point: those the papers' sizing at the point finds infeasible, ``start_up_sweep.sized_out``);
         ``sizing``: the papers' sizing's design at the point, where a caller starting warm knows it (a start-up
@@ -187,6 +192,10 @@ class Problem:
             else:
                 break
             solves.append(solution.solver)
+        if nlp_case is not None and solution.status == "unverified":  # the limits' correction reached no verified
+            # design: the limits' figures corrected in value and gradient (modifier adaptation), integers kept
+            solution = first_order(self, case, solution, solves, lighter_than)
+            nlp_case = case if solution.status == "optimal" else nlp_case
         solution.solver = solution.solver.summed(solves)
         if nlp_case is not None:  # not the doubled problem's
             solution.limit_shift = limit_shift(case, nlp_case)
@@ -217,6 +226,10 @@ class Problem:
             kept, better = self._own_loop(case, solution, kept, foreign, combo, runs)
             if better:
                 break
+        for combo in foreign.unverified_below(kept):  # a lighter choice kept unverified: its own loop, to the end
+            kept, better = self._own_loop(case, solution, kept, foreign, combo, runs)
+            if better:
+                break
         bounds = {v.name: case.bounds.get(v.name, (v.lower, v.upper)) for v in self.formulation.variables if v.integer}
         for combo in foreign.above_unverified(kept, {name: hi for name, (_, hi) in bounds.items()}):  # one count up
             kept, _ = self._own_loop(case, solution, kept, foreign, combo, runs)
@@ -233,7 +246,8 @@ class Problem:
         limits, warm from ``solution``), recorded in ``kept``'s integer search and ``runs``: its design where it ends
         optimal and lighter than ``kept`` (or ``kept`` has none verified), else ``kept``; and whether it was."""
         fixed = {name: (value, value) for name, value in zip(foreign.names, combo)}
-        own = self._refined(case, warm=solution, diagnosed=False, cold=False, fixed=fixed)
+        own = self._refined(case, warm=solution, diagnosed=False, cold=False, fixed=fixed,
+                            lighter_than=kept.objective if kept.status == "optimal" else math.inf)
         foreign.own_loop(combo)
         runs.append(own.solver)
         kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, own)]
