@@ -45,8 +45,8 @@ class ForeignShifts:
         self.found: dict[tuple, float] = {}  # choice -> least objective at the end of its infeasible runs
         self.own: set[tuple] = set()  # choices found infeasible at the case's limits or at their own shift
         self.looped: set[tuple] = set()  # the choices solved through their own loop (``Problem._own_loop``)
-        self.unverified: dict[tuple, float] = {}  # choice -> least objective of the loop's designs of it whose
-        # simulated start missed a limit (:meth:`unverified_below`)
+        self.unverified: dict[tuple, object] = {}  # choice -> the loop's lightest design of it whose simulated
+        # start missed a limit (:meth:`unverified_below`)
 
     def choice(self, design: dict[str, float]) -> tuple:
         return tuple(float(design[name]) for name in self.names)
@@ -61,7 +61,8 @@ class ForeignShifts:
         simulated start misses a limit."""
         if solution.status == "unverified":
             combo = self.choice(solution.design)
-            self.unverified[combo] = min(self.unverified.get(combo, math.inf), solution.objective)
+            if combo not in self.unverified or solution.objective < self.unverified[combo].objective:
+                self.unverified[combo] = solution
         for entry in solution.integer_search:
             if not all(name in entry for name in self.names):
                 continue
@@ -87,19 +88,20 @@ class ForeignShifts:
         return sorted((combo for combo, value in self.found.items()
                        if value < bound and combo not in self.own and combo != own), key=self.found.get)
 
-    def unverified_below(self, kept) -> list[tuple]:
-        """The choices whose design the loop kept ``unverified`` at some step, lighter than ``kept`` (optimal), not
-        solved through their own loop yet, lightest first: a choice the defect correction then found infeasible at
-        its own shift has no verdict, for a moved limit cannot reach every verified design of it (its own loop ends
-        in modifier adaptation: :func:`~clutchopt.optimise.modifier.first_order`). cable_motor_start at 0.5 kg m^2:
-        8 cables' start carries 0.44 % over the allowed stress, their correction has no design and 9 cables are kept
-        (4.418 kg); 8 cables' own loop verifies them with a heavier weight, 4.257 kg."""
+    def unverified_below(self, kept) -> list:
+        """The designs of other choices the loop kept ``unverified`` at some step (the lightest of each), lighter
+        than ``kept`` (optimal), their choices not solved through their own loop, lightest first: a choice the defect
+        correction then found infeasible at its own shift has no verdict, for a moved limit cannot reach every
+        verified design of it; modifier adaptation goes on from that design
+        (:func:`~clutchopt.optimise.modifier.first_order`). cable_motor_start at 0.5 kg m^2: 8 cables' start carries
+        0.44 % over the allowed stress, their correction has no design and 9 cables are kept (4.418 kg); from 8
+        cables' design the modifier verifies them with a heavier weight, 4.257 kg."""
         if kept.status != "optimal":
             return []
         own = self.choice(kept.design)
-        return sorted((combo for combo, value in self.unverified.items()
-                       if value < kept.objective and combo != own and combo not in self.looped),
-                      key=self.unverified.get)
+        return sorted((solution for combo, solution in self.unverified.items()
+                       if solution.objective < kept.objective and combo != own and combo not in self.looped),
+                      key=lambda solution: solution.objective)
 
     def above_unverified(self, kept, upper: dict[str, float]) -> list[tuple]:
         """The choices one count above ``kept``'s in one integer (within its ``upper`` bound) where the loop kept an

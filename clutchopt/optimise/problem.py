@@ -226,8 +226,8 @@ class Problem:
             kept, better = self._own_loop(case, solution, kept, foreign, combo, runs)
             if better:
                 break
-        for combo in foreign.unverified_below(kept):  # a lighter choice kept unverified: its own loop, to the end
-            kept, better = self._own_loop(case, solution, kept, foreign, combo, runs)
+        for unverified in foreign.unverified_below(kept):  # a lighter choice kept unverified: modifier adaptation
+            kept, better = self._first_order(case, kept, foreign, unverified, runs)
             if better:
                 break
         bounds = {v.name: case.bounds.get(v.name, (v.lower, v.upper)) for v in self.formulation.variables if v.integer}
@@ -252,6 +252,27 @@ class Problem:
         runs.append(own.solver)
         kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, own)]
         if own.status == "optimal" and (kept.status != "optimal" or own.objective < kept.objective):
+            own.integer_search, own.bounds = kept.integer_search, kept.bounds
+            return own, True
+        return kept, False
+
+    def _first_order(self, case: Case, kept: Solution, foreign: ForeignShifts, unverified: Solution,
+                     runs: list) -> tuple[Solution, bool]:
+        """Modifier adaptation from ``unverified`` (a design of another integer choice the loop kept, its simulated
+        start missing a limit: :meth:`~clutchopt.optimise.own_shift.ForeignShifts.unverified_below`), its integers
+        fixed, each step warm from the last and stopped at a design no lighter than ``kept``
+        (:func:`~clutchopt.optimise.modifier.first_order`), recorded in ``kept``'s integer search and ``runs`` as an
+        own loop of the choice: its design where it ends optimal and lighter, else ``kept``; and whether it was."""
+        combo = foreign.choice(unverified.design)
+        steps: list = []
+        own = first_order(self, case, unverified, steps, kept.objective)
+        foreign.own_loop(combo)
+        if not steps:
+            return kept, False
+        own.solver = own.solver.summed(steps) if own is not unverified else steps[-1].summed(steps)
+        runs.append(own.solver)
+        kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, own)]
+        if own.status == "optimal" and own.objective < kept.objective:
             own.integer_search, own.bounds = kept.integer_search, kept.bounds
             return own, True
         return kept, False
