@@ -59,7 +59,7 @@ class ForeignShifts:
         """A solve of the loop (at the limits moved so far): its infeasible choices, recorded as found at another
         choice's shift or at their own (none moved, or moved by their own start alone); its design, where its
         simulated start misses a limit."""
-        if solution.status == "unverified":
+        if getattr(solution, "status", None) == "unverified":
             combo = self.choice(solution.design)
             if combo not in self.unverified or solution.objective < self.unverified[combo].objective:
                 self.unverified[combo] = solution
@@ -142,7 +142,8 @@ class ForeignShifts:
                 if within(name, value + step)]
 
 
-def own_entry(names: list[str], combo: tuple, own) -> dict:
-    """The integer search's record of ``combo`` solved through its own accuracy loop (``own``, its solution)."""
-    return {**{n: int(v) for n, v in zip(names, combo)}, "status": f"own accuracy loop: {own.status}",
+def own_entry(names: list[str], combo: tuple, own, how: str = "own accuracy loop") -> dict:
+    """The integer search's record of ``combo`` solved through its own accuracy loop (``own``, its solution; ``how``:
+    or modifier adaptation)."""
+    return {**{n: int(v) for n, v in zip(names, combo)}, "status": f"{how}: {own.status}",
             "feasible": own.status == "optimal", "objective": own.objective}

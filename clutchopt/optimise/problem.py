@@ -26,7 +26,7 @@ from clutchopt.optimise.diagnosis import diagnose
 from clutchopt.optimise.failed_starts import FailedStarts
 from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_start, nearest_integers, relaxation_seed,
                                          within)
-from clutchopt.optimise.modifier import first_order
+from clutchopt.optimise.modifier import VARIANT, first_order
 from clutchopt.optimise.own_shift import ForeignShifts, carried_by, own_entry
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
@@ -271,7 +271,7 @@ class Problem:
             return kept, False
         own.solver = own.solver.summed(steps) if own is not unverified else steps[-1].summed(steps)
         runs.append(own.solver)
-        kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, own)]
+        kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, own, VARIANT)]
         if own.status == "optimal" and own.objective < kept.objective:
             own.integer_search, own.bounds = kept.integer_search, kept.bounds
             return own, True
