@@ -190,6 +190,15 @@ def centred(solution, names: set[str]) -> bool:
                for check, _, gap in limit_gaps(solution) if check.name in names)
 
 
+def problem_with_modifiers(problem):
+    """``problem`` posed with the modifiers' parameters (:func:`with_modifiers`): built once a process, on first use
+    (0.06 s for the cable, its warm IPOPT 0.04 s more)."""
+    from clutchopt.optimise.problem import problem_for
+
+    return problem_for(with_modifiers(problem.posed.base), problem.objective.name, problem.options,
+                       problem.start_up.s)
+
+
 def first_order(problem, case, solution, solves: list, bound: float = math.inf, counts: dict | None = None):
     """``solution`` (a start-up solve its defect correction left ``unverified``), or the lightest design of its
     integers that modifier adaptation reaches and its simulated start verifies: each step solves the NLP at the
@@ -201,15 +210,13 @@ def first_order(problem, case, solution, solves: list, bound: float = math.inf, 
     m^2: 8 cables' steps 4.348, 4.547 kg, ..., verified at 4.596 kg against 9 cables' 4.418 kg; at 0.6 kg m^2 they
     never verify). ``solves``: each step's solver record is appended; ``counts``: its ``simulations`` (the
     gradients' differences) added to."""
-    from clutchopt.optimise.problem import problem_for
-
     counts = {} if counts is None else counts
     names = violated(solution)
     if solution.status != "unverified" or not names or solution.internal is None:
         return solution
     posed = problem.posed
     fixed = {posed.names[i]: (solution.design[posed.names[i]],) * 2 for i in posed.integer}
-    corrected = problem_for(with_modifiers(posed.base), problem.objective.name, problem.options, problem.start_up.s)
+    corrected = problem_with_modifiers(problem)
     last, best = solution, None
     for _ in range(MODIFIER_STEPS):
         values = modifiers(problem, case, last, names, counts)
