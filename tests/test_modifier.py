@@ -6,7 +6,7 @@ C_0 = 335.9957 MPa, the simulated start at S_0 = 351.5512 MPa. Along the weight 
 the NLP re-solved at w_0 + 1 g with the weight mass fixed) and the simulated one falls (dS/dw, simulations at w_0 +-
 0.1 g), so the modifier of the stress is the slope lambda = dS/dw - dC/dw (about -49.9 - 32.8 = -82.6 MPa/kg) and the
 offset S_0 - C_0 - lambda w_0: at w_0 the corrected figure C + offset + lambda w is S_0. With C linear the corrected
-NLP's limit would bind at w_1 = w_0 + (S_0 - L) / |dS/dw| = 0.4857 kg; C curves up a little (0.4863 kg).
+NLP's limit would bind at w_1 = w_0 + (S_0 - L) / |dS/dw| = 0.48567 kg; C's curvature adds 0.07 g (0.48574 kg).
 """
 
 from dataclasses import replace
@@ -85,7 +85,7 @@ def test_the_modifier_is_the_simulated_figure_and_its_slope_at_the_design(at_the
 
 def test_a_step_binds_the_corrected_figure_and_nears_the_limit(at_the_bound):
     """The corrected NLP (the case's limit) binds C(w_1) + offset + lambda w_1 = L; its weight mass near the hand
-    calculation's 0.4857 kg (C's curvature); its simulated start 350.23 MPa, within a sixth of S_0's excess."""
+    calculation's 0.48567 kg (C's curvature); its simulated start 350.23 MPa, within a sixth of S_0's excess."""
     case, problem, solution = at_the_bound
     values = modifiers(problem, case, solution, {"link_stress"}, {})
     moved = replace(case, values={**case.values, **values})
@@ -93,7 +93,7 @@ def test_a_step_binds_the_corrected_figure_and_nears_the_limit(at_the_bound):
     w1 = step.design["weight_mass"]
     w0 = solution.design["weight_mass"]
     hand = w0 + (solution.start_up["peak_link_stress_simulated"] - L) / 49.9e6
-    assert hand == pytest.approx(0.48567, rel=1e-4) and w1 == pytest.approx(hand, rel=3e-3)
+    assert hand == pytest.approx(0.48567, rel=1e-4) and w1 == pytest.approx(hand, rel=5e-4)
     corrected = (step.collocated["link_stress"] + values[offset_name("link_stress")]
                  + values[slope_name("link_stress", "weight_mass")] * w1)
     assert corrected == pytest.approx(L, rel=1e-8)
