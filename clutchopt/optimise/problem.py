@@ -269,8 +269,10 @@ class Problem:
         foreign.own_loop(combo)
         if not steps:
             return kept, False
-        own.solver = own.solver.summed(steps) if own is not unverified else steps[-1].summed(steps)
-        runs.append(own.solver)
+        spent = (own.solver if own is not unverified else steps[-1]).summed(steps)  # (the loop's design untouched)
+        if own is not unverified:
+            own.solver = spent
+        runs.append(spent)
         kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, own, VARIANT)]
         if own.status == "optimal" and own.objective < kept.objective:
             own.integer_search, own.bounds = kept.integer_search, kept.bounds
