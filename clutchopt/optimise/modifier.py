@@ -32,13 +32,13 @@ from dataclasses import replace
 import casadi as ca
 import numpy as np
 
+from clutchopt.errors import InputError
 from clutchopt.model import Quantity
 from clutchopt.optimise.start_up_check import CENTRE, LIMIT_OF, limit_gaps, objective_error, simulated_checks
 from clutchopt.optimise.verify import DESIGN_STATUSES
 from clutchopt.start_up.equations import with_start_up
-from clutchopt.errors import InputError
 
-MODIFIER_STEPS = 6  # corrected solves at most (the cable at 0.5 kg m^2: 3, its 8 cables verified from the first)
+MODIFIER_STEPS = 6  # corrected solves at most (the cable's 8 cables at 0.5 kg m^2: 3 from the free loop, 4 fixed)
 DIFFERENCE_STEP = 1e-4  # of a variable's magnitude (or its scale): the simulated figures' forward differences (the peak
 # stress moves by about 1e-9 of itself with where the integrator steps fall: at 1e-6 its slope was 2 % off; at 1e-4 the
 # noise and the curvature are each about 2e-4 of it)
