@@ -492,7 +492,8 @@ def uncorrected(solution: Solution, corrected: Solution) -> Solution:
     simulated start makes it (the violation named, and that the correction found no design), not a verdict of the
     solve: cable_motor_start at 0.5 kg m^2 with 8 cables fixed (their simulated start 0.44 % over the allowed stress,
     where no 8-cable design of the quasi-static NLP is 4.4 % under it: docs/start_up.md, "The defect correction's
-    fixed point"). Only an ``infeasible`` corrected solve says that no design of the NLP meets the moved limits; one
+    fixed point"; modifier adaptation then goes on from that design and verifies them, 4.2568 kg: ``first_order``).
+    Only an ``infeasible`` corrected solve says that no design of the NLP meets the moved limits; one
     that ended ``solver_failed`` or ``not_found`` found none from its start, which proves nothing. ``optimal`` (the
     correction only centred a binding limit the simulated start meets): verified, its status kept, but the objective
     may be off the simulator's optimum by more than the CENTRE of the tolerance the correction holds it to: a note."""
