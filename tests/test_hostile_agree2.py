@@ -123,12 +123,14 @@ def test_cable_motor_start_on_a_stronger_motor_swept_down_in_torque_has_solve_s_
     # first search (warm from 16 cables) solves 16 down to 12 at the case's limits and keeps 12, whose start moves the
     # stress limit; there 18 are infeasible and 19 kept, 18's and 17's own loops end optimal (8.606, 8.141 kg) and the
     # sweep kept 17 cables, 6.0 % heavier than solve's 16 (7.67662 kg, verified): untried_below skipped 16 as tried,
-    # though the search had solved it only at the case's limits before any simulated start, which is no verdict
+    # though the search had solved it only at the case's limits before any simulated start, which is no verdict.
+    # Since modifier adaptation (clutchopt.optimise.modifier) 15 cables verify too (7.48913 kg, their start 0.64 %
+    # over the limit at the NLP's design, no NLP design at the moved limit): solve and the sweep keep 15
     [(record, solved)] = swept_and_solved("cable_motor_start.toml", "paper", "torque",
                                           (133.58135082908308, 110.72306213104756), breakdown_torque=466.68602275904095)
     assert solved.status == record["status"] == "optimal"
-    assert solved.design["cable_count"] == 16
-    assert solved.objective == pytest.approx(7.67662062, rel=START_UP_RTOL)
+    assert solved.design["cable_count"] == 15
+    assert solved.objective == pytest.approx(7.48913128, rel=START_UP_RTOL)
     assert record["design"]["cable_count"] == solved.design["cable_count"]
     assert record["objective"]["value"] == pytest.approx(solved.objective, rel=START_UP_RTOL)
 
