@@ -22,13 +22,6 @@ def cable_solved(mode: str, cable_count: int | None = None, **values: float):
     return solve_case(case, mode=mode)
 
 
-@pytest.mark.xfail(strict=True, reason="a row of the collocation holds the design, not a limit: the slip state at a "
-                   "collocation point of the slip phase's last interval sits on its lower bound 0 (multiplier 9.1e3, "
-                   "scaled; the lock-up falls inside an interval), so each mesh the accuracy loop adapts gives another "
-                   "design (487.5, 507.6, 501.6, 495.0 kg on 16 intervals, 503.5, 512.9 kg on 32), none with the torque "
-                   "active; the error grows (1.8e-4 to 8.0e-4, the tolerance 1e-6), doubling_pays says no and the loop "
-                   "returns its last solve, verified by its simulated start but 7.8 % heavier; the objective elastic "
-                   "to the motor (breakdown torque 0.59) though no start-up limit is active")
 def test_ball_motor_start_in_paper_mode_solved_at_a_start_time_limit_of_24_s_is_as_light_as_at_16_s():
     # at 16 s (and at 13.2 s and 20 s) the optimum is 475.94832 kg with the torque and the width ratio active, the
     # simulated start 7.43 s (the start time 54 % under its limit): a looser start-time limit (24 s) leaves that
@@ -44,9 +37,6 @@ def test_ball_motor_start_in_paper_mode_solved_at_a_start_time_limit_of_24_s_is_
 
 
 
-@pytest.mark.xfail(strict=True, reason="the sweep's point is held by no named limit: only width_ratio active, the "
-                   "torque slack, as solve at a start-time limit of 24 s above (the same class: a row of the "
-                   "collocation, its design the mesh's); warm from 21.1 kg m^2's mesh and design the loop ends there")
 def test_ball_motor_start_in_paper_mode_swept_down_in_motor_inertia_has_solve_s_torque_bound_design():
     # motor inertia 20.53, 21.10 then 10.82 kg m^2: at the third the sweep reported 476.06258 kg "optimal" with the
     # torque slack (its simulated start verified), solve alone 475.94832 kg with the torque and width ratio active

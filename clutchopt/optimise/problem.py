@@ -38,6 +38,7 @@ from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
 from clutchopt.start_up.mesh import MAX_INTERVALS, MESH_STEPS
+from clutchopt.start_up.transcription import mesh_of_the_start
 
 
 PROVEN = "proof"  # the solver of a start-up the drive's proofs cover (:meth:`Problem.proven`: no start-up solve)
@@ -187,6 +188,9 @@ class Problem:
             else:
                 break
             solves.append(solution.solver)
+        if nlp_case is not None and held_by_the_mesh(solution, self.posed.n_checked, structure.spec.tolerance,
+                                                     self._own_names):  # (the doubled problem's loop decided)
+            solution = self._from_the_sizing(case, solution, nlp_case, sizing, solves)
         solution.solver = solution.solver.summed(solves)
         if nlp_case is not None:  # not the doubled problem's
             solution.limit_shift = limit_shift(case, nlp_case)
@@ -262,6 +266,41 @@ class Problem:
         """The papers' sizing's problem: the same formulation without the start-up, the same objective and options
         (built once: :func:`problem_for`)."""
         return problem_for(self.posed.base, self.objective.name, self.options)
+
+    def _from_the_sizing(self, case: Case, held: Solution, nlp_case: Case, sizing: dict[str, float] | None,
+                         solves: list) -> Solution:
+        """``held``, a design a row of the collocation holds (:func:`held_by_the_mesh`), or the papers' sizing's
+        optimum solved on its mesh where that is lighter and its simulated start verified. No start-up limit holds
+        ``held``, so the static constraints alone bind where the physics has its optimum: the sizing's, a relaxation
+        of this problem (the same formulation without the start-up limits), is the optimum wherever its simulated
+        start meets every limit. It is solved in two steps on the mesh its own simulated start draws
+        (:func:`~clutchopt.start_up.transcription.mesh_of_the_start`; ``held``'s mesh has no collocated start of it,
+        the lighter side of its fold): its design fixed (the collocation's states follow it), then freed, warm from
+        that point (IPOPT's barrier from 1e-9: a KKT point where the collocation follows the design, so it stays).
+        Every solve's SolverInfo is added to ``solves``. Where neither ends ``optimal`` and lighter, ``held`` is kept,
+        said so in its diagnosis (docs/start_up.md, "A design a row of the collocation holds")."""
+        if sizing is None:
+            sized = self._sizing(case)
+            sizing = sized.design if sized.status == "optimal" else None
+        if sizing is not None:
+            posed = self.posed
+            fixed = replace(nlp_case, bounds={**nlp_case.bounds, **{name: (value, value) for name, value in
+                                                                   sizing.items() if name in posed.names}})
+            design = dict(zip(posed.names, posed.bounds_and_start(fixed, sizing)[2]))
+            seen, design = posed.start_up_seen(fixed, design)
+            mesh = mesh_of_the_start(posed.start_up, seen, self.formulation, design)
+            states = self._solve(case, sizing, nlp_case=fixed, mesh=mesh)
+            solves.append(states.solver)
+            if states.status == "optimal" and states.objective < held.objective:
+                freed = self._solve(case, warm=states, nlp_case=nlp_case, mesh=mesh, diagnosed=False, cold=False)
+                solves.append(freed.solver)
+                if freed.status == "optimal" and freed.objective < held.objective:
+                    held = freed
+        if held_by_the_mesh(held, self.posed.n_checked, self.start_up.s.spec.tolerance, self._own_names):
+            note = ("a row of the collocation holds this design, not a limit (no start-up limit's multiplier, the "
+                    "objective elastic to the drive): it is the mesh's, and may be heavier than the optimum")
+            held.diagnosis = f"{held.diagnosis}; {note}" if held.diagnosis else note
+        return held
 
     def _sizing(self, case: Case) -> Solution:
         """The papers' sizing at ``case``: :attr:`static_problem` solved (where a start-up solve begins)."""
@@ -518,7 +557,27 @@ def shapes_nothing(solution: Solution, first: int, tolerance: float, static: set
         return False
     return all(math.isfinite(c.margin) and c.margin > SHAPING_MARGIN * max(errors)
                and abs(c.elasticity or 0.0) <= tolerance for c in checks) \
-        and not any(abs(e) > tolerance for name, e in solution.sensitivities.items() if name not in static)
+        and not drive_elastic(solution, tolerance, static)
+
+
+def drive_elastic(solution: Solution, tolerance: float, static: set[str]) -> bool:
+    """Whether the objective is elastic beyond ``tolerance`` to a quantity not in ``static`` (the coupling's own
+    quantities and design variables): to the drive, the load or a start-up limit."""
+    return any(abs(e) > tolerance for name, e in solution.sensitivities.items() if name not in static)
+
+
+def held_by_the_mesh(solution: Solution, first: int, tolerance: float, static: set[str]) -> bool:
+    """Whether a row of the collocation holds an ``optimal`` start-up design, not a limit: no start-up check (from
+    index ``first`` on) has a multiplier (each elasticity within ``tolerance``), yet the objective is elastic to the
+    drive (:func:`drive_elastic`). Only the equalities of the collocation can carry that elasticity: their
+    multipliers lam solve J_z^T lam = 0 in the states z (the objective is the design's), so J_z is singular, a fold
+    of the discretised start where the design's lighter neighbours have no collocated start on this mesh, though
+    their simulated starts are sound. ball_motor_start (paper) at a start-time limit of 24 s: the motor's knee
+    (57 to 102 rad/s in 0.9 s) inside the graded part's two longest intervals; each mesh of the loop folds at another
+    design (487.5 to 512.9 kg, elastic 0.58 to the breakdown torque), the sizing's 475.95 kg starts in 7.43 s."""
+    checks = solution.constraints[first:]
+    return (solution.status == "optimal" and bool(checks) and solution.sensitivities
+            and all(abs(c.elasticity or 0.0) <= tolerance for c in checks) and drive_elastic(solution, tolerance, static))
 
 
 _CACHE: dict[tuple, Problem] = {}
