@@ -289,7 +289,7 @@ class Problem:
             design = dict(zip(posed.names, posed.bounds_and_start(fixed, sizing)[2]))
             seen, design = posed.start_up_seen(fixed, design)
             mesh = mesh_of_the_start(posed.start_up, seen, self.formulation, design)
-            states = self._solve(case, sizing, nlp_case=fixed, mesh=mesh)
+            states = self._solve(case, sizing, nlp_case=fixed, mesh=mesh, diagnosed=False)
             solves.append(states.solver)
             if states.status == "optimal" and states.objective < held.objective:
                 freed = self._solve(case, warm=states, nlp_case=nlp_case, mesh=mesh, diagnosed=False, cold=False)
