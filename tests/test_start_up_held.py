@@ -50,3 +50,16 @@ def test_a_design_the_collocation_folds_at_is_found_and_the_sizing_collocated_on
     assert {c.name for c in solved.constraints if c.active} == {"torque", "width_ratio"}
     assert not held_by_the_mesh(solved, first_check, tolerance, own)
     assert solved.diagnosis is None
+
+
+def test_a_stronger_motor_does_not_make_the_ball_clutch_heavier():
+    # breakdown torque 12,000 N m instead of 10,500 (paper mode, limits as the case gives them): the sizing's
+    # 475.948 kg binds the torque and width ratio and its simulated start meets every limit, as with 10,500 N m (a
+    # stronger motor runs up sooner; the clutch's static torque need, k_s P / w, is the same); the loop ended at
+    # 536.747 kg "optimal" (12.8 % heavier, only the width ratio active), a design a row of the collocation held
+    case = load_case(CASES / "ball_motor_start.toml").with_values(breakdown_torque=12000.0)
+    problem = case_problem(case, mode="paper")
+    solved = problem.solve(case)
+    assert solved.status == "optimal"
+    assert solved.objective == pytest.approx(475.948316, rel=1e-8)
+    assert {c.name for c in solved.constraints if c.active} == {"torque", "width_ratio"}
