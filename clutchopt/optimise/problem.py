@@ -145,11 +145,17 @@ class Problem:
         solution = self._solve(case, start, warm, nlp_case=nlp_case, mesh=mesh, diagnosed=diagnosed, ruled=ruled,
                                cold=cold, sizing=sizing)
         adapted, last_error, solves = 0, math.inf, [solution.solver]
+        sized_again = False  # the papers' sizing solved again, where a row of the collocation held a design
         for _ in range(MESH_STEPS + BACK_OFF_STEPS):
             if foreign is not None:
                 foreign.seen(solution)
             if solution.status not in ("optimal", "unverified"):
                 break
+            if not sized_again and self._held(solution):  # no mesh makes it the physics' design: the sizing
+                sized_again = True
+                if (lighter := self._from_the_sizing(case, solution, nlp_case, sizing, solves)) is not None:
+                    solution = lighter
+                    break
             error = abs(solution.start_up["discretisation_error"]["start_time"])
             if ruled is not None:
                 ruled.settle(error)
@@ -188,9 +194,9 @@ class Problem:
             else:
                 break
             solves.append(solution.solver)
-        if nlp_case is not None and held_by_the_mesh(solution, self.posed.n_checked, structure.spec.tolerance,
-                                                     self._own_names):  # (the doubled problem's loop decided)
-            solution = self._from_the_sizing(case, solution, nlp_case, sizing, solves)
+        if nlp_case is not None and self._held(solution):  # (the doubled problem's loop decided its own)
+            lighter = None if sized_again else self._from_the_sizing(case, solution, nlp_case, sizing, solves)
+            solution = lighter or held_note(solution)
         solution.solver = solution.solver.summed(solves)
         if nlp_case is not None:  # not the doubled problem's
             solution.limit_shift = limit_shift(case, nlp_case)
@@ -267,40 +273,39 @@ class Problem:
         (built once: :func:`problem_for`)."""
         return problem_for(self.posed.base, self.objective.name, self.options)
 
+    def _held(self, solution: Solution) -> bool:
+        """:func:`held_by_the_mesh` for this problem's start-up."""
+        return held_by_the_mesh(solution, self.posed.n_checked, self.start_up.s.spec.tolerance, self._own_names)
+
     def _from_the_sizing(self, case: Case, held: Solution, nlp_case: Case, sizing: dict[str, float] | None,
-                         solves: list) -> Solution:
-        """``held``, a design a row of the collocation holds (:func:`held_by_the_mesh`), or the papers' sizing's
-        optimum solved on its mesh where that is lighter and its simulated start verified. No start-up limit holds
+                         solves: list) -> Solution | None:
+        """The papers' sizing's optimum solved as a start-up design, where a row of the collocation holds ``held``
+        (:func:`held_by_the_mesh`) and the sizing ends ``optimal`` and lighter; else None. No start-up limit holds
         ``held``, so the static constraints alone bind where the physics has its optimum: the sizing's, a relaxation
         of this problem (the same formulation without the start-up limits), is the optimum wherever its simulated
         start meets every limit. It is solved in two steps on the mesh its own simulated start draws
         (:func:`~clutchopt.start_up.transcription.mesh_of_the_start`; ``held``'s mesh has no collocated start of it,
         the lighter side of its fold): its design fixed (the collocation's states follow it), then freed, warm from
         that point (IPOPT's barrier from 1e-9: a KKT point where the collocation follows the design, so it stays).
-        Every solve's SolverInfo is added to ``solves``. Where neither ends ``optimal`` and lighter, ``held`` is kept,
-        said so in its diagnosis (docs/start_up.md, "A design a row of the collocation holds")."""
+        Every solve's SolverInfo is added to ``solves`` (docs/start_up.md, "A design a row of the collocation
+        holds")."""
         if sizing is None:
             sized = self._sizing(case)
             sizing = sized.design if sized.status == "optimal" else None
-        if sizing is not None:
-            posed = self.posed
-            fixed = replace(nlp_case, bounds={**nlp_case.bounds, **{name: (value, value) for name, value in
-                                                                   sizing.items() if name in posed.names}})
-            design = dict(zip(posed.names, posed.bounds_and_start(fixed, sizing)[2]))
-            seen, design = posed.start_up_seen(fixed, design)
-            mesh = mesh_of_the_start(posed.start_up, seen, self.formulation, design)
-            states = self._solve(case, sizing, nlp_case=fixed, mesh=mesh, diagnosed=False)
-            solves.append(states.solver)
-            if states.status == "optimal" and states.objective < held.objective:
-                freed = self._solve(case, warm=states, nlp_case=nlp_case, mesh=mesh, diagnosed=False, cold=False)
-                solves.append(freed.solver)
-                if freed.status == "optimal" and freed.objective < held.objective:
-                    held = freed
-        if held_by_the_mesh(held, self.posed.n_checked, self.start_up.s.spec.tolerance, self._own_names):
-            note = ("a row of the collocation holds this design, not a limit (no start-up limit's multiplier, the "
-                    "objective elastic to the drive): it is the mesh's, and may be heavier than the optimum")
-            held.diagnosis = f"{held.diagnosis}; {note}" if held.diagnosis else note
-        return held
+        if sizing is None:
+            return None
+        posed = self.posed
+        fixed = replace(nlp_case, bounds={**nlp_case.bounds, **{name: (value, value) for name, value in
+                                                               sizing.items() if name in posed.names}})
+        seen, design = posed.start_up_seen(fixed, dict(zip(posed.names, posed.bounds_and_start(fixed, sizing)[2])))
+        mesh = mesh_of_the_start(posed.start_up, seen, self.formulation, design)
+        states = self._solve(case, sizing, nlp_case=fixed, mesh=mesh, diagnosed=False)
+        solves.append(states.solver)
+        if states.status != "optimal" or states.objective >= held.objective:
+            return None
+        freed = self._solve(case, warm=states, nlp_case=nlp_case, mesh=mesh, diagnosed=False, cold=False)
+        solves.append(freed.solver)
+        return freed if freed.status == "optimal" and freed.objective < held.objective else None
 
     def _sizing(self, case: Case) -> Solution:
         """The papers' sizing at ``case``: :attr:`static_problem` solved (where a start-up solve begins)."""
@@ -564,6 +569,14 @@ def drive_elastic(solution: Solution, tolerance: float, static: set[str]) -> boo
     """Whether the objective is elastic beyond ``tolerance`` to a quantity not in ``static`` (the coupling's own
     quantities and design variables): to the drive, the load or a start-up limit."""
     return any(abs(e) > tolerance for name, e in solution.sensitivities.items() if name not in static)
+
+
+def held_note(solution: Solution) -> Solution:
+    """A design a row of the collocation holds (:func:`held_by_the_mesh`), kept: said so in its diagnosis."""
+    note = ("a row of the collocation holds this design, not a limit (no start-up limit's multiplier, the objective "
+            "elastic to the drive): it is the mesh's, and may be heavier than the optimum")
+    solution.diagnosis = f"{solution.diagnosis}; {note}" if solution.diagnosis else note
+    return solution
 
 
 def held_by_the_mesh(solution: Solution, first: int, tolerance: float, static: set[str]) -> bool:
