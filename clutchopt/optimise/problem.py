@@ -153,7 +153,7 @@ class Problem:
                 break
             if not sized_again and self._held(solution):  # no mesh makes it the physics' design: the sizing
                 sized_again = True
-                if (lighter := self._from_the_sizing(case, solution, nlp_case, sizing, solves)) is not None:
+                if (lighter := self._from_the_sizing(case, solution, nlp_case, sizing, solves, ruled)) is not None:
                     solution = lighter
                     break
             error = abs(solution.start_up["discretisation_error"]["start_time"])
@@ -195,7 +195,7 @@ class Problem:
                 break
             solves.append(solution.solver)
         if nlp_case is not None and self._held(solution):  # (the doubled problem's loop decided its own)
-            lighter = None if sized_again else self._from_the_sizing(case, solution, nlp_case, sizing, solves)
+            lighter = None if sized_again else self._from_the_sizing(case, solution, nlp_case, sizing, solves, ruled)
             solution = lighter or held_note(solution)
         solution.solver = solution.solver.summed(solves)
         if nlp_case is not None:  # not the doubled problem's
@@ -278,7 +278,7 @@ class Problem:
         return held_by_the_mesh(solution, self.posed.n_checked, self.start_up.s.spec.tolerance, self._own_names)
 
     def _from_the_sizing(self, case: Case, held: Solution, nlp_case: Case, sizing: dict[str, float] | None,
-                         solves: list) -> Solution | None:
+                         solves: list, ruled: RuledOut | None = None) -> Solution | None:
         """The papers' sizing's optimum solved as a start-up design, where a row of the collocation holds ``held``
         (:func:`held_by_the_mesh`) and the sizing ends ``optimal`` and lighter; else None. No start-up limit holds
         ``held``, so the static constraints alone bind where the physics has its optimum: the sizing's, a relaxation
@@ -287,8 +287,9 @@ class Problem:
         (:func:`~clutchopt.start_up.transcription.mesh_of_the_start`; ``held``'s mesh has no collocated start of it,
         the lighter side of its fold): its design fixed (the collocation's states follow it), then freed, warm from
         that point (IPOPT's barrier from 1e-9: a KKT point where the collocation follows the design, so it stays).
-        Every solve's SolverInfo is added to ``solves`` (docs/start_up.md, "A design a row of the collocation
-        holds")."""
+        Every solve's SolverInfo is added to ``solves``; ``ruled``: the loop's integer choices not to solve again
+        (the freed solve's search skips them as the loop's solves do) (docs/start_up.md, "A design a row of the
+        collocation holds")."""
         if sizing is None:
             sized = self._sizing(case)
             sizing = sized.design if sized.status == "optimal" else None
@@ -303,7 +304,8 @@ class Problem:
         solves.append(states.solver)
         if states.status != "optimal" or states.objective >= held.objective:
             return None
-        freed = self._solve(case, warm=states, nlp_case=nlp_case, mesh=mesh, diagnosed=False, cold=False)
+        freed = self._solve(case, warm=states, nlp_case=nlp_case, mesh=mesh, diagnosed=False, cold=False, ruled=ruled,
+                            sizing=sizing)
         solves.append(freed.solver)
         return freed if freed.status == "optimal" and freed.objective < held.objective else None
 
