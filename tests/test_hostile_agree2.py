@@ -26,7 +26,9 @@ def test_ball_motor_start_in_paper_mode_solved_at_a_start_time_limit_of_24_s_is_
     # at 16 s (and at 13.2 s and 20 s) the optimum is 475.94832 kg with the torque and the width ratio active, the
     # simulated start 7.43 s (the start time 54 % under its limit): a looser start-time limit (24 s) leaves that
     # design feasible, so the optimum there cannot be heavier; solve at 24 s reported 512.94660 kg "optimal" (7.8 %
-    # heavier, its start 7.15 s); the sweep (13.2 s then 24 s) has 475.94832 kg at 24 s, verified
+    # heavier, its start 7.15 s, a design a row of the collocation held: problem.held_by_the_mesh, the sizing solved
+    # again, docs/start_up.md "A design a row of the collocation holds"); the sweep (13.2 s then 24 s) has 475.94832 kg
+    # at 24 s, verified
     at_16 = solve_case(load_case(CASES / "ball_motor_start.toml").with_values(max_start_time=16.0), mode="paper")
     assert at_16.status == "optimal"
     assert at_16.objective == pytest.approx(475.94832, rel=START_UP_RTOL)
@@ -36,11 +38,11 @@ def test_ball_motor_start_in_paper_mode_solved_at_a_start_time_limit_of_24_s_is_
     assert at_24.objective == pytest.approx(at_16.objective, rel=START_UP_RTOL)
 
 
-
 def test_ball_motor_start_in_paper_mode_swept_down_in_motor_inertia_has_solve_s_torque_bound_design():
     # motor inertia 20.53, 21.10 then 10.82 kg m^2: at the third the sweep reported 476.06258 kg "optimal" with the
     # torque slack (its simulated start verified), solve alone 475.94832 kg with the torque and width ratio active
-    # (the design of every start-up-slack point of this case: 2.4e-4 relative lighter); a sweep from 21.10 alone agrees
+    # (the design of every start-up-slack point of this case: 2.4e-4 relative lighter); a sweep from 21.10 alone agrees.
+    # The sweep's point was held by a row of the collocation, as solve at 24 s above
     [(record, solved)] = swept_and_solved("ball_motor_start.toml", "paper", "motor_inertia",
                                           (20.527572762408244, 21.09549236940575, 10.816363924537455))
     assert solved.status == record["status"] == "optimal"
