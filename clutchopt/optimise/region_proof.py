@@ -21,8 +21,8 @@ the last proof (at least SURE_BOXES, at most MAX_BOXES), so one reaching past th
 FIRST_RUN points long, the next twice the longest proven (from 2, doubling while they are proven whole, up to
 LONGEST_RUN): where a region's bounds are loose over wide intervals (the lever over its speed, which its centrifugal
 force takes squared) the runs stay as short as proofs allow. Where the design has integer variables (the ball, whose
-region's search costs about what a point's own does), the two runs that follow a run if it is proven whole are
-searched with it, in one call (:meth:`Regions._runs_ahead`): an iteration costs per call, so the three take the
+region's search costs about what a point's own does), the RUNS_AHEAD runs that follow a run if it is proven whole are
+searched with it, in one call (:meth:`Regions._runs_ahead`): an iteration costs per call, so they take the
 iterations of the longest; each outcome is kept for the call that searches its run, and taken where that search
 would make the same steps (:func:`_holds`).
 
@@ -72,6 +72,7 @@ from clutchopt.units import from_si
 
 FIRST_RUN = 8  # points searched as one region after a point without a design,
 LONGEST_RUN = 256  # the next run twice the longest proven, up to this many
+RUNS_AHEAD = 3  # runs searched ahead with a run (designs with integer variables: Regions._runs_ahead)
 # a run is searched point by point where its points' own proofs take no more boxes in all than its region's search
 # (before a region proof to compare with: interval_proof.FEW_BOXES)
 REGION_BUDGET = 4  # a region's search may evaluate this many times the boxes of the last point's own search
@@ -181,11 +182,8 @@ class Regions:
         SURE_BOXES (what ``verdict.shown`` evaluates before the retries) before the elastic diagnosis: proven, the
         verdict ``solve`` gives ("proven infeasible: ...", the same search's words, at the same design: the failed
         solve's, which its full verdict shows), without the diagnosis, which there only lets that search go first and
-        is not shown (the lever over its friction coefficient: 3-6 ms of the 10 its first point took); where the design
-        has integer variables, the runs :meth:`_search_from` searches next if it is proven (that from point 1 and its
-        runs ahead, :meth:`_runs_ahead`) searched in the same call, within SURE_BOXES, the least budget they may have
-        then, kept for it (:func:`_holds`): an iteration costs per call, and the ball's first proof takes as many as
-        its runs' (over 9.3x-18.7x its power, all without a design: 11 and 11 iterations in two calls); a design:
+        is not shown (the lever over its friction coefficient: 3-6 ms of the 10 its first point took; the runs after
+        it searched in the same call: :meth:`_next_runs`); a design:
         that solve's, ``solve``'s. Else None: its full verdict from the start, the first solve's calls charged to it
         (a sweep whose first point has no design and no proof, the wedge's geometry mode, pays that solve and
         search again)."""
@@ -196,9 +194,7 @@ class Regions:
         if first.status in DESIGN_STATUSES:
             self.after(k, first)
             return first
-        end = min(1 + self._length, self.count)  # (the run Regions._search_from searches next if this one is proven)
-        ahead = [(1, end), *self._runs_ahead(1, end)] if self.posed.integer and end > 2 else []
-        solution = self._own_proof(case, first.design, SURE_BOXES, first.solver, ahead)[0]
+        solution = self._own_proof(case, first.design, SURE_BOXES, first.solver, self._next_runs(k))[0]
         if solution is None:
             self._charge(first)
             return None
@@ -208,7 +204,8 @@ class Regions:
     def _quick(self, k: int, warm=None) -> tuple[Solution | None, Solution | None]:
         """Point k, not covered, next to a point without a design (a static problem): one solve (``Problem.solve``'s
         first, ``warm`` its warm start), and where it ends without a design the point's own interval search before
-        the retries: the solve's design, or the verdict its proof gives, and None; or None and that solve (its
+        the retries (the runs after it searched in the same call: :meth:`_next_runs`): the solve's design, or the
+        verdict its proof gives, and None; or None and that solve (its
         verdict follows from it: ``Problem.solve`` given it as ``first``, which finds this search kept); or None,
         None where the point before has a design."""
         quick = self._without_at == k - 1 and self.problem.start_up is None
@@ -220,7 +217,7 @@ class Regions:
         if first.status in DESIGN_STATUSES:
             self.after(k, first)
             return first, None
-        solution, own, problem = self._own_proof(case, first.design, None, first.solver)
+        solution, own, problem = self._own_proof(case, first.design, None, first.solver, self._next_runs(k))
         if own is None or not own.proven:
             keep_search(self.posed, problem, own)
         if solution is None:
@@ -233,15 +230,15 @@ class Regions:
         """A point's own interval search (within ``budget`` boxes; None: the search's own), and where it proves the
         point, the verdict it gives ("proven infeasible: ...") showing ``design`` (``spent``: the calls and seconds
         of the solve that gave it), its boxes the last point's alone (``_alone``): (verdict or None, the search's
-        outcome, its problem). ``ahead``: runs searched as regions in the same call (within ``budget``), their
-        outcomes kept for :meth:`_search_from` (as :meth:`_runs_ahead`'s), each point its share of the call's
-        seconds."""
+        outcome, its problem). ``ahead``: runs searched as regions in the same call (within SURE_BOXES, the least
+        budget :meth:`_search_from` gives), their outcomes kept for it (as :meth:`_runs_ahead`'s: :func:`_holds`),
+        each point its share of the call's seconds."""
         problem = _search_problem(self.posed, case)
         points = self._point_problems(ahead)
         regions = [_region_problem([points[j] for j in range(a, b)]) for a, b in ahead]
         began = time.perf_counter()
         own, *outcomes = searches(self.posed, [problem, *regions],
-                                  None if budget is None else [budget] * (1 + len(regions)))
+                                  [MAX_BOXES if budget is None else budget] + [SURE_BOXES] * len(regions))
         share = (time.perf_counter() - began) / (1 + sum(b - a for a, b in ahead))
         self._ahead.update((run, (region, outcome, share)) for run, region, outcome in zip(ahead, regions, outcomes))
         if own is None or not own.proven:
@@ -249,6 +246,18 @@ class Regions:
         self._alone = last_boxes(self.posed, own.boxes)
         return (_covered(self.problem, case, design, "proven infeasible: " + emptied(own), share, spent), own,
                 problem)
+
+    def _next_runs(self, k: int) -> list[tuple[int, int]]:
+        """Where point k, next to be proven by its own search, has integer design variables: the runs
+        :meth:`_search_from` searches next if it is (that from point k + 1, ``_length`` points, and its runs ahead,
+        :meth:`_runs_ahead`), searched with its own search in one call (:meth:`_own_proof`). An iteration costs per
+        call, and the ball's proof of one point takes about as many as its runs' (over 9.3x-18.7x its power, all
+        without a design: 11 and 11 iterations in two calls; over 1x-10x, the first point without a design and the
+        three after it, 11 and 9). Where it is not proven, or the next point has a design, they are not used."""
+        end = min(k + 1 + self._length, self.count)
+        if not self.posed.integer or self.problem.start_up is not None or end - k <= 2:
+            return []
+        return [(k + 1, end), *self._runs_ahead(k + 1, end)]
 
     def after(self, k: int, solution: Solution) -> None:
         """Point k's solution: one proven infeasible starts (or goes on with) the regions searched after it (after
@@ -321,8 +330,9 @@ class Regions:
 
     def _runs_ahead(self, k: int, end: int) -> list[tuple[int, int]]:
         """The runs after k .. end - 1 that :meth:`_search_from` searches next where each before it is proven whole
-        (twice as long each, up to LONGEST_RUN; two of them), searched with it where the design has integer
-        variables: an iteration costs per call, and a region's search there costs about a point's own (the ball's:
+        (twice as long each, up to LONGEST_RUN; RUNS_AHEAD of them: ball_crusher over 250-1000 kW, its 115 points
+        after its first without a design in one call, where two had left the last 59 to a call of 8 iterations),
+        searched with it where the design has integer variables: an iteration costs per call, and a region's search there costs about a point's own (the ball's:
         121-473 boxes, 8-16 iterations), so the runs together take the iterations of the longest, not their sum;
         their outcomes are kept for the calls that search them (:func:`_holds`; the others dropped with the
         sweep). None after a run whose kept search met a design (:func:`_met`): the runs after it are searched only
@@ -331,7 +341,7 @@ class Regions:
         if not self.posed.integer or self.problem.start_up is not None:
             return []
         runs, length = [], end - k
-        while len(runs) < 2 and end < self.count - 1 and not _met((k, end), self._ahead):
+        while len(runs) < RUNS_AHEAD and end < self.count - 1 and not _met((k, end), self._ahead):
             length = min(2 * length, LONGEST_RUN)
             runs.append((end, min(end + length, self.count)))
             k, end = runs[-1]
