@@ -347,17 +347,19 @@ def test_a_sweep_s_first_point_without_a_design_gets_solve_s_verdict_without_the
 def test_a_run_searched_ahead_keeps_its_share_of_the_call_that_searched_it(monkeypatch):
     # ball_crusher over 200 powers from 250 to 1000 kW: no design from point 84 (566.6 kW, its own proof). Points
     # 85-92 are searched as one region with the runs ahead 93-108, 109-140 and 141-199 (Regions._runs_ahead,
-    # RUNS_AHEAD) in one call, 8 + 16 + 32 + 59 = 115 points: each point 1/115 of that call's seconds, the ahead
-    # runs' points too when taken from the kept searches later (main gave them the seconds of the later call that
-    # took them, which searched nothing, over its 16 and 32 points: 1/16 and 1/32). With a clock that reads one
-    # second more at each reading, each call takes 1 s, and the seconds the proven points carry add up to the call's
-    # 1 s.
+    # RUNS_AHEAD) in the call of point 84's own search in its verdict (Regions._along), 1 + 8 + 16 + 32 + 59 = 116
+    # points: each point 1/116 of that call's seconds, taken from the kept searches later (main gave the ahead runs
+    # the seconds of the later call that took them, which searched nothing, over its 16 and 32 points: 1/16 and
+    # 1/32). With a clock that reads one second more at each reading, the call takes 1 s, and the seconds the proven
+    # points after 84 carry add up to 115/116 s of it.
     import types
 
     from clutchopt.optimise.sweep_grid import Vary
 
     clock = iter(range(1, 1_000_000))
-    monkeypatch.setattr(region_proof, "time", types.SimpleNamespace(perf_counter=lambda: float(next(clock))))
+    ticking = types.SimpleNamespace(perf_counter=lambda: float(next(clock)))
+    monkeypatch.setattr(region_proof, "time", ticking)
+    monkeypatch.setattr(interval_proof, "time", ticking)
     proved, own = [], region_proof.Regions._proved
     monkeypatch.setattr(region_proof.Regions, "_proved",
                         lambda self, a, b, problem, outcome, seconds: (proved.append((a, b, seconds)),
@@ -366,5 +368,5 @@ def test_a_run_searched_ahead_keeps_its_share_of_the_call_that_searched_it(monke
     quantity = next(q for q in crusher.quantities if q.name == "power")
     result = Sweep(crusher, [Vary(quantity, tuple(np.linspace(250e3, 1000e3, 200).tolist()))]).run(progress=False)
     assert list(result.frame["status"]) == ["optimal"] * 84 + ["infeasible"] * 116
-    assert proved == [(85, 93, 1 / 115), (93, 109, 1 / 115), (109, 141, 1 / 115), (141, 200, 1 / 115)]
-    assert sum((b - a) * seconds for a, b, seconds in proved) == pytest.approx(1.0, rel=1e-12)
+    assert proved == [(85, 93, 1 / 116), (93, 109, 1 / 116), (109, 141, 1 / 116), (141, 200, 1 / 116)]
+    assert sum((b - a) * seconds for a, b, seconds in proved) == pytest.approx(115 / 116, rel=1e-12)

@@ -27,6 +27,7 @@ integrals, their bounds are unbounded on boxes 1 % wide, and no conflict through
 
 from __future__ import annotations
 
+import time
 from typing import NamedTuple
 
 import numpy as np
@@ -426,10 +427,32 @@ def empty_design_space(posed, case, budget: int | None = None) -> Emptiness | No
     problem = _search_problem(posed, case)
     kept = posed.built("interval_kept", None, lambda _: {})
     kept = kept.get(_key(problem)) if budget is not None else kept.pop(_key(problem), None)
-    emptiness = kept or searches(posed, [problem], None if budget is None else [budget])[0]
+    along = _along(posed)
+    extra = along.pop("problems", []) if kept is None and budget is not None else []
+    began = time.perf_counter()
+    emptiness, *outcomes = [kept] if kept else searches(
+        posed, [problem, *extra], None if budget is None else [budget] + [SURE_BOXES] * len(extra))
+    if extra:
+        along["outcomes"], along["seconds"] = outcomes, time.perf_counter() - began
     if emptiness is not None and emptiness.proven:
         last_boxes(posed, emptiness.boxes)
     return emptiness
+
+
+def search_along(posed, problems: list[tuple[np.ndarray, ...]]) -> dict:
+    """``problems`` (a sweep's runs after a point: ``region_proof.Regions._next_runs``) searched in the same call as
+    the next budgeted :func:`empty_design_space` of ``posed`` (a point's verdict's first search, before its
+    retries), each within SURE_BOXES: an iteration costs per call. The dict returned gets their ``outcomes`` and the
+    call's ``seconds`` if that search runs (an empty list of problems clears it)."""
+    along = _along(posed)
+    along.clear()
+    if problems:
+        along["problems"] = list(problems)
+    return along
+
+
+def _along(posed) -> dict:
+    return posed.built("interval_along", None, lambda _: {})
 
 
 def last_boxes(posed, boxes: int | None = None) -> int:
