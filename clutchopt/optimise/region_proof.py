@@ -119,8 +119,9 @@ class Regions:
         proven = self._proven.pop(k, None)
         if proven is None or self._without is None:
             return None
+        problem = self._problems.get(k)  # (its search problem: its design box, the bounds its verdict shows)
         solution = _covered(self.problem, self.point_case(k), self._without.design, *proven,
-                            figures=self._figures_at(k))
+                            figures=self._figures_at(k), bounds=None if problem is None else problem[1:3])
         if solution is not None:
             self.after(k, solution)
         return self.charged(solution)
@@ -554,11 +555,12 @@ def _shown(value: float, unit: str) -> str:
 
 
 def _covered(problem, case, design: dict[str, float], text: str, seconds: float, spent: SolverInfo | None = None,
-             figures: tuple | None = None) -> Solution | None:
+             figures: tuple | None = None, bounds: tuple[np.ndarray, np.ndarray] | None = None) -> Solution | None:
     """The verdict of a point a proof covers, showing ``design`` (the last point without one: its least relaxation;
     or the point's own failed solve, which ``spent`` its calls and seconds) with every constraint re-evaluated in
-    float64 at this point's values (``figures``, if evaluated already: ``verdict.figures_at``); None where a
-    requirement no design variable enters is broken, or a start-up's drive proofs hold (its own verdict says so)."""
+    float64 at this point's values (``figures``, if evaluated already: ``verdict.figures_at``) and the case's bounds
+    (``bounds``, if read already: its search problem's); None where a requirement no design variable enters is
+    broken, or a start-up's drive proofs hold (its own verdict says so)."""
     posed = problem.posed
     if problem.start_up is not None and start_up_proofs(case):
         return None
@@ -568,4 +570,4 @@ def _covered(problem, case, design: dict[str, float], text: str, seconds: float,
         return None
     solves, time_s = (spent.solves, spent.time_s) if spent is not None else (0, 0.0)
     return infeasible_at(posed, case, design, text, SolverInfo("interval", "proven", 0, time_s + seconds, solves),
-                         figures)
+                         figures, bounds)
