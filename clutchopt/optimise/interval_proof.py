@@ -28,7 +28,7 @@ integrals, their bounds are unbounded on boxes 1 % wide, and no conflict through
 from __future__ import annotations
 
 import time
-from typing import NamedTuple
+from typing import Callable, NamedTuple
 
 import numpy as np
 
@@ -428,7 +428,7 @@ def empty_design_space(posed, case, budget: int | None = None) -> Emptiness | No
     kept = posed.built("interval_kept", None, lambda _: {})
     kept = kept.get(_key(problem)) if budget is not None else kept.pop(_key(problem), None)
     along = _along(posed)
-    extra = along.pop("problems", []) if kept is None and budget is not None else []
+    extra = along.pop("problems")() if "problems" in along and kept is None and budget is not None else []
     began = time.perf_counter()
     emptiness, *outcomes = [kept] if kept else searches(
         posed, [problem, *extra], None if budget is None else [budget] + [SURE_BOXES] * len(extra))
@@ -439,15 +439,16 @@ def empty_design_space(posed, case, budget: int | None = None) -> Emptiness | No
     return emptiness
 
 
-def search_along(posed, problems: list[tuple[np.ndarray, ...]]) -> dict:
-    """``problems`` (a sweep's runs after a point: ``region_proof.Regions._next_runs``) searched in the same call as
-    the next budgeted :func:`empty_design_space` of ``posed`` (a point's verdict's first search, before its
-    retries), each within SURE_BOXES: an iteration costs per call. The dict returned gets their ``outcomes`` and the
-    call's ``seconds`` if that search runs (an empty list of problems clears it)."""
+def search_along(posed, problems: Callable[[], list[tuple[np.ndarray, ...]]] | None) -> dict:
+    """The problems ``problems()`` gives (a sweep's runs after a point: ``region_proof.Regions._next_runs``; built
+    only where they are searched) searched in the same call as the next budgeted :func:`empty_design_space` of
+    ``posed`` (a point's verdict's first search, before its retries), each within SURE_BOXES: an iteration costs per
+    call. The dict returned gets their ``outcomes`` and the call's ``seconds`` if that search runs (None clears
+    it)."""
     along = _along(posed)
     along.clear()
-    if problems:
-        along["problems"] = list(problems)
+    if problems is not None:
+        along["problems"] = problems
     return along
 
 

@@ -159,7 +159,7 @@ class Regions:
             try:
                 solved = solve(first)
             except BaseException:
-                search_along(self.posed, [])  # (the hook not left for another point's search)
+                search_along(self.posed, None)  # (the hook not left for another point's search)
                 raise
             solution = self.charged(self._took(along, solved))
             self.after(k, solution)
@@ -167,28 +167,33 @@ class Regions:
             self._alone = last_boxes(self.posed)  # its boxes; not a verdict "whatever the design", nor a drive's)
         return solution
 
-    def _along(self, k: int) -> tuple[list[tuple[int, int]], list[tuple], dict]:
+    def _along(self, k: int) -> tuple[list[tuple[int, int]], dict, dict]:
         """The runs after point k (:meth:`_next_runs`), given to its full verdict's first interval search to search
-        in the same call (``interval_proof.search_along``): where that search proves point k, the runs are those
-        :meth:`_search_from` searches next (``ball_crusher`` over 250-1000 kW: point 84's proof, 11 iterations, and
-        its 115 points after it, 11, in one call)."""
-        runs = self._next_runs(k)
-        points = self._point_problems(runs)
-        regions = [_region_problem([points[j] for j in range(a, b)]) for a, b in runs]
-        return runs, regions, search_along(self.posed, regions)
+        in the same call (``interval_proof.search_along``; their problems built only if it runs): where that search
+        proves point k, the runs are those :meth:`_search_from` searches next (``ball_crusher`` over 250-1000 kW:
+        point 84's proof, 11 iterations, and its 115 points after it, 11, in one call)."""
+        runs, built = self._next_runs(k), {}
+
+        def regions() -> list[tuple]:
+            points = self._point_problems(runs)
+            built["regions"] = [_region_problem([points[j] for j in range(a, b)]) for a, b in runs]
+            return built["regions"]
+
+        return runs, built, search_along(self.posed, regions if runs else None)
 
     def _took(self, along: tuple, solution: Solution) -> Solution:
         """The outcomes of :meth:`_along`'s runs kept for :meth:`_search_from` where the verdict's search took them,
         each point its share of that call's seconds, taken from ``solution``'s (which measured the call); the hook
         cleared."""
-        runs, regions, taken = along
+        runs, built, taken = along
         outcomes, seconds = taken.get("outcomes"), taken.get("seconds", 0.0)
-        search_along(self.posed, [])
+        search_along(self.posed, None)
         if outcomes is None:
             return solution
         points = sum(b - a for a, b in runs)
         share = seconds / (1 + points)
-        self._ahead.update((run, (region, outcome, share)) for run, region, outcome in zip(runs, regions, outcomes))
+        self._ahead.update((run, (region, outcome, share)) for run, region, outcome
+                           in zip(runs, built["regions"], outcomes))
         return replace(solution, solver=replace(solution.solver, time_s=solution.solver.time_s - share * points))
 
     def _early(self, k: int, design: dict[str, float]) -> Solution | None:
