@@ -428,15 +428,36 @@ def empty_design_space(posed, case, budget: int | None = None) -> Emptiness | No
     kept = posed.built("interval_kept", None, lambda _: {})
     kept = kept.get(_key(problem)) if budget is not None else kept.pop(_key(problem), None)
     along = _along(posed)
-    extra = along.pop("problems")() if "problems" in along and kept is None and budget is not None else []
-    began = time.perf_counter()
-    emptiness, *outcomes = [kept] if kept else searches(
-        posed, [problem, *extra], None if budget is None else [budget] + [SURE_BOXES] * len(extra))
-    if extra:
-        along["outcomes"], along["seconds"] = outcomes, time.perf_counter() - began
+    if kept:
+        emptiness = kept
+    elif "problems" in along and budget is not None:
+        emptiness, outcomes, seconds = searched_along(posed, problem, budget, along.pop("problems"))
+        if outcomes:
+            along["outcomes"], along["seconds"] = outcomes, seconds
+    else:
+        emptiness = searches(posed, [problem], None if budget is None else [budget])[0]
     if emptiness is not None and emptiness.proven:
         last_boxes(posed, emptiness.boxes)
     return emptiness
+
+
+def searched_along(posed, problem: tuple[np.ndarray, ...], budget: int,
+                   along: Callable[[], list[tuple[np.ndarray, ...]]]) -> tuple[Emptiness | None, list, float]:
+    """``problem``'s search within ``budget`` boxes, and where its first box does not decide it, the problems
+    ``along()`` gives (a sweep's runs after a point, each within SURE_BOXES) in the same call: an iteration costs per
+    call, and a point's proof takes about as many as its runs' (the ball's). Its outcome, theirs (none where the
+    first box decided: where a point is proven in a box, its runs are searched point by point, not as regions,
+    ``region_proof.Regions._one_by_one``, and a region may take far more iterations than the point: the cable over
+    10x-20x its torque), and the seconds of the call that searched them. A search within one box makes the steps of
+    any search up to its first box (a search's steps do not depend on its budget until it passes it), so it is
+    that search's outcome where it ends there."""
+    first = searches(posed, [problem], [1])[0]
+    if first is None or first.proven or first.feasible is not None:
+        return first, [], 0.0
+    problems = along()
+    began = time.perf_counter()
+    own, *outcomes = searches(posed, [problem, *problems], [budget] + [SURE_BOXES] * len(problems))
+    return own, outcomes, time.perf_counter() - began
 
 
 def search_along(posed, problems: Callable[[], list[tuple[np.ndarray, ...]]] | None) -> dict:

@@ -63,7 +63,8 @@ from typing import Callable
 import numpy as np
 
 from clutchopt.optimise.interval_proof import (FEW_BOXES, MAX_BOXES, SURE_BOXES, Emptiness, _search_problem,
-                                               keep_search, last_boxes, proofs_recorded, search_along, searches)
+                                               keep_search, last_boxes, proofs_recorded, search_along, searched_along,
+                                               searches)
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.verdict import emptied, figures_at, infeasible_at
@@ -173,13 +174,13 @@ class Regions:
         proves point k, the runs are those :meth:`_search_from` searches next (``ball_crusher`` over 250-1000 kW:
         point 84's proof, 11 iterations, and its 115 points after it, 11, in one call)."""
         runs, built = self._next_runs(k), {}
+        return runs, built, search_along(self.posed, (lambda: self._regions(runs, built)) if runs else None)
 
-        def regions() -> list[tuple]:
-            points = self._point_problems(runs)
-            built["regions"] = [_region_problem([points[j] for j in range(a, b)]) for a, b in runs]
-            return built["regions"]
-
-        return runs, built, search_along(self.posed, regions if runs else None)
+    def _regions(self, runs: list[tuple[int, int]], built: dict) -> list[tuple]:
+        """The search problems of ``runs`` as regions, also kept in ``built`` (its "regions")."""
+        points = self._point_problems(runs)
+        built["regions"] = [_region_problem([points[j] for j in range(a, b)]) for a, b in runs]
+        return built["regions"]
 
     def _took(self, along: tuple, solution: Solution) -> Solution:
         """The outcomes of :meth:`_along`'s runs kept for :meth:`_search_from` where the verdict's search took them,
@@ -267,20 +268,25 @@ class Regions:
         point, the verdict it gives ("proven infeasible: ...") showing ``design`` (``spent``: the calls and seconds
         of the solve that gave it), its boxes the last point's alone (``_alone``): (verdict or None, the search's
         outcome, its problem). ``ahead``: runs searched as regions in the same call (within SURE_BOXES, the least
-        budget :meth:`_search_from` gives), their outcomes kept for it (as :meth:`_runs_ahead`'s: :func:`_holds`),
+        budget :meth:`_search_from` gives) where the point's first box does not decide it
+        (``interval_proof.searched_along``), their outcomes kept for it (as :meth:`_runs_ahead`'s: :func:`_holds`),
         each point its share of the call's seconds."""
-        problem = _search_problem(self.posed, case)
-        points = self._point_problems(ahead)
-        regions = [_region_problem([points[j] for j in range(a, b)]) for a, b in ahead]
+        problem, built = _search_problem(self.posed, case), {}
         began = time.perf_counter()
-        own, *outcomes = searches(self.posed, [problem, *regions],
-                                  [MAX_BOXES if budget is None else budget] + [SURE_BOXES] * len(regions))
-        share = (time.perf_counter() - began) / (1 + sum(b - a for a, b in ahead))
-        self._ahead.update((run, (region, outcome, share)) for run, region, outcome in zip(ahead, regions, outcomes))
+        if ahead:
+            own, outcomes, seconds = searched_along(self.posed, problem, MAX_BOXES if budget is None else budget,
+                                                    lambda: self._regions(ahead, built))
+        else:
+            own, outcomes, seconds = searches(self.posed, [problem], None if budget is None else [budget])[0], [], 0.0
+        points = sum(b - a for a, b in ahead) if outcomes else 0
+        share = seconds / (1 + points)  # (a point's of the call that searched the runs too)
+        own_seconds = time.perf_counter() - began - share * points
+        self._ahead.update((run, (region, outcome, share)) for run, region, outcome
+                           in zip(ahead, built.get("regions", []), outcomes))
         if own is None or not own.proven:
             return None, own, problem
         self._alone = last_boxes(self.posed, own.boxes)
-        return (_covered(self.problem, case, design, "proven infeasible: " + emptied(own), share, spent), own,
+        return (_covered(self.problem, case, design, "proven infeasible: " + emptied(own), own_seconds, spent), own,
                 problem)
 
     def _next_runs(self, k: int) -> list[tuple[int, int]]:
