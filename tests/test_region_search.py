@@ -206,8 +206,8 @@ def _searches_and_probes(monkeypatch) -> tuple[list, list]:
     """The outcomes of a sweep's region searches (a list per call) and the points its probes tried, as they come."""
     regions, probed = [], []
     real, designed = region_proof.searches, region_proof.Regions._designed
-    recorded = lambda posed, problems, budgets=None: regions.append(  # noqa: E731
-        [outcome for outcome in real(posed, problems, budgets)]) or regions[-1]
+    recorded = lambda posed, problems, budgets=None, **lead: regions.append(  # noqa: E731
+        [outcome for outcome in real(posed, problems, budgets, **lead)]) or regions[-1]
     monkeypatch.setattr(region_proof, "searches", recorded)
     monkeypatch.setattr(interval_proof, "searches", recorded)  # (a point's own search with the runs after it:
     # interval_proof.searched_along)
@@ -270,11 +270,9 @@ def test_the_head_of_a_run_past_the_region_s_edge_proven_before_the_probes(monke
     assert list(frame["status"]) == ["infeasible"] * 13 + ["optimal"] * 7
     assert probed == [19, 11, 13, 12]
     assert [[(o.proven, o.reached, o.boxes) for o in outcomes] for outcomes in regions] == [
-        [(False, False, 1)], [(True, False, 177), (True, False, 253), (False, True, 77)], [(True, False, 249)],
-        [(True, False, 321)]]
-    # (point 0's first box, which does not decide it, then its own search with points 1-8 and the run from point 9:
-    # interval_proof.searched_along, Regions._next_runs, _runs_ahead; none after the run from 9, which meets a
-    # design)
+        [(True, False, 177), (True, False, 253), (False, True, 77)], [(True, False, 249)], [(True, False, 321)]]
+    # (point 0's own search with points 1-8 and the run from point 9: interval_proof.searched_along,
+    # Regions._next_runs, _runs_ahead; none after the run from 9, which meets a design)
     assert list(frame["diagnosis"][9:13]) == [frame["diagnosis"][9]] * 4
     assert frame["diagnosis"][9].startswith("proven infeasible for allowable_contact_stress 0.68999-0.719593 GPa "
                                             "(4 points, one proof)")
