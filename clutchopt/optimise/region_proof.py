@@ -268,8 +268,8 @@ class Regions:
         point, the verdict it gives ("proven infeasible: ...") showing ``design`` (``spent``: the calls and seconds
         of the solve that gave it), its boxes the last point's alone (``_alone``): (verdict or None, the search's
         outcome, its problem). ``ahead``: runs searched as regions in the same call (within SURE_BOXES, the least
-        budget :meth:`_search_from` gives) where the point's first box does not decide it
-        (``interval_proof.searched_along``), their outcomes kept for it (as :meth:`_runs_ahead`'s: :func:`_holds`),
+        budget :meth:`_search_from` gives; given up where the point's first box decides it:
+        ``interval_proof.searched_along``), their outcomes kept for it (as :meth:`_runs_ahead`'s: :func:`_holds`),
         each point its share of the call's seconds."""
         problem, built = _search_problem(self.posed, case), {}
         began = time.perf_counter()
@@ -374,8 +374,9 @@ class Regions:
         """The runs after k .. end - 1 that :meth:`_search_from` searches next where each before it is proven whole
         (twice as long each, up to LONGEST_RUN; RUNS_AHEAD of them: ball_crusher over 250-1000 kW, its 115 points
         after its first without a design in one call, where two had left the last 59 to a call of 8 iterations),
-        searched with it where the design has integer variables: an iteration costs per call, and a region's search there costs about a point's own (the ball's:
-        121-473 boxes, 8-16 iterations), so the runs together take the iterations of the longest, not their sum;
+        searched with it where the design has integer variables: an iteration costs per call, and a region's search
+        there costs about a point's own (the ball's: 121-473 boxes, 8-16 iterations), so the runs together take the
+        iterations of the longest, not their sum;
         their outcomes are kept for the calls that search them (:func:`_holds`; the others dropped with the
         sweep). None after a run whose kept search met a design (:func:`_met`): the runs after it are searched only
         where it is proven whole (the ball over its contact stress: points 57-99, all with designs, 77 boxes, three
