@@ -295,11 +295,12 @@ class Regions:
         :meth:`_runs_ahead`), searched with its own search in one call (:meth:`_own_proof`). An iteration costs per
         call, and the ball's proof of one point takes about as many as its runs' (over 9.3x-18.7x its power, all
         without a design: 11 and 11 iterations in two calls; over 1x-10x, the first point without a design and the
-        three after it, 11 and 9). Where it is not proven, or the next point has a design, they are not used."""
+        three after it, 11 and 9). Where it is not proven, or the next point has a design, they are not used; a run
+        whose search is kept already is not searched again."""
         end = min(k + 1 + self._length, self.count)
         if not self.posed.integer or self.problem.start_up is not None or end - k <= 2:
             return []
-        return [(k + 1, end), *self._runs_ahead(k + 1, end)]
+        return [run for run in ((k + 1, end), *self._runs_ahead(k + 1, end)) if run not in self._ahead]
 
     def after(self, k: int, solution: Solution) -> None:
         """Point k's solution: one proven infeasible starts (or goes on with) the regions searched after it (after
