@@ -44,6 +44,7 @@ def test_a_library_built_in_the_background_is_adopted_and_solves_to_the_same_bit
     assert solution.objective == reference.objective  # to the last bit
     assert solution.design == reference.design
     assert not list((tmp_path / "cache").glob("*.c"))  # the build removed the source handed to it
+    assert not list((tmp_path / "cache").glob("*.building"))  # and its marker
 
 
 def test_no_build_is_started_where_the_environment_says_so(monkeypatch, tmp_path):
@@ -63,3 +64,14 @@ def test_without_a_cache_folder_no_code_is_generated(monkeypatch):
     problem, _ = _problem_and_case()
     assert later.compiled_when_ready(problem.posed) is False
     assert problem.posed.built("compiled_later", "ipopt", None).library is None
+
+
+def test_a_build_under_way_is_not_started_again(monkeypatch, tmp_path):
+    # a sweep's worker processes each asking for the same library: one build, marked by a fresh ``.building`` file
+    monkeypatch.setenv(compiled.CACHE_ENV, str(tmp_path / "cache"))
+    spawned = []
+    monkeypatch.setattr(compiled.subprocess, "Popen", lambda command, **kwargs: spawned.append(command) or command)
+    source = b"double f(double x) { return x; }\n"
+    assert compiled.build_detached(source) is not None
+    assert compiled.build_detached(source) is None
+    assert len(spawned) == 1 and compiled.library_path(source).with_suffix(".building").is_file()

@@ -19,6 +19,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 import casadi as ca
@@ -137,8 +138,9 @@ def ready_library(library: Path) -> str | None:
 def build_detached(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = FLAGS) -> subprocess.Popen | None:
     """:func:`built_library` of the C ``source`` in a Python process of its own and in a session of its own, so that
     this one neither waits for it nor stops it on exit (a build a short run starts serves the next run); the source
-    is handed over in a file of the cache folder, which the build removes. None where nothing can be started (no
-    compiler or cache folder, one others may write)."""
+    is handed over in a file of the cache folder, which the build removes with its marker. None where nothing can be started (no
+    compiler or cache folder, one others may write, or a build of the same library under way: its ``.building``
+    marker younger than twice BUILD_TIMEOUT_S, as where a sweep's worker processes each ask for it)."""
     library = library_path(source, prefix, flags)
     if library is None:
         return None
@@ -146,12 +148,16 @@ def build_detached(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = 
         library.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
         if not _trusted(library.parent):
             return None
+        marker = library.with_suffix(".building")
+        if marker.is_file() and time.time() - marker.stat().st_mtime < 2 * BUILD_TIMEOUT_S:
+            return None
+        marker.write_text(str(os.getpid()))
         handed, name = tempfile.mkstemp(suffix=".c", dir=library.parent)
         with os.fdopen(handed, "wb") as file:
             file.write(source)
         package = str(Path(__file__).resolve().parents[2])  # (the child imports this clutchopt, not another)
         env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, (package, os.environ.get("PYTHONPATH"))))}
-        return subprocess.Popen([sys.executable, "-c", _DETACHED, name, prefix, *flags], env=env,
+        return subprocess.Popen([sys.executable, "-c", _DETACHED, name, str(marker), prefix, *flags], env=env,
                                 stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                                 start_new_session=True)
     except OSError:
@@ -161,11 +167,12 @@ def build_detached(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = 
 _DETACHED = """import os, sys
 from pathlib import Path
 from clutchopt.optimise.compiled import built_library
-source = Path(sys.argv[1])
+source, marker = Path(sys.argv[1]), Path(sys.argv[2])
 try:
-    built_library(source.read_bytes(), sys.argv[2], tuple(sys.argv[3:]))
+    built_library(source.read_bytes(), sys.argv[3], tuple(sys.argv[4:]))
 finally:
     source.unlink(missing_ok=True)
+    marker.unlink(missing_ok=True)
 """
 
 
