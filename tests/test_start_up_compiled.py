@@ -5,6 +5,7 @@ shown on the wedge's static sizing (a 105-instruction Hessian: its build takes a
 1.2 MB of C 8-26 s); a start-up sweep calls it at each point (``start_up_sweep.solved_along``)."""
 
 import time
+from types import SimpleNamespace
 
 import pytest
 
@@ -27,6 +28,7 @@ def test_a_library_built_in_the_background_is_adopted_and_solves_to_the_same_bit
     monkeypatch.setenv(compiled.CACHE_ENV, str(tmp_path / "cache"))
     monkeypatch.setenv(later.BUILD_LATER_ENV, "1")
     monkeypatch.setattr(later, "_STARTED", set())
+    monkeypatch.setattr(later, "GENERATE_AFTER_S", 0.0)  # (a sweep's: once its points took 2 s of solving)
     plain, case = _problem_and_case()
     reference = plain.solve(case)
     problem, _ = _problem_and_case()
@@ -51,6 +53,7 @@ def test_no_build_is_started_where_the_environment_says_so(monkeypatch, tmp_path
     monkeypatch.setenv(compiled.CACHE_ENV, str(tmp_path / "cache"))
     monkeypatch.setenv(later.BUILD_LATER_ENV, "0")  # (the test suite's own setting: tests/conftest.py)
     monkeypatch.setattr(later, "_STARTED", set())
+    monkeypatch.setattr(later, "GENERATE_AFTER_S", 0.0)
     started = []
     monkeypatch.setattr(later, "build_detached", lambda source: started.append(source))
     problem, _ = _problem_and_case()
@@ -60,6 +63,7 @@ def test_no_build_is_started_where_the_environment_says_so(monkeypatch, tmp_path
 
 def test_without_a_cache_folder_no_code_is_generated(monkeypatch):
     monkeypatch.setenv(compiled.CACHE_ENV, "")
+    monkeypatch.setattr(later, "GENERATE_AFTER_S", 0.0)
     monkeypatch.setattr(later, "generated_source", lambda functions: pytest.fail("C generated without a cache"))
     problem, _ = _problem_and_case()
     assert later.compiled_when_ready(problem.posed) is False
@@ -75,3 +79,16 @@ def test_a_build_under_way_is_not_started_again(monkeypatch, tmp_path):
     assert compiled.build_detached(source) is not None
     assert compiled.build_detached(source) is None
     assert len(spawned) == 1 and compiled.library_path(source).with_suffix(".building").is_file()
+
+
+def test_the_code_is_generated_only_once_the_points_took_long_enough(monkeypatch, tmp_path):
+    # GENERATE_AFTER_S = 2 s of solving: points of 0.8 s each (each counted once, however often it is the point
+    # before) bring it there at the third
+    monkeypatch.setenv(compiled.CACHE_ENV, str(tmp_path / "cache"))
+    generated = []
+    monkeypatch.setattr(later, "generated_source", lambda functions: generated.append(1))
+    problem, _ = _problem_and_case()
+    points = [SimpleNamespace(solver=SimpleNamespace(time_s=0.8)) for _ in range(3)]
+    for point, expected in zip([None, points[0], points[0], points[1], points[2]], [0, 0, 0, 0, 1]):
+        later.compiled_when_ready(problem.posed, point)
+        assert len(generated) == expected

@@ -60,7 +60,7 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
     """The start-up design at ``case`` from ``previous`` (the optimum of the point before, of this problem), or
     None where there is none to start from or it does not end optimal."""
     block = problem.posed.start_up
-    compiled_when_ready(problem.posed)  # (its NLP's functions compiled once built: the same numbers, sooner)
+    compiled_when_ready(problem.posed, previous)  # (its NLP's functions compiled once built: the same numbers)
     if start_up_proofs(case):  # no design to start: ``Problem.solve`` gives the proof without a solve
         return None
     if previous is None or previous.status != "optimal" or previous.internal is None \
