@@ -164,11 +164,11 @@ def build_detached(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = 
         return None
 
 
-_DETACHED = """import os, sys
+_DETACHED = """import sys
 from pathlib import Path
-from clutchopt.optimise.compiled import built_library
 source, marker = Path(sys.argv[1]), Path(sys.argv[2])
 try:
+    from clutchopt.optimise.compiled import built_library
     built_library(source.read_bytes(), sys.argv[3], tuple(sys.argv[4:]))
 finally:
     source.unlink(missing_ok=True)
