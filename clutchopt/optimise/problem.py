@@ -26,6 +26,7 @@ from clutchopt.optimise.diagnosis import diagnose
 from clutchopt.optimise.failed_starts import FailedStarts
 from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_start, nearest_integers, relaxation_seed,
                                          within)
+from clutchopt.optimise.modifier import VARIANT, first_order
 from clutchopt.optimise.own_shift import ForeignShifts, carried_by, own_entry
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
@@ -38,6 +39,7 @@ from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
 from clutchopt.start_up.mesh import MAX_INTERVALS, MESH_STEPS
+from clutchopt.start_up.transcription import mesh_of_the_start
 
 
 PROVEN = "proof"  # the solver of a start-up the drive's proofs cover (:meth:`Problem.proven`: no start-up solve)
@@ -96,7 +98,8 @@ class Problem:
                  mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,
                  coarser: float = math.inf, shift: dict[str, float] | None = None, cold: bool = True,
                  fixed: dict[str, tuple[float, float]] | None = None,
-                 infeasible: dict[tuple, str] | None = None, sizing: dict[str, float] | None = None) -> Solution:
+                 infeasible: dict[tuple, str] | None = None, sizing: dict[str, float] | None = None,
+                 lighter_than: float = math.inf) -> Solution:
         """One solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one.
 
         With a start-up, the simulated start is what the limits are checked against, and the collocation's own
@@ -120,6 +123,9 @@ class Problem:
         infeasible by far more than that solve's collocation error is not solved again (:class:`RuledOut`). An elastic
         link's integer choice found infeasible only at limits another choice's simulated start moved, lighter than the
         kept design, is solved through its own loop (:meth:`_own_loops`); ``fixed``: integer bounds of such a loop.
+        A loop that ends ``unverified`` goes on in modifier adaptation (:func:`~clutchopt.optimise.modifier.first_order`:
+        the limits' figures corrected in value and gradient, integers kept), its steps ending at a design no lighter
+        than ``lighter_than`` (an own loop's: the kept design's objective).
         ``infeasible``: integer choices known to have no design here, with why (:class:`RuledOut`; a start-up
         sweep's point: those the papers' sizing at the point finds infeasible, ``start_up_sweep.sized_out``);
         ``sizing``: the papers' sizing's design at the point, where a caller starting warm knows it (a start-up
@@ -144,11 +150,17 @@ class Problem:
         solution = self._solve(case, start, warm, nlp_case=nlp_case, mesh=mesh, diagnosed=diagnosed, ruled=ruled,
                                cold=cold, sizing=sizing)
         adapted, last_error, solves = 0, math.inf, [solution.solver]
+        sized_again = False  # the papers' sizing solved again, where a row of the collocation held a design
         for _ in range(MESH_STEPS + BACK_OFF_STEPS):
             if foreign is not None:
                 foreign.seen(solution)
             if solution.status not in ("optimal", "unverified"):
                 break
+            if not sized_again and self._held(solution):  # no mesh makes it the physics' design: the sizing
+                sized_again = True
+                if (lighter := self._from_the_sizing(case, solution, nlp_case, sizing, solves, ruled)) is not None:
+                    solution = lighter
+                    break
             error = abs(solution.start_up["discretisation_error"]["start_time"])
             if ruled is not None:
                 ruled.settle(error)
@@ -187,6 +199,13 @@ class Problem:
             else:
                 break
             solves.append(solution.solver)
+        if nlp_case is not None and solution.status == "unverified":  # the limits' correction reached no verified
+            # design: the limits' figures corrected in value and gradient (modifier adaptation), integers kept
+            solution = first_order(self, case, solution, solves, lighter_than)
+            nlp_case = case if solution.status == "optimal" else nlp_case
+        if nlp_case is not None and self._held(solution):  # (the doubled problem's loop decided its own)
+            lighter = None if sized_again else self._from_the_sizing(case, solution, nlp_case, sizing, solves, ruled)
+            solution = lighter or held_note(solution)
         solution.solver = solution.solver.summed(solves)
         if nlp_case is not None:  # not the doubled problem's
             solution.limit_shift = limit_shift(case, nlp_case)
@@ -217,6 +236,10 @@ class Problem:
             kept, better = self._own_loop(case, solution, kept, foreign, combo, runs)
             if better:
                 break
+        for unverified in foreign.unverified_below(kept):  # a lighter choice kept unverified: modifier adaptation
+            kept, better = self._first_order(case, kept, foreign, unverified, runs)
+            if better:
+                break
         bounds = {v.name: case.bounds.get(v.name, (v.lower, v.upper)) for v in self.formulation.variables if v.integer}
         for combo in foreign.above_unverified(kept, {name: hi for name, (_, hi) in bounds.items()}):  # one count up
             kept, _ = self._own_loop(case, solution, kept, foreign, combo, runs)
@@ -233,11 +256,35 @@ class Problem:
         limits, warm from ``solution``), recorded in ``kept``'s integer search and ``runs``: its design where it ends
         optimal and lighter than ``kept`` (or ``kept`` has none verified), else ``kept``; and whether it was."""
         fixed = {name: (value, value) for name, value in zip(foreign.names, combo)}
-        own = self._refined(case, warm=solution, diagnosed=False, cold=False, fixed=fixed)
+        own = self._refined(case, warm=solution, diagnosed=False, cold=False, fixed=fixed,
+                            lighter_than=kept.objective if kept.status == "optimal" else math.inf)
         foreign.own_loop(combo)
         runs.append(own.solver)
         kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, own)]
         if own.status == "optimal" and (kept.status != "optimal" or own.objective < kept.objective):
+            own.integer_search, own.bounds = kept.integer_search, kept.bounds
+            return own, True
+        return kept, False
+
+    def _first_order(self, case: Case, kept: Solution, foreign: ForeignShifts, unverified: Solution,
+                     runs: list) -> tuple[Solution, bool]:
+        """Modifier adaptation from ``unverified`` (a design of another integer choice the loop kept, its simulated
+        start missing a limit: :meth:`~clutchopt.optimise.own_shift.ForeignShifts.unverified_below`), its integers
+        fixed, each step warm from the last and stopped at a design no lighter than ``kept``
+        (:func:`~clutchopt.optimise.modifier.first_order`), recorded in ``kept``'s integer search and ``runs`` as an
+        own loop of the choice: its design where it ends optimal and lighter, else ``kept``; and whether it was."""
+        combo = foreign.choice(unverified.design)
+        steps: list = []
+        own = first_order(self, case, unverified, steps, kept.objective)
+        foreign.own_loop(combo)
+        if not steps:
+            return kept, False
+        spent = (own.solver if own is not unverified else steps[-1]).summed(steps)  # (the loop's design untouched)
+        if own is not unverified:
+            own.solver = spent
+        runs.append(spent)
+        kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, own, VARIANT)]
+        if own.status == "optimal" and own.objective < kept.objective:
             own.integer_search, own.bounds = kept.integer_search, kept.bounds
             return own, True
         return kept, False
@@ -262,6 +309,42 @@ class Problem:
         """The papers' sizing's problem: the same formulation without the start-up, the same objective and options
         (built once: :func:`problem_for`)."""
         return problem_for(self.posed.base, self.objective.name, self.options)
+
+    def _held(self, solution: Solution) -> bool:
+        """:func:`held_by_the_mesh` for this problem's start-up."""
+        return held_by_the_mesh(solution, self.posed.n_checked, self.start_up.s.spec.tolerance, self._own_names)
+
+    def _from_the_sizing(self, case: Case, held: Solution, nlp_case: Case, sizing: dict[str, float] | None,
+                         solves: list, ruled: RuledOut | None = None) -> Solution | None:
+        """The papers' sizing's optimum solved as a start-up design, where a row of the collocation holds ``held``
+        (:func:`held_by_the_mesh`) and the sizing ends ``optimal`` and lighter; else None. No start-up limit holds
+        ``held``, so the static constraints alone bind where the physics has its optimum: the sizing's, a relaxation
+        of this problem (the same formulation without the start-up limits), is the optimum wherever its simulated
+        start meets every limit. It is solved in two steps on the mesh its own simulated start draws
+        (:func:`~clutchopt.start_up.transcription.mesh_of_the_start`; ``held``'s mesh has no collocated start of it,
+        the lighter side of its fold): its design fixed (the collocation's states follow it), then freed, warm from
+        that point (IPOPT's barrier from 1e-9: a KKT point where the collocation follows the design, so it stays).
+        Every solve's SolverInfo is added to ``solves``; ``ruled``: the loop's integer choices not to solve again
+        (the freed solve's search skips them as the loop's solves do) (docs/start_up.md, "A design a row of the
+        collocation holds")."""
+        if sizing is None:
+            sized = self._sizing(case)
+            sizing = sized.design if sized.status == "optimal" else None
+        if sizing is None:
+            return None
+        posed = self.posed
+        fixed = replace(nlp_case, bounds={**nlp_case.bounds, **{name: (value, value) for name, value in
+                                                               sizing.items() if name in posed.names}})
+        seen, design = posed.start_up_seen(fixed, dict(zip(posed.names, posed.bounds_and_start(fixed, sizing)[2])))
+        mesh = mesh_of_the_start(posed.start_up, seen, self.formulation, design)
+        states = self._solve(case, sizing, nlp_case=fixed, mesh=mesh, diagnosed=False)
+        solves.append(states.solver)
+        if states.status != "optimal" or states.objective >= held.objective:
+            return None
+        freed = self._solve(case, warm=states, nlp_case=nlp_case, mesh=mesh, diagnosed=False, cold=False, ruled=ruled,
+                            sizing=sizing)
+        solves.append(freed.solver)
+        return freed if freed.status == "optimal" and freed.objective < held.objective else None
 
     def _sizing(self, case: Case) -> Solution:
         """The papers' sizing at ``case``: :attr:`static_problem` solved (where a start-up solve begins)."""
@@ -455,7 +538,8 @@ def uncorrected(solution: Solution, corrected: Solution) -> Solution:
     simulated start makes it (the violation named, and that the correction found no design), not a verdict of the
     solve: cable_motor_start at 0.5 kg m^2 with 8 cables fixed (their simulated start 0.44 % over the allowed stress,
     where no 8-cable design of the quasi-static NLP is 4.4 % under it: docs/start_up.md, "The defect correction's
-    fixed point"). Only an ``infeasible`` corrected solve says that no design of the NLP meets the moved limits; one
+    fixed point"; modifier adaptation then goes on from that design and verifies them, 4.2568 kg: ``first_order``).
+    Only an ``infeasible`` corrected solve says that no design of the NLP meets the moved limits; one
     that ended ``solver_failed`` or ``not_found`` found none from its start, which proves nothing. ``optimal`` (the
     correction only centred a binding limit the simulated start meets): verified, its status kept, but the objective
     may be off the simulator's optimum by more than the CENTRE of the tolerance the correction holds it to: a note."""
@@ -518,7 +602,35 @@ def shapes_nothing(solution: Solution, first: int, tolerance: float, static: set
         return False
     return all(math.isfinite(c.margin) and c.margin > SHAPING_MARGIN * max(errors)
                and abs(c.elasticity or 0.0) <= tolerance for c in checks) \
-        and not any(abs(e) > tolerance for name, e in solution.sensitivities.items() if name not in static)
+        and not drive_elastic(solution, tolerance, static)
+
+
+def drive_elastic(solution: Solution, tolerance: float, static: set[str]) -> bool:
+    """Whether the objective is elastic beyond ``tolerance`` to a quantity not in ``static`` (the coupling's own
+    quantities and design variables): to the drive, the load or a start-up limit."""
+    return any(abs(e) > tolerance for name, e in solution.sensitivities.items() if name not in static)
+
+
+def held_note(solution: Solution) -> Solution:
+    """A design a row of the collocation holds (:func:`held_by_the_mesh`), kept: said so in its diagnosis."""
+    note = ("a row of the collocation holds this design, not a limit (no start-up limit's multiplier, the objective "
+            "elastic to the drive): it is the mesh's, and may be heavier than the optimum")
+    solution.diagnosis = f"{solution.diagnosis}; {note}" if solution.diagnosis else note
+    return solution
+
+
+def held_by_the_mesh(solution: Solution, first: int, tolerance: float, static: set[str]) -> bool:
+    """Whether a row of the collocation holds an ``optimal`` start-up design, not a limit: no start-up check (from
+    index ``first`` on) has a multiplier (each elasticity within ``tolerance``), yet the objective is elastic to the
+    drive (:func:`drive_elastic`). Only the equalities of the collocation can carry that elasticity: their
+    multipliers lam solve J_z^T lam = 0 in the states z (the objective is the design's), so J_z is singular, a fold
+    of the discretised start where the design's lighter neighbours have no collocated start on this mesh, though
+    their simulated starts are sound. ball_motor_start (paper) at a start-time limit of 24 s: the motor's knee
+    (57 to 102 rad/s in 0.9 s) inside the graded part's two longest intervals; each mesh of the loop folds at another
+    design (487.5 to 512.9 kg, elastic 0.58 to the breakdown torque), the sizing's 475.95 kg starts in 7.43 s."""
+    checks = solution.constraints[first:]
+    return (solution.status == "optimal" and bool(checks) and solution.sensitivities
+            and all(abs(c.elasticity or 0.0) <= tolerance for c in checks) and drive_elastic(solution, tolerance, static))
 
 
 _CACHE: dict[tuple, Problem] = {}
