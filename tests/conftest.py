@@ -40,10 +40,14 @@ def pytest_xdist_auto_num_workers(config) -> int:
 
 @pytest.fixture(scope="session", autouse=True)
 def compiled_code_cache(tmp_path_factory):
-    """Compiled NLP functions (clutchopt.optimise.compiled) go to a cache of this test session, not the user's."""
+    """Compiled NLP functions (clutchopt.optimise.compiled) go to a cache of this test session, not the user's; a
+    start-up sweep starts no build of its own in the background (clutchopt.optimise.start_up_compiled: 8-26 s of
+    compiling beside the tests a problem structure; tests/test_start_up_compiled.py builds one)."""
     os.environ["CLUTCHOPT_CACHE"] = str(tmp_path_factory.mktemp("compiled"))
+    os.environ["CLUTCHOPT_BUILD_LATER"] = "0"
     yield
     os.environ.pop("CLUTCHOPT_CACHE", None)
+    os.environ.pop("CLUTCHOPT_BUILD_LATER", None)
 
 
 @pytest.fixture(autouse=True)

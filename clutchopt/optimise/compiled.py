@@ -17,7 +17,9 @@ import hashlib
 import os
 import shutil
 import subprocess
+import sys
 import tempfile
+import time
 from pathlib import Path
 
 import casadi as ca
@@ -46,23 +48,33 @@ def compiler() -> str | None:
 def compiled_library(solver: ca.Function) -> str | None:
     """The shared library of ``solver``'s NLP functions (its oracle and the derivatives it evaluates), from the cache
     or built now; None where that is not possible (the solver then stays as it is)."""
-    return _library([solver.oracle(), *(solver.get_function(name) for name in solver.get_function())])
+    return _library(nlp_functions(solver))
+
+
+def nlp_functions(solver: ca.Function) -> list[ca.Function]:
+    """An nlpsol's NLP functions: its oracle and the derivatives it evaluates."""
+    return [solver.oracle(), *(solver.get_function(name) for name in solver.get_function())]
 
 
 def _library(functions: list[ca.Function]) -> str | None:
     """The shared library of ``functions``, from the cache or built now; None where that is not possible."""
     if compiler() is None or cache_folder() is None:
         return None
+    source = generated_source(functions)
+    return None if source is None else built_library(source)
+
+
+def generated_source(functions: list[ca.Function]) -> bytes | None:
+    """CasADi's C of ``functions`` (one file); None where it cannot be written."""
     generator = ca.CodeGenerator("clutchopt_nlp", {"with_header": False})
     for function in functions:
         generator.add(function)
     try:
         with tempfile.TemporaryDirectory() as scratch:
             generator.generate(scratch + os.sep)
-            source = Path(scratch, "clutchopt_nlp.c").read_bytes()
+            return Path(scratch, "clutchopt_nlp.c").read_bytes()
     except (OSError, RuntimeError):
         return None
-    return built_library(source)
 
 
 def built_library(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = FLAGS) -> str | None:
@@ -71,13 +83,11 @@ def built_library(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = F
     is loaded only if its bytes are those its build recorded beside it (``.sha256``): a damaged one (cut short by a
     full disk or a copy, or another file of its name) is built again, never mapped (a truncated ELF kills the process
     that maps it with SIGBUS)."""
-    cc, folder = compiler(), cache_folder()
-    if cc is None or folder is None:
+    library = library_path(source, prefix, flags)
+    if library is None:
         return None
-    library = None
+    folder = library.parent
     try:
-        key = hashlib.sha256(source + " ".join((ca.__version__, cc, *flags)).encode()).hexdigest()[:32]
-        library = folder / f"{prefix}-{key}.so"
         folder.mkdir(mode=0o700, parents=True, exist_ok=True)  # (one there is kept as it is, and checked)
         if not _trusted(folder):
             return None
@@ -90,8 +100,8 @@ def built_library(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = F
             return None
         with tempfile.TemporaryDirectory(dir=folder) as build:  # built beside its place, then moved in at once
             Path(build, "nlp.c").write_bytes(source)
-            subprocess.run([cc, *flags, "nlp.c", "-o", "nlp.so", "-lm"], cwd=build, check=True, capture_output=True,
-                           timeout=BUILD_TIMEOUT_S)
+            subprocess.run([compiler(), *flags, "nlp.c", "-o", "nlp.so", "-lm"], cwd=build, check=True,
+                           capture_output=True, timeout=BUILD_TIMEOUT_S)
             built = Path(build, "nlp.so")
             Path(build, "nlp.sha256").write_text(_digest(built))
             os.replace(built, library)  # (a process building the same at once: either library, each whole)
@@ -101,6 +111,69 @@ def built_library(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = F
         if library is not None:
             _FAILED.add(library)
         return None
+
+
+def library_path(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = FLAGS) -> Path | None:
+    """Where the cache keeps the library of the C ``source`` (``prefix``-<hash of the source, the CasADi version, the
+    compiler and its flags>.so); None without a compiler or a cache folder."""
+    cc, folder = compiler(), cache_folder()
+    if cc is None or folder is None:
+        return None
+    key = hashlib.sha256(source + " ".join((ca.__version__, cc, *flags)).encode()).hexdigest()[:32]
+    return folder / f"{prefix}-{key}.so"
+
+
+def ready_library(library: Path) -> str | None:
+    """``library`` (:func:`library_path`) where the cache holds it whole (this user's, its bytes those its build
+    recorded), else None; nothing is built."""
+    try:
+        if library.is_file() and _trusted(library.parent) and _trusted(library) \
+                and _recorded(library) == _digest(library):
+            return str(library)
+    except OSError:
+        pass
+    return None
+
+
+def build_detached(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = FLAGS) -> subprocess.Popen | None:
+    """:func:`built_library` of the C ``source`` in a Python process of its own and in a session of its own, so that
+    this one neither waits for it nor stops it on exit (a build a short run starts serves the next run); the source
+    is handed over in a file of the cache folder, which the build removes with its marker. None where nothing can be started (no
+    compiler or cache folder, one others may write, or a build of the same library under way: its ``.building``
+    marker younger than twice BUILD_TIMEOUT_S, as where a sweep's worker processes each ask for it)."""
+    library = library_path(source, prefix, flags)
+    if library is None:
+        return None
+    try:
+        library.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
+        if not _trusted(library.parent):
+            return None
+        marker = library.with_suffix(".building")
+        if marker.is_file() and time.time() - marker.stat().st_mtime < 2 * BUILD_TIMEOUT_S:
+            return None
+        marker.write_text(str(os.getpid()))
+        handed, name = tempfile.mkstemp(suffix=".c", dir=library.parent)
+        with os.fdopen(handed, "wb") as file:
+            file.write(source)
+        package = str(Path(__file__).resolve().parents[2])  # (the child imports this clutchopt, not another)
+        env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, (package, os.environ.get("PYTHONPATH"))))}
+        return subprocess.Popen([sys.executable, "-c", _DETACHED, name, str(marker), prefix, *flags], env=env,
+                                stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                start_new_session=True)
+    except OSError:
+        return None
+
+
+_DETACHED = """import sys
+from pathlib import Path
+source, marker = Path(sys.argv[1]), Path(sys.argv[2])
+try:
+    from clutchopt.optimise.compiled import built_library
+    built_library(source.read_bytes(), sys.argv[3], tuple(sys.argv[4:]))
+finally:
+    source.unlink(missing_ok=True)
+    marker.unlink(missing_ok=True)
+"""
 
 
 def _record(library: Path) -> Path:

@@ -77,6 +77,8 @@ class ScaledData:
 class Posed:
     """One formulation with one objective as a scaled NLP (``nlp``), built once; its IPOPT solver built with it."""
 
+    library: str | None = None  # its NLP's functions compiled, where its IPOPT solvers evaluate them (use_compiled)
+
     def __init__(self, formulation: Formulation, objective: str = "mass", options: SolverOptions = SolverOptions(),
                  start_up: Structure | None = None):
         self.base = formulation
@@ -157,12 +159,26 @@ class Posed:
                                "sqp_chain": ("sqpmethod", chosen.sqp_chain()),
                                "sqp_search": ("sqpmethod", chosen.sqp_search())}[method]
             name = f"{f.coupling}_{f.mode}_{self.objective.name}_{method}"
-            solver = ca.nlpsol(name, plugin, self.nlp, options)
+            solver = ca.nlpsol(name, plugin, self.library if plugin == "ipopt" and self.library else self.nlp, options)
             if method in ("sqp_chain", "sqp_search"):  # a batched sweep's: compiled where that pays
                 solver = compiled_solver(name, solver, options)
             return solver
 
         return self.built("solver", method, build)
+
+    def use_compiled(self, library: str) -> bool:
+        """This problem's IPOPT solvers built again over ``library``, its NLP's functions compiled (the same operations
+        in the same order: the same numbers; a start-up sweep's, :mod:`clutchopt.optimise.start_up_compiled`), and
+        those built later too; False (nothing changed) where the library does not load."""
+        solvers = self._built["solver"]
+        try:
+            rebuilt = {method: ca.nlpsol(solvers[method].name(), "ipopt", library, self.ipopt_options(method))
+                       for method in ("ipopt", "warm", "warm_near") if method in solvers}
+        except RuntimeError:  # (a damaged cache)
+            return False
+        solvers.update(rebuilt)
+        self.library = library
+        return True
 
     def mapped(self, function: ca.Function, count: int) -> InPlace:
         """``function`` evaluated at ``count`` points at once (columns) on NumPy arrays, built once per count."""

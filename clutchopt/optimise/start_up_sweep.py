@@ -35,6 +35,7 @@ from clutchopt.optimise.failed_starts import case_numbers, on_ray
 from clutchopt.optimise.integers import INFEASIBLE
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution
+from clutchopt.optimise.start_up_compiled import compiled_when_ready
 from clutchopt.optimise.start_up_check import CENTRE, limit_gaps, objective_error
 
 FURTHEST = 1.5  # the longest step ahead, in steps of the two points before, the secant is carried over
@@ -59,6 +60,7 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
     """The start-up design at ``case`` from ``previous`` (the optimum of the point before, of this problem), or
     None where there is none to start from or it does not end optimal."""
     block = problem.posed.start_up
+    compiled_when_ready(problem.posed, previous)  # (its NLP's functions compiled once built: the same numbers)
     if start_up_proofs(case):  # no design to start: ``Problem.solve`` gives the proof without a solve
         return None
     if previous is None or previous.status != "optimal" or previous.internal is None \

@@ -1,0 +1,78 @@
+"""A start-up sweep's NLP functions compiled, built in the background (issue 26).
+
+CasADi evaluates the start-up NLP's functions (the collocation's, 14,000-24,000 instructions in its constraints'
+Jacobian and as many in the Lagrangian's Hessian) on its virtual machine: half of IPOPT's time on the cable's elastic
+link, a sixth on the slipping couplings'. Compiled (:mod:`clutchopt.optimise.compiled`: the same operations in the
+same order, so IPOPT's runs are the same to the last bit) they cost a third to a half less, but the C of one
+problem structure (1.2-1.4 MB) takes 8-26 s to compile (-O1, this machine): more than a sweep saves while it waits.
+So a sweep's first point looks for the library in the compiled-code cache; where it is not there, it starts its
+build in a process of its own (:func:`clutchopt.optimise.compiled.build_detached`) and solves on, on CasADi's virtual
+machine; each later point looks again, and from the first that finds it the problem's IPOPT solvers evaluate the
+compiled functions (``Posed.use_compiled``). The build outlives the run that started it: the next sweep of that
+structure on the machine finds the library. Generating the C takes 0.1-0.3 s a problem structure and a process,
+which a single solve does not spend, nor a sweep whose solves are short (the wedge's, 0.2 s of IPOPT for 20 points,
+would save 0.03 s): it is generated once a problem's sweep points took GENERATE_AFTER_S of solving (the cable's after
+three or four points, the ball's after two).
+
+``CLUTCHOPT_BUILD_LATER=0`` starts no build (a library already in the cache is still used): the test suite's, so that
+its sweeps do not compile beside the tests (``tests/conftest.py``).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from clutchopt.optimise.compiled import (build_detached, cache_folder, compiler, generated_source, library_path,
+                                         nlp_functions, ready_library)
+
+BUILD_LATER_ENV = "CLUTCHOPT_BUILD_LATER"  # "0": no build started (a library in the cache is still used)
+GENERATE_AFTER_S = 2.0  # the solver seconds a problem's sweep points take before its C is generated (0.1-0.3 s)
+_STARTED: set[Path] = set()  # the builds this process started (one a library, whatever the sweeps)
+
+
+class CompiledLater:
+    """A posed start-up problem's compiled functions: the solver seconds its sweep points took so far (``spent``),
+    where the cache keeps its library (``library``; None: not looked for yet, no compiler or cache, or its C not
+    generated) and whether the problem's solvers use it (``used``)."""
+
+    def __init__(self, posed):
+        self.posed, self.spent, self.counted = posed, 0.0, None
+        self.generated, self.used, self.library = False, False, None
+
+    def after(self, solved) -> bool:
+        """Whether the problem's solvers evaluate the compiled functions, ``solved`` (a sweep point's solution, or
+        None) counted: its C generated and its library looked for once the points took GENERATE_AFTER_S."""
+        if solved is not None and solved is not self.counted:
+            self.spent, self.counted = self.spent + solved.solver.time_s, solved
+        if not self.generated and self.spent >= GENERATE_AFTER_S:
+            self.generated = True
+            self._look_for()
+        return self.look()
+
+    def _look_for(self) -> None:
+        """The library's place from the problem's C; its build started where the cache does not have it."""
+        if compiler() is None or cache_folder() is None:
+            return
+        source = generated_source(nlp_functions(self.posed.solver("ipopt")))
+        self.library = None if source is None else library_path(source)
+        if self.library is not None and not self.look() and self.library not in _STARTED \
+                and os.environ.get(BUILD_LATER_ENV, "1") != "0":
+            _STARTED.add(self.library)
+            build_detached(source)
+
+    def look(self) -> bool:
+        """Whether the problem's solvers evaluate the compiled functions: from now on where the cache has them whole."""
+        if not self.used and self.library is not None and self.library.is_file():
+            found = ready_library(self.library)
+            if found is not None:
+                self.used = self.posed.use_compiled(found)
+                self.library = self.library if self.used else None  # (one that does not load: not tried again)
+        return self.used
+
+
+def compiled_when_ready(posed, previous=None) -> bool:
+    """At a start-up sweep's point (``previous``: the point before's solution): ``posed``'s IPOPT solvers made to
+    evaluate its NLP's functions compiled where the cache has them, their build started (once) where it has not,
+    once its points took GENERATE_AFTER_S of solving; whether they do now."""
+    return posed.built("compiled_later", "ipopt", lambda _: CompiledLater(posed)).after(previous)

@@ -1,0 +1,94 @@
+"""A sweep's NLP functions compiled in the background (clutchopt/optimise/start_up_compiled.py): the build runs in a
+process of its own, the problem adopts the library once the cache holds it whole, and its solves are then the
+virtual machine's to the last bit (the compiled code does the same operations in the same order). The mechanism is
+shown on the wedge's static sizing (a 105-instruction Hessian: its build takes about a second, a start-up problem's
+1.2 MB of C 8-26 s); a start-up sweep calls it at each point (``start_up_sweep.solved_along``)."""
+
+import time
+from types import SimpleNamespace
+
+import pytest
+
+import clutchopt.optimise.compiled as compiled
+import clutchopt.optimise.start_up_compiled as later
+from clutchopt.cases import load_case
+from clutchopt.optimise.problem import Problem, case_formulation
+from conftest import CASES
+
+WAIT_S = 60.0  # the longest the test waits for the build (a second or two unloaded)
+
+
+def _problem_and_case():
+    case = load_case(CASES / "wedge_paper.toml")
+    return Problem(case_formulation(case)), case
+
+
+@pytest.mark.skipif(compiled.compiler() is None, reason="no C compiler here (solves stay on the virtual machine)")
+def test_a_library_built_in_the_background_is_adopted_and_solves_to_the_same_bits(monkeypatch, tmp_path):
+    monkeypatch.setenv(compiled.CACHE_ENV, str(tmp_path / "cache"))
+    monkeypatch.setenv(later.BUILD_LATER_ENV, "1")
+    monkeypatch.setattr(later, "_STARTED", set())
+    monkeypatch.setattr(later, "GENERATE_AFTER_S", 0.0)  # (a sweep's: once its points took 2 s of solving)
+    plain, case = _problem_and_case()
+    reference = plain.solve(case)
+    problem, _ = _problem_and_case()
+    assert later.compiled_when_ready(problem.posed) is False  # the build only started: still the virtual machine
+    state = problem.posed.built("compiled_later", "ipopt", None)
+    assert state.library is not None and state.library.parent == tmp_path / "cache"
+    waited = time.monotonic()
+    while not later.compiled_when_ready(problem.posed) and time.monotonic() - waited < WAIT_S:
+        time.sleep(0.1)
+    assert problem.posed.library == str(state.library)
+    assert problem.posed.solver("ipopt").get_function("nlp_hess_l").is_a("External")
+    assert problem.posed.solver("warm").get_function("nlp_hess_l").is_a("External")  # (built after: compiled too)
+    solution = problem.solve(case)
+    assert solution.status == reference.status == "optimal"
+    assert solution.objective == reference.objective  # to the last bit
+    assert solution.design == reference.design
+    assert not list((tmp_path / "cache").glob("*.c"))  # the build removed the source handed to it
+    assert not list((tmp_path / "cache").glob("*.building"))  # and its marker
+
+
+def test_no_build_is_started_where_the_environment_says_so(monkeypatch, tmp_path):
+    monkeypatch.setenv(compiled.CACHE_ENV, str(tmp_path / "cache"))
+    monkeypatch.setenv(later.BUILD_LATER_ENV, "0")  # (the test suite's own setting: tests/conftest.py)
+    monkeypatch.setattr(later, "_STARTED", set())
+    monkeypatch.setattr(later, "GENERATE_AFTER_S", 0.0)
+    started = []
+    monkeypatch.setattr(later, "build_detached", lambda source: started.append(source))
+    problem, _ = _problem_and_case()
+    assert later.compiled_when_ready(problem.posed) is False
+    assert started == [] and problem.posed.library is None
+
+
+def test_without_a_cache_folder_no_code_is_generated(monkeypatch):
+    monkeypatch.setenv(compiled.CACHE_ENV, "")
+    monkeypatch.setattr(later, "GENERATE_AFTER_S", 0.0)
+    monkeypatch.setattr(later, "generated_source", lambda functions: pytest.fail("C generated without a cache"))
+    problem, _ = _problem_and_case()
+    assert later.compiled_when_ready(problem.posed) is False
+    assert problem.posed.built("compiled_later", "ipopt", None).library is None
+
+
+def test_a_build_under_way_is_not_started_again(monkeypatch, tmp_path):
+    # a sweep's worker processes each asking for the same library: one build, marked by a fresh ``.building`` file
+    monkeypatch.setenv(compiled.CACHE_ENV, str(tmp_path / "cache"))
+    spawned = []
+    monkeypatch.setattr(compiled.subprocess, "Popen", lambda command, **kwargs: spawned.append(command) or command)
+    source = b"double f(double x) { return x; }\n"
+    assert compiled.build_detached(source) is not None
+    assert compiled.build_detached(source) is None
+    assert len(spawned) == 1 and compiled.library_path(source).with_suffix(".building").is_file()
+
+
+def test_the_code_is_generated_only_once_the_points_took_long_enough(monkeypatch, tmp_path):
+    # GENERATE_AFTER_S = 2 s of solving: points of 0.8 s each (each counted once, however often it is the point
+    # before) bring it there at the third
+    monkeypatch.setenv(compiled.CACHE_ENV, str(tmp_path / "cache"))
+    generated = []
+    monkeypatch.setattr(later, "generated_source", lambda functions: generated.append(1))
+    problem, _ = _problem_and_case()
+    points = [SimpleNamespace(solver=SimpleNamespace(time_s=0.8)) for _ in range(3)]
+    for point, expected in zip([None, points[0], points[0], points[1], points[2]], [0, 0, 0, 0, 1]):
+        later.compiled_when_ready(problem.posed, point)
+        assert len(generated) == expected
