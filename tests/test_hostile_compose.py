@@ -86,3 +86,22 @@ def test_compare_starts_every_mode_s_design_of_a_start_up_case_on_its_drive():
         == pytest.approx(16.76849, rel=1e-5)
     assert rows["start_time_simulated"]["nlp_start_up"] <= case.values["max_start_time"] * (1 + 1e-6)
     assert "not in it" in table.notes["nlp_geometry"]
+
+
+def test_the_sensitivity_to_a_duty_quantity_a_start_up_default_follows_is_the_edited_case_s():
+    # lever_motor_start.toml gives no [start_up.driven] inertia nor limits.max_start_time: they follow the duty's
+    # inertia and acceleration_time (Case.follows), so editing duty.inertia (with_values, a sweep) moves the driven
+    # machine's inertia too. `solve` reported d ln m / d ln I = 0 (and 0 for t_p and T_c): the NLP's gradient in the
+    # duty's own parameter, which only the constant-acceleration sizing the start-up replaces reads. Two re-solves at
+    # I (1 -+ 1e-3) give (ln m+ - ln m-) / (ln 1.001 - ln 0.999) = +0.263, t_p -0.264: the elasticities of the
+    # followers (driven_inertia +0.2630, max_start_time -0.2639), each d ln follower / d ln source = 1.
+    case = load_case(CASES / "lever_motor_start.toml")
+    solution = solve_case(case, "paper")
+    e = solution.sensitivities
+    for source in ("inertia", "acceleration_time"):
+        value = case.values[source]
+        up, down = (solve_case(case.with_values(**{source: value * (1 + s * 1e-3)}), "paper") for s in (1, -1))
+        difference = (math.log(up.objective) - math.log(down.objective)) / (math.log1p(1e-3) - math.log1p(-1e-3))
+        assert e[source] == pytest.approx(difference, rel=2e-2, abs=2e-3)
+    assert e["inertia"] == pytest.approx(e["driven_inertia"], rel=1e-12) and abs(e["inertia"]) > 0.25
+    assert e["acceleration_time"] == pytest.approx(e["max_start_time"], rel=1e-12)
