@@ -29,7 +29,7 @@ from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_sta
 from clutchopt.optimise.modifier import VARIANT, first_order
 from clutchopt.optimise.own_shift import ForeignShifts, carried_by, own_entry
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
-from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
+from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities, with_followers
 from clutchopt.optimise.solution import Diagnosis, Solution, SolverInfo, SolverOptions, WarmStart
 from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, CENTRE, corrected_case, start_up_report, worn_start
 from clutchopt.optimise.start_up_shift import limit_shift, shifted
@@ -524,7 +524,7 @@ class Problem:
         info = SolverInfo(run["solver"], run["status"], sum(r["iterations"] for r in runs),
                           sum(r["time"] for r in runs) + diagnosis_s, len(runs))
         bounds = {n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, data.lower, data.upper)}
-        elasticities = sensitivities(posed, run, objective) if status == "optimal" else {}
+        elasticities = with_followers(sensitivities(posed, run, objective), case.follows) if status == "optimal" else {}
         return Solution(f.coupling, f.mode, posed.objective.name, posed.objective.unit, status, objective, design,
                         evaluate_outputs(f, design, params), checks, info, diagnosis, search, bounds,
                         elasticities, scale, (run["lam_x"], run["lam_g"]), {v.name: v.unit for v in f.variables},
