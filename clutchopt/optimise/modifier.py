@@ -74,6 +74,8 @@ def with_modifiers(formulation):
 def modified(constraints: list, x, p) -> list:
     """The start-up ``constraints`` with each start-up limit's figure corrected by its modifier, where ``p`` has
     them (a problem built :func:`with_modifiers`): value + offset + sum of slope x variable. Others as they are."""
+    if not any(hasattr(p, offset_name(limit)) for limit in LIMIT_OF):
+        return constraints
     out = []
     for c in constraints:
         if c.name in LIMIT_OF and c.sense == "<=" and hasattr(p, offset_name(c.name)):
