@@ -149,13 +149,16 @@ def test_ball_motor_start_in_paper_mode_at_606_kw_has_a_design_swept_and_solved(
     assert solved.status == record["status"]
 
 
-@pytest.mark.xfail(strict=True, reason="solve's loop keeps 8 cables unverified (their simulated stress 81 % over "
-                   "the limit, no NLP design at the moved limit) and above_unverified tries one count up only (9, "
-                   "not verified either); a sweep reaching the point (max_start_time 2.01 then 2.21 s, motor inertia "
-                   "0.027 to 0.27 kg m^2) keeps 12 cables, verified: the same on main before this branch")
 def test_cable_motor_start_on_a_light_motor_rotor_has_a_verified_design_solved_alone():
-    # motor inertia 0.027 kg m^2 (0.3 times the case's), start within 2.21 s: solve alone "unverified" at 3.95257 kg
-    # (8 cables), the sweep's point "optimal" at 5.81260 kg with 12 cables, its simulated start within every limit
+    # motor inertia 0.027 kg m^2 (0.3 times the case's), start within 2.21 s: solve alone was "unverified" at
+    # 3.95257 kg (8 cables, their simulated stress 81 % over the limit, no NLP design at the moved limit) and
+    # above_unverified tried one count up only (9, not verified either); a sweep reaching the point (max_start_time 2.01
+    # then 2.21 s, motor inertia 0.027 to 0.27 kg m^2) kept 12 cables, verified, 5.81260 kg. Now the loop climbs while
+    # each count's simulated start comes nearer (Problem._climbed): 9, 10 and 11 unverified, 12 verified
     solved = cable_solved("paper", max_start_time=2.212816287825956, motor_inertia=0.027)
     assert solved.status == "optimal"
     assert solved.objective <= 5.8126027 * (1 + START_UP_RTOL)  # the sweep's verified design, or a lighter one
+    assert solved.design["cable_count"] == 12
+    assert [(e["cable_count"], e["status"]) for e in solved.integer_search[-4:]] == [
+        (9, "own accuracy loop: unverified"), (10, "own accuracy loop: unverified"),
+        (11, "own accuracy loop: unverified"), (12, "own accuracy loop: optimal")]

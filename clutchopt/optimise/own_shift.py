@@ -120,6 +120,34 @@ class ForeignShifts:
                 if within(name, value + step)]
 
 
+def worst_margin(solution) -> float:
+    """The least margin (relative) of ``solution``'s checks, its simulated start's among them (-inf: none)."""
+    return min((c.margin for c in solution.constraints if math.isfinite(c.margin)), default=-math.inf)
+
+
+def climbing(names: list[str], last, own, combo: tuple, upper: dict[str, float]) -> tuple[tuple | None, str]:
+    """The next choice up from ``combo`` (``own``'s: one count above ``last``'s in one of the integers ``names``,
+    within its ``upper`` bound) where ``own``'s loop ended ``unverified`` nearer to meeting its limits than
+    ``last``'s (its worst margin, :func:`worst_margin`, larger) and, at the rate the margin grew, a count within the
+    bound meets them; else None, and why no count further up is tried (in words). Adding a cable lowers each
+    cable's stress, so the margin of an unverified count grows count by count; where it does not, no count above is
+    nearer (``Problem._climbed``)."""
+    i = next(k for k, (a, b) in enumerate(zip(ForeignShifts(names).choice(last.design), combo)) if a != b)
+    name, count = names[i], combo[i]
+    before, now = worst_margin(last), worst_margin(own)
+    if own.status != "unverified":
+        return None, f"no count of {name} above {count:g} tried: its own accuracy loop ended {own.status}"
+    if not now > before:
+        return None, (f"no count of {name} above {count:g} tried: its simulated start misses its limits by "
+                      f"{-now:.3g} (relative), no nearer than {count - 1:g}'s {-before:.3g}")
+    needed = math.ceil(-now / (now - before))
+    if count + needed > upper[name]:
+        return None, (f"no count of {name} above {count:g} tried: at the rate its simulated start came nearer to its "
+                      f"limits ({now - before:.3g} a count) {count + needed:g} would be needed, above the bound "
+                      f"{upper[name]:g}")
+    return combo[:i] + (count + 1.0,) + combo[i + 1:], ""
+
+
 def own_entry(names: list[str], combo: tuple, own) -> dict:
     """The integer search's record of ``combo`` solved through its own accuracy loop (``own``, its solution)."""
     return {**{n: int(v) for n, v in zip(names, combo)}, "status": f"own accuracy loop: {own.status}",
