@@ -32,6 +32,7 @@ from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
 from clutchopt.optimise.solution import Diagnosis, Solution, SolverInfo, SolverOptions, WarmStart
 from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, CENTRE, corrected_case, start_up_report, worn_start
 from clutchopt.optimise.start_up_shift import limit_shift, shifted
+from clutchopt.optimise.start_up_sweep import sized_choices
 from clutchopt.optimise.verdict import infeasible_at, shown
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
@@ -133,6 +134,8 @@ class Problem:
         if start is None and warm is None:
             sized = self._sizing(case)
             start = sized.design if sized.status == "optimal" else None
+            if infeasible is None:  # the choices the sizing's own search found infeasible (a sweep's point: given)
+                infeasible = sized_choices(self, sized)
         structure = self.start_up.s
         nlp_case = shifted(case, shift)
         if fixed:
