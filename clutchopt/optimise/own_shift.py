@@ -132,7 +132,7 @@ def climbing(names: list[str], last, own, combo: tuple, upper: dict[str, float])
     bound meets them; else None, and why no count further up is tried (in words). Adding a cable lowers each
     cable's stress, so the margin of an unverified count grows count by count; where it does not, no count above is
     nearer (``Problem._climbed``)."""
-    i = next(k for k, (a, b) in enumerate(zip(ForeignShifts(names).choice(last.design), combo)) if a != b)
+    i = next(k for k, (name, value) in enumerate(zip(names, combo)) if float(last.design[name]) != value)
     name, count = names[i], combo[i]
     before, now = worst_margin(last), worst_margin(own)
     if own.status != "unverified":
