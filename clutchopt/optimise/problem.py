@@ -35,6 +35,7 @@ from clutchopt.optimise.start_up_shift import limit_shift, shifted
 from clutchopt.optimise.start_up_sweep import sized_choices
 from clutchopt.optimise.verdict import infeasible_at, shown
 from clutchopt.optimise.proofs import start_up_proofs
+from clutchopt.optimise.sampled_start import from_a_sampled_design
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
@@ -60,7 +61,9 @@ class Problem:
         """Solve for one case (:meth:`refined`); a solve that ends without a design is retried from the starts that
         can reach one before its verdict is given (:func:`clutchopt.optimise.verdict.shown`): ``neighbour``, the
         feasible design of a neighbouring point (a sweep's), among them. ``first``: that first solve, where a caller
-        has made it already (a sweep's quick solve of a point its interval search did not prove)."""
+        has made it already (a sweep's quick solve of a point its interval search did not prove). A start-up's
+        ``not_found`` is retried last from the sampled design its NLP's rows miss least
+        (:mod:`clutchopt.optimise.sampled_start`)."""
         try:
             solution = first or self.refined(case, start, warm, mesh, refine, coarser=coarser)
         except InputError:  # a start-up whose first simulation fails from this design: from the papers' sizing
@@ -69,7 +72,8 @@ class Problem:
             solution, start, warm = self.refined(case, None, None, mesh, refine, coarser=coarser), None, None
         if solution.status in DESIGN_STATUSES or not refine:
             return solution
-        return shown(self, case, solution, start is not None or warm is not None, neighbour)
+        verdict = shown(self, case, solution, start is not None or warm is not None, neighbour)
+        return verdict if self.start_up is None else from_a_sampled_design(self, case, verdict)
 
     def refined(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
                 mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,
