@@ -142,11 +142,11 @@ def test_ball_compressor_in_paper_mode_at_high_speed_has_the_optimum_on_its_boun
 def test_ball_motor_start_in_paper_mode_at_a_service_factor_of_1_49_has_a_design_swept_and_solved():
     # service factor 1.389 then 1.491: the sweep's second point 595.66 kg "optimal", its start simulated; solve alone
     # was "not_found": its cold start from the papers' sizing ended at a least relaxation 31 % over the start time and
-    # its retries (all by the sizing) found none. Now its last retry starts from the least violated of 32 sampled
+    # its retries (all by the sizing) found none. Now its last retry starts from the least violated of 16 sampled
     # designs (optimise/sampled_start.py) and reaches the sweep's design
     [(record, solved)] = swept_and_solved("ball_motor_start.toml", "paper", "service_factor",
                                           (1.3885714285714283, 1.4914285714285713))
     assert record["status"] == "optimal"
     assert solved.status == record["status"]
     assert solved.objective == pytest.approx(record["objective"]["value"], rel=START_UP_RTOL)
-    assert solved.starts[-1] == "the least violated of 32 sampled designs"
+    assert solved.starts[-1] == "the least violated of 16 sampled designs"

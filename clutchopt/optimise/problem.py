@@ -62,7 +62,8 @@ class Problem:
         can reach one before its verdict is given (:func:`clutchopt.optimise.verdict.shown`): ``neighbour``, the
         feasible design of a neighbouring point (a sweep's), among them. ``first``: that first solve, where a caller
         has made it already (a sweep's quick solve of a point its interval search did not prove). A start-up's
-        ``not_found`` is retried last from the sampled design its NLP's rows miss least
+        ``not_found`` solved from its own start alone (no start, warm solution or neighbour given: a sweep follows its
+        neighbour instead) is retried last from the sampled design its NLP's rows miss least
         (:mod:`clutchopt.optimise.sampled_start`)."""
         try:
             solution = first or self.refined(case, start, warm, mesh, refine, coarser=coarser)
@@ -73,7 +74,8 @@ class Problem:
         if solution.status in DESIGN_STATUSES or not refine:
             return solution
         verdict = shown(self, case, solution, start is not None or warm is not None, neighbour)
-        return verdict if self.start_up is None else from_a_sampled_design(self, case, verdict)
+        alone = self.start_up is not None and start is None and warm is None and neighbour is None
+        return from_a_sampled_design(self, case, verdict) if alone else verdict
 
     def refined(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
                 mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,

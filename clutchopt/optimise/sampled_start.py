@@ -15,9 +15,12 @@ free (integers rounded), each with its start simulated as any start's states are
 whose largest normalised row of the NLP is least (:func:`~clutchopt.optimise.integers.least_violation`) is solved as a
 retry is, through the accuracy loop. The sequence is not scrambled: the same case gives the same samples, the same
 start and the same answer. Its design is checked as every design is (float64, the simulated start); its failure keeps
-the verdict ``not_found`` and names the start among those tried. Along a run of points without a design, a sampled start
-that failed at the last point of the same case (but its values) for the same violated constraints is not sampled or
-solved again (``FailedStarts.skips``, as for the design the interval search meets).
+the verdict ``not_found`` and names the start among those tried. Only ``solve`` of a point from its own start gets it
+(``Problem.solve``: no start, warm solution or neighbour given): a sweep's point with a feasible neighbour follows
+that neighbour's design instead (its continuation), and a retry from a given design is the caller's. Along a run of
+points without a design, a sampled start that failed at the last point of the same case (but its values) for the
+same violated constraints is not sampled or solved again (``FailedStarts.skips``, as for the design the interval
+search meets).
 """
 
 from __future__ import annotations
@@ -34,10 +37,12 @@ from clutchopt.optimise.integers import least_violation
 from clutchopt.optimise.solution import Solution
 from clutchopt.optimise.verify import DESIGN_STATUSES
 
-SAMPLES = 32  # designs sampled over the box (a power of two: a Sobol sequence's balanced size); 32 simulated starts
-# take about 0.4 s (the ball). ball_motor_start (paper) at a service factor of 1.49 and at 605.7 kW: the least
+SAMPLES = 16  # designs sampled over the box (a power of two: a Sobol sequence's balanced size). Each start simulated
+# costs what the coupling's start costs: 16 take 0.2 s on the ball, 4 s on the lever (0.1-0.5 s each; a simulation's
+# tolerance hardly changes it). ball_motor_start (paper) at a service factor of 1.49 and at 605.7 kW: the least
 # violated of 16, 32 or 64 is the same design (r = 0.172 m, b = 1.876 m, largest row 0.22 and 0.20), which solves to
-# the sweep's design
+# the sweep's design; at 641.7, 661.3 and 672.2 kW 16 and 32 alike find a design; at a service factor of 1.6 the
+# least violated of 16 reaches 757.93 kg, of 32 none: a sampled start is a start, not a search
 SAMPLED = f"the least violated of {SAMPLES} sampled designs"
 _SAMPLED_KEY = {"sampled_designs": float(SAMPLES)}  # the sampled start as ``FailedStarts`` keeps it: by what it is,
 # not by the design it lands on at each point
