@@ -66,26 +66,28 @@ def test_a_met_limit_the_nlp_leaves_is_not_moved():
 def test_the_cable_at_0_5_corrects_once_from_the_nlp_s_figure():
     """8 cables fixed: the NLP's own figure and the simulated one as in the hand calculation; the corrected NLP has
     no design (no 8-cable design's quasi-static stress is under 335.996 MPa: the weight mass is at its lower bound,
-    weight_turns_cable, and the stress rises with it), so the loop keeps the design, `unverified`, and says so, in 3
-    solves (main: 8, seven corrections that left the design unmoved). Free, solve keeps 9 cables, verified (4.418
-    kg, the fixed solve's), in 6 solves (main: 18: the seven steps, then 9 cables' own loop)."""
+    weight_turns_cable, and the stress rises with it), so the limit correction ends after 3 solves (main: 8, seven
+    corrections that left the design unmoved) on the design solved at the case's limit. Modifier adaptation goes on
+    from it (tests/test_modifier.py): 4 more solves, the stress limit met by the simulated start to 4e-9 (the
+    objective's error |elasticity 20.3 x 4e-9| within CENTRE x TOL), the weight mass 0.49261 kg (4.25685 kg), the
+    limits the case's. Free, solve keeps these 8 cables (9 cables' 4.418 kg before), in 9 solves."""
     case = CABLE.with_values(driven_inertia=0.5)
     eight = solve_case(replace(case, bounds={**case.bounds, "cable_count": (8.0, 8.0)}))
-    assert eight.status == "unverified" and eight.solver.solves == 3
-    assert eight.collocated["link_stress"] == pytest.approx(335.9957e6, rel=1e-6)
-    assert eight.start_up["peak_link_stress_simulated"] == pytest.approx(351.5512e6, rel=1e-6)
-    assert "no design of the NLP meets the start-up limits moved" in eight.diagnosis
-    assert eight.limit_shift == {}  # the design kept was solved at the case's limit
+    assert eight.status == "optimal" and eight.solver.solves == 3 + 4
+    stress = next(c for c in eight.constraints if c.name == "link_stress")
+    assert stress.limit == L and abs(stress.value - L) <= 1e-8 * L
+    assert objective_error(stress, stress.value - L) <= CENTRE * TOL
+    assert eight.design["weight_mass"] == pytest.approx(0.492615, rel=1e-5)
+    assert eight.objective == pytest.approx(4.256848, rel=1e-6)
+    assert eight.limit_shift == {}  # the modifier solves at the case's limit
     alone = solve_case(case)
-    assert alone.status == "optimal" and alone.design["cable_count"] == 9.0 and alone.solver.solves == 6
-    assert alone.objective == pytest.approx(4.4177854, rel=1e-7)
+    assert alone.status == "optimal" and alone.design["cable_count"] == 8.0 and alone.solver.solves == 9
+    assert alone.objective == pytest.approx(eight.objective, rel=1e-6)
 
 
-@pytest.mark.xfail(strict=True, reason="a limit correction cannot reach it: the NLP's quasi-static stress rises with "
-                                       "the weight mass, the simulated peak falls (docs/start_up.md)")
 def test_the_cable_at_0_5_keeps_the_lightest_verified_count():
     """8 cables verify at 0.5 kg m^2 with a heavier weight (0.495 kg: the stiffer link's simulated peak 349.92 MPa,
-    4.276 kg, lighter than 9 cables' 4.418 kg); `solve` keeps 9."""
+    4.276 kg, lighter than 9 cables' 4.418 kg); `solve` keeps 8 (modifier adaptation: 4.2568 kg at 0.49261 kg)."""
     case = CABLE.with_values(driven_inertia=0.5)
     heavier = solve_case(replace(case, bounds={**case.bounds, "cable_count": (8.0, 8.0),
                                                "weight_mass": (0.495, 0.495)}))
@@ -94,21 +96,23 @@ def test_the_cable_at_0_5_keeps_the_lightest_verified_count():
 
 
 def test_the_cable_s_sweep_past_0_4_agrees_with_solve():
-    """Over 0.45, 0.5 and 0.6 kg m^2 (9 cables at each: 8 cables' simulated start is over 350 MPa at every weight
-    mass the NLP can give them) each sweep point is solve's of the point alone: status, cable count and objective
-    within the start-up contract (1e-6 relative), every point's stress limit met by its simulated start."""
+    """Over 0.45, 0.5 and 0.6 kg m^2 (8 cables at 0.45 and 0.5, verified by modifier adaptation; 9 at 0.6, where 8
+    cables' simulated start is over 350 MPa at every weight mass) each sweep point is solve's of the point alone:
+    status, cable count and objective within the start-up contract (1e-6 relative), every point's stress limit met
+    by its simulated start."""
     from clutchopt.optimise.sweep import Sweep
     from clutchopt.optimise.sweep_grid import parse_vary
 
     vary = parse_vary("driven_inertia=0.45,0.5,0.6", CABLE.coupling, CABLE.quantities)
     records = list(Sweep(CABLE, [vary]).run(progress=False).solutions)
-    for inertia, record in zip(vary.values, records):
+    for inertia, record, count in zip(vary.values, records, (8.0, 8.0, 9.0)):
         alone = solve_case(CABLE.with_values(driven_inertia=inertia))
         assert record["status"] == alone.status == "optimal"
-        assert record["design"]["cable_count"] == alone.design["cable_count"] == 9.0
+        assert record["design"]["cable_count"] == alone.design["cable_count"] == count
         assert abs(record["objective"]["value"] - alone.objective) <= 1e-6 * alone.objective
         stress = next(c for c in alone.constraints if c.name == "link_stress")
-        assert stress.limit == L and stress.value <= L
+        assert stress.limit == L and stress.value <= L * (1 + TOL)  # feasible within the contract (the modifier
+        # centres the simulated start on the limit: 8 cables at 0.5, 1.2e-8 over it)
 
 
 def test_a_correction_without_a_design_is_said_as_it_ended():

@@ -123,12 +123,14 @@ def test_cable_motor_start_on_a_stronger_motor_swept_down_in_torque_has_solve_s_
     # first search (warm from 16 cables) solves 16 down to 12 at the case's limits and keeps 12, whose start moves the
     # stress limit; there 18 are infeasible and 19 kept, 18's and 17's own loops end optimal (8.606, 8.141 kg) and the
     # sweep kept 17 cables, 6.0 % heavier than solve's 16 (7.67662 kg, verified): untried_below skipped 16 as tried,
-    # though the search had solved it only at the case's limits before any simulated start, which is no verdict
+    # though the search had solved it only at the case's limits before any simulated start, which is no verdict.
+    # Since modifier adaptation (clutchopt.optimise.modifier) 15 cables verify too (7.48913 kg, their start 0.64 %
+    # over the limit at the NLP's design, no NLP design at the moved limit): solve and the sweep keep 15
     [(record, solved)] = swept_and_solved("cable_motor_start.toml", "paper", "torque",
                                           (133.58135082908308, 110.72306213104756), breakdown_torque=466.68602275904095)
     assert solved.status == record["status"] == "optimal"
-    assert solved.design["cable_count"] == 16
-    assert solved.objective == pytest.approx(7.67662062, rel=START_UP_RTOL)
+    assert solved.design["cable_count"] == 15
+    assert solved.objective == pytest.approx(7.48913128, rel=START_UP_RTOL)
     assert record["design"]["cable_count"] == solved.design["cable_count"]
     assert record["objective"]["value"] == pytest.approx(solved.objective, rel=START_UP_RTOL)
 
@@ -151,11 +153,15 @@ def test_cable_motor_start_on_a_light_motor_rotor_has_a_verified_design_solved_a
     # 3.95257 kg (8 cables, their simulated stress 81 % over the limit, no NLP design at the moved limit) and
     # above_unverified tried one count up only (9, not verified either); a sweep reaching the point (max_start_time 2.01
     # then 2.21 s, motor inertia 0.027 to 0.27 kg m^2) kept 12 cables, verified, 5.81260 kg. Now the loop climbs while
-    # each count's simulated start comes nearer (Problem._climbed): 9, 10 and 11 unverified, 12 verified
+    # each count's simulated start comes nearer, then while each count comes out lighter (Problem._climbed): 9
+    # unverified, 10 verified at 7.307 kg (heavy weights: modifier adaptation), 11 at 6.276, 12 at 5.813, 13 at 6.277
     solved = cable_solved("paper", max_start_time=2.212816287825956, motor_inertia=0.027)
     assert solved.status == "optimal"
     assert solved.objective <= 5.8126027 * (1 + START_UP_RTOL)  # the sweep's verified design, or a lighter one
     assert solved.design["cable_count"] == 12
-    assert [(e["cable_count"], e["status"]) for e in solved.integer_search[-4:]] == [
-        (9, "own accuracy loop: unverified"), (10, "own accuracy loop: unverified"),
-        (11, "own accuracy loop: unverified"), (12, "own accuracy loop: optimal")]
+    climbed = [(e["cable_count"], e["status"].removeprefix("own accuracy loop: ")) for e in solved.integer_search
+               if e["status"].startswith("own accuracy loop")]
+    assert climbed == [(9, "unverified"), (10, "optimal"), (11, "optimal"), (12, "optimal"), (13, "optimal")]
+    lightest = min((e for e in solved.integer_search if e["status"] == "own accuracy loop: optimal"),
+                   key=lambda e: e["objective"])
+    assert lightest["cable_count"] == 12 and lightest["objective"] == pytest.approx(solved.objective, rel=1e-12)

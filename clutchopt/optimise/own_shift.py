@@ -45,6 +45,8 @@ class ForeignShifts:
         self.found: dict[tuple, float] = {}  # choice -> least objective at the end of its infeasible runs
         self.own: set[tuple] = set()  # choices found infeasible at the case's limits or at their own shift
         self.looped: set[tuple] = set()  # the choices solved through their own loop (``Problem._own_loop``)
+        self.unverified: dict[tuple, object] = {}  # choice -> the loop's lightest design of it whose simulated
+        # start missed a limit (:meth:`unverified_below`)
 
     def choice(self, design: dict[str, float]) -> tuple:
         return tuple(float(design[name]) for name in self.names)
@@ -55,7 +57,12 @@ class ForeignShifts:
 
     def seen(self, solution) -> None:
         """A solve of the loop (at the limits moved so far): its infeasible choices, recorded as found at another
-        choice's shift or at their own (none moved, or moved by their own start alone)."""
+        choice's shift or at their own (none moved, or moved by their own start alone); its design, where its
+        simulated start misses a limit."""
+        if getattr(solution, "status", None) == "unverified":
+            combo = self.choice(solution.design)
+            if combo not in self.unverified or solution.objective < self.unverified[combo].objective:
+                self.unverified[combo] = solution
         for entry in solution.integer_search:
             if not all(name in entry for name in self.names):
                 continue
@@ -80,6 +87,21 @@ class ForeignShifts:
         own = self.choice(kept.design) if has_design else None
         return sorted((combo for combo, value in self.found.items()
                        if value < bound and combo not in self.own and combo != own), key=self.found.get)
+
+    def unverified_below(self, kept) -> list:
+        """The designs of other choices the loop kept ``unverified`` at some step (the lightest of each), lighter
+        than ``kept`` (optimal), their choices not solved through their own loop, lightest first: a choice the defect
+        correction then found infeasible at its own shift has no verdict, for a moved limit cannot reach every
+        verified design of it; modifier adaptation goes on from that design
+        (:func:`~clutchopt.optimise.modifier.first_order`). cable_motor_start at 0.5 kg m^2: 8 cables' start carries
+        0.44 % over the allowed stress, their correction has no design and 9 cables are kept (4.418 kg); from 8
+        cables' design the modifier verifies them with a heavier weight, 4.257 kg."""
+        if kept.status != "optimal":
+            return []
+        own = self.choice(kept.design)
+        return sorted((solution for combo, solution in self.unverified.items()
+                       if solution.objective < kept.objective and combo != own and combo not in self.looped),
+                      key=lambda solution: solution.objective)
 
     def above_unverified(self, kept, upper: dict[str, float]) -> list[tuple]:
         """The choices one count above ``kept``'s in one integer (within its ``upper`` bound) where the loop kept an
@@ -125,14 +147,18 @@ def worst_margin(solution) -> float:
     return min((c.margin for c in solution.constraints if math.isfinite(c.margin)), default=-math.inf)
 
 
-def climbing(names: list[str], last, own, combo: tuple, upper: dict[str, float]) -> tuple[tuple | None, str]:
-    """The next choice up from ``combo`` (``own``'s: one count above ``last``'s in one of the integers ``names``,
-    within its ``upper`` bound) where ``own``'s loop ended ``unverified`` nearer to meeting its limits than
-    ``last``'s (its worst margin, :func:`worst_margin`, larger) and, at the rate the margin grew, a count within the
-    bound meets them; else None, and why no count further up is tried (in words). Adding a cable lowers each
-    cable's stress, so the margin of an unverified count grows count by count; where it does not, no count above is
-    nearer (``Problem._climbed``)."""
-    i = next(k for k, (name, value) in enumerate(zip(names, combo)) if float(last.design[name]) != value)
+def stepped(names: list[str], design: dict[str, float], combo: tuple) -> int:
+    """The index of the integer in which ``combo`` differs from ``design``'s choice (one count off it)."""
+    return next(k for k, (name, value) in enumerate(zip(names, combo)) if float(design[name]) != value)
+
+
+def climbing(names: list[str], i: int, last, own, combo: tuple, upper: dict[str, float]) -> tuple[tuple | None, str]:
+    """The next choice up from ``combo`` (``own``'s: one count above ``last``'s in the integer ``names[i]``, within
+    its ``upper`` bound) where ``own``'s loop ended ``unverified`` nearer to meeting its limits than ``last``'s (its
+    worst margin, :func:`worst_margin`, larger) and, at the rate the margin grew, a count within the bound meets
+    them; else None, and why no count further up is tried (in words). Adding a cable lowers each cable's stress, so
+    the margin of an unverified count grows count by count; where it does not, no count above is nearer
+    (``Problem._climbed``)."""
     name, count = names[i], combo[i]
     before, now = worst_margin(last), worst_margin(own)
     if own.status != "unverified":
@@ -148,7 +174,23 @@ def climbing(names: list[str], last, own, combo: tuple, upper: dict[str, float])
     return combo[:i] + (count + 1.0,) + combo[i + 1:], ""
 
 
-def own_entry(names: list[str], combo: tuple, own) -> dict:
-    """The integer search's record of ``combo`` solved through its own accuracy loop (``own``, its solution)."""
-    return {**{n: int(v) for n, v in zip(names, combo)}, "status": f"own accuracy loop: {own.status}",
+def lighter_above(names: list[str], i: int, own, kept, combo: tuple, upper: dict[str, float]) -> tuple | None:
+    """Once a count of the climb is verified (``kept``, optimal): the next choice up from ``combo`` in ``names[i]``
+    (within ``upper``) where ``combo``'s own loop (``own``) came out lighter than every verified count so far: kept
+    (``own is kept``), or ``unverified`` below ``kept``'s objective (its NLP's design, which the simulated start only
+    moves up); None where it did not, for a count heavier at the limits it meets has a heavier one above. The first
+    verified count need not be the lightest: cable_motor_start at 0.027 kg m^2 (modifier adaptation in the own loops)
+    verifies 10 cables at 7.307 kg with heavy weights, then 11 at 6.276 kg, 12 at 5.813 kg and 13 at 6.277 kg: 12
+    kept."""
+    if not (own is kept or own.status == "unverified" and own.objective < kept.objective):
+        return None
+    if combo[i] + 1.0 > upper[names[i]]:
+        return None
+    return combo[:i] + (combo[i] + 1.0,) + combo[i + 1:]
+
+
+def own_entry(names: list[str], combo: tuple, own, how: str = "own accuracy loop") -> dict:
+    """The integer search's record of ``combo`` solved through its own accuracy loop (``own``, its solution; ``how``:
+    or modifier adaptation)."""
+    return {**{n: int(v) for n, v in zip(names, combo)}, "status": f"{how}: {own.status}",
             "feasible": own.status == "optimal", "objective": own.objective}

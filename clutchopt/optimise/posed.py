@@ -22,6 +22,7 @@ from clutchopt.cases import Case
 from clutchopt.model import Formulation, namespace
 from clutchopt.optimise.compiled import compiled_solver
 from clutchopt.optimise.in_place import InPlace
+from clutchopt.optimise.modifier import modified
 from clutchopt.optimise.solution import IPOPT_OWN_FIGURES, START_UP_RESTORATION, SolverOptions
 from clutchopt.optimise.verify import evaluate_objective
 from clutchopt.start_up.drive import Structure
@@ -97,7 +98,7 @@ class Posed:
         seen = (lambda name: tuple(map(namespace, view(vars(x), vars(p), name)))) if view else None
         self.start_up = StartUpBlock(start_up, f.speed_law, x, p, seen) if start_up else None
         internal, equalities = (self.start_up.hat, self.start_up.equalities) if start_up else (ca.SX(0, 1), [])
-        constraints += self.start_up.constraints if start_up else []
+        constraints += modified(self.start_up.constraints, x, p) if start_up else []  # (modifiers: their own problem)
         rows = [ca.SX(c.normalised()) for c in constraints]
         self.constraint_rows = [row.shape[0] for row in rows]  # a start-up constraint may hold along a path
         self.row_names = [c.name for c, row in zip(constraints, rows) for _ in range(row.shape[0])]

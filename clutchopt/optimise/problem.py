@@ -26,7 +26,8 @@ from clutchopt.optimise.diagnosis import diagnose
 from clutchopt.optimise.failed_starts import FailedStarts
 from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_start, nearest_integers, relaxation_seed,
                                          within)
-from clutchopt.optimise.own_shift import ForeignShifts, carried_by, climbing, own_entry
+from clutchopt.optimise.modifier import VARIANT, first_order
+from clutchopt.optimise.own_shift import ForeignShifts, carried_by, climbing, lighter_above, own_entry, stepped
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
 from clutchopt.optimise.solution import Diagnosis, Solution, SolverInfo, SolverOptions, WarmStart
@@ -103,7 +104,8 @@ class Problem:
                  mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,
                  coarser: float = math.inf, shift: dict[str, float] | None = None, cold: bool = True,
                  fixed: dict[str, tuple[float, float]] | None = None,
-                 infeasible: dict[tuple, str] | None = None, sizing: dict[str, float] | None = None) -> Solution:
+                 infeasible: dict[tuple, str] | None = None, sizing: dict[str, float] | None = None,
+                 lighter_than: float = math.inf) -> Solution:
         """One solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one.
 
         With a start-up, the simulated start is what the limits are checked against, and the collocation's own
@@ -127,6 +129,9 @@ class Problem:
         infeasible by far more than that solve's collocation error is not solved again (:class:`RuledOut`). An elastic
         link's integer choice found infeasible only at limits another choice's simulated start moved, lighter than the
         kept design, is solved through its own loop (:meth:`_own_loops`); ``fixed``: integer bounds of such a loop.
+        A loop that ends ``unverified`` goes on in modifier adaptation (:func:`~clutchopt.optimise.modifier.first_order`:
+        the limits' figures corrected in value and gradient, integers kept), its steps ending at a design no lighter
+        than ``lighter_than`` (an own loop's: the kept design's objective).
         ``infeasible``: integer choices known to have no design here, with why (:class:`RuledOut`; a start-up
         sweep's point: those the papers' sizing at the point finds infeasible, ``start_up_sweep.sized_out``);
         ``sizing``: the papers' sizing's design at the point, where a caller starting warm knows it (a start-up
@@ -196,6 +201,10 @@ class Problem:
             else:
                 break
             solves.append(solution.solver)
+        if nlp_case is not None and solution.status == "unverified":  # the limits' correction reached no verified
+            # design: the limits' figures corrected in value and gradient (modifier adaptation), integers kept
+            solution = first_order(self, case, solution, solves, lighter_than)
+            nlp_case = case if solution.status == "optimal" else nlp_case
         solution.solver = solution.solver.summed(solves)
         if nlp_case is not None:  # not the doubled problem's
             solution.limit_shift = limit_shift(case, nlp_case)
@@ -226,6 +235,10 @@ class Problem:
             kept, own = self._own_loop(case, solution, kept, foreign, combo, runs)
             if kept is own:
                 break
+        for unverified in foreign.unverified_below(kept):  # a lighter choice kept unverified: modifier adaptation
+            kept, better = self._first_order(case, kept, foreign, unverified, runs)
+            if better:
+                break
         bounds = {v.name: case.bounds.get(v.name, (v.lower, v.upper)) for v in self.formulation.variables if v.integer}
         upper = {name: hi for name, (_, hi) in bounds.items()}
         for combo in foreign.above_unverified(kept, upper):  # counts up while their simulated starts come nearer
@@ -243,7 +256,8 @@ class Problem:
         limits, warm from ``solution``), recorded in ``kept``'s integer search and ``runs``: its design where it ends
         optimal and lighter than ``kept`` (or ``kept`` has none verified), else ``kept``; and its own solution."""
         fixed = {name: (value, value) for name, value in zip(foreign.names, combo)}
-        own = self._refined(case, warm=solution, diagnosed=False, cold=False, fixed=fixed)
+        own = self._refined(case, warm=solution, diagnosed=False, cold=False, fixed=fixed,
+                            lighter_than=kept.objective if kept.status == "optimal" else math.inf)
         foreign.own_loop(combo)
         runs.append(own.solver)
         kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, own)]
@@ -258,21 +272,49 @@ class Problem:
         verifies: from ``combo`` (one count up in one integer) each count is solved through its own loop
         (:meth:`_own_loop`) and the next one up tried while the last one's simulated start comes nearer to meeting
         its limits (its worst margin grows: :func:`~clutchopt.optimise.own_shift.climbing`), until one ends optimal,
-        or the trend says no count within the ``upper`` bound will (why is added to ``kept``'s diagnosis). An elastic
-        link's stress falls as cables are added, but its loop may find a count infeasible at the limit its own start
-        moved: cable_motor_start at a motor inertia of 0.027 kg m^2, 2.21 s allowed: 8 cables kept, their simulated
-        stress 81 % over; 9, 10 and 11 cables' own loops end unverified, each nearer, 12 cables' verified (5.81260 kg,
-        the sweep's design; tests/test_hostile_agree2.py)."""
-        last = kept
+        or the trend says no count within the ``upper`` bound will (why is added to ``kept``'s diagnosis); from a
+        verified count on, while each count up comes out lighter (:func:`~clutchopt.optimise.own_shift.lighter_above`).
+        An elastic link's stress falls as cables are added, but its loop may find a count infeasible at the limit its
+        own start moved: cable_motor_start at a motor inertia of 0.027 kg m^2, 2.21 s allowed: 8 cables kept, their
+        simulated stress 81 % over; 9 cables' own loop unverified, 10 cables' verified at 7.307 kg (their weights
+        made heavy by modifier adaptation), 11 at 6.276 kg, 12 at 5.81260 kg, the sweep's design, 13 at 6.277 kg,
+        heavier: 12 kept (tests/test_hostile_agree2.py)."""
+        last, i = kept, stepped(foreign.names, kept.design, combo)
         while True:
             kept, own = self._own_loop(case, solution, kept, foreign, combo, runs)
-            if own.status == "optimal":
-                return kept
-            ahead, reason = climbing(foreign.names, last, own, combo, upper)
-            if ahead is None:
-                kept.diagnosis = f"{kept.diagnosis}; {reason}" if kept.diagnosis else reason
-                return kept
+            if kept.status == "optimal":  # a count verified: on while each count up comes out lighter
+                ahead = lighter_above(foreign.names, i, own, kept, combo, upper)
+                if ahead is None:
+                    return kept
+            else:
+                ahead, reason = climbing(foreign.names, i, last, own, combo, upper)
+                if ahead is None:
+                    kept.diagnosis = f"{kept.diagnosis}; {reason}" if kept.diagnosis else reason
+                    return kept
             last, combo = own, ahead
+
+    def _first_order(self, case: Case, kept: Solution, foreign: ForeignShifts, unverified: Solution,
+                     runs: list) -> tuple[Solution, bool]:
+        """Modifier adaptation from ``unverified`` (a design of another integer choice the loop kept, its simulated
+        start missing a limit: :meth:`~clutchopt.optimise.own_shift.ForeignShifts.unverified_below`), its integers
+        fixed, each step warm from the last and stopped at a design no lighter than ``kept``
+        (:func:`~clutchopt.optimise.modifier.first_order`), recorded in ``kept``'s integer search and ``runs`` as an
+        own loop of the choice: its design where it ends optimal and lighter, else ``kept``; and whether it was."""
+        combo = foreign.choice(unverified.design)
+        steps: list = []
+        own = first_order(self, case, unverified, steps, kept.objective)
+        foreign.own_loop(combo)
+        if not steps:
+            return kept, False
+        spent = (own.solver if own is not unverified else steps[-1]).summed(steps)  # (the loop's design untouched)
+        if own is not unverified:
+            own.solver = spent
+        runs.append(spent)
+        kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, own, VARIANT)]
+        if own.status == "optimal" and own.objective < kept.objective:
+            own.integer_search, own.bounds = kept.integer_search, kept.bounds
+            return own, True
+        return kept, False
 
     def proven(self, case: Case, proofs: list[str]) -> Solution:
         """The verdict on a start-up the drive makes impossible (``proofs``, in words): ``infeasible``, without a
@@ -487,7 +529,8 @@ def uncorrected(solution: Solution, corrected: Solution) -> Solution:
     simulated start makes it (the violation named, and that the correction found no design), not a verdict of the
     solve: cable_motor_start at 0.5 kg m^2 with 8 cables fixed (their simulated start 0.44 % over the allowed stress,
     where no 8-cable design of the quasi-static NLP is 4.4 % under it: docs/start_up.md, "The defect correction's
-    fixed point"). Only an ``infeasible`` corrected solve says that no design of the NLP meets the moved limits; one
+    fixed point"; modifier adaptation then goes on from that design and verifies them, 4.2568 kg: ``first_order``).
+    Only an ``infeasible`` corrected solve says that no design of the NLP meets the moved limits; one
     that ended ``solver_failed`` or ``not_found`` found none from its start, which proves nothing. ``optimal`` (the
     correction only centred a binding limit the simulated start meets): verified, its status kept, but the objective
     may be off the simulator's optimum by more than the CENTRE of the tolerance the correction holds it to: a note."""

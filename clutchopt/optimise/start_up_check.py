@@ -34,22 +34,13 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
     and the start-up constraints re-checked with the simulated figures, each with the values ``seen(name)`` gives it
     (:func:`~clutchopt.start_up.drive.seen_constraints`): (summary in SI, constraint checks, the mesh the simulated
     start suggests for the next solve). ``case`` and ``design``: as the start sees them."""
-    from clutchopt.start_up.simulation import check_rtol, run_start_up, start_up_model
-
     values, *columns = figures
     nlp = dict(zip(block.outputs(), np.array(values).ravel()))
     trajectory = {name: np.array(column).ravel() for name, column in zip(TRAJECTORY, columns)}  # (block.trajectory()
     # builds the expressions: 5 ms a check for its names)
     s = block.s
-    model = start_up_model(case, formulation.mode, design, check_rtol(s.spec.tolerance, s.elastic))
-    result = run_start_up(model)
+    result, drive, checks = simulated_checks(block, case, design, formulation, seen)
     head = result.headline
-    stresses = result.columns["stress"] if s.elastic else 0.0
-    simulated = SimpleNamespace(start_time=head["start_time"], friction_work=head["friction_work"],
-                                temperatures=head.get("temperature_rise", 0.0), lock_up_speed=head["lock_up_speed"],
-                                stresses=stresses if head["locks_up"] else math.inf)
-    drive = Drive(s, formulation.speed_law, *seen(None))
-    checks = check_constraints(seen_constraints(s, formulation.speed_law, simulated, seen, drive), s.spec.tolerance)
     node_stresses = ([float(drive.link_stress(w, theta)) for w, theta in zip(trajectory["w_driver"], trajectory["twist"])]
                      if s.elastic else [])
     engaged = float(nlp.get("run_up_time", 0.0))
@@ -99,6 +90,26 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
     own = {check.name: check.value for check in check_constraints(
         seen_constraints(s, formulation.speed_law, collocated, seen, drive)) if check.name in LIMIT_OF}
     return summary, checks, adapted_mesh(s, result.columns, times), own
+
+
+def simulated_checks(block, case, design: dict[str, float], formulation, seen):
+    """The independent simulator's start at ``design`` (stiff where the motor is, events, float64) and the start-up
+    constraints checked with its figures, each with the values ``seen(name)`` gives it: (the simulation's result, the
+    drive at ``seen(None)``, the checks). ``case`` and ``design``: as the start sees them. What
+    :func:`start_up_report` checks a solve with, and what the modifier's gradient differences
+    (:mod:`clutchopt.optimise.modifier`)."""
+    from clutchopt.start_up.simulation import check_rtol, run_start_up, start_up_model
+
+    s = block.s
+    result = run_start_up(start_up_model(case, formulation.mode, design, check_rtol(s.spec.tolerance, s.elastic)))
+    head = result.headline
+    stresses = result.columns["stress"] if s.elastic else 0.0
+    simulated = SimpleNamespace(start_time=head["start_time"], friction_work=head["friction_work"],
+                                temperatures=head.get("temperature_rise", 0.0), lock_up_speed=head["lock_up_speed"],
+                                stresses=stresses if head["locks_up"] else math.inf)
+    drive = Drive(s, formulation.speed_law, *seen(None))
+    return result, drive, check_constraints(seen_constraints(s, formulation.speed_law, simulated, seen, drive),
+                                            s.spec.tolerance)
 
 
 def worn_start(summary: dict, case, design: dict[str, float], mode: str) -> None:
