@@ -64,8 +64,9 @@ def least_violated(posed, case: Case) -> dict[str, float] | None:
         design = dict(zip(posed.names, map(float, x)))
         try:
             data = posed.scaled_data(case, design)
-        except InputError:  # its start cannot be simulated (outside the simulator's ranges)
-            continue
+        except (InputError, ValueError, ArithmeticError):  # its start cannot be simulated or seeded: outside the
+            continue  # simulator's ranges, or a corner of the box where the weights never engage (the wedge in
+            # geometry mode: its engagement speed squared below 0)
         violation = least_violation(posed, np.array(posed.constraint_values(data.x0, data.p)).ravel())
         if violation < least:
             best, least = design, violation
