@@ -22,18 +22,13 @@ def cable_solved(mode: str, cable_count: int | None = None, **values: float):
     return solve_case(case, mode=mode)
 
 
-@pytest.mark.xfail(strict=True, reason="a row of the collocation holds the design, not a limit: the slip state at a "
-                   "collocation point of the slip phase's last interval sits on its lower bound 0 (multiplier 9.1e3, "
-                   "scaled; the lock-up falls inside an interval), so each mesh the accuracy loop adapts gives another "
-                   "design (487.5, 507.6, 501.6, 495.0 kg on 16 intervals, 503.5, 512.9 kg on 32), none with the torque "
-                   "active; the error grows (1.8e-4 to 8.0e-4, the tolerance 1e-6), doubling_pays says no and the loop "
-                   "returns its last solve, verified by its simulated start but 7.8 % heavier; the objective elastic "
-                   "to the motor (breakdown torque 0.59) though no start-up limit is active")
 def test_ball_motor_start_in_paper_mode_solved_at_a_start_time_limit_of_24_s_is_as_light_as_at_16_s():
     # at 16 s (and at 13.2 s and 20 s) the optimum is 475.94832 kg with the torque and the width ratio active, the
     # simulated start 7.43 s (the start time 54 % under its limit): a looser start-time limit (24 s) leaves that
     # design feasible, so the optimum there cannot be heavier; solve at 24 s reported 512.94660 kg "optimal" (7.8 %
-    # heavier, its start 7.15 s); the sweep (13.2 s then 24 s) has 475.94832 kg at 24 s, verified
+    # heavier, its start 7.15 s, a design a row of the collocation held: problem.held_by_the_mesh, the sizing solved
+    # again, docs/start_up.md "A design a row of the collocation holds"); the sweep (13.2 s then 24 s) has 475.94832 kg
+    # at 24 s, verified
     at_16 = solve_case(load_case(CASES / "ball_motor_start.toml").with_values(max_start_time=16.0), mode="paper")
     assert at_16.status == "optimal"
     assert at_16.objective == pytest.approx(475.94832, rel=START_UP_RTOL)
@@ -43,14 +38,11 @@ def test_ball_motor_start_in_paper_mode_solved_at_a_start_time_limit_of_24_s_is_
     assert at_24.objective == pytest.approx(at_16.objective, rel=START_UP_RTOL)
 
 
-
-@pytest.mark.xfail(strict=True, reason="the sweep's point is held by no named limit: only width_ratio active, the "
-                   "torque slack, as solve at a start-time limit of 24 s above (the same class: a row of the "
-                   "collocation, its design the mesh's); warm from 21.1 kg m^2's mesh and design the loop ends there")
 def test_ball_motor_start_in_paper_mode_swept_down_in_motor_inertia_has_solve_s_torque_bound_design():
     # motor inertia 20.53, 21.10 then 10.82 kg m^2: at the third the sweep reported 476.06258 kg "optimal" with the
     # torque slack (its simulated start verified), solve alone 475.94832 kg with the torque and width ratio active
-    # (the design of every start-up-slack point of this case: 2.4e-4 relative lighter); a sweep from 21.10 alone agrees
+    # (the design of every start-up-slack point of this case: 2.4e-4 relative lighter); a sweep from 21.10 alone agrees.
+    # The sweep's point was held by a row of the collocation, as solve at 24 s above
     [(record, solved)] = swept_and_solved("ball_motor_start.toml", "paper", "motor_inertia",
                                           (20.527572762408244, 21.09549236940575, 10.816363924537455))
     assert solved.status == record["status"] == "optimal"

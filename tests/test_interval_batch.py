@@ -26,3 +26,17 @@ def test_the_ball_s_proof_takes_fewer_boxes_with_fewer_splits_between_evaluation
     before, = searches(posed, [problem])
     assert (now.proven, now.boxes, before.proven, before.boxes) == (True, 121, True, 435)
     assert {"torque", "contact_stress"} <= set(now.decisive) and {"torque", "contact_stress"} <= set(before.decisive)
+
+
+def test_searches_led_by_a_point_end_where_its_first_box_decides_it():
+    """``searches(..., lead=True)`` (a sweep's point with the runs after it: interval_proof.searched_along): where the
+    first search ends at its first evaluation (here by a budget of one box), the others still searching end there,
+    given up after their own first box (the ball at 0.5x its allowable contact stress: 1 box, not its proof in 121);
+    where it goes on, each search is what it alone gives (121 boxes, proven, with or without a leader)."""
+    posed, problem = _ball_at_half_its_contact_stress()
+    leader, follower = searches(posed, [problem, problem], [1, interval_proof.MAX_BOXES], lead=True)
+    assert (leader.proven, leader.boxes, follower.proven, follower.boxes) == (False, 1, False, 1)
+    alone, = searches(posed, [problem])
+    led = searches(posed, [problem, problem], lead=True)
+    assert [(o.proven, o.boxes, o.decisive) for o in led] == [(alone.proven, alone.boxes, alone.decisive)] * 2
+    assert (alone.proven, alone.boxes) == (True, 121)

@@ -206,8 +206,11 @@ def _searches_and_probes(monkeypatch) -> tuple[list, list]:
     """The outcomes of a sweep's region searches (a list per call) and the points its probes tried, as they come."""
     regions, probed = [], []
     real, designed = region_proof.searches, region_proof.Regions._designed
-    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: regions.append(
-        [outcome for outcome in real(posed, problems, budgets)]) or regions[-1])
+    recorded = lambda posed, problems, budgets=None, **lead: regions.append(  # noqa: E731
+        [outcome for outcome in real(posed, problems, budgets, **lead)]) or regions[-1]
+    monkeypatch.setattr(region_proof, "searches", recorded)
+    monkeypatch.setattr(interval_proof, "searches", recorded)  # (a point's own search with the runs after it:
+    # interval_proof.searched_along)
     monkeypatch.setattr(region_proof.Regions, "_designed", lambda self, j, witness=None: probed.append(j) or designed(
         self, j, witness))
     return regions, probed
@@ -267,8 +270,9 @@ def test_the_head_of_a_run_past_the_region_s_edge_proven_before_the_probes(monke
     assert list(frame["status"]) == ["infeasible"] * 13 + ["optimal"] * 7
     assert probed == [19, 11, 13, 12]
     assert [[(o.proven, o.reached, o.boxes) for o in outcomes] for outcomes in regions] == [
-        [(True, False, 177)], [(True, False, 253), (False, True, 77)], [(True, False, 249)], [(True, False, 321)]]
-    # (the run from point 9 searched ahead with points 1-8's: Regions._runs_ahead)
+        [(True, False, 177), (True, False, 253), (False, True, 77)], [(True, False, 249)], [(True, False, 321)]]
+    # (point 0's own search with points 1-8 and the run from point 9: interval_proof.searched_along,
+    # Regions._next_runs, _runs_ahead; none after the run from 9, which meets a design)
     assert list(frame["diagnosis"][9:13]) == [frame["diagnosis"][9]] * 4
     assert frame["diagnosis"][9].startswith("proven infeasible for allowable_contact_stress 0.68999-0.719593 GPa "
                                             "(4 points, one proof)")
@@ -345,19 +349,20 @@ def test_a_sweep_s_first_point_without_a_design_gets_solve_s_verdict_without_the
 
 def test_a_run_searched_ahead_keeps_its_share_of_the_call_that_searched_it(monkeypatch):
     # ball_crusher over 200 powers from 250 to 1000 kW: no design from point 84 (566.6 kW, its own proof). Points
-    # 85-92 are searched
-    # as one region with the runs ahead 93-108 and 109-140 (Regions._runs_ahead) in one call, 8 + 16 + 32 = 56
-    # points: each point 1/56 of that call's seconds, the ahead runs' points too when taken from the kept searches
-    # later (main gave them the seconds of the later call that took them, which searched nothing, over its 16 and
-    # 32 points: 1/16 and 1/32); points 141-199 in the next call, 59 points, 1/59 each. With a clock that reads one
-    # second more at each reading, each call takes 1 s, and the seconds the proven points carry add up to the calls'
-    # 2 s.
+    # 85-92 are searched as one region with the runs ahead 93-108, 109-140 and 141-199 (Regions._runs_ahead,
+    # RUNS_AHEAD) in the call of point 84's own search in its verdict (Regions._along), 1 + 8 + 16 + 32 + 59 = 116
+    # points: each point 1/116 of that call's seconds, taken from the kept searches later (main gave the ahead runs
+    # the seconds of the later call that took them, which searched nothing, over its 16 and 32 points: 1/16 and
+    # 1/32). With a clock that reads one second more at each reading, the call takes 1 s, and the seconds the proven
+    # points after 84 carry add up to 115/116 s of it.
     import types
 
     from clutchopt.optimise.sweep_grid import Vary
 
     clock = iter(range(1, 1_000_000))
-    monkeypatch.setattr(region_proof, "time", types.SimpleNamespace(perf_counter=lambda: float(next(clock))))
+    ticking = types.SimpleNamespace(perf_counter=lambda: float(next(clock)))
+    monkeypatch.setattr(region_proof, "time", ticking)
+    monkeypatch.setattr(interval_proof, "time", ticking)
     proved, own = [], region_proof.Regions._proved
     monkeypatch.setattr(region_proof.Regions, "_proved",
                         lambda self, a, b, problem, outcome, seconds: (proved.append((a, b, seconds)),
@@ -366,5 +371,5 @@ def test_a_run_searched_ahead_keeps_its_share_of_the_call_that_searched_it(monke
     quantity = next(q for q in crusher.quantities if q.name == "power")
     result = Sweep(crusher, [Vary(quantity, tuple(np.linspace(250e3, 1000e3, 200).tolist()))]).run(progress=False)
     assert list(result.frame["status"]) == ["optimal"] * 84 + ["infeasible"] * 116
-    assert proved == [(85, 93, 1 / 56), (93, 109, 1 / 56), (109, 141, 1 / 56), (141, 200, 1 / 59)]
-    assert sum((b - a) * seconds for a, b, seconds in proved) == pytest.approx(2.0, rel=1e-12)
+    assert proved == [(85, 93, 1 / 116), (93, 109, 1 / 116), (109, 141, 1 / 116), (141, 200, 1 / 116)]
+    assert sum((b - a) * seconds for a, b, seconds in proved) == pytest.approx(115 / 116, rel=1e-12)

@@ -373,7 +373,7 @@ class BatchSweep:
         full verdict where that solve finds no design. Where a chain from the point before, with a design, ``failed``
         at k, the point's own interval search goes first (``Regions.point``'s ``beside``: a stretch without designs
         often starts there)."""
-        case = self.point_case(k)
+        case = self._regions.point_case(k)  # (the case its region's search built, if it did)
         solution = self._regions.point(k, lambda first: self.problem.solve(case, warm=warm, neighbour=self.feasible,
                                                                            first=first),
                                        warm, self.feasible if failed else None)

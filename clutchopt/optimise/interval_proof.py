@@ -27,7 +27,8 @@ integrals, their bounds are unbounded on boxes 1 % wide, and no conflict through
 
 from __future__ import annotations
 
-from typing import NamedTuple
+import time
+from typing import Callable, NamedTuple
 
 import numpy as np
 
@@ -69,7 +70,8 @@ def search(posed, p: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> Emptin
     return searches(posed, [(p, lower, upper)])[0]
 
 
-def searches(posed, problems: list[tuple[np.ndarray, ...]], budgets: list[int] | None = None) -> list[Emptiness | None]:
+def searches(posed, problems: list[tuple[np.ndarray, ...]], budgets: list[int] | None = None,
+             lead: bool = False) -> list[Emptiness | None]:
     """:func:`search` of each ``(p, lower, upper)`` (the points of a sweep), all at once: the boxes of every search
     in one array (a box's bounds are its own: the interval rules work box by box), each with its own parameters and
     its own tally, so each search's outcome, box count and decisive constraints are what it alone would give; an
@@ -86,7 +88,9 @@ def searches(posed, problems: list[tuple[np.ndarray, ...]], budgets: list[int] |
     parameters; the halves cover the interval, so the proof is still one for every point. A box whose centre meets
     every row for all of the search's parameters is a design of every such point (the search stops there); for the
     parameters of a part of the interval, a design of some of its points: the search stops as ``reached`` (no
-    proof for the interval exists). ``budgets``: each search's most boxes (default MAX_BOXES)."""
+    proof for the interval exists). ``budgets``: each search's most boxes (default MAX_BOXES). ``lead``: the first
+    search leads; where it ends at its first evaluation, the others still searching (with the same interval
+    functions) end there, given up (:func:`searched_along`)."""
     outcomes: list[Emptiness | None] = [None] * len(problems)
     started = [i for i, (_, lower, upper, *_) in enumerate(problems)
                if np.all(np.isfinite(lower)) and np.all(np.isfinite(upper))]
@@ -100,13 +104,15 @@ def searches(posed, problems: list[tuple[np.ndarray, ...]], budgets: list[int] |
         if group:  # where the declared nodes do not stand for the NLP's rows, the rows replayed
             functions = functions or posed.built("interval", False, lambda _: enclosed_rows(posed, declared=False))
             for i, outcome in zip(group, _searched(posed, functions, [problems[i] for i in group],
-                                                   np.array([budgets[i] for i in group]))):
+                                                   np.array([budgets[i] for i in group]),
+                                                   group.index(0) if lead and 0 in group else None)):
                 outcomes[i] = outcome
     return outcomes
 
 
-def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emptiness]:
-    """The searches of :func:`searches` with the same interval functions, every box a column with its search's."""
+def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int | None = None) -> list[Emptiness]:
+    """The searches of :func:`searches` with the same interval functions, every box a column with its search's
+    (``lead``: the leading search's number, see :func:`searches`)."""
     names, count = posed.row_names, len(problems)
     p_lo = np.stack([problem[0] for problem in problems], axis=1)
     p_hi = np.stack([problem[3] if len(problem) > 3 else problem[0] for problem in problems], axis=1)
@@ -155,7 +161,9 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         end(np.flatnonzero(over), lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
         return ~over[owner]
 
+    rounds_begun = 0  # (the leader's first box evaluated in the first)
     while lo.shape[1]:
+        rounds_begun += 1
         before = searching(owner)
         lo, hi, none = _rounded(lo, hi, posed.integer)
         tally(whole_names, none, owner)
@@ -164,6 +172,10 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray) -> list[Emp
         end(np.flatnonzero(before & ~searching(owner)), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         keep = within_budgets(owner)
         lo, hi, owner, plo, phi = lo[:, keep], hi[:, keep], owner[keep], plo[:, keep], phi[:, keep]
+        if rounds_begun == 2 and lead is not None and outcomes[lead] is not None:  # (the leader ended by its first
+            # box)
+            end(np.flatnonzero(searching(owner)), lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
+            break
         if not lo.shape[1]:
             break
         evaluated += np.bincount(owner, minlength=count)
@@ -426,10 +438,50 @@ def empty_design_space(posed, case, budget: int | None = None) -> Emptiness | No
     problem = _search_problem(posed, case)
     kept = posed.built("interval_kept", None, lambda _: {})
     kept = kept.get(_key(problem)) if budget is not None else kept.pop(_key(problem), None)
-    emptiness = kept or searches(posed, [problem], None if budget is None else [budget])[0]
+    along = _along(posed)
+    if kept:
+        emptiness = kept
+    elif "problems" in along and budget is not None:
+        emptiness, outcomes, seconds = searched_along(posed, problem, budget, along.pop("problems"))
+        if outcomes:
+            along["outcomes"], along["seconds"] = outcomes, seconds
+    else:
+        emptiness = searches(posed, [problem], None if budget is None else [budget])[0]
     if emptiness is not None and emptiness.proven:
         last_boxes(posed, emptiness.boxes)
     return emptiness
+
+
+def searched_along(posed, problem: tuple[np.ndarray, ...], budget: int,
+                   along: Callable[[], list[tuple[np.ndarray, ...]]]) -> tuple[Emptiness | None, list, float]:
+    """``problem``'s search within ``budget`` boxes and the problems ``along()`` gives (a sweep's runs after a point,
+    each within SURE_BOXES) in the same call: an iteration costs per call, and a point's proof takes about as many
+    as its runs' (the ball's). The point's search leads (:func:`searches`' ``lead``): where its first box decides it,
+    the others end there, those not ended yet given up (a point proven in a box has its runs searched point by
+    point, not as regions, ``region_proof.Regions._one_by_one``, and a region's search may take far more iterations
+    than the point's: the cable over 10x-20x its torque, 1 box a point). Its outcome, theirs and the call's
+    seconds."""
+    problems = along()
+    began = time.perf_counter()
+    own, *outcomes = searches(posed, [problem, *problems], [budget] + [SURE_BOXES] * len(problems), lead=True)
+    return own, outcomes, time.perf_counter() - began
+
+
+def search_along(posed, problems: Callable[[], list[tuple[np.ndarray, ...]]] | None) -> dict:
+    """The problems ``problems()`` gives (a sweep's runs after a point: ``region_proof.Regions._next_runs``; built
+    only where they are searched) searched in the same call as the next budgeted :func:`empty_design_space` of
+    ``posed`` (a point's verdict's first search, before its retries), each within SURE_BOXES: an iteration costs per
+    call. The dict returned gets their ``outcomes`` and the call's ``seconds`` if that search runs (None clears
+    it)."""
+    along = _along(posed)
+    along.clear()
+    if problems is not None:
+        along["problems"] = problems
+    return along
+
+
+def _along(posed) -> dict:
+    return posed.built("interval_along", None, lambda _: {})
 
 
 def last_boxes(posed, boxes: int | None = None) -> int:

@@ -41,6 +41,7 @@ from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
 from clutchopt.start_up.mesh import MAX_INTERVALS, MESH_STEPS
+from clutchopt.start_up.transcription import mesh_of_the_start
 
 
 PROVEN = "proof"  # the solver of a start-up the drive's proofs cover (:meth:`Problem.proven`: no start-up solve)
@@ -158,11 +159,17 @@ class Problem:
         solution = self._solve(case, start, warm, nlp_case=nlp_case, mesh=mesh, diagnosed=diagnosed, ruled=ruled,
                                cold=cold, sizing=sizing)
         adapted, last_error, solves = 0, math.inf, [solution.solver]
+        sized_again = False  # the papers' sizing solved again, where a row of the collocation held a design
         for _ in range(MESH_STEPS + BACK_OFF_STEPS):
             if foreign is not None:
                 foreign.seen(solution)
             if solution.status not in ("optimal", "unverified"):
                 break
+            if not sized_again and self._held(solution):  # no mesh makes it the physics' design: the sizing
+                sized_again = True
+                if (lighter := self._from_the_sizing(case, solution, nlp_case, sizing, solves, ruled)) is not None:
+                    solution = lighter
+                    break
             error = abs(solution.start_up["discretisation_error"]["start_time"])
             if ruled is not None:
                 ruled.settle(error)
@@ -205,6 +212,9 @@ class Problem:
             # design: the limits' figures corrected in value and gradient (modifier adaptation), integers kept
             solution = first_order(self, case, solution, solves, lighter_than)
             nlp_case = case if solution.status == "optimal" else nlp_case
+        if nlp_case is not None and self._held(solution):  # (the doubled problem's loop decided its own)
+            lighter = None if sized_again else self._from_the_sizing(case, solution, nlp_case, sizing, solves, ruled)
+            solution = lighter or held_note(solution)
         solution.solver = solution.solver.summed(solves)
         if nlp_case is not None:  # not the doubled problem's
             solution.limit_shift = limit_shift(case, nlp_case)
@@ -336,6 +346,42 @@ class Problem:
         """The papers' sizing's problem: the same formulation without the start-up, the same objective and options
         (built once: :func:`problem_for`)."""
         return problem_for(self.posed.base, self.objective.name, self.options)
+
+    def _held(self, solution: Solution) -> bool:
+        """:func:`held_by_the_mesh` for this problem's start-up."""
+        return held_by_the_mesh(solution, self.posed.n_checked, self.start_up.s.spec.tolerance, self._own_names)
+
+    def _from_the_sizing(self, case: Case, held: Solution, nlp_case: Case, sizing: dict[str, float] | None,
+                         solves: list, ruled: RuledOut | None = None) -> Solution | None:
+        """The papers' sizing's optimum solved as a start-up design, where a row of the collocation holds ``held``
+        (:func:`held_by_the_mesh`) and the sizing ends ``optimal`` and lighter; else None. No start-up limit holds
+        ``held``, so the static constraints alone bind where the physics has its optimum: the sizing's, a relaxation
+        of this problem (the same formulation without the start-up limits), is the optimum wherever its simulated
+        start meets every limit. It is solved in two steps on the mesh its own simulated start draws
+        (:func:`~clutchopt.start_up.transcription.mesh_of_the_start`; ``held``'s mesh has no collocated start of it,
+        the lighter side of its fold): its design fixed (the collocation's states follow it), then freed, warm from
+        that point (IPOPT's barrier from 1e-9: a KKT point where the collocation follows the design, so it stays).
+        Every solve's SolverInfo is added to ``solves``; ``ruled``: the loop's integer choices not to solve again
+        (the freed solve's search skips them as the loop's solves do) (docs/start_up.md, "A design a row of the
+        collocation holds")."""
+        if sizing is None:
+            sized = self._sizing(case)
+            sizing = sized.design if sized.status == "optimal" else None
+        if sizing is None:
+            return None
+        posed = self.posed
+        fixed = replace(nlp_case, bounds={**nlp_case.bounds, **{name: (value, value) for name, value in
+                                                               sizing.items() if name in posed.names}})
+        seen, design = posed.start_up_seen(fixed, dict(zip(posed.names, posed.bounds_and_start(fixed, sizing)[2])))
+        mesh = mesh_of_the_start(posed.start_up, seen, self.formulation, design)
+        states = self._solve(case, sizing, nlp_case=fixed, mesh=mesh, diagnosed=False)
+        solves.append(states.solver)
+        if states.status != "optimal" or states.objective >= held.objective:
+            return None
+        freed = self._solve(case, warm=states, nlp_case=nlp_case, mesh=mesh, diagnosed=False, cold=False, ruled=ruled,
+                            sizing=sizing)
+        solves.append(freed.solver)
+        return freed if freed.status == "optimal" and freed.objective < held.objective else None
 
     def _sizing(self, case: Case) -> Solution:
         """The papers' sizing at ``case``: :attr:`static_problem` solved (where a start-up solve begins)."""
@@ -593,7 +639,35 @@ def shapes_nothing(solution: Solution, first: int, tolerance: float, static: set
         return False
     return all(math.isfinite(c.margin) and c.margin > SHAPING_MARGIN * max(errors)
                and abs(c.elasticity or 0.0) <= tolerance for c in checks) \
-        and not any(abs(e) > tolerance for name, e in solution.sensitivities.items() if name not in static)
+        and not drive_elastic(solution, tolerance, static)
+
+
+def drive_elastic(solution: Solution, tolerance: float, static: set[str]) -> bool:
+    """Whether the objective is elastic beyond ``tolerance`` to a quantity not in ``static`` (the coupling's own
+    quantities and design variables): to the drive, the load or a start-up limit."""
+    return any(abs(e) > tolerance for name, e in solution.sensitivities.items() if name not in static)
+
+
+def held_note(solution: Solution) -> Solution:
+    """A design a row of the collocation holds (:func:`held_by_the_mesh`), kept: said so in its diagnosis."""
+    note = ("a row of the collocation holds this design, not a limit (no start-up limit's multiplier, the objective "
+            "elastic to the drive): it is the mesh's, and may be heavier than the optimum")
+    solution.diagnosis = f"{solution.diagnosis}; {note}" if solution.diagnosis else note
+    return solution
+
+
+def held_by_the_mesh(solution: Solution, first: int, tolerance: float, static: set[str]) -> bool:
+    """Whether a row of the collocation holds an ``optimal`` start-up design, not a limit: no start-up check (from
+    index ``first`` on) has a multiplier (each elasticity within ``tolerance``), yet the objective is elastic to the
+    drive (:func:`drive_elastic`). Only the equalities of the collocation can carry that elasticity: their
+    multipliers lam solve J_z^T lam = 0 in the states z (the objective is the design's), so J_z is singular, a fold
+    of the discretised start where the design's lighter neighbours have no collocated start on this mesh, though
+    their simulated starts are sound. ball_motor_start (paper) at a start-time limit of 24 s: the motor's knee
+    (57 to 102 rad/s in 0.9 s) inside the graded part's two longest intervals; each mesh of the loop folds at another
+    design (487.5 to 512.9 kg, elastic 0.58 to the breakdown torque), the sizing's 475.95 kg starts in 7.43 s."""
+    checks = solution.constraints[first:]
+    return (solution.status == "optimal" and bool(checks) and solution.sensitivities
+            and all(abs(c.elasticity or 0.0) <= tolerance for c in checks) and drive_elastic(solution, tolerance, static))
 
 
 _CACHE: dict[tuple, Problem] = {}

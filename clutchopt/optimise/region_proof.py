@@ -21,8 +21,8 @@ the last proof (at least SURE_BOXES, at most MAX_BOXES), so one reaching past th
 FIRST_RUN points long, the next twice the longest proven (from 2, doubling while they are proven whole, up to
 LONGEST_RUN): where a region's bounds are loose over wide intervals (the lever over its speed, which its centrifugal
 force takes squared) the runs stay as short as proofs allow. Where the design has integer variables (the ball, whose
-region's search costs about what a point's own does), the two runs that follow a run if it is proven whole are
-searched with it, in one call (:meth:`Regions._runs_ahead`): an iteration costs per call, so the three take the
+region's search costs about what a point's own does), the RUNS_AHEAD runs that follow a run if it is proven whole are
+searched with it, in one call (:meth:`Regions._runs_ahead`): an iteration costs per call, so they take the
 iterations of the longest; each outcome is kept for the call that searches its run, and taken where that search
 would make the same steps (:func:`_holds`).
 
@@ -63,7 +63,8 @@ from typing import Callable
 import numpy as np
 
 from clutchopt.optimise.interval_proof import (FEW_BOXES, MAX_BOXES, SURE_BOXES, Emptiness, _search_problem,
-                                               keep_search, last_boxes, proofs_recorded, searches)
+                                               keep_search, last_boxes, proofs_recorded, search_along, searched_along,
+                                               searches)
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.verdict import emptied, figures_at, infeasible_at
@@ -72,6 +73,7 @@ from clutchopt.units import from_si
 
 FIRST_RUN = 8  # points searched as one region after a point without a design,
 LONGEST_RUN = 256  # the next run twice the longest proven, up to this many
+RUNS_AHEAD = 3  # runs searched ahead with a run (designs with integer variables: Regions._runs_ahead)
 # a run is searched point by point where its points' own proofs take no more boxes in all than its region's search
 # (before a region proof to compare with: interval_proof.FEW_BOXES)
 REGION_BUDGET = 4  # a region's search may evaluate this many times the boxes of the last point's own search
@@ -86,6 +88,8 @@ class Regions:
     def __init__(self, problem, point_case, count: int):
         self.problem, self.posed, self._case_of, self.count = problem, problem.posed, point_case, count
         self._cases: dict = {}  # point -> its case, from its run's search on until its verdict (built once)
+        self._problems: dict[int, tuple] = {}  # point -> its search problem, built once (a point's run and the runs
+        # ahead of it are searched again from later calls: the ball over its contact stress built 148 for 57 points)
         self._without: Solution | None = None  # the last point's solution where it has no design
         self._without_at = -2
         self._to, self._length = 0, FIRST_RUN  # the end of the points searched; how many to search next
@@ -116,8 +120,9 @@ class Regions:
         proven = self._proven.pop(k, None)
         if proven is None or self._without is None:
             return None
+        problem = self._problems.get(k)  # (its search problem: its design box, the bounds its verdict shows)
         solution = _covered(self.problem, self.point_case(k), self._without.design, *proven,
-                            figures=self._figures_at(k))
+                            figures=self._figures_at(k), bounds=None if problem is None else problem[1:3])
         if solution is not None:
             self.after(k, solution)
         return self.charged(solution)
@@ -151,11 +156,46 @@ class Regions:
         proofs = proofs_recorded(self.posed)
         solution, first = self._quick(k, warm)
         if solution is None:
-            solution = self.charged(solve(first))
+            along = self._along(k)
+            try:
+                solved = solve(first)
+            except BaseException:
+                search_along(self.posed, None)  # (the hook not left for another point's search)
+                raise
+            solution = self.charged(self._took(along, solved))
             self.after(k, solution)
         if solution.status == "infeasible" and proofs_recorded(self.posed) > proofs:  # (proven by its own search:
             self._alone = last_boxes(self.posed)  # its boxes; not a verdict "whatever the design", nor a drive's)
         return solution
+
+    def _along(self, k: int) -> tuple[list[tuple[int, int]], dict, dict]:
+        """The runs after point k (:meth:`_next_runs`), given to its full verdict's first interval search to search
+        in the same call (``interval_proof.search_along``; their problems built only if it runs): where that search
+        proves point k, the runs are those :meth:`_search_from` searches next (``ball_crusher`` over 250-1000 kW:
+        point 84's proof, 11 iterations, and its 115 points after it, 11, in one call)."""
+        runs, built = self._next_runs(k), {}
+        return runs, built, search_along(self.posed, (lambda: self._regions(runs, built)) if runs else None)
+
+    def _regions(self, runs: list[tuple[int, int]], built: dict) -> list[tuple]:
+        """The search problems of ``runs`` as regions, also kept in ``built`` (its "regions")."""
+        points = self._point_problems(runs)
+        built["regions"] = [_region_problem([points[j] for j in range(a, b)]) for a, b in runs]
+        return built["regions"]
+
+    def _took(self, along: tuple, solution: Solution) -> Solution:
+        """The outcomes of :meth:`_along`'s runs kept for :meth:`_search_from` where the verdict's search took them,
+        each point its share of that call's seconds, taken from ``solution``'s (which measured the call); the hook
+        cleared."""
+        runs, built, taken = along
+        outcomes, seconds = taken.get("outcomes"), taken.get("seconds", 0.0)
+        search_along(self.posed, None)
+        if outcomes is None:
+            return solution
+        points = sum(b - a for a, b in runs)
+        share = seconds / (1 + points)
+        self._ahead.update((run, (region, outcome, share)) for run, region, outcome
+                           in zip(runs, built["regions"], outcomes))
+        return replace(solution, solver=replace(solution.solver, time_s=solution.solver.time_s - share * points))
 
     def _early(self, k: int, design: dict[str, float]) -> Solution | None:
         """Point k, where a batch's chain from the point before (with ``design``) failed: its own interval search,
@@ -179,7 +219,8 @@ class Regions:
         SURE_BOXES (what ``verdict.shown`` evaluates before the retries) before the elastic diagnosis: proven, the
         verdict ``solve`` gives ("proven infeasible: ...", the same search's words, at the same design: the failed
         solve's, which its full verdict shows), without the diagnosis, which there only lets that search go first and
-        is not shown (the lever over its friction coefficient: 3-6 ms of the 10 its first point took); a design:
+        is not shown (the lever over its friction coefficient: 3-6 ms of the 10 its first point took; the runs after
+        it searched in the same call: :meth:`_next_runs`); a design:
         that solve's, ``solve``'s. Else None: its full verdict from the start, the first solve's calls charged to it
         (a sweep whose first point has no design and no proof, the wedge's geometry mode, pays that solve and
         search again)."""
@@ -190,7 +231,7 @@ class Regions:
         if first.status in DESIGN_STATUSES:
             self.after(k, first)
             return first
-        solution = self._own_proof(case, first.design, SURE_BOXES, first.solver)[0]
+        solution = self._own_proof(case, first.design, SURE_BOXES, first.solver, self._next_runs(k))[0]
         if solution is None:
             self._charge(first)
             return None
@@ -200,7 +241,8 @@ class Regions:
     def _quick(self, k: int, warm=None) -> tuple[Solution | None, Solution | None]:
         """Point k, not covered, next to a point without a design (a static problem): one solve (``Problem.solve``'s
         first, ``warm`` its warm start), and where it ends without a design the point's own interval search before
-        the retries: the solve's design, or the verdict its proof gives, and None; or None and that solve (its
+        the retries (the runs after it searched in the same call: :meth:`_next_runs`): the solve's design, or the
+        verdict its proof gives, and None; or None and that solve (its
         verdict follows from it: ``Problem.solve`` given it as ``first``, which finds this search kept); or None,
         None where the point before has a design."""
         quick = self._without_at == k - 1 and self.problem.start_up is None
@@ -212,7 +254,7 @@ class Regions:
         if first.status in DESIGN_STATUSES:
             self.after(k, first)
             return first, None
-        solution, own, problem = self._own_proof(case, first.design, None, first.solver)
+        solution, own, problem = self._own_proof(case, first.design, None, first.solver, self._next_runs(k))
         if own is None or not own.proven:
             keep_search(self.posed, problem, own)
         if solution is None:
@@ -220,20 +262,45 @@ class Regions:
         self.after(k, solution)
         return solution, None
 
-    def _own_proof(self, case, design: dict[str, float], budget: int | None,
-                   spent: SolverInfo | None = None) -> tuple[Solution | None, Emptiness | None, tuple]:
+    def _own_proof(self, case, design: dict[str, float], budget: int | None, spent: SolverInfo | None = None,
+                   ahead: list[tuple[int, int]] = ()) -> tuple[Solution | None, Emptiness | None, tuple]:
         """A point's own interval search (within ``budget`` boxes; None: the search's own), and where it proves the
         point, the verdict it gives ("proven infeasible: ...") showing ``design`` (``spent``: the calls and seconds
         of the solve that gave it), its boxes the last point's alone (``_alone``): (verdict or None, the search's
-        outcome, its problem)."""
-        problem = _search_problem(self.posed, case)
+        outcome, its problem). ``ahead``: runs searched as regions in the same call (within SURE_BOXES, the least
+        budget :meth:`_search_from` gives; given up where the point's first box decides it:
+        ``interval_proof.searched_along``), their outcomes kept for it (as :meth:`_runs_ahead`'s: :func:`_holds`),
+        each point its share of the call's seconds."""
+        problem, built = _search_problem(self.posed, case), {}
         began = time.perf_counter()
-        own = searches(self.posed, [problem], None if budget is None else [budget])[0]
+        if ahead:
+            own, outcomes, seconds = searched_along(self.posed, problem, MAX_BOXES if budget is None else budget,
+                                                    lambda: self._regions(ahead, built))
+        else:
+            own, outcomes, seconds = searches(self.posed, [problem], None if budget is None else [budget])[0], [], 0.0
+        points = sum(b - a for a, b in ahead) if outcomes else 0
+        share = seconds / (1 + points)  # (a point's of the call that searched the runs too)
+        own_seconds = time.perf_counter() - began - share * points
+        self._ahead.update((run, (region, outcome, share)) for run, region, outcome
+                           in zip(ahead, built.get("regions", []), outcomes))
         if own is None or not own.proven:
             return None, own, problem
         self._alone = last_boxes(self.posed, own.boxes)
-        return (_covered(self.problem, case, design, "proven infeasible: " + emptied(own),
-                         time.perf_counter() - began, spent), own, problem)
+        return (_covered(self.problem, case, design, "proven infeasible: " + emptied(own), own_seconds, spent), own,
+                problem)
+
+    def _next_runs(self, k: int) -> list[tuple[int, int]]:
+        """Where point k, next to be proven by its own search, has integer design variables: the runs
+        :meth:`_search_from` searches next if it is (that from point k + 1, ``_length`` points, and its runs ahead,
+        :meth:`_runs_ahead`), searched with its own search in one call (:meth:`_own_proof`). An iteration costs per
+        call, and the ball's proof of one point takes about as many as its runs' (over 9.3x-18.7x its power, all
+        without a design: 11 and 11 iterations in two calls; over 1x-10x, the first point without a design and the
+        three after it, 11 and 9). Where it is not proven, or the next point has a design, they are not used; a run
+        whose search is kept already is not searched again."""
+        end = min(k + 1 + self._length, self.count)
+        if not self.posed.integer or self.problem.start_up is not None or end - k <= 2:
+            return []
+        return [run for run in ((k + 1, end), *self._runs_ahead(k + 1, end)) if run not in self._ahead]
 
     def after(self, k: int, solution: Solution) -> None:
         """Point k's solution: one proven infeasible starts (or goes on with) the regions searched after it (after
@@ -253,6 +320,7 @@ class Regions:
             return
         end = min(k + self._length, self.count)
         self._cases = {j: case for j, case in self._cases.items() if j >= k}  # (those of points solved as usual)
+        self._problems = {j: problem for j, problem in self._problems.items() if j >= k}
         self._to, runs = end, [(k, end)] if end - k > 1 else []  # (a last point alone: Regions._quick)
         points = self._point_problems([(k, end)])
         if runs and self._one_by_one(end - k):
@@ -297,23 +365,30 @@ class Regions:
         self._length = min(2 * longest, LONGEST_RUN)
 
     def _point_problems(self, runs: list[tuple[int, int]]) -> dict[int, tuple[np.ndarray, ...]]:
-        """The search problem of each point of ``runs`` (``(a, b)``: points a .. b - 1), by its number."""
-        return {j: _search_problem(self.posed, self.point_case(j)) for a, b in runs for j in range(a, b)}
+        """The search problem of each point of ``runs`` (``(a, b)``: points a .. b - 1), by its number (each built
+        once a sweep)."""
+        for j in (j for a, b in runs for j in range(a, b) if j not in self._problems):
+            self._problems[j] = _search_problem(self.posed, self.point_case(j))
+        return {j: self._problems[j] for a, b in runs for j in range(a, b)}
 
     def _runs_ahead(self, k: int, end: int) -> list[tuple[int, int]]:
         """The runs after k .. end - 1 that :meth:`_search_from` searches next where each before it is proven whole
-        (twice as long each, up to LONGEST_RUN; two of them), searched with it where the design has integer
-        variables: an iteration costs per call, and a region's search there costs about a point's own (the ball's:
-        121-473 boxes, 8-16 iterations), so the runs together take the iterations of the longest, not their sum;
+        (twice as long each, up to LONGEST_RUN; RUNS_AHEAD of them: ball_crusher over 250-1000 kW, its 115 points
+        after its first without a design in one call, where two had left the last 59 to a call of 8 iterations),
+        searched with it where the design has integer variables: an iteration costs per call, and a region's search
+        there costs about a point's own (the ball's: 121-473 boxes, 8-16 iterations), so the runs together take the
+        iterations of the longest, not their sum;
         their outcomes are kept for the calls that search them (:func:`_holds`; the others dropped with the
-        sweep)."""
+        sweep). None after a run whose kept search met a design (:func:`_met`): the runs after it are searched only
+        where it is proven whole (the ball over its contact stress: points 57-99, all with designs, 77 boxes, three
+        iterations, 3 ms for nothing)."""
         if not self.posed.integer or self.problem.start_up is not None:
             return []
         runs, length = [], end - k
-        while len(runs) < 2 and end < self.count - 1:
+        while len(runs) < RUNS_AHEAD and end < self.count - 1 and not _met((k, end), self._ahead):
             length = min(2 * length, LONGEST_RUN)
             runs.append((end, min(end + length, self.count)))
-            end = runs[-1][1]
+            k, end = runs[-1]
         return runs
 
     def _proved(self, a: int, b: int, problem: tuple, outcome: Emptiness, seconds: float) -> None:
@@ -464,6 +539,13 @@ def _holds(outcome: Emptiness | None, budget: int) -> bool:
             and outcome.boxes <= budget)
 
 
+def _met(run: tuple[int, int], ahead: dict) -> bool:
+    """The kept search of ``run`` (in ``ahead``: :meth:`Regions._runs_ahead`) met a design (for the whole interval or
+    at one end): no search of the run proves it, whatever its budget."""
+    kept = ahead.get(run)
+    return kept is not None and kept[1] is not None and (kept[1].reached or kept[1].feasible is not None)
+
+
 def _region_problem(points: list[tuple[np.ndarray, ...]]) -> tuple[np.ndarray, ...]:
     """One search over a run's points: the hull of their design boxes, their parameters from least to most."""
     p = np.stack([point[0] for point in points])
@@ -486,11 +568,12 @@ def _shown(value: float, unit: str) -> str:
 
 
 def _covered(problem, case, design: dict[str, float], text: str, seconds: float, spent: SolverInfo | None = None,
-             figures: tuple | None = None) -> Solution | None:
+             figures: tuple | None = None, bounds: tuple[np.ndarray, np.ndarray] | None = None) -> Solution | None:
     """The verdict of a point a proof covers, showing ``design`` (the last point without one: its least relaxation;
     or the point's own failed solve, which ``spent`` its calls and seconds) with every constraint re-evaluated in
-    float64 at this point's values (``figures``, if evaluated already: ``verdict.figures_at``); None where a
-    requirement no design variable enters is broken, or a start-up's drive proofs hold (its own verdict says so)."""
+    float64 at this point's values (``figures``, if evaluated already: ``verdict.figures_at``) and the case's bounds
+    (``bounds``, if read already: its search problem's); None where a requirement no design variable enters is
+    broken, or a start-up's drive proofs hold (its own verdict says so)."""
     posed = problem.posed
     if problem.start_up is not None and start_up_proofs(case):
         return None
@@ -500,4 +583,4 @@ def _covered(problem, case, design: dict[str, float], text: str, seconds: float,
         return None
     solves, time_s = (spent.solves, spent.time_s) if spent is not None else (0, 0.0)
     return infeasible_at(posed, case, design, text, SolverInfo("interval", "proven", 0, time_s + seconds, solves),
-                         figures)
+                         figures, bounds)

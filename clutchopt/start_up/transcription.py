@@ -28,7 +28,7 @@ import numpy as np
 
 from clutchopt.model import SpeedLaw
 from clutchopt.start_up.drive import Drive, Structure, named_constraints, seen_constraints
-from clutchopt.start_up.mesh import first_mesh
+from clutchopt.start_up.mesh import adapted_mesh, first_mesh
 
 DEGREE = 3
 GUESS_RTOL = 1e-6  # the start guess's simulation: a guess, not a check
@@ -276,13 +276,13 @@ class StartUpBlock:
             twist.append(state.get("twist", 0.0))
         return dict(zip(TRAJECTORY, (times, driver, driven, work, heat, twist)))
 
-    def guess(self, history, headline, engagement_squared: float, time_ref: float, scales: np.ndarray,
-              mesh: np.ndarray) -> np.ndarray:
-        """Internal variables (scaled by ``scales``) from a simulation of the start design, which ends at its
-        lock-up, or where the simulation ended (at most ``time_ref``) if it does not lock up."""
+    def phase_bounds(self, history, headline, engagement_squared: float, time_ref: float) -> dict:
+        """Phase -> (begin, end) of a simulated start, which ends at its lock-up, or where the simulation ended (at
+        most ``time_ref``) if it does not lock up: the motor's run-up to the engagement speed, the breakaway (until
+        the driven machine moves), the slip until lock-up; an elastic link's locked phase all of it."""
         d = self.s
         locked = headline.get("locks_up") and math.isfinite(headline.get("start_time", math.inf))
-        t = np.asarray(history["t"])  # a run's columns (arrays) or its history (a DataFrame)
+        t = np.asarray(history["t"])
         t_end = headline["start_time"] if locked else min(time_ref, t[-1])
         driver = np.asarray(history["w_driver"])
         driven = np.asarray(history["w_driven"])
@@ -291,6 +291,17 @@ class StartUpBlock:
         breakaway = t[np.argmax(moving)] if d.load_at_rest and moving.any() else engage
         bounds = {"run_up": (0.0, engage), "breakaway": (engage, breakaway), "slip": (breakaway, t_end),
                   "locked": (0.0, t_end)}
+        return {phase: (begin, max(end, begin)) for phase, (begin, end) in bounds.items()}
+
+    def guess(self, history, headline, engagement_squared: float, time_ref: float, scales: np.ndarray,
+              mesh: np.ndarray) -> np.ndarray:
+        """Internal variables (scaled by ``scales``) from a simulation of the start design, which ends at its
+        lock-up, or where the simulation ended (at most ``time_ref``) if it does not lock up."""
+        d = self.s
+        t = np.asarray(history["t"])  # a run's columns (arrays) or its history (a DataFrame)
+        driver = np.asarray(history["w_driver"])
+        driven = np.asarray(history["w_driven"])
+        bounds = self.phase_bounds(history, headline, engagement_squared, time_ref)
         columns = {"driver_speed": driven if d.elastic else driver, "slip": driver - driven,
                    "friction_work": np.asarray(history["friction_work"]),
                    "temperature": np.asarray(history["temperature_rise"]),
@@ -298,7 +309,6 @@ class StartUpBlock:
         values, samples = [], {name: ([], []) for name in columns}  # name -> (its places in values, times)
         for index, phase in enumerate(d.phases):
             begin, end = bounds[phase]
-            end = max(end, begin)
             values.append(end - begin)
             lengths = mesh[index * d.intervals:(index + 1) * d.intervals]
             starts = np.concatenate([[0.0], np.cumsum(lengths)[:-1]])
@@ -319,11 +329,25 @@ class StartUpBlock:
 def initial_states(block: StartUpBlock, case, formulation, design: dict[str, float], scales: np.ndarray,
                    mesh: np.ndarray) -> np.ndarray:
     """The internal variables (scaled) of the start design's simulated start: a start point on the dynamics."""
+    result, squared = _simulated_start(block, case, formulation, design)
+    return block.guess(result.columns, result.headline, squared, case.values["max_start_time"], scales, mesh)
+
+
+def mesh_of_the_start(block: StartUpBlock, case, formulation, design: dict[str, float]) -> np.ndarray:
+    """A mesh adapted to the design's own simulated start (:func:`~clutchopt.start_up.mesh.adapted_mesh` over its
+    simulated phases), where no solve of this design has given one: a design another mesh cannot collocate (the
+    lighter side of a fold, ``optimise.problem.held_by_the_mesh``) is collocated on the mesh its start draws."""
+    result, squared = _simulated_start(block, case, formulation, design)
+    bounds = block.phase_bounds(result.columns, result.headline, squared, case.values["max_start_time"])
+    return adapted_mesh(block.s, result.columns, [bounds[phase][1] - bounds[phase][0] for phase in block.s.phases])
+
+
+def _simulated_start(block: StartUpBlock, case, formulation, design: dict[str, float]):
+    """The design's start simulated to GUESS_RTOL (up to 3 times max_start_time) and its engagement speed squared."""
     from clutchopt.simulate.ranges import TIME
     from clutchopt.start_up.simulation import start_guess
 
     model, result = start_guess(case, formulation.mode, design, GUESS_RTOL,
                                 min(3.0 * case.values["max_start_time"], TIME[1]))
-    squared = 0.0 if block.s.elastic else model.law.engagement_squared
-    return block.guess(result.columns, result.headline, squared, case.values["max_start_time"], scales, mesh)
+    return result, 0.0 if block.s.elastic else model.law.engagement_squared
 

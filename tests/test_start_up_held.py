@@ -1,0 +1,67 @@
+"""A start-up design a row of the collocation holds, not a limit (docs/start_up.md, "A design a row of the collocation
+holds"): ``optimise.problem.held_by_the_mesh`` finds it, and the accuracy loop solves the papers' sizing again on the
+mesh its own simulated start draws (``start_up.transcription.mesh_of_the_start``)."""
+
+from dataclasses import replace
+
+import pytest
+
+from clutchopt.cases import load_case
+from clutchopt.optimise.problem import case_problem, held_by_the_mesh
+from clutchopt.start_up.transcription import mesh_of_the_start
+from tests.conftest import CASES
+
+
+def test_a_design_the_collocation_folds_at_is_found_and_the_sizing_collocated_on_its_own_start():
+    # ball_motor_start (paper) at a start-time limit of 24 s. The papers' sizing binds the torque, k_s P / w =
+    # 1.2 x 500 kW / 104.72 rad/s = 5729.6 N m, and the width ratio 0.5: 475.948 kg. The start-up problem is the
+    # same formulation with the start-up limits added, so no start-up design is lighter (a relaxation); the
+    # sizing's simulated start (7.43 s, 54 % under 16 s) meets every limit, so it is the optimum at 24 s too.
+    # On the first mesh (16 intervals, half graded over the slip phase's first 20 %) the motor's knee (57 to
+    # 102 rad/s in 0.9 s) lies in the graded part's two longest intervals; the NLP stops at 487.508 kg with no
+    # start-up limit's multiplier but the objective elastic 0.575 to the breakdown torque: the collocation's
+    # equalities hold it (their multipliers lam solve J_z^T lam = 0, a fold in the states z), and the sizing's own
+    # design has no collocated start on that mesh; on the mesh its simulated start draws it has one, 4 iterations.
+    case = load_case(CASES / "ball_motor_start.toml").with_values(max_start_time=24.0)
+    problem = case_problem(case, mode="paper")
+    first_check, tolerance, own = problem.posed.n_checked, case.start_up.tolerance, problem._own_names
+    sizing = problem._sizing(case)
+    assert sizing.status == "optimal"
+    assert sizing.objective == pytest.approx(475.948316, rel=1e-8)
+    first = problem.solve(case, start=sizing.design, refine=False)  # the first mesh alone, as the loop starts
+    assert first.status == "optimal"
+    assert first.objective == pytest.approx(487.50849, rel=1e-6)  # 2.4 % over its own relaxation
+    assert first.objective > sizing.objective * (1 + 1e-2)
+    assert all(abs(c.elasticity or 0.0) <= tolerance for c in first.constraints[first_check:])
+    assert first.sensitivities["breakdown_torque"] == pytest.approx(0.575, abs=5e-3)
+    assert held_by_the_mesh(first, first_check, tolerance, own)
+
+    fixed = replace(case, bounds={**case.bounds, **{name: (v, v) for name, v in sizing.design.items()}})
+    assert problem.solve(fixed, start=sizing.design, refine=False).status == "infeasible"  # beyond the fold
+    design = {**sizing.design, "spring_preload": 0.0}
+    own_mesh = mesh_of_the_start(problem.posed.start_up, case, problem.formulation, design)
+    collocated = problem.solve(fixed, start=sizing.design, mesh=own_mesh, refine=False)
+    assert collocated.status == "optimal"
+    assert abs(collocated.start_up["discretisation_error"]["start_time"]) < 1e-5  # measured 1.4e-6
+
+    solved = problem.solve(case)  # the loop's first design is held: the sizing solved again on its own start's
+    # mesh, fixed then freed (main: 6 solves to 512.95 kg, its last design held)
+    assert solved.status == "optimal"
+    assert solved.objective == pytest.approx(sizing.objective, rel=1e-9)
+    assert {c.name for c in solved.constraints if c.active} == {"torque", "width_ratio"}
+    assert not held_by_the_mesh(solved, first_check, tolerance, own)
+    assert solved.diagnosis is None
+    assert solved.solver.solves == 3  # the first mesh's, the sizing fixed, freed
+
+
+def test_a_stronger_motor_does_not_make_the_ball_clutch_heavier():
+    # breakdown torque 12,000 N m instead of 10,500 (paper mode, limits as the case gives them): the sizing's
+    # 475.948 kg binds the torque and width ratio and its simulated start meets every limit, as with 10,500 N m (a
+    # stronger motor runs up sooner; the clutch's static torque need, k_s P / w, is the same); the loop ended at
+    # 536.747 kg "optimal" (12.8 % heavier, only the width ratio active), a design a row of the collocation held
+    case = load_case(CASES / "ball_motor_start.toml").with_values(breakdown_torque=12000.0)
+    problem = case_problem(case, mode="paper")
+    solved = problem.solve(case)
+    assert solved.status == "optimal"
+    assert solved.objective == pytest.approx(475.948316, rel=1e-8)
+    assert {c.name for c in solved.constraints if c.active} == {"torque", "width_ratio"}
