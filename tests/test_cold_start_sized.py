@@ -15,8 +15,9 @@ def test_solve_alone_excludes_the_ball_row_count_the_papers_sizing_finds_infeasi
     # ball's start-up problem keeps every row of the sizing (no constant-acceleration row left to the start-up model),
     # so 22 rows have no design there either. The accuracy loop's second solve used to descend 25 -> 24 -> 23 -> 22
     # and solve 22 rows: 500 IPOPT iterations (the limit), again 500 cold, then 26 more on the next mesh (1,873
-    # iterations, 15 solves in all); now 22 is excluded without a solve (847 iterations, 12 solves), the same design:
-    # 23 rows, 950.7554394 kg, the optimum with 23 rows fixed (docs/start_up.md, "Integer attempts")
+    # iterations, 15 solves in all, on the main this started from; 670 in 8 on today's); now 22 is excluded without a
+    # solve (847 and 645 iterations), the same design: 23 rows, 950.7554394 kg, the optimum with 23 rows fixed
+    # (docs/start_up.md, "The sizing's infeasible integer choices in a first solve")
     case = load_case(CASES / "ball_motor_start.toml").with_values(driven_inertia=225.0 + 15 * 300.0 / 39)
     problem = case_problem(case)
     sizing = problem.static_problem.solve(case)
