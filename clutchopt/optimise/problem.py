@@ -130,9 +130,10 @@ class Problem:
         infeasible by far more than that solve's collocation error is not solved again (:class:`RuledOut`). An elastic
         link's integer choice found infeasible only at limits another choice's simulated start moved, lighter than the
         kept design, is solved through its own loop (:meth:`_own_loops`); ``fixed``: integer bounds of such a loop.
-        A loop that ends ``unverified`` goes on in modifier adaptation (:func:`~clutchopt.optimise.modifier.first_order`:
-        the limits' figures corrected in value and gradient, integers kept), its steps ending at a design no lighter
-        than ``lighter_than`` (an own loop's: the kept design's objective).
+        A loop that ends ``unverified`` goes on in modifier adaptation
+        (:func:`~clutchopt.optimise.modifier.first_order`: the limits' figures corrected in value and gradient,
+        integers kept), its steps ending at a design no lighter than ``lighter_than`` (an own loop's: the kept
+        design's objective).
         ``infeasible``: integer choices known to have no design here, with why (:class:`RuledOut`; a start-up
         sweep's point: those the papers' sizing at the point finds infeasible, ``start_up_sweep.sized_out``);
         ``sizing``: the papers' sizing's design at the point, where a caller starting warm knows it (a start-up
@@ -143,9 +144,11 @@ class Problem:
             return self._solve(case, start, warm, mesh=mesh, diagnosed=diagnosed)
         if not refine:
             return self._worn(case, self._solve(case, start, warm, mesh=mesh, diagnosed=diagnosed))
+        sized_design = sizing  # the papers' sizing's design, for a design a row of the collocation holds
         if start is None and warm is None:
             sized = self._sizing(case)
             start = sized.design if sized.status == "optimal" else None
+            sized_design = start if sizing is None else sizing
             if infeasible is None:  # the choices the sizing's own search found infeasible (a sweep's point: given)
                 infeasible = sized_choices(self, sized)
         structure = self.start_up.s
@@ -167,7 +170,8 @@ class Problem:
                 break
             if not sized_again and self._held(solution):  # no mesh makes it the physics' design: the sizing
                 sized_again = True
-                if (lighter := self._from_the_sizing(case, solution, nlp_case, sizing, solves, ruled)) is not None:
+                lighter = self._from_the_sizing(case, solution, nlp_case, sized_design, solves, ruled)
+                if lighter is not None:
                     solution = lighter
                     break
             error = abs(solution.start_up["discretisation_error"]["start_time"])
@@ -213,7 +217,8 @@ class Problem:
             solution = first_order(self, case, solution, solves, lighter_than)
             nlp_case = case if solution.status == "optimal" else nlp_case
         if nlp_case is not None and self._held(solution):  # (the doubled problem's loop decided its own)
-            lighter = None if sized_again else self._from_the_sizing(case, solution, nlp_case, sizing, solves, ruled)
+            lighter = None if sized_again else self._from_the_sizing(case, solution, nlp_case, sized_design, solves,
+                                                                     ruled)
             solution = lighter or held_note(solution)
         solution.solver = solution.solver.summed(solves)
         if nlp_case is not None:  # not the doubled problem's
@@ -237,9 +242,11 @@ class Problem:
         lighter, until the count below is tried (:meth:`~clutchopt.optimise.own_shift.ForeignShifts.untried_below`).
         Where the loop keeps an ``unverified`` design, the counts above it are solved through their own loops, one
         up at a time while each comes nearer to its limits, and the first that ends optimal kept (:meth:`_climbed`
-        from :meth:`~clutchopt.optimise.own_shift.ForeignShifts.above_unverified`; written for the cable at 0.5 kg m^2, whose 8 cables' start carries 0.44 % more than the stress allowed: since
-        the correction moves the NLP's limit from its own figure, that loop finds 8 cables infeasible at the moved
-        limit and keeps 9 itself, 4.418 kg: docs/start_up.md, "The defect correction's fixed point")."""
+        from :meth:`~clutchopt.optimise.own_shift.ForeignShifts.above_unverified`; cable_motor_start at a motor
+        inertia of 0.027 kg m^2: 8 cables unverified, 12 kept). A lighter choice the loop kept ``unverified`` goes on
+        in modifier adaptation first (:meth:`_first_order`; the cable at 0.5 kg m^2: 8 cables' start carries 0.44 %
+        more than the stress allowed, their defect correction has no design at the moved limit, their modifier
+        adaptation verifies them at 4.257 kg against 9 cables' 4.418 kg: docs/start_up.md)."""
         kept, runs = solution, [solution.solver]
         for combo in foreign.lighter(solution):
             kept, own = self._own_loop(case, solution, kept, foreign, combo, runs)
@@ -270,11 +277,7 @@ class Problem:
                             lighter_than=kept.objective if kept.status == "optimal" else math.inf)
         foreign.own_loop(combo)
         runs.append(own.solver)
-        kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, own)]
-        if own.status == "optimal" and (kept.status != "optimal" or own.objective < kept.objective):
-            own.integer_search, own.bounds = kept.integer_search, kept.bounds
-            return own, own
-        return kept, own
+        return _recorded(kept, foreign.names, combo, own), own
 
     def _climbed(self, case: Case, solution: Solution, kept: Solution, foreign: ForeignShifts, combo: tuple,
                  upper: dict[str, float], runs: list) -> Solution:
@@ -320,11 +323,8 @@ class Problem:
         if own is not unverified:
             own.solver = spent
         runs.append(spent)
-        kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, own, VARIANT)]
-        if own.status == "optimal" and own.objective < kept.objective:
-            own.integer_search, own.bounds = kept.integer_search, kept.bounds
-            return own, True
-        return kept, False
+        better = _recorded(kept, foreign.names, combo, own, VARIANT)  # (``kept`` optimal: ``unverified_below``)
+        return better, better is own
 
     def proven(self, case: Case, proofs: list[str]) -> Solution:
         """The verdict on a start-up the drive makes impossible (``proofs``, in words): ``infeasible``, without a
@@ -637,15 +637,32 @@ def shapes_nothing(solution: Solution, first: int, tolerance: float, static: set
     checks = solution.constraints[first:]
     if not checks or not all(math.isfinite(e) for e in errors):
         return False
-    return all(math.isfinite(c.margin) and c.margin > SHAPING_MARGIN * max(errors)
-               and abs(c.elasticity or 0.0) <= tolerance for c in checks) \
-        and not drive_elastic(solution, tolerance, static)
+    return all(math.isfinite(c.margin) and c.margin > SHAPING_MARGIN * max(errors) for c in checks) \
+        and no_multiplier(checks, tolerance) and not drive_elastic(solution, tolerance, static)
+
+
+def no_multiplier(checks: list, tolerance: float) -> bool:
+    """Whether the NLP's multiplier of each of the start-up ``checks`` is negligible (the objective's elasticity to
+    its limit within ``tolerance``)."""
+    return all(abs(c.elasticity or 0.0) <= tolerance for c in checks)
 
 
 def drive_elastic(solution: Solution, tolerance: float, static: set[str]) -> bool:
     """Whether the objective is elastic beyond ``tolerance`` to a quantity not in ``static`` (the coupling's own
     quantities and design variables): to the drive, the load or a start-up limit."""
     return any(abs(e) > tolerance for name, e in solution.sensitivities.items() if name not in static)
+
+
+def _recorded(kept: Solution, names: list[str], combo: tuple, own: Solution,
+              how: str = "own accuracy loop") -> Solution:
+    """``own`` (integer choice ``combo`` solved through its own loop, ``how``) recorded in ``kept``'s integer search:
+    ``own`` where it ends optimal and lighter than ``kept`` (or ``kept`` has none verified), carrying that search and
+    ``kept``'s bounds; else ``kept``."""
+    kept.integer_search = kept.integer_search + [own_entry(names, combo, own, how)]
+    if own.status == "optimal" and (kept.status != "optimal" or own.objective < kept.objective):
+        own.integer_search, own.bounds = kept.integer_search, kept.bounds
+        return own
+    return kept
 
 
 def held_note(solution: Solution) -> Solution:
@@ -667,7 +684,7 @@ def held_by_the_mesh(solution: Solution, first: int, tolerance: float, static: s
     design (487.5 to 512.9 kg, elastic 0.58 to the breakdown torque), the sizing's 475.95 kg starts in 7.43 s."""
     checks = solution.constraints[first:]
     return (solution.status == "optimal" and bool(checks) and solution.sensitivities
-            and all(abs(c.elasticity or 0.0) <= tolerance for c in checks) and drive_elastic(solution, tolerance, static))
+            and no_multiplier(checks, tolerance) and drive_elastic(solution, tolerance, static))
 
 
 _CACHE: dict[tuple, Problem] = {}
