@@ -28,6 +28,7 @@ from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_sta
                                          within)
 from clutchopt.optimise.modifier import VARIANT, first_order
 from clutchopt.optimise.own_shift import ForeignShifts, carried_by, own_entry
+from clutchopt.optimise.polish import polishable, polished
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities
 from clutchopt.optimise.solution import Diagnosis, Solution, SolverInfo, SolverOptions, WarmStart
@@ -447,6 +448,9 @@ class Problem:
         where it is made already), sensitivities."""
         posed = self.posed
         f = posed.formulation
+        if verdict is None and diagnosed is None and polishable(posed, run):  # IPOPT's end onto its exact vertex
+            ended, run = run, polished(posed, data, run)
+            runs = [run if r is ended else r for r in runs]
         params, scale, f_scale = data.checked or data.params, data.scale, data.f_scale
         design, objective, checks = run["design"], run["value"], list(run["checks"])
         start_up = mesh = None

@@ -1,0 +1,43 @@
+"""A static solve's IPOPT optimum polished onto the exact KKT point of the active set IPOPT identified.
+
+IPOPT is an interior-point method: it stops (tol 1e-10) with the active bounds and constraints a barrier's width
+away, 1e-11 to 1e-10 of each variable inside its bounds, its objective 1e-11 to 1e-9 relative above the optimum
+(the ball compressor at 2858 rad/s: 50.000000021 mm and 40.000000069 mm on bounds of 50 mm and 40 mm, 2.6e-9
+heavier; the wedge centrifuge in geometry mode 1.2e-9). A sweep re-solves the same point warm by CasADi's SQP
+(dense active-set QPs), which lands on the vertex itself: one question would get two answers beyond the 1e-9 of
+a static point (tests/test_sweep_agrees.py). The polish is the sweep's own step from IPOPT's end: SQP from IPOPT's
+primal-dual point, its multipliers within the KKT tolerance set to 0 (``warm_multipliers``: those of the bounds and
+constraints IPOPT found active stay, so qrqp starts on that active set and puts them exactly on their limits), its
+KKT point verified apart from the solver (``first_order_optimal``). Kept only where it is verified, feasible in the
+float64 re-check and no heavier than IPOPT's; else IPOPT's optimum stays as it was. Its iterations and seconds are
+counted in the solve's; it is not another design solve.
+"""
+
+from __future__ import annotations
+
+from clutchopt.optimise.attempts import Run, run, warm_multipliers
+from clutchopt.optimise.chain import first_order_optimal
+from clutchopt.optimise.posed import Posed, ScaledData
+
+
+def polished(posed: Posed, data: ScaledData, ended: Run) -> Run:
+    """``ended`` (a static problem's IPOPT run that ended optimal on ``data``, its design feasible in float64) on
+    the exact KKT point of its active set: the SQP run from it, its solver's name, status, iterations and seconds
+    summed with IPOPT's, where that point is verified, feasible and no heavier; else ``ended`` with the polish's
+    iterations and seconds added."""
+    lam_x, lam_g = warm_multipliers(posed, ended["lam_x"], ended["lam_g"])
+    step = run(posed, data, ended["lbx"], ended["ubx"], ended["x"], {"lam_x": lam_x, "lam_g": lam_g}, "sqp")
+    spent = {"iterations": ended["iterations"] + step["iterations"], "time": ended["time"] + step["time"]}
+    exact = step["ok"] and bool(first_order_optimal(posed, *(step[k] for k in ("x", "p", "lam_x", "lam_g", "lbx",
+                                                                                "ubx")))[0])
+    if exact and step["feasible"] and step["value"] <= ended["value"]:
+        step.update(solver=ended["solver"], status=ended["status"], **spent)
+        return step
+    ended.update(spent)
+    return ended
+
+
+def polishable(posed: Posed, ended: Run) -> bool:
+    """Whether a kept run is polished: a static problem's (a start-up's collocation has its own tolerance contract)
+    IPOPT run that ended optimal, its design feasible in float64."""
+    return posed.start_up is None and ended["solver"] == "ipopt" and ended["ok"] and ended["feasible"]
