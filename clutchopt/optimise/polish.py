@@ -55,5 +55,6 @@ def polished(posed: Posed, data: ScaledData, ended: Run) -> Run:
 
 def polishable(posed: Posed, ended: Run) -> bool:
     """Whether a kept run is polished: a static problem's (a start-up's collocation has its own tolerance contract)
-    IPOPT run that ended optimal, its design feasible in float64."""
-    return posed.start_up is None and ended["solver"] == "ipopt" and ended["ok"] and ended["feasible"]
+    IPOPT run that ended optimal, its design feasible in float64; unless its options say not to (the papers' sizing
+    of a start-up: ``SolverOptions.polish``)."""
+    return posed.start_up is None and posed.options.polish and ended["solver"] == "ipopt" and ended["ok"] and ended["feasible"]

@@ -298,8 +298,9 @@ class Problem:
     @property
     def static_problem(self) -> "Problem":
         """The papers' sizing's problem: the same formulation without the start-up, the same objective and options
-        (built once: :func:`problem_for`)."""
-        return problem_for(self.posed.base, self.objective.name, self.options)
+        (built once: :func:`problem_for`), its IPOPT optimum not polished (``SolverOptions.polish``): the start-up
+        solves start from the sizing as they did before the polish, each with its own tolerance contract."""
+        return problem_for(self.posed.base, self.objective.name, replace(self.options, polish=False))
 
     def _sizing(self, case: Case) -> Solution:
         """The papers' sizing at ``case``: :attr:`static_problem` solved (where a start-up solve begins)."""
