@@ -55,13 +55,11 @@ def test_cable_motor_start_in_threads_mode_at_a_link_stress_of_70_5_mpa_has_a_ve
     assert "weight_pulls_cable" in solved.diagnosis
 
 
-@pytest.mark.xfail(strict=True, reason="solve's cold IPOPT stops 1.2e-9 relative above the optimum the sweep's "
-                   "warm SQP reaches exactly (barrier complementarity at tol 1e-10 on the active constraints); "
-                   "within the 1e-6 of a user's answer, beyond the 1e-9 tests/test_sweep_agrees.py holds static "
-                   "points to")
 def test_the_wedge_centrifuge_in_geometry_mode_swept_over_its_acceleration_time_has_solve_s_objective():
-    # the second point warm from the first (SQP): 0.29399649264 kg; solved alone (IPOPT, 40 iterations):
-    # 0.29399649299 kg, the same active constraints, the flank angle 1e-10 rad apart inside its 5-45 deg bounds
+    # the second point warm from the first (SQP): 0.29399649264 kg; solved alone, IPOPT (40 iterations) stopped at
+    # 0.29399649299 kg, 1.2e-9 heavier (barrier complementarity at tol 1e-10 on the active constraints), the same
+    # active constraints, the flank angle 1e-10 rad apart inside its 5-45 deg bounds; polished from there by the
+    # sweep's SQP onto the exact KKT point of that active set (optimise/polish.py), solve's is the sweep's optimum
     for record, solved in swept_and_solved("wedge_centrifuge.toml", "geometry", "acceleration_time",
                                            (111.4484713103465, 224.4721056297064), every=True):
         assert record["status"] == solved.status == "optimal"
@@ -124,17 +122,15 @@ def test_ball_motor_start_in_paper_mode_solved_at_a_width_ratio_of_1_36_has_the_
     assert "start_time" in {c.name for c in solved.constraints if c.active}
 
 
-@pytest.mark.xfail(strict=True, reason="solve's IPOPT (bound_relax_factor 0) stops 2e-11 m inside the bounds the "
-                   "optimum sits on (active radius 50 mm, active width 40 mm: a vertex of the box), 2.6e-9 relative "
-                   "heavier than the exact optimum the sweep's SQP reaches; beyond the 1e-9 of a static point, within "
-                   "a user's 1e-6 (the wedge_centrifuge xfail above is the same barrier's)")
 def test_ball_compressor_in_paper_mode_at_high_speed_has_the_optimum_on_its_bounds_as_the_sweep_does():
-    # speed 2144 then 2858 rad/s (20,476 and 27,292 rpm): at the second the mass is least with both the active
-    # radius and width at their lower bounds, 3.1832330807 kg (the sweep: 50 mm and 40 mm exactly); solve alone
-    # 3.1832330889 kg at 50.000000021 mm and 40.000000069 mm
+    # speed 2144 then 2858 rad/s (20,476 and 27,292 rpm): at the second the mass is least with the active radius on
+    # its lower bound 50 mm and the width on the least the width ratio allows, 0.8 x 50 mm (0.8 * 0.05 in float64:
+    # 0.04000000000000001), 3.1832330807 kg; solve's IPOPT (bound_relax_factor 0) stopped 2e-11 m inside, at
+    # 50.000000021 mm and 40.000000069 mm, 3.1832330889 kg (2.6e-9 heavier), until polished onto the vertex
+    # (optimise/polish.py; tests/test_polish.py)
     [(record, solved)] = swept_and_solved("ball_compressor.toml", "paper", "speed",
                                           (2144.279785741106, 2857.992516770278))
-    assert record["design"] == {"active_radius": 0.05, "active_width": 0.04}
+    assert record["design"] == solved.design == {"active_radius": 0.05, "active_width": 0.8 * 0.05}
     assert solved.status == record["status"] == "optimal"
     assert record["objective"]["value"] == pytest.approx(solved.objective, rel=STATIC_RTOL, abs=0)
 

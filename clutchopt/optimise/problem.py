@@ -28,6 +28,7 @@ from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_sta
                                          within)
 from clutchopt.optimise.modifier import VARIANT, first_order
 from clutchopt.optimise.own_shift import ForeignShifts, carried_by, climbing, lighter_above, own_entry, stepped
+from clutchopt.optimise.polish import polishable, polished
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities, with_followers
 from clutchopt.optimise.solution import Diagnosis, Solution, SolverInfo, SolverOptions, WarmStart
@@ -344,8 +345,9 @@ class Problem:
     @property
     def static_problem(self) -> "Problem":
         """The papers' sizing's problem: the same formulation without the start-up, the same objective and options
-        (built once: :func:`problem_for`)."""
-        return problem_for(self.posed.base, self.objective.name, self.options)
+        (built once: :func:`problem_for`), its IPOPT optimum not polished (``SolverOptions.polish``): the start-up
+        solves start from the sizing as they did before the polish, each with its own tolerance contract."""
+        return problem_for(self.posed.base, self.objective.name, replace(self.options, polish=False))
 
     def _held(self, solution: Solution) -> bool:
         """:func:`held_by_the_mesh` for this problem's start-up."""
@@ -530,6 +532,9 @@ class Problem:
         where it is made already), sensitivities."""
         posed = self.posed
         f = posed.formulation
+        if verdict is None and diagnosed is None and polishable(posed, run):  # IPOPT's end onto its exact vertex
+            ended, run = run, polished(posed, data, run)
+            runs = [run if r is ended else r for r in runs]
         params, scale, f_scale = data.checked or data.params, data.scale, data.f_scale
         design, objective, checks = run["design"], run["value"], list(run["checks"])
         start_up = mesh = None
