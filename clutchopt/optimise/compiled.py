@@ -108,8 +108,7 @@ def built_library(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = F
             os.replace(Path(build, "nlp.sha256"), _record(library))
         return str(library)
     except (OSError, subprocess.SubprocessError, RuntimeError):
-        if library is not None:
-            _FAILED.add(library)
+        _FAILED.add(library)
         return None
 
 
@@ -137,41 +136,46 @@ def ready_library(library: Path) -> str | None:
 
 def build_detached(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = FLAGS) -> subprocess.Popen | None:
     """:func:`built_library` of the C ``source`` in a Python process of its own and in a session of its own, so that
-    this one neither waits for it nor stops it on exit (a build a short run starts serves the next run); the source
-    is handed over in a file of the cache folder, which the build removes with its marker. None where nothing can be started (no
-    compiler or cache folder, one others may write, or a build of the same library under way: its ``.building``
-    marker younger than twice BUILD_TIMEOUT_S, as where a sweep's worker processes each ask for it)."""
+    this one neither waits for it nor stops it on exit (a build a short run starts serves the next run). The source
+    is handed over in the build's ``.building`` marker beside the library, created only where none is (a second
+    process asking at once is refused), removed by the build when it ends; one older than twice BUILD_TIMEOUT_S is
+    a killed build's and replaced. None where nothing can be started (no compiler or cache folder, one others may
+    write, or a build of the same library under way, as where a sweep's worker processes each ask for it)."""
     library = library_path(source, prefix, flags)
     if library is None:
         return None
+    marker, created = library.with_suffix(".building"), False
     try:
         library.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
         if not _trusted(library.parent):
             return None
-        marker = library.with_suffix(".building")
-        if marker.is_file() and time.time() - marker.stat().st_mtime < 2 * BUILD_TIMEOUT_S:
-            return None
-        marker.write_text(str(os.getpid()))
-        handed, name = tempfile.mkstemp(suffix=".c", dir=library.parent)
-        with os.fdopen(handed, "wb") as file:
+        try:
+            if time.time() - marker.stat().st_mtime < 2 * BUILD_TIMEOUT_S:
+                return None
+            marker.unlink()  # (a killed build's)
+        except FileNotFoundError:
+            pass
+        with os.fdopen(os.open(marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o600), "wb") as file:
+            created = True
             file.write(source)
         package = str(Path(__file__).resolve().parents[2])  # (the child imports this clutchopt, not another)
         env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, (package, os.environ.get("PYTHONPATH"))))}
-        return subprocess.Popen([sys.executable, "-c", _DETACHED, name, str(marker), prefix, *flags], env=env,
+        return subprocess.Popen([sys.executable, "-c", _DETACHED, str(marker), prefix, *flags], env=env,
                                 stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                                 start_new_session=True)
-    except OSError:
+    except OSError:  # (FileExistsError: another process began the build at once)
+        if created:
+            marker.unlink(missing_ok=True)
         return None
 
 
 _DETACHED = """import sys
 from pathlib import Path
-source, marker = Path(sys.argv[1]), Path(sys.argv[2])
+marker = Path(sys.argv[1])
 try:
     from clutchopt.optimise.compiled import built_library
-    built_library(source.read_bytes(), sys.argv[3], tuple(sys.argv[4:]))
+    built_library(marker.read_bytes(), sys.argv[2], tuple(sys.argv[3:]))
 finally:
-    source.unlink(missing_ok=True)
     marker.unlink(missing_ok=True)
 """
 

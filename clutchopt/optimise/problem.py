@@ -150,8 +150,8 @@ class Problem:
             sized = self._sizing(case)
             start = sized.design if sized.status == "optimal" else None
             sized_design = start if sizing is None else sizing
-            if infeasible is None:  # the choices the sizing's own search found infeasible (a sweep's point: given)
-                infeasible = sized_choices(self, sized)
+            if infeasible is None and not self.start_up.s.elastic:  # the choices the sizing's own search found
+                infeasible = sized_choices(self, sized)  # infeasible (a sweep's point: given; an elastic link: none)
         structure = self.start_up.s
         nlp_case = shifted(case, shift)
         if fixed:

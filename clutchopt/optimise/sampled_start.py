@@ -29,7 +29,6 @@ import math
 from dataclasses import replace
 
 import numpy as np
-from scipy.stats import qmc
 
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
@@ -56,6 +55,8 @@ def least_violated(posed, case: Case) -> dict[str, float] | None:
     free = [i for i, (lo, hi) in enumerate(zip(lower, upper)) if hi > lo and math.isfinite(lo) and math.isfinite(hi)]
     if not free:
         return None
+    from scipy.stats import qmc  # (here: scipy.stats costs a second to import, and only a not_found retry needs it)
+
     best, least = None, math.inf
     for unit in qmc.Sobol(len(free), scramble=False).random(SAMPLES):
         x = start.copy()

@@ -63,8 +63,8 @@ class CompiledLater:
 
     def look(self) -> bool:
         """Whether the problem's solvers evaluate the compiled functions: from now on where the cache has them whole."""
-        if not self.used and self.library is not None and self.library.is_file():
-            found = ready_library(self.library)
+        if not self.used and self.library is not None:
+            found = ready_library(self.library)  # (None where it is not there, or its folder cannot be read)
             if found is not None:
                 self.used = self.posed.use_compiled(found)
                 self.library = self.library if self.used else None  # (one that does not load: not tried again)

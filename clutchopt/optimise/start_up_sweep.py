@@ -109,9 +109,10 @@ def sized_out(problem, case: Case, before: Along | None) -> SizedOut:
     before's (a sweep of start-up quantities alone: the driven inertia), and carried while the problem stays the same; a
     sweep that moves it solves none. ball_motor_start over driven_inertia: 22 rows, the sizing's row fewer, infeasible
     by the same least violation 2.72e-3 at every point from 225 to 336 kg m^2, were solved at each (26-33 IPOPT
-    iterations); ``solve`` of such a point alone tries them and finds them infeasible: the same verdict. An elastic link
-    (the cable) keeps every row too but gets none: its points carry no :class:`Along` (:func:`solved_along`), and its
-    loop rules nothing out (``Problem._refined``: no ``RuledOut``, its NLP is another model than its simulation)."""
+    iterations); ``solve`` of such a point alone rules them out from its own sizing (``Problem._refined``,
+    :func:`sized_choices`): the same verdict. An elastic link (the cable) keeps every row too but gets none: its
+    points carry no :class:`Along` (:func:`solved_along`), and its loop rules nothing out (``Problem._refined``: no
+    ``RuledOut``, its NLP is another model than its simulation)."""
     static = problem.static_problem
     key = repr(tuple(vars(static.posed.params(case)).values()))
     if before is None or before.sized is None or before.sized.key != key:
