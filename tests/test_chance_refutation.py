@@ -20,7 +20,8 @@ WEDGE_SCATTER = '\n[scatter]\nfriction_coefficient = [0.12, 0.18]\n'
 # ball_conveyor.toml (paper mode) with f normal and the power lognormal, correlated: the chance=0.95 design's torque
 # (the only constraint the scatter moves) drew 231 failures of the 4000 seeded samples
 BALL_SCATTER = ('\n[scatter]\nfriction_coefficient = { normal = [0.04, 0.001] }\n'
-                'power = { lognormal = ["800 kW", "200 kW"] }\n[scatter.correlation]\nfriction_coefficient.power = 0.8\n')
+                'power = { lognormal = ["800 kW", "200 kW"] }\n'
+                '[scatter.correlation]\nfriction_coefficient.power = 0.8\n')
 
 
 def _case(tmp_path, name: str, scatter: str):
@@ -58,7 +59,8 @@ def test_a_design_that_truly_misses_its_target_is_refused(wedge):
     assert bending.estimator == "importance sampling" and bending.low <= 0.02 <= bending.high
     status, diagnosis = verdict(replace(missing, target=0.99))
     assert status == "unverified"
-    assert diagnosis.startswith("not shown within 2 x 0.01: ") and "finger_bending fails with probability 0.02" in diagnosis
+    assert diagnosis.startswith("not shown within 2 x 0.01: ")
+    assert "finger_bending fails with probability 0.02" in diagnosis
 
 
 def test_a_monte_carlo_that_sees_failures_importance_sampling_missed_refuses(wedge):
