@@ -117,7 +117,7 @@ def robust_json(result, case) -> dict:
     return with_units(data, {
         "scatter": {name: {**units, "correlation": UNITLESS} for name, units in spread.items()},
         "target": UNITLESS, "samples": UNITLESS, "confidence": UNITLESS, "failure_probability": UNITLESS,
-        "nominal_failure_probability": UNITLESS, "margin_sensitivity": UNITLESS,
+        "nominal_failure_probability": UNITLESS, "margin_sensitivity": UNITLESS, "monte_carlo_above_target": UNITLESS,
         "corners": {name: quantities for name in data["corners"]}, "checks": CONSTRAINT_UNITS,
         "nominal_checks": CONSTRAINT_UNITS, "nominal_design": design, "performance_point_beta": UNITLESS,
         "system_allocation": ALLOCATION_UNITS, "system_failure_probability": ESTIMATE_UNITS,

@@ -37,7 +37,8 @@ from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Formulation, namespace
 from clutchopt.optimise.problem import problem_for
-from clutchopt.optimise.reliability import Estimate, generalised_beta
+from clutchopt.optimise.chance_refutation import MonteCarloAbove, monte_carlo_above
+from clutchopt.optimise.reliability import IS_SAMPLES, Estimate, generalised_beta
 from clutchopt.optimise.robust_models import (
     CONFIDENCE,
     SAMPLES,
@@ -148,12 +149,24 @@ class RobustResult:
         return union_bound([static, *limits],
                            f"the constraints' {static.estimator} plus each start-up limit's estimate (union bound)")
 
+    def monte_carlo_above(self) -> tuple[list[MonteCarloAbove], list[MonteCarloAbove]]:
+        """A chance design's Monte Carlo intervals wholly above 1 - P, of the constraints and of the simulated starts,
+        each beside the more accurate estimate that decides it where there is one (``chance_refutation``)."""
+        if self.target is None:
+            return [], []
+        allowed = 1 - self.target
+        best = {name: c.best for name, c in self.reliability.constraints.items()} if self.reliability else {}
+        return (monte_carlo_above(self.failure, self.samples, best, SYSTEM_SAMPLES if self.allocation else IS_SAMPLES,
+                                  allowed),
+                monte_carlo_above(self.start_up_failure, self.start_up_samples, best, self.start_up_samples, allowed))
+
     def as_dict(self) -> dict:
         return {
             "method": self.method, "target": self.target, "status": self.status, "diagnosis": self.diagnosis,
             "samples": self.samples, "confidence": CONFIDENCE,
             "failure_probability_estimator": MONTE_CARLO,
             "failure_probability": self.failure, "nominal_failure_probability": self.nominal_failure,
+            "monte_carlo_above_target": [c.as_dict() for above in self.monte_carlo_above() for c in above],
             "corners": self.corners,
             "checks": [c.as_dict() for c in self.checks],
             "nominal_checks": [c.as_dict() for c in self.nominal_checks],
@@ -378,7 +391,9 @@ def _distinct(points: list[dict[str, float]]) -> list[dict[str, float]]:
 def verdict(result: RobustResult) -> tuple[str, str | None]:
     """(status, diagnosis): ``optimal`` only when the robust solve is, its corners settled, every check holds (at
     its worst corner, backed off, a start-up's at its worst simulated corner) and, for a chance design, no Monte
-    Carlo interval (of the constraints, of the simulated starts) lies above 1 - P."""
+    Carlo interval (of the constraints, of the simulated starts) lies above 1 - P unless the more accurate estimate
+    of the same probability decides (``chance_refutation``: importance sampling at the design point, in agreement
+    with the Monte Carlo; it refuses where its own interval lies above 1 - P)."""
     solution = result.solution
     if solution.status != "optimal":
         return solution.status, solution.diagnosis
@@ -391,11 +406,6 @@ def verdict(result: RobustResult) -> tuple[str, str | None]:
     if result.method == WORST_CASE:
         return "optimal", None
     allowed = 1 - result.target
-
-    def exceeded(failure: dict) -> list[str]:
-        return [f"{name} fails with probability {p:.3g} ({low:.3g} to {high:.3g}) > {allowed:.3g}"
-                for name, (p, low, high) in failure.items() if low > allowed]
-
     reasons = []
     if result.reliability is not None:
         shown = ({"the system": result.design_failure()} if result.method == SYSTEM_CHANCE else
@@ -404,9 +414,10 @@ def verdict(result: RobustResult) -> tuple[str, str | None]:
                       f"{e.estimator})" for name, e in shown.items()
                       if e.low > allowed or e.high > VERIFIED_FACTOR * allowed]:
             reasons.append(f"not shown within {VERIFIED_FACTOR:g} x {allowed:.3g}: " + "; ".join(missed))
-    if static := exceeded(result.failure):
+    static, start = ([c.text(allowed) for c in above if c.refused] for above in result.monte_carlo_above())
+    if static:
         reasons.append("Monte Carlo: " + "; ".join(static))
-    if start := exceeded(result.start_up_failure):
+    if start:
         reasons.append(f"{result.start_up_samples} simulated starts: " + "; ".join(start)
                        + ("" if result.start_up_beta is not None else
                           " (the start is not monotone in the scatter: its quantile corner is not enough)"))
@@ -456,6 +467,7 @@ def verification(result: RobustResult, case: Case) -> str:
             parts[-1] += (f" (too few to show P(fail) <= {1 - result.target:.3g} alone; importance sampling shows it)"
                           if by_points else f" (too few to show P(fail) <= {1 - result.target:.3g} alone; the "
                                             "quantile corners show it for a start monotone in each quantity)")
+    parts += [c.text(1 - result.target) for above in result.monte_carlo_above() for c in above if not c.refused]
     return "verified: " + "; ".join(parts)
 
 

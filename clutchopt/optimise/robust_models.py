@@ -135,11 +135,11 @@ def largest_failure(failure: dict[str, list[float]]) -> tuple[str, float, float,
     return name, p, low, high
 
 
-def clopper_pearson(failed: int, count: int) -> list[float]:
-    """[failed / count, low, high]: a failure frequency and its CONFIDENCE Clopper-Pearson interval."""
+def clopper_pearson(failed: int, count: int, confidence: float = CONFIDENCE) -> list[float]:
+    """[failed / count, low, high]: a failure frequency and its Clopper-Pearson interval (``confidence``, two-sided)."""
     from scipy.stats import beta
 
-    alpha = 1.0 - CONFIDENCE
+    alpha = 1.0 - confidence
     low = float(beta.ppf(alpha / 2, failed, count - failed + 1)) if failed else 0.0
     high = float(beta.ppf(1 - alpha / 2, failed + 1, count - failed)) if failed < count else 1.0
     return [failed / count, low, high]
