@@ -18,7 +18,7 @@ tests of ``Problem.solve`` run afterwards on all points of the batch at once:
   torque rises), the chain goes on with it instead, its bounds a column each, and that point is settled from its
   column as the search's first attempt (``BatchSweep._changed``, or the search itself where its outcome is not
   certain): one chained call through the changes, not one that ends at each and a one-point re-solve there;
-- at the end of a window of points (up to 1024, or a quarter of a second of solving), the float64 re-evaluation
+- at the end of a window of points (up to 1024, or about a quarter of a second's work, counted), the float64 re-evaluation
   of every constraint and the objective by the formulation's own equations (``verify``'s arithmetic), vectorised
   over the points.
 
@@ -89,7 +89,13 @@ from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
 LONGEST_BATCH = 256  # doubling stops here: a longer batch saves little call overhead and risks more waste
 WINDOW = 1024  # points whose float64 checks run together; results are handed on (and recorded) per window,
-WINDOW_S = 0.25  # or after this many seconds of solving, whichever comes first (a progress bar moves on)
+WINDOW_WORK = 8192  # or once this much work is done, whichever comes first (a progress bar moves on): work counted,
+# not the clock, ends a window, so that the same sweep gives the same bits on a loaded or an idle machine (where a
+# window ends, its last chain is cut short, and the next starts from its last column)
+CHAINED_POINT_WORK, CHAIN_CALL_WORK, SOLVE_WORK = 1, 8, 64  # the work of a chained point, of a chained call besides
+# its points, of any other solver call: about 30 us, 0.25 ms and 2 ms on the benchmark's machine (1000-point user
+# sweeps: chains of 256 points 3-9 ms, of one point 0.2-0.3 ms; a point solved alone 0.2-15 ms, most 2 ms), so that
+# WINDOW_WORK is about the quarter of a second that ended a window before (docs/tradeoffs.md, "Windows by work")
 EXCLUSION_SPAN = LONGEST_BATCH  # points ahead whose exclusion of an integer combination is evaluated at once (a batch's
 # points at least; fewer cost less where the integers change often, since each table is a mapped CasADi call)
 PADDING = 64  # a chain may be padded with this many columns that call no solver to save a call (a padded column
@@ -282,6 +288,7 @@ class BatchSweep:
         # the predictor's ratio of each point: its step in the case against the step before it, projected on it (0
         # where there is none, and where the steps differ more than fourfold)
         self.solves, self.solver_s, self.check_s = 0, 0.0, 0.0
+        self.work = 0  # the solving done, counted (CHAINED_POINT_WORK, ...): what ends a window (WINDOW_WORK)
         self.feasible: dict[str, float] | None = None  # the last feasible design in order: a start for a failed point
         self._regions = Regions(problem, self.point_case, self.count)  # infeasible regions proven at once
         self._limits: tuple[np.ndarray, np.ndarray] | None = None  # the tightening's limits and scales per point
@@ -296,11 +303,11 @@ class BatchSweep:
         ahead = None  # points until an inactive constraint or bound is expected to become active (with integers,
         # where the pace expects no break)
         while k < self.count:
-            first, end, deadline = k, min(k + window, self.count), time.perf_counter() + WINDOW_S
+            first, end, spent = k, min(k + window, self.count), self.work + WINDOW_WORK
             blocks: list[Block] = []
             alone: dict[int, Solution] = {}
             failed = False  # the last point is without a design: the window waits for a feasible point after it
-            while k < end and (failed or time.perf_counter() < deadline):  # each turn solves at least one point
+            while k < end and (failed or self.work < spent):  # each turn solves at least one point
                 wanted, reach = min(pace.size, ahead or pace.size, end - k), min(2 * pace.size, LONGEST_BATCH, end - k)
                 forecast = ahead is not None and ahead < pace.size  # the chain ends at a forecast change
                 block, chained, searching, tried, origin = (self._batch(start, k, wanted, reach) if start is not None
@@ -388,6 +395,7 @@ class BatchSweep:
 
     def _counted(self, solution: Solution) -> Solution:
         self.solves += solution.solver.solves
+        self.work += SOLVE_WORK * solution.solver.solves
         self.solver_s += solution.solver.time_s
         return solution
 
@@ -540,6 +548,7 @@ class BatchSweep:
             x = None
         seconds = time.perf_counter() - began
         self.solves, self.solver_s = self.solves + count, self.solver_s + seconds
+        self.work += CHAINED_POINT_WORK * count + CHAIN_CALL_WORK
         if x is None:
             return None
         began = time.perf_counter()
@@ -777,7 +786,7 @@ class BatchSweep:
         began = time.perf_counter()
         found = least(self.posed, seed["x"], self._p(k, start), lower / start.scale, upper / start.scale)
         seconds = time.perf_counter() - began
-        self.solves, self.solver_s = self.solves + 1, self.solver_s + seconds
+        self.solves, self.solver_s, self.work = self.solves + 1, self.solver_s + seconds, self.work + SOLVE_WORK
         return found, seconds
 
     def _p(self, k: int, start: _Start) -> np.ndarray:
@@ -800,7 +809,7 @@ class BatchSweep:
         data = ScaledData(self.posed.params(self.point_case(k)), lower, upper, x0 * start.scale, start.scale,
                           start.f_scale, self._p(k, start))
         solved = attempts.run(self.posed, data, lbx, ubx, x0, None)
-        self.solves, self.solver_s = self.solves + 1, self.solver_s + solved["time"]
+        self.solves, self.solver_s, self.work = self.solves + 1, self.solver_s + solved["time"], self.work + SOLVE_WORK
         if solved["ok"] and solved["feasible"]:
             return {}, solved["time"], _seed(solved["x"], *warm_multipliers(self.posed, solved["lam_x"],
                                                                               solved["lam_g"]))
