@@ -68,10 +68,10 @@ SECTIONS: tuple[Section, ...] = (
                            "either side of the edge it meets (a point beyond it against one before it: "
                            "point_cost_vs_designed), ball_crusher over 250-1000 kW, and each start-up case over its "
                            "driven inertia (once per state of the compiled-code cache, compiled: 'in the cache', its "
-                           "NLP's library built first, untimed, as a second run meets it; 'none', a cache without it "
-                           "and no build started, as a first run meets it less the build it starts beside itself; "
-                           "compiled_used: whether the run's solvers evaluated it by its end, from the point after 2 s "
-                           "of solving; no build runs while anything is timed); points with and without a design, "
+                           "NLPs' libraries built first, untimed, as a second run meets them; 'none', an empty cache, "
+                           "as a first run meets it less the build it starts beside itself; compiled_used: whether the "
+                           "run's solvers evaluated them by its end, looked for from the point after 2 s of solving; "
+                           "no build runs while anything is timed); points with and without a design, "
                            "solver calls per point, points/s against the wedge paper sweep of its duty quantity",
             user_sweep_rows),
     Section("resolve", "Warm re-solves along the same sweeps: warm IPOPT alone (before) and SQP first (now); times per "

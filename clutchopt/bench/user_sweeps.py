@@ -23,7 +23,7 @@ from clutchopt.bench.reference import bench_cases, reference_mode
 from clutchopt.bench.throughput import sweep_quantity
 from clutchopt.bench.timing import median_run
 from clutchopt.cases import Case, load_case
-from clutchopt.optimise.compiled import CACHE_ENV
+from clutchopt.optimise.compiled import CACHE_ENV, compiled_library
 from clutchopt.optimise.start_up_compiled import BUILD_LATER_ENV, wait_for_builds
 
 CASES = Path(__file__).resolve().parents[2] / "cases"
@@ -112,12 +112,12 @@ def user_sweep_rows(config) -> list[dict]:
 
 def start_up_rows(config) -> list[dict]:
     """Each start-up case's sweep of the driven inertia (0.6x-1.4x), timed once in each state of the compiled-code
-    cache of ``config.start_up_compiled`` (``compiled``): IN_THE_CACHE, its NLP's library built first (the sweep run
-    once untimed, with builds allowed, and its build waited for: a user's second run), or NO_LIBRARY (a cache
-    without it, no build started: a user's first run, less the compiler it starts beside itself). Each timed run
-    builds its problem anew (as a new process does); no build runs while it is timed. ``compiled_used``: whether
-    its solvers evaluated the compiled functions by its end (from the point after 2 s of solving,
-    :mod:`clutchopt.optimise.start_up_compiled`; the wedge's sweep never gets there)."""
+    cache of ``config.start_up_compiled`` (``compiled``): IN_THE_CACHE, the libraries of its NLPs built first, untimed
+    and in the foreground (the problems posed by a sweep run once untimed: a user's second run), or NO_LIBRARY (an
+    empty cache: a user's first run, less the build it starts beside itself). No build is started while a run is
+    timed (``CLUTCHOPT_BUILD_LATER=0``) and none runs; each timed run builds its problems anew, as a new process does.
+    ``compiled_used``: whether its solvers evaluated the compiled functions by its end (a sweep looks for them from
+    the point after 2 s of solving, :mod:`clutchopt.optimise.start_up_compiled`: the wedge's never gets there)."""
     rows = []
     for path in sorted(CASES.glob("*_motor_start.toml")):
         case = load_case(path)
@@ -125,8 +125,11 @@ def start_up_rows(config) -> list[dict]:
         for state in config.start_up_compiled:
             with _compiled_state(state):
                 if state == IN_THE_CACHE:
-                    _run(case, "driven_inertia", values, None, 1)  # (untimed: its library's build started)
-                    wait_for_builds()
+                    with _new_start_up_problems() as posed:
+                        _run(case, "driven_inertia", values, None, 1)
+                    for problem in posed:
+                        if problem.posed.library is None:  # (one already compiled: its library in the cache)
+                            compiled_library(problem.posed.solver("ipopt"))
                 with _new_start_up_problems() as built:
                     row = _run(case, "driven_inertia", values, None, 1)
             rows.append({"case": path.stem, "quantity": "driven_inertia", "span": "0.6x-1.4x", **row,
@@ -136,15 +139,16 @@ def start_up_rows(config) -> list[dict]:
 
 @contextmanager
 def _compiled_state(state: str):
-    """The environment of a start-up sweep timed in ``state`` (IN_THE_CACHE: the caller's cache, builds allowed;
-    NO_LIBRARY: an empty cache of its own, no build), the caller's restored after it, no build left running."""
+    """The environment of a start-up sweep timed in ``state`` (IN_THE_CACHE: the caller's cache; NO_LIBRARY: an empty
+    cache of its own), no build started in the background, and none running (one an earlier run started); the
+    caller's environment restored after it."""
     kept = {name: os.environ.get(name) for name in (CACHE_ENV, BUILD_LATER_ENV)}
+    wait_for_builds()
     with tempfile.TemporaryDirectory() as empty:
-        os.environ.update({BUILD_LATER_ENV: "1"} if state == IN_THE_CACHE else {CACHE_ENV: empty, BUILD_LATER_ENV: "0"})
+        os.environ.update({BUILD_LATER_ENV: "0"} if state == IN_THE_CACHE else {CACHE_ENV: empty, BUILD_LATER_ENV: "0"})
         try:
             yield
         finally:
-            wait_for_builds()
             for name, value in kept.items():
                 if value is None:
                     os.environ.pop(name, None)
