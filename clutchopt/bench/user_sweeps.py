@@ -6,9 +6,9 @@ edge it meets (from 1x to its last point with a design, and from its first point
 point without a design costs against one with a design, issue 26's "an infeasible point <= 20x a feasible one"),
 ``ball_crusher`` over 250-1000 kW, and for each start-up case a sweep of the driven inertia (0.6x to 1.4x, every
 point simulated; once, with a fiftieth of the points, per state of the compiled-code cache: :func:`start_up_rows`).
-Per sweep: the points, how many have a design and how many a
-verdict without one, solver calls per point, points/s (the median run of ``sweep_repeats``), and points/s against
-the wedge paper sweep of the duty's quantity measured in the same run."""
+Per sweep: the points, how many have a design and how many a verdict without one, solver calls per point, points/s
+(the median run of ``sweep_repeats``), and points/s against the wedge paper sweep of the duty's quantity measured in
+the same run."""
 
 from __future__ import annotations
 
@@ -145,7 +145,7 @@ def _compiled_state(state: str):
     kept = {name: os.environ.get(name) for name in (CACHE_ENV, BUILD_LATER_ENV)}
     wait_for_builds()
     with tempfile.TemporaryDirectory() as empty:
-        os.environ.update({BUILD_LATER_ENV: "0"} if state == IN_THE_CACHE else {CACHE_ENV: empty, BUILD_LATER_ENV: "0"})
+        os.environ.update({BUILD_LATER_ENV: "0", **({} if state == IN_THE_CACHE else {CACHE_ENV: empty})})
         try:
             yield
         finally:
