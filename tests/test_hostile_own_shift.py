@@ -83,3 +83,35 @@ def test_the_counts_one_off_the_kept_design():
     assert foreign.untried_below(SimpleNamespace(**{**vars(kept), "design": {"cable_count": 3.0}}),
                                  {"cable_count": 3.0}) == []
     assert foreign.untried_below(unverified, {"cable_count": 3.0}) == []  # no verified design kept: none below
+
+
+def test_an_unverified_count_climbs_while_its_simulated_start_comes_nearer_to_its_limits():
+    """``climbing``: 10 cables' start 30 % over the stress limit, 11's 10 % over: 0.20 nearer a count, so one more
+    count (12) at that rate meets it, ceil(0.10 / 0.20) = 1 <= 15 - 11: climb to 12. 11's start 35 % over (further):
+    none above; 29 % over: ceil(0.29 / 0.01) = 29 counts more, 40 > the bound 15: none; a loop that ended without a
+    design: none. ``lighter_above``, once a count is verified (7.307 kg): on from a count kept lighter (6.276 kg) or
+    unverified below it (5.35 kg), not from one heavier (7.5 kg), nor past the bound."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.own_shift import climbing, lighter_above, stepped, worst_margin
+
+    def loop(count, status, *margins, objective=5.0):
+        checks = [SimpleNamespace(margin=m) for m in (*margins, float("nan"))]  # (an undefined margin: left out)
+        return SimpleNamespace(status=status, design={"cable_count": count}, constraints=checks, objective=objective)
+
+    names, ten, upper = ["cable_count"], loop(10.0, "unverified", 0.5, -0.30), {"cable_count": 15.0}
+    assert worst_margin(ten) == -0.30 and stepped(names, ten.design, (11.0,)) == 0
+    assert climbing(names, 0, ten, loop(11.0, "unverified", 0.4, -0.10), (11.0,), upper) == ((12.0,), "")
+    ahead, reason = climbing(names, 0, ten, loop(11.0, "unverified", -0.35), (11.0,), upper)
+    assert ahead is None and "0.35 (relative), no nearer than 10's 0.3" in reason
+    ahead, reason = climbing(names, 0, ten, loop(11.0, "unverified", -0.29), (11.0,), upper)
+    assert ahead is None and "40 would be needed, above the bound 15" in reason
+    ahead, reason = climbing(names, 0, ten, loop(11.0, "not_found", -0.05), (11.0,), upper)
+    assert ahead is None and reason == "no count of cable_count above 11 tried: its own accuracy loop ended not_found"
+    verified = loop(10.0, "optimal", 0.1, objective=7.307)
+    lighter = loop(11.0, "optimal", 0.1, objective=6.276)
+    assert lighter_above(names, 0, lighter, lighter, (11.0,), upper) == (12.0,)  # (kept: it was lighter)
+    assert lighter_above(names, 0, loop(11.0, "unverified", -0.1, objective=5.35), verified, (11.0,), upper) == (12.0,)
+    assert lighter_above(names, 0, loop(11.0, "optimal", 0.1, objective=7.5), verified, (11.0,), upper) is None
+    fifteen = loop(15.0, "optimal", 0.1, objective=6.0)
+    assert lighter_above(names, 0, fifteen, fifteen, (15.0,), upper) is None  # (kept, lighter, at the bound)

@@ -74,6 +74,9 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=No
         solutions[column] = solution
         outputs = {name: out.value for name, out in solution.outputs.items()}
         columns[column] = spec.rows_from_design(mode, solution.design, outputs, params)
+        if case.start_up is not None:  # a static optimum on a start-up case: started on its drive, as
+            columns[column].update(_started(case, mode, solution))  # constant_acceleration is
+            notes[column] = f"{notes.get(column, column)}; {STATIC_NOTE}"
     rows_shown = spec.rows
     if case.start_up is not None:
         start_columns = _start_up_columns(case, coupling, spec, options)
@@ -112,6 +115,7 @@ START_UP_ROWS = (
     ComparisonRow("link_stress_simulated", "MPa", "largest stress of an elastic link (cables) in that start, "
                                                   "simulated"),
 )
+STATIC_NOTE = "the case's [start_up] not in it; started on the case's drive in the rows *_simulated"
 START_UP_NOTES = {
     "constant_acceleration": "the case's mode optimised as the papers size (constant acceleration), started on "
                              "the case's drive",
@@ -178,8 +182,6 @@ def _scatter_columns(case: Case, coupling, spec, options: SolverOptions, robust=
 def _start_up_columns(case: Case, coupling, spec, options: SolverOptions) -> dict:
     """The case's mode and objective optimised without and with the start-up; both designs started on the case's
     drive by the simulator."""
-    from clutchopt.start_up.simulation import run_start_up, start_up_model
-
     mode = case.options.get("mode") or coupling.default_mode
     objective = case.options.get("objective", "mass")
     params = case.params()
@@ -189,10 +191,18 @@ def _start_up_columns(case: Case, coupling, spec, options: SolverOptions) -> dic
         solution = problem.solve(case)
         outputs = {name: out.value for name, out in solution.outputs.items()}
         values = spec.rows_from_design(mode, solution.design, outputs, params)
-        if solution.status in ("optimal", "unverified"):
-            head = run_start_up(start_up_model(case, mode, solution.design)).headline
-            values.update(start_time_simulated=head["start_time"], friction_work_simulated=head["friction_work"],
-                          temperature_rise_simulated=head.get("temperature_rise", math.nan),
-                          link_stress_simulated=head.get("peak_stress", math.nan))
+        values.update(_started(case, mode, solution))
         columns[column] = (solution, values)
     return columns
+
+
+def _started(case: Case, mode: str, solution: Solution) -> dict:
+    """The START_UP_ROWS of a design started on the case's drive by the simulator (none without a design)."""
+    from clutchopt.start_up.simulation import run_start_up, start_up_model
+
+    if solution.status not in ("optimal", "unverified"):
+        return {}
+    head = run_start_up(start_up_model(case, mode, solution.design)).headline
+    return dict(start_time_simulated=head["start_time"], friction_work_simulated=head["friction_work"],
+                temperature_rise_simulated=head.get("temperature_rise", math.nan),
+                link_stress_simulated=head.get("peak_stress", math.nan))

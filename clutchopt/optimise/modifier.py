@@ -56,13 +56,17 @@ def slope_name(limit: str, variable: str) -> str:
     return f"{PREFIX}{limit}_per_{variable}"
 
 
+def modifier_names(variables) -> list[str]:
+    """The modifiers' NLP parameters: each start-up limit's offset, then its slope per design variable."""
+    return [name for limit in LIMIT_OF for name in (offset_name(limit), *(slope_name(limit, v) for v in variables))]
+
+
 def with_modifiers(formulation):
     """``formulation`` (without its start-up: ``Posed`` adds it) with an offset and slopes for every start-up limit
     (:data:`~clutchopt.optimise.start_up_check.LIMIT_OF`) as case quantities, its own variant (built apart)."""
     variables = [v.name for v in with_start_up(formulation).variables]
-    added = tuple(Quantity(name, "", "modifier adaptation of a start-up limit (docs/start_up.md)", section="modifier",
-                           default=None)
-                  for limit in LIMIT_OF for name in (offset_name(limit), *(slope_name(limit, v) for v in variables)))
+    added = tuple(Quantity(name, "", "modifier adaptation of a start-up limit (docs/start_up.md; SI, never shown)",
+                           section="modifier", default=None) for name in modifier_names(variables))
     return replace(formulation, quantities=formulation.quantities + added,
                    variant=f"{formulation.variant} {VARIANT}".strip())
 
@@ -70,11 +74,11 @@ def with_modifiers(formulation):
 def modified(constraints: list, x, p) -> list:
     """The start-up ``constraints`` with each start-up limit's figure corrected by its modifier, where ``p`` has
     them (a problem built :func:`with_modifiers`): value + offset + sum of slope x variable. Others as they are."""
-    if not hasattr(p, offset_name("link_stress")):
+    if not any(hasattr(p, offset_name(limit)) for limit in LIMIT_OF):
         return constraints
     out = []
     for c in constraints:
-        if c.name in LIMIT_OF and c.sense == "<=":
+        if c.name in LIMIT_OF and c.sense == "<=" and hasattr(p, offset_name(c.name)):
             term = getattr(p, offset_name(c.name)) + sum(getattr(p, slope_name(c.name, name)) * value
                                                          for name, value in vars(x).items())
             c = replace(c, value=c.value + term)
@@ -139,10 +143,11 @@ def simulated_figures(problem, case, design: dict[str, float]) -> dict[str, floa
     return {check.name: check.value for check in checks if check.name in LIMIT_OF}
 
 
-def modifiers(problem, case, solution, names: set[str], counts: dict) -> dict[str, float] | None:
+def modifiers(problem, case, solution, names: set[str], counts: dict | None = None) -> dict[str, float] | None:
     """The modifier of each start-up limit in ``names`` at ``solution``'s design x_k (offset and slopes: the NLP's
     figure C(x) + offset + slope . x is S(x_k) + grad S(x_k) . (x - x_k) to first order), every other one zero.
-    ``counts``: the simulations run are added to its ``simulations``. None where a gradient cannot be had."""
+    ``counts`` (where given): the simulations run are added to its ``simulations``. None where a gradient cannot be
+    had."""
     posed = problem.posed
     own = figure_gradients(posed, case, solution)
     if own is None or any(name not in own for name in names):
@@ -162,11 +167,11 @@ def modifiers(problem, case, solution, names: set[str], counts: dict) -> dict[st
             moved = simulated_figures(problem, case, {**design, variable: design[variable] + step})
         except InputError:
             return None
-        counts["simulations"] = counts.get("simulations", 0) + 1
+        if counts is not None:
+            counts["simulations"] = counts.get("simulations", 0) + 1
         for name in names:
             slopes[name][i] = (moved[name] - simulated[name]) / step - own[name][1][i]
-    values = {name: 0.0 for limit in LIMIT_OF for name in (offset_name(limit),
-                                                           *(slope_name(limit, v) for v in posed.names))}
+    values = dict.fromkeys(modifier_names(posed.names), 0.0)
     x = np.array([design[name] for name in posed.names])
     for name in names:
         slope = slopes[name]
@@ -199,7 +204,7 @@ def problem_with_modifiers(problem):
                        problem.start_up.s)
 
 
-def first_order(problem, case, solution, solves: list, bound: float = math.inf, counts: dict | None = None):
+def first_order(problem, case, solution, solves: list, bound: float = math.inf):
     """``solution`` (a start-up solve its defect correction left ``unverified``), or the lightest design of its
     integers that modifier adaptation reaches and its simulated start verifies: each step solves the NLP at the
     case's limits with the modifiers of the limits missed so far at the last design (warm from it), at most
@@ -208,9 +213,7 @@ def first_order(problem, case, solution, solves: list, bound: float = math.inf, 
     step's design is the lightest the corrected NLP, the simulated figure to first order at the last design,
     predicts to meet the limits, so the choice has no lighter verified design near there (the cable at 0.55 kg
     m^2: 8 cables' steps 4.348, 4.547 kg, ..., verified at 4.596 kg against 9 cables' 4.418 kg; at 0.6 kg m^2 they
-    never verify). ``solves``: each step's solver record is appended; ``counts``: its ``simulations`` (the
-    gradients' differences) added to."""
-    counts = {} if counts is None else counts
+    never verify). ``solves``: each step's solver record is appended."""
     names = violated(solution)
     if solution.status != "unverified" or not names or solution.internal is None:
         return solution
@@ -219,7 +222,7 @@ def first_order(problem, case, solution, solves: list, bound: float = math.inf, 
     corrected = problem_with_modifiers(problem)
     last, best = solution, None
     for _ in range(MODIFIER_STEPS):
-        values = modifiers(problem, case, last, names, counts)
+        values = modifiers(problem, case, last, names)
         if values is None:
             break
         nlp_case = replace(case, values={**case.values, **values}, bounds={**case.bounds, **fixed})

@@ -142,6 +142,53 @@ class ForeignShifts:
                 if within(name, value + step)]
 
 
+def worst_margin(solution) -> float:
+    """The least margin (relative) of ``solution``'s checks, its simulated start's among them (-inf: none)."""
+    return min((c.margin for c in solution.constraints if math.isfinite(c.margin)), default=-math.inf)
+
+
+def stepped(names: list[str], design: dict[str, float], combo: tuple) -> int:
+    """The index of the integer in which ``combo`` differs from ``design``'s choice (one count off it)."""
+    return next(k for k, (name, value) in enumerate(zip(names, combo)) if float(design[name]) != value)
+
+
+def climbing(names: list[str], i: int, last, own, combo: tuple, upper: dict[str, float]) -> tuple[tuple | None, str]:
+    """The next choice up from ``combo`` (``own``'s: one count above ``last``'s in the integer ``names[i]``, within
+    its ``upper`` bound) where ``own``'s loop ended ``unverified`` nearer to meeting its limits than ``last``'s (its
+    worst margin, :func:`worst_margin`, larger) and, at the rate the margin grew, a count within the bound meets
+    them; else None, and why no count further up is tried (in words). Adding a cable lowers each cable's stress, so
+    the margin of an unverified count grows count by count; where it does not, no count above is nearer
+    (``Problem._climbed``)."""
+    name, count = names[i], combo[i]
+    before, now = worst_margin(last), worst_margin(own)
+    if own.status != "unverified":
+        return None, f"no count of {name} above {count:g} tried: its own accuracy loop ended {own.status}"
+    if not now > before:
+        return None, (f"no count of {name} above {count:g} tried: its simulated start misses its limits by "
+                      f"{-now:.3g} (relative), no nearer than {count - 1:g}'s {-before:.3g}")
+    needed = math.ceil(-now / (now - before))
+    if count + needed > upper[name]:
+        return None, (f"no count of {name} above {count:g} tried: at the rate its simulated start came nearer to its "
+                      f"limits ({now - before:.3g} a count) {count + needed:g} would be needed, above the bound "
+                      f"{upper[name]:g}")
+    return combo[:i] + (count + 1.0,) + combo[i + 1:], ""
+
+
+def lighter_above(names: list[str], i: int, own, kept, combo: tuple, upper: dict[str, float]) -> tuple | None:
+    """Once a count of the climb is verified (``kept``, optimal): the next choice up from ``combo`` in ``names[i]``
+    (within ``upper``) where ``combo``'s own loop (``own``) came out lighter than every verified count so far: kept
+    (``own is kept``), or ``unverified`` below ``kept``'s objective (its NLP's design, which the simulated start only
+    moves up); None where it did not, for a count heavier at the limits it meets has a heavier one above. The first
+    verified count need not be the lightest: cable_motor_start at 0.027 kg m^2 (modifier adaptation in the own loops)
+    verifies 10 cables at 7.307 kg with heavy weights, then 11 at 6.276 kg, 12 at 5.813 kg and 13 at 6.277 kg: 12
+    kept."""
+    if not (own is kept or own.status == "unverified" and own.objective < kept.objective):
+        return None
+    if combo[i] + 1.0 > upper[names[i]]:
+        return None
+    return combo[:i] + (combo[i] + 1.0,) + combo[i + 1:]
+
+
 def own_entry(names: list[str], combo: tuple, own, how: str = "own accuracy loop") -> dict:
     """The integer search's record of ``combo`` solved through its own accuracy loop (``own``, its solution; ``how``:
     or modifier adaptation)."""

@@ -191,11 +191,17 @@ class Regions:
         search_along(self.posed, None)
         if outcomes is None:
             return solution
-        points = sum(b - a for a, b in runs)
+        taken_along = self._kept_along(runs, built["regions"], outcomes, seconds)
+        return replace(solution, solver=replace(solution.solver, time_s=solution.solver.time_s - taken_along))
+
+    def _kept_along(self, runs: list[tuple[int, int]], regions: list, outcomes: list, seconds: float) -> float:
+        """The outcomes of ``runs`` (their ``regions``), searched along a point's own search in one call of
+        ``seconds``, kept for :meth:`_search_from`, each point its share of the call (the point's own one share);
+        the seconds they take from the call."""
+        points = sum(b - a for a, b in runs) if outcomes else 0
         share = seconds / (1 + points)
-        self._ahead.update((run, (region, outcome, share)) for run, region, outcome
-                           in zip(runs, built["regions"], outcomes))
-        return replace(solution, solver=replace(solution.solver, time_s=solution.solver.time_s - share * points))
+        self._ahead.update((run, (region, outcome, share)) for run, region, outcome in zip(runs, regions, outcomes))
+        return share * points
 
     def _early(self, k: int, design: dict[str, float]) -> Solution | None:
         """Point k, where a batch's chain from the point before (with ``design``) failed: its own interval search,
@@ -278,11 +284,8 @@ class Regions:
                                                     lambda: self._regions(ahead, built))
         else:
             own, outcomes, seconds = searches(self.posed, [problem], None if budget is None else [budget])[0], [], 0.0
-        points = sum(b - a for a, b in ahead) if outcomes else 0
-        share = seconds / (1 + points)  # (a point's of the call that searched the runs too)
-        own_seconds = time.perf_counter() - began - share * points
-        self._ahead.update((run, (region, outcome, share)) for run, region, outcome
-                           in zip(ahead, built.get("regions", []), outcomes))
+        own_seconds = time.perf_counter() - began - self._kept_along(ahead, built.get("regions", []), outcomes,
+                                                                      seconds)
         if own is None or not own.proven:
             return None, own, problem
         self._alone = last_boxes(self.posed, own.boxes)

@@ -57,6 +57,18 @@ def sensitivities(posed: Posed, run: dict, objective: float) -> dict[str, float]
     return values_by_name(names, values.T.tolist(), applies.T.tolist())[0]
 
 
+def with_followers(elasticities: dict[str, float], follows: dict[str, tuple[str, float]]) -> dict[str, float]:
+    """Each source quantity's elasticity with those of the defaults that follow it added (``Case.follows``: a start-up's
+    driven inertia and load follow the duty's, its start time limit t_p): editing the source moves them with it,
+    d ln follower / d ln source = 1, so the optimum moves by the sum (the NLP holds them as parameters of their own,
+    and its gradient in the source alone misses them: lever_motor_start's d ln m / d ln I read 0, re-solves +0.263)."""
+    total = dict(elasticities)
+    for name, (source, _factor) in follows.items():
+        if name in elasticities and source in total:
+            total[source] += elasticities[name]
+    return total
+
+
 def sensitivity_table(posed: Posed, x, p, lam_x, lam_g, lbx, ubx, objective: np.ndarray,
                       window: bool = False) -> tuple[list[str], np.ndarray, np.ndarray]:
     """:func:`sensitivities` of primal-dual points given as columns (their objectives in ``objective``) as a table,

@@ -19,6 +19,8 @@ class SolverOptions:
     tol: float = 1e-10
     max_iter: int = 3000
     warm_sqp: bool = True  # warm re-solves try SQP before warm IPOPT (False: warm IPOPT alone, for comparison)
+    polish: bool = True  # a static solve's IPOPT optimum polished onto its exact KKT point (optimise/polish.py;
+    #                      False: as IPOPT ends, for the papers' sizing a start-up solve starts from)
 
     def ipopt_warm(self) -> dict:
         """IPOPT started from a previous primal-dual point, barely pushed off the bounds."""

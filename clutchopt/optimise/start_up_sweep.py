@@ -118,14 +118,29 @@ def sized_out(problem, case: Case, before: Along | None) -> SizedOut:
         return SizedOut(key)
     if before.sized.choices is not None:
         return before.sized
-    if not set(static.posed.row_names) <= set(problem.posed.row_names):  # a row left to the start-up model
+    if not keeps_the_sizing(problem):  # a row left to the start-up model
         return SizedOut(key, {})
-    names = [v.name for v in problem.formulation.variables if v.integer]
     sizing = static.solve(case)
-    choices = {tuple(float(entry[name]) for name in names if name in entry):
-               f"infeasible in the papers' sizing at this point ({entry['status']}), whose every row the start-up "
-               "problem keeps" for entry in sizing.integer_search if entry["status"] == INFEASIBLE}
-    return SizedOut(key, choices, sizing.design if sizing.status == "optimal" else None)
+    return SizedOut(key, sized_choices(problem, sizing), sizing.design if sizing.status == "optimal" else None)
+
+
+def keeps_the_sizing(problem) -> bool:
+    """Whether the start-up problem keeps every row of the papers' sizing (``Problem.static_problem``): no
+    constant-acceleration row left to the start-up model, as the wedge's and lever's torque rows are."""
+    return set(problem.static_problem.posed.row_names) <= set(problem.posed.row_names)
+
+
+def sized_choices(problem, sizing: Solution) -> dict[tuple, str]:
+    """The integer choices (the start-up problem's integer variables' values -> why) the papers' sizing's search
+    (``sizing``, its solution at the point) found infeasible, where the start-up problem keeps every row of it
+    (:func:`keeps_the_sizing`; else none): a start-up solve need not solve them (:func:`sized_out`; ``Problem``'s
+    first solve from the sizing, ``Problem._refined``)."""
+    if not keeps_the_sizing(problem):
+        return {}
+    names = [v.name for v in problem.formulation.variables if v.integer]
+    return {tuple(float(entry[name]) for name in names if name in entry):
+            f"infeasible in the papers' sizing at this point ({entry['status']}), whose every row the start-up "
+            "problem keeps" for entry in sizing.integer_search if entry["status"] == INFEASIBLE}
 
 
 def first_mesh(previous: Solution, step: float | None, tolerance: float) -> np.ndarray:

@@ -1,0 +1,74 @@
+"""A static solve's IPOPT optimum polished onto the exact KKT point of its active set (clutchopt/optimise/polish.py):
+the optimum where it sits on bounds and active constraints, as a sweep's SQP reaches it, to the last bits."""
+
+import pytest
+
+from clutchopt.cases import load_case
+from clutchopt.optimise import solve_case
+from clutchopt.optimise.attempts import attempt
+from clutchopt.optimise.polish import polished
+from clutchopt.optimise.problem import case_problem
+from clutchopt.optimise.verify import evaluate_objective
+from conftest import CASES
+
+HIGH_SPEED = 2857.992516770278  # rad/s (27,292 rpm): ball_compressor's torque far from binding
+
+
+def test_the_ball_compressor_at_high_speed_is_solved_on_its_vertex():
+    # paper mode, eq. (4): the leading-order torque grows with speed^2 l R_a^4, so at 2858 rad/s it covers M_c 29 %
+    # over and the mass (growing with R_a and l) is least at the least R_a, its bound 50 mm, and the least
+    # l the width ratio allows, eqs. (3), (5): l = K5 R_a = 0.8 x 50 mm = 40 mm (in float64 0.8 * 0.05 is
+    # 0.04000000000000001). IPOPT alone stopped 2.1e-11 m and 6.9e-11 m off that vertex, 2.6e-9 heavier
+    case = load_case(CASES / "ball_compressor.toml").with_values(speed=HIGH_SPEED)
+    solved = solve_case(case, mode="paper")
+    vertex = {"active_radius": 0.05, "active_width": 0.8 * 0.05}
+    assert solved.status == "optimal"
+    assert solved.design == vertex
+    problem = case_problem(case, "paper")
+    assert solved.objective == evaluate_objective(problem.formulation, "mass", vertex, problem.posed.params(case))
+    margins = {c.name: c.margin for c in solved.constraints}
+    assert margins["torque"] > 0.25 and abs(margins["width_ratio"]) <= 1e-15
+
+
+def test_the_wedge_in_geometry_mode_has_its_bounds_exactly_where_ipopt_found_them_active():
+    # README's wedge_paper in geometry mode: the least radius ratio 1.1 and the widest weights 40 mm are bounds the
+    # optimum sits on; IPOPT left the width 4.6e-9 inside its bound (6e-9 of its scaled value: the SQP, handed the
+    # bound's multiplier, stopped there at once until the polish put it on the bound, polish.SNAP); polished, every
+    # active constraint (torque, finger bending, outer diameter, finger guide length) holds to round-off
+    solved = solve_case(load_case(CASES / "wedge_paper.toml"), mode="geometry")
+    assert solved.status == "optimal"
+    assert (solved.design["radius_ratio"], solved.design["weight_width"]) == (1.1, 0.04)
+    active = {c.name: c.margin for c in solved.constraints if c.active}
+    assert set(active) == {"torque", "finger_bending", "outer_diameter", "finger_guide_length"}
+    assert all(abs(margin) <= 1e-15 for margin in active.values())
+
+
+def test_a_polish_heavier_than_ipopt_s_optimum_is_not_kept():
+    # the guard: a polished point is kept only where no heavier than IPOPT's; IPOPT's run told 1e-6 lighter than it
+    # is stays as it ended, the polish's iterations and seconds counted in it
+    case = load_case(CASES / "ball_compressor.toml").with_values(speed=HIGH_SPEED)
+    posed = case_problem(case, "paper").posed
+    data = posed.scaled_data(case, checked=posed.params(case))
+    ended = attempt(posed, data, data.lbx, data.ubx, data.x0, None, ("ipopt",), [])
+    assert ended["ok"] and ended["feasible"]
+    exact = polished(posed, data, ended)
+    assert exact["design"] == {"active_radius": 0.05, "active_width": 0.8 * 0.05}
+    assert exact["value"] < ended["value"]  # (IPOPT's 2.6e-9 heavier)
+    iterations, seconds = ended["iterations"], ended["time"]
+    ended["value"] = exact["value"] * (1 - 1e-6)
+    kept = polished(posed, data, ended)
+    assert kept is ended and kept["design"] != exact["design"]
+    assert kept["iterations"] > iterations and kept["time"] > seconds
+
+
+def test_a_start_up_s_sizing_is_not_polished():
+    # the start-up solves start from the papers' sizing as before the polish (their own tolerance contract)
+    problem = case_problem(load_case(CASES / "wedge_motor_start.toml"))
+    assert problem.options.polish and not problem.static_problem.options.polish
+
+
+@pytest.mark.parametrize("mode", ["paper", "geometry"])
+def test_a_polished_solve_counts_one_design_solve(mode):
+    # wedge_paper: no integers free, one IPOPT solve; the polish is not another design solve
+    solved = solve_case(load_case(CASES / "wedge_paper.toml"), mode=mode)
+    assert solved.status == "optimal" and solved.solver.solves == 1 and solved.solver.name == "ipopt"
