@@ -1,8 +1,10 @@
 """``clutchopt bench --quick --json`` runs and reports what the issue asks; no timing is asserted."""
 
 import json
+import os
 from contextlib import redirect_stdout
 from io import StringIO
+from pathlib import Path
 
 import pytest
 
@@ -34,7 +36,7 @@ def test_report_structure(report):
     assert set(report) == {"machine", "config", "sections", "units"}
     assert assert_units(report)  # every number beside its SI unit
     assert report["config"] == {"repeats": 3, "sweep_points": 50, "sweep_repeats": 3, "processes": 2,
-                                "start_up_intervals": [16]}
+                                "start_up_intervals": [16], "start_up_compiled": ["none"]}
     assert report["machine"]["cores"] >= 1 and report["machine"]["casadi"]
     assert list(report["sections"]) == [s.name for s in SECTIONS if s.quick]  # --quick starts no Dask cluster
     assert {(r["coupling"], r["mode"]) for r in report["sections"]["accuracy"]["rows"]} == set(MODES)
@@ -114,6 +116,11 @@ def test_user_sweeps_cover_every_coupling_and_quantity_users_vary(report):
         assert before["without_design"] == 0 and beyond["designed"] == 0
         assert beyond["point_cost_vs_designed"] == pytest.approx(before["points_per_s"] / beyond["points_per_s"])
         assert before["point_cost_vs_designed"] is None
+    for row in rows:  # --quick: each start-up sweep timed with no compiled library (none built: 8-26 s each)
+        start_up = row["quantity"] == "driven_inertia"
+        assert (row["compiled"], row["compiled_used"]) == (("none", False) if start_up else (None, None))
+    assert Path(os.environ["CLUTCHOPT_CACHE"]).is_dir()  # the session's cache (tests/conftest.py) given back, not the
+    # empty one of the rows' state, removed since
     crusher = next(row for row in rows if row["case"] == "ball_crusher")
     assert crusher["quantity"] == "power" and crusher["span"] == "250-1000 kW" and crusher["without_design"] > 0
     assert next(r for r in rows if r["case"] == "wedge (paper)" and r["quantity"] == "inertia")["vs_wedge_paper"] == 1

@@ -27,7 +27,7 @@ def _problem_and_case():
 def test_a_library_built_in_the_background_is_adopted_and_solves_to_the_same_bits(monkeypatch, tmp_path):
     monkeypatch.setenv(compiled.CACHE_ENV, str(tmp_path / "cache"))
     monkeypatch.setenv(later.BUILD_LATER_ENV, "1")
-    monkeypatch.setattr(later, "_STARTED", set())
+    monkeypatch.setattr(later, "_STARTED", {})
     monkeypatch.setattr(later, "GENERATE_AFTER_S", 0.0)  # (a sweep's: once its points took 2 s of solving)
     plain, case = _problem_and_case()
     reference = plain.solve(case)
@@ -35,6 +35,8 @@ def test_a_library_built_in_the_background_is_adopted_and_solves_to_the_same_bit
     assert later.compiled_when_ready(problem.posed) is False  # the build only started: still the virtual machine
     state = problem.posed.built("compiled_later", "ipopt", None)
     assert state.library is not None and state.library.parent == tmp_path / "cache"
+    assert later.wait_for_builds() == 1 and later.wait_for_builds() == 0  # (what the bench waits for before timing)
+    assert compiled.ready_library(state.library) is not None  # whole once its build's process ended
     waited = time.monotonic()
     while not later.compiled_when_ready(problem.posed) and time.monotonic() - waited < WAIT_S:
         time.sleep(0.1)
@@ -52,7 +54,7 @@ def test_a_library_built_in_the_background_is_adopted_and_solves_to_the_same_bit
 def test_no_build_is_started_where_the_environment_says_so(monkeypatch, tmp_path):
     monkeypatch.setenv(compiled.CACHE_ENV, str(tmp_path / "cache"))
     monkeypatch.setenv(later.BUILD_LATER_ENV, "0")  # (the test suite's own setting: tests/conftest.py)
-    monkeypatch.setattr(later, "_STARTED", set())
+    monkeypatch.setattr(later, "_STARTED", {})
     monkeypatch.setattr(later, "GENERATE_AFTER_S", 0.0)
     started = []
     monkeypatch.setattr(later, "build_detached", lambda source: started.append(source))

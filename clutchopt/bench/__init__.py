@@ -24,7 +24,8 @@ from clutchopt.bench.scaleout import scaleout_rows
 from clutchopt.bench.start_up_designs import start_up_design_rows, start_up_solve_rows
 from clutchopt.bench.throughput import throughput_rows
 from clutchopt.bench.transient import effects_rows, stiffness_rows, tolerance_rows
-from clutchopt.bench.user_sweeps import user_sweep_rows
+from clutchopt.bench.user_sweeps import IN_THE_CACHE, NO_LIBRARY, user_sweep_rows
+from clutchopt.optimise.start_up_compiled import wait_for_builds
 
 
 @dataclass(frozen=True)
@@ -34,10 +35,13 @@ class BenchConfig:
     sweep_repeats: int = 5  # timed runs of each throughput sweep (the median is reported)
     processes: int = 2
     start_up_intervals: tuple[int, ...] = (8, 16, 32, 64)  # collocation intervals per phase measured
+    start_up_compiled: tuple[str, ...] = (IN_THE_CACHE, NO_LIBRARY)  # the compiled-code cache's states a start-up
+    # sweep is timed in (clutchopt.bench.user_sweeps.start_up_rows)
 
     @classmethod
     def quick(cls) -> "BenchConfig":
-        return cls(repeats=3, sweep_points=50, sweep_repeats=3, processes=2, start_up_intervals=(16,))
+        return cls(repeats=3, sweep_points=50, sweep_repeats=3, processes=2, start_up_intervals=(16,),
+                   start_up_compiled=(NO_LIBRARY,))  # (no library built: 8-26 s of compiling a start-up case)
 
 
 @dataclass(frozen=True)
@@ -63,8 +67,13 @@ SECTIONS: tuple[Section, ...] = (
                            "friction coefficient and allowable (0.5x-2x), into an infeasible region (1x-10x) and on "
                            "either side of the edge it meets (a point beyond it against one before it: "
                            "point_cost_vs_designed), ball_crusher over 250-1000 kW, and each start-up case over its "
-                           "driven inertia; points with and without a design, solver calls per point, points/s "
-                           "against the wedge paper sweep of its duty quantity", user_sweep_rows),
+                           "driven inertia (once per state of the compiled-code cache, compiled: 'in the cache', its "
+                           "NLPs' libraries built first, untimed, as a second run meets them; 'none', an empty cache, "
+                           "as a first run meets it less the build it starts beside itself; compiled_used: whether the "
+                           "run's solvers evaluated them by its end, looked for from the point after 2 s of solving; "
+                           "no build runs while anything is timed); points with and without a design, "
+                           "solver calls per point, points/s against the wedge paper sweep of its duty quantity",
+            user_sweep_rows),
     Section("resolve", "Warm re-solves along the same sweeps: warm IPOPT alone (before) and SQP first (now); times per "
                        "re-solve, largest relative difference of the verified optima", resolve_rows),
     Section("scaleout", "Scale-out: the ball design sweep (clutchopt sweep's code) in this process and on a local Dask "
@@ -105,6 +114,7 @@ def machine() -> dict:
 def run_bench(config: BenchConfig, sections: tuple[Section, ...] = SECTIONS, quick: bool = False) -> dict:
     report = {"machine": machine(), "config": asdict(config), "sections": {}}
     for section in (s for s in sections if s.quick or not quick):
+        wait_for_builds()  # (no compiler beside a section timed: a start-up sweep's build, started in the background)
         started = time.perf_counter()
         rows = section.rows(config)
         report["sections"][section.name] = {"title": section.title, "rows": rows,

@@ -5,12 +5,16 @@ accept), a sweep reaching into an infeasible region (the duty's quantity from 1x
 edge it meets (from 1x to its last point with a design, and from its first point without one to twice that: what a
 point without a design costs against one with a design, issue 26's "an infeasible point <= 20x a feasible one"),
 ``ball_crusher`` over 250-1000 kW, and for each start-up case a sweep of the driven inertia (0.6x to 1.4x, every
-point simulated; once, with a fiftieth of the points). Per sweep: the points, how many have a design and how many a
-verdict without one, solver calls per point, points/s (the median run of ``sweep_repeats``), and points/s against
-the wedge paper sweep of the duty's quantity measured in the same run."""
+point simulated; once, with a fiftieth of the points, per state of the compiled-code cache: :func:`start_up_rows`).
+Per sweep: the points, how many have a design and how many a verdict without one, solver calls per point, points/s
+(the median run of ``sweep_repeats``), and points/s against the wedge paper sweep of the duty's quantity measured in
+the same run."""
 
 from __future__ import annotations
 
+import os
+import tempfile
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -19,12 +23,15 @@ from clutchopt.bench.reference import bench_cases, reference_mode
 from clutchopt.bench.throughput import sweep_quantity
 from clutchopt.bench.timing import median_run
 from clutchopt.cases import Case, load_case
+from clutchopt.optimise.compiled import CACHE_ENV, compiled_library
+from clutchopt.optimise.start_up_compiled import BUILD_LATER_ENV, wait_for_builds
 
 CASES = Path(__file__).resolve().parents[2] / "cases"
 SPANS = ((0.5, 2.0), (0.7, 1.4), (0.9, 1.1))  # factors on the case's value, the widest the case accepts
 INTO_INFEASIBLE = (1.0, 10.0)  # factors on the duty's quantity: a sweep that reaches into its infeasible region
 ALLOWABLE = {"wedge": "allowable_pressure", "lever": "allowable_pressure", "cable": "allowable_cable_stress",
              "ball": "allowable_contact_stress"}  # the allowable each coupling's main constraint is sized by
+IN_THE_CACHE, NO_LIBRARY = "in the cache", "none"  # the states of the compiled-code cache a start-up sweep is timed in
 
 
 def _run(case: Case, name: str, values: np.ndarray, mode: str | None, repeats: int) -> dict:
@@ -94,13 +101,69 @@ def user_sweep_rows(config) -> list[dict]:
     crusher = load_case(CASES / "ball_crusher.toml")
     rows.append({"case": "ball_crusher", "quantity": "power", "span": "250-1000 kW",
                  **_run(crusher, "power", np.linspace(250e3, 1000e3, 2 * points), None, config.sweep_repeats)})
-    for path in sorted(CASES.glob("*_motor_start.toml")):
-        case = load_case(path)
-        factors = np.linspace(0.6, 1.4, max(config.sweep_points // 50, 3))
-        rows.append({"case": path.stem, "quantity": "driven_inertia", "span": "0.6x-1.4x",
-                     **_run(case, "driven_inertia", case.values["driven_inertia"] * factors, None, 1)})
+    rows += start_up_rows(config)
     for row in rows:
         del row["values"], row["designed_at"]
         row["vs_wedge_paper"] = row["points_per_s"] / reference
         row["point_cost_vs_designed"] = row.get("point_cost_vs_designed")
+        row["compiled"], row["compiled_used"] = row.get("compiled"), row.get("compiled_used")
     return rows
+
+
+def start_up_rows(config) -> list[dict]:
+    """Each start-up case's sweep of the driven inertia (0.6x-1.4x), timed once in each state of the compiled-code
+    cache of ``config.start_up_compiled`` (``compiled``): IN_THE_CACHE, the libraries of its NLPs built first, untimed
+    and in the foreground (the problems posed by a sweep run once untimed: a user's second run), or NO_LIBRARY (an
+    empty cache: a user's first run, less the build it starts beside itself). No build is started while a run is
+    timed (``CLUTCHOPT_BUILD_LATER=0``) and none runs; each timed run builds its problems anew, as a new process does.
+    ``compiled_used``: whether its solvers evaluated the compiled functions by its end (a sweep looks for them from
+    the point after 2 s of solving, :mod:`clutchopt.optimise.start_up_compiled`: the wedge's never gets there)."""
+    rows = []
+    for path in sorted(CASES.glob("*_motor_start.toml")):
+        case = load_case(path)
+        values = case.values["driven_inertia"] * np.linspace(0.6, 1.4, max(config.sweep_points // 50, 3))
+        for state in config.start_up_compiled:
+            with _compiled_state(state):
+                if state == IN_THE_CACHE:
+                    with _new_start_up_problems() as posed:
+                        _run(case, "driven_inertia", values, None, 1)
+                    for problem in posed:
+                        if problem.posed.library is None:  # (one already compiled: its library in the cache)
+                            compiled_library(problem.posed.solver("ipopt"))
+                with _new_start_up_problems() as built:
+                    row = _run(case, "driven_inertia", values, None, 1)
+            rows.append({"case": path.stem, "quantity": "driven_inertia", "span": "0.6x-1.4x", **row,
+                         "compiled": state, "compiled_used": any(p.posed.library is not None for p in built)})
+    return rows
+
+
+@contextmanager
+def _compiled_state(state: str):
+    """The environment of a start-up sweep timed in ``state`` (IN_THE_CACHE: the caller's cache; NO_LIBRARY: an empty
+    cache of its own), no build started in the background, and none running (one an earlier run started); the
+    caller's environment restored after it."""
+    kept = {name: os.environ.get(name) for name in (CACHE_ENV, BUILD_LATER_ENV)}
+    wait_for_builds()
+    with tempfile.TemporaryDirectory() as empty:
+        os.environ.update({BUILD_LATER_ENV: "0", **({} if state == IN_THE_CACHE else {CACHE_ENV: empty})})
+        try:
+            yield
+        finally:
+            for name, value in kept.items():
+                if value is None:
+                    os.environ.pop(name, None)
+                else:
+                    os.environ[name] = value
+
+
+@contextmanager
+def _new_start_up_problems():
+    """The start-up problems this process built dropped (the next run builds its own), and those built inside (a
+    list, filled on exit)."""
+    from clutchopt.optimise import problem
+
+    for key in [key for key in problem._CACHE if key[-1] is not None]:  # (key: ..., start-up structure)
+        del problem._CACHE[key]
+    built: list = []
+    yield built
+    built += [p for key, p in problem._CACHE.items() if key[-1] is not None]

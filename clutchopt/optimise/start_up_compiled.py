@@ -21,14 +21,17 @@ its sweeps do not compile beside the tests (``tests/conftest.py``).
 from __future__ import annotations
 
 import os
+import subprocess
+import time
 from pathlib import Path
 
-from clutchopt.optimise.compiled import (build_detached, cache_folder, compiler, generated_source, library_path,
-                                         nlp_functions, ready_library)
+from clutchopt.optimise.compiled import (BUILD_TIMEOUT_S, build_detached, cache_folder, compiler, generated_source,
+                                         library_path, nlp_functions, ready_library)
 
 BUILD_LATER_ENV = "CLUTCHOPT_BUILD_LATER"  # "0": no build started (a library in the cache is still used)
 GENERATE_AFTER_S = 2.0  # the solver seconds a problem's sweep points take before its C is generated (0.1-0.3 s)
-_STARTED: set[Path] = set()  # the builds this process started (one a library, whatever the sweeps)
+_STARTED: dict[Path, subprocess.Popen | None] = {}  # the builds this process started (one a library, whatever the
+# sweeps): their processes (None: not started, one of another process's under way), for :func:`wait_for_builds`
 
 
 class CompiledLater:
@@ -58,8 +61,7 @@ class CompiledLater:
         self.library = None if source is None else library_path(source)
         if self.library is not None and not self.look() and self.library not in _STARTED \
                 and os.environ.get(BUILD_LATER_ENV, "1") != "0":
-            _STARTED.add(self.library)
-            build_detached(source)
+            _STARTED[self.library] = build_detached(source)
 
     def look(self) -> bool:
         """Whether the problem's solvers evaluate the compiled functions: from now on where the cache has them whole."""
@@ -76,3 +78,28 @@ def compiled_when_ready(posed, previous=None) -> bool:
     evaluate its NLP's functions compiled where the cache has them, their build started (once) where it has not,
     once its points took GENERATE_AFTER_S of solving; whether they do now."""
     return posed.built("compiled_later", "ipopt", lambda _: CompiledLater(posed)).after(previous)
+
+
+def wait_for_builds() -> int:
+    """Returns once no build this process asked for is under way (its process ended; one another process had under
+    way: its ``.building`` marker gone, or older than twice BUILD_TIMEOUT_S, as :func:`build_detached` judges it): what
+    a benchmark waits for before it times anything, so that no compiler runs beside what it times. How many builds
+    it waited for."""
+    waited = 0
+    for library, build in list(_STARTED.items()):
+        marker, running = library.with_suffix(".building"), build is not None and build.poll() is None
+        if running:
+            build.wait()
+        elif build is None and _under_way(marker):
+            running = True
+            while _under_way(marker):
+                time.sleep(0.2)
+        waited += running
+    return waited
+
+
+def _under_way(marker: Path) -> bool:
+    try:
+        return time.time() - marker.stat().st_mtime < 2 * BUILD_TIMEOUT_S
+    except OSError:  # (gone)
+        return False
