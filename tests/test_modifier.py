@@ -17,8 +17,7 @@ import pytest
 
 from clutchopt.cases import load_case
 from clutchopt.model import at_least, at_most
-from clutchopt.optimise.modifier import (first_order, modified, modifiers, offset_name, problem_with_modifiers,
-                                         slope_name)
+from clutchopt.optimise.modifier import first_order, modified, modifiers, offset_name, slope_name
 from clutchopt.optimise.problem import case_problem
 from clutchopt.start_up.simulation import run_start_up, start_up_model
 from tests.conftest import CASES
@@ -89,7 +88,7 @@ def test_a_step_binds_the_corrected_figure_and_nears_the_limit(at_the_bound):
     case, problem, solution = at_the_bound
     values = modifiers(problem, case, solution, {"link_stress"}, {})
     moved = replace(case, values={**case.values, **values})
-    step = problem_with_modifiers(problem)._solve(case, warm=solution, nlp_case=moved, cold=False)
+    step = problem.modified_problem._solve(case, warm=solution, nlp_case=moved, cold=False)
     w1 = step.design["weight_mass"]
     w0 = solution.design["weight_mass"]
     hand = w0 + (solution.start_up["peak_link_stress_simulated"] - L) / 49.9e6

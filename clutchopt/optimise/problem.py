@@ -26,7 +26,7 @@ from clutchopt.optimise.diagnosis import diagnose
 from clutchopt.optimise.failed_starts import FailedStarts
 from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_start, nearest_integers, relaxation_seed,
                                          within)
-from clutchopt.optimise.modifier import VARIANT, first_order
+from clutchopt.optimise.modifier import VARIANT, first_order, with_modifiers
 from clutchopt.optimise.own_shift import ForeignShifts, carried_by, climbing, lighter_above, own_entry, stepped
 from clutchopt.optimise.polish import polishable, polished
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
@@ -348,6 +348,13 @@ class Problem:
         (built once: :func:`problem_for`), its IPOPT optimum not polished (``SolverOptions.polish``): the start-up
         solves start from the sizing as they did before the polish, each with its own tolerance contract."""
         return problem_for(self.posed.base, self.objective.name, replace(self.options, polish=False))
+
+    @property
+    def modified_problem(self) -> "Problem":
+        """This problem posed with modifier adaptation's parameters
+        (:func:`~clutchopt.optimise.modifier.with_modifiers`): built once a process, on first use (0.06 s for the
+        cable, its warm IPOPT 0.04 s more)."""
+        return problem_for(with_modifiers(self.posed.base), self.objective.name, self.options, self.start_up.s)
 
     def _held(self, solution: Solution) -> bool:
         """:func:`held_by_the_mesh` for this problem's start-up."""
