@@ -25,8 +25,21 @@ def paper_toggles(x, p):
                    width, x.link_diameter)
 
 
+def _case_limits(t: Toggles, x, p):
+    """The limits the case names, met in every mode: the housing's D_max and the toggle's axial span L_max.
+
+    In paper mode both are fixed by the paper's rules for l_2 and B_cp at the case's angles: a case that breaks one
+    is infeasible whatever m and d_l, which the float64 re-check shows as a row with its margin."""
+    return [
+        at_most("outer_diameter", t.mean_diameter + t.lining_width + 2.0 * p.shell_thickness, p.outer_diameter_max,
+                equation="case", unit="mm", description="d_cp + b + 2 s <= D_max"),
+        at_most("toggle_span", toggle_span(t.lever_length, t.limit_angle), p.toggle_span_max, equation="case",
+                unit="mm", description="2 l_2 cos gamma_pr <= L_max"),
+    ]
+
+
 PAPER = MODEL.formulation("paper", "Lever CFC, paper method: l_2 and B_cp by the paper's rules, m and d_l free",
-                          PAPER_VARIABLES, paper_toggles)
+                          PAPER_VARIABLES, paper_toggles, _case_limits)
 
 
 # --- Design mode: geometry free within the housing ------------------------------------------------------------------
@@ -55,10 +68,7 @@ def _housing_constraints(t: Toggles, x, p):
         at_least("lever_length", t.lever_length * (cos(t.limit_angle) - cos(t.engagement_angle)),
                  p.lining_thickness, equation="l_2 rule", unit="mm",
                  description="l_2 (cos gamma_pr - cos gamma_0) >= delta"),
-        at_most("outer_diameter", t.mean_diameter + t.lining_width + 2.0 * p.shell_thickness, p.outer_diameter_max,
-                equation="case", unit="mm", description="d_cp + b + 2 s <= D_max"),
-        at_most("toggle_span", toggle_span(t.lever_length, t.limit_angle), p.toggle_span_max, equation="case",
-                unit="mm", description="2 l_2 cos gamma_pr <= L_max"),
+        *_case_limits(t, x, p),
         at_least("lining_clears_flange", t.mean_diameter - t.lining_width, t.flange_diameter, equation="geometry",
                  unit="mm", description="inner lining diameter d_cp - b >= d_phi"),
         at_least("flange_over_shaft", t.flange_diameter, p.flange_hub_ratio * p.shaft_diameter, equation="geometry",
