@@ -13,11 +13,6 @@ from clutchopt.optimise import solve_case
 from conftest import CASES
 
 
-@pytest.mark.xfail(strict=True, reason="paper mode poses the paper's geometry as given and checks no flank angle: the "
-                   "wedge's release condition alpha >= atan f + margin (above eq. 24) is a constraint of geometry mode "
-                   "only (formulations/wedge/modes.py, _constructive_constraints), and no case check refuses a fixed "
-                   "self-locking flank angle as the cable's check_threads refuses a self-locking thread (errata C8); "
-                   "options.choose in paper mode then ranks a self-locking pair best")
 def test_a_self_locking_wedge_is_not_optimal_in_paper_mode_when_geometry_mode_proves_it_infeasible():
     # wedge_paper.toml at f = 0.3 (organic_dry, sintered_bronze_dry of the library): the flank half-angle 15 deg is
     # below atan(0.3) + 2 deg = 16.70 + 2 = 18.70 deg (above eq. 24): the weights wedge in the groove and do not
@@ -107,11 +102,6 @@ def test_the_sensitivity_to_a_duty_quantity_a_start_up_default_follows_is_the_ed
     assert e["acceleration_time"] == pytest.approx(e["max_start_time"], rel=1e-12)
 
 
-@pytest.mark.xfail(strict=True, reason="paper mode checks the paper's own constraints only: [limits] outer_diameter_max "
-                   "(and the lever's toggle_span_max) enter the constructive constraints of design/geometry mode alone "
-                   "(lever, wedge and ball modes.py), so paper mode calls a design optimal whose outer diameter is over "
-                   "the case's limit, with no constraint row and no word that the limit was not checked; the same "
-                   "class as the self-locking wedge above")
 @pytest.mark.parametrize("name, limit, outer", [("lever_centrifuge", 0.25, 0.2996249278),
                                                 ("ball_crusher", 0.5, 0.7006886274),
                                                 ("wedge_paper", 0.1, 0.14)])

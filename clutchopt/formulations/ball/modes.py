@@ -27,8 +27,11 @@ def _paper_clutch(x, p):
 
 
 def _case_limits(c: BallClutch, x, p):
-    """The limit the case names, met in every mode: the drum's outer diameter D_max."""
+    """The limits the case names, met in every mode: the longest drum for its radius, K5 = l / R_a at most
+    ``width_ratio_max``, and the drum's outer diameter D_max."""
     return [
+        at_most("width_ratio_max", c.width / c.radius, p.width_ratio_max, equation="(3)",
+                description="K5 = l_a / R_a in range"),
         at_most("outer_diameter", 2 * (c.radius + p.shell_thickness), p.outer_diameter_max, equation="case",
                 unit="mm", description="2 (R_a + s) <= D_max"),
     ]
@@ -74,7 +77,6 @@ def _design_constraints(c: BallClutch, x, p):
         at_most("contact_stress", c.contact_stress(p), p.allowable_contact_stress, equation="(9)", unit="MPa",
                 description="Hertz stress of the outer balls within [p_0]"),
         at_least("width_ratio_min", k5, p.width_ratio_min, equation="(3)", description="K5 = l_a / R_a in range"),
-        at_most("width_ratio_max", k5, p.width_ratio_max, equation="(3)", description="K5 = l_a / R_a in range"),
         *_case_limits(c, x, p),
         at_least("ball_layers", c.radius * (1 - c.filling), p.min_ball_layers * 2 * c.ball_radius, equation="model",
                  unit="mm", scale=c.radius, description="the layer R_a - R_1 holds several balls"),
