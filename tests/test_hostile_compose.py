@@ -110,9 +110,17 @@ def test_paper_mode_meets_the_case_s_outer_diameter_limit_or_says_it_cannot(name
     # lever.md, B_cp = 2 (S_ov + a delta)); the wedge's 2 (lambda r1 + s) = 2 (1.2 x 50 + 10) = 140 mm; the ball's
     # drum 2 (R + s) = 700.69 mm at its paper-mode optimum. Each case with [limits] outer_diameter_max below that
     # (250, 100, 500 mm) was solved `optimal` in paper mode (exit 0); the other mode of the same case finds no design
-    # (the ball's proven infeasible, interval branch and bound).
+    # (the ball's proven infeasible, interval branch and bound). Paper mode now poses the limit (modes.py,
+    # _case_limits): the lever's and wedge's diameters are fixed by the case, so the row shows the paper's diameter
+    # over the limit; the ball's radius is free, so the limit binds and the drum must grow long: K5 = l / R_a at
+    # most the case's width_ratio_max = 3 gives (leading torque ~ l R^4, eq. 4) at most 3 (0.22 / 0.32034)^5 / 0.5
+    # = 0.917 of the torque the 700.69 mm drum carries at K5 = 0.5: infeasible, proven
+    # (tests/test_paper_mode_case_limits.py).
     case = load_case(CASES / f"{name}.toml").with_values(outer_diameter_max=limit)
     solution = solve_case(case, "paper")
-    shown = solution.outputs.get("outer_diameter", solution.outputs["envelope_diameter"]).value
-    assert shown == pytest.approx(outer, rel=1e-9) and shown > limit
-    assert solution.status != "optimal"
+    assert solution.status == "infeasible" and "outer_diameter" in solution.diagnosis
+    row = next(c for c in solution.constraints if c.name == "outer_diameter")
+    assert row.limit == limit
+    if name != "ball_crusher":  # the ball's row is at the solver's least-infeasible point (its proof: test_paper_
+        # mode_case_limits.py)
+        assert row.value == pytest.approx(outer, rel=1e-9) and row.margin == pytest.approx((limit - outer) / limit)
