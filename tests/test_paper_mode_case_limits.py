@@ -9,6 +9,7 @@ import pytest
 from clutchopt.cases import load_case
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise import solve_case
+from clutchopt.optimise.design import design_case
 from clutchopt.optimise.verify import check_design
 from conftest import CASES
 
@@ -38,7 +39,7 @@ def test_lever_paper_mode_checks_the_housing_diameter_and_the_toggle_span():
     assert _rows(tight)["toggle_span"].margin == pytest.approx((0.24 - span) / 0.24, rel=1e-12)
 
 
-def test_wedge_paper_mode_checks_release_and_diameter_and_choose_ranks_no_self_locking_pair():
+def test_wedge_paper_mode_checks_release_and_diameter_and_choose_ranks_no_self_locking_pair(tmp_path):
     # wedge_paper.toml: alpha = 15 deg against atan f + 2 deg (above eq. 24): f = 0.15 gives 8.5308 + 2 = 10.5308
     # deg, margin (15 - 10.5308) / 10.5308 = 0.42440; the housing 2 (lambda r1 + s) = 2 (1.2 x 50 + 10) = 140 mm
     # within 200 mm. At f = 0.3 the limit is 16.6992 + 2 = 18.6992 deg > 15 deg: infeasible, margin -0.19783.
@@ -56,6 +57,16 @@ def test_wedge_paper_mode_checks_release_and_diameter_and_choose_ranks_no_self_l
     assert locking.status == "infeasible" and "not_self_locking" in locking.diagnosis
     assert _rows(locking)["not_self_locking"].margin == pytest.approx((math.radians(15) - limit) / limit, rel=1e-12)
     assert (math.radians(15) - limit) / limit == pytest.approx(-0.19783, abs=1e-5)
+    # options.choose between the library's pairs (f 0.18, 0.05, 0.3): the bronze one self-locks, so it is shown
+    # infeasible (ranked after the optimal ones), not best; the lightest that releases is steel on steel, dry.
+    path = tmp_path / "choose.toml"
+    path.write_text((CASES / "wedge_paper.toml").read_text().replace("friction_coefficient = 0.15\n", "")
+                    + '\n[options]\nchoose = { friction_pair = ["steel_steel_dry", "steel_steel_oiled", '
+                    '"sintered_bronze_dry"] }\n')
+    ranked = design_case(load_case(path), "paper")
+    assert [(d.choice["friction_pair"], d.solution.status) for d in ranked] == [
+        ("steel_steel_dry", "optimal"), ("steel_steel_oiled", "optimal"), ("sintered_bronze_dry", "infeasible")]
+    assert "not_self_locking" in ranked[2].solution.diagnosis
 
 
 def test_ball_paper_mode_checks_the_drum_diameter_and_the_longest_drum():
