@@ -23,7 +23,8 @@ def test_lever_paper_mode_checks_the_housing_diameter_and_the_toggle_span():
     # shortest links l_2 = delta / (cos gamma_pr - cos gamma_0) = 4 / (0.9986295 - 0.9659258) = 122.3103 mm, so the
     # toggle spans 2 l_2 cos gamma_pr = 244.2853 mm (limit 300 mm: margin (300 - 244.2853) / 300 = 0.18572); the
     # housing d_cp + b + 2 s = 299.62 mm (docs/lever.md) is within 360 mm. With toggle_span_max = 240 mm no m, d_l
-    # helps: infeasible, naming toggle_span.
+    # helps: infeasible, naming toggle_span. The flange d_phi = 80 mm against limits.flange_hub_ratio 1.6 x d_b 42 mm
+    # = 67.2 mm: margin 12.8 / 67.2 = 0.19048; at ratio 2 (84 mm) the paper's flange is too small: infeasible.
     l2 = 4e-3 / (math.cos(math.radians(3)) - math.cos(math.radians(15)))
     span = 2 * l2 * math.cos(math.radians(3))
     assert l2 == pytest.approx(122.3103e-3, rel=1e-6) and span == pytest.approx(244.2853e-3, rel=1e-6)
@@ -34,6 +35,9 @@ def test_lever_paper_mode_checks_the_housing_diameter_and_the_toggle_span():
     assert rows["toggle_span"].value == pytest.approx(span, rel=1e-12)
     assert rows["toggle_span"].margin == pytest.approx((0.3 - span) / 0.3, rel=1e-12)
     assert rows["outer_diameter"].value == pytest.approx(0.2996249278, rel=1e-9) and not rows["outer_diameter"].active
+    assert rows["flange_over_shaft"].margin == pytest.approx(12.8 / 67.2, rel=1e-12)
+    narrow = solve_case(case.with_values(flange_hub_ratio=2.0), "paper")
+    assert narrow.status == "infeasible" and "flange_over_shaft" in narrow.diagnosis
     tight = solve_case(case.with_values(toggle_span_max=0.24), "paper")
     assert tight.status == "infeasible" and "toggle_span" in tight.diagnosis
     assert _rows(tight)["toggle_span"].margin == pytest.approx((0.24 - span) / 0.24, rel=1e-12)

@@ -26,10 +26,9 @@ def paper_toggles(x, p):
 
 
 def _case_limits(t: Toggles, x, p):
-    """The limits the case names, met in every mode: the housing's D_max and the toggle's axial span L_max.
-
-    In paper mode both are fixed by the paper's rules for l_2 and B_cp at the case's angles: a case that breaks one
-    is infeasible whatever m and d_l, which the float64 re-check shows as a row with its margin."""
+    """The housing limits the case names, met in every mode: the outer diameter D_max and the toggle's axial span
+    L_max. In paper mode both are fixed by the paper's rules for l_2 and B_cp at the case's angles: a case that
+    breaks one is infeasible whatever m and d_l, which the float64 re-check shows as a row with its margin."""
     return [
         at_most("outer_diameter", t.mean_diameter + t.lining_width + 2.0 * p.shell_thickness, p.outer_diameter_max,
                 equation="case", unit="mm", description="d_cp + b + 2 s <= D_max"),
@@ -38,8 +37,18 @@ def _case_limits(t: Toggles, x, p):
     ]
 
 
+def _flange_over_shaft(t: Toggles, p):
+    """The case's limits.flange_hub_ratio, met in every mode: the spring flange is that much wider than the shaft."""
+    return at_least("flange_over_shaft", t.flange_diameter, p.flange_hub_ratio * p.shaft_diameter,
+                    equation="geometry", unit="mm", description="d_phi >= ratio * d_b")
+
+
+def _paper_limits(t: Toggles, x, p):
+    return [*_case_limits(t, x, p), _flange_over_shaft(t, p)]
+
+
 PAPER = MODEL.formulation("paper", "Lever CFC, paper method: l_2 and B_cp by the paper's rules, m and d_l free",
-                          PAPER_VARIABLES, paper_toggles, _case_limits)
+                          PAPER_VARIABLES, paper_toggles, _paper_limits)
 
 
 # --- Design mode: geometry free within the housing ------------------------------------------------------------------
@@ -71,8 +80,7 @@ def _housing_constraints(t: Toggles, x, p):
         *_case_limits(t, x, p),
         at_least("lining_clears_flange", t.mean_diameter - t.lining_width, t.flange_diameter, equation="geometry",
                  unit="mm", description="inner lining diameter d_cp - b >= d_phi"),
-        at_least("flange_over_shaft", t.flange_diameter, p.flange_hub_ratio * p.shaft_diameter, equation="geometry",
-                 unit="mm", description="d_phi >= ratio * d_b"),
+        _flange_over_shaft(t, p),
     ]
 
 
