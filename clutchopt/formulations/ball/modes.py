@@ -30,7 +30,7 @@ def _case_limits(c: BallClutch, x, p):
     """The limits the case names, met in every mode: the longest drum for its radius, K5 = l / R_a at most
     ``width_ratio_max``, and the drum's outer diameter D_max."""
     return [
-        at_most("width_ratio_max", c.width / c.radius, p.width_ratio_max, equation="(3)",
+        at_most("width_ratio_max", c.width_ratio, p.width_ratio_max, equation="(3)",
                 description="K5 = l_a / R_a in range"),
         at_most("outer_diameter", 2 * (c.radius + p.shell_thickness), p.outer_diameter_max, equation="case",
                 unit="mm", description="2 (R_a + s) <= D_max"),
@@ -42,7 +42,7 @@ def _paper_constraints(c: BallClutch, x, p):
         at_least("torque", leading_torque(p.friction_coefficient, p.density, p.packing_density, p.speed, c.width,
                                           c.radius, c.filling), required(p), equation="(4)", unit="N*m",
                  description="leading-order torque (cylinder, no shovels) covers M_c"),
-        at_least("width_ratio", c.width / c.radius, p.width_ratio, equation="(3), (5)",
+        at_least("width_ratio", c.width_ratio, p.width_ratio, equation="(3), (5)",
                  description="K5 = l / R_a at least the case's K5"),
         *_case_limits(c, x, p),
     ]
@@ -70,7 +70,7 @@ def _design_clutch(x, p):
 
 
 def _design_constraints(c: BallClutch, x, p):
-    k5 = c.width / c.radius
+    k5 = c.width_ratio
     return [
         at_least("torque", c.torque(p), required(p), equation="(8)", unit="N*m",
                  description="torque of cylinder and end faces covers M_c"),
