@@ -13,11 +13,6 @@ from clutchopt.optimise import solve_case
 from conftest import CASES
 
 
-@pytest.mark.xfail(strict=True, reason="paper mode poses the paper's geometry as given and checks no flank angle: the "
-                   "wedge's release condition alpha >= atan f + margin (above eq. 24) is a constraint of geometry mode "
-                   "only (formulations/wedge/modes.py, _constructive_constraints), and no case check refuses a fixed "
-                   "self-locking flank angle as the cable's check_threads refuses a self-locking thread (errata C8); "
-                   "options.choose in paper mode then ranks a self-locking pair best")
 def test_a_self_locking_wedge_is_not_optimal_in_paper_mode_when_geometry_mode_proves_it_infeasible():
     # wedge_paper.toml at f = 0.3 (organic_dry, sintered_bronze_dry of the library): the flank half-angle 15 deg is
     # below atan(0.3) + 2 deg = 16.70 + 2 = 18.70 deg (above eq. 24): the weights wedge in the groove and do not
@@ -108,11 +103,6 @@ def test_the_sensitivity_to_a_duty_quantity_a_start_up_default_follows_is_the_ed
     assert e["acceleration_time"] == pytest.approx(e["max_start_time"], rel=1e-12)
 
 
-@pytest.mark.xfail(strict=True, reason="paper mode checks the paper's own constraints only: [limits] outer_diameter_max "
-                   "(and the lever's toggle_span_max) enter the constructive constraints of design/geometry mode alone "
-                   "(lever, wedge and ball modes.py), so paper mode calls a design optimal whose outer diameter is over "
-                   "the case's limit, with no constraint row and no word that the limit was not checked; the same "
-                   "class as the self-locking wedge above")
 @pytest.mark.parametrize("name, limit, outer", [("lever_centrifuge", 0.25, 0.2996249278),
                                                 ("ball_crusher", 0.5, 0.7006886274),
                                                 ("wedge_paper", 0.1, 0.14)])
@@ -121,9 +111,17 @@ def test_paper_mode_meets_the_case_s_outer_diameter_limit_or_says_it_cannot(name
     # lever.md, B_cp = 2 (S_ov + a delta)); the wedge's 2 (lambda r1 + s) = 2 (1.2 x 50 + 10) = 140 mm; the ball's
     # drum 2 (R + s) = 700.69 mm at its paper-mode optimum. Each case with [limits] outer_diameter_max below that
     # (250, 100, 500 mm) was solved `optimal` in paper mode (exit 0); the other mode of the same case finds no design
-    # (the ball's proven infeasible, interval branch and bound).
+    # (the ball's proven infeasible, interval branch and bound). Paper mode now poses the limit (modes.py,
+    # _case_limits): the lever's and wedge's diameters are fixed by the case, so the row shows the paper's diameter
+    # over the limit; the ball's radius is free, so the limit binds and the drum must grow long: K5 = l / R_a at
+    # most the case's width_ratio_max = 3 gives (leading torque ~ l R^4, eq. 4) at most 3 (0.22 / 0.32034)^5 / 0.5
+    # = 0.917 of the torque the 700.69 mm drum carries at K5 = 0.5: infeasible, proven
+    # (tests/test_paper_mode_case_limits.py).
     case = load_case(CASES / f"{name}.toml").with_values(outer_diameter_max=limit)
     solution = solve_case(case, "paper")
-    shown = solution.outputs.get("outer_diameter", solution.outputs["envelope_diameter"]).value
-    assert shown == pytest.approx(outer, rel=1e-9) and shown > limit
-    assert solution.status != "optimal"
+    assert solution.status == "infeasible" and "outer_diameter" in solution.diagnosis
+    row = next(c for c in solution.constraints if c.name == "outer_diameter")
+    assert row.limit == limit
+    if name != "ball_crusher":  # the ball's row is at the solver's least-infeasible point (its proof: test_paper_
+        # mode_case_limits.py)
+        assert row.value == pytest.approx(outer, rel=1e-9) and row.margin == pytest.approx((limit - outer) / limit)

@@ -151,9 +151,9 @@ def test_a_robust_sweeps_largest_failure_probability_has_its_upper_bound(tmp_pat
 
 def test_a_system_chance_near_one_of_a_range_does_not_claim_a_zero_failure_probability(tmp_path, capsys):
     """--robust system_chance=0.999999999 of cases/wedge_motor_start_scatter.toml (f uniform on 0.12 to 0.18): 1 - P
-    = 1e-9 in 7 shares (the closed-form constraints' and each of the 6 start-up limits f moves), 1e-9 / 7 =
-    1.4286e-10 each, beta = -Phi^-1(1e-9 / 7) = 6.306, the start time's point f = 0.12 + 0.06 x 1.4286e-10 =
-    0.12 + 8.57e-12. The start time is active at its performance point (margin -2.4e-7, within the start-up's
+    = 1e-9 in 8 shares (each constraint f moves: the closed-form finger_bending and not_self_locking, the case's
+    release limit that paper mode poses too, and the 6 start-up limits), 1e-9 / 8 = 1.25e-10 each, beta =
+    -Phi^-1(1e-9 / 8) = 6.33, the start time's point f = 0.12 + 0.06 x 1.25e-10 = 0.12 + 7.5e-12. The start time is active at its performance point (margin -2.4e-7, within the start-up's
     tolerance 1e-6). It was reported 0 ("IS: no failure in 10 samples": no sample fails by more than the tolerance so
     near a range's end), then Phi(-6.306) = 1.4e-10 (FORM at that point, as if the limit were met there exactly);
     but the start there is 2.4e-6 s beyond 10 s, and f must rise to the limit's strict crossing before it is met:
@@ -167,7 +167,7 @@ def test_a_system_chance_near_one_of_a_range_does_not_claim_a_zero_failure_proba
     from clutchopt.cases import load_case
     from clutchopt.start_up.simulation import run_start_up, start_up_model
 
-    share = 1e-9 / 7
+    share = 1e-9 / 8
     assert main(["solve", str(CASES / "wedge_motor_start_scatter.toml"), "--robust", "system_chance=0.999999999",
                  "--samples", "100", "--starts", "10", "--no-store", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
@@ -175,7 +175,7 @@ def test_a_system_chance_near_one_of_a_range_does_not_claim_a_zero_failure_proba
     start_time = robust["reliability"]["constraints"]["start_time"]
     assert abs(check["margin"]) <= check["tolerance"] == 1e-6  # active at its performance point
     point = robust["corners"]["start_time"]["friction_coefficient"]
-    assert point - 0.12 == pytest.approx(0.06 * share, rel=1e-3)  # 8.57e-12
+    assert point - 0.12 == pytest.approx(0.06 * share, rel=1e-3)  # 7.5e-12
     case = load_case(CASES / "wedge_motor_start_scatter.toml")
     simulated = run_start_up(start_up_model(case.with_values(friction_coefficient=point), "paper", out["design"]))
     assert simulated.headline["start_time"] == pytest.approx(10.0, rel=1e-6)  # at its limit where it is designed
@@ -194,8 +194,9 @@ def test_a_system_chance_near_one_of_a_range_does_not_claim_a_zero_failure_proba
 
 
 def test_a_system_allocation_near_a_ranges_end_settles(capsys):
-    """--robust system_chance=0.9999999 of cases/wedge_motor_start_scatter.toml: 1 - P = 1e-7 in 7 shares, 1.4286e-8
-    each, the allocation's one constraint the finger, whose point lies at f's upper end, 0.18 - 0.06 x 1.4286e-8:
+    """--robust system_chance=0.9999999 of cases/wedge_motor_start_scatter.toml: 1 - P = 1e-7 in 8 shares, 1.25e-8
+    each; the allocation's closed-form constraints, the finger and not_self_locking (which cannot fail on f's range:
+    alpha 15 deg > atan 0.18 + 2 deg = 12.2 deg), two shares, 2.5e-8, all the finger's, whose point lies at f's upper end, 0.18 - 0.06 x 1.4286e-8:
     there the mass hardly changes with the finger's beta (its share moves f by 1e-9), so the NLP leaves the risk
     budget unused (system_risk 4 % short of it, the system 1.32e-8 by SORM). The budget was then raised by
     (1 - P) / P(system) regardless, 12-fold, the NLP took it the next time (beta 5.09: 1.5e-7), the budget came down
@@ -208,7 +209,7 @@ def test_a_system_allocation_near_a_ranges_end_settles(capsys):
 
     from clutchopt.cli import main
 
-    share = 1e-7 / 7
+    share = 2 * 1e-7 / 8
     assert main(["solve", str(CASES / "wedge_motor_start_scatter.toml"), "--robust", "system_chance=0.9999999",
                  "--samples", "100", "--starts", "10", "--no-store", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
@@ -227,7 +228,8 @@ def test_a_system_allocation_near_a_ranges_end_settles(capsys):
 def test_the_reports_system_failure_probability_of_a_start_up_holds_its_limits():
     """report --robust system_chance=0.99 of cases/wedge_motor_start_scatter.toml: the scatter table's "system
     P(fail)" of the robust design was 0.00143, the closed-form constraints' importance sampling alone (1 - P = 0.01 in
-    7 shares of 0.00143: the constraints' and the 6 start-up limits f moves), while the design the page reviews fails
+    7 shares of 0.00143: the constraints' and the 6 start-up limits f moves; since paper mode poses the release limit
+    not_self_locking, f moves 8 and the closed-form constraints have two shares, 0.0025, the finger's alone), while the design the page reviews fails
     with up to the union bound 0.00143 + each start-up limit's estimate (0.00414 in the text: start_time alone about
     its share), the number `solve` prints as "System with the start-up limits". Now the table's is that one."""
     from clutchopt.cases import load_case
@@ -238,7 +240,7 @@ def test_the_reports_system_failure_probability_of_a_start_up_holds_its_limits()
     result = solve_robust(case, SYSTEM_CHANCE, 0.99, samples=100, starts=10)
     static, system = result.reliability.system, result.design_failure()
     start_time = result.reliability.constraints["start_time"].best.probability
-    assert static.probability == pytest.approx(0.01 / 7, rel=0.05) and start_time > 0.01 / 7 / 2
+    assert static.probability == pytest.approx(2 * 0.01 / 8, rel=0.05) and start_time > 0.01 / 8 / 2
     assert system.probability >= static.probability + start_time and system.high <= 0.01
     nominal, robust = scatter(case, result)[0][0].rows
     assert robust["system P(fail)"] == (f"{system.probability:.3g} ({system.low:.3g} to {system.high:.3g}, "

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 from clutchopt.formulations.ball.contact import contact_stress, curvatures, hertz_coefficients
@@ -33,6 +34,11 @@ class BallClutch:
     ball_radius: Any
     conformity: Any
     rows: Any
+
+    @cached_property
+    def width_ratio(self):
+        """K5 = l / R_a (3): one expression for every row that reads it."""
+        return self.width / self.radius
 
     def balls(self, p):
         return ball_mass(p, self.radius, self.width, self.filling)

@@ -25,8 +25,30 @@ def paper_toggles(x, p):
                    width, x.link_diameter)
 
 
+def _case_limits(t: Toggles, x, p):
+    """The housing limits the case names, met in every mode: the outer diameter D_max and the toggle's axial span
+    L_max. In paper mode both are fixed by the paper's rules for l_2 and B_cp at the case's angles: a case that
+    breaks one is infeasible whatever m and d_l, which the float64 re-check shows as a row with its margin."""
+    return [
+        at_most("outer_diameter", t.mean_diameter + t.lining_width + 2.0 * p.shell_thickness, p.outer_diameter_max,
+                equation="case", unit="mm", description="d_cp + b + 2 s <= D_max"),
+        at_most("toggle_span", toggle_span(t.lever_length, t.limit_angle), p.toggle_span_max, equation="case",
+                unit="mm", description="2 l_2 cos gamma_pr <= L_max"),
+    ]
+
+
+def _flange_over_shaft(t: Toggles, p):
+    """The case's limits.flange_hub_ratio, met in every mode: the spring flange is that much wider than the shaft."""
+    return at_least("flange_over_shaft", t.flange_diameter, p.flange_hub_ratio * p.shaft_diameter,
+                    equation="geometry", unit="mm", description="d_phi >= ratio * d_b")
+
+
+def _paper_limits(t: Toggles, x, p):
+    return [*_case_limits(t, x, p), _flange_over_shaft(t, p)]
+
+
 PAPER = MODEL.formulation("paper", "Lever CFC, paper method: l_2 and B_cp by the paper's rules, m and d_l free",
-                          PAPER_VARIABLES, paper_toggles)
+                          PAPER_VARIABLES, paper_toggles, _paper_limits)
 
 
 # --- Design mode: geometry free within the housing ------------------------------------------------------------------
@@ -55,14 +77,10 @@ def _housing_constraints(t: Toggles, x, p):
         at_least("lever_length", t.lever_length * (cos(t.limit_angle) - cos(t.engagement_angle)),
                  p.lining_thickness, equation="l_2 rule", unit="mm",
                  description="l_2 (cos gamma_pr - cos gamma_0) >= delta"),
-        at_most("outer_diameter", t.mean_diameter + t.lining_width + 2.0 * p.shell_thickness, p.outer_diameter_max,
-                equation="case", unit="mm", description="d_cp + b + 2 s <= D_max"),
-        at_most("toggle_span", toggle_span(t.lever_length, t.limit_angle), p.toggle_span_max, equation="case",
-                unit="mm", description="2 l_2 cos gamma_pr <= L_max"),
+        *_case_limits(t, x, p),
         at_least("lining_clears_flange", t.mean_diameter - t.lining_width, t.flange_diameter, equation="geometry",
                  unit="mm", description="inner lining diameter d_cp - b >= d_phi"),
-        at_least("flange_over_shaft", t.flange_diameter, p.flange_hub_ratio * p.shaft_diameter, equation="geometry",
-                 unit="mm", description="d_phi >= ratio * d_b"),
+        _flange_over_shaft(t, p),
     ]
 
 

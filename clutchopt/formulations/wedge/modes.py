@@ -31,8 +31,21 @@ def paper_weight_set(x, p):
                      p.weight_height, equivalent_width(x.weight_mass, p.density, p.sector_angle, r2, p.weight_height))
 
 
+def _case_limits(w: WeightSet, x, p):
+    """The limits the case names, met in every mode: the weights release (above (24)) and the housing's D_max.
+
+    In paper mode both are fixed by the case's geometry (alpha, r1, lambda): a case that breaks one is infeasible
+    whatever m_r and d_n, which the float64 re-check shows as a row with its margin."""
+    return [
+        at_least("not_self_locking", w.flank_angle, self_locking_angle(p.friction_coefficient) + p.self_locking_margin,
+                 equation="above (24)", unit="deg", description="alpha >= atan f + margin"),
+        at_most("outer_diameter", 2 * (w.r2 + p.shell_thickness), p.outer_diameter_max, equation="case", unit="mm",
+                description="2 (r2 + shell) <= D_max"),
+    ]
+
+
 PAPER = MODEL.formulation("paper", "Wedge CFC, paper assumptions: geometry given, m_r and d_n free",
-                          PAPER_VARIABLES, paper_weight_set)
+                          PAPER_VARIABLES, paper_weight_set, _case_limits)
 
 
 # --- Geometry mode: weights as real bodies -------------------------------------------------------------------------
@@ -68,10 +81,7 @@ def _constructive_constraints(w: WeightSet, x, p):
                  description="h_r >= r2 - r1"),
         at_most("sectors_fit", w.count * (w.sector_angle + p.sector_clearance), 2 * math.pi, equation="below (23)",
                 unit="deg", description="z (gamma + clearance) <= 2 pi"),
-        at_least("not_self_locking", w.flank_angle, self_locking_angle(p.friction_coefficient) + p.self_locking_margin,
-                 equation="above (24)", unit="deg", description="alpha >= atan f + margin"),
-        at_most("outer_diameter", 2 * (w.r2 + p.shell_thickness), p.outer_diameter_max, equation="case", unit="mm",
-                description="2 (r2 + shell) <= D_max"),
+        *_case_limits(w, x, p),
         at_least("top_land_width", b - 2 * (w.r2 - w.r1) * tan(w.flank_angle), p.min_top_width, equation="geometry",
                  unit="mm", scale=b, description="trapezoid top b - 2 (r2 - r1) tan(alpha) >= min"),
         at_least("hub_clearance", r_in, p.hub_radius, equation="fig. 2", unit="mm", scale=w.r1,
