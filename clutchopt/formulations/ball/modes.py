@@ -44,7 +44,6 @@ def _paper_constraints(c: BallClutch, x, p):
                  description="leading-order torque (cylinder, no shovels) covers M_c"),
         at_least("width_ratio", c.width_ratio, p.width_ratio, equation="(3), (5)",
                  description="K5 = l / R_a at least the case's K5"),
-        *_case_limits(c, x, p),
     ]
 
 
