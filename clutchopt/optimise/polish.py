@@ -20,6 +20,7 @@ import numpy as np
 from clutchopt.optimise.attempts import Run, attempt, warm_multipliers
 from clutchopt.optimise.posed import Posed, ScaledData
 
+POLISHED = "(polished by SQP)"  # after IPOPT's status where the design shown is the polish's
 SNAP = 1e-6  # a bound IPOPT found active (its multiplier beyond the KKT tolerance) this near (relative, scaled x) is
 #              where the polish starts: IPOPT at tol 1e-10 leaves such variables up to 6e-9 inside (wedge_paper in
 #              geometry mode: the weight width at 1.59999999 of its scaled bound 1.6, 40 mm), where qrqp, handed the
@@ -36,15 +37,15 @@ def snapped(x: np.ndarray, lbx: np.ndarray, ubx: np.ndarray, lam_x: np.ndarray) 
 
 def polished(posed: Posed, data: ScaledData, ended: Run) -> Run:
     """``ended`` (a static problem's IPOPT run that ended optimal on ``data``, its design feasible in float64) on
-    the exact KKT point of its active set: the SQP run from it, its solver's name, status, iterations and seconds
-    summed with IPOPT's, where that point is verified, feasible and no heavier; else ``ended`` with the polish's
-    iterations and seconds added."""
+    the exact KKT point of its active set: the SQP run from it, with IPOPT's name, IPOPT's status followed by
+    POLISHED (the design is the SQP's), iterations and seconds summed with IPOPT's, where that point is verified,
+    feasible and no heavier; else ``ended`` with the polish's iterations and seconds added."""
     lam_x, lam_g = warm_multipliers(posed, ended["lam_x"], ended["lam_g"])
     x0 = snapped(ended["x"], ended["lbx"], ended["ubx"], lam_x)
     step = attempt(posed, data, ended["lbx"], ended["ubx"], x0, {"lam_x": lam_x, "lam_g": lam_g}, ("sqp",), [])
     spent = {"iterations": ended["iterations"] + step["iterations"], "time": ended["time"] + step["time"]}
     if step["ok"] and step["feasible"] and step["value"] <= ended["value"]:  # (ok: its KKT point verified)
-        step.update(solver=ended["solver"], status=ended["status"], **spent)
+        step.update(solver=ended["solver"], status=f"{ended['status']} {POLISHED}", **spent)
         return step
     ended.update(spent)
     return ended
