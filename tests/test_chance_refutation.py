@@ -50,6 +50,28 @@ def test_the_wide_interval_is_clopper_pearson_at_its_confidence():
     assert above.accurate_samples == 0 and above.refused  # exact 0 against 32 failures: they disagree
 
 
+def test_an_estimate_no_more_accurate_or_a_monte_carlo_far_above_is_not_overruled():
+    # importance sampling right at the target (0.01, 0.0099 to 0.0101) beside 32 failures of 2000 (0.016, its 99.99 %
+    # interval 0.0073 to 0.030 reaches it): with 50,000 samples (25x the Monte Carlo's) it decides; with the Monte
+    # Carlo's own 2,000 (a start-up limit's, from the same simulated starts) it is no more accurate and does not.
+    # 60 of 2000 (0.03, its 95 % interval 0.0230 to 0.0384 above 2 x 0.01; at 99.99 % from 0.0173): an importance
+    # sampling of 0.019 (0.0189 to 0.0191) agrees with it, and alone would pass (below 2 x 0.01: robust.verdict); the
+    # Monte Carlo decides, so an overrule never lets pass a design whose Monte Carlo lies beyond that factor
+    at_target = Estimate(0.01, 0.0099, 0.0101, "importance sampling")
+    (decided,) = monte_carlo_above({"a": list(clopper_pearson(32, 2000))}, 2000, {"a": at_target}, 50_000, 0.01)
+    assert decided.decided_by == "importance sampling" and not decided.refused
+    (same,) = monte_carlo_above({"a": list(clopper_pearson(32, 2000))}, 2000, {"a": at_target}, 2000, 0.01)
+    assert same.refused and same.text(0.01).endswith("(its importance sampling (2000 samples) is not 10 times its "
+                                                     "samples)")
+    far = list(clopper_pearson(60, 2000))
+    assert far[1] == pytest.approx(0.02297, abs=1e-5) and far[1] > 2 * 0.01
+    wide = clopper_pearson(60, 2000, 1 - DISAGREEMENT)
+    (above,) = monte_carlo_above({"a": far}, 2000, {"a": Estimate(0.019, 0.0189, 0.0191, "importance sampling")},
+                                 50_000, 0.01)
+    assert wide[1] == pytest.approx(0.01733, abs=1e-5) and above.refused  # (they agree at 99.99 %; far above)
+    assert above.text(0.01).endswith("(its interval lies above 2 x 0.01)")
+
+
 def test_a_design_that_truly_misses_its_target_is_refused(wedge):
     # the chance=0.98 design puts finger_bending's performance point at f* = 0.18 - 0.02 x 0.06 = 0.1788 (beta
     # Phi^-1(0.98) = 2.054 instead of 2.326): P(fail) = 0.02 exactly, twice the 0.01 it is now judged against

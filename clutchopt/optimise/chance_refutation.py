@@ -22,6 +22,11 @@ from clutchopt.optimise.reliability import Estimate
 from clutchopt.optimise.robust_models import clopper_pearson
 
 DISAGREEMENT = 1e-4  # two-sided: a true design is refused where the two agree with probability below 5e-5
+MORE_SAMPLES = 10  # an importance sampling overrules a Monte Carlo only with at least this many times its samples
+# (a start-up limit's, drawn from the Monte Carlo's own simulated starts, is no more accurate than it and does not)
+VERIFIED_FACTOR = 2.0  # a chance design's failure probability is verified when its interval lies below this x 1 - P;
+# a Monte Carlo whose 95 % interval lies above it refuses whatever overrules it (no more passes than importance
+# sampling alone would let pass: ``robust.verdict``)
 MONTE_CARLO = "Monte Carlo"
 
 
@@ -41,12 +46,27 @@ class MonteCarloAbove:
     accurate: Estimate | None  # the more accurate estimate, where there is one
     accurate_samples: int  # of the importance sampling (0: exact)
     wide: list[float]  # [p, low, high] of the Monte Carlo at 1 - DISAGREEMENT
+    allowed: float  # 1 - P
+
+    @property
+    def kept_by_monte_carlo(self) -> str | None:
+        """Why the Monte Carlo decides (the accurate estimate cannot overrule it), in words; None where it can."""
+        if not decides(self.accurate):
+            return "no importance sampling or exact estimate to decide"
+        if 0 < self.accurate_samples < MORE_SAMPLES * self.samples:
+            return (f"its {self.accurate.estimator} ({self.accurate_samples} samples) is not {MORE_SAMPLES} times "
+                    "its samples")
+        if self.monte_carlo[1] > VERIFIED_FACTOR * self.allowed:
+            return f"its interval lies above {VERIFIED_FACTOR:g} x {self.allowed:.3g}"
+        if self.wide[1] > self.accurate.high:
+            return "disagree"
+        return None
 
     @property
     def decided_by(self) -> str:
-        """The estimator that decided: the accurate one where it agrees with the Monte Carlo, else Monte Carlo."""
-        return (self.accurate.estimator if decides(self.accurate) and self.wide[1] <= self.accurate.high
-                else MONTE_CARLO)
+        """The estimator that decided: the accurate one where it may overrule the Monte Carlo
+        (:attr:`kept_by_monte_carlo`), else Monte Carlo."""
+        return MONTE_CARLO if self.kept_by_monte_carlo else self.accurate.estimator
 
     @property
     def refused(self) -> bool:
@@ -57,8 +77,9 @@ class MonteCarloAbove:
     def text(self, allowed: float) -> str:
         p, low, high = self.monte_carlo
         shown = f"{self.name} fails with probability {p:.3g} ({low:.3g} to {high:.3g}) > {allowed:.3g}"
-        if self.accurate is None or not decides(self.accurate):
-            return shown + " (no importance sampling or exact estimate to decide)"
+        why = self.kept_by_monte_carlo
+        if why is not None and why != "disagree":
+            return shown + f" ({why})"
         e = self.accurate
         accurate = (f"{e.estimator} {e.probability:.3g} ({e.low:.3g} to {e.high:.3g}"
                     + (f", {self.accurate_samples} samples at its design point)" if self.accurate_samples else ")"))
@@ -85,6 +106,6 @@ def monte_carlo_above(failure: dict[str, list[float]], samples: int, estimates: 
         if low > allowed:
             estimate = estimates.get(name)
             out.append(MonteCarloAbove(name, [p, low, high], samples, estimate,
-                                       accurate_samples if estimate and not estimate.estimator.startswith("exact")
-                                       else 0, clopper_pearson(round(p * samples), samples, 1 - DISAGREEMENT)))
+                                       accurate_samples if estimate and estimate.estimator == "importance sampling" else 0,
+                                       clopper_pearson(round(p * samples), samples, 1 - DISAGREEMENT), allowed))
     return out

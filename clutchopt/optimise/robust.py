@@ -37,7 +37,7 @@ from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Formulation, namespace
 from clutchopt.optimise.problem import problem_for
-from clutchopt.optimise.chance_refutation import MonteCarloAbove, monte_carlo_above
+from clutchopt.optimise.chance_refutation import VERIFIED_FACTOR, MonteCarloAbove, monte_carlo_above
 from clutchopt.optimise.reliability import IS_SAMPLES, Estimate, generalised_beta
 from clutchopt.optimise.robust_models import (
     CONFIDENCE,
@@ -82,7 +82,6 @@ SYSTEM_CHANCE = "system_chance"
 CHANCES = (CHANCE, SYSTEM_CHANCE)
 BETA_STEPS = 12  # corrections of the chance design's betas until importance sampling meets the target
 ACTIVE = 1e-6  # relative margin at its performance point below which a constraint shapes the design
-VERIFIED_FACTOR = 2.0  # a chance design's failure probability is verified when its interval lies below this x 1 - P
 SETTLED = 1e-7  # relative: a performance point that moves less has settled
 MAX_SAMPLES = 1_000_000  # vectorised in float64: about 100 MB for the widest formulation
 CORNER_STEPS = 8  # re-solves while the worst corners move
