@@ -158,12 +158,16 @@ def _compiled_state(state: str):
 
 @contextmanager
 def _new_start_up_problems():
-    """The start-up problems this process built dropped (the next run builds its own), and those built inside (a
-    list, filled on exit)."""
+    """The start-up problems this process built set aside (the run inside builds its own), and those built inside (a
+    list, filled on exit); on exit those dropped (their compiled state is the run's: a library of a temporary cache)
+    and the ones set aside given back."""
     from clutchopt.optimise import problem
 
-    for key in [key for key in problem._CACHE if key[-1] is not None]:  # (key: ..., start-up structure)
-        del problem._CACHE[key]
-    built: list = []
-    yield built
-    built += [p for key, p in problem._CACHE.items() if key[-1] is not None]
+    saved = {key: problem._CACHE.pop(key) for key in [key for key in problem._CACHE if key[-1] is not None]}  # (key:
+    built: list = []  # ..., start-up structure)
+    try:
+        yield built
+    finally:
+        for key in [key for key in problem._CACHE if key[-1] is not None]:
+            built.append(problem._CACHE.pop(key))
+        problem._CACHE.update(saved)
