@@ -96,3 +96,26 @@ def test_ball_paper_mode_checks_the_drum_diameter_and_the_longest_drum():
     tight = solve_case(small, "paper")
     assert tight.status == "infeasible" and "proven" in tight.diagnosis
     assert "outer_diameter" in tight.diagnosis and "width_ratio_max" in tight.diagnosis
+
+
+def test_a_requirement_no_design_variable_enters_is_judged_without_a_solve_and_a_sweep_agrees():
+    # wedge_paper.toml, paper mode: the flank half-angle is given (15 deg), so the release condition alpha >= atan f +
+    # 2 deg (above eq. 24) is a row no design variable enters; at f = 0.3, atan 0.3 + 2 deg = 18.699 deg: short by
+    # (18.699 - 15) / 18.699 = 0.1978 relative, whatever m_r and d_n. The verdict is given without a solve (an IPOPT
+    # solve took 13 iterations to end at a point of its own, then was diagnosed), at the case's start design, and a
+    # sweep's point gets the same verdict at the same design (it solves the point through the same path)
+    from clutchopt.optimise.problem import PROVEN
+    from clutchopt.optimise.sweep import Sweep, Vary
+
+    case = load_case(CASES / "wedge_paper.toml")
+    at = case.with_values(friction_coefficient=0.3)
+    solved = solve_case(at, "paper")
+    assert solved.status == "infeasible" and solved.solver.name == PROVEN and solved.solver.solves == 0
+    short = (math.degrees(math.atan(0.3)) + 2.0 - 15.0) / (math.degrees(math.atan(0.3)) + 2.0)
+    assert solved.diagnosis == f"infeasible whatever the design: not_self_locking (short of its limit by {short:.3g} " \
+                               "relative)"
+    assert _rows(solved)["not_self_locking"].margin == pytest.approx(-short, rel=1e-9)
+    quantity = next(q for q in case.quantities if q.name == "friction_coefficient")
+    record = Sweep(case, [Vary(quantity, (0.1, 0.3))], mode="paper").run(progress=False).solutions[-1]
+    assert record["status"] == "infeasible" and record["diagnosis"] == solved.diagnosis
+    assert record["design"] == solved.design

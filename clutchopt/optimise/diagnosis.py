@@ -34,18 +34,29 @@ def _elastic(posed: Posed) -> ca.Function:
     return posed.built("elastic", None, build)
 
 
+def whatever_the_design(posed: Posed, p_vector, x0) -> Diagnosis | None:
+    """The proven verdict where a requirement no design variable enters (``posed.fixed_rows``) is broken at the case's
+    values ``p_vector`` (nothing to relax but the case itself), naming each such requirement; else None."""
+    if not posed.fixed_rows:
+        return None
+    row_names, row_senses = posed.row_names, posed.row_senses
+    g0 = np.array(posed.constraint_values(x0, p_vector)).ravel()
+    given = sorted({row_names[i] for i in posed.fixed_rows if g0[i] > FEASIBILITY_TOL}, key=row_names.index)
+    if not given:
+        return None
+    return Diagnosis("infeasible", "infeasible whatever the design: " + ", ".join(
+        f"{name} ({'over' if row_senses[row_names.index(name)] == '<=' else 'short of'} its limit by "
+        f"{g0[row_names.index(name)]:.3g} relative)" for name in given), 0.0, proven=True)
+
+
 def diagnose(posed: Posed, p_vector, lbx, ubx, x0, scale) -> Diagnosis:
     """Elastic relaxation: min sum(s) s.t. g(x) <= s, s >= 0 on the inequalities, from ``x0``. Positive slacks name
     the conflict; the least relaxation is a local minimum, found from this start (no proof). An elastic problem that
     does not converge (a start-up's within ELASTIC_ITERATIONS) says so: what it names is where it stopped, no
     feasible point is claimed from it, and it names no reason (``violated``) for a run of points to share."""
     n_g, row_names, row_senses = posed.n_ineq, posed.row_names, posed.row_senses
-    g0 = np.array(posed.constraint_values(x0, p_vector)).ravel()
-    given = sorted({row_names[i] for i in posed.fixed_rows if g0[i] > FEASIBILITY_TOL}, key=row_names.index)
-    if given:  # requirements that no design variable enters: nothing to relax but the case itself
-        return Diagnosis("infeasible", "infeasible whatever the design: " + ", ".join(
-            f"{name} ({'over' if row_senses[row_names.index(name)] == '<=' else 'short of'} its limit by "
-            f"{g0[row_names.index(name)]:.3g} relative)" for name in given), 0.0, proven=True)
+    if (given := whatever_the_design(posed, p_vector, x0)) is not None:
+        return given
     elastic = _elastic(posed)
     started = time.perf_counter()
     slack_bounds = np.zeros(n_g), np.full(n_g, np.inf)

@@ -22,7 +22,7 @@ from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.model import Formulation
 from clutchopt.optimise.attempts import attempt, warm_multipliers
-from clutchopt.optimise.diagnosis import diagnose
+from clutchopt.optimise.diagnosis import diagnose, whatever_the_design
 from clutchopt.optimise.failed_starts import FailedStarts
 from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_start, nearest_integers, relaxation_seed,
                                          within)
@@ -91,6 +91,8 @@ class Problem:
         (:mod:`clutchopt.optimise.failed_starts`)."""
         if self.start_up is not None and refine and (proofs := start_up_proofs(case)):
             return self.proven(case, proofs)
+        if self.start_up is None and (given := self._given(case, start)) is not None:
+            return given
         retry = (self.start_up is not None and start is not None and warm is None and mesh is None and refine
                  and not diagnosed and coarser == math.inf and shift is None and cold)
         key = self.failed_starts.key(case, start) if retry else None
@@ -326,6 +328,25 @@ class Problem:
         runs.append(spent)
         better = _recorded(kept, foreign.names, combo, own, VARIANT)  # (``kept`` optimal: ``unverified_below``)
         return better, better is own
+
+    def _given(self, case: Case, start: dict[str, float] | None) -> Solution | None:
+        """The verdict on a static case that breaks a requirement no design variable enters
+        (:func:`~clutchopt.optimise.diagnosis.whatever_the_design`: the wedge's release condition in paper mode, its
+        flank angle given, at f above tan(alpha - margin)), without a solve: ``infeasible``, proven, at the start
+        design (``start``, else the case's), every constraint re-evaluated in float64; else None. An IPOPT solve there
+        (13 iterations on the wedge) ended at a point of its own, which the verdict showed, and then diagnosed it."""
+        posed = self.posed
+        if not posed.fixed_rows:
+            return None
+        lower, upper, x0 = posed.bounds_and_start(case, start)
+        data = posed.scaled_data(case, start)
+        given = whatever_the_design(posed, data.p, data.x0)
+        if given is None:
+            return None
+        solution = infeasible_at(posed, case, dict(zip(posed.names, map(float, x0))), given.text,
+                                 SolverInfo(PROVEN, "proven", 0, 0.0, 0), bounds=(lower, upper))
+        solution.diagnosed = given
+        return solution
 
     def proven(self, case: Case, proofs: list[str]) -> Solution:
         """The verdict on a start-up the drive makes impossible (``proofs``, in words): ``infeasible``, without a
