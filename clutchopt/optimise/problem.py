@@ -91,8 +91,6 @@ class Problem:
         (:mod:`clutchopt.optimise.failed_starts`)."""
         if self.start_up is not None and refine and (proofs := start_up_proofs(case)):
             return self.proven(case, proofs)
-        if self.start_up is None and (given := self._given(case, start)) is not None:
-            return given
         retry = (self.start_up is not None and start is not None and warm is None and mesh is None and refine
                  and not diagnosed and coarser == math.inf and shift is None and cold)
         key = self.failed_starts.key(case, start) if retry else None
@@ -329,22 +327,20 @@ class Problem:
         better = _recorded(kept, foreign.names, combo, own, VARIANT)  # (``kept`` optimal: ``unverified_below``)
         return better, better is own
 
-    def _given(self, case: Case, start: dict[str, float] | None) -> Solution | None:
+    def _given(self, case: Case, data: ScaledData, runs: list[dict]) -> Solution | None:
         """The verdict on a static case that breaks a requirement no design variable enters
         (:func:`~clutchopt.optimise.diagnosis.whatever_the_design`: the wedge's release condition in paper mode, its
-        flank angle given, at f above tan(alpha - margin)), without a solve: ``infeasible``, proven, at the start
-        design (``start``, else the case's), every constraint re-evaluated in float64; else None. An IPOPT solve there
-        (13 iterations on the wedge) ended at a point of its own, which the verdict showed, and then diagnosed it."""
+        flank angle given, at f above tan(alpha - margin)) before a cold solve from ``data``: ``infeasible``, proven,
+        at its start design, every constraint re-evaluated in float64, the calls before it (``runs``: a warm attempt)
+        counted; else None. An IPOPT solve there (13 iterations on the wedge) ended at a point of its own, which the
+        verdict showed, and then diagnosed it."""
         posed = self.posed
-        if not posed.fixed_rows:
-            return None
-        lower, upper, x0 = posed.bounds_and_start(case, start)
-        data = posed.scaled_data(case, start)
-        given = whatever_the_design(posed, data.p, data.x0)
+        given = whatever_the_design(posed, data.p, data.x0) if posed.fixed_rows else None
         if given is None:
             return None
-        solution = infeasible_at(posed, case, dict(zip(posed.names, map(float, x0))), given.text,
-                                 SolverInfo(PROVEN, "proven", 0, 0.0, 0), bounds=(lower, upper))
+        solution = infeasible_at(posed, case, dict(zip(posed.names, map(float, data.start))), given.text,
+                                 SolverInfo(PROVEN, "proven", sum(r["iterations"] for r in runs),
+                                            sum((r["time"] for r in runs), 0.0), len(runs)), bounds=(data.lower, data.upper))
         solution.diagnosed = given
         return solution
 
@@ -474,6 +470,8 @@ class Problem:
             return self._finish(case, run, runs, data, search, ("not_found", "no design from the warm start"))
         if relaxed is None:  # cold: from the case's own start
             data = posed.scaled_data(solved, start, mesh=mesh, checked=checked)
+            if self.start_up is None and (given := self._given(case, data, runs)) is not None:
+                return given  # (a requirement no design variable enters, broken: no solve)
             relaxed = attempt(posed, data, data.lbx, data.ubx, data.x0, None, ("ipopt",), runs)
         n = len(data.scale)
         x_opt = relaxed["x"][:n] * data.scale
