@@ -394,10 +394,12 @@ class BatchSweep:
         return solution
 
     def _counted(self, solution: Solution) -> Solution:
-        self.solves += solution.solver.solves
-        self.work += SOLVE_WORK * solution.solver.solves
-        self.solver_s += solution.solver.time_s
+        self._spent(solution.solver.solves, solution.solver.time_s, SOLVE_WORK * solution.solver.solves)
         return solution
+
+    def _spent(self, calls: int, seconds: float, work: int) -> None:
+        """Solver calls and their seconds counted, and their work (what ends a window: WINDOW_WORK)."""
+        self.solves, self.solver_s, self.work = self.solves + calls, self.solver_s + seconds, self.work + work
 
     def _batch(self, start: _Start, k: int, count: int, reach: int
                ) -> tuple[Block | None, int, bool, "_Chain | None", np.ndarray | None]:
@@ -547,8 +549,7 @@ class BatchSweep:
         except RuntimeError:
             x = None
         seconds = time.perf_counter() - began
-        self.solves, self.solver_s = self.solves + count, self.solver_s + seconds
-        self.work += CHAINED_POINT_WORK * count + CHAIN_CALL_WORK
+        self._spent(count, seconds, CHAINED_POINT_WORK * count + CHAIN_CALL_WORK)
         if x is None:
             return None
         began = time.perf_counter()
@@ -786,7 +787,7 @@ class BatchSweep:
         began = time.perf_counter()
         found = least(self.posed, seed["x"], self._p(k, start), lower / start.scale, upper / start.scale)
         seconds = time.perf_counter() - began
-        self.solves, self.solver_s, self.work = self.solves + 1, self.solver_s + seconds, self.work + SOLVE_WORK
+        self._spent(1, seconds, SOLVE_WORK)
         return found, seconds
 
     def _p(self, k: int, start: _Start) -> np.ndarray:
@@ -809,7 +810,7 @@ class BatchSweep:
         data = ScaledData(self.posed.params(self.point_case(k)), lower, upper, x0 * start.scale, start.scale,
                           start.f_scale, self._p(k, start))
         solved = attempts.run(self.posed, data, lbx, ubx, x0, None)
-        self.solves, self.solver_s, self.work = self.solves + 1, self.solver_s + solved["time"], self.work + SOLVE_WORK
+        self._spent(1, solved["time"], SOLVE_WORK)
         if solved["ok"] and solved["feasible"]:
             return {}, solved["time"], _seed(solved["x"], *warm_multipliers(self.posed, solved["lam_x"],
                                                                               solved["lam_g"]))
