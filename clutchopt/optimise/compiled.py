@@ -88,8 +88,7 @@ def built_library(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = F
         return None
     folder = library.parent
     try:
-        folder.mkdir(mode=0o700, parents=True, exist_ok=True)  # (one there is kept as it is, and checked)
-        if not _trusted(folder):
+        if not _own_folder(folder):
             return None
         if library.is_file():
             if not _trusted(library):
@@ -146,8 +145,7 @@ def build_detached(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = 
         return None
     marker, created = library.with_suffix(".building"), False
     try:
-        library.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
-        if not _trusted(library.parent):
+        if not _own_folder(library.parent):
             return None
         try:
             if time.time() - marker.stat().st_mtime < 2 * BUILD_TIMEOUT_S:
@@ -178,6 +176,13 @@ try:
 finally:
     marker.unlink(missing_ok=True)
 """
+
+
+def _own_folder(folder: Path) -> bool:
+    """Whether ``folder`` (made this user's alone where it is not there; one there is kept as it is) may hold
+    libraries: none that others may write (:func:`_trusted`). Raises OSError where it cannot be made."""
+    folder.mkdir(mode=0o700, parents=True, exist_ok=True)
+    return _trusted(folder)
 
 
 def _record(library: Path) -> Path:
