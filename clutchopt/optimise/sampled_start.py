@@ -34,6 +34,7 @@ from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.optimise.integers import least_violation
 from clutchopt.optimise.solution import Solution
+from clutchopt.optimise.verdict import retried
 from clutchopt.optimise.verify import DESIGN_STATUSES
 
 SAMPLES = 16  # designs sampled over the box (a power of two: a Sobol sequence's balanced size). Each start simulated
@@ -82,12 +83,7 @@ def from_a_sampled_design(problem, case: Case, verdict: Solution) -> Solution:
     if verdict.status != "not_found" or failed.skips(case, _SAMPLED_KEY, verdict.diagnosed):
         return verdict
     design = least_violated(problem.posed, case)
-    retry = None
-    if design is not None:
-        try:
-            retry = problem.refined(case, design, diagnosed=False)
-        except InputError:  # its first simulation failed from this start
-            retry = None
+    retry = None if design is None else retried(problem, case, design)  # (None: its first simulation failed)
     if retry is not None and retry.status in DESIGN_STATUSES:
         retry.solver = retry.solver.summed([verdict.solver, retry.solver])
         retry.starts = verdict.starts + (SAMPLED,)

@@ -56,7 +56,7 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
             # nearer: clutchopt.optimise.failed_starts)
             starts.append(("the neighbouring point's design", neighbour))
         for label, start in starts:  # the first retry diagnosed too: a least relaxation seen from two starts
-            retry = _retried(problem, case, start, diagnosed=len(tried) == 1)
+            retry = retried(problem, case, start, diagnosed=len(tried) == 1)
             if retry is None:
                 continue
             tried.append((label, retry))
@@ -70,7 +70,7 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
         emptiness = early if settled else empty_design_space(problem.posed, case)
         if emptiness is not None and emptiness.feasible is not None:  # a design of the relaxation: solve from it
             met = dict(zip(problem.posed.names, emptiness.feasible))  # not again where it failed for the same reason
-            retry = None if problem.failed_starts.skips(case, met, first.diagnosed) else _retried(problem, case, met)
+            retry = None if problem.failed_starts.skips(case, met, first.diagnosed) else retried(problem, case, met)
             if retry is not None:
                 tried.append(("a design the interval search met", retry))
                 if retry.status in DESIGN_STATUSES:
@@ -102,7 +102,9 @@ def emptied(emptiness, over: str = "") -> str:
             f"{emptiness.boxes} boxes of the design space{' ' + over if over else ''})")
 
 
-def _retried(problem, case: Case, start: dict[str, float] | None, diagnosed: bool = False) -> Solution | None:
+def retried(problem, case: Case, start: dict[str, float] | None, diagnosed: bool = False) -> Solution | None:
+    """``problem`` solved again at ``case`` from ``start`` (undiagnosed unless ``diagnosed``); None where a
+    start-up's first simulation fails from that start."""
     try:
         return problem.refined(case, start, diagnosed=diagnosed)
     except InputError:  # a start-up whose first simulation fails from this start
