@@ -159,24 +159,12 @@ class Posed:
                                "sqp_chain": ("sqpmethod", chosen.sqp_chain()),
                                "sqp_search": ("sqpmethod", chosen.sqp_search())}[method]
             name = f"{f.coupling}_{f.mode}_{self.objective.name}_{method}"
-            if plugin == "ipopt" and not self.library:
-                options = {**options, **self.ipopt_derivatives()}
             solver = ca.nlpsol(name, plugin, self.library if plugin == "ipopt" and self.library else self.nlp, options)
             if method in ("sqp_chain", "sqp_search"):  # a batched sweep's: compiled where that pays
                 solver = compiled_solver(name, solver, options)
             return solver
 
         return self.built("solver", method, build)
-
-    def ipopt_derivatives(self) -> dict:
-        """The derivatives of the NLP IPOPT evaluates (the objective's gradient, the constraints' Jacobian, the
-        Lagrangian's Hessian), as the problem's first IPOPT solver (``ipopt``) derived them: nlpsol's options
-        ``grad_f``, ``jac_g`` and ``hess_lag`` for an IPOPT solver of the same NLP with other options (``warm``,
-        ``warm_near``), which then derives none of its own (the same functions: its runs the same to the last bit).
-        wedge_motor_start's 390 variables: a warm solver built in 2 ms, not 41 ms (CasADi's derivation)."""
-        cold = self._built["solver"]["ipopt"]
-        return {option: cold.get_function(name) for option, name in
-                (("grad_f", "nlp_grad_f"), ("jac_g", "nlp_jac_g"), ("hess_lag", "nlp_hess_l"))}
 
     def use_compiled(self, library: str) -> bool:
         """This problem's IPOPT solvers built again over ``library``, its NLP's functions compiled (the same operations
