@@ -8,6 +8,7 @@ import numpy as np
 import clutchopt.optimise.problem as problem_module
 from clutchopt.cases import load_case
 from clutchopt.optimise.problem import case_problem, solve_case
+from clutchopt.optimise.sparsity import entries
 from tests.conftest import CASES
 
 
@@ -53,3 +54,17 @@ def test_each_problem_of_a_solve_derives_its_nlp_once(monkeypatch):
     assert sorted(name for name, shared in built if shared) == ["cable_paper_mass_warm", "cable_paper_mass_warm_near"]
     modified = case_problem(case).modified_problem.posed
     assert "ipopt" not in modified._built["solver"] and "warm_near" in modified._built["solver"]
+
+
+def test_a_patterns_entries_are_where_its_dense_matrix_of_ones_is_one():
+    """``entries`` reads a sparsity's triplets: on a 3 x 4 pattern with entries at (0, 1), (2, 0) and (2, 3), and on
+    the constraint Jacobian of every motor_start case's start-up problem (which rows no design enters: ``fixed_rows``),
+    the same booleans as a dense matrix of ones made of it."""
+    pattern = ca.Sparsity.triplet(3, 4, [0, 2, 2], [1, 0, 3])
+    expected = np.zeros((3, 4), dtype=bool)
+    expected[0, 1] = expected[2, 0] = expected[2, 3] = True
+    assert np.array_equal(entries(pattern), expected)
+    for name in ("wedge", "lever", "ball", "cable"):
+        posed = case_problem(load_case(CASES / f"{name}_motor_start.toml")).posed
+        jacobian = ca.jacobian(posed.nlp["g"][: posed.n_ineq], posed.nlp["x"]).sparsity()
+        assert np.array_equal(posed.row_depends, np.array(ca.DM(jacobian, 1)) != 0)

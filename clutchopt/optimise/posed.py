@@ -24,6 +24,7 @@ from clutchopt.optimise.compiled import compiled_solver
 from clutchopt.optimise.in_place import InPlace
 from clutchopt.optimise.modifier import modified
 from clutchopt.optimise.solution import IPOPT_OWN_FIGURES, START_UP_RESTORATION, SolverOptions
+from clutchopt.optimise.sparsity import entries
 from clutchopt.optimise.verify import evaluate_objective
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
@@ -113,7 +114,7 @@ class Posed:
         mesh = self.start_up.mesh_parameters if start_up else ca.SX(0, 1)
         self.constraint_values = ca.Function("g", [x_all, ca.vertcat(self.p_case, x_scale, f_scale, mesh)],
                                              [g[: self.n_ineq]])
-        self.row_depends = np.array(ca.DM(ca.jacobian(g[: self.n_ineq], x_all).sparsity(), 1)) != 0  # row i uses x_j
+        self.row_depends = entries(ca.jacobian(g[: self.n_ineq], x_all).sparsity())  # row i uses x_j
         self.fixed_rows = [int(i) for i in np.flatnonzero(~self.row_depends.any(axis=1))]  # no design enters (read
         # from the Jacobian's structure: a depends_on a row took 9 ms a start-up problem)
         self.names = [v.name for v in f.variables]
