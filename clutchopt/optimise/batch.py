@@ -274,7 +274,7 @@ class BatchSweep:
         self._verdict = chain_verdict(self.posed, self.integer, fixed)
         self._fixed_names = np.array([self.posed.row_names[row] for row in rows])
         self._span = min(EXCLUSION_SPAN, self.count)
-        self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
+        self._exclusions: dict[tuple, tuple[int, np.ndarray, list[bool]]] = {}
         self.searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
         self._undesigned: dict[tuple, tuple[int, str]] = {}  # integer combination -> the last point where IPOPT or
         # the least violation found no design, and the status there
@@ -756,7 +756,7 @@ class BatchSweep:
     def _left_out(self, combo: np.ndarray, k: int) -> bool:
         """The integers ``combo`` have no design at point k: a constraint of fixed variables alone breaks, or IPOPT
         found none (:meth:`_undesigned_at`)."""
-        return bool(self._broken(self._with_integers(combo), k, 1).any()) or self._undesigned_at(combo, k)
+        return self._excluded_at(combo, k) or self._undesigned_at(combo, k)
 
     def _with_integers(self, combo: np.ndarray) -> np.ndarray:
         """The lower bounds of the design (SI) with the free integers at ``combo``: what the exclusion tables and
@@ -772,6 +772,8 @@ class BatchSweep:
     def _undesigned_at(self, combo: np.ndarray, k: int) -> bool:
         """IPOPT found no design with the integers ``combo`` at point k, or at one before it and the sweep has only
         tightened the constraints since (:meth:`_ruled_out`)."""
+        if not self._undesigned:  # (none found yet: most sweeps, each integer change asks)
+            return False
         return self._last_undesigned(combo) == k or bool(self._ruled_out(tuple(combo.tolist()), k))
 
     def _last_undesigned(self, combo: np.ndarray) -> int | None:
@@ -825,18 +827,33 @@ class BatchSweep:
 
     def _broken(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
         """Which of those constraints break at points k .. k + count - 1 (a row per constraint, a column per point);
-        evaluated EXCLUSION_SPAN points ahead at once, per integer combination."""
-        key = tuple(design[self.integer].tolist())
-        first, table = self._exclusions.get(key, (0, np.zeros((0, 0), dtype=bool)))
-        if not first <= k <= k + count <= first + table.shape[1]:
-            first, began = k, time.perf_counter()
+        ``design``: the case's fixed variables with the integers of a combination (:meth:`_with_integers`)."""
+        first, table, _ = self._exclusion_table(tuple(design[self.integer].tolist()), k, count)
+        return table[:, k - first:k - first + count]
+
+    def _excluded_at(self, combo: np.ndarray, k: int) -> bool:
+        """``_excluded(self._with_integers(combo), k, 1)[0]``, read from the table's list of its points' verdicts (an
+        integer change asks it of a combination and its neighbours: no array work)."""
+        first, _, excluded = self._exclusion_table(tuple(combo.tolist()), k, 1)
+        return excluded[k - first]
+
+    def _exclusion_table(self, key: tuple, k: int, count: int) -> tuple[int, np.ndarray, list[bool]]:
+        """The exclusion table of the integers ``key`` (SI) covering points k .. k + count - 1: its first point, which
+        constraints of fixed variables alone break at each point from there (a row per constraint, a column per
+        point) and whether any does (a list); evaluated EXCLUSION_SPAN points ahead at once, per integer
+        combination, the rest of the design the case's fixed variables."""
+        entry = self._exclusions.get(key)
+        if entry is None or not (entry[0] <= k and k + count <= entry[0] + entry[1].shape[1]):
+            began = time.perf_counter()
+            design = self.lower.copy()
+            design[self.integer] = key
             p_rows = np.ones((self._span, len(self.values) + len(design) + 1))  # unit scales: x is SI
             p_rows[:, : len(self.values)] = self._by_point[np.minimum(np.arange(k, k + self._span), self.count - 1)]
             g, = self.posed.mapped(self._fixed_values, self._span)(design, p_rows.T)  # past the end: the last point
             self.check_s += time.perf_counter() - began
             table = g > 10 * FEASIBILITY_TOL
-            self._exclusions[key] = (first, table)
-        return table[:, k - first:k - first + count]
+            entry = self._exclusions[key] = (k, table, table.any(axis=0).tolist())
+        return entry
 
     def _window(self, blocks: list[Block], alone: dict[int, Solution], first: int, count: int) -> "Solutions":
         """The solutions of points first .. first + count - 1: batched points checked in float64 together; one that
