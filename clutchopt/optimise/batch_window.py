@@ -37,6 +37,10 @@ class Block:
     def __init__(self, index: np.ndarray, **arrays: np.ndarray):
         self.index, self.arrays = index, arrays
 
+    def block(self, passed: int, begin: int = 0) -> "Block":
+        """The first ``passed`` points (from ``begin``), views of these arrays."""
+        return Block(self.index[begin:passed], **{key: value[:, begin:passed] for key, value in self.arrays.items()})
+
     @classmethod
     def joined(cls, blocks: list["Block"]) -> "Block":
         return cls(np.concatenate([b.index for b in blocks]),
