@@ -47,6 +47,7 @@ from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_na
                                            parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
 from clutchopt.optimise.table import joined_tables, record_table
 from clutchopt.optimise.verify import DESIGN_STATUSES
+from clutchopt.solver_tolerance import SOLVER_TOL
 from clutchopt.records import design_inputs, scatter_record
 from clutchopt.window_records import WindowRecords, in_order
 from clutchopt.units import from_si
@@ -317,7 +318,7 @@ class Sweep:
     """A case, the varied quantities, mode and objective: what defines a sweep and its resume key."""
 
     def __init__(self, case: Case, varies: list[Vary], mode: str | None = None, objective: str | None = None,
-                 tol: float = 1e-10, zipped: bool = False, robust: Robustness | None = None):
+                 tol: float = SOLVER_TOL, zipped: bool = False, robust: Robustness | None = None):
         self.case = case = case.given(*(v.quantity.name for v in varies))
         self.varies, self.robust = varies, robust
         self.formulation: Formulation = case_formulation(case, mode)
