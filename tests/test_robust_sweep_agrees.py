@@ -25,7 +25,8 @@ def test_solve_sweep_and_the_python_api_default_to_one_tolerance():
     assert SolverOptions().tol == SOLVER_TOL == 1e-10
     assert Sweep.__init__.__defaults__[2] == SOLVER_TOL  # (mode, objective, tol, ...)
     parser = build_parser()
-    for command in (["solve"], ["sweep", "--vary", "density=7800"], ["pareto"], ["compare"], ["report", "-o", "r.html"]):
+    for command in (["solve"], ["sweep", "--vary", "density=7800"], ["pareto"], ["compare"],
+                    ["report", "-o", "r.html"]):
         assert parser.parse_args([*command, str(CENTRIFUGE)]).tol == SOLVER_TOL, command
 
 

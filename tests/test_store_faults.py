@@ -639,9 +639,9 @@ def test_a_partial_store_that_cannot_be_written_names_the_command_that_completes
     before = store.read_bytes()
     code, text = _as_a_user(["runs", "list", "--store", str(store)], tmp_path)
     assert code == 2 and text == (
-        f"error: --store: {store}: its run store schema is incomplete (no runs table, no templates table, no "
-        "runs_by_kind index) and cannot be completed here (attempt to write a readonly database); whoever may write "
-        f"it completes it with 'clutchopt runs list --store {store}'\n"), text
+        f"error: --store: {store}: its run store schema is incomplete (no runs table, no sweep_starts table, no "
+        "templates table, no runs_by_kind index) and cannot be completed here (attempt to write a readonly database); "
+        f"whoever may write it completes it with 'clutchopt runs list --store {store}'\n"), text
     assert store.read_bytes() == before
     assert main(["runs", "list", "--store", str(store)]) == 0  # its owner
     code, text = _as_a_user(["runs", "list", "--store", str(store)], tmp_path)
