@@ -9,6 +9,7 @@ from typing import Iterator
 
 from clutchopt.errors import InputError, Problems
 from clutchopt.solver_tolerance import SOLVER_TOL
+from clutchopt.switches import check_switches
 
 EXIT_BAD_INPUT = 2
 EXIT_INTERNAL = 3  # a bug: one line and a crash file (clutchopt.crash)
@@ -59,9 +60,12 @@ class Checked(argparse.Action):
 
 def check_options(args) -> None:
     """Every bad option value in one InputError, before a command runs: those :class:`Checked` set aside while
-    parsing, and the robust method with its counts (:func:`robust_options`)."""
+    parsing, the environment's switches (``clutchopt.switches``) and the robust method with its counts
+    (:func:`robust_options`)."""
     problems = Problems()
     problems.errors += getattr(args, REFUSED, [])
+    with problems.field():
+        check_switches()  # (the environment's: $CLUTCHOPT_BUILD_LATER)
     if hasattr(args, "robust"):
         with problems.field():
             robust_options(args)
