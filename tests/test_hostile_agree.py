@@ -78,16 +78,13 @@ def swept_and_solved(case_file: str, mode: str, name: str, values: tuple[float, 
             for record, point in pairs[0 if every else -1:]]
 
 
-@pytest.mark.xfail(strict=True, reason="a start-up sweep point keeps the point before's integers where their "
-                   "downhill neighbour fails from their optimum (integers.descend: the neighbour solved from the "
-                   "kept design), though solved from the relaxation (solve's path) it is feasible and lighter: the "
-                   "fixed-integer start-up NLPs have several local optima (integers.from_the_start); "
-                   "optimise/start_up_sweep.solved_along and Problem._solve's warm path (helpers susweep, suratio)")
 def test_ball_motor_start_swept_over_its_motor_inertia_has_solve_s_ball_rows():
     # motor inertia 14.65 then 12.26 kg m^2 (design mode): the first point 25 rows, 1022.88 kg, as solve; at the
     # second the sweep starts warm from 25 rows (1002.07 kg), its downhill neighbour 24 rows fails from there; solve
     # alone relaxes from the papers' sizing, rounds to 24 rows and ends at 998.53 kg: the sweep's "optimal" point
-    # is 0.35 % heavier than solve's, with another ball count
+    # was 0.35 % heavier than solve's, with another ball count. A point that keeps the point before's integers where
+    # the sizing has others (23 rows) is now solved as solve solves it too, the lighter kept
+    # (optimise/start_up_sweep.as_solve_would)
     [(record, solved)] = swept_and_solved("ball_motor_start.toml", "design", "motor_inertia",
                                           (14.65434207062844, 12.257623755009474))
     assert solved.status == record["status"] == "optimal"
