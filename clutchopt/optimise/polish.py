@@ -57,26 +57,28 @@ def _derivatives(posed: Posed) -> ca.Function:
     return posed.built("polish_derivatives", None, build)
 
 
-def without_dependent_rows(posed: Posed, data: ScaledData, x: np.ndarray, lam_x: np.ndarray, lam_g: np.ndarray):
-    """The active rows (non-zero ``lam_g``) to leave out of the polish and the multipliers to start it from:
-    ``(dropped, lam_x, lam_g)``. A row is dropped where its gradient at ``x`` (scaled) lies, within DEPENDENT, in
-    the span of the active bounds' (non-zero ``lam_x``) and the rows kept before it, the rows taken by decreasing
+def without_dependent_rows(posed: Posed, data: ScaledData, x: np.ndarray, g: np.ndarray, lam_x: np.ndarray,
+                           lam_g: np.ndarray, lbx: np.ndarray, ubx: np.ndarray):
+    """The active rows to leave out of the polish and the multipliers to start it from: ``(dropped, lam_x, lam_g)``.
+    Active: a row with a non-zero multiplier ``lam_g`` and ``g`` (scaled, g <= 0) within SNAP of 0; a bound with a
+    non-zero ``lam_x`` that ``x`` (scaled, :func:`snapped`) is on. A row is dropped where its gradient at ``x`` lies,
+    within DEPENDENT, in the span of the active bounds' and the rows kept before it, the rows taken by decreasing
     multiplier (of a row held from both sides, g and -g, the side IPOPT's multipliers press on is kept: their
     difference is the one true multiplier). Where one is dropped, the kept rows' and bounds' multipliers are those
     of the stationarity grad f + J' lam = 0 on the kept set (least squares): IPOPT's on a doubled row are both
     large (4.8e9 on the compressor's K5 rows, their difference 0.436), and the SQP started from them stopped at
     once with its search direction too small."""
     dropped = np.zeros(posed.lbg.shape, dtype=bool)
-    active = np.flatnonzero(lam_g[: posed.n_ineq])
-    bounds = np.flatnonzero(lam_x)
+    active = np.flatnonzero((lam_g[: posed.n_ineq] != 0) & (np.abs(g[: posed.n_ineq]) <= SNAP))
+    bounds = np.flatnonzero((lam_x != 0) & ((x == lbx) | (x == ubx)))
     if len(active) + len(bounds) < 2:
         return dropped, lam_x, lam_g
     jacobian, gradient = (m.full() for m in _derivatives(posed)(x, data.p))
     kept = [row for row in np.eye(len(x))[bounds]]
     for i in sorted(active, key=lambda i: -abs(lam_g[i])):
         norm = np.linalg.norm(jacobian[i])
-        candidate = np.array([*kept, jacobian[i] / norm]) if norm > 0 else None
-        if candidate is None or np.linalg.svd(candidate, compute_uv=False)[-1] <= DEPENDENT:
+        candidate = np.array([*kept, jacobian[i] / max(norm, np.finfo(float).tiny)])
+        if norm == 0 or len(candidate) > len(x) or np.linalg.svd(candidate, compute_uv=False)[-1] <= DEPENDENT:
             dropped[i] = True
         else:
             kept.append(candidate[-1])
@@ -97,7 +99,8 @@ def polished(posed: Posed, data: ScaledData, ended: Run) -> Run:
     feasible and no heavier; else ``ended`` with the polish's iterations and seconds added."""
     lam_x, lam_g = warm_multipliers(posed, ended["lam_x"], ended["lam_g"])
     x0 = snapped(ended["x"], ended["lbx"], ended["ubx"], lam_x)
-    dropped, lam_x, lam_g = without_dependent_rows(posed, data, x0, lam_x, lam_g)
+    dropped, lam_x, lam_g = without_dependent_rows(posed, data, x0, ended["g"], lam_x, lam_g, ended["lbx"],
+                                                   ended["ubx"])
     step = attempt(posed, data, ended["lbx"], ended["ubx"], x0, {"lam_x": lam_x, "lam_g": lam_g}, ("sqp",), [],
                    np.where(dropped, np.inf, 0.0))
     spent = {"iterations": ended["iterations"] + step["iterations"], "time": ended["time"] + step["time"]}
