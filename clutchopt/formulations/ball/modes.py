@@ -73,12 +73,14 @@ def _design_clutch(x, p):
 
 
 def _design_constraints(c: BallClutch, x, p):
-    k5 = c.width_ratio
+    stress, *extent = _case_limits(c, x, p)
     return [
         at_least("torque", c.torque(p), required(p), equation="(8)", unit="N*m",
                  description="torque of cylinder and end faces covers M_c"),
-        at_least("width_ratio_min", k5, p.width_ratio_min, equation="(3)", description="K5 = l_a / R_a in range"),
-        *_case_limits(c, x, p),
+        stress,
+        at_least("width_ratio_min", c.width_ratio, p.width_ratio_min, equation="(3)",
+                 description="K5 = l_a / R_a in range"),
+        *extent,
         at_least("ball_layers", c.radius * (1 - c.filling), p.min_ball_layers * 2 * c.ball_radius, equation="model",
                  unit="mm", scale=c.radius, description="the layer R_a - R_1 holds several balls"),
     ]
