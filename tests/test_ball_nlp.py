@@ -53,10 +53,10 @@ def test_paper_assumptions_give_the_fifth_root_where_its_contact_stress_is_allow
     # paper mode minimises the mass over R_a and l with the leading torque (4) >= M_c and l >= K5 R_a: the fifth
     # root (4), K5 active. The case's allowable contact stress is posed too (the paper checks p_0 (9) after sizing):
     # by hand (_fifth_root) the fifth root's p_0 is 847 MPa on the crusher and 945 MPa on the conveyor, over their
-    # 0.5 GPa, and no smaller drum helps (p_0 ~ R_a^(2/3) and the torque at most 3 R_a^5 within width_ratio_max = 3:
-    # at p_0 = 0.5 GPa, R_a ~ (500 / 847)^(3/2) = 0.45 of the fifth root's, the torque 3 / 0.5 x 0.45^5 = 0.12 M_c):
-    # proven infeasible, naming contact_stress; with 1 GPa allowed, the fifth root. The compressor's 871 MPa is
-    # within its 1 GPa.
+    # 0.5 GPa, and no other drum helps: p_0 rises with R_a alone (the ball load as R_a^2, (9) as its cube root) and
+    # the torque (4) with R_a and l, l <= 3 R_a (width_ratio_max); p_0 = 0.5 GPa at R_a = 149.1 mm (crusher; 171.7 mm
+    # the conveyor), where l = 3 R_a carries 0.131 M_c (0.074): proven infeasible, naming contact_stress; with 1 GPa
+    # allowed, the fifth root. The compressor's 871 MPa is within its 1 GPa.
     case = load_case(CASES / name)
     p = case.params()
     radius, p0 = _fifth_root(p)

@@ -123,3 +123,17 @@ def test_a_requirement_no_design_variable_enters_is_judged_without_a_solve_and_a
     record = Sweep(case, [Vary(quantity, (0.1, 0.3))], mode="paper").run(progress=False).solutions[-1]
     assert record["status"] == "infeasible" and record["diagnosis"] == solved.diagnosis
     assert record["design"] == solved.design
+
+
+@pytest.mark.parametrize("values", [{}, {"service_factor": 1.4914285714285713}, {"power": 605693.4230086812}],
+                         ids=["as_given", "service_factor_1_49", "power_606_kW"])
+def test_ball_motor_start_in_paper_mode_is_proven_infeasible_by_its_contact_stress(values):
+    # ball_motor_start.toml is ball_crusher.toml started on its motor: the paper mode's fifth root (4) has p_0 (9) =
+    # 847 MPa over the case's 0.5 GPa (tests/test_ball_nlp.py, by hand). p_0 rises with R_a alone (the ball load as
+    # R_a^2, its Hertz stress as its cube root), the torque (4) with R_a and l <= 3 R_a (width_ratio_max): at
+    # p_0 = 0.5 GPa, R_a = 149.1 mm and l = 447 mm carry 0.131 M_c (at 1.2 x 500 kW; less of the more M_c asks). Static, so no start-up enters it: proven infeasible (interval
+    # branch and bound), naming contact_stress, at the service factor (1.49) and power (606 kW) where the start-up
+    # NLP once ended not_found, and the start-up rows are not its cause
+    solved = solve_case(load_case(CASES / "ball_motor_start.toml").with_values(**values), "paper")
+    assert solved.status == "infeasible" and solved.diagnosis.startswith("proven infeasible")
+    assert "contact_stress" in solved.diagnosis and "start_time" not in solved.diagnosis
