@@ -117,6 +117,22 @@ class EnclosedFunction:
         return self.interval.bounds([*inputs, y, s])
 
 
+def split_bounds(first: EnclosedFunction, second: EnclosedFunction, inputs: list[Bounds], count: int
+                 ) -> tuple[list[Bounds], list[Bounds]]:
+    """``first``'s outputs over the first ``count`` columns of ``inputs`` and ``second``'s over the others, the
+    declared nodes (the same for both) enclosed once over all of them: a search's Jacobian over its boxes and its
+    rows alone at their centres and ends (``interval_proof._bounds``). Each output's bounds are those of its
+    function's own :meth:`EnclosedFunction.bounds` to the bit: a node's enclosure is a column's own, and the rows
+    are the same expression nodes in both functions, replayed by the same rules (the ball's Jacobian has 359
+    instructions, its rows 153: the centres and ends, half or more of the columns, had replayed all 359)."""
+    assert first.nodes is second.nodes, "the functions enclose different nodes"
+    y, s = first.nodes.bounds(inputs)
+    extra = [*inputs, y, s]
+    head = [(lo[:, :count], hi[:, :count]) for lo, hi in extra]
+    tail = [(lo[:, count:], hi[:, count:]) for lo, hi in extra]
+    return first.interval.bounds(head), second.interval.bounds(tail)
+
+
 def enclosed_rows(posed, declared: bool = True) -> tuple[EnclosedFunction, EnclosedFunction]:
     """A posed problem's own constraint rows (``g <= 0``, normalised, as the NLP's first rows; a start-up's left
     out) and their Jacobian in the design (dense, rows x variables) as interval functions of (design, p), the
