@@ -240,12 +240,11 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
                 d_lo, d_hi, uncertain = d_lo[..., keep], d_hi[..., keep], uncertain[:, keep]
                 if not lo.shape[1]:
                     break
+        slope = _slopes(d_lo, d_hi, uncertain)  # (once an iteration: each half inherits its box's)
         if not intervals:  # (no parameter interval to split: the boxes' parameters follow their boxes)
             for turn in range(int(rounds[owner].max())):
-                lo, hi, owner, parents = _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0,
-                                                         rounds[owner] > turn)
-                plo, phi = plo[:, parents], phi[:, parents]
-                d_lo, d_hi, uncertain = d_lo[..., parents], d_hi[..., parents], uncertain[:, parents]
+                lo, hi, owner, parents = _bisected_where(lo, hi, owner, slope, width0, rounds[owner] > turn)
+                plo, phi, slope = plo[:, parents], phi[:, parents], slope[:, parents]
             continue
         component, rate = _parameter_spread(plo, phi, p_width0[:, owner], (c_hi - c_lo)[:, at], uncertain)
         for turn in range(int(rounds[owner].max())):
@@ -254,11 +253,10 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
                                                                  p_width0[component, owner], np.inf)
             extra = np.full(plo.shape, -1.0)
             extra[component, columns] = np.where(relative > 0, rate * relative, -1.0)
-            z_lo, z_hi, owner, parents = _bisected_where(np.vstack([lo, plo]), np.vstack([hi, phi]), owner, d_lo,
-                                                         d_hi, uncertain, width0, rounds[owner] > turn, extra)
+            z_lo, z_hi, owner, parents = _bisected_where(np.vstack([lo, plo]), np.vstack([hi, phi]), owner, slope,
+                                                         width0, rounds[owner] > turn, extra)
             lo, plo, hi, phi = z_lo[:n], z_lo[n:], z_hi[:n], z_hi[n:]
-            d_lo, d_hi, uncertain = d_lo[..., parents], d_hi[..., parents], uncertain[:, parents]
-            component, rate = component[parents], rate[parents]
+            slope, component, rate = slope[:, parents], component[parents], rate[parents]
     return outcomes
 
 
@@ -336,15 +334,14 @@ def _rounded(lo: np.ndarray, hi: np.ndarray, integer: list[int]) -> tuple[np.nda
     return lo, hi, lo[integer] > hi[integer]
 
 
-def _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0, split, extra=None):
+def _bisected_where(lo, hi, owner, slope, width0, split, extra=None):
     """:func:`_bisected` of the boxes ``split`` selects (the others kept), every search's boxes in the order its
     own bisection gives (its boxes' first halves, then its second halves); the boxes and the box each came from."""
     chosen = np.flatnonzero(split)
     if len(chosen) == len(owner) and (owner[1:] == owner[:-1]).all():  # one search: as it is
-        lo, hi, parents = _bisected(lo, hi, d_lo, d_hi, uncertain, width0[:, owner], extra)
+        lo, hi, parents = _bisected(lo, hi, slope, width0[:, owner], extra)
         return lo, hi, owner[parents], parents
-    s_lo, s_hi, s_parents = _bisected(lo[:, chosen], hi[:, chosen], d_lo[..., chosen], d_hi[..., chosen],
-                                      uncertain[:, chosen], width0[:, owner[chosen]],
+    s_lo, s_hi, s_parents = _bisected(lo[:, chosen], hi[:, chosen], slope[:, chosen], width0[:, owner[chosen]],
                                       None if extra is None else extra[:, chosen])
     parents = np.concatenate([np.flatnonzero(~split), chosen[s_parents]])
     second = np.concatenate([np.zeros((~split).sum(), dtype=bool), np.arange(len(s_parents)) >= len(chosen)])
@@ -406,14 +403,21 @@ def _faces(lo: np.ndarray, hi: np.ndarray, d_lo: np.ndarray, d_hi: np.ndarray,
     return np.where(falling & ~rising, hi, lo), np.where(rising, lo, hi)
 
 
-def _bisected(lo: np.ndarray, hi: np.ndarray, d_lo: np.ndarray, d_hi: np.ndarray, uncertain: np.ndarray,
-              width0: np.ndarray, extra: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Each box split in two across the variable that spreads its uncertain rows most (largest |dg/dx| width; a
-    variable whose slope is unbounded first, the widest of them relative to the design box), at its middle (a
-    positive range over a factor 4: its geometric middle); the halves and the box each came from. ``extra``: the
-    spread of further rows of the boxes below the design variables (a parameter interval's: :func:`_searched`)."""
-    n = d_lo.shape[1]
-    slope = np.where(uncertain[:, None, :], np.maximum(np.abs(d_lo), np.abs(d_hi)), 0.0).max(axis=0)
+def _slopes(d_lo: np.ndarray, d_hi: np.ndarray, uncertain: np.ndarray) -> np.ndarray:
+    """Each variable's largest |dg/dx| over a box's uncertain rows (variables x boxes; rows x variables x boxes of
+    slope bounds in): what :func:`_bisected` splits by, taken once an iteration and inherited by the halves (the
+    rows x variables x boxes bounds had been carried through every round of splits for it)."""
+    return np.where(uncertain[:, None, :], np.maximum(np.abs(d_lo), np.abs(d_hi)), 0.0).max(axis=0)
+
+
+def _bisected(lo: np.ndarray, hi: np.ndarray, slope: np.ndarray, width0: np.ndarray, extra: np.ndarray | None = None
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Each box split in two across the variable that spreads its uncertain rows most (largest |dg/dx| width,
+    ``slope``: :func:`_slopes`; a variable whose slope is unbounded first, the widest of them relative to the design
+    box), at its middle (a positive range over a factor 4: its geometric middle); the halves and the box each came
+    from. ``extra``: the spread of further rows of the boxes below the design variables (a parameter interval's:
+    :func:`_searched`)."""
+    n = slope.shape[0]
     with np.errstate(invalid="ignore"):  # an unbounded slope times a zero width: the where's other branch
         smear = np.where(np.isfinite(slope), slope * (hi[:n] - lo[:n]), 1e300 * (hi[:n] - lo[:n]) / width0)
     smear = np.where(hi[:n] > lo[:n], smear, -1.0)
