@@ -60,13 +60,21 @@ class DeclaredNodes:
         """Whether the rows with the nodes' own values for ``y`` are the NLP's rows (to 1e-9) at the box's centre
         and random points of it: not so where a formulation differentiates its own expressions (a chance
         constraint's slope in a scattered quantity), a path the symbols ``y`` would cut."""
-        if not self.nodes:
-            return True
+        return self.agree_all([(p, lower, upper)], points)[0]
+
+    def agree_all(self, problems: list[tuple[np.ndarray, ...]], points: int = 8) -> list[bool]:
+        """:meth:`agree` for each ``(p, lower, upper, ...)`` of a call of searches, their points in one evaluation
+        (the same points and numbers: one mapped call where each search's had cost one, about 0.25 ms)."""
+        if not self.nodes or not problems:
+            return [True] * len(problems)
+        n = len(problems[0][1])
         rng = np.random.default_rng(0)
-        fractions = np.column_stack([np.full(len(lower), 0.5), rng.random((len(lower), points - 1))])
-        samples = lower[:, None] + (upper - lower)[:, None] * fractions
-        difference = np.array(self.check.map(points)(samples, np.repeat(p[:, None], points, axis=1)))
-        return bool(np.all(np.isnan(difference) | (np.abs(difference) <= 1e-9)))
+        fractions = np.column_stack([np.full(n, 0.5), rng.random((n, points - 1))])
+        samples = np.hstack([lower[:, None] + (upper - lower)[:, None] * fractions for _, lower, upper, *_ in problems])
+        p = np.hstack([np.repeat(problem[0][:, None], points, axis=1) for problem in problems])
+        difference = np.array(self.check.map(points * len(problems))(samples, p))
+        close = np.isnan(difference) | (np.abs(difference) <= 1e-9)
+        return [bool(np.all(close[:, k * points:(k + 1) * points])) for k in range(len(problems))]
 
     def bounds(self, inputs: list[Bounds]) -> tuple[Bounds, Bounds]:
         """Bounds on the values ``y`` and slopes ``s`` over boxes given as (design, p) bounds."""

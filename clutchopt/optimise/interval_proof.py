@@ -98,7 +98,7 @@ def searches(posed, problems: list[tuple[np.ndarray, ...]], budgets: list[int] |
         return outcomes
     budgets = budgets or [MAX_BOXES] * len(problems)
     declared = interval_functions(posed)
-    agree = [declared[0].nodes.agree(problems[i][1], problems[i][2], problems[i][0]) for i in started]
+    agree = declared[0].nodes.agree_all([problems[i] for i in started])
     for functions, group in ((declared, [i for i, a in zip(started, agree) if a]),
                              (None, [i for i, a in zip(started, agree) if not a])):
         if group:  # where the declared nodes do not stand for the NLP's rows, the rows replayed
