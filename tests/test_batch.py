@@ -487,9 +487,9 @@ def test_the_ball_past_4_5x_its_power_spends_one_call_a_point_between_changes_of
     # and with integer variables the point's own interval search, the one its verdict runs first, goes before its
     # solve and proves it, region_proof.Regions._early; 1 before, solve's from the case's own start, its relaxation
     # and elastic diagnosis, then that proof; 3 before that, with two retries) + 0 (97 .. 99: one region proof)
-    # = 105. The sweep's 123 add the chained columns that failed at the changes and at 96, the batch's own search at 96 (the 12
-    # rows and the 13 by IPOPT) and points chained past a change; 192 before (the first chain past 4.5x ran to the
-    # sweep's end, the row fewer was solved by IPOPT at every point)
+    # = 105. The sweep's 123 add the chained columns that failed at the changes and at 96, the batch's own search at
+    # 96 (the 12 rows and the 13 by IPOPT) and points chained past a change; 192 before (the first chain past 4.5x ran
+    # to the sweep's end, the row fewer was solved by IPOPT at every point)
     case = load_case(CASES / "ball_compressor.toml")
     problem = Problem(get_coupling("ball").formulation("design"))
     values = case.values["power"] * np.geomspace(1.0, 10.0, 100)
