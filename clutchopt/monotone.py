@@ -62,6 +62,10 @@ class MonotoneFunction:
         self._float = None
         self._maps: dict[tuple[int, int], tuple] = {}  # (function, points) -> its map in place
 
+    def __getstate__(self) -> dict:
+        """Pickled without its maps in place (this process's buffers: built again where they are used)."""
+        return {**self.__dict__, "_maps": {}}
+
     def __call__(self, argument):
         values = self.function(argument)
         if not (_collecting and is_symbolic(argument) and isinstance(argument, ca.SX)):
