@@ -374,3 +374,26 @@ def test_a_run_searched_ahead_keeps_its_share_of_the_call_that_searched_it(monke
     assert list(result.frame["status"]) == ["optimal"] * 84 + ["infeasible"] * 116
     assert proved == [(85, 93, 1 / 116), (93, 109, 1 / 116), (109, 141, 1 / 116), (141, 200, 1 / 116)]
     assert sum((b - a) * seconds for a, b, seconds in proved) == pytest.approx(115 / 116, rel=1e-12)
+
+
+def test_a_point_past_the_edge_of_the_ball_is_proven_by_its_own_search_before_any_solve(monkeypatch):
+    # ball_compressor (design mode) at 11,040-11,400 kW, 4 points: 11,040 kW has a design, 11,160 kW none. The chain
+    # from the design fails at 11,160 kW; with integer variables (ball_rows) its own search runs before its solve
+    # (Regions._early): the search solve's verdict runs first (within SURE_BOXES, the run 11,280-11,400 kW searched in
+    # the same call), so the words are solve's, the point needs no solver call, and no elastic problem is solved
+    # (the failed solve, its integer search and its diagnosis had cost 24 of 82 ms over 1x-10x its power)
+    ball = load_case(CASES / "ball_compressor.toml")
+    vary = parse_vary("power=11040:11400:4", "ball", ball.quantities)
+    calls = []
+    real = problem_module.diagnose
+    monkeypatch.setattr(problem_module, "diagnose", lambda *args: calls.append(1) or real(*args))
+    result = Sweep(ball, [vary], mode="design").run(progress=False)
+    assert [s["status"] for s in result.solutions] == ["optimal"] + ["infeasible"] * 3
+    assert not calls
+    record = result.solutions[1]
+    assert (record["solver"]["name"], record["solver"]["solves"]) == ("interval", 0)
+    alone = case_problem(ball, "design").solve(ball.with_values(power=vary.values[1]))
+    assert calls and alone.status == "infeasible"  # (solve's verdict: the failed solve, then the same search)
+    assert record["diagnosis"] == alone.diagnosis
+    assert record["diagnosis"].startswith("proven infeasible: no design within the bounds meets torque")
+    assert result.solutions[2]["diagnosis"].startswith("proven infeasible for power 11280-11400 kW (2 points")
