@@ -382,8 +382,10 @@ class Problem:
         """The papers' sizing's optimum solved as a start-up design, where a row of the collocation holds ``held``
         (:func:`held_by_the_mesh`) and the sizing ends ``optimal`` and lighter; else None. No start-up limit holds
         ``held``, so the static constraints alone bind where the physics has its optimum: the sizing's, a relaxation
-        of this problem (the same formulation without the start-up limits), is the optimum wherever its simulated
-        start meets every limit. It is solved in two steps on the mesh its own simulated start draws
+        of this problem where its rows are the start-up's own (the same formulation without the start-up limits:
+        the ball's and the cable's; the wedge's and the lever's sizing keep the constant-acceleration torque row the
+        start-up drops, tests/test_start_up_relaxation.py), is the optimum wherever its simulated start meets every
+        limit. It is solved in two steps on the mesh its own simulated start draws
         (:func:`~clutchopt.start_up.transcription.mesh_of_the_start`; ``held``'s mesh has no collocated start of it,
         the lighter side of its fold): its design fixed (the collocation's states follow it), then freed, warm from
         that point (IPOPT's barrier from 1e-9: a KKT point where the collocation follows the design, so it stays).
