@@ -73,6 +73,7 @@ import numpy as np
 from clutchopt.cases import Case
 import clutchopt.optimise.attempts as attempts
 from clutchopt.optimise.attempts import warm_multipliers
+from clutchopt.optimise.batch_carried import Carried
 from clutchopt.optimise.batch_pace import BatchPace, until_active
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
 from clutchopt.optimise.chain import chain_verdict, chained_sqp
@@ -92,6 +93,9 @@ WINDOW = 1024  # points whose float64 checks run together; results are handed on
 WINDOW_WORK = 8192  # or once this much work is done, whichever comes first (a progress bar moves on): work counted,
 # not the clock, ends a window, so that the same sweep gives the same bits on a loaded or an idle machine (where a
 # window ends, its last chain is cut short, and the next starts from its last column)
+STRETCH_WINDOWS = 8  # a stretch of points without a design runs on past a window's end up to this many windows'
+# points and work: a window ends at a point with a design where it can, since a window starts its region proofs afresh
+# (batch_carried; ended inside the lever's 2,516 points without a design, its proof across the end was lost: 2 solves)
 CHAINED_POINT_WORK, CHAIN_CALL_WORK, SOLVE_WORK = 1, 8, 64  # the work of a chained point, of a chained call besides
 # its points, of any other solver call: about 30 us, 0.25 ms and 2 ms on the benchmark's machine (1000-point user
 # sweeps: chains of 256 points 3-9 ms, of one point 0.2-0.3 ms; a point solved alone 0.2-15 ms, most 2 ms), so that
@@ -131,10 +135,6 @@ class _Chain(Block):
             return self.arrays[key]
         except KeyError:
             raise AttributeError(key) from None
-
-    def block(self, passed: int, begin: int = 0) -> Block:
-        """The first ``passed`` points (from ``begin``)."""
-        return Block(self.index[begin:passed], **{key: value[:, begin:passed] for key, value in self.arrays.items()})
 
     def run(self, j: int) -> dict:
         """Point ``j`` as a run of ``integers.descend`` (its arrays' column, ``f`` a number): what the integer search
@@ -198,7 +198,8 @@ class _Start:
     """Where a batch starts: a primal-dual point that passed the tests, in its own scaling, and the same as the warm
     start of a point solved by ``Problem.solve``."""
 
-    def __init__(self, sweep: "BatchSweep", solution: Solution | None = None, block: Block | None = None):
+    def __init__(self, sweep: "BatchSweep", solution: Solution | None = None, block: Block | None = None,
+                 at: int = -1, carried: dict | None = None):
         n, m = len(sweep.names), len(sweep.posed.formulation.quantities)
         if solution is not None:
             self.scale = solution.scale
@@ -206,15 +207,27 @@ class _Start:
             self.lam_x, self.lam_g = warm_multipliers(sweep.posed, *solution.multipliers)
             self.objective = solution.objective
             self.step = _zero_step(self.x, self.lam_x, self.lam_g)  # nothing to predict from
-        else:  # its last point
-            a, p = block.arrays, block.arrays["p"][:, -1]
-            self.scale, self.x, self.lam_x, self.lam_g = p[m:m + n], a["x"][:, -1], a["lam_x"][:, -1], a["lam_g"][:, -1]
-            self.objective = float(a["f"][0, -1] * p[m + n])  # the scaled objective times its normaliser
-            self.step = {key: a[key][:, -1] for key in ("dx", "dlam_x", "dlam_g")}
+        elif block is not None:  # its point ``at`` (its last)
+            a, p = block.arrays, block.arrays["p"][:, at]
+            self.scale, self.x, self.lam_x, self.lam_g = p[m:m + n], a["x"][:, at], a["lam_x"][:, at], a["lam_g"][:, at]
+            self.objective = float(a["f"][0, at] * p[m + n])  # the scaled objective times its normaliser
+            self.step = {key: a[key][:, at] for key in ("dx", "dlam_x", "dlam_g")}
+        else:  # as :attr:`carried` gave it (a resumed sweep: ``batch_carried``)
+            self.scale, self.x, self.lam_x, self.lam_g = (np.array(carried[key], dtype=float)
+                                                          for key in ("scale", "x", "lam_x", "lam_g"))
+            self.objective = float(carried["objective"])
+            self.step = {key: np.array(carried[key], dtype=float) for key in ("dx", "dlam_x", "dlam_g")}
         self.names, self.integer = sweep.names, sweep.posed.integer
         self.combo = np.round(self.x[sweep.integer] * self.scale[sweep.integer])  # the free integers (SI)
         objective = self.objective
         self.f_scale = abs(objective) if math.isfinite(objective) and objective != 0 else 1.0  # the batch's normaliser
+
+    @property
+    def carried(self) -> dict:
+        """The start as numbers (what ``_Start(sweep, carried=...)`` takes back, bit for bit through JSON)."""
+        arrays = {"scale": self.scale, "x": self.x, "lam_x": self.lam_x, "lam_g": self.lam_g, **self.step}
+        return {**{key: np.asarray(value, dtype=float).tolist() for key, value in arrays.items()},
+                "objective": float(self.objective)}
 
     @property
     def run(self) -> dict:
@@ -274,7 +287,7 @@ class BatchSweep:
         self._verdict = chain_verdict(self.posed, self.integer, fixed)
         self._fixed_names = np.array([self.posed.row_names[row] for row in rows])
         self._span = min(EXCLUSION_SPAN, self.count)
-        self._exclusions: dict[tuple, tuple[int, np.ndarray]] = {}
+        self._exclusions: dict[tuple, tuple[int, np.ndarray, list[bool]]] = {}
         self.searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
         self._undesigned: dict[tuple, tuple[int, str]] = {}  # integer combination -> the last point where IPOPT or
         # the least violation found no design, and the status there
@@ -292,22 +305,35 @@ class BatchSweep:
         self.feasible: dict[str, float] | None = None  # the last feasible design in order: a start for a failed point
         self._regions = Regions(problem, self.point_case, self.count)  # infeasible regions proven at once
         self._limits: tuple[np.ndarray, np.ndarray] | None = None  # the tightening's limits and scales per point
+        self.carried: Carried | None = None  # what the window after the last one yielded starts from
 
     def point_case(self, k: int) -> Case:
         return self.case.with_values(**{name: float(values[k]) for name, values in self.varied.items()})
 
-    def run(self, window: int = WINDOW) -> Iterator["Solutions"]:
-        """Solve every point in order; yields the solutions window by window, each window checked in float64."""
+    def run(self, window: int = WINDOW, carried: Carried | None = None) -> Iterator["Solutions"]:
+        """Solve every point in order (from ``carried.point``, as the window that started there did: a resumed
+        sweep); yields the solutions window by window, each window checked in float64. After each window
+        :attr:`carried` is what the next one starts from (``batch_carried``)."""
         start: _Start | None = None  # where the next batch starts; None: after a point without a design
         pace, k = BatchPace(FIRST_BATCH, LONGEST_BATCH), 0
         ahead = None  # points until an inactive constraint or bound is expected to become active (with integers,
         # where the pace expects no break)
+        if carried is not None:
+            k, ahead, self.feasible = carried.point, carried.ahead, carried.feasible
+            start = None if carried.start is None else _Start(self, carried=carried.start)
+            pace.carry(carried.pace)
+            self._undesigned = {combo: (j, status) for combo, j, status in carried.undesigned}
         while k < self.count:
             first, end, spent = k, min(k + window, self.count), self.work + WINDOW_WORK
+            self._regions = Regions(self.problem, self.point_case, self.count)  # (each window's afresh: what it
+            # takes from the windows before is ``carried``)
             blocks: list[Block] = []
             alone: dict[int, Solution] = {}
             failed = False  # the last point is without a design: the window waits for a feasible point after it
-            while k < end and (failed or self.work < spent):  # each turn solves at least one point
+            longest, most = min(first + STRETCH_WINDOWS * window, self.count), self.work + STRETCH_WINDOWS * WINDOW_WORK
+            while k < end and (failed or self.work < spent) or failed and k < longest and self.work < most:  # each
+                # turn solves at least one point; a stretch without a design runs on to a point with one (the
+                # region proofs searched ahead end there; the next window starts them afresh: ``carried``)
                 wanted, reach = min(pace.size, ahead or pace.size, end - k), min(2 * pace.size, LONGEST_BATCH, end - k)
                 forecast = ahead is not None and ahead < pace.size  # the chain ends at a forecast change
                 block, chained, searching, tried, origin = (self._batch(start, k, wanted, reach) if start is not None
@@ -350,7 +376,10 @@ class BatchSweep:
                 ahead = None
                 start, k = self._start_of(alone[k]), k + 1
                 failed = alone[k - 1].status not in DESIGN_STATUSES
-            yield self._window(blocks, alone, first, k - first)
+            solutions = self._window(blocks, alone, first, k - first)
+            self.carried = Carried(k, None if start is None else start.carried, pace.state, ahead, self.feasible,
+                                   [(combo, j, status) for combo, (j, status) in self._undesigned.items()])
+            yield solutions
 
     def _until_active(self, blocks: list[Block], size: int, combo: np.ndarray) -> int | None:
         """With free integers, the points after the last kept one until its active set is expected to change
@@ -474,29 +503,23 @@ class BatchSweep:
     def _replayed(self, chain: "_Chain", start: _Start, changes: list[tuple[int, np.ndarray]],
                   passed: int) -> tuple[list[Block], _Start, int, bool]:
         """The first ``passed`` points of ``chain`` as blocks, each point where it changed its integers
-        (``changes``) settled by :meth:`_settle` with its column as the first attempt (the search ``Problem.solve``
-        runs there, without a solve where the column passed its tests); the start after them, how many points are
-        kept (up to a change that the search does not settle, or up to and with one where the search ran), and
-        whether the kept points end there by choice (the latter)."""
-        pieces, before, begin = [], start, 0
-        for j, combo in changes:
-            if j > begin:
-                pieces.append(chain.block(j, begin))
-                before = _Start(self, block=pieces[-1])
-            tried = chain.column(j, before.f_scale)
-            settled = searched = self._changed(before, int(chain.index[j]), tried)
-            if settled is None:
-                settled = self._settle(before, int(chain.index[j]), tried)
+        (``changes``) settled with its column as the first attempt: in place, where the outcome of the search
+        ``Problem.solve`` runs there is certain (:meth:`_changed`), else by :meth:`_settle` (the search; the kept
+        points end with that point, or before it where the search does not settle it); the start after them, how many
+        points are kept, and whether they end there by choice (after a search). The kept columns are one copy of
+        the chain's, a change's column normalised as the search's first attempt is (:meth:`_Chain.column`): the
+        numbers a block per piece had held (the cable over its torque changes its count at 42 of 100 points)."""
+        kept = Block(chain.index[:passed], **{key: value[:, :passed].copy() for key, value in chain.arrays.items()})
+        for j, _ in changes:
+            before = _Start(self, block=kept, at=j - 1) if j > 0 else start
+            if self._changed(before, kept, j, bool(chain.ok[j])):
+                continue
+            pieces = [kept.block(j)] if j > 0 else []  # (the search decides point j: the kept points end there)
+            settled = self._settle(before, int(chain.index[j]), chain.column(j, before.f_scale))
             if settled is None:
                 return pieces, before, j, False
-            pieces.append(settled)
-            before, begin = _Start(self, block=settled), j + 1
-            if searched is None:  # (a search that ran may have found combinations without a design the later
-                return pieces, before, j + 1, True  # changes assumed open)
-        if passed > begin:
-            pieces.append(chain.block(passed, begin))
-            before = _Start(self, block=pieces[-1])
-        return pieces, before, passed, False
+            return pieces + [settled], _Start(self, block=settled), j + 1, True
+        return ([kept] if passed else []), (_Start(self, block=kept) if passed else start), passed, False
 
     def _opening(self, start: _Start, k: int, count: int) -> tuple[int | None, np.ndarray | None]:
         """Where, among points k .. k + count - 1, the neighbouring combination that ``start``'s multipliers promise a
@@ -666,20 +689,30 @@ class BatchSweep:
         self.searches[k] = search
         return block
 
-    def _changed(self, start: _Start, k: int, tried: "_Chain") -> Block | None:
-        """Point k, where a chain changed its integers from ``start``'s (excluded there) to the one neighbour left,
-        settled as :meth:`_settle` settles it, without running the search, where its outcome is certain: the column
-        ``tried`` is the search's first attempt (KKT-verified), and every neighbour its multipliers promise a gain
-        at (``integers.downhill``) is ``start``'s integers, tried already: the search's record is those excluded and
-        the column kept. None otherwise (:meth:`_settle` runs the search)."""
-        run = tried.run(0)
-        if not tried.ok[0] or any(not np.array_equal(combo, start.combo) for combo in self._downhill(run, start)):
-            return None
+    def _changed(self, start: _Start, kept: Block, j: int, ok: bool) -> bool:
+        """Whether column ``j`` of ``kept`` (a chain's), where the chain changed its integers from ``start``'s
+        (excluded there) to the one neighbour left, is settled as :meth:`_settle` settles it, without running the
+        search, because its outcome is certain: the column is the search's first attempt, KKT-verified (``ok``), and
+        every neighbour its multipliers promise a gain at (``integers.downhill``) is ``start``'s integers, tried
+        already; then the search's record is those excluded and the column kept, normalised in place by ``start``'s
+        objective as :meth:`_Chain.column` normalises the search's attempt, without a step to predict from (as
+        :meth:`_searched` keeps it). False otherwise (:meth:`_settle` runs the search; ``kept`` is left as it was)."""
+        a, k = kept.arrays, int(kept.index[j])
+        ratio = a["p"][-1, j] / start.f_scale  # (the column normalised by start's objective: the search's attempt)
+        f = float(a["f"][0, j] * ratio)
+        run = {"x": a["x"][:, j], "lam_x": a["lam_x"][:, j] * ratio, "f": f}
+        if not ok or any(not np.array_equal(combo, start.combo) for combo in self._downhill(run, start)):
+            return False
+        for key in ("f", "lam_x", "lam_g"):
+            a[key][:, j] *= ratio
+        for key in ("dx", "dlam_x", "dlam_g"):
+            a[key][:, j] = 0.0
+        a["p"][-1, j] = start.f_scale
         excluded = self._excluded_names(self._with_integers(start.combo), k)
-        combo = np.round(tried.x[self.integer, 0] * start.scale[self.integer])
-        search = [excluded_entry(self.posed, self.integer, start.combo, excluded),
-                  search_entry(self.posed, self.integer, combo, BATCHED, True, run["f"] * start.f_scale)]
-        return self._searched(tried, k, search, float(tried.arrays["time"][0, 0]), 1)
+        combo = np.round(a["x"][self.integer, j] * start.scale[self.integer])
+        self.searches[k] = [excluded_entry(self.posed, self.integer, start.combo, excluded),
+                            search_entry(self.posed, self.integer, combo, BATCHED, True, f * start.f_scale)]
+        return True
 
     def _ruled_out(self, combo: tuple, k: int) -> str:
         """Why the integers ``combo`` are not solved at point k (empty: they are): IPOPT or their least violation
@@ -756,7 +789,7 @@ class BatchSweep:
     def _left_out(self, combo: np.ndarray, k: int) -> bool:
         """The integers ``combo`` have no design at point k: a constraint of fixed variables alone breaks, or IPOPT
         found none (:meth:`_undesigned_at`)."""
-        return bool(self._broken(self._with_integers(combo), k, 1).any()) or self._undesigned_at(combo, k)
+        return self._excluded_at(combo, k) or self._undesigned_at(combo, k)
 
     def _with_integers(self, combo: np.ndarray) -> np.ndarray:
         """The lower bounds of the design (SI) with the free integers at ``combo``: what the exclusion tables and
@@ -772,6 +805,8 @@ class BatchSweep:
     def _undesigned_at(self, combo: np.ndarray, k: int) -> bool:
         """IPOPT found no design with the integers ``combo`` at point k, or at one before it and the sweep has only
         tightened the constraints since (:meth:`_ruled_out`)."""
+        if not self._undesigned:  # (none found yet: most sweeps, each integer change asks)
+            return False
         return self._last_undesigned(combo) == k or bool(self._ruled_out(tuple(combo.tolist()), k))
 
     def _last_undesigned(self, combo: np.ndarray) -> int | None:
@@ -825,18 +860,33 @@ class BatchSweep:
 
     def _broken(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
         """Which of those constraints break at points k .. k + count - 1 (a row per constraint, a column per point);
-        evaluated EXCLUSION_SPAN points ahead at once, per integer combination."""
-        key = tuple(design[self.integer].tolist())
-        first, table = self._exclusions.get(key, (0, np.zeros((0, 0), dtype=bool)))
-        if not first <= k <= k + count <= first + table.shape[1]:
-            first, began = k, time.perf_counter()
+        ``design``: the case's fixed variables with the integers of a combination (:meth:`_with_integers`)."""
+        first, table, _ = self._exclusion_table(tuple(design[self.integer].tolist()), k, count)
+        return table[:, k - first:k - first + count]
+
+    def _excluded_at(self, combo: np.ndarray, k: int) -> bool:
+        """``_excluded(self._with_integers(combo), k, 1)[0]``, read from the table's list of its points' verdicts (an
+        integer change asks it of a combination and its neighbours: no array work)."""
+        first, _, excluded = self._exclusion_table(tuple(combo.tolist()), k, 1)
+        return excluded[k - first]
+
+    def _exclusion_table(self, key: tuple, k: int, count: int) -> tuple[int, np.ndarray, list[bool]]:
+        """The exclusion table of the integers ``key`` (SI) covering points k .. k + count - 1: its first point, which
+        constraints of fixed variables alone break at each point from there (a row per constraint, a column per
+        point) and whether any does (a list); evaluated EXCLUSION_SPAN points ahead at once, per integer
+        combination, the rest of the design the case's fixed variables."""
+        entry = self._exclusions.get(key)
+        if entry is None or not (entry[0] <= k and k + count <= entry[0] + entry[1].shape[1]):
+            began = time.perf_counter()
+            design = self.lower.copy()
+            design[self.integer] = key
             p_rows = np.ones((self._span, len(self.values) + len(design) + 1))  # unit scales: x is SI
             p_rows[:, : len(self.values)] = self._by_point[np.minimum(np.arange(k, k + self._span), self.count - 1)]
             g, = self.posed.mapped(self._fixed_values, self._span)(design, p_rows.T)  # past the end: the last point
             self.check_s += time.perf_counter() - began
             table = g > 10 * FEASIBILITY_TOL
-            self._exclusions[key] = (first, table)
-        return table[:, k - first:k - first + count]
+            entry = self._exclusions[key] = (k, table, table.any(axis=0).tolist())
+        return entry
 
     def _window(self, blocks: list[Block], alone: dict[int, Solution], first: int, count: int) -> "Solutions":
         """The solutions of points first .. first + count - 1: batched points checked in float64 together; one that

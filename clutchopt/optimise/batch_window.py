@@ -17,7 +17,7 @@ from clutchopt.model import Output, namespace
 from clutchopt.optimise.posed import Posed
 from clutchopt.optimise.sensitivity import limit_elasticities, sense_sign, sensitivity_table
 from clutchopt.optimise.solution import Solution, SolverInfo
-from clutchopt.optimise.table import active_names, placed, record_table
+from clutchopt.optimise.table import active_names, placed, solution_table
 from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, column_figures, column_outputs, margin_flags
 from clutchopt.records import STATUSES
 from clutchopt.window_records import KINDS, WindowRecords, in_order
@@ -37,6 +37,10 @@ class Block:
     def __init__(self, index: np.ndarray, **arrays: np.ndarray):
         self.index, self.arrays = index, arrays
 
+    def block(self, passed: int, begin: int = 0) -> "Block":
+        """The first ``passed`` points (from ``begin``), views of these arrays."""
+        return Block(self.index[begin:passed], **{key: value[:, begin:passed] for key, value in self.arrays.items()})
+
     @classmethod
     def joined(cls, blocks: list["Block"]) -> "Block":
         return cls(np.concatenate([b.index for b in blocks]),
@@ -49,7 +53,7 @@ class Solutions(Sequence):
     def __init__(self, first: int, count: int, alone: dict[int, Solution], checked: "Checked | None",
                  names: list[str]):
         self._solutions = {k - first: solution for k, solution in alone.items()}  # by position in the window
-        self._records: dict[int, dict] = {}  # the points solved alone's as_dict(), built once (stored and tabulated)
+        self._records: dict[int, dict] = {}  # the points solved alone's as_dict(), built once (stored)
         self._names = names  # the design variables
         self._checked, self._column = checked, np.full(count, -1)
         if checked is not None:
@@ -96,14 +100,14 @@ class Solutions(Sequence):
 
     def table(self) -> dict[str, np.ndarray]:
         """Every point's row of a sweep table (``clutchopt.optimise.table``), those of the batched points read from
-        the window's arrays without building their records."""
+        the window's arrays, those solved alone from their Solutions, without building any record."""
         names = self._names
         if self._checked is None:
-            return record_table([self._record(i) for i in range(len(self))], names)
+            return solution_table([self._solutions[i] for i in range(len(self))], names)
         table = {key: column[..., self._column] for key, column in self._checked.table().items()}  # copies
         alone = sorted(self._solutions)
         if alone:
-            placed(record_table([self._record(i) for i in alone], names), alone, table)
+            placed(solution_table([self._solutions[i] for i in alone], names), alone, table)
         return table
 
     @property

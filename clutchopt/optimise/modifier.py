@@ -34,6 +34,7 @@ import numpy as np
 
 from clutchopt.errors import InputError
 from clutchopt.model import Quantity
+from clutchopt.optimise.sparsity import entries
 from clutchopt.optimise.start_up_check import CENTRE, LIMIT_OF, limit_gaps, objective_error, simulated_checks
 from clutchopt.optimise.verify import DESIGN_STATUSES
 from clutchopt.start_up.equations import with_start_up
@@ -104,8 +105,7 @@ def _figure_derivatives(posed):
         h = ca.vertcat(*block.equalities)
         jf, jh = ca.jacobian(figure, x), ca.jacobian(h, x)
         n = len(posed.names)
-        depends = (np.array(ca.DM(jf.sparsity(), 1))[:, :n] != 0).any(axis=0) | \
-                  (np.array(ca.DM(jh.sparsity(), 1))[:, :n] != 0).any(axis=0)
+        depends = entries(jf.sparsity())[:, :n].any(axis=0) | entries(jh.sparsity())[:, :n].any(axis=0)
         function = ca.Function("start_up_limit_figures", [x, p], [figure, jf, jh])
         return function, ranges, depends, h.shape[0] == x.shape[0] - n
 

@@ -14,21 +14,21 @@ which a single solve does not spend, nor a sweep whose solves are short (the wed
 would save 0.03 s): it is generated once a problem's sweep points took GENERATE_AFTER_S of solving (the cable's after
 three or four points, the ball's after two).
 
-``CLUTCHOPT_BUILD_LATER=0`` starts no build (a library already in the cache is still used): the test suite's, so that
-its sweeps do not compile beside the tests (``tests/conftest.py``).
+``CLUTCHOPT_BUILD_LATER=0`` (or ``false``, ``no``, ``off``: ``clutchopt.switches``) starts no build (a library already
+in the cache is still used): the test suite's, so that its sweeps do not compile beside the tests
+(``tests/conftest.py``).
 """
 
 from __future__ import annotations
 
-import os
 import subprocess
 import time
 from pathlib import Path
 
 from clutchopt.optimise.compiled import (BUILD_TIMEOUT_S, build_detached, cache_folder, compiler, generated_source,
                                          library_path, nlp_functions, ready_library)
+from clutchopt.switches import BUILD_LATER_ENV, switch  # off: no build started (a library in the cache is still used)
 
-BUILD_LATER_ENV = "CLUTCHOPT_BUILD_LATER"  # "0": no build started (a library in the cache is still used)
 GENERATE_AFTER_S = 2.0  # the solver seconds a problem's sweep points take before its C is generated (0.1-0.3 s)
 _STARTED: dict[Path, subprocess.Popen | None] = {}  # the builds this process started (one a library, whatever the
 # sweeps): their processes (None: not started, one of another process's under way), for :func:`wait_for_builds`
@@ -60,7 +60,7 @@ class CompiledLater:
         source = generated_source(nlp_functions(self.posed.solver("ipopt")))
         self.library = None if source is None else library_path(source)
         if self.library is not None and not self.look() and self.library not in _STARTED \
-                and os.environ.get(BUILD_LATER_ENV, "1") != "0":
+                and switch(BUILD_LATER_ENV):
             _STARTED[self.library] = build_detached(source)
 
     def look(self) -> bool:

@@ -16,14 +16,31 @@ KEYS = ("status", "objective", "design", "active", "diagnosis", "iterations")
 
 def record_table(records: list[dict], names: list[str]) -> dict[str, np.ndarray]:
     """The table of points given as records (``Solution.as_dict()``); ``names``: the design variables, in order."""
+    return _rows_table([(r["status"], r["objective"]["value"], r["design"],
+                         " ".join(c["name"] for c in r["constraints"] if c["active"]), r["diagnosis"],
+                         r["solver"]["iterations"]) for r in records], names)
+
+
+def solution_table(solutions: list, names: list[str]) -> dict[str, np.ndarray]:
+    """The table of points given as ``Solution`` objects, read from their fields: the rows :func:`record_table`
+    reads from their records, without building the records (``Solution.as_dict()``: each check, output and unit
+    written out, about 0.2 ms a point, two fifths of a 100-point sweep of the lever beyond its edge, 0.05 ms a
+    point proven without a solve)."""
+    return _rows_table([(s.status, s.objective, s.design, " ".join(c.name for c in s.constraints if c.active),
+                         s.diagnosis, s.solver.iterations) for s in solutions], names)
+
+
+def _rows_table(rows: list[tuple], names: list[str]) -> dict[str, np.ndarray]:
+    """The table of points given as rows (status, objective, design by name, active names, diagnosis, iterations)."""
+    count = len(rows)
     return {
-        "status": _objects([r["status"] for r in records]),
-        "objective": np.array([r["objective"]["value"] for r in records], dtype=float).reshape(len(records)),
-        "design": np.array([[r["design"].get(name) for r in records] for name in names],
-                           dtype=float).reshape(len(names), len(records)),
-        "active": _objects([" ".join(c["name"] for c in r["constraints"] if c["active"]) for r in records]),
-        "diagnosis": _objects([r["diagnosis"] for r in records]),
-        "iterations": _objects([r["solver"]["iterations"] for r in records]),
+        "status": _objects([row[0] for row in rows]),
+        "objective": np.array([row[1] for row in rows], dtype=float).reshape(count),
+        "design": np.array([[row[2].get(name) for row in rows] for name in names],
+                           dtype=float).reshape(len(names), count),
+        "active": _objects([row[3] for row in rows]),
+        "diagnosis": _objects([row[4] for row in rows]),
+        "iterations": _objects([row[5] for row in rows]),
     }
 
 
