@@ -7,6 +7,7 @@ to 1e-7).
 No hand calculation: the reference is the same sweep run once without an interruption, in this process.
 """
 
+import json
 import math
 import sqlite3
 from contextlib import closing
@@ -15,6 +16,7 @@ import pytest
 
 import clutchopt.optimise.batch as batch
 from clutchopt.cases import load_case
+from clutchopt.cli import main
 from clutchopt.optimise.batch import BatchSweep
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import parse_vary
@@ -62,8 +64,8 @@ def uninterrupted(tmp_path_factory):
     return result, starts
 
 
-def _resumed(tmp_path, monkeypatch, cls, name: str, calls: int):
-    """The sweep stored until the ``calls``-th call of ``cls.name`` raises (after it ran), then resumed."""
+def _stopped(tmp_path, monkeypatch, cls, name: str, calls: int):
+    """The store of the sweep stopped where the ``calls``-th call of ``cls.name`` raises (after it ran)."""
     monkeypatch.setattr(batch, "WINDOW_WORK", WINDOW_WORK)
     original, seen = getattr(cls, name), []
 
@@ -79,7 +81,12 @@ def _resumed(tmp_path, monkeypatch, cls, name: str, calls: int):
         patch.setattr(cls, name, hook)
         with pytest.raises(Interrupted):
             _sweep().run(store, progress=False)
-    with RunStore(path) as store:
+    return path
+
+
+def _resumed(tmp_path, monkeypatch, cls, name: str, calls: int):
+    """The sweep stored until the ``calls``-th call of ``cls.name`` raises (after it ran), then resumed."""
+    with RunStore(_stopped(tmp_path, monkeypatch, cls, name, calls)) as store:
         return _sweep().run(store, resume=True, progress=False)
 
 
@@ -132,3 +139,37 @@ def test_a_resume_without_a_stored_start_solves_the_rest_from_cold(tmp_path, mon
         resumed = _sweep().run(store, resume=True, progress=False)
     assert resumed.reused > 0
     assert resumed.frame["status"].value_counts().to_dict() == {"optimal": 91, "infeasible": 9}
+
+
+def _short(start: dict) -> dict:
+    return {**start, "x": start["x"][:-1]}
+
+
+@pytest.mark.parametrize("damage, named", [
+    (lambda body: {**body, "start": {"x": [1.0]}, "pace": {"size": 4}}, "'scale'"),  # the reviewer's repro
+    (lambda body: {**body, "start": _short(body["start"])}, "x"),  # a number short of the design's
+    (lambda body: {**body, "start": {**body["start"], "lam_g": body["start"]["lam_g"] + [0.0]}}, "lam_g"),
+    (lambda body: {**body, "start": {**body["start"], "dx": [None] * len(body["start"]["dx"])}}, "dx"),
+    (lambda body: {**body, "start": {**body["start"], "objective": "NaN"}}, "objective"),
+    (lambda body: {**body, "pace": {**body["pace"], "size": 0}}, "size"),
+    (lambda body: {**body, "pace": {**body["pace"], "breaks": ["39"]}}, "breaks"),
+    (lambda body: {**body, "ahead": "3"}, "ahead"),
+    (lambda body: {**body, "ahead": -1}, "ahead"),
+    (lambda body: {**body, "point": body["point"] - 1}, "point"),
+    (lambda body: {**body, "feasible": {"filling": 0.41}}, "feasible"),
+    (lambda body: {**body, "undesigned": [[[5.0], 40, 7]]}, "undesigned"),
+])
+def test_a_damaged_stored_start_is_an_error_line_naming_it(damage, named, tmp_path, monkeypatch, capsys):
+    # before: 'internal error: KeyError: 'scale'', exit 3 (the start read past the wrapper that names a damaged
+    # store), a start of another point skipped (a resume from cold without a word)
+    path = _stopped(tmp_path, monkeypatch, RunStore, "record_points", 3)
+    with closing(sqlite3.connect(path)) as db, db:
+        point, body = db.execute("SELECT point, body FROM sweep_starts ORDER BY point DESC LIMIT 1").fetchone()
+        db.execute("UPDATE sweep_starts SET body = ? WHERE point = ?", (json.dumps(damage(json.loads(body))), point))
+    file, text, mode = SWEEP
+    code = main(["sweep", str(CASES / file), "--vary", text, "--mode", mode, "--store", str(path), "--resume",
+                 "--quiet"])
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert err.startswith("error: --store") and f"start at point {point} is damaged" in err and named in err, err
+    assert "internal error" not in err and "Traceback" not in err

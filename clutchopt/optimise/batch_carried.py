@@ -14,7 +14,11 @@ bit (JSON keeps every float64 exactly), where a resume used to start cold (docs/
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+
+BY_VARIABLE = ("scale", "x", "lam_x", "dx", "dlam_x")  # a start's numbers, one per design variable
+BY_ROW = ("lam_g", "dlam_g")  # and one per constraint row
 
 
 @dataclass(frozen=True)
@@ -35,11 +39,61 @@ class Carried:
                                                           for combo, k, status in self.undesigned]}
 
     @classmethod
-    def from_dict(cls, data: dict) -> "Carried":
-        """Read back from :meth:`as_dict`'s JSON; ValueError where it is not one (a damaged store)."""
+    def from_dict(cls, data: dict, point: int, variables: list[str], rows: int) -> "Carried":
+        """Read back from :meth:`as_dict`'s JSON, stored as the start of point ``point`` of a sweep of the design
+        ``variables`` and ``rows`` constraint rows: every number converted and checked here (finite, whole where a
+        count, each array as long as the problem's), so that a damaged store is one ValueError naming what is wrong,
+        not an error of the window that would read it."""
         try:
-            return cls(int(data["point"]), data["start"], dict(data["pace"]), data["ahead"], data["feasible"],
-                       [(tuple(float(v) for v in combo), int(k), str(status))
-                        for combo, k, status in data["undesigned"]])
-        except (KeyError, TypeError, ValueError) as exc:
-            raise ValueError(f"not a sweep's carried start: {exc}") from None
+            if _whole(data["point"], "point") != point:
+                raise ValueError(f"its point is {data['point']!r}")
+            start = data["start"]
+            if start is not None:
+                start = {**{key: _numbers(start[key], key, len(variables)) for key in BY_VARIABLE},
+                         **{key: _numbers(start[key], key, rows) for key in BY_ROW},
+                         "objective": _number(start["objective"], "objective")}
+            pace = data["pace"]
+            pace = {"size": _whole(pace["size"], "pace size", 1), "breaks": [_whole(b, "breaks") for b in pace["breaks"]],
+                    "aimed": _flag(pace["aimed"], "aimed"), "probes": _whole(pace["probes"], "probes")}
+            ahead = None if data["ahead"] is None else _whole(data["ahead"], "ahead", 1)
+            feasible = data["feasible"]
+            if feasible is not None and (type(feasible) is not dict or sorted(feasible) != sorted(variables)):
+                raise ValueError("its feasible design is not one of the design variables")
+            feasible = None if feasible is None else {name: _number(feasible[name], "feasible") for name in variables}
+            undesigned = [(tuple(_numbers(combo, "undesigned")), _whole(k, "undesigned"), _text(status, "undesigned"))
+                          for combo, k, status in data["undesigned"]]
+        except KeyError as exc:
+            raise ValueError(f"no {exc}") from None
+        except (TypeError, AttributeError) as exc:
+            raise ValueError(f"not a sweep's carried start ({exc})") from None
+        return cls(point, start, pace, ahead, feasible, undesigned)
+
+
+def _number(value, name: str) -> float:
+    if type(value) not in (int, float) or not math.isfinite(value):
+        raise ValueError(f"its {name} is not a finite number")
+    return float(value)
+
+
+def _numbers(values, name: str, length: int | None = None) -> list[float]:
+    if type(values) is not list or length is not None and len(values) != length:
+        raise ValueError(f"its {name} is not {length} numbers" if length is not None else f"its {name} is no list")
+    return [_number(value, name) for value in values]
+
+
+def _whole(value, name: str, least: int = 0) -> int:
+    if type(value) is not int or value < least:
+        raise ValueError(f"its {name} is not a whole number from {least}")
+    return value
+
+
+def _flag(value, name: str) -> bool:
+    if type(value) is not bool:
+        raise ValueError(f"its {name} is not true or false")
+    return value
+
+
+def _text(value, name: str) -> str:
+    if type(value) is not str:
+        raise ValueError(f"its {name} is not a text")
+    return value

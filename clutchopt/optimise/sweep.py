@@ -427,26 +427,18 @@ class Sweep:
         self._aspect_columns(frame, records)
         return SweepResult(sweep_id, frame, len(pending), len(stored), elapsed, records, total_spent(parts))
 
-    @staticmethod
-    def _carried(store, sweep_id: int, kept: np.ndarray, pending: Points) -> Carried | None:
+    def _carried(self, store, sweep_id: int, kept: np.ndarray, pending: Points) -> Carried | None:
         """Where a sweep resumes after its first points, stored in order, at a batched window's start: what the
         uninterrupted run started that window from, as recorded with the window before (``batch_carried``), so that
         the resumed points are the uninterrupted run's bit for bit. None (the points solved from cold, as before)
-        where the store holds none: points stored out of order (a pool), or by an older clutchopt."""
-        from clutchopt.store import StoreError
-
+        where the store holds none: points stored out of order (a pool), or by an older clutchopt. A damaged one
+        (``Carried.from_dict`` refuses it): StoreError."""
         first = int(pending.index[0])
         if len(kept) != first or (len(kept) and int(kept[-1]) != first - 1):
             return None
-        body = store.sweep_start(sweep_id, first)
-        if body is None:
-            return None
-        try:
-            carried = Carried.from_dict(body)
-        except ValueError as exc:
-            raise StoreError(store.path, f"sweep {sweep_id}'s start at point {first} is damaged ({exc})",
-                             "run the sweep again without --resume") from None
-        return carried if carried.point == first else None
+        posed = case_problem(self.case, self.formulation.mode, self.objective.name, SolverOptions(tol=self.tol)).posed
+        return store.sweep_start(sweep_id, first, partial(Carried.from_dict, point=first, variables=posed.names,
+                                                          rows=len(posed.lbg)))
 
     def _aspect_columns(self, frame: pd.DataFrame, records: "SweepRecords") -> None:
         """Where each point was designed as ``solve`` designs (``options.choose``, ``--robust``): the choice kept
