@@ -120,7 +120,9 @@ def test_a_sweep_resumed_after_a_kill_inside_a_window_has_the_uninterrupted_rows
 
 def test_a_resume_without_a_stored_start_solves_the_rest_from_cold(tmp_path, monkeypatch):
     # a store of an older clutchopt (no start beside its windows): the remaining points are solved as before, from
-    # the case's own start, with the same statuses
+    # the case's own start, with the same statuses, and no start is stored for its windows (their points counted
+    # from the first point resumed: a start stored at point 8 where its window began at 49, read by a later resume
+    # as the start of another point)
     monkeypatch.setattr(batch, "WINDOW_WORK", WINDOW_WORK)
     original, seen = RunStore.record_points, []
 
@@ -139,6 +141,8 @@ def test_a_resume_without_a_stored_start_solves_the_rest_from_cold(tmp_path, mon
         resumed = _sweep().run(store, resume=True, progress=False)
     assert resumed.reused > 0
     assert resumed.frame["status"].value_counts().to_dict() == {"optimal": 91, "infeasible": 9}
+    with closing(sqlite3.connect(path)) as db:
+        assert db.execute("SELECT point FROM sweep_starts").fetchall() == []
 
 
 def _short(start: dict) -> dict:

@@ -406,6 +406,8 @@ class Sweep:
                    mininterval=0.5)
         in_order = runner is None and jobs <= 1  # (windows one after another: each starts from the one before)
         carried = self._carried(store, sweep_id, kept, pending) if stored and in_order and len(pending) else None
+        starts = in_order and (not stored or carried is not None)  # (windows from point 0 or from a stored start
+        # record where the next starts: a cold resume's count their points from its first, over other points)
         started = time.perf_counter()
         with bar, interrupt_between_points() as check:
             solving = (solve_points(*task, self.grid, carried) if carried is not None
@@ -414,7 +416,7 @@ class Sweep:
                 if store is not None and sweep_id is not None:  # the results in hand in one transaction
                     store.record_points(self._inputs(), self._where(sweep_id), results.points.index,
                                         results.points.columns, *results.stored(),
-                                        carried=results.carried.as_dict() if in_order and results.carried else None)
+                                        carried=results.carried.as_dict() if starts and results.carried else None)
                 elif store is not None:  # the sweep itself could not be recorded
                     store.unrecorded += len(results)
                 parts.append(results)
