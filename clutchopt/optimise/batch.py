@@ -303,7 +303,6 @@ class BatchSweep:
         self.solves, self.solver_s, self.check_s = 0, 0.0, 0.0
         self.work = 0  # the solving done, counted (CHAINED_POINT_WORK, ...): what ends a window (WINDOW_WORK)
         self.feasible: dict[str, float] | None = None  # the last feasible design in order: a start for a failed point
-        self._regions = Regions(problem, self.point_case, self.count)  # infeasible regions proven at once
         self._limits: tuple[np.ndarray, np.ndarray] | None = None  # the tightening's limits and scales per point
         self.carried: Carried | None = None  # what the window after the last one yielded starts from
 
@@ -325,8 +324,8 @@ class BatchSweep:
             self._undesigned = {combo: (j, status) for combo, j, status in carried.undesigned}
         while k < self.count:
             first, end, spent = k, min(k + window, self.count), self.work + WINDOW_WORK
-            self._regions = Regions(self.problem, self.point_case, self.count)  # (each window's afresh: what it
-            # takes from the windows before is ``carried``)
+            self._regions = Regions(self.problem, self.point_case, self.count)  # infeasible regions proven at
+            # once, each window's afresh (what it takes from the windows before is ``carried``)
             blocks: list[Block] = []
             alone: dict[int, Solution] = {}
             failed = False  # the last point is without a design: the window waits for a feasible point after it
