@@ -12,12 +12,16 @@ import math
 import sqlite3
 from contextlib import closing
 
+import numpy as np
 import pytest
 
 import clutchopt.optimise.batch as batch
+import clutchopt.optimise.interval_proof as interval_proof
 from clutchopt.cases import load_case
 from clutchopt.cli import main
 from clutchopt.optimise.batch import BatchSweep
+from clutchopt.optimise.problem import case_problem
+from clutchopt.optimise.region_proof import Regions
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import parse_vary
 from clutchopt.store import RunStore
@@ -177,3 +181,47 @@ def test_a_damaged_stored_start_is_an_error_line_naming_it(damage, named, tmp_pa
     assert code == 2, err
     assert err.startswith("error: --store") and f"start at point {point} is damaged" in err and named in err, err
     assert "internal error" not in err and "Traceback" not in err
+
+
+def test_a_resume_in_a_new_process_starts_its_windows_from_the_uninterrupted_run_s_last_proof(tmp_path, monkeypatch):
+    # the ball compressor up past its edge (about 11.1 MW), back and up again (58 points): after its first stretch
+    # without a design the last proof took 471 boxes, what a region search's budget grows from (REGION_BUDGET times
+    # it, at least SURE_BOXES), kept by the built problem across windows in one process. A new process has none; a
+    # resume there after that stretch started its windows from 0 boxes, where the uninterrupted run's had 471
+    monkeypatch.setattr(batch, "WINDOW_WORK", WINDOW_WORK)
+    case = load_case(CASES / "ball_compressor.toml")
+    legs = [np.linspace(9000, 12500, 20), np.linspace(12500, 9000, 20)[1:], np.linspace(9000, 12500, 20)[1:]]
+    vary = parse_vary("power=" + ",".join(f"{value:g}" for value in np.concatenate(legs)), case.coupling)
+    posed = case_problem(case, "design", "mass").posed
+    boxes: list[int] = []  # interval_proof.last_boxes at each window's start
+
+    def regions(*args):
+        boxes.append(interval_proof.last_boxes(posed))
+        return Regions(*args)
+
+    def run(store, resume=False):
+        interval_proof.carry_boxes(posed, 0)  # (a new process)
+        boxes.clear()
+        return Sweep(case, [vary], mode="design").run(store, resume=resume, progress=False), list(boxes)
+
+    monkeypatch.setattr(batch, "Regions", regions)
+    with RunStore(tmp_path / "whole.sqlite") as store:
+        whole, whole_boxes = run(store)
+    original, seen = RunStore.record_points, []
+
+    def stop_after_four(self, *args, **kwargs):
+        original(self, *args, **kwargs)
+        seen.append(1)
+        if len(seen) == 4:  # (stored up to point 27, the start of the window from point 28 beside them)
+            raise Interrupted
+
+    with RunStore(tmp_path / "runs.sqlite") as store, monkeypatch.context() as patch:
+        patch.setattr(RunStore, "record_points", stop_after_four)
+        with pytest.raises(Interrupted):
+            run(store)
+    with RunStore(tmp_path / "runs.sqlite") as store:
+        resumed, resumed_boxes = run(store, resume=True)
+    assert resumed.reused == 28 and whole.frame["status"].iloc[[11, 12, 26, 27]].tolist() == [
+        "optimal", "infeasible", "infeasible", "optimal"]  # (the first stretch: points 12-26)
+    assert resumed_boxes[0] > 0 and resumed_boxes == whole_boxes[-len(resumed_boxes):]
+    assert _rows(resumed) == _rows(whole)

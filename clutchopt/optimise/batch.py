@@ -80,6 +80,7 @@ from clutchopt.optimise.chain import chain_verdict, chained_sqp
 from clutchopt.optimise.feasibility import LOCALLY_INFEASIBLE, Least, infeasible, least
 from clutchopt.optimise.integers import (descend, downhill, excluded_entry, nearest_integers,
                                          relaxation_seed, search_entry)
+from clutchopt.optimise.interval_proof import carry_boxes, last_boxes
 from clutchopt.optimise.posed import Box, ScaledData, off_scale
 from clutchopt.optimise.problem import Problem
 from clutchopt.optimise.region_proof import Regions
@@ -322,6 +323,7 @@ class BatchSweep:
             start = None if carried.start is None else _Start(self, carried=carried.start)
             pace.carry(carried.pace)
             self._undesigned = {combo: (j, status) for combo, j, status in carried.undesigned}
+            carry_boxes(self.posed, carried.boxes)
         while k < self.count:
             first, end, spent = k, min(k + window, self.count), self.work + WINDOW_WORK
             self._regions = Regions(self.problem, self.point_case, self.count)  # infeasible regions proven at
@@ -377,7 +379,8 @@ class BatchSweep:
                 failed = alone[k - 1].status not in DESIGN_STATUSES
             solutions = self._window(blocks, alone, first, k - first)
             self.carried = Carried(k, None if start is None else start.carried, pace.state, ahead, self.feasible,
-                                   [(combo, j, status) for combo, (j, status) in self._undesigned.items()])
+                                   [(combo, j, status) for combo, (j, status) in self._undesigned.items()],
+                                   last_boxes(self.posed))
             yield solutions
 
     def _until_active(self, blocks: list[Block], size: int, combo: np.ndarray) -> int | None:

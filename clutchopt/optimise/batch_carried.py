@@ -4,9 +4,11 @@ uninterrupted one did.
 ``BatchSweep.run`` hands its points on (and the run store records them) a window at a time. The next window starts
 from the last kept point's primal-dual optimum and the step that led to it (the secant predictor's), the chains'
 pace, the points until an active set is expected to change, the last feasible design (a failed point's start) and
-the integer combinations IPOPT found without a design at recent points. That is all a window reads of the windows
-before it: each window starts its region proofs afresh (``region_proof.Regions``) and its exclusion tables are a
-cache of values that do not depend on where they were computed. The run store keeps :class:`Carried` beside the
+the integer combinations IPOPT found without a design at recent points, and the boxes of the last interval proof
+(``interval_proof.last_boxes``: a region search's budget, kept by the built problem across windows in one process;
+a resumed process had started from none). That is all a window reads of the windows before it: each window starts
+its region proofs afresh (``region_proof.Regions``) and its exclusion tables are a cache of values that do not depend
+on where they were computed. The run store keeps :class:`Carried` beside the
 window's points, in the same transaction (``RunStore.record_points``); ``sweep --resume`` reads it back at the first
 point not stored and starts the window there from it, so the resumed rows equal the uninterrupted run's bit for
 bit (JSON keeps every float64 exactly), where a resume used to start cold (docs/store.md, "Resumed sweeps").
@@ -24,7 +26,8 @@ BY_ROW = ("lam_g", "dlam_g")  # and one per constraint row
 @dataclass(frozen=True)
 class Carried:
     """What point ``point`` of a batched sweep starts from, the first point of a window (see the module text).
-    ``start``: the primal-dual point and step of ``_Start.carried`` (None: cold, after a point without a design)."""
+    ``start``: the primal-dual point and step of ``_Start.carried`` (None: cold, after a point without a design);
+    ``boxes``: ``interval_proof.last_boxes`` (0 in a start stored before it was carried)."""
 
     point: int
     start: dict | None
@@ -32,11 +35,13 @@ class Carried:
     ahead: int | None
     feasible: dict[str, float] | None
     undesigned: list[tuple[tuple[float, ...], int, str]]
+    boxes: int
 
     def as_dict(self) -> dict:
         return {"point": self.point, "start": self.start, "pace": self.pace, "ahead": self.ahead,
                 "feasible": self.feasible, "undesigned": [[list(combo), k, status]
-                                                          for combo, k, status in self.undesigned]}
+                                                          for combo, k, status in self.undesigned],
+                "boxes": self.boxes}
 
     @classmethod
     def from_dict(cls, data: dict, point: int, variables: list[str], rows: int) -> "Carried":
@@ -62,11 +67,12 @@ class Carried:
             feasible = None if feasible is None else {name: _number(feasible[name], "feasible") for name in variables}
             undesigned = [(tuple(_numbers(combo, "undesigned")), _whole(k, "undesigned"), _text(status, "undesigned"))
                           for combo, k, status in data["undesigned"]]
+            boxes = _whole(data.get("boxes", 0), "boxes")
         except KeyError as exc:
             raise ValueError(f"no {exc}") from None
         except (TypeError, AttributeError) as exc:
             raise ValueError(f"not a sweep's carried start ({exc})") from None
-        return cls(point, start, pace, ahead, feasible, undesigned)
+        return cls(point, start, pace, ahead, feasible, undesigned, boxes)
 
 
 def _number(value, name: str) -> float:
