@@ -404,9 +404,9 @@ class Sweep:
         parts = [PointResults(self.grid[kept], names, dict(enumerate(stored[i] for i in kept.tolist())))]
         bar = tqdm(total=len(self.grid), initial=len(stored), unit="point", desc="sweep", disable=not progress,
                    mininterval=0.5)
-        in_order = runner is None and jobs <= 1  # (windows one after another: each starts from the one before)
-        carried = self._carried(store, sweep_id, kept, pending) if stored and in_order and len(pending) else None
-        starts = in_order and (not stored or carried is not None)  # (windows from point 0 or from a stored start
+        sequential = runner is None and jobs <= 1  # (windows one after another: each starts from the one before)
+        carried = self._carried(store, sweep_id, kept, pending) if stored and sequential and len(pending) else None
+        starts = sequential and (not stored or carried is not None)  # (windows from point 0 or from a stored start
         # record where the next starts: a cold resume's count their points from its first, over other points)
         started = time.perf_counter()
         with bar, interrupt_between_points() as check:
