@@ -114,11 +114,10 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
     with what the next window starts from, ``carried``), else one point each. With ``options.choose`` or
     ``robust``, each point is designed as ``solve`` designs a case (every choice, for the scatter:
     :func:`~clutchopt.optimise.design.design_case`), the best kept with its choice. ``carried``: a resumed batched
-    sweep's window start (``points`` all of the sweep's; those from ``carried.point`` on are solved)."""
+    sweep's window start (``points`` all of the sweep's; those from ``carried.point`` on are solved; only a batched
+    window records one, and a sweep's key fixes whether it batches)."""
     problem = case_problem(case, mode, objective, SolverOptions(tol=tol))
     names = [v.name for v in problem.formulation.variables]
-    if carried is not None and not (len(points) and batchable(problem, points.columns)):
-        points, carried = points[carried.point:], None  # (point by point: from the case's own start, as before)
     if robust is not None or case.options.get("choose"):
         for j, (index, values) in enumerate(points.pairs()):
             best = design_case(case.with_values(**values), mode, objective, SolverOptions(tol=tol), robust)[0]
