@@ -612,7 +612,7 @@ class RunStore:
         before it (``record_points``' ``carried``), as ``read`` reads its JSON (ValueError naming what is wrong:
         ``Carried.from_dict``); None where none was recorded (the store of an older clutchopt, a sweep solved point by
         point or in a pool). One that is not JSON or that ``read`` refuses is damaged: StoreError."""
-        if "sweep_starts" not in Schema.of(self._db).tables:  # (an older store opened to read)
+        if not self._has_table("sweep_starts"):  # (an older store opened to read)
             return None
         rows = self._read("SELECT body FROM sweep_starts WHERE sweep_id = ? AND point = ?", (sweep_id, point))
         if not rows:
@@ -705,7 +705,7 @@ class RunStore:
         """A compact record's template, read once (the last TEMPLATES_KEPT are kept); ValueError where it is missing,
         not JSON or not the one of its key (a damaged run, to its caller)."""
         if key not in self._templates:
-            rows = self._read("SELECT body FROM templates WHERE key = ?", (key,)) if self._has_templates() else []
+            rows = self._read("SELECT body FROM templates WHERE key = ?", (key,)) if self._has_table("templates") else []
             try:
                 template = _from_json(rows[0][0]) if rows else None
             except (TypeError, ValueError, RecursionError):
@@ -719,8 +719,9 @@ class RunStore:
             raise ValueError("its template is missing, not JSON or changed")
         return self._templates[key]
 
-    def _has_templates(self) -> bool:
-        return bool(self._read("SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = 'templates'"))
+    def _has_table(self, name: str) -> bool:
+        """The store has table ``name`` (an older store, opened to read, may lack the newer ones)."""
+        return bool(self._read("SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = ?", (name,)))
 
     def _span(self) -> str:
         """SQL for how many runs a row holds (a store of an older clutchopt, read only, has one a row)."""
