@@ -396,7 +396,7 @@ class BatchSweep:
         if pair is None:
             return None
         last = int(pair.index[-1]) + 1
-        if last < self.count and self._excluded(self._with_integers(combo), last, min(size, self.count - last)).any():
+        if last < self.count and self._excluded(combo, last, min(size, self.count - last)).any():
             return None
         return until_active(self.posed, pair, self._ratio[last:last + LONGEST_BATCH], self._free,
                             self.posed.kkt_tolerance)
@@ -450,7 +450,7 @@ class BatchSweep:
         opens, neighbour = None, None  # (the offset where a neighbour opens, if the chain ends there; no changes then)
         if self.integer:  # the batch stops short of a point its integers cannot serve whatever the rest (the search
             # excludes them there without a solve), or changes them there to the one neighbour left
-            excluded = self._excluded(lower, k, max(count, reach))
+            excluded = self._excluded(start.combo, k, max(count, reach))
             if excluded.any():
                 first = int(np.argmax(excluded))
             opens, neighbour = self._opening(start, k, max(count, reach))
@@ -497,7 +497,7 @@ class BatchSweep:
                 return changes, j  # (a combination IPOPT left without a design at the point before: its search)
             changes.append((j, past))
             combo = past
-            ahead = (self._excluded(self._with_integers(combo), k + j + 1, count - j - 1) if j + 1 < count
+            ahead = (self._excluded(combo, k + j + 1, count - j - 1) if j + 1 < count
                      else np.zeros(0, dtype=bool))
             j = j + 1 + int(np.argmax(ahead)) if ahead.any() else -1
         return changes, -1
@@ -535,7 +535,7 @@ class BatchSweep:
         if k == 0 or not len(self._fixed_names):
             return None, None
         for combo in self._downhill(start.run, start):
-            table = self._excluded(self._with_integers(combo), k - 1, min(count, self._span - 1) + 1)  # (one table
+            table = self._excluded(combo, k - 1, min(count, self._span - 1) + 1)  # (one table
             # from k - 1)
             if table[0] and not table[1:].all():
                 return int(np.argmin(table[1:])), combo
@@ -615,7 +615,7 @@ class BatchSweep:
         def attempt(combo, seed, methods=None) -> dict | None:
             lower, upper = self.lower.copy(), self.upper.copy()
             lower[self.integer] = upper[self.integer] = combo
-            excluded = self._excluded_names(lower, k)
+            excluded = self._excluded_names(combo, k)
             if excluded:
                 search.append(excluded_entry(self.posed, self.integer, combo, excluded))
                 return None
@@ -710,7 +710,7 @@ class BatchSweep:
         for key in ("dx", "dlam_x", "dlam_g"):
             a[key][:, j] = 0.0
         a["p"][-1, j] = start.f_scale
-        excluded = self._excluded_names(self._with_integers(start.combo), k)
+        excluded = self._excluded_names(start.combo, k)
         combo = np.round(a["x"][self.integer, j] * start.scale[self.integer])
         self.searches[k] = [excluded_entry(self.posed, self.integer, start.combo, excluded),
                             search_entry(self.posed, self.integer, combo, BATCHED, True, f * start.f_scale)]
@@ -757,12 +757,10 @@ class BatchSweep:
         moves = chain.moves.copy()
         if not self._undesigned:
             return moves
-        lower = self.lower.copy()
         for j in np.flatnonzero(moves):
             k = int(chain.index[j])
             for combo in self._downhill(chain.run(j), start):
-                lower[self.integer] = combo
-                if not (self._ruled_out(tuple(combo.tolist()), k) or self._broken(lower, k, 1).any()):
+                if not (self._ruled_out(tuple(combo.tolist()), k) or self._excluded_at(combo, k)):
                     return moves
             moves[j] = False
         return moves
@@ -793,16 +791,10 @@ class BatchSweep:
         found none (:meth:`_undesigned_at`)."""
         return self._excluded_at(combo, k) or self._undesigned_at(combo, k)
 
-    def _with_integers(self, combo: np.ndarray) -> np.ndarray:
-        """The lower bounds of the design (SI) with the free integers at ``combo``: what the exclusion tables and
-        ``_broken`` read (constraints of fixed variables alone)."""
-        design = self.lower.copy()
-        design[self.integer] = combo
-        return design
-
-    def _excluded_names(self, design: np.ndarray, k: int) -> list[str]:
-        """The constraints of fixed variables alone that ``design``'s integers break at point k, each named once."""
-        return list(dict.fromkeys(self._fixed_names[self._broken(design, k, 1)[:, 0]]))
+    def _excluded_names(self, combo: np.ndarray, k: int) -> list[str]:
+        """The constraints of fixed variables alone that the integers ``combo`` (SI) break at point k, each named
+        once."""
+        return list(dict.fromkeys(self._fixed_names[self._broken(combo, k, 1)[:, 0]]))
 
     def _undesigned_at(self, combo: np.ndarray, k: int) -> bool:
         """IPOPT found no design with the integers ``combo`` at point k, or at one before it and the sweep has only
@@ -854,20 +846,20 @@ class BatchSweep:
         return search_entry(self.posed, self.integer, lower[self.integer], solved["status"], False,
                             solved["f"] * start.f_scale), solved["time"], None
 
-    def _excluded(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
-        """Per point k .. k + count - 1: the fixed variables of ``design`` (SI; integers and variables fixed by the
-        case) break a constraint that depends on them alone there, so the integer search would exclude them without a
-        solve (the test of ``integers.violated_whatever_the_rest``)."""
-        return self._broken(design, k, count).any(axis=0)
+    def _excluded(self, combo: np.ndarray, k: int, count: int) -> np.ndarray:
+        """Per point k .. k + count - 1: the integers ``combo`` (SI) with the variables the case fixes break a
+        constraint that depends on them alone there, so the integer search would exclude them without a solve (the
+        test of ``integers.violated_whatever_the_rest``)."""
+        return self._broken(combo, k, count).any(axis=0)
 
-    def _broken(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
-        """Which of those constraints break at points k .. k + count - 1 (a row per constraint, a column per point);
-        ``design``: the case's fixed variables with the integers of a combination (:meth:`_with_integers`)."""
-        first, table, _ = self._exclusion_table(tuple(design[self.integer].tolist()), k, count)
+    def _broken(self, combo: np.ndarray, k: int, count: int) -> np.ndarray:
+        """Which of those constraints break at points k .. k + count - 1 (a row per constraint, a column per point)
+        with the integers ``combo`` (SI)."""
+        first, table, _ = self._exclusion_table(tuple(combo.tolist()), k, count)
         return table[:, k - first:k - first + count]
 
     def _excluded_at(self, combo: np.ndarray, k: int) -> bool:
-        """``_excluded(self._with_integers(combo), k, 1)[0]``, read from the table's list of its points' verdicts (an
+        """``_excluded(combo, k, 1)[0]``, read from the table's list of its points' verdicts (an
         integer change asks it of a combination and its neighbours: no array work)."""
         first, _, excluded = self._exclusion_table(tuple(combo.tolist()), k, 1)
         return excluded[k - first]
@@ -880,7 +872,7 @@ class BatchSweep:
         entry = self._exclusions.get(key)
         if entry is None or not (entry[0] <= k and k + count <= entry[0] + entry[1].shape[1]):
             began = time.perf_counter()
-            design = self.lower.copy()
+            design = self.lower.copy()  # (the case's fixed variables, the integers at ``key``)
             design[self.integer] = key
             p_rows = np.ones((self._span, len(self.values) + len(design) + 1))  # unit scales: x is SI
             p_rows[:, : len(self.values)] = self._by_point[np.minimum(np.arange(k, k + self._span), self.count - 1)]
