@@ -514,10 +514,14 @@ class BatchSweep:
         kept = Block(chain.index[:passed], **{key: value[:, :passed].copy() for key, value in chain.arrays.items()})
         for j, _ in changes:
             before = _Start(self, block=kept, at=j - 1) if j > 0 else start
-            if self._changed(before, kept, j, bool(chain.ok[j])):
+            tried = chain.column(j, before.f_scale)  # (the search's first attempt)
+            changed = self._changed(before, tried, bool(chain.ok[j]))
+            if changed is not None:
+                for key, value in changed.arrays.items():
+                    kept.arrays[key][:, j] = value[:, 0]
                 continue
             pieces = [kept.block(j)] if j > 0 else []  # (the search decides point j: the kept points end there)
-            settled = self._settle(before, int(chain.index[j]), chain.column(j, before.f_scale))
+            settled = self._settle(before, int(chain.index[j]), tried)
             if settled is None:
                 return pieces, before, j, False
             return pieces + [settled], _Start(self, block=settled), j + 1, True
@@ -691,30 +695,21 @@ class BatchSweep:
         self.searches[k] = search
         return block
 
-    def _changed(self, start: _Start, kept: Block, j: int, ok: bool) -> bool:
-        """Whether column ``j`` of ``kept`` (a chain's), where the chain changed its integers from ``start``'s
-        (excluded there) to the one neighbour left, is settled as :meth:`_settle` settles it, without running the
-        search, because its outcome is certain: the column is the search's first attempt, KKT-verified (``ok``), and
-        every neighbour its multipliers promise a gain at (``integers.downhill``) is ``start``'s integers, tried
-        already; then the search's record is those excluded and the column kept, normalised in place by ``start``'s
-        objective as :meth:`_Chain.column` normalises the search's attempt, without a step to predict from (as
-        :meth:`_searched` keeps it). False otherwise (:meth:`_settle` runs the search; ``kept`` is left as it was)."""
-        a, k = kept.arrays, int(kept.index[j])
-        ratio = a["p"][-1, j] / start.f_scale  # (the column normalised by start's objective: the search's attempt)
-        f = float(a["f"][0, j] * ratio)
-        run = {"x": a["x"][:, j], "lam_x": a["lam_x"][:, j] * ratio, "f": f}
+    def _changed(self, start: _Start, tried: _Chain, ok: bool) -> Block | None:
+        """The point of ``tried`` (a chain's column normalised as ``start``'s: :meth:`_Chain.column`), where the chain
+        changed its integers from ``start``'s (excluded there) to the one neighbour left, settled as :meth:`_settle`
+        settles it, without running the search, because its outcome is certain: the column is the search's first
+        attempt, KKT-verified (``ok``), and every neighbour its multipliers promise a gain at (``integers.downhill``)
+        is ``start``'s integers, tried already; then the search's record is those excluded and the column kept, as
+        :meth:`_searched` keeps it (its own time and solver call). None otherwise (:meth:`_settle` runs the
+        search)."""
+        k, run = int(tried.index[0]), tried.run(0)
         if not ok or any(not np.array_equal(combo, start.combo) for combo in self._downhill(run, start)):
-            return False
-        for key in ("f", "lam_x", "lam_g"):
-            a[key][:, j] *= ratio
-        for key in ("dx", "dlam_x", "dlam_g"):
-            a[key][:, j] = 0.0
-        a["p"][-1, j] = start.f_scale
-        excluded = self._excluded_names(start.combo, k)
-        combo = np.round(a["x"][self.integer, j] * start.scale[self.integer])
-        self.searches[k] = [excluded_entry(self.posed, self.integer, start.combo, excluded),
-                            search_entry(self.posed, self.integer, combo, BATCHED, True, f * start.f_scale)]
-        return True
+            return None
+        combo = np.round(tried.x[self.integer, 0] * start.scale[self.integer])
+        search = [excluded_entry(self.posed, self.integer, start.combo, self._excluded_names(start.combo, k)),
+                  search_entry(self.posed, self.integer, combo, BATCHED, True, run["f"] * start.f_scale)]
+        return self._searched(tried, k, search, float(tried.time[0, 0]), int(tried.solves[0, 0]))
 
     def _ruled_out(self, combo: tuple, k: int) -> str:
         """Why the integers ``combo`` are not solved at point k (empty: they are): IPOPT or their least violation
