@@ -25,6 +25,7 @@ from clutchopt.optimise.in_place import InPlace
 from clutchopt.optimise.modifier import modified
 from clutchopt.optimise.solution import IPOPT_OWN_FIGURES, START_UP_RESTORATION, SolverOptions
 from clutchopt.optimise.sparsity import entries
+from clutchopt.optimise.two_sided import TwoSided
 from clutchopt.optimise.verify import evaluate_objective
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
@@ -112,6 +113,8 @@ class Posed:
         self.lbg = np.concatenate([np.full(self.n_ineq, -np.inf), np.zeros(len(equalities))])
         x_all = ca.vertcat(x_hat, internal)
         mesh = self.start_up.mesh_parameters if start_up else ca.SX(0, 1)
+        self.sides = TwoSided(constraints[: self.n_checked], x_hat, ca.vertcat(self.p_case, x_scale, f_scale, mesh),
+                              self.lbg)  # a quantity held from both sides: posed as one row
         self.constraint_values = ca.Function("g", [x_all, ca.vertcat(self.p_case, x_scale, f_scale, mesh)],
                                              [g[: self.n_ineq]])
         self.row_depends = entries(ca.jacobian(g[: self.n_ineq], x_all).sparsity())  # row i uses x_j
