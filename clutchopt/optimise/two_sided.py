@@ -40,7 +40,7 @@ def held_from_both_sides(constraints, x_hat) -> list[tuple[int, int]]:
     for i in (i for i in single if constraints[i].sense == "<="):
         for j in (j for j in single if constraints[j].sense == ">=" and j not in used):
             if ca.is_equal(ca.SX(constraints[i].value), ca.SX(constraints[j].value), DEPTH):
-                pairs.append((int(rows[i]), int(rows[j])))
+                pairs.append((int(rows[j]), int(rows[i])))
                 used.add(j)
                 break
     return pairs
@@ -61,7 +61,8 @@ class TwoSided:
         for c, row in zip(constraints, np.cumsum([0] + [ca.SX(c.normalised()).shape[0] for c in constraints])):
             rows[int(row)] = c
         u, l_ = [rows[int(i)] for i in upper], [rows[int(j)] for j in lower]
-        limit = ca.vertcat(*[(ca.SX(b.limit) - ca.SX(a.limit)) / ca.SX(_scale(a)) for a, b in zip(u, l_)])
+        limit = ca.vertcat(*[(1 if b.sense == "<=" else -1) * (ca.SX(a.limit) - ca.SX(b.limit)) / ca.SX(_scale(a))
+                             for a, b in zip(u, l_)])
         ratio = ca.vertcat(*[ca.SX(_scale(b)) / ca.SX(_scale(a)) for a, b in zip(u, l_)])  # S_l / S_u
         n = len(lbg)
         lam = ca.SX.sym("lam_g", n)
