@@ -95,14 +95,14 @@ class TwoSided:
 
     def posed(self, lam_g, p):
         """Named rows' multipliers (each >= 0 on its own row) as the solvers' (a two-sided row's signed)."""
-        return self._mapped(self.posed_of, lam_g, p)
+        return self._mapped("posed_of", lam_g, p)
 
     def named(self, lam_g, p):
         """The solvers' multipliers as the named rows' (split by sign onto the side that is active)."""
-        return self._mapped(self.named_of, lam_g, p)
+        return self._mapped("named_of", lam_g, p)
 
-    def _mapped(self, function, lam_g, p):
+    def _mapped(self, function: str, lam_g, p):
         if not self.pairs:
             return lam_g
-        out = function(lam_g, p)
+        out = getattr(self, function)(lam_g, p)
         return out if isinstance(out, (ca.MX, ca.SX)) else out.full().ravel()
