@@ -24,25 +24,28 @@ def _rows():
 
 
 def test_two_rows_on_one_quantity_are_one_row_with_both_limits():
-    # kept: the ">=" row g_l <= 0 (row 2); g_u <= 0 is v <= 5, v = 2 - 4 g_l: g_l >= (2 - 5) / 4 = -0.75; row 0 free
+    # kept: the ">=" row g_l <= 0 (row 2); g_u <= 0 is v <= 5, v = 2 - 4 g_l: g_l >= (2 - 5) / 4 = -0.75; row 0 left
+    # out of the solvers' rows (1, 2), its value from g_l: g_u = (2 - 5) / 10 - g_l 4 / 10 (at v = 3: g_l = -0.25,
+    # g_other = 2, g_u = -0.2)
     x, p, constraints = _rows()
     sides = TwoSided(constraints, x, p, np.full(3, -np.inf))
-    assert sides.pairs == [(2, 0)]
+    assert sides.pairs == [(2, 0)] and sides.rows == [1, 2]
     lbg, ubg = sides.bounds(np.zeros(0))
-    assert list(lbg) == [-np.inf, -np.inf, -0.75] and list(ubg) == [np.inf, 0.0, 0.0]
+    assert list(lbg) == [-np.inf, -0.75] and list(ubg) == [0.0, 0.0]
     lbg, ubg = sides.bounds(np.zeros(0), np.array([np.inf, 0.0, 0.0]))  # the upper side left out: no lower limit
-    assert list(lbg) == [-np.inf, -np.inf, -np.inf] and list(ubg) == [np.inf, 0.0, 0.0]
+    assert list(lbg) == [-np.inf, -np.inf] and list(ubg) == [0.0, 0.0]
+    assert sides.values(np.array([2.0, -0.25]), np.zeros(0)) == pytest.approx([-0.2, 2.0, -0.25], rel=1e-15)
 
 
 def test_a_two_sided_row_s_multiplier_goes_to_the_side_it_presses():
     # the solvers' lam on the kept row g_l: positive, g_l's own (v pressed onto its lower limit); negative, v pressed
-    # onto its upper limit: g_u's, lam_u = -lam S_u / S_l, by the Lagrangian: lam g_l = lam (2 - v) / 4 and
-    # lam_u g_u = lam_u (v - 5) / 10 have the same gradient in v where lam_u = -lam 10 / 4
+    # onto its upper limit: g_u's, by the Lagrangian: lam g_l = lam (2 - v) / 4 and lam_u g_u = lam_u (v - 5) / 10
+    # have the same gradient in v where lam_u = -lam 10 / 4
     x, p, constraints = _rows()
     sides = TwoSided(constraints, x, p, np.full(3, -np.inf))
-    assert list(sides.named(np.array([0.0, 3.0, 2.0]), np.zeros(0))) == [0.0, 3.0, 2.0]
-    assert list(sides.named(np.array([0.0, 3.0, -2.0]), np.zeros(0))) == [5.0, 3.0, 0.0]
-    assert list(sides.posed(np.array([5.0, 3.0, 0.0]), np.zeros(0))) == [0.0, 3.0, -2.0]  # and back
+    assert list(sides.named(np.array([3.0, 2.0]), np.zeros(0))) == [0.0, 3.0, 2.0]
+    assert list(sides.named(np.array([3.0, -2.0]), np.zeros(0))) == [5.0, 3.0, 0.0]
+    assert list(sides.posed(np.array([5.0, 3.0, 0.0]), np.zeros(0))) == [3.0, -2.0]  # and back
 
 
 def test_only_a_quantity_held_from_both_sides_is_paired():

@@ -124,6 +124,7 @@ class Posed:
         self.integer = [i for i, v in enumerate(f.variables) if v.integer]
         self.nlp = {"x": x_all, "p": ca.vertcat(self.p_case, x_scale, f_scale, mesh),
                     "f": self.objective.function(x, p) / f_scale, "g": g}  # the scaled NLP, g <= 0
+        self.solver_nlp = self.sides.nlp(self.nlp)  # the solvers': a quantity held from both sides, one row
         self.lam_g = ca.SX.sym("lam_g", g.shape[0])  # the Lagrangian, for KKT verdicts and sensitivities
         self.lagrangian = self.nlp["f"] + ca.dot(self.lam_g, g)
         if start_up:
@@ -167,7 +168,8 @@ class Posed:
             name = f"{f.coupling}_{f.mode}_{self.objective.name}" + ("" if method == "ipopt" else f"_{method}")
             if plugin == "ipopt":  # the cold solver's derivatives, not derived again (0.06 s a start-up problem)
                 options = {**options, **self.derivatives()}
-            solver = ca.nlpsol(name, plugin, self.library if plugin == "ipopt" and self.library else self.nlp, options)
+            solver = ca.nlpsol(name, plugin, self.library if plugin == "ipopt" and self.library else self.solver_nlp,
+                               options)
             if method in ("sqp_chain", "sqp_search"):  # a batched sweep's: compiled where that pays
                 solver = compiled_solver(name, solver, options)
             return solver

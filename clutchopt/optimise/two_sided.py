@@ -48,50 +48,60 @@ def held_from_both_sides(constraints, x_hat) -> list[tuple[int, int]]:
 
 class TwoSided:
     """The rows of a posed NLP held from both sides (:func:`held_from_both_sides`), and the maps between the named
-    rows' bounds and multipliers and those the solvers see. Without such a pair every map is the identity (the same
-    arrays: nothing changes for the formulations without one)."""
+    rows (their values, bounds and multipliers) and the rows the solvers see: each pair's kept row with both limits,
+    its other row left out. Without such a pair every map is the identity (the same arrays: nothing changes for the
+    formulations without one)."""
 
     def __init__(self, constraints, x_hat, p: ca.SX, lbg: np.ndarray):
         self.pairs = held_from_both_sides(constraints, x_hat)
         self.lbg = lbg  # the named rows' (-inf for g <= 0, 0 for equalities)
         if not self.pairs:
             return
-        upper, lower = (np.array(side) for side in zip(*self.pairs))
-        rows = {}
-        for c, row in zip(constraints, np.cumsum([0] + [ca.SX(c.normalised()).shape[0] for c in constraints])):
-            rows[int(row)] = c
-        u, l_ = [rows[int(i)] for i in upper], [rows[int(j)] for j in lower]
-        limit = ca.vertcat(*[(1 if b.sense == "<=" else -1) * (ca.SX(a.limit) - ca.SX(b.limit)) / ca.SX(_scale(a))
-                             for a, b in zip(u, l_)])
-        ratio = ca.vertcat(*[ca.SX(_scale(b)) / ca.SX(_scale(a)) for a, b in zip(u, l_)])  # S_l / S_u
         n = len(lbg)
-        lam = ca.SX.sym("lam_g", n)
-        lbg_posed, ubg_posed = ca.SX(ca.DM(lbg)), ca.SX.zeros(n)
-        lbg_posed[upper.tolist()] = limit
-        ubg_posed[lower.tolist()] = ca.inf
-        merged = ca.SX(lam)
-        merged[upper.tolist()] = lam[upper.tolist()] - lam[lower.tolist()] / ratio
-        merged[lower.tolist()] = 0
-        split = ca.SX(lam)
-        split[upper.tolist()] = ca.fmax(lam[upper.tolist()], 0)
-        split[lower.tolist()] = ca.fmax(-lam[upper.tolist()], 0) * ratio
-        self.upper, self.lower = upper, lower
+        by_row = dict(zip(np.cumsum([0] + [ca.SX(c.normalised()).shape[0] for c in constraints]).tolist(),
+                          constraints))
+        kept, freed = ([int(pair[side]) for pair in self.pairs] for side in (0, 1))
+        self.rows = [i for i in range(n) if i not in freed]  # the solvers' rows, in their order
+        at = [self.rows.index(k) for k in kept]  # each kept row's place among them
+        k_c, f_c = [by_row[k] for k in kept], [by_row[f] for f in freed]
+        # g_f = s_f (v - L_f) / S_f with v = L_k + s_k S_k g_k: g_f = s_f (L_k - L_f) / S_f - g_k / ratio
+        ratio = ca.vertcat(*[ca.SX(_scale(b)) / ca.SX(_scale(a)) for a, b in zip(k_c, f_c)])  # S_f / S_k
+        offset = ca.vertcat(*[(1 if b.sense == "<=" else -1) * (ca.SX(a.limit) - ca.SX(b.limit)) / ca.SX(_scale(b))
+                              for a, b in zip(k_c, f_c)])
+        lower = offset * ratio  # g_f <= 0: g_k >= s_f (L_k - L_f) / S_k
+        lbg_posed, ubg_posed = ca.SX(ca.DM(lbg[self.rows])), ca.SX.zeros(len(self.rows))
+        lbg_posed[at] = lower
+        lam, posed = ca.SX.sym("named", n), ca.SX.sym("posed", len(self.rows))  # (multipliers or values)
+        merged = lam[self.rows]
+        merged[at] = lam[kept] - lam[freed] / ratio
+        split, g_full = ca.SX.zeros(n), ca.SX.zeros(n)
+        split[self.rows] = posed
+        split[kept] = ca.fmax(posed[at], 0)
+        split[freed] = ca.fmax(-posed[at], 0) * ratio
+        g_full[self.rows] = posed
+        g_full[freed] = offset - posed[at] / ratio
+        self.at, self.kept, self.freed = at, kept, freed
         self.bounds_of = ca.Function("two_sided_bounds", [p], [lbg_posed, ubg_posed])
         self.posed_of = ca.Function("two_sided_posed", [lam, p], [merged])
-        self.named_of = ca.Function("two_sided_named", [lam, p], [split])
+        self.named_of = ca.Function("two_sided_named", [posed, p], [split])
+        self.values_of = ca.Function("two_sided_values", [posed, p], [g_full])
+
+    def nlp(self, nlp: dict) -> dict:
+        """The NLP the solvers see: ``nlp`` with each pair's other row left out."""
+        return {**nlp, "g": nlp["g"][self.rows]} if self.pairs else nlp
 
     def bounds(self, p, ubg=0.0):
         """The solvers' ``(lbg, ubg)`` at the NLP parameters ``p`` (NumPy, or CasADi symbols); ``ubg`` the named
-        rows' (0, or +inf where a row is left out of a solve: its side of a two-sided row dropped too)."""
+        rows' (0, or +inf where a row is left out of a solve: a side of a two-sided row left out, its limit too)."""
         if not self.pairs:
             return self.lbg, ubg
         lbg, posed_ubg = self.bounds_of(p)
         if isinstance(p, (ca.MX, ca.SX)):
-            return lbg, posed_ubg if np.all(np.asarray(ubg) == 0) else ca.fmax(posed_ubg, ubg)
+            return lbg, posed_ubg
         lbg, posed_ubg = lbg.full().ravel(), posed_ubg.full().ravel()
-        ubg = np.broadcast_to(np.asarray(ubg, dtype=float), lbg.shape)
-        lbg[self.upper[np.isinf(ubg[self.lower])]] = -np.inf  # a lower side left out
-        return lbg, np.maximum(posed_ubg, ubg)
+        ubg = np.broadcast_to(np.asarray(ubg, dtype=float), self.lbg.shape)
+        lbg[[a for a, f in zip(self.at, self.freed) if np.isinf(ubg[f])]] = -np.inf
+        return lbg, np.maximum(posed_ubg, ubg[self.rows])
 
     def posed(self, lam_g, p):
         """Named rows' multipliers (each >= 0 on its own row) as the solvers' (a two-sided row's signed)."""
@@ -100,6 +110,10 @@ class TwoSided:
     def named(self, lam_g, p):
         """The solvers' multipliers as the named rows' (split by sign onto the side that is active)."""
         return self._mapped("named_of", lam_g, p)
+
+    def values(self, g, p):
+        """The solvers' row values as the named rows' (a left-out row's from its kept one)."""
+        return self._mapped("values_of", g, p)
 
     def _mapped(self, function: str, lam_g, p):
         if not self.pairs:
