@@ -81,6 +81,8 @@ class TwoSided:
         g_full[self.rows] = posed
         g_full[freed] = offset - posed[at] / ratio
         self.at, self.kept, self.freed = at, kept, freed
+        self.coefficients = ca.Function("two_sided_coefficients", [p], [lower, ratio, offset])
+        self._last = (None, None)  # the coefficients at the last NumPy p (a solve's runs share their p)
         self.bounds_of = ca.Function("two_sided_bounds", [p], [lbg_posed, ubg_posed])
         self.posed_of = ca.Function("two_sided_posed", [lam, p], [merged])
         self.named_of = ca.Function("two_sided_named", [posed, p], [split])
@@ -95,28 +97,53 @@ class TwoSided:
         rows' (0, or +inf where a row is left out of a solve: a side of a two-sided row left out, its limit too)."""
         if not self.pairs:
             return self.lbg, ubg
-        lbg, posed_ubg = self.bounds_of(p)
-        if isinstance(p, (ca.MX, ca.SX)):
-            return lbg, posed_ubg
-        lbg, posed_ubg = lbg.full().ravel(), posed_ubg.full().ravel()
+        if _symbolic(p):
+            return self.bounds_of(p)[:2]
+        lower = self._at(p)[0]
+        lbg = self.lbg[self.rows].copy()
+        lbg[self.at] = lower
         ubg = np.broadcast_to(np.asarray(ubg, dtype=float), self.lbg.shape)
         lbg[[a for a, f in zip(self.at, self.freed) if np.isinf(ubg[f])]] = -np.inf
-        return lbg, np.maximum(posed_ubg, ubg[self.rows])
+        return lbg, np.maximum(0.0, ubg[self.rows])
 
     def posed(self, lam_g, p):
         """Named rows' multipliers (each >= 0 on its own row) as the solvers' (a two-sided row's signed)."""
-        return self._mapped("posed_of", lam_g, p)
+        if not self.pairs or _symbolic(p):
+            return self.posed_of(lam_g, p) if self.pairs else lam_g
+        merged = lam_g[self.rows].copy()
+        merged[self.at] = lam_g[self.kept] - lam_g[self.freed] / self._at(p)[1]
+        return merged
 
     def named(self, lam_g, p):
         """The solvers' multipliers as the named rows' (split by sign onto the side that is active)."""
-        return self._mapped("named_of", lam_g, p)
+        if not self.pairs or _symbolic(p):
+            return self.named_of(lam_g, p) if self.pairs else lam_g
+        split = self._full(lam_g)
+        split[self.kept] = np.maximum(lam_g[self.at], 0.0)
+        split[self.freed] = np.maximum(-lam_g[self.at], 0.0) * self._at(p)[1]
+        return split
 
     def values(self, g, p):
         """The solvers' row values as the named rows' (a left-out row's from its kept one)."""
-        return self._mapped("values_of", g, p)
-
-    def _mapped(self, function: str, lam_g, p):
         if not self.pairs:
-            return lam_g
-        out = getattr(self, function)(lam_g, p)
-        return out if isinstance(out, (ca.MX, ca.SX)) else out.full().ravel()
+            return g
+        _, ratio, offset = self._at(p)
+        full = self._full(g)
+        full[self.freed] = offset - g[self.at] / ratio
+        return full
+
+    def _full(self, posed: np.ndarray) -> np.ndarray:
+        full = np.zeros(len(self.lbg))
+        full[self.rows] = posed
+        return full
+
+    def _at(self, p: np.ndarray) -> tuple[np.ndarray, ...]:
+        """(lower, ratio, offset) of each pair at ``p``, evaluated once per p."""
+        key = np.asarray(p, dtype=float).tobytes()
+        if self._last[0] != key:
+            self._last = (key, tuple(v.full().ravel() for v in self.coefficients(p)))
+        return self._last[1]
+
+
+def _symbolic(p) -> bool:
+    return isinstance(p, (ca.MX, ca.SX))
