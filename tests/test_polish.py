@@ -88,3 +88,26 @@ def test_a_polished_solve_counts_one_design_solve(mode):
     # wedge_paper: no integers free, one IPOPT solve; the polish is not another design solve
     solved = solve_case(load_case(CASES / "wedge_paper.toml"), mode=mode)
     assert solved.status == "optimal" and solved.solver.solves == 1 and solved.solver.name == "ipopt"
+
+
+def test_dependent_active_rows_are_left_out_of_the_polish_the_one_pressed_on_more_kept():
+    # without_dependent_rows, by the numbers IPOPT once handed it on ball_compressor's paper mode, where K5 was held
+    # at 0.8 by two rows g and -g (now one row, optimise/two_sided.py): 4.8e9 on each, their difference the true
+    # multiplier. K5's rows are dependent (gradients opposite); the one with the larger multiplier (width_ratio) is
+    # kept, and the kept rows' multipliers solve grad f + J' lam = 0: the optimum's own, 0.4493 on K5 and 0.6740 on
+    # the torque (the table's, tests/test_two_sided.py: elasticities 0.4 and 0.6)
+    from clutchopt.optimise.polish import without_dependent_rows
+
+    case = load_case(CASES / "ball_compressor.toml")
+    posed = case_problem(case, "paper").posed
+    data = posed.scaled_data(case, checked=posed.params(case))
+    ended = attempt(posed, data, data.lbx, data.ubx, data.x0, None, ("ipopt",), [])
+    rows = {name: i for i, name in enumerate(posed.row_names)}
+    lam_g = ended["lam_g"].copy()
+    lam_g[rows["width_ratio"]], lam_g[rows["width_ratio_max"]] = 4.8e9 + 0.436, 4.8e9
+    dropped, _, lam_g = without_dependent_rows(posed, data, ended["x"], ended["g"], ended["lam_x"], lam_g,
+                                               ended["lbx"], ended["ubx"])
+    assert [posed.row_names[i] for i in dropped.nonzero()[0]] == ["width_ratio_max"]
+    assert lam_g[rows["width_ratio"]] == pytest.approx(ended["lam_g"][rows["width_ratio"]], rel=1e-6)
+    assert lam_g[rows["torque"]] == pytest.approx(ended["lam_g"][rows["torque"]], rel=1e-6)
+    assert lam_g[rows["width_ratio_max"]] == 0

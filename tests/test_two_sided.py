@@ -18,7 +18,8 @@ def _rows():
     # v = x held within [L_l, L_u] = [2, 5] from both sides, S_u = 10 and S_l = 4 (its own scale, not the limit),
     # with an unrelated row between them: g_u = (v - 5) / 10, g_l = (2 - v) / 4, g_other = x - 1
     x, p = ca.SX.sym("x"), ca.SX.sym("p", 0)
-    constraints = [at_most("upper", x, 5.0, equation="-", scale=10.0), at_most("other", x, 1.0, equation="-", scale=1.0),
+    constraints = [at_most("upper", x, 5.0, equation="-", scale=10.0),
+                   at_most("other", x, 1.0, equation="-", scale=1.0),
                    at_least("lower", x, 2.0, equation="-", scale=4.0)]
     return x, p, constraints
 
