@@ -62,7 +62,8 @@ class CompiledLater:
         None) counted: its C generated and its library looked for once the points took GENERATE_AFTER_S."""
         if solved is not None and solved is not self.counted:
             self.spent, self.counted = self.spent + solved.solver.time_s, solved
-        if not self.generated and self.spent >= GENERATE_AFTER_S:
+        if not self.generated and not self.used and self.spent >= GENERATE_AFTER_S:  # (one used already, by its
+            # link: its solvers' functions are the library's, no C to generate from them)
             self.generated = True
             self._look_for()
         return self.look()
@@ -100,6 +101,9 @@ def compiled_now(posed) -> str | None:
     """``posed``'s NLP functions compiled now, in the foreground (from the cache where it has them), and the link to
     them written (:func:`link_library`): a later sweep of the problem uses them from its first point. The library's
     path; None where none can be had (no compiler or cache folder, a build that fails)."""
+    if posed.library is not None:  # (its solvers over a library already: no C to generate from them)
+        link_library(posed, Path(posed.library))
+        return posed.library
     source = generated_source(nlp_functions(posed.solver("ipopt")))
     library = None if source is None else built_library(source)
     if library is not None:
