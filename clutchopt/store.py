@@ -79,9 +79,14 @@ CREATE TABLE IF NOT EXISTS runs (
     objective_unit TEXT, method TEXT, run_count INTEGER, window BLOB, UNIQUE (sweep_id, point));
 CREATE INDEX IF NOT EXISTS runs_by_kind ON runs (kind);
 CREATE TABLE IF NOT EXISTS templates (key TEXT PRIMARY KEY, body TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS sweep_starts (
+    sweep_id INTEGER NOT NULL REFERENCES sweeps(id), point INTEGER NOT NULL, body TEXT NOT NULL,
+    PRIMARY KEY (sweep_id, point)) WITHOUT ROWID;
 """  # templates: a window's shared part of its compact sweep points (clutchopt.records). A row of runs holds
 # run_count runs (NULL: one), ids id .. id + run_count - 1 and sweep points point .. point + run_count - 1: a window's
-# batched points, their numbers as arrays in window (clutchopt.window_records; outputs: their layout)
+# batched points, their numbers as arrays in window (clutchopt.window_records; outputs: their layout). sweep_starts:
+# what a batched sweep's window starting at a point starts from, recorded with the window before it
+# (clutchopt.optimise.batch_carried: a resume goes on from it)
 ADDED_COLUMNS = {"runs": {"objective_unit": "TEXT", "method": "TEXT", "run_count": "INTEGER", "window": "BLOB"}}
 # columns newer than their table: a store of an older clutchopt lacks them, and gets them when opened for recording
 # (read as NULL from one opened to read, and objective_unit and method filled from the run's outputs where they say)
@@ -488,7 +493,8 @@ class RunStore:
         return self._write(RECORD, self._row(kind, inputs, outputs, _now(), **where))
 
     def record_points(self, inputs: dict, where: dict, index: np.ndarray, varied: dict[str, np.ndarray],
-                      alone: dict[int, dict], windows: list[tuple[np.ndarray, WindowRecords]]) -> int:
+                      alone: dict[int, dict], windows: list[tuple[np.ndarray, WindowRecords]],
+                      carried: dict | None = None) -> int:
         """Record sweep points in one transaction (a window of them: all land or none). ``index``: their point
         numbers, ``varied``: their values (SI) by name, ``inputs``: what they share (the case's values, free
         variables, bounds), ``where``: the fields of :meth:`record` they share (sweep_id among them). A point solved
@@ -497,7 +503,9 @@ class RunStore:
         (``clutchopt.window_records``) beside their template (once per store). A point already stored (another
         process resuming the same sweep solved it too) is kept as it is. Points solved alone one after another that
         share a template (a region proof's points without a design) are a window's too (``window_records.gathered``:
-        the numbers of their records, where the arrays keep them bit for bit). Returns how many were recorded."""
+        the numbers of their records, where the arrays keep them bit for bit). ``carried``: what the window after
+        these points starts from (``Carried.as_dict()``, its ``point`` the first point after them), recorded with
+        them. Returns how many were recorded."""
         created, pieces, templates = _now(), [], {}  # one transaction: one moment
         alone, gathered_windows = gathered(alone)  # (points without a design, one proof: as a window's)
         for position, record in alone.items():
@@ -522,6 +530,9 @@ class RunStore:
             free = [(build, start, stop) for first, count, build in pieces
                     for start, stop in _unstored(db, where["sweep_id"], first, first + count)]
             db.executemany(RECORD, [build(start, stop) for build, start, stop in free])
+            if carried is not None:
+                db.execute("INSERT OR IGNORE INTO sweep_starts (sweep_id, point, body) VALUES (?, ?, ?)",
+                           (where["sweep_id"], carried["point"], _to_json(carried)))
             return sum(stop - start for _, start, stop in free)
 
         return self._transaction(execute, len(index)) or 0
@@ -592,6 +603,24 @@ class RunStore:
                                                 "of its sweep's points)", _rescue(self.path))
                 stored[point] = entry["outputs"]
         return stored
+
+    def sweep_start(self, sweep_id: int, point: int) -> dict | None:
+        """What the window of a batched sweep that starts at ``point`` starts from, as recorded with the window
+        before it (``record_points``' ``carried``); None where none was (the store of an older clutchopt, a sweep
+        solved point by point or in a pool). One that is not JSON is damaged: StoreError."""
+        if "sweep_starts" not in Schema.of(self._db).tables:  # (an older store opened to read)
+            return None
+        rows = self._read("SELECT body FROM sweep_starts WHERE sweep_id = ? AND point = ?", (sweep_id, point))
+        if not rows:
+            return None
+        try:
+            body = _from_json(rows[0]["body"])
+        except (TypeError, ValueError, RecursionError):
+            body = None
+        if not isinstance(body, dict):
+            raise StoreError(self.path, f"sweep {sweep_id}'s start at point {point} is damaged (not JSON)",
+                             _rescue(self.path))
+        return body
 
     def _json(self, text: str, run_id: int, column: str):
         try:

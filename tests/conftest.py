@@ -10,6 +10,10 @@ CASES = ROOT / "cases"
 # the cases of one coupling; a neutral case (coupling = "any") is for choose-coupling alone
 COUPLING_CASES = sorted(path for path in CASES.glob("*.toml")
                         if 'coupling = "any"' not in path.read_text(encoding="utf-8"))
+# the ball's paper mode poses the case's allowable contact stress: ball_crusher and ball_motor_start as given are
+# proven infeasible there (the fifth root's p_0 (9) is 847 MPa against 0.5 GPa; tests/test_ball_nlp.py by hand).
+# Tests whose subject is that mode's NLP (its start-up, its sweeps) allow this much (Pa), above every design they reach
+BALL_PAPER_STRESS = {"allowable_contact_stress": 1.5e9}
 
 
 def run_cli(*args: str, cwd: Path = ROOT, timeout: float | None = None) -> subprocess.CompletedProcess:

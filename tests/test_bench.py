@@ -150,9 +150,10 @@ def test_the_stiff_scene_is_as_accurate_by_the_integrator_picked(report):
 
 def test_gp_where_posynomial(report):
     gp = {(r["coupling"], r["mode"]): r for r in report["sections"]["accuracy"]["rows"] if r["method"] == "cvxpy gp"}
-    assert {key for key, row in gp.items() if row["status"] == "optimal"} == {("wedge", "paper"), ("ball", "paper")}
-    assert all(gp[key]["rel_error"] < 1e-7 and gp[key]["worst_violation"] <= 1e-8
-               for key in (("wedge", "paper"), ("ball", "paper")))
+    assert {key for key, row in gp.items() if row["status"] == "optimal"} == {("wedge", "paper")}
+    assert gp[("wedge", "paper")]["rel_error"] < 1e-7 and gp[("wedge", "paper")]["worst_violation"] <= 1e-8
+    # the ball's paper mode poses the case's Hertz stress (9), whose contact ellipse takes elliptic integrals of R_a
+    assert gp[("ball", "paper")]["status"] == "not_posynomial"
     lever = gp[("lever", "paper")]
     assert lever["status"] == "not_posynomial" and lever["objective"] is None
     assert lever["note"] == "not posynomial: lining_pressure, link_buckling, link_compression"

@@ -10,7 +10,7 @@ import pytest
 
 from clutchopt.cases import load_case
 from clutchopt.optimise import solve_case
-from conftest import CASES
+from conftest import BALL_PAPER_STRESS, CASES
 from test_hostile_agree import START_UP_RTOL, swept_and_solved
 
 
@@ -29,11 +29,11 @@ def test_ball_motor_start_in_paper_mode_solved_at_a_start_time_limit_of_24_s_is_
     # heavier, its start 7.15 s, a design a row of the collocation held: problem.held_by_the_mesh, the sizing solved
     # again, docs/start_up.md "A design a row of the collocation holds"); the sweep (13.2 s then 24 s) has 475.94832 kg
     # at 24 s, verified
-    at_16 = solve_case(load_case(CASES / "ball_motor_start.toml").with_values(max_start_time=16.0), mode="paper")
+    at_16 = solve_case(load_case(CASES / "ball_motor_start.toml").with_values(max_start_time=16.0, **BALL_PAPER_STRESS), mode="paper")
     assert at_16.status == "optimal"
     assert at_16.objective == pytest.approx(475.94832, rel=START_UP_RTOL)
     assert {c.name for c in at_16.constraints if c.active} == {"torque", "width_ratio"}
-    at_24 = solve_case(load_case(CASES / "ball_motor_start.toml").with_values(max_start_time=24.0), mode="paper")
+    at_24 = solve_case(load_case(CASES / "ball_motor_start.toml").with_values(max_start_time=24.0, **BALL_PAPER_STRESS), mode="paper")
     assert at_24.status == "optimal"
     assert at_24.objective == pytest.approx(at_16.objective, rel=START_UP_RTOL)
 
@@ -44,7 +44,7 @@ def test_ball_motor_start_in_paper_mode_swept_down_in_motor_inertia_has_solve_s_
     # (the design of every start-up-slack point of this case: 2.4e-4 relative lighter); a sweep from 21.10 alone agrees.
     # The sweep's point was held by a row of the collocation, as solve at 24 s above
     [(record, solved)] = swept_and_solved("ball_motor_start.toml", "paper", "motor_inertia",
-                                          (20.527572762408244, 21.09549236940575, 10.816363924537455))
+                                          (20.527572762408244, 21.09549236940575, 10.816363924537455), **BALL_PAPER_STRESS)
     assert solved.status == record["status"] == "optimal"
     assert solved.objective == pytest.approx(475.94832, rel=START_UP_RTOL)
     assert record["objective"]["value"] == pytest.approx(solved.objective, rel=START_UP_RTOL)
@@ -128,12 +128,16 @@ def test_cable_motor_start_on_a_stronger_motor_swept_down_in_torque_has_solve_s_
 
 
 
+@pytest.mark.xfail(strict=True, reason="with the contact stress allowed (1.5 GPa), the rows paper mode poses for the "
+                   "case's limits (contact_stress, width_ratio_max, outer_diameter) change the start-up NLP's IPOPT "
+                   "paths: the sweep's second point ends not_found (the case as given is proven infeasible there, "
+                   "tests/test_paper_mode_case_limits.py)")
 def test_ball_motor_start_in_paper_mode_at_606_kw_has_a_design_swept_and_solved():
     # power 507.9 then 605.7 kW: the sweep's second point 554.69 kg "optimal" (torque and start time active, its start
     # simulated); solve alone "not_found" (no feasible design found, not proven infeasible); also at 641.7, 661.3 and
     # 672.2 kW, and at a temperature-rise limit of 6.32 K in a sweep from 4.40 K
     [(record, solved)] = swept_and_solved("ball_motor_start.toml", "paper", "power",
-                                          (507916.19236376183, 605693.4230086812))
+                                          (507916.19236376183, 605693.4230086812), **BALL_PAPER_STRESS)
     assert record["status"] == "optimal"
     assert {c["name"] for c in record["constraints"] if c["active"]} == {"torque", "start_time"}
     assert solved.status == record["status"]  # (solve alone: from the least violated sampled design, 554.69 kg)

@@ -9,7 +9,7 @@ import pytest
 from clutchopt.cases import load_case
 from clutchopt.optimise.problem import case_problem, held_by_the_mesh
 from clutchopt.start_up.transcription import mesh_of_the_start
-from tests.conftest import CASES
+from tests.conftest import BALL_PAPER_STRESS, CASES
 
 
 def test_a_design_the_collocation_folds_at_is_found_and_the_sizing_collocated_on_its_own_start():
@@ -20,9 +20,11 @@ def test_a_design_the_collocation_folds_at_is_found_and_the_sizing_collocated_on
     # On the first mesh (16 intervals, half graded over the slip phase's first 20 %) the motor's knee (57 to
     # 102 rad/s in 0.9 s) lies in the graded part's two longest intervals; the NLP stops at 487.508 kg with no
     # start-up limit's multiplier but the objective elastic 0.575 to the breakdown torque: the collocation's
-    # equalities hold it (their multipliers lam solve J_z^T lam = 0, a fold in the states z), and the sizing's own
-    # design has no collocated start on that mesh; on the mesh its simulated start draws it has one, 4 iterations.
-    case = load_case(CASES / "ball_motor_start.toml").with_values(max_start_time=24.0)
+    # equalities hold it (their multipliers lam solve J_z^T lam = 0, a fold in the states z). The sizing's own design
+    # fixed on that mesh has a collocated start 0.83 % off its simulated start time (IPOPT ended infeasible there
+    # before paper mode posed the case's limits: a path, the rows being constants at a fixed design); on the mesh its
+    # simulated start draws, 1.4e-6 off, 4 iterations.
+    case = load_case(CASES / "ball_motor_start.toml").with_values(max_start_time=24.0, **BALL_PAPER_STRESS)
     problem = case_problem(case, mode="paper")
     first_check, tolerance, own = problem.posed.n_checked, case.start_up.tolerance, problem._own_names
     sizing = problem._sizing(case)
@@ -37,7 +39,8 @@ def test_a_design_the_collocation_folds_at_is_found_and_the_sizing_collocated_on
     assert held_by_the_mesh(first, first_check, tolerance, own)
 
     fixed = replace(case, bounds={**case.bounds, **{name: (v, v) for name, v in sizing.design.items()}})
-    assert problem.solve(fixed, start=sizing.design, refine=False).status == "infeasible"  # beyond the fold
+    coarse = problem.solve(fixed, start=sizing.design, refine=False)
+    assert coarse.status == "optimal" and abs(coarse.start_up["discretisation_error"]["start_time"]) > 5e-3
     design = {**sizing.design, "spring_preload": 0.0}
     own_mesh = mesh_of_the_start(problem.posed.start_up, case, problem.formulation, design)
     collocated = problem.solve(fixed, start=sizing.design, mesh=own_mesh, refine=False)
@@ -55,11 +58,11 @@ def test_a_design_the_collocation_folds_at_is_found_and_the_sizing_collocated_on
 
 
 def test_a_stronger_motor_does_not_make_the_ball_clutch_heavier():
-    # breakdown torque 12,000 N m instead of 10,500 (paper mode, limits as the case gives them): the sizing's
+    # breakdown torque 12,000 N m instead of 10,500 (paper mode, limits as the case gives them but the contact stress: BALL_PAPER_STRESS): the sizing's
     # 475.948 kg binds the torque and width ratio and its simulated start meets every limit, as with 10,500 N m (a
     # stronger motor runs up sooner; the clutch's static torque need, k_s P / w, is the same); the loop ended at
     # 536.747 kg "optimal" (12.8 % heavier, only the width ratio active), a design a row of the collocation held
-    case = load_case(CASES / "ball_motor_start.toml").with_values(breakdown_torque=12000.0)
+    case = load_case(CASES / "ball_motor_start.toml").with_values(breakdown_torque=12000.0, **BALL_PAPER_STRESS)
     problem = case_problem(case, mode="paper")
     solved = problem.solve(case)
     assert solved.status == "optimal"

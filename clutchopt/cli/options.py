@@ -8,6 +8,8 @@ from contextlib import contextmanager
 from typing import Iterator
 
 from clutchopt.errors import InputError, Problems
+from clutchopt.solver_tolerance import SOLVER_TOL
+from clutchopt.switches import check_switches
 
 EXIT_BAD_INPUT = 2
 EXIT_INTERNAL = 3  # a bug: one line and a crash file (clutchopt.crash)
@@ -58,9 +60,12 @@ class Checked(argparse.Action):
 
 def check_options(args) -> None:
     """Every bad option value in one InputError, before a command runs: those :class:`Checked` set aside while
-    parsing, and the robust method with its counts (:func:`robust_options`)."""
+    parsing, the environment's switches (``clutchopt.switches``) and the robust method with its counts
+    (:func:`robust_options`)."""
     problems = Problems()
     problems.errors += getattr(args, REFUSED, [])
+    with problems.field():
+        check_switches()  # (the environment's: $CLUTCHOPT_BUILD_LATER)
     if hasattr(args, "robust"):
         with problems.field():
             robust_options(args)
@@ -138,9 +143,9 @@ def add_problem_options(command: argparse.ArgumentParser, objective: bool = True
 
 
 def add_tolerance_option(command: argparse.ArgumentParser) -> None:
-    command.add_argument("--tol", action=Checked, check=tolerance, default=1e-10,
+    command.add_argument("--tol", action=Checked, check=tolerance, default=SOLVER_TOL,
                          help=f"IPOPT's convergence tolerance, {TOLERANCE_RANGE[0]:g} to {TOLERANCE_RANGE[1]:g} "
-                              "(default 1e-10; 1e-6 is faster and good to about 1e-6 relative)")
+                              f"(default {SOLVER_TOL:g}; 1e-6 is faster and good to about 1e-6 relative)")
 
 
 def add_quiet_option(command: argparse.ArgumentParser,

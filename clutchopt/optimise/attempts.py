@@ -39,10 +39,11 @@ def checked(posed: Posed, design: dict[str, float], params: SimpleNamespace) -> 
             "value": evaluate_objective(posed.formulation, posed.objective.name, design, params)}
 
 
-def run(posed: Posed, data: ScaledData, lbx, ubx, x0, seed: dict | None, method: str = "ipopt") -> Run:
-    """One solve, its design checked in float64 (``design``, ``checks``, ``value``, ``feasible``)."""
+def run(posed: Posed, data: ScaledData, lbx, ubx, x0, seed: dict | None, method: str = "ipopt", ubg=0.0) -> Run:
+    """One solve, its design checked in float64 (``design``, ``checks``, ``value``, ``feasible``); ``ubg`` the rows'
+    upper limits (scaled, g <= 0: every row posed; +inf where a row is left out of this solve, ``polish``)."""
     solver = posed.solver(method)
-    args = {"x0": x0, "p": data.p, "lbx": lbx, "ubx": ubx, "lbg": posed.lbg, "ubg": 0.0}
+    args = {"x0": x0, "p": data.p, "lbx": lbx, "ubx": ubx, "lbg": posed.lbg, "ubg": ubg}
     if seed is not None:
         args.update(lam_x0=seed["lam_x"], lam_g0=seed["lam_g"])
     started = time.perf_counter()
@@ -61,13 +62,13 @@ def run(posed: Posed, data: ScaledData, lbx, ubx, x0, seed: dict | None, method:
 
 
 def attempt(posed: Posed, data: ScaledData, lbx, ubx, x0, seed: dict | None, methods: tuple[str, ...],
-            runs: list[dict]) -> Run:
+            runs: list[dict], ubg=0.0) -> Run:
     """Solve by each method in turn until one ends in a verified optimum; every run goes into ``runs``.
     Methods: ``ipopt`` (cold), ``warm`` (IPOPT from ``seed``'s primal-dual point), ``sqp`` (CasADi's
     sequential QP from ``seed``: for a re-solve next to a known optimum, a few Newton steps), whose KKT point is
     checked apart from it."""
     for i, method in enumerate(methods):
-        solved = run(posed, data, lbx, ubx, x0, seed if method != "ipopt" else None, method)
+        solved = run(posed, data, lbx, ubx, x0, seed if method != "ipopt" else None, method, ubg)
         runs.append(solved)
         if method == "sqp" and solved["ok"]:
             solved["ok"] = bool(first_order_optimal(posed, *(solved[k] for k in ("x", "p", "lam_x", "lam_g", "lbx",

@@ -73,6 +73,7 @@ import numpy as np
 from clutchopt.cases import Case
 import clutchopt.optimise.attempts as attempts
 from clutchopt.optimise.attempts import warm_multipliers
+from clutchopt.optimise.batch_carried import Carried
 from clutchopt.optimise.batch_pace import BatchPace, until_active
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
 from clutchopt.optimise.chain import chain_verdict, chained_sqp
@@ -92,6 +93,9 @@ WINDOW = 1024  # points whose float64 checks run together; results are handed on
 WINDOW_WORK = 8192  # or once this much work is done, whichever comes first (a progress bar moves on): work counted,
 # not the clock, ends a window, so that the same sweep gives the same bits on a loaded or an idle machine (where a
 # window ends, its last chain is cut short, and the next starts from its last column)
+STRETCH_WINDOWS = 8  # a stretch of points without a design runs on past a window's end up to this many windows'
+# points and work: a window ends at a point with a design where it can, since a window starts its region proofs afresh
+# (batch_carried; ended inside the lever's 2,516 points without a design, its proof across the end was lost: 2 solves)
 CHAINED_POINT_WORK, CHAIN_CALL_WORK, SOLVE_WORK = 1, 8, 64  # the work of a chained point, of a chained call besides
 # its points, of any other solver call: about 30 us, 0.25 ms and 2 ms on the benchmark's machine (1000-point user
 # sweeps: chains of 256 points 3-9 ms, of one point 0.2-0.3 ms; a point solved alone 0.2-15 ms, most 2 ms), so that
@@ -195,7 +199,7 @@ class _Start:
     start of a point solved by ``Problem.solve``."""
 
     def __init__(self, sweep: "BatchSweep", solution: Solution | None = None, block: Block | None = None,
-                 at: int = -1):
+                 at: int = -1, carried: dict | None = None):
         n, m = len(sweep.names), len(sweep.posed.formulation.quantities)
         if solution is not None:
             self.scale = solution.scale
@@ -203,15 +207,27 @@ class _Start:
             self.lam_x, self.lam_g = warm_multipliers(sweep.posed, *solution.multipliers)
             self.objective = solution.objective
             self.step = _zero_step(self.x, self.lam_x, self.lam_g)  # nothing to predict from
-        else:  # its point ``at`` (its last)
+        elif block is not None:  # its point ``at`` (its last)
             a, p = block.arrays, block.arrays["p"][:, at]
             self.scale, self.x, self.lam_x, self.lam_g = p[m:m + n], a["x"][:, at], a["lam_x"][:, at], a["lam_g"][:, at]
             self.objective = float(a["f"][0, at] * p[m + n])  # the scaled objective times its normaliser
             self.step = {key: a[key][:, at] for key in ("dx", "dlam_x", "dlam_g")}
+        else:  # as :attr:`carried` gave it (a resumed sweep: ``batch_carried``)
+            self.scale, self.x, self.lam_x, self.lam_g = (np.array(carried[key], dtype=float)
+                                                          for key in ("scale", "x", "lam_x", "lam_g"))
+            self.objective = float(carried["objective"])
+            self.step = {key: np.array(carried[key], dtype=float) for key in ("dx", "dlam_x", "dlam_g")}
         self.names, self.integer = sweep.names, sweep.posed.integer
         self.combo = np.round(self.x[sweep.integer] * self.scale[sweep.integer])  # the free integers (SI)
         objective = self.objective
         self.f_scale = abs(objective) if math.isfinite(objective) and objective != 0 else 1.0  # the batch's normaliser
+
+    @property
+    def carried(self) -> dict:
+        """The start as numbers (what ``_Start(sweep, carried=...)`` takes back, bit for bit through JSON)."""
+        arrays = {"scale": self.scale, "x": self.x, "lam_x": self.lam_x, "lam_g": self.lam_g, **self.step}
+        return {**{key: np.asarray(value, dtype=float).tolist() for key, value in arrays.items()},
+                "objective": float(self.objective)}
 
     @property
     def run(self) -> dict:
@@ -289,22 +305,35 @@ class BatchSweep:
         self.feasible: dict[str, float] | None = None  # the last feasible design in order: a start for a failed point
         self._regions = Regions(problem, self.point_case, self.count)  # infeasible regions proven at once
         self._limits: tuple[np.ndarray, np.ndarray] | None = None  # the tightening's limits and scales per point
+        self.carried: Carried | None = None  # what the window after the last one yielded starts from
 
     def point_case(self, k: int) -> Case:
         return self.case.with_values(**{name: float(values[k]) for name, values in self.varied.items()})
 
-    def run(self, window: int = WINDOW) -> Iterator["Solutions"]:
-        """Solve every point in order; yields the solutions window by window, each window checked in float64."""
+    def run(self, window: int = WINDOW, carried: Carried | None = None) -> Iterator["Solutions"]:
+        """Solve every point in order (from ``carried.point``, as the window that started there did: a resumed
+        sweep); yields the solutions window by window, each window checked in float64. After each window
+        :attr:`carried` is what the next one starts from (``batch_carried``)."""
         start: _Start | None = None  # where the next batch starts; None: after a point without a design
         pace, k = BatchPace(FIRST_BATCH, LONGEST_BATCH), 0
         ahead = None  # points until an inactive constraint or bound is expected to become active (with integers,
         # where the pace expects no break)
+        if carried is not None:
+            k, ahead, self.feasible = carried.point, carried.ahead, carried.feasible
+            start = None if carried.start is None else _Start(self, carried=carried.start)
+            pace.carry(carried.pace)
+            self._undesigned = {combo: (j, status) for combo, j, status in carried.undesigned}
         while k < self.count:
             first, end, spent = k, min(k + window, self.count), self.work + WINDOW_WORK
+            self._regions = Regions(self.problem, self.point_case, self.count)  # (each window's afresh: what it
+            # takes from the windows before is ``carried``)
             blocks: list[Block] = []
             alone: dict[int, Solution] = {}
             failed = False  # the last point is without a design: the window waits for a feasible point after it
-            while k < end and (failed or self.work < spent):  # each turn solves at least one point
+            longest, most = min(first + STRETCH_WINDOWS * window, self.count), self.work + STRETCH_WINDOWS * WINDOW_WORK
+            while k < end and (failed or self.work < spent) or failed and k < longest and self.work < most:  # each
+                # turn solves at least one point; a stretch without a design runs on to a point with one (the
+                # region proofs searched ahead end there; the next window starts them afresh: ``carried``)
                 wanted, reach = min(pace.size, ahead or pace.size, end - k), min(2 * pace.size, LONGEST_BATCH, end - k)
                 forecast = ahead is not None and ahead < pace.size  # the chain ends at a forecast change
                 block, chained, searching, tried, origin = (self._batch(start, k, wanted, reach) if start is not None
@@ -347,7 +376,10 @@ class BatchSweep:
                 ahead = None
                 start, k = self._start_of(alone[k]), k + 1
                 failed = alone[k - 1].status not in DESIGN_STATUSES
-            yield self._window(blocks, alone, first, k - first)
+            solutions = self._window(blocks, alone, first, k - first)
+            self.carried = Carried(k, None if start is None else start.carried, pace.state, ahead, self.feasible,
+                                   [(combo, j, status) for combo, (j, status) in self._undesigned.items()])
+            yield solutions
 
     def _until_active(self, blocks: list[Block], size: int, combo: np.ndarray) -> int | None:
         """With free integers, the points after the last kept one until its active set is expected to change

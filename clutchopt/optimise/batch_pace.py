@@ -82,6 +82,16 @@ class BatchPace:
         one point between such a point and the change had run chains of 9 that failed at their first point)."""
         self.size, self._aimed, self._probes = PROBE, False, PROBES - 1
 
+    @property
+    def state(self) -> dict:
+        """What the next chains depend on, as numbers (a resumed sweep's window takes it back: ``carry``)."""
+        return {"size": self.size, "breaks": list(self._breaks), "aimed": self._aimed, "probes": self._probes}
+
+    def carry(self, state: dict) -> None:
+        """Go on as :attr:`state` left off."""
+        self.size, self._breaks, self._aimed, self._probes = (int(state["size"]), [int(b) for b in state["breaks"]],
+                                                              bool(state["aimed"]), int(state["probes"]))
+
     def restart(self) -> None:
         """A point failed a test other than the integer search's (solved alone): chains restart from ``first``."""
         self.size, self._aimed, self._probes = self.first, False, 0

@@ -8,8 +8,9 @@ integers fixed at a given value). A "<=" constraint becomes ``value / limit <= 1
 Which models are posynomial (decided by cvxpy's DGP analysis in :func:`gp_problem`; the bench table shows it):
 - wedge ``paper`` mode: with the geometry given, the friction torque is a monomial in m_r, the flank pressure a
   monomial in m_r, the finger stress a monomial in m_r and d_n, the mass a posynomial: a GP as posed.
-- ball ``paper`` mode: the leading-order torque (4) is a monomial in R_a and l (K2 given by eq. 1), K5 = l / R_a
-  a monomial, the mass a posynomial: a GP as posed.
+- ball ``paper`` mode is not, since it poses the case's allowable Hertz stress (9): p_0 of R_a goes through the
+  contact ellipse's elliptic integrals (the leading-order torque (4), K5 = l / R_a, the outer diameter and the mass
+  alone are monomials and posynomials: without that row it was a GP).
 - lever ``paper`` mode is not: the worn-state radial force is the centrifugal force *minus* the return-spring
   force (a difference of monomials: signomial) in the lining-pressure and link constraints.
 - cable ``paper`` mode is not, even with the integer cable count fixed: the weight-thread and hub-thread

@@ -11,12 +11,13 @@ import numpy as np
 
 from clutchopt.model import Output
 from clutchopt.optimise.verify import ConstraintCheck
+from clutchopt.solver_tolerance import SOLVER_TOL
 from clutchopt.units import si_unit
 
 
 @dataclass(frozen=True)
 class SolverOptions:
-    tol: float = 1e-10
+    tol: float = SOLVER_TOL
     max_iter: int = 3000
     warm_sqp: bool = True  # warm re-solves try SQP before warm IPOPT (False: warm IPOPT alone, for comparison)
     polish: bool = True  # a static solve's IPOPT optimum polished onto its exact KKT point (optimise/polish.py;

@@ -23,14 +23,14 @@ the cold solver's 45-50 ms on the wedge, and the compiled evaluations from its f
 CasADi generates from an NLP are a function of it (and of CasADi's version, in the digest), so the linked library is
 the one its C would name.
 
-``CLUTCHOPT_BUILD_LATER=0`` starts no build (a library already in the cache is still used): the test suite's, so that
-its sweeps do not compile beside the tests (``tests/conftest.py``).
+``CLUTCHOPT_BUILD_LATER=0`` (or ``false``, ``no``, ``off``: ``clutchopt.switches``) starts no build (a library already
+in the cache is still used): the test suite's, so that its sweeps do not compile beside the tests
+(``tests/conftest.py``).
 """
 
 from __future__ import annotations
 
 import hashlib
-import os
 import re
 import subprocess
 import time
@@ -40,8 +40,8 @@ import casadi as ca
 
 from clutchopt.optimise.compiled import (BUILD_TIMEOUT_S, FLAGS, build_detached, built_library, cache_folder, compiler,
                                          generated_source, library_path, nlp_functions, ready_library, _trusted)
+from clutchopt.switches import BUILD_LATER_ENV, switch  # off: no build started (a library in the cache is still used)
 
-BUILD_LATER_ENV = "CLUTCHOPT_BUILD_LATER"  # "0": no build started (a library in the cache is still used)
 LIBRARY_NAME = re.compile(r"nlp-[0-9a-f]{32}\.so")  # what a link may name (a library of the cache's, nothing else)
 GENERATE_AFTER_S = 2.0  # the solver seconds a problem's sweep points take before its C is generated (0.1-0.3 s)
 _STARTED: dict[Path, subprocess.Popen | None] = {}  # the builds this process started (one a library, whatever the
@@ -77,7 +77,7 @@ class CompiledLater:
         if self.library is not None:
             link_library(self.posed, self.library)
         if self.library is not None and not self.look() and self.library not in _STARTED \
-                and os.environ.get(BUILD_LATER_ENV, "1") != "0":
+                and switch(BUILD_LATER_ENV):
             _STARTED[self.library] = build_detached(source)
 
     def look(self) -> bool:

@@ -36,6 +36,7 @@ from clutchopt.formulations import get_coupling
 from clutchopt.materials import chosen
 from clutchopt.model import Formulation
 from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
+from clutchopt.optimise.batch_carried import Carried
 from clutchopt.optimise.dask_client import connect
 from clutchopt.optimise.design import Robustness, check_robustness, design_case, method_of
 from clutchopt.optimise.entering import check_entering
@@ -47,6 +48,7 @@ from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_na
                                            parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
 from clutchopt.optimise.table import joined_tables, record_table
 from clutchopt.optimise.verify import DESIGN_STATUSES
+from clutchopt.solver_tolerance import SOLVER_TOL
 from clutchopt.records import design_inputs, scatter_record
 from clutchopt.window_records import WindowRecords, in_order
 from clutchopt.units import from_si
@@ -68,8 +70,9 @@ class PointResults:
 
     def __init__(self, points: Points, names: list[str], alone: dict[int, dict] | None = None,
                  windows: list[tuple[np.ndarray, WindowRecords]] | None = None, solutions: Solutions | None = None,
-                 spent: dict | None = None):
+                 spent: dict | None = None, carried: Carried | None = None):
         self.points, self.names, self.spent = points, names, spent or dict.fromkeys(SPENT, 0)
+        self.carried = carried  # a batched window's: what the point after it starts from (batch_carried)
         self._alone, self._windows, self._solutions, self._records = alone or {}, windows or [], solutions, None
 
     def __len__(self) -> int:
@@ -105,13 +108,17 @@ CONTINUATION_STEPS = 3  # from the last feasible point to one without a design, 
 
 
 def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robustness | None,
-                 points: Points) -> Iterator[PointResults]:
+                 points: Points, carried: Carried | None = None) -> Iterator[PointResults]:
     """Solve points in order, each warm-started from the last optimum; yields the results as they are solved: a
-    window of points at once where the problem allows batches (``clutchopt.optimise.batch``), else one point each.
-    With ``options.choose`` or ``robust``, each point is designed as ``solve`` designs a case (every choice, for the
-    scatter: :func:`~clutchopt.optimise.design.design_case`), the best kept with its choice."""
+    window of points at once where the problem allows batches (``clutchopt.optimise.batch``; each window's results
+    with what the next window starts from, ``carried``), else one point each. With ``options.choose`` or
+    ``robust``, each point is designed as ``solve`` designs a case (every choice, for the scatter:
+    :func:`~clutchopt.optimise.design.design_case`), the best kept with its choice. ``carried``: a resumed batched
+    sweep's window start (``points`` all of the sweep's; those from ``carried.point`` on are solved)."""
     problem = case_problem(case, mode, objective, SolverOptions(tol=tol))
     names = [v.name for v in problem.formulation.variables]
+    if carried is not None and not (len(points) and batchable(problem, points.columns)):
+        points, carried = points[carried.point:], None  # (point by point: from the case's own start, as before)
     if robust is not None or case.options.get("choose"):
         for j, (index, values) in enumerate(points.pairs()):
             best = design_case(case.with_values(**values), mode, objective, SolverOptions(tol=tol), robust)[0]
@@ -121,11 +128,11 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
         return
     if len(points) and batchable(problem, points.columns):
         sweep = BatchSweep(problem, case, points.columns)
-        first, before = 0, dict.fromkeys(SPENT, 0)
-        for window in sweep.run():
+        first, before = 0 if carried is None else carried.point, dict.fromkeys(SPENT, 0)
+        for window in sweep.run(carried=carried):
             now = {key: getattr(sweep, key) for key in SPENT}
             yield PointResults(points[first:first + len(window)], names, solutions=window,
-                               spent={key: now[key] - before[key] for key in SPENT})
+                               spent={key: now[key] - before[key] for key in SPENT}, carried=sweep.carried)
             first, before = first + len(window), now
         return
     previous: Solution | None = None  # the last point's optimum (a warm start), None next to a failure
@@ -317,7 +324,7 @@ class Sweep:
     """A case, the varied quantities, mode and objective: what defines a sweep and its resume key."""
 
     def __init__(self, case: Case, varies: list[Vary], mode: str | None = None, objective: str | None = None,
-                 tol: float = 1e-10, zipped: bool = False, robust: Robustness | None = None):
+                 tol: float = SOLVER_TOL, zipped: bool = False, robust: Robustness | None = None):
         self.case = case = case.given(*(v.quantity.name for v in varies))
         self.varies, self.robust = varies, robust
         self.formulation: Formulation = case_formulation(case, mode)
@@ -397,12 +404,17 @@ class Sweep:
         parts = [PointResults(self.grid[kept], names, dict(enumerate(stored[i] for i in kept.tolist())))]
         bar = tqdm(total=len(self.grid), initial=len(stored), unit="point", desc="sweep", disable=not progress,
                    mininterval=0.5)
+        in_order = runner is None and jobs <= 1  # (windows one after another: each starts from the one before)
+        carried = self._carried(store, sweep_id, kept, pending) if stored and in_order and len(pending) else None
         started = time.perf_counter()
         with bar, interrupt_between_points() as check:
-            for results in (runner or local_runner(jobs))(task, pending, size):
+            solving = (solve_points(*task, self.grid, carried) if carried is not None
+                       else (runner or local_runner(jobs))(task, pending, size))
+            for results in solving:
                 if store is not None and sweep_id is not None:  # the results in hand in one transaction
                     store.record_points(self._inputs(), self._where(sweep_id), results.points.index,
-                                        results.points.columns, *results.stored())
+                                        results.points.columns, *results.stored(),
+                                        carried=results.carried.as_dict() if in_order and results.carried else None)
                 elif store is not None:  # the sweep itself could not be recorded
                     store.unrecorded += len(results)
                 parts.append(results)
@@ -414,6 +426,27 @@ class Sweep:
         frame, records = self.frame(joined_tables([part.table() for part in parts]), order), SweepRecords(parts, order)
         self._aspect_columns(frame, records)
         return SweepResult(sweep_id, frame, len(pending), len(stored), elapsed, records, total_spent(parts))
+
+    @staticmethod
+    def _carried(store, sweep_id: int, kept: np.ndarray, pending: Points) -> Carried | None:
+        """Where a sweep resumes after its first points, stored in order, at a batched window's start: what the
+        uninterrupted run started that window from, as recorded with the window before (``batch_carried``), so that
+        the resumed points are the uninterrupted run's bit for bit. None (the points solved from cold, as before)
+        where the store holds none: points stored out of order (a pool), or by an older clutchopt."""
+        from clutchopt.store import StoreError
+
+        first = int(pending.index[0])
+        if len(kept) != first or (len(kept) and int(kept[-1]) != first - 1):
+            return None
+        body = store.sweep_start(sweep_id, first)
+        if body is None:
+            return None
+        try:
+            carried = Carried.from_dict(body)
+        except ValueError as exc:
+            raise StoreError(store.path, f"sweep {sweep_id}'s start at point {first} is damaged ({exc})",
+                             "run the sweep again without --resume") from None
+        return carried if carried.point == first else None
 
     def _aspect_columns(self, frame: pd.DataFrame, records: "SweepRecords") -> None:
         """Where each point was designed as ``solve`` designs (``options.choose``, ``--robust``): the choice kept

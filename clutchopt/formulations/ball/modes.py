@@ -27,9 +27,12 @@ def _paper_clutch(x, p):
 
 
 def _case_limits(c: BallClutch, x, p):
-    """The limits the case names, met in every mode: the longest drum for its radius, K5 = l / R_a at most
+    """The limits the case names, met in every mode: the Hertz stress p_0 (9) of the outer balls within [p_0] (the
+    paper checks it after sizing, docs/ball.md), the longest drum for its radius, K5 = l / R_a at most
     ``width_ratio_max``, and the drum's outer diameter D_max."""
     return [
+        at_most("contact_stress", c.contact_stress(p), p.allowable_contact_stress, equation="(9)", unit="MPa",
+                description="Hertz stress of the outer balls within [p_0]"),
         at_most("width_ratio_max", c.width_ratio, p.width_ratio_max, equation="(3)",
                 description="K5 = l_a / R_a in range"),
         at_most("outer_diameter", 2 * (c.radius + p.shell_thickness), p.outer_diameter_max, equation="case",
@@ -44,6 +47,7 @@ def _paper_constraints(c: BallClutch, x, p):
                  description="leading-order torque (cylinder, no shovels) covers M_c"),
         at_least("width_ratio", c.width_ratio, p.width_ratio, equation="(3), (5)",
                  description="K5 = l / R_a at least the case's K5"),
+        *_case_limits(c, x, p),
     ]
 
 
@@ -69,14 +73,14 @@ def _design_clutch(x, p):
 
 
 def _design_constraints(c: BallClutch, x, p):
-    k5 = c.width_ratio
+    stress, *extent = _case_limits(c, x, p)
     return [
         at_least("torque", c.torque(p), required(p), equation="(8)", unit="N*m",
                  description="torque of cylinder and end faces covers M_c"),
-        at_most("contact_stress", c.contact_stress(p), p.allowable_contact_stress, equation="(9)", unit="MPa",
-                description="Hertz stress of the outer balls within [p_0]"),
-        at_least("width_ratio_min", k5, p.width_ratio_min, equation="(3)", description="K5 = l_a / R_a in range"),
-        *_case_limits(c, x, p),
+        stress,
+        at_least("width_ratio_min", c.width_ratio, p.width_ratio_min, equation="(3)",
+                 description="K5 = l_a / R_a in range"),
+        *extent,
         at_least("ball_layers", c.radius * (1 - c.filling), p.min_ball_layers * 2 * c.ball_radius, equation="model",
                  unit="mm", scale=c.radius, description="the layer R_a - R_1 holds several balls"),
     ]

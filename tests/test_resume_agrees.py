@@ -1,0 +1,134 @@
+"""A resumed sweep's rows are the uninterrupted sweep's bit for bit: interrupted after a window is stored (at a
+window's end) or while a window is solved (its points lost), `--resume` goes on from what the uninterrupted run
+started the next window from, stored with the window before it (clutchopt/optimise/batch_carried.py). Before, a
+resume started cold and its designs differed in the last digits (the kill test of test_store_faults.py compares
+to 1e-7).
+
+No hand calculation: the reference is the same sweep run once without an interruption, in this process.
+"""
+
+import math
+import sqlite3
+from contextlib import closing
+
+import pytest
+
+import clutchopt.optimise.batch as batch
+from clutchopt.cases import load_case
+from clutchopt.optimise.batch import BatchSweep
+from clutchopt.optimise.sweep import Sweep
+from clutchopt.optimise.sweep_grid import parse_vary
+from clutchopt.store import RunStore
+from conftest import CASES
+
+# the ball over 1x-10x its power in design mode, 100 points: its rows rise with the power (the integer search at each
+# change, the pace aimed at the next), the last 9 points infeasible (region proofs); with a window's work cut to
+# one solve's, 17 windows (their ends at points with a design) instead of 2
+SWEEP = ("ball_compressor.toml", "power=1200:12000:100", "design")
+WINDOW_WORK = 64
+
+
+class Interrupted(Exception):
+    """Raised from a hook: the sweep stops there, as on a kill (what was stored stays, the window in flight is lost)."""
+
+
+def _sweep() -> Sweep:
+    file, text, mode = SWEEP
+    case = load_case(CASES / file)
+    return Sweep(case, [parse_vary(text, case.coupling)], mode=mode)
+
+
+def _rows(result) -> list[dict]:
+    """Every point's record without its solver seconds (the only numbers a second run may change), nan as None (a
+    stored point read back: the store's JSON spells nan null)."""
+    def timeless(value):
+        if isinstance(value, dict):
+            return {key: timeless(item) for key, item in value.items() if key != "time_s"}
+        if isinstance(value, list):
+            return [timeless(item) for item in value]
+        return None if isinstance(value, float) and math.isnan(value) else value
+    return [timeless(record) for record in result.solutions]
+
+
+@pytest.fixture(scope="module")
+def uninterrupted(tmp_path_factory):
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(batch, "WINDOW_WORK", WINDOW_WORK)
+        path = tmp_path_factory.mktemp("whole") / "runs.sqlite"
+        with RunStore(path) as store:
+            result = _sweep().run(store, progress=False)
+    with closing(sqlite3.connect(path)) as db:
+        starts = [row[0] for row in db.execute("SELECT point FROM sweep_starts ORDER BY point")]
+    return result, starts
+
+
+def _resumed(tmp_path, monkeypatch, cls, name: str, calls: int):
+    """The sweep stored until the ``calls``-th call of ``cls.name`` raises (after it ran), then resumed."""
+    monkeypatch.setattr(batch, "WINDOW_WORK", WINDOW_WORK)
+    original, seen = getattr(cls, name), []
+
+    def hook(*args, **kwargs):
+        out = original(*args, **kwargs)
+        seen.append(1)
+        if len(seen) == calls:
+            raise Interrupted
+        return out
+
+    path = tmp_path / "runs.sqlite"
+    with monkeypatch.context() as patch, RunStore(path) as store:
+        patch.setattr(cls, name, hook)
+        with pytest.raises(Interrupted):
+            _sweep().run(store, progress=False)
+    with RunStore(path) as store:
+        return _sweep().run(store, resume=True, progress=False)
+
+
+def test_the_uninterrupted_sweep_stores_each_window_s_start(uninterrupted):
+    result, starts = uninterrupted
+    assert result.frame["status"].value_counts().to_dict() == {"optimal": 91, "infeasible": 9}
+    assert len(starts) >= 10  # (each window's end but the sweep's: where the next window starts)
+    assert starts[-1] == 100  # (the last window's end: the sweep's)
+    assert all(result.solutions[k - 1]["status"] == "optimal" for k in starts[:-1])  # windows end at a design
+
+
+@pytest.mark.parametrize("windows", [1, 3, 6])
+def test_a_sweep_resumed_after_a_stored_window_has_the_uninterrupted_rows(uninterrupted, windows, tmp_path,
+                                                                          monkeypatch):
+    resumed = _resumed(tmp_path, monkeypatch, RunStore, "record_points", windows)
+    assert 0 < resumed.reused < 100 and resumed.solved == 100 - resumed.reused
+    assert _rows(resumed) == _rows(uninterrupted[0])
+    assert resumed.frame.drop(columns="iterations").equals(uninterrupted[0].frame.drop(columns="iterations"))
+
+
+@pytest.mark.parametrize("hook, calls", [("_batch", 6), ("_batch", 15), ("_solve_alone", 5)])
+def test_a_sweep_resumed_after_a_kill_inside_a_window_has_the_uninterrupted_rows(uninterrupted, hook, calls, tmp_path,
+                                                                                 monkeypatch):
+    # a chain (21 in all, from points 1 to 91: the 6th from point 42, the 15th from 70) or a point solved alone (10:
+    # point 0 and the 9 infeasible ones, the 5th point 94) raises: its window is lost, the resume starts that window
+    # again from the start stored with the window before
+    resumed = _resumed(tmp_path, monkeypatch, BatchSweep, hook, calls)
+    assert 0 < resumed.reused < 100
+    assert _rows(resumed) == _rows(uninterrupted[0])
+
+
+def test_a_resume_without_a_stored_start_solves_the_rest_from_cold(tmp_path, monkeypatch):
+    # a store of an older clutchopt (no start beside its windows): the remaining points are solved as before, from
+    # the case's own start, with the same statuses
+    monkeypatch.setattr(batch, "WINDOW_WORK", WINDOW_WORK)
+    original, seen = RunStore.record_points, []
+
+    def record_without_start(self, *args, carried=None):
+        seen.append(1)
+        if len(seen) == 3:
+            raise Interrupted
+        return original(self, *args)
+
+    path = tmp_path / "runs.sqlite"
+    with monkeypatch.context() as patch, RunStore(path) as store:
+        patch.setattr(RunStore, "record_points", record_without_start)
+        with pytest.raises(Interrupted):
+            _sweep().run(store, progress=False)
+    with RunStore(path) as store:
+        resumed = _sweep().run(store, resume=True, progress=False)
+    assert resumed.reused > 0
+    assert resumed.frame["status"].value_counts().to_dict() == {"optimal": 91, "infeasible": 9}
