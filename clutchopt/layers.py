@@ -10,9 +10,9 @@ low as its lowest module).
 
 LAYERS: tuple[tuple[str, str, tuple[str, ...]], ...] = (  # (layer, what it holds, modules)
     ("base", "CasADi-or-float arithmetic, units, input errors, files, the run records' schema, packaged data, "
-             "this table",
+             "the solver tolerance, environment switches, this table",
      ("__init__", "backend", "units", "unit_table", "errors", "files", "records", "window_records", "data",
-      "layers")),
+      "solver_tolerance", "switches", "layers")),
     ("model", "Quantity, Variable, Constraint, Formulation, SpeedLaw, Coupling; functions declared monotone",
      ("model", "monotone")),
     ("formulations", "one module per coupling: quantities, equations, paper procedure, comparison rows",

@@ -21,8 +21,10 @@ def test_solve_json_contract(cli):
     assert set(data["design"]) == {"weight_mass", "finger_diameter"}
     assert data["design"]["finger_diameter"] == pytest.approx(5.4616e-3, rel=1e-4)  # SI: metres
     names = {c["name"] for c in data["constraints"]}
-    assert names == {"torque", "flank_pressure", "finger_bending", "not_self_locking",
-                     "outer_diameter"}  # the last two: the case's limits, posed in every mode
+    assert names == {"torque", "flank_pressure", "finger_bending", "weight_covers_flank", "sectors_fit",
+                     "not_self_locking", "outer_diameter", "hub_clearance", "finger_guide_length",
+                     "finger_fits_chord"}  # after the paper's three: the rules that make a buildable part, as in
+    # geometry mode (wedge/modes.py constructive_constraints)
     for c in data["constraints"]:
         assert {"value", "limit", "margin", "active"} <= set(c)
     assert {"name", "status", "iterations", "time_s"} <= set(data["solver"])

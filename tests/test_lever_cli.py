@@ -25,7 +25,8 @@ def test_solve_json_contract(cli):
     assert data["design"]["link_diameter"] == pytest.approx(3.59405e-3, rel=1e-5)  # SI: metres
     names = {c["name"] for c in data["constraints"]}
     assert names == {"torque", "lining_pressure", "link_buckling", "link_compression", "weights_fit",
-                     "outer_diameter", "toggle_span", "flange_over_shaft"}  # the case's limits, in every mode
+                     "outer_diameter", "toggle_span", "lining_clears_flange", "flange_over_shaft"}  # the case's
+    # rules, in every mode (lever/modes.py: all of design mode's but the l_2 rule, met by construction)
     assert {"name", "status", "iterations", "time_s"} <= set(data["solver"])
 
 

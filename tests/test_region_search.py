@@ -109,8 +109,9 @@ def test_a_sweep_into_an_infeasible_region_proves_each_point_alone_where_its_pro
     for point in (3, 4, 11):
         solution = problem.solve(WEDGE.with_values(resisting_torque=vary.values[point]))
         assert (frame["status"][point], frame["diagnosis"][point]) == (solution.status, solution.diagnosis)
-    assert frame["diagnosis"][4] == ("proven infeasible: no design within the bounds meets torque, flank_pressure "
-                                     "together (interval branch and bound over 1 boxes of the design space)")
+    assert frame["diagnosis"][4] == ("proven infeasible: no design within the bounds meets torque, flank_pressure, "
+                                     "finger_guide_length, finger_fits_chord together (interval branch and bound "
+                                     "over 1 boxes of the design space)")  # (the rows that cut its box, all four)
 
 
 @pytest.mark.parametrize("batched", [True, False])  # in batches, or point by point (start-ups, varied variables)
@@ -125,8 +126,8 @@ def test_a_sweep_into_an_infeasible_region_proves_it_once_and_keeps_each_point_s
     assert regions == [[3]] * batched + [[4]]  # (point 3 searched alone first where a chain failed there) one
     # search, over a parameter interval
     region = "proven infeasible for resisting_torque 158.182-400 N*m (8 points, one proof): no design within the " \
-             "bounds meets torque, flank_pressure together (interval branch and bound over 129 boxes of the design " \
-             "space and the interval of resisting_torque)"
+             "bounds meets torque, flank_pressure, finger_guide_length, finger_fits_chord together (interval branch " \
+             "and bound over 129 boxes of the design space and the interval of resisting_torque)"
     assert list(frame["diagnosis"][4:]) == [region] * 8
     assert [s["solver"]["solves"] for s in result.solutions][4:] == [0] * 8
     problem = case_problem(WEDGE)
@@ -157,11 +158,13 @@ def test_a_region_proof_holds_only_where_no_design_exists():
                         for ts in ((89.090909, 123.63636, 158.18182), (123.63636, 158.18182, 400.0)))
     out, proven = searches(posed, [reaching, inside], [interval_proof.MAX_BOXES] * 2)
     assert not out.proven and proven.proven
-    # the box reaching 89.09 N m stops at its first evaluation (129 boxes), where a centre meets every row at that
-    # end of the interval: the design the point's own search meets there (no design meets them over the whole
-    # interval: feasible is None)
+    # the box reaching 89.09 N m stops where a centre meets every row at that end of the interval (no design meets
+    # them over the whole interval: feasible is None), at its second evaluation (289 boxes): the finger's guide
+    # length h_r >= 1.5 d_n (paper mode poses it too) keeps d_n below 13.3 mm, where its first (129 boxes) sufficed
+    # when a 500 mm finger, the bound's, met every row; the point's own search meets a design at 129
     alone, = searches(posed, [points[89.090909]])
-    assert (out.boxes, out.feasible) == (alone.boxes, None) and alone.feasible is not None
+    assert (out.boxes, out.feasible, out.reached) == (289, None, True) and out.witness[1] <= 0.02 / 1.5
+    assert alone.boxes == 129 and alone.feasible is not None
     assert case_problem(WEDGE).solve(WEDGE.with_values(resisting_torque=89.090909)).status == "optimal"
 
 
@@ -374,3 +377,26 @@ def test_a_run_searched_ahead_keeps_its_share_of_the_call_that_searched_it(monke
     assert list(result.frame["status"]) == ["optimal"] * 84 + ["infeasible"] * 116
     assert proved == [(85, 93, 1 / 116), (93, 109, 1 / 116), (109, 141, 1 / 116), (141, 200, 1 / 116)]
     assert sum((b - a) * seconds for a, b, seconds in proved) == pytest.approx(115 / 116, rel=1e-12)
+
+
+def test_a_point_past_the_edge_of_the_ball_is_proven_by_its_own_search_before_any_solve(monkeypatch):
+    # ball_compressor (design mode) at 11,040-11,400 kW, 4 points: 11,040 kW has a design, 11,160 kW none. The chain
+    # from the design fails at 11,160 kW; with integer variables (ball_rows) its own search runs before its solve
+    # (Regions._early): the search solve's verdict runs first (within SURE_BOXES, the run 11,280-11,400 kW searched in
+    # the same call), so the words are solve's, the point needs no solver call, and no elastic problem is solved
+    # (the failed solve, its integer search and its diagnosis had cost 24 of 82 ms over 1x-10x its power)
+    ball = load_case(CASES / "ball_compressor.toml")
+    vary = parse_vary("power=11040:11400:4", "ball", ball.quantities)
+    calls = []
+    real = problem_module.diagnose
+    monkeypatch.setattr(problem_module, "diagnose", lambda *args: calls.append(1) or real(*args))
+    result = Sweep(ball, [vary], mode="design").run(progress=False)
+    assert [s["status"] for s in result.solutions] == ["optimal"] + ["infeasible"] * 3
+    assert not calls
+    record = result.solutions[1]
+    assert (record["solver"]["name"], record["solver"]["solves"]) == ("interval", 0)
+    alone = case_problem(ball, "design").solve(ball.with_values(power=vary.values[1]))
+    assert calls and alone.status == "infeasible"  # (solve's verdict: the failed solve, then the same search)
+    assert record["diagnosis"] == alone.diagnosis
+    assert record["diagnosis"].startswith("proven infeasible: no design within the bounds meets torque")
+    assert result.solutions[2]["diagnosis"].startswith("proven infeasible for power 11280-11400 kW (2 points")

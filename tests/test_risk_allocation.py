@@ -123,7 +123,8 @@ def test_the_centrifuge_system_design_is_no_heavier_than_the_equal_split(monkeyp
     assert system.high <= 1.02e-3
     shares = result.allocation.as_dict()["constraints"]
     assert shares["torque"]["share"] == pytest.approx(1e-3, rel=0.01)
-    assert shares["finger_bending"]["share"] < 1e-15  # sized at the end of f's range
+    assert shares["finger_bending"]["share"] < 1e-12  # sized at the end of f's range: zero to round-off (6e-15
+    # since paper mode poses the finger's guide and chord rows too, 1e-19 before; the mass the same to 2e-11)
     assert result.verification.startswith("verified: constraints at their performance points for system_chance "
                                           "P = 0.999, risk allocation optimised")
 

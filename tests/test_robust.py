@@ -124,8 +124,10 @@ def test_monte_carlo_is_vectorised_and_reproducible():
     design = solve_case(case, "paper").design
     first = failure_probabilities(solve_robust(case, WORST_CASE).formulation, design, case.params(), case.scatter, 1000)
     again = failure_probabilities(solve_robust(case, WORST_CASE).formulation, design, case.params(), case.scatter, 1000)
-    assert first == again and set(first) == {"torque", "flank_pressure", "finger_bending", "not_self_locking",
-                                             "outer_diameter"}  # the last two: the case's limits (paper mode too)
+    assert first == again and set(first) == {"torque", "flank_pressure", "finger_bending", "weight_covers_flank",
+                                             "sectors_fit", "not_self_locking", "outer_diameter", "hub_clearance",
+                                             "finger_guide_length", "finger_fits_chord"}  # after the paper's three:
+    # the construction rules, in paper mode too (wedge/modes.py constructive_constraints)
 
 
 def test_start_up_carries_the_scatter_to_its_worst_corner():
@@ -265,8 +267,9 @@ def test_solve_robust_json(cli):
     data = json.loads(result.stdout)
     assert data["status"] == "optimal" and data["robust"]["method"] == "worst-case"
     robust = data["robust"]
-    assert set(robust["failure_probability"]) == {"torque", "flank_pressure", "finger_bending", "not_self_locking",
-                                                  "outer_diameter"}
+    assert set(robust["failure_probability"]) == {"torque", "flank_pressure", "finger_bending", "weight_covers_flank",
+                                                  "sectors_fit", "not_self_locking", "outer_diameter",
+                                                  "hub_clearance", "finger_guide_length", "finger_fits_chord"}
     p, low, high = robust["nominal_failure_probability"]["torque"]
     assert low <= p <= high and p > 0.4
     assert robust["corners"]["torque"]["friction_coefficient"] == 0.12  # the nominal design fails at f_min

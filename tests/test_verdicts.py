@@ -91,15 +91,16 @@ def test_a_static_verdict_the_interval_search_proves_is_given_without_the_retrie
     # The wedge paper case at 400 N m: the design's torque (the paper's Eq. 9) falls short of it by 0.709 relative at
     # the least relaxation (elastic diagnosis of the first, cold, solve), with flank_pressure binding. The relaxation
     # finds the constraints apart, so the interval search runs before the retries and proves it (one box): the one
-    # solve, its one start, the proof naming the same two rows. Without the proof (search made to fail) the retry
-    # from the least relaxation's design follows and the verdict is not_found, from two starts
+    # solve, its one start, the proof naming the same two rows (and two that cut its box). Without the proof (search
+    # made to fail) the retry from the least relaxation's design follows and the verdict is not_found, from two starts
     problem = case_problem(load_case(CASES / "wedge_paper.toml"))
     case = load_case(CASES / "wedge_paper.toml").with_values(resisting_torque=400.0)
     solution = problem.solve(case)
     assert solution.status == "infeasible" and solution.starts == ("the case's own start",)
     assert solution.solver.solves == 1 and solution.diagnosed.least == pytest.approx(0.709, abs=5e-4)
-    assert solution.diagnosis.startswith("proven infeasible: no design within the bounds meets torque, flank_pressure "
-                                         "together")
+    assert solution.diagnosis.startswith("proven infeasible: no design within the bounds meets torque, flank_pressure, "
+                                         "finger_guide_length, finger_fits_chord together")  # (and the finger's
+    # guide and chord, paper mode's rows too, which cut the box's d_n first)
     monkeypatch.setattr(verdict, "empty_design_space", lambda posed, case, budget=None: None)
     retried = problem.solve(case)
     assert retried.status == "not_found" and retried.solver.solves == 2

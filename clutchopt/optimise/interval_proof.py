@@ -33,7 +33,7 @@ from typing import Callable, NamedTuple
 import numpy as np
 
 from clutchopt.optimise.interval_contract import contracted
-from clutchopt.optimise.interval_nodes import enclosed_rows
+from clutchopt.optimise.interval_nodes import enclosed_rows, split_bounds
 
 MAX_BOXES = 40_000  # about 1.5 s of CPU; ball_motor_start's static conflict at 580-800 kW takes 15,000-34,000
 SURE_BOXES = 2_500  # evaluated in any case; beyond, only while the search closes in (GROWTH)
@@ -98,7 +98,7 @@ def searches(posed, problems: list[tuple[np.ndarray, ...]], budgets: list[int] |
         return outcomes
     budgets = budgets or [MAX_BOXES] * len(problems)
     declared = interval_functions(posed)
-    agree = [declared[0].nodes.agree(problems[i][1], problems[i][2], problems[i][0]) for i in started]
+    agree = declared[0].nodes.agree_all([problems[i] for i in started])
     for functions, group in ((declared, [i for i, a in zip(started, agree) if a]),
                              (None, [i for i, a in zip(started, agree) if not a])):
         if group:  # where the declared nodes do not stand for the NLP's rows, the rows replayed
@@ -240,12 +240,11 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
                 d_lo, d_hi, uncertain = d_lo[..., keep], d_hi[..., keep], uncertain[:, keep]
                 if not lo.shape[1]:
                     break
+        slope = _slopes(d_lo, d_hi, uncertain)  # (once an iteration: each half inherits its box's)
         if not intervals:  # (no parameter interval to split: the boxes' parameters follow their boxes)
             for turn in range(int(rounds[owner].max())):
-                lo, hi, owner, parents = _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0,
-                                                         rounds[owner] > turn)
-                plo, phi = plo[:, parents], phi[:, parents]
-                d_lo, d_hi, uncertain = d_lo[..., parents], d_hi[..., parents], uncertain[:, parents]
+                lo, hi, owner, parents = _bisected_where(lo, hi, owner, slope, width0, rounds[owner] > turn)
+                plo, phi, slope = plo[:, parents], phi[:, parents], slope[:, parents]
             continue
         component, rate = _parameter_spread(plo, phi, p_width0[:, owner], (c_hi - c_lo)[:, at], uncertain)
         for turn in range(int(rounds[owner].max())):
@@ -254,11 +253,10 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
                                                                  p_width0[component, owner], np.inf)
             extra = np.full(plo.shape, -1.0)
             extra[component, columns] = np.where(relative > 0, rate * relative, -1.0)
-            z_lo, z_hi, owner, parents = _bisected_where(np.vstack([lo, plo]), np.vstack([hi, phi]), owner, d_lo,
-                                                         d_hi, uncertain, width0, rounds[owner] > turn, extra)
+            z_lo, z_hi, owner, parents = _bisected_where(np.vstack([lo, plo]), np.vstack([hi, phi]), owner, slope,
+                                                         width0, rounds[owner] > turn, extra)
             lo, plo, hi, phi = z_lo[:n], z_lo[n:], z_hi[:n], z_hi[n:]
-            d_lo, d_hi, uncertain = d_lo[..., parents], d_hi[..., parents], uncertain[:, parents]
-            component, rate = component[parents], rate[parents]
+            slope, component, rate = slope[:, parents], component[parents], rate[parents]
     return outcomes
 
 
@@ -336,15 +334,14 @@ def _rounded(lo: np.ndarray, hi: np.ndarray, integer: list[int]) -> tuple[np.nda
     return lo, hi, lo[integer] > hi[integer]
 
 
-def _bisected_where(lo, hi, owner, d_lo, d_hi, uncertain, width0, split, extra=None):
+def _bisected_where(lo, hi, owner, slope, width0, split, extra=None):
     """:func:`_bisected` of the boxes ``split`` selects (the others kept), every search's boxes in the order its
     own bisection gives (its boxes' first halves, then its second halves); the boxes and the box each came from."""
     chosen = np.flatnonzero(split)
     if len(chosen) == len(owner) and (owner[1:] == owner[:-1]).all():  # one search: as it is
-        lo, hi, parents = _bisected(lo, hi, d_lo, d_hi, uncertain, width0[:, owner], extra)
+        lo, hi, parents = _bisected(lo, hi, slope, width0[:, owner], extra)
         return lo, hi, owner[parents], parents
-    s_lo, s_hi, s_parents = _bisected(lo[:, chosen], hi[:, chosen], d_lo[..., chosen], d_hi[..., chosen],
-                                      uncertain[:, chosen], width0[:, owner[chosen]],
+    s_lo, s_hi, s_parents = _bisected(lo[:, chosen], hi[:, chosen], slope[:, chosen], width0[:, owner[chosen]],
                                       None if extra is None else extra[:, chosen])
     parents = np.concatenate([np.flatnonzero(~split), chosen[s_parents]])
     second = np.concatenate([np.zeros((~split).sum(), dtype=bool), np.arange(len(s_parents)) >= len(chosen)])
@@ -370,20 +367,21 @@ def _bounds(functions, lo: np.ndarray, hi: np.ndarray, params: tuple[np.ndarray,
     and the rows' bounds there; ``params``: each box's parameters (a column), their lower and upper ends (the mean
     value form holds for each parameter vector between them: g(x, p) = g(c, p) + J(xi, p) (x - c)). ``ends``: boxes
     (their numbers) whose centres are evaluated too at two further parameter vectors each (the ends of a search's
-    interval, one column a box each: :func:`_reached`). All in one replay of the function that gives the Jacobian and
-    the rows (``interval_nodes.enclosed_rows``): a box's bounds are its own (the rules work box by box), and one call
-    costs about what each of its three had (the ball's searches: about 2 ms an iteration, most of it per call)."""
-    _, slopes = functions
+    interval, one column a box each: :func:`_reached`). The declared nodes enclosed once over all of them, the
+    Jacobian (which gives the rows too) replayed over the boxes and the rows alone over the centres and ends
+    (``interval_nodes.split_bounds``): a box's bounds are its own (the rules work box by box), the same bits as one
+    replay of the Jacobian's function over every column, which had cost the ball's searches its 359 instructions at
+    each centre and end where its rows take 153 (about a third less of the replays' work an iteration)."""
+    rows, slopes = functions
     count, n = lo.shape[1], lo.shape[0]
     centre = 0.5 * (lo + hi)
     x_lo, x_hi, p_lo, p_hi = [lo, centre], [hi, centre], [params[0]] * 2, [params[1]] * 2
     boxes = np.zeros(0, dtype=int) if ends is None else ends[0]
     for p_end in ((ends[1], ends[2]) if len(boxes) else ()):
         x_lo.append(centre[:, boxes]), x_hi.append(centre[:, boxes]), p_lo.append(p_end), p_hi.append(p_end)
-    (d_lo, d_hi), (g_lo, g_hi) = slopes.bounds([(np.hstack(x_lo), np.hstack(x_hi)),
-                                                 (np.hstack(p_lo), np.hstack(p_hi))])
-    c_lo, c_hi, at_ends = g_lo[:, count:2 * count], g_hi[:, count:2 * count], g_hi[:, 2 * count:]
-    g_lo, g_hi, d_lo, d_hi = g_lo[:, :count], g_hi[:, :count], d_lo[:, :count], d_hi[:, :count]
+    ((d_lo, d_hi), (g_lo, g_hi)), ((r_lo, r_hi),) = split_bounds(
+        slopes, rows, [(np.hstack(x_lo), np.hstack(x_hi)), (np.hstack(p_lo), np.hstack(p_hi))], count)
+    c_lo, c_hi, at_ends = r_lo[:, :count], r_hi[:, :count], r_hi[:, count:]
     m = g_lo.shape[0]
     d_lo, d_hi = d_lo.reshape(n, m, count).transpose(1, 0, 2), d_hi.reshape(n, m, count).transpose(1, 0, 2)
     step_lo, step_hi = (lo - centre)[None], (hi - centre)[None]
@@ -405,14 +403,21 @@ def _faces(lo: np.ndarray, hi: np.ndarray, d_lo: np.ndarray, d_hi: np.ndarray,
     return np.where(falling & ~rising, hi, lo), np.where(rising, lo, hi)
 
 
-def _bisected(lo: np.ndarray, hi: np.ndarray, d_lo: np.ndarray, d_hi: np.ndarray, uncertain: np.ndarray,
-              width0: np.ndarray, extra: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Each box split in two across the variable that spreads its uncertain rows most (largest |dg/dx| width; a
-    variable whose slope is unbounded first, the widest of them relative to the design box), at its middle (a
-    positive range over a factor 4: its geometric middle); the halves and the box each came from. ``extra``: the
-    spread of further rows of the boxes below the design variables (a parameter interval's: :func:`_searched`)."""
-    n = d_lo.shape[1]
-    slope = np.where(uncertain[:, None, :], np.maximum(np.abs(d_lo), np.abs(d_hi)), 0.0).max(axis=0)
+def _slopes(d_lo: np.ndarray, d_hi: np.ndarray, uncertain: np.ndarray) -> np.ndarray:
+    """Each variable's largest |dg/dx| over a box's uncertain rows (variables x boxes; rows x variables x boxes of
+    slope bounds in): what :func:`_bisected` splits by, taken once an iteration and inherited by the halves (the
+    rows x variables x boxes bounds had been carried through every round of splits for it)."""
+    return np.where(uncertain[:, None, :], np.maximum(np.abs(d_lo), np.abs(d_hi)), 0.0).max(axis=0)
+
+
+def _bisected(lo: np.ndarray, hi: np.ndarray, slope: np.ndarray, width0: np.ndarray, extra: np.ndarray | None = None
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Each box split in two across the variable that spreads its uncertain rows most (largest |dg/dx| width,
+    ``slope``: :func:`_slopes`; a variable whose slope is unbounded first, the widest of them relative to the design
+    box), at its middle (a positive range over a factor 4: its geometric middle); the halves and the box each came
+    from. ``extra``: the spread of further rows of the boxes below the design variables (a parameter interval's:
+    :func:`_searched`)."""
+    n = slope.shape[0]
     with np.errstate(invalid="ignore"):  # an unbounded slope times a zero width: the where's other branch
         smear = np.where(np.isfinite(slope), slope * (hi[:n] - lo[:n]), 1e300 * (hi[:n] - lo[:n]) / width0)
     smear = np.where(hi[:n] > lo[:n], smear, -1.0)

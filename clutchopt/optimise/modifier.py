@@ -217,7 +217,8 @@ def first_order(problem, case, solution, solves: list, bound: float = math.inf):
         if values is None:
             break
         nlp_case = replace(case, values={**case.values, **values}, bounds={**case.bounds, **fixed})
-        step = corrected._solve(case, warm=last, nlp_case=nlp_case, cold=False)
+        step = corrected._solve(case, warm=last, nlp_case=nlp_case, cold=False, heavier=bound)  # (no lighter:
+        # ``not_found``, its start not simulated)
         solves.append(step.solver)
         if step.status not in DESIGN_STATUSES or step.objective >= bound:
             break

@@ -382,8 +382,10 @@ class Problem:
         """The papers' sizing's optimum solved as a start-up design, where a row of the collocation holds ``held``
         (:func:`held_by_the_mesh`) and the sizing ends ``optimal`` and lighter; else None. No start-up limit holds
         ``held``, so the static constraints alone bind where the physics has its optimum: the sizing's, a relaxation
-        of this problem (the same formulation without the start-up limits), is the optimum wherever its simulated
-        start meets every limit. It is solved in two steps on the mesh its own simulated start draws
+        of this problem where its rows are the start-up's own (the same formulation without the start-up limits:
+        the ball's and the cable's; the wedge's and the lever's sizing keep the constant-acceleration torque row the
+        start-up drops, tests/test_start_up_relaxation.py), is the optimum wherever its simulated start meets every
+        limit. It is solved in two steps on the mesh its own simulated start draws
         (:func:`~clutchopt.start_up.transcription.mesh_of_the_start`; ``held``'s mesh has no collocated start of it,
         the lighter side of its fold): its design fixed (the collocation's states follow it), then freed, warm from
         that point (IPOPT's barrier from 1e-9: a KKT point where the collocation follows the design, so it stays).
@@ -430,13 +432,15 @@ class Problem:
     def _solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
                nlp_case: Case | None = None, mesh: np.ndarray | None = None,
                diagnosed: bool = True, ruled: RuledOut | None = None, cold: bool = True,
-               redecide: bool = False, sizing: dict[str, float] | None = None) -> Solution:
+               redecide: bool = False, sizing: dict[str, float] | None = None,
+               heavier: float = math.inf) -> Solution:
         """One solve (with its integer search); the NLP sees ``nlp_case`` (moved limits), the checks ``case``;
         a start-up's mesh is ``mesh``, else the warm solution's, else the first one; ``ruled``: integer choices
         not to solve again, and where those found infeasible are recorded; ``cold=False``: no cold start after a
         failed warm one; ``redecide``: the warm solution's integers are not tried first, the relaxation is solved
         (warm) and its integers searched as a first solve's (:func:`unsettled`); ``sizing``: the papers' sizing at
-        the point, whose integers a warm start-up solve's search is completed by (:meth:`_sized`)."""
+        the point, whose integers a warm start-up solve's search is completed by (:meth:`_sized`); ``heavier``: a
+        start-up design this heavy or heavier is of no use to the caller, its start not simulated (:meth:`_finish`)."""
         posed = self.posed
         warm_ok = warm is not None and warm.status in ("optimal", "unverified") and warm.scale is not None
         if mesh is None and warm_ok and warm.mesh is not None and len(warm.mesh[0]) == posed.mesh_size:
@@ -461,7 +465,7 @@ class Problem:
                                                      first=methods)
                 if kept is not None:
                     kept = self._sized(solved, data, integer, kept, search, attempt_at, sizing)
-                    return self._finish(case, kept, runs, data, search)
+                    return self._finish(case, kept, runs, data, search, heavier=heavier)
                 seed, methods = relaxation_seed(seed, integer), ("warm",)  # the previous integers fail here (or
                 # are decided again: ``redecide``)
             run = attempt(posed, data, data.lbx, data.ubx, data.x0, seed, methods, runs)
@@ -487,7 +491,7 @@ class Problem:
         if not relaxed["ok"] and self.start_up is not None:
             relaxed, diagnosis = self._from_the_elastic_point(relaxed, data, runs)
         if not integer or not relaxed["ok"]:
-            return self._finish(case, relaxed, runs, data, search, diagnosed=diagnosis)
+            return self._finish(case, relaxed, runs, data, search, diagnosed=diagnosis, heavier=heavier)
         attempt_at = fixing(posed, data, runs, search, ruled)
         kept = nearest_integers(posed, data.box, integer, relaxed, search, attempt_at)
         if self.start_up is not None and start is not None and not warm_ok:  # a first solve, from the sizing
@@ -499,7 +503,7 @@ class Problem:
             return self._finish(case, runs[-1], runs, data, search,
                                 ("infeasible", f"infeasible in integers: the continuous relaxation is feasible "
                                  f"but none of the integer neighbours is ({tried})"))
-        return self._finish(case, kept, runs, data, search)
+        return self._finish(case, kept, runs, data, search, heavier=heavier)
 
     @cached_property
     def _own_names(self) -> frozenset[str]:
@@ -552,10 +556,13 @@ class Problem:
         return rescued, None
 
     def _finish(self, case, run, runs, data: ScaledData, search, verdict=None,
-                diagnosed: Diagnosis | None = None) -> Solution:
+                diagnosed: Diagnosis | None = None, heavier: float = math.inf) -> Solution:
         """The Solution of a solve's kept run: its float64 checks (and a start-up's simulated ones) with their
         multipliers, its status (``verdict``, or by the checks, or the diagnosis of a failed run: ``diagnosed``,
-        where it is made already), sensitivities."""
+        where it is made already), sensitivities. A start-up design whose float64 objective is ``heavier`` or more
+        ends ``not_found`` (:func:`no_lighter`) without its start simulated: the caller has a lighter design
+        (modifier adaptation's step, :func:`~clutchopt.optimise.modifier.first_order`, stops there whatever the
+        simulation says)."""
         posed = self.posed
         f = posed.formulation
         if verdict is None and diagnosed is None and polishable(posed, run):  # IPOPT's end onto its exact vertex
@@ -565,7 +572,10 @@ class Problem:
         design, objective, checks = run["design"], run["value"], list(run["checks"])
         start_up = mesh = None
         collocated = {}
-        if posed.start_up is not None:  # re-checked by the independent simulator
+        unsimulated = verdict is None and diagnosed is None and run["ok"] and objective >= heavier
+        if unsimulated:
+            verdict = no_lighter(objective, heavier)
+        if posed.start_up is not None and not unsimulated:  # re-checked by the independent simulator
             start_up, simulated, suggested, collocated = start_up_report(
                 posed.start_up, *posed.start_up_seen(case, design), f, posed.seen_by(case, design),
                 posed.start_up_figures(run["x"], run["p"]))
@@ -598,6 +608,13 @@ class Problem:
                         elasticities, scale, (run["lam_x"], run["lam_g"]), {v.name: v.unit for v in f.variables},
                         start_up, run["x"][len(scale):] if posed.start_up is not None else None, mesh, diagnosed,
                         collocated=collocated)
+
+
+def no_lighter(objective: float, heavier: float) -> tuple[str, str]:
+    """The verdict of a start-up solve whose design (``objective``, float64) is no lighter than the caller's
+    ``heavier``: ``not_found``, its start not simulated (one simulation a modifier step that ends there:
+    cable_motor_start's 7 cables, 20-30 ms of a 0.2-0.4 s solve)."""
+    return "not_found", f"the design ({objective:.10g}) is no lighter than {heavier:.10g}: its start not simulated"
 
 
 def uncorrected(solution: Solution, corrected: Solution) -> Solution:

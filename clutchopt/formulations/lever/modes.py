@@ -43,8 +43,17 @@ def _flange_over_shaft(t: Toggles, p):
                     equation="geometry", unit="mm", description="d_phi >= ratio * d_b")
 
 
+def _lining_clears_flange(t: Toggles):
+    """The linings' inner diameter clears the spring flange, in every mode: in paper mode d_cp and B_cp come from the
+    paper's rules and d_phi from the case, a row no design variable enters."""
+    return at_least("lining_clears_flange", t.mean_diameter - t.lining_width, t.flange_diameter, equation="geometry",
+                    unit="mm", description="inner lining diameter d_cp - b >= d_phi")
+
+
 def _paper_limits(t: Toggles, x, p):
-    return [*_case_limits(t, x, p), _flange_over_shaft(t, p)]
+    """Every rule of design mode but the l_2 rule, which paper mode meets by construction (``paper_geometry``
+    takes the shortest levers it allows: l_2 (cos gamma_pr - cos gamma_0) = delta exactly)."""
+    return [*_case_limits(t, x, p), _lining_clears_flange(t), _flange_over_shaft(t, p)]
 
 
 PAPER = MODEL.formulation("paper", "Lever CFC, paper method: l_2 and B_cp by the paper's rules, m and d_l free",
@@ -78,8 +87,7 @@ def _housing_constraints(t: Toggles, x, p):
                  p.lining_thickness, equation="l_2 rule", unit="mm",
                  description="l_2 (cos gamma_pr - cos gamma_0) >= delta"),
         *_case_limits(t, x, p),
-        at_least("lining_clears_flange", t.mean_diameter - t.lining_width, t.flange_diameter, equation="geometry",
-                 unit="mm", description="inner lining diameter d_cp - b >= d_phi"),
+        _lining_clears_flange(t),
         _flange_over_shaft(t, p),
     ]
 

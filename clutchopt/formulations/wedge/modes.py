@@ -31,21 +31,56 @@ def paper_weight_set(x, p):
                      p.weight_height, equivalent_width(x.weight_mass, p.density, p.sector_angle, r2, p.weight_height))
 
 
-def _case_limits(w: WeightSet, x, p):
-    """The limits the case names, met in every mode: the weights release (above (24)) and the housing's D_max.
+def constructive_constraints(w: WeightSet, x, p):
+    """Rules that make a design a part one can build, posed in both modes (one definition, one name): (26), the
+    sectors round the shaft (below (23)), release (above (24)), the housing's D_max, the trapezoid's top land, the
+    hub, and the finger in its weight.
 
-    In paper mode both are fixed by the case's geometry (alpha, r1, lambda): a case that breaks one is infeasible
-    whatever m_r and d_n, which the float64 re-check shows as a row with its margin."""
+    In geometry mode they bound the free geometry. In paper mode the geometry is given and only m_r and d_n move:
+    the rows that read neither (26, sectors, release, housing, hub) are fixed by the case (one it breaks is
+    infeasible whatever the design); the finger's guide and chord read d_n. The top land and the finger's fit
+    read the weight's width b, in paper mode the equivalent width of a rectangular annular sector of mass m_r
+    (``equivalent_width``, the envelope's): a real weight of that mass with the trapezoidal top is wider at its
+    base, so there the two rows would be sufficient for it; paper mode leaves them out for now
+    (``PAPER_MODE_LEAVES_OUT``)."""
+    r_in, b = w.r2 - w.height, w.width
     return [
+        at_least("weight_covers_flank", w.height, w.r2 - w.r1, equation="(26)", unit="mm", scale=w.r1,
+                 description="h_r >= r2 - r1"),
+        at_most("sectors_fit", w.count * (w.sector_angle + p.sector_clearance), 2 * math.pi, equation="below (23)",
+                unit="deg", description="z (gamma + clearance) <= 2 pi"),
         at_least("not_self_locking", w.flank_angle, self_locking_angle(p.friction_coefficient) + p.self_locking_margin,
                  equation="above (24)", unit="deg", description="alpha >= atan f + margin"),
         at_most("outer_diameter", 2 * (w.r2 + p.shell_thickness), p.outer_diameter_max, equation="case", unit="mm",
                 description="2 (r2 + shell) <= D_max"),
+        at_least("top_land_width", b - 2 * (w.r2 - w.r1) * tan(w.flank_angle), p.min_top_width, equation="geometry",
+                 unit="mm", scale=b, description="trapezoid top b - 2 (r2 - r1) tan(alpha) >= min"),
+        at_least("hub_clearance", r_in, p.hub_radius, equation="fig. 2", unit="mm", scale=w.r1,
+                 description="inner edge r2 - h_r clears the hub"),
+        at_most("finger_fits_width", w.finger_diameter, p.finger_fit_ratio * b, equation="geometry", unit="mm",
+                scale=b, description="d_n <= ratio * b"),
+        at_least("finger_guide_length", w.height, p.guide_length_ratio * w.finger_diameter,
+                 equation="geometry", unit="mm", scale=w.r1, description="h_r >= ratio * d_n"),
+        at_most("finger_fits_chord", w.finger_diameter, p.finger_fit_ratio * 2 * r_in * sin(w.sector_angle / 2),
+                equation="geometry", unit="mm", scale=w.r1, description="d_n <= ratio * chord at r_in"),
     ]
 
 
+# Not yet posed in paper mode: the two rules that read the weight's width b. The paper-mode optima of
+# cases/wedge_centrifuge.toml and cases/wedge_fan.toml break both (their weights, 4.9 and 5.5 mm wide, carry fingers
+# of 10.5 and 15.4 mm), and no m_r meets them within [p] there: posed, both cases are infeasible in paper mode
+# (proven), which takes the subject from the robust and reliability studies built on the centrifuge's paper mode
+# (docs/robust.md, README, benchmarks). Open in docs/errata.md; tests/test_paper_mode_case_limits.py holds the strict
+# xfail that turns when they are posed.
+PAPER_MODE_LEAVES_OUT = ("top_land_width", "finger_fits_width")
+
+
+def _paper_constructive_constraints(w: WeightSet, x, p):
+    return [c for c in constructive_constraints(w, x, p) if c.name not in PAPER_MODE_LEAVES_OUT]
+
+
 PAPER = MODEL.formulation("paper", "Wedge CFC, paper assumptions: geometry given, m_r and d_n free",
-                          PAPER_VARIABLES, paper_weight_set, _case_limits)
+                          PAPER_VARIABLES, paper_weight_set, _paper_constructive_constraints)
 
 
 # --- Geometry mode: weights as real bodies -------------------------------------------------------------------------
@@ -73,28 +108,6 @@ def _geometry_weight_set(x, p):
                      p.friction_coefficient, x.weight_height, x.weight_width)
 
 
-def _constructive_constraints(w: WeightSet, x, p):
-    """Rules that make the optimum a part one can build: (26), fit round the shaft, release, housing, fits."""
-    r_in, b = w.r2 - x.weight_height, x.weight_width
-    return [
-        at_least("weight_covers_flank", x.weight_height, w.r2 - w.r1, equation="(26)", unit="mm", scale=w.r1,
-                 description="h_r >= r2 - r1"),
-        at_most("sectors_fit", w.count * (w.sector_angle + p.sector_clearance), 2 * math.pi, equation="below (23)",
-                unit="deg", description="z (gamma + clearance) <= 2 pi"),
-        *_case_limits(w, x, p),
-        at_least("top_land_width", b - 2 * (w.r2 - w.r1) * tan(w.flank_angle), p.min_top_width, equation="geometry",
-                 unit="mm", scale=b, description="trapezoid top b - 2 (r2 - r1) tan(alpha) >= min"),
-        at_least("hub_clearance", r_in, p.hub_radius, equation="fig. 2", unit="mm", scale=w.r1,
-                 description="inner edge r2 - h_r clears the hub"),
-        at_most("finger_fits_width", w.finger_diameter, p.finger_fit_ratio * b, equation="geometry", unit="mm",
-                scale=b, description="d_n <= ratio * b"),
-        at_least("finger_guide_length", x.weight_height, p.guide_length_ratio * w.finger_diameter,
-                 equation="geometry", unit="mm", scale=w.r1, description="h_r >= ratio * d_n"),
-        at_most("finger_fits_chord", w.finger_diameter, p.finger_fit_ratio * 2 * r_in * sin(w.sector_angle / 2),
-                equation="geometry", unit="mm", scale=w.r1, description="d_n <= ratio * chord at r_in"),
-    ]
-
-
 def _geometry_outputs(w: WeightSet, x, p):
     return {
         "paper_centroid_radius": Output(paper_centroid_radius(w.r2, x.weight_height), "mm", "r2 - 2/3 h_r, eq. (11)"),
@@ -104,4 +117,4 @@ def _geometry_outputs(w: WeightSet, x, p):
 
 
 GEOMETRY = MODEL.formulation("geometry", "Wedge CFC, weights as real bodies: geometry free", GEOMETRY_VARIABLES,
-                             _geometry_weight_set, _constructive_constraints, _geometry_outputs)
+                             _geometry_weight_set, constructive_constraints, _geometry_outputs)
