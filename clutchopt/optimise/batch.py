@@ -319,6 +319,7 @@ class BatchSweep:
         ahead = None  # points until an inactive constraint or bound is expected to become active (with integers,
         # where the pace expects no break)
         if carried is not None:
+            carried.check_fits(self.names, len(self.posed.lbg))  # (DamagedStart: a damaged store)
             k, ahead, self.feasible = carried.point, carried.ahead, carried.feasible
             start = None if carried.start is None else _Start(self, carried=carried.start)
             pace.carry(carried.pace)

@@ -36,7 +36,7 @@ from clutchopt.formulations import get_coupling
 from clutchopt.materials import chosen
 from clutchopt.model import Formulation
 from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
-from clutchopt.optimise.batch_carried import Carried
+from clutchopt.optimise.batch_carried import Carried, DamagedStart
 from clutchopt.optimise.dask_client import connect
 from clutchopt.optimise.design import Robustness, check_robustness, design_case, method_of
 from clutchopt.optimise.entering import check_entering
@@ -320,6 +320,18 @@ class SweepRecords(Sequence):
         return self._records[i]
 
 
+def _stored_start_checked(solving: Iterator[PointResults], store, sweep_id) -> Iterator[PointResults]:
+    """``solving``'s results; a resumed sweep's stored start that is not its problem's (``Carried.check_fits``,
+    checked before the first point is solved: nothing recorded) as the store's damage, StoreError."""
+    try:
+        yield from solving
+    except DamagedStart as exc:
+        from clutchopt.store import StoreError
+
+        raise StoreError(store.path, f"sweep {sweep_id}'s start at point {exc.point} is damaged ({exc})",
+                         "run the sweep again without --resume") from None
+
+
 class Sweep:
     """A case, the varied quantities, mode and objective: what defines a sweep and its resume key."""
 
@@ -410,7 +422,7 @@ class Sweep:
         with bar, interrupt_between_points() as check:
             solving = (solve_points(*task, self.grid, carried) if carried is not None
                        else (runner or local_runner(jobs))(task, pending, size))
-            for results in solving:
+            for results in _stored_start_checked(solving, store, sweep_id):
                 if store is not None and sweep_id is not None:  # the results in hand in one transaction
                     store.record_points(self._inputs(), self._where(sweep_id), results.points.index,
                                         results.points.columns, *results.stored(),
