@@ -86,3 +86,24 @@ def test_k5_held_at_one_value_from_both_sides_is_an_equality_ipopt_solves_as_suc
     assert rows["torque"].elasticity == pytest.approx(0.6, rel=1e-6)
     assert rows["width_ratio"].elasticity == pytest.approx(0.4, rel=1e-6) and rows["width_ratio_max"].multiplier == 0
     assert rows["contact_stress"].value == pytest.approx(871.05e6, rel=1e-4) and not rows["contact_stress"].active
+
+
+def test_limits_with_no_room_between_are_infeasible_whatever_the_design_never_an_ill_posed_solve(tmp_path):
+    # _rows() with the lower limit 7 above the upper 5: g_l >= (7 - 5) / 4 = 0.5 > 0 = its upper bound. The solvers see
+    # the kept row at its own limit (lbg <= ubg: IPOPT refused lbg > ubg with an assertion, an internal error), and
+    # the pair is named apart by 0.5 relative to the kept row's scale.
+    x, p, constraints = _rows()
+    constraints[2] = at_least("lower", x, 7.0, equation="-", scale=4.0)
+    sides = TwoSided(constraints, x, p, np.full(3, -np.inf))
+    assert sides.conflicts(np.zeros(0), 1e-9) == [(2, 0, 0.5)]
+    assert np.array_equal(sides.bounds(np.zeros(0))[0], [-np.inf, 0.0])
+    # ball_compressor.toml in paper mode: K5 at least the paper's 0.8 (width_ratio) and at most width_ratio_max = 0.5:
+    # apart by (0.8 - 0.5) / 0.8 = 0.375 of the kept row's scale (its limit 0.8). Proven without a solve, both named.
+    case = load_case(CASES / "ball_compressor.toml").with_values(width_ratio_max=0.5)
+    solution = solve_case(case, "paper")
+    assert solution.status == "infeasible" and solution.solver.iterations == 0
+    assert solution.diagnosis == ("infeasible whatever the design: width_ratio and width_ratio_max (one quantity held "
+                                  "from both sides, their limits apart by 0.375 relative)")
+    rows = {c.name: c for c in solution.constraints}
+    assert rows["width_ratio"].limit == 0.8 and rows["width_ratio_max"].limit == 0.5
+    assert not (rows["width_ratio"].feasible and rows["width_ratio_max"].feasible)

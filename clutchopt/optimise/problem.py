@@ -335,7 +335,7 @@ class Problem:
         counted; else None. An IPOPT solve there (13 iterations on the wedge) ended at a point of its own, which the
         verdict showed, and then diagnosed it."""
         posed = self.posed
-        given = whatever_the_design(posed, data.p, data.x0) if posed.fixed_rows else None
+        given = whatever_the_design(posed, data.p, data.x0) if posed.fixed_rows or posed.sides.pairs else None
         if given is None:
             return None
         solution = infeasible_at(posed, case, dict(zip(posed.names, map(float, data.start))), given.text,

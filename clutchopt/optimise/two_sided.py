@@ -31,8 +31,9 @@ def _scale(constraint):
 
 
 def held_from_both_sides(constraints, x_hat) -> list[tuple[int, int]]:
-    """Pairs of row indices ``(upper, lower)``: a ``<=`` constraint and a ``>=`` constraint on the same value
-    expression, one row each, their limits and scales free of the design ``x_hat``; each row in one pair at most."""
+    """Pairs of row indices ``(kept, other)``: a ``>=`` constraint's row, which the solvers keep, and a ``<=``
+    constraint's on the same value expression, one row each, their limits and scales free of the design ``x_hat``;
+    each row in one pair at most."""
     rows = np.cumsum([0] + [ca.SX(c.normalised()).shape[0] for c in constraints])
     single = [i for i, c in enumerate(constraints) if rows[i + 1] - rows[i] == 1 and not any(
         ca.depends_on(ca.SX(e), x_hat) for e in (c.limit, _scale(c)))]
@@ -70,7 +71,7 @@ class TwoSided:
                               for a, b in zip(k_c, f_c)])
         lower = offset * ratio  # g_f <= 0: g_k >= s_f (L_k - L_f) / S_k
         lbg_posed, ubg_posed = ca.SX(ca.DM(lbg[self.rows])), ca.SX.zeros(len(self.rows))
-        lbg_posed[at] = lower
+        lbg_posed[at] = ca.fmin(lower, 0)  # (limits with no room between: the kept row's limit, :meth:`conflicts`)
         lam, posed = ca.SX.sym("named", n), ca.SX.sym("posed", len(self.rows))  # (multipliers or values)
         merged = lam[self.rows]
         merged[at] = lam[kept] - lam[freed] / ratio
@@ -101,10 +102,20 @@ class TwoSided:
             return self.bounds_of(p)[:2]
         lower = self._at(p)[0]
         lbg = self.lbg[self.rows].copy()
-        lbg[self.at] = lower
+        lbg[self.at] = np.minimum(lower, 0.0)  # (limits with no room between: :meth:`conflicts`)
         ubg = np.broadcast_to(np.asarray(ubg, dtype=float), self.lbg.shape)
         lbg[[a for a, f in zip(self.at, self.freed) if np.isinf(ubg[f])]] = -np.inf
         return lbg, np.maximum(0.0, ubg[self.rows])
+
+    def conflicts(self, p: np.ndarray, tolerance: float) -> list[tuple[int, int, float]]:
+        """The pairs whose limits leave no room between them at ``p`` (the lower one above the upper: no design meets
+        both): ``(kept row, other row, how far apart, relative to the kept row's scale)``. The solvers see the kept
+        row at its own limit there (a well-posed NLP, lbg <= ubg), the float64 re-check the other row broken; the
+        verdict is given without a solve (``diagnosis.whatever_the_design``)."""
+        if not self.pairs:
+            return []
+        lower = self._at(np.asarray(p, dtype=float))[0]
+        return [(k, f, float(gap)) for k, f, gap in zip(self.kept, self.freed, lower) if gap > tolerance]
 
     def posed(self, lam_g, p):
         """Named rows' multipliers (each >= 0 on its own row) as the solvers' (a two-sided row's signed)."""
