@@ -39,7 +39,8 @@ def shown_value(value: object, limit: int = 60) -> str:
         text = repr(value)
     except RecursionError:  # a structure nested deeper than repr goes
         return f"a deeply nested {type(value).__name__}"
-    return text if len(text) <= limit else f"{text[:limit - 10]}... ({len(text)} characters)"
+    length = len(value) if isinstance(value, str) else len(text)  # (a text's own characters, not its repr's quotes)
+    return text if len(text) <= limit else f"{text[:limit - 10]}... ({length} characters)"
 
 
 class Problems:

@@ -5,6 +5,7 @@ shown on the wedge's static sizing (a 105-instruction Hessian: its build takes a
 1.2 MB of C 8-26 s); a start-up sweep calls it at each point (``start_up_sweep.solved_along``)."""
 
 import time
+from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
@@ -94,3 +95,37 @@ def test_the_code_is_generated_only_once_the_points_took_long_enough(monkeypatch
     for point, expected in zip([None, points[0], points[0], points[1], points[2]], [0, 0, 0, 0, 1]):
         later.compiled_when_ready(problem.posed, point)
         assert len(generated) == expected
+
+
+@pytest.mark.skipif(compiled.compiler() is None, reason="no C compiler here (solves stay on the virtual machine)")
+def test_a_linked_library_is_used_from_the_first_point_without_deriving_or_generating(monkeypatch, tmp_path):
+    # the link beside the library is named by the NLP's digest: a new problem of the same NLP finds it before its
+    # first solve (no 2 s of solving, no C generated, no derivatives of its own) and solves to the same bits
+    monkeypatch.setenv(compiled.CACHE_ENV, str(tmp_path / "cache"))
+    monkeypatch.setenv(later.BUILD_LATER_ENV, "0")
+    plain, case = _problem_and_case()
+    reference = plain.solve(case)
+    library = later.compiled_now(plain.posed)  # (built in the foreground, as the bench's "in the cache" state)
+    assert library is not None and later.linked_library(plain.posed) == Path(library)
+    problem, _ = _problem_and_case()
+    monkeypatch.setattr(later, "generated_source", lambda functions: pytest.fail("C generated: the link not read"))
+    assert problem.posed._built["solver"] == {}  # (nothing derived yet)
+    assert later.compiled_when_ready(problem.posed) is True  # at the first point, no solving counted
+    assert problem.posed.library == library
+    assert problem.posed.solver("ipopt").get_function("nlp_hess_l").is_a("External")
+    solution = problem.solve(case)
+    assert solution.status == reference.status == "optimal"
+    assert solution.objective == reference.objective and solution.design == reference.design  # to the last bit
+
+
+def test_a_link_is_read_only_where_it_names_a_library_of_the_cache(monkeypatch, tmp_path):
+    monkeypatch.setenv(compiled.CACHE_ENV, str(tmp_path))
+    problem, _ = _problem_and_case()
+    monkeypatch.setattr(later, "nlp_key", lambda posed: pytest.fail("a digest taken without any link in the cache"))
+    assert later.linked_library(problem.posed) is None
+    monkeypatch.setattr(later, "nlp_key", lambda posed: "0" * 32)
+    link = tmp_path / f"link-{'0' * 32}.txt"
+    for name, expected in (("../elsewhere/nlp-" + "a" * 32 + ".so", None), ("nlp-" + "a" * 32 + ".so\n",
+                                                                            tmp_path / ("nlp-" + "a" * 32 + ".so"))):
+        link.write_text(name)
+        assert later.linked_library(problem.posed) == expected

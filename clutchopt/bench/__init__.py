@@ -70,7 +70,8 @@ SECTIONS: tuple[Section, ...] = (
                            "driven inertia (once per state of the compiled-code cache, compiled: 'in the cache', its "
                            "NLPs' libraries built first, untimed, as a second run meets them; 'none', an empty cache, "
                            "as a first run meets it less the build it starts beside itself; compiled_used: whether the "
-                           "run's solvers evaluated them by its end, looked for from the point after 2 s of solving; "
+                           "run's solvers evaluated them by its end, found at its first point by the link beside the "
+                           "library; "
                            "no build runs while anything is timed); points with and without a design, "
                            "solver calls per point, points/s against the wedge paper sweep of its duty quantity",
             user_sweep_rows),

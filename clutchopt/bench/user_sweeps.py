@@ -23,8 +23,8 @@ from clutchopt.bench.reference import bench_cases, reference_mode
 from clutchopt.bench.throughput import sweep_quantity
 from clutchopt.bench.timing import median_run
 from clutchopt.cases import Case, load_case
-from clutchopt.optimise.compiled import CACHE_ENV, compiled_library
-from clutchopt.optimise.start_up_compiled import BUILD_LATER_ENV, wait_for_builds
+from clutchopt.optimise.compiled import CACHE_ENV
+from clutchopt.optimise.start_up_compiled import BUILD_LATER_ENV, compiled_now, wait_for_builds
 
 CASES = Path(__file__).resolve().parents[2] / "cases"
 SPANS = ((0.5, 2.0), (0.7, 1.4), (0.9, 1.1))  # factors on the case's value, the widest the case accepts
@@ -116,8 +116,8 @@ def start_up_rows(config) -> list[dict]:
     and in the foreground (the problems posed by a sweep run once untimed: a user's second run), or NO_LIBRARY (an
     empty cache: a user's first run, less the build it starts beside itself). No build is started while a run is
     timed (``CLUTCHOPT_BUILD_LATER=0``) and none runs; each timed run builds its problems anew, as a new process does.
-    ``compiled_used``: whether its solvers evaluated the compiled functions by its end (a sweep looks for them from
-    the point after 2 s of solving, :mod:`clutchopt.optimise.start_up_compiled`: the wedge's never gets there)."""
+    ``compiled_used``: whether its solvers evaluated the compiled functions by its end (a sweep finds them at its first
+    point by the link beside the library, :mod:`clutchopt.optimise.start_up_compiled`)."""
     rows = []
     for path in sorted(CASES.glob("*_motor_start.toml")):
         case = load_case(path)
@@ -129,7 +129,7 @@ def start_up_rows(config) -> list[dict]:
                         _run(case, "driven_inertia", values, None, 1)
                     for problem in posed:
                         if problem.posed.library is None:  # (one already compiled: its library in the cache)
-                            compiled_library(problem.posed.solver("ipopt"))
+                            compiled_now(problem.posed)  # (and its link: used from a sweep's first point)
                 with _new_start_up_problems() as built:
                     row = _run(case, "driven_inertia", values, None, 1)
             rows.append({"case": path.stem, "quantity": "driven_inertia", "span": "0.6x-1.4x", **row,

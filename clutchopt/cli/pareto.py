@@ -111,8 +111,8 @@ def _with_choice(front):
 
 
 def _front_json(front) -> dict:
-    """A front's rows (SI, with their units by column), its choice of options.choose and its note; with
-    --robust, each row's robust result (with its own units)."""
+    """A front's rows (SI, with their units by column; a row without a design: its diagnosis, as solve's JSON), its
+    choice of options.choose and its note; with --robust, each row's robust result (with its own units)."""
     from clutchopt.optimise.pareto import CAP
     from clutchopt.optimise.problem import case_formulation
     from clutchopt.optimise.verify import evaluate_objective
@@ -123,6 +123,7 @@ def _front_json(front) -> dict:
     rows = [{"cost_cap": None if math.isnan(cap) else cap, "status": solution.status,
              **{name: evaluate_objective(formulation, name, solution.design, params) for name in ("mass", "cost")},
              "design": solution.design, "active": [c.name for c in solution.constraints if c.active and c.name != CAP],
+             "diagnosis": solution.diagnosis,  # (a point without a design: why, its proof, as solve's JSON says)
              **({"robust": robust_json(front.robust[k], front.case)} if front.robust else {})}
             for k, (cap, solution) in enumerate(zip(front.caps, front.solutions))]
     ends = {name: si_unit(formulation.objective(name).unit) for name in ("mass", "cost")}

@@ -43,15 +43,18 @@ def run(posed: Posed, data: ScaledData, lbx, ubx, x0, seed: dict | None, method:
     """One solve, its design checked in float64 (``design``, ``checks``, ``value``, ``feasible``); ``ubg`` the rows'
     upper limits (scaled, g <= 0: every row posed; +inf where a row is left out of this solve, ``polish``)."""
     solver = posed.solver(method)
-    args = {"x0": x0, "p": data.p, "lbx": lbx, "ubx": ubx, "lbg": posed.lbg, "ubg": ubg}
+    lbg, ubg = posed.sides.bounds(data.p, ubg)  # (a quantity held from both sides: one row, optimise/two_sided.py)
+    args = {"x0": x0, "p": data.p, "lbx": lbx, "ubx": ubx, "lbg": lbg, "ubg": ubg}
     if seed is not None:
-        args.update(lam_x0=seed["lam_x"], lam_g0=seed["lam_g"])
+        args.update(lam_x0=seed["lam_x"], lam_g0=posed.sides.posed(seed["lam_g"], data.p))
     started = time.perf_counter()
     result = solver(**args)
     elapsed = time.perf_counter() - started
     stats = solver.stats()
     x = result["x"].full().ravel()
-    solved = Run(x=x, g=result["g"].full().ravel(), lam_g=result["lam_g"].full().ravel(),
+    g, lam_g = (posed.sides.values(result["g"].full().ravel(), data.p),  # (the named rows')
+                posed.sides.named(result["lam_g"].full().ravel(), data.p))
+    solved = Run(x=x, g=g, lam_g=lam_g,
                  lam_x=result["lam_x"].full().ravel(),
                  f=float(result["f"]), ok=bool(stats["success"]), status=stats["return_status"],
                  iterations=int(stats.get("iter_count", 0)), time=elapsed, p=data.p, lbx=lbx, ubx=ubx,

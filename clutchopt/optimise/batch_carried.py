@@ -46,9 +46,11 @@ class Carried:
     @classmethod
     def from_dict(cls, data: dict, point: int, variables: list[str], rows: int) -> "Carried":
         """Read back from :meth:`as_dict`'s JSON, stored as the start of point ``point`` of a sweep of the design
-        ``variables`` and ``rows`` constraint rows: every number converted and checked here (finite, whole where a
-        count, each array as long as the problem's), so that a damaged store is one ValueError naming what is wrong,
-        not an error of the window that would read it."""
+        ``variables`` and ``rows`` constraint rows: every number converted and checked here (finite, the scales
+        positive, whole where a count, each array as long as the problem's, the last feasible design one of
+        ``variables``), so that a damaged store (an array cut short, a NaN, a string, another problem's start) is one
+        ValueError naming what is wrong (``RunStore.sweep_start``: the store's error), not an error of the window
+        that would read it."""
         try:
             if _whole(data["point"], "point") != point:
                 raise ValueError(f"its point is {data['point']!r}")
@@ -57,6 +59,8 @@ class Carried:
                 start = {**{key: _numbers(start[key], key, len(variables)) for key in BY_VARIABLE},
                          **{key: _numbers(start[key], key, rows) for key in BY_ROW},
                          "objective": _number(start["objective"], "objective")}
+                if min(start["scale"]) <= 0:
+                    raise ValueError("a scale of its start is not positive")
             pace = data["pace"]
             pace = {"size": _whole(pace["size"], "pace size", 1), "breaks": [_whole(b, "breaks") for b in pace["breaks"]],
                     "aimed": _flag(pace["aimed"], "aimed"), "probes": _whole(pace["probes"], "probes")}

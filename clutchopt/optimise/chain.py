@@ -129,8 +129,11 @@ def chained_sqp(posed: Posed, count: int, method: str = "sqp_chain") -> InPlace:
             guess = lam + ratio * step
             return ca.if_else(lam * guess > 0, guess, 0)
 
+        lbg, ubg = posed.sides.bounds(p)  # (a quantity held from both sides: one row, optimise/two_sided.py)
         out = posed.solver(method)(x0=ca.fmin(ca.fmax(x + ratio * dx, lbx), ubx), lam_x0=predicted(lam_x, dlam_x),
-                                   lam_g0=predicted(lam_g, dlam_g), p=p, lbx=lbx, ubx=ubx, lbg=posed.lbg, ubg=0.0)
+                                   lam_g0=posed.sides.posed(predicted(lam_g, dlam_g), p), p=p, lbx=lbx, ubx=ubx,
+                                   lbg=lbg, ubg=ubg)
+        out = {**out, "lam_g": posed.sides.named(out["lam_g"], p)}
         inputs = [x, lam_x, lam_g, dx, dlam_x, dlam_g, ratio, p, lbx, ubx]
         step = ca.Function("sqp_step", inputs, [out["x"], out["lam_x"], out["lam_g"], out["x"] - x,
                                                 out["lam_x"] - lam_x, out["lam_g"] - lam_g, out["f"]])

@@ -36,17 +36,22 @@ def _elastic(posed: Posed) -> ca.Function:
 
 def whatever_the_design(posed: Posed, p_vector, x0) -> Diagnosis | None:
     """The proven verdict where a requirement no design variable enters (``posed.fixed_rows``) is broken at the case's
-    values ``p_vector`` (nothing to relax but the case itself), naming each such requirement; else None."""
-    if not posed.fixed_rows:
+    values ``p_vector`` (nothing to relax but the case itself), or two hold one quantity from both sides with no room
+    between (``TwoSided.conflicts``: the ball's K5 at least the paper's and at most the case's width_ratio_max below
+    it), naming each such requirement; else None."""
+    conflicts = posed.sides.conflicts(p_vector, FEASIBILITY_TOL)
+    if not posed.fixed_rows and not conflicts:
         return None
     row_names, row_senses = posed.row_names, posed.row_senses
     g0 = np.array(posed.constraint_values(x0, p_vector)).ravel()
     given = sorted({row_names[i] for i in posed.fixed_rows if g0[i] > FEASIBILITY_TOL}, key=row_names.index)
-    if not given:
+    if not given and not conflicts:
         return None
     return Diagnosis("infeasible", "infeasible whatever the design: " + ", ".join(
-        f"{name} ({'over' if row_senses[row_names.index(name)] == '<=' else 'short of'} its limit by "
-        f"{g0[row_names.index(name)]:.3g} relative)" for name in given), 0.0, proven=True)
+        [f"{name} ({'over' if row_senses[row_names.index(name)] == '<=' else 'short of'} its limit by "
+         f"{g0[row_names.index(name)]:.3g} relative)" for name in given]
+        + [f"{row_names[k]} and {row_names[f]} (one quantity held from both sides, their limits apart by {gap:.3g} "
+           f"relative)" for k, f, gap in conflicts]), 0.0, proven=True)
 
 
 def diagnose(posed: Posed, p_vector, lbx, ubx, x0, scale) -> Diagnosis:

@@ -14,10 +14,12 @@ counted in the solve's; it is not another design solve.
 
 Where the SQP fails, it is tried once more without the active rows whose gradient is a combination of those of the
 active bounds and the rows kept before it (taken in order of IPOPT's multiplier, largest first;
-``without_dependent_rows``): the same quantity held from both sides at one value (the ball's paper mode at K5 =
-width_ratio = width_ratio_max = 0.8, ball_compressor) makes two rows g and -g, linearly dependent, where the SQP
-stopped at once and the polish was lost; the float64 re-check still judges every row, the one left out included.
-Looked for only where the SQP failed: the Jacobian and its SVD cost 0.1-0.17 ms, a third of the polish.
+``without_dependent_rows``): linearly dependent active rows leave its QPs singular, where it stopped at once and the
+polish was lost; the float64 re-check still judges every row, the one left out included. The same quantity held
+from both sides (the ball's paper mode at K5 = width_ratio = width_ratio_max = 0.8, ball_compressor: g and -g, the
+case that showed it) is no longer one: the solvers see it as one row with both limits (``optimise/two_sided.py``);
+this stays for other dependencies. Looked for only where the SQP failed: the Jacobian and its SVD cost 0.1-0.17 ms,
+a third of the polish.
 """
 
 from __future__ import annotations
@@ -65,11 +67,11 @@ def without_dependent_rows(posed: Posed, data: ScaledData, x: np.ndarray, g: np.
     Active: a row with a non-zero multiplier ``lam_g`` and ``g`` (scaled, g <= 0) within SNAP of 0; a bound with a
     non-zero ``lam_x`` that ``x`` (scaled, :func:`snapped`) is on. A row is dropped where its gradient at ``x`` lies,
     within DEPENDENT, in the span of the active bounds' and the rows kept before it, the rows taken by decreasing
-    multiplier (of a row held from both sides, g and -g, the side IPOPT's multipliers press on is kept: their
-    difference is the one true multiplier). Where one is dropped, the kept rows' and bounds' multipliers are those
-    of the stationarity grad f + J' lam = 0 on the kept set (least squares): IPOPT's on a doubled row are both
-    large (4.8e9 on the compressor's K5 rows, their difference 0.436), and the SQP started from them stopped at
-    once with its search direction too small."""
+    multiplier (of two dependent rows, the one IPOPT's multipliers press on more is kept). Where one is dropped, the
+    kept rows' and bounds' multipliers are those of the stationarity grad f + J' lam = 0 on the kept set (least
+    squares): IPOPT's on dependent rows may be both large (4.8e9 on the compressor's K5 rows g and -g, their
+    difference 0.436, before they were one row), and the SQP started from them stopped at once with its search
+    direction too small."""
     dropped = np.zeros(posed.lbg.shape, dtype=bool)
     active = np.flatnonzero((lam_g[: posed.n_ineq] != 0) & (np.abs(g[: posed.n_ineq]) <= SNAP))
     bounds = np.flatnonzero((lam_x != 0) & ((x == lbx) | (x == ubx)))

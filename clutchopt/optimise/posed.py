@@ -25,6 +25,7 @@ from clutchopt.optimise.in_place import InPlace
 from clutchopt.optimise.modifier import modified
 from clutchopt.optimise.solution import IPOPT_OWN_FIGURES, START_UP_RESTORATION, SolverOptions
 from clutchopt.optimise.sparsity import entries
+from clutchopt.optimise.two_sided import TwoSided
 from clutchopt.optimise.verify import evaluate_objective
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
@@ -77,7 +78,7 @@ class ScaledData:
 
 
 class Posed:
-    """One formulation with one objective as a scaled NLP (``nlp``), built once; its IPOPT solver built with it."""
+    """One formulation with one objective as a scaled NLP (``nlp``), built once; its solvers built on first use."""
 
     library: str | None = None  # its NLP's functions compiled, where its IPOPT solvers evaluate them (use_compiled)
 
@@ -112,15 +113,18 @@ class Posed:
         self.lbg = np.concatenate([np.full(self.n_ineq, -np.inf), np.zeros(len(equalities))])
         x_all = ca.vertcat(x_hat, internal)
         mesh = self.start_up.mesh_parameters if start_up else ca.SX(0, 1)
+        self.sides = TwoSided(constraints[: self.n_checked], x_hat, ca.vertcat(self.p_case, x_scale, f_scale, mesh),
+                              self.lbg)  # a quantity held from both sides: posed as one row
         self.constraint_values = ca.Function("g", [x_all, ca.vertcat(self.p_case, x_scale, f_scale, mesh)],
                                              [g[: self.n_ineq]])
-        self.row_depends = entries(ca.jacobian(g[: self.n_ineq], x_all).sparsity())  # row i uses x_j
+        self.row_depends = entries(ca.jacobian_sparsity(g[: self.n_ineq], x_all))  # row i uses x_j
         self.fixed_rows = [int(i) for i in np.flatnonzero(~self.row_depends.any(axis=1))]  # no design enters (read
         # from the Jacobian's structure: a depends_on a row took 9 ms a start-up problem)
         self.names = [v.name for v in f.variables]
         self.integer = [i for i, v in enumerate(f.variables) if v.integer]
         self.nlp = {"x": x_all, "p": ca.vertcat(self.p_case, x_scale, f_scale, mesh),
                     "f": self.objective.function(x, p) / f_scale, "g": g}  # the scaled NLP, g <= 0
+        self.solver_nlp = self.sides.nlp(self.nlp)  # the solvers': a quantity held from both sides, one row
         self.lam_g = ca.SX.sym("lam_g", g.shape[0])  # the Lagrangian, for KKT verdicts and sensitivities
         self.lagrangian = self.nlp["f"] + ca.dot(self.lam_g, g)
         if start_up:
@@ -155,16 +159,14 @@ class Posed:
         def build(_):
             f = self.formulation
             chosen = self.solver_options
-            plugin, options = {"ipopt": ("ipopt", self.ipopt_options("ipopt")),
-                               "warm": ("ipopt", self.ipopt_options("warm")),
-                               "warm_near": ("ipopt", self.ipopt_options("warm_near")),
-                               "sqp": ("sqpmethod", chosen.sqp()),
-                               "sqp_chain": ("sqpmethod", chosen.sqp_chain()),
-                               "sqp_search": ("sqpmethod", chosen.sqp_search())}[method]
             name = f"{f.coupling}_{f.mode}_{self.objective.name}" + ("" if method == "ipopt" else f"_{method}")
-            if plugin == "ipopt":  # the cold solver's derivatives, not derived again (0.06 s a start-up problem)
-                options = {**options, **self.derivatives()}
-            solver = ca.nlpsol(name, plugin, self.library if plugin == "ipopt" and self.library else self.nlp, options)
+            if method in IPOPT_METHODS:  # the first IPOPT solver's derivatives, not derived again (0.06 s a start-up
+                # problem)
+                solver = ca.nlpsol(name, "ipopt", self.library or self.solver_nlp,
+                                   {**self.ipopt_options(method), **self.derivatives()})
+            else:
+                options = {"sqp": chosen.sqp, "sqp_chain": chosen.sqp_chain, "sqp_search": chosen.sqp_search}[method]()
+                solver = ca.nlpsol(name, "sqpmethod", self.solver_nlp, options)
             if method in ("sqp_chain", "sqp_search"):  # a batched sweep's: compiled where that pays
                 solver = compiled_solver(name, solver, options)
             return solver

@@ -156,7 +156,7 @@ class Problem:
         nlp_case = shifted(case, shift)
         if fixed:
             nlp_case = replace(nlp_case, bounds={**nlp_case.bounds, **fixed})
-        foreign = ForeignShifts([v.name for v in self.formulation.variables if v.integer],
+        foreign = ForeignShifts(self.integer_names,
                                 carried_by(warm) if limit_shift(case, nlp_case) else ()) if structure.elastic else None
         ruled = None if structure.elastic else RuledOut(infeasible)  # an elastic link's NLP differs from its
         # simulation by the model, not the mesh: no collocation error bounds what the next solve changes
@@ -335,7 +335,7 @@ class Problem:
         counted; else None. An IPOPT solve there (13 iterations on the wedge) ended at a point of its own, which the
         verdict showed, and then diagnosed it."""
         posed = self.posed
-        given = whatever_the_design(posed, data.p, data.x0) if posed.fixed_rows else None
+        given = whatever_the_design(posed, data.p, data.x0) if posed.fixed_rows or posed.sides.pairs else None
         if given is None:
             return None
         solution = infeasible_at(posed, case, dict(zip(posed.names, map(float, data.start))), given.text,
@@ -392,9 +392,7 @@ class Problem:
         Every solve's SolverInfo is added to ``solves``; ``ruled``: the loop's integer choices not to solve again
         (the freed solve's search skips them as the loop's solves do) (docs/start_up.md, "A design a row of the
         collocation holds")."""
-        if sizing is None:
-            sized = self._sizing(case)
-            sizing = sized.design if sized.status == "optimal" else None
+        sizing = self._sized_design(case) if sizing is None else sizing
         if sizing is None:
             return None
         posed = self.posed
@@ -414,6 +412,16 @@ class Problem:
     def _sizing(self, case: Case) -> Solution:
         """The papers' sizing at ``case``: :attr:`static_problem` solved (where a start-up solve begins)."""
         return self.static_problem.solve(case)
+
+    def _sized_design(self, case: Case) -> dict[str, float] | None:
+        """The papers' sizing's design at ``case`` where it is optimal, else None."""
+        sized = self._sizing(case)
+        return sized.design if sized.status == "optimal" else None
+
+    @cached_property
+    def integer_names(self) -> list[str]:
+        """The formulation's integer variables' names."""
+        return [v.name for v in self.formulation.variables if v.integer]
 
     def _warm_method(self, warm: Solution | WarmStart, mesh: np.ndarray | None) -> str:
         """``warm_near`` (IPOPT's barrier from 1e-9) for a start-up re-solved on the mesh its warm optimum was solved

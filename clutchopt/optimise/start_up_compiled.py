@@ -14,6 +14,15 @@ which a single solve does not spend, nor a sweep whose solves are short (the wed
 would save 0.03 s): it is generated once a problem's sweep points took GENERATE_AFTER_S of solving (the cable's after
 three or four points, the ball's after two).
 
+Finding the library by its C costs that generation, more than the wedge's whole sweep: so the cache also keeps, beside
+a library, a link named by a digest of the NLP itself (its objective and constraints serialised, 7-9 ms a start-up
+problem: :func:`nlp_key`), written where the library's place is first worked out (:func:`_look_for`,
+:func:`compiled_now`). A sweep's problem looks for its link at its first point: where the link names a library the
+cache holds whole, every IPOPT solver of the problem is built over it from the start (no symbolic differentiation,
+the cold solver's 45-50 ms on the wedge, and the compiled evaluations from its first iteration); the derivatives
+CasADi generates from an NLP are a function of it (and of CasADi's version, in the digest), so the linked library is
+the one its C would name.
+
 ``CLUTCHOPT_BUILD_LATER=0`` (or ``false``, ``no``, ``off``: ``clutchopt.switches``) starts no build (a library already
 in the cache is still used): the test suite's, so that its sweeps do not compile beside the tests
 (``tests/conftest.py``).
@@ -21,14 +30,19 @@ in the cache is still used): the test suite's, so that its sweeps do not compile
 
 from __future__ import annotations
 
+import hashlib
+import re
 import subprocess
 import time
 from pathlib import Path
 
-from clutchopt.optimise.compiled import (BUILD_TIMEOUT_S, build_detached, cache_folder, compiler, generated_source,
-                                         library_path, nlp_functions, ready_library)
+import casadi as ca
+
+from clutchopt.optimise.compiled import (BUILD_TIMEOUT_S, FLAGS, build_detached, built_library, cache_folder, compiler,
+                                         generated_source, library_path, nlp_functions, ready_library, _trusted)
 from clutchopt.switches import BUILD_LATER_ENV, switch  # off: no build started (a library in the cache is still used)
 
+LIBRARY_NAME = re.compile(r"nlp-[0-9a-f]{32}\.so")  # what a link may name (a library of the cache's, nothing else)
 GENERATE_AFTER_S = 2.0  # the solver seconds a problem's sweep points take before its C is generated (0.1-0.3 s)
 _STARTED: dict[Path, subprocess.Popen | None] = {}  # the builds this process started (one a library, whatever the
 # sweeps): their processes (None: not started, one of another process's under way), for :func:`wait_for_builds`
@@ -41,14 +55,15 @@ class CompiledLater:
 
     def __init__(self, posed):
         self.posed, self.spent, self.counted = posed, 0.0, None
-        self.generated, self.used, self.library = False, False, None
+        self.generated, self.used, self.library = False, False, linked_library(posed)
 
     def after(self, solved) -> bool:
         """Whether the problem's solvers evaluate the compiled functions, ``solved`` (a sweep point's solution, or
         None) counted: its C generated and its library looked for once the points took GENERATE_AFTER_S."""
         if solved is not None and solved is not self.counted:
             self.spent, self.counted = self.spent + solved.solver.time_s, solved
-        if not self.generated and self.spent >= GENERATE_AFTER_S:
+        if not self.generated and not self.used and self.spent >= GENERATE_AFTER_S:  # (one used already, by its
+            # link: its solvers' functions are the library's, no C to generate from them)
             self.generated = True
             self._look_for()
         return self.look()
@@ -59,6 +74,8 @@ class CompiledLater:
             return
         source = generated_source(nlp_functions(self.posed.solver("ipopt")))
         self.library = None if source is None else library_path(source)
+        if self.library is not None:
+            link_library(self.posed, self.library)
         if self.library is not None and not self.look() and self.library not in _STARTED \
                 and switch(BUILD_LATER_ENV):
             _STARTED[self.library] = build_detached(source)
@@ -78,6 +95,57 @@ def compiled_when_ready(posed, previous=None) -> bool:
     evaluate its NLP's functions compiled where the cache has them, their build started (once) where it has not,
     once its points took GENERATE_AFTER_S of solving; whether they do now."""
     return posed.built("compiled_later", "ipopt", lambda _: CompiledLater(posed)).after(previous)
+
+
+def compiled_now(posed) -> str | None:
+    """``posed``'s NLP functions compiled now, in the foreground (from the cache where it has them), and the link to
+    them written (:func:`link_library`): a later sweep of the problem uses them from its first point. The library's
+    path; None where none can be had (no compiler or cache folder, a build that fails)."""
+    if posed.library is not None:  # (its solvers over a library already: no C to generate from them)
+        link_library(posed, Path(posed.library))
+        return posed.library
+    source = generated_source(nlp_functions(posed.solver("ipopt")))
+    library = None if source is None else built_library(source)
+    if library is not None:
+        link_library(posed, Path(library))
+    return library
+
+
+def nlp_key(posed) -> str:
+    """A digest of ``posed``'s NLP (its objective and constraints over its variables and parameters, serialised by
+    CasADi: 0.7 MB, 7-9 ms a start-up problem), of CasADi's version, the compiler and its flags: what names its
+    library's link (:func:`link_library`). The library's own name digests its C (:func:`~clutchopt.optimise.compiled.
+    library_path`), which CasADi generates from the NLP and its derivatives, themselves derived from the NLP."""
+    nlp = posed.nlp
+    serialised = ca.Function("nlp", [nlp["x"], nlp["p"]], [nlp["f"], nlp["g"]]).serialize()
+    return hashlib.sha256(" ".join((serialised, ca.__version__, str(compiler()), *FLAGS)).encode()).hexdigest()[:32]
+
+
+def link_library(posed, library: Path) -> None:
+    """The link from ``posed``'s NLP (:func:`nlp_key`) to ``library`` (its place in the cache, built or not yet)
+    written beside it (``link-<key>.txt``: the library's file name), where the cache folder is this user's alone."""
+    link = library.parent / f"link-{nlp_key(posed)}.txt"
+    try:
+        if _trusted(library.parent) and not link.is_file():
+            link.write_text(library.name)
+    except OSError:
+        pass
+
+
+def linked_library(posed) -> Path | None:
+    """The library the cache's link names for ``posed``'s NLP (:func:`link_library`; the library itself looked for
+    by ``CompiledLater.look``); None without a compiler, a cache folder, or any link in it (then no digest is taken),
+    or without this NLP's."""
+    folder = cache_folder()
+    if compiler() is None or folder is None:
+        return None
+    try:
+        if not any(folder.glob("link-*.txt")):
+            return None
+        name = (folder / f"link-{nlp_key(posed)}.txt").read_text()[:64].strip()
+    except OSError:
+        return None
+    return folder / name if LIBRARY_NAME.fullmatch(name) else None  # (a file name of the cache's, nothing else)
 
 
 def wait_for_builds() -> int:

@@ -97,13 +97,10 @@ def as_solve_would(problem, case: Case, previous: Solution, solution: Solution, 
     ``solve`` relaxes from the sizing's 23 rows to 24.x and ends at 24 rows, 998.53 kg (tests/test_hostile_agree.py).
     Where the integers moved, the point's search decided them; where they are the sizing's, ``solve`` starts from
     them too (its search then completed by them, ``integers.from_the_start``): neither is solved again."""
-    names = [v.name for v in problem.formulation.variables if v.integer]
+    names = problem.integer_names
     if not names or any(solution.design[name] != previous.design[name] for name in names):
         return solution
-    sizing = sized.design
-    if sizing is None:
-        static = problem.static_problem.solve(case)
-        sizing = static.design if static.status == "optimal" else None
+    sizing = problem._sized_design(case) if sized.design is None else sized.design
     if sizing is None or all(round(sizing[name]) == round(solution.design[name]) for name in names):
         return solution
     probe = problem._solve(case, warm=solution, diagnosed=False, cold=False, redecide=True)
@@ -113,7 +110,7 @@ def as_solve_would(problem, case: Case, previous: Solution, solution: Solution, 
     alone, tolerance = tried[-1], problem.posed.start_up.s.spec.tolerance
     kept = (alone if len(tried) > 1 and alone.status == "optimal" and
             alone.objective < solution.objective * (1 - tolerance) else solution)
-    spent = [s.solver for s in (solution, *tried) if s is not kept] + [kept.solver]
+    spent = [s.solver for s in (solution, *tried)]
     return replace(kept, solver=replace(kept.solver, solves=sum(s.solves for s in spent),
                                         time_s=sum(s.time_s for s in spent)))  # (every solve counted)
 
@@ -169,7 +166,7 @@ def sized_choices(problem, sizing: Solution) -> dict[tuple, str]:
     first solve from the sizing, ``Problem._refined``)."""
     if not keeps_the_sizing(problem):
         return {}
-    names = [v.name for v in problem.formulation.variables if v.integer]
+    names = problem.integer_names
     return {tuple(float(entry[name]) for name in names if name in entry):
             f"infeasible in the papers' sizing at this point ({entry['status']}), whose every row the start-up "
             "problem keeps" for entry in sizing.integer_search if entry["status"] == INFEASIBLE}
