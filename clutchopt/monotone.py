@@ -60,11 +60,6 @@ class MonotoneFunction:
         self.function, self.increasing, self.slope_increasing = function, increasing, slope_increasing
         self.domain, self.error, self.source = domain, error, source
         self._float = None
-        self._maps: dict[tuple[int, int], tuple] = {}  # (function, points) -> its map in place
-
-    def __getstate__(self) -> dict:
-        """Pickled without its maps in place (this process's buffers: built again where they are used)."""
-        return {**self.__dict__, "_maps": {}}
 
     def __call__(self, argument):
         values = self.function(argument)
@@ -83,36 +78,26 @@ class MonotoneFunction:
             self._float = ca.Function("monotone", [x], [values, ca.jacobian(values, x)])
         return self._float
 
-    def values_and_slopes(self, points: np.ndarray, evaluate: ca.Function | None = None
+    def values_and_slopes(self, points: np.ndarray, mapped: Callable[[int], Callable] | None = None
                           ) -> tuple[np.ndarray, np.ndarray]:
         """The values and slopes (each of shape (len(increasing), points)) at float points, by the same algorithm:
-        :meth:`on_floats`, or ``evaluate``, the same function compiled (the interval proof's, whose enclosures
+        :meth:`on_floats` mapped over them, or ``mapped(size)``, the same function over ``size`` points as the
+        interval proof calls it (``interval_nodes._mapped``: compiled, in place, built once a size; its enclosures
         evaluate it at every box's ends)."""
         count = points.size
         padded = np.full(_padded_size(count), self.domain[0])  # (the padding: a point of the domain, dropped)
         padded[:count] = points.reshape(-1)
-        values, slopes = self._mapped(evaluate or self.on_floats(), padded.size)(padded)
-        return values[:, :count], slopes[:, :count]
+        values, slopes = (mapped(padded.size) if mapped is not None else self.on_floats().map(padded.size))(padded)
+        return np.asarray(values)[:, :count], np.asarray(slopes)[:, :count]
 
-    def _mapped(self, evaluate: ca.Function, size: int):
-        """``evaluate`` mapped over ``size`` points and called on NumPy arrays in place, built once a size (a
-        search's enclosures had mapped it afresh and converted its DM arguments at every evaluation: 0.2 ms of fixed
-        cost each, more than the values of 100 points cost)."""
-        from clutchopt.optimise.in_place import InPlace  # (clutchopt.optimise imports the formulations: not at the top)
-
-        kept = self._maps.get((id(evaluate), size))
-        if kept is None or kept[0] is not evaluate:
-            kept = self._maps[id(evaluate), size] = (evaluate, InPlace(evaluate.map(size)))
-        return kept[1]
-
-    def enclosure(self, lo: np.ndarray, hi: np.ndarray, evaluate: ca.Function | None = None):
+    def enclosure(self, lo: np.ndarray, hi: np.ndarray, mapped: Callable[[int], Callable] | None = None):
         """Bounds on every value and its slope (arrays of shape (values, intervals)) over each interval [lo, hi] of
         the argument within the domain (NaN elsewhere): the ends' values and slopes, ordered as declared, widened by
-        ``error`` and a few ulps (``evaluate``: as in :meth:`values_and_slopes`)."""
+        ``error`` and a few ulps (``mapped``: as in :meth:`values_and_slopes`)."""
         inside = (lo >= self.domain[0]) & (hi <= self.domain[1]) & (lo <= hi)
         ends = np.concatenate([np.where(inside, lo, self.domain[0]), np.where(inside, hi, self.domain[0])])
         _, first, inverse = np.unique(ends.view(np.int64), return_index=True, return_inverse=True)
-        values, slopes = self.values_and_slopes(ends[first], evaluate)  # each end once (the same bits: the same
+        values, slopes = self.values_and_slopes(ends[first], mapped)  # each end once (the same bits: the same
         # number; a search's boxes split in a variable the argument does not take share their ends: the ball's
         # searches evaluated a third of them)
         values, slopes = values[:, inverse], slopes[:, inverse]

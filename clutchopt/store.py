@@ -44,7 +44,7 @@ from datetime import datetime, timezone
 from functools import lru_cache, partial
 from importlib import metadata
 from pathlib import Path
-from typing import Callable
+from typing import Callable, TypeVar
 
 import numpy as np
 
@@ -94,6 +94,9 @@ ADDED_COLUMNS = {"runs": {"objective_unit": "TEXT", "method": "TEXT", "run_count
 LIST_COLUMNS = ("id", "kind", "sweep_id", "point", "created", "coupling", "mode", "method", "objective_name", "status",
                 "objective", "objective_unit", "case_path")
 _SQLITE_HEADER = b"SQLite format 3\x00"
+
+
+T = TypeVar("T")  # what a stored sweep start is read as (RunStore.sweep_start)
 
 
 def default_path() -> str:
@@ -604,11 +607,12 @@ class RunStore:
                 stored[point] = entry["outputs"]
         return stored
 
-    def sweep_start(self, sweep_id: int, point: int) -> dict | None:
+    def sweep_start(self, sweep_id: int, point: int, read: Callable[[dict], T]) -> T | None:
         """What the window of a batched sweep that starts at ``point`` starts from, as recorded with the window
-        before it (``record_points``' ``carried``); None where none was (the store of an older clutchopt, a sweep
-        solved point by point or in a pool). One that is not JSON is damaged: StoreError."""
-        if "sweep_starts" not in Schema.of(self._db).tables:  # (an older store opened to read)
+        before it (``record_points``' ``carried``), as ``read`` reads its JSON (ValueError naming what is wrong:
+        ``Carried.from_dict``); None where none was recorded (the store of an older clutchopt, a sweep solved point by
+        point or in a pool). One that is not JSON or that ``read`` refuses is damaged: StoreError."""
+        if not self._has_table("sweep_starts"):  # (an older store opened to read)
             return None
         rows = self._read("SELECT body FROM sweep_starts WHERE sweep_id = ? AND point = ?", (sweep_id, point))
         if not rows:
@@ -617,10 +621,13 @@ class RunStore:
             body = _from_json(rows[0]["body"])
         except (TypeError, ValueError, RecursionError):
             body = None
-        if not isinstance(body, dict):
-            raise StoreError(self.path, f"sweep {sweep_id}'s start at point {point} is damaged (not JSON)",
-                             _rescue(self.path))
-        return body
+        try:
+            if not isinstance(body, dict):
+                raise ValueError("not JSON")
+            return read(body)
+        except ValueError as exc:
+            raise StoreError(self.path, f"sweep {sweep_id}'s start at point {point} is damaged ({exc})",
+                             "run the sweep again without --resume") from None
 
     def _json(self, text: str, run_id: int, column: str):
         try:
@@ -698,7 +705,7 @@ class RunStore:
         """A compact record's template, read once (the last TEMPLATES_KEPT are kept); ValueError where it is missing,
         not JSON or not the one of its key (a damaged run, to its caller)."""
         if key not in self._templates:
-            rows = self._read("SELECT body FROM templates WHERE key = ?", (key,)) if self._has_templates() else []
+            rows = self._read("SELECT body FROM templates WHERE key = ?", (key,)) if self._has_table("templates") else []
             try:
                 template = _from_json(rows[0][0]) if rows else None
             except (TypeError, ValueError, RecursionError):
@@ -712,8 +719,9 @@ class RunStore:
             raise ValueError("its template is missing, not JSON or changed")
         return self._templates[key]
 
-    def _has_templates(self) -> bool:
-        return bool(self._read("SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = 'templates'"))
+    def _has_table(self, name: str) -> bool:
+        """The store has table ``name`` (an older store, opened to read, may lack the newer ones)."""
+        return bool(self._read("SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = ?", (name,)))
 
     def _span(self) -> str:
         """SQL for how many runs a row holds (a store of an older clutchopt, read only, has one a row)."""

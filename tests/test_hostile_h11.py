@@ -5,7 +5,7 @@ calculation where the reference is the same command on an undamaged store.
 Finding 1: a ``sweep_starts`` row damaged inside valid JSON (an array cut short, a NaN, a zero scale, a string where a
 count is meant, a start of another problem's length) made ``sweep --resume`` end in ``internal error:`` (exit 3,
 a crash file) or print CasADi's NaN diagnostics; it is now an ``error: --store`` line naming the sweep and point,
-exit 2, nothing recorded (batch_carried.Carried.from_dict, Carried.check_fits).
+exit 2, nothing recorded (batch_carried.Carried.from_dict).
 """
 
 import json

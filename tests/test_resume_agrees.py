@@ -7,15 +7,21 @@ to 1e-7).
 No hand calculation: the reference is the same sweep run once without an interruption, in this process.
 """
 
+import json
 import math
 import sqlite3
 from contextlib import closing
 
+import numpy as np
 import pytest
 
 import clutchopt.optimise.batch as batch
+import clutchopt.optimise.interval_proof as interval_proof
 from clutchopt.cases import load_case
+from clutchopt.cli import main
 from clutchopt.optimise.batch import BatchSweep
+from clutchopt.optimise.problem import case_problem
+from clutchopt.optimise.region_proof import Regions
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import parse_vary
 from clutchopt.store import RunStore
@@ -62,8 +68,8 @@ def uninterrupted(tmp_path_factory):
     return result, starts
 
 
-def _resumed(tmp_path, monkeypatch, cls, name: str, calls: int):
-    """The sweep stored until the ``calls``-th call of ``cls.name`` raises (after it ran), then resumed."""
+def _stopped(tmp_path, monkeypatch, cls, name: str, calls: int):
+    """The store of the sweep stopped where the ``calls``-th call of ``cls.name`` raises (after it ran)."""
     monkeypatch.setattr(batch, "WINDOW_WORK", WINDOW_WORK)
     original, seen = getattr(cls, name), []
 
@@ -79,7 +85,12 @@ def _resumed(tmp_path, monkeypatch, cls, name: str, calls: int):
         patch.setattr(cls, name, hook)
         with pytest.raises(Interrupted):
             _sweep().run(store, progress=False)
-    with RunStore(path) as store:
+    return path
+
+
+def _resumed(tmp_path, monkeypatch, cls, name: str, calls: int):
+    """The sweep stored until the ``calls``-th call of ``cls.name`` raises (after it ran), then resumed."""
+    with RunStore(_stopped(tmp_path, monkeypatch, cls, name, calls)) as store:
         return _sweep().run(store, resume=True, progress=False)
 
 
@@ -113,7 +124,9 @@ def test_a_sweep_resumed_after_a_kill_inside_a_window_has_the_uninterrupted_rows
 
 def test_a_resume_without_a_stored_start_solves_the_rest_from_cold(tmp_path, monkeypatch):
     # a store of an older clutchopt (no start beside its windows): the remaining points are solved as before, from
-    # the case's own start, with the same statuses
+    # the case's own start, with the same statuses, and no start is stored for its windows (their points counted
+    # from the first point resumed: a start stored at point 8 where its window began at 49, read by a later resume
+    # as the start of another point)
     monkeypatch.setattr(batch, "WINDOW_WORK", WINDOW_WORK)
     original, seen = RunStore.record_points, []
 
@@ -132,3 +145,83 @@ def test_a_resume_without_a_stored_start_solves_the_rest_from_cold(tmp_path, mon
         resumed = _sweep().run(store, resume=True, progress=False)
     assert resumed.reused > 0
     assert resumed.frame["status"].value_counts().to_dict() == {"optimal": 91, "infeasible": 9}
+    with closing(sqlite3.connect(path)) as db:
+        assert db.execute("SELECT point FROM sweep_starts").fetchall() == []
+
+
+def _short(start: dict) -> dict:
+    return {**start, "x": start["x"][:-1]}
+
+
+@pytest.mark.parametrize("damage, named", [
+    (lambda body: {**body, "start": {"x": [1.0]}, "pace": {"size": 4}}, "'scale'"),  # the reviewer's repro
+    (lambda body: {**body, "start": _short(body["start"])}, "x"),  # a number short of the design's
+    (lambda body: {**body, "start": {**body["start"], "lam_g": body["start"]["lam_g"] + [0.0]}}, "lam_g"),
+    (lambda body: {**body, "start": {**body["start"], "dx": [None] * len(body["start"]["dx"])}}, "dx"),
+    (lambda body: {**body, "start": {**body["start"], "objective": "NaN"}}, "objective"),
+    (lambda body: {**body, "pace": {**body["pace"], "size": 0}}, "size"),
+    (lambda body: {**body, "pace": {**body["pace"], "breaks": ["39"]}}, "breaks"),
+    (lambda body: {**body, "ahead": "3"}, "ahead"),
+    (lambda body: {**body, "ahead": -1}, "ahead"),
+    (lambda body: {**body, "point": body["point"] - 1}, "point"),
+    (lambda body: {**body, "feasible": {"filling": 0.41}}, "feasible"),
+    (lambda body: {**body, "undesigned": [[[5.0], 40, 7]]}, "undesigned"),
+])
+def test_a_damaged_stored_start_is_an_error_line_naming_it(damage, named, tmp_path, monkeypatch, capsys):
+    # before: 'internal error: KeyError: 'scale'', exit 3 (the start read past the wrapper that names a damaged
+    # store), a start of another point skipped (a resume from cold without a word)
+    path = _stopped(tmp_path, monkeypatch, RunStore, "record_points", 3)
+    with closing(sqlite3.connect(path)) as db, db:
+        point, body = db.execute("SELECT point, body FROM sweep_starts ORDER BY point DESC LIMIT 1").fetchone()
+        db.execute("UPDATE sweep_starts SET body = ? WHERE point = ?", (json.dumps(damage(json.loads(body))), point))
+    file, text, mode = SWEEP
+    code = main(["sweep", str(CASES / file), "--vary", text, "--mode", mode, "--store", str(path), "--resume",
+                 "--quiet"])
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert err.startswith("error: --store") and f"start at point {point} is damaged" in err and named in err, err
+    assert "internal error" not in err and "Traceback" not in err
+
+
+def test_a_resume_in_a_new_process_starts_its_windows_from_the_uninterrupted_run_s_last_proof(tmp_path, monkeypatch):
+    # the ball compressor up past its edge (about 11.1 MW), back and up again (58 points): after its first stretch
+    # without a design the last proof took 471 boxes, what a region search's budget grows from (REGION_BUDGET times
+    # it, at least SURE_BOXES), kept by the built problem across windows in one process. A new process has none; a
+    # resume there after that stretch started its windows from 0 boxes, where the uninterrupted run's had 471
+    monkeypatch.setattr(batch, "WINDOW_WORK", WINDOW_WORK)
+    case = load_case(CASES / "ball_compressor.toml")
+    legs = [np.linspace(9000, 12500, 20), np.linspace(12500, 9000, 20)[1:], np.linspace(9000, 12500, 20)[1:]]
+    vary = parse_vary("power=" + ",".join(f"{value:g}" for value in np.concatenate(legs)), case.coupling)
+    posed = case_problem(case, "design", "mass").posed
+    boxes: list[int] = []  # interval_proof.last_boxes at each window's start
+
+    def regions(*args):
+        boxes.append(interval_proof.last_boxes(posed))
+        return Regions(*args)
+
+    def run(store, resume=False):
+        interval_proof.carry_boxes(posed, 0)  # (a new process)
+        boxes.clear()
+        return Sweep(case, [vary], mode="design").run(store, resume=resume, progress=False), list(boxes)
+
+    monkeypatch.setattr(batch, "Regions", regions)
+    with RunStore(tmp_path / "whole.sqlite") as store:
+        whole, whole_boxes = run(store)
+    original, seen = RunStore.record_points, []
+
+    def stop_after_four(self, *args, **kwargs):
+        original(self, *args, **kwargs)
+        seen.append(1)
+        if len(seen) == 4:  # (stored up to point 27, the start of the window from point 28 beside them)
+            raise Interrupted
+
+    with RunStore(tmp_path / "runs.sqlite") as store, monkeypatch.context() as patch:
+        patch.setattr(RunStore, "record_points", stop_after_four)
+        with pytest.raises(Interrupted):
+            run(store)
+    with RunStore(tmp_path / "runs.sqlite") as store:
+        resumed, resumed_boxes = run(store, resume=True)
+    assert resumed.reused == 28 and whole.frame["status"].iloc[[11, 12, 26, 27]].tolist() == [
+        "optimal", "infeasible", "infeasible", "optimal"]  # (the first stretch: points 12-26)
+    assert resumed_boxes[0] > 0 and resumed_boxes == whole_boxes[-len(resumed_boxes):]
+    assert _rows(resumed) == _rows(whole)

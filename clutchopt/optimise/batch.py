@@ -80,6 +80,7 @@ from clutchopt.optimise.chain import chain_verdict, chained_sqp
 from clutchopt.optimise.feasibility import LOCALLY_INFEASIBLE, Least, infeasible, least
 from clutchopt.optimise.integers import (descend, downhill, excluded_entry, nearest_integers,
                                          relaxation_seed, search_entry)
+from clutchopt.optimise.interval_proof import carry_boxes, last_boxes
 from clutchopt.optimise.posed import Box, ScaledData, off_scale
 from clutchopt.optimise.problem import Problem
 from clutchopt.optimise.region_proof import Regions
@@ -303,7 +304,6 @@ class BatchSweep:
         self.solves, self.solver_s, self.check_s = 0, 0.0, 0.0
         self.work = 0  # the solving done, counted (CHAINED_POINT_WORK, ...): what ends a window (WINDOW_WORK)
         self.feasible: dict[str, float] | None = None  # the last feasible design in order: a start for a failed point
-        self._regions = Regions(problem, self.point_case, self.count)  # infeasible regions proven at once
         self._limits: tuple[np.ndarray, np.ndarray] | None = None  # the tightening's limits and scales per point
         self.carried: Carried | None = None  # what the window after the last one yielded starts from
 
@@ -319,15 +319,15 @@ class BatchSweep:
         ahead = None  # points until an inactive constraint or bound is expected to become active (with integers,
         # where the pace expects no break)
         if carried is not None:
-            carried.check_fits(self.names, len(self.posed.lbg))  # (DamagedStart: a damaged store)
             k, ahead, self.feasible = carried.point, carried.ahead, carried.feasible
             start = None if carried.start is None else _Start(self, carried=carried.start)
             pace.carry(carried.pace)
             self._undesigned = {combo: (j, status) for combo, j, status in carried.undesigned}
+            carry_boxes(self.posed, carried.boxes)
         while k < self.count:
             first, end, spent = k, min(k + window, self.count), self.work + WINDOW_WORK
-            self._regions = Regions(self.problem, self.point_case, self.count)  # (each window's afresh: what it
-            # takes from the windows before is ``carried``)
+            self._regions = Regions(self.problem, self.point_case, self.count)  # infeasible regions proven at
+            # once, each window's afresh (what it takes from the windows before is ``carried``)
             blocks: list[Block] = []
             alone: dict[int, Solution] = {}
             failed = False  # the last point is without a design: the window waits for a feasible point after it
@@ -379,7 +379,8 @@ class BatchSweep:
                 failed = alone[k - 1].status not in DESIGN_STATUSES
             solutions = self._window(blocks, alone, first, k - first)
             self.carried = Carried(k, None if start is None else start.carried, pace.state, ahead, self.feasible,
-                                   [(combo, j, status) for combo, (j, status) in self._undesigned.items()])
+                                   [(combo, j, status) for combo, (j, status) in self._undesigned.items()],
+                                   last_boxes(self.posed))
             yield solutions
 
     def _until_active(self, blocks: list[Block], size: int, combo: np.ndarray) -> int | None:
@@ -395,7 +396,7 @@ class BatchSweep:
         if pair is None:
             return None
         last = int(pair.index[-1]) + 1
-        if last < self.count and self._excluded(self._with_integers(combo), last, min(size, self.count - last)).any():
+        if last < self.count and self._excluded(combo, last, min(size, self.count - last)).any():
             return None
         return until_active(self.posed, pair, self._ratio[last:last + LONGEST_BATCH], self._free,
                             self.posed.kkt_tolerance)
@@ -449,7 +450,7 @@ class BatchSweep:
         opens, neighbour = None, None  # (the offset where a neighbour opens, if the chain ends there; no changes then)
         if self.integer:  # the batch stops short of a point its integers cannot serve whatever the rest (the search
             # excludes them there without a solve), or changes them there to the one neighbour left
-            excluded = self._excluded(lower, k, max(count, reach))
+            excluded = self._excluded(start.combo, k, max(count, reach))
             if excluded.any():
                 first = int(np.argmax(excluded))
             opens, neighbour = self._opening(start, k, max(count, reach))
@@ -496,7 +497,7 @@ class BatchSweep:
                 return changes, j  # (a combination IPOPT left without a design at the point before: its search)
             changes.append((j, past))
             combo = past
-            ahead = (self._excluded(self._with_integers(combo), k + j + 1, count - j - 1) if j + 1 < count
+            ahead = (self._excluded(combo, k + j + 1, count - j - 1) if j + 1 < count
                      else np.zeros(0, dtype=bool))
             j = j + 1 + int(np.argmax(ahead)) if ahead.any() else -1
         return changes, -1
@@ -513,10 +514,14 @@ class BatchSweep:
         kept = Block(chain.index[:passed], **{key: value[:, :passed].copy() for key, value in chain.arrays.items()})
         for j, _ in changes:
             before = _Start(self, block=kept, at=j - 1) if j > 0 else start
-            if self._changed(before, kept, j, bool(chain.ok[j])):
+            tried = chain.column(j, before.f_scale)  # (the search's first attempt)
+            changed = self._changed(before, tried, bool(chain.ok[j]))
+            if changed is not None:
+                for key, value in changed.arrays.items():
+                    kept.arrays[key][:, j] = value[:, 0]
                 continue
             pieces = [kept.block(j)] if j > 0 else []  # (the search decides point j: the kept points end there)
-            settled = self._settle(before, int(chain.index[j]), chain.column(j, before.f_scale))
+            settled = self._settle(before, int(chain.index[j]), tried)
             if settled is None:
                 return pieces, before, j, False
             return pieces + [settled], _Start(self, block=settled), j + 1, True
@@ -534,7 +539,7 @@ class BatchSweep:
         if k == 0 or not len(self._fixed_names):
             return None, None
         for combo in self._downhill(start.run, start):
-            table = self._excluded(self._with_integers(combo), k - 1, min(count, self._span - 1) + 1)  # (one table
+            table = self._excluded(combo, k - 1, min(count, self._span - 1) + 1)  # (one table
             # from k - 1)
             if table[0] and not table[1:].all():
                 return int(np.argmin(table[1:])), combo
@@ -614,7 +619,7 @@ class BatchSweep:
         def attempt(combo, seed, methods=None) -> dict | None:
             lower, upper = self.lower.copy(), self.upper.copy()
             lower[self.integer] = upper[self.integer] = combo
-            excluded = self._excluded_names(lower, k)
+            excluded = self._excluded_names(combo, k)
             if excluded:
                 search.append(excluded_entry(self.posed, self.integer, combo, excluded))
                 return None
@@ -690,30 +695,21 @@ class BatchSweep:
         self.searches[k] = search
         return block
 
-    def _changed(self, start: _Start, kept: Block, j: int, ok: bool) -> bool:
-        """Whether column ``j`` of ``kept`` (a chain's), where the chain changed its integers from ``start``'s
-        (excluded there) to the one neighbour left, is settled as :meth:`_settle` settles it, without running the
-        search, because its outcome is certain: the column is the search's first attempt, KKT-verified (``ok``), and
-        every neighbour its multipliers promise a gain at (``integers.downhill``) is ``start``'s integers, tried
-        already; then the search's record is those excluded and the column kept, normalised in place by ``start``'s
-        objective as :meth:`_Chain.column` normalises the search's attempt, without a step to predict from (as
-        :meth:`_searched` keeps it). False otherwise (:meth:`_settle` runs the search; ``kept`` is left as it was)."""
-        a, k = kept.arrays, int(kept.index[j])
-        ratio = a["p"][-1, j] / start.f_scale  # (the column normalised by start's objective: the search's attempt)
-        f = float(a["f"][0, j] * ratio)
-        run = {"x": a["x"][:, j], "lam_x": a["lam_x"][:, j] * ratio, "f": f}
+    def _changed(self, start: _Start, tried: _Chain, ok: bool) -> Block | None:
+        """The point of ``tried`` (a chain's column normalised as ``start``'s: :meth:`_Chain.column`), where the chain
+        changed its integers from ``start``'s (excluded there) to the one neighbour left, settled as :meth:`_settle`
+        settles it, without running the search, because its outcome is certain: the column is the search's first
+        attempt, KKT-verified (``ok``), and every neighbour its multipliers promise a gain at (``integers.downhill``)
+        is ``start``'s integers, tried already; then the search's record is those excluded and the column kept, as
+        :meth:`_searched` keeps it (its own time and solver call). None otherwise (:meth:`_settle` runs the
+        search)."""
+        k, run = int(tried.index[0]), tried.run(0)
         if not ok or any(not np.array_equal(combo, start.combo) for combo in self._downhill(run, start)):
-            return False
-        for key in ("f", "lam_x", "lam_g"):
-            a[key][:, j] *= ratio
-        for key in ("dx", "dlam_x", "dlam_g"):
-            a[key][:, j] = 0.0
-        a["p"][-1, j] = start.f_scale
-        excluded = self._excluded_names(self._with_integers(start.combo), k)
-        combo = np.round(a["x"][self.integer, j] * start.scale[self.integer])
-        self.searches[k] = [excluded_entry(self.posed, self.integer, start.combo, excluded),
-                            search_entry(self.posed, self.integer, combo, BATCHED, True, f * start.f_scale)]
-        return True
+            return None
+        combo = np.round(tried.x[self.integer, 0] * start.scale[self.integer])
+        search = [excluded_entry(self.posed, self.integer, start.combo, self._excluded_names(start.combo, k)),
+                  search_entry(self.posed, self.integer, combo, BATCHED, True, run["f"] * start.f_scale)]
+        return self._searched(tried, k, search, float(tried.time[0, 0]), int(tried.solves[0, 0]))
 
     def _ruled_out(self, combo: tuple, k: int) -> str:
         """Why the integers ``combo`` are not solved at point k (empty: they are): IPOPT or their least violation
@@ -756,12 +752,10 @@ class BatchSweep:
         moves = chain.moves.copy()
         if not self._undesigned:
             return moves
-        lower = self.lower.copy()
         for j in np.flatnonzero(moves):
             k = int(chain.index[j])
             for combo in self._downhill(chain.run(j), start):
-                lower[self.integer] = combo
-                if not (self._ruled_out(tuple(combo.tolist()), k) or self._broken(lower, k, 1).any()):
+                if not (self._ruled_out(tuple(combo.tolist()), k) or self._excluded_at(combo, k)):
                     return moves
             moves[j] = False
         return moves
@@ -792,16 +786,10 @@ class BatchSweep:
         found none (:meth:`_undesigned_at`)."""
         return self._excluded_at(combo, k) or self._undesigned_at(combo, k)
 
-    def _with_integers(self, combo: np.ndarray) -> np.ndarray:
-        """The lower bounds of the design (SI) with the free integers at ``combo``: what the exclusion tables and
-        ``_broken`` read (constraints of fixed variables alone)."""
-        design = self.lower.copy()
-        design[self.integer] = combo
-        return design
-
-    def _excluded_names(self, design: np.ndarray, k: int) -> list[str]:
-        """The constraints of fixed variables alone that ``design``'s integers break at point k, each named once."""
-        return list(dict.fromkeys(self._fixed_names[self._broken(design, k, 1)[:, 0]]))
+    def _excluded_names(self, combo: np.ndarray, k: int) -> list[str]:
+        """The constraints of fixed variables alone that the integers ``combo`` (SI) break at point k, each named
+        once."""
+        return list(dict.fromkeys(self._fixed_names[self._broken(combo, k, 1)[:, 0]]))
 
     def _undesigned_at(self, combo: np.ndarray, k: int) -> bool:
         """IPOPT found no design with the integers ``combo`` at point k, or at one before it and the sweep has only
@@ -853,20 +841,20 @@ class BatchSweep:
         return search_entry(self.posed, self.integer, lower[self.integer], solved["status"], False,
                             solved["f"] * start.f_scale), solved["time"], None
 
-    def _excluded(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
-        """Per point k .. k + count - 1: the fixed variables of ``design`` (SI; integers and variables fixed by the
-        case) break a constraint that depends on them alone there, so the integer search would exclude them without a
-        solve (the test of ``integers.violated_whatever_the_rest``)."""
-        return self._broken(design, k, count).any(axis=0)
+    def _excluded(self, combo: np.ndarray, k: int, count: int) -> np.ndarray:
+        """Per point k .. k + count - 1: the integers ``combo`` (SI) with the variables the case fixes break a
+        constraint that depends on them alone there, so the integer search would exclude them without a solve (the
+        test of ``integers.violated_whatever_the_rest``)."""
+        return self._broken(combo, k, count).any(axis=0)
 
-    def _broken(self, design: np.ndarray, k: int, count: int) -> np.ndarray:
-        """Which of those constraints break at points k .. k + count - 1 (a row per constraint, a column per point);
-        ``design``: the case's fixed variables with the integers of a combination (:meth:`_with_integers`)."""
-        first, table, _ = self._exclusion_table(tuple(design[self.integer].tolist()), k, count)
+    def _broken(self, combo: np.ndarray, k: int, count: int) -> np.ndarray:
+        """Which of those constraints break at points k .. k + count - 1 (a row per constraint, a column per point)
+        with the integers ``combo`` (SI)."""
+        first, table, _ = self._exclusion_table(tuple(combo.tolist()), k, count)
         return table[:, k - first:k - first + count]
 
     def _excluded_at(self, combo: np.ndarray, k: int) -> bool:
-        """``_excluded(self._with_integers(combo), k, 1)[0]``, read from the table's list of its points' verdicts (an
+        """``_excluded(combo, k, 1)[0]``, read from the table's list of its points' verdicts (an
         integer change asks it of a combination and its neighbours: no array work)."""
         first, _, excluded = self._exclusion_table(tuple(combo.tolist()), k, 1)
         return excluded[k - first]
@@ -879,7 +867,7 @@ class BatchSweep:
         entry = self._exclusions.get(key)
         if entry is None or not (entry[0] <= k and k + count <= entry[0] + entry[1].shape[1]):
             began = time.perf_counter()
-            design = self.lower.copy()
+            design = self.lower.copy()  # (the case's fixed variables, the integers at ``key``)
             design[self.integer] = key
             p_rows = np.ones((self._span, len(self.values) + len(design) + 1))  # unit scales: x is SI
             p_rows[:, : len(self.values)] = self._by_point[np.minimum(np.arange(k, k + self._span), self.count - 1)]

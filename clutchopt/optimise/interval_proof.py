@@ -498,6 +498,12 @@ def last_boxes(posed, boxes: int | None = None) -> int:
     return kept["boxes"]
 
 
+def carry_boxes(posed, boxes: int) -> None:
+    """:func:`last_boxes` set as a run before this process left it, no proof counted (a resumed sweep's window starts
+    its region proofs' budgets where the uninterrupted run's did: ``batch_carried``)."""
+    _proofs(posed)["boxes"] = boxes
+
+
 def proofs_recorded(posed) -> int:
     """How many searches of ``posed`` that proved :func:`last_boxes` has recorded (a verdict between two counts
     rests on one of them where the count grew)."""

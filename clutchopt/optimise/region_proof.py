@@ -223,12 +223,10 @@ class Regions:
         chain fails next to a design had designs in none of the ball's sweeps, and a search meets one in 3-14 ms)."""
         if self.problem.start_up is not None or (self._alone > FEW_BOXES and not self.posed.integer):
             return None
-        if not self.posed.integer:
-            solution = self._own_proof(self.point_case(k), design, FEW_BOXES)[0]
-        else:
-            solution, own, problem = self._own_proof(self.point_case(k), design, SURE_BOXES, None, self._next_runs(k))
-            if solution is None and _holds(own, SURE_BOXES):
-                keep_search(self.posed, problem, own)
+        budget = SURE_BOXES if self.posed.integer else FEW_BOXES  # (no runs after it without integers: _next_runs)
+        solution, own, problem = self._own_proof(self.point_case(k), design, budget, None, self._next_runs(k))
+        if solution is None and self.posed.integer and _holds(own, budget):
+            keep_search(self.posed, problem, own)
         if solution is not None:
             self.after(k, solution)
         return solution

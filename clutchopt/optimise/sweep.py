@@ -36,7 +36,7 @@ from clutchopt.formulations import get_coupling
 from clutchopt.materials import chosen
 from clutchopt.model import Formulation
 from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
-from clutchopt.optimise.batch_carried import Carried, DamagedStart
+from clutchopt.optimise.batch_carried import Carried
 from clutchopt.optimise.dask_client import connect
 from clutchopt.optimise.design import Robustness, check_robustness, design_case, method_of
 from clutchopt.optimise.entering import check_entering
@@ -114,11 +114,10 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
     with what the next window starts from, ``carried``), else one point each. With ``options.choose`` or
     ``robust``, each point is designed as ``solve`` designs a case (every choice, for the scatter:
     :func:`~clutchopt.optimise.design.design_case`), the best kept with its choice. ``carried``: a resumed batched
-    sweep's window start (``points`` all of the sweep's; those from ``carried.point`` on are solved)."""
+    sweep's window start (``points`` all of the sweep's; those from ``carried.point`` on are solved; only a batched
+    window records one, and a sweep's key fixes whether it batches)."""
     problem = case_problem(case, mode, objective, SolverOptions(tol=tol))
     names = [v.name for v in problem.formulation.variables]
-    if carried is not None and not (len(points) and batchable(problem, points.columns)):
-        points, carried = points[carried.point:], None  # (point by point: from the case's own start, as before)
     if robust is not None or case.options.get("choose"):
         for j, (index, values) in enumerate(points.pairs()):
             best = design_case(case.with_values(**values), mode, objective, SolverOptions(tol=tol), robust)[0]
@@ -320,18 +319,6 @@ class SweepRecords(Sequence):
         return self._records[i]
 
 
-def _stored_start_checked(solving: Iterator[PointResults], store, sweep_id) -> Iterator[PointResults]:
-    """``solving``'s results; a resumed sweep's stored start that is not its problem's (``Carried.check_fits``,
-    checked before the first point is solved: nothing recorded) as the store's damage, StoreError."""
-    try:
-        yield from solving
-    except DamagedStart as exc:
-        from clutchopt.store import StoreError
-
-        raise StoreError(store.path, f"sweep {sweep_id}'s start at point {exc.point} is damaged ({exc})",
-                         "run the sweep again without --resume") from None
-
-
 class Sweep:
     """A case, the varied quantities, mode and objective: what defines a sweep and its resume key."""
 
@@ -416,17 +403,19 @@ class Sweep:
         parts = [PointResults(self.grid[kept], names, dict(enumerate(stored[i] for i in kept.tolist())))]
         bar = tqdm(total=len(self.grid), initial=len(stored), unit="point", desc="sweep", disable=not progress,
                    mininterval=0.5)
-        in_order = runner is None and jobs <= 1  # (windows one after another: each starts from the one before)
-        carried = self._carried(store, sweep_id, kept, pending) if stored and in_order and len(pending) else None
+        sequential = runner is None and jobs <= 1  # (windows one after another: each starts from the one before)
+        carried = self._carried(store, sweep_id, kept, pending) if stored and sequential and len(pending) else None
+        starts = sequential and (not stored or carried is not None)  # (windows from point 0 or from a stored start
+        # record where the next starts: a cold resume's count their points from its first, over other points)
         started = time.perf_counter()
         with bar, interrupt_between_points() as check:
             solving = (solve_points(*task, self.grid, carried) if carried is not None
                        else (runner or local_runner(jobs))(task, pending, size))
-            for results in _stored_start_checked(solving, store, sweep_id):
+            for results in solving:
                 if store is not None and sweep_id is not None:  # the results in hand in one transaction
                     store.record_points(self._inputs(), self._where(sweep_id), results.points.index,
                                         results.points.columns, *results.stored(),
-                                        carried=results.carried.as_dict() if in_order and results.carried else None)
+                                        carried=results.carried.as_dict() if starts and results.carried else None)
                 elif store is not None:  # the sweep itself could not be recorded
                     store.unrecorded += len(results)
                 parts.append(results)
@@ -439,26 +428,18 @@ class Sweep:
         self._aspect_columns(frame, records)
         return SweepResult(sweep_id, frame, len(pending), len(stored), elapsed, records, total_spent(parts))
 
-    @staticmethod
-    def _carried(store, sweep_id: int, kept: np.ndarray, pending: Points) -> Carried | None:
+    def _carried(self, store, sweep_id: int, kept: np.ndarray, pending: Points) -> Carried | None:
         """Where a sweep resumes after its first points, stored in order, at a batched window's start: what the
         uninterrupted run started that window from, as recorded with the window before (``batch_carried``), so that
         the resumed points are the uninterrupted run's bit for bit. None (the points solved from cold, as before)
-        where the store holds none: points stored out of order (a pool), or by an older clutchopt."""
-        from clutchopt.store import StoreError
-
+        where the store holds none: points stored out of order (a pool), or by an older clutchopt. A damaged one
+        (``Carried.from_dict`` refuses it): StoreError."""
         first = int(pending.index[0])
         if len(kept) != first or (len(kept) and int(kept[-1]) != first - 1):
             return None
-        body = store.sweep_start(sweep_id, first)
-        if body is None:
-            return None
-        try:
-            carried = Carried.from_dict(body)
-        except ValueError as exc:
-            raise StoreError(store.path, f"sweep {sweep_id}'s start at point {first} is damaged ({exc})",
-                             "run the sweep again without --resume") from None
-        return carried if carried.point == first else None
+        posed = case_problem(self.case, self.formulation.mode, self.objective.name, SolverOptions(tol=self.tol)).posed
+        return store.sweep_start(sweep_id, first, partial(Carried.from_dict, point=first, variables=posed.names,
+                                                          rows=len(posed.lbg)))
 
     def _aspect_columns(self, frame: pd.DataFrame, records: "SweepRecords") -> None:
         """Where each point was designed as ``solve`` designs (``options.choose``, ``--robust``): the choice kept
