@@ -261,10 +261,7 @@ def test_the_head_of_a_run_past_the_region_s_edge_proven_before_the_probes(monke
     # points 9-12 are
     # searched again (321 boxes), their proof the one the probes from 9 had led to (main: probes at 10 and 12
     # without, 16, 14 and 13 with a design, 45 solver calls in the sweep; here 39, and 37 since the first
-    # design found, point 13, is polished onto its exact optimum: optimise/polish.py; point 16 then one solve fewer).
-    # Every status and proof the same. 39 since K5's two rows (width_ratio_min, width_ratio_max) are one row with both
-    # limits (optimise/two_sided.py): point 16 (761 MPa) one solver call more (a cold IPOPT solve, the same design to
-    # 1e-13), and one more among the probes; IPOPT's infeasible runs at 608, 710 and 720 MPa 22-23 iterations, not 27-28.
+    # design found, point 13, is polished onto its exact optimum: optimise/polish.py; point 16 then one solve fewer). Every status and proof the same.
     regions, probed = _searches_and_probes(monkeypatch)
     from clutchopt.bench.reference import bench_cases, reference_mode
     from clutchopt.optimise.sweep_grid import Vary
@@ -283,7 +280,7 @@ def test_the_head_of_a_run_past_the_region_s_edge_proven_before_the_probes(monke
     assert list(frame["diagnosis"][9:13]) == [frame["diagnosis"][9]] * 4
     assert frame["diagnosis"][9].startswith("proven infeasible for allowable_contact_stress 0.68999-0.719593 GPa "
                                             "(4 points, one proof)")
-    assert result.spent["solves"] == 39
+    assert result.spent["solves"] == 37
 
 
 def test_a_point_its_own_search_does_not_prove_continues_its_verdict_from_its_first_solve(monkeypatch):

@@ -14,39 +14,47 @@ from clutchopt.optimise.two_sided import TwoSided
 from conftest import CASES
 
 
-def _rows():
-    # v = x held within [L_l, L_u] = [2, 5] from both sides, S_u = 10 and S_l = 4 (its own scale, not the limit),
-    # with an unrelated row between them: g_u = (v - 5) / 10, g_l = (2 - v) / 4, g_other = x - 1
+def _rows(lower=2.0):
+    # v = x held within [L_l, L_u] = [lower, 5] from both sides, S_u = 10 and S_l = 4 (its own scale, not the limit),
+    # with an unrelated row between them: g_u = (v - 5) / 10, g_l = (lower - v) / 4, g_other = x - 1
     x, p = ca.SX.sym("x"), ca.SX.sym("p", 0)
     constraints = [at_most("upper", x, 5.0, equation="-", scale=10.0),
                    at_most("other", x, 1.0, equation="-", scale=1.0),
-                   at_least("lower", x, 2.0, equation="-", scale=4.0)]
-    return x, p, constraints
+                   at_least("lower", x, lower, equation="-", scale=4.0)]
+    return x, p, TwoSided(constraints, x, p, np.full(3, -np.inf))
 
 
-def test_two_rows_on_one_quantity_are_one_row_with_both_limits():
-    # kept: the ">=" row g_l <= 0 (row 2); g_u <= 0 is v <= 5, v = 2 - 4 g_l: g_l >= (2 - 5) / 4 = -0.75; row 0 left
-    # out of the solvers' rows (1, 2), its value from g_l: g_u = (2 - 5) / 10 - g_l 4 / 10 (at v = 3: g_l = -0.25,
-    # g_other = 2, g_u = -0.2)
-    x, p, constraints = _rows()
-    sides = TwoSided(constraints, x, p, np.full(3, -np.inf))
-    assert sides.pairs == [(2, 0)] and sides.rows == [1, 2]
-    lbg, ubg = sides.bounds(np.zeros(0))
-    assert list(lbg) == [-np.inf, -0.75] and list(ubg) == [0.0, 0.0]
-    lbg, ubg = sides.bounds(np.zeros(0), np.array([np.inf, 0.0, 0.0]))  # the upper side left out: no lower limit
-    assert list(lbg) == [-np.inf, -np.inf] and list(ubg) == [0.0, 0.0]
-    assert sides.values(np.array([2.0, -0.25]), np.zeros(0)) == pytest.approx([-0.2, 2.0, -0.25], rel=1e-15)
+def test_two_rows_on_one_quantity_at_one_value_are_one_row_with_both_limits_else_as_they_are():
+    # kept: the ">=" row g_l (row 2), g_u <= 0 is v <= 5 = 5 - 4 g_l... : g_l >= (L_l - 5) / 4. With room between
+    # (L_l = 2: g_l >= -0.75) both rows are posed as they are (the ball's design-mode sweeps' chained SQP took 5 times
+    # as long a call with one two-sided row); at one value (L_l = 5: g_l >= 0) row 2 has both limits and row 0 is free
+    none, zero = np.zeros(0), np.zeros(3)
+    assert _rows()[2].pairs == [(2, 0)]
+    lbg, ubg = _rows()[2].bounds(none, zero)
+    assert list(lbg) == [-np.inf] * 3 and list(ubg) == [0.0] * 3
+    sides = _rows(5.0)[2]
+    lbg, ubg = sides.bounds(none, zero)
+    assert list(lbg) == [-np.inf, -np.inf, 0.0] and list(ubg) == [np.inf, 0.0, 0.0]
+    lbg, ubg = sides.bounds(none, np.array([np.inf, 0.0, 0.0]))  # the upper side left out (polish): no lower limit
+    assert list(lbg) == [-np.inf] * 3 and list(ubg) == [np.inf, 0.0, 0.0]
+    assert sides.conflicts(none, 1e-9) == []
 
 
 def test_a_two_sided_row_s_multiplier_goes_to_the_side_it_presses():
-    # the solvers' lam on the kept row g_l: positive, g_l's own (v pressed onto its lower limit); negative, v pressed
-    # onto its upper limit: g_u's, by the Lagrangian: lam g_l = lam (2 - v) / 4 and lam_u g_u = lam_u (v - 5) / 10
-    # have the same gradient in v where lam_u = -lam 10 / 4
-    x, p, constraints = _rows()
-    sides = TwoSided(constraints, x, p, np.full(3, -np.inf))
-    assert list(sides.named(np.array([3.0, 2.0]), np.zeros(0))) == [0.0, 3.0, 2.0]
-    assert list(sides.named(np.array([3.0, -2.0]), np.zeros(0))) == [5.0, 3.0, 0.0]
-    assert list(sides.posed(np.array([5.0, 3.0, 0.0]), np.zeros(0))) == [3.0, -2.0]  # and back
+    # at one value (L_l = L_u = 5): the solvers' lam on the kept row g_l positive is g_l's own (v pressed onto its
+    # lower limit); negative, v pressed onto its upper limit: g_u's, by the Lagrangian: lam g_l = lam (5 - v) / 4 and
+    # lam_u g_u = lam_u (v - 5) / 10 have the same gradient in v where lam_u = -lam 10 / 4. With room, the identity.
+    none = np.zeros(0)
+    sides = _rows(5.0)[2]
+    assert list(sides.named(np.array([0.0, 3.0, 2.0]), none)) == [0.0, 3.0, 2.0]
+    assert list(sides.named(np.array([0.0, 3.0, -2.0]), none)) == [5.0, 3.0, 0.0]
+    assert list(sides.posed(np.array([5.0, 3.0, 0.0]), none)) == [0.0, 3.0, -2.0]  # and back
+    lam = np.array([1.0, 3.0, 2.0])
+    assert _rows()[2].named(lam, none) is lam and _rows()[2].posed(lam, none) is lam
+    # the same maps as CasADi expressions (the chained SQP's): at one value and with room
+    for sides, expected in ((_rows(5.0)[2], [5.0, 3.0, 0.0]), (_rows()[2], [0.0, 3.0, -2.0])):
+        p = ca.SX.sym("p", 0)
+        assert list(np.array(ca.evalf(sides.named(ca.DM([0.0, 3.0, -2.0]), p))).ravel()) == expected
 
 
 def test_only_a_quantity_held_from_both_sides_is_paired():
@@ -92,11 +100,9 @@ def test_limits_with_no_room_between_are_infeasible_whatever_the_design_never_an
     # _rows() with the lower limit 7 above the upper 5: g_l >= (7 - 5) / 4 = 0.5 > 0 = its upper bound. The solvers see
     # the kept row at its own limit (lbg <= ubg: IPOPT refused lbg > ubg with an assertion, an internal error), and
     # the pair is named apart by 0.5 relative to the kept row's scale.
-    x, p, constraints = _rows()
-    constraints[2] = at_least("lower", x, 7.0, equation="-", scale=4.0)
-    sides = TwoSided(constraints, x, p, np.full(3, -np.inf))
+    sides = _rows(7.0)[2]
     assert sides.conflicts(np.zeros(0), 1e-9) == [(2, 0, 0.5)]
-    assert np.array_equal(sides.bounds(np.zeros(0))[0], [-np.inf, 0.0])
+    assert list(sides.bounds(np.zeros(0), np.zeros(3))[0]) == [-np.inf, -np.inf, 0.0]
     # ball_compressor.toml in paper mode: K5 at least the paper's 0.8 (width_ratio) and at most width_ratio_max = 0.5:
     # apart by (0.8 - 0.5) / 0.8 = 0.375 of the kept row's scale (its limit 0.8). Proven without a solve, both named.
     case = load_case(CASES / "ball_compressor.toml").with_values(width_ratio_max=0.5)

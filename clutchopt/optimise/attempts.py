@@ -52,9 +52,7 @@ def run(posed: Posed, data: ScaledData, lbx, ubx, x0, seed: dict | None, method:
     elapsed = time.perf_counter() - started
     stats = solver.stats()
     x = result["x"].full().ravel()
-    g, lam_g = (posed.sides.values(result["g"].full().ravel(), data.p),  # (the named rows')
-                posed.sides.named(result["lam_g"].full().ravel(), data.p))
-    solved = Run(x=x, g=g, lam_g=lam_g,
+    solved = Run(x=x, g=result["g"].full().ravel(), lam_g=posed.sides.named(result["lam_g"].full().ravel(), data.p),
                  lam_x=result["lam_x"].full().ravel(),
                  f=float(result["f"]), ok=bool(stats["success"]), status=stats["return_status"],
                  iterations=int(stats.get("iter_count", 0)), time=elapsed, p=data.p, lbx=lbx, ubx=ubx,

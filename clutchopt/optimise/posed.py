@@ -124,7 +124,6 @@ class Posed:
         self.integer = [i for i, v in enumerate(f.variables) if v.integer]
         self.nlp = {"x": x_all, "p": ca.vertcat(self.p_case, x_scale, f_scale, mesh),
                     "f": self.objective.function(x, p) / f_scale, "g": g}  # the scaled NLP, g <= 0
-        self.solver_nlp = self.sides.nlp(self.nlp)  # the solvers': a quantity held from both sides, one row
         self.lam_g = ca.SX.sym("lam_g", g.shape[0])  # the Lagrangian, for KKT verdicts and sensitivities
         self.lagrangian = self.nlp["f"] + ca.dot(self.lam_g, g)
         if start_up:
@@ -162,11 +161,11 @@ class Posed:
             name = f"{f.coupling}_{f.mode}_{self.objective.name}" + ("" if method == "ipopt" else f"_{method}")
             if method in IPOPT_METHODS:  # the first IPOPT solver's derivatives, not derived again (0.06 s a start-up
                 # problem)
-                solver = ca.nlpsol(name, "ipopt", self.library or self.solver_nlp,
+                solver = ca.nlpsol(name, "ipopt", self.library or self.nlp,
                                    {**self.ipopt_options(method), **self.derivatives()})
             else:
                 options = {"sqp": chosen.sqp, "sqp_chain": chosen.sqp_chain, "sqp_search": chosen.sqp_search}[method]()
-                solver = ca.nlpsol(name, "sqpmethod", self.solver_nlp, options)
+                solver = ca.nlpsol(name, "sqpmethod", self.nlp, options)
             if method in ("sqp_chain", "sqp_search"):  # a batched sweep's: compiled where that pays
                 solver = compiled_solver(name, solver, options)
             return solver

@@ -1,20 +1,25 @@
-"""A quantity held from both sides, posed once: one two-sided row ``lbg <= g <= 0`` of the scaled NLP.
+"""A quantity held from both sides at one value, posed once: one two-sided row ``lbg <= g <= 0`` of the scaled NLP.
 
 A formulation names its constraints one-sided, ``value <= limit`` or ``value >= limit``, each normalised by its own
 scale into a row ``g <= 0`` (``Constraint.normalised``). Where two constraints hold the same quantity (the same
-``value`` expression) from above and from below - the ball's paper mode, K5 = l / R_a at least the paper's K5
-(``width_ratio``) and at most the case's ``width_ratio_max`` - their rows are g_u = (v - L_u) / S_u and
-g_l = (L_l - v) / S_l = (L_l - L_u - S_u g_u) / S_l: g_l <= 0 is g_u >= (L_l - L_u) / S_u. The solvers see the
-upper row with that lower limit and the lower row free (-inf <= g_l <= inf), so IPOPT has an interior wherever
-L_l < L_u and, where the two limits are one value (the ball compressor: 0.8 and 0.8), an equality row instead of two
-opposite rows g and -g that left it none (multipliers 4.8e9, 30 iterations instead of 8; docs/tradeoffs.md).
+``value`` expression) from above and from below - the ball's K5 = l / R_a: in paper mode at least the paper's K5
+(``width_ratio``) and at most the case's ``width_ratio_max``, in design mode between width_ratio_min and _max - their
+rows are g_k = s_k (L_k - v) / S_k and g_f = s_f (v - L_f) / S_f (s = +-1 by sense): g_f <= 0 is
+g_k >= s_f (L_k - L_f) / S_k. Where the two limits leave room between them (design mode; paper mode below the
+case's width_ratio_max) the rows are posed as they are, two one-sided rows. Where they are one value (the ball
+compressor in paper mode: 0.8 and 0.8, within ROOM), the two opposite rows g and -g left IPOPT no interior
+(multipliers 4.8e9, 30 iterations instead of 8; docs/tradeoffs.md): the solvers see the kept row with both limits
+and the other row free (-inf <= g_f <= inf), an equality IPOPT solves as such. Posed so in every case (a pair with
+room between as one row too), the ball's design-mode sweeps' chained SQP took 5 times as long a call (its speed
+sweep 3,545 -> 1,046 points/s), so only the limits decide, at each parameter vector, and the NLP itself (its rows,
+derivatives, compiled code) is one. Where the limits conflict (the lower above the upper) the solvers see the kept
+row at its own limit (a well-posed NLP) and the verdict is given before any solve (:meth:`TwoSided.conflicts`).
 
-The NLP itself (its rows, derivatives, compiled code) is the same: only its row bounds and multipliers are posed
-so. Everything apart from the solvers (the float64 re-check, the KKT verdict, the diagnosis, the proofs) sees the
-named rows, one-sided, each with its own multiplier: the two-sided row's multiplier lam splits by sign onto the
-side that is active, lam_u = max(lam, 0) and lam_l = max(-lam, 0) S_l / S_u (the Lagrangian's lam_u g_u + lam_l g_l
-is (lam_u - lam_l S_u / S_l) g_u + const). A pair is posed so only where both limits and scales are free of the
-design (else the lower limit of g_u would move with it).
+Everything apart from the solvers (the float64 re-check, the KKT verdict, the diagnosis, the proofs) sees the named
+rows, one-sided, each with its own multiplier: a two-sided row's multiplier lam splits by sign onto the side that
+is active, lam_k = max(lam, 0) and lam_f = max(-lam, 0) S_f / S_k (the Lagrangian's lam_k g_k + lam_f g_f is
+(lam_k - lam_f S_k / S_f) g_k + const). A pair is posed so only where both limits and scales are free of the design
+(else the lower limit of g_k would move with it).
 """
 
 from __future__ import annotations
@@ -24,6 +29,7 @@ import numpy as np
 
 DEPTH = 100  # how deep two value expressions are compared (``ca.is_equal``): a formulation's quantities are a few
 #              operations deep (K5 = l / R_a: one)
+ROOM = 1e-12  # limits closer than this (in the kept row's scale) are one value: the pair posed as one row
 
 
 def _scale(constraint):
@@ -49,63 +55,55 @@ def held_from_both_sides(constraints, x_hat) -> list[tuple[int, int]]:
 
 class TwoSided:
     """The rows of a posed NLP held from both sides (:func:`held_from_both_sides`), and the maps between the named
-    rows (their values, bounds and multipliers) and the rows the solvers see: each pair's kept row with both limits,
-    its other row left out. Without such a pair every map is the identity (the same arrays: nothing changes for the
-    formulations without one)."""
+    rows' bounds and multipliers and the solvers': a pair whose limits are one value (or conflict) posed as its kept
+    row with both limits and its other row free; every other row, and every pair with room between its limits, as
+    it is (the same arrays: nothing changes for the formulations without a pair)."""
 
     def __init__(self, constraints, x_hat, p: ca.SX, lbg: np.ndarray):
         self.pairs = held_from_both_sides(constraints, x_hat)
         self.lbg = lbg  # the named rows' (-inf for g <= 0, 0 for equalities)
         if not self.pairs:
             return
-        n = len(lbg)
         by_row = dict(zip(np.cumsum([0] + [ca.SX(c.normalised()).shape[0] for c in constraints]).tolist(),
                           constraints))
-        kept, freed = ([int(pair[side]) for pair in self.pairs] for side in (0, 1))
-        self.rows = [i for i in range(n) if i not in freed]  # the solvers' rows, in their order
-        at = [self.rows.index(k) for k in kept]  # each kept row's place among them
-        k_c, f_c = [by_row[k] for k in kept], [by_row[f] for f in freed]
-        # g_f = s_f (v - L_f) / S_f with v = L_k + s_k S_k g_k: g_f = s_f (L_k - L_f) / S_f - g_k / ratio
+        self.kept, self.freed = (np.array([pair[side] for pair in self.pairs]) for side in (0, 1))
+        k_c, f_c = [by_row[k] for k in self.kept], [by_row[f] for f in self.freed]
         ratio = ca.vertcat(*[ca.SX(_scale(b)) / ca.SX(_scale(a)) for a, b in zip(k_c, f_c)])  # S_f / S_k
-        offset = ca.vertcat(*[(1 if b.sense == "<=" else -1) * (ca.SX(a.limit) - ca.SX(b.limit)) / ca.SX(_scale(b))
-                              for a, b in zip(k_c, f_c)])
-        lower = offset * ratio  # g_f <= 0: g_k >= s_f (L_k - L_f) / S_k
-        lbg_posed, ubg_posed = ca.SX(ca.DM(lbg[self.rows])), ca.SX.zeros(len(self.rows))
-        lbg_posed[at] = ca.fmin(lower, 0)  # (limits with no room between: the kept row's limit, :meth:`conflicts`)
-        lam, posed = ca.SX.sym("named", n), ca.SX.sym("posed", len(self.rows))  # (multipliers or values)
-        merged = lam[self.rows]
-        merged[at] = lam[kept] - lam[freed] / ratio
-        split, g_full = ca.SX.zeros(n), ca.SX.zeros(n)
-        split[self.rows] = posed
-        split[kept] = ca.fmax(posed[at], 0)
-        split[freed] = ca.fmax(-posed[at], 0) * ratio
-        g_full[self.rows] = posed
-        g_full[freed] = offset - posed[at] / ratio
-        self.at, self.kept, self.freed = at, kept, freed
-        self.coefficients = ca.Function("two_sided_coefficients", [p], [lower, ratio, offset])
+        lower = ca.vertcat(*[(1 if b.sense == "<=" else -1) * (ca.SX(a.limit) - ca.SX(b.limit)) / ca.SX(_scale(a))
+                             for a, b in zip(k_c, f_c)])  # g_f <= 0: g_k >= s_f (L_k - L_f) / S_k
+        self.coefficients = ca.Function("two_sided_coefficients", [p], [lower, ratio])
         self._last = (None, None)  # the coefficients at the last NumPy p (a solve's runs share their p)
-        self.bounds_of = ca.Function("two_sided_bounds", [p], [lbg_posed, ubg_posed])
+        n, kept, freed = len(lbg), self.kept.tolist(), self.freed.tolist()
+        one = lower >= -ROOM
+        lbg_s, ubg_s = ca.SX(ca.DM(lbg)), ca.SX.zeros(n)
+        lbg_s[kept] = ca.if_else(one, ca.fmin(lower, 0), -ca.inf)
+        ubg_s[freed] = ca.if_else(one, ca.inf, 0)
+        lam = ca.SX.sym("lam", n)
+        merged, split = ca.SX(lam), ca.SX(lam)
+        merged[kept] = ca.if_else(one, lam[kept] - lam[freed] / ratio, lam[kept])
+        merged[freed] = ca.if_else(one, 0, lam[freed])
+        split[kept] = ca.if_else(one, ca.fmax(lam[kept], 0), lam[kept])
+        split[freed] = ca.if_else(one, ca.fmax(-lam[kept], 0) * ratio, lam[freed])
+        self.bounds_of = ca.Function("two_sided_bounds", [p], [lbg_s, ubg_s])
         self.posed_of = ca.Function("two_sided_posed", [lam, p], [merged])
-        self.named_of = ca.Function("two_sided_named", [posed, p], [split])
-        self.values_of = ca.Function("two_sided_values", [posed, p], [g_full])
-
-    def nlp(self, nlp: dict) -> dict:
-        """The NLP the solvers see: ``nlp`` with each pair's other row left out."""
-        return {**nlp, "g": nlp["g"][self.rows]} if self.pairs else nlp
+        self.named_of = ca.Function("two_sided_named", [lam, p], [split])
 
     def bounds(self, p, ubg=0.0):
         """The solvers' ``(lbg, ubg)`` at the NLP parameters ``p`` (NumPy, or CasADi symbols); ``ubg`` the named
-        rows' (0, or +inf where a row is left out of a solve: a side of a two-sided row left out, its limit too)."""
+        rows' (0, or +inf where a row is left out of a solve: the polish; a pair's other side left out, its limit
+        too)."""
         if not self.pairs:
             return self.lbg, ubg
         if _symbolic(p):
-            return self.bounds_of(p)[:2]
-        lower = self._at(p)[0]
-        lbg = self.lbg[self.rows].copy()
-        lbg[self.at] = np.minimum(lower, 0.0)  # (limits with no room between: :meth:`conflicts`)
-        ubg = np.broadcast_to(np.asarray(ubg, dtype=float), self.lbg.shape)
-        lbg[[a for a, f in zip(self.at, self.freed) if np.isinf(ubg[f])]] = -np.inf
-        return lbg, np.maximum(0.0, ubg[self.rows])
+            return self.bounds_of(p)
+        one, lower, _ = self._at(p)
+        if not one.any():
+            return self.lbg, ubg
+        kept, freed = self.kept[one], self.freed[one]
+        lbg, ubg = self.lbg.copy(), np.broadcast_to(np.asarray(ubg, dtype=float), self.lbg.shape).copy()
+        lbg[kept] = np.where(np.isinf(ubg[freed]), -np.inf, np.minimum(lower[one], 0.0))
+        ubg[freed] = np.inf
+        return lbg, ubg
 
     def conflicts(self, p: np.ndarray, tolerance: float) -> list[tuple[int, int, float]]:
         """The pairs whose limits leave no room between them at ``p`` (the lower one above the upper: no design meets
@@ -114,45 +112,42 @@ class TwoSided:
         verdict is given without a solve (``diagnosis.whatever_the_design``)."""
         if not self.pairs:
             return []
-        lower = self._at(np.asarray(p, dtype=float))[0]
-        return [(k, f, float(gap)) for k, f, gap in zip(self.kept, self.freed, lower) if gap > tolerance]
+        lower = self._at(np.asarray(p, dtype=float))[1]
+        return [(int(k), int(f), float(gap)) for k, f, gap in zip(self.kept, self.freed, lower) if gap > tolerance]
 
     def posed(self, lam_g, p):
         """Named rows' multipliers (each >= 0 on its own row) as the solvers' (a two-sided row's signed)."""
         if not self.pairs or _symbolic(p):
             return self.posed_of(lam_g, p) if self.pairs else lam_g
-        merged = lam_g[self.rows].copy()
-        merged[self.at] = lam_g[self.kept] - lam_g[self.freed] / self._at(p)[1]
+        one, _, ratio = self._at(p)
+        if not one.any():
+            return lam_g
+        kept, freed = self.kept[one], self.freed[one]
+        merged = np.array(lam_g, dtype=float)
+        merged[kept] = lam_g[kept] - lam_g[freed] / ratio[one]
+        merged[freed] = 0.0
         return merged
 
     def named(self, lam_g, p):
-        """The solvers' multipliers as the named rows' (split by sign onto the side that is active)."""
+        """The solvers' multipliers as the named rows' (a two-sided row's split by sign onto the side it presses)."""
         if not self.pairs or _symbolic(p):
             return self.named_of(lam_g, p) if self.pairs else lam_g
-        split = self._full(lam_g)
-        split[self.kept] = np.maximum(lam_g[self.at], 0.0)
-        split[self.freed] = np.maximum(-lam_g[self.at], 0.0) * self._at(p)[1]
+        one, _, ratio = self._at(p)
+        if not one.any():
+            return lam_g
+        kept, freed = self.kept[one], self.freed[one]
+        split = np.array(lam_g, dtype=float)
+        split[kept] = np.maximum(lam_g[kept], 0.0)
+        split[freed] = np.maximum(-lam_g[kept], 0.0) * ratio[one]
         return split
 
-    def values(self, g, p):
-        """The solvers' row values as the named rows' (a left-out row's from its kept one)."""
-        if not self.pairs:
-            return g
-        _, ratio, offset = self._at(p)
-        full = self._full(g)
-        full[self.freed] = offset - g[self.at] / ratio
-        return full
-
-    def _full(self, posed: np.ndarray) -> np.ndarray:
-        full = np.zeros(len(self.lbg))
-        full[self.rows] = posed
-        return full
-
     def _at(self, p: np.ndarray) -> tuple[np.ndarray, ...]:
-        """(lower, ratio, offset) of each pair at ``p``, evaluated once per p."""
+        """(whether the pair's limits are one value, the kept row's lower limit, S_f / S_k) of each pair at ``p``,
+        evaluated once per p."""
         key = np.asarray(p, dtype=float).tobytes()
         if self._last[0] != key:
-            self._last = (key, tuple(v.full().ravel() for v in self.coefficients(p)))
+            lower, ratio = (v.full().ravel() for v in self.coefficients(p))
+            self._last = (key, (lower >= -ROOM, lower, ratio))
         return self._last[1]
 
 
