@@ -6,9 +6,9 @@ import math
 
 from clutchopt.backend import sin, tan
 from clutchopt.formulations.wedge.equations import (
-    equivalent_width,
     paper_centroid_radius,
     self_locking_angle,
+    weight_base_width,
     weight_body,
 )
 from clutchopt.formulations.wedge.weight_set import MODEL, WeightSet
@@ -23,12 +23,14 @@ PAPER_VARIABLES = (
 
 
 def paper_weight_set(x, p):
-    """The weights of the paper's geometry, r_c = r2 - 2/3 h_r (11)."""
+    """The weights of the paper's geometry, r_c = r2 - 2/3 h_r (11); the width b that a real weight of that geometry
+    (``weight_body``) has at mass m_r (``weight_base_width``)."""
     r1 = p.flank_inner_radius
     r2 = p.radius_ratio * r1
+    width = weight_base_width(x.weight_mass, r2 - p.weight_height, r1, r2, p.flank_angle, p.sector_angle, p.density)
     return WeightSet(p.weight_count, r1, r2, p.flank_angle, p.sector_angle, x.weight_mass,
                      paper_centroid_radius(r2, p.weight_height), x.finger_diameter, p.speed, p.friction_coefficient,
-                     p.weight_height, equivalent_width(x.weight_mass, p.density, p.sector_angle, r2, p.weight_height))
+                     p.weight_height, width)
 
 
 def constructive_constraints(w: WeightSet, x, p):
