@@ -155,16 +155,17 @@ WEIGHT_BODY_ROWS = {"wedge": ("torque", "flank_pressure", "finger_bending")}
 
 def _as_other_mode(coupling, design, p):
     """The paper-mode design in the other mode's variables: the case's given geometry, the paper's rules for what
-    it derives (lever: l_2 and B_cp), the equivalent width of the wedge's weight (as its envelope takes it)."""
+    it derives (lever: l_2 and B_cp), the width of the wedge's real weight of mass m_r (weight_base_width)."""
     if coupling == "wedge":
-        from clutchopt.formulations.wedge.equations import equivalent_width
+        from clutchopt.formulations.wedge.equations import weight_base_width
 
         r2 = p.radius_ratio * p.flank_inner_radius
         return dict(design, flank_inner_radius=p.flank_inner_radius, radius_ratio=p.radius_ratio,
                     weight_height=p.weight_height, sector_angle=p.sector_angle, flank_angle=p.flank_angle,
                     weight_count=p.weight_count,
-                    weight_width=equivalent_width(design["weight_mass"], p.density, p.sector_angle, r2,
-                                                  p.weight_height))
+                    weight_width=weight_base_width(design["weight_mass"], r2 - p.weight_height,
+                                                   p.flank_inner_radius, r2, p.flank_angle, p.sector_angle,
+                                                   p.density))
     if coupling == "lever":
         from clutchopt.formulations.lever.paper import paper_geometry
 
@@ -175,7 +176,7 @@ def _as_other_mode(coupling, design, p):
 
 
 _WIDTH_RULES_BROKEN = pytest.mark.xfail(strict=True, reason="the paper-mode weights of the centrifuge and the fan are "
-                                        "4.9 and 5.5 mm wide with 10.5 and 15.4 mm fingers: they break top_land_width "
+                                        "9.2 and 11.4 mm wide (weight_base_width) with 10.5 and 15.4 mm fingers: they break top_land_width "
                                         "and finger_fits_width, which paper mode does not pose yet (posed, both cases "
                                         "are infeasible in paper mode: wedge/modes.py PAPER_MODE_LEAVES_OUT)")
 
@@ -209,6 +210,9 @@ def test_paper_mode_meets_every_rule_its_other_mode_poses(path):
         assert posed[row.name].limit == pytest.approx(row.limit, rel=1e-12, abs=1e-15)
     if coupling == "lever":
         assert [row.name for row in left] == ["lever_length"] and left[0].margin == pytest.approx(0.0, abs=1e-12)
+    if coupling == "wedge":  # not posed, but shown: the margins paper mode prints are the geometry mode's rows at b(m_r)
+        for row in left:
+            assert solution.outputs[f"{row.name}_margin"].value == pytest.approx(row.margin, rel=1e-12, abs=1e-15)
     for row in left:  # last: the width rules the centrifuge and the fan break (the xfail above)
         assert row.feasible, f"{path.name}: {row.name} margin {row.margin:.3g} at the paper-mode design"
 
@@ -268,3 +272,23 @@ def test_lever_paper_mode_checks_that_the_linings_clear_the_flange_by_hand():
     assert short.diagnosis == "infeasible whatever the design: lining_clears_flange (short of its limit by 0.137 " \
                               "relative)"
     assert _rows(short)["lining_clears_flange"].margin == pytest.approx(-0.1375, rel=1e-12)
+
+
+def test_paper_mode_shows_the_centrifuges_width_rules_it_does_not_pose():
+    """Not silent: the centrifuge's paper-mode weight is too thin for its finger and its top land, and the solution
+    says so. By hand at the solved m_r (weight_base_width): r1 = 90, r2 = 112.5, r_in = 77.5 mm, t = tan 15 deg,
+    gamma = 50 deg, b = (m_r / (rho gamma) - t (r1 (r2^2 - r1^2) - 2/3 (r2^3 - r1^3))) / ((r2^2 - r_in^2) / 2);
+    top land b - 2 (r2 - r1) t >= 2 mm, margin (top - 2 mm) / b; finger d_n <= 0.5 b, margin (0.5 b - d_n) / b."""
+    solution = solve_case(load_case(CASES / "wedge_centrifuge.toml"), "paper")
+    assert solution.status == "optimal"
+    m_r, d_n = solution.design["weight_mass"], solution.design["finger_diameter"]
+    assert m_r == pytest.approx(0.111542, rel=1e-5) and d_n == pytest.approx(0.0104532, rel=1e-5)  # torque, bending
+    r1, r2, r_in, t, gamma = 0.09, 0.1125, 0.0775, math.tan(math.radians(15)), math.radians(50)
+    b = (m_r / (7850 * gamma) - t * (r1 * (r2**2 - r1**2) - 2 / 3 * (r2**3 - r1**3))) / ((r2**2 - r_in**2) / 2)
+    assert b == pytest.approx(0.00918065, rel=1e-5)  # 9.18 mm: a 10.5 mm finger in a 9.2 mm weight
+    shown = {name: out.value for name, out in solution.outputs.items()}
+    assert shown["weight_width"] == pytest.approx(b, rel=1e-12)
+    assert shown["top_land_width_margin"] == pytest.approx((b - 2 * 0.0225 * t - 0.002) / b, rel=1e-12)
+    assert shown["finger_fits_width_margin"] == pytest.approx((0.5 * b - d_n) / b, rel=1e-12)
+    assert shown["top_land_width_margin"] < -0.5 and shown["finger_fits_width_margin"] < -0.6
+    assert "NOT POSED" in solution.outputs["finger_fits_width_margin"].description

@@ -41,9 +41,8 @@ def constructive_constraints(w: WeightSet, x, p):
     In geometry mode they bound the free geometry. In paper mode the geometry is given and only m_r and d_n move:
     the rows that read neither (26, sectors, release, housing, hub) are fixed by the case (one it breaks is
     infeasible whatever the design); the finger's guide and chord read d_n. The top land and the finger's fit
-    read the weight's width b, in paper mode the equivalent width of a rectangular annular sector of mass m_r
-    (``equivalent_width``, the envelope's): a real weight of that mass with the trapezoidal top is wider at its
-    base, so there the two rows would be sufficient for it; paper mode leaves them out for now
+    read the weight's width b, in paper mode that of the real weight of mass m_r on the given geometry
+    (``weight_base_width``, exact); paper mode does not pose them yet and shows their margins instead
     (``PAPER_MODE_LEAVES_OUT``)."""
     r_in, b = w.r2 - w.height, w.width
     return [
@@ -68,12 +67,13 @@ def constructive_constraints(w: WeightSet, x, p):
     ]
 
 
-# Not yet posed in paper mode: the two rules that read the weight's width b. The paper-mode optima of
-# cases/wedge_centrifuge.toml and cases/wedge_fan.toml break both (their weights, 4.9 and 5.5 mm wide, carry fingers
-# of 10.5 and 15.4 mm), and no m_r meets them within [p] there: posed, both cases are infeasible in paper mode
-# (proven), which takes the subject from the robust and reliability studies built on the centrifuge's paper mode
-# (docs/robust.md, README, benchmarks). Open in docs/errata.md; tests/test_paper_mode_case_limits.py holds the strict
-# xfail that turns when they are posed.
+# Not yet posed in paper mode: the two rules that read the weight's width b (exact: b of the real weight of mass m_r,
+# ``weight_base_width``). The paper-mode optima of cases/wedge_centrifuge.toml and cases/wedge_fan.toml break both,
+# and posed, both cases are proven infeasible in paper mode (their torque (15) and bending (19) fix m_r and d_n, and
+# a weight of that mass on their geometry is too thin for its finger), which takes the subject from the robust and
+# reliability studies built on their paper mode (docs/robust.md, README, benchmarks). Not silent: every paper-mode
+# solution shows both rows at b(m_r) with their margins (``_paper_outputs``). Open in docs/errata.md;
+# tests/test_paper_mode_case_limits.py holds the strict xfail that turns when they are posed.
 PAPER_MODE_LEAVES_OUT = ("top_land_width", "finger_fits_width")
 
 
@@ -81,8 +81,17 @@ def _paper_constructive_constraints(w: WeightSet, x, p):
     return [c for c in constructive_constraints(w, x, p) if c.name not in PAPER_MODE_LEAVES_OUT]
 
 
+def _paper_outputs(w: WeightSet, x, p):
+    """The real weight's width b(m_r), and the relative margin of each rule paper mode does not pose (< 0: broken)."""
+    shown = {"weight_width": Output(w.width, "mm", "b of the real weight of mass m_r (weight_base_width)")}
+    for c in constructive_constraints(w, x, p):
+        if c.name in PAPER_MODE_LEAVES_OUT:
+            shown[f"{c.name}_margin"] = Output(-c.normalised(), "", f"NOT POSED in paper mode (< 0: broken): {c.description}")
+    return shown
+
+
 PAPER = MODEL.formulation("paper", "Wedge CFC, paper assumptions: geometry given, m_r and d_n free",
-                          PAPER_VARIABLES, paper_weight_set, _paper_constructive_constraints)
+                          PAPER_VARIABLES, paper_weight_set, _paper_constructive_constraints, _paper_outputs)
 
 
 # --- Geometry mode: weights as real bodies -------------------------------------------------------------------------
