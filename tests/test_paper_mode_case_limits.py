@@ -292,3 +292,18 @@ def test_paper_mode_shows_the_centrifuges_width_rules_it_does_not_pose():
     assert shown["finger_fits_width_margin"] == pytest.approx((0.5 * b - d_n) / b, rel=1e-12)
     assert shown["top_land_width_margin"] < -0.5 and shown["finger_fits_width_margin"] < -0.6
     assert "NOT POSED" in solution.outputs["finger_fits_width_margin"].description
+
+
+def test_paper_mode_width_rules_of_the_papers_example_by_hand():
+    """wedge_paper keeps its numbers, and its weight is buildable: m_r = 0.156873 kg (torque (15)), d_n = 5.46156 mm
+    (bending (19)); b(m_r) = 26.9755 mm (tests/test_wedge_closed_forms.py, by hand); top land 26.9755 - 2 x 10 mm x
+    tan 15 deg = 21.6165 mm, margin (21.6165 - 2) / 26.9755 = +0.727197; finger 5.46156 <= 0.5 x 26.9755 =
+    13.4877 mm, margin (13.4877 - 5.46156) / 26.9755 = +0.297536."""
+    solution = solve_case(load_case(CASES / "wedge_paper.toml"), "paper")
+    assert solution.status == "optimal"
+    assert solution.design["weight_mass"] == pytest.approx(0.156873, rel=1e-5)
+    assert solution.design["finger_diameter"] == pytest.approx(5.46156e-3, rel=1e-5)
+    shown = {name: out.value for name, out in solution.outputs.items()}
+    assert shown["weight_width"] == pytest.approx(0.0269755, rel=1e-5)
+    assert shown["top_land_width_margin"] == pytest.approx(0.727197, rel=1e-5)
+    assert shown["finger_fits_width_margin"] == pytest.approx(0.297536, rel=1e-5)
