@@ -42,8 +42,7 @@ def constructive_constraints(w: WeightSet, x, p):
     the rows that read neither (26, sectors, release, housing, hub) are fixed by the case (one it breaks is
     infeasible whatever the design); the finger's guide and chord read d_n. The top land and the finger's fit
     read the weight's width b, in paper mode that of the real weight of mass m_r on the given geometry
-    (``weight_base_width``, exact); paper mode does not pose them yet and shows their margins instead
-    (``PAPER_MODE_LEAVES_OUT``)."""
+    (``weight_base_width``): exact, as in geometry mode."""
     r_in, b = w.r2 - w.height, w.width
     return [
         at_least("weight_covers_flank", w.height, w.r2 - w.r1, equation="(26)", unit="mm", scale=w.r1,
@@ -67,31 +66,12 @@ def constructive_constraints(w: WeightSet, x, p):
     ]
 
 
-# Not yet posed in paper mode: the two rules that read the weight's width b (exact: b of the real weight of mass m_r,
-# ``weight_base_width``). The paper-mode optima of cases/wedge_centrifuge.toml and cases/wedge_fan.toml break both,
-# and posed, both cases are proven infeasible in paper mode (their torque (15) and bending (19) fix m_r and d_n, and
-# a weight of that mass on their geometry is too thin for its finger), which takes the subject from the robust and
-# reliability studies built on their paper mode (docs/robust.md, README, benchmarks). Not silent: every paper-mode
-# solution shows both rows at b(m_r) with their margins (``_paper_outputs``). Open in docs/errata.md;
-# tests/test_paper_mode_case_limits.py holds the strict xfail that turns when they are posed.
-PAPER_MODE_LEAVES_OUT = ("top_land_width", "finger_fits_width")
-
-
-def _paper_constructive_constraints(w: WeightSet, x, p):
-    return [c for c in constructive_constraints(w, x, p) if c.name not in PAPER_MODE_LEAVES_OUT]
-
-
 def _paper_outputs(w: WeightSet, x, p):
-    """The real weight's width b(m_r), and the relative margin of each rule paper mode does not pose (< 0: broken)."""
-    shown = {"weight_width": Output(w.width, "mm", "b of the real weight of mass m_r (weight_base_width)")}
-    for c in constructive_constraints(w, x, p):
-        if c.name in PAPER_MODE_LEAVES_OUT:
-            shown[f"{c.name}_margin"] = Output(-c.normalised(), "", f"NOT POSED in paper mode (< 0: broken): {c.description}")
-    return shown
+    return {"weight_width": Output(w.width, "mm", "b of the real weight of mass m_r (weight_base_width)")}
 
 
 PAPER = MODEL.formulation("paper", "Wedge CFC, paper assumptions: geometry given, m_r and d_n free",
-                          PAPER_VARIABLES, paper_weight_set, _paper_constructive_constraints, _paper_outputs)
+                          PAPER_VARIABLES, paper_weight_set, constructive_constraints, _paper_outputs)
 
 
 # --- Geometry mode: weights as real bodies -------------------------------------------------------------------------
