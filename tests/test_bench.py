@@ -53,6 +53,11 @@ def test_every_method_in_every_mode(report, coupling, mode):
     assert rows["ipopt tol 1e-10"]["rel_error"] == 0.0
     for tol in ("1e-04", "1e-06", "1e-08", "1e-10"):
         row = rows[f"ipopt tol {tol}"]
+        if (coupling, mode, tol) == ("wedge", "geometry", "1e-04"):  # from the centrifuge's buildable paper geometry
+            # (its start: 4 weights of 22 deg, 25 mm; docs/errata.md) IPOPT at 1e-4 stops at 0.754 kg, 10 % above the
+            # optimum, whose float64 check fails: reported not_found, never a wrong answer
+            assert row["status"] == "not_found"
+            continue
         assert row["status"] == "optimal" and row["worst_violation"] <= 1e-8
         assert row["rel_error"] <= 20 * float(tol) and row["iterations"] > 0
         assert row["first_s"] > 0 and row["resolve_median_s"] > 0 and row["resolve_iqr_s"] >= 0
@@ -150,8 +155,11 @@ def test_the_stiff_scene_is_as_accurate_by_the_integrator_picked(report):
 
 def test_gp_where_posynomial(report):
     gp = {(r["coupling"], r["mode"]): r for r in report["sections"]["accuracy"]["rows"] if r["method"] == "cvxpy gp"}
-    assert {key for key, row in gp.items() if row["status"] == "optimal"} == {("wedge", "paper")}
-    assert gp[("wedge", "paper")]["rel_error"] < 1e-7 and gp[("wedge", "paper")]["worst_violation"] <= 1e-8
+    assert {key for key, row in gp.items() if row["status"] == "optimal"} == set()
+    # the wedge's paper mode poses its width rules at b(m_r), affine in m_r with an offset (weight_base_width):
+    # d_n <= 0.5 (a m_r + c) is a posynomial bounded by a posynomial, not a GP (docs/errata.md)
+    assert gp[("wedge", "paper")]["status"] == "not_posynomial"
+    assert gp[("wedge", "paper")]["note"] == "not posynomial: top_land_width, finger_fits_width"
     # the ball's paper mode poses the case's Hertz stress (9), whose contact ellipse takes elliptic integrals of R_a
     assert gp[("ball", "paper")]["status"] == "not_posynomial"
     lever = gp[("lever", "paper")]

@@ -22,7 +22,8 @@ def test_solve_json_contract(cli):
     assert data["design"]["finger_diameter"] == pytest.approx(5.4616e-3, rel=1e-4)  # SI: metres
     names = {c["name"] for c in data["constraints"]}
     assert names == {"torque", "flank_pressure", "finger_bending", "weight_covers_flank", "sectors_fit",
-                     "not_self_locking", "outer_diameter", "hub_clearance", "finger_guide_length",
+                     "not_self_locking", "outer_diameter", "top_land_width", "hub_clearance", "finger_fits_width",
+                     "finger_guide_length",
                      "finger_fits_chord"}  # after the paper's three: the rules that make a buildable part, as in
     # geometry mode (wedge/modes.py constructive_constraints)
     for c in data["constraints"]:

@@ -40,12 +40,16 @@ def test_cable_envelope_by_hand():
 
 
 def test_paper_mode_wedge_takes_the_width_of_its_weights_mass():
-    """b = 2 m_r / (rho gamma (r2^2 - (r2 - h_r)^2)); L = b + s, D = 2 (r2 + s)."""
+    """b of the real weight of mass m_r (weight_base_width): m = rho gamma [b (r2^2 - r_in^2)/2 + r1 t (r2^2 - r1^2)
+    - 2 t (r2^3 - r1^3)/3], t = tan(alpha), solved for b; L = b + s, D = 2 (r2 + s)."""
     case = load_case(CASES / "wedge_paper.toml")
     p = SimpleNamespace(**case.values)
     x = SimpleNamespace(weight_mass=0.235, finger_diameter=0.0031)
-    r2 = p.radius_ratio * p.flank_inner_radius
-    width = 2 * 0.235 / (p.density * p.sector_angle * (r2**2 - (r2 - p.weight_height) ** 2))
+    r1 = p.flank_inner_radius
+    r2, t = p.radius_ratio * r1, math.tan(p.flank_angle)
+    trapezoid = r1 * t * (r2**2 - r1**2) - 2 * t * (r2**3 - r1**3) / 3
+    width = (0.235 / (p.density * p.sector_angle) - trapezoid) / ((r2**2 - (r2 - p.weight_height) ** 2) / 2)
+    assert width == pytest.approx(0.0396538, rel=1e-5)  # (3.81354e-5 + 1.51838e-6) m^3 / 1e-3 m^2
     outputs = get_coupling("wedge").formulation("paper").outputs(x, p)
     assert outputs["envelope_length"].value == pytest.approx(width + p.shell_thickness, rel=1e-12)
     assert outputs["envelope_diameter"].value == pytest.approx(2 * (r2 + p.shell_thickness), rel=1e-12)

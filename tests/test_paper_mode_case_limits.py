@@ -144,7 +144,7 @@ def test_ball_motor_start_in_paper_mode_is_proven_infeasible_by_its_contact_stre
 # quantity, and whether paper mode poses it. Posed unless listed here, with the reason.
 OTHER_MODE = {"wedge": "geometry", "lever": "design", "cable": "threads"}
 NOT_POSED_IN_PAPER = {
-    "wedge": ("top_land_width", "finger_fits_width"),  # not yet: wedge/modes.py PAPER_MODE_LEAVES_OUT
+    "wedge": (),  # every rule, the width rules at the real weight's b(m_r) (weight_base_width)
     "lever": ("lever_length",),  # met by construction: the paper's l_2 is this rule at equality (paper_geometry)
     "cable": (),  # both modes are CableCoupling's one set of rules
 }
@@ -155,16 +155,17 @@ WEIGHT_BODY_ROWS = {"wedge": ("torque", "flank_pressure", "finger_bending")}
 
 def _as_other_mode(coupling, design, p):
     """The paper-mode design in the other mode's variables: the case's given geometry, the paper's rules for what
-    it derives (lever: l_2 and B_cp), the equivalent width of the wedge's weight (as its envelope takes it)."""
+    it derives (lever: l_2 and B_cp), the width of the wedge's real weight of mass m_r (weight_base_width)."""
     if coupling == "wedge":
-        from clutchopt.formulations.wedge.equations import equivalent_width
+        from clutchopt.formulations.wedge.equations import weight_base_width
 
         r2 = p.radius_ratio * p.flank_inner_radius
         return dict(design, flank_inner_radius=p.flank_inner_radius, radius_ratio=p.radius_ratio,
                     weight_height=p.weight_height, sector_angle=p.sector_angle, flank_angle=p.flank_angle,
                     weight_count=p.weight_count,
-                    weight_width=equivalent_width(design["weight_mass"], p.density, p.sector_angle, r2,
-                                                  p.weight_height))
+                    weight_width=weight_base_width(design["weight_mass"], r2 - p.weight_height,
+                                                   p.flank_inner_radius, r2, p.flank_angle, p.sector_angle,
+                                                   p.density))
     if coupling == "lever":
         from clutchopt.formulations.lever.paper import paper_geometry
 
@@ -174,15 +175,8 @@ def _as_other_mode(coupling, design, p):
     return dict(design)
 
 
-_WIDTH_RULES_BROKEN = pytest.mark.xfail(strict=True, reason="the paper-mode weights of the centrifuge and the fan are "
-                                        "4.9 and 5.5 mm wide with 10.5 and 15.4 mm fingers: they break top_land_width "
-                                        "and finger_fits_width, which paper mode does not pose yet (posed, both cases "
-                                        "are infeasible in paper mode: wedge/modes.py PAPER_MODE_LEAVES_OUT)")
-
-
 @pytest.mark.parametrize("path", [
-    pytest.param(p, id=p.stem, marks=_WIDTH_RULES_BROKEN if p.stem in ("wedge_centrifuge", "wedge_fan") else ())
-    for p in COUPLING_CASES if load_case(p).coupling in OTHER_MODE])
+    pytest.param(p, id=p.stem) for p in COUPLING_CASES if load_case(p).coupling in OTHER_MODE])
 def test_paper_mode_meets_every_rule_its_other_mode_poses(path):
     from types import SimpleNamespace
 
@@ -209,7 +203,7 @@ def test_paper_mode_meets_every_rule_its_other_mode_poses(path):
         assert posed[row.name].limit == pytest.approx(row.limit, rel=1e-12, abs=1e-15)
     if coupling == "lever":
         assert [row.name for row in left] == ["lever_length"] and left[0].margin == pytest.approx(0.0, abs=1e-12)
-    for row in left:  # last: the width rules the centrifuge and the fan break (the xfail above)
+    for row in left:
         assert row.feasible, f"{path.name}: {row.name} margin {row.margin:.3g} at the paper-mode design"
 
 
@@ -268,3 +262,37 @@ def test_lever_paper_mode_checks_that_the_linings_clear_the_flange_by_hand():
     assert short.diagnosis == "infeasible whatever the design: lining_clears_flange (short of its limit by 0.137 " \
                               "relative)"
     assert _rows(short)["lining_clears_flange"].margin == pytest.approx(-0.1375, rel=1e-12)
+
+
+def test_the_centrifuges_former_paper_geometry_is_proven_infeasible_by_its_width_rules():
+    """The centrifuge's geometry before it was made buildable (6 weights of 50 deg, h_r = 35 mm): torque (15) and
+    bending (19) ask m_r = 0.111542 kg and d_n = 10.4532 mm, and a weight of that mass is b(m_r) = 9.18 mm wide
+    (weight_base_width: r1 = 90, r2 = 112.5, r_in = 77.5 mm, t = tan 15 deg, gamma = 50 deg: (m_r / (rho gamma) - t
+    (r1 (r2^2 - r1^2) - 2/3 (r2^3 - r1^3))) / ((r2^2 - r_in^2) / 2)): top land 9.18 - 2 x 22.5 tan 15 deg = -2.88 mm,
+    a 10.5 mm finger in a 9.2 mm weight. A heavier weight is wider (b affine in m_r) but its finger thicker and its
+    flank pressure higher: no m_r, d_n meets every rule, proven, naming both width rules."""
+    r1, r2, r_in, t, gamma = 0.09, 0.1125, 0.0775, math.tan(math.radians(15)), math.radians(50)
+    b = (0.111542 / (7850 * gamma) - t * (r1 * (r2**2 - r1**2) - 2 / 3 * (r2**3 - r1**3))) / ((r2**2 - r_in**2) / 2)
+    assert b == pytest.approx(0.00918065, rel=1e-5) and b - 2 * (r2 - r1) * t < 0 and 0.5 * b < 0.0104532
+    former = load_case(CASES / "wedge_centrifuge.toml").with_values(weight_count=6, sector_angle=gamma,
+                                                                    weight_height=0.035)
+    solved = solve_case(former, "paper")
+    assert solved.status == "infeasible" and solved.diagnosis.startswith("proven infeasible")
+    assert "top_land_width" in solved.diagnosis and "finger_fits_width" in solved.diagnosis
+
+
+def test_paper_mode_width_rules_of_the_papers_example_by_hand():
+    """wedge_paper keeps its numbers, and its weight is buildable: m_r = 0.156873 kg (torque (15)), d_n = 5.46156 mm
+    (bending (19)); b(m_r) = 26.9755 mm (tests/test_wedge_closed_forms.py, by hand); top land 26.9755 - 2 x 10 mm x
+    tan 15 deg = 21.6165 mm, margin (21.6165 - 2) / 26.9755 = +0.727197; finger 5.46156 <= 0.5 x 26.9755 =
+    13.4877 mm, margin (13.4877 - 5.46156) / 26.9755 = +0.297536."""
+    solution = solve_case(load_case(CASES / "wedge_paper.toml"), "paper")
+    assert solution.status == "optimal"
+    assert solution.design["weight_mass"] == pytest.approx(0.156873, rel=1e-5)
+    assert solution.design["finger_diameter"] == pytest.approx(5.46156e-3, rel=1e-5)
+    assert solution.outputs["weight_width"].value == pytest.approx(0.0269755, rel=1e-5)
+    rows = _rows(solution)
+    assert rows["top_land_width"].value == pytest.approx(0.0216165, rel=1e-5)
+    assert rows["top_land_width"].margin == pytest.approx(0.727197, rel=1e-5)
+    assert rows["finger_fits_width"].limit == pytest.approx(0.0134877, rel=1e-5)
+    assert rows["finger_fits_width"].margin == pytest.approx(0.297536, rel=1e-5)

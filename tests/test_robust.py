@@ -125,9 +125,10 @@ def test_monte_carlo_is_vectorised_and_reproducible():
     first = failure_probabilities(solve_robust(case, WORST_CASE).formulation, design, case.params(), case.scatter, 1000)
     again = failure_probabilities(solve_robust(case, WORST_CASE).formulation, design, case.params(), case.scatter, 1000)
     assert first == again and set(first) == {"torque", "flank_pressure", "finger_bending", "weight_covers_flank",
-                                             "sectors_fit", "not_self_locking", "outer_diameter", "hub_clearance",
-                                             "finger_guide_length", "finger_fits_chord"}  # after the paper's three:
-    # the construction rules, in paper mode too (wedge/modes.py constructive_constraints)
+                                             "sectors_fit", "not_self_locking", "outer_diameter", "top_land_width",
+                                             "hub_clearance", "finger_fits_width", "finger_guide_length",
+                                             "finger_fits_chord"}  # after the paper's three: the construction
+    # rules, in paper mode too (wedge/modes.py constructive_constraints)
 
 
 def test_start_up_carries_the_scatter_to_its_worst_corner():
@@ -269,7 +270,8 @@ def test_solve_robust_json(cli):
     robust = data["robust"]
     assert set(robust["failure_probability"]) == {"torque", "flank_pressure", "finger_bending", "weight_covers_flank",
                                                   "sectors_fit", "not_self_locking", "outer_diameter",
-                                                  "hub_clearance", "finger_guide_length", "finger_fits_chord"}
+                                                  "top_land_width", "hub_clearance", "finger_fits_width",
+                                                  "finger_guide_length", "finger_fits_chord"}
     p, low, high = robust["nominal_failure_probability"]["torque"]
     assert low <= p <= high and p > 0.4
     assert robust["corners"]["torque"]["friction_coefficient"] == 0.12  # the nominal design fails at f_min

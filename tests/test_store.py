@@ -11,9 +11,12 @@ import time
 from contextlib import closing
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pytest
 
+from clutchopt.cases import load_case
+from clutchopt.optimise import solve_case
 from clutchopt.store import RunStore
 from conftest import CASES, ROOT
 from store_rows import forget_points, sweep_points as _stored
@@ -107,7 +110,10 @@ def test_killed_sweep_resumes_without_losing_duplicating_or_recomputing(run_stor
     assert after[:len(before)] == before  # finished points untouched, not solved again
     assert sorted(point for _, point, _ in after) == list(range(5000))  # none lost, none twice
     frame = pd.read_csv(out, skiprows=1)  # below the sweep's identification
-    assert len(frame) == 5000 and (frame["status"] == "optimal").all()
+    failed = frame[frame["status"] != "optimal"]  # proven infeasible where the flank pressure caps m_r below the mass
+    # whose real weight is wide enough for its finger (fast and low [p]; the README's sweep, docs/errata.md)
+    assert len(frame) == 5000 and 0 < len(failed) < 50 and (failed["status"] == "infeasible").all()
+    assert (failed["speed [rpm]"] > 2800).all() and (failed["allowable_pressure [MPa]"] < 2.5).all()
     with RunStore(run_store) as store:
         assert len(store.sweeps()) == 1
 
@@ -293,7 +299,14 @@ def test_a_store_of_a_row_per_point_is_read_and_resumed(tmp_path, capsys):
     assert main(["runs", "export", "-o", str(tmp_path / "resumed.csv"), "--store", str(store)]) == 0
     older, resumed = pd.read_csv(tmp_path / "older.csv"), pd.read_csv(tmp_path / "resumed.csv")
     assert list(resumed.columns) == list(older.columns) and len(resumed) == len(older) == 13
-    pd.testing.assert_series_equal(resumed["mass [kg]"], older["mass [kg]"], rtol=1e-8)
+    # the points it kept as recorded; those it solved again as this version solves them: from 1864 rpm on, the
+    # finger's width sets the weight (finger_fits_width at b(m_r), posed in paper mode since the older store)
+    kept = resumed["mass [kg]"].to_numpy()[:7]
+    pd.testing.assert_series_equal(pd.Series(kept), pd.Series(older["mass [kg]"].to_numpy()[:7]), rtol=1e-8)
+    case = load_case(CASES / "wedge_paper.toml")
+    for k, speed in enumerate(np.linspace(500, 3000, 12)[6:], start=7):
+        assert resumed["mass [kg]"][k] == pytest.approx(solve_case(case.with_values(speed=speed * math.pi / 30))
+                                                        .objective, rel=1e-8)
 
 
 def test_a_process_keeps_its_stores_connection_and_sees_what_others_changed(tmp_path):

@@ -123,7 +123,10 @@ def test_kill_9_at_random_moments_then_resume_loses_and_duplicates_nothing(tmp_p
     with sqlite3.connect(store) as db:
         assert db.execute("PRAGMA integrity_check").fetchone()[0] == "ok"
     resumed, reference = pd.read_csv(out, skiprows=1), _reference(GRID)  # below the sweep's identification
-    assert (resumed["status"] == "optimal").all()
+    # the uninterrupted run's statuses: optimal but where the flank pressure caps m_r below the mass whose real weight
+    # is wide enough for its finger, proven infeasible (fast, low [p]; docs/errata.md)
+    assert resumed["status"].tolist() == reference["status"].tolist()
+    assert (resumed["status"] == "optimal").mean() > 0.99 and set(resumed["status"]) == {"optimal", "infeasible"}
     # bit for bit: each resume starts its first window from what the uninterrupted run started it from
     # (optimise/batch_carried.py, stored with the window before; tests/test_resume_agrees.py)
     pd.testing.assert_series_equal(resumed["mass [kg]"], reference["mass [kg]"], check_exact=True)
@@ -416,7 +419,7 @@ def test_read_only_store_file(shared_folder, tmp_path):
     assert warnings == [f"warning: this run will not be recorded: {store}: the file is read-only; record "
                         "elsewhere with --store OTHER.sqlite"], text
     code, text = _as_a_user(["sweep", CASE, *SMALL, "--quiet", "--store", str(store)], tmp_path)
-    assert code == 0 and "150 optimal" in text and "recorded as sweep" not in text, text
+    assert code == 0 and "150 points, 149 optimal, 1 infeasible" in text and "recorded as sweep" not in text, text
     code, text = _as_a_user(["runs", "list", "--store", str(store)], tmp_path)
     assert code == 0 and " solve " in text, text
     assert store.read_bytes() == before

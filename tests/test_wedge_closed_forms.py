@@ -3,12 +3,14 @@
 import math
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy import integrate
 
 from clutchopt.cases import load_case
 from clutchopt.formulations.duty import required_torque
 from clutchopt.formulations.wedge.closed_forms import closed_form_finger_diameter, closed_form_weight_mass
-from clutchopt.formulations.wedge.equations import flank_pressure, self_locking_angle, weight_body
+from clutchopt.formulations.wedge.equations import flank_pressure, self_locking_angle, weight_base_width, weight_body
 from clutchopt.formulations.wedge.paper import paper_eq27_first_form, paper_eq27_second_form, paper_eq28
 from tests.conftest import CASES
 
@@ -82,6 +84,34 @@ def test_weight_body_matches_numerical_integration():
     got_mass, got_centroid = weight_body(r_in, r1, r2, b, alpha, gamma, rho)
     assert got_mass == pytest.approx(mass, rel=1e-9)
     assert got_centroid == pytest.approx(moment / mass, rel=1e-9)
+
+
+def test_weight_base_width_of_the_papers_example_by_hand():
+    # m = rho gamma [b (r2^2 - r_in^2)/2 + r1 t (r2^2 - r1^2) - 2 t (r2^3 - r1^3)/3], t = tan(alpha): at m_r = M_R
+    # (0.156873 kg), m_r / (rho gamma) = 2.54571e-5 m^3, the trapezoid's term t (50 mm (60^2 - 50^2) mm^2
+    # - 2/3 (60^3 - 50^3) mm^3) = 0.267949 x (-5.66667e-6) = -1.51838e-6 m^3, (r2^2 - r_in^2)/2 = 1e-3 m^2
+    t = math.tan(ALPHA)
+    trapezoid = t * (R1 * (R2**2 - R1**2) - 2 / 3 * (R2**3 - R1**3))
+    assert trapezoid == pytest.approx(-1.51838e-6, rel=1e-5)
+    b = (M_R / (7850 * GAMMA) - trapezoid) / ((R2**2 - (R2 - H_R) ** 2) / 2)
+    assert b == pytest.approx(0.0269755, rel=1e-5)  # wider than the rectangular sector's 25.457 mm
+    assert weight_base_width(M_R, R2 - H_R, R1, R2, ALPHA, GAMMA, 7850.0) == pytest.approx(b, rel=1e-12)
+
+
+@settings(max_examples=200, deadline=None)
+@given(r1=st.floats(0.005, 1.0), ratio=st.floats(1.1, 1.35), inner=st.floats(0.0, 0.95),
+       alpha=st.floats(math.radians(5), math.radians(45)), gamma=st.floats(math.radians(5), math.radians(170)),
+       rho=st.floats(1000.0, 20000.0), extra=st.floats(1e-3, 10.0))
+def test_weight_base_width_inverts_weight_body(r1, ratio, inner, alpha, gamma, rho, extra):
+    """b(m) is weight_body's mass solved for b (affine in b): weight_body at b(m) has mass m, to 1e-12."""
+    r2 = ratio * r1
+    r_in = inner * r1  # below r1: the weight covers its flanks (26)
+    top_width = 2 * (r2 - r1) * math.tan(alpha)  # b at which the top land closes
+    b = top_width * (1 + extra)
+    mass = weight_body(r_in, r1, r2, b, alpha, gamma, rho)[0]
+    assert weight_base_width(mass, r_in, r1, r2, alpha, gamma, rho) == pytest.approx(b, rel=1e-12)
+    assert weight_body(r_in, r1, r2, weight_base_width(mass, r_in, r1, r2, alpha, gamma, rho), alpha, gamma,
+                       rho)[0] == pytest.approx(mass, rel=1e-12)
 
 
 def test_rectangular_sector_centroid_is_the_textbook_one():

@@ -77,10 +77,21 @@ def weight_body(r_in, r1, r2, width, flank_angle, sector_angle, density):
     return mass, centroid
 
 
-def equivalent_width(weight_mass, density, sector_angle, r2, weight_height):
-    """b = 2 m_r / (rho gamma (r2^2 - (r2 - h_r)^2)): the axial width of an annular sector r2 - h_r..r2 of mass m_r,
-    the width a paper-mode weight (mass free, width not posed) takes in the envelope (docs/envelope.md)."""
-    return 2.0 * weight_mass / (density * sector_angle * (r2**2 - (r2 - weight_height) ** 2))
+def weight_base_width(weight_mass, r_in, r1, r2, flank_angle, sector_angle, density):
+    """b of the weight of ``weight_body`` that has mass m_r: its mass is affine in b, so b(m_r) is closed form.
+
+    With t = tan(alpha), the width w(r) = b on r_in..r1 and b - 2 t (r - r1) on r1..r2, weight_body's
+    m = rho gamma int w r dr = rho gamma [b (r2^2 - r_in^2)/2 + r1 t (r2^2 - r1^2) - 2 t (r2^3 - r1^3)/3], so
+        b = (m_r / (rho gamma) - t (r1 (r2^2 - r1^2) - 2/3 (r2^3 - r1^3))) / ((r2^2 - r_in^2) / 2).
+    The trapezoid's term is negative (the top narrows), so b exceeds the width 2 m_r / (rho gamma (r2^2 - r_in^2))
+    of a rectangular sector of that mass. By hand, the paper's example (r_in 40, r1 50, r2 60 mm, alpha 15 deg,
+    gamma 0.785, rho 7850, m_r 0.156873 kg): m_r / (rho gamma) = 2.54571e-5 m^3, the trapezoid's term
+    -1.51838e-6 m^3, (r2^2 - r_in^2)/2 = 1e-3 m^2: b = 26.976 mm (a rectangular sector: 25.457 mm).
+    Paper mode's weight (m_r free, geometry given) has this width: its envelope and its width rules read it.
+    """
+    t = tan(flank_angle)
+    trapezoid = t * (r1 * (r2**2 - r1**2) - 2.0 * (r2**3 - r1**3) / 3.0)
+    return (weight_mass / (density * sector_angle) - trapezoid) / ((r2**2 - r_in**2) / 2.0)
 
 
 def cost(p, total_mass, weight_count, flank_area_one_side):

@@ -6,9 +6,9 @@ import math
 
 from clutchopt.backend import sin, tan
 from clutchopt.formulations.wedge.equations import (
-    equivalent_width,
     paper_centroid_radius,
     self_locking_angle,
+    weight_base_width,
     weight_body,
 )
 from clutchopt.formulations.wedge.weight_set import MODEL, WeightSet
@@ -23,12 +23,14 @@ PAPER_VARIABLES = (
 
 
 def paper_weight_set(x, p):
-    """The weights of the paper's geometry, r_c = r2 - 2/3 h_r (11)."""
+    """The weights of the paper's geometry, r_c = r2 - 2/3 h_r (11); the width b that a real weight of that geometry
+    (``weight_body``) has at mass m_r (``weight_base_width``)."""
     r1 = p.flank_inner_radius
     r2 = p.radius_ratio * r1
+    width = weight_base_width(x.weight_mass, r2 - p.weight_height, r1, r2, p.flank_angle, p.sector_angle, p.density)
     return WeightSet(p.weight_count, r1, r2, p.flank_angle, p.sector_angle, x.weight_mass,
                      paper_centroid_radius(r2, p.weight_height), x.finger_diameter, p.speed, p.friction_coefficient,
-                     p.weight_height, equivalent_width(x.weight_mass, p.density, p.sector_angle, r2, p.weight_height))
+                     p.weight_height, width)
 
 
 def constructive_constraints(w: WeightSet, x, p):
@@ -39,10 +41,8 @@ def constructive_constraints(w: WeightSet, x, p):
     In geometry mode they bound the free geometry. In paper mode the geometry is given and only m_r and d_n move:
     the rows that read neither (26, sectors, release, housing, hub) are fixed by the case (one it breaks is
     infeasible whatever the design); the finger's guide and chord read d_n. The top land and the finger's fit
-    read the weight's width b, in paper mode the equivalent width of a rectangular annular sector of mass m_r
-    (``equivalent_width``, the envelope's): a real weight of that mass with the trapezoidal top is wider at its
-    base, so there the two rows would be sufficient for it; paper mode leaves them out for now
-    (``PAPER_MODE_LEAVES_OUT``)."""
+    read the weight's width b, in paper mode that of the real weight of mass m_r on the given geometry
+    (``weight_base_width``): exact, as in geometry mode."""
     r_in, b = w.r2 - w.height, w.width
     return [
         at_least("weight_covers_flank", w.height, w.r2 - w.r1, equation="(26)", unit="mm", scale=w.r1,
@@ -66,21 +66,12 @@ def constructive_constraints(w: WeightSet, x, p):
     ]
 
 
-# Not yet posed in paper mode: the two rules that read the weight's width b. The paper-mode optima of
-# cases/wedge_centrifuge.toml and cases/wedge_fan.toml break both (their weights, 4.9 and 5.5 mm wide, carry fingers
-# of 10.5 and 15.4 mm), and no m_r meets them within [p] there: posed, both cases are infeasible in paper mode
-# (proven), which takes the subject from the robust and reliability studies built on the centrifuge's paper mode
-# (docs/robust.md, README, benchmarks). Open in docs/errata.md; tests/test_paper_mode_case_limits.py holds the strict
-# xfail that turns when they are posed.
-PAPER_MODE_LEAVES_OUT = ("top_land_width", "finger_fits_width")
-
-
-def _paper_constructive_constraints(w: WeightSet, x, p):
-    return [c for c in constructive_constraints(w, x, p) if c.name not in PAPER_MODE_LEAVES_OUT]
+def _paper_outputs(w: WeightSet, x, p):
+    return {"weight_width": Output(w.width, "mm", "b of the real weight of mass m_r (weight_base_width)")}
 
 
 PAPER = MODEL.formulation("paper", "Wedge CFC, paper assumptions: geometry given, m_r and d_n free",
-                          PAPER_VARIABLES, paper_weight_set, _paper_constructive_constraints)
+                          PAPER_VARIABLES, paper_weight_set, constructive_constraints, _paper_outputs)
 
 
 # --- Geometry mode: weights as real bodies -------------------------------------------------------------------------
