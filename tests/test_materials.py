@@ -130,10 +130,18 @@ def test_a_missing_field_the_library_could_fill_says_so():
 def test_choose_solves_every_pair_and_ranks_them_by_the_closed_form():
     """Wedge, paper mode: m_r = 2 T_max sin(alpha) / (f z (r1 + r2) w^2 r_c) (eq. 27, consistent), so the weight
     mass goes as 1/f and the finger, sized by F_fr = T_max / (z (r1 + r2)/2), not at all: the steel pair
-    (f = 0.18) needs 0.07 / 0.18 of the weight the oiled bronze (f = 0.07) needs, and comes first."""
+    (f = 0.18) needs 0.07 / 0.18 of the weight the oiled bronze (f = 0.07) needs, and comes first. That holds while
+    the finger fits its weight: with the template's finger_fit_ratio 0.5 the steel weight that carries the torque is
+    too narrow for its finger (d_n <= 0.5 b(m_r)), so its mass is the finger's fit's (still lighter, still first);
+    with a ratio of 1 the torque sizes both."""
     data = tomllib.loads(case_template("wedge"))  # the paper's duty on 70 mm flanks (steel: q within 0.25 MPa)
     del data["library"]["friction_pair"]
     data["options"] = {"choose": {"friction_pair": ["sintered_bronze_oiled", "steel_steel_dry"]}}
+    fitted = design_case(parse_case(data))
+    assert [d.choice["friction_pair"] for d in fitted] == ["steel_steel_dry", "sintered_bronze_oiled"]
+    assert [sorted(c.name for c in d.solution.constraints if c.active) for d in fitted] == [
+        ["finger_bending", "finger_fits_width"], ["finger_bending", "torque"]]
+    data.setdefault("limits", {})["finger_fit_ratio"] = 1.0
     ranked = design_case(parse_case(data))
     assert [d.choice["friction_pair"] for d in ranked] == ["steel_steel_dry", "sintered_bronze_oiled"]
     steel, bronze = (d.solution for d in ranked)
