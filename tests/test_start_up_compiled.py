@@ -129,3 +129,19 @@ def test_a_link_is_read_only_where_it_names_a_library_of_the_cache(monkeypatch, 
                                                                             tmp_path / ("nlp-" + "a" * 32 + ".so"))):
         link.write_text(name)
         assert later.linked_library(problem.posed) == expected
+
+
+@pytest.mark.skipif(compiled.compiler() is None, reason="no C compiler here (solves stay on the virtual machine)")
+def test_a_library_of_another_nlp_is_not_used(monkeypatch, tmp_path):
+    # a link left by a build of another NLP (one whose rows differ: IPOPT refused the first call, "Input 4 (lbg) has
+    # mismatching shape", an internal error in a start-up sweep) names a library whose oracle has other shapes: the
+    # problem keeps its own functions and solves as before
+    monkeypatch.setenv(compiled.CACHE_ENV, str(tmp_path / "cache"))
+    monkeypatch.setenv(later.BUILD_LATER_ENV, "0")
+    paper, case = _problem_and_case()
+    library = later.compiled_now(paper.posed)
+    geometry = Problem(case_formulation(case, "geometry"))
+    reference = geometry.solve(case)
+    assert library is not None and geometry.posed.use_compiled(library) is False and geometry.posed.library is None
+    again = geometry.solve(case)
+    assert again.status == reference.status == "optimal" and again.objective == reference.objective

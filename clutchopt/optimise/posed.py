@@ -188,9 +188,14 @@ class Posed:
     def use_compiled(self, library: str) -> bool:
         """This problem's IPOPT solvers built again over ``library``, its NLP's functions compiled (the same operations
         in the same order: the same numbers; a start-up sweep's, :mod:`clutchopt.optimise.start_up_compiled`), and
-        those built later too; False (nothing changed) where the library does not load."""
+        those built later too; False (nothing changed) where the library does not load or is another NLP's (its
+        oracle's shapes not this one's: a link left from a build of another NLP, which IPOPT would refuse at its first
+        call)."""
         solvers = self._built["solver"]
         try:
+            oracle = ca.external("nlp", library)
+            if [oracle.size_in(i) for i in (0, 1)] + [oracle.size_out(1)] != [self.nlp[k].shape for k in "xpg"]:
+                return False
             rebuilt = {method: ca.nlpsol(solvers[method].name(), "ipopt", library, self.ipopt_options(method))
                        for method in IPOPT_METHODS if method in solvers}
         except RuntimeError:  # (a damaged cache)
