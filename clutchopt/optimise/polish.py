@@ -24,7 +24,6 @@ a third of the polish.
 
 from __future__ import annotations
 
-import casadi as ca
 import numpy as np
 
 from clutchopt.optimise.attempts import Run, attempt, warm_multipliers
@@ -50,17 +49,6 @@ DEPENDENT = 1e-8  # a row's unit gradient this near (least singular value) the s
 #                   case file in each mode have least singular values 1.3e-3 (the ball's design mode) to 0.9
 
 
-def _derivatives(posed: Posed) -> ca.Function:
-    """(x, p) -> (d g / d x of the inequality rows, d f / d x) of the scaled NLP, built once per problem."""
-    def build(number):
-        x, p = ca.SX.sym("x", posed.nlp["x"].shape[0]), ca.SX.sym("p", posed.nlp["p"].shape[0])
-        g, f = ca.Function("gf", [posed.nlp["x"], posed.nlp["p"]],
-                           [posed.nlp["g"][: posed.n_ineq], posed.nlp["f"]])(x, p)
-        return ca.Function(f"polish_derivatives_{number}", [x, p], [ca.jacobian(g, x), ca.gradient(f, x)])
-
-    return posed.built("polish_derivatives", None, build)
-
-
 def without_dependent_rows(posed: Posed, data: ScaledData, x: np.ndarray, g: np.ndarray, lam_x: np.ndarray,
                            lam_g: np.ndarray, lbx: np.ndarray, ubx: np.ndarray):
     """The active rows to leave out of the polish and the multipliers to start it from: ``(dropped, lam_x, lam_g)``.
@@ -77,7 +65,9 @@ def without_dependent_rows(posed: Posed, data: ScaledData, x: np.ndarray, g: np.
     bounds = np.flatnonzero((lam_x != 0) & ((x == lbx) | (x == ubx)))
     if len(active) + len(bounds) < 2:
         return dropped, lam_x, lam_g
-    jacobian, gradient = (m.full() for m in _derivatives(posed)(x, data.p))
+    derivatives = posed.derivatives()  # (IPOPT's own, of the run being polished: not derived again)
+    jacobian = derivatives["jac_g"](x, data.p)[1].full()[: posed.n_ineq]
+    gradient = derivatives["grad_f"](x, data.p)[1].full()
     kept = [row for row in np.eye(len(x))[bounds]]
     for i in sorted(active, key=lambda i: -abs(lam_g[i])):
         norm = np.linalg.norm(jacobian[i])
