@@ -117,29 +117,30 @@ class TwoSided:
 
     def posed(self, lam_g, p):
         """Named rows' multipliers (each >= 0 on its own row) as the solvers' (a two-sided row's signed)."""
-        if not self.pairs or _symbolic(p):
-            return self.posed_of(lam_g, p) if self.pairs else lam_g
-        one, _, ratio = self._at(p)
-        if not one.any():
-            return lam_g
-        kept, freed = self.kept[one], self.freed[one]
-        merged = np.array(lam_g, dtype=float)
-        merged[kept] = lam_g[kept] - lam_g[freed] / ratio[one]
-        merged[freed] = 0.0
-        return merged
+        return self._mapped(lam_g, p, "posed_of", lambda lam, kept, freed, ratio: (lam[kept] - lam[freed] / ratio,
+                                                                                    0.0))
 
     def named(self, lam_g, p):
         """The solvers' multipliers as the named rows' (a two-sided row's split by sign onto the side it presses)."""
-        if not self.pairs or _symbolic(p):
-            return self.named_of(lam_g, p) if self.pairs else lam_g
+        return self._mapped(lam_g, p, "named_of", lambda lam, kept, freed, ratio: (
+            np.maximum(lam[kept], 0.0), np.maximum(-lam[kept], 0.0) * ratio))
+
+    def _mapped(self, lam_g, p, symbolic: str, pair):
+        """``lam_g`` mapped at ``p``: by the CasADi map named ``symbolic`` (built where there are pairs; the chained
+        SQP's expressions), else in NumPy, each pair whose limits are one value given ``pair(lam_g, kept rows, other
+        rows, S_f / S_k)``'s values on its kept and other row (3-8 us a solver call; the CasADi map's call cost about
+        50); the identity where no pair is one row."""
+        if not self.pairs:
+            return lam_g
+        if _symbolic(p):
+            return getattr(self, symbolic)(lam_g, p)
         one, _, ratio = self._at(p)
         if not one.any():
             return lam_g
         kept, freed = self.kept[one], self.freed[one]
-        split = np.array(lam_g, dtype=float)
-        split[kept] = np.maximum(lam_g[kept], 0.0)
-        split[freed] = np.maximum(-lam_g[kept], 0.0) * ratio[one]
-        return split
+        mapped = np.array(lam_g, dtype=float)
+        mapped[kept], mapped[freed] = pair(lam_g, kept, freed, ratio[one])
+        return mapped
 
     def _at(self, p: np.ndarray) -> tuple[np.ndarray, ...]:
         """(whether the pair's limits are one value, the kept row's lower limit, S_f / S_k) of each pair at ``p``,
