@@ -268,7 +268,9 @@ def test_an_integer_choice_the_papers_sizing_finds_infeasible_is_not_solved_alon
     assert rows[2][22].startswith("excluded: infeasible in the papers' sizing at this point")
     alone = case_problem(ball).solve(ball.with_values(driven_inertia=vary.values[2]))
     assert alone.design["ball_rows"] == records[2]["design"]["ball_rows"] == 23
-    assert records[2]["objective"]["value"] == pytest.approx(alone.objective, rel=1e-9, abs=0)
+    # (the sweep reaches it warm, solve cold: equal to the start-up contract, 1e-6 relative; 3.6e-9 apart on one
+    # machine, within 1e-9 on the one the test was written on: the linear algebra's rounding differs between CPUs)
+    assert records[2]["objective"]["value"] == pytest.approx(alone.objective, rel=1e-6, abs=0)
     problem = case_problem(MOTOR)
     key = sized_out(problem, MOTOR, None).key
     assert sized_out(problem, MOTOR, SimpleNamespace(sized=SizedOut(key))).choices == {}
