@@ -2,10 +2,13 @@
 (clutchopt/optimise/failed_starts.py), and a sweep's warm start that fails ends there (``cold=False``): ``solve``'s
 own cold start from the papers' sizing follows."""
 
+import re
+
 import numpy as np
 import pytest
 
 from clutchopt.cases import load_case
+from clutchopt.optimise import diagnosis
 from clutchopt.optimise.problem import case_problem
 from clutchopt.optimise.start_up_sweep import solved_along
 from tests.conftest import CASES
@@ -65,8 +68,11 @@ def test_an_elastic_problem_that_does_not_converge_says_so_and_names_no_reason()
     case = load_case(CASES / "ball_motor_start.toml")
     solution = case_problem(case).solve(case.with_values(driven_inertia=375.0 * (0.6 + 0.8 * 18 / 19)))
     assert solution.status == "not_found"
-    assert "(where the elastic problem stopped, not converged: Maximum_Iterations_Exceeded after 200 iterations)" \
-        in solution.diagnosis
+    # (at its limit on one CPU; Infeasible_Problem_Detected after 134 on another: the last bits of IPOPT's iterates
+    # differ between machines, and either way the problem is stopped by 200 and named as not converged)
+    stopped = re.search(r"\(where the elastic problem stopped, not converged: (\w+) after (\d+) iterations\)",
+                        solution.diagnosis)
+    assert stopped and stopped[1] != "Solve_Succeeded" and int(stopped[2]) <= diagnosis.ELASTIC_ITERATIONS == 200
     assert solution.diagnosed.violated == ()
 
 
