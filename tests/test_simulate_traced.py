@@ -10,7 +10,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from clutchopt.backend import sqrt, where
+from clutchopt.backend import fmax, fmin, sqrt, where
 from clutchopt.simulate.engine import Model, _Run
 from clutchopt.simulate.laws import CentrifugalFriction, InductionMotor, Load, PaperFriction, positive_part
 from clutchopt.simulate.on_floats import family, parametrised
@@ -148,6 +148,15 @@ def test_a_branch_written_with_fmax_is_traced_and_equal_to_the_number_s_branch()
     fast = family(lambda w: law.kinetic(w, 0.0), (0,))(None)
     assert [fast(w) for w in (0.0, 29.0, 30.0, 31.0)] == [0.0, 0.0, 0.0, 0.01 * (961.0 - 900.0)]
     assert [fast(w) for w in (29.0, 31.0)] == [law.kinetic(w, 0.0) for w in (29.0, 31.0)]
+
+
+def test_fmax_and_fmin_written_out_give_numpy_s_maximum_and_minimum_nan_included():
+    # written in place in the source (not a call): the larger / smaller operand, a NaN on either side propagated,
+    # as numpy.maximum and numpy.minimum (and CasADi's fmax and fmin) give them
+    both = family(lambda a, b: [fmax(a, b), fmin(a, b)], (0, 0))(None)
+    for a, b in ((1.0, 2.0), (2.0, 1.0), (-0.0, 0.0), (math.nan, 1.0), (1.0, math.nan), (-math.inf, 3.0)):
+        expected = [float(np.maximum(a, b)), float(np.minimum(a, b))]
+        assert all(v == e or (math.isnan(v) and math.isnan(e)) for v, e in zip(both(a, b), expected)), (a, b)
 
 
 @pytest.mark.parametrize("kind", ["rest", "slip", "stick"])
