@@ -23,7 +23,7 @@ RUN = attempts.run
 MAIN_RUNS = [11, 9, 35, 19, 12, 21, 9, 4, 10]  # the start-up IPOPT runs' iterations when every count was solved
 
 
-def solved(monkeypatch, bound: bool = True):
+def solved(monkeypatch, bound: bool = True, mode: str | None = None):
     """cable_motor_start solved, with its start-up runs (posed, data, run) recorded; ``bound=False``: unrefuted."""
     runs, run = [], RUN
 
@@ -36,7 +36,7 @@ def solved(monkeypatch, bound: bool = True):
     monkeypatch.setattr(attempts, "run", recorded)
     if not bound:
         monkeypatch.setattr(integers, "refuted", lambda *args: [])
-    return solve_case(CABLE), runs
+    return solve_case(CABLE, mode=mode), runs
 
 
 def test_6_cables_and_7_at_their_own_limit_are_refuted_unsolved_the_design_the_same(monkeypatch):
@@ -98,8 +98,17 @@ def test_the_least_stress_is_below_each_design_s_and_refutes_6_cables_only(monke
     moved = np.clip(relaxed["x"], lbx, ubx)
     moved[len(data.scale):] *= 1.001  # the speeds of another drive (a sweep's neighbour)
     assert refuted(posed, data, moved, lbx, ubx) == []
-    free = namespace({"cable_count": 6.0, "weight_lead_angle": math.nan})  # the weights' stiffness unknown: no bound
-    assert np.all(law.least_stress(free, data.params, speeds, torque) == 0.0)
+
+
+def test_threads_mode_its_weight_thread_free_refutes_the_same_counts(monkeypatch):
+    """In threads mode the weight's lead angle is free; its row weight_thread_not_self_locking keeps the weights'
+    pull a tension in every design the NLP admits, so the bound holds: 6 cables (43 iterations) and 7 at their own
+    moved limit (34) refuted, 9 runs to 7, the design the same to the last bit (3.6547255064507436 kg)."""
+    with monkeypatch.context() as patched:
+        unbounded, before = solved(patched, bound=False, mode="threads")
+    solution, runs = solved(monkeypatch, mode="threads")
+    assert [r["iterations"] for *_, r in before][2:4] == [43, 34] and len(runs) == len(before) - 2
+    assert solution.objective == unbounded.objective == 3.6547255064507436 and solution.design == unbounded.design
 
 
 def test_a_count_excluded_at_its_own_limit_is_its_own_verdict():

@@ -78,16 +78,14 @@ BISECTIONS = 60  # halvings of [0, 2 psi] for the twist of the least tension (to
 
 def least_link_stress(x, p, speed, torque):
     """A lower bound on the stress with which x.cable_count cables carry ``torque`` (an array, N*m) at any driving
-    speed, whatever the weights: their pull only adds tension (travel >= 0 where the weight thread's stiffness
-    k_w > 0), which shortens the twist that carries the torque and so needs more tension, N = T (4 psi^2 +
-    theta^2) / (z l theta), falling as theta grows; the cables' own tension N_0 + stretch(theta) grows with it. So
-    the least N is where the two meet, or, where the cables' own tension at the largest twist 2 psi cannot carry T,
-    4 psi T / (z l) there (the weights' pull making up the rest); the twist is bisected, the bound taken at its
-    upper end. Zeros (no bound) where k_w is not known positive (``x.weight_lead_angle`` free: NaN)."""
-    phi = reduced_friction_angle(p.friction_coefficient, p.flank_angle)
+    speed, whatever the other design variables: the weights' pull only adds tension (their travel is >= 0 in every
+    design the NLP admits: its row weight_thread_not_self_locking keeps beta_w above phi', where the weight thread's
+    stiffness k_w is positive), which shortens the twist that carries the torque and so needs more tension,
+    N = T (4 psi^2 + theta^2) / (z l theta), falling as theta grows; the cables' own tension N_0 + stretch(theta)
+    grows with it. So the least N is where the two meet, or, where the cables' own tension at the largest twist 2 psi
+    cannot carry T, 4 psi T / (z l) there (the weights' pull making up the rest); the twist is bisected, the bound
+    taken at its upper end."""
     torque = np.maximum(np.asarray(torque, dtype=float), 0.0)
-    if not weight_stiffness(p, x.weight_lead_angle, phi) > 0.0:
-        return np.zeros_like(torque)
     ratio = length_ratio(p.span, p.finger_circle_diameter)
 
     def needed(twist):
