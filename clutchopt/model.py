@@ -245,7 +245,10 @@ class ElasticLaw:
     ``torque``: torque through the link, N*m; ``stress``: the most loaded element's stress, Pa, checked against
     ``stress_limit`` (the name of the case quantity that bounds it in a start); ``stiffness``: dT/dtheta at
     theta = 0 and w_a, N*m/rad (the reference of the link's damping); ``damping_ratio``: (x, p) -> its equivalent
-    viscous damping ratio; ``largest_twist``: (x, p) -> the twist up to which the torque grows with it.
+    viscous damping ratio; ``largest_twist``: (x, p) -> the twist up to which the torque grows with it;
+    ``least_stress``: (x, p, w_a, T) -> a lower bound on the stress with which the link carries the torque T at w_a
+    (arrays), whatever the design variables ``x`` leaves NaN (free), the twist within ``largest_twist``; None: no
+    bound known.
     """
 
     torque: Callable[..., Any]
@@ -254,6 +257,7 @@ class ElasticLaw:
     damping_ratio: Callable[[SimpleNamespace, SimpleNamespace], Any]
     largest_twist: Callable[[SimpleNamespace, SimpleNamespace], Any]
     stress_limit: str
+    least_stress: Callable[..., Any] | None = None
 
 
 @dataclass

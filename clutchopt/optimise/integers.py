@@ -21,6 +21,7 @@ from typing import Callable
 import numpy as np
 
 import clutchopt.optimise.attempts as attempts
+from clutchopt.optimise.link_bound import refuted
 from clutchopt.optimise.posed import Box, Posed, ScaledData, scaled_box
 from clutchopt.optimise.verify import FEASIBILITY_TOL
 
@@ -175,9 +176,10 @@ def fixing(posed: Posed, data: ScaledData, runs: list[dict], search: list[dict],
     """``Problem.solve``'s ``attempt`` for :func:`descend`: the NLP on ``data`` with the free integers fixed at
     ``combo``, the run if it is a verified-feasible optimum, else None. A combination that violates a constraint
     depending on the integers and fixed variables alone is excluded without a solve, so is one ``ruled`` rules out
-    (and records those found infeasible). Every run goes into ``runs``. In a start-up, a run that ends without a
-    verdict on the choice (:func:`no_verdict`) is tried once more, cold from the solve's own start (``data.x0``:
-    the papers' sizing, or the warm design), those integers fixed."""
+    (and records those found infeasible) and an elastic link's whose least stress at the seed's nodes is over its
+    limit (:func:`~clutchopt.optimise.link_bound.refuted`). Every run goes into ``runs``. In a start-up, a run that
+    ends without a verdict on the choice (:func:`no_verdict`) is tried once more, cold from the solve's own start
+    (``data.x0``: the papers' sizing, or the warm design), those integers fixed."""
     integer = posed.free_integers(data)
 
     def fixed_at(combo, seed, methods: tuple[str, ...] = ("ipopt",)) -> dict | None:
@@ -185,7 +187,8 @@ def fixing(posed: Posed, data: ScaledData, runs: list[dict], search: list[dict],
         lower[integer] = upper[integer] = combo
         lbx, ubx = scaled_box(lower, upper, data.scale, (data.internal_lower, data.internal_upper))
         x0 = np.clip(seed["x"], lbx, ubx)
-        excluded = violated_whatever_the_rest(posed, data.p, lbx, ubx, x0) or (ruled.reason(combo) if ruled else [])
+        excluded = (violated_whatever_the_rest(posed, data.p, lbx, ubx, x0)
+                    or (ruled.reason(combo) if ruled else []) or refuted(posed, data, x0, lbx, ubx))
         if excluded:
             search.append(excluded_entry(posed, integer, combo, excluded))
             return None

@@ -72,10 +72,15 @@ def with_modifiers(formulation):
                    variant=f"{formulation.variant} {VARIANT}".strip())
 
 
+def modifiers_in(p) -> bool:
+    """Whether the case values ``p`` carry modifiers (a problem built :func:`with_modifiers`)."""
+    return any(hasattr(p, offset_name(limit)) for limit in LIMIT_OF)
+
+
 def modified(constraints: list, x, p) -> list:
     """The start-up ``constraints`` with each start-up limit's figure corrected by its modifier, where ``p`` has
     them (a problem built :func:`with_modifiers`): value + offset + sum of slope x variable. Others as they are."""
-    if not any(hasattr(p, offset_name(limit)) for limit in LIMIT_OF):
+    if not modifiers_in(p):
         return constraints
     out = []
     for c in constraints:

@@ -67,9 +67,9 @@ class ForeignShifts:
             if not all(name in entry for name in self.names):
                 continue
             combo = tuple(float(entry[name]) for name in self.names)
-            if entry["status"] == SOLVED or entry["status"].startswith("excluded"):
+            if entry["status"] == SOLVED:
                 continue
-            if self.measured <= {combo}:
+            if self.measured <= {combo}:  # (excluded without a solve, too: a verdict at these limits)
                 self.own.add(combo)
             elif math.isfinite(entry["objective"]):
                 self.found[combo] = min(self.found.get(combo, math.inf), entry["objective"])

@@ -3,6 +3,8 @@ driving speed and the twist of the halves (docs/cable.md, "Start-up")."""
 
 from __future__ import annotations
 
+import numpy as np
+
 from clutchopt.backend import fmax, sqrt, tan
 from clutchopt.formulations.cable.equations import (
     cable_diameter,
@@ -59,12 +61,46 @@ def link_torque(x, p, speed, twist):
     return x.cable_count * link_tension(x, p, speed, twist) * p.span * twist / (4.0 * ratio**2 + twist**2)
 
 
+def wire_area(p):
+    """A_s, the wire area of one cable (eq. 18)."""
+    ratio = length_ratio(p.span, p.finger_circle_diameter)
+    return cable_wire_area(p.area_ratio, cable_diameter(p.finger_circle_diameter, ratio, p.cable_coefficient,
+                                                        p.twist_angle))
+
+
 def link_stress(x, p, speed, twist):
     """sigma = N / A_s, the cable stress of eq. (18) with the tension of the start."""
+    return link_tension(x, p, speed, twist) / wire_area(p)
+
+
+BISECTIONS = 60  # halvings of [0, 2 psi] for the twist of the least tension (to 2 psi 2^-60: the float's own)
+
+
+def least_link_stress(x, p, speed, torque):
+    """A lower bound on the stress with which x.cable_count cables carry ``torque`` (an array, N*m) at any driving
+    speed, whatever the other design variables: the weights' pull only adds tension (their travel is >= 0 in every
+    design the NLP admits: its row weight_thread_not_self_locking keeps beta_w above phi', where the weight thread's
+    stiffness k_w is positive), which shortens the twist that carries the torque and so needs more tension,
+    N = T (4 psi^2 + theta^2) / (z l theta), falling as theta grows; the cables' own tension N_0 + stretch(theta)
+    grows with it. So the least N is where the two meet, or, where the cables' own tension at the largest twist 2 psi
+    cannot carry T, 4 psi T / (z l) there (the weights' pull making up the rest); the twist is bisected, the bound
+    taken at its upper end."""
+    torque = np.maximum(np.asarray(torque, dtype=float), 0.0)
     ratio = length_ratio(p.span, p.finger_circle_diameter)
-    area = cable_wire_area(p.area_ratio, cable_diameter(p.finger_circle_diameter, ratio, p.cable_coefficient,
-                                                        p.twist_angle))
-    return link_tension(x, p, speed, twist) / area
+
+    def needed(twist):
+        return torque * (4.0 * ratio**2 + twist**2) / (x.cable_count * p.span * twist)
+
+    def own(twist):
+        return cable_pretension(p.transverse_stiffness, p.span) + twist_stretch(p.longitudinal_stiffness, p.span,
+                                                                                 ratio, twist)
+
+    low, high = np.zeros_like(torque), np.full_like(torque, 2.0 * ratio)
+    for _ in range(BISECTIONS):
+        middle = 0.5 * (low + high)
+        short = own(middle) < needed(middle)
+        low, high = np.where(short, middle, low), np.where(short, high, middle)
+    return needed(high) / wire_area(p)
 
 
 def link_stiffness(x, p, speed):
@@ -80,4 +116,4 @@ def largest_twist(x, p):
 
 
 ELASTIC_LAW = ElasticLaw(link_torque, link_stress, link_stiffness, lambda x, p: p.damping_ratio, largest_twist,
-                         "allowable_cable_stress")
+                         "allowable_cable_stress", least_link_stress)

@@ -1,0 +1,124 @@
+"""An elastic link's integer choice refuted before its start-up NLP is solved (clutchopt.optimise.link_bound;
+docs/start_up.md, "An elastic link's count refuted by its least stress")."""
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+import clutchopt.optimise.attempts as attempts
+import clutchopt.optimise.integers as integers
+from clutchopt.cases import load_case
+from clutchopt.model import namespace
+from clutchopt.optimise.link_bound import refuted
+from clutchopt.optimise.own_shift import ForeignShifts
+from clutchopt.optimise.posed import scaled_box
+from clutchopt.optimise.problem import solve_case
+from clutchopt.start_up.drive import Drive
+from tests.conftest import CASES
+
+CABLE = load_case(CASES / "cable_motor_start.toml")
+RUN = attempts.run
+MAIN_RUNS = [11, 9, 35, 19, 12, 21, 9, 4, 10]  # the start-up IPOPT runs' iterations when every count was solved
+
+
+def solved(monkeypatch, bound: bool = True, mode: str | None = None):
+    """cable_motor_start solved, with its start-up runs (posed, data, run) recorded; ``bound=False``: unrefuted."""
+    runs, run = [], RUN
+
+    def recorded(posed, data, *args, **kwargs):
+        result = run(posed, data, *args, **kwargs)
+        if posed.start_up is not None:
+            runs.append((posed, data, result))
+        return result
+
+    monkeypatch.setattr(attempts, "run", recorded)
+    if not bound:
+        monkeypatch.setattr(integers, "refuted", lambda *args: [])
+    return solve_case(CABLE, mode=mode), runs
+
+
+def test_6_cables_and_7_at_their_own_limit_are_refuted_unsolved_the_design_the_same(monkeypatch):
+    """cable_motor_start's first NLP: the relaxation (11 iterations), 7 cables (9), then 6 cables from 7's optimum ran
+    35 iterations to Infeasible_Problem_Detected; at the stress limit 7 cables' start moved in (to 314.2 MPa), 7 cables
+    19 to the same. Their least stress at the nodes, 361.9 and 327.1 MPa, refutes both: 7 runs, 76 iterations (9 and
+    130), the design, its simulated start and every run that ends with a design the same to the last bit."""
+    with monkeypatch.context() as patched:
+        unbounded, before = solved(patched, bound=False)
+    solution, runs = solved(monkeypatch)
+    assert [r["iterations"] for *_, r in before] == MAIN_RUNS
+    assert [r["iterations"] for *_, r in runs] == [11, 9, 12, 21, 9, 4, 10]
+    assert (solution.solver.solves, unbounded.solver.solves) == (7, 9)
+    assert solution.status == "optimal" and solution.design["cable_count"] == 8.0
+    assert solution.objective == unbounded.objective == 3.952572919154992
+    assert solution.design == unbounded.design
+    assert solution.start_up["start_time_simulated"] == unbounded.start_up["start_time_simulated"]
+    kept = [r for i, (*_, r) in enumerate(before) if i not in (2, 3)]  # (6 cables, 7 at their own limit)
+    assert all(np.array_equal(a["x"], b["x"]) and a["status"] == b["status"]
+               for a, b in zip(kept, (r for *_, r in runs)))
+
+
+def fixed_at(posed, data, count):
+    lower, upper = data.lower.copy(), data.upper.copy()
+    i = posed.names.index("cable_count")
+    lower[i] = upper[i] = count
+    return scaled_box(lower, upper, data.scale, (data.internal_lower, data.internal_upper))
+
+
+def test_the_least_stress_is_below_each_design_s_and_refutes_6_cables_only(monkeypatch):
+    """At the relaxation's nodes (the first NLP's: the drive's rows met), the locked drive carries up to 207.4 N m;
+    6 cables carry it at no less than 361.9 MPa (over 350: refuted), 7, 8 and 9 at 327.1, 299.9 and 277.7 MPa. The
+    bound lies below the quasi-static stress of every design the NLP found (7, 8 and 9 cables, the relaxation), node
+    by node. A point whose speeds are not the NLP's (the drive's rows unmet) refutes nothing."""
+    _, runs = solved(monkeypatch)
+    posed, data, relaxed = runs[0]
+    law = posed.formulation.speed_law
+    least = {}
+    for count in (6, 7, 8, 9):
+        lbx, ubx = fixed_at(posed, data, count)
+        x0 = np.clip(relaxed["x"], lbx, ubx)
+        assert refuted(posed, data, x0, lbx, ubx) == (["link_stress"] if count == 6 else [])
+        _, times, speeds, *_ = (path.full().ravel()[1:] for path in posed.start_up_figures(x0, data.p))
+        x = namespace({"cable_count": float(count), "weight_lead_angle": data.params.weight_lead_angle})
+        torque = Drive(posed.start_up.s, law, x, data.params).carried(speeds, times)
+        least[count] = law.least_stress(x, data.params, speeds, torque)
+    assert torque.max() == pytest.approx(207.43, abs=0.01)
+    assert [round(least[c].max() / 1e6, 1) for c in (6, 7, 8, 9)] == [361.9, 327.1, 299.9, 277.7]
+    designs = [(p, d, r) for p, d, r in runs if r["status"] == "Solve_Succeeded"]
+    assert {r["design"]["cable_count"] for *_, r in designs} >= {7.0, 8.0, 9.0}
+    for p, d, r in designs:
+        _, times, speeds, _, _, _, twist = (path.full().ravel()[1:] for path in p.start_up_figures(r["x"], r["p"]))
+        design = namespace(p.design(r["x"], d.scale))  # (the relaxation's 6.73 cables too, not rounded)
+        stress = law.stress(design, d.params, speeds, twist)
+        x = namespace({"cable_count": design.cable_count, "weight_lead_angle": design.weight_lead_angle})
+        bound = law.least_stress(x, d.params, speeds, Drive(p.start_up.s, law, x, d.params).carried(speeds, times))
+        assert np.all(bound <= stress * (1 + 1e-9)) and np.max(stress - bound) > 0
+    lbx, ubx = fixed_at(posed, data, 6)
+    moved = np.clip(relaxed["x"], lbx, ubx)
+    moved[len(data.scale):] *= 1.001  # the speeds of another drive (a sweep's neighbour)
+    assert refuted(posed, data, moved, lbx, ubx) == []
+
+
+def test_threads_mode_its_weight_thread_free_refutes_the_same_counts(monkeypatch):
+    """In threads mode the weight's lead angle is free; its row weight_thread_not_self_locking keeps the weights'
+    pull a tension in every design the NLP admits, so the bound holds: 6 cables (43 iterations) and 7 at their own
+    moved limit (34) refuted, 9 runs to 7, the design the same to the last bit (3.6547255064507436 kg)."""
+    with monkeypatch.context() as patched:
+        unbounded, before = solved(patched, bound=False, mode="threads")
+    solution, runs = solved(monkeypatch, mode="threads")
+    assert [r["iterations"] for *_, r in before][2:4] == [43, 34] and len(runs) == len(before) - 2
+    assert solution.objective == unbounded.objective == 3.6547255064507436 and solution.design == unbounded.design
+
+
+def test_a_count_excluded_at_its_own_limit_is_its_own_verdict():
+    """An exclusion at the limits the choice's own start moved (or the case's) is recorded as its own verdict, like
+    an infeasible run there: no own loop solves it again (``untried_below``); one at another's shift is not."""
+    foreign = ForeignShifts(["cable_count"])
+    foreign.corrected(SimpleNamespace(design={"cable_count": 7.0}))
+    search = [{"cable_count": c, "status": s, "feasible": False, "objective": math.nan}
+              for c, s in ((7, "excluded: link_stress"), (6, "excluded: link_stress"))]
+    foreign.seen(SimpleNamespace(integer_search=search))
+    assert foreign.own == {(7.0,)} and foreign.found == {}
+    kept = SimpleNamespace(status="optimal", objective=3.95, design={"cable_count": 8.0})
+    assert foreign.untried_below(kept, {"cable_count": 1.0}) == []
