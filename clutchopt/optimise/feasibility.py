@@ -96,15 +96,20 @@ def _refitted(posed: Posed, xt: np.ndarray, p: np.ndarray, lam_x: np.ndarray, la
     rows and bounds active in the SQP's ``lam_g``, ``lam_x`` (non-zero) taken again by least squares on its
     stationarity, 1 + J_A' mu + lam_B = 0 in t's row and 0 in the others (the verdict of
     :func:`least_violation_solver` on them)."""
+    if not np.all(np.isfinite(xt)):
+        return False
     jacobian, verdict = posed.built("least_violation_refit", None, lambda _: _refit_functions(posed))
     rows, bounds = np.flatnonzero(lam_g > 0), np.flatnonzero(lam_x != 0)
-    normals = np.hstack([jacobian(xt, p)[0][rows].T, np.eye(len(xt))[:, bounds]])
-    gradient = np.zeros(len(xt))
-    gradient[-1] = 1.0  # (of the objective t)
-    mu = np.linalg.lstsq(normals, -gradient, rcond=None)[0]
-    lam_g, lam_x = np.zeros_like(lam_g), np.zeros_like(lam_x)
-    lam_g[rows], lam_x[bounds] = mu[: len(rows)], mu[len(rows):]
-    return bool(verdict(xt, p, lam_x, lam_g, np.append(lbx, 0.0), np.append(ubx, np.inf))[0][0, 0] > 0.5)
+    try:
+        normals = np.hstack([jacobian(xt, p)[0][rows].T, np.eye(len(xt))[:, bounds]])
+        gradient = np.zeros(len(xt))
+        gradient[-1] = 1.0  # (of the objective t)
+        mu = np.linalg.lstsq(normals, -gradient, rcond=None)[0]
+        lam_g, lam_x = np.zeros_like(lam_g), np.zeros_like(lam_x)
+        lam_g[rows], lam_x[bounds] = mu[: len(rows)], mu[len(rows):]
+        return bool(verdict(xt, p, lam_x, lam_g, np.append(lbx, 0.0), np.append(ubx, np.inf))[0][0, 0] > 0.5)
+    except (RuntimeError, np.linalg.LinAlgError):  # (an evaluation error inside CasADi; no least squares)
+        return False
 
 
 def _refit_functions(posed: Posed) -> tuple[InPlace, InPlace]:
@@ -141,8 +146,8 @@ def least(posed: Posed, x0: np.ndarray, p: np.ndarray, lbx: np.ndarray, ubx: np.
     its active set: :func:`_refitted`)."""
     try:
         t, verified, x, lam_x, lam_g = least_violation_solver(posed)(x0, p, lbx, ubx)
-        verified = verified[0, 0] > 0.5 or _refitted(posed, np.append(x[:, 0], t[0, 0]), p, lam_x[:, 0],
-                                                      lam_g[:, 0], lbx, ubx)
     except RuntimeError:  # an evaluation error inside CasADi
         return Least(math.nan, False, None)
+    verified = verified[0, 0] > 0.5 or _refitted(posed, np.append(x[:, 0], t[0, 0]), p, lam_x[:, 0], lam_g[:, 0],
+                                                  lbx, ubx)
     return Least(float(t[0, 0]), bool(verified), x[:, 0])
