@@ -69,8 +69,8 @@ def test_a_least_violation_verified_by_its_active_sets_multipliers_taken_again(m
     import numpy as np
 
     import clutchopt.optimise.batch as batch
-    from clutchopt.optimise.posed import ScaledData
     from clutchopt.optimise.attempts import run
+    from clutchopt.optimise.posed import ScaledData
     from clutchopt.optimise.sweep import Sweep
     from clutchopt.optimise.sweep_grid import Vary
 
