@@ -27,7 +27,7 @@ def test_too_few_cables_are_without_a_design_by_their_stress():
     for z in (2, 3, 4, 5):
         lbx, ubx = data.lbx.copy(), data.ubx.copy()
         lbx[i] = ubx[i] = z / data.scale[i]
-        t, verified, x = least_violation_solver(posed)(data.x0, data.p, lbx, ubx)
+        t, verified, x, *_ = least_violation_solver(posed)(data.x0, data.p, lbx, ubx)
         found = least(posed, data.x0, data.p, lbx, ubx)
         assert verified[0, 0] == 1.0 and found.verified and found.violation == t[0, 0]
         if z < 5:
@@ -56,3 +56,43 @@ def test_a_violation_within_the_margin_leaves_the_verdict_to_ipopt():
 def test_statuses_that_say_no_design_is_near():
     assert infeasible(INFEASIBLE) and infeasible("infeasible (least violation 0.0023, SQP)")
     assert not infeasible("Maximum_Iterations_Exceeded") and not infeasible("Solve_Succeeded")
+
+
+def test_a_least_violation_verified_by_its_active_sets_multipliers_taken_again(monkeypatch):
+    # the ball compressor (design mode) over its allowable contact stress, the points 27-30 of the user sweep over
+    # 0.5x-2x (100 points): at 0.750 GPa the integer search tries 6 rows (one row fewer, promised by the multipliers),
+    # found without a design at 0.740 GPa, from the point before's optimum by the least largest violation. The SQP
+    # stops on a search direction too small at t* = 0.0040 with qrqp's multipliers off stationarity by 3.8e-6 (a bound's
+    # of -33.5), above the certificate's 1e-7: its own verdict fails. Those of the same active rows and bounds by
+    # least squares meet it (residual 1e-14): no design near, as IPOPT, cold from the same point, says in 5 ms
+    # (Infeasible_Problem_Detected), which the batch had asked
+    import numpy as np
+
+    import clutchopt.optimise.batch as batch
+    from clutchopt.optimise.attempts import run
+    from clutchopt.optimise.posed import ScaledData
+    from clutchopt.optimise.sweep import Sweep
+    from clutchopt.optimise.sweep_grid import Vary
+
+    calls = []
+    monkeypatch.setattr(batch, "least", lambda *args: calls.append(args) or least(*args))
+    case = load_case(CASES / "ball_compressor.toml")
+    quantity = next(q for q in case.quantities if q.name == "allowable_contact_stress")
+    values = case.values["allowable_contact_stress"] * np.geomspace(0.5, 2.0, 100)[27:31]
+    result = Sweep(case, [Vary(quantity, tuple(values.tolist()))], mode="design").run(progress=False)
+    assert list(result.frame["ball_rows"]) == [8, 7, 7, 6]
+    search = result.solutions[2]["integer_search"]
+    assert [(e["ball_rows"], e["status"]) for e in search] == [
+        (7, "batched, KKT verified"), (6, "infeasible (least violation 0.004, SQP)")]
+    posed = calls[0][0]
+    stress = [q.name for q in posed.formulation.quantities].index("allowable_contact_stress")
+    rows, m = posed.names.index("ball_rows"), len(posed.formulation.quantities)
+    posed, x0, p, lbx, ubx = next(args for args in calls if args[2][stress] == values[2]
+                                  and args[3][rows] * args[2][m + rows] == 6)
+    t, verified, x, lam_x, lam_g = least_violation_solver(posed)(x0, p, lbx, ubx)
+    found = least(posed, x0, p, lbx, ubx)
+    assert verified[0, 0] == 0.0 and found.verified and found.without_design
+    assert found.violation == t[0, 0] == pytest.approx(0.0039944, rel=1e-4)
+    scale = p[m:m + len(posed.names)]
+    data = ScaledData(None, lbx * scale, ubx * scale, x0 * scale, scale, p[-1], p)
+    assert run(posed, data, lbx, ubx, np.clip(x0, lbx, ubx), None)["status"] == INFEASIBLE
