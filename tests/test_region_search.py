@@ -400,3 +400,37 @@ def test_a_point_past_the_edge_of_the_ball_is_proven_by_its_own_search_before_an
     assert record["diagnosis"] == alone.diagnosis
     assert record["diagnosis"].startswith("proven infeasible: no design within the bounds meets torque")
     assert result.solutions[2]["diagnosis"].startswith("proven infeasible for power 11280-11400 kW (2 points")
+
+
+def test_a_point_past_the_edge_whose_proof_takes_hundreds_of_boxes_is_proven_before_any_solve(monkeypatch):
+    # The wedge centrifuge in paper mode over its speed, 1800-2000 rpm: designs up to 1885.7 rpm (its finger's
+    # bending and its fit in the weight's width active); from about 1,905 rpm no weight carries its finger. The
+    # chain from 1885.7 rpm fails at 1914.3 rpm, whose own interval search (Regions._early) is the one its full
+    # verdict runs first (within SURE_BOXES) and proves it in hundreds of boxes: solve's words, no solver call, no
+    # elastic problem solved. Within FEW_BOXES it had given up after its first box, and the full verdict followed
+    # (warm SQP, warm and cold IPOPT, the elastic diagnosis, then that search: 3 calls, 14 of the 0.5x-2x speed
+    # sweep's 44 ms of CPU). It shows the design of the point before, re-evaluated at its own speed.
+    centrifuge = load_case(CASES / "wedge_centrifuge.toml")
+    vary = parse_vary("speed=1800:2000:8", "wedge", centrifuge.quantities)
+    calls = []
+    real = problem_module.diagnose
+    monkeypatch.setattr(problem_module, "diagnose", lambda *args: calls.append(1) or real(*args))
+    result = Sweep(centrifuge, [vary], mode="paper").run(progress=False)
+    assert [s["status"] for s in result.solutions] == ["optimal"] * 4 + ["infeasible"] * 4
+    assert not calls
+    record = result.solutions[4]
+    assert (record["solver"]["name"], record["solver"]["solves"]) == ("interval", 0)
+    assert result.spent["solves"] == 8  # (11 with the full verdict's 3)
+    alone = case_problem(centrifuge, "paper").solve(centrifuge.with_values(speed=vary.values[4]))
+    assert calls and alone.status == "infeasible"
+    assert record["diagnosis"] == alone.diagnosis
+    assert record["diagnosis"].startswith("proven infeasible: no design within the bounds meets finger_bending, "
+                                          "finger_fits_width")
+    boxes = int(record["diagnosis"].split("over ")[1].split(" boxes")[0])
+    assert interval_proof.FEW_BOXES < boxes <= interval_proof.SURE_BOXES
+    assert record["design"] == result.solutions[3]["design"]
+    posed = case_problem(centrifuge, "paper").posed
+    at_its_speed = posed.params(centrifuge.with_values(speed=vary.values[4]))
+    checks = check_design(posed.formulation, record["design"], at_its_speed)
+    assert [c["value"] for c in record["constraints"]] == [c.value for c in checks]
+    assert not all(c.feasible for c in checks)  # (the design of 1885.7 rpm breaks a row at 1914.3 rpm)

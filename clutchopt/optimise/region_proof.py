@@ -204,28 +204,23 @@ class Regions:
         return share * points
 
     def _early(self, k: int, design: dict[str, float]) -> Solution | None:
-        """Point k, where a batch's chain from the point before (with ``design``) failed: its own interval search,
-        within FEW_BOXES, before any solve, unless the last point's own proof took more (the ball: hundreds of
-        boxes). Proven, it gets the verdict its full verdict gives ("proven infeasible: ...", the same search, whose
-        budget did not bind), with ``design`` re-evaluated in float64 at its values (where its full verdict shows its
-        least relaxation's), no solver call; else None (it is solved as usual; a point with a design costs this one
-        failed search: one box and its split, under a millisecond without integers; 3 ms on the ball before its
-        first proof). At the first point of a stretch without designs the full verdict had cost 20 ms on the lever
-        (SQP, warm and cold IPOPT, the elastic diagnosis, then the proof in one box).
-
-        Where the design has integer variables (the ball, whose proofs take hundreds of boxes, so that FEW_BOXES never
-        proved one), the search is the one its full verdict runs first (``verdict.shown``: within SURE_BOXES, the runs
-        after it in the same call, :meth:`_next_runs`), before the solve instead of after it: proven, the same words
-        and the runs' outcomes kept as that verdict would leave them, without the failed solve, its integer search
-        and its elastic diagnosis (the ball over 1x-10x its power at its first point without a design, 11,190 kW:
-        those were 24 of the sweep's 82 ms of CPU; ``ball_crusher`` at 566.6 kW alike). Not proven, its outcome is
-        kept for that verdict where any budget from SURE_BOXES on gives the same (a design met: the points where a
-        chain fails next to a design had designs in none of the ball's sweeps, and a search meets one in 3-14 ms)."""
-        if self.problem.start_up is not None or (self._alone > FEW_BOXES and not self.posed.integer):
+        """Point k, where a batch's chain from the point before (with ``design``) failed: the interval search its full
+        verdict runs first (``verdict.shown``: within SURE_BOXES; with integer variables the runs after it in the same
+        call, :meth:`_next_runs`), before any solve instead of after the failed ones. Proven, it gets the verdict its
+        full verdict gives ("proven infeasible: ...", the same search, whose budget did not bind), with ``design``
+        re-evaluated in float64 at its values (where its full verdict shows its failed solve's), no solver call, and
+        the runs' outcomes kept as that verdict would leave them: without the failed solves (warm SQP, warm and cold
+        IPOPT), the integer search and the elastic diagnosis. The wedge over its speed at 1,905 rpm, where its finger
+        no longer fits: 257 boxes, 2 ms, where the full verdict took 14 ms; the ball over 1x-10x its power at 11,190
+        kW: 24 of the sweep's 82 ms of CPU; the lever at the first point of a stretch without designs, 20 ms, one box.
+        Else None (solved as usual), its outcome kept for that verdict where any budget from SURE_BOXES on gives the
+        same (a design met): a point with a design costs this search, which meets one (the chains failed next to a
+        design at points with designs in none of the sweeps of the user sweeps' benchmark; a search met one in 1-2
+        ms without integers, 3-14 ms on the ball)."""
+        if self.problem.start_up is not None:
             return None
-        budget = SURE_BOXES if self.posed.integer else FEW_BOXES  # (no runs after it without integers: _next_runs)
-        solution, own, problem = self._own_proof(self.point_case(k), design, budget, None, self._next_runs(k))
-        if solution is None and self.posed.integer and _holds(own, budget):
+        solution, own, problem = self._own_proof(self.point_case(k), design, SURE_BOXES, None, self._next_runs(k))
+        if solution is None and _holds(own, SURE_BOXES):
             keep_search(self.posed, problem, own)
         if solution is not None:
             self.after(k, solution)
