@@ -434,3 +434,67 @@ def test_a_point_past_the_edge_whose_proof_takes_hundreds_of_boxes_is_proven_bef
     checks = check_design(posed.formulation, record["design"], at_its_speed)
     assert [c["value"] for c in record["constraints"]] == [c.value for c in checks]
     assert not all(c.feasible for c in checks)  # (the design of 1885.7 rpm breaks a row at 1914.3 rpm)
+
+
+def _searched_regions(monkeypatch) -> list:
+    """region_proof's calls of ``searches`` recorded: per call, each problem's length (3: a point's, 4: a region's)
+    and its outcome."""
+    calls = []
+    real = region_proof.searches
+
+    def recorded(posed, problems, budgets=None):
+        outcomes = real(posed, problems, budgets)
+        calls.append([(len(problem), outcome) for problem, outcome in zip(problems, outcomes)])
+        return outcomes
+
+    monkeypatch.setattr(region_proof, "searches", recorded)
+    return calls
+
+
+def test_a_stretch_without_designs_is_searched_whole_before_its_runs(monkeypatch):
+    # The wedge centrifuge in paper mode over its speed, 1800-2600 rpm in 20 points: designs up to 1884.2 rpm; point
+    # 3 (1926.3 rpm) is proven by its own search (257 boxes, Regions._early). The 16 points after it are searched as
+    # one region first (Regions._whole_stretch, within 4 x 257 boxes) and proven: one proof for all, where the runs
+    # of 8 and 8 had taken two searches of about as many boxes each (a region's proof here costs about what its
+    # point nearest the edge does, whatever its length)
+    centrifuge = load_case(CASES / "wedge_centrifuge.toml")
+    calls = _searched_regions(monkeypatch)
+    vary = parse_vary("speed=1800:2600:20", "wedge", centrifuge.quantities)
+    result = Sweep(centrifuge, [vary], mode="paper").run(progress=False)
+    frame = result.frame
+    assert list(frame["status"]) == ["optimal"] * 3 + ["infeasible"] * 17
+    assert [[length for length, _ in call] for call in calls] == [[3], [4]]
+    (_, own), = calls[0]
+    (_, region), = calls[1]
+    assert own.proven and region.proven and region.boxes <= region_proof.REGION_BUDGET * own.boxes
+    assert list(frame["diagnosis"][4:]) == [frame["diagnosis"][4]] * 16
+    assert frame["diagnosis"][4].startswith("proven infeasible for speed 1968.42-2600 rpm (16 points, one proof): "
+                                            "no design within the bounds meets finger_bending")
+    assert [s["solver"]["solves"] for s in result.solutions][3:] == [0] * 17
+    problem = case_problem(centrifuge, "paper")
+    for point in (4, 19):  # the region's ends: proven alone too
+        alone = problem.solve(centrifuge.with_values(speed=vary.values[point]))
+        assert alone.status == "infeasible" and alone.diagnosis.startswith("proven infeasible: no design")
+
+
+def test_a_stretch_that_ends_within_its_whole_search_is_searched_by_its_runs_as_before(monkeypatch):
+    # The wedge centrifuge's speed up from 1800 to 2300 rpm and back down to 1700 (24 points): no design from 1936.4
+    # rpm up and back down to 1900. The whole stretch's search from point 4 (to the sweep's end, within 4 x 257
+    # boxes) meets a design at the interval's low end (1700 rpm): no proof; the runs from point 4 then go on as
+    # they did without it (8 points, then 16 reaching past the edge, its probes, the 8 up to it), nothing of that
+    # search used: every record as without it
+    centrifuge = load_case(CASES / "wedge_centrifuge.toml")
+    speeds = [*np.linspace(1800.0, 2300.0, 12), *np.linspace(2250.0, 1700.0, 12)]
+    vary = parse_vary("speed=" + ",".join(f"{v:.17g}" for v in speeds), "wedge", centrifuge.quantities)
+    calls = _searched_regions(monkeypatch)
+    result = Sweep(centrifuge, [vary], mode="paper").run(progress=False)
+    whole = calls[1][0][1]
+    assert len(calls[1]) == 1 and whole.reached and not whole.proven
+    assert list(result.frame["status"]) == ["optimal"] * 3 + ["infeasible"] * 17 + ["optimal"] * 4
+    assert result.frame["diagnosis"][4].startswith("proven infeasible for speed 1981.82-2300 rpm (8 points, one proof)")
+    monkeypatch.setattr(region_proof.Regions, "_whole_stretch", lambda self, k, end: False)
+    calls.clear()
+    without = Sweep(centrifuge, [vary], mode="paper").run(progress=False)
+    assert result.frame.equals(without.frame)
+    assert [(s["design"], s["diagnosis"]) for s in result.solutions] == [(s["design"], s["diagnosis"])
+                                                                         for s in without.solutions]
