@@ -498,3 +498,24 @@ def test_a_stretch_that_ends_within_its_whole_search_is_searched_by_its_runs_as_
     assert result.frame.equals(without.frame)
     assert [(s["design"], s["diagnosis"]) for s in result.solutions] == [(s["design"], s["diagnosis"])
                                                                          for s in without.solutions]
+
+
+def test_points_next_to_one_that_breaks_a_requirement_no_design_enters_are_tested_against_it_first(monkeypatch):
+    # The wedge centrifuge in paper mode over its friction coefficient, 0.2-0.3: from 0.2364 on its weights no longer
+    # release (not_self_locking: tan(alpha) short of f, whatever the design). The first such point, where the chain
+    # fails, is searched (1 box) before its verdict; each point after it is tested against that requirement first
+    # (Problem._given, no solve), its verdict solve's, with no interval search of the runs after it nor of its own
+    # (a proof covers no point that breaks it: 8 searches more, one box each, and the point's own, for nothing)
+    centrifuge = load_case(CASES / "wedge_centrifuge.toml")
+    calls = _searched_regions(monkeypatch)
+    vary = parse_vary("friction_coefficient=0.2:0.3:12", "wedge", centrifuge.quantities)
+    result = Sweep(centrifuge, [vary], mode="paper").run(progress=False)
+    assert [s["status"] for s in result.solutions] == ["optimal"] * 4 + ["infeasible"] * 8
+    assert [[length for length, _ in call] for call in calls] == [[3]]
+    problem = case_problem(centrifuge, "paper")
+    for point in range(4, 12):
+        alone = problem.solve(centrifuge.with_values(friction_coefficient=vary.values[point]))
+        record = result.solutions[point]
+        assert (record["status"], record["diagnosis"]) == (alone.status, alone.diagnosis)
+        assert record["diagnosis"].startswith("infeasible whatever the design: not_self_locking")
+        assert record["design"] == alone.design and record["solver"]["solves"] == (2 if point == 4 else 0)
