@@ -571,7 +571,8 @@ class Regions:
 
 def _given(solution: Solution | None) -> bool:
     """``solution``'s verdict needs no search: a requirement no design variable enters broken ("infeasible whatever
-    the design", before any solve: ``Problem._given``), which ``Problem.solve`` gives as it is."""
+    the design", before any solve: ``Problem._given``), or a start-up's drive proofs (``Problem.proven``); verdicts
+    that ``Problem.solve`` gives as they are, and that no region proof covers (:func:`_covered`)."""
     return solution is not None and solution.diagnosed is not None and solution.diagnosed.proven
 
 
