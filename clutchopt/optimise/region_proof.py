@@ -100,6 +100,7 @@ class Regions:
         self._proven: dict[int, tuple[str, float]] = {}  # point -> its proof's text, its share of the seconds
         self._probed = (0, 0.0)  # the solver calls and seconds of the probes for a region's edge, not yet charged
         self._found = -1  # the point a probe found with a design (the region's edge)
+        self._entered = False  # a point with a design came before: a stretch without designs is entered from one
         self._edge_probe: Solution | None = None  # the solve of the last probe that found a design (the edge's,
         # for that point's own, uncharged; None where the design the run's search met decided it)
         self._alone = 0  # the boxes of the last proof of one point (its own verdict's or its own search's; the mean
@@ -223,6 +224,7 @@ class Regions:
         same (a design met): a point with a design costs this search, which meets one (the chains failed next to a
         design at points with designs in none of the sweeps of the user sweeps' benchmark; a search met one in 1-2
         ms without integers, 3-14 ms on the ball)."""
+        self._entered = True  # (the point before has a design)
         if self.problem.start_up is not None:
             return None
         solution, own, problem = self._own_proof(self.point_case(k), design, SURE_BOXES, None, self._next_runs(k))
@@ -327,7 +329,7 @@ class Regions:
         FIRST_RUN points long)."""
         self._cases.pop(k, None)
         if solution.status in DESIGN_STATUSES:
-            self._length = FIRST_RUN
+            self._length, self._entered = FIRST_RUN, True
         elif solution.status == "infeasible":
             self._without, self._without_at = solution, k
 
@@ -386,18 +388,22 @@ class Regions:
         self._length = min(2 * longest, LONGEST_RUN)
 
     def _whole_stretch(self, k: int, end: int) -> bool:
-        """Where a stretch without designs starts at point k (its first run, FIRST_RUN points up to ``end``, searched
-        as a region) in a design without integer variables: the points from k up to LONGEST_RUN on (or the sweep's
-        end) searched first as one region, within REGION_BUDGET times the boxes of the last point's own proof. Where
-        a region's proof costs about what its point nearest the edge does whatever its length, the doubling runs cost
-        a search each for the same proof (the wedge centrifuge over its speed: 257 boxes for 1,905 rpm alone, 809 for
-        the 8 points after it, 731 for the next 16, 551 for the last 6; 705 for those 30 at once: 3 searches, 16 of the
-        sweep's 33 ms of CPU, to 1). Proven, each point gets that proof (and the next run is twice as long); else (a
-        design met at an end of the interval, or the budget spent: its bounds too loose over it) the runs from k as
-        before, nothing of this search used, its boxes spent for nothing. With integer variables the runs ahead are
-        searched in the call of the first instead (:meth:`_runs_ahead`: an iteration costs per call there)."""
+        """Where a stretch without designs entered from a design starts at point k (its first run, FIRST_RUN points up
+        to ``end``, searched as a region) in a design without integer variables: the points from k up to LONGEST_RUN on
+        (or the sweep's end) searched first as one region, within REGION_BUDGET times the boxes of the last point's own
+        proof. A sweep that meets such a stretch after designs has moved into its infeasible region and most often stays
+        in it (a duty or a speed past what any design carries); one that starts without designs most often moves out of
+        it, where this search would meet a design at the far end for nothing (the wedge from 300 N m down,
+        test_region_search). Where a region's proof costs about what its point nearest the edge does whatever its
+        length, the doubling runs cost a search each for the same proof (the wedge centrifuge over its speed: 257 boxes
+        for 1,905 rpm alone, 809 for the 8 points after it, 731 for the next 16, 551 for the last 6; 705 for those 30 at
+        once: 3 searches, 16 of the sweep's 33 ms of CPU, to 1). Proven, each point gets that proof (and the next run is
+        twice as long); else (a design met at an end of the interval, or the budget spent: its bounds too loose over it)
+        the runs from k as before, nothing of this search used, its boxes spent for nothing. With integer variables the
+        runs ahead are searched in the call of the first instead (:meth:`_runs_ahead`: an iteration costs per call
+        there)."""
         whole = min(k + LONGEST_RUN, self.count)
-        if self.posed.integer or self._length != FIRST_RUN or whole <= end:
+        if self.posed.integer or self._length != FIRST_RUN or whole <= end or not self._entered:
             return False
         points = self._point_problems([(k, whole)])
         problem = _region_problem([points[j] for j in range(k, whole)])
