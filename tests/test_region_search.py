@@ -402,3 +402,122 @@ def test_a_point_past_the_edge_of_the_ball_is_proven_by_its_own_search_before_an
     assert record["diagnosis"] == alone.diagnosis
     assert record["diagnosis"].startswith("proven infeasible: no design within the bounds meets torque")
     assert result.solutions[2]["diagnosis"].startswith("proven infeasible for power 11280-11400 kW (2 points")
+
+
+def test_a_point_past_the_edge_whose_proof_takes_hundreds_of_boxes_is_proven_before_any_solve(monkeypatch):
+    # The wedge centrifuge in paper mode over its speed, 1800-2000 rpm: designs up to 1885.7 rpm (its finger's
+    # bending and its fit in the weight's width active); from about 1,905 rpm no weight carries its finger. The
+    # chain from 1885.7 rpm fails at 1914.3 rpm, whose own interval search (Regions._early) is the one its full
+    # verdict runs first (within SURE_BOXES) and proves it in hundreds of boxes: solve's words, no solver call, no
+    # elastic problem solved. Within FEW_BOXES it had given up after its first box, and the full verdict followed
+    # (warm SQP, warm and cold IPOPT, the elastic diagnosis, then that search: 3 calls, 14 of the 0.5x-2x speed
+    # sweep's 44 ms of CPU). It shows the design of the point before, re-evaluated at its own speed.
+    centrifuge = load_case(CASES / "wedge_centrifuge.toml")
+    vary = parse_vary("speed=1800:2000:8", "wedge", centrifuge.quantities)
+    calls = []
+    real = problem_module.diagnose
+    monkeypatch.setattr(problem_module, "diagnose", lambda *args: calls.append(1) or real(*args))
+    result = Sweep(centrifuge, [vary], mode="paper").run(progress=False)
+    assert [s["status"] for s in result.solutions] == ["optimal"] * 4 + ["infeasible"] * 4
+    assert not calls
+    record = result.solutions[4]
+    assert (record["solver"]["name"], record["solver"]["solves"]) == ("interval", 0)
+    assert result.spent["solves"] == 8  # (11 with the full verdict's 3)
+    alone = case_problem(centrifuge, "paper").solve(centrifuge.with_values(speed=vary.values[4]))
+    assert calls and alone.status == "infeasible"
+    assert record["diagnosis"] == alone.diagnosis
+    assert record["diagnosis"].startswith("proven infeasible: no design within the bounds meets finger_bending, "
+                                          "finger_fits_width")
+    boxes = int(record["diagnosis"].split("over ")[1].split(" boxes")[0])
+    assert interval_proof.FEW_BOXES < boxes <= interval_proof.SURE_BOXES
+    assert record["design"] == result.solutions[3]["design"]
+    posed = case_problem(centrifuge, "paper").posed
+    at_its_speed = posed.params(centrifuge.with_values(speed=vary.values[4]))
+    checks = check_design(posed.formulation, record["design"], at_its_speed)
+    assert [c["value"] for c in record["constraints"]] == [c.value for c in checks]
+    assert not all(c.feasible for c in checks)  # (the design of 1885.7 rpm breaks a row at 1914.3 rpm)
+
+
+def _searched_regions(monkeypatch) -> list:
+    """region_proof's calls of ``searches`` recorded: per call, each problem's length (3: a point's, 4: a region's)
+    and its outcome."""
+    calls = []
+    real = region_proof.searches
+
+    def recorded(posed, problems, budgets=None):
+        outcomes = real(posed, problems, budgets)
+        calls.append([(len(problem), outcome) for problem, outcome in zip(problems, outcomes)])
+        return outcomes
+
+    monkeypatch.setattr(region_proof, "searches", recorded)
+    return calls
+
+
+def test_a_stretch_without_designs_is_searched_whole_before_its_runs(monkeypatch):
+    # The wedge centrifuge in paper mode over its speed, 1800-2600 rpm in 20 points: designs up to 1884.2 rpm; point
+    # 3 (1926.3 rpm) is proven by its own search (257 boxes, Regions._early). The 16 points after it are searched as
+    # one region first (Regions._whole_stretch, within 4 x 257 boxes) and proven: one proof for all, where the runs
+    # of 8 and 8 had taken two searches of about as many boxes each (a region's proof here costs about what its
+    # point nearest the edge does, whatever its length)
+    centrifuge = load_case(CASES / "wedge_centrifuge.toml")
+    calls = _searched_regions(monkeypatch)
+    vary = parse_vary("speed=1800:2600:20", "wedge", centrifuge.quantities)
+    result = Sweep(centrifuge, [vary], mode="paper").run(progress=False)
+    frame = result.frame
+    assert list(frame["status"]) == ["optimal"] * 3 + ["infeasible"] * 17
+    assert [[length for length, _ in call] for call in calls] == [[3], [4]]
+    (_, own), = calls[0]
+    (_, region), = calls[1]
+    assert own.proven and region.proven and region.boxes <= region_proof.REGION_BUDGET * own.boxes
+    assert list(frame["diagnosis"][4:]) == [frame["diagnosis"][4]] * 16
+    assert frame["diagnosis"][4].startswith("proven infeasible for speed 1968.42-2600 rpm (16 points, one proof): "
+                                            "no design within the bounds meets finger_bending")
+    assert [s["solver"]["solves"] for s in result.solutions][3:] == [0] * 17
+    problem = case_problem(centrifuge, "paper")
+    for point in (4, 19):  # the region's ends: proven alone too
+        alone = problem.solve(centrifuge.with_values(speed=vary.values[point]))
+        assert alone.status == "infeasible" and alone.diagnosis.startswith("proven infeasible: no design")
+
+
+def test_a_stretch_that_ends_within_its_whole_search_is_searched_by_its_runs_as_before(monkeypatch):
+    # The wedge centrifuge's speed up from 1800 to 2300 rpm and back down to 1700 (24 points): no design from 1936.4
+    # rpm up and back down to 1900. The whole stretch's search from point 4 (to the sweep's end, within 4 x 257
+    # boxes) meets a design at the interval's low end (1700 rpm): no proof; the runs from point 4 then go on as
+    # they did without it (8 points, then 16 reaching past the edge, its probes, the 8 up to it), nothing of that
+    # search used: every record as without it
+    centrifuge = load_case(CASES / "wedge_centrifuge.toml")
+    speeds = [*np.linspace(1800.0, 2300.0, 12), *np.linspace(2250.0, 1700.0, 12)]
+    vary = parse_vary("speed=" + ",".join(f"{v:.17g}" for v in speeds), "wedge", centrifuge.quantities)
+    calls = _searched_regions(monkeypatch)
+    result = Sweep(centrifuge, [vary], mode="paper").run(progress=False)
+    whole = calls[1][0][1]
+    assert len(calls[1]) == 1 and whole.reached and not whole.proven
+    assert list(result.frame["status"]) == ["optimal"] * 3 + ["infeasible"] * 17 + ["optimal"] * 4
+    assert result.frame["diagnosis"][4].startswith("proven infeasible for speed 1981.82-2300 rpm (8 points, one proof)")
+    monkeypatch.setattr(region_proof.Regions, "_whole_stretch", lambda self, k, end: False)
+    calls.clear()
+    without = Sweep(centrifuge, [vary], mode="paper").run(progress=False)
+    assert result.frame.equals(without.frame)
+    assert [(s["design"], s["diagnosis"]) for s in result.solutions] == [(s["design"], s["diagnosis"])
+                                                                         for s in without.solutions]
+
+
+def test_points_next_to_one_that_breaks_a_requirement_no_design_enters_are_tested_against_it_first(monkeypatch):
+    # The wedge centrifuge in paper mode over its friction coefficient, 0.2-0.3: from 0.2364 on its weights no longer
+    # release (not_self_locking: tan(alpha) short of f, whatever the design). The first such point, where the chain
+    # fails, is searched (1 box) before its verdict; each point after it is tested against that requirement first
+    # (Problem._given, no solve), its verdict solve's, with no interval search of the runs after it nor of its own
+    # (a proof covers no point that breaks it: 8 searches more, one box each, and the point's own, for nothing)
+    centrifuge = load_case(CASES / "wedge_centrifuge.toml")
+    calls = _searched_regions(monkeypatch)
+    vary = parse_vary("friction_coefficient=0.2:0.3:12", "wedge", centrifuge.quantities)
+    result = Sweep(centrifuge, [vary], mode="paper").run(progress=False)
+    assert [s["status"] for s in result.solutions] == ["optimal"] * 4 + ["infeasible"] * 8
+    assert [[length for length, _ in call] for call in calls] == [[3]]
+    problem = case_problem(centrifuge, "paper")
+    for point in range(4, 12):
+        alone = problem.solve(centrifuge.with_values(friction_coefficient=vary.values[point]))
+        record = result.solutions[point]
+        assert (record["status"], record["diagnosis"]) == (alone.status, alone.diagnosis)
+        assert record["diagnosis"].startswith("infeasible whatever the design: not_self_locking")
+        assert record["design"] == alone.design and record["solver"]["solves"] == (2 if point == 4 else 0)

@@ -20,7 +20,11 @@ searches, 9 of them over points that all have designs); a region's search may ta
 the last proof (at least SURE_BOXES, at most MAX_BOXES), so one reaching past the edge gives up early. Runs start
 FIRST_RUN points long, the next twice the longest proven (from 2, doubling while they are proven whole, up to
 LONGEST_RUN): where a region's bounds are loose over wide intervals (the lever over its speed, which its centrifugal
-force takes squared) the runs stay as short as proofs allow. Where the design has integer variables (the ball, whose
+force takes squared) the runs stay as short as proofs allow. Without integer variables a stretch's first run is
+preceded by one search of the whole stretch (up to LONGEST_RUN points, within REGION_BUDGET times the boxes of the
+last point's own proof: :meth:`Regions._whole_stretch`): where a region's proof costs about what its point nearest
+the edge does whatever its length (the wedge over its speed), one search covers what the runs took one each for;
+not proven, the runs go on as they would have. Where the design has integer variables (the ball, whose
 region's search costs about what a point's own does), the RUNS_AHEAD runs that follow a run if it is proven whole are
 searched with it, in one call (:meth:`Regions._runs_ahead`): an iteration costs per call, so they take the
 iterations of the longest; each outcome is kept for the call that searches its run, and taken where that search
@@ -96,6 +100,7 @@ class Regions:
         self._proven: dict[int, tuple[str, float]] = {}  # point -> its proof's text, its share of the seconds
         self._probed = (0, 0.0)  # the solver calls and seconds of the probes for a region's edge, not yet charged
         self._found = -1  # the point a probe found with a design (the region's edge)
+        self._entered = False  # a point with a design came before: a stretch without designs is entered from one
         self._edge_probe: Solution | None = None  # the solve of the last probe that found a design (the edge's,
         # for that point's own, uncharged; None where the design the run's search met decided it)
         self._alone = 0  # the boxes of the last proof of one point (its own verdict's or its own search's; the mean
@@ -114,8 +119,10 @@ class Regions:
         return case
 
     def covered(self, k: int) -> Solution | None:
-        """Point k's verdict from a region proof, or None (solve it)."""
-        if self._without_at == k - 1 and k >= self._to:
+        """Point k's verdict from a region proof, or None (solve it). No region is searched after a point that breaks
+        a requirement no design variable enters (:func:`_given`): point k is tested against that requirement first
+        (:meth:`_quick`), and a proof does not cover a point that breaks it (:func:`_covered`)."""
+        if self._without_at == k - 1 and k >= self._to and not _given(self._without):
             self._search_from(k)
         proven = self._proven.pop(k, None)
         if proven is None or self._without is None:
@@ -204,28 +211,24 @@ class Regions:
         return share * points
 
     def _early(self, k: int, design: dict[str, float]) -> Solution | None:
-        """Point k, where a batch's chain from the point before (with ``design``) failed: its own interval search,
-        within FEW_BOXES, before any solve, unless the last point's own proof took more (the ball: hundreds of
-        boxes). Proven, it gets the verdict its full verdict gives ("proven infeasible: ...", the same search, whose
-        budget did not bind), with ``design`` re-evaluated in float64 at its values (where its full verdict shows its
-        least relaxation's), no solver call; else None (it is solved as usual; a point with a design costs this one
-        failed search: one box and its split, under a millisecond without integers; 3 ms on the ball before its
-        first proof). At the first point of a stretch without designs the full verdict had cost 20 ms on the lever
-        (SQP, warm and cold IPOPT, the elastic diagnosis, then the proof in one box).
-
-        Where the design has integer variables (the ball, whose proofs take hundreds of boxes, so that FEW_BOXES never
-        proved one), the search is the one its full verdict runs first (``verdict.shown``: within SURE_BOXES, the runs
-        after it in the same call, :meth:`_next_runs`), before the solve instead of after it: proven, the same words
-        and the runs' outcomes kept as that verdict would leave them, without the failed solve, its integer search
-        and its elastic diagnosis (the ball over 1x-10x its power at its first point without a design, 11,190 kW:
-        those were 24 of the sweep's 82 ms of CPU; ``ball_crusher`` at 566.6 kW alike). Not proven, its outcome is
-        kept for that verdict where any budget from SURE_BOXES on gives the same (a design met: the points where a
-        chain fails next to a design had designs in none of the ball's sweeps, and a search meets one in 3-14 ms)."""
-        if self.problem.start_up is not None or (self._alone > FEW_BOXES and not self.posed.integer):
+        """Point k, where a batch's chain from the point before (with ``design``) failed: the interval search its full
+        verdict runs first (``verdict.shown``: within SURE_BOXES; with integer variables the runs after it in the same
+        call, :meth:`_next_runs`), before any solve instead of after the failed ones. Proven, it gets the verdict its
+        full verdict gives ("proven infeasible: ...", the same search, whose budget did not bind), with ``design``
+        re-evaluated in float64 at its values (where its full verdict shows its failed solve's), no solver call, and
+        the runs' outcomes kept as that verdict would leave them: without the failed solves (warm SQP, warm and cold
+        IPOPT), the integer search and the elastic diagnosis. The wedge over its speed at 1,905 rpm, where its finger
+        no longer fits: 257 boxes, 2 ms, where the full verdict took 14 ms; the ball over 1x-10x its power at 11,190
+        kW: 24 of the sweep's 82 ms of CPU; the lever at the first point of a stretch without designs, 20 ms, one box.
+        Else None (solved as usual), its outcome kept for that verdict where any budget from SURE_BOXES on gives the
+        same (a design met): a point with a design costs this search, which meets one (the chains failed next to a
+        design at points with designs in none of the sweeps of the user sweeps' benchmark; a search met one in 1-2
+        ms without integers, 3-14 ms on the ball)."""
+        self._entered = True  # (the point before has a design)
+        if self.problem.start_up is not None:
             return None
-        budget = SURE_BOXES if self.posed.integer else FEW_BOXES  # (no runs after it without integers: _next_runs)
-        solution, own, problem = self._own_proof(self.point_case(k), design, budget, None, self._next_runs(k))
-        if solution is None and self.posed.integer and _holds(own, budget):
+        solution, own, problem = self._own_proof(self.point_case(k), design, SURE_BOXES, None, self._next_runs(k))
+        if solution is None and _holds(own, SURE_BOXES):
             keep_search(self.posed, problem, own)
         if solution is not None:
             self.after(k, solution)
@@ -261,8 +264,9 @@ class Regions:
         first, ``warm`` its warm start), and where it ends without a design the point's own interval search before
         the retries (the runs after it searched in the same call: :meth:`_next_runs`): the solve's design, or the
         verdict its proof gives, and None; or None and that solve (its
-        verdict follows from it: ``Problem.solve`` given it as ``first``, which finds this search kept); or None,
-        None where the point before has a design."""
+        verdict follows from it: ``Problem.solve`` given it as ``first``, which finds this search kept; unsearched
+        where it breaks a requirement no design variable enters, :func:`_given`: the wedge over its friction
+        coefficient, past self-locking, 34 -> 21 ms of CPU); or None, None where the point before has a design."""
         quick = self._without_at == k - 1 and self.problem.start_up is None
         probe = self._edge_solve(k, quick and warm is None)
         if not quick:
@@ -272,6 +276,8 @@ class Regions:
         if first.status in DESIGN_STATUSES:
             self.after(k, first)
             return first, None
+        if _given(first):  # (its verdict as it is: ``verdict.shown``; a proof would not cover it)
+            return None, first
         solution, own, problem = self._own_proof(case, first.design, None, first.solver, self._next_runs(k))
         if own is None or not own.proven:
             keep_search(self.posed, problem, own)
@@ -323,7 +329,7 @@ class Regions:
         FIRST_RUN points long)."""
         self._cases.pop(k, None)
         if solution.status in DESIGN_STATUSES:
-            self._length = FIRST_RUN
+            self._length, self._entered = FIRST_RUN, True
         elif solution.status == "infeasible":
             self._without, self._without_at = solution, k
 
@@ -340,6 +346,8 @@ class Regions:
         points = self._point_problems([(k, end)])
         if runs and self._one_by_one(end - k):
             self._search_each(k, end, points)
+            return
+        if runs and self._whole_stretch(k, end):
             return
         longest = 1  # the longest run proven
         ahead = [run for run in self._runs_ahead(k, end) if run not in self._ahead] if runs else []
@@ -378,6 +386,34 @@ class Regions:
                     # design found by a solve, else its own verdict with its own search)
             runs = halves
         self._length = min(2 * longest, LONGEST_RUN)
+
+    def _whole_stretch(self, k: int, end: int) -> bool:
+        """Where a stretch without designs entered from a design starts at point k (its first run, FIRST_RUN points up
+        to ``end``, searched as a region) in a design without integer variables: the points from k up to LONGEST_RUN on
+        (or the sweep's end) searched first as one region, within REGION_BUDGET times the boxes of the last point's own
+        proof. A sweep that meets such a stretch after designs has moved into its infeasible region and most often stays
+        in it (a duty or a speed past what any design carries); one that starts without designs most often moves out of
+        it, where this search would meet a design at the far end for nothing (the wedge from 300 N m down,
+        test_region_search). Where a region's proof costs about what its point nearest the edge does whatever its
+        length, the doubling runs cost a search each for the same proof (the wedge centrifuge over its speed: 257 boxes
+        for 1,905 rpm alone, 809 for the 8 points after it, 731 for the next 16, 551 for the last 6; 705 for those 30 at
+        once: 3 searches, 16 of the sweep's 33 ms of CPU, to 1). Proven, each point gets that proof (and the next run is
+        twice as long); else (a design met at an end of the interval, or the budget spent: its bounds too loose over it)
+        the runs from k as before, nothing of this search used, its boxes spent for nothing. With integer variables the
+        runs ahead are searched in the call of the first instead (:meth:`_runs_ahead`: an iteration costs per call
+        there)."""
+        whole = min(k + LONGEST_RUN, self.count)
+        if self.posed.integer or self._length != FIRST_RUN or whole <= end or not self._entered:
+            return False
+        points = self._point_problems([(k, whole)])
+        problem = _region_problem([points[j] for j in range(k, whole)])
+        began = time.perf_counter()
+        outcome, = searches(self.posed, [problem], [_budget(self._alone, FEW_BOXES)])
+        if outcome is None or not outcome.proven:
+            return False
+        self._proved(k, whole, problem, outcome, (time.perf_counter() - began) / (whole - k))
+        self._to, self._length = whole, min(2 * (whole - k), LONGEST_RUN)
+        return True
 
     def _point_problems(self, runs: list[tuple[int, int]]) -> dict[int, tuple[np.ndarray, ...]]:
         """The search problem of each point of ``runs`` (``(a, b)``: points a .. b - 1), by its number (each built
@@ -537,6 +573,13 @@ class Regions:
         if solution is not None:
             calls, seconds = self._probed
             self._probed = (calls + sign * solution.solver.solves, seconds + sign * solution.solver.time_s)
+
+
+def _given(solution: Solution | None) -> bool:
+    """``solution``'s verdict needs no search: a requirement no design variable enters broken ("infeasible whatever
+    the design", before any solve: ``Problem._given``), or a start-up's drive proofs (``Problem.proven``); verdicts
+    that ``Problem.solve`` gives as they are, and that no region proof covers (:func:`_covered`)."""
+    return solution is not None and solution.diagnosed is not None and solution.diagnosed.proven
 
 
 def _budget(boxes: int, least: int) -> int:
