@@ -68,7 +68,7 @@ from clutchopt.optimise.interval_proof import (FEW_BOXES, MAX_BOXES, SURE_BOXES,
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.verdict import emptied, figures_at, infeasible_at
-from clutchopt.optimise.verify import DESIGN_STATUSES, check_design
+from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL, check_design
 from clutchopt.units import from_si
 
 FIRST_RUN = 8  # points searched as one region after a point without a design,
@@ -594,7 +594,8 @@ def _covered(problem, case, design: dict[str, float], text: str, seconds: float,
         return None
     figures = figures or figures_at(posed, [case], design)[0]
     fixed = {posed.row_names[i] for i in posed.fixed_rows}
-    if any(not c.feasible for c in figures[0] if c.name in fixed):
+    if any(not c.feasible for c in figures[0] if c.name in fixed) or (
+            posed.sides.pairs and posed.sides.conflicts(posed.scaled_data(case, design).p, FEASIBILITY_TOL)):
         return None
     solves, time_s = (spent.solves, spent.time_s) if spent is not None else (0, 0.0)
     return infeasible_at(posed, case, design, text, SolverInfo("interval", "proven", 0, time_s + seconds, solves),

@@ -1,0 +1,36 @@
+"""A hostile user and a doubting reviewer on the surfaces new in session 12 (a quantity held from both sides, paper
+modes posing the case's limits, resumed sweeps, the compiled library's link): each test is one finding's repro, the
+command as a user types it and what it must answer, the reference the same point's ``solve``.
+
+Finding 1: limits with no room between them (ball_compressor in paper mode, K5 at least the paper's 0.8 and at most
+width_ratio_max = 0.7) are "infeasible whatever the design" in ``solve``; a sweep reaching that point warm from a
+design called it ``unverified`` with the warm point's mass (the solvers see the kept row at its own limit, a
+well-posed NLP that SQP solves; the float64 check then broke width_ratio_max), and a sweep starting there called it
+"proven infeasible" by an interval search naming five rows. Both now give solve's verdict, text and design.
+"""
+
+import pytest
+
+from clutchopt.cases import load_case
+from clutchopt.optimise import solve_case
+from clutchopt.optimise.sweep import Sweep
+from clutchopt.optimise.sweep_grid import parse_vary
+from conftest import CASES
+
+COMPRESSOR = load_case(CASES / "ball_compressor.toml")
+
+
+@pytest.mark.parametrize("values", ["0.9,0.8,0.7", "0.7", "0.7,0.6"], ids=["warm", "first", "first_two"])
+def test_a_sweep_point_whose_limits_conflict_gets_solve_s_verdict_whatever_the_design(values):
+    sweep = Sweep(COMPRESSOR, [parse_vary(f"width_ratio_max={values}", "ball")], mode="paper").run(progress=False)
+    for record, ratio_max in zip(sweep.solutions, map(float, values.split(","))):
+        if ratio_max >= 0.8:
+            assert record["status"] == "optimal"
+            continue
+        solved = solve_case(COMPRESSOR.with_values(width_ratio_max=ratio_max), "paper")
+        gap = (0.8 - ratio_max) / 0.8
+        assert solved.status == "infeasible" and solved.diagnosis == (
+            "infeasible whatever the design: width_ratio and width_ratio_max (one quantity held from both sides, "
+            f"their limits apart by {gap:.3g} relative)")
+        assert record["status"] == "infeasible" and record["diagnosis"] == solved.diagnosis
+        assert record["design"] == solved.design and record["objective"]["value"] == solved.objective
