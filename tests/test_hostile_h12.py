@@ -7,6 +7,11 @@ width_ratio_max = 0.7) are "infeasible whatever the design" in ``solve``; a swee
 design called it ``unverified`` with the warm point's mass (the solvers see the kept row at its own limit, a
 well-posed NLP that SQP solves; the float64 check then broke width_ratio_max), and a sweep starting there called it
 "proven infeasible" by an interval search naming five rows. Both now give solve's verdict, text and design.
+
+Finding 2: limits a hair apart (width_ratio_max 2e-12 to 3e-10 relative above the paper's K5 of 0.8, room the float64
+check cannot tell from none) were posed as two rows g and -g: IPOPT took 26-29 iterations, the polish failed and
+``solve`` called "optimal" a design 7.8e-9 heavier than the vertex (its torque 1.3e-8 over M_c), where a sweep's point
+found the vertex. Such a pair is now one row (two_sided.ROOM = 1e-8): the vertex, polished, in 7-8 iterations.
 """
 
 import pytest
@@ -34,3 +39,14 @@ def test_a_sweep_point_whose_limits_conflict_gets_solve_s_verdict_whatever_the_d
             f"their limits apart by {gap:.3g} relative)")
         assert record["status"] == "infeasible" and record["diagnosis"] == solved.diagnosis
         assert record["design"] == solved.design and record["objective"]["value"] == solved.objective
+
+
+@pytest.mark.parametrize("apart", [2e-12, 7e-12, 5e-11, 3e-10])
+def test_limits_a_hair_apart_are_one_row_and_solve_finds_the_vertex(apart):
+    vertex = solve_case(COMPRESSOR, "paper")  # width_ratio_max 0.8 (the default), the paper's K5 0.8: one value
+    assert vertex.status == "optimal" and vertex.objective == pytest.approx(505.686153753, rel=1e-11)
+    solved = solve_case(COMPRESSOR.with_values(width_ratio_max=0.8 * (1 + apart)), "paper")
+    assert solved.status == "optimal" and "polished by SQP" in solved.solver.status
+    assert solved.objective == pytest.approx(vertex.objective, rel=1e-10)
+    torque = next(c for c in solved.constraints if c.name == "torque")
+    assert torque.margin < 1e-10 and torque.active

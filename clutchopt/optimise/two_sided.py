@@ -7,12 +7,12 @@ scale into a row ``g <= 0`` (``Constraint.normalised``). Where two constraints h
 rows are g_k = s_k (L_k - v) / S_k and g_f = s_f (v - L_f) / S_f (s = +-1 by sense): g_f <= 0 is
 g_k >= s_f (L_k - L_f) / S_k. Where the two limits leave room between them (design mode; paper mode below the
 case's width_ratio_max) the rows are posed as they are, two one-sided rows. Where they are one value (the ball
-compressor in paper mode: 0.8 and 0.8, within ROOM), the two opposite rows g and -g left IPOPT no interior
-(multipliers 4.8e9, 30 iterations instead of 8; docs/tradeoffs.md): the solvers see the kept row with both limits
-and the other row free (-inf <= g_f <= inf), an equality IPOPT solves as such. Posed so in every case (a pair with
-room between as one row too), the ball's design-mode sweeps' chained SQP took 5 times as long a call (its speed
-sweep 3,545 -> 1,046 points/s), so only the limits decide, at each parameter vector, and the NLP itself (its rows,
-derivatives, compiled code) is one. Where the limits conflict (the lower above the upper) the solvers see the kept
+compressor in paper mode: 0.8 and 0.8; or closer than ROOM, one value to the float64 check), the two opposite rows
+g and -g left IPOPT no interior (multipliers 4.8e9, 30 iterations instead of 8; docs/tradeoffs.md): the solvers see
+the kept row with both limits and the other row free (-inf <= g_f <= inf), an equality IPOPT solves as such.
+Posed so in every case (a pair with room between as one row too), the ball's design-mode sweeps' chained SQP took
+5 times as long a call (its speed sweep 3,545 -> 1,046 points/s), so only the limits decide, at each parameter
+vector, and the NLP itself (its rows, derivatives, compiled code) is one. Where the limits conflict (the lower above the upper) the solvers see the kept
 row at its own limit (a well-posed NLP) and the verdict is given before any solve (:meth:`TwoSided.conflicts`).
 
 Everything apart from the solvers (the float64 re-check, the KKT verdict, the diagnosis, the proofs) sees the named
@@ -29,7 +29,9 @@ import numpy as np
 
 DEPTH = 100  # how deep two value expressions are compared (``ca.is_equal``): a formulation's quantities are a few
 #              operations deep (K5 = l / R_a: one)
-ROOM = 1e-12  # limits closer than this (in the kept row's scale) are one value: the pair posed as one row
+ROOM = 1e-8  # limits closer than this (in the kept row's scale) are one value: the pair posed as one row. Two rows
+# g and -g closer than the float64 check tells apart (ball_compressor paper, width_ratio_max 2e-12 to 3e-10 above the
+# paper's K5 0.8) left IPOPT 26-29 iterations and an unpolished optimum 7.8e-9 heavier; one row: 8, polished
 
 
 def _scale(constraint):
