@@ -12,8 +12,9 @@ g and -g left IPOPT no interior (multipliers 4.8e9, 30 iterations instead of 8; 
 the kept row with both limits and the other row free (-inf <= g_f <= inf), an equality IPOPT solves as such.
 Posed so in every case (a pair with room between as one row too), the ball's design-mode sweeps' chained SQP took
 5 times as long a call (its speed sweep 3,545 -> 1,046 points/s), so only the limits decide, at each parameter
-vector, and the NLP itself (its rows, derivatives, compiled code) is one. Where the limits conflict (the lower above the upper) the solvers see the kept
-row at its own limit (a well-posed NLP) and the verdict is given before any solve (:meth:`TwoSided.conflicts`).
+vector, and the NLP itself (its rows, derivatives, compiled code) is one. Where the limits conflict (the lower above
+the upper) the solvers see the kept row at its own limit (a well-posed NLP) and the verdict is given before any
+solve (:meth:`TwoSided.conflicts`).
 
 Everything apart from the solvers (the float64 re-check, the KKT verdict, the diagnosis, the proofs) sees the named
 rows, one-sided, each with its own multiplier: a two-sided row's multiplier lam splits by sign onto the side that
