@@ -38,7 +38,7 @@ from clutchopt.optimise.start_up_sweep import sized_choices
 from clutchopt.optimise.verdict import infeasible_at, shown
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.sampled_start import from_a_sampled_design
-from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL, evaluate_outputs
+from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
 from clutchopt.start_up.mesh import MAX_INTERVALS, MESH_STEPS
@@ -462,8 +462,8 @@ class Problem:
         relaxed = None
         if warm_ok:
             data = posed.scaled_data(solved, warm.design, warm.scale, warm.internal, mesh, checked)
-            warm_ok = self.start_up is not None or not posed.sides.conflicts(data.p, FEASIBILITY_TOL)  # (limits with
-            # no room between: the cold path's verdict, without a solve; warm, SQP solved the kept row at its limit)
+            warm_ok = self.start_up is not None or not posed.conflicting(solved)  # (limits with no room between: the
+            # cold path's verdict, without a solve; warm, SQP solved the kept row at its own limit)
         if warm_ok:
             integer = posed.free_integers(data)
             seed = {"x": data.x0, "lam_x": duals[0], "lam_g": duals[1]} if duals is not None else None
