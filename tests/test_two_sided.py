@@ -98,11 +98,16 @@ def test_k5_held_at_one_value_from_both_sides_is_an_equality_ipopt_solves_as_suc
 
 def test_limits_with_no_room_between_are_infeasible_whatever_the_design_never_an_ill_posed_solve(tmp_path):
     # _rows() with the lower limit 7 above the upper 5: g_l >= (7 - 5) / 4 = 0.5 > 0 = its upper bound. The solvers see
-    # the kept row at its own limit (lbg <= ubg: IPOPT refused lbg > ubg with an assertion, an internal error), and
-    # the pair is named apart by 0.5 relative to the kept row's scale.
+    # the kept row where the two rows cross, each violated alike: g_l = 0.5 / (1 + S_u / S_l) = 0.5 / 3.5 = 1/7 (so
+    # v = 7 - 4/7 and g_u = (v - 5) / 10 = 1/7 too; lbg <= ubg: IPOPT refused lbg > ubg with an assertion, an internal
+    # error; the chained SQP's symbolic bounds the same), and the pair is named apart by 0.5 relative to the kept row's scale: in conflict where that is more than
+    # the tolerance allows on both rows, tol (1 + 2.5)
     sides = _rows(7.0)[2]
     assert sides.conflicts(np.zeros(0), 1e-9) == [(2, 0, 0.5)]
-    assert list(sides.bounds(np.zeros(0), np.zeros(3))[0]) == [-np.inf, -np.inf, 0.0]
+    assert sides.conflicts(np.zeros(0), 0.5 / 3.5) == [] and sides.conflicts(np.zeros(0), 0.14) == [(2, 0, 0.5)]
+    lbg, ubg = sides.bounds(np.zeros(0), np.zeros(3))
+    assert list(lbg) == [-np.inf, -np.inf, 0.5 / 3.5] and list(ubg) == [np.inf, 0.0, 0.5 / 3.5]
+    assert [list(np.array(b).ravel()) for b in sides.bounds_of(np.zeros(0))] == [list(lbg), list(ubg)]
     # ball_compressor.toml in paper mode: K5 at least the paper's 0.8 (width_ratio) and at most width_ratio_max = 0.5:
     # apart by (0.8 - 0.5) / 0.8 = 0.375 of the kept row's scale (its limit 0.8). Proven without a solve, both named.
     case = load_case(CASES / "ball_compressor.toml").with_values(width_ratio_max=0.5)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 from types import SimpleNamespace
 from typing import Callable, NamedTuple
 
@@ -26,7 +27,7 @@ from clutchopt.optimise.modifier import modified
 from clutchopt.optimise.solution import IPOPT_OWN_FIGURES, START_UP_RESTORATION, SolverOptions
 from clutchopt.optimise.sparsity import entries
 from clutchopt.optimise.two_sided import TwoSided
-from clutchopt.optimise.verify import evaluate_objective
+from clutchopt.optimise.verify import FEASIBILITY_TOL, evaluate_objective
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
 from clutchopt.start_up.transcription import StartUpBlock, initial_states
@@ -309,6 +310,21 @@ class Posed:
             return case, design
         design, values = view(design, case.values, None)
         return replace(case, values=case.followed(values)), design
+
+    @cached_property
+    def paired(self) -> set[str]:
+        """The names of the rows held from both sides (``TwoSided``'s pairs)."""
+        return {self.row_names[row] for pair in self.sides.pairs for row in pair}
+
+    def conflicting(self, case: Case) -> bool:
+        """Whether two rows hold one quantity from both sides with no room between at ``case``'s values
+        (``TwoSided.conflicts``: infeasible whatever the design), read from the case alone: the pairs' limits and
+        scales are its quantities (no start scaled, no start-up simulated for it)."""
+        if not self.sides.pairs:
+            return False
+        given = np.array(list(vars(self.params(case)).values()), dtype=float)
+        return bool(self.sides.conflicts(np.concatenate([given, np.ones(self.nlp["p"].shape[0] - len(given))]),
+                                         FEASIBILITY_TOL))
 
     @property
     def mesh_size(self) -> int:

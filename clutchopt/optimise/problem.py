@@ -462,6 +462,9 @@ class Problem:
         relaxed = None
         if warm_ok:
             data = posed.scaled_data(solved, warm.design, warm.scale, warm.internal, mesh, checked)
+            warm_ok = self.start_up is not None or not posed.conflicting(solved)  # (limits with no room between: the
+            # cold path's verdict, without a solve; warm, SQP solved the kept row, posed where the rows cross)
+        if warm_ok:
             integer = posed.free_integers(data)
             seed = {"x": data.x0, "lam_x": duals[0], "lam_g": duals[1]} if duals is not None else None
             combo = np.array([warm.design[posed.names[i]] for i in integer])

@@ -631,14 +631,15 @@ def _covered(problem, case, design: dict[str, float], text: str, seconds: float,
     or the point's own failed solve, which ``spent`` its calls and seconds) with every constraint re-evaluated in
     float64 at this point's values (``figures``, if evaluated already: ``verdict.figures_at``) and the case's bounds
     (``bounds``, if read already: its search problem's); None where a requirement no design variable enters is
-    broken, or a start-up's drive proofs hold (its own verdict says so)."""
+    broken or two limits of one quantity leave no room between (``Posed.conflicting``), or a start-up's drive proofs
+    hold (its own verdict says so)."""
     posed = problem.posed
     if problem.start_up is not None and start_up_proofs(case):
         return None
     figures = figures or figures_at(posed, [case], design)[0]
-    fixed = {posed.row_names[i] for i in posed.fixed_rows}
-    if any(not c.feasible for c in figures[0] if c.name in fixed):
-        return None
+    broken = {c.name for c in figures[0] if not c.feasible}
+    if broken & {posed.row_names[i] for i in posed.fixed_rows} or (broken & posed.paired and posed.conflicting(case)):
+        return None  # (limits that conflict break one of their rows at every design)
     solves, time_s = (spent.solves, spent.time_s) if spent is not None else (0, 0.0)
     return infeasible_at(posed, case, design, text, SolverInfo("interval", "proven", 0, time_s + seconds, solves),
                          figures, bounds)

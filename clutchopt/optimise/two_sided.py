@@ -7,13 +7,15 @@ scale into a row ``g <= 0`` (``Constraint.normalised``). Where two constraints h
 rows are g_k = s_k (L_k - v) / S_k and g_f = s_f (v - L_f) / S_f (s = +-1 by sense): g_f <= 0 is
 g_k >= s_f (L_k - L_f) / S_k. Where the two limits leave room between them (design mode; paper mode below the
 case's width_ratio_max) the rows are posed as they are, two one-sided rows. Where they are one value (the ball
-compressor in paper mode: 0.8 and 0.8, within ROOM), the two opposite rows g and -g left IPOPT no interior
-(multipliers 4.8e9, 30 iterations instead of 8; docs/tradeoffs.md): the solvers see the kept row with both limits
-and the other row free (-inf <= g_f <= inf), an equality IPOPT solves as such. Posed so in every case (a pair with
-room between as one row too), the ball's design-mode sweeps' chained SQP took 5 times as long a call (its speed
-sweep 3,545 -> 1,046 points/s), so only the limits decide, at each parameter vector, and the NLP itself (its rows,
-derivatives, compiled code) is one. Where the limits conflict (the lower above the upper) the solvers see the kept
-row at its own limit (a well-posed NLP) and the verdict is given before any solve (:meth:`TwoSided.conflicts`).
+compressor in paper mode: 0.8 and 0.8; or closer than ROOM, one value to the float64 check), the two opposite rows
+g and -g left IPOPT no interior (multipliers 4.8e9, 30 iterations instead of 8; docs/tradeoffs.md): the solvers see
+the kept row with both limits and the other row free (-inf <= g_f <= inf), an equality IPOPT solves as such.
+Posed so in every case (a pair with room between as one row too), the ball's design-mode sweeps' chained SQP took
+5 times as long a call (its speed sweep 3,545 -> 1,046 points/s), so only the limits decide, at each parameter
+vector, and the NLP itself (its rows, derivatives, compiled code) is one. Where the limits cross (the lower above
+the upper) the solvers see the kept row where the two rows cross (:func:`_crossed`: a well-posed NLP, each row
+violated alike, within the float64 check's tolerance where they cross by less than it allows on both rows), and
+beyond that the verdict is given before any solve (:meth:`TwoSided.conflicts`).
 
 Everything apart from the solvers (the float64 re-check, the KKT verdict, the diagnosis, the proofs) sees the named
 rows, one-sided, each with its own multiplier: a two-sided row's multiplier lam splits by sign onto the side that
@@ -29,7 +31,9 @@ import numpy as np
 
 DEPTH = 100  # how deep two value expressions are compared (``ca.is_equal``): a formulation's quantities are a few
 #              operations deep (K5 = l / R_a: one)
-ROOM = 1e-12  # limits closer than this (in the kept row's scale) are one value: the pair posed as one row
+ROOM = 1e-8  # limits closer than this (in the kept row's scale) are one value: the pair posed as one row. Two rows
+# g and -g closer than the float64 check tells apart (ball_compressor paper, width_ratio_max 2e-12 to 3e-10 above the
+# paper's K5 0.8) left IPOPT 26-29 iterations and an unpolished optimum 7.8e-9 heavier; one row: 8, polished
 
 
 def _scale(constraint):
@@ -74,9 +78,10 @@ class TwoSided:
         self.coefficients = ca.Function("two_sided_coefficients", [p], [lower, ratio])
         self._last = (None, None)  # the coefficients at the last NumPy p (a solve's runs share their p)
         n, kept, freed = len(lbg), self.kept.tolist(), self.freed.tolist()
-        one = lower >= -ROOM
+        one, crossed = lower >= -ROOM, _crossed(ca.fmax(lower, 0), ratio)
         lbg_s, ubg_s = ca.SX(ca.DM(lbg)), ca.SX.zeros(n)
-        lbg_s[kept] = ca.if_else(one, ca.fmin(lower, 0), -ca.inf)
+        lbg_s[kept] = ca.if_else(one, ca.fmin(lower, 0) + crossed, -ca.inf)
+        ubg_s[kept] = ca.if_else(one, crossed, 0)
         ubg_s[freed] = ca.if_else(one, ca.inf, 0)
         lam = ca.SX.sym("lam", n)
         merged, split = ca.SX(lam), ca.SX(lam)
@@ -96,24 +101,29 @@ class TwoSided:
             return self.lbg, ubg
         if _symbolic(p):
             return self.bounds_of(p)
-        one, lower, _ = self._at(p)
+        one, lower, ratio = self._at(p)
         if not one.any():
             return self.lbg, ubg
-        kept, freed = self.kept[one], self.freed[one]
+        kept, freed, lower = self.kept[one], self.freed[one], lower[one]
+        crossed = _crossed(np.maximum(lower, 0.0), ratio[one])
         lbg, ubg = self.lbg.copy(), np.broadcast_to(np.asarray(ubg, dtype=float), self.lbg.shape).copy()
-        lbg[kept] = np.where(np.isinf(ubg[freed]), -np.inf, np.minimum(lower[one], 0.0))
+        lbg[kept] = np.where(np.isinf(ubg[freed]), -np.inf, np.minimum(lower, 0.0) + crossed)
+        ubg[kept] = np.where(np.isinf(ubg[kept]), np.inf, crossed)
         ubg[freed] = np.inf
         return lbg, ubg
 
     def conflicts(self, p: np.ndarray, tolerance: float) -> list[tuple[int, int, float]]:
-        """The pairs whose limits leave no room between them at ``p`` (the lower one above the upper: no design meets
-        both): ``(kept row, other row, how far apart, relative to the kept row's scale)``. The solvers see the kept
-        row at its own limit there (a well-posed NLP, lbg <= ubg), the float64 re-check the other row broken; the
-        verdict is given without a solve (``diagnosis.whatever_the_design``)."""
+        """The pairs whose limits leave no room between them at ``p`` (the lower one above the upper by more than
+        ``tolerance``, the float64 re-check's, allows on both rows: no design meets both): ``(kept row, other row, how
+        far apart, relative to the kept row's scale)``. The solvers see the kept row where the two rows cross there
+        (a well-posed NLP, lbg <= ubg), the float64 re-check one row broken; the verdict is given without a solve
+        (``diagnosis.whatever_the_design``). Limits apart by less (ball_compressor's paper K5 0.8 and a
+        width_ratio_max 1.5e-8 below: each row 7.5e-9 short at the crossing) are met, within the check's tolerance."""
         if not self.pairs:
             return []
-        lower = self._at(np.asarray(p, dtype=float))[1]
-        return [(int(k), int(f), float(gap)) for k, f, gap in zip(self.kept, self.freed, lower) if gap > tolerance]
+        _, lower, ratio = self._at(np.asarray(p, dtype=float))
+        return [(int(k), int(f), float(gap)) for k, f, gap, r in zip(self.kept, self.freed, lower, ratio)
+                if gap > tolerance * (1.0 + r)]
 
     def posed(self, lam_g, p):
         """Named rows' multipliers (each >= 0 on its own row) as the solvers' (a two-sided row's signed)."""
@@ -150,6 +160,13 @@ class TwoSided:
             lower, ratio = (v.full().ravel() for v in self.coefficients(p))
             self._last = (key, (lower >= -ROOM, lower, ratio))
         return self._last[1]
+
+
+def _crossed(apart, ratio):
+    """Where limits ``apart`` (>= 0: the other row's limit above the kept row's, in its scale) pose the kept row: the
+    value of g_k at which both rows are violated alike (g_k = g_f = apart / (1 + S_f / S_k)); 0 where they leave room
+    (apart 0)."""
+    return apart / (1.0 + ratio)
 
 
 def _symbolic(p) -> bool:
