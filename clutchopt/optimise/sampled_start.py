@@ -21,9 +21,12 @@ the case's own optimum from that start. A collocation's mesh is drawn for the st
 from a far design took the sizing's start, on that mesh, for feasible (its start time 35 % short of its simulated
 one) and was lost there. The sequence is not scrambled: the same case gives the same samples, the same start and the
 same answer. Its design is checked as every design is (float64, the simulated start); its failure keeps the verdict
-``not_found`` and names the start among those tried. Only ``solve`` of a point from its own start gets it
-(``Problem.solve``: no start, warm solution or neighbour given): a sweep's point with a feasible neighbour follows
-that neighbour's design instead (its continuation), and a retry from a given design is the caller's. Along a run of
+``not_found`` and names the start among those tried. ``solve`` of a point from its own start gets it
+(``Problem.solve``: no start, warm solution or neighbour given), and a sweep's first point past a design, after its
+continuation from that design (``clutchopt.optimise.sweep``); a point deeper into a run without a design follows its
+neighbour's design alone (its cost, 0.3-0.6 s a point on the ball, 4 s on the lever, would be paid at each point
+whose least relaxation names other constraints than the one before's), and a retry from a given design is the
+caller's. Along a run of
 points without a design, a sampled start that failed at the last point of the same case (but its values) for the
 same violated constraints is not sampled or solved again (``FailedStarts.skips``, as for the design the interval
 search meets).
