@@ -8,7 +8,6 @@ from clutchopt.cases import load_case
 from clutchopt.optimise.integers import least_violation
 from clutchopt.optimise.problem import case_problem
 from clutchopt.optimise.sampled_start import projected, walked
-from clutchopt.optimise.verdict import retried
 from conftest import BALL_PAPER_STRESS, CASES
 
 START_UP_RTOL = 1e-6  # a start-up's objective: the tolerance of its collocation against its simulated start
@@ -37,14 +36,13 @@ def test_a_sample_is_moved_onto_the_rows_its_design_alone_enters_and_its_start_t
     assert least_violation(posed, np.array(posed.constraint_values(data.x0, data.p)).ravel()) <= 1e-6
 
 
-def test_the_walk_from_a_design_whose_start_meets_every_row_reaches_the_optimum_one_solve_from_it_loses(at_606_kw):
-    # one solve from the projected sample: IPOPT's first solve moves to the papers' sizing (533.99 kg), whose start
-    # the mesh drawn for the sample's start takes for 35 % shorter than simulated, and the loop ends without a design;
-    # in steps of +-10 % (sampled_start.STEP) the walk reaches 554.6854 kg, the sweep's design
-    # (tests/test_hostile_agree2.py)
+def test_the_walk_from_a_design_whose_start_meets_every_row_reaches_the_case_s_optimum(at_606_kw):
+    # one solve from the projected sample (verdict.retried, measured on one machine: these paths are chaotic) moved to
+    # the papers' sizing (533.99 kg), whose start the mesh drawn for the sample's start took for 35 % shorter than
+    # simulated, and its loop ended without a design; in steps of +-10 % (sampled_start.STEP) the walk reaches
+    # 554.6854 kg, the sweep's design (tests/test_hostile_agree2.py)
     case, problem = at_606_kw
     design = projected(problem.posed, case, SAMPLE)
-    assert retried(problem, case, design).status == "not_found"
     walk = walked(problem, case, design)
     assert walk.status == "optimal"
     assert walk.objective == pytest.approx(554.6854, rel=START_UP_RTOL)
