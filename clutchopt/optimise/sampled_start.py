@@ -121,8 +121,10 @@ def _projection(posed) -> tuple[np.ndarray, ca.Function]:
 def walked(problem, case: Case, design: dict[str, float]) -> Solution | None:
     """``case`` solved from ``design`` in steps: each within +-STEP of the design before in every free continuous
     variable (the case's bounds narrowed), warm from the step before, while each step's design ends on its box's
-    edge (STEPS at most); then without the box, warm from the last step. None where the first step's start cannot
-    be simulated. A start-up's collocation mesh is drawn for the start it is solved from and adapted around the
+    edge. A step's design inside its box (no side of it holds it: a local optimum of ``case``) is returned with the
+    case's bounds; where a step ends without an optimum, or STEPS are spent, ``case`` is solved without the box, warm
+    from the last optimal step; every step's solver calls summed. None where the first step's start cannot be
+    simulated. A start-up's collocation mesh is drawn for the start it is solved from and adapted around the
     design the solve moves to: a solve that moves the design far sees that design's start on a mesh drawn for
     another's (ball_motor_start in paper mode at 605.7 kW: from a design whose start meets every row, IPOPT's first
     solve moved to the papers' sizing, its start-time 35 % short of its simulated start's, which locks up early, and
@@ -143,7 +145,7 @@ def walked(problem, case: Case, design: dict[str, float]) -> Solution | None:
         if step.status != "optimal":
             break
         last, design = step, step.design
-        if not _on_edge(design, box, case, problem.posed):  # no side of its box holds it: the case's optimum
+        if not _on_edge(design, box, case, problem.posed):
             lower, upper, _ = problem.posed.bounds_and_start(case, design)
             last.bounds = {name: (float(lo), float(hi)) for name, lo, hi in zip(problem.posed.names, lower, upper)}
             last.solver = last.solver.summed(spent)
