@@ -148,11 +148,6 @@ def test_ball_motor_start_in_paper_mode_at_a_service_factor_of_1_49_is_proven_in
         assert record["diagnosis"].startswith("proven infeasible") and "contact_stress" in record["diagnosis"]
 
 
-@pytest.mark.xfail(strict=True, reason="the rows K5 >= 0.5 and K5 <= width_ratio_max = 3 posed as two one-sided rows "
-                   "(they leave room between them: optimise/two_sided.py poses a pair as one row only at one value, "
-                   "since one two-sided row cost the ball's design-mode sweeps' chained SQP 5 times a call) change "
-                   "the warm IPOPT's path: the sweep's second point ends not_found; posed as one row with both "
-                   "limits it followed the first point's design onto 595.66 kg")
 def test_ball_motor_start_in_paper_mode_at_a_service_factor_of_1_49_is_swept_onto_its_design():
     # service factor 1.389 then 1.491, the contact stress allowed (1.5 GPa): the first point 519.51 kg (the torque and
     # the paper's K5 active), solve's; the second 595.6578131 kg "optimal" (docs/start_up.md, "A cold start a sweep's
@@ -167,13 +162,11 @@ def test_ball_motor_start_in_paper_mode_at_a_service_factor_of_1_49_is_swept_ont
     assert record["objective"]["value"] == pytest.approx(595.6578131, rel=START_UP_RTOL)
 
 
-@pytest.mark.xfail(strict=True, reason="solve alone: from the sizing every cold IPOPT ends at the same least "
-                   "relaxation (r = 0.356 m), and the sampled start that reached the sweep's design (r = 0.172 m, "
-                   "b = 1.876 m: K5 = 10.9) misses the case's width_ratio_max (3) by 2.6 now that paper mode poses "
-                   "it: the least violated of 16 samples is the box's corner (its torque row 1.0), from which IPOPT "
-                   "ends at that relaxation too (not_found)")
 def test_ball_motor_start_in_paper_mode_at_a_service_factor_of_1_49_has_the_sweep_s_design_solved_alone():
-    # the sweep's design above, 595.6578131 kg, reached by solve of the point alone
+    # the sweep's design above, 595.6578131 kg, reached by solve of the point alone: from the sizing every cold IPOPT
+    # ends at the same least relaxation (r = 0.356 m); the least violated of the 16 sampled designs, each moved onto
+    # the rows the design alone enters (l / R_a <= 3 among them: the sample r = 0.172 m, b = 1.876 m has 10.9), is
+    # walked to it in steps of +-10 % (optimise/sampled_start.py)
     case = load_case(CASES / "ball_motor_start.toml").with_values(service_factor=1.4914285714285713,
                                                                   **BALL_PAPER_STRESS)
     solved = solve_case(case, mode="paper")

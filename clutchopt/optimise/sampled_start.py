@@ -11,13 +11,22 @@ along the torque's need, away from the sizing, whose start locks up early and mi
 measured reached the band (docs/start_up.md, "A cold start a sweep's continuation reaches").
 
 The start then comes from the whole design box: SAMPLES designs of a Sobol sequence over the variables the case leaves
-free (integers rounded), each with its start simulated as any start's states are (``Posed.scaled_data``), and the one
-whose largest normalised row of the NLP is least (:func:`~clutchopt.optimise.integers.least_violation`) is solved as a
-retry is, through the accuracy loop. The sequence is not scrambled: the same case gives the same samples, the same
-start and the same answer. Its design is checked as every design is (float64, the simulated start); its failure keeps
-the verdict ``not_found`` and names the start among those tried. Only ``solve`` of a point from its own start gets it
-(``Problem.solve``: no start, warm solution or neighbour given): a sweep's point with a feasible neighbour follows
-that neighbour's design instead (its continuation), and a retry from a given design is the caller's. Along a run of
+free (integers rounded), each moved first onto the rows the design alone enters (:func:`projected`: the nearest design
+that meets the torque and the case's limits on the geometry; a sample breaks them by as much as the box is wide),
+then its start simulated as any start's states are (``Posed.scaled_data``), and the one whose largest normalised row
+of the NLP is least (:func:`~clutchopt.optimise.integers.least_violation`) is solved from, in steps
+(:func:`walked`): each step within a box of +-STEP around the design before, through the accuracy loop as any retry,
+warm from the step before, until a step's design lies inside its box; that design, no side of its box holding it, is
+the case's own optimum from that start. A collocation's mesh is drawn for the start it is solved from: one solve
+from a far design took the sizing's start, on that mesh, for feasible (its start time 35 % short of its simulated
+one) and was lost there. The sequence is not scrambled: the same case gives the same samples, the same start and the
+same answer. Its design is checked as every design is (float64, the simulated start); its failure keeps the verdict
+``not_found`` and names the start among those tried. ``solve`` of a point from its own start gets it
+(``Problem.solve``: no start, warm solution or neighbour given), and a sweep's first point past a design, after its
+continuation from that design (``clutchopt.optimise.sweep``); a point deeper into a run without a design follows its
+neighbour's design alone (its cost, 0.3-0.6 s a point on the ball, 4 s on the lever, would be paid at each point
+whose least relaxation names other constraints than the one before's), and a retry from a given design is the
+caller's. Along a run of
 points without a design, a sampled start that failed at the last point of the same case (but its values) for the
 same violated constraints is not sampled or solved again (``FailedStarts.skips``, as for the design the interval
 search meets).
@@ -28,21 +37,24 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+import casadi as ca
 import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.optimise.integers import least_violation
 from clutchopt.optimise.solution import Solution
-from clutchopt.optimise.verdict import retried
 from clutchopt.optimise.verify import DESIGN_STATUSES
 
 SAMPLES = 16  # designs sampled over the box (a power of two: a Sobol sequence's balanced size). Each start simulated
 # costs what the coupling's start costs: 16 take 0.2 s on the ball, 4 s on the lever (0.1-0.5 s each; a simulation's
-# tolerance hardly changes it). ball_motor_start (paper) at a service factor of 1.49 and at 605.7 kW: the least
-# violated of 16, 32 or 64 is the same design (r = 0.172 m, b = 1.876 m, largest row 0.22 and 0.20), which solves to
-# the sweep's design; at 641.7, 661.3 and 672.2 kW 16 and 32 alike find a design; at a service factor of 1.6 the
-# least violated of 16 reaches 757.93 kg, of 32 none: a sampled start is a start, not a search
+# tolerance hardly changes it), their projections 0.2 s on the ball. ball_motor_start (paper, 1.5 GPa) at 605.7 kW:
+# the 16th sample (r = 0.172 m, b = 1.876 m) moved onto l / R_a = 3 (r = 0.233 m) meets every row with its start
+# simulated, and is walked to the sweep's design; at a service factor of 1.8 no sample's start meets every row, and no
+# walk finds a design: a sampled start is a start, not a search
+STEP = 0.1  # how far a step of the walk from the sample (:func:`walked`) may move each variable, relative
+STEPS = 30  # steps at most (ball_motor_start in paper mode: 13 from its sample to 554.69 kg at 605.7 kW, 12 at 1.49)
+EDGE = 1e-6  # a step's design this near (relative) a side of its box is on it: the walk goes on
 SAMPLED = f"the least violated of {SAMPLES} sampled designs"
 _SAMPLED_KEY = {"sampled_designs": float(SAMPLES)}  # the sampled start as ``FailedStarts`` keeps it: by what it is,
 # not by the design it lands on at each point
@@ -50,8 +62,9 @@ _SAMPLED_KEY = {"sampled_designs": float(SAMPLES)}  # the sampled start as ``Fai
 
 def least_violated(posed, case: Case) -> dict[str, float] | None:
     """The design among SAMPLES of a Sobol sequence over ``case``'s box (the variables its bounds leave free, each
-    between its finite bounds; integers rounded) whose NLP rows, with its start simulated, are missed least; None
-    where no variable is free or no sample's start can be simulated."""
+    between its finite bounds; integers rounded), each moved first onto the rows the design alone enters
+    (:func:`projected`), whose NLP rows, with its start simulated, are missed least; None where no variable is free
+    or no sample's start can be simulated."""
     lower, upper, start = (np.asarray(a, dtype=float) for a in posed.bounds_and_start(case, None))
     free = [i for i, (lo, hi) in enumerate(zip(lower, upper)) if hi > lo and math.isfinite(lo) and math.isfinite(hi)]
     if not free:
@@ -63,7 +76,7 @@ def least_violated(posed, case: Case) -> dict[str, float] | None:
         x = start.copy()
         x[free] = lower[free] + unit * (upper[free] - lower[free])
         x[posed.integer] = np.clip(np.round(x[posed.integer]), lower[posed.integer], upper[posed.integer])
-        design = dict(zip(posed.names, map(float, x)))
+        design = projected(posed, case, dict(zip(posed.names, map(float, x))))
         try:
             data = posed.scaled_data(case, design)
         except (InputError, ValueError, ArithmeticError):  # its start cannot be simulated or seeded: outside the
@@ -75,6 +88,95 @@ def least_violated(posed, case: Case) -> dict[str, float] | None:
     return best
 
 
+def projected(posed, case: Case, design: dict[str, float]) -> dict[str, float]:
+    """The design nearest ``design`` (each free continuous variable relative to its scale; integers kept) that meets
+    the rows the design alone enters (the torque, the case's limits on the geometry, the start-up's rows of the
+    design alone: its overload torque, ...), by IPOPT; ``design`` itself where IPOPT ends without one. A sample
+    breaks those rows by as much as the box is wide (ball_motor_start in paper mode: l / R_a = 10.9 against its
+    limit 3, the clutch's torque 1,000 times its overload limit), where no start-up row says anything of it."""
+    data = posed.scaled_data(case, design, internal=np.zeros(posed.start_up.size))  # (no start simulated)
+    kept = data.lower == data.upper
+    kept[posed.integer] = True
+    rows, solver = posed.built("projection", None, lambda _: _projection(posed))
+    start = data.start / data.scale
+    found = solver(x0=start, p=np.concatenate([data.p, start, ~kept]), lbx=np.where(kept, start, data.lower /
+                   data.scale), ubx=np.where(kept, start, data.upper / data.scale), lbg=posed.lbg[rows], ubg=0.0)
+    if not solver.stats()["success"]:
+        return design
+    return posed.design(np.asarray(found["x"]).ravel(), data.scale)
+
+
+def _projection(posed) -> tuple[np.ndarray, ca.Function]:
+    """The rows the design alone enters, and IPOPT on the scaled design nearest a target (the sum of squares of the
+    weighted differences) that meets them; its parameters the NLP's, the target and the weights."""
+    n = len(posed.names)
+    rows, values = posed.fixed_only(np.ones(n, dtype=bool))
+    x, p = ca.SX.sym("x", n), ca.SX.sym("p", posed.nlp["p"].shape[0])
+    target, weight = ca.SX.sym("target", n), ca.SX.sym("weight", n)
+    g = values(ca.vertcat(x, ca.SX.zeros(posed.nlp["x"].shape[0] - n)), p)
+    nlp = {"x": x, "p": ca.vertcat(p, target, weight), "f": ca.sumsqr(weight * (x - target)), "g": g}
+    return rows, ca.nlpsol("projection", "ipopt", nlp, posed.options.ipopt())
+
+
+def walked(problem, case: Case, design: dict[str, float]) -> Solution | None:
+    """``case`` solved from ``design`` in steps: each within +-STEP of the design before in every free continuous
+    variable (the case's bounds narrowed), warm from the step before, while each step's design ends on its box's
+    edge. A step's design inside its box (no side of it holds it: a local optimum of ``case``) is returned with the
+    case's bounds; where a step ends without an optimum, or STEPS are spent, ``case`` is solved without the box, warm
+    from the last optimal step; every step's solver calls summed. None where the first step's start cannot be
+    simulated. A start-up's collocation mesh is drawn for the start it is solved from and adapted around the
+    design the solve moves to: a solve that moves the design far sees that design's start on a mesh drawn for
+    another's (ball_motor_start in paper mode at 605.7 kW: from a design whose start meets every row, IPOPT's first
+    solve moved to the papers' sizing, its start-time 35 % short of its simulated start's, which locks up early, and
+    the loop lost the designs that meet every check), so a step moves the design by STEP at most."""
+    names = [v.name for v in problem.formulation.variables if not v.integer]
+    step = last = None  # (the last step that ended optimal)
+    spent = []
+    for _ in range(STEPS):
+        box = _box(problem.posed, case, design, names)
+        try:
+            step = problem.refined(replace(case, bounds={**case.bounds, **box}), None if last else design, last,
+                                   diagnosed=False)
+        except InputError:  # (a start-up whose first simulation fails from this start)
+            if last is None:
+                return None
+            break
+        spent.append(step.solver)
+        if step.status != "optimal":
+            break
+        last, design = step, step.design
+        if not _on_edge(design, box, case, problem.posed):
+            lower, upper, _ = problem.posed.bounds_and_start(case, design)
+            last.bounds = {name: (float(lo), float(hi)) for name, lo, hi in zip(problem.posed.names, lower, upper)}
+            last.solver = last.solver.summed(spent)
+            return last
+    if last is None and step.status not in DESIGN_STATUSES:
+        return step
+    found = problem.refined(case, warm=last or step, diagnosed=False)
+    found.solver = found.solver.summed(spent + [found.solver])
+    return found
+
+
+def _box(posed, case: Case, design: dict[str, float], names: list[str]) -> dict[str, tuple[float, float]]:
+    """The bounds of a step from ``design``: +-STEP of each free continuous variable (of its bounds' width where it
+    is 0), within the case's bounds."""
+    lower, upper, _ = posed.bounds_and_start(case, design)
+    box = {}
+    for name, lo, hi in zip(posed.names, lower, upper):
+        if name in names and lo < hi:
+            reach = STEP * (abs(design[name]) or hi - lo)
+            box[name] = (max(lo, design[name] - reach), min(hi, design[name] + reach))
+    return box
+
+
+def _on_edge(design: dict[str, float], box: dict[str, tuple[float, float]], case: Case, posed) -> bool:
+    """Whether ``design`` lies on a side of ``box`` that is not one of the case's own bounds."""
+    lower, upper, _ = posed.bounds_and_start(case, design)
+    own = {name: (lo, hi) for name, lo, hi in zip(posed.names, lower, upper)}
+    return any(math.isclose(design[name], side, rel_tol=EDGE) and side not in own[name]
+               for name, sides in box.items() for side in sides)
+
+
 def from_a_sampled_design(problem, case: Case, verdict: Solution) -> Solution:
     """``verdict`` (a start-up solve's ``not_found``) retried from the least violated sampled design
     (:func:`least_violated`): its design where the retry reaches one, else ``verdict`` with that start named among
@@ -83,7 +185,7 @@ def from_a_sampled_design(problem, case: Case, verdict: Solution) -> Solution:
     if verdict.status != "not_found" or failed.skips(case, _SAMPLED_KEY, verdict.diagnosed):
         return verdict
     design = least_violated(problem.posed, case)
-    retry = None if design is None else retried(problem, case, design)  # (None: its first simulation failed)
+    retry = None if design is None else walked(problem, case, design)  # (None: its first simulation failed)
     if retry is not None and retry.status in DESIGN_STATUSES:
         retry.solver = retry.solver.summed([verdict.solver, retry.solver])
         retry.starts = verdict.starts + (SAMPLED,)
