@@ -16,7 +16,7 @@ check of the NLP's start, which takes the link as quasi-static (the twist where 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import partial
 from types import SimpleNamespace
 from typing import Callable
@@ -103,7 +103,9 @@ def _on_floats(m: ElasticModel, lag: float) -> tuple[Callable, Callable]:
     probes = [(0.0, 0.0, 0.0, 0.0), (0.0, -1e-3 * w, 0.1 * twist, 0.5 * load), (0.5 * w, 0.4 * w, 0.1 * twist, 0.0),
               (w, 0.9 * w, -0.5 * twist, 0.5 * load), (w, w, twist, load)]  # (at rest, as it swings, beyond)
     made = []
-    for equations, objects in ((link_rates, (m,)), (stress_rate, (m, lag))):
+    run_free = replace(m, effects=(), end_time=None, integrator="LSODA")  # the run's settings (its end, integrator,
+    # the effects it reports) enter no equation: one trace for a start guess (cut at an end time) and a check
+    for equations, objects in ((link_rates, (run_free,)), (stress_rate, (run_free, lag))):
         reference = partial(equations, *objects)
         made.append(bound(partial(partial, equations), (0, 0, 0, 0), parametrised(*objects),
                           ("elastic", equations.__name__), reference, probes,
