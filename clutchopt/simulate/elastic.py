@@ -119,7 +119,8 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     """The start from rest by LSODA (its stiff mode takes the link's fast twist where it is stiff), stepped by
     :mod:`clutchopt.simulate.stepping` within the same budget of steps as a slipping coupling's; the twist's
     extremes (relative speed zero) and the stress's (its rate along the motion zero) are sampled where they occur,
-    so that the peak stress is not missed."""
+    so that the peak stress is not missed: where the samples resolve the swings, only those that can be the largest
+    (``all_extremes``: every one)."""
     m = model
     motor = m.motor
     time_scale = (m.inertia + motor.inertia) * m.target / max(motor.breakdown_torque, 1e-300)
