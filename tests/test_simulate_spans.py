@@ -75,6 +75,33 @@ def test_the_maxima_of_an_oscillation_are_sampled_where_they_are(omega, periods,
     assert maxima == pytest.approx((math.pi / 2 + 2 * math.pi * np.arange(periods)) / omega, rel=1e-6)
 
 
+@pytest.mark.parametrize("second, located", [(0.9, 1), (0.995, 2)])
+def test_an_extreme_that_cannot_be_the_largest_of_its_figure_is_not_located(second, located):
+    # x'' = -2a x' - (w^2 + a^2) x, x(0) = 0, x'(0) = w: x = e^{-a t} sin(w t), each maximum e^{-2 pi a / w} times the
+    # one before (``second``); two periods. With the event's figure x, a maximum whose samples are more than
+    # PEAK_MARGIN (1e-2) below the largest sample so far is not located: at 0.9 the second is not, at 0.995 it is (its
+    # samples within the margin); the largest x is the same to the bit as where every maximum is located
+    omega = 2.0
+    a = -math.log(second) * omega / (2 * math.pi)
+
+    def run(figure):
+        peak = _event(lambda t, y: y[1], False, -1)
+        if figure:
+            peak.figure = lambda y: y[0]
+        ends = _event(lambda t, y: t - 2 * 2 * math.pi / omega, True, 1)
+        jacobian = np.array([[0.0, 1.0], [-(omega**2 + a**2), -2 * a]])
+        return integrate_spans(lambda t, y: [y[1], -2 * a * y[1] - (omega**2 + a**2) * y[0]], lambda t, y: jacobian,
+                               0.0, np.array([0.0, omega]), 1e9, [peak, ends], 1e-11, np.array([1e-11, 1e-11 * omega]),
+                               Budget(50_000), 1e-3, extremes_interpolated=True)
+
+    every, largest = run(False), run(True)
+    maxima = largest.t[np.abs(largest.y[1]) < 1e-9 * omega]  # located: the rate zero there
+    assert len(every.t[np.abs(every.y[1]) < 1e-9 * omega]) == 2 and len(maxima) == located
+    assert len(largest.t) == len(every.t) - (2 - located)
+    assert largest.y[0].max() == every.y[0].max()
+    assert maxima[0] == pytest.approx(math.atan(omega / a) / omega, rel=1e-6)  # x' = 0: tan(w t) = w / a
+
+
 def test_a_run_past_its_budget_stops_with_that_status():
     budget = Budget(50)
     out = integrate_spans(lambda t, y: [y[1], -1e4 * y[0]], None, 0.0, np.array([0.0, 1.0]), 1e3, [], 1e-12,

@@ -16,7 +16,7 @@ check of the NLP's start, which takes the link as quasi-static (the twist where 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import partial
 from types import SimpleNamespace
 from typing import Callable
@@ -56,6 +56,8 @@ class ElasticModel:
     rtol: float = 1e-10
     end_time: float | None = None
     integrator: str = "LSODA"  # "DOP853" or "Radau" for a reference run (docs/start_up.md, "The check's tolerance")
+    all_extremes: bool = False  # every extreme of the twist and stress sampled, not only those that can be the
+    # largest (clutchopt.simulate.spans.PEAK_MARGIN): a start guess's samples are the NLP's initial states
 
     def torque(self, speed, twist):
         """Torque through the link at a driving speed and a twist (numbers, arrays or symbols alike)."""
@@ -103,7 +105,9 @@ def _on_floats(m: ElasticModel, lag: float) -> tuple[Callable, Callable]:
     probes = [(0.0, 0.0, 0.0, 0.0), (0.0, -1e-3 * w, 0.1 * twist, 0.5 * load), (0.5 * w, 0.4 * w, 0.1 * twist, 0.0),
               (w, 0.9 * w, -0.5 * twist, 0.5 * load), (w, w, twist, load)]  # (at rest, as it swings, beyond)
     made = []
-    for equations, objects in ((link_rates, (m,)), (stress_rate, (m, lag))):
+    run_free = replace(m, effects=(), end_time=None, integrator="LSODA", all_extremes=False)  # the run's settings
+    # (its end, integrator, samples, the effects it reports) enter no equation: one trace for a guess and a check
+    for equations, objects in ((link_rates, (run_free,)), (stress_rate, (run_free, lag))):
         reference = partial(equations, *objects)
         made.append(bound(partial(partial, equations), (0, 0, 0, 0), parametrised(*objects),
                           ("elastic", equations.__name__), reference, probes,
@@ -115,7 +119,8 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     """The start from rest by LSODA (its stiff mode takes the link's fast twist where it is stiff), stepped by
     :mod:`clutchopt.simulate.stepping` within the same budget of steps as a slipping coupling's; the twist's
     extremes (relative speed zero) and the stress's (its rate along the motion zero) are sampled where they occur,
-    so that the peak stress is not missed."""
+    so that the peak stress is not missed: where the samples resolve the swings, only those that can be the largest
+    (``all_extremes``: every one)."""
     m = model
     motor = m.motor
     time_scale = (m.inertia + motor.inertia) * m.target / max(motor.breakdown_torque, 1e-300)
@@ -153,11 +158,15 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
     bound = m.end_time if m.end_time is not None else 1e3 * time_scale
     speed_scale = motor.synchronous_speed
     atol = m.rtol * np.array([speed_scale, speed_scale, m.largest_twist, 1.0 + m.inertia * speed_scale**2])
+    swing = _swing_period(m) / SWING_SAMPLES
+    if not m.all_extremes and math.isfinite(swing) and swing >= FIRST_SPAN * time_scale:  # samples that resolve
+        # the swings: of their extremes only those that can be the largest twist and stress are located
+        twist_extreme.figure = lambda y: np.abs(y[2])
+        stress_extreme.figure = lambda y: np.asarray(m.stress(y[0], y[2]), dtype=float)
     events = [started, overturned, twist_extreme, stress_extreme]
     if m.integrator == "LSODA":
         out = integrate_spans(rates, None, 0.0, np.zeros(4), bound, events, m.rtol, atol, Budget(MAX_STEPS),
-                              FIRST_SPAN * time_scale,
-                              max(_swing_period(m) / SWING_SAMPLES, FIRST_SPAN * time_scale),  # (a swing faster
+                              FIRST_SPAN * time_scale, max(swing, FIRST_SPAN * time_scale),  # (a swing faster
                               SWING_NODES, extremes_interpolated=True)  # than 96e-3 of the start, as of a rotor
         # of 1e-9 kg m^2, is not sampled: its extremes on zooms)
     else:

@@ -18,7 +18,9 @@ machinery (a Python step, a dense output and every event at each step) was three
   terminal event's root is taken a Newton step further on the event's value there and the state integrated on to it.
   Where that interpolant is off the integrated state by more than TRUSTED (a motion too fast for the span's
   samples: the cable's torsional swings), the interval is integrated again sampled ZOOM_SAMPLES times and the
-  same is done on those samples;
+  same is done on those samples; a sampled event whose caller wants only the largest of a figure at its roots
+  (its ``figure``, of samples: the cable's stress and twist) is not located where the figure's samples at both ends
+  of the interval are below its largest so far by more than PEAK_MARGIN;
 - a budget of solver steps shared by the phases of a run (:class:`~clutchopt.simulate.stepping.Budget`), counted
   after each span.
 """
@@ -41,6 +43,10 @@ SPAN_SAMPLES = 192  # samples of a span: each restart of LSODA costs some 20-40 
 ZOOM_SAMPLES = 32  # the interval where an event changes sign, integrated again with this many samples
 LOCAL_NODES = 6  # samples of that interval interpolated (degree 5) to find the root (a caller may take more)
 TRUSTED = 1e-6  # relative: an interpolant of a span's samples this near the state integrated to its root is used
+PEAK_MARGIN = 1e-2  # relative: an extreme whose interval's samples are this far below the figure's largest sample
+# so far is not located. Between samples h apart a swing of period P and amplitude A rises above the nearer sample by
+# at most A (pi h / P)^2 / 2, 5.4e-4 A at the cable's 96 samples a swing, so no such extreme can be the largest: the
+# peaks are the same, the samples fewer (cable_motor_start's checks: 5-7 of 45-47 extremes, 9.1 -> 6.1 ms)
 EXTREMUM_XTOL = 1e-9  # of the sample interval: a sampled event's root (a maximum, whose value moves by the square
 # of the time's error; its state is integrated to the root found): 7.6 of Brent's steps a root, not 11
 SUCCESS = "Integration successful."
@@ -77,6 +83,7 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
     an event's interpolant runs through; ``extremes_interpolated``: a sampled event's state taken from the
     interpolant where it is as accurate as the samples (:func:`_interpolated`)."""
     lsoda = _Lsoda(fun, jac, rtol, atol, budget, nodes, extremes_interpolated)
+    peaks: dict[int, float] = {}  # each figure's largest sample so far (events with a ``figure``)
     times, states = [np.array([t0])], [np.array(y0, dtype=float).reshape(-1, 1)]
     t, y, first = t0, np.array(y0, dtype=float), 1
     ratio = SPACING_GROWTH
@@ -97,7 +104,7 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
             samples = lsoda.run(y, grid)
             if samples is None:
                 return _phase(times, states, "budget" if budget.spent else "failed", message=lsoda.message)
-            terminal, sampled = _first_events(events, grid, samples, lsoda)
+            terminal, sampled = _first_events(events, grid, samples, lsoda, peaks)
             if terminal is not None:
                 interval, (root, state), number = terminal
                 _extend(times, states, grid[1:interval + 1], samples[:, 1:interval + 1], sampled)
@@ -142,9 +149,10 @@ class _Lsoda:
         return states.T
 
 
-def _first_events(events, grid, samples, lsoda: _Lsoda):
+def _first_events(events, grid, samples, lsoda: _Lsoda, peaks: dict):
     """The first terminal event among a span's samples, (its sample interval, (root, state), its index) or None,
-    and the sampled events' (time, state) before it (in the whole span if none)."""
+    and the sampled events' (time, state) before it (in the whole span if none) where they can be their figure's
+    largest (:func:`_below_peak`, ``peaks``)."""
     crossings = [_crossings(event, _values(event, grid, samples)) for event in events]
     zooms: dict = {}
     first = min(((int(np.argmax(mask)), i) for i, (event, mask) in enumerate(zip(events, crossings))
@@ -156,10 +164,11 @@ def _first_events(events, grid, samples, lsoda: _Lsoda):
         if stop is None:  # the zoom found no crossing: the end of the interval nearer zero, as stepping's _root
             stop = _nearer(events[i], grid, samples, interval)
     sampled = []
-    for event, mask in zip(events, crossings):
+    for number, (event, mask) in enumerate(zip(events, crossings)):
         if event.terminal:
             continue
-        for interval in np.flatnonzero(mask):
+        below = _below_peak(event, samples, peaks, number, None if first is None else first[0])
+        for interval in np.flatnonzero(mask & ~below):
             if first is not None and interval > first[0]:
                 break
             at = _find(event, grid, samples, interval, zooms, lsoda, exact=False)
@@ -167,6 +176,21 @@ def _first_events(events, grid, samples, lsoda: _Lsoda):
                 sampled.append(at)
     sampled.sort(key=lambda pair: pair[0])
     return (None if first is None else (first[0], stop, first[1])), sampled
+
+
+def _below_peak(event, samples, peaks: dict, number: int, last: int | None) -> np.ndarray:
+    """Per sample interval of a span, whether a root of the sampled event ``number`` there cannot be the largest of
+    its ``figure`` (a function of samples; none: False everywhere): the figure at both its samples below by more
+    than PEAK_MARGIN the largest sample up to the interval's first (``peaks``: the spans' before, updated to
+    ``last``, the span's last sample kept)."""
+    figure = getattr(event, "figure", None)
+    if figure is None:
+        return np.zeros(samples.shape[1] - 1, dtype=bool)
+    values = np.asarray(figure(samples), dtype=float)
+    largest = np.maximum.accumulate(np.concatenate([[peaks.get(number, -np.inf)], values]))[1:]  # (NaN: kept)
+    peaks[number] = largest[-1 if last is None else last]
+    threshold = largest[:-1] - PEAK_MARGIN * np.abs(largest[:-1])
+    return (values[:-1] < threshold) & (values[1:] < threshold)
 
 
 def _nearer(event, grid, samples, interval: int):

@@ -212,8 +212,12 @@ def _elastic_model(case, law: ElasticLaw, design: dict[str, float], rtol: float)
 
 def until_lock_up(model, end_time: float):
     """A start-up model run only to its first lock-up (no locked run after it) and cut at ``end_time``: all a start
-    guess needs, however long the locked run or the case's limits."""
-    return replace(model, effects=tuple(e for e in model.effects if e != "lockup"), end_time=end_time)
+    guess needs, however long the locked run or the case's limits; an elastic link's every extreme sampled (the
+    NLP's initial states are read off the samples)."""
+    from clutchopt.simulate.elastic import ElasticModel
+
+    guess = replace(model, effects=tuple(e for e in model.effects if e != "lockup"), end_time=end_time)
+    return replace(guess, all_extremes=True) if isinstance(guess, ElasticModel) else guess
 
 
 GUESSES = 16  # start guesses kept (a re-solve of a case starts from the same design: one simulation, not two)
