@@ -108,6 +108,12 @@ def test_limits_with_no_room_between_are_infeasible_whatever_the_design_never_an
     lbg, ubg = sides.bounds(np.zeros(0), np.zeros(3))
     assert list(lbg) == [-np.inf, -np.inf, 0.5 / 3.5] and list(ubg) == [np.inf, 0.0, 0.5 / 3.5]
     assert [list(np.array(b).ravel()) for b in sides.bounds_of(np.zeros(0))] == [list(lbg), list(ubg)]
+    # one side left out of a solve (the polish): the other at its own limit, not at the crossing (review h12: the
+    # kept row was posed at g_l <= 1/7 with the upper side out, 62 times the float64 check's tolerance on the ball)
+    lbg, ubg = sides.bounds(np.zeros(0), np.array([np.inf, 0.0, 0.0]))  # the upper row out: g_l <= 0
+    assert list(lbg) == [-np.inf] * 3 and list(ubg) == [np.inf, 0.0, 0.0]
+    lbg, ubg = sides.bounds(np.zeros(0), np.array([0.0, 0.0, np.inf]))  # the lower row out: g_u <= 0, g_l >= 0.5
+    assert list(lbg) == [-np.inf, -np.inf, 0.5] and list(ubg) == [np.inf, 0.0, np.inf]
     # ball_compressor.toml in paper mode: K5 at least the paper's 0.8 (width_ratio) and at most width_ratio_max = 0.5:
     # apart by (0.8 - 0.5) / 0.8 = 0.375 of the kept row's scale (its limit 0.8). Proven without a solve, both named.
     case = load_case(CASES / "ball_compressor.toml").with_values(width_ratio_max=0.5)

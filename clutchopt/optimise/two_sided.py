@@ -105,10 +105,12 @@ class TwoSided:
         if not one.any():
             return self.lbg, ubg
         kept, freed, lower = self.kept[one], self.freed[one], lower[one]
-        crossed = _crossed(np.maximum(lower, 0.0), ratio[one])
         lbg, ubg = self.lbg.copy(), np.broadcast_to(np.asarray(ubg, dtype=float), self.lbg.shape).copy()
-        lbg[kept] = np.where(np.isinf(ubg[freed]), -np.inf, np.minimum(lower, 0.0) + crossed)
-        ubg[kept] = np.where(np.isinf(ubg[kept]), np.inf, crossed)
+        out_kept, out_freed = np.isinf(ubg[kept]), np.isinf(ubg[freed])
+        crossed = np.where(out_kept | out_freed, 0.0, _crossed(np.maximum(lower, 0.0), ratio[one]))  # (where both
+        # sides are posed: one left out, the other at its own limit)
+        lbg[kept] = np.where(out_freed, -np.inf, np.where(out_kept, lower, np.minimum(lower, 0.0) + crossed))
+        ubg[kept] = np.where(out_kept, np.inf, crossed)
         ubg[freed] = np.inf
         return lbg, ubg
 

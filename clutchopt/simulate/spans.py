@@ -45,8 +45,10 @@ LOCAL_NODES = 6  # samples of that interval interpolated (degree 5) to find the 
 TRUSTED = 1e-6  # relative: an interpolant of a span's samples this near the state integrated to its root is used
 PEAK_MARGIN = 1e-2  # relative: an extreme whose interval's samples are this far below the figure's largest sample
 # so far is not located. Between samples h apart a swing of period P and amplitude A rises above the nearer sample by
-# at most A (pi h / P)^2 / 2, 5.4e-4 A at the cable's 96 samples a swing, so no such extreme can be the largest: the
-# peaks are the same, the samples fewer (cable_motor_start's checks: 5-7 of 45-47 extremes, 9.1 -> 6.1 ms)
+# at most A (pi h / P)^2 / 2: 5.4e-4 A at 96 samples a swing, 8.6e-3 A where the swing is twice as fast as the period
+# the samples are drawn for (simulate/elastic.py: up to 2x) and the figure (a stress, as the twist squared) swings at
+# twice that; a figure >= 0 has A <= its peak / 2, so no such extreme can be the largest: the peaks are the same, the
+# samples fewer (cable_motor_start's checks: 5-7 of 45-47 extremes, 9.1 -> 6.1 ms)
 EXTREMUM_XTOL = 1e-9  # of the sample interval: a sampled event's root (a maximum, whose value moves by the square
 # of the time's error; its state is integrated to the root found): 7.6 of Brent's steps a root, not 11
 SUCCESS = "Integration successful."
