@@ -135,33 +135,34 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
                                spent={key: now[key] - before[key] for key in SPENT}, carried=sweep.carried)
             first, before = first + len(window), now
         return
-    previous: Solution | None = None  # the last point's optimum (a warm start), None next to a failure
-    feasible: tuple[dict, Solution] | None = None  # the last feasible point's values and design
-    designs: dict[tuple, Solution] = {}  # feasible designs by the point's values
-    waiting: list[tuple[int, Case, Solution]] = []  # points without a design, until the next feasible one
-    pairs = list(points.pairs())
-    regions = Regions(problem, lambda k: case.with_values(**pairs[k][1]), len(pairs))
-    for j, (index, values) in enumerate(pairs):
-        point_case = regions.point_case(j)  # (built once: the regions keep it from their search on to its verdict)
-        neighbour = designs.get(tuple(values.values())) or (feasible[1] if feasible else None)
-        # next to a point without a design: proven with the points around it, or solved once and proven alone
-        solution = regions.point(j, partial(_solved, problem, case, point_case, values, previous, feasible, neighbour),
-                                 previous if problem.start_up is None else None)
-        previous = solution if solution.status == "optimal" else None
-        if solution.status not in DESIGN_STATUSES:
-            waiting.append((j, point_case, solution))
-            continue
-        feasible = values, solution
-        designs[tuple(values.values())] = solution
-        for k, (w, waited_case, waited) in enumerate(waiting):  # between feasible neighbours: from this one too
-            if waited.status == "infeasible":  # proven: no design to find
+    with problem.failed_starts.along_a_run():  # (what a start-up run tried and lost, for its later points alone)
+        previous: Solution | None = None  # the last point's optimum (a warm start), None next to a failure
+        feasible: tuple[dict, Solution] | None = None  # the last feasible point's values and design
+        designs: dict[tuple, Solution] = {}  # feasible designs by the point's values
+        waiting: list[tuple[int, Case, Solution]] = []  # points without a design, until the next feasible one
+        pairs = list(points.pairs())
+        regions = Regions(problem, lambda k: case.with_values(**pairs[k][1]), len(pairs))
+        for j, (index, values) in enumerate(pairs):
+            point_case = regions.point_case(j)  # (built once: the regions keep it from their search on to its verdict)
+            neighbour = designs.get(tuple(values.values())) or (feasible[1] if feasible else None)
+            # next to a point without a design: proven with the points around it, or solved once and proven alone
+            solution = regions.point(j, partial(_solved, problem, case, point_case, values, previous, feasible,
+                                                neighbour), previous if problem.start_up is None else None)
+            previous = solution if solution.status == "optimal" else None
+            if solution.status not in DESIGN_STATUSES:
+                waiting.append((j, point_case, solution))
                 continue
-            retry = problem.solve(waited_case, start=solution.design)
-            waiting[k] = (w, waited_case, retry if retry.status in DESIGN_STATUSES else waited)
+            feasible = values, solution
+            designs[tuple(values.values())] = solution
+            for k, (w, waited_case, waited) in enumerate(waiting):  # between feasible neighbours: from this one too
+                if waited.status == "infeasible":  # proven: no design to find
+                    continue
+                retry = problem.solve(waited_case, start=solution.design)
+                waiting[k] = (w, waited_case, retry if retry.status in DESIGN_STATUSES else waited)
+            yield from (_one(points, w, names, waited) for w, _, waited in waiting)
+            waiting = []
+            yield _one(points, j, names, solution)
         yield from (_one(points, w, names, waited) for w, _, waited in waiting)
-        waiting = []
-        yield _one(points, j, names, solution)
-    yield from (_one(points, w, names, waited) for w, _, waited in waiting)
 
 
 def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solution | None,
