@@ -346,6 +346,8 @@ def mesh_of_the_start(block: StartUpBlock, case, formulation, design: dict[str, 
 def first_mesh_of_the_start(block: StartUpBlock, case, formulation, design: dict[str, float]) -> np.ndarray:
     """The first mesh of a solve from ``design``, its slip phase graded over the motor's knee as the design's own
     simulated start shows it (:func:`~clutchopt.start_up.mesh.knee_part`; the simulation the start guess takes)."""
+    if "slip" not in block.s.phases:  # (an elastic link's locked phase: uniform)
+        return block.initial_mesh()
     result, squared = _simulated_start(block, case, formulation, design)
     bounds = block.phase_bounds(result.columns, result.headline, squared, case.values["max_start_time"])
     return block.initial_mesh(knee_part(block.s, result.columns, bounds["slip"]))
