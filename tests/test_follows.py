@@ -56,7 +56,10 @@ def test_a_sweep_over_the_duty_inertia_moves_the_start_up_design_as_solve_of_eac
         solved = solve_case(case.with_values(inertia=point["values"]["inertia"]))
         for name, value in solved.design.items():
             shown = point["design"][name]
-            assert (shown["value"] if isinstance(shown, dict) else shown) == pytest.approx(value, rel=1e-8, abs=1e-12)
+            assert (shown["value"] if isinstance(shown, dict) else shown) == pytest.approx(value, rel=1e-7, abs=1e-12)
+            # (a point warm from the one before is solved on its mesh, solve_case on the first mesh its own sizing's
+            # start grades: they agree to the collocation's error, within the tolerance 1e-6: 4.0e-8 measured at
+            # inertia 0.5, 7.4e-9 when both first meshes were graded by the motor's run-up time alone)
 
 
 def test_a_sweep_over_a_quantity_that_does_not_enter_is_refused_by_name(tmp_path, cli):

@@ -75,7 +75,9 @@ def test_compare_starts_every_mode_s_design_of_a_start_up_case_on_its_drive():
     table = compare_case(case)
     rows = {row["quantity"]: row for row in table.rows}
     assert table.solutions["nlp_geometry"].objective == pytest.approx(0.28209472113, rel=1e-8)
-    assert solve_case(case, "geometry").objective == pytest.approx(0.33545245535, rel=1e-8)
+    assert solve_case(case, "geometry").objective == pytest.approx(0.33545248157, rel=1e-8)  # 0.33545245535 on a
+    # first mesh grading the slip phase's first 10 %, not its first 2 % (the knee of the sizing's simulated start):
+    # 7.8e-8 apart, within the start-up's tolerance (1e-6), the collocation error 2.4e-7 then, 8.9e-8 now
     assert rows["start_time_simulated"]["nlp_geometry"] == pytest.approx(22.04235, rel=1e-5)
     assert rows["temperature_rise_simulated"]["nlp_geometry"] == pytest.approx(5.67676, rel=1e-4)
     assert rows["start_time_simulated"]["nlp_paper"] == rows["start_time_simulated"]["constant_acceleration"] \

@@ -13,13 +13,13 @@ from tests.conftest import CASES
 
 
 def test_a_warm_solver_evaluates_the_cold_solvers_derivatives_and_runs_as_its_own_would():
-    """lever_motor_start solves cold on the first mesh, then warm on the adapted one (2 solves, 18 IPOPT iterations):
-    its warm solver evaluates the cold solver's Hessian, Jacobian and gradient (the same CasADi functions), and from
-    the solve's own optimum the warm solver and one that derived its own functions end at the same x, multipliers
-    and iterations to the last bit."""
+    """lever_motor_start solves cold on its first mesh (one solve; its error 8.2e-8 within the tolerance): its warm
+    solver evaluates the cold solver's Hessian, Jacobian and gradient (the same CasADi functions), and from the
+    solve's own optimum the warm solver and one that derived its own functions end at the same x, multipliers and
+    iterations to the last bit."""
     case = load_case(CASES / "lever_motor_start.toml")
     solution = solve_case(case)
-    assert solution.solver.solves == 2 and solution.solver.iterations == 18
+    assert solution.status == "optimal" and solution.solver.solves == 1
     posed = case_problem(case).posed
     cold, warm = posed.solver("ipopt"), posed.solver("warm")
     for name in ("nlp_grad_f", "nlp_jac_g", "nlp_hess_l"):

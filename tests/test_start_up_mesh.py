@@ -43,3 +43,34 @@ def test_a_phase_with_too_few_samples_keeps_its_first_mesh():
     # a breakaway of 1.6e-3 s holds 4 samples (< 5): its intervals stay uniform (first_mesh without a motor)
     mesh = adapted_mesh(STRUCTURE, history(np.abs(T - 0.5), T, T, T), [1.6e-3, 2.0 - 1.6e-3])
     assert mesh[:4] == pytest.approx([0.25] * 4, abs=0)
+
+
+def knee_structure(graded_part: float, motor: bool = True) -> SimpleNamespace:
+    return SimpleNamespace(motor=motor, graded_part=graded_part, spec=SimpleNamespace(tolerance=1e-6))
+
+
+@pytest.mark.parametrize(("knee", "graded_part", "part"), [
+    (0.003, 0.4, 0.02),   # settled at 0.003 of the phase: 6 x 0.003 = 0.018, rounded up to 0.02
+    (0.004, 0.4, 0.05),   # 0.024: the next of KNEE_PARTS
+    (0.03, 0.05, 0.05),   # 0.18: never more than the structure's part (from the motor's run-up time)
+    (0.1, 0.4, 0.4),      # 0.6: the largest part (ball_motor_start's knee, 0.10 of its slip phase)
+])
+def test_the_slip_phase_is_graded_over_the_knee_the_simulated_start_shows(knee, graded_part, part):
+    # the driver's speed runs up linearly to its final speed at ``knee`` of the slip phase (2 s to 3 s) and stays
+    from clutchopt.start_up.mesh import KNEE_COVER, KNEE_PARTS, knee_part
+
+    assert KNEE_COVER == 6.0 and KNEE_PARTS == (0.01, 0.02, 0.05, 0.1, 0.2, 0.4)
+    t = 2.0 + np.arange(2**14 + 1) / 2**14
+    speed = 100.0 * np.minimum((t - 2.0) / knee, 1.0)
+    history = {"t": np.concatenate([[0.0, 1.0], t]), "w_driver": np.concatenate([[0.0, 50.0], speed])}
+    assert knee_part(knee_structure(graded_part), history, (2.0, 3.0)) == part
+
+
+def test_a_knee_that_settles_within_the_tolerance_late_keeps_the_structures_part():
+    # the speed creeps on by 1e-5 of itself over the whole phase: it settles within 1e-6 only at its end
+    from clutchopt.start_up.mesh import knee_part
+
+    t = np.arange(1025) / 1024
+    history = {"t": t, "w_driver": 100.0 * (1.0 + 1e-5 * t)}
+    assert knee_part(knee_structure(0.1), history, (0.0, 1.0)) == 0.1
+    assert knee_part(knee_structure(0.1, motor=False), history, (0.0, 1.0)) == 0.1  # no motor: no knee

@@ -30,7 +30,7 @@ from clutchopt.optimise.two_sided import TwoSided
 from clutchopt.optimise.verify import FEASIBILITY_TOL, evaluate_objective
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
-from clutchopt.start_up.transcription import StartUpBlock, initial_states
+from clutchopt.start_up.transcription import StartUpBlock, first_mesh_of_the_start, initial_states
 
 IPOPT_METHODS = ("ipopt", "warm", "warm_near")  # the solvers IPOPT runs (one NLP, one set of derivatives)
 START_UP_ITERATIONS = 500  # IPOPT's with a start-up: its solves take 15 to 300, a drive that cannot start the
@@ -274,9 +274,11 @@ class Posed:
             data.internal_lower, data.internal_upper = self.start_up.bounds()
             if internal is None or len(internal) != self.start_up.size:
                 seen, design = self.start_up_seen(case, self.design(x0 / scale, scale))
+                if mesh is None:  # a cold start: the slip phase graded over the knee of the design's own start
+                    p_vector[-self.mesh_size:] = first_mesh_of_the_start(self.start_up, seen, self.formulation, design)
                 internal = initial_states(self.start_up, seen, self.formulation, design,
                                           np.array(self.internal_scale(p_vector[: len(params.__dict__)])).ravel(),
-                                          p_vector[-self.start_up.mesh_parameters.shape[0]:])
+                                          p_vector[-self.mesh_size:])
             data.internal_start = np.clip(internal, data.internal_lower, data.internal_upper)
         return data
 

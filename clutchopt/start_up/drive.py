@@ -41,7 +41,8 @@ class Structure:
     @classmethod
     def of(cls, case, intervals: int | None = None) -> "Structure":
         """The structure of a case: the motor's knee time J_m w_s / T_k (its run-up at breakdown torque), 20 times
-        over, rounded up to one of GRADED_PARTS of the start time, sets the graded part of the slip phase."""
+        over, rounded up to one of GRADED_PARTS of the start time, sets the graded part of the slip phase where no
+        start is simulated, and bounds the part a simulated start's knee sets (:func:`~.mesh.knee_part`)."""
         spec, v = case.start_up, case.values
         rest = spec.load_profile.at(0.0, 0.0) if spec.load_profile else v["load_torque"]
         graded = GRADED_PARTS[0]

@@ -11,6 +11,8 @@ MESH_STEPS = 3  # adaptations of the mesh to the simulated start before the inte
 MONITOR_FLOOR = 0.2  # of the mean error monitor, added everywhere: no interval grows without bound
 STILL = 1e-9  # a state whose spread over a phase is below this share of its spread over the start stands still
 GRADED_PARTS = (0.05, 0.1, 0.2, 0.4)  # share of the slip phase graded: the motor's knee times 20, rounded up
+KNEE_PARTS = (0.01, 0.02) + GRADED_PARTS  # the same from the knee a simulated start shows (:func:`knee_part`)
+KNEE_COVER = 6.0  # times the simulated knee the graded part covers (the optimum's knee: up to twice the start's)
 
 
 def graded_mesh(intervals: int, graded_part: float = 0.05, first: float = 1e-4) -> np.ndarray:
@@ -29,12 +31,30 @@ def graded_mesh(intervals: int, graded_part: float = 0.05, first: float = 1e-4) 
     return np.concatenate([lengths / lengths.sum() * graded_part, uniform])
 
 
-def first_mesh(structure, phase: str) -> np.ndarray:
+def first_mesh(structure, phase: str, graded_part: float | None = None) -> np.ndarray:
     """Interval lengths of a phase as fractions of its duration before any adaptation: graded where the motor
-    runs up through the slip phase's start, uniform elsewhere."""
+    runs up through the slip phase's start (over ``graded_part``, else the structure's), uniform elsewhere."""
     if phase == "slip" and structure.motor:
-        return graded_mesh(structure.intervals, structure.graded_part)
+        return graded_mesh(structure.intervals, graded_part or structure.graded_part)
     return np.full(structure.intervals, 1.0 / structure.intervals)
+
+
+def knee_part(structure, history, slip: tuple[float, float]) -> float:
+    """The graded part of the slip phase from a simulated start whose slip phase spans ``slip`` (begin, end): the
+    share of the phase until the driver's speed settles within the start-up's tolerance of its speed at the phase's
+    end (the motor's knee: its run-up until its torque meets the coupling's), KNEE_COVER times over, rounded up to
+    one of KNEE_PARTS; never more than the structure's part (from the motor's run-up time at breakdown torque,
+    which takes the knee from rest, where the slip phase takes it from the breakaway's speed)."""
+    begin, end = slip
+    t = np.asarray(history["t"])
+    inside = (t >= begin) & (t <= end)
+    if not structure.motor or not end > begin or inside.sum() < 5:
+        return structure.graded_part
+    speed = np.asarray(history["w_driver"])[inside]
+    unsettled = np.nonzero(np.abs(speed - speed[-1]) > structure.spec.tolerance * abs(speed[-1]))[0]
+    settled = t[inside][min(unsettled[-1] + 1, len(speed) - 1)] if len(unsettled) else begin
+    share = KNEE_COVER * (settled - begin) / (end - begin)
+    return min(next((part for part in KNEE_PARTS if part >= share), KNEE_PARTS[-1]), structure.graded_part)
 
 
 def adapted_mesh(structure, history, phase_times: list[float]) -> np.ndarray:

@@ -28,7 +28,7 @@ import numpy as np
 
 from clutchopt.model import SpeedLaw
 from clutchopt.start_up.drive import Drive, Structure, named_constraints, seen_constraints
-from clutchopt.start_up.mesh import adapted_mesh, first_mesh
+from clutchopt.start_up.mesh import adapted_mesh, first_mesh, knee_part
 
 DEGREE = 3
 GUESS_RTOL = 1e-6  # the start guess's simulation: a guess, not a check
@@ -217,8 +217,9 @@ class StartUpBlock:
         """The interval lengths of every phase (NLP parameters), built once: each solve reads their count."""
         return ca.vertcat(*self._mesh)
 
-    def initial_mesh(self) -> np.ndarray:
-        return np.concatenate([first_mesh(self.s, phase) for phase in self.s.phases])
+    def initial_mesh(self, graded_part: float | None = None) -> np.ndarray:
+        """The first mesh of every phase (:func:`~clutchopt.start_up.mesh.first_mesh`)."""
+        return np.concatenate([first_mesh(self.s, phase, graded_part) for phase in self.s.phases])
 
 
     def _phase_end(self, phase: str, state: dict, time):
@@ -340,6 +341,16 @@ def mesh_of_the_start(block: StartUpBlock, case, formulation, design: dict[str, 
     result, squared = _simulated_start(block, case, formulation, design)
     bounds = block.phase_bounds(result.columns, result.headline, squared, case.values["max_start_time"])
     return adapted_mesh(block.s, result.columns, [bounds[phase][1] - bounds[phase][0] for phase in block.s.phases])
+
+
+def first_mesh_of_the_start(block: StartUpBlock, case, formulation, design: dict[str, float]) -> np.ndarray:
+    """The first mesh of a solve from ``design``, its slip phase graded over the motor's knee as the design's own
+    simulated start shows it (:func:`~clutchopt.start_up.mesh.knee_part`; the simulation the start guess takes)."""
+    if "slip" not in block.s.phases:  # (an elastic link's locked phase: uniform)
+        return block.initial_mesh()
+    result, squared = _simulated_start(block, case, formulation, design)
+    bounds = block.phase_bounds(result.columns, result.headline, squared, case.values["max_start_time"])
+    return block.initial_mesh(knee_part(block.s, result.columns, bounds["slip"]))
 
 
 def _simulated_start(block: StartUpBlock, case, formulation, design: dict[str, float]):
