@@ -1,12 +1,14 @@
 """A start-up sweep's points solved from the point before's optimum (clutchopt.optimise.start_up_sweep): each point's
 design is the one ``clutchopt solve`` gives at its values, every solve still checked by the simulator."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
 from clutchopt.cases import load_case
 from clutchopt.optimise import start_up_sweep, sweep
-from clutchopt.optimise.problem import case_problem
+from clutchopt.optimise.problem import Problem, case_problem
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import parse_vary
 from tests.conftest import CASES
@@ -274,3 +276,36 @@ def test_an_integer_choice_the_papers_sizing_finds_infeasible_is_not_solved_alon
     problem = case_problem(MOTOR)
     key = sized_out(problem, MOTOR, None).key
     assert sized_out(problem, MOTOR, SimpleNamespace(sized=SizedOut(key))).choices == {}
+
+
+def test_a_point_whose_integers_moved_off_the_sizing_s_is_also_solved_as_solve_would(monkeypatch):
+    # ball_motor_start over driven_inertia = 100,375 on NumPy's AVX2 loops (NPY_DISABLE_CPU_FEATURES="X86_V4
+    # AVX512_ICL"; the native AVX-512 ones take another path): warm from 100's 23 rows, the loop's first solve at 375
+    # kept 25 rows (1023.25 kg), its second, on the adapted mesh, found 25 rows infeasible from that optimum and kept
+    # 26: "optimal" at 1029.52 kg, where solve ends at 25 rows, 1026.07 kg. The integers had moved off the point
+    # before's, so the point was not solved as solve would. That warm solve's 26 rows made here on any CPU (the rows
+    # fixed by the bounds): the point is solve's, 25 rows, every solve counted
+    warm_solves = []
+
+    def at_26_rows(self, case, *args, **kwargs):
+        if self.start_up is None or kwargs.get("cold") is not False:  # (solved_along's warm solve only)
+            return refined(self, case, *args, **kwargs)
+        warm_solves.append(refined(self, replace(case, bounds={**case.bounds, "ball_rows": (26.0, 26.0)}),
+                                   diagnosed=False))
+        return warm_solves[-1]
+
+    refined = Problem.refined
+    monkeypatch.setattr(Problem, "refined", at_26_rows)
+    case = load_case(CASES / "ball_motor_start.toml")
+    record = Sweep(case, [parse_vary("driven_inertia=100,375", "ball", case.quantities)]).run(
+        progress=False).solutions[1]
+    [heavier] = warm_solves
+    assert heavier.status == "optimal" and heavier.design["ball_rows"] == 26
+    assert heavier.objective == pytest.approx(1029.52, abs=0.01)
+    monkeypatch.undo()
+    alone = case_problem(case).solve(case.with_values(driven_inertia=375.0))
+    assert record["status"] == alone.status == "optimal"
+    assert record["design"]["ball_rows"] == alone.design["ball_rows"] == 25
+    assert record["objective"]["value"] == pytest.approx(alone.objective, rel=1e-6)
+    assert record["objective"]["value"] == pytest.approx(1026.07, abs=0.005)
+    assert record["solver"]["solves"] > heavier.solver.solves + alone.solver.solves  # (the probe's too)

@@ -78,7 +78,7 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
         return None
     if solution.status != "optimal":
         return None
-    solution = as_solve_would(problem, case, previous, solution, sized)
+    solution = as_solve_would(problem, case, solution, sized)
     if block.s.elastic:  # its loop moves a limit only where the simulated start misses it, never centres one: the
         return solution  # NLP is another model than the simulated dynamics, not a mesh off them (the share is kept)
     before = previous.along
@@ -88,17 +88,20 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
     return solution
 
 
-def as_solve_would(problem, case: Case, previous: Solution, solution: Solution, sized: "SizedOut") -> Solution:
-    """A point that kept the point before's integers where the papers' sizing at the point has others: also solved as
-    ``solve`` solves it alone (``Problem.refined`` from the sizing: its relaxation rounded, its search), the lighter
-    of the two kept, each verified by its own simulated start. The fixed-integer start-up NLPs have several local
-    optima, and a warm search tries the kept integers' downhill neighbours from the kept optimum only: ball_motor_start
-    over its motor inertia, 14.65 then 12.26 kg m^2, kept 25 rows (1002.07 kg; 24 rows failed from that optimum) where
-    ``solve`` relaxes from the sizing's 23 rows to 24.x and ends at 24 rows, 998.53 kg (tests/test_hostile_agree.py).
-    Where the integers moved, the point's search decided them; where they are the sizing's, ``solve`` starts from
-    them too (its search then completed by them, ``integers.from_the_start``): neither is solved again."""
+def as_solve_would(problem, case: Case, solution: Solution, sized: "SizedOut") -> Solution:
+    """A point whose integers are not those of the papers' sizing at the point: also solved as ``solve`` solves it
+    alone (``Problem.refined`` from the sizing: its relaxation rounded, its search), the lighter of the two kept, each
+    verified by its own simulated start. The fixed-integer start-up NLPs have several local optima, and a warm search
+    decides the integers from the point before's optimum and its own loop's meshes, not from the sizing: kept, it
+    tries their downhill neighbours from the kept optimum only (ball_motor_start over its motor inertia, 14.65 then
+    12.26 kg m^2, kept 25 rows, 1002.07 kg, where ``solve`` relaxes from the sizing's 23 rows to 24.x and ends at 24
+    rows, 998.53 kg: tests/test_hostile_agree.py); moved, its loop may have left a count on a local verdict
+    (ball_motor_start over driven_inertia, 100 then 375 kg m^2, on NumPy's AVX2 loops: 25 rows found infeasible on the
+    adapted mesh from their first-mesh optimum, 26 rows kept at 1029.52 kg, where ``solve`` ends at 25 rows, 1026.07
+    kg: tests/test_start_up_sweep.py). Where the integers are the sizing's, ``solve`` starts from them too (its search
+    then completed by them, ``integers.from_the_start``): not solved again."""
     names = problem.integer_names
-    if not names or any(solution.design[name] != previous.design[name] for name in names):
+    if not names:
         return solution
     sizing = problem._sized_design(case) if sized.design is None else sized.design
     if sizing is None or all(round(sizing[name]) == round(solution.design[name]) for name in names):
