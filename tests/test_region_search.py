@@ -381,6 +381,15 @@ def test_a_run_searched_ahead_keeps_its_share_of_the_call_that_searched_it(monke
     assert sum((b - a) * seconds for a, b, seconds in proved) == pytest.approx(115 / 116, rel=1e-12)
 
 
+def _swept_counting_diagnoses(monkeypatch, case, vary, mode):
+    """The sweep of ``case`` over ``vary`` in ``mode``, and a list that gets an entry at each elastic diagnosis (a
+    full verdict's; none where a point is proven before any solve), later ones included."""
+    calls = []
+    real = problem_module.diagnose
+    monkeypatch.setattr(problem_module, "diagnose", lambda *args: calls.append(1) or real(*args))
+    return Sweep(case, [vary], mode=mode).run(progress=False), calls
+
+
 def test_a_point_past_the_edge_of_the_ball_is_proven_by_its_own_search_before_any_solve(monkeypatch):
     # ball_compressor (design mode) at 11,040-11,400 kW, 4 points: 11,040 kW has a design, 11,160 kW none. The chain
     # from the design fails at 11,160 kW; with integer variables (ball_rows) its own search runs before its solve
@@ -389,10 +398,7 @@ def test_a_point_past_the_edge_of_the_ball_is_proven_by_its_own_search_before_an
     # (the failed solve, its integer search and its diagnosis had cost 24 of 82 ms over 1x-10x its power)
     ball = load_case(CASES / "ball_compressor.toml")
     vary = parse_vary("power=11040:11400:4", "ball", ball.quantities)
-    calls = []
-    real = problem_module.diagnose
-    monkeypatch.setattr(problem_module, "diagnose", lambda *args: calls.append(1) or real(*args))
-    result = Sweep(ball, [vary], mode="design").run(progress=False)
+    result, calls = _swept_counting_diagnoses(monkeypatch, ball, vary, "design")
     assert [s["status"] for s in result.solutions] == ["optimal"] + ["infeasible"] * 3
     assert not calls
     record = result.solutions[1]
@@ -414,10 +420,7 @@ def test_a_point_past_the_edge_whose_proof_takes_hundreds_of_boxes_is_proven_bef
     # sweep's 44 ms of CPU). It shows the design of the point before, re-evaluated at its own speed.
     centrifuge = load_case(CASES / "wedge_centrifuge.toml")
     vary = parse_vary("speed=1800:2000:8", "wedge", centrifuge.quantities)
-    calls = []
-    real = problem_module.diagnose
-    monkeypatch.setattr(problem_module, "diagnose", lambda *args: calls.append(1) or real(*args))
-    result = Sweep(centrifuge, [vary], mode="paper").run(progress=False)
+    result, calls = _swept_counting_diagnoses(monkeypatch, centrifuge, vary, "paper")
     assert [s["status"] for s in result.solutions] == ["optimal"] * 4 + ["infeasible"] * 4
     assert not calls
     record = result.solutions[4]
