@@ -195,6 +195,6 @@ def test_the_lever_is_designed_in_one_run_on_a_first_mesh_graded_over_its_simula
     assert np.array_equal(solution.mesh[0], block.initial_mesh(0.02))
     assert abs(solution.start_up["discretisation_error"]["start_time"]) < 1e-7  # measured 8.2e-8
     assert solution.objective == pytest.approx(1.777770423, rel=1e-7)
-    sized = problem._sized_design(case)
+    sized = problem.sized_design(case)
     on_the_structures = problem.refined(case, sized, mesh=block.initial_mesh(), refine=False)
     assert abs(on_the_structures.start_up["discretisation_error"]["start_time"]) > case.start_up.tolerance  # 5.5e-6

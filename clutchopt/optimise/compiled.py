@@ -91,7 +91,7 @@ def built_library(source: bytes, prefix: str = "nlp", flags: tuple[str, ...] = F
         if not _own_folder(folder):
             return None
         if library.is_file():
-            if not _trusted(library):
+            if not trusted(library):
                 return None
             if _recorded(library) == _digest(library):
                 return str(library)
@@ -125,7 +125,7 @@ def ready_library(library: Path) -> str | None:
     """``library`` (:func:`library_path`) where the cache holds it whole (this user's, its bytes those its build
     recorded), else None; nothing is built."""
     try:
-        if library.is_file() and _trusted(library.parent) and _trusted(library) \
+        if library.is_file() and trusted(library.parent) and trusted(library) \
                 and _recorded(library) == _digest(library):
             return str(library)
     except OSError:
@@ -180,9 +180,9 @@ finally:
 
 def _own_folder(folder: Path) -> bool:
     """Whether ``folder`` (made this user's alone where it is not there; one there is kept as it is) may hold
-    libraries: none that others may write (:func:`_trusted`). Raises OSError where it cannot be made."""
+    libraries: none that others may write (:func:`trusted`). Raises OSError where it cannot be made."""
     folder.mkdir(mode=0o700, parents=True, exist_ok=True)
-    return _trusted(folder)
+    return trusted(folder)
 
 
 def _record(library: Path) -> Path:
@@ -202,7 +202,7 @@ def _recorded(library: Path) -> str | None:
         return None
 
 
-def _trusted(path: Path) -> bool:
+def trusted(path: Path) -> bool:
     """A library to load, or a folder to build and load from: this user's, writable by no one else (code in a shared
     folder is not run: whoever may write a folder may put another file in a library's place; where the system has no
     user ids, none is)."""

@@ -392,7 +392,7 @@ class Problem:
         Every solve's SolverInfo is added to ``solves``; ``ruled``: the loop's integer choices not to solve again
         (the freed solve's search skips them as the loop's solves do) (docs/start_up.md, "A design a row of the
         collocation holds")."""
-        sizing = self._sized_design(case) if sizing is None else sizing
+        sizing = self.sized_design(case) if sizing is None else sizing
         if sizing is None:
             return None
         posed = self.posed
@@ -413,7 +413,7 @@ class Problem:
         """The papers' sizing at ``case``: :attr:`static_problem` solved (where a start-up solve begins)."""
         return self.static_problem.solve(case)
 
-    def _sized_design(self, case: Case) -> dict[str, float] | None:
+    def sized_design(self, case: Case) -> dict[str, float] | None:
         """The papers' sizing's design at ``case`` where it is optimal, else None."""
         sized = self._sizing(case)
         return sized.design if sized.status == "optimal" else None

@@ -39,7 +39,7 @@ from pathlib import Path
 import casadi as ca
 
 from clutchopt.optimise.compiled import (BUILD_TIMEOUT_S, FLAGS, build_detached, built_library, cache_folder, compiler,
-                                         generated_source, library_path, nlp_functions, ready_library, _trusted)
+                                         generated_source, library_path, nlp_functions, ready_library, trusted)
 from clutchopt.switches import BUILD_LATER_ENV, switch  # off: no build started (a library in the cache is still used)
 
 LIBRARY_NAME = re.compile(r"nlp-[0-9a-f]{32}\.so")  # what a link may name (a library of the cache's, nothing else)
@@ -115,10 +115,14 @@ def nlp_key(posed) -> str:
     """A digest of ``posed``'s NLP (its objective and constraints over its variables and parameters, serialised by
     CasADi: 0.7 MB, 7-9 ms a start-up problem), of CasADi's version, the compiler and its flags: what names its
     library's link (:func:`link_library`). The library's own name digests its C (:func:`~clutchopt.optimise.compiled.
-    library_path`), which CasADi generates from the NLP and its derivatives, themselves derived from the NLP."""
-    nlp = posed.nlp
-    serialised = ca.Function("nlp", [nlp["x"], nlp["p"]], [nlp["f"], nlp["g"]]).serialize()
-    return hashlib.sha256(" ".join((serialised, ca.__version__, str(compiler()), *FLAGS)).encode()).hexdigest()[:32]
+    library_path`), which CasADi generates from the NLP and its derivatives, themselves derived from the NLP. Taken
+    once a problem (a sweep reads it for the link at its first point and writes the link later)."""
+    def digest(_):
+        nlp = posed.nlp
+        serialised = ca.Function("nlp", [nlp["x"], nlp["p"]], [nlp["f"], nlp["g"]]).serialize()
+        return hashlib.sha256(" ".join((serialised, ca.__version__, str(compiler()), *FLAGS)).encode()).hexdigest()[:32]
+
+    return posed.built("nlp_key", None, digest)
 
 
 def link_library(posed, library: Path) -> None:
@@ -126,7 +130,7 @@ def link_library(posed, library: Path) -> None:
     written beside it (``link-<key>.txt``: the library's file name), where the cache folder is this user's alone."""
     link = library.parent / f"link-{nlp_key(posed)}.txt"
     try:
-        if _trusted(library.parent) and not link.is_file():
+        if trusted(library.parent) and not link.is_file():
             link.write_text(library.name)
     except OSError:
         pass

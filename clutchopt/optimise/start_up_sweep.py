@@ -103,7 +103,7 @@ def as_solve_would(problem, case: Case, solution: Solution, sized: "SizedOut") -
     names = problem.integer_names
     if not names:
         return solution
-    sizing = problem._sized_design(case) if sized.design is None else sized.design
+    sizing = problem.sized_design(case) if sized.design is None else sized.design
     if sizing is None or all(round(sizing[name]) == round(solution.design[name]) for name in names):
         return solution
     probe = problem._solve(case, warm=solution, diagnosed=False, cold=False, redecide=True)
