@@ -40,11 +40,10 @@ def _scale(constraint):
     return constraint.limit if constraint.scale is None else constraint.scale
 
 
-def held_from_both_sides(constraints, x_hat) -> list[tuple[int, int]]:
+def held_from_both_sides(constraints, x_hat, rows: np.ndarray) -> list[tuple[int, int]]:
     """Pairs of row indices ``(kept, other)``: a ``>=`` constraint's row, which the solvers keep, and a ``<=``
     constraint's on the same value expression, one row each, their limits and scales free of the design ``x_hat``;
-    each row in one pair at most."""
-    rows = np.cumsum([0] + [ca.SX(c.normalised()).shape[0] for c in constraints])
+    each row in one pair at most. ``rows``: each constraint's first row (and the rows' count at the end)."""
     single = [i for i, c in enumerate(constraints) if rows[i + 1] - rows[i] == 1 and not any(
         ca.depends_on(ca.SX(e), x_hat) for e in (c.limit, _scale(c)))]
     pairs, used = [], set()
@@ -64,12 +63,12 @@ class TwoSided:
     it is (the same arrays: nothing changes for the formulations without a pair)."""
 
     def __init__(self, constraints, x_hat, p: ca.SX, lbg: np.ndarray):
-        self.pairs = held_from_both_sides(constraints, x_hat)
+        rows = np.cumsum([0] + [ca.SX(c.normalised()).shape[0] for c in constraints])  # each constraint's first row
+        self.pairs = held_from_both_sides(constraints, x_hat, rows)
         self.lbg = lbg  # the named rows' (-inf for g <= 0, 0 for equalities)
         if not self.pairs:
             return
-        by_row = dict(zip(np.cumsum([0] + [ca.SX(c.normalised()).shape[0] for c in constraints]).tolist(),
-                          constraints))
+        by_row = dict(zip(rows.tolist(), constraints))
         self.kept, self.freed = (np.array([pair[side] for pair in self.pairs]) for side in (0, 1))
         k_c, f_c = [by_row[k] for k in self.kept], [by_row[f] for f in self.freed]
         ratio = ca.vertcat(*[ca.SX(_scale(b)) / ca.SX(_scale(a)) for a, b in zip(k_c, f_c)])  # S_f / S_k
