@@ -80,11 +80,11 @@ def least_link_stress(x, p, speed, torque):
     """A lower bound on the stress with which x.cable_count cables carry ``torque`` (an array, N*m) at any driving
     speed, whatever the other design variables: the weights' pull only adds tension (their travel is >= 0 in every
     design the NLP admits: its row weight_thread_not_self_locking keeps beta_w above phi', where the weight thread's
-    stiffness k_w is positive), which shortens the twist that carries the torque and so needs more tension,
-    N = T (4 psi^2 + theta^2) / (z l theta), falling as theta grows; the cables' own tension N_0 + stretch(theta)
-    grows with it. So the least N is where the two meet, or, where the cables' own tension at the largest twist 2 psi
-    cannot carry T, 4 psi T / (z l) there (the weights' pull making up the rest); the twist is bisected, the bound
-    taken at its upper end."""
+    stiffness k_w is positive: eq. 8-9's travel x_2 >= 0), which shortens the twist that carries the torque and so
+    needs more tension, N = T (4 psi^2 + theta^2) / (z l theta) (eq. 18 solved for N), falling as theta grows; the
+    cables' own tension N_0 + stretch(theta) grows with it. So the least N is where the two meet, or, where the
+    cables' own tension at the largest twist 2 psi cannot carry T, 4 psi T / (z l) there (the weights' pull making up
+    the rest); the twist is bisected, the bound taken at its upper end."""
     torque = np.maximum(np.asarray(torque, dtype=float), 0.0)
     ratio = length_ratio(p.span, p.finger_circle_diameter)
 
