@@ -130,7 +130,7 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
 
     load = m.load.on_floats()
 
-    def on_state(fast):  # (LSODA's odeint: ``fast.into``, its numbers in one array)
+    def on_state(fast):  # (odeint, which copies the rates at once: ``fast.into``, into one array; not solve_ivp)
         def rates(t, y):
             """At a solver's state, read as numbers (arithmetic on NumPy scalars costs twice)."""
             wa, w, theta, _ = y.tolist()
