@@ -135,6 +135,33 @@ def test_the_engine_s_slip_phase_is_one_traced_function_of_the_equations_numbers
             assert run.flat[kind](1.0, y) == pytest.approx(getattr(run, kind)(1.0, y), rel=1e-15, abs=1e-300)
 
 
+def test_lsoda_is_handed_the_rates_written_into_one_array_of_their_own(monkeypatch):
+    # odeint takes an array as it is and converts a list: the written-out rates' ``into`` gives the same numbers as
+    # they do, in one array per binding (the same object at every call, another design's another array); the
+    # traced rates themselves (the events', whose last value is kept) still give a new list a call
+    from clutchopt.simulate import engine
+
+    run = _wedge_on_its_motor(CentrifugalFriction(0.01, 900.0))
+    y = np.array([80.0, 30.0, 0.0, 0.0, 2.0])
+    into = run.flat["slip"].into
+    first = into(0.0, y)
+    assert type(first) is np.ndarray and first.tolist() == run.flat["slip"](0.0, y)
+    assert into(1.0, np.array([20.0, 20.0, 0.0, 0.0, 0.0])) is first
+    assert first.tolist() == run.flat["slip"](1.0, np.array([20.0, 20.0, 0.0, 0.0, 0.0]))
+    heavier = _wedge_on_its_motor(CentrifugalFriction(0.02, 900.0)).flat["slip"]  # T = 110 N m at (80, 30)
+    other = heavier.into(0.0, y)
+    assert other is not first and other.tolist() == heavier(0.0, y)
+    assert other[2] == pytest.approx(3300.0, rel=1e-15) and other[0] - other[1] == pytest.approx(210.0, rel=1e-14)
+    assert first.tolist() == run.flat["slip"](1.0, np.array([20.0, 20.0, 0.0, 0.0, 0.0]))  # (its own array kept)
+    assert type(run.flat["slip"](0.0, y)) is list
+    handed = []
+    real = engine.integrate_spans
+    monkeypatch.setattr(engine, "integrate_spans", lambda fun, *rest, **named: handed.append(fun) or real(fun, *rest,
+                                                                                                           **named))
+    engine.simulate(run.m)
+    assert handed and all(getattr(fun, "__name__", "") == "into" for fun in handed)
+
+
 def test_an_equation_that_cannot_be_traced_is_the_solver_s_right_hand_side_itself():
     run = _wedge_on_its_motor(PaperFriction(25.0, 0.02))  # min(a w_r, 300) and math.exp: no trace
     assert all(run.flat[kind].__self__ is run for kind in ("rest", "slip", "stick"))

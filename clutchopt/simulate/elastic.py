@@ -130,10 +130,12 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
 
     load = m.load.on_floats()
 
-    def rates(t, y):
-        """At a solver's state, read as numbers (arithmetic on NumPy scalars costs twice)."""
-        wa, w, theta, _ = y.tolist()
-        return fast_rates(wa, w, theta, load(t, w))
+    def on_state(fast):  # (odeint, which copies the rates at once: ``fast.into``, into one array; not solve_ivp)
+        def rates(t, y):
+            """At a solver's state, read as numbers (arithmetic on NumPy scalars costs twice)."""
+            wa, w, theta, _ = y.tolist()
+            return fast(wa, w, theta, load(t, w))
+        return rates
 
     def started(t, y):
         return y[1] - m.target
@@ -165,12 +167,14 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
         stress_extreme.figure = lambda y: np.asarray(m.stress(y[0], y[2]), dtype=float)
     events = [started, overturned, twist_extreme, stress_extreme]
     if m.integrator == "LSODA":
-        out = integrate_spans(rates, None, 0.0, np.zeros(4), bound, events, m.rtol, atol, Budget(MAX_STEPS),
+        out = integrate_spans(on_state(getattr(fast_rates, "into", fast_rates)), None, 0.0, np.zeros(4), bound,
+                              events, m.rtol, atol, Budget(MAX_STEPS),
                               FIRST_SPAN * time_scale, max(swing, FIRST_SPAN * time_scale),  # (a swing faster
                               SWING_NODES, extremes_interpolated=True)  # than 96e-3 of the start, as of a rotor
         # of 1e-9 kg m^2, is not sampled: its extremes on zooms)
     else:
-        out = integrate(rates, None, 0.0, np.zeros(4), bound, events, m.integrator, m.rtol, atol, Budget(MAX_STEPS))
+        out = integrate(on_state(fast_rates), None, 0.0, np.zeros(4), bound, events, m.integrator, m.rtol, atol,
+                        Budget(MAX_STEPS))
     t, y = out.t, out.y
     torque = m.torque(y[0], y[2]) + m.damping * (y[0] - y[1])  # the samples at once, as arrays
     stress = np.asarray(m.stress(y[0], y[2]), dtype=float)

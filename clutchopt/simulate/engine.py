@@ -223,8 +223,9 @@ class _Run(_Rates):
                              self.m.rtol * self.state_scale, self.budget)
         rtol, budget = self.m.rtol / 10, self.budget
         trial = Budget(min(budget.steps, budget.taken + LSODA_STEPS), budget.taken)
-        phase = integrate_spans(rates, jacobian, t, y, bound, events, rtol, rtol * self.state_scale, trial,
-                                FIRST_SPAN * self.time_scale)
+        phase = integrate_spans(getattr(rates, "into", rates), jacobian, t, y, bound, events, rtol,  # (odeint copies
+                                rtol * self.state_scale, trial, FIRST_SPAN * self.time_scale)  # the array at once;
+        # solve_ivp's methods keep a step's rates: theirs the list)
         budget.taken = trial.taken
         if phase.status == "failed" or (phase.status == "budget" and not budget.spent):
             phase = integrate(rates, jacobian, t, y, bound, events, "Radau", self.m.rtol,

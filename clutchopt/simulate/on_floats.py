@@ -46,7 +46,8 @@ _BINARY = {ca.OP_ADD: "({0} + {1})", ca.OP_SUB: "({0} - {1})", ca.OP_MUL: "({0} 
            ca.OP_OR: "({0} != 0 or {1} != 0)", ca.OP_IF_ELSE_ZERO: "({1} if {0} else 0.0)"}
 _NOT_FLOAT = (ca.OP_NOT, ca.OP_LT, ca.OP_LE, ca.OP_EQ, ca.OP_NE, ca.OP_AND, ca.OP_OR)  # give bools (C: 1.0 or 0.0)
 _NAMESPACE = {"sqrt": math.sqrt, "sin": math.sin, "cos": math.cos, "tan": math.tan, "atan": math.atan,
-              "exp": math.exp, "log": math.log, "inf": math.inf, "_ndarray": np.ndarray, "_FAILS": FAILS}
+              "exp": math.exp, "log": math.log, "inf": math.inf, "_ndarray": np.ndarray, "_FAILS": FAILS,
+              "_empty": np.empty}
 _FAMILIES: dict = {}
 
 
@@ -73,7 +74,8 @@ def bound(equations_of: Callable, shapes: tuple[int, ...], objects, key, referen
 def family(function: Callable, shapes: tuple[int, ...], parameters: int = 0, key=None) -> Callable:
     """``function(*arguments, *parameters)`` written out on floats: a maker ``make(fallback, *parameter_values)``
     of the function of the arguments alone. ``shapes``: per argument 0 (a number) or n (a vector of n numbers, a
-    NumPy array read with ``tolist`` or a sequence); ``function`` gives a number or a list of numbers. A call
+    NumPy array read with ``tolist`` or a sequence); ``function`` gives a number or a list of numbers (then the
+    function made also has ``into``: the same numbers written into one array of its own, for LSODA). A call
     that raises as Python's math does where IEEE does not, or gives other than floats, is answered by
     ``fallback`` (the equations). Raises one of TRACE_FAILS where the function cannot be traced (an operation not
     written out, a branch on a symbol); ``key``: the maker kept under it, traced once."""
@@ -225,5 +227,11 @@ def _source(traced: ca.Function, shapes: tuple[int, ...], parameters: int, sever
     lines = [f"def make(_fallback{''.join(f', p{j}' for j in range(parameters))}):"]
     lines += [f"    {line}" for line in outer]
     lines += [f"    def traced({call}):"] + [f"        {line}" for line in body + check + [f"return {answer}"]]
+    if several:  # the same, its numbers written into one array of its own (a solver's right-hand side: odeint takes
+        # an array as it is, a list it converts: 0.1-0.2 us a call)
+        filled = [f"_out[{k}] = {output}" for k, output in enumerate(outputs)] + ["return _out"]
+        lines += [f"    _out = _empty({len(outputs)})", f"    def into({call}):"]
+        lines += [f"        {line}" for line in body + check + filled]
+        lines += ["    traced.into = into"]
     lines += ["    return traced"]
     return "\n".join(lines) + "\n"

@@ -78,7 +78,8 @@ def _predicted(events, times: np.ndarray, states: np.ndarray, t: float, length: 
 def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: list, rtol: float, atol: np.ndarray,
                     budget: Budget, span: float, widest: float = np.inf, nodes: int = LOCAL_NODES,
                     extremes_interpolated: bool = False) -> Phase:
-    """Integrate y' = fun(t, y) by LSODA (Jacobian ``jac``) from (t0, y0) towards ``bound`` until a terminal event,
+    """Integrate y' = fun(t, y) by LSODA (Jacobian ``jac``; ``fun`` may give one array it fills again at each call:
+    ``odeint`` alone calls it, and copies it at once) from (t0, y0) towards ``bound`` until a terminal event,
     the bound, a failure or the end of ``budget``, as :func:`clutchopt.simulate.stepping.integrate` does; ``span``:
     the first FIRST_SAMPLES samples' time (their spacing grows from it), ``widest``: the largest spacing (a motion
     that swings: a fraction of its period, so that its extremes are found on the samples), ``nodes``: the samples
