@@ -28,7 +28,6 @@ NUMBER, FLAG, WHOLE, CODE = "<f8", "|b1", "<i8", "|i1"
 LABELS = 127  # the most texts a CODE array can index (diagnoses)
 _TYPES = {NUMBER: frozenset({float, np.float64, type(None)}),  # what each array keeps as it is (None: NaN, as JSON
           FLAG: frozenset({bool, np.bool_}), WHOLE: frozenset({int, np.int64})}  # keeps NaN)
-_CONSTRAINT_ITEMS = itemgetter(*CONSTRAINT_COLUMNS)
 GATHERED = 2  # the fewest points solved alone, one after another with one template, kept as arrays (:func:`gathered`)
 KINDS = {  # each array of a window's records: its type, and whether it holds a row per item (else one value a point)
     "status": (CODE, False),  # index into STATUSES
@@ -108,17 +107,16 @@ class WindowRecords:
     @classmethod
     def _of(cls, fields: "_Fields", template) -> "WindowRecords | None":
         """:meth:`of` the points whose numbers ``fields`` holds, their template as ``template()`` builds it."""
-        count = len(fields.status)
-        names = next((list(found) for found in fields.sensitivities if found), [])
-        if any(found and list(found) != names for found in fields.sensitivities):
+        count, sensitivities = len(fields.status), fields.sensitivities
+        names = next((list(found) for found in sensitivities if found), [])
+        if any(found and list(found) != names for found in sensitivities):
             return None  # (sensitivities named in another order: their JSON would differ)
-        items = list(zip(*fields.constraints))  # a column's every item
-        if not items:
+        if not fields.constraints["value"]:
             return None  # (no constraints)
         per_point = {"objective": fields.objective, "time_s": fields.time_s, "solves": fields.solves}
         per_item = {"design": fields.design, "outputs": fields.outputs,
-                    "sensitivity": [found.get(name) for found in fields.sensitivities for name in names],
-                    **dict(zip(CONSTRAINT_COLUMNS, items))}
+                    "sensitivity": [value for found in sensitivities for value in found.values()],  # (of the points
+                    **fields.constraints}  # with sensitivities: each has every name, in order)
         diagnoses = list(dict.fromkeys(text for text in fields.diagnosis if text is not None))
         searches = {str(j): search for j, search in enumerate(fields.integer_search) if search}
         if not (all(set(map(type, values)) <= _TYPES[KINDS[name][0]] for values in (per_point, per_item)
@@ -128,10 +126,13 @@ class WindowRecords:
                 and all(type(search) is list for search in searches.values())):
             return None
         code = {text: j for j, text in enumerate(diagnoses)}
+        sensed = np.array([bool(found) for found in sensitivities])
         lists = {"status": [STATUSES.index(status) for status in fields.status],
                  "diagnosis": [code.get(text, -1) for text in fields.diagnosis],
-                 "sensitive": [name in found for found in fields.sensitivities for name in names], **per_point,
-                 **per_item}
+                 "sensitive": np.repeat(sensed[:, None], len(names), axis=1), **per_point, **per_item}
+        lists["sensitivity"] = np.full((count, len(names)), np.nan)  # (a row a point: NaN where none apply)
+        if names:
+            lists["sensitivity"][sensed] = np.array(per_item["sensitivity"], dtype=NUMBER).reshape(-1, len(names))
         try:
             arrays = {name: np.array(lists[name], dtype=kind).reshape(count, -1).T.copy() if rows  # (a point's rows:
                       else np.array(lists[name], dtype=kind)  # a column)
@@ -264,8 +265,8 @@ _CHECK_STATICS = attrgetter("__class__", *CONSTRAINT_STATICS[:-1])  # (a check's
 
 class _Fields(NamedTuple):
     """What :meth:`WindowRecords.of` reads of points' records: per point its status, objective, solver seconds and
-    calls, sensitivities (by name), diagnosis and integer search; per item its design and output values, and each
-    constraint's numbers (a tuple of CONSTRAINT_COLUMNS each)."""
+    calls, sensitivities (by name), diagnosis and integer search; per item its design and output values, and their
+    constraints' numbers (each of CONSTRAINT_COLUMNS: a list over the points' constraints)."""
 
     status: list
     objective: list
@@ -276,7 +277,7 @@ class _Fields(NamedTuple):
     integer_search: list
     design: list
     outputs: list
-    constraints: list
+    constraints: dict[str, list]
 
 
 def _record_fields(records: list[dict]) -> _Fields:
@@ -286,10 +287,12 @@ def _record_fields(records: list[dict]) -> _Fields:
                    [r["integer_search"] for r in records],
                    [value for r in records for value in r["design"].values()],
                    [value for r in records for value in r["outputs"].values()],
-                   [_CONSTRAINT_ITEMS(c) for r in records for c in r["constraints"]])
+                   _item_columns([c for r in records for c in r["constraints"]]))
 
 
-_CHECK_ITEMS = attrgetter(*CONSTRAINT_COLUMNS)
+def _item_columns(constraints: list[dict]) -> dict[str, list]:
+    """:func:`_check_columns` of constraints as records hold them."""
+    return {name: list(map(itemgetter(name), constraints)) for name in CONSTRAINT_COLUMNS}
 
 
 def _solution_fields(solutions: list) -> _Fields:
@@ -300,7 +303,13 @@ def _solution_fields(solutions: list) -> _Fields:
                    [s.diagnosis for s in solutions], [s.integer_search for s in solutions],
                    [value for s in solutions for value in s.design.values()],
                    [out.value for s in solutions for out in s.outputs.values()],
-                   [_CHECK_ITEMS(c) for s in solutions for c in s.constraints])
+                   _check_columns([c for s in solutions for c in s.constraints]))
+
+
+def _check_columns(checks: list) -> dict[str, list]:
+    """Each of CONSTRAINT_COLUMNS of constraint checks, a list each (no tuple a check: fewer objects for Python's
+    garbage collector to follow)."""
+    return {name: list(map(attrgetter(name), checks)) for name in CONSTRAINT_COLUMNS}
 
 
 _RECORDS = _Reading(_statics, laid_out, itemgetter("diagnosis"), WindowRecords.of)
