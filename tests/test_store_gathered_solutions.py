@@ -41,9 +41,9 @@ def _dump(path) -> tuple[list, list]:
     """Every stored row of a store (its creation time left out) and its templates."""
     close_kept()
     with closing(sqlite3.connect(path)) as db:
-        return (db.execute("SELECT id, kind, sweep_id, point, case_path, title, coupling, mode, objective_name, status, "
-                           "objective, objective_unit, method, inputs, outputs, versions, run_count, window FROM runs "
-                           "ORDER BY id").fetchall(),
+        return (db.execute("SELECT id, kind, sweep_id, point, case_path, title, coupling, mode, objective_name, "
+                           "status, objective, objective_unit, method, inputs, outputs, versions, run_count, window "
+                           "FROM runs ORDER BY id").fetchall(),
                 db.execute("SELECT key, body FROM templates ORDER BY key").fetchall())
 
 
