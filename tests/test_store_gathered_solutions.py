@@ -123,3 +123,27 @@ def test_gathered_solutions_keeps_what_gathered_keeps_of_their_records(lever):
     found = gathered_solutions(bounded)
     assert [p.tolist() for p, _ in found[1]] == [[0, 1]] and sorted(found[0]) == [2, 3, 4, 5]
     _same(found, gathered({k: s.as_dict() for k, s in bounded.items()}))
+
+
+def test_a_run_with_sensitivities_at_some_points_reads_back_each_points_own(lever):
+    # sensitivities at some points of a run and none at others (a point without a design has none): each point's
+    # read back as its JSON, -0.0 and NaN (null) kept; the same names in another order keep the run rows, as before
+    records = [solution.as_dict() for solution in _covered(lever)[:4]]
+    records[1]["sensitivities"] = {"inertia": 0.25, "speed": -0.0, "friction": float("nan")}
+    records[3]["sensitivities"] = {"inertia": -1.5, "speed": 2.0, "friction": 1e-300}
+    for make in (lambda: gathered(dict(enumerate(records))), lambda: _as_solutions(lever, records)):
+        kept, windows = make()
+        assert kept == {} and [positions.tolist() for positions, _ in windows] == [[0, 1, 2, 3]]
+        back = windows[0][1].records(json_numbers=True)
+        assert [to_json(record, None) for record in back] == [to_json(record, None) for record in records]
+        assert windows[0][1].arrays["sensitive"].tolist() == [[False, True, False, True]] * 3
+    records[3]["sensitivities"] = {"speed": 2.0, "inertia": -1.5, "friction": 1e-300}
+    assert list(gathered(dict(enumerate(records)))[0]) == [0, 1, 2, 3]
+    assert list(_as_solutions(lever, records)[0]) == [0, 1, 2, 3]
+
+
+def _as_solutions(lever, records: list[dict]) -> tuple:
+    """gathered_solutions of the lever's covered Solutions with these records' sensitivities."""
+    solutions = _covered(lever)[:len(records)]
+    return gathered_solutions({k: dataclasses.replace(solution, sensitivities=record["sensitivities"])
+                               for k, (solution, record) in enumerate(zip(solutions, records))})
