@@ -7,12 +7,14 @@ objective with its unit and the versions of clutchopt and its solvers. A sweep i
 are runs with a point index. The batched points of a window are one row of ``runs`` for each run of consecutive
 point indices: their numbers as arrays (``clutchopt.window_records``), beside the template they share (table
 ``templates``); so are consecutive points solved alone that share a template (``window_records.gathered``: e.g. a
-region proof's points without a design). A row's ``run_count`` points have the ids ``id ..`` and the point indices
-``point ..`` onwards, and each is read back as a run of its own, in full. A store of an older clutchopt (a row per
-point, a batched one compact: ``clutchopt.records``) is read as it is and gets the newer columns when first
-written. A sweep's points are read and written in one transaction, so a resumed sweep cannot record a point twice
-(two resumes of one sweep running at once both finish; the point solved twice is stored once). The connection of a
-store closed last is kept for the next store of the same file in the process (``clutchopt.store_kept``).
+region proof's points without a design; a batched sweep's window hands them over so already, read from their
+Solutions: ``window_records.gathered_solutions``). A row's ``run_count`` points have the ids ``id ..`` and the
+point indices ``point ..`` onwards, and each is read back as a run of its own, in full. A store of an older
+clutchopt (a row per point, a batched one compact: ``clutchopt.records``) is read as it is and gets the newer
+columns when first written. A sweep's points are read and written in one transaction, so a resumed sweep cannot
+record a point twice (two resumes of one sweep running at once both finish; the point solved twice is stored
+once). The connection of a store closed last is kept for the next store of the same file in the process
+(``clutchopt.store_kept``).
 
 What can go wrong with the file, and what happens:
 - another process is writing: each write waits for the lock (up to ``BUSY_TIMEOUT_S``), then succeeds;

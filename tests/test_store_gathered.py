@@ -34,12 +34,14 @@ def region():
     return sweep, parts
 
 
-def _record(path, sweep, parts, sweep_id: int | None = None) -> tuple[int, int]:
-    """The points recorded into the store at ``path`` (a new sweep unless ``sweep_id``): the sweep's id, how many."""
+def _record(path, sweep, parts, sweep_id: int | None = None, form: str = "stored") -> tuple[int, int]:
+    """The points recorded into the store at ``path`` (a new sweep unless ``sweep_id``): the sweep's id, how many.
+    ``form``: the records as the sweep gives them to the store (``stored``: a run of points solved alone that share a
+    template already as arrays; ``held``: each as its ``Solution.as_dict()``, which the store gathers itself)."""
     with RunStore(path) as store:
-        sweep_id = sweep_id or store.new_sweep(sweep.spec, POINTS)
+        sweep_id = sweep_id or store.new_sweep(sweep.spec, len(sweep.points))
         return sweep_id, sum(store.record_points(sweep._inputs(), sweep._where(sweep_id), part.points.index,
-                                                 part.points.columns, *part.stored()) for part in parts)
+                                                 part.points.columns, *getattr(part, form)()) for part in parts)
 
 
 def _read(path, sweep, sweep_id: int, tmp_path) -> tuple:
@@ -86,7 +88,7 @@ def test_points_without_a_design_are_one_row_read_back_as_their_rows_were(region
     assert count == POINTS
     with monkeypatch.context() as patch:  # the layout before: a row of JSON for each point solved alone
         patch.setattr(clutchopt.store, "gathered", lambda alone: (alone, []))
-        assert _record(rows_path, sweep, parts) == (sweep_id, POINTS)
+        assert _record(rows_path, sweep, parts, form="held") == (sweep_id, POINTS)
     gathered_rows, each_rows = _rows(gathered_path), _rows(rows_path)
     assert (covered[0], len(covered)) in [(point, count) for point, count, _ in gathered_rows]
     assert len(each_rows) - len(gathered_rows) == len(covered) - 1

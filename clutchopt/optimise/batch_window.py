@@ -20,7 +20,7 @@ from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.table import active_names, placed, solution_table
 from clutchopt.optimise.verify import FEASIBILITY_TOL, ConstraintCheck, column_figures, column_outputs, margin_flags
 from clutchopt.records import STATUSES
-from clutchopt.window_records import KINDS, WindowRecords, in_order
+from clutchopt.window_records import KINDS, WindowRecords, gathered_solutions, in_order
 from clutchopt.units import si_unit
 
 BATCHED = "batched, KKT verified"  # a batched point's solver status
@@ -84,19 +84,30 @@ class Solutions(Sequence):
     def records(self) -> list[dict]:
         """Every point's ``Solution.as_dict()``, those of the batched points built together from the window's arrays
         (no Solution objects)."""
-        return in_order(len(self), *self.stored())
+        return in_order(len(self), *self.held())
+
+    def held(self) -> tuple[dict[int, dict], list[tuple[np.ndarray, WindowRecords]]]:
+        """Each point solved alone's ``Solution.as_dict()`` by position, and the batched points' records as arrays
+        (``clutchopt.window_records``) with their positions."""
+        return {i: self._record(i) for i in sorted(self._solutions)}, self._batched()
 
     def stored(self) -> tuple[dict[int, dict], list[tuple[np.ndarray, WindowRecords]]]:
-        """The records as the run store keeps them: each point solved alone's ``Solution.as_dict()`` by position,
-        and the batched points' records as arrays (``clutchopt.window_records``) with their positions."""
-        alone = {i: self._record(i) for i in sorted(self._solutions)}
+        """The records as the run store keeps them: :meth:`held`, but the points solved alone one after another that
+        share a template (a region proof's points without a design) as arrays too, read from their Solutions without
+        building their records (``window_records.gathered_solutions``: what the store's ``gathered`` makes of the
+        records)."""
+        alone, gathered = gathered_solutions(dict(sorted(self._solutions.items())))
+        return {i: self._record(i) for i in alone}, gathered + self._batched()
+
+    def _batched(self) -> list[tuple[np.ndarray, WindowRecords]]:
+        """The batched points' records as arrays with their positions (none, or one window's)."""
         batched = np.flatnonzero(self._column >= 0)
-        batched = batched[np.isin(batched, list(alone), invert=True)]
+        batched = batched[np.isin(batched, list(self._solutions), invert=True)]
         if not len(batched):
-            return alone, []
+            return []
         columns = self._column[batched]
         whole = len(columns) == len(self._checked.block.index) and (columns == np.arange(len(columns))).all()
-        return alone, [(batched, self._checked.window_records(None if whole else columns))]
+        return [(batched, self._checked.window_records(None if whole else columns))]
 
     def table(self) -> dict[str, np.ndarray]:
         """Every point's row of a sweep table (``clutchopt.optimise.table``), those of the batched points read from

@@ -81,13 +81,18 @@ class PointResults:
 
     def stored(self) -> tuple[dict[int, dict], list[tuple[np.ndarray, WindowRecords]]]:
         """The records as the run store keeps them (a window's built afresh from its arrays each time: not kept
-        once written)."""
+        once written; its points solved alone that share a template as arrays too: ``Solutions.stored``)."""
         return (self._alone, self._windows) if self._solutions is None else self._solutions.stored()
+
+    def held(self) -> tuple[dict[int, dict], list[tuple[np.ndarray, WindowRecords]]]:
+        """The records as :meth:`records` builds them: each point solved alone's ``Solution.as_dict()`` by position,
+        a window's batched points' as arrays with their positions."""
+        return (self._alone, self._windows) if self._solutions is None else self._solutions.held()
 
     def records(self) -> list[dict]:
         """Each point's ``Solution.as_dict()``."""
         if self._records is None:
-            self._records = in_order(len(self), *self.stored())
+            self._records = in_order(len(self), *self.held())
         return self._records
 
     def table(self) -> dict[str, np.ndarray]:
@@ -98,7 +103,7 @@ class PointResults:
         """Consecutive results as one, with their records as the store keeps them (what a worker sends back)."""
         alone, windows, offset = {}, [], 0
         for part in parts:
-            part_alone, part_windows = part.stored()
+            part_alone, part_windows = part.held()
             alone.update((offset + position, record) for position, record in part_alone.items())
             windows += [(offset + positions, window) for positions, window in part_windows]
             offset += len(part)
