@@ -179,8 +179,10 @@ def gathered(alone: dict[int, dict]) -> tuple[dict[int, dict], list[tuple[np.nda
 
 def gathered_solutions(alone: dict) -> tuple[dict, list[tuple[np.ndarray, WindowRecords]]]:
     """:func:`gathered` the points' Solutions (by position) without building their records: the same runs and arrays
-    (:meth:`WindowRecords.of_solutions`), the rest left Solutions. A window's points solved alone go so to the store
-    (the lever's 232 points without a design: 2.1 ms, where their records took 4.5 and :func:`gathered` 4.3)."""
+    (:meth:`WindowRecords.of_solutions`; a run broken also where two points differ only in a display unit of one SI
+    unit, which one case never makes: the same records read back), the rest left Solutions. A window's points
+    solved alone go so to the store (the lever's 232 points without a design: 2.1 ms, where their records took 4.5
+    and :func:`gathered` 4.3)."""
     return _gathered(alone, _SOLUTIONS)
 
 

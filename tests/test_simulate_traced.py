@@ -206,3 +206,21 @@ def test_each_phase_s_jacobian_is_its_rates_differentiated(kind):
         column = (np.array(rates(0.0, up)) - np.array(rates(0.0, down))) / (2.0 * h)
         scale = np.maximum(np.abs(jacobian).max(axis=1), 1e-300)
         assert np.all(np.abs(jacobian[:, j] - column) <= 1e-6 * scale), (kind, j, jacobian[:, j], column)
+
+
+def test_written_out_rates_whose_array_disagrees_are_not_trusted():
+    # the probes that decide whether the written-out rates stand for the equations read ``into`` too (the function
+    # LSODA is handed): one that writes another number is refused, the equations answer
+    from clutchopt.simulate.on_floats import trusted
+
+    def equations(t, y):
+        return [y[0] + t, 2.0 * y[1]]
+
+    def fast(t, y):
+        return [y[0] + t, 2.0 * y[1]]
+
+    fast.into = lambda t, y: np.array([y[0] + t, 2.0 * y[1]])
+    probes = [(0.5, [1.0, 3.0]), (1.0, [2.0, -1.0])]
+    assert trusted(fast, equations, probes) is fast
+    fast.into = lambda t, y: np.array([y[0] + t, 2.0 * y[1] * (1.0 + 1e-6)])
+    assert trusted(fast, equations, probes) is equations

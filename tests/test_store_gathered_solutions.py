@@ -147,3 +147,18 @@ def _as_solutions(lever, records: list[dict]) -> tuple:
     solutions = _covered(lever)[:len(records)]
     return gathered_solutions({k: dataclasses.replace(solution, sensitivities=record["sensitivities"])
                                for k, (solution, record) in enumerate(zip(solutions, records))})
+
+
+def test_a_check_holds_its_fields_only_so_gathered_solutions_cannot_drop_one(lever):
+    # gathered_solutions compares a run's checks by their fields (the first point's record laid out), so a check
+    # that held an attribute of its own would reach the store without it: a check refuses one, and its record's keys
+    # are the record layout's
+    from clutchopt.optimise.verify import ConstraintCheck
+    from clutchopt.records import CONSTRAINT_KEYS
+
+    check = _covered(lever)[0].constraints[0]
+    with pytest.raises(AttributeError):
+        check.note = "extra"
+    assert tuple(check.as_dict()) == CONSTRAINT_KEYS
+    assert check.as_dict()["display_unit"] == check.unit and dataclasses.asdict(check).keys() <= set(CONSTRAINT_KEYS)
+    assert type(check) is ConstraintCheck

@@ -53,7 +53,7 @@ class Solutions(Sequence):
     def __init__(self, first: int, count: int, alone: dict[int, Solution], checked: "Checked | None",
                  names: list[str]):
         self._solutions = {k - first: solution for k, solution in alone.items()}  # by position in the window
-        self._records: dict[int, dict] = {}  # the points solved alone's as_dict(), built once (stored)
+        self._records: dict[int, dict] = {}  # the points solved alone's as_dict(), built once (held, records)
         self._names = names  # the design variables
         self._checked, self._column = checked, np.full(count, -1)
         if checked is not None:

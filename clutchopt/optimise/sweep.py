@@ -65,7 +65,8 @@ class PointResults:
     """Solved points of a sweep, in point order: their indices and values, their rows of the sweep table (a batched
     window's read from its arrays), and their records, built when asked for: as the run store keeps them (a point
     solved alone's ``Solution.as_dict()`` by position, a window's batched points' as arrays with their positions:
-    ``clutchopt.window_records``) and in full (``Solution.as_dict()``: ``--json``, ``SweepResult.solutions``; kept
+    ``clutchopt.window_records``; ``stored``: the points solved alone that share a template gathered as arrays too,
+    ``held``: kept as records) and in full (``Solution.as_dict()``: ``--json``, ``SweepResult.solutions``; kept
     once built). ``spent``: their solver calls (``solves``) and seconds in them (``solver_s``) and in the batches'
     compiled checks (``check_s``)."""
 
@@ -100,7 +101,8 @@ class PointResults:
 
     @classmethod
     def joined(cls, parts: list["PointResults"], names: list[str]) -> "PointResults":
-        """Consecutive results as one, with their records as the store keeps them (what a worker sends back)."""
+        """Consecutive results as one, with their records as :meth:`held` keeps them (what a worker sends back; the
+        store gathers its points solved alone from those records)."""
         alone, windows, offset = {}, [], 0
         for part in parts:
             part_alone, part_windows = part.held()

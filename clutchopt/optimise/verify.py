@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
+from operator import attrgetter
 from types import SimpleNamespace
 
 import numpy as np
@@ -15,7 +16,7 @@ ACTIVE_TOL = 1e-6  # relative margin below which a constraint is reported active
 DESIGN_STATUSES = ("optimal", "unverified")  # a solve with these has a design to show (unverified: flagged)
 
 
-@dataclass
+@dataclass(slots=True)  # (no attribute beyond its fields: a record's keys, and a stored window's, are these)
 class ConstraintCheck:
     name: str
     equation: str
@@ -34,7 +35,13 @@ class ConstraintCheck:
 
     def as_dict(self) -> dict:
         """SI values; ``unit`` is their SI unit, ``display_unit`` the one the tables show them in."""
-        return {**vars(self), "unit": si_unit(self.unit), "display_unit": self.unit}  # fields are plain values
+        record = dict(zip(CHECK_FIELDS, _check_fields(self)))  # fields are plain values
+        record["unit"], record["display_unit"] = si_unit(self.unit), self.unit
+        return record
+
+
+CHECK_FIELDS = tuple(field.name for field in fields(ConstraintCheck))
+_check_fields = attrgetter(*CHECK_FIELDS)
 
 
 def check_design(formulation: Formulation, design: dict[str, float], params: SimpleNamespace) -> list[ConstraintCheck]:
