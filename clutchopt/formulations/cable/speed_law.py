@@ -3,8 +3,6 @@ driving speed and the twist of the halves (docs/cable.md, "Start-up")."""
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from clutchopt.backend import fmax, sqrt, tan
@@ -14,7 +12,6 @@ from clutchopt.formulations.cable.equations import (
     inertia_force,
     length_ratio,
     reduced_friction_angle,
-    weight_mass,
     weight_thread_diameter,
 )
 from clutchopt.model import ElasticLaw
@@ -79,36 +76,31 @@ def link_stress(x, p, speed, twist):
 BISECTIONS = 60  # halvings of [0, 2 psi] for the twist of the least tension (to 2 psi 2^-60: the float's own)
 
 
-def least_pull(x, p, speed):
-    """A lower bound on the tension c_kn x_2 the weights add at the driving speed w (an array), for a weight thread
-    of the lead angle x.weight_lead_angle; 0 where that angle is free (NaN) or the thread self-locks. The static row
-    weight_turns_cable, (m_rv (R_rv w_d^2 - g) - c_kn x_2) (d_2w / 2) tan(beta_w - phi') >= c_kk phi_1 at the duty
-    speed w_d, holds the weight mass at least eq. (9)'s m_rv (``weight_mass``: that row solved for m_rv), and the
-    travel m_rv (R_rv w^2 - g)^+ / k_w grows with it (met to the NLP's 1e-8, the row moves the bound by as little)."""
-    speed = np.asarray(speed, dtype=float)
-    beta = float(x.weight_lead_angle)
-    phi = reduced_friction_angle(p.friction_coefficient, p.flank_angle)
+def least_pull(p, speed):
+    """A lower bound on the tension c_kn x_2 the weights add at the driving speed w (an array) in any design meeting
+    the static rows: c_kn e (R_rv w^2 - g)^+ / (R_rv w_d^2 - g), e the cable's elongation, w_d the duty speed. The row
+    weight_turns_cable, (m_rv (R_rv w_d^2 - g) - c_kn e) (d_2w / 2) tan(beta_w - phi') >= c_kk phi_1, holds
+    m_rv (R_rv w_d^2 - g) >= c_kn e + 2 c_kk phi_1 / (d_2w tan(beta_w - phi')) = e k_w (d_2w = 2 e / (phi_1 tan
+    beta_w), eq. 9's k_w), so the travel m_rv (R_rv w^2 - g)^+ / k_w is at least e (R_rv w^2 - g)^+ / (R_rv w_d^2 - g)
+    whatever the weight thread's lead angle beta_w in (phi', 90 deg) (weight_thread_not_self_locking) and mass: the
+    weights reach the design travel e at the duty speed. Met to the NLP's 1e-8, the row moves it by as little."""
     duty = p.weight_radius * p.speed**2 - p.gravity
-    if not (math.isfinite(beta) and phi < beta < math.pi / 2 and duty > 0.0):
-        return np.zeros_like(speed)
-    travel = weight_travel(weight_mass(p, beta, phi), p.weight_radius, speed, p.gravity,
-                           weight_stiffness(p, beta, phi))
-    return p.longitudinal_stiffness * travel
+    if not duty > 0.0:
+        return np.zeros_like(np.asarray(speed, dtype=float))
+    return p.longitudinal_stiffness * weight_travel(p.elongation, p.weight_radius, speed, p.gravity, duty)
 
 
 def least_link_stress(x, p, speed, torque):
     """A lower bound on the stress with which x.cable_count cables carry ``torque`` (an array, N*m) at the driving
     speed ``speed`` (an array), whatever the other design variables: the weights' pull is at least
-    :func:`least_pull` (0 where their thread's lead angle is free: their travel is >= 0 in every design the NLP
-    admits, its row weight_thread_not_self_locking keeping beta_w above phi', where the weight thread's stiffness
-    k_w is positive: eq. 8-9's travel x_2 >= 0), and more pull shortens the twist that carries the torque and so
-    needs more tension, N = T (4 psi^2 + theta^2) / (z l theta) (eq. 18 solved for N), falling as theta grows; the
-    cables' own tension N_0 + that least pull + stretch(theta) grows with it. So the least N is where the two meet,
-    or, where that tension at the largest twist 2 psi cannot carry T, 4 psi T / (z l) there (more pull making up the
-    rest); the twist is bisected, the bound taken at its upper end."""
+    :func:`least_pull`, and more pull shortens the twist that carries the torque and so needs more tension,
+    N = T (4 psi^2 + theta^2) / (z l theta) (eq. 18 solved for N), falling as theta grows; the cables' own tension
+    N_0 + that least pull + stretch(theta) grows with it. So the least N is where the two meet, or, where that tension
+    at the largest twist 2 psi cannot carry T, 4 psi T / (z l) there (more pull making up the rest); the twist is
+    bisected, the bound taken at its upper end."""
     torque = np.maximum(np.asarray(torque, dtype=float), 0.0)
     ratio = length_ratio(p.span, p.finger_circle_diameter)
-    pulled = cable_pretension(p.transverse_stiffness, p.span) + least_pull(x, p, speed)
+    pulled = cable_pretension(p.transverse_stiffness, p.span) + least_pull(p, speed)
 
     def needed(twist):
         return torque * (4.0 * ratio**2 + twist**2) / (x.cable_count * p.span * twist)
