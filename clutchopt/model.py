@@ -247,8 +247,8 @@ class ElasticLaw:
     theta = 0 and w_a, N*m/rad (the reference of the link's damping); ``damping_ratio``: (x, p) -> its equivalent
     viscous damping ratio; ``largest_twist``: (x, p) -> the twist up to which the torque grows with it;
     ``least_stress``: (x, p, w_a, T) -> a lower bound on the stress with which the link carries the torque T at w_a
-    (arrays), whatever the design variables ``x`` leaves NaN (free), the twist within ``largest_twist``; None: no
-    bound known.
+    (arrays), whatever the design variables ``x`` leaves NaN (free), in any design meeting the formulation's rows,
+    the twist within ``largest_twist``; None: no bound known.
     """
 
     torque: Callable[..., Any]

@@ -76,24 +76,37 @@ def link_stress(x, p, speed, twist):
 BISECTIONS = 60  # halvings of [0, 2 psi] for the twist of the least tension (to 2 psi 2^-60: the float's own)
 
 
+def least_pull(p, speed):
+    """A lower bound on the tension c_kn x_2 the weights add at the driving speed w (an array) in any design meeting
+    the static rows: c_kn e (R_rv w^2 - g)^+ / (R_rv w_d^2 - g), e the cable's elongation, w_d the duty speed. The row
+    weight_turns_cable, (m_rv (R_rv w_d^2 - g) - c_kn e) (d_2w / 2) tan(beta_w - phi') >= c_kk phi_1, holds
+    m_rv (R_rv w_d^2 - g) >= c_kn e + 2 c_kk phi_1 / (d_2w tan(beta_w - phi')) = e k_w (d_2w = 2 e / (phi_1 tan
+    beta_w), eq. 9's k_w), so the travel m_rv (R_rv w^2 - g)^+ / k_w is at least e (R_rv w^2 - g)^+ / (R_rv w_d^2 - g)
+    whatever the weight thread's lead angle beta_w in (phi', 90 deg) (weight_thread_not_self_locking) and mass: the
+    weights reach the design travel e at the duty speed. Met to the NLP's 1e-8, the row moves it by as little."""
+    duty = p.weight_radius * p.speed**2 - p.gravity
+    if not duty > 0.0:
+        return np.zeros_like(np.asarray(speed, dtype=float))
+    return p.longitudinal_stiffness * weight_travel(p.elongation, p.weight_radius, speed, p.gravity, duty)
+
+
 def least_link_stress(x, p, speed, torque):
-    """A lower bound on the stress with which x.cable_count cables carry ``torque`` (an array, N*m) at any driving
-    speed, whatever the other design variables: the weights' pull only adds tension (their travel is >= 0 in every
-    design the NLP admits: its row weight_thread_not_self_locking keeps beta_w above phi', where the weight thread's
-    stiffness k_w is positive: eq. 8-9's travel x_2 >= 0), which shortens the twist that carries the torque and so
-    needs more tension, N = T (4 psi^2 + theta^2) / (z l theta) (eq. 18 solved for N), falling as theta grows; the
-    cables' own tension N_0 + stretch(theta) grows with it. So the least N is where the two meet, or, where the
-    cables' own tension at the largest twist 2 psi cannot carry T, 4 psi T / (z l) there (the weights' pull making up
-    the rest); the twist is bisected, the bound taken at its upper end."""
+    """A lower bound on the stress with which x.cable_count cables carry ``torque`` (an array, N*m) at the driving
+    speed ``speed`` (an array), whatever the other design variables: the weights' pull is at least
+    :func:`least_pull`, and more pull shortens the twist that carries the torque and so needs more tension,
+    N = T (4 psi^2 + theta^2) / (z l theta) (eq. 18 solved for N), falling as theta grows; the cables' own tension
+    N_0 + that least pull + stretch(theta) grows with it. So the least N is where the two meet, or, where that tension
+    at the largest twist 2 psi cannot carry T, 4 psi T / (z l) there (more pull making up the rest); the twist is
+    bisected, the bound taken at its upper end."""
     torque = np.maximum(np.asarray(torque, dtype=float), 0.0)
     ratio = length_ratio(p.span, p.finger_circle_diameter)
+    pulled = cable_pretension(p.transverse_stiffness, p.span) + least_pull(p, speed)
 
     def needed(twist):
         return torque * (4.0 * ratio**2 + twist**2) / (x.cable_count * p.span * twist)
 
     def own(twist):
-        return cable_pretension(p.transverse_stiffness, p.span) + twist_stretch(p.longitudinal_stiffness, p.span,
-                                                                                 ratio, twist)
+        return pulled + twist_stretch(p.longitudinal_stiffness, p.span, ratio, twist)
 
     low, high = np.zeros_like(torque), np.full_like(torque, 2.0 * ratio)
     for _ in range(BISECTIONS):
