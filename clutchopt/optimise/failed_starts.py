@@ -11,13 +11,6 @@ computed as a + (b - a) / 3 differs from the grid's value in the last bits, and 
 feasible point, can end elsewhere for such a difference (lever, 15.284 kg m^2: 34 or 65 iterations), never at a
 design where the same start failed. Only failures are kept: a design is returned to be used and changed.
 
-Along a run of points without a design (issue 26 item 3) a start that failed at the last point it was tried at, where
-the point's least relaxation named the same violated constraints as here, is not tried again (:meth:`skips`: the
-design the interval search meets, the same at every point of a sweep that moves only the start-up, e.g. its driven
-inertia, since the search bounds the static rows; lever_motor_start 15.8-16.8 kg m^2, 180-200 IPOPT iterations a
-point). The verdict stays ``not_found`` and names the starts tried (``Solution.starts``): it never claimed that
-start, and a point whose reason differs tries it again.
-
 A sweep's continuation (``clutchopt.optimise.sweep.continued``) follows the last feasible point's design towards a
 point without one in equal steps. Where one such path was lost at a step (no design there from the step before),
 a later continuation from the same design whose first step lands on or beyond that step, on the same ray from the
@@ -37,7 +30,7 @@ from contextlib import contextmanager
 from dataclasses import replace
 
 from clutchopt.cases import Case
-from clutchopt.optimise.solution import Diagnosis, Solution, SolverInfo
+from clutchopt.optimise.solution import Solution, SolverInfo
 
 KEPT = 256  # failures and tried starts kept per problem (a sweep's run of points without a design, a few starts each)
 
@@ -65,24 +58,23 @@ class FailedStarts:
 
     def __init__(self):
         self._failed: dict[tuple, Solution] = {}
-        self._tried: dict[tuple, tuple] = {}  # a start -> (the case but its values, its key there, the reason there)
         self._lost: dict[tuple, list[tuple[dict, dict]]] = {}  # a continuation's start -> (from, lost at) values
         self._along = False  # inside a sweep's run (:meth:`along_a_run`)
 
     @contextmanager
     def along_a_run(self):
-        """A sweep's run of points: the starts it tries and the paths it loses are kept for its later points
-        (:meth:`skips`, :meth:`lost_beyond`) and forgotten at its end. Outside one (``solve`` of a point alone, the
-        Python API's solves one after another) none is kept and none skipped: a point's verdict does not depend on
-        what the process solved before (review h12: ball_motor_start in paper mode at 605.7 kW was 554.69 kg in a
-        new process, not_found after a solve at 900 kW whose sampled start had failed for the same constraints)."""
-        self._tried.clear()
+        """A sweep's run of points: the paths its continuations lose are kept for its later points
+        (:meth:`lost_beyond`) and forgotten at its end; they bear only on starts ``solve`` of a point alone does not
+        try. No start ``solve`` tries is left out for what an earlier point showed, in a run or out of one: a point's
+        verdict does not depend on what the process solved before (review h12: ball_motor_start in paper mode at
+        605.7 kW was 554.69 kg in a new process, not_found after a solve at 900 kW whose sampled start had failed for
+        the same constraints; h13: so was a sweep's point there after a point at 900 kW, and a resumed sweep's first
+        point took the start its uninterrupted run left out)."""
         self._lost.clear()
         self._along = True
         try:
             yield
         finally:
-            self._tried.clear()
             self._lost.clear()
             self._along = False
 
@@ -102,22 +94,6 @@ class FailedStarts:
     def keep(self, key: tuple, solution: Solution) -> None:
         _make_room(self._failed, key)
         self._failed[key] = solution
-
-    def skips(self, case: Case, start: dict[str, float], diagnosed: Diagnosis | None) -> bool:
-        """Whether a start-up point's retry from ``start`` is left out: it failed at the last point of this case (but
-        for its values) it was tried at, whose least relaxation named the same violated constraints as this
-        point's (``diagnosed``). Where not, the start is taken as tried here."""
-        reason = diagnosed.violated if diagnosed is not None else ()
-        if case.start_up is None or not reason or not self._along:
-            return False
-        at = self.key(case, start)
-        rest, start_key = at[:1] + at[2:-1], at[-1]
-        last = self._tried.get(start_key)
-        if last is not None and last[0] == rest and last[2] == reason and last[1] in self._failed:
-            return True
-        _make_room(self._tried, start_key)
-        self._tried[start_key] = (rest, at, reason)
-        return False
 
     def lose(self, case: Case, start: dict[str, float], origin: dict[str, float], at: dict[str, float]) -> None:
         """A continuation of the sweep ``case`` from ``start`` (the design at the varied values ``origin``) lost its

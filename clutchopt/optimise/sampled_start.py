@@ -22,14 +22,12 @@ from a far design took the sizing's start, on that mesh, for feasible (its start
 one) and was lost there. The sequence is not scrambled: the same case gives the same samples, the same start and the
 same answer. Its design is checked as every design is (float64, the simulated start); its failure keeps the verdict
 ``not_found`` and names the start among those tried. ``solve`` of a point from its own start gets it
-(``Problem.solve``: no start, warm solution or neighbour given), and a sweep's first point past a design, after its
-continuation from that design (``clutchopt.optimise.sweep``); a point deeper into a run without a design follows its
-neighbour's design alone (its cost, 0.3-0.6 s a point on the ball, 4 s on the lever, would be paid at each point
-whose least relaxation names other constraints than the one before's), and a retry from a given design is the
-caller's. Along a run of
-points without a design, a sampled start that failed at the last point of the same case (but its values) for the
-same violated constraints is not sampled or solved again (``FailedStarts.skips``, as for the design the interval
-search meets).
+(``Problem.solve``: no start, warm solution or neighbour given), and so does every start-up sweep point without a
+design, after the starts a sweep adds (its neighbour's design, its continuation: ``clutchopt.optimise.sweep``),
+wherever the point lies in its run and wherever the run started (a resumed one, a pool's chunk): a point's verdict
+rests on at least the starts ``solve`` of it alone tries (ball_motor_start in paper mode listed over 507.9, 900 and
+605.7 kW: the third point, deeper than the first past a design, was ``not_found`` where ``solve`` finds 554.69 kg;
+tests/test_start_up_sweep_deeper.py). A retry from a given design is the caller's.
 """
 
 from __future__ import annotations
@@ -56,8 +54,6 @@ STEP = 0.1  # how far a step of the walk from the sample (:func:`walked`) may mo
 STEPS = 30  # steps at most (ball_motor_start in paper mode: 13 from its sample to 554.69 kg at 605.7 kW, 12 at 1.49)
 EDGE = 1e-6  # a step's design this near (relative) a side of its box is on it: the walk goes on
 SAMPLED = f"the least violated of {SAMPLES} sampled designs"
-_SAMPLED_KEY = {"sampled_designs": float(SAMPLES)}  # the sampled start as ``FailedStarts`` keeps it: by what it is,
-# not by the design it lands on at each point
 
 
 def least_violated(posed, case: Case) -> dict[str, float] | None:
@@ -181,8 +177,7 @@ def from_a_sampled_design(problem, case: Case, verdict: Solution) -> Solution:
     """``verdict`` (a start-up solve's ``not_found``) retried from the least violated sampled design
     (:func:`least_violated`): its design where the retry reaches one, else ``verdict`` with that start named among
     those tried; the solver calls of both summed."""
-    failed = problem.failed_starts
-    if verdict.status != "not_found" or failed.skips(case, _SAMPLED_KEY, verdict.diagnosed):
+    if verdict.status != "not_found":
         return verdict
     design = least_violated(problem.posed, case)
     retry = None if design is None else walked(problem, case, design)  # (None: its first simulation failed)
@@ -190,7 +185,5 @@ def from_a_sampled_design(problem, case: Case, verdict: Solution) -> Solution:
         retry.solver = retry.solver.summed([verdict.solver, retry.solver])
         retry.starts = verdict.starts + (SAMPLED,)
         return retry
-    kept = replace(verdict, starts=verdict.starts + (SAMPLED,),
+    return replace(verdict, starts=verdict.starts + (SAMPLED,),
                    solver=verdict.solver.summed([verdict.solver] + ([retry.solver] if retry is not None else [])))
-    failed.keep(failed.key(case, _SAMPLED_KEY), kept)
-    return kept

@@ -178,16 +178,16 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
     ``Problem.solve``'s ``first``): falls back to the case's own start by itself; a start-up design starts from the
     point before's optimum on the first mesh (clutchopt.optimise.start_up_sweep), else as `solve` does, from the papers'
     sizing at the point: either way solve's design whatever the points before it. Without a design, followed from the
-    last feasible point (:func:`continued`); a start-up's first point past a design then also from the sampled design
-    ``solve`` of the point alone starts its last retry from (:mod:`clutchopt.optimise.sampled_start`: ball_motor_start
-    in paper mode from 507.9 to 605.7 kW, whose continuation lost 554.69 kg). ``point_case``: ``case`` with
-    ``values``."""
+    last feasible point (:func:`continued`); a start-up's point then also from the sampled design ``solve`` of the
+    point alone starts its last retry from (:mod:`clutchopt.optimise.sampled_start`: ball_motor_start in paper mode
+    from 507.9 to 605.7 kW, whose continuation lost 554.69 kg), at every point without a design, not only the first
+    past one (solved without a neighbour, ``solve`` tried it already). ``point_case``: ``case`` with ``values``."""
     solution = solved_along(problem, point_case, previous) if problem.start_up is not None else None
     solution = solution or problem.solve(point_case, warm=previous if problem.start_up is None else None,
                                          neighbour=neighbour.design if neighbour is not None else None, first=first)
     if solution.status not in DESIGN_STATUSES and solution.status != "infeasible" and feasible is not None:
         solution = continued(problem, case, feasible, values) or solution  # (a proven point: no design to follow)
-    if problem.start_up is not None and previous is not None:  # (the point before optimal: the first past a design)
+    if problem.start_up is not None and neighbour is not None:  # (without one ``solve`` retried it as alone)
         solution = from_a_sampled_design(problem, point_case, solution)
     return solution
 

@@ -69,8 +69,7 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
         # its budget; else the search without one, as before the retries)
         emptiness = early if settled else empty_design_space(problem.posed, case)
         if emptiness is not None and emptiness.feasible is not None:  # a design of the relaxation: solve from it
-            met = dict(zip(problem.posed.names, emptiness.feasible))  # not again where it failed for the same reason
-            retry = None if problem.failed_starts.skips(case, met, first.diagnosed) else retried(problem, case, met)
+            retry = retried(problem, case, dict(zip(problem.posed.names, emptiness.feasible)))
             if retry is not None:
                 tried.append(("a design the interval search met", retry))
                 if retry.status in DESIGN_STATUSES:
