@@ -322,11 +322,15 @@ class Posed:
         """Whether two rows hold one quantity from both sides with no room between at ``case``'s values
         (``TwoSided.conflicts``: infeasible whatever the design), read from the case alone: the pairs' limits and
         scales are its quantities (no start scaled, no start-up simulated for it)."""
+        return self.conflicting_at([case])[0]
+
+    def conflicting_at(self, cases: list[Case]) -> list[bool]:
+        """:meth:`conflicting` at each of ``cases`` (a run of a sweep's points), in one evaluation."""
         if not self.sides.pairs:
-            return False
-        given = np.array(list(vars(self.params(case)).values()), dtype=float)
-        return bool(self.sides.conflicts(np.concatenate([given, np.ones(self.nlp["p"].shape[0] - len(given))]),
-                                         FEASIBILITY_TOL))
+            return [False] * len(cases)
+        given = np.array([list(vars(self.params(case)).values()) for case in cases], dtype=float).T
+        p = np.vstack([given, np.ones((self.nlp["p"].shape[0] - len(given), len(cases)))])
+        return self.sides.conflicting(p, FEASIBILITY_TOL).tolist()
 
     @property
     def mesh_size(self) -> int:
