@@ -179,7 +179,6 @@ def figures_at(posed, cases: list[Case], design: dict[str, float]
     constraints, table, objective = column_figures(f, posed.objective, x, p, count)
     outputs = column_outputs(f, x, p, count)
     names, declared = list(outputs), [out for _, out in outputs.values()]
-    points = zip(*(values.tolist() for values, _ in outputs.values()))  # (floats: read point by point from lists,
-    # not from arrays)
-    return [(checks, value, dict(zip(names, [Output(v, out.unit, out.description) for v, out in zip(point, declared)])))
-            for checks, value, point in zip(column_checks(constraints, table), objective.tolist(), points)]
+    points = zip(*(values.tolist() for values, _ in outputs.values()))  # (each point's outputs as floats)
+    return [(checks, value, dict(zip(names, [Output(v, out.unit, out.description) for v, out in zip(at, declared)])))
+            for checks, value, at in zip(column_checks(constraints, table), objective.tolist(), points)]

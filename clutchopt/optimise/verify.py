@@ -85,8 +85,9 @@ def column_checks(constraints: list[Constraint], table: tuple[np.ndarray, ...]) 
     sweep's points, ``verdict.figures_at``: a check's flags had cost as much as its object)."""
     value, limit, scale, margin = (column.tolist() for column in table)
     active, feasible = (flags.tolist() for flags in margin_flags(table[3]))
-    return [[ConstraintCheck(c.name, c.equation, c.sense, value[i][j], limit[i][j], margin[i][j], active[i][j],
-                             feasible[i][j], c.unit, c.description, scale[i][j]) for i, c in enumerate(constraints)]
+    return [[ConstraintCheck(name=c.name, equation=c.equation, sense=c.sense, value=value[i][j], limit=limit[i][j],
+                             margin=margin[i][j], active=active[i][j], feasible=feasible[i][j], unit=c.unit,
+                             description=c.description, scale=scale[i][j]) for i, c in enumerate(constraints)]
             for j in range(table[0].shape[1])]
 
 
