@@ -124,3 +124,14 @@ def test_limits_with_no_room_between_are_infeasible_whatever_the_design_never_an
     rows = {c.name: c for c in solution.constraints}
     assert rows["width_ratio"].limit == 0.8 and rows["width_ratio_max"].limit == 0.5
     assert not (rows["width_ratio"].feasible and rows["width_ratio_max"].feasible)
+
+
+def test_conflicts_read_over_a_run_of_points_at_once_are_each_point_s_own():
+    # ball_compressor.toml in paper mode, K5 at least the paper's 0.8: width_ratio_max 0.5 (apart by 0.375) and
+    # 0.8 - 1.2e-6 (by 1.5e-6, more than the check's tolerance allows on both rows) conflict; 0.8 - 1e-9 (within it),
+    # 0.8 and 1.0 leave room. Posed.conflicting_at reads a region proof's points in one call, as each alone.
+    posed = case_problem(load_case(CASES / "ball_compressor.toml"), "paper").posed
+    cases = [load_case(CASES / "ball_compressor.toml").with_values(width_ratio_max=v)
+             for v in (0.5, 0.8 - 1.2e-6, 0.8 - 1e-9, 0.8, 1.0)]
+    assert posed.conflicting_at(cases) == [True, True, False, False, False]
+    assert [posed.conflicting(case) for case in cases] == [True, True, False, False, False]

@@ -9,7 +9,7 @@ import pytest
 
 from clutchopt.cases import load_case
 from clutchopt.formulations import get_coupling
-from clutchopt.optimise import verdict
+from clutchopt.optimise import solve_case, verdict
 from clutchopt.optimise.problem import case_problem
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.sweep import Sweep, parse_vary
@@ -179,3 +179,18 @@ def test_a_batched_sweep_solves_a_failed_point_again_from_its_feasible_neighbour
     assert frame["status"].tolist() == ["optimal"] * 4
     expected = case_problem(case).solve(case.with_values(power=480e3)).objective
     assert frame["mass [kg]"].iloc[2] == pytest.approx(expected, rel=1e-6)
+
+
+def test_one_design_s_figures_at_a_run_of_points_are_each_point_s_own():
+    # a region proof's covered points share one design, checked at their values together (verdict.figures_at over
+    # columns): every check, flag, objective and output the figures of each point alone (the float path), to the bit
+    case = load_case(CASES / "ball_crusher.toml")
+    posed = case_problem(case, "design").posed
+    design = solve_case(case, mode="design").design
+    cases = [case.with_values(power=case.values["power"] * f) for f in (0.5, 1.0, 2.0, 4.0)]
+    together = verdict.figures_at(posed, cases, design)
+    alone = [verdict.figures_at(posed, [c], design)[0] for c in cases]
+    assert repr(together) == repr(alone)
+    checks = {c.name: c for c in together[3][0]}
+    assert not checks["torque"].feasible and checks["torque"].active  # (4x the power: the design carries a quarter)
+    assert [c.feasible for c in together[0][0]] == [True] * len(together[0][0])

@@ -260,6 +260,11 @@ class Posed:
         """The case's SI values of this formulation's quantities; those the case leaves out read as NaN."""
         return namespace({q.name: case.values.get(q.name, math.nan) for q in self.formulation.quantities})
 
+    def params_of(self, cases: list[Case]) -> SimpleNamespace:
+        """:meth:`params` of each of ``cases``, an array over them by name (one design checked at several cases)."""
+        return namespace({q.name: np.array([case.values.get(q.name, math.nan) for case in cases])
+                          for q in self.formulation.quantities})
+
     def scaled_data(self, case: Case, start: dict[str, float] | None = None, scale: np.ndarray | None = None,
                     internal: np.ndarray | None = None, mesh: np.ndarray | None = None,
                     checked: SimpleNamespace | None = None) -> ScaledData:
@@ -322,11 +327,19 @@ class Posed:
         """Whether two rows hold one quantity from both sides with no room between at ``case``'s values
         (``TwoSided.conflicts``: infeasible whatever the design), read from the case alone: the pairs' limits and
         scales are its quantities (no start scaled, no start-up simulated for it)."""
+        return bool(self.sides.pairs) and bool(self.sides.conflicts(self._given_p(case), FEASIBILITY_TOL))
+
+    def conflicting_at(self, cases: list[Case]) -> list[bool]:
+        """:meth:`conflicting` at each of ``cases`` (a run of a sweep's points), in one evaluation."""
         if not self.sides.pairs:
-            return False
+            return [False] * len(cases)
+        return self.sides.conflicting(np.column_stack([self._given_p(case) for case in cases]),
+                                      FEASIBILITY_TOL).tolist()
+
+    def _given_p(self, case: Case) -> np.ndarray:
+        """The NLP's parameter vector of ``case``'s values alone (scales 1: what the pairs' limits read)."""
         given = np.array(list(vars(self.params(case)).values()), dtype=float)
-        return bool(self.sides.conflicts(np.concatenate([given, np.ones(self.nlp["p"].shape[0] - len(given))]),
-                                         FEASIBILITY_TOL))
+        return np.concatenate([given, np.ones(self.nlp["p"].shape[0] - len(given))])
 
     @property
     def mesh_size(self) -> int:

@@ -128,8 +128,9 @@ class Regions:
         if proven is None or self._without is None:
             return None
         problem = self._problems.get(k)  # (its search problem: its design box, the bounds its verdict shows)
-        solution = _covered(self.problem, self.point_case(k), self._without.design, *proven,
-                            figures=self._figures_at(k), bounds=None if problem is None else problem[1:3])
+        figures, conflicting = self._figures_at(k) or (None, None)
+        solution = _covered(self.problem, self.point_case(k), self._without.design, *proven, figures=figures,
+                            conflicting=conflicting, bounds=None if problem is None else problem[1:3])
         if solution is not None:
             self.after(k, solution)
         return self.charged(solution)
@@ -553,18 +554,20 @@ class Regions:
         self._charge(probe)
         return None
 
-    def _figures_at(self, k: int) -> tuple | None:
-        """Proven point k's float64 figures at the design of the last point without one (:func:`_covered`), those of
-        every point proven with it evaluated together, one NumPy column a point (static problems; None otherwise):
-        a region's points share that design, and one evaluation of the formulation's equations over arrays costs
-        what one over floats does (the lever over 1x-10x its inertia: 84 covered points, each evaluated alone, were
-        half the sweep's time)."""
+    def _figures_at(self, k: int) -> tuple[tuple, bool] | None:
+        """Proven point k's float64 figures at the design of the last point without one and whether two limits of
+        one quantity leave no room between at its values (:func:`_covered`), those of every point proven with it
+        evaluated together, one NumPy column a point (static problems; None otherwise): a region's points share that
+        design, and one evaluation of the formulation's equations over arrays costs what one over floats does (the
+        lever over 1x-10x its inertia: 84 covered points, each evaluated alone, were half the sweep's time)."""
         if self.posed.start_up is not None:  # (its own drive proofs come first: ``_covered``)
             return None
         design = self._without.design
         if k not in self._figures or self._figured != design:
             points = sorted({k, *(j for j in self._proven if j > k)})
-            self._figures = dict(zip(points, figures_at(self.posed, [self.point_case(j) for j in points], design)))
+            cases = [self.point_case(j) for j in points]
+            self._figures = dict(zip(points, zip(figures_at(self.posed, cases, design),
+                                                 self.posed.conflicting_at(cases))))
             self._figured = dict(design)
         return self._figures.pop(k)
 
@@ -626,19 +629,21 @@ def _shown(value: float, unit: str) -> str:
 
 
 def _covered(problem, case, design: dict[str, float], text: str, seconds: float, spent: SolverInfo | None = None,
-             figures: tuple | None = None, bounds: tuple[np.ndarray, np.ndarray] | None = None) -> Solution | None:
+             figures: tuple | None = None, conflicting: bool | None = None,
+             bounds: tuple[np.ndarray, np.ndarray] | None = None) -> Solution | None:
     """The verdict of a point a proof covers, showing ``design`` (the last point without one: its least relaxation;
     or the point's own failed solve, which ``spent`` its calls and seconds) with every constraint re-evaluated in
     float64 at this point's values (``figures``, if evaluated already: ``verdict.figures_at``) and the case's bounds
     (``bounds``, if read already: its search problem's); None where a requirement no design variable enters is
-    broken or two limits of one quantity leave no room between (``Posed.conflicting``), or a start-up's drive proofs
-    hold (its own verdict says so)."""
+    broken or two limits of one quantity leave no room between (``Posed.conflicting``; ``conflicting``, if read
+    already), or a start-up's drive proofs hold (its own verdict says so)."""
     posed = problem.posed
     if problem.start_up is not None and start_up_proofs(case):
         return None
     figures = figures or figures_at(posed, [case], design)[0]
     broken = {c.name for c in figures[0] if not c.feasible}
-    if broken & {posed.row_names[i] for i in posed.fixed_rows} or (broken & posed.paired and posed.conflicting(case)):
+    if broken & {posed.row_names[i] for i in posed.fixed_rows} or (
+            broken & posed.paired and (posed.conflicting(case) if conflicting is None else conflicting)):
         return None  # (limits that conflict break one of their rows at every design)
     solves, time_s = (spent.solves, spent.time_s) if spent is not None else (0, 0.0)
     return infeasible_at(posed, case, design, text, SolverInfo("interval", "proven", 0, time_s + seconds, solves),

@@ -31,8 +31,8 @@ from clutchopt.errors import InputError
 from clutchopt.model import Output, namespace
 from clutchopt.optimise.interval_proof import SURE_BOXES, empty_design_space
 from clutchopt.optimise.solution import Solution, SolverInfo
-from clutchopt.optimise.verify import (DESIGN_STATUSES, ConstraintCheck, check_design, column_figures, column_outputs,
-                                       constraint_check, evaluate_objective, evaluate_outputs)
+from clutchopt.optimise.verify import (DESIGN_STATUSES, ConstraintCheck, check_design, column_checks, column_figures,
+                                       column_outputs, evaluate_objective, evaluate_outputs)
 
 
 def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[str, float] | None) -> Solution:
@@ -173,14 +173,11 @@ def figures_at(posed, cases: list[Case], design: dict[str, float]
     if count == 1 or posed.start_up is not None:
         return [(check_design(f, design, params), evaluate_objective(f, posed.objective.name, design, params),
                  evaluate_outputs(f, design, params)) for params in map(posed.params, cases)]
-    params = [vars(posed.params(case)) for case in cases]
     x = namespace({name: float(value) for name, value in design.items()})
-    p = namespace({name: np.array([values[name] for values in params]) for name in params[0]})
+    p = posed.params_of(cases)
     constraints, table, objective = column_figures(f, posed.objective, x, p, count)
-    outputs = [(name, values.tolist(), out) for name, (values, out) in column_outputs(f, x, p, count).items()]
-    (value, limit, scale, margin), objective = (column.tolist() for column in table), objective.tolist()  # (floats:
-    # read point by point from lists, not from arrays)
-    return [([constraint_check(c, value[i][j], limit[i][j], scale[i][j], margin[i][j])
-              for i, c in enumerate(constraints)],
-             objective[j], {name: Output(values[j], out.unit, out.description) for name, values, out in outputs})
-            for j in range(count)]
+    outputs = column_outputs(f, x, p, count)
+    names, declared = list(outputs), [out for _, out in outputs.values()]
+    points = zip(*(values.tolist() for values, _ in outputs.values()))  # (each point's outputs as floats)
+    return [(checks, value, dict(zip(names, [Output(v, out.unit, out.description) for v, out in zip(at, declared)])))
+            for checks, value, at in zip(column_checks(constraints, table), objective.tolist(), points)]

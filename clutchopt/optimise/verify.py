@@ -86,6 +86,18 @@ def margin_flags(margin, tolerance: float = FEASIBILITY_TOL):
     return (abs(margin) <= ACTIVE_TOL) | (margin < 0), margin >= -tolerance
 
 
+def column_checks(constraints: list[Constraint], table: tuple[np.ndarray, ...]) -> list[list[ConstraintCheck]]:
+    """Each point's checks (a list per column of :func:`constraint_table`'s ``table``), the flags taken over the
+    whole table at once: :func:`constraint_check`'s figures and flags, the same bits (one design at a run of a
+    sweep's points, ``verdict.figures_at``: a check's flags had cost as much as its object)."""
+    value, limit, scale, margin = (column.tolist() for column in table)
+    active, feasible = (flags.tolist() for flags in margin_flags(table[3]))
+    return [[ConstraintCheck(name=c.name, equation=c.equation, sense=c.sense, value=value[i][j], limit=limit[i][j],
+                             margin=margin[i][j], active=active[i][j], feasible=feasible[i][j], unit=c.unit,
+                             description=c.description, scale=scale[i][j]) for i, c in enumerate(constraints)]
+            for j in range(table[0].shape[1])]
+
+
 def constraint_table(constraints: list[Constraint], count: int) -> tuple[np.ndarray, ...]:
     """Value, limit, scale and relative margin of each float64 constraint (rows) at ``count`` points (columns; a
     constraint that does not vary is broadcast)."""
