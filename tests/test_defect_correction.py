@@ -83,7 +83,13 @@ def test_the_cable_at_0_5_corrects_once_from_the_nlp_s_figure():
     assert eight.objective == pytest.approx(4.256848, rel=1e-6)
     assert eight.limit_shift == {}  # the modifier solves at the case's limit
     alone = solve_case(case)
-    assert alone.status == "optimal" and alone.design["cable_count"] == 8.0 and alone.solver.solves == 7
+    assert alone.status == "optimal" and alone.design["cable_count"] == 8.0
+    # 8 cables refuted unsolved at their moved limit, 9 solved, 8 verified by modifier adaptation: 7 solves, 8 where
+    # NumPy's OpenBLAS runs its Sandybridge or Nehalem kernels (OPENBLAS_CORETYPE: the last bits differ, 2 IPOPT
+    # iterations more), the same path and design either way
+    assert [(e.get("cable_count"), e["status"]) for e in alone.integer_search] == [
+        (8, "excluded: link_stress"), (9, "Solve_Succeeded"), (8, "modifier adaptation: optimal")]
+    assert alone.solver.solves in (7, 8)
     assert alone.objective == pytest.approx(eight.objective, rel=1e-6)
 
 
