@@ -46,8 +46,8 @@ def test_6_cables_7_at_their_own_limit_and_8_at_7_s_are_refuted_unsolved_the_des
     35 iterations to Infeasible_Problem_Detected; at the stress limit 7 cables' start moved in (to 314.22 MPa), 7
     cables 19 to the same and 8 cables 21 (infeasible by 7.5e-5). Their least stress at the nodes, 376.0, 341.4 and
     314.24 MPa with the least pull of weights of eq. (9)'s mass, refutes the three: 6 runs (9), the design, its
-    simulated start and every run that ends with a design the same to the last bit; 8 cables' own loop now comes after
-    7 cables' modifier step (from ``untried_below``, not ``lighter``: an exclusion has no run's end to compare)."""
+    simulated start and every run that ends with a design the same to the last bit, in the same order (8 cables'
+    own loop before 7 cables' modifier step: ``lighter`` takes an exclusion at another's shift whatever its end)."""
     with monkeypatch.context() as patched:
         unbounded, before = solved(patched, bound=False)
     solution, runs = solved(monkeypatch)
@@ -57,9 +57,8 @@ def test_6_cables_7_at_their_own_limit_and_8_at_7_s_are_refuted_unsolved_the_des
     assert solution.objective == unbounded.objective == 3.952572919154992
     assert solution.design == unbounded.design
     assert solution.start_up["start_time_simulated"] == unbounded.start_up["start_time_simulated"]
-    kept = [before[i][2] for i in (0, 1, 4, 6, 8, 7)]  # (not 6 cables, 7 at their own limit, 8 at 7's; the modifier
-    # step before 8 cables' own loop)
-    assert [r["design"]["cable_count"] for *_, r in runs][3:] == [9.0, 7.0, 8.0]
+    kept = [before[i][2] for i in (0, 1, 4, 6, 7, 8)]  # (not 6 cables, 7 at their own limit, 8 at 7's)
+    assert [r["design"]["cable_count"] for *_, r in runs][3:] == [9.0, 8.0, 7.0]
     assert all(np.array_equal(a["x"], b["x"]) and a["status"] == b["status"]
                for a, b in zip(kept, (r for *_, r in runs)))
 
@@ -131,15 +130,23 @@ def test_threads_mode_its_weight_thread_free_refutes_the_same_counts(monkeypatch
 
 def test_a_count_excluded_at_its_own_limit_is_its_own_verdict():
     """An exclusion at the limits the choice's own start moved (or the case's) is recorded as its own verdict, like
-    an infeasible run there: no own loop solves it again (``untried_below``); one at another's shift is not."""
+    an infeasible run there: no own loop solves it again (``untried_below``); one at another's shift is not, and no
+    run's end bounds its objective: it is solved through its own loop whatever the kept design weighs (``lighter``;
+    reached only one count below the kept design before, it was skipped where that count's own loop failed)."""
     foreign = ForeignShifts(["cable_count"])
     foreign.corrected(SimpleNamespace(design={"cable_count": 7.0}))
     search = [{"cable_count": c, "status": s, "feasible": False, "objective": math.nan}
               for c, s in ((7, "excluded: link_stress"), (6, "excluded: link_stress"))]
     foreign.seen(SimpleNamespace(integer_search=search))
-    assert foreign.own == {(7.0,)} and foreign.found == {}
+    assert foreign.own == {(7.0,)} and foreign.found == {(6.0,): -math.inf}
     kept = SimpleNamespace(status="optimal", objective=3.95, design={"cable_count": 8.0})
-    assert foreign.untried_below(kept, {"cable_count": 1.0}) == []
+    assert foreign.untried_below(kept, {"cable_count": 1.0}) == [] and foreign.lighter(kept) == [(6.0,)]
+    two_below = ForeignShifts(["cable_count"])  # 8 and 9 excluded at 7's limit, 10 kept: both their own loops
+    two_below.corrected(SimpleNamespace(design={"cable_count": 7.0}))
+    two_below.seen(SimpleNamespace(integer_search=[{"cable_count": c, "status": "excluded: link_stress",
+                                                    "feasible": False, "objective": math.nan} for c in (8, 9)]))
+    heavier = SimpleNamespace(status="optimal", objective=4.5, design={"cable_count": 10.0})
+    assert set(two_below.lighter(heavier)) == {(8.0,), (9.0,)}
 
 
 def test_no_sampled_design_carries_its_torque_below_the_least_stress(monkeypatch):

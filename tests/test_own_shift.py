@@ -32,10 +32,10 @@ def test_a_choice_is_ruled_out_by_its_own_shift_only():
                                                  entry(8, "Infeasible_Problem_Detected", 3.96),
                                                  entry(9, "Solve_Succeeded", 4.42),
                                                  entry(5, "excluded: cable_stress", math.nan)]))
-    assert foreign.own == {(6.0,), (7.0,)} and foreign.found == {(8.0,): 3.96}
+    assert foreign.own == {(6.0,), (7.0,)} and foreign.found == {(8.0,): 3.96, (5.0,): -math.inf}
     kept = SimpleNamespace(status="optimal", objective=4.42, design={"cable_count": 9.0})
-    assert foreign.lighter(kept) == [(8.0,)]
-    assert foreign.lighter(replace_objective(kept, 3.9)) == []  # a kept design lighter than 8's end: none
+    assert foreign.lighter(kept) == [(5.0,), (8.0,)]  # (5 excluded at 7's shift: no run's end bounds it)
+    assert foreign.lighter(replace_objective(kept, 3.9)) == [(5.0,)]  # a kept design lighter than 8's end
     carried = ForeignShifts(["cable_count"], carried_by(None))
     assert carried.measured == {CARRIED}
     carried.seen(SimpleNamespace(integer_search=[entry(7, "Infeasible_Problem_Detected", 3.49)]))
@@ -85,16 +85,16 @@ def test_the_cable_s_own_case_solves_8_cables_through_their_own_loop():
     first step puts the weight mass at 0.788 kg (5.82 kg, its start still over the limit), heavier than 8 cables'
     3.953 kg, and stops there, 7 cables recorded at their unverified 3.487 kg: 9 solves, 130 iterations; 7 and 76
     since 6 cables in the first solve (35 iterations) and 7 at their own moved limit (19) are refuted unsolved; 6
-    and 55 since 8 at 7's moved limit (21) are too (their least stress with the weights' least pull, 314.243 MPa),
-    the modifier step then run before 8 cables' own loop (which ``untried_below`` reaches: an exclusion has no run's
-    end for ``lighter``), the design the same."""
+    and 55 since 8 at 7's moved limit (21) are too (their least stress with the weights' least pull, 314.243 MPa):
+    8's own loop still runs first (``lighter``: an exclusion at another's shift bounds no objective), the design the
+    same."""
     found = solve_case(CABLE.with_values(driven_inertia=0.25))
     assert found.status == "optimal" and found.design["cable_count"] == 8.0
     assert (found.solver.solves, found.solver.iterations) == (6, 55)
     own = [(e["cable_count"], e["status"]) for e in found.integer_search if not e["status"][0].isupper()]
-    assert own == [(7, "excluded: link_stress"), (8, "excluded: link_stress"), (7, "modifier adaptation: unverified"),
-                   (8, "own accuracy loop: optimal")]
-    modified = found.integer_search[-2]
+    assert own == [(7, "excluded: link_stress"), (8, "excluded: link_stress"), (8, "own accuracy loop: optimal"),
+                   (7, "modifier adaptation: unverified")]
+    modified = found.integer_search[-1]
     assert modified["objective"] == pytest.approx(3.48718, rel=1e-5) and not modified["feasible"]  # (7's own design)
     assert found.objective == pytest.approx(3.9525729, rel=1e-7) and found.limit_shift == {}
 

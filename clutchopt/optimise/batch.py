@@ -78,7 +78,7 @@ from clutchopt.optimise.batch_pace import BatchPace, until_active
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
 from clutchopt.optimise.chain import chain_verdict, chained_sqp
 from clutchopt.optimise.feasibility import LOCALLY_INFEASIBLE, Least, infeasible, least
-from clutchopt.optimise.integers import (descend, downhill, excluded_entry, nearest_integers,
+from clutchopt.optimise.integers import (EXCLUDED, descend, downhill, excluded_entry, nearest_integers,
                                          relaxation_seed, search_entry)
 from clutchopt.optimise.interval_proof import carry_boxes, last_boxes
 from clutchopt.optimise.posed import Box, ScaledData, off_scale
@@ -420,7 +420,7 @@ class BatchSweep:
             self.feasible = solution.design
         for entry in solution.integer_search:  # (its search's combinations without a design: IPOPT's verdicts)
             names = [self.names[i] for i in self.integer]
-            if not entry["feasible"] and not entry["status"].startswith("excluded") and all(n in entry for n in names):
+            if not entry["feasible"] and not entry["status"].startswith(EXCLUDED) and all(n in entry for n in names):
                 self._undesigned[tuple(float(entry[n]) for n in names)] = (k, entry["status"])
         return solution
 

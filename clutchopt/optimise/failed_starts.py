@@ -32,7 +32,7 @@ from dataclasses import replace
 from clutchopt.cases import Case
 from clutchopt.optimise.solution import Solution, SolverInfo
 
-KEPT = 256  # failures and tried starts kept per problem (a sweep's run of points without a design, a few starts each)
+KEPT = 256  # failures kept per problem (a sweep's run of points without a design, a few starts each)
 
 
 def case_numbers(case: Case) -> dict[str, float]:

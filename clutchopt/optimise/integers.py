@@ -207,6 +207,7 @@ def fixing(posed: Posed, data: ScaledData, runs: list[dict], search: list[dict],
 
 INFEASIBLE = "Infeasible_Problem_Detected"  # IPOPT's restoration phase ended at a local minimum of the violation
 SOLVED = "Solve_Succeeded"
+EXCLUDED = "excluded: "  # an integer search entry excluded without a solve, the rows it breaks after it
 VERDICTS = (SOLVED, INFEASIBLE)  # IPOPT's ends that say something of the choice (not that they are global)
 
 
@@ -279,7 +280,7 @@ def search_entry(posed: Posed, integer: list[int], combo, status: str, feasible:
 
 def excluded_entry(posed: Posed, integer: list[int], combo, violated: list[str]) -> dict:
     """The ``integer_search`` entry of a choice excluded without a solve: the constraints it breaks."""
-    return search_entry(posed, integer, combo, f"excluded: {', '.join(violated)}", False, math.nan)
+    return search_entry(posed, integer, combo, f"{EXCLUDED}{', '.join(violated)}", False, math.nan)
 
 
 def relaxation_seed(seed: dict, integer: list[int]) -> dict:

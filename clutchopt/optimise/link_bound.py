@@ -5,8 +5,8 @@ coupling's design, and at each collocation node the link carries the locked driv
 (J_m T_c + J T_m) / (J + J_m). The node speeds and times are therefore the same in every point of the NLP that
 meets its drive's rows (those no design variable enters); a solved point's are those of every other. At them the
 coupling's law bounds the stress from below for the integers and fixed variables alone (``ElasticLaw.least_stress``:
-the cable's with the least pull its weights' row weight_turns_cable admits where their thread's lead angle is fixed,
-none where it is free); where that bound is above the stress limit at some node, no design of the choice meets
+the cable's with the least pull its weights' row weight_turns_cable admits, whatever their thread's lead angle);
+where that bound is above the stress limit at some node, no design of the choice meets
 ``link_stress`` and its NLP is not solved (cable_motor_start: 6 cables at 376.0 MPa against 350, 35 IPOPT
 iterations to ``Infeasible_Problem_Detected``; at the limit 7 cables' start moved in, 314.22 MPa, 7 cables at 341.4,
 19, and 8 cables at 314.243, 21).

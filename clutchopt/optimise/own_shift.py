@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 
-from clutchopt.optimise.integers import SOLVED
+from clutchopt.optimise.integers import EXCLUDED, SOLVED
 from clutchopt.optimise.verify import DESIGN_STATUSES
 
 CARRIED = None  # the "choice" that measured a shift carried from elsewhere, where it is not known
@@ -42,7 +42,8 @@ class ForeignShifts:
         self.names = names
         self.measured: set = set(carried)  # the choices whose simulated starts moved the limits (``carried``: those
         # that moved the limits the loop starts with, a sweep's point before's)
-        self.found: dict[tuple, float] = {}  # choice -> least objective at the end of its infeasible runs
+        self.found: dict[tuple, float] = {}  # choice -> least objective at the end of its infeasible runs (-inf:
+        # excluded without a run)
         self.own: set[tuple] = set()  # choices found infeasible at the case's limits or at their own shift
         self.looped: set[tuple] = set()  # the choices solved through their own loop (``Problem._own_loop``)
         self.unverified: dict[tuple, object] = {}  # choice -> the loop's lightest design of it whose simulated
@@ -73,6 +74,8 @@ class ForeignShifts:
                 self.own.add(combo)
             elif math.isfinite(entry["objective"]):
                 self.found[combo] = min(self.found.get(combo, math.inf), entry["objective"])
+            elif entry["status"].startswith(EXCLUDED):  # excluded without a solve at another's shift: no run's
+                self.found[combo] = -math.inf  # end bounds its objective (the link bound at 7 cables' moved limit)
 
     def own_loop(self, combo: tuple) -> None:
         """``combo`` solved through its own accuracy loop (``Problem._own_loop``)."""

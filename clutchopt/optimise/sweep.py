@@ -142,7 +142,7 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
                                spent={key: now[key] - before[key] for key in SPENT}, carried=sweep.carried)
             first, before = first + len(window), now
         return
-    with problem.failed_starts.along_a_run():  # (what a start-up run tried and lost, for its later points alone)
+    with problem.failed_starts.along_a_run():  # (the paths a start-up run lost, for its later points alone)
         previous: Solution | None = None  # the last point's optimum (a warm start), None next to a failure
         feasible: tuple[dict, Solution] | None = None  # the last feasible point's values and design
         designs: dict[tuple, Solution] = {}  # feasible designs by the point's values
