@@ -65,9 +65,8 @@ class Problem:
         can reach one before its verdict is given (:func:`clutchopt.optimise.verdict.shown`): ``neighbour``, the
         feasible design of a neighbouring point (a sweep's), among them. ``first``: that first solve, where a caller
         has made it already (a sweep's quick solve of a point its interval search did not prove). A start-up's
-        ``not_found`` solved from its own start alone (no start, warm solution or neighbour given: a sweep's point
-        solved from its neighbour gets that retry from ``Sweep``) is retried last from the sampled design its NLP's
-        rows miss least
+        ``not_found`` solved from its own start alone (no start, warm solution or neighbour given: a sweep's point too,
+        before the starts the sweep adds) is retried last from the sampled design its NLP's rows miss least
         (:mod:`clutchopt.optimise.sampled_start`)."""
         try:
             solution = first or self.refined(case, start, warm, mesh, refine, coarser=coarser)

@@ -23,7 +23,8 @@ one) and was lost there. The sequence is not scrambled: the same case gives the 
 same answer. Its design is checked as every design is (float64, the simulated start); its failure keeps the verdict
 ``not_found`` and names the start among those tried. ``solve`` of a point from its own start gets it
 (``Problem.solve``: no start, warm solution or neighbour given), and so does every start-up sweep point without a
-design, after the starts a sweep adds (its neighbour's design, its continuation: ``clutchopt.optimise.sweep``),
+design, solved as alone before the starts a sweep adds (its neighbour's design, its continuation, which reach the
+local optimum nearest the points before: ``clutchopt.optimise.sweep``),
 wherever the point lies in its run and wherever the run started (a resumed one, a pool's chunk): a point's verdict
 rests on at least the starts ``solve`` of it alone tries (ball_motor_start in paper mode listed over 507.9, 900 and
 605.7 kW: the third point, deeper than the first past a design, was ``not_found`` where ``solve`` finds 554.69 kg;

@@ -23,7 +23,7 @@ import time
 from collections.abc import Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property, partial
 from typing import Callable, Iterator
 
@@ -42,12 +42,12 @@ from clutchopt.optimise.design import Robustness, check_robustness, design_case,
 from clutchopt.optimise.entering import check_entering
 from clutchopt.optimise.problem import case_formulation, case_problem
 from clutchopt.optimise.region_proof import Regions
-from clutchopt.optimise.sampled_start import from_a_sampled_design
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.start_up_sweep import solved_along
 from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_name, grid_points, grid_positions,
                                            parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
 from clutchopt.optimise.table import joined_tables, record_table
+from clutchopt.optimise.verdict import NEIGHBOUR, retried
 from clutchopt.optimise.verify import DESIGN_STATUSES
 from clutchopt.solver_tolerance import SOLVER_TOL
 from clutchopt.records import design_inputs, scatter_record
@@ -177,19 +177,42 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
     """A point's full verdict in a sweep solved point by point (continuing from ``first``, a solve already made:
     ``Problem.solve``'s ``first``): falls back to the case's own start by itself; a start-up design starts from the
     point before's optimum on the first mesh (clutchopt.optimise.start_up_sweep), else as `solve` does, from the papers'
-    sizing at the point: either way solve's design whatever the points before it. Without a design, followed from the
-    last feasible point (:func:`continued`); a start-up's point then also from the sampled design ``solve`` of the
-    point alone starts its last retry from (:mod:`clutchopt.optimise.sampled_start`: ball_motor_start in paper mode
-    from 507.9 to 605.7 kW, whose continuation lost 554.69 kg), at every point without a design, not only the first
-    past one (solved without a neighbour, ``solve`` tried it already). ``point_case``: ``case`` with ``values``."""
-    solution = solved_along(problem, point_case, previous) if problem.start_up is not None else None
-    solution = solution or problem.solve(point_case, warm=previous if problem.start_up is None else None,
-                                         neighbour=neighbour.design if neighbour is not None else None, first=first)
+    sizing at the point: either way solve's design whatever the points before it. A start-up's point the warm start
+    brings to no optimum is solved as ``solve`` solves it alone (its starts, the sampled design last:
+    :mod:`clutchopt.optimise.sampled_start`), at every point without a design, not only the first past one; only then
+    from the starts the sweep adds, which reach the local optimum nearest the points before, not always ``solve``'s
+    (:func:`from_the_neighbour`): the neighbour's design, then the continuation. Without a design, followed from the
+    last feasible point (:func:`continued`; ball_motor_start in paper mode from 507.9 to 605.7 kW: its continuation
+    lost 554.69 kg, which the sampled design reaches). ``point_case``: ``case`` with ``values``."""
+    if problem.start_up is None:
+        solution = problem.solve(point_case, warm=previous, first=first,
+                                 neighbour=neighbour.design if neighbour is not None else None)
+    else:
+        solution = solved_along(problem, point_case, previous) or problem.solve(point_case, first=first)
+        if neighbour is not None and not problem.failed_starts.lost_beyond(point_case, neighbour.design):
+            solution = from_the_neighbour(problem, point_case, solution, neighbour.design)
     if solution.status not in DESIGN_STATUSES and solution.status != "infeasible" and feasible is not None:
         solution = continued(problem, case, feasible, values) or solution  # (a proven point: no design to follow)
-    if problem.start_up is not None and neighbour is not None:  # (without one ``solve`` retried it as alone)
-        solution = from_a_sampled_design(problem, point_case, solution)
     return solution
+
+
+def from_the_neighbour(problem, case: Case, verdict: Solution, design: dict[str, float]) -> Solution:
+    """A start-up point's ``verdict`` from ``solve``'s own starts (its last the sampled design), where it has no design
+    and no proof, retried from ``design`` (the last feasible point's): the retry's design where it reaches one, else
+    ``verdict`` with that start named among those tried; the solver calls of both summed. Tried after ``solve``'s
+    starts, not among them: a start of the sweep's own reaches the local optimum nearest the point before, which need
+    not be the one ``solve`` of the point alone reaches (ball_motor_start in paper mode at 1.5 GPa over the service
+    factor, on NumPy's AVX2 loops: at 1.55 the neighbour's design, tried before the interval search's and the sampled
+    one, reached 745.45 kg, the torque alone active, where ``solve`` reaches 672.62 kg, the start time active too; at
+    1.44 the continuation 545.449 kg where ``solve`` reaches 541.127 kg: tests/test_start_up_sweep_local.py)."""
+    if verdict.status in DESIGN_STATUSES or verdict.status == "infeasible":
+        return verdict
+    retry = retried(problem, case, design)
+    if retry is not None and retry.status in DESIGN_STATUSES:
+        retry.solver = retry.solver.summed([verdict.solver, retry.solver])
+        return retry
+    return replace(verdict, starts=verdict.starts + (NEIGHBOUR,),
+                   solver=verdict.solver.summed([verdict.solver] + ([retry.solver] if retry is not None else [])))
 
 
 def continued(problem, case: Case, feasible: tuple[dict, Solution], values: dict,

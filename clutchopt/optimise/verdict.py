@@ -35,6 +35,9 @@ from clutchopt.optimise.verify import (DESIGN_STATUSES, ConstraintCheck, check_d
                                        column_outputs, evaluate_objective, evaluate_outputs)
 
 
+NEIGHBOUR = "the neighbouring point's design"  # a start a sweep adds: the last feasible point's design
+
+
 def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[str, float] | None) -> Solution:
     """``first`` (a solve without a design) retried from the starts that can reach one; the first design found, or
     the verdict on all of them."""
@@ -54,7 +57,7 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
             starts.append(("the least relaxation's design", first.diagnosed.nearest))
         if neighbour is not None and not problem.failed_starts.lost_beyond(case, neighbour):  # (its path lost
             # nearer: clutchopt.optimise.failed_starts)
-            starts.append(("the neighbouring point's design", neighbour))
+            starts.append((NEIGHBOUR, neighbour))
         for label, start in starts:  # the first retry diagnosed too: a least relaxation seen from two starts
             retry = retried(problem, case, start, diagnosed=len(tried) == 1)
             if retry is None:
