@@ -65,3 +65,27 @@ def run_store(tmp_path, monkeypatch) -> Path:
 @pytest.fixture
 def cli():
     return run_cli
+
+
+class Interrupted(Exception):
+    """Raised from a hook: the sweep stops there, as on a kill (what was stored stays, the window in flight is lost)."""
+
+
+def stopped_sweep(path, sweep, monkeypatch, cls, name: str, hook) -> Path:
+    """The run store at ``path`` of ``sweep()``'s run stopped where ``hook``, standing for ``cls.name``, raises
+    :class:`Interrupted`."""
+    from clutchopt.store import RunStore
+
+    with monkeypatch.context() as patch, RunStore(path) as store:
+        patch.setattr(cls, name, hook)
+        with pytest.raises(Interrupted):
+            sweep().run(store, progress=False)
+    return path
+
+
+def resumed_sweep(path, sweep):
+    """``sweep()`` resumed from the run store at ``path``."""
+    from clutchopt.store import RunStore
+
+    with RunStore(path) as store:
+        return sweep().run(store, resume=True, progress=False)

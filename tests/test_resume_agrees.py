@@ -25,17 +25,13 @@ from clutchopt.optimise.region_proof import Regions
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import parse_vary
 from clutchopt.store import RunStore
-from conftest import CASES
+from conftest import CASES, Interrupted, resumed_sweep, stopped_sweep
 
 # the ball over 1x-10x its power in design mode, 100 points: its rows rise with the power (the integer search at each
 # change, the pace aimed at the next), the last 9 points infeasible (region proofs); with a window's work cut to
 # one solve's, 17 windows (their ends at points with a design) instead of 2
 SWEEP = ("ball_compressor.toml", "power=1200:12000:100", "design")
 WINDOW_WORK = 64
-
-
-class Interrupted(Exception):
-    """Raised from a hook: the sweep stops there, as on a kill (what was stored stays, the window in flight is lost)."""
 
 
 def _sweep() -> Sweep:
@@ -80,18 +76,12 @@ def _stopped(tmp_path, monkeypatch, cls, name: str, calls: int):
             raise Interrupted
         return out
 
-    path = tmp_path / "runs.sqlite"
-    with monkeypatch.context() as patch, RunStore(path) as store:
-        patch.setattr(cls, name, hook)
-        with pytest.raises(Interrupted):
-            _sweep().run(store, progress=False)
-    return path
+    return stopped_sweep(tmp_path / "runs.sqlite", _sweep, monkeypatch, cls, name, hook)
 
 
 def _resumed(tmp_path, monkeypatch, cls, name: str, calls: int):
     """The sweep stored until the ``calls``-th call of ``cls.name`` raises (after it ran), then resumed."""
-    with RunStore(_stopped(tmp_path, monkeypatch, cls, name, calls)) as store:
-        return _sweep().run(store, resume=True, progress=False)
+    return resumed_sweep(_stopped(tmp_path, monkeypatch, cls, name, calls), _sweep)
 
 
 def test_the_uninterrupted_sweep_stores_each_window_s_start(uninterrupted):
@@ -136,13 +126,9 @@ def test_a_resume_without_a_stored_start_solves_the_rest_from_cold(tmp_path, mon
             raise Interrupted
         return original(self, *args)
 
-    path = tmp_path / "runs.sqlite"
-    with monkeypatch.context() as patch, RunStore(path) as store:
-        patch.setattr(RunStore, "record_points", record_without_start)
-        with pytest.raises(Interrupted):
-            _sweep().run(store, progress=False)
-    with RunStore(path) as store:
-        resumed = _sweep().run(store, resume=True, progress=False)
+    path = stopped_sweep(tmp_path / "runs.sqlite", _sweep, monkeypatch, RunStore, "record_points",
+                         record_without_start)
+    resumed = resumed_sweep(path, _sweep)
     assert resumed.reused > 0
     assert resumed.frame["status"].value_counts().to_dict() == {"optimal": 91, "infeasible": 9}
     with closing(sqlite3.connect(path)) as db:

@@ -16,14 +16,10 @@ from clutchopt.optimise.sampled_start import SAMPLED
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import Vary
 from clutchopt.store import RunStore
-from conftest import BALL_PAPER_STRESS, CASES
+from conftest import BALL_PAPER_STRESS, CASES, Interrupted, resumed_sweep, stopped_sweep
 from test_hostile_agree import START_UP_RTOL
 
 POWERS = (507916.19236376183, 900e3, 605693.4230086812)
-
-
-class Interrupted(Exception):
-    """Raised from the store's hook: the sweep stops there, as on a kill."""
 
 
 def _sweep() -> Sweep:
@@ -56,13 +52,8 @@ def test_a_sweep_resumed_after_its_first_point_has_the_uninterrupted_verdicts_an
         original(*args, **kwargs)
         raise Interrupted
 
-    path = tmp_path / "runs.sqlite"
-    with monkeypatch.context() as patch, RunStore(path) as store:
-        patch.setattr(RunStore, "record_points", once)
-        with pytest.raises(Interrupted):
-            _sweep().run(store, progress=False)
-    with RunStore(path) as store:
-        resumed = _sweep().run(store, resume=True, progress=False)
+    resumed = resumed_sweep(stopped_sweep(tmp_path / "runs.sqlite", _sweep, monkeypatch, RunStore, "record_points",
+                                          once), _sweep)
     assert (resumed.reused, resumed.solved) == (1, 2)
     assert [r["status"] for r in resumed.solutions] == [r["status"] for r in uninterrupted] \
         == ["optimal", "not_found", "optimal"]
