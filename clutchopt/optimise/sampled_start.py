@@ -16,8 +16,9 @@ that meets the torque and the case's limits on the geometry; a sample breaks the
 then its start simulated as any start's states are (``Posed.scaled_data``), and the one whose largest normalised row
 of the NLP is least (:func:`~clutchopt.optimise.integers.least_violation`) is solved from, in steps
 (:func:`walked`): each step within a box of +-STEP around the design before, through the accuracy loop as any retry,
-warm from the step before, until a step's design lies inside its box; that design, no side of its box holding it, is
-the case's own optimum from that start. A collocation's mesh is drawn for the start it is solved from: one solve
+warm from the step before, until a step's design lies inside its box; that design, no side of its box holding it,
+or the case solved from it without the box where that is lighter (a step's optimum is its own NLP's, posed from the
+step's start), is the case's own optimum from that start. A collocation's mesh is drawn for the start it is solved from: one solve
 from a far design took the sizing's start, on that mesh, for feasible (its start time 35 % short of its simulated
 one) and was lost there. The sequence is not scrambled: the same case gives the same samples, the same start and the
 same answer. Its design is checked as every design is (float64, the simulated start); its failure keeps the verdict
@@ -118,8 +119,8 @@ def _projection(posed) -> tuple[np.ndarray, ca.Function]:
 def walked(problem, case: Case, design: dict[str, float]) -> Solution | None:
     """``case`` solved from ``design`` in steps: each within +-STEP of the design before in every free continuous
     variable (the case's bounds narrowed), warm from the step before, while each step's design ends on its box's
-    edge. A step's design inside its box (no side of it holds it: a local optimum of ``case``) is returned with the
-    case's bounds; where a step ends without an optimum, or STEPS are spent, ``case`` is solved without the box, warm
+    edge. A step's design inside its box (no side of it holds it) is returned with the case's bounds, or the case
+    solved from it where that is lighter (:func:`_confirmed`); where a step ends without an optimum, or STEPS are spent, ``case`` is solved without the box, warm
     from the last optimal step; every step's solver calls summed. None where the first step's start cannot be
     simulated. A start-up's collocation mesh is drawn for the start it is solved from and adapted around the
     design the solve moves to: a solve that moves the design far sees that design's start on a mesh drawn for
@@ -159,7 +160,11 @@ def _confirmed(problem, case: Case, last: Solution, spent: list) -> Solution:
     solved reaches 554.69 kg, the walk's end on this machine's kernels); every solver call summed."""
     lower, upper, _ = problem.posed.bounds_and_start(case, last.design)
     last.bounds = {name: (float(lo), float(hi)) for name, lo, hi in zip(problem.posed.names, lower, upper)}
-    again = problem.refined(case, last.design, diagnosed=False)
+    try:
+        again = problem.refined(case, last.design, diagnosed=False)
+    except InputError:  # (its start not simulated from this design: the step's optimum stands)
+        last.solver = last.solver.summed(spent)
+        return last
     kept = again if again.status == "optimal" and again.objective < last.objective else last
     kept.solver = kept.solver.summed(spent + [again.solver])
     return kept
