@@ -64,9 +64,8 @@ def least_violation_solver(posed: Posed) -> InPlace:
     def build(_):
         nlp, n_ineq = posed.nlp, posed.n_ineq
         x, p, g = nlp["x"], nlp["p"], nlp["g"]
-        problem, name = _feasibility_problem(posed)
+        problem, name, verdict = _feasibility_problem(posed)
         solver = ca.nlpsol(name, "sqpmethod", problem, {**posed.options.sqp(), "convexify_strategy": "eigen-clip"})
-        verdict = kkt_of(problem, problem["g"].shape[0], CERTIFICATE_TOL, f"{name}_kkt")
         largest = ca.Function("largest", [x, p], [ca.fmax(0.0, ca.mmax(ca.vertcat(g[:n_ineq], ca.fabs(g[n_ineq:]))))])
         # (the symbolic twin of integers.least_violation, a float)
         x0, p_in, lbx, ubx = (ca.MX.sym(label, *shape) for label, shape in (
@@ -81,13 +80,18 @@ def least_violation_solver(posed: Posed) -> InPlace:
     return posed.built("least_violation", None, build)
 
 
-def _feasibility_problem(posed: Posed) -> tuple[dict, str]:
-    """The feasibility problem of ``posed`` over (x, t) (the module text) and its functions' name."""
-    nlp, n_ineq = posed.nlp, posed.n_ineq
-    g, t = nlp["g"], ca.SX.sym("t")
-    rows = ca.vertcat(g[:n_ineq] - t, g[n_ineq:] - t, -g[n_ineq:] - t)
-    return ({"x": ca.vertcat(nlp["x"], t), "p": nlp["p"], "f": t, "g": rows},
-            f"{posed.formulation.coupling}_{posed.formulation.mode}_feasibility")
+def _feasibility_problem(posed: Posed) -> tuple[dict, str, ca.Function]:
+    """The feasibility problem of ``posed`` over (x, t) (the module text), its functions' name and its KKT verdict
+    ``chain.kkt_of`` (the solver's and the refit's), built once per posed problem."""
+    def build(_):
+        nlp, n_ineq = posed.nlp, posed.n_ineq
+        g, t = nlp["g"], ca.SX.sym("t")
+        rows = ca.vertcat(g[:n_ineq] - t, g[n_ineq:] - t, -g[n_ineq:] - t)
+        problem = {"x": ca.vertcat(nlp["x"], t), "p": nlp["p"], "f": t, "g": rows}
+        name = f"{posed.formulation.coupling}_{posed.formulation.mode}_feasibility"
+        return problem, name, kkt_of(problem, rows.shape[0], CERTIFICATE_TOL, f"{name}_kkt")
+
+    return posed.built("feasibility_problem", None, build)
 
 
 def _refitted(posed: Posed, xt: np.ndarray, p: np.ndarray, lam_x: np.ndarray, lam_g: np.ndarray, lbx: np.ndarray,
@@ -115,10 +119,10 @@ def _refitted(posed: Posed, xt: np.ndarray, p: np.ndarray, lam_x: np.ndarray, la
 def _refit_functions(posed: Posed) -> tuple[InPlace, InPlace]:
     """(xt, p) -> the feasibility problem's rows' Jacobian in (x, t); (xt, p, lam_x, lam_g, lower, upper) -> its
     KKT verdict (built once per posed problem, on the first refit)."""
-    problem, name = _feasibility_problem(posed)
+    problem, name, verdict = _feasibility_problem(posed)
     jacobian = ca.Function(f"{name}_jacobian", [problem["x"], problem["p"]],
                            [ca.densify(ca.jacobian(problem["g"], problem["x"]))])
-    return InPlace(jacobian), InPlace(kkt_of(problem, problem["g"].shape[0], CERTIFICATE_TOL, f"{name}_kkt_refit"))
+    return InPlace(jacobian), InPlace(verdict)
 
 
 class Least(NamedTuple):
