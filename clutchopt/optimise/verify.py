@@ -70,10 +70,11 @@ def check_constraints(constraints: list[Constraint], tolerance: float = FEASIBIL
 
 
 def constraint_check(c: Constraint, value: float, limit: float, scale: float, margin: float,
-                     tolerance: float = FEASIBILITY_TOL, multiplier: float | None = None) -> ConstraintCheck:
+                     tolerance: float = FEASIBILITY_TOL, multiplier: float | None = None,
+                     flags: tuple[bool, bool] | None = None) -> ConstraintCheck:
     """A constraint's float64 figures as a check: active within ACTIVE_TOL (or violated), feasible within
-    ``tolerance``."""
-    active, feasible = margin_flags(margin, tolerance)
+    ``tolerance`` (``flags``: those two, where :func:`margin_flags` took them already)."""
+    active, feasible = margin_flags(margin, tolerance) if flags is None else flags
     return ConstraintCheck(
         name=c.name, equation=c.equation, sense=c.sense, value=value, limit=limit,
         margin=margin, active=active, feasible=feasible,
@@ -92,9 +93,8 @@ def column_checks(constraints: list[Constraint], table: tuple[np.ndarray, ...]) 
     sweep's points, ``verdict.figures_at``: a check's flags had cost as much as its object)."""
     value, limit, scale, margin = (column.tolist() for column in table)
     active, feasible = (flags.tolist() for flags in margin_flags(table[3]))
-    return [[ConstraintCheck(name=c.name, equation=c.equation, sense=c.sense, value=value[i][j], limit=limit[i][j],
-                             margin=margin[i][j], active=active[i][j], feasible=feasible[i][j], unit=c.unit,
-                             description=c.description, scale=scale[i][j]) for i, c in enumerate(constraints)]
+    return [[constraint_check(c, value[i][j], limit[i][j], scale[i][j], margin[i][j],
+                              flags=(active[i][j], feasible[i][j])) for i, c in enumerate(constraints)]
             for j in range(table[0].shape[1])]
 
 
