@@ -48,7 +48,7 @@ def test_a_stalling_server_is_given_up_at_the_deadline(greetings, said):
         started = time.monotonic()
         with pytest.raises(InputError) as refused:
             connect(address, deadline_s=0.5)
-        assert time.monotonic() - started < 2.0
+        assert time.monotonic() - started < DEADLINE_S / 2  # its own 0.5 s, not the default 10 s (slack for load)
     assert said.format(address=address) in str(refused.value)
 
 
@@ -56,7 +56,7 @@ def test_the_command_answers_within_10_s_when_a_server_sends_a_length_then_nothi
     with server(HANDSHAKE[:8], hold_s=60) as address, time_limit(30):
         started = time.monotonic()
         code = main(["sweep", CASE, "--vary", "speed=900", "--dask", address])
-        assert DEADLINE_S - 1 < time.monotonic() - started < DEADLINE_S + 2
+        assert DEADLINE_S - 1 < time.monotonic() - started < 2 * DEADLINE_S  # one wait to the deadline, not two
     assert code == EXIT_BAD_INPUT
     assert capsys.readouterr().err == (f"error: --dask: {address} is not a Dask scheduler: it accepted the "
                                        "connection but announced a greeting of 58 bytes but did not send it within "
