@@ -18,7 +18,8 @@ a point whose error the secant puts beyond the tolerance starts on the adapted m
 choice the papers' sizing finds infeasible at the point is not solved where the sizing's rows are all the start-up
 problem's (:func:`sized_out`): the corrections, adaptations and integer attempts the loop would solve only to land where
 it would have. The sizing and the start guess's simulation are saved; every solve is still checked by the simulator. A
-point this does not bring to an optimum is solved cold, as ``solve`` solves it (its verdict is ``solve``'s). A point the
+point this does not bring to an optimum is solved cold, as ``solve`` solves it (its verdict is ``solve``'s), and so is
+one its loop brings to a design a row of the collocation holds (:func:`solved_alone_where_held`). A point the
 drive's proofs cover (:mod:`clutchopt.optimise.proofs`) is not started: ``solve`` gives its verdict without a solve.
 """
 
