@@ -99,8 +99,8 @@ def solved_alone_where_held(problem, case: Case, solution: Solution) -> Solution
     neighbours along the torque's need meet every simulated limit (ball_motor_start in paper mode at 1.5 GPa, 507.9
     then 650 kW: held at 696.98 kg, the torque alone active, where ``solve`` reaches 687.92 kg, the start time active
     too; on NumPy's SSE4 loops with OpenBLAS on Sandybridge kernels, 507.9 then 605.7 kW: 558.28 kg against
-    554.69 kg: tests/test_start_up_sweep_held.py). Where ``solve``'s own loop ends held too, the point costs one
-    ``solve`` more for the same design; no point of the bench's driven-inertia sweeps ends held."""
+    554.69 kg: tests/test_start_up_sweep_held.py). A held point costs one ``solve`` of it more (for the same design
+    where ``solve``'s own loop ends held too); no point of the bench's driven-inertia sweeps ends held."""
     if not problem._held(solution):
         return None
     alone = problem.solve(case)
