@@ -9,6 +9,7 @@ import pytest
 
 import clutchopt.optimise.attempts as attempts
 import clutchopt.optimise.integers as integers
+import clutchopt.optimise.modifier as modifier
 from clutchopt.cases import load_case
 from clutchopt.formulations.cable.equations import reduced_friction_angle, weight_mass
 from clutchopt.formulations.cable.speed_law import weight_stiffness
@@ -26,7 +27,8 @@ MAIN_RUNS = [11, 9, 35, 19, 12, 21, 9, 4, 10]  # the start-up IPOPT runs' iterat
 
 
 def solved(monkeypatch, bound: bool = True, mode: str | None = None):
-    """cable_motor_start solved, with its start-up runs (posed, data, run) recorded; ``bound=False``: unrefuted."""
+    """cable_motor_start solved, with its start-up runs (posed, data, run) recorded; ``bound=False``: unrefuted (no
+    count by its least stress, no modifier step by its corrected row)."""
     runs, run = [], RUN
 
     def recorded(posed, data, *args, **kwargs):
@@ -38,6 +40,7 @@ def solved(monkeypatch, bound: bool = True, mode: str | None = None):
     monkeypatch.setattr(attempts, "run", recorded)
     if not bound:
         monkeypatch.setattr(integers, "refuted", lambda *args: [])
+        monkeypatch.setattr(modifier, "no_lighter", lambda *args: [])
     return solve_case(CABLE, mode=mode), runs
 
 
@@ -47,18 +50,19 @@ def test_6_cables_7_at_their_own_limit_and_8_at_7_s_are_refuted_unsolved_the_des
     cables 19 to the same and 8 cables 21 (infeasible by 7.5e-5). Their least stress at the nodes, 376.0, 341.4 and
     314.24 MPa with the least pull of weights of eq. (9)'s mass, refutes the three: 6 runs (9), the design, its
     simulated start and every run that ends with a design the same to the last bit, in the same order (8 cables'
-    own loop before 7 cables' modifier step: ``lighter`` takes an exclusion at another's shift whatever its end)."""
+    own loop before 7 cables' modifier step: ``lighter`` takes an exclusion at another's shift whatever its end).
+    The modifier step (10 iterations) is refuted unsolved too (tests/test_modifier_refuted.py): 5 runs."""
     with monkeypatch.context() as patched:
         unbounded, before = solved(patched, bound=False)
     solution, runs = solved(monkeypatch)
     assert [r["iterations"] for *_, r in before] == MAIN_RUNS
-    assert (solution.solver.solves, unbounded.solver.solves) == (6, 9)
+    assert (solution.solver.solves, unbounded.solver.solves) == (5, 9)
     assert solution.status == "optimal" and solution.design["cable_count"] == 8.0
     assert solution.objective == unbounded.objective == 3.952572919154992
     assert solution.design == unbounded.design
     assert solution.start_up["start_time_simulated"] == unbounded.start_up["start_time_simulated"]
-    kept = [before[i][2] for i in (0, 1, 4, 6, 7, 8)]  # (not 6 cables, 7 at their own limit, 8 at 7's)
-    assert [r["design"]["cable_count"] for *_, r in runs][3:] == [9.0, 8.0, 7.0]
+    kept = [before[i][2] for i in (0, 1, 4, 6, 7)]  # (not 6 cables, 7 at their own limit, 8 at 7's, 7's modifier)
+    assert [r["design"]["cable_count"] for *_, r in runs][3:] == [9.0, 8.0]
     assert all(np.array_equal(a["x"], b["x"]) and a["status"] == b["status"]
                for a, b in zip(kept, (r for *_, r in runs)))
 
@@ -117,12 +121,13 @@ def test_the_least_stress_is_below_each_design_s_and_refutes_6_cables_only(monke
 def test_threads_mode_its_weight_thread_free_refutes_the_same_counts(monkeypatch):
     """In threads mode the weight's lead angle is free; the least pull does not depend on it (the weights reach the
     design travel e at the duty speed whatever beta_w in (phi', 90 deg), which weight_thread_not_self_locking keeps),
-    so the bound holds: 6 cables (43 iterations), 7 at their own moved limit (34) and 8 there too refuted, 9 runs to
-    6, the design the same to the last bit (3.6547255064507436 kg)."""
+    so the bound holds: 6 cables (43 iterations), 7 at their own moved limit (34) and 8 there too refuted, and 7
+    cables' modifier step (its slopes in the weight mass and its lead angle): 9 runs to 5, the design the same to the
+    last bit (3.6547255064507436 kg)."""
     with monkeypatch.context() as patched:
         unbounded, before = solved(patched, bound=False, mode="threads")
     solution, runs = solved(monkeypatch, mode="threads")
-    assert [r["iterations"] for *_, r in before][2:4] == [43, 34] and len(runs) == len(before) - 3
+    assert [r["iterations"] for *_, r in before][2:4] == [43, 34] and len(runs) == len(before) - 4
     assert [e["status"] for e in solution.integer_search].count("excluded: link_stress") == 2  # (7 and 8 at the limit
     # 7 cables moved: the search kept)
     assert solution.objective == unbounded.objective == 3.6547255064507436 and solution.design == unbounded.design

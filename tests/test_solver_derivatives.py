@@ -5,6 +5,7 @@ their own; the solvers, the cold one too, are built on first use."""
 import casadi as ca
 import numpy as np
 
+import clutchopt.optimise.modifier as modifier
 import clutchopt.optimise.problem as problem_module
 from clutchopt.cases import load_case
 from clutchopt.optimise.problem import case_problem, solve_case
@@ -36,22 +37,35 @@ def test_a_warm_solver_evaluates_the_cold_solvers_derivatives_and_runs_as_its_ow
 
 
 def test_each_problem_of_a_solve_derives_its_nlp_once(monkeypatch):
-    """cable_motor_start (a fresh process's problems) poses three NLPs: the papers' sizing, the start-up and, for 7
-    cables' unverified design, the modifiers' (one step, heavier than 8 cables' 3.952573 kg). Each is differentiated
-    once: the start-up's warm and warm_near solvers are built with its cold solver's functions, and the modifiers'
-    problem, which solves warm only, builds no cold solver (it derived one it never ran)."""
-    monkeypatch.setattr(problem_module, "_CACHE", {})
-    built, nlpsol = [], ca.nlpsol
-    monkeypatch.setattr(ca, "nlpsol", lambda name, plugin, nlp, options: built.append(
-        (name, "hess_lag" in options)) or nlpsol(name, plugin, nlp, options))
+    """cable_motor_start (a fresh process's problems) poses two NLPs: the papers' sizing and the start-up; 7 cables'
+    unverified design goes on in modifier adaptation, whose step is refuted before it is solved (its corrected row
+    admits no design lighter than 8 cables' 3.952573 kg: ``modifier.no_lighter``), so the modifiers' problem is not
+    built. Solved (the refutation turned off), the step poses a third (one step, heavier than 8 cables'). Each is
+    differentiated once: the start-up's warm and warm_near solvers are built with its cold solver's functions, and
+    the modifiers' problem, which solves warm only, builds no cold solver (it derived one it never ran)."""
     case = load_case(CASES / "cable_motor_start.toml")
-    solution = solve_case(case)
-    assert solution.status == "optimal" and solution.design["cable_count"] == 8
-    assert abs(solution.objective / 3.952572919154992 - 1) < 1e-12
+
+    def built_in_a_fresh_process(patched) -> list:
+        patched.setattr(problem_module, "_CACHE", {})
+        built, nlpsol = [], ca.nlpsol
+        patched.setattr(ca, "nlpsol", lambda name, plugin, nlp, options: built.append(
+            (name, "hess_lag" in options)) or nlpsol(name, plugin, nlp, options))
+        solution = solve_case(case)
+        assert solution.status == "optimal" and solution.design["cable_count"] == 8
+        assert abs(solution.objective / 3.952572919154992 - 1) < 1e-12
+        return built
+
+    with monkeypatch.context() as patched:
+        built = built_in_a_fresh_process(patched)
+        assert [name for name, shared in built if not shared] == ["cable_paper_mass", "cable_paper_mass"]
+        assert [key for key in problem_module._CACHE if "modifier" in key[2]] == []
+    monkeypatch.setattr(modifier, "no_lighter", lambda *args: [])
+    built = built_in_a_fresh_process(monkeypatch)
     derived = [name for name, shared in built if not shared]
     assert derived == ["cable_paper_mass", "cable_paper_mass", "cable_paper_mass_warm_near"]  # sizing, start-up,
     # modifiers' (a solver is named by coupling, mode, objective and method)
     assert sorted(name for name, shared in built if shared) == ["cable_paper_mass_warm", "cable_paper_mass_warm_near"]
+    assert len([key for key in problem_module._CACHE if "modifier" in key[2]]) == 1
     modified = case_problem(case).modified_problem.posed
     assert "ipopt" not in modified._built["solver"] and "warm_near" in modified._built["solver"]
 

@@ -8,6 +8,7 @@ import pytest
 
 import clutchopt.optimise.attempts as attempts
 import clutchopt.optimise.integers as integers
+import clutchopt.optimise.modifier as modifier
 from clutchopt.cases import load_case
 from clutchopt.optimise.integers import INFEASIBLE, least_violation
 from clutchopt.optimise.problem import solve_case
@@ -35,6 +36,7 @@ def test_an_infeasible_cable_count_is_found_sooner_at_the_same_least_violation(m
     monkeypatch.setattr(attempts, "run", recorded)
     monkeypatch.setattr(integers, "refuted", lambda *args: [])  # the NLP's own verdicts (6 cables and 7 at their
     # moved limit are refuted unsolved since: tests/test_link_bound.py)
+    monkeypatch.setattr(modifier, "no_lighter", lambda *args: [])  # (and the modifier step: test_modifier_refuted)
     solution = solve_case(load_case(CASES / "cable_motor_start.toml"))
     assert solution.status == "optimal" and solution.design["cable_count"] == 8
     assert solution.objective == pytest.approx(3.952572919154992, rel=1e-13)  # main's to the last bit

@@ -22,6 +22,7 @@ import numpy as np
 
 import clutchopt.optimise.attempts as attempts
 from clutchopt.optimise.link_bound import refuted
+from clutchopt.optimise.modifier import modifiers_in
 from clutchopt.optimise.posed import Box, Posed, ScaledData, scaled_box
 from clutchopt.optimise.verify import FEASIBILITY_TOL
 
@@ -188,7 +189,8 @@ def fixing(posed: Posed, data: ScaledData, runs: list[dict], search: list[dict],
         lbx, ubx = scaled_box(lower, upper, data.scale, (data.internal_lower, data.internal_upper))
         x0 = np.clip(seed["x"], lbx, ubx)
         excluded = (violated_whatever_the_rest(posed, data.p, lbx, ubx, x0)
-                    or (ruled.reason(combo) if ruled else []) or refuted(posed, data, x0, lbx, ubx))
+                    or (ruled.reason(combo) if ruled else [])
+                    or ([] if modifiers_in(data.params) else refuted(posed, data, x0, lbx, ubx)))
         if excluded:
             search.append(excluded_entry(posed, integer, combo, excluded))
             return None

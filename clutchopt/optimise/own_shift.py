@@ -197,3 +197,9 @@ def own_entry(names: list[str], combo: tuple, own, how: str = "own accuracy loop
     or modifier adaptation)."""
     return {**{n: int(v) for n, v in zip(names, combo)}, "status": f"{how}: {own.status}",
             "feasible": own.status == "optimal", "objective": own.objective}
+
+
+def excluded_own_entry(names: list[str], combo: tuple, how: str, rows: list[str]) -> dict:
+    """The integer search's record of ``combo``'s own loop (``how``) refuted without a solve by ``rows``."""
+    return {**{n: int(v) for n, v in zip(names, combo)}, "status": f"{how}: {EXCLUDED}{', '.join(rows)}",
+            "feasible": False, "objective": math.nan}

@@ -27,7 +27,8 @@ from clutchopt.optimise.failed_starts import FailedStarts
 from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_start, nearest_integers, relaxation_seed,
                                          within)
 from clutchopt.optimise.modifier import VARIANT, first_order, with_modifiers
-from clutchopt.optimise.own_shift import ForeignShifts, carried_by, climbing, lighter_above, own_entry, stepped
+from clutchopt.optimise.own_shift import (ForeignShifts, carried_by, climbing, excluded_own_entry, lighter_above,
+                                          own_entry, stepped)
 from clutchopt.optimise.polish import polishable, polished
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities, with_followers
@@ -316,8 +317,11 @@ class Problem:
         own loop of the choice: its design where it ends optimal and lighter, else ``kept``; and whether it was."""
         combo = foreign.choice(unverified.design)
         steps: list = []
-        own = first_order(self, case, unverified, steps, kept.objective)
+        excluded: list = []
+        own = first_order(self, case, unverified, steps, kept.objective, excluded)
         foreign.own_loop(combo)
+        if excluded:  # its first step refuted unsolved (``modifier.no_lighter``)
+            kept.integer_search = kept.integer_search + [excluded_own_entry(foreign.names, combo, VARIANT, excluded)]
         if not steps:
             return kept, False
         spent = (own.solver if own is not unverified else steps[-1]).summed(steps)  # (the loop's design untouched)
