@@ -168,10 +168,12 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
         lo, hi, none = _rounded(lo, hi, posed.integer)
         tally(whole_names, none, owner)
         kept = ~none.any(axis=0)
-        lo, hi, owner, plo, phi = lo[:, kept], hi[:, kept], owner[kept], plo[:, kept], phi[:, kept]
-        end(np.flatnonzero(before & ~searching(owner)), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
+        if not kept.all():
+            lo, hi, owner, plo, phi = _taken(kept, lo, hi, owner, plo, phi)
+            end(np.flatnonzero(before & ~searching(owner)),
+                lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         keep = within_budgets(owner)
-        lo, hi, owner, plo, phi = lo[:, keep], hi[:, keep], owner[keep], plo[:, keep], phi[:, keep]
+        lo, hi, owner, plo, phi = _taken(keep, lo, hi, owner, plo, phi)
         if rounds_begun == 2 and lead is not None and outcomes[lead] is not None:  # (the leader ended by its first
             # box)
             end(np.flatnonzero(searching(owner)), lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
@@ -197,29 +199,30 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
         running = searching(owner[keep])
         tally(names, empty & keep, owner)
         alive = keep & ~empty.any(axis=0)
-        lo, hi, owner, uncertain = lo[:, alive], hi[:, alive], owner[alive], g_hi[:, alive] > 0.0
-        plo, phi, at = plo[:, alive], phi[:, alive], np.flatnonzero(alive)
-        end(np.flatnonzero(running & ~searching(owner)), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
+        lo, hi, owner, plo, phi, g_hi = _taken(alive, lo, hi, owner, plo, phi, g_hi)
+        uncertain, at = g_hi > 0.0, np.flatnonzero(alive)
+        if not alive.all():
+            end(np.flatnonzero(running & ~searching(owner)),
+                lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         counts = np.bincount(owner, minlength=count)
         spreading = (counts > 0) & (evaluated > SURE_BOXES) & (counts > GROWTH * left)
         end(np.flatnonzero(spreading), lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))  # not closing
         # in: give up
         left = np.where(counts > 0, counts, left)
-        keep = ~spreading[owner]
-        lo, hi, owner, uncertain = lo[:, keep], hi[:, keep], owner[keep], uncertain[:, keep]
-        plo, phi, at = plo[:, keep], phi[:, keep], at[keep]
+        lo, hi, owner, uncertain, plo, phi, at = _taken(~spreading[owner], lo, hi, owner, uncertain, plo, phi, at)
         if not lo.shape[1]:
             break
-        d_lo, d_hi = d_lo[..., at], d_hi[..., at]
+        if len(at) < d_lo.shape[-1]:  # (at: the boxes left, in order; all of them: as they are)
+            d_lo, d_hi = d_lo[..., at], d_hi[..., at]
         contracting = searching(owner)
         lo, hi, cut_empty, cut = contracted(lo, hi, centre[:, at], c_lo[:, at], d_lo, d_hi, TOLERANCE)
         tally(names, cut, owner)  # the rows a proof rests on: those that cut, too
         whole = ~cut_empty
-        lo, hi, owner, uncertain, d_lo, d_hi = lo[:, whole], hi[:, whole], owner[whole], uncertain[:, whole], \
-            d_lo[..., whole], d_hi[..., whole]
-        plo, phi, at = plo[:, whole], phi[:, whole], at[whole]
-        end(np.flatnonzero(contracting & ~searching(owner)),
-            lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
+        if not whole.all():
+            lo, hi, owner, uncertain, d_lo, d_hi, plo, phi, at = _taken(whole, lo, hi, owner, uncertain, d_lo, d_hi,
+                                                                        plo, phi, at)
+            end(np.flatnonzero(contracting & ~searching(owner)),
+                lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         if not lo.shape[1]:
             break
         lo, hi = _faces(lo, hi, d_lo, d_hi, uncertain)
@@ -258,6 +261,12 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
             slope, component, rate = slope[:, parents], component[parents], rate[parents]
         lo, plo, hi, phi = z_lo[:n], z_lo[n:], z_hi[:n], z_hi[n:]
     return outcomes
+
+
+def _taken(mask: np.ndarray, *arrays: np.ndarray) -> tuple[np.ndarray, ...]:
+    """``arrays`` (boxes along their last axis) with only the boxes ``mask`` keeps; as they are where it keeps every
+    one (an iteration filters its boxes six times, most often keeping them all: a copy of every array for nothing)."""
+    return arrays if mask.all() else tuple(array[..., mask] for array in arrays)
 
 
 def _batch(posed) -> int:
