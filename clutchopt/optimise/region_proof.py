@@ -54,8 +54,9 @@ that solve ends without a design, its own interval search (within SURE_BOXES) go
 A covered point reports the design of the last point without a design (its least relaxation) with every constraint
 re-evaluated in float64 at the point's own values (those of a run's points and of the runs searched ahead and
 proven together, one NumPy column a point: ``verdict.figures_at``), solver ``interval`` (no solver call where a region
-covers it, the one solve where its own search proved it) and its share of the search's seconds. A verdict is the same whatever the
-order of the points: a region's proof is a proof of each point, and a point its region does not cover gets its own.
+covers it, the one solve where its own search proved it) and its share of the search's seconds. A verdict is the
+same whatever the order of the points: a region's proof is a proof of each point, and a point its region does not
+cover gets its own.
 """
 
 from __future__ import annotations
