@@ -434,14 +434,15 @@ def _bisected(lo: np.ndarray, hi: np.ndarray, slope: np.ndarray, width0: np.ndar
     a, b = lo[widest, columns], hi[widest, columns]
     with np.errstate(invalid="ignore"):  # (the square root of a range across 0: the where's other branch)
         middle = np.where((a > 0) & (b > 4 * a), np.sqrt(a * b), 0.5 * (a + b))  # wide positive ranges: by ratio
-    left_hi, right_lo = hi.copy(), lo.copy()
-    left_hi[widest, columns], right_lo[widest, columns] = middle, middle
-    split = hi[widest, columns] > lo[widest, columns]
+    split = b > a
     if chosen is not None:
         split &= chosen
-    return (np.concatenate([lo, right_lo[:, split]], axis=1),
-            np.concatenate([np.where(split, left_hi, hi), hi[:, split]], axis=1),
-            np.concatenate([columns, columns[split]]))
+    halved = np.flatnonzero(split)
+    count, rows = lo.shape[1], widest[halved]
+    new_lo, new_hi = np.concatenate([lo, lo[:, halved]], axis=1), np.concatenate([hi, hi[:, halved]], axis=1)
+    new_hi[rows, halved] = new_lo[rows, count + np.arange(len(halved))] = middle[halved]  # (the first half's upper
+    # end and the second's lower at the middle; the rest of each half its box's)
+    return new_lo, new_hi, np.concatenate([columns, halved])
 
 
 def empty_design_space(posed, case, budget: int | None = None) -> Emptiness | None:
