@@ -70,6 +70,18 @@ def test_a_search_past_its_budget_ends_before_the_splits_that_pass_it(monkeypatc
     assert (met.proven, met.boxes, met.feasible is not None) == (False, 129, True) and len(turns) == 7
 
 
+
+def test_boxes_bisected_where_chosen_keep_each_search_s_order():
+    # two searches' boxes of one variable, the first's box 1 and none other left whole: each search's first halves
+    # (a box left whole among them, in its place), then its second halves, search by search
+    lo, hi = np.array([[0.0, 10.0, 20.0, 30.0]]), np.array([[2.0, 12.0, 24.0, 34.0]])
+    owner, slope, width0 = np.array([0, 0, 1, 1]), np.ones((1, 4)), np.ones((1, 2))
+    split = np.array([True, False, True, True])
+    lo2, hi2, owner2, parents = interval_proof._bisected_where(lo, hi, owner, slope, width0, split)
+    assert parents.tolist() == [0, 1, 0, 2, 3, 2, 3] and owner2.tolist() == [0, 0, 0, 1, 1, 1, 1]
+    assert lo2.tolist() == [[0.0, 10.0, 1.0, 20.0, 30.0, 22.0, 32.0]]
+    assert hi2.tolist() == [[1.0, 12.0, 2.0, 22.0, 32.0, 24.0, 34.0]]
+
 def _wedge_into_its_region(monkeypatch, batched: bool):
     """The wedge paper case at 12 resisting torques from 20 to 400 N m (each solved alone: designs up to 89.09 N m,
     proven infeasible from 123.6 N m on), in batches or point by point: the varied torques, the sweep's result, and
@@ -380,6 +392,31 @@ def test_a_run_searched_ahead_keeps_its_share_of_the_call_that_searched_it(monke
     assert proved == [(85, 93, 1 / 116), (93, 109, 1 / 116), (109, 141, 1 / 116), (141, 200, 1 / 116)]
     assert sum((b - a) * seconds for a, b, seconds in proved) == pytest.approx(115 / 116, rel=1e-12)
 
+
+
+def test_the_runs_searched_ahead_are_figured_in_one_evaluation_with_the_first(monkeypatch):
+    # ball_crusher over 250-1000 kW (as above): the runs 85-92, 93-108, 109-140 and 141-199, proven in the call of
+    # point 84's own search, share one design (point 84's); their float64 figures are one evaluation over the 115
+    # points where each run had one (8, 16, 32, 59), each point's those of that design at its own values alone
+    from clutchopt.optimise.sweep_grid import Vary
+
+    evaluated, real = [], region_proof.figures_at
+    monkeypatch.setattr(region_proof, "figures_at",
+                        lambda posed, cases, design: evaluated.append(len(cases)) or real(posed, cases, design))
+    crusher = load_case(CASES / "ball_crusher.toml")
+    quantity = next(q for q in crusher.quantities if q.name == "power")
+    powers = np.linspace(250e3, 1000e3, 200)
+    result = Sweep(crusher, [Vary(quantity, tuple(powers.tolist()))]).run(progress=False)
+    assert list(result.frame["status"]) == ["optimal"] * 84 + ["infeasible"] * 116
+    assert evaluated[-1] == 115 and sum(evaluated) == 116  # (point 84's own verdict: its own figures)
+    posed = case_problem(crusher).posed
+    for k in (85, 100, 199):
+        record = result.solutions[k]
+        assert record["design"] == result.solutions[84]["design"]
+        (checks, objective, _), = real(posed, [crusher.with_values(power=powers[k])], record["design"])
+        assert [c["value"] for c in record["constraints"]] == [c.value for c in checks]
+        assert [c["feasible"] for c in record["constraints"]] == [c.feasible for c in checks]
+        assert record["objective"]["value"] == objective
 
 def _swept_counting_diagnoses(monkeypatch, case, vary, mode):
     """The sweep of ``case`` over ``vary`` in ``mode``, and a list that gets an entry at each elastic diagnosis (a

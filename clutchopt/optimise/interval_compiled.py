@@ -270,14 +270,15 @@ class CompiledReplay:
         self.constant = np.ascontiguousarray(constant, dtype=float)
         self.program = [len(constant), *(_address(a) for a in (*self.arrays, self.constant))]  # (kept alive above)
         self.in_rows, self.out_rows, self.work, self.replay = in_rows, out_rows, max(work, 1), replay
+        self.in_sizes = np.diff(in_rows).tolist()
 
     def bounds(self, inputs: list) -> list:
         boxes = inputs[0][0].shape[1]
-        if len(inputs) != len(self.in_rows) - 1 or any(
+        if len(inputs) != len(self.in_sizes) or any(
                 np.shape(lo) != (n, boxes) or np.shape(hi) != (n, boxes)
-                for (lo, hi), n in zip(inputs, np.diff(self.in_rows))):  # (the C trusts the shapes)
+                for (lo, hi), n in zip(inputs, self.in_sizes)):  # (the C trusts the shapes)
             raise ValueError(f"inputs of shapes {[np.shape(lo) for lo, _ in inputs]}, not the function's nonzeros "
-                             f"{np.diff(self.in_rows).tolist()} by {boxes} boxes")
+                             f"{self.in_sizes} by {boxes} boxes")
         in_lo = np.ascontiguousarray(np.vstack([lo for lo, _ in inputs]) if len(inputs) > 1 else inputs[0][0],
                                      dtype=float)
         in_hi = np.ascontiguousarray(np.vstack([hi for _, hi in inputs]) if len(inputs) > 1 else inputs[0][1],

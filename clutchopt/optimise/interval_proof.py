@@ -137,10 +137,10 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
 
     def tally(keys: list[str], boxes: np.ndarray, owner: np.ndarray) -> None:
         """The boxes each key (of a row of ``boxes``: which boxes it emptied or cut; the rows the first keys') counts,
-        by search (a start-up's names: its formulation's rows, then the start-up's, which are not searched)."""
-        per_search = np.zeros((boxes.shape[0], count), dtype=int)
-        for k in range(boxes.shape[0]):
-            per_search[k] = np.bincount(owner, boxes[k], count)
+        by search (a start-up's names: its formulation's rows, then the start-up's, which are not searched); one
+        count over (key, search) pairs, not one a key (a tally had cost a tenth of an iteration's fixed cost)."""
+        rows, columns = np.nonzero(boxes)
+        per_search = np.bincount(rows * count + owner[columns], minlength=boxes.shape[0] * count).reshape(-1, count)
         for k, j in zip(*np.nonzero(per_search)):  # (a search's keys in the order of the rows)
             decisive[j][keys[k]] = decisive[j].get(keys[k], 0) + int(per_search[k, j])
 
@@ -168,10 +168,12 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
         lo, hi, none = _rounded(lo, hi, posed.integer)
         tally(whole_names, none, owner)
         kept = ~none.any(axis=0)
-        lo, hi, owner, plo, phi = lo[:, kept], hi[:, kept], owner[kept], plo[:, kept], phi[:, kept]
-        end(np.flatnonzero(before & ~searching(owner)), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
+        if not kept.all():
+            lo, hi, owner, plo, phi = _taken(kept, lo, hi, owner, plo, phi)
+            end(np.flatnonzero(before & ~searching(owner)),
+                lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         keep = within_budgets(owner)
-        lo, hi, owner, plo, phi = lo[:, keep], hi[:, keep], owner[keep], plo[:, keep], phi[:, keep]
+        lo, hi, owner, plo, phi = _taken(keep, lo, hi, owner, plo, phi)
         if rounds_begun == 2 and lead is not None and outcomes[lead] is not None:  # (the leader ended by its first
             # box)
             end(np.flatnonzero(searching(owner)), lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
@@ -197,29 +199,30 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
         running = searching(owner[keep])
         tally(names, empty & keep, owner)
         alive = keep & ~empty.any(axis=0)
-        lo, hi, owner, uncertain = lo[:, alive], hi[:, alive], owner[alive], g_hi[:, alive] > 0.0
-        plo, phi, at = plo[:, alive], phi[:, alive], np.flatnonzero(alive)
-        end(np.flatnonzero(running & ~searching(owner)), lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
+        lo, hi, owner, plo, phi, g_hi = _taken(alive, lo, hi, owner, plo, phi, g_hi)
+        uncertain, at = g_hi > 0.0, np.flatnonzero(alive)
+        if not alive.all():
+            end(np.flatnonzero(running & ~searching(owner)),
+                lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         counts = np.bincount(owner, minlength=count)
         spreading = (counts > 0) & (evaluated > SURE_BOXES) & (counts > GROWTH * left)
         end(np.flatnonzero(spreading), lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))  # not closing
         # in: give up
         left = np.where(counts > 0, counts, left)
-        keep = ~spreading[owner]
-        lo, hi, owner, uncertain = lo[:, keep], hi[:, keep], owner[keep], uncertain[:, keep]
-        plo, phi, at = plo[:, keep], phi[:, keep], at[keep]
+        lo, hi, owner, uncertain, plo, phi, at = _taken(~spreading[owner], lo, hi, owner, uncertain, plo, phi, at)
         if not lo.shape[1]:
             break
-        d_lo, d_hi = d_lo[..., at], d_hi[..., at]
+        if len(at) < d_lo.shape[-1]:  # (at: the boxes left, in order; all of them: as they are)
+            d_lo, d_hi = d_lo[..., at], d_hi[..., at]
         contracting = searching(owner)
         lo, hi, cut_empty, cut = contracted(lo, hi, centre[:, at], c_lo[:, at], d_lo, d_hi, TOLERANCE)
         tally(names, cut, owner)  # the rows a proof rests on: those that cut, too
         whole = ~cut_empty
-        lo, hi, owner, uncertain, d_lo, d_hi = lo[:, whole], hi[:, whole], owner[whole], uncertain[:, whole], \
-            d_lo[..., whole], d_hi[..., whole]
-        plo, phi, at = plo[:, whole], phi[:, whole], at[whole]
-        end(np.flatnonzero(contracting & ~searching(owner)),
-            lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
+        if not whole.all():
+            lo, hi, owner, uncertain, d_lo, d_hi, plo, phi, at = _taken(whole, lo, hi, owner, uncertain, d_lo, d_hi,
+                                                                        plo, phi, at)
+            end(np.flatnonzero(contracting & ~searching(owner)),
+                lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         if not lo.shape[1]:
             break
         lo, hi = _faces(lo, hi, d_lo, d_hi, uncertain)
@@ -247,17 +250,23 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
                 plo, phi, slope = plo[:, parents], phi[:, parents], slope[:, parents]
             continue
         component, rate = _parameter_spread(plo, phi, p_width0[:, owner], (c_hi - c_lo)[:, at], uncertain)
+        z_lo, z_hi = np.vstack([lo, plo]), np.vstack([hi, phi])  # (the design over the parameters through the turns)
         for turn in range(int(rounds[owner].max())):
             columns = np.arange(len(owner))
-            relative = (phi - plo)[component, columns] / np.where(p_width0[component, owner] > 0,
-                                                                 p_width0[component, owner], np.inf)
-            extra = np.full(plo.shape, -1.0)
+            relative = (z_hi[n:] - z_lo[n:])[component, columns] / np.where(p_width0[component, owner] > 0,
+                                                                           p_width0[component, owner], np.inf)
+            extra = np.full((z_lo.shape[0] - n, len(owner)), -1.0)
             extra[component, columns] = np.where(relative > 0, rate * relative, -1.0)
-            z_lo, z_hi, owner, parents = _bisected_where(np.vstack([lo, plo]), np.vstack([hi, phi]), owner, slope,
-                                                         width0, rounds[owner] > turn, extra)
-            lo, plo, hi, phi = z_lo[:n], z_lo[n:], z_hi[:n], z_hi[n:]
+            z_lo, z_hi, owner, parents = _bisected_where(z_lo, z_hi, owner, slope, width0, rounds[owner] > turn, extra)
             slope, component, rate = slope[:, parents], component[parents], rate[parents]
+        lo, plo, hi, phi = z_lo[:n], z_lo[n:], z_hi[:n], z_hi[n:]
     return outcomes
+
+
+def _taken(mask: np.ndarray, *arrays: np.ndarray) -> tuple[np.ndarray, ...]:
+    """``arrays`` (boxes along their last axis) with only the boxes ``mask`` keeps; as they are where it keeps every
+    one (an iteration filters its boxes six times, most often keeping them all: a copy of every array for nothing)."""
+    return arrays if mask.all() else tuple(array[..., mask] for array in arrays)
 
 
 def _batch(posed) -> int:
@@ -336,18 +345,15 @@ def _rounded(lo: np.ndarray, hi: np.ndarray, integer: list[int]) -> tuple[np.nda
 
 def _bisected_where(lo, hi, owner, slope, width0, split, extra=None):
     """:func:`_bisected` of the boxes ``split`` selects (the others kept), every search's boxes in the order its
-    own bisection gives (its boxes' first halves, then its second halves); the boxes and the box each came from."""
-    chosen = np.flatnonzero(split)
-    if len(chosen) == len(owner) and (owner[1:] == owner[:-1]).all():  # one search: as it is
-        lo, hi, parents = _bisected(lo, hi, slope, width0[:, owner], extra)
+    own bisection gives (its boxes' first halves, then its second halves); the boxes and the box each came from. The
+    boxes split in place and their second halves after them (:func:`_bisected`'s ``chosen``), in the order of their
+    boxes in both parts: a stable sort by search and part is that order (a selection bisected apart and sorted by
+    search, part and box had cost half again as much as the bisection, a third of the ball's searches' NumPy)."""
+    lo, hi, parents = _bisected(lo, hi, slope, width0[:, owner], extra, split)
+    if not len(owner) or not (owner != owner[0]).any():  # one search: as it is
         return lo, hi, owner[parents], parents
-    s_lo, s_hi, s_parents = _bisected(lo[:, chosen], hi[:, chosen], slope[:, chosen], width0[:, owner[chosen]],
-                                      None if extra is None else extra[:, chosen])
-    parents = np.concatenate([np.flatnonzero(~split), chosen[s_parents]])
-    second = np.concatenate([np.zeros((~split).sum(), dtype=bool), np.arange(len(s_parents)) >= len(chosen)])
-    order = np.lexsort((parents, second, owner[parents]))  # by search, first halves before second, then by box
-    return (np.concatenate([lo[:, ~split], s_lo], axis=1)[:, order],
-            np.concatenate([hi[:, ~split], s_hi], axis=1)[:, order], owner[parents][order], parents[order])
+    order = np.argsort(2 * owner[parents] + (np.arange(len(parents)) >= len(owner)), kind="stable")
+    return lo[:, order], hi[:, order], owner[parents][order], parents[order]
 
 
 class BoxBounds(NamedTuple):
@@ -410,13 +416,13 @@ def _slopes(d_lo: np.ndarray, d_hi: np.ndarray, uncertain: np.ndarray) -> np.nda
     return np.where(uncertain[:, None, :], np.maximum(np.abs(d_lo), np.abs(d_hi)), 0.0).max(axis=0)
 
 
-def _bisected(lo: np.ndarray, hi: np.ndarray, slope: np.ndarray, width0: np.ndarray, extra: np.ndarray | None = None
-              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _bisected(lo: np.ndarray, hi: np.ndarray, slope: np.ndarray, width0: np.ndarray, extra: np.ndarray | None = None,
+              chosen: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Each box split in two across the variable that spreads its uncertain rows most (largest |dg/dx| width,
     ``slope``: :func:`_slopes`; a variable whose slope is unbounded first, the widest of them relative to the design
     box), at its middle (a positive range over a factor 4: its geometric middle); the halves and the box each came
     from. ``extra``: the spread of further rows of the boxes below the design variables (a parameter interval's:
-    :func:`_searched`)."""
+    :func:`_searched`); ``chosen``: the boxes that may split (the others kept as they are)."""
     n = slope.shape[0]
     with np.errstate(invalid="ignore"):  # an unbounded slope times a zero width: the where's other branch
         smear = np.where(np.isfinite(slope), slope * (hi[:n] - lo[:n]), 1e300 * (hi[:n] - lo[:n]) / width0)
@@ -426,13 +432,17 @@ def _bisected(lo: np.ndarray, hi: np.ndarray, slope: np.ndarray, width0: np.ndar
     widest = np.argmax(smear, axis=0)
     columns = np.arange(lo.shape[1])
     a, b = lo[widest, columns], hi[widest, columns]
-    middle = np.where((a > 0) & (b > 4 * a), np.sqrt(a * b), 0.5 * (a + b))  # wide positive ranges: by ratio
-    left_hi, right_lo = hi.copy(), lo.copy()
-    left_hi[widest, columns], right_lo[widest, columns] = middle, middle
-    split = hi[widest, columns] > lo[widest, columns]
-    return (np.concatenate([lo, right_lo[:, split]], axis=1),
-            np.concatenate([np.where(split, left_hi, hi), hi[:, split]], axis=1),
-            np.concatenate([columns, columns[split]]))
+    with np.errstate(invalid="ignore"):  # (the square root of a range across 0: the where's other branch)
+        middle = np.where((a > 0) & (b > 4 * a), np.sqrt(a * b), 0.5 * (a + b))  # wide positive ranges: by ratio
+    split = b > a
+    if chosen is not None:
+        split &= chosen
+    halved = np.flatnonzero(split)
+    count, rows = lo.shape[1], widest[halved]
+    new_lo, new_hi = np.concatenate([lo, lo[:, halved]], axis=1), np.concatenate([hi, hi[:, halved]], axis=1)
+    new_hi[rows, halved] = new_lo[rows, count + np.arange(len(halved))] = middle[halved]  # (the first half's upper
+    # end and the second's lower at the middle; the rest of each half its box's)
+    return new_lo, new_hi, np.concatenate([columns, halved])
 
 
 def empty_design_space(posed, case, budget: int | None = None) -> Emptiness | None:

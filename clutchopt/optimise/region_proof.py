@@ -52,10 +52,11 @@ that solve ends without a design, its own interval search (within SURE_BOXES) go
 (:meth:`Regions._first`): proven, it gets the verdict ``solve`` gives, at the same design, without the diagnosis.
 
 A covered point reports the design of the last point without a design (its least relaxation) with every constraint
-re-evaluated in float64 at the point's own values (those of a run's points together, one NumPy column a point:
-``verdict.figures_at``), solver ``interval`` (no solver call where a region covers it, the
-one solve where its own search proved it) and its share of the search's seconds. A verdict is the same whatever the
-order of the points: a region's proof is a proof of each point, and a point its region does not cover gets its own.
+re-evaluated in float64 at the point's own values (those of a run's points and of the runs searched ahead and
+proven together, one NumPy column a point: ``verdict.figures_at``), solver ``interval`` (no solver call where a region
+covers it, the one solve where its own search proved it) and its share of the search's seconds. A verdict is the
+same whatever the order of the points: a region's proof is a proof of each point, and a point its region does not
+cover gets its own.
 """
 
 from __future__ import annotations
@@ -559,12 +560,16 @@ class Regions:
         one quantity leave no room between at its values (:func:`_covered`), those of every point proven with it
         evaluated together, one NumPy column a point (static problems; None otherwise): a region's points share that
         design, and one evaluation of the formulation's equations over arrays costs what one over floats does (the
-        lever over 1x-10x its inertia: 84 covered points, each evaluated alone, were half the sweep's time)."""
+        lever over 1x-10x its inertia: 84 covered points, each evaluated alone, were half the sweep's time); with them
+        the points of the runs searched ahead and proven (:meth:`_runs_ahead`), which their turn covers with the same
+        design (the ball beyond its edge: its 99 covered points in one evaluation, not four)."""
         if self.posed.start_up is not None:  # (its own drive proofs come first: ``_covered``)
             return None
         design = self._without.design
         if k not in self._figures or self._figured != design:
-            points = sorted({k, *(j for j in self._proven if j > k)})
+            ahead = (j for (a, b), (_, outcome, _) in self._ahead.items() if outcome is not None and outcome.proven
+                     for j in range(a, b))
+            points = sorted({k, *(j for j in (*self._proven, *ahead) if j > k)})
             cases = [self.point_case(j) for j in points]
             self._figures = dict(zip(points, zip(figures_at(self.posed, cases, design),
                                                  self.posed.conflicting_at(cases))))
