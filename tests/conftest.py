@@ -1,6 +1,8 @@
 import os
+import shutil
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -42,16 +44,25 @@ def pytest_xdist_auto_num_workers(config) -> int:
     return min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
 
 
-@pytest.fixture(scope="session", autouse=True)
-def compiled_code_cache(tmp_path_factory):
-    """Compiled NLP functions (clutchopt.optimise.compiled) go to a cache of this test session, not the user's; a
-    start-up sweep starts no build of its own in the background (clutchopt.optimise.start_up_compiled: 8-26 s of
-    compiling beside the tests a problem structure; tests/test_start_up_compiled.py builds one)."""
-    os.environ["CLUTCHOPT_CACHE"] = str(tmp_path_factory.mktemp("compiled"))
+_SESSION_CACHE: list[str] = []  # the compiled-code cache of this process's test session (pytest_configure)
+
+
+def pytest_configure(config):
+    """Compiled NLP functions (clutchopt.optimise.compiled) go to a cache of this test session, not the user's, from
+    the collection on (tests/test_torture.py solves the start-up cases while it is collected, and a start-up problem
+    reads the cache's links when its first IPOPT solver is built: the user's libraries were used); a start-up sweep
+    starts no build of its own in the background (clutchopt.optimise.start_up_compiled: 8-26 s of compiling beside
+    the tests a problem structure; tests/test_start_up_compiled.py builds one)."""
+    _SESSION_CACHE.append(tempfile.mkdtemp(prefix="clutchopt-compiled-"))
+    os.environ["CLUTCHOPT_CACHE"] = _SESSION_CACHE[-1]
     os.environ["CLUTCHOPT_BUILD_LATER"] = "0"
-    yield
+
+
+def pytest_unconfigure(config):
     os.environ.pop("CLUTCHOPT_CACHE", None)
     os.environ.pop("CLUTCHOPT_BUILD_LATER", None)
+    while _SESSION_CACHE:
+        shutil.rmtree(_SESSION_CACHE.pop(), ignore_errors=True)
 
 
 @pytest.fixture(autouse=True)

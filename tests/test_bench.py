@@ -206,3 +206,4 @@ def test_start_up_solve_section(report):
     for row in rows.values():
         assert row["status"] == "optimal" and row["solves"] >= 1
         assert row["resolve_vs_static"] == pytest.approx(row["resolve_median_s"] / row["static_median_s"])
+        assert row["compiled_used"] is False  # (--quick: its start-up sweeps ran on an empty cache, none linked)

@@ -2,9 +2,12 @@
 process of its own, the problem adopts the library once the cache holds it whole, and its solves are then the
 virtual machine's to the last bit (the compiled code does the same operations in the same order). The mechanism is
 shown on the wedge's static sizing (a 105-instruction Hessian: its build takes about a second, a start-up problem's
-1.2 MB of C 8-26 s); a start-up sweep calls it at each point (``start_up_sweep.solved_along``)."""
+1.2 MB of C 8-26 s); a start-up sweep calls it at each point (``start_up_sweep.solved_along``), and a start-up
+problem's first IPOPT solver reads the link (``Posed.solver``): shown at 2 collocation intervals a phase (about a
+second's build)."""
 
 import time
+from dataclasses import replace
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -13,7 +16,10 @@ import pytest
 import clutchopt.optimise.compiled as compiled
 import clutchopt.optimise.start_up_compiled as later
 from clutchopt.cases import load_case
+from clutchopt.formulations import get_coupling
 from clutchopt.optimise.problem import Problem, case_formulation
+from clutchopt.optimise.solution import SolverOptions
+from clutchopt.start_up.drive import Structure
 from conftest import CASES
 
 WAIT_S = 60.0  # the longest the test waits for the build (a second or two unloaded)
@@ -145,3 +151,31 @@ def test_a_library_of_another_nlp_is_not_used(monkeypatch, tmp_path):
     assert library is not None and geometry.posed.use_compiled(library) is False and geometry.posed.library is None
     again = geometry.solve(case)
     assert again.status == reference.status == "optimal" and again.objective == reference.objective
+
+
+@pytest.mark.skipif(compiled.compiler() is None, reason="no C compiler here (solves stay on the virtual machine)")
+def test_a_start_up_solve_uses_a_linked_library_from_its_first_solver(monkeypatch, tmp_path):
+    # not only a sweep's point: any solve of a start-up NLP whose library the cache links (a sweep's, built before)
+    # builds its IPOPT solvers over it (no derivatives of its own) and ends on the same bits, states and all
+    monkeypatch.setenv(compiled.CACHE_ENV, str(tmp_path / "cache"))
+    monkeypatch.setenv(later.BUILD_LATER_ENV, "0")
+    case = load_case(CASES / "wedge_motor_start.toml")
+
+    def start_up_problem():
+        formulation = get_coupling(case.coupling).formulation(case.options.get("mode"))
+        return Problem(formulation, case.options.get("objective", "mass"), SolverOptions(),
+                       replace(Structure.of(case), intervals=2))
+
+    plain = start_up_problem()
+    reference = plain.solve(case, refine=False)  # (one NLP run on the first mesh, its start simulated)
+    library = later.compiled_now(plain.posed)
+    assert library is not None and plain.posed.library is None  # (built and linked; the plain one keeps its own)
+    problem = start_up_problem()
+    monkeypatch.setattr(later, "generated_source", lambda functions: pytest.fail("C generated: the link not read"))
+    solution = problem.solve(case, refine=False)
+    assert problem.posed.library == library
+    assert problem.posed.solver("ipopt").get_function("nlp_hess_l").is_a("External")
+    assert solution.status == reference.status and solution.solver.iterations == reference.solver.iterations > 0
+    assert solution.objective == reference.objective and solution.design == reference.design  # to the last bit
+    assert solution.internal.tobytes() == reference.internal.tobytes()
+    assert solution.start_up["start_time_simulated"] == reference.start_up["start_time_simulated"]

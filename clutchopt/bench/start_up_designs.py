@@ -13,7 +13,7 @@ from pathlib import Path
 from clutchopt.bench.timing import repeated, time_once
 from clutchopt.cases import load_case
 from clutchopt.formulations import get_coupling
-from clutchopt.optimise.problem import problem_for, solve_case
+from clutchopt.optimise.problem import case_problem, problem_for, solve_case
 from clutchopt.optimise.solution import SolverOptions
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.mesh import MESH_STEPS
@@ -62,7 +62,9 @@ def start_up_design_rows(config) -> list[dict]:
 def start_up_solve_rows(config) -> list[dict]:
     """Per start-up case: the seconds to read it, to solve it first (its problem built, the simulator's modules
     loaded in the first case) and again (the median of ``config.repeats``, at least 3), the same of the case without
-    its [start_up] section, and the ratios; the simulated start time against the case's limit."""
+    its [start_up] section, and the ratios; the simulated start time against the case's limit; ``compiled_used``:
+    whether its start-up problem's IPOPT solvers evaluate its NLP's compiled functions (a library the cache links to
+    the NLP, a sweep's: :mod:`clutchopt.optimise.start_up_compiled`; the same numbers)."""
     rows = []
     for path in sorted(CASES.glob("*_motor_start.toml")):
         read, case = time_once(lambda: load_case(path))
@@ -76,5 +78,6 @@ def start_up_solve_rows(config) -> list[dict]:
                      "load_s": read, "first_s": first, "resolve_median_s": again, "static_first_s": static_first,
                      "static_median_s": static_again, "first_vs_static": first / static_first,
                      "resolve_vs_static": again / static_again, "solves": solution.solver.solves,
-                     "start_time_s": start.get("start_time_simulated")})
+                     "start_time_s": start.get("start_time_simulated"),
+                     "compiled_used": case_problem(case).posed.library is not None})
     return rows

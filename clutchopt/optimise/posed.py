@@ -25,6 +25,7 @@ from clutchopt.optimise.compiled import compiled_solver
 from clutchopt.optimise.in_place import InPlace
 from clutchopt.optimise.modifier import modified
 from clutchopt.optimise.solution import IPOPT_OWN_FIGURES, START_UP_RESTORATION, SolverOptions
+from clutchopt.optimise.start_up_compiled import compiled_when_ready
 from clutchopt.optimise.sparsity import entries
 from clutchopt.optimise.two_sided import TwoSided
 from clutchopt.optimise.verify import FEASIBILITY_TOL, evaluate_objective
@@ -155,11 +156,15 @@ class Posed:
 
     def solver(self, method: str):
         """The solver of a method (``ipopt``, ``warm``, ``warm_near``, ``sqp``, ``sqp_chain``, ``sqp_search``), built on
-        first use."""
+        first use. A start-up problem's IPOPT solvers are built over its NLP's compiled functions where the cache
+        links a library whole to its NLP (:func:`~clutchopt.optimise.start_up_compiled.compiled_when_ready`: a sweep's
+        library, in any solve of the same NLP; the same numbers, no symbolic differentiation)."""
         def build(_):
             f = self.formulation
             chosen = self.solver_options
             name = f"{f.coupling}_{f.mode}_{self.objective.name}" + ("" if method == "ipopt" else f"_{method}")
+            if method in IPOPT_METHODS and self.start_up is not None and self.library is None:
+                compiled_when_ready(self)  # (the link read once a problem: its digest 7-9 ms where the cache has links)
             if method in IPOPT_METHODS:  # the first IPOPT solver's derivatives, not derived again (0.06 s a start-up
                 # problem)
                 solver = ca.nlpsol(name, "ipopt", self.library or self.nlp,

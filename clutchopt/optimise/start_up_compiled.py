@@ -17,11 +17,13 @@ three or four points, the ball's after two).
 Finding the library by its C costs that generation, more than the wedge's whole sweep: so the cache also keeps, beside
 a library, a link named by a digest of the NLP itself (its objective and constraints serialised, 7-9 ms a start-up
 problem: :func:`nlp_key`), written where the library's place is first worked out (:func:`_look_for`,
-:func:`compiled_now`). A sweep's problem looks for its link at its first point: where the link names a library the
-cache holds whole, every IPOPT solver of the problem is built over it from the start (no symbolic differentiation,
-the cold solver's 45-50 ms on the wedge, and the compiled evaluations from its first iteration); the derivatives
-CasADi generates from an NLP are a function of it (and of CasADi's version, in the digest), so the linked library is
-the one its C would name.
+:func:`compiled_now`). A start-up problem looks for its link when its first IPOPT solver is built (``Posed.solver``:
+in any solve, not only a sweep's, whose first point asks first): where the link names a library the cache holds
+whole, every IPOPT solver of the problem is built over it from the start (no symbolic differentiation, the cold
+solver's 45-50 ms on the wedge, and the compiled evaluations from its first iteration: cable_motor_start's re-solve
+96-101 to 76-81 ms of CPU); the derivatives CasADi generates from an NLP are a function of it (and of CasADi's
+version, in the digest), so the linked library is the one its C would name. A solve generates no C and starts no
+build: only a sweep's points count the solving that pays for one.
 
 ``CLUTCHOPT_BUILD_LATER=0`` (or ``false``, ``no``, ``off``: ``clutchopt.switches``) starts no build (a library already
 in the cache is still used): the test suite's, so that its sweeps do not compile beside the tests
