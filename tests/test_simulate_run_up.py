@@ -1,0 +1,60 @@
+"""The motor's run-up to the weights' engagement, in closed form (clutchopt/simulate/run_up.py)."""
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from clutchopt.simulate.engine import Model, simulate
+from clutchopt.simulate.laws import CentrifugalFriction, InductionMotor, Load
+
+MOTOR = InductionMotor(synchronous_speed=104.71975511965977, breakdown_torque=37.0, breakdown_slip=0.2, inertia=0.012)
+EFFECTS = ("slip_friction", "motor_curve", "spring_preload", "gravity", "lockup", "friction_heat")
+
+
+def _wedge_start(**changes) -> Model:
+    """wedge_motor_start's drive and a design of its sweep (engaging at 36.65 rad/s), at the check's rtol."""
+    model = Model(CentrifugalFriction(0.000983933079943879, 1343.3628213416189), 0.5, Load(5.0), EFFECTS,
+                  motor=MOTOR, heat_capacity=1400.0, conductance=4.0, rtol=1e-6)
+    return replace(model, **changes)
+
+
+def _time_to(speed: float) -> float:
+    """J_m times the integral of dw / T_m(w) from rest: the motor's own run-up, by quadrature."""
+    return MOTOR.inertia * quad(lambda w: 1.0 / MOTOR(w), 0.0, speed, epsabs=0.0, epsrel=1e-13, limit=200)[0]
+
+
+def test_the_run_up_to_engagement_is_the_motor_s_own_to_rounding():
+    # LSODA at the check's rtol (1e-7) put the engagement 4e-10 off; the closed form is the quadrature's to rounding
+    model = _wedge_start()
+    engagement = math.sqrt(model.law.engagement_squared)
+    columns = simulate(model).columns
+    run_up = columns["w_driver"] <= engagement
+    k = int(np.flatnonzero(run_up)[-1])
+    assert columns["w_driver"][k] == engagement
+    assert columns["t"][k] == pytest.approx(_time_to(engagement), rel=1e-14, abs=0.0)
+    for j in np.linspace(1, k - 1, 7).astype(int):  # every sample on the way: the time the quadrature gives its speed
+        assert columns["t"][j] == pytest.approx(_time_to(columns["w_driver"][j]), rel=1e-12, abs=0.0)
+    assert np.array_equal(columns["slip"][:k + 1], columns["w_driver"][:k + 1])  # the driven half at rest
+    for name in ("friction_work", "source_work", "temperature_rise"):
+        assert not columns[name][:k + 1].any(), name
+    assert not columns["friction_torque"][columns["w_driver"] < engagement].any()  # (at w_e: K (w_e^2 - w_e^2))
+
+
+def test_a_start_with_its_run_up_in_closed_form_is_lsoda_s_to_its_tolerance():
+    # the same start integrated by LSODA throughout (an integrator forced: no closed form), both at rtol 1e-12
+    model = _wedge_start(rtol=1e-12)
+    closed, integrated = simulate(model).headline, simulate(replace(model, integrator="LSODA")).headline
+    for name in ("start_time", "friction_work", "lock_up_speed", "temperature_rise"):
+        assert closed[name] == pytest.approx(integrated[name], rel=1e-11), name
+    assert closed["locks_up"] and integrated["locks_up"]
+
+
+def test_a_start_the_load_does_not_hold_at_rest_is_integrated():
+    # without a load the driven half breaks away at once: the run-up is a slipping phase, not the motor's alone
+    model = _wedge_start(load=Load(0.0))
+    head = simulate(model).headline
+    reference = simulate(replace(model, integrator="LSODA")).headline
+    assert head["start_time"] == reference["start_time"] and head["friction_work"] == reference["friction_work"]
