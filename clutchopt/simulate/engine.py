@@ -42,7 +42,7 @@ from clutchopt.errors import InputError
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.laws import InductionMotor, Load
 from clutchopt.simulate.on_floats import bound, parametrised
-from clutchopt.simulate.run_up import in_closed_form, run_up
+from clutchopt.simulate.motor_phases import in_closed_form, locked, run_up
 from clutchopt.simulate.ranges import BREAKDOWN_SLIP, CONDUCTANCE, HEAT_CAPACITY, INERTIA, LOAD, SPEED, TIME, TORQUE
 from clutchopt.simulate.spans import integrate_spans
 from clutchopt.simulate.stepping import Budget, Phase, integrate
@@ -382,10 +382,12 @@ def simulate(model: Model) -> SimulationResult:
         if reason or t >= bound:
             break
         armed = {"loose": loose} if kind == "stick" else run.turning_events(kind, engaged, not closed_form_locks)
-        if kind == "rest" and not engaged and in_closed_form(run, y, STEADY):  # the motor's run-up alone
-            out = run_up(run, t, y, bound, FIRST_SPAN * run.time_scale, list(armed).index("engages"))
-        else:
-            out = run.integrate(kind, t, bound, y, list(armed.values()))
+        span, out = FIRST_SPAN * run.time_scale, None  # (the motor's phases in closed form where they are)
+        if kind == "rest" and not engaged and in_closed_form(run, y, STEADY):
+            out = run_up(run, t, y, bound, span, list(armed).index("engages"))
+        elif kind == "stick":
+            out = locked(run, t, y, bound, span, list(armed.values()))
+        out = out or run.integrate(kind, t, bound, y, list(armed.values()))
         if kind == "rest":
             out.y[1] = out.y[0]  # the driven half stands: all of the driving speed is slip, exactly
         rows.append(_samples(run, out, "stick" if kind == "stick" else "slip"))

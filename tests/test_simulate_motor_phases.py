@@ -1,4 +1,4 @@
-"""The motor's run-up to the weights' engagement, in closed form (clutchopt/simulate/run_up.py)."""
+"""The motor's run-up to the weights' engagement, in closed form (clutchopt/simulate/motor_phases.py)."""
 
 import math
 from dataclasses import replace
@@ -58,3 +58,46 @@ def test_a_start_the_load_does_not_hold_at_rest_is_integrated():
     head = simulate(model).headline
     reference = simulate(replace(model, integrator="LSODA")).headline
     assert head["start_time"] == reference["start_time"] and head["friction_work"] == reference["friction_work"]
+
+
+def test_the_locked_drive_is_the_motor_s_against_the_load_to_rounding():
+    # (J + J_m) dw/dt = T_m(w) - L after lock-up: time, work from the driving half and the cooling by quadrature
+    model = _wedge_start()
+    columns = simulate(model).columns
+    locked = np.flatnonzero(columns["phase"] == "stick")
+    first = locked[0]
+    t0, w0, source0, rise0 = (columns[name][first] for name in ("t", "w_driver", "source_work", "temperature_rise"))
+    inertia, load = model.inertia + MOTOR.inertia, model.load.torque
+    accelerating = locked[MOTOR(columns["w_driver"][locked]) - load > 0.05 * (MOTOR(w0) - load)]  # (nearer the
+    for j in np.linspace(locked[1], accelerating[-1], 7).astype(int):  # steady speed the quadrature is the worse)
+        w = columns["w_driver"][j]  # (a speed to rounding: a time to 1e-15 s)
+        time = quad(lambda v: inertia / (MOTOR(v) - load), w0, w, epsabs=0.0, epsrel=1e-13, limit=200)[0]
+        carried = quad(lambda v: (load + model.inertia * (MOTOR(v) - load) / inertia) * v * inertia / (MOTOR(v) - load),
+                       w0, w, epsabs=0.0, epsrel=1e-13, limit=200)[0]
+        assert columns["t"][j] - t0 == pytest.approx(time, rel=1e-11, abs=1e-15)
+        assert columns["source_work"][j] - source0 == pytest.approx(carried, rel=1e-11, abs=1e-11)
+        cooled = rise0 * math.exp(-model.conductance / model.heat_capacity * (columns["t"][j] - t0))
+        assert columns["temperature_rise"][j] == pytest.approx(cooled, rel=1e-14)
+    assert not columns["slip"][locked].any()
+    assert np.all(columns["friction_work"][locked] == columns["friction_work"][first])
+    tight = replace(model, rtol=1e-13)  # its end, near the steady speed, against LSODA's (both starts at 1e-13)
+    closed, integrated = simulate(tight).columns, simulate(replace(tight, integrator="LSODA")).columns
+    for name, rel in (("t", 1e-13), ("w_driver", 1e-13), ("source_work", 1e-12), ("temperature_rise", 1e-11)):
+        assert closed[name][-1] == pytest.approx(integrated[name][-1], rel=rel), name
+
+
+def test_a_locked_drive_whose_samples_cross_an_event_is_left_to_the_integrator():
+    from clutchopt.simulate.engine import _Run
+    from clutchopt.simulate.motor_phases import locked
+
+    model = _wedge_start()
+    run = _Run(model)
+    y0 = np.array([95.0, 0.0, 6000.0, 9000.0, 3.0])
+    quiet = lambda t, y: y[0] - 200.0  # noqa: E731 - never reached
+    quiet.terminal, quiet.direction = True, 1
+    phase = locked(run, 10.0, y0, 12.0, 1e-3, [quiet])
+    assert phase.status == "end" and phase.t[-1] == 12.0 and 95.0 < phase.y[0, -1] < MOTOR.synchronous_speed
+    crossed = lambda t, y: y[0] - 0.5 * (95.0 + phase.y[0, -1])  # noqa: E731 - crosses halfway
+    crossed.terminal, crossed.direction = True, 1
+    assert locked(run, 10.0, y0, 12.0, 1e-3, [crossed]) is None
+    assert locked(run, 10.0, y0 * [1.0, 0.0, 1.0, 1.0, 1.0] + [0.0, 1e-3, 0.0, 0.0, 0.0], 12.0, 1e-3, [quiet]) is None
