@@ -101,3 +101,20 @@ def test_a_locked_drive_whose_samples_cross_an_event_is_left_to_the_integrator()
     crossed.terminal, crossed.direction = True, 1
     assert locked(run, 10.0, y0, 12.0, 1e-3, [crossed]) is None
     assert locked(run, 10.0, y0 * [1.0, 0.0, 1.0, 1.0, 1.0] + [0.0, 1e-3, 0.0, 0.0, 0.0], 12.0, 1e-3, [quiet]) is None
+
+
+def test_newton_stops_where_its_steps_are_rounding():
+    # a time whose residual is rounding above the roots' own (the locked drive's is a sum of larger terms) stops
+    # once its steps no longer shrink, not after NEWTON_STEPS (the lever's locked drive took 60, 0.5 ms)
+    from clutchopt.simulate.motor_phases import NEWTON_STEPS, _newton
+
+    calls = []
+
+    def time_at(x):
+        calls.append(1)
+        return -x + 3e-15 * np.sin(1e16 * x)  # falls (concave but for noise of the last bits), 3e-15 at most
+
+    targets = np.linspace(0.0, 0.9, 50)
+    roots = _newton(time_at, lambda x: np.ones_like(x), targets, 0.0)
+    assert np.all(np.abs(roots + targets) <= 1e-14)
+    assert len(calls) <= 5 < NEWTON_STEPS

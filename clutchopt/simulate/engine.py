@@ -2,7 +2,9 @@
 
 Integrator: SciPy's solvers, DOP853 and Radau stepped by :mod:`clutchopt.simulate.stepping` (events on each step's
 interpolant), LSODA in spans of ``odeint`` by :mod:`clutchopt.simulate.spans` (events on the spans' samples), a budget
-of MAX_STEPS solver steps per run, chosen by the scene's stiffness. Without a motor the phases are smooth
+of MAX_STEPS solver steps per run, chosen by the scene's stiffness; the phases only an induction motor moves (its
+run-up to the weights' engagement, the locked drive at a constant load) in closed form where they are
+(:mod:`clutchopt.simulate.motor_phases`). Without a motor the phases are smooth
 and at most mildly stiff (the paper's law with a w0 = +1000 starts at its cap of 1e130 k, but the fast part lasts
 no longer than the solver needs to resolve it), so DOP853 (explicit Runge-Kutta 8(5,3)) reaches 1e-10 relative at
 low cost (docs/simulate.md). A motor adds a fast mode, its time constant J_m / (dT/dw) = J_m s_k w_s / (2 T_k), and

@@ -32,7 +32,8 @@ from clutchopt.simulate.laws import CentrifugalFriction
 from clutchopt.simulate.spans import _crossings, _values, sample_times
 from clutchopt.simulate.stepping import EPS, Phase
 
-NEWTON_STEPS = 60  # at most (monotone and quadratic near the root: 5-8 from the phase's start on the cases)
+NEWTON_STEPS = 60  # at most (monotone and quadratic near the root: 4-7 from the phase's start on the cases)
+STALLS = 1e-8  # steps below this that no longer shrink are rounding (from here quadratic convergence is 1e-16 away)
 
 
 def in_closed_form(run, y, rate_floor: float) -> bool:
@@ -133,11 +134,14 @@ def _motor_alone(run) -> bool:
 
 def _newton(time_at, rate_at, targets: np.ndarray, start: float) -> np.ndarray:
     """x with time_at(x) = each target (>= 0; time_at(start) = 0, concave and falling, rate_at = -its slope), by
-    Newton's method from ``start``."""
-    x = np.full_like(targets, start)
+    Newton's method from ``start``: until the steps are within rounding of x, or small and no longer shrinking (the
+    residual is rounding: the locked drive's time is a sum of terms larger than it)."""
+    x, last = np.full_like(targets, start), np.inf
     for _ in range(NEWTON_STEPS):
         step = (time_at(x) - targets) / rate_at(x)
         x = x + step
-        if not np.any(np.abs(step) > 4.0 * EPS * np.maximum(np.abs(x), 1.0)):
+        largest = float(np.max(np.abs(step), initial=0.0))
+        if not np.any(np.abs(step) > 4.0 * EPS * np.maximum(np.abs(x), 1.0)) or STALLS > largest >= last:
             break
+        last = largest
     return x
