@@ -2,7 +2,9 @@
 
 Integrator: SciPy's solvers, DOP853 and Radau stepped by :mod:`clutchopt.simulate.stepping` (events on each step's
 interpolant), LSODA in spans of ``odeint`` by :mod:`clutchopt.simulate.spans` (events on the spans' samples), a budget
-of MAX_STEPS solver steps per run, chosen by the scene's stiffness. Without a motor the phases are smooth
+of MAX_STEPS solver steps per run, chosen by the scene's stiffness; the phases only an induction motor moves (its
+run-up to the weights' engagement, the locked drive at a constant load) in closed form where they are
+(:mod:`clutchopt.simulate.motor_phases`). Without a motor the phases are smooth
 and at most mildly stiff (the paper's law with a w0 = +1000 starts at its cap of 1e130 k, but the fast part lasts
 no longer than the solver needs to resolve it), so DOP853 (explicit Runge-Kutta 8(5,3)) reaches 1e-10 relative at
 low cost (docs/simulate.md). A motor adds a fast mode, its time constant J_m / (dT/dw) = J_m s_k w_s / (2 T_k), and
@@ -42,6 +44,7 @@ from clutchopt.errors import InputError
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.laws import InductionMotor, Load
 from clutchopt.simulate.on_floats import bound, parametrised
+from clutchopt.simulate.motor_phases import in_closed_form, locked, run_up
 from clutchopt.simulate.ranges import BREAKDOWN_SLIP, CONDUCTANCE, HEAT_CAPACITY, INERTIA, LOAD, SPEED, TIME, TORQUE
 from clutchopt.simulate.spans import integrate_spans
 from clutchopt.simulate.stepping import Budget, Phase, integrate
@@ -381,7 +384,12 @@ def simulate(model: Model) -> SimulationResult:
         if reason or t >= bound:
             break
         armed = {"loose": loose} if kind == "stick" else run.turning_events(kind, engaged, not closed_form_locks)
-        out = run.integrate(kind, t, bound, y, list(armed.values()))
+        span, out = FIRST_SPAN * run.time_scale, None  # (the motor's phases in closed form where they are)
+        if kind == "rest" and not engaged and in_closed_form(run, y, STEADY):
+            out = run_up(run, t, y, bound, span, list(armed).index("engages"))
+        elif kind == "stick":
+            out = locked(run, t, y, bound, span, list(armed.values()))
+        out = out or run.integrate(kind, t, bound, y, list(armed.values()))
         if kind == "rest":
             out.y[1] = out.y[0]  # the driven half stands: all of the driving speed is slip, exactly
         rows.append(_samples(run, out, "stick" if kind == "stick" else "slip"))

@@ -89,8 +89,7 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
     peaks: dict[int, float] = {}  # each figure's largest sample so far (events with a ``figure``)
     times, states = [np.array([t0])], [np.array(y0, dtype=float).reshape(-1, 1)]
     t, y, first = t0, np.array(y0, dtype=float), 1
-    ratio = SPACING_GROWTH
-    spacing = span * (ratio - 1.0) / (ratio**FIRST_SAMPLES - 1.0)  # the first
+    ratio, spacing = SPACING_GROWTH, _first_spacing(span)
     widest = min(widest, (bound - t0) / FIRST_SAMPLES)  # (the spacing grows no further than the bound needs)
     with warnings.catch_warnings(), np.errstate(all="ignore"):  # NumPy's, all of them, once a phase
         warnings.simplefilter("ignore", ODEintWarning)  # a failed span is read from its message
@@ -117,6 +116,24 @@ def integrate_spans(fun, jac, t0: float, y0: np.ndarray, bound: float, events: l
             _extend(times, states, grid[1:], samples[:, 1:], sampled)
             t, y = end, samples[:, -1].copy()
     return _phase(times, states, "end")
+
+
+def _first_spacing(span: float) -> float:
+    """The spacing of a phase's first two samples, so that its first FIRST_SAMPLES samples take ``span``."""
+    return span * (SPACING_GROWTH - 1.0) / (SPACING_GROWTH**FIRST_SAMPLES - 1.0)
+
+
+def sample_times(t0: float, until: float, bound: float, span: float) -> np.ndarray:
+    """The times of a phase's samples from ``t0`` strictly before ``until``, as :func:`integrate_spans` draws them
+    towards ``bound`` (its spans' own ends left out): for a phase whose states are known in closed form."""
+    spacing, widest = _first_spacing(span), (bound - t0) / FIRST_SAMPLES
+    times, first = [], 1
+    while True:
+        sequence = t0 + _offsets(np.arange(first, first + SPAN_SAMPLES), spacing, SPACING_GROWTH, widest)
+        times.append(sequence[sequence < until])
+        if sequence[-1] >= until or not sequence[-1] > t0:
+            return np.concatenate(times)
+        first += SPAN_SAMPLES
 
 
 def _offsets(indices: np.ndarray, spacing: float, ratio: float, widest: float) -> np.ndarray:
