@@ -17,7 +17,8 @@ import pytest
 
 from clutchopt.cases import load_case
 from clutchopt.optimise.problem import case_problem
-from clutchopt.optimise.start_up_sweep import solved_alone_where_held
+from clutchopt.optimise import start_up_sweep
+from clutchopt.optimise.start_up_sweep import sized_out, solved_alone_where_held
 from conftest import BALL_PAPER_STRESS, CASES
 from test_hostile_agree import START_UP_RTOL, swept_and_solved
 
@@ -39,16 +40,22 @@ def test_every_point_of_a_sweep_whose_warm_loops_end_held_has_solve_s_design():
 
 def test_a_held_point_keeps_solve_s_design_unless_it_is_heavier(monkeypatch):
     # any CPU: a design held at 1 % over wedge_motor_start's optimum gives way to solve's; one 1 % under it is kept
-    # (a verified design lighter than solve's, as start_up_sweep.as_solve_would keeps the lighter); every solve counted
+    # (a verified design lighter than solve's, as start_up_sweep.as_solve_would keeps the lighter), and its integers
+    # probed as as_solve_would probes a warm point's (a spy: the wedge has none to probe); every solve counted
     case = load_case(CASES / "wedge_motor_start.toml")
     problem = case_problem(case)
     alone = problem.solve(case)
     assert alone.status == "optimal"
-    assert solved_alone_where_held(problem, case, alone) is None  # (not held: not solved again)
+    sized = sized_out(problem, case, None)
+    assert solved_alone_where_held(problem, case, alone, sized) is None  # (not held: not solved again)
     heavier, lighter = (replace(alone, objective=alone.objective * factor) for factor in (1.01, 0.99))
     monkeypatch.setattr(problem, "_held", lambda solution: solution is heavier or solution is lighter)
-    kept = solved_alone_where_held(problem, case, heavier)
+    probed = []
+    monkeypatch.setattr(start_up_sweep, "as_solve_would", lambda *args: probed.append(args) or args[2])
+    kept = solved_alone_where_held(problem, case, heavier, sized)
     assert kept.objective == pytest.approx(alone.objective, rel=START_UP_RTOL)
     assert kept.design == pytest.approx(alone.design, rel=START_UP_RTOL)
-    assert kept.solver.solves == heavier.solver.solves + alone.solver.solves
-    assert solved_alone_where_held(problem, case, lighter).objective == lighter.objective
+    assert kept.solver.solves == heavier.solver.solves + alone.solver.solves and not probed
+    held = solved_alone_where_held(problem, case, lighter, sized)
+    assert held.objective == lighter.objective and held.solver.solves == lighter.solver.solves + alone.solver.solves
+    assert probed == [(problem, case, lighter, sized)]

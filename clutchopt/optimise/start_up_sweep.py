@@ -79,7 +79,8 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
         return None
     if solution.status != "optimal":
         return None
-    solution = solved_alone_where_held(problem, case, solution) or as_solve_would(problem, case, solution, sized)
+    solution = (solved_alone_where_held(problem, case, solution, sized)
+                or as_solve_would(problem, case, solution, sized))
     if block.s.elastic:  # its loop moves a limit only where the simulated start misses it, never centres one: the
         return solution  # NLP is another model than the simulated dynamics, not a mesh off them (the share is kept)
     before = previous.along
@@ -89,25 +90,27 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
     return solution
 
 
-def solved_alone_where_held(problem, case: Case, solution: Solution) -> Solution | None:
+def solved_alone_where_held(problem, case: Case, solution: Solution, sized: "SizedOut") -> Solution | None:
     """A point whose warm loop ended on a design a row of the collocation holds, not a limit
     (``clutchopt.optimise.problem.held_by_the_mesh``: no start-up limit's multiplier, the objective elastic to the
     drive; the loop's own remedy, the papers' sizing, missed a limit): also solved as ``solve`` solves it alone
     (``Problem.solve``: its starts, retries and the sampled design), whose design is kept unless it has none verified
-    or is heavier beyond the tolerance; every solve counted. None where ``solution`` is not held. A held design is
-    the fold of the discretised start on the mesh the point before handed on, not the physics' optimum: its lighter
-    neighbours along the torque's need meet every simulated limit (ball_motor_start in paper mode at 1.5 GPa, 507.9
-    then 650 kW: held at 696.98 kg, the torque alone active, where ``solve`` reaches 687.92 kg, the start time active
-    too; on NumPy's SSE4 loops with OpenBLAS on Sandybridge kernels, 507.9 then 605.7 kW: 558.28 kg against
+    or is heavier beyond the tolerance (the held design kept has its integers probed as :func:`as_solve_would`
+    probes them); every solve counted. None where ``solution`` is not held. A held design is the fold of the
+    discretised start on the mesh the point before handed on, not the physics' optimum: its lighter neighbours along
+    the torque's need meet every simulated limit (ball_motor_start in paper mode at 1.5 GPa, 507.9 then 650 kW: held
+    at 696.98 kg, the torque alone active, where ``solve`` reaches 687.92 kg, the start time active too; on NumPy's
+    SSE4 loops with OpenBLAS on Sandybridge kernels, 507.9 then 605.7 kW: 558.28 kg against
     554.69 kg: tests/test_start_up_sweep_held.py). A held point costs one ``solve`` of it more (for the same design
     where ``solve``'s own loop ends held too); no point of the bench's driven-inertia sweeps ends held."""
     if not problem._held(solution):
         return None
     alone = problem.solve(case)
     tolerance = problem.posed.start_up.s.spec.tolerance
-    kept = (alone if alone.status == "optimal" and not alone.objective > solution.objective * (1 + tolerance)
-            else solution)
-    return replace(kept, solver=kept.solver.summed([solution.solver, alone.solver]))
+    if alone.status == "optimal" and not alone.objective > solution.objective * (1 + tolerance):
+        return replace(alone, solver=alone.solver.summed([solution.solver, alone.solver]))
+    probed = as_solve_would(problem, case, solution, sized)  # (its solves counted with ``solution``'s)
+    return replace(probed, solver=probed.solver.summed([probed.solver, alone.solver]))
 
 
 def as_solve_would(problem, case: Case, solution: Solution, sized: "SizedOut") -> Solution:
