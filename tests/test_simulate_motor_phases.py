@@ -86,6 +86,24 @@ def test_the_locked_drive_is_the_motor_s_against_the_load_to_rounding():
         assert closed[name][-1] == pytest.approx(integrated[name][-1], rel=rel), name
 
 
+@pytest.mark.parametrize("share", [1e-9, 1e-3])
+def test_a_locked_drive_at_a_light_load_keeps_its_accuracy(share):
+    # review: at L = 1e-9 T_k the closed form's terms (s - s_0 and k s_2 log1p(x), s_2 ~ 2 s_k T_k / L) cancelled to
+    # 4e-8 of w_s; a load that light is left to LSODA. Against DOP853 at rtol 1e-13 on the same samples.
+    from scipy.integrate import solve_ivp
+
+    motor = InductionMotor(100.0, 100.0, 0.2, 0.05)
+    model = Model(CentrifugalFriction(3 * 100.0 / (100.0**2 - 50.0**2), 50.0**2), 0.5, Load(share * 100.0),
+                  EFFECTS[:3] + EFFECTS[4:], motor=motor, heat_capacity=1000.0, conductance=1.0, rtol=1e-11)
+    columns = simulate(model).columns
+    stick = np.flatnonzero(columns["phase"] == "stick")
+    t, w = columns["t"][stick], columns["w_driver"][stick]
+    load, inertia = model.load.torque, model.inertia + motor.inertia
+    exact = solve_ivp(lambda _, y: [(motor(y[0]) - load) / inertia], (t[0], t[-1]), [w[0]], t_eval=t, rtol=1e-13,
+                      atol=1e-12, method="DOP853").y[0]
+    assert len(stick) > 10 and np.max(np.abs(w - exact)) / motor.synchronous_speed < 1e-9
+
+
 def test_a_locked_drive_whose_samples_cross_an_event_is_left_to_the_integrator():
     from clutchopt.simulate.engine import _Run
     from clutchopt.simulate.motor_phases import locked

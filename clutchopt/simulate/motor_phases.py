@@ -34,6 +34,7 @@ from clutchopt.simulate.stepping import EPS, Phase
 
 NEWTON_STEPS = 60  # at most (monotone and quadratic near the root: 4-7 from the phase's start on the cases)
 STALLS = 1e-8  # steps below this that no longer shrink are rounding (from here quadratic convergence is 1e-16 away)
+LIGHTEST_LOAD = 1e-3  # of the breakdown torque: below it the locked drive's terms cancel to eps T_k / L (1e-13 here)
 
 
 def in_closed_form(run, y, rate_floor: float) -> bool:
@@ -84,9 +85,11 @@ def run_up(run, t0: float, y0: np.ndarray, bound: float, span: float, event: int
 def locked(run, t0: float, y0: np.ndarray, bound: float, span: float, events: list) -> Phase | None:
     """The locked drive from (t0, y0) to ``bound`` (status ``end``), sampled as LSODA's spans would be; None where it
     is not in closed form (no motor, a load that varies, a drive that does not speed up towards the motor's steady
-    slip) or one of ``events`` crosses zero on its samples (the clutch breaks loose: LSODA locates it)."""
+    slip, a load under LIGHTEST_LOAD of the breakdown torque: its time and work are differences of terms T_k / L times
+    larger, s_2 growing with T_k / L) or one of ``events`` crosses zero on its samples (the clutch breaks loose: LSODA locates it)."""
     motor, load, model = run.motor, run.m.load, run.m
-    if not (_motor_alone(run) and not load.over and 0.0 < load.torque < motor.breakdown_torque and y0[1] == 0.0):
+    if not (_motor_alone(run) and not load.over and LIGHTEST_LOAD * motor.breakdown_torque <= load.torque
+            < motor.breakdown_torque and y0[1] == 0.0):
         return None
     s_k, w_s, torque = motor.breakdown_slip, motor.synchronous_speed, load.torque
     ratio = motor.breakdown_torque / torque
