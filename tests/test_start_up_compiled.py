@@ -135,6 +135,14 @@ def test_a_link_is_read_only_where_it_names_a_library_of_the_cache(monkeypatch, 
                                                                             tmp_path / ("nlp-" + "a" * 32 + ".so"))):
         link.write_text(name)
         assert later.linked_library(problem.posed) == expected
+    link.write_bytes(b"nlp-\xff\xfe.so")  # a damaged link (no UTF-8): no library, no error
+    assert later.linked_library(problem.posed) is None
+
+    def unserialisable(posed):
+        raise RuntimeError("Function::serialize not defined for Callback")
+
+    monkeypatch.setattr(later, "nlp_key", unserialisable)  # an NLP CasADi cannot serialise: no digest, no link
+    assert later.linked_library(problem.posed) is None
 
 
 @pytest.mark.skipif(compiled.compiler() is None, reason="no C compiler here (solves stay on the virtual machine)")

@@ -149,8 +149,8 @@ def linked_library(posed) -> Path | None:
         if not any(folder.glob("link-*.txt")):
             return None
         name = (folder / f"link-{nlp_key(posed)}.txt").read_text()[:64].strip()
-    except OSError:
-        return None
+    except (OSError, ValueError, RuntimeError):  # no folder or link, a damaged one (no UTF-8), an NLP CasADi cannot
+        return None  # serialise (a Callback): no library
     return folder / name if LIBRARY_NAME.fullmatch(name) else None  # (a file name of the cache's, nothing else)
 
 
