@@ -1,7 +1,7 @@
 """What the accuracy of the start time costs: the start-up cases solved at fixed collocation intervals, on the
 first (graded) mesh and on meshes adapted to the simulated start, against the independent simulator; and the
 default adaptive solve (mesh adaptation, then doubling, until the case's tolerance). What a start-up solve costs
-against its static one (issue 26: at most 10x): reading the case, the first solve in a process (the problem built)
+against its static one (issue 26: at most 10x): reading the case, the first solve in a process (its problems built)
 and the re-solve of the same case, beside the same case without its [start_up] section."""
 
 from __future__ import annotations
