@@ -91,9 +91,10 @@ SECTIONS: tuple[Section, ...] = (
                                  "tolerance; one run each, in ms, with the problem's build (first row of an "
                                  "interval count) and the re-simulation", start_up_design_rows),
     Section("start_up_solve", "Start-up solves against their static solves (the case without [start_up]): reading "
-                              "the case, the first solve in this process (the problem built) and the re-solve of the "
-                              "same case (median), in ms; the ratios (goal: at most 10); compiled_used: whether its "
-                              "start-up NLP's compiled functions (a library a sweep left in the cache) were evaluated",
+                              "the case, the first solve in this process (its problems built anew, as in a new "
+                              "process) and the re-solve of the same case (median), in ms; the ratios (goal: at most "
+                              "10); compiled_used: whether its start-up NLP's compiled functions (a library a sweep "
+                              "left in the cache) were evaluated",
             start_up_solve_rows),
     Section("reliability", "Failure probabilities against OpenTURNS: the wedge centrifuge's active constraints at its "
                            "worst-case and nominal designs under its [scatter], each estimator's probability with its "

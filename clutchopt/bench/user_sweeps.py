@@ -24,6 +24,7 @@ from clutchopt.bench.throughput import sweep_quantity
 from clutchopt.bench.timing import median_run
 from clutchopt.cases import Case, load_case
 from clutchopt.optimise.compiled import CACHE_ENV
+from clutchopt.optimise.problem import problems_set_aside, start_up_key
 from clutchopt.optimise.start_up_compiled import BUILD_LATER_ENV, compiled_now, wait_for_builds
 
 CASES = Path(__file__).resolve().parents[2] / "cases"
@@ -125,12 +126,12 @@ def start_up_rows(config) -> list[dict]:
         for state in config.start_up_compiled:
             with _compiled_state(state):
                 if state == IN_THE_CACHE:
-                    with _new_start_up_problems() as posed:
+                    with problems_set_aside(start_up_key) as posed:
                         _run(case, "driven_inertia", values, None, 1)
                     for problem in posed:
                         if problem.posed.library is None:  # (one already compiled: its library in the cache)
                             compiled_now(problem.posed)  # (and its link: used from a sweep's first point)
-                with _new_start_up_problems() as built:
+                with problems_set_aside(start_up_key) as built:  # (dropped after: their compiled state is the run's)
                     row = _run(case, "driven_inertia", values, None, 1)
             rows.append({"case": path.stem, "quantity": "driven_inertia", "span": "0.6x-1.4x", **row,
                          "compiled": state, "compiled_used": any(p.posed.library is not None for p in built)})
@@ -154,20 +155,3 @@ def _compiled_state(state: str):
                     os.environ.pop(name, None)
                 else:
                     os.environ[name] = value
-
-
-@contextmanager
-def _new_start_up_problems():
-    """The start-up problems this process built set aside (the run inside builds its own), and those built inside (a
-    list, filled on exit); on exit those dropped (their compiled state is the run's: a library of a temporary cache)
-    and the ones set aside given back."""
-    from clutchopt.optimise import problem
-
-    saved = {key: problem._CACHE.pop(key) for key in [key for key in problem._CACHE if key[-1] is not None]}  # (key:
-    built: list = []  # ..., start-up structure)
-    try:
-        yield built
-    finally:
-        for key in [key for key in problem._CACHE if key[-1] is not None]:
-            built.append(problem._CACHE.pop(key))
-        problem._CACHE.update(saved)

@@ -13,8 +13,10 @@ solves until the simulated start-up agrees. Sweeps chain SQP re-solves in one Ca
 from __future__ import annotations
 
 import math
+from contextlib import contextmanager
 from dataclasses import replace
 from functools import cached_property
+from typing import Callable
 
 import numpy as np
 
@@ -760,6 +762,26 @@ def problem_for(formulation: Formulation, objective: str = "mass", options: Solv
     if key not in _CACHE:
         _CACHE[key] = Problem(formulation, objective, options, start_up)
     return _CACHE[key]
+
+
+def start_up_key(key: tuple) -> bool:
+    """Whether a key of :func:`problem_for`'s is a start-up problem's (its structure, the last entry, given)."""
+    return key[-1] is not None
+
+
+@contextmanager
+def problems_set_aside(chosen: Callable[[tuple], bool] = lambda key: True):
+    """The problems :func:`problem_for` built in this process whose keys ``chosen`` picks (default: all) set aside, so
+    that what runs inside builds its own as a new process does, and yields the list of those built inside (filled on
+    exit); on exit those dropped and the ones set aside given back (a benchmark's first solves and start-up sweeps)."""
+    saved = {key: _CACHE.pop(key) for key in [key for key in _CACHE if chosen(key)]}
+    built: list[Problem] = []
+    try:
+        yield built
+    finally:
+        for key in [key for key in _CACHE if chosen(key)]:
+            built.append(_CACHE.pop(key))
+        _CACHE.update(saved)
 
 
 def case_formulation(case: Case, mode: str | None = None) -> Formulation:
