@@ -1,6 +1,7 @@
 """A start-up design a row of the collocation holds, not a limit (docs/start_up.md, "A design a row of the collocation
 holds"): ``optimise.problem.held_by_the_mesh`` finds it, and the accuracy loop solves the papers' sizing again on the
-mesh its own simulated start draws (``start_up.transcription.mesh_of_the_start``)."""
+mesh its own simulated start draws (``start_up.transcription.mesh_of_the_start``); where that misses a limit, ``solve``
+walks from the held design (``optimise.sampled_start.from_the_held_design``)."""
 
 from dataclasses import replace
 
@@ -8,6 +9,7 @@ import pytest
 
 from clutchopt.cases import load_case
 from clutchopt.optimise.problem import case_problem, held_by_the_mesh
+from clutchopt.optimise.sampled_start import from_the_held_design
 from clutchopt.start_up.transcription import mesh_of_the_start
 from tests.conftest import BALL_PAPER_STRESS, CASES
 
@@ -68,3 +70,38 @@ def test_a_stronger_motor_does_not_make_the_ball_clutch_heavier():
     assert solved.status == "optimal"
     assert solved.objective == pytest.approx(475.948316, rel=1e-8)
     assert {c.name for c in solved.constraints if c.active} == {"torque", "width_ratio"}
+
+
+def test_a_warm_solve_the_mesh_holds_past_the_sizing_is_walked_to_the_lighter_design():
+    # ball_motor_start in paper mode at 1.5 GPa, 650 kW solved warm from 507.9 kW (Problem.solve's ``warm``: a
+    # start-up's pareto, robust loop, bench re-solve). NumPy's AVX-512 loops: the loop ended "optimal" at 696.98 kg,
+    # the torque alone active, held (no start-up multiplier, the objective elastic to the drive), the papers' sizing's
+    # start missing a limit; the walk from it reaches 687.92 kg, the torque and the start time active, solve's alone
+    case = load_case(CASES / "ball_motor_start.toml").with_values(**BALL_PAPER_STRESS)
+    before, at = case.with_values(power=507.9e3), case.with_values(power=650e3)
+    problem = case_problem(before, mode="paper")
+    solved = problem.solve(at, warm=problem.solve(before))
+    assert solved.status == "optimal"
+    assert solved.objective == pytest.approx(687.9175724, rel=1e-6)  # main: 696.98 kg, held, "optimal"
+    assert {c.name for c in solved.constraints if c.active} == {"torque", "start_time"}
+    assert not problem._held(solved) and solved.diagnosis is None
+
+
+def test_a_held_design_gives_way_to_the_walk_s_lighter_design_or_is_kept_and_said_so():
+    # any CPU: wedge_motor_start's optimum, 0.7996838 kg; a held design 1 % over it (its design the optimum's) is walked
+    # back to it; one 1 % under it is kept, its diagnosis saying the walk found none lighter; every solve counted
+    case = load_case(CASES / "wedge_motor_start.toml")
+    problem = case_problem(case)
+    alone = problem.solve(case)
+    assert alone.status == "optimal" and alone.objective == pytest.approx(0.7996838, rel=1e-6)
+    heavier, lighter = (replace(alone, objective=alone.objective * factor, diagnosis="held")
+                        for factor in (1.01, 0.99))
+    walked_back = from_the_held_design(problem, case, heavier)
+    assert walked_back.status == "optimal" and walked_back.diagnosis is None
+    assert walked_back.objective == pytest.approx(alone.objective, rel=1e-6)
+    assert walked_back.design == pytest.approx(alone.design, rel=1e-5)
+    assert walked_back.solver.solves > heavier.solver.solves
+    kept = from_the_held_design(problem, case, lighter)
+    assert kept.objective == lighter.objective and kept.design == lighter.design
+    assert kept.diagnosis == "held; a walk from it reached no lighter design"
+    assert kept.solver.solves > lighter.solver.solves
