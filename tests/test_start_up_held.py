@@ -1,6 +1,7 @@
 """A start-up design a row of the collocation holds, not a limit (docs/start_up.md, "A design a row of the collocation
 holds"): ``optimise.problem.held_by_the_mesh`` finds it, and the accuracy loop solves the papers' sizing again on the
-mesh its own simulated start draws (``start_up.transcription.mesh_of_the_start``)."""
+mesh its own simulated start draws (``start_up.transcription.mesh_of_the_start``); where that misses a limit, ``solve``
+walks from the held design (``optimise.sampled_start.from_the_held_design``)."""
 
 from dataclasses import replace
 
@@ -68,3 +69,49 @@ def test_a_stronger_motor_does_not_make_the_ball_clutch_heavier():
     assert solved.status == "optimal"
     assert solved.objective == pytest.approx(475.948316, rel=1e-8)
     assert {c.name for c in solved.constraints if c.active} == {"torque", "width_ratio"}
+
+
+# ball_motor_start in paper mode at 1.5 GPa: (power before, power warm from it): solve's design of the second alone, kg
+WARM_PAIRS = {(507.9e3, 650e3): 687.9175724, (530e3, 610e3): 565.3603}
+
+
+def test_a_warm_solve_the_mesh_holds_past_the_sizing_is_walked_to_the_lighter_design():
+    # Problem.solve's ``warm`` (a start-up's pareto front, robust loop, the bench's re-solves). Which pair ends held
+    # depends on the last bits of IPOPT's iterates: NumPy's AVX-512 loops, 650 kW from 507.9 kW: "optimal" at 696.98
+    # kg, the torque alone active, held (no start-up multiplier, the objective elastic to the drive), the papers'
+    # sizing's start missing a limit (610 kW from 530 kW: not_found); its AVX2 loops, 610 kW from 530 kW: 570.62 kg
+    # held (650 kW: unverified). The walk from the held design reaches solve's design alone, the start time active
+    case = load_case(CASES / "ball_motor_start.toml").with_values(**BALL_PAPER_STRESS)
+    problem = case_problem(case, mode="paper")
+    optimal = 0
+    for (before, after), alone in WARM_PAIRS.items():
+        solved = problem.solve(case.with_values(power=after), warm=problem.solve(case.with_values(power=before)))
+        if solved.status == "optimal":
+            optimal += 1
+            assert solved.objective == pytest.approx(alone, rel=1e-6)  # main: 696.98 kg (AVX-512), held
+            assert {c.name for c in solved.constraints if c.active} == {"torque", "start_time"}
+            assert not problem._held(solved) and solved.diagnosis is None
+    assert optimal  # (each CPU measured: one pair, the held one)
+
+
+def test_a_held_design_gives_way_to_the_walk_s_lighter_design_or_is_kept_and_said_so(monkeypatch):
+    # any CPU: wedge_motor_start's optimum, 0.7996838 kg; a first solve held 1 % over it (its design the optimum's) is
+    # walked back to it by solve; one held 1 % under it is kept, its diagnosis saying the walk found none lighter; every
+    # solve counted
+    case = load_case(CASES / "wedge_motor_start.toml")
+    problem = case_problem(case)
+    alone = problem.solve(case)
+    assert alone.status == "optimal" and alone.objective == pytest.approx(0.7996838, rel=1e-6)
+    assert alone.diagnosis is None
+    heavier, lighter = (replace(alone, objective=alone.objective * factor, diagnosis="held")
+                        for factor in (1.01, 0.99))
+    monkeypatch.setattr(problem, "_held", lambda solution: solution is heavier or solution is lighter)
+    walked_back = problem.solve(case, first=heavier)
+    assert walked_back.status == "optimal" and walked_back.diagnosis is None
+    assert walked_back.objective == pytest.approx(alone.objective, rel=1e-6)
+    assert walked_back.design == pytest.approx(alone.design, rel=1e-5)
+    assert walked_back.solver.solves > heavier.solver.solves
+    kept = problem.solve(case, first=lighter)
+    assert kept.objective == lighter.objective and kept.design == lighter.design
+    assert kept.diagnosis == "held; a walk from it reached no lighter design"
+    assert kept.solver.solves > lighter.solver.solves

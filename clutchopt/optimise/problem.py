@@ -40,7 +40,7 @@ from clutchopt.optimise.start_up_shift import limit_shift, shifted
 from clutchopt.optimise.start_up_sweep import sized_choices
 from clutchopt.optimise.verdict import infeasible_at, shown
 from clutchopt.optimise.proofs import start_up_proofs
-from clutchopt.optimise.sampled_start import from_a_sampled_design
+from clutchopt.optimise.sampled_start import from_a_sampled_design, from_the_held_design
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
@@ -70,13 +70,17 @@ class Problem:
         has made it already (a sweep's quick solve of a point its interval search did not prove). A start-up's
         ``not_found`` solved from its own start alone (no start, warm solution or neighbour given: a sweep's point too,
         before the starts the sweep adds) is retried last from the sampled design its NLP's rows miss least
-        (:mod:`clutchopt.optimise.sampled_start`)."""
+        (:mod:`clutchopt.optimise.sampled_start`). A start-up optimum a row of the collocation holds
+        (:func:`held_by_the_mesh`; the loop's remedy, the papers' sizing, missed a limit) is walked from
+        (:func:`~clutchopt.optimise.sampled_start.from_the_held_design`): the lighter design kept."""
         try:
             solution = first or self.refined(case, start, warm, mesh, refine, coarser=coarser)
         except InputError:  # a start-up whose first simulation fails from this design: from the papers' sizing
             if self.start_up is None or (start is None and warm is None):
                 raise
             solution, start, warm = self.refined(case, None, None, mesh, refine, coarser=coarser), None, None
+        if self.start_up is not None and refine and self._held(solution):  # the loop's remedy missed: walked
+            solution = from_the_held_design(self, case, solution)
         if solution.status in DESIGN_STATUSES or not refine:
             return solution
         verdict = shown(self, case, solution, start is not None or warm is not None, neighbour)
