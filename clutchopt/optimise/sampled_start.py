@@ -45,6 +45,7 @@ from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.optimise.integers import least_violation
 from clutchopt.optimise.solution import Solution
+from clutchopt.optimise.verdict import one_more_start
 from clutchopt.optimise.verify import DESIGN_STATUSES
 
 SAMPLES = 16  # designs sampled over the box (a power of two: a Sobol sequence's balanced size). Each start simulated
@@ -220,9 +221,7 @@ def from_a_sampled_design(problem, case: Case, verdict: Solution) -> Solution:
         return verdict
     design = least_violated(problem.posed, case)
     retry = None if design is None else walked(problem, case, design)  # (None: its first simulation failed)
-    if retry is not None and retry.status in DESIGN_STATUSES:
-        retry.solver = retry.solver.summed([verdict.solver, retry.solver])
-        retry.starts = verdict.starts + (SAMPLED,)
-        return retry
-    return replace(verdict, starts=verdict.starts + (SAMPLED,),
-                   solver=verdict.solver.summed([verdict.solver] + ([retry.solver] if retry is not None else [])))
+    kept = one_more_start(verdict, retry, SAMPLED)
+    if kept is retry:  # (its design found from the starts tried before it, named as the verdict names them)
+        kept.starts = verdict.starts + (SAMPLED,)
+    return kept

@@ -23,7 +23,7 @@ import time
 from collections.abc import Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from functools import cached_property, partial
 from typing import Callable, Iterator
 
@@ -47,7 +47,7 @@ from clutchopt.optimise.start_up_sweep import solved_along
 from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_name, grid_points, grid_positions,
                                            parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
 from clutchopt.optimise.table import joined_tables, record_table
-from clutchopt.optimise.verdict import NEIGHBOUR, retried
+from clutchopt.optimise.verdict import NEIGHBOUR, one_more_start, retried
 from clutchopt.optimise.verify import DESIGN_STATUSES
 from clutchopt.solver_tolerance import SOLVER_TOL
 from clutchopt.records import design_inputs, scatter_record
@@ -207,12 +207,7 @@ def from_the_neighbour(problem, case: Case, verdict: Solution, design: dict[str,
     1.44 the continuation 545.449 kg where ``solve`` reaches 541.127 kg: tests/test_start_up_sweep_local.py)."""
     if verdict.status in DESIGN_STATUSES or verdict.status == "infeasible":
         return verdict
-    retry = retried(problem, case, design)
-    if retry is not None and retry.status in DESIGN_STATUSES:
-        retry.solver = retry.solver.summed([verdict.solver, retry.solver])
-        return retry
-    return replace(verdict, starts=verdict.starts + (NEIGHBOUR,),
-                   solver=verdict.solver.summed([verdict.solver] + ([retry.solver] if retry is not None else [])))
+    return one_more_start(verdict, retried(problem, case, design), NEIGHBOUR)
 
 
 def continued(problem, case: Case, feasible: tuple[dict, Solution], values: dict,

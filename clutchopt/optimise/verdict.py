@@ -143,6 +143,17 @@ def _confirmed(diagnosed: list[tuple[str, Solution]]) -> str:
     return f" (the least of {len(leasts)} starts' relaxations: {', '.join(f'{v:.3g}' for v in leasts)})"
 
 
+def one_more_start(verdict: Solution, retry: Solution | None, label: str) -> Solution:
+    """``verdict`` (a solve without a design) after one more start, ``label`` (``retry``: its solve, None where its
+    first simulation failed): the retry where it reaches a design, else ``verdict`` with ``label`` named among the
+    starts tried; the solver calls of both summed."""
+    if retry is not None and retry.status in DESIGN_STATUSES:
+        retry.solver = retry.solver.summed([verdict.solver, retry.solver])
+        return retry
+    return replace(verdict, starts=verdict.starts + (label,),
+                   solver=verdict.solver.summed([verdict.solver] + ([retry.solver] if retry is not None else [])))
+
+
 def _spent(solution: Solution, tried: list[tuple[str, Solution]]) -> Solution:
     """``solution`` with the solver calls of every start tried summed."""
     solution.solver = solution.solver.summed(s.solver for _, s in tried)
