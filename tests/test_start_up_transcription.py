@@ -86,3 +86,16 @@ def test_the_start_guess_samples_each_state_at_its_own_node_time(name):
     values = block.guess(history, {"locks_up": True, "start_time": 2.0}, 0.0, 30.0, np.ones(block.size), mesh)
     assert len(expected) == block.size
     np.testing.assert_allclose(values, expected, rtol=1e-13, atol=1e-15)
+
+
+def test_the_internal_bounds_are_built_once_and_read_only():
+    """The internal variables' bounds (one pair per variable, scaled) are built once a problem and shared by its
+    solves: the same arrays at the next call, read only; the lever's durations from 0, its speeds within [0, 1]."""
+    block = _block("lever")
+    lower, upper = block.bounds()
+    assert block.bounds()[0] is lower and block.bounds()[1] is upper
+    assert len(lower) == len(upper) == block.size
+    with pytest.raises(ValueError):
+        lower[0] = -1.0
+    speeds = [i for i, (_, kind) in enumerate(block.kinds) if kind == "driver_speed"]
+    assert speeds and np.all(lower[speeds] == 0.0) and np.all(upper[speeds] == 1.0)

@@ -247,8 +247,15 @@ class StartUpBlock:
         return self._scale
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lower, upper = zip(*self._bounds)
-        return np.array(lower), np.array(upper)
+        """The internal variables' bounds (scaled), built once (read only: each solve reads them)."""
+        return self._bound_arrays
+
+    @cached_property
+    def _bound_arrays(self) -> tuple[np.ndarray, np.ndarray]:
+        arrays = tuple(np.array(side) for side in zip(*self._bounds))
+        for array in arrays:
+            array.setflags(write=False)
+        return arrays
 
     def outputs(self) -> dict:
         """Figures of the NLP's start (expressions): for the start_up report and the trajectory. Built once (each
