@@ -60,8 +60,8 @@ def test_the_start_guess_puts_each_state_on_its_own_variables(name, expected):
 
 @pytest.mark.parametrize("name", ["cable", "wedge"])
 def test_the_start_guess_samples_each_state_at_its_own_node_time(name):
-    """A simulated start whose columns grow linearly in time (driving speed 1 + t, driven (1 + t) / 2, friction work 2 t,
-    temperature rise 3 t, twist 4 t; locked at 2 s, engaged and moving from the start): each state of the guess
+    """A simulated start whose columns grow linearly in time (driving speed 1 + t, driven (1 + t) / 2, friction work
+    2 t, temperature rise 3 t, twist 4 t; locked at 2 s, engaged and moving from the start): each state of the guess
     takes its column at its own node's time t_jk = begin + (start_k + tau_j h_k) (end - begin) of its phase, on the
     graded first mesh, in the NLP's order (per interval its nodes' states, then the locked phase's twists)."""
     block = _block(name)
