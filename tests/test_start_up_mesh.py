@@ -7,7 +7,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from clutchopt.start_up.mesh import MONITOR_FLOOR, adapted_mesh
+from clutchopt.start_up.mesh import MONITOR_FLOOR, adapted_mesh, graded_mesh
 
 STRUCTURE = SimpleNamespace(phases=("breakaway", "slip"), intervals=4, motor=False, graded_part=0.05)
 T = np.arange(4097) / 2048  # breakaway over [0, 1] s, slip over [1, 2] s, samples every 2^-11 s (exact in binary:
@@ -74,3 +74,16 @@ def test_a_knee_that_settles_within_the_tolerance_late_keeps_the_structures_part
     history = {"t": t, "w_driver": 100.0 * (1.0 + 1e-5 * t)}
     assert knee_part(knee_structure(0.1), history, (0.0, 1.0)) == 0.1
     assert knee_part(knee_structure(0.1, motor=False), history, (0.0, 1.0)) == 0.1  # no motor: no knee
+
+
+def test_the_graded_mesh_is_found_once_and_read_only():
+    """The graded first mesh (a root of its geometric series) is found once per arguments and shared: the same
+    array at the next call, read only, so that no solve changes the next one's first mesh; 16 intervals graded over
+    5 %: 8 growing from 1e-4 (relative) to sum 0.05, 8 uniform of 0.95 / 8."""
+    mesh = graded_mesh(16, 0.05)
+    assert graded_mesh(16, 0.05) is mesh
+    with pytest.raises(ValueError):
+        mesh[0] = 1.0
+    assert mesh[:8].sum() == pytest.approx(0.05, rel=1e-12) and mesh.sum() == pytest.approx(1.0, rel=1e-12)
+    np.testing.assert_array_equal(mesh[8:], np.full(8, 0.95 / 8))
+    assert mesh[0] < mesh[1] < mesh[7]

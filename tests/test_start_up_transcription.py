@@ -56,3 +56,46 @@ def test_the_start_guess_puts_each_state_on_its_own_variables(name, expected):
     for value, (phase, kind) in zip(values, block.kinds):
         assert value == pytest.approx(durations[phase] if kind == "duration" else expected[kind], rel=1e-12), (phase,
                                                                                                             kind)
+
+
+@pytest.mark.parametrize("name", ["cable", "wedge"])
+def test_the_start_guess_samples_each_state_at_its_own_node_time(name):
+    """A simulated start whose columns grow linearly in time (driving speed 1 + t, driven (1 + t) / 2, friction work
+    2 t, temperature rise 3 t, twist 4 t; locked at 2 s, engaged and moving from the start): each state of the guess
+    takes its column at its own node's time t_jk = begin + (start_k + tau_j h_k) (end - begin) of its phase, on the
+    graded first mesh, in the NLP's order (per interval its nodes' states, then the locked phase's twists)."""
+    block = _block(name)
+    t = np.array([0.0, 10.0])
+    history = {"t": t, "w_driver": 1.0 + t, "w_driven": 0.5 + 0.5 * t, "friction_work": 2.0 * t,
+               "temperature_rise": 3.0 * t, "twist": 4.0 * t}
+    of_time = {"driver_speed": (lambda s: 0.5 + 0.5 * s) if block.s.elastic else (lambda s: 1.0 + s),
+               "slip": lambda s: 0.5 + 0.5 * s, "friction_work": lambda s: 2.0 * s, "temperature": lambda s: 3.0 * s,
+               "twist": lambda s: 4.0 * s}
+    mesh, n = block.initial_mesh(), block.s.intervals
+    expected = []
+    for index, phase in enumerate(block.s.phases):
+        begin, end = (0.0, 2.0) if phase in ("slip", "locked") else (0.0, 0.0)
+        expected.append(end - begin)
+        lengths = mesh[index * n:(index + 1) * n]
+        starts = np.concatenate([[0.0], np.cumsum(lengths)[:-1]])
+        names = list(block._states(phase))
+        for k in range(n):
+            times = [begin + (starts[k] + block.tau[j] * lengths[k]) * (end - begin) for j in range(1, DEGREE + 1)]
+            expected += [of_time[state](time) for time in times for state in names]
+            expected += [of_time["twist"](time) for time in times] if phase == "locked" else []
+    values = block.guess(history, {"locks_up": True, "start_time": 2.0}, 0.0, 30.0, np.ones(block.size), mesh)
+    assert len(expected) == block.size
+    np.testing.assert_allclose(values, expected, rtol=1e-13, atol=1e-15)
+
+
+def test_the_internal_bounds_are_built_once_and_read_only():
+    """The internal variables' bounds (one pair per variable, scaled) are built once a problem and shared by its
+    solves: the same arrays at the next call, read only; the lever's durations from 0, its speeds within [0, 1]."""
+    block = _block("lever")
+    lower, upper = block.bounds()
+    assert block.bounds()[0] is lower and block.bounds()[1] is upper
+    assert len(lower) == len(upper) == block.size
+    with pytest.raises(ValueError):
+        lower[0] = -1.0
+    speeds = [i for i, (_, kind) in enumerate(block.kinds) if kind == "driver_speed"]
+    assert speeds and np.all(lower[speeds] == 0.0) and np.all(upper[speeds] == 1.0)

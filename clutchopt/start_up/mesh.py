@@ -4,6 +4,8 @@ adapted to the simulated start; the intervals are doubled where adapting no long
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 MAX_INTERVALS = 128  # per phase, refining by doubling
@@ -15,10 +17,18 @@ KNEE_PARTS = (0.01, 0.02) + GRADED_PARTS  # the same from the knee a simulated s
 KNEE_COVER = 6.0  # times the simulated knee the graded part covers (the optimum's knee: up to twice the start's)
 
 
+@lru_cache(maxsize=64)
 def graded_mesh(intervals: int, graded_part: float = 0.05, first: float = 1e-4) -> np.ndarray:
     """Interval lengths (fractions of a phase, summing to 1): half the intervals grow geometrically from ``first``
     over the first ``graded_part`` of the phase, the rest are uniform. The motor's run-up to the speed where its
-    torque meets the coupling's (a knee over a small part of the start) lies in the graded part."""
+    torque meets the coupling's (a knee over a small part of the start) lies in the graded part. Found once per
+    arguments (a root of the geometric series: 55 us, twice a cold start-up solve), read only."""
+    mesh = _graded_mesh(intervals, graded_part, first)
+    mesh.setflags(write=False)
+    return mesh
+
+
+def _graded_mesh(intervals: int, graded_part: float, first: float) -> np.ndarray:
     graded = intervals // 2
     if graded < 2:
         return np.full(intervals, 1.0 / intervals)

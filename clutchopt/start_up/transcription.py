@@ -247,8 +247,15 @@ class StartUpBlock:
         return self._scale
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lower, upper = zip(*self._bounds)
-        return np.array(lower), np.array(upper)
+        """The internal variables' bounds (scaled), built once (read only: each solve reads them)."""
+        return self._bound_arrays
+
+    @cached_property
+    def _bound_arrays(self) -> tuple[np.ndarray, np.ndarray]:
+        arrays = tuple(np.array(side) for side in zip(*self._bounds))
+        for array in arrays:
+            array.setflags(write=False)
+        return arrays
 
     def outputs(self) -> dict:
         """Figures of the NLP's start (expressions): for the start_up report and the trajectory. Built once (each
@@ -307,23 +314,23 @@ class StartUpBlock:
                    "friction_work": np.asarray(history["friction_work"]),
                    "temperature": np.asarray(history["temperature_rise"]),
                    "twist": np.asarray(history["twist"]) if "twist" in history else np.zeros_like(t)}
-        values, samples = [], {name: ([], []) for name in columns}  # name -> (its places in values, times)
+        n, tau = d.intervals, np.array(self.tau[1:])
+        values, place = np.zeros(self.size), 0
         for index, phase in enumerate(d.phases):
             begin, end = bounds[phase]
-            values.append(end - begin)
-            lengths = mesh[index * d.intervals:(index + 1) * d.intervals]
+            values[place] = end - begin
+            lengths = mesh[index * n:(index + 1) * n]
             starts = np.concatenate([[0.0], np.cumsum(lengths)[:-1]])
+            times = begin + (starts[:, None] + tau * lengths[:, None]) * (end - begin)  # (interval, node)
             names = list(self._states(phase))
-            for k in range(d.intervals):  # in the NLP's order: the nodes' states, then (locked) their twists
-                times = [begin + (starts[k] + self.tau[j] * lengths[k]) * (end - begin) for j in range(1, DEGREE + 1)]
-                places = [(time, name) for time in times for name in names]
-                for time, name in places + [(time, "twist") for time in times if phase == "locked"]:
-                    samples[name][0].append(len(values))
-                    samples[name][1].append(time)
-                    values.append(0.0)
-        values = np.array(values)
-        for name, (places, times) in samples.items():  # each state interpolated at all its points at once
-            values[places] = np.interp(times, t, columns[name])
+            twists = DEGREE if phase == "locked" else 0
+            width = DEGREE * len(names) + twists  # an interval's: its nodes' states, then (locked) their twists
+            first = place + 1 + width * np.arange(n)[:, None]  # each interval's first place in the NLP's order
+            for i, name in enumerate(names):  # each state interpolated at all its nodes of the phase at once
+                values[first + np.arange(DEGREE) * len(names) + i] = np.interp(times, t, columns[name])
+            if twists:
+                values[first + DEGREE * len(names) + np.arange(DEGREE)] = np.interp(times, t, columns["twist"])
+            place += 1 + width * n
         return values / scales
 
 
