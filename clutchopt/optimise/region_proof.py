@@ -53,8 +53,9 @@ that solve ends without a design, its own interval search (within SURE_BOXES) go
 
 A covered point reports the design of the last point without a design (its least relaxation) with every constraint
 re-evaluated in float64 at the point's own values (those of a run's points and of the runs searched ahead and
-proven together, one NumPy column a point: ``verdict.figures_at``), solver ``interval`` (no solver call where a region
-covers it, the one solve where its own search proved it) and its share of the search's seconds. A verdict is the
+proven together, one NumPy column a point: ``verdict.figures_at``; a batched sweep's read from its arrays, no Case
+a point: :class:`SharedBox`), solver ``interval`` (no solver call where a region covers it, the one solve where its
+own search proved it) and its share of the search's seconds. A verdict is the
 same whatever the order of the points: a region's proof is a proof of each point, and a point its region does not
 cover gets its own.
 """
@@ -91,7 +92,8 @@ class SharedBox(NamedTuple):
     point's case values, a row a point in the order of the formulation's quantities (what ``Posed.params`` reads of
     its case), and the design box every point shares. A run's search problems, float64 figures and conflicts are read
     from them, the same numbers as from each point's Case, which is then built only for a point solved or searched
-    alone (the ball beyond its edge: 100 Cases and search problems, about 20 us a point, 6 % of its CPU)."""
+    alone (the ball beyond its edge: a Case, a search problem and its values read twice more, 30 us a point, had
+    been a tenth of its CPU)."""
 
     values: np.ndarray  # points x quantities
     names: list[str]  # the quantities (the formulation's, in order)
