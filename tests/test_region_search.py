@@ -400,9 +400,11 @@ def test_the_runs_searched_ahead_are_figured_in_one_evaluation_with_the_first(mo
     # points where each run had one (8, 16, 32, 59), each point's those of that design at its own values alone
     from clutchopt.optimise.sweep_grid import Vary
 
-    evaluated, real = [], region_proof.figures_at
+    evaluated, real, over = [], region_proof.figures_at, region_proof.figures_over
     monkeypatch.setattr(region_proof, "figures_at",
                         lambda posed, cases, design: evaluated.append(len(cases)) or real(posed, cases, design))
+    monkeypatch.setattr(region_proof, "figures_over",
+                        lambda posed, p, count, design: evaluated.append(count) or over(posed, p, count, design))
     crusher = load_case(CASES / "ball_crusher.toml")
     quantity = next(q for q in crusher.quantities if q.name == "power")
     powers = np.linspace(250e3, 1000e3, 200)
@@ -417,6 +419,47 @@ def test_the_runs_searched_ahead_are_figured_in_one_evaluation_with_the_first(mo
         assert [c["value"] for c in record["constraints"]] == [c.value for c in checks]
         assert [c["feasible"] for c in record["constraints"]] == [c.feasible for c in checks]
         assert record["objective"]["value"] == objective
+
+
+def test_a_batched_sweep_reads_the_points_its_proofs_cover_from_its_arrays_without_a_case_each(monkeypatch):
+    # ball_compressor (design mode) beyond the edge of its power, 9.33x-18.7x (bench.user_sweeps), 40 points, none with
+    # a design: point 0 is solved and proven by its own search, the others by the runs searched in the same call. Their
+    # search problems, float64 figures and conflicts are read from the batched sweep's arrays (region_proof.SharedBox):
+    # a Case is built for point 0 alone (each point had built one, read its values twice more and its design box
+    # again), and what the arrays give is what each point's Case gives, to the bit
+    from clutchopt.optimise.batch import BatchSweep
+    from clutchopt.optimise.interval_proof import _search_problem
+    from clutchopt.optimise.sweep_grid import Vary
+
+    built, real = [], BatchSweep.point_case
+    monkeypatch.setattr(BatchSweep, "point_case", lambda self, k: built.append(k) or real(self, k))
+    ball = load_case(CASES / "ball_compressor.toml")
+    quantity = next(q for q in ball.quantities if q.name == "power")
+    powers = ball.values["power"] * np.geomspace(9.33, 18.66, 40)
+    result = Sweep(ball, [Vary(quantity, tuple(powers.tolist()))], mode="design").run(progress=False)
+    assert list(result.frame["status"]) == ["infeasible"] * 40
+    assert built == [0]
+    problem = case_problem(ball, "design")
+    posed, batch = problem.posed, BatchSweep(problem, ball, {"power": powers})
+    shared, cases = batch._shared, [ball.with_values(power=float(power)) for power in powers]
+    assert posed.sides.pairs  # (its width ratio held from both sides: the conflicts are evaluated)
+    for j in (0, 17, 39):
+        for given, own in zip(shared.problem(j), _search_problem(posed, cases[j])):
+            assert given.tobytes() == own.tobytes()
+    read, own = vars(shared.params_of(list(range(40)))), vars(posed.params_of(cases))
+    assert list(read) == list(own) and all(read[n].tobytes() == own[n].tobytes() for n in own)
+    conflicts = np.geomspace(0.5, 1.5, 40)  # (limits that leave room and limits that do not)
+    apart = [ball.with_values(width_ratio_max=float(ball.values["width_ratio_min"] * c)) for c in conflicts]
+    values = np.array([[getattr(posed.params(case), q.name) for q in posed.formulation.quantities] for case in apart])
+    assert posed.conflicting_over(values) == [posed.conflicting(case) for case in apart] == [c < 1 for c in conflicts]
+    design = result.solutions[0]["design"]
+    for k in (1, 20, 39):
+        record = result.solutions[k]
+        assert record["design"] == design
+        (checks, objective, _), = region_proof.figures_at(posed, [cases[k]], design)
+        assert [c["value"] for c in record["constraints"]] == [c.value for c in checks]
+        assert record["objective"]["value"] == objective
+
 
 def _swept_counting_diagnoses(monkeypatch, case, vary, mode):
     """The sweep of ``case`` over ``vary`` in ``mode``, and a list that gets an entry at each elastic diagnosis (a

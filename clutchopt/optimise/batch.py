@@ -83,7 +83,7 @@ from clutchopt.optimise.integers import (EXCLUDED, descend, downhill, excluded_e
 from clutchopt.optimise.interval_proof import carry_boxes, last_boxes
 from clutchopt.optimise.posed import Box, ScaledData, off_scale
 from clutchopt.optimise.problem import Problem
-from clutchopt.optimise.region_proof import Regions
+from clutchopt.optimise.region_proof import Regions, SharedBox
 from clutchopt.optimise.solution import Solution, WarmStart
 from clutchopt.optimise.tightening import tightening
 from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL
@@ -276,6 +276,8 @@ class BatchSweep:
         self.values = self._by_point.T  # a quantity a row
         self.names = [v.name for v in f.variables]
         self.lower, self.upper, _ = self.posed.bounds_and_start(case, None)
+        self._shared = SharedBox(self._by_point, [q.name for q in f.quantities], self.lower, self.upper)  # (the
+        # region proofs' reading of the points)
         self.integer = [i for i in self.posed.integer if self.lower[i] < self.upper[i]]
         fixed = self.lower == self.upper
         fixed[self.integer] = True
@@ -326,8 +328,8 @@ class BatchSweep:
             carry_boxes(self.posed, carried.boxes)
         while k < self.count:
             first, end, spent = k, min(k + window, self.count), self.work + WINDOW_WORK
-            self._regions = Regions(self.problem, self.point_case, self.count)  # infeasible regions proven at
-            # once, each window's afresh (what it takes from the windows before is ``carried``)
+            self._regions = Regions(self.problem, self.point_case, self.count, self._shared)  # infeasible regions
+            # proven at once, each window's afresh (what it takes from the windows before is ``carried``)
             blocks: list[Block] = []
             alone: dict[int, Solution] = {}
             failed = False  # the last point is without a design: the window waits for a feasible point after it
@@ -411,10 +413,11 @@ class BatchSweep:
         full verdict where that solve finds no design. Where a chain from the point before, with a design, ``failed``
         at k, the point's own interval search goes first (``Regions.point``'s ``beside``: a stretch without designs
         often starts there)."""
-        case = self._regions.point_case(k)  # (the case its region's search built, if it did)
-        solution = self._regions.point(k, lambda first: self.problem.solve(case, warm=warm, neighbour=self.feasible,
-                                                                           first=first),
-                                       warm, self.feasible if failed else None)
+        def solved(first: Solution | None) -> Solution:  # (the case its region's search built, if it did; none is
+            # built where a region proof covers the point: SharedBox)
+            return self.problem.solve(self._regions.point_case(k), warm=warm, neighbour=self.feasible, first=first)
+
+        solution = self._regions.point(k, solved, warm, self.feasible if failed else None)
         self._counted(solution)
         if solution.status in DESIGN_STATUSES:
             self.feasible = solution.design

@@ -338,8 +338,15 @@ class Posed:
         """:meth:`conflicting` at each of ``cases`` (a run of a sweep's points), in one evaluation."""
         if not self.sides.pairs:
             return [False] * len(cases)
-        return self.sides.conflicting(np.column_stack([self._given_p(case) for case in cases]),
-                                      FEASIBILITY_TOL).tolist()
+        return self.conflicting_over(np.array([list(vars(self.params(case)).values()) for case in cases], dtype=float))
+
+    def conflicting_over(self, values: np.ndarray) -> list[bool]:
+        """:meth:`conflicting` at each row of ``values`` (a point's case values in the order of the formulation's
+        quantities, as :meth:`params` reads them: a batched sweep's arrays), in one evaluation."""
+        if not self.sides.pairs:
+            return [False] * len(values)
+        units = np.ones((self.nlp["p"].shape[0] - values.shape[1], len(values)))
+        return self.sides.conflicting(np.vstack([values.T, units]), FEASIBILITY_TOL).tolist()
 
     def _given_p(self, case: Case) -> np.ndarray:
         """The NLP's parameter vector of ``case``'s values alone (scales 1: what the pairs' limits read)."""

@@ -53,8 +53,9 @@ that solve ends without a design, its own interval search (within SURE_BOXES) go
 
 A covered point reports the design of the last point without a design (its least relaxation) with every constraint
 re-evaluated in float64 at the point's own values (those of a run's points and of the runs searched ahead and
-proven together, one NumPy column a point: ``verdict.figures_at``), solver ``interval`` (no solver call where a region
-covers it, the one solve where its own search proved it) and its share of the search's seconds. A verdict is the
+proven together, one NumPy column a point: ``verdict.figures_at``; a batched sweep's read from its arrays, no Case
+a point: :class:`SharedBox`), solver ``interval`` (no solver call where a region covers it, the one solve where its
+own search proved it) and its share of the search's seconds. A verdict is the
 same whatever the order of the points: a region's proof is a proof of each point, and a point its region does not
 cover gets its own.
 """
@@ -63,16 +64,17 @@ from __future__ import annotations
 
 import time
 from dataclasses import replace
-from typing import Callable
+from typing import Callable, NamedTuple
 
 import numpy as np
 
+from clutchopt.model import namespace
 from clutchopt.optimise.interval_proof import (FEW_BOXES, MAX_BOXES, SURE_BOXES, Emptiness, _search_problem,
                                                keep_search, last_boxes, proofs_recorded, search_along, searched_along,
                                                searches)
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
-from clutchopt.optimise.verdict import emptied, figures_at, infeasible_at
+from clutchopt.optimise.verdict import emptied, figures_at, figures_over, infeasible_at
 from clutchopt.optimise.verify import DESIGN_STATUSES, check_design
 from clutchopt.units import from_si
 
@@ -85,13 +87,36 @@ REGION_BUDGET = 4  # a region's search may evaluate this many times the boxes of
 # (at least interval_proof.SURE_BOXES): one reaching past the region's edge gives up there and is bisected
 
 
+class SharedBox(NamedTuple):
+    """A batched sweep's points as its arrays (no varied quantity is a design variable: ``batch.batchable``): each
+    point's case values, a row a point in the order of the formulation's quantities (what ``Posed.params`` reads of
+    its case), and the design box every point shares. A run's search problems, float64 figures and conflicts are read
+    from them, the same numbers as from each point's Case, which is then built only for a point solved or searched
+    alone (the ball beyond its edge: a Case, a search problem and its values read twice more, 30 us a point, had
+    been a tenth of its CPU)."""
+
+    values: np.ndarray  # points x quantities
+    names: list[str]  # the quantities (the formulation's, in order)
+    lower: np.ndarray  # the design box (SI), every point's
+    upper: np.ndarray
+
+    def problem(self, j: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Point j's search problem, as ``interval_proof._search_problem`` builds it from its case."""
+        return np.concatenate([self.values[j], np.ones(len(self.lower)), [1.0]]), self.lower, self.upper
+
+    def params_of(self, points: list[int]):
+        """The values of ``points`` as ``Posed.params_of`` reads them from their cases: an array over them by name."""
+        return namespace({name: self.values[points, i] for i, name in enumerate(self.names)})
+
+
 class Regions:
     """Along a sweep (points 0 .. count - 1 in order, ``point_case(k)`` the case of point k, ``problem`` its built
     problem): :meth:`point` gives point k's solution, from a region proof that covers it (searching the run from k
     where the point before has no design), a search of its own or its solve."""
 
-    def __init__(self, problem, point_case, count: int):
+    def __init__(self, problem, point_case, count: int, shared: SharedBox | None = None):
         self.problem, self.posed, self._case_of, self.count = problem, problem.posed, point_case, count
+        self._shared = shared  # (a batched sweep's arrays: SharedBox)
         self._cases: dict = {}  # point -> its case, from its run's search on until its verdict (built once)
         self._problems: dict[int, tuple] = {}  # point -> its search problem, built once (a point's run and the runs
         # ahead of it are searched again from later calls: the ball over its contact stress built 148 for 57 points)
@@ -130,8 +155,9 @@ class Regions:
             return None
         problem = self._problems.get(k)  # (its search problem: its design box, the bounds its verdict shows)
         figures, conflicting = self._figures_at(k) or (None, None)
-        solution = _covered(self.problem, self.point_case(k), self._without.design, *proven, figures=figures,
-                            conflicting=conflicting, bounds=None if problem is None else problem[1:3])
+        known = figures is not None and conflicting is not None and problem is not None
+        solution = _covered(self.problem, None if known else self.point_case(k), self._without.design, *proven,
+                            figures=figures, conflicting=conflicting, bounds=None if problem is None else problem[1:3])
         if solution is not None:
             self.after(k, solution)
         return self.charged(solution)
@@ -421,7 +447,8 @@ class Regions:
         """The search problem of each point of ``runs`` (``(a, b)``: points a .. b - 1), by its number (each built
         once a sweep)."""
         for j in (j for a, b in runs for j in range(a, b) if j not in self._problems):
-            self._problems[j] = _search_problem(self.posed, self.point_case(j))
+            self._problems[j] = (self._shared.problem(j) if self._shared is not None
+                                 else _search_problem(self.posed, self.point_case(j)))
         return {j: self._problems[j] for a, b in runs for j in range(a, b)}
 
     def _runs_ahead(self, k: int, end: int) -> list[tuple[int, int]]:
@@ -570,9 +597,13 @@ class Regions:
             ahead = (j for (a, b), (_, outcome, _) in self._ahead.items() if outcome is not None and outcome.proven
                      for j in range(a, b))
             points = sorted({k, *(j for j in (*self._proven, *ahead) if j > k)})
-            cases = [self.point_case(j) for j in points]
-            self._figures = dict(zip(points, zip(figures_at(self.posed, cases, design),
-                                                 self.posed.conflicting_at(cases))))
+            if self._shared is not None and len(points) > 1:  # (read from the sweep's arrays: no Case a point)
+                figures = figures_over(self.posed, self._shared.params_of(points), len(points), design)
+                conflicting = self.posed.conflicting_over(self._shared.values[points])
+            else:
+                cases = [self.point_case(j) for j in points]
+                figures, conflicting = figures_at(self.posed, cases, design), self.posed.conflicting_at(cases)
+            self._figures = dict(zip(points, zip(figures, conflicting)))
             self._figured = dict(design)
         return self._figures.pop(k)
 
@@ -641,7 +672,8 @@ def _covered(problem, case, design: dict[str, float], text: str, seconds: float,
     float64 at this point's values (``figures``, if evaluated already: ``verdict.figures_at``) and the case's bounds
     (``bounds``, if read already: its search problem's); None where a requirement no design variable enters is
     broken or two limits of one quantity leave no room between (``Posed.conflicting``; ``conflicting``, if read
-    already), or a start-up's drive proofs hold (its own verdict says so)."""
+    already), or a start-up's drive proofs hold (its own verdict says so). ``case``: None where a static problem's
+    figures, conflict and bounds are given (read from a batched sweep's arrays: :class:`SharedBox`)."""
     posed = problem.posed
     if problem.start_up is not None and start_up_proofs(case):
         return None

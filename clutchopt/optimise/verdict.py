@@ -187,8 +187,16 @@ def figures_at(posed, cases: list[Case], design: dict[str, float]
     if count == 1 or posed.start_up is not None:
         return [(check_design(f, design, params), evaluate_objective(f, posed.objective.name, design, params),
                  evaluate_outputs(f, design, params)) for params in map(posed.params, cases)]
+    return figures_over(posed, posed.params_of(cases), count, design)
+
+
+def figures_over(posed, p, count: int, design: dict[str, float]
+                 ) -> list[tuple[list[ConstraintCheck], float, dict[str, Output]]]:
+    """:func:`figures_at` of a static problem at ``count`` (more than one) points whose values ``p`` holds, an array
+    over them by name (``Posed.params_of``; a batched sweep's points, read from its arrays:
+    ``region_proof.SharedBox``)."""
+    f = posed.formulation
     x = namespace({name: float(value) for name, value in design.items()})
-    p = posed.params_of(cases)
     constraints, table, objective = column_figures(f, posed.objective, x, p, count)
     outputs = column_outputs(f, x, p, count)
     names, declared = list(outputs), [out for _, out in outputs.values()]
