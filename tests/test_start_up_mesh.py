@@ -74,3 +74,17 @@ def test_a_knee_that_settles_within_the_tolerance_late_keeps_the_structures_part
     history = {"t": t, "w_driver": 100.0 * (1.0 + 1e-5 * t)}
     assert knee_part(knee_structure(0.1), history, (0.0, 1.0)) == 0.1
     assert knee_part(knee_structure(0.1, motor=False), history, (0.0, 1.0)) == 0.1  # no motor: no knee
+
+
+@pytest.mark.parametrize("times", ["geometric", "uniform", "two spacings"])
+def test_the_curvature_is_numpy_s_gradient_of_the_gradient_to_the_bit(times):
+    # its difference weights over the samples' times formed once, not in each of np.gradient's two calls: the same
+    # operations, so the meshes a simulated start suggests are the same to the last bit
+    from clutchopt.start_up.mesh import _second_derivative
+
+    t = {"geometric": 1e-3 * 1.02 ** np.arange(300), "uniform": 0.25 * np.arange(40.0),
+         "two spacings": np.concatenate([np.arange(20.0), 20.0 + 3.0 * np.arange(1.0, 20.0)])}[times]
+    values = np.vstack([np.sin(t), t**3, np.exp(-t), np.zeros_like(t)])
+    exact = np.gradient(np.gradient(values, t, axis=1), t, axis=1)
+    assert np.array_equal(_second_derivative(values, t), exact)
+    assert _second_derivative(values[:0], t).shape == (0, len(t))
