@@ -87,3 +87,17 @@ def test_the_graded_mesh_is_found_once_and_read_only():
     assert mesh[:8].sum() == pytest.approx(0.05, rel=1e-12) and mesh.sum() == pytest.approx(1.0, rel=1e-12)
     np.testing.assert_array_equal(mesh[8:], np.full(8, 0.95 / 8))
     assert mesh[0] < mesh[1] < mesh[7]
+
+
+@pytest.mark.parametrize("times", ["geometric", "uniform", "two spacings"])
+def test_the_curvature_is_numpy_s_gradient_of_the_gradient_to_the_bit(times):
+    # its difference weights over the samples' times formed once, not in each of np.gradient's two calls: the same
+    # operations, so the meshes a simulated start suggests are the same to the last bit
+    from clutchopt.start_up.mesh import _second_derivative
+
+    t = {"geometric": 1e-3 * 1.02 ** np.arange(300), "uniform": 0.25 * np.arange(40.0),
+         "two spacings": np.concatenate([np.arange(20.0), 20.0 + 3.0 * np.arange(1.0, 20.0)])}[times]
+    values = np.vstack([np.sin(t), t**3, np.exp(-t), np.zeros_like(t)])
+    exact = np.gradient(np.gradient(values, t, axis=1), t, axis=1)
+    assert np.array_equal(_second_derivative(values, t), exact)
+    assert _second_derivative(values[:0], t).shape == (0, len(t))

@@ -87,8 +87,8 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
     collocated = SimpleNamespace(start_time=summary["start_time"], friction_work=summary["friction_work"],
                                  temperatures=summary["temperature_rise"] or 0.0,
                                  lock_up_speed=summary["lock_up_speed"], stresses=np.array(node_stresses))
-    own = {check.name: check.value for check in check_constraints(
-        seen_constraints(s, formulation.speed_law, collocated, seen, drive)) if check.name in LIMIT_OF}
+    own = {check.name: check.value for check in check_constraints(  # (the limits' rows alone checked)
+        [c for c in seen_constraints(s, formulation.speed_law, collocated, seen, drive) if c.name in LIMIT_OF])}
     return summary, checks, adapted_mesh(s, result.columns, times), own
 
 

@@ -87,7 +87,7 @@ def adapted_mesh(structure, history, phase_times: list[float]) -> np.ndarray:
         values = columns[:, inside][:, first]
         spreads = values.max(axis=1) - values.min(axis=1)
         moving = spreads > STILL * ranges  # a state at rest but for rounding shapes nothing
-        curvature = np.abs(np.gradient(np.gradient(values[moving], t, axis=1), t, axis=1))
+        curvature = np.abs(_second_derivative(values[moving], t))
         monitor = np.zeros(len(t))
         for row, spread in zip(curvature, spreads[moving]):  # the states in turn, summed in the same order
             monitor += row * span * span / spread
@@ -99,6 +99,26 @@ def adapted_mesh(structure, history, phase_times: list[float]) -> np.ndarray:
         meshes.append(np.diff(edges))
         begin = end
     return np.concatenate(meshes)
+
+
+def _second_derivative(values: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """np.gradient(np.gradient(values, t, axis=1), t, axis=1) with the weights of its differences over ``t`` formed
+    once, not twice a gradient (the same operations, the same bits: 0.1 of a check's 0.6 ms of mesh a phase)."""
+    dx = np.diff(t)
+    if (dx == dx[0]).all():  # a uniform spacing: np.gradient's own case
+        return np.gradient(np.gradient(values, dx[0], axis=1), dx[0], axis=1)
+    before, after = dx[:-1], dx[1:]
+    weights = (-after / (before * (before + after)), (after - before) / (before * after),
+               before / (after * (before + after)))
+
+    def slope(f):
+        out = np.empty_like(f)
+        out[:, 1:-1] = weights[0] * f[:, :-2] + weights[1] * f[:, 1:-1] + weights[2] * f[:, 2:]
+        out[:, 0] = (f[:, 1] - f[:, 0]) / dx[0]
+        out[:, -1] = (f[:, -1] - f[:, -2]) / dx[-1]
+        return out
+
+    return slope(slope(values))
 
 
 def _cumulative(values: np.ndarray, t: np.ndarray) -> np.ndarray:
