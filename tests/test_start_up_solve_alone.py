@@ -9,12 +9,13 @@ import pytest
 
 from clutchopt.cases import load_case
 from clutchopt.optimise import start_up_sweep
+from clutchopt.optimise import sweep as sweep_module
 from clutchopt.optimise.problem import case_problem, verified_alone
 from clutchopt.optimise.sampled_start import SAMPLED
 from clutchopt.optimise.start_up_sweep import as_solve_would, sized_out
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import Vary
-from clutchopt.optimise.verdict import GIVEN
+from clutchopt.optimise.verdict import GIVEN, OWN
 from clutchopt.output import solution_json
 from clutchopt.store import RunStore
 from conftest import BALL_PAPER_STRESS, CASES
@@ -53,7 +54,7 @@ def test_an_unverified_design_from_a_start_given_gives_way_to_solve_s_verified_o
                         unverified if start is not None else refined(case, start, *args, **kw))
     kept = problem.solve(case, start=alone.design)
     assert kept.status == "optimal" and kept.objective == alone.objective and kept.design == alone.design
-    assert kept.starts == (GIVEN, "the papers' sizing") and kept.solve_alone is None
+    assert kept.starts == (GIVEN, OWN) and kept.solve_alone is None
     assert kept.solver.solves == unverified.solver.solves + alone.solver.solves
 
 
@@ -121,3 +122,29 @@ def test_a_sweep_record_that_says_so_shows_it_in_its_table_json_and_store(monkey
     assert resumed.solutions[2]["solve_alone"] == {"status": "not_found", "objective": None}
     assert list(resumed.frame["diagnosis"]) == ["", "", "solve alone: not_found"]
     assert solution_json(resumed.solutions[2])["units"]["solve_alone"] == {"objective": "kg"}
+
+
+def test_a_sweep_point_a_start_of_the_sweep_s_own_designed_says_solve_alone_had_none(monkeypatch):
+    # wedge_motor_start over its driven inertia, 0.5, 0.52, 0.54 kg m^2: at 0.52 a spy has the warm start and
+    # ``solve`` alone end without a design; the neighbour's design (0.5's) reaches one, ``solve``'s of 0.52 (the
+    # same optimum), and the record says ``solve`` alone had none, which it did not say before
+    case = load_case(CASES / "wedge_motor_start.toml")
+    quantity = next(q for q in case.quantities if q.name == "driven_inertia")
+    sweep = Sweep(case, [Vary(quantity, (0.5, 0.52, 0.54))])
+    problem = case_problem(sweep.case)
+    middle = problem.solve(sweep.case.with_values(driven_inertia=0.52))
+    solve, along = problem.solve, sweep_module.solved_along
+
+    def none_alone(point, *args, **kw):
+        solved = solve(point, *args, **kw)
+        at = point.values["driven_inertia"] == 0.52 and not args and set(kw) <= {"first"}
+        return replace(solved, status="not_found", diagnosis="no feasible design found (a spy)") if at else solved
+    monkeypatch.setattr(problem, "solve", none_alone)
+    monkeypatch.setattr(sweep_module, "solved_along", lambda problem, point, previous:
+                        None if point.values["driven_inertia"] == 0.52 else along(problem, point, previous))
+    records = sweep.run(progress=False).solutions
+    assert [r["status"] for r in records] == ["optimal"] * 3
+    assert records[1]["objective"]["value"] == pytest.approx(middle.objective, rel=START_UP_RTOL)
+    assert records[1]["solve_alone"] == {"status": "not_found", "objective": None}
+    assert records[1]["diagnosis"] == "solve alone: not_found"
+    assert "solve_alone" not in records[0] and "solve_alone" not in records[2]

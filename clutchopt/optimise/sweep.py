@@ -165,7 +165,8 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
                 if waited.status == "infeasible":  # proven: no design to find
                     continue
                 retry = problem.solve(waited_case, start=solution.design)
-                waiting[k] = (w, waited_case, retry if retry.status in DESIGN_STATUSES else waited)
+                waiting[k] = (w, waited_case, beside(retry, waited if problem.start_up is not None else None)
+                              if retry.status in DESIGN_STATUSES else waited)
             yield from (_one(points, w, names, waited) for w, _, waited in waiting)
             waiting = []
             yield _one(points, j, names, solution)
@@ -184,16 +185,27 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
     (:func:`from_the_neighbour`): the neighbour's design, then the continuation. Without a design, followed from the
     last feasible point (:func:`continued`; ball_motor_start in paper mode from 507.9 to 605.7 kW: its continuation
     lost 554.69 kg, which the sampled design reaches). ``point_case``: ``case`` with ``values``."""
+    alone = None  # a start-up point's verdict as ``solve`` of it alone gives it, where that has no design
     if problem.start_up is None:
         solution = problem.solve(point_case, warm=previous, first=first,
                                  neighbour=neighbour.design if neighbour is not None else None)
     else:
         solution = solved_along(problem, point_case, previous) or problem.solve(point_case, first=first)
+        alone = solution if solution.status not in DESIGN_STATUSES else None
         if neighbour is not None and not problem.failed_starts.lost_beyond(point_case, neighbour.design):
             solution = from_the_neighbour(problem, point_case, solution, neighbour.design)
     if solution.status not in DESIGN_STATUSES and solution.status != "infeasible" and feasible is not None:
         solution = continued(problem, case, feasible, values) or solution  # (a proven point: no design to follow)
-    return solution
+    return beside(solution, alone)
+
+
+def beside(solution: Solution, alone: Solution | None) -> Solution:
+    """A start-up sweep point's ``solution``, saying what ``solve`` of the point alone ended with (``alone``: its
+    verdict without a design; ``Solution.beside_alone``) where a start the sweep adds (the neighbour's design, the
+    continuation, the next feasible point's design) reached a design ``solve`` alone did not."""
+    if alone is None or solution.status not in DESIGN_STATUSES:
+        return solution
+    return solution.beside_alone(alone)
 
 
 def from_the_neighbour(problem, case: Case, verdict: Solution, design: dict[str, float]) -> Solution:

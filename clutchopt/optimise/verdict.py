@@ -37,13 +37,15 @@ from clutchopt.optimise.verify import (DESIGN_STATUSES, ConstraintCheck, check_d
 
 NEIGHBOUR = "the neighbouring point's design"  # a start a sweep adds: the last feasible point's design
 GIVEN = "the start given"  # a solve's first start where its caller gives one (a design or a warm solution)
+OWN = "the case's own starts (solve alone)"  # every start ``solve`` of the case alone tries, where a start-up's start
+# given ends unverified (``problem.verified_alone``)
 
 
 def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[str, float] | None) -> Solution:
     """``first`` (a solve without a design) retried from the starts that can reach one; the first design found, or
     the verdict on all of them."""
     first_label = GIVEN if started else ("the papers' sizing" if problem.start_up is not None
-                                                     else "the case's own start")
+                                         else "the case's own start")
     tried = [(first_label, first)]
     proofs: list[str] = []  # (a drive that starts no coupling as asked is proven before any solve: Problem.proven)
     early = empty_design_space(problem.posed, case, SURE_BOXES) if _relaxed_apart(problem, first) else None
@@ -65,7 +67,7 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
                 continue
             tried.append((label, retry))
             if retry.status in DESIGN_STATUSES:
-                return _found(problem, retry, tried)
+                return _spent(retry, tried)
     if first.diagnosed and first.diagnosed.proven:
         return _spent(first, tried)
     if not proofs:
@@ -77,7 +79,7 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
             if retry is not None:
                 tried.append(("a design the interval search met", retry))
                 if retry.status in DESIGN_STATUSES:
-                    return _found(problem, retry, tried)
+                    return _spent(retry, tried)
         elif emptiness is not None and emptiness.proven:
             proofs = [emptied(emptiness)]
     return _spent(_verdict(tried, proofs), tried)
@@ -153,15 +155,6 @@ def one_more_start(verdict: Solution, retry: Solution | None, label: str) -> Sol
         return retry
     return replace(verdict, starts=verdict.starts + (label,),
                    solver=verdict.solver.summed([verdict.solver] + ([retry.solver] if retry is not None else [])))
-
-
-def _found(problem, retry: Solution, tried: list[tuple[str, Solution]]) -> Solution:
-    """A retry's design, the solver calls of every start tried summed; a start-up's names those starts (``starts``:
-    its design from the last), as the sampled start's does (its records are kept whole: a static sweep's, gathered
-    as arrays, keep no starts)."""
-    if problem.start_up is not None:
-        retry.starts = tuple(label for label, _ in tried)
-    return _spent(retry, tried)
 
 
 def _spent(solution: Solution, tried: list[tuple[str, Solution]]) -> Solution:
