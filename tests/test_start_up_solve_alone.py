@@ -12,13 +12,14 @@ from clutchopt.optimise import start_up_sweep
 from clutchopt.optimise import sweep as sweep_module
 from clutchopt.optimise.problem import case_problem, verified_alone
 from clutchopt.optimise.sampled_start import SAMPLED
+from clutchopt.optimise.solution import Solution
 from clutchopt.optimise.start_up_sweep import as_solve_would, sized_out
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import Vary
 from clutchopt.optimise.verdict import GIVEN, OWN
 from clutchopt.output import solution_json
 from clutchopt.store import RunStore
-from conftest import BALL_PAPER_STRESS, CASES
+from conftest import BALL_PAPER_STRESS, CASES, Interrupted, resumed_sweep, stopped_sweep
 from test_hostile_agree import START_UP_RTOL
 
 
@@ -124,27 +125,57 @@ def test_a_sweep_record_that_says_so_shows_it_in_its_table_json_and_store(monkey
     assert solution_json(resumed.solutions[2])["units"]["solve_alone"] == {"objective": "kg"}
 
 
-def test_a_sweep_point_a_start_of_the_sweep_s_own_designed_says_solve_alone_had_none(monkeypatch):
-    # wedge_motor_start over its driven inertia, 0.5, 0.52, 0.54 kg m^2: at 0.52 a spy has the warm start and
-    # ``solve`` alone end without a design; the neighbour's design (0.5's) reaches one, ``solve``'s of 0.52 (the
-    # same optimum), and the record says ``solve`` alone had none, which it did not say before
+def _none_alone_at(monkeypatch, inertias: tuple[float, ...], at: float) -> tuple[Sweep, Solution]:
+    """wedge_motor_start's sweep over ``inertias`` (driven inertia, kg m^2), a spy having the warm start and ``solve``
+    alone at ``at`` end without a design; and ``solve``'s design there."""
     case = load_case(CASES / "wedge_motor_start.toml")
     quantity = next(q for q in case.quantities if q.name == "driven_inertia")
-    sweep = Sweep(case, [Vary(quantity, (0.5, 0.52, 0.54))])
+    sweep = Sweep(case, [Vary(quantity, inertias)])
     problem = case_problem(sweep.case)
-    middle = problem.solve(sweep.case.with_values(driven_inertia=0.52))
+    there = problem.solve(sweep.case.with_values(driven_inertia=at))
     solve, along = problem.solve, sweep_module.solved_along
 
     def none_alone(point, *args, **kw):
         solved = solve(point, *args, **kw)
-        at = point.values["driven_inertia"] == 0.52 and not args and set(kw) <= {"first"}
-        return replace(solved, status="not_found", diagnosis="no feasible design found (a spy)") if at else solved
+        alone = point.values["driven_inertia"] == at and not args and set(kw) <= {"first"}
+        return replace(solved, status="not_found", diagnosis="no feasible design found (a spy)") if alone else solved
     monkeypatch.setattr(problem, "solve", none_alone)
     monkeypatch.setattr(sweep_module, "solved_along", lambda problem, point, previous:
-                        None if point.values["driven_inertia"] == 0.52 else along(problem, point, previous))
+                        None if point.values["driven_inertia"] == at else along(problem, point, previous))
+    return sweep, there
+
+
+def test_a_sweep_point_a_start_of_the_sweep_s_own_designed_says_solve_alone_had_none(monkeypatch):
+    # wedge_motor_start over its driven inertia, 0.5, 0.52, 0.54 kg m^2: at 0.52 a spy has the warm start and
+    # ``solve`` alone end without a design; the neighbour's design (0.5's) reaches one, ``solve``'s of 0.52 (the
+    # same optimum), and the record says ``solve`` alone had none, which it did not say before
+    sweep, middle = _none_alone_at(monkeypatch, (0.5, 0.52, 0.54), 0.52)
     records = sweep.run(progress=False).solutions
     assert [r["status"] for r in records] == ["optimal"] * 3
     assert records[1]["objective"]["value"] == pytest.approx(middle.objective, rel=START_UP_RTOL)
     assert records[1]["solve_alone"] == {"status": "not_found", "objective": None}
     assert records[1]["diagnosis"] == "solve alone: not_found"
     assert "solve_alone" not in records[0] and "solve_alone" not in records[2]
+
+
+def test_a_resumed_run_s_first_point_has_the_neighbour_and_continuation_of_the_uninterrupted_run(monkeypatch,
+                                                                                                  tmp_path):
+    # the same spy, over 0.5 then 0.52 kg m^2: uninterrupted, 0.52 takes 0.5's design as its neighbour's (solve
+    # alone: none); stopped after 0.5 was stored and resumed, 0.52 had no point before it: not_found, where the
+    # uninterrupted run has a design. Now the resumed run's first points see the last stored feasible point's design
+    # as the uninterrupted run's do: the same record
+    sweep, last = _none_alone_at(monkeypatch, (0.5, 0.52), 0.52)
+    uninterrupted = sweep.run(progress=False).solutions
+    original = RunStore.record_points
+
+    def once(*args, **kwargs):  # 0.5 stored (a point with a design is stored as it is solved), then stopped
+        original(*args, **kwargs)
+        raise Interrupted
+    resumed = resumed_sweep(stopped_sweep(tmp_path / "runs.sqlite", lambda: sweep, monkeypatch, RunStore,
+                                          "record_points", once), lambda: sweep)
+    assert (resumed.reused, resumed.solved) == (1, 1)
+    again, once_run = resumed.solutions[1], uninterrupted[1]
+    assert again["status"] == once_run["status"] == "optimal"  # (before: not_found resumed)
+    assert again["objective"]["value"] == pytest.approx(last.objective, rel=START_UP_RTOL)
+    assert again["design"] == pytest.approx(once_run["design"], rel=START_UP_RTOL)
+    assert again["solve_alone"] == once_run["solve_alone"] == {"status": "not_found", "objective": None}
