@@ -65,3 +65,6 @@ def test_a_held_point_keeps_solve_s_design_unless_it_is_heavier(monkeypatch):
     assert held.solve_alone == {"status": "optimal", "objective": alone.objective}
     assert held.diagnosis == f"solve alone: optimal, {alone.objective:.10g} kg"
     assert held.as_dict()["solve_alone"] == held.solve_alone
+    monkeypatch.setattr(start_up_sweep, "as_solve_would", lambda problem, case, solution, sized:
+                        solution.beside_alone(alone))  # (a probe that says so itself: said once)
+    assert solved_alone_where_held(problem, case, lighter, sized).diagnosis == held.diagnosis

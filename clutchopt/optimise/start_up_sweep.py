@@ -110,7 +110,9 @@ def solved_alone_where_held(problem, case: Case, solution: Solution, sized: "Siz
     if alone.status == "optimal" and not alone.objective > solution.objective * (1 + tolerance):
         return replace(alone, solver=alone.solver.summed([solution.solver, alone.solver]))
     probed = as_solve_would(problem, case, solution, sized)  # (its solves counted with ``solution``'s)
-    return replace(probed, solver=probed.solver.summed([probed.solver, alone.solver])).beside_alone(alone)
+    counted = replace(probed, solver=probed.solver.summed([probed.solver, alone.solver]))
+    return counted if counted.solve_alone is not None else counted.beside_alone(alone)  # (said once: the probe's
+    # ``solve`` alone is this one)
 
 
 def as_solve_would(problem, case: Case, solution: Solution, sized: "SizedOut") -> Solution:
