@@ -167,7 +167,8 @@ def solution_json(record: dict) -> dict:
     design = record.get("units", {}).get("design", {})
     record = with_units(record, {"constraints": CONSTRAINT_UNITS, "solver": SOLVER_UNITS, "bounds": design,
                                  "sensitivities": UNITLESS,
-                                 "integer_search": {**design, "objective": record["objective"].get("unit")}})
+                                 "integer_search": {**design, "objective": record["objective"].get("unit")},
+                                 "solve_alone": {"objective": record["objective"].get("unit")}})
     start_up = record.get("start_up")
     if start_up:
         figures = start_up.get("units", {})

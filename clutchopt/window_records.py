@@ -249,10 +249,10 @@ def _statics(record) -> tuple | None:
 def _solution_statics(solution) -> tuple | None:
     """:func:`_statics` of a Solution (duck-typed), from its fields: equal ones give records with equal templates,
     their keys in one order (display units compared where the record holds their SI units: no looser); None for a
-    solution whose record holds more than a template expands (a start-up's path, the starts tried) or for what is
-    no Solution."""
+    solution whose record holds more than a template expands (a start-up's path, the starts tried, ``solve_alone``) or
+    for what is no Solution."""
     try:
-        if solution.start_up is not None or solution.starts:
+        if solution.start_up is not None or solution.starts or solution.solve_alone is not None:
             return None
         solver, outputs = solution.solver, solution.outputs
         return (type(solution), solution.coupling, solution.mode, solution.objective_name, solution.objective_unit,

@@ -41,7 +41,8 @@ def test_every_point_of_a_sweep_whose_warm_loops_end_held_has_solve_s_design():
 def test_a_held_point_keeps_solve_s_design_unless_it_is_heavier(monkeypatch):
     # any CPU: a design held at 1 % over wedge_motor_start's optimum gives way to solve's; one 1 % under it is kept
     # (a verified design lighter than solve's, as start_up_sweep.as_solve_would keeps the lighter), and its integers
-    # probed as as_solve_would probes a warm point's (a spy: the wedge has none to probe); every solve counted
+    # probed as as_solve_would probes a warm point's (a spy: the wedge has none to probe); every solve counted; the
+    # kept one's record says what solve alone ended with (``solve_alone``, and in its diagnosis)
     case = load_case(CASES / "wedge_motor_start.toml")
     problem = case_problem(case)
     alone = problem.solve(case)
@@ -59,3 +60,11 @@ def test_a_held_point_keeps_solve_s_design_unless_it_is_heavier(monkeypatch):
     held = solved_alone_where_held(problem, case, lighter, sized)
     assert held.objective == lighter.objective and held.solver.solves == lighter.solver.solves + alone.solver.solves
     assert probed == [(problem, case, lighter, sized)]
+    assert kept.solve_alone is None  # (``solve``'s own design: nothing to say)
+    # the held design kept says what ``solve`` of the point alone ended with (its record, table and store)
+    assert held.solve_alone == {"status": "optimal", "objective": alone.objective}
+    assert held.diagnosis == f"solve alone: optimal, {alone.objective:.10g} kg"
+    assert held.as_dict()["solve_alone"] == held.solve_alone
+    monkeypatch.setattr(start_up_sweep, "as_solve_would", lambda problem, case, solution, sized:
+                        solution.beside_alone(alone))  # (a probe that says so itself: said once)
+    assert solved_alone_where_held(problem, case, lighter, sized).diagnosis == held.diagnosis

@@ -38,7 +38,7 @@ from clutchopt.optimise.solution import Diagnosis, Solution, SolverInfo, SolverO
 from clutchopt.optimise.start_up_check import BACK_OFF_STEPS, CENTRE, corrected_case, start_up_report, worn_start
 from clutchopt.optimise.start_up_shift import limit_shift, shifted
 from clutchopt.optimise.start_up_sweep import sized_choices
-from clutchopt.optimise.verdict import infeasible_at, shown
+from clutchopt.optimise.verdict import GIVEN, OWN, infeasible_at, shown
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.sampled_start import from_a_sampled_design, from_the_held_design
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
@@ -64,15 +64,18 @@ class Problem:
     def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
               mesh: np.ndarray | None = None, refine: bool = True, neighbour: dict[str, float] | None = None,
               coarser: float = math.inf, first: Solution | None = None) -> Solution:
-        """Solve for one case (:meth:`refined`); a solve that ends without a design is retried from the starts that
-        can reach one before its verdict is given (:func:`clutchopt.optimise.verdict.shown`): ``neighbour``, the
-        feasible design of a neighbouring point (a sweep's), among them. ``first``: that first solve, where a caller
-        has made it already (a sweep's quick solve of a point its interval search did not prove). A start-up's
-        ``not_found`` solved from its own start alone (no start, warm solution or neighbour given: a sweep's point too,
-        before the starts the sweep adds) is retried last from the sampled design its NLP's rows miss least
-        (:mod:`clutchopt.optimise.sampled_start`). A start-up optimum a row of the collocation holds
-        (:func:`held_by_the_mesh`; the loop's remedy, the papers' sizing, missed a limit) is walked from
-        (:func:`~clutchopt.optimise.sampled_start.from_the_held_design`): the lighter design kept."""
+        """Solve for one case (:meth:`refined`); a solve that ends without a design is retried from the starts that can
+        reach one before its verdict is given (:func:`clutchopt.optimise.verdict.shown`): ``neighbour``, the feasible
+        design of a neighbouring point (a sweep's), among them. ``first``: that first solve, where a caller has made it
+        already (a sweep's quick solve of a point its interval search did not prove). A start-up's ``not_found`` solved
+        from its own start or from a ``start`` given (no warm solution or neighbour given: a sweep's point too, before
+        the starts the sweep adds) is retried last from the sampled design its NLP's rows miss least
+        (:mod:`clutchopt.optimise.sampled_start`): a start given that ends without a design gets every start ``solve``
+        of the case alone tries (ball_motor_start in paper mode at 1.5 GPa and 650 kW from the design at 507.9 kW:
+        ``not_found`` at 656.12 kg, now 687.92 kg from the sampled design, as alone), and one that ends ``unverified``
+        is kept only where ``solve`` alone has no verified design (:func:`verified_alone`). A start-up optimum a row of
+        the collocation holds (:func:`held_by_the_mesh`; the loop's remedy, the papers' sizing, missed a limit) is
+        walked from (:func:`~clutchopt.optimise.sampled_start.from_the_held_design`): the lighter design kept."""
         try:
             solution = first or self.refined(case, start, warm, mesh, refine, coarser=coarser)
         except InputError:  # a start-up whose first simulation fails from this design: from the papers' sizing
@@ -81,11 +84,16 @@ class Problem:
             solution, start, warm = self.refined(case, None, None, mesh, refine, coarser=coarser), None, None
         if self.start_up is not None and refine and self._held(solution):  # the loop's remedy missed: walked
             solution = from_the_held_design(self, case, solution)
-        if solution.status in DESIGN_STATUSES or not refine:
+        own = self.start_up is not None and warm is None and neighbour is None and (
+            start is None or mesh is None and coarser == math.inf)  # (a start-up's own starts and the sampled one:
+        # tried alone and from a caller's start; not from the design a loop hands its doubled problem)
+        if solution.status == "optimal" or not refine or solution.status in DESIGN_STATUSES and (
+                start is None or not own):
             return solution
+        if solution.status in DESIGN_STATUSES:  # the start given's design, not verified: what ``solve`` alone ends
+            return verified_alone(solution, self.solve(case))  # with beside it
         verdict = shown(self, case, solution, start is not None or warm is not None, neighbour)
-        alone = self.start_up is not None and start is None and warm is None and neighbour is None
-        return from_a_sampled_design(self, case, verdict) if alone else verdict
+        return from_a_sampled_design(self, case, verdict) if own else verdict
 
     def refined(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
                 mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,
@@ -629,6 +637,17 @@ class Problem:
                         elasticities, scale, (run["lam_x"], run["lam_g"]), {v.name: v.unit for v in f.variables},
                         start_up, run["x"][len(scale):] if posed.start_up is not None else None, mesh, diagnosed,
                         collocated=collocated)
+
+
+def verified_alone(given: Solution, alone: Solution) -> Solution:
+    """A start-up solved from a start given that ended ``unverified`` (``given``), beside ``solve`` of the case alone
+    (``alone``): the verified design of the two, ``alone``'s where it is ``optimal`` (its ``starts`` the start given,
+    then those ``alone`` names, else OWN), else ``given``'s, saying what ``solve`` alone ended with
+    (``Solution.beside_alone``); the solver calls of both summed."""
+    solver = given.solver.summed([given.solver, alone.solver])
+    if alone.status == "optimal":
+        return replace(alone, solver=solver, starts=(GIVEN,) + (alone.starts or (OWN,)))
+    return replace(given, solver=solver).beside_alone(alone)
 
 
 def no_lighter(objective: float, heavier: float) -> tuple[str, str]:

@@ -216,11 +216,19 @@ def from_the_held_design(problem, case: Case, held: Solution) -> Solution:
 def from_a_sampled_design(problem, case: Case, verdict: Solution) -> Solution:
     """``verdict`` (a start-up solve's ``not_found``) retried from the least violated sampled design
     (:func:`least_violated`): its design where the retry reaches one, else ``verdict`` with that start named among
-    those tried; the solver calls of both summed."""
+    those tried; the solver calls of both summed. The samples and the walk are a function of the case alone: a walk
+    that ended without a design is kept (``Problem.failed_starts``, as a retry from a given design is) and not walked
+    again at the case (a sweep's point retried from the next feasible point's design, ``solve``'s sampled retry of
+    it already spent)."""
     if verdict.status != "not_found":
         return verdict
-    design = least_violated(problem.posed, case)
-    retry = None if design is None else walked(problem, case, design)  # (None: its first simulation failed)
+    key = problem.failed_starts.key(case, {SAMPLED: 0.0})
+    retry = problem.failed_starts.known(key)
+    if retry is None:
+        design = least_violated(problem.posed, case)
+        retry = None if design is None else walked(problem, case, design)  # (None: its first simulation failed)
+        if retry is not None and retry.status not in DESIGN_STATUSES:
+            problem.failed_starts.keep(key, retry)
     kept = one_more_start(verdict, retry, SAMPLED)
     if kept is retry:  # (its design found from the starts tried before it, named as the verdict names them)
         kept.starts = verdict.starts + (SAMPLED,)

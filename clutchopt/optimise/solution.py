@@ -4,13 +4,13 @@ start's data."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import NamedTuple
 
 import numpy as np
 
 from clutchopt.model import Output
-from clutchopt.optimise.verify import ConstraintCheck
+from clutchopt.optimise.verify import DESIGN_STATUSES, ConstraintCheck
 from clutchopt.solver_tolerance import SOLVER_TOL
 from clutchopt.units import si_unit
 
@@ -155,6 +155,8 @@ class Solution:
     #     integer choices whose simulated starts moved limit_shift's limits (clutchopt.optimise.own_shift)
     collocated: dict[str, float] = field(default_factory=dict, repr=False)  # a start-up: the NLP's own figure of
     #     each start-up limit's check, by name (clutchopt.optimise.start_up_check.corrected_case)
+    solve_alone: dict | None = None  # where the design kept is not what ``solve`` of the case alone ends with: that
+    #     solve's status and objective (None without a design), also named in the diagnosis (:meth:`beside_alone`)
 
     def _repr_html_(self) -> str:
         """Jupyter shows a solution as the tables of ``clutchopt solve``."""
@@ -197,7 +199,18 @@ class Solution:
             "sensitivities": self.sensitivities,
             **({"start_up": self.start_up} if self.start_up is not None else {}),
             **({"starts": list(self.starts)} if self.starts else {}),
+            **({"solve_alone": self.solve_alone} if self.solve_alone is not None else {}),
         }
+
+    def beside_alone(self, alone: "Solution") -> "Solution":
+        """This solution, kept where ``solve`` of its case alone ended otherwise (``alone``: a heavier design, or none
+        verified), saying so: ``solve_alone`` holds that solve's status and objective (None without a design), and
+        the diagnosis names them ("solve alone: optimal, 687.9176 kg"); a sweep's record, its table and the run store
+        show it as they show the diagnosis."""
+        designed = alone.status in DESIGN_STATUSES
+        note = f"solve alone: {alone.status}" + (f", {alone.objective:.10g} {alone.objective_unit}" if designed else "")
+        return replace(self, solve_alone={"status": alone.status, "objective": alone.objective if designed else None},
+                       diagnosis=f"{self.diagnosis}; {note}" if self.diagnosis else note)
 
 
 @dataclass

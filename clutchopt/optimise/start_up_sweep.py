@@ -94,15 +94,15 @@ def solved_alone_where_held(problem, case: Case, solution: Solution, sized: "Siz
     """A point whose warm loop ended on a design a row of the collocation holds, not a limit
     (``clutchopt.optimise.problem.held_by_the_mesh``: no start-up limit's multiplier, the objective elastic to the
     drive; the loop's own remedy, the papers' sizing, missed a limit): also solved as ``solve`` solves it alone
-    (``Problem.solve``: its starts, retries and the sampled design), whose design is kept unless it has none verified
-    or is heavier beyond the tolerance (the held design kept has its integers probed as :func:`as_solve_would`
-    probes them); every solve counted. None where ``solution`` is not held. A held design is the fold of the
-    discretised start on the mesh the point before handed on, not the physics' optimum: its lighter neighbours along
-    the torque's need meet every simulated limit (ball_motor_start in paper mode at 1.5 GPa, 507.9 then 650 kW: held
-    at 696.98 kg, the torque alone active, where ``solve`` reaches 687.92 kg, the start time active too; on NumPy's
-    SSE4 loops with OpenBLAS on Sandybridge kernels, 507.9 then 605.7 kW: 558.28 kg against
-    554.69 kg: tests/test_start_up_sweep_held.py). A held point costs one ``solve`` of it more (for the same design
-    where ``solve``'s own loop ends held too); no point of the bench's driven-inertia sweeps ends held."""
+    (``Problem.solve``: its starts, retries and the sampled design), whose design is kept unless it has none verified or
+    is heavier beyond the tolerance (the held design kept has its integers probed as :func:`as_solve_would` probes them,
+    and says what ``solve`` alone ended with: ``Solution.beside_alone``); every solve counted. None where ``solution``
+    is not held. A held design is the fold of the discretised start on the mesh the point before handed on, not the
+    physics' optimum: its lighter neighbours along the torque's need meet every simulated limit (ball_motor_start in
+    paper mode at 1.5 GPa, 507.9 then 650 kW: held at 696.98 kg, the torque alone active, where ``solve`` reaches 687.92
+    kg, the start time active too; on NumPy's SSE4 loops with OpenBLAS on Sandybridge kernels, 507.9 then 605.7 kW:
+    558.28 kg against 554.69 kg: tests/test_start_up_sweep_held.py). A held point costs one ``solve`` of it more (for
+    the same design where ``solve``'s own loop ends held too); no point of the bench's driven-inertia sweeps ends held."""
     if not problem._held(solution):
         return None
     alone = problem.solve(case)
@@ -110,21 +110,24 @@ def solved_alone_where_held(problem, case: Case, solution: Solution, sized: "Siz
     if alone.status == "optimal" and not alone.objective > solution.objective * (1 + tolerance):
         return replace(alone, solver=alone.solver.summed([solution.solver, alone.solver]))
     probed = as_solve_would(problem, case, solution, sized)  # (its solves counted with ``solution``'s)
-    return replace(probed, solver=probed.solver.summed([probed.solver, alone.solver]))
+    counted = replace(probed, solver=probed.solver.summed([probed.solver, alone.solver]))
+    return counted if counted.solve_alone is not None else counted.beside_alone(alone)  # (said once: the probe's
+    # ``solve`` alone is this one)
 
 
 def as_solve_would(problem, case: Case, solution: Solution, sized: "SizedOut") -> Solution:
-    """A point whose integers are not those of the papers' sizing at the point: also solved as ``solve`` solves it
-    alone (``Problem.refined`` from the sizing: its relaxation rounded, its search), the lighter of the two kept, each
-    verified by its own simulated start. The fixed-integer start-up NLPs have several local optima, and a warm search
-    decides the integers from the point before's optimum and its own loop's meshes, not from the sizing: kept, it
-    tries their downhill neighbours from the kept optimum only (ball_motor_start over its motor inertia, 14.65 then
-    12.26 kg m^2, kept 25 rows, 1002.07 kg, where ``solve`` relaxes from the sizing's 23 rows to 24.x and ends at 24
-    rows, 998.53 kg: tests/test_hostile_agree.py); moved, its loop may have left a count on a local verdict
-    (ball_motor_start over driven_inertia, 100 then 375 kg m^2, on NumPy's AVX2 loops: 25 rows found infeasible on the
-    adapted mesh from their first-mesh optimum, 26 rows kept at 1029.52 kg, where ``solve`` ends at 25 rows, 1026.07
-    kg: tests/test_start_up_sweep.py). Where the integers are the sizing's, ``solve`` starts from them too (its search
-    then completed by them, ``integers.from_the_start``): not solved again."""
+    """A point whose integers are not those of the papers' sizing at the point: also solved as ``solve`` solves it alone
+    (``Problem.solve``: from the sizing, its relaxation rounded, its search, its retries), the lighter of the two kept,
+    each verified by its own simulated start; the warm design kept where ``solve``'s is heavier beyond the tolerance or
+    not verified says so (``Solution.beside_alone``: the record's ``solve_alone``). The fixed-integer start-up NLPs have
+    several local optima, and a warm search decides the integers from the point before's optimum and its own loop's
+    meshes, not from the sizing: kept, it tries their downhill neighbours from the kept optimum only (ball_motor_start
+    over its motor inertia, 14.65 then 12.26 kg m^2, kept 25 rows, 1002.07 kg, where ``solve`` relaxes from the sizing's
+    23 rows to 24.x and ends at 24 rows, 998.53 kg: tests/test_hostile_agree.py); moved, its loop may have left a count
+    on a local verdict (ball_motor_start over driven_inertia, 100 then 375 kg m^2, on NumPy's AVX2 loops: 25 rows found
+    infeasible on the adapted mesh from their first-mesh optimum, 26 rows kept at 1029.52 kg, where ``solve`` ends at 25
+    rows, 1026.07 kg: tests/test_start_up_sweep.py). Where the integers are the sizing's, ``solve`` starts from them too
+    (its search then completed by them, ``integers.from_the_start``): not solved again."""
     names = problem.integer_names
     if not names:
         return solution
@@ -134,13 +137,16 @@ def as_solve_would(problem, case: Case, solution: Solution, sized: "SizedOut") -
     probe = problem._solve(case, warm=solution, diagnosed=False, cold=False, redecide=True)
     tried = [probe]
     if probe.status == "optimal" and any(probe.design[name] != solution.design[name] for name in names):
-        tried.append(problem.refined(case, diagnosed=False))
+        tried.append(problem.solve(case))
     alone, tolerance = tried[-1], problem.posed.start_up.s.spec.tolerance
-    kept = (alone if len(tried) > 1 and alone.status == "optimal" and
-            alone.objective < solution.objective * (1 - tolerance) else solution)
+    solved = len(tried) > 1 and alone.status == "optimal"
+    kept = alone if solved and alone.objective < solution.objective * (1 - tolerance) else solution
     spent = [s.solver for s in (solution, *tried)]
-    return replace(kept, solver=replace(kept.solver, solves=sum(s.solves for s in spent),
-                                        time_s=sum(s.time_s for s in spent)))  # (every solve counted)
+    counted = replace(kept, solver=replace(kept.solver, solves=sum(s.solves for s in spent),
+                                           time_s=sum(s.time_s for s in spent)))  # (every solve counted)
+    if len(tried) > 1 and not (solved and alone.objective <= solution.objective * (1 + tolerance)):
+        return counted.beside_alone(alone)  # (``solve``'s heavier beyond the tolerance, or none verified)
+    return counted
 
 
 @dataclass(frozen=True)

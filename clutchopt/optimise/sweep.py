@@ -115,15 +115,26 @@ class PointResults:
 CONTINUATION_STEPS = 3  # from the last feasible point to one without a design, before its verdict
 
 
+@dataclass(frozen=True)
+class StoredDesign:
+    """A stored point's design (SI): what a resumed run's first point takes of the last feasible point before it, its
+    neighbour's design and the continuation's start (:func:`solve_points`' ``feasible``)."""
+
+    design: dict[str, float]
+
+
 def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robustness | None,
-                 points: Points, carried: Carried | None = None) -> Iterator[PointResults]:
+                 points: Points, carried: Carried | None = None,
+                 feasible: tuple[dict, StoredDesign] | None = None) -> Iterator[PointResults]:
     """Solve points in order, each warm-started from the last optimum; yields the results as they are solved: a
     window of points at once where the problem allows batches (``clutchopt.optimise.batch``; each window's results
     with what the next window starts from, ``carried``), else one point each. With ``options.choose`` or
     ``robust``, each point is designed as ``solve`` designs a case (every choice, for the scatter:
     :func:`~clutchopt.optimise.design.design_case`), the best kept with its choice. ``carried``: a resumed batched
     sweep's window start (``points`` all of the sweep's; those from ``carried.point`` on are solved; only a batched
-    window records one, and a sweep's key fixes whether it batches)."""
+    window records one, and a sweep's key fixes whether it batches). ``feasible``: a resumed run's last feasible point
+    before ``points`` (its values and stored design), whose design its first points without one are retried from as
+    the uninterrupted run's are (the neighbour's design, the continuation)."""
     problem = case_problem(case, mode, objective, SolverOptions(tol=tol))
     names = [v.name for v in problem.formulation.variables]
     if robust is not None or case.options.get("choose"):
@@ -144,7 +155,7 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
         return
     with problem.failed_starts.along_a_run():  # (the paths a start-up run lost, for its later points alone)
         previous: Solution | None = None  # the last point's optimum (a warm start), None next to a failure
-        feasible: tuple[dict, Solution] | None = None  # the last feasible point's values and design
+        # feasible: the last feasible point's values and design (a resumed run's: stored, ``StoredDesign``)
         designs: dict[tuple, Solution] = {}  # feasible designs by the point's values
         waiting: list[tuple[int, Case, Solution]] = []  # points without a design, until the next feasible one
         pairs = list(points.pairs())
@@ -165,7 +176,8 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
                 if waited.status == "infeasible":  # proven: no design to find
                     continue
                 retry = problem.solve(waited_case, start=solution.design)
-                waiting[k] = (w, waited_case, retry if retry.status in DESIGN_STATUSES else waited)
+                waiting[k] = (w, waited_case, beside(retry, waited if problem.start_up is not None else None)
+                              if retry.status in DESIGN_STATUSES else waited)
             yield from (_one(points, w, names, waited) for w, _, waited in waiting)
             waiting = []
             yield _one(points, j, names, solution)
@@ -173,7 +185,8 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
 
 
 def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solution | None,
-            feasible: tuple[dict, Solution] | None, neighbour: Solution | None, first: Solution | None) -> Solution:
+            feasible: tuple[dict, Solution | StoredDesign] | None, neighbour: Solution | StoredDesign | None,
+            first: Solution | None) -> Solution:
     """A point's full verdict in a sweep solved point by point (continuing from ``first``, a solve already made:
     ``Problem.solve``'s ``first``): falls back to the case's own start by itself; a start-up design starts from the
     point before's optimum on the first mesh (clutchopt.optimise.start_up_sweep), else as `solve` does, from the papers'
@@ -184,16 +197,27 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
     (:func:`from_the_neighbour`): the neighbour's design, then the continuation. Without a design, followed from the
     last feasible point (:func:`continued`; ball_motor_start in paper mode from 507.9 to 605.7 kW: its continuation
     lost 554.69 kg, which the sampled design reaches). ``point_case``: ``case`` with ``values``."""
+    alone = None  # a start-up point's verdict as ``solve`` of it alone gives it, where that has no design
     if problem.start_up is None:
         solution = problem.solve(point_case, warm=previous, first=first,
                                  neighbour=neighbour.design if neighbour is not None else None)
     else:
         solution = solved_along(problem, point_case, previous) or problem.solve(point_case, first=first)
+        alone = solution if solution.status not in DESIGN_STATUSES else None
         if neighbour is not None and not problem.failed_starts.lost_beyond(point_case, neighbour.design):
             solution = from_the_neighbour(problem, point_case, solution, neighbour.design)
     if solution.status not in DESIGN_STATUSES and solution.status != "infeasible" and feasible is not None:
         solution = continued(problem, case, feasible, values) or solution  # (a proven point: no design to follow)
-    return solution
+    return beside(solution, alone)
+
+
+def beside(solution: Solution, alone: Solution | None) -> Solution:
+    """A start-up sweep point's ``solution``, saying what ``solve`` of the point alone ended with (``alone``: its
+    verdict without a design; ``Solution.beside_alone``) where a start the sweep adds (the neighbour's design, the
+    continuation, the next feasible point's design) reached a design ``solve`` alone did not."""
+    if alone is None or solution.status not in DESIGN_STATUSES:
+        return solution
+    return solution.beside_alone(alone)
 
 
 def from_the_neighbour(problem, case: Case, verdict: Solution, design: dict[str, float]) -> Solution:
@@ -210,7 +234,7 @@ def from_the_neighbour(problem, case: Case, verdict: Solution, design: dict[str,
     return one_more_start(verdict, retried(problem, case, design), NEIGHBOUR)
 
 
-def continued(problem, case: Case, feasible: tuple[dict, Solution], values: dict,
+def continued(problem, case: Case, feasible: tuple[dict, Solution | StoredDesign], values: dict,
               steps: int = CONTINUATION_STEPS) -> Solution | None:
     """The design at ``values`` followed from a feasible point's (its values, its design) in ``steps`` equal steps
     of the varied quantities, each started from the last; None where a step finds no design."""
@@ -313,6 +337,28 @@ def dask_runner(address: str) -> Callable:
         finally:
             client.close()
     return run
+
+
+def _in_order(kept: np.ndarray, pending: Points) -> bool:
+    """Whether the points stored (``kept``, their indices in order) are those before the first pending one."""
+    first = int(pending.index[0])
+    return len(kept) == first and (not len(kept) or int(kept[-1]) == first - 1)
+
+
+def _last_feasible(points: list[dict], stored: dict[int, dict], kept: np.ndarray,
+                   pending: Points) -> tuple[dict, StoredDesign] | None:
+    """Where a sweep solved point by point resumes after its first points, stored in order: the last of them with a
+    design (its varied values and stored design), as the uninterrupted run's points after it see it (its neighbour's
+    design, the continuation's start); None where there is none, or the points stored are not those before the first
+    pending one (a pool's)."""
+    if not _in_order(kept, pending):
+        return None
+    for index in reversed(kept.tolist()):
+        record = stored[index]
+        if isinstance(record, dict) and record.get("status") in DESIGN_STATUSES and isinstance(record.get("design"),
+                                                                                               dict):
+            return points[index], StoredDesign(dict(record["design"]))
+    return None
 
 
 @dataclass
@@ -436,12 +482,15 @@ class Sweep:
         bar = tqdm(total=len(self.grid), initial=len(stored), unit="point", desc="sweep", disable=not progress,
                    mininterval=0.5)
         sequential = runner is None and jobs <= 1  # (windows one after another: each starts from the one before)
-        carried = self._carried(store, sweep_id, kept, pending) if stored and sequential and len(pending) else None
+        resumed = bool(stored) and sequential and len(pending) > 0  # (after its first points, in this process)
+        carried = self._carried(store, sweep_id, kept, pending) if resumed else None
+        feasible = _last_feasible(self.points, stored, kept, pending) if resumed else None
         starts = sequential and (not stored or carried is not None)  # (windows from point 0 or from a stored start
         # record where the next starts: a cold resume's count their points from its first, over other points)
         started = time.perf_counter()
         with bar, interrupt_between_points() as check:
             solving = (solve_points(*task, self.grid, carried) if carried is not None
+                       else solve_points(*task, pending, feasible=feasible) if feasible is not None
                        else (runner or local_runner(jobs))(task, pending, size))
             for results in solving:
                 if store is not None and sweep_id is not None:  # the results in hand in one transaction
@@ -466,9 +515,9 @@ class Sweep:
         the resumed points are the uninterrupted run's bit for bit. None (the points solved from cold, as before)
         where the store holds none: points stored out of order (a pool), or by an older clutchopt. A damaged one
         (``Carried.from_dict`` refuses it): StoreError."""
-        first = int(pending.index[0])
-        if len(kept) != first or (len(kept) and int(kept[-1]) != first - 1):
+        if not _in_order(kept, pending):
             return None
+        first = int(pending.index[0])
         posed = case_problem(self.case, self.formulation.mode, self.objective.name, SolverOptions(tol=self.tol)).posed
         return store.sweep_start(sweep_id, first, partial(Carried.from_dict, point=first, variables=posed.names,
                                                           rows=len(posed.lbg)))
