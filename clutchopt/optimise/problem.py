@@ -73,7 +73,10 @@ class Problem:
         (:mod:`clutchopt.optimise.sampled_start`): a start given that ends without a design gets every start ``solve``
         of the case alone tries (ball_motor_start in paper mode at 1.5 GPa and 650 kW from the design at 507.9 kW:
         ``not_found`` at 656.12 kg, now 687.92 kg from the sampled design, as alone), and one that ends ``unverified``
-        is kept only where ``solve`` alone has no verified design (:func:`verified_alone`). A start-up optimum a row of
+        is kept only where ``solve`` alone has no verified design (:func:`verified_alone`); a start-up from a ``warm``
+        solution (a start-up's pareto front, the robust loop) that ends without a verified design is set beside
+        ``solve`` of the case alone the same way (ball_motor_start in paper mode at 1.5 GPa, 610 kW warm from 530 kW's
+        optimum: ``not_found``, alone 565.36 kg: tests/test_start_up_held.py). A start-up optimum a row of
         the collocation holds (:func:`held_by_the_mesh`; the loop's remedy, the papers' sizing, missed a limit) is
         walked from (:func:`~clutchopt.optimise.sampled_start.from_the_held_design`): the lighter design kept."""
         try:
@@ -87,8 +90,11 @@ class Problem:
         own = self.start_up is not None and warm is None and neighbour is None and (
             start is None or mesh is None and coarser == math.inf)  # (a start-up's own starts and the sampled one:
         # tried alone and from a caller's start; not from the design a loop hands its doubled problem)
-        if solution.status == "optimal" or not refine or solution.status in DESIGN_STATUSES and (
-                start is None or not own):
+        if solution.status == "optimal" or not refine:
+            return solution
+        if self.start_up is not None and warm is not None and neighbour is None:  # a warm start (a start-up's
+            return verified_alone(solution, self.solve(case))  # pareto front, robust loop) that missed: as alone
+        if solution.status in DESIGN_STATUSES and (start is None or not own):
             return solution
         if solution.status in DESIGN_STATUSES:  # the start given's design, not verified: what ``solve`` alone ends
             return verified_alone(solution, self.solve(case))  # with beside it
@@ -640,12 +646,13 @@ class Problem:
 
 
 def verified_alone(given: Solution, alone: Solution) -> Solution:
-    """A start-up solved from a start given that ended ``unverified`` (``given``), beside ``solve`` of the case alone
-    (``alone``): the verified design of the two, ``alone``'s where it is ``optimal`` (its ``starts`` the start given,
-    then those ``alone`` names, else OWN), else ``given``'s, saying what ``solve`` alone ended with
+    """A start-up solved from a start given that ended without a verified design (``given``: a start's
+    ``unverified``, a warm solution's ``unverified`` or ``not_found``), beside ``solve`` of the case alone
+    (``alone``): ``alone``'s where it is ``optimal`` or ``given`` has no design (its ``starts`` the start given, then
+    those ``alone`` names, else OWN), else ``given``'s, saying what ``solve`` alone ended with
     (``Solution.beside_alone``); the solver calls of both summed."""
     solver = given.solver.summed([given.solver, alone.solver])
-    if alone.status == "optimal":
+    if alone.status == "optimal" or given.status not in DESIGN_STATUSES:
         return replace(alone, solver=solver, starts=(GIVEN,) + (alone.starts or (OWN,)))
     return replace(given, solver=solver).beside_alone(alone)
 
