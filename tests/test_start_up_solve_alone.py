@@ -3,16 +3,19 @@ the robust loop's first solve) that ends without a verified design also tries wh
 (``Problem.solve``: its own starts, the sampled design last), and a design kept where ``solve`` alone ends otherwise
 says so (``Solution.beside_alone``: the record's ``solve_alone`` and its diagnosis)."""
 
+import json
+import sqlite3
 from dataclasses import replace
 
 import pytest
 
 from clutchopt.cases import load_case
+from clutchopt.optimise import problem as problem_module
 from clutchopt.optimise import start_up_sweep
 from clutchopt.optimise import sweep as sweep_module
 from clutchopt.optimise.problem import case_problem, verified_alone
 from clutchopt.optimise.sampled_start import SAMPLED
-from clutchopt.optimise.solution import Solution
+from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.start_up_sweep import as_solve_would, sized_out
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import Vary
@@ -179,3 +182,96 @@ def test_a_resumed_run_s_first_point_has_the_neighbour_and_continuation_of_the_u
     assert again["objective"]["value"] == pytest.approx(last.objective, rel=START_UP_RTOL)
     assert again["design"] == pytest.approx(once_run["design"], rel=START_UP_RTOL)
     assert again["solve_alone"] == once_run["solve_alone"] == {"status": "not_found", "objective": None}
+
+
+def _damaged(path, damage) -> None:
+    """The run store at ``path`` with ``damage`` done to its first point's stored record (JSON, as a hand edit)."""
+    with sqlite3.connect(path) as connection:
+        for row, text in connection.execute("SELECT id, outputs FROM runs WHERE point = 0").fetchall():
+            record = json.loads(text)
+            damage(record["design"])
+            connection.execute("UPDATE runs SET outputs = ? WHERE id = ?", (json.dumps(record, allow_nan=True), row))
+    connection.close()
+
+
+DAMAGE = {"null": lambda design: design.update({next(iter(design)): None}),
+          "nan": lambda design: design.update({next(iter(design)): float("nan")}),
+          "missing": lambda design: design.pop(next(iter(design))),
+          "extra": lambda design: design.update({"bogus": 1.0})}
+
+
+@pytest.mark.parametrize("damage", list(DAMAGE))
+def test_a_resumed_run_whose_stored_design_is_not_the_problem_s_solves_its_first_point_cold(monkeypatch, tmp_path,
+                                                                                            damage):
+    # the spy of the test above, 0.5 stored then stopped, the stored design damaged (a value null or NaN, a variable
+    # missing, one too many; text or true the store refuses itself): it is not a start (a null raised TypeError in the neighbour's retry: an
+    # internal error); 0.52 is solved as the resumed run solved it before, cold: not_found under the spy
+    sweep, _ = _none_alone_at(monkeypatch, (0.5, 0.52), 0.52)
+    original = RunStore.record_points
+
+    def once(*args, **kwargs):
+        original(*args, **kwargs)
+        raise Interrupted
+    path = stopped_sweep(tmp_path / "runs.sqlite", lambda: sweep, monkeypatch, RunStore, "record_points", once)
+    _damaged(path, DAMAGE[damage])
+    resumed = resumed_sweep(path, lambda: sweep)
+    assert (resumed.reused, resumed.solved) == (1, 1)
+    assert resumed.solutions[1]["status"] == "not_found" and "solve_alone" not in resumed.solutions[1]
+
+
+def test_a_start_given_that_misses_gets_the_walk_from_a_held_design_as_solve_alone_does(monkeypatch):
+    # wedge_motor_start, every optimum "held" and its walk 1 % lighter (spies), the start given ending without a
+    # design: solve alone walks from its held optimum; from the start given the own-start retry's design was kept
+    # unwalked, 1 % heavier, saying nothing. Now the start given that misses is set beside solve alone
+    case = load_case(CASES / "wedge_motor_start.toml")
+    problem = case_problem(case)
+    monkeypatch.setattr(problem_module, "from_the_held_design", lambda problem, case, held:
+                        replace(held, objective=held.objective * 0.99))
+    monkeypatch.setattr(problem, "_held", lambda solution: solution.status == "optimal")
+    alone = problem.solve(case)
+    refined = problem.refined
+
+    def missed(point, start=None, *args, **kw):  # (the start given ends without a design)
+        solved = refined(point, start, *args, **kw)
+        return replace(solved, status="not_found", diagnosis="a spy") if start is not None and "coarser" in kw \
+            else solved
+    monkeypatch.setattr(problem, "refined", missed)
+    given = problem.solve(case, start={name: value * 1.1 for name, value in alone.design.items()})
+    assert given.status == "optimal" and given.objective == pytest.approx(alone.objective, rel=1e-12)
+    assert given.starts[0] == GIVEN and given.solve_alone is None
+
+
+def test_a_start_given_beside_solve_alone_reports_solve_s_solver_status():
+    # verified_alone keeps solve alone's design with its solver's status, not the failed start's
+    case = load_case(CASES / "wedge_motor_start.toml")
+    alone = case_problem(case).solve(case)
+    given = replace(alone, status="not_found", solver=SolverInfo("ipopt", "Restoration_Failed", 40, 0.1, 1))
+    kept = verified_alone(given, alone)
+    assert (kept.status, kept.solver.status, kept.solver.name) == ("optimal", alone.solver.status, alone.solver.name)
+    assert kept.solver.solves == alone.solver.solves + 1 and kept.starts == (GIVEN, OWN)
+
+
+def test_an_unverified_retry_of_a_waiting_point_is_set_beside_its_verdict_alone_once(monkeypatch):
+    # the spy at 0.52 (0.5, 0.52, 0.54), no neighbour or continuation: 0.52 waits; the retry from 0.54's design ends
+    # unverified (a spy): it was set beside a second solve alone of 0.52 and noted twice ("solve alone: not_found;
+    # solve alone: not_found"); now beside the point's own verdict alone, noted once, 0.52 solved alone once
+    sweep, _ = _none_alone_at(monkeypatch, (0.5, 0.52, 0.54), 0.52)
+    problem = case_problem(sweep.case)
+    refined, solve, alone_solves = problem.refined, problem.solve, []
+
+    def unverified(point, start=None, *args, **kw):
+        solved = refined(point, start, *args, **kw)
+        at = point.values["driven_inertia"] == 0.52 and start is not None and "coarser" in kw
+        return replace(solved, status="unverified") if at else solved
+
+    def counted(point, *args, **kw):
+        if point.values["driven_inertia"] == 0.52 and not args and set(kw) <= {"first"}:
+            alone_solves.append(1)
+        return solve(point, *args, **kw)
+    monkeypatch.setattr(problem, "refined", unverified)
+    monkeypatch.setattr(problem, "solve", counted)
+    monkeypatch.setattr(sweep_module, "from_the_neighbour", lambda problem, case, verdict, design: verdict)
+    monkeypatch.setattr(sweep_module, "continued", lambda *args, **kw: None)
+    record = sweep.run(progress=False).solutions[1]
+    assert record["status"] == "unverified" and record["solve_alone"] == {"status": "not_found", "objective": None}
+    assert record["diagnosis"].count("solve alone: not_found") == 1 and len(alone_solves) == 1

@@ -59,12 +59,13 @@ def test_a_held_point_keeps_solve_s_design_unless_it_is_heavier(monkeypatch):
     assert kept.solver.solves == heavier.solver.solves + alone.solver.solves and not probed
     held = solved_alone_where_held(problem, case, lighter, sized)
     assert held.objective == lighter.objective and held.solver.solves == lighter.solver.solves + alone.solver.solves
-    assert probed == [(problem, case, lighter, sized)]
+    assert [args[:4] for args in probed] == [(problem, case, lighter, sized)]  # (with the solve alone it made:
+    assert probed[0][4].objective == pytest.approx(alone.objective, rel=START_UP_RTOL)  # not solved again by it)
     assert kept.solve_alone is None  # (``solve``'s own design: nothing to say)
     # the held design kept says what ``solve`` of the point alone ended with (its record, table and store)
     assert held.solve_alone == {"status": "optimal", "objective": alone.objective}
     assert held.diagnosis == f"solve alone: optimal, {alone.objective:.10g} kg"
     assert held.as_dict()["solve_alone"] == held.solve_alone
-    monkeypatch.setattr(start_up_sweep, "as_solve_would", lambda problem, case, solution, sized:
+    monkeypatch.setattr(start_up_sweep, "as_solve_would", lambda problem, case, solution, sized, solved:
                         solution.beside_alone(alone))  # (a probe that says so itself: said once)
     assert solved_alone_where_held(problem, case, lighter, sized).diagnosis == held.diagnosis

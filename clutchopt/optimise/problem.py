@@ -63,20 +63,20 @@ class Problem:
 
     def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
               mesh: np.ndarray | None = None, refine: bool = True, neighbour: dict[str, float] | None = None,
-              coarser: float = math.inf, first: Solution | None = None) -> Solution:
+              coarser: float = math.inf, first: Solution | None = None, alone: Solution | None = None) -> Solution:
         """Solve for one case (:meth:`refined`); a solve that ends without a design is retried from the starts that can
         reach one before its verdict is given (:func:`clutchopt.optimise.verdict.shown`): ``neighbour``, the feasible
         design of a neighbouring point (a sweep's), among them. ``first``: that first solve, where a caller has made it
         already (a sweep's quick solve of a point its interval search did not prove). A start-up's ``not_found`` solved
-        from its own start or from a ``start`` given (no warm solution or neighbour given: a sweep's point too, before
-        the starts the sweep adds) is retried last from the sampled design its NLP's rows miss least
-        (:mod:`clutchopt.optimise.sampled_start`): a start given that ends without a design gets every start ``solve``
-        of the case alone tries (ball_motor_start in paper mode at 1.5 GPa and 650 kW from the design at 507.9 kW:
-        ``not_found`` at 656.12 kg, now 687.92 kg from the sampled design, as alone), and one that ends ``unverified``
-        is kept only where ``solve`` alone has no verified design (:func:`verified_alone`); a start-up from a ``warm``
-        solution (a start-up's pareto front, the robust loop) that ends without a verified design is set beside
-        ``solve`` of the case alone the same way (ball_motor_start in paper mode at 1.5 GPa, 610 kW warm from 530 kW's
-        optimum: ``not_found``, alone 565.36 kg: tests/test_start_up_held.py). A start-up optimum a row of
+        from its own start (no start, warm solution or neighbour given: a sweep's point too, before the starts the
+        sweep adds) is retried last from the sampled design its NLP's rows miss least
+        (:mod:`clutchopt.optimise.sampled_start`). A start-up from a ``start`` or a ``warm`` solution given (a sweep's
+        point retried from the next feasible point's design, a start-up's pareto front, the robust loop) that ends
+        without a verified design is set beside ``solve`` of the case alone (``alone``, where the caller has it: a
+        sweep's point without a design), whose verified design is kept (:func:`verified_alone`; ball_motor_start in
+        paper mode at 1.5 GPa, 650 kW from the design at 507.9 kW: ``not_found`` at 656.12 kg, now 687.92 kg as
+        alone; 610 kW warm from 530 kW's optimum: ``not_found``, alone 565.36 kg: tests/test_start_up_held.py); not the
+        design a loop hands its doubled problem (``mesh`` or ``coarser`` given). A start-up optimum a row of
         the collocation holds (:func:`held_by_the_mesh`; the loop's remedy, the papers' sizing, missed a limit) is
         walked from (:func:`~clutchopt.optimise.sampled_start.from_the_held_design`): the lighter design kept."""
         try:
@@ -87,19 +87,16 @@ class Problem:
             solution, start, warm = self.refined(case, None, None, mesh, refine, coarser=coarser), None, None
         if self.start_up is not None and refine and self._held(solution):  # the loop's remedy missed: walked
             solution = from_the_held_design(self, case, solution)
-        own = self.start_up is not None and warm is None and neighbour is None and (
-            start is None or mesh is None and coarser == math.inf)  # (a start-up's own starts and the sampled one:
-        # tried alone and from a caller's start; not from the design a loop hands its doubled problem)
         if solution.status == "optimal" or not refine:
             return solution
-        if self.start_up is not None and warm is not None and neighbour is None:  # a warm start (a start-up's
-            return verified_alone(solution, self.solve(case))  # pareto front, robust loop) that missed: as alone
-        if solution.status in DESIGN_STATUSES and (start is None or not own):
+        if self.start_up is not None and neighbour is None and (
+                warm is not None or start is not None and mesh is None and coarser == math.inf):  # a start given
+            return verified_alone(solution, alone or self.solve(case))  # that missed: beside ``solve`` alone
+        if solution.status in DESIGN_STATUSES:
             return solution
-        if solution.status in DESIGN_STATUSES:  # the start given's design, not verified: what ``solve`` alone ends
-            return verified_alone(solution, self.solve(case))  # with beside it
         verdict = shown(self, case, solution, start is not None or warm is not None, neighbour)
-        return from_a_sampled_design(self, case, verdict) if own else verdict
+        own = self.start_up is not None and start is None and warm is None and neighbour is None
+        return from_a_sampled_design(self, case, verdict) if own else verdict  # (alone: the sampled start last)
 
     def refined(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
                 mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,
@@ -646,15 +643,16 @@ class Problem:
 
 
 def verified_alone(given: Solution, alone: Solution) -> Solution:
-    """A start-up solved from a start given that ended without a verified design (``given``: a start's
-    ``unverified``, a warm solution's ``unverified`` or ``not_found``), beside ``solve`` of the case alone
-    (``alone``): ``alone``'s where it is ``optimal`` or ``given`` has no design (its ``starts`` the start given, then
-    those ``alone`` names, else OWN), else ``given``'s, saying what ``solve`` alone ended with
-    (``Solution.beside_alone``); the solver calls of both summed."""
-    solver = given.solver.summed([given.solver, alone.solver])
+    """A start-up solved from a start or a warm solution given that ended without a verified design (``given``:
+    ``unverified``, ``not_found``), beside ``solve`` of the case alone (``alone``): ``alone``'s where it is ``optimal``
+    or ``given`` has no design (its solver's name and status, its ``starts`` the start given, then those ``alone``
+    names, else OWN), else ``given``'s, saying what ``solve`` alone ended with (``Solution.beside_alone``, once); the
+    solver calls of both summed."""
+    infos = [given.solver, alone.solver]
     if alone.status == "optimal" or given.status not in DESIGN_STATUSES:
-        return replace(alone, solver=solver, starts=(GIVEN,) + (alone.starts or (OWN,)))
-    return replace(given, solver=solver).beside_alone(alone)
+        return replace(alone, solver=alone.solver.summed(infos), starts=(GIVEN,) + (alone.starts or (OWN,)))
+    kept = replace(given, solver=given.solver.summed(infos))
+    return kept if kept.solve_alone is not None else kept.beside_alone(alone)
 
 
 def no_lighter(objective: float, heavier: float) -> tuple[str, str]:

@@ -109,13 +109,14 @@ def solved_alone_where_held(problem, case: Case, solution: Solution, sized: "Siz
     tolerance = problem.posed.start_up.s.spec.tolerance
     if alone.status == "optimal" and not alone.objective > solution.objective * (1 + tolerance):
         return replace(alone, solver=alone.solver.summed([solution.solver, alone.solver]))
-    probed = as_solve_would(problem, case, solution, sized)  # (its solves counted with ``solution``'s)
+    probed = as_solve_would(problem, case, solution, sized, alone)  # (its solves counted with ``solution``'s)
     counted = replace(probed, solver=probed.solver.summed([probed.solver, alone.solver]))
     return counted if counted.solve_alone is not None else counted.beside_alone(alone)  # (said once: the probe's
     # ``solve`` alone is this one)
 
 
-def as_solve_would(problem, case: Case, solution: Solution, sized: "SizedOut") -> Solution:
+def as_solve_would(problem, case: Case, solution: Solution, sized: "SizedOut",
+                   alone: Solution | None = None) -> Solution:
     """A point whose integers are not those of the papers' sizing at the point: also solved as ``solve`` solves it alone
     (``Problem.solve``: from the sizing, its relaxation rounded, its search, its retries), the lighter of the two kept,
     each verified by its own simulated start; the warm design kept where ``solve``'s is heavier beyond the tolerance or
@@ -127,7 +128,8 @@ def as_solve_would(problem, case: Case, solution: Solution, sized: "SizedOut") -
     on a local verdict (ball_motor_start over driven_inertia, 100 then 375 kg m^2, on NumPy's AVX2 loops: 25 rows found
     infeasible on the adapted mesh from their first-mesh optimum, 26 rows kept at 1029.52 kg, where ``solve`` ends at 25
     rows, 1026.07 kg: tests/test_start_up_sweep.py). Where the integers are the sizing's, ``solve`` starts from them too
-    (its search then completed by them, ``integers.from_the_start``): not solved again."""
+    (its search then completed by them, ``integers.from_the_start``): not solved again. ``alone``: ``solve`` of the
+    point alone where the caller has it (:func:`solved_alone_where_held`; its solves counted by the caller)."""
     names = problem.integer_names
     if not names:
         return solution
@@ -137,11 +139,11 @@ def as_solve_would(problem, case: Case, solution: Solution, sized: "SizedOut") -
     probe = problem._solve(case, warm=solution, diagnosed=False, cold=False, redecide=True)
     tried = [probe]
     if probe.status == "optimal" and any(probe.design[name] != solution.design[name] for name in names):
-        tried.append(problem.solve(case))
+        tried.append(alone or problem.solve(case))
+    spent = [s.solver for s in (solution, *tried) if s is not alone]  # (a caller's ``alone``: counted by it)
     alone, tolerance = tried[-1], problem.posed.start_up.s.spec.tolerance
     solved = len(tried) > 1 and alone.status == "optimal"
     kept = alone if solved and alone.objective < solution.objective * (1 - tolerance) else solution
-    spent = [s.solver for s in (solution, *tried)]
     counted = replace(kept, solver=replace(kept.solver, solves=sum(s.solves for s in spent),
                                            time_s=sum(s.time_s for s in spent)))  # (every solve counted)
     if len(tried) > 1 and not (solved and alone.objective <= solution.objective * (1 + tolerance)):

@@ -175,7 +175,8 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
             for k, (w, waited_case, waited) in enumerate(waiting):  # between feasible neighbours: from this one too
                 if waited.status == "infeasible":  # proven: no design to find
                     continue
-                retry = problem.solve(waited_case, start=solution.design)
+                retry = problem.solve(waited_case, start=solution.design,  # (a start-up's: beside its solve alone)
+                                      alone=waited if problem.start_up is not None else None)
                 waiting[k] = (w, waited_case, beside(retry, waited if problem.start_up is not None else None)
                               if retry.status in DESIGN_STATUSES else waited)
             yield from (_one(points, w, names, waited) for w, _, waited in waiting)
@@ -214,8 +215,8 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
 def beside(solution: Solution, alone: Solution | None) -> Solution:
     """A start-up sweep point's ``solution``, saying what ``solve`` of the point alone ended with (``alone``: its
     verdict without a design; ``Solution.beside_alone``) where a start the sweep adds (the neighbour's design, the
-    continuation, the next feasible point's design) reached a design ``solve`` alone did not."""
-    if alone is None or solution.status not in DESIGN_STATUSES:
+    continuation, the next feasible point's design) reached a design ``solve`` alone did not; said once."""
+    if alone is None or solution.status not in DESIGN_STATUSES or solution.solve_alone is not None:
         return solution
     return solution.beside_alone(alone)
 
@@ -345,19 +346,22 @@ def _in_order(kept: np.ndarray, pending: Points) -> bool:
     return len(kept) == first and (not len(kept) or int(kept[-1]) == first - 1)
 
 
-def _last_feasible(points: list[dict], stored: dict[int, dict], kept: np.ndarray,
-                   pending: Points) -> tuple[dict, StoredDesign] | None:
+def _last_feasible(points: list[dict], stored: dict[int, dict], kept: np.ndarray, pending: Points,
+                   names: list[str]) -> tuple[dict, StoredDesign] | None:
     """Where a sweep solved point by point resumes after its first points, stored in order: the last of them with a
     design (its varied values and stored design), as the uninterrupted run's points after it see it (its neighbour's
     design, the continuation's start); None where there is none, or the points stored are not those before the first
-    pending one (a pool's)."""
+    pending one (a pool's), or its stored design is not one of the problem's (``names``, each a finite number: a
+    damaged or hand-edited store; the first points then solved cold)."""
     if not _in_order(kept, pending):
         return None
     for index in reversed(kept.tolist()):
         record = stored[index]
-        if isinstance(record, dict) and record.get("status") in DESIGN_STATUSES and isinstance(record.get("design"),
-                                                                                               dict):
-            return points[index], StoredDesign(dict(record["design"]))
+        if isinstance(record, dict) and record.get("status") in DESIGN_STATUSES:
+            design = record.get("design")
+            whole = isinstance(design, dict) and list(design) == list(names) and all(
+                type(value) in (int, float) and math.isfinite(value) for value in design.values())
+            return (points[index], StoredDesign(dict(design))) if whole else None
     return None
 
 
@@ -484,7 +488,7 @@ class Sweep:
         sequential = runner is None and jobs <= 1  # (windows one after another: each starts from the one before)
         resumed = bool(stored) and sequential and len(pending) > 0  # (after its first points, in this process)
         carried = self._carried(store, sweep_id, kept, pending) if resumed else None
-        feasible = _last_feasible(self.points, stored, kept, pending) if resumed else None
+        feasible = _last_feasible(self.points, stored, kept, pending, names) if resumed else None
         starts = sequential and (not stored or carried is not None)  # (windows from point 0 or from a stored start
         # record where the next starts: a cold resume's count their points from its first, over other points)
         started = time.perf_counter()
