@@ -2,6 +2,7 @@
 equidistribute sqrt|x''| (each state scaled by its spread over the phase and the phase's duration) plus a fifth of
 its mean (MONITOR_FLOOR); a state at rest in a phase shapes nothing there."""
 
+import pickle
 from types import SimpleNamespace
 
 import numpy as np
@@ -101,3 +102,29 @@ def test_the_curvature_is_numpy_s_gradient_of_the_gradient_to_the_bit(times):
     exact = np.gradient(np.gradient(values, t, axis=1), t, axis=1)
     assert np.array_equal(_second_derivative(values, t), exact)
     assert _second_derivative(values[:0], t).shape == (0, len(t))
+
+
+def test_the_suggested_mesh_is_adapted_where_first_read_and_to_the_bit(monkeypatch):
+    # a solve's meshes (used, suggested): the used one read without adapting any; the suggestion adapted once, where
+    # first read, from the simulated start's columns as they were (the same bits as adapted at once)
+    import clutchopt.start_up.mesh as mesh_module
+    from clutchopt.start_up.mesh import Meshes
+
+    driver, work = np.abs(T - 0.5), np.where(T <= 1.0, 0.0, T - 1.0)
+    columns = history(driver, 0.125 * T, work, T * T)
+    expected = adapted_mesh(STRUCTURE, columns, [1.0, 1.0])
+    adapted = []
+    monkeypatch.setattr(mesh_module, "adapted_mesh", lambda *a: adapted.append(a) or expected.copy())
+    used = np.full(8, 0.25)
+    meshes = Meshes(used, STRUCTURE, columns, [1.0, 1.0])
+    assert meshes[0] is used and meshes[-2] is used and len(meshes) == 2 and adapted == []
+    assert np.array_equal(meshes[1], expected) and len(adapted) == 1
+    first, again = meshes[1], meshes[-1]
+    assert again is first and len(adapted) == 1
+    monkeypatch.undo()
+    unpacked_used, suggested = Meshes(used, STRUCTURE, columns, [1.0, 1.0])
+    assert unpacked_used is used and np.array_equal(suggested, expected)
+    with pytest.raises(IndexError):
+        meshes[2]
+    sent = pickle.loads(pickle.dumps(Meshes(used, STRUCTURE, columns, [1.0, 1.0])))  # (to another process: adapted)
+    assert np.array_equal(sent[0], used) and np.array_equal(sent[1], expected) and sent._from is None

@@ -230,6 +230,25 @@ def test_where_the_mesh_must_adapt_a_point_starts_on_the_adapted_mesh():
     assert abs(records[-1]["objective"]["value"] - alone.objective) <= 0.25e-6 * abs(alone.objective)
 
 
+def test_a_sweep_adapts_no_mesh_its_points_do_not_solve_on(monkeypatch):
+    """The same four points: the mesh a check's simulated start suggests is adapted only where a solve reads it
+    (``clutchopt.start_up.mesh.Meshes``; 0.4 ms a check, each of the seven checks' adapted at once before). Every
+    point's error is within the tolerance on the mesh it starts on (0.6579: -5.2e-8 ahead by the secant): no solve
+    reads a suggestion, none is adapted."""
+    import clutchopt.start_up.mesh as mesh_module
+
+    adapted = []  # a phase's weights, each adaptation's (its own module's function: whoever imported adapted_mesh)
+    monkeypatch.setattr(mesh_module, "_cumulative",
+                        lambda *a, weights=mesh_module._cumulative: adapted.append(weights(*a)) or adapted[-1])
+    vary = parse_vary("driven_inertia=0.5947,0.6158,0.6368,0.6579", MOTOR.coupling, MOTOR.quantities)
+    sweep = Sweep(MOTOR, [vary])
+    records = list(sweep.run(progress=False).solutions)
+    assert [r["solver"]["solves"] for r in records] == [1, 1, 3, 2]
+    assert adapted == []
+    suggested = case_problem(MOTOR).solve(MOTOR.with_values(driven_inertia=0.6579)).mesh[1]  # read: adapted
+    assert len(adapted) == 3 and len(suggested) == 3 * MOTOR.start_up.intervals  # (its three phases)
+
+
 def test_a_point_after_a_coarse_mesh_the_loop_kept_stays_on_it():
     """first_mesh: where the point before's loop kept a mesh whose error is beyond the tolerance (it stopped for
     another reason: no start-up limit shapes the design, ``shapes_nothing``; ball_motor_start at 0.6-0.9 times its

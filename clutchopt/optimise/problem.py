@@ -608,11 +608,11 @@ class Problem:
         if unsimulated:
             verdict = no_lighter(objective, heavier)
         if posed.start_up is not None and not unsimulated:  # re-checked by the independent simulator
-            start_up, simulated, suggested, collocated = start_up_report(
+            start_up, simulated, mesh, collocated = start_up_report(
                 posed.start_up, *posed.start_up_seen(case, design), f, posed.seen_by(case, design),
-                posed.mapped(posed.start_up_figures, 1)(run["x"], run["p"]))  # (on NumPy arrays: 15 us, not 90)
+                posed.mapped(posed.start_up_figures, 1)(run["x"], run["p"]),  # (on NumPy arrays: 15 us, not 90)
+                posed.mesh_of(run["p"]))
             checks += simulated
-            mesh = (posed.mesh_of(run["p"]), suggested)
         for check, lam in zip(checks, posed.named_multipliers(run["lam_g"])):
             check.multiplier = lam
             check.elasticity = limit_elasticity(check, lam, f_scale, objective)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
-from typing import NamedTuple
+from typing import NamedTuple, Sequence
 
 import numpy as np
 
@@ -144,7 +144,7 @@ class Solution:
     design_units: dict[str, str] = field(default_factory=dict)  # display unit of each design variable
     start_up: dict | None = None  # the NLP's start-up beside the simulated one (cases with [start_up])
     internal: np.ndarray | None = field(default=None, repr=False)  # scaled start-up states of the kept solve
-    mesh: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False)  # start-up mesh: used, suggested
+    mesh: Sequence[np.ndarray] | None = field(default=None, repr=False)  # start-up: used, suggested (Meshes)
     diagnosed: Diagnosis | None = field(default=None, repr=False)  # a solve without a design: its elastic diagnosis
     starts: tuple[str, ...] = ()  # a solve without a design: the starts it was tried from (optimise/verdict.py)
     limit_shift: dict[str, float] = field(default_factory=dict, repr=False)  # start-up: the last NLP's limit

@@ -15,7 +15,7 @@ from clutchopt.optimise.verify import ACTIVE_TOL, check_constraints
 from clutchopt.start_up.drive import Drive, seen_constraints
 from clutchopt.start_up.lining import UNITS as LINING_UNITS
 from clutchopt.start_up.lining import lining_figures, lining_notes
-from clutchopt.start_up.mesh import adapted_mesh
+from clutchopt.start_up.mesh import Meshes
 from clutchopt.start_up.transcription import TRAJECTORY
 
 BACK_OFF_STEPS = 4  # defect corrections of limits the simulated start misses (or binds at off the limit)
@@ -29,11 +29,12 @@ UNITS = {"start_time": "s", "friction_work": "J", "temperature_rise": "K", "enga
          "peak_twist": "rad", **LINING_UNITS}
 
 
-def start_up_report(block, case, design: dict[str, float], formulation, seen, figures):
+def start_up_report(block, case, design: dict[str, float], formulation, seen, figures, used: np.ndarray):
     """The NLP's start beside the independent simulator's (stiff where the motor is, events, float64) at the design,
     and the start-up constraints re-checked with the simulated figures, each with the values ``seen(name)`` gives it
-    (:func:`~clutchopt.start_up.drive.seen_constraints`): (summary in SI, constraint checks, the mesh the simulated
-    start suggests for the next solve). ``case`` and ``design``: as the start sees them."""
+    (:func:`~clutchopt.start_up.drive.seen_constraints`): (summary in SI, constraint checks, the meshes: ``used``,
+    the NLP's, and the one the simulated start suggests for the next solve, adapted where read: ``Meshes``; the NLP's
+    own figures of the limits' checks). ``case`` and ``design``: as the start sees them."""
     values, *columns = figures
     nlp = dict(zip(block.outputs(), np.array(values).ravel()))
     trajectory = {name: np.array(column).ravel() for name, column in zip(TRAJECTORY, columns)}  # (block.trajectory()
@@ -89,7 +90,7 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
                                  lock_up_speed=summary["lock_up_speed"], stresses=np.array(node_stresses))
     own = {check.name: check.value for check in check_constraints(  # (the limits' rows alone checked)
         [c for c in seen_constraints(s, formulation.speed_law, collocated, seen, drive) if c.name in LIMIT_OF])}
-    return summary, checks, adapted_mesh(s, result.columns, times), own
+    return summary, checks, Meshes(used, s, result.columns, times), own
 
 
 def simulated_checks(block, case, design: dict[str, float], formulation, seen):
