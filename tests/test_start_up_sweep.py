@@ -217,11 +217,24 @@ def test_where_an_adaptation_is_ahead_only_the_limits_the_loop_moved_are_carried
 
 
 def test_where_the_mesh_must_adapt_a_point_starts_on_the_adapted_mesh():
-    """wedge_motor_start at 0.5947-0.6579 kg m^2 (the 20-point sweep's): at 0.6368 the temperature rise first binds
-    (3 solves: unverified, two corrections). At 0.6579 the secant through the errors of the two points before
-    (-5.9e-7, -9.0e-7) puts its error beyond the tolerance (1.24e-6 on the old mesh): its first solve is on the mesh
-    the point before's start suggests, then one correction (3 before: the old mesh, the adaptation, the correction).
-    Its design is solve's within the contract."""
+    """first_mesh: where the secant through the collocation errors of the two points before on one mesh (-5.9e-7,
+    -9.0e-7: an earlier wedge sweep's at 0.6158 and 0.6368 kg m^2) puts a point's error beyond the tolerance (-1.21e-6
+    at 0.6579, against 1e-6) after a point resolved on it, the point's first solve is on the mesh the point before's
+    simulated start suggests; within it, on the old one. wedge_motor_start's sweep today at 0.5947-0.6579 kg m^2 (the
+    20-point sweep's): at 0.6368 the temperature rise first binds (3 solves: unverified, two corrections); at 0.6579
+    the secant puts -5.2e-8 (h15-wedgepy): its first solve on the old mesh, then one correction. Its design is solve's
+    within the contract."""
+    from types import SimpleNamespace
+
+    from clutchopt.optimise.start_up_sweep import Along, first_mesh, secant_step
+
+    mesh, suggested = np.full(16, 1 / 16), np.linspace(1, 2, 16) / 24
+    for errors, expected in (((-5.9e-7, -9.0e-7), suggested), ((-4.0e-8, -4.6e-8), mesh)):
+        before = Along({"driven_inertia": 0.6158}, {}, mesh, error=errors[0])
+        last = Along({"driven_inertia": 0.6368}, {}, mesh, before, error=errors[1])
+        step = secant_step(last, {"driven_inertia": 0.6579})
+        assert step == pytest.approx(1.0047, abs=1e-4)
+        assert first_mesh(SimpleNamespace(along=last, mesh=(mesh, suggested)), step, 1e-6) is expected
     vary = parse_vary("driven_inertia=0.5947,0.6158,0.6368,0.6579", MOTOR.coupling, MOTOR.quantities)
     records = list(Sweep(MOTOR, [vary]).run(progress=False).solutions)
     assert [r["status"] for r in records] == ["optimal"] * 4
