@@ -134,8 +134,9 @@ def test_each_table_keeps_its_newest_entries_up_to_kept(monkeypatch):
     from clutchopt.optimise.solution import SolverInfo
 
     @dataclass
-    class Failed:  # what FailedStarts.known reads of a kept Solution
+    class Failed:  # what FailedStarts.keep and known read of a kept Solution
         solver: SolverInfo
+        mesh: tuple | None = None
 
     monkeypatch.setattr(failed_starts, "KEPT", 2)
     table = {"a": 1, "b": 2}

@@ -275,3 +275,47 @@ def test_an_unverified_retry_of_a_waiting_point_is_set_beside_its_verdict_alone_
     record = sweep.run(progress=False).solutions[1]
     assert record["status"] == "unverified" and record["solve_alone"] == {"status": "not_found", "objective": None}
     assert record["diagnosis"].count("solve alone: not_found") == 1 and len(alone_solves) == 1
+
+
+def test_a_waiting_point_retried_from_the_next_design_counts_every_solve(monkeypatch):
+    # the spy at 0.52, no neighbour or continuation: 0.52 waits (its solve alone), then is retried from 0.54's design,
+    # which reaches solve's design: its record counted the retry's solves only (review: 1 where 2 were made); now
+    # the solve alone's and the retry's
+    sweep, _ = _none_alone_at(monkeypatch, (0.5, 0.52, 0.54), 0.52)
+    problem = case_problem(sweep.case)
+    solve, seen = problem.solve, []
+
+    def spy(point, *args, **kw):
+        solved = solve(point, *args, **kw)
+        if kw.get("alone") is not None:
+            seen.append((kw["alone"].solver.solves, solved.solver.solves, solved.status))
+        return solved
+    monkeypatch.setattr(problem, "solve", spy)
+    monkeypatch.setattr(sweep_module, "from_the_neighbour", lambda problem, case, verdict, design: verdict)
+    monkeypatch.setattr(sweep_module, "continued", lambda *args, **kw: None)
+    record = sweep.run(progress=False).solutions[1]
+    (waited, retry, status), = seen
+    assert status == record["status"] == "optimal" and waited >= 1 and retry >= 1
+    assert record["solver"]["solves"] == waited + retry
+
+
+def test_a_sweep_keeps_no_simulation_of_its_points_behind_it(monkeypatch):
+    # a check's suggested mesh is adapted where read (start_up.mesh.Meshes holds the simulation's columns, 50-90 kB,
+    # until then): a sweep kept every feasible point's whole solution (its neighbours' designs), so a 40-point wedge
+    # sweep held 39 unread columns (review: 3.3 MB; 10,000 points about 0.8 GB); now its designs alone
+    import gc
+
+    from clutchopt.start_up.mesh import Meshes
+
+    unread = []
+    solved = sweep_module._solved
+
+    def counted(*args, **kw):
+        unread.append(sum(1 for o in gc.get_objects() if isinstance(o, Meshes) and o._from is not None))
+        return solved(*args, **kw)
+    monkeypatch.setattr(sweep_module, "_solved", counted)
+    case = load_case(CASES / "wedge_motor_start.toml")
+    quantity = next(q for q in case.quantities if q.name == "driven_inertia")
+    Sweep(case, [Vary(quantity, (0.45, 0.47, 0.49, 0.51, 0.53, 0.55))]).run(progress=False)
+    assert len(unread) == 6 and max(unread) <= 2  # (the point before's, kept as its warm start, and the last)
+

@@ -31,6 +31,7 @@ from dataclasses import replace
 
 from clutchopt.cases import Case
 from clutchopt.optimise.solution import Solution, SolverInfo
+from clutchopt.start_up.mesh import settled
 
 KEPT = 256  # failures kept per problem (a sweep's run of points without a design, a few starts each)
 
@@ -93,6 +94,7 @@ class FailedStarts:
 
     def keep(self, key: tuple, solution: Solution) -> None:
         _make_room(self._failed, key)
+        settled(solution.mesh)  # (kept for the process: its simulation's columns let go)
         self._failed[key] = solution
 
     def lose(self, case: Case, start: dict[str, float], origin: dict[str, float], at: dict[str, float]) -> None:

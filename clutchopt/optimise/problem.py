@@ -89,9 +89,9 @@ class Problem:
             solution = from_the_held_design(self, case, solution)
         if solution.status == "optimal" or not refine:
             return solution
-        if self.start_up is not None and neighbour is None and (
-                warm is not None or start is not None and mesh is None and coarser == math.inf):  # a start given
-            return verified_alone(solution, alone or self.solve(case))  # that missed: beside ``solve`` alone
+        if self.start_up is not None and neighbour is None and mesh is None and coarser == math.inf and (
+                warm is not None or start is not None):  # a start given that missed: beside ``solve`` alone (a
+            return verified_alone(solution, alone or self.solve(case), counted=alone is None)  # caller's: its count)
         if solution.status in DESIGN_STATUSES:
             return solution
         verdict = shown(self, case, solution, start is not None or warm is not None, neighbour)
@@ -642,13 +642,13 @@ class Problem:
                         collocated=collocated)
 
 
-def verified_alone(given: Solution, alone: Solution) -> Solution:
+def verified_alone(given: Solution, alone: Solution, counted: bool = True) -> Solution:
     """A start-up solved from a start or a warm solution given that ended without a verified design (``given``:
     ``unverified``, ``not_found``), beside ``solve`` of the case alone (``alone``): ``alone``'s where it is ``optimal``
     or ``given`` has no design (its solver's name and status, its ``starts`` the start given, then those ``alone``
     names, else OWN), else ``given``'s, saying what ``solve`` alone ended with (``Solution.beside_alone``, once); the
-    solver calls of both summed."""
-    infos = [given.solver, alone.solver]
+    solver calls of both summed (``counted``; else ``given``'s alone: a caller that handed ``alone`` in counts it)."""
+    infos = [given.solver, alone.solver] if counted else [given.solver]
     if alone.status == "optimal" or given.status not in DESIGN_STATUSES:
         return replace(alone, solver=alone.solver.summed(infos), starts=(GIVEN,) + (alone.starts or (OWN,)))
     kept = replace(given, solver=given.solver.summed(infos))

@@ -23,7 +23,7 @@ import time
 from collections.abc import Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property, partial
 from typing import Callable, Iterator
 
@@ -49,6 +49,7 @@ from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_na
 from clutchopt.optimise.table import joined_tables, record_table
 from clutchopt.optimise.verdict import NEIGHBOUR, one_more_start, retried
 from clutchopt.optimise.verify import DESIGN_STATUSES
+from clutchopt.start_up.mesh import settled
 from clutchopt.solver_tolerance import SOLVER_TOL
 from clutchopt.records import design_inputs, scatter_record
 from clutchopt.window_records import WindowRecords, in_order
@@ -168,17 +169,19 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
                                                 neighbour), previous if problem.start_up is None else None)
             previous = solution if solution.status == "optimal" else None
             if solution.status not in DESIGN_STATUSES:
+                settled(solution.mesh)  # (kept until the next feasible point: its simulation's columns let go)
                 waiting.append((j, point_case, solution))
                 continue
             feasible = values, solution
-            designs[tuple(values.values())] = solution
+            designs[tuple(values.values())] = StoredDesign(solution.design)  # (a neighbour's design is all read)
             for k, (w, waited_case, waited) in enumerate(waiting):  # between feasible neighbours: from this one too
                 if waited.status == "infeasible":  # proven: no design to find
                     continue
-                retry = problem.solve(waited_case, start=solution.design,  # (a start-up's: beside its solve alone)
-                                      alone=waited if problem.start_up is not None else None)
-                waiting[k] = (w, waited_case, beside(retry, waited if problem.start_up is not None else None)
-                              if retry.status in DESIGN_STATUSES else waited)
+                retry = problem.solve(waited_case, start=solution.design,  # (a start-up's: beside its solve alone,
+                                      alone=waited if problem.start_up is not None else None)  # counted here)
+                kept = (beside(retry, waited if problem.start_up is not None else None)
+                        if retry.status in DESIGN_STATUSES else waited)
+                waiting[k] = (w, waited_case, replace(kept, solver=kept.solver.summed([waited.solver, retry.solver])))
             yield from (_one(points, w, names, waited) for w, _, waited in waiting)
             waiting = []
             yield _one(points, j, names, solution)

@@ -96,10 +96,21 @@ class Meshes:
 
     @property
     def suggested(self) -> np.ndarray:
-        """The mesh the simulated start suggests, adapted on first read (its columns then let go)."""
-        if self._suggested is None:
-            self._suggested, self._from = adapted_mesh(*self._from), None
+        """The mesh the simulated start suggests, adapted on first read (its columns then let go; read by two threads
+        at once, adapted twice, the same mesh: ``_suggested`` is set before ``_from`` is let go)."""
+        source = self._from
+        if source is not None:
+            self._suggested, self._from = adapted_mesh(*source), None
         return self._suggested
+
+
+def settled(meshes):
+    """A solution's meshes (None, a pair or :class:`Meshes`) with the suggestion adapted and the simulation's columns
+    (50-90 kB a start-up) let go: for a solution kept beyond its point (a sweep's points waiting for a feasible
+    neighbour, a failed start kept to be known again)."""
+    if isinstance(meshes, Meshes):
+        meshes.suggested
+    return meshes
 
 
 def adapted_mesh(structure, history, phase_times: list[float]) -> np.ndarray:
