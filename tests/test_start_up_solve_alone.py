@@ -307,11 +307,14 @@ def test_a_sweep_keeps_no_simulation_of_its_points_behind_it(monkeypatch):
 
     from clutchopt.start_up.mesh import Meshes
 
-    unread = []
-    solved = sweep_module._solved
+    unread, solved = [], sweep_module._solved
+    before = [o for o in gc.get_objects() if isinstance(o, Meshes)]  # (other tests' in this process: held, not
+    seen = set(map(id, before))  # counted)
 
     def counted(*args, **kw):
-        unread.append(sum(1 for o in gc.get_objects() if isinstance(o, Meshes) and o._from is not None))
+        gc.collect()  # (only what is still held)
+        unread.append(sum(1 for o in gc.get_objects()
+                          if isinstance(o, Meshes) and o._from is not None and id(o) not in seen))
         return solved(*args, **kw)
     monkeypatch.setattr(sweep_module, "_solved", counted)
     case = load_case(CASES / "wedge_motor_start.toml")
