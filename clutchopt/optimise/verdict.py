@@ -37,8 +37,8 @@ from clutchopt.optimise.verify import (DESIGN_STATUSES, ConstraintCheck, check_d
 
 NEIGHBOUR = "the neighbouring point's design"  # a start a sweep adds: the last feasible point's design
 GIVEN = "the start given"  # a solve's first start where its caller gives one (a design or a warm solution)
-OWN = "the case's own starts (solve alone)"  # every start ``solve`` of the case alone tries, where a start-up's start
-# given ends unverified (``problem.verified_alone``)
+OWN = "the case's own starts (solve alone)"  # every start ``solve`` of the case alone tries, where a start-up from a
+# start or a warm solution given ends without a verified design (``problem.verified_alone``)
 
 
 def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[str, float] | None) -> Solution:
