@@ -322,3 +322,30 @@ def test_a_sweep_keeps_no_simulation_of_its_points_behind_it(monkeypatch):
     Sweep(case, [Vary(quantity, (0.45, 0.47, 0.49, 0.51, 0.53, 0.55))]).run(progress=False)
     assert len(unread) == 6 and max(unread) <= 2  # (the point before's, kept as its warm start, and the last)
 
+
+
+
+def test_a_waiting_point_whose_next_design_fails_its_first_simulation_is_not_solved_alone_again(monkeypatch):
+    # the spy at 0.52, no neighbour or continuation: 0.52 waits; the retry from 0.54's design fails its first
+    # simulation (InputError, a spy): it fell back to the papers' sizing and solved 0.52 alone again (review 2: its
+    # starts and the sampled walk, the verdict the sweep already had); now the sweep's verdict alone is kept
+    from clutchopt.errors import InputError
+
+    sweep, _ = _none_alone_at(monkeypatch, (0.5, 0.52, 0.54), 0.52)
+    problem = case_problem(sweep.case)
+    refined, after = problem.refined, []  # (0.52's solves after its retry's start failed)
+
+    def failing(point, start=None, *args, **kw):
+        if point.values["driven_inertia"] == 0.52 and start is not None and "coarser" in kw and not after:
+            after.append("failed")
+            raise InputError("start", "its first simulation failed (a spy)")
+        if point.values["driven_inertia"] == 0.52 and after:
+            after.append(start)
+        return refined(point, start, *args, **kw)
+    monkeypatch.setattr(problem, "refined", failing)
+    monkeypatch.setattr(sweep_module, "from_the_neighbour", lambda problem, case, verdict, design: verdict)
+    monkeypatch.setattr(sweep_module, "continued", lambda *args, **kw: None)
+    records = sweep.run(progress=False).solutions
+    assert [r["status"] for r in records] == ["optimal", "not_found", "optimal"]
+    assert after == ["failed"]  # (before: the papers' sizing's solve and the retries after it)
+    assert "solve_alone" not in records[1] and records[1]["solver"]["solves"] >= 1

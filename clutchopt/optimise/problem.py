@@ -84,6 +84,9 @@ class Problem:
         except InputError:  # a start-up whose first simulation fails from this design: from the papers' sizing
             if self.start_up is None or (start is None and warm is None):
                 raise
+            if alone is not None:  # (the caller has ``solve``'s verdict alone, and counts it: not solved again)
+                return replace(alone, solver=SolverInfo(alone.solver.name, alone.solver.status, 0, 0.0, 0),
+                               starts=(GIVEN,) + (alone.starts or (OWN,)))
             solution, start, warm = self.refined(case, None, None, mesh, refine, coarser=coarser), None, None
         if self.start_up is not None and refine and self._held(solution):  # the loop's remedy missed: walked
             solution = from_the_held_design(self, case, solution)
