@@ -65,10 +65,7 @@ class Carried:
             pace = {"size": _whole(pace["size"], "pace size", 1), "breaks": [_whole(b, "breaks") for b in pace["breaks"]],
                     "aimed": _flag(pace["aimed"], "aimed"), "probes": _whole(pace["probes"], "probes")}
             ahead = None if data["ahead"] is None else _whole(data["ahead"], "ahead", 1)
-            feasible = data["feasible"]
-            if feasible is not None and (type(feasible) is not dict or sorted(feasible) != sorted(variables)):
-                raise ValueError("its feasible design is not one of the design variables")
-            feasible = None if feasible is None else {name: _number(feasible[name], "feasible") for name in variables}
+            feasible = None if data["feasible"] is None else stored_design(data["feasible"], variables)
             undesigned = [(tuple(_numbers(combo, "undesigned")), _whole(k, "undesigned"), _text(status, "undesigned"))
                           for combo, k, status in data["undesigned"]]
             boxes = _whole(data.get("boxes", 0), "boxes")
@@ -77,6 +74,14 @@ class Carried:
         except (TypeError, AttributeError) as exc:
             raise ValueError(f"not a sweep's carried start ({exc})") from None
         return cls(point, start, pace, ahead, feasible, undesigned, boxes)
+
+
+def stored_design(design, variables: list[str]) -> dict[str, float]:
+    """A feasible design read back from a store: one of the design ``variables`` by name, each a finite number
+    (floats, in the variables' order); else ValueError naming what is wrong."""
+    if type(design) is not dict or sorted(design) != sorted(variables):
+        raise ValueError("its feasible design is not one of the design variables")
+    return {name: _number(design[name], "feasible") for name in variables}
 
 
 def _number(value, name: str) -> float:

@@ -85,8 +85,7 @@ class Problem:
             if self.start_up is None or (start is None and warm is None):
                 raise
             if alone is not None:  # (the caller has ``solve``'s verdict alone, and counts it: not solved again)
-                return replace(alone, solver=SolverInfo(alone.solver.name, alone.solver.status, 0, 0.0, 0),
-                               starts=(GIVEN,) + (alone.starts or (OWN,)))
+                return replace(alone, solver=alone.solver.summed([]), starts=given_first(alone))
             solution, start, warm = self.refined(case, None, None, mesh, refine, coarser=coarser), None, None
         if self.start_up is not None and refine and self._held(solution):  # the loop's remedy missed: walked
             solution = from_the_held_design(self, case, solution)
@@ -653,9 +652,14 @@ def verified_alone(given: Solution, alone: Solution, counted: bool = True) -> So
     solver calls of both summed (``counted``; else ``given``'s alone: a caller that handed ``alone`` in counts it)."""
     infos = [given.solver, alone.solver] if counted else [given.solver]
     if alone.status == "optimal" or given.status not in DESIGN_STATUSES:
-        return replace(alone, solver=alone.solver.summed(infos), starts=(GIVEN,) + (alone.starts or (OWN,)))
-    kept = replace(given, solver=given.solver.summed(infos))
-    return kept if kept.solve_alone is not None else kept.beside_alone(alone)
+        return replace(alone, solver=alone.solver.summed(infos), starts=given_first(alone))
+    return replace(given, solver=given.solver.summed(infos)).beside_alone(alone)
+
+
+def given_first(alone: Solution) -> tuple[str, ...]:
+    """The starts of ``solve``'s verdict alone kept for a solve from a start given: the start given, then those
+    ``alone`` names (else OWN, its own)."""
+    return (GIVEN,) + (alone.starts or (OWN,))
 
 
 def no_lighter(objective: float, heavier: float) -> tuple[str, str]:

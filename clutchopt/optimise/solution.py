@@ -206,7 +206,9 @@ class Solution:
         """This solution, kept where ``solve`` of its case alone ended otherwise (``alone``: a heavier design, or none
         verified), saying so: ``solve_alone`` holds that solve's status and objective (None without a design), and
         the diagnosis names them ("solve alone: optimal, 687.9176 kg"); a sweep's record, its table and the run store
-        show it as they show the diagnosis."""
+        show it as they show the diagnosis. Said once: a solution that says so already is kept as it is."""
+        if self.solve_alone is not None:
+            return self
         designed = alone.status in DESIGN_STATUSES
         note = f"solve alone: {alone.status}" + (f", {alone.objective:.10g} {alone.objective_unit}" if designed else "")
         return replace(self, solve_alone={"status": alone.status, "objective": alone.objective if designed else None},

@@ -110,9 +110,8 @@ def solved_alone_where_held(problem, case: Case, solution: Solution, sized: "Siz
     if alone.status == "optimal" and not alone.objective > solution.objective * (1 + tolerance):
         return replace(alone, solver=alone.solver.summed([solution.solver, alone.solver]))
     probed = as_solve_would(problem, case, solution, sized, alone)  # (its solves counted with ``solution``'s)
-    counted = replace(probed, solver=probed.solver.summed([probed.solver, alone.solver]))
-    return counted if counted.solve_alone is not None else counted.beside_alone(alone)  # (said once: the probe's
-    # ``solve`` alone is this one)
+    return replace(probed, solver=probed.solver.summed([probed.solver, alone.solver])).beside_alone(alone)  # (said
+    # once: the probe's ``solve`` alone is this one)
 
 
 def as_solve_would(problem, case: Case, solution: Solution, sized: "SizedOut",
@@ -141,13 +140,13 @@ def as_solve_would(problem, case: Case, solution: Solution, sized: "SizedOut",
     if probe.status == "optimal" and any(probe.design[name] != solution.design[name] for name in names):
         tried.append(alone or problem.solve(case))
     spent = [s.solver for s in (solution, *tried) if s is not alone]  # (a caller's ``alone``: counted by it)
-    alone, tolerance = tried[-1], problem.posed.start_up.s.spec.tolerance
-    solved = len(tried) > 1 and alone.status == "optimal"
-    kept = alone if solved and alone.objective < solution.objective * (1 - tolerance) else solution
+    last, tolerance = tried[-1], problem.posed.start_up.s.spec.tolerance
+    solved = len(tried) > 1 and last.status == "optimal"
+    kept = last if solved and last.objective < solution.objective * (1 - tolerance) else solution
     counted = replace(kept, solver=replace(kept.solver, solves=sum(s.solves for s in spent),
                                            time_s=sum(s.time_s for s in spent)))  # (every solve counted)
-    if len(tried) > 1 and not (solved and alone.objective <= solution.objective * (1 + tolerance)):
-        return counted.beside_alone(alone)  # (``solve``'s heavier beyond the tolerance, or none verified)
+    if len(tried) > 1 and not (solved and last.objective <= solution.objective * (1 + tolerance)):
+        return counted.beside_alone(last)  # (``solve``'s heavier beyond the tolerance, or none verified)
     return counted
 
 

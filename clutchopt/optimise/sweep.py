@@ -36,7 +36,7 @@ from clutchopt.formulations import get_coupling
 from clutchopt.materials import chosen
 from clutchopt.model import Formulation
 from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
-from clutchopt.optimise.batch_carried import Carried
+from clutchopt.optimise.batch_carried import Carried, stored_design
 from clutchopt.optimise.dask_client import connect
 from clutchopt.optimise.design import Robustness, check_robustness, design_case, method_of
 from clutchopt.optimise.entering import check_entering
@@ -177,10 +177,9 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
             for k, (w, waited_case, waited) in enumerate(waiting):  # between feasible neighbours: from this one too
                 if waited.status == "infeasible":  # proven: no design to find
                     continue
-                retry = problem.solve(waited_case, start=solution.design,  # (a start-up's: beside its solve alone,
-                                      alone=waited if problem.start_up is not None else None)  # counted here)
-                kept = (beside(retry, waited if problem.start_up is not None else None)
-                        if retry.status in DESIGN_STATUSES else waited)
+                alone = waited if problem.start_up is not None else None  # (a start-up's: its solve alone)
+                retry = problem.solve(waited_case, start=solution.design, alone=alone)  # (``alone`` counted here)
+                kept = beside(retry, alone) if retry.status in DESIGN_STATUSES else waited
                 waiting[k] = (w, waited_case, replace(kept, solver=kept.solver.summed([waited.solver, retry.solver])))
             yield from (_one(points, w, names, waited) for w, _, waited in waiting)
             waiting = []
@@ -219,7 +218,7 @@ def beside(solution: Solution, alone: Solution | None) -> Solution:
     """A start-up sweep point's ``solution``, saying what ``solve`` of the point alone ended with (``alone``: its
     verdict without a design; ``Solution.beside_alone``) where a start the sweep adds (the neighbour's design, the
     continuation, the next feasible point's design) reached a design ``solve`` alone did not; said once."""
-    if alone is None or solution.status not in DESIGN_STATUSES or solution.solve_alone is not None:
+    if alone is None or solution.status not in DESIGN_STATUSES:
         return solution
     return solution.beside_alone(alone)
 
@@ -354,17 +353,17 @@ def _last_feasible(points: list[dict], stored: dict[int, dict], kept: np.ndarray
     """Where a sweep solved point by point resumes after its first points, stored in order: the last of them with a
     design (its varied values and stored design), as the uninterrupted run's points after it see it (its neighbour's
     design, the continuation's start); None where there is none, or the points stored are not those before the first
-    pending one (a pool's), or its stored design is not one of the problem's (``names``, each a finite number: a
-    damaged or hand-edited store; the first points then solved cold)."""
+    pending one (a pool's), or its stored design is not one of the problem's (``names``, each a finite number:
+    ``batch_carried.stored_design``; a damaged or hand-edited store: the first points then solved cold)."""
     if not _in_order(kept, pending):
         return None
     for index in reversed(kept.tolist()):
         record = stored[index]
         if isinstance(record, dict) and record.get("status") in DESIGN_STATUSES:
-            design = record.get("design")
-            whole = isinstance(design, dict) and list(design) == list(names) and all(
-                type(value) in (int, float) and math.isfinite(value) for value in design.values())
-            return (points[index], StoredDesign(dict(design))) if whole else None
+            try:
+                return points[index], StoredDesign(stored_design(record.get("design"), names))
+            except ValueError:
+                return None
     return None
 
 

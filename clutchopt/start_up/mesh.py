@@ -104,13 +104,12 @@ class Meshes:
         return self._suggested
 
 
-def settled(meshes):
+def settled(meshes) -> None:
     """A solution's meshes (None, a pair or :class:`Meshes`) with the suggestion adapted and the simulation's columns
     (50-90 kB a start-up) let go: for a solution kept beyond its point (a sweep's points waiting for a feasible
     neighbour, a failed start kept to be known again)."""
     if isinstance(meshes, Meshes):
-        meshes.suggested
-    return meshes
+        meshes.suggested  # (read: adapted)
 
 
 def adapted_mesh(structure, history, phase_times: list[float]) -> np.ndarray:
