@@ -121,8 +121,11 @@ def test_user_sweeps_cover_every_coupling_and_quantity_users_vary(report):
         assert before["without_design"] == 0 and beyond["designed"] == 0
         assert beyond["point_cost_vs_designed"] == pytest.approx(before["points_per_s"] / beyond["points_per_s"])
         assert before["point_cost_vs_designed"] is None
+    limits = {c: q for c, q in swept if c.endswith("_motor_start") and q != "driven_inertia"}
+    assert limits == {"wedge_motor_start": "max_temperature_rise", "lever_motor_start": "max_temperature_rise",
+                      "ball_motor_start": "max_temperature_rise", "cable_motor_start": "max_start_time"}
     for row in rows:  # --quick: each start-up sweep timed with no compiled library (none built: 8-26 s each)
-        start_up = row["quantity"] == "driven_inertia"
+        start_up = row["case"].endswith("_motor_start")
         assert (row["compiled"], row["compiled_used"]) == (("none", False) if start_up else (None, None))
     assert Path(os.environ["CLUTCHOPT_CACHE"]).is_dir()  # the session's cache (tests/conftest.py) given back, not the
     # empty one of the rows' state, removed since

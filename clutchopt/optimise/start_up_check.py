@@ -20,6 +20,10 @@ from clutchopt.start_up.transcription import TRAJECTORY
 
 BACK_OFF_STEPS = 4  # defect corrections of limits the simulated start misses (or binds at off the limit)
 CENTRE = 0.25  # of the tolerance: the objective's error from a binding limit met off the limit that is corrected
+BACK_OFF_INSIDE = 0.5  # of the tolerance: where a loop that never centres (an elastic link's) corrects a limit the
+#                       simulated start misses, it aims this far inside it. A loop that centres aims at the limit: a
+#                       landing within what CENTRE accepts needs no further solve, where one half a tolerance inside
+#                       was centred by another (wedge_motor_start over max_temperature_rise: 3 solves a point -> 2)
 LIMIT_OF = {"start_time": "max_start_time", "friction_work": "max_friction_work",
             "temperature_rise": "max_temperature_rise", "heat_per_hour": "heat_dissipation",
             "lining_temperature": "max_lining_temperature", "continuous_temperature": "max_continuous_temperature",
@@ -176,7 +180,8 @@ def corrected_case(solution, nlp_case, centre: bool = True):
     limits, corners = {}, {}
     for check, name, gap in limit_gaps(solution):
         if not check.feasible:
-            gap += 0.5 * tolerance * abs(check.limit)
+            if not centre:  # (a loop that centres aims at the limit itself: BACK_OFF_INSIDE)
+                gap += BACK_OFF_INSIDE * tolerance * abs(check.limit)
         elif not (centre and objective_error(check, gap) > CENTRE * tolerance):
             continue
         corner = corner_name(name, check.name)
