@@ -9,6 +9,7 @@ import pytest
 from clutchopt.cases import load_case
 from clutchopt.optimise import start_up_sweep, sweep
 from clutchopt.optimise.problem import Problem, case_problem
+from clutchopt.optimise.start_up_check import CENTRE
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import parse_vary
 from tests.conftest import CASES
@@ -240,7 +241,12 @@ def test_where_the_mesh_must_adapt_a_point_starts_on_the_adapted_mesh():
     assert [r["status"] for r in records] == ["optimal"] * 4
     assert [r["solver"]["solves"] for r in records][1:] == [1, 3, 2]
     alone = case_problem(MOTOR).solve(MOTOR.with_values(driven_inertia=0.6579))
-    assert abs(records[-1]["objective"]["value"] - alone.objective) <= 0.25e-6 * abs(alone.objective)
+    for rise in (next(c for c in records[-1]["constraints"] if c["name"] == "temperature_rise"),
+                 next(c.as_dict() for c in alone.constraints if c.name == "temperature_rise")):  # each the simulator's
+        # optimum to CENTRE of the tolerance (its loop's test): the sweep's 1.5e-8 off the limit, solve's 1.6e-7 inside
+        # (its one correction, aimed at the limit, lands within CENTRE), so the two up to twice that apart
+        assert abs(rise["elasticity"] * (rise["value"] - rise["limit"]) / rise["limit"]) <= CENTRE * 1e-6
+    assert abs(records[-1]["objective"]["value"] - alone.objective) <= 2 * CENTRE * 1e-6 * abs(alone.objective)
 
 
 def test_a_sweep_adapts_no_mesh_its_points_do_not_solve_on(monkeypatch):
