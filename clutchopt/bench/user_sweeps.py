@@ -6,13 +6,14 @@ edge it meets (from 1x to its last point with a design, and from its first point
 point without a design costs against one with a design, issue 26's "an infeasible point <= 20x a feasible one"),
 ``ball_crusher`` over 250-1000 kW, and for each start-up case a sweep of the driven inertia (0.6x to 1.4x, every
 point simulated; once, with a fiftieth of the points, per state of the compiled-code cache: :func:`start_up_rows`)
-and one of its start-up limit (its heat limit, else its start time; 0.8x to 1.2x, as many points, once).
+and one of the start-up limit nearest to binding its design (0.8x to 1.2x, as many points, once).
 Per sweep: the points, how many have a design and how many a verdict without one, solver calls per point, points/s
 (the median run of ``sweep_repeats``), and points/s against the wedge paper sweep of the duty's quantity measured in
 the same run."""
 
 from __future__ import annotations
 
+import math
 import os
 import tempfile
 from contextlib import contextmanager
@@ -33,9 +34,7 @@ SPANS = ((0.5, 2.0), (0.7, 1.4), (0.9, 1.1))  # factors on the case's value, the
 INTO_INFEASIBLE = (1.0, 10.0)  # factors on the duty's quantity: a sweep that reaches into its infeasible region
 ALLOWABLE = {"wedge": "allowable_pressure", "lever": "allowable_pressure", "cable": "allowable_cable_stress",
              "ball": "allowable_contact_stress"}  # the allowable each coupling's main constraint is sized by
-START_UP_LIMITS = ("max_temperature_rise", "max_start_time")  # the start-up limit a case's second sweep varies: its
-#                                                               heat limit where it sets one, else its start time
-LIMIT_SPAN = (0.8, 1.2)  # factors on that limit: the wedge's 4 K binds its design below 3.6 K, the start time above
+LIMIT_SPAN = (0.8, 1.2)  # factors on the start-up limit nearest to binding a start-up case's design (nearest_limit)
 IN_THE_CACHE, NO_LIBRARY = "in the cache", "none"  # the states of the compiled-code cache a start-up sweep is timed in
 
 
@@ -122,9 +121,9 @@ def start_up_rows(config) -> list[dict]:
     empty cache: a user's first run, less the build it starts beside itself). No build is started while a run is
     timed (``CLUTCHOPT_BUILD_LATER=0``) and none runs; each timed run builds its problems anew, as a new process does.
     ``compiled_used``: whether its solvers evaluated the compiled functions by its end (a sweep finds them at its first
-    point by the link beside the library, :mod:`clutchopt.optimise.start_up_compiled`). Then a sweep of the case's
-    start-up limit (START_UP_LIMITS, over LIMIT_SPAN), as many points, in the first state only: a designer's other
-    question of a start-up design, where the limit itself binds or lets go along the sweep."""
+    point by the link beside the library, :mod:`clutchopt.optimise.start_up_compiled`). Then a sweep of the start-up
+    limit nearest to binding the case's design (:func:`nearest_limit`, over LIMIT_SPAN), as many points, in the first
+    state only: a designer's other question of a start-up design."""
     rows = []
     for path in sorted(CASES.glob("*_motor_start.toml")):
         case = load_case(path)
@@ -142,13 +141,24 @@ def start_up_rows(config) -> list[dict]:
                     row = _run(case, "driven_inertia", values, None, 1)
             rows.append({"case": path.stem, "quantity": "driven_inertia", "span": "0.6x-1.4x", **row,
                          "compiled": state, "compiled_used": any(p.posed.library is not None for p in built)})
-        limit = next(name for name in START_UP_LIMITS if name in case.values)
+        limit = nearest_limit(case)
         state = config.start_up_compiled[0]  # (the same NLP as the driven inertia's: its limits are parameters)
         with _compiled_state(state), problems_set_aside(start_up_key) as built:
             row = _run(case, limit, case.values[limit] * np.linspace(*LIMIT_SPAN, points), None, 1)
         rows.append({"case": path.stem, "quantity": limit, "span": "{:g}x-{:g}x".format(*LIMIT_SPAN), **row,
                      "compiled": state, "compiled_used": any(p.posed.library is not None for p in built)})
     return rows
+
+
+def nearest_limit(case: Case) -> str:
+    """The start-up limit (its case quantity) nearest to binding the case's own design: of the simulated checks of
+    ``start_up_check.LIMIT_OF``, the one of the smallest relative margin (the start time of the wedge, lever and ball,
+    which their designs bind; the cable's link stress, 4 % inside it with the 8 cables it set)."""
+    from clutchopt.optimise.problem import solve_case
+    from clutchopt.optimise.start_up_check import LIMIT_OF
+
+    checks = [c for c in solve_case(case).constraints if c.name in LIMIT_OF and math.isfinite(c.margin)]
+    return LIMIT_OF[min(checks, key=lambda c: c.margin).name]
 
 
 @contextmanager

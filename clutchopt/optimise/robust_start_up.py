@@ -22,6 +22,9 @@ from clutchopt.start_up.drive import CLOSED_FORM, Structure
 START_SAMPLES = 200  # simulated starts of a start-up's Monte Carlo (about 30 ms of CPU each)
 START_RTOL = 1e-9  # of the simulated starts: far inside a start-up's tolerance (1e-6)
 MAX_START_CORNERS = 4  # scattered quantities up to which a start-up is simulated at all 2^n corners
+TIE = 1e-9  # relative margins this near are one (the corners' starts are simulated at START_RTOL): of such corners
+#             the first is the worst, not the one round-off makes smaller (lock_up_speed, which driven_inertia does
+#             not move, 1e-14 apart at its two ends: the corner flipped from one robust solve to the next)
 
 
 # --- A start-up under scatter: designed at one corner, simulated at every corner and by Monte Carlo -------------------
@@ -72,10 +75,11 @@ def start_up_corners(case: Case, mode: str, design: dict, scatter, target: float
         margins = np.array([_margins(run) for run in simulated_start_ups(case, mode, design, points)])
 
         def worst(columns: list[int]) -> dict[str, float]:
-            return points[int(np.argmin(margins[:, columns].min(axis=1)))]
+            return points[worst_corner(margins[:, columns].min(axis=1))]
     else:
         def worst(columns: list[int]) -> dict[str, float]:
-            return {q: ends[q][int(high[columns].min() < low[columns].min())] for q, (low, high) in alone.items()}
+            return {q: ends[q][worst_corner(np.array([low[columns].min(), high[columns].min()]))]
+                    for q, (low, high) in alone.items()}
 
     figures = [i for i, name in enumerate(names) if name not in CLOSED_FORM]
     return StartUpCorners(ends, {START_UP: worst(figures), **{name: worst([i]) for i, name in enumerate(names)}},
@@ -125,6 +129,12 @@ class Bars(Mapping):
 
     def __len__(self) -> int:
         return len(self._simulated())
+
+
+def worst_corner(margins: np.ndarray) -> int:
+    """The corner (an index of ``margins``, each corner's smallest relative margin) where the margin is smallest: the
+    first within TIE of the smallest, so that corners round-off tells apart do not trade places between solves."""
+    return int(np.flatnonzero(margins <= margins.min() + TIE)[0])
 
 
 def _margins(run: list[ConstraintCheck]) -> np.ndarray:
