@@ -149,9 +149,9 @@ def test_start_up_carries_the_scatter_to_its_worst_corner():
 
 
 def test_corners_round_off_tells_apart_are_one_corner():
-    """worst_corner: the first corner within TIE of the smallest margin (lock_up_speed's at driven_inertia 0.45 and 0.55
-    kg m^2, which do not move it: 5.05682661993975893e-2 and ...74436e-2), a smaller one beyond TIE, a start that
-    does not lock up (-inf) the worst."""
+    """worst_corner: the first corner within TIE of the smallest margin (lock_up_speed's at driven_inertia 0.45 and
+    0.55 kg m^2, which do not move it: 5.05682661993975893e-2 and ...74436e-2), a smaller one beyond TIE, a start
+    that does not lock up (-inf) the worst."""
     assert worst_corner(np.array([5.05682661993975893e-2, 5.05682661993974436e-2])) == 0
     assert worst_corner(np.array([5.05682661993974436e-2, 5.05682661993975893e-2])) == 0
     assert worst_corner(np.array([0.05, 0.05 - 3 * TIE])) == 1

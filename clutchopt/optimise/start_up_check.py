@@ -169,12 +169,13 @@ def corrected_case(solution, nlp_case, centre: bool = True):
     """The case of the next solve (defect correction): each limit L_k the NLP last saw (a scattered limit: its
     corner's, an NLP parameter) moved to L - (S - C), the case's limit L less what the simulated figure S adds to
     the NLP's own C (``Solution.collocated``) at this design: where the simulated start misses the limit (where the
-    loop does not centre, half the tolerance more: BACK_OFF_INSIDE), and (``centre``) where it meets a limit the design binds at so far from it that the
-    objective is off by more than CENTRE of the tolerance (:func:`objective_error`): the design is then the
-    simulator's optimum, not the collocation's, whatever mesh the accuracy loop ended on. Where the NLP binds the
-    limit (C = L_k within ACTIVE_TOL of its scale) this is L_k - (S - L); where it does not, the NLP's own slack
-    L_k - C is taken in at once, not a step of S - L a solve (docs/start_up.md, "The defect correction's fixed
-    point"). None where nothing is to be moved, or a limit cannot be."""
+    loop does not centre, half the tolerance more: BACK_OFF_INSIDE), and (``centre``) where it meets a limit the
+    design binds at so far from it that the objective is off by more than CENTRE of the tolerance
+    (:func:`objective_error`): the design is then the simulator's optimum, not the collocation's, whatever mesh the
+    accuracy loop ended on. Where the NLP binds the limit (C = L_k within ACTIVE_TOL of its scale) this is
+    L_k - (S - L); where it does not, the NLP's own slack L_k - C is taken in at once, not a step of S - L a solve
+    (docs/start_up.md, "The defect correction's fixed point"). None where nothing is to be moved, or a limit cannot
+    be."""
     summary, tolerance = solution.start_up, solution.start_up["tolerance"]
     collocated = getattr(solution, "collocated", None) or {}
     limits, corners = {}, {}
