@@ -120,8 +120,8 @@ class WindowRecords:
                     **fields.constraints}  # with sensitivities: each has every name, in order)
         diagnoses = list(dict.fromkeys(text for text in fields.diagnosis if text is not None))
         searches = {str(j): search for j, search in enumerate(fields.integer_search) if search}
-        if not (all(set(map(type, values)) <= _TYPES[KINDS[name][0]] for values in (per_point, per_item)
-                    for name, values in values.items())
+        types = {name: set(map(type, values)) for values in (per_point, per_item) for name, values in values.items()}
+        if not (all(found <= _TYPES[KINDS[name][0]] for name, found in types.items())
                 and all(status in STATUSES for status in fields.status)
                 and len(diagnoses) <= LABELS and all(type(text) is str for text in diagnoses)
                 and all(type(search) is list for search in searches.values())):
@@ -135,8 +135,8 @@ class WindowRecords:
         if names:
             lists["sensitivity"][sensed] = np.array(per_item["sensitivity"], dtype=NUMBER).reshape(-1, len(names))
         try:
-            arrays = {name: np.array(lists[name], dtype=kind).reshape(count, -1).T.copy() if rows  # (a point's rows:
-                      else np.array(lists[name], dtype=kind)  # a column)
+            arrays = {name: _array(lists[name], kind, types.get(name)).reshape(count, -1).T.copy() if rows  # (a
+                      else _array(lists[name], kind, types.get(name))  # point's rows: a column)
                       for name, (kind, rows) in KINDS.items() if name in lists}
         except OverflowError:  # a whole number beyond 64 bits
             return None
@@ -166,6 +166,16 @@ class WindowRecords:
                 or not all(type(search) is list for search in labels["integer_search"].values())):
             raise ValueError("its numbers do not fit their layout")
         return cls(template, arrays, labels)
+
+
+def _array(values, kind: str, types: set | None) -> np.ndarray:
+    """``np.array(values, dtype=kind)``, where ``types`` are the types of ``values``: NaN at once where every value is
+    None (a proven point's multipliers and elasticities; NumPy reads a None four times slower than a float: 0.11 ms
+    for the 2088 of the lever's 232 points without a design)."""
+    return np.full(len(values), np.nan) if types == _NONE else np.array(values, dtype=kind)
+
+
+_NONE = {type(None)}
 
 
 def gathered(alone: dict[int, dict]) -> tuple[dict[int, dict], list[tuple[np.ndarray, WindowRecords]]]:

@@ -138,3 +138,30 @@ def test_euler_stress_of_a_round_link():
     p_cr = math.pi**2 * e * math.pi * d**4 / 64 / length**2
     assert euler_stress(e, d, length) == pytest.approx(p_cr / (math.pi * d**2 / 4), rel=1e-12)
     assert euler_stress(e, d, length) == pytest.approx(207.26e6, rel=1e-4)
+
+
+def test_the_outputs_compute_each_toggle_property_once_to_the_same_bits(monkeypatch):
+    # the lever's outputs read R_0 20 times through its toggles' properties (d_cp, the pushes, forces and masses):
+    # computed once each (formulations.common.computed_once), the numbers bit for bit those of the toggles read as
+    # they are; the constraints, which make the NLP's graph, still build R_0 where each reads it
+    import casadi as ca
+
+    from clutchopt.formulations.lever import toggles
+    from clutchopt.formulations.lever.modes import paper_toggles
+    from clutchopt.optimise.problem import case_problem
+
+    case = load_case(CASES / "lever_wedge_duty.toml")
+    posed = case_problem(case, "paper", "mass").posed
+    p, x = posed.params(case), SimpleNamespace(weight_mass=0.3, link_diameter=0.006)
+    calls = []
+    monkeypatch.setattr(toggles, "start_radius", lambda *args: calls.append(args) or start_radius(*args))
+    outputs = PAPER.outputs(x, p)
+    assert len(calls) == 1
+    t = paper_toggles(x, p)
+    plain = {**toggles._duty_outputs(t, x, p), **toggles._envelope(t, x, p).outputs()}
+    assert list(outputs) == list(plain) and len(outputs) == 27
+    assert [out.value.hex() for out in outputs.values()] == [float(out.value).hex() for out in plain.values()]
+    assert outputs["start_radius"].value == R_0 and outputs["lever_length"].value == pytest.approx(L2, rel=1e-12)
+    calls.clear()
+    PAPER.constraints(SimpleNamespace(weight_mass=ca.SX.sym("m"), link_diameter=ca.SX.sym("d")), p)
+    assert len(calls) > 1

@@ -162,3 +162,23 @@ def test_a_check_holds_its_fields_only_so_gathered_solutions_cannot_drop_one(lev
     assert tuple(check.as_dict()) == CONSTRAINT_KEYS
     assert check.as_dict()["display_unit"] == check.unit and dataclasses.asdict(check).keys() <= set(CONSTRAINT_KEYS)
     assert type(check) is ConstraintCheck
+
+
+def test_a_run_whose_multipliers_are_all_none_holds_the_nans_numpy_reads_them_as(lever):
+    # a point without a design has no multipliers nor elasticities: every point's None, read as NaN at once
+    # (window_records._array), the bytes NumPy makes of the Nones; a float among them (a point of its own) kept
+    # where it is, NaN about it; read back, None again
+    covered = {k: copy.deepcopy(solution) for k, solution in enumerate(_covered(lever))}
+    constraints = len(covered[0].constraints)
+    window = gathered_solutions(covered)[1][0][1]
+    for name in ("multiplier", "elasticity"):
+        assert window.arrays[name].shape == (constraints, 6)
+        assert window.arrays[name].tobytes() == np.array([None] * constraints * 6, dtype="<f8").tobytes()
+    assert not window.arrays["priced"].any()
+    covered[4].constraints[2].multiplier = 0.25
+    window = gathered_solutions(covered)[1][0][1]
+    multipliers = window.arrays["multiplier"]
+    assert multipliers[2, 4] == 0.25 and np.isnan(np.delete(multipliers.ravel(), 2 * 6 + 4)).all()
+    assert np.isnan(window.arrays["elasticity"]).all()
+    back = window.records(json_numbers=True)
+    assert back[4]["constraints"][2]["multiplier"] == 0.25 and back[3]["constraints"][2]["multiplier"] is None

@@ -34,6 +34,24 @@ def test_the_basic_operations_give_the_machines_numbers_bit_for_bit():
     assert np.array_equal(got, _on_machine(function, points), equal_nan=True)
 
 
+def test_a_subexpression_the_algorithm_holds_twice_is_replayed_once():
+    # sqrt(x) and x * y each built twice (two nodes: two instructions each in CasADi's algorithm), replayed once each
+    # (casadi.cse), the machine's numbers bit for bit; at x = 4, y = 3: 2 + 2 * 3 = 8 and 12 - 12^2 = -132
+    x, y = ca.SX.sym("x"), ca.SX.sym("y")
+    function = ca.Function("twice", [ca.vertcat(x, y)],
+                           [ca.vertcat(ca.sqrt(x) + ca.sqrt(x) * y, x * y - (x * y) * (x * y))])
+    held = [function.instruction_id(k) for k in range(function.n_instructions())]
+    assert held.count(ca.OP_SQRT) == 2 and held.count(ca.OP_MUL) == 3  # (x * y twice, sqrt(x) * y)
+    replay = SXColumns(function)
+    ops = [op for op, _ in replay.program]
+    assert ops.count(np.sqrt) == 1 and ops.count(np.multiply) == 2
+    points = np.column_stack([[4.0, 3.0], [0.0, -1.0], [np.inf, 0.0], [-1.0, 2.0],
+                              *np.random.default_rng(5).uniform(0.0, 50.0, (300, 2))])
+    got = replay(points)[0]
+    assert got[:, 0].tolist() == [8.0, -132.0]
+    assert got.tobytes() == _on_machine(function, points).tobytes()
+
+
 def test_the_transcendental_functions_agree_with_the_machine_to_the_last_bits():
     # at (pi/6, 2): sin = 0.5, e^2 = 7.38905609893065, ln 2 = 0.6931471805599453, 2^0.5 = 1.4142135623730951;
     # at (pi/4, 1): tan = 1, atan(1) = pi/4 = 0.7853981633974483 (to within rounding)

@@ -228,4 +228,5 @@ MODEL = CouplingModel(
     speed_law=_speed_law,
     constraints=_duty_constraints,
     envelope=_envelope,
+    outputs_once=True,
 )
