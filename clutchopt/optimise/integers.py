@@ -120,8 +120,7 @@ def from_the_start(posed: Posed, data: ScaledData, integer, kept: dict | None, s
     if kept is not None and kept["value"] <= bound or not within(data, integer, combo):
         return kept  # (a design with the start's integers as light as the start would be kept: the lightest is)
     x0 = point()
-    if x0 is None or least_violation(posed, np.array(posed.constraint_values(x0, data.p)).ravel()) > \
-            10 * FEASIBILITY_TOL:
+    if x0 is None or not meets_every_row(posed, x0, data.p):
         return kept
     found = descend(posed, data.box, integer, combo, feasible_start(posed, x0), search, attempt,
                     first=FROM_A_FEASIBLE_START, again=True)
@@ -133,6 +132,12 @@ FROM_A_FEASIBLE_START = ("warm_near", "ipopt")  # IPOPT's barrier at 1e-9, the s
 # the cold barrier leaves it, and where IPOPT's restoration then ends is chaotic: ball_motor_start at 303.95 kg m^2,
 # 23 rows from the papers' sizing end infeasible in 106 iterations, the solve with 23 rows fixed from the same
 # start (to 1e-11) converges in 387 (docs/start_up.md, "Integer attempts").
+
+
+def meets_every_row(posed: Posed, x0: np.ndarray, p) -> bool:
+    """Whether the point ``x0`` (scaled) meets every row of the NLP at parameters ``p`` (to 10 FEASIBILITY_TOL): a
+    start :func:`from_the_start` solves its integers from."""
+    return not least_violation(posed, np.array(posed.constraint_values(x0, p)).ravel()) > 10 * FEASIBILITY_TOL
 
 
 def feasible_start(posed: Posed, x0: np.ndarray) -> dict:

@@ -26,8 +26,8 @@ from clutchopt.model import Formulation
 from clutchopt.optimise.attempts import attempt, warm_multipliers
 from clutchopt.optimise.diagnosis import diagnose, whatever_the_design
 from clutchopt.optimise.failed_starts import FailedStarts
-from clutchopt.optimise.integers import (UNRANKED, RuledOut, descend, fixing, from_the_start, nearest_integers,
-                                         relaxation_seed, within)
+from clutchopt.optimise.integers import (UNRANKED, RuledOut, descend, fixing, from_the_start, meets_every_row,
+                                         nearest_integers, relaxation_seed, within)
 from clutchopt.optimise.modifier import VARIANT, first_order, with_modifiers
 from clutchopt.optimise.own_shift import (ForeignShifts, carried_by, climbing, excluded_own_entry, lighter_above,
                                           own_entry, stepped)
@@ -538,10 +538,13 @@ class Problem:
             if seed is relaxed or seen and id(seed) not in seen:
                 return None
             if not seen:
-                seen[id(seed)] = (seed, *self._unranked(case, seed, runs, data, search, unranked_above))
+                seen[id(seed)] = (seed, *self._unranked(case, seed, runs, data, search, unranked_above, heavier))
             return seen[id(seed)][3]
 
-        near = fixing(posed, data, runs, search, ruled, unranked) if unranked_above < math.inf else attempt_at
+        # (a start that meets every row, whose integers :func:`from_the_start` solves, may beat the kept design:
+        # the search then runs in full)
+        ranks = unranked_above < math.inf and not meets_every_row(posed, data.x0, data.p)
+        near = fixing(posed, data, runs, search, ruled, unranked) if ranks else attempt_at
         kept = nearest_integers(posed, data.box, integer, relaxed, search, near)
         if self.start_up is not None and start is not None and not warm_ok:  # a first solve, from the sizing
             kept = from_the_start(posed, data, integer, kept, search, attempt_at)
@@ -557,17 +560,20 @@ class Problem:
         return self._finish(case, kept, runs, data, search, heavier=heavier)
 
     def _unranked(self, case: Case, run: dict, runs: list[dict], data: ScaledData, search: list[dict],
-                  above: float) -> tuple[Solution, int, str | None]:
+                  above: float, heavier: float) -> tuple[Solution, int, str | None]:
         """A first mesh's kept design ``run`` (the relaxation's rounded integers) finished (its Solution; the number
         of ``runs`` then) and why its neighbours are not solved on this mesh: its simulated start shows the mesh too
         coarse to rank them (the start time's collocation error over ``above``) and the accuracy loop adapts the mesh
         from it (a design its limits shape: not :func:`shapes_nothing`, not held by the mesh), where the integers are
         decided again (:func:`unsettled`). Else None: they are solved (the simulation, about 3 ms, spent).
         ball_motor_start: 24 rows at error 1.1e-2; 25 rows, within 7.6e-4 of them, not solved there (12 IPOPT
-        iterations); the adapted mesh decides again and keeps 25 rows, the design the same to the last bit."""
-        solution = self._finish(case, run, runs, data, search)
+        iterations); the adapted mesh decides again and keeps 25 rows, the design the same to the last bit.
+        ``heavier``: as for :meth:`_finish`."""
+        solution = self._finish(case, run, runs, data, search, heavier=heavier)
+        if solution.status not in ("optimal", "unverified"):
+            return solution, len(runs), None
         error = abs(solution.start_up["discretisation_error"]["start_time"])
-        if (solution.status not in ("optimal", "unverified") or error <= above or self._held(solution)
+        if (not error > above or self._held(solution)  # (an error not a number: no adaptation, none left)
                 or shapes_nothing(solution, self.posed.n_checked, self.start_up.s.spec.tolerance, self._own_names)):
             return solution, len(runs), None
         return solution, len(runs), f"the mesh's collocation error {error:.2g} is too coarse to rank it"
