@@ -531,15 +531,15 @@ class Problem:
         if not integer or not relaxed["ok"]:
             return self._finish(case, relaxed, runs, data, search, diagnosed=diagnosis, heavier=heavier)
         attempt_at = fixing(posed, data, runs, search, ruled)
-        seen: dict[int, tuple] = {}  # id of a kept run -> (the run, its Solution, the runs then, why it ranks none)
+        first: list[tuple] = []  # the first kept run, its Solution, the runs then, why its neighbours are not solved
 
-        def unranked(seed: dict) -> str | None:  # the first kept run's (the relaxation's own neighbours, and
-            # those of a design the descent went on to, solved as ever)
-            if seed is relaxed or seen and id(seed) not in seen:
+        def unranked(seed: dict) -> str | None:  # the first kept run's neighbours (the relaxation's own, and those
+            # of a design the descent went on to, solved as ever)
+            if seed is relaxed:
                 return None
-            if not seen:
-                seen[id(seed)] = (seed, *self._unranked(case, seed, runs, data, search, unranked_above, heavier))
-            return seen[id(seed)][3]
+            if not first:
+                first.append((seed, *self._unranked(case, seed, runs, data, search, unranked_above, heavier)))
+            return first[0][3] if seed is first[0][0] else None
 
         # (a start that meets every row, whose integers :func:`from_the_start` solves, may beat the kept design:
         # the search then runs in full)
@@ -550,8 +550,8 @@ class Problem:
             kept = from_the_start(posed, data, integer, kept, search, attempt_at)
         else:
             kept = self._sized(solved, data, integer, kept, search, attempt_at, sizing)
-        if kept is not None and (known := seen.get(id(kept))) is not None and known[2] == len(runs):
-            return known[1]  # (its simulation reused)
+        if first and kept is first[0][0] and first[0][2] == len(runs):
+            return first[0][1]  # (its simulation reused)
         if kept is None:  # the relaxation is feasible, no integer near it is
             tried = "; ".join(", ".join(f"{k}={v}" for k, v in e.items() if k in posed.names) for e in search)
             return self._finish(case, runs[-1], runs, data, search,
