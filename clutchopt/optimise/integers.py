@@ -120,8 +120,7 @@ def from_the_start(posed: Posed, data: ScaledData, integer, kept: dict | None, s
     if kept is not None and kept["value"] <= bound or not within(data, integer, combo):
         return kept  # (a design with the start's integers as light as the start would be kept: the lightest is)
     x0 = point()
-    if x0 is None or least_violation(posed, np.array(posed.constraint_values(x0, data.p)).ravel()) > \
-            10 * FEASIBILITY_TOL:
+    if x0 is None or not meets_every_row(posed, x0, data.p):
         return kept
     found = descend(posed, data.box, integer, combo, feasible_start(posed, x0), search, attempt,
                     first=FROM_A_FEASIBLE_START, again=True)
@@ -133,6 +132,12 @@ FROM_A_FEASIBLE_START = ("warm_near", "ipopt")  # IPOPT's barrier at 1e-9, the s
 # the cold barrier leaves it, and where IPOPT's restoration then ends is chaotic: ball_motor_start at 303.95 kg m^2,
 # 23 rows from the papers' sizing end infeasible in 106 iterations, the solve with 23 rows fixed from the same
 # start (to 1e-11) converges in 387 (docs/start_up.md, "Integer attempts").
+
+
+def meets_every_row(posed: Posed, x0: np.ndarray, p) -> bool:
+    """Whether the point ``x0`` (scaled) meets every row of the NLP at parameters ``p`` (to 10 FEASIBILITY_TOL): a
+    start :func:`from_the_start` solves its integers from."""
+    return not least_violation(posed, np.array(posed.constraint_values(x0, p)).ravel()) > 10 * FEASIBILITY_TOL
 
 
 def feasible_start(posed: Posed, x0: np.ndarray) -> dict:
@@ -173,14 +178,15 @@ def downhill(posed: Posed, run: dict, box: Box, integer: list[int]) -> list[np.n
 
 
 def fixing(posed: Posed, data: ScaledData, runs: list[dict], search: list[dict],
-           ruled: "RuledOut | None" = None) -> Attempt:
+           ruled: "RuledOut | None" = None, unranked: Callable[[dict], str | None] | None = None) -> Attempt:
     """``Problem.solve``'s ``attempt`` for :func:`descend`: the NLP on ``data`` with the free integers fixed at
     ``combo``, the run if it is a verified-feasible optimum, else None. A combination that violates a constraint
     depending on the integers and fixed variables alone is excluded without a solve, so is one ``ruled`` rules out
     (and records those found infeasible) and an elastic link's whose least stress at the seed's nodes is over its
     limit (:func:`~clutchopt.optimise.link_bound.refuted`). Every run goes into ``runs``. In a start-up, a run that
     ends without a verdict on the choice (:func:`no_verdict`) is tried once more, cold from the solve's own start
-    (``data.x0``: the papers' sizing, or the warm design), those integers fixed."""
+    (``data.x0``: the papers' sizing, or the warm design), those integers fixed. ``unranked(seed)``: why a choice
+    solved from ``seed`` (a kept run) is not solved on this mesh, recorded as an UNRANKED entry (None: it is)."""
     integer = posed.free_integers(data)
 
     def fixed_at(combo, seed, methods: tuple[str, ...] = ("ipopt",)) -> dict | None:
@@ -193,6 +199,9 @@ def fixing(posed: Posed, data: ScaledData, runs: list[dict], search: list[dict],
                     or ([] if modifiers_in(data.params) else refuted(posed, data, x0, lbx, ubx)))
         if excluded:
             search.append(excluded_entry(posed, integer, combo, excluded))
+            return None
+        if unranked is not None and (why := unranked(seed)) is not None:
+            search.append(search_entry(posed, integer, combo, f"{UNRANKED}{why}", False, math.nan))
             return None
         run = attempts.attempt(posed, data, lbx, ubx, x0, seed, methods, runs)
         if no_verdict(posed, run) and not np.array_equal(second := np.clip(data.x0, lbx, ubx), x0):
@@ -210,6 +219,7 @@ def fixing(posed: Posed, data: ScaledData, runs: list[dict], search: list[dict],
 INFEASIBLE = "Infeasible_Problem_Detected"  # IPOPT's restoration phase ended at a local minimum of the violation
 SOLVED = "Solve_Succeeded"
 EXCLUDED = "excluded: "  # an integer search entry excluded without a solve, the rows it breaks after it
+UNRANKED = "not solved: "  # an entry a start-up's first mesh left to the next (too coarse to rank it), why after it
 VERDICTS = (SOLVED, INFEASIBLE)  # IPOPT's ends that say something of the choice (not that they are global)
 
 

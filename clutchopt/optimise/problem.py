@@ -26,8 +26,8 @@ from clutchopt.model import Formulation
 from clutchopt.optimise.attempts import attempt, warm_multipliers
 from clutchopt.optimise.diagnosis import diagnose, whatever_the_design
 from clutchopt.optimise.failed_starts import FailedStarts
-from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_start, nearest_integers, relaxation_seed,
-                                         within)
+from clutchopt.optimise.integers import (UNRANKED, RuledOut, descend, fixing, from_the_start, meets_every_row,
+                                         nearest_integers, relaxation_seed, within)
 from clutchopt.optimise.modifier import VARIANT, first_order, with_modifiers
 from clutchopt.optimise.own_shift import (ForeignShifts, carried_by, climbing, excluded_own_entry, lighter_above,
                                           own_entry, stepped)
@@ -48,6 +48,7 @@ from clutchopt.start_up.mesh import MAX_INTERVALS, MESH_STEPS
 from clutchopt.start_up.transcription import mesh_of_the_start
 
 
+UNRANKED_ERROR = 1e-3  # a first mesh's collocation error (start time, relative) over which it ranks no neighbours
 PROVEN = "proof"  # the solver of a start-up the drive's proofs cover (:meth:`Problem.proven`: no start-up solve)
 
 
@@ -180,8 +181,9 @@ class Problem:
                                 carried_by(warm) if limit_shift(case, nlp_case) else ()) if structure.elastic else None
         ruled = None if structure.elastic else RuledOut(infeasible)  # an elastic link's NLP differs from its
         # simulation by the model, not the mesh: no collocation error bounds what the next solve changes
+        first_mesh = start is not None and warm is None and mesh is None and ruled is not None
         solution = self._solve(case, start, warm, nlp_case=nlp_case, mesh=mesh, diagnosed=diagnosed, ruled=ruled,
-                               cold=cold, sizing=sizing)
+                               cold=cold, sizing=sizing, unranked_above=UNRANKED_ERROR if first_mesh else math.inf)
         adapted, last_error, solves = 0, math.inf, [solution.solver]
         sized_again = False  # the papers' sizing solved again, where a row of the collocation held a design
         for _ in range(MESH_STEPS + BACK_OFF_STEPS):
@@ -464,14 +466,16 @@ class Problem:
                nlp_case: Case | None = None, mesh: np.ndarray | None = None,
                diagnosed: bool = True, ruled: RuledOut | None = None, cold: bool = True,
                redecide: bool = False, sizing: dict[str, float] | None = None,
-               heavier: float = math.inf) -> Solution:
+               heavier: float = math.inf, unranked_above: float = math.inf) -> Solution:
         """One solve (with its integer search); the NLP sees ``nlp_case`` (moved limits), the checks ``case``;
         a start-up's mesh is ``mesh``, else the warm solution's, else the first one; ``ruled``: integer choices
         not to solve again, and where those found infeasible are recorded; ``cold=False``: no cold start after a
         failed warm one; ``redecide``: the warm solution's integers are not tried first, the relaxation is solved
         (warm) and its integers searched as a first solve's (:func:`unsettled`); ``sizing``: the papers' sizing at
         the point, whose integers a warm start-up solve's search is completed by (:meth:`_sized`); ``heavier``: a
-        start-up design this heavy or heavier is of no use to the caller, its start not simulated (:meth:`_finish`)."""
+        start-up design this heavy or heavier is of no use to the caller, its start not simulated (:meth:`_finish`);
+        ``unranked_above``: the neighbours of the relaxation's rounded integers are not solved where those integers'
+        design's simulated start shows the mesh too coarse to rank them (:meth:`_unranked`)."""
         posed = self.posed
         warm_ok = warm is not None and warm.status in ("optimal", "unverified") and warm.scale is not None
         if mesh is None and warm_ok and warm.mesh is not None and len(warm.mesh[0]) == posed.mesh_size:
@@ -527,17 +531,52 @@ class Problem:
         if not integer or not relaxed["ok"]:
             return self._finish(case, relaxed, runs, data, search, diagnosed=diagnosis, heavier=heavier)
         attempt_at = fixing(posed, data, runs, search, ruled)
-        kept = nearest_integers(posed, data.box, integer, relaxed, search, attempt_at)
+        first: list[tuple] = []  # the first kept run, its Solution, the runs then, why its neighbours are not solved
+
+        def unranked(seed: dict) -> str | None:  # the first kept run's neighbours (the relaxation's own, and those
+            # of a design the descent went on to, solved as ever)
+            if seed is relaxed:
+                return None
+            if not first:
+                first.append((seed, *self._unranked(case, seed, runs, data, search, unranked_above, heavier)))
+            return first[0][3] if seed is first[0][0] else None
+
+        # (a start that meets every row, whose integers :func:`from_the_start` solves, may beat the kept design:
+        # the search then runs in full)
+        ranks = unranked_above < math.inf and not meets_every_row(posed, data.x0, data.p)
+        near = fixing(posed, data, runs, search, ruled, unranked) if ranks else attempt_at
+        kept = nearest_integers(posed, data.box, integer, relaxed, search, near)
         if self.start_up is not None and start is not None and not warm_ok:  # a first solve, from the sizing
             kept = from_the_start(posed, data, integer, kept, search, attempt_at)
         else:
             kept = self._sized(solved, data, integer, kept, search, attempt_at, sizing)
+        if first and kept is first[0][0] and first[0][2] == len(runs):
+            return first[0][1]  # (its simulation reused)
         if kept is None:  # the relaxation is feasible, no integer near it is
             tried = "; ".join(", ".join(f"{k}={v}" for k, v in e.items() if k in posed.names) for e in search)
             return self._finish(case, runs[-1], runs, data, search,
                                 ("infeasible", f"infeasible in integers: the continuous relaxation is feasible "
                                  f"but none of the integer neighbours is ({tried})"))
         return self._finish(case, kept, runs, data, search, heavier=heavier)
+
+    def _unranked(self, case: Case, run: dict, runs: list[dict], data: ScaledData, search: list[dict],
+                  above: float, heavier: float) -> tuple[Solution, int, str | None]:
+        """A first mesh's kept design ``run`` (the relaxation's rounded integers) finished (its Solution; the number
+        of ``runs`` then) and why its neighbours are not solved on this mesh: its simulated start shows the mesh too
+        coarse to rank them (the start time's collocation error over ``above``) and the accuracy loop adapts the mesh
+        from it (a design its limits shape: not :func:`shapes_nothing`, not held by the mesh), where the integers are
+        decided again (:func:`unsettled`). Else None: they are solved (the simulation, about 3 ms, spent).
+        ball_motor_start: 24 rows at error 1.1e-2; 25 rows, within 7.6e-4 of them, not solved there (12 IPOPT
+        iterations); the adapted mesh decides again and keeps 25 rows, the design the same to the last bit.
+        ``heavier``: as for :meth:`_finish`."""
+        solution = self._finish(case, run, runs, data, search, heavier=heavier)
+        if solution.status not in ("optimal", "unverified"):
+            return solution, len(runs), None
+        error = abs(solution.start_up["discretisation_error"]["start_time"])
+        if (not error > above or self._held(solution)  # (an error not a number: no adaptation, none left)
+                or shapes_nothing(solution, self.posed.n_checked, self.start_up.s.spec.tolerance, self._own_names)):
+            return solution, len(runs), None
+        return solution, len(runs), f"the mesh's collocation error {error:.2g} is too coarse to rank it"
 
     @cached_property
     def _own_names(self) -> frozenset[str]:
@@ -711,10 +750,13 @@ def unsettled(solution: Solution, error: float) -> bool:
     decides the integers again from its relaxation (``Problem._solve``, ``redecide``) instead of trying the kept
     ones first. ball_motor_start's first mesh (error 1.1e-2): 24 rows kept, 25 worse by 7.6e-4; on the adapted
     mesh 24 rows are infeasible, which IPOPT took 55 iterations to find from their first-mesh optimum, 32 from the
-    optimum of 25 rows the relaxation rounds to (its downhill neighbour); the design is the same to the last bit."""
+    optimum of 25 rows the relaxation rounds to (its downhill neighbour); the design is the same to the last bit.
+    So does a choice its search left unsolved, the mesh too coarse to rank it (an UNRANKED entry,
+    :meth:`Problem._unranked`)."""
     kept = solution.objective
     others = [e["objective"] for e in solution.integer_search if e["feasible"] and math.isfinite(e["objective"])]
-    return any(0 < (other - kept) / abs(kept) < error for other in others)
+    return any(0 < (other - kept) / abs(kept) < error for other in others) or any(
+        e.get("status", "").startswith(UNRANKED) for e in solution.integer_search)
 
 
 SHAPING_MARGIN = 10.0  # times the collocation's largest error: a start-up limit this far off cannot become active
