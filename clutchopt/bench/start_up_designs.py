@@ -72,7 +72,7 @@ def start_up_solve_rows(config) -> list[dict]:
         static = replace(case, start_up=None)
         with problems_set_aside():
             first, solution = time_once(lambda: solve_case(case))
-        again = repeated(lambda: solve_case(case), max(3, config.repeats // 4))["median_s"]
+        again = repeated(lambda: solve_case(case), max(3, config.repeats))["median_s"]
         with problems_set_aside():
             static_first = time_once(lambda: solve_case(static))[0]
         static_again = repeated(lambda: solve_case(static), config.repeats)["median_s"]
