@@ -11,7 +11,7 @@ import json
 import math
 from typing import TYPE_CHECKING
 
-from clutchopt.records import target_text
+from clutchopt.records import UNRANKED, target_text
 from clutchopt.units import from_si, si_unit
 from clutchopt.scatter import correlation_text, shown_spread
 
@@ -255,9 +255,16 @@ def solution_text(solution, formulation: Formulation, title: str = "") -> str:
     if solution.integer_search:
         lines.append("integer neighbours tried: " + "; ".join(
             ", ".join(f"{k}={v}" for k, v in entry.items() if k not in ("status", "feasible", "objective"))
-            + (f" -> {entry['objective']:.6g}" if entry["feasible"] else " -> infeasible")
+            + (f" -> {entry['objective']:.6g}" if entry["feasible"] else f" -> {_not_feasible(entry)}")
             for entry in solution.integer_search))
     return "\n".join(lines)
+
+
+def _not_feasible(entry: dict) -> str:
+    """What an integer search entry without a design says: ``not solved (why)`` for one left unsolved (UNRANKED),
+    else infeasible (a solve's verdict, or a constraint of the fixed variables alone broken)."""
+    status = entry.get("status", "")
+    return f"not solved ({status[len(UNRANKED):]})" if status.startswith(UNRANKED) else "infeasible"
 
 
 def html_table(rows: list[dict], numeric: tuple[str, ...] = ("value", "limit", "margin", "elasticity"),

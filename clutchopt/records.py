@@ -20,6 +20,8 @@ TEMPLATE = "template"  # the key that marks a compact record, holding its templa
 STATUSES = ("optimal", "unverified", "infeasible", "not_found", "solver_failed")  # how a solve ends (infeasible: proven)
 CONSTRAINT_COLUMNS = ("value", "limit", "margin", "active", "feasible", "scale", "multiplier", "elasticity")
 NOMINAL = "nominal"  # how a design was made without --robust; else worst-case or chance=P, as --robust spells it
+UNRANKED = "not solved: "  # an integer search entry a start-up's first mesh left to the next (too coarse to rank
+#                            it), why after it (clutchopt.optimise.problem.Problem._unranked)
 RECORD_KEYS = ("coupling", "mode", "status", "objective", "design", "outputs", "units", "constraints", "solver",
                "diagnosis", "integer_search", "bounds", "sensitivities")  # a full record's, in :func:`expand`'s order
 OBJECTIVE_KEYS = ("name", "value", "unit")

@@ -171,8 +171,8 @@ class WindowRecords:
 def _array(values, kind: str, types: set | None) -> np.ndarray:
     """``np.array(values, dtype=kind)``, where ``types`` are the types of ``values``: NaN at once where every value is
     None (a proven point's multipliers and elasticities; NumPy reads a None four times slower than a float: 0.11 ms
-    for the 2088 of the lever's 232 points without a design)."""
-    return np.full(len(values), np.nan) if types == _NONE else np.array(values, dtype=kind)
+    for the 2088 of the lever's 232 points without a design), in ``values``' shape (a row a point: sensitivities)."""
+    return np.full(np.shape(values), np.nan, dtype=kind) if types == _NONE else np.array(values, dtype=kind)
 
 
 _NONE = {type(None)}

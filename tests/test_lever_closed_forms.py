@@ -165,3 +165,37 @@ def test_the_outputs_compute_each_toggle_property_once_to_the_same_bits(monkeypa
     calls.clear()
     PAPER.constraints(SimpleNamespace(weight_mass=ca.SX.sym("m"), link_diameter=ca.SX.sym("d")), p)
     assert len(calls) > 1
+
+
+def test_only_a_frozen_dataclass_state_is_computed_once_and_its_own_properties_resolved():
+    # (found in review) a state that could go stale (not a frozen dataclass) is left as it is; a subclass that
+    # overrides a property with a plain attribute keeps it (inspect.getattr_static), the others computed once
+    from dataclasses import dataclass
+    from types import SimpleNamespace
+
+    from clutchopt.formulations.common import computed_once
+
+    @dataclass(frozen=True)
+    class Base:
+        a: float
+
+        @property
+        def twice(self):
+            return 2 * self.a
+
+        @property
+        def other(self):
+            return 1.0
+
+    @dataclass(frozen=True)
+    class Sub(Base):
+        other = 5.0
+
+    @dataclass
+    class Loose:
+        a: float
+
+    once = computed_once(Sub(1.5))
+    assert (once.twice, once.other) == (3.0, 5.0) and once.__dict__["twice"] == 3.0  # (cached)
+    for state in (SimpleNamespace(a=1.0), Loose(1.0)):
+        assert computed_once(state) is state

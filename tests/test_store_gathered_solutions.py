@@ -182,3 +182,18 @@ def test_a_run_whose_multipliers_are_all_none_holds_the_nans_numpy_reads_them_as
     assert np.isnan(window.arrays["elasticity"]).all()
     back = window.records(json_numbers=True)
     assert back[4]["constraints"][2]["multiplier"] == 0.25 and back[3]["constraints"][2]["multiplier"] is None
+
+
+def test_a_run_whose_sensitivities_are_all_none_keeps_a_row_a_point():
+    # (found in review) records read back (not Solutions) whose every sensitivity is None: the all-None shortcut
+    # (window_records._array) keeps the sensitivities' row a point (a name a column), every name read back, where
+    # it had kept one row of the points (the lever's 31 names: 30 lost)
+    from clutchopt.optimise import solve_case
+    from clutchopt.window_records import WindowRecords
+
+    record = solve_case(load_case(CASES / "lever_centrifuge.toml")).as_dict()
+    records = [{**copy.deepcopy(record), "sensitivities": dict.fromkeys(record["sensitivities"])} for _ in range(3)]
+    window = WindowRecords.of(records)
+    assert window.arrays["sensitivity"].shape == (len(record["sensitivities"]), 3) == (31, 3)
+    assert [back["sensitivities"] for back in window.records(json_numbers=True)] == [r["sensitivities"]
+                                                                                      for r in records]

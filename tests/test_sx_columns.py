@@ -52,6 +52,12 @@ def test_a_subexpression_the_algorithm_holds_twice_is_replayed_once():
     assert got.tobytes() == _on_machine(function, points).tobytes()
 
 
+def test_a_function_without_outputs_replays_to_none():
+    # (found in review) casadi.cse of no outputs is an empty SX, not a list: no merge where there are no outputs
+    x = ca.SX.sym("x")
+    assert SXColumns(ca.Function("none", [x], []))(np.ones((1, 3))) == ()
+
+
 def test_the_transcendental_functions_agree_with_the_machine_to_the_last_bits():
     # at (pi/6, 2): sin = 0.5, e^2 = 7.38905609893065, ln 2 = 0.6931471805599453, 2^0.5 = 1.4142135623730951;
     # at (pi/4, 1): tan = 1, atan(1) = pi/4 = 0.7853981633974483 (to within rounding)

@@ -7,6 +7,8 @@ Written with :mod:`clutchopt.backend` math like the equations, so it serves floa
 
 from __future__ import annotations
 
+import dataclasses
+import inspect
 import math
 from dataclasses import dataclass
 from functools import cached_property
@@ -79,15 +81,17 @@ def computed_once(state):
     them again and again (the lever's R_0 20 times, its d_cp 11: 0.36 ms for 1000 points where 0.15 once each, 48 us
     for one where 38): the same numbers (the same operations on the same values). For the outputs, which are
     evaluated on numbers only; the constraints and objectives keep their graph (a term shared would change the order
-    in which CasADi sums a derivative's parts, and so its last bits). A state without a ``__dict__`` is left as it
-    is."""
-    if not hasattr(state, "__dict__"):
-        return state
+    in which CasADi sums a derivative's parts, and so its last bits). Only a frozen dataclass (a state no property
+    of which can go stale) is copied so; any other state is left as it is. Each property is the one the state's class
+    resolves (``inspect.getattr_static``: a subclass's override kept)."""
     kind = type(state)
+    if not (dataclasses.is_dataclass(kind) and kind.__dataclass_params__.frozen and hasattr(state, "__dict__")):
+        return state
     once = _COMPUTED_ONCE.get(kind)
     if once is None:
-        properties = {name: cached_property(value.fget) for klass in reversed(kind.__mro__)
-                      for name, value in vars(klass).items() if isinstance(value, property)}
+        resolved = {name: inspect.getattr_static(kind, name) for name in dir(kind)}
+        properties = {name: cached_property(value.fget) for name, value in resolved.items()
+                      if isinstance(value, property)}
         once = _COMPUTED_ONCE[kind] = type(kind.__name__, (kind,), {**properties, "__doc__": kind.__doc__})
     copy = object.__new__(once)
     copy.__dict__.update(vars(state))

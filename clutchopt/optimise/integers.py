@@ -25,6 +25,7 @@ from clutchopt.optimise.link_bound import refuted
 from clutchopt.optimise.modifier import modifiers_in
 from clutchopt.optimise.posed import Box, Posed, ScaledData, scaled_box
 from clutchopt.optimise.verify import FEASIBILITY_TOL
+from clutchopt.records import UNRANKED
 
 Attempt = Callable[..., "dict | None"]  # (combo, seed, methods) -> the verified run with the integers fixed at combo
 
@@ -219,7 +220,6 @@ def fixing(posed: Posed, data: ScaledData, runs: list[dict], search: list[dict],
 INFEASIBLE = "Infeasible_Problem_Detected"  # IPOPT's restoration phase ended at a local minimum of the violation
 SOLVED = "Solve_Succeeded"
 EXCLUDED = "excluded: "  # an integer search entry excluded without a solve, the rows it breaks after it
-UNRANKED = "not solved: "  # an entry a start-up's first mesh left to the next (too coarse to rank it), why after it
 VERDICTS = (SOLVED, INFEASIBLE)  # IPOPT's ends that say something of the choice (not that they are global)
 
 

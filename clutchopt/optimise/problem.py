@@ -26,8 +26,8 @@ from clutchopt.model import Formulation
 from clutchopt.optimise.attempts import attempt, warm_multipliers
 from clutchopt.optimise.diagnosis import diagnose, whatever_the_design
 from clutchopt.optimise.failed_starts import FailedStarts
-from clutchopt.optimise.integers import (UNRANKED, RuledOut, descend, fixing, from_the_start, meets_every_row,
-                                         nearest_integers, relaxation_seed, within)
+from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_start, meets_every_row, nearest_integers,
+                                         relaxation_seed, within)
 from clutchopt.optimise.modifier import VARIANT, first_order, with_modifiers
 from clutchopt.optimise.own_shift import (ForeignShifts, carried_by, climbing, excluded_own_entry, lighter_above,
                                           own_entry, stepped)
@@ -42,6 +42,7 @@ from clutchopt.optimise.verdict import GIVEN, OWN, infeasible_at, shown
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.sampled_start import from_a_sampled_design, from_the_held_design
 from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
+from clutchopt.records import UNRANKED
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up
 from clutchopt.start_up.mesh import MAX_INTERVALS, MESH_STEPS
@@ -550,7 +551,7 @@ class Problem:
             kept = from_the_start(posed, data, integer, kept, search, attempt_at)
         else:
             kept = self._sized(solved, data, integer, kept, search, attempt_at, sizing)
-        if first and kept is first[0][0] and first[0][2] == len(runs):
+        if first and first[0][1] is not None and kept is first[0][0] and first[0][2] == len(runs):
             return first[0][1]  # (its simulation reused)
         if kept is None:  # the relaxation is feasible, no integer near it is
             tried = "; ".join(", ".join(f"{k}={v}" for k, v in e.items() if k in posed.names) for e in search)
@@ -560,20 +561,25 @@ class Problem:
         return self._finish(case, kept, runs, data, search, heavier=heavier)
 
     def _unranked(self, case: Case, run: dict, runs: list[dict], data: ScaledData, search: list[dict],
-                  above: float, heavier: float) -> tuple[Solution, int, str | None]:
+                  above: float, heavier: float) -> tuple[Solution | None, int, str | None]:
         """A first mesh's kept design ``run`` (the relaxation's rounded integers) finished (its Solution; the number
         of ``runs`` then) and why its neighbours are not solved on this mesh: its simulated start shows the mesh too
         coarse to rank them (the start time's collocation error over ``above``) and the accuracy loop adapts the mesh
-        from it (a design its limits shape: not :func:`shapes_nothing`, not held by the mesh), where the integers are
-        decided again (:func:`unsettled`). Else None: they are solved (the simulation, about 3 ms, spent).
+        from it (the error over the case's tolerance too, which may be up to 1e-2; a design its limits shape: not
+        :func:`shapes_nothing`, not held by the mesh), where the integers are decided again (:func:`unsettled`). Else
+        None: they are solved (the simulation, about 3 ms, spent; a simulation that fails leaves no Solution).
         ball_motor_start: 24 rows at error 1.1e-2; 25 rows, within 7.6e-4 of them, not solved there (12 IPOPT
         iterations); the adapted mesh decides again and keeps 25 rows, the design the same to the last bit.
         ``heavier``: as for :meth:`_finish`."""
-        solution = self._finish(case, run, runs, data, search, heavier=heavier)
+        try:
+            solution = self._finish(case, run, runs, data, search, heavier=heavier)
+        except InputError:  # (its start not simulated: the neighbours solved, as ever; a design kept is simulated
+            return None, len(runs), None  # where it is finished)
         if solution.status not in ("optimal", "unverified"):
             return solution, len(runs), None
         error = abs(solution.start_up["discretisation_error"]["start_time"])
-        if (not error > above or self._held(solution)  # (an error not a number: no adaptation, none left)
+        if (not error > max(above, self.start_up.s.spec.tolerance) or self._held(solution)  # (an error not a number:
+                # no adaptation, none left)
                 or shapes_nothing(solution, self.posed.n_checked, self.start_up.s.spec.tolerance, self._own_names)):
             return solution, len(runs), None
         return solution, len(runs), f"the mesh's collocation error {error:.2g} is too coarse to rank it"

@@ -6,7 +6,8 @@ instruction with NumPy ufuncs over rows of a work array (a row per work slot, a 
 operations in the same order on whole rows: 0.2-0.3 ms for the wedge's 1000 points. Its common subexpressions are
 merged first (``casadi.cse``: an operation on the same operands, which CasADi's algorithm can hold several times, done
 once: the same numbers from fewer instructions; the lever's case gradient 546 of 700, 45 of its sines and cosines 4,
-0.25 ms for 767 points where it took 0.55; the wedge's 398 of 443, 0.21 ms where 0.29; about 1 ms once a problem).
+0.25 ms for 767 points where it took 0.55; the wedge's 398 of 443, 0.21 ms where 0.29; about 1 ms once a problem,
+a merge that grows with the instructions: 50-85 ms more for a start-up's 18-23 thousand, which no window replays).
 Addition, subtraction, multiplication, division, negation, squares, square roots and reciprocals are IEEE's
 correctly rounded operations in both, so those give the same numbers bit for bit; the transcendental functions (sin,
 cos, tan, atan, exp, log, pow) are NumPy's, which on some processors (SIMD code for AVX-512) may round the last bit
@@ -51,9 +52,11 @@ class SXColumns:
     def __init__(self, function: ca.Function):
         if not replayable(function):
             raise ValueError(f"{function.name()} cannot be replayed by NumPy")
-        inputs = function.sx_in()
-        function = ca.Function(function.name(), inputs, ca.cse(function.call(inputs)))  # (its common
-        self.name, self.slots = function.name(), function.sz_w()  # subexpressions merged)
+        if function.n_out():  # its common subexpressions merged, where the merged function replays too
+            inputs = function.sx_in()
+            merged = ca.Function(function.name(), inputs, ca.cse(function.call(inputs)))
+            function = merged if replayable(merged) else function
+        self.name, self.slots = function.name(), function.sz_w()
         self._local = threading.local()  # each thread's work array (see _rows)
         self.outputs = [function.nnz_out(i) for i in range(function.n_out())]
         self.program = []  # (ufunc or a move, its operands: work slots, or an input's or output's (index, row))
