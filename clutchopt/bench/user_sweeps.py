@@ -137,17 +137,23 @@ def start_up_rows(config) -> list[dict]:
                     for problem in posed:
                         if problem.posed.library is None:  # (one already compiled: its library in the cache)
                             compiled_now(problem.posed)  # (and its link: used from a sweep's first point)
-                with problems_set_aside(start_up_key) as built:  # (dropped after: their compiled state is the run's)
-                    row = _run(case, "driven_inertia", values, None, 1)
-            rows.append({"case": path.stem, "quantity": "driven_inertia", "span": "0.6x-1.4x", **row,
-                         "compiled": state, "compiled_used": any(p.posed.library is not None for p in built)})
+                row = _timed(case, "driven_inertia", values, state)
+            rows.append({"case": path.stem, "quantity": "driven_inertia", "span": "0.6x-1.4x", **row})
         limit = nearest_limit(case)
         state = config.start_up_compiled[0]  # (the same NLP as the driven inertia's: its limits are parameters)
-        with _compiled_state(state), problems_set_aside(start_up_key) as built:
-            row = _run(case, limit, case.values[limit] * np.linspace(*LIMIT_SPAN, points), None, 1)
-        rows.append({"case": path.stem, "quantity": limit, "span": "{:g}x-{:g}x".format(*LIMIT_SPAN), **row,
-                     "compiled": state, "compiled_used": any(p.posed.library is not None for p in built)})
+        with _compiled_state(state):
+            row = _timed(case, limit, case.values[limit] * np.linspace(*LIMIT_SPAN, points), state)
+        rows.append({"case": path.stem, "quantity": limit, "span": "{:g}x-{:g}x".format(*LIMIT_SPAN), **row})
     return rows
+
+
+def _timed(case: Case, name: str, values: np.ndarray, state: str) -> dict:
+    """A start-up sweep's :func:`_run`, timed once with its problems built anew (dropped after: their compiled state
+    is the run's) in the compiled-code cache's ``state``, set by the caller: its row, with ``compiled`` and
+    ``compiled_used``."""
+    with problems_set_aside(start_up_key) as built:
+        row = _run(case, name, values, None, 1)
+    return {**row, "compiled": state, "compiled_used": any(p.posed.library is not None for p in built)}
 
 
 def nearest_limit(case: Case) -> str:
