@@ -18,13 +18,21 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[2]
 BASELINE = ("python -c 'import casadi, numpy'", ("-c", "import casadi, numpy"))
+
+
+def _solve(case: str, *flags: str) -> tuple[str, tuple[str, ...]]:
+    """``clutchopt solve cases/<case>.toml <flags>``: its name and the interpreter's arguments."""
+    args = ("solve", f"cases/{case}.toml", *flags)
+    return " ".join(("clutchopt", *args)), ("-m", "clutchopt", *args)
+
+
 COMMANDS = (
     ("clutchopt --help", ("-m", "clutchopt", "--help")),
-    ("clutchopt solve cases/wedge_paper.toml --json", ("-m", "clutchopt", "solve", "cases/wedge_paper.toml", "--json")),
-    ("clutchopt solve cases/wedge_paper.toml --json --no-store",
-     ("-m", "clutchopt", "solve", "cases/wedge_paper.toml", "--json", "--no-store")),
-    ("clutchopt solve cases/wedge_paper.toml", ("-m", "clutchopt", "solve", "cases/wedge_paper.toml")),
-)
+    _solve("wedge_paper", "--json"),
+    _solve("wedge_paper", "--json", "--no-store"),
+    _solve("wedge_paper"),
+    *(_solve(case, "--json") for case in ("lever_centrifuge", "ball_crusher", "cable_pump", "wedge_motor_start")),
+)  # (each coupling's static solve, and a start-up's: what a user of each waits for, not only the wedge's)
 
 
 def _wall(args: tuple[str, ...], env: dict) -> float:

@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import math
 
-from scipy.optimize import brentq
-
 from clutchopt.formulations.cable.equations import (
     cable_tension,
     clamp_screw_force,
@@ -40,6 +38,8 @@ def _weight_wear_interval(p, friction_angle):
     def excess(s):
         return q * s * (1 - u * s) ** 2 - k * (u + s) ** 2
 
+    from scipy.optimize import brentq  # (imported where the threads' closed form is asked for: 0.3-0.4 s a process,
+    #                                    which a paper-mode solve no longer pays)
     a, b, c = 3 * q * u**2, -2 * (2 * q * u + k), q - 2 * k * u  # P'(s) = a s^2 + b s + c
     if c <= 0:
         return None
