@@ -95,6 +95,8 @@ def test_unknown_mode_and_missing_file(cli):
     *[(["solve", f"cases/{case}.toml", "--json", "--no-store"],
        ("pandas", "pint", "scipy.optimize", "scipy.special", "scipy.stats", "cvxpy", "matplotlib", "clutchopt.store"))
       for case in ("wedge_paper", "lever_centrifuge", "ball_crusher", "cable_pump")],
+    (["simulate", "cases/scenes/paper_transient.toml", "--no-store"],  # (no --plot: no figure, no matplotlib)
+     ("matplotlib", "pandas", "pint", "scipy.stats", "cvxpy", "clutchopt.store")),
 ])
 def test_a_command_imports_only_what_it_uses(args, heavy):
     # what `clutchopt solve --json` waits for is measured in `clutchopt bench` (section cli_launch); here: what it

@@ -40,7 +40,6 @@ def run(args) -> str:
     from clutchopt.output import SIMULATION_UNITS, to_json, with_units
     from clutchopt.simulate import load_scene, run_scene
     from clutchopt.simulate.analytic import PaperTransient
-    from clutchopt.simulate.plot import history_figure
 
     scene = load_scene(args.scene)
     if args.plot:
@@ -49,6 +48,8 @@ def run(args) -> str:
         result = run_scene(scene)
         record_simulation(store, scene, result)
     if args.plot:
+        from clutchopt.simulate.plot import history_figure  # (matplotlib: 0.4-0.5 s, only for a figure asked for)
+
         write_whole("--plot", args.plot, lambda path: history_figure(result, scene.title).savefig(path, dpi=120))
     analytic = None
     m = scene.model
