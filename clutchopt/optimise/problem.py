@@ -573,8 +573,8 @@ class Problem:
         33-45 IPOPT iterations, at 13 of the 20 points; its verdict the same (the loop keeps their design
         ``unverified``)."""
         posed = self.posed
-        if modifiers_in(data.params):  # (modifier adaptation's limits: its own bound, ``modifier.no_lighter``)
-            return None
+        if self.start_up is None or not self.start_up.s.elastic or modifiers_in(data.params):  # (modifier
+            return None  # adaptation's limits: its own bound, ``modifier.no_lighter``)
         least = least_stress(posed, data, np.clip(data.x0, data.lbx, data.ubx), data.lbx, data.ubx)
         limit = getattr(data.params, "max_link_stress", math.inf)
         if least is None or not least > limit * (1.0 + LINK_MARGIN):
