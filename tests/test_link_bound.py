@@ -17,7 +17,7 @@ from clutchopt.model import namespace
 from clutchopt.optimise.link_bound import refuted
 from clutchopt.optimise.own_shift import ForeignShifts
 from clutchopt.optimise.posed import scaled_box
-from clutchopt.optimise.problem import solve_case
+from clutchopt.optimise.problem import Problem, solve_case
 from clutchopt.start_up.drive import Drive
 from tests.conftest import CASES
 
@@ -26,9 +26,9 @@ RUN = attempts.run
 MAIN_RUNS = [11, 9, 35, 19, 12, 21, 9, 4, 10]  # the start-up IPOPT runs' iterations when every count was solved
 
 
-def solved(monkeypatch, bound: bool = True, mode: str | None = None):
-    """cable_motor_start solved, with its start-up runs (posed, data, run) recorded; ``bound=False``: unrefuted (no
-    count by its least stress, no modifier step by its corrected row)."""
+def solved(monkeypatch, bound: bool = True, mode: str | None = None, case=CABLE):
+    """cable_motor_start (``case``) solved, with its start-up runs (posed, data, run) recorded; ``bound=False``:
+    unrefuted (no count by its least stress, no modifier step by its corrected row)."""
     runs, run = [], RUN
 
     def recorded(posed, data, *args, **kwargs):
@@ -41,7 +41,7 @@ def solved(monkeypatch, bound: bool = True, mode: str | None = None):
     if not bound:
         monkeypatch.setattr(integers, "refuted", lambda *args: [])
         monkeypatch.setattr(modifier, "no_lighter", lambda *args: [])
-    return solve_case(CABLE, mode=mode), runs
+    return solve_case(case, mode=mode), runs
 
 
 def test_6_cables_7_at_their_own_limit_and_8_at_7_s_are_refuted_unsolved_the_design_the_same(monkeypatch):
@@ -195,3 +195,44 @@ def test_no_sampled_design_carries_its_torque_below_the_least_stress(monkeypatch
         assert travel == pytest.approx(p.elongation, rel=1e-12)
     at_least_mass = (mass == least_mass)[carried]
     assert np.max(np.abs(stress / bound - 1)[at_least_mass]) < 1e-9 and np.max(stress / bound) > 1.01
+
+
+def test_a_fixed_count_s_correction_refuted_unsolved_the_design_the_same(monkeypatch):
+    """cable_motor_start at 0.6 times its driven inertia (the bench's sweep's first point): 7 cables' own loop (its
+    integers fixed) solves at the case's limits, their simulated start moves the stress limit in to 314.667 MPa, and
+    its defect correction's solve there ran a warm and a cold IPOPT run to Infeasible_Problem_Detected (10 and 33
+    iterations, then the elastic diagnosis). Their least stress at the warm point's nodes is over that limit: the
+    correction is refuted unsolved (``Problem._link_refuted``: infeasible, proven, no solve), modifier adaptation
+    goes on from the same unverified design, and the kept design is the same to the last bit: 8 solves, were 10."""
+    case = CABLE.with_values(driven_inertia=CABLE.values["driven_inertia"] * 0.6)
+    verdicts, refute = [], Problem._link_refuted
+
+    def recorded(self, case, data):
+        verdict = refute(self, case, data)
+        verdicts.append((data.params.max_link_stress, verdict))
+        return verdict
+
+    with monkeypatch.context() as patched:
+        patched.setattr(Problem, "_link_refuted", lambda self, case, data: None)
+        unrefuted, unrefuted_runs = solved(patched, case=case)
+    monkeypatch.setattr(Problem, "_link_refuted", recorded)
+    solution, runs = solved(monkeypatch, case=case)
+    assert (solution.solver.solves, unrefuted.solver.solves) == (8, 10)
+    assert solution.status == unrefuted.status == "optimal" and solution.design["cable_count"] == 7.0
+    assert solution.design == unrefuted.design and solution.objective == unrefuted.objective
+    assert solution.start_up["start_time_simulated"] == unrefuted.start_up["start_time_simulated"]
+    assert [e["status"] for e in solution.integer_search] == [e["status"] for e in unrefuted.integer_search]
+    moved = [(d.params.max_link_stress, r["status"]) for posed, d, r in unrefuted_runs
+             if d.lower[posed.names.index("cable_count")] == d.upper[posed.names.index("cable_count")] == 7.0
+             and d.params.max_link_stress < 350e6]
+    assert [s for _, s in moved] == ["Infeasible_Problem_Detected"] * 2
+    assert not [r for posed, d, r in runs if d.params.max_link_stress == moved[0][0]
+                and d.lower[posed.names.index("cable_count")] == 7.0]
+    refuted_here = [(limit, v) for limit, v in verdicts if v is not None]
+    assert len(refuted_here) == 1
+    limit, verdict = refuted_here[0]
+    assert limit == pytest.approx(moved[0][0], rel=1e-12) and limit < 350e6
+    assert verdict.status == "infeasible" and verdict.diagnosed.proven and verdict.solver.solves == 0
+    assert verdict.design["cable_count"] == 7.0
+    least = float(verdict.diagnosis.split("design at these integers, ")[1].split(" MPa")[0])
+    assert least * 1e6 > limit * (1 + 1e-6) and f"{limit / 1e6:.6g} MPa" in verdict.diagnosis

@@ -118,6 +118,39 @@ def test_an_elastic_link_s_sweep_carries_its_limits_as_they_are(monkeypatch):
         assert found.along is None and shift == before and set(shift) == {"max_link_stress"}
 
 
+def test_an_elastic_link_s_sweep_solves_the_papers_sizing_once_for_its_probes(monkeypatch):
+    """cable_motor_start over driven_inertia (0.6x-1.4x, five of the bench's points): its designs leave the papers'
+    sizing's integers (6 cables; 7 and 8 kept), so every point solved along is also probed as ``solve`` would
+    (:func:`~clutchopt.optimise.start_up_sweep.as_solve_would`), from the sizing, which was solved again at each (3
+    static IPOPT runs). The driven inertia enters no row of the sizing: it is solved once more after the first point's
+    cold solve, at the first point whose point before's sizing problem is its own, and carried (its loop takes none of
+    it, as before): 5 static solves to 3, every point's status, design and solver calls the same to the last bit."""
+    cable = load_case(CASES / "cable_motor_start.toml")
+    points = ",".join(str(0.25 * factor) for factor in np.linspace(0.6, 1.4, 20)[[0, 1, 2, 3, 4]])
+    vary = parse_vary(f"driven_inertia={points}", cable.coupling, cable.quantities)
+    static, solve = [], Problem.solve
+
+    def counted(self, case, *args, **kwargs):
+        static.append(self.start_up is None)
+        return solve(self, case, *args, **kwargs)
+
+    def run():
+        static.clear()
+        records = Sweep(cable, [vary]).run(progress=False).solutions
+        rows = [(r["status"], r["objective"]["value"], r["design"], r["solver"]["solves"]) for r in records]
+        return rows, sum(static)
+
+    monkeypatch.setattr(Problem, "solve", counted)
+    with monkeypatch.context() as patched:
+        sized_out = start_up_sweep.sized_out
+        patched.setattr(start_up_sweep, "sized_out", lambda problem, case, before: sized_out(problem, case, None))
+        each, solved_each = run()
+    carried, solved_carried = run()
+    assert (solved_carried, solved_each) == (3, 5)
+    assert carried == each and [c for *_, c in carried] == [8, 3, 5, 5, 4]
+    assert [r[2]["cable_count"] for r in carried] == [7.0, 7.0, 8.0, 8.0, 8.0]
+
+
 def test_a_dense_sweep_where_the_temperature_rise_binds_needs_no_correction_a_point():
     """wedge_motor_start at 0.6192-0.6394 kg m^2 (steps of about 0.004): the temperature rise binds, and the limit
     share the simulator needs moves by about 2.9e-6 a point, with a second difference of about 3e-8 (docs/start_up.md,
@@ -293,8 +326,6 @@ def test_an_integer_choice_the_papers_sizing_finds_infeasible_is_not_solved_alon
     are they at the first point, solved as ``solve`` solves it (cold, from its sizing, whose own search found them
     infeasible: ``sized_choices``). The wedge's sizing has a row the start-up model replaces (the torque for T_max):
     nothing is ruled out by it."""
-    from types import SimpleNamespace
-
     from clutchopt.optimise.start_up_sweep import SizedOut, sized_out
 
     ball = load_case(CASES / "ball_motor_start.toml")
@@ -313,7 +344,7 @@ def test_an_integer_choice_the_papers_sizing_finds_infeasible_is_not_solved_alon
     assert records[2]["objective"]["value"] == pytest.approx(alone.objective, rel=1e-6, abs=0)
     problem = case_problem(MOTOR)
     key = sized_out(problem, MOTOR, None).key
-    assert sized_out(problem, MOTOR, SimpleNamespace(sized=SizedOut(key))).choices == {}
+    assert sized_out(problem, MOTOR, SizedOut(key)).choices == {}
 
 
 def test_a_point_whose_integers_moved_off_the_sizing_s_is_also_solved_as_solve_would(monkeypatch):

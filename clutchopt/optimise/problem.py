@@ -28,7 +28,8 @@ from clutchopt.optimise.diagnosis import diagnose, whatever_the_design
 from clutchopt.optimise.failed_starts import FailedStarts
 from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_start, meets_every_row, nearest_integers,
                                          relaxation_seed, within)
-from clutchopt.optimise.modifier import VARIANT, first_order, with_modifiers
+from clutchopt.optimise.link_bound import MARGIN as LINK_MARGIN, least_stress
+from clutchopt.optimise.modifier import VARIANT, first_order, modifiers_in, with_modifiers
 from clutchopt.optimise.own_shift import (ForeignShifts, carried_by, climbing, excluded_own_entry, lighter_above,
                                           own_entry, stepped)
 from clutchopt.optimise.polish import polishable, polished
@@ -494,6 +495,8 @@ class Problem:
             # cold path's verdict, without a solve; warm, SQP solved the kept row, posed where the rows cross)
         if warm_ok:
             integer = posed.free_integers(data)
+            if not integer and (refuted_here := self._link_refuted(case, data)) is not None:
+                return refuted_here
             seed = {"x": data.x0, "lam_x": duals[0], "lam_g": duals[1]} if duals is not None else None
             combo = np.array([warm.design[posed.names[i]] for i in integer])
             sqp = ("sqp",) if self.options.warm_sqp and self.start_up is None else ()  # small dense NLPs only
@@ -559,6 +562,30 @@ class Problem:
                                 ("infeasible", f"infeasible in integers: the continuous relaxation is feasible "
                                  f"but none of the integer neighbours is ({tried})"))
         return self._finish(case, kept, runs, data, search, heavier=heavier)
+
+    def _link_refuted(self, case: Case, data: ScaledData) -> Solution | None:
+        """The verdict on a warm start-up solve whose integers are all fixed (an elastic link's own loop, its defect
+        correction's solve at the moved limit) where their least link stress at the warm point's nodes is over the
+        stress limit the NLP solves with (:func:`~clutchopt.optimise.link_bound.least_stress`, as the integer search
+        excludes a choice, ``integers.fixing``): ``infeasible``, proven, without a solve, the warm design shown; else
+        None. cable_motor_start over driven_inertia 0.6x-1.4x: 7 cables' own loop at the limit their simulated start
+        moved in (314-321 MPa; their least stress 341 MPa) took a failed warm run and a failed cold one, 10-20 and
+        33-45 IPOPT iterations, at 13 of the 20 points; its verdict the same (the loop keeps their design
+        ``unverified``)."""
+        posed = self.posed
+        if self.start_up is None or not self.start_up.s.elastic or modifiers_in(data.params):  # (modifier
+            return None  # adaptation's limits: its own bound, ``modifier.no_lighter``)
+        least = least_stress(posed, data, np.clip(data.x0, data.lbx, data.ubx), data.lbx, data.ubx)
+        limit = getattr(data.params, "max_link_stress", math.inf)
+        if least is None or not least > limit * (1.0 + LINK_MARGIN):
+            return None
+        text = (f"proven infeasible: link_stress: the least stress of every design at these integers, "
+                f"{least / 1e6:.6g} MPa at the locked drive's nodes, is over the limit the NLP solves with, "
+                f"{limit / 1e6:.6g} MPa")
+        solution = infeasible_at(posed, case, dict(zip(posed.names, map(float, data.start))), text,
+                                 SolverInfo(PROVEN, "proven", 0, 0.0, 0), bounds=(data.lower, data.upper))
+        solution.diagnosed = Diagnosis("infeasible", text, 0.0, proven=True, violated=("link_stress",))
+        return solution
 
     def _unranked(self, case: Case, run: dict, runs: list[dict], data: ScaledData, search: list[dict],
                   above: float, heavier: float) -> tuple[Solution | None, int, str | None]:

@@ -151,6 +151,8 @@ class Solution:
     #                                                        / the case's, where the defect correction moved it
     along: object | None = field(default=None, repr=False)  # a start-up sweep's point: its limits as its loop
     #                           ended, for the next point's (clutchopt.optimise.start_up_sweep.Along)
+    sized: object | None = field(default=None, repr=False)  # a start-up sweep's point: the papers' sizing at it, for
+    #     the next point's (clutchopt.optimise.start_up_sweep.SizedOut)
     shift_measured_by: frozenset = field(default_factory=frozenset, repr=False)  # an elastic link's start-up: the
     #     integer choices whose simulated starts moved limit_shift's limits (clutchopt.optimise.own_shift)
     collocated: dict[str, float] = field(default_factory=dict, repr=False)  # a start-up: the NLP's own figure of

@@ -54,7 +54,6 @@ class Along:
     error: float = 0.0  # the collocation's error of its last solve (its start time against the simulated one)
     held: dict[str, float] = field(default_factory=dict)  # the active limits its loop never moved: the objective's
     # error from each (:func:`held_limits`)
-    sized: "SizedOut | None" = None  # the papers' sizing's problem at the point, and its infeasible integer choices
 
 
 def solved_along(problem, case: Case, previous: Solution | None) -> Solution | None:
@@ -69,11 +68,13 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
         return None
     try:
         numbers, tolerance = _numbers(case), block.s.spec.tolerance
-        sized = sized_out(problem, case, previous.along)
+        sized = sized_out(problem, case, previous.sized)
         step = secant_step(previous.along, numbers)
         mesh, shift = first_mesh(previous, step, tolerance), predicted_shift(previous, step, tolerance)
+        looped = SizedOut(sized.key) if block.s.elastic else sized  # (an elastic link's loop takes neither: its NLP
+        # is another model than its simulation)
         solution = problem.refined(case, warm=previous, mesh=mesh, shift=shift, diagnosed=False, cold=False,
-                                   infeasible=sized.choices, sizing=sized.design)  # solve's own cold start and
+                                   infeasible=looped.choices, sizing=looped.design)  # solve's own cold start and
         # diagnosis follow
     except InputError:  # its first simulation failed from this start
         return None
@@ -81,12 +82,13 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
         return None
     solution = (solved_alone_where_held(problem, case, solution, sized)
                 or as_solve_would(problem, case, solution, sized))
+    solution.sized = sized
     if block.s.elastic:  # its loop moves a limit only where the simulated start misses it, never centres one: the
         return solution  # NLP is another model than the simulated dynamics, not a mesh off them (the share is kept)
     before = previous.along
     solution.along = Along(numbers, centred_shift(solution, case), solution.mesh[0],
                            replace(before, before=None) if before is not None else None,
-                           solution.start_up["discretisation_error"]["start_time"], held_limits(solution), sized)
+                           solution.start_up["discretisation_error"]["start_time"], held_limits(solution))
     return solution
 
 
@@ -162,7 +164,7 @@ class SizedOut:
     design: dict[str, float] | None = None
 
 
-def sized_out(problem, case: Case, before: Along | None) -> SizedOut:
+def sized_out(problem, case: Case, before: SizedOut | None) -> SizedOut:
     """The integer choices a start-up sweep's point need not solve: those the papers' sizing (the same formulation
     without the start-up, ``Problem.static_problem``) finds infeasible at the point (IPOPT:
     ``Infeasible_Problem_Detected``), where the start-up problem keeps every row of it (no constant-acceleration row
@@ -173,15 +175,18 @@ def sized_out(problem, case: Case, before: Along | None) -> SizedOut:
     sweep that moves it solves none. ball_motor_start over driven_inertia: 22 rows, the sizing's row fewer, infeasible
     by the same least violation 2.72e-3 at every point from 225 to 336 kg m^2, were solved at each (26-33 IPOPT
     iterations); ``solve`` of such a point alone rules them out from its own sizing (``Problem._refined``,
-    :func:`sized_choices`): the same verdict. An elastic link (the cable) keeps every row too but gets none: its
-    points carry no :class:`Along` (:func:`solved_along`), and its loop rules nothing out (``Problem._refined``: no
-    ``RuledOut``, its NLP is another model than its simulation)."""
+    :func:`sized_choices`): the same verdict. An elastic link (the cable) keeps every row too, but its loop takes
+    neither the choices nor the design (:func:`solved_along`; it rules nothing out, ``Problem._refined``: no
+    ``RuledOut``, its NLP is another model than its simulation): the design is carried for :func:`as_solve_would`
+    alone, which had solved the sizing again at every point (cable_motor_start over driven_inertia: 3 static IPOPT
+    runs, 41 iterations, about 9 ms CPU a point; the same problem, the same design). ``before``: the point
+    before's (``Solution.sized``)."""
     static = problem.static_problem
     key = repr(tuple(vars(static.posed.params(case)).values()))
-    if before is None or before.sized is None or before.sized.key != key:
+    if before is None or before.key != key:
         return SizedOut(key)
-    if before.sized.choices is not None:
-        return before.sized
+    if before.choices is not None:
+        return before
     if not keeps_the_sizing(problem):  # a row left to the start-up model
         return SizedOut(key, {})
     sizing = static.solve(case)
