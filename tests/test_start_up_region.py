@@ -4,7 +4,8 @@
 lever_motor_start over the bench's driven inertias (0.6x-1.4x of 12 kg m^2, 20 points): 14.78 kg m^2 has a design,
 15.28 and 15.79 none (lining_pressure and temperature_rise, docs/start_up.md). The first point past the design gets
 ``solve``'s verdict and the sweep's own starts; the next was given ``solve``'s too (4 solves, 340-400 IPOPT
-iterations), and is now solved once from the first one's least relaxation, which violates the same constraints."""
+iterations), and is now solved from the papers' sizing (``solve``'s first solve) and from the first one's least
+relaxation, whose violated constraints its own violates too."""
 
 from dataclasses import replace
 
@@ -13,7 +14,7 @@ import numpy as np
 from clutchopt.cases import load_case
 from clutchopt.optimise.problem import case_problem
 from clutchopt.optimise.sampled_start import SAMPLED
-from clutchopt.optimise.start_up_region import REGION, region_test, region_verdict
+from clutchopt.optimise.start_up_region import DECIDED, beyond, region_test, region_verdict
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import Vary
 from clutchopt.optimise.verdict import GIVEN
@@ -34,17 +35,17 @@ def _swept(values) -> list[dict]:
     return Sweep(case, [Vary(quantity, tuple(values))]).run(progress=False).solutions
 
 
-def test_a_point_beyond_one_without_a_design_is_solved_once_from_its_least_relaxation():
+def test_a_point_beyond_one_without_a_design_is_solved_from_the_sizing_and_that_ones_least_relaxation():
     case, inertias = _lever()
-    designed, first, beyond = _swept(inertias[15:18])
+    designed, first, deeper = _swept(inertias[15:18])
     assert designed["status"] == "optimal"
-    assert first["status"] == beyond["status"] == "not_found"
+    assert first["status"] == deeper["status"] == "not_found"
     assert tuple(first["starts"][:4]) == SOLVE_STARTS  # (then the sweep's own: the neighbour's design)
-    assert beyond["starts"] == [REGION]  # was solve's four starts, 4 solves
-    assert beyond["solver"]["solves"] == 1
-    assert beyond["diagnosis"].startswith("no feasible design found (not proven infeasible): the least relaxation "
+    assert tuple(deeper["starts"]) == DECIDED  # was solve's four starts, 4 solves
+    assert deeper["solver"]["solves"] == 2
+    assert deeper["diagnosis"].startswith("no feasible design found (not proven infeasible): the least relaxation "
                                           "found cannot satisfy lining_pressure")
-    assert "the starts solve of this point alone tries were not tried" in beyond["diagnosis"]
+    assert "solve's other starts of this point alone were not tried" in deeper["diagnosis"]
     alone = case_problem(case).solve(case.with_values(driven_inertia=inertias[17]))  # solve of that point alone
     assert alone.status == "not_found" and alone.starts == SOLVE_STARTS and alone.diagnosed.violated == REASON
     assert alone.diagnosis.startswith("no feasible design found (not proven infeasible): the least relaxation found "
@@ -60,30 +61,37 @@ def test_a_point_so_decided_before_a_later_design_gets_solves_verdict_after_all(
     retried = solutions[2]
     assert tuple(retried["starts"]) == (GIVEN, *SOLVE_STARTS)  # (the later design's, then solve's alone)
     assert "were not tried" not in retried["diagnosis"]
-    assert retried["solver"]["solves"] >= 2  # its test and the later design's retry at least (solve's own starts
-    # too, but for a retry this process already saw fail there: failed_starts)
+    assert retried["solver"]["solves"] >= 3  # its two solves and the later design's retry at least (solve's own
+    # starts too, but for a retry this process already saw fail there: failed_starts)
 
 
-def test_only_a_point_beyond_on_the_ray_and_only_the_same_reason_decides():
+def test_only_a_point_beyond_on_the_ray_and_only_a_shared_reason_decides():
     case, inertias = _lever()
     problem = case_problem(case)
-
-    def point(j):
-        return case.with_values(driven_inertia=inertias[j])
 
     def values(j):
         return {"driven_inertia": float(inertias[j])}
 
-    without = problem.solve(point(16))
+    without = problem.solve(case.with_values(driven_inertia=inertias[16]))
     assert without.status == "not_found" and without.diagnosed.violated == REASON
-    between = {"driven_inertia": float((inertias[15] + inertias[16]) / 2)}  # (not beyond the point without a design)
-    assert region_test(problem, case.with_values(**between), between, values(15), without, values(16)) is None
-    assert region_test(problem, point(17), values(17), None, without, values(16)) is None  # (no design before)
-    tested = region_test(problem, point(17), values(17), values(15), without, values(16))
+    between = {"driven_inertia": float((inertias[15] + inertias[16]) / 2)}
+    assert beyond(values(17), values(15), without, values(16))
+    assert not beyond(between, values(15), without, values(16))  # (between the last design and the point before)
+    assert not beyond(values(17), None, without, values(16))  # (no design before it in the run)
+    assert not beyond(values(17), values(15), replace(without, diagnosed=without.diagnosed._replace(violated=())),
+                      values(16))  # (an elastic problem stopped unconverged names no reason)
+    point = case.with_values(driven_inertia=inertias[17])
+    first = problem.refined(point)
+    tested = region_test(problem, point, without)
+    assert first.status == tested.status == "infeasible"  # (undecided: each its elastic diagnosis, unproven)
     assert tested.solver.solves == 1 and tested.diagnosed.violated == REASON
-    decided = region_verdict(tested, without)
-    assert decided.status == "not_found" and decided.starts == (REGION,)
-    other = without.diagnosed._replace(violated=("lining_pressure",))
-    assert region_verdict(tested, replace(without, diagnosed=other)) is None  # another reason: solve's verdict
-    unconverged = tested.diagnosed._replace(violated=())
-    assert region_verdict(replace(tested, diagnosed=unconverged), without) is None
+    decided = region_verdict(first, tested, without)
+    assert decided.status == "not_found" and decided.starts == DECIDED and decided.solver.solves == 2
+    other = replace(without, diagnosed=without.diagnosed._replace(violated=("start_time",)))
+    assert region_verdict(first, tested, other) is None  # another reason: solve's verdict
+    shared = replace(without, diagnosed=without.diagnosed._replace(violated=("lining_pressure", "start_time")))
+    assert region_verdict(first, tested, shared).starts == DECIDED  # (one constraint shared: the same region)
+    unconverged = replace(tested, diagnosed=tested.diagnosed._replace(violated=()))
+    assert region_verdict(first, unconverged, without) is None
+    assert decided.diagnosis.startswith("no feasible design found (not proven infeasible): the least relaxation found "
+                                        "cannot satisfy lining_pressure")

@@ -1,21 +1,25 @@
-"""A start-up sweep's point deeper into a run without designs, tested against its neighbour's reason first (issue 26,
-"infeasible regions found cheaply").
+"""A start-up sweep's point deeper into a run without designs, tested against its neighbour's reason (issue 26:
+"infeasible regions found cheaply ... the full diagnosis runs once per region, not once per point").
 
-A start-up point without a design costs ``solve``'s whole verdict: its cold start from the papers' sizing and the
-elastic diagnosis, the least relaxation's retry and a second diagnosis, the interval search's design (which bounds the
-static rows only, so it always meets one), the 16 sampled designs projected and simulated and the walk from the least
-violated (lever_motor_start at 15.8-16.8 kg m^2: 4 solves, 340-420 IPOPT iterations, 0.5-0.7 s a point; a design
-there about 20 ms). A start-up has no interval proof, so no point is decided by its neighbour: where the point before
-ended ``not_found`` for a named reason (its least relaxation converged, violating the constraints it names,
-``Diagnosis.violated``) and this point lies beyond it, on the ray from the run's last feasible point, this point is
-solved once from the point before's least relaxation, with its own elastic diagnosis (:func:`region_test`). Where
-that finds a design, or its least relaxation names other constraints (or a feasible point, or none converged), the
-point gets its full verdict as before, this solve counted with it (a design it found kept where the verdict has
-none). Where its own least relaxation violates the same constraints, the point is ``not_found`` on that solve
-(:func:`region_verdict`), its diagnosis its own least relaxation, saying that ``solve``'s starts were not tried. A
-point so decided between the run's last design and a later one is retried from the later design and, where that
-finds none, given ``solve``'s verdict after all (``clutchopt.optimise.sweep.solve_points``): only a run that ends
-without a design keeps such verdicts. A resumed run's first point has no neighbour: it gets the full verdict.
+A start-up point without a design costs ``solve``'s whole verdict: its first solve from the papers' sizing with its
+elastic diagnosis, the least relaxation's retry with a second diagnosis, the interval search's design (which bounds the
+static rows only, so it always meets one), 16 sampled designs projected and simulated and the walk from the least
+violated: lever_motor_start at 15.8-16.8 kg m^2 4 solves, 340-420 IPOPT iterations, 0.7-0.95 s of CPU a point, where a
+point with a design takes about 0.02 s; ball_motor_start at 414-525 kg m^2 0.55-1.5 s. A start-up has no interval proof,
+so no point is decided by its neighbour. Where the point before ended ``not_found`` for a named reason (its least
+relaxation converged, naming the constraints it violates: ``Diagnosis.violated``) and this point lies beyond it, on the
+ray from the run's last feasible point (:func:`beyond`), ``solve``'s first solve of the point is made
+(``Problem.refined``) and, where it ends without a design, the point is solved once more, from the point before's least
+relaxation, with its own elastic diagnosis (:func:`region_test`). Where that second least relaxation violates a
+constraint the point before's did, the point is ``not_found`` on those two starts (:func:`region_verdict`): its
+diagnosis the least relaxation of the two, saying that ``solve``'s other starts were not tried. Else (a design, a
+feasible point, another reason, no converged one) the point gets ``solve``'s verdict from that first solve on, and the
+sweep's own starts, the test counted and named among them (a design it found kept where the verdict has none). A point
+so decided before a later design in the run is retried from that design and, where that finds none, given ``solve``'s
+verdict after all (``clutchopt.optimise.sweep.solve_points``): only a run that ends without a design keeps such
+verdicts. A resumed run's first point has no point before: it gets the full verdict. This is a heuristic where it
+decides: a design ``solve``'s other starts (the interval search's, the sampled one) reach at such a point is not looked
+for.
 """
 
 from __future__ import annotations
@@ -28,46 +32,56 @@ from clutchopt.optimise.failed_starts import on_ray
 from clutchopt.optimise.solution import Solution
 from clutchopt.optimise.verdict import verdict_from
 
-REGION = "the neighbouring point's least relaxation"  # the one start of a point tested against its neighbour's reason
+SIZING = "the papers' sizing"  # a start-up point's own first start (``Problem.solve``'s, ``verdict.shown`` names it)
+REGION = "the neighbouring point's least relaxation"  # the start a point tested against its neighbour's reason adds
+DECIDED = (SIZING, REGION)  # the starts of a point :func:`region_verdict` decides
 
 
-def region_test(problem, case: Case, values: dict[str, float], last_feasible: dict[str, float] | None,
-                without: Solution | None, without_values: dict[str, float] | None) -> Solution | None:
-    """Point ``case`` (its varied ``values``) solved once from the least relaxation of the point before (``without``,
-    its verdict without a design, at ``without_values``), with its own elastic diagnosis, where that point ended
-    ``not_found`` for a named reason and this one lies beyond it on the ray from the run's last feasible point
-    (``last_feasible``, its values; t > 1); else None (not tested: its full verdict follows). None too where the
-    start's simulation fails."""
-    if without is None or last_feasible is None or without.status != "not_found":
-        return None
+def beyond(values: dict[str, float], last_feasible: dict[str, float] | None, without: Solution,
+           without_values: dict[str, float]) -> bool:
+    """Whether a sweep's point (its varied ``values``) is tested against the reason of the point before (``without``,
+    at ``without_values``, its verdict without a design): that point ended ``not_found`` for a named reason (its least
+    relaxation converged, naming the constraints it violates) and this one lies beyond it on the ray from the run's
+    last feasible point (``last_feasible``, its values; t > 1)."""
     reason = without.diagnosed
-    if reason is None or not reason.violated or reason.nearest is None:  # (an elastic problem stopped unconverged
-        return None  # names no reason)
+    if last_feasible is None or without.status != "not_found" or reason is None or not reason.violated \
+            or reason.nearest is None:  # (an elastic problem stopped unconverged names no reason)
+        return False
     t = on_ray(last_feasible, without_values, values)
-    if t is None or not t > 1.0:
-        return None
+    return t is not None and t > 1.0
+
+
+def region_test(problem, case: Case, without: Solution) -> Solution | None:
+    """``case`` solved once from the least relaxation of the point before (``without``), with its own elastic
+    diagnosis; None where the start's simulation fails."""
     try:
-        return problem.refined(case, reason.nearest, diagnosed=True)
+        return problem.refined(case, without.diagnosed.nearest, diagnosed=True)
     except InputError:  # (its start not simulated from that design)
         return None
 
 
-def region_verdict(tested: Solution, without: Solution) -> Solution | None:
-    """The verdict of a point :func:`region_test` solved (``tested``): ``not_found`` where it ended without a design
-    and its own least relaxation (converged) violates the constraints the point before's (``without``) did, its diagnosis its own saying so; a proof (a drive's: no solve) as it is; else None
-    (the point's full verdict follows: ``tested`` found a design, a feasible point, or another reason)."""
+def region_verdict(first: Solution, tested: Solution, without: Solution) -> Solution | None:
+    """The verdict of a point from its own first solve (``first``: ``Problem.solve``'s, from the papers' sizing, with
+    its elastic diagnosis) and its solve from the point before's least relaxation (``tested``, :func:`region_test`),
+    neither with a design: ``not_found`` on the least relaxation of the two where ``tested``'s own (converged)
+    violates a constraint the point before's (``without``) did (ball_motor_start from 414 kg m^2 on: contact_stress,
+    with start_time over its limit at some points, binding at others), saying that ``solve``'s other starts were not
+    tried; else None (the point's full verdict follows: a design found, a feasible point, another reason or none)."""
     own = tested.diagnosed
-    if own is not None and own.proven:
-        return tested
-    if own is None or own.status != "infeasible" or set(own.violated) != set(without.diagnosed.violated):
+    if first.diagnosed is None or first.diagnosed.proven or own is None or own.status != "infeasible" \
+            or not set(own.violated) & set(without.diagnosed.violated):
         return None
-    verdict = verdict_from([(REGION, tested)], [])
-    note = ("; solved from the least relaxation of the point before, which violates the same constraints, as its "
-            "only start: the starts solve of this point alone tries were not tried")
+    verdict = verdict_from([(SIZING, first), (REGION, tested)], [])
+    if verdict.status != "not_found":  # (the first solve's elastic check met a feasible point: solve's verdict)
+        return None
+    note = ("; its second start the least relaxation of the point before, whose reason its own shares "
+            f"({', '.join(sorted(set(own.violated) & set(without.diagnosed.violated)))}): solve's other starts of this "
+            "point alone were not tried")
+    verdict.solver = verdict.solver.summed([first.solver, tested.solver])
     return replace(verdict, diagnosis=verdict.diagnosis + note)
 
 
 def in_a_region(solution: Solution) -> bool:
-    """Whether ``solution`` is a point's verdict :func:`region_verdict` gave (its one start the point before's least
-    relaxation): no ``solve`` of the point alone is behind it."""
-    return solution.starts == (REGION,)
+    """Whether ``solution`` is a point's verdict :func:`region_verdict` gave: no ``solve`` of the point alone is
+    behind it."""
+    return solution.starts == DECIDED

@@ -43,7 +43,7 @@ from clutchopt.optimise.entering import check_entering
 from clutchopt.optimise.problem import case_formulation, case_problem
 from clutchopt.optimise.region_proof import Regions
 from clutchopt.optimise.solution import Solution, SolverOptions
-from clutchopt.optimise.start_up_region import REGION, in_a_region, region_test, region_verdict
+from clutchopt.optimise.start_up_region import REGION, beyond, in_a_region, region_test, region_verdict
 from clutchopt.optimise.start_up_sweep import solved_along
 from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_name, grid_points, grid_positions,
                                            parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
@@ -205,30 +205,31 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
     (:func:`from_the_neighbour`): the neighbour's design, then the continuation. Without a design, followed from the
     last feasible point (:func:`continued`; ball_motor_start in paper mode from 507.9 to 605.7 kW: its continuation
     lost 554.69 kg, which the sampled design reaches). A start-up point beyond a point without a design (``without``:
-    its values and verdict) is first tested against that point's reason (:mod:`clutchopt.optimise.start_up_region`):
-    one solve from its least relaxation, which decides the point where the point's own least relaxation violates the
-    same constraints; else the full verdict follows, that solve counted with it. ``point_case``: ``case`` with
-    ``values``."""
+    its values and verdict) that ``solve``'s first solve leaves without one is tested against that point's reason
+    (:mod:`clutchopt.optimise.start_up_region`): one solve from its least relaxation, which decides the point where
+    the point's own least relaxation violates the same constraints; else the full verdict follows from that first
+    solve, the test counted with it and named among its starts. ``point_case``: ``case`` with ``values``."""
     alone = tested = None  # a start-up point's verdict as ``solve`` of it alone gives it, where that has no design;
     # its test against the reason of the point before without a design
     if problem.start_up is None:
         solution = problem.solve(point_case, warm=previous, first=first,
                                  neighbour=neighbour.design if neighbour is not None else None)
     else:
-        if without is not None:
-            tested = region_test(problem, point_case, values, feasible[0] if feasible else None, *without[::-1])
-        if tested is not None and (decided := region_verdict(tested, without[1])) is not None:
-            return decided
+        if without is not None and beyond(values, feasible[0] if feasible else None, without[1], without[0]):
+            first = first or problem.refined(point_case)  # (``solve``'s first solve, from the papers' sizing)
+            if first.status not in DESIGN_STATUSES and first.diagnosed is not None and not first.diagnosed.proven:
+                tested = region_test(problem, point_case, without[1])
+            if tested is not None and (decided := region_verdict(first, tested, without[1])) is not None:
+                return decided
         solution = solved_along(problem, point_case, previous) or problem.solve(point_case, first=first)
         alone = solution if solution.status not in DESIGN_STATUSES else None
         if neighbour is not None and not problem.failed_starts.lost_beyond(point_case, neighbour.design):
             solution = from_the_neighbour(problem, point_case, solution, neighbour.design)
     if solution.status not in DESIGN_STATUSES and solution.status != "infeasible" and feasible is not None:
         solution = continued(problem, case, feasible, values) or solution  # (a proven point: no design to follow)
-    if tested is not None:  # (its solve counted; a design it found kept where the verdict has none)
-        solution = one_more_start(solution, tested, REGION) if tested.status in DESIGN_STATUSES \
-            and solution.status not in DESIGN_STATUSES else replace(
-                solution, solver=solution.solver.summed([solution.solver, tested.solver]))
+    if tested is not None:  # (its solve counted and named; a design it found kept where the verdict has none)
+        solution = one_more_start(solution, tested, REGION) if solution.status not in DESIGN_STATUSES else replace(
+            solution, solver=solution.solver.summed([solution.solver, tested.solver]))
     return beside(solution, alone)
 
 
