@@ -93,5 +93,6 @@ def test_only_a_point_beyond_on_the_ray_and_only_a_shared_reason_decides():
     assert region_verdict(first, tested, shared).starts == DECIDED  # (one constraint shared: the same region)
     unconverged = replace(tested, diagnosed=tested.diagnosed._replace(violated=()))
     assert region_verdict(first, unconverged, without) is None
+    assert region_verdict(first, replace(tested, diagnosed=None), without) is None  # (no diagnosis: a design)
     assert decided.diagnosis.startswith("no feasible design found (not proven infeasible): the least relaxation found "
                                         "cannot satisfy lining_pressure")

@@ -4,22 +4,22 @@
 A start-up point without a design costs ``solve``'s whole verdict: its first solve from the papers' sizing with its
 elastic diagnosis, the least relaxation's retry with a second diagnosis, the interval search's design (which bounds the
 static rows only, so it always meets one), 16 sampled designs projected and simulated and the walk from the least
-violated: lever_motor_start at 15.8-16.8 kg m^2 4 solves, 340-420 IPOPT iterations, 0.7-0.95 s of CPU a point, where a
-point with a design takes about 0.02 s; ball_motor_start at 414-525 kg m^2 0.55-1.5 s. A start-up has no interval proof,
-so no point is decided by its neighbour. Where the point before ended ``not_found`` for a named reason (its least
-relaxation converged, naming the constraints it violates: ``Diagnosis.violated``) and this point lies beyond it, on the
-ray from the run's last feasible point (:func:`beyond`), ``solve``'s first solve of the point is made
-(``Problem.refined``) and, where it ends without a design, the point is solved once more, from the point before's least
-relaxation, with its own elastic diagnosis (:func:`region_test`). Where that second least relaxation violates a
-constraint the point before's did, the point is ``not_found`` on those two starts (:func:`region_verdict`): its
-diagnosis the least relaxation of the two, saying that ``solve``'s other starts were not tried. Else (a design, a
-feasible point, another reason, no converged one) the point gets ``solve``'s verdict from that first solve on, and the
-sweep's own starts, the test counted and named among them (a design it found kept where the verdict has none). A point
-so decided before a later design in the run is retried from that design and, where that finds none, given ``solve``'s
-verdict after all (``clutchopt.optimise.sweep.solve_points``): only a run that ends without a design keeps such
-verdicts. A resumed run's first point has no point before: it gets the full verdict. This is a heuristic where it
-decides: a design ``solve``'s other starts (the interval search's, the sampled one) reach at such a point is not looked
-for.
+violated: lever_motor_start at 15.8-16.8 kg m^2 4 solves, 344-420 IPOPT iterations, 0.66-0.84 s a point, where a point
+with a design takes about 0.02 s; ball_motor_start at 414-525 kg m^2 0.49-1.41 s (docs/start_up.md, "A point beyond one
+without a design, tested against its reason"). A start-up has no interval proof, so no point is decided by its
+neighbour. Where the point before ended ``not_found`` for a named reason (its least relaxation converged, naming the
+constraints it violates: ``Diagnosis.violated``) and this point lies beyond it, on the ray from the run's last feasible
+point (:func:`beyond`), ``solve``'s first solve of the point is made (``Problem.refined``) and, where it ends without a
+design, the point is solved once more, from the point before's least relaxation, with its own elastic diagnosis
+(:func:`region_test`). Where that second least relaxation violates a constraint the point before's did, the point is
+``not_found`` on those two starts (:func:`region_verdict`): its diagnosis the least relaxation of the two, saying that
+``solve``'s other starts were not tried. Else (a design, a feasible point, another reason, no converged one) the point
+gets ``solve``'s verdict from that first solve on, and the sweep's own starts, the test counted and named among them (a
+design it found kept where the verdict has none). A point so decided before a later design in the run is retried from
+that design and, where that finds none, given ``solve``'s verdict after all (``clutchopt.optimise.sweep.solve_points``):
+only a run that ends without a design keeps such verdicts. A resumed run's first point, and a pool chunk's, has no point
+before: it gets the full verdict. This is a heuristic where it decides: a design ``solve``'s other starts (the interval
+search's, the sampled one) reach at such a point is not looked for.
 """
 
 from __future__ import annotations
@@ -68,15 +68,14 @@ def region_verdict(first: Solution, tested: Solution, without: Solution) -> Solu
     with start_time over its limit at some points, binding at others), saying that ``solve``'s other starts were not
     tried; else None (the point's full verdict follows: a design found, a feasible point, another reason or none)."""
     own = tested.diagnosed
-    if first.diagnosed is None or first.diagnosed.proven or own is None or own.status != "infeasible" \
-            or not set(own.violated) & set(without.diagnosed.violated):
+    shared = sorted(set(own.violated) & set(without.diagnosed.violated)) if own is not None else []
+    if not shared or first.diagnosed is None or first.diagnosed.proven or own.status != "infeasible":
         return None
     verdict = verdict_from([(SIZING, first), (REGION, tested)], [])
     if verdict.status != "not_found":  # (the first solve's elastic check met a feasible point: solve's verdict)
         return None
-    note = ("; its second start the least relaxation of the point before, whose reason its own shares "
-            f"({', '.join(sorted(set(own.violated) & set(without.diagnosed.violated)))}): solve's other starts of this "
-            "point alone were not tried")
+    note = (f"; its second start the least relaxation of the point before, whose reason its own shares "
+            f"({', '.join(shared)}): solve's other starts of this point alone were not tried")
     verdict.solver = verdict.solver.summed([first.solver, tested.solver])
     return replace(verdict, diagnosis=verdict.diagnosis + note)
 
