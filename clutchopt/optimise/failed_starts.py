@@ -70,7 +70,9 @@ class FailedStarts:
         verdict does not depend on what the process solved before (review h12: ball_motor_start in paper mode at
         605.7 kW was 554.69 kg in a new process, not_found after a solve at 900 kW whose sampled start had failed for
         the same constraints; h13: so was a sweep's point there after a point at 900 kW, and a resumed sweep's first
-        point took the start its uninterrupted run left out)."""
+        point took the start its uninterrupted run left out). (A sweep's point beyond one without a design may be
+        decided by its own solve from that one's least relaxation, not by ``solve``'s starts, and says so:
+        ``clutchopt.optimise.start_up_region``.)"""
         self._lost.clear()
         self._along = True
         try:

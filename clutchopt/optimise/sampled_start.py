@@ -29,7 +29,10 @@ local optimum nearest the points before: ``clutchopt.optimise.sweep``),
 wherever the point lies in its run and wherever the run started (a resumed one, a pool's chunk): a point's verdict
 rests on at least the starts ``solve`` of it alone tries (ball_motor_start in paper mode listed over 507.9, 900 and
 605.7 kW: the third point, deeper than the first past a design, was ``not_found`` where ``solve`` finds 554.69 kg;
-tests/test_start_up_sweep_deeper.py). A retry from a given design is the caller's. ``solve`` walks the same way from a
+tests/test_start_up_sweep_deeper.py). The one exception, a sweep's: a point beyond a point without a design, on the
+ray from the run's last design, whose one solve from that point's least relaxation fails for the same constraints
+(``clutchopt.optimise.start_up_region``; its verdict says so, and a later design in the run brings ``solve``'s after
+all). A retry from a given design is the caller's. ``solve`` walks the same way from a
 start-up optimum a row of the collocation holds, not a limit (:func:`from_the_held_design`).
 """
 

@@ -43,6 +43,7 @@ from clutchopt.optimise.entering import check_entering
 from clutchopt.optimise.problem import case_formulation, case_problem
 from clutchopt.optimise.region_proof import Regions
 from clutchopt.optimise.solution import Solution, SolverOptions
+from clutchopt.optimise.start_up_region import REGION, beyond, in_a_region, region_test, region_verdict
 from clutchopt.optimise.start_up_sweep import solved_along
 from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_name, grid_points, grid_positions,
                                            parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
@@ -164,9 +165,10 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
         for j, (index, values) in enumerate(pairs):
             point_case = regions.point_case(j)  # (built once: the regions keep it from their search on to its verdict)
             neighbour = designs.get(tuple(values.values())) or (feasible[1] if feasible else None)
+            without = (pairs[j - 1][1], waiting[-1][2]) if waiting and waiting[-1][0] == j - 1 else None
             # next to a point without a design: proven with the points around it, or solved once and proven alone
             solution = regions.point(j, partial(_solved, problem, case, point_case, values, previous, feasible,
-                                                neighbour), previous if problem.start_up is None else None)
+                                                neighbour, without), previous if problem.start_up is None else None)
             previous = solution if solution.status == "optimal" else None
             if solution.status not in DESIGN_STATUSES:
                 settled(solution.mesh)  # (kept until the next feasible point: its simulation's columns let go)
@@ -177,9 +179,12 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
             for k, (w, waited_case, waited) in enumerate(waiting):  # between feasible neighbours: from this one too
                 if waited.status == "infeasible":  # proven: no design to find
                     continue
-                alone = waited if problem.start_up is not None else None  # (a start-up's: its solve alone)
+                region = in_a_region(waited)  # (a start-up point its neighbour's reason decided: no solve alone
+                # behind it, which the retry makes where it finds no design, and whose verdict it keeps)
+                alone = waited if problem.start_up is not None and not region else None  # (a start-up's: its solve
+                # alone)
                 retry = problem.solve(waited_case, start=solution.design, alone=alone)  # (``alone`` counted here)
-                kept = beside(retry, alone) if retry.status in DESIGN_STATUSES else waited
+                kept = beside(retry, alone) if retry.status in DESIGN_STATUSES or region else waited
                 waiting[k] = (w, waited_case, replace(kept, solver=kept.solver.summed([waited.solver, retry.solver])))
             yield from (_one(points, w, names, waited) for w, _, waited in waiting)
             waiting = []
@@ -189,7 +194,7 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
 
 def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solution | None,
             feasible: tuple[dict, Solution | StoredDesign] | None, neighbour: Solution | StoredDesign | None,
-            first: Solution | None) -> Solution:
+            without: tuple[dict, Solution] | None, first: Solution | None) -> Solution:
     """A point's full verdict in a sweep solved point by point (continuing from ``first``, a solve already made:
     ``Problem.solve``'s ``first``): falls back to the case's own start by itself; a start-up design starts from the
     point before's optimum on the first mesh (clutchopt.optimise.start_up_sweep), else as `solve` does, from the papers'
@@ -199,18 +204,32 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
     from the starts the sweep adds, which reach the local optimum nearest the points before, not always ``solve``'s
     (:func:`from_the_neighbour`): the neighbour's design, then the continuation. Without a design, followed from the
     last feasible point (:func:`continued`; ball_motor_start in paper mode from 507.9 to 605.7 kW: its continuation
-    lost 554.69 kg, which the sampled design reaches). ``point_case``: ``case`` with ``values``."""
-    alone = None  # a start-up point's verdict as ``solve`` of it alone gives it, where that has no design
+    lost 554.69 kg, which the sampled design reaches). A start-up point beyond a point without a design (``without``:
+    its values and verdict) that ``solve``'s first solve leaves without one is tested against that point's reason
+    (:mod:`clutchopt.optimise.start_up_region`): one solve from its least relaxation, which decides the point where
+    the point's own least relaxation violates the same constraints; else the full verdict follows from that first
+    solve, the test counted with it and named among its starts. ``point_case``: ``case`` with ``values``."""
+    alone = tested = None  # a start-up point's verdict as ``solve`` of it alone gives it, where that has no design;
+    # its test against the reason of the point before without a design
     if problem.start_up is None:
         solution = problem.solve(point_case, warm=previous, first=first,
                                  neighbour=neighbour.design if neighbour is not None else None)
     else:
+        if without is not None and beyond(values, feasible[0] if feasible else None, without[1], without[0]):
+            first = first or problem.refined(point_case)  # (``solve``'s first solve, from the papers' sizing)
+            if first.status not in DESIGN_STATUSES and first.diagnosed is not None and not first.diagnosed.proven:
+                tested = region_test(problem, point_case, without[1])
+            if tested is not None and (decided := region_verdict(first, tested, without[1])) is not None:
+                return decided
         solution = solved_along(problem, point_case, previous) or problem.solve(point_case, first=first)
         alone = solution if solution.status not in DESIGN_STATUSES else None
         if neighbour is not None and not problem.failed_starts.lost_beyond(point_case, neighbour.design):
             solution = from_the_neighbour(problem, point_case, solution, neighbour.design)
     if solution.status not in DESIGN_STATUSES and solution.status != "infeasible" and feasible is not None:
         solution = continued(problem, case, feasible, values) or solution  # (a proven point: no design to follow)
+    if tested is not None:  # (its solve counted and named; a design it found kept where the verdict has none)
+        solution = one_more_start(solution, tested, REGION) if solution.status not in DESIGN_STATUSES else replace(
+            solution, solver=solution.solver.summed([solution.solver, tested.solver]))
     return beside(solution, alone)
 
 

@@ -82,7 +82,7 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
                     return _spent(retry, tried)
         elif emptiness is not None and emptiness.proven:
             proofs = [emptied(emptiness)]
-    return _spent(_verdict(tried, proofs), tried)
+    return _spent(verdict_from(tried, proofs), tried)
 
 
 def _relaxed_apart(problem, first: Solution) -> bool:
@@ -116,7 +116,10 @@ def retried(problem, case: Case, start: dict[str, float] | None, diagnosed: bool
         return None
 
 
-def _verdict(tried: list[tuple[str, Solution]], proofs: list[str]) -> Solution:
+def verdict_from(tried: list[tuple[str, Solution]], proofs: list[str]) -> Solution:
+    """The verdict on the starts ``tried`` (each its label and solve, none with a design; the first the point's
+    own) and the interval ``proofs`` found: ``infeasible`` with a proof, ``solver_failed`` where an elastic check met
+    a feasible point, else ``not_found`` with the least relaxation the diagnosed starts found."""
     first = tried[0][1]
     diagnosed = [(label, s) for label, s in tried if s.diagnosed is not None]
     starts = tuple(label for label, _ in tried)

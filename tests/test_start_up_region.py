@@ -1,0 +1,98 @@
+"""A start-up sweep's point beyond a point without a design is tested against that point's reason first
+(clutchopt/optimise/start_up_region.py): one solve from its least relaxation, with its own elastic diagnosis.
+
+lever_motor_start over the bench's driven inertias (0.6x-1.4x of 12 kg m^2, 20 points): 14.78 kg m^2 has a design,
+15.28 and 15.79 none (lining_pressure and temperature_rise, docs/start_up.md). The first point past the design gets
+``solve``'s verdict and the sweep's own starts; the next was given ``solve``'s too (4 solves, 340-400 IPOPT
+iterations), and is now solved from the papers' sizing (``solve``'s first solve) and from the first one's least
+relaxation, whose violated constraints its own violates too."""
+
+from dataclasses import replace
+
+import numpy as np
+
+from clutchopt.cases import load_case
+from clutchopt.optimise.problem import case_problem
+from clutchopt.optimise.sampled_start import SAMPLED
+from clutchopt.optimise.start_up_region import DECIDED, beyond, region_test, region_verdict
+from clutchopt.optimise.sweep import Sweep
+from clutchopt.optimise.sweep_grid import Vary
+from clutchopt.optimise.verdict import GIVEN
+from tests.conftest import CASES
+
+REASON = ("lining_pressure", "temperature_rise")
+SOLVE_STARTS = ("the papers' sizing", "the least relaxation's design", "a design the interval search met", SAMPLED)
+
+
+def _lever():
+    case = load_case(CASES / "lever_motor_start.toml")
+    return case, case.values["driven_inertia"] * np.linspace(0.6, 1.4, 20)
+
+
+def _swept(values) -> list[dict]:
+    case, _ = _lever()
+    quantity = next(q for q in case.quantities if q.name == "driven_inertia")
+    return Sweep(case, [Vary(quantity, tuple(values))]).run(progress=False).solutions
+
+
+def test_a_point_beyond_one_without_a_design_is_solved_from_the_sizing_and_that_ones_least_relaxation():
+    case, inertias = _lever()
+    designed, first, deeper = _swept(inertias[15:18])
+    assert designed["status"] == "optimal"
+    assert first["status"] == deeper["status"] == "not_found"
+    assert tuple(first["starts"][:4]) == SOLVE_STARTS  # (then the sweep's own: the neighbour's design)
+    assert tuple(deeper["starts"]) == DECIDED  # was solve's four starts, 4 solves
+    assert deeper["solver"]["solves"] == 2
+    assert deeper["diagnosis"].startswith("no feasible design found (not proven infeasible): the least relaxation "
+                                          "found cannot satisfy lining_pressure")
+    assert "solve's other starts of this point alone were not tried" in deeper["diagnosis"]
+    alone = case_problem(case).solve(case.with_values(driven_inertia=inertias[17]))  # solve of that point alone
+    assert alone.status == "not_found" and alone.starts == SOLVE_STARTS and alone.diagnosed.violated == REASON
+    assert alone.diagnosis.startswith("no feasible design found (not proven infeasible): the least relaxation found "
+                                      "cannot satisfy lining_pressure")
+
+
+def test_a_point_so_decided_before_a_later_design_gets_solves_verdict_after_all():
+    """Listed 14.78, 15.28, 15.79, then 14.27 kg m^2 (a design): the points without one are retried from the later
+    design, and the one its neighbour's reason decided, having no ``solve`` of it alone behind it, gets that verdict."""
+    _, inertias = _lever()
+    solutions = _swept([*inertias[15:18], inertias[14]])
+    assert [s["status"] for s in solutions] == ["optimal", "not_found", "not_found", "optimal"]
+    retried = solutions[2]
+    assert tuple(retried["starts"]) == (GIVEN, *SOLVE_STARTS)  # (the later design's, then solve's alone)
+    assert "were not tried" not in retried["diagnosis"]
+    assert retried["solver"]["solves"] >= 3  # its two solves and the later design's retry at least (solve's own
+    # starts too, but for a retry this process already saw fail there: failed_starts)
+
+
+def test_only_a_point_beyond_on_the_ray_and_only_a_shared_reason_decides():
+    case, inertias = _lever()
+    problem = case_problem(case)
+
+    def values(j):
+        return {"driven_inertia": float(inertias[j])}
+
+    without = problem.solve(case.with_values(driven_inertia=inertias[16]))
+    assert without.status == "not_found" and without.diagnosed.violated == REASON
+    between = {"driven_inertia": float((inertias[15] + inertias[16]) / 2)}
+    assert beyond(values(17), values(15), without, values(16))
+    assert not beyond(between, values(15), without, values(16))  # (between the last design and the point before)
+    assert not beyond(values(17), None, without, values(16))  # (no design before it in the run)
+    assert not beyond(values(17), values(15), replace(without, diagnosed=without.diagnosed._replace(violated=())),
+                      values(16))  # (an elastic problem stopped unconverged names no reason)
+    point = case.with_values(driven_inertia=inertias[17])
+    first = problem.refined(point)
+    tested = region_test(problem, point, without)
+    assert first.status == tested.status == "infeasible"  # (undecided: each its elastic diagnosis, unproven)
+    assert tested.solver.solves == 1 and tested.diagnosed.violated == REASON
+    decided = region_verdict(first, tested, without)
+    assert decided.status == "not_found" and decided.starts == DECIDED and decided.solver.solves == 2
+    other = replace(without, diagnosed=without.diagnosed._replace(violated=("start_time",)))
+    assert region_verdict(first, tested, other) is None  # another reason: solve's verdict
+    shared = replace(without, diagnosed=without.diagnosed._replace(violated=("lining_pressure", "start_time")))
+    assert region_verdict(first, tested, shared).starts == DECIDED  # (one constraint shared: the same region)
+    unconverged = replace(tested, diagnosed=tested.diagnosed._replace(violated=()))
+    assert region_verdict(first, unconverged, without) is None
+    assert region_verdict(first, replace(tested, diagnosed=None), without) is None  # (no diagnosis: a design)
+    assert decided.diagnosis.startswith("no feasible design found (not proven infeasible): the least relaxation found "
+                                        "cannot satisfy lining_pressure")
