@@ -95,6 +95,8 @@ def test_unknown_mode_and_missing_file(cli):
     *[(["solve", f"cases/{case}.toml", "--json", "--no-store"],
        ("pandas", "pint", "scipy.optimize", "scipy.special", "scipy.stats", "cvxpy", "matplotlib", "clutchopt.store"))
       for case in ("wedge_paper", "lever_centrifuge", "ball_crusher", "cable_pump")],
+    (["solve", "cases/wedge_paper.toml", "--no-store"],  # (its text tables: no pandas, output._frame)
+     ("pandas", "pint", "scipy.optimize", "scipy.special", "cvxpy", "matplotlib", "clutchopt.store")),
     (["simulate", "cases/scenes/paper_transient.toml", "--no-store"],  # (no --plot: no figure, no matplotlib)
      ("matplotlib", "pandas", "pint", "scipy.stats", "cvxpy", "clutchopt.store")),
 ])
