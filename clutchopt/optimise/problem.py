@@ -567,11 +567,13 @@ class Problem:
         """The verdict on a warm start-up solve whose integers are all fixed (an elastic link's own loop, its defect
         correction's solve at the moved limit) where their least link stress at the warm point's nodes is over the
         stress limit the NLP solves with (:func:`~clutchopt.optimise.link_bound.least_stress`, as the integer search
-        excludes a choice, ``integers.fixing``): ``infeasible``, proven, without a solve, the warm design shown; else
-        None. cable_motor_start over driven_inertia 0.6x-1.4x: 7 cables' own loop at the limit their simulated start
-        moved in (314-321 MPa; their least stress 341 MPa) took a failed warm run and a failed cold one, 10-20 and
-        33-45 IPOPT iterations, at 13 of the 20 points; its verdict the same (the loop keeps their design
-        ``unverified``)."""
+        excludes a choice, ``integers.fixing``): ``infeasible`` without a solve, the warm design shown, proven where
+        the NLP solves with the case's own limit (at one the defect correction moved in, of that NLP alone); else
+        None. Its callers: the defect correction, the own loop, ``solved_along``'s and the freed solve's warm starts,
+        a walk's last solve, none of which makes it the case's verdict. cable_motor_start over driven_inertia
+        0.6x-1.4x: 7 cables' own loop at the limit their simulated start moved in (314-321 MPa; their least stress 341
+        MPa) took a failed warm run and a failed cold one, 10-20 and 33-45 IPOPT iterations, at 13 of the 20 points;
+        its verdict the same (the loop keeps their design ``unverified``)."""
         posed = self.posed
         if self.start_up is None or not self.start_up.s.elastic or modifiers_in(data.params):  # (modifier
             return None  # adaptation's limits: its own bound, ``modifier.no_lighter``)
@@ -579,12 +581,16 @@ class Problem:
         limit = getattr(data.params, "max_link_stress", math.inf)
         if least is None or not least > limit * (1.0 + LINK_MARGIN):
             return None
-        text = (f"proven infeasible: link_stress: the least stress of every design at these integers, "
-                f"{least / 1e6:.6g} MPa at the locked drive's nodes, is over the limit the NLP solves with, "
-                f"{limit / 1e6:.6g} MPa")
+        own = case.values.get("max_link_stress", math.inf)
+        proven = limit == own  # (a proof of the case itself only at its own limit; at a limit the defect correction
+        # moved in, of that NLP alone: a correction, an own loop, not the case's verdict)
+        text = (f"{'proven infeasible' if proven else 'infeasible at the moved limit'}: link_stress: the least stress "
+                f"of every design at these integers, {least / 1e6:.6g} MPa at the locked drive's nodes, is over the "
+                f"limit the NLP solves with, {limit / 1e6:.6g} MPa"
+                + ("" if proven else f" (the case's {own / 1e6:.6g} MPa)"))
         solution = infeasible_at(posed, case, dict(zip(posed.names, map(float, data.start))), text,
                                  SolverInfo(PROVEN, "proven", 0, 0.0, 0), bounds=(data.lower, data.upper))
-        solution.diagnosed = Diagnosis("infeasible", text, 0.0, proven=True, violated=("link_stress",))
+        solution.diagnosed = Diagnosis("infeasible", text, 0.0, proven=proven, violated=("link_stress",))
         return solution
 
     def _unranked(self, case: Case, run: dict, runs: list[dict], data: ScaledData, search: list[dict],
