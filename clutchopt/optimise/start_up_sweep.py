@@ -176,9 +176,9 @@ def sized_out(problem, case: Case, before: SizedOut | None) -> SizedOut:
     driven_inertia: 22 rows, the sizing's row fewer, infeasible by the same least violation 2.72e-3 at every point from
     225 to 336 kg m^2, were solved at each (26-33 IPOPT iterations); ``solve`` of such a point alone rules them out
     from its own sizing (``Problem._refined``, :func:`sized_choices`): the same verdict. The first point solved along
-    solved them until its sizing was solved before its loop (35 IPOPT iterations; the sweep's 20 points over
-    driven_inertia 64 -> 63 solver calls, over max_start_time 0.8x-1.2x 90 -> 89, over power 58 -> 57, every design
-    the same to the bit). An elastic link (the cable) keeps every row too, but its loop takes
+    solved them until its sizing was solved before its loop (35 IPOPT iterations; ball_motor_start's 20-point sweeps
+    over driven_inertia, max_start_time 0.8x-1.2x and power a solver call fewer each, every design the same to the
+    bit). An elastic link (the cable) keeps every row too, but its loop takes
     neither the choices nor the design (:func:`solved_along`; it rules nothing out, ``Problem._refined``: no
     ``RuledOut``, its NLP is another model than its simulation): the design is carried for :func:`as_solve_would`
     alone, which had solved the sizing again at every point (cable_motor_start over driven_inertia: 3 static IPOPT
