@@ -117,3 +117,31 @@ def test_ball_start_up_solves_the_sizing_rows_from_the_sizing(monkeypatch, point
         assert solution.objective <= fixed.objective * (1 + 1e-6)  # 248.08: the fixed solve ends at 955.98 kg
     assert abs(solution.objective - 950.7554394) <= 1e-6 * 950.7554394  # the sizing's mass: no start-up design
     # goes below the static optimum
+
+
+def test_ball_start_up_doubled_problem_does_not_solve_the_rows_the_sizing_rules_out(monkeypatch):
+    # ball_motor_start at driven_inertia 351.3 kg m^2 (the bench sweep's point 8): the adapted mesh's error stalls at
+    # 1.01e-6 (tolerance 1e-6), so the loop doubles the intervals (16 -> 32) and solves that problem from its design,
+    # its integer search from the relaxation: 23 rows, then their neighbour 22, which the papers' sizing at the point
+    # found infeasible (every row of it kept by the start-up): main solved them again at n=680 (35 iterations,
+    # infeasible); the doubled problem is told, and excludes them unsolved
+    doubled = []
+    original = problem.Problem.solve
+
+    def spied(self, case, *args, **kwargs):
+        solution = original(self, case, *args, **kwargs)
+        if kwargs.get("coarser", np.inf) != np.inf:
+            doubled.append((self.start_up.s.intervals, solution))
+        return solution
+
+    monkeypatch.setattr(problem.Problem, "solve", spied)
+    case = load_case(CASES / "ball_motor_start.toml").with_values(driven_inertia=351.3157894736842)
+    sizing = problem.case_problem(case).static_problem.solve(case)
+    assert {e["ball_rows"]: e["status"] for e in sizing.integer_search}[22] == integers.INFEASIBLE
+    solution = solve_case(case)
+    assert [intervals for intervals, _ in doubled] == [32]
+    search = {e["ball_rows"]: e["status"] for e in doubled[0][1].integer_search}
+    assert search[23] == "Solve_Succeeded"
+    assert search[22].startswith(integers.EXCLUDED + "infeasible in the papers' sizing at this point")
+    assert solution.status == "optimal" and solution.design["ball_rows"] == 23.0
+    assert solution.objective == pytest.approx(954.0607, rel=1e-6)  # main's design, within the start-up's tolerance

@@ -66,7 +66,8 @@ class Problem:
 
     def solve(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
               mesh: np.ndarray | None = None, refine: bool = True, neighbour: dict[str, float] | None = None,
-              coarser: float = math.inf, first: Solution | None = None, alone: Solution | None = None) -> Solution:
+              coarser: float = math.inf, first: Solution | None = None, alone: Solution | None = None,
+              infeasible: dict[tuple, str] | None = None) -> Solution:
         """Solve for one case (:meth:`refined`); a solve that ends without a design is retried from the starts that can
         reach one before its verdict is given (:func:`clutchopt.optimise.verdict.shown`): ``neighbour``, the feasible
         design of a neighbouring point (a sweep's), among them. ``first``: that first solve, where a caller has made it
@@ -81,15 +82,18 @@ class Problem:
         alone; 610 kW warm from 530 kW's optimum: ``not_found``, alone 565.36 kg: tests/test_start_up_held.py); not the
         design a loop hands its doubled problem (``mesh`` or ``coarser`` given). A start-up optimum a row of
         the collocation holds (:func:`held_by_the_mesh`; the loop's remedy, the papers' sizing, missed a limit) is
-        walked from (:func:`~clutchopt.optimise.sampled_start.from_the_held_design`): the lighter design kept."""
+        walked from (:func:`~clutchopt.optimise.sampled_start.from_the_held_design`): the lighter design kept.
+        ``infeasible``: integer choices known to have no design here, with why (:meth:`_refined`; a loop's doubled
+        problem: those the papers' sizing at the point found infeasible)."""
         try:
-            solution = first or self.refined(case, start, warm, mesh, refine, coarser=coarser)
+            solution = first or self.refined(case, start, warm, mesh, refine, coarser=coarser, infeasible=infeasible)
         except InputError:  # a start-up whose first simulation fails from this design: from the papers' sizing
             if self.start_up is None or (start is None and warm is None):
                 raise
             if alone is not None:  # (the caller has ``solve``'s verdict alone, and counts it: not solved again)
                 return replace(alone, solver=alone.solver.summed([]), starts=given_first(alone))
-            solution, start, warm = self.refined(case, None, None, mesh, refine, coarser=coarser), None, None
+            solution, start, warm = self.refined(case, None, None, mesh, refine, coarser=coarser,
+                                                 infeasible=infeasible), None, None
         if self.start_up is not None and refine and self._held(solution):  # the loop's remedy missed: walked
             solution = from_the_held_design(self, case, solution)
         if solution.status == "optimal" or not refine:
@@ -212,7 +216,8 @@ class Problem:
                     finer = replace(structure, intervals=2 * structure.intervals)
                     halved = np.repeat(solution.mesh[1], 2) / 2.0  # each interval of each phase split in two
                     solution = problem_for(self.posed.base, self.objective.name, self.options, finer).solve(
-                        case, solution.design, mesh=halved, coarser=error)  # its own limit_shift
+                        case, solution.design, mesh=halved, coarser=error, infeasible=ruled.known)  # its own
+                    # limit_shift; the choices the papers' sizing rules out are the same on any mesh
                     solves.append(solution.solver)
                     nlp_case = None
                     break

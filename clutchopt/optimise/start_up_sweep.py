@@ -170,12 +170,15 @@ def sized_out(problem, case: Case, before: SizedOut | None) -> SizedOut:
     ``Infeasible_Problem_Detected``), where the start-up problem keeps every row of it (no constant-acceleration row
     left to the start-up model, as the wedge's and lever's torque rows are): its designs are then a subset of the
     sizing's, and a choice without a design there has none here, as the batch's ``tightening`` reads a step that only
-    tightens. The sizing is solved once a sweep, at the first point solved along it whose sizing problem is the point
-    before's (a sweep of start-up quantities alone: the driven inertia), and carried while the problem stays the same; a
-    sweep that moves it solves none. ball_motor_start over driven_inertia: 22 rows, the sizing's row fewer, infeasible
-    by the same least violation 2.72e-3 at every point from 225 to 336 kg m^2, were solved at each (26-33 IPOPT
-    iterations); ``solve`` of such a point alone rules them out from its own sizing (``Problem._refined``,
-    :func:`sized_choices`): the same verdict. An elastic link (the cable) keeps every row too, but its loop takes
+    tightens. The sizing is solved at a point whose sizing problem is not the point before's (the first solved along a
+    sweep, or each point of a sweep that moves it), where :func:`as_solve_would` solved it anyway, and carried while
+    the problem stays the same (a sweep of start-up quantities alone: the driven inertia). ball_motor_start over
+    driven_inertia: 22 rows, the sizing's row fewer, infeasible by the same least violation 2.72e-3 at every point from
+    225 to 336 kg m^2, were solved at each (26-33 IPOPT iterations); ``solve`` of such a point alone rules them out
+    from its own sizing (``Problem._refined``, :func:`sized_choices`): the same verdict. The first point solved along
+    solved them until its sizing was solved before its loop (35 IPOPT iterations; ball_motor_start's 20-point sweeps
+    over driven_inertia, max_start_time 0.8x-1.2x and power a solver call fewer each, every design the same to the
+    bit). An elastic link (the cable) keeps every row too, but its loop takes
     neither the choices nor the design (:func:`solved_along`; it rules nothing out, ``Problem._refined``: no
     ``RuledOut``, its NLP is another model than its simulation): the design is carried for :func:`as_solve_would`
     alone, which had solved the sizing again at every point (cable_motor_start over driven_inertia: 3 static IPOPT
@@ -183,9 +186,7 @@ def sized_out(problem, case: Case, before: SizedOut | None) -> SizedOut:
     before's (``Solution.sized``)."""
     static = problem.static_problem
     key = repr(tuple(vars(static.posed.params(case)).values()))
-    if before is None or before.key != key:
-        return SizedOut(key)
-    if before.choices is not None:
+    if before is not None and before.key == key and before.choices is not None:
         return before
     if not keeps_the_sizing(problem):  # a row left to the start-up model
         return SizedOut(key, {})
