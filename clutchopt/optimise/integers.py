@@ -191,10 +191,7 @@ def fixing(posed: Posed, data: ScaledData, runs: list[dict], search: list[dict],
     integer = posed.free_integers(data)
 
     def fixed_at(combo, seed, methods: tuple[str, ...] = ("ipopt",)) -> dict | None:
-        lower, upper = data.lower.copy(), data.upper.copy()
-        lower[integer] = upper[integer] = combo
-        lbx, ubx = scaled_box(lower, upper, data.scale, (data.internal_lower, data.internal_upper))
-        x0 = np.clip(seed["x"], lbx, ubx)
+        lbx, ubx, x0 = fixed_box(data, integer, combo, seed["x"])
         excluded = (violated_whatever_the_rest(posed, data.p, lbx, ubx, x0)
                     or (ruled.reason(combo) if ruled else [])
                     or ([] if modifiers_in(data.params) else refuted(posed, data, x0, lbx, ubx)))
@@ -215,6 +212,15 @@ def fixing(posed: Posed, data: ScaledData, runs: list[dict], search: list[dict],
         return run if run["ok"] and run["feasible"] else None
 
     return fixed_at
+
+
+def fixed_box(data: ScaledData, integer: list[int], combo, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The scaled bounds of ``data`` with its free integers (``integer``) fixed at ``combo``, and the point ``x``
+    (scaled) clipped into them."""
+    lower, upper = data.lower.copy(), data.upper.copy()
+    lower[integer] = upper[integer] = combo
+    lbx, ubx = scaled_box(lower, upper, data.scale, (data.internal_lower, data.internal_upper))
+    return lbx, ubx, np.clip(x, lbx, ubx)
 
 
 INFEASIBLE = "Infeasible_Problem_Detected"  # IPOPT's restoration phase ended at a local minimum of the violation

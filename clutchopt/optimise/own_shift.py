@@ -48,6 +48,8 @@ class ForeignShifts:
         self.looped: set[tuple] = set()  # the choices solved through their own loop (``Problem._own_loop``)
         self.unverified: dict[tuple, object] = {}  # choice -> the loop's lightest design of it whose simulated
         # start missed a limit (:meth:`unverified_below`)
+        self.first: dict[tuple, object] = {}  # choice -> its own loop's first solve, made before the loop
+        # (``Problem._one_up_first``; its solver calls counted by the caller)
 
     def choice(self, design: dict[str, float]) -> tuple:
         return tuple(float(design[name]) for name in self.names)

@@ -26,9 +26,9 @@ from clutchopt.model import Formulation
 from clutchopt.optimise.attempts import attempt, warm_multipliers
 from clutchopt.optimise.diagnosis import diagnose, whatever_the_design
 from clutchopt.optimise.failed_starts import FailedStarts
-from clutchopt.optimise.integers import (RuledOut, descend, fixing, from_the_start, meets_every_row, nearest_integers,
-                                         relaxation_seed, within)
-from clutchopt.optimise.link_bound import MARGIN as LINK_MARGIN, least_stress
+from clutchopt.optimise.integers import (RuledOut, descend, fixed_box, fixing, from_the_start, meets_every_row,
+                                         nearest_integers, relaxation_seed, within)
+from clutchopt.optimise.link_bound import MARGIN as LINK_MARGIN, least_stress, refuted
 from clutchopt.optimise.modifier import VARIANT, first_order, modifiers_in, with_modifiers
 from clutchopt.optimise.own_shift import (ForeignShifts, carried_by, climbing, excluded_own_entry, lighter_above,
                                           own_entry, stepped)
@@ -134,7 +134,7 @@ class Problem:
                  coarser: float = math.inf, shift: dict[str, float] | None = None, cold: bool = True,
                  fixed: dict[str, tuple[float, float]] | None = None,
                  infeasible: dict[tuple, str] | None = None, sizing: dict[str, float] | None = None,
-                 lighter_than: float = math.inf) -> Solution:
+                 lighter_than: float = math.inf, first: Solution | None = None) -> Solution:
         """One solve for one case. ``warm``: a previous solution of this problem, whose design and scales start this one.
 
         With a start-up, the simulated start is what the limits are checked against, and the collocation's own
@@ -161,7 +161,7 @@ class Problem:
         A loop that ends ``unverified`` goes on in modifier adaptation
         (:func:`~clutchopt.optimise.modifier.first_order`: the limits' figures corrected in value and gradient,
         integers kept), its steps ending at a design no lighter than ``lighter_than`` (an own loop's: the kept
-        design's objective).
+        design's objective). ``first``: the loop's first solve, made already (an own loop's, :meth:`_one_up_first`).
         ``infeasible``: integer choices known to have no design here, with why (:class:`RuledOut`; a start-up
         sweep's point: those the papers' sizing at the point finds infeasible, ``start_up_sweep.sized_out``);
         ``sizing``: the papers' sizing's design at the point, where a caller starting warm knows it (a start-up
@@ -188,8 +188,9 @@ class Problem:
         ruled = None if structure.elastic else RuledOut(infeasible)  # an elastic link's NLP differs from its
         # simulation by the model, not the mesh: no collocation error bounds what the next solve changes
         first_mesh = start is not None and warm is None and mesh is None and ruled is not None
-        solution = self._solve(case, start, warm, nlp_case=nlp_case, mesh=mesh, diagnosed=diagnosed, ruled=ruled,
-                               cold=cold, sizing=sizing, unranked_above=UNRANKED_ERROR if first_mesh else math.inf)
+        solution = first or self._solve(case, start, warm, nlp_case=nlp_case, mesh=mesh, diagnosed=diagnosed,
+                                        ruled=ruled, cold=cold, sizing=sizing,
+                                        unranked_above=UNRANKED_ERROR if first_mesh else math.inf)
         adapted, last_error, solves = 0, math.inf, [solution.solver]
         sized_again = False  # the papers' sizing solved again, where a row of the collocation held a design
         for _ in range(MESH_STEPS + BACK_OFF_STEPS):
@@ -231,6 +232,8 @@ class Problem:
                 moved = replace(moved, bounds={**nlp_case.bounds, **integers})
                 if foreign is not None:
                     foreign.corrected(solution)
+                    if not fixed and (up := self._one_up_first(case, solution, moved, foreign, solves)) is not None:
+                        return self._worn(case, self._own_loops(case, up, foreign))
                 corrected = self._solve(case, warm=solution, nlp_case=moved, ruled=ruled)
                 if corrected.status not in DESIGN_STATUSES:  # no design meets the moved limits
                     solves.append(corrected.solver)
@@ -300,14 +303,56 @@ class Problem:
     def _own_loop(self, case: Case, solution: Solution, kept: Solution, foreign: ForeignShifts, combo: tuple,
                   runs: list) -> tuple[Solution, Solution]:
         """The integer choice ``combo`` solved through its own accuracy loop (its integers fixed, from the case's
-        limits, warm from ``solution``), recorded in ``kept``'s integer search and ``runs``: its design where it ends
-        optimal and lighter than ``kept`` (or ``kept`` has none verified), else ``kept``; and its own solution."""
+        limits, warm from ``solution``, or from its first solve made already: :meth:`_one_up_first`), recorded in
+        ``kept``'s integer search and ``runs``: its design where it ends optimal and lighter than ``kept`` (or ``kept``
+        has none verified), else ``kept``; and its own solution."""
         fixed = {name: (value, value) for name, value in zip(foreign.names, combo)}
         own = self._refined(case, warm=solution, diagnosed=False, cold=False, fixed=fixed,
-                            lighter_than=kept.objective if kept.status == "optimal" else math.inf)
+                            lighter_than=kept.objective if kept.status == "optimal" else math.inf,
+                            first=foreign.first.pop(combo, None))
         foreign.own_loop(combo)
         runs.append(own.solver)
         return _recorded(kept, foreign.names, combo, own), own
+
+    def _one_up_first(self, case: Case, solution: Solution, moved: Case, foreign: ForeignShifts,
+                      solves: list) -> Solution | None:
+        """An elastic link's defect correction (``moved``: the limits ``solution``'s simulated start moved) where the
+        link's least stress refutes both ``solution``'s count and the count one up at the moved limits
+        (:func:`~clutchopt.optimise.link_bound.refuted`): the search there would exclude the two (the first at its own
+        shift, the second at a shift its own start did not measure), keep a count further up, simulate it, and then
+        solve the count one up through its own loop (:meth:`_own_loops`), whose first solve is at the case's limits.
+        That solve is made first, warm from ``solution``; where its simulated start verifies it (the own loop then
+        ends there, whatever design is kept beside it), it is returned as the own loop's, recorded as the search's
+        own loops record it, every solve counted (``solves``), and the search at the moved limits is not solved. Else
+        None: the correction goes on as ever, and the count's own loop later goes on from that solve (counted in
+        ``solves``). cable_motor_start: 7 cables' start moves the stress limit to 314.2 MPa, where 7 cables' least
+        stress is 341 MPa and 8's 314.24; 9 cables were solved and simulated there before 8's own loop kept 8
+        (3.953 kg): 5 solves and 4 simulated starts, now 3 and 3, the design the same to 4e-13."""
+        posed, names = self.posed, foreign.names
+        combo = foreign.choice(solution.design)
+        variable = next(v for v in self.formulation.variables if v.name == names[0]) if len(names) == 1 else None
+        if variable is None or combo[0] + 1.0 > case.bounds.get(variable.name, (variable.lower, variable.upper))[1]:
+            return None
+        up = (combo[0] + 1.0,)
+        data = posed.scaled_data(moved, solution.design, solution.scale, solution.internal, solution.mesh[0],
+                                 posed.params(case))
+        integer = posed.free_integers(data)
+        for choice in (combo, up):
+            lbx, ubx, x0 = fixed_box(data, integer, np.array(choice), data.x0)
+            if not refuted(posed, data, x0, lbx, ubx):
+                return None
+        own_case = replace(case, bounds={**case.bounds, names[0]: (up[0], up[0])})
+        own = self._solve(case, warm=solution, nlp_case=own_case, diagnosed=False, cold=False)  # (as its own loop's
+        solves.append(own.solver)  # first solve: ``_refined`` with ``fixed``)
+        if own.status != "optimal" or self._held(own) or corrected_case(own, own_case, centre=False) is not None:
+            foreign.first[up] = replace(own, solver=replace(own.solver, iterations=0, time_s=0.0, solves=0))  # (its
+            return None  # own loop goes on from it, counted here)
+        own.limit_shift, own.shift_measured_by = {}, frozenset()  # (its own loop's: at the case's limits)
+        foreign.own.add(combo)  # (found at its own shift, as the search there finds it)
+        foreign.own_loop(up)
+        kept = _recorded(solution, names, up, self._worn(case, own))
+        kept.solver = kept.solver.summed(solves)
+        return kept
 
     def _climbed(self, case: Case, solution: Solution, kept: Solution, foreign: ForeignShifts, combo: tuple,
                  upper: dict[str, float], runs: list) -> Solution:
