@@ -76,6 +76,20 @@ def test_a_sweep_over_a_quantity_that_does_not_enter_is_refused_by_name(tmp_path
     assert result.stderr.startswith("error: --vary flank_inner_radius: a design variable the optimiser chooses")
 
 
+def test_the_load_torque_of_a_case_with_a_load_profile_is_refused_by_name(cli):
+    # cable_motor_start's load is a profile over speed; its load_torque, the profile's largest value (65 N*m), is read
+    # by the motor's breakdown check alone, so a sweep over it gave the same design at every point (3.952573 kg at
+    # 30, 65 and 100 N*m: h17-cable2's finding); varied or scattered, it is refused, the profile named
+    result = cli("sweep", str(CASES / "cable_motor_start.toml"), "--vary", "load_torque=50:80:3", "--no-store")
+    assert result.returncode == 2
+    assert result.stderr.strip() == (
+        "error: --vary load_torque: this case's [start_up.driven.load_profile] gives the driven machine's load, and "
+        "load_torque is its largest value (65 N*m), not a quantity of its own: every simulated start would be the "
+        "same; scale the profile's torques in the case instead")
+    result = cli("sweep", str(WEDGE), "--vary", "load_torque=1:3:2", "--no-store", "--json")  # (a constant load: its
+    assert result.returncode == 0, result.stderr  # own quantity, varied as ever)
+
+
 def test_a_sweep_over_the_driven_inertia_itself_is_given_at_each_point():
     case = load_case(WEDGE)
     sweep = Sweep(case, [parse_vary("driven_inertia=0.4,0.6", "wedge", case.quantities)])

@@ -33,6 +33,8 @@ def check_entering(case: Case, problem, names, field: str, objective: bool = Tru
     fixed = {name for name, v in variables.items() if v.fixed_unless_freed and name not in case.free}
     entered = entering(problem, objective) | fixed
     entered |= {source for name, (source, _) in case.follows.items() if name in entered}  # through its defaults
+    if _profiled(case):  # (its load_torque the profile's largest value: the motor's breakdown check reads it, the
+        entered -= {"load_torque"}  # simulated start the profile, so a design would not move with it)
     problems = Problems()
     for name in names:
         if name not in entered:
@@ -41,8 +43,17 @@ def check_entering(case: Case, problem, names, field: str, objective: bool = Tru
     problems.raise_any()
 
 
+def _profiled(case: Case) -> bool:
+    """Whether the case's driven machine has a load profile (``[start_up.driven.load_profile]``)."""
+    return case.start_up is not None and case.start_up.load_profile is not None
+
+
 def _why_not(case: Case, problem, name: str, variable: bool, field: str) -> str:
     declared = {q.name: q for q in case.quantities}
+    if name == "load_torque" and _profiled(case):
+        return (f"this case's [start_up.driven.load_profile] gives the driven machine's load, and load_torque is its "
+                f"largest value ({declared[name].show(case.values[name])}), not a quantity of its own: every simulated "
+                f"start would be the same; scale the profile's torques in the case instead")
     own = [follower for follower, source in DEFAULTS_FROM_DUTY.items()
            if source == name and follower in case.values and follower not in case.follows]
     if own:
