@@ -10,11 +10,12 @@ relaxation, whose violated constraints its own violates too."""
 from dataclasses import replace
 
 import numpy as np
+import pytest
 
 from clutchopt.cases import load_case
 from clutchopt.optimise.problem import case_problem
 from clutchopt.optimise.sampled_start import SAMPLED
-from clutchopt.optimise.start_up_region import DECIDED, beyond, region_test, region_verdict
+from clutchopt.optimise.start_up_region import DECIDED, REGION, beyond, region_test, region_verdict
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import Vary
 from clutchopt.optimise.verdict import GIVEN
@@ -45,7 +46,8 @@ def test_a_point_beyond_one_without_a_design_is_solved_from_the_sizing_and_that_
     assert deeper["solver"]["solves"] == 2
     assert deeper["diagnosis"].startswith("no feasible design found (not proven infeasible): the least relaxation "
                                           "found cannot satisfy lining_pressure")
-    assert "solve's other starts of this point alone were not tried" in deeper["diagnosis"]
+    assert deeper["diagnosis"].endswith("solve's other starts of this point alone were not tried, nor the sweep's "
+                                        "(the neighbour's design, the continuation)")
     alone = case_problem(case).solve(case.with_values(driven_inertia=inertias[17]))  # solve of that point alone
     assert alone.status == "not_found" and alone.starts == SOLVE_STARTS and alone.diagnosed.violated == REASON
     assert alone.diagnosis.startswith("no feasible design found (not proven infeasible): the least relaxation found "
@@ -59,10 +61,41 @@ def test_a_point_so_decided_before_a_later_design_gets_solves_verdict_after_all(
     solutions = _swept([*inertias[15:18], inertias[14]])
     assert [s["status"] for s in solutions] == ["optimal", "not_found", "not_found", "optimal"]
     retried = solutions[2]
-    assert tuple(retried["starts"]) == (GIVEN, *SOLVE_STARTS)  # (the later design's, then solve's alone)
+    assert tuple(retried["starts"]) == (GIVEN, *SOLVE_STARTS, REGION)  # (the later design's, solve's alone, and the
+    # neighbour's least relaxation its test solved from: review h17)
     assert "were not tried" not in retried["diagnosis"]
     assert retried["solver"]["solves"] >= 3  # its two solves and the later design's retry at least (solve's own
     # starts too, but for a retry this process already saw fail there: failed_starts)
+
+
+def test_a_resumed_run_decides_no_point_by_a_pending_point_that_is_not_the_one_before(tmp_path):
+    """Listed 14.27 (a design), 15.28, 14.78 (a design), 15.79, 16.29 kg m^2; a pool's run stopped after it stored
+    14.78 alone (review h17): the resumed run's pending points are 14.27, 15.28, 15.79, 16.29, and 15.79 was decided
+    beyond 15.28, which is not the point before it (14.78, a design, lies between): two starts and 2 solves where the
+    uninterrupted run gives it the full verdict. Now only the grid's point before decides."""
+    from clutchopt.optimise.sweep import solve_chunk
+    from clutchopt.store import RunStore
+
+    case, inertias = _lever()
+    quantity = next(q for q in case.quantities if q.name == "driven_inertia")
+    values = (inertias[14], inertias[16], inertias[15], inertias[17], inertias[18])
+
+    class Stopped(Exception):
+        pass
+
+    def runner(task, pending, size):  # (a pool's run: the chunk of 14.78 finished first, then the run stopped)
+        yield solve_chunk(*task, pending[2:3])
+        raise Stopped
+
+    path = tmp_path / "runs.sqlite"
+    with RunStore(path) as store, pytest.raises(Stopped):
+        Sweep(case, [Vary(quantity, values)]).run(store, runner=runner, progress=False)
+    with RunStore(path) as store:
+        resumed = Sweep(case, [Vary(quantity, values)]).run(store, resume=True, progress=False)
+    assert (resumed.reused, resumed.solved) == (1, 4)
+    assert [s["status"] for s in resumed.solutions] == ["optimal", "not_found", "optimal", "not_found", "not_found"]
+    assert tuple(resumed.solutions[3]["starts"][:4]) == SOLVE_STARTS  # (was DECIDED: beyond 15.28)
+    assert tuple(resumed.solutions[4]["starts"]) == DECIDED  # (beyond 15.79, the point before it)
 
 
 def test_only_a_point_beyond_on_the_ray_and_only_a_shared_reason_decides():

@@ -165,7 +165,9 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
         for j, (index, values) in enumerate(pairs):
             point_case = regions.point_case(j)  # (built once: the regions keep it from their search on to its verdict)
             neighbour = designs.get(tuple(values.values())) or (feasible[1] if feasible else None)
-            without = (pairs[j - 1][1], waiting[-1][2]) if waiting and waiting[-1][0] == j - 1 else None
+            without = ((pairs[j - 1][1], waiting[-1][2]) if waiting and waiting[-1][0] == j - 1
+                       and pairs[j - 1][0] == index - 1 else None)  # (the point before in the run and in the grid: a
+            # resumed run's pending points may have a stored one between them)
             # next to a point without a design: proven with the points around it, or solved once and proven alone
             solution = regions.point(j, partial(_solved, problem, case, point_case, values, previous, feasible,
                                                 neighbour, without), previous if problem.start_up is None else None)
@@ -185,6 +187,8 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
                 # alone)
                 retry = problem.solve(waited_case, start=solution.design, alone=alone)  # (``alone`` counted here)
                 kept = beside(retry, alone) if retry.status in DESIGN_STATUSES or region else waited
+                if region and kept.status not in DESIGN_STATUSES:  # (the test's second start named too)
+                    kept = replace(kept, starts=kept.starts + (REGION,))
                 waiting[k] = (w, waited_case, replace(kept, solver=kept.solver.summed([waited.solver, retry.solver])))
             yield from (_one(points, w, names, waited) for w, _, waited in waiting)
             waiting = []
