@@ -156,6 +156,9 @@ def test_solve_reports_the_choices_and_the_library_in_text_and_json(tmp_path):
     path.write_text(choosing("lever"))
     text = run("solve", path, "--no-store")
     assert text.startswith("Choices of options.choose, best first\n")
+    header, first = text.splitlines()[1:3]  # (the rank as text, right-aligned to its name: h17 dropped pandas from
+    assert header.split()[:3] == ["rank", "friction_pair", "status"] and header.startswith("rank ")  # the text
+    assert first.split()[:3] == ["1", "organic_dry", "optimal"] and first.startswith("   1 ")  # tables)
     assert "From the material library (values the case gives itself win):" in text
     assert "friction_pair = organic_dry: friction_coefficient 0.3 (scatter 0.25 to 0.45)" in text
     data = json.loads(run("solve", path, "--json", "--no-store"))
