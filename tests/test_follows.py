@@ -76,6 +76,17 @@ def test_a_sweep_over_a_quantity_that_does_not_enter_is_refused_by_name(tmp_path
     assert result.stderr.startswith("error: --vary flank_inner_radius: a design variable the optimiser chooses")
 
 
+def test_an_optional_limit_the_case_leaves_out_is_refused_saying_so(cli):
+    # wedge_motor_start gives no max_lining_temperature: no row is posed for it, and the refusal said only "no
+    # constraint and not the objective depends on it", as of a quantity no case could make enter (h17-ignored)
+    result = cli("sweep", str(WEDGE), "--vary", "max_lining_temperature=80,120", "--no-store")
+    assert result.returncode == 2
+    assert result.stderr.strip() == (
+        "error: --vary max_lining_temperature: does not enter the wedge problem in mode paper with its [start_up]: "
+        "the case leaves out start_up.limits.max_lining_temperature, which no constraint then reads, so every design "
+        "would be the same")
+
+
 def test_the_load_torque_of_a_case_with_a_load_profile_is_refused_by_name(cli):
     # cable_motor_start's load is a profile over speed; its load_torque, the profile's largest value (65 N*m), is read
     # by the motor's breakdown check alone, so a sweep over it gave the same design at every point (3.952573 kg at

@@ -4,6 +4,7 @@ command refuses it by name (a sweep over a quantity that does not enter gives th
 from __future__ import annotations
 
 import functools
+import math
 
 import casadi as ca
 import numpy as np
@@ -89,6 +90,8 @@ def _why_not(case: Case, problem, name: str, variable: bool, field: str) -> str:
     if variable:
         return (f"a design variable the optimiser chooses in mode {mode} (the case's value only starts the search), "
                 "so it does not enter the problem; bound it with [bounds] or fix it in another mode")
+    left_out = not math.isfinite(case.values.get(name, math.nan))  # (an optional limit: its row posed where given)
     return (f"does not enter the {case.coupling} problem in mode {mode}"
             + (" with its [start_up]" if case.start_up is not None else "")
-            + ": no constraint and not the objective depends on it, so every design would be the same")
+            + (f": the case leaves out {declared[name].key}, which no constraint then reads" if left_out else
+               ": no constraint and not the objective depends on it") + ", so every design would be the same")
