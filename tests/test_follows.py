@@ -76,6 +76,17 @@ def test_a_sweep_over_a_quantity_that_does_not_enter_is_refused_by_name(tmp_path
     assert result.stderr.startswith("error: --vary flank_inner_radius: a design variable the optimiser chooses")
 
 
+def test_an_optional_limit_the_case_leaves_out_is_refused_saying_so(cli):
+    # wedge_motor_start gives no max_lining_temperature: no row is posed for it, and the refusal said only "no
+    # constraint and not the objective depends on it", as of a quantity no case could make enter (h17-ignored)
+    result = cli("sweep", str(WEDGE), "--vary", "max_lining_temperature=80,120", "--no-store")
+    assert result.returncode == 2
+    assert result.stderr.strip() == (
+        "error: --vary max_lining_temperature: does not enter the wedge problem in mode paper with its [start_up]: "
+        "the case leaves out start_up.limits.max_lining_temperature, which no constraint then reads, so every design "
+        "would be the same")
+
+
 def test_the_load_torque_of_a_case_with_a_load_profile_is_refused_by_name(cli):
     # cable_motor_start's load is a profile over speed; its load_torque, the profile's largest value (65 N*m), is read
     # by the motor's breakdown check alone, so a sweep over it gave the same design at every point (3.952573 kg at
@@ -88,6 +99,27 @@ def test_the_load_torque_of_a_case_with_a_load_profile_is_refused_by_name(cli):
         "same; scale the profile's torques in the case instead")
     result = cli("sweep", str(WEDGE), "--vary", "load_torque=1:3:2", "--no-store", "--json")  # (a constant load: its
     assert result.returncode == 0, result.stderr  # own quantity, varied as ever)
+
+
+def test_the_damping_of_an_elastic_link_is_swept_and_moves_the_design(tmp_path, cli):
+    # cable_motor_start's NLP takes the cables as quasi-static: no row reads damping_ratio, so a sweep over it was
+    # refused ("every design would be the same"), yet the simulated start does, and the defect correction moves the
+    # stress limit by the oscillation it finds: 9 cables at 0.07, 8 at 0.1 (the case's), 7 at 0.2 (h17-ignored)
+    case = load_case(CASES / "cable_motor_start.toml")
+    result = Sweep(case, [parse_vary("damping_ratio=0.07,0.1,0.2", "cable", case.quantities)]).run(progress=False)
+    assert [s["status"] for s in result.solutions] == ["optimal"] * 3
+    assert [s["design"]["cable_count"] for s in result.solutions] == [9, 8, 7]
+    assert [s["objective"]["value"] for s in result.solutions] == pytest.approx([4.417785, 3.952573, 3.487175],
+                                                                                 rel=1e-6)
+    # scattered, it is refused by name: a robust design spreads the NLP's rows, and none reads it
+    scattered = tmp_path / "scattered.toml"
+    scattered.write_text((CASES / "cable_motor_start.toml").read_text() + "\n[scatter]\ndamping_ratio = [0.07, 0.13]\n")
+    result = cli("solve", str(scattered), "--robust", "worst-case", "--no-store")
+    assert result.returncode == 2
+    assert result.stderr.strip() == (
+        "error: scatter.damping_ratio: only the simulated start reads it (the elastic link's damping; the NLP takes "
+        "the link as quasi-static), and a robust design spreads the NLP's rows, none of which depends on it; sweep it "
+        "instead (--vary)")
 
 
 def test_a_sweep_over_the_driven_inertia_itself_is_given_at_each_point():

@@ -4,12 +4,14 @@ command refuses it by name (a sweep over a quantity that does not enter gives th
 from __future__ import annotations
 
 import functools
+import math
 
 import casadi as ca
 import numpy as np
 
 from clutchopt.cases import Case
 from clutchopt.errors import InputError, Problems
+from clutchopt.model import ElasticLaw, namespace
 from clutchopt.start_up.section import DEFAULTS_FROM_DUTY
 
 
@@ -26,12 +28,14 @@ def entering(problem, objective: bool = True) -> frozenset[str]:
 def check_entering(case: Case, problem, names, field: str, objective: bool = True) -> None:
     """Refuse, each by name, the quantities among ``names`` that do not enter the problem posed for ``case``: not in
     its constraints or (``objective``) its objective, nor a design variable the case fixes at its value, nor the
-    source of a default that enters (the driven inertia that follows the duty's). ``field``: how an error names one,
+    source of a default that enters (the driven inertia that follows the duty's), nor (``objective``) what only an
+    elastic link's simulated start reads (:func:`simulated_only`). ``field``: how an error names one,
     ``"--vary {}"``; a scatter takes ``objective=False``: a robust design keeps its objective at the nominal
-    values, so a quantity only the objective depends on would leave it the nominal design."""
+    values, so a quantity only the objective depends on would leave it the nominal design, and spreads the NLP's
+    rows, which a quantity only the simulated start reads is in none of."""
     variables = {v.name: v for v in problem.formulation.variables}
     fixed = {name for name, v in variables.items() if v.fixed_unless_freed and name not in case.free}
-    entered = entering(problem, objective) | fixed
+    entered = entering(problem, objective) | fixed | (simulated_only(case, problem) if objective else frozenset())
     entered |= {source for name, (source, _) in case.follows.items() if name in entered}  # through its defaults
     if _profiled(case):  # (its load_torque the profile's largest value: the motor's breakdown check reads it, the
         entered -= {"load_torque"}  # simulated start the profile, so a design would not move with it)
@@ -41,6 +45,18 @@ def check_entering(case: Case, problem, names, field: str, objective: bool = Tru
             with problems.field():
                 raise InputError(field.format(name), _why_not(case, problem, name, name in variables, field))
     problems.raise_any()
+
+
+def simulated_only(case: Case, problem) -> frozenset[str]:
+    """The case quantities an elastic link's simulated start reads that its NLP does not: the link's damping ratio
+    (the NLP takes the link as quasi-static). The defect correction moves the stress limit by the oscillation that
+    start finds, so the design moves with them (cable_motor_start: 9 cables at damping 0.07, 8 at 0.1, 7 at 0.2)."""
+    law = problem.formulation.speed_law
+    if case.start_up is None or not isinstance(law, ElasticLaw):
+        return frozenset()
+    x = namespace({v.name: ca.SX.sym(v.name) for v in problem.formulation.variables})
+    p = namespace({q.name: ca.SX.sym(q.name) for q in problem.formulation.quantities})
+    return frozenset(s.name() for s in ca.symvar(ca.SX(law.damping_ratio(x, p)))) & set(vars(p))
 
 
 def _profiled(case: Case) -> bool:
@@ -63,6 +79,10 @@ def _why_not(case: Case, problem, name: str, variable: bool, field: str) -> str:
                 f"{own[0]} is given here ({quantity.show(case.values[own[0]])}: by the case, or by what this command "
                 f"varies), so {name} does not enter the problem; scatter {own[0]} instead")
     mode = problem.formulation.mode
+    if name in simulated_only(case, problem):  # (a scatter's)
+        return ("only the simulated start reads it (the elastic link's damping; the NLP takes the link as "
+                "quasi-static), and a robust design spreads the NLP's rows, none of which depends on it; sweep it "
+                "instead (--vary)")
     if name in entering(problem):  # the objective only
         return (f"only the {problem.objective.name} objective depends on it, not a constraint: a robust design keeps "
                 f"its objective at the case's values, so it would be the nominal design; scatter what a constraint "
@@ -70,6 +90,8 @@ def _why_not(case: Case, problem, name: str, variable: bool, field: str) -> str:
     if variable:
         return (f"a design variable the optimiser chooses in mode {mode} (the case's value only starts the search), "
                 "so it does not enter the problem; bound it with [bounds] or fix it in another mode")
+    left_out = not math.isfinite(case.values.get(name, math.nan))  # (an optional limit: its row posed where given)
     return (f"does not enter the {case.coupling} problem in mode {mode}"
             + (" with its [start_up]" if case.start_up is not None else "")
-            + ": no constraint and not the objective depends on it, so every design would be the same")
+            + (f": the case leaves out {declared[name].key}, which no constraint then reads" if left_out else
+               ": no constraint and not the objective depends on it") + ", so every design would be the same")
