@@ -70,3 +70,14 @@ def test_a_count_one_up_its_start_does_not_verify_its_own_loop_goes_on_from_that
     assert solution.objective == pytest.approx(before.objective, rel=1e-7)
     assert ("7", "own accuracy loop: optimal") in [(str(e["cable_count"]), e["status"])
                                                    for e in solution.integer_search]
+
+
+def test_a_count_one_up_solved_first_whose_own_loop_never_runs_is_recorded(monkeypatch):
+    """cable_motor_start at a damping of 0.05 (review h17): 8 cables solved first at 350 MPa end unverified, the loop
+    then keeps 26 and walks down through their own loops to 11 (5.347779 kg); 8 cables' own loop never runs, so their
+    counted solve was in no entry of the integer search: now it is, with its status."""
+    solution, _ = solved(monkeypatch, CABLE.with_values(damping_ratio=0.05))
+    assert solution.status == "optimal" and solution.design["cable_count"] == 11.0
+    assert solution.objective == pytest.approx(5.347779, rel=1e-6)
+    assert (8, "solved first at the case's limits: unverified") in [(e["cable_count"], e["status"])
+                                                                      for e in solution.integer_search]
