@@ -35,7 +35,7 @@ from clutchopt.files import CASE_BYTES, read_text, shown
 from clutchopt.scatter import Scatter, parse_correlation, parse_scatter
 from clutchopt.model import REQUIRED, Quantity, followed
 from clutchopt.start_up.equations import QUANTITIES as START_UP_QUANTITIES
-from clutchopt.start_up.equations import SPRING_PRELOAD, StartUpSpec
+from clutchopt.start_up.equations import LIMITS as START_UP_LIMITS, SPRING_PRELOAD, StartUpSpec
 from clutchopt.start_up.overload import FRICTION
 from clutchopt.units import to_si
 
@@ -84,9 +84,13 @@ class Case:
         """A copy with some SI values replaced and re-checked (sweeps, tests); a default that follows a replaced
         quantity follows it, one that is replaced itself is given from then on (nor filled by the library)."""
         declared = {q.name: q for q in self.quantities}
+        limits = self.start_up.limits if self.start_up is not None else ()
         for name, value in values.items():
             if name not in declared:
                 raise InputError(name, f"unknown quantity for coupling {self.coupling!r}")
+            if name in START_UP_LIMITS and name not in limits:  # (its row posed only where the case file gives it)
+                raise InputError(name, f"the case leaves out {declared[name].key}, which no constraint then reads: "
+                                       "give it in the case file to set it")
             declared[name].check(float(value))
         follows = {name: rule for name, rule in self.follows.items() if name not in values}
         return replace(self, values=self.followed({**self.values, **{k: float(v) for k, v in values.items()}},

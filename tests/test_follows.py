@@ -8,6 +8,7 @@ import tomllib
 import pytest
 
 from clutchopt.cases import load_case, parse_case
+from clutchopt.errors import InputError
 from clutchopt.optimise import solve_case
 from clutchopt.optimise.sweep import Sweep, parse_vary
 from tests.conftest import CASES, choosing
@@ -85,6 +86,10 @@ def test_an_optional_limit_the_case_leaves_out_is_refused_saying_so(cli):
         "error: --vary max_lining_temperature: does not enter the wedge problem in mode paper with its [start_up]: "
         "the case leaves out start_up.limits.max_lining_temperature, which no constraint then reads, so every design "
         "would be the same")
+    # and from Python, where it was set on the case and read by nothing (review h17)
+    with pytest.raises(InputError, match=r"^max_lining_temperature: the case leaves out start_up\.limits\."
+                                         r"max_lining_temperature, which no constraint then reads"):
+        load_case(WEDGE).with_values(max_lining_temperature=400.0)
 
 
 def test_the_load_torque_of_a_case_with_a_load_profile_is_refused_by_name(cli):

@@ -438,14 +438,14 @@ class Sweep:
         case.require(self.objective.name)
         self.tol = tol
         self.grid, self.zipped = grid_points(varies, zipped), zipped
-        check_points(case, varies, self.grid, scattered=robust is not None)
         sets, _ = chosen(case, get_coupling(case.coupling))
         for v in varies:
             if v.quantity.name in sets:
                 raise InputError(f"--vary {v.quantity.name}", f"options.choose.{sets[v.quantity.name]} sets it for "
                                  "each choice; vary it in a case that names one entry")
         problem = case_problem(case, self.formulation.mode, self.objective.name, SolverOptions(tol=tol))
-        check_entering(case, problem, [v.quantity.name for v in varies], "--vary {}")
+        check_entering(case, problem, [v.quantity.name for v in varies], "--vary {}")  # (before the points: a
+        check_points(case, varies, self.grid, scattered=robust is not None)  # quantity no point could set is named)
         check_robustness(case, robust, problem)
         if robust is not None:
             scattered = {s.name for s in case.scatter} & {v.quantity.name for v in varies}
