@@ -379,3 +379,5 @@ def test_a_point_whose_integers_moved_off_the_sizing_s_is_also_solved_as_solve_w
     assert record["objective"]["value"] == pytest.approx(alone.objective, rel=1e-6)
     assert record["objective"]["value"] == pytest.approx(1026.07, abs=0.005)
     assert record["solver"]["solves"] > heavier.solver.solves + alone.solver.solves  # (the probe's too)
+    assert record["solver"]["iterations"] > heavier.solver.iterations + alone.solver.iterations  # (summed as its
+    # solves are: the kept solve's alone were counted, review h17)

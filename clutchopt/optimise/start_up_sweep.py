@@ -145,8 +145,7 @@ def as_solve_would(problem, case: Case, solution: Solution, sized: "SizedOut",
     last, tolerance = tried[-1], problem.posed.start_up.s.spec.tolerance
     solved = len(tried) > 1 and last.status == "optimal"
     kept = last if solved and last.objective < solution.objective * (1 - tolerance) else solution
-    counted = replace(kept, solver=replace(kept.solver, solves=sum(s.solves for s in spent),
-                                           time_s=sum(s.time_s for s in spent)))  # (every solve counted)
+    counted = replace(kept, solver=kept.solver.summed(spent))  # (every solve counted, its iterations and seconds too)
     if len(tried) > 1 and not (solved and last.objective <= solution.objective * (1 + tolerance)):
         return counted.beside_alone(last)  # (``solve``'s heavier beyond the tolerance, or none verified)
     return counted
