@@ -94,11 +94,12 @@ def test_the_cable_at_0_5_corrects_once_from_the_nlp_s_figure():
     weight_turns_cable, and the stress rises with it), so the limit correction ends after 1 solve (main: 8, seven
     corrections that left the design unmoved; then 3, the corrected NLP's warm and cold runs to infeasible, until the
     link's least stress at the warm point's nodes refuted it unsolved, ``Problem._link_refuted``) on the design
-    solved at the case's limit. Modifier adaptation goes on from it (tests/test_modifier.py): 4 more solves, the stress limit met by the simulated start to 4e-9 (the
-    objective's error |elasticity 20.3 x 4e-9| within CENTRE x TOL), the weight mass 0.49261 kg (4.25685 kg), the
-    limits the case's. Free, solve keeps these 8 cables (9 cables' 4.418 kg before), in 7 solves (9 before an
-    infeasible count was refuted by the link's least stress, clutchopt.optimise.link_bound; 8 before 8 cables at
-    their own moved limit were too, the least stress with the weights' least pull), the same design to the bit."""
+    solved at the case's limit. Modifier adaptation goes on from it (tests/test_modifier.py): 4 more solves, the
+    stress limit met by the simulated start to 4e-9 (the objective's error |elasticity 20.3 x 4e-9| within CENTRE x
+    TOL), the weight mass 0.49261 kg (4.25685 kg), the limits the case's. Free, solve keeps these 8 cables (9
+    cables' 4.418 kg before), in 7 solves (9 before an infeasible count was refuted by the link's least stress,
+    clutchopt.optimise.link_bound; 8 before 8 cables at their own moved limit were too, the least stress with the
+    weights' least pull), the same design to the bit."""
     case = CABLE.with_values(driven_inertia=0.5)
     eight = solve_case(replace(case, bounds={**case.bounds, "cable_count": (8.0, 8.0)}))
     assert eight.status == "optimal" and eight.solver.solves == 1 + 4

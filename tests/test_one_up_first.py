@@ -64,7 +64,8 @@ def test_a_count_one_up_its_start_does_not_verify_its_own_loop_goes_on_from_that
     solution, runs = solved(monkeypatch, CABLE.with_values(driven_inertia=0.15))
     assert solution.solver.solves == before.solver.solves == 8
     assert runs[2] == (7.0, CASE_LIMIT)  # (7 cables first, at the case's limit)
-    assert sum(1 for count, limit in runs if count == 7.0 and limit == CASE_LIMIT) == 4  # (that solve, 3 modifier steps)
+    assert sum(1 for count, limit in runs if count == 7.0 and limit == CASE_LIMIT) == 4  # (that solve, 3 modifier
+    # steps)
     assert solution.status == before.status == "optimal"
     assert solution.design["cable_count"] == before.design["cable_count"] == 7.0
     assert solution.objective == pytest.approx(before.objective, rel=1e-7)

@@ -82,8 +82,9 @@ def test_a_modifier_step_no_lighter_than_the_kept_design_is_not_simulated(counte
     the stress's slope in the weight mass, then one corrected solve, whose design (5.826 kg) is no lighter than 8
     cables' and ends the adaptation whatever its start does (``first_order``'s bound): that start is not simulated.
     A re-solve (its start guess kept) simulates the checks of 7 and 8 cables' designs and the slope: three runs,
-    not four (9 cables at the moved limit no longer solved: 8 are solved first, ``Problem._one_up_first``). (The step is now refuted before it is solved, ``modifier.no_lighter``: turned off here, so that the
-    solved step is what is tested; the same four runs either way.)"""
+    not four (9 cables at the moved limit no longer solved: 8 are solved first, ``Problem._one_up_first``). (The step
+    is now refuted before it is solved, ``modifier.no_lighter``: turned off here, so that the solved step is what is
+    tested; the same four runs either way.)"""
     monkeypatch.setattr(modifier, "no_lighter", lambda *args: [])
     case = load_case(CASES / "cable_motor_start.toml")
     solve_case(case)

@@ -13,13 +13,14 @@ point (:func:`beyond`), ``solve``'s first solve of the point is made (``Problem.
 design, the point is solved once more, from the point before's least relaxation, with its own elastic diagnosis
 (:func:`region_test`). Where that second least relaxation violates a constraint the point before's did, the point is
 ``not_found`` on those two starts (:func:`region_verdict`): its diagnosis the least relaxation of the two, saying that
-``solve``'s other starts were not tried, nor the sweep's. Else (a design, a feasible point, another reason, no converged one) the point
-gets ``solve``'s verdict from that first solve on, and the sweep's own starts, the test counted and named among them (a
-design it found kept where the verdict has none). A point so decided before a later design in the run is retried from
-that design and, where that finds none, given ``solve``'s verdict after all (``clutchopt.optimise.sweep.solve_points``):
-only a run that ends without a design keeps such verdicts. A resumed run's first point, and a pool chunk's, has no point
-before: it gets the full verdict. This is a heuristic where it decides: a design ``solve``'s other starts (the interval
-search's, the sampled one) reach at such a point is not looked for.
+``solve``'s other starts were not tried, nor the sweep's. Else (a design, a feasible point, another reason, no
+converged one) the point gets ``solve``'s verdict from that first solve on, and the sweep's own starts, the test
+counted and named among them (a design it found kept where the verdict has none). A point so decided before a later
+design in the run is retried from that design and, where that finds none, given ``solve``'s verdict after all
+(``clutchopt.optimise.sweep.solve_points``): only a run that ends without a design keeps such verdicts. A resumed
+run's first point, and a pool chunk's, has no point before: it gets the full verdict. This is a heuristic where it
+decides: a design ``solve``'s other starts (the interval search's, the sampled one) reach at such a point is not looked
+for.
 """
 
 from __future__ import annotations
@@ -66,7 +67,8 @@ def region_verdict(first: Solution, tested: Solution, without: Solution) -> Solu
     neither with a design: ``not_found`` on the least relaxation of the two where ``tested``'s own (converged)
     violates a constraint the point before's (``without``) did (ball_motor_start from 414 kg m^2 on: contact_stress,
     with start_time over its limit at some points, binding at others), saying that ``solve``'s other starts were not
-    tried, nor the sweep's; else None (the point's full verdict follows: a design found, a feasible point, another reason or none)."""
+    tried, nor the sweep's; else None (the point's full verdict follows: a design found, a feasible point, another
+    reason or none)."""
     own = tested.diagnosed
     shared = sorted(set(own.violated) & set(without.diagnosed.violated)) if own is not None else []
     if not shared or first.diagnosed is None or first.diagnosed.proven or own.status != "infeasible":
