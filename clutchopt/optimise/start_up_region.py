@@ -31,9 +31,8 @@ from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.optimise.failed_starts import on_ray
 from clutchopt.optimise.solution import Solution
-from clutchopt.optimise.verdict import verdict_from
+from clutchopt.optimise.verdict import SIZING, verdict_from
 
-SIZING = "the papers' sizing"  # a start-up point's own first start (``Problem.solve``'s, ``verdict.shown`` names it)
 REGION = "the neighbouring point's least relaxation"  # the start a point tested against its neighbour's reason adds
 DECIDED = (SIZING, REGION)  # the starts of a point :func:`region_verdict` decides
 
