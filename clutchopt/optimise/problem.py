@@ -291,7 +291,7 @@ class Problem:
             kept, better = self._first_order(case, kept, foreign, unverified, runs)
             if better:
                 break
-        bounds = {v.name: case.bounds.get(v.name, (v.lower, v.upper)) for v in self.formulation.variables if v.integer}
+        bounds = self._integer_bounds(case)
         upper = {name: hi for name, (_, hi) in bounds.items()}
         for combo in foreign.above_unverified(kept, upper):  # counts up while their simulated starts come nearer
             kept = self._climbed(case, solution, kept, foreign, combo, upper, runs)
@@ -319,6 +319,10 @@ class Problem:
         runs.append(own.solver)
         return _recorded(kept, foreign.names, combo, own), own
 
+    def _integer_bounds(self, case: Case) -> dict[str, tuple[float, float]]:
+        """Each integer variable's bounds: the case's, else the formulation's."""
+        return {v.name: case.bounds.get(v.name, (v.lower, v.upper)) for v in self.formulation.variables if v.integer}
+
     def _one_up_first(self, case: Case, solution: Solution, moved: Case, foreign: ForeignShifts,
                       solves: list) -> Solution | None:
         """An elastic link's defect correction (``moved``: the limits ``solution``'s simulated start moved) where the
@@ -338,8 +342,7 @@ class Problem:
         in 288 variants (mass, cost, envelope mass; both modes; six quantities), the rule firing at 56."""
         posed, names = self.posed, foreign.names
         combo = foreign.choice(solution.design)
-        variable = next(v for v in self.formulation.variables if v.name == names[0]) if len(names) == 1 else None
-        if variable is None or combo[0] + 1.0 > case.bounds.get(variable.name, (variable.lower, variable.upper))[1]:
+        if len(names) != 1 or combo[0] + 1.0 > self._integer_bounds(case)[names[0]][1]:
             return None
         up = (combo[0] + 1.0,)
         data = posed.scaled_data(moved, solution.design, solution.scale, solution.internal, solution.mesh[0],
