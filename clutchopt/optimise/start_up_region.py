@@ -34,7 +34,8 @@ from clutchopt.optimise.solution import Solution
 from clutchopt.optimise.verdict import SIZING, verdict_from
 
 REGION = "the neighbouring point's least relaxation"  # the start a point tested against its neighbour's reason adds
-DECIDED = (SIZING, REGION)  # the starts of a point :func:`region_verdict` decides
+OWN_REASON = (SIZING,)  # the starts of a point its first solve's own least relaxation decided (:func:`region_verdict`)
+DECIDED = (SIZING, REGION)  # the starts of a point decided by its solve from the point before's least relaxation
 
 
 def beyond(values: dict[str, float], last_feasible: dict[str, float] | None, without: Solution,
@@ -60,29 +61,34 @@ def region_test(problem, case: Case, without: Solution) -> Solution | None:
         return None
 
 
-def region_verdict(first: Solution, tested: Solution, without: Solution) -> Solution | None:
+def region_verdict(first: Solution, without: Solution, tested: Solution | None = None) -> Solution | None:
     """The verdict of a point from its own first solve (``first``: ``Problem.solve``'s, from the papers' sizing, with
-    its elastic diagnosis) and its solve from the point before's least relaxation (``tested``, :func:`region_test`),
-    neither with a design: ``not_found`` on the least relaxation of the two where ``tested``'s own (converged)
-    violates a constraint the point before's (``without``) did (ball_motor_start from 414 kg m^2 on: contact_stress,
-    with start_time over its limit at some points, binding at others), saying that ``solve``'s other starts were not
-    tried, nor the sweep's; else None (the point's full verdict follows: a design found, a feasible point, another
-    reason or none)."""
-    own = tested.diagnosed
+    its elastic diagnosis), without a design, and the point before's verdict (``without``): ``not_found`` on that solve
+    alone where its own least relaxation (converged) violates a constraint the point before's did (lever_motor_start
+    from 15.79 kg m^2 on: lining_pressure and temperature_rise); with ``tested`` (:func:`region_test`, its solve from the
+    point before's least relaxation, without a design), ``not_found`` on the least relaxation of the two where
+    ``tested``'s own violates such a constraint (ball_motor_start at 446 kg m^2, where the first solve's elastic problem
+    stops unconverged and names none); either saying that ``solve``'s other starts were not tried, nor the sweep's;
+    else None (the point's full verdict follows: a design found, a feasible point, another reason or none)."""
+    deciding = first if tested is None else tested
+    own = deciding.diagnosed
     shared = sorted(set(own.violated) & set(without.diagnosed.violated)) if own is not None else []
     if not shared or first.diagnosed is None or first.diagnosed.proven or own.status != "infeasible":
         return None
-    verdict = verdict_from([(SIZING, first), (REGION, tested)], [])
+    tried = [(SIZING, first)] + ([(REGION, tested)] if tested is not None else [])
+    verdict = verdict_from(tried, [])
     if verdict.status != "not_found":  # (the first solve's elastic check met a feasible point: solve's verdict)
         return None
-    note = (f"; its second start the least relaxation of the point before, whose reason its own shares "
-            f"({', '.join(shared)}): solve's other starts of this point alone were not tried, nor the sweep's (the "
-            "neighbour's design, the continuation)")
-    verdict.solver = verdict.solver.summed([first.solver, tested.solver])
+    how = ("its least relaxation violates what the point before's did" if tested is None else
+           "its second start the least relaxation of the point before, whose reason its own shares")
+    note = (f"; {how} ({', '.join(shared)}): solve's other starts of this point alone were not tried, nor the sweep's "
+            "(the neighbour's design, the continuation)")
+    verdict.solver = verdict.solver.summed([s.solver for _, s in tried])
     return replace(verdict, diagnosis=verdict.diagnosis + note)
 
 
 def in_a_region(solution: Solution) -> bool:
     """Whether ``solution`` is a point's verdict :func:`region_verdict` gave: no ``solve`` of the point alone is
-    behind it."""
-    return solution.starts == DECIDED
+    behind it (a sweep's start-up point without a design that ``solve`` gave its verdict ends with the sampled start,
+    ``Problem.solve``: never on the papers' sizing alone)."""
+    return solution.starts in (OWN_REASON, DECIDED)

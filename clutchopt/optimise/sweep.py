@@ -43,7 +43,8 @@ from clutchopt.optimise.entering import check_entering
 from clutchopt.optimise.problem import case_formulation, case_problem
 from clutchopt.optimise.region_proof import Regions
 from clutchopt.optimise.solution import Solution, SolverOptions
-from clutchopt.optimise.start_up_region import REGION, beyond, in_a_region, region_test, region_verdict
+from clutchopt.optimise.start_up_region import (OWN_REASON, REGION, beyond, in_a_region, region_test,
+                                                region_verdict)
 from clutchopt.optimise.start_up_sweep import solved_along
 from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_name, grid_points, grid_positions,
                                            parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
@@ -187,8 +188,8 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
                 # alone)
                 retry = problem.solve(waited_case, start=solution.design, alone=alone)  # (``alone`` counted here)
                 kept = beside(retry, alone) if retry.status in DESIGN_STATUSES or region else waited
-                if region and kept.status not in DESIGN_STATUSES:  # (the test's second start named too)
-                    kept = replace(kept, starts=kept.starts + (REGION,))
+                if region and kept.status not in DESIGN_STATUSES:  # (the test's second start named too, where solved)
+                    kept = replace(kept, starts=kept.starts + waited.starts[len(OWN_REASON):])
                 waiting[k] = (w, waited_case, replace(kept, solver=kept.solver.summed([waited.solver, retry.solver])))
             yield from (_one(points, w, names, waited) for w, _, waited in waiting)
             waiting = []
@@ -210,9 +211,10 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
     last feasible point (:func:`continued`; ball_motor_start in paper mode from 507.9 to 605.7 kW: its continuation
     lost 554.69 kg, which the sampled design reaches). A start-up point beyond a point without a design (``without``:
     its values and verdict) that ``solve``'s first solve leaves without one is tested against that point's reason
-    (:mod:`clutchopt.optimise.start_up_region`): one solve from its least relaxation, which decides the point where
-    the point's own least relaxation violates the same constraints; else the full verdict follows from that first
-    solve, the test counted with it and named among its starts. ``point_case``: ``case`` with ``values``."""
+    (:mod:`clutchopt.optimise.start_up_region`): that first solve's own least relaxation decides the point where it
+    violates a constraint the point before's did; else one solve from the point before's least relaxation, which
+    decides where its least relaxation does; else the full verdict follows from that first solve, the test counted
+    with it and named among its starts. ``point_case``: ``case`` with ``values``."""
     alone = tested = None  # a start-up point's verdict as ``solve`` of it alone gives it, where that has no design;
     # its test against the reason of the point before without a design
     if problem.start_up is None:
@@ -222,9 +224,11 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
         if without is not None and beyond(values, feasible[0] if feasible else None, without[1], without[0]):
             first = first or problem.refined(point_case)  # (``solve``'s first solve, from the papers' sizing)
             if first.status not in DESIGN_STATUSES and first.diagnosed is not None and not first.diagnosed.proven:
-                tested = region_test(problem, point_case, without[1])
-            if tested is not None and (decided := region_verdict(first, tested, without[1])) is not None:
-                return decided
+                decided = region_verdict(first, without[1])  # (its own least relaxation first: no second solve)
+                if decided is None and (tested := region_test(problem, point_case, without[1])) is not None:
+                    decided = region_verdict(first, without[1], tested)
+                if decided is not None:
+                    return decided
         solution = solved_along(problem, point_case, previous) or problem.solve(point_case, first=first)
         alone = solution if solution.status not in DESIGN_STATUSES else None
         if neighbour is not None and not problem.failed_starts.lost_beyond(point_case, neighbour.design):
