@@ -9,13 +9,16 @@ with a design takes about 0.02 s; ball_motor_start at 414-525 kg m^2 0.49-1.41 s
 without a design, tested against its reason"). A start-up has no interval proof, so no point is decided by its
 neighbour. Where the point before ended ``not_found`` for a named reason (its least relaxation converged, naming the
 constraints it violates: ``Diagnosis.violated``) and this point lies beyond it, on the ray from the run's last feasible
-point (:func:`beyond`), ``solve``'s first solve of the point is made (``Problem.refined``) and, where it ends without a
-design, the point is solved once more, from the point before's least relaxation, with its own elastic diagnosis
-(:func:`region_test`). Where that second least relaxation violates a constraint the point before's did, the point is
-``not_found`` on those two starts (:func:`region_verdict`): its diagnosis the least relaxation of the two, saying that
-``solve``'s other starts were not tried, nor the sweep's. Else (a design, a feasible point, another reason, no
-converged one) the point gets ``solve``'s verdict from that first solve on, and the sweep's own starts, the test
-counted and named among them (a design it found kept where the verdict has none). A point so decided before a later
+point (:func:`beyond`), ``solve``'s first solve of the point is made (``Problem.refined``, from the papers' sizing,
+with its elastic diagnosis) and, where it ends without a design, tested against that reason (:func:`region_verdict`):
+where its own least relaxation (converged) violates a constraint the point before's did, the point is ``not_found`` on
+that one solve (lever_motor_start from 15.79 kg m^2 on); where its elastic problem stops unconverged and names no
+reason, the point is solved once more, from the point before's least relaxation, with its own elastic diagnosis
+(:func:`region_test`), and is ``not_found`` on those two starts where that least relaxation violates such a constraint
+(ball_motor_start at 477 and 509 kg m^2), its diagnosis the less of the two. Either verdict says that ``solve``'s
+other starts were not tried, nor the sweep's. Else (a design, a feasible point, another reason, no converged one) the
+point gets ``solve``'s verdict from that first solve on, and the sweep's own starts, the test counted and named among
+them where it was solved (a design it found kept where the verdict has none). A point so decided before a later
 design in the run is retried from that design and, where that finds none, given ``solve``'s verdict after all
 (``clutchopt.optimise.sweep.solve_points``): only a run that ends without a design keeps such verdicts. A resumed
 run's first point, and a pool chunk's, has no point before: it gets the full verdict. This is a heuristic where it
@@ -65,11 +68,12 @@ def region_verdict(first: Solution, without: Solution, tested: Solution | None =
     """The verdict of a point from its own first solve (``first``: ``Problem.solve``'s, from the papers' sizing, with
     its elastic diagnosis), without a design, and the point before's verdict (``without``): ``not_found`` on that solve
     alone where its own least relaxation (converged) violates a constraint the point before's did (lever_motor_start
-    from 15.79 kg m^2 on: lining_pressure and temperature_rise); with ``tested`` (:func:`region_test`, its solve from the
-    point before's least relaxation, without a design), ``not_found`` on the least relaxation of the two where
-    ``tested``'s own violates such a constraint (ball_motor_start at 446 kg m^2, where the first solve's elastic problem
-    stops unconverged and names none); either saying that ``solve``'s other starts were not tried, nor the sweep's;
-    else None (the point's full verdict follows: a design found, a feasible point, another reason or none)."""
+    from 15.79 kg m^2 on: lining_pressure and temperature_rise); with ``tested`` (:func:`region_test`, its solve from
+    the point before's least relaxation, without a design), ``not_found`` on the least relaxation of the two where
+    ``tested``'s own violates such a constraint (ball_motor_start at 477 and 509 kg m^2, where the first solve's
+    elastic problem stops unconverged and names none); either saying that ``solve``'s other starts were not tried, nor
+    the sweep's; else None (the point's full verdict follows: a design found, a feasible point, another reason or
+    none)."""
     deciding = first if tested is None else tested
     own = deciding.diagnosed
     shared = sorted(set(own.violated) & set(without.diagnosed.violated)) if own is not None else []
