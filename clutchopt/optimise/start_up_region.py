@@ -20,18 +20,18 @@ tried (:func:`region_verdict`), its diagnosis the least relaxation of them. Eith
 starts were not tried, nor the sweep's. Else (a design, a feasible point, another reason, no converged one) the point
 gets ``solve``'s verdict from that first solve on, and the sweep's own starts, the tests' solves counted and named
 among them (a design one found kept where the verdict has none; ``solve``'s second start, where solved, is solved by
-``solve`` again). A point so decided before a later
-design in the run is retried from that design and, where that finds none, given ``solve``'s verdict after all
-(``clutchopt.optimise.sweep.solve_points``): only a run that ends without a design keeps such verdicts. A resumed
-run's first point, and a pool chunk's, has no point before: it gets the full verdict. This is a heuristic where it
-decides: a design ``solve``'s other starts (the interval search's, the sampled one) reach at such a point is not looked
-for.
+``solve`` again). A point so decided before a later design in the run is retried from that design and, where that
+finds none, given ``solve``'s verdict after all (``clutchopt.optimise.sweep.solve_points``): only a run that ends
+without a design keeps such verdicts. A resumed run's first point, and a pool chunk's, has no point before: it gets
+the full verdict. This is a heuristic where it decides: a design ``solve``'s other starts (the interval search's, the
+sampled one) reach at such a point is not looked for.
 """
 
 from __future__ import annotations
 
 from dataclasses import replace
 
+from clutchopt.cases import Case
 from clutchopt.optimise.failed_starts import on_ray
 from clutchopt.optimise.solution import Solution
 from clutchopt.optimise.verdict import LEAST, SIZING, retried, verdict_from
@@ -56,7 +56,7 @@ def beyond(values: dict[str, float], last_feasible: dict[str, float] | None, wit
     return t is not None and t > 1.0
 
 
-def region_tested(problem, case, first: Solution, without: Solution) -> tuple[Solution | None, list]:
+def region_tested(problem, case: Case, first: Solution, without: Solution) -> tuple[Solution | None, list]:
     """The verdict :func:`region_verdict` gives ``case`` from its first solve (``first``: ``Problem.solve``'s, from the
     papers' sizing, with its elastic diagnosis, without a design) and the point before's verdict (``without``), with the
     solves it made beyond ``first`` (each its label and solve): none where ``first``'s own least relaxation decides;
@@ -68,7 +68,8 @@ def region_tested(problem, case, first: Solution, without: Solution) -> tuple[So
     for label, start in ((REGION, without.diagnosed.nearest), (LEAST, first.diagnosed.nearest)):
         if decided is not None or any(s.status in DESIGN_STATUSES for _, s in made):
             break
-        solved = retried(problem, case, start, diagnosed=True)  # (None: its start not simulated from that design)
+        solved = retried(problem, case, start, diagnosed=True) if start is not None else None  # (None: no such
+        # start, or its start not simulated from that design)
         if solved is not None:
             made.append((label, solved))
             decided = region_verdict(first, without, made)
