@@ -585,7 +585,7 @@ def test_a_stretch_that_ends_within_its_whole_search_is_searched_by_its_runs_as_
                                                                          for s in without.solutions]
 
 
-def test_points_next_to_one_that_breaks_a_requirement_no_design_enters_are_region_tested_it_first(monkeypatch):
+def test_points_next_to_one_that_breaks_a_requirement_no_design_enters_are_tested_against_it_first(monkeypatch):
     # The wedge centrifuge in paper mode over its friction coefficient, 0.2-0.3: from 0.2364 on its weights no longer
     # release (not_self_locking: tan(alpha) short of f, whatever the design). The first such point, where the chain
     # fails, is searched (1 box) before its verdict; each point after it is tested against that requirement first
