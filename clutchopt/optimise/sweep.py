@@ -43,7 +43,7 @@ from clutchopt.optimise.entering import check_entering
 from clutchopt.optimise.problem import case_formulation, case_problem
 from clutchopt.optimise.region_proof import Regions
 from clutchopt.optimise.solution import Solution, SolverOptions
-from clutchopt.optimise.start_up_region import REGION, beyond, in_a_region, region_test, region_verdict
+from clutchopt.optimise.start_up_region import beyond, in_a_region, region_tested
 from clutchopt.optimise.start_up_sweep import solved_along
 from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_name, grid_points, grid_positions,
                                            parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
@@ -187,8 +187,8 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
                 # alone)
                 retry = problem.solve(waited_case, start=solution.design, alone=alone)  # (``alone`` counted here)
                 kept = beside(retry, alone) if retry.status in DESIGN_STATUSES or region else waited
-                if region and kept.status not in DESIGN_STATUSES:  # (the test's second start named too)
-                    kept = replace(kept, starts=kept.starts + (REGION,))
+                if region and kept.status not in DESIGN_STATUSES:  # (the test's second start named too, where solved)
+                    kept = replace(kept, starts=kept.starts + tuple(s for s in waited.starts if s not in kept.starts))
                 waiting[k] = (w, waited_case, replace(kept, solver=kept.solver.summed([waited.solver, retry.solver])))
             yield from (_one(points, w, names, waited) for w, _, waited in waiting)
             waiting = []
@@ -210,11 +210,12 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
     last feasible point (:func:`continued`; ball_motor_start in paper mode from 507.9 to 605.7 kW: its continuation
     lost 554.69 kg, which the sampled design reaches). A start-up point beyond a point without a design (``without``:
     its values and verdict) that ``solve``'s first solve leaves without one is tested against that point's reason
-    (:mod:`clutchopt.optimise.start_up_region`): one solve from its least relaxation, which decides the point where
-    the point's own least relaxation violates the same constraints; else the full verdict follows from that first
-    solve, the test counted with it and named among its starts. ``point_case``: ``case`` with ``values``."""
-    alone = tested = None  # a start-up point's verdict as ``solve`` of it alone gives it, where that has no design;
-    # its test against the reason of the point before without a design
+    (:mod:`clutchopt.optimise.start_up_region`): that first solve's own least relaxation decides the point where it
+    violates a constraint the point before's did; else a solve from the point before's least relaxation, then from
+    the first one's, each deciding where its least relaxation does; else the full verdict follows from that first
+    solve, the test's solves counted with it and named among its starts. ``point_case``: ``case`` with ``values``."""
+    alone, tested = None, []  # a start-up point's verdict as ``solve`` of it alone gives it, where that has no
+    # design; the solves of its test against the reason of the point before without a design (each with its label)
     if problem.start_up is None:
         solution = problem.solve(point_case, warm=previous, first=first,
                                  neighbour=neighbour.design if neighbour is not None else None)
@@ -222,18 +223,18 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
         if without is not None and beyond(values, feasible[0] if feasible else None, without[1], without[0]):
             first = first or problem.refined(point_case)  # (``solve``'s first solve, from the papers' sizing)
             if first.status not in DESIGN_STATUSES and first.diagnosed is not None and not first.diagnosed.proven:
-                tested = region_test(problem, point_case, without[1])
-            if tested is not None and (decided := region_verdict(first, tested, without[1])) is not None:
-                return decided
+                decided, tested = region_tested(problem, point_case, first, without[1])
+                if decided is not None:
+                    return decided
         solution = solved_along(problem, point_case, previous) or problem.solve(point_case, first=first)
         alone = solution if solution.status not in DESIGN_STATUSES else None
         if neighbour is not None and not problem.failed_starts.lost_beyond(point_case, neighbour.design):
             solution = from_the_neighbour(problem, point_case, solution, neighbour.design)
     if solution.status not in DESIGN_STATUSES and solution.status != "infeasible" and feasible is not None:
         solution = continued(problem, case, feasible, values) or solution  # (a proven point: no design to follow)
-    if tested is not None:  # (its solve counted and named; a design it found kept where the verdict has none)
-        solution = one_more_start(solution, tested, REGION) if solution.status not in DESIGN_STATUSES else replace(
-            solution, solver=solution.solver.summed([solution.solver, tested.solver]))
+    for label, made in tested:  # (each solve counted and named; a design one found kept where the verdict has none)
+        solution = one_more_start(solution, made, label) if solution.status not in DESIGN_STATUSES else replace(
+            solution, solver=solution.solver.summed([solution.solver, made.solver]))
     return beside(solution, alone)
 
 

@@ -38,6 +38,7 @@ from clutchopt.optimise.verify import (DESIGN_STATUSES, ConstraintCheck, check_d
 NEIGHBOUR = "the neighbouring point's design"  # a start a sweep adds: the last feasible point's design
 GIVEN = "the start given"  # a solve's first start where its caller gives one (a design or a warm solution)
 SIZING = "the papers' sizing"  # a start-up solve's own first start
+LEAST = "the least relaxation's design"  # a retry's start: the design of the first solve's least relaxation
 OWN = "the case's own starts (solve alone)"  # every start ``solve`` of the case alone tries, where a start-up from a
 # start or a warm solution given ends without a verified design (``problem.verified_alone``)
 
@@ -57,7 +58,7 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
         starts = [(SIZING if problem.start_up is not None else "the case's own start", None)] \
             if started else []
         if first.diagnosed and first.diagnosed.nearest:
-            starts.append(("the least relaxation's design", first.diagnosed.nearest))
+            starts.append((LEAST, first.diagnosed.nearest))
         if neighbour is not None and not problem.failed_starts.lost_beyond(case, neighbour):  # (its path lost
             # nearer: clutchopt.optimise.failed_starts)
             starts.append((NEIGHBOUR, neighbour))
