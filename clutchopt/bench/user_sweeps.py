@@ -146,8 +146,8 @@ def start_up_rows(config) -> list[dict]:
         if path.stem == GOAL_CASE:
             state = config.start_up_compiled[0]
             with _compiled_state(state):
-                row = _timed(case, "driven_inertia", case.values["driven_inertia"] * np.linspace(0.6, 1.4, LONGER * points),
-                             state)
+                longer = case.values["driven_inertia"] * np.linspace(0.6, 1.4, LONGER * points)
+                row = _timed(case, "driven_inertia", longer, state)
             rows.append({"case": path.stem, "quantity": "driven_inertia", "span": "0.6x-1.4x", **row})
         limit = nearest_limit(case)
         state = config.start_up_compiled[0]  # (the same NLP as the driven inertia's: its limits are parameters)
