@@ -121,6 +121,9 @@ def test_user_sweeps_cover_every_coupling_and_quantity_users_vary(report):
         assert before["without_design"] == 0 and beyond["designed"] == 0
         assert beyond["point_cost_vs_designed"] == pytest.approx(before["points_per_s"] / beyond["points_per_s"])
         assert before["point_cost_vs_designed"] is None
+    inertia = [row["points"] for row in rows
+               if (row["case"], row["quantity"]) == ("wedge_motor_start", "driven_inertia")]
+    assert inertia == [3, 15]  # (the goal's case again over five times the points: a user's longer sweep)
     limits = {c: q for c, q in swept if c.endswith("_motor_start") and q != "driven_inertia"}
     assert limits == {"wedge_motor_start": "max_start_time", "lever_motor_start": "max_start_time",  # (binding their
                       "ball_motor_start": "max_start_time", "cable_motor_start": "max_link_stress"}  # designs; the

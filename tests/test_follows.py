@@ -10,6 +10,7 @@ import pytest
 from clutchopt.cases import load_case, parse_case
 from clutchopt.errors import InputError
 from clutchopt.optimise import solve_case
+from clutchopt.optimise.start_up_check import CENTRE
 from clutchopt.optimise.sweep import Sweep, parse_vary
 from tests.conftest import CASES, choosing
 
@@ -53,14 +54,17 @@ def test_a_sweep_over_the_duty_inertia_moves_the_start_up_design_as_solve_of_eac
     masses = [point["objective"]["value"] if isinstance(point["objective"], dict) else point["objective"]
               for point in points]
     assert len(set(masses)) == 3 and masses == sorted(masses)  # more inertia to start, heavier weights
-    for point in points:
+    for point, mass in zip(points, masses):
         solved = solve_case(case.with_values(inertia=point["values"]["inertia"]))
+        assert abs(mass - solved.objective) <= 2 * CENTRE * 1e-6 * solved.objective
         for name, value in solved.design.items():
             shown = point["design"][name]
-            assert (shown["value"] if isinstance(shown, dict) else shown) == pytest.approx(value, rel=1e-7, abs=1e-12)
-            # (a point warm from the one before is solved on its mesh, solve_case on the first mesh its own sizing's
-            # start grades: they agree to the collocation's error, within the tolerance 1e-6: 4.0e-8 measured at
-            # inertia 0.5, 7.4e-9 when both first meshes were graded by the motor's run-up time alone)
+            assert (shown["value"] if isinstance(shown, dict) else shown) == pytest.approx(value, rel=1e-6, abs=1e-12)
+            # (each the simulator's optimum to CENTRE of the tolerance 1e-6 on the objective, so up to twice that
+            # apart: a point warm from the one before is solved on its mesh, solve_case on the first mesh its own
+            # sizing's start grades, 3.4e-8 apart at inertia 0.5; at 0.7, where the temperature rise binds, the
+            # sweep's limit centred on the simulator's figure at the point before, where it was slack, and met 3e-8
+            # past it, solve's correction landing 1.2e-7 inside it, within what the centring accepts: 2.5e-7)
 
 
 def test_a_sweep_over_a_quantity_that_does_not_enter_is_refused_by_name(tmp_path, cli):

@@ -72,7 +72,8 @@ SECTIONS: tuple[Section, ...] = (
                            "as a first run meets it less the build it starts beside itself; compiled_used: whether the "
                            "run's solvers evaluated them by its end, found at its first point by the link beside the "
                            "library; "
-                           "no build runs while anything is timed); points with and without a design, "
+                           "no build runs while anything is timed), wedge_motor_start's again over five times the "
+                           "points; points with and without a design, "
                            "solver calls per point, points/s against the wedge paper sweep of its duty quantity",
             user_sweep_rows),
     Section("resolve", "Warm re-solves along the same sweeps: warm IPOPT alone (before) and SQP first (now); times per "

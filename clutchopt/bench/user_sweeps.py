@@ -5,7 +5,8 @@ accept), a sweep reaching into an infeasible region (the duty's quantity from 1x
 edge it meets (from 1x to its last point with a design, and from its first point without one to twice that: what a
 point without a design costs against one with a design, issue 26's "an infeasible point <= 20x a feasible one"),
 ``ball_crusher`` over 250-1000 kW, and for each start-up case a sweep of the driven inertia (0.6x to 1.4x, every
-point simulated; once, with a fiftieth of the points, per state of the compiled-code cache: :func:`start_up_rows`)
+point simulated; once, with a fiftieth of the points, per state of the compiled-code cache: :func:`start_up_rows`;
+wedge_motor_start's again over five times the points)
 and one of the start-up limit nearest to binding its design (0.8x to 1.2x, as many points, once).
 Per sweep: the points, how many have a design and how many a verdict without one, solver calls per point, points/s
 (the median run of ``sweep_repeats``), and points/s against the wedge paper sweep of the duty's quantity measured in
@@ -36,6 +37,8 @@ ALLOWABLE = {"wedge": "allowable_pressure", "lever": "allowable_pressure", "cabl
              "ball": "allowable_contact_stress"}  # the allowable each coupling's main constraint is sized by
 LIMIT_SPAN = (0.8, 1.2)  # factors on the start-up limit nearest to binding a start-up case's design (nearest_limit)
 IN_THE_CACHE, NO_LIBRARY = "in the cache", "none"  # the states of the compiled-code cache a start-up sweep is timed in
+GOAL_CASE, LONGER = "wedge_motor_start", 5  # issue 26's start-up sweep goal names its case: its driven-inertia sweep
+# again over five times the points (a user's longer sweep: the first point's cold solve spread over more)
 
 
 def _run(case: Case, name: str, values: np.ndarray, mode: str | None, repeats: int) -> dict:
@@ -121,9 +124,10 @@ def start_up_rows(config) -> list[dict]:
     empty cache: a user's first run, less the build it starts beside itself). No build is started while a run is
     timed (``CLUTCHOPT_BUILD_LATER=0``) and none runs; each timed run builds its problems anew, as a new process does.
     ``compiled_used``: whether its solvers evaluated the compiled functions by its end (a sweep finds them at its first
-    point by the link beside the library, :mod:`clutchopt.optimise.start_up_compiled`). Then a sweep of the start-up
-    limit nearest to binding the case's design (:func:`nearest_limit`, over LIMIT_SPAN), as many points, in the first
-    state only: a designer's other question of a start-up design."""
+    point by the link beside the library, :mod:`clutchopt.optimise.start_up_compiled`). GOAL_CASE's again over LONGER
+    times the points, in the first state. Then a sweep of the start-up limit nearest to binding the case's design
+    (:func:`nearest_limit`, over LIMIT_SPAN), as many points, in the first state only: a designer's other question of a
+    start-up design."""
     rows = []
     for path in sorted(CASES.glob("*_motor_start.toml")):
         case = load_case(path)
@@ -138,6 +142,12 @@ def start_up_rows(config) -> list[dict]:
                         if problem.posed.library is None:  # (one already compiled: its library in the cache)
                             compiled_now(problem.posed)  # (and its link: used from a sweep's first point)
                 row = _timed(case, "driven_inertia", values, state)
+            rows.append({"case": path.stem, "quantity": "driven_inertia", "span": "0.6x-1.4x", **row})
+        if path.stem == GOAL_CASE:
+            state = config.start_up_compiled[0]
+            with _compiled_state(state):
+                longer = case.values["driven_inertia"] * np.linspace(0.6, 1.4, LONGER * points)
+                row = _timed(case, "driven_inertia", longer, state)
             rows.append({"case": path.stem, "quantity": "driven_inertia", "span": "0.6x-1.4x", **row})
         limit = nearest_limit(case)
         state = config.start_up_compiled[0]  # (the same NLP as the driven inertia's: its limits are parameters)

@@ -38,6 +38,7 @@ from clutchopt.optimise.verify import (DESIGN_STATUSES, ConstraintCheck, check_d
 NEIGHBOUR = "the neighbouring point's design"  # a start a sweep adds: the last feasible point's design
 GIVEN = "the start given"  # a solve's first start where its caller gives one (a design or a warm solution)
 SIZING = "the papers' sizing"  # a start-up solve's own first start
+CASE = "the case's own start"  # a static solve's own first start
 LEAST = "the least relaxation's design"  # a retry's start: the design of the first solve's least relaxation
 OWN = "the case's own starts (solve alone)"  # every start ``solve`` of the case alone tries, where a start-up from a
 # start or a warm solution given ends without a verified design (``problem.verified_alone``)
@@ -46,7 +47,8 @@ OWN = "the case's own starts (solve alone)"  # every start ``solve`` of the case
 def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[str, float] | None) -> Solution:
     """``first`` (a solve without a design) retried from the starts that can reach one; the first design found, or
     the verdict on all of them."""
-    first_label = GIVEN if started else (SIZING if problem.start_up is not None else "the case's own start")
+    own = SIZING if problem.start_up is not None else CASE  # the solve's own first start
+    first_label = GIVEN if started else own
     tried = [(first_label, first)]
     proofs: list[str] = []  # (a drive that starts no coupling as asked is proven before any solve: Problem.proven)
     early = empty_design_space(problem.posed, case, SURE_BOXES) if _relaxed_apart(problem, first) else None
@@ -55,8 +57,7 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
     if early is not None and early.proven:
         proofs = [emptied(early)]
     if not (first.diagnosed and first.diagnosed.proven) and not proofs:
-        starts = [(SIZING if problem.start_up is not None else "the case's own start", None)] \
-            if started else []
+        starts = [(own, None)] if started else []
         if first.diagnosed and first.diagnosed.nearest:
             starts.append((LEAST, first.diagnosed.nearest))
         if neighbour is not None and not problem.failed_starts.lost_beyond(case, neighbour):  # (its path lost
