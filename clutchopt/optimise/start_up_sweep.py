@@ -57,8 +57,9 @@ class Along:
 
 
 def solved_along(problem, case: Case, previous: Solution | None) -> Solution | None:
-    """The start-up design at ``case`` from ``previous`` (the optimum of the point before, of this problem), or
-    None where there is none to start from or it does not end optimal."""
+    """The start-up design at ``case`` from ``previous`` (the optimum of the point before, of this problem): its
+    solve, which the caller keeps where it ends optimal (else its solver calls are counted with the point's cold
+    solve); None where there is none to start from (nothing solved)."""
     block = problem.posed.start_up
     compiled_when_ready(problem.posed, previous)  # (its NLP's functions compiled once built: the same numbers)
     if start_up_proofs(case):  # no design to start: ``Problem.solve`` gives the proof without a solve
@@ -79,7 +80,7 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
     except InputError:  # its first simulation failed from this start
         return None
     if solution.status != "optimal":
-        return None
+        return solution
     solution = (solved_alone_where_held(problem, case, solution, sized)
                 or as_solve_would(problem, case, solution, sized))
     solution.sized = sized

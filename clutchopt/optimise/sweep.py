@@ -226,12 +226,16 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
                 decided, tested = region_tested(problem, point_case, first, without[1])
                 if decided is not None:
                     return decided
-        solution = solved_along(problem, point_case, previous) or problem.solve(point_case, first=first)
+        along = solved_along(problem, point_case, previous)
+        solution = along if along is not None and along.status == "optimal" else counted(
+            problem.solve(point_case, first=first), along)  # (a warm start that failed counted too)
         alone = solution if solution.status not in DESIGN_STATUSES else None
         if neighbour is not None and not problem.failed_starts.lost_beyond(point_case, neighbour.design):
             solution = from_the_neighbour(problem, point_case, solution, neighbour.design)
     if solution.status not in DESIGN_STATUSES and solution.status != "infeasible" and feasible is not None:
-        solution = continued(problem, case, feasible, values) or solution  # (a proven point: no design to follow)
+        followed = continued(problem, case, feasible, values)  # (a proven point: no design to follow)
+        solution = counted(followed, solution) if followed is not None and followed.status in DESIGN_STATUSES \
+            else counted(solution, followed)
     for label, made in tested:  # (each solve counted and named; a design one found kept where the verdict has none)
         solution = one_more_start(solution, made, label) if solution.status not in DESIGN_STATUSES else replace(
             solution, solver=solution.solver.summed([solution.solver, made.solver]))
@@ -261,11 +265,19 @@ def from_the_neighbour(problem, case: Case, verdict: Solution, design: dict[str,
     return one_more_start(verdict, retried(problem, case, design), NEIGHBOUR)
 
 
+def counted(solution: Solution, other: Solution | None) -> Solution:
+    """``solution`` with the solver calls of ``other`` (a solve it was not kept over: a warm start or a continuation
+    that found no design) counted too; as it is where there is none."""
+    return solution if other is None else replace(solution, solver=solution.solver.summed([solution.solver,
+                                                                                          other.solver]))
+
+
 def continued(problem, case: Case, feasible: tuple[dict, Solution | StoredDesign], values: dict,
               steps: int = CONTINUATION_STEPS) -> Solution | None:
     """The design at ``values`` followed from a feasible point's (its values, its design) in ``steps`` equal steps
-    of the varied quantities, each started from the last; None where a step finds no design."""
-    (before, solution), found = feasible, None
+    of the varied quantities, each started from the last: the last step's solve, with every step's solver calls (a
+    step that finds no design ends it, without one); None where no step is solved (a path already lost)."""
+    (before, solution), found, spent = feasible, None, []
     lost = problem.failed_starts if problem.start_up is not None else None  # (a path already lost: not followed
     # beyond, clutchopt.optimise.failed_starts)
     for step in range(1, steps + 1):
@@ -274,12 +286,13 @@ def continued(problem, case: Case, feasible: tuple[dict, Solution | StoredDesign
         if lost is not None and step == 1 and lost.lost_beyond(case, solution.design, before, moved):
             return None
         found = problem.refined(case.with_values(**moved), solution.design, diagnosed=False)
+        spent.append(found.solver)
         if found.status not in DESIGN_STATUSES:
             if lost is not None:
                 lost.lose(case, feasible[1].design, before, moved)
-            return None
+            break
         solution = found
-    return found
+    return replace(found, solver=found.solver.summed(spent))
 
 
 def _one(points: Points, j: int, names: list[str], solution: Solution) -> PointResults:
