@@ -179,3 +179,28 @@ def test_ball_start_up_doubled_problem_solves_the_loop_s_rows_first(monkeypatch)
     assert relaxed_first.status == "optimal" and relaxed_first.design["ball_rows"] == 23.0
     assert solution.objective == pytest.approx(relaxed_first.objective, rel=1e-9)
     assert solution.objective == pytest.approx(954.0607, rel=1e-6)
+
+
+def test_ball_start_up_does_not_solve_again_a_choice_heavier_by_far_than_the_kept_one(monkeypatch):
+    # ball_motor_start at driven_inertia 382.9 kg m^2 (the bench sweep's point 10), solved alone: on the adapted mesh
+    # (collocation error about 1e-5) 26 rows, the downhill neighbour of the kept 25 by their multiplier, end 0.18 %
+    # heavier (1052.10 against 1050.20 kg); main solved them again on each later mesh (14-15 IPOPT iterations each),
+    # heavier each time. While a run of the solve has a design with 25 rows, they are excluded (integers.RuledOut)
+    searches = []
+    solve = problem.Problem._solve
+
+    def spied(self, case, *args, **kwargs):
+        solution = solve(self, case, *args, **kwargs)
+        if self.start_up is not None and self.start_up.s.intervals == 16:
+            searches.append({e["ball_rows"]: e for e in solution.integer_search})
+        return solution
+
+    monkeypatch.setattr(problem.Problem, "_solve", spied)
+    solution = solve_case(load_case(CASES / "ball_motor_start.toml").with_values(driven_inertia=382.8947368421053))
+    assert solution.status == "optimal" and solution.design["ball_rows"] == 25.0
+    assert solution.objective == pytest.approx(1050.301, rel=1e-6)  # main's design
+    first = next(search for search in searches if search.get(26, {}).get("feasible"))
+    assert first[26]["objective"] > first[25]["objective"] * 1.001  # (0.18 % heavier)
+    excluded = [search for search in searches if search.get(26, {}).get("status", "").startswith(
+        integers.EXCLUDED + "heavier by")]
+    assert excluded and all(search[25]["feasible"] for search in excluded)  # (the kept rows designed in that solve)

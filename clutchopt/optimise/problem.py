@@ -209,7 +209,7 @@ class Problem:
                     break
             error = abs(solution.start_up["discretisation_error"]["start_time"])
             if ruled is not None:
-                ruled.settle(error)
+                ruled.settle(error, solution.design, solution.objective)
             if error > structure.spec.tolerance and not structure.elastic:  # an elastic link: its quasi-static
                 # NLP differs from the simulated dynamics by the model, not by the mesh
                 if shapes_nothing(solution, self.posed.n_checked, structure.spec.tolerance, self._own_names):
