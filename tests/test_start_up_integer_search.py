@@ -79,9 +79,9 @@ def test_a_choice_found_infeasible_elsewhere_is_forgotten_once_a_run_finds_a_des
     assert integers._tried(posed, infeasible, [0], [23]) and not integers._tried(posed, infeasible, [0], [22])
     ruled = integers.RuledOut()
     ruled.found([23], 1.0)
-    ruled.settle(1e-5)
+    ruled.settle(1e-5, {"ball_rows": 24.0}, 977.864)
     assert ruled.reason([23])  # 1.0 > 10 x 1e-5: ruled out ...
-    ruled.designed([23.0])
+    ruled.designed([23.0], 950.755, ["ball_rows"])
     assert ruled.reason([23]) == []  # ... until a run finds a design with 23 rows
 
 
@@ -204,3 +204,4 @@ def test_ball_start_up_does_not_solve_again_a_choice_heavier_by_far_than_the_kep
     excluded = [search for search in searches if search.get(26, {}).get("status", "").startswith(
         integers.EXCLUDED + "heavier by")]
     assert excluded and all(search[25]["feasible"] for search in excluded)  # (the kept rows designed in that solve)
+
