@@ -6,6 +6,7 @@ No hand calculation: the reference is a solve of the same case with the integers
 local search over the integers, so the least it promises is to find a choice it tries as well as a solve of that
 choice alone does), and the test asserts that the retry was taken, so that it cannot pass by not being exercised."""
 
+import math
 from dataclasses import replace
 from types import SimpleNamespace
 
@@ -13,7 +14,7 @@ import numpy as np
 import pytest
 
 from clutchopt.cases import load_case
-from clutchopt.optimise import integers, problem, solve_case
+from clutchopt.optimise import attempts, integers, problem, solve_case
 from conftest import CASES
 
 
@@ -78,9 +79,9 @@ def test_a_choice_found_infeasible_elsewhere_is_forgotten_once_a_run_finds_a_des
     assert integers._tried(posed, infeasible, [0], [23]) and not integers._tried(posed, infeasible, [0], [22])
     ruled = integers.RuledOut()
     ruled.found([23], 1.0)
-    ruled.settle(1e-5)
+    ruled.settle(1e-5, {"ball_rows": 24.0}, 977.864)
     assert ruled.reason([23])  # 1.0 > 10 x 1e-5: ruled out ...
-    ruled.designed([23.0])
+    ruled.designed([23.0], 950.755, ["ball_rows"])
     assert ruled.reason([23]) == []  # ... until a run finds a design with 23 rows
 
 
@@ -122,8 +123,8 @@ def test_ball_start_up_solves_the_sizing_rows_from_the_sizing(monkeypatch, point
 def test_ball_start_up_doubled_problem_does_not_solve_the_rows_the_sizing_rules_out(monkeypatch):
     # ball_motor_start at driven_inertia 351.3 kg m^2 (the bench sweep's point 8): the adapted mesh's error stalls at
     # 1.01e-6 (tolerance 1e-6), so the loop doubles the intervals (16 -> 32) and solves that problem from its design,
-    # its integer search from the relaxation: 23 rows, then their neighbour 22, which the papers' sizing at the point
-    # found infeasible (every row of it kept by the start-up): main solved them again at n=680 (35 iterations,
+    # its integer search from the design's 23 rows (Problem._kept_first), then their neighbour 22, which the papers'
+    # sizing at the point found infeasible (every row of it kept by the start-up): main solved them again at n=680 (35 iterations,
     # infeasible); the doubled problem is told, and excludes them unsolved
     doubled = []
     original = problem.Problem.solve
@@ -145,3 +146,62 @@ def test_ball_start_up_doubled_problem_does_not_solve_the_rows_the_sizing_rules_
     assert search[22].startswith(integers.EXCLUDED + "infeasible in the papers' sizing at this point")
     assert solution.status == "optimal" and solution.design["ball_rows"] == 23.0
     assert solution.objective == pytest.approx(954.0607, rel=1e-6)  # main's design, within the start-up's tolerance
+
+
+def test_ball_start_up_doubled_problem_solves_the_loop_s_rows_first(monkeypatch):
+    # the same point: the doubled problem (32 intervals) starts from the loop's design, 23 rows; main solved its
+    # relaxation first (15 IPOPT iterations, about 19 ms), which rounded to the same 23 rows. Now those rows are solved
+    # first, their neighbours as ever, the relaxation only where they fail: the same rows, the same design within the
+    # solver's tolerance
+    doubled, fixed = [], []
+    solve, run = problem.Problem.solve, attempts.run
+
+    def spied(self, case, *args, **kwargs):
+        if kwargs.get("coarser", math.inf) != math.inf:
+            doubled.append((self, case, args, kwargs))
+        return solve(self, case, *args, **kwargs)
+
+    def fixed_or_not(posed, data, lbx, ubx, *args, **kwargs):  # (whether each run at 32 intervals fixes the rows)
+        if posed.start_up is not None and posed.start_up.s.intervals == 32:
+            rows = posed.names.index("ball_rows")
+            fixed.append(lbx[rows] == ubx[rows])
+        return run(posed, data, lbx, ubx, *args, **kwargs)
+
+    monkeypatch.setattr(problem.Problem, "solve", spied)
+    monkeypatch.setattr(attempts, "run", fixed_or_not)
+    case = load_case(CASES / "ball_motor_start.toml").with_values(driven_inertia=351.3157894736842)
+    solution = solve_case(case)
+    monkeypatch.undo()
+    [(finer, at, args, kwargs)] = doubled
+    assert args[0]["ball_rows"] == 23.0 and fixed and all(fixed)  # (main: its relaxation first, the rows free)
+    assert solution.status == "optimal" and solution.design["ball_rows"] == 23.0
+    relaxed_first = finer.solve(at, *args, **{**kwargs, "coarser": math.inf})  # (main's search at 32 intervals)
+    assert relaxed_first.status == "optimal" and relaxed_first.design["ball_rows"] == 23.0
+    assert solution.objective == pytest.approx(relaxed_first.objective, rel=1e-9)
+    assert solution.objective == pytest.approx(954.0607, rel=1e-6)
+
+
+def test_ball_start_up_does_not_solve_again_a_choice_heavier_by_far_than_the_kept_one(monkeypatch):
+    # ball_motor_start at driven_inertia 382.9 kg m^2 (the bench sweep's point 10), solved alone: on the adapted mesh
+    # (collocation error about 1e-5) 26 rows, the downhill neighbour of the kept 25 by their multiplier, end 0.18 %
+    # heavier (1052.10 against 1050.20 kg); main solved them again on each later mesh (14-15 IPOPT iterations each),
+    # heavier each time. While a run of the solve has a design with 25 rows, they are excluded (integers.RuledOut)
+    searches = []
+    solve = problem.Problem._solve
+
+    def spied(self, case, *args, **kwargs):
+        solution = solve(self, case, *args, **kwargs)
+        if self.start_up is not None and self.start_up.s.intervals == 16:
+            searches.append({e["ball_rows"]: e for e in solution.integer_search})
+        return solution
+
+    monkeypatch.setattr(problem.Problem, "_solve", spied)
+    solution = solve_case(load_case(CASES / "ball_motor_start.toml").with_values(driven_inertia=382.8947368421053))
+    assert solution.status == "optimal" and solution.design["ball_rows"] == 25.0
+    assert solution.objective == pytest.approx(1050.301, rel=1e-6)  # main's design
+    first = next(search for search in searches if search.get(26, {}).get("feasible"))
+    assert first[26]["objective"] > first[25]["objective"] * 1.001  # (0.18 % heavier)
+    excluded = [search for search in searches if search.get(26, {}).get("status", "").startswith(
+        integers.EXCLUDED + "heavier by")]
+    assert excluded and all(search[25]["feasible"] for search in excluded)  # (the kept rows designed in that solve)
+

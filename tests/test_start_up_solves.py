@@ -25,15 +25,37 @@ def test_a_choice_is_ruled_out_only_beyond_ten_times_the_error_of_the_solve_that
     ruled = RuledOut()
     ruled.found([24.0], 1.16e-3)
     assert ruled.reason([24]) == []  # not before its solve's error is known
-    ruled.settle(7e-5)
+    ruled.settle(7e-5, {}, 1002.07)
     assert ruled.reason([24]) == ["infeasible by 0.0012 at an earlier mesh of collocation error 7e-05"]
     assert ruled.reason([25]) == []
     ruled.found([23.0], 1.16e-3)
-    ruled.settle(1.1e-2)
+    ruled.settle(1.1e-2, {}, 1002.07)
     assert ruled.reason([23]) == []  # 1.16e-3 < 10 x 1.1e-2: a finer mesh may close it
     ruled.found([22.0], RULED_MARGIN * 1e-4)
-    ruled.settle(1e-4)
+    ruled.settle(1e-4, {}, 1002.07)
     assert ruled.reason([22]) == []  # the margin itself is not beyond it
+
+
+def test_a_choice_heavier_by_far_than_the_kept_one_is_ruled_out_while_the_kept_one_has_a_design():
+    # ball_motor_start at driven_inertia 382.9 kg m^2: on the adapted mesh (collocation error 1.1e-5) 26 rows end at
+    # 1052.10 kg, 0.18 % over the kept 25 rows' 1050.20 kg: not solved again in a later solve once it has 25 rows'
+    ruled = RuledOut()
+    ruled.designed([25.0], 1050.196, ["ball_rows"])
+    ruled.designed([26.0], 1052.103, ["ball_rows"])
+    ruled.settle(1.1e-5, {"ball_rows": 25.0}, 1050.196)
+    assert ruled.reason([26]) == []  # (the later solve has no design with 25 rows yet: it may have lost them)
+    ruled.designed([25.0], 1050.307, ["ball_rows"])
+    assert ruled.reason([26]) == ["heavier by 0.0018 than {'ball_rows': 25.0} at an earlier mesh of collocation "
+                                  "error 1.1e-05"]
+    ruled.settle(1e-6, {"ball_rows": 25.0}, 1050.307)
+    ruled.designed([25.0], 1050.301, ["ball_rows"])
+    assert ruled.reason([26])  # (still: the solve that kept 25 rows did not solve 26)
+    near = RuledOut()
+    near.designed([25.0], 1050.0, ["ball_rows"])
+    near.designed([26.0], 1050.0 * (1 + 0.9 * RULED_MARGIN * 1.1e-5), ["ball_rows"])
+    near.settle(1.1e-5, {"ball_rows": 25.0}, 1050.0)
+    near.designed([25.0], 1050.0, ["ball_rows"])
+    assert near.reason([26]) == []  # within the margin: a finer mesh may reverse the order
 
 
 def test_the_ball_solves_its_infeasible_row_count_once(monkeypatch):
