@@ -1,17 +1,14 @@
 """A start-up's last retry before ``not_found`` (clutchopt.optimise.sampled_start): the sampled designs moved onto
 the rows the design alone enters, and the walk from the least violated one in steps of +-STEP."""
 
-import subprocess
-import sys
-
 import numpy as np
 import pytest
 
 from clutchopt.cases import load_case
 from clutchopt.optimise.integers import least_violation
 from clutchopt.optimise.problem import case_problem
-from clutchopt.optimise.sampled_start import DIRECTIONS, SAMPLES, projected, sobol, walked
-from conftest import BALL_PAPER_STRESS, CASES, ROOT
+from clutchopt.optimise.sampled_start import projected, walked
+from conftest import BALL_PAPER_STRESS, CASES
 
 START_UP_RTOL = 1e-6  # a start-up's objective: the tolerance of its collocation against its simulated start
 
@@ -50,28 +47,3 @@ def test_the_walk_from_a_design_whose_start_meets_every_row_reaches_the_case_s_o
     assert walk.status == "optimal"
     assert walk.objective == pytest.approx(554.6854, rel=START_UP_RTOL)
     assert walk.bounds["active_radius"] == (0.05, 2.0)  # the case's bounds, not a step's box
-
-
-def test_the_sampled_points_are_scipy_s_unscrambled_sobol_points_to_the_bit():
-    from scipy.stats import qmc
-
-    for dimensions in range(1, len(DIRECTIONS) + 1):
-        for n in (1, 2, 3, 8, SAMPLES):
-            assert np.array_equal(sobol(dimensions, n), qmc.Sobol(dimensions, scramble=False).random(n))
-    assert sobol(2, SAMPLES)[15].tolist() == [1 / 16, 15 / 16]  # (SAMPLE above: the 16th point)
-    with pytest.raises(ValueError):
-        sobol(len(DIRECTIONS) + 1, SAMPLES)
-
-
-def test_the_sampled_designs_are_drawn_without_importing_scipy_stats():
-    # scipy.stats took 0.19 s of CPU to import in a start-up sweep's process (ball_motor_start over driven_inertia:
-    # its first point without a design, 1.2 s), for these 16 points alone
-    code = ("import sys\nfrom clutchopt.cases import load_case\nfrom clutchopt.optimise.problem import case_problem\n"
-            "from clutchopt.optimise.sampled_start import least_violated\n"
-            f"case = load_case({str(CASES / 'ball_motor_start.toml')!r}).with_values(power=605693.4230086812, "
-            f"**{BALL_PAPER_STRESS!r})\n"
-            "design = least_violated(case_problem(case, mode='paper').posed, case)\n"
-            "print(sorted(design), 'scipy.stats' in sys.modules)")
-    result = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True)
-    assert result.returncode == 0, result.stderr
-    assert result.stdout.strip().splitlines()[-1] == "['active_radius', 'active_width', 'spring_preload'] False"

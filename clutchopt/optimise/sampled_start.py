@@ -72,8 +72,10 @@ def least_violated(posed, case: Case) -> dict[str, float] | None:
     free = [i for i, (lo, hi) in enumerate(zip(lower, upper)) if hi > lo and math.isfinite(lo) and math.isfinite(hi)]
     if not free:
         return None
+    from scipy.stats import qmc  # (here: scipy.stats costs a second to import, and only a not_found retry needs it)
+
     best, least = None, math.inf
-    for unit in sobol(len(free), SAMPLES):
+    for unit in qmc.Sobol(len(free), scramble=False).random(SAMPLES):
         x = start.copy()
         x[free] = lower[free] + unit * (upper[free] - lower[free])
         x[posed.integer] = np.clip(np.round(x[posed.integer]), lower[posed.integer], upper[posed.integer])
@@ -87,32 +89,6 @@ def least_violated(posed, case: Case) -> dict[str, float] | None:
         if violation < least:
             best, least = design, violation
     return best
-
-
-# The first direction numbers m_1..m_4 of each dimension of the Sobol sequence SciPy's ``qmc.Sobol`` draws (Joe and
-# Kuo's table, new-joe-kuo-6.21201, the first dimension's van der Corput; m_k up to the polynomial's degree from the
-# table, the rest by its recurrence): what its first 16 unscrambled points read, for up to 16 variables (a formulation
-# has at most 9, with its start-up's spring preload).
-DIRECTIONS = ((1, 1, 1, 1), (1, 3, 5, 15), (1, 3, 3, 9), (1, 3, 1, 5), (1, 1, 1, 11), (1, 1, 3, 3), (1, 3, 5, 13),
-              (1, 1, 5, 5), (1, 1, 5, 5), (1, 1, 7, 11), (1, 1, 5, 1), (1, 1, 1, 3), (1, 3, 5, 5), (1, 3, 3, 9),
-              (1, 1, 1, 15), (1, 3, 1, 13))
-
-
-def sobol(dimensions: int, n: int) -> np.ndarray:
-    """The first ``n`` (at most 2**4) points of the unscrambled Sobol sequence in the unit cube of ``dimensions``
-    (at most 16), those of SciPy's ``qmc.Sobol(dimensions, scramble=False).random(n)`` to the bit, in its (Gray code)
-    order: the first the origin, each next the last with one direction number XORed in, that of the lowest zero bit
-    of its index. Not drawn by SciPy: ``scipy.stats`` costs 0.19 s of CPU to import in a process that has the rest of
-    a start-up sweep (ball_motor_start's first point without a design, 1.2 s), and only this retry needs it."""
-    bits = len(DIRECTIONS[0])
-    if n > 2 ** bits or dimensions > len(DIRECTIONS):
-        raise ValueError(f"{n} Sobol points in {dimensions} dimensions: at most {2 ** bits} in {len(DIRECTIONS)}")
-    directions = np.array(DIRECTIONS[:dimensions]).T << np.arange(bits - 1, -1, -1)[:, None]  # (bit, dimension)
-    points, last = np.zeros((n, dimensions)), np.zeros(dimensions, dtype=int)
-    for i in range(1, n):
-        last = last ^ directions[(~(i - 1) & i).bit_length() - 1]  # (the lowest zero bit of i - 1)
-        points[i] = last / 2 ** bits
-    return points
 
 
 def projected(posed, case: Case, design: dict[str, float]) -> dict[str, float]:
