@@ -20,6 +20,7 @@ from clutchopt.optimise.integers import EXCLUDED, SOLVED
 from clutchopt.optimise.verify import DESIGN_STATUSES
 
 CARRIED = None  # the "choice" that measured a shift carried from elsewhere, where it is not known
+OWN_LOOP = "own accuracy loop"  # how an integer search's entry of a choice solved through its own loop begins
 
 
 def carried_by(warm) -> frozenset:
@@ -194,11 +195,19 @@ def lighter_above(names: list[str], i: int, own, kept, combo: tuple, upper: dict
     return combo[:i] + (combo[i] + 1.0,) + combo[i + 1:]
 
 
-def own_entry(names: list[str], combo: tuple, own, how: str = "own accuracy loop") -> dict:
+def own_entry(names: list[str], combo: tuple, own, how: str = OWN_LOOP) -> dict:
     """The integer search's record of ``combo`` solved through its own accuracy loop (``own``, its solution; ``how``:
     or modifier adaptation)."""
     return {**{n: int(v) for n, v in zip(names, combo)}, "status": f"{how}: {own.status}",
             "feasible": own.status == "optimal", "objective": own.objective}
+
+
+def looped_here(names: list[str], search: list[dict], combo: tuple) -> bool:
+    """Whether the integer ``search`` of a solve (its ``integer_search``) records ``combo`` solved through its own
+    accuracy loop (:func:`own_entry`, OWN_LOOP): the loop ``solve`` runs on those integers, from the case's limits, at
+    that solve's point."""
+    return any(entry["status"].startswith(f"{OWN_LOOP}:") and tuple(float(entry.get(n, math.nan)) for n in names)
+               == combo for entry in search)
 
 
 def excluded_own_entry(names: list[str], combo: tuple, how: str, rows: list[str]) -> dict:
