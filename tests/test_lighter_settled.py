@@ -1,0 +1,65 @@
+"""A start-up sweep's point of an elastic link whose every lighter count has its verdict there already is not probed
+as ``solve`` would (``start_up_sweep.as_solve_would``, ``Problem.lighter_settled``)."""
+
+from dataclasses import replace
+
+import clutchopt.optimise.start_up_sweep as start_up_sweep
+from clutchopt.cases import load_case
+from clutchopt.optimise.problem import Problem, case_problem
+from clutchopt.optimise.sweep import Sweep
+from clutchopt.optimise.sweep_grid import parse_vary
+from tests.conftest import CASES
+
+CABLE = load_case(CASES / "cable_motor_start.toml")
+
+
+def swept(monkeypatch, settled: bool = True) -> tuple[list[dict], list]:
+    """cable_motor_start swept over driven_inertia 0.2, 0.21 kg m^2: its records, and each (problem, case, solution)
+    ``as_solve_would`` was handed; ``settled=False``: every point probed (main before the rule)."""
+    handed, probe = [], start_up_sweep.as_solve_would
+
+    def spied(problem, case, solution, sized, alone=None):
+        handed.append((problem, case, solution))
+        return probe(problem, case, solution, sized, alone)
+
+    with monkeypatch.context() as patched:
+        patched.setattr(start_up_sweep, "as_solve_would", spied)
+        if not settled:
+            patched.setattr(Problem, "lighter_settled", lambda *args: False)
+        vary = parse_vary("driven_inertia=0.2,0.21", "cable", CABLE.quantities)
+        return Sweep(CABLE, [vary]).run(progress=False).solutions, handed
+
+
+def test_a_point_whose_lighter_counts_are_settled_is_not_probed_the_same_design(monkeypatch):
+    """At 0.21 kg m^2, warm from 0.2's 8 cables at the stress limit 7 cables' start moved there: 8 cables kept, 7
+    solved through their own loop from the case's limit (``unverified``), the sizing's 6 refuted by the link's least
+    stress at the case's limit. The probe solved the relaxation and 7 cables again, to end on them ``unverified``: two
+    solver calls fewer, the point's status, count and objective the same to the bit."""
+    before, _ = swept(monkeypatch, settled=False)
+    after, handed = swept(monkeypatch)
+    problem, case, solution = handed[-1]
+    assert [e["status"] for e in solution.integer_search if e["cable_count"] == 7][-1] == "own accuracy loop: unverified"
+    assert problem.sized_design(case)["cable_count"] == 6.0
+    assert problem._link_refutes(case, case, solution, [(6.0,)])
+    assert problem.lighter_settled(case, solution)
+    assert after[1]["solver"]["solves"] == before[1]["solver"]["solves"] - 2
+    assert after[0]["solver"]["solves"] == before[0]["solver"]["solves"]  # (cold: solve's own)
+    for old, new in zip(before, after):
+        assert new["status"] == old["status"] == "optimal"
+        assert new["design"]["cable_count"] == old["design"]["cable_count"] == 8.0
+        assert new["objective"]["value"] == old["objective"]["value"]
+
+
+def test_a_lighter_count_without_its_verdict_leaves_the_point_probed(monkeypatch):
+    """The same point's solution without 7 cables' own loop in its search: 7 cables have a design of the NLP at the
+    case's limit (not refuted), so their verdict is not had and the point is probed; nor is a solution settled that is
+    not ``optimal``, nor one of a problem without an elastic link (the ball)."""
+    _, handed = swept(monkeypatch)
+    problem, case, solution = handed[-1]
+    unlooped = replace(solution, integer_search=[e for e in solution.integer_search
+                                                 if not e["status"].startswith("own accuracy loop")])
+    assert not problem._link_refutes(case, case, solution, [(7.0,)])
+    assert not problem.lighter_settled(case, unlooped)
+    assert not problem.lighter_settled(case, replace(solution, status="unverified"))
+    ball = load_case(CASES / "ball_motor_start.toml")
+    assert not case_problem(ball).lighter_settled(ball, solution)
