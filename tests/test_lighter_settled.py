@@ -57,7 +57,8 @@ def test_a_lighter_count_without_its_verdict_leaves_the_point_probed(monkeypatch
     _, handed = swept(monkeypatch)
     problem, case, solution = handed[-1]
     unlooped = replace(solution, integer_search=[e for e in solution.integer_search
-                                                 if not e["status"].startswith("own accuracy loop")])
+                                                 if not e["status"].startswith("own accuracy loop")],
+                       unverified_at_the_case=frozenset())
     assert not problem._link_refutes(case, case, solution, [(7.0,)])
     assert not problem.lighter_settled(case, unlooped)
     assert not problem.lighter_settled(case, replace(solution, status="unverified"))

@@ -51,6 +51,8 @@ class ForeignShifts:
         # start missed a limit (:meth:`unverified_below`)
         self.first: dict[tuple, object] = {}  # choice -> its own loop's first solve, made before the loop
         # (``Problem._one_up_first``; its solver calls counted by the caller)
+        self.unverified_at_the_case: set[tuple] = set()  # choices whose design of the NLP at the case's own limits (no
+        # limit moved yet) the loop simulated, its start missing a limit
 
     def choice(self, design: dict[str, float]) -> tuple:
         return tuple(float(design[name]) for name in self.names)
@@ -62,9 +64,12 @@ class ForeignShifts:
     def seen(self, solution) -> None:
         """A solve of the loop (at the limits moved so far): its infeasible choices, recorded as found at another
         choice's shift or at their own (none moved, or moved by their own start alone); its design, where its
-        simulated start misses a limit."""
+        simulated start misses a limit (at the case's own limits, where no choice has moved them yet:
+        :attr:`unverified_at_the_case`)."""
         if getattr(solution, "status", None) == "unverified":
             combo = self.choice(solution.design)
+            if not self.measured:
+                self.unverified_at_the_case.add(combo)
             if combo not in self.unverified or solution.objective < self.unverified[combo].objective:
                 self.unverified[combo] = solution
         for entry in solution.integer_search:
@@ -202,12 +207,13 @@ def own_entry(names: list[str], combo: tuple, own, how: str = OWN_LOOP) -> dict:
             "feasible": own.status == "optimal", "objective": own.objective}
 
 
-def looped_here(names: list[str], search: list[dict], combo: tuple) -> bool:
-    """Whether the integer ``search`` of a solve (its ``integer_search``) records ``combo`` solved through its own
-    accuracy loop (:func:`own_entry`, OWN_LOOP): the loop ``solve`` runs on those integers, from the case's limits, at
-    that solve's point."""
-    return any(entry["status"].startswith(f"{OWN_LOOP}:") and tuple(float(entry.get(n, math.nan)) for n in names)
-               == combo for entry in search)
+def unverified_here(names: list[str], solution, combo: tuple) -> bool:
+    """Whether ``solution``'s solve (an elastic link's start-up at its point) had ``combo``'s design of the NLP at the
+    case's own limits simulated, its start missing a limit, or solved ``combo`` through its own accuracy loop (its
+    first solve at the case's limits: :func:`own_entry`, OWN_LOOP)."""
+    return combo in solution.unverified_at_the_case or any(
+        entry["status"].startswith(f"{OWN_LOOP}:") and tuple(float(entry.get(n, math.nan)) for n in names) == combo
+        for entry in solution.integer_search)
 
 
 def excluded_own_entry(names: list[str], combo: tuple, how: str, rows: list[str]) -> dict:

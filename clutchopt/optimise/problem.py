@@ -31,7 +31,7 @@ from clutchopt.optimise.integers import (RuledOut, descend, fixed_box, fixing, f
 from clutchopt.optimise.link_bound import MARGIN as LINK_MARGIN, least_stress, refuted
 from clutchopt.optimise.modifier import VARIANT, first_order, modifiers_in, with_modifiers
 from clutchopt.optimise.own_shift import (OWN_LOOP, ForeignShifts, carried_by, climbing, excluded_own_entry,
-                                          lighter_above, looped_here, own_entry, stepped)
+                                          lighter_above, own_entry, stepped, unverified_here)
 from clutchopt.optimise.polish import polishable, polished
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities, with_followers
@@ -301,6 +301,7 @@ class Problem:
         for combo, first in foreign.first.items():  # a count one up solved first whose own loop never ran (its solve
             kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, first, FIRST_UP)]  # counted)
         foreign.first.clear()
+        kept.unverified_at_the_case = frozenset(foreign.unverified_at_the_case)
         if len(runs) > 1:
             kept.solver = kept.solver.summed(runs)
         return kept
@@ -377,17 +378,17 @@ class Problem:
 
     def lighter_settled(self, case: Case, solution: Solution) -> bool:
         """Whether each count below ``solution``'s (an elastic link's one integer variable, down to its lower bound)
-        has its verdict at ``case`` already: solved through its own accuracy loop in ``solution``'s solve (fixed, from
-        the case's limits: ``own_shift.looped_here``), or refuted by the link's least stress at the case's limits
-        (:meth:`_link_refutes`: no design of the NLP has it). False for any other problem, or a solution not
-        ``optimal``."""
+        has its verdict at ``case`` already: its design of the NLP at the case's limits simulated in ``solution``'s
+        solve, unverified, or solved through its own accuracy loop there (``own_shift.unverified_here``), or refuted by
+        the link's least stress at the case's limits (:meth:`_link_refutes`: no design of the NLP has it). False for
+        any other problem, or a solution not ``optimal``."""
         names = self.integer_names
         if self.start_up is None or not self.start_up.s.elastic or len(names) != 1 or solution.status != "optimal":
             return False
         lower = self._integer_bounds(case)[names[0]][0]
         below = [(float(count),) for count in range(math.ceil(lower), round(solution.design[names[0]]))]
         return self._link_refutes(case, case, solution, [combo for combo in below
-                                                          if not looped_here(names, solution.integer_search, combo)])
+                                                          if not unverified_here(names, solution, combo)])
 
     def _climbed(self, case: Case, solution: Solution, kept: Solution, foreign: ForeignShifts, combo: tuple,
                  upper: dict[str, float], runs: list) -> Solution:
