@@ -2,9 +2,11 @@
 as ``solve`` would (``start_up_sweep.as_solve_would``, ``Problem.lighter_settled``)."""
 
 from dataclasses import replace
+from types import SimpleNamespace
 
 import clutchopt.optimise.start_up_sweep as start_up_sweep
 from clutchopt.cases import load_case
+from clutchopt.optimise.own_shift import ForeignShifts, carried_by
 from clutchopt.optimise.problem import Problem, case_problem
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import parse_vary
@@ -13,9 +15,10 @@ from tests.conftest import CASES
 CABLE = load_case(CASES / "cable_motor_start.toml")
 
 
-def swept(monkeypatch, settled: bool = True) -> tuple[list[dict], list]:
-    """cable_motor_start swept over driven_inertia 0.2, 0.21 kg m^2: its records, and each (problem, case, solution)
-    ``as_solve_would`` was handed; ``settled=False``: every point probed (main before the rule)."""
+def swept(monkeypatch, settled: bool = True, vary: str = "driven_inertia=0.2,0.21") -> tuple[list[dict], list]:
+    """cable_motor_start swept (``vary``; default over driven_inertia 0.2, 0.21 kg m^2): its records, and each
+    (problem, case, solution) ``as_solve_would`` was handed; ``settled=False``: every point probed (main before the
+    rule)."""
     handed, probe = [], start_up_sweep.as_solve_would
 
     def spied(problem, case, solution, sized, alone=None):
@@ -26,8 +29,7 @@ def swept(monkeypatch, settled: bool = True) -> tuple[list[dict], list]:
         patched.setattr(start_up_sweep, "as_solve_would", spied)
         if not settled:
             patched.setattr(Problem, "lighter_settled", lambda *args: False)
-        vary = parse_vary("driven_inertia=0.2,0.21", "cable", CABLE.quantities)
-        return Sweep(CABLE, [vary]).run(progress=False).solutions, handed
+        return Sweep(CABLE, [parse_vary(vary, "cable", CABLE.quantities)]).run(progress=False).solutions, handed
 
 
 def test_a_point_whose_lighter_counts_are_settled_is_not_probed_the_same_design(monkeypatch):
@@ -64,3 +66,41 @@ def test_a_lighter_count_without_its_verdict_leaves_the_point_probed(monkeypatch
     assert not problem.lighter_settled(case, replace(solution, status="unverified"))
     ball = load_case(CASES / "ball_motor_start.toml")
     assert not case_problem(ball).lighter_settled(ball, solution)
+
+
+def test_a_lighter_count_its_loop_simulated_at_the_case_s_limits_is_settled(monkeypatch):
+    """cable_motor_start over max_start_time 2, 2.1 s: at 2.1 s, warm from 2 s's 8 cables at the case's limits, the
+    loop's first solve keeps 7 cables (lighter), whose simulated start misses the stress limit; 8 cables solved first
+    at the case's limit are kept (``Problem._one_up_first``), 7 never looped on their own. Their design of the NLP at
+    the case's own limits was simulated, unverified: settled (the probe solved the relaxation and 7 cables again, to
+    end on them ``unverified``), two solver calls fewer, the same design to the bit."""
+    vary = "max_start_time=2,2.1"
+    before, _ = swept(monkeypatch, settled=False, vary=vary)
+    after, handed = swept(monkeypatch, vary=vary)
+    problem, case, solution = handed[-1]
+    assert solution.unverified_at_the_case == frozenset({(7.0,)})
+    assert not any(e["status"].startswith("own accuracy loop") for e in solution.integer_search
+                   if e["cable_count"] == 7)
+    assert problem.lighter_settled(case, solution)
+    assert not problem.lighter_settled(case, replace(solution, unverified_at_the_case=frozenset()))
+    assert after[1]["solver"]["solves"] == before[1]["solver"]["solves"] - 2
+    for old, new in zip(before, after):
+        assert new["status"] == old["status"] == "optimal"
+        assert new["design"]["cable_count"] == old["design"]["cable_count"] == 8.0
+        assert new["objective"]["value"] == old["objective"]["value"]
+
+
+def test_only_a_design_at_the_case_s_own_limits_is_recorded_unverified_there():
+    """``ForeignShifts.seen``: an unverified design is recorded at the case's own limits only while no choice's start
+    has moved them (nor a shift carried from another point)."""
+    unverified = SimpleNamespace(status="unverified", design={"cable_count": 7.0}, objective=3.49, integer_search=[])
+    at_the_case = ForeignShifts(["cable_count"])
+    at_the_case.seen(unverified)
+    assert at_the_case.unverified_at_the_case == {(7.0,)}
+    moved = ForeignShifts(["cable_count"])
+    moved.corrected(unverified)
+    moved.seen(unverified)
+    carried = ForeignShifts(["cable_count"], carried_by(None))
+    carried.seen(unverified)
+    assert moved.unverified_at_the_case == carried.unverified_at_the_case == set()
+    assert (7.0,) in moved.unverified and (7.0,) in carried.unverified
