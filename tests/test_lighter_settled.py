@@ -40,7 +40,8 @@ def test_a_point_whose_lighter_counts_are_settled_is_not_probed_the_same_design(
     before, _ = swept(monkeypatch, settled=False)
     after, handed = swept(monkeypatch)
     problem, case, solution = handed[-1]
-    assert [e["status"] for e in solution.integer_search if e["cable_count"] == 7][-1] == "own accuracy loop: unverified"
+    sevens = [e["status"] for e in solution.integer_search if e["cable_count"] == 7]
+    assert sevens[-1] == "own accuracy loop: unverified"
     assert problem.sized_design(case)["cable_count"] == 6.0
     assert problem._link_refutes(case, case, solution, [(6.0,)])
     assert problem.lighter_settled(case, solution)
