@@ -66,10 +66,10 @@ class ForeignShifts:
         choice's shift or at their own (none moved, or moved by their own start alone); its design, where its
         simulated start misses a limit (at the case's own limits, where no choice has moved them yet:
         :attr:`unverified_at_the_case`)."""
+        if not self.measured:
+            self.simulated_at_the_case(solution)
         if getattr(solution, "status", None) == "unverified":
             combo = self.choice(solution.design)
-            if not self.measured:
-                self.unverified_at_the_case.add(combo)
             if combo not in self.unverified or solution.objective < self.unverified[combo].objective:
                 self.unverified[combo] = solution
         for entry in solution.integer_search:
@@ -84,6 +84,12 @@ class ForeignShifts:
                 self.found[combo] = min(self.found.get(combo, math.inf), entry["objective"])
             elif entry["status"].startswith(EXCLUDED):  # excluded without a solve at another's shift: no run's
                 self.found[combo] = -math.inf  # end bounds its objective (the link bound at 7 cables' moved limit)
+
+    def simulated_at_the_case(self, solution) -> None:
+        """``solution``: a design of the NLP at the case's own limits, its start simulated; recorded in
+        :attr:`unverified_at_the_case` where the start misses a limit."""
+        if getattr(solution, "status", None) == "unverified":
+            self.unverified_at_the_case.add(self.choice(solution.design))
 
     def own_loop(self, combo: tuple) -> None:
         """``combo`` solved through its own accuracy loop (``Problem._own_loop``)."""

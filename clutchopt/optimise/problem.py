@@ -351,6 +351,7 @@ class Problem:
         own_case = replace(case, bounds={**case.bounds, names[0]: (up[0], up[0])})
         own = self._solve(case, warm=solution, nlp_case=own_case, diagnosed=False, cold=False)  # (as its own loop's
         solves.append(own.solver)  # first solve: ``_refined`` with ``fixed``)
+        foreign.simulated_at_the_case(own)
         if own.status != "optimal" or self._held(own) or corrected_case(own, own_case, centre=False) is not None:
             if own.status in DESIGN_STATUSES:  # (its own loop goes on from it, counted here; from none, as ever)
                 foreign.first[up] = replace(own, solver=replace(own.solver, iterations=0, time_s=0.0, solves=0))
