@@ -105,3 +105,28 @@ def test_only_a_design_at_the_case_s_own_limits_is_recorded_unverified_there():
     carried.seen(unverified)
     assert moved.unverified_at_the_case == carried.unverified_at_the_case == set()
     assert (7.0,) in moved.unverified and (7.0,) in carried.unverified
+    moved.simulated_at_the_case(SimpleNamespace(status="optimal", design={"cable_count": 8.0}))
+    moved.simulated_at_the_case(SimpleNamespace(status="unverified", design={"cable_count": 9.0}))
+    assert moved.unverified_at_the_case == {(9.0,)}  # (the caller's word that it was solved at the case's limits)
+
+
+def test_the_count_one_up_solved_first_and_left_unverified_is_settled(monkeypatch):
+    """cable_motor_start over damping_ratio 0.05, 0.0553: at the second point the loop's first solve keeps 7 cables at
+    the case's limits (unverified), 8 cables solved first there (``Problem._one_up_first``) start with more stress
+    than allowed too, never looped on their own (the search at the moved limit then keeps 15, and the own loops walk
+    down to 10, 9 unverified): 7 and 8 were simulated at the case's own limits, so the point is not probed (it solved
+    the relaxation and 7 cables again), two solver calls fewer, the same design to the bit."""
+    vary = "damping_ratio=0.05,0.0553"
+    before, _ = swept(monkeypatch, settled=False, vary=vary)
+    after, handed = swept(monkeypatch, vary=vary)
+    problem, case, solution = handed[-1]
+    assert solution.unverified_at_the_case == frozenset({(7.0,), (8.0,)})
+    assert ("8", "solved first at the case's limits: unverified") in [
+        (str(e["cable_count"]), e["status"]) for e in solution.integer_search]
+    assert problem.lighter_settled(case, solution)
+    assert after[1]["solver"]["solves"] == before[1]["solver"]["solves"] - 2
+    for old, new in zip(before, after):
+        assert new["status"] == old["status"] == "optimal"
+        assert new["design"]["cable_count"] == old["design"]["cable_count"]
+        assert new["objective"]["value"] == old["objective"]["value"]
+    assert [r["design"]["cable_count"] for r in after] == [11.0, 10.0]
