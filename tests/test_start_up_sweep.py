@@ -126,12 +126,13 @@ def test_an_elastic_link_s_sweep_carries_its_limits_as_they_are(monkeypatch):
 
 def test_an_elastic_link_s_sweep_solves_the_papers_sizing_once_for_its_probes(monkeypatch):
     """cable_motor_start over driven_inertia (0.6x-1.4x, five of the bench's points): its designs leave the papers'
-    sizing's integers (6 cables; 7 and 8 kept), so every point solved along is also probed as ``solve`` would
-    (:func:`~clutchopt.optimise.start_up_sweep.as_solve_would`), from the sizing, which was solved again at each (3
-    static IPOPT runs). The driven inertia enters no row of the sizing: it is solved once more after the first point's
-    cold solve, at the first point solved along the sweep, and carried (its loop takes none of it, as before): 5
-    static solves to 2 (3 where the first point solved along solved it for its probe and the next once more), every
-    point's status, design and solver calls the same to the last bit."""
+    sizing's integers (6 cables; 7 and 8 kept), so every point solved along reads the sizing to decide whether it is
+    probed as ``solve`` would (:func:`~clutchopt.optimise.start_up_sweep.as_solve_would`; none is since its lighter
+    counts are settled there, ``Problem.lighter_settled``: 3, 5, 5, 4 solver calls to 1, 3, 3, 2), and the sizing was
+    solved again at each (3 static IPOPT runs). The driven inertia enters no row of the sizing: it is solved once
+    more after the first point's cold solve, at the first point solved along the sweep, and carried (its loop takes
+    none of it, as before): 5 static solves to 2 (3 where the first point solved along solved it for its probe and
+    the next once more), every point's status, design and solver calls the same to the last bit."""
     cable = load_case(CASES / "cable_motor_start.toml")
     points = ",".join(str(0.25 * factor) for factor in np.linspace(0.6, 1.4, 20)[[0, 1, 2, 3, 4]])
     vary = parse_vary(f"driven_inertia={points}", cable.coupling, cable.quantities)
@@ -154,7 +155,7 @@ def test_an_elastic_link_s_sweep_solves_the_papers_sizing_once_for_its_probes(mo
         each, solved_each = run()
     carried, solved_carried = run()
     assert (solved_carried, solved_each) == (2, 5)
-    assert carried == each and [c for *_, c in carried] == [8, 3, 5, 5, 4]
+    assert carried == each and [c for *_, c in carried] == [8, 1, 3, 3, 2]
     assert [r[2]["cable_count"] for r in carried] == [7.0, 7.0, 8.0, 8.0, 8.0]
 
 

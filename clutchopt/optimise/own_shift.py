@@ -20,6 +20,7 @@ from clutchopt.optimise.integers import EXCLUDED, SOLVED
 from clutchopt.optimise.verify import DESIGN_STATUSES
 
 CARRIED = None  # the "choice" that measured a shift carried from elsewhere, where it is not known
+OWN_LOOP = "own accuracy loop"  # how an integer search's entry of a choice solved through its own loop begins
 
 
 def carried_by(warm) -> frozenset:
@@ -50,6 +51,8 @@ class ForeignShifts:
         # start missed a limit (:meth:`unverified_below`)
         self.first: dict[tuple, object] = {}  # choice -> its own loop's first solve, made before the loop
         # (``Problem._one_up_first``; its solver calls counted by the caller)
+        self.unverified_at_the_case: set[tuple] = set()  # choices whose design of the NLP at the case's own limits (no
+        # limit moved yet) the loop simulated, its start missing a limit
 
     def choice(self, design: dict[str, float]) -> tuple:
         return tuple(float(design[name]) for name in self.names)
@@ -61,7 +64,10 @@ class ForeignShifts:
     def seen(self, solution) -> None:
         """A solve of the loop (at the limits moved so far): its infeasible choices, recorded as found at another
         choice's shift or at their own (none moved, or moved by their own start alone); its design, where its
-        simulated start misses a limit."""
+        simulated start misses a limit (at the case's own limits, where no choice has moved them yet:
+        :attr:`unverified_at_the_case`)."""
+        if not self.measured:
+            self.simulated_at_the_case(solution)
         if getattr(solution, "status", None) == "unverified":
             combo = self.choice(solution.design)
             if combo not in self.unverified or solution.objective < self.unverified[combo].objective:
@@ -78,6 +84,12 @@ class ForeignShifts:
                 self.found[combo] = min(self.found.get(combo, math.inf), entry["objective"])
             elif entry["status"].startswith(EXCLUDED):  # excluded without a solve at another's shift: no run's
                 self.found[combo] = -math.inf  # end bounds its objective (the link bound at 7 cables' moved limit)
+
+    def simulated_at_the_case(self, solution) -> None:
+        """``solution``: a design of the NLP at the case's own limits, its start simulated; recorded in
+        :attr:`unverified_at_the_case` where the start misses a limit."""
+        if getattr(solution, "status", None) == "unverified":
+            self.unverified_at_the_case.add(self.choice(solution.design))
 
     def own_loop(self, combo: tuple) -> None:
         """``combo`` solved through its own accuracy loop (``Problem._own_loop``)."""
@@ -194,11 +206,20 @@ def lighter_above(names: list[str], i: int, own, kept, combo: tuple, upper: dict
     return combo[:i] + (combo[i] + 1.0,) + combo[i + 1:]
 
 
-def own_entry(names: list[str], combo: tuple, own, how: str = "own accuracy loop") -> dict:
+def own_entry(names: list[str], combo: tuple, own, how: str = OWN_LOOP) -> dict:
     """The integer search's record of ``combo`` solved through its own accuracy loop (``own``, its solution; ``how``:
     or modifier adaptation)."""
     return {**{n: int(v) for n, v in zip(names, combo)}, "status": f"{how}: {own.status}",
             "feasible": own.status == "optimal", "objective": own.objective}
+
+
+def unverified_here(names: list[str], solution, combo: tuple) -> bool:
+    """Whether ``solution``'s solve (an elastic link's start-up at its point) had ``combo``'s design of the NLP at the
+    case's own limits simulated, its start missing a limit, or solved ``combo`` through its own accuracy loop (its
+    first solve at the case's limits: :func:`own_entry`, OWN_LOOP)."""
+    return combo in solution.unverified_at_the_case or any(
+        entry["status"].startswith(f"{OWN_LOOP}:") and tuple(float(entry.get(n, math.nan)) for n in names) == combo
+        for entry in solution.integer_search)
 
 
 def excluded_own_entry(names: list[str], combo: tuple, how: str, rows: list[str]) -> dict:

@@ -30,8 +30,8 @@ from clutchopt.optimise.integers import (RuledOut, descend, fixed_box, fixing, f
                                          nearest_integers, relaxation_seed, within)
 from clutchopt.optimise.link_bound import MARGIN as LINK_MARGIN, least_stress, refuted
 from clutchopt.optimise.modifier import VARIANT, first_order, modifiers_in, with_modifiers
-from clutchopt.optimise.own_shift import (ForeignShifts, carried_by, climbing, excluded_own_entry, lighter_above,
-                                          own_entry, stepped)
+from clutchopt.optimise.own_shift import (OWN_LOOP, ForeignShifts, carried_by, climbing, excluded_own_entry,
+                                          lighter_above, own_entry, stepped, unverified_here)
 from clutchopt.optimise.polish import polishable, polished
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities, with_followers
@@ -302,6 +302,7 @@ class Problem:
         for combo, first in foreign.first.items():  # a count one up solved first whose own loop never ran (its solve
             kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, first, FIRST_UP)]  # counted)
         foreign.first.clear()
+        kept.unverified_at_the_case = frozenset(foreign.unverified_at_the_case)
         if len(runs) > 1:
             kept.solver = kept.solver.summed(runs)
         return kept
@@ -341,21 +342,17 @@ class Problem:
         one up, verified at the case's limit, is no heavier than what the search at the tighter moved limit keeps
         further up (the objective rising with the count above the refuted ones): review h17 found no counterexample
         in 288 variants (mass, cost, envelope mass; both modes; six quantities), the rule firing at 56."""
-        posed, names = self.posed, foreign.names
+        names = foreign.names
         combo = foreign.choice(solution.design)
         if len(names) != 1 or combo[0] + 1.0 > self._integer_bounds(case)[names[0]][1]:
             return None
         up = (combo[0] + 1.0,)
-        data = posed.scaled_data(moved, solution.design, solution.scale, solution.internal, solution.mesh[0],
-                                 posed.params(case))
-        integer = posed.free_integers(data)
-        for choice in (combo, up):
-            lbx, ubx, x0 = fixed_box(data, integer, np.array(choice), data.x0)
-            if not refuted(posed, data, x0, lbx, ubx):
-                return None
+        if not self._link_refutes(case, moved, solution, (combo, up)):
+            return None
         own_case = replace(case, bounds={**case.bounds, names[0]: (up[0], up[0])})
         own = self._solve(case, warm=solution, nlp_case=own_case, diagnosed=False, cold=False)  # (as its own loop's
         solves.append(own.solver)  # first solve: ``_refined`` with ``fixed``)
+        foreign.simulated_at_the_case(own)
         if own.status != "optimal" or self._held(own) or corrected_case(own, own_case, centre=False) is not None:
             if own.status in DESIGN_STATUSES:  # (its own loop goes on from it, counted here; from none, as ever)
                 foreign.first[up] = replace(own, solver=replace(own.solver, iterations=0, time_s=0.0, solves=0))
@@ -366,6 +363,34 @@ class Problem:
         kept = _recorded(solution, names, up, self._worn(case, own))
         kept.solver = kept.solver.summed(solves)
         return kept
+
+    def _link_refutes(self, case: Case, nlp_case: Case, solution: Solution, choices) -> bool:
+        """Whether the link's least stress refutes each of the integer ``choices`` (tuples of the integer variables)
+        at ``nlp_case``'s limits, at the nodes of ``solution``'s point of ``case``
+        (:func:`~clutchopt.optimise.link_bound.refuted`: no design of the NLP has them)."""
+        posed = self.posed
+        data = posed.scaled_data(nlp_case, solution.design, solution.scale, solution.internal, solution.mesh[0],
+                                 posed.params(case))
+        integer = posed.free_integers(data)
+        for choice in choices:
+            lbx, ubx, x0 = fixed_box(data, integer, np.array(choice), data.x0)
+            if not refuted(posed, data, x0, lbx, ubx):
+                return False
+        return True
+
+    def lighter_settled(self, case: Case, solution: Solution) -> bool:
+        """Whether each count below ``solution``'s (an elastic link's one integer variable, down to its lower bound)
+        has its verdict at ``case`` already: its design of the NLP at the case's limits simulated in ``solution``'s
+        solve, unverified, or solved through its own accuracy loop there (``own_shift.unverified_here``), or refuted by
+        the link's least stress at the case's limits (:meth:`_link_refutes`: no design of the NLP has it). False for
+        any other problem, or a solution not ``optimal``."""
+        names = self.integer_names
+        if self.start_up is None or not self.start_up.s.elastic or len(names) != 1 or solution.status != "optimal":
+            return False
+        lower = self._integer_bounds(case)[names[0]][0]
+        below = [(float(count),) for count in range(math.ceil(lower), round(solution.design[names[0]]))]
+        return self._link_refutes(case, case, solution, [combo for combo in below
+                                                          if not unverified_here(names, solution, combo)])
 
     def _climbed(self, case: Case, solution: Solution, kept: Solution, foreign: ForeignShifts, combo: tuple,
                  upper: dict[str, float], runs: list) -> Solution:
@@ -919,8 +944,7 @@ def drive_elastic(solution: Solution, tolerance: float, static: set[str]) -> boo
     return any(abs(e) > tolerance for name, e in solution.sensitivities.items() if name not in static)
 
 
-def _recorded(kept: Solution, names: list[str], combo: tuple, own: Solution,
-              how: str = "own accuracy loop") -> Solution:
+def _recorded(kept: Solution, names: list[str], combo: tuple, own: Solution, how: str = OWN_LOOP) -> Solution:
     """``own`` (integer choice ``combo`` solved through its own loop, ``how``) recorded in ``kept``'s integer search:
     ``own`` where it ends optimal and lighter than ``kept`` (or ``kept`` has none verified), carrying that search and
     ``kept``'s bounds; else ``kept``."""

@@ -155,6 +155,8 @@ class Solution:
     #     the next point's (clutchopt.optimise.start_up_sweep.SizedOut)
     shift_measured_by: frozenset = field(default_factory=frozenset, repr=False)  # an elastic link's start-up: the
     #     integer choices whose simulated starts moved limit_shift's limits (clutchopt.optimise.own_shift)
+    unverified_at_the_case: frozenset = field(default_factory=frozenset, repr=False)  # an elastic link's start-up:
+    #     the integer choices whose design of the NLP at the case's own limits its loop simulated, unverified
     collocated: dict[str, float] = field(default_factory=dict, repr=False)  # a start-up: the NLP's own figure of
     #     each start-up limit's check, by name (clutchopt.optimise.start_up_check.corrected_case)
     solve_alone: dict | None = None  # where the design kept is not what ``solve`` of the case alone ends with: that
