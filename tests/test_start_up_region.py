@@ -17,7 +17,7 @@ import pytest
 from clutchopt.cases import load_case
 from clutchopt.optimise.problem import case_problem
 from clutchopt.optimise.sampled_start import SAMPLED
-from clutchopt.optimise.start_up_region import REGION, TESTS, beyond, region_verdict, region_tested
+from clutchopt.optimise.start_up_region import REGION, TESTS, beyond, in_a_region, region_verdict, region_tested
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import Vary
 from clutchopt.optimise.verdict import GIVEN, LEAST, retried
@@ -143,6 +143,12 @@ def test_only_a_point_beyond_on_the_ray_and_only_a_shared_reason_decides():
     own = retried(problem, point, first.diagnosed.nearest, diagnosed=True)  # (solve's own second start)
     third = region_verdict(unconverged, without, [*blind, (LEAST, own)])
     assert third.status == "not_found" and third.starts == TESTS and third.solver.solves == 3
+    # which verdicts the test gave is marked, not read off the starts (review h18): where the REGION start's simulation
+    # failed (not among the starts), the third decides, starts (SIZING, LEAST), and its later retry must still run
+    # solve alone; a verdict of solve's whose starts happen to begin as the test's is not the test's
+    skipped = region_verdict(unconverged, without, [(LEAST, own)])
+    assert skipped.starts == (TESTS[0], LEAST) and in_a_region(skipped) and in_a_region(third)
+    assert not in_a_region(replace(first, status="solver_failed", starts=TESTS[:1]))
 
 
 def test_the_test_goes_on_from_the_first_solves_least_relaxation_where_the_point_befores_names_no_reason():

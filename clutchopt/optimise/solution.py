@@ -159,6 +159,8 @@ class Solution:
     #     the integer choices whose design of the NLP at the case's own limits its loop simulated, unverified
     collocated: dict[str, float] = field(default_factory=dict, repr=False)  # a start-up: the NLP's own figure of
     #     each start-up limit's check, by name (clutchopt.optimise.start_up_check.corrected_case)
+    region_decided: bool = field(default=False, repr=False)  # a start-up sweep's point: its verdict the test against
+    #     the point before's reason gave, no ``solve`` of it alone behind it (clutchopt.optimise.start_up_region)
     solve_alone: dict | None = None  # where the design kept is not what ``solve`` of the case alone ends with: that
     #     solve's status and objective (None without a design), also named in the diagnosis (:meth:`beside_alone`)
 

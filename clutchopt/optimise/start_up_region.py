@@ -65,7 +65,7 @@ def region_tested(problem, case: Case, first: Solution, without: Solution) -> tu
     follows."""
     made: list[tuple[str, Solution]] = []
     decided = region_verdict(first, without)
-    for label, start in ((REGION, without.diagnosed.nearest), (LEAST, first.diagnosed.nearest)):
+    for label, start in zip(TESTS[1:], (without.diagnosed.nearest, first.diagnosed.nearest)):
         if decided is not None or any(s.status in DESIGN_STATUSES for _, s in made):
             break
         solved = retried(problem, case, start, diagnosed=True) if start is not None else None  # (None: no such
@@ -98,11 +98,11 @@ def region_verdict(first: Solution, without: Solution, made: list | tuple = ()) 
             "other starts of this point alone were not tried, nor the sweep's (the neighbour's design, the "
             "continuation)")
     verdict.solver = verdict.solver.summed([s.solver for _, s in tried])
-    return replace(verdict, diagnosis=verdict.diagnosis + note)
+    return replace(verdict, diagnosis=verdict.diagnosis + note, region_decided=True)
 
 
 def in_a_region(solution: Solution) -> bool:
-    """Whether ``solution`` is a point's verdict :func:`region_verdict` gave (its starts the first of TESTS): no
-    ``solve`` of the point alone is behind it (a sweep's start-up point without a design that ``solve`` gave its
-    verdict ends with the sampled start, ``Problem.solve``)."""
-    return bool(solution.starts) and solution.starts == TESTS[:len(solution.starts)]
+    """Whether ``solution`` is a point's verdict :func:`region_verdict` gave (``Solution.region_decided``, not read
+    off its starts: a start whose simulation failed is not among them, and another verdict's starts can begin as the
+    test's do): no ``solve`` of the point alone is behind it."""
+    return solution.region_decided
