@@ -82,6 +82,9 @@ def test_a_lighter_count_its_loop_simulated_at_the_case_s_limits_is_settled(monk
     assert solution.unverified_at_the_case == frozenset({(7.0,)})
     assert not any(e["status"].startswith("own accuracy loop") for e in solution.integer_search
                    if e["cable_count"] == 7)
+    said = [e for e in after[1]["integer_search"] if e["status"] == "simulated at the case's limits: unverified"]
+    assert [(e["cable_count"], e["feasible"]) for e in said] == [(7, False)]  # (its record says why: review h18b)
+    assert said[0]["objective"] < after[1]["objective"]["value"]  # (lighter, its start missing a limit)
     assert problem.lighter_settled(case, solution)
     assert not problem.lighter_settled(case, replace(solution, unverified_at_the_case=frozenset()))
     assert after[1]["solver"]["solves"] == before[1]["solver"]["solves"] - 2
@@ -97,17 +100,17 @@ def test_only_a_design_at_the_case_s_own_limits_is_recorded_unverified_there():
     unverified = SimpleNamespace(status="unverified", design={"cable_count": 7.0}, objective=3.49, integer_search=[])
     at_the_case = ForeignShifts(["cable_count"])
     at_the_case.seen(unverified)
-    assert at_the_case.unverified_at_the_case == {(7.0,)}
+    assert set(at_the_case.unverified_at_the_case) == {(7.0,)}
     moved = ForeignShifts(["cable_count"])
     moved.corrected(unverified)
     moved.seen(unverified)
     carried = ForeignShifts(["cable_count"], carried_by(None))
     carried.seen(unverified)
-    assert moved.unverified_at_the_case == carried.unverified_at_the_case == set()
+    assert moved.unverified_at_the_case == carried.unverified_at_the_case == {}
     assert (7.0,) in moved.unverified and (7.0,) in carried.unverified
     moved.simulated_at_the_case(SimpleNamespace(status="optimal", design={"cable_count": 8.0}))
     moved.simulated_at_the_case(SimpleNamespace(status="unverified", design={"cable_count": 9.0}))
-    assert moved.unverified_at_the_case == {(9.0,)}  # (the caller's word that it was solved at the case's limits)
+    assert set(moved.unverified_at_the_case) == {(9.0,)}  # (the caller's word that it was solved at the case's limits)
 
 
 def test_the_count_one_up_solved_first_and_left_unverified_is_settled(monkeypatch):

@@ -50,8 +50,9 @@ def test_8_cables_solved_first_at_the_case_s_limit_the_search_at_7_s_moved_limit
     assert solution.objective == pytest.approx(before.objective, rel=1e-12)
     assert solution.objective == pytest.approx(3.95257291915, rel=1e-10)
     assert solution.limit_shift == {} and solution.shift_measured_by == frozenset()
-    assert [(e["cable_count"], e["status"]) for e in solution.integer_search][-2:] == [
-        (8, "own accuracy loop: optimal"), (7, "modifier adaptation: excluded: link_stress")]
+    assert [(e["cable_count"], e["status"]) for e in solution.integer_search][-3:] == [
+        (8, "own accuracy loop: optimal"), (7, "modifier adaptation: excluded: link_stress"),
+        (7, "simulated at the case's limits: unverified")]  # (its first solve's start missed the stress limit)
     assert solution.start_up["peak_link_stress_simulated"] <= CASE_LIMIT * (1 + solution.start_up["tolerance"])
 
 

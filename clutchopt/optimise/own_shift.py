@@ -51,8 +51,8 @@ class ForeignShifts:
         # start missed a limit (:meth:`unverified_below`)
         self.first: dict[tuple, object] = {}  # choice -> its own loop's first solve, made before the loop
         # (``Problem._one_up_first``; its solver calls counted by the caller)
-        self.unverified_at_the_case: set[tuple] = set()  # choices whose design of the NLP at the case's own limits (no
-        # limit moved yet) the loop simulated, its start missing a limit
+        self.unverified_at_the_case: dict[tuple, object] = {}  # choices whose design of the NLP at the case's own
+        # limits (no limit moved yet) the loop simulated, its start missing a limit: that solution (the first)
 
     def choice(self, design: dict[str, float]) -> tuple:
         return tuple(float(design[name]) for name in self.names)
@@ -89,7 +89,7 @@ class ForeignShifts:
         """``solution``: a design of the NLP at the case's own limits, its start simulated; recorded in
         :attr:`unverified_at_the_case` where the start misses a limit."""
         if getattr(solution, "status", None) == "unverified":
-            self.unverified_at_the_case.add(self.choice(solution.design))
+            self.unverified_at_the_case.setdefault(self.choice(solution.design), solution)
 
     def own_loop(self, combo: tuple) -> None:
         """``combo`` solved through its own accuracy loop (``Problem._own_loop``)."""

@@ -51,6 +51,9 @@ from clutchopt.start_up.transcription import mesh_of_the_start
 
 
 UNRANKED_ERROR = 1e-3  # a first mesh's collocation error (start time, relative) over which it ranks no neighbours
+AT_THE_CASE = "simulated at the case's limits"  # a count whose NLP design at the case's own limits the loop simulated,
+# its start missing a limit (the integer search's entry): ``lighter_settled`` takes it as settled there, as ``solve``
+# alone's path goes no further with it; no proof that the count has no design (its correction or modifier might)
 FIRST_UP = "solved first at the case's limits"  # a count one up solved before the search at moved limits, whose own
 # loop never ran (:meth:`Problem._one_up_first`)
 PROVEN = "proof"  # the solver of a start-up the drive's proofs cover (:meth:`Problem.proven`: no start-up solve)
@@ -301,6 +304,9 @@ class Problem:
             kept, _ = self._own_loop(case, solution, kept, foreign, below[0], runs)
         for combo, first in foreign.first.items():  # a count one up solved first whose own loop never ran (its solve
             kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, first, FIRST_UP)]  # counted)
+        kept.integer_search = kept.integer_search + [  # a count whose start at the case's limits missed one, said
+            own_entry(foreign.names, combo, seen, AT_THE_CASE) for combo, seen in foreign.unverified_at_the_case.items()
+            if combo not in foreign.first]  # (a count one up solved first: its own entry says so)
         foreign.first.clear()
         kept.unverified_at_the_case = frozenset(foreign.unverified_at_the_case)
         if len(runs) > 1:

@@ -131,14 +131,15 @@ def as_solve_would(problem, case: Case, solution: Solution, sized: "SizedOut",
     infeasible on the adapted mesh from their first-mesh optimum, 26 rows kept at 1029.52 kg, where ``solve`` ends at 25
     rows, 1026.07 kg: tests/test_start_up_sweep.py). Where the integers are the sizing's, ``solve`` starts from them too
     (its search then completed by them, ``integers.from_the_start``): not solved again. Nor where an elastic link's
-    every lighter count has its verdict at the point already (``Problem.lighter_settled``: refuted by the link's least
-    stress at the case's limits, or solved through its own accuracy loop there, the loop ``solve`` runs on it), which
-    kept no lighter verified design: cable_motor_start over driven_inertia 0.6x-1.4x, 8 cables kept from the second
-    point on, the sizing's 6 refuted, 7 looped at 14 points (at the others refuted), where the probe solved the
-    relaxation and 7 cables again (2 solver calls a point) to end on them ``unverified`` (or on the 8 kept). It
-    assumes, as ``Problem._one_up_first`` does, that no count above the kept one is lighter at the case's limits.
-    ``alone``: ``solve`` of the point alone where the caller has it (:func:`solved_alone_where_held`; its solves
-    counted by the caller)."""
+    every lighter count is settled at the point already (``Problem.lighter_settled``: refuted by the link's least
+    stress at the case's limits, solved through its own accuracy loop there, the loop ``solve`` runs on it, or its
+    design of the NLP at the case's limits simulated there, unverified: evidence ``solve``'s path goes no further
+    with, not a proof), which kept no lighter verified design: cable_motor_start over driven_inertia 0.6x-1.4x, 8 cables
+    kept from the third point on, the sizing's 6 refuted, 7 looped at 14 points (at the others refuted), where the
+    probe solved the relaxation and 7 cables again (2 solver calls a point) to end on them ``unverified`` (or on the 8
+    kept). It assumes, as ``Problem._one_up_first`` does, that no count above the kept one is lighter at the case's
+    limits. ``alone``: ``solve`` of the point alone where the caller has it (:func:`solved_alone_where_held`; its
+    solves counted by the caller)."""
     names = problem.integer_names
     if not names:
         return solution
