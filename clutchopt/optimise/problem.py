@@ -386,10 +386,11 @@ class Problem:
 
     def lighter_settled(self, case: Case, solution: Solution) -> bool:
         """Whether each count below ``solution``'s (an elastic link's one integer variable, down to its lower bound)
-        has its verdict at ``case`` already: its design of the NLP at the case's limits simulated in ``solution``'s
-        solve, unverified, or solved through its own accuracy loop there (``own_shift.unverified_here``), or refuted by
-        the link's least stress at the case's limits (:meth:`_link_refutes`: no design of the NLP has it). False for
-        any other problem, or a solution not ``optimal``."""
+        is settled at ``case`` already: its design of the NLP at the case's limits simulated in ``solution``'s solve,
+        unverified (AT_THE_CASE: evidence ``solve``'s path goes no further with, not a proof), or solved through its
+        own accuracy loop there (``own_shift.unverified_here``), or refuted by the link's least stress at the case's
+        limits (:meth:`_link_refutes`: no design of the NLP has it). False for any other problem, or a solution not
+        ``optimal``."""
         names = self.integer_names
         if self.start_up is None or not self.start_up.s.elastic or len(names) != 1 or solution.status != "optimal":
             return False
