@@ -15,12 +15,12 @@ import numpy as np
 import pytest
 
 from clutchopt.cases import load_case
-from clutchopt.optimise.problem import case_problem
+from clutchopt.optimise.problem import Problem, case_problem, problems_set_aside
 from clutchopt.optimise.sampled_start import SAMPLED
 from clutchopt.optimise.start_up_region import REGION, TESTS, beyond, in_a_region, region_verdict, region_tested
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import Vary
-from clutchopt.optimise.verdict import GIVEN, LEAST, retried
+from clutchopt.optimise.verdict import LEAST, NEXT, retried
 from tests.conftest import CASES
 
 REASON = ("lining_pressure", "temperature_rise")
@@ -58,18 +58,33 @@ def test_a_point_beyond_one_without_a_design_is_decided_by_its_first_solves_leas
                                       "cannot satisfy lining_pressure")
 
 
-def test_a_point_so_decided_before_a_later_design_gets_solves_verdict_after_all():
-    """Listed 14.78, 15.28, 15.79, then 14.27 kg m^2 (a design): the points without one are retried from the later
-    design, and the one its neighbour's reason decided, having no ``solve`` of it alone behind it, gets that verdict."""
-    _, inertias = _lever()
+def test_a_point_so_decided_before_a_later_design_gets_solves_verdict_after_all(monkeypatch):
+    """Listed 14.78, 15.28, 15.79, then 14.27 kg m^2 (a design): the one its neighbour's reason decided, having no
+    ``solve`` of it alone behind it, gets that verdict first, then (without a design) a retry from the later design,
+    named among its starts as at the point before it. Where that retry reaches a design (a spy hands one back), the
+    record says what ``solve`` alone ended with (review h18: it had kept the retry's design with no ``solve`` alone
+    behind it, though a sweep's own starts come after ``solve``'s)."""
+    case, inertias = _lever()
     solutions = _swept([*inertias[15:18], inertias[14]])
     assert [s["status"] for s in solutions] == ["optimal", "not_found", "not_found", "optimal"]
     retried = solutions[2]
-    assert tuple(retried["starts"]) == (GIVEN, *SOLVE_STARTS)  # (the later design's and solve's alone; no start from
-    # the neighbour's least relaxation, which its first solve's own reason made needless: named where it was solved)
+    assert tuple(retried["starts"]) == (*SOLVE_STARTS, NEXT)  # (solve's alone, then the later design's; no start
+    # from the neighbour's least relaxation, which its first solve's own reason made needless: named where solved)
+    assert tuple(solutions[1]["starts"])[-1] == NEXT
     assert "were not tried" not in retried["diagnosis"]
-    assert retried["solver"]["solves"] >= 3  # its two solves and the later design's retry at least (solve's own
-    # starts too, but for a retry this process already saw fail there: failed_starts)
+    assert retried["solver"]["solves"] >= 3  # its first solve, solve's alone and the later design's retry at least
+    # (solve's own starts fewer where this process already saw one fail there: failed_starts)
+    solve = Problem.solve
+
+    def spied(self, at, *args, start=None, **kwargs):  # a design from the later point's start at 15.79 kg m^2
+        solved = solve(self, at, *args, start=start, **kwargs)
+        reached = start is not None and at.values["driven_inertia"] == inertias[17]
+        return replace(solved, status="optimal") if reached else solved
+
+    monkeypatch.setattr(Problem, "solve", spied)
+    with problems_set_aside():
+        found = _swept([*inertias[15:18], inertias[14]])[2]
+    assert found["status"] == "optimal" and found["solve_alone"] == {"status": "not_found", "objective": None}
 
 
 def test_a_resumed_run_decides_no_point_by_a_pending_point_that_is_not_the_one_before(tmp_path):

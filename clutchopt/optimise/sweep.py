@@ -48,7 +48,7 @@ from clutchopt.optimise.start_up_sweep import solved_along
 from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_name, grid_points, grid_positions,
                                            parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
 from clutchopt.optimise.table import joined_tables, record_table
-from clutchopt.optimise.verdict import NEIGHBOUR, one_more_start, retried
+from clutchopt.optimise.verdict import NEIGHBOUR, NEXT, one_more_start, retried
 from clutchopt.optimise.verify import DESIGN_STATUSES
 from clutchopt.start_up.mesh import settled
 from clutchopt.solver_tolerance import SOLVER_TOL
@@ -181,14 +181,15 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
             for k, (w, waited_case, waited) in enumerate(waiting):  # between feasible neighbours: from this one too
                 if waited.status == "infeasible":  # proven: no design to find
                     continue
-                region = in_a_region(waited)  # (a start-up point its neighbour's reason decided: no solve alone
-                # behind it, which the retry makes where it finds no design, and whose verdict it keeps)
-                alone = waited if problem.start_up is not None and not region else None  # (a start-up's: its solve
-                # alone)
+                if in_a_region(waited):  # (a start-up point its neighbour's reason decided: no solve alone behind it)
+                    waited = alone_after_all(problem, waited_case, waited)
+                    if waited.status in DESIGN_STATUSES:
+                        waiting[k] = (w, waited_case, waited)
+                        continue
+                alone = waited if problem.start_up is not None else None  # (a start-up's: its solve alone)
                 retry = problem.solve(waited_case, start=solution.design, alone=alone)  # (``alone`` counted here)
-                kept = beside(retry, alone) if retry.status in DESIGN_STATUSES or region else waited
-                if region and kept.status not in DESIGN_STATUSES:  # (the test's second start named too, where solved)
-                    kept = replace(kept, starts=kept.starts + tuple(s for s in waited.starts if s not in kept.starts))
+                kept = beside(retry, alone) if retry.status in DESIGN_STATUSES else replace(
+                    waited, starts=waited.starts + (NEXT,))  # (its start named among those tried)
                 waiting[k] = (w, waited_case, replace(kept, solver=kept.solver.summed([waited.solver, retry.solver])))
             yield from (_one(points, w, names, waited) for w, _, waited in waiting)
             waiting = []
@@ -240,6 +241,17 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
         solution = one_more_start(solution, made, label) if solution.status not in DESIGN_STATUSES else replace(
             solution, solver=solution.solver.summed([solution.solver, made.solver]))
     return beside(solution, alone)
+
+
+def alone_after_all(problem, case: Case, decided: Solution) -> Solution:
+    """A start-up point the test against its neighbour's reason ``decided`` (``start_up_region``), once a later point
+    of the run has a design: ``solve`` of it alone, whose verdict comes first, as at any point (a design the later
+    point's start reaches is the sweep's, kept only where ``solve`` has none, and said so: :func:`beside`); without
+    one, the test's starts named among its starts; every solve counted."""
+    alone = problem.solve(case)
+    starts = alone.starts + tuple(s for s in decided.starts if s not in alone.starts) \
+        if alone.status not in DESIGN_STATUSES else alone.starts
+    return replace(alone, starts=starts, solver=alone.solver.summed([decided.solver, alone.solver]))
 
 
 def beside(solution: Solution, alone: Solution | None) -> Solution:

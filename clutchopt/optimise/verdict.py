@@ -36,6 +36,8 @@ from clutchopt.optimise.verify import (DESIGN_STATUSES, ConstraintCheck, check_d
 
 
 NEIGHBOUR = "the neighbouring point's design"  # a start a sweep adds: the last feasible point's design
+NEXT = "the next feasible point's design"  # a start a sweep adds: a point without a design retried from the design of
+# the next point that has one (``sweep.solve_points``)
 GIVEN = "the start given"  # a solve's first start where its caller gives one (a design or a warm solution)
 SIZING = "the papers' sizing"  # a start-up solve's own first start
 CASE = "the case's own start"  # a static solve's own first start
