@@ -273,9 +273,15 @@ def solution_text(solution, formulation: Formulation, title: str = "") -> str:
 
 def _not_feasible(entry: dict) -> str:
     """What an integer search entry without a design says: ``not solved (why)`` for one left unsolved (UNRANKED),
-    else infeasible (a solve's verdict, or a constraint of the fixed variables alone broken)."""
+    ``unverified (objective)`` for a design whose simulated start missed a limit (a start-up's own loop, modifier
+    adaptation, or its design at the case's limits: not shown infeasible), else infeasible (a solve's verdict, or a
+    constraint of the fixed variables alone broken)."""
     status = entry.get("status", "")
-    return f"not solved ({status[len(UNRANKED):]})" if status.startswith(UNRANKED) else "infeasible"
+    if status.startswith(UNRANKED):
+        return f"not solved ({status[len(UNRANKED):]})"
+    if status.endswith(": unverified"):
+        return f"unverified ({entry['objective']:.6g})"
+    return "infeasible"
 
 
 def html_table(rows: list[dict], numeric: tuple[str, ...] = ("value", "limit", "margin", "elasticity"),

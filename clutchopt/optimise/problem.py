@@ -304,9 +304,10 @@ class Problem:
             kept, _ = self._own_loop(case, solution, kept, foreign, below[0], runs)
         for combo, first in foreign.first.items():  # a count one up solved first whose own loop never ran (its solve
             kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, first, FIRST_UP)]  # counted)
+        own = foreign.choice(kept.design) if kept.status in DESIGN_STATUSES else None  # (its design is the record)
         kept.integer_search = kept.integer_search + [  # a count whose start at the case's limits missed one, said
             own_entry(foreign.names, combo, seen, AT_THE_CASE) for combo, seen in foreign.unverified_at_the_case.items()
-            if combo not in foreign.first]  # (a count one up solved first: its own entry says so)
+            if combo not in foreign.first and combo != own]  # (a count one up solved first: its own entry says so)
         foreign.first.clear()
         kept.unverified_at_the_case = frozenset(foreign.unverified_at_the_case)
         if len(runs) > 1:

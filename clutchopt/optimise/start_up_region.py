@@ -21,9 +21,9 @@ starts were not tried, nor the sweep's. Else (a design, a feasible point, anothe
 gets ``solve``'s verdict from that first solve on, and the sweep's own starts, the tests' solves counted and named
 among them (a design one found kept where the verdict has none; ``solve``'s second start, where solved, is solved by
 ``solve`` again). A point so decided before a later design in the run is given ``solve``'s verdict after all and,
-where that has no design, retried from the later design (``clutchopt.optimise.sweep.alone_after_all``, as any point
-without a design: ``solve``'s verdict first, the sweep's starts only where it has none): only a run that ends without
-a design keeps such verdicts. A resumed run's first point, and a pool chunk's, has no point before: it gets
+where that has no design, retried from the later design (``clutchopt.optimise.sweep.alone_after_all``: ``solve``'s
+verdict first, that start only where it has none): only a run that ends without a design keeps such verdicts (a pool
+chunk's points are a run of their own). A resumed run's first point, and a pool chunk's, has no point before: it gets
 the full verdict. This is a heuristic where it decides: a design ``solve``'s other starts (the interval search's, the
 sampled one) reach at such a point is not looked for.
 """

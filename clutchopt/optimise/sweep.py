@@ -183,7 +183,7 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
                     continue
                 if in_a_region(waited):  # (a start-up point its neighbour's reason decided: no solve alone behind it)
                     waited = alone_after_all(problem, waited_case, waited)
-                    if waited.status in DESIGN_STATUSES:
+                    if waited.status in DESIGN_STATUSES or waited.status == "infeasible":  # (proven: none to find)
                         waiting[k] = (w, waited_case, waited)
                         continue
                 alone = waited if problem.start_up is not None else None  # (a start-up's: its solve alone)
@@ -245,9 +245,10 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
 
 def alone_after_all(problem, case: Case, decided: Solution) -> Solution:
     """A start-up point the test against its neighbour's reason ``decided`` (``start_up_region``), once a later point
-    of the run has a design: ``solve`` of it alone, whose verdict comes first, as at any point (a design the later
-    point's start reaches is the sweep's, kept only where ``solve`` has none, and said so: :func:`beside`); without
-    one, the test's starts named among its starts; every solve counted."""
+    of the run has a design: ``solve`` of it alone, whose verdict comes first (the later point's start is tried only
+    where it has no design, kept and said so where it reaches one: :func:`beside`; the neighbour's design and the
+    continuation, which a point without a design solved at its turn tries, are not); without a design, the test's
+    starts named among its starts; every solve counted (the test's first solve made again: not handed on)."""
     alone = problem.solve(case)
     starts = alone.starts + tuple(s for s in decided.starts if s not in alone.starts) \
         if alone.status not in DESIGN_STATUSES else alone.starts
