@@ -40,7 +40,7 @@ from clutchopt.optimise.verify import DESIGN_STATUSES
 
 REGION = "the neighbouring point's least relaxation"  # the start a point tested against its neighbour's reason adds
 TESTS = (SIZING, REGION, LEAST)  # a point's starts in the order its test tries them (:func:`region_tested`); a point
-# it decides names the first one, two or three of them
+# it decides names the first and those of the others it solved (a start whose simulation failed is not named)
 
 
 def beyond(values: dict[str, float], last_feasible: dict[str, float] | None, without: Solution,
