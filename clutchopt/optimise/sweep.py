@@ -238,8 +238,8 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
         solution = counted(followed, solution) if followed is not None and followed.status in DESIGN_STATUSES \
             else counted(solution, followed)
     for label, made in tested:  # (each solve counted and named; a design one found kept where the verdict has none)
-        solution = one_more_start(solution, made, label) if solution.status not in DESIGN_STATUSES else replace(
-            solution, solver=solution.solver.summed([solution.solver, made.solver]))
+        solution = one_more_start(solution, made, label) if solution.status not in DESIGN_STATUSES else counted(
+            solution, made)
     return beside(solution, alone)
 
 
