@@ -68,20 +68,32 @@ def test_along_a_run_each_point_tries_every_start_solve_of_it_alone_tries():
                                        "cannot satisfy lining_pressure")
 
 
-def test_an_elastic_problem_that_does_not_converge_says_so_and_names_no_reason():
-    """ball_motor_start at 509 kg m^2 (no design): the elastic problem from the least relaxation's design ran 474
-    iterations (4-10 s) to find no point meeting the start-up's dynamics; every elastic problem of the four start-up
-    sweeps that converged did so within 88, so a start-up's stops at 200 (diagnosis.ELASTIC_ITERATIONS) and the
-    verdict says where it stopped; no feasible point is claimed from it, and it gives no reason for a run to share."""
+def test_an_elastic_problem_that_does_not_converge_says_so_and_names_no_reason(monkeypatch):
+    """ball_motor_start at 509 kg m^2 (no design): the elastic problem from the least relaxation's design, its slacks
+    started at 1 and its barrier at 0.1, ran 474 iterations (4-10 s) to find no point meeting the start-up's dynamics;
+    so a start-up's stops at 200 (diagnosis.ELASTIC_ITERATIONS) and the verdict says where it stopped; no feasible
+    point is claimed from it, and it gives no reason for a run to share. Started next to the failed run
+    (diagnosis.SLACK_MARGIN, ELASTIC_MU_INIT) it converges there (below); stopped here at 5 iterations."""
+    monkeypatch.setattr(diagnosis, "ELASTIC_ITERATIONS", 5)
+    case = load_case(CASES / "ball_motor_start.toml")
+    with problems_set_aside():  # (its own problem: its elastic solver built with the limit)
+        problem = case_problem(case)
+    solution = problem.solve(case.with_values(driven_inertia=375.0 * (0.6 + 0.8 * 18 / 19)))
+    assert solution.status == "not_found"
+    stopped = re.search(r"\(where the elastic problem stopped, not converged: (\w+) after (\d+) iterations\)",
+                        solution.diagnosis)
+    assert stopped and stopped[1] == "Maximum_Iterations_Exceeded" and stopped[2] == "5"
+    assert solution.diagnosed.violated == ()
+
+
+def test_an_elastic_problem_started_next_to_the_failed_run_converges():
+    """The same point as above: each of its elastic problems converges (111 and 13 iterations), and the verdict names
+    the least relaxation they found (contact_stress, 3.8 % over), not where one stopped."""
     case = load_case(CASES / "ball_motor_start.toml")
     solution = case_problem(case).solve(case.with_values(driven_inertia=375.0 * (0.6 + 0.8 * 18 / 19)))
     assert solution.status == "not_found"
-    # (at its limit on one CPU; Infeasible_Problem_Detected after 134 on another: the last bits of IPOPT's iterates
-    # differ between machines, and either way the problem is stopped by 200 and named as not converged)
-    stopped = re.search(r"\(where the elastic problem stopped, not converged: (\w+) after (\d+) iterations\)",
-                        solution.diagnosis)
-    assert stopped and stopped[1] != "Solve_Succeeded" and int(stopped[2]) <= diagnosis.ELASTIC_ITERATIONS == 200
-    assert solution.diagnosed.violated == ()
+    assert "not converged" not in solution.diagnosis
+    assert "contact_stress" in solution.diagnosed.violated and solution.diagnosed.least < 0.2
 
 
 def test_a_continuation_lost_at_a_step_is_not_started_from_the_same_design_beyond_it(monkeypatch):

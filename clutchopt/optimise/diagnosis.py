@@ -10,16 +10,22 @@ import casadi as ca
 import numpy as np
 
 from clutchopt.optimise.posed import Posed
-from clutchopt.optimise.solution import Diagnosis
+from clutchopt.optimise.solution import START_UP_MU_INIT, Diagnosis
 from clutchopt.optimise.verify import FEASIBILITY_TOL
 
 ELASTIC_ITERATIONS = 200  # a start-up's elastic problem: over the four start-up sweeps over driven_inertia (0.6x-1.4x)
-# every one that converged did so within 88 iterations; those that did not ran on to the start-up's 500 or found no
-# point meeting the dynamics (Infeasible_Problem_Detected) after 88-474 (ball_motor_start at 509 kg m^2: 474, 4-10 s)
+# every one converges within 19 iterations (ball_motor_start at 509 kg m^2 alone: 111); started as it was before
+# SLACK_MARGIN, those that did not converge ran on to the start-up's 500 or found no point meeting the dynamics
+# (Infeasible_Problem_Detected) after 88-474 (the same point: 474, 4-10 s)
+SLACK_MARGIN = 0.1  # each slack starts this far (relative: the rows are normalised) above its row's violation at the
+# failed run's point, where the elastic problem starts (docs/start_up.md, "The elastic problem's start")
+ELASTIC_MU_INIT = START_UP_MU_INIT  # a start-up's elastic problem: its barrier starts where its cold solve's does
 
 
 def _elastic(posed: Posed) -> ca.Function:
-    """The elastic problem's IPOPT solver: slacks on the inequalities (the start-up's dynamics stay equalities)."""
+    """The elastic problem's IPOPT solver: slacks on the inequalities (the start-up's dynamics stay equalities); a
+    start-up's barrier starts at ELASTIC_MU_INIT: the elastic problem starts at the failed run's point, its states on
+    a start, its slacks just above their rows' violations (:func:`diagnose`)."""
     def build(_):
         n_g, nlp = posed.n_ineq, posed.nlp
         slack = ca.SX.sym("slack", n_g)
@@ -29,6 +35,7 @@ def _elastic(posed: Posed) -> ca.Function:
         options = posed.solver_options.ipopt()
         if posed.start_up is not None:
             options["ipopt.max_iter"] = min(options["ipopt.max_iter"], ELASTIC_ITERATIONS)
+            options["ipopt.mu_init"] = ELASTIC_MU_INIT
         return ca.nlpsol("elastic", "ipopt", elastic, options)
 
     return posed.built("elastic", None, build)
@@ -55,7 +62,8 @@ def whatever_the_design(posed: Posed, p_vector, x0) -> Diagnosis | None:
 
 
 def diagnose(posed: Posed, p_vector, lbx, ubx, x0, scale) -> Diagnosis:
-    """Elastic relaxation: min sum(s) s.t. g(x) <= s, s >= 0 on the inequalities, from ``x0``. Positive slacks name
+    """Elastic relaxation: min sum(s) s.t. g(x) <= s, s >= 0 on the inequalities, from ``x0``, each slack from
+    SLACK_MARGIN above its row's violation there (every inequality met from the first iterate). Positive slacks name
     the conflict; the least relaxation is a local minimum, found from this start (no proof). An elastic problem that
     does not converge (a start-up's within ELASTIC_ITERATIONS) says so: what it names is where it stopped, no
     feasible point is claimed from it, and it names no reason (``violated``) for a run of points to share."""
@@ -65,7 +73,8 @@ def diagnose(posed: Posed, p_vector, lbx, ubx, x0, scale) -> Diagnosis:
     elastic = _elastic(posed)
     started = time.perf_counter()
     slack_bounds = np.zeros(n_g), np.full(n_g, np.inf)
-    result = elastic(x0=np.concatenate([x0, np.ones(n_g)]), p=p_vector, lbg=posed.lbg, ubg=0.0,
+    violation = np.maximum(np.array(posed.constraint_values(x0, p_vector)).ravel()[:n_g], 0.0)
+    result = elastic(x0=np.concatenate([x0, violation + SLACK_MARGIN]), p=p_vector, lbg=posed.lbg, ubg=0.0,
                      lbx=np.concatenate([lbx, slack_bounds[0]]), ubx=np.concatenate([ubx, slack_bounds[1]]))
     seconds = time.perf_counter() - started
     stats = elastic.stats()
