@@ -10,6 +10,8 @@ import pytest
 
 from clutchopt.bench import SECTIONS, BenchConfig, Section, bench_json, bench_text, run_bench
 from clutchopt.bench.reference import bench_cases, closed_form, reference_mode
+from clutchopt.bench.throughput import PAIRED, PAIRED_RUNS
+from clutchopt.bench.timing import interleaved_median_runs
 from clutchopt.cli import main
 from clutchopt.formulations import get_coupling
 from clutchopt.output import to_json
@@ -77,7 +79,8 @@ def test_throughput(report):
         assert set(throughput) == {"batched", "sweep, tabulated", "sweep, tabulated and stored", "point by point",
                                    "point by point, cold starts", "batched, process pool"}
         assert {row["points"] for row in throughput.values()} == {50}
-        assert {row["runs"] for row in throughput.values()} == {3}  # the median of three runs each
+        assert {how: row["runs"] for how, row in throughput.items()} == {  # the median of three runs each, the two
+            **dict.fromkeys(throughput, 3), **dict.fromkeys(PAIRED, 3 * PAIRED_RUNS)}  # sweeps' timed alternately
         assert len({row["optimal"] for row in throughput.values()}) == 1 and throughput["batched"]["optimal"] > 0
         for how in ("batched", "sweep, tabulated", "sweep, tabulated and stored", "point by point"):
             row = throughput[how]
@@ -247,3 +250,15 @@ def test_start_up_solve_rows_first_solves_build_their_problems(monkeypatch, tmp_
     assert [count == 0 for count in problems_seen] == [True, False, False, False, False, True, False, False]
     assert (problem.case_problem(case), problem.case_problem(static), problem.case_problem(case).static_problem) \
         == built  # those built before given back (the re-solves solved with them), those the first solves built dropped
+
+
+def test_runs_compared_by_their_ratio_are_timed_alternately():
+    calls = []
+
+    def run(name):
+        calls.append(name)
+        return name
+
+    medians = interleaved_median_runs([lambda: run("tabulated"), lambda: run("stored")], 3)
+    assert calls == ["tabulated", "stored"] * 3
+    assert [result for result, _ in medians] == ["tabulated", "stored"] and all(s >= 0 for _, s in medians)

@@ -10,7 +10,9 @@ points checked, solved in batches, and the table built, the batched points' rows
 batched point's compact: ``clutchopt sweep``'s default). The batched row stops at the solve (a status per point), point
 by point at a Solution per point (which ``Problem.solve`` builds).
 Pool: batched, the sweep cut into contiguous chunks, one per worker process, each worker building its own problem
-(counted). Each row is the run of median wall time among ``sweep_repeats`` runs. Per row: solver calls per point
+(counted). Each row is the run of median wall time among ``sweep_repeats`` runs; the two sweep rows' among
+``PAIRED_RUNS * sweep_repeats`` runs each, timed alternately (tabulated, stored, tabulated, ...: their ratio, the
+store's cost, is not the machine's drift between two blocks of runs). Per row: solver calls per point
 (IPOPT and SQP, integer neighbours and the chained attempts a failed batch wastes included), the shares of the wall
 time inside the solver calls (an infeasibility diagnosis's IPOPT call included), in the batches' compiled checks
 (mapped CasADi evaluations of the KKT verdicts with the integer test, and of the exclusion tables) and in Python
@@ -28,11 +30,12 @@ from __future__ import annotations
 import os
 import tempfile
 from concurrent.futures import ProcessPoolExecutor
+from functools import partial
 
 import numpy as np
 
 from clutchopt.bench.reference import bench_cases, reference_mode
-from clutchopt.bench.timing import median_run
+from clutchopt.bench.timing import interleaved_median_runs, median_run
 from clutchopt.cases import Case
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.batch import BatchSweep
@@ -100,6 +103,8 @@ def _merged(tallies: list[dict]) -> dict:
 
 STORE = "bench-runs.sqlite"  # in a throw-away folder: the stored sweeps' run store
 ONE_POINT_RUNS = 3  # one-point runs per timed sweep run: they measure the Python a sweep spends whatever its size
+PAIRED_RUNS = 3  # the two sweep rows' runs per sweep run, timed alternately (interleaved_median_runs)
+PAIRED = ("sweep, tabulated", "sweep, tabulated and stored")  # the rows timed so
 
 HOWS = (("batched", batched_sweep, {}), ("sweep, tabulated", tabulated_sweep, {}),
         ("sweep, tabulated and stored", tabulated_sweep, {"store_path": STORE}),
@@ -118,10 +123,15 @@ def _throughput_rows(config, store: str) -> list[dict]:
         name = sweep_quantity(case)
         values = case.values[name] * np.geomspace(0.5, 2.0, config.sweep_points)
         tabulated_sweep(case, name, values, store)  # warm-up: the problem, its solvers, chained and mapped functions
-        for how, run, keywords in HOWS:
-            keywords = {key: store if value is STORE else value for key, value in keywords.items()}
-            tally, seconds = median_run(lambda: run(case, name, values, **keywords), config.sweep_repeats)
-            row = _row(case, name, how, 1, tally, seconds, config.sweep_repeats)
+        hows = [(how, run, {key: store if value is STORE else value for key, value in keywords.items()})
+                for how, run, keywords in HOWS]
+        pairs = [(how, partial(run, case, name, values, **keywords)) for how, run, keywords in hows if how in PAIRED]
+        paired = dict(zip([how for how, _ in pairs], interleaved_median_runs([run for _, run in pairs],
+                                                                             PAIRED_RUNS * config.sweep_repeats)))
+        for how, run, keywords in hows:
+            repeats = (PAIRED_RUNS if how in PAIRED else 1) * config.sweep_repeats
+            tally, seconds = paired.get(how) or median_run(lambda: run(case, name, values, **keywords), repeats)
+            row = _row(case, name, how, 1, tally, seconds, repeats)
             one, one_s = median_run(lambda: run(case, name, values[:1], **keywords),
                                  ONE_POINT_RUNS * config.sweep_repeats)
             row["python_fixed_s"] = _python_s(one, one_s)

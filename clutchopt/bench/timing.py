@@ -16,8 +16,22 @@ def time_once(run: Callable[[], object]) -> tuple[float, object]:
 
 def median_run(run: Callable[[], object], repeats: int) -> tuple[object, float]:
     """``run()`` timed ``repeats`` times: the result and wall time of the run of median wall time."""
-    timed = sorted((time_once(run) for _ in range(repeats)), key=lambda pair: pair[0])
-    seconds, result = timed[len(timed) // 2]
+    return _median([time_once(run) for _ in range(repeats)])
+
+
+def interleaved_median_runs(runs: list[Callable[[], object]], repeats: int) -> list[tuple[object, float]]:
+    """Each of ``runs`` timed ``repeats`` times, in turn (the first, the second, ..., the first again): for each, what
+    :func:`median_run` gives. Runs compared by their ratio are timed alternately, so that a drift of the machine (its
+    clock, another load) falls on each alike, not on one of them."""
+    timed: list[list[tuple[float, object]]] = [[] for _ in runs]
+    for _ in range(repeats):
+        for times, run in zip(timed, runs):
+            times.append(time_once(run))
+    return [_median(times) for times in timed]
+
+
+def _median(timed: list[tuple[float, object]]) -> tuple[object, float]:
+    seconds, result = sorted(timed, key=lambda pair: pair[0])[len(timed) // 2]
     return result, seconds
 
 
