@@ -87,8 +87,8 @@ def test_an_elastic_problem_that_does_not_converge_says_so_and_names_no_reason(m
 
 
 def test_an_elastic_problem_started_next_to_the_failed_run_converges():
-    """The same point as above: each of its elastic problems converges (111 and 13 iterations), and the verdict names
-    the least relaxation they found (contact_stress, 3.8 % over), not where one stopped."""
+    """The same point as above: each of its elastic problems converges, and the verdict names the least relaxation
+    they found (contact_stress, 3.8 % over), not where one stopped."""
     case = load_case(CASES / "ball_motor_start.toml")
     solution = case_problem(case).solve(case.with_values(driven_inertia=375.0 * (0.6 + 0.8 * 18 / 19)))
     assert solution.status == "not_found"

@@ -50,4 +50,4 @@ def test_the_elastic_problem_ends_at_the_least_relaxation_next_to_the_failed_run
     assert solution.diagnosed.least == pytest.approx(1.34e-3, rel=0.05)  # (was 1.116: start_time 41 % over, ...)
     assert solution.diagnosed.violated == ("contact_stress",)
     assert solution.diagnosis.startswith("no feasible design found (not proven infeasible): the least relaxation found "
-                                         "cannot satisfy contact_stress (over its limit by 0.00134 relative)")
+                                         "cannot satisfy contact_stress (over its limit by ")

@@ -14,11 +14,12 @@ from clutchopt.optimise.solution import START_UP_MU_INIT, Diagnosis
 from clutchopt.optimise.verify import FEASIBILITY_TOL
 
 ELASTIC_ITERATIONS = 200  # a start-up's elastic problem: over the four start-up sweeps over driven_inertia (0.6x-1.4x)
-# every one converges within 19 iterations (ball_motor_start at 509 kg m^2 alone: 111); started as it was before
-# SLACK_MARGIN, those that did not converge ran on to the start-up's 500 or found no point meeting the dynamics
-# (Infeasible_Problem_Detected) after 88-474 (the same point: 474, 4-10 s)
+# every one converges within 19 iterations; started as it was before SLACK_MARGIN, those that did not converge ran on
+# to the start-up's 500 or found no point meeting the dynamics (Infeasible_Problem_Detected) after 88-474
+# (ball_motor_start at 509 kg m^2: 474, 4-10 s)
 SLACK_MARGIN = 0.1  # each slack starts this far (relative: the rows are normalised) above its row's violation at the
-# failed run's point, where the elastic problem starts (docs/start_up.md, "The elastic problem's start")
+# failed run's point, where the elastic problem starts, and at most at 1, where every slack had started (a row
+# violated by more there, or not a number at that point: docs/start_up.md, "The elastic problem's start")
 ELASTIC_MU_INIT = START_UP_MU_INIT  # a start-up's elastic problem: its barrier starts where its cold solve's does
 
 
@@ -61,10 +62,19 @@ def whatever_the_design(posed: Posed, p_vector, x0) -> Diagnosis | None:
            f"relative)" for k, f, gap in conflicts]), 0.0, proven=True)
 
 
+def _slacks(posed: Posed, p_vector, lbx, ubx, x0) -> np.ndarray:
+    """The elastic problem's first slacks: each row's violation at ``x0`` (within its bounds) plus SLACK_MARGIN, at most
+    1; 1 where the row is not a number there (the wedge's engagement speeds at corners of its geometry box)."""
+    with np.errstate(invalid="ignore"):
+        g = np.array(posed.constraint_values(np.clip(x0, lbx, ubx), p_vector)).ravel()[: posed.n_ineq]
+        return np.where(np.isfinite(g), np.minimum(np.maximum(g, 0.0) + SLACK_MARGIN, 1.0), 1.0)
+
+
 def diagnose(posed: Posed, p_vector, lbx, ubx, x0, scale) -> Diagnosis:
     """Elastic relaxation: min sum(s) s.t. g(x) <= s, s >= 0 on the inequalities, from ``x0``, each slack from
-    SLACK_MARGIN above its row's violation there (every inequality met from the first iterate). Positive slacks name
-    the conflict; the least relaxation is a local minimum, found from this start (no proof). An elastic problem that
+    SLACK_MARGIN above its row's violation there (x0 within its bounds, as IPOPT starts), at most 1 (:func:`_slacks`).
+    Positive slacks name the conflict; the least relaxation is a local minimum, found from this start (no proof).
+    An elastic problem that
     does not converge (a start-up's within ELASTIC_ITERATIONS) says so: what it names is where it stopped, no
     feasible point is claimed from it, and it names no reason (``violated``) for a run of points to share."""
     n_g, row_names, row_senses = posed.n_ineq, posed.row_names, posed.row_senses
@@ -73,9 +83,8 @@ def diagnose(posed: Posed, p_vector, lbx, ubx, x0, scale) -> Diagnosis:
     elastic = _elastic(posed)
     started = time.perf_counter()
     slack_bounds = np.zeros(n_g), np.full(n_g, np.inf)
-    violation = np.maximum(np.array(posed.constraint_values(x0, p_vector)).ravel()[:n_g], 0.0)
-    result = elastic(x0=np.concatenate([x0, violation + SLACK_MARGIN]), p=p_vector, lbg=posed.lbg, ubg=0.0,
-                     lbx=np.concatenate([lbx, slack_bounds[0]]), ubx=np.concatenate([ubx, slack_bounds[1]]))
+    result = elastic(x0=np.concatenate([x0, _slacks(posed, p_vector, lbx, ubx, x0)]), p=p_vector, lbg=posed.lbg,
+                     ubg=0.0, lbx=np.concatenate([lbx, slack_bounds[0]]), ubx=np.concatenate([ubx, slack_bounds[1]]))
     seconds = time.perf_counter() - started
     stats = elastic.stats()
     stopped = "" if stats["success"] else (f" (where the elastic problem stopped, not converged: "
