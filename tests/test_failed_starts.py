@@ -76,9 +76,8 @@ def test_an_elastic_problem_that_does_not_converge_says_so_and_names_no_reason(m
     (diagnosis.SLACK_MARGIN, ELASTIC_MU_INIT) it converges there (below); stopped here at 5 iterations."""
     monkeypatch.setattr(diagnosis, "ELASTIC_ITERATIONS", 5)
     case = load_case(CASES / "ball_motor_start.toml")
-    with problems_set_aside():  # (its own problem: its elastic solver built with the limit)
-        problem = case_problem(case)
-    solution = problem.solve(case.with_values(driven_inertia=375.0 * (0.6 + 0.8 * 18 / 19)))
+    with problems_set_aside():  # (its own problems, every one it builds: their elastic solvers built with the limit,
+        solution = case_problem(case).solve(case.with_values(driven_inertia=375.0 * (0.6 + 0.8 * 18 / 19)))  # dropped)
     assert solution.status == "not_found"
     stopped = re.search(r"\(where the elastic problem stopped, not converged: (\w+) after (\d+) iterations\)",
                         solution.diagnosis)

@@ -29,12 +29,11 @@ def test_a_feasible_first_mesh_is_not_taken_for_a_feasible_design(monkeypatch):
     case = load_case(CASES / "ball_motor_start.toml").with_values(driven_inertia=405.0)
     monkeypatch.setattr(diagnosis, "SLACK_MARGIN", 1.0)  # (the elastic problem started as it was: slacks 1 above
     monkeypatch.setattr(diagnosis, "ELASTIC_MU_INIT", 0.1)  # their violations, IPOPT's own first barrier)
-    with problems_set_aside():  # (its own problem: its elastic solver built with these)
-        problem = case_problem(case)
     found = []
     monkeypatch.setattr("clutchopt.optimise.problem.diagnose", lambda *args: found.append(diagnosis.diagnose(*args))
                         or found[-1])
-    solution = problem.solve(case)
+    with problems_set_aside():  # (its own problems, every one it builds: their elastic solvers built with these,
+        solution = case_problem(case).solve(case)  # dropped after it)
     assert found[0].status == "solver_failed" and found[0].least == 0.0  # (the first mesh's feasible point)
     assert solution.status == "not_found", (solution.status, solution.diagnosis)
     assert solution.diagnosis.startswith("no feasible design found (not proven infeasible)")
