@@ -74,9 +74,9 @@ def diagnose(posed: Posed, p_vector, lbx, ubx, x0, scale) -> Diagnosis:
     """Elastic relaxation: min sum(s) s.t. g(x) <= s, s >= 0 on the inequalities, from ``x0``, each slack from
     SLACK_MARGIN above its row's violation there (x0 within its bounds, as IPOPT starts), at most 1 (:func:`_slacks`).
     Positive slacks name the conflict; the least relaxation is a local minimum, found from this start (no proof).
-    An elastic problem that
-    does not converge (a start-up's within ELASTIC_ITERATIONS) says so: what it names is where it stopped, no
-    feasible point is claimed from it, and it names no reason (``violated``) for a run of points to share."""
+    An elastic problem that does not converge (a start-up's within ELASTIC_ITERATIONS) says so: what it names is where
+    it stopped, no feasible point is claimed from it, and it names no reason (``violated``) for a run of points to
+    share."""
     n_g, row_names, row_senses = posed.n_ineq, posed.row_names, posed.row_senses
     if (given := whatever_the_design(posed, p_vector, x0)) is not None:
         return given
