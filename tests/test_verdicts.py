@@ -196,3 +196,18 @@ def test_one_design_s_figures_at_a_run_of_points_are_each_point_s_own():
     checks = {c.name: c for c in together[3][0]}
     assert not checks["torque"].feasible and checks["torque"].active  # (4x the power: the design carries a quarter)
     assert [c.feasible for c in together[0][0]] == [True] * len(together[0][0])
+
+
+def test_a_start_that_could_not_be_simulated_is_not_named_among_the_starts_tried():
+    """``verdict.one_more_start`` (the neighbour's design, the next feasible point's, the sampled design): a retry
+    whose first simulation failed (None) made no solve and is not named, as the region test leaves such a start out;
+    one solved without a design is named, its calls counted (review h18c: both had been named)."""
+    from dataclasses import replace
+
+    case = load_case(CASES / "wedge_paper.toml")
+    found = case_problem(case).solve(case)
+    without = replace(found, status="not_found", starts=("the papers' sizing",))
+    assert verdict.one_more_start(without, None, verdict.NEIGHBOUR) is without
+    tried = verdict.one_more_start(without, replace(without, starts=()), verdict.NEIGHBOUR)
+    assert tried.starts == ("the papers' sizing", verdict.NEIGHBOUR)
+    assert tried.solver.solves == 2 * found.solver.solves

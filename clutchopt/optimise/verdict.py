@@ -156,12 +156,15 @@ def _confirmed(diagnosed: list[tuple[str, Solution]]) -> str:
 def one_more_start(verdict: Solution, retry: Solution | None, label: str) -> Solution:
     """``verdict`` (a solve without a design) after one more start, ``label`` (``retry``: its solve, None where its
     first simulation failed): the retry where it reaches a design, else ``verdict`` with ``label`` named among the
-    starts tried; the solver calls of both summed."""
-    if retry is not None and retry.status in DESIGN_STATUSES:
+    starts tried where it was solved (a start that could not be simulated is not one tried, as the region test
+    leaves it out: ``start_up_region``); the solver calls of both summed."""
+    if retry is None:
+        return verdict
+    if retry.status in DESIGN_STATUSES:
         retry.solver = retry.solver.summed([verdict.solver, retry.solver])
         return retry
-    return replace(verdict, starts=verdict.starts + (label,),
-                   solver=verdict.solver.summed([verdict.solver] + ([retry.solver] if retry is not None else [])))
+    return replace(verdict, starts=verdict.starts + (label,), solver=verdict.solver.summed([verdict.solver,
+                                                                                             retry.solver]))
 
 
 def _spent(solution: Solution, tried: list[tuple[str, Solution]]) -> Solution:
