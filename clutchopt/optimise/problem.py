@@ -200,8 +200,8 @@ class Problem:
                                         ruled=ruled, cold=cold, sizing=sizing,
                                         unranked_above=UNRANKED_ERROR if first_mesh else math.inf,
                                         kept_first=coarser < math.inf,  # (a loop's doubled problem: from its design)
-                                        failed_warm=None if fixed or first else self._own_first(case, warm, foreign,
-                                                                                                before))
+                                        failed_warm=None if fixed or first is not None
+                                        else self._own_first(case, warm, foreign, before))
         if foreign is not None and foreign.looped:  # (the failed warm count verified at the case's limits)
             return self._worn(case, self._own_loops(case, solution, foreign))
         adapted, last_error, solves = 0, math.inf, [solution.solver, *before]
