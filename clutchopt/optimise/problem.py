@@ -30,8 +30,8 @@ from clutchopt.optimise.integers import (RuledOut, descend, fixed_box, fixing, f
                                          nearest_integers, relaxation_seed, within)
 from clutchopt.optimise.link_bound import MARGIN as LINK_MARGIN, least_stress, refuted
 from clutchopt.optimise.modifier import VARIANT, first_order, modifiers_in, with_modifiers
-from clutchopt.optimise.own_shift import (OWN_LOOP, ForeignShifts, carried_by, climbing, excluded_own_entry,
-                                          lighter_above, own_entry, stepped, unverified_here)
+from clutchopt.optimise.own_shift import (CARRIED, OWN_LOOP, ForeignShifts, carried_by, climbing,
+                                          excluded_own_entry, lighter_above, own_entry, stepped, unverified_here)
 from clutchopt.optimise.polish import polishable, polished
 from clutchopt.optimise.posed import Posed, ScaledData, off_scale
 from clutchopt.optimise.sensitivity import limit_elasticity, sensitivities, with_followers
@@ -162,7 +162,9 @@ class Problem:
         then starts cold from the papers' sizing, and diagnoses). An integer choice an earlier solve of the loop found
         infeasible by far more than that solve's collocation error is not solved again (:class:`RuledOut`). An elastic
         link's integer choice found infeasible only at limits another choice's simulated start moved, lighter than the
-        kept design, is solved through its own loop (:meth:`_own_loops`); ``fixed``: integer bounds of such a loop.
+        kept design, is solved through its own loop (:meth:`_own_loops`); ``fixed``: integer bounds of such a loop. A
+        sweep's point whose warm integers fail at the limits carried from the point before solves their own loop
+        first (:meth:`_own_first`).
         A loop that ends ``unverified`` goes on in modifier adaptation
         (:func:`~clutchopt.optimise.modifier.first_order`: the limits' figures corrected in value and gradient,
         integers kept), its steps ending at a design no lighter than ``lighter_than`` (an own loop's: the kept
@@ -193,11 +195,16 @@ class Problem:
         ruled = None if structure.elastic else RuledOut(infeasible)  # an elastic link's NLP differs from its
         # simulation by the model, not the mesh: no collocation error bounds what the next solve changes
         first_mesh = start is not None and warm is None and mesh is None and ruled is not None
+        before: list[SolverInfo] = []  # a failed warm count's own first solve, not verified (:meth:`_own_first`)
         solution = first or self._solve(case, start, warm, nlp_case=nlp_case, mesh=mesh, diagnosed=diagnosed,
                                         ruled=ruled, cold=cold, sizing=sizing,
                                         unranked_above=UNRANKED_ERROR if first_mesh else math.inf,
-                                        kept_first=coarser < math.inf)  # (a loop's doubled problem: from its design)
-        adapted, last_error, solves = 0, math.inf, [solution.solver]
+                                        kept_first=coarser < math.inf,  # (a loop's doubled problem: from its design)
+                                        failed_warm=None if fixed or first is not None
+                                        else self._own_first(case, warm, foreign, before))
+        if foreign is not None and foreign.looped:  # (the failed warm count verified at the case's limits)
+            return self._worn(case, self._own_loops(case, solution, foreign))
+        adapted, last_error, solves = 0, math.inf, [solution.solver, *before]
         sized_again = False  # the papers' sizing solved again, where a row of the collocation held a design
         for _ in range(MESH_STEPS + BACK_OFF_STEPS):
             if foreign is not None:
@@ -356,20 +363,61 @@ class Problem:
         up = (combo[0] + 1.0,)
         if not self._link_refutes(case, moved, solution, (combo, up)):
             return None
-        own_case = replace(case, bounds={**case.bounds, names[0]: (up[0], up[0])})
-        own = self._solve(case, warm=solution, nlp_case=own_case, diagnosed=False, cold=False)  # (as its own loop's
-        solves.append(own.solver)  # first solve: ``_refined`` with ``fixed``)
+        own = self._first_at_the_case(case, solution, up, foreign, solves)
+        if own is None:
+            return None
+        foreign.own.add(combo)  # (found at its own shift, as the search there finds it)
+        kept = _recorded(solution, names, up, own)
+        kept.solver = kept.solver.summed(solves)
+        return kept
+
+    def _own_first(self, case: Case, warm: Solution | WarmStart | None, foreign: ForeignShifts | None,
+                   solves: list[SolverInfo]) -> Callable | None:
+        """A sweep point's first solve's ``failed_warm`` (:meth:`_solve`) where its elastic link's loop starts at the
+        limits the point before's loop moved (carried, :func:`carried_by`): where the point before's count fails at
+        them, its own loop's first solve (:meth:`_first_at_the_case`, warm from the point before) is made before the
+        relaxation there; where its simulated start verifies it, that is the point's first solve's design, recorded
+        after the failed run, every solve counted, and the own loops go on from it (:meth:`_own_loops`: the counts
+        below); else the search at the carried limits goes on, that solve in ``solves`` (the own loop, where it comes,
+        goes on from it). It assumes, as :meth:`_one_up_first` does, that the count verified at the case's limits is
+        no heavier than what the search at the tighter carried limits keeps further up. cable_motor_start over
+        driven_inertia 0.6x-1.4x at points 10, 12 and 16: 8 cables fail at the limit 7 cables' start moved, the
+        relaxation and 9 cables (4.4178 kg) were solved there before 8's own loop kept 8 (3.9526 kg): 5, 5, 4 solver
+        calls, now 3, 3, 2. None where no limit was carried, or for more than one integer variable."""
+        if foreign is None or CARRIED not in foreign.measured or len(foreign.names) != 1:
+            return None
+
+        def failed_warm(combo: tuple, search: list[dict], runs: list[dict], data: ScaledData) -> Solution | None:
+            own = self._first_at_the_case(case, warm, combo, foreign, solves)
+            if own is None:
+                return None
+            own.integer_search = search + [own_entry(foreign.names, combo, own)]
+            own.bounds = {n: (float(lo), float(hi)) for n, lo, hi in zip(self.posed.names, data.lower, data.upper)}
+            own.solver = own.solver.summed([spent_on(runs, own.solver.name, ""), *solves])  # (with the failed run)
+            return own
+
+        return failed_warm
+
+    def _first_at_the_case(self, case: Case, warm: Solution | WarmStart, combo: tuple, foreign: ForeignShifts,
+                           solves: list[SolverInfo]) -> Solution | None:
+        """The integer choice ``combo``'s own loop's first solve (its integers fixed, at the case's limits, warm from
+        ``warm``: as ``_refined`` with ``fixed`` makes it), made before its own loop, counted in ``solves``: its
+        design where its simulated start verifies it (the own loop ends there: not held, no limit missed), recorded
+        as looped; else None, its design kept for the own loop to go on from (``ForeignShifts.first``; none: its
+        own loop solves it, as ever). A choice solved first already is not solved again (None)."""
+        if combo in foreign.first:
+            return None
+        own_case = replace(case, bounds={**case.bounds, **{n: (v, v) for n, v in zip(foreign.names, combo)}})
+        own = self._solve(case, warm=warm, nlp_case=own_case, diagnosed=False, cold=False)
+        solves.append(own.solver)
         foreign.simulated_at_the_case(own)
         if own.status != "optimal" or self._held(own) or corrected_case(own, own_case, centre=False) is not None:
             if own.status in DESIGN_STATUSES:  # (its own loop goes on from it, counted here; from none, as ever)
-                foreign.first[up] = replace(own, solver=replace(own.solver, iterations=0, time_s=0.0, solves=0))
+                foreign.first[combo] = replace(own, solver=replace(own.solver, iterations=0, time_s=0.0, solves=0))
             return None
         own.limit_shift, own.shift_measured_by = {}, frozenset()  # (its own loop's: at the case's limits)
-        foreign.own.add(combo)  # (found at its own shift, as the search there finds it)
-        foreign.own_loop(up)
-        kept = _recorded(solution, names, up, self._worn(case, own))
-        kept.solver = kept.solver.summed(solves)
-        return kept
+        foreign.own_loop(combo)
+        return self._worn(case, own)
 
     def _link_refutes(self, case: Case, nlp_case: Case, solution: Solution, choices) -> bool:
         """Whether the link's least stress refutes each of the integer ``choices`` (tuples of the integer variables)
@@ -462,8 +510,7 @@ class Problem:
         if given is None:
             return None
         solution = infeasible_at(posed, case, dict(zip(posed.names, map(float, data.start))), given.text,
-                                 SolverInfo(PROVEN, "proven", sum(r["iterations"] for r in runs),
-                                            sum((r["time"] for r in runs), 0.0), len(runs)), bounds=(data.lower, data.upper))
+                                 spent_on(runs, PROVEN, "proven"), bounds=(data.lower, data.upper))
         solution.diagnosed = given
         return solution
 
@@ -564,7 +611,9 @@ class Problem:
                nlp_case: Case | None = None, mesh: np.ndarray | None = None,
                diagnosed: bool = True, ruled: RuledOut | None = None, cold: bool = True,
                redecide: bool = False, sizing: dict[str, float] | None = None,
-               heavier: float = math.inf, unranked_above: float = math.inf, kept_first: bool = False) -> Solution:
+               heavier: float = math.inf, unranked_above: float = math.inf, kept_first: bool = False,
+               failed_warm: Callable[[tuple, list[dict], list[dict], ScaledData], Solution | None] | None = None
+               ) -> Solution:
         """One solve (with its integer search); the NLP sees ``nlp_case`` (moved limits), the checks ``case``;
         a start-up's mesh is ``mesh``, else the warm solution's, else the first one; ``ruled``: integer choices
         not to solve again, and where those found infeasible are recorded; ``cold=False``: no cold start after a
@@ -575,7 +624,9 @@ class Problem:
         ``unranked_above``: the neighbours of the relaxation's rounded integers are not solved where those integers'
         design's simulated start shows the mesh too coarse to rank them (:meth:`_unranked`); ``kept_first``: a cold
         start's integers (``start``'s) are solved first and descended from, the relaxation only where they fail
-        (:meth:`_kept_first`)."""
+        (:meth:`_kept_first`); ``failed_warm(combo, search, runs, data)``: where the warm integers ``combo`` fail, the
+        caller's design instead of the relaxation's search (None: the search goes on with the same ``search`` and
+        ``runs``: :meth:`_refined`, an elastic link's kept count's own loop first)."""
         posed = self.posed
         warm_ok = warm is not None and warm.status in ("optimal", "unverified") and warm.scale is not None
         if mesh is None and warm_ok and warm.mesh is not None and len(warm.mesh[0]) == posed.mesh_size:
@@ -606,6 +657,9 @@ class Problem:
                 if kept is not None:
                     kept = self._sized(solved, data, integer, kept, search, attempt_at, sizing)
                     return self._finish(case, kept, runs, data, search, heavier=heavier)
+                if not redecide and failed_warm is not None and (
+                        decided := failed_warm(tuple(map(float, combo)), search, runs, data)) is not None:
+                    return decided
                 seed, methods = relaxation_seed(seed, integer), ("warm",)  # the previous integers fail here (or
                 # are decided again: ``redecide``)
             run = attempt(posed, data, data.lbx, data.ubx, data.x0, seed, methods, runs)
@@ -829,8 +883,7 @@ class Problem:
         else:
             diagnosed = diagnosed or diagnose(posed, run["p"], run["lbx"], run["ubx"], run["x"], scale)
             status, diagnosis, diagnosis_s = diagnosed.status, diagnosed.text, diagnosed.seconds
-        info = SolverInfo(run["solver"], run["status"], sum(r["iterations"] for r in runs),
-                          sum(r["time"] for r in runs) + diagnosis_s, len(runs))
+        info = spent_on(runs, run["solver"], run["status"], diagnosis_s)
         bounds = {n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, data.lower, data.upper)}
         elasticities = with_followers(sensitivities(posed, run, objective), case.follows) if status == "optimal" else {}
         return Solution(f.coupling, f.mode, posed.objective.name, posed.objective.unit, status, objective, design,
@@ -838,6 +891,12 @@ class Problem:
                         elasticities, scale, (run["lam_x"], run["lam_g"]), {v.name: v.unit for v in f.variables},
                         start_up, run["x"][len(scale):] if posed.start_up is not None else None, mesh, diagnosed,
                         collocated=collocated)
+
+
+def spent_on(runs: list[dict], name: str, status: str, seconds: float = 0.0) -> SolverInfo:
+    """The solver calls of ``runs`` as one SolverInfo (``name``, ``status``), ``seconds`` more (a diagnosis's)."""
+    return SolverInfo(name, status, sum(r["iterations"] for r in runs), sum((r["time"] for r in runs), 0.0) + seconds,
+                      len(runs))
 
 
 def verified_alone(given: Solution, alone: Solution, counted: bool = True) -> Solution:
