@@ -211,3 +211,31 @@ def test_a_start_that_could_not_be_simulated_is_not_named_among_the_starts_tried
     tried = verdict.one_more_start(without, replace(without, starts=()), verdict.NEIGHBOUR)
     assert tried.starts == ("the papers' sizing", verdict.NEIGHBOUR)
     assert tried.solver.solves == 2 * found.solver.solves
+
+
+def test_a_start_given_that_could_not_be_simulated_is_not_named(monkeypatch):
+    """``Problem.solve`` from a start given whose first simulation fails, with the caller's verdict alone (a sweep's
+    point retried from the next feasible point's design): that verdict, the start not named, no call more; the sweep
+    then does not name the next feasible point's design either (``sweep._tried``; review 19b: both had been)."""
+    from dataclasses import replace
+
+    from clutchopt.errors import InputError
+    from clutchopt.optimise import sweep
+    from clutchopt.optimise.problem import Problem
+
+    case = load_case(CASES / "cable_motor_start.toml")
+    problem = case_problem(case)
+    found = problem.solve(case)
+    alone = replace(found, status="not_found", starts=("the papers' sizing",))
+    refined = Problem.refined
+
+    def not_simulated(self, at, start=None, *args, **kwargs):
+        if start is not None:
+            raise InputError("start-up", "not simulated: the start lies outside the simulator's ranges")
+        return refined(self, at, start, *args, **kwargs)
+
+    monkeypatch.setattr(Problem, "refined", not_simulated)
+    retry = problem.solve(case, start=dict(found.design), alone=alone)
+    assert retry.starts == ("the papers' sizing",) and retry.solver.solves == 0 and retry.status == "not_found"
+    assert not sweep._tried(problem, retry)
+    assert sweep._tried(problem, replace(retry, starts=(verdict.GIVEN, "the papers' sizing")))

@@ -54,8 +54,9 @@ UNRANKED_ERROR = 1e-3  # a first mesh's collocation error (start time, relative)
 AT_THE_CASE = "simulated at the case's limits"  # a count whose NLP design at the case's own limits the loop simulated,
 # its start missing a limit (the integer search's entry): ``lighter_settled`` takes it as settled there, as ``solve``
 # alone's path goes no further with it; no proof that the count has no design (its correction or modifier might)
-FIRST_UP = "solved first at the case's limits"  # a count one up solved before the search at moved limits, whose own
-# loop never ran (:meth:`Problem._one_up_first`)
+FIRST_UP = "solved first at the case's limits"  # a count solved at the case's limits before the search at moved
+# limits (one up: :meth:`Problem._one_up_first`; a sweep's failed warm count: :meth:`Problem._own_first`), whose own
+# loop never ran
 PROVEN = "proof"  # the solver of a start-up the drive's proofs cover (:meth:`Problem.proven`: no start-up solve)
 
 
@@ -95,8 +96,8 @@ class Problem:
         except InputError:  # a start-up whose first simulation fails from this design: from the papers' sizing
             if self.start_up is None or (start is None and warm is None):
                 raise
-            if alone is not None:  # (the caller has ``solve``'s verdict alone, and counts it: not solved again)
-                return replace(alone, solver=alone.solver.summed([]), starts=given_first(alone))
+            if alone is not None:  # (the caller has ``solve``'s verdict alone, and counts it: not solved again; the
+                return replace(alone, solver=alone.solver.summed([]))  # start given, not simulated, is not named)
             solution, start, warm = self.refined(case, None, None, mesh, refine, coarser=coarser,
                                                  infeasible=infeasible), None, None
         if self.start_up is not None and refine and self._held(solution):  # the loop's remedy missed: walked
@@ -309,12 +310,12 @@ class Problem:
         lower = {name: lo for name, (lo, _) in bounds.items()}
         while below := foreign.untried_below(kept, lower):  # a count below the kept one its search never solved
             kept, _ = self._own_loop(case, solution, kept, foreign, below[0], runs)
-        for combo, first in foreign.first.items():  # a count one up solved first whose own loop never ran (its solve
+        for combo, first in foreign.first.items():  # a count solved first whose own loop never ran (its solve
             kept.integer_search = kept.integer_search + [own_entry(foreign.names, combo, first, FIRST_UP)]  # counted)
         own = foreign.choice(kept.design) if kept.status in DESIGN_STATUSES else None  # (its design is the record)
         kept.integer_search = kept.integer_search + [  # a count whose start at the case's limits missed one, said
             own_entry(foreign.names, combo, seen, AT_THE_CASE) for combo, seen in foreign.unverified_at_the_case.items()
-            if combo not in foreign.first and combo != own]  # (a count one up solved first: its own entry says so)
+            if combo not in foreign.first and combo != own]  # (a count solved first: its own entry says so)
         foreign.first.clear()
         kept.unverified_at_the_case = frozenset(foreign.unverified_at_the_case)
         if len(runs) > 1:

@@ -48,7 +48,7 @@ from clutchopt.optimise.start_up_sweep import solved_along
 from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_name, grid_points, grid_positions,
                                            parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
 from clutchopt.optimise.table import joined_tables, record_table
-from clutchopt.optimise.verdict import NEIGHBOUR, NEXT, one_more_start, retried
+from clutchopt.optimise.verdict import GIVEN, NEIGHBOUR, NEXT, one_more_start, retried
 from clutchopt.optimise.verify import DESIGN_STATUSES
 from clutchopt.start_up.mesh import settled
 from clutchopt.solver_tolerance import SOLVER_TOL
@@ -189,12 +189,19 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
                 alone = waited if problem.start_up is not None else None  # (a start-up's: its solve alone)
                 retry = problem.solve(waited_case, start=solution.design, alone=alone)  # (``alone`` counted here)
                 kept = beside(retry, alone) if retry.status in DESIGN_STATUSES else replace(
-                    waited, starts=waited.starts + (NEXT,))  # (its start named among those tried)
+                    waited, starts=waited.starts + ((NEXT,) if _tried(problem, retry) else ()))  # (its start named
+                # among those tried, where it was solved from)
                 waiting[k] = (w, waited_case, replace(kept, solver=kept.solver.summed([waited.solver, retry.solver])))
             yield from (_one(points, w, names, waited) for w, _, waited in waiting)
             waiting = []
             yield _one(points, j, names, solution)
         yield from (_one(points, w, names, waited) for w, _, waited in waiting)
+
+
+def _tried(problem, retry: Solution) -> bool:
+    """A retry from a start given (``Problem.solve``'s ``start``) was solved from it: a start-up's names it first
+    (``verdict.GIVEN``), unless its first simulation failed there (``solve`` then hands back its verdict alone)."""
+    return problem.start_up is None or retry.starts[:1] == (GIVEN,)
 
 
 def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solution | None,
