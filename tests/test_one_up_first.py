@@ -13,21 +13,28 @@ CABLE = load_case(CASES / "cable_motor_start.toml")
 CASE_LIMIT = 350e6  # Pa: the case's max_link_stress (its allowable_cable_stress)
 
 
-def solved(monkeypatch, case=CABLE, first: bool = True):
-    """``case`` solved, with each start-up run's (cable count fixed or None, the stress limit it solved with);
-    ``first=False``: without the count one up solved first (main before it)."""
-    runs, run = [], attempts.run
+def recording(runs: list, quantity: str | None = None):
+    """``attempts.run`` recording each start-up run in ``runs``: (the value of ``quantity`` if named, the cable count
+    fixed or None, the stress limit it solved with)."""
+    run = attempts.run
 
     def recorded(posed, data, lbx, ubx, *args, **kwargs):
         result = run(posed, data, lbx, ubx, *args, **kwargs)
         if posed.start_up is not None:
             i = posed.names.index("cable_count")
             count = lbx[i] * data.scale[i] if lbx[i] == ubx[i] else None
-            runs.append((count, data.params.max_link_stress))
+            runs.append(((getattr(data.params, quantity),) if quantity else ()) + (count, data.params.max_link_stress))
         return result
 
+    return recorded
+
+
+def solved(monkeypatch, case=CABLE, first: bool = True):
+    """``case`` solved, with each start-up run's (cable count fixed or None, the stress limit it solved with);
+    ``first=False``: without the count one up solved first (main before it)."""
+    runs = []
     with monkeypatch.context() as patched:
-        patched.setattr(attempts, "run", recorded)
+        patched.setattr(attempts, "run", recording(runs))
         if not first:
             patched.setattr(Problem, "_one_up_first", lambda *args: None)
         return solve_case(case), runs

@@ -11,6 +11,7 @@ from clutchopt.optimise.problem import Problem, problems_set_aside
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import Vary
 from tests.conftest import CASES
+from tests.test_one_up_first import recording
 
 CABLE = load_case(CASES / "cable_motor_start.toml")
 CASE_LIMIT = 350e6  # Pa: the case's max_link_stress
@@ -20,19 +21,10 @@ def swept(monkeypatch, name: str, values, own_first: bool = True):
     """The sweep of ``CABLE`` over ``name`` at ``values`` (its records), with each start-up run's (value of ``name``,
     cable count fixed or None, the stress limit it solved with); ``own_first=False``: without the count's own loop
     first (main before it)."""
-    runs, run = [], attempts.run
-
-    def recorded(posed, data, lbx, ubx, *args, **kwargs):
-        result = run(posed, data, lbx, ubx, *args, **kwargs)
-        if posed.start_up is not None:
-            i = posed.names.index("cable_count")
-            count = lbx[i] * data.scale[i] if lbx[i] == ubx[i] else None
-            runs.append((getattr(data.params, name), count, data.params.max_link_stress))
-        return result
-
+    runs = []
     quantity = next(q for q in CABLE.quantities if q.name == name)
     with monkeypatch.context() as patched, problems_set_aside():  # (its own problems, as a new process builds them)
-        patched.setattr(attempts, "run", recorded)
+        patched.setattr(attempts, "run", recording(runs, name))
         if not own_first:
             patched.setattr(Problem, "_own_first", lambda *args: None)
         records = Sweep(CABLE, [Vary(quantity, tuple(values))]).run(progress=False).solutions
