@@ -262,3 +262,18 @@ def test_runs_compared_by_their_ratio_are_timed_alternately():
     medians = interleaved_median_runs([lambda: run("tabulated"), lambda: run("stored")], 3)
     assert calls == ["tabulated", "stored"] * 3
     assert [result for result, _ in medians] == ["tabulated", "stored"] and all(s >= 0 for _, s in medians)
+
+
+def test_the_reference_sweep_s_runs_are_pooled():
+    """``user_sweeps._run`` with ``pooled``: its runs join those timed before, the median taken over all (the wedge
+    paper sweep, every ratio's reference, timed at the section's start and again after the static sweeps)."""
+    import numpy as np
+
+    from clutchopt.bench.user_sweeps import _run
+
+    case = next(c for c in bench_cases() if c.coupling == "wedge")
+    values = case.values["inertia"] * np.geomspace(0.5, 2.0, 10)
+    pooled = []
+    _run(case, "inertia", values, reference_mode("wedge"), 2, pooled)
+    row = _run(case, "inertia", values, reference_mode("wedge"), 1, pooled)
+    assert len(pooled) == 3 and row["wall_s"] == sorted(seconds for seconds, _ in pooled)[1]  # (the median of all)

@@ -74,7 +74,8 @@ SECTIONS: tuple[Section, ...] = (
                            "library; "
                            "no build runs while anything is timed), wedge_motor_start's again over five times the "
                            "points; points with and without a design, "
-                           "solver calls per point, points/s against the wedge paper sweep of its duty quantity",
+                           "solver calls per point, points/s against the wedge paper sweep of its duty quantity "
+                           "(its runs at the section's start and after the static sweeps pooled)",
             user_sweep_rows),
     Section("resolve", "Warm re-solves along the same sweeps: warm IPOPT alone (before) and SQP first (now); times per "
                        "re-solve, largest relative difference of the verified optima", resolve_rows),

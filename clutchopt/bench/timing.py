@@ -16,7 +16,7 @@ def time_once(run: Callable[[], object]) -> tuple[float, object]:
 
 def median_run(run: Callable[[], object], repeats: int) -> tuple[object, float]:
     """``run()`` timed ``repeats`` times: the result and wall time of the run of median wall time."""
-    return _median([time_once(run) for _ in range(repeats)])
+    return median_of([time_once(run) for _ in range(repeats)])
 
 
 def interleaved_median_runs(runs: list[Callable[[], object]], repeats: int) -> list[tuple[object, float]]:
@@ -27,10 +27,11 @@ def interleaved_median_runs(runs: list[Callable[[], object]], repeats: int) -> l
     for _ in range(repeats):
         for times, run in zip(timed, runs):
             times.append(time_once(run))
-    return [_median(times) for times in timed]
+    return [median_of(times) for times in timed]
 
 
-def _median(timed: list[tuple[float, object]]) -> tuple[object, float]:
+def median_of(timed: list[tuple[float, object]]) -> tuple[object, float]:
+    """The result and wall time of the run of median wall time among ``timed`` (:func:`time_once`'s pairs)."""
     seconds, result = sorted(timed, key=lambda pair: pair[0])[len(timed) // 2]
     return result, seconds
 
