@@ -239,3 +239,17 @@ def test_a_start_given_that_could_not_be_simulated_is_not_named(monkeypatch):
     assert retry.starts == ("the papers' sizing",) and retry.solver.solves == 0 and retry.status == "not_found"
     assert not sweep._tried(problem, retry)
     assert sweep._tried(problem, replace(retry, starts=(verdict.GIVEN, "the papers' sizing")))
+
+
+def test_a_proven_start_up_solved_from_a_start_given_names_no_start():
+    """A start-up the drive makes impossible (``Problem.proven``), solved from a start given (robust design's and a
+    Pareto front's re-solves): its proof as it is, no start named, the sizing's runs once; it had named "the start
+    given" and `solve`'s own, and counted the sizing twice, no start-up solve made (review 19c)."""
+    case = load_case(CASES / "wedge_motor_start.toml")
+    problem = case_problem(case)
+    short = case.with_values(acceleration_time=0.5)  # (proven: the motor's peak power, above)
+    alone = problem.solve(short)
+    given = problem.solve(short, start=dict(problem.solve(case).design))
+    assert alone.status == given.status == "infeasible" and given.diagnosis == alone.diagnosis
+    assert given.starts == alone.starts == ()
+    assert given.solver.solves == alone.solver.solves

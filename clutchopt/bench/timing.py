@@ -31,7 +31,8 @@ def interleaved_median_runs(runs: list[Callable[[], object]], repeats: int) -> l
 
 
 def median_of(timed: list[tuple[float, object]]) -> tuple[object, float]:
-    """The result and wall time of the run of median wall time among ``timed`` (:func:`time_once`'s pairs)."""
+    """The result and wall time of the run of median wall time among ``timed`` (:func:`time_once`'s pairs; of an even
+    count, the slower of the two middle runs)."""
     seconds, result = sorted(timed, key=lambda pair: pair[0])[len(timed) // 2]
     return result, seconds
 

@@ -37,7 +37,7 @@ INTO_INFEASIBLE = (1.0, 10.0)  # factors on the duty's quantity: a sweep that re
 ALLOWABLE = {"wedge": "allowable_pressure", "lever": "allowable_pressure", "cable": "allowable_cable_stress",
              "ball": "allowable_contact_stress"}  # the allowable each coupling's main constraint is sized by
 LIMIT_SPAN = (0.8, 1.2)  # factors on the start-up limit nearest to binding a start-up case's design (nearest_limit)
-REFERENCE_AGAIN = 3  # the wedge paper sweep's runs at the section's end (times sweep_repeats), pooled with its first
+REFERENCE_AGAIN = 3  # the wedge paper sweep's runs after the static sweeps (times sweep_repeats), pooled with its first
 IN_THE_CACHE, NO_LIBRARY = "in the cache", "none"  # the states of the compiled-code cache a start-up sweep is timed in
 GOAL_CASE, LONGER = "wedge_motor_start", 5  # issue 26's start-up sweep goal names its case: its driven-inertia sweep
 # again over five times the points (a user's longer sweep: the first point's cold solve spread over more)

@@ -102,8 +102,8 @@ class Problem:
                                                  infeasible=infeasible), None, None
         if self.start_up is not None and refine and self._held(solution):  # the loop's remedy missed: walked
             solution = from_the_held_design(self, case, solution)
-        if solution.status == "optimal" or not refine:
-            return solution
+        if solution.status == "optimal" or not refine or solution.diagnosed is not None and solution.diagnosed.proven:
+            return solution  # (a proof, the drive's: no start was solved from, none is named; review 19c)
         if self.start_up is not None and neighbour is None and mesh is None and coarser == math.inf and (
                 warm is not None or start is not None):  # a start given that missed: beside ``solve`` alone (a
             return verified_alone(solution, alone or self.solve(case), counted=alone is None)  # caller's: its count)
