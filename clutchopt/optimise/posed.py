@@ -230,6 +230,10 @@ class Posed:
         return self.built("fixed_only", key, build)
 
     # --- data of one solve -------------------------------------------------------------------------------------
+    def named_bounds(self, lower, upper) -> dict[str, tuple[float, float]]:
+        """Each design variable's bounds (SI) by name, as a Solution reports them."""
+        return {name: (float(lo), float(hi)) for name, lo, hi in zip(self.names, lower, upper)}
+
     def bounds_and_start(self, case: Case, start: dict[str, float] | None):
         """The design's bounds and start point (SI): variables the case fixes at its value, a start within bounds."""
         lower, upper, x0 = [], [], []

@@ -393,7 +393,7 @@ class Problem:
             if own is None:
                 return None
             own.integer_search = search + [own_entry(foreign.names, combo, own)]
-            own.bounds = {n: (float(lo), float(hi)) for n, lo, hi in zip(self.posed.names, data.lower, data.upper)}
+            own.bounds = self.posed.named_bounds(data.lower, data.upper)
             own.solver = own.solver.summed([spent_on(runs, own.solver.name, ""), *solves])  # (with the failed run)
             return own
 
@@ -885,7 +885,7 @@ class Problem:
             diagnosed = diagnosed or diagnose(posed, run["p"], run["lbx"], run["ubx"], run["x"], scale)
             status, diagnosis, diagnosis_s = diagnosed.status, diagnosed.text, diagnosed.seconds
         info = spent_on(runs, run["solver"], run["status"], diagnosis_s)
-        bounds = {n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, data.lower, data.upper)}
+        bounds = posed.named_bounds(data.lower, data.upper)
         elasticities = with_followers(sensitivities(posed, run, objective), case.follows) if status == "optimal" else {}
         return Solution(f.coupling, f.mode, posed.objective.name, posed.objective.unit, status, objective, design,
                         evaluate_outputs(f, design, params), checks, info, diagnosis, search, bounds,

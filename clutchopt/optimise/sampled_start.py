@@ -164,7 +164,7 @@ def _confirmed(problem, case: Case, last: Solution, spent: list) -> Solution:
     OpenBLAS on its SkylakeX kernels: the walk ended at 577.36 kg, the torque alone active, from where the case
     solved reaches 554.69 kg, the walk's end on this machine's kernels); every solver call summed."""
     lower, upper, _ = problem.posed.bounds_and_start(case, last.design)
-    last.bounds = {name: (float(lo), float(hi)) for name, lo, hi in zip(problem.posed.names, lower, upper)}
+    last.bounds = problem.posed.named_bounds(lower, upper)
     try:
         again = problem.refined(case, last.design, diagnosed=False)
     except InputError:  # (its start not simulated from this design: the step's optimum stands)

@@ -185,7 +185,7 @@ def infeasible_at(posed, case: Case, design: dict[str, float], diagnosis: str, s
     lower, upper = bounds or posed.bounds_and_start(case, None)[:2]
     return Solution(f.coupling, f.mode, posed.objective.name, posed.objective.unit, "infeasible", objective, design,
                     outputs, checks, solver, diagnosis,
-                    bounds={n: (float(lo), float(hi)) for n, lo, hi in zip(posed.names, lower, upper)},
+                    bounds=posed.named_bounds(lower, upper),
                     design_units={v.name: v.unit for v in f.variables})
 
 
