@@ -220,6 +220,11 @@ class Solution:
         return replace(self, solve_alone={"status": alone.status, "objective": alone.objective if designed else None},
                        diagnosis=f"{self.diagnosis}; {note}" if self.diagnosis else note)
 
+    def counted(self, other: "Solution | None") -> "Solution":
+        """This solution with the solver calls of ``other`` (a solve it was kept over: a warm start or a continuation
+        that found no design, ``solve`` alone beside it) counted too; as it is where there is none."""
+        return self if other is None else replace(self, solver=self.solver.summed([self.solver, other.solver]))
+
 
 @dataclass
 class WarmStart:

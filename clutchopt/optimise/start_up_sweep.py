@@ -111,7 +111,7 @@ def solved_alone_where_held(problem, case: Case, solution: Solution, sized: "Siz
     alone = problem.solve(case)
     tolerance = problem.posed.start_up.s.spec.tolerance
     if alone.status == "optimal" and not alone.objective > solution.objective * (1 + tolerance):
-        return replace(alone, solver=alone.solver.summed([solution.solver, alone.solver]))
+        return alone.counted(solution)
     probed = as_solve_would(problem, case, solution, sized, alone)  # (its solves counted with ``solution``'s)
     return replace(probed, solver=probed.solver.summed([probed.solver, alone.solver])).beside_alone(alone)  # (said
     # once: the probe's ``solve`` alone is this one)

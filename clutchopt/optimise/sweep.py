@@ -235,18 +235,18 @@ def _solved(problem, case: Case, point_case: Case, values: dict, previous: Solut
                 if decided is not None:
                     return decided
         along = solved_along(problem, point_case, previous)
-        solution = along if along is not None and along.status == "optimal" else counted(
-            problem.solve(point_case, first=first), along)  # (a warm start that failed counted too)
+        solution = along if along is not None and along.status == "optimal" else problem.solve(
+            point_case, first=first).counted(along)  # (a warm start that failed counted too)
         alone = solution if solution.status not in DESIGN_STATUSES else None
         if neighbour is not None and not problem.failed_starts.lost_beyond(point_case, neighbour.design):
             solution = from_the_neighbour(problem, point_case, solution, neighbour.design)
     if solution.status not in DESIGN_STATUSES and solution.status != "infeasible" and feasible is not None:
         followed = continued(problem, case, feasible, values)  # (a proven point: no design to follow)
-        solution = counted(followed, solution) if followed is not None and followed.status in DESIGN_STATUSES \
-            else counted(solution, followed)
+        solution = followed.counted(solution) if followed is not None and followed.status in DESIGN_STATUSES \
+            else solution.counted(followed)
     for label, made in tested:  # (each solve counted and named; a design one found kept where the verdict has none)
-        solution = one_more_start(solution, made, label) if solution.status not in DESIGN_STATUSES else counted(
-            solution, made)
+        solution = one_more_start(solution, made, label) if solution.status not in DESIGN_STATUSES else \
+            solution.counted(made)
     return beside(solution, alone)
 
 
@@ -283,13 +283,6 @@ def from_the_neighbour(problem, case: Case, verdict: Solution, design: dict[str,
     if verdict.status in DESIGN_STATUSES or verdict.status == "infeasible":
         return verdict
     return one_more_start(verdict, retried(problem, case, design), NEIGHBOUR)
-
-
-def counted(solution: Solution, other: Solution | None) -> Solution:
-    """``solution`` with the solver calls of ``other`` (a solve it was not kept over: a warm start or a continuation
-    that found no design) counted too; as it is where there is none."""
-    return solution if other is None else replace(solution, solver=solution.solver.summed([solution.solver,
-                                                                                          other.solver]))
 
 
 def continued(problem, case: Case, feasible: tuple[dict, Solution | StoredDesign], values: dict,
