@@ -5,6 +5,8 @@ from __future__ import annotations
 from contextlib import contextmanager
 from typing import Iterator
 
+NOT_SIMULATED = "start-up"  # the field of the error a start-up outside the simulator's ranges raises (simulate.engine)
+
 
 class InputError(ValueError):
     """Bad input in a case or scene file, or on the command line.

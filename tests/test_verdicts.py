@@ -241,6 +241,39 @@ def test_a_start_given_that_could_not_be_simulated_is_not_named(monkeypatch):
     assert sweep._tried(problem, replace(retry, starts=(verdict.GIVEN, "the papers' sizing")))
 
 
+def test_a_simulation_failing_after_the_solver_ran_is_a_verdict_counted_and_named(monkeypatch):
+    """A start-up solve whose simulated check fails after IPOPT ran (its design outside the simulator's ranges: a stub
+    at ``start_up_report``) is ``not_found`` saying so, its runs counted: a retry named among the starts tried, not
+    taken for one whose first simulation failed (``verdict.retried`` had given None: neither named nor counted), and
+    ``solve`` alone a verdict, not an input error; a first simulation that fails still raises, nothing solved."""
+    from clutchopt.errors import NOT_SIMULATED, InputError
+    from clutchopt.optimise import posed as posed_module, problem as problem_module
+    from clutchopt.optimise.problem import problems_set_aside
+
+    case = load_case(CASES / "wedge_motor_start.toml")
+    heavier = case.with_values(driven_inertia=1.02 * case.values["driven_inertia"])
+    outside = InputError(NOT_SIMULATED, "not simulated: clutch torque at the driving speed 3e9 N*m is outside 0 to "
+                                        "2e9 N*m (a stub)")
+
+    def not_simulated(*args, **kwargs):
+        raise outside
+
+    with problems_set_aside():  # (its own problems: no failed start kept for another test)
+        problem = case_problem(case)
+        design = dict(problem.solve(case).design)
+        monkeypatch.setattr(problem_module, "start_up_report", not_simulated)
+        retry = verdict.retried(problem, heavier, design)
+        assert retry.status == "not_found" and retry.solver.solves >= 1 and retry.solver.iterations > 0
+        assert "a simulated start failed" in retry.diagnosis and "3e9 N*m" in retry.diagnosis
+        alone = problem.solve(heavier)
+        assert alone.status == "not_found" and alone.solver.solves >= 2 and "a simulated start failed" in alone.diagnosis
+        monkeypatch.setattr(posed_module, "initial_states", not_simulated)  # (every start's first simulation)
+        other = case.with_values(driven_inertia=1.03 * case.values["driven_inertia"])  # (not a failed start kept)
+        assert verdict.retried(problem, other, design) is None
+        with pytest.raises(InputError, match="3e9"):
+            problem.refined(other, design)
+
+
 def test_a_proven_start_up_solved_from_a_start_given_names_no_start():
     """A start-up the drive makes impossible (``Problem.proven``), solved from a start given (robust design's and a
     Pareto front's re-solves): its proof as it is, no start named, the sizing's runs once; it had named "the start

@@ -9,13 +9,38 @@ apart from it, then IPOPT (``warm_start_init_point``, small initial barrier para
 from __future__ import annotations
 
 import time
+from contextlib import contextmanager
+from contextvars import ContextVar
 from types import SimpleNamespace
+from typing import Iterator
 
 import numpy as np
 
 from clutchopt.optimise.chain import first_order_optimal
 from clutchopt.optimise.posed import Posed, ScaledData
 from clutchopt.optimise.verify import check_design, evaluate_objective
+
+
+class Tally:
+    """The start-up solver runs made while it is open (:func:`tallied`): calls, iterations, seconds."""
+
+    def __init__(self):
+        self.calls, self.iterations, self.seconds = 0, 0, 0.0
+
+
+_TALLIES: ContextVar[tuple[Tally, ...]] = ContextVar("clutchopt_tallies", default=())
+
+
+@contextmanager
+def tallied() -> Iterator[Tally]:
+    """A :class:`Tally` of the start-up problems' runs made inside (the papers' sizing's static runs not: a start-up
+    solve does not count them), nested ones each counting theirs."""
+    tally = Tally()
+    token = _TALLIES.set((*_TALLIES.get(), tally))
+    try:
+        yield tally
+    finally:
+        _TALLIES.reset(token)
 
 
 class Run(dict):
@@ -59,6 +84,10 @@ def run(posed: Posed, data: ScaledData, lbx, ubx, x0, seed: dict | None, method:
                  solver="sqpmethod" if method == "sqp" else "ipopt",
                  design=posed.rounded(posed.design(x, data.scale)))
     solved.check = lambda design, params=data.checked or data.params: checked(posed, design, params)
+    if posed.start_up is not None:
+        for tally in _TALLIES.get():
+            tally.calls, tally.iterations, tally.seconds = (tally.calls + 1, tally.iterations + solved["iterations"],
+                                                            tally.seconds + elapsed)
     return solved
 
 

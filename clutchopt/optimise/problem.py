@@ -21,9 +21,9 @@ from typing import Callable
 import numpy as np
 
 from clutchopt.cases import Case
-from clutchopt.errors import InputError
+from clutchopt.errors import NOT_SIMULATED, InputError
 from clutchopt.model import Formulation
-from clutchopt.optimise.attempts import attempt, warm_multipliers
+from clutchopt.optimise.attempts import attempt, tallied, warm_multipliers
 from clutchopt.optimise.diagnosis import diagnose, whatever_the_design
 from clutchopt.optimise.failed_starts import FailedStarts
 from clutchopt.optimise.integers import (RuledOut, descend, fixed_box, fixing, from_the_start, meets_every_row,
@@ -129,11 +129,30 @@ class Problem:
         key = self.failed_starts.key(case, start) if retry else None
         if key is not None and (known := self.failed_starts.known(key)) is not None:
             return known
-        solution = self._refined(case, start, warm, mesh, refine, diagnosed, coarser, shift, cold,
-                                 infeasible=infeasible, sizing=sizing)
+        with tallied() as made:
+            try:
+                solution = self._refined(case, start, warm, mesh, refine, diagnosed, coarser, shift, cold,
+                                         infeasible=infeasible, sizing=sizing)
+            except InputError as exc:
+                if self.start_up is None or not made.calls or exc.field != NOT_SIMULATED:
+                    raise  # (its first simulation failed from this start: nothing solved; callers say so)
+                solution = self._not_simulated(case, start, exc, made)
         if key is not None and solution.status not in DESIGN_STATUSES:
             self.failed_starts.keep(key, solution)
         return solution
+
+    def _not_simulated(self, case: Case, start: dict[str, float] | None, error: InputError, made) -> Solution:
+        """The verdict of a start-up solve whose simulation failed after the solver ran (``error``: outside the
+        simulator's ranges; the design a run reached, checked by its simulated start, or a start the loop drew later):
+        ``not_found``, no design checked, at ``start`` (or the case's own), its runs counted (``made``: a
+        :class:`~clutchopt.optimise.attempts.Tally`), so that a retry is named among the starts tried and counted,
+        not taken for one whose first simulation failed (nothing solved: the InputError raised, which callers catch)."""
+        lower, upper, x0 = self.posed.bounds_and_start(case, start)
+        solver = SolverInfo("ipopt", "not_simulated", made.iterations, made.seconds, made.calls)
+        text = f"no design checked: the solver ran, then a simulated start failed ({error.problem})"
+        found = infeasible_at(self.posed, case, dict(zip(self.posed.names, map(float, x0))), text, solver,
+                              bounds=(lower, upper))
+        return replace(found, status="not_found")
 
     def _refined(self, case: Case, start: dict[str, float] | None = None, warm: Solution | WarmStart | None = None,
                  mesh: np.ndarray | None = None, refine: bool = True, diagnosed: bool = True,

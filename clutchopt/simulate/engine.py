@@ -40,7 +40,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from clutchopt.errors import InputError
+from clutchopt.errors import NOT_SIMULATED, InputError
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.laws import InductionMotor, Load
 from clutchopt.simulate.on_floats import bound, parametrised
@@ -364,7 +364,7 @@ def simulate(model: Model) -> SimulationResult:
     simulator's ranges is an InputError (``start-up: ...``) instead of a run that may never end."""
     problems = range_problems(model)
     if problems:
-        raise InputError("start-up", f"not simulated: {'; '.join(problems)} (the ranges the simulator is tested "
+        raise InputError(NOT_SIMULATED, f"not simulated: {'; '.join(problems)} (the ranges the simulator is tested "
                                      "over)")
     run = _Run(model)
     verdict = None
