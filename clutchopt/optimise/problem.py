@@ -7,8 +7,8 @@ off its scales is solved again scaled by it, warm from its own KKT point carried
 cable's cold solves 42 -> 31 IPOPT iterations, the same optimum); free integers are searched
 (``clutchopt.optimise.integers``); the kept design is checked in float64, and a failed solve diagnosed
 (``clutchopt.optimise.diagnosis``); an optimal one gets its sensitivities (``clutchopt.optimise.sensitivity``). With
-a start-up, the collocation mesh is refined around the solves until the simulated start-up agrees. Sweeps chain SQP re-solves in one CasADi call and check them together
-(``clutchopt.optimise.batch``).
+a start-up, the collocation mesh is refined around the solves until the simulated start-up agrees. Sweeps chain SQP
+re-solves in one CasADi call and check them together (``clutchopt.optimise.batch``).
 """
 
 from __future__ import annotations
