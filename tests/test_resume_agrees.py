@@ -22,7 +22,7 @@ from clutchopt.cli import main
 from clutchopt.optimise.batch import BatchSweep
 from clutchopt.optimise.problem import case_problem
 from clutchopt.optimise.region_proof import Regions
-from clutchopt.optimise.sweep import Sweep
+from clutchopt.optimise.sweep import Sweep, solve_points
 from clutchopt.optimise.sweep_grid import parse_vary
 from clutchopt.store import RunStore
 from conftest import CASES, Interrupted, resumed_sweep, stopped_sweep
@@ -32,6 +32,13 @@ from conftest import CASES, Interrupted, resumed_sweep, stopped_sweep
 # one solve's, 17 windows (their ends at points with a design) instead of 2
 SWEEP = ("ball_compressor.toml", "power=1200:12000:100", "design")
 WINDOW_WORK = 64
+
+
+def _cut(patch) -> None:
+    """A window's work cut to one solve's, its interval searches' boxes uncounted (batch.BOX_WORK: hundreds a region
+    search, they would end a window at every point searched, where these windows end at points with a design)."""
+    patch.setattr(batch, "WINDOW_WORK", WINDOW_WORK)
+    patch.setattr(batch, "BOX_WORK", 0)
 
 
 def _sweep() -> Sweep:
@@ -55,7 +62,7 @@ def _rows(result) -> list[dict]:
 @pytest.fixture(scope="module")
 def uninterrupted(tmp_path_factory):
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(batch, "WINDOW_WORK", WINDOW_WORK)
+        _cut(patch)
         path = tmp_path_factory.mktemp("whole") / "runs.sqlite"
         with RunStore(path) as store:
             result = _sweep().run(store, progress=False)
@@ -66,7 +73,7 @@ def uninterrupted(tmp_path_factory):
 
 def _stopped(tmp_path, monkeypatch, cls, name: str, calls: int):
     """The store of the sweep stopped where the ``calls``-th call of ``cls.name`` raises (after it ran)."""
-    monkeypatch.setattr(batch, "WINDOW_WORK", WINDOW_WORK)
+    _cut(monkeypatch)
     original, seen = getattr(cls, name), []
 
     def hook(*args, **kwargs):
@@ -117,7 +124,7 @@ def test_a_resume_without_a_stored_start_solves_the_rest_from_cold(tmp_path, mon
     # the case's own start, with the same statuses, and no start is stored for its windows (their points counted
     # from the first point resumed: a start stored at point 8 where its window began at 49, read by a later resume
     # as the start of another point)
-    monkeypatch.setattr(batch, "WINDOW_WORK", WINDOW_WORK)
+    _cut(monkeypatch)
     original, seen = RunStore.record_points, []
 
     def record_without_start(self, *args, carried=None):
@@ -174,7 +181,7 @@ def test_a_resume_in_a_new_process_starts_its_windows_from_the_uninterrupted_run
     # without a design the last proof took 471 boxes, what a region search's budget grows from (REGION_BUDGET times
     # it, at least SURE_BOXES), kept by the built problem across windows in one process. A new process has none; a
     # resume there after that stretch started its windows from 0 boxes, where the uninterrupted run's had 471
-    monkeypatch.setattr(batch, "WINDOW_WORK", WINDOW_WORK)
+    _cut(monkeypatch)
     case = load_case(CASES / "ball_compressor.toml")
     legs = [np.linspace(9000, 12500, 20), np.linspace(12500, 9000, 20)[1:], np.linspace(9000, 12500, 20)[1:]]
     vary = parse_vary("power=" + ",".join(f"{value:g}" for value in np.concatenate(legs)), case.coupling)
@@ -198,7 +205,8 @@ def test_a_resume_in_a_new_process_starts_its_windows_from_the_uninterrupted_run
     def stop_after_four(self, *args, **kwargs):
         original(self, *args, **kwargs)
         seen.append(1)
-        if len(seen) == 4:  # (stored up to point 27, the start of the window from point 28 beside them)
+        if len(seen) == 5:  # (stored up to point 27, the start of the window from point 28 beside them; the
+            # first stretch in two windows, 9-21 and 22-27: its work bound, STRETCH_WINDOWS windows' work)
             raise Interrupted
 
     with RunStore(tmp_path / "runs.sqlite") as store, monkeypatch.context() as patch:
@@ -211,3 +219,21 @@ def test_a_resume_in_a_new_process_starts_its_windows_from_the_uninterrupted_run
         "optimal", "infeasible", "infeasible", "optimal"]  # (the first stretch: points 12-26)
     assert resumed_boxes[0] > 0 and resumed_boxes == whole_boxes[-len(resumed_boxes):]
     assert _rows(resumed) == _rows(whole)
+
+
+def test_a_stretch_without_a_design_ends_its_window_after_its_searches_work(monkeypatch):
+    """A stretch of points without a design runs its window on to a point with one within STRETCH_WINDOWS windows'
+    work, its interval searches' boxes counted (batch.BOX_WORK): with a window's work cut to one solve's, the last 9
+    points of the ball's sweep (infeasible, their region searches hundreds of boxes) are handed on in more than one
+    window; their boxes uncounted, in one (review 20: uncounted, and a stretch not bound by work inside a window, the
+    lever in design mode held 138 points without a design, 31 s, in one window)."""
+    def window_starts(box_work: float) -> list[int]:
+        with monkeypatch.context() as patch:
+            _cut(patch)
+            patch.setattr(batch, "BOX_WORK", box_work)
+            sweep = _sweep()
+            return [int(part.points.index[0]) for part in
+                    solve_points(sweep.case, "design", "mass", sweep.tol, None, sweep.grid)]
+
+    counted, uncounted = window_starts(0.5), window_starts(0)
+    assert [k for k in uncounted if k > 91] == [] and [k for k in counted if k > 91] != []

@@ -392,3 +392,25 @@ def test_a_point_whose_integers_moved_off_the_sizing_s_is_also_solved_as_solve_w
     assert record["solver"]["solves"] > heavier.solver.solves + alone.solver.solves  # (the probe's too)
     assert record["solver"]["iterations"] > heavier.solver.iterations + alone.solver.iterations  # (summed as its
     # solves are: the kept solve's alone were counted, review h17)
+
+
+def test_a_point_proven_infeasible_is_recorded_before_the_next_point_is_solved(monkeypatch):
+    """A sweep solved point by point hands on a point proven infeasible at once (a store records it, a kill loses
+    nothing before it), not held with the points without a design until the next feasible point: no design is
+    tried from there at a proven point (review 20: a run through a region proven point by point recorded nothing
+    until its next feasible point). wedge_motor_start's motor cannot reach its speed in 0.5 or 0.6 s whatever the
+    coupling (the drive's proofs); at its 10 s a design."""
+    case = load_case(CASES / "wedge_motor_start.toml")
+    solved, solve = [], sweep._solved
+
+    def counted(problem, case, point_case, values, *args):
+        solved.append(values["acceleration_time"])
+        return solve(problem, case, point_case, values, *args)
+
+    monkeypatch.setattr(sweep, "_solved", counted)
+    grid = Sweep(case, [parse_vary("acceleration_time=0.5,0.6,10", case.coupling, case.quantities)]).grid
+    handed = []
+    for part in sweep.solve_points(case, None, "mass", 1e-8, None, grid):
+        handed.append((part.points.index.tolist(), list(solved), [record["status"] for record in part.records()]))
+    assert handed == [([0], [0.5], ["infeasible"]), ([1], [0.5, 0.6], ["infeasible"]),
+                      ([2], [0.5, 0.6, 10.0], ["optimal"])]

@@ -80,7 +80,7 @@ from clutchopt.optimise.chain import chain_verdict, chained_sqp
 from clutchopt.optimise.feasibility import LOCALLY_INFEASIBLE, Least, infeasible, least
 from clutchopt.optimise.integers import (EXCLUDED, descend, downhill, excluded_entry, nearest_integers,
                                          relaxation_seed, search_entry)
-from clutchopt.optimise.interval_proof import carry_boxes, last_boxes
+from clutchopt.optimise.interval_proof import boxes_evaluated, carry_boxes, last_boxes
 from clutchopt.optimise.posed import Box, ScaledData, off_scale
 from clutchopt.optimise.problem import Problem
 from clutchopt.optimise.region_proof import Regions, SharedBox
@@ -101,6 +101,8 @@ CHAINED_POINT_WORK, CHAIN_CALL_WORK, SOLVE_WORK = 1, 8, 64  # the work of a chai
 # its points, of any other solver call: about 30 us, 0.25 ms and 2 ms on the benchmark's machine (1000-point user
 # sweeps: chains of 256 points 3-9 ms, of one point 0.2-0.3 ms; a point solved alone 0.2-15 ms, most 2 ms), so that
 # WINDOW_WORK is about the quarter of a second that ended a window before (docs/tradeoffs.md, "Windows by work")
+BOX_WORK = 0.5  # the work of a box an interval search evaluates (10-20 us: the lever in design mode proves a point
+# in about 15,000 boxes, 150-290 ms; uncounted, a stretch of such points held its window for 26 s: review 20)
 EXCLUSION_SPAN = LONGEST_BATCH  # points ahead whose exclusion of an integer combination is evaluated at once (a batch's
 # points at least; fewer cost less where the integers change often, since each table is a mapped CasADi call)
 PADDING = 64  # a chain may be padded with this many columns that call no solver to save a call (a padded column
@@ -334,9 +336,11 @@ class BatchSweep:
             alone: dict[int, Solution] = {}
             failed = False  # the last point is without a design: the window waits for a feasible point after it
             longest, most = min(first + STRETCH_WINDOWS * window, self.count), self.work + STRETCH_WINDOWS * WINDOW_WORK
-            while k < end and (failed or self.work < spent) or failed and k < longest and self.work < most:  # each
-                # turn solves at least one point; a stretch without a design runs on to a point with one (the
-                # region proofs searched ahead end there; the next window starts them afresh: ``carried``)
+            while k < end and self.work < spent or failed and k < longest and self.work < most:  # each turn
+                # solves at least one point; a stretch without a design runs on to a point with one (the region
+                # proofs searched ahead end there; the next window starts them afresh: ``carried``), within
+                # STRETCH_WINDOWS windows' points and work (its interval searches' boxes counted: BOX_WORK; review 20:
+                # the lever in design mode, 138 points without a design in one window, 31 s without a record)
                 wanted, reach = min(pace.size, ahead or pace.size, end - k), min(2 * pace.size, LONGEST_BATCH, end - k)
                 forecast = ahead is not None and ahead < pace.size  # the chain ends at a forecast change
                 block, chained, searching, tried, origin = (self._batch(start, k, wanted, reach) if start is not None
@@ -417,8 +421,9 @@ class BatchSweep:
             # built where a region proof covers the point: SharedBox)
             return self.problem.solve(self._regions.point_case(k), warm=warm, neighbour=self.feasible, first=first)
 
+        boxes = boxes_evaluated(self.posed)
         solution = self._regions.point(k, solved, warm, self.feasible if failed else None)
-        self._counted(solution)
+        self._counted(solution, boxes_evaluated(self.posed) - boxes)
         if solution.status in DESIGN_STATUSES:
             self.feasible = solution.design
         for entry in solution.integer_search:  # (its search's combinations without a design: IPOPT's verdicts)
@@ -427,8 +432,10 @@ class BatchSweep:
                 self._undesigned[tuple(float(entry[n]) for n in names)] = (k, entry["status"])
         return solution
 
-    def _counted(self, solution: Solution) -> Solution:
-        self._spent(solution.solver.solves, solution.solver.time_s, SOLVE_WORK * solution.solver.solves)
+    def _counted(self, solution: Solution, boxes: int = 0) -> Solution:
+        """``solution``'s solver calls counted, their work and that of the ``boxes`` its interval searches evaluated."""
+        self._spent(solution.solver.solves, solution.solver.time_s,
+                    SOLVE_WORK * solution.solver.solves + BOX_WORK * boxes)
         return solution
 
     def _spent(self, calls: int, seconds: float, work: int) -> None:

@@ -107,6 +107,7 @@ def searches(posed, problems: list[tuple[np.ndarray, ...]], budgets: list[int] |
                                                    np.array([budgets[i] for i in group]),
                                                    group.index(0) if lead and 0 in group else None)):
                 outcomes[i] = outcome
+    _proofs(posed)["evaluated"] += sum(outcome.boxes for outcome in outcomes if outcome is not None)
     return outcomes
 
 
@@ -520,8 +521,14 @@ def proofs_recorded(posed) -> int:
     return _proofs(posed)["proofs"]
 
 
+def boxes_evaluated(posed) -> int:
+    """How many boxes the searches of ``posed`` have evaluated in this process (a batched sweep's window counts them
+    as work: ``batch``'s BOX_WORK)."""
+    return _proofs(posed)["evaluated"]
+
+
 def _proofs(posed) -> dict[str, int]:
-    return posed.built("interval_last", None, lambda _: {"boxes": 0, "proofs": 0})
+    return posed.built("interval_last", None, lambda _: {"boxes": 0, "proofs": 0, "evaluated": 0})
 
 
 def _search_problem(posed, case) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -159,13 +159,15 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
         previous: Solution | None = None  # the last point's optimum (a warm start), None next to a failure
         # feasible: the last feasible point's values and design (a resumed run's: stored, ``StoredDesign``)
         designs: dict[tuple, Solution] = {}  # feasible designs by the point's values
-        waiting: list[tuple[int, Case, Solution]] = []  # points without a design, until the next feasible one
+        waiting: list[tuple[int, Case, Solution]] = []  # points without a design, until the next feasible one (those
+        # proven infeasible recorded at once where none waits before them: :func:`_proven_first`)
+        last_without: tuple[int, Solution] | None = None  # the last point without a design
         pairs = list(points.pairs())
         regions = Regions(problem, lambda k: case.with_values(**pairs[k][1]), len(pairs))
         for j, (index, values) in enumerate(pairs):
             point_case = regions.point_case(j)  # (built once: the regions keep it from their search on to its verdict)
             neighbour = designs.get(tuple(values.values())) or (feasible[1] if feasible else None)
-            without = ((pairs[j - 1][1], waiting[-1][2]) if waiting and waiting[-1][0] == j - 1
+            without = ((pairs[j - 1][1], last_without[1]) if last_without and last_without[0] == j - 1
                        and pairs[j - 1][0] == index - 1 else None)  # (the point before in the run and in the grid: a
             # resumed run's pending points may have a stored one between them)
             # next to a point without a design: proven with the points around it, or solved once and proven alone
@@ -175,6 +177,8 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
             if solution.status not in DESIGN_STATUSES:
                 settled(solution.mesh)  # (kept until the next feasible point: its simulation's columns let go)
                 waiting.append((j, point_case, solution))
+                last_without = j, solution
+                yield from (_one(points, w, names, proven) for w, proven in _proven_first(waiting))
                 continue
             feasible = values, solution
             designs[tuple(values.values())] = StoredDesign(solution.design)  # (a neighbour's design is all read)
@@ -196,6 +200,16 @@ def solve_points(case: Case, mode: str, objective: str, tol: float, robust: Robu
             waiting = []
             yield _one(points, j, names, solution)
         yield from (_one(points, w, names, waited) for w, _, waited in waiting)
+
+
+def _proven_first(waiting: list[tuple[int, Case, Solution]]) -> Iterator[tuple[int, Solution]]:
+    """The points at the head of ``waiting`` (points without a design, in order) proven infeasible, taken out of it:
+    no later design is tried from at them, so they are recorded at once, in order (a run through a region proven
+    point by point had recorded nothing until its next feasible point: a store kept none of it, a kill lost it all;
+    review 20)."""
+    while waiting and waiting[0][2].status == "infeasible":
+        w, _, proven = waiting.pop(0)
+        yield w, proven
 
 
 def _tried(problem, retry: Solution) -> bool:

@@ -22,6 +22,7 @@ verdict says how sure it is:
 
 from __future__ import annotations
 
+import time
 from dataclasses import replace
 
 import numpy as np
@@ -53,7 +54,8 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
     first_label = GIVEN if started else own
     tried = [(first_label, first)]
     proofs: list[str] = []  # (a drive that starts no coupling as asked is proven before any solve: Problem.proven)
-    early = empty_design_space(problem.posed, case, SURE_BOXES) if _relaxed_apart(problem, first) else None
+    searched = _Searched(problem.posed, case)  # (its seconds the verdict's: a sweep takes the runs' it searched along)
+    early = searched(SURE_BOXES) if _relaxed_apart(problem, first) else None
     # (before the retries, the boxes every search evaluates: proven, no start reaches a design, and none is tried;
     # where a retry finds one, a search that cannot prove has cost these, not up to MAX_BOXES)
     if early is not None and early.proven:
@@ -71,22 +73,22 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
                 continue
             tried.append((label, retry))
             if retry.status in DESIGN_STATUSES:
-                return _spent(retry, tried)
+                return _spent(retry, tried, searched.seconds)
     if first.diagnosed and first.diagnosed.proven:
-        return _spent(first, tried)
+        return _spent(first, tried, searched.seconds)
     if not proofs:
         settled = early is not None and early.feasible is not None  # (a design met: the search's outcome whatever
         # its budget; else the search without one, as before the retries)
-        emptiness = early if settled else empty_design_space(problem.posed, case)
+        emptiness = early if settled else searched()
         if emptiness is not None and emptiness.feasible is not None:  # a design of the relaxation: solve from it
             retry = retried(problem, case, dict(zip(problem.posed.names, emptiness.feasible)))
             if retry is not None:
                 tried.append(("a design the interval search met", retry))
                 if retry.status in DESIGN_STATUSES:
-                    return _spent(retry, tried)
+                    return _spent(retry, tried, searched.seconds)
         elif emptiness is not None and emptiness.proven:
             proofs = [emptied(emptiness)]
-    return _spent(verdict_from(tried, proofs), tried)
+    return _spent(verdict_from(tried, proofs), tried, searched.seconds)
 
 
 def _relaxed_apart(problem, first: Solution) -> bool:
@@ -167,9 +169,28 @@ def one_more_start(verdict: Solution, retry: Solution | None, label: str) -> Sol
                                                                                              retry.solver]))
 
 
-def _spent(solution: Solution, tried: list[tuple[str, Solution]]) -> Solution:
-    """``solution`` with the solver calls of every start tried summed."""
-    solution.solver = solution.solver.summed(s.solver for _, s in tried)
+class _Searched:
+    """The interval searches of a verdict (:func:`empty_design_space` of ``case``; a ``budget`` or none), their
+    seconds summed: the verdict's own (a sweep's region proofs take from them the share of the runs a search proved
+    along with it: ``region_proof.Regions._took``; uncounted, that share had made a point's seconds negative, 58 of
+    the lever's 180 in design mode over inertia and friction coefficient: review 20)."""
+
+    def __init__(self, posed, case: Case):
+        self.posed, self.case, self.seconds = posed, case, 0.0
+
+    def __call__(self, budget: int | None = None):
+        began = time.perf_counter()
+        try:
+            return empty_design_space(self.posed, self.case, budget)
+        finally:
+            self.seconds += time.perf_counter() - began
+
+
+def _spent(solution: Solution, tried: list[tuple[str, Solution]], searched: float = 0.0) -> Solution:
+    """``solution`` with the solver calls of every start tried summed, and ``searched`` seconds more (its interval
+    searches')."""
+    solver = solution.solver.summed(s.solver for _, s in tried)
+    solution.solver = replace(solver, time_s=solver.time_s + searched)
     return solution
 
 
