@@ -2,9 +2,11 @@
 
 Before a start-up point is reported without a design it is solved again from other starts
 (``clutchopt.optimise.verdict``): a feasible neighbour's design among them; a sweep then follows the design from its
-last feasible point by continuation (``clutchopt.optimise.sweep.continued``), whose steps can fall on a point
-already retried from that same design (ball_motor_start over driven_inertia: the first step towards 430.3 kg m^2
-from 382.9 lands on 398.7, tried from 382.9's design a moment before). Such a retry, an undiagnosed solve from a
+last feasible point by continuation (``clutchopt.optimise.sweep.continued``), whose steps from that design alone (a
+stored design, an optimum of the loop's doubled problem; a step warm from an optimum of the problem is no such retry)
+can fall on a point already retried from that same design (ball_motor_start over driven_inertia: the first step
+towards 430.3 kg m^2 from 382.9, its optimum on the doubled problem, lands on 398.7, tried from 382.9's design a
+moment before). Such a retry, an undiagnosed solve from a
 given design, is a function of the case and that design alone, so its failure is kept here and returned again
 (charged no solver call). The point is recognised to 12 significant digits of each value: a continuation's step
 computed as a + (b - a) / 3 differs from the grid's value in the last bits, and IPOPT, on a problem without a
