@@ -60,37 +60,65 @@ def solved_along(problem, case: Case, previous: Solution | None) -> Solution | N
     """The start-up design at ``case`` from ``previous`` (the optimum of the point before, of this problem): its
     solve, which the caller keeps where it ends optimal (else its solver calls are counted with the point's cold
     solve); None where there is none to start from (nothing solved)."""
-    block = problem.posed.start_up
     compiled_when_ready(problem.posed, previous)  # (its NLP's functions compiled once built: the same numbers)
-    if start_up_proofs(case):  # no design to start: ``Problem.solve`` gives the proof without a solve
-        return None
-    if previous is None or previous.status != "optimal" or previous.internal is None \
-            or len(previous.internal) != block.size:  # none, or of another problem (its intervals doubled)
-        return None
-    try:
-        numbers, tolerance = _numbers(case), block.s.spec.tolerance
-        sized = sized_out(problem, case, previous.sized)
-        step = secant_step(previous.along, numbers)
-        mesh, shift = first_mesh(previous, step, tolerance), predicted_shift(previous, step, tolerance)
-        looped = SizedOut(sized.key) if block.s.elastic else sized  # (an elastic link's loop takes neither: its NLP
-        # is another model than its simulation)
-        solution = problem.refined(case, warm=previous, mesh=mesh, shift=shift, diagnosed=False, cold=False,
-                                   infeasible=looped.choices, sizing=looped.design)  # solve's own cold start and
-        # diagnosis follow
-    except InputError:  # its first simulation failed from this start
-        return None
-    if solution.status != "optimal":
+    solution = started_warm(problem, case, previous)  # (where it fails, solve's own cold start and diagnosis follow)
+    if solution is None or solution.status != "optimal":
         return solution
+    sized = solution.sized
     solution = (solved_alone_where_held(problem, case, solution, sized)
                 or as_solve_would(problem, case, solution, sized))
     solution.sized = sized
-    if block.s.elastic:  # its loop moves a limit only where the simulated start misses it, never centres one: the
-        return solution  # NLP is another model than the simulated dynamics, not a mesh off them (the share is kept)
+    if problem.posed.start_up.s.elastic:  # its loop moves a limit only where the simulated start misses it, never
+        return solution  # centres one: the NLP is another model than the simulated dynamics, not a mesh off them (the
+        # share is kept)
     before = previous.along
-    solution.along = Along(numbers, centred_shift(solution, case), solution.mesh[0],
+    solution.along = Along(_numbers(case), centred_shift(solution, case), solution.mesh[0],
                            replace(before, before=None) if before is not None else None,
                            solution.start_up["discretisation_error"]["start_time"], held_limits(solution))
     return solution
+
+
+def started_warm(problem, case: Case, previous: object) -> Solution | None:
+    """The start-up design at ``case`` solved warm from ``previous`` (:func:`warm_from`; the papers' sizing at
+    ``case``, :func:`sized_out`, kept as its ``sized``): a sweep's point from the point before's optimum
+    (:func:`solved_along`), a continuation's step from the step before's (``clutchopt.optimise.sweep.continued``).
+    None where ``previous`` does not start one (:func:`of_this_problem`), where the drive's proofs cover ``case`` (no
+    design to start: ``Problem.refined`` gives the proof without a solve) or where its first simulation failed."""
+    if start_up_proofs(case) or not of_this_problem(problem, previous):
+        return None
+    try:
+        sized = sized_out(problem, case, previous.sized)
+        solution = warm_from(problem, case, previous, sized)
+    except InputError:  # its first simulation failed from this start
+        return None
+    solution.sized = sized
+    return solution
+
+
+def of_this_problem(problem, previous: object) -> bool:
+    """Whether ``previous`` (a point's or a continuation step's verdict, or a stored design) starts a warm solve of the
+    start-up ``problem`` (:func:`warm_from`): an optimum of it, its collocation states as many as the problem's (not
+    its loop's doubled problem's, whose intervals it doubled, nor a stored design's, which has none)."""
+    return isinstance(previous, Solution) and previous.status == "optimal" and previous.internal is not None \
+        and len(previous.internal) == problem.posed.start_up.size
+
+
+def warm_from(problem, case: Case, previous: Solution, sized: "SizedOut") -> Solution:
+    """The start-up design at ``case`` solved warm from ``previous``, an optimum of this problem at a point nearby
+    (:func:`of_this_problem`): its design, scales, multipliers and collocation states, on the mesh its loop ended on
+    (or adapted ahead: :func:`first_mesh`), its moved limits carried (:func:`predicted_shift`), the integer choices and
+    the design of the papers' sizing at ``case`` (``sized``: :func:`sized_out`) completing each warm solve's search;
+    a warm start that fails ends it (``not_found``, undiagnosed: ``Problem.refined``'s ``cold=False``). A sweep's point
+    (:func:`solved_along`) and each step of its continuation (``clutchopt.optimise.sweep.continued``) start so.
+    InputError: its first simulation failed from this start."""
+    block = problem.posed.start_up
+    numbers, tolerance = _numbers(case), block.s.spec.tolerance
+    step = secant_step(previous.along, numbers)
+    mesh, shift = first_mesh(previous, step, tolerance), predicted_shift(previous, step, tolerance)
+    looped = SizedOut(sized.key) if block.s.elastic else sized  # (an elastic link's loop takes neither: its NLP is
+    # another model than its simulation)
+    return problem.refined(case, warm=previous, mesh=mesh, shift=shift, diagnosed=False, cold=False,
+                           infeasible=looped.choices, sizing=looped.design)
 
 
 def solved_alone_where_held(problem, case: Case, solution: Solution, sized: "SizedOut") -> Solution | None:
