@@ -171,3 +171,31 @@ def test_an_infeasible_solution_is_not_started():
 def committed_outputs() -> dict:
     """Outputs of the committed solved design (clutchopt solve cases/wedge_paper.toml --json)."""
     return json.loads((CASES / "designs" / "wedge_paper.json").read_text())["outputs"]
+
+
+def test_a_start_up_case_s_design_is_simulated_with_its_own_spring_preload():
+    """A scene whose coupling is a start-up case solved for its design (or that case's design file) simulates the
+    design's own spring preload, one of its variables, as its start-up was solved: the engagement speed that preload
+    gives (w_e^2 = F_s / (m_r r_c), the weights' own weight not listed), and a scene that gives another preload is
+    refused by name (review 20: the scene's 12 N had replaced the design's 9.97 N silently)."""
+    import copy
+
+    from clutchopt.cases import read_toml
+    from clutchopt.errors import InputError
+    from clutchopt.optimise import solve_case
+    from clutchopt.simulate.scene import parse_scene
+
+    case = load_case(CASES / "wedge_motor_start.toml")
+    solution = solve_case(case)
+    data = copy.deepcopy(read_toml(SCENES / "wedge_motor_springs.toml"))
+    data["effects"] = ["slip_friction", "motor_curve", "spring_preload", "lockup"]
+    data["coupling"] = {"law": "centrifugal", "case": str(CASES / "wedge_motor_start.toml"), "spring_preload": "12 N"}
+    with pytest.raises(InputError, match="coupling.spring_preload: the design sets the spring preload"):
+        parse_scene(data, str(SCENES / "wedge_motor_springs.toml"))
+    del data["coupling"]["spring_preload"]
+    scene = parse_scene(data, str(SCENES / "wedge_motor_springs.toml"))
+    outputs = {name: output.value for name, output in solution.outputs.items()}
+    preload = solution.design["spring_preload"]
+    assert preload != pytest.approx(12.0, rel=0.05)
+    assert scene.source["engagement_speed"] == pytest.approx(
+        math.sqrt(preload / (solution.design["weight_mass"] * outputs["centroid_radius"])), rel=1e-9)

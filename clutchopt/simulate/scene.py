@@ -11,7 +11,7 @@ Layout (quantities with units as in case files; bare numbers are SI; paths relat
     a = "0.02 s/rad"                          # 1 / slip speed
     case = "../wedge_paper.toml"              # centrifugal: a case of a coupling with a speed law (wedge)
     design = "../designs/wedge_paper.json"    # optional: clutchopt solve --json output; else the case is solved
-    spring_preload = "10 N"                   # per weight (effect spring_preload)
+    spring_preload = "10 N"                   # per weight (effect spring_preload); not where the design sets it
     [driven]
     inertia = "0.5 kg*m^2"                    # defaults: the case's duty
     resisting_torque = "5 N*m"                # or [driven.load_profile] over = "speed"|"time", points, torque
@@ -172,9 +172,7 @@ def parse_scene(data: dict, path: str = "") -> Scene:
     if law_name in ("paper", "constant"):
         law, source = _friction_law(f, law_name)
     elif case is not None:
-        preload = f.quantity("coupling", "spring_preload", "N", FORCE, None if "spring_preload" in effects else 0.0)
-        f.problems.raise_any()
-        law, source = _centrifugal(f, case, effects, preload)
+        law, source = _centrifugal(f, case, effects)
     f.problems.raise_any()
     model = Model(law, inertia, load, effects, speed, motor, heat[0], heat[1],
                   None if math.isinf(end_time) else end_time, tolerance)
@@ -219,17 +217,27 @@ def _case(f: _Fields, effects: tuple[str, ...]):
     return case
 
 
-def _centrifugal(f: _Fields, case, effects, preload: float):
+def _centrifugal(f: _Fields, case, effects):
+    from clutchopt.optimise.problem import case_formulation
     from clutchopt.start_up.simulation import centrifugal_law, design_from_json
 
     table = f.table("coupling")
     source = {"law": "centrifugal", "coupling": case.coupling, "case": table["case"]}
+    design = None
     if "design" in table:
         design_path = f.file("design")
         f.problems.raise_any()
         mode, design = design_from_json(design_path, case.coupling, case.path)
         source["design"] = table["design"]
-    else:
+    designed = ("spring_preload" in design if design is not None  # one of the design's variables (a start-up's)
+                else any(v.name == "spring_preload" for v in case_formulation(case, table.get("mode")).variables))
+    if designed and "spring_preload" in table:  # the start simulated with the design's, as its start-up was solved
+        f.problems.errors.append(InputError("coupling.spring_preload", "the design sets the spring preload (one of "
+                                                                       "its variables): leave it out of the scene"))
+    preload = None if designed else f.quantity("coupling", "spring_preload", "N", FORCE,
+                                               None if "spring_preload" in effects else 0.0)
+    f.problems.raise_any()
+    if design is None:
         from clutchopt.optimise import solve_case
 
         solution = solve_case(case, table.get("mode"), table.get("objective"))
@@ -237,7 +245,7 @@ def _centrifugal(f: _Fields, case, effects, preload: float):
             raise InputError("coupling.case", f"the case does not solve to an optimal design ({solution.status})")
         mode, design = solution.mode, solution.design
         source["design"] = "solved from the case"
-    law = centrifugal_law(case, mode, design, effects, preload)
+    law = centrifugal_law(case, mode, design, effects, design["spring_preload"] if designed else preload)
     source["engagement_speed"] = law.engagement_speed()
     source["design_torque"] = law.capacity(case.params().speed)
     return law, source
