@@ -199,3 +199,43 @@ def test_a_start_up_case_s_design_is_simulated_with_its_own_spring_preload():
     assert preload != pytest.approx(12.0, rel=0.05)
     assert scene.source["engagement_speed"] == pytest.approx(
         math.sqrt(preload / (solution.design["weight_mass"] * outputs["centroid_radius"])), rel=1e-9)
+
+
+def test_a_scene_solved_from_a_choosing_case_simulates_the_best_choice(tmp_path):
+    """A scene whose coupling is a case with ``options.choose`` and no design simulates the design ``solve`` gives
+    (every choice designed, the best kept) with that choice's case (its friction coefficient), and says which; a
+    design file solved with one of its choices is simulated with that choice (review 20: the scene had solved the
+    case's first choice, listed first, and simulated it without a word)."""
+    import copy
+
+    from clutchopt.cases import read_toml
+    from clutchopt.optimise.design import design_case
+    from clutchopt.simulate.scene import parse_scene
+    from clutchopt.start_up.simulation import centrifugal_law
+    from tests.conftest import choosing
+
+    (tmp_path / "choosing.toml").write_text(choosing("wedge").replace('["steel_steel_dry", "steel_steel_oiled"]',
+                                                                       '["steel_steel_oiled", "steel_steel_dry"]'))
+    case = load_case(tmp_path / "choosing.toml")
+    designed = design_case(case)
+    best, first = designed[0], next(d for d in designed if d.choice == designed_first(case))
+    assert best.choice != first.choice  # (the first listed is not the best: the case tells them apart)
+    data = copy.deepcopy(read_toml(SCENES / "wedge_motor_springs.toml"))
+    data["effects"] = ["slip_friction", "motor_curve"]
+    data["coupling"] = {"law": "centrifugal", "case": "choosing.toml"}
+    scene = parse_scene(data, str(tmp_path / "scene.toml"))
+    law = centrifugal_law(best.case, best.solution.mode, best.solution.design, ("slip_friction",))
+    assert best.choice_text in scene.source["design"]
+    assert scene.source["design_torque"] == pytest.approx(law.capacity(best.case.params().speed), rel=1e-12)
+    (tmp_path / "design.json").write_text(json.dumps({**first.as_dict(), "case": "choosing.toml"}))
+    data["coupling"]["design"] = "design.json"
+    chosen = parse_scene(data, str(tmp_path / "scene.toml"))
+    law = centrifugal_law(first.case, first.solution.mode, first.solution.design, ("slip_friction",))
+    assert chosen.source["design_torque"] == pytest.approx(law.capacity(first.case.params().speed), rel=1e-12)
+
+
+def designed_first(case) -> dict:
+    """The first choice ``options.choose`` lists."""
+    from clutchopt.optimise.design import choices
+
+    return next(iter(choices(case)))[0]

@@ -42,7 +42,8 @@ def test_each_problem_of_a_solve_derives_its_nlp_once(monkeypatch):
     admits no design lighter than 8 cables' 3.952573 kg: ``modifier.no_lighter``), so the modifiers' problem is not
     built. Solved (the refutation turned off), the step poses a third (one step, heavier than 8 cables'). Each is
     differentiated once: the start-up's warm_near solver is built with its cold solver's functions, and the
-    modifiers' problem, which solves warm only, builds no cold solver (it derived one it never ran). (The start-up's
+    modifiers' problem, which solves warm only, builds no cold solver (it derived one it never ran); so is the sizing's
+warm solver, for its re-solve scaled by its first optimum. (The start-up's
     warm solver is no longer built: its one warm solve, the relaxation at 7 cables' moved limit, is not solved since 8
     cables are solved first at the case's limit, ``Problem._one_up_first``.)"""
     case = load_case(CASES / "cable_motor_start.toml")
@@ -66,7 +67,8 @@ def test_each_problem_of_a_solve_derives_its_nlp_once(monkeypatch):
     derived = [name for name, shared in built if not shared]
     assert derived == ["cable_paper_mass", "cable_paper_mass", "cable_paper_mass_warm_near"]  # sizing, start-up,
     # modifiers' (a solver is named by coupling, mode, objective and method)
-    assert sorted(name for name, shared in built if shared) == ["cable_paper_mass_warm_near"]
+    assert sorted(name for name, shared in built if shared) == ["cable_paper_mass_warm", "cable_paper_mass_warm_near"]
+    # (the sizing's, its re-solve scaled by its first optimum warm from it: problem.rescaled_seed)
     assert len([key for key in problem_module._CACHE if "modifier" in key[2]]) == 1
     modified = case_problem(case).modified_problem.posed
     assert "ipopt" not in modified._built["solver"] and "warm_near" in modified._built["solver"]

@@ -227,7 +227,8 @@ def _centrifugal(f: _Fields, case, effects):
     if "design" in table:
         design_path = f.file("design")
         f.problems.raise_any()
-        mode, design = design_from_json(design_path, case.coupling, case.path)
+        mode, design, choice = design_from_json(design_path, case.coupling, case.path)
+        case = _chosen(case, choice)
         source["design"] = table["design"]
     designed = ("spring_preload" in design if design is not None  # one of the design's variables (a start-up's)
                 else any(v.name == "spring_preload" for v in case_formulation(case, table.get("mode")).variables))
@@ -237,18 +238,38 @@ def _centrifugal(f: _Fields, case, effects):
     preload = None if designed else f.quantity("coupling", "spring_preload", "N", FORCE,
                                                None if "spring_preload" in effects else 0.0)
     f.problems.raise_any()
-    if design is None:
-        from clutchopt.optimise import solve_case
+    if design is None:  # designed as `solve` designs the case: every choice of options.choose, the best kept
+        from clutchopt.optimise.design import design_case
 
-        solution = solve_case(case, table.get("mode"), table.get("objective"))
-        if solution.status != "optimal":
-            raise InputError("coupling.case", f"the case does not solve to an optimal design ({solution.status})")
-        mode, design = solution.mode, solution.design
-        source["design"] = "solved from the case"
+        best = design_case(case, table.get("mode"), table.get("objective"))[0]
+        if best.solution.status != "optimal":
+            raise InputError("coupling.case", f"the case does not solve to an optimal design ({best.solution.status})")
+        case, mode, design = best.case, best.solution.mode, best.solution.design
+        source["design"] = "solved from the case" + (f", {best.choice_text} the best of options.choose"
+                                                     if best.choice else "")
+        if case.scatter:  # (as every command designing a case with [scatter] without --robust says)
+            source["design"] += "; nominal: the case's [scatter] is not designed for"
     law = centrifugal_law(case, mode, design, effects, design["spring_preload"] if designed else preload)
     source["engagement_speed"] = law.engagement_speed()
     source["design_torque"] = law.capacity(case.params().speed)
     return law, source
+
+
+def _chosen(case, choice: dict[str, str]):
+    """``case`` as a design file's choice of its ``options.choose`` (``choice``) makes it, which the design was
+    solved with (its friction pair's coefficient, ...); a choice the case does not offer refused by name."""
+    if not case.options.get("choose"):
+        if choice:
+            raise InputError("coupling.design", f"names the choice {choice}, but the case chooses nothing")
+        return case
+    from clutchopt.optimise.design import choices
+
+    offered = list(choices(case))
+    variant = next((variant for named, variant in offered if named == choice), None)
+    if variant is None:
+        raise InputError("coupling.design", f"was solved with {choice or 'no choice'}, not one of the case's "
+                                            f"options.choose ({', '.join(str(named) for named, _ in offered)})")
+    return variant
 
 
 def _load(f: _Fields, duty) -> Load:

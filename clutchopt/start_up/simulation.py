@@ -54,8 +54,10 @@ def speed_law_missing(coupling: str, solution=None, slipping: bool = False) -> s
     return None
 
 
-def design_from_json(path: str | Path, coupling: str, case_path: str | Path | None = None) -> tuple[str, dict]:
-    """(mode, design in SI) of a solved design: the JSON of ``clutchopt solve --json`` (of the case ``case_path``).
+def design_from_json(path: str | Path, coupling: str, case_path: str | Path | None = None
+                     ) -> tuple[str, dict, dict[str, str]]:
+    """(mode, design in SI, the choice of ``options.choose`` it was solved with: ``{}`` where none) of a solved
+    design: the JSON of ``clutchopt solve --json`` (of the case ``case_path``).
 
     A design file is input like any other: a regular UTF-8 file, JSON without NaN or Infinity, every design
     variable a number within the variable's valid range (a design the solver could have returned)."""
@@ -91,8 +93,13 @@ def design_from_json(path: str | Path, coupling: str, case_path: str | Path | No
                 raise InputError(f"{field} design.{variable.name}", f"must be a finite number (SI), got "
                                                                     f"{shown_value(design.get(variable.name))}")
             checked[variable.name] = variable.check(value, f"{field} design.{variable.name}")
+    choice = data.get("choice", {})
+    if not isinstance(choice, dict) or not all(isinstance(key, str) and isinstance(name, str)
+                                               for key, name in choice.items()):
+        problems.errors.append(InputError(f"{field} choice", f"must be the names of a choice of options.choose, got "
+                                                             f"{shown_value(choice)}"))
     problems.raise_any()
-    return formulation.mode, checked
+    return formulation.mode, checked, choice
 
 
 def _no_constant(name: str):
