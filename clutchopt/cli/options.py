@@ -137,8 +137,8 @@ def add_problem_options(command: argparse.ArgumentParser, objective: bool = True
     command.add_argument("--mode", metavar="MODE", action=Checked, check=name, help=MODE_HELP)
     if objective:
         command.add_argument("--objective", metavar="NAME", action=Checked, check=name,
-                             help="what the optimum minimises: mass (kg) or cost (EUR) (default: the case's "
-                                  "[options] objective, then mass)")
+                             help="what the optimum minimises: mass (kg), cost (EUR) or envelope_mass (kg, "
+                                  "docs/envelope.md) (default: the case's [options] objective, then mass)")
     add_tolerance_option(command)
 
 
