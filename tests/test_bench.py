@@ -117,6 +117,8 @@ def test_user_sweeps_cover_every_coupling_and_quantity_users_vary(report):
         assert row["points_per_s"] == pytest.approx(row["points"] / row["wall_s"])
     infeasible = [row for row in rows if row["quantity"].endswith("(into infeasible)")]
     assert sum(row["without_design"] for row in infeasible) > 0  # the region is reached
+    assert {row["case"] for row in infeasible} == {f"{c} ({m})" for c, m in MODES}  # (every mode of each coupling,
+    # its reference mode's with the sides of its edge)
     for coupling, _ in MODES:  # either side of the edge each sweep into the region met
         sides = {q.split(" (")[1]: row for row in rows if row["case"].startswith(coupling + " ")
                  for q in [row["quantity"]] if " the edge)" in q}

@@ -4,7 +4,8 @@ or stress (0.5x to 2x the case's value, or the widest of 0.7x-1.4x and 0.9x-1.1x
 accept), a sweep reaching into an infeasible region (the duty's quantity from 1x to 10x) and the two sides of the
 edge it meets (from 1x to its last point with a design, and from its first point without one to twice that: what a
 point without a design costs against one with a design, issue 26's "an infeasible point <= 20x a feasible one"),
-``ball_crusher`` over 250-1000 kW, and for each start-up case a sweep of the driven inertia (0.6x to 1.4x, every
+each coupling's other modes over its duty from 1x into the infeasible region, ``ball_crusher`` over 250-1000 kW, and
+for each start-up case a sweep of the driven inertia (0.6x to 1.4x, every
 point simulated; once, with a fiftieth of the points, per state of the compiled-code cache: :func:`start_up_rows`;
 wedge_motor_start's again over five times the points)
 and one of the start-up limit nearest to binding its design (0.8x to 1.2x, as many points, once).
@@ -27,6 +28,7 @@ from clutchopt.bench.reference import bench_cases, reference_mode
 from clutchopt.bench.throughput import sweep_quantity
 from clutchopt.bench.timing import median_of, time_once
 from clutchopt.cases import Case, load_case
+from clutchopt.formulations import get_coupling
 from clutchopt.optimise.compiled import CACHE_ENV
 from clutchopt.optimise.problem import problems_set_aside, start_up_key
 from clutchopt.optimise.start_up_compiled import BUILD_LATER_ENV, compiled_now, wait_for_builds
@@ -34,6 +36,8 @@ from clutchopt.optimise.start_up_compiled import BUILD_LATER_ENV, compiled_now, 
 CASES = Path(__file__).resolve().parents[2] / "cases"
 SPANS = ((0.5, 2.0), (0.7, 1.4), (0.9, 1.1))  # factors on the case's value, the widest the case accepts
 INTO_INFEASIBLE = (1.0, 10.0)  # factors on the duty's quantity: a sweep that reaches into its infeasible region
+OTHER_MODES_SPANS = (INTO_INFEASIBLE, (1.0, 4.0), (1.0, 2.0))  # the same in each other mode, the widest its checks
+# accept (the cable's threads mode refuses a thread no longer self-locking past about 6x its torque)
 ALLOWABLE = {"wedge": "allowable_pressure", "lever": "allowable_pressure", "cable": "allowable_cable_stress",
              "ball": "allowable_contact_stress"}  # the allowable each coupling's main constraint is sized by
 LIMIT_SPAN = (0.8, 1.2)  # factors on the start-up limit nearest to binding a start-up case's design (nearest_limit)
@@ -115,6 +119,10 @@ def user_sweep_rows(config) -> list[dict]:
         into = _widest(case, duty, (INTO_INFEASIBLE,), points, mode, config.sweep_repeats)
         rows.append({"case": label_case, "quantity": f"{duty} (into infeasible)", **into})
         rows += [{"case": label_case, **side} for side in _edge_sides(case, duty, into, mode, config.sweep_repeats)]
+        for other in (m for m in get_coupling(case.coupling).formulations if m != mode):  # (the coupling's other
+            # modes: a user's too, the infeasible points of another formulation costing what its searches take)
+            rows.append({"case": f"{case.coupling} ({other})", "quantity": f"{duty} (into infeasible)",
+                         **_widest(case, duty, OTHER_MODES_SPANS, points, other, config.sweep_repeats)})
     crusher = load_case(CASES / "ball_crusher.toml")
     rows.append({"case": "ball_crusher", "quantity": "power", "span": "250-1000 kW",
                  **_run(crusher, "power", np.linspace(250e3, 1000e3, 2 * points), None, config.sweep_repeats)})
