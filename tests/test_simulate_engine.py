@@ -239,3 +239,33 @@ def designed_first(case) -> dict:
     from clutchopt.optimise.design import choices
 
     return next(iter(choices(case)))[0]
+
+
+def test_a_scene_s_design_file_is_simulated_as_it_was_solved_and_says_what_it_is(tmp_path):
+    """A design file's scene: a mode other than the file's, or an objective (neither solves anything there), refused
+    by name; a choice the case does not offer named within a line's length (a million-character name had been echoed
+    whole); a robust design said to be one, simulated at the case's nominal values (review 20b)."""
+    import copy
+
+    from clutchopt.cases import read_toml
+    from clutchopt.errors import InputError
+    from clutchopt.simulate.scene import parse_scene
+
+    data = copy.deepcopy(read_toml(SCENES / "wedge_motor_springs.toml"))
+    where = str(SCENES / "wedge_motor_springs.toml")
+    for key, value in (("mode", "geometry"), ("objective", "cost")):
+        with pytest.raises(InputError, match=f"coupling.{key}: '{value}' is for a case solved for its design"):
+            parse_scene(copy.deepcopy(data) | {"coupling": {**data["coupling"], key: value}}, where)
+    assert parse_scene(copy.deepcopy(data) | {"coupling": {**data["coupling"], "mode": "paper"}}, where)
+    design = json.loads((CASES / "designs" / "wedge_paper.json").read_text())
+    (tmp_path / "chosen.json").write_text(json.dumps({**design, "choice": {"friction_pair": "x" * 1_000_000}}))
+    (tmp_path / "robust.json").write_text(json.dumps({**design, "robust": {"method": "worst-case"}}))
+    for name in ("chosen.json", "robust.json"):
+        data["coupling"]["case"] = str(CASES / "wedge_paper.toml")
+        data["coupling"]["design"] = str(tmp_path / name)
+        if name == "chosen.json":
+            with pytest.raises(InputError) as error:
+                parse_scene(data, where)
+            assert "names the choice" in str(error.value) and len(str(error.value)) < 300
+        else:
+            assert "a robust design" in parse_scene(data, where).source["design"]

@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from clutchopt.cases import check_text, read_toml
-from clutchopt.errors import InputError, Problems
+from clutchopt.errors import InputError, Problems, shown_value
 from clutchopt.simulate.engine import Model, simulate
 from clutchopt.simulate.ranges import (
     BREAKDOWN_SLIP,
@@ -227,9 +227,14 @@ def _centrifugal(f: _Fields, case, effects):
     if "design" in table:
         design_path = f.file("design")
         f.problems.raise_any()
-        mode, design, choice = design_from_json(design_path, case.coupling, case.path)
-        case = _chosen(case, choice)
-        source["design"] = table["design"]
+        given = design_from_json(design_path, case.coupling, case.path)
+        mode, design, case = given.mode, given.design, _chosen(case, given.choice)
+        source["design"] = table["design"] + (" (a robust design, simulated at the case's nominal values)"
+                                              if given.robust else "")
+        for name in ("mode", "objective"):  # (the file's design is simulated: neither solves the case)
+            if name in table and not (name == "mode" and table[name] == mode):
+                f.problems.errors.append(InputError(f"coupling.{name}", f"{shown_value(table[name])} is for a case "
+                                                    f"solved for its design; the design file gives it (mode {mode})"))
     designed = ("spring_preload" in design if design is not None  # one of the design's variables (a start-up's)
                 else any(v.name == "spring_preload" for v in case_formulation(case, table.get("mode")).variables))
     if designed and "spring_preload" in table:  # the start simulated with the design's, as its start-up was solved
@@ -260,15 +265,17 @@ def _chosen(case, choice: dict[str, str]):
     solved with (its friction pair's coefficient, ...); a choice the case does not offer refused by name."""
     if not case.options.get("choose"):
         if choice:
-            raise InputError("coupling.design", f"names the choice {choice}, but the case chooses nothing")
+            raise InputError("coupling.design", f"names the choice {shown_value(choice)}, but the case chooses "
+                                                "nothing")
         return case
     from clutchopt.optimise.design import choices
 
     offered = list(choices(case))
     variant = next((variant for named, variant in offered if named == choice), None)
     if variant is None:
-        raise InputError("coupling.design", f"was solved with {choice or 'no choice'}, not one of the case's "
-                                            f"options.choose ({', '.join(str(named) for named, _ in offered)})")
+        raise InputError("coupling.design", f"was solved with {shown_value(choice) if choice else 'no choice'}, "
+                                            f"not one of the case's options.choose "
+                                            f"({shown_value(', '.join(str(named) for named, _ in offered), 200)})")
     return variant
 
 

@@ -17,6 +17,7 @@ import threading
 from pathlib import Path
 from dataclasses import replace
 from types import SimpleNamespace
+from typing import NamedTuple
 
 from clutchopt.errors import InputError, Problems, shown_value
 from clutchopt.files import CASE_BYTES, read_text
@@ -54,10 +55,18 @@ def speed_law_missing(coupling: str, solution=None, slipping: bool = False) -> s
     return None
 
 
-def design_from_json(path: str | Path, coupling: str, case_path: str | Path | None = None
-                     ) -> tuple[str, dict, dict[str, str]]:
-    """(mode, design in SI, the choice of ``options.choose`` it was solved with: ``{}`` where none) of a solved
-    design: the JSON of ``clutchopt solve --json`` (of the case ``case_path``).
+class DesignFile(NamedTuple):
+    """A solved design read from its file: its mode, its design (SI), the choice of ``options.choose`` it was solved
+    with (``{}`` where none) and whether it is a robust design (``solve --robust``: designed for the case's scatter)."""
+
+    mode: str
+    design: dict[str, float]
+    choice: dict[str, str]
+    robust: bool
+
+
+def design_from_json(path: str | Path, coupling: str, case_path: str | Path | None = None) -> DesignFile:
+    """A solved design (:class:`DesignFile`): the JSON of ``clutchopt solve --json`` (of the case ``case_path``).
 
     A design file is input like any other: a regular UTF-8 file, JSON without NaN or Infinity, every design
     variable a number within the variable's valid range (a design the solver could have returned)."""
@@ -99,7 +108,7 @@ def design_from_json(path: str | Path, coupling: str, case_path: str | Path | No
         problems.errors.append(InputError(f"{field} choice", f"must be the names of a choice of options.choose, got "
                                                              f"{shown_value(choice)}"))
     problems.raise_any()
-    return formulation.mode, checked, choice
+    return DesignFile(formulation.mode, checked, choice, "robust" in data)
 
 
 def _no_constant(name: str):
