@@ -102,3 +102,22 @@ def test_the_lever_in_design_mode_with_a_design_is_never_proven_empty():
     posed = case_problem(LEVER, "design").posed
     emptiness = search(posed, *_search_problem(posed, LEVER.with_values(inertia=LEVER.values["inertia"] * 2)))
     assert not emptiness.proven
+
+
+def test_the_compiled_forward_replay_gives_the_numpy_one_s_bounds():
+    """Tape.forward by the compiled replay (each value in a work variable of its own) and by NumPy (without a
+    library): the same bounds for every value a row depends on, over random boxes of the lever in design mode (to
+    the last ulps libm's elementary functions may differ by from NumPy's, inside the replay's widening)."""
+    posed, p, lower, upper = _posed("lever_centrifuge.toml", "design")
+    compiled = row_tape(posed)
+    assert compiled.compiled is not None
+    numpy_tape = Tape(compiled.function, IntervalFunction(compiled.function).program)
+    numpy_tape.compiled = None
+    rng = np.random.default_rng(3)
+    a, b = (lower[:, None] + (upper - lower)[:, None] * rng.random((len(lower), 20)) for _ in range(2))
+    boxes = [(np.minimum(a, b), np.maximum(a, b)), (np.repeat(p[:, None], 20, axis=1),) * 2]
+    rows = list(range(len(compiled.rows)))
+    ours, theirs = compiled.forward(boxes, rows), numpy_tape.forward(boxes, rows)
+    for k in sorted(set().union(*map(set, compiled.subgraphs))):
+        for end in (0, 1):
+            assert np.allclose(ours[k][end], theirs[k][end], rtol=1e-13, atol=0, equal_nan=True), k

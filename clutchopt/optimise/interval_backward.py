@@ -4,8 +4,8 @@ The rows' function is replayed forward over a box (:mod:`clutchopt.optimise.inte
 result kept), then each row's bound ``g <= limit`` is carried back through the operations to their arguments: where
 z = x * y holds and z, y are bounded, x lies in z / y; where z = sin(x) with x within [-pi/2, pi/2], x lies in
 asin(z); and so on (Benhamou, Goualard, Granvilliers & Puget, "Revising hull and box consistency", ICLP 1999). Every
-design variable ends bounded by what each row allows, one row at a time (a copy of every box for each row: the rows
-that cut or empty a box are named in the proof, as :mod:`clutchopt.optimise.interval_contract`'s are). Each bound is
+design variable ends bounded by what each row allows, one row at a time (the rows that cut or empty a box are named
+in the proof, as :mod:`clutchopt.optimise.interval_contract`'s are). Each bound is
 widened outwards by ``_SLACK`` of its magnitude (NumPy's inverse functions and powers are faithful, not correctly
 rounded), so a design is never cut away; an operation without a rule here cuts nothing.
 
@@ -194,8 +194,9 @@ class Tape:
                 empty[r] |= z[0] > z[1]
                 op, args, _, read = self.steps[k]
                 if op == ca.OP_INPUT:
-                    if read[0] == 0:
-                        x_lo[r, read[1]], x_hi[r, read[1]] = z
+                    if read[0] == 0:  # (a variable read twice: both bounds hold)
+                        x_lo[r, read[1]] = np.maximum(x_lo[r, read[1]], z[0])
+                        x_hi[r, read[1]] = np.minimum(x_hi[r, read[1]], z[1])
                     continue
                 current = [back.get(a, values[a]) for a in args]
                 if len(args) == 1:
