@@ -83,14 +83,12 @@ def test_a_conflict_of_two_linear_rows_is_proven_in_one_box():
     """The wedge paper case at 1000x its resisting torque: torque and flank pressure conflict everywhere; the
     natural bounds needed 129 boxes (one, then 128 halves), the contraction empties the first box. The finger's
     guide and chord rows (paper mode poses them too) cut its d_n first (to 13.3 and 15.3 mm): named, as rows that
-    cut are; so is the top land's width, which cuts the box too where the rows are carried back
-    (interval_backward: a search without a budget does)."""
+    cut are."""
     case = load_case(CASES / "wedge_paper.toml")
     case = case.with_values(resisting_torque=case.values["resisting_torque"] * 1000)
     emptiness = empty_design_space(case_problem(case).posed, case)
     assert emptiness.proven and emptiness.boxes == 1
-    assert set(emptiness.decisive) == {"torque", "flank_pressure", "finger_guide_length", "finger_fits_chord",
-                                       "top_land_width"}
+    assert set(emptiness.decisive) == {"torque", "flank_pressure", "finger_guide_length", "finger_fits_chord"}
 
 
 def test_a_run_over_the_lever_s_speed_is_proven_with_its_speed_split_where_it_spreads_the_rows():

@@ -122,25 +122,24 @@ def test_a_sweep_into_an_infeasible_region_proves_each_point_alone_where_its_pro
         solution = problem.solve(WEDGE.with_values(resisting_torque=vary.values[point]))
         assert (frame["status"][point], frame["diagnosis"][point]) == (solution.status, solution.diagnosis)
     assert frame["diagnosis"][4] == ("proven infeasible: no design within the bounds meets torque, flank_pressure, "
-                                     "top_land_width, finger_guide_length, finger_fits_chord together (interval "
-                                     "branch and bound over 1 boxes of the design space)")  # (the rows that cut its
-    # box, all five: the top land's width where the rows are carried back, interval_backward)
+                                     "finger_guide_length, finger_fits_chord together (interval branch and bound "
+                                     "over 1 boxes of the design space)")  # (the rows that cut its box, all four)
 
 
 @pytest.mark.parametrize("batched", [True, False])  # in batches, or point by point (start-ups, varied variables)
 def test_a_sweep_into_an_infeasible_region_proves_it_once_and_keeps_each_point_s_verdict(monkeypatch, batched):
     # The sweep of the test above, its runs searched as regions (as where a point's own proof takes as many boxes as
     # its region's: the ball). Point 3 (123.6 N m) gets its full verdict (its own search); the 8 points after it
-    # (158.2-400 N m) are searched as one box, the torque an interval: proven in that box (its rows carried back,
-    # interval_backward; 129 boxes by the mean-value form alone), one proof for the 8 points, without a solve.
+    # (158.2-400 N m) are searched as one box, the torque an interval: proven over 129 boxes, one proof for the 8
+    # points, without a solve.
     monkeypatch.setattr(region_proof.Regions, "_one_by_one", lambda self, count: False)
     vary, result, regions = _wedge_into_its_region(monkeypatch, batched)
     frame = result.frame
     assert regions == [[3]] * batched + [[4]]  # (point 3 searched alone first where a chain failed there) one
     # search, over a parameter interval
     region = "proven infeasible for resisting_torque 158.182-400 N*m (8 points, one proof): no design within the " \
-             "bounds meets torque, flank_pressure, top_land_width, finger_guide_length, finger_fits_chord together " \
-             "(interval branch and bound over 1 boxes of the design space and the interval of resisting_torque)"
+             "bounds meets torque, flank_pressure, finger_guide_length, finger_fits_chord together (interval branch " \
+             "and bound over 129 boxes of the design space and the interval of resisting_torque)"
     assert list(frame["diagnosis"][4:]) == [region] * 8
     assert [s["solver"]["solves"] for s in result.solutions][4:] == [0] * 8
     problem = case_problem(WEDGE)
@@ -172,12 +171,12 @@ def test_a_region_proof_holds_only_where_no_design_exists():
     out, proven = searches(posed, [reaching, inside], [interval_proof.MAX_BOXES] * 2)
     assert not out.proven and proven.proven
     # the box reaching 89.09 N m stops where a centre meets every row at that end of the interval (no design meets
-    # them over the whole interval: feasible is None), at its second evaluation (321 boxes; 289 where the rows were
-    # not carried back and the boxes split by their slopes, not their relative widths): the finger's guide
+    # them over the whole interval: feasible is None), at its third evaluation (353 boxes; 289 at its second where
+    # the rows were not carried back from the second on and the boxes split by their slopes): the finger's guide
     # length h_r >= 1.5 d_n (paper mode poses it too) keeps d_n below 13.3 mm, where its first (129 boxes) sufficed
     # when a 500 mm finger, the bound's, met every row; the point's own search meets a design at 129
     alone, = searches(posed, [points[89.090909]])
-    assert (out.boxes, out.feasible, out.reached) == (321, None, True) and out.witness[1] <= 0.02 / 1.5
+    assert (out.boxes, out.feasible, out.reached) == (353, None, True) and out.witness[1] <= 0.02 / 1.5
     assert alone.boxes == 129 and alone.feasible is not None
     assert case_problem(WEDGE).solve(WEDGE.with_values(resisting_torque=89.090909)).status == "optimal"
 
@@ -236,12 +235,11 @@ def _searches_and_probes(monkeypatch) -> tuple[list, list]:
 def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     # The sweep of the test above. The search of the run of the 8 points after point 0 (250-30 N m) meets a design
     # at its 30 N m end; the run's last point (30 N m) has one without a solve (that design, within its bounds, meets
-    # every constraint there in float64; a cold solve before), so the region's edge is looked for. Points 1-2's
-    # search (Regions._head) is proven in its first box (its rows carried back: interval_backward; main's ended
-    # unproven there, and the probes started at point 1), so the probes start at point 3 in growing steps: 3 (160 N m)
-    # without a design, 5 (80 N m) with one, then 4 (130 N m) without. Points 1-4 (250-130 N m) are searched again,
-    # proven (here the first half of the run too; the ball over its allowable contact stress: one search for the last
-    # 2 points of its region, not three more halvings from 16, 7.7 s to 1.3 s). The 3 probes solved (IPOPT calls:
+    # every constraint there in float64; a cold solve before), so the region's edge is looked
+    # for from point 1 on in growing steps: points 2 (200 N m) and 4 (130 N m) without a design, then bisection
+    # between 4 and 8: 6 (60 N m) and 5 (80 N m) with one. Points 1-4 (250-130 N m) are searched again, proven (here
+    # the first half of the run too; the ball over its allowable contact stress: one search for the last 2 points of
+    # its region, not three more halvings from 16, 7.7 s to 1.3 s). The 4 probes solved (IPOPT calls:
     # one each, two at 80 N m) are charged to point 1's verdict but the one at the edge (80 N m), which is that
     # point's own solve (cold, as next to a point without a design), not made again: the sweep's calls are its points'.
     regions, probed = _searches_and_probes(monkeypatch)
@@ -251,19 +249,19 @@ def test_probes_find_the_region_s_edge_before_its_search(monkeypatch):
     result = Sweep(WEDGE, [vary]).run(progress=False)
     frame = result.frame
     assert list(frame["status"]) == ["infeasible"] * 5 + ["optimal"] * 5
-    assert probed == [8, 3, 5, 4]
+    assert probed == [8, 2, 4, 6, 5]
     assert [len(outcomes) for outcomes in regions] == [1, 1, 1, 1]  # (point 0's own search first: Regions._first)
     assert regions[0][0].proven and regions[1][0].reached and regions[3][0].proven
     # (before the probes, points 1-2's search (Regions._head), within 4 x the last proof's 1 box, at least 64: its
-    # first box emptied)
-    assert regions[2][0].proven and regions[2][0].boxes == 1
+    # split of its first box to 128 passes that, and it ends unproven after 1 box)
+    assert not regions[2][0].proven and regions[2][0].boxes == 1
     posed = case_problem(WEDGE).posed  # (the design met at 30 N m, the run's last point: no probe solved there)
     met = dict(zip(posed.names, regions[1][0].witness))
     assert all(c.feasible for c in check_design(posed.formulation, met, posed.params(WEDGE.with_values(
         resisting_torque=30.0))))
     assert frame["diagnosis"][1].startswith("proven infeasible for resisting_torque 130-250 N*m (4 points, one proof)")
-    assert [s["solver"]["solves"] for s in result.solutions][1:6] == [2, 0, 0, 0, 2]  # (80 N m: 2 calls, a retry;
-    # point 1: its probes at 160 and 130 N m, one call each)
+    assert [s["solver"]["solves"] for s in result.solutions][1:6] == [3, 0, 0, 0, 2]  # (80 N m: 2 calls, a retry;
+    # 4 at point 1 with the solve at 30 N m, 6 with the edge's solve made again before)
     assert result.spent["solves"] == sum(s["solver"]["solves"] for s in result.solutions)
 
 
@@ -626,6 +624,6 @@ def test_a_point_s_verdict_counts_its_interval_searches_seconds_so_none_is_negat
     result = Sweep(case, [parse_vary("inertia=1:300:10", case.coupling), parse_vary("friction_coefficient=0.2",
                                                                                     case.coupling)],
                    mode="design").run(progress=False)  # (at f = 0.1 every point without a design is proven by the
-    # sweep's region proofs now, its rows carried back: no verdict's search runs)
+    # sweep's region proofs now, its rows carried back through their expressions: no verdict's search runs)
     assert searched and result.frame["status"].value_counts().to_dict() == {"infeasible": 9, "optimal": 1}
     assert all(record["solver"]["time_s"] >= 0 for record in result.solutions)

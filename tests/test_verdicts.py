@@ -99,9 +99,8 @@ def test_a_static_verdict_the_interval_search_proves_is_given_without_the_retrie
     assert solution.status == "infeasible" and solution.starts == ("the case's own start",)
     assert solution.solver.solves == 1 and solution.diagnosed.least == pytest.approx(0.709, abs=5e-4)
     assert solution.diagnosis.startswith("proven infeasible: no design within the bounds meets torque, flank_pressure, "
-                                         "top_land_width, finger_guide_length, finger_fits_chord together")  # (and
-    # the finger's guide and chord, paper mode's rows too, which cut the box's d_n first, and the top land's width,
-    # which cuts it where the rows are carried back: interval_backward)
+                                         "finger_guide_length, finger_fits_chord together")  # (and the finger's
+    # guide and chord, paper mode's rows too, which cut the box's d_n first)
     monkeypatch.setattr(verdict, "empty_design_space", lambda posed, case, budget=None: None)
     retried = problem.solve(case)
     assert retried.status == "not_found" and retried.solver.solves == 2
