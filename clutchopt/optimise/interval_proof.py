@@ -179,7 +179,7 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
         end(np.flatnonzero(over), lambda j: Emptiness(False, int(evaluated[j]), decisive[j]))
         return ~over[owner]
 
-    tape = row_tape(posed, functions)
+    carries = not functions[0].nodes.nodes  # (rows without declared nodes: carried back, row_tape, built at first use)
     rounds_begun = 0  # (the leader's first box evaluated in the first)
     while lo.shape[1]:
         rounds_begun += 1
@@ -235,12 +235,13 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
             d_lo, d_hi = d_lo[..., at], d_hi[..., at]
         contracting = searching(owner)
         lo, hi, cut_empty, cut = contracted(lo, hi, centre[:, at], c_lo[:, at], d_lo, d_hi, TOLERANCE)
-        carried = tape is not None and rounds_begun > 1  # (from the searches' second evaluation on: a search that
+        carried = carries and rounds_begun > 1  # (from the searches' second evaluation on: a search that
         # ends at its first box, as most of a static sweep's do, costs what it did and ends the same whatever its
         # budget; carried back from the first box, the lever in design mode over 1x-10x its inertia: 40 points proven
         # in 8.0 s, from the second 37 in 5.7 s, the bench's static sweeps 1.2x-1.3x slower)
         if carried:  # each row's limit carried back through its expressions
-            lo, hi, back_empty, back_cut = backward_contracted(tape, lo, hi, [(plo, phi)], TOLERANCE, uncertain)
+            lo, hi, back_empty, back_cut = backward_contracted(row_tape(posed, functions), lo, hi, [(plo, phi)],
+                                                               TOLERANCE, uncertain)
             cut_empty, cut = cut_empty | back_empty, cut | back_cut
         tally(names, cut, owner)  # the rows a proof rests on: those that cut, too
         whole = ~cut_empty
