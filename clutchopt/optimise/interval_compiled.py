@@ -273,6 +273,12 @@ class CompiledReplay:
         self.in_sizes = np.diff(in_rows).tolist()
 
     def bounds(self, inputs: list) -> list:
+        _, out_lo, out_hi = self.replayed(inputs)
+        return [(out_lo[a:b], out_hi[a:b]) for a, b in zip(self.out_rows[:-1], self.out_rows[1:])]
+
+    def replayed(self, inputs: list) -> tuple[tuple[np.ndarray, np.ndarray], np.ndarray, np.ndarray]:
+        """The work variables' bounds after the replay (work x boxes: a program that writes each value once keeps
+        them all, ``interval_backward.Tape``) and the outputs' stacked."""
         boxes = inputs[0][0].shape[1]
         if len(inputs) != len(self.in_sizes) or any(
                 np.shape(lo) != (n, boxes) or np.shape(hi) != (n, boxes)
@@ -287,4 +293,4 @@ class CompiledReplay:
         out_lo, out_hi = np.full((rows, boxes), -np.inf), np.full((rows, boxes), np.inf)
         w_lo, w_hi = np.empty((self.work, boxes)), np.empty((self.work, boxes))
         self.replay(*self.program, boxes, *(_address(a) for a in (in_lo, in_hi, w_lo, w_hi, out_lo, out_hi)))
-        return [(out_lo[a:b], out_hi[a:b]) for a, b in zip(self.out_rows[:-1], self.out_rows[1:])]
+        return (w_lo, w_hi), out_lo, out_hi
