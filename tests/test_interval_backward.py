@@ -121,3 +121,17 @@ def test_the_compiled_forward_replay_gives_the_numpy_one_s_bounds():
     for k in sorted(set().union(*map(set, compiled.subgraphs))):
         for end in (0, 1):
             assert np.allclose(ours[k][end], theirs[k][end], rtol=1e-13, atol=0, equal_nan=True), k
+
+
+def test_a_result_rounded_up_from_below_the_least_float_cuts_no_design():
+    """exp(x0) x1 <= 1 and x0 <= -744.9 over x0 in [-745, -740], x1 in [1, 2]: x = (-745, 1.5) meets both, but the
+    forward rules bound exp(-745) (2.1e-324) from the least subnormal, 5e-324, whose log carried back cut x0 >= -744.44
+    and emptied the box (review 20c); every bound a backward rule reads is widened by FLOOR too."""
+    x, p = ca.SX.sym("x", 2), ca.SX.sym("p", 1)
+    rows = ca.Function("rows", [x, p], [ca.vertcat(ca.exp(x[0]) * x[1] - p[0], x[0] + 744.9)])
+    tape = Tape(rows, IntervalFunction(rows).program)
+    for compiled in (tape.compiled, None):  # (the forward replay in C, then in NumPy)
+        tape.compiled = compiled
+        lo, hi, empty, _ = contracted(tape, np.array([[-745.0], [1.0]]), np.array([[-740.0], [2.0]]),
+                                      [(np.array([[1.0]]), np.array([[1.0]]))], 1e-6, np.ones((2, 1), dtype=bool))
+        assert not empty.any() and lo[0, 0] <= -745.0 and lo[1, 0] <= 1.5 <= hi[1, 0]

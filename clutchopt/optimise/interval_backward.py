@@ -29,6 +29,18 @@ from clutchopt.optimise.interval_contract import _CUT, _SLACK
 _HALF_PI = 0.5 * np.pi
 
 
+FLOOR = 1e-300  # the least any bound a rule reads is widened by (absolute): the forward rules round a result that
+# underflows (exp(-745) = 2.1e-324 bounded from 5e-324) within a tiny absolute error but not within a relative one,
+# and carried back through a log or a division such an error becomes a cut of the design (review 20c: exp(x0) x1 <= 1
+# with x0 in [-745, -740] had emptied a box that x0 = -745 meets)
+
+
+def _floored(bound: Bounds) -> Bounds:
+    """``bound`` widened outwards by FLOOR: a value a backward rule reads (its result's bound and its other
+    operand's)."""
+    return bound[0] - FLOOR, bound[1] + FLOOR
+
+
 def _widened(lo: np.ndarray, hi: np.ndarray) -> Bounds:
     """[lo, hi] widened outwards by _SLACK of their magnitudes; NaN (no bound carried back) unbounded."""
     return np.fmax(lo - np.abs(lo) * _SLACK, -np.inf), np.fmin(hi + np.abs(hi) * _SLACK, np.inf)
@@ -198,12 +210,12 @@ class Tape:
                         x_lo[r, read[1]] = np.maximum(x_lo[r, read[1]], z[0])
                         x_hi[r, read[1]] = np.minimum(x_hi[r, read[1]], z[1])
                     continue
-                current = [back.get(a, values[a]) for a in args]
+                current = [_floored(back.get(a, values[a])) for a in args]
                 if len(args) == 1:
-                    found = _back_unary(op, z, current[0])
+                    found = _back_unary(op, _floored(z), current[0])
                     found = None if found is None else (found,)
                 else:
-                    found = _back_binary(op, z, *current) if len(args) == 2 and op in _BINARY else None
+                    found = _back_binary(op, _floored(z), *current) if len(args) == 2 and op in _BINARY else None
                 for a, bound in zip(args, found or ()):
                     if not self.free[a]:
                         continue
