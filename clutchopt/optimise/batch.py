@@ -307,6 +307,7 @@ class BatchSweep:
         # where there is none, and where the steps differ more than fourfold)
         self.solves, self.solver_s, self.check_s = 0, 0.0, 0.0
         self.work = 0  # the solving done, counted (CHAINED_POINT_WORK, ...): what ends a window (WINDOW_WORK)
+        self._regions: Regions | None = None  # the window's (a window's afresh: BatchSweep.run)
         self.feasible: dict[str, float] | None = None  # the last feasible design in order: a start for a failed point
         self._limits: tuple[np.ndarray, np.ndarray] | None = None  # the tightening's limits and scales per point
         self.carried: Carried | None = None  # what the window after the last one yielded starts from
@@ -330,8 +331,10 @@ class BatchSweep:
             carry_boxes(self.posed, carried.boxes)
         while k < self.count:
             first, end, spent = k, min(k + window, self.count), self.work + WINDOW_WORK
+            left = self._regions.uncharged() if self._regions is not None else (0, 0.0)  # (the window before's)
             self._regions = Regions(self.problem, self.point_case, self.count, self._shared)  # infeasible regions
             # proven at once, each window's afresh (what it takes from the windows before is ``carried``)
+            self._regions.carry(left)
             blocks: list[Block] = []
             alone: dict[int, Solution] = {}
             failed = False  # the last point is without a design: the window waits for a feasible point after it
@@ -383,6 +386,11 @@ class BatchSweep:
                 ahead = None
                 start, k = self._start_of(alone[k]), k + 1
                 failed = alone[k - 1].status not in DESIGN_STATUSES
+            if k >= self.count and alone:  # (the sweep's last window: what no later verdict takes, its last point
+                last = max(alone)  # solved alone's: the runs searched ahead and not used, the probes' uncharged)
+                calls, seconds = self._regions.uncharged()
+                alone[last] = self._regions.charged_with_the_rest(alone[last])
+                self._spent(calls, seconds, 0)
             solutions = self._window(blocks, alone, first, k - first)
             self.carried = Carried(k, None if start is None else start.carried, pace.state, ahead, self.feasible,
                                    [(combo, j, status) for combo, (j, status) in self._undesigned.items()],

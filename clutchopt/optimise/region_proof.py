@@ -57,7 +57,10 @@ proven together, one NumPy column a point: ``verdict.figures_at``; a batched swe
 a point: :class:`SharedBox`), solver ``interval`` (no solver call where a region covers it, the one solve where its
 own search proved it) and its share of the search's seconds. A verdict is the
 same whatever the order of the points: a region's proof is a proof of each point, and a point its region does not
-cover gets its own.
+cover gets its own. The seconds of a search no point's verdict takes (a run it did not prove, a point's own search
+that did not prove it, runs searched ahead and not used) go to the next verdict (:meth:`Regions._unclaimed`; a
+batched sweep's to its next window's, its last window's to its last point solved alone), so that the records' seconds
+add up to what the searches took (the lever's design-mode grid had reported a fifth of them: review 20b).
 """
 
 from __future__ import annotations
@@ -124,7 +127,8 @@ class Regions:
         self._without_at = -2
         self._to, self._length = 0, FIRST_RUN  # the end of the points searched; how many to search next
         self._proven: dict[int, tuple[str, float]] = {}  # point -> its proof's text, its share of the seconds
-        self._probed = (0, 0.0)  # the solver calls and seconds of the probes for a region's edge, not yet charged
+        self._probed = (0, 0.0)  # the solver calls and seconds of the probes for a region's edge, and the seconds of
+        # searches no point's verdict took (:meth:`_unclaimed`), not yet charged
         self._found = -1  # the point a probe found with a design (the region's edge)
         self._entered = False  # a point with a design came before: a stretch without designs is entered from one
         self._edge_probe: Solution | None = None  # the solve of the last probe that found a design (the edge's,
@@ -164,9 +168,10 @@ class Regions:
 
     def charged(self, solution: Solution | None) -> Solution | None:
         """``solution`` with the solver calls and seconds of the probes for a region's edge not yet charged to a
-        point (:meth:`_edge`) added to its own: the sweep's count of solver calls is the sum over its points."""
+        point (:meth:`_edge`) added to its own, and the seconds of searches no point's verdict took
+        (:meth:`_unclaimed`): the sweep's count of solver calls and its seconds are the sums over its points."""
         calls, seconds = self._probed
-        if solution is None or not calls:
+        if solution is None or not (calls or seconds):
             return solution
         self._probed = (0, 0.0)
         return replace(solution, solver=replace(solution.solver, solves=solution.solver.solves + calls,
@@ -333,6 +338,7 @@ class Regions:
         own_seconds = time.perf_counter() - began - self._kept_along(ahead, built.get("regions", []), outcomes,
                                                                       seconds)
         if own is None or not own.proven:
+            self._unclaimed(own_seconds)
             return None, own, problem
         self._alone = last_boxes(self.posed, own.boxes)
         return (_covered(self.problem, case, design, "proven infeasible: " + emptied(own), own_seconds, spent), own,
@@ -383,6 +389,7 @@ class Regions:
         while runs:
             budget = _budget(last_boxes(self.posed), SURE_BOXES)
             known = {run: self._ahead.pop(run) for run in runs if run in self._ahead}
+            self._unclaimed(sum(kept[2] * (b - a) for (a, b), kept in known.items() if not _holds(kept[1], budget)))
             known = {run: kept for run, kept in known.items() if _holds(kept[1], budget)}
             fresh = [run for run in runs if run not in known]
             problems = [_region_problem([points[j] for j in range(a, b)]) for a, b in fresh + ahead]
@@ -399,7 +406,9 @@ class Regions:
                 if outcome is not None and outcome.proven:
                     self._proved(a, b, problem, outcome, seconds)
                     longest = max(longest, b - a)
-                elif b - a > 1 and outcome is not None and outcome.feasible is None:  # (a design met for the whole
+                    continue
+                self._unclaimed(seconds * (b - a))  # (not proven: its share of the call to the next verdict)
+                if b - a > 1 and outcome is not None and outcome.feasible is None:  # (a design met for the whole
                     # run: every point has one, solved as usual)
                     middle = (a + b) // 2  # (a design at one end: the region ends within the run: the run up to
                     # the edge the probes find is searched again, else only its first half, the points of the other
@@ -438,6 +447,7 @@ class Regions:
         began = time.perf_counter()
         outcome, = searches(self.posed, [problem], [_budget(self._alone, FEW_BOXES)])
         if outcome is None or not outcome.proven:
+            self._unclaimed(time.perf_counter() - began)
             return False
         self._proved(k, whole, problem, outcome, (time.perf_counter() - began) / (whole - k))
         self._to, self._length = whole, min(2 * (whole - k), LONGEST_RUN)
@@ -502,6 +512,7 @@ class Regions:
         outcomes = searches(self.posed, [points[j] for j in range(k, end)], [budget] * (end - k))
         seconds = (time.perf_counter() - began) / (end - k)
         proven = [(j, outcome) for j, outcome in zip(range(k, end), outcomes) if outcome is not None and outcome.proven]
+        self._unclaimed(seconds * (end - k - len(proven)))
         for j, outcome in proven:
             self._proven[j] = ("proven infeasible: " + emptied(outcome), seconds)
         if proven:
@@ -549,6 +560,7 @@ class Regions:
         began = time.perf_counter()
         outcome, = searches(self.posed, [problem], [_budget(last_boxes(self.posed), FEW_BOXES)])
         if outcome is None or not outcome.proven:
+            self._unclaimed(time.perf_counter() - began)
             return False
         self._proved(k, k + 2, problem, outcome, (time.perf_counter() - began) / 2)
         return True
@@ -606,6 +618,30 @@ class Regions:
             self._figures = dict(zip(points, zip(figures, conflicting)))
             self._figured = dict(design)
         return self._figures.pop(k)
+
+    def _unclaimed(self, seconds: float) -> None:
+        """Seconds of an interval search that no point's verdict takes (a run it did not prove, a point's own search
+        that did not prove it, the runs searched ahead and not used): charged to the next verdict (:meth:`charged`;
+        uncharged, the lever's design-mode grid had reported half its searches' seconds: review 20b)."""
+        calls, charged = self._probed
+        self._probed = (calls, charged + seconds)
+
+    def uncharged(self) -> tuple[int, float]:
+        """The solver calls and seconds not yet charged to a point, those of the runs searched ahead and not used
+        with them: what a batched sweep's next window charges (:meth:`carry`)."""
+        calls, seconds = self._probed
+        return calls, seconds + sum(share * (b - a) for (a, b), (_, _, share) in self._ahead.items())
+
+    def charged_with_the_rest(self, solution: Solution) -> Solution:
+        """``solution`` with everything not yet charged (:meth:`uncharged`): a sweep's last verdict."""
+        self._probed, self._ahead = self.uncharged(), {}
+        return self.charged(solution)
+
+    def carry(self, uncharged: tuple[int, float]) -> None:
+        """The calls and seconds a window before left uncharged (:meth:`uncharged`), charged to this one's first
+        verdict."""
+        calls, seconds = self._probed
+        self._probed = (calls + uncharged[0], seconds + uncharged[1])
 
     def _charge(self, solution: Solution | None, sign: int = 1) -> None:
         """The calls and seconds of a probe's ``solution`` added to those not yet charged (``sign`` -1: taken out)."""
