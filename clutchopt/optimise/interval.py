@@ -22,11 +22,11 @@ _WIDEN = 8 * np.finfo(float).eps  # relative outward widening of every result
 Bounds = tuple[np.ndarray, np.ndarray]
 
 
-def _outward(lo, hi) -> Bounds:
-    """[lo, hi] widened outwards; NaN (an operation outside its domain on part of a box) becomes unbounded (fmax
-    and fmin return the other argument for a NaN). A result that underflowed to zero stays zero: an error below
-    1e-300, which no verdict's tolerance can see."""
-    return np.fmax(lo - np.abs(lo) * _WIDEN, -np.inf), np.fmin(hi + np.abs(hi) * _WIDEN, np.inf)
+def _outward(lo, hi, by: float = _WIDEN) -> Bounds:
+    """[lo, hi] widened outwards by ``by`` of their magnitudes; NaN (an operation outside its domain on part of a box)
+    becomes unbounded (fmax and fmin return the other argument for a NaN). A result that underflowed to zero stays
+    zero: an error below 1e-300, which no verdict's tolerance can see."""
+    return np.fmax(lo - np.abs(lo) * by, -np.inf), np.fmin(hi + np.abs(hi) * by, np.inf)
 
 
 def _products(a: Bounds, b: Bounds) -> Bounds:

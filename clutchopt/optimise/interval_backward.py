@@ -41,11 +41,6 @@ def _floored(bound: Bounds) -> Bounds:
     return bound[0] - FLOOR, bound[1] + FLOOR
 
 
-def _widened(lo: np.ndarray, hi: np.ndarray) -> Bounds:
-    """[lo, hi] widened outwards by _SLACK of their magnitudes; NaN (no bound carried back) unbounded."""
-    return np.fmax(lo - np.abs(lo) * _SLACK, -np.inf), np.fmin(hi + np.abs(hi) * _SLACK, np.inf)
-
-
 def _within(a: Bounds, low: float, high: float) -> np.ndarray:
     return (a[0] >= low) & (a[1] <= high)
 
@@ -219,7 +214,7 @@ class Tape:
                 for a, bound in zip(args, found or ()):
                     if not self.free[a]:
                         continue
-                    lo, hi = _widened(*bound)
+                    lo, hi = _outward(*bound, _SLACK)  # (NaN, no bound carried back: unbounded)
                     old = back.get(a, values[a])
                     back[a] = (np.fmax(old[0], lo), np.fmin(old[1], hi))
         return (x_lo, x_hi), empty

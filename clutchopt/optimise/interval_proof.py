@@ -140,6 +140,7 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
     width0 = np.where(hi > lo, hi - lo, 1.0)
     with np.errstate(divide="ignore", invalid="ignore"):  # (a variable not positive throughout: NaN, by difference)
         ratio0 = np.where((lo > 0) & (hi > lo), np.log(hi / lo), np.nan)
+    spans0 = (width0, ratio0)
     p_width0 = np.where(p_hi > p_lo, p_hi - p_lo, 0.0)  # (a NaN: 0, never split)
     owner = np.arange(count)  # each box's search (a column of params), the boxes of one search together
     plo, phi = p_lo.copy(), p_hi.copy()  # each box's parameters (a search's interval, split where it spreads the rows)
@@ -272,7 +273,6 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
                     break
         slope = (_slopes(d_lo, d_hi, uncertain) if not carried  # (once an iteration: each half inherits its box's)
                  else np.zeros((0, len(owner))))  # (none where the rows are carried back: _bisected)
-        spans0 = (width0, ratio0)
         if not intervals:  # (no parameter interval to split: the boxes' parameters follow their boxes)
             for turn in range(int(rounds[owner].max())):
                 lo, hi, owner, parents = _bisected_where(lo, hi, owner, slope, spans0, rounds[owner] > turn)

@@ -623,8 +623,7 @@ class Regions:
         """Seconds of an interval search that no point's verdict takes (a run it did not prove, a point's own search
         that did not prove it, the runs searched ahead and not used): charged to the next verdict (:meth:`charged`;
         uncharged, the lever's design-mode grid had reported half its searches' seconds: review 20b)."""
-        calls, charged = self._probed
-        self._probed = (calls, charged + seconds)
+        self.carry((0, seconds))
 
     def uncharged(self) -> tuple[int, float]:
         """The solver calls and seconds not yet charged to a point, those of the runs searched ahead and not used
@@ -638,16 +637,15 @@ class Regions:
         return self.charged(solution)
 
     def carry(self, uncharged: tuple[int, float]) -> None:
-        """The calls and seconds a window before left uncharged (:meth:`uncharged`), charged to this one's first
-        verdict."""
+        """Calls and seconds charged to the next verdict (:meth:`charged`): a window before's left uncharged
+        (:meth:`uncharged`), a probe's, a search's no verdict took."""
         calls, seconds = self._probed
         self._probed = (calls + uncharged[0], seconds + uncharged[1])
 
     def _charge(self, solution: Solution | None, sign: int = 1) -> None:
         """The calls and seconds of a probe's ``solution`` added to those not yet charged (``sign`` -1: taken out)."""
         if solution is not None:
-            calls, seconds = self._probed
-            self._probed = (calls + sign * solution.solver.solves, seconds + sign * solution.solver.time_s)
+            self.carry((sign * solution.solver.solves, sign * solution.solver.time_s))
 
 
 def _given(solution: Solution | None) -> bool:
