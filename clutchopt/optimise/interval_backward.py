@@ -7,7 +7,9 @@ asin(z); and so on (Benhamou, Goualard, Granvilliers & Puget, "Revising hull and
 design variable ends bounded by what each row allows, one row at a time (the rows that cut or empty a box are named
 in the proof, as :mod:`clutchopt.optimise.interval_contract`'s are). Each bound is
 widened outwards by ``_SLACK`` of its magnitude (NumPy's inverse functions and powers are faithful, not correctly
-rounded), so a design is never cut away; an operation without a rule here cuts nothing.
+rounded), so a design is never cut away; an operation without a rule here cuts nothing. Where the forward replay is
+compiled, the backward pass is too (:meth:`Tape.revised`; :class:`clutchopt.optimise.interval_compiled.CompiledRevise`,
+the same rules in C); :meth:`Tape.backward` is the reference.
 
 Where a row is a product of variables over wide ranges (the lever's torque, m z w^2 R_0 d_cp / (4 tan gamma_0),
 against its weights' fit z (m / rho)^(1/3) <= k 2 pi R_0), the mean-value form's slopes span orders of magnitude and
@@ -23,7 +25,7 @@ import casadi as ca
 import numpy as np
 
 from clutchopt.optimise.interval import _BINARY, _LOGICAL, _NOT, _UNARY, _WIDEN, Bounds, _inverse, _outward, _products
-from clutchopt.optimise.interval_compiled import CompiledReplay, replay_library
+from clutchopt.optimise.interval_compiled import CompiledReplay, CompiledRevise, replay_library, revise_library
 from clutchopt.optimise.interval_contract import _CUT, _SLACK
 
 _HALF_PI = 0.5 * np.pi
@@ -153,13 +155,30 @@ class Tape:
             graphs.append(sorted(seen, reverse=True))
         return graphs
 
+    def revised(self, inputs: list[Bounds], limit: float, variables: int, rows: list[int]
+                ) -> tuple[Bounds, np.ndarray]:
+        """:meth:`backward` of :meth:`forward`'s values; both compiled where the forward replay is (the same
+        rules in C: :class:`clutchopt.optimise.interval_compiled.CompiledRevise`), NumPy's otherwise."""
+        if self.compiled is None:
+            return self.backward(self.forward(inputs, rows), limit, variables, rows)
+        (w_lo, w_hi), _, _ = self.compiled.replayed(self._all(inputs))
+        return self._compiled_revise.backward(w_lo, w_hi, limit, variables, rows, _SLACK, FLOOR)
+
+    @cached_property
+    def _compiled_revise(self) -> CompiledRevise:
+        return CompiledRevise(self.steps, self.rows, self.subgraphs, self.free, revise_library(_WIDEN))
+
+    def _all(self, inputs: list[Bounds]) -> list[Bounds]:
+        """``inputs`` and the function's others (none of the rows' own) as the compiled replay takes them."""
+        empty = (np.zeros((0, inputs[0][0].shape[-1])),) * 2
+        return [*inputs, *[empty] * (self.function.n_in() - len(inputs))]
+
     @np.errstate(all="ignore")
     def forward(self, inputs: list[Bounds], rows: list[int]) -> list[Bounds | None]:
         """The bounds over the boxes of each operation the ``rows`` depend on (``inputs`` as
         :meth:`IntervalFunction.bounds` takes them; None for the others)."""
         if self.compiled is not None:
-            empty = (np.zeros((0, inputs[0][0].shape[-1])),) * 2  # (the inputs not given: none of the rows' own)
-            (w_lo, w_hi), _, _ = self.compiled.replayed([*inputs, *[empty] * (self.function.n_in() - len(inputs))])
+            (w_lo, w_hi), _, _ = self.compiled.replayed(self._all(inputs))
             return list(zip(w_lo, w_hi))
         boxes = inputs[0][0].shape[-1]
         values: list[Bounds | None] = [None] * len(self.steps)
@@ -230,7 +249,7 @@ def contracted(tape: Tape, lo: np.ndarray, hi: np.ndarray, others: list[Bounds],
     rows = np.flatnonzero(uncertain.any(axis=1)).tolist()
     if not rows:
         return lo, hi, np.zeros(lo.shape[1], dtype=bool), np.zeros(uncertain.shape, dtype=bool)
-    (x_lo, x_hi), void = tape.backward(tape.forward([(lo, hi), *others], rows), limit, lo.shape[0], rows)
+    (x_lo, x_hi), void = tape.revised([(lo, hi), *others], limit, lo.shape[0], rows)
     margin = _CUT * (hi - lo)
     cutters = void | np.any((x_hi < (hi - margin)[None]) | (x_lo > (lo + margin)[None]), axis=1)
     new_lo, new_hi = np.maximum(lo, x_lo.max(axis=0)), np.minimum(hi, x_hi.min(axis=0))

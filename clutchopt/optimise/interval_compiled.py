@@ -16,6 +16,11 @@ elementary functions (C's libm against NumPy's own loops) may differ by an ulp o
 and from fast-math, so each operation rounds as written. An operation without a rule gives the whole real line, as
 in the replay. The product's rule takes its fast path box by box (the replay's takes it where every box allows it:
 the same numbers, as its docstring says).
+
+The backward rules of :mod:`clutchopt.optimise.interval_backward` (HC4-revise) are written here too, in the same
+library (``interval_revise``, :class:`CompiledRevise`): each row's limit carried back through the values the replay
+kept, rule for rule and bound for bound as ``Tape.backward`` (the reference) carries them, to the bit where the
+arithmetic is IEEE.
 """
 
 from __future__ import annotations
@@ -208,6 +213,126 @@ void interval_replay(long count, const int *op, const int *arg0, const int *arg1
         }
     }
 }
+
+/* The backward rules of interval_backward (_back_unary, _back_binary: their docstrings are the specification), one
+   box: where x (and y) may lie given z = op(x[, y]) in [z0, z1]; 0 where the operation has no rule. */
+static int back_unary(int op, double z0, double z1, double x0, double x1, double *l, double *h) {
+    int inside;
+    switch (op) {
+    case OP_ASSIGN: *l = z0; *h = z1; return 1;
+    case OP_NEG: *l = -z1; *h = -z0; return 1;
+    case OP_TWICE: *l = 0.5 * z0; *h = 0.5 * z1; return 1;
+    case OP_INV: inverse(z0, z1, l, h); return 1;
+    case OP_SQRT: *l = square(nmax(z0, 0.0)); *h = z1 >= 0 ? square(z1) : -INFINITY; return 1;
+    case OP_SQ: *l = x0 >= 0 ? sqrt(nmax(z0, 0.0)) : -sqrt(nmax(z1, 0.0));
+                *h = x1 <= 0 ? -sqrt(nmax(z0, 0.0)) : sqrt(nmax(z1, 0.0)); return 1;
+    case OP_EXP: *l = log(nmax(z0, 0.0)); *h = log(nmax(z1, 0.0)); return 1;
+    case OP_LOG: *l = exp(z0); *h = exp(z1); return 1;
+    case OP_SIN: inside = x0 >= -(0.5 * M_PI) && x1 <= 0.5 * M_PI;  /* the rising branch */
+                 *l = inside ? asin(clip(z0, -1.0, 1.0)) : -INFINITY;
+                 *h = inside ? asin(clip(z1, -1.0, 1.0)) : INFINITY;
+                 return 1;
+    case OP_COS: inside = x0 >= 0.0 && x1 <= M_PI;  /* the falling branch */
+                 *l = inside ? acos(clip(z1, -1.0, 1.0)) : -INFINITY;
+                 *h = inside ? acos(clip(z0, -1.0, 1.0)) : INFINITY;
+                 return 1;
+    case OP_TAN: inside = x0 >= -(0.5 * M_PI) && x1 <= 0.5 * M_PI;
+                 *l = inside ? atan(z0) : -INFINITY; *h = inside ? atan(z1) : INFINITY; return 1;
+    default: return 0;
+    }
+}
+
+static int back_binary(int op, double z0, double z1, double x0, double x1, double y0, double y1, double *xl,
+                       double *xh, double *yl, double *yh) {
+    double t0, t1;
+    switch (op) {
+    case OP_ADD: *xl = z0 - y1; *xh = z1 - y0; *yl = z0 - x1; *yh = z1 - x0; return 1;
+    case OP_SUB: *xl = z0 + y0; *xh = z1 + y1; *yl = x0 - z1; *yh = x1 - z0; return 1;
+    case OP_MUL: inverse(y0, y1, &t0, &t1); products(z0, z1, t0, t1, xl, xh);
+                 inverse(x0, x1, &t0, &t1); products(z0, z1, t0, t1, yl, yh); return 1;
+    case OP_DIV: products(z0, z1, y0, y1, xl, xh); inverse(z0, z1, &t0, &t1); products(x0, x1, t0, t1, yl, yh);
+                 return 1;
+    case OP_POW: case OP_CONSTPOW: {  /* a constant positive exponent, not a whole number: x >= 0, rising */
+        int fits = y0 == y1 && y0 > 0 && nearbyint(y0) != y0;
+        *xl = fits ? pow(nmax(z0, 0.0), 1.0 / y0) : -INFINITY;
+        *xh = fits ? (z1 >= 0 ? pow(nmax(z1, 0.0), 1.0 / y0) : -INFINITY) : INFINITY;
+        *yl = -INFINITY; *yh = INFINITY; return 1; }
+    default: return 0;
+    }
+}
+
+static int has_rule(int op, int arguments) {
+    double l, h, yl, yh;
+    return arguments == 1 ? back_unary(op, 0, 0, 0, 0, &l, &h) :
+           arguments == 2 && back_binary(op, 0, 0, 0, 0, 0, 0, &l, &h, &yl, &yh);
+}
+
+/* interval_backward.Tape.backward (its docstring is the specification), every box in one call: each of the rows
+   ``row_list`` carried back alone through its own values (``order[start[r]:start[r + 1]]``, each value after those
+   it is computed from), from the forward replay's w_* (value k of box b at [k * boxes + b]); the value k's bound as
+   carried back so far in back_* (taken from w_* where first reached: ``reached``); each bound a rule reads widened by
+   ``floor_``, each it gives outwards by ``slack``. Out: x_* (rows x variables x boxes; the design variable
+   ``variable[k]`` of each input value k, -1 for none) and ``empty`` (rows x boxes). */
+void interval_revise(long count, const int *row_list, const int *row_value, const long *start, const int *order,
+                     const int *op, const int *arguments, const int *arg0, const int *arg1, const int *variable,
+                     const unsigned char *free_, long boxes, long variables, const double *w_lo, const double *w_hi,
+                     double limit, double slack, double floor_, double *back_lo, double *back_hi,
+                     unsigned char *reached, double *x_lo, double *x_hi, unsigned char *empty) {
+    for (long i = 0; i < count; ++i) {
+        long r = row_list[i], row = row_value[r];
+        for (long j = start[r]; j < start[r + 1]; ++j) reached[order[j]] = 0;
+        reached[row] = 1;
+        for (long b = 0; b < boxes; ++b) {
+            back_lo[row * boxes + b] = w_lo[row * boxes + b];
+            back_hi[row * boxes + b] = nmin(w_hi[row * boxes + b], limit);
+        }
+        unsigned char *none = empty + r * boxes;
+        for (long j = start[r]; j < start[r + 1]; ++j) {
+            long k = order[j];
+            if (!reached[k]) continue;  /* a value this row's bound did not reach, or not of the design */
+            const double *z_lo = back_lo + k * boxes, *z_hi = back_hi + k * boxes;
+            for (long b = 0; b < boxes; ++b) none[b] |= z_lo[b] > z_hi[b];
+            if (op[k] == OP_INPUT) {
+                if (variable[k] >= 0) {  /* (a variable read twice: both bounds hold) */
+                    double *lo = x_lo + (r * variables + variable[k]) * boxes, *hi = x_hi + (r * variables
+                                                                                            + variable[k]) * boxes;
+                    for (long b = 0; b < boxes; ++b) { lo[b] = nmax(lo[b], z_lo[b]); hi[b] = nmin(hi[b], z_hi[b]); }
+                }
+                continue;
+            }
+            int n = arguments[k];
+            if (!has_rule(op[k], n)) continue;
+            long a[2] = {arg0[k], n > 1 ? arg1[k] : arg0[k]};
+            for (int m = 0; m < n; ++m) if (free_[a[m]] && !reached[a[m]]) {  /* first reached: its forward bound */
+                for (long b = 0; b < boxes; ++b) {
+                    back_lo[a[m] * boxes + b] = w_lo[a[m] * boxes + b];
+                    back_hi[a[m] * boxes + b] = w_hi[a[m] * boxes + b];
+                }
+                reached[a[m]] = 1;
+            }
+            const double *c_lo[2], *c_hi[2];  /* the arguments' bounds as the rule reads them */
+            for (int m = 0; m < n; ++m) {
+                c_lo[m] = (reached[a[m]] ? back_lo : w_lo) + a[m] * boxes;
+                c_hi[m] = (reached[a[m]] ? back_hi : w_hi) + a[m] * boxes;
+            }
+            for (long b = 0; b < boxes; ++b) {
+                double found[2][2], x0 = c_lo[0][b] - floor_, x1 = c_hi[0][b] + floor_;
+                double z0 = z_lo[b] - floor_, z1 = z_hi[b] + floor_;
+                if (n == 1) back_unary(op[k], z0, z1, x0, x1, &found[0][0], &found[0][1]);
+                else back_binary(op[k], z0, z1, x0, x1, c_lo[1][b] - floor_, c_hi[1][b] + floor_, &found[0][0],
+                                 &found[0][1], &found[1][0], &found[1][1]);
+                for (int m = 0; m < n; ++m) {
+                    if (!free_[a[m]]) continue;
+                    double lo = fmax_(found[m][0] - fabs(found[m][0]) * slack, -INFINITY);
+                    double hi = fmin_(found[m][1] + fabs(found[m][1]) * slack, INFINITY);
+                    double *old_lo = back_lo + a[m] * boxes + b, *old_hi = back_hi + a[m] * boxes + b;
+                    *old_lo = fmax_(*old_lo, lo);
+                    *old_hi = fmin_(*old_hi, hi);
+                }
+            }
+        }
+    }
+}
 """
 
 
@@ -228,19 +353,33 @@ def _address(array: np.ndarray) -> int:
 
 def replay_library(widen: float):
     """The compiled ``interval_replay`` (built or taken from the cache), or None where no library can be had."""
+    library = _library(widen)
+    return None if library is None else library.interval_replay
+
+
+def revise_library(widen: float):
+    """The compiled ``interval_revise`` (:class:`CompiledRevise`) from the same library, or None."""
+    library = _library(widen)
+    return None if library is None else library.interval_revise
+
+
+def _library(widen: float) -> ctypes.CDLL | None:
     path = built_library(source(widen), prefix="interval", flags=FLAGS)
     if path is None:
         return None
     if path not in _LOADED:
         try:
             library = ctypes.CDLL(path)
-            library.interval_replay.restype = None
+            library.interval_replay.restype = library.interval_revise.restype = None
         except (OSError, AttributeError):  # a library that does not load, or without the replay (damaged cache)
             return None
         library.interval_replay.argtypes = [ctypes.c_long, *[ctypes.c_void_p] * 5, ctypes.c_long,
                                             *[ctypes.c_void_p] * 6]
+        library.interval_revise.argtypes = [ctypes.c_long, *[ctypes.c_void_p] * 10, ctypes.c_long, ctypes.c_long,
+                                            ctypes.c_void_p, ctypes.c_void_p, *[ctypes.c_double] * 3,
+                                            *[ctypes.c_void_p] * 6]
         _LOADED[path] = library
-    return _LOADED[path].interval_replay
+    return _LOADED[path]
 
 
 class CompiledReplay:
@@ -294,3 +433,42 @@ class CompiledReplay:
         w_lo, w_hi = np.empty((self.work, boxes)), np.empty((self.work, boxes))
         self.replay(*self.program, boxes, *(_address(a) for a in (in_lo, in_hi, w_lo, w_hi, out_lo, out_hi)))
         return (w_lo, w_hi), out_lo, out_hi
+
+
+class CompiledRevise:
+    """A :class:`clutchopt.optimise.interval_backward.Tape` (its ``steps``, ``rows``, ``subgraphs``, ``free``) as
+    arrays for ``interval_revise``; :meth:`backward` as ``Tape.backward`` from the compiled replay's work variables
+    (each value in its own, as the tape's program writes them)."""
+
+    def __init__(self, steps: list, rows: dict[int, int], subgraphs: list[list[int]], free: list[bool], revise):
+        op, arguments, arg0, arg1, variable = [], [], [], [], []
+        for code, args, _, read in steps:
+            op.append(code), arguments.append(len(args)), arg0.append(args[0] if args else 0)
+            arg1.append(args[1] if len(args) > 1 else 0)
+            variable.append(read[1] if code == ca.OP_INPUT and read[0] == 0 else -1)
+        order = [k for graph in subgraphs for k in graph]
+        row_value = [rows[r] for r in range(len(rows))]
+        if any(not 0 <= k < len(steps) for k in (*order, *row_value, *arg0, *arg1)):  # (the C trusts them)
+            raise ValueError("a value outside the tape")
+        self.arrays = [np.ascontiguousarray(a, dtype=np.intc) for a in (row_value, order, op, arguments, arg0, arg1,
+                                                                         variable)]
+        self.start = np.ascontiguousarray(np.cumsum([0] + [len(g) for g in subgraphs]), dtype=ctypes.c_long)
+        self.free = np.ascontiguousarray(free, dtype=np.uint8)
+        row_value, order, *tape = (_address(a) for a in self.arrays)
+        self.program = [row_value, _address(self.start), order, *tape, _address(self.free)]  # (kept alive above)
+        self.values, self.variables, self.revise = len(steps), max(variable, default=-1) + 1, revise
+
+    def backward(self, w_lo: np.ndarray, w_hi: np.ndarray, limit: float, variables: int, rows: list[int],
+                 slack: float, floor: float) -> tuple[tuple[np.ndarray, np.ndarray], np.ndarray]:
+        """``Tape.backward`` of the values ``w_lo``, ``w_hi`` (values x boxes, C-contiguous: the replay's)."""
+        boxes, m = w_lo.shape[1], len(self.arrays[0])
+        if w_lo.shape != (self.values, boxes) or w_hi.shape != w_lo.shape or variables < self.variables \
+                or not all(0 <= r < m for r in rows) or not (w_lo.flags.c_contiguous and w_hi.flags.c_contiguous):
+            raise ValueError(f"values of shape {w_lo.shape} or rows {rows} not the tape's")
+        x_lo, x_hi = np.full((m, variables, boxes), -np.inf), np.full((m, variables, boxes), np.inf)
+        empty = np.zeros((m, boxes), dtype=np.uint8)
+        back_lo, back_hi, reached = np.empty_like(w_lo), np.empty_like(w_hi), np.zeros(self.values, dtype=np.uint8)
+        row_list = np.ascontiguousarray(rows, dtype=np.intc)
+        self.revise(len(rows), _address(row_list), *self.program, boxes, variables, _address(w_lo), _address(w_hi),
+                    limit, slack, floor, *(_address(a) for a in (back_lo, back_hi, reached, x_lo, x_hi, empty)))
+        return (x_lo, x_hi), empty.view(bool)
