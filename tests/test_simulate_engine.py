@@ -257,6 +257,10 @@ def test_a_scene_s_design_file_is_simulated_as_it_was_solved_and_says_what_it_is
         with pytest.raises(InputError, match=f"coupling.{key}: '{value}' is for a case solved for its design"):
             parse_scene(copy.deepcopy(data) | {"coupling": {**data["coupling"], key: value}}, where)
     assert parse_scene(copy.deepcopy(data) | {"coupling": {**data["coupling"], "mode": "paper"}}, where)
+    with pytest.raises(InputError) as error:  # (every problem in one run: a mode that is no name beside an objective)
+        parse_scene(copy.deepcopy(data) | {"coupling": {**data["coupling"], "mode": 5, "objective": "cost"}}, where)
+    assert [(p.field, p.problem[:16]) for p in error.value.problems] == [
+        ("coupling.mode", "must be a name ("), ("coupling.objective", "'cost' is for a ")]
     design = json.loads((CASES / "designs" / "wedge_paper.json").read_text())
     (tmp_path / "chosen.json").write_text(json.dumps({**design, "choice": {"friction_pair": "x" * 1_000_000}}))
     (tmp_path / "robust.json").write_text(json.dumps({**design, "robust": {"method": "worst-case"}}))

@@ -226,15 +226,22 @@ def _centrifugal(f: _Fields, case, effects):
     design = None
     if "design" in table:
         design_path = f.file("design")
-        f.problems.raise_any()
-        given = design_from_json(design_path, case.coupling, case.path)
-        mode, design, case = given.mode, given.design, _chosen(case, given.choice)
+        if design_path is None:
+            f.problems.raise_any()
+        try:  # (read beside the scene's other problems: every one named in one run)
+            given = design_from_json(design_path, case.coupling, case.path)
+            mode, design, case = given.mode, given.design, _chosen(case, given.choice)
+        except InputError as error:
+            f.problems.errors.append(error)
+            f.problems.raise_any()
         source["design"] = table["design"] + (" (a robust design, simulated at the case's nominal values)"
                                               if given.robust else "")
-        for name in ("mode", "objective"):  # (the file's design is simulated: neither solves the case)
-            if name in table and not (name == "mode" and table[name] == mode):
-                f.problems.errors.append(InputError(f"coupling.{name}", f"{shown_value(table[name])} is for a case "
-                                                    f"solved for its design; the design file gives it (mode {mode})"))
+        for name in ("mode", "objective"):  # (the file's design is simulated: neither solves the case; a value
+            # that is no name is refused as such above)
+            value = table.get(name)
+            if isinstance(value, str) and value.strip() and not (name == "mode" and value == mode):
+                f.problems.errors.append(InputError(f"coupling.{name}", f"{shown_value(value)} is for a case solved "
+                                                    f"for its design; the design file gives it (mode {mode})"))
     designed = ("spring_preload" in design if design is not None  # one of the design's variables (a start-up's)
                 else any(v.name == "spring_preload" for v in case_formulation(case, table.get("mode")).variables))
     if designed and "spring_preload" in table:  # the start simulated with the design's, as its start-up was solved
