@@ -201,6 +201,41 @@ def test_a_start_up_case_s_design_is_simulated_with_its_own_spring_preload():
         math.sqrt(preload / (solution.design["weight_mass"] * outputs["centroid_radius"])), rel=1e-9)
 
 
+def test_a_start_up_case_s_scene_takes_its_drive_from_the_case_and_says_what_it_took(tmp_path):
+    """A scene naming a start-up case leaves out what the case gives: the start-up's own driven inertia (0.6 here,
+    not the duty's 0.5: the duty's had been taken, silently), its load, its motor and its heat (had been refused as
+    missing); the coupling's lines say which fields came from the case and which the scene gives over it."""
+    from clutchopt.cases import read_toml
+    from clutchopt.simulate.scene import parse_scene
+
+    text = (CASES / "wedge_motor_start.toml").read_text()
+    (tmp_path / "case.toml").write_text(text.replace("[start_up.heat]", "[start_up.driven]\ninertia = \"0.6 kg*m^2\""
+                                                                        "\n\n[start_up.heat]"))
+    case = load_case(tmp_path / "case.toml")
+    assert (case.values["inertia"], case.values["driven_inertia"]) == (0.5, 0.6)
+    data = {"effects": ["slip_friction", "motor_curve", "lockup", "friction_heat"],
+            "coupling": {"law": "centrifugal", "case": "case.toml", "design": "design.json"}}
+    design = json.loads((CASES / "designs" / "wedge_paper.json").read_text())
+    (tmp_path / "design.json").write_text(json.dumps({**design, "case": "case.toml"}))
+    scene = parse_scene(data, str(tmp_path / "scene.toml"))
+    m = scene.model
+    assert (m.inertia, m.load.torque, m.heat_capacity, m.conductance) == (0.6, 5.0, 1400.0, 4.0)
+    motor = m.motor
+    assert (motor.synchronous_speed, motor.breakdown_torque, motor.breakdown_slip, motor.inertia) == pytest.approx(
+        (1000 * math.pi / 30, 37.0, 0.2, 0.012), rel=1e-15)
+    assert scene.source["from_the_case"] == [
+        "driven.inertia", "driven.resisting_torque", "driver.synchronous_speed", "driver.breakdown_torque",
+        "driver.breakdown_slip", "driver.inertia", "heat.capacity", "heat.conductance"]
+    assert scene.source["over_the_case"] == []
+    data["driver"] = {"breakdown_torque": "30 N*m"}
+    scene = parse_scene(data, str(tmp_path / "scene.toml"))
+    assert scene.model.motor.breakdown_torque == 30.0 and scene.source["over_the_case"] == ["driver.breakdown_torque"]
+    assert "driver.breakdown_torque" not in scene.source["from_the_case"]
+    assert read_toml(SCENES / "wedge_motor_springs.toml")["driver"]  # (a scene's own driver as before: below)
+    springs = load_scene(SCENES / "wedge_motor_springs.toml")
+    assert springs.source["from_the_case"] == ["driven.inertia", "driven.resisting_torque"]
+
+
 def test_a_scene_solved_from_a_choosing_case_simulates_the_best_choice(tmp_path):
     """A scene whose coupling is a case with ``options.choose`` and no design simulates the design ``solve`` gives
     (every choice designed, the best kept) with that choice's case (its friction coefficient), and says which; a

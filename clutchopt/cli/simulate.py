@@ -68,6 +68,9 @@ def _text(scene, result, analytic) -> str:
     if source.get("law") == "centrifugal":
         lines.append(f"coupling: {source['coupling']} design ({source['design']}), torque at design speed "
                      f"{source['design_torque']:.6g} N*m, engagement speed {source['engagement_speed']:.6g} rad/s")
+        for key, label in (("from_the_case", "from the case"), ("over_the_case", "the scene's, not the case's")):
+            if source.get(key):
+                lines.append(f"{label}: {', '.join(source[key])}")
     lines.append("lock-up: yes" if h["locks_up"] else f"lock-up: no - {h['reason']}")
     for key, label, unit in _LINES:
         if key in h and math.isfinite(h[key]):

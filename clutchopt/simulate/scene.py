@@ -12,17 +12,19 @@ Layout (quantities with units as in case files; bare numbers are SI; paths relat
     case = "../wedge_paper.toml"              # centrifugal: a case of a coupling with a speed law (wedge)
     design = "../designs/wedge_paper.json"    # optional: clutchopt solve --json output; else the case is solved
     spring_preload = "10 N"                   # per weight (effect spring_preload); not where the design sets it
-    [driven]
-    inertia = "0.5 kg*m^2"                    # defaults: the case's duty
+    [driven]                                  # defaults: the case's (a start-up case's [start_up.driven], else
+    inertia = "0.5 kg*m^2"                    # its duty; its load profile too)
     resisting_torque = "5 N*m"                # or [driven.load_profile] over = "speed"|"time", points, torque
     [driver]
     speed = "1000 rpm"                        # constant driving speed (default: the case's duty.speed)
-    synchronous_speed = "1500 rpm"            # motor_curve: Kloss curve and rotor inertia
+    synchronous_speed = "1500 rpm"            # motor_curve: Kloss curve and rotor inertia (default: a start-up
+                                              # case's [start_up.driver])
     breakdown_torque = "60 N*m"
     breakdown_slip = 0.25
     inertia = "0.02 kg*m^2"
     [heat]
     capacity = "2000 J/K"                     # friction_heat: lumped heat capacity, optional conductance
+                                              # (default: a start-up case's [start_up.heat])
     conductance = "5 W/K"
 """
 
@@ -82,6 +84,9 @@ class _Fields:
         self.data, self.path = data, path
         self.problems = Problems()
         self.units: dict = {}  # the SI unit of each quantity read: of a bare number in ``data``
+        self.defaults: dict[str, float] = {}  # the case's values of fields the scene may leave out (_from_the_case)
+        self.taken: list[str] = []  # the fields left out and taken from the case
+        self.over: list[str] = []  # the fields given where the case has a value too (the scene's kept)
 
     def table(self, name: str) -> dict:
         table = self.data.get(name, {})
@@ -101,20 +106,29 @@ class _Fields:
                                                                             f"{', '.join(sorted(keys))}"))
 
     def quantity(self, section: str, key: str, unit: str, valid: tuple, default=None) -> float:
-        """The field in SI, checked against ``valid`` (low, high, unit shown); NaN after a recorded problem."""
+        """The field in SI, checked against ``valid`` (low, high, unit shown); NaN after a recorded problem. Not
+        given: the case's value (``defaults``, said in ``taken``), else ``default``; given where the case has one:
+        said in ``over``."""
         raw = self.table(section).get(key) if section else self.data.get(key)
         field_name = f"{section}.{key}" if section else key
         with self.problems.field():
-            if raw is None:
-                if default is None:
-                    raise InputError(field_name, f"missing (in {unit or 'SI'})")
-                return default
-            (self.units.setdefault(section, {}) if section else self.units)[key] = si_unit(unit)
-            value = to_si(field_name, raw, unit)
             low, high, shown = valid
+            if raw is None:
+                if field_name not in self.defaults:
+                    if default is None:
+                        raise InputError(field_name, f"missing (in {unit or 'SI'})")
+                    return default
+                self.taken.append(field_name)
+                value = self.defaults[field_name]
+                said = f"the case's {value:g} (SI): give it in the scene"
+            else:
+                if field_name in self.defaults:
+                    self.over.append(field_name)
+                (self.units.setdefault(section, {}) if section else self.units)[key] = si_unit(unit)
+                value, said = to_si(field_name, raw, unit), repr(raw)
             if not low <= value <= high:
                 raise InputError(field_name, f"must be from {low:g} to {high:g} {shown} (the range the simulator "
-                                             f"is tested over), got {raw!r}".replace("  ", " "))
+                                             f"is tested over), got {said}".replace("  ", " "))
             return value
         return math.nan
 
@@ -150,11 +164,11 @@ def parse_scene(data: dict, path: str = "") -> Scene:
             f.problems.errors.append(InputError("effects", f"{effect} applies to centrifugal couplings "
                                                            "(law = \"centrifugal\") only"))
     case = _case(f, effects) if law_name == "centrifugal" else None
-    duty = case.params() if case else None
-    inertia = f.quantity("driven", "inertia", "kg*m^2", INERTIA, getattr(duty, "inertia", None))
-    load = _load(f, duty)
+    f.defaults = _from_the_case(case)
+    inertia = f.quantity("driven", "inertia", "kg*m^2", INERTIA)
+    load = _load(f, case.start_up.load_profile if case is not None and case.start_up is not None else None)
     motor = _motor(f) if "motor_curve" in effects else None
-    speed = math.nan if motor else f.quantity("driver", "speed", "rpm", SPEED, duty.speed if duty else None)
+    speed = math.nan if motor else f.quantity("driver", "speed", "rpm", SPEED)
     heat = ((f.quantity("heat", "capacity", "J/K", HEAT_CAPACITY),
              f.quantity("heat", "conductance", "W/K", CONDUCTANCE, 0.0))
             if "friction_heat" in effects else (math.nan, 0.0))
@@ -173,6 +187,7 @@ def parse_scene(data: dict, path: str = "") -> Scene:
         law, source = _friction_law(f, law_name)
     elif case is not None:
         law, source = _centrifugal(f, case, effects)
+        source |= {"from_the_case": f.taken, "over_the_case": f.over}
     f.problems.raise_any()
     model = Model(law, inertia, load, effects, speed, motor, heat[0], heat[1],
                   None if math.isinf(end_time) else end_time, tolerance)
@@ -286,10 +301,36 @@ def _chosen(case, choice: dict[str, str]):
     return variant
 
 
-def _load(f: _Fields, duty) -> Load:
+def _from_the_case(case) -> dict[str, float]:
+    """The scene's fields a centrifugal coupling's case gives where the scene does not: its duty's, and the drive of
+    its [start_up] where it has one (the start-up's own driven inertia and load, motor and heat: the start it was
+    designed for)."""
+    if case is None:
+        return {}
+    duty, values = case.params(), case.values
+    given = {"driven.inertia": getattr(duty, "inertia", None),  # (the ball's duty has none: its power and speed)
+             "driven.resisting_torque": getattr(duty, "resisting_torque", None), "driver.speed": duty.speed}
+    if case.start_up is not None:
+        given |= {field: values[name] for field, name in (
+            ("driven.inertia", "driven_inertia"), ("driven.resisting_torque", "load_torque"),
+            ("driver.synchronous_speed", "synchronous_speed"), ("driver.breakdown_torque", "breakdown_torque"),
+            ("driver.breakdown_slip", "breakdown_slip"), ("driver.inertia", "motor_inertia"),
+            ("heat.capacity", "heat_capacity"), ("heat.conductance", "heat_conductance")) if name in values}
+    return {field: value for field, value in given.items() if value is not None}
+
+
+def _load(f: _Fields, profile_of_the_case) -> Load:
+    """The driven machine's load: the scene's constant torque or profile, else the case's (its start-up's profile,
+    else its constant load)."""
     profile = f.table("driven").get("load_profile")
+    if profile is None and "resisting_torque" not in f.table("driven") and profile_of_the_case is not None:
+        f.taken.append("driven.load_profile")
+        return Load(over=profile_of_the_case.over, points=profile_of_the_case.points,
+                    values=profile_of_the_case.values)
     if profile is None:
-        return Load(f.quantity("driven", "resisting_torque", "N*m", LOAD, getattr(duty, "resisting_torque", None)))
+        return Load(f.quantity("driven", "resisting_torque", "N*m", LOAD))
+    if profile_of_the_case is not None or "driven.resisting_torque" in f.defaults:
+        f.over.append("driven.load_profile")
     with f.problems.field():
         profile = parse_load_profile(profile, "driven.load_profile")
         return Load(over=profile.over, points=profile.points, values=profile.values)
