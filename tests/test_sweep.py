@@ -224,7 +224,7 @@ def test_points_solved_alone_are_tabulated_from_their_solutions_as_from_their_re
     records = list(result.solutions)
     assert len(built) == 12 and {r["solver"]["name"] for r in records} == {"interval"}
     assert list(result.frame["status"]) == ["infeasible"] * 12 and list(result.frame["iterations"]) == [0] * 12
-    assert all(d.startswith("proven infeasible: no design within the bounds meets torque")
+    assert all(d.startswith("proven infeasible") and "no design within the bounds meets torque" in d
                for d in result.frame["diagnosis"])
     names = [v.name for v in sweep.formulation.variables]
     pd.testing.assert_frame_equal(result.frame, sweep.frame(record_table(records, names)), check_exact=True)

@@ -12,6 +12,12 @@ an integer choice left without a design at j (IPOPT: ``Infeasible_Problem_Detect
 past 4.6x its power and infeasible at each). Where a varied quantity enters a constraint's value, or a limit or
 scale that a design variable enters, the step's effect depends on the design and nothing is concluded
 (:attr:`Tightening.known` is false).
+
+A proof of infeasibility (``clutchopt.optimise.interval_proof``: over the whole design box some row breaks by more
+than a tolerance of its scale, g = (value - limit) / scale > tol for ``<=``) holds after such a step too where each
+moved row's scale is its limit (scale = limit > 0: value > (1 + tol) limit_j >= (1 + tol) limit_k) or is not moved
+(:attr:`Tightening.keeps_proofs`): what a proof rules out at point j stays ruled out at every point the sweep has
+only tightened since (``clutchopt.optimise.region_proof``).
 """
 
 from __future__ import annotations
@@ -36,14 +42,16 @@ class Tightening:
         design = ca.vertcat(*vars(x).values())
         limits, scales, senses = [], [], []
         self.known = moved.numel() > 0
+        self.keeps_proofs = self.known  # (each moved row's scale its limit, or not moved: a proof holds after)
         for c in f.constraints(x, p):
             value, limit = ca.SX(c.value), ca.SX(c.limit)
             scale = limit if c.scale is None else ca.SX(c.scale)
             if not any(ca.depends_on(e, moved) for e in (value, limit, scale)):
                 continue  # the step leaves it as it is
             if ca.depends_on(value, moved) or ca.depends_on(limit, design) or ca.depends_on(scale, design):
-                self.known = False  # the step moves it by what the design makes of it
+                self.known = self.keeps_proofs = False  # the step moves it by what the design makes of it
                 break
+            self.keeps_proofs &= c.scale is None or not ca.depends_on(scale, moved)
             limits.append(limit), scales.append(scale * ca.DM.ones(limit.shape))
             senses.append(np.full(limit.numel(), 1.0 if c.sense == ">=" else -1.0))
         self._senses = np.concatenate(senses) if senses else np.zeros(0)
@@ -64,6 +72,14 @@ class Tightening:
         after the step (:meth:`limits`)."""
         return bool(self.known and np.all(scale_before > 0) and np.all(scale_after > 0)
                     and np.all(self._senses * (limit_after - limit_before) >= 0))
+
+    def held_from(self, limits: np.ndarray, scales: np.ndarray, j: int, k: int) -> int:
+        """The first point from k on (in :meth:`limits`' columns) whose step from point j does not only tighten
+        (:meth:`holds`); the number of points where every one does."""
+        before, scale = limits[:, j:j + 1], scales[:, j:j + 1]
+        held = (self.known & np.all(scale > 0) & np.all(scales[:, k:] > 0, axis=0)
+                & np.all(self._senses[:, None] * (limits[:, k:] - before) >= 0, axis=0))
+        return k + (int(np.argmin(held)) if not held.all() else held.size)
 
     def limits(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The limits and scales of the constraints the varied quantities enter at each point (``points``: a row of

@@ -1,0 +1,103 @@
+"""A proof of infeasibility carried along a sweep that only tightens the limits it moves (Regions._tightened,
+Tightening.keeps_proofs): each point after the proven one gets the verdict `solve` alone gives it, without a search;
+nothing is carried where the step moves a constraint by what the design makes of it, or moves a row's scale apart
+from its limit."""
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from clutchopt.bench.reference import bench_cases, reference_mode
+from clutchopt.model import at_least, at_most
+from clutchopt.optimise import region_proof
+from clutchopt.optimise.problem import case_problem
+from clutchopt.optimise.sweep import Sweep
+from clutchopt.optimise.sweep_grid import Vary
+from clutchopt.optimise.tightening import Tightening
+
+BALL = next(case for case in bench_cases() if case.coupling == "ball")
+
+
+def _swept(case, name, factors):
+    quantity = next(q for q in case.quantities if q.name == name)
+    values = case.values[name] * np.asarray(factors)
+    return values, Sweep(case, [Vary(quantity, tuple(values.tolist()))], mode=reference_mode(case.coupling)).run(
+        progress=False)
+
+
+@pytest.fixture
+def searched(monkeypatch):
+    calls = []
+    real = region_proof.searches
+    monkeypatch.setattr(region_proof, "searches", lambda posed, problems, budgets=None: calls.append(len(problems))
+                        or real(posed, problems, budgets))
+    return calls
+
+
+def test_the_ball_beyond_its_edge_is_proven_once_and_each_point_keeps_solve_s_verdict(searched):
+    """The ball over 9.33x-18.7x its power (40 points, none with a design): point 0 proven by its own search; the
+    power enters only the torque row's limit (k_s P / w, its scale), so each point after it is proven by that proof
+    (had been four more region searches), no solver call, no search; `solve` alone proves each."""
+    values, result = _swept(BALL, "power", np.geomspace(9.33, 18.7, 40))
+    records = result.solutions
+    assert [r["status"] for r in records] == ["infeasible"] * 40 and result.spent["solves"] == 1
+    assert records[0]["diagnosis"].startswith("proven infeasible: no design within the bounds meets torque")
+    body = records[0]["diagnosis"].split(": ", 1)[1]
+    carried = (f"proven infeasible for power {values[1] / 1e3:.6g}-{values[-1] / 1e3:.6g} kW (39 points, by the "
+               f"proof at power {values[0] / 1e3:.6g} kW, the sweep only tightening the limits it moves since): {body}")
+    assert [r["diagnosis"] for r in records[1:]] == [carried] * 39
+    assert all(r["solver"]["solves"] == 0 and r["solver"]["time_s"] == 0 for r in records[1:])
+    assert searched == [1]  # (point 0's own search, its verdict's: no region searched)
+    problem = case_problem(BALL, reference_mode("ball"))
+    for k in (1, 20, 39):
+        alone = problem.solve(BALL.with_values(power=float(values[k])))
+        assert alone.status == "infeasible" and alone.diagnosis.startswith("proven infeasible")
+        torque = next(c for c in records[k]["constraints"] if c["name"] == "torque")  # (at the point's own power)
+        assert torque["limit"] == pytest.approx(next(c for c in alone.as_dict()["constraints"]
+                                                     if c["name"] == "torque")["limit"], rel=1e-12)
+
+
+def test_a_sweep_that_loosens_or_moves_a_value_carries_no_proof():
+    """The ball's power downwards from beyond its edge (the limits loosen: its points searched as regions, as
+    before), and the wedge over its friction coefficient (it enters the torque the design carries): no point
+    carries another's proof."""
+    _, down = _swept(BALL, "power", np.geomspace(18.7, 9.33, 20))  # (searched point by point, or as
+    # regions: tests/test_region_search.py)
+    assert [r["status"] for r in down.solutions] == ["infeasible"] * 20
+    wedge = next(case for case in bench_cases() if case.coupling == "wedge")
+    _, friction = _swept(wedge, "friction_coefficient", np.geomspace(2.0, 0.5, 40))
+    statuses = [r["status"] for r in friction.solutions]
+    assert "optimal" in statuses and "infeasible" in statuses
+    assert not any("by the proof at" in (r["diagnosis"] or "") for r in (*down.solutions, *friction.solutions))
+
+
+def _tightening(scale, varied=("a",), sense=at_most):
+    """A design x under a limit a (a row scaled by ``scale`` of the parameters a, b)."""
+    formulation = SimpleNamespace(
+        variables=[SimpleNamespace(name="x")], quantities=[SimpleNamespace(name="a"), SimpleNamespace(name="b")],
+        constraints=lambda x, p: [sense("row", x.x, p.a, equation="", scale=scale and scale(p))])
+    return Tightening(SimpleNamespace(formulation=formulation), list(varied))
+
+
+def test_a_proof_is_carried_only_where_each_moved_row_is_scaled_by_its_limit_or_a_scale_it_does_not_move():
+    """x <= a over a sweep of a downwards: scaled by a itself (no scale given) or by b, what a proof rules out at a_j
+    (x > a_j + tol s_j over the box) stays ruled out at every tighter a_k; scaled by 1000 (2 - a), a scale the step
+    moves apart from its limit, it need not: with tol 0.01, x = 11.05 breaks x <= 1 by 10.05 / 1000 (ruled out) but
+    x <= 0.99 by 10.06 / 1010, within the tolerance (not ruled out): no proof is carried there."""
+    assert _tightening(None).keeps_proofs and _tightening(lambda p: p.b).keeps_proofs
+    assert _tightening(None, sense=at_least).keeps_proofs
+    moved = _tightening(lambda p: 1000 * (2 - p.a))
+    assert moved.known and not moved.keeps_proofs
+    x, tol, (a_j, s_j), (a_k, s_k) = 11.05, 0.01, (1.0, 1000.0), (0.99, 1010.0)
+    assert (x - a_j) / s_j > tol and (x - a_k) / s_k <= tol and moved.tightened(np.array([a_j, 0.0]),
+                                                                                 np.array([a_k, 0.0]))
+    unmoved = _tightening(None, varied=("b",))  # (b enters no row: the step moves nothing, what was ruled out stays)
+    assert unmoved.keeps_proofs and unmoved.tightened(np.array([1.0, 0.0]), np.array([1.0, 5.0]))
+    t = _tightening(None)
+    limits, scales = t.limits(np.array([[1.0, 0.0], [0.9, 0.0], [1.1, 0.0], [0.8, 0.0]]))
+    assert (t.held_from(limits, scales, 0, 1), t.held_from(limits, scales, 1, 2), t.held_from(limits, scales, 2, 3)
+            ) == (2, 2, 4)  # (from 1: 0.9 tighter, 1.1 not; from 0.9: 1.1 not; from 1.1: 0.8)
+    low = _tightening(None, sense=at_least)  # (x >= a: tighter upwards)
+    limits, scales = low.limits(np.array([[1.0, 0.0], [1.2, 0.0], [1.1, 0.0], [0.9, 0.0]]))
+    assert low.held_from(limits, scales, 0, 1) == 3
