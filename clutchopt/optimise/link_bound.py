@@ -1,17 +1,18 @@
 """An elastic link's integer choice refuted before its start-up NLP is solved.
 
 The link's start is one locked phase: motor and machine run up as one, (J + J_m) dw/dt = T_m - T_c, whatever the
-coupling's design, and at each collocation node the link carries the locked drive's share of the torque,
-(J_m T_c + J T_m) / (J + J_m). The node speeds and times are therefore the same in every point of the NLP that
-meets its drive's rows (those no design variable enters); a solved point's are those of every other. At them the
-coupling's law bounds the stress from below for the integers and fixed variables alone (``ElasticLaw.least_stress``:
-the cable's with the least pull its weights' row weight_turns_cable admits, whatever their thread's lead angle);
-where that bound is above the stress limit at some node, no design of the choice meets
-``link_stress`` and its NLP is not solved (cable_motor_start: 6 cables at 376.0 MPa against 350, 35 IPOPT
-iterations to ``Infeasible_Problem_Detected``; at the limit 7 cables' start moved in, 314.22 MPa, 7 cables at 341.4,
-19, and 8 cables at 314.243, 21). The same least stress bounds modifier adaptation's corrected row from below
-(:func:`clutchopt.optimise.modifier.no_lighter`). ``posed``: the posed problem (``Posed``), ``data`` its
-``ScaledData`` (not imported: the posed problem imports modifier adaptation, which imports this).
+coupling's design, and at each collocation node the link carries the locked drive's share of the torque, (J_m T_c + J
+T_m) / (J + J_m). The node speeds and times are therefore the same in every point of the NLP that meets its drive's
+rows (those no design variable enters); a solved point's are those of every other, and a seed off the rows (a sweep's
+point before's optimum: another drive's nodes) is brought onto them (:func:`on_the_drive`). At them the coupling's law
+bounds the stress from below for the integers and fixed variables alone (``ElasticLaw.least_stress``: the cable's with
+the least pull its weights' row weight_turns_cable admits, whatever their thread's lead angle); where that bound is
+above the stress limit at some node, no design of the choice meets ``link_stress`` and its NLP is not solved
+(cable_motor_start: 6 cables at 376.0 MPa against 350, 35 IPOPT iterations to ``Infeasible_Problem_Detected``; at the
+limit 7 cables' start moved in, 314.22 MPa, 7 cables at 341.4, 19, and 8 cables at 314.243, 21). The same least stress
+bounds modifier adaptation's corrected row from below (:func:`clutchopt.optimise.modifier.no_lighter`). ``posed``: the
+posed problem (``Posed``), ``data`` its ``ScaledData`` (not imported: the posed problem imports modifier adaptation,
+which imports this).
 """
 
 from __future__ import annotations
