@@ -1,18 +1,18 @@
 """An elastic link's integer choice refuted before its start-up NLP is solved.
 
 The link's start is one locked phase: motor and machine run up as one, (J + J_m) dw/dt = T_m - T_c, whatever the
-coupling's design, and at each collocation node the link carries the locked drive's share of the torque, (J_m T_c + J
-T_m) / (J + J_m). The node speeds and times are therefore the same in every point of the NLP that meets its drive's
-rows (those no design variable enters); a solved point's are those of every other, and a seed off the rows (a sweep's
-point before's optimum: another drive's nodes) is brought onto them (:func:`on_the_drive`). At them the coupling's law
-bounds the stress from below for the integers and fixed variables alone (``ElasticLaw.least_stress``: the cable's with
-the least pull its weights' row weight_turns_cable admits, whatever their thread's lead angle); where that bound is
-above the stress limit at some node, no design of the choice meets ``link_stress`` and its NLP is not solved
-(cable_motor_start: 6 cables at 376.0 MPa against 350, 35 IPOPT iterations to ``Infeasible_Problem_Detected``; at the
-limit 7 cables' start moved in, 314.22 MPa, 7 cables at 341.4, 19, and 8 cables at 314.243, 21). The same least stress
-bounds modifier adaptation's corrected row from below (:func:`clutchopt.optimise.modifier.no_lighter`). ``posed``: the
-posed problem (``Posed``), ``data`` its ``ScaledData`` (not imported: the posed problem imports modifier adaptation,
-which imports this).
+coupling's design, and at each collocation node the link carries the locked drive's share of the torque,
+(J_m T_c + J T_m) / (J + J_m). The node speeds and times are therefore the same in every point of the NLP that meets
+its drive's rows (those no design variable enters); a solved point's are those of every other, and a seed off the rows
+(a sweep's point before's optimum: another drive's nodes) is brought onto them (:func:`on_the_drive`). At them the
+coupling's law bounds the stress from below for the integers and fixed variables alone (``ElasticLaw.least_stress``:
+the cable's with the least pull its weights' row weight_turns_cable admits, whatever their thread's lead angle); where
+that bound is above the stress limit at some node, no design of the choice meets ``link_stress`` and its NLP is not
+solved (cable_motor_start: 6 cables at 376.0 MPa against 350, 35 IPOPT iterations to ``Infeasible_Problem_Detected``;
+at the limit 7 cables' start moved in, 314.22 MPa, 7 cables at 341.4, 19, and 8 cables at 314.243, 21). The same least
+stress bounds modifier adaptation's corrected row from below (:func:`clutchopt.optimise.modifier.no_lighter`).
+``posed``: the posed problem (``Posed``), ``data`` its ``ScaledData`` (not imported: the posed problem imports
+modifier adaptation, which imports this).
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ from clutchopt.optimise.verify import FEASIBILITY_TOL
 from clutchopt.start_up.drive import Drive
 
 NEWTON_STEPS = 8  # Newton's steps that bring a seed onto the drive's rows (:func:`on_the_drive`; the cable's
-# neighbours take 2-3)
+# neighbours take 1-3)
 MARGIN = 1e-6  # relative: the bound over the limit by far more than the nodes' speeds can be off where the drive's
 # rows are met to FEASIBILITY_TOL (normalised by the speed and the torque scales)
 
@@ -67,10 +67,10 @@ def on_the_drive(posed, x0: np.ndarray, p: np.ndarray, lbx: np.ndarray, ubx: np.
     drive's states and times, no design variable), the point they reach where it meets them to a tenth of
     FEASIBILITY_TOL within the box ``lbx``..``ubx``: a point of the NLP on the drive, whose nodes are every such
     point's. None where the steps do not get there (NEWTON_STEPS, a singular step) or the rows are not square in
-    those variables. A sweep's point seeds its warm runs with the point before's optimum,
-    whose nodes are another drive's: cable_motor_start over its driven inertia, 8 cables' warm run at the limit 7
-    cables' start moved in (314 MPa) ended infeasible in 19-20 IPOPT iterations at three of the bench's 20 points;
-    their least stress at this drive's nodes, 314.5-315 MPa, refutes them unsolved."""
+    those variables. A sweep's point seeds its warm runs with the point before's optimum, whose nodes are another
+    drive's: cable_motor_start over its driven inertia, 8 cables' warm run at the limit 7 cables' start moved in
+    (313.9-321.8 MPa) ended infeasible in 19-20 IPOPT iterations at three of the bench's 20 points; their least
+    stress at this drive's nodes, 315.0-322.9 MPa, refutes them unsolved."""
     rows = posed.mapped(drive_rows(posed), 1)  # (on NumPy arrays)
     met = rows(x0, p)[0].ravel()
     if not np.max(np.abs(met), initial=0.0) > FEASIBILITY_TOL:
