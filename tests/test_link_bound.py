@@ -14,10 +14,11 @@ from clutchopt.cases import load_case
 from clutchopt.formulations.cable.equations import reduced_friction_angle, weight_mass
 from clutchopt.formulations.cable.speed_law import weight_stiffness
 from clutchopt.model import namespace
-from clutchopt.optimise.link_bound import refuted
+from clutchopt.optimise.link_bound import drive_rows, least_stress, on_the_drive, refuted
 from clutchopt.optimise.own_shift import ForeignShifts
 from clutchopt.optimise.posed import scaled_box
 from clutchopt.optimise.problem import Problem, solve_case
+from clutchopt.optimise.verify import FEASIBILITY_TOL
 from clutchopt.start_up.drive import Drive
 from tests.conftest import CASES
 
@@ -82,7 +83,7 @@ def test_the_least_stress_is_below_each_design_s_and_refutes_6_cables_only(monke
     6 cables carry it at no less than 375.99 MPa (over 350: refuted), 7, 8 and 9 at 341.41, 314.24 and 292.25 MPa
     (without the weights' least pull 361.9, 327.1, 299.9 and 277.7): 8 cables are refuted at 7 cables' moved limit,
     314.22 MPa. The bound lies below the quasi-static stress of every design the NLP found (7, 8 and 9 cables, the
-    relaxation), node by node. A point whose speeds are not the NLP's (the drive's rows unmet) refutes nothing."""
+    relaxation), node by node."""
     _, runs = solved(monkeypatch)
     posed, data, relaxed = runs[0]
     law = posed.formulation.speed_law
@@ -114,11 +115,34 @@ def test_the_least_stress_is_below_each_design_s_and_refutes_6_cables_only(monke
         assert np.all(bound <= stress * (1 + 1e-9))
         if design.weight_mass < 0.46:  # (at eq. (9)'s mass, weight_turns_cable active: the bound is the stress)
             assert np.all(bound >= stress * (1 - 1e-9))
+
+
+def test_a_seed_of_another_drive_is_brought_onto_this_one_s_rows_and_refutes_at_its_nodes(monkeypatch):
+    """A seed whose speeds and times are another drive's (a sweep's point before: here the relaxation's states
+    0.1 % off) does not meet the drive's rows; Newton's steps on those rows alone (``on_the_drive``) bring it onto them,
+    moving no design variable, to the relaxation's nodes: the same least stress (375.99 MPa for 6 cables, refuted),
+    where main took no bound from it. A box that fixes the drive's own variables leaves nothing to move: no bound."""
+    _, runs = solved(monkeypatch)
     posed, data, relaxed = runs[0]
+    n = len(data.scale)
     lbx, ubx = fixed_at(posed, data, 6)
-    moved = np.clip(relaxed["x"], lbx, ubx)
-    moved[len(data.scale):] *= 1.001  # the speeds of another drive (a sweep's neighbour)
-    assert refuted(posed, data, moved, lbx, ubx) == []
+    own = np.clip(relaxed["x"], lbx, ubx)
+    other = own.copy()
+    other[n:] *= 1.001  # the speeds and times of another drive (a sweep's neighbour)
+    rows = drive_rows(posed)
+    assert np.max(np.abs(rows(other, data.p).full())) > 1e3 * FEASIBILITY_TOL
+    on = on_the_drive(posed, other, data.p, lbx, ubx)
+    assert np.max(np.abs(rows(on, data.p).full())) <= FEASIBILITY_TOL / 10
+    assert np.array_equal(on[:n], other[:n])  # (no design variable moved)
+    _, times, speeds, *_ = (path.full().ravel() for path in posed.start_up_figures(on, data.p))
+    _, own_times, own_speeds, *_ = (path.full().ravel() for path in posed.start_up_figures(own, data.p))
+    assert np.allclose(speeds, own_speeds, rtol=1e-9, atol=0) and np.allclose(times, own_times, rtol=1e-9, atol=0)
+    least = least_stress(posed, data, other, lbx, ubx)
+    assert least == pytest.approx(least_stress(posed, data, own, lbx, ubx), rel=1e-9)
+    assert least / 1e6 == pytest.approx(375.99, abs=0.005)
+    assert refuted(posed, data, other, lbx, ubx) == ["link_stress"]
+    lbx[n:], ubx[n:] = np.maximum(lbx[n:], other[n:]), np.minimum(ubx[n:], other[n:])  # (the drive's own fixed)
+    assert on_the_drive(posed, other, data.p, lbx, ubx) is None and refuted(posed, data, other, lbx, ubx) == []
 
 
 def test_threads_mode_its_weight_thread_free_refutes_the_same_counts(monkeypatch):
