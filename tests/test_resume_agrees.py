@@ -41,6 +41,13 @@ def _cut(patch) -> None:
     patch.setattr(batch, "BOX_WORK", 0)
 
 
+def _searched_not_carried(patch) -> None:
+    """Each stretch's points searched (their regions' searches, the boxes they take), as in a sweep whose steps do not
+    only tighten the limits (a speed, a friction coefficient): this sweep's stretches upwards in power would carry
+    their first point's proof unsearched (``Regions._tightened``: tests/test_region_tightened.py)."""
+    patch.setattr(Regions, "_tightened", lambda self, j, k: k)
+
+
 def _sweep() -> Sweep:
     file, text, mode = SWEEP
     case = load_case(CASES / file)
@@ -182,6 +189,7 @@ def test_a_resume_in_a_new_process_starts_its_windows_from_the_uninterrupted_run
     # it, at least SURE_BOXES), kept by the built problem across windows in one process. A new process has none; a
     # resume there after that stretch started its windows from 0 boxes, where the uninterrupted run's had 471
     _cut(monkeypatch)
+    _searched_not_carried(monkeypatch)
     case = load_case(CASES / "ball_compressor.toml")
     legs = [np.linspace(9000, 12500, 20), np.linspace(12500, 9000, 20)[1:], np.linspace(9000, 12500, 20)[1:]]
     vary = parse_vary("power=" + ",".join(f"{value:g}" for value in np.concatenate(legs)), case.coupling)
@@ -235,5 +243,6 @@ def test_a_stretch_without_a_design_ends_its_window_after_its_searches_work(monk
             return [int(part.points.index[0]) for part in
                     solve_points(sweep.case, "design", "mass", sweep.tol, None, sweep.grid)]
 
+    _searched_not_carried(monkeypatch)
     counted, uncounted = window_starts(0.5), window_starts(0)
     assert [k for k in uncounted if k > 91] == [] and [k for k in counted if k > 91] != []
