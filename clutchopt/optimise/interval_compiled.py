@@ -463,7 +463,8 @@ class CompiledRevise:
         """``Tape.backward`` of the values ``w_lo``, ``w_hi`` (values x boxes, C-contiguous: the replay's)."""
         boxes, m = w_lo.shape[1], len(self.arrays[0])
         if w_lo.shape != (self.values, boxes) or w_hi.shape != w_lo.shape or variables < self.variables \
-                or not all(0 <= r < m for r in rows) or not (w_lo.flags.c_contiguous and w_hi.flags.c_contiguous):
+                or not all(0 <= r < m for r in rows) or not (w_lo.flags.c_contiguous and w_hi.flags.c_contiguous) \
+                or not w_lo.dtype == w_hi.dtype == np.float64:
             raise ValueError(f"values of shape {w_lo.shape} or rows {rows} not the tape's")
         x_lo, x_hi = np.full((m, variables, boxes), -np.inf), np.full((m, variables, boxes), np.inf)
         empty = np.zeros((m, boxes), dtype=np.uint8)

@@ -451,7 +451,7 @@ class Regions:
             return k
         if self._tightening is None:
             values = self._shared.values
-            varied = [name for i, name in enumerate(self._shared.names) if np.any(values[:, i] != values[0, i])]
+            varied = [name for i, name in enumerate(self._shared.names) if _moves(values[:, i], values[0, i])]
             t = tightening(self.posed, varied)
             self._tightening = (t, *t.limits(values)) if t.keeps_proofs else (None,)
         if self._tightening[0] is None:
@@ -463,14 +463,14 @@ class Regions:
         """The proof of point j (``_without``'s verdict) in words, for the points after it up to ``end``."""
         values, diagnosis = self._shared.values, self._without.diagnosis or ""
         moved = [(i, q) for i, q in enumerate(self.posed.formulation.quantities)
-                 if np.any(values[j:end, i] != values[j, i])]
+                 if _moves(values[j:end, i], values[j, i])]
         spans = ", ".join(f"{q.name} {_shown(values[j + 1:end, i].min(), q.unit)}-"
-                          f"{_shown(values[j + 1:end, i].max(), q.unit)} {q.unit}" for i, q in moved)
-        at = ", ".join(f"{q.name} {_shown(values[j, i], q.unit)} {q.unit}" for i, q in moved)
+                          f"{_shown(values[j + 1:end, i].max(), q.unit)}{_unit(q.unit)}" for i, q in moved)
+        at = ", ".join(f"{q.name} {_shown(values[j, i], q.unit)}{_unit(q.unit)}" for i, q in moved)
         proof = diagnosis.split(": ", 1)[1] if diagnosis.startswith("proven infeasible") and ": " in diagnosis \
             else diagnosis
-        return (f"proven infeasible for {spans} ({end - j - 1} points, by the proof at {at}, the sweep only tightening "
-                f"the limits it moves since): {proof}")
+        how = "every limit the sweep moves at least as tight at each" if self._tightening[0].moves else "the sweep moves no limit"
+        return f"proven infeasible for {spans} ({end - j - 1} points, by the proof at {at}; {how}): {proof}"
 
     def _whole_stretch(self, k: int, end: int) -> bool:
         """Where a stretch without designs entered from a design starts at point k (its first run, FIRST_RUN points up
@@ -740,6 +740,15 @@ def _region_text(posed, a: int, b: int, problem: tuple, outcome) -> str:
              for i, q in enumerate(quantities) if p_lo[i] != p_hi[i] and not np.isnan(p_lo[i] + p_hi[i])]
     return (f"proven infeasible for {', '.join(spans)} ({b - a} points, one proof): "
             + emptied(outcome, "and the interval of " + ", ".join(s.split(" ")[0] for s in spans)))
+
+
+def _moves(values: np.ndarray, first: float) -> bool:
+    """A quantity's ``values`` over points are not all ``first`` (NaN, a value the case leaves out, the same as NaN)."""
+    return bool(np.any((values != first) & ~(np.isnan(values) & np.isnan(first))))
+
+
+def _unit(unit: str) -> str:
+    return f" {unit}" if unit else ""
 
 
 def _shown(value: float, unit: str) -> str:

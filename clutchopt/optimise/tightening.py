@@ -55,6 +55,7 @@ class Tightening:
             limits.append(limit), scales.append(scale * ca.DM.ones(limit.shape))
             senses.append(np.full(limit.numel(), 1.0 if c.sense == ">=" else -1.0))
         self._senses = np.concatenate(senses) if senses else np.zeros(0)
+        self.moves = bool(senses)  # (a step moves some limit: else the rows are the same at every point)
         self._limits = ca.Function("tightening", [p_all], [ca.vertcat(ca.SX(0, 1), *limits),
                                                            ca.vertcat(ca.SX(0, 1), *scales)])
 

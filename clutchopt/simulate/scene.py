@@ -233,7 +233,6 @@ def _case(f: _Fields, effects: tuple[str, ...]):
 
 
 def _centrifugal(f: _Fields, case, effects):
-    from clutchopt.optimise.problem import case_formulation
     from clutchopt.start_up.simulation import centrifugal_law, design_from_json
 
     table = f.table("coupling")
@@ -244,7 +243,7 @@ def _centrifugal(f: _Fields, case, effects):
         if design_path is None:
             f.problems.raise_any()
         try:  # (read beside the scene's other problems: every one named in one run)
-            given = design_from_json(design_path, case.coupling, case.path)
+            given = design_from_json(design_path, case.coupling, case.path, case.start_up is not None)
             mode, design, case = given.mode, given.design, _chosen(case, given.choice)
         except InputError as error:
             f.problems.errors.append(error)
@@ -258,7 +257,7 @@ def _centrifugal(f: _Fields, case, effects):
                 f.problems.errors.append(InputError(f"coupling.{name}", f"{shown_value(value)} is for a case solved "
                                                     f"for its design; the design file gives it (mode {mode})"))
     designed = ("spring_preload" in design if design is not None  # one of the design's variables (a start-up's)
-                else any(v.name == "spring_preload" for v in case_formulation(case, table.get("mode")).variables))
+                else any(v.name == "spring_preload" for v in _solved_formulation(f, case, table).variables))
     if designed and "spring_preload" in table:  # the start simulated with the design's, as its start-up was solved
         f.problems.errors.append(InputError("coupling.spring_preload", "the design sets the spring preload (one of "
                                                                        "its variables): leave it out of the scene"))
@@ -280,6 +279,28 @@ def _centrifugal(f: _Fields, case, effects):
     source["engagement_speed"] = law.engagement_speed()
     source["design_torque"] = law.capacity(case.params().speed)
     return law, source
+
+
+def _solved_formulation(f: _Fields, case, table: dict):
+    """The formulation the scene's case is solved with (its ``coupling.mode``, checked with its
+    ``coupling.objective`` as the scene's fields; a value that is no name is refused as such, before)."""
+    from clutchopt.optimise.problem import case_formulation
+
+    given = [table.get(name) for name in ("mode", "objective")]
+    if any(value is not None and not (isinstance(value, str) and value.strip()) for value in given):
+        f.problems.raise_any()
+    try:
+        formulation = case_formulation(case, given[0])
+    except InputError as error:
+        f.problems.errors.append(InputError("coupling.mode", error.problem))
+        f.problems.raise_any()
+    if given[1] is not None:
+        with f.problems.field():
+            try:
+                formulation.objective(given[1])
+            except InputError as error:
+                raise InputError("coupling.objective", error.problem) from None
+    return formulation
 
 
 def _chosen(case, choice: dict[str, str]):

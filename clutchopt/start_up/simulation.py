@@ -25,7 +25,7 @@ from clutchopt.model import ElasticLaw
 from clutchopt.simulate import effects as fx
 from clutchopt.simulate.engine import Model, SimulationResult, simulate
 from clutchopt.simulate.laws import CentrifugalFriction, InductionMotor, Load
-from clutchopt.start_up.equations import RADIAL_EFFECTS, engagement_speed_squared
+from clutchopt.start_up.equations import RADIAL_EFFECTS, engagement_speed_squared, with_start_up
 
 
 MAX_TORQUE = 1e9  # N*m: the largest torque the simulator is tested with (clutchopt.simulate.scene.TORQUE)
@@ -65,8 +65,10 @@ class DesignFile(NamedTuple):
     robust: bool
 
 
-def design_from_json(path: str | Path, coupling: str, case_path: str | Path | None = None) -> DesignFile:
-    """A solved design (:class:`DesignFile`): the JSON of ``clutchopt solve --json`` (of the case ``case_path``).
+def design_from_json(path: str | Path, coupling: str, case_path: str | Path | None = None,
+                     start_up: bool = False) -> DesignFile:
+    """A solved design (:class:`DesignFile`): the JSON of ``clutchopt solve --json`` (of the case ``case_path``; a
+    case with a [start_up] section: ``start_up``, its design's spring preload read too, one of its variables).
 
     A design file is input like any other: a regular UTF-8 file, JSON without NaN or Infinity, every design
     variable a number within the variable's valid range (a design the solver could have returned)."""
@@ -88,6 +90,8 @@ def design_from_json(path: str | Path, coupling: str, case_path: str | Path | No
     if data.get("status") != "optimal":
         raise InputError(field, f"{path}: the design's status is {shown_value(data.get('status'))}, not optimal")
     formulation = _formulation(coupling, str(data.get("mode")))
+    if start_up:
+        formulation = with_start_up(formulation)
     design, checked = data["design"], {}
     problems = Problems()
     for variable in formulation.variables:
