@@ -140,9 +140,8 @@ class _Chain(Block):
             raise AttributeError(key) from None
 
     def run(self, j: int) -> dict:
-        """Point ``j`` as a run of ``integers.descend`` (its arrays' column, ``f`` a number): what the integer search
-        and ``integers.downhill`` read."""
-        return {key: value[:, j] for key, value in self.arrays.items()} | {"f": float(self.f[0, j])}
+        """Point ``j`` as a run (:func:`_run`)."""
+        return _run(self, j)
 
     def column(self, j: int, f_scale: float) -> "_Chain":
         """Point ``j`` alone, its objective normalised by ``f_scale`` (the scaled problem's objective and multipliers
@@ -153,6 +152,12 @@ class _Chain(Block):
             a[key] *= ratio
         a["p"][-1, 0] = f_scale
         return _Chain(self.index[j:j + 1], self.ok[j:j + 1], self.moves[j:j + 1], **a)
+
+
+def _run(block: Block, j: int) -> dict:
+    """Point ``j`` of a block as a run of ``integers.descend`` (its arrays' column, ``f`` a number): what the integer
+    search and ``integers.downhill`` read."""
+    return {key: value[:, j] for key, value in block.arrays.items()} | {"f": float(block.arrays["f"][0, j])}
 
 
 def _zero_step(x: np.ndarray, lam_x: np.ndarray, lam_g: np.ndarray) -> dict:
@@ -365,6 +370,10 @@ class BatchSweep:
                     if not (np.array_equal(start.combo, kept.combo) and self._tightens(k)):  # (where it kept the
                         pace.broke(k)  # batch's integers and the neighbours it found without a design stay ruled
                         # out, the relaxed integers crossed no boundary: no break to pace the chains by)
+                        if self._promised(_run(settled, 0), start, k):  # the integers it changed to promise
+                            pace.near()  # a gain still (the wedge over its inertia in geometry mode, 4 weights
+                            # after 3 promising 3 again, worse, at each of the next 8 points: a chain of 8 aimed
+                            # past the break had spent 7 solves for nothing)
                     elif sum(bool(entry["feasible"]) for entry in self.searches[k]) > 1:  # a neighbour promised a
                         pace.near()  # gain has a design, worse: a boundary close by (ball_crusher's rows: one row
                         # more promised and worse at one point, the rows kept without a design at the next)
@@ -771,12 +780,16 @@ class BatchSweep:
         if not self._undesigned:
             return moves
         for j in np.flatnonzero(moves):
-            k = int(chain.index[j])
-            for combo in self._downhill(chain.run(j), start):
-                if not (self._ruled_out(tuple(combo.tolist()), k) or self._excluded_at(combo, k)):
-                    return moves
+            if self._promised(chain.run(j), start, int(chain.index[j])):
+                return moves
             moves[j] = False
         return moves
+
+    def _promised(self, run: dict, start: _Start, k: int) -> bool:
+        """A neighbour ``run``'s multipliers promise a gain at (:meth:`_downhill`; ``run`` in ``start``'s scaling) is
+        neither excluded at point k nor ruled out there (:meth:`_ruled_out`): the warm search would solve it."""
+        return any(not (self._ruled_out(tuple(combo.tolist()), k) or self._excluded_at(combo, k))
+                   for combo in self._downhill(run, start))
 
     def _downhill(self, run: dict, start: _Start) -> list[np.ndarray]:
         """The neighbouring integers ``integers.downhill`` steps to from ``run`` (a point in ``start``'s scaling)."""

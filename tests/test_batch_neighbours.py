@@ -1,0 +1,46 @@
+"""A batched sweep whose integers' multipliers promise a neighbour at every point (clutchopt/optimise/batch.py): the
+wedge in geometry mode over its inertia 1x-10x, the benchmark's user sweep of its other mode. From point 70 on the
+weight count's bound multiplier promises a gain at a neighbouring count at every point; solved, it is heavier but at
+74 (3 -> 4 weights), 86 (5) and 95 (6)."""
+
+import numpy as np
+import pytest
+
+from clutchopt.bench.reference import bench_cases
+from clutchopt.formulations import get_coupling
+from clutchopt.optimise.batch import BATCHED, BatchSweep
+from clutchopt.optimise.problem import Problem
+
+
+@pytest.fixture(scope="module")
+def swept():
+    case = next(c for c in bench_cases() if c.coupling == "wedge")
+    problem = Problem(get_coupling("wedge").formulation("geometry"))
+    values = case.values["inertia"] * np.geomspace(1.0, 10.0, 100)
+    sweep = BatchSweep(problem, case, {"inertia": values})
+    return case, problem, values, sweep, [s for part in sweep.run() for s in part]
+
+
+def test_no_chained_column_is_spent_past_a_point_the_search_decides(swept):
+    # the count a change moves to promises the one it left at once (4 weights after 3 at 74: 3 again, heavier, at
+    # each of 75 .. 82), so the chains after a change are probes of one point: each point from 70 on is its chained
+    # column and the neighbour (2 calls) and the sweep spends no call beyond its points' (151 before, 131: chains of
+    # 8, 11 and 4 points after the changes, aimed at the next change by the gaps between them, failed at their first
+    # point and spent 7 + 10 + 3 solves on nothing)
+    case, problem, values, sweep, solutions = swept
+    assert [s.status for s in solutions] == ["optimal"] * 100
+    counts = [int(s.design["weight_count"]) for s in solutions]
+    changes = [k for k in range(1, 100) if counts[k] != counts[k - 1]]
+    assert changes == [74, 86, 95] and counts[70] == 3 and counts[99] == 6
+    for s in solutions[70:]:
+        assert s.solver.status == BATCHED and s.solver.solves == 2
+        assert [e["status"] for e in s.integer_search] == [BATCHED, BATCHED]
+    assert sweep.solves == sum(s.solver.solves for s in solutions)
+
+
+@pytest.mark.parametrize("k", [73, 74, 75, 86, 95, 99])
+def test_each_count_is_the_one_solve_keeps(swept, k):
+    case, problem, values, sweep, solutions = swept
+    want = problem.solve(case.with_values(inertia=float(values[k])))
+    assert want.status == "optimal" and want.design["weight_count"] == solutions[k].design["weight_count"]
+    assert solutions[k].objective == pytest.approx(want.objective, rel=1e-9)
