@@ -74,3 +74,31 @@ def test_a_neighbour_solved_at_the_point_before_starts_from_its_own_optimum_ther
             own.append(k)
     assert own == [k for k in range(71, 100) if k not in (83, 93)]
     assert [int(s.design["weight_count"]) for s in solutions[70::5]] == [3, 4, 4, 4, 5, 6]
+
+
+def test_a_neighbour_whose_own_start_fails_is_solved_from_the_searchs_optimum_as_before(monkeypatch):
+    # a one-point SQP from the combination's own optimum that does not pass its check (here: started from NaN) is
+    # tried again from the optimum the search keeps at the point, before any least violation (which would decide
+    # the combination by another path than main's): the same weights at every point
+    case = next(c for c in bench_cases() if c.coupling == "wedge")
+    values = case.values["inertia"] * np.geomspace(4.0, 6.0, 40)
+    want = BatchSweep(Problem(get_coupling("wedge").formulation("geometry")), case, {"inertia": values})
+    want = [s.design["weight_count"] for part in want.run() for s in part]
+    own_start, failed = BatchSweep._own_start, []
+
+    def nan_start(self, key, k, start, seed):
+        own = own_start(self, key, k, start, seed)
+        if own is seed:
+            return seed
+        failed.append(k)
+        return {**own, "x": np.full_like(own["x"], np.nan)}
+
+    def no_least_violation(*args):
+        raise AssertionError("least violation")
+
+    monkeypatch.setattr(BatchSweep, "_own_start", nan_start)
+    monkeypatch.setattr(BatchSweep, "_least_violation", no_least_violation)
+    sweep = BatchSweep(Problem(get_coupling("wedge").formulation("geometry")), case, {"inertia": values})
+    solutions = [s for part in sweep.run() for s in part]
+    assert len(failed) >= 10 and [s.design["weight_count"] for s in solutions] == want
+    assert all(s.status == "optimal" for s in solutions)

@@ -662,9 +662,13 @@ class BatchSweep:
                 return None
             if tried is not None and np.array_equal(combo, tried_combo):
                 chain = tried  # (its chained column: the first attempt, verified or not)
-            else:  # a combination left without a design at the point before goes to its least violation directly
-                chain = (self._chain(start, k, 1, lower, upper, self._own_start(key, k, start, seed), "sqp_chain",
-                                     predict=False) if self._last_undesigned(combo) != k - 1 else None)
+            elif self._last_undesigned(combo) != k - 1:  # (one left without a design at the point before goes to
+                own = self._own_start(key, k, start, seed)  # its least violation directly)
+                chain = self._chain(start, k, 1, lower, upper, own, "sqp_chain", predict=False)
+                if own is not seed and (chain is None or not chain.ok[0]):  # from the search's optimum, as before
+                    chain = self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
+            else:
+                chain = None
             if chain is None or not chain.ok[0]:  # its least violation: without a design, or SQP from the design
                 found, seconds = self._least_violation(start, k, lower, upper, seed)  # it found; else as
                 cold.append(seconds)  # Problem.solve tries a neighbour: IPOPT, cold
