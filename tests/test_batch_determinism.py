@@ -63,8 +63,7 @@ def _stored(point, count, status, objective, outputs, window):
 def test_a_sweep_gives_the_same_bits_on_a_racing_and_a_crawling_clock(monkeypatch, tmp_path):
     # the ball's 100 points (96 with a design, 4 proven infeasible) spend about 100 solver calls: with a window ended
     # at a quarter of a second, 118 or 120 calls and designs 1.6e-15 apart from run to run on a loaded machine
-    # windows of a sixteenth of the usual work, so that work ends one (the second window starts at point 78;
-    # at 81 before the chains after a change of the rows were probes, each call counted: CHAIN_CALL_WORK)
+    # windows of a sixteenth of the usual work, so that work ends one (the second window starts at point 81)
     monkeypatch.setattr(batch, "WINDOW_WORK", 8192 // 16, raising=False)
     firsts, window = [], batch.BatchSweep._window
 
@@ -77,7 +76,7 @@ def test_a_sweep_gives_the_same_bits_on_a_racing_and_a_crawling_clock(monkeypatc
     racing_windows = list(firsts)
     firsts.clear()
     crawling, crawling_rows = _swept(monkeypatch, 1e-4, tmp_path / "crawling.sqlite")
-    assert racing_windows == firsts == [0, 78]
+    assert racing_windows == firsts == [0, 81]
     assert racing.spent["solves"] == crawling.spent["solves"]
     assert racing.frame.equals(crawling.frame)
     assert [_timeless(r) for r in racing.solutions] == [_timeless(r) for r in crawling.solutions]

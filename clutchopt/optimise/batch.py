@@ -375,10 +375,11 @@ class BatchSweep:
                     if not (np.array_equal(start.combo, kept.combo) and self._tightens(k)):  # (where it kept the
                         pace.broke(k)  # batch's integers and the neighbours it found without a design stay ruled
                         # out, the relaxed integers crossed no boundary: no break to pace the chains by)
-                        if self._promised(_run(settled, 0), start, k):  # the integers it changed to promise
-                            pace.near()  # a gain still (the wedge over its inertia in geometry mode, 4 weights
-                            # after 3 promising 3 again, worse, at each of the next 8 points: a chain of 8 aimed
-                            # past the break had spent 7 solves for nothing)
+                        if k + 1 < self.count and self._promised(_run(settled, 0), start, k + 1):  # the integers
+                            pace.near()  # it changed to promise a gain still, at a neighbour the next point's
+                            # search would solve (the wedge over its inertia in geometry mode, 4 weights after 3
+                            # promising 3 again, worse, at each of the next 8 points: a chain of 8 aimed past the
+                            # change had spent 7 solves for nothing; not the ball's rows fewer, ruled out there)
                     elif sum(bool(entry["feasible"]) for entry in self.searches[k]) > 1:  # a neighbour promised a
                         pace.near()  # gain has a design, worse: a boundary close by (ball_crusher's rows: one row
                         # more promised and worse at one point, the rows kept without a design at the next)
