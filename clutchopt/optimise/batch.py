@@ -27,16 +27,22 @@ integers excluded there, or a neighbour to try), the batch runs the search itsel
 (``integers.descend``, then the relaxation and ``integers.nearest_integers``): each integer combination is excluded
 by the tables or re-solved by a one-point chained SQP and KKT-checked (the relaxation with its Hessian
 convexified; the batch's own integers not again where the chain solved them at that point: its column there is
-the first attempt). A combination the one-point SQP does not settle goes to SQP on its least largest violation
+the first attempt; a combination the search verified at the point before from its own optimum there, not from the
+search's: the wedge's weights over its inertia in geometry mode, 4 promised by 3's multipliers, 2.5 -> 0.13 ms a
+solve). A combination the one-point SQP does not settle goes to SQP on its least largest violation
 (``feasibility``): a verified local minimum above 1e-6 keeps it out of the search (IPOPT's
 ``Infeasible_Problem_Detected`` at 0.3 ms instead of 5-15 ms: the ball's rows, each time they carry no more), a design
 found there is re-solved by SQP from it; otherwise it is solved as ``Problem.solve``'s search solves a neighbour, by
 IPOPT from cold: kept out of the search where IPOPT finds no design (and at the next point tried again directly, or
 not at all where the sweep has only tightened the constraints since: ``tightening``, whose combinations ruled out so
 also do not end a chain), else re-solved by SQP from IPOPT's optimum (the ball's rows: one row fewer promised by the
-multipliers but infeasible, point after point, had sent each point to ``Problem.solve``). Where the neighbour the
-multipliers promise stops being excluded by a constraint of fixed variables alone (the cable count one fewer as the
-allowable stress rises), the chain ends before that point and the search starts there at the neighbour.
+multipliers but infeasible, point after point, had sent each point to ``Problem.solve``). A combination the search
+found heavier at an earlier point than a chained point's optimum, the sweep having only tightened the constraints
+since, cannot be lighter there, and does not end a chain either (the wedge's weights over its inertia, 300 points over
+6x-10x: 299 -> 119 points where the neighbour was solved; at 100 points a step raises the mass more than the gap).
+Where the neighbour the multipliers promise stops being excluded by a constraint of fixed variables alone (the cable
+count one fewer as the allowable stress rises), the chain ends before that point and the search starts there at the
+neighbour.
 Where the batch's integers are excluded, or IPOPT finds no design with them, and one neighbouring combination is left,
 the search starts there, without the relaxation (the cable count, one cable more; the ball's rows, one more where the
 row fewer is ruled out). The next chain then ends where the next such point is expected (``batch_pace``; a point that
@@ -140,9 +146,8 @@ class _Chain(Block):
             raise AttributeError(key) from None
 
     def run(self, j: int) -> dict:
-        """Point ``j`` as a run of ``integers.descend`` (its arrays' column, ``f`` a number): what the integer search
-        and ``integers.downhill`` read."""
-        return {key: value[:, j] for key, value in self.arrays.items()} | {"f": float(self.f[0, j])}
+        """Point ``j`` as a run (:func:`_run`)."""
+        return _run(self, j)
 
     def column(self, j: int, f_scale: float) -> "_Chain":
         """Point ``j`` alone, its objective normalised by ``f_scale`` (the scaled problem's objective and multipliers
@@ -153,6 +158,12 @@ class _Chain(Block):
             a[key] *= ratio
         a["p"][-1, 0] = f_scale
         return _Chain(self.index[j:j + 1], self.ok[j:j + 1], self.moves[j:j + 1], **a)
+
+
+def _run(block: Block, j: int) -> dict:
+    """Point ``j`` of a block as a run of ``integers.descend`` (its arrays' column, ``f`` a number): what the integer
+    search and ``integers.downhill`` read."""
+    return {key: value[:, j] for key, value in block.arrays.items()} | {"f": float(block.arrays["f"][0, j])}
 
 
 def _zero_step(x: np.ndarray, lam_x: np.ndarray, lam_g: np.ndarray) -> dict:
@@ -294,6 +305,10 @@ class BatchSweep:
         self._span = min(EXCLUSION_SPAN, self.count)
         self._exclusions: dict[tuple, tuple[int, np.ndarray, list[bool]]] = {}
         self.searches: dict[int, list[dict]] = {}  # the integer search of each point settled in the batch
+        self._optima: dict[tuple, tuple[int, _Chain]] = {}  # integer combination -> the last point where the batch's
+        # search verified an optimum with it in this window, and its column there (:meth:`_own_start`)
+        self._bounded: dict[tuple, int] = {}  # integer combination -> the last point where it could not beat the
+        # chain's (:meth:`_heavier`), in this window
         self._undesigned: dict[tuple, tuple[int, str]] = {}  # integer combination -> the last point where IPOPT or
         # the least violation found no design, and the status there
         varied = self.values[[q.name in self.varied for q in f.quantities]]
@@ -335,6 +350,8 @@ class BatchSweep:
             self._regions = Regions(self.problem, self.point_case, self.count, self._shared)  # infeasible regions
             # proven at once, each window's afresh (what it takes from the windows before is ``carried``)
             self._regions.carry(left)
+            self._optima, self._bounded = {}, {}  # (a window's afresh, as a sweep resumed at its first point has
+            # them)
             blocks: list[Block] = []
             alone: dict[int, Solution] = {}
             failed = False  # the last point is without a design: the window waits for a feasible point after it
@@ -365,6 +382,12 @@ class BatchSweep:
                     if not (np.array_equal(start.combo, kept.combo) and self._tightens(k)):  # (where it kept the
                         pace.broke(k)  # batch's integers and the neighbours it found without a design stay ruled
                         # out, the relaxed integers crossed no boundary: no break to pace the chains by)
+                        if k + 1 < self.count and self._promised(_run(settled, 0), start, k + 1, heavier=False):
+                            pace.near()  # the integers it changed to promise a gain still, at a neighbour the next
+                            # point's search would solve (its objective there unknown yet; the wedge over its inertia
+                            # in geometry mode, 4 weights after 3 promising 3 again, worse, at each of the next 8
+                            # points: a chain of 8 aimed past the change had spent 7 solves for nothing; not the
+                            # ball's rows fewer, ruled out there)
                     elif sum(bool(entry["feasible"]) for entry in self.searches[k]) > 1:  # a neighbour promised a
                         pace.near()  # gain has a design, worse: a boundary close by (ball_crusher's rows: one row
                         # more promised and worse at one point, the rows kept without a design at the next)
@@ -648,9 +671,13 @@ class BatchSweep:
                 return None
             if tried is not None and np.array_equal(combo, tried_combo):
                 chain = tried  # (its chained column: the first attempt, verified or not)
-            else:  # a combination left without a design at the point before goes to its least violation directly
-                chain = (self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
-                         if self._last_undesigned(combo) != k - 1 else None)
+            elif self._last_undesigned(combo) != k - 1:  # (one left without a design at the point before goes to
+                own = self._own_start(key, k, start, seed)  # its least violation directly)
+                chain = self._chain(start, k, 1, lower, upper, own, "sqp_chain", predict=False)
+                if own is not seed and (chain is None or not chain.ok[0]):  # from the search's optimum, as before
+                    chain = self._chain(start, k, 1, lower, upper, seed, "sqp_chain", predict=False)
+            else:
+                chain = None
             if chain is None or not chain.ok[0]:  # its least violation: without a design, or SQP from the design
                 found, seconds = self._least_violation(start, k, lower, upper, seed)  # it found; else as
                 cold.append(seconds)  # Problem.solve tries a neighbour: IPOPT, cold
@@ -670,6 +697,7 @@ class BatchSweep:
                     return None
                 chain = self._chain(start, k, 1, lower, upper, optimum, "sqp_chain", predict=False)
             run = used(chain)
+            self._optima[key] = (k, chain)
             search.append(search_entry(self.posed, self.integer, combo, BATCHED, True, run["value"]))
             return run
 
@@ -701,6 +729,22 @@ class BatchSweep:
             return None
         return self._searched(kept["chain"], k, search, sum(float(run.arrays["time"][0, 0]) for run in runs)
                               + sum(cold), len(runs) + len(cold))
+
+    def _own_start(self, key: tuple, k: int, start: _Start, seed: dict) -> dict:
+        """Where the search solves the integers ``key`` at point k by a one-point SQP: from their own optimum at the
+        point before, where the search verified one there in the same variable scales (normalised as ``start``, as
+        :meth:`_Chain.column` normalises), or at the last point it solved them, where they could not beat the chain's
+        at each point since (:meth:`_heavier`); else from ``seed`` (the search's: the optimum it keeps so far at k).
+        The wedge over its inertia in geometry mode, 4 weights promised by 3's multipliers at each of 70 .. 74: from
+        3's optimum SQP took 2.5 ms, from 4's own at the point before 0.13 ms."""
+        found = self._optima.get(key)
+        if found is None or k - 1 not in (found[0], self._bounded.get(key)):
+            return seed
+        column, m = found[1], len(self.values)
+        if not np.array_equal(column.p[m:m + len(start.scale), 0], start.scale):
+            return seed
+        a = column.column(0, start.f_scale).arrays
+        return _seed(a["x"][:, 0], a["lam_x"][:, 0], a["lam_g"][:, 0])
 
     def _searched(self, chain: "_Chain", k: int, search: list[dict], seconds: float, solves: int) -> Block:
         """Point k as the integer search ``search`` kept it: ``chain``'s column, its time and solver calls those of
@@ -765,18 +809,41 @@ class BatchSweep:
     def _unruled_moves(self, chain: _Chain, start: _Start) -> np.ndarray:
         """Per chained point, whether ``Problem.solve``'s warm search would go on from it (the chain verdict's
         ``moves``), but for the points up to the first whose every neighbour the search would step to
-        (``integers.downhill``) is excluded there or ruled out (:meth:`_ruled_out`): the search would keep the
-        chain's integers there without a solve."""
+        (``integers.downhill``) is excluded there, ruled out (:meth:`_ruled_out`) or heavier (:meth:`_heavier`): the
+        search would keep the chain's integers there (without a solve, or after one that cannot win)."""
         moves = chain.moves.copy()
-        if not self._undesigned:
+        if not (self._undesigned or self._optima):
             return moves
         for j in np.flatnonzero(moves):
-            k = int(chain.index[j])
-            for combo in self._downhill(chain.run(j), start):
-                if not (self._ruled_out(tuple(combo.tolist()), k) or self._excluded_at(combo, k)):
-                    return moves
+            if self._promised(chain.run(j), start, int(chain.index[j])):
+                return moves
             moves[j] = False
         return moves
+
+    def _promised(self, run: dict, start: _Start, k: int, heavier: bool = True) -> bool:
+        """A neighbour ``run``'s multipliers promise a gain at (:meth:`_downhill`; ``run`` in ``start``'s scaling) is
+        neither excluded at point k nor ruled out there (:meth:`_ruled_out`), nor, where ``heavier`` (``run`` a point
+        k's), heavier there than ``run`` (:meth:`_heavier`): the warm search would solve it and could keep it."""
+        value = float(run["f"] * run["p"][-1])  # (SI: the scaled objective times its normaliser)
+        return any(not (self._ruled_out(key, k) or self._excluded_at(combo, k)
+                        or heavier and self._heavier(key, k, value))
+                   for combo in self._downhill(run, start) for key in [tuple(combo.tolist())])
+
+    def _heavier(self, combo: tuple, k: int, value: float) -> bool:
+        """The integers ``combo`` cannot beat ``value`` (an objective at point k): the search verified an optimum with
+        them at an earlier point of the window heavier than ``value`` (beyond the solver's tolerance of each), and the
+        sweep has only tightened the constraints since (``tightening``), so no design with them is lighter at k than
+        there."""
+        found = self._optima.get(combo)
+        if found is None or found[0] >= k:
+            return False
+        column = found[1]
+        theirs = float(column.f[0, 0] * column.p[-1, 0])
+        if not (theirs - self.posed.negligible(theirs) > value + self.posed.negligible(value)
+                and self._tightened(found[0], k)):
+            return False
+        self._bounded[combo] = k
+        return True
 
     def _downhill(self, run: dict, start: _Start) -> list[np.ndarray]:
         """The neighbouring integers ``integers.downhill`` steps to from ``run`` (a point in ``start``'s scaling)."""
