@@ -45,7 +45,8 @@ def test_the_ball_beyond_its_edge_is_proven_once_and_each_point_keeps_solve_s_ve
     assert records[0]["diagnosis"].startswith("proven infeasible: no design within the bounds meets torque")
     body = records[0]["diagnosis"].split(": ", 1)[1]
     carried = (f"proven infeasible for power {values[1] / 1e3:.6g}-{values[-1] / 1e3:.6g} kW (39 points, by the "
-               f"proof at power {values[0] / 1e3:.6g} kW; every limit the sweep moves at least as tight at each): {body}")
+               f"proof at power {values[0] / 1e3:.6g} kW; every limit the sweep moves at least as tight at each): "
+               f"{body}")
     assert [r["diagnosis"] for r in records[1:]] == [carried] * 39
     assert all(r["solver"]["solves"] == 0 and r["solver"]["time_s"] == 0 for r in records[1:])
     assert searched == [1]  # (point 0's own search, its verdict's: no region searched)

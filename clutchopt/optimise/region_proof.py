@@ -469,7 +469,8 @@ class Regions:
         at = ", ".join(f"{q.name} {_shown(values[j, i], q.unit)}{_unit(q.unit)}" for i, q in moved)
         proof = diagnosis.split(": ", 1)[1] if diagnosis.startswith("proven infeasible") and ": " in diagnosis \
             else diagnosis
-        how = "every limit the sweep moves at least as tight at each" if self._tightening[0].moves else "the sweep moves no limit"
+        how = ("every limit the sweep moves at least as tight at each" if self._tightening[0].moves
+               else "the sweep moves no limit")
         return f"proven infeasible for {spans} ({end - j - 1} points, by the proof at {at}; {how}): {proof}"
 
     def _whole_stretch(self, k: int, end: int) -> bool:
