@@ -204,8 +204,10 @@ def test_a_start_up_case_s_design_is_simulated_with_its_own_spring_preload():
 def test_a_start_up_case_s_scene_takes_its_drive_from_the_case_and_says_what_it_took(tmp_path):
     """A scene naming a start-up case leaves out what the case gives: the start-up's own driven inertia (0.6 here,
     not the duty's 0.5: the duty's had been taken, silently), its load, its motor and its heat (had been refused as
-    missing); the coupling's lines say which fields came from the case and which the scene gives over it."""
-    from clutchopt.cases import read_toml
+    missing); the output names each field with the value it took (SI) and the fields the scene gives over the case's;
+    the case's own design file (`solve --json`) carries its spring preload (had been refused as missing: review 21b)."""
+    from clutchopt.cli.simulate import _text
+    from clutchopt.optimise import solve_case
     from clutchopt.simulate.scene import parse_scene
 
     text = (CASES / "wedge_motor_start.toml").read_text()
@@ -213,27 +215,61 @@ def test_a_start_up_case_s_scene_takes_its_drive_from_the_case_and_says_what_it_
                                                                         "\n\n[start_up.heat]"))
     case = load_case(tmp_path / "case.toml")
     assert (case.values["inertia"], case.values["driven_inertia"]) == (0.5, 0.6)
-    data = {"effects": ["slip_friction", "motor_curve", "lockup", "friction_heat"],
+    solution = solve_case(case)
+    (tmp_path / "design.json").write_text(json.dumps({**solution.as_dict(), "case": "case.toml"}))
+    data = {"effects": ["slip_friction", "motor_curve", "spring_preload", "lockup", "friction_heat"],
             "coupling": {"law": "centrifugal", "case": "case.toml", "design": "design.json"}}
-    design = json.loads((CASES / "designs" / "wedge_paper.json").read_text())
-    (tmp_path / "design.json").write_text(json.dumps({**design, "case": "case.toml"}))
     scene = parse_scene(data, str(tmp_path / "scene.toml"))
     m = scene.model
     assert (m.inertia, m.load.torque, m.heat_capacity, m.conductance) == (0.6, 5.0, 1400.0, 4.0)
     motor = m.motor
     assert (motor.synchronous_speed, motor.breakdown_torque, motor.breakdown_slip, motor.inertia) == pytest.approx(
         (1000 * math.pi / 30, 37.0, 0.2, 0.012), rel=1e-15)
-    assert scene.source["from_the_case"] == [
-        "driven.inertia", "driven.resisting_torque", "driver.synchronous_speed", "driver.breakdown_torque",
-        "driver.breakdown_slip", "driver.inertia", "heat.capacity", "heat.conductance"]
-    assert scene.source["over_the_case"] == []
+    radius = solution.outputs["centroid_radius"].value  # (the design's own preload: its engagement speed)
+    assert scene.source["engagement_speed"] == pytest.approx(
+        math.sqrt(solution.design["spring_preload"] / (solution.design["weight_mass"] * radius)), rel=1e-9)
+    assert [(t["field"], t["value"], t["unit"]) for t in scene.source["from_the_case"]] == [
+        ("driven.inertia", 0.6, "kg*m^2"), ("driven.resisting_torque", 5.0, "N*m"),
+        ("driver.synchronous_speed", motor.synchronous_speed, "rad/s"), ("driver.breakdown_torque", 37.0, "N*m"),
+        ("driver.breakdown_slip", 0.2, ""), ("driver.inertia", 0.012, "kg*m^2"), ("heat.capacity", 1400.0, "J/K"),
+        ("heat.conductance", 4.0, "W/K")]
+    assert scene.source["over_the_case"] == [] and scene.source["unread"] == []
+    assert "from the case: driven.inertia 0.6 kg*m^2, driven.resisting_torque 5 N*m, driver.synchronous_speed " \
+           "104.72 rad/s" in _text(scene, run_scene(scene), None)
     data["driver"] = {"breakdown_torque": "30 N*m"}
+    data["heat"] = {"capacity": "1000 J/K"}
+    data["effects"] = ["slip_friction", "motor_curve", "spring_preload", "lockup"]  # (the heat switched off)
     scene = parse_scene(data, str(tmp_path / "scene.toml"))
     assert scene.model.motor.breakdown_torque == 30.0 and scene.source["over_the_case"] == ["driver.breakdown_torque"]
-    assert "driver.breakdown_torque" not in scene.source["from_the_case"]
-    assert read_toml(SCENES / "wedge_motor_springs.toml")["driver"]  # (a scene's own driver as before: below)
+    assert "driver.breakdown_torque" not in [t["field"] for t in scene.source["from_the_case"]]
+    assert scene.source["unread"] == ["heat.capacity"]  # (given, its effect not listed: said, not refused)
     springs = load_scene(SCENES / "wedge_motor_springs.toml")
-    assert springs.source["from_the_case"] == ["driven.inertia", "driven.resisting_torque"]
+    assert [t["field"] for t in springs.source["from_the_case"]] == ["driven.inertia", "driven.resisting_torque"]
+
+
+def test_a_scene_refuses_two_values_for_one_thing_and_names_only_real_problems(tmp_path):
+    """A constant driving speed beside motor_curve, a constant load beside a load profile: refused by name (the first
+    had been ignored without a word); a case that is refused leaves the fields it would give unnamed (seven
+    "missing" lines had followed its own: review 21b)."""
+    import copy
+
+    from clutchopt.cases import read_toml
+    from clutchopt.errors import InputError
+    from clutchopt.simulate.scene import parse_scene
+
+    data = copy.deepcopy(read_toml(SCENES / "wedge_motor_springs.toml"))
+    data["driver"]["speed"] = "1000 rpm"
+    data["driven"] = {"resisting_torque": "5 N*m", "load_profile": {"over": "speed", "points": [0, 100],
+                                                                    "torque": [1, 2]}}
+    with pytest.raises(InputError) as error:
+        parse_scene(data, str(SCENES / "wedge_motor_springs.toml"))
+    assert [p.field for p in error.value.problems] == ["driver.speed", "driven.resisting_torque"]
+    (tmp_path / "case.toml").write_text("coupling = \"wedge\"\n[duty]\nspeed = \"fast\"\n")
+    lean = {"effects": ["slip_friction", "motor_curve", "friction_heat"],
+            "coupling": {"law": "centrifugal", "case": "case.toml"}}
+    with pytest.raises(InputError) as error:
+        parse_scene(lean, str(tmp_path / "scene.toml"))
+    assert {p.field.split(" ")[0] for p in error.value.problems} == {"coupling.case"}
 
 
 def test_a_scene_solved_from_a_choosing_case_simulates_the_best_choice(tmp_path):

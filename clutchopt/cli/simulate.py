@@ -68,9 +68,14 @@ def _text(scene, result, analytic) -> str:
     if source.get("law") == "centrifugal":
         lines.append(f"coupling: {source['coupling']} design ({source['design']}), torque at design speed "
                      f"{source['design_torque']:.6g} N*m, engagement speed {source['engagement_speed']:.6g} rad/s")
-        for key, label in (("from_the_case", "from the case"), ("over_the_case", "the scene's, not the case's")):
-            if source.get(key):
-                lines.append(f"{label}: {', '.join(source[key])}")
+        if source.get("from_the_case"):
+            lines.append("from the case: " + ", ".join(
+                taken["field"] + (f" {taken['value']:.6g} {taken['unit']}".rstrip() if "value" in taken else "")
+                for taken in source["from_the_case"]))
+        if source.get("over_the_case"):
+            lines.append(f"the scene's, not the case's: {', '.join(source['over_the_case'])}")
+    if source.get("unread"):
+        lines.append(f"unread (their effects not listed): {', '.join(source['unread'])}")
     lines.append("lock-up: yes" if h["locks_up"] else f"lock-up: no - {h['reason']}")
     for key, label, unit in _LINES:
         if key in h and math.isfinite(h[key]):

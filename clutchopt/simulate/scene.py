@@ -85,7 +85,8 @@ class _Fields:
         self.problems = Problems()
         self.units: dict = {}  # the SI unit of each quantity read: of a bare number in ``data``
         self.defaults: dict[str, float] = {}  # the case's values of fields the scene may leave out (_from_the_case)
-        self.taken: list[str] = []  # the fields left out and taken from the case
+        self.taken: list[dict] = []  # the fields left out and taken from the case (field, SI value and unit)
+        self.case_failed = False  # a centrifugal law's case refused: the fields it would give are not missing
         self.over: list[str] = []  # the fields given where the case has a value too (the scene's kept)
 
     def table(self, name: str) -> dict:
@@ -115,12 +116,12 @@ class _Fields:
             low, high, shown = valid
             if raw is None:
                 if field_name not in self.defaults:
-                    if default is None:
+                    if default is None and not (self.case_failed and field_name in FROM_A_CASE):
                         raise InputError(field_name, f"missing (in {unit or 'SI'})")
-                    return default
-                self.taken.append(field_name)
+                    return math.nan if default is None else default
                 value = self.defaults[field_name]
-                said = f"the case's {value:g} (SI): give it in the scene"
+                self.taken.append({"field": field_name, "value": value, "unit": si_unit(unit) if unit else ""})
+                said = f"the case's {value:g} (SI): give one in range in the scene"
             else:
                 if field_name in self.defaults:
                     self.over.append(field_name)
@@ -164,7 +165,8 @@ def parse_scene(data: dict, path: str = "") -> Scene:
             f.problems.errors.append(InputError("effects", f"{effect} applies to centrifugal couplings "
                                                            "(law = \"centrifugal\") only"))
     case = _case(f, effects) if law_name == "centrifugal" else None
-    f.defaults = _from_the_case(case)
+    f.defaults, f.case_failed = _from_the_case(case), law_name == "centrifugal" and case is None
+    unread = _unread(f, effects)
     inertia = f.quantity("driven", "inertia", "kg*m^2", INERTIA)
     load = _load(f, case.start_up.load_profile if case is not None and case.start_up is not None else None)
     motor = _motor(f) if "motor_curve" in effects else None
@@ -188,6 +190,7 @@ def parse_scene(data: dict, path: str = "") -> Scene:
     elif case is not None:
         law, source = _centrifugal(f, case, effects)
         source |= {"from_the_case": f.taken, "over_the_case": f.over}
+    source["unread"] = unread
     f.problems.raise_any()
     model = Model(law, inertia, load, effects, speed, motor, heat[0], heat[1],
                   None if math.isinf(end_time) else end_time, tolerance)
@@ -322,6 +325,32 @@ def _chosen(case, choice: dict[str, str]):
     return variant
 
 
+FROM_A_CASE = ("driven.inertia", "driven.resisting_torque", "driver.speed", "driver.synchronous_speed",
+               "driver.breakdown_torque", "driver.breakdown_slip", "driver.inertia", "heat.capacity",
+               "heat.conductance")  # the fields a centrifugal coupling's case may give (_from_the_case)
+_NEEDS = {"driver.synchronous_speed": "motor_curve", "driver.breakdown_torque": "motor_curve",
+          "driver.breakdown_slip": "motor_curve", "driver.inertia": "motor_curve", "heat.capacity": "friction_heat",
+          "heat.conductance": "friction_heat"}  # the fields only an effect reads
+
+
+def _unread(f: _Fields, effects: tuple[str, ...]) -> list[str]:
+    """The fields the scene gives that the effects it lists leave unread (the motor's without motor_curve, the heat's
+    without friction_heat: a scene's effects switched off, its data kept), said in its output; two values for one
+    thing refused by name (a constant driving speed beside motor_curve, a constant load beside a load profile: the
+    first had been ignored without a word)."""
+    def given(name: str) -> bool:
+        section, key = name.split(".")
+        return key in f.table(section)
+
+    if given("driver.speed") and "motor_curve" in effects:
+        f.problems.errors.append(InputError("driver.speed", "given, but effects list motor_curve: the motor's curve "
+                                                            "drives, not a constant speed"))
+    if given("driven.resisting_torque") and given("driven.load_profile"):
+        f.problems.errors.append(InputError("driven.resisting_torque", "given beside driven.load_profile: one or "
+                                                                       "the other"))
+    return [name for name, effect in _NEEDS.items() if given(name) and effect not in effects]
+
+
 def _from_the_case(case) -> dict[str, float]:
     """The scene's fields a centrifugal coupling's case gives where the scene does not: its duty's, and the drive of
     its [start_up] where it has one (the start-up's own driven inertia and load, motor and heat: the start it was
@@ -345,7 +374,7 @@ def _load(f: _Fields, profile_of_the_case) -> Load:
     else its constant load)."""
     profile = f.table("driven").get("load_profile")
     if profile is None and "resisting_torque" not in f.table("driven") and profile_of_the_case is not None:
-        f.taken.append("driven.load_profile")
+        f.taken.append({"field": "driven.load_profile"})
         return Load(over=profile_of_the_case.over, points=profile_of_the_case.points,
                     values=profile_of_the_case.values)
     if profile is None:
