@@ -264,6 +264,11 @@ def test_a_scene_refuses_two_values_for_one_thing_and_names_only_real_problems(t
     with pytest.raises(InputError) as error:
         parse_scene(data, str(SCENES / "wedge_motor_springs.toml"))
     assert [p.field for p in error.value.problems] == ["driver.speed", "driven.resisting_torque"]
+    for mode in (["paper"], 5):  # (a list had crashed: unhashable, exit 3)
+        with pytest.raises(InputError) as error:
+            parse_scene({"effects": ["slip_friction"], "coupling": {"law": "centrifugal", "mode": mode, "case": str(
+                CASES / "wedge_paper.toml")}}, str(tmp_path / "scene.toml"))
+        assert [(p.field, p.problem[:15]) for p in error.value.problems] == [("coupling.mode", "must be a name ")]
     (tmp_path / "case.toml").write_text("coupling = \"wedge\"\n[duty]\nspeed = \"fast\"\n")
     lean = {"effects": ["slip_friction", "motor_curve", "friction_heat"],
             "coupling": {"law": "centrifugal", "case": "case.toml"}}
