@@ -116,7 +116,7 @@ class _Fields:
             low, high, shown = valid
             if raw is None:
                 if field_name not in self.defaults:
-                    if default is None and not (self.case_failed and field_name in FROM_A_CASE):
+                    if default is None and not (self.case_failed and field_name in _FROM_A_CASE):
                         raise InputError(field_name, f"missing (in {unit or 'SI'})")
                     return math.nan if default is None else default
                 value = self.defaults[field_name]
@@ -325,9 +325,9 @@ def _chosen(case, choice: dict[str, str]):
     return variant
 
 
-FROM_A_CASE = ("driven.inertia", "driven.resisting_torque", "driver.speed", "driver.synchronous_speed",
-               "driver.breakdown_torque", "driver.breakdown_slip", "driver.inertia", "heat.capacity",
-               "heat.conductance")  # the fields a centrifugal coupling's case may give (_from_the_case)
+_FROM_A_CASE = ("driven.inertia", "driven.resisting_torque", "driver.speed", "driver.synchronous_speed",
+                "driver.breakdown_torque", "driver.breakdown_slip", "driver.inertia", "heat.capacity",
+                "heat.conductance")  # the fields a centrifugal coupling's case may give (_from_the_case)
 _NEEDS = {"driver.synchronous_speed": "motor_curve", "driver.breakdown_torque": "motor_curve",
           "driver.breakdown_slip": "motor_curve", "driver.inertia": "motor_curve", "heat.capacity": "friction_heat",
           "heat.conductance": "friction_heat"}  # the fields only an effect reads
