@@ -102,3 +102,27 @@ def test_a_proof_is_carried_only_where_each_moved_row_is_scaled_by_its_limit_or_
     low = _tightening(None, sense=at_least)  # (x >= a: tighter upwards)
     limits, scales = low.limits(np.array([[1.0, 0.0], [1.2, 0.0], [1.1, 0.0], [0.9, 0.0]]))
     assert low.held_from(limits, scales, 0, 1) == 3
+
+
+def test_a_list_up_and_down_carries_each_proof_to_the_points_it_holds_at():
+    """cases/lever_centrifuge.toml in design mode at inertias 30, 60, 70, 65, 80, 62, 59, 75, 58.5, 45, 100 kg m^2:
+    the proof at 60 carries to 62-80 (none below 60 among them), the one at 59 to 75 (a run searched from 59 had
+    left it to be solved: review 21), and no point below the proof it would carry; each verdict `solve`'s."""
+    from clutchopt.cases import load_case
+    from clutchopt.optimise.sweep_grid import parse_vary
+    from tests.conftest import CASES
+
+    case = load_case(CASES / "lever_centrifuge.toml")
+    values = [30, 60, 70, 65, 80, 62, 59, 75, 58.5, 45, 100]
+    result = Sweep(case, [parse_vary("inertia=" + ",".join(map(str, values)), "lever")], mode="design").run(
+        progress=False)
+    diagnoses = [r["diagnosis"] or "" for r in result.solutions]
+    carried = [(k, d.split(" (")[0], d.split("by the proof at ")[1].split(";")[0]) for k, d in enumerate(diagnoses)
+               if "by the proof at" in d]
+    assert carried == [(k, "proven infeasible for inertia 62-80 kg*m^2", "inertia 60 kg*m^2") for k in (2, 3, 4, 5)
+                       ] + [(7, "proven infeasible for inertia 75 kg*m^2", "inertia 59 kg*m^2")]
+    assert "(1 point, by the proof" in diagnoses[7]
+    problem = case_problem(case, "design")
+    for k in (7, 8):
+        alone = problem.solve(case.with_values(inertia=float(values[k])))
+        assert result.solutions[k]["status"] == alone.status == "infeasible"

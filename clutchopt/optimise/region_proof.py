@@ -162,7 +162,7 @@ class Regions:
         """Point k's verdict from a region proof, or None (solve it). No region is searched after a point that breaks
         a requirement no design variable enters (:func:`_given`): point k is tested against that requirement first
         (:meth:`_quick`), and a proof does not cover a point that breaks it (:func:`_covered`)."""
-        if self._without_at == k - 1 and k >= self._to and not _given(self._without):
+        if self._without_at == k - 1 and not _given(self._without) and not self._carried(k) and k >= self._to:
             self._search_from(k)
         proven = self._proven.pop(k, None)
         if proven is None or self._without is None:
@@ -384,11 +384,6 @@ class Regions:
         if k == self._found:  # the edge a probe found: solved as usual (Regions._quick)
             self._to = k + 1
             return
-        tightened = self._tightened(k - 1, k) if (self._without.diagnosis or "").startswith("proven") else k
-        if tightened > k:  # (point k - 1's proof holds at each: none searched)
-            self._proven.update(dict.fromkeys(range(k, tightened), (self._tightened_text(k - 1, tightened), 0.0)))
-            self._to = tightened
-            return
         end = min(k + self._length, self.count)
         self._cases = {j: case for j, case in self._cases.items() if j >= k}  # (those of points solved as usual)
         self._problems = {j: problem for j, problem in self._problems.items() if j >= k}
@@ -440,6 +435,21 @@ class Regions:
             runs = halves
         self._length = min(2 * longest, LONGEST_RUN)
 
+    def _carried(self, k: int) -> bool:
+        """Point k, not proven yet, after point k - 1 proven infeasible: that proof carried to k and the points after
+        it up to the first that the sweep has not only tightened since (:meth:`_tightened`), none searched (a point a
+        region proof holds already keeps it); whether it reached k. Also where a run searched before had left k to be
+        solved (a list of values up and down: review 21)."""
+        if k in self._proven or not (self._without.diagnosis or "").startswith("proven"):
+            return False
+        tightened = self._tightened(k - 1, k)
+        if tightened > k:
+            text = self._tightened_text(k - 1, tightened)
+            for j in range(k, tightened):
+                self._proven.setdefault(j, (text, 0.0))
+            self._to = max(self._to, tightened)
+        return tightened > k
+
     def _tightened(self, j: int, k: int) -> int:
         """The end of the points from k on at which a proof of infeasibility at point j holds: the sweep has only
         tightened the limits of the constraints it moves since point j, each normalised by its limit or by a scale
@@ -464,14 +474,14 @@ class Regions:
         values, diagnosis = self._shared.values, self._without.diagnosis or ""
         moved = [(i, q) for i, q in enumerate(self.posed.formulation.quantities)
                  if _moves(values[j:end, i], values[j, i])]
-        spans = ", ".join(f"{q.name} {_shown(values[j + 1:end, i].min(), q.unit)}-"
-                          f"{_shown(values[j + 1:end, i].max(), q.unit)}{_unit(q.unit)}" for i, q in moved)
+        spans = ", ".join(f"{q.name} {_span(values[j + 1:end, i], q.unit)}{_unit(q.unit)}" for i, q in moved)
         at = ", ".join(f"{q.name} {_shown(values[j, i], q.unit)}{_unit(q.unit)}" for i, q in moved)
         proof = diagnosis.split(": ", 1)[1] if diagnosis.startswith("proven infeasible") and ": " in diagnosis \
             else diagnosis
         how = ("every limit the sweep moves at least as tight at each" if self._tightening[0].moves
                else "the sweep moves no limit")
-        return f"proven infeasible for {spans} ({end - j - 1} points, by the proof at {at}; {how}): {proof}"
+        count = f"{end - j - 1} point{'s' if end - j - 1 > 1 else ''}"
+        return f"proven infeasible for {spans} ({count}, by the proof at {at}; {how}): {proof}"
 
     def _whole_stretch(self, k: int, end: int) -> bool:
         """Where a stretch without designs entered from a design starts at point k (its first run, FIRST_RUN points up
@@ -746,6 +756,12 @@ def _region_text(posed, a: int, b: int, problem: tuple, outcome) -> str:
 def _moves(values: np.ndarray, first: float) -> bool:
     """A quantity's ``values`` over points are not all ``first`` (NaN, a value the case leaves out, the same as NaN)."""
     return bool(np.any((values != first) & ~(np.isnan(values) & np.isnan(first))))
+
+
+def _span(values: np.ndarray, unit: str) -> str:
+    """The least to the greatest of ``values`` (SI) in ``unit``; one value where they are all one."""
+    low, high = _shown(values.min(), unit), _shown(values.max(), unit)
+    return low if low == high else f"{low}-{high}"
 
 
 def _unit(unit: str) -> str:
