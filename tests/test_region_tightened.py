@@ -126,3 +126,22 @@ def test_a_list_up_and_down_carries_each_proof_to_the_points_it_holds_at():
     for k in (7, 8):
         alone = problem.solve(case.with_values(inertia=float(values[k])))
         assert result.solutions[k]["status"] == alone.status == "infeasible"
+
+
+def test_points_at_the_values_of_a_proven_one_say_so():
+    """ball_crusher over its service factor 2, 2, 2 (a run of the same values: one proof, said so) and 1, 2, 2 (the
+    last at the values of point 1, whose proof it carries); no empty list of quantities in the words (review 21c:
+    "proven infeasible for  (2 points, one proof)")."""
+    from clutchopt.cases import load_case
+    from clutchopt.optimise.sweep_grid import parse_vary
+    from tests.conftest import CASES
+
+    crusher = load_case(CASES / "ball_crusher.toml")
+    same = Sweep(crusher, [parse_vary("service_factor=2,2,2", "ball")]).run(progress=False).solutions
+    assert [r["diagnosis"].split(":")[0] for r in same[1:]] == [
+        "proven infeasible (2 points at the same values, one proof)"] * 2
+    back = Sweep(crusher, [parse_vary("service_factor=1,2,2", "ball")]).run(progress=False).solutions
+    assert [r["status"] for r in back] == ["optimal"] + ["infeasible"] * 2
+    assert back[2]["diagnosis"].split(":")[0] == (
+        "proven infeasible (1 point at the values of a point proven before, by its proof)")
+    assert not any("for  (" in (r["diagnosis"] or "") for r in (*same, *back))

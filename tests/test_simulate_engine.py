@@ -264,6 +264,14 @@ def test_a_scene_refuses_two_values_for_one_thing_and_names_only_real_problems(t
     with pytest.raises(InputError) as error:
         parse_scene(data, str(SCENES / "wedge_motor_springs.toml"))
     assert [p.field for p in error.value.problems] == ["driver.speed", "driven.resisting_torque"]
+    paper = copy.deepcopy(read_toml(SCENES / "paper_transient.toml"))
+    paper["coupling"] |= {"torque": "10 N*m", "case": "x.toml"}  # (another law's fields: had been ignored)
+    with pytest.raises(InputError) as error:
+        parse_scene(paper, str(SCENES / "paper_transient.toml"))
+    assert [p.field for p in error.value.problems] == ["coupling.torque", "coupling.case"]
+    fan = {"effects": ["slip_friction", "lockup"], "coupling": {"law": "centrifugal", "spring_preload": "500 N",
+                                                               "case": str(CASES / "wedge_paper.toml")}}
+    assert parse_scene(fan, str(tmp_path / "scene.toml")).source["unread"] == ["coupling.spring_preload"]
     for mode in (["paper"], 5):  # (a list had crashed: unhashable, exit 3)
         with pytest.raises(InputError) as error:
             parse_scene({"effects": ["slip_friction"], "coupling": {"law": "centrifugal", "mode": mode, "case": str(

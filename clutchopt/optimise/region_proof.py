@@ -481,6 +481,8 @@ class Regions:
         how = ("every limit the sweep moves at least as tight at each" if self._tightening[0].moves
                else "the sweep moves no limit")
         count = f"{end - j - 1} point{'s' if end - j - 1 > 1 else ''}"
+        if not moved:  # (the proven point's values again)
+            return f"proven infeasible ({count} at the values of a point proven before, by its proof): {proof}"
         return f"proven infeasible for {spans} ({count}, by the proof at {at}; {how}): {proof}"
 
     def _whole_stretch(self, k: int, end: int) -> bool:
@@ -747,8 +749,10 @@ def _region_text(posed, a: int, b: int, problem: tuple, outcome) -> str:
     """The proof in words, with the interval it holds for."""
     quantities = posed.formulation.quantities
     p_lo, p_hi = problem[0], problem[3]
-    spans = [f"{q.name} {_shown(p_lo[i], q.unit)}-{_shown(p_hi[i], q.unit)} {q.unit}"
+    spans = [f"{q.name} {_shown(p_lo[i], q.unit)}-{_shown(p_hi[i], q.unit)}{_unit(q.unit)}"
              for i, q in enumerate(quantities) if p_lo[i] != p_hi[i] and not np.isnan(p_lo[i] + p_hi[i])]
+    if not spans:  # (a run of the same values)
+        return f"proven infeasible ({b - a} points at the same values, one proof): " + emptied(outcome)
     return (f"proven infeasible for {', '.join(spans)} ({b - a} points, one proof): "
             + emptied(outcome, "and the interval of " + ", ".join(s.split(" ")[0] for s in spans)))
 

@@ -56,6 +56,8 @@ from clutchopt.start_up.section import parse_effects, parse_load_profile
 from clutchopt.units import si_unit, to_si
 
 LAWS = ("paper", "constant", "centrifugal")
+_LAW_KEYS = {"paper": ("k", "a"), "constant": ("torque",),
+             "centrifugal": ("case", "design", "mode", "objective", "spring_preload")}  # what each law reads
 _TOP = {"title", "description", "effects", "end_time", "tolerance", "coupling", "driven", "driver", "heat"}
 _KEYS = {
     "coupling": {"law", "k", "a", "torque", "case", "design", "mode", "objective", "spring_preload"},
@@ -160,6 +162,11 @@ def parse_scene(data: dict, path: str = "") -> Scene:
     law_name = f.table("coupling").get("law")
     if law_name not in LAWS:
         f.problems.errors.append(InputError("coupling.law", f"must be one of {', '.join(LAWS)}, got {law_name!r}"))
+    else:  # (another law's field beside it had been ignored without a word: review 21c)
+        for key in f.table("coupling"):
+            if key != "law" and key not in _LAW_KEYS[law_name]:
+                f.problems.errors.append(InputError(f"coupling.{key}", f"not read by law = {law_name!r} (it reads "
+                                                                       f"{', '.join(_LAW_KEYS[law_name])})"))
     for effect in RADIAL_EFFECTS:
         if effect in effects and law_name != "centrifugal":
             f.problems.errors.append(InputError("effects", f"{effect} applies to centrifugal couplings "
@@ -330,7 +337,8 @@ _FROM_A_CASE = ("driven.inertia", "driven.resisting_torque", "driver.speed", "dr
                 "heat.conductance")  # the fields a centrifugal coupling's case may give (_from_the_case)
 _NEEDS = {"driver.synchronous_speed": "motor_curve", "driver.breakdown_torque": "motor_curve",
           "driver.breakdown_slip": "motor_curve", "driver.inertia": "motor_curve", "heat.capacity": "friction_heat",
-          "heat.conductance": "friction_heat"}  # the fields only an effect reads
+          "heat.conductance": "friction_heat", "coupling.spring_preload": "spring_preload"}  # the fields only an
+# effect reads
 
 
 def _unread(f: _Fields, effects: tuple[str, ...]) -> list[str]:

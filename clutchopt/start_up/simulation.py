@@ -97,6 +97,9 @@ def design_from_json(path: str | Path, coupling: str, case_path: str | Path | No
     for variable in formulation.variables:
         value = design.get(variable.name)
         with problems.field():
+            if variable.name not in design:
+                raise InputError(f"{field} design.{variable.name}", "missing: `clutchopt solve --json` of the case "
+                                 "writes every design variable (a start-up's spring preload too); solve the case again")
             number = isinstance(value, (int, float)) and not isinstance(value, bool)
             try:
                 value = float(value) if number else math.nan
