@@ -381,7 +381,7 @@ HOSTILE: list[Hostile] = [
     design("design-no-usable-law", designed(weight_mass=1e14), "the design gives no usable torque law"),
     design("design-big-integer", designed(weight_mass=10**400), "design.weight_mass: must be a finite number"),
     design("design-text-value", designed(finger_diameter="5 mm"), "design.finger_diameter: must be a finite number"),
-    design("design-missing-value", {**DESIGN, "design": {}}, "design.weight_mass: must be a finite number"),
+    design("design-missing-value", {**DESIGN, "design": {}}, "design.weight_mass: missing: `clutchopt solve --json`"),
     design("design-not-optimal", {**DESIGN, "status": "infeasible"}, "the design's status is 'infeasible'"),
     design("design-other-coupling", {**DESIGN, "coupling": "lever"}, "is not a solved wedge design"),
     design("design-other-case", {**DESIGN, "case": "wedge_fan.toml"}, "was solved for 'wedge_fan.toml'"),
