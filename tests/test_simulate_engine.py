@@ -277,6 +277,13 @@ def test_a_scene_refuses_two_values_for_one_thing_and_names_only_real_problems(t
             parse_scene({"effects": ["slip_friction"], "coupling": {"law": "centrifugal", "mode": mode, "case": str(
                 CASES / "wedge_paper.toml")}}, str(tmp_path / "scene.toml"))
         assert [(p.field, p.problem[:15]) for p in error.value.problems] == [("coupling.mode", "must be a name ")]
+    start_up = {"effects": ["slip_friction", "spring_preload"], "coupling": {
+        "law": "centrifugal", "case": str(CASES / "wedge_motor_start.toml"), "spring_preload": "12 N"}}
+    for bad in ({"mode": 5}, {"design": str(tmp_path / "none.json")}):  # (each problem beside the preload the
+        with pytest.raises(InputError) as error:  # start-up's design sets: named in one run, review 21c)
+            parse_scene(start_up | {"coupling": start_up["coupling"] | bad}, str(tmp_path / "scene.toml"))
+        assert [p.field for p in error.value.problems][-1] == "coupling.spring_preload"
+        assert len(error.value.problems) == 2
     (tmp_path / "case.toml").write_text("coupling = \"wedge\"\n[duty]\nspeed = \"fast\"\n")
     lean = {"effects": ["slip_friction", "motor_curve", "friction_heat"],
             "coupling": {"law": "centrifugal", "case": "case.toml"}}

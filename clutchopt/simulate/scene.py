@@ -247,27 +247,30 @@ def _centrifugal(f: _Fields, case, effects):
 
     table = f.table("coupling")
     source = {"law": "centrifugal", "coupling": case.coupling, "case": table["case"]}
-    design = None
+    design, formulation = None, None
     if "design" in table:
         design_path = f.file("design")
-        if design_path is None:
-            f.problems.raise_any()
         try:  # (read beside the scene's other problems: every one named in one run)
-            given = design_from_json(design_path, case.coupling, case.path, case.start_up is not None)
-            mode, design, case = given.mode, given.design, _chosen(case, given.choice)
+            if design_path is not None:
+                given = design_from_json(design_path, case.coupling, case.path, case.start_up is not None)
+                mode, design, case = given.mode, given.design, _chosen(case, given.choice)
         except InputError as error:
             f.problems.errors.append(error)
-            f.problems.raise_any()
-        source["design"] = table["design"] + (" (a robust design, simulated at the case's nominal values)"
-                                              if given.robust else "")
+        if design is not None:
+            source["design"] = table["design"] + (" (a robust design, simulated at the case's nominal values)"
+                                                  if given.robust else "")
         for name in ("mode", "objective"):  # (the file's design is simulated: neither solves the case; a value
-            # that is no name is refused as such above)
+            # that is no name is refused as such above; a mode beside a file not read is not known to differ)
             value = table.get(name)
-            if isinstance(value, str) and value.strip() and not (name == "mode" and value == mode):
+            if isinstance(value, str) and value.strip() and not (name == "mode" and (design is None or value == mode)):
                 f.problems.errors.append(InputError(f"coupling.{name}", f"{shown_value(value)} is for a case solved "
-                                                    f"for its design; the design file gives it (mode {mode})"))
+                                                    f"for its design; the design file gives it"
+                                                    + (f" (mode {mode})" if design is not None else "")))
+    else:
+        formulation = _solved_formulation(f, case, table)
     designed = ("spring_preload" in design if design is not None  # one of the design's variables (a start-up's)
-                else any(v.name == "spring_preload" for v in _solved_formulation(f, case, table).variables))
+                else any(v.name == "spring_preload" for v in formulation.variables) if formulation is not None
+                else case.start_up is not None)  # (a design file or a mode refused: a start-up's sets it)
     if designed and "spring_preload" in table:  # the start simulated with the design's, as its start-up was solved
         f.problems.errors.append(InputError("coupling.spring_preload", "the design sets the spring preload (one of "
                                                                        "its variables): leave it out of the scene"))
@@ -293,17 +296,18 @@ def _centrifugal(f: _Fields, case, effects):
 
 def _solved_formulation(f: _Fields, case, table: dict):
     """The formulation the scene's case is solved with (its ``coupling.mode``, checked with its
-    ``coupling.objective`` as the scene's fields; a value that is no name is refused as such, before)."""
+    ``coupling.objective`` as the scene's fields); None where the mode is refused (a value that is no name refused as
+    such, before)."""
     from clutchopt.optimise.problem import case_formulation
 
     given = [table.get(name) for name in ("mode", "objective")]
     if any(value is not None and not (isinstance(value, str) and value.strip()) for value in given):
-        f.problems.raise_any()
+        return None
     try:
         formulation = case_formulation(case, given[0])
     except InputError as error:
         f.problems.errors.append(InputError("coupling.mode", error.problem))
-        f.problems.raise_any()
+        return None
     if given[1] is not None:
         with f.problems.field():
             try:
