@@ -289,7 +289,7 @@ class BatchSweep:
         self.values = self._by_point.T  # a quantity a row
         self.names = [v.name for v in f.variables]
         self.lower, self.upper, _ = self.posed.bounds_and_start(case, None)
-        self._shared = SharedBox(self._by_point, [q.name for q in f.quantities], self.lower, self.upper)  # (the
+        self._shared = SharedBox(self._by_point, [q.name for q in f.quantities], self.lower, self.upper, {})  # (the
         # region proofs' reading of the points)
         self.integer = [i for i in self.posed.integer if self.lower[i] < self.upper[i]]
         fixed = self.lower == self.upper

@@ -110,6 +110,7 @@ class SharedBox(NamedTuple):
     names: list[str]  # the quantities (the formulation's, in order)
     lower: np.ndarray  # the design box (SI), every point's
     upper: np.ndarray
+    kept: dict  # what the sweep's windows share, worked out once (``Regions._tightened``'s limits)
 
     def problem(self, j: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Point j's search problem, as ``interval_proof._search_problem`` builds it from its case."""
@@ -167,11 +168,14 @@ class Regions:
         proven = self._proven.pop(k, None)
         if proven is None or self._without is None:
             return None
-        problem = self._problems.get(k)  # (its search problem: its design box, the bounds its verdict shows)
+        problem = self._problems.get(k)  # (its search problem: its design box, the bounds its verdict shows; a
+        # batched sweep's box, every point's, where none was built: a point a proof is carried to)
+        bounds = (problem[1:3] if problem is not None else None if self._shared is None
+                  else (self._shared.lower, self._shared.upper))
         figures, conflicting = self._figures_at(k) or (None, None)
-        known = figures is not None and conflicting is not None and problem is not None
+        known = figures is not None and conflicting is not None and bounds is not None
         solution = _covered(self.problem, None if known else self.point_case(k), self._without.design, *proven,
-                            figures=figures, conflicting=conflicting, bounds=None if problem is None else problem[1:3])
+                            figures=figures, conflicting=conflicting, bounds=bounds)
         if solution is not None:
             self.after(k, solution)
         return self.charged(solution)
@@ -460,10 +464,12 @@ class Regions:
         if self._shared is None:
             return k
         if self._tightening is None:
+            self._tightening = self._shared.kept.get("tightening")
+        if self._tightening is None:
             values = self._shared.values
             varied = [name for i, name in enumerate(self._shared.names) if _moves(values[:, i], values[0, i])]
             t = tightening(self.posed, varied)
-            self._tightening = (t, *t.limits(values)) if t.keeps_proofs else (None,)
+            self._tightening = self._shared.kept["tightening"] = (t, *t.limits(values)) if t.keeps_proofs else (None,)
         if self._tightening[0] is None:
             return k
         t, limits, scales = self._tightening
@@ -669,7 +675,8 @@ class Regions:
         if k not in self._figures or self._figured != design:
             ahead = (j for (a, b), (_, outcome, _) in self._ahead.items() if outcome is not None and outcome.proven
                      for j in range(a, b))
-            points = sorted({k, *(j for j in (*self._proven, *ahead) if j > k)})
+            points = sorted({k, *(j for j in (*self._proven, *ahead) if j > k)})[:LONGEST_RUN]  # (a proof carried
+            # to the sweep's end: its points figured a run's length at a time, not past a window's end for nothing)
             if self._shared is not None and len(points) > 1:  # (read from the sweep's arrays: no Case a point)
                 figures = figures_over(self.posed, self._shared.params_of(points), len(points), design)
                 conflicting = self.posed.conflicting_over(self._shared.values[points])
