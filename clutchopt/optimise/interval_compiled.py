@@ -133,10 +133,12 @@ static void truth(int certain, int impossible, double *lo, double *hi) {
     *hi = impossible ? 0.0 : 1.0;
 }
 
-static void outward(double *lo, double *hi) {
-    *lo = fmax_(*lo - fabs(*lo) * WIDEN, -INFINITY);
-    *hi = fmin_(*hi + fabs(*hi) * WIDEN, INFINITY);
+static void outward_by(double *lo, double *hi, double by) {  /* interval._outward */
+    *lo = fmax_(*lo - fabs(*lo) * by, -INFINITY);
+    *hi = fmin_(*hi + fabs(*hi) * by, INFINITY);
 }
+
+static void outward(double *lo, double *hi) { outward_by(lo, hi, WIDEN); }
 
 /* One rule over every box: the arguments' ends a0, a1 (b0, b1) in, the result's lo, hi out, widened outwards. */
 #define UNARY_RULE(body) for (long b = 0; b < boxes; ++b) { \
@@ -323,8 +325,8 @@ void interval_revise(long count, const int *row_list, const int *row_value, cons
                                  &found[0][1], &found[1][0], &found[1][1]);
                 for (int m = 0; m < n; ++m) {
                     if (!free_[a[m]]) continue;
-                    double lo = fmax_(found[m][0] - fabs(found[m][0]) * slack, -INFINITY);
-                    double hi = fmin_(found[m][1] + fabs(found[m][1]) * slack, INFINITY);
+                    double lo = found[m][0], hi = found[m][1];
+                    outward_by(&lo, &hi, slack);
                     double *old_lo = back_lo + a[m] * boxes + b, *old_hi = back_hi + a[m] * boxes + b;
                     *old_lo = fmax_(*old_lo, lo);
                     *old_hi = fmin_(*old_hi, hi);

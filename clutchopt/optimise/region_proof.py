@@ -149,8 +149,6 @@ class Regions:
         self._figured: dict[str, float] | None = None  # (that design)
         self._ahead: dict[tuple[int, int], tuple] = {}  # a run searched ahead -> its problem, outcome and
         # seconds a point (its share of the call that searched it)
-        self._tightening: tuple | None = None  # (a batched sweep's) Tightening and its limits and scales per point,
-        # or None where a proof does not carry over (:meth:`_tightened`), built on first use
 
     def point_case(self, k: int):
         """Point k's case, built once for its run's search, its float64 figures and its verdict."""
@@ -463,17 +461,14 @@ class Regions:
         boxes) -> none past the first point's proof."""
         if self._shared is None:
             return k
-        if self._tightening is None:
-            self._tightening = self._shared.kept.get("tightening")
-        if self._tightening is None:
+        kept = self._shared.kept
+        if "tightening" not in kept:  # (its limits and scales at every point: once a sweep, whatever its windows)
             values = self._shared.values
             varied = [name for i, name in enumerate(self._shared.names) if _moves(values[:, i], values[0, i])]
             t = tightening(self.posed, varied)
-            self._tightening = self._shared.kept["tightening"] = (t, *t.limits(values)) if t.keeps_proofs else (None,)
-        if self._tightening[0] is None:
-            return k
-        t, limits, scales = self._tightening
-        return t.held_from(limits, scales, j, k)
+            kept["tightening"] = (t, *t.limits(values)) if t.keeps_proofs else (None, None, None)
+        t, limits, scales = kept["tightening"]
+        return k if t is None else t.held_from(limits, scales, j, k)
 
     def _tightened_text(self, j: int, end: int) -> str:
         """The proof of point j (``_without``'s verdict) in words, for the points after it up to ``end``."""
@@ -484,7 +479,7 @@ class Regions:
         at = ", ".join(f"{q.name} {_shown(values[j, i], q.unit)}{_unit(q.unit)}" for i, q in moved)
         proof = diagnosis.split(": ", 1)[1] if diagnosis.startswith("proven infeasible") and ": " in diagnosis \
             else diagnosis
-        how = ("every limit the sweep moves at least as tight at each" if self._tightening[0].moves
+        how = ("every limit the sweep moves at least as tight at each" if self._shared.kept["tightening"][0].moves
                else "the sweep moves no limit")
         count = f"{end - j - 1} point{'s' if end - j - 1 > 1 else ''}"
         if not moved:  # (the proven point's values again)

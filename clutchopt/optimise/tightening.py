@@ -70,13 +70,14 @@ class Tightening:
 
     def holds(self, limit_before, scale_before, limit_after, scale_after) -> bool:
         """:meth:`tightened` on the limits and scales of the constraints the varied quantities enter, before and
-        after the step (:meth:`limits`)."""
-        return bool(self.known and np.all(scale_before > 0) and np.all(scale_after > 0)
-                    and np.all(self._senses * (limit_after - limit_before) >= 0))
+        after the step (:meth:`limits`): :meth:`held_from` of the one step."""
+        limits, scales = np.column_stack([limit_before, limit_after]), np.column_stack([scale_before, scale_after])
+        return self.held_from(limits, scales, 0, 1) == 2
 
     def held_from(self, limits: np.ndarray, scales: np.ndarray, j: int, k: int) -> int:
         """The first point from k on (in :meth:`limits`' columns) whose step from point j does not only tighten
-        (:meth:`holds`); the number of points where every one does."""
+        (each moved limit not looser for its sense, each scale positive at both); the number of points where every
+        one does."""
         before, scale = limits[:, j:j + 1], scales[:, j:j + 1]
         held = (self.known & np.all(scale > 0) & np.all(scales[:, k:] > 0, axis=0)
                 & np.all(self._senses[:, None] * (limits[:, k:] - before) >= 0, axis=0))

@@ -336,9 +336,14 @@ def _chosen(case, choice: dict[str, str]):
     return variant
 
 
-_FROM_A_CASE = ("driven.inertia", "driven.resisting_torque", "driver.speed", "driver.synchronous_speed",
-                "driver.breakdown_torque", "driver.breakdown_slip", "driver.inertia", "heat.capacity",
-                "heat.conductance")  # the fields a centrifugal coupling's case may give (_from_the_case)
+_FROM_THE_START_UP = (
+    ("driven.inertia", "driven_inertia"), ("driven.resisting_torque", "load_torque"),
+    ("driver.synchronous_speed", "synchronous_speed"), ("driver.breakdown_torque", "breakdown_torque"),
+    ("driver.breakdown_slip", "breakdown_slip"), ("driver.inertia", "motor_inertia"),
+    ("heat.capacity", "heat_capacity"), ("heat.conductance", "heat_conductance"))  # a scene's field and the
+# [start_up] quantity of a case that gives it
+_FROM_A_CASE = ("driver.speed", *(name for name, _ in _FROM_THE_START_UP))  # the fields a centrifugal coupling's case
+# may give (_from_the_case: its duty's inertia, resisting torque and speed, its start-up's)
 _NEEDS = {"driver.synchronous_speed": "motor_curve", "driver.breakdown_torque": "motor_curve",
           "driver.breakdown_slip": "motor_curve", "driver.inertia": "motor_curve", "heat.capacity": "friction_heat",
           "heat.conductance": "friction_heat", "coupling.spring_preload": "spring_preload"}  # the fields only an
@@ -373,11 +378,7 @@ def _from_the_case(case) -> dict[str, float]:
     given = {"driven.inertia": getattr(duty, "inertia", None),  # (the ball's duty has none: its power and speed)
              "driven.resisting_torque": getattr(duty, "resisting_torque", None), "driver.speed": duty.speed}
     if case.start_up is not None:
-        given |= {field: values[name] for field, name in (
-            ("driven.inertia", "driven_inertia"), ("driven.resisting_torque", "load_torque"),
-            ("driver.synchronous_speed", "synchronous_speed"), ("driver.breakdown_torque", "breakdown_torque"),
-            ("driver.breakdown_slip", "breakdown_slip"), ("driver.inertia", "motor_inertia"),
-            ("heat.capacity", "heat_capacity"), ("heat.conductance", "heat_conductance")) if name in values}
+        given |= {field: values[name] for field, name in _FROM_THE_START_UP if name in values}
     return {field: value for field, value in given.items() if value is not None}
 
 
