@@ -1,7 +1,7 @@
 """A proof of infeasibility carried along a sweep that only tightens the limits it moves (Regions._tightened,
-Tightening.keeps_proofs): each point after the proven one gets the verdict `solve` alone gives it, without a search;
-nothing is carried where the step moves a constraint by what the design makes of it, or moves a row's scale apart
-from its limit."""
+Tightening.keeps_proofs), or whose every moved row rises along the step for every design of the box (Slopes): each
+point after the proven one gets the verdict `solve` alone gives it, without a search; nothing is carried where the
+step may lower a row for some design, or moves a row's scale apart from its limit."""
 
 from types import SimpleNamespace
 
@@ -9,14 +9,16 @@ import numpy as np
 import pytest
 
 from clutchopt.bench.reference import bench_cases, reference_mode
+from clutchopt.backend import where
 from clutchopt.model import at_least, at_most
 from clutchopt.optimise import region_proof
 from clutchopt.optimise.problem import case_problem
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import Vary
-from clutchopt.optimise.tightening import Tightening
+from clutchopt.optimise.tightening import Slopes, Tightening
 
 BALL = next(case for case in bench_cases() if case.coupling == "ball")
+CABLE = next(case for case in bench_cases() if case.coupling == "cable")
 
 
 def _swept(case, name, factors):
@@ -145,3 +147,50 @@ def test_points_at_the_values_of_a_proven_one_say_so():
     assert back[2]["diagnosis"].split(":")[0] == (
         "proven infeasible (1 point at the values of a point proven before, by its proof)")
     assert not any("for  (" in (r["diagnosis"] or "") for r in (*same, *back))
+
+
+def test_the_cable_beyond_its_edge_carries_a_proof_through_rows_its_torque_enters_by_their_value(searched):
+    """The cable over 10x-20x its torque (40 points, none with a design): the torque enters the stress of its cables,
+    clamp screws and fingers (eqs. (18), (20), (22)), each sigma = c T / (design) under its allowable, whose slope in
+    T, c / ([sigma] design), is positive over the whole design box: after point 0's own proof each point carries it,
+    no solver call, no search; `solve` alone proves each. Downwards (the rows fall with T) nothing is carried."""
+    values, result = _swept(CABLE, "torque", np.geomspace(10, 20, 40))
+    records = result.solutions
+    assert [r["status"] for r in records] == ["infeasible"] * 40 and result.spent["solves"] == 1
+    body = records[0]["diagnosis"].split(": ", 1)[1]
+    carried = (f"proven infeasible for torque {values[1]:.6g}-{values[-1]:.6g} N*m (39 points, by the proof at torque "
+               f"{values[0]:.6g} N*m; each row the sweep moves rising along it for every design within the bounds): "
+               f"{body}")
+    assert [r["diagnosis"] for r in records[1:]] == [carried] * 39
+    assert all(r["solver"]["solves"] == 0 for r in records[1:]) and searched == [1]
+    problem = case_problem(CABLE, reference_mode("cable"))
+    for k in (1, 39):
+        alone = problem.solve(CABLE.with_values(torque=float(values[k])))
+        assert alone.status == "infeasible" and alone.diagnosis.startswith("proven infeasible")
+    _, down = _swept(CABLE, "torque", np.geomspace(20, 10, 10))
+    assert [r["status"] for r in down.solutions] == ["infeasible"] * 10
+    assert not any("by the proof at" in r["diagnosis"] for r in down.solutions)
+
+
+def _slopes(row, lower, upper, values, j=0, k=1):
+    """:meth:`Slopes.held_from` for one design x in [lower, upper] under ``row(x, p)`` (p: quantities a, b), the
+    sweep varying a (``values``: a column of a, b held at 1)."""
+    formulation = SimpleNamespace(
+        variables=[SimpleNamespace(name="x")], quantities=[SimpleNamespace(name="a"), SimpleNamespace(name="b")],
+        constraints=lambda x, p: [at_most("row", row(x.x, p), 1.0, equation="")])
+    points = np.column_stack([values, np.ones(len(values))])
+    return Slopes(SimpleNamespace(formulation=formulation), ["a"]).held_from(
+        points, np.array([lower]), np.array([upper]), j, k, len(values))
+
+
+def test_a_proof_is_carried_through_a_value_only_where_every_design_s_row_rises_along_the_step():
+    """x a <= 1 (normalised x a - 1, its slope in a is x): over x in [1, 2] every design's row rises with a, so from
+    a = 1 a proof holds at 1.5 and 3 and not at 2.5 after them, a step down from 1 (all the points up to the first
+    step down from point 0); over x in [-1, 2] a design's row falls with a (x < 0): nothing is carried; nor where the
+    row jumps with a (a comparison: no slope sees a jump), nor at a value left out (NaN)."""
+    assert _slopes(lambda x, p: x * p.a, 1.0, 2.0, [1.0, 1.5, 3.0, 0.5, 4.0]) == 3
+    assert _slopes(lambda x, p: x * p.a, 1.0, 2.0, [1.0, 1.5, 3.0, 2.5], j=2, k=3) == 3
+    assert _slopes(lambda x, p: x * p.a, -1.0, 2.0, [1.0, 1.5]) == 1
+    assert _slopes(lambda x, p: x * p.a + where(p.a > 2, 0.0, 1.0), 1.0, 2.0, [1.0, 1.5, 3.0]) == 1
+    assert _slopes(lambda x, p: x * p.a, 1.0, 2.0, [1.0, np.nan, 3.0]) == 1
+    assert _slopes(lambda x, p: x * p.b, -1.0, 2.0, [1.0, 0.5, 3.0]) == 3  # (a enters no row: nothing moves)

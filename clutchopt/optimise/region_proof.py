@@ -84,7 +84,7 @@ from clutchopt.optimise.interval_proof import (FEW_BOXES, MAX_BOXES, SURE_BOXES,
                                                searches)
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
-from clutchopt.optimise.tightening import tightening
+from clutchopt.optimise.tightening import Slopes, slopes, tightening
 from clutchopt.optimise.verdict import emptied, figures_at, figures_over, infeasible_at
 from clutchopt.optimise.verify import DESIGN_STATUSES, check_design
 from clutchopt.units import from_si
@@ -456,19 +456,22 @@ class Regions:
         """The end of the points from k on at which a proof of infeasibility at point j holds: the sweep has only
         tightened the limits of the constraints it moves since point j, each normalised by its limit or by a scale
         it does not move (``tightening``: ``Tightening.keeps_proofs``), so no design meets at them what none met at
-        point j (within the proof's tolerance of each row's scale); k where none. A batched sweep's (its points'
-        values read from its arrays); the ball beyond its edge, 9.33x-18.7x its power: five region searches (1,393
-        boxes) -> none past the first point's proof."""
+        point j (within the proof's tolerance of each row's scale); else, where the sweep moves a row through its
+        value, the points up to LONGEST_RUN on at which each row it moves rises along the step for every design of the
+        box (``tightening.Slopes``: the cable beyond its edge over its torque); k where none. A batched sweep's (its
+        points' values read from its arrays); the ball beyond its edge, 9.33x-18.7x its power: five region searches
+        (1,393 boxes) -> none past the first point's proof."""
         if self._shared is None:
             return k
-        kept = self._shared.kept
+        shared, kept = self._shared, self._shared.kept
         if "tightening" not in kept:  # (its limits and scales at every point: once a sweep, whatever its windows)
-            values = self._shared.values
-            varied = [name for i, name in enumerate(self._shared.names) if _moves(values[:, i], values[0, i])]
+            varied = [name for i, name in enumerate(shared.names) if _moves(shared.values[:, i], shared.values[0, i])]
             t = tightening(self.posed, varied)
-            kept["tightening"] = (t, *t.limits(values)) if t.keeps_proofs else (None, None, None)
-        t, limits, scales = kept["tightening"]
-        return k if t is None else t.held_from(limits, scales, j, k)
+            kept["tightening"] = (t, *t.limits(shared.values)) if t.keeps_proofs else (slopes(self.posed, varied),)
+        t, *limits = kept["tightening"]
+        if isinstance(t, Slopes):
+            return t.held_from(shared.values, shared.lower, shared.upper, j, k, LONGEST_RUN)
+        return t.held_from(*limits, j, k)
 
     def _tightened_text(self, j: int, end: int) -> str:
         """The proof of point j (``_without``'s verdict) in words, for the points after it up to ``end``."""
@@ -479,8 +482,9 @@ class Regions:
         at = ", ".join(f"{q.name} {_shown(values[j, i], q.unit)}{_unit(q.unit)}" for i, q in moved)
         proof = diagnosis.split(": ", 1)[1] if diagnosis.startswith("proven infeasible") and ": " in diagnosis \
             else diagnosis
-        how = ("every limit the sweep moves at least as tight at each" if self._shared.kept["tightening"][0].moves
-               else "the sweep moves no limit")
+        t = self._shared.kept["tightening"][0]
+        how = ("each row the sweep moves rising along it for every design within the bounds" if isinstance(t, Slopes)
+               else "every limit the sweep moves at least as tight at each" if t.moves else "the sweep moves no limit")
         count = f"{end - j - 1} point{'s' if end - j - 1 > 1 else ''}"
         if not moved:  # (the proven point's values again)
             return f"proven infeasible ({count} at the values of a point proven before, by its proof): {proof}"

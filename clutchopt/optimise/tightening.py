@@ -18,6 +18,14 @@ than a tolerance of its scale, g = (value - limit) / scale > tol for ``<=``) hol
 moved row's scale is its limit (scale = limit > 0: value > (1 + tol) limit_j >= (1 + tol) limit_k) or is not moved
 (:attr:`Tightening.keeps_proofs`): what a proof rules out at point j stays ruled out at every point the sweep has
 only tightened since (``clutchopt.optimise.region_proof``).
+
+Where a varied quantity enters a row's value (the cable's torque: the stress in its cables, clamp screws and fingers,
+eqs. (7)-(12)), or its limit or scale holds a design variable, a proof still holds where every row the step moves can
+only break more along it for every design of the box (:class:`Slopes`): the interval bound of each normalised row's
+slope in each moved quantity, over the design box and the hull of the two points' values, has the sign of that
+quantity's step. By the mean value theorem G(x, p_k) - G(x, p_j) = dG/dp(x, xi) (p_k - p_j) for some xi between
+them, so G(x, p_k) >= G(x, p_j) > tol wherever the proof broke a row at j; the rows are continuous (no jump a slope
+misses: a row with a comparison, a floor or a sign concludes nothing).
 """
 
 from __future__ import annotations
@@ -26,6 +34,11 @@ import casadi as ca
 import numpy as np
 
 from clutchopt.model import namespace
+from clutchopt.optimise.interval import IntervalFunction
+
+DISCONTINUOUS = frozenset(getattr(ca, f"OP_{name}") for name in (
+    "IF_ELSE_ZERO", "FLOOR", "CEIL", "SIGN", "COPYSIGN", "FMOD", "REMAINDER", "LT", "LE", "EQ", "NE", "NOT", "AND",
+    "OR"))  # operations whose result jumps: a row holding one may move by more than its slope says
 
 
 class Tightening:
@@ -94,3 +107,47 @@ class Tightening:
 def tightening(posed, varied) -> Tightening:
     """The :class:`Tightening` of a posed problem along the quantities ``varied``, built once."""
     return posed.built("tightening", tuple(sorted(varied)), lambda _: Tightening(posed, varied))
+
+
+class Slopes:
+    """For a posed problem's formulation and the varied quantities (``varied``, names): :meth:`held_from` says up to
+    which point a proof of infeasibility at point j holds, where the step from j moves some row through its value (or
+    through a limit or scale a design variable enters): each normalised row ``g <= 0`` (the form a proof breaks,
+    ``Constraint.normalised``) rises along the step for every design of the box (the interval bounds of its slope in
+    each moved quantity, over the box and the hull of the two points' values, of that quantity's step's sign)."""
+
+    def __init__(self, posed, varied):
+        f = posed.formulation
+        x = namespace({v.name: ca.SX.sym(v.name) for v in f.variables})
+        p_all = ca.SX.sym("p", len(f.quantities))
+        p = namespace({q.name: p_all[j] for j, q in enumerate(f.quantities)})
+        self._moved = np.array([j for j, q in enumerate(f.quantities) if q.name in set(varied)], dtype=int)
+        design = ca.vertcat(*vars(x).values())
+        rows = ca.vertcat(ca.SX(0, 1), *(ca.SX(c.normalised()) for c in f.constraints(x, p)))
+        function = ca.Function("rows", [design, p_all], [rows])
+        jumps = {function.instruction_id(k) for k in range(function.n_instructions())} & DISCONTINUOUS
+        self._rows = rows.numel()
+        self._slopes = None if jumps or not self._moved.size else IntervalFunction(ca.Function(
+            "slopes", [design, p_all], [ca.densify(ca.jacobian(rows, p_all[self._moved.tolist()]))]))
+
+    def held_from(self, values: np.ndarray, lower: np.ndarray, upper: np.ndarray, j: int, k: int, count: int) -> int:
+        """The first point from k on (``values``: a row of case values a point, SI, in the formulation's order) whose
+        step from point j may lower some row for a design of the box [``lower``, ``upper``] (SI), looking ``count``
+        points ahead at most; k where no slope is bounded (a row that jumps, none moved)."""
+        ahead = values[k:k + count]
+        if self._slopes is None or not len(ahead):
+            return k
+        before, boxes = values[j], len(ahead)
+        hull = (np.minimum(before, ahead).T, np.maximum(before, ahead).T)
+        (low, high), = self._slopes.bounds([(np.repeat(lower[:, None], boxes, 1),
+                                             np.repeat(upper[:, None], boxes, 1)), hull])
+        shape = (self._moved.size, self._rows, boxes)  # (the Jacobian's nonzeros by column: a moved quantity each)
+        low, high = low.reshape(shape).min(axis=1), high.reshape(shape).max(axis=1)
+        step = (ahead - before)[:, self._moved].T
+        held = np.all((step == 0) | (step > 0) & (low >= 0) | (step < 0) & (high <= 0), axis=0)
+        return k + (int(np.argmin(held)) if not held.all() else held.size)
+
+
+def slopes(posed, varied) -> Slopes:
+    """The :class:`Slopes` of a posed problem along the quantities ``varied``, built once."""
+    return posed.built("slopes", tuple(sorted(varied)), lambda _: Slopes(posed, varied))
