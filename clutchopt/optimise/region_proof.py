@@ -44,7 +44,8 @@ normalised by its limit or by a scale they do not move (``clutchopt.optimise.tig
 allowable downwards), the points up to the first that is not tighter carry that point's proof, no search
 (:meth:`Regions._tightened`): no design meets at them what none met there. The lever in design mode over 1x-10x its
 inertia, whose regions' searches near the edge gave up and each point's own took 0.1-3 s: 6.7 -> 1.4 s (with the
-backward pass in C).
+backward pass in C). Where a step moves a row through its value (the cable's torque), the points at which every
+row it moves rises along it for every design of the box carry the proof too (``tightening.Slopes``).
 
 A point left over next to a proven one is tested against that proof first (:meth:`Regions._quick`): solved once, as
 ``Problem.solve`` starts (its design, if it finds one, is ``solve``'s), else its own interval search, the one its full
