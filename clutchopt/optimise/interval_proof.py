@@ -61,6 +61,24 @@ class Emptiness(NamedTuple):
     reached: bool = False  # a design met at one end of a parameter interval (no proof for the interval can exist)
     witness: np.ndarray | None = None  # where reached: that design (SI; a box centre, its integers whole unless met
     # over a part of the interval)
+    paused: "Paused | None" = None  # where its budget ended it (a search asked to pause): where it stood
+
+
+class Paused(NamedTuple):
+    """Where a budget ended a search, at the start of the iteration that would have passed it: its boxes (design and
+    parameter bounds, in its order), the boxes it had evaluated, the boxes left after its last iteration (the growth
+    rule's), the iterations begun and the boxes each row emptied or cut. A search resumed from it
+    (:func:`empty_design_space`'s ``resume``) makes the steps the search without that budget makes from there: the
+    same outcome, its boxes evaluated once."""
+
+    lo: np.ndarray
+    hi: np.ndarray
+    plo: np.ndarray
+    phi: np.ndarray
+    evaluated: int
+    left: float
+    rounds_begun: int
+    decisive: dict[str, int]
 
 
 def interval_functions(posed):
@@ -86,7 +104,7 @@ def search(posed, p: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> Emptin
 
 
 def searches(posed, problems: list[tuple[np.ndarray, ...]], budgets: list[int] | None = None,
-             lead: bool = False) -> list[Emptiness | None]:
+             lead: bool = False, pause: bool = False, resumed: Paused | None = None) -> list[Emptiness | None]:
     """:func:`search` of each ``(p, lower, upper)`` (the points of a sweep), all at once: the boxes of every search
     in one array (a box's bounds are its own: the interval rules work box by box), each with its own parameters and
     its own tally, so each search's outcome, box count and decisive constraints are what it alone would give; an
@@ -105,7 +123,8 @@ def searches(posed, problems: list[tuple[np.ndarray, ...]], budgets: list[int] |
     parameters of a part of the interval, a design of some of its points: the search stops as ``reached`` (no
     proof for the interval exists). ``budgets``: each search's most boxes (default MAX_BOXES). ``lead``: the first
     search leads; where it ends at its first evaluation, the others still searching (with the same interval
-    functions) end there, given up (:func:`searched_along`)."""
+    functions) end there, given up (:func:`searched_along`). ``pause``: where its budget ends the first search, its
+    outcome says where it stood (``Emptiness.paused``); ``resumed``: the one search goes on from there."""
     outcomes: list[Emptiness | None] = [None] * len(problems)
     started = [i for i, (_, lower, upper, *_) in enumerate(problems)
                if np.all(np.isfinite(lower)) and np.all(np.isfinite(upper))]
@@ -118,17 +137,22 @@ def searches(posed, problems: list[tuple[np.ndarray, ...]], budgets: list[int] |
                              (None, [i for i, a in zip(started, agree) if not a])):
         if group:  # where the declared nodes do not stand for the NLP's rows, the rows replayed
             functions = functions or posed.built("interval", False, lambda _: enclosed_rows(posed, declared=False))
+            first = group.index(0) if 0 in group else None
             for i, outcome in zip(group, _searched(posed, functions, [problems[i] for i in group],
-                                                   np.array([budgets[i] for i in group]),
-                                                   group.index(0) if lead and 0 in group else None)):
+                                                   np.array([budgets[i] for i in group]), first if lead else None,
+                                                   first if pause else None, resumed)):
                 outcomes[i] = outcome
-    _proofs(posed)["evaluated"] += sum(outcome.boxes for outcome in outcomes if outcome is not None)
+    _proofs(posed)["evaluated"] += sum(outcome.boxes for outcome in outcomes if outcome is not None) - (
+        resumed.evaluated if resumed is not None and outcomes[0] is not None else 0)  # (a resumed search's boxes
+    # before its pause counted where they were evaluated)
     return outcomes
 
 
-def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int | None = None) -> list[Emptiness]:
+def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int | None = None,
+              pause: int | None = None, resumed: Paused | None = None) -> list[Emptiness]:
     """The searches of :func:`searches` with the same interval functions, every box a column with its search's
-    (``lead``: the leading search's number, see :func:`searches`)."""
+    (``lead``: the leading search's number; ``pause``: the number of the search whose budget pauses it; ``resumed``:
+    the one search's state, see :func:`searches`)."""
     names, count = posed.row_names, len(problems)
     p_lo = np.stack([problem[0] for problem in problems], axis=1)
     p_hi = np.stack([problem[3] if len(problem) > 3 else problem[0] for problem in problems], axis=1)
@@ -182,7 +206,13 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
 
     carries = not functions[0].nodes.nodes  # (rows without declared nodes: carried back, row_tape, built at first use)
     rounds_begun = 0  # (the leader's first box evaluated in the first)
+    if resumed is not None:  # (one search)
+        lo, hi, plo, phi = resumed.lo, resumed.hi, resumed.plo, resumed.phi
+        owner, evaluated[0], left[0], rounds_begun = np.zeros(lo.shape[1], dtype=int), *resumed[4:7]
+        decisive[0] = dict(resumed.decisive)
     while lo.shape[1]:
+        paused = None if pause is None or outcomes[pause] is not None else _state(
+            owner == pause, lo, hi, plo, phi, evaluated[pause], left[pause], rounds_begun, decisive[pause])
         rounds_begun += 1
         before = searching(owner)
         lo, hi, none = _rounded(lo, hi, posed.integer)
@@ -193,6 +223,8 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
             end(np.flatnonzero(before & ~searching(owner)),
                 lambda j: Emptiness(True, int(evaluated[j]), decisive[j]))
         keep = within_budgets(owner)
+        if paused is not None and outcomes[pause] is not None and not outcomes[pause].proven:  # (its budget)
+            outcomes[pause] = outcomes[pause]._replace(paused=paused)
         lo, hi, owner, plo, phi = _taken(keep, lo, hi, owner, plo, phi)
         if rounds_begun == 2 and lead is not None and outcomes[lead] is not None:  # (the leader ended by its first
             # box)
@@ -264,7 +296,10 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
             # (a sweep's 28 points past its region's edge searched alone at 64 boxes: 6 rounds of splits to 1,792
             # boxes for nothing, 8 ms)
             wide = np.any(hi > lo, axis=0) | np.any(phi > plo, axis=0)
-            keep = within_budgets(owner, np.bincount(owner, np.where(wide, 2.0 ** rounds[owner], 1.0), count))
+            grown = np.bincount(owner, np.where(wide, 2.0 ** rounds[owner], 1.0), count)
+            if pause is not None:  # (split: its budget ends it at the next iteration, where it then stands)
+                grown[pause] = 0
+            keep = within_budgets(owner, grown)
             if not keep.all():
                 lo, hi, plo, phi = lo[:, keep], hi[:, keep], plo[:, keep], phi[:, keep]
                 owner, at = owner[keep], at[keep]
@@ -291,6 +326,12 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
             slope, component, rate = slope[:, parents], component[parents], rate[parents]
         lo, plo, hi, phi = z_lo[:n], z_lo[n:], z_hi[:n], z_hi[n:]
     return outcomes
+
+
+def _state(mask: np.ndarray, lo, hi, plo, phi, evaluated, left, rounds_begun: int, decisive: dict) -> Paused:
+    """A search's state at an iteration's start (``mask``: its boxes), copied (:class:`Paused`)."""
+    return Paused(lo[:, mask], hi[:, mask], plo[:, mask], phi[:, mask], int(evaluated), float(left), rounds_begun,
+                  dict(decisive))
 
 
 def _taken(mask: np.ndarray, *arrays: np.ndarray) -> tuple[np.ndarray, ...]:
@@ -486,11 +527,14 @@ def _bisected(lo: np.ndarray, hi: np.ndarray, slope: np.ndarray, spans0: tuple[n
     return new_lo, new_hi, np.concatenate([columns, halved])
 
 
-def empty_design_space(posed, case, budget: int | None = None) -> Emptiness | None:
+def empty_design_space(posed, case, budget: int | None = None, resume: Emptiness | None = None) -> Emptiness | None:
     """:func:`search` over the design box of ``case`` in ``posed`` (with a start-up: its formulation's own
     constraints, without the start-up's: a design space empty without them is empty with them); the search a sweep
     ran for the same box with the same parameters where one is kept (:func:`keep_search`). ``budget``: the most boxes
-    (a search that may end short of its outcome: the kept one is left for the search without a budget)."""
+    (a search that may end short of its outcome: the kept one is left for the search without a budget; one its budget
+    ends says where it stood, ``Emptiness.paused``). ``resume``: such a search of this case, which the search without
+    a budget goes on from (its outcome that search's; the boxes before the pause not evaluated again: the lever in
+    design mode next to its edge, 2,500 of 3,800-4,000 a point)."""
     problem = _search_problem(posed, case)
     kept = posed.built("interval_kept", None, lambda _: {})
     kept = kept.get(_key(problem)) if budget is not None else kept.pop(_key(problem), None)
@@ -502,7 +546,8 @@ def empty_design_space(posed, case, budget: int | None = None) -> Emptiness | No
         if outcomes:
             along["outcomes"], along["seconds"] = outcomes, seconds
     else:
-        emptiness = searches(posed, [problem], None if budget is None else [budget])[0]
+        emptiness = searches(posed, [problem], None if budget is None else [budget], pause=budget is not None,
+                             resumed=resume.paused if budget is None and resume is not None else None)[0]
     if emptiness is not None and emptiness.proven:
         last_boxes(posed, emptiness.boxes)
     return emptiness
@@ -519,7 +564,8 @@ def searched_along(posed, problem: tuple[np.ndarray, ...], budget: int,
     seconds."""
     problems = along()
     began = time.perf_counter()
-    own, *outcomes = searches(posed, [problem, *problems], [budget] + [SURE_BOXES] * len(problems), lead=True)
+    own, *outcomes = searches(posed, [problem, *problems], [budget] + [SURE_BOXES] * len(problems), lead=True,
+                              pause=True)
     return own, outcomes, time.perf_counter() - began
 
 

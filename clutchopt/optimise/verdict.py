@@ -57,7 +57,8 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
     searched = _Searched(problem.posed, case)  # (its seconds the verdict's: a sweep takes the runs' it searched along)
     early = searched(SURE_BOXES) if _relaxed_apart(problem, first) else None
     # (before the retries, the boxes every search evaluates: proven, no start reaches a design, and none is tried;
-    # where a retry finds one, a search that cannot prove has cost these, not up to MAX_BOXES)
+    # where a retry finds one, a search that cannot prove has cost these, not up to MAX_BOXES; where none does, the
+    # search without a budget goes on from where this one stood)
     if early is not None and early.proven:
         proofs = [emptied(early)]
     if not (first.diagnosed and first.diagnosed.proven) and not proofs:
@@ -79,7 +80,7 @@ def shown(problem, case: Case, first: Solution, started: bool, neighbour: dict[s
     if not proofs:
         settled = early is not None and early.feasible is not None  # (a design met: the search's outcome whatever
         # its budget; else the search without one, as before the retries)
-        emptiness = early if settled else searched()
+        emptiness = early if settled else searched(resume=early)
         if emptiness is not None and emptiness.feasible is not None:  # a design of the relaxation: solve from it
             retry = retried(problem, case, dict(zip(problem.posed.names, emptiness.feasible)))
             if retry is not None:
@@ -178,10 +179,10 @@ class _Searched:
     def __init__(self, posed, case: Case):
         self.posed, self.case, self.seconds = posed, case, 0.0
 
-    def __call__(self, budget: int | None = None):
+    def __call__(self, budget: int | None = None, resume=None):
         began = time.perf_counter()
         try:
-            return empty_design_space(self.posed, self.case, budget)
+            return empty_design_space(self.posed, self.case, budget, resume)
         finally:
             self.seconds += time.perf_counter() - began
 
