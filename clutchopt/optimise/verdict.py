@@ -99,8 +99,8 @@ def _relaxed_apart(problem, first: Solution) -> bool:
     first with its own elastic diagnosis: 30-50 ms on the lever and the cable where the proof takes 1-2 ms) cannot
     reach a design. It evaluates SURE_BOXES at most (the boxes every search evaluates; the ball near its
     contact-stress limit is proven in 900-1,400): where it does not prove, the retries follow, then its outcome where
-    it met a design of the relaxation, else the search without that budget (as before the retries: the boxes
-    evaluated first are evaluated again, where no start reaches a design and nothing proves)."""
+    it met a design of the relaxation, else the search without that budget, which goes on from where the budget
+    stopped it (``interval_proof.Emptiness.paused``: its outcome the same, its first boxes not evaluated again)."""
     diagnosed = first.diagnosed
     return (problem.start_up is None and diagnosed is not None and not diagnosed.proven
             and diagnosed.status == "infeasible" and diagnosed.least > 0)
