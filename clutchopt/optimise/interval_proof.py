@@ -211,8 +211,10 @@ def _searched(posed, functions, problems: list, budgets: np.ndarray, lead: int |
         owner, evaluated[0], left[0], rounds_begun = np.zeros(lo.shape[1], dtype=int), *resumed[4:7]
         decisive[0] = dict(resumed.decisive)
     while lo.shape[1]:
-        paused = None if pause is None or outcomes[pause] is not None else _state(
-            owner == pause, lo, hi, plo, phi, evaluated[pause], left[pause], rounds_begun, decisive[pause])
+        paused, mine = None, None if pause is None or outcomes[pause] is not None else owner == pause
+        if mine is not None and evaluated[pause] + np.count_nonzero(mine) > budgets[pause]:  # (its budget may end it
+            # in this iteration: where it stands kept)
+            paused = _state(mine, lo, hi, plo, phi, evaluated[pause], left[pause], rounds_begun, decisive[pause])
         rounds_begun += 1
         before = searching(owner)
         lo, hi, none = _rounded(lo, hi, posed.integer)
