@@ -198,6 +198,22 @@ def test_a_proof_is_carried_through_a_value_only_where_every_design_s_row_rises_
     assert _slopes(lambda x, p: x * p.b, -1.0, 2.0, [1.0, 0.5, 3.0]) == 3  # (a enters no row: nothing moves)
 
 
+def test_each_moved_quantity_s_step_is_held_against_its_own_slopes():
+    """Two rows x a + b <= 1 and -x b <= 1 over x in [1, 2], both a and b varied: the first's slope in b is 1, the
+    second's -x, so b's slopes span [-2, 1] and no step of b holds; a's are x and 0, so a step of a upwards holds
+    with b unmoved. (The Jacobian's columns, a moved quantity each, read apart from its rows: read across, a step of
+    b downwards would have held.)"""
+    formulation = SimpleNamespace(
+        variables=[SimpleNamespace(name="x")], quantities=[SimpleNamespace(name="a"), SimpleNamespace(name="b")],
+        constraints=lambda x, p: [at_most("first", x.x * p.a + p.b, 1.0, equation=""),
+                                  at_most("second", -x.x * p.b, 1.0, equation="")])
+    slopes = Slopes(SimpleNamespace(formulation=formulation), ["a", "b"])
+    box = np.array([1.0]), np.array([2.0])
+    held = lambda *points: slopes.held_from(np.array(points), *box, 0, 1, len(points))  # noqa: E731
+    assert held([1.0, 1.0], [2.0, 1.0], [3.0, 1.0]) == 3
+    assert held([1.0, 1.0], [2.0, 0.5]) == 1 and held([1.0, 1.0], [1.0, 1.5]) == 1
+
+
 @settings(max_examples=60, deadline=None)
 @given(st.floats(-2, 2), st.floats(-2, 2), st.floats(-3, 3), st.floats(0.1, 3), st.floats(0.1, 3), st.floats(0.1, 3),
        st.floats(0.1, 3))
