@@ -326,7 +326,7 @@ def test_a_point_its_own_search_does_not_prove_continues_its_verdict_from_its_fi
                                   (False, 3, ["the case's own start", "the least relaxation's design",
                                               "the neighbouring point's design"])):
         if not proven:
-            monkeypatch.setattr(verdict, "empty_design_space", lambda posed, case, budget=None: None)
+            monkeypatch.setattr(verdict, "empty_design_space", lambda posed, case, budget=None, resume=None: None)
         result = Sweep(WEDGE, [vary]).run(progress=False)
         status = "infeasible" if proven else "not_found"
         assert [s["status"] for s in result.solutions] == ["optimal"] * 3 + [status] * 9
@@ -629,9 +629,9 @@ def test_a_point_s_verdict_counts_its_interval_searches_seconds_so_none_is_negat
     searched = []
     original = verdict._Searched.__call__
 
-    def counted(self, budget=None):  # (the verdict's searches ran: the share is taken from what they took)
-        searched.append(budget)
-        return original(self, budget)
+    def counted(self, budget=None, resume=None):  # (the verdict's searches ran: the share is taken from what they
+        searched.append(budget)  # took)
+        return original(self, budget, resume)
 
     monkeypatch.setattr(verdict._Searched, "__call__", counted)
     result = Sweep(case, [parse_vary("inertia=1:300:10", case.coupling), parse_vary("friction_coefficient=0.2",

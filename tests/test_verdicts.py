@@ -101,7 +101,7 @@ def test_a_static_verdict_the_interval_search_proves_is_given_without_the_retrie
     assert solution.diagnosis.startswith("proven infeasible: no design within the bounds meets torque, flank_pressure, "
                                          "finger_guide_length, finger_fits_chord together")  # (and the finger's
     # guide and chord, paper mode's rows too, which cut the box's d_n first)
-    monkeypatch.setattr(verdict, "empty_design_space", lambda posed, case, budget=None: None)
+    monkeypatch.setattr(verdict, "empty_design_space", lambda posed, case, budget=None, resume=None: None)
     retried = problem.solve(case)
     assert retried.status == "not_found" and retried.solver.solves == 2
     assert retried.starts == ("the case's own start", "the least relaxation's design")
