@@ -5,6 +5,7 @@ step may lower a row for some design, or moves a row's scale apart from its limi
 
 from types import SimpleNamespace
 
+import casadi as ca
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -189,11 +190,14 @@ def test_a_proof_is_carried_through_a_value_only_where_every_design_s_row_rises_
     """x a <= 1 (normalised x a - 1, its slope in a is x): over x in [1, 2] every design's row rises with a, so from
     a = 1 a proof holds at 1.5 and 3 and not at 2.5 after them, a step down from 1 (all the points up to the first
     step down from point 0); over x in [-1, 2] a design's row falls with a (x < 0): nothing is carried; nor where the
-    row jumps with a (a comparison: no slope sees a jump), nor at a value left out (NaN)."""
+    row jumps with a (a comparison: no slope sees a jump; atan2 across its cut), nor at a value left out (NaN)."""
     assert _slopes(lambda x, p: x * p.a, 1.0, 2.0, [1.0, 1.5, 3.0, 0.5, 4.0]) == 3
     assert _slopes(lambda x, p: x * p.a, 1.0, 2.0, [1.0, 1.5, 3.0, 2.5], j=2, k=3) == 3
     assert _slopes(lambda x, p: x * p.a, -1.0, 2.0, [1.0, 1.5]) == 1
     assert _slopes(lambda x, p: x * p.a + where(p.a > 2, 0.0, 1.0), 1.0, 2.0, [1.0, 1.5, 3.0]) == 1
+    # -atan2(a, x) over x in [-2, -1]: its slope in a, -x / (a^2 + x^2), is positive, yet a crossing 0 takes it
+    # across its cut from 3.08 to -3.08 (review 22): an operation outside the continuous ones concludes nothing
+    assert _slopes(lambda x, p: -ca.atan2(p.a, x), -2.0, -1.0, [-0.1, 0.1]) == 1
     assert _slopes(lambda x, p: x * p.a, 1.0, 2.0, [1.0, np.nan, 3.0]) == 1
     assert _slopes(lambda x, p: x * p.b, -1.0, 2.0, [1.0, 0.5, 3.0]) == 3  # (a enters no row: nothing moves)
 

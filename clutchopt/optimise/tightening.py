@@ -25,7 +25,8 @@ only break more along it for every design of the box (:class:`Slopes`): the inte
 slope in each moved quantity, over the design box and the hull of the two points' values, has the sign of that
 quantity's step. By the mean value theorem G(x, p_k) - G(x, p_j) = dG/dp(x, xi) (p_k - p_j) for some xi between
 them, so G(x, p_k) >= G(x, p_j) > tol wherever the proof broke a row at j; the rows are continuous (no jump a slope
-misses: a row with a comparison, a floor or a sign concludes nothing).
+misses: a row with an operation outside :data:`CONTINUOUS`, a comparison, a floor, a sign or atan2, concludes
+nothing).
 """
 
 from __future__ import annotations
@@ -36,9 +37,12 @@ import numpy as np
 from clutchopt.model import namespace
 from clutchopt.optimise.interval import IntervalFunction
 
-DISCONTINUOUS = frozenset(getattr(ca, f"OP_{name}") for name in (
-    "IF_ELSE_ZERO", "FLOOR", "CEIL", "SIGN", "COPYSIGN", "FMOD", "REMAINDER", "LT", "LE", "EQ", "NE", "NOT", "AND",
-    "OR"))  # operations whose result jumps: a row holding one may move by more than its slope says
+CONTINUOUS = frozenset(getattr(ca, f"OP_{name}") for name in (
+    "INPUT", "OUTPUT", "CONST", "PARAMETER", "ASSIGN", "ADD", "SUB", "MUL", "DIV", "NEG", "INV", "TWICE", "SQ", "SQRT",
+    "POW", "CONSTPOW", "EXP", "EXPM1", "LOG", "LOG1P", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "SINH", "COSH",
+    "TANH", "ASINH", "ACOSH", "ATANH", "FABS", "FMIN", "FMAX", "HYPOT", "ERF"))  # operations continuous where they are
+# defined (a pole within a hull leaves its slope unbounded): a row holding any other (a comparison, floor, sign,
+# atan2 across its cut) may jump by more than its slope says
 
 
 class Tightening:
@@ -125,7 +129,7 @@ class Slopes:
         design = ca.vertcat(*vars(x).values())
         rows = ca.vertcat(ca.SX(0, 1), *(ca.SX(c.normalised()) for c in f.constraints(x, p)))
         function = ca.Function("rows", [design, p_all], [rows])
-        jumps = {function.instruction_id(k) for k in range(function.n_instructions())} & DISCONTINUOUS
+        jumps = {function.instruction_id(k) for k in range(function.n_instructions())} - CONTINUOUS
         self._rows = rows.numel()
         self._slopes = None if jumps or not self._moved.size else IntervalFunction(ca.Function(
             "slopes", [design, p_all], [ca.densify(ca.jacobian(rows, p_all[self._moved.tolist()]))]))
