@@ -233,3 +233,44 @@ def test_where_the_slopes_carry_a_proof_every_design_s_row_rises(a, b, c, lower,
     before = xs**a * p_j**b + c * xs * p_j - p_j**2 / 4
     after = xs**a * p_k**b + c * xs * p_k - p_k**2 / 4
     assert np.all(after >= before - 1e-12 * np.maximum(np.abs(before), 1.0))
+
+
+def test_a_proof_carried_on_names_the_point_whose_search_proved_it():
+    """The cable over 10x-20x its torque in 300 points: point 0 proven by its own search (1 box); the points after it
+    carry that proof LONGEST_RUN (256) at a time, and the run after the first names point 0's torque too, not the
+    last point it had been carried to (review 22: "by the proof at torque 7965.09 N*m", itself carried), with its own
+    count and values."""
+    values, result = _swept(CABLE, "torque", np.geomspace(10, 20, 300))
+    diagnoses = [r["diagnosis"] for r in result.solutions]
+    assert [r["status"] for r in result.solutions] == ["infeasible"] * 300 and result.spent["solves"] == 1
+    heads = [d.split(" (by")[0].split("; ")[0] for d in diagnoses[1:]]
+    assert heads[0] == (f"proven infeasible for torque {values[1]:.6g}-{values[256]:.6g} N*m (256 points, by the "
+                        f"proof at torque {values[0]:.6g} N*m")
+    assert heads[256] == (f"proven infeasible for torque {values[257]:.6g}-{values[299]:.6g} N*m (43 points, by the "
+                          f"proof at torque {values[0]:.6g} N*m")
+    assert heads[1:256] == [heads[0]] * 255 and heads[257:] == [heads[256]] * 42
+
+
+def test_a_carried_proof_s_words_count_only_the_points_that_take_it():
+    """cases/wedge_paper.toml in paper mode, its guide length ratio and shell thickness raised together (zipped, 30
+    points to 20x and 6x): point 9 proven by its own search, 10-22 carry its proof; from 23 on the outer diameter
+    (which no design variable enters) is over its limit, each point's own verdict "infeasible whatever the design".
+    The carried words name 13 points and their own values (review 22: "20 points" and values up to point 29's)."""
+    from clutchopt.cases import load_case
+    from tests.conftest import CASES
+
+    case = load_case(CASES / "wedge_paper.toml")
+    quantities = {q.name: q for q in case.quantities}
+    ratio = case.values["guide_length_ratio"] * np.geomspace(1, 20, 30)
+    shell = case.values["shell_thickness"] * np.geomspace(1, 6, 30)
+    result = Sweep(case, [Vary(quantities["guide_length_ratio"], tuple(ratio.tolist())),
+                          Vary(quantities["shell_thickness"], tuple(shell.tolist()))], mode="paper",
+                   zipped=True).run(progress=False)
+    diagnoses = [r["diagnosis"] or "" for r in result.solutions]
+    assert [r["status"] for r in result.solutions] == ["optimal"] * 9 + ["infeasible"] * 21
+    assert diagnoses[9].startswith("proven infeasible: no design within the bounds meets")
+    carried = (f"proven infeasible for shell_thickness {1e3 * shell[10]:.6g}-{1e3 * shell[22]:.6g} mm, "
+               f"guide_length_ratio {ratio[10]:.6g}-{ratio[22]:.6g} (13 points, by the proof at shell_thickness "
+               f"{1e3 * shell[9]:.6g} mm, guide_length_ratio {ratio[9]:.6g};")
+    assert all(d.startswith(carried) for d in diagnoses[10:23])
+    assert all(d.startswith("infeasible whatever the design: outer_diameter") for d in diagnoses[23:])

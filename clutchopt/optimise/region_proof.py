@@ -147,9 +147,11 @@ class Regions:
         # of the last run searched point by point)
         self._region: int | None = None  # the boxes of the last region proof
         self._figures: dict[int, tuple] = {}  # proven point -> its float64 figures at the design of self._without
-        self._figured: dict[str, float] | None = None  # (that design)
+        self._figured_design: dict[str, float] | None = None  # (that design)
         self._ahead: dict[tuple[int, int], tuple] = {}  # a run searched ahead -> its problem, outcome and
         # seconds a point (its share of the call that searched it)
+        self._origins: dict[int, int] = {}  # a point a proof is carried to -> the point proven by its own or a
+        # region's search whose proof it is
 
     def point_case(self, k: int):
         """Point k's case, built once for its run's search, its float64 figures and its verdict."""
@@ -439,19 +441,31 @@ class Regions:
         self._length = min(2 * longest, LONGEST_RUN)
 
     def _carried(self, k: int) -> bool:
-        """Point k, not proven yet, after point k - 1 proven infeasible: that proof carried to k and the points after
-        it up to the first that the sweep has not only tightened since (:meth:`_tightened`), none searched (a point a
-        region proof holds already keeps it); whether it reached k. Also where a run searched before had left k to be
-        solved (a list of values up and down: review 21)."""
+        """Point k, not proven yet, after point k - 1 proven infeasible: the proof k - 1's rests on (its own, a
+        region's, or the one carried to it: its origin) carried to k and the points after it up to the first that the
+        sweep has not only tightened since the origin (:meth:`_tightened`), that a region proof holds already, or
+        LONGEST_RUN points on; none searched; whether it reached k. Also where a run searched before had left k to be
+        solved (a list of values up and down: review 21). A point among them that breaks a requirement no design
+        variable enters is left to its own verdict (:func:`_apart`); the others take the proof in runs between such
+        points, each run's words its own points and values, naming the origin (review 22: a point carried to had been
+        named as the proof's)."""
         if k in self._proven or not (self._without.diagnosis or "").startswith("proven"):
             return False
-        tightened = self._tightened(k - 1, k)
-        if tightened > k:
-            text = self._tightened_text(k - 1, tightened)
-            for j in range(k, tightened):
-                self._proven.setdefault(j, (text, 0.0))
-            self._to = max(self._to, tightened)
-        return tightened > k
+        origin = self._origins.get(k - 1, k - 1)
+        end = min([self._tightened(origin, k), k + LONGEST_RUN, *(j for j in self._proven if j > k)])
+        if end <= k:
+            return False
+        figured = self._figured(list(range(k, end)), self._without.design)  # (kept for their verdicts)
+        apart = [_apart(self.posed, {c.name for c in figured[j][0][0] if not c.feasible}, lambda: figured[j][1])
+                 for j in range(k, end)]
+        for a, b in _runs(apart, k):
+            text = self._tightened_text(origin, a, b)
+            self._proven.update((j, (text, 0.0)) for j in range(a, b))
+            self._origins.update((j, origin) for j in range(a, b))
+        self._proven.update((k + i, ("", 0.0)) for i, left in enumerate(apart) if left)  # (its own verdict follows:
+        # _covered declines it)
+        self._to = max(self._to, end)
+        return True
 
     def _tightened(self, j: int, k: int) -> int:
         """The end of the points from k on at which a proof of infeasibility at point j holds: the sweep has only
@@ -474,19 +488,20 @@ class Regions:
             return t.held_from(shared.values, shared.lower, shared.upper, j, k, LONGEST_RUN)
         return t.held_from(*limits, j, k)
 
-    def _tightened_text(self, j: int, end: int) -> str:
-        """The proof of point j (``_without``'s verdict) in words, for the points after it up to ``end``."""
+    def _tightened_text(self, j: int, start: int, end: int) -> str:
+        """The proof of point j (``_without``'s verdict, the proof it rests on) in words, for the points ``start`` to
+        ``end`` - 1 after it."""
         values, diagnosis = self._shared.values, self._without.diagnosis or ""
         moved = [(i, q) for i, q in enumerate(self.posed.formulation.quantities)
-                 if _moves(values[j:end, i], values[j, i])]
-        spans = ", ".join(f"{q.name} {_span(values[j + 1:end, i], q.unit)}{_unit(q.unit)}" for i, q in moved)
+                 if _moves(values[start:end, i], values[j, i])]
+        spans = ", ".join(f"{q.name} {_span(values[start:end, i], q.unit)}{_unit(q.unit)}" for i, q in moved)
         at = ", ".join(f"{q.name} {_shown(values[j, i], q.unit)}{_unit(q.unit)}" for i, q in moved)
         proof = diagnosis.split(": ", 1)[1] if diagnosis.startswith("proven infeasible") and ": " in diagnosis \
             else diagnosis
         t = self._shared.kept["tightening"][0]
         how = ("each row the sweep moves rising along it for every design within the bounds" if isinstance(t, Slopes)
                else "every limit the sweep moves at least as tight at each" if t.moves else "the sweep moves no limit")
-        count = f"{end - j - 1} point{'s' if end - j - 1 > 1 else ''}"
+        count = f"{end - start} point{'s' if end - start > 1 else ''}"
         if not moved:  # (the proven point's values again)
             return f"proven infeasible ({count} at the values of a point proven before, by its proof): {proof}"
         return f"proven infeasible for {spans} ({count}, by the proof at {at}; {how}): {proof}"
@@ -672,20 +687,25 @@ class Regions:
         if self.posed.start_up is not None:  # (its own drive proofs come first: ``_covered``)
             return None
         design = self._without.design
-        if k not in self._figures or self._figured != design:
+        if k not in self._figures or self._figured_design != design:
             ahead = (j for (a, b), (_, outcome, _) in self._ahead.items() if outcome is not None and outcome.proven
                      for j in range(a, b))
             points = sorted({k, *(j for j in (*self._proven, *ahead) if j > k)})[:LONGEST_RUN]  # (a proof carried
             # to the sweep's end: its points figured a run's length at a time, not past a window's end for nothing)
-            if self._shared is not None and len(points) > 1:  # (read from the sweep's arrays: no Case a point)
-                figures = figures_over(self.posed, self._shared.params_of(points), len(points), design)
-                conflicting = self.posed.conflicting_over(self._shared.values[points])
-            else:
-                cases = [self.point_case(j) for j in points]
-                figures, conflicting = figures_at(self.posed, cases, design), self.posed.conflicting_at(cases)
-            self._figures = dict(zip(points, zip(figures, conflicting)))
-            self._figured = dict(design)
+            self._figured(points, design)
         return self._figures.pop(k)
+
+    def _figured(self, points: list[int], design: dict[str, float]) -> dict[int, tuple]:
+        """The float64 figures of ``design`` at ``points`` and whether two limits of one quantity leave no room
+        between at each, by point, kept for their verdicts (:meth:`_figures_at`)."""
+        if self._shared is not None and len(points) > 1:  # (read from the sweep's arrays: no Case a point)
+            figures = figures_over(self.posed, self._shared.params_of(points), len(points), design)
+            conflicting = self.posed.conflicting_over(self._shared.values[points])
+        else:
+            cases = [self.point_case(j) for j in points]
+            figures, conflicting = figures_at(self.posed, cases, design), self.posed.conflicting_at(cases)
+        self._figures, self._figured_design = dict(zip(points, zip(figures, conflicting))), dict(design)
+        return self._figures
 
     def _unclaimed(self, seconds: float) -> None:
         """Seconds of an interval search that no point's verdict takes (a run it did not prove, a point's own search
@@ -764,6 +784,20 @@ def _region_text(posed, a: int, b: int, problem: tuple, outcome) -> str:
             + emptied(outcome, "and the interval of " + ", ".join(s.split(" ")[0] for s in spans)))
 
 
+def _apart(posed, broken: set[str], conflicting: Callable[[], bool]) -> bool:
+    """A point whose constraints ``broken`` (by name) include a requirement no design variable enters, or two limits
+    of one quantity that leave no room between (``conflicting()``, asked only then; ``Posed.conflicting``: they break
+    one of their rows at every design): infeasible whatever the design, which its own verdict says, not a proof."""
+    return bool(broken & {posed.row_names[i] for i in posed.fixed_rows}
+                or broken & posed.paired and conflicting())
+
+
+def _runs(apart: list[bool], first: int) -> list[tuple[int, int]]:
+    """The runs (start, end) of the points from ``first`` on that are not ``apart``."""
+    edges = np.flatnonzero(np.diff(np.concatenate([[True], apart, [True]]).astype(int))) + first
+    return list(zip(edges[::2].tolist(), edges[1::2].tolist()))
+
+
 def _moves(values: np.ndarray, first: float) -> bool:
     """A quantity's ``values`` over points are not all ``first`` (NaN, a value the case leaves out, the same as NaN)."""
     return bool(np.any((values != first) & ~(np.isnan(values) & np.isnan(first))))
@@ -797,10 +831,9 @@ def _covered(problem, case, design: dict[str, float], text: str, seconds: float,
     if problem.start_up is not None and start_up_proofs(case):
         return None
     figures = figures or figures_at(posed, [case], design)[0]
-    broken = {c.name for c in figures[0] if not c.feasible}
-    if broken & {posed.row_names[i] for i in posed.fixed_rows} or (
-            broken & posed.paired and (posed.conflicting(case) if conflicting is None else conflicting)):
-        return None  # (limits that conflict break one of their rows at every design)
+    if _apart(posed, {c.name for c in figures[0] if not c.feasible},
+              lambda: posed.conflicting(case) if conflicting is None else conflicting):
+        return None
     solves, time_s = (spent.solves, spent.time_s) if spent is not None else (0, 0.0)
     return infeasible_at(posed, case, design, text, SolverInfo("interval", "proven", 0, time_s + seconds, solves),
                          figures, bounds)
