@@ -20,7 +20,8 @@ moved row's scale is its limit (scale = limit > 0: value > (1 + tol) limit_j >= 
 only tightened since (``clutchopt.optimise.region_proof``).
 
 Where a varied quantity enters a row's value (the cable's torque: the stress in its cables, clamp screws and fingers,
-eqs. (18), (20), (22)), or its limit or scale holds a design variable, a proof still holds where every row the step moves can
+eqs. (18), (20), (22); a friction coefficient, a density, a ratio of the geometry), or its limit or scale holds a
+design variable, a proof still holds where every row the step moves can
 only break more along it for every design of the box (:class:`Slopes`): the interval bound of each normalised row's
 slope in each moved quantity, over the design box and the hull of the two points' values, has the sign of that
 quantity's step. By the mean value theorem G(x, p_k) - G(x, p_j) = dG/dp(x, xi) (p_k - p_j) for some xi between
