@@ -18,7 +18,7 @@ from clutchopt.optimise import region_proof
 from clutchopt.optimise.problem import case_problem
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import Vary
-from clutchopt.optimise.tightening import Slopes, Tightening
+from clutchopt.optimise.tightening import ProofCarry, Tightening
 
 BALL = next(case for case in bench_cases() if case.coupling == "ball")
 CABLE = next(case for case in bench_cases() if case.coupling == "cable")
@@ -175,15 +175,19 @@ def test_the_cable_beyond_its_edge_carries_a_proof_through_rows_its_torque_enter
     assert not any("by the proof at" in r["diagnosis"] for r in down.solutions)
 
 
-def _slopes(row, lower, upper, values, j=0, k=1):
-    """:meth:`Slopes.held_from` for one design x in [lower, upper] under ``row(x, p)`` (p: quantities a, b), the
-    sweep varying a (``values``: a column of a, b held at 1)."""
+def _posed(*rows):
+    """A posed problem's stand-in: one design x, quantities a and b, a constraint ``row(x, p) <= 1`` each."""
     formulation = SimpleNamespace(
         variables=[SimpleNamespace(name="x")], quantities=[SimpleNamespace(name="a"), SimpleNamespace(name="b")],
-        constraints=lambda x, p: [at_most("row", row(x.x, p), 1.0, equation="")])
+        constraints=lambda x, p: [at_most(f"row{i}", row(x.x, p), 1.0, equation="") for i, row in enumerate(rows)])
+    return SimpleNamespace(formulation=formulation, built=lambda kind, key, build: build(0))
+
+
+def _slopes(row, lower, upper, values, j=0, k=1):
+    """:meth:`ProofCarry.held_from` for one design x in [lower, upper] under ``row(x, p)`` (p: quantities a, b), the
+    sweep varying a (``values``: a column of a, b held at 1)."""
     points = np.column_stack([values, np.ones(len(values))])
-    return Slopes(SimpleNamespace(formulation=formulation), ["a"]).held_from(
-        points, np.array([lower]), np.array([upper]), j, k, len(values))
+    return ProofCarry(_posed(row), ["a"], points).held_from(np.array([lower]), np.array([upper]), j, k, len(values))
 
 
 def test_a_proof_is_carried_through_a_value_only_where_every_design_s_row_rises_along_the_step():
@@ -207,13 +211,10 @@ def test_each_moved_quantity_s_step_is_held_against_its_own_slopes():
     second's -x, so b's slopes span [-2, 1] and no step of b holds; a's are x and 0, so a step of a upwards holds
     with b unmoved. (The Jacobian's columns, a moved quantity each, read apart from its rows: read across, a step of
     b downwards would have held.)"""
-    formulation = SimpleNamespace(
-        variables=[SimpleNamespace(name="x")], quantities=[SimpleNamespace(name="a"), SimpleNamespace(name="b")],
-        constraints=lambda x, p: [at_most("first", x.x * p.a + p.b, 1.0, equation=""),
-                                  at_most("second", -x.x * p.b, 1.0, equation="")])
-    slopes = Slopes(SimpleNamespace(formulation=formulation), ["a", "b"])
+    posed = _posed(lambda x, p: x * p.a + p.b, lambda x, p: -x * p.b)
     box = np.array([1.0]), np.array([2.0])
-    held = lambda *points: slopes.held_from(np.array(points), *box, 0, 1, len(points))  # noqa: E731
+    held = lambda *points: ProofCarry(posed, ["a", "b"], np.array(points)).held_from(  # noqa: E731
+        *box, 0, 1, len(points))
     assert held([1.0, 1.0], [2.0, 1.0], [3.0, 1.0]) == 3
     assert held([1.0, 1.0], [2.0, 0.5]) == 1 and held([1.0, 1.0], [1.0, 1.5]) == 1
 
@@ -274,3 +275,26 @@ def test_a_carried_proof_s_words_count_only_the_points_that_take_it():
                f"{1e3 * shell[9]:.6g} mm, guide_length_ratio {ratio[9]:.6g};")
     assert all(d.startswith(carried) for d in diagnoses[10:23])
     assert all(d.startswith("infeasible whatever the design: outer_diameter") for d in diagnoses[23:])
+
+
+def test_limits_compared_and_values_bounded_together_carry_a_proof():
+    """The ball beyond its edge (9.33x-18.7x its power) with its shell 1x-1.5x as thick, both at each step (zipped,
+    20 points): the power enters only the torque row's limit (compared: k_s P / w, higher), the shell thickness only
+    the outer diameter's value (its slope 2 over the box: thicker, larger); together each point after the first carries
+    its proof (the slopes of every row, the torque's in the power spanning zero by the dependency of its interval
+    bound, 1 - T(x) / T_req(P), had carried none: eight-point region searches instead); `solve` alone proves them."""
+    quantities = {q.name: q for q in BALL.quantities}
+    power = BALL.values["power"] * np.geomspace(9.33, 18.7, 20)
+    shell = BALL.values["shell_thickness"] * np.geomspace(1, 1.5, 20)
+    result = Sweep(BALL, [Vary(quantities["power"], tuple(power.tolist())),
+                          Vary(quantities["shell_thickness"], tuple(shell.tolist()))], mode=reference_mode("ball"),
+                   zipped=True).run(progress=False)
+    records = result.solutions
+    assert [r["status"] for r in records] == ["infeasible"] * 20 and result.spent["solves"] == 1
+    assert all(f"(19 points, by the proof at power {power[0] / 1e3:.6g} kW, shell_thickness 30 mm; every limit the "
+               "sweep moves at least as tight at each, and each row it moves by its value rising along it for every "
+               "design within the bounds)" in r["diagnosis"] for r in records[1:])
+    problem = case_problem(BALL, reference_mode("ball"))
+    for k in (1, 19):
+        alone = problem.solve(BALL.with_values(power=float(power[k]), shell_thickness=float(shell[k])))
+        assert alone.status == "infeasible" and alone.diagnosis.startswith("proven infeasible")

@@ -85,7 +85,7 @@ from clutchopt.optimise.interval_proof import (FEW_BOXES, MAX_BOXES, SURE_BOXES,
                                                searches)
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
-from clutchopt.optimise.tightening import Slopes, slopes, tightening
+from clutchopt.optimise.tightening import ProofCarry
 from clutchopt.optimise.verdict import emptied, figures_at, figures_over, infeasible_at
 from clutchopt.optimise.verify import DESIGN_STATUSES, check_design
 from clutchopt.units import from_si
@@ -111,7 +111,7 @@ class SharedBox(NamedTuple):
     names: list[str]  # the quantities (the formulation's, in order)
     lower: np.ndarray  # the design box (SI), every point's
     upper: np.ndarray
-    kept: dict  # what the sweep's windows share, worked out once (``Regions._tightened``'s limits)
+    kept: dict  # what the sweep's windows share, worked out once (``Regions._carry``)
 
     def problem(self, j: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Point j's search problem, as ``interval_proof._search_problem`` builds it from its case."""
@@ -470,23 +470,26 @@ class Regions:
     def _tightened(self, j: int, k: int) -> int:
         """The end of the points from k on at which a proof of infeasibility at point j holds: the sweep has only
         tightened the limits of the constraints it moves since point j, each normalised by its limit or by a scale
-        it does not move (``tightening``: ``Tightening.keeps_proofs``), so no design meets at them what none met at
-        point j (within the proof's tolerance of each row's scale); else, where the sweep moves a row through its
-        value, the points up to LONGEST_RUN on at which each row it moves rises along the step for every design of the
-        box (``tightening.Slopes``: the cable beyond its edge over its torque); k where none. A batched sweep's (its
+        it does not move (``tightening.Tightening``), and each row it moves through its value (or a scale apart from
+        its limit) rises along the step for every design of the box (``tightening.Slopes``: the cable beyond its edge
+        over its torque; looked at up to LONGEST_RUN points on), the two together (``tightening.ProofCarry``: the
+        ball's power, a limit, with its friction coefficient, in its torque's value), so no design meets at them what
+        none met at point j (within the proof's tolerance of each row's scale); k where none. A batched sweep's (its
         points' values read from its arrays); the ball beyond its edge, 9.33x-18.7x its power: five region searches
         (1,393 boxes) -> none past the first point's proof."""
         if self._shared is None:
             return k
+        return self._carry.held_from(self._shared.lower, self._shared.upper, j, k, LONGEST_RUN)
+
+    @property
+    def _carry(self) -> ProofCarry:
+        """What carries a proof along this batched sweep (its limits at every point: once a sweep, whatever its
+        windows: ``SharedBox.kept``)."""
         shared, kept = self._shared, self._shared.kept
-        if "tightening" not in kept:  # (its limits and scales at every point: once a sweep, whatever its windows)
+        if "carry" not in kept:
             varied = [name for i, name in enumerate(shared.names) if _moves(shared.values[:, i], shared.values[0, i])]
-            t = tightening(self.posed, varied)
-            kept["tightening"] = (t, *t.limits(shared.values)) if t.keeps_proofs else (slopes(self.posed, varied),)
-        t, *limits = kept["tightening"]
-        if isinstance(t, Slopes):
-            return t.held_from(shared.values, shared.lower, shared.upper, j, k, LONGEST_RUN)
-        return t.held_from(*limits, j, k)
+            kept["carry"] = ProofCarry(self.posed, varied, shared.values)
+        return kept["carry"]
 
     def _tightened_text(self, j: int, start: int, end: int) -> str:
         """The proof of point j (``_without``'s verdict, the proof it rests on) in words, for the points ``start`` to
@@ -498,9 +501,7 @@ class Regions:
         at = ", ".join(f"{q.name} {_shown(values[j, i], q.unit)}{_unit(q.unit)}" for i, q in moved)
         proof = diagnosis.split(": ", 1)[1] if diagnosis.startswith("proven infeasible") and ": " in diagnosis \
             else diagnosis
-        t = self._shared.kept["tightening"][0]
-        how = ("each row the sweep moves rising along it for every design within the bounds" if isinstance(t, Slopes)
-               else "every limit the sweep moves at least as tight at each" if t.moves else "the sweep moves no limit")
+        how = self._carry.how
         count = f"{end - start} point{'s' if end - start > 1 else ''}"
         if not moved:  # (the proven point's values again)
             return f"proven infeasible ({count} at the values of a point proven before, by its proof): {proof}"

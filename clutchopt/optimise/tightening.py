@@ -49,7 +49,10 @@ CONTINUOUS = frozenset(getattr(ca, f"OP_{name}") for name in (
 class Tightening:
     """For a posed problem's formulation and the varied quantities (``varied``, names): :meth:`tightened` says
     whether the step between two points' case values (all quantities, SI, in the formulation's order) only
-    tightens the constraints the varied quantities enter."""
+    tightens the constraints the varied quantities enter. ``sloped``: the rows (of the normalised rows, flattened)
+    whose step a proof needs the slopes of (:class:`Slopes`): a varied quantity in the value, a design variable in
+    the limit or scale, or a scale the step moves apart from its limit; the others' limits are compared
+    (:meth:`held_from`)."""
 
     def __init__(self, posed, varied):
         f = posed.formulation
@@ -58,20 +61,26 @@ class Tightening:
         p = namespace({q.name: p_all[j] for j, q in enumerate(f.quantities)})
         moved = ca.vertcat(*(p_all[j] for j, q in enumerate(f.quantities) if q.name in set(varied)))
         design = ca.vertcat(*vars(x).values())
-        limits, scales, senses = [], [], []
-        self.known = moved.numel() > 0
-        self.keeps_proofs = self.known  # (each moved row's scale its limit, or not moved: a proof holds after)
+        limits, scales, senses, self.sloped, row = [], [], [], [], 0
+        self.varies = moved.numel() > 0
+        unknown = False  # (a row the step moves by what the design makes of it)
         for c in f.constraints(x, p):
             value, limit = ca.SX(c.value), ca.SX(c.limit)
             scale = limit if c.scale is None else ca.SX(c.scale)
+            rows, row = list(range(row, row + ca.SX(c.normalised()).numel())), row + ca.SX(c.normalised()).numel()
             if not any(ca.depends_on(e, moved) for e in (value, limit, scale)):
                 continue  # the step leaves it as it is
             if ca.depends_on(value, moved) or ca.depends_on(limit, design) or ca.depends_on(scale, design):
-                self.known = self.keeps_proofs = False  # the step moves it by what the design makes of it
-                break
-            self.keeps_proofs &= c.scale is None or not ca.depends_on(scale, moved)
+                self.sloped += rows  # the step moves it by what the design makes of it
+                unknown = True
+                continue
+            if c.scale is not None and ca.depends_on(scale, moved):
+                self.sloped += rows  # (its proof's tolerance moves apart from its limit: a proof needs its slope)
             limits.append(limit), scales.append(scale * ca.DM.ones(limit.shape))
             senses.append(np.full(limit.numel(), 1.0 if c.sense == ">=" else -1.0))
+        self.known = self.varies and not unknown
+        self.keeps_proofs = self.known and not self.sloped  # (each moved row's scale its limit, or not moved: a proof
+        # holds after a step its limits alone show tighter)
         self._senses = np.concatenate(senses) if senses else np.zeros(0)
         self.moves = bool(senses)  # (a step moves some limit: else the rows are the same at every point)
         self._limits = ca.Function("tightening", [p_all], [ca.vertcat(ca.SX(0, 1), *limits),
@@ -94,10 +103,10 @@ class Tightening:
 
     def held_from(self, limits: np.ndarray, scales: np.ndarray, j: int, k: int) -> int:
         """The first point from k on (in :meth:`limits`' columns) whose step from point j does not only tighten
-        (each moved limit not looser for its sense, each scale positive at both); the number of points where every
-        one does."""
+        the limits compared (each moved limit not looser for its sense, each scale positive at both; the rows
+        ``sloped`` are not among them); the number of points where every one does."""
         before, scale = limits[:, j:j + 1], scales[:, j:j + 1]
-        held = (self.known & np.all(scale > 0) & np.all(scales[:, k:] > 0, axis=0)
+        held = (np.all(scale > 0) & np.all(scales[:, k:] > 0, axis=0)
                 & np.all(self._senses[:, None] * (limits[:, k:] - before) >= 0, axis=0))
         return k + (int(np.argmin(held)) if not held.all() else held.size)
 
@@ -115,20 +124,21 @@ def tightening(posed, varied) -> Tightening:
 
 
 class Slopes:
-    """For a posed problem's formulation and the varied quantities (``varied``, names): :meth:`held_from` says up to
-    which point a proof of infeasibility at point j holds, where the step from j moves some row through its value (or
-    through a limit or scale a design variable enters): each normalised row ``g <= 0`` (the form a proof breaks,
-    ``Constraint.normalised``) rises along the step for every design of the box (the interval bounds of its slope in
-    each moved quantity, over the box and the hull of the two points' values, of that quantity's step's sign)."""
+    """For a posed problem's formulation, the varied quantities (``varied``, names) and the ``rows`` a step moves
+    through their value (``Tightening.sloped``: indices of the normalised rows, flattened): :meth:`held_from` says
+    up to which point those rows keep a proof of infeasibility at point j: each normalised row ``g <= 0`` (the form a
+    proof breaks, ``Constraint.normalised``) rises along the step for every design of the box (the interval bounds of
+    its slope in each moved quantity, over the box and the hull of the two points' values, of that quantity's step's
+    sign)."""
 
-    def __init__(self, posed, varied):
+    def __init__(self, posed, varied, rows):
         f = posed.formulation
         x = namespace({v.name: ca.SX.sym(v.name) for v in f.variables})
         p_all = ca.SX.sym("p", len(f.quantities))
         p = namespace({q.name: p_all[j] for j, q in enumerate(f.quantities)})
         self._moved = np.array([j for j, q in enumerate(f.quantities) if q.name in set(varied)], dtype=int)
         design = ca.vertcat(*vars(x).values())
-        rows = ca.vertcat(ca.SX(0, 1), *(ca.SX(c.normalised()) for c in f.constraints(x, p)))
+        rows = ca.vertcat(ca.SX(0, 1), *(ca.SX(c.normalised()) for c in f.constraints(x, p)))[list(rows)]
         function = ca.Function("rows", [design, p_all], [rows])
         jumps = {function.instruction_id(k) for k in range(function.n_instructions())} - CONTINUOUS
         self._rows = rows.numel()
@@ -153,6 +163,36 @@ class Slopes:
         return k + (int(np.argmin(held)) if not held.all() else held.size)
 
 
-def slopes(posed, varied) -> Slopes:
-    """The :class:`Slopes` of a posed problem along the quantities ``varied``, built once."""
-    return posed.built("slopes", tuple(sorted(varied)), lambda _: Slopes(posed, varied))
+def slopes(posed, varied, rows) -> Slopes:
+    """The :class:`Slopes` of a posed problem's ``rows`` along the quantities ``varied``, built once."""
+    return posed.built("slopes", (tuple(sorted(varied)), tuple(rows)), lambda _: Slopes(posed, varied, rows))
+
+
+class ProofCarry:
+    """Along a sweep's points (``values``: a row of case values a point, SI, in the formulation's order; the
+    quantities ``varied``): up to which point a proof of infeasibility at point j holds (:meth:`held_from`), by the
+    limits :class:`Tightening` compares and, for the rows it cannot compare (``Tightening.sloped``), their slopes
+    (:class:`Slopes`), both worked out once a sweep."""
+
+    def __init__(self, posed, varied, values: np.ndarray):
+        self.tightening = tightening(posed, varied)
+        self._values, self._limits = values, self.tightening.limits(values)
+        self.slopes = slopes(posed, varied, self.tightening.sloped) if self.tightening.sloped else None
+
+    def held_from(self, lower: np.ndarray, upper: np.ndarray, j: int, k: int, count: int) -> int:
+        """The first point from k on at which point j's proof may not hold (the design box [``lower``, ``upper``],
+        SI; the slopes looked at ``count`` points ahead at most); k where the sweep varies nothing."""
+        if not self.tightening.varies:
+            return k
+        end = self.tightening.held_from(*self._limits, j, k)
+        return end if self.slopes is None or end == k else min(
+            end, self.slopes.held_from(self._values, lower, upper, j, k, count))
+
+    @property
+    def how(self) -> str:
+        """Why the proof holds, in words."""
+        rising = "rising along it for every design within the bounds"
+        moves = self.tightening.moves
+        return (f"every limit the sweep moves at least as tight at each, and each row it moves by its value {rising}"
+                if moves and self.slopes else "every limit the sweep moves at least as tight at each" if moves
+                else f"each row the sweep moves {rising}" if self.slopes else "the sweep moves no limit")
