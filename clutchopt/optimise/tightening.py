@@ -67,7 +67,8 @@ class Tightening:
         for c in f.constraints(x, p):
             value, limit = ca.SX(c.value), ca.SX(c.limit)
             scale = limit if c.scale is None else ca.SX(c.scale)
-            rows, row = list(range(row, row + ca.SX(c.normalised()).numel())), row + ca.SX(c.normalised()).numel()
+            count = ca.SX(c.normalised()).numel()
+            rows, row = list(range(row, row + count)), row + count
             if not any(ca.depends_on(e, moved) for e in (value, limit, scale)):
                 continue  # the step leaves it as it is
             if ca.depends_on(value, moved) or ca.depends_on(limit, design) or ca.depends_on(scale, design):
