@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from clutchopt.bench.reference import bench_cases
-from clutchopt.optimise.interval_proof import SURE_BOXES, _search_problem, boxes_evaluated, searches
+from clutchopt.optimise.interval_proof import (SURE_BOXES, _search_problem, boxes_evaluated, empty_design_space,
+                                               keep_search, searches)
 from clutchopt.optimise.problem import case_problem
 
 LEVER = next(c for c in bench_cases() if c.coupling == "lever")
@@ -58,3 +59,23 @@ def test_a_not_found_verdict_searches_its_design_space_once():
     assert solution.status == "not_found" and "not proven infeasible" in solution.diagnosis
     assert boxes_evaluated(problem.posed) - before == 3802
     assert np.isfinite(solution.objective)
+
+
+def test_a_kept_search_its_budget_ended_serves_that_budget_and_is_resumed_without_one():
+    """A sweep's point searched within SURE_BOXES before any solve (``Regions._early``, ``_first``) and kept for its
+    verdict (the lever in design mode at 3.6x its inertia: paused at 2,113 boxes): the verdict's search within the
+    same budget is that search (nothing evaluated), one within another budget searches afresh, and the search without
+    a budget resumes it: 3,802 boxes, the 1,689 after the pause evaluated (review 22b: searched twice before)."""
+    case = LEVER.with_values(inertia=3.6 * LEVER.values["inertia"])
+    posed = case_problem(case, "design").posed
+    problem = _search_problem(posed, case)
+    early, = searches(posed, [problem], [SURE_BOXES], pause=True)
+    keep_search(posed, problem, early)
+    counted = boxes_evaluated(posed)
+    assert empty_design_space(posed, case, SURE_BOXES) is early and boxes_evaluated(posed) == counted
+    other = empty_design_space(posed, case, 300)
+    assert other.paused.budget == 300 and boxes_evaluated(posed) == counted + other.boxes
+    counted = boxes_evaluated(posed)
+    resumed = empty_design_space(posed, case)
+    assert (resumed.proven, resumed.boxes, early.boxes) == (False, 3802, 2113)
+    assert boxes_evaluated(posed) - counted == 3802 - 2113

@@ -108,7 +108,8 @@ CHAINED_POINT_WORK, CHAIN_CALL_WORK, SOLVE_WORK = 1, 8, 64  # the work of a chai
 # sweeps: chains of 256 points 3-9 ms, of one point 0.2-0.3 ms; a point solved alone 0.2-15 ms, most 2 ms), so that
 # WINDOW_WORK is about the quarter of a second that ended a window before (docs/tradeoffs.md, "Windows by work")
 BOX_WORK = 0.5  # the work of a box an interval search evaluates (10-20 us: the lever in design mode proves a point
-# in about 15,000 boxes, 150-290 ms; uncounted, a stretch of such points held its window for 26 s: review 20)
+# in about 15,000 boxes, 150-290 ms; uncounted, a stretch of such points held its window for 26 s: review 20; a
+# resumed search's boxes counted once, as evaluated: interval_proof.Emptiness.paused)
 EXCLUSION_SPAN = LONGEST_BATCH  # points ahead whose exclusion of an integer combination is evaluated at once (a batch's
 # points at least; fewer cost less where the integers change often, since each table is a mapped CasADi call)
 PADDING = 64  # a chain may be padded with this many columns that call no solver to save a call (a padded column

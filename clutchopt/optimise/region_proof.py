@@ -276,11 +276,19 @@ class Regions:
         if self.problem.start_up is not None:
             return None
         solution, own, problem = self._own_proof(self.point_case(k), design, SURE_BOXES, None, self._next_runs(k))
-        if solution is None and _holds(own, SURE_BOXES):
-            keep_search(self.posed, problem, own)
+        if solution is None:
+            self._kept_for_its_verdict(problem, own)
         if solution is not None:
             self.after(k, solution)
         return solution
+
+    def _kept_for_its_verdict(self, problem: tuple, own: Emptiness | None) -> None:
+        """A point's own search within SURE_BOXES that did not prove it, kept for its full verdict's search before
+        the retries (``verdict.shown``: the same search), where it ended by its outcome (a design met) or by that
+        budget (``Emptiness.paused``, which the verdict's search after the retries resumes: review 22b, the lever's
+        design grid searching 2,135-2,309 boxes twice at three points)."""
+        if _holds(own, SURE_BOXES) or own is not None and own.paused is not None:
+            keep_search(self.posed, problem, own)
 
     def _first(self, k: int, warm=None) -> Solution | None:
         """The sweep's first point (static, no warm start: nothing before it to go by) solved as ``Problem.solve``
@@ -291,8 +299,8 @@ class Regions:
         is not shown (the lever over its friction coefficient: 3-6 ms of the 10 its first point took; the runs after
         it searched in the same call: :meth:`_next_runs`); a design:
         that solve's, ``solve``'s. Else None: its full verdict from the start, the first solve's calls charged to it
-        (a sweep whose first point has no design and no proof, the wedge's geometry mode, pays that solve and
-        search again)."""
+        (a sweep whose first point has no design and no proof, the wedge's geometry mode, pays that solve again; its
+        search kept for it: :meth:`_kept_for_its_verdict`)."""
         if k != 0 or warm is not None or self.problem.start_up is not None:
             return None
         case = self.point_case(k)
@@ -300,8 +308,9 @@ class Regions:
         if first.status in DESIGN_STATUSES:
             self.after(k, first)
             return first
-        solution = self._own_proof(case, first.design, SURE_BOXES, first.solver, self._next_runs(k))[0]
+        solution, own, problem = self._own_proof(case, first.design, SURE_BOXES, first.solver, self._next_runs(k))
         if solution is None:
+            self._kept_for_its_verdict(problem, own)
             self._charge(first)
             return None
         self.after(k, solution)
