@@ -298,3 +298,50 @@ def test_limits_compared_and_values_bounded_together_carry_a_proof():
     for k in (1, 19):
         alone = problem.solve(BALL.with_values(power=float(power[k]), shell_thickness=float(shell[k])))
         assert alone.status == "infeasible" and alone.diagnosis.startswith("proven infeasible")
+
+
+def test_points_carried_past_one_left_to_its_own_verdict_show_the_proven_point_s_design():
+    """cases/wedge_paper.toml over its guide length ratio (1x three times, then 8x-12x) with its outer diameter's
+    limit at 200 mm, then 0.9, 1.05, 0.8 and 1.02 times the coupling's own diameter: point 3 proven by its own
+    search, 4-7 carry it; 8, 9 and 13 break the outer diameter whatever the design (their own verdicts, the start's
+    design); 10-12 and 14-23 carry point 3's proof on, each run its own words, and show point 3's design, not the
+    last of those points' (review 22c)."""
+    from clutchopt.cases import load_case
+    from tests.conftest import CASES
+
+    case = load_case(CASES / "wedge_paper.toml")
+    v, quantities = case.values, {q.name: q for q in case.quantities}
+    own = 2 * (v["radius_ratio"] * v["flank_inner_radius"] + v["shell_thickness"])
+    ratio = v["guide_length_ratio"] * np.concatenate([[1, 1, 1], np.geomspace(8, 12, 21)])
+    limit = np.full(24, v["outer_diameter_max"])
+    limit[8:10], limit[10:13], limit[13], limit[14:] = 0.9 * own, 1.05 * own, 0.8 * own, 1.02 * own
+    result = Sweep(case, [Vary(quantities["guide_length_ratio"], tuple(ratio.tolist())),
+                          Vary(quantities["outer_diameter_max"], tuple(limit.tolist()))], mode="paper",
+                   zipped=True).run(progress=False)
+    records = result.solutions
+    assert [r["status"] for r in records] == ["optimal"] * 3 + ["infeasible"] * 21
+    assert all(records[k]["diagnosis"].startswith("infeasible whatever the design: outer_diameter") for k in (8, 9, 13))
+    runs = {4: (4, 8), 10: (10, 13), 14: (14, 24)}
+    for a, (_, b) in runs.items():
+        assert all(f"({b - a} points, by the proof at" in records[k]["diagnosis"] for k in range(a, b))
+    shown = records[3]["design"]
+    assert all(records[k]["design"] == shown for a, b in runs.values() for k in range(a, b))
+    assert records[8]["design"] != shown
+
+
+def test_a_proof_is_carried_no_further_than_its_window_s_stretch(monkeypatch):
+    """The cable over 10x-20x its torque in 1,100 points, a window's stretch without designs cut at 1,024 points
+    (STRETCH_WINDOWS 1; 8,192 points as shipped): the points carried in the first window name as many points as show
+    the words, the first point of the next window is solved and proven afresh (review 22c: the last run's words had
+    counted it, 256 points shown by 255)."""
+    from collections import Counter
+
+    from clutchopt.optimise import batch
+
+    monkeypatch.setattr(batch, "STRETCH_WINDOWS", 1)
+    _, result = _swept(CABLE, "torque", np.geomspace(10, 20, 1100))
+    diagnoses = [r["diagnosis"] for r in result.solutions]
+    assert all(d.startswith("proven infeasible") for d in diagnoses) and result.spent["solves"] == 2
+    assert diagnoses[1024].startswith("proven infeasible: no design within the bounds meets")
+    for text, shown in Counter(d for d in diagnoses if "by the proof at" in d).items():
+        assert f"({shown} points, by the proof at" in text

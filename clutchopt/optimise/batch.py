@@ -348,15 +348,15 @@ class BatchSweep:
         while k < self.count:
             first, end, spent = k, min(k + window, self.count), self.work + WINDOW_WORK
             left = self._regions.uncharged() if self._regions is not None else (0, 0.0)  # (the window before's)
-            self._regions = Regions(self.problem, self.point_case, self.count, self._shared)  # infeasible regions
-            # proven at once, each window's afresh (what it takes from the windows before is ``carried``)
+            longest, most = min(first + STRETCH_WINDOWS * window, self.count), self.work + STRETCH_WINDOWS * WINDOW_WORK
+            self._regions = Regions(self.problem, self.point_case, self.count, self._shared, longest)  # infeasible
+            # regions proven at once, each window's afresh (what it takes from the windows before is ``carried``)
             self._regions.carry(left)
             self._optima, self._bounded = {}, {}  # (a window's afresh, as a sweep resumed at its first point has
             # them)
             blocks: list[Block] = []
             alone: dict[int, Solution] = {}
             failed = False  # the last point is without a design: the window waits for a feasible point after it
-            longest, most = min(first + STRETCH_WINDOWS * window, self.count), self.work + STRETCH_WINDOWS * WINDOW_WORK
             while k < end and self.work < spent or failed and k < longest and self.work < most:  # each turn
                 # solves at least one point; a stretch without a design runs on to a point with one (the region
                 # proofs searched ahead end there; the next window starts them afresh: ``carried``), within

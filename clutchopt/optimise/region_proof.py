@@ -127,9 +127,11 @@ class Regions:
     problem): :meth:`point` gives point k's solution, from a region proof that covers it (searching the run from k
     where the point before has no design), a search of its own or its solve."""
 
-    def __init__(self, problem, point_case, count: int, shared: SharedBox | None = None):
+    def __init__(self, problem, point_case, count: int, shared: SharedBox | None = None, until: int | None = None):
         self.problem, self.posed, self._case_of, self.count = problem, problem.posed, point_case, count
         self._shared = shared  # (a batched sweep's arrays: SharedBox)
+        self._until = count if until is None else until  # (a batched window's last point and the stretch it may run
+        # on to: the next window's regions begin afresh, so no proof is carried past it)
         self._cases: dict = {}  # point -> its case, from its run's search on until its verdict (built once)
         self._problems: dict[int, tuple] = {}  # point -> its search problem, built once (a point's run and the runs
         # ahead of it are searched again from later calls: the ball over its contact stress built 148 for 57 points)
@@ -152,6 +154,8 @@ class Regions:
         # seconds a point (its share of the call that searched it)
         self._origins: dict[int, int] = {}  # a point a proof is carried to -> the point proven by its own or a
         # region's search whose proof it is
+        self._carried_designs: dict[int, dict] = {}  # a point a proof is carried to -> the design it shows (that of
+        # the point it was carried from: not that of a point between left to its own verdict, review 22c)
 
     def point_case(self, k: int):
         """Point k's case, built once for its run's search, its float64 figures and its verdict."""
@@ -175,8 +179,9 @@ class Regions:
                   else (self._shared.lower, self._shared.upper))
         figures, conflicting = self._figures_at(k) or (None, None)
         known = figures is not None and conflicting is not None and bounds is not None
-        solution = _covered(self.problem, None if known else self.point_case(k), self._without.design, *proven,
+        solution = _covered(self.problem, None if known else self.point_case(k), self._shown(k), *proven,
                             figures=figures, conflicting=conflicting, bounds=bounds)
+        self._carried_designs.pop(k, None)
         if solution is not None:
             self.after(k, solution)
         return self.charged(solution)
@@ -461,16 +466,18 @@ class Regions:
         if k in self._proven or not (self._without.diagnosis or "").startswith("proven"):
             return False
         origin = self._origins.get(k - 1, k - 1)
-        end = min([self._tightened(origin, k), k + LONGEST_RUN, *(j for j in self._proven if j > k)])
+        end = min([self._tightened(origin, k), k + LONGEST_RUN, self._until, *(j for j in self._proven if j > k)])
         if end <= k:
             return False
-        figured = self._figured(list(range(k, end)), self._without.design)  # (kept for their verdicts)
+        design = self._without.design
+        figured = self._figured(list(range(k, end)), design)  # (kept for their verdicts)
         apart = [_apart(self.posed, {c.name for c in figured[j][0][0] if not c.feasible}, lambda: figured[j][1])
                  for j in range(k, end)]
         for a, b in _runs(apart, k):
             text = self._tightened_text(origin, a, b)
             self._proven.update((j, (text, 0.0)) for j in range(a, b))
             self._origins.update((j, origin) for j in range(a, b))
+            self._carried_designs.update((j, design) for j in range(a, b))
         self._proven.update((k + i, ("", 0.0)) for i, left in enumerate(apart) if left)  # (its own verdict follows:
         # _covered declines it)
         self._to = max(self._to, end)
@@ -696,7 +703,7 @@ class Regions:
         design (the ball beyond its edge: its 99 covered points in one evaluation, not four)."""
         if self.posed.start_up is not None:  # (its own drive proofs come first: ``_covered``)
             return None
-        design = self._without.design
+        design = self._shown(k)
         if k not in self._figures or self._figured_design != design:
             ahead = (j for (a, b), (_, outcome, _) in self._ahead.items() if outcome is not None and outcome.proven
                      for j in range(a, b))
@@ -704,6 +711,11 @@ class Regions:
             # to the sweep's end: its points figured a run's length at a time, not past a window's end for nothing)
             self._figured(points, design)
         return self._figures.pop(k)
+
+    def _shown(self, k: int) -> dict[str, float]:
+        """The design proven point k shows: that of the point its proof was carried from, else that of the last point
+        without a design (a region's points: its least relaxation)."""
+        return self._carried_designs.get(k, self._without.design)
 
     def _figured(self, points: list[int], design: dict[str, float]) -> dict[int, tuple]:
         """The float64 figures of ``design`` at ``points`` and whether two limits of one quantity leave no room
