@@ -292,7 +292,7 @@ def test_limits_compared_and_values_bounded_together_carry_a_proof():
     records = result.solutions
     assert [r["status"] for r in records] == ["infeasible"] * 20 and result.spent["solves"] == 1
     assert all(f"(19 points, by the proof at power {power[0] / 1e3:.6g} kW, shell_thickness 30 mm; every limit the "
-               "sweep moves at least as tight at each, and each row it moves by its value rising along it for every "
+               "sweep moves at least as tight at each, and each other row it moves rising along it for every "
                "design within the bounds)" in r["diagnosis"] for r in records[1:])
     problem = case_problem(BALL, reference_mode("ball"))
     for k in (1, 19):

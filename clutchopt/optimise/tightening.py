@@ -194,6 +194,6 @@ class ProofCarry:
         """Why the proof holds, in words."""
         rising = "rising along it for every design within the bounds"
         moves = self.tightening.moves
-        return (f"every limit the sweep moves at least as tight at each, and each row it moves by its value {rising}"
+        return (f"every limit the sweep moves at least as tight at each, and each other row it moves {rising}"
                 if moves and self.slopes else "every limit the sweep moves at least as tight at each" if moves
                 else f"each row the sweep moves {rising}" if self.slopes else "the sweep moves no limit")
