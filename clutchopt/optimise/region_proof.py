@@ -490,10 +490,9 @@ class Regions:
         its limit) rises along the step for every design of the box (``tightening.Slopes``: the cable beyond its edge
         over its torque; looked at up to LONGEST_RUN points on), the two together (``tightening.ProofCarry``: the
         ball's power, in its torque's limit, with its shell thickness, in its outer diameter's value), so no design
-        meets at them what
-        none met at point j (within the proof's tolerance of each row's scale); k where none. A batched sweep's (its
-        points' values read from its arrays); the ball beyond its edge, 9.33x-18.7x its power: five region searches
-        (1,393 boxes) -> none past the first point's proof."""
+        meets at them what none met at point j (within the proof's tolerance of each row's scale); k where none. A
+        batched sweep's (its points' values read from its arrays); the ball beyond its edge, 9.33x-18.7x its power:
+        five region searches (1,393 boxes) -> none past the first point's proof."""
         if self._shared is None:
             return k
         return self._carry.held_from(self._shared.lower, self._shared.upper, j, k, LONGEST_RUN)
