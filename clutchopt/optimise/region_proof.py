@@ -171,8 +171,8 @@ class Regions:
         if self._without_at == k - 1 and not _given(self._without) and not self._carried(k) and k >= self._to:
             self._search_from(k)
         proven = self._proven.pop(k, None)
-        if proven is None or self._without is None:
-            return None
+        if proven is None or self._without is None or not proven[0]:  # (a point left to its own verdict among
+            return None  # those a proof was carried to: _carried)
         problem = self._problems.get(k)  # (its search problem: its design box, the bounds its verdict shows; a
         # batched sweep's box, every point's, where none was built: a point a proof is carried to)
         bounds = (problem[1:3] if problem is not None else None if self._shared is None
