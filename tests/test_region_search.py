@@ -629,8 +629,8 @@ def test_a_point_s_verdict_counts_its_interval_searches_seconds_so_none_is_negat
     searched = []
     original = verdict._Searched.__call__
 
-    def counted(self, budget=None, resume=None):  # (the verdict's searches ran: the share is taken from what they
-        searched.append(budget)  # took)
+    def counted(self, budget=None, resume=None):  # (the verdict's searches ran: the share is taken from what
+        searched.append(budget)  # they took)
         return original(self, budget, resume)
 
     monkeypatch.setattr(verdict._Searched, "__call__", counted)
