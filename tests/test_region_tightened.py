@@ -345,3 +345,45 @@ def test_a_proof_is_carried_no_further_than_its_window_s_stretch(monkeypatch):
     assert diagnoses[1024].startswith("proven infeasible: no design within the bounds meets")
     for text, shown in Counter(d for d in diagnoses if "by the proof at" in d).items():
         assert f"({shown} points, by the proof at" in text
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.floats(-2, 2), st.floats(-2, 2), st.floats(-3, 3), st.floats(0.1, 3), st.floats(0.1, 3),
+       st.floats(0.1, 3), st.floats(0.1, 3), st.floats(0.1, 3), st.floats(0.1, 3))
+def test_where_a_value_s_slope_and_its_limit_carry_a_proof_every_design_broken_stays_broken(
+        a, b, c, lower, width, p_j, p_k, l_j, l_k):
+    """A row x^a p^b + c x p >= l (its scale its limit l, a quantity of its own) over x in [lower, lower + width],
+    p and l stepped together: wherever the step holds (the value's slope and the limit compared: Tightening.valued),
+    every design sampled from the box whose row was broken by more than the tolerance at the first point is broken
+    so at the second (the row g = 1 - v / l: review 22's ball, its power in the limit, its friction in the value)."""
+    upper = lower + width
+    posed = _posed(lambda x, p: 0.0)  # (its quantities a and b: the row built below)
+    posed.formulation.constraints = lambda x, p: [at_least("row", x.x**a * p.a**b + c * x.x * p.a, p.b, equation="")]
+    points = np.array([[p_j, l_j], [p_k, l_k]])
+    if ProofCarry(posed, ["a", "b"], points).held_from(np.array([lower]), np.array([upper]), 0, 1, 2) < 2:
+        return
+    xs = np.linspace(lower, upper, 201)
+    broken = [1 - (xs**a * p**b + c * xs * p) / limit for p, limit in ((p_j, l_j), (p_k, l_k))]
+    assert np.all(broken[1][broken[0] > 1e-6] > 1e-6)
+
+
+def test_one_row_with_its_limit_and_its_value_moved_carries_a_proof():
+    """The ball beyond its edge (9.33x-18.7x its power) with its friction coefficient lowered to 0.7x, both at each
+    step (zipped, 20 points): both move the torque row, T(x, f) >= k_s P / w, the power its limit, the friction its
+    value (the balls' friction torque: its slope in f positive over the box); the limit compared, higher, and the
+    value's slope (T falls as f does) carry the first point's proof to the other 19 (its normalised row's slope in P,
+    T(x) / T_req^2 dT_req/dP, had spanned zero by the dependency of the quotient's interval bound: region searches);
+    `solve` alone proves them."""
+    quantities = {q.name: q for q in BALL.quantities}
+    power = BALL.values["power"] * np.geomspace(9.33, 18.7, 20)
+    friction = BALL.values["friction_coefficient"] * np.geomspace(1, 0.7, 20)
+    result = Sweep(BALL, [Vary(quantities["power"], tuple(power.tolist())),
+                          Vary(quantities["friction_coefficient"], tuple(friction.tolist()))],
+                   mode=reference_mode("ball"), zipped=True).run(progress=False)
+    records = result.solutions
+    assert [r["status"] for r in records] == ["infeasible"] * 20 and result.spent["solves"] == 1
+    assert all("(19 points, by the proof at power" in r["diagnosis"] for r in records[1:])
+    problem = case_problem(BALL, reference_mode("ball"))
+    for k in (1, 19):
+        alone = problem.solve(BALL.with_values(power=float(power[k]), friction_coefficient=float(friction[k])))
+        assert alone.status == "infeasible" and alone.diagnosis.startswith("proven infeasible")

@@ -50,9 +50,10 @@ class Tightening:
     """For a posed problem's formulation and the varied quantities (``varied``, names): :meth:`tightened` says
     whether the step between two points' case values (all quantities, SI, in the formulation's order) only
     tightens the constraints the varied quantities enter. ``sloped``: the rows (of the normalised rows, flattened)
-    whose step a proof needs the slopes of (:class:`Slopes`): a varied quantity in the value, a design variable in
-    the limit or scale, or a scale the step moves apart from its limit; the others' limits are compared
-    (:meth:`held_from`)."""
+    whose step a proof needs the slopes of (:class:`Slopes`): a design variable in the limit or scale, or a scale the
+    step moves apart from its limit; ``valued``: the rows a varied quantity moves through their value, their limit
+    and scale free of the design and the scale their limit or not moved, whose value's slope a proof needs, their
+    limits compared; the others' limits are compared (:meth:`held_from`)."""
 
     def __init__(self, posed, varied):
         f = posed.formulation
@@ -61,9 +62,9 @@ class Tightening:
         p = namespace({q.name: p_all[j] for j, q in enumerate(f.quantities)})
         moved = ca.vertcat(*(p_all[j] for j, q in enumerate(f.quantities) if q.name in set(varied)))
         design = ca.vertcat(*vars(x).values())
-        limits, scales, senses, self.sloped, row = [], [], [], [], 0
+        limits, scales, senses, self.sloped, self.valued, row = [], [], [], [], [], 0
         self.varies = moved.numel() > 0
-        unknown = False  # (a row the step moves by what the design makes of it)
+        unknown, self.moves = False, False  # (a row the step moves by what the design makes of it; a limit it moves)
         for c in f.constraints(x, p):
             value, limit = ca.SX(c.value), ca.SX(c.limit)
             scale = limit if c.scale is None else ca.SX(c.scale)
@@ -71,19 +72,23 @@ class Tightening:
             rows, row = list(range(row, row + count)), row + count
             if not any(ca.depends_on(e, moved) for e in (value, limit, scale)):
                 continue  # the step leaves it as it is
+            apart = c.scale is not None and ca.depends_on(scale, moved)  # (its proof's tolerance moves apart from its
+            # limit: a proof needs its slope)
             if ca.depends_on(value, moved) or ca.depends_on(limit, design) or ca.depends_on(scale, design):
-                self.sloped += rows  # the step moves it by what the design makes of it
-                unknown = True
-                continue
-            if c.scale is not None and ca.depends_on(scale, moved):
-                self.sloped += rows  # (its proof's tolerance moves apart from its limit: a proof needs its slope)
+                unknown = True  # the step moves it by what the design makes of it
+                if apart or ca.depends_on(limit, design) or ca.depends_on(scale, design):
+                    self.sloped += rows
+                    continue
+                self.valued += rows  # (its value by its slope, its limit compared)
+            elif apart:
+                self.sloped += rows
+            self.moves |= ca.depends_on(limit, moved) or ca.depends_on(scale, moved)
             limits.append(limit), scales.append(scale * ca.DM.ones(limit.shape))
             senses.append(np.full(limit.numel(), 1.0 if c.sense == ">=" else -1.0))
         self.known = self.varies and not unknown
         self.keeps_proofs = self.known and not self.sloped  # (each moved row's scale its limit, or not moved: a proof
         # holds after a step its limits alone show tighter)
         self._senses = np.concatenate(senses) if senses else np.zeros(0)
-        self.moves = bool(senses)  # (a step moves some limit: else the rows are the same at every point)
         self._limits = ca.Function("tightening", [p_all], [ca.vertcat(ca.SX(0, 1), *limits),
                                                            ca.vertcat(ca.SX(0, 1), *scales)])
 
@@ -125,21 +130,29 @@ def tightening(posed, varied) -> Tightening:
 
 
 class Slopes:
-    """For a posed problem's formulation, the varied quantities (``varied``, names) and the ``rows`` a step moves
-    through their value (``Tightening.sloped``: indices of the normalised rows, flattened): :meth:`held_from` says
-    up to which point those rows keep a proof of infeasibility at point j: each normalised row ``g <= 0`` (the form a
-    proof breaks, ``Constraint.normalised``) rises along the step for every design of the box (the interval bounds of
-    its slope in each moved quantity, over the box and the hull of the two points' values, of that quantity's step's
-    sign)."""
+    """For a posed problem's formulation, the varied quantities (``varied``, names), the ``rows`` whose normalised
+    form a proof needs the slope of (``Tightening.sloped``) and the rows whose value it needs the slope of
+    (``Tightening.valued``; indices of the normalised rows, flattened): :meth:`held_from` says up to which point they
+    keep a proof of infeasibility at point j: each normalised row ``g <= 0`` (the form a proof breaks,
+    ``Constraint.normalised``) of ``rows`` rises along the step for every design of the box, each value of ``valued``
+    does not fall (``<=``) or rise (``>=``): the interval bounds of its slope in each moved quantity, over the box and
+    the hull of the two points' values, of that quantity's step's sign. With a limit no lower (``<=``: higher for
+    ``>=``) and positive where it is its row's scale, or a scale not moved (``Tightening.held_from``), such a row
+    breaks at k by as much as at j at least (``>=``, scaled by its limit: g = 1 - v / l, at k 1 or more where v <= 0,
+    else v_k / l_k <= v_j / l_j), without the dependency of a quotient's interval bound (the ball's torque row over
+    its power and friction coefficient: 1 - T(x, f) / T_req(P), whose slope in P spans zero)."""
 
-    def __init__(self, posed, varied, rows):
+    def __init__(self, posed, varied, rows, valued=()):
         f = posed.formulation
         x = namespace({v.name: ca.SX.sym(v.name) for v in f.variables})
         p_all = ca.SX.sym("p", len(f.quantities))
         p = namespace({q.name: p_all[j] for j, q in enumerate(f.quantities)})
         self._moved = np.array([j for j, q in enumerate(f.quantities) if q.name in set(varied)], dtype=int)
         design = ca.vertcat(*vars(x).values())
-        rows = ca.vertcat(ca.SX(0, 1), *(ca.SX(c.normalised()) for c in f.constraints(x, p)))[list(rows)]
+        constraints = f.constraints(x, p)
+        values = ca.vertcat(ca.SX(0, 1), *(_rising_value(c) for c in constraints))
+        rows = ca.vertcat(ca.SX(0, 1), *(ca.SX(c.normalised()) for c in constraints))[list(rows)]
+        rows = ca.vertcat(rows, values[list(valued)])
         function = ca.Function("rows", [design, p_all], [rows])
         jumps = {function.instruction_id(k) for k in range(function.n_instructions())} - CONTINUOUS
         self._rows = rows.numel()
@@ -164,21 +177,32 @@ class Slopes:
         return k + (int(np.argmin(held)) if not held.all() else held.size)
 
 
-def slopes(posed, varied, rows) -> Slopes:
-    """The :class:`Slopes` of a posed problem's ``rows`` along the quantities ``varied``, built once."""
-    return posed.built("slopes", (tuple(sorted(varied)), tuple(rows)), lambda _: Slopes(posed, varied, rows))
+def _rising_value(c) -> ca.SX:
+    """A constraint's value, a row each (a scalar value beside a vector limit repeated), signed to rise where the row
+    breaks more: as it is for ``<=``, negated for ``>=``."""
+    value, count = ca.SX(c.value), ca.SX(c.normalised()).numel()
+    value = value if value.numel() == count else ca.repmat(value, count, 1)
+    return value if c.sense == "<=" else -value
+
+
+def slopes(posed, varied, rows, valued=()) -> Slopes:
+    """The :class:`Slopes` of a posed problem's ``rows`` and ``valued`` rows along the quantities ``varied``, built
+    once."""
+    return posed.built("slopes", (tuple(sorted(varied)), tuple(rows), tuple(valued)),
+                       lambda _: Slopes(posed, varied, rows, valued))
 
 
 class ProofCarry:
     """Along a sweep's points (``values``: a row of case values a point, SI, in the formulation's order; the
     quantities ``varied``): up to which point a proof of infeasibility at point j holds (:meth:`held_from`), by the
-    limits :class:`Tightening` compares and, for the rows it cannot compare (``Tightening.sloped``), their slopes
-    (:class:`Slopes`), both worked out once a sweep."""
+    limits :class:`Tightening` compares and the slopes of the rows and values it cannot compare
+    (``Tightening.sloped``, ``valued``: :class:`Slopes`), both worked out once a sweep."""
 
     def __init__(self, posed, varied, values: np.ndarray):
         self.tightening = tightening(posed, varied)
         self._values, self._limits = values, self.tightening.limits(values)
-        self.slopes = slopes(posed, varied, self.tightening.sloped) if self.tightening.sloped else None
+        t = self.tightening
+        self.slopes = slopes(posed, varied, t.sloped, t.valued) if t.sloped or t.valued else None
 
     def held_from(self, lower: np.ndarray, upper: np.ndarray, j: int, k: int, count: int) -> int:
         """The first point from k on at which point j's proof may not hold (the design box [``lower``, ``upper``],
