@@ -1,5 +1,5 @@
 """A proof of infeasibility carried along a sweep that only tightens the limits it moves (Regions._tightened,
-Tightening.keeps_proofs), or whose every moved row rises along the step for every design of the box (Slopes): each
+Tightening), or whose every moved row rises along the step for every design of the box (Slopes): each
 point after the proven one gets the verdict `solve` alone gives it, without a search; nothing is carried where the
 step may lower a row for some design, or moves a row's scale apart from its limit."""
 
@@ -91,15 +91,15 @@ def test_a_proof_is_carried_only_where_each_moved_row_is_scaled_by_its_limit_or_
     (x > a_j + tol s_j over the box) stays ruled out at every tighter a_k; scaled by 1000 (2 - a), a scale the step
     moves apart from its limit, it need not: with tol 0.01, x = 11.05 breaks x <= 1 by 10.05 / 1000 (ruled out) but
     x <= 0.99 by 10.06 / 1010, within the tolerance (not ruled out): no proof is carried there."""
-    assert _tightening(None).keeps_proofs and _tightening(lambda p: p.b).keeps_proofs
-    assert _tightening(None, sense=at_least).keeps_proofs
+    assert all(t.known and not t.sloped for t in (_tightening(None), _tightening(lambda p: p.b),
+                                                  _tightening(None, sense=at_least)))
     moved = _tightening(lambda p: 1000 * (2 - p.a))
-    assert moved.known and not moved.keeps_proofs
+    assert moved.known and moved.sloped == [0]  # (its limits compared, its slope a proof's need)
     x, tol, (a_j, s_j), (a_k, s_k) = 11.05, 0.01, (1.0, 1000.0), (0.99, 1010.0)
     assert (x - a_j) / s_j > tol and (x - a_k) / s_k <= tol and moved.tightened(np.array([a_j, 0.0]),
                                                                                  np.array([a_k, 0.0]))
     unmoved = _tightening(None, varied=("b",))  # (b enters no row: the step moves nothing, what was ruled out stays)
-    assert unmoved.keeps_proofs and unmoved.tightened(np.array([1.0, 0.0]), np.array([1.0, 5.0]))
+    assert unmoved.known and not unmoved.sloped and unmoved.tightened(np.array([1.0, 0.0]), np.array([1.0, 5.0]))
     t = _tightening(None)
     limits, scales = t.limits(np.array([[1.0, 0.0], [0.9, 0.0], [1.1, 0.0], [0.8, 0.0]]))
     assert (t.held_from(limits, scales, 0, 1), t.held_from(limits, scales, 1, 2), t.held_from(limits, scales, 2, 3)
@@ -162,8 +162,8 @@ def test_the_cable_beyond_its_edge_carries_a_proof_through_rows_its_torque_enter
     assert [r["status"] for r in records] == ["infeasible"] * 40 and result.spent["solves"] == 1
     body = records[0]["diagnosis"].split(": ", 1)[1]
     carried = (f"proven infeasible for torque {values[1]:.6g}-{values[-1]:.6g} N*m (39 points, by the proof at torque "
-               f"{values[0]:.6g} N*m; each row the sweep moves rising along it for every design within the bounds): "
-               f"{body}")
+               f"{values[0]:.6g} N*m; each value the sweep moves going no further within its limit for every design "
+               f"within the bounds): {body}")
     assert [r["diagnosis"] for r in records[1:]] == [carried] * 39
     assert all(r["solver"]["solves"] == 0 for r in records[1:]) and searched == [1]
     problem = case_problem(CABLE, reference_mode("cable"))
@@ -292,8 +292,8 @@ def test_limits_compared_and_values_bounded_together_carry_a_proof():
     records = result.solutions
     assert [r["status"] for r in records] == ["infeasible"] * 20 and result.spent["solves"] == 1
     assert all(f"(19 points, by the proof at power {power[0] / 1e3:.6g} kW, shell_thickness 30 mm; every limit the "
-               "sweep moves at least as tight at each, and each other row it moves rising along it for every "
-               "design within the bounds)" in r["diagnosis"] for r in records[1:])
+               "sweep moves at least as tight at each, and each value it moves going no further within its limit "
+               "for every design within the bounds)" in r["diagnosis"] for r in records[1:])
     problem = case_problem(BALL, reference_mode("ball"))
     for k in (1, 19):
         alone = problem.solve(BALL.with_values(power=float(power[k]), shell_thickness=float(shell[k])))

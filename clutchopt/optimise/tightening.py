@@ -16,7 +16,7 @@ scale that a design variable enters, the step's effect depends on the design and
 A proof of infeasibility (``clutchopt.optimise.interval_proof``: over the whole design box some row breaks by more
 than a tolerance of its scale, g = (value - limit) / scale > tol for ``<=``) holds after such a step too where each
 moved row's scale is its limit (scale = limit > 0: value > (1 + tol) limit_j >= (1 + tol) limit_k) or is not moved
-(:attr:`Tightening.keeps_proofs`): what a proof rules out at point j stays ruled out at every point the sweep has
+(a row :attr:`Tightening.sloped` is not): what a proof rules out at point j stays ruled out at every point the sweep has
 only tightened since (``clutchopt.optimise.region_proof``).
 
 Where a varied quantity enters a row's value (the cable's torque: the stress in its cables, clamp screws and fingers,
@@ -86,8 +86,6 @@ class Tightening:
             limits.append(limit), scales.append(scale * ca.DM.ones(limit.shape))
             senses.append(np.full(limit.numel(), 1.0 if c.sense == ">=" else -1.0))
         self.known = self.varies and not unknown
-        self.keeps_proofs = self.known and not self.sloped  # (each moved row's scale its limit, or not moved: a proof
-        # holds after a step its limits alone show tighter)
         self._senses = np.concatenate(senses) if senses else np.zeros(0)
         self._limits = ca.Function("tightening", [p_all], [ca.vertcat(ca.SX(0, 1), *limits),
                                                            ca.vertcat(ca.SX(0, 1), *scales)])
@@ -215,9 +213,11 @@ class ProofCarry:
 
     @property
     def how(self) -> str:
-        """Why the proof holds, in words."""
-        rising = "rising along it for every design within the bounds"
-        moves = self.tightening.moves
-        return (f"every limit the sweep moves at least as tight at each, and each other row it moves {rising}"
-                if moves and self.slopes else "every limit the sweep moves at least as tight at each" if moves
-                else f"each row the sweep moves {rising}" if self.slopes else "the sweep moves no limit")
+        """Why the proof holds, in words: the limits compared, the values and the rows bounded by their slopes
+        (review 22d: a split row's value is bounded, not its row)."""
+        t, every = self.tightening, "for every design within the bounds"
+        parts = (["every limit {} at least as tight at each"] if t.moves else []) + (
+            [f"each value {{}} going no further within its limit {every}"] if t.valued else []) + (
+            [f"each {'other ' if t.moves or t.valued else ''}row {{}} rising along it {every}"] if t.sloped else [])
+        return ", and ".join(part.format("the sweep moves" if i == 0 else "it moves")
+                             for i, part in enumerate(parts)) or "the sweep moves no limit"
