@@ -21,10 +21,10 @@ only tightened since (``clutchopt.optimise.region_proof``).
 
 Where a varied quantity enters a row's value (the cable's torque: the stress in its cables, clamp screws and fingers,
 eqs. (18), (20), (22); a friction coefficient, a density, a ratio of the geometry), or its limit or scale holds a
-design variable, a proof still holds where every row the step moves can
-only break more along it for every design of the box (:class:`Slopes`): the interval bound of each normalised row's
-slope in each moved quantity, over the design box and the hull of the two points' values, has the sign of that
-quantity's step. By the mean value theorem G(x, p_k) - G(x, p_j) = dG/dp(x, xi) (p_k - p_j) for some xi between
+design variable, a proof still holds where every row the step moves can only break more along it for every design of
+the box (:class:`Slopes`): the interval bound of each normalised row's slope in each moved quantity, over the design
+box and the hull of the two points' values, has the sign of that quantity's step (a row whose limit and scale hold
+no design variable: its value's slope, its limit compared, ``Tightening.valued``). By the mean value theorem G(x, p_k) - G(x, p_j) = dG/dp(x, xi) (p_k - p_j) for some xi between
 them, so G(x, p_k) >= G(x, p_j) > tol wherever the proof broke a row at j; the rows are continuous (no jump a slope
 misses: a row with an operation outside :data:`CONTINUOUS`, a comparison, a floor, a sign or atan2, concludes
 nothing).
@@ -159,8 +159,9 @@ class Slopes:
 
     def held_from(self, values: np.ndarray, lower: np.ndarray, upper: np.ndarray, j: int, k: int, count: int) -> int:
         """The first point from k on (``values``: a row of case values a point, SI, in the formulation's order) whose
-        step from point j may lower some row for a design of the box [``lower``, ``upper``] (SI), looking ``count``
-        points ahead at most; k where no slope is bounded (a row that jumps, none moved)."""
+        step from point j may lower some row, or move some value away from breaking its row, for a design of the box
+        [``lower``, ``upper``] (SI), looking ``count`` points ahead at most; k where no slope is bounded (a row that
+        jumps, none moved)."""
         ahead = values[k:k + count]
         if self._slopes is None or not len(ahead):
             return k
