@@ -23,11 +23,11 @@ Where a varied quantity enters a row's value (the cable's torque: the stress in 
 eqs. (18), (20), (22); a friction coefficient, a density, a ratio of the geometry), or its limit or scale holds a
 design variable, a proof still holds where every row the step moves can only break more along it for every design of
 the box (:class:`Slopes`): the interval bound of each normalised row's slope in each moved quantity, over the design
-box and the hull of the two points' values, has the sign of that quantity's step (a row whose limit and scale hold
-no design variable: its value's slope, its limit compared, ``Tightening.valued``). By the mean value theorem G(x, p_k) - G(x, p_j) = dG/dp(x, xi) (p_k - p_j) for some xi between
-them, so G(x, p_k) >= G(x, p_j) > tol wherever the proof broke a row at j; the rows are continuous (no jump a slope
-misses: a row with an operation outside :data:`CONTINUOUS`, a comparison, a floor, a sign or atan2, concludes
-nothing).
+box and the hull of the two points' values, has the sign of that quantity's step (a row whose limit and scale hold no
+design variable: its value's slope, its limit compared, ``Tightening.valued``). By the mean value theorem G(x, p_k) -
+G(x, p_j) = dG/dp(x, xi) (p_k - p_j) for some xi between them, so G(x, p_k) >= G(x, p_j) > tol wherever the proof
+broke a row at j; the rows are continuous (no jump a slope misses: a row with an operation outside :data:`CONTINUOUS`,
+a comparison, a floor, a sign or atan2, concludes nothing).
 """
 
 from __future__ import annotations
