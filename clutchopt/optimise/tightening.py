@@ -60,16 +60,17 @@ class Tightening:
         x = namespace({v.name: ca.SX.sym(v.name) for v in f.variables})
         p_all = ca.SX.sym("p", len(f.quantities))
         p = namespace({q.name: p_all[j] for j, q in enumerate(f.quantities)})
-        moved = ca.vertcat(*(p_all[j] for j, q in enumerate(f.quantities) if q.name in set(varied)))
+        self.moved = np.array([j for j, q in enumerate(f.quantities) if q.name in set(varied)], dtype=int)
+        moved = p_all[self.moved.tolist()]
         design = ca.vertcat(*vars(x).values())
-        limits, scales, senses, self.sloped, self.valued, row = [], [], [], [], [], 0
+        limits, scales, senses, self.sloped, self.valued, normalised, rising, row = [], [], [], [], [], [], [], 0
         self.varies = moved.numel() > 0
         unknown, self.moves = False, False  # (a row the step moves by what the design makes of it; a limit it moves)
         for c in f.constraints(x, p):
             value, limit = ca.SX(c.value), ca.SX(c.limit)
             scale = limit if c.scale is None else ca.SX(c.scale)
-            count = ca.SX(c.normalised()).numel()
-            rows, row = list(range(row, row + count)), row + count
+            normalised.append(ca.SX(c.normalised())), rising.append(_rising_value(value, c.sense, normalised[-1]))
+            rows, row = list(range(row, row + normalised[-1].numel())), row + normalised[-1].numel()
             if not any(ca.depends_on(e, moved) for e in (value, limit, scale)):
                 continue  # the step leaves it as it is
             apart = c.scale is not None and ca.depends_on(scale, moved)  # (its proof's tolerance moves apart from its
@@ -86,6 +87,8 @@ class Tightening:
             limits.append(limit), scales.append(scale * ca.DM.ones(limit.shape))
             senses.append(np.full(limit.numel(), 1.0 if c.sense == ">=" else -1.0))
         self.known = self.varies and not unknown
+        self.symbols = (design, p_all)  # (the rows' and values' symbols: :class:`Slopes`)
+        self.normalised, self.rising = ca.vertcat(ca.SX(0, 1), *normalised), ca.vertcat(ca.SX(0, 1), *rising)
         self._senses = np.concatenate(senses) if senses else np.zeros(0)
         self._limits = ca.Function("tightening", [p_all], [ca.vertcat(ca.SX(0, 1), *limits),
                                                            ca.vertcat(ca.SX(0, 1), *scales)])
@@ -128,11 +131,11 @@ def tightening(posed, varied) -> Tightening:
 
 
 class Slopes:
-    """For a posed problem's formulation, the varied quantities (``varied``, names), the ``rows`` whose normalised
-    form a proof needs the slope of (``Tightening.sloped``) and the rows whose value it needs the slope of
-    (``Tightening.valued``; indices of the normalised rows, flattened): :meth:`held_from` says up to which point they
-    keep a proof of infeasibility at point j: each normalised row ``g <= 0`` (the form a proof breaks,
-    ``Constraint.normalised``) of ``rows`` rises along the step for every design of the box, each value of ``valued``
+    """For a :class:`Tightening` ``t`` (a formulation and its varied quantities), the rows whose normalised form a
+    proof needs the slope of (``t.sloped``) and the rows whose value it needs the slope of (``t.valued``; indices of
+    the normalised rows, flattened): :meth:`held_from` says up to which point they keep a proof of infeasibility at
+    point j: each normalised row ``g <= 0`` (the form a proof breaks, ``Constraint.normalised``) of ``t.sloped``
+    rises along the step for every design of the box, each value of ``t.valued``
     does not fall (``<=``) or rise (``>=``): the interval bounds of its slope in each moved quantity, over the box and
     the hull of the two points' values, of that quantity's step's sign. With a limit no lower (``<=``: higher for
     ``>=``) and positive where it is its row's scale, or a scale not moved (``Tightening.held_from``), such a row
@@ -140,17 +143,10 @@ class Slopes:
     else v_k / l_k <= v_j / l_j), without the dependency of a quotient's interval bound (the ball's torque row over
     its power and friction coefficient: 1 - T(x, f) / T_req(P), whose slope in P spans zero)."""
 
-    def __init__(self, posed, varied, rows, valued=()):
-        f = posed.formulation
-        x = namespace({v.name: ca.SX.sym(v.name) for v in f.variables})
-        p_all = ca.SX.sym("p", len(f.quantities))
-        p = namespace({q.name: p_all[j] for j, q in enumerate(f.quantities)})
-        self._moved = np.array([j for j, q in enumerate(f.quantities) if q.name in set(varied)], dtype=int)
-        design = ca.vertcat(*vars(x).values())
-        constraints = f.constraints(x, p)
-        values = ca.vertcat(ca.SX(0, 1), *(_rising_value(c) for c in constraints))
-        rows = ca.vertcat(ca.SX(0, 1), *(ca.SX(c.normalised()) for c in constraints))[list(rows)]
-        rows = ca.vertcat(rows, values[list(valued)])
+    def __init__(self, t: Tightening):
+        design, p_all = t.symbols
+        self._moved = t.moved
+        rows = ca.vertcat(ca.SX(0, 1), *(t.normalised[i] for i in t.sloped), *(t.rising[i] for i in t.valued))
         function = ca.Function("rows", [design, p_all], [rows])
         jumps = {function.instruction_id(k) for k in range(function.n_instructions())} - CONTINUOUS
         self._rows = rows.numel()
@@ -176,19 +172,17 @@ class Slopes:
         return k + (int(np.argmin(held)) if not held.all() else held.size)
 
 
-def _rising_value(c) -> ca.SX:
-    """A constraint's value, a row each (a scalar value beside a vector limit repeated), signed to rise where the row
-    breaks more: as it is for ``<=``, negated for ``>=``."""
-    value, count = ca.SX(c.value), ca.SX(c.normalised()).numel()
-    value = value if value.numel() == count else ca.repmat(value, count, 1)
-    return value if c.sense == "<=" else -value
+def _rising_value(value: ca.SX, sense: str, normalised: ca.SX) -> ca.SX:
+    """A constraint's value, a row each of its ``normalised`` rows (a scalar value beside a vector limit repeated),
+    signed to rise where the row breaks more: as it is for ``<=``, negated for ``>=``."""
+    value = value if value.numel() == normalised.numel() else ca.repmat(value, normalised.numel(), 1)
+    return value if sense == "<=" else -value
 
 
-def slopes(posed, varied, rows, valued=()) -> Slopes:
-    """The :class:`Slopes` of a posed problem's ``rows`` and ``valued`` rows along the quantities ``varied``, built
-    once."""
-    return posed.built("slopes", (tuple(sorted(varied)), tuple(rows), tuple(valued)),
-                       lambda _: Slopes(posed, varied, rows, valued))
+def slopes(posed, varied) -> Slopes:
+    """The :class:`Slopes` of a posed problem's rows :func:`tightening` cannot compare along the quantities
+    ``varied``, built once."""
+    return posed.built("slopes", tuple(sorted(varied)), lambda _: Slopes(tightening(posed, varied)))
 
 
 class ProofCarry:
@@ -201,7 +195,7 @@ class ProofCarry:
         self.tightening = tightening(posed, varied)
         self._values, self._limits = values, self.tightening.limits(values)
         t = self.tightening
-        self.slopes = slopes(posed, varied, t.sloped, t.valued) if t.sloped or t.valued else None
+        self.slopes = slopes(posed, varied) if t.sloped or t.valued else None
 
     def held_from(self, lower: np.ndarray, upper: np.ndarray, j: int, k: int, count: int) -> int:
         """The first point from k on at which point j's proof may not hold (the design box [``lower``, ``upper``],
