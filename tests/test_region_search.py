@@ -28,7 +28,7 @@ def _proofs_not_inherited(monkeypatch):
     """The regions' own searches, as a sweep meets them where its steps do not only tighten the limits (a speed, a
     friction coefficient, a sweep out of its region): a proof not carried along a tightening sweep
     (``Regions._tightened``: tests/test_region_tightened.py), which these sweeps of a duty upwards are."""
-    monkeypatch.setattr(region_proof.Regions, "_tightened", lambda self, j, k: k)
+    monkeypatch.setattr(region_proof.Regions, "_tightened", lambda self, j, k, count=0: k)
 
 
 def test_a_box_is_bounded_alike_whatever_boxes_are_evaluated_with_it():

@@ -45,7 +45,7 @@ def _searched_not_carried(patch) -> None:
     """Each stretch's points searched (their regions' searches, the boxes they take), as in a sweep whose steps do not
     only tighten the limits (a speed, a friction coefficient): this sweep's stretches upwards in power would carry
     their first point's proof unsearched (``Regions._tightened``: tests/test_region_tightened.py)."""
-    patch.setattr(Regions, "_tightened", lambda self, j, k: k)
+    patch.setattr(Regions, "_tightened", lambda self, j, k, count=0: k)
 
 
 def _sweep() -> Sweep:

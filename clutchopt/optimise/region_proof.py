@@ -80,7 +80,7 @@ from typing import Callable, NamedTuple
 import numpy as np
 
 from clutchopt.model import namespace
-from clutchopt.optimise.interval_proof import (FEW_BOXES, MAX_BOXES, SURE_BOXES, Emptiness, _search_problem,
+from clutchopt.optimise.interval_proof import (FEW_BOXES, MAX_BOXES, SURE_BOXES, Emptiness, _same, _search_problem,
                                                keep_search, last_boxes, proofs_recorded, search_along, searched_along,
                                                searches)
 from clutchopt.optimise.proofs import start_up_proofs
@@ -154,8 +154,9 @@ class Regions:
         # seconds a point (its share of the call that searched it)
         self._origins: dict[int, int] = {}  # a point a proof is carried to -> the point proven by its own or a
         # region's search whose proof it is
-        self._carried_designs: dict[int, dict] = {}  # a point a proof is carried to -> the design it shows (that of
-        # the point it was carried from: not that of a point between left to its own verdict, review 22c)
+        self._origin_designs: dict[int, dict] = {}  # such a proof's point -> the design the points it is carried to
+        # show (that of the point it was first carried from: not that of a point between left to its own verdict,
+        # review 22c)
 
     def point_case(self, k: int):
         """Point k's case, built once for its run's search, its float64 figures and its verdict."""
@@ -181,7 +182,6 @@ class Regions:
         known = figures is not None and conflicting is not None and bounds is not None
         solution = _covered(self.problem, None if known else self.point_case(k), self._shown(k), *proven,
                             figures=figures, conflicting=conflicting, bounds=bounds)
-        self._carried_designs.pop(k, None)
         if solution is not None:
             self.after(k, solution)
         return self.charged(solution)
@@ -383,7 +383,7 @@ class Regions:
         whose search is kept already is not searched again."""
         end = min(k + 1 + self._length, self.count)
         if not self.posed.integer or self.problem.start_up is not None or end - k <= 2 \
-                or self._tightened(k, k + 1) > k + 1:  # (proven, point k's proof holds at the next: _tightened)
+                or self._tightened(k, k + 1, 1) > k + 1:  # (proven, point k's proof holds at the next: _tightened)
             return []
         return [run for run in ((k + 1, end), *self._runs_ahead(k + 1, end)) if run not in self._ahead]
 
@@ -469,7 +469,7 @@ class Regions:
         end = min([self._tightened(origin, k), k + LONGEST_RUN, self._until, *(j for j in self._proven if j > k)])
         if end <= k:
             return False
-        design = self._without.design
+        design = self._origin_designs.setdefault(origin, self._without.design)
         figured = self._figured(list(range(k, end)), design)  # (kept for their verdicts)
         apart = [_apart(self.posed, {c.name for c in figured[j][0][0] if not c.feasible}, lambda: figured[j][1])
                  for j in range(k, end)]
@@ -477,25 +477,24 @@ class Regions:
             text = self._tightened_text(origin, a, b)
             self._proven.update((j, (text, 0.0)) for j in range(a, b))
             self._origins.update((j, origin) for j in range(a, b))
-            self._carried_designs.update((j, design) for j in range(a, b))
         self._proven.update((k + i, ("", 0.0)) for i, left in enumerate(apart) if left)  # (its own verdict follows:
         # _covered declines it)
         self._to = max(self._to, end)
         return True
 
-    def _tightened(self, j: int, k: int) -> int:
+    def _tightened(self, j: int, k: int, count: int = LONGEST_RUN) -> int:
         """The end of the points from k on at which a proof of infeasibility at point j holds: the sweep has only
         tightened the limits of the constraints it moves since point j, each normalised by its limit or by a scale
         it does not move (``tightening.Tightening``), and each row it moves through its value (or a scale apart from
         its limit) rises along the step for every design of the box (``tightening.Slopes``: the cable beyond its edge
-        over its torque; looked at up to LONGEST_RUN points on), the two together (``tightening.ProofCarry``: the
+        over its torque; looked at up to ``count`` points on), the two together (``tightening.ProofCarry``: the
         ball's power, in its torque's limit, with its shell thickness, in its outer diameter's value), so no design
         meets at them what none met at point j (within the proof's tolerance of each row's scale); k where none. A
         batched sweep's (its points' values read from its arrays); the ball beyond its edge, 9.33x-18.7x its power:
         five region searches (1,393 boxes) -> none past the first point's proof."""
         if self._shared is None:
             return k
-        return self._carry.held_from(self._shared.lower, self._shared.upper, j, k, LONGEST_RUN)
+        return self._carry.held_from(self._shared.lower, self._shared.upper, j, k, count)
 
     @property
     def _carry(self) -> ProofCarry:
@@ -715,7 +714,8 @@ class Regions:
     def _shown(self, k: int) -> dict[str, float]:
         """The design proven point k shows: that of the point its proof was carried from, else that of the last point
         without a design (a region's points: its least relaxation)."""
-        return self._carried_designs.get(k, self._without.design)
+        origin = self._origins.get(k)
+        return self._without.design if origin is None else self._origin_designs[origin]
 
     def _figured(self, points: list[int], design: dict[str, float]) -> dict[int, tuple]:
         """The float64 figures of ``design`` at ``points`` and whether two limits of one quantity leave no room
@@ -821,8 +821,9 @@ def _runs(apart: list[bool], first: int) -> list[tuple[int, int]]:
 
 
 def _moves(values: np.ndarray, first: float) -> bool:
-    """A quantity's ``values`` over points are not all ``first`` (NaN, a value the case leaves out, the same as NaN)."""
-    return bool(np.any((values != first) & ~(np.isnan(values) & np.isnan(first))))
+    """A quantity's ``values`` over points are not all ``first`` (NaN, a value the case leaves out, the same as NaN:
+    ``interval_proof._same``)."""
+    return not np.all(_same(values, first))
 
 
 def _span(values: np.ndarray, unit: str) -> str:
