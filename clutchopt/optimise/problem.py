@@ -27,8 +27,8 @@ from clutchopt.model import Formulation
 from clutchopt.optimise.attempts import attempt, tallied, warm_multipliers
 from clutchopt.optimise.diagnosis import diagnose, whatever_the_design
 from clutchopt.optimise.failed_starts import FailedStarts
-from clutchopt.optimise.integers import (RuledOut, descend, fixed_box, fixing, from_the_start, meets_every_row,
-                                         nearest_integers, relaxation_seed, within)
+from clutchopt.optimise.integers import (FROM_THE_RELAXATION, RuledOut, descend, fixed_box, fixing, from_the_start,
+                                         meets_every_row, nearest_integers, relaxation_seed, within)
 from clutchopt.optimise.link_bound import MARGIN as LINK_MARGIN, least_stress, refuted
 from clutchopt.optimise.modifier import VARIANT, first_order, modifiers_in, with_modifiers
 from clutchopt.optimise.own_shift import (CARRIED, OWN_LOOP, ForeignShifts, carried_by, climbing,
@@ -728,7 +728,8 @@ class Problem:
         # the search then runs in full)
         ranks = unranked_above < math.inf and not meets_every_row(posed, data.x0, data.p)
         near = fixing(posed, data, runs, search, ruled, unranked) if ranks else attempt_at
-        kept = nearest_integers(posed, data.box, integer, relaxed, search, near)
+        kept = nearest_integers(posed, data.box, integer, relaxed, search, near, FROM_THE_RELAXATION if
+                                self.start_up is None and self.options.warm_sqp else ("ipopt",))
         if self.start_up is not None and start is not None and not warm_ok:  # a first solve, from the sizing
             kept = from_the_start(posed, data, integer, kept, search, attempt_at)
         else:
