@@ -728,8 +728,10 @@ class Problem:
         # the search then runs in full)
         ranks = unranked_above < math.inf and not meets_every_row(posed, data.x0, data.p)
         near = fixing(posed, data, runs, search, ruled, unranked) if ranks else attempt_at
-        kept = nearest_integers(posed, data.box, integer, relaxed, search, near, FROM_THE_RELAXATION if
-                                self.start_up is None and self.options.warm_sqp else ("ipopt",))
+        by_sqp = posed.start_up is None and posed.options.polish and posed.options.warm_sqp  # (not a start-up's
+        # NLPs, nor its papers' sizing, which is not polished either: IPOPT from cold, their starts as they were)
+        kept = nearest_integers(posed, data.box, integer, relaxed, search, near,
+                                FROM_THE_RELAXATION if by_sqp else ("ipopt",))
         if self.start_up is not None and start is not None and not warm_ok:  # a first solve, from the sizing
             kept = from_the_start(posed, data, integer, kept, search, attempt_at)
         else:
