@@ -1,5 +1,6 @@
 """A static cold solve's rounded integers solved by SQP from the relaxation's optimum (integers.FROM_THE_RELAXATION),
-IPOPT from cold only where that fails: the same design as IPOPT from cold alone, in fewer iterations."""
+IPOPT from cold only where that fails: at the case files, the same design as IPOPT from cold alone, in fewer iterations
+(where a fixed-integer NLP has two local optima each path may end at either: docs/tradeoffs.md)."""
 
 import math
 
@@ -23,7 +24,7 @@ def _ipopt_alone(monkeypatch):
 
 
 @pytest.mark.parametrize("case_file, mode, integer", FREE_INTEGERS)
-def test_rounded_integers_by_sqp_land_on_ipopt_s_optimum(monkeypatch, case_file, mode, integer):
+def test_rounded_integers_by_sqp_land_on_ipopt_s_optimum_at_each_coupling_s_case(monkeypatch, case_file, mode, integer):
     case = load_case(CASES / case_file)
     problem = case_problem(case, mode)
     assert integer in problem.posed.names and integer in [problem.posed.names[i] for i in

@@ -70,7 +70,8 @@ def nearest_integers(posed: Posed, box: Box, integer, relaxed: dict, search, att
     """The integer point of a relaxation's optimum ``relaxed``: :func:`descend` from its rounded integers, bounded
     by its objective; should they fail, the best of its floor and ceiling, then one further (``attempt`` as for
     :func:`descend`). None: no integer point near the relaxation is feasible. ``first``: the methods for the rounded
-    integers, from the relaxation's primal-dual point (FROM_THE_RELAXATION: a static solve's)."""
+    integers, from the relaxation's primal-dual point (FROM_THE_RELAXATION: a static solve's; its seed then a copy of
+    ``relaxed`` with the same ``x``)."""
     nearest = np.clip(np.round(relaxed["x"][integer] * box.scale[integer]), box.lower[integer], box.upper[integer])
     seed = relaxed if first == ("ipopt",) else {**relaxed, **dict(zip(("lam_x", "lam_g"), attempts.warm_multipliers(
         posed, relaxed["lam_x"], relaxed["lam_g"])))}  # (qrqp reads IPOPT's 1e-11 as an active bound)
@@ -90,9 +91,10 @@ def nearest_integers(posed: Posed, box: Box, integer, relaxed: dict, search, att
 FROM_THE_RELAXATION = ("sqp", "ipopt")  # a static solve's rounded integers: SQP from the relaxation's optimum (the
 # integers moved by at most a half, the rest near the vertex), KKT-checked, IPOPT from cold where it fails. Cold solves
 # of every static formulation with integers at 1,166 points of its duty, speed and friction coefficient (0.5x-2x and
-# 1x-10x): 4.0-6.1 ms against 5.4-7.4 (IPOPT's 11-16 iterations from cold, then its polish by SQP), the statuses the
-# same, the objectives within 2.5e-10; the ball's groove conformity, which the objective does not price where the
-# contact stress does not bind, elsewhere in its optimal range at 4 points (as a sweep's SQP leaves it: batch.py)
+# 1x-10x): 3.8-6.1 ms against 5.4-7.4 (IPOPT's 11-16 iterations from cold, then its polish by SQP), the statuses the
+# same, the objectives within 2.5e-10 (review 23: 13,612 random points, the same). Where the fixed-integer NLP has two
+# local optima, each path may end at either (docs/tradeoffs.md: with widened bounds one point 4.1e-4 heavier, three
+# lighter by 9e-4 to 8.5e-3)
 
 
 def from_the_start(posed: Posed, data: ScaledData, integer, kept: dict | None, search, attempt: Attempt,

@@ -718,7 +718,7 @@ class Problem:
 
         def unranked(seed: dict) -> str | None:  # the first kept run's neighbours (the relaxation's own, and those
             # of a design the descent went on to, solved as ever)
-            if seed is relaxed:
+            if seed is relaxed or seed["x"] is relaxed["x"]:  # (or nearest_integers' copy of it)
                 return None
             if not first:
                 first.append((seed, *self._unranked(case, seed, runs, data, search, unranked_above, heavier)))
@@ -729,7 +729,8 @@ class Problem:
         ranks = unranked_above < math.inf and not meets_every_row(posed, data.x0, data.p)
         near = fixing(posed, data, runs, search, ruled, unranked) if ranks else attempt_at
         by_sqp = posed.start_up is None and posed.options.polish and posed.options.warm_sqp  # (not a start-up's
-        # NLPs, nor its papers' sizing, which is not polished either: IPOPT from cold, their starts as they were)
+        # NLPs, nor its papers' sizing, which is not polished either: IPOPT from cold, their starts as they were; nor
+        # where SQP is switched off, SolverOptions.warm_sqp)
         kept = nearest_integers(posed, data.box, integer, relaxed, search, near,
                                 FROM_THE_RELAXATION if by_sqp else ("ipopt",))
         if self.start_up is not None and start is not None and not warm_ok:  # a first solve, from the sizing

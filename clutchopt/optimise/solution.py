@@ -19,7 +19,8 @@ from clutchopt.units import si_unit
 class SolverOptions:
     tol: float = SOLVER_TOL
     max_iter: int = 3000
-    warm_sqp: bool = True  # warm re-solves try SQP before warm IPOPT (False: warm IPOPT alone, for comparison)
+    warm_sqp: bool = True  # warm re-solves try SQP before warm IPOPT, and a static solve's rounded integers SQP from
+    # its relaxation before IPOPT (integers.FROM_THE_RELAXATION) (False: IPOPT alone, for comparison)
     polish: bool = True  # a static solve's IPOPT optimum polished onto its exact KKT point (optimise/polish.py;
     #                      False: as IPOPT ends, for the papers' sizing a start-up solve starts from)
 
