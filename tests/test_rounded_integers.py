@@ -11,9 +11,10 @@ from clutchopt.cases import load_case
 from clutchopt.optimise.problem import case_problem
 from conftest import CASES
 
-FREE_INTEGERS = [("wedge_centrifuge.toml", "geometry", "weight_count"), ("lever_centrifuge.toml", "design",
-                                                                         "weight_count"),
-                 ("cable_pump.toml", "paper", "cable_count"), ("ball_crusher.toml", "design", "ball_rows")]
+FREE_INTEGERS = [("wedge_centrifuge.toml", "geometry", "weight_count"),
+                 ("lever_centrifuge.toml", "design", "weight_count"),
+                 ("cable_pump.toml", "paper", "cable_count"),
+                 ("ball_crusher.toml", "design", "ball_rows")]
 
 
 def _ipopt_alone(monkeypatch):
@@ -24,12 +25,12 @@ def _ipopt_alone(monkeypatch):
 
 
 @pytest.mark.parametrize("case_file, mode, integer", FREE_INTEGERS)
-def test_rounded_integers_by_sqp_land_on_ipopt_s_optimum_at_each_coupling_s_case(monkeypatch, case_file, mode, integer):
+def test_rounded_integers_by_sqp_land_on_ipopt_s_optimum_at_each_coupling_s_case(monkeypatch, case_file, mode,
+                                                                                 integer):
     case = load_case(CASES / case_file)
     problem = case_problem(case, mode)
-    assert integer in problem.posed.names and integer in [problem.posed.names[i] for i in
-                                                          problem.posed.free_integers(
-                                                              problem.posed.scaled_data(case, None))]
+    free = problem.posed.free_integers(problem.posed.scaled_data(case, None))
+    assert integer in [problem.posed.names[i] for i in free]  # (a search to make: the integer free)
     by_sqp = problem.solve(case)
     _ipopt_alone(monkeypatch)
     by_ipopt = problem.solve(case)
