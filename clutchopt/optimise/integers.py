@@ -91,10 +91,10 @@ def nearest_integers(posed: Posed, box: Box, integer, relaxed: dict, search, att
 FROM_THE_RELAXATION = ("sqp", "ipopt")  # a static solve's rounded integers: SQP from the relaxation's optimum (the
 # integers moved by at most a half, the rest near the vertex), KKT-checked, IPOPT from cold where it fails. Cold solves
 # of every static formulation with integers at 1,166 points of its duty, speed and friction coefficient (0.5x-2x and
-# 1x-10x): 3.8-6.1 ms against 5.4-7.4 (IPOPT's 11-16 iterations from cold, then its polish by SQP), the statuses the
-# same, the objectives within 2.5e-10 (review 23: 13,612 random points, the same). Where the fixed-integer NLP has two
-# local optima, each path may end at either (docs/tradeoffs.md: with widened bounds one point 4.1e-4 heavier, three
-# lighter by 9e-4 to 8.5e-3)
+# 1x-10x): 3.8-6.0 ms against 5.3-7.4 (IPOPT from cold, then its polish by SQP), the statuses the same, the objectives
+# within 2.5e-10 (review 23: 13,612 random points, the same statuses and integers, at most 2.4e-10 heavier). Where the
+# fixed-integer NLP has two local optima, each path may end at either (docs/tradeoffs.md: with bounds set at random one
+# point 4.1e-4 heavier, three lighter by 9e-4 to 8.5e-3)
 
 
 def from_the_start(posed: Posed, data: ScaledData, integer, kept: dict | None, search, attempt: Attempt,
