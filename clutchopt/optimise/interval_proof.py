@@ -546,7 +546,9 @@ def empty_design_space(posed, case, budget: int | None = None, resume: Emptiness
     kept = posed.built("interval_kept", None, lambda _: {})
     kept = kept.get(_key(problem)) if budget is not None else kept.pop(_key(problem), None)
     if kept is not None and kept.paused is not None and kept.paused.budget != budget:  # (another budget ended it)
-        resume, kept = kept if budget is None else resume, None
+        if budget is None:  # (resumed by the search without one)
+            resume = kept
+        kept = None
     along = _along(posed)
     if kept:
         emptiness = kept

@@ -75,9 +75,10 @@ class Tightening:
                 continue  # the step leaves it as it is
             apart = c.scale is not None and ca.depends_on(scale, moved)  # (its proof's tolerance moves apart from its
             # limit: a proof needs its slope)
-            if ca.depends_on(value, moved) or ca.depends_on(limit, design) or ca.depends_on(scale, design):
+            designed = ca.depends_on(limit, design) or ca.depends_on(scale, design)  # (a limit the design makes)
+            if ca.depends_on(value, moved) or designed:
                 unknown = True  # the step moves it by what the design makes of it
-                if apart or ca.depends_on(limit, design) or ca.depends_on(scale, design):
+                if apart or designed:
                     self.sloped += rows
                     continue
                 self.valued += rows  # (its value by its slope, its limit compared)
