@@ -16,7 +16,7 @@ from typing import Iterator
 
 import numpy as np
 
-from clutchopt.optimise.chain import first_order_optimal
+from clutchopt.optimise.chain import first_order_optimal, no_descent_curvature
 from clutchopt.optimise.posed import Posed, ScaledData
 from clutchopt.optimise.verify import check_design, evaluate_objective
 
@@ -96,13 +96,17 @@ def attempt(posed: Posed, data: ScaledData, lbx, ubx, x0, seed: dict | None, met
     """Solve by each method in turn until one ends in a verified optimum; every run goes into ``runs``.
     Methods: ``ipopt`` (cold), ``warm`` (IPOPT from ``seed``'s primal-dual point), ``sqp`` (CasADi's
     sequential QP from ``seed``: for a re-solve next to a known optimum, a few Newton steps), whose KKT point is
-    checked apart from it."""
+    checked apart from it. A static problem's warm end (``sqp``, ``warm``, ``warm_near``) is verified only where no
+    direction its holding rows and bounds leave free curves down (``chain.no_descent_curvature``): a warm start may
+    lead to a saddle; a cold IPOPT's end is ``solve``'s own, as it comes."""
     for i, method in enumerate(methods):
         solved = run(posed, data, lbx, ubx, x0, seed if method != "ipopt" else None, method, ubg)
         runs.append(solved)
+        point = [solved[k] for k in ("x", "p", "lam_x", "lam_g", "lbx", "ubx")]
         if method == "sqp" and solved["ok"]:
-            solved["ok"] = bool(first_order_optimal(posed, *(solved[k] for k in ("x", "p", "lam_x", "lam_g", "lbx",
-                                                                                  "ubx")))[0])
+            solved["ok"] = bool(first_order_optimal(posed, *point)[0])
+        if method != "ipopt" and posed.start_up is None and solved["ok"]:  # (a warm start's end may be a saddle)
+            solved["ok"] = bool(no_descent_curvature(posed, *point)[0])
         if i == len(methods) - 1 or solved["ok"] and solved["feasible"]:
             break
     return solved

@@ -11,7 +11,9 @@ tests of ``Problem.solve`` run afterwards on all points of the batch at once:
 - in one mapped CasADi evaluation (``chain.chain_verdict``): the KKT conditions of every point, apart from the
   solver; the integer test of the warm integer search (a point whose fixed integers' bound multipliers point to a
   neighbouring integer the search would solve ends the chain); without integers, whether the optimum has moved
-  more than tenfold from the variable scales (the solve is repeated with new scales there);
+  more than tenfold from the variable scales (the solve is repeated with new scales there); and in another
+  (``chain.curvature``, compiled where the NLP's functions are) that no direction the rows and bounds holding a point
+  leave free curves down (a chained SQP had kept a maximum along one: the point fails its test);
 - a batch stops short of the point where its integers break a constraint of fixed variables alone that they enter
   (the search excludes them there without a solve), found ahead of the batch by a mapped CasADi evaluation (the
   exclusion tables); where one neighbouring combination is left there (the cable count, one cable more, as its
@@ -82,7 +84,7 @@ from clutchopt.optimise.attempts import warm_multipliers
 from clutchopt.optimise.batch_carried import Carried
 from clutchopt.optimise.batch_pace import BatchPace, until_active
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
-from clutchopt.optimise.chain import chain_verdict, chained_sqp
+from clutchopt.optimise.chain import chain_verdict, chained_sqp, curvature, curved_up
 from clutchopt.optimise.feasibility import LOCALLY_INFEASIBLE, Least, infeasible, least
 from clutchopt.optimise.integers import (EXCLUDED, descend, downhill, excluded_entry, nearest_integers,
                                          relaxation_seed, search_entry)
@@ -626,11 +628,13 @@ class BatchSweep:
         began = time.perf_counter()
         kkt, moves = self.posed.mapped(self._verdict, length)(x, p, lam_x, lam_g, lbx, ubx, f, self.lower,
                                                                  self.upper)
+        held = self.posed.mapped(curvature(self.posed, batched=True), length)(x, p, lam_x, lam_g, lbx, ubx)[0]
         self.check_s += time.perf_counter() - began
         arrays = dict(x=x, lam_x=lam_x, lam_g=lam_g, dx=dx, dlam_x=dlam_x, dlam_g=dlam_g, f=f, p=p)
         if count < length:
             arrays = {key: value[:, :count] for key, value in arrays.items()}
-        return _Chain(np.arange(k, k + count), kkt[0, :count] > 0.5, moves[0, :count] > 0.5, **arrays,
+        return _Chain(np.arange(k, k + count), (kkt[0, :count] > 0.5) & curved_up(held[:, :count]),
+                      moves[0, :count] > 0.5, **arrays,
                       **{key: (bound[:, :count] if bound.ndim == 2 else bound[:, None].repeat(count, axis=1))
                          for key, bound in (("lbx", lbx), ("ubx", ubx))},
                       time=np.full((1, count), seconds / count), solves=np.ones((1, count)))

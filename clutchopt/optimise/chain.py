@@ -1,7 +1,8 @@
 """Verdicts on primal-dual points of a posed problem, apart from the solver, and SQP re-solves chained for sweeps.
 
 The KKT verdict checks what a solver reports (CasADi's SQP can stop at the start when handed a previous point's
-multipliers). A chained SQP re-solves a batch of sweep points in one CasADi call, and the chain verdict tests them
+multipliers); the curvature's, that a warm re-solve's KKT point is no saddle or maximum along a direction its holding
+rows leave free (a Newton-type re-solve converges to the stationary point nearest its start). A chained SQP re-solves a batch of sweep points in one CasADi call, and the chain verdict tests them
 all at once: their KKT conditions and whether ``Problem.solve``'s warm integer search (or its re-scaling) would go on
 from them. Every function here is built once per posed problem (``Posed.built``) and called on NumPy arrays.
 """
@@ -14,6 +15,7 @@ import itertools
 import casadi as ca
 import numpy as np
 
+from clutchopt.optimise.compiled import compiled_function, is_compiled
 from clutchopt.optimise.in_place import InPlace
 from clutchopt.optimise.posed import Posed, off_scale_entries
 from clutchopt.optimise.verify import FEASIBILITY_TOL
@@ -42,6 +44,57 @@ def kkt_of(nlp: dict, n_ineq: int, tol: float, name: str) -> ca.Function:
              ca.logic_not(wrong_bound), g <= FEASIBILITY_TOL]
     failures = sum(ca.sum1(1 - condition) for condition in holds)  # a comparison with NaN fails
     return ca.Function(name, [x, nlp["p"], lam_x, lam_g, lbx, ubx], [failures == 0])
+
+
+CURVATURE_PENALTY = 1e6  # on the rows and bounds that hold a point, against the scaled Lagrangian's curvature (of order
+# 1e-2-1e2): a direction they leave free keeps its curvature in :func:`curvature`'s matrix, every other is lifted
+CURVATURE_TOL = 1e-6  # the least eigenvalue of that matrix a minimum may show (the penalty's coupling to a flat
+# direction, an objective that does not price a variable, leaves about -1e-10 there)
+
+
+def curvature(posed: Posed, batched: bool = False) -> ca.Function:
+    """(x, p, lam_x, lam_g, lbx, ubx) -> the matrix H + CURVATURE_PENALTY * sum a a^T, column by column (n * n rows):
+    H the Hessian in x of the Lagrangian f + lam_g . g, a the gradient of each row and bound that holds the point (a
+    multiplier beyond the KKT tolerance; every equality row; every variable its bounds fix). Along a direction none of
+    those changes to first order, the matrix's curvature is H's: negative there, the point is no minimum (the
+    second-order necessary condition fails: a saddle, or a maximum along it) whatever the penalty; positive on all of
+    them, the matrix is positive definite once the penalty is large enough (Finsler's lemma). Built once per posed
+    problem, static problems only (a start-up's collocation has hundreds of variables); ``batched`` (a sweep's
+    chains), compiled where the batched sweep's NLP functions are (``clutchopt.optimise.compiled``: the ball's
+    Hessian, 4,400 instructions, 17 us a point on CasADi's virtual machine)."""
+    def build(_):
+        nlp, tol = posed.nlp, posed.kkt_tolerance
+        x, g = nlp["x"], nlp["g"]
+        lam_x, lbx, ubx = (ca.SX.sym(label, x.shape[0]) for label in ("lam_x", "lbx", "ubx"))
+        hessian = ca.hessian(posed.lagrangian, x)[0]
+        jacobian = ca.jacobian(g, x)
+        rows = ca.vertcat(ca.fabs(posed.lam_g[:posed.n_ineq]) > tol, ca.DM.ones(g.shape[0] - posed.n_ineq))
+        bounds = ca.logic_or(ca.fabs(lam_x) > tol, lbx == ubx)
+        held = hessian + CURVATURE_PENALTY * (ca.mtimes(jacobian.T, ca.diag(rows) @ jacobian) + ca.diag(bounds))
+        function = ca.Function("curvature", [x, nlp["p"], lam_x, posed.lam_g, lbx, ubx], [ca.densify(ca.vec(held))])
+        return compiled_function(function) if batched and is_compiled(posed.solver("sqp_chain")) else function
+
+    return posed.built("curvature", batched, build)
+
+
+def curved_up(held: np.ndarray) -> np.ndarray:
+    """Per column of :func:`curvature`'s values (n * n rows), whether no direction the holding rows and bounds leave
+    free has negative curvature: the matrix's least eigenvalue at least -CURVATURE_TOL (False where a number is not
+    finite)."""
+    count, n = held.shape[1], int(round(np.sqrt(held.shape[0])))
+    stack = held.T.reshape(count, n, n)
+    finite = np.isfinite(stack).all(axis=(1, 2))
+    least = np.full(count, -np.inf)
+    if finite.any():
+        least[finite] = np.linalg.eigvalsh(stack[finite])[:, 0]
+    return least >= -CURVATURE_TOL
+
+
+def no_descent_curvature(posed: Posed, x, p, lam_x, lam_g, lbx, ubx) -> np.ndarray:
+    """:func:`curved_up` at primal-dual points (one per column; a 1-D argument serves every column), by one mapped
+    CasADi evaluation of :func:`curvature`."""
+    count = max(np.shape(a)[1] if np.ndim(a) == 2 else 1 for a in (x, p, lam_x, lam_g, lbx, ubx))
+    return curved_up(posed.mapped(curvature(posed), count)(x, p, lam_x, lam_g, lbx, ubx)[0])
 
 
 def first_order_optimal(posed: Posed, x, p, lam_x, lam_g, lbx, ubx) -> np.ndarray:
