@@ -11,6 +11,7 @@ from clutchopt.cases import load_case
 from clutchopt.optimise.interval import IntervalFunction
 from clutchopt.optimise.interval_proof import empty_design_space, interval_functions
 from clutchopt.optimise.problem import case_problem
+from clutchopt.start_up.drive import graded_part
 from conftest import CASES
 
 X = ca.SX.sym("x", 2)
@@ -60,7 +61,7 @@ def test_every_formulation_row_is_bounded_soundly(path):
     design = problem.solve(case).design
     x = np.array([design[n] for n in posed.names])
     lower, upper, _ = posed.bounds_and_start(case, None)
-    mesh = posed.start_up.initial_mesh() if posed.start_up is not None else []
+    mesh = posed.start_up.initial_mesh(graded_part(case.start_up, case.values)) if posed.start_up else []
     p = np.concatenate([list(vars(posed.params(case)).values()), np.ones(len(x)), [1.0], mesh])
     rows, _ = interval_functions(posed)
     rng = np.random.default_rng(7)

@@ -10,7 +10,7 @@ import pytest
 
 from clutchopt.start_up.mesh import MONITOR_FLOOR, adapted_mesh, graded_mesh
 
-STRUCTURE = SimpleNamespace(phases=("breakaway", "slip"), intervals=4, motor=False, graded_part=0.05)
+STRUCTURE = SimpleNamespace(phases=("breakaway", "slip"), intervals=4, motor=False)
 T = np.arange(4097) / 2048  # breakaway over [0, 1] s, slip over [1, 2] s, samples every 2^-11 s (exact in binary:
 # a straight state's differences are exact, its second derivative exactly 0)
 
@@ -21,7 +21,7 @@ def history(w_driver, w_driven, work, rise):
 
 def test_straight_states_give_a_uniform_mesh():
     # x'' = 0 everywhere: the monitor is 0, the weight is time itself, so 4 intervals of 1/4 of each phase
-    mesh = adapted_mesh(STRUCTURE, history(3.0 * T, T, 0.5 * T, 2.0 - T), [1.0, 1.0])
+    mesh = adapted_mesh(STRUCTURE, history(3.0 * T, T, 0.5 * T, 2.0 - T), [1.0, 1.0], 0.05)
     assert mesh == pytest.approx([0.25] * 8, abs=1e-12)
 
 
@@ -33,7 +33,7 @@ def test_a_corner_draws_the_intervals_and_a_resting_state_shapes_nothing():
     # intervals 0.5, 0, 0, 0.5 (to the spike's width, a few samples of 2^-11 s). Slip: every state straight there, uniform.
     work = np.where(T <= 1.0, 0.0, T - 1.0)
     driver = np.abs(T - 0.5)
-    mesh = adapted_mesh(STRUCTURE, history(driver, 0.125 * T, work, 0.0 * T), [1.0, 1.0])
+    mesh = adapted_mesh(STRUCTURE, history(driver, 0.125 * T, work, 0.0 * T), [1.0, 1.0], 0.05)
     assert MONITOR_FLOOR == 0.2
     assert mesh[:4] == pytest.approx([0.5, 0.0, 0.0, 0.5], abs=2e-3)
     assert mesh[4:] == pytest.approx([0.25] * 4, abs=1e-12)
@@ -42,12 +42,12 @@ def test_a_corner_draws_the_intervals_and_a_resting_state_shapes_nothing():
 
 def test_a_phase_with_too_few_samples_keeps_its_first_mesh():
     # a breakaway of 1.6e-3 s holds 4 samples (< 5): its intervals stay uniform (first_mesh without a motor)
-    mesh = adapted_mesh(STRUCTURE, history(np.abs(T - 0.5), T, T, T), [1.6e-3, 2.0 - 1.6e-3])
+    mesh = adapted_mesh(STRUCTURE, history(np.abs(T - 0.5), T, T, T), [1.6e-3, 2.0 - 1.6e-3], 0.05)
     assert mesh[:4] == pytest.approx([0.25] * 4, abs=0)
 
 
-def knee_structure(graded_part: float, motor: bool = True) -> SimpleNamespace:
-    return SimpleNamespace(motor=motor, graded_part=graded_part, spec=SimpleNamespace(tolerance=1e-6))
+def knee_structure(motor: bool = True) -> SimpleNamespace:
+    return SimpleNamespace(motor=motor, spec=SimpleNamespace(tolerance=1e-6))
 
 
 @pytest.mark.parametrize(("knee", "graded_part", "part"), [
@@ -64,7 +64,7 @@ def test_the_slip_phase_is_graded_over_the_knee_the_simulated_start_shows(knee, 
     t = 2.0 + np.arange(2**14 + 1) / 2**14
     speed = 100.0 * np.minimum((t - 2.0) / knee, 1.0)
     history = {"t": np.concatenate([[0.0, 1.0], t]), "w_driver": np.concatenate([[0.0, 50.0], speed])}
-    assert knee_part(knee_structure(graded_part), history, (2.0, 3.0)) == part
+    assert knee_part(knee_structure(), history, (2.0, 3.0), graded_part) == part
 
 
 def test_a_knee_that_settles_within_the_tolerance_late_keeps_the_structures_part():
@@ -73,8 +73,8 @@ def test_a_knee_that_settles_within_the_tolerance_late_keeps_the_structures_part
 
     t = np.arange(1025) / 1024
     history = {"t": t, "w_driver": 100.0 * (1.0 + 1e-5 * t)}
-    assert knee_part(knee_structure(0.1), history, (0.0, 1.0)) == 0.1
-    assert knee_part(knee_structure(0.1, motor=False), history, (0.0, 1.0)) == 0.1  # no motor: no knee
+    assert knee_part(knee_structure(), history, (0.0, 1.0), 0.1) == 0.1
+    assert knee_part(knee_structure(motor=False), history, (0.0, 1.0), 0.1) == 0.1  # no motor: no knee
 
 
 def test_the_graded_mesh_is_found_once_and_read_only():
@@ -112,19 +112,19 @@ def test_the_suggested_mesh_is_adapted_where_first_read_and_to_the_bit(monkeypat
 
     driver, work = np.abs(T - 0.5), np.where(T <= 1.0, 0.0, T - 1.0)
     columns = history(driver, 0.125 * T, work, T * T)
-    expected = adapted_mesh(STRUCTURE, columns, [1.0, 1.0])
+    expected = adapted_mesh(STRUCTURE, columns, [1.0, 1.0], 0.05)
     adapted = []
     monkeypatch.setattr(mesh_module, "adapted_mesh", lambda *a: adapted.append(a) or expected.copy())
     used = np.full(8, 0.25)
-    meshes = Meshes(used, STRUCTURE, columns, [1.0, 1.0])
+    meshes = Meshes(used, STRUCTURE, columns, [1.0, 1.0], 0.05)
     assert meshes[0] is used and meshes[-2] is used and len(meshes) == 2 and adapted == []
     assert np.array_equal(meshes[1], expected) and len(adapted) == 1
     first, again = meshes[1], meshes[-1]
     assert again is first and len(adapted) == 1
     monkeypatch.undo()
-    unpacked_used, suggested = Meshes(used, STRUCTURE, columns, [1.0, 1.0])
+    unpacked_used, suggested = Meshes(used, STRUCTURE, columns, [1.0, 1.0], 0.05)
     assert unpacked_used is used and np.array_equal(suggested, expected)
     with pytest.raises(IndexError):
         meshes[2]
-    sent = pickle.loads(pickle.dumps(Meshes(used, STRUCTURE, columns, [1.0, 1.0])))  # (to another process: adapted)
+    sent = pickle.loads(pickle.dumps(Meshes(used, STRUCTURE, columns, [1.0, 1.0], 0.05)))  # (to another process: adapted)
     assert np.array_equal(sent[0], used) and np.array_equal(sent[1], expected) and sent._from is None

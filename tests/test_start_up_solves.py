@@ -14,6 +14,7 @@ from clutchopt.optimise.problem import SHAPING_MARGIN, case_problem, solve_case
 from clutchopt.optimise.start_up_shift import limit_shift, shifted
 from clutchopt.optimise.sweep import Sweep
 from clutchopt.optimise.sweep_grid import parse_vary
+from clutchopt.start_up.drive import graded_part
 from tests.conftest import CASES
 
 WEDGE = load_case(CASES / "wedge_motor_start.toml")
@@ -312,12 +313,12 @@ def test_the_lever_is_designed_in_one_run_on_a_first_mesh_graded_over_its_simula
     case = load_case(CASES / "lever_motor_start.toml")
     problem = case_problem(case)
     block = problem.posed.start_up
-    assert block.s.graded_part == 0.05
+    assert graded_part(case.start_up, case.values) == 0.05
     solution = solve_case(case)
     assert solution.status == "optimal" and solution.solver.solves == 1
     assert np.array_equal(solution.mesh[0], block.initial_mesh(0.02))
     assert abs(solution.start_up["discretisation_error"]["start_time"]) < 1e-7  # measured 8.2e-8
     assert solution.objective == pytest.approx(1.777770423, rel=1e-7)
     sized = problem.sized_design(case)
-    on_the_structures = problem.refined(case, sized, mesh=block.initial_mesh(), refine=False)
+    on_the_structures = problem.refined(case, sized, mesh=block.initial_mesh(0.05), refine=False)
     assert abs(on_the_structures.start_up["discretisation_error"]["start_time"]) > case.start_up.tolerance  # 5.5e-6

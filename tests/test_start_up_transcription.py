@@ -8,7 +8,7 @@ import pytest
 from clutchopt.cases import load_case
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.posed import Posed
-from clutchopt.start_up.drive import Structure
+from clutchopt.start_up.drive import Structure, graded_part
 from clutchopt.start_up.transcription import DEGREE
 from tests.conftest import CASES
 
@@ -17,6 +17,12 @@ def _block(name: str):
     case = load_case(CASES / f"{name}_motor_start.toml")
     formulation = get_coupling(case.coupling).formulation(case.options.get("mode"))
     return Posed(formulation, case.options.get("objective", "mass"), start_up=Structure.of(case)).start_up
+
+
+def _first_mesh(name: str):
+    """The case's first mesh where no start is simulated (its motor's graded part)."""
+    case = load_case(CASES / f"{name}_motor_start.toml")
+    return _block(name).initial_mesh(graded_part(case.start_up, case.values))
 
 
 def test_a_phase_s_slopes_differentiate_a_cubic_exactly():
@@ -50,7 +56,7 @@ def test_the_start_guess_puts_each_state_on_its_own_variables(name, expected):
     history = {"t": t, "w_driver": 5.0 + 0 * t, "w_driven": 3.0 + 0 * t, "friction_work": 11.0 + 0 * t,
                "temperature_rise": 0.4 + 0 * t, "twist": 0.7 + 0 * t}
     values = block.guess(history, {"locks_up": True, "start_time": 2.0}, 0.0, 30.0, np.ones(block.size),
-                         block.initial_mesh())
+                         _first_mesh(name))
     durations = {"run_up": 0.0, "breakaway": 0.0, "slip": 2.0, "locked": 2.0}
     assert len(values) == len(block.kinds) == block.size
     for value, (phase, kind) in zip(values, block.kinds):
@@ -71,7 +77,7 @@ def test_the_start_guess_samples_each_state_at_its_own_node_time(name):
     of_time = {"driver_speed": (lambda s: 0.5 + 0.5 * s) if block.s.elastic else (lambda s: 1.0 + s),
                "slip": lambda s: 0.5 + 0.5 * s, "friction_work": lambda s: 2.0 * s, "temperature": lambda s: 3.0 * s,
                "twist": lambda s: 4.0 * s}
-    mesh, n = block.initial_mesh(), block.s.intervals
+    mesh, n = _first_mesh(name), block.s.intervals
     expected = []
     for index, phase in enumerate(block.s.phases):
         begin, end = (0.0, 2.0) if phase in ("slip", "locked") else (0.0, 0.0)

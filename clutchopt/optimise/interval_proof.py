@@ -40,6 +40,7 @@ from clutchopt.optimise.interval_backward import Tape
 from clutchopt.optimise.interval_backward import contracted as backward_contracted
 from clutchopt.optimise.interval_contract import contracted
 from clutchopt.optimise.interval_nodes import enclosed_rows, split_bounds
+from clutchopt.start_up.drive import graded_part
 
 MAX_BOXES = 40_000  # about 1.5 s of CPU; ball_motor_start's static conflict at 580-800 kW takes 15,000-34,000
 SURE_BOXES = 2_500  # evaluated in any case; beyond, only while the search closes in (GROWTH)
@@ -631,7 +632,7 @@ def _proofs(posed) -> dict[str, int]:
 def _search_problem(posed, case) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The parameters (variable scales 1: x in SI) and the design box of ``case``'s search."""
     lower, upper, _ = posed.bounds_and_start(case, None)
-    mesh = posed.start_up.initial_mesh() if posed.start_up is not None else []
+    mesh = posed.start_up.initial_mesh(graded_part(posed.start_up.s.spec, case.values)) if posed.start_up else []
     p = np.concatenate([list(vars(posed.params(case)).values()), np.ones(len(lower)), [1.0], mesh])
     return p, lower, upper
 

@@ -29,7 +29,7 @@ from clutchopt.optimise.start_up_compiled import compiled_when_ready
 from clutchopt.optimise.sparsity import entries
 from clutchopt.optimise.two_sided import TwoSided
 from clutchopt.optimise.verify import FEASIBILITY_TOL, evaluate_objective
-from clutchopt.start_up.drive import Structure
+from clutchopt.start_up.drive import Structure, graded_part
 from clutchopt.start_up.equations import with_start_up
 from clutchopt.start_up.transcription import StartUpBlock, first_mesh_of_the_start, initial_states
 
@@ -250,10 +250,10 @@ class Posed:
             x0.append(min(max(guess, lo), hi))
         return np.array(lower), np.array(upper), np.array(x0)
 
-    def _scaling(self, params: SimpleNamespace, x: np.ndarray, lower: np.ndarray, upper: np.ndarray,
+    def _scaling(self, case: Case, params: SimpleNamespace, x: np.ndarray, lower: np.ndarray, upper: np.ndarray,
                  scale: np.ndarray | None = None, mesh: np.ndarray | None = None):
         """Variable scales |x| (or the bound magnitude where x = 0) unless given, objective scale |f(x)|,
-        the NLP parameters (a start-up's collocation mesh last: ``mesh``, or its first one)."""
+        the NLP parameters (a start-up's collocation mesh last: ``mesh``, or ``case``'s first one)."""
         if scale is None:
             scale = np.where(np.abs(x) > 0, np.abs(x), np.maximum(np.abs(lower), np.abs(upper)))
             scale = np.where(np.isfinite(scale) & (scale > 0), scale, 1.0)
@@ -261,7 +261,7 @@ class Posed:
         f0 = abs(evaluate_objective(self.formulation, self.objective.name, design, params))
         f_scale = f0 if math.isfinite(f0) and f0 > 0 else 1.0
         if self.start_up is not None and mesh is None:
-            mesh = self.start_up.initial_mesh()
+            mesh = self.start_up.initial_mesh(graded_part(self.start_up.s.spec, case.values))
         return scale, f_scale, np.concatenate([list(vars(params).values()), scale, [f_scale],
                                                mesh if mesh is not None else []])
 
@@ -282,7 +282,7 @@ class Posed:
         ``checked``: the case values the design is checked against (moved limits solve, the case's own check)."""
         lower, upper, x0 = self.bounds_and_start(case, start)
         params = self.params(case)
-        scale, f_scale, p_vector = self._scaling(params, x0, lower, upper, scale, mesh)
+        scale, f_scale, p_vector = self._scaling(case, params, x0, lower, upper, scale, mesh)
         data = ScaledData(params, lower, upper, x0, scale, f_scale, p_vector, checked=checked)
         if self.start_up is not None:
             data.internal_lower, data.internal_upper = self.start_up.bounds()

@@ -12,7 +12,7 @@ import numpy as np
 
 from clutchopt.optimise.robust_models import corner_name
 from clutchopt.optimise.verify import ACTIVE_TOL, check_constraints
-from clutchopt.start_up.drive import Drive, seen_constraints
+from clutchopt.start_up.drive import Drive, graded_part, seen_constraints
 from clutchopt.start_up.lining import UNITS as LINING_UNITS
 from clutchopt.start_up.lining import lining_figures, lining_notes
 from clutchopt.start_up.mesh import Meshes
@@ -94,7 +94,7 @@ def start_up_report(block, case, design: dict[str, float], formulation, seen, fi
                                  lock_up_speed=summary["lock_up_speed"], stresses=np.array(node_stresses))
     own = {check.name: check.value for check in check_constraints(  # (the limits' rows alone checked)
         [c for c in seen_constraints(s, formulation.speed_law, collocated, seen, drive) if c.name in LIMIT_OF])}
-    return summary, checks, Meshes(used, s, result.columns, times), own
+    return summary, checks, Meshes(used, s, result.columns, times, graded_part(s.spec, case.values)), own
 
 
 def simulated_checks(block, case, design: dict[str, float], formulation, seen):

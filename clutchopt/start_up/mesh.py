@@ -41,30 +41,31 @@ def _graded_mesh(intervals: int, graded_part: float, first: float) -> np.ndarray
     return np.concatenate([lengths / lengths.sum() * graded_part, uniform])
 
 
-def first_mesh(structure, phase: str, graded_part: float | None = None) -> np.ndarray:
+def first_mesh(structure, phase: str, graded_part: float) -> np.ndarray:
     """Interval lengths of a phase as fractions of its duration before any adaptation: graded where the motor
-    runs up through the slip phase's start (over ``graded_part``, else the structure's), uniform elsewhere."""
+    runs up through the slip phase's start (over ``graded_part``), uniform elsewhere."""
     if phase == "slip" and structure.motor:
-        return graded_mesh(structure.intervals, graded_part or structure.graded_part)
+        return graded_mesh(structure.intervals, graded_part)
     return np.full(structure.intervals, 1.0 / structure.intervals)
 
 
-def knee_part(structure, history, slip: tuple[float, float]) -> float:
+def knee_part(structure, history, slip: tuple[float, float], graded_part: float) -> float:
     """The graded part of the slip phase from a simulated start whose slip phase spans ``slip`` (begin, end): the
     share of the phase until the driver's speed settles within the start-up's tolerance of its speed at the phase's
     end (the motor's knee: its run-up until its torque meets the coupling's), KNEE_COVER times over, rounded up to
-    one of KNEE_PARTS; never more than the structure's part (from the motor's run-up time at breakdown torque,
-    which takes the knee from rest, where the slip phase takes it from the breakaway's speed)."""
+    one of KNEE_PARTS; never more than the case's ``graded_part`` (``drive.graded_part``: from the motor's run-up
+    time at breakdown torque, which takes the knee from rest, where the slip phase takes it from the breakaway's
+    speed)."""
     begin, end = slip
     t = np.asarray(history["t"])
     inside = (t >= begin) & (t <= end)
     if not structure.motor or not end > begin or inside.sum() < 5:
-        return structure.graded_part
+        return graded_part
     speed = np.asarray(history["w_driver"])[inside]
     unsettled = np.nonzero(np.abs(speed - speed[-1]) > structure.spec.tolerance * abs(speed[-1]))[0]
     settled = t[inside][min(unsettled[-1] + 1, len(speed) - 1)] if len(unsettled) else begin
     share = KNEE_COVER * (settled - begin) / (end - begin)
-    return min(next((part for part in KNEE_PARTS if part >= share), KNEE_PARTS[-1]), structure.graded_part)
+    return min(next((part for part in KNEE_PARTS if part >= share), KNEE_PARTS[-1]), graded_part)
 
 
 MONITORED = ("w_driver", "w_driven", "friction_work", "temperature_rise")  # the states :func:`adapted_mesh` reads
@@ -72,13 +73,13 @@ MONITORED = ("w_driver", "w_driven", "friction_work", "temperature_rise")  # the
 
 class Meshes:
     """A start-up solve's meshes, read as the pair (used, suggested): the one it was solved on and the one its
-    simulated start suggests for the next solve (:func:`adapted_mesh` of ``history``'s columns over ``phase_times``),
-    worked out where it is first read, from the same arrays: most checks' suggestion is never read (a sweep's point
-    within the tolerance solves on no other mesh), 0.4 ms a check."""
+    simulated start suggests for the next solve (:func:`adapted_mesh` of ``history``'s columns over ``phase_times``,
+    ``graded_part`` the case's), worked out where it is first read, from the same arrays: most checks' suggestion is
+    never read (a sweep's point within the tolerance solves on no other mesh), 0.4 ms a check."""
 
-    def __init__(self, used: np.ndarray, structure, history, phase_times: list[float]):
+    def __init__(self, used: np.ndarray, structure, history, phase_times: list[float], graded_part: float):
         self._used, self._suggested = used, None
-        self._from = (structure, {name: history[name] for name in ("t",) + MONITORED}, phase_times)
+        self._from = (structure, {name: history[name] for name in ("t",) + MONITORED}, phase_times, graded_part)
 
     def __getitem__(self, index: int) -> np.ndarray:
         if index in (0, -2):
@@ -112,10 +113,11 @@ def settled(meshes) -> None:
         meshes.suggested  # (read: adapted)
 
 
-def adapted_mesh(structure, history, phase_times: list[float]) -> np.ndarray:
+def adapted_mesh(structure, history, phase_times: list[float], graded_part: float) -> np.ndarray:
     """A mesh for the next solve from the simulated start, over the NLP's phase timing: each phase's intervals
     equidistribute sqrt|x''| of the states (each scaled by its range and the phase duration), the error
-    monitor of a corner (the motor's knee), with a fifth of its mean over the phase added everywhere."""
+    monitor of a corner (the motor's knee), with a fifth of its mean over the phase added everywhere; a phase the
+    start hardly samples keeps its first mesh (``graded_part``: the case's, ``drive.graded_part``)."""
     t_all = np.asarray(history["t"])  # a run's columns (arrays) or its history (a DataFrame)
     columns = np.array([history[name] for name in MONITORED], dtype=float)
     ranges = columns.max(axis=1) - columns.min(axis=1)  # each state's spread over the start
@@ -124,7 +126,7 @@ def adapted_mesh(structure, history, phase_times: list[float]) -> np.ndarray:
         inside = (t_all >= begin) & (t_all <= end)
         t, first = np.unique(t_all[inside], return_index=True)
         if not end > begin or len(t) < 5:
-            meshes.append(first_mesh(structure, phase))
+            meshes.append(first_mesh(structure, phase, graded_part))
             begin = end
             continue
         span = end - begin

@@ -27,7 +27,7 @@ import casadi as ca
 import numpy as np
 
 from clutchopt.model import SpeedLaw
-from clutchopt.start_up.drive import Drive, Structure, named_constraints, seen_constraints
+from clutchopt.start_up.drive import Drive, Structure, graded_part, named_constraints, seen_constraints
 from clutchopt.start_up.mesh import adapted_mesh, first_mesh, knee_part
 
 DEGREE = 3
@@ -217,8 +217,9 @@ class StartUpBlock:
         """The interval lengths of every phase (NLP parameters), built once: each solve reads their count."""
         return ca.vertcat(*self._mesh)
 
-    def initial_mesh(self, graded_part: float | None = None) -> np.ndarray:
-        """The first mesh of every phase (:func:`~clutchopt.start_up.mesh.first_mesh`)."""
+    def initial_mesh(self, graded_part: float) -> np.ndarray:
+        """The first mesh of every phase (:func:`~clutchopt.start_up.mesh.first_mesh`; ``graded_part``: the case's,
+        :func:`~clutchopt.start_up.drive.graded_part`)."""
         return np.concatenate([first_mesh(self.s, phase, graded_part) for phase in self.s.phases])
 
 
@@ -347,17 +348,19 @@ def mesh_of_the_start(block: StartUpBlock, case, formulation, design: dict[str, 
     lighter side of a fold, ``optimise.problem.held_by_the_mesh``) is collocated on the mesh its start draws."""
     result, squared = _simulated_start(block, case, formulation, design)
     bounds = block.phase_bounds(result.columns, result.headline, squared, case.values["max_start_time"])
-    return adapted_mesh(block.s, result.columns, [bounds[phase][1] - bounds[phase][0] for phase in block.s.phases])
+    return adapted_mesh(block.s, result.columns, [bounds[phase][1] - bounds[phase][0] for phase in block.s.phases],
+                        graded_part(block.s.spec, case.values))
 
 
 def first_mesh_of_the_start(block: StartUpBlock, case, formulation, design: dict[str, float]) -> np.ndarray:
     """The first mesh of a solve from ``design``, its slip phase graded over the motor's knee as the design's own
     simulated start shows it (:func:`~clutchopt.start_up.mesh.knee_part`; the simulation the start guess takes)."""
+    graded = graded_part(block.s.spec, case.values)
     if "slip" not in block.s.phases:  # (an elastic link's locked phase: uniform)
-        return block.initial_mesh()
+        return block.initial_mesh(graded)
     result, squared = _simulated_start(block, case, formulation, design)
     bounds = block.phase_bounds(result.columns, result.headline, squared, case.values["max_start_time"])
-    return block.initial_mesh(knee_part(block.s, result.columns, bounds["slip"]))
+    return block.initial_mesh(knee_part(block.s, result.columns, bounds["slip"], graded))
 
 
 def _simulated_start(block: StartUpBlock, case, formulation, design: dict[str, float]):
