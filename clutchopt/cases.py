@@ -37,7 +37,7 @@ from clutchopt.model import REQUIRED, Quantity, followed
 from clutchopt.start_up.equations import QUANTITIES as START_UP_QUANTITIES
 from clutchopt.start_up.equations import LIMITS as START_UP_LIMITS, SPRING_PRELOAD, StartUpSpec
 from clutchopt.start_up.overload import FRICTION
-from clutchopt.units import to_si
+from clutchopt.units import BelowFloat64, float_text, to_si
 
 _TOP_LEVEL = {"coupling", "title", "description"}
 _OPTION_KEYS = {"free", "objective", "mode", "choose"}
@@ -125,13 +125,25 @@ class Case:
         return replace(self, follows={name: rule for name, rule in self.follows.items() if name not in names})
 
 
+def _where(text: str, literal: str) -> str:
+    """``line N (key): `` of the first line of ``text`` that holds ``literal`` (a number the parser refused), or
+    nothing."""
+    for number, line in enumerate(text.splitlines(), 1):
+        if literal in line:
+            key = line.split("=")[0].strip() if "=" in line else ""
+            return f"line {number}{f' ({key})' if key else ''}: "
+    return ""
+
+
 def read_toml(path: str | Path) -> dict:
     """A TOML file (case or scene): a regular UTF-8 file of at most 1 MiB, parsed; problems name the path."""
     text = read_text(path, CASE_BYTES)
     try:
-        return tomllib.loads(text)
+        return tomllib.loads(text, parse_float=float_text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(shown(path), f"not valid TOML: {exc}") from None
+    except BelowFloat64 as exc:
+        raise InputError(shown(path), f"{_where(text, str(exc).split()[0])}{exc}") from None
     except ValueError as exc:  # an integer of more than 4300 digits
         raise InputError(shown(path), f"not valid TOML: {str(exc).split(';')[0]}") from None
     except RecursionError:

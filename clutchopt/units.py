@@ -211,7 +211,31 @@ def _split(field: str, text: str) -> tuple[float, str]:
                 raise InputError(field, f"cannot read {text.strip()!r}: a number inside the unit ({piece}); "
                                         f"expected {_QUANTITY_EXAMPLE}")
         previous = piece
-    return float(number.group(1)), unit
+    try:
+        return float_text(number.group(1)), unit
+    except BelowFloat64 as exc:
+        raise InputError(field, str(exc)) from None
+
+
+class BelowFloat64(ValueError):
+    """A nonzero number in a file too small for float64 (under about 4.9e-324 in magnitude): read, it would be 0
+    (review 25: ``"1e-400 N*m"`` had solved with no load)."""
+
+
+def float_text(text: str) -> float:
+    """``float(text)``, refusing a nonzero number that float64 would read as 0 (:class:`BelowFloat64`); the parser
+    of every number read from a case, scene or design file."""
+    value = float(text)
+    if value == 0.0 and any(digit in "123456789" for digit in text.lower().split("e")[0]):
+        raise BelowFloat64(f"{text.strip()} is below the float64 range: it would be read as 0")
+    return value
+
+
+def _nonzero_kept(field: str, raw: str, number: float, value: float) -> float:
+    """``value`` (``number`` in SI), refusing a nonzero number its unit brings to 0 in float64."""
+    if number != 0.0 and value == 0.0:
+        raise InputError(field, f"{raw.strip()!r} is below the float64 range in SI: it would be read as 0")
+    return value
 
 
 class UnitInfo(NamedTuple):
@@ -289,7 +313,8 @@ def to_si(field: str, raw: object, unit: str) -> float:
         if given.offset:  # an absolute temperature (the field is one too): pint adds the offset
             value = float(into_si(number, unit_text))
         else:
-            value = number * given.factor if number else 0.0  # 0 * inf would be nan; inf is refused below
+            value = _nonzero_kept(field, raw, number, number * given.factor if number else 0.0)  # (0 * inf would be
+            # nan; inf is refused below)
     else:
         raise InputError(field, f"expected a quantity in {unit}, got {type(raw).__name__} {shown_value(raw)}")
     if given.dimensions != expected.dimensions or given.angle != expected.angle:

@@ -170,7 +170,8 @@ HOSTILE: list[Hostile] = [
     inertia("bare-toml-nan", "-nan", "duty.inertia: must be a finite number"),
     inertia("text-nan", '"nan kg*m^2"', "duty.inertia: must be a finite number"),
     inertia("text-minus-inf", '"-inf kg*m^2"', "duty.inertia: must be a finite number"),
-    inertia("underflow-to-zero", '"1e-400 kg*m^2"', "duty.inertia: must be > 0"),
+    inertia("underflow-to-zero", '"1e-400 kg*m^2"', "duty.inertia: 1e-400 is below the float64 range: it would be "
+            "read as 0"),
     inertia("giant-unit-power", '"1 m**99999999"', "unit power 99999999 is out of range"),
     inertia("giant-unit-power-caret", '"1 kg*m^99999"', "unit power 99999 is out of range"),
     inertia("nested-powers", '"1 ((kg*m^2)^2)^0.5"', None),

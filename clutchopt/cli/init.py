@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from clutchopt.cli.options import COUPLING_MODES, MODE_HELP, Checked, add_parser, name
+from clutchopt.cli.options import COUPLING_MODES, MODE_HELP, Checked, add_parser, name, path
 from clutchopt.errors import InputError
 
 
@@ -20,7 +20,8 @@ def add_command(commands) -> None:
     init.add_argument("--mode", metavar="MODE", action=Checked, check=name,
                       help=MODE_HELP.replace("Default: the case's [options] mode, then",
                                              "Written into [options]; default:"))
-    init.add_argument("-o", "--out", metavar="FILE", help="write the case to FILE (default: print it)")
+    init.add_argument("-o", "--out", action=Checked, check=path, metavar="FILE",
+                      help="write the case to FILE (default: print it)")
     init.add_argument("--force", action="store_true", help="overwrite FILE if it exists")
     init.set_defaults(run=run)
 

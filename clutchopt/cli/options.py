@@ -123,6 +123,14 @@ def name(text: str) -> str:
     return text.strip()
 
 
+def path(text: str) -> str:
+    """A file path on the command line: not empty nor blank (one would have read as the option not given: a sweep
+    recorded into the default store, a table or a figure not written; review 25)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError(f"expected a file path, got {text!r}")
+    return text
+
+
 def add_case_argument(command: argparse.ArgumentParser) -> None:
     command.add_argument("case", help="the case file (TOML, quantities with units); start one with clutchopt init")
 
@@ -155,7 +163,7 @@ def add_quiet_option(command: argparse.ArgumentParser,
 
 
 def add_store_options(command: argparse.ArgumentParser) -> None:
-    command.add_argument("--store", metavar="PATH",
+    command.add_argument("--store", action=Checked, check=path, metavar="PATH",
                          help="the run store to record into (SQLite; default $CLUTCHOPT_STORE, then "
                               "./clutchopt-runs.sqlite)")
     command.add_argument("--no-store", action="store_true", help="do not record this run")

@@ -16,6 +16,7 @@ from clutchopt.cli.options import (
     add_robust_options,
     add_store_options,
     nominal_note,
+    path,
     recording,
     resolve_problem,
     robustness,
@@ -38,9 +39,10 @@ def add_command(commands) -> None:
     pareto.add_argument("--points", action=Checked, check=whole_number(2, MAX_FRONT_POINTS), default=9,
                         help=f"designs on the front, the lightest and the cheapest included, 2 to {MAX_FRONT_POINTS} "
                              "(default 9)")
-    pareto.add_argument("--plot", metavar="FILE",
+    pareto.add_argument("--plot", action=Checked, check=path, metavar="FILE",
                         help="also draw the front, mass against cost, into FILE (.png, .svg, .pdf)")
-    pareto.add_argument("--out", metavar="FILE", help="also write the table: .csv, .parquet or .md")
+    pareto.add_argument("--out", action=Checked, check=path, metavar="FILE",
+                        help="also write the table: .csv, .parquet or .md")
     add_robust_options(pareto)
     add_json_option(pareto)
     add_store_options(pareto)

@@ -4,12 +4,14 @@ page printed by headless Chromium."""
 from __future__ import annotations
 
 from clutchopt.cli.options import (
+    Checked,
     add_case_argument,
     add_parser,
     add_problem_options,
     add_quiet_option,
     add_robust_options,
     add_store_options,
+    path,
     record_solve,
     recording,
     resolve_problem,
@@ -30,10 +32,10 @@ def add_command(commands) -> None:
          "clutchopt report cases/wedge_paper.toml --sweep sweep.csv -o review.html",
          "clutchopt report cases/wedge_motor_start.toml -o review.pdf"))
     add_case_argument(report)
-    report.add_argument("-o", "--out", required=True, metavar="FILE",
+    report.add_argument("-o", "--out", required=True, action=Checked, check=path, metavar="FILE",
                         help="the page to write: review.html, or review.pdf (printed by headless Chromium)")
     add_problem_options(report)
-    report.add_argument("--sweep", metavar="TABLE",
+    report.add_argument("--sweep", action=Checked, check=path, metavar="TABLE",
                         help="add a plot of this sweep table (.csv or .parquet written by clutchopt sweep --out)")
     add_robust_options(report)
     add_store_options(report)

@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import math
 
-from clutchopt.cli.options import LARGEST_ID, Checked, Parser, add_json_option, add_parser, whole_number
+from clutchopt.cli.options import LARGEST_ID, Checked, Parser, add_json_option, add_parser, path, whole_number
+from clutchopt.errors import InputError
 
 KINDS = ("solve", "sweep", "pareto", "simulation")
 NO_DESIGN = ("infeasible", "not_found", "solver_failed")  # statuses whose objective value belongs to no design
@@ -36,12 +37,13 @@ def add_command(commands) -> None:
     export = actions.add_parser("export", help="runs as a table (.csv, .parquet, .md): status, objective, SI inputs "
                                                "and design with their units, active constraints; from a damaged "
                                                "store, every run that can still be read")
-    export.add_argument("-o", "--out", required=True, metavar="FILE", help="the table to write: .csv, .parquet or .md")
+    export.add_argument("-o", "--out", required=True, action=Checked, check=path, metavar="FILE",
+                        help="the table to write: .csv, .parquet or .md")
     export.add_argument("--kind", choices=KINDS, help="only runs of this kind")
     export.add_argument("--sweep", action=Checked, check=run_id, metavar="ID", help="only the points of sweep ID")
     for action in (listing, show, export):
-        action.add_argument("--store", metavar="PATH", help="run store (default $CLUTCHOPT_STORE, then "
-                                                            "./clutchopt-runs.sqlite)")
+        action.add_argument("--store", action=Checked, check=path, metavar="PATH",
+                            help="run store (default $CLUTCHOPT_STORE, then ./clutchopt-runs.sqlite)")
     runs.set_defaults(run=run)
 
 
@@ -55,6 +57,7 @@ def run(args) -> str:
         if args.action == "show":
             return to_json(run_json(store.run(args.id)))
         listed, swept = store.runs(args.kind, args.sweep, args.limit or None), store.sweeps()
+    _known_sweep(args.sweep, swept, store.path)
     if args.json:
         return to_json(with_units({"store": str(store.path), "runs": [_objective_unit(run) for run in listed],
                                    "sweeps": swept}, {"runs": IDS, "sweeps": {**IDS, "points": "", "stored": ""}}))
@@ -127,15 +130,26 @@ def _objective(run: dict) -> str:
     return f"{run['objective_name']} {value:.6g} {run['objective_unit'] or ''}".rstrip()
 
 
+def _known_sweep(sweep_id: int | None, swept: list[dict], path) -> None:
+    """Refuse ``--sweep`` naming a sweep the store does not hold (its points would read as none: review 25)."""
+    if sweep_id is not None and all(sweep["id"] != sweep_id for sweep in swept):
+        raise InputError("--sweep", f"no sweep {sweep_id} in {path} (clutchopt runs list shows the sweeps)")
+
+
 def export(args) -> str:
     import pandas as pd
 
     from clutchopt.optimise.sweep_table import table_format, write_frame
-    from clutchopt.store import RunStore
+    from clutchopt.store import RunStore, StoreError
 
     table_format(args.out)
     with RunStore(args.store, writable=False, check=False) as store:
         entries, lost, open_end = store.readable_runs(args.kind, args.sweep)
+        if args.sweep is not None and not entries:  # (no point of it could be read: a sweep the store names?)
+            try:
+                _known_sweep(args.sweep, store.sweeps(), store.path)
+            except StoreError:  # (its sweeps unreadable too: the empty table is what can be rescued)
+                pass
     frame = pd.DataFrame([export_row(entry) for entry in entries])
     for column in ("sweep", "point"):  # whole numbers, blank for a run that is no sweep point
         if column in frame:

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import math
 
-from clutchopt.cli.options import FIGURE_SUFFIXES, add_json_option, add_parser, add_store_options, record_simulation, \
-    recording
+from clutchopt.cli.options import FIGURE_SUFFIXES, Checked, add_json_option, add_parser, add_store_options, path, \
+    record_simulation, recording
 
 _LINES = (
     ("start_time", "start time t_c", "s"),
@@ -28,7 +28,7 @@ def add_command(commands) -> None:
          "clutchopt simulate cases/scenes/wedge_motor_springs.toml --plot startup.png"))
     parser.add_argument("scene", help="the scene file (TOML, e.g. cases/scenes/paper_transient.toml)")
     add_json_option(parser)
-    parser.add_argument("--plot", metavar="FILE",
+    parser.add_argument("--plot", action=Checked, check=path, metavar="FILE",
                         help="also draw speeds (rpm), clutch torque and slip power over time into FILE (.png, .svg, "
                              ".pdf)")
     add_store_options(parser)

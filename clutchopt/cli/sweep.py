@@ -16,6 +16,7 @@ from clutchopt.cli.options import (
     choices_note,
     nominal_note,
     open_store,
+    path,
     robustness,
     whole_number,
 )
@@ -50,7 +51,8 @@ def add_command(commands) -> None:
                        help="solve on an existing Dask cluster, e.g. tcp://host:8786 (pip install 'clutchopt[dask]')")
     sweep.add_argument("--resume", action="store_true",
                        help="continue the latest identical sweep in the store; stored points are not solved again")
-    sweep.add_argument("--out", metavar="FILE", help="also write the table, one row per point: .csv, .parquet or .md")
+    sweep.add_argument("--out", action=Checked, check=path, metavar="FILE",
+                       help="also write the table, one row per point: .csv, .parquet or .md")
     add_quiet_option(sweep, "no progress bar")
     add_json_option(sweep, "print one JSON object instead of tables: every point's inputs and solution, SI values "
                            "beside SI units")

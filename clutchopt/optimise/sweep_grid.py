@@ -13,7 +13,7 @@ from clutchopt.errors import InputError
 from clutchopt.fields_read import fields_read_across, followers
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Quantity
-from clutchopt.units import into_si
+from clutchopt.units import BelowFloat64, float_text, into_si
 
 MAX_POINTS = 100_000  # points of one sweep: hours of solving; more is a mistake (1e12 would not fit in memory)
 
@@ -64,12 +64,16 @@ def parse_vary(text: str, coupling: str, quantities: tuple[Quantity, ...] | None
         values = tuple(np.asarray(into_si(np.asarray(numbers, dtype=float), quantity.unit), dtype=float).tolist())
     if not all(math.isfinite(value) for value in values):
         raise InputError(field, "values beyond the float64 range once converted to SI")
+    if any(number != 0.0 and value == 0.0 for number, value in zip(numbers, values)):
+        raise InputError(field, "values below the float64 range once converted to SI: they would be read as 0")
     return Vary(quantity, values, tuple(numbers))
 
 
 def _numbers(field: str, spec: str) -> list[float]:
     try:
-        numbers = [float(part) for part in (spec.split(":") if ":" in spec else spec.split(","))]
+        numbers = [float_text(part) for part in (spec.split(":") if ":" in spec else spec.split(","))]
+    except BelowFloat64 as exc:
+        raise InputError(field, str(exc)) from None
     except ValueError:
         raise InputError(field, f"not a number in {spec!r} (values are plain numbers in the quantity's "
                                 "display unit)") from None

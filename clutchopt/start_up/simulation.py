@@ -26,6 +26,7 @@ from clutchopt.simulate import effects as fx
 from clutchopt.simulate.engine import Model, SimulationResult, simulate
 from clutchopt.simulate.laws import CentrifugalFriction, InductionMotor, Load
 from clutchopt.start_up.equations import RADIAL_EFFECTS, engagement_speed_squared, with_start_up
+from clutchopt.units import float_text
 
 
 MAX_TORQUE = 1e9  # N*m: the largest torque the simulator is tested with (clutchopt.simulate.scene.TORQUE)
@@ -75,7 +76,7 @@ def design_from_json(path: str | Path, coupling: str, case_path: str | Path | No
     field = "coupling.design"
     text = read_text(path, CASE_BYTES, f"{field} ({Path(path).name})")
     try:
-        data = json.loads(text, parse_constant=_no_constant)
+        data = json.loads(text, parse_constant=_no_constant, parse_float=float_text, object_pairs_hook=_once)
     except json.JSONDecodeError as exc:
         raise InputError(field, f"cannot read {path} as the JSON of clutchopt solve ({exc})") from None
     except ValueError as exc:
@@ -94,6 +95,11 @@ def design_from_json(path: str | Path, coupling: str, case_path: str | Path | No
         formulation = with_start_up(formulation)
     design, checked = data["design"], {}
     problems = Problems()
+    known = {variable.name for variable in with_start_up(formulation).variables}  # (a start-up's design has its
+    for name in design:  # spring preload beside the coupling's variables)
+        if name not in known:
+            problems.errors.append(InputError(f"{field} design.{name}", f"not a design variable of the {coupling} in "
+                                                                        f"{formulation.mode} mode"))
     for variable in formulation.variables:
         value = design.get(variable.name)
         with problems.field():
@@ -120,6 +126,15 @@ def design_from_json(path: str | Path, coupling: str, case_path: str | Path | No
 
 def _no_constant(name: str):
     raise ValueError(f"{name} is not a number a solved design can hold")
+
+
+def _once(pairs: list[tuple[str, object]]) -> dict:
+    """A JSON object whose keys are given once each (a key given twice had kept its last value unsaid)."""
+    keys = [key for key, _ in pairs]
+    twice = sorted({key for key in keys if keys.count(key) > 1})
+    if twice:
+        raise ValueError(f"{', '.join(map(repr, twice))} given twice in one object")
+    return dict(pairs)
 
 
 def centrifugal_law(case, mode: str, design: dict[str, float], effects: tuple[str, ...],

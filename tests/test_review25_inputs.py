@@ -1,0 +1,93 @@
+"""Input that had been read as something else (review 25): a nonzero number float64 reads as 0, an empty path read as
+an option not given, a sweep id the store does not hold, a design file with a key twice or a variable of no design."""
+
+import json
+from pathlib import Path
+
+import pytest
+
+from clutchopt.cli import EXIT_BAD_INPUT, main
+
+ROOT = Path(__file__).resolve().parents[1]
+WEDGE = (ROOT / "cases" / "wedge_paper.toml").read_text()
+LOAD = 'resisting_torque = "5 N*m"'
+
+
+def _run(capsys, *args: str) -> tuple[int, str, str]:
+    try:
+        code = main(list(args))
+    except SystemExit as stop:
+        code = stop.code
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.mark.parametrize("load, expected", [
+    ('resisting_torque = "1e-400 N*m"', "error: duty.resisting_torque: 1e-400 is below the float64 range: it would "
+                                        "be read as 0"),
+    ("resisting_torque = 1e-400", "line 14 (resisting_torque): 1e-400 is below the float64 range"),
+    ('resisting_torque = "1e-320 nN*m"', "error: duty.resisting_torque: '1e-320 nN*m' is below the float64 range in "
+                                         "SI: it would be read as 0"),  # (1e-329 N*m; 1e-300 nN*m, 1e-309 N*m: under
+    # the 1e-18 clutchopt works with, refused as such)
+])
+def test_a_nonzero_number_float64_reads_as_zero_is_refused(tmp_path, capsys, load, expected):
+    assert WEDGE.count(LOAD) == 1 and WEDGE.splitlines()[13] == LOAD  # (line 14)
+    path = tmp_path / "case.toml"
+    path.write_text(WEDGE.replace(LOAD, load))
+    code, _, err = _run(capsys, "solve", str(path), "--no-store")
+    assert code == EXIT_BAD_INPUT and expected in err and err.count("\n") == 1, err
+
+
+def test_a_swept_value_float64_reads_as_zero_is_refused_and_zero_itself_is_not(tmp_path, capsys):
+    path = tmp_path / "case.toml"
+    path.write_text(WEDGE)
+    code, _, err = _run(capsys, "sweep", str(path), "--vary", "resisting_torque=0,1e-400", "--no-store", "--quiet")
+    assert code == EXIT_BAD_INPUT and "--vary resisting_torque=0,1e-400: 1e-400 is below the float64 range" in err
+    code, out, _ = _run(capsys, "sweep", str(path), "--vary", "resisting_torque=0,0.0e-400", "--no-store", "--quiet",
+                        "--json")
+    assert code == 0 and [p["status"] for p in json.loads(out)["points"]] == ["optimal", "optimal"]
+
+
+def test_an_empty_path_is_refused_before_any_work(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "case.toml").write_text(WEDGE)
+    code, _, err = _run(capsys, "sweep", "case.toml", "--vary", "speed=800", "--store", "", "--out", " ")
+    assert code == EXIT_BAD_INPUT
+    assert "error: argument --store: expected a file path, got ''" in err
+    assert "error: argument --out: expected a file path, got ' '" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["case.toml"]  # (nothing recorded, nothing written)
+    for args in (("init", "wedge", "-o", ""), ("pareto", "case.toml", "--plot", ""), ("report", "case.toml", "-o", ""),
+                 ("runs", "export", "-o", "")):
+        code, out, err = _run(capsys, *args)
+        assert code == EXIT_BAD_INPUT and "expected a file path, got ''" in err and not out, (args, err)
+
+
+def test_a_sweep_id_the_store_does_not_hold_is_refused(tmp_path, capsys):
+    store, case = tmp_path / "runs.sqlite", tmp_path / "case.toml"
+    case.write_text(WEDGE)
+    assert _run(capsys, "sweep", str(case), "--vary", "speed=800,900", "--store", str(store), "--quiet")[0] == 0
+    for action in (("list",), ("export", "-o", str(tmp_path / "points.csv"))):
+        code, _, err = _run(capsys, "runs", *action, "--store", str(store), "--sweep", "42")
+        assert code == EXIT_BAD_INPUT and f"error: --sweep: no sweep 42 in {store}" in err, err
+    assert not (tmp_path / "points.csv").exists()
+    code, out, _ = _run(capsys, "runs", "export", "-o", str(tmp_path / "points.csv"), "--store", str(store),
+                        "--sweep", "1")
+    assert code == 0 and out.startswith("2 runs written")
+
+
+@pytest.mark.parametrize("text, expected", [
+    ('"weight_mass": 0.2, "weight_mass": 0.1569', "'weight_mass' given twice in one object"),
+    ('"bogus": 1.0', "coupling.design design.bogus: not a design variable of the wedge in paper mode"),
+])
+def test_a_design_file_with_a_key_twice_or_no_such_variable_is_refused(tmp_path, capsys, text, expected):
+    design = (ROOT / "cases" / "designs" / "wedge_paper.json").read_text()
+    assert design.count('"design": {') == 1
+    (tmp_path / "designs").mkdir()
+    (tmp_path / "designs" / "wedge_paper.json").write_text(design.replace('"design": {', '"design": {' + text + ", "))
+    (tmp_path / "wedge_paper.toml").write_text(WEDGE)
+    (tmp_path / "scenes").mkdir()
+    scene = (ROOT / "cases" / "scenes" / "wedge_motor_springs.toml").read_text()
+    assert 'case = "../wedge_paper.toml"' in scene and 'design = "../designs/wedge_paper.json"' in scene
+    (tmp_path / "scenes" / "scene.toml").write_text(scene)
+    code, _, err = _run(capsys, "simulate", str(tmp_path / "scenes" / "scene.toml"), "--no-store")
+    assert code == EXIT_BAD_INPUT and expected in err, err
