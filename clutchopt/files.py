@@ -12,8 +12,9 @@ import codecs
 import os
 import stat
 import tempfile
+from contextlib import contextmanager
 from pathlib import Path
-from typing import Callable
+from typing import Callable, Iterator
 
 from clutchopt.errors import InputError
 
@@ -122,23 +123,45 @@ def write_whole(option: str, path: str, write: Callable[[str], None]) -> None:
     """Call ``write(temporary_path)`` and move the result to ``path``: the file appears whole or not at all.
 
     A device (``/dev/null``) is written directly. Errors of the file system are InputErrors naming ``option``."""
-    target = Path(path)
-    try:
-        found = status(target, option)
-        if found is not None and not stat.S_ISREG(found.st_mode):  # a device such as /dev/null
-            write(path)
-            return
-        handle, temporary = tempfile.mkstemp(prefix=f".{target.name}.", suffix=target.suffix,
-                                             dir=target.parent or ".")
-        os.close(handle)
-        mask = os.umask(0)
-        os.umask(mask)
-        os.chmod(temporary, 0o666 & ~mask)  # as a plainly created file would be, not mkstemp's 0600
+    with written_together() as written:
+        written(option, path, write)
+
+
+@contextmanager
+def written_together() -> Iterator[Callable[[str, str, Callable[[str], None]], None]]:
+    """``with written_together() as written:`` each ``written(option, path, write)`` calls ``write`` on a temporary
+    file beside ``path``; every file is moved into its place once all are written, and none where one fails: a run
+    with several outputs leaves all of them or none (review 25: a Pareto front's table had been written where its
+    figure failed, exit 2). A device (``/dev/null``) is written directly. Errors of the file system are InputErrors
+    naming the option."""
+    staged: list[tuple[str, str, str]] = []  # (option, path, temporary)
+
+    def written(option: str, path: str, write: Callable[[str], None]) -> None:
+        target = Path(path)
         try:
+            found = status(target, option)
+            if found is not None and not stat.S_ISREG(found.st_mode):  # a device such as /dev/null
+                write(path)
+                return
+            handle, temporary = tempfile.mkstemp(prefix=f".{target.name}.", suffix=target.suffix,
+                                                 dir=target.parent or ".")
+            os.close(handle)
+            staged.append((option, path, temporary))
+            mask = os.umask(0)
+            os.umask(mask)
+            os.chmod(temporary, 0o666 & ~mask)  # as a plainly created file would be, not mkstemp's 0600
             write(temporary)
-            os.replace(temporary, target)
-        finally:
+        except OSError as exc:
+            raise InputError(option, f"cannot write {path!r} ({exc.strerror or exc})") from None
+
+    try:
+        yield written
+        for option, path, temporary in staged:
+            try:
+                os.replace(temporary, path)
+            except OSError as exc:
+                raise InputError(option, f"cannot write {path!r} ({exc.strerror or exc})") from None
+    finally:
+        for _, _, temporary in staged:
             if os.path.exists(temporary):
                 os.unlink(temporary)
-    except OSError as exc:
-        raise InputError(option, f"cannot write {path!r} ({exc.strerror or exc})") from None

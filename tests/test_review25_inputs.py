@@ -91,3 +91,21 @@ def test_a_design_file_with_a_key_twice_or_no_such_variable_is_refused(tmp_path,
     (tmp_path / "scenes" / "scene.toml").write_text(scene)
     code, _, err = _run(capsys, "simulate", str(tmp_path / "scenes" / "scene.toml"), "--no-store")
     assert code == EXIT_BAD_INPUT and expected in err, err
+
+
+@pytest.mark.skipif(not Path("/dev/full").exists(), reason="no /dev/full (a device every write to fails)")
+@pytest.mark.parametrize("args", [
+    ("pareto", "case.toml", "--points", "2", "--out", "front.csv", "--plot", "full.png", "--quiet"),
+    ("report", "case.toml", "-o", "full.html", "--quiet"),
+    ("simulate", str(ROOT / "cases" / "scenes" / "paper_transient.toml"), "--plot", "full.png"),
+])
+def test_a_run_whose_output_fails_writes_and_records_nothing(tmp_path, capsys, monkeypatch, args):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "case.toml").write_text(WEDGE)
+    for name in ("full.png", "full.html"):
+        (tmp_path / name).symlink_to("/dev/full")
+    code, _, err = _run(capsys, *args, "--store", "runs.sqlite")
+    assert code == EXIT_BAD_INPUT and "No space left on device" in err, err
+    assert not (tmp_path / "front.csv").exists()  # (the table is written with the figure or not at all)
+    code, out, _ = _run(capsys, "runs", "list", "--store", "runs.sqlite", "--json")
+    assert code == 0 and json.loads(out)["runs"] == []

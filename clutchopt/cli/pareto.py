@@ -54,7 +54,7 @@ def run(args) -> str:
     import pandas as pd
 
     from clutchopt.cases import load_case
-    from clutchopt.files import check_output, write_whole
+    from clutchopt.files import check_output, written_together
     from clutchopt.optimise import SolverOptions
     from clutchopt.optimise.design import Designed, method_of
     from clutchopt.optimise.pareto import CAP, pareto_fronts
@@ -72,6 +72,12 @@ def run(args) -> str:
     with recording(args) as store:
         fronts = pareto_fronts(case, args.mode, args.points, SolverOptions(tol=args.tol), robust,
                                progress=not args.quiet)
+        with written_together() as written:  # (both files or neither, then recorded: review 25)
+            if args.out:
+                write_frame(pd.concat([_with_choice(front) for front in fronts], ignore_index=True), args.out,
+                            written=written)
+            if args.plot:
+                written("--plot", args.plot, pareto_figure(fronts).savefig)
         for front in fronts if store is not None else ():
             for k, (cap, solution) in enumerate(zip(front.caps, front.solutions)):
                 outputs = Designed(front.choice, front.case, solution, front.robust[k] if front.robust else None)
@@ -81,10 +87,6 @@ def run(args) -> str:
                     store.record_solution("pareto", replace(front.case, values={**front.case.values, CAP: cap}),
                                           solution, outputs.as_dict(), method_of(robust),
                                           mode=f"{front.mode}{CAPPED_SUFFIX}")
-    if args.out:
-        write_frame(pd.concat([_with_choice(front) for front in fronts], ignore_index=True), args.out)
-    if args.plot:
-        write_whole("--plot", args.plot, pareto_figure(fronts).savefig)
     if args.json:
         shown = [_front_json(front) for front in fronts]
         return to_json(with_units({"case": case.path, "mode": fronts[0].mode,

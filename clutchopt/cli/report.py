@@ -67,19 +67,19 @@ def run(args) -> str:
         ranked = design_case(case, args.mode, args.objective, SolverOptions(tol=args.tol), robust,
                              progress=not args.quiet)
         best = ranked[0]
-        record_solve(store, best, method_of(robust))
-    notes = (f"options.choose: the best of {len(ranked)} choices, {best.choice_text} (clutchopt solve lists them)",) \
-        if best.choice else ()
-    page = build_report(best.case, best.solution, sweep, best.robust, notes)
+        notes = (f"options.choose: the best of {len(ranked)} choices, {best.choice_text} (clutchopt solve lists "
+                 "them)",) if best.choice else ()
+        page = build_report(best.case, best.solution, sweep, best.robust, notes)
 
-    def write(path: str) -> None:
-        if pdf:
-            print_pdf(chromium, page, path, "--out")
-            return
-        with open(path, "w", encoding="utf-8") as handle:
-            handle.write(page)
+        def write(path: str) -> None:
+            if pdf:
+                print_pdf(chromium, page, path, "--out")
+                return
+            with open(path, "w", encoding="utf-8") as handle:
+                handle.write(page)
 
-    write_whole("--out", args.out, write)
+        write_whole("--out", args.out, write)
+        record_solve(store, best, method_of(robust))  # (once the page is written: review 25)
     solution = best.solution
     return "\n".join([*notes, f"design review of {case.path} ({solution.status}, {solution.objective_name} "
                                f"{solution.objective:.6g} {solution.objective_unit}"

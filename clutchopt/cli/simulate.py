@@ -46,11 +46,11 @@ def run(args) -> str:
         check_output("--plot", args.plot, FIGURE_SUFFIXES)
     with recording(args) as store:
         result = run_scene(scene)
-        record_simulation(store, scene, result)
-    if args.plot:
-        from clutchopt.simulate.plot import history_figure  # (matplotlib: 0.4-0.5 s, only for a figure asked for)
+        if args.plot:
+            from clutchopt.simulate.plot import history_figure  # (matplotlib: 0.4-0.5 s, only for a figure asked for)
 
-        write_whole("--plot", args.plot, lambda path: history_figure(result, scene.title).savefig(path, dpi=120))
+            write_whole("--plot", args.plot, lambda path: history_figure(result, scene.title).savefig(path, dpi=120))
+        record_simulation(store, scene, result)  # (once the figure is written: review 25)
     analytic = None
     m = scene.model
     if m.law.name == "paper" and m.load.constant and "motor_curve" not in m.effects:

@@ -29,9 +29,11 @@ IDENTITY = "clutchopt_sweep"  # the frame attribute (and Parquet metadata) that 
 CSV_IDENTITY = f"# {IDENTITY} "  # a CSV sweep table's first line: this, then the identification as JSON
 
 
-def write_frame(frame: pd.DataFrame, path: str, option: str = "--out", identity: dict | None = None) -> None:
-    """CSV, Parquet or Markdown by the file's suffix, written whole or not at all; ``identity`` (a sweep's, see
-    :meth:`Sweep.identity`) goes into a CSV's first line and a Parquet file's metadata."""
+def write_frame(frame: pd.DataFrame, path: str, option: str = "--out", identity: dict | None = None,
+                written: Callable[[str, str, Callable[[str], None]], None] = write_whole) -> None:
+    """CSV, Parquet or Markdown by the file's suffix, written whole or not at all (``written``: with a run's other
+    outputs, ``files.written_together``); ``identity`` (a sweep's, see :meth:`Sweep.identity`) goes into a CSV's
+    first line and a Parquet file's metadata."""
     suffix = table_format(path, option)
 
     def write(target: str) -> None:
@@ -49,7 +51,7 @@ def write_frame(frame: pd.DataFrame, path: str, option: str = "--out", identity:
                 handle.write(markdown_table(frame) + "\n")
 
     try:
-        write_whole(option, path, write)
+        written(option, path, write)
     except ImportError as exc:
         raise InputError(option, f"Parquet needs pyarrow (pip install 'clutchopt[parquet]'): {exc}") from None
 
