@@ -203,8 +203,11 @@ def parse_case(data: dict, path: str = "") -> Case:
     with problems.field():
         filled = materials.fill(data.get("library", {}), coupling.materials, coupling.quantities, values, choose)
     given = {q.name for q in coupling.quantities if q.name in _table(data.get(q.section))}
+    refused_choice = {name for role in coupling.materials if not choose and role.key in _table(
+        _table(options).get("choose")) for name in role.fills.values()}  # (what a refused options.choose would
+    # have filled is not missing besides its own error: review 25)
     for quantity in coupling.quantities:
-        if quantity.name in given or quantity.name in values:
+        if quantity.name in given or quantity.name in values or quantity.name in refused_choice:
             continue
         with problems.field():
             if quantity.default is REQUIRED and not quantity.needed_by:

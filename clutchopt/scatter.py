@@ -33,6 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from clutchopt.errors import InputError, Problems, shown_value
+from clutchopt.model import MAGNITUDES
 from clutchopt.units import difference_unit, to_si, unit_info
 
 SECTION = "scatter"
@@ -290,6 +291,11 @@ def _mean_and_sd(field: str, quantity, mean: float, sd: float, nominal: float) -
         raise InputError(field, f"the standard deviation {shown_spread(quantity, sd)} does not move the mean "
                                 f"{quantity.show(mean)} in float64 (mean +- {NORMAL_RANGE:g} sd rounds to the mean): "
                                 f"no scatter; leave {quantity.name} out of [scatter] or give a wider sd")
+    if sd > MAGNITUDES[1] and field.rsplit(".", 1)[-1] == "normal":  # (1e300 had overflowed in the model's
+        # arithmetic, review 25; a lognormal's is refused against its mean, below)
+        raise InputError(field, f"the standard deviation {sd:.6g} {quantity.si_unit} (SI) is outside the magnitudes "
+                                f"clutchopt works with, {MAGNITUDES[0]:g} to {MAGNITUDES[1]:g} in SI units"
+                         .replace(" 1 (SI)", " (SI)"))
     if not math.isnan(nominal) and not math.isclose(mean, nominal, rel_tol=MEAN_TOLERANCE):
         kind = field.rsplit(".", 1)[-1]
         raise InputError(field, f"the mean {quantity.show(mean)} is not the case's value {quantity.show(nominal)}: "

@@ -109,3 +109,46 @@ def test_a_run_whose_output_fails_writes_and_records_nothing(tmp_path, capsys, m
     assert not (tmp_path / "front.csv").exists()  # (the table is written with the figure or not at all)
     code, out, _ = _run(capsys, "runs", "list", "--store", "runs.sqlite", "--json")
     assert code == 0 and json.loads(out)["runs"] == []
+
+
+def test_a_normal_scatter_s_sd_beyond_the_magnitudes_clutchopt_works_with_is_refused(tmp_path, capsys):
+    for sd, refused in (("1e300", True), ("1e19", True), ("0.02", False)):
+        path = tmp_path / "case.toml"
+        path.write_text(WEDGE + f"\n[scatter]\nfriction_coefficient = {{ normal = [0.15, {sd}] }}\n")
+        code, _, err = _run(capsys, "solve", str(path), "--robust", "worst-case", "--no-store")
+        if refused:
+            assert code == EXIT_BAD_INPUT and err.count("\n") == 1, err
+            assert err.startswith("error: scatter.friction_coefficient.normal: the standard deviation ") and \
+                "is outside the magnitudes clutchopt works with, 1e-18 to 1e+18 in SI units" in err, err
+        else:
+            assert code == 0 and not err, err
+
+
+def test_a_refused_law_or_choice_is_said_alone_not_with_the_fields_it_would_have_given(tmp_path, capsys):
+    scene = (ROOT / "cases" / "scenes" / "wedge_motor_springs.toml").read_text()
+    assert scene.count('law = "centrifugal"') == 1
+    (tmp_path / "scenes").mkdir()
+    (tmp_path / "scenes" / "scene.toml").write_text(scene.replace('law = "centrifugal"', 'law = "Centrifugal"')
+                                                    .replace('"../', f'"{ROOT / "cases"}/'))
+    code, _, err = _run(capsys, "simulate", str(tmp_path / "scenes" / "scene.toml"), "--no-store")
+    assert code == EXIT_BAD_INPUT and err == ("error: coupling.law: must be one of paper, constant, centrifugal, got "
+                                              "'Centrifugal'\n"), err
+    path = tmp_path / "case.toml"  # (the wedge's friction pair's fields left to options.choose)
+    chosen = "\n".join(line for line in WEDGE.splitlines()
+                       if not line.startswith(("friction_coefficient", "allowable_pressure")))
+    path.write_text(chosen + '\n[options]\nchoose = { friction_pair = ["organic_dry", "sintered_dry"] }\n')
+    code, _, err = _run(capsys, "solve", str(path), "--no-store")
+    assert code == EXIT_BAD_INPUT and err.count("\n") == 1, err
+    assert err.startswith("error: options.choose.friction_pair: unknown friction pair 'sintered_dry'"), err
+
+
+def test_choose_coupling_says_each_problem_every_coupling_shares_once(tmp_path, capsys):
+    text = (ROOT / "cases" / "conveyor_drive.toml").read_text()
+    assert text.count("poles = 4") == 1 and text.count('frequency = "50 Hz"') == 1
+    path = tmp_path / "drive.toml"
+    path.write_text(text.replace("poles = 4", "poles = 3").replace('frequency = "50 Hz"', 'frequency = "50 rpm"'))
+    code, _, err = _run(capsys, "choose-coupling", str(path))
+    assert code == EXIT_BAD_INPUT and err == (
+        "error: start_up.driver.poles: must be an even whole number from 2 to 64, got 3\n"
+        "error: start_up.driver.frequency: expected a count per time (e.g. in Hz), got '50 rpm', which is an angular "
+        "speed\n"), err

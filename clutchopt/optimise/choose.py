@@ -67,6 +67,7 @@ class Candidate:
     solution: Solution | None = None
     sized_for: float = math.nan  # N*m, the torque the coupling's own requirement asks for
     parts: dict[str, float] = field(default_factory=dict)  # kg by ENVELOPE_PARTS
+    problems: tuple = ()  # the problems (InputErrors) its case was refused for, where it could not be posed
 
     @property
     def status(self) -> str:
@@ -268,6 +269,7 @@ def posed_case(name: str, duty: dict[str, float], raw_duty: dict, data: dict, pa
         if own:
             raise InputError.several([InputError(f"couplings.{name}.{p.field}", p.problem) for p in own]) from None
         candidate.reason = "cannot be posed: " + "; ".join(str(p) for p in exc.problems)
+        candidate.problems = tuple(exc.problems)
     return candidate
 
 
@@ -402,6 +404,10 @@ def pose(data: dict, path: str = "") -> tuple[Choice, dict[str, float]]:
             candidates.append(posed_case(name, duty, raw, data, path))
     problems.raise_any()
     if all(c.case is None for c in candidates):  # nothing poses: the neutral case itself is wrong
+        said = [{(p.field, p.problem) for p in c.problems} for c in candidates]
+        shared = [p for p in candidates[0].problems if all((p.field, p.problem) in each for each in said[1:])]
+        if shared:  # (each refused for the same fields: the neutral case's, one line each, as solve says them;
+            raise InputError.several([InputError(p.field, p.problem) for p in shared])  # review 25)
         raise InputError(path or "case", "no coupling can be posed: " + " | ".join(
             f"{c.coupling}: {c.reason}" for c in candidates))
     t_max = required_torque(duty["inertia"], duty["speed"], duty["acceleration_time"], duty["resisting_torque"])

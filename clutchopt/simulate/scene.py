@@ -168,11 +168,13 @@ def parse_scene(data: dict, path: str = "") -> Scene:
                 f.problems.errors.append(InputError(f"coupling.{key}", f"not read by law = {law_name!r} (it reads "
                                                                        f"{', '.join(_LAW_KEYS[law_name])})"))
     for effect in RADIAL_EFFECTS:
-        if effect in effects and law_name != "centrifugal":
+        if effect in effects and law_name in LAWS and law_name != "centrifugal":  # (a law refused: its error alone)
             f.problems.errors.append(InputError("effects", f"{effect} applies to centrifugal couplings "
                                                            "(law = \"centrifugal\") only"))
     case = _case(f, effects) if law_name == "centrifugal" else None
-    f.defaults, f.case_failed = _from_the_case(case), law_name == "centrifugal" and case is None
+    f.defaults = _from_the_case(case)
+    f.case_failed = case is None and (law_name == "centrifugal" or law_name not in LAWS and "case" in f.table(
+        "coupling"))  # (a law refused beside a case: the fields that case would give are not said to be missing)
     unread = _unread(f, effects)
     inertia = f.quantity("driven", "inertia", "kg*m^2", INERTIA)
     load = _load(f, case.start_up.load_profile if case is not None and case.start_up is not None else None)
