@@ -16,7 +16,7 @@ from typing import Iterator
 
 import numpy as np
 
-from clutchopt.optimise.chain import first_order_optimal, no_descent_curvature
+from clutchopt.optimise.chain import first_order_optimal, leaves_free, no_descent_curvature
 from clutchopt.optimise.posed import Posed, ScaledData
 from clutchopt.optimise.verify import check_design, evaluate_objective
 
@@ -105,8 +105,8 @@ def attempt(posed: Posed, data: ScaledData, lbx, ubx, x0, seed: dict | None, met
         point = [solved[k] for k in ("x", "p", "lam_x", "lam_g", "lbx", "ubx")]
         if method == "sqp" and solved["ok"]:
             solved["ok"] = bool(first_order_optimal(posed, *point)[0])
-        if method != "ipopt" and posed.start_up is None and solved["ok"]:  # (a warm start's end may be a saddle)
-            solved["ok"] = bool(no_descent_curvature(posed, *point)[0])
+        if method != "ipopt" and posed.start_up is None and solved["ok"] and leaves_free(posed, *point[2:])[0]:
+            solved["ok"] = bool(no_descent_curvature(posed, *point)[0])  # (a warm start's end may be a saddle)
         if i == len(methods) - 1 or solved["ok"] and solved["feasible"]:
             break
     return solved

@@ -84,7 +84,8 @@ from clutchopt.optimise.attempts import warm_multipliers
 from clutchopt.optimise.batch_carried import Carried
 from clutchopt.optimise.batch_pace import BatchPace, until_active
 from clutchopt.optimise.batch_window import BATCHED, Block, Checked, Solutions
-from clutchopt.optimise.chain import chain_verdict, chained_sqp, curvature, curved_up
+from clutchopt.optimise.chain import (chain_verdict, chained_sqp, compiled_apart, curvature, curved_up,
+                                      leaves_free)
 from clutchopt.optimise.feasibility import LOCALLY_INFEASIBLE, Least, infeasible, least
 from clutchopt.optimise.integers import (EXCLUDED, descend, downhill, excluded_entry, nearest_integers,
                                          relaxation_seed, search_entry)
@@ -626,14 +627,18 @@ class BatchSweep:
         if x is None:
             return None
         began = time.perf_counter()
-        kkt, moves = self.posed.mapped(self._verdict, length)(x, p, lam_x, lam_g, lbx, ubx, f, self.lower,
-                                                                 self.upper)
-        held = self.posed.mapped(curvature(self.posed, batched=True), length)(x, p, lam_x, lam_g, lbx, ubx)[0]
+        kkt, moves, held = self.posed.mapped(self._verdict, length)(x, p, lam_x, lam_g, lbx, ubx, f, self.lower,
+                                                                       self.upper)
+        curved, free = np.ones(length, dtype=bool), leaves_free(self.posed, lam_x, lam_g, lbx, ubx)
+        if free.any():  # (a chain of vertices: nothing to test)
+            if compiled_apart(self.posed):
+                held = self.posed.mapped(curvature(self.posed, batched=True), length)(x, p, lam_x, lam_g, lbx, ubx)[0]
+            curved[free] = curved_up(held[:, free])
         self.check_s += time.perf_counter() - began
         arrays = dict(x=x, lam_x=lam_x, lam_g=lam_g, dx=dx, dlam_x=dlam_x, dlam_g=dlam_g, f=f, p=p)
         if count < length:
             arrays = {key: value[:, :count] for key, value in arrays.items()}
-        return _Chain(np.arange(k, k + count), (kkt[0, :count] > 0.5) & curved_up(held[:, :count]),
+        return _Chain(np.arange(k, k + count), (kkt[0, :count] > 0.5) & curved[:count],
                       moves[0, :count] > 0.5, **arrays,
                       **{key: (bound[:, :count] if bound.ndim == 2 else bound[:, None].repeat(count, axis=1))
                          for key, bound in (("lbx", lbx), ("ubx", ubx))},

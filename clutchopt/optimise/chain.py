@@ -77,6 +77,25 @@ def curvature(posed: Posed, batched: bool = False) -> ca.Function:
     return posed.built("curvature", batched, build)
 
 
+def compiled_apart(posed: Posed) -> bool:
+    """Whether a batched sweep evaluates :func:`curvature` compiled, in a call of its own (the ball's Hessian), not
+    inside its chain verdict on CasADi's virtual machine (one call a chain: a one-point chain's call costs about as
+    much as its checks)."""
+    return curvature(posed, batched=True).is_a("External")
+
+
+def leaves_free(posed: Posed, lam_x, lam_g, lbx, ubx) -> np.ndarray:
+    """Per column (primal-dual points; a 1-D argument serves every column), whether fewer rows and bounds hold the
+    point (as :func:`curvature` counts them) than it has variables: only there can a direction be left free, and
+    :func:`curvature` say anything (a vertex is a minimum of its own; rows that hold it with gradients that
+    depend on each other are counted each: such a vertex's free direction is not tested)."""
+    tol = posed.kkt_tolerance
+    lam_x, lam_g = (np.asarray(a, dtype=float).reshape(len(a), -1) for a in (lam_x, lam_g))
+    fixed = (np.asarray(lbx) == np.asarray(ubx)).reshape(len(lam_x), -1)
+    rows = (np.abs(lam_g[:posed.n_ineq]) > tol).sum(axis=0) + (lam_g.shape[0] - posed.n_ineq)
+    return rows + ((np.abs(lam_x) > tol) | fixed).sum(axis=0) < lam_x.shape[0]
+
+
 def curved_up(held: np.ndarray) -> np.ndarray:
     """Per column of :func:`curvature`'s values (n * n rows), whether no direction the holding rows and bounds leave
     free has negative curvature: the matrix's least eigenvalue at least -CURVATURE_TOL (False where a number is not
@@ -106,7 +125,9 @@ def first_order_optimal(posed: Posed, x, p, lam_x, lam_g, lbx, ubx) -> np.ndarra
 
 def chain_verdict(posed: Posed, integer: list[int], fixed: np.ndarray) -> ca.Function:
     """The tests of a re-solve along a sweep as one CasADi function (x, p, lam_x, lam_g, lbx, ubx, f, lower, upper)
-    -> (kkt, moves): ``kkt`` its KKT verdict (:func:`kkt`); ``moves`` 1 where ``Problem.solve``'s warm search would
+    -> (kkt, moves, curvature): ``kkt`` its KKT verdict (:func:`kkt`); ``curvature`` :func:`curvature`'s matrix
+    (:func:`curved_up` reads it; empty where the batch's curvature is compiled apart: :func:`chain_curvature`);
+    ``moves`` 1 where ``Problem.solve``'s warm search would
     go on from this point. With free integers ``integer`` (fixed through their bounds in the re-solve; ``f`` its
     scaled objective, ``lower``, ``upper`` the case's bounds, SI): a neighbouring combination that
     ``integers.downhill`` steps to (each integer whose bound multiplier promises a gain beyond ``Posed.negligible``,
@@ -121,12 +142,13 @@ def chain_verdict(posed: Posed, integer: list[int], fixed: np.ndarray) -> ca.Fun
         n, m = len(posed.names), nlp["p"].shape[0] - len(posed.names) - 1
         lower, upper = ca.SX.sym("lower", n), ca.SX.sym("upper", n)
         verdict = kkt(posed)(x, p, lam_x, lam_g, lbx, ubx)
+        held = ca.DM.zeros(0, 1) if compiled_apart(posed) else curvature(posed)(x, p, lam_x, lam_g, lbx, ubx)
         if integer:
             moves = _search_moves(posed, integer, fixed, x, p, lam_x, f_hat, lower, upper, n, m)
         else:
             moves = ca.sum1(off_scale_entries(x[:n])) > 0
         return ca.Function(f"chain_verdict_{number}", [x, p, lam_x, lam_g, lbx, ubx, f_hat, lower, upper],
-                           [verdict, moves])
+                           [verdict, moves, held])
 
     key = np.asarray(integer, dtype=np.int64).tobytes() + b"|" + np.asarray(fixed, dtype=bool).tobytes()
     return posed.built("verdict", key, build)
