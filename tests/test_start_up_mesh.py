@@ -126,5 +126,6 @@ def test_the_suggested_mesh_is_adapted_where_first_read_and_to_the_bit(monkeypat
     assert unpacked_used is used and np.array_equal(suggested, expected)
     with pytest.raises(IndexError):
         meshes[2]
-    sent = pickle.loads(pickle.dumps(Meshes(used, STRUCTURE, columns, [1.0, 1.0], 0.05)))  # (to another process: adapted)
+    sent = pickle.loads(pickle.dumps(Meshes(used, STRUCTURE, columns, [1.0, 1.0], 0.05)))  # (to another process:
+    # adapted)
     assert np.array_equal(sent[0], used) and np.array_equal(sent[1], expected) and sent._from is None

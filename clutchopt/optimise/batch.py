@@ -11,9 +11,10 @@ tests of ``Problem.solve`` run afterwards on all points of the batch at once:
 - in one mapped CasADi evaluation (``chain.chain_verdict``): the KKT conditions of every point, apart from the
   solver; the integer test of the warm integer search (a point whose fixed integers' bound multipliers point to a
   neighbouring integer the search would solve ends the chain); without integers, whether the optimum has moved
-  more than tenfold from the variable scales (the solve is repeated with new scales there); and in another
-  (``chain.curvature``, compiled where the NLP's functions are) that no direction the rows and bounds holding a point
-  leave free curves down (a chained SQP had kept a maximum along one: the point fails its test);
+  more than tenfold from the variable scales (the solve is repeated with new scales there); and, where fewer rows
+  and bounds hold a point than it has variables, that no direction they leave free curves down (``chain.curvature``,
+  in a call of its own where it is compiled, the ball's; a chained SQP had kept a maximum along one: the point fails
+  its test);
 - a batch stops short of the point where its integers break a constraint of fixed variables alone that they enter
   (the search excludes them there without a solve), found ahead of the batch by a mapped CasADi evaluation (the
   exclusion tables); where one neighbouring combination is left there (the cable count, one cable more, as its

@@ -2,9 +2,10 @@
 
 The KKT verdict checks what a solver reports (CasADi's SQP can stop at the start when handed a previous point's
 multipliers); the curvature's, that a warm re-solve's KKT point is no saddle or maximum along a direction its holding
-rows leave free (a Newton-type re-solve converges to the stationary point nearest its start). A chained SQP re-solves a batch of sweep points in one CasADi call, and the chain verdict tests them
-all at once: their KKT conditions and whether ``Problem.solve``'s warm integer search (or its re-scaling) would go on
-from them. Every function here is built once per posed problem (``Posed.built``) and called on NumPy arrays.
+rows leave free (a Newton-type re-solve converges to the stationary point nearest its start). A chained SQP re-solves
+a batch of sweep points in one CasADi call, and the chain verdict tests them all at once: their KKT conditions, their
+curvature and whether ``Problem.solve``'s warm integer search (or its re-scaling) would go on from them. Every
+function here is built once per posed problem (``Posed.built``) and called on NumPy arrays.
 """
 
 from __future__ import annotations
@@ -126,7 +127,7 @@ def first_order_optimal(posed: Posed, x, p, lam_x, lam_g, lbx, ubx) -> np.ndarra
 def chain_verdict(posed: Posed, integer: list[int], fixed: np.ndarray) -> ca.Function:
     """The tests of a re-solve along a sweep as one CasADi function (x, p, lam_x, lam_g, lbx, ubx, f, lower, upper)
     -> (kkt, moves, curvature): ``kkt`` its KKT verdict (:func:`kkt`); ``curvature`` :func:`curvature`'s matrix
-    (:func:`curved_up` reads it; empty where the batch's curvature is compiled apart: :func:`chain_curvature`);
+    (:func:`curved_up` reads it; empty where the batch's curvature is compiled apart: :func:`compiled_apart`);
     ``moves`` 1 where ``Problem.solve``'s warm search would
     go on from this point. With free integers ``integer`` (fixed through their bounds in the re-solve; ``f`` its
     scaled objective, ``lower``, ``upper`` the case's bounds, SI): a neighbouring combination that
