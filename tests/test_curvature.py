@@ -73,8 +73,21 @@ def test_the_sweep_grid_keeps_the_minimum_solve_finds_at_that_point():
     assert point["design"]["radius_ratio"] == pytest.approx(1.1, rel=1e-12)
 
 
-def test_the_matrix_test_reads_negative_curvature_only():
-    flat = np.diag([-1e-3, 2.0, 1e6]).reshape(-1, 1)  # a direction curving down: refused
-    semidefinite = np.diag([-0.1 * CURVATURE_TOL, 2.0, 1e6]).reshape(-1, 1)  # flat to within the tolerance: kept
-    unknown = np.full((9, 1), np.nan)
-    assert list(curved_up(np.hstack([flat, semidefinite, unknown]))) == [False, True, False]
+def _values(hessian, held) -> np.ndarray:
+    """:func:`curved_up`'s column for a point: H then P, each column by column."""
+    return np.concatenate([np.asarray(hessian, dtype=float).ravel(order="F"),
+                           np.asarray(held, dtype=float).ravel(order="F")])[:, None]
+
+
+def test_the_matrix_test_reads_negative_curvature_along_free_directions_only():
+    held = np.diag([0.0, 0.0, 1.0])  # (the third direction held by a row, the first two free)
+    columns = [
+        _values(np.diag([-1e-3, 2.0, 1.0]), held),  # a free direction curving down: refused
+        _values(np.diag([-0.1 * CURVATURE_TOL, 2.0, 1.0]), held),  # flat to within the tolerance: kept
+        _values(np.diag([1.0, 2.0, -5.0]), held),  # curving down only where a row holds it: kept
+        _values(np.diag([-1.0, 1.0, 1.0]), np.diag([1e-8, 1.0, 1.0])),  # barely held (the penalty lifts it by 0.01,
+        # the exact test finds no free direction): kept
+        _values(np.diag([-1.0, 1.0, 1.0]), np.diag([1e-12, 1.0, 1.0])),  # held by nothing to within 1e-10: refused
+        np.full((18, 1), np.nan),
+    ]
+    assert list(curved_up(np.hstack(columns))) == [False, True, True, True, False, False]

@@ -48,21 +48,22 @@ def kkt_of(nlp: dict, n_ineq: int, tol: float, name: str) -> ca.Function:
 
 
 CURVATURE_PENALTY = 1e6  # on the rows and bounds that hold a point, against the scaled Lagrangian's curvature (of order
-# 1e-2-1e2): a direction they leave free keeps its curvature in :func:`curvature`'s matrix, every other is lifted
-CURVATURE_TOL = 1e-6  # the least eigenvalue of that matrix a minimum may show (the penalty's coupling to a flat
-# direction, an objective that does not price a variable, leaves about -1e-10 there)
+# 1e-2-1e2): a direction they leave free keeps its curvature in the penalised matrix, every other is lifted
+CURVATURE_TOL = 1e-6  # the least curvature a minimum may show along a free direction (the penalty's coupling to a
+# flat direction, an objective that does not price a variable, leaves about -1e-10 there)
+NULL_SHARE = 1e-10  # an eigenvalue of the holding rows' sum a a^T below this share of its largest: a free direction
 
 
 def curvature(posed: Posed, batched: bool = False) -> ca.Function:
-    """(x, p, lam_x, lam_g, lbx, ubx) -> the matrix H + CURVATURE_PENALTY * sum a a^T, column by column (n * n rows):
-    H the Hessian in x of the Lagrangian f + lam_g . g, a the gradient of each row and bound that holds the point (a
-    multiplier beyond the KKT tolerance; every equality row; every variable its bounds fix). Along a direction none of
-    those changes to first order, the matrix's curvature is H's: negative there, the point is no minimum (the
-    second-order necessary condition fails: a saddle, or a maximum along it) whatever the penalty; positive on all of
-    them, the matrix is positive definite once the penalty is large enough (Finsler's lemma). Built once per posed
-    problem, static problems only (a start-up's collocation has hundreds of variables); ``batched`` (a sweep's
-    chains), compiled where the batched sweep's NLP functions are (``clutchopt.optimise.compiled``: the ball's
-    Hessian, 4,400 instructions, 17 us a point on CasADi's virtual machine)."""
+    """(x, p, lam_x, lam_g, lbx, ubx) -> (H, P), each column by column (n * n rows each, H's first): H the Hessian in x
+    of the Lagrangian f + lam_g . g, P the sum of a a^T over the gradient a of each row and bound that holds the
+    point (a multiplier beyond the KKT tolerance; every equality row; every variable its bounds fix). Along a
+    direction none of those changes to first order (P's null space) the curvature is H's: negative there, the point
+    is no minimum (the second-order necessary condition fails: a saddle, or a maximum along it); :func:`curved_up`
+    reads them. Built once per posed problem, static problems only (a start-up's collocation has hundreds of
+    variables); ``batched`` (a sweep's chains), compiled where the batched sweep's NLP functions are
+    (``clutchopt.optimise.compiled``: the ball's Hessian, 4,400 instructions, 17 us a point on CasADi's virtual
+    machine)."""
     def build(_):
         nlp, tol = posed.nlp, posed.kkt_tolerance
         x, g = nlp["x"], nlp["g"]
@@ -71,8 +72,9 @@ def curvature(posed: Posed, batched: bool = False) -> ca.Function:
         jacobian = ca.jacobian(g, x)
         rows = ca.vertcat(ca.fabs(posed.lam_g[:posed.n_ineq]) > tol, ca.DM.ones(g.shape[0] - posed.n_ineq))
         bounds = ca.logic_or(ca.fabs(lam_x) > tol, lbx == ubx)
-        held = hessian + CURVATURE_PENALTY * (ca.mtimes(jacobian.T, ca.diag(rows) @ jacobian) + ca.diag(bounds))
-        function = ca.Function("curvature", [x, nlp["p"], lam_x, posed.lam_g, lbx, ubx], [ca.densify(ca.vec(held))])
+        held = ca.mtimes(jacobian.T, ca.diag(rows) @ jacobian) + ca.diag(bounds)
+        function = ca.Function("curvature", [x, nlp["p"], lam_x, posed.lam_g, lbx, ubx],
+                               [ca.densify(ca.vertcat(ca.vec(hessian), ca.vec(held)))])
         return compiled_function(function) if batched and is_compiled(posed.solver("sqp_chain")) else function
 
     return posed.built("curvature", batched, build)
@@ -97,16 +99,23 @@ def leaves_free(posed: Posed, lam_x, lam_g, lbx, ubx) -> np.ndarray:
     return rows + ((np.abs(lam_x) > tol) | fixed).sum(axis=0) < lam_x.shape[0]
 
 
-def curved_up(held: np.ndarray) -> np.ndarray:
-    """Per column of :func:`curvature`'s values (n * n rows), whether no direction the holding rows and bounds leave
-    free has negative curvature: the matrix's least eigenvalue at least -CURVATURE_TOL (False where a number is not
-    finite)."""
-    count, n = held.shape[1], int(round(np.sqrt(held.shape[0])))
-    stack = held.T.reshape(count, n, n)
-    finite = np.isfinite(stack).all(axis=(1, 2))
+def curved_up(values: np.ndarray) -> np.ndarray:
+    """Per column of :func:`curvature`'s values (H then P, n * n rows each), whether no direction the holding rows and
+    bounds leave free has curvature below -CURVATURE_TOL (False where a number is not finite): H + CURVATURE_PENALTY P
+    positive semidefinite to that, all at once (a direction they hold is lifted: Finsler's lemma); where it is not,
+    H on P's null space itself (the penalty lifts a direction that holding rows whose gradients nearly depend on each
+    other barely hold, least singular value 1e-3, by only about 1: ``ball_conveyor``'s 45 rows at a vertex)."""
+    count, n = values.shape[1], int(round(np.sqrt(values.shape[0] / 2)))
+    stack = values.T.reshape(count, 2, n, n)
+    hessian, held = stack[:, 0], stack[:, 1]
+    finite = np.isfinite(stack).all(axis=(1, 2, 3))
     least = np.full(count, -np.inf)
     if finite.any():
-        least[finite] = np.linalg.eigvalsh(stack[finite])[:, 0]
+        least[finite] = np.linalg.eigvalsh(hessian[finite] + CURVATURE_PENALTY * held[finite])[:, 0]
+    for j in np.flatnonzero(finite & (least < -CURVATURE_TOL)):  # (the exact test: rare)
+        weights, vectors = np.linalg.eigh(held[j])
+        free = vectors[:, weights <= NULL_SHARE * max(weights[-1], 1.0)]
+        least[j] = np.linalg.eigvalsh(free.T @ hessian[j] @ free)[0] if free.shape[1] else np.inf
     return least >= -CURVATURE_TOL
 
 
