@@ -152,3 +152,18 @@ def test_choose_coupling_says_each_problem_every_coupling_shares_once(tmp_path, 
         "error: start_up.driver.poles: must be an even whole number from 2 to 64, got 3\n"
         "error: start_up.driver.frequency: expected a count per time (e.g. in Hz), got '50 rpm', which is an angular "
         "speed\n"), err
+
+
+def test_choose_coupling_says_a_bad_start_up_table_with_what_every_coupling_finds_in_one_run(tmp_path, capsys):
+    text = (ROOT / "cases" / "conveyor_drive.toml").read_text()
+    assert text.count('capacity = "3000 J/K"') == 1
+    path = tmp_path / "drive.toml"
+    path.write_text(text.replace("poles = 4", "poles = 3").replace('frequency = "50 Hz"', 'frequency = "50 rpm"')
+                    .replace('capacity = "3000 J/K"', 'capacity = "3000 J"'))
+    code, _, err = _run(capsys, "choose-coupling", str(path))
+    assert code == EXIT_BAD_INPUT and err.splitlines() == [
+        "error: start_up.heat.capacity: expected a heat capacity (e.g. in J/K), got '3000 J', which is a torque or "
+        "energy",
+        "error: start_up.driver.poles: must be an even whole number from 2 to 64, got 3",
+        "error: start_up.driver.frequency: expected a count per time (e.g. in Hz), got '50 rpm', which is an angular "
+        "speed"], err

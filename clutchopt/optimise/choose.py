@@ -391,23 +391,26 @@ def pose(data: dict, path: str = "") -> tuple[Choice, dict[str, float]]:
             problems.errors.append(InputError(f"couplings.{name}", "must be a table of that coupling's sections"))
         else:
             _check_override(name, table, problems)
-    if isinstance(data.get("start_up"), dict):  # a bad field is the neutral case's, not a coupling's reason to lose
-        start_up, _, _ = read_tables(data["start_up"], problems)
-        if not problems:  # and so are the drive's checks across its fields that no coupling changes
+    drive = Problems()  # a bad field of the start-up's tables: the neutral case's, not a coupling's reason to lose
+    if isinstance(data.get("start_up"), dict):
+        start_up, _, _ = read_tables(data["start_up"], drive)
+        if not (problems or drive):  # and so are the drive's checks across its fields that no coupling changes
             with problems.field():
                 check_values(with_defaults({**duty, **start_up}))
     _check_shared(data, problems)
     problems.raise_any()
     candidates = []
-    for name in MODULES:
-        with problems.field():
+    for name in MODULES:  # (posed where only the start-up's tables are bad: the problems each coupling's case finds
+        with problems.field():  # there too are said with them, in one run: review 25)
             candidates.append(posed_case(name, duty, raw, data, path))
     problems.raise_any()
-    if all(c.case is None for c in candidates):  # nothing poses: the neutral case itself is wrong
+    if drive or all(c.case is None for c in candidates):  # nothing poses: the neutral case itself is wrong
         said = [{(p.field, p.problem) for p in c.problems} for c in candidates]
         shared = [p for p in candidates[0].problems if all((p.field, p.problem) in each for each in said[1:])]
-        if shared:  # (each refused for the same fields: the neutral case's, one line each, as solve says them;
-            raise InputError.several([InputError(p.field, p.problem) for p in shared])  # review 25)
+        own = [problem for error in drive.errors for problem in error.problems]
+        shared = own + [p for p in shared if p.field not in {q.field for q in own}]
+        if shared:  # (each refused for the same fields: the neutral case's, one line each, as solve says them)
+            raise InputError.several([InputError(p.field, p.problem) for p in shared])
         raise InputError(path or "case", "no coupling can be posed: " + " | ".join(
             f"{c.coupling}: {c.reason}" for c in candidates))
     t_max = required_torque(duty["inertia"], duty["speed"], duty["acceleration_time"], duty["resisting_torque"])
