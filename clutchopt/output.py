@@ -144,7 +144,7 @@ def comparison_json(table) -> dict:  # a ComparisonTable (optimise.compare): rea
     """The comparison's ``as_dict()`` with units: each row's values in its ``unit``, the relative differences and
     the solver's counts unitless, each optimum's objective in its unit."""
     return with_units(table.as_dict(), {
-        "rows": {f"rel_{column}": UNITLESS for column in table.columns},
+        "rows": {"relative": UNITLESS},
         "solves": {column: {"objective": s.objective_unit, "solver": SOLVER_UNITS}
                    for column, s in table.solutions.items()}})
 
@@ -455,7 +455,7 @@ def comparison_rows(comparison: dict) -> tuple[list[dict], list[dict]]:
         entry = {"quantity": row["quantity"]}
         for column in comparison["columns"]:
             if column != comparison["baseline"]:
-                value = row.get(f"rel_{column}")
+                value = row["relative"].get(column)
                 entry[column] = "-" if value is None else ("0" if abs(value) < 5e-5 else f"{value:+.2%}")
         rel.append(entry)
     return rows, rel

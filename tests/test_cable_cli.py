@@ -45,7 +45,7 @@ def test_compare_json_sets_paper_closed_forms_and_nlp_side_by_side(cli):
     rows = {row["quantity"]: row for row in data["rows"]}
     mass = rows["half_coupling_mass"]
     assert mass["paper_formulas"] == pytest.approx(0.73988, rel=1e-4)  # printed (7): 10.6 times the consistent mass
-    assert mass["rel_nlp_paper"] == pytest.approx(0, abs=1e-6)
+    assert mass["relative"]["nlp_paper"] == pytest.approx(0, abs=1e-6)
     assert rows["total_mass"]["nlp_threads"] == pytest.approx(rows["total_mass"]["closed_form_threads"], rel=1e-6)
     # the printed mass, run through the consistent (5), pushes F_a = 370 N / tan^2(beta + phi')
     beta_phi = math.radians(11.18) + math.atan(0.1 / math.cos(math.radians(15)))

@@ -294,7 +294,9 @@ def test_compare_json_rows_are_si(case_file):
     data = json.loads(run("compare", case_file, "--json"))
     units = assert_units(data)
     for i, row in enumerate(data["rows"]):
-        assert {units.get(f"$.rows[{i}].rel_{c}", "") for c in data["columns"]} == {""}  # relative: no unit
+        relative = [c for c in data["columns"] if c != data["baseline"]]
+        assert list(row["relative"]) == relative  # against the baseline, beside no row's ``unit``
+        assert {units[f"$.rows[{i}].relative.{c}"] for c in relative if row["relative"][c] is not None} <= {""}
         if row["display_unit"] == "mm":
             assert row["unit"] == "m"
             values = [row[c] for c in data["columns"] if row[c] is not None]

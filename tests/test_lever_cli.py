@@ -49,7 +49,7 @@ def test_compare_json_sets_printed_formula_closed_form_and_nlp_side_by_side(cli)
     mz = rows["characteristic_number"]
     assert mz["closed_form"] == pytest.approx(0.2985628, rel=1e-6)
     assert mz["paper_formula"] == pytest.approx(2 * 0.2985628, rel=1e-6)  # errata L1
-    assert mz["rel_paper_formula"] == pytest.approx(1.0, rel=1e-9)
+    assert mz["relative"]["paper_formula"] == pytest.approx(1.0, rel=1e-9)
     assert mz["nlp_paper"] == pytest.approx(mz["closed_form"], rel=1e-6)
     assert rows["torque"]["paper_formula"] == pytest.approx(2 * rows["torque"]["closed_form"], rel=1e-9)
     assert rows["link_diameter"]["paper_formula"] is None  # the paper sizes no link

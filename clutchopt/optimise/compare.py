@@ -22,7 +22,8 @@ class ComparisonTable:
     coupling: str
     columns: list[str]
     baseline: str
-    rows: list[dict]  # {"quantity", "unit" (SI), "display_unit", "description", <column>: SI value, "rel_<column>"}
+    rows: list[dict]  # {"quantity", "unit" (SI), "display_unit", "description", <column>: SI value (in ``unit``),
+    # "relative": {<column>: its relative difference against the baseline, unitless}} (no ``unit`` beside those)
     notes: dict[str, str]
     solutions: dict[str, Solution]
 
@@ -101,9 +102,8 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=No
         for name in names:
             value = columns[name].get(row.name)
             entry[name] = None if value is None or not math.isfinite(value) else float(value)
-        for name in names:
-            if name != spec.baseline:
-                entry[f"rel_{name}"] = relative_difference(entry[name], entry.get(spec.baseline))
+        entry["relative"] = {name: relative_difference(entry[name], entry.get(spec.baseline))
+                             for name in names if name != spec.baseline}
         rows.append(entry)
     return ComparisonTable(coupling.name, names, spec.baseline, rows, notes, solutions)
 
