@@ -42,7 +42,7 @@ def test_the_reports_largest_failure_probability_says_its_estimator_and_interval
 
     case = load_case(CASES / "wedge_centrifuge.toml")
     result = solve_robust(case, CHANCE, 0.999, "paper", samples=200)
-    nominal, robust = scatter(case, result)[0][0].rows
+    nominal, robust = scatter(case, [result], result)[0][0].rows
     for row, failure in ((nominal, result.nominal_failure), (robust, result.failure)):
         name, (p, low, high) = max(failure.items(), key=lambda item: item[1][0])
         assert row["largest P(fail)"] == f"{p:.3g} ({low:.2g} to {high:.2g}, Monte Carlo, 200 samples; {name})"
@@ -242,7 +242,7 @@ def test_the_reports_system_failure_probability_of_a_start_up_holds_its_limits()
     start_time = result.reliability.constraints["start_time"].best.probability
     assert static.probability == pytest.approx(2 * 0.01 / 8, rel=0.05) and start_time > 0.01 / 8 / 2
     assert system.probability >= static.probability + start_time and system.high <= 0.01
-    nominal, robust = scatter(case, result)[0][0].rows
+    nominal, robust = scatter(case, [result], result)[0][0].rows
     assert robust["system P(fail)"] == (f"{system.probability:.3g} ({system.low:.3g} to {system.high:.3g}, "
                                         f"{system.estimator})")
     assert nominal["system P(fail)"].endswith("; the start-up limits apart)")  # the nominal's are not sampled

@@ -124,7 +124,7 @@ def test_system_chance_meets_the_system_target(case, chance, nominal):
     assert result.solution.objective == pytest.approx(chance.solution.objective, rel=2e-4)
     from clutchopt.report.sections import scatter  # the review page's Scatter section shows the split
 
-    claim, split = scatter(case, result)[0][1:3]
+    claim, split = scatter(case, [result], result)[0][1:3]
     assert claim.text.startswith("Risk allocation (system chance):") and "the bound is tight" in claim.text
     shares = {row["constraint"]: float(row["share of 1 - P"]) for row in split.rows}
     assert shares["torque"] == pytest.approx(1e-3, rel=0.02) and shares["finger_bending"] < 1e-5
@@ -181,7 +181,7 @@ def test_the_scatter_maps_are_exact():
 def test_the_reports_scatter_section_shows_the_system_and_the_design_point(case, chance):
     from clutchopt.report.sections import scatter
 
-    table = scatter(case, chance)[0][0]
+    table = scatter(case, [chance], chance)[0][0]
     nominal, robust = table.rows
     system = chance.reliability.system
     assert robust["system P(fail)"] == (f"{system.probability:.3g} ({system.low:.3g} to {system.high:.3g}, "

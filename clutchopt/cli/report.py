@@ -64,12 +64,12 @@ def run(args) -> str:
                  robust.label if robust is not None else "")
         check_swept_from(sweep, case, args.sweep, warn, posed)
     with recording(args) as store:
-        ranked = design_case(case, args.mode, args.objective, SolverOptions(tol=args.tol), robust,
-                             progress=not args.quiet)
+        options = SolverOptions(tol=args.tol)
+        ranked = design_case(case, args.mode, args.objective, options, robust, progress=not args.quiet)
         best = ranked[0]
         notes = (f"options.choose: the best of {len(ranked)} choices, {best.choice_text} (clutchopt solve lists "
                  "them)",) if best.choice else ()
-        page = build_report(best.case, best.solution, sweep, best.robust, notes)
+        page = build_report(best.case, best.solution, sweep, best.robust, notes, options)
 
         def write(path: str) -> None:
             if pdf:

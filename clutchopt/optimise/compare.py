@@ -51,11 +51,14 @@ def relative_difference(value: float | None, reference: float | None) -> float |
     return (value - reference) / abs(reference)
 
 
-def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=None) -> ComparisonTable:
+def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=None,
+                 solved: list | None = None) -> ComparisonTable:
     """The paper's method, the closed forms and the NLP optima of each mode side by side; with a [start_up], the
     case's mode sized as the papers size and with its start-up; with a [scatter], the nominal design beside the
     worst-case and chance designs, or beside the one of ``robust`` (a
-    :class:`~clutchopt.optimise.design.Robustness`)."""
+    :class:`~clutchopt.optimise.design.Robustness`); ``solved``: those designs made already (their
+    :class:`~clutchopt.optimise.robust.RobustResult`, in that order: a review page's, in its mode and objective),
+    shown as they are."""
     coupling = get_coupling(case.coupling)
     spec = coupling.comparison
     if spec is None:
@@ -87,11 +90,13 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=No
         rows_shown = spec.rows + START_UP_ROWS
         notes.update(START_UP_NOTES)
     if case.scatter:
-        for column, (solution, values) in _scatter_columns(case, coupling, spec, options, robust).items():
+        for column, (solution, values) in _scatter_columns(case, coupling, spec, options, robust, solved).items():
             solutions[column] = solution
             columns[column] = values
         rows_shown = rows_shown + SCATTER_ROWS
         notes.update({column: note for column, note in SCATTER_NOTES.items() if column in columns})
+        nominal = solutions["nominal"]
+        notes["nominal"] = f"the {nominal.mode} mode optimised for {nominal.objective_name} at the nominal values"
         if robust is not None and robust.target is not None:
             notes[_column(robust)] = robust_note(robust, case.start_up is not None)
     names = list(columns)
@@ -131,7 +136,6 @@ SCATTER_ROWS = (
 )
 CHANCE_SHOWN = 0.999  # the chance-constrained column of compare
 SCATTER_NOTES = {
-    "nominal": "the case's mode optimised at the nominal values",
     "worst_case": "every constraint at its own worst corner of the [scatter] ranges",
     f"chance_{target_text(CHANCE_SHOWN)}": f"each constraint fails with probability at most {1 - CHANCE_SHOWN:.3g}",
 }
@@ -152,17 +156,20 @@ def _column(robust) -> str:
     return "worst_case" if robust.target is None else f"{robust.method}_{target_text(robust.target)}"
 
 
-def _scatter_columns(case: Case, coupling, spec, options: SolverOptions, robust=None) -> dict:
+def _scatter_columns(case: Case, coupling, spec, options: SolverOptions, robust=None, solved: list | None = None
+                     ) -> dict:
     """The case's mode and objective: nominal and robust designs (worst-case and chance 0.999, or the method of
-    ``robust``), each checked at every corner of the ranges and by Monte Carlo over the distributions."""
+    ``robust``; ``solved``: those made already, in their own mode and objective), each checked at every corner of the
+    ranges and by Monte Carlo over the distributions."""
     from clutchopt.optimise.design import Robustness
     from clutchopt.optimise.robust import CHANCE, WORST_CASE
     from clutchopt.optimise.robust_models import corner_checks, failure_probabilities
 
-    mode = case.options.get("mode") or coupling.default_mode
     methods = [robust] if robust is not None else [Robustness(WORST_CASE), Robustness(CHANCE, CHANCE_SHOWN)]
-    results = [m.solve(case, mode, None, options) for m in methods]
+    results = solved if solved is not None else [
+        m.solve(case, case.options.get("mode") or coupling.default_mode, None, options) for m in methods]
     worst = results[0]
+    mode = worst.nominal.mode
     params = case.params()
     columns = {}
     for column, solution in (("nominal", worst.nominal),

@@ -14,7 +14,7 @@ import pandas as pd
 
 from clutchopt.cases import Case
 from clutchopt.optimise.problem import case_formulation
-from clutchopt.optimise.solution import Solution
+from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.report.page import Section, render
 from clutchopt.report.sections import (
     comparison,
@@ -23,6 +23,7 @@ from clutchopt.report.sections import (
     margins,
     requirements,
     scatter,
+    scattered_designs,
     sensitivities,
     simulation,
     sweep_plot,
@@ -34,12 +35,15 @@ __all__ = ["build_report", "sweep_plot"]
 
 
 def build_report(case: Case, solution: Solution, sweep: pd.DataFrame | None = None, robust=None,
-                 notes: tuple[str, ...] = ()) -> str:
+                 notes: tuple[str, ...] = (), options: SolverOptions = SolverOptions()) -> str:
     """The HTML page for a case and its solution (and a sweep table, if given); with ``robust`` (a
     :class:`~clutchopt.optimise.robust.RobustResult`) the solution is its robust design, the nominal one beside it
-    under Scatter; ``notes``: lines of the command's own to show under the headline (the choice it made)."""
+    under Scatter; ``notes``: lines of the command's own to show under the headline (the choice it made);
+    ``options``: what the solution was solved with, and the page's other designs are (its comparison, its scatter's
+    designs in the solution's mode and objective)."""
     formulation = case_formulation(case, solution.mode)
-    scattered = scatter(case, robust) if case.scatter else None
+    designs = scattered_designs(case, solution, options, robust) if case.scatter else None
+    scattered = scatter(case, designs, robust) if case.scatter else None
     nominal_failure = scattered[1] if scattered is not None and robust is None else None
     sections = [
         Section("Requirements", "requirements", requirements(case)),
@@ -47,7 +51,7 @@ def build_report(case: Case, solution: Solution, sweep: pd.DataFrame | None = No
         Section("Dimensioned sketch", "sketch", drawing(case, solution, formulation)),
         Section("Constraint margins", "margins", margins(solution)),
         Section("Sensitivities", "sensitivities", sensitivities(solution, formulation)),
-        Section("Comparison with the paper's method", "comparison", comparison(case, robust)),
+        Section("Comparison with the paper's method", "comparison", comparison(case, options, robust, designs)),
         Section("Start-up simulation", "simulation", simulation(case, solution)),
     ]
     if scattered is not None:

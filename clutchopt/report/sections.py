@@ -12,7 +12,7 @@ import pandas as pd
 
 from clutchopt.cases import Case, quantity_table
 from clutchopt.formulations import get_coupling
-from clutchopt.optimise.solution import Solution
+from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.output import (
     _shown,
     column_notes,
@@ -90,9 +90,10 @@ def sensitivities(solution: Solution, formulation) -> list:
                  "grows in proportion)."), Table(rows, ("elasticity",))]
 
 
-def comparison(case: Case, robust=None) -> list:
-    """The paper's method beside the optimiser's designs; a scatter case's robust column by the method the page's
-    design was made with (``robust``: its RobustResult), else worst case and chance 0.999."""
+def comparison(case: Case, options: SolverOptions, robust=None, scattered: list | None = None) -> list:
+    """The paper's method beside the optimiser's designs, solved with the page's ``options``; a scatter case's
+    columns the designs of its Scatter section (``scattered``: the page's robust design's RobustResult, ``robust``,
+    else those of worst case and chance 0.999, in the page's mode and objective), not solved again."""
     from clutchopt.optimise.compare import compare_case
     from clutchopt.optimise.design import Robustness
 
@@ -100,7 +101,7 @@ def comparison(case: Case, robust=None) -> list:
         return [Note("This coupling has no comparison with a paper method.")]
     method = None if robust is None else Robustness(robust.method, robust.target, robust.samples,
                                                     robust.start_up_samples or Robustness.starts)
-    data = compare_case(case, robust=method).as_dict()
+    data = compare_case(case, options, method, scattered).as_dict()
     rows, _ = comparison_rows(data)
     return [Table(rows, tuple(data["columns"])), Items(list(column_notes(data).items()))]
 
@@ -122,21 +123,32 @@ def simulation(case: Case, solution: Solution) -> list:
     return blocks + [Figure(safe_svg(figure_svg(figure)), caption)]
 
 
-def scatter(case: Case, robust=None) -> tuple[list, tuple[str, float, int]]:
-    """The designs under the case's scatter side by side (the nominal one, and the robust one of ``robust``, a
-    :class:`~clutchopt.optimise.robust.RobustResult`; without it, the worst-case and chance 0.999 designs), each with
-    its largest failure probability by Monte Carlo, and a tornado chart: how far each scattered quantity moves each
-    constraint's margin over its range at the nominal design. Also the nominal design's likeliest failure:
-    (constraint, probability, samples)."""
+def scattered_designs(case: Case, solution: Solution, options: SolverOptions, robust=None) -> list:
+    """The designs a review page shows under the case's scatter, made once for its Scatter and Comparison sections:
+    ``[robust]`` (the page's robust design's :class:`~clutchopt.optimise.robust.RobustResult`), else the worst-case
+    and chance 0.999 designs of the page's design's mode and objective, solved with its ``options`` (so that their
+    nominal design is the page's)."""
+    from clutchopt.optimise.compare import CHANCE_SHOWN
     from clutchopt.optimise.robust import CHANCE, WORST_CASE, solve_robust
+
+    if robust is not None:
+        return [robust]
+    return [solve_robust(case, method, target, solution.mode, solution.objective_name, options)
+            for method, target in ((WORST_CASE, None), (CHANCE, CHANCE_SHOWN))]
+
+
+def scatter(case: Case, results: list, robust=None) -> tuple[list, tuple[str, float, int]]:
+    """The designs under the case's scatter side by side (``results``, :func:`scattered_designs`: the nominal one, and
+    the robust one of ``robust``, a :class:`~clutchopt.optimise.robust.RobustResult`; without it, the worst-case and
+    chance 0.999 designs), each with its largest failure probability by Monte Carlo, and a tornado chart: how far each
+    scattered quantity moves each constraint's margin over its range at the nominal design. Also the nominal design's
+    likeliest failure: (constraint, probability, samples)."""
     from clutchopt.optimise.robust_models import failure_probabilities, tornado
 
     if robust is not None:
-        results = [robust]
         designs = [("nominal", robust.nominal, robust.nominal_failure, robust.nominal_reliability),
                    (robust_label(robust), robust.solution, robust.failure, robust.reliability)]
     else:
-        results = [solve_robust(case, WORST_CASE), solve_robust(case, CHANCE, 0.999)]
         worst, chance = results
         designs = [("nominal", worst.nominal, worst.nominal_failure, worst.nominal_reliability),
                    ("worst case", worst.solution, worst.failure, worst.reliability),
