@@ -298,8 +298,10 @@ def record_simulation(store, scene, result) -> None:
     """Record a ``simulate`` run (scene file, headline, events) in an open store (or nothing for None)."""
     if store is None:
         return
+    from clutchopt.simulate.engine import lock_up_verdict
+
     store.record("simulation", {"scene": scene.data, "source": scene.source, "units": {"scene": scene.units}},
                  result.as_dict(),
-                 status="locks up" if result.headline["locks_up"] else "no lock-up",
+                 status={"yes": "locks up", "no": "no lock-up"}.get(lock_up_verdict(result.headline), "not decided"),
                  objective=result.headline.get("start_time"), objective_unit="s", case_path=scene.path,
                  title=scene.title, objective_name="start_time")

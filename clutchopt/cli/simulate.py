@@ -62,6 +62,8 @@ def run(args) -> str:
 
 
 def _text(scene, result, analytic) -> str:
+    from clutchopt.simulate.engine import lock_up_verdict
+
     h = result.headline
     lines = [scene.title or scene.path, f"effects: {', '.join(h['effects'])}"]
     source = h.get("source", {})
@@ -76,7 +78,7 @@ def _text(scene, result, analytic) -> str:
             lines.append(f"the scene's, not the case's: {', '.join(source['over_the_case'])}")
     if source.get("unread"):
         lines.append(f"unread (their effects not listed): {', '.join(source['unread'])}")
-    lines.append("lock-up: yes" if h["locks_up"] else f"lock-up: no - {h['reason']}")
+    lines.append(f"lock-up: {lock_up_verdict(h)}" + (f" - {h['reason']}" if not h["locks_up"] else ""))
     for key, label, unit in _LINES:
         if key in h and math.isfinite(h[key]):
             row = f"  {label:<28} {h[key]:.10g} {unit}"

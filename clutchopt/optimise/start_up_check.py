@@ -188,7 +188,7 @@ def corrected_case(solution, nlp_case, centre: bool = True):
         corner = corner_name(name, check.name)
         key, moved = (corner, corners) if corner in nlp_case.values else (name, limits)
         moved[key] = nlp_case.values[key] - gap - nlp_slack(collocated.get(check.name), nlp_case.values[key], check)
-        if not moved[key] > 0 or summary["locks_up"] is False:
+        if not moved[key] > 0 or not summary["locks_up"]:
             return None
     if not limits and not corners:
         return None

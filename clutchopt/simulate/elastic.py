@@ -198,7 +198,8 @@ def simulate_elastic(model: ElasticModel) -> SimulationResult:
         reason = f"no start: the machine did not reach {m.target:.6g} rad/s by {bound:.6g} s"
     end = t[-1]
     headline = {
-        "locks_up": done, "reason": reason,
+        "locks_up": done if out.status in ("event", "end") else None, "reason": reason,  # (budget, failed: no
+        # verdict)
         "start_time": end if done else math.inf,
         "friction_work": float(y[3, -1]) if done else math.inf,
         "source_work": math.nan,

@@ -218,7 +218,11 @@ class _Run(_Rates):
     def integrate(self, kind: str, t: float, bound: float, y, events: list) -> Phase:
         """One phase (``rest``, ``slip`` or ``stick``); LSODA at a tenth of the tolerance, and should it fail (its
         stiff Newton iterations can stall) or take more than LSODA_STEPS (its switch to BDF can lag a mode 1e9
-        times faster than the start), Radau takes the phase again."""
+        times faster than the start), Radau takes the phase again, LSODA charged LSODA_STEPS at most: a span of
+        its samples can overrun its steps many times (they are counted after each span), and how far is not
+        LSODA's own to decide (scipy's odeint: a heat mode 2,600 times faster than the start ran 46 or 32,712 steps
+        in one span from the same state, one run in two, reading memory of an earlier run), so that Radau, not the
+        run's luck, gives the verdict."""
         rates = self.flat[kind]
         jacobian = {"rest": self.rest_jacobian, "slip": self.slip_jacobian, "stick": self.stick_jacobian}[kind]
         if self.method != "LSODA":
@@ -229,7 +233,7 @@ class _Run(_Rates):
         phase = integrate_spans(getattr(rates, "into", rates), jacobian, t, y, bound, events, rtol,  # (odeint copies
                                 rtol * self.state_scale, trial, FIRST_SPAN * self.time_scale)  # the array at once;
         # solve_ivp's methods keep a step's rates: theirs the list)
-        budget.taken = trial.taken
+        budget.taken = min(trial.taken, trial.steps)
         if phase.status == "failed" or (phase.status == "budget" and not budget.spent):
             phase = integrate(rates, jacobian, t, y, bound, events, "Radau", self.m.rtol,
                               self.m.rtol * self.state_scale, budget)
@@ -377,7 +381,7 @@ def simulate(model: Model) -> SimulationResult:
     t, y = 0.0, np.array([start, start, 0.0, 0.0, 0.0])
     rows, events, kind = [], [], run.turning_kind(0.0, y)
     engaged = not run.motor or start**2 >= model.law.engagement_squared
-    start_time, reason, start_state = math.nan, "", None
+    start_time, reason, start_state, decided = math.nan, "", None, True
     if not closed_form_locks and run.net_rate(kind, 0.0, y) <= STEADY:
         reason = verdict or "no lock-up: the driven half does not start (friction torque <= load at rest)"
     for _ in range(MAX_SWITCHES):
@@ -396,9 +400,9 @@ def simulate(model: Model) -> SimulationResult:
         t, y = out.t[-1], out.y[:, -1].copy()
         if out.status != "event":
             if out.status == "failed":
-                reason = f"integration failed: {out.message}"
+                reason, decided = f"integration failed: {out.message}", False
             elif out.status == "budget":
-                reason = run.budget_reason(t)
+                reason, decided = run.budget_reason(t), False
             elif math.isnan(start_time):
                 reason = verdict or f"no lock-up by the end time {bound:.6g} s"
             break
@@ -431,9 +435,14 @@ def simulate(model: Model) -> SimulationResult:
         else:
             events[-1]["event"] = "zero slip, capacity too small to stick"
     else:
-        reason = f"stopped after {MAX_SWITCHES} stick-slip switches (chatter)"
+        reason, decided = f"stopped after {MAX_SWITCHES} stick-slip switches (chatter)", False
     history = _history(rows or [_samples(run, None, "slip", y)])
-    return SimulationResult(history, _headline(model, history, start_time, start_state, reason, y), events)
+    return SimulationResult(history, _headline(model, history, start_time, start_state, reason, y, decided), events)
+
+
+def lock_up_verdict(headline: dict) -> str:
+    """A headline's lock-up in words: ``yes``, ``no`` or ``not decided`` (the run stopped without a verdict)."""
+    return {True: "yes", False: "no"}.get(headline["locks_up"], "not decided")
 
 
 def largest(values: np.ndarray) -> float:
@@ -475,12 +484,14 @@ def _history(phases: list[tuple]) -> dict[str, np.ndarray]:
             "phase": phase}
 
 
-def _headline(model, history, start_time, start_state, reason, y_end) -> dict:
-    """Headline figures in SI; L and L_s are taken at the first lock-up (the start-up), totals at the end."""
+def _headline(model, history, start_time, start_state, reason, y_end, decided: bool = True) -> dict:
+    """Headline figures in SI; L and L_s are taken at the first lock-up (the start-up), totals at the end.
+    ``locks_up``: None where the run stopped without a verdict (``decided`` false: the step budget spent, the
+    integration failed, chatter), not False: no one knows whether it locks up (:func:`lock_up_verdict`)."""
     locked = start_state is not None
     at_start = start_state if locked else y_end
     headline = {
-        "locks_up": locked and not reason,
+        "locks_up": (locked and not reason) if decided else None,
         "reason": reason,
         "start_time": start_time if locked else math.inf,
         "friction_work": at_start[2] if locked else math.inf,

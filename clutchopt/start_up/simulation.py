@@ -323,7 +323,7 @@ def verify(case, solution, afresh: bool = False) -> dict:
         return {"verified": False, "reason": exc.problem}
     achieved = result.headline["start_time"]
     return {
-        "verified": result.headline["locks_up"],
+        "verified": bool(result.headline["locks_up"]),
         "reason": result.headline["reason"],
         "sized_acceleration_time": p.acceleration_time,
         "simulated_acceleration_time": achieved,
