@@ -127,3 +127,18 @@ def test_paper_mode_meets_the_case_s_outer_diameter_limit_or_says_it_cannot(name
     if name != "ball_crusher":  # the ball's row is at the solver's least-infeasible point (its proof: test_paper_
         # mode_case_limits.py)
         assert row.value == pytest.approx(outer, rel=1e-9) and row.margin == pytest.approx((limit - outer) / limit)
+
+
+def test_a_compare_column_without_a_design_shows_none():
+    """review 27: compare of the worked example with the housing 100 mm across showed the infeasible nlp_paper solve's
+    last point as its column (0.468 kg, -30 % against the closed form, a torque of 6.5 N*m where 10.2 are needed),
+    its status only in a note: now the column is empty ("-"), its status and diagnosis below the table."""
+    from clutchopt.optimise.compare import compare_case
+
+    table = compare_case(load_case(CASES / "wedge_paper.toml").with_values(outer_diameter_max=0.1))
+    assert {table.solutions[c].status for c in ("nlp_paper", "nlp_geometry")} == {"infeasible", "not_found"}
+    for row in table.rows:
+        assert row["nlp_paper"] is None and row["nlp_geometry"] is None
+        assert row["relative"]["nlp_paper"] is None and row["relative"]["nlp_geometry"] is None
+    assert {row["quantity"]: row["closed_form"] for row in table.rows}["total_mass"] == pytest.approx(0.667951,
+                                                                                                     rel=1e-6)

@@ -13,6 +13,7 @@ from clutchopt.formulations import get_coupling
 from clutchopt.model import ComparisonRow
 from clutchopt.optimise.problem import case_problem, problem_for
 from clutchopt.optimise.solution import Solution, SolverOptions
+from clutchopt.optimise.verify import DESIGN_STATUSES
 from clutchopt.records import target_text
 from clutchopt.units import si_unit
 
@@ -76,8 +77,7 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=No
             continue
         solution = problem_for(coupling.formulation(mode), objective, options).solve(case)
         solutions[column] = solution
-        outputs = {name: out.value for name, out in solution.outputs.items()}
-        columns[column] = spec.rows_from_design(mode, solution.design, outputs, params)
+        columns[column] = _design_rows(spec, mode, solution, params)
         if case.start_up is not None:  # a static optimum on a start-up case: started on its drive, as
             columns[column].update(_started(case, mode, solution))  # constant_acceleration is
             notes[column] = f"{notes.get(column, column)}; {STATIC_NOTE}"
@@ -174,9 +174,8 @@ def _scatter_columns(case: Case, coupling, spec, options: SolverOptions, robust=
     columns = {}
     for column, solution in (("nominal", worst.nominal),
                              *((_column(m), result.solution) for m, result in zip(methods, results))):
-        outputs = {name: out.value for name, out in solution.outputs.items()}
-        values = spec.rows_from_design(mode, solution.design, outputs, params)
-        if solution.status in ("optimal", "unverified"):
+        values = _design_rows(spec, mode, solution, params)
+        if solution.status in DESIGN_STATUSES:
             checks = corner_checks(worst.formulation, solution.design, params, case.scatter)
             failure = failure_probabilities(worst.formulation, solution.design, params, case.scatter, methods[0].samples,
                                             correlation=case.correlation)
@@ -196,18 +195,27 @@ def _start_up_columns(case: Case, coupling, spec, options: SolverOptions) -> dic
     for column, problem in (("constant_acceleration", problem_for(coupling.formulation(mode), objective, options)),
                             ("nlp_start_up", case_problem(case, mode, objective, options))):
         solution = problem.solve(case)
-        outputs = {name: out.value for name, out in solution.outputs.items()}
-        values = spec.rows_from_design(mode, solution.design, outputs, params)
+        values = _design_rows(spec, mode, solution, params)
         values.update(_started(case, mode, solution))
         columns[column] = (solution, values)
     return columns
+
+
+def _design_rows(spec, mode: str, solution: Solution, params) -> dict:
+    """The rows of a solve's design, none where it ended without one (infeasible, not_found: its last point meets
+    no requirement; review 27: an infeasible column had shown a design 30 % lighter than the closed form, with a
+    torque of 6.5 N*m where 10.2 are needed; its status and diagnosis are said below the table)."""
+    if solution.status not in DESIGN_STATUSES:
+        return {}
+    outputs = {name: out.value for name, out in solution.outputs.items()}
+    return spec.rows_from_design(mode, solution.design, outputs, params)
 
 
 def _started(case: Case, mode: str, solution: Solution) -> dict:
     """The START_UP_ROWS of a design started on the case's drive by the simulator (none without a design)."""
     from clutchopt.start_up.simulation import run_start_up, start_up_model
 
-    if solution.status not in ("optimal", "unverified"):
+    if solution.status not in DESIGN_STATUSES:
         return {}
     head = run_start_up(start_up_model(case, mode, solution.design)).headline
     return dict(start_time_simulated=head["start_time"], friction_work_simulated=head["friction_work"],
