@@ -64,9 +64,15 @@ def _offset_si(unit: str) -> tuple[float, str] | None:
 
 
 def _pint_si(unit: str) -> tuple[float, str]:
-    base = registry().Quantity(1.0, unit).to_base_units()
+    quantity = registry().Quantity(1.0, unit)
+    base = quantity.to_base_units()
     text = _PRETTY_SI.get(str(base.units), f"{base.units:~}") if str(base.units) != "dimensionless" else "1"
-    return float(base.magnitude), text
+    if text == "N*m" and any(name in str(quantity.units) for name in ENERGY_UNITS):
+        text = "J"  # an energy, not a torque, though pint gives them one dimension (review 28: a friction work in kJ
+    return float(base.magnitude), text  # had been labelled N*m)
+
+
+ENERGY_UNITS = ("joule", "watt_hour", "calorie", "electron_volt", "erg")  # pint's names of units of energy
 
 
 @lru_cache(maxsize=None)

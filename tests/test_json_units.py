@@ -253,6 +253,19 @@ def test_the_numbers_are_si(store):
     assert front["rows"][0]["design"]["flank_angle"] < math.pi / 2  # radians, not degrees
 
 
+def test_relative_margins_are_unitless_and_energies_in_joules():
+    """review 28: choose-coupling's margins, relative, took their check's unit (the lining temperature's 0.66 in K,
+    its life's 0.86 in s), and every energy declared in J or kJ was labelled N*m (compare's simulated friction work,
+    in J in solve's JSON beside it)."""
+    choice = json.loads(run("choose-coupling", CASES / "conveyor_drive.toml", "--json"))
+    margins = {path: unit for path, unit in assert_units(choice).items() if path.endswith(".margin")}
+    assert len(margins) >= 5 and set(margins.values()) == {""}
+    comparison = json.loads(run("compare", CASES / "wedge_motor_start.toml", "--json"))
+    assert_units(comparison)
+    work = next(row for row in comparison["rows"] if row["quantity"] == "friction_work_simulated")
+    assert (work["unit"], work["display_unit"]) == ("J", "kJ") and work["nlp_start_up"] > 1000.0  # J, not kJ
+
+
 # -- solve and compare on every case: the JSON's numbers are the printed ones ---------------------------------------
 
 

@@ -7,7 +7,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from clutchopt.errors import InputError
-from clutchopt.units import describe_dimension, from_si, to_si
+from clutchopt.units import describe_dimension, from_si, si_unit, to_si
 
 
 @pytest.mark.parametrize("text, unit, si", [
@@ -264,3 +264,13 @@ def test_a_start_up_case_is_read_without_pint():
     result = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
     assert result.stdout.split() == ["False", "313.15"]
+
+
+@pytest.mark.parametrize("unit, si", [("J", "J"), ("kJ", "J"), ("MJ", "J"), ("Wh", "J"), ("N*m", "N*m"),
+                                      ("kN*m", "N*m"), ("kJ/K", "J/K"), ("kJ/hour", "W")])
+def test_an_energy_is_in_joules_a_torque_in_newton_metres(unit, si):
+    """review 28: pint gives both one dimension, so every energy declared in J or kJ (a start's friction work, its
+    limit) was labelled N*m in the JSON, where `solve` labels the same figure J beside it."""
+    from clutchopt.units import _pint_si
+
+    assert si_unit(unit) == si and _pint_si(unit)[1] == si

@@ -472,7 +472,8 @@ def choice_json(choice: Choice) -> dict:
 
 def choice_units() -> dict:
     per = {"rank": "", "envelope_mass": "kg", "cost": "EUR", "envelope_diameter": "m", "envelope_length": "m",
-           "objective_mass": "kg", "sized_for": "N*m", "parts": {name: "kg" for name in ENVELOPE_PARTS}}
+           "objective_mass": "kg", "sized_for": "N*m", "parts": {name: "kg" for name in ENVELOPE_PARTS},
+           "checks": {name: {"margin": ""} for name in REVIEWED}}  # a margin relative, beside its check's ``unit``
     return {"required_torque": "N*m", "couplings": per}
 
 
