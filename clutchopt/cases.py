@@ -25,6 +25,7 @@ import itertools
 import math
 import tomllib
 from dataclasses import dataclass, field, replace
+from numbers import Real
 from pathlib import Path
 from types import SimpleNamespace
 from typing import Any
@@ -91,10 +92,11 @@ class Case:
             if name in START_UP_LIMITS and name not in limits:  # (its row posed only where the case file gives it)
                 raise InputError(name, f"the case leaves out {declared[name].key}, which no constraint then reads: "
                                        "give it in the case file to set it")
-            declared[name].check(float(value))
+        values = {name: _si_number(name, value) for name, value in values.items()}
+        for name, value in values.items():
+            declared[name].check(value)
         follows = {name: rule for name, rule in self.follows.items() if name not in values}
-        return replace(self, values=self.followed({**self.values, **{k: float(v) for k, v in values.items()}},
-                                                  follows), follows=follows,
+        return replace(self, values=self.followed({**self.values, **values}, follows), follows=follows,
                        filled={name: entry for name, entry in self.filled.items() if name not in values})
 
     def followed(self, values: dict, follows: dict | None = None) -> dict:
@@ -119,10 +121,32 @@ class Case:
                     quantity, get_coupling(self.coupling), f"the {objective} objective needs it: ")))
         problems.raise_any()
 
+    def mode_of(self, mode: str | None) -> str | None:
+        """The mode asked for, else (None) the case's option (None: the coupling's default); an empty name is asked
+        for, and refused as unknown, not read as none (review 27)."""
+        return self.options.get("mode") if mode is None else mode
+
+    def objective_of(self, objective: str | None) -> str:
+        """The objective asked for, else (None) the case's option, else mass (an empty name: as :meth:`mode_of`)."""
+        return self.options.get("objective", "mass") if objective is None else objective
+
     def given(self, *names: str) -> "Case":
         """A copy in which ``names`` are given at their present values: none of them follows another quantity
         (a quantity a sweep varies or a scatter spreads is the one it names)."""
         return replace(self, follows={name: rule for name, rule in self.follows.items() if name not in names})
+
+
+def _si_number(name: str, value) -> float:
+    """A value given to :meth:`Case.with_values`: a real number (SI), as a float; an InputError naming ``name`` for
+    anything else (review 27: ``True`` had read as 1, the text '100' in another script's digits as 100, and a unit
+    text, None or a list had raised from ``float``)."""
+    if not isinstance(value, Real) or isinstance(value, bool):  # (NumPy's numbers are Real, its bool_ not)
+        raise InputError(name, f"must be a number in SI units, got {shown_value(value, 80)} (a case file's "
+                               "quantities take their units: '1000 rpm')")
+    try:
+        return float(value)
+    except OverflowError:
+        raise InputError(name, "is beyond the float64 range") from None
 
 
 def _where(text: str, literal: str) -> str:

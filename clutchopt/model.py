@@ -388,7 +388,7 @@ class Coupling:
         return tuple(seen.values())
 
     def formulation(self, mode: str | None = None) -> Formulation:
-        mode = mode or self.default_mode
+        mode = self.default_mode if mode is None else mode
         if mode not in self.formulations:
             raise InputError("mode", f"unknown mode {mode!r} for {self.name}; choose from {', '.join(self.formulations)}")
         return self.formulations[mode]

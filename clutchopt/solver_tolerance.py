@@ -8,3 +8,4 @@ verdict even for a design whose estimate lies on its target (tests/test_robust_s
 """
 
 SOLVER_TOL = 1e-10  # IPOPT's tol and constr_viol_tol, 100x it acceptable (SolverOptions.ipopt)
+TOLERANCE_RANGE = (1e-14, 1e-2)  # IPOPT's tol: below 1e-14 float64 cannot follow, above 1e-2 is no optimum

@@ -229,8 +229,12 @@ class BelowFloat64(ValueError):
 
 
 def float_text(text: str) -> float:
-    """``float(text)``, refusing a nonzero number that float64 would read as 0 (:class:`BelowFloat64`); the parser
-    of every number read from a case, scene or design file."""
+    """``float(text)``, refusing a nonzero number that float64 would read as 0 (:class:`BelowFloat64`) and digits
+    other than ASCII's (ValueError; ``float`` reads every script's: review 27, ``--vary`` read an Arabic-Indic
+    ``5e-400`` as 0, past the test below, as :data:`_NUMBER` refuses them in quantity text); the parser of every
+    number read from a case, scene or design file."""
+    if not text.isascii():
+        raise ValueError(f"{text!r}: ASCII digits only")
     value = float(text)
     if value == 0.0 and any(digit in "123456789" for digit in text.lower().split("e")[0]):
         raise BelowFloat64(f"{text.strip()} is below the float64 range: it would be read as 0")

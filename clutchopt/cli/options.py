@@ -8,7 +8,7 @@ from contextlib import contextmanager
 from typing import Iterator
 
 from clutchopt.errors import InputError, Problems
-from clutchopt.solver_tolerance import SOLVER_TOL
+from clutchopt.solver_tolerance import SOLVER_TOL, TOLERANCE_RANGE
 from clutchopt.switches import check_switches
 
 EXIT_BAD_INPUT = 2
@@ -79,7 +79,6 @@ def add_parser(commands, name: str, summary: str, details: str = "", examples: t
     return commands.add_parser(name, help=summary, description=description, epilog=epilog)
 
 
-TOLERANCE_RANGE = (1e-14, 1e-2)  # IPOPT's tol: below 1e-14 float64 cannot follow, above 1e-2 is no optimum
 LARGEST_ID = 2**63 - 1  # SQLite's INTEGER
 FIGURE_SUFFIXES = (".png", ".svg", ".pdf")
 
@@ -119,7 +118,8 @@ def whole_number(low: int, high: int):
 def name(text: str) -> str:
     """A name on the command line (mode, objective): not empty, printable, short."""
     if not text.strip() or not text.isprintable() or len(text) > 40:
-        raise argparse.ArgumentTypeError(f"expected a name such as paper or geometry, got {text[:40]!r}")
+        raise argparse.ArgumentTypeError(f"expected a name (a mode such as paper, an objective such as mass), got "
+                                         f"{text[:40]!r}")
     return text.strip()
 
 
@@ -238,7 +238,7 @@ def resolve_problem(case, args, objective: bool = True) -> None:
 
     formulation = case_formulation(case, args.mode)
     if objective:
-        case.require(formulation.objective(args.objective or case.options.get("objective", "mass")).name)
+        case.require(formulation.objective(case.objective_of(args.objective)).name)
     else:
         case.require(*(o.name for o in formulation.objectives))
 

@@ -60,7 +60,7 @@ def run(args) -> str:
     resolve_problem(case, args)
     robust = robustness(args, case)
     if sweep is not None:
-        posed = (case_formulation(case, args.mode).mode, args.objective or case.options.get("objective", "mass"),
+        posed = (case_formulation(case, args.mode).mode, case.objective_of(args.objective),
                  robust.label if robust is not None else "")
         check_swept_from(sweep, case, args.sweep, warn, posed)
     with recording(args) as store:

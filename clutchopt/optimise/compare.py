@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from clutchopt.cases import Case
+from clutchopt.cases import Case, check_across
 from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.model import ComparisonRow
@@ -64,6 +64,7 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=No
     spec = coupling.comparison
     if spec is None:
         raise InputError("coupling", f"{coupling.name} has no comparison with a paper method")
+    check_across(case)  # (as solve_case: a case moved by with_values is checked as a case file is)
     params = case.params()
     with np.errstate(invalid="ignore", divide="ignore"):  # a closed form undefined at this duty reads as NaN ("-")
         columns = {name: dict(values) for name, values in spec.references(params).items()}

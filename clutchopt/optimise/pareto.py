@@ -73,7 +73,7 @@ def pareto_front(case: Case, mode: str | None = None, points: int = 9, options: 
     ``robust``, each designed for the case's scatter (the cap bounds the robust design's cost)."""
     formulation = case_formulation(case, mode)
     structure = Structure.of(case) if case.start_up is not None else None
-    base = get_coupling(case.coupling).formulation(mode or case.options.get("mode"))
+    base = get_coupling(case.coupling).formulation(case.mode_of(mode))
     capped_base = _CAPPED.setdefault((base.coupling, base.mode), capped(base))
     results: list[RobustResult] = []
 

@@ -21,8 +21,8 @@ from typing import Callable
 
 import numpy as np
 
-from clutchopt.cases import Case
-from clutchopt.errors import NOT_SIMULATED, InputError
+from clutchopt.cases import Case, check_across
+from clutchopt.errors import NOT_SIMULATED, InputError, shown_value
 from clutchopt.model import Formulation
 from clutchopt.optimise.attempts import attempt, tallied, warm_multipliers
 from clutchopt.optimise.diagnosis import diagnose, whatever_the_design
@@ -1119,7 +1119,7 @@ def case_formulation(case: Case, mode: str | None = None) -> Formulation:
     then the coupling's), with the start-up's quantities and spring preload if the case has a [start_up] section."""
     from clutchopt.formulations import get_coupling
 
-    formulation = get_coupling(case.coupling).formulation(mode or case.options.get("mode"))
+    formulation = get_coupling(case.coupling).formulation(case.mode_of(mode))
     return with_start_up(formulation) if case.start_up is not None else formulation
 
 
@@ -1128,12 +1128,17 @@ def case_problem(case: Case, mode: str | None = None, objective: str | None = No
     """The built problem that solves ``case`` in ``mode`` (default: the case's option, then the coupling's)."""
     from clutchopt.formulations import get_coupling
 
-    formulation = get_coupling(case.coupling).formulation(mode or case.options.get("mode"))
+    formulation = get_coupling(case.coupling).formulation(case.mode_of(mode))
     structure = Structure.of(case) if case.start_up is not None else None
-    return problem_for(formulation, objective or case.options.get("objective", "mass"), options, structure)
+    return problem_for(formulation, case.objective_of(objective), options, structure)
 
 
 def solve_case(case: Case, mode: str | None = None, objective: str | None = None,
                options: SolverOptions = SolverOptions()) -> Solution:
-    """Solve a case in a mode (default: the case's option, then the coupling's default)."""
+    """Solve a case in a mode (default: the case's option, then the coupling's default), checked across its fields
+    first as a case file and a sweep's point are (review 27: ``case.with_values(speed=...)`` above the motor's
+    synchronous speed had solved ``optimal``, a cable without any hub stiffness had raised ZeroDivisionError)."""
+    if not isinstance(options, SolverOptions):
+        raise InputError("options", f"must be SolverOptions, got {shown_value(options)}")
+    check_across(case)
     return case_problem(case, mode, objective, options).solve(case)

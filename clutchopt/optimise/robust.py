@@ -218,8 +218,8 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
     ``base``: the formulation to make robust, if not the mode's own (a Pareto point's, with its cost cap)."""
     if not case.scatter:
         raise InputError("--robust", "the case has no [scatter] section: say which quantities scatter and how")
-    base = base or get_coupling(case.coupling).formulation(mode or case.options.get("mode"))
-    objective = objective or case.options.get("objective", "mass")
+    base = base or get_coupling(case.coupling).formulation(case.mode_of(mode))
+    objective = case.objective_of(objective)
     structure = Structure.of(case) if case.start_up is not None else None
     shown = problem_for(base, objective, options, structure).formulation  # with the start-up's, if any
     nominal = problem_for(base, objective, options, structure).solve(case)

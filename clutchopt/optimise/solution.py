@@ -5,13 +5,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from numbers import Integral, Real
 from typing import NamedTuple, Sequence
 
 import numpy as np
 
 from clutchopt.model import Output
 from clutchopt.optimise.verify import DESIGN_STATUSES, ConstraintCheck
-from clutchopt.solver_tolerance import SOLVER_TOL
+from clutchopt.errors import InputError, Problems
+from clutchopt.solver_tolerance import SOLVER_TOL, TOLERANCE_RANGE
 from clutchopt.units import si_unit
 
 
@@ -23,6 +25,20 @@ class SolverOptions:
     # its relaxation before IPOPT (integers.FROM_THE_RELAXATION) (False: IPOPT alone, for comparison)
     polish: bool = True  # a static solve's IPOPT optimum polished onto its exact KKT point (optimise/polish.py;
     #                      False: as IPOPT ends, for the papers' sizing a start-up solve starts from)
+
+    def __post_init__(self):
+        """The options the command line would take, or an InputError naming each other one (review 27: the Python
+        API took tol 1e3 and called IPOPT's loose end ``optimal``, and 0 or a negative max_iter crashed in CasADi)."""
+        problems, (low, high) = Problems(), TOLERANCE_RANGE
+        if not isinstance(self.tol, Real) or isinstance(self.tol, bool) or not low <= self.tol <= high:  # (NaN too)
+            problems.errors.append(InputError("tol", f"must be a number from {low:g} to {high:g}, got {self.tol!r}"))
+        if not isinstance(self.max_iter, Integral) or isinstance(self.max_iter, bool) or self.max_iter < 1:
+            problems.errors.append(InputError("max_iter", f"must be a whole number of at least 1, got "
+                                                          f"{self.max_iter!r}"))
+        for name in ("warm_sqp", "polish"):
+            if not isinstance(getattr(self, name), (bool, np.bool_)):
+                problems.errors.append(InputError(name, f"must be True or False, got {getattr(self, name)!r}"))
+        problems.raise_any()
 
     def ipopt_warm(self) -> dict:
         """IPOPT started from a previous primal-dual point, barely pushed off the bounds."""

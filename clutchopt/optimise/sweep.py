@@ -479,10 +479,13 @@ class Sweep:
 
     def __init__(self, case: Case, varies: list[Vary], mode: str | None = None, objective: str | None = None,
                  tol: float = SOLVER_TOL, zipped: bool = False, robust: Robustness | None = None):
+        varies = [varies] if isinstance(varies, Vary) else list(varies)  # (one Vary, or any iterable of them)
+        if not all(isinstance(v, Vary) for v in varies):
+            raise InputError("--vary", "give Vary objects (parse_vary('speed=500:3000:26', coupling))")
         self.case = case = case.given(*(v.quantity.name for v in varies))
         self.varies, self.robust = varies, robust
         self.formulation: Formulation = case_formulation(case, mode)
-        self.objective = self.formulation.objective(objective or case.options.get("objective", "mass"))
+        self.objective = self.formulation.objective(case.objective_of(objective))
         case.require(self.objective.name)
         self.tol = tol
         self.grid, self.zipped = grid_points(varies, zipped), zipped

@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from numbers import Real
 from typing import Iterator
 
 import numpy as np
 
 from clutchopt.cases import Case, check_across, check_scatter_corners
-from clutchopt.errors import InputError
+from clutchopt.errors import InputError, shown_value
 from clutchopt.fields_read import fields_read_across, followers
 from clutchopt.formulations import get_coupling
 from clutchopt.model import Quantity
@@ -27,6 +28,18 @@ class Vary:
     values: tuple[float, ...]
     shown: tuple[float, ...] | None = None
 
+    def __post_init__(self):
+        """A Vary built by hand holds what :func:`parse_vary` would: at least one value, each a real number, and as
+        many shown, each its value in the display unit (review 27: a shown 5 rpm had labelled a point solved at 100
+        rad/s, 955 rpm; text had read as SI numbers)."""
+        field = f"--vary {self.quantity.name}"
+        numbers = (*self.values, *(self.shown or ()))
+        if not self.values or not all(isinstance(v, Real) and not isinstance(v, bool) for v in numbers):
+            raise InputError(field, "its values must be one or more numbers (SI; shown: in the display unit)")
+        if self.shown is not None and (len(self.shown) != len(self.values) or not np.allclose(
+                into_si(np.asarray(self.shown, dtype=float), self.quantity.unit), self.values, rtol=1e-9, atol=0.0)):
+            raise InputError(field, f"its shown values are not its values in {self.quantity.unit or 'SI'}")
+
     @property
     def column(self) -> str:
         return column_name(self.quantity.name, self.quantity.unit)
@@ -39,7 +52,9 @@ def column_name(name: str, unit: str) -> str:
 def parse_vary(text: str, coupling: str, quantities: tuple[Quantity, ...] | None = None) -> Vary:
     """``name=start:stop:count`` or ``name=v1,v2,...``, values in the quantity's display unit; ``quantities``:
     those a case may vary (default: the coupling's; ``Case.quantities`` adds a start-up's)."""
-    field = f"--vary {text}"
+    if not isinstance(text, str):
+        raise InputError("--vary", f"expected text such as 'speed=500:3000:26', got {shown_value(text)}")
+    field = f"--vary {text if len(text) <= 80 else text[:60] + f'... ({len(text)} characters)'}"
     name, sep, spec = text.partition("=")
     declared = {q.name: q for q in quantities or get_coupling(coupling).quantities}
     if not sep or not spec.strip():
@@ -71,11 +86,12 @@ def parse_vary(text: str, coupling: str, quantities: tuple[Quantity, ...] | None
 
 def _numbers(field: str, spec: str) -> list[float]:
     try:
+        spec = spec.replace("\u2212", "-")  # the typographic minus, as a case file reads it
         numbers = [float_text(part) for part in (spec.split(":") if ":" in spec else spec.split(","))]
     except BelowFloat64 as exc:
         raise InputError(field, str(exc)) from None
     except ValueError:
-        raise InputError(field, f"not a number in {spec!r} (values are plain numbers in the quantity's "
+        raise InputError(field, f"not a number in {shown_value(spec)} (values are plain numbers in the quantity's "
                                 "display unit)") from None
     if not all(math.isfinite(n) for n in numbers):
         raise InputError(field, "values must be finite")
