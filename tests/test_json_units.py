@@ -264,6 +264,8 @@ def test_relative_margins_are_unitless_and_energies_in_joules():
     assert_units(comparison)
     work = next(row for row in comparison["rows"] if row["quantity"] == "friction_work_simulated")
     assert (work["unit"], work["display_unit"]) == ("J", "kJ") and work["nlp_start_up"] > 1000.0  # J, not kJ
+    count = next(row for row in comparison["rows"] if row["quantity"] == "weight_count")
+    assert count["unit"] == ""  # a count: "", not a case's dimensionless "1" (compare's margins, probabilities too)
 
 
 # -- solve and compare on every case: the JSON's numbers are the printed ones ---------------------------------------

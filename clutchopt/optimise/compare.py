@@ -103,7 +103,8 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=No
     names = list(columns)
     rows = []
     for row in rows_shown:
-        entry = {"quantity": row.name, "unit": si_unit(row.unit), "display_unit": row.unit,
+        # (a row without a unit is a count, a ratio, a margin or a probability: "", not a case's dimensionless "1")
+        entry = {"quantity": row.name, "unit": si_unit(row.unit) if row.unit else "", "display_unit": row.unit,
                  "description": row.description}
         for name in names:
             value = columns[name].get(row.name)
