@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 import re
 from functools import lru_cache
+from numbers import Real
 from typing import NamedTuple
 
 from clutchopt.errors import InputError, shown_value
@@ -291,9 +292,10 @@ def to_si(field: str, raw: object, unit: str) -> float:
     bare number where an absolute temperature is expected (SI would make 40 ambient 40 K, not 40 degC)
     """
     expected = unit_info(unit)
+    wanted = f"a quantity in {unit}" if unit else "a number"
     if isinstance(raw, bool):
-        raise InputError(field, f"expected a quantity in {unit}, got a boolean")
-    if isinstance(raw, (int, float)):  # a bare number is SI
+        raise InputError(field, f"expected {wanted}, got a boolean")
+    if isinstance(raw, Real):  # a bare number is SI (NumPy's too: a case given as a dict from Python)
         if expected.offset:  # 40 would be 40 K, -233 degC, where an absolute temperature is asked for
             raise InputError(field, f"a bare number is ambiguous for a temperature: write '{raw} degC' or '{raw} K'")
         try:
@@ -326,7 +328,7 @@ def to_si(field: str, raw: object, unit: str) -> float:
             value = _nonzero_kept(field, raw, number, number * given.factor if number else 0.0)  # (0 * inf would be
             # nan; inf is refused below)
     else:
-        raise InputError(field, f"expected a quantity in {unit}, got {type(raw).__name__} {shown_value(raw)}")
+        raise InputError(field, f"expected {wanted}, got {type(raw).__name__} {shown_value(raw)}")
     if given.dimensions != expected.dimensions or given.angle != expected.angle:
         raise InputError(field, f"expected {describe_dimension(unit)}{f' (e.g. in {unit})' if unit else ''}, got "
                                 f"{shown_value(raw)}, which is {describe_dimension(unit_text)}")

@@ -108,3 +108,17 @@ def test_parse_vary_names_what_is_not_text_and_cuts_a_long_field():
     with pytest.raises(InputError) as refused:
         parse_vary("speed=" + "1," * 5000 + "x", "wedge")
     assert len(str(refused.value)) < 300 and "(10007 characters)" in str(refused.value)
+
+
+def test_a_case_given_as_a_dict_takes_numpy_numbers_and_names_a_unitless_field_s_kind():
+    """A dict from Python with np.int64(4) was refused, "expected a quantity in , got int64"."""
+    import tomllib
+
+    from clutchopt.cases import parse_case
+
+    data = tomllib.loads((CASES / "wedge_paper.toml").read_text())
+    data["geometry"]["weight_count"] = np.int64(4)
+    assert parse_case(data).values["weight_count"] == 4.0
+    data["geometry"]["weight_count"] = [4]
+    with pytest.raises(InputError, match="weight_count: expected a number, got list"):
+        parse_case(data)
