@@ -332,3 +332,7 @@ def test_a_scatter_pages_designs_are_the_pages_own_and_made_once(monkeypatch):
     total = comparison[comparison.index("total_mass kg"):].split()[2:12]  # the ten columns' total masses
     assert total[-3] == f"{solution.objective:.6g}"  # nominal, then worst_case and chance_0.999
     assert "nominal : the geometry mode optimised for mass at the nominal values" in comparison
+    # review 29: the start-up columns too, the page's mode (they had been the case's paper mode: 0.799684 kg)
+    assert total[-4] == f"{solution.objective:.6g}" and total[-5] == total[-6] == "0.282095"  # nlp_start_up, then
+    assert "nlp_start_up : the geometry mode optimised for mass with the start-up" in comparison  # the static
+    # geometry optimum, constant_acceleration beside nlp_geometry

@@ -52,19 +52,22 @@ def relative_difference(value: float | None, reference: float | None) -> float |
     return (value - reference) / abs(reference)
 
 
-def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=None,
-                 solved: list | None = None) -> ComparisonTable:
+def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=None, solved: list | None = None,
+                 mode: str | None = None, objective: str | None = None) -> ComparisonTable:
     """The paper's method, the closed forms and the NLP optima of each mode side by side; with a [start_up], the
     case's mode sized as the papers size and with its start-up; with a [scatter], the nominal design beside the
     worst-case and chance designs, or beside the one of ``robust`` (a
     :class:`~clutchopt.optimise.design.Robustness`); ``solved``: those designs made already (their
-    :class:`~clutchopt.optimise.robust.RobustResult`, in that order: a review page's, in its mode and objective),
-    shown as they are."""
+    :class:`~clutchopt.optimise.robust.RobustResult`, in that order: a review page's), shown as they are; ``mode``,
+    ``objective``: those of the start-up's and the scatter's designs (default: the case's; a review page's own,
+    review 29: its start-up columns had been the case's paper-mode designs beside a page of the geometry mode)."""
     coupling = get_coupling(case.coupling)
     spec = coupling.comparison
     if spec is None:
         raise InputError("coupling", f"{coupling.name} has no comparison with a paper method")
     check_across(case)  # (as solve_case: a case moved by with_values is checked as a case file is)
+    own = (coupling.formulation(case.mode_of(mode)).mode, case.objective_of(objective))  # the case's own columns'
+
     params = case.params()
     with np.errstate(invalid="ignore", divide="ignore"):  # a closed form undefined at this duty reads as NaN ("-")
         columns = {name: dict(values) for name, values in spec.references(params).items()}
@@ -84,14 +87,14 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=No
             notes[column] = f"{notes.get(column, column)}; {STATIC_NOTE}"
     rows_shown = spec.rows
     if case.start_up is not None:
-        start_columns = _start_up_columns(case, coupling, spec, options)
+        start_columns = _start_up_columns(case, coupling, spec, options, *own)
         for column, (solution, values) in start_columns.items():
             solutions[column] = solution
             columns[column] = values
         rows_shown = spec.rows + START_UP_ROWS
-        notes.update(START_UP_NOTES)
+        notes.update({column: note.format(*own) for column, note in START_UP_NOTES.items()})
     if case.scatter:
-        for column, (solution, values) in _scatter_columns(case, coupling, spec, options, robust, solved).items():
+        for column, (solution, values) in _scatter_columns(case, coupling, spec, options, own, robust, solved).items():
             solutions[column] = solution
             columns[column] = values
         rows_shown = rows_shown + SCATTER_ROWS
@@ -123,10 +126,10 @@ START_UP_ROWS = (
                                                   "simulated"),
 )
 STATIC_NOTE = "the case's [start_up] not in it; started on the case's drive in the rows *_simulated"
-START_UP_NOTES = {
-    "constant_acceleration": "the case's mode optimised as the papers size (constant acceleration), started on "
+START_UP_NOTES = {  # (of a mode and an objective)
+    "constant_acceleration": "the {} mode optimised for {} as the papers size (constant acceleration), started on "
                              "the case's drive",
-    "nlp_start_up": "the case's mode optimised with the start-up on the case's drive inside the NLP",
+    "nlp_start_up": "the {} mode optimised for {} with the start-up on the case's drive inside the NLP",
 }
 
 
@@ -158,18 +161,17 @@ def _column(robust) -> str:
     return "worst_case" if robust.target is None else f"{robust.method}_{target_text(robust.target)}"
 
 
-def _scatter_columns(case: Case, coupling, spec, options: SolverOptions, robust=None, solved: list | None = None
-                     ) -> dict:
-    """The case's mode and objective: nominal and robust designs (worst-case and chance 0.999, or the method of
-    ``robust``; ``solved``: those made already, in their own mode and objective), each checked at every corner of the
-    ranges and by Monte Carlo over the distributions."""
+def _scatter_columns(case: Case, coupling, spec, options: SolverOptions, own: tuple[str, str], robust=None,
+                     solved: list | None = None) -> dict:
+    """The nominal and robust designs of ``own`` (mode, objective): worst-case and chance 0.999, or the method of
+    ``robust`` (``solved``: those made already), each checked at every corner of the ranges and by Monte Carlo over
+    the distributions."""
     from clutchopt.optimise.design import Robustness
     from clutchopt.optimise.robust import CHANCE, WORST_CASE
     from clutchopt.optimise.robust_models import corner_checks, failure_probabilities
 
     methods = [robust] if robust is not None else [Robustness(WORST_CASE), Robustness(CHANCE, CHANCE_SHOWN)]
-    results = solved if solved is not None else [
-        m.solve(case, case.options.get("mode") or coupling.default_mode, None, options) for m in methods]
+    results = solved if solved is not None else [m.solve(case, *own, options) for m in methods]
     worst = results[0]
     mode = worst.nominal.mode
     params = case.params()
@@ -187,11 +189,9 @@ def _scatter_columns(case: Case, coupling, spec, options: SolverOptions, robust=
     return columns
 
 
-def _start_up_columns(case: Case, coupling, spec, options: SolverOptions) -> dict:
-    """The case's mode and objective optimised without and with the start-up; both designs started on the case's
+def _start_up_columns(case: Case, coupling, spec, options: SolverOptions, mode: str, objective: str) -> dict:
+    """``mode`` and ``objective`` optimised without and with the start-up; both designs started on the case's
     drive by the simulator."""
-    mode = case.options.get("mode") or coupling.default_mode
-    objective = case.options.get("objective", "mass")
     params = case.params()
     columns = {}
     for column, problem in (("constant_acceleration", problem_for(coupling.formulation(mode), objective, options)),

@@ -90,10 +90,12 @@ def sensitivities(solution: Solution, formulation) -> list:
                  "grows in proportion)."), Table(rows, ("elasticity",))]
 
 
-def comparison(case: Case, options: SolverOptions, robust=None, scattered: list | None = None) -> list:
-    """The paper's method beside the optimiser's designs, solved with the page's ``options``; a scatter case's
-    columns the designs of its Scatter section (``scattered``: the page's robust design's RobustResult, ``robust``,
-    else those of worst case and chance 0.999, in the page's mode and objective), not solved again."""
+def comparison(case: Case, solution: Solution, options: SolverOptions, robust=None, scattered: list | None = None
+               ) -> list:
+    """The paper's method beside the optimiser's designs, solved with the page's ``options``; a start-up case's
+    columns in the mode and objective of the page's ``solution``; a scatter case's the designs of its Scatter section
+    (``scattered``: the page's robust design's RobustResult, ``robust``, else those of worst case and chance 0.999),
+    not solved again."""
     from clutchopt.optimise.compare import compare_case
     from clutchopt.optimise.design import Robustness
 
@@ -101,7 +103,7 @@ def comparison(case: Case, options: SolverOptions, robust=None, scattered: list 
         return [Note("This coupling has no comparison with a paper method.")]
     method = None if robust is None else Robustness(robust.method, robust.target, robust.samples,
                                                     robust.start_up_samples or Robustness.starts)
-    data = compare_case(case, options, method, scattered).as_dict()
+    data = compare_case(case, options, method, scattered, solution.mode, solution.objective_name).as_dict()
     rows, _ = comparison_rows(data)
     return [Table(rows, tuple(data["columns"])), Items(list(column_notes(data).items()))]
 
