@@ -1,6 +1,7 @@
 """Design-review report: self-contained page with the key numbers, what was verified, sketch or dimension table,
 laid out in Chromium with no label over a part or another label and no table wider than the page; and the PDF."""
 
+import html
 import json
 import math
 import re
@@ -336,3 +337,16 @@ def test_a_scatter_pages_designs_are_the_pages_own_and_made_once(monkeypatch):
     assert total[-4] == f"{solution.objective:.6g}" and total[-5] == total[-6] == "0.282095"  # nlp_start_up, then
     assert "nlp_start_up : the geometry mode optimised for mass with the start-up" in comparison  # the static
     # geometry optimum, constant_acceleration beside nlp_geometry
+
+
+def test_a_page_without_a_design_says_so_in_every_section():
+    """review 29: an infeasible or not_found page was titled "Optimal design", its sketch "of the optimum", its
+    margins with elasticities of -400 and its start "passed": now it names the last point as no design."""
+    case = load_case(CASES / "wedge_paper.toml").with_values(outer_diameter_max=0.1)
+    solution = solve_case(case, "geometry")
+    assert solution.status == "not_found"
+    text = html.unescape(re.sub(r"\s+", " ", re.sub(r"<[^>]+>", " ", build_report(case, solution))))
+    assert "objective (mass) none (no design" in text and "No design: the solver's last point" in text
+    assert "Optimal design" not in text and "sketch of the optimum" not in text and "No sketch" in text
+    assert "the point is no optimum, status not_found" in text
+    assert "independent simulation not simulated no design to start (status not_found) not done" in text

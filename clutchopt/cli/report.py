@@ -51,6 +51,7 @@ def run(args) -> str:
     from clutchopt.optimise.problem import case_formulation
     from clutchopt.optimise.sweep_table import check_swept_from, read_frame
     from clutchopt.report import build_report
+    from clutchopt.report.sections import designed
     from clutchopt.report.pdf import print_pdf, require_chromium
 
     case = load_case(args.case)
@@ -81,6 +82,6 @@ def run(args) -> str:
         write_whole("--out", args.out, write)
         record_solve(store, best, method_of(robust))  # (once the page is written: review 25)
     solution = best.solution
-    return "\n".join([*notes, f"design review of {case.path} ({solution.status}, {solution.objective_name} "
-                               f"{solution.objective:.6g} {solution.objective_unit}"
-                               + (f", {robust.label} design" if robust is not None else "") + f") written to {args.out}"])
+    shown = (f"{solution.objective_name} {solution.objective:.6g} {solution.objective_unit}"
+             + (f", {robust.label} design" if robust is not None else "")) if designed(solution) else "no design"
+    return "\n".join([*notes, f"design review of {case.path} ({solution.status}, {shown}) written to {args.out}"])

@@ -22,6 +22,8 @@ from clutchopt.report.sections import (
     drawing,
     margins,
     requirements,
+    designed,
+    design_title,
     scatter,
     scattered_designs,
     sensitivities,
@@ -47,7 +49,7 @@ def build_report(case: Case, solution: Solution, sweep: pd.DataFrame | None = No
     nominal_failure = scattered[1] if scattered is not None and robust is None else None
     sections = [
         Section("Requirements", "requirements", requirements(case)),
-        Section("Robust design" if robust is not None else "Optimal design", "design", design(solution, formulation)),
+        Section(design_title(solution, robust), "design", design(solution, formulation)),
         Section("Dimensioned sketch", "sketch", drawing(case, solution, formulation)),
         Section("Constraint margins", "margins", margins(solution)),
         Section("Sensitivities", "sensitivities", sensitivities(solution, formulation)),
@@ -62,7 +64,8 @@ def build_report(case: Case, solution: Solution, sweep: pd.DataFrame | None = No
         "review.html.j2", title=case.title or case.path, formulation=formulation.title, case_path=case.path,
         kind=f"Robust design ({robust_label(robust)})" if robust is not None else "Design", ok=solution.status == "optimal",
         status=solution.status, objective_name=solution.objective_name,
-        objective=f"{solution.objective:.6g} {solution.objective_unit}", notes=notes,
+        objective=f"{solution.objective:.6g} {solution.objective_unit}" if designed(solution) else
+        "none (no design: the solver's last point is shown)", notes=notes,
         nominal=(f"{nominal_failure[0]} fails with probability {nominal_failure[1]:.3g} under the scatter"
                  if nominal_failure is not None else None),
         diagnosis=solution.diagnosis, generated=f"{datetime.now(timezone.utc):%Y-%m-%d %H:%M}",

@@ -13,6 +13,7 @@ import pandas as pd
 from clutchopt.cases import Case, quantity_table
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.solution import Solution, SolverOptions
+from clutchopt.optimise.verify import DESIGN_STATUSES
 from clutchopt.output import (
     _shown,
     column_notes,
@@ -49,12 +50,33 @@ def requirements(case: Case) -> list:
     return [Table(rows, ("value",))]
 
 
+def designed(solution: Solution) -> bool:
+    """Whether the page has a design to review (optimal, or unverified: flagged), not the last point of a solve that
+    found none (review 29: an infeasible page had been titled "Optimal design", its sketch "of the optimum" and its
+    start "passed")."""
+    return solution.status in DESIGN_STATUSES
+
+
+def design_title(solution: Solution, robust=None) -> str:
+    if not designed(solution):
+        return "No design: the solver's last point"
+    return ("Robust design" if robust is not None else "Optimal design") + (
+        " (unverified)" if solution.status == "unverified" else "")
+
+
 def design(solution: Solution, formulation) -> list:
-    return [Table(design_rows(solution, formulation), ("value",)), Heading("Derived"),
-            Table(derived_rows(solution), ("value",))]
+    tables = [Table(design_rows(solution, formulation), ("value",)), Heading("Derived"),
+              Table(derived_rows(solution), ("value",))]
+    if designed(solution):
+        return tables
+    return [Note(f"The solve found no design (status {solution.status}: {solution.diagnosis or 'see the verification'}"
+                 "). These are the values of its last point, which breaks the requirements the margins below show; "
+                 "nothing on this page is a design to build.")] + tables
 
 
 def drawing(case: Case, solution: Solution, formulation) -> list:
+    if not designed(solution):
+        return [Note(f"No sketch: the solve found no design (status {solution.status}).")]
     optimised = {v.name for v in formulation.variables if solution.at_bound(v.name) != "fixed"}
     effects = tuple(case.start_up.effects) if case.start_up is not None else ()
     svg = sketch(case.coupling, {**case.values, **solution.design},
@@ -71,12 +93,13 @@ def drawing(case: Case, solution: Solution, formulation) -> list:
 
 
 def margins(solution: Solution) -> list:
-    rows = []
+    rows, optimum = [], solution.status == "optimal"  # (elasticities are an optimum's: none at a last point)
     for c, row in zip(solution.constraints, constraint_rows(solution)):
         rows.append({**{k: v for k, v in row.items() if k not in ("active", "elasticity")},
                      "margin bar": Bar(max(0.0, min(c.margin, 1.0)), c.active),
-                     "active": row["active"], "elasticity": row["elasticity"]})
-    return [Note("Re-evaluated in float64; margin relative to the limit; elasticity = d ln objective / d ln limit."),
+                     "active": row["active"], "elasticity": row["elasticity"] if optimum else "-"})
+    return [Note("Re-evaluated in float64; margin relative to the limit; elasticity = d ln objective / d ln limit"
+                 + ("." if optimum else f" (none: the point is no optimum, status {solution.status}).")),
             Table(rows, ("value", "limit", "margin", "elasticity"))]
 
 
@@ -161,6 +184,10 @@ def scatter(case: Case, results: list, robust=None) -> tuple[list, tuple[str, fl
     first = results[0]
     rows = []
     for label, result_solution, failure, reliability in designs:
+        if not designed(result_solution):  # (no design: its last point's figures are none of a design's)
+            rows.append({"design": label, "status": result_solution.status, result_solution.objective_name: "-",
+                         "change": "-", "largest P(fail)": "-"})
+            continue
         rows.append({"design": label, "status": result_solution.status,
                      result_solution.objective_name: f"{result_solution.objective:.6g} {result_solution.objective_unit}",
                      "change": f"{result_solution.objective / first.nominal.objective - 1:+.1%}",

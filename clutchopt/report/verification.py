@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from clutchopt.optimise.verify import DESIGN_STATUSES
 from clutchopt.records import target_text
 
 PASSED, FAILED, NOT_DONE = "passed", "failed", "not done"
@@ -65,6 +66,8 @@ def start_up_check(case, solution) -> Check:
     """The start of the design's drive simulated independently of the NLP; a case sized for constant acceleration
     is started at constant driving speed."""
     what = "independent simulation"
+    if solution.status not in DESIGN_STATUSES:  # (a last point's start is no design's: review 29)
+        return Check(what, "not simulated", f"no design to start (status {solution.status})", NOT_DONE)
     start = solution.start_up
     if start is not None:
         how = (f"the start on the case's drive ({', '.join(start['effects'])}) integrated by SciPy (LSODA where "
