@@ -350,3 +350,20 @@ def test_a_page_without_a_design_says_so_in_every_section():
     assert "Optimal design" not in text and "sketch of the optimum" not in text and "No sketch" in text
     assert "the point is no optimum, status not_found" in text
     assert "independent simulation not simulated no design to start (status not_found) not done" in text
+
+
+def test_a_robust_start_up_page_starts_its_figure_where_its_table_does():
+    """review 29: the robust design's start-up table was its start at the scatter's corner (f = 0.12, 10 s), its
+    figure and caption the same design at the nominal f = 0.15 (6.84 s), the NLP's points drawn over the other
+    start's lines, neither saying which f: now both at the corner, said."""
+    from clutchopt.optimise.robust import WORST_CASE, solve_robust
+
+    case = load_case(CASES / "wedge_motor_start_scatter.toml")
+    robust = solve_robust(case, WORST_CASE, samples=100, starts=10)
+    assert robust.corners["start_up"] == {"friction_coefficient": 0.12}
+    text = html.unescape(re.sub(r"\s+", " ", re.sub(r"<[^>]+>", " ", build_report(case, robust.solution,
+                                                                                     robust=robust))))
+    assert "The start at the scatter's friction_coefficient 0.12, where the robust design's start-up limits" in text
+    caption = text[text.index("Start-up of the optimised wedge design"):]
+    assert caption.startswith("Start-up of the optimised wedge design on the case's drive")
+    assert "lock-up after 10 s" in caption[:300] and "(Simulated at the scatter's friction_coefficient 0.12" in caption

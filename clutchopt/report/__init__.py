@@ -54,7 +54,7 @@ def build_report(case: Case, solution: Solution, sweep: pd.DataFrame | None = No
         Section("Constraint margins", "margins", margins(solution)),
         Section("Sensitivities", "sensitivities", sensitivities(solution, formulation)),
         Section("Comparison with the paper's method", "comparison", comparison(case, solution, options, robust, designs)),
-        Section("Start-up simulation", "simulation", simulation(case, solution)),
+        Section("Start-up simulation", "simulation", simulation(case, solution, robust)),
     ]
     if scattered is not None:
         sections.append(Section("Scatter", "scatter", scattered[0]))

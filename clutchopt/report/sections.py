@@ -131,21 +131,27 @@ def comparison(case: Case, solution: Solution, options: SolverOptions, robust=No
     return [Table(rows, tuple(data["columns"])), Items(list(column_notes(data).items()))]
 
 
-def simulation(case: Case, solution: Solution) -> list:
-    """The start-up simulation of the optimum: the one call site of the simulator's figure."""
+def simulation(case: Case, solution: Solution, robust=None) -> list:
+    """The start-up simulation of the optimum: the one call site of the simulator's figure. A robust design's start is
+    the one its table shows, at the scatter's point where it was designed (``robust.corners["start_up"]``; review 29:
+    the figure had started the design at the nominal values, 6.84 s, beneath the table's corner, 10 s)."""
     from clutchopt.simulate import report_figure
 
-    figure, caption = report_figure(case, solution)
+    point = (robust.corners.get("start_up") or {}) if robust is not None and solution.start_up is not None else {}
+    figure, caption = report_figure(case.with_values(**point) if point else case, solution)
     if figure is None:
         return [Note(caption)]
+    declared = {q.name: q for q in case.quantities}
+    at = (f" at the scatter's {', '.join(f'{name} {declared[name].show(value)}' for name, value in point.items())}, "
+          "where the robust design's start-up limits bind (the nominal values start it otherwise)") if point else ""
     blocks = []
     if solution.start_up is not None:
         start = solution.start_up
         _, rows, _ = start_up_table(start)
-        blocks = [Note(f"The start designed inside the NLP (Radau collocation, {start['intervals']} intervals per "
+        blocks = [Note(f"The start{at}, designed inside the NLP (Radau collocation, {start['intervals']} intervals per "
                        f"phase: {', '.join(start['phases'])}; points in the figure) beside the independent simulator "
                        "(lines)."), Table(rows, ("NLP", "simulated"))]
-    return blocks + [Figure(safe_svg(figure_svg(figure)), caption)]
+    return blocks + [Figure(safe_svg(figure_svg(figure)), caption + (f" (Simulated{at}.)" if at else ""))]
 
 
 def scattered_designs(case: Case, solution: Solution, options: SolverOptions, robust=None) -> list:
