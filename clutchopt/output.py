@@ -11,7 +11,7 @@ import json
 import math
 from typing import TYPE_CHECKING
 
-from clutchopt.records import UNRANKED, target_text
+from clutchopt.records import DESIGN_STATUSES, UNRANKED, target_text
 from clutchopt.units import from_si, si_unit
 from clutchopt.scatter import correlation_text, shown_spread
 
@@ -138,6 +138,16 @@ def reliability_units(data: dict, quantities: dict) -> dict:
     return {"constraints": {name: {"beta": UNITLESS, "design_point": quantities, "estimates": estimate,
                                    "failure_probability": estimate} for name in data["constraints"]},
             "system": estimate}
+
+
+def shown_point(record: dict) -> dict:
+    """A sweep point's record as its table and ``runs export`` show it: where its status has no design (infeasible,
+    not_found), no objective value, design or outputs (review 30: a point proven infeasible over a region had shown the
+    design its proof was carried from, the point before's 950.755 kg, where ``solve`` of it alone shows its own
+    last point); its verdict, diagnosis and constraints as they are."""
+    if record.get("status") in DESIGN_STATUSES or "objective" not in record:
+        return record
+    return {**record, "objective": {**record["objective"], "value": None}, "design": None, "outputs": None}
 
 
 def comparison_json(table) -> dict:  # a ComparisonTable (optimise.compare): read by its fields

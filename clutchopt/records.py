@@ -18,6 +18,7 @@ from dataclasses import asdict
 
 TEMPLATE = "template"  # the key that marks a compact record, holding its template's key
 STATUSES = ("optimal", "unverified", "infeasible", "not_found", "solver_failed")  # how a solve ends (infeasible: proven)
+DESIGN_STATUSES = STATUSES[:2]  # a solve with these has a design to show (unverified: flagged)
 CONSTRAINT_COLUMNS = ("value", "limit", "margin", "active", "feasible", "scale", "multiplier", "elasticity")
 NOMINAL = "nominal"  # how a design was made without --robust; else worst-case or chance=P, as --robust spells it
 UNRANKED = "not solved: "  # an integer search entry a start-up's first mesh left to the next (too coarse to rank

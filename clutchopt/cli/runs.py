@@ -76,11 +76,14 @@ def _objective_unit(run: dict) -> dict:
 def run_json(run: dict) -> dict:
     """A stored run with the unit of every number: its inputs by its coupling's quantities (a robust design's
     scatter too), its outputs as a solution's or a simulation's."""
-    from clutchopt.output import CHECK_UNITS, HEADLINE_UNITS, SIMULATION_UNITS, solution_json, with_units
+    from clutchopt.records import DESIGN_STATUSES
+    from clutchopt.output import CHECK_UNITS, HEADLINE_UNITS, SIMULATION_UNITS, shown_point, solution_json, with_units
     from clutchopt.store import nested
 
     outputs = run["outputs"]
-    if isinstance(outputs, dict) and isinstance(outputs.get("objective"), dict):
+    if run["kind"] == "sweep" and run["status"] not in DESIGN_STATUSES:  # (a point without a design, as its table
+        run, outputs = {**run, "objective": None}, shown_point(outputs) if isinstance(outputs, dict) else outputs
+    if isinstance(outputs, dict) and isinstance(outputs.get("objective"), dict):  # and runs export show it)
         outputs = solution_json(outputs)
     elif isinstance(outputs, dict):
         outputs = with_units(outputs, {**SIMULATION_UNITS, **CHECK_UNITS})

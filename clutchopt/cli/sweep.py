@@ -96,10 +96,10 @@ def run(args) -> str:
     if args.out:
         write_frame(result.frame, args.out, identity=sweep.identity())
     if args.json:
-        from clutchopt.output import UNITLESS, solution_json, to_json, with_units
+        from clutchopt.output import UNITLESS, shown_point, solution_json, to_json, with_units
 
         varied = {"point": UNITLESS, "values": {v.quantity.name: v.quantity.si_unit for v in sweep.varies}}
-        points = [with_units(solution_json({"point": i, "values": values, **solution}), varied)
+        points = [with_units(solution_json({"point": i, "values": values, **shown_point(solution)}), varied)
                   for i, (values, solution) in enumerate(zip(sweep.points, result.solutions))]
         return to_json(with_units({"case": case.path, "mode": sweep.formulation.mode,
                                    "objective": sweep.objective.name,

@@ -96,7 +96,8 @@ from clutchopt.optimise.problem import Problem
 from clutchopt.optimise.region_proof import Regions, SharedBox
 from clutchopt.optimise.solution import Solution, WarmStart
 from clutchopt.optimise.tightening import tightening
-from clutchopt.optimise.verify import DESIGN_STATUSES, FEASIBILITY_TOL
+from clutchopt.records import DESIGN_STATUSES
+from clutchopt.optimise.verify import FEASIBILITY_TOL
 
 FIRST_BATCH = 8  # points in the batch after a point solved one by one
 LONGEST_BATCH = 256  # doubling stops here: a longer batch saves little call overhead and risks more waste

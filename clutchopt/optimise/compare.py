@@ -13,7 +13,7 @@ from clutchopt.formulations import get_coupling
 from clutchopt.model import ComparisonRow
 from clutchopt.optimise.problem import case_problem, problem_for
 from clutchopt.optimise.solution import Solution, SolverOptions
-from clutchopt.optimise.verify import DESIGN_STATUSES
+from clutchopt.records import DESIGN_STATUSES
 from clutchopt.records import target_text
 from clutchopt.units import si_unit
 

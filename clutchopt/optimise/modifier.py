@@ -40,7 +40,7 @@ from clutchopt.optimise.interval import IntervalFunction
 from clutchopt.optimise.link_bound import MARGIN, least_stress
 from clutchopt.optimise.sparsity import entries
 from clutchopt.optimise.start_up_check import CENTRE, LIMIT_OF, limit_gaps, objective_error, simulated_checks
-from clutchopt.optimise.verify import DESIGN_STATUSES
+from clutchopt.records import DESIGN_STATUSES
 from clutchopt.start_up.equations import with_start_up
 
 MODIFIER_STEPS = 6  # corrected solves at most (the cable's 8 cables at 0.5 kg m^2: 3 from the free loop, 4 fixed)

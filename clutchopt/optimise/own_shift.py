@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 
 from clutchopt.optimise.integers import EXCLUDED, SOLVED
-from clutchopt.optimise.verify import DESIGN_STATUSES
+from clutchopt.records import DESIGN_STATUSES
 
 CARRIED = None  # the "choice" that measured a shift carried from elsewhere, where it is not known
 OWN_LOOP = "own accuracy loop"  # how an integer search's entry of a choice solved through its own loop begins

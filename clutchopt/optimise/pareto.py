@@ -22,7 +22,8 @@ from clutchopt.optimise.robust import RobustResult
 from clutchopt.optimise.robust_models import largest_failure
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.sweep_grid import column_name
-from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_objective
+from clutchopt.records import DESIGN_STATUSES
+from clutchopt.optimise.verify import evaluate_objective
 from clutchopt.start_up.drive import Structure
 from clutchopt.units import from_si
 

@@ -43,7 +43,8 @@ from clutchopt.optimise.start_up_sweep import sized_choices
 from clutchopt.optimise.verdict import GIVEN, OWN, infeasible_at, shown
 from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.sampled_start import from_a_sampled_design, from_the_held_design
-from clutchopt.optimise.verify import DESIGN_STATUSES, evaluate_outputs
+from clutchopt.records import DESIGN_STATUSES
+from clutchopt.optimise.verify import evaluate_outputs
 from clutchopt.records import UNRANKED
 from clutchopt.start_up.drive import Structure
 from clutchopt.start_up.equations import with_start_up

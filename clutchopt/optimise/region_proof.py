@@ -87,7 +87,8 @@ from clutchopt.optimise.proofs import start_up_proofs
 from clutchopt.optimise.solution import Solution, SolverInfo
 from clutchopt.optimise.tightening import ProofCarry
 from clutchopt.optimise.verdict import emptied, figures_at, figures_over, infeasible_at
-from clutchopt.optimise.verify import DESIGN_STATUSES, check_design
+from clutchopt.records import DESIGN_STATUSES
+from clutchopt.optimise.verify import check_design
 from clutchopt.units import from_si
 
 FIRST_RUN = 8  # points searched as one region after a point without a design,

@@ -72,7 +72,8 @@ from clutchopt.optimise.robust_start_up import (
 )
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.start_up_reliability import StartUpPerformancePoints
-from clutchopt.optimise.verify import DESIGN_STATUSES, ConstraintCheck, check_constraints
+from clutchopt.records import DESIGN_STATUSES
+from clutchopt.optimise.verify import ConstraintCheck, check_constraints
 from clutchopt.records import target_text
 from clutchopt.start_up.drive import Structure
 

@@ -49,7 +49,7 @@ from clutchopt.errors import InputError
 from clutchopt.optimise.integers import least_violation
 from clutchopt.optimise.solution import Solution
 from clutchopt.optimise.verdict import one_more_start
-from clutchopt.optimise.verify import DESIGN_STATUSES
+from clutchopt.records import DESIGN_STATUSES
 
 SAMPLES = 16  # designs sampled over the box (a power of two: a Sobol sequence's balanced size). Each start simulated
 # costs what the coupling's start costs: 16 take 0.2 s on the ball, 4 s on the lever (0.1-0.5 s each; a simulation's

@@ -11,7 +11,8 @@ from typing import NamedTuple, Sequence
 import numpy as np
 
 from clutchopt.model import Output
-from clutchopt.optimise.verify import DESIGN_STATUSES, ConstraintCheck
+from clutchopt.records import DESIGN_STATUSES
+from clutchopt.optimise.verify import ConstraintCheck
 from clutchopt.errors import InputError, Problems
 from clutchopt.solver_tolerance import SOLVER_TOL, TOLERANCE_RANGE
 from clutchopt.units import si_unit

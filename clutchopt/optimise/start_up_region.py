@@ -36,7 +36,7 @@ from clutchopt.cases import Case
 from clutchopt.optimise.failed_starts import on_ray
 from clutchopt.optimise.solution import Solution
 from clutchopt.optimise.verdict import LEAST, SIZING, retried, verdict_from
-from clutchopt.optimise.verify import DESIGN_STATUSES
+from clutchopt.records import DESIGN_STATUSES
 
 REGION = "the neighbouring point's least relaxation"  # the start a point tested against its neighbour's reason adds
 TESTS = (SIZING, REGION, LEAST)  # a point's starts in the order its test tries them (:func:`region_tested`); a point

@@ -49,7 +49,7 @@ from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_na
                                            parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
 from clutchopt.optimise.table import joined_tables, record_table
 from clutchopt.optimise.verdict import GIVEN, NEIGHBOUR, NEXT, one_more_start, retried
-from clutchopt.optimise.verify import DESIGN_STATUSES
+from clutchopt.records import DESIGN_STATUSES
 from clutchopt.start_up.mesh import settled
 from clutchopt.solver_tolerance import SOLVER_TOL
 from clutchopt.records import design_inputs, scatter_record

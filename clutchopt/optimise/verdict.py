@@ -32,7 +32,8 @@ from clutchopt.errors import InputError
 from clutchopt.model import Output, namespace
 from clutchopt.optimise.interval_proof import SURE_BOXES, empty_design_space
 from clutchopt.optimise.solution import Solution, SolverInfo
-from clutchopt.optimise.verify import (DESIGN_STATUSES, ConstraintCheck, check_design, column_checks, column_figures,
+from clutchopt.records import DESIGN_STATUSES
+from clutchopt.optimise.verify import (ConstraintCheck, check_design, column_checks, column_figures,
                                        column_outputs, evaluate_objective, evaluate_outputs)
 
 

@@ -13,7 +13,6 @@ from clutchopt.units import si_unit
 
 FEASIBILITY_TOL = 1e-8  # largest relative violation accepted as feasible
 ACTIVE_TOL = 1e-6  # relative margin below which a constraint is reported active
-DESIGN_STATUSES = ("optimal", "unverified")  # a solve with these has a design to show (unverified: flagged)
 
 
 @dataclass(slots=True)  # (no attribute beyond its fields: a record's keys, and a stored window's, are these)

@@ -13,7 +13,7 @@ import pandas as pd
 from clutchopt.cases import Case, quantity_table
 from clutchopt.formulations import get_coupling
 from clutchopt.optimise.solution import Solution, SolverOptions
-from clutchopt.optimise.verify import DESIGN_STATUSES
+from clutchopt.records import DESIGN_STATUSES
 from clutchopt.output import (
     _shown,
     column_notes,

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from clutchopt.optimise.verify import DESIGN_STATUSES
+from clutchopt.records import DESIGN_STATUSES
 from clutchopt.records import target_text
 
 PASSED, FAILED, NOT_DONE = "passed", "failed", "not done"
