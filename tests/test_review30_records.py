@@ -20,3 +20,15 @@ def test_a_sweep_point_without_a_design_shows_none_in_its_json_and_its_stored_ru
     shown = json.loads(run_cli("runs", "show", "2", "--store", store).stdout)
     assert shown["point"] == 1 and shown["status"] == "infeasible" and shown["objective"] is None
     assert shown["outputs"]["objective"]["value"] is None and shown["outputs"]["design"] is None
+
+
+def test_a_stored_sweep_point_keeps_the_defaults_that_follow_what_it_varies(tmp_path):
+    """wedge_motor_start over the duty's inertia: the start-up's driven inertia follows it and each point was designed
+    for it, but the store kept the case's 0.5 kg m^2 for both points (runs show, runs export)."""
+    store = str(tmp_path / "runs.sqlite")
+    swept = run_cli("sweep", str(CASES / "wedge_motor_start.toml"), "--vary", "inertia=0.4,0.6", "--store", store,
+                    "--quiet")
+    assert swept.returncode == 0, swept.stderr
+    for run_id, inertia in (("1", 0.4), ("2", 0.6)):
+        values = json.loads(run_cli("runs", "show", run_id, "--store", store).stdout)["inputs"]["values"]
+        assert values["inertia"] == values["driven_inertia"] == inertia

@@ -34,7 +34,7 @@ from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
 from clutchopt.materials import chosen
-from clutchopt.model import Formulation
+from clutchopt.model import Formulation, followed
 from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
 from clutchopt.optimise.batch_carried import Carried, stored_design
 from clutchopt.optimise.dask_client import connect
@@ -575,7 +575,7 @@ class Sweep:
             for results in solving:
                 if store is not None and sweep_id is not None:  # the results in hand in one transaction
                     store.record_points(self._inputs(), self._where(sweep_id), results.points.index,
-                                        results.points.columns, *results.stored(),
+                                        self._recorded(results.points.columns), *results.stored(),
                                         carried=results.carried.as_dict() if starts and results.carried else None)
                 elif store is not None:  # the sweep itself could not be recorded
                     store.unrecorded += len(results)
@@ -624,6 +624,15 @@ class Sweep:
         SI values (each point's varied values, checked when the sweep was made, replace the case's), its free
         variables and bounds, how it was designed."""
         return design_inputs(self.case, self.case.values, method_of(self.robust))
+
+    def _recorded(self, columns: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+        """The points' own values the store keeps beside the case's: the varied ones and each default that follows
+        one (review 30: a start-up's load following the swept resisting torque, its driven inertia the swept
+        inertia, had been stored at the case's value, not the one the point was designed for)."""
+        recorded = dict(columns)
+        for _ in self.case.follows:  # (a chain: one more link a pass)
+            recorded = followed(recorded, self.case.follows)
+        return recorded
 
     def _where(self, sweep_id: int) -> dict:
         """The store's fields every point of the sweep shares."""
