@@ -32,3 +32,18 @@ def test_a_stored_sweep_point_keeps_the_defaults_that_follow_what_it_varies(tmp_
     for run_id, inertia in (("1", 0.4), ("2", 0.6)):
         values = json.loads(run_cli("runs", "show", run_id, "--store", store).stdout)["inputs"]["values"]
         assert values["inertia"] == values["driven_inertia"] == inertia
+
+
+def test_a_system_chance_design_whose_scatter_moves_only_start_up_limits():
+    """The lever's start-up case with its friction coefficient scattered: the scatter moves no closed-form
+    constraint, only start-up limits, which take their shares of 1 - P first; the allocation over none had a budget
+    of 0 and its row divided by zero (internal error). Now no allocation: the start-up limits hold the system."""
+    from composition import case_data
+
+    from clutchopt.cases import parse_case
+    from clutchopt.optimise.robust import SYSTEM_CHANCE, solve_robust
+
+    case = parse_case(case_data("lever", ("start_up", "scatter")))
+    result = solve_robust(case, SYSTEM_CHANCE, 0.999, samples=200, starts=10)
+    assert result.status == "optimal" and result.allocation is None
+    assert result.design_failure().probability <= 1e-3 and result.start_up_failure  # its start-up limits sampled

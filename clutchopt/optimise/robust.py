@@ -254,7 +254,9 @@ def solve_robust(case: Case, method: str, target: float | None = None, mode: str
         moved = {name: betas[name] for name in names if np.linalg.norm(points[name]) > 0}
         budget = (start_up_points.take_shares(nominal.design, len(moved), 1.0 - target) if start_up_points
                   else 1.0 - target)  # the start-up limits the scatter moves take their shares first
-        allocation = RiskAllocation(budget, case.scatter, case.correlation, moved)
+        allocation = RiskAllocation(budget, case.scatter, case.correlation, moved) if moved else None  # (none: the
+        # scatter moves only the start-up's limits, which took their shares; review 30: a lever start-up case's
+        # empty allocation, its budget 0, had divided by zero)
     corners, start_up = corners_at(nominal.design)
     start_up_names = tuple(name for name in corners if name not in names and name != START_UP)
     derived = _derived(base, case, names, start_up_names)
