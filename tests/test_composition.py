@@ -112,6 +112,9 @@ def test_every_command_takes_every_case(command, coupling, aspects, mode, tmp_pa
             assert lightest is not None
             _design_equal(lightest["design"], solved["design"])
     else:
+        if solved["status"] not in ("optimal", "unverified"):  # a page without a design says so (review 29)
+            assert f"({solved['status']}, no design)" in out and "No design" in page.read_text(encoding="utf-8")
+            return
         headline = re.search(r"\((\w+), (\w+) (\S+) ", out)
         assert headline.group(1) == solved["status"]
         assert float(headline.group(3)) == pytest.approx(solved["objective"]["value"], rel=1e-5)
