@@ -67,7 +67,8 @@ def build_report(case: Case, solution: Solution, sweep: pd.DataFrame | None = No
         objective=f"{solution.objective:.6g} {solution.objective_unit}" if designed(solution) else
         "none (no design: the solver's last point is shown)", notes=notes,
         nominal=(f"{nominal_failure[0]} fails with probability {nominal_failure[1]:.3g} under the scatter"
-                 if nominal_failure is not None else None),
+                 + (" (its constraints; its start-up limits not sampled: clutchopt solve --robust samples a robust "
+                    "design's)" if case.start_up is not None else "") if nominal_failure is not None else None),
         diagnosis=solution.diagnosis, generated=f"{datetime.now(timezone.utc):%Y-%m-%d %H:%M}",
         versions=", ".join(f"{k} {v}" for k, v in versions().items()),
         checks=verification(case, solution, robust, nominal_failure), sections=sections)

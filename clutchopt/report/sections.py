@@ -176,20 +176,20 @@ def scatter(case: Case, results: list, robust=None) -> tuple[list, tuple[str, fl
     likeliest failure: (constraint, probability, samples)."""
     from clutchopt.optimise.robust_models import failure_probabilities, tornado
 
-    if robust is not None:
-        designs = [("nominal", robust.nominal, robust.nominal_failure, robust.nominal_reliability),
-                   (robust_label(robust), robust.solution, robust.failure, robust.reliability)]
+    if robust is not None:  # (each row with the result it is of: a robust start-up's system has its limits)
+        designs = [("nominal", robust.nominal, robust.nominal_failure, robust.nominal_reliability, robust),
+                   (robust_label(robust), robust.solution, robust.failure, robust.reliability, robust)]
     else:
         worst, chance = results
-        designs = [("nominal", worst.nominal, worst.nominal_failure, worst.nominal_reliability),
-                   ("worst case", worst.solution, worst.failure, worst.reliability),
+        designs = [("nominal", worst.nominal, worst.nominal_failure, worst.nominal_reliability, worst),
+                   ("worst case", worst.solution, worst.failure, worst.reliability, worst),
                    ("chance 0.999", chance.solution, failure_probabilities(worst.formulation, chance.solution.design,
                                                                            case.params(), case.scatter,
                                                                            correlation=case.correlation),
-                    chance.reliability)]
+                    chance.reliability, chance)]
     first = results[0]
     rows = []
-    for label, result_solution, failure, reliability in designs:
+    for label, result_solution, failure, reliability, owner in designs:
         if not designed(result_solution):  # (no design: its last point's figures are none of a design's)
             rows.append({"design": label, "status": result_solution.status, result_solution.objective_name: "-",
                          "change": "-", "largest P(fail)": "-"})
@@ -198,7 +198,7 @@ def scatter(case: Case, results: list, robust=None) -> tuple[list, tuple[str, fl
                      result_solution.objective_name: f"{result_solution.objective:.6g} {result_solution.objective_unit}",
                      "change": f"{result_solution.objective / first.nominal.objective - 1:+.1%}",
                      "largest P(fail)": largest_failure(failure, first.samples),
-                     **reliability_columns(case, reliability, *_with_start_up(robust, reliability))})
+                     **reliability_columns(case, reliability, *_with_start_up(owner, reliability))})
     name, (p, _, _) = max(first.nominal_failure.items(), key=lambda item: item[1][0])
     bars = tornado(first.formulation, first.nominal.design, case.params(), case.scatter)
     allocation = allocation_blocks(robust.allocation) if robust is not None and robust.allocation else []
@@ -230,9 +230,11 @@ def largest_failure(failure: dict[str, list[float]], samples: int) -> str:
 
 
 def _with_start_up(robust, reliability) -> tuple:
-    """(system, apart) for the scatter table's row of ``reliability``: a robust design with a start-up has its
-    system with the start-up limits (``RobustResult.design_failure``, a union bound); the nominal design beside it the
-    constraints' alone, the start-up limits ``apart`` (not sampled for it)."""
+    """(system, apart) for the scatter table's row of ``reliability`` (of the result ``robust``): a robust design with
+    a start-up has its system with the start-up limits (``RobustResult.design_failure``, a union bound); the nominal
+    design beside it the constraints' alone, the start-up limits ``apart`` (not sampled for it; review 29: a page
+    without --robust had shown the worst-case and chance designs' systems without their limits, and the nominal's
+    without saying so)."""
     if robust is None or not robust.start_up_failure or reliability is None:
         return None, False
     return (robust.design_failure(), False) if reliability is robust.reliability else (None, True)

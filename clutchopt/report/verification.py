@@ -30,7 +30,7 @@ def verification(case, solution, robust=None, nominal_failure: tuple[str, float,
     probability, samples) of the nominal design's likeliest failure, where the page shows the nominal design of a
     case with a [scatter]."""
     return [solver_check(solution), float64_check(solution), start_up_check(case, solution),
-            scatter_check(robust, nominal_failure)]
+            scatter_check(robust, nominal_failure, case.start_up is not None)]
 
 
 def solver_check(solution) -> Check:
@@ -92,14 +92,16 @@ def start_up_check(case, solution) -> Check:
                             f"friction work {check['friction_work']:.6g} J", PASSED)
 
 
-def scatter_check(robust, nominal_failure: tuple[str, float, int] | None) -> Check:
+def scatter_check(robust, nominal_failure: tuple[str, float, int] | None, start_up: bool = False) -> Check:
     what = "corners and Monte Carlo"
     if robust is not None:
         return Check(what, f"robust design ({robust_label(robust)}) for the case's [scatter]", robust.verification,
                      PASSED if robust.status == "optimal" else FAILED)
     if nominal_failure is not None:
         name, p, samples = nominal_failure
+        unsampled = "; its start-up limits not sampled" if start_up else ""  # (review 29: not said)
         return Check(what, f"the nominal design under the case's [scatter], {samples} Monte Carlo samples (section "
                            "Scatter); it is not designed for the scatter",
-                     f"largest failure probability {p:.3g} ({name})", FAILED if p > 0 else PASSED)
+                     f"largest failure probability {p:.3g} ({name}){unsampled}",
+                     FAILED if p > 0 else NOT_DONE if start_up else PASSED)
     return Check(what, "the case has no [scatter]", "-", NOT_DONE)
