@@ -374,3 +374,18 @@ def test_a_robust_start_up_page_starts_its_figure_where_its_table_does():
     caption = text[text.index("Start-up of the optimised wedge design"):]
     assert caption.startswith("Start-up of the optimised wedge design on the case's drive")
     assert "lock-up after 10 s" in caption[:300] and "(Simulated at the scatter's friction_coefficient 0.12" in caption
+
+
+def test_a_robust_page_names_where_each_margin_is_taken():
+    """review 29: wedge_centrifuge --robust worst-case showed the torque row 94.85 >= 94.85 N*m (at the corner
+    f = 0.12, 13.8 kg m^2, 25 N*m) without its corner, under a derived torque of 118.56 N*m at the nominal values."""
+    from clutchopt.optimise.robust import WORST_CASE, solve_robust
+
+    case = load_case(CASES / "wedge_centrifuge.toml")
+    robust = solve_robust(case, WORST_CASE, samples=100)
+    text = html.unescape(re.sub(r"\s+", " ", re.sub(r"<[^>]+>", " ", build_report(case, robust.solution,
+                                                                                     robust=robust))))
+    margins = text[text.index("Constraint margins"):text.index("Sensitivities")]
+    assert "each constraint where the worst-case design holds it" in margins and " at margin bar " in margins
+    torque = margins[margins.index("torque (15)-(16)"):margins.index("flank_pressure")]
+    assert "friction_coefficient 0.12, inertia 13.8 kg*m^2, resisting_torque 25 N*m" in torque
