@@ -580,13 +580,18 @@ def _probability(triple: list[float]) -> str:
     return "0 (<{:.2g})".format(high) if p == 0 else f"{p:.3g} ({low:.2g}-{high:.2g})"
 
 
+def scatter_rows(case) -> list[dict]:
+    """The case's [scatter]: each quantity's range or distribution and its nominal value, in its display unit."""
+    quantities = {q.name: q for q in case.quantities}
+    return [{"quantity": s.name, "scatter": s.describe(quantities[s.name].show,
+                                                       lambda v, q=quantities[s.name]: shown_spread(q, v)),
+             "nominal": quantities[s.name].show(case.values[s.name])} for s in case.scatter]
+
+
 def robust_text(result, case) -> str:
     """The robust design beside the nominal one: the scatter, what robustness costs, each constraint at its worst
     (corner or back-off) and its Monte Carlo failure probability, and what drives it (tornado rows)."""
-    quantities = {q.name: q for q in case.quantities}
-    scatter = [{"quantity": s.name, "scatter": s.describe(quantities[s.name].show,
-                                                          lambda v, q=quantities[s.name]: shown_spread(q, v)),
-                "nominal": quantities[s.name].show(case.values[s.name])} for s in case.scatter]
+    quantities, scatter = {q.name: q for q in case.quantities}, scatter_rows(case)
     how = ("worst case: every constraint at its own worst corner of the ranges (a normal quantity: mean +- 3 sd), "
            "all 2^n corners checked" if result.method == "worst-case" else
            f"{'system ' if result.method == 'system_chance' else ''}chance {target_text(result.target)}: "

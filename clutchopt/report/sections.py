@@ -21,6 +21,7 @@ from clutchopt.output import (
     constraint_rows,
     derived_rows,
     design_rows,
+    scatter_rows,
     sensitivity_rows,
     start_up_table,
 )
@@ -42,12 +43,14 @@ def figure_svg(figure) -> str:
 
 
 def requirements(case: Case) -> list:
-    """The case's inputs; those the material library filled name their entry."""
+    """The case's inputs; those the material library filled name their entry; the [scatter] the page's designs are
+    checked (and a robust one designed) for (review 29: a page had not said which)."""
     names = {q.key: q.name for q in case.quantities}
     rows = [{"key": r["key"], "symbol": r["symbol"], "value": r["value"],
              "from the library": " = ".join(case.filled.get(names[r["key"]], ())), "description": r["description"]}
             for r in quantity_table(case.quantities, case.values)]
-    return [Table(rows, ("value",))]
+    scattered = [Heading("Scatter"), Table(scatter_rows(case), ())] if case.scatter else []
+    return [Table(rows, ("value",)), *scattered]
 
 
 def designed(solution: Solution) -> bool:
