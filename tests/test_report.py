@@ -391,3 +391,4 @@ def test_a_robust_page_names_where_each_margin_is_taken():
     assert "friction_coefficient 0.12, inertia 13.8 kg*m^2, resisting_torque 25 N*m" in torque
     # and the scatter it was designed for, under Requirements (review 29: not on the page)
     assert "Scatter quantity scatter nominal friction_coefficient range 0.12 to 0.18 0.15 inertia normal" in text
+    assert "one quantity at a time from the low to the high end of its range" in text  # the tornado: no Monte Carlo

@@ -47,3 +47,11 @@ def test_a_system_chance_design_whose_scatter_moves_only_start_up_limits():
     result = solve_robust(case, SYSTEM_CHANCE, 0.999, samples=200, starts=10)
     assert result.status == "optimal" and result.allocation is None
     assert result.design_failure().probability <= 1e-3 and result.start_up_failure  # its start-up limits sampled
+
+
+def test_a_robust_sweep_s_table_names_its_method():
+    """The printed table of `sweep --robust chance=0.999` read as a nominal sweep's (its CSV and JSON said)."""
+    swept = run_cli("sweep", str(CASES / "wedge_centrifuge.toml"), "--vary", "speed=1400,1500", "--robust",
+                    "chance=0.999", "--samples", "200", "--no-store", "--quiet")
+    assert swept.returncode == 0, swept.stderr
+    assert "(paper mode, objective mass, chance 0.999 designs): 2 points" in swept.stdout

@@ -119,8 +119,9 @@ def sweep_text(sweep, result, store, out: str | None) -> str:
     frame = result.frame
     counts = ", ".join(f"{count} {status}" for status, count in frame["status"].value_counts().items())
     objective = frame.columns[len(sweep.varies) + 2]
+    designs = f", {sweep.robust.label} designs" if sweep.robust is not None else ""  # (review 30: not said)
     lines = [f"Sweep of {sweep.case.title or sweep.case.path} ({sweep.formulation.mode} mode, "
-             f"objective {sweep.objective.name}): {len(frame)} points, {counts}",
+             f"objective {sweep.objective.name}{designs}): {len(frame)} points, {counts}",
              f"solved {result.solved} points in {result.elapsed_s:.1f} s"
              + (f", {result.reused} taken from the store" if result.reused else "")]
     if len(frame) <= COLUMNS_SHOWN:
