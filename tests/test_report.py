@@ -14,6 +14,7 @@ import pytest
 
 from chromium import find_chromium, render
 from clutchopt.cases import load_case
+from clutchopt.errors import InputError
 from clutchopt.optimise import solve_case
 from clutchopt.report import build_report, sweep_plot
 from clutchopt.report.sketch.svg import PARTS
@@ -392,3 +393,23 @@ def test_a_robust_page_names_where_each_margin_is_taken():
     # and the scatter it was designed for, under Requirements (review 29: not on the page)
     assert "Scatter quantity scatter nominal friction_coefficient range 0.12 to 0.18 0.15 inertia normal" in text
     assert "one quantity at a time from the low to the high end of its range" in text  # the tornado: no Monte Carlo
+
+
+def test_a_sweep_table_of_another_aspect_of_the_case_is_refused(tmp_path):
+    """review 29: `report --sweep` took a table swept with other bounds, free variables, scatter, start-up effects or
+    choices, its plot of another problem beside the page's design; each is now named."""
+    from dataclasses import replace
+
+    from clutchopt.optimise.sweep import Sweep, parse_vary
+    from clutchopt.optimise.sweep_table import check_swept_from, read_frame, write_frame
+
+    case = load_case(CASES / "wedge_paper.toml")
+    sweep = Sweep(case, [parse_vary("speed=900,1000", case.coupling)])
+    table = tmp_path / "sweep.csv"
+    write_frame(sweep.run(progress=False).frame, str(table), identity=sweep.identity())
+    frame, posed = read_frame(str(table)), ("paper", "mass", "")
+    check_swept_from(frame, case, str(table), print, posed)  # its own case: taken
+    for other, named in ((replace(case, bounds={**case.bounds, "weight_count": (4.0, 6.0)}), "bounds"),
+                         (replace(case, free=("weight_width",)), "free")):
+        with pytest.raises(InputError, match=f"whose {named} differ from this case's"):
+            check_swept_from(frame, other, str(table), print, posed)

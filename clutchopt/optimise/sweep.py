@@ -45,6 +45,7 @@ from clutchopt.optimise.region_proof import Regions
 from clutchopt.optimise.solution import Solution, SolverOptions
 from clutchopt.optimise.start_up_region import beyond, in_a_region, region_tested
 from clutchopt.optimise.start_up_sweep import solved_along, started_warm
+from clutchopt.optimise.sweep_table import ASPECTS, case_aspects
 from clutchopt.optimise.sweep_grid import (Points, Vary, check_points, column_name, grid_points, grid_positions,
                                            parse_vary)  # parse_vary: the README's ``from ...sweep import parse_vary``
 from clutchopt.optimise.table import joined_tables, record_table
@@ -512,7 +513,7 @@ class Sweep:
         return {"coupling": self.case.coupling, "case": self.case.path, "values": self.case.values,
                 "mode": self.formulation.mode, "objective": self.objective.name,
                 "robust": self.robust.label if self.robust is not None else "",
-                "varies": [v.column for v in self.varies]}
+                "varies": [v.column for v in self.varies], ASPECTS: case_aspects(self.case)}
 
     @cached_property
     def points(self) -> list[dict[str, float]]:

@@ -13,7 +13,7 @@ from clutchopt.cases import Case
 from clutchopt.errors import InputError, Problems
 from clutchopt.files import TABLE_BYTES, check_output, read_bytes, write_whole
 from clutchopt.optimise.sweep_grid import MAX_POINTS
-from clutchopt.records import STATUSES
+from clutchopt.records import STATUSES, scatter_record
 
 
 TABLE_SUFFIXES = (".csv", ".parquet", ".md")
@@ -90,6 +90,8 @@ def _identity(text: bytes, path: str) -> dict:
     except (ValueError, RecursionError):
         identity = None
     kinds = {"coupling": str, "case": str, "values": dict, "mode": str, "objective": str, "robust": str, "varies": list}
+    if isinstance(identity, dict) and isinstance(identity.get(ASPECTS), dict):  # (a table of an older clutchopt has
+        kinds[ASPECTS] = dict  # none: its other keys are checked alone)
     if not (isinstance(identity, dict) and set(identity) == set(kinds)
             and all(isinstance(identity[key], kind) for key, kind in kinds.items())
             and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in identity["values"].values())
@@ -123,12 +125,34 @@ def check_swept_from(frame: pd.DataFrame, case: Case, path: str, warn: Callable[
         shown = [f"{what} {value or 'nominal'}" for what, value in zip(("mode", "objective", "design"), swept)]
         asked = [f"{what} {value or 'nominal'}" for what, value in zip(("mode", "objective", "design"), posed)]
         differs.append(f"problem: swept with {', '.join(shown)}; this page is of {', '.join(asked)}")
+    if ASPECTS in identity:  # (review 29: a table of another scatter, free set, bounds, start-up or choice was taken)
+        ours = case_aspects(case)
+        other = sorted(key for key in ours | identity[ASPECTS]
+                       if _canonical(identity[ASPECTS].get(key)) != _canonical(ours.get(key)))
+        if other:
+            differs.append(f"case: swept from {identity['case']!r}, whose {_listed(other)} differ from this case's")
     status = list(frame.columns).index("status")
     if list(frame.columns[1:status]) != identity["varies"]:
         differs.append(f"quantities: its columns vary {_listed(frame.columns[1:status])}, its identification says "
                        f"{_listed(identity['varies'])}")
     if differs:
         raise InputError(path, f"not a sweep of {case.path}: {'; '.join(differs)}")
+
+
+ASPECTS = "aspects"  # an identification's key: what the case poses beside its values (:func:`case_aspects`)
+
+
+def case_aspects(case: Case) -> dict:
+    """What a case poses beside its values, as a sweep table's identification carries it: its free variables and
+    bounds, its [scatter], its start-up's effects and its options.choose."""
+    return {"free": list(case.free), "bounds": {name: list(pair) for name, pair in case.bounds.items()},
+            "scatter": scatter_record(case), "effects": list(case.start_up.effects) if case.start_up else [],
+            "choose": case.options.get("choose") or {}}
+
+
+def _canonical(value) -> str:
+    """A JSON value as one text (NaN as NaN on both sides: a scatter's unset mean)."""
+    return json.dumps(value, sort_keys=True)
 
 
 def _listed(names, shown: int = 5) -> str:

@@ -296,9 +296,9 @@ def tornado_chart(case: Case, result, bars: dict[str, dict[str, float]]):
     axes.invert_yaxis()
     axes.grid(axis="x", alpha=0.3)
     return Figure(safe_svg(figure_svg(figure)),
-                  f"Nominal design: how each scattered quantity moves each constraint's margin over its range (red: "
+                  "Nominal design: how each scattered quantity moves each constraint's margin over its range (red: "
                   "the margin shrinks as the quantity rises), one quantity at a time from the low to the high end of "
-                  "its range, the others nominal (review 29: it had been captioned Monte Carlo).")
+                  "its range, the others nominal.")  # (review 29: it had been captioned Monte Carlo)
 
 
 def sweep_plot(frame: pd.DataFrame) -> Figure:
