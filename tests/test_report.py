@@ -358,6 +358,7 @@ def test_a_page_without_a_design_says_so_in_every_section():
     assert "Optimal design" not in text and "sketch of the optimum" not in text and "No sketch" in text
     assert "the point is no optimum, status not_found" in text
     assert "independent simulation not simulated no design to start (status not_found) not done" in text
+    assert "nlp_paper : IPOPT, paper mode, minimum mass; no design, status infeasible: infeasible whatever" in text
 
 
 def test_a_robust_start_up_page_starts_its_figure_where_its_table_does():

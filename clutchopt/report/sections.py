@@ -141,7 +141,11 @@ def comparison(case: Case, solution: Solution, options: SolverOptions, robust=No
                                                     robust.start_up_samples or Robustness.starts)
     data = compare_case(case, options, method, scattered, solution.mode, solution.objective_name).as_dict()
     rows, _ = comparison_rows(data)
-    return [Table(rows, tuple(data["columns"])), Items(list(column_notes(data).items()))]
+    notes = column_notes(data)
+    for column, solve in data["solves"].items():  # (a column without a design says why: review 29, only "-")
+        if solve["status"] not in DESIGN_STATUSES and column in notes:
+            notes[column] += f"; no design, status {solve['status']}: {solve['diagnosis'] or '-'}"
+    return [Table(rows, tuple(data["columns"])), Items(list(notes.items()))]
 
 
 def simulation(case: Case, solution: Solution, robust=None) -> list:
