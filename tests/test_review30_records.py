@@ -55,3 +55,28 @@ def test_a_robust_sweep_s_table_names_its_method():
                     "chance=0.999", "--samples", "200", "--no-store", "--quiet")
     assert swept.returncode == 0, swept.stderr
     assert "(paper mode, objective mass, chance 0.999 designs): 2 points" in swept.stdout
+
+
+def test_a_stored_sweep_point_keeps_what_its_choice_fills_from_the_library(tmp_path):
+    """options.choose: each point keeps its best choice (42CrMo4), but its stored inputs had the first choice's
+    (C45) allowable link stress beside the 42CrMo4 design."""
+    from composition import case_data
+
+    from clutchopt.cases import parse_case
+    from clutchopt.formulations import get_coupling
+    from clutchopt.materials import variants
+    from clutchopt.optimise.sweep import Sweep, parse_vary
+    from clutchopt.store import RunStore
+
+    case = parse_case(case_data("lever", ("choose",)))
+    found = variants(case, get_coupling(case.coupling))
+    filled = {choice["material"]: variant.values["allowable_link_stress"] for choice, variant in found}
+    sweep = Sweep(case, [parse_vary("resisting_torque=16,24", case.coupling)], mode="design")
+    with RunStore(str(tmp_path / "runs.sqlite")) as store:
+        result = sweep.run(store, progress=False)
+        stored = [store.run(k) for k in (1, 2)]
+    entries = [solution["choice"]["material"] for solution in result.solutions]
+    assert entries != [found[0][0]["material"]] * 2  # (a point kept another choice than the first)
+    for entry, run in zip(entries, stored):
+        assert run["outputs"]["choice"] == {"material": entry}
+        assert run["inputs"]["values"]["allowable_link_stress"] == filled[entry]

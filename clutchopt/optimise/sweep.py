@@ -33,7 +33,7 @@ import pandas as pd
 from clutchopt.cases import Case
 from clutchopt.errors import InputError
 from clutchopt.formulations import get_coupling
-from clutchopt.materials import chosen
+from clutchopt.materials import chosen, variants
 from clutchopt.model import Formulation, followed
 from clutchopt.optimise.batch import BatchSweep, Solutions, batchable
 from clutchopt.optimise.batch_carried import Carried, stored_design
@@ -576,7 +576,7 @@ class Sweep:
             for results in solving:
                 if store is not None and sweep_id is not None:  # the results in hand in one transaction
                     store.record_points(self._inputs(), self._where(sweep_id), results.points.index,
-                                        self._recorded(results.points.columns), *results.stored(),
+                                        self._recorded(results), *results.stored(),
                                         carried=results.carried.as_dict() if starts and results.carried else None)
                 elif store is not None:  # the sweep itself could not be recorded
                     store.unrecorded += len(results)
@@ -626,14 +626,28 @@ class Sweep:
         variables and bounds, how it was designed."""
         return design_inputs(self.case, self.case.values, method_of(self.robust))
 
-    def _recorded(self, columns: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-        """The points' own values the store keeps beside the case's: the varied ones and each default that follows
-        one (review 30: a start-up's load following the swept resisting torque, its driven inertia the swept
-        inertia, had been stored at the case's value, not the one the point was designed for)."""
-        recorded = dict(columns)
+    def _recorded(self, results: PointResults) -> dict[str, np.ndarray]:
+        """The points' own values the store keeps beside the case's: the varied ones, each default that follows one
+        and, with options.choose, what each point's choice fills from the library (review 30: a start-up's load
+        following the swept resisting torque had been stored at the case's value, a 42CrMo4 design beside the first
+        choice's C45 allowable stress)."""
+        recorded = dict(results.points.columns)
         for _ in self.case.follows:  # (a chain: one more link a pass)
             recorded = followed(recorded, self.case.follows)
+        if self._chosen_values:
+            picked = [self._chosen_values.get(tuple(sorted(record.get("choice", {}).items())), {})
+                      for record in results.records()]
+            for name in {name for values in self._chosen_values.values() for name in values}:
+                recorded[name] = np.array([values.get(name, self.case.values[name]) for values in picked])
         return recorded
+
+    @cached_property
+    def _chosen_values(self) -> dict[tuple, dict[str, float]]:
+        """What each choice of options.choose fills from the library, by its (role, entry) pairs (none without)."""
+        coupling = get_coupling(self.case.coupling)
+        sets, _ = chosen(self.case, coupling)
+        return {tuple(sorted(choice.items())): {name: variant.values[name] for name in sets}
+                for choice, variant in variants(self.case, coupling) if choice}
 
     def _where(self, sweep_id: int) -> dict:
         """The store's fields every point of the sweep shares."""
