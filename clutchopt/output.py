@@ -452,8 +452,21 @@ def sensitivity_rows(solution, formulation: Formulation, count: int = 8) -> list
     """The ``count`` largest elasticities, largest first, with the parameter's description."""
     described = {q.name: q.description for q in (*formulation.quantities, *formulation.variables)}
     ranked = sorted(solution.sensitivities.items(), key=lambda item: -abs(item[1]))[:count]
-    return [{"parameter": name, "elasticity": _signed(value), "description": described.get(name, "")}
+    return [{"parameter": name, "elasticity": _signed(value), "description": described.get(name) or _held(name)}
             for name, value in ranked if abs(value) >= 5e-5]
+
+
+def _held(name: str) -> str:
+    """What a robust design's NLP parameter is (review 29: listed without a word): ``q@c`` the value of a scattered
+    quantity ``q`` where the constraint ``c`` is held (its corner or performance point; ``start_up``: the start's),
+    ``direction_q@c`` the direction of c's performance point in q's standard normal variable."""
+    quantity, at, where = name.partition("@")
+    if not at:
+        return ""
+    if quantity.startswith("direction_"):
+        return f"direction of {where}'s performance point in {quantity.removeprefix('direction_')}"
+    return (f"{quantity} where {'the start' if where == 'start_up' else where} is held (its corner of the scatter or "
+            "performance point)")
 
 
 def comparison_rows(comparison: dict) -> tuple[list[dict], list[dict]]:

@@ -394,6 +394,8 @@ def test_a_robust_page_names_where_each_margin_is_taken():
     # and the scatter it was designed for, under Requirements (review 29: not on the page)
     assert "Scatter quantity scatter nominal friction_coefficient range 0.12 to 0.18 0.15 inertia normal" in text
     assert "one quantity at a time from the low to the high end of its range" in text  # the tornado: no Monte Carlo
+    assert "friction_coefficient@torque -0.8789 friction_coefficient where torque is held (its corner" in text  # a
+    # sensitivity to a corner's value, described (review 29: listed without a word)
 
 
 def test_a_sweep_table_of_another_aspect_of_the_case_is_refused(tmp_path):
