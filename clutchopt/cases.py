@@ -123,7 +123,7 @@ class Case:
 
     def mode_of(self, mode: str | None) -> str | None:
         """The mode asked for, else (None) the case's option (None: the coupling's default); an empty name is asked
-        for, and refused as unknown, not read as none (review 27)."""
+        for, and refused as unknown, not read as none."""
         return self.options.get("mode") if mode is None else mode
 
     def objective_of(self, objective: str | None) -> str:

@@ -391,6 +391,7 @@ def test_a_robust_page_names_where_each_margin_is_taken():
     assert "each constraint where the worst-case design holds it" in margins and " at margin bar " in margins
     torque = margins[margins.index("torque (15)-(16)"):margins.index("flank_pressure")]
     assert "friction_coefficient 0.12, inertia 13.8 kg*m^2, resisting_torque 25 N*m" in torque
+    assert re.search(r"outer_diameter \S+ [\d.]+ <= [\d.]+ mm \S+ nominal ", margins)  # the scatter moves it not
     # and the scatter it was designed for, under Requirements (review 29: not on the page)
     assert "Scatter quantity scatter nominal friction_coefficient range 0.12 to 0.18 0.15 inertia normal" in text
     assert "one quantity at a time from the low to the high end of its range" in text  # the tornado: no Monte Carlo
@@ -416,3 +417,28 @@ def test_a_sweep_table_of_another_aspect_of_the_case_is_refused(tmp_path):
                          (replace(case, free=("weight_width",)), "free")):
         with pytest.raises(InputError, match=f"whose {named} differ from this case's"):
             check_swept_from(frame, other, str(table), print, posed)
+
+
+def test_a_scatter_page_without_a_design_quotes_no_failure_probability():
+    """review 31: a [scatter] page whose solve found no design still said "the torque fails with probability 1 under
+    the scatter", a failed verification row and a tornado chart of "the nominal design", all of its last point."""
+    case = load_case(CASES / "wedge_centrifuge.toml").with_values(outer_diameter_max=0.15)
+    solution = solve_case(case)
+    assert solution.status == "infeasible"
+    text = html.unescape(re.sub(r"\s+", " ", re.sub(r"<[^>]+>", " ", build_report(case, solution))))
+    assert "under the scatter" not in text and "No tornado chart: the nominal solve found no design." in text
+    assert "corners and Monte Carlo the nominal design under the case's [scatter] no design to check not done" in text
+
+
+def test_an_undecided_start_is_not_called_no_lock_up():
+    """review 31: a start that stopped without a verdict (locks_up None) read as 'no lock-up' in the page's
+    verification and the worn linings' note."""
+    from clutchopt.output import worn_note
+    from clutchopt.report.verification import start_up_check
+
+    assert worn_note({"locks_up": None}) == "worn linings (simulated): not decided"
+    assert worn_note({"locks_up": False}) == "worn linings (simulated): no lock-up"
+    undecided = SimpleNamespace(status="optimal", start_up={"effects": ["slip_friction"], "intervals": 8,
+                                                             "locks_up": None, "reason": "stopped after 20000 steps"})
+    check = start_up_check(None, undecided)
+    assert check.found == "not decided: stopped after 20000 steps" and check.verdict == "failed"

@@ -17,6 +17,8 @@ def test_a_sweep_point_without_a_design_shows_none_in_its_json_and_its_stored_ru
     assert [p["status"] for p in points] == ["optimal", "infeasible", "optimal"]
     assert points[1]["objective"]["value"] is None and points[1]["design"] is None and points[1]["outputs"] is None
     assert points[0]["objective"]["value"] > 900 and points[1]["diagnosis"].startswith("proven infeasible")
+    listed = json.loads(run_cli("runs", "list", "--json", "--store", store).stdout)["runs"]  # (review 31: it had)
+    assert {run["point"]: run["objective"] for run in listed}[1] is None
     shown = json.loads(run_cli("runs", "show", "2", "--store", store).stdout)
     assert shown["point"] == 1 and shown["status"] == "infeasible" and shown["objective"] is None
     assert shown["outputs"]["objective"]["value"] is None and shown["outputs"]["design"] is None
@@ -80,3 +82,27 @@ def test_a_stored_sweep_point_keeps_what_its_choice_fills_from_the_library(tmp_p
     for entry, run in zip(entries, stored):
         assert run["outputs"]["choice"] == {"material": entry}
         assert run["inputs"]["values"]["allowable_link_stress"] == filled[entry]
+
+
+def test_a_stored_sweep_point_keeps_what_follows_from_its_choice(tmp_path):
+    """review 31: lever_motor_start choosing its friction pair: a point kept cermet_dry (friction coefficient 0.4,
+    friction_max 0.55) but stored organic_dry's friction_max 0.45 beside it (derived from the pair, not filled)."""
+    import tomllib
+
+    from clutchopt.cases import parse_case
+    from clutchopt.optimise.sweep import Sweep, parse_vary
+    from clutchopt.store import RunStore
+
+    data = tomllib.loads((CASES / "lever_motor_start.toml").read_text(encoding="utf-8"))
+    data["start_up"].update(intervals=8, tolerance=1e-4)
+    for key in ("friction_coefficient", "allowable_pressure"):
+        data["material"].pop(key)
+    data["library"].pop("friction_pair")
+    data["options"]["choose"] = {"friction_pair": ["organic_dry", "cermet_dry"]}
+    case = parse_case(data)
+    with RunStore(str(tmp_path / "runs.sqlite")) as store:
+        Sweep(case, [parse_vary("resisting_torque=40", case.coupling)]).run(store, progress=False)
+        run = store.run(1)
+    assert run["outputs"]["choice"] == {"friction_pair": "cermet_dry"}
+    assert {q: run["inputs"]["values"][q] for q in ("friction_coefficient", "friction_max")} == {
+        "friction_coefficient": 0.4, "friction_max": 0.55}

@@ -59,9 +59,18 @@ def run(args) -> str:
         listed, swept = store.runs(args.kind, args.sweep, args.limit or None), store.sweeps()
     _known_sweep(args.sweep, swept, store.path)
     if args.json:
-        return to_json(with_units({"store": str(store.path), "runs": [_objective_unit(run) for run in listed],
+        runs = [_objective_unit(_listed_run(run)) for run in listed]
+        return to_json(with_units({"store": str(store.path), "runs": runs,
                                    "sweeps": swept}, {"runs": IDS, "sweeps": {**IDS, "points": "", "stored": ""}}))
     return listing_text(store.path, listed, swept if args.sweep is None else [])
+
+
+def _listed_run(run: dict) -> dict:
+    """A run as ``runs list --json`` gives it: a sweep point without a design without an objective, as the text
+    listing, ``runs show`` and ``runs export`` give it (review 31)."""
+    from clutchopt.records import DESIGN_STATUSES
+
+    return {**run, "objective": None} if run["kind"] == "sweep" and run["status"] not in DESIGN_STATUSES else run
 
 
 IDS = dict.fromkeys(("id", "sweep_id", "point"), "")  # a run's id, its sweep's and its point's index: no unit

@@ -59,8 +59,8 @@ def compare_case(case: Case, options: SolverOptions = SolverOptions(), robust=No
     worst-case and chance designs, or beside the one of ``robust`` (a
     :class:`~clutchopt.optimise.design.Robustness`); ``solved``: those designs made already (their
     :class:`~clutchopt.optimise.robust.RobustResult`, in that order: a review page's), shown as they are; ``mode``,
-    ``objective``: those of the start-up's and the scatter's designs (default: the case's; a review page's own,
-    review 29: its start-up columns had been the case's paper-mode designs beside a page of the geometry mode)."""
+    ``objective``: those of the start-up's and the scatter's designs (default: the case's; a review page's own)."""
+    # (review 29: a page's start-up columns had been the case's paper-mode designs beside a geometry-mode page)
     coupling = get_coupling(case.coupling)
     spec = coupling.comparison
     if spec is None:

@@ -1137,8 +1137,8 @@ def case_problem(case: Case, mode: str | None = None, objective: str | None = No
 def solve_case(case: Case, mode: str | None = None, objective: str | None = None,
                options: SolverOptions = SolverOptions()) -> Solution:
     """Solve a case in a mode (default: the case's option, then the coupling's default), checked across its fields
-    first as a case file and a sweep's point are (review 27: ``case.with_values(speed=...)`` above the motor's
-    synchronous speed had solved ``optimal``, a cable without any hub stiffness had raised ZeroDivisionError)."""
+    first as a case file and a sweep's point are."""  # (review 27: a case moved by with_values above its motor's
+    # synchronous speed had solved optimal, a cable without any hub stiffness had raised ZeroDivisionError)
     if not isinstance(options, SolverOptions):
         raise InputError("options", f"must be SolverOptions, got {shown_value(options)}")
     check_across(case)

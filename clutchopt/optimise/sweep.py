@@ -643,11 +643,15 @@ class Sweep:
 
     @cached_property
     def _chosen_values(self) -> dict[tuple, dict[str, float]]:
-        """What each choice of options.choose fills from the library, by its (role, entry) pairs (none without)."""
+        """What each choice of options.choose sets, by its (role, entry) pairs (none without): what it fills from the
+        library and what follows from that (review 31: a friction pair's friction_max, derived from the pair, had
+        been the first choice's)."""
         coupling = get_coupling(self.case.coupling)
-        sets, _ = chosen(self.case, coupling)
-        return {tuple(sorted(choice.items())): {name: variant.values[name] for name in sets}
-                for choice, variant in variants(self.case, coupling) if choice}
+        found = [(choice, variant) for choice, variant in variants(self.case, coupling) if choice]
+        names = set(chosen(self.case, coupling)[0]) | {name for _, variant in found for name, value in
+                                                        variant.values.items() if value != self.case.values.get(name)}
+        return {tuple(sorted(choice.items())): {name: variant.values[name] for name in names if name in variant.values}
+                for choice, variant in found}
 
     def _where(self, sweep_id: int) -> dict:
         """The store's fields every point of the sweep shares."""

@@ -46,7 +46,7 @@ def build_report(case: Case, solution: Solution, sweep: pd.DataFrame | None = No
     formulation = case_formulation(case, solution.mode)
     designs = scattered_designs(case, solution, options, robust) if case.scatter else None
     scattered = scatter(case, designs, robust) if case.scatter else None
-    nominal_failure = scattered[1] if scattered is not None and robust is None else None
+    nominal_failure = scattered[1] if scattered is not None and robust is None and designed(solution) else None
     sections = [
         Section("Requirements", "requirements", requirements(case)),
         Section(design_title(solution, robust), "design", design(solution, formulation)),
@@ -71,4 +71,4 @@ def build_report(case: Case, solution: Solution, sweep: pd.DataFrame | None = No
                     "design's)" if case.start_up is not None else "") if nominal_failure is not None else None),
         diagnosis=solution.diagnosis, generated=f"{datetime.now(timezone.utc):%Y-%m-%d %H:%M}",
         versions=", ".join(f"{k} {v}" for k, v in versions().items()),
-        checks=verification(case, solution, robust, nominal_failure), sections=sections)
+        checks=verification(case, solution, robust, nominal_failure), sections=sections)  # (no design: none quoted)

@@ -103,8 +103,9 @@ def margins(case: Case, solution: Solution, robust=None) -> list:
     corners = robust.corners if robust is not None else {}
     declared = {q.name: q for q in case.quantities}
     for c, row in zip(solution.constraints, constraint_rows(solution)):
-        at = {"at": ", ".join(f"{q} {declared[q].show(v, 4)}" for q, v in corners.get(c.name, {}).items()) or
-              "nominal"} if robust is not None else {}
+        moves = robust.bars.get(c.name, {}) if robust is not None else {}  # (a quantity that moves it not: left out,
+        at = {"at": ", ".join(f"{q} {declared[q].show(v, 4)}" for q, v in corners.get(c.name, {}).items()  # as solve
+                              if abs(moves.get(q, 1.0)) > 1e-12) or "nominal"} if robust is not None else {}  # does)
         rows.append({**{k: v for k, v in row.items() if k not in ("active", "elasticity")}, **at,
                      "margin bar": Bar(max(0.0, min(c.margin, 1.0)), c.active),
                      "active": row["active"], "elasticity": row["elasticity"] if optimum else "-"})
@@ -219,8 +220,9 @@ def scatter(case: Case, results: list, robust=None) -> tuple[list, tuple[str, fl
     name, (p, _, _) = max(first.nominal_failure.items(), key=lambda item: item[1][0])
     bars = tornado(first.formulation, first.nominal.design, case.params(), case.scatter)
     allocation = allocation_blocks(robust.allocation) if robust is not None and robust.allocation else []
-    return ([Table(rows, ("change", "largest P(fail)", "system P(fail)")), *allocation,
-             tornado_chart(case, first, bars)], (name, p, first.samples))
+    chart = (tornado_chart(case, first, bars) if designed(first.nominal) else  # (review 31: a last point's, as a
+             Note("No tornado chart: the nominal solve found no design."))  # design's)
+    return [Table(rows, ("change", "largest P(fail)", "system P(fail)")), *allocation, chart], (name, p, first.samples)
 
 
 def allocation_blocks(allocation) -> list:

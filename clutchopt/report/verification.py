@@ -29,8 +29,10 @@ def verification(case, solution, robust=None, nominal_failure: tuple[str, float,
     """The checks of ``solution`` (the robust design's where ``robust`` is given); ``nominal_failure``: (constraint,
     probability, samples) of the nominal design's likeliest failure, where the page shows the nominal design of a
     case with a [scatter]."""
+    designed = solution.status in DESIGN_STATUSES
     return [solver_check(solution), float64_check(solution), start_up_check(case, solution),
-            scatter_check(robust, nominal_failure, case.start_up is not None)]
+            scatter_check(robust, nominal_failure, case.start_up is not None and designed,
+                          bool(case.scatter) and not designed)]
 
 
 def solver_check(solution) -> Check:
@@ -73,8 +75,9 @@ def start_up_check(case, solution) -> Check:
         how = (f"the start on the case's drive ({', '.join(start['effects'])}) integrated by SciPy (LSODA where "
                f"stiff) in float64, beside the NLP's Radau collocation ({start['intervals']} intervals per phase); the "
                "start-up's constraints above are checked with the simulated figures")
-        if not start["locks_up"]:
-            return Check(what, how, f"no lock-up: {start['reason']}", FAILED)
+        if not start["locks_up"]:  # (None: the run stopped without a verdict)
+            return Check(what, how, f"{'no lock-up' if start['locks_up'] is False else 'not decided'}: "
+                                    f"{start['reason']}", FAILED)
         errors = start["discretisation_error"]
         return Check(what, how, f"lock-up after {start['start_time_simulated']:.6g} s (NLP {start['start_time']:.6g} "
                                 f"s, {errors['start_time']:+.1e}); friction work {start['friction_work_simulated']:.6g}"
@@ -92,8 +95,11 @@ def start_up_check(case, solution) -> Check:
                             f"friction work {check['friction_work']:.6g} J", PASSED)
 
 
-def scatter_check(robust, nominal_failure: tuple[str, float, int] | None, start_up: bool = False) -> Check:
+def scatter_check(robust, nominal_failure: tuple[str, float, int] | None, start_up: bool = False,
+                  scattered: bool = False) -> Check:
     what = "corners and Monte Carlo"
+    if not start_up and nominal_failure is None and robust is None and scattered:
+        return Check(what, "the nominal design under the case's [scatter]", "no design to check", NOT_DONE)
     if robust is not None:
         return Check(what, f"robust design ({robust_label(robust)}) for the case's [scatter]", robust.verification,
                      PASSED if robust.status == "optimal" else FAILED)

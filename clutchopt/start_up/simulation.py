@@ -306,7 +306,8 @@ def verify(case, solution, afresh: bool = False) -> dict:
         if afresh:
             head = run_start_up(start_up_model(case, solution.mode, solution.design)).headline
             start, work = head["start_time"], head["friction_work"]
-            verified, reason = head["locks_up"] and start <= limit * (1 + case.start_up.tolerance), head["reason"]
+            verified = bool(head["locks_up"]) and start <= limit * (1 + case.start_up.tolerance)
+            reason = head["reason"]
         else:
             summary = solution.start_up
             start, work = summary["start_time_simulated"], summary["friction_work_simulated"]
