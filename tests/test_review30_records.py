@@ -2,6 +2,8 @@
 
 import json
 
+import pytest
+
 from conftest import CASES, run_cli
 
 
@@ -79,9 +81,12 @@ def test_a_stored_sweep_point_keeps_what_its_choice_fills_from_the_library(tmp_p
         stored = [store.run(k) for k in (1, 2)]
     entries = [solution["choice"]["material"] for solution in result.solutions]
     assert entries != [found[0][0]["material"]] * 2  # (a point kept another choice than the first)
+    from clutchopt.cli.runs import export_row
+
     for entry, run in zip(entries, stored):
         assert run["outputs"]["choice"] == {"material": entry}
         assert run["inputs"]["values"]["allowable_link_stress"] == filled[entry]
+        assert export_row(run)["choice"] == f"material = {entry}"  # (the export had no choice column)
 
 
 def test_a_stored_sweep_point_keeps_what_follows_from_its_choice(tmp_path):
@@ -106,3 +111,23 @@ def test_a_stored_sweep_point_keeps_what_follows_from_its_choice(tmp_path):
     assert run["outputs"]["choice"] == {"friction_pair": "cermet_dry"}
     assert {q: run["inputs"]["values"][q] for q in ("friction_coefficient", "friction_max")} == {
         "friction_coefficient": 0.4, "friction_max": 0.55}
+
+
+def test_runs_export_says_how_a_design_was_made(tmp_path):
+    """review 30: an exported robust start-up design could not be told from a nominal one but by its method."""
+    store = str(tmp_path / "runs.sqlite")
+    solved = run_cli("solve", str(CASES / "wedge_motor_start_scatter.toml"), "--robust", "worst-case", "--samples",
+                     "200", "--store", store)
+    assert solved.returncode == 0, solved.stderr
+    exported = tmp_path / "runs.csv"
+    assert run_cli("runs", "export", "--store", store, "-o", str(exported)).returncode == 0
+    row = _csv(exported)
+    assert float(row["start_up.start_time_simulated [s]"]) == pytest.approx(10.0, rel=1e-6)
+    assert row["robust verification"].startswith("verified: constraints at all 2 corners of the ranges")
+
+
+def _csv(path) -> dict:
+    """The first row of a table ``runs export`` wrote."""
+    import csv
+
+    return next(csv.DictReader(line for line in path.read_text().splitlines() if not line.startswith("#")))

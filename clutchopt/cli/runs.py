@@ -200,6 +200,15 @@ def export_row(entry: dict) -> dict:
     row["active"] = " ".join(c.get("name", "") for c in outputs.get("constraints") or []
                              if isinstance(c, dict) and c.get("active")) if designed else ""
     row["diagnosis"] = outputs.get("diagnosis") or ""
+    # how it was designed beside method and scatter (review 30: a choice, a start-up or a robust verification could
+    # not be told from the export): the choice kept, the simulated start, what the robust design's check found
+    choice = outputs.get("choice")
+    row["choice"] = ", ".join(f"{role} = {name}" for role, name in choice.items()) if isinstance(choice, dict) else ""
+    start = outputs.get("start_up")
+    row["start_up.start_time_simulated [s]"] = (start.get("start_time_simulated") if isinstance(start, dict)
+                                                and designed else None)
+    robust = outputs.get("robust")
+    row["robust verification"] = (robust.get("verification") or "") if isinstance(robust, dict) else ""
     return row
 
 
