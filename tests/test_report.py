@@ -442,3 +442,16 @@ def test_an_undecided_start_is_not_called_no_lock_up():
                                                              "locks_up": None, "reason": "stopped after 20000 steps"})
     check = start_up_check(None, undecided)
     assert check.found == "not decided: stopped after 20000 steps" and check.verdict == "failed"
+
+
+def test_a_system_chance_page_says_what_its_start_up_limits_took_of_the_risk():
+    """review 29: the risk allocation's table of a start-up case left out the start-up limits' shares (0.00125 each of
+    0.01, the constraints' 0.0025 the rest)."""
+    from clutchopt.optimise.robust import SYSTEM_CHANCE, solve_robust
+    from clutchopt.report.sections import allocation_blocks
+
+    case = load_case(CASES / "wedge_motor_start_scatter.toml")
+    result = solve_robust(case, SYSTEM_CHANCE, 0.99, samples=200, starts=10)
+    claim = allocation_blocks(result.allocation, result)[0].text
+    assert "Each start-up limit the scatter moves took 0.00125 of 1 - P first (a union bound)" in claim
+    assert "sum_i Phi(-beta_i) <= 0.0025" in claim

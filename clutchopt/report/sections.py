@@ -219,22 +219,26 @@ def scatter(case: Case, results: list, robust=None) -> tuple[list, tuple[str, fl
                      **reliability_columns(case, reliability, *_with_start_up(owner, reliability))})
     name, (p, _, _) = max(first.nominal_failure.items(), key=lambda item: item[1][0])
     bars = tornado(first.formulation, first.nominal.design, case.params(), case.scatter)
-    allocation = allocation_blocks(robust.allocation) if robust is not None and robust.allocation else []
+    allocation = allocation_blocks(robust.allocation, robust) if robust is not None and robust.allocation else []
     chart = (tornado_chart(case, first, bars) if designed(first.nominal) else  # (review 31: a last point's, as a
              Note("No tornado chart: the nominal solve found no design."))  # design's)
     return [Table(rows, ("change", "largest P(fail)", "system P(fail)")), *allocation, chart], (name, p, first.samples)
 
 
-def allocation_blocks(allocation) -> list:
+def allocation_blocks(allocation, robust=None) -> list:
     """How a system chance design split 1 - P between its constraints: the claim, then each constraint's beta, its
-    share of the first-order series bound and its own failure probability (importance sampling)."""
+    share of the first-order series bound and its own failure probability (importance sampling); the share each
+    start-up limit the scatter moves took first (``robust.start_up_share``; review 29: left out)."""
     data = allocation.as_dict()
     rows = [{"constraint": name, "beta": f"{c['beta']:.4g}", "index shift": f"{c['index_shift']:+.3g}",
              "share of 1 - P": f"{c['share']:.3g}",
              "P(fail)": "-" if not c["failure_probability"] else
              "{probability:.3g} ({low:.3g} to {high:.3g}, {estimator})".format(**c["failure_probability"])}
             for name, c in data["constraints"].items()]
-    return [Note(f"Risk allocation (system chance): {data['claim']}"),
+    share = robust.start_up_share if robust is not None else None
+    first = (f". Each start-up limit the scatter moves took {share:.3g} of 1 - P first (a union bound); the "
+             "constraints share the rest") if share else ""
+    return [Note(f"Risk allocation (system chance): {data['claim']}{first}."),
             Table(rows, ("beta", "index shift", "share of 1 - P"))]
 
 
