@@ -122,3 +122,12 @@ def test_a_case_given_as_a_dict_takes_numpy_numbers_and_names_a_unitless_field_s
     data["geometry"]["weight_count"] = [4]
     with pytest.raises(InputError, match="weight_count: expected a number, got list"):
         parse_case(data)
+
+
+def test_a_table_where_a_coupling_s_name_belongs_is_named_as_such():
+    """A scene whose case is the scene itself had been refused with "unknown coupling {'law': ...}"."""
+    from clutchopt.formulations import get_coupling
+
+    with pytest.raises(InputError, match=r"^coupling: must be a coupling's name \(wedge, lever, cable, ball\), got "
+                                         r"\{'law': 'centrifugal'\}: is this a case file\?"):
+        get_coupling({"law": "centrifugal"})
