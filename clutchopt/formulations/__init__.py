@@ -16,9 +16,9 @@ MODULES = {
 
 
 def get_coupling(name: object) -> Coupling:
-    if not isinstance(name, str):  # (a scene's [coupling] table read as a case's: review 27)
+    if isinstance(name, dict):  # (a scene's [coupling] table read as a case's: review 27)
         raise InputError("coupling", f"must be a coupling's name ({', '.join(MODULES)}), got {shown_value(name)}: "
                                      "is this a case file?")
-    if name not in MODULES:
+    if not isinstance(name, str) or name not in MODULES:
         raise InputError("coupling", f"unknown coupling {name!r}; known: {', '.join(MODULES)}")
     return import_module(MODULES[name]).COUPLING
