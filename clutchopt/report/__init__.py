@@ -53,7 +53,8 @@ def build_report(case: Case, solution: Solution, sweep: pd.DataFrame | None = No
         Section("Dimensioned sketch", "sketch", drawing(case, solution, formulation)),
         Section("Constraint margins", "margins", margins(case, solution, robust)),
         Section("Sensitivities", "sensitivities", sensitivities(solution, formulation)),
-        Section("Comparison with the paper's method", "comparison", comparison(case, solution, options, robust, designs)),
+        Section("Comparison with the paper's method", "comparison",
+                comparison(case, solution, options, robust, designs)),
         Section("Start-up simulation", "simulation", simulation(case, solution, robust)),
     ]
     if scattered is not None:
