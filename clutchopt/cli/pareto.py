@@ -99,6 +99,7 @@ def run(args) -> str:
     for front in fronts:
         lines += [""] + ([f"options.choose: {_choice(front)}"] if front.choice else [])
         lines += [front.note] if front.note else []
+        lines += [front.caveat] if front.caveat else []
         lines.append(front.frame.to_string(index=False, float_format=lambda v: f"{v:.6g}", na_rep="-"))
     lines += [f"figure written to {args.plot}"] if args.plot else []
     return "\n".join(lines)
@@ -132,7 +133,8 @@ def _front_json(front) -> dict:
             for k, (cap, solution) in enumerate(zip(front.caps, front.solutions))]
     ends = {name: si_unit(formulation.objective(name).unit) for name in ("mass", "cost")}
     units = {"cost_cap": ends["cost"], **ends, "design": {v.name: v.si_unit for v in formulation.variables}}
-    return with_units({**({"choice": front.choice} if front.choice else {}), "note": front.note, "rows": rows},
+    return with_units({**({"choice": front.choice} if front.choice else {}), "note": front.note,
+                       **({"caveat": front.caveat} if front.caveat else {}), "rows": rows},
                       {"rows": units})
 
 

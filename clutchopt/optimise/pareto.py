@@ -54,6 +54,7 @@ class ParetoFront:
     note: str = ""  # why there is no front (one end not optimal, or both ends the same design)
     choice: dict[str, str] = field(default_factory=dict)  # the choice of options.choose this front is made of
     robust: list[RobustResult] = field(default_factory=list)  # with --robust: each point's robust result
+    caveat: str = ""  # what a robust front's cost column is not (review 30: the cap held at a corner, unsaid)
 
 
 _CAPPED: dict[tuple[str, str], Formulation] = {}  # one capped formulation per mode: one problem in problem_for
@@ -106,8 +107,11 @@ def pareto_front(case: Case, mode: str | None = None, points: int = 9, options: 
             caps.append(np.nan)
     if robust is not None:  # in the order of the points: the mass end, the capped ones, the cost end
         results = [results[0], *results[2:], results[1]][: len(solutions)]
+    moved = sorted({q for result in results for q, effect in result.bars.get(CAP, {}).items() if abs(effect) > 1e-12})
+    caveat = (f"the cost cap holds where the scatter ({', '.join(moved)}) makes the cost highest, its corner or "
+              "performance point; the cost column is the nominal cost, at most the cap") if moved else ""
     return ParetoFront(case, formulation.mode, _frame(formulation, case, caps, solutions, results), solutions, caps,
-                       note, robust=results)
+                       note, robust=results, caveat=caveat)
 
 
 def _frame(formulation: Formulation, case: Case, caps: list[float], solutions: list[Solution],
