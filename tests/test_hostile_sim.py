@@ -143,3 +143,15 @@ def test_a_thousand_point_load_table_is_one_node_of_the_nlp():
         i = min(int(np.searchsorted(points, w)) - 1, 998)
         expected = (values[i + 1] - values[i]) / (points[i + 1] - points[i]) if inside else 0.0
         assert slope == pytest.approx(expected, rel=1e-9, abs=1e-12)
+
+
+def test_a_scene_s_end_time_before_lock_up_is_no_verdict():
+    """review 34: the paper's transient cut at 3 s (it locks up at 5.92 s) had said "lock-up: no"; the closed form's
+    verdict, where it has one, still decides."""
+    law = PaperFriction(50.0, -0.01)
+    cut = Model(law, 2.0, Load(20.0), ("slip_friction", "lockup"), driver_speed=157.07963267948966, end_time=3.0)
+    head = simulate(cut).headline
+    assert head["locks_up"] is None and head["reason"].startswith("not locked up by the scene's end time 3 s")
+    never = Model(law, 2.0, Load(120.0), ("slip_friction", "lockup"), driver_speed=157.07963267948966, end_time=3.0)
+    head = simulate(never).headline  # M_r above 2k: no lock-up whatever the end time (the closed form says so)
+    assert head["locks_up"] is False and head["reason"].startswith("no lock-up")

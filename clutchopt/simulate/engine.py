@@ -403,8 +403,10 @@ def simulate(model: Model) -> SimulationResult:
                 reason, decided = f"integration failed: {out.message}", False
             elif out.status == "budget":
                 reason, decided = run.budget_reason(t), False
-            elif math.isnan(start_time):
-                reason = verdict or f"no lock-up by the end time {bound:.6g} s"
+            elif math.isnan(start_time):  # (a scene's end time before lock-up decides nothing: review 34)
+                decided = bool(verdict) or model.end_time is None
+                reason = verdict or (f"no lock-up by the end time {bound:.6g} s" if decided else
+                                     f"not locked up by the scene's end time {bound:.6g} s, where the run stops")
             break
         name = list(armed)[out.event]
         if name == "loose":
