@@ -122,3 +122,20 @@ def test_a_ball_scene_needs_the_driven_machine_and_no_springs(tmp_path):
     with pytest.raises(InputError, match="gravity does not apply to the ball coupling") as error:
         load_scene(scene)
     assert "effects" in [problem.field for problem in error.value.problems]
+
+
+def test_a_plain_design_file_of_a_scatter_case_says_it_is_nominal(tmp_path):
+    """review 34: a scene simulating a nominal design file of a [scatter] case said nothing of the scatter, where a
+    scene that solves the case says its design is nominal."""
+    from conftest import CASES, run_cli
+
+    solved = run_cli("solve", str(CASES / "wedge_motor_start_scatter.toml"), "--json", "--no-store")
+    assert solved.returncode == 0, solved.stderr
+    (tmp_path / "design.json").write_text(solved.stdout)
+    scene = tmp_path / "scene.toml"
+    scene.write_text(f'title = "t"\neffects = ["slip_friction", "motor_curve", "spring_preload", "lockup"]\n'
+                     f'[coupling]\nlaw = "centrifugal"\ncase = "{CASES / "wedge_motor_start_scatter.toml"}"\n'
+                     f'design = "design.json"\n')
+    run = run_cli("simulate", str(scene), "--no-store")
+    assert run.returncode == 0, run.stderr
+    assert "coupling: wedge design (design.json; nominal: the case's [scatter] is not designed for)" in run.stdout

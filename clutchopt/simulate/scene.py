@@ -258,9 +258,11 @@ def _centrifugal(f: _Fields, case, effects):
                 mode, design, case = given.mode, given.design, _chosen(case, given.choice)
         except InputError as error:
             f.problems.errors.append(error)
-        if design is not None:
+        if design is not None:  # (a plain design of a [scatter] case: said as a solved one is, review 34)
             source["design"] = table["design"] + (" (a robust design, simulated at the case's nominal values)"
-                                                  if given.robust else "")
+                                                  if given.robust else
+                                                  "; nominal: the case's [scatter] is not designed for"
+                                                  if case.scatter else "")
         for name in ("mode", "objective"):  # (the file's design is simulated: neither solves the case; a value
             # that is no name is refused as such above; a mode beside a file not read is not known to differ)
             value = table.get(name)
