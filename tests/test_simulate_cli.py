@@ -139,3 +139,21 @@ def test_a_plain_design_file_of_a_scatter_case_says_it_is_nominal(tmp_path):
     run = run_cli("simulate", str(scene), "--no-store")
     assert run.returncode == 0, run.stderr
     assert "coupling: wedge design (design.json; nominal: the case's [scatter] is not designed for)" in run.stdout
+
+
+def test_a_design_file_of_another_case_of_the_same_name_is_refused(tmp_path):
+    """review 34: a design file was matched to the scene's case by its file name only: the worked example's design
+    simulated with an edited copy of its case (friction 0.12, not 0.15) ran without a word."""
+    from conftest import CASES, run_cli
+
+    solved = run_cli("solve", str(CASES / "wedge_paper.toml"), "--json", "--no-store")
+    (tmp_path / "design.json").write_text(solved.stdout)
+    (tmp_path / "wedge_paper.toml").write_text((CASES / "wedge_paper.toml").read_text().replace(
+        "friction_coefficient = 0.15", "friction_coefficient = 0.12"))
+    scene = tmp_path / "scene.toml"
+    scene.write_text('title = "t"\neffects = ["slip_friction", "lockup"]\n[coupling]\nlaw = "centrifugal"\n'
+                     'case = "wedge_paper.toml"\ndesign = "design.json"\n')
+    run = run_cli("simulate", str(scene), "--no-store")
+    assert run.returncode == 2 and "error: coupling.design: design.json was solved for another case" in run.stderr
+    (tmp_path / "wedge_paper.toml").write_text((CASES / "wedge_paper.toml").read_text())  # its own case: taken
+    assert run_cli("simulate", str(scene), "--no-store").returncode == 0

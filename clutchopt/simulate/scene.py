@@ -249,7 +249,7 @@ def _centrifugal(f: _Fields, case, effects):
 
     table = f.table("coupling")
     source = {"law": "centrifugal", "coupling": case.coupling, "case": table["case"]}
-    design, formulation = None, None
+    design, formulation, given = None, None, None
     if "design" in table:
         design_path = f.file("design")
         try:  # (read beside the scene's other problems: every one named in one run)
@@ -293,6 +293,8 @@ def _centrifugal(f: _Fields, case, effects):
         if case.scatter:  # (as every command designing a case with [scatter] without --robust says)
             source["design"] += "; nominal: the case's [scatter] is not designed for"
     law = centrifugal_law(case, mode, design, effects, design["spring_preload"] if designed else preload)
+    if given is not None:  # (after the law's own checks: a design edited by hand is refused by those first)
+        _solved_for(case, given, table["design"])
     source["engagement_speed"] = law.engagement_speed()
     source["design_torque"] = law.capacity(case.params().speed)
     return law, source
@@ -409,6 +411,25 @@ def _motor(f: _Fields) -> InductionMotor:
                           f.quantity("driver", "breakdown_torque", "N*m", TORQUE),
                           f.quantity("driver", "breakdown_slip", "", BREAKDOWN_SLIP),
                           f.quantity("driver", "inertia", "kg*m^2", INERTIA))
+
+
+SAME_OUTPUT = 1e-9  # relative: a design file's derived quantities against the same design's at the scene's case
+
+
+def _solved_for(case, given, name: str) -> None:
+    """Refuse a design file solved for another case than ``case`` though of its file name (review 34: a case edited
+    after its solve, or another folder's of that name, had been taken without a word): the derived quantities the
+    solve wrote against the same design's at this case, naming those that differ."""
+    from clutchopt.optimise.problem import case_formulation
+    from clutchopt.optimise.verify import evaluate_outputs
+
+    here = evaluate_outputs(case_formulation(case, given.mode), given.design, case.params())
+    differ = [(key, value, here[key].value) for key, value in given.outputs.items() if key in here
+              and abs(here[key].value - value) > SAME_OUTPUT * max(abs(value), abs(here[key].value), 1e-300)]
+    if differ:
+        shown = ", ".join(f"{key} {value:.6g} there, {now:.6g} here" for key, value, now in differ[:3])
+        raise InputError("coupling.design", f"{name} was solved for another case than {case.path} (its derived "
+                                            f"quantities differ: {shown}; SI): solve this case again")
 
 
 def run_scene(scene: Scene):

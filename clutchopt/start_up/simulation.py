@@ -65,6 +65,7 @@ class DesignFile(NamedTuple):
     design: dict[str, float]
     choice: dict[str, str]
     robust: bool
+    outputs: dict[str, float] = {}  # the derived quantities the solve wrote (at the case's nominal values)
 
 
 def design_from_json(path: str | Path, coupling: str, case_path: str | Path | None = None,
@@ -122,7 +123,10 @@ def design_from_json(path: str | Path, coupling: str, case_path: str | Path | No
         problems.errors.append(InputError(f"{field} choice", f"must be the names of a choice of options.choose, got "
                                                              f"{shown_value(choice)}"))
     problems.raise_any()
-    return DesignFile(formulation.mode, checked, choice, "robust" in data)
+    outputs = data.get("outputs") if isinstance(data.get("outputs"), dict) else {}
+    return DesignFile(formulation.mode, checked, choice, "robust" in data,
+                      {name: float(value) for name, value in outputs.items()
+                       if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)})
 
 
 def _no_constant(name: str):
