@@ -11,7 +11,7 @@ import json
 import math
 from typing import TYPE_CHECKING
 
-from clutchopt.records import DESIGN_STATUSES, UNRANKED, target_text
+from clutchopt.records import DESIGN_STATUSES, UNRANKED, lock_up_verdict, target_text
 from clutchopt.units import from_si, si_unit
 from clutchopt.scatter import correlation_text, shown_spread
 
@@ -438,8 +438,8 @@ def start_up_table(start_up: dict) -> tuple[str, list[dict], list[str]]:
 
 def worn_note(worn: dict) -> str:
     """The start with worn linings (the lever), simulated, in a line."""
-    if not worn["locks_up"]:  # (None: the run stopped without a verdict)
-        return f"worn linings (simulated): {'no lock-up' if worn['locks_up'] is False else 'not decided'}"
+    if not worn["locks_up"]:
+        return f"worn linings (simulated): {'no lock-up' if lock_up_verdict(worn) == 'no' else 'not decided'}"
     heat = f", {worn['temperature_rise']:.4g} K" if worn.get("temperature_rise") is not None else ""
     least = worn.get("min_lock_up_speed")
     early = (f" (below min_lock_up_speed {least * 30 / math.pi:.5g} rpm: the motor runs the machine up locked)"

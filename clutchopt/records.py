@@ -33,6 +33,12 @@ SOLVER_STATICS = ("name", "status", "iterations")  # a template's; a point's own
 SOLVER_KEYS = (*SOLVER_STATICS, "time_s", "solves")
 
 
+
+def lock_up_verdict(headline: dict) -> str:
+    """A simulated start's lock-up in words: ``yes``, ``no`` or ``not decided`` (``locks_up`` None: the run stopped
+    without a verdict), the one reading of the headline's three values."""
+    return {True: "yes", False: "no"}.get(headline["locks_up"], "not decided")
+
 def method_text(method: str, target: float | None) -> str:
     """A robust method as --robust spells it: ``worst-case``, ``chance=0.999``."""
     return method if target is None else f"{method}={target_text(target)}"

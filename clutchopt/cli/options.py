@@ -298,7 +298,7 @@ def record_simulation(store, scene, result) -> None:
     """Record a ``simulate`` run (scene file, headline, events) in an open store (or nothing for None)."""
     if store is None:
         return
-    from clutchopt.simulate.engine import lock_up_verdict
+    from clutchopt.records import lock_up_verdict
 
     store.record("simulation", {"scene": scene.data, "source": scene.source, "units": {"scene": scene.units}},
                  result.as_dict(),

@@ -59,18 +59,23 @@ def run(args) -> str:
         listed, swept = store.runs(args.kind, args.sweep, args.limit or None), store.sweeps()
     _known_sweep(args.sweep, swept, store.path)
     if args.json:
-        runs = [_objective_unit(_listed_run(run)) for run in listed]
+        runs = [_objective_unit(_shown_run(run)) for run in listed]
         return to_json(with_units({"store": str(store.path), "runs": runs,
                                    "sweeps": swept}, {"runs": IDS, "sweeps": {**IDS, "points": "", "stored": ""}}))
     return listing_text(store.path, listed, swept if args.sweep is None else [])
 
 
-def _listed_run(run: dict) -> dict:
-    """A run as ``runs list --json`` gives it: a sweep point without a design without an objective, as the text
-    listing, ``runs show`` and ``runs export`` give it (review 31)."""
+def _shown_run(run: dict) -> dict:
+    """A run as ``runs list --json`` and ``runs show`` give it: a sweep point without a design without an objective,
+    design or outputs (:func:`~clutchopt.output.shown_point`), as the text listing and ``runs export`` give it
+    (reviews 30, 31)."""
+    from clutchopt.output import shown_point
     from clutchopt.records import DESIGN_STATUSES
 
-    return {**run, "objective": None} if run["kind"] == "sweep" and run["status"] not in DESIGN_STATUSES else run
+    if run["kind"] != "sweep" or run["status"] in DESIGN_STATUSES:
+        return run
+    outputs = run.get("outputs")
+    return {**run, "objective": None, **({"outputs": shown_point(outputs)} if isinstance(outputs, dict) else {})}
 
 
 IDS = dict.fromkeys(("id", "sweep_id", "point"), "")  # a run's id, its sweep's and its point's index: no unit
@@ -85,14 +90,12 @@ def _objective_unit(run: dict) -> dict:
 def run_json(run: dict) -> dict:
     """A stored run with the unit of every number: its inputs by its coupling's quantities (a robust design's
     scatter too), its outputs as a solution's or a simulation's."""
-    from clutchopt.records import DESIGN_STATUSES
-    from clutchopt.output import CHECK_UNITS, HEADLINE_UNITS, SIMULATION_UNITS, shown_point, solution_json, with_units
+    from clutchopt.output import CHECK_UNITS, HEADLINE_UNITS, SIMULATION_UNITS, solution_json, with_units
     from clutchopt.store import nested
 
+    run = _shown_run(run)
     outputs = run["outputs"]
-    if run["kind"] == "sweep" and run["status"] not in DESIGN_STATUSES:  # (a point without a design, as its table
-        run, outputs = {**run, "objective": None}, shown_point(outputs) if isinstance(outputs, dict) else outputs
-    if isinstance(outputs, dict) and isinstance(outputs.get("objective"), dict):  # and runs export show it)
+    if isinstance(outputs, dict) and isinstance(outputs.get("objective"), dict):
         outputs = solution_json(outputs)
     elif isinstance(outputs, dict):
         outputs = with_units(outputs, {**SIMULATION_UNITS, **CHECK_UNITS})

@@ -62,7 +62,7 @@ def run(args) -> str:
 
 
 def _text(scene, result, analytic) -> str:
-    from clutchopt.simulate.engine import lock_up_verdict
+    from clutchopt.records import lock_up_verdict
 
     h = result.headline
     lines = [scene.title or scene.path, f"effects: {', '.join(h['effects'])}"]

@@ -218,10 +218,10 @@ def scatter(case: Case, results: list, robust=None) -> tuple[list, tuple[str, fl
                      "largest P(fail)": largest_failure(failure, first.samples),
                      **reliability_columns(case, reliability, *_with_start_up(owner, reliability))})
     name, (p, _, _) = max(first.nominal_failure.items(), key=lambda item: item[1][0])
-    bars = tornado(first.formulation, first.nominal.design, case.params(), case.scatter)
     allocation = allocation_blocks(robust.allocation, robust) if robust is not None and robust.allocation else []
-    chart = (tornado_chart(case, first, bars) if designed(first.nominal) else  # (review 31: a last point's, as a
-             Note("No tornado chart: the nominal solve found no design."))  # design's)
+    chart = (tornado_chart(case, first, tornado(first.formulation, first.nominal.design, case.params(), case.scatter))
+             if designed(first.nominal) else  # (review 31: a last point's, as a design's)
+             Note("No tornado chart: the nominal solve found no design."))
     return [Table(rows, ("change", "largest P(fail)", "system P(fail)")), *allocation, chart], (name, p, first.samples)
 
 

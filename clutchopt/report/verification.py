@@ -6,8 +6,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from clutchopt.records import DESIGN_STATUSES
-from clutchopt.records import target_text
+from clutchopt.records import DESIGN_STATUSES, lock_up_verdict, target_text
 
 PASSED, FAILED, NOT_DONE = "passed", "failed", "not done"
 
@@ -29,10 +28,8 @@ def verification(case, solution, robust=None, nominal_failure: tuple[str, float,
     """The checks of ``solution`` (the robust design's where ``robust`` is given); ``nominal_failure``: (constraint,
     probability, samples) of the nominal design's likeliest failure, where the page shows the nominal design of a
     case with a [scatter]."""
-    designed = solution.status in DESIGN_STATUSES
     return [solver_check(solution), float64_check(solution), start_up_check(case, solution),
-            scatter_check(robust, nominal_failure, case.start_up is not None and designed,
-                          bool(case.scatter) and not designed)]
+            scatter_check(case, solution, robust, nominal_failure)]
 
 
 def solver_check(solution) -> Check:
@@ -75,8 +72,8 @@ def start_up_check(case, solution) -> Check:
         how = (f"the start on the case's drive ({', '.join(start['effects'])}) integrated by SciPy (LSODA where "
                f"stiff) in float64, beside the NLP's Radau collocation ({start['intervals']} intervals per phase); the "
                "start-up's constraints above are checked with the simulated figures")
-        if not start["locks_up"]:  # (None: the run stopped without a verdict)
-            return Check(what, how, f"{'no lock-up' if start['locks_up'] is False else 'not decided'}: "
+        if not start["locks_up"]:
+            return Check(what, how, f"{'no lock-up' if lock_up_verdict(start) == 'no' else 'not decided'}: "
                                     f"{start['reason']}", FAILED)
         errors = start["discretisation_error"]
         return Check(what, how, f"lock-up after {start['start_time_simulated']:.6g} s (NLP {start['start_time']:.6g} "
@@ -95,16 +92,16 @@ def start_up_check(case, solution) -> Check:
                             f"friction work {check['friction_work']:.6g} J", PASSED)
 
 
-def scatter_check(robust, nominal_failure: tuple[str, float, int] | None, start_up: bool = False,
-                  scattered: bool = False) -> Check:
+def scatter_check(case, solution, robust, nominal_failure: tuple[str, float, int] | None) -> Check:
     what = "corners and Monte Carlo"
-    if not start_up and nominal_failure is None and robust is None and scattered:
+    if robust is None and case.scatter and solution.status not in DESIGN_STATUSES:
         return Check(what, "the nominal design under the case's [scatter]", "no design to check", NOT_DONE)
     if robust is not None:
         return Check(what, f"robust design ({robust_label(robust)}) for the case's [scatter]", robust.verification,
                      PASSED if robust.status == "optimal" else FAILED)
     if nominal_failure is not None:
         name, p, samples = nominal_failure
+        start_up = case.start_up is not None
         unsampled = "; its start-up limits not sampled" if start_up else ""  # (review 29: not said)
         return Check(what, f"the nominal design under the case's [scatter], {samples} Monte Carlo samples (section "
                            "Scatter); it is not designed for the scatter",

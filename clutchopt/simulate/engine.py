@@ -442,11 +442,6 @@ def simulate(model: Model) -> SimulationResult:
     return SimulationResult(history, _headline(model, history, start_time, start_state, reason, y, decided), events)
 
 
-def lock_up_verdict(headline: dict) -> str:
-    """A headline's lock-up in words: ``yes``, ``no`` or ``not decided`` (the run stopped without a verdict)."""
-    return {True: "yes", False: "no"}.get(headline["locks_up"], "not decided")
-
-
 def largest(values: np.ndarray) -> float:
     """The largest sample, NaN left out (as pandas' max)."""
     kept = values[~np.isnan(values)]
@@ -489,7 +484,8 @@ def _history(phases: list[tuple]) -> dict[str, np.ndarray]:
 def _headline(model, history, start_time, start_state, reason, y_end, decided: bool = True) -> dict:
     """Headline figures in SI; L and L_s are taken at the first lock-up (the start-up), totals at the end.
     ``locks_up``: None where the run stopped without a verdict (``decided`` false: the step budget spent, the
-    integration failed, chatter), not False: no one knows whether it locks up (:func:`lock_up_verdict`)."""
+    integration failed, chatter), not False: no one knows whether it locks up
+    (:func:`clutchopt.records.lock_up_verdict`)."""
     locked = start_state is not None
     at_start = start_state if locked else y_end
     headline = {
